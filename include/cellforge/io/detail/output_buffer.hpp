@@ -1,0 +1,161 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Buffered output for the writers: numbers formatted with std::to_chars (shortest
+/// round-trip text, locale-independent) into a large buffer flushed to a stream in chunks.
+
+#include <algorithm>
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <concepts>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <type_traits>
+
+#include "cellforge/core/error.hpp"
+#include "cellforge/core/point_traits.hpp"
+#include "cellforge/io/detail/read_file.hpp"
+
+namespace cellforge::io::detail {
+
+/// Collects output in a 1 MiB buffer and hands it to the stream in big writes.
+class output_buffer {
+ public:
+  explicit output_buffer(std::ostream& os) : os_(os) { buf_.resize(capacity); }
+  output_buffer(const output_buffer&) = delete;
+  output_buffer& operator=(const output_buffer&) = delete;
+  // No flush in the destructor: it would hide write errors during unwinding; callers call finish().
+
+  void put(std::string_view s) {
+    if (s.size() > capacity - used_) {
+      flush();
+      if (s.size() > capacity) {
+        os_.write(s.data(), static_cast<std::streamsize>(s.size()));
+        return;
+      }
+    }
+    std::memcpy(buf_.data() + used_, s.data(), s.size());
+    used_ += s.size();
+  }
+  void put(char c) {
+    if (used_ == capacity) flush();
+    buf_[used_++] = c;
+  }
+
+  /// Appends a number as text: shortest round-trip form for floating point.
+  template <class T>
+  requires std::is_arithmetic_v<T>
+  void number(T value) {
+    if (capacity - used_ < max_number_chars) flush();
+    const auto r = std::to_chars(buf_.data() + used_, buf_.data() + capacity, value);
+    used_ = static_cast<std::size_t>(r.ptr - buf_.data());
+  }
+
+  /// Appends the raw bytes of a value in little- or big-endian order.
+  template <class T>
+  requires std::is_arithmetic_v<T>
+  void binary(T value, bool little_endian) {
+    if (capacity - used_ < sizeof(T)) flush();
+    char bytes[sizeof(T)];
+    std::memcpy(bytes, &value, sizeof(T));
+    if ((std::endian::native == std::endian::little) != little_endian) {
+      for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(bytes[i], bytes[sizeof(T) - 1 - i]);
+    }
+    std::memcpy(buf_.data() + used_, bytes, sizeof(T));
+    used_ += sizeof(T);
+  }
+
+  void flush() {
+    if (used_ != 0) os_.write(buf_.data(), static_cast<std::streamsize>(used_));
+    used_ = 0;
+  }
+
+  /// Flushes and reports a failed stream as an io error.
+  void finish(std::string_view what) {
+    flush();
+    os_.flush();
+    if (!os_) throw error(error_category::io, "writing " + std::string(what) + " failed (stream error)");
+  }
+
+ private:
+  static constexpr std::size_t capacity = std::size_t{1} << 20;
+  static constexpr std::size_t max_number_chars = 64;  // longest to_chars output of any scalar
+  std::ostream& os_;
+  std::string buf_;
+  std::size_t used_ = 0;
+};
+
+/// Writes `text` as comment lines, each prefixed (e.g. "# " or "comment "); empty lines are
+/// dropped because a line break inside a comment would end it. O(text).
+inline void put_comment_lines(output_buffer& out, std::string_view text, std::string_view prefix) {
+  while (!text.empty()) {
+    const std::size_t eol = std::min(text.find_first_of("\r\n"), text.size());
+    if (eol != 0) {
+      out.put(prefix);
+      out.put(text.substr(0, eol));
+      out.put('\n');
+    }
+    text.remove_prefix(std::min(eol + 1, text.size()));
+  }
+}
+
+/// Opens `path` for binary writing, runs `write(stream)`, and turns any failure into an io
+/// error naming the path. O(what write costs).
+template <class Write>
+void write_file(const std::filesystem::path& path, Write&& write) {
+  std::ofstream os(path, std::ios::binary | std::ios::trunc);
+  if (!os) throw error(error_category::io, "cannot open '" + display_name(path) + "' for writing");
+  try {
+    write(static_cast<std::ostream&>(os));
+  } catch (const error& e) {
+    if (e.category() != error_category::io) throw;
+    throw error(error_category::io, "cannot write '" + display_name(path) + "': " + e.message());
+  }
+  os.close();
+  if (!os)
+    throw error(error_category::io, "cannot write '" + display_name(path) + "': closing the file failed");
+}
+
+/// Throws invalid_input when point i has a NaN or infinite coordinate: writing it would make
+/// a file that our readers (rightly) reject. O(1).
+template <Point3 P>
+void check_point_finite(const P& p, std::size_t i, std::string_view format) {
+  if constexpr (std::is_floating_point_v<scalar_t<P>>) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (!std::isfinite(coord(p, k)))
+        throw error(error_category::invalid_input, "write_" + std::string(format) + ": point " +
+                                                       std::to_string(i) + " has a non-finite coordinate");
+    }
+  }
+}
+
+/// Throws invalid_input unless the offsets are well formed, every face has 3+ vertices and every
+/// index names a point: a writer never makes a file its reader would reject. O(indices).
+template <class Soup>
+void check_face_indices(const Soup& soup, std::string_view format) {
+  const std::size_t n = soup.points.size();
+  if (soup.face_offsets.empty() || soup.face_offsets.front() != 0 ||
+      soup.face_offsets.back() != soup.face_vertices.size())
+    throw error(error_category::invalid_input, "write_" + std::string(format) + ": malformed face offsets");
+  for (std::size_t f = 0; f + 1 < soup.face_offsets.size(); ++f) {
+    if (soup.face_offsets[f] > soup.face_offsets[f + 1])
+      throw error(error_category::invalid_input, "write_" + std::string(format) + ": malformed face offsets");
+    if (soup.face_offsets[f + 1] - soup.face_offsets[f] < 3)
+      throw error(error_category::invalid_input, "write_" + std::string(format) + ": face " +
+                                                     std::to_string(f) + " has fewer than 3 vertices");
+  }
+  for (std::size_t i = 0; i < soup.face_vertices.size(); ++i) {
+    if (soup.face_vertices[i] >= n)
+      throw error(error_category::invalid_input, "write_" + std::string(format) + ": face vertex index " +
+                                                     std::to_string(soup.face_vertices[i]) +
+                                                     " out of range (" + std::to_string(n) + " points)");
+  }
+}
+
+}  // namespace cellforge::io::detail

@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Whole-file reading for the parsers: one allocation and one read call, so that the
+/// parsers work on a contiguous buffer instead of streaming through iostreams.
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "cellforge/core/error.hpp"
+
+namespace cellforge::io::detail {
+
+/// The display name of a path in error messages (the path as given, not made absolute).
+inline std::string display_name(const std::filesystem::path& path) { return path.string(); }
+
+/// Reads the whole file into a string; throws an io error naming the path and the
+/// reason when it cannot be opened or read. O(file size).
+inline std::string read_file(const std::filesystem::path& path) {
+  const auto fail = [&](const char* what, int err) -> error {
+    return error(error_category::io, std::string("cannot ") + what + " '" + display_name(path) +
+                                         "': " + (err != 0 ? std::strerror(err) : "read error"));
+  };
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw fail("read", EISDIR);
+  errno = 0;
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!file) throw fail("open", errno);
+  std::string bytes;
+  // Size from the file when it has one; pipes and special files fall back to chunked reads.
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec) bytes.resize(static_cast<std::size_t>(size));
+  std::size_t used = std::fread(bytes.data(), 1, bytes.size(), file.get());
+  if (used < bytes.size()) {
+    if (std::ferror(file.get())) throw fail("read", errno);
+    bytes.resize(used);  // the file shrank while we read it
+  }
+  char chunk[65536];
+  while (!std::feof(file.get())) {
+    const std::size_t n = std::fread(chunk, 1, sizeof chunk, file.get());
+    if (std::ferror(file.get())) throw fail("read", errno);
+    bytes.append(chunk, n);
+  }
+  return bytes;
+}
+
+}  // namespace cellforge::io::detail
