@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# Installs the Debian/Ubuntu packages cellforge needs, and only those that are missing.
+#   bash cmake/install-deps.sh [--bench] [--compare] [--fuzz]
+#     (none)     compiler, CMake, make, GLM, doctest: enough to build the tests and examples
+#     --bench    Google Benchmark as well
+#     --compare  CGAL and OpenMesh, the baselines the benchmarks compare against (implies --bench)
+#     --fuzz     clang and its compiler-rt (libFuzzer, ASan/UBSan runtimes for clang)
+# `apt-get update` runs once, and only when something must be installed; sudo is used only
+# when not running as root. Nothing is installed when everything is present already.
+set -euo pipefail
+
+packages=(g++ cmake make libglm-dev doctest-dev)
+for arg in "$@"; do
+  case "$arg" in
+    --bench) packages+=(libbenchmark-dev) ;;
+    --compare) packages+=(libbenchmark-dev libcgal-dev libopenmesh-dev) ;;
+    # Debian 12's clang 14 needs libclang-rt-14-dev for -fsanitize=fuzzer (libclang_rt.fuzzer).
+    --fuzz) packages+=(clang libclang-rt-14-dev) ;;
+    -h | --help)
+      sed -n '2,9p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+      exit 0
+      ;;
+    *)
+      echo "install-deps.sh: unknown option '$arg' (try --help)" >&2
+      exit 2
+      ;;
+  esac
+done
+
+if ! command -v dpkg-query >/dev/null 2>&1; then
+  echo "install-deps.sh: not a Debian-like system (no dpkg-query); please install the equivalents of:" >&2
+  echo "  ${packages[*]}" >&2
+  echo "install-deps.sh: continuing, assuming they are present" >&2
+  exit 0
+fi
+
+missing=()
+for pkg in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null || true)
+  if [[ "$status" != "install ok installed" ]]; then
+    # The same package may be requested twice (--bench --compare); list it once.
+    [[ " ${missing[*]-} " == *" $pkg "* ]] || missing+=("$pkg")
+  fi
+done
+
+if ((${#missing[@]} == 0)); then
+  echo "install-deps.sh: all required packages are installed"
+  exit 0
+fi
+
+sudo_cmd=()
+if [[ "$(id -u)" -ne 0 ]]; then
+  if ! command -v sudo >/dev/null 2>&1; then
+    echo "install-deps.sh: need root to install: ${missing[*]} (and sudo is not available)" >&2
+    exit 1
+  fi
+  sudo_cmd=(sudo)
+fi
+
+echo "install-deps.sh: installing ${missing[*]}"
+"${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -q
+"${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}"

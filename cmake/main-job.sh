@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# The main job: installs what is missing, builds the main example in Release (build/release)
+# and runs it with no arguments on its bundled input. Its output files (e.g. the SVG picture)
+# land in out/ at the top of the repository.
+set -euo pipefail
+
+# The example program that is "the main job"; examples/<name>.cpp builds target <name>.
+main_example="mesh_info"
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+
+if [[ ! -f "examples/$main_example.cpp" ]]; then
+  echo "main-job: the main example examples/$main_example.cpp does not exist (yet)," >&2
+  echo "main-job: so there is no target '$main_example' to build; set main_example in $0" >&2
+  exit 1
+fi
+
+if [[ "${CELLFORGE_SKIP_DEPS:-0}" != 1 ]]; then
+  bash "$root/cmake/install-deps.sh"
+fi
+
+cmake --preset release
+cmake --build --preset release --target "$main_example"
+
+exe="$root/build/release/examples/$main_example"
+out="$root/out"
+mkdir -p "$out"
+stamp="$root/build/release/.main-job-stamp"
+touch "$stamp"
+sleep 1 # so that files written by the run are strictly newer than the stamp
+cd "$out"
+echo "main-job: running $main_example in $out"
+echo
+"$exe"
+echo
+echo "main-job: done; files written to $out:"
+find "$out" -maxdepth 1 -type f -newer "$stamp" -printf '  %f (%s bytes)\n' | sort

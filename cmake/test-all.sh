@@ -1,0 +1,134 @@
+#!/usr/bin/env bash
+# Runs every check cellforge has, as CI does:
+#   1. release  Release build of tests + examples, then ctest            (build/release)
+#   2. asan     Debug build with ASan + UBSan and -Werror, then ctest    (build/asan)
+#   3. fuzz     libFuzzer targets built with clang, seed corpora replayed, then each fuzzer
+#               run for CELLFORGE_FUZZ_SECONDS seconds (default 60)      (build/fuzz)
+# Every stage runs even when an earlier one failed; the exit status is non-zero if any failed.
+# Environment: CELLFORGE_FUZZ_SECONDS (default 60), CELLFORGE_FUZZ_JOBS (fuzzers run at once,
+# default 2), CELLFORGE_SKIP_DEPS=1 to skip the package check.
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+fuzz_seconds="${CELLFORGE_FUZZ_SECONDS:-60}"
+fuzz_jobs="${CELLFORGE_FUZZ_JOBS:-2}"
+
+# Runs one preset end to end: configure, build, test.
+preset_stage() {
+  local preset="$1"
+  cmake --preset "$preset"
+  cmake --build --preset "$preset"
+  ctest --preset "$preset" --output-on-failure -j2
+}
+
+# Runs one fuzzer for fuzz_seconds in the background-friendly way: never fails itself, but
+# writes "ok" or the exit code to <dir>/status for the caller to collect.
+run_fuzzer() {
+  local exe="$1" seeds="$2" dict="$3" dir="$4"
+  local args=(-max_total_time="$fuzz_seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
+    -artifact_prefix="$dir/")
+  if [[ -n "$dict" ]]; then args+=(-dict="$dict"); fi
+  # New inputs go to the first directory (kept in build/ between runs), seeds are read only.
+  args+=("$dir/corpus")
+  if [[ -n "$seeds" ]]; then args+=("$seeds"); fi
+  if "$exe" "${args[@]}" >"$dir/log" 2>&1; then
+    echo ok >"$dir/status"
+  else
+    echo "exit $?" >"$dir/status"
+  fi
+}
+
+fuzz_stage() {
+  cmake --preset fuzz
+  cmake --build --preset fuzz
+  ctest --preset fuzz --output-on-failure -j2 # replays the seed corpora
+  local list="build/fuzz/fuzzers.txt"
+  if [[ ! -s "$list" ]]; then
+    echo "test-all: $list lists no fuzzers" >&2
+    return 1
+  fi
+
+  local exe seeds dict name dir running=0 failed=0
+  local dirs=()
+  while IFS='|' read -r exe seeds dict; do
+    if [[ -z "$exe" ]]; then continue; fi
+    name="$(basename "$exe")"
+    dir="$root/build/fuzz/runs/$name"
+    rm -f "$dir"/status "$dir"/log "$dir"/crash-* "$dir"/timeout-* "$dir"/oom-* "$dir"/leak-*
+    mkdir -p "$dir/corpus"
+    dirs+=("$dir")
+    echo "test-all: fuzzing $name for ${fuzz_seconds}s (log: $dir/log)"
+    run_fuzzer "$exe" "$seeds" "$dict" "$dir" &
+    running=$((running + 1))
+    if ((running >= fuzz_jobs)); then
+      wait -n
+      running=$((running - 1))
+    fi
+  done <"$list"
+  wait
+
+  for dir in "${dirs[@]}"; do
+    name="$(basename "$dir")"
+    if [[ "$(cat "$dir/status" 2>/dev/null)" == ok ]]; then
+      echo "test-all: $name: no crash in ${fuzz_seconds}s ($(grep -m1 -o 'stat::number_of_executed_units: [0-9]*' "$dir/log" | grep -o '[0-9]*$' || echo '?') runs)"
+    else
+      failed=1
+      echo "test-all: $name FAILED ($(cat "$dir/status" 2>/dev/null || echo 'no status')); last lines of $dir/log:" >&2
+      tail -n 60 "$dir/log" >&2 || true
+      local artifacts=("$dir"/crash-* "$dir"/timeout-* "$dir"/oom-* "$dir"/leak-*)
+      for a in "${artifacts[@]}"; do
+        if [[ -e "$a" ]]; then echo "test-all: reproduce with: build/fuzz/tests/fuzz/$name $a" >&2; fi
+      done
+    fi
+  done
+  return "$failed"
+}
+
+if [[ "${1:-}" == "--stage" ]]; then
+  case "${2:-}" in
+    release | asan) preset_stage "$2" ;;
+    fuzz) fuzz_stage ;;
+    *)
+      echo "test-all: unknown stage '${2:-}'" >&2
+      exit 2
+      ;;
+  esac
+  exit 0
+fi
+
+start=$SECONDS
+if [[ "${CELLFORGE_SKIP_DEPS:-0}" != 1 ]]; then
+  bash "$root/cmake/install-deps.sh" --fuzz
+fi
+
+stages=(release asan)
+if compgen -G "$root/tests/fuzz/fuzz_*.cpp" >/dev/null; then
+  stages+=(fuzz)
+else
+  echo "test-all: no tests/fuzz/fuzz_*.cpp sources, skipping the fuzz stage"
+fi
+
+passed=()
+failed=()
+for stage in "${stages[@]}"; do
+  echo
+  echo "=== test-all: stage '$stage' ==="
+  stage_start=$SECONDS
+  # A separate bash process, so that `set -e` stops the stage at its first failing command.
+  if bash "${BASH_SOURCE[0]}" --stage "$stage"; then
+    passed+=("$stage ($((SECONDS - stage_start))s)")
+  else
+    failed+=("$stage")
+    echo "=== test-all: stage '$stage' FAILED ===" >&2
+  fi
+done
+
+elapsed=$((SECONDS - start))
+echo
+if ((${#failed[@]} == 0)); then
+  echo "test-all: PASSED: ${passed[*]}; total $((elapsed / 60))m$((elapsed % 60))s"
+else
+  echo "test-all: FAILED: ${failed[*]}; passed: ${passed[*]-none}; total $((elapsed / 60))m$((elapsed % 60))s" >&2
+  exit 1
+fi
