@@ -3,8 +3,8 @@
 #include <array>
 #include <glm/vec3.hpp>
 
-#include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/error.hpp"
+#include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/tolerance.hpp"
 
 namespace user {
@@ -19,6 +19,7 @@ class cad_point {
   void SetX(double v) { c_[0] = v; }
   void SetY(double v) { c_[1] = v; }
   void SetZ(double v) { c_[2] = v; }
+
  private:
   double c_[3] = {0, 0, 0};
 };
@@ -34,8 +35,8 @@ static_assert(cellforge::Point3<user::cad_point>);
 static_assert(!cellforge::Point3<int>);
 static_assert(!cellforge::Point3<std::array<float, 2>>);
 
-TEST_CASE_TEMPLATE("points round-trip through double precision", P, glm::dvec3, glm::vec3, std::array<float, 3>,
-                   user::vec, user::cad_point) {
+TEST_CASE_TEMPLATE("points round-trip through double precision", P, glm::dvec3, glm::vec3,
+                   std::array<float, 3>, user::vec, user::cad_point) {
   const P p = cellforge::point_traits<P>::make(1, -2, 3.5);
   CHECK(cellforge::coord(p, 0) == 1);
   CHECK(cellforge::coord(p, 1) == -2);

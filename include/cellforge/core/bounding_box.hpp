@@ -31,8 +31,7 @@ struct bounding_box {
 
 /// Bounding box of a range of registered points. O(n).
 template <std::ranges::input_range R>
-  requires Point3<std::ranges::range_value_t<R>>
-bounding_box bounding_box_of(R&& points) {
+requires Point3<std::ranges::range_value_t<R>> bounding_box bounding_box_of(R&& points) {
   bounding_box box;
   for (const auto& p : points) box.add(to_dvec3(p));
   return box;

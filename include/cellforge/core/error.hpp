@@ -23,11 +23,16 @@ enum class error_category : std::uint8_t {
 /// Human-readable name of a category ("invalid input", "topology", ...). O(1).
 constexpr std::string_view to_string(error_category c) noexcept {
   switch (c) {
-    case error_category::invalid_input: return "invalid input";
-    case error_category::topology: return "topology";
-    case error_category::io: return "io";
-    case error_category::budget: return "budget";
-    case error_category::internal: return "internal";
+    case error_category::invalid_input:
+      return "invalid input";
+    case error_category::topology:
+      return "topology";
+    case error_category::io:
+      return "io";
+    case error_category::budget:
+      return "budget";
+    case error_category::internal:
+      return "internal";
   }
   return "unknown";
 }

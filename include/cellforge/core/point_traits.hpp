@@ -29,12 +29,14 @@ using point_scalar_t = typename point_traits<P>::scalar;
 /// A type registered through point_traits: its scalar is a floating-point or
 /// integral arithmetic type, coordinates can be read by index and a point made.
 template <class P>
-concept Point3 = requires { typename point_traits<P>::scalar; } &&
-                 std::is_arithmetic_v<detail::point_scalar_t<P>> &&
-                 requires(const P& p, std::size_t i, detail::point_scalar_t<P> s) {
-                   { point_traits<P>::get(p, i) } -> std::convertible_to<detail::point_scalar_t<P>>;
-                   { point_traits<P>::make(s, s, s) } -> std::same_as<P>;
-                 };
+concept Point3 = requires {
+  typename point_traits<P>::scalar;
+}
+&&std::is_arithmetic_v<detail::point_scalar_t<P>>&& requires(const P& p, std::size_t i,
+                                                             detail::point_scalar_t<P> s) {
+  { point_traits<P>::get(p, i) } -> std::convertible_to<detail::point_scalar_t<P>>;
+  { point_traits<P>::make(s, s, s) } -> std::same_as<P>;
+};
 
 /// GLM 3-vectors of any scalar and qualifier.
 template <class T, glm::qualifier Q>
@@ -48,7 +50,7 @@ struct point_traits<glm::vec<3, T, Q>> {
 
 /// std::array<T, 3>.
 template <class T>
-  requires std::is_arithmetic_v<T>
+requires std::is_arithmetic_v<T>
 struct point_traits<std::array<T, 3>> {
   using scalar = T;
   static constexpr T get(const std::array<T, 3>& p, std::size_t i) noexcept { return p[i]; }
@@ -84,39 +86,41 @@ constexpr P from_dvec3(const glm::dvec3& v) {
 /// Registers a struct with three public data members as a cellforge point, in one line
 /// at global scope: `CELLFORGE_REGISTER_POINT3(my::vec, double, x, y, z)`. The type must
 /// be aggregate-initialisable in member order or constructible from (x, y, z).
-#define CELLFORGE_REGISTER_POINT3(Type, Scalar, MX, MY, MZ)                               \
-  template <>                                                                           \
-  struct cellforge::point_traits<Type> {                                                \
-    using scalar = Scalar;                                                              \
-    static constexpr Scalar get(const Type& p, std::size_t i) noexcept {                \
-      return i == 0 ? static_cast<Scalar>(p.MX) : i == 1 ? static_cast<Scalar>(p.MY)    \
-                                                         : static_cast<Scalar>(p.MZ);   \
-    }                                                                                   \
-    static constexpr Type make(Scalar x, Scalar y, Scalar z) {                          \
-      Type p{};                                                                         \
-      p.MX = x;                                                                         \
-      p.MY = y;                                                                         \
-      p.MZ = z;                                                                         \
-      return p;                                                                         \
-    }                                                                                   \
+#define CELLFORGE_REGISTER_POINT3(Type, Scalar, MX, MY, MZ)              \
+  template <>                                                            \
+  struct cellforge::point_traits<Type> {                                 \
+    using scalar = Scalar;                                               \
+    static constexpr Scalar get(const Type& p, std::size_t i) noexcept { \
+      return i == 0   ? static_cast<Scalar>(p.MX)                        \
+             : i == 1 ? static_cast<Scalar>(p.MY)                        \
+                      : static_cast<Scalar>(p.MZ);                       \
+    }                                                                    \
+    static constexpr Type make(Scalar x, Scalar y, Scalar z) {           \
+      Type p{};                                                          \
+      p.MX = x;                                                          \
+      p.MY = y;                                                          \
+      p.MZ = z;                                                          \
+      return p;                                                          \
+    }                                                                    \
   }
 
 /// Registers a class with getters and setters, e.g. a CAD kernel's point class:
 /// `CELLFORGE_REGISTER_POINT3_GET_SET(cad::Pt, double, X, Y, Z, SetX, SetY, SetZ)`.
 /// The class must be default-constructible.
-#define CELLFORGE_REGISTER_POINT3_GET_SET(Type, Scalar, GX, GY, GZ, SX, SY, SZ)              \
-  template <>                                                                              \
-  struct cellforge::point_traits<Type> {                                                   \
-    using scalar = Scalar;                                                                 \
-    static Scalar get(const Type& p, std::size_t i) {                                      \
-      return i == 0 ? static_cast<Scalar>(p.GX()) : i == 1 ? static_cast<Scalar>(p.GY())   \
-                                                           : static_cast<Scalar>(p.GZ());  \
-    }                                                                                      \
-    static Type make(Scalar x, Scalar y, Scalar z) {                                       \
-      Type p{};                                                                            \
-      p.SX(x);                                                                             \
-      p.SY(y);                                                                             \
-      p.SZ(z);                                                                             \
-      return p;                                                                            \
-    }                                                                                      \
+#define CELLFORGE_REGISTER_POINT3_GET_SET(Type, Scalar, GX, GY, GZ, SX, SY, SZ) \
+  template <>                                                                   \
+  struct cellforge::point_traits<Type> {                                        \
+    using scalar = Scalar;                                                      \
+    static Scalar get(const Type& p, std::size_t i) {                           \
+      return i == 0   ? static_cast<Scalar>(p.GX())                             \
+             : i == 1 ? static_cast<Scalar>(p.GY())                             \
+                      : static_cast<Scalar>(p.GZ());                            \
+    }                                                                           \
+    static Type make(Scalar x, Scalar y, Scalar z) {                            \
+      Type p{};                                                                 \
+      p.SX(x);                                                                  \
+      p.SY(y);                                                                  \
+      p.SZ(z);                                                                  \
+      return p;                                                                 \
+    }                                                                           \
   }

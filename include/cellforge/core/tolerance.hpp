@@ -20,11 +20,12 @@ struct tolerance {
   /// so that "closer than tolerance" still means "identical".
   double absolute(const bounding_box& box) const {
     if (!(relative >= 0.0) || !std::isfinite(relative))
-      throw error(error_category::invalid_input, "tolerance: relative tolerance must be finite and >= 0, got " +
-                                                     std::to_string(relative));
+      throw error(error_category::invalid_input,
+                  "tolerance: relative tolerance must be finite and >= 0, got " + std::to_string(relative));
     const double d = box.diagonal();
     if (!std::isfinite(d))
-      throw error(error_category::invalid_input, "tolerance: the model's bounding box is not finite (NaN or Inf coordinates)");
+      throw error(error_category::invalid_input,
+                  "tolerance: the model's bounding box is not finite (NaN or Inf coordinates)");
     return d > 0.0 ? relative * d : std::numeric_limits<double>::denorm_min();
   }
 };

@@ -32,14 +32,15 @@ struct wireframe_traits {};
 
 /// Anything cellforge can read as a wireframe through wireframe_traits.
 template <class G>
-concept Wireframe = requires { typename wireframe_traits<G>::point_type; } &&
-                    Point3<typename wireframe_traits<G>::point_type> &&
-                    requires(const G& g, std::size_t i) {
-                      { wireframe_traits<G>::num_vertices(g) } -> std::convertible_to<std::size_t>;
-                      { wireframe_traits<G>::num_edges(g) } -> std::convertible_to<std::size_t>;
-                      { wireframe_traits<G>::position(g, i) } -> std::convertible_to<typename wireframe_traits<G>::point_type>;
-                      { wireframe_traits<G>::endpoints(g, i) } -> std::convertible_to<std::array<std::size_t, 2>>;
-                    };
+concept Wireframe = requires {
+  typename wireframe_traits<G>::point_type;
+}
+&&Point3<typename wireframe_traits<G>::point_type>&& requires(const G& g, std::size_t i) {
+  { wireframe_traits<G>::num_vertices(g) } -> std::convertible_to<std::size_t>;
+  { wireframe_traits<G>::num_edges(g) } -> std::convertible_to<std::size_t>;
+  { wireframe_traits<G>::position(g, i) } -> std::convertible_to<typename wireframe_traits<G>::point_type>;
+  { wireframe_traits<G>::endpoints(g, i) } -> std::convertible_to<std::array<std::size_t, 2>>;
+};
 
 template <Point3 P>
 struct wireframe_traits<wireframe<P>> {

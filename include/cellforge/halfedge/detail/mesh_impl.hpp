@@ -1,0 +1,539 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Out-of-class definitions of halfedge_mesh's editing operations (included by mesh.hpp).
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+namespace cellforge {
+
+namespace detail {
+inline std::string vtx(std::uint32_t v) { return "vertex " + std::to_string(v); }
+inline std::string edge_name(std::uint32_t a, std::uint32_t b) {
+  return "edge (" + std::to_string(a) + ", " + std::to_string(b) + ")";
+}
+// True when the indices are pairwise distinct; O(n^2) for small n, O(n log n) otherwise.
+template <class T>
+bool all_distinct(std::span<const T> xs) {
+  if (xs.size() <= 16) {
+    for (std::size_t i = 1; i < xs.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if (xs[i] == xs[j]) return false;
+    return true;
+  }
+  std::vector<T> c(xs.begin(), xs.end());
+  std::sort(c.begin(), c.end());
+  return std::adjacent_find(c.begin(), c.end()) == c.end();
+}
+}  // namespace detail
+
+inline halfedge_handle halfedge_mesh::find_halfedge(vertex_handle a, vertex_handle b) const noexcept {
+  for (halfedge_handle h : halfedges_around(a)) {
+    if (head(h) == b && tail(h) == a) return h;
+    if (head(twin(h)) == b && tail(twin(h)) == a) return twin(h);
+  }
+  return {};
+}
+
+inline edge_handle halfedge_mesh::find_edge(vertex_handle a, vertex_handle b) const noexcept {
+  for (edge_handle e : edges_around(a)) {
+    const halfedge_handle h = halfedge(e, 0);
+    if ((head(h) == b && tail(h) == a) || (head(h) == a && tail(h) == b)) return e;
+  }
+  return {};
+}
+
+inline face_handle halfedge_mesh::add_face(std::span<const vertex_handle> vs) {
+  const std::size_t n = vs.size();
+  if (n < 3)
+    throw error(error_category::invalid_input,
+                "add_face: a face needs at least 3 vertices, got " + std::to_string(n));
+  for (vertex_handle v : vs) check_vertex(v, "add_face");
+  if (!detail::all_distinct(vs))
+    throw error(error_category::invalid_input, "add_face: a face must not repeat a vertex");
+  if (faces_size() >= npos - 1 || halfedges_size() + 2 * n >= removed_mark)
+    throw error(error_category::invalid_input, "add_face: the mesh is full (32-bit indices)");
+
+  auto at = [&](std::size_t i) { return vs[i % n].idx(); };
+  // Phase 1: find each edge's existing unlinked half-edge; check nothing becomes non-manifold.
+  std::vector<std::uint32_t> match(n, npos);
+  std::vector<std::uint8_t> flipped(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t a = at(i), b = at(i + 1);
+    std::uint32_t m = unlinked_.find(detail::edge_table::key(b, a));
+    if (m == detail::edge_table::not_found) {
+      m = unlinked_.find(detail::edge_table::key(a, b));
+      flipped[i] = m != detail::edge_table::not_found;
+    }
+    if (m != detail::edge_table::not_found) {
+      match[i] = m;
+    } else if (is_boundary(vertex_handle(a)) && find_edge(vertex_handle(a), vertex_handle(b)).is_valid()) {
+      throw error(error_category::topology, "add_face: " + detail::edge_name(a, b) +
+                                                " already has two faces; a third would make it non-manifold");
+    }
+  }
+  std::vector<std::vector<fan>> fans(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t v = at(i);
+    if (is_isolated(vertex_handle(v))) continue;
+    if (!is_boundary(vertex_handle(v)))
+      throw error(error_category::topology, "add_face: " + detail::vtx(v) +
+                                                " is already surrounded by a closed fan of faces; another "
+                                                "face there would make it non-manifold");
+    read_fans(v, fans[i]);
+    const std::uint32_t m_in = match[(i + n - 1) % n], m_out = match[i];
+    if (m_in == npos || m_out == npos) continue;
+    const std::uint32_t x_in = m_in ^ 1u, x_out = m_out ^ 1u;
+    auto fan_of = [&](std::uint32_t x) {
+      return std::find_if(fans[i].begin(), fans[i].end(),
+                          [&](const fan& f) { return f.start == x || f.end == x; });
+    };
+    if (fan_of(x_in) == fan_of(x_out) && fans[i].size() > 1)
+      throw error(error_category::topology, "add_face: the face would close one fan of faces around " +
+                                                detail::vtx(v) +
+                                                " while other fans remain there (non-manifold vertex)");
+  }
+
+  // Phase 2: link. Nothing below throws except on allocation failure.
+  const std::uint32_t f = n32(face_anchor_.size());
+  std::vector<std::uint32_t> hs(n);
+  std::vector<std::uint8_t> is_new(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t a = at(i), b = at(i + 1);
+    if (match[i] != npos) {
+      const std::uint32_t m = match[i];
+      unlinked_.erase(flipped[i] ? detail::edge_table::key(a, b) : detail::edge_table::key(b, a));
+      hs[i] = m ^ 1u;
+      if (flipped[i]) ++flipped_edges_;
+    } else {
+      const std::uint32_t e = new_edge();
+      hs[i] = 2 * e;
+      is_new[i] = 1;
+      he_[2 * e + 1].head = a;  // the boundary side points back to the face half-edge's tail
+      he_[2 * e + 1].face = npos;
+      unlinked_.insert(detail::edge_table::key(a, b), 2 * e);
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    record& r = he_[hs[i]];
+    r.head = at(i + 1);
+    r.face = f;
+    r.next = hs[(i + 1) % n];
+    r.prev = hs[(i + n - 1) % n];
+  }
+  face_anchor_.push_back(hs[0]);
+  fprops_.push_back();
+
+  // Phase 3: rings of boundary half-edges around each corner.
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t v = at(i);
+    const std::size_t ip = (i + n - 1) % n;
+    const std::uint32_t b_in = is_new[ip] ? hs[ip] ^ 1u : npos;
+    const std::uint32_t b_out = is_new[i] ? hs[i] ^ 1u : npos;
+    std::vector<fan>& fv = fans[i];
+    auto replace = [&](std::uint32_t from, std::uint32_t to) {
+      for (fan& x : fv) {
+        if (x.start == from) x.start = to;
+        if (x.end == from) x.end = to;
+      }
+    };
+    if (is_new[ip] && is_new[i]) {
+      fv.push_back({b_in, b_out});
+    } else if (!is_new[ip] && is_new[i]) {
+      replace(hs[ip], b_out);
+    } else if (is_new[ip] && !is_new[i]) {
+      replace(hs[i], b_in);
+    } else {
+      const std::uint32_t x_in = hs[ip], x_out = hs[i];
+      auto ia =
+          std::find_if(fv.begin(), fv.end(), [&](const fan& x) { return x.start == x_in || x.end == x_in; });
+      auto ib = std::find_if(fv.begin(), fv.end(),
+                             [&](const fan& x) { return x.start == x_out || x.end == x_out; });
+      if (ia == ib) {
+        fv.erase(ia);  // the fan closes
+      } else {
+        const std::uint32_t pa = ia->start == x_in ? ia->end : ia->start;
+        const std::uint32_t pb = ib->start == x_out ? ib->end : ib->start;
+        *ia = {pa, pb};
+        fv.erase(ib);
+      }
+    }
+    write_fans(v, fv, hs[i]);
+  }
+  return face_handle(f);
+}
+
+inline void halfedge_mesh::remove_face(face_handle fh) {
+  if (!is_valid(fh))
+    throw error(error_category::invalid_input,
+                "remove_face: face " + std::to_string(fh.idx()) + " does not exist or was removed");
+  const std::uint32_t f = fh.idx();
+  std::vector<std::uint32_t> hs, vs;
+  for (halfedge_handle h : halfedges_around(fh)) {
+    hs.push_back(h.idx());
+    vs.push_back(tail(h).idx());
+  }
+  const std::size_t n = hs.size();
+  std::vector<std::uint8_t> interior(n);
+  for (std::size_t i = 0; i < n; ++i) interior[i] = he_[hs[i] ^ 1u].face != npos;
+
+  // Read every corner's fans and, where the face splits a fan, from which side the walk enters it.
+  std::vector<std::vector<fan>> fans(n);
+  std::vector<std::size_t> split_fan(n, npos);
+  std::vector<std::uint32_t> entry(n, npos);
+  for (std::size_t i = 0; i < n; ++i) {
+    read_fans(vs[i], fans[i]);
+    const std::size_t ip = (i + n - 1) % n;
+    if (!(interior[ip] && interior[i]) || fans[i].empty()) continue;
+    for (std::size_t k = 0; k < fans[i].size() && split_fan[i] == npos; ++k) {
+      std::uint32_t ent = npos;
+      walk_fan(fans[i][k].start, vs[i], nullptr, f, &ent);
+      if (ent != npos) {
+        split_fan[i] = k;
+        entry[i] = ent;
+      }
+    }
+  }
+
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t h = hs[i], t = h ^ 1u;
+    if (interior[i]) {
+      const std::uint32_t t_tail = he_[he_[t].prev].head, t_head = he_[t].head;
+      if (t_head == he_[h].head) --flipped_edges_;
+      he_[h].face = npos;
+      he_[h].head = t_tail;
+      unlinked_.insert(detail::edge_table::key(t_tail, t_head), t);
+    } else {
+      unlinked_.erase(detail::edge_table::key(vs[i], vs[(i + 1) % n]));
+      he_[h] = record{};
+      he_[t] = record{};
+      ++removed_edges_;
+    }
+  }
+
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t ip = (i + n - 1) % n;
+    const std::uint32_t v = vs[i];
+    const std::uint32_t h_in = hs[ip], h_out = hs[i];
+    std::vector<fan>& fv = fans[i];
+    auto replace = [&](std::uint32_t from, std::uint32_t to) {
+      for (fan& x : fv) {
+        if (x.start == from) x.start = to;
+        if (x.end == from) x.end = to;
+      }
+    };
+    if (interior[ip] && interior[i]) {
+      if (fv.empty()) {
+        fv.push_back({h_out, h_in});  // a closed fan opens up
+      } else {
+        const fan old = fv[split_fan[i]];
+        const bool via_in = entry[i] == h_in;
+        fv[split_fan[i]] = {old.start, via_in ? h_in : h_out};
+        fv.insert(fv.begin() + static_cast<std::ptrdiff_t>(split_fan[i]) + 1,
+                  fan{via_in ? h_out : h_in, old.end});
+      }
+    } else if (interior[ip]) {
+      replace(h_out ^ 1u, h_in);
+    } else if (interior[i]) {
+      replace(h_in ^ 1u, h_out);
+    } else {
+      const std::uint32_t x_in = h_in ^ 1u;
+      fv.erase(
+          std::find_if(fv.begin(), fv.end(), [&](const fan& x) { return x.start == x_in || x.end == x_in; }));
+    }
+    write_fans(v, fv, npos);
+  }
+  face_anchor_[f] = npos;
+  ++removed_faces_;
+}
+
+inline void halfedge_mesh::remove_vertex(vertex_handle v) {
+  check_vertex(v, "remove_vertex");
+  std::vector<face_handle> around;
+  for (face_handle f : faces_around(v)) around.push_back(f);
+  for (face_handle f : around) remove_face(f);
+  vertex_anchor_[v.idx()] = removed_mark;
+  ++removed_vertices_;
+}
+
+inline void halfedge_mesh::reverse_face(face_handle fh) {
+  if (!is_valid(fh))
+    throw error(error_category::invalid_input,
+                "reverse_face: face " + std::to_string(fh.idx()) + " does not exist or was removed");
+  std::vector<std::uint32_t> hs, vs;
+  for (halfedge_handle h : halfedges_around(fh)) {
+    hs.push_back(h.idx());
+    vs.push_back(tail(h).idx());
+  }
+  const std::size_t n = hs.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t t = hs[i] ^ 1u;
+    if (he_[t].face == npos)
+      unlinked_.erase(detail::edge_table::key(vs[i], vs[(i + 1) % n]));
+    else if (he_[t].head == he_[hs[i]].head)
+      --flipped_edges_;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    record& r = he_[hs[i]];
+    r.head = vs[i];
+    r.next = hs[(i + n - 1) % n];
+    r.prev = hs[(i + 1) % n];
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t t = hs[i] ^ 1u;
+    const std::uint32_t new_tail = vs[(i + 1) % n];
+    if (he_[t].face == npos) {
+      // The boundary side keeps pointing at the face half-edge's tail; its ring slots follow its ends.
+      std::swap(he_[t].next, he_[t].prev);
+      he_[t].head = new_tail;
+      unlinked_.insert(detail::edge_table::key(new_tail, vs[i]), hs[i]);
+    } else if (he_[t].head == vs[i]) {
+      ++flipped_edges_;
+    }
+  }
+  face_anchor_[fh.idx()] = hs[n - 1];  // keeps the face's first vertex first
+}
+
+inline build_report halfedge_mesh::build(std::size_t nv, std::span<const std::uint32_t> offsets,
+                                         std::span<const std::uint32_t> fv) {
+  if (offsets.empty() || offsets[0] != 0 || offsets.back() != fv.size())
+    throw error(error_category::invalid_input,
+                "build: face offsets must start at 0 and end at the number of face indices");
+  if (nv >= removed_mark || fv.size() >= removed_mark / 2)
+    throw error(error_category::invalid_input, "build: too many vertices or faces for 32-bit indices");
+  const std::size_t nf = offsets.size() - 1;
+  const std::size_t nh = fv.size();
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (offsets[f + 1] < offsets[f] || offsets[f + 1] - offsets[f] < 3)
+      throw error(error_category::invalid_input,
+                  "build: face " + std::to_string(f) + " has fewer than 3 vertices");
+    const std::span<const std::uint32_t> face = fv.subspan(offsets[f], offsets[f + 1] - offsets[f]);
+    for (std::uint32_t v : face)
+      if (v >= nv)
+        throw error(error_category::invalid_input, "build: face " + std::to_string(f) + " uses vertex " +
+                                                       std::to_string(v) + ", but there are only " +
+                                                       std::to_string(nv) + " vertices");
+    if (!detail::all_distinct(face))
+      throw error(error_category::invalid_input, "build: face " + std::to_string(f) + " repeats a vertex");
+  }
+  auto face_of = [&](std::size_t c) {
+    return static_cast<std::size_t>(std::upper_bound(offsets.begin(), offsets.end(), c) - offsets.begin() -
+                                    1);
+  };
+
+  // next_corner[c]: the corner after c in its face; a = fv[c], b = fv[next_corner[c]].
+  std::vector<std::uint32_t> next_corner(nh);
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::uint32_t o = offsets[f], e = offsets[f + 1];
+    for (std::uint32_t c = o; c + 1 < e; ++c) next_corner[c] = c + 1;
+    next_corner[e - 1] = o;
+  }
+
+  // Bucket corners by the smaller end of their edge; match equal larger ends within a bucket.
+  std::vector<std::uint32_t> bucket(nv + 1, 0);
+  for (std::size_t c = 0; c < nh; ++c) ++bucket[std::min(fv[c], fv[next_corner[c]]) + 1];
+  for (std::size_t v = 0; v < nv; ++v) bucket[v + 1] += bucket[v];
+  std::vector<std::uint32_t> items(nh);
+  {
+    std::vector<std::uint32_t> fill(bucket.begin(), bucket.end() - 1);
+    for (std::size_t c = 0; c < nh; ++c) items[fill[std::min(fv[c], fv[next_corner[c]])]++] = n32(c);
+  }
+  std::vector<std::uint32_t> partner(nh, npos);
+  auto hi_of = [&](std::uint32_t c) { return std::max(fv[c], fv[next_corner[c]]); };
+  auto pair_up = [&](std::uint32_t c, std::uint32_t d, std::uint32_t lo) {
+    if (partner[d] != npos)
+      throw error(error_category::topology,
+                  "build: " + detail::edge_name(lo, hi_of(c)) + " is used by faces " +
+                      std::to_string(face_of(d)) + ", " + std::to_string(face_of(partner[d])) + " and " +
+                      std::to_string(face_of(c)) + "; a half-edge mesh allows at most two faces per edge");
+    partner[c] = d;
+    partner[d] = c;
+  };
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted;
+  for (std::uint32_t lo = 0; lo < nv; ++lo) {
+    const std::uint32_t b0 = bucket[lo], b1 = bucket[lo + 1];
+    if (b1 - b0 <= 24) {
+      for (std::uint32_t i = b0; i < b1; ++i) {
+        const std::uint32_t c = items[i], hc = hi_of(c);
+        for (std::uint32_t j = i; j-- > b0;) {
+          if (hi_of(items[j]) != hc) continue;
+          pair_up(c, items[j], lo);
+          break;
+        }
+      }
+    } else {  // a high-degree vertex: sort its bucket instead of comparing all pairs
+      sorted.clear();
+      for (std::uint32_t i = b0; i < b1; ++i) sorted.emplace_back(hi_of(items[i]), items[i]);
+      std::sort(sorted.begin(), sorted.end());
+      for (std::size_t i = 1; i < sorted.size(); ++i)
+        if (sorted[i].first == sorted[i - 1].first) pair_up(sorted[i].second, sorted[i - 1].second, lo);
+    }
+  }
+  bucket = {};
+  items = {};
+
+  // Number edges in order of first use, so half-edges of nearby faces sit close in memory.
+  std::vector<std::uint32_t> hid(nh, npos);
+  std::uint32_t ne = 0;
+  for (std::size_t c = 0; c < nh; ++c) {
+    if (hid[c] != npos) continue;
+    hid[c] = 2 * ne;
+    if (partner[c] != npos) hid[partner[c]] = 2 * ne + 1;
+    ++ne;
+  }
+
+  clear_connectivity();
+  vertex_anchor_.assign(nv, npos);
+  vprops_.resize(nv);
+  he_.assign(2 * std::size_t{ne}, record{});
+  hprops_.resize(2 * std::size_t{ne});
+  eprops_.resize(ne);
+  face_anchor_.resize(nf);
+  fprops_.resize(nf);
+
+  build_report report;
+  std::size_t boundary = 0;
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::uint32_t o = offsets[f], e = offsets[f + 1];
+    face_anchor_[f] = hid[o];
+    for (std::uint32_t c = o; c < e; ++c) {
+      const std::uint32_t cn = next_corner[c], cp = c == o ? e - 1 : c - 1;
+      record& r = he_[hid[c]];
+      r.head = fv[cn];
+      r.next = hid[cn];
+      r.prev = hid[cp];
+      r.face = n32(f);
+      vertex_anchor_[fv[c]] = hid[c];
+      if (partner[c] == npos) {
+        record& t = he_[hid[c] ^ 1u];
+        t.head = fv[c];
+        ++boundary;
+      } else if (c < partner[c] && fv[cn] == fv[next_corner[partner[c]]]) {
+        ++flipped_edges_;
+      }
+    }
+  }
+  unlinked_.reserve(boundary);
+  for (std::size_t c = 0; c < nh; ++c)
+    if (partner[c] == npos) unlinked_.insert(detail::edge_table::key(fv[c], fv[next_corner[c]]), hid[c]);
+  partner = {};
+  next_corner = {};
+
+  // Corners per vertex, to check that the fans found cover every face at the vertex.
+  std::vector<std::uint32_t> corners(nv, 0);
+  for (std::uint32_t v : fv) ++corners[v];
+  std::vector<std::uint32_t> covered(nv, 0), ring_first(nv, npos), ring_last(nv, npos);
+  std::vector<std::uint8_t> seen(he_.size(), 0);  // bit 0: head end done, bit 1: tail end done
+  for (std::uint32_t b = 0; b < he_.size(); ++b) {
+    if (he_[b].face != npos) continue;
+    for (int side = 0; side < 2; ++side) {
+      const std::uint32_t v = side == 0 ? he_[b].head : he_[b ^ 1u].head;
+      if (seen[b] & (1u << side)) continue;
+      std::size_t count = 0;
+      const std::uint32_t e = walk_fan(b, v, &count);
+      seen[b] |= static_cast<std::uint8_t>(1u << side);
+      seen[e] |= static_cast<std::uint8_t>(he_[e].head == v ? 1u : 2u);
+      covered[v] += n32(count);
+      if (ring_first[v] == npos)
+        ring_first[v] = b;
+      else
+        ring_slot(ring_last[v], v) = b;
+      ring_slot(b, v) = e;
+      ring_last[v] = e;
+    }
+  }
+  for (std::uint32_t v = 0; v < nv; ++v) {
+    if (corners[v] == 0) {
+      ++report.isolated_vertices;
+      continue;
+    }
+    if (ring_first[v] != npos) {
+      ring_slot(ring_last[v], v) = ring_first[v];
+      vertex_anchor_[v] = ring_first[v];
+      if (covered[v] != corners[v]) {
+        const std::uint32_t bad = corners[v];
+        clear_connectivity();
+        throw error(error_category::topology, "build: the " + std::to_string(bad) + " faces around " +
+                                                  detail::vtx(v) +
+                                                  " form a closed fan plus open ones (a non-manifold "
+                                                  "vertex); split it into one vertex per fan");
+      }
+    } else {
+      std::size_t count = 0;
+      const std::uint32_t a = vertex_anchor_[v];
+      std::uint32_t t = a;
+      do {
+        ++count;
+        const std::uint32_t out = he_[t].head == v ? he_[t].next : he_[t].prev;
+        t = out ^ 1u;
+      } while (t != a && count <= corners[v]);
+      if (count != corners[v]) {
+        const std::uint32_t bad = corners[v];
+        clear_connectivity();
+        throw error(error_category::topology,
+                    "build: the " + std::to_string(bad) + " faces around " + detail::vtx(v) +
+                        " form several closed fans (e.g. two cones touching at their tips); "
+                        "split it into one vertex per fan");
+      }
+    }
+  }
+  report.vertices = nv;
+  report.edges = ne;
+  report.faces = nf;
+  report.boundary_edges = boundary;
+  report.flipped_edges = flipped_edges_;
+  return report;
+}
+
+inline void halfedge_mesh::garbage_collection() {
+  if (!has_garbage()) return;
+  const std::size_t nv = vertices_size(), ne = edges_size(), nf = faces_size();
+  std::vector<std::uint32_t> vmap(nv, npos), emap(ne, npos), fmap(nf, npos);
+  std::uint32_t kv = 0, ke = 0, kf = 0;
+  for (std::uint32_t v = 0; v < nv; ++v)
+    if (vertex_anchor_[v] != removed_mark) vmap[v] = kv++;
+  for (std::uint32_t e = 0; e < ne; ++e)
+    if (he_[2 * e].head != npos) emap[e] = ke++;
+  for (std::uint32_t f = 0; f < nf; ++f)
+    if (face_anchor_[f] != npos) fmap[f] = kf++;
+  auto hmap = [&](std::uint32_t h) { return h == npos ? npos : 2 * emap[h >> 1] + (h & 1u); };
+
+  for (std::uint32_t e = 0; e < ne; ++e) {
+    if (emap[e] == npos) continue;
+    for (std::uint32_t i = 0; i < 2; ++i) {
+      record r = he_[2 * e + i];
+      r.head = vmap[r.head];
+      r.next = hmap(r.next);
+      r.prev = hmap(r.prev);
+      r.face = r.face == npos ? npos : fmap[r.face];
+      he_[2 * emap[e] + i] = r;
+      hprops_.move_element(2 * emap[e] + i, 2 * e + i);
+    }
+    eprops_.move_element(emap[e], e);
+  }
+  for (std::uint32_t v = 0; v < nv; ++v) {
+    if (vmap[v] == npos) continue;
+    vertex_anchor_[vmap[v]] = hmap(vertex_anchor_[v]);
+    vprops_.move_element(vmap[v], v);
+  }
+  for (std::uint32_t f = 0; f < nf; ++f) {
+    if (fmap[f] == npos) continue;
+    face_anchor_[fmap[f]] = hmap(face_anchor_[f]);
+    fprops_.move_element(fmap[f], f);
+  }
+  he_.resize(2 * std::size_t{ke});
+  vertex_anchor_.resize(kv);
+  face_anchor_.resize(kf);
+  vprops_.resize(kv);
+  hprops_.resize(2 * std::size_t{ke});
+  eprops_.resize(ke);
+  fprops_.resize(kf);
+  unlinked_.clear();
+  for (std::uint32_t h = 0; h < he_.size(); ++h)
+    if (he_[h].face != npos && he_[h ^ 1u].face == npos)
+      unlinked_.insert(detail::edge_table::key(tail(halfedge_handle(h)).idx(), he_[h].head), h);
+  removed_vertices_ = removed_edges_ = removed_faces_ = 0;
+}
+
+}  // namespace cellforge

@@ -1,0 +1,201 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Dynamic, typed, named properties attached to mesh elements (any copyable type).
+/// Arrays grow with the mesh; a `property<Handle, T>` is a cheap typed view into one.
+
+#include <algorithm>
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <typeinfo>
+#include <utility>
+#include <vector>
+
+#include "cellforge/core/error.hpp"
+
+namespace cellforge {
+
+namespace detail {
+
+/// Type-erased storage of one property: the operations the mesh needs to keep
+/// every array the same length as its element array.
+class property_array_base {
+ public:
+  explicit property_array_base(std::string name) : name_(std::move(name)) {}
+  virtual ~property_array_base() = default;
+  property_array_base(const property_array_base&) = default;
+  property_array_base& operator=(const property_array_base&) = delete;
+
+  const std::string& name() const noexcept { return name_; }
+  virtual const std::type_info& type() const noexcept = 0;
+  virtual std::size_t size() const noexcept = 0;
+  virtual void reserve(std::size_t n) = 0;
+  virtual void resize(std::size_t n) = 0;
+  virtual void push_back() = 0;
+  /// Moves element src to dst (used by garbage collection, dst <= src).
+  virtual void move_element(std::size_t dst, std::size_t src) = 0;
+  /// Resets element i to the default value (used when an element is reused or removed).
+  virtual void reset(std::size_t i) = 0;
+  virtual std::unique_ptr<property_array_base> clone() const = 0;
+
+ private:
+  std::string name_;
+};
+
+template <class T>
+class property_array final : public property_array_base {
+ public:
+  property_array(std::string name, T default_value)
+      : property_array_base(std::move(name)), default_(std::move(default_value)) {}
+
+  const std::type_info& type() const noexcept override { return typeid(T); }
+  std::size_t size() const noexcept override { return data_.size(); }
+  void reserve(std::size_t n) override { data_.reserve(n); }
+  void resize(std::size_t n) override { data_.resize(n, default_); }
+  void push_back() override { data_.push_back(default_); }
+  void move_element(std::size_t dst, std::size_t src) override {
+    if (dst != src) data_[dst] = std::move(data_[src]);
+  }
+  void reset(std::size_t i) override { data_[i] = default_; }
+  std::unique_ptr<property_array_base> clone() const override {
+    return std::make_unique<property_array>(*this);
+  }
+
+  std::vector<T>& data() noexcept { return data_; }
+  const std::vector<T>& data() const noexcept { return data_; }
+  const T& default_value() const noexcept { return default_; }
+
+ private:
+  std::vector<T> data_;
+  T default_;
+};
+
+/// All properties of one element kind. Copying clones every array.
+class property_registry {
+ public:
+  property_registry() = default;
+  property_registry(const property_registry& o) : size_(o.size_) {
+    arrays_.reserve(o.arrays_.size());
+    for (const auto& a : o.arrays_) arrays_.push_back(a->clone());
+  }
+  property_registry& operator=(const property_registry& o) {
+    if (this != &o) {
+      property_registry copy(o);
+      swap(copy);
+    }
+    return *this;
+  }
+  property_registry(property_registry&&) noexcept = default;
+  property_registry& operator=(property_registry&&) noexcept = default;
+  void swap(property_registry& o) noexcept {
+    arrays_.swap(o.arrays_);
+    std::swap(size_, o.size_);
+  }
+
+  template <class T>
+  property_array<T>* add(std::string_view name, T default_value) {
+    if (find(name) != nullptr)
+      throw error(error_category::invalid_input,
+                  "a property named '" + std::string(name) + "' already exists");
+    auto a = std::make_unique<property_array<T>>(std::string(name), std::move(default_value));
+    a->resize(size_);
+    auto* raw = a.get();
+    arrays_.push_back(std::move(a));
+    return raw;
+  }
+
+  /// The array named `name` if it holds T; nullptr if there is none; throws on a type mismatch.
+  template <class T>
+  property_array<T>* get(std::string_view name) const {
+    property_array_base* a = find(name);
+    if (a == nullptr) return nullptr;
+    if (a->type() != typeid(T))
+      throw error(error_category::invalid_input, "property '" + std::string(name) +
+                                                     "' exists with another type (" + a->type().name() +
+                                                     "), not " + typeid(T).name());
+    return static_cast<property_array<T>*>(a);
+  }
+
+  property_array_base* find(std::string_view name) const noexcept {
+    for (const auto& a : arrays_)
+      if (a->name() == name) return a.get();
+    return nullptr;
+  }
+
+  bool remove(const property_array_base* a) noexcept {
+    auto it = std::find_if(arrays_.begin(), arrays_.end(), [&](const auto& p) { return p.get() == a; });
+    if (it == arrays_.end()) return false;
+    arrays_.erase(it);
+    return true;
+  }
+
+  std::vector<std::string> names() const {
+    std::vector<std::string> out;
+    for (const auto& a : arrays_) out.push_back(a->name());
+    return out;
+  }
+
+  std::size_t size() const noexcept { return size_; }
+  std::size_t num_properties() const noexcept { return arrays_.size(); }
+  const property_array_base& array(std::size_t i) const noexcept { return *arrays_[i]; }
+
+  void reserve(std::size_t n) {
+    for (auto& a : arrays_) a->reserve(n);
+  }
+  void resize(std::size_t n) {
+    for (auto& a : arrays_) a->resize(n);
+    size_ = n;
+  }
+  void push_back() {
+    for (auto& a : arrays_) a->push_back();
+    ++size_;
+  }
+  void move_element(std::size_t dst, std::size_t src) {
+    for (auto& a : arrays_) a->move_element(dst, src);
+  }
+  void reset(std::size_t i) {
+    for (auto& a : arrays_) a->reset(i);
+  }
+  void clear() noexcept {
+    arrays_.clear();
+    size_ = 0;
+  }
+
+ private:
+  std::vector<std::unique_ptr<property_array_base>> arrays_;
+  std::size_t size_ = 0;
+};
+
+}  // namespace detail
+
+/// A typed view of one property array, indexed by a handle. Invalid when
+/// default-constructed or when a lookup found nothing. Stays valid while the
+/// property exists; element insertions may reallocate, so re-read references.
+template <class Handle, class T>
+class property {
+ public:
+  using reference = typename std::vector<T>::reference;
+  using const_reference = typename std::vector<T>::const_reference;
+
+  property() = default;
+  explicit property(detail::property_array<T>* a) noexcept : array_(a) {}
+
+  bool is_valid() const noexcept { return array_ != nullptr; }
+  explicit operator bool() const noexcept { return is_valid(); }
+  const std::string& name() const noexcept { return array_->name(); }
+
+  reference operator[](Handle h) noexcept { return array_->data()[h.idx()]; }
+  const_reference operator[](Handle h) const noexcept { return array_->data()[h.idx()]; }
+  /// The whole array, one entry per element including removed ones not yet collected.
+  std::vector<T>& vector() noexcept { return array_->data(); }
+  const std::vector<T>& vector() const noexcept { return array_->data(); }
+
+  detail::property_array<T>* array() const noexcept { return array_; }
+
+ private:
+  detail::property_array<T>* array_ = nullptr;
+};
+
+}  // namespace cellforge

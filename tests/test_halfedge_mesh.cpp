@@ -1,0 +1,377 @@
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <map>
+#include <random>
+#include <ranges>
+#include <set>
+
+#include "cellforge/halfedge/conversion.hpp"
+#include "cellforge/halfedge/mesh.hpp"
+#include "cellforge/halfedge/orientation.hpp"
+#include "cellforge/halfedge/validate.hpp"
+#include "mesh_fixtures.hpp"
+
+using namespace cellforge;
+
+namespace {
+
+#define REQUIRE_VALID(m)          \
+  do {                            \
+    const auto vr_ = validate(m); \
+    INFO(vr_.message);            \
+    REQUIRE(vr_.ok());            \
+  } while (0)
+
+// Shuffles the faces of a soup (same faces, another order).
+fixtures::soup shuffled(const fixtures::soup& s, std::uint64_t seed) {
+  std::vector<std::size_t> order(s.num_faces());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::shuffle(order.begin(), order.end(), std::mt19937_64(seed));
+  fixtures::soup out;
+  out.points = s.points;
+  for (std::size_t f : order) out.add_face(s.face(f));
+  return out;
+}
+
+// Builds a soup face by face through add_face.
+halfedge_mesh build_incrementally(const fixtures::soup& s) {
+  halfedge_mesh m;
+  m.add_vertices(s.num_points());
+  for (std::size_t f = 0; f < s.num_faces(); ++f) {
+    std::vector<vertex_handle> vs;
+    for (auto v : s.face(f)) vs.emplace_back(v);
+    m.add_face(vs);
+  }
+  return m;
+}
+
+int euler(const halfedge_mesh& m) {
+  return static_cast<int>(m.num_vertices()) - static_cast<int>(m.num_edges()) +
+         static_cast<int>(m.num_faces());
+}
+
+// Checks every circulator of m against the soup it was built from.
+void check_circulators(const halfedge_mesh& m, const fixtures::soup& s) {
+  std::map<std::uint32_t, std::multiset<std::uint32_t>> faces_at;
+  std::map<std::uint32_t, std::set<std::uint32_t>> neighbours;
+  for (std::size_t f = 0; f < s.num_faces(); ++f) {
+    auto fv = s.face(f);
+    for (std::size_t i = 0; i < fv.size(); ++i) {
+      faces_at[fv[i]].insert(static_cast<std::uint32_t>(f));
+      neighbours[fv[i]].insert(fv[(i + 1) % fv.size()]);
+      neighbours[fv[(i + 1) % fv.size()]].insert(fv[i]);
+    }
+  }
+  for (vertex_handle v : m.vertices()) {
+    std::multiset<std::uint32_t> fs;
+    for (face_handle f : m.faces_around(v)) fs.insert(f.idx());
+    CHECK(fs == faces_at[v.idx()]);
+    std::set<std::uint32_t> ns;
+    std::size_t count = 0;
+    for (vertex_handle w : m.vertices_around(v)) {
+      ns.insert(w.idx());
+      ++count;
+    }
+    CHECK(ns == neighbours[v.idx()]);
+    CHECK(count == neighbours[v.idx()].size());  // each incident edge once
+    for (halfedge_handle h : m.halfedges_around(v)) {
+      const bool leaves = m.tail(h) == v;
+      const bool both_enter = m.head(h) == v && m.head(halfedge_mesh::twin(h)) == v;
+      CHECK((leaves || both_enter));
+    }
+    CHECK(std::ranges::distance(m.edges_around(v)) == static_cast<long>(neighbours[v.idx()].size()));
+  }
+  for (face_handle f : m.faces()) {
+    std::vector<std::uint32_t> got;
+    for (vertex_handle v : m.vertices_around(f)) got.push_back(v.idx());
+    const auto want = s.face(f.idx());
+    CHECK(std::ranges::equal(got, want));
+    for (halfedge_handle h : m.halfedges_around(f)) CHECK(m.face(h) == f);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("closed meshes: tetrahedron, cube, torus") {
+  struct named {
+    const char* name;
+    fixtures::soup soup;
+    int chi;
+  };
+  for (const auto& [name, soup, chi] :
+       {named{"tetrahedron", fixtures::tetrahedron(), 2}, named{"cube", fixtures::cube(), 2},
+        named{"torus", fixtures::torus(), 0}}) {
+    CAPTURE(name);
+    build_report rep;
+    halfedge_mesh m = make_mesh(soup, &rep);
+    REQUIRE_VALID(m);
+    CHECK(m.is_closed());
+    CHECK(m.num_boundary_edges() == 0);
+    CHECK(m.boundary_halfedges().empty());
+    CHECK(m.is_consistently_oriented());
+    CHECK(is_orientable(m));
+    CHECK(euler(m) == chi);
+    CHECK(rep.edges == fixtures::soup_edges(soup).size());
+    check_circulators(m, soup);
+    const auto order = shuffled(soup, 7);
+    const halfedge_mesh inc = build_incrementally(order);
+    REQUIRE_VALID(inc);
+    CHECK(inc.num_edges() == m.num_edges());
+    check_circulators(inc, order);
+  }
+}
+
+TEST_CASE("open meshes: plane and cylinder boundaries") {
+  const auto plane = fixtures::plane(6, 5);
+  halfedge_mesh m = make_mesh(plane);
+  REQUIRE_VALID(m);
+  CHECK_FALSE(m.is_closed());
+  CHECK(m.num_boundary_edges() == 2 * (6 + 5));
+  CHECK(m.boundary_loops().size() == 1);
+  CHECK(m.boundary_loops()[0].size() == 22);
+  check_circulators(m, plane);
+  const auto cyl = fixtures::cylinder(8, 3);
+  halfedge_mesh c = make_mesh(cyl);
+  REQUIRE_VALID(c);
+  const auto loops = c.boundary_loops();
+  REQUIRE(loops.size() == 2);
+  CHECK(loops[0].size() == 8);
+  CHECK(loops[1].size() == 8);
+  CHECK(euler(c) == 0);
+  check_circulators(c, cyl);
+}
+
+TEST_CASE("non-orientable: Möbius strip and Klein bottle build and circulate") {
+  const auto mob = fixtures::mobius(12, 2);
+  build_report rep;
+  halfedge_mesh m = make_mesh(mob, &rep);
+  REQUIRE_VALID(m);
+  CHECK(rep.flipped_edges > 0);
+  CHECK(m.num_flipped_edges() == rep.flipped_edges);
+  CHECK_FALSE(is_orientable(m));
+  CHECK(euler(m) == 0);
+  const auto loops = m.boundary_loops();
+  REQUIRE(loops.size() == 1);    // a Möbius strip has one boundary curve...
+  CHECK(loops[0].size() == 24);  // ...twice as long as the strip
+  check_circulators(m, mob);
+  const auto mob_order = shuffled(mob, 3);
+  const halfedge_mesh mi = build_incrementally(mob_order);
+  REQUIRE_VALID(mi);
+  check_circulators(mi, mob_order);
+
+  const auto kb = fixtures::klein(8, 6);
+  halfedge_mesh k = make_mesh(kb);
+  REQUIRE_VALID(k);
+  CHECK(k.is_closed());
+  CHECK(euler(k) == 0);
+  CHECK_FALSE(is_orientable(k));
+  CHECK(k.num_flipped_edges() > 0);
+  check_circulators(k, kb);
+  halfedge_mesh k2 = k;
+  const orient_result r = orient(k2);
+  REQUIRE_VALID(k2);
+  CHECK_FALSE(r.orientable());
+  CHECK(r.flipped_edges_left > 0);
+  CHECK(r.flipped_edges_left == k2.num_flipped_edges());
+}
+
+TEST_CASE("randomly oriented plane: faces keep their orientation, orient() repairs it") {
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    const auto s = fixtures::randomly_flipped(fixtures::plane(7, 6), seed);
+    halfedge_mesh m = make_mesh(s);
+    REQUIRE_VALID(m);
+    CHECK(m.num_flipped_edges() > 0);
+    check_circulators(m, s);  // faces keep the vertex order they were given
+    CHECK(is_orientable(m));
+    const auto order = shuffled(s, seed);
+    halfedge_mesh inc = build_incrementally(order);
+    REQUIRE_VALID(inc);
+    check_circulators(inc, order);
+    const orient_result r = orient(m);
+    REQUIRE_VALID(m);
+    CHECK(r.orientable());
+    CHECK(r.faces_reversed > 0);
+    CHECK(m.num_flipped_edges() == 0);
+    CHECK(m.boundary_loops().size() == 1);
+  }
+}
+
+TEST_CASE("non-manifold input: two open fans are representable, the rest is refused clearly") {
+  const auto bow = fixtures::bowtie();
+  halfedge_mesh m = make_mesh(bow);
+  REQUIRE_VALID(m);
+  CHECK(std::ranges::distance(m.faces_around(vertex_handle(0))) == 2);
+  check_circulators(m, bow);
+  CHECK(m.boundary_loops().size() == 2);
+  halfedge_mesh mi = build_incrementally(bow);
+  REQUIRE_VALID(mi);
+  // Joining the two fans with a third triangle merges them into one.
+  mi.add_face({vertex_handle(0), vertex_handle(2), vertex_handle(3)});
+  REQUIRE_VALID(mi);
+  CHECK(std::ranges::distance(mi.faces_around(vertex_handle(0))) == 3);
+
+  // A third face on an edge.
+  fixtures::soup three = fixtures::tetrahedron();
+  three.points.push_back({1, 1, 1});
+  three.add_face({0, 1, 4});
+  try {
+    (void)make_mesh(three);
+    FAIL("expected an error");
+  } catch (const error& e) {
+    CHECK(e.category() == error_category::topology);
+    CHECK(std::string(e.what()).find("edge (0, 1)") != std::string::npos);
+  }
+  halfedge_mesh t = build_incrementally(fixtures::tetrahedron());
+  CHECK_THROWS_AS(t.add_face({vertex_handle(0), vertex_handle(1), t.add_vertex()}), error);
+  REQUIRE_VALID(t);
+
+  // Two closed fans at one vertex.
+  try {
+    (void)make_mesh(fixtures::double_cone());
+    FAIL("expected an error");
+  } catch (const error& e) {
+    CHECK(std::string(e.what()).find("vertex 0") != std::string::npos);
+  }
+}
+
+TEST_CASE("bad face lists are rejected with the face named") {
+  fixtures::soup s = fixtures::tetrahedron();
+  s.add_face({0, 1, 9});
+  CHECK_THROWS_WITH_AS((void)make_mesh(s), doctest::Contains("face 4 uses vertex 9"), error);
+  fixtures::soup r = fixtures::tetrahedron();
+  r.add_face({0, 1, 0});
+  CHECK_THROWS_WITH_AS((void)make_mesh(r), doctest::Contains("face 4 repeats a vertex"), error);
+  halfedge_mesh m;
+  m.add_vertices(3);
+  CHECK_THROWS_AS(m.add_face({vertex_handle(0), vertex_handle(1)}), error);
+  CHECK_THROWS_AS(m.add_face({vertex_handle(0), vertex_handle(1), vertex_handle(7)}), error);
+  CHECK(m.num_faces() == 0);
+  REQUIRE_VALID(m);
+}
+
+TEST_CASE("randomised add/remove keeps every invariant") {
+  for (const auto& base : {fixtures::torus(6, 5), fixtures::mobius(10, 3), fixtures::klein(6, 5),
+                           fixtures::randomly_flipped(fixtures::plane(6, 6), 11)}) {
+    std::mt19937_64 rng(42);
+    halfedge_mesh m;
+    m.add_vertices(base.num_points());
+    std::vector<std::size_t> present(base.num_faces(), halfedge_mesh::npos);  // soup face -> mesh face
+    std::size_t ops = 0, refused = 0;
+    for (int step = 0; step < 1500; ++step) {
+      const std::size_t f = rng() % base.num_faces();
+      if (present[f] == halfedge_mesh::npos) {
+        std::vector<vertex_handle> vs;
+        for (auto v : base.face(f)) vs.emplace_back(v);
+        try {
+          present[f] = m.add_face(vs).idx();
+        } catch (const error& e) {
+          CHECK(e.category() == error_category::topology);  // a fan would close around a non-manifold vertex
+          ++refused;
+        }
+      } else {
+        m.remove_face(face_handle(present[f]));
+        present[f] = halfedge_mesh::npos;
+      }
+      ++ops;
+      const auto vr = validate(m);
+      INFO("step " << step << ": " << vr.message);
+      REQUIRE(vr.ok());
+      if (step % 200 == 199) {
+        // Compacting renumbers faces: refresh the map through a face property.
+        auto tag = m.add_face_property<std::int64_t>("f:soup", -1);
+        for (std::size_t k = 0; k < present.size(); ++k)
+          if (present[k] != halfedge_mesh::npos) tag[face_handle(present[k])] = static_cast<std::int64_t>(k);
+        m.garbage_collection();
+        REQUIRE_VALID(m);
+        std::fill(present.begin(), present.end(), halfedge_mesh::npos);
+        for (face_handle g : m.faces()) present[static_cast<std::size_t>(tag[g])] = g.idx();
+        m.remove_property(tag);
+      }
+    }
+    CHECK(ops == 1500);
+    CHECK(refused < ops / 2);
+  }
+}
+
+TEST_CASE("remove_vertex removes its faces and keeps the rest valid") {
+  halfedge_mesh m = make_mesh(fixtures::torus(6, 5));
+  const std::size_t f0 = m.num_faces();
+  const std::size_t deg = std::ranges::distance(m.faces_around(vertex_handle(7)));
+  m.remove_vertex(vertex_handle(7));
+  REQUIRE_VALID(m);
+  CHECK(m.num_faces() == f0 - deg);
+  CHECK(m.boundary_loops().size() == 1);
+  CHECK_THROWS_AS(m.remove_vertex(vertex_handle(7)), error);
+  m.garbage_collection();
+  REQUIRE_VALID(m);
+  CHECK(m.num_vertices() == 29);
+}
+
+TEST_CASE("properties: add, get by name, type checks, survive copies and compaction") {
+  halfedge_mesh m = make_mesh(fixtures::cube());
+  auto w = m.add_vertex_property<double>("v:weight", 1.5);
+  auto tag = m.add_face_property<std::string>("f:name", "none");
+  auto len = m.add_edge_property<float>("e:len");
+  auto mark = m.add_halfedge_property<bool>("h:mark", false);
+  CHECK(w[vertex_handle(3)] == 1.5);
+  w[vertex_handle(3)] = 4.0;
+  tag[face_handle(3)] = "front";
+  len[edge_handle(5)] = 2.0f;
+  mark[halfedge_handle(1)] = true;
+  CHECK(m.get_vertex_property<double>("v:weight")[vertex_handle(3)] == 4.0);
+  CHECK_THROWS_AS((void)m.get_vertex_property<int>("v:weight"), error);
+  CHECK_THROWS_AS((void)m.add_vertex_property<double>("v:weight"), error);
+  CHECK_FALSE(m.get_vertex_property<double>("v:nothing").is_valid());
+  CHECK(m.has_property<face_handle>("f:name"));
+  halfedge_mesh copy = m;
+  w[vertex_handle(3)] = 9.0;
+  CHECK(copy.get_vertex_property<double>("v:weight")[vertex_handle(3)] == 4.0);
+  // New elements get the default value.
+  const vertex_handle nv = m.add_vertex();
+  CHECK(w[nv] == 1.5);
+  REQUIRE_VALID(m);
+  m.remove_face(face_handle(0));
+  m.remove_vertex(vertex_handle(0));
+  m.garbage_collection();
+  REQUIRE_VALID(m);
+  auto tag2 = m.get_face_property<std::string>("f:name");
+  CHECK(std::ranges::count(tag2.vector(), std::string("front")) == 1);
+  CHECK(m.remove_property<vertex_handle>("v:weight"));
+  CHECK_FALSE(m.has_property<vertex_handle>("v:weight"));
+  REQUIRE_VALID(m);
+}
+
+TEST_CASE("circulators are std::ranges") {
+  halfedge_mesh m = make_mesh(fixtures::tetrahedron());
+  static_assert(std::ranges::forward_range<decltype(m.faces_around(vertex_handle(0)))>);
+  static_assert(std::ranges::forward_range<decltype(m.vertices_around(face_handle(0)))>);
+  static_assert(std::ranges::forward_range<decltype(m.vertices())>);
+  CHECK(std::ranges::count_if(m.vertices_around(vertex_handle(0)),
+                              [](vertex_handle v) { return v.idx() > 1; }) == 2);
+  CHECK(std::ranges::distance(m.faces()) == 4);
+  CHECK(m.valence(vertex_handle(0)) == 3);
+  CHECK(m.valence(face_handle(0)) == 3);
+  auto it = std::ranges::find(m.vertices_around(face_handle(1)), vertex_handle(3));
+  CHECK(it != std::ranges::end(m.vertices_around(face_handle(1))));
+}
+
+TEST_CASE("validate names the broken invariant") {
+  // A mesh whose property was resized behind its back, via a copy of the registry.
+  halfedge_mesh m = make_mesh(fixtures::cube());
+  auto p = m.add_vertex_property<int>("v:x");
+  p.vector().push_back(1);
+  const auto r = validate(m);
+  CHECK_FALSE(r.ok());
+  CHECK(r.broken == mesh_invariant::property_size);
+  CHECK(r.message.find("v:x") != std::string::npos);
+}
+
+TEST_CASE("soup round trip keeps faces and their orientation") {
+  const auto s = fixtures::randomly_flipped(fixtures::klein(5, 4), 5);
+  const halfedge_mesh m = make_mesh(s);
+  const auto back = to_soup<glm::dvec3>(m);
+  CHECK(back.points == s.points);
+  CHECK(back.face_offsets == s.face_offsets);
+  CHECK(back.face_vertices == s.face_vertices);
+}
