@@ -99,11 +99,15 @@ polygon_soup<P> parse_off(std::string_view bytes, std::string_view name = "<memo
   detail::text_cursor c(bytes, name, '#');
   if (bytes.starts_with("\xEF\xBB\xBF")) c.pos += 3;  // a UTF-8 byte-order mark some editors add
   if (!c.next_content())
-    c.fail("empty file: expected an OFF header ('OFF') followed by the vertex and face counts");
+    c.fail_at(c.content_end(),
+              "empty file: expected an OFF header ('OFF') followed by the vertex and face counts");
 
   // The keyword is optional (Geomview): a file may start right at the counts.
   detail::off_header header;
-  if (*c.pos < '0' || *c.pos > '9') {
+  const char* first = c.pos;
+  while (first != c.end && *first >= '0' && *first <= '9') ++first;
+  if (first == c.pos ||
+      !(first == c.end || detail::is_blank(*first) || detail::is_eol(*first) || *first == '#')) {
     header = detail::parse_off_keyword(c);
     if (c.at_line_end() && !c.next_content())
       c.fail_at(c.content_end(),

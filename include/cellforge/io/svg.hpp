@@ -62,13 +62,13 @@ struct svg_style {
   /// silhouette edges and those whose faces meet at more than this angle (degrees).
   double feature_angle_deg = 0;
   bool draw_hidden = true;                ///< draw the hidden parts of edges and points
-  std::string hidden_stroke = "#8a8a8a";  ///< colour of hidden parts
-  double hidden_opacity = 0.6;            ///< hidden parts are drawn over the faces, see-through
-  std::string hidden_dash = "4 3";        ///< SVG dash array of hidden parts
-  bool cull_back_faces = false;           ///< meshes: skip faces turned away (closed, oriented meshes)
-  bool occludes = true;                   ///< meshes: faces hide edges and points behind them
-  double font_size = 12;                  ///< labels, in output pixels
-  glm::dvec3 offset{0.0};                 ///< added to every point of the layer: exploded views, side by side
+  std::string hidden_stroke = "#1f3b57";  ///< colour of hidden parts (dashed, see-through)
+  double hidden_opacity = 0.7;            ///< hidden parts are drawn over the faces
+  std::string hidden_dash;       ///< SVG dash array of hidden parts; empty: 4 on, 3 off per stroke width
+  bool cull_back_faces = false;  ///< meshes: skip faces turned away (closed, oriented meshes)
+  bool occludes = true;          ///< meshes: faces hide edges and points behind them
+  double font_size = 12;         ///< labels, in output pixels
+  glm::dvec3 offset{0.0};        ///< added to every point of the layer: exploded views, side by side
 };
 
 /// The picture as a whole.
@@ -77,8 +77,8 @@ struct svg_options {
   double margin = 20;             ///< pixels kept free around the drawing
   svg_view view;
   /// Direction toward the light in camera coordinates (right, up, toward the viewer).
-  glm::dvec3 light{-0.4, 0.7, 0.8};
-  double ambient = 0.3;              ///< share of a face's colour it keeps when lit edge-on (0 .. 1)
+  glm::dvec3 light{-0.3, 0.8, 1.0};
+  double ambient = 0.45;             ///< share of a face's colour it keeps when lit edge-on (0 .. 1)
   std::string background = "white";  ///< empty or "none": transparent
   std::string title;                 ///< written as <title>
   int precision = 2;                 ///< decimals of coordinates (0 .. 9)
@@ -757,8 +757,9 @@ class svg_scene {
       for (const auto f : fr.order) {
         const svg_style& st = layers_[face_layer_[f]].style;
         const glm::dvec3 n = glm::normalize(fr.face_normal[f]);
-        const glm::dvec3 nc(glm::dot(n, right), glm::dot(n, up), glm::dot(n, toward));
-        const double shade = o.ambient + (1.0 - o.ambient) * std::abs(glm::dot(nc, light));  // two-sided
+        glm::dvec3 nc(glm::dot(n, right), glm::dot(n, up), glm::dot(n, toward));
+        if (nc.z < 0.0) nc = -nc;  // two-sided: shade the side the viewer sees
+        const double shade = o.ambient + (1.0 - o.ambient) * std::max(0.0, glm::dot(nc, light));
         colour.clear();
         if (const auto rgb = detail::svg_parse_hex(st.fill))
           detail::svg_hex_colour(colour, *rgb * shade);
@@ -850,10 +851,22 @@ class svg_scene {
         attr("stroke", hidden_pass ? st.hidden_stroke : st.stroke);
         num_attr("stroke-width", st.stroke_width);
         if (hidden_pass) {
-          attr("stroke-dasharray", st.hidden_dash);
+          if (st.hidden_dash.empty()) {
+            // Dashes grow with the line so that thick hidden lines still read as dashed.
+            const double w = std::max(1.0, st.stroke_width);
+            std::string dash;
+            detail::svg_number(dash, 4.0 * w, prec);
+            dash += ' ';
+            detail::svg_number(dash, 3.0 * w, prec);
+            attr("stroke-dasharray", dash);
+          } else {
+            attr("stroke-dasharray", st.hidden_dash);
+          }
           num_attr("stroke-opacity", st.hidden_opacity);
+          out += " stroke-linejoin=\"round\"/>\n";  // butt caps: round ones would fill the gaps
+        } else {
+          out += " stroke-linecap=\"round\" stroke-linejoin=\"round\"/>\n";
         }
-        out += " stroke-linecap=\"round\" stroke-linejoin=\"round\"/>\n";
       }
     }
 
@@ -875,8 +888,9 @@ class svg_scene {
           body += "\"/>\n";
         }
         if (body.empty()) continue;
+        // Hidden points are hollow rings in the hidden colour: they must not read as visible.
         out += "<g";
-        attr("fill", l.style.fill);
+        attr("fill", hidden_pass ? std::string_view("none") : std::string_view(l.style.fill));
         attr("stroke", hidden_pass ? l.style.hidden_stroke : l.style.stroke);
         num_attr("stroke-width", l.style.stroke_width);
         if (hidden_pass) num_attr("opacity", l.style.hidden_opacity);

@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Reading and writing polygon soups and half-edge meshes by file extension
+/// (.off, .obj, .ply), on top of the format readers and writers.
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <string>
+
+#include "cellforge/core/error.hpp"
+#include "cellforge/core/polygon_soup.hpp"
+#include "cellforge/halfedge/conversion.hpp"
+#include "cellforge/halfedge/mesh.hpp"
+#include "cellforge/io/obj.hpp"
+#include "cellforge/io/off.hpp"
+#include "cellforge/io/ply.hpp"
+
+namespace cellforge::io {
+
+/// The file formats a mesh can be read from and written to.
+enum class mesh_format { off, obj, ply };
+
+/// The format named by a path's extension (case-insensitive); throws for others. O(1).
+inline mesh_format format_of(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".off") return mesh_format::off;
+  if (ext == ".obj") return mesh_format::obj;
+  if (ext == ".ply") return mesh_format::ply;
+  throw error(error_category::io, "unknown mesh file extension '" + ext + "' (expected .off, .obj or .ply)",
+              {path.string(), 0});
+}
+
+/// Reads the faces of an OFF, OBJ or PLY file into a soup. O(file size).
+template <Point3 P>
+polygon_soup<P> read_soup(const std::filesystem::path& path) {
+  switch (format_of(path)) {
+    case mesh_format::off:
+      return read_off<P>(path);
+    case mesh_format::obj:
+      return read_obj<P>(path).soup;
+    case mesh_format::ply:
+      return read_ply<P>(path);
+  }
+  return {};
+}
+
+/// Writes a soup in the format its path's extension names. O(size of the soup).
+template <Point3 P>
+void write_soup(const std::filesystem::path& path, const polygon_soup<P>& soup) {
+  switch (format_of(path)) {
+    case mesh_format::off:
+      write_off(path, soup);
+      break;
+    case mesh_format::obj:
+      write_obj(path, soup);
+      break;
+    case mesh_format::ply:
+      write_ply(path, soup);
+      break;
+  }
+}
+
+/// Reads an OFF, OBJ or PLY file into a half-edge mesh with positions of type P.
+/// O(file size). Parse errors name file:line; topology errors name the element.
+template <Point3 P>
+halfedge_mesh read_mesh(const std::filesystem::path& path, build_report* report = nullptr) {
+  const polygon_soup<P> soup = read_soup<P>(path);
+  try {
+    return make_mesh(soup, report);
+  } catch (const error& e) {
+    throw error(e.category(), e.message(), {path.string(), 0});
+  }
+}
+
+/// Writes the live part of a mesh (positions of type P) by extension. O(size of the mesh).
+template <Point3 P>
+void write_mesh(const std::filesystem::path& path, const halfedge_mesh& mesh) {
+  write_soup(path, to_soup<P>(mesh));
+}
+
+}  // namespace cellforge::io
