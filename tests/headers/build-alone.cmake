@@ -1,0 +1,37 @@
+# Builds the `cellforge_headers_alone` object library (one TU per public header) and, if any
+# TU fails, lists the headers that do not compile on their own. Run by ctest (headers_alone).
+cmake_minimum_required(VERSION 3.21)
+foreach(var IN ITEMS BUILD_DIR ALONE_DIR)
+  if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
+    message(FATAL_ERROR "build-alone.cmake: ${var} is not set")
+  endif()
+endforeach()
+set(args --build "${BUILD_DIR}" --target cellforge_headers_alone --parallel 2)
+if(CONFIG)
+  list(APPEND args --config "${CONFIG}")
+endif()
+# Keep going after the first broken header so that one run reports all of them.
+if(GENERATOR MATCHES "Makefiles")
+  list(APPEND args -- -k)
+elseif(GENERATOR MATCHES "Ninja")
+  list(APPEND args -- -k 0)
+endif()
+execute_process(COMMAND "${CMAKE_COMMAND}" ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+if(rc EQUAL 0)
+  message(STATUS "every public header compiles on its own")
+  return()
+endif()
+
+# Make says "…/alone/<id>.cpp.o] Error 1", Ninja "FAILED: …/alone/<id>.cpp.o"; the generated
+# TU alone/<id>.cpp names its header in its first line.
+string(REGEX MATCHALL "alone/[A-Za-z0-9_]+\\.cpp\\.o\\] Error|FAILED: [^\n]*alone/[A-Za-z0-9_]+\\.cpp\\.o" hits "${out}")
+set(headers "")
+foreach(hit IN LISTS hits)
+  string(REGEX REPLACE ".*alone/([A-Za-z0-9_]+)\\.cpp\\.o.*" "\\1" id "${hit}")
+  file(STRINGS "${ALONE_DIR}/${id}.cpp" first LIMIT_COUNT 1)
+  string(REGEX REPLACE "^#include \"(.*)\"$" "\\1" header "${first}")
+  list(APPEND headers "  include/${header}")
+endforeach()
+list(REMOVE_DUPLICATES headers)
+list(JOIN headers "\n" headers)
+message(FATAL_ERROR "${out}\nthese headers do not compile on their own (a missing #include?):\n${headers}")
