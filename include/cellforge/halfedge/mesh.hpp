@@ -56,6 +56,12 @@ class halfedge_mesh {
   std::size_t num_halfedges() const noexcept { return 2 * num_edges(); }
   std::size_t num_faces() const noexcept { return faces_size() - removed_faces_; }
   bool empty() const noexcept { return num_vertices() == 0; }
+  /// Bytes held by the connectivity arrays and the unlinked table (capacity, not
+  /// size; properties excluded). O(1).
+  std::size_t memory_bytes() const noexcept {
+    return he_.capacity() * sizeof(record) + (vertex_anchor_.capacity() + face_anchor_.capacity()) * 4 +
+           unlinked_.capacity() * sizeof(detail::edge_table::slot);
+  }
   /// True when any element was removed and garbage_collection() would compact. O(1).
   bool has_garbage() const noexcept { return removed_vertices_ + removed_edges_ + removed_faces_ > 0; }
 
