@@ -191,6 +191,15 @@ obj_data<P> parse_obj(std::string_view bytes, std::string_view name = "<memory>"
       else
         data.groups.push_back({std::move(group), nf});
     } else if (!detail::is_known_obj_statement(keyword)) {
+      // Skipping is for statements of other dialects; text that is no statement at all
+      // (binary data, a different format) must not pass as an empty model.
+      const auto letter = [](char ch) {
+        return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || ch == '_';
+      };
+      const bool word = !keyword.empty() && letter(keyword.front()) &&
+                        std::all_of(keyword.begin(), keyword.end(),
+                                    [&](char ch) { return letter(ch) || (ch >= '0' && ch <= '9'); });
+      if (!word) c.fail_at(line, "not an OBJ statement: " + detail::quote_token(line, c.end));
       if (options.strict) c.fail_at(line, "unknown statement " + detail::quote_token(line, c.end));
       if (data.skipped_statements++ == 0)
         data.first_skipped_line = detail::line_of(bytes, static_cast<std::size_t>(line - bytes.data()));

@@ -47,7 +47,9 @@ class occlusion_grid {
     f.c = c.z - f.a * c.x - f.b * c.y;
     f.lo = glm::dvec2(v[0]);
     f.hi = f.lo;
+    f.near = v[0].z;
     for (const auto& p : v) {
+      f.near = std::max(f.near, p.z);
       xy_.emplace_back(p.x, p.y);
       f.lo = glm::min(f.lo, glm::dvec2(p));
       f.hi = glm::max(f.hi, glm::dvec2(p));
@@ -78,6 +80,10 @@ class occlusion_grid {
     ny_ = static_cast<int>(std::clamp(std::ceil(h / cell), 1.0, 1024.0));
     sx_ = nx_ / w;
     sy_ = ny_ / h;
+    // Faces in grid order, so that the faces of one cell sit together in memory.
+    std::stable_sort(faces_.begin(), faces_.end(), [&](const face& p, const face& q) {
+      return std::pair(row(p.lo.y), col(p.lo.x)) < std::pair(row(q.lo.y), col(q.lo.x));
+    });
     // Counting pass, then a filling pass: one flat array of face indices per cell (CSR).
     cells_.assign(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
     const auto for_each_cell_of = [&](const face& f, auto&& fn) {
@@ -109,6 +115,7 @@ class occlusion_grid {
       return;
     }
     const glm::dvec2 slo = glm::min(a2, b2), shi = glm::max(a2, b2);
+    const double far = std::min(a.z, b.z);
     ++query_;
     for_each_cell_on_segment(a2, b2, [&](std::size_t cell) {
       for (std::uint32_t k = cells_[cell]; k < cells_[cell + 1]; ++k) {
@@ -117,6 +124,7 @@ class occlusion_grid {
         stamp_[fi] = query_;
         const face& f = faces_[fi];
         if (f.hi.x < slo.x || f.lo.x > shi.x || f.hi.y < slo.y || f.lo.y > shi.y) continue;
+        if (f.near <= far) continue;  // wholly behind the segment
         const double e = eps(f.id);
         if (e < 0.0) continue;
         clip(f, a, b, e, out);
@@ -133,7 +141,7 @@ class occlusion_grid {
     const auto cell = static_cast<std::size_t>(row(p.y)) * nx_ + col(p.x);
     for (std::uint32_t k = cells_[cell]; k < cells_[cell + 1]; ++k) {
       const face& f = faces_[entries_[k]];
-      if (p.x < f.lo.x || p.x > f.hi.x || p.y < f.lo.y || p.y > f.hi.y) continue;
+      if (p.x < f.lo.x || p.x > f.hi.x || p.y < f.lo.y || p.y > f.hi.y || f.near <= p.z) continue;
       const double e = eps(f.id);
       if (e < 0.0) continue;
       if (f.a * p.x + f.b * p.y + f.c - p.z > e && inside(f, glm::dvec2(p))) return true;
@@ -145,6 +153,7 @@ class occlusion_grid {
   struct face {
     std::uint32_t id = 0, first = 0, count = 0;
     double a = 0, b = 0, c = 0;  // depth(x, y) = a x + b y + c, the plane of Newell's normal
+    double near = 0;             // depth of the vertex nearest the viewer
     glm::dvec2 lo{0.0}, hi{0.0};
   };
 
