@@ -226,13 +226,42 @@ TEST_CASE("non-manifold input: two open fans are representable, the rest is refu
   CHECK_THROWS_AS(t.add_face({vertex_handle(0), vertex_handle(1), t.add_vertex()}), error);
   REQUIRE_VALID(t);
 
-  // Two closed fans at one vertex.
+  // Two closed fans at one vertex: refused by default, split on request.
   try {
     (void)make_mesh(fixtures::double_cone());
     FAIL("expected an error");
   } catch (const error& e) {
     CHECK(std::string(e.what()).find("vertex 0") != std::string::npos);
+    CHECK(std::string(e.what()).find("split_nonmanifold_vertices") != std::string::npos);
   }
+  build_report rep;
+  const halfedge_mesh split = make_mesh(fixtures::double_cone(), &rep, {.split_nonmanifold_vertices = true});
+  REQUIRE_VALID(split);
+  REQUIRE(rep.split_vertices.size() == 1);
+  CHECK(rep.split_vertices[0].second == 0);
+  CHECK(split.num_vertices() == 8);
+  CHECK(split.is_closed());
+  CHECK(split.valence(vertex_handle(0)) == 3);
+  CHECK(split.valence(vertex_handle(rep.split_vertices[0].first)) == 3);
+  CHECK(points<glm::dvec3>(split)[vertex_handle(7)] == glm::dvec3(0, 0, 0));
+  // Two tetrahedra sharing a vertex, one of them also touched by an open fan.
+  const fixtures::soup tet = fixtures::tetrahedron();
+  fixtures::soup two = tet;
+  const std::size_t n = two.points.size();
+  for (const glm::dvec3& p : tet.points) two.points.push_back(p + glm::dvec3(-1, -1, -1));
+  for (std::size_t f = 0; f < 4; ++f) {
+    std::vector<std::uint32_t> fv;
+    for (auto v : tet.face(f)) fv.push_back(v == 0 ? 0 : static_cast<std::uint32_t>(v + n));
+    two.add_face(fv);
+  }
+  two.points.push_back({0, 0, -2});
+  two.points.push_back({0, -2, 0});
+  two.add_face({0, static_cast<std::uint32_t>(2 * n), static_cast<std::uint32_t>(2 * n + 1)});
+  CHECK_THROWS_AS((void)make_mesh(two), error);
+  const halfedge_mesh ts = make_mesh(two, &rep, {.split_nonmanifold_vertices = true});
+  REQUIRE_VALID(ts);
+  CHECK(rep.split_vertices.size() == 2);
+  CHECK(ts.num_boundary_edges() == 3);
 }
 
 TEST_CASE("bad face lists are rejected with the face named") {

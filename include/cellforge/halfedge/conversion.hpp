@@ -29,12 +29,14 @@ property<vertex_handle, P> points(const halfedge_mesh& m) {
 /// Builds a half-edge mesh from a soup in one linking pass; positions go to "v:point".
 /// O(total face size). Throws cellforge::error naming what cannot be represented.
 template <Point3 P>
-halfedge_mesh make_mesh(const polygon_soup<P>& soup, build_report* report = nullptr) {
+halfedge_mesh make_mesh(const polygon_soup<P>& soup, build_report* report = nullptr,
+                        const build_options& options = {}) {
   halfedge_mesh m;
   auto pts = m.add_vertex_property<P>(point_property_name);
-  const build_report r = m.build(soup.points.size(), soup.face_offsets, soup.face_vertices);
+  build_report r = m.build(soup.points.size(), soup.face_offsets, soup.face_vertices, options);
   std::copy(soup.points.begin(), soup.points.end(), pts.vector().begin());
-  if (report) *report = r;
+  for (const auto& [copy, original] : r.split_vertices) pts[vertex_handle(copy)] = soup.points[original];
+  if (report) *report = std::move(r);
   return m;
 }
 

@@ -27,6 +27,16 @@ struct build_report {
   std::size_t boundary_edges = 0;     ///< edges with one face
   std::size_t flipped_edges = 0;      ///< edges whose two faces disagree in orientation
   std::size_t isolated_vertices = 0;  ///< vertices no face uses
+  /// (new vertex, original vertex) for each vertex added by splitting a non-manifold one.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> split_vertices;
+};
+
+/// How a mesh is built from a face list.
+struct build_options {
+  /// A vertex whose faces form a closed fan plus other fans (e.g. two cones touching at
+  /// their tips) cannot be walked around; by default it is an error, with this set the
+  /// vertex is duplicated, one copy per closed fan (reported in build_report).
+  bool split_nonmanifold_vertices = false;
 };
 
 /// A polygon mesh in the half-edge representation.
@@ -291,7 +301,7 @@ class halfedge_mesh {
   /// all half-edges in one pass without hashing: O(total face size). Throws
   /// cellforge::error naming the face, edge or vertex that cannot be represented.
   build_report build(std::size_t num_vertices, std::span<const std::uint32_t> face_offsets,
-                     std::span<const std::uint32_t> face_vertices);
+                     std::span<const std::uint32_t> face_vertices, const build_options& options = {});
 
   /// Removes face f; its edges shared with other faces become boundary edges (their
   /// half-edges return to the unlinked table), edges it alone used disappear. O(|f|).
@@ -499,6 +509,9 @@ class halfedge_mesh {
       t = u;
     }
   }
+  // Gives each closed fan of the listed vertices that their anchors do not reach a vertex of its own.
+  void split_fans(const std::vector<std::uint32_t>& bad, build_report& report);
+
   // Drops faces, edges and half-edges (and their properties); vertices stay.
   void clear_connectivity() {
     he_.clear();

@@ -296,7 +296,7 @@ inline void halfedge_mesh::reverse_face(face_handle fh) {
 }
 
 inline build_report halfedge_mesh::build(std::size_t nv, std::span<const std::uint32_t> offsets,
-                                         std::span<const std::uint32_t> fv) {
+                                         std::span<const std::uint32_t> fv, const build_options& options) {
   if (offsets.empty() || offsets[0] != 0 || offsets.back() != fv.size())
     throw error(error_category::invalid_input,
                 "build: face offsets must start at 0 and end at the number of face indices");
@@ -443,47 +443,91 @@ inline build_report halfedge_mesh::build(std::size_t nv, std::span<const std::ui
       ring_last[v] = e;
     }
   }
+  std::vector<std::uint32_t> nonmanifold;
   for (std::uint32_t v = 0; v < nv; ++v) {
     if (corners[v] == 0) {
       ++report.isolated_vertices;
       continue;
     }
+    std::size_t reached = covered[v];
     if (ring_first[v] != npos) {
       ring_slot(ring_last[v], v) = ring_first[v];
       vertex_anchor_[v] = ring_first[v];
-      if (covered[v] != corners[v]) {
-        const std::uint32_t bad = corners[v];
-        clear_connectivity();
-        throw error(error_category::topology, "build: the " + std::to_string(bad) + " faces around " +
-                                                  detail::vtx(v) +
-                                                  " form a closed fan plus open ones (a non-manifold "
-                                                  "vertex); split it into one vertex per fan");
-      }
     } else {
-      std::size_t count = 0;
+      reached = 0;
       const std::uint32_t a = vertex_anchor_[v];
       std::uint32_t t = a;
       do {
-        ++count;
-        const std::uint32_t out = he_[t].head == v ? he_[t].next : he_[t].prev;
-        t = out ^ 1u;
-      } while (t != a && count <= corners[v]);
-      if (count != corners[v]) {
-        const std::uint32_t bad = corners[v];
-        clear_connectivity();
-        throw error(error_category::topology,
-                    "build: the " + std::to_string(bad) + " faces around " + detail::vtx(v) +
-                        " form several closed fans (e.g. two cones touching at their tips); "
-                        "split it into one vertex per fan");
-      }
+        ++reached;
+        t = (he_[t].head == v ? he_[t].next : he_[t].prev) ^ 1u;
+      } while (t != a && reached <= corners[v]);
     }
+    if (reached == corners[v]) continue;
+    if (!options.split_nonmanifold_vertices) {
+      const std::uint32_t total = corners[v];
+      const bool open = ring_first[v] != npos;
+      clear_connectivity();
+      throw error(error_category::topology,
+                  "build: the " + std::to_string(total) + " faces around " + detail::vtx(v) +
+                      (open ? " form a closed fan plus open ones" : " form several closed fans") +
+                      " (a non-manifold vertex, e.g. two cones touching at their tips); set "
+                      "build_options::split_nonmanifold_vertices to give each fan its own vertex");
+    }
+    nonmanifold.push_back(v);
   }
+  if (!nonmanifold.empty()) split_fans(nonmanifold, report);
+  nv = vertex_anchor_.size();
   report.vertices = nv;
   report.edges = ne;
   report.faces = nf;
   report.boundary_edges = boundary;
   report.flipped_edges = flipped_edges_;
   return report;
+}
+
+inline void halfedge_mesh::split_fans(const std::vector<std::uint32_t>& bad, build_report& report) {
+  // The face half-edges entering each listed vertex: one per face at it.
+  std::vector<std::uint8_t> listed(vertex_anchor_.size(), 0), marked(he_.size(), 0);
+  for (std::uint32_t v : bad) listed[v] = 1;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> incoming;  // (vertex, half-edge)
+  for (std::uint32_t h = 0; h < he_.size(); ++h)
+    if (he_[h].face != npos && listed[he_[h].head]) incoming.emplace_back(he_[h].head, h);
+  std::sort(incoming.begin(), incoming.end());
+  // Marks the faces of one fan at v by their half-edge entering v; returns those half-edges.
+  std::vector<std::uint32_t> fan_in;
+  auto walk = [&](std::uint32_t start, std::uint32_t v, bool closed) {
+    fan_in.clear();
+    std::uint32_t t = closed ? start : start ^ 1u;
+    for (std::size_t guard = 0; guard <= he_.size(); ++guard) {
+      const std::uint32_t in = he_[t].head == v ? t : he_[t].prev;
+      marked[in] = 1;
+      fan_in.push_back(in);
+      const std::uint32_t u = (he_[t].head == v ? he_[t].next : he_[t].prev) ^ 1u;
+      if (he_[u].face == npos || u == start) break;
+      t = u;
+    }
+  };
+  for (std::uint32_t v : bad) {
+    const std::uint32_t a = vertex_anchor_[v];
+    if (he_[a].face == npos) {
+      std::uint32_t s = a;
+      do {
+        walk(s, v, false);
+        s = ring_slot(ring_slot(s, v), v);
+      } while (s != a);
+    } else {
+      walk(a, v, true);
+    }
+  }
+  for (const auto& [v, h] : incoming) {
+    if (marked[h]) continue;
+    walk(h, v, true);  // an unreached fan at v is closed: every open one starts at a ring entry
+    const std::uint32_t copy = n32(vertex_anchor_.size());
+    vertex_anchor_.push_back(h);
+    vprops_.push_back();
+    for (std::uint32_t in : fan_in) he_[in].head = copy;
+    report.split_vertices.emplace_back(copy, v);
+  }
 }
 
 inline void halfedge_mesh::garbage_collection() {
