@@ -55,7 +55,7 @@ struct obj_read_options {
 /// How OBJ files are written.
 struct obj_write_options {
   /// Written as '#' comment lines at the top when not empty.
-  std::string comment;
+  std::string comment{};
 };
 
 namespace detail {

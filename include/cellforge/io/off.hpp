@@ -32,7 +32,7 @@ struct off_read_options {
 /// How OFF files are written.
 struct off_write_options {
   /// Written as '#' comment lines after the header when not empty (one per line of text).
-  std::string comment;
+  std::string comment{};
 };
 
 namespace detail {

@@ -39,7 +39,7 @@ struct ply_read_options {
 /// How PLY files are written.
 struct ply_write_options {
   ply_format format = ply_format::binary_little_endian;  ///< binary is exact and compact
-  std::string comment;                                   ///< header 'comment' lines when not empty
+  std::string comment{};                                 ///< header 'comment' lines when not empty
 };
 
 namespace detail {

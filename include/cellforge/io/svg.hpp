@@ -112,6 +112,27 @@ namespace detail {
 
 /// Appends v with `precision` decimals, trailing zeros dropped; locale-independent. O(1).
 inline void svg_number(std::string& out, double v, int precision) {
+  static constexpr double powers[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
+  const double scaled = v * powers[precision];
+  if (std::abs(scaled) < 1e15) {
+    // Fast path for every coordinate inside a picture: an integer count of the last digit.
+    long long n = std::llround(scaled);
+    if (n < 0) {
+      out += '-';
+      n = -n;
+    }
+    char digits[24];
+    int k = 0;
+    for (; n > 0 || k <= precision; n /= 10) digits[k++] = static_cast<char>('0' + n % 10);
+    int lowest = 0;  // trailing zeros of the fraction are dropped
+    while (lowest < precision && digits[lowest] == '0') ++lowest;
+    for (int i = k - 1; i >= precision; --i) out += digits[i];
+    if (lowest < precision) {
+      out += '.';
+      for (int i = precision - 1; i >= lowest; --i) out += digits[i];
+    }
+    return;
+  }
   char buf[512];
   const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, precision);
   if (r.ec != std::errc{}) {

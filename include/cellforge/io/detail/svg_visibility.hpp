@@ -80,10 +80,6 @@ class occlusion_grid {
     ny_ = static_cast<int>(std::clamp(std::ceil(h / cell), 1.0, 1024.0));
     sx_ = nx_ / w;
     sy_ = ny_ / h;
-    // Faces in grid order, so that the faces of one cell sit together in memory.
-    std::stable_sort(faces_.begin(), faces_.end(), [&](const face& p, const face& q) {
-      return std::pair(row(p.lo.y), col(p.lo.x)) < std::pair(row(q.lo.y), col(q.lo.x));
-    });
     // Counting pass, then a filling pass: one flat array of face indices per cell (CSR).
     cells_.assign(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
     const auto for_each_cell_of = [&](const face& f, auto&& fn) {
@@ -213,6 +209,18 @@ class occlusion_grid {
             std::vector<svg_interval>& out) {
     const glm::dvec2 a2(a), d = glm::dvec2(b) - a2;
     const glm::dvec2* v = xy_.data() + f.first;
+    const auto gap = [&](double t) {
+      return f.a * (a2.x + t * d.x) + f.b * (a2.y + t * d.y) + f.c - (a.z + t * (b.z - a.z)) - margin;
+    };
+    // Cheap rejections first: the face's plane behind the whole segment (the gap is linear
+    // in t), or the whole face on one side of the segment's line.
+    if (gap(0.0) <= 0.0 && gap(1.0) <= 0.0) return;
+    int sides = 0;
+    for (std::uint32_t i = 0; i < f.count; ++i) {
+      const double side = d.x * (v[i].y - a2.y) - d.y * (v[i].x - a2.x);
+      sides |= side > 0.0 ? 1 : side < 0.0 ? 2 : 3;
+    }
+    if (sides != 3) return;
     ts_.assign({0.0, 1.0});
     for (std::uint32_t i = 0, j = f.count - 1; i < f.count; j = i++) {
       const glm::dvec2 e = v[i] - v[j], w = v[j] - a2;
@@ -222,9 +230,6 @@ class occlusion_grid {
       if (t > 0.0 && t < 1.0 && s >= -1e-12 && s <= 1.0 + 1e-12) ts_.push_back(t);
     }
     std::sort(ts_.begin(), ts_.end());
-    const auto gap = [&](double t) {
-      return f.a * (a2.x + t * d.x) + f.b * (a2.y + t * d.y) + f.c - (a.z + t * (b.z - a.z)) - margin;
-    };
     for (std::size_t k = 0; k + 1 < ts_.size(); ++k) {
       const double t0 = ts_[k], t1 = ts_[k + 1];
       if (!(t1 - t0 > 1e-12)) continue;
