@@ -21,6 +21,10 @@
 
 namespace cellforge {
 
+namespace detail {
+struct mesh_access;
+}
+
 /// Counts and diagnostics from building a mesh from a face list.
 struct build_report {
   std::size_t vertices = 0, edges = 0, faces = 0;
@@ -509,6 +513,11 @@ class halfedge_mesh {
       t = u;
     }
   }
+  // From face records (and boundary half-edges' heads) alone, derives everything else:
+  // vertex anchors, boundary rings, the unlinked table, the flipped count. O(n).
+  void link_fans(const build_options& options, build_report& report);
+  friend struct detail::mesh_access;
+
   // Gives each closed fan of the listed vertices that their anchors do not reach a vertex of its own.
   void split_fans(const std::vector<std::uint32_t>& bad, build_report& report);
 

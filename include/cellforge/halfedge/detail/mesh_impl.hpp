@@ -392,8 +392,6 @@ inline build_report halfedge_mesh::build(std::size_t nv, std::span<const std::ui
   face_anchor_.resize(nf);
   fprops_.resize(nf);
 
-  build_report report;
-  std::size_t boundary = 0;
   for (std::size_t f = 0; f < nf; ++f) {
     const std::uint32_t o = offsets[f], e = offsets[f + 1];
     face_anchor_[f] = hid[o];
@@ -404,25 +402,40 @@ inline build_report halfedge_mesh::build(std::size_t nv, std::span<const std::ui
       r.next = hid[cn];
       r.prev = hid[cp];
       r.face = n32(f);
-      vertex_anchor_[fv[c]] = hid[c];
-      if (partner[c] == npos) {
-        record& t = he_[hid[c] ^ 1u];
-        t.head = fv[c];
-        ++boundary;
-      } else if (c < partner[c] && fv[cn] == fv[next_corner[partner[c]]]) {
-        ++flipped_edges_;
-      }
+      if (partner[c] == npos) he_[hid[c] ^ 1u].head = fv[c];
     }
   }
-  unlinked_.reserve(boundary);
-  for (std::size_t c = 0; c < nh; ++c)
-    if (partner[c] == npos) unlinked_.insert(detail::edge_table::key(fv[c], fv[next_corner[c]]), hid[c]);
   partner = {};
   next_corner = {};
+  hid = {};
+  build_report report;
+  link_fans(options, report);
+  return report;
+}
 
-  // Corners per vertex, to check that the fans found cover every face at the vertex.
+inline void halfedge_mesh::link_fans(const build_options& options, build_report& report) {
+  const std::size_t nv = vertex_anchor_.size();
+  std::fill(vertex_anchor_.begin(), vertex_anchor_.end(), npos);
+  flipped_edges_ = 0;
+  unlinked_.clear();
+  // Corners per vertex (to check that the fans found reach every face), anchors, seams, boundary.
   std::vector<std::uint32_t> corners(nv, 0);
-  for (std::uint32_t v : fv) ++corners[v];
+  std::size_t boundary = 0;
+  for (std::uint32_t h = 0; h < he_.size(); ++h) {
+    const record& r = he_[h];
+    if (r.face == npos) {
+      ++boundary;
+      continue;
+    }
+    ++corners[r.head];
+    vertex_anchor_[r.head] = h;
+    if (h < (h ^ 1u) && he_[h ^ 1u].face != npos && he_[h ^ 1u].head == r.head) ++flipped_edges_;
+  }
+  unlinked_.reserve(boundary);
+  for (std::uint32_t h = 0; h < he_.size(); ++h)
+    if (he_[h].face != npos && he_[h ^ 1u].face == npos)
+      unlinked_.insert(detail::edge_table::key(he_[he_[h].prev].head, he_[h].head), h);
+
   std::vector<std::uint32_t> covered(nv, 0), ring_first(nv, npos), ring_last(nv, npos);
   std::vector<std::uint8_t> seen(he_.size(), 0);  // bit 0: head end done, bit 1: tail end done
   for (std::uint32_t b = 0; b < he_.size(); ++b) {
@@ -476,13 +489,11 @@ inline build_report halfedge_mesh::build(std::size_t nv, std::span<const std::ui
     nonmanifold.push_back(v);
   }
   if (!nonmanifold.empty()) split_fans(nonmanifold, report);
-  nv = vertex_anchor_.size();
-  report.vertices = nv;
-  report.edges = ne;
-  report.faces = nf;
+  report.vertices = vertex_anchor_.size();
+  report.edges = edges_size();
+  report.faces = faces_size();
   report.boundary_edges = boundary;
   report.flipped_edges = flipped_edges_;
-  return report;
 }
 
 inline void halfedge_mesh::split_fans(const std::vector<std::uint32_t>& bad, build_report& report) {
