@@ -116,7 +116,7 @@ for stage in "${stages[@]}"; do
   echo "=== test-all: stage '$stage' ==="
   stage_start=$SECONDS
   # A separate bash process, so that `set -e` stops the stage at its first failing command.
-  if bash "${BASH_SOURCE[0]}" --stage "$stage"; then
+  if bash "$root/cmake/test-all.sh" --stage "$stage"; then
     passed+=("$stage ($((SECONDS - stage_start))s)")
   else
     failed+=("$stage")
