@@ -25,7 +25,9 @@
 #include <utility>
 #include <vector>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/bounding_box.hpp"
@@ -64,7 +66,7 @@ struct svg_style {
   bool draw_hidden = true;                ///< draw the hidden parts of edges and points
   std::string hidden_stroke = "#1f3b57";  ///< colour of hidden parts (dashed, see-through)
   double hidden_opacity = 0.7;            ///< hidden parts are drawn over the faces
-  std::string hidden_dash;       ///< SVG dash array of hidden parts; empty: 4 on, 3 off per stroke width
+  std::string hidden_dash{};     ///< SVG dash array of hidden parts; empty: 4 on, 3 off per stroke width
   bool cull_back_faces = false;  ///< meshes: skip faces turned away (closed, oriented meshes)
   bool occludes = true;          ///< meshes: faces hide edges and points behind them
   double font_size = 12;         ///< labels, in output pixels
@@ -75,12 +77,12 @@ struct svg_style {
 struct svg_options {
   int width = 800, height = 600;  ///< pixels
   double margin = 20;             ///< pixels kept free around the drawing
-  svg_view view;
+  svg_view view{};
   /// Direction toward the light in camera coordinates (right, up, toward the viewer).
   glm::dvec3 light{-0.3, 0.8, 1.0};
   double ambient = 0.45;             ///< share of a face's colour it keeps when lit edge-on (0 .. 1)
   std::string background = "white";  ///< empty or "none": transparent
-  std::string title;                 ///< written as <title>
+  std::string title{};               ///< written as <title>
   int precision = 2;                 ///< decimals of coordinates (0 .. 9)
   /// A face hides a point only when nearer by more than this fraction of the scene's diagonal.
   double depth_epsilon = 1e-6;
@@ -103,9 +105,9 @@ struct svg_result {
 
 /// One edge or segment of the scene and where it is hidden.
 struct svg_edge_visibility {
-  std::size_t layer = 0;                      ///< as returned by the add_ call
-  glm::dvec3 a{0.0}, b{0.0};                  ///< ends, with the layer's offset applied
-  std::vector<std::array<double, 2>> hidden;  ///< sorted disjoint intervals of t (point a + t (b - a))
+  std::size_t layer = 0;                        ///< as returned by the add_ call
+  glm::dvec3 a{0.0}, b{0.0};                    ///< ends, with the layer's offset applied
+  std::vector<std::array<double, 2>> hidden{};  ///< sorted disjoint intervals of t (point a + t (b - a))
 };
 
 namespace detail {
@@ -117,8 +119,10 @@ inline void svg_number(std::string& out, double v, int precision) {
   if (std::abs(scaled) < 1e15) {
     // Fast path for every coordinate inside a picture: an integer count of the last digit.
     long long n = std::llround(scaled);
+    char text[32];
+    char* w = text;
     if (n < 0) {
-      out += '-';
+      *w++ = '-';
       n = -n;
     }
     char digits[24];
@@ -126,11 +130,12 @@ inline void svg_number(std::string& out, double v, int precision) {
     for (; n > 0 || k <= precision; n /= 10) digits[k++] = static_cast<char>('0' + n % 10);
     int lowest = 0;  // trailing zeros of the fraction are dropped
     while (lowest < precision && digits[lowest] == '0') ++lowest;
-    for (int i = k - 1; i >= precision; --i) out += digits[i];
+    for (int i = k - 1; i >= precision; --i) *w++ = digits[i];
     if (lowest < precision) {
-      out += '.';
-      for (int i = precision - 1; i >= lowest; --i) out += digits[i];
+      *w++ = '.';
+      for (int i = precision - 1; i >= lowest; --i) *w++ = digits[i];
     }
+    out.append(text, w);
     return;
   }
   char buf[512];
@@ -271,10 +276,10 @@ class svg_scene {
              std::to_string(std::max(ab[0], ab[1])) + " but the wireframe has " + std::to_string(nv) +
              " vertices");
     }
-    const auto pts =
-        convert_points(std::views::iota(std::size_t{0}, nv) |
-                           std::views::transform([&](std::size_t v) { return T::position(g, v); }),
-                       style, "add_wireframe");
+    std::vector<glm::dvec3> pts;
+    pts.reserve(nv);
+    for (std::size_t v = 0; v < nv; ++v)
+      pts.push_back(checked_point(to_dvec3(T::position(g, v)), style, v, "add_wireframe"));
     layer l = begin_layer(layer_kind::lines, style);
     const auto base = static_cast<std::uint32_t>(points_.size());
     append_points(pts, "add_wireframe");
@@ -438,16 +443,19 @@ class svg_scene {
   template <class R>
   static std::vector<glm::dvec3> convert_points(R&& points, const svg_style& style, const char* who) {
     std::vector<glm::dvec3> out;
-    for (const auto& p : points) {
-      const glm::dvec3 q = to_dvec3(p), r = q + style.offset;
-      if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
-        fail(std::string(who) + ": point " + std::to_string(out.size()) +
-             " has a non-finite coordinate (NaN or Inf)");
-      if (!std::isfinite(r.x) || !std::isfinite(r.y) || !std::isfinite(r.z))
-        fail(std::string(who) + ": point " + std::to_string(out.size()) + " overflows when offset");
-      out.push_back(r);
-    }
+    for (const auto& p : points) out.push_back(checked_point(to_dvec3(p), style, out.size(), who));
     return out;
+  }
+
+  static glm::dvec3 checked_point(const glm::dvec3& q, const svg_style& style, std::size_t index,
+                                  const char* who) {
+    const glm::dvec3 r = q + style.offset;
+    if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
+      fail(std::string(who) + ": point " + std::to_string(index) +
+           " has a non-finite coordinate (NaN or Inf)");
+    if (!std::isfinite(r.x) || !std::isfinite(r.y) || !std::isfinite(r.z))
+      fail(std::string(who) + ": point " + std::to_string(index) + " overflows when offset");
+    return r;
   }
 
   void append_points(const std::vector<glm::dvec3>& pts, const char* who) {
