@@ -225,6 +225,10 @@ glm::dvec3 svg_newell(std::size_t n, Get&& at) {
   return nrm;
 }
 
+/// A forward range of registered points (what add_polyline and add_points accept).
+template <class R>
+concept svg_point_range = std::ranges::forward_range<R> && Point3<std::ranges::range_value_t<R>>;
+
 inline std::uint64_t svg_edge_key(std::uint32_t a, std::uint32_t b) {
   return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
 }
@@ -250,6 +254,8 @@ class svg_scene {
           fail("add_mesh: face " + std::to_string(f) + " refers to point " + std::to_string(v) +
                " but the soup has " + std::to_string(soup.points.size()) + " points");
     }
+    if (soup.face_vertices.size() >= 0xffffffffu - face_vertices_.size())
+      fail("add_mesh: more than 2^32 - 2 face corners in one scene");
     const auto pts = convert_points(soup.points, style, "add_mesh");
     layer l = begin_layer(layer_kind::mesh, style);
     const auto base = static_cast<std::uint32_t>(points_.size());
@@ -270,7 +276,7 @@ class svg_scene {
     check_style(style, "add_wireframe");
     const std::size_t nv = T::num_vertices(g), ne = T::num_edges(g);
     for (std::size_t e = 0; e < ne; ++e) {
-      const auto ab = T::endpoints(g, e);
+      const std::array<std::size_t, 2> ab = T::endpoints(g, e);
       if (ab[0] >= nv || ab[1] >= nv)
         fail("add_wireframe: edge " + std::to_string(e) + " refers to vertex " +
              std::to_string(std::max(ab[0], ab[1])) + " but the wireframe has " + std::to_string(nv) +
@@ -284,7 +290,7 @@ class svg_scene {
     const auto base = static_cast<std::uint32_t>(points_.size());
     append_points(pts, "add_wireframe");
     for (std::size_t e = 0; e < ne; ++e) {
-      const auto ab = T::endpoints(g, e);
+      const std::array<std::size_t, 2> ab = T::endpoints(g, e);
       segments_.push_back(
           {base + static_cast<std::uint32_t>(ab[0]), base + static_cast<std::uint32_t>(ab[1])});
     }
@@ -292,10 +298,8 @@ class svg_scene {
   }
 
   /// Adds a polyline through the points, closed back to the first when asked. O(n).
-  template <std::ranges::forward_range R>
-  requires Point3<std::ranges::range_value_t<R>> std::size_t add_polyline(R&& points,
-                                                                          const svg_style& style = {},
-                                                                          bool closed = false) {
+  template <detail::svg_point_range R>
+  std::size_t add_polyline(R&& points, const svg_style& style = {}, bool closed = false) {
     check_style(style, "add_polyline");
     const auto pts = convert_points(points, style, "add_polyline");
     layer l = begin_layer(layer_kind::lines, style);
@@ -308,10 +312,8 @@ class svg_scene {
   }
 
   /// Adds points drawn as circles of `radius` pixels (fill and stroke from the style). O(n).
-  template <std::ranges::forward_range R>
-  requires Point3<std::ranges::range_value_t<R>> std::size_t add_points(R&& points,
-                                                                        const svg_style& style = {},
-                                                                        double radius = 3) {
+  template <detail::svg_point_range R>
+  std::size_t add_points(R&& points, const svg_style& style = {}, double radius = 3) {
     check_style(style, "add_points");
     if (!(radius >= 0.0) || !std::isfinite(radius))
       fail("add_points: the radius must be finite and >= 0, got " + std::to_string(radius));
@@ -556,6 +558,7 @@ class svg_scene {
       scale = aw / ex;
     else if (ey > 0.0)
       scale = ah / ey;
+    if (!std::isfinite(scale)) scale = 1.0;  // a subnormal extent: the scene is one point
     const glm::dvec2 mid = 0.5 * (lo + hi);
     for (auto& s : fr.screen) {
       s.x = 0.5 * o.width + (s.x - mid.x) * scale;
