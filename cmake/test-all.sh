@@ -119,7 +119,7 @@ for stage in "${stages[@]}"; do
   if bash "$root/cmake/test-all.sh" --stage "$stage"; then
     passed+=("$stage ($((SECONDS - stage_start))s)")
   else
-    failed+=("$stage")
+    failed+=("$stage ($((SECONDS - stage_start))s)")
     echo "=== test-all: stage '$stage' FAILED ===" >&2
   fi
 done
