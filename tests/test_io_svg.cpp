@@ -553,3 +553,45 @@ TEST_CASE("numbers are written with fixed precision, no trailing zeros, no negat
   CHECK(fmt(1.5e20, 2) == "150000000000000000000");  // beyond the fast path
   CHECK(fmt(7.25, 9) == "7.25");
 }
+
+TEST_CASE("shading is two-sided and a non-orientable strip draws every face") {
+  const auto fill_of = [](std::initializer_list<std::uint32_t> order) {
+    polygon_soup<glm::dvec3> tri;
+    tri.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0.3}};
+    tri.add_face(order);
+    io::svg_scene scene;
+    scene.add_mesh(tri);
+    const std::string text = render(scene);
+    const std::size_t at = text.find("fill=\"#", text.find("<polygon"));
+    return text.substr(at, 14);
+  };
+  CHECK(fill_of({0, 1, 2}) == fill_of({0, 2, 1}));
+  CHECK(fill_of({0, 1, 2}) != "fill=\"#9fc5e8\"");  // shaded, not the flat colour
+
+  // A Moebius strip: 40 quads, half a turn along the loop.
+  polygon_soup<glm::dvec3> strip;
+  const int n = 40;
+  for (int i = 0; i < n; ++i) {
+    const double u = 2 * std::numbers::pi * i / n;
+    for (const double v : {-0.3, 0.3})
+      strip.points.push_back({(1 + v * std::cos(u / 2)) * std::cos(u),
+                              (1 + v * std::cos(u / 2)) * std::sin(u), v * std::sin(u / 2)});
+  }
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t j = (i + 1) % n;
+    if (j == 0)
+      strip.add_face({2 * i, 2 * i + 1, 0, 1});  // the half turn glues the sides crosswise
+    else
+      strip.add_face({2 * i, 2 * i + 1, 2 * j + 1, 2 * j});
+  }
+  io::svg_style features;
+  features.feature_angle_deg = 30;
+  io::svg_scene scene;
+  scene.add_mesh(strip, features);
+  io::svg_result r;
+  const std::string text = render(scene, {}, &r);
+  CHECK(r.faces_drawn == static_cast<std::size_t>(n));
+  CHECK(r.edges >= static_cast<std::size_t>(2 * n));  // the one boundary loop has 2n edges
+  CHECK(r.edges < static_cast<std::size_t>(3 * n));   // and the smooth rungs are mostly skipped
+  CHECK(well_formed(text));
+}
