@@ -3,8 +3,12 @@
 // Out-of-class definitions of halfedge_mesh's editing operations (included by mesh.hpp).
 
 #include <algorithm>
+#include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
+
+#include "cellforge/halfedge/mesh.hpp"
 
 namespace cellforge {
 
@@ -304,11 +308,20 @@ inline build_report halfedge_mesh::build(std::size_t nv, std::span<const std::ui
     throw error(error_category::invalid_input, "build: too many vertices or faces for 32-bit indices");
   const std::size_t nf = offsets.size() - 1;
   const std::size_t nh = fv.size();
+
+  // Pass 1, faces in order: check each face, then count its corners by the smaller end of
+  // their edge (corner c is the edge fv[c] -> fv[c+1], cyclically within its face). The
+  // counts sit two slots up so that the fill below leaves bucket lo at [start[lo], start[lo+1]).
+  std::vector<std::uint32_t> start(nv + 2, 0);
   for (std::size_t f = 0; f < nf; ++f) {
-    if (offsets[f + 1] < offsets[f] || offsets[f + 1] - offsets[f] < 3)
+    const std::uint32_t o = offsets[f], e = offsets[f + 1];
+    if (e < o || e > nh)
+      throw error(error_category::invalid_input, "build: face offsets must not decrease (face " +
+                                                     std::to_string(f) + ")");
+    if (e - o < 3)
       throw error(error_category::invalid_input,
                   "build: face " + std::to_string(f) + " has fewer than 3 vertices");
-    const std::span<const std::uint32_t> face = fv.subspan(offsets[f], offsets[f + 1] - offsets[f]);
+    const std::span<const std::uint32_t> face = fv.subspan(o, e - o);
     for (std::uint32_t v : face)
       if (v >= nv)
         throw error(error_category::invalid_input, "build: face " + std::to_string(f) + " uses vertex " +
@@ -316,98 +329,98 @@ inline build_report halfedge_mesh::build(std::size_t nv, std::span<const std::ui
                                                        std::to_string(nv) + " vertices");
     if (!detail::all_distinct(face))
       throw error(error_category::invalid_input, "build: face " + std::to_string(f) + " repeats a vertex");
+    for (std::uint32_t c = o; c < e; ++c) ++start[std::min(fv[c], fv[c + 1 == e ? o : c + 1]) + 2];
+  }
+  for (std::size_t i = 2; i < start.size(); ++i) start[i] += start[i - 1];
+
+  // Pass 2: the corners bucketed by smaller end, each with its larger end beside it
+  // (hi << 32 | corner), so matching reads one contiguous run per vertex.
+  std::vector<std::uint64_t> items(nh);
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::uint32_t o = offsets[f], e = offsets[f + 1];
+    for (std::uint32_t c = o; c < e; ++c) {
+      const std::uint32_t a = fv[c], b = fv[c + 1 == e ? o : c + 1];
+      items[start[std::min(a, b) + 1]++] = std::uint64_t{std::max(a, b)} << 32 | c;
+    }
   }
   auto face_of = [&](std::size_t c) {
     return static_cast<std::size_t>(std::upper_bound(offsets.begin(), offsets.end(), c) - offsets.begin() -
                                     1);
   };
 
-  // next_corner[c]: the corner after c in its face; a = fv[c], b = fv[next_corner[c]].
-  std::vector<std::uint32_t> next_corner(nh);
-  for (std::size_t f = 0; f < nf; ++f) {
-    const std::uint32_t o = offsets[f], e = offsets[f + 1];
-    for (std::uint32_t c = o; c + 1 < e; ++c) next_corner[c] = c + 1;
-    next_corner[e - 1] = o;
-  }
-
-  // Bucket corners by the smaller end of their edge; match equal larger ends within a bucket.
-  std::vector<std::uint32_t> bucket(nv + 1, 0);
-  for (std::size_t c = 0; c < nh; ++c) ++bucket[std::min(fv[c], fv[next_corner[c]]) + 1];
-  for (std::size_t v = 0; v < nv; ++v) bucket[v + 1] += bucket[v];
-  std::vector<std::uint32_t> items(nh);
-  {
-    std::vector<std::uint32_t> fill(bucket.begin(), bucket.end() - 1);
-    for (std::size_t c = 0; c < nh; ++c) items[fill[std::min(fv[c], fv[next_corner[c]])]++] = n32(c);
-  }
+  // Pass 3: match the corners of each edge within its bucket; a third one is an error.
   std::vector<std::uint32_t> partner(nh, npos);
-  auto hi_of = [&](std::uint32_t c) { return std::max(fv[c], fv[next_corner[c]]); };
-  auto pair_up = [&](std::uint32_t c, std::uint32_t d, std::uint32_t lo) {
+  std::size_t pairs = 0;
+  auto pair_up = [&](std::uint32_t c, std::uint32_t d, std::uint32_t lo, std::uint32_t hi) {
     if (partner[d] != npos)
       throw error(error_category::topology,
-                  "build: " + detail::edge_name(lo, hi_of(c)) + " is used by faces " +
-                      std::to_string(face_of(d)) + ", " + std::to_string(face_of(partner[d])) + " and " +
-                      std::to_string(face_of(c)) + "; a half-edge mesh allows at most two faces per edge");
+                  "build: " + detail::edge_name(lo, hi) + " is used by faces " + std::to_string(face_of(d)) +
+                      ", " + std::to_string(face_of(partner[d])) + " and " + std::to_string(face_of(c)) +
+                      "; a half-edge mesh allows at most two faces per edge");
     partner[c] = d;
     partner[d] = c;
+    ++pairs;
   };
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted;
   for (std::uint32_t lo = 0; lo < nv; ++lo) {
-    const std::uint32_t b0 = bucket[lo], b1 = bucket[lo + 1];
+    const std::uint32_t b0 = start[lo], b1 = start[lo + 1];
     if (b1 - b0 <= 24) {
       for (std::uint32_t i = b0; i < b1; ++i) {
-        const std::uint32_t c = items[i], hc = hi_of(c);
+        const std::uint64_t hc = items[i] >> 32;
         for (std::uint32_t j = i; j-- > b0;) {
-          if (hi_of(items[j]) != hc) continue;
-          pair_up(c, items[j], lo);
+          if (items[j] >> 32 != hc) continue;
+          pair_up(static_cast<std::uint32_t>(items[i]), static_cast<std::uint32_t>(items[j]), lo,
+                  static_cast<std::uint32_t>(hc));
           break;
         }
       }
-    } else {  // a high-degree vertex: sort its bucket instead of comparing all pairs
-      sorted.clear();
-      for (std::uint32_t i = b0; i < b1; ++i) sorted.emplace_back(hi_of(items[i]), items[i]);
-      std::sort(sorted.begin(), sorted.end());
-      for (std::size_t i = 1; i < sorted.size(); ++i)
-        if (sorted[i].first == sorted[i - 1].first) pair_up(sorted[i].second, sorted[i - 1].second, lo);
+    } else {  // a high-degree vertex: sort its bucket (by larger end, then corner) instead
+      std::sort(items.begin() + b0, items.begin() + b1);
+      for (std::uint32_t i = b0 + 1; i < b1; ++i)
+        if (items[i] >> 32 == items[i - 1] >> 32)
+          pair_up(static_cast<std::uint32_t>(items[i]), static_cast<std::uint32_t>(items[i - 1]), lo,
+                  static_cast<std::uint32_t>(items[i] >> 32));
     }
   }
-  bucket = {};
   items = {};
+  start = {};
 
-  // Number edges in order of first use, so half-edges of nearby faces sit close in memory.
-  std::vector<std::uint32_t> hid(nh, npos);
-  std::uint32_t ne = 0;
-  for (std::size_t c = 0; c < nh; ++c) {
-    if (hid[c] != npos) continue;
-    hid[c] = 2 * ne;
-    if (partner[c] != npos) hid[partner[c]] = 2 * ne + 1;
-    ++ne;
-  }
-
+  const std::size_t ne = nh - pairs;
   clear_connectivity();
   vertex_anchor_.assign(nv, npos);
   vprops_.resize(nv);
-  he_.assign(2 * std::size_t{ne}, record{});
-  hprops_.resize(2 * std::size_t{ne});
+  he_.assign(2 * ne, record{});
+  hprops_.resize(2 * ne);
   eprops_.resize(ne);
   face_anchor_.resize(nf);
   fprops_.resize(nf);
 
+  // Pass 4, faces in order: number the edges in order of first use (so half-edges of nearby
+  // faces sit close in memory) and write the face's records. partner[c] becomes c's
+  // half-edge once c is numbered: a corner whose partner comes later opens a new edge, one
+  // whose partner came earlier takes the twin of the partner's half-edge.
+  std::uint32_t next_edge = 0;
   for (std::size_t f = 0; f < nf; ++f) {
     const std::uint32_t o = offsets[f], e = offsets[f + 1];
-    face_anchor_[f] = hid[o];
     for (std::uint32_t c = o; c < e; ++c) {
-      const std::uint32_t cn = next_corner[c], cp = c == o ? e - 1 : c - 1;
-      record& r = he_[hid[c]];
+      const std::uint32_t p = partner[c];
+      if (p != npos && p < c) {
+        partner[c] = partner[p] ^ 1u;
+      } else {
+        partner[c] = 2 * next_edge++;
+        if (p == npos) he_[partner[c] ^ 1u].head = fv[c];  // boundary side: head at the face half-edge's tail
+      }
+    }
+    face_anchor_[f] = partner[o];
+    for (std::uint32_t c = o; c < e; ++c) {
+      const std::uint32_t cn = c + 1 == e ? o : c + 1, cp = c == o ? e - 1 : c - 1;
+      record& r = he_[partner[c]];
       r.head = fv[cn];
-      r.next = hid[cn];
-      r.prev = hid[cp];
+      r.next = partner[cn];
+      r.prev = partner[cp];
       r.face = n32(f);
-      if (partner[c] == npos) he_[hid[c] ^ 1u].head = fv[c];
     }
   }
   partner = {};
-  next_corner = {};
-  hid = {};
   build_report report;
   link_fans(options, report);
   return report;
