@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cmath>
 #include <concepts>
+#include <cstdint>
 #include <limits>
 #include <system_error>
 #include <type_traits>
@@ -40,6 +41,18 @@ noexcept {
       r.ec = std::errc{};
     }
   } else {
+    // Fast path for the indices and counts that fill mesh files: up to 18 plain digits
+    // cannot overflow the accumulator; anything else goes through from_chars.
+    std::uint64_t acc = 0;
+    const char* d = q;
+    while (d != end && d - q < 18 && static_cast<unsigned char>(*d - '0') < 10)
+      acc = acc * 10 + static_cast<unsigned>(*d++ - '0');
+    if (d != q && (d == end || static_cast<unsigned char>(*d - '0') >= 10) &&
+        acc <= std::uint64_t{std::numeric_limits<T>::max()}) {
+      out = static_cast<T>(acc);
+      p = d;
+      return parse_status::ok;
+    }
     r = std::from_chars(q, end, out);
   }
   if (r.ec == std::errc::invalid_argument) return parse_status::bad;

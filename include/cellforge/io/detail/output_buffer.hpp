@@ -13,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -27,7 +28,9 @@ namespace cellforge::io::detail {
 /// Collects output in a 1 MiB buffer and hands it to the stream in big writes.
 class output_buffer {
  public:
-  explicit output_buffer(std::ostream& os) : os_(os) { buf_.resize(capacity); }
+  // Uninitialised storage: small outputs touch only the pages they use.
+  explicit output_buffer(std::ostream& os)
+      : os_(os), buf_(std::make_unique_for_overwrite<char[]>(capacity)) {}
   output_buffer(const output_buffer&) = delete;
   output_buffer& operator=(const output_buffer&) = delete;
   // No flush in the destructor: it would hide write errors during unwinding; callers call finish().
@@ -40,7 +43,7 @@ class output_buffer {
         return;
       }
     }
-    std::memcpy(buf_.data() + used_, s.data(), s.size());
+    std::memcpy(buf_.get() + used_, s.data(), s.size());
     used_ += s.size();
   }
   void put(char c) {
@@ -53,8 +56,8 @@ class output_buffer {
   requires std::is_arithmetic_v<T>
   void number(T value) {
     if (capacity - used_ < max_number_chars) flush();
-    const auto r = std::to_chars(buf_.data() + used_, buf_.data() + capacity, value);
-    used_ = static_cast<std::size_t>(r.ptr - buf_.data());
+    const auto r = std::to_chars(buf_.get() + used_, buf_.get() + capacity, value);
+    used_ = static_cast<std::size_t>(r.ptr - buf_.get());
   }
 
   /// Appends the raw bytes of a value in little- or big-endian order.
@@ -67,12 +70,12 @@ class output_buffer {
     if ((std::endian::native == std::endian::little) != little_endian) {
       for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(bytes[i], bytes[sizeof(T) - 1 - i]);
     }
-    std::memcpy(buf_.data() + used_, bytes, sizeof(T));
+    std::memcpy(buf_.get() + used_, bytes, sizeof(T));
     used_ += sizeof(T);
   }
 
   void flush() {
-    if (used_ != 0) os_.write(buf_.data(), static_cast<std::streamsize>(used_));
+    if (used_ != 0) os_.write(buf_.get(), static_cast<std::streamsize>(used_));
     used_ = 0;
   }
 
@@ -87,7 +90,7 @@ class output_buffer {
   static constexpr std::size_t capacity = std::size_t{1} << 20;
   static constexpr std::size_t max_number_chars = 64;  // longest to_chars output of any scalar
   std::ostream& os_;
-  std::string buf_;
+  std::unique_ptr<char[]> buf_;
   std::size_t used_ = 0;
 };
 
