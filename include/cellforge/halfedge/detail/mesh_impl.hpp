@@ -316,8 +316,8 @@ inline build_report halfedge_mesh::build(std::size_t nv, std::span<const std::ui
   for (std::size_t f = 0; f < nf; ++f) {
     const std::uint32_t o = offsets[f], e = offsets[f + 1];
     if (e < o || e > nh)
-      throw error(error_category::invalid_input, "build: face offsets must not decrease (face " +
-                                                     std::to_string(f) + ")");
+      throw error(error_category::invalid_input,
+                  "build: face offsets must not decrease (face " + std::to_string(f) + ")");
     if (e - o < 3)
       throw error(error_category::invalid_input,
                   "build: face " + std::to_string(f) + " has fewer than 3 vertices");
@@ -444,14 +444,24 @@ inline void halfedge_mesh::link_fans(const build_options& options, build_report&
     vertex_anchor_[r.head] = h;
     if (h < (h ^ 1u) && he_[h ^ 1u].face != npos && he_[h ^ 1u].head == r.head) ++flipped_edges_;
   }
-  unlinked_.reserve(boundary);
-  for (std::uint32_t h = 0; h < he_.size(); ++h)
-    if (he_[h].face != npos && he_[h ^ 1u].face == npos)
-      unlinked_.insert(detail::edge_table::key(he_[he_[h].prev].head, he_[h].head), h);
+  // A closed mesh (the common case) needs neither the unlinked table nor the rings below:
+  // skipping them saves two passes over the half-edges and four arrays.
+  if (boundary > 0) {
+    unlinked_.reserve(boundary);
+    for (std::uint32_t h = 0; h < he_.size(); ++h)
+      if (he_[h].face != npos && he_[h ^ 1u].face == npos)
+        unlinked_.insert(detail::edge_table::key(he_[he_[h].prev].head, he_[h].head), h);
+  }
 
-  std::vector<std::uint32_t> covered(nv, 0), ring_first(nv, npos), ring_last(nv, npos);
-  std::vector<std::uint8_t> seen(he_.size(), 0);  // bit 0: head end done, bit 1: tail end done
-  for (std::uint32_t b = 0; b < he_.size(); ++b) {
+  std::vector<std::uint32_t> covered, ring_first, ring_last;
+  std::vector<std::uint8_t> seen;  // bit 0: head end done, bit 1: tail end done
+  if (boundary > 0) {
+    covered.assign(nv, 0);
+    ring_first.assign(nv, npos);
+    ring_last.assign(nv, npos);
+    seen.assign(he_.size(), 0);
+  }
+  for (std::uint32_t b = 0; boundary > 0 && b < he_.size(); ++b) {
     if (he_[b].face != npos) continue;
     for (int side = 0; side < 2; ++side) {
       const std::uint32_t v = side == 0 ? he_[b].head : he_[b ^ 1u].head;
@@ -475,12 +485,12 @@ inline void halfedge_mesh::link_fans(const build_options& options, build_report&
       ++report.isolated_vertices;
       continue;
     }
-    std::size_t reached = covered[v];
-    if (ring_first[v] != npos) {
+    const bool open = boundary > 0 && ring_first[v] != npos;
+    std::size_t reached = open ? covered[v] : 0;
+    if (open) {
       ring_slot(ring_last[v], v) = ring_first[v];
       vertex_anchor_[v] = ring_first[v];
     } else {
-      reached = 0;
       const std::uint32_t a = vertex_anchor_[v];
       std::uint32_t t = a;
       do {
@@ -491,7 +501,6 @@ inline void halfedge_mesh::link_fans(const build_options& options, build_report&
     if (reached == corners[v]) continue;
     if (!options.split_nonmanifold_vertices) {
       const std::uint32_t total = corners[v];
-      const bool open = ring_first[v] != npos;
       clear_connectivity();
       throw error(error_category::topology,
                   "build: the " + std::to_string(total) + " faces around " + detail::vtx(v) +
