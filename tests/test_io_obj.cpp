@@ -189,6 +189,9 @@ TEST_CASE("OBJ: writing refuses what reading would reject") {
   CHECK_THROWS_AS(io::write_obj(os, d), cellforge::error);
   d.groups = {{"a\nv 1 2 3", 0}};
   CHECK_THROWS_AS(io::write_obj(os, d), cellforge::error);
+  d.groups = {{"a # b", 0}};
+  CHECK_THROWS_WITH_AS(io::write_obj(os, d), "write_obj: group name 0 contains a line break or '#'",
+                       cellforge::error);
 }
 
 TEST_CASE("OBJ: file errors name the path") {

@@ -62,10 +62,12 @@ TEST_CASE("OFF: layout variations all read the same soup") {
        "3 0 1 2\n3 0 2 3\n"},
       {"STOFF", "STOFF\n4 2 0\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n0 0 1 1 1\n3 0 1 2\n3 0 2 3\n"},
   };
-  for (const auto& [what, text] : variants) {
+  for (const auto& variant : variants) {
+    const std::string what = variant.first;
+    const std::string& text = variant.second;
     CAPTURE(what);
     const auto s = parse(text);
-    CHECK(io_test::same_soup(s, expected) == (std::string(what) != "number spellings"));
+    CHECK(io_test::same_soup(s, expected) == (what != "number spellings"));
     CHECK(s.points == expected.points);  // -0 == 0 for the spelled-out variant
     CHECK(s.face_vertices == expected.face_vertices);
   }
@@ -210,6 +212,12 @@ TEST_CASE("OFF: file errors name the path") {
   const auto dir = std::filesystem::temp_directory_path() / "cellforge_no_such_dir" / "out.off";
   CHECK_THROWS_WITH_AS(io::write_off(dir, polygon_soup<glm::dvec3>{}),
                        ("cannot open '" + dir.string() + "' for writing").c_str(), cellforge::error);
+  if (std::filesystem::exists("/dev/full")) {  // a device where every write fails: disk full
+    polygon_soup<glm::dvec3> s;
+    s.points = {{0, 0, 0}};
+    CHECK_THROWS_WITH_AS(io::write_off("/dev/full", s),
+                         "cannot write '/dev/full': writing OFF failed (stream error)", cellforge::error);
+  }
   const io_test::temp_path file("bad.off");
   std::ofstream(file.path) << "OFF\n1 0 0\n0 0\n";
   try {

@@ -317,9 +317,10 @@ void write_obj(std::ostream& os, const obj_data<P>& data, const obj_write_option
         (g > 0 && data.groups[g].first_face < data.groups[g - 1].first_face))
       throw error(error_category::invalid_input, "write_obj: group " + std::to_string(g) +
                                                      " starts at a face out of order or past the last face");
-    if (data.groups[g].name.find_first_of("\r\n") != std::string::npos)
+    // A line break or '#' would end the name early and turn the rest into statements or a comment.
+    if (data.groups[g].name.find_first_of("\r\n#") != std::string::npos)
       throw error(error_category::invalid_input,
-                  "write_obj: group name " + std::to_string(g) + " contains a line break");
+                  "write_obj: group name " + std::to_string(g) + " contains a line break or '#'");
   }
   detail::output_buffer out(os);
   detail::put_comment_lines(out, options.comment, "# ");
