@@ -503,6 +503,11 @@ TEST_CASE("refuses quads, NaN, bad options and corrupted meshes with clear error
     CHECK(msg.find("triangulate") != std::string::npos);
     CHECK(m.num_faces() == 5);
     CHECK(cellforge::validate(m).ok());
+    // With removed elements the face keeps the handle the caller knows, and nothing is collected.
+    m.remove_face(cellforge::face_handle(0));
+    const std::string msg2 = message_of([&] { cellforge::loop_subdivide<glm::dvec3>(m); });
+    CHECK(msg2.find("face 4 has 4 vertices") != std::string::npos);
+    CHECK(m.has_garbage());
     halfedge_mesh cube = cellforge::make_mesh(fixtures::cube());
     CHECK(message_of([&] { cellforge::loop_subdivide<glm::dvec3>(cube); }).find("face 0 has 4 vertices") !=
           std::string::npos);
@@ -522,6 +527,14 @@ TEST_CASE("refuses quads, NaN, bad options and corrupted meshes with clear error
     CHECK(message_of([&] { cellforge::loop_subdivide<glm::dvec3>(m); }).find("too large") !=
           std::string::npos);
     CHECK(m.num_vertices() == 4);
+    // A removed vertex's position is not looked at.
+    s.points.push_back({std::numeric_limits<double>::quiet_NaN(), 0, 0});
+    s.points[2].y = 1;
+    m = cellforge::make_mesh(s);
+    m.remove_vertex(cellforge::vertex_handle(4));
+    CHECK(cellforge::loop_subdivide<glm::dvec3>(m).faces_after == 16);
+    CHECK(cellforge::validate(m).ok());
+    s.points.pop_back();
     // Large but allowed coordinates stay finite through several levels.
     s.points[2].y = 1e280;
     m = cellforge::make_mesh(s);

@@ -217,7 +217,6 @@ loop_result loop_subdivide(halfedge_mesh& mesh, const loop_options& options = {}
                 "loop_subdivide: levels must be at least 0, got " + std::to_string(options.levels));
   const dl::mask_params params = dl::to_params(options);
   auto pts = points<P>(mesh);
-  if (mesh.has_garbage()) mesh.garbage_collection();
 
   loop_result result;
   result.vertices_before = result.vertices_after = mesh.num_vertices();
@@ -242,6 +241,7 @@ loop_result loop_subdivide(halfedge_mesh& mesh, const loop_options& options = {}
   // Loop's masks are convex combinations, so checking the input once covers every level;
   // the bound keeps a sum of up to 2^32 neighbours finite.
   for (std::size_t v = 0; v < pts.vector().size(); ++v) {
+    if (mesh.is_removed(vertex_handle(static_cast<std::uint32_t>(v)))) continue;
     const P& p = pts.vector()[v];
     for (std::size_t i = 0; i < 3; ++i) {
       const double x = static_cast<double>(coord(p, i));
@@ -252,6 +252,17 @@ loop_result loop_subdivide(halfedge_mesh& mesh, const loop_options& options = {}
     }
   }
 
+  // Garbage collection renumbers faces, so with garbage the faces are checked here, by
+  // their current handles; otherwise the split checks them as it goes.
+  if (mesh.has_garbage()) {
+    const std::vector<dl::record>& he = access::records(mesh);
+    for (face_handle f : mesh.faces()) {
+      const std::uint32_t h = mesh.halfedge(f).idx();
+      if (const std::size_t n = dl::face_size(he, h, he.size()); n != 3)
+        dl::not_a_triangle(f.idx(), n, he.size());
+    }
+    mesh.garbage_collection();  // every check passed: from here on the mesh changes
+  }
   std::vector<std::uint32_t> boundary_edges;
   boundary_edges.reserve(mesh.num_boundary_edges());
   for (halfedge_handle h : mesh.unlinked_halfedges()) boundary_edges.push_back(h.idx() >> 1);

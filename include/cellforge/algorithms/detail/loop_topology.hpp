@@ -56,6 +56,14 @@ inline std::size_t face_size(std::span<const record> he, std::uint32_t h0, std::
   return n;
 }
 
+/// Throws the error for face f with n vertices (n > limit: the loop did not close). O(1).
+[[noreturn]] inline void not_a_triangle(std::uint32_t f, std::size_t n, std::size_t limit) {
+  throw error(error_category::invalid_input,
+              "loop_subdivide: face " + std::to_string(f) + " has " +
+                  (n > limit ? std::string("more than 3") : std::to_string(n)) +
+                  " vertices; Loop subdivision needs triangles (triangulate the mesh first)");
+}
+
 /// Splits every triangle of the parent (records `he`, face anchors `anchors`, `nv`
 /// vertices, no removed elements) into four: writes the child records (boundary children
 /// get only their head; finish() links their rings) and the child face anchors. Throws
@@ -81,13 +89,7 @@ inline void split_faces(std::span<const record> he, std::span<const std::uint32_
     if (r[0].face != f || r[1].face != f || r[2].face != f)
       throw error(error_category::invalid_input,
                   corrupted(f, "has a half-edge that belongs to another face"));
-    if (r[2].next != h[0]) {
-      const std::size_t n = face_size(he, h[0], nh);
-      throw error(error_category::invalid_input,
-                  "loop_subdivide: face " + std::to_string(f) + " has " +
-                      (n > nh ? std::string("more than 3") : std::to_string(n)) +
-                      " vertices; Loop subdivision needs triangles (triangulate the mesh first)");
-    }
+    if (r[2].next != h[0]) not_a_triangle(f, face_size(he, h[0], nh), nh);
     // Corner k is the tail of h[k]: v[k] = head(h[k-1]).
     const std::uint32_t v[3] = {r[2].head, r[0].head, r[1].head};
     if (v[0] >= nv || v[1] >= nv || v[2] >= nv)
