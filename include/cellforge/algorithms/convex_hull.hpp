@@ -1,0 +1,606 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// 3D convex hull of a point set as a closed, outward-oriented half-edge mesh. Quickhull
+/// with outside sets; every orientation decision goes through the exact orient3d, so
+/// duplicate, collinear and coplanar points are handled without tolerances. Flat, linear
+/// and single-point inputs give documented degenerate hulls. See docs/convex_hull.md.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "cellforge/core/error.hpp"
+#include "cellforge/core/point_traits.hpp"
+#include "cellforge/core/predicates.hpp"
+#include "cellforge/halfedge/conversion.hpp"
+#include "cellforge/halfedge/mesh.hpp"
+
+namespace cellforge {
+
+/// How convex_hull builds and shapes its output.
+struct convex_hull_options {
+  /// Output one polygon per planar facet (e.g. 6 quads for a cube) instead of triangles.
+  bool merge_coplanar = false;
+  /// Inputs spanning fewer than 3 dimensions (all coplanar, all collinear, one distinct
+  /// point) give a degenerate hull described in the report; false makes them an error.
+  bool allow_degenerate = true;
+};
+
+/// What convex_hull found.
+struct convex_hull_report {
+  /// Affine dimension of the input: 3 solid, 2 flat (the hull is a polygon, returned as two
+  /// faces back to back), 1 collinear (two vertices, no faces), 0 one distinct point
+  /// (one vertex), -1 empty input.
+  int dimension = -1;
+  std::size_t input_points = 0;
+  std::size_t vertices = 0, edges = 0, faces = 0;  ///< of the returned mesh
+  /// Points that landed on the hull surface without being corners (inside a facet or an
+  /// edge) in the first pass; when non-zero the hull was rebuilt from the corners alone.
+  std::size_t non_corner_vertices_removed = 0;
+  std::size_t exact_evaluations = 0;  ///< orient3d calls the floating-point filter could not decide
+};
+
+/// Name of the vertex property holding, for each hull vertex, its index in the input.
+inline constexpr std::string_view input_index_property_name = "v:input_index";
+
+namespace detail::hull {
+
+inline constexpr std::uint32_t none = 0xFFFFFFFFu;
+
+/// A point waiting outside the hull, with its coordinates copied so that the outside
+/// sets are read sequentially (the hull's cost is memory traffic, not arithmetic).
+struct outside_point {
+  glm::dvec3 p;
+  std::uint32_t index;
+};
+
+/// A triangle of the hull under construction. Edge i runs from v[i] to v[(i+1)%3]; nbr[i]
+/// is the face across it; `outside` holds the points assigned to it (they see it).
+struct face {
+  orient3d_plane plane;  // filter data of the supporting plane
+  std::array<std::uint32_t, 3> v{};
+  std::array<std::uint32_t, 3> nbr{};
+  std::vector<outside_point> outside;
+  std::uint32_t furthest = 0;  // position in `outside` of the largest orient3d value
+  double furthest_value = 0;
+  std::uint64_t mark = 0;  // 2·round: visible in this round; 2·round+1: not visible
+  bool alive = false;
+};
+
+/// The hull as index lists: vertices (input indices) and faces over them.
+struct result {
+  int dimension = -1;
+  std::vector<std::uint32_t> vertices;      // input index of each output vertex
+  std::vector<std::uint32_t> face_offsets;  // CSR faces over `vertices`
+  std::vector<std::uint32_t> face_vertices;
+  std::size_t non_corner_removed = 0;
+  std::size_t exact_evaluations = 0;
+};
+
+/// Quickhull over a subset of the points, with exact orientation decisions.
+class engine {
+ public:
+  explicit engine(std::span<const glm::dvec3> pts) : pts_(pts) {}
+
+  /// Builds the hull of the candidates; returns the dimension of their span. When it is
+  /// 3, faces() lists the triangles. O(n log n) expected.
+  int run(std::span<const std::uint32_t> candidates) {
+    faces_.clear();
+    free_.clear();
+    std::array<std::uint32_t, 4> s{};
+    const int dim = initial_simplex(candidates, s);
+    simplex_ = s;
+    if (dim < 3) return dim;
+    start_tetrahedron(s);
+    assign_initial(candidates, s);
+    expand();
+    return 3;
+  }
+
+  const std::vector<face>& faces() const noexcept { return faces_; }
+  const std::array<std::uint32_t, 4>& simplex() const noexcept { return simplex_; }
+  std::size_t exact_evaluations() const noexcept { return exact_; }
+
+  /// Sign of orient3d of face f's plane and point q; `value` gets the approximation.
+  int side(const face& f, const glm::dvec3& q, double& value) {
+    const int s = orient3d_filter(f.plane, q, value);
+    if (s != 0) return s;
+    ++exact_;
+    return orient3d_exact(pts_[f.v[0]], pts_[f.v[1]], pts_[f.v[2]], q);
+  }
+  int orient(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
+    double value = 0;
+    const int s = orient3d_filter(prepare_orient3d(pts_[a], pts_[b], pts_[c]), pts_[d], value);
+    if (s != 0) return s;
+    ++exact_;
+    return orient3d_exact(pts_[a], pts_[b], pts_[c], pts_[d]);
+  }
+
+ private:
+  // ---------------------------------------------------------------- start
+
+  // Picks four affinely independent candidates, spread wide for a good start: the two
+  // extremes of the longest axis, the point farthest from their line, the point farthest
+  // from that plane (distances approximate, independence decided exactly).
+  int initial_simplex(std::span<const std::uint32_t> cand, std::array<std::uint32_t, 4>& s) {
+    if (cand.empty()) return -1;
+    std::array<std::uint32_t, 3> lo{}, hi{};
+    lo.fill(cand[0]);
+    hi.fill(cand[0]);
+    for (std::uint32_t i : cand)
+      for (int k = 0; k < 3; ++k) {
+        if (pts_[i][k] < pts_[lo[static_cast<std::size_t>(k)]][k]) lo[static_cast<std::size_t>(k)] = i;
+        if (pts_[i][k] > pts_[hi[static_cast<std::size_t>(k)]][k]) hi[static_cast<std::size_t>(k)] = i;
+      }
+    std::size_t axis = 0;
+    for (std::size_t k = 1; k < 3; ++k)
+      if (pts_[hi[k]][static_cast<int>(k)] - pts_[lo[k]][static_cast<int>(k)] >
+          pts_[hi[axis]][static_cast<int>(axis)] - pts_[lo[axis]][static_cast<int>(axis)])
+        axis = k;
+    s[0] = lo[axis];
+    s[1] = hi[axis];
+    if (pts_[s[0]] == pts_[s[1]]) return 0;  // the largest extent is 0: one distinct point
+
+    const glm::dvec3 a = pts_[s[0]], ab = pts_[s[1]] - a;
+    double best = -1;
+    for (std::uint32_t i : cand) {
+      const glm::dvec3 c = glm::cross(ab, pts_[i] - a);
+      const double d2 = glm::dot(c, c);
+      if (d2 > best) best = d2, s[2] = i;
+    }
+    if (collinear(pts_[s[0]], pts_[s[1]], pts_[s[2]])) {  // rounding may have fooled the search
+      s[2] = none;
+      for (std::uint32_t i : cand)
+        if (!collinear(pts_[s[0]], pts_[s[1]], pts_[i])) {
+          s[2] = i;
+          break;
+        }
+      if (s[2] == none) return 1;
+    }
+
+    const orient3d_plane plane = prepare_orient3d(pts_[s[0]], pts_[s[1]], pts_[s[2]]);
+    best = -1;
+    for (std::uint32_t i : cand) {
+      double value = 0;
+      orient3d_filter(plane, pts_[i], value);
+      if (std::fabs(value) > best) best = std::fabs(value), s[3] = i;
+    }
+    if (orient(s[0], s[1], s[2], s[3]) == 0) {
+      s[3] = none;
+      for (std::uint32_t i : cand)
+        if (orient(s[0], s[1], s[2], i) != 0) {
+          s[3] = i;
+          break;
+        }
+      if (s[3] == none) return 2;
+    }
+    return 3;
+  }
+
+  std::uint32_t new_face(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    std::uint32_t f;
+    if (!free_.empty()) {
+      f = free_.back();
+      free_.pop_back();
+    } else {
+      f = static_cast<std::uint32_t>(faces_.size());
+      faces_.emplace_back();
+    }
+    face& F = faces_[f];
+    F.plane = prepare_orient3d(pts_[a], pts_[b], pts_[c]);
+    F.v = {a, b, c};
+    F.nbr = {none, none, none};
+    F.outside.clear();  // keeps its capacity for the next use of the slot
+    F.furthest = 0;
+    F.furthest_value = 0;
+    F.mark = 0;
+    F.alive = true;
+    return f;
+  }
+
+  void start_tetrahedron(std::array<std::uint32_t, 4>& s) {
+    // Faces point away from the fourth vertex: make s[3] lie below (s[0], s[1], s[2]).
+    if (orient(s[0], s[1], s[2], s[3]) > 0) std::swap(s[1], s[2]);
+    const std::uint32_t a = s[0], b = s[1], c = s[2], d = s[3];
+    const std::array<std::array<std::uint32_t, 3>, 4> tri{{{a, b, c}, {a, d, b}, {b, d, c}, {c, d, a}}};
+    for (const auto& t : tri) new_face(t[0], t[1], t[2]);
+    // Neighbours: the face holding the reversed edge.
+    for (std::uint32_t f = 0; f < 4; ++f)
+      for (std::uint32_t e = 0; e < 3; ++e) {
+        const std::uint32_t x = tri[f][e], y = tri[f][(e + 1) % 3];
+        for (std::uint32_t g = 0; g < 4; ++g)
+          for (std::uint32_t k = 0; k < 3; ++k)
+            if (tri[g][k] == y && tri[g][(k + 1) % 3] == x) faces_[f].nbr[e] = g;
+      }
+  }
+
+  void add_outside(std::uint32_t f, const outside_point& q, double value) {
+    face& F = faces_[f];
+    if (F.outside.empty()) {
+      stack_.push_back(f);
+      F.furthest_value = value;
+    } else if (value > F.furthest_value) {
+      F.furthest = static_cast<std::uint32_t>(F.outside.size());
+      F.furthest_value = value;
+    }
+    F.outside.push_back(q);
+  }
+
+  void assign_initial(std::span<const std::uint32_t> cand, const std::array<std::uint32_t, 4>& s) {
+    stack_.clear();
+    for (std::uint32_t q : cand) {
+      if (q == s[0] || q == s[1] || q == s[2] || q == s[3]) continue;
+      for (std::uint32_t f = 0; f < 4; ++f) {
+        double value = 0;
+        if (side(faces_[f], pts_[q], value) > 0) {
+          add_outside(f, {pts_[q], q}, value);
+          break;
+        }
+      }
+    }
+  }
+
+  // ---------------------------------------------------------------- main loop
+
+  struct horizon_edge {
+    std::uint32_t a, b, outer;  // edge a -> b of a visible face; `outer` is the face beyond
+  };
+
+  void expand() {
+    std::uint64_t round = 0;
+    std::vector<std::uint32_t> visible, created;
+    std::vector<outside_point> points;
+    std::vector<horizon_edge> horizon;
+    start_of_.assign(pts_.size(), none);
+    start_round_.assign(pts_.size(), 0);
+    while (!stack_.empty()) {
+      const std::uint32_t f0 = stack_.back();
+      stack_.pop_back();
+      if (!faces_[f0].alive || faces_[f0].outside.empty()) continue;
+      ++round;
+      const std::uint32_t eye = faces_[f0].outside[faces_[f0].furthest].index;
+      const glm::dvec3 eye_p = pts_[eye];
+
+      // The faces eye sees strictly form a disk; its boundary is the horizon.
+      visible.assign(1, f0);
+      horizon.clear();
+      faces_[f0].mark = 2 * round;
+      for (std::size_t i = 0; i < visible.size(); ++i) {
+        const std::uint32_t g = visible[i];
+        for (std::uint32_t e = 0; e < 3; ++e) {
+          const std::uint32_t h = faces_[g].nbr[e];
+          face& H = faces_[h];
+          if (H.mark == 2 * round) continue;
+          bool sees = false;
+          if (H.mark != 2 * round + 1) {
+            double value = 0;
+            sees = side(H, eye_p, value) > 0;
+            H.mark = sees ? 2 * round : 2 * round + 1;
+          }
+          if (sees)
+            visible.push_back(h);
+          else
+            horizon.push_back({faces_[g].v[e], faces_[g].v[(e + 1) % 3], h});
+        }
+      }
+
+      // Collect the outside points of the visible faces before their slots are reused.
+      points.clear();
+      for (std::uint32_t g : visible) {
+        for (const outside_point& q : faces_[g].outside)
+          if (q.index != eye) points.push_back(q);
+        faces_[g].alive = false;
+        faces_[g].outside.clear();
+        free_.push_back(g);
+      }
+
+      // A cone of new faces from the eye to the horizon.
+      created.clear();
+      for (const horizon_edge& he : horizon) {
+        const std::uint32_t F = new_face(he.a, he.b, eye);
+        created.push_back(F);
+        faces_[F].nbr[0] = he.outer;
+        face& O = faces_[he.outer];
+        for (std::uint32_t k = 0; k < 3; ++k)
+          if (O.v[k] == he.b && O.v[(k + 1) % 3] == he.a) O.nbr[k] = F;
+        if (start_round_[he.a] == round)
+          throw error(error_category::internal, "convex_hull: the horizon passes a vertex twice");
+        start_of_[he.a] = F;
+        start_round_[he.a] = round;
+      }
+      for (std::uint32_t F : created) {
+        const std::uint32_t b = faces_[F].v[1];
+        if (start_round_[b] != round)
+          throw error(error_category::internal, "convex_hull: the horizon is not a closed loop");
+        const std::uint32_t G = start_of_[b];
+        faces_[F].nbr[1] = G;
+        faces_[G].nbr[2] = F;
+      }
+
+      // Points outside a deleted face are outside a new face or inside the new hull.
+      for (const outside_point& q : points) {
+        for (std::uint32_t F : created) {
+          double value = 0;
+          if (side(faces_[F], q.p, value) > 0) {
+            add_outside(F, q, value);
+            break;
+          }
+        }
+      }
+    }
+  }
+
+  std::span<const glm::dvec3> pts_;
+  std::vector<face> faces_;
+  std::vector<std::uint32_t> free_, stack_;
+  std::vector<std::uint32_t> start_of_;
+  std::vector<std::uint64_t> start_round_;
+  std::array<std::uint32_t, 4> simplex_{};
+  std::size_t exact_ = 0;
+};
+
+/// The convex polygon of coplanar points, counter-clockwise in the coordinate plane
+/// (axes i, j) where a, b, c are not collinear; collinear points dropped. O(n log n).
+inline std::vector<std::uint32_t> planar_hull(std::span<const glm::dvec3> pts,
+                                              std::span<const std::uint32_t> cand,
+                                              const std::array<std::uint32_t, 4>& s) {
+  int i = 0, j = 1;
+  for (const auto& [u, v] : {std::pair{0, 1}, std::pair{1, 2}, std::pair{2, 0}}) {
+    const glm::dvec3 &a = pts[s[0]], &b = pts[s[1]], &c = pts[s[2]];
+    if (orient2d(a[u], a[v], b[u], b[v], c[u], c[v]) != 0) {
+      i = u;
+      j = v;
+      break;
+    }
+  }
+  std::vector<std::uint32_t> order(cand.begin(), cand.end());
+  std::sort(order.begin(), order.end(), [&](std::uint32_t p, std::uint32_t q) {
+    return pts[p][i] < pts[q][i] || (pts[p][i] == pts[q][i] && pts[p][j] < pts[q][j]);
+  });
+  auto turn = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    return orient2d(pts[a][i], pts[a][j], pts[b][i], pts[b][j], pts[c][i], pts[c][j]);
+  };
+  // Andrew's monotone chain: lower hull left to right, then upper hull right to left.
+  std::vector<std::uint32_t> chain;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t base = chain.size();
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const std::uint32_t p = pass == 0 ? order[k] : order[order.size() - 1 - k];
+      while (chain.size() >= base + 2 && turn(chain[chain.size() - 2], chain.back(), p) <= 0)
+        chain.pop_back();
+      chain.push_back(p);
+    }
+    chain.pop_back();  // the last point starts the other chain
+  }
+  return chain;
+}
+
+/// Per vertex of the 3D hull, the number of creases (non-flat edges) around it. O(faces).
+inline std::vector<std::uint32_t> crease_counts(engine& eng, std::size_t n) {
+  std::vector<std::uint32_t> count(n, 0);
+  const auto& faces = eng.faces();
+  for (std::uint32_t f = 0; f < faces.size(); ++f) {
+    const face& F = faces[f];
+    if (!F.alive) continue;
+    for (std::uint32_t e = 0; e < 3; ++e) {
+      const std::uint32_t g = F.nbr[e];
+      if (g < f) continue;  // each edge once
+      const face& G = faces[g];
+      std::uint32_t opposite = G.v[0];
+      for (std::uint32_t v : G.v)
+        if (v != F.v[e] && v != F.v[(e + 1) % 3]) opposite = v;
+      if (eng.orient(F.v[0], F.v[1], F.v[2], opposite) != 0) {
+        ++count[F.v[e]];
+        ++count[F.v[(e + 1) % 3]];
+      }
+    }
+  }
+  return count;
+}
+
+/// Writes the live triangles of the engine, or one polygon per planar facet, to `out`.
+inline void emit_faces(engine& eng, bool merge, result& out) {
+  const auto& faces = eng.faces();
+  std::vector<std::uint32_t> local(0);
+  auto vertex = [&](std::uint32_t input) {
+    if (local[input] == none) {
+      local[input] = static_cast<std::uint32_t>(out.vertices.size());
+      out.vertices.push_back(input);
+    }
+    return local[input];
+  };
+  std::uint32_t max_index = 0;
+  for (const face& F : faces)
+    if (F.alive) max_index = std::max({max_index, F.v[0], F.v[1], F.v[2]});
+  local.assign(static_cast<std::size_t>(max_index) + 1, none);
+  out.face_offsets.assign(1, 0);
+  if (!merge) {
+    for (const face& F : faces) {
+      if (!F.alive) continue;
+      for (std::uint32_t v : F.v) out.face_vertices.push_back(vertex(v));
+      out.face_offsets.push_back(static_cast<std::uint32_t>(out.face_vertices.size()));
+    }
+    return;
+  }
+  // Group triangles across flat edges (union-find), then walk each group's boundary.
+  std::vector<std::uint32_t> parent(faces.size());
+  std::iota(parent.begin(), parent.end(), 0u);
+  auto find = [&](std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (std::uint32_t f = 0; f < faces.size(); ++f) {
+    const face& F = faces[f];
+    if (!F.alive) continue;
+    for (std::uint32_t e = 0; e < 3; ++e) {
+      const std::uint32_t g = F.nbr[e];
+      if (g < f) continue;
+      const face& G = faces[g];
+      std::uint32_t opposite = G.v[0];
+      for (std::uint32_t v : G.v)
+        if (v != F.v[e] && v != F.v[(e + 1) % 3]) opposite = v;
+      if (eng.orient(F.v[0], F.v[1], F.v[2], opposite) == 0) parent[find(f)] = find(g);
+    }
+  }
+  // Each facet is a convex polygon whose vertices are corners: every boundary vertex has
+  // exactly one outgoing boundary edge in it, so `succ` (per vertex) chains the loop.
+  std::vector<std::uint32_t> succ(local.size(), none);
+  std::vector<std::uint8_t> seen(faces.size(), 0);
+  std::vector<std::uint32_t> members;
+  for (std::uint32_t f = 0; f < faces.size(); ++f) {
+    if (!faces[f].alive || seen[f]) continue;
+    const std::uint32_t root = find(f);
+    // Flood the group from f through flat edges to list its members.
+    members.assign(1, f);
+    seen[f] = 1;
+    for (std::size_t k = 0; k < members.size(); ++k)
+      for (std::uint32_t g : faces[members[k]].nbr)
+        if (!seen[g] && find(g) == root) {
+          seen[g] = 1;
+          members.push_back(g);
+        }
+    std::uint32_t start = none;
+    for (std::uint32_t g : members)
+      for (std::uint32_t e = 0; e < 3; ++e)
+        if (find(faces[g].nbr[e]) != root) {
+          succ[faces[g].v[e]] = faces[g].v[(e + 1) % 3];
+          start = faces[g].v[e];
+        }
+    std::uint32_t v = start;
+    std::size_t guard = 0;
+    do {
+      out.face_vertices.push_back(vertex(v));
+      v = succ[v];
+      if (++guard > 3 * members.size() + 3)
+        throw error(error_category::internal, "convex_hull: a merged facet has no simple boundary");
+    } while (v != start);
+    out.face_offsets.push_back(static_cast<std::uint32_t>(out.face_vertices.size()));
+  }
+}
+
+/// The hull of all points as index lists; see convex_hull for the degenerate cases.
+inline result compute(std::span<const glm::dvec3> pts, const convex_hull_options& options) {
+  result out;
+  std::vector<std::uint32_t> all(pts.size());
+  std::iota(all.begin(), all.end(), 0u);
+  engine eng(pts);
+  out.dimension = eng.run(all);
+  const auto& s = eng.simplex();
+  out.face_offsets.assign(1, 0);
+  if (out.dimension == 0) {
+    out.vertices = {s[0]};
+  } else if (out.dimension == 1) {
+    out.vertices = {s[0], s[1]};
+  } else if (out.dimension == 2) {
+    out.vertices = planar_hull(pts, all, s);
+    const auto k = static_cast<std::uint32_t>(out.vertices.size());
+    if (options.merge_coplanar) {  // the polygon and its reverse
+      for (std::uint32_t i = 0; i < k; ++i) out.face_vertices.push_back(i);
+      out.face_offsets.push_back(k);
+      for (std::uint32_t i = k; i-- > 0;) out.face_vertices.push_back(i);
+      out.face_offsets.push_back(2 * k);
+    } else {  // two fans from different vertices, so that no diagonal is used twice
+      auto tri = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+        out.face_vertices.insert(out.face_vertices.end(), {a, b, c});
+        out.face_offsets.push_back(static_cast<std::uint32_t>(out.face_vertices.size()));
+      };
+      for (std::uint32_t i = 1; i + 1 < k; ++i) tri(0, i, i + 1);
+      tri(1, 0, k - 1);
+      for (std::uint32_t i = k - 1; i > 2; --i) tri(1, i, i - 1);
+    }
+  } else if (out.dimension == 3) {
+    // Points on the surface that are not corners (inside a facet or an edge) can become
+    // vertices when inserted before the corners around them; rebuild from corners only.
+    const std::vector<std::uint32_t> creases = crease_counts(eng, pts.size());
+    std::vector<std::uint32_t> corners;
+    std::vector<std::uint8_t> used(pts.size(), 0);
+    for (const face& F : eng.faces())
+      if (F.alive)
+        for (std::uint32_t v : F.v) used[v] = 1;
+    std::size_t non_corner = 0;
+    for (std::uint32_t v = 0; v < pts.size(); ++v)
+      if (used[v]) {
+        if (creases[v] >= 3)
+          corners.push_back(v);
+        else
+          ++non_corner;
+      }
+    if (non_corner > 0) {
+      out.non_corner_removed = non_corner;
+      if (eng.run(corners) != 3)
+        throw error(error_category::internal, "convex_hull: the corners of a solid hull span less than 3D");
+    }
+    emit_faces(eng, options.merge_coplanar, out);
+  }
+  out.exact_evaluations = eng.exact_evaluations();
+  return out;
+}
+
+}  // namespace detail::hull
+
+/// The convex hull of `points` as a closed mesh whose faces point outward: triangles, or
+/// one polygon per facet with options.merge_coplanar. Vertices are the hull's corners only
+/// (no point inside a facet or an edge), with their positions in "v:point" (type P, the
+/// input values) and their input indices in "v:input_index". Degenerate inputs (see
+/// convex_hull_report::dimension) give a flat hull as two faces back to back, a segment as
+/// two vertices, a point as one vertex, unless options.allow_degenerate is false.
+/// Throws cellforge::error (invalid_input) for NaN/Inf coordinates. O(n log n) expected.
+template <Point3 P>
+halfedge_mesh convex_hull(std::span<const P> points, const convex_hull_options& options = {},
+                          convex_hull_report* report = nullptr) {
+  if (points.size() >= detail::hull::none)
+    throw error(error_category::invalid_input, "convex_hull: too many points for 32-bit indices");
+  std::vector<glm::dvec3> pts(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    pts[i] = to_dvec3(points[i]);
+    if (!std::isfinite(pts[i].x) || !std::isfinite(pts[i].y) || !std::isfinite(pts[i].z))
+      throw error(error_category::invalid_input,
+                  "convex_hull: point " + std::to_string(i) + " has a NaN or infinite coordinate");
+  }
+  const detail::hull::result r = detail::hull::compute(pts, options);
+  if (r.dimension < 3 && !options.allow_degenerate)
+    throw error(error_category::invalid_input, r.dimension < 0
+                                                   ? std::string("convex_hull: no points given")
+                                                   : "convex_hull: the points span only " +
+                                                         std::to_string(r.dimension) + " dimension(s) (all " +
+                                                         (r.dimension == 2   ? "coplanar"
+                                                          : r.dimension == 1 ? "collinear"
+                                                                             : "equal") +
+                                                         "); set allow_degenerate to accept a flat hull");
+  halfedge_mesh m;
+  auto pos = m.add_vertex_property<P>(point_property_name);
+  auto index = m.add_vertex_property<std::uint32_t>(input_index_property_name, detail::hull::none);
+  m.build(r.vertices.size(), r.face_offsets, r.face_vertices);
+  for (std::size_t v = 0; v < r.vertices.size(); ++v) {
+    pos.vector()[v] = points[r.vertices[v]];
+    index.vector()[v] = r.vertices[v];
+  }
+  if (report) {
+    report->dimension = r.dimension;
+    report->input_points = points.size();
+    report->vertices = m.num_vertices();
+    report->edges = m.num_edges();
+    report->faces = m.num_faces();
+    report->non_corner_vertices_removed = r.non_corner_removed;
+    report->exact_evaluations = r.exact_evaluations;
+  }
+  return m;
+}
+
+/// convex_hull of a vector of points. O(n log n) expected.
+template <Point3 P>
+halfedge_mesh convex_hull(const std::vector<P>& points, const convex_hull_options& options = {},
+                          convex_hull_report* report = nullptr) {
+  return convex_hull(std::span<const P>(points), options, report);
+}
+
+}  // namespace cellforge
