@@ -156,16 +156,9 @@ obj_data<P> parse_obj(std::string_view bytes, std::string_view name = "<memory>"
       if (k < 3)
         c.fail_at(line, "face has " + std::to_string(k) + (k == 1 ? " vertex" : " vertices") +
                             "; a face needs at least 3");
-      if (soup.face_vertices.size() > std::numeric_limits<std::uint32_t>::max())
-        c.fail_at(line, "too many face vertex indices in all for 32-bit offsets");
-      const std::span<const std::uint32_t> face(soup.face_vertices.data() + first, k);
-      if (!options.allow_repeated_vertices) {
-        if (const auto dup = detail::repeated_vertex(face, scratch))
-          c.fail_at(line,
-                    "face uses vertex " + std::to_string(*dup + 1) +
-                        " twice (degenerate face; obj_read_options::allow_repeated_vertices accepts it)");
-      }
-      soup.face_offsets.push_back(static_cast<std::uint32_t>(soup.face_vertices.size()));
+      if (const auto problem = detail::close_face(soup, first, options.allow_repeated_vertices, scratch, 1,
+                                                  "obj_read_options"))
+        c.fail_at(line, "face " + *problem);
     } else if (keyword == "l") {
       std::size_t k = 0;
       std::uint32_t prev = 0;

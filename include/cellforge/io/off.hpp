@@ -104,10 +104,10 @@ polygon_soup<P> parse_off(std::string_view bytes, std::string_view name = "<memo
 
   // The keyword is optional (Geomview): a file may start right at the counts.
   detail::off_header header;
-  const char* first = c.pos;
-  while (first != c.end && *first >= '0' && *first <= '9') ++first;
-  if (first == c.pos ||
-      !(first == c.end || detail::is_blank(*first) || detail::is_eol(*first) || *first == '#')) {
+  const char* digits_end = c.pos;
+  while (digits_end != c.end && *digits_end >= '0' && *digits_end <= '9') ++digits_end;
+  if (digits_end == c.pos || !(digits_end == c.end || detail::is_blank(*digits_end) ||
+                               detail::is_eol(*digits_end) || *digits_end == '#')) {
     header = detail::parse_off_keyword(c);
     if (c.at_line_end() && !c.next_content())
       c.fail_at(c.content_end(),
@@ -187,16 +187,9 @@ polygon_soup<P> parse_off(std::string_view bytes, std::string_view name = "<memo
                " vertex indices than a colour (at most 4): unexpected " + c.token());
       (void)c.number<double>([&] { return "a colour value after face " + std::to_string(f); });
     }
-    if (soup.face_vertices.size() > std::numeric_limits<std::uint32_t>::max())
-      c.fail_at(line, "too many face vertex indices in all for 32-bit offsets");
-    const std::span<const std::uint32_t> face(soup.face_vertices.data() + first,
-                                              soup.face_vertices.size() - first);
-    if (!options.allow_repeated_vertices) {
-      if (const auto dup = detail::repeated_vertex(face, scratch))
-        c.fail_at(line, "face " + std::to_string(f) + " uses vertex " + std::to_string(*dup) +
-                            " twice (degenerate face; off_read_options::allow_repeated_vertices accepts it)");
-    }
-    soup.face_offsets.push_back(static_cast<std::uint32_t>(soup.face_vertices.size()));
+    if (const auto problem =
+            detail::close_face(soup, first, options.allow_repeated_vertices, scratch, 0, "off_read_options"))
+      c.fail_at(line, "face " + std::to_string(f) + " " + *problem);
     c.next_line();
   }
   if (c.next_content())

@@ -363,17 +363,9 @@ void ply_read_body(R& r, const ply_header& h, const ply_layout& l, std::size_t b
               check_index(idx, f, iat);
             soup.face_vertices.push_back(static_cast<std::uint32_t>(idx));
           }
-          if (soup.face_vertices.size() > std::numeric_limits<std::uint32_t>::max())
-            r.fail_at(at, "too many face vertex indices in all for 32-bit offsets");
-          const std::span<const std::uint32_t> face(soup.face_vertices.data() + first,
-                                                    soup.face_vertices.size() - first);
-          if (!options.allow_repeated_vertices) {
-            if (const auto dup = repeated_vertex(face, scratch))
-              r.fail_at(at,
-                        "face " + std::to_string(f) + " uses vertex " + std::to_string(*dup) +
-                            " twice (degenerate face; ply_read_options::allow_repeated_vertices accepts it)");
-          }
-          soup.face_offsets.push_back(static_cast<std::uint32_t>(soup.face_vertices.size()));
+          if (const auto problem =
+                  close_face(soup, first, options.allow_repeated_vertices, scratch, 0, "ply_read_options"))
+            r.fail_at(at, "face " + std::to_string(f) + " " + *problem);
         }
         r.end_instance(e, f);
       }

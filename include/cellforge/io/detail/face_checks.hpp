@@ -5,8 +5,11 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 namespace cellforge::io::detail {
@@ -26,6 +29,28 @@ inline std::optional<std::uint32_t> repeated_vertex(std::span<const std::uint32_
   const auto it = std::adjacent_find(scratch.begin(), scratch.end());
   if (it == scratch.end()) return std::nullopt;
   return *it;
+}
+
+/// Ends the face whose indices start at `first` in `soup.face_vertices`: records its end
+/// offset, or returns what is wrong with it (a repeated vertex when `options_name` says
+/// those are refused, or the 32-bit offset limit) for the caller to report with its place.
+/// `index_base` is 1 for formats that count vertices from 1. O(face size).
+template <class Soup>
+std::optional<std::string> close_face(Soup& soup, std::size_t first, bool allow_repeated,
+                                      std::vector<std::uint32_t>& scratch, std::uint32_t index_base,
+                                      std::string_view options_name) {
+  if (soup.face_vertices.size() > std::numeric_limits<std::uint32_t>::max())
+    return std::string("exceeds the limit of 2^32 face vertex indices in all (32-bit offsets)");
+  const std::span<const std::uint32_t> face(soup.face_vertices.data() + first,
+                                            soup.face_vertices.size() - first);
+  if (!allow_repeated) {
+    if (const auto dup = repeated_vertex(face, scratch)) {
+      return "uses vertex " + std::to_string(std::uint64_t{*dup} + index_base) + " twice (degenerate face; " +
+             std::string(options_name) + "::allow_repeated_vertices accepts it)";
+    }
+  }
+  soup.face_offsets.push_back(static_cast<std::uint32_t>(soup.face_vertices.size()));
+  return std::nullopt;
 }
 
 /// Bytes per element the rest of a file can hold, for reserving from a header count without
