@@ -8,8 +8,8 @@
 ///
 /// Allocation peaks need the counting operator new/delete: define
 /// CELLFORGE_BENCH_ALLOCATION_HOOKS before including this header in exactly one source
-/// file of the binary. Without it peak_heap() reports nothing and only the retained heap
-/// (glibc mallinfo2) is measured.
+/// file of the binary. They count only inside measure_heap(); without them measure_heap()
+/// reports the retained heap (glibc mallinfo2) and no peak.
 
 #include <benchmark/benchmark.h>
 #include <malloc.h>
@@ -22,6 +22,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -135,18 +136,25 @@ inline std::size_t heap_in_use() noexcept {
   return mi.uordblks + mi.hblkhd;
 }
 
-/// Counters fed by the counting operator new/delete (zero when the hooks are not compiled in).
+/// Counters fed by the counting operator new/delete while `on` (so that the timed runs pay
+/// one relaxed load per allocation, not the bookkeeping). Net bytes are signed: freeing a
+/// block allocated before counting began lowers them.
 struct allocation_counters {
-  std::atomic<std::size_t> current{0};  ///< bytes live now (usable sizes)
-  std::atomic<std::size_t> peak{0};     ///< highest `current` since the last reset
-  std::atomic<std::size_t> calls{0};    ///< allocations made
+  std::atomic<bool> on{false};
+  std::atomic<std::int64_t> net{0};   ///< bytes allocated minus bytes freed (usable sizes)
+  std::atomic<std::int64_t> peak{0};  ///< highest `net` since counting began
+  std::atomic<std::size_t> calls{0};  ///< allocations made
 };
 inline allocation_counters& counters() noexcept {
   static allocation_counters c;
   return c;
 }
-/// True when the counting operator new is linked into this binary. O(1).
-inline bool hooks_active() noexcept { return counters().calls.load(std::memory_order_relaxed) > 0; }
+/// True when the counting operator new is compiled into this binary. O(1).
+#ifdef CELLFORGE_BENCH_ALLOCATION_HOOKS
+inline constexpr bool hooks_active = true;
+#else
+inline constexpr bool hooks_active = false;
+#endif
 
 /// What building something costs in heap: what stays allocated while it lives, and the
 /// highest extra heap on the way (temporaries included); peak is empty without the hooks.
@@ -157,22 +165,24 @@ struct heap_cost {
 };
 
 /// Calls make() and, while its result is still alive, reports its heap cost: the mallinfo2
-/// delta (retained) and the counted peak above the starting level. O(cost of make).
+/// delta (retained) and the counted peak of net allocation. O(cost of make).
 template <class Make>
 heap_cost measure_heap(Make&& make) {
   allocation_counters& c = counters();
   ::malloc_trim(0);  // return free pages so that the snapshot starts from a quiet heap
   const std::size_t before = heap_in_use();
-  const std::size_t live = c.current.load(std::memory_order_relaxed);
-  const std::size_t calls = c.calls.load(std::memory_order_relaxed);
-  c.peak.store(live, std::memory_order_relaxed);
+  c.net.store(0, std::memory_order_relaxed);
+  c.peak.store(0, std::memory_order_relaxed);
+  c.calls.store(0, std::memory_order_relaxed);
+  c.on.store(true, std::memory_order_relaxed);
   auto made = make();
+  c.on.store(false, std::memory_order_relaxed);
   heap_cost cost;
   const std::size_t after = heap_in_use();
   cost.retained = after > before ? after - before : 0;
-  if (hooks_active()) {
-    cost.peak = c.peak.load(std::memory_order_relaxed) - live;
-    cost.allocations = c.calls.load(std::memory_order_relaxed) - calls;
+  if (hooks_active) {
+    cost.peak = static_cast<std::size_t>(std::max<std::int64_t>(0, c.peak.load(std::memory_order_relaxed)));
+    cost.allocations = c.calls.load(std::memory_order_relaxed);
   }
   benchmark::DoNotOptimize(made);
   return cost;  // `made` is freed only now, after the measurement
@@ -392,17 +402,21 @@ void* operator new(std::size_t n) {
   void* p = std::malloc(n == 0 ? 1 : n);
   if (!p) throw std::bad_alloc();
   auto& c = cellforge::bench::counters();
-  const std::size_t now =
-      c.current.fetch_add(::malloc_usable_size(p), std::memory_order_relaxed) + ::malloc_usable_size(p);
-  c.calls.fetch_add(1, std::memory_order_relaxed);
-  std::size_t peak = c.peak.load(std::memory_order_relaxed);
-  while (now > peak && !c.peak.compare_exchange_weak(peak, now, std::memory_order_relaxed)) {
+  if (c.on.load(std::memory_order_relaxed)) {
+    const auto size = static_cast<std::int64_t>(::malloc_usable_size(p));
+    const std::int64_t now = c.net.fetch_add(size, std::memory_order_relaxed) + size;
+    c.calls.fetch_add(1, std::memory_order_relaxed);
+    std::int64_t peak = c.peak.load(std::memory_order_relaxed);
+    while (now > peak && !c.peak.compare_exchange_weak(peak, now, std::memory_order_relaxed)) {
+    }
   }
   return p;
 }
 void operator delete(void* p) noexcept {
   if (!p) return;
-  cellforge::bench::counters().current.fetch_sub(::malloc_usable_size(p), std::memory_order_relaxed);
+  auto& c = cellforge::bench::counters();
+  if (c.on.load(std::memory_order_relaxed))
+    c.net.fetch_sub(static_cast<std::int64_t>(::malloc_usable_size(p)), std::memory_order_relaxed);
   std::free(p);
 }
 void operator delete(void* p, std::size_t) noexcept { operator delete(p); }
