@@ -74,11 +74,15 @@ TEST_CASE("OBJ: unknown statements are skipped and counted, or rejected when str
                           [](const std::string& s) { (void)parse(s, {.strict = true}); });
 }
 
-TEST_CASE("OBJ: an empty file is an empty model") {
+TEST_CASE("OBJ: an empty file is an empty model; the last line needs no line end") {
   const auto d = parse("");
   CHECK(d.soup.num_points() == 0);
   CHECK(d.soup.num_faces() == 0);
   CHECK(parse("# only a comment\n\n").soup.num_points() == 0);
+  const auto t = parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3");
+  REQUIRE(t.soup.num_faces() == 1);
+  CHECK(face(t.soup, 0) == std::vector<std::uint32_t>{0, 1, 2});
+  CHECK(parse("v 0 0 0\nv 1 0 0\nv 0 1 5").soup.points[2] == glm::dvec3(0, 1, 5));
 }
 
 TEST_CASE("OBJ: groups name runs of faces") {
