@@ -9,6 +9,8 @@
 #include "cellforge/core/polygon_soup.hpp"
 #include "cellforge/core/tolerance.hpp"
 #include "cellforge/core/wireframe.hpp"
+#include "cellforge/algorithms/loop_subdivision.hpp"
+#include "cellforge/algorithms/shapes.hpp"
 #include "cellforge/halfedge/circulators.hpp"
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/handles.hpp"

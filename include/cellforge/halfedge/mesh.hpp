@@ -515,7 +515,9 @@ class halfedge_mesh {
   }
   // From face records (and boundary half-edges' heads) alone, derives everything else:
   // vertex anchors, boundary rings, the unlinked table, the flipped count. O(n).
-  void link_fans(const build_options& options, build_report& report);
+  // With verify_fans false (a construction that is valid by design) the O(n) walk that
+  // checks each interior vertex has a single closed fan is skipped.
+  void link_fans(const build_options& options, build_report& report, bool verify_fans = true);
   friend struct detail::mesh_access;
 
   // Gives each closed fan of the listed vertices that their anchors do not reach a vertex of its own.

@@ -34,11 +34,15 @@ struct mesh_access {
   /// After the caller has written every face half-edge {head, next, prev, face}, every
   /// boundary half-edge's head (the tail of its twin) and every face anchor, derives
   /// vertex anchors, boundary rings, the unlinked table and the flipped count. O(n).
-  /// The mesh must have no removed elements.
-  static build_report finish(halfedge_mesh& m, const build_options& options = {}) {
+  /// The mesh must have no removed elements. With fan_check::trust (for constructions
+  /// that cannot create a vertex with two closed fans, e.g. subdividing a valid mesh) the
+  /// walk around every interior vertex that would detect one is skipped.
+  enum class fan_check { verify, trust };
+  static build_report finish(halfedge_mesh& m, const build_options& options = {},
+                             fan_check check = fan_check::verify) {
     build_report r;
     m.removed_vertices_ = m.removed_edges_ = m.removed_faces_ = 0;
-    m.link_fans(options, r);
+    m.link_fans(options, r, check == fan_check::verify);
     return r;
   }
 };

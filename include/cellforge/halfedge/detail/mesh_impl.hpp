@@ -426,7 +426,7 @@ inline build_report halfedge_mesh::build(std::size_t nv, std::span<const std::ui
   return report;
 }
 
-inline void halfedge_mesh::link_fans(const build_options& options, build_report& report) {
+inline void halfedge_mesh::link_fans(const build_options& options, build_report& report, bool verify_fans) {
   const std::size_t nv = vertex_anchor_.size();
   std::fill(vertex_anchor_.begin(), vertex_anchor_.end(), npos);
   flipped_edges_ = 0;
@@ -490,6 +490,8 @@ inline void halfedge_mesh::link_fans(const build_options& options, build_report&
     if (open) {
       ring_slot(ring_last[v], v) = ring_first[v];
       vertex_anchor_[v] = ring_first[v];
+    } else if (!verify_fans) {
+      continue;
     } else {
       const std::uint32_t a = vertex_anchor_[v];
       std::uint32_t t = a;
