@@ -99,10 +99,11 @@ TEST_CASE("closed meshes: tetrahedron, cube, torus") {
     fixtures::soup soup;
     int chi;
   };
-  for (const auto& [name, soup, chi] :
-       {named{"tetrahedron", fixtures::tetrahedron(), 2}, named{"cube", fixtures::cube(), 2},
-        named{"torus", fixtures::torus(), 0}}) {
-    CAPTURE(name);
+  for (const named& item : {named{"tetrahedron", fixtures::tetrahedron(), 2},
+                            named{"cube", fixtures::cube(), 2}, named{"torus", fixtures::torus(), 0}}) {
+    const auto& soup = item.soup;
+    const int chi = item.chi;
+    CAPTURE(item.name);
     build_report rep;
     halfedge_mesh m = make_mesh(soup, &rep);
     REQUIRE_VALID(m);

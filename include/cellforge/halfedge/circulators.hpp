@@ -127,13 +127,16 @@ class vertex_iterator {
   vertex_walker<Mesh> w_;
 };
 
+// The ranges derive from nothing (not std::ranges::view_interface): clang 14 with
+// libstdc++ 12 rejects view_interface over these iterator types. They are still views.
 template <class Iterator>
-class circulator_range : public std::ranges::view_interface<circulator_range<Iterator>> {
+class circulator_range {
  public:
   circulator_range() = default;
   explicit circulator_range(Iterator first) : first_(first) {}
   Iterator begin() const { return first_; }
   std::default_sentinel_t end() const noexcept { return {}; }
+  bool empty() const { return first_ == std::default_sentinel; }
 
  private:
   Iterator first_;
@@ -250,12 +253,13 @@ class element_iterator {
 };
 
 template <class Mesh, class Handle>
-class element_range : public std::ranges::view_interface<element_range<Mesh, Handle>> {
+class element_range {
  public:
   element_range() = default;
   element_range(const Mesh* m, std::uint32_t end) : m_(m), end_(end) {}
   element_iterator<Mesh, Handle> begin() const { return {m_, 0, end_}; }
   element_iterator<Mesh, Handle> end() const { return {m_, end_, end_}; }
+  bool empty() const { return begin() == end(); }
 
  private:
   const Mesh* m_ = nullptr;
