@@ -2,7 +2,9 @@
 # Runs every check cellforge has, as CI does:
 #   1. release  Release build of tests + examples, then ctest            (build/release)
 #   2. asan     Debug build with ASan + UBSan and -Werror, then ctest    (build/asan)
-#   3. fuzz     libFuzzer targets built with clang, seed corpora replayed, then each fuzzer
+#   3. clang    every example and test compiled (syntax and templates) by clang with -Werror,
+#               so that code g++ accepts but clang rejects does not land
+#   4. fuzz     libFuzzer targets built with clang, seed corpora replayed, then each fuzzer
 #               run for CELLFORGE_FUZZ_SECONDS seconds (default 60)      (build/fuzz)
 # Every stage runs even when an earlier one failed; the exit status is non-zero if any failed.
 # Environment: CELLFORGE_FUZZ_SECONDS (default 60), CELLFORGE_FUZZ_JOBS (fuzzers run at once,
@@ -85,10 +87,19 @@ fuzz_stage() {
   return "$failed"
 }
 
+# clang++ -fsyntax-only on every example and test: instantiates the templates they use.
+clang_stage() {
+  local clang="${CXX_CLANG:-clang++}"
+  command -v "$clang" >/dev/null || { echo "test-all: $clang not found" >&2; return 1; }
+  find examples tests -maxdepth 1 -name '*.cpp' ! -name doctest_main.cpp -print0 | sort -z |
+    xargs -0 -P 2 -I{} sh -c 'echo "clang: {}"; '"$clang"' -std=c++20 -fsyntax-only -Wall -Wextra -Wpedantic -Werror -Iinclude -Itests -DCELLFORGE_DATA_DIR=\"\" -DCELLFORGE_TEST_DATA_DIR=\"\" "{}"'
+}
+
 if [[ "${1:-}" == "--stage" ]]; then
   case "${2:-}" in
     release | asan) preset_stage "$2" ;;
     fuzz) fuzz_stage ;;
+    clang) clang_stage ;;
     *)
       echo "test-all: unknown stage '${2:-}'" >&2
       exit 2
@@ -102,7 +113,7 @@ if [[ "${CELLFORGE_SKIP_DEPS:-0}" != 1 ]]; then
   bash "$root/cmake/install-deps.sh" --fuzz
 fi
 
-stages=(release asan)
+stages=(release asan clang)
 if compgen -G "$root/tests/fuzz/fuzz_*.cpp" >/dev/null; then
   stages+=(fuzz)
 else
