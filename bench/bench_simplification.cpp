@@ -91,6 +91,19 @@ inline void add_vertex(outcome& o, const glm::dvec3& p) {
 
 // ------------------------------------------------------------------------------ libraries
 
+// A triangle soup in a baseline's mesh (add_vertex(point), add_face(a, b, c)).
+template <class Mesh, class Point>
+Mesh build_triangles(const soup& s) {
+  Mesh m;
+  std::vector<decltype(m.add_vertex(Point()))> vh;
+  for (const point& p : s.points) vh.push_back(m.add_vertex(Point(p.x, p.y, p.z)));
+  for (std::size_t f = 0; f < s.num_faces(); ++f) {
+    const auto fv = s.face(f);
+    m.add_face(vh[fv[0]], vh[fv[1]], vh[fv[2]]);
+  }
+  return m;
+}
+
 struct ours {
   using mesh = cellforge::halfedge_mesh;
   static mesh build(const soup& s) { return cellforge::make_mesh(s); }
@@ -112,13 +125,7 @@ struct ours {
 struct openmesh {
   using mesh = OpenMesh::TriMesh_ArrayKernelT<OpenMesh::DefaultTraitsDouble>;
   static mesh build(const soup& s) {
-    mesh m;
-    std::vector<mesh::VertexHandle> vh;
-    for (const point& p : s.points) vh.push_back(m.add_vertex({p.x, p.y, p.z}));
-    for (std::size_t f = 0; f < s.num_faces(); ++f) {
-      const auto fv = s.face(f);
-      m.add_face(vh[fv[0]], vh[fv[1]], vh[fv[2]]);
-    }
+    mesh m = build_triangles<mesh, mesh::Point>(s);
     m.request_face_normals();  // ModNormalFlippingT needs them; computed untimed, once
     m.update_face_normals();
     return m;
@@ -154,16 +161,7 @@ struct openmesh {
 struct cgal {
   using kernel = CGAL::Simple_cartesian<double>;
   using mesh = CGAL::Surface_mesh<kernel::Point_3>;
-  static mesh build(const soup& s) {
-    mesh m;
-    std::vector<mesh::Vertex_index> vh;
-    for (const point& p : s.points) vh.push_back(m.add_vertex({p.x, p.y, p.z}));
-    for (std::size_t f = 0; f < s.num_faces(); ++f) {
-      const auto fv = s.face(f);
-      m.add_face(vh[fv[0]], vh[fv[1]], vh[fv[2]]);
-    }
-    return m;
-  }
+  static mesh build(const soup& s) { return build_triangles<mesh, kernel::Point_3>(s); }
   static void run(mesh& m, std::size_t target) {
     namespace sms = CGAL::Surface_mesh_simplification;
     // A closed triangle mesh has 3/2 edges per face; the predicate counts edges.
