@@ -734,9 +734,9 @@ TEST_CASE("thousands of random edits keep every invariant and the topology") {
       {"random orientation plane", random_orientation_plane(8, 8, 7)},
   };
   std::uint64_t seed = 1;
-  for (const auto& [name, s] : inputs) {
-    CAPTURE(name);
-    const random_stats st = random_edits(make_mesh(s), 3000, seed++);
+  for (const named& in : inputs) {
+    CAPTURE(in.name);
+    const random_stats st = random_edits(make_mesh(in.s), 3000, seed++);
     for (int op = 0; op < 4; ++op) {
       CAPTURE(op);
       CHECK(st.done[static_cast<std::size_t>(op)] > 100);
