@@ -549,8 +549,8 @@ inline edit_refusal can_collapse_face(const halfedge_mesh& m, face_handle f) {
 }
 
 /// Collapses triangle f into its first vertex (seed 001 §IV.C): f and its up to three
-/// neighbours disappear, two vertices are removed; positions untouched. Refuses when either
-/// of the two equivalent edge collapses would. O(sum of the corners' degrees, times log).
+/// neighbours disappear, two vertices are removed; positions untouched. Refuses unless some
+/// order of merging the corners is two valid edge collapses. O(sum of corner degrees, × log).
 inline edit_result collapse_face(halfedge_mesh& m, face_handle f) {
   detail::edits::check_handle(m.is_valid(f), "collapse_face", "face", f.idx());
   detail::edits::face_collapse_plan plan;
