@@ -1,0 +1,521 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// The Three-dimensional Cell List (Kovalevsky's 3DCL, seed 000 §3.1 and §4.9): vertices,
+/// edges, faces with holes and volumes, stored top-down (volumes → signed faces → loops of
+/// signed edge uses → vertices) with every bottom-up relation derived once and cached:
+/// vertex → edges with direction, edge → faces and volumes in right-hand rotation order,
+/// face → volumes with signs, objects and their Euler characteristic. See docs/cells.md.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <numeric>
+#include <span>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "cellforge/core/error.hpp"
+#include "cellforge/halfedge/handles.hpp"
+
+namespace cellforge {
+
+struct cell_vertex_tag {};
+struct cell_edge_tag {};
+struct cell_face_tag {};
+struct cell_volume_tag {};
+struct cell_object_tag {};
+using cell_vertex = handle<cell_vertex_tag>;
+using cell_edge = handle<cell_edge_tag>;
+using cell_face = handle<cell_face_tag>;
+using cell_volume = handle<cell_volume_tag>;
+using cell_object = handle<cell_object_tag>;
+
+/// A handle with a direction or orientation sign (+1 or -1); what the sign means is said by
+/// the accessor that returns it.
+template <class H>
+struct oriented {
+  H handle{};
+  int sign = 1;
+  friend bool operator==(const oriented&, const oriented&) = default;
+};
+
+/// What make_cell_complex() takes: positions, edges, faces as vertex loops, volumes as signed
+/// face sets (the contract of issue 4 between the wireframe pipeline and the cell complex).
+struct cell_complex_input {
+  std::vector<glm::dvec3> points;                   ///< vertex positions
+  std::vector<std::array<std::uint32_t, 2>> edges;  ///< every edge, dangling ones included
+  struct face {
+    /// loops[0]: the outer boundary, counter-clockwise (right-hand) about the face's normal;
+    /// loops[1..]: holes, clockwise about the same normal. Consecutive vertices (cyclically)
+    /// are joined by an edge in `edges`.
+    std::vector<std::vector<std::uint32_t>> loops;
+  };
+  std::vector<face> faces;
+  struct volume {
+    /// (face index, +1 when the face's normal points OUT of this volume, -1 when it points in)
+    std::vector<std::pair<std::uint32_t, int>> faces;
+  };
+  std::vector<volume> volumes;
+};
+
+class cell_complex;
+cell_complex make_cell_complex(cell_complex_input input);
+
+namespace detail::cells {
+/// Handles 0 .. n-1 of one kind as a plain forward range (not a view_interface, which clang 14
+/// with libstdc++ 12 refuses). O(1) to create.
+template <class H>
+class handle_range {
+ public:
+  class iterator {
+   public:
+    using value_type = H;
+    using difference_type = std::ptrdiff_t;
+    iterator() = default;
+    explicit iterator(std::uint32_t i) : i_(i) {}
+    H operator*() const { return H(i_); }
+    iterator& operator++() {
+      ++i_;
+      return *this;
+    }
+    iterator operator++(int) {
+      iterator t = *this;
+      ++i_;
+      return t;
+    }
+    friend bool operator==(iterator a, iterator b) { return a.i_ == b.i_; }
+
+   private:
+    std::uint32_t i_ = 0;
+  };
+  explicit handle_range(std::size_t n) : n_(static_cast<std::uint32_t>(n)) {}
+  iterator begin() const { return iterator(0); }
+  iterator end() const { return iterator(n_); }
+  std::size_t size() const { return n_; }
+  bool empty() const { return n_ == 0; }
+
+ private:
+  std::uint32_t n_;
+};
+}  // namespace detail::cells
+
+/// The 3DCL. Immutable once built; every relation is an O(1) span into cached arrays.
+class cell_complex {
+ public:
+  cell_complex() = default;
+
+  std::size_t num_vertices() const noexcept { return points_.size(); }
+  std::size_t num_edges() const noexcept { return ends_.size(); }
+  std::size_t num_faces() const noexcept { return face_loop_start_.size() - 1; }
+  std::size_t num_volumes() const noexcept { return volume_face_start_.size() - 1; }
+  std::size_t num_objects() const noexcept { return object_volume_start_.size() - 1; }
+
+  /// Handles of all elements of a kind, as ranges. O(1).
+  auto vertices() const noexcept { return detail::cells::handle_range<cell_vertex>(num_vertices()); }
+  auto edges() const noexcept { return detail::cells::handle_range<cell_edge>(num_edges()); }
+  auto faces() const noexcept { return detail::cells::handle_range<cell_face>(num_faces()); }
+  auto volumes() const noexcept { return detail::cells::handle_range<cell_volume>(num_volumes()); }
+  auto objects() const noexcept { return detail::cells::handle_range<cell_object>(num_objects()); }
+
+  // ---- vertices
+  const glm::dvec3& point(cell_vertex v) const { return points_[v.idx()]; }
+  std::span<const glm::dvec3> points() const noexcept { return points_; }
+  /// Edges at v; sign +1 when the edge starts at v, -1 when it ends there. O(1).
+  std::span<const oriented<cell_edge>> vertex_edges(cell_vertex v) const {
+    return csr(vertex_edges_, vertex_edge_start_, v.idx());
+  }
+
+  // ---- edges
+  cell_vertex source(cell_edge e) const { return cell_vertex(ends_[e.idx()][0]); }
+  cell_vertex target(cell_edge e) const { return cell_vertex(ends_[e.idx()][1]); }
+  std::array<cell_vertex, 2> edge_vertices(cell_edge e) const { return {source(e), target(e)}; }
+  /// Faces at e in right-hand rotation order about source → target. Sign +1 when the face's
+  /// loop runs along e (source → target); then its normal points in the direction of
+  /// positive rotation. Starts after a wedge outside every volume, if there is one. O(1).
+  std::span<const oriented<cell_face>> edge_faces(cell_edge e) const {
+    return csr(edge_faces_, edge_face_start_, e.idx());
+  }
+  /// wedge k is the volume between edge_faces(e)[k] and edge_faces(e)[k+1] (cyclically), seen
+  /// from face k; invalid where that wedge is outside every volume. O(1).
+  std::span<const cell_volume> edge_wedges(cell_edge e) const {
+    return csr(edge_wedges_, edge_face_start_, e.idx());
+  }
+  /// The distinct volumes at e in right-hand rotation order. O(faces at e).
+  std::vector<cell_volume> edge_volumes(cell_edge e) const {
+    std::vector<cell_volume> out;
+    for (cell_volume c : edge_wedges(e))
+      if (c.is_valid() && std::find(out.begin(), out.end(), c) == out.end()) out.push_back(c);
+    return out;
+  }
+
+  // ---- faces
+  std::size_t num_loops(cell_face f) const {
+    return face_loop_start_[f.idx() + 1] - face_loop_start_[f.idx()];
+  }
+  /// Vertices of loop i of f (0: outer, counter-clockwise about face_normal; others: holes,
+  /// clockwise). O(1).
+  std::span<const cell_vertex> loop_vertices(cell_face f, std::size_t i) const {
+    return csr(loop_vertices_, loop_start_, face_loop_start_[f.idx()] + i);
+  }
+  /// Edges of loop i of f: edge k joins vertex k to vertex k+1; sign +1 when it runs
+  /// source → target. O(1).
+  std::span<const oriented<cell_edge>> loop_edges(cell_face f, std::size_t i) const {
+    return csr(loop_edges_, loop_start_, face_loop_start_[f.idx()] + i);
+  }
+  /// Unit Newell normal of the outer loop (zero for a degenerate loop). O(1).
+  const glm::dvec3& face_normal(cell_face f) const { return normals_[f.idx()]; }
+  /// The volumes of f (at most two); sign +1 when f's normal points out of the volume. O(1).
+  std::span<const oriented<cell_volume>> face_volumes(cell_face f) const {
+    return csr(face_volumes_, face_volume_start_, f.idx());
+  }
+
+  // ---- volumes
+  /// Faces of c; sign +1 when the face's normal points out of c. O(1).
+  std::span<const oriented<cell_face>> volume_faces(cell_volume c) const {
+    return csr(volume_faces_, volume_face_start_, c.idx());
+  }
+  cell_object volume_object(cell_volume c) const { return cell_object(volume_object_[c.idx()]); }
+
+  // ---- objects: connected components of the complex (through shared vertices)
+  cell_object vertex_object(cell_vertex v) const { return cell_object(vertex_object_[v.idx()]); }
+  std::span<const cell_volume> object_volumes(cell_object o) const {
+    return csr(object_volumes_, object_volume_start_, o.idx());
+  }
+  /// Numbers of vertices, edges, faces and volumes of o. O(1).
+  const std::array<std::size_t, 4>& object_counts(cell_object o) const { return object_counts_[o.idx()]; }
+  /// V - E + F - C of o, counting every cell once whatever its shape. O(1).
+  long long object_euler(cell_object o) const {
+    const auto& n = object_counts_[o.idx()];
+    return static_cast<long long>(n[0]) - static_cast<long long>(n[1]) + static_cast<long long>(n[2]) -
+           static_cast<long long>(n[3]);
+  }
+
+  /// The input this complex was built from (indices and loop starts as given). O(size).
+  cell_complex_input to_input() const;
+
+  friend cell_complex make_cell_complex(cell_complex_input input);
+
+ private:
+  template <class T>
+  static std::span<const T> csr(const std::vector<T>& data, const std::vector<std::uint32_t>& start,
+                                std::size_t i) {
+    return {data.data() + start[i], start[i + 1] - start[i]};
+  }
+
+  std::vector<glm::dvec3> points_;
+  std::vector<std::uint32_t> vertex_edge_start_{0};
+  std::vector<oriented<cell_edge>> vertex_edges_;
+  std::vector<std::array<std::uint32_t, 2>> ends_;
+  std::vector<std::uint32_t> edge_face_start_{0};
+  std::vector<oriented<cell_face>> edge_faces_;
+  std::vector<cell_volume> edge_wedges_;
+  std::vector<std::uint32_t> face_loop_start_{0};  // into loop_start_
+  std::vector<std::uint32_t> loop_start_{0};       // into loop_vertices_ / loop_edges_
+  std::vector<cell_vertex> loop_vertices_;
+  std::vector<oriented<cell_edge>> loop_edges_;
+  std::vector<glm::dvec3> normals_;
+  std::vector<std::uint32_t> face_volume_start_{0};
+  std::vector<oriented<cell_volume>> face_volumes_;
+  std::vector<std::uint32_t> volume_face_start_{0};
+  std::vector<oriented<cell_face>> volume_faces_;
+  std::vector<std::uint32_t> volume_object_;
+  std::vector<std::uint32_t> vertex_object_;
+  std::vector<std::uint32_t> object_volume_start_{0};
+  std::vector<cell_volume> object_volumes_;
+  std::vector<std::array<std::size_t, 4>> object_counts_;
+};
+
+namespace detail::cells {
+
+inline std::string S(std::uint64_t x) { return std::to_string(x); }
+
+[[noreturn]] inline void fail(error_category c, const std::string& msg) {
+  throw error(c, "make_cell_complex: " + msg);
+}
+
+/// Newell normal (twice the vector area) of a vertex loop. O(loop size).
+template <class Loop, class Point>
+glm::dvec3 newell(const Loop& loop, Point&& at) {
+  glm::dvec3 n(0.0);
+  const std::size_t k = loop.size();
+  for (std::size_t i = 0; i < k; ++i) {
+    const glm::dvec3 &a = at(loop[i]), &b = at(loop[(i + 1) % k]);
+    n += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
+  }
+  return n;
+}
+
+/// Turns (a, b) into one 64-bit key regardless of order. O(1).
+inline std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) noexcept {
+  if (a > b) std::swap(a, b);
+  return (std::uint64_t{a} << 32) | b;
+}
+
+/// Fills CSR `start` from per-row counts (counts become write cursors). O(rows).
+inline void counts_to_starts(std::vector<std::uint32_t>& start, std::vector<std::uint32_t>& cursor) {
+  start.assign(cursor.size() + 1, 0);
+  for (std::size_t i = 0; i < cursor.size(); ++i) start[i + 1] = start[i] + cursor[i];
+  for (std::size_t i = 0; i < cursor.size(); ++i) cursor[i] = start[i];
+}
+
+/// Union-find root with path halving. O(α(n)) amortised.
+inline std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t x) {
+  while (parent[x] != x) x = parent[x] = parent[parent[x]];
+  return x;
+}
+
+}  // namespace detail::cells
+
+/// Builds the 3DCL and derives every relation (vertex→edges with direction, edge→faces and
+/// edge→volumes in right-hand rotation order about the edge, face→volumes with signs, objects).
+/// Throws cellforge::error naming the element when the input is inconsistent: non-finite
+/// points, bad or duplicate edges, loops not joined by edges, signs other than ±1, a face in
+/// more than two volumes or twice on one side, a volume whose boundary is not closed.
+/// O(n log n) for n = total size of the input (the sort of faces about each edge).
+inline cell_complex make_cell_complex(cell_complex_input input) {
+  using namespace detail::cells;
+  using std::uint32_t;
+  constexpr auto bad = error_category::invalid_input;
+  constexpr auto topo = error_category::topology;
+  cell_complex cc;
+  const std::size_t nv = input.points.size(), ne = input.edges.size(), nf = input.faces.size(),
+                    nc = input.volumes.size();
+  if (nv >= 0xFFFFFFFFu || ne >= 0xFFFFFFFFu || nf >= 0xFFFFFFFFu || nc >= 0xFFFFFFFFu)
+    fail(bad, "more than 2^32 - 2 elements of one kind");
+  for (std::size_t v = 0; v < nv; ++v) {
+    const glm::dvec3& p = input.points[v];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      fail(bad, "vertex " + S(v) + " has a non-finite coordinate (NaN or Inf)");
+  }
+
+  // Edges: endpoints, no loops, no duplicates; vertex → edges with direction.
+  std::unordered_map<std::uint64_t, uint32_t> edge_of;
+  edge_of.reserve(2 * ne);
+  std::vector<uint32_t> cursor(nv, 0);
+  for (std::size_t e = 0; e < ne; ++e) {
+    const auto [a, b] = input.edges[e];
+    if (a >= nv || b >= nv)
+      fail(bad,
+           "edge " + S(e) + " joins vertex " + S(std::max(a, b)) + " but there are " + S(nv) + " vertices");
+    if (a == b) fail(bad, "edge " + S(e) + " joins vertex " + S(a) + " to itself");
+    const auto [it, fresh] = edge_of.emplace(pair_key(a, b), static_cast<uint32_t>(e));
+    if (!fresh)
+      fail(bad, "edges " + S(it->second) + " and " + S(e) + " both join vertices " + S(a) + " and " + S(b));
+    ++cursor[a];
+    ++cursor[b];
+  }
+  counts_to_starts(cc.vertex_edge_start_, cursor);
+  cc.vertex_edges_.resize(2 * ne);
+  for (std::size_t e = 0; e < ne; ++e) {
+    cc.vertex_edges_[cursor[input.edges[e][0]]++] = {cell_edge(e), +1};
+    cc.vertex_edges_[cursor[input.edges[e][1]]++] = {cell_edge(e), -1};
+  }
+
+  // Faces: loops of vertices and signed edge uses; normals.
+  std::vector<uint32_t> edge_uses(ne, 0);
+  std::vector<uint32_t> seen(nv, 0xFFFFFFFFu);  // face that last used each vertex
+  std::vector<uint32_t> used_by(ne, 0xFFFFFFFFu);
+  for (std::size_t f = 0; f < nf; ++f) {
+    const auto& loops = input.faces[f].loops;
+    if (loops.empty()) fail(bad, "face " + S(f) + " has no loop");
+    for (std::size_t l = 0; l < loops.size(); ++l) {
+      const auto& loop = loops[l];
+      const std::string where = "face " + S(f) + " loop " + S(l);
+      if (loop.size() < 3) fail(bad, where + " has " + S(loop.size()) + " vertices; a loop needs 3");
+      for (const uint32_t a : loop)
+        if (a >= nv) fail(bad, where + " uses vertex " + S(a) + " but there are " + S(nv) + " vertices");
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        const uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
+        if (seen[a] == f) fail(topo, where + " visits vertex " + S(a) + " a second time in the face");
+        seen[a] = static_cast<uint32_t>(f);
+        const auto it = edge_of.find(pair_key(a, b));
+        if (it == edge_of.end())
+          fail(topo,
+               where + ": consecutive vertices " + S(a) + " and " + S(b) + " are not joined by an edge");
+        if (used_by[it->second] == f)
+          fail(topo, where + " uses edge " + S(it->second) + " a second time in the face");
+        used_by[it->second] = static_cast<uint32_t>(f);
+        const bool along = input.edges[it->second][0] == a;
+        cc.loop_vertices_.push_back(cell_vertex(a));
+        cc.loop_edges_.push_back({cell_edge(it->second), along ? +1 : -1});
+        ++edge_uses[it->second];
+      }
+      cc.loop_start_.push_back(static_cast<uint32_t>(cc.loop_vertices_.size()));
+    }
+    cc.face_loop_start_.push_back(static_cast<uint32_t>(cc.loop_start_.size() - 1));
+    const glm::dvec3 n = newell(loops[0], [&](uint32_t v) -> const glm::dvec3& { return input.points[v]; });
+    const double len = glm::length(n);
+    cc.normals_.push_back(len > 0.0 && std::isfinite(len) ? n / len : glm::dvec3(0.0));
+  }
+
+  // Volumes: signed faces; face → volumes.
+  std::vector<std::array<oriented<cell_volume>, 2>> fv(nf);
+  std::vector<std::uint8_t> nfv(nf, 0);
+  std::vector<int> net(ne, 0);
+  std::vector<uint32_t> touched;
+  for (std::size_t c = 0; c < nc; ++c) {
+    const auto& faces = input.volumes[c].faces;
+    if (faces.empty()) fail(bad, "volume " + S(c) + " has no face");
+    for (const auto& [f, sign] : faces) {
+      if (f >= nf) fail(bad, "volume " + S(c) + " uses face " + S(f) + " but there are " + S(nf) + " faces");
+      if (sign != 1 && sign != -1)
+        fail(bad, "volume " + S(c) + " uses face " + S(f) + " with sign " + std::to_string(sign) +
+                      "; the sign must be +1 (normal out of the volume) or -1");
+      for (std::uint8_t k = 0; k < nfv[f]; ++k)
+        if (fv[f][k].handle.idx() == c) fail(topo, "volume " + S(c) + " uses face " + S(f) + " twice");
+      if (nfv[f] == 2)
+        fail(topo, "face " + S(f) + " is in more than two volumes (" + S(fv[f][0].handle.idx()) + ", " +
+                       S(fv[f][1].handle.idx()) + ", " + S(c) + ")");
+      for (std::uint8_t k = 0; k < nfv[f]; ++k)
+        if (fv[f][k].sign == sign)
+          fail(topo, "face " + S(f) + " has volumes " + S(fv[f][k].handle.idx()) + " and " + S(c) +
+                         " on the same side (both with sign " + std::to_string(sign) + ")");
+      fv[f][nfv[f]++] = {cell_volume(c), sign};
+      cc.volume_faces_.push_back({cell_face(f), sign});
+      // Closedness: the signed face boundaries must cancel on every edge.
+      for (uint32_t k = cc.loop_start_[cc.face_loop_start_[f]];
+           k < cc.loop_start_[cc.face_loop_start_[f + 1]]; ++k) {
+        const uint32_t e = cc.loop_edges_[k].handle.idx();
+        if (net[e] == 0) touched.push_back(e);
+        net[e] += sign * cc.loop_edges_[k].sign;
+      }
+    }
+    for (uint32_t e : touched)
+      if (net[e] != 0) {
+        const uint32_t bad_edge = e;
+        for (uint32_t t : touched) net[t] = 0;
+        fail(topo, "the boundary of volume " + S(c) + " is not closed: edge " + S(bad_edge) + " (" +
+                       S(input.edges[bad_edge][0]) + "-" + S(input.edges[bad_edge][1]) +
+                       ") is not used equally often in both directions by its faces");
+      }
+    touched.clear();
+    cc.volume_face_start_.push_back(static_cast<uint32_t>(cc.volume_faces_.size()));
+  }
+  for (std::size_t f = 0; f < nf; ++f) {
+    cc.face_volumes_.insert(cc.face_volumes_.end(), fv[f].begin(), fv[f].begin() + nfv[f]);
+    cc.face_volume_start_.push_back(static_cast<uint32_t>(cc.face_volumes_.size()));
+  }
+
+  // Edge → faces in right-hand rotation order about source → target, by the angle of the
+  // direction into each face (normal × direction of travel, always perpendicular to the edge,
+  // so a non-convex face is measured on the right side of the edge).
+  cursor.assign(edge_uses.begin(), edge_uses.end());
+  counts_to_starts(cc.edge_face_start_, cursor);
+  cc.edge_faces_.resize(cc.edge_face_start_.back());
+  cc.edge_wedges_.resize(cc.edge_face_start_.back());
+  std::vector<double> angle(cc.edge_faces_.size(), 0.0);
+  for (std::size_t f = 0; f < nf; ++f)
+    for (uint32_t k = cc.loop_start_[cc.face_loop_start_[f]]; k < cc.loop_start_[cc.face_loop_start_[f + 1]];
+         ++k) {
+      const auto [e, sign] = cc.loop_edges_[k];
+      const auto [a, b] = input.edges[e.idx()];
+      const glm::dvec3 d = input.points[b] - input.points[a];
+      const glm::dvec3 into = glm::cross(cc.normals_[f], double(sign) * d);
+      // A basis (u, w) of the plane perpendicular to d, from the axis least aligned with d.
+      const glm::dvec3 ad = glm::abs(d);
+      const glm::dvec3 axis = ad.x <= ad.y && ad.x <= ad.z ? glm::dvec3(1, 0, 0)
+                              : ad.y <= ad.z               ? glm::dvec3(0, 1, 0)
+                                                           : glm::dvec3(0, 0, 1);
+      const glm::dvec3 u = glm::cross(d, axis), w = glm::cross(d, u);
+      const uint32_t slot = cursor[e.idx()]++;
+      angle[slot] = std::atan2(glm::dot(into, w), glm::dot(into, u));
+      cc.edge_faces_[slot] = {cell_face(f), sign};
+    }
+  std::vector<uint32_t> order;
+  std::vector<oriented<cell_face>> tmp;
+  for (std::size_t e = 0; e < ne; ++e) {
+    const uint32_t s = cc.edge_face_start_[e], n = cc.edge_face_start_[e + 1] - s;
+    if (n == 0) continue;
+    order.resize(n);
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(), [&](uint32_t i, uint32_t j) {
+      return angle[s + i] != angle[s + j]
+                 ? angle[s + i] < angle[s + j]
+                 : cc.edge_faces_[s + i].handle.idx() < cc.edge_faces_[s + j].handle.idx();
+    });
+    tmp.clear();
+    for (uint32_t i : order) tmp.push_back(cc.edge_faces_[s + i]);
+    // The wedge after face k (toward positive rotation) is on the normal side of a face that
+    // runs along e, so it is that face's volume whose sign is -1 (normal pointing into it).
+    auto wedge_after = [&](const oriented<cell_face>& ef) {
+      const int want = ef.sign > 0 ? -1 : +1;
+      for (const auto& v : cc.face_volumes(ef.handle))
+        if (v.sign == want) return v.handle;
+      return cell_volume();
+    };
+    // Canonical start: the first face after an outside wedge (the seed starts at a face not
+    // between two volumes), else the lowest face index; same order under any rigid motion.
+    uint32_t first = 0;
+    bool found_outside = false;
+    for (uint32_t k = 0; k < n && !found_outside; ++k)
+      if (!wedge_after(tmp[k]).is_valid()) first = (k + 1) % n, found_outside = true;
+    if (!found_outside)
+      first = static_cast<uint32_t>(
+          std::min_element(tmp.begin(), tmp.end(),
+                           [](const auto& x, const auto& y) { return x.handle.idx() < y.handle.idx(); }) -
+          tmp.begin());
+    for (uint32_t k = 0; k < n; ++k) {
+      cc.edge_faces_[s + k] = tmp[(first + k) % n];
+      cc.edge_wedges_[s + k] = wedge_after(cc.edge_faces_[s + k]);
+    }
+  }
+
+  // Objects: connected components through edges; every face and volume joins the
+  // component of its vertices.
+  std::vector<uint32_t> parent(nv);
+  std::iota(parent.begin(), parent.end(), 0u);
+  for (const auto& [a, b] : input.edges) parent[find_root(parent, a)] = find_root(parent, b);
+  cc.vertex_object_.assign(nv, 0xFFFFFFFFu);
+  uint32_t no = 0;
+  for (uint32_t v = 0; v < nv; ++v) {
+    const uint32_t r = find_root(parent, v);
+    if (cc.vertex_object_[r] == 0xFFFFFFFFu) cc.vertex_object_[r] = no++;
+    cc.vertex_object_[v] = cc.vertex_object_[r];
+  }
+  cc.object_counts_.assign(no, {0, 0, 0, 0});
+  for (uint32_t v = 0; v < nv; ++v) ++cc.object_counts_[cc.vertex_object_[v]][0];
+  for (const auto& ab : input.edges) ++cc.object_counts_[cc.vertex_object_[ab[0]]][1];
+  for (std::size_t f = 0; f < nf; ++f) ++cc.object_counts_[cc.vertex_object_[input.faces[f].loops[0][0]]][2];
+  cc.volume_object_.resize(nc);
+  cursor.assign(no, 0);
+  for (std::size_t c = 0; c < nc; ++c) {
+    const uint32_t f = input.volumes[c].faces.front().first;
+    cc.volume_object_[c] = cc.vertex_object_[input.faces[f].loops[0][0]];
+    ++cc.object_counts_[cc.volume_object_[c]][3];
+    ++cursor[cc.volume_object_[c]];
+  }
+  counts_to_starts(cc.object_volume_start_, cursor);
+  cc.object_volumes_.resize(nc);
+  for (std::size_t c = 0; c < nc; ++c) cc.object_volumes_[cursor[cc.volume_object_[c]]++] = cell_volume(c);
+
+  cc.points_ = std::move(input.points);
+  cc.ends_ = std::move(input.edges);
+  return cc;
+}
+
+inline cell_complex_input cell_complex::to_input() const {
+  cell_complex_input in;
+  in.points = points_;
+  in.edges = ends_;
+  in.faces.resize(num_faces());
+  for (cell_face f : faces()) {
+    auto& loops = in.faces[f.idx()].loops;
+    loops.resize(num_loops(f));
+    for (std::size_t l = 0; l < loops.size(); ++l)
+      for (cell_vertex v : loop_vertices(f, l)) loops[l].push_back(v.idx());
+  }
+  in.volumes.resize(num_volumes());
+  for (cell_volume c : volumes())
+    for (const auto& [f, s] : volume_faces(c)) in.volumes[c.idx()].faces.emplace_back(f.idx(), s);
+  return in;
+}
+
+}  // namespace cellforge

@@ -1,0 +1,333 @@
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "cellforge/cells/cell_complex.hpp"
+#include "cells_fixtures.hpp"
+
+using namespace cellforge;
+namespace fx = cells_fixtures;
+
+namespace {
+
+// The edge joining the vertices at positions a and b (by coordinates).
+cell_edge edge_at(const cell_complex& cc, glm::dvec3 a, glm::dvec3 b) {
+  for (cell_edge e : cc.edges()) {
+    const glm::dvec3 p = cc.point(cc.source(e)), q = cc.point(cc.target(e));
+    if ((p == a && q == b) || (p == b && q == a)) return e;
+  }
+  return {};
+}
+
+// The message of the error make_cell_complex throws on `in`, or "" if it does not throw.
+std::string build_error(cell_complex_input in) {
+  try {
+    (void)make_cell_complex(std::move(in));
+  } catch (const error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+}  // namespace
+
+TEST_CASE("cell complex: a cube") {
+  const cell_complex cc = make_cell_complex(fx::cube());
+  CHECK(cc.num_vertices() == 8);
+  CHECK(cc.num_edges() == 12);
+  CHECK(cc.num_faces() == 6);
+  CHECK(cc.num_volumes() == 1);
+  REQUIRE(cc.num_objects() == 1);
+  CHECK(cc.object_euler(cell_object(0)) == 1);
+  for (cell_vertex v : cc.vertices()) {
+    CHECK(cc.vertex_edges(v).size() == 3);
+    for (const auto& [e, s] : cc.vertex_edges(v)) CHECK((s > 0 ? cc.source(e) : cc.target(e)) == v);
+  }
+  for (cell_edge e : cc.edges()) {
+    REQUIRE(cc.edge_faces(e).size() == 2);
+    // Canonical start: after the outside wedge, so the cube is wedge 0 and outside wedge 1.
+    CHECK(cc.edge_wedges(e)[0] == cell_volume(0));
+    CHECK_FALSE(cc.edge_wedges(e)[1].is_valid());
+    CHECK(cc.edge_volumes(e) == std::vector<cell_volume>{cell_volume(0)});
+  }
+  for (cell_face f : cc.faces()) {
+    REQUIRE(cc.face_volumes(f).size() == 1);
+    // Unit normals pointing out of the cube carry sign +1.
+    const glm::dvec3 n = cc.face_normal(f);
+    CHECK(glm::length(n) == doctest::Approx(1.0));
+    const glm::dvec3 c = cc.point(cc.loop_vertices(f, 0)[0]) - glm::dvec3(0.5);
+    CHECK((glm::dot(n, c) > 0 ? 1 : -1) == cc.face_volumes(f)[0].sign);
+    // Loop edges join consecutive loop vertices in the stated direction.
+    const auto vs = cc.loop_vertices(f, 0);
+    const auto es = cc.loop_edges(f, 0);
+    REQUIRE(vs.size() == es.size());
+    for (std::size_t i = 0; i < vs.size(); ++i) {
+      const auto [e, s] = es[i];
+      CHECK((s > 0 ? cc.source(e) : cc.target(e)) == vs[i]);
+      CHECK((s > 0 ? cc.target(e) : cc.source(e)) == vs[(i + 1) % vs.size()]);
+    }
+  }
+  // About the edge (0,0,0)→(1,0,0): rotating from +y toward +z, the bottom face (reaching
+  // into +y) comes first, then the front face (reaching into +z); the cube lies between.
+  const cell_edge e = edge_at(cc, {0, 0, 0}, {1, 0, 0});
+  REQUIRE(e.is_valid());
+  const bool forward = cc.point(cc.source(e)) == glm::dvec3(0, 0, 0);
+  const auto ef = cc.edge_faces(e);
+  const glm::dvec3 n0 = cc.face_normal(ef[0].handle), n1 = cc.face_normal(ef[1].handle);
+  if (forward) {
+    CHECK(std::abs(n0.z) == 1.0);  // bottom
+    CHECK(std::abs(n1.y) == 1.0);  // front
+  } else {
+    CHECK(std::abs(n0.y) == 1.0);
+    CHECK(std::abs(n1.z) == 1.0);
+  }
+}
+
+TEST_CASE("cell complex: two cubes sharing a face") {
+  const cell_complex cc = make_cell_complex(fx::two_cubes());
+  CHECK(cc.num_vertices() == 12);
+  CHECK(cc.num_edges() == 20);
+  CHECK(cc.num_faces() == 11);
+  CHECK(cc.num_volumes() == 2);
+  REQUIRE(cc.num_objects() == 1);
+  CHECK(cc.object_euler(cell_object(0)) == 1);
+  CHECK(cc.object_volumes(cell_object(0)).size() == 2);
+  std::size_t shared = 0;
+  for (cell_face f : cc.faces())
+    if (cc.face_volumes(f).size() == 2) {
+      ++shared;
+      CHECK(cc.face_volumes(f)[0].sign == -cc.face_volumes(f)[1].sign);
+      CHECK(cc.face_volumes(f)[0].handle != cc.face_volumes(f)[1].handle);
+    }
+  CHECK(shared == 1);
+  // An edge of the shared face has three faces: cube, cube, outside.
+  const cell_edge e = edge_at(cc, {1, 0, 0}, {1, 1, 0});
+  REQUIRE(e.is_valid());
+  REQUIRE(cc.edge_faces(e).size() == 3);
+  const auto w = cc.edge_wedges(e);
+  CHECK(w[0].is_valid());
+  CHECK(w[1].is_valid());
+  CHECK(w[0] != w[1]);
+  CHECK_FALSE(w[2].is_valid());
+  CHECK(cc.edge_volumes(e).size() == 2);
+}
+
+TEST_CASE("cell complex: a 2x2x1 grid has an edge with four volumes around it") {
+  const cell_complex cc = make_cell_complex(fx::grid(2, 2, 1));
+  CHECK(cc.num_vertices() == 18);
+  CHECK(cc.num_edges() == 33);
+  CHECK(cc.num_faces() == 20);
+  CHECK(cc.num_volumes() == 4);
+  CHECK(cc.object_euler(cell_object(0)) == 1);
+  const cell_edge e = edge_at(cc, {1, 1, 0}, {1, 1, 1});
+  REQUIRE(e.is_valid());
+  REQUIRE(cc.edge_faces(e).size() == 4);
+  for (cell_volume c : cc.edge_wedges(e)) CHECK(c.is_valid());
+  CHECK(cc.edge_volumes(e).size() == 4);
+  // Rotation order about +z (or -z): the directions into the faces turn monotonically.
+  const bool up = cc.point(cc.target(e)).z > cc.point(cc.source(e)).z;
+  // Rotation order about the edge: the directions into the faces turn the same way, one
+  // full turn in all.
+  std::vector<double> angles;
+  for (const auto& [f, s] : cc.edge_faces(e)) {
+    const glm::dvec3 d = glm::dvec3(0, 0, up ? 1 : -1) * double(s);
+    const glm::dvec3 into = glm::cross(cc.face_normal(f), d);
+    angles.push_back(std::atan2(into.y, into.x) * (up ? 1 : -1));
+  }
+  double turn = 0;
+  for (std::size_t k = 0; k < angles.size(); ++k) {
+    double step = angles[(k + 1) % angles.size()] - angles[k];
+    while (step <= 0) step += 2 * 3.141592653589793;
+    CHECK(step == doctest::Approx(3.141592653589793 / 2));
+    turn += step;
+  }
+  CHECK(turn == doctest::Approx(2 * 3.141592653589793));
+  // Consecutive faces about the edge share the volume between them.
+  const auto ef = cc.edge_faces(e);
+  for (std::size_t k = 0; k < 4; ++k) {
+    const cell_volume c = cc.edge_wedges(e)[k];
+    auto has = [&](cell_face f) {
+      for (const auto& fv : cc.face_volumes(f))
+        if (fv.handle == c) return true;
+      return false;
+    };
+    CHECK(has(ef[k].handle));
+    CHECK(has(ef[(k + 1) % 4].handle));
+  }
+}
+
+TEST_CASE("cell complex: objects and Euler characteristics") {
+  const cell_complex two = make_cell_complex(fx::disjoint_cubes());
+  REQUIRE(two.num_objects() == 2);
+  for (cell_object o : two.objects()) {
+    CHECK(two.object_euler(o) == 1);
+    CHECK(two.object_volumes(o).size() == 1);
+    CHECK(two.object_counts(o) == std::array<std::size_t, 4>{8, 12, 6, 1});
+  }
+  CHECK(two.volume_object(cell_volume(0)) != two.volume_object(cell_volume(1)));
+
+  const cell_complex frame = make_cell_complex(fx::frame());
+  REQUIRE(frame.num_objects() == 1);
+  CHECK(frame.num_volumes() == 8);
+  CHECK(frame.object_euler(cell_object(0)) == 0);  // a solid torus made of balls
+
+  const cell_complex g = make_cell_complex(fx::grid(3, 2, 2));
+  CHECK(g.object_euler(cell_object(0)) == 1);
+  CHECK(g.num_volumes() == 12);
+
+  const cell_complex hole = make_cell_complex(fx::block_with_hole());
+  CHECK(hole.num_vertices() == 16);
+  CHECK(hole.num_edges() == 24);
+  CHECK(hole.num_faces() == 10);
+  CHECK(hole.num_loops(cell_face(0)) == 2);
+  CHECK(hole.loop_edges(cell_face(0), 1).size() == 4);
+  CHECK(hole.face_normal(cell_face(0)) == glm::dvec3(0, 0, 1));
+  // Non-ball cells: annular faces and a genus-1 volume are each counted once.
+  CHECK(hole.object_euler(cell_object(0)) == 1);
+}
+
+TEST_CASE("cell complex: to_input gives back the input") {
+  for (const auto& in : {fx::cube(), fx::two_cubes(), fx::block_with_hole(), fx::frame()}) {
+    const cell_complex cc = make_cell_complex(in);
+    const cell_complex_input out = cc.to_input();
+    CHECK(out.points == in.points);
+    CHECK(out.edges == in.edges);
+    REQUIRE(out.faces.size() == in.faces.size());
+    for (std::size_t f = 0; f < in.faces.size(); ++f) CHECK(out.faces[f].loops == in.faces[f].loops);
+    REQUIRE(out.volumes.size() == in.volumes.size());
+    for (std::size_t c = 0; c < in.volumes.size(); ++c) CHECK(out.volumes[c].faces == in.volumes[c].faces);
+  }
+}
+
+TEST_CASE("cell complex: inconsistent input is refused, naming the element") {
+  const cell_complex_input good = fx::two_cubes();
+  {
+    auto in = good;
+    in.points[3].y = std::nan("");
+    CHECK(contains(build_error(in), "vertex 3 has a non-finite"));
+  }
+  {
+    auto in = good;
+    in.points[2].x = INFINITY;
+    CHECK(contains(build_error(in), "vertex 2"));
+  }
+  {
+    auto in = good;
+    in.edges.push_back({0, 99});
+    CHECK(contains(build_error(in), "edge 20 joins vertex 99"));
+  }
+  {
+    auto in = good;
+    in.edges.push_back({4, 4});
+    CHECK(contains(build_error(in), "edge 20 joins vertex 4 to itself"));
+  }
+  {
+    auto in = good;
+    in.edges.push_back({in.edges[5][1], in.edges[5][0]});
+    CHECK(contains(build_error(in), "edges 5 and 20 both join"));
+  }
+  {
+    auto in = good;
+    in.faces[2].loops.clear();
+    CHECK(contains(build_error(in), "face 2 has no loop"));
+  }
+  {
+    auto in = good;
+    in.faces[1].loops[0].resize(2);
+    CHECK(contains(build_error(in), "face 1 loop 0 has 2 vertices"));
+  }
+  {
+    auto in = good;
+    std::swap(in.faces[0].loops[0][1], in.faces[0].loops[0][2]);  // a diagonal is not an edge
+    CHECK(contains(build_error(in), "face 0 loop 0: consecutive vertices"));
+  }
+  {
+    auto in = good;
+    in.faces[0].loops[0][1] = 1000;
+    CHECK(contains(build_error(in), "face 0 loop 0 uses vertex 1000"));
+  }
+  {
+    auto in = good;
+    in.faces[3].loops[0] = {in.faces[3].loops[0][0], in.faces[3].loops[0][1], in.faces[3].loops[0][0],
+                            in.faces[3].loops[0][1]};
+    CHECK(contains(build_error(in), "face 3 loop 0"));
+    CHECK(contains(build_error(in), "a second time in the face"));
+  }
+  {
+    auto in = good;
+    in.volumes[0].faces[0].second = 2;
+    CHECK(contains(build_error(in), "with sign 2"));
+  }
+  {
+    auto in = good;
+    in.volumes[1].faces[0].second = 0;
+    CHECK(contains(build_error(in), "volume 1 uses face"));
+  }
+  {
+    auto in = good;
+    in.volumes[0].faces.push_back({99, 1});
+    CHECK(contains(build_error(in), "volume 0 uses face 99"));
+  }
+  {
+    auto in = good;
+    in.volumes.push_back(in.volumes[0]);  // a copy of volume 0: its faces get a second volume on one side
+    const std::string msg = build_error(in);
+    CHECK((contains(msg, "on the same side") || contains(msg, "more than two volumes")));
+  }
+  {
+    auto in = fx::cube();
+    in.volumes.push_back(in.volumes[0]);
+    for (auto& fs : in.volumes[1].faces) fs.second = -fs.second;  // the cube's outside as a volume
+    CHECK(build_error(in).empty());
+    in.volumes.push_back(in.volumes[0]);
+    CHECK(contains(build_error(in), "face 0 is in more than two volumes (0, 1, 2)"));
+  }
+  {
+    auto in = good;
+    in.volumes[0].faces.pop_back();  // an open box
+    CHECK(contains(build_error(in), "the boundary of volume 0 is not closed: edge"));
+  }
+  {
+    auto in = good;
+    in.volumes[1].faces[2].second = -in.volumes[1].faces[2].second;  // one face turned inside out
+    CHECK(contains(build_error(in), "volume 1 is not closed"));
+  }
+  {
+    auto in = good;
+    in.volumes[0].faces.push_back(in.volumes[0].faces[0]);
+    CHECK(contains(build_error(in), "volume 0 uses face"));
+  }
+  {
+    auto in = good;
+    in.volumes[1].faces.clear();
+    CHECK(contains(build_error(in), "volume 1 has no face"));
+  }
+  {
+    auto in = good;
+    in.faces.push_back(in.faces[4]);  // a face using the edges of face 4 again is fine ...
+    CHECK(build_error(in).empty());
+    in.volumes[0].faces.push_back({11, 1});  // ... but not closing volume 0 any more
+    CHECK(contains(build_error(in), "volume 0"));
+  }
+  CHECK(build_error(good).empty());
+  CHECK(build_error({}).empty());
+}
+
+TEST_CASE("cell complex: a face in three volumes") {
+  // Three volumes at one face is refused: sides would have to repeat.
+  auto in = fx::two_cubes();
+  // The shared face is the one used by both volumes.
+  std::uint32_t shared = 0;
+  for (const auto& [f, s] : in.volumes[0].faces)
+    for (const auto& [g, t] : in.volumes[1].faces)
+      if (f == g) shared = f;
+  cell_complex_input::volume v;
+  v.faces.emplace_back(shared, 1);
+  in.volumes.push_back(v);
+  const std::string msg = build_error(in);
+  CHECK(contains(msg, "face " + std::to_string(shared) + " is in more than two volumes (0, 1, 2)"));
+}
