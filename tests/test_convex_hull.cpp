@@ -341,7 +341,7 @@ TEST_CASE("points on a sphere: every point is a corner (the seed's special case)
   CHECK(m.num_vertices() == small.size());
 
   const auto large = random_sphere(100000, 6);
-  m = convex_hull(large, {}, &report);
+  m = convex_hull(large, {}, &report);  // automatic: the sample says insertion with walks
   check_hull(large, m, reference::predicate, 4);
   CHECK(m.num_vertices() == large.size());
   CHECK(report.faces == 2 * large.size() - 4);
@@ -366,6 +366,37 @@ TEST_CASE("cross-sections on a sphere: coplanar rings stay, and merge into cap p
   std::size_t caps = 0;
   for (face_handle f : merged.faces()) caps += merged.valence(f) == 24;
   CHECK(caps == 2);
+}
+
+TEST_CASE("both algorithms give the same hull on every kind of input") {
+  std::vector<std::vector<glm::dvec3>> inputs{lattice(7), random_sphere(1500, 11)};
+  std::mt19937_64 rng(12);
+  std::uniform_int_distribution<int> c(-40, 40);
+  std::vector<glm::dvec3> ball, cylinder;
+  while (ball.size() < 1500) {
+    const glm::dvec3 p(c(rng), c(rng), c(rng));
+    if (glm::dot(p, p) <= 1600) ball.push_back(p);
+  }
+  for (int z = 0; z < 10; ++z)  // coplanar rings: many exact zeros in both algorithms
+    for (int i = 0; i < 40; ++i)
+      cylinder.push_back({std::round(30 * std::cos(i * 0.157)), std::round(30 * std::sin(i * 0.157)), z});
+  inputs.push_back(ball);
+  inputs.push_back(cylinder);
+  for (const auto& pts : inputs) {
+    std::set<std::array<double, 3>> reference_corners;
+    for (const auto method :
+         {cellforge::convex_hull_method::quickhull, cellforge::convex_hull_method::incremental,
+          cellforge::convex_hull_method::automatic}) {
+      const halfedge_mesh m = convex_hull(pts, {.method = method});
+      check_hull(pts, m, &pts == &inputs[1] ? reference::predicate : reference::int128);
+      // The corners are the same points whichever algorithm ran (duplicates aside).
+      const auto pos = cellforge::points<glm::dvec3>(m);
+      std::set<std::array<double, 3>> corners;
+      for (vertex_handle v : m.vertices()) corners.insert({pos[v].x, pos[v].y, pos[v].z});
+      if (reference_corners.empty()) reference_corners = corners;
+      CHECK(corners == reference_corners);
+    }
+  }
 }
 
 TEST_CASE_TEMPLATE("every point type gives the same hull", P, glm::dvec3, std::array<float, 3>, user::pt) {

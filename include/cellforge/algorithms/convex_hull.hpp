@@ -10,7 +10,9 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
+#include <random>
 #include <span>
 #include <string>
 #include <vector>
@@ -22,12 +24,22 @@
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/predicates.hpp"
 #include "cellforge/halfedge/conversion.hpp"
+#include "cellforge/halfedge/detail/mesh_access.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 
 namespace cellforge {
 
+/// Which algorithm builds a 3D hull; the result is the same mesh up to the triangulation
+/// of coplanar facets.
+enum class convex_hull_method : std::uint8_t {
+  automatic,    ///< incremental when a sample of the points is nearly all hull vertices, else quickhull
+  quickhull,    ///< outside sets, furthest point first: fast when most points are inside
+  incremental,  ///< randomised insertion with walk location: fast when most points are vertices
+};
+
 /// How convex_hull builds and shapes its output.
 struct convex_hull_options {
+  convex_hull_method method = convex_hull_method::automatic;
   /// Output one polygon per planar facet (e.g. 6 quads for a cube) instead of triangles.
   bool merge_coplanar = false;
   /// Inputs spanning fewer than 3 dimensions (all coplanar, all collinear, one distinct
@@ -64,16 +76,20 @@ struct outside_point {
 };
 
 /// A triangle of the hull under construction. Edge i runs from v[i] to v[(i+1)%3]; nbr[i]
-/// is the face across it; `outside` holds the points assigned to it (they see it).
+/// is the face across it.
 struct face {
   orient3d_plane plane;  // filter data of the supporting plane
   std::array<std::uint32_t, 3> v{};
   std::array<std::uint32_t, 3> nbr{};
-  std::vector<outside_point> outside;
-  std::uint32_t furthest = 0;  // position in `outside` of the largest orient3d value
-  double furthest_value = 0;
   std::uint64_t mark = 0;  // 2·round: visible in this round; 2·round+1: not visible
   bool alive = false;
+};
+
+/// Quickhull's outside set of a face: the points assigned to it (they see it).
+struct outside_set {
+  std::vector<outside_point> points;
+  std::uint32_t furthest = 0;  // position of the largest orient3d value
+  double furthest_value = 0;
 };
 
 /// The hull as index lists: vertices (input indices) and faces over them.
@@ -82,6 +98,9 @@ struct result {
   std::vector<std::uint32_t> vertices;      // input index of each output vertex
   std::vector<std::uint32_t> face_offsets;  // CSR faces over `vertices`
   std::vector<std::uint32_t> face_vertices;
+  // For triangle output of a solid hull: per face corner e, the face across the edge from
+  // corner e to e+1 (3 per face), so the mesh can be linked without searching.
+  std::vector<std::uint32_t> neighbours;
   std::size_t non_corner_removed = 0;
   std::size_t exact_evaluations = 0;
 };
@@ -95,7 +114,9 @@ class engine {
   /// 3, faces() lists the triangles. O(n log n) expected.
   int run(std::span<const std::uint32_t> candidates) {
     faces_.clear();
+    sets_.clear();
     free_.clear();
+    with_sets_ = true;
     std::array<std::uint32_t, 4> s{};
     const int dim = initial_simplex(candidates, s);
     simplex_ = s;
@@ -106,10 +127,64 @@ class engine {
     return 3;
   }
 
+  /// Builds the hull by inserting the candidates one by one in a biased randomised
+  /// order (random rounds, each sorted along a Morton curve) and locating each by a walk
+  /// over the faces toward it, as seen from a point inside: no outside sets at all. Best
+  /// when (nearly) every point is a vertex, e.g. points on a sphere. O(n log n) expected.
+  int run_incremental(std::span<const std::uint32_t> candidates) {
+    faces_.clear();
+    sets_.clear();
+    free_.clear();
+    with_sets_ = false;
+    faces_.reserve(2 * candidates.size() + 8);  // every point may become a vertex
+    std::array<std::uint32_t, 4> s{};
+    const int dim = initial_simplex(candidates, s);
+    simplex_ = s;
+    if (dim < 3) return dim;
+    start_tetrahedron(s);
+    // The walk looks from a point strictly inside the first tetrahedron (checked exactly).
+    centre_ = 0.25 * (pts_[s[0]] + pts_[s[1]] + pts_[s[2]] + pts_[s[3]]);
+    for (std::uint32_t f = 0; f < 4; ++f) {
+      double value = 0;
+      if (side(faces_[f], centre_, value) >= 0) {  // a sliver: rounding put it outside
+        with_sets_ = true;
+        sets_.resize(faces_.size());
+        assign_initial(candidates, s);
+        expand();
+        return 3;
+      }
+    }
+    reset_rounds();
+    const std::vector<std::uint32_t> order = brio_order(candidates);
+    std::uint32_t last = 0;
+    for (std::uint32_t q : order) {
+      if (q == s[0] || q == s[1] || q == s[2] || q == s[3]) continue;
+      const glm::dvec3& p = pts_[q];
+      std::uint32_t f = locate(p, last);
+      double value = 0;
+      if (f == none) {  // the walk ran out of budget: look at every face
+        for (std::uint32_t g = 0; g < faces_.size() && f == none; ++g)
+          if (faces_[g].alive && side(faces_[g], p, value) > 0) f = g;
+        if (f == none) continue;
+      } else if (side(faces_[f], p, value) <= 0) {
+        continue;  // the ray from the centre leaves through f beyond p: p is inside or on the hull
+      }
+      carve(f, p);
+      cone(q);
+      last = created_.front();
+    }
+    return 3;
+  }
+
   const std::vector<face>& faces() const noexcept { return faces_; }
   const std::array<std::uint32_t, 4>& simplex() const noexcept { return simplex_; }
   std::size_t exact_evaluations() const noexcept { return exact_; }
 
+  const glm::dvec3& point(std::uint32_t i) const noexcept { return pts_[i]; }
+  int side(const face& f, const glm::dvec3& q) {
+    double value = 0;
+    return side(f, q, value);
+  }
   /// Sign of orient3d of face f's plane and point q; `value` gets the approximation.
   int side(const face& f, const glm::dvec3& q, double& value) {
     const int s = orient3d_filter(f.plane, q, value);
@@ -194,14 +269,13 @@ class engine {
     } else {
       f = static_cast<std::uint32_t>(faces_.size());
       faces_.emplace_back();
+      if (with_sets_) sets_.emplace_back();
     }
     face& F = faces_[f];
     F.plane = prepare_orient3d(pts_[a], pts_[b], pts_[c]);
     F.v = {a, b, c};
     F.nbr = {none, none, none};
-    F.outside.clear();  // keeps its capacity for the next use of the slot
-    F.furthest = 0;
-    F.furthest_value = 0;
+    if (with_sets_) sets_[f].points.clear();  // keeps its capacity for the next use of the slot
     F.mark = 0;
     F.alive = true;
     return f;
@@ -224,15 +298,16 @@ class engine {
   }
 
   void add_outside(std::uint32_t f, const outside_point& q, double value) {
-    face& F = faces_[f];
-    if (F.outside.empty()) {
+    outside_set& S = sets_[f];
+    if (S.points.empty()) {
       stack_.push_back(f);
-      F.furthest_value = value;
-    } else if (value > F.furthest_value) {
-      F.furthest = static_cast<std::uint32_t>(F.outside.size());
-      F.furthest_value = value;
+      S.furthest = 0;
+      S.furthest_value = value;
+    } else if (value > S.furthest_value) {
+      S.furthest = static_cast<std::uint32_t>(S.points.size());
+      S.furthest_value = value;
     }
-    F.outside.push_back(q);
+    S.points.push_back(q);
   }
 
   void assign_initial(std::span<const std::uint32_t> cand, const std::array<std::uint32_t, 4>& s) {
@@ -255,80 +330,151 @@ class engine {
     std::uint32_t a, b, outer;  // edge a -> b of a visible face; `outer` is the face beyond
   };
 
-  void expand() {
-    std::uint64_t round = 0;
-    std::vector<std::uint32_t> visible, created;
-    std::vector<outside_point> points;
-    std::vector<horizon_edge> horizon;
+  // The faces `eye` sees strictly, found from f0 (one of them) across edges: a disk, whose
+  // boundary edges go to horizon_. Returns nothing; fills visible_ and horizon_.
+  void carve(std::uint32_t f0, const glm::dvec3& eye_p) {
+    ++round_;
+    visible_.assign(1, f0);
+    horizon_.clear();
+    faces_[f0].mark = 2 * round_;
+    for (std::size_t i = 0; i < visible_.size(); ++i) {
+      const std::uint32_t g = visible_[i];
+      for (std::uint32_t e = 0; e < 3; ++e) {
+        const std::uint32_t h = faces_[g].nbr[e];
+        face& H = faces_[h];
+        if (H.mark == 2 * round_) continue;
+        bool sees = false;
+        if (H.mark != 2 * round_ + 1) {
+          double value = 0;
+          sees = side(H, eye_p, value) > 0;
+          H.mark = sees ? 2 * round_ : 2 * round_ + 1;
+        }
+        if (sees)
+          visible_.push_back(h);
+        else
+          horizon_.push_back({faces_[g].v[e], faces_[g].v[(e + 1) % 3], h});
+      }
+    }
+  }
+
+  // Deletes the visible faces and joins the eye to the horizon with a cone of new faces
+  // (created_), linked to each other and to the faces beyond the horizon.
+  void cone(std::uint32_t eye) {
+    for (std::uint32_t g : visible_) {
+      faces_[g].alive = false;
+      if (with_sets_) sets_[g].points.clear();
+      free_.push_back(g);
+    }
+    created_.clear();
+    for (const horizon_edge& he : horizon_) {
+      const std::uint32_t F = new_face(he.a, he.b, eye);
+      created_.push_back(F);
+      faces_[F].nbr[0] = he.outer;
+      face& O = faces_[he.outer];
+      for (std::uint32_t k = 0; k < 3; ++k)
+        if (O.v[k] == he.b && O.v[(k + 1) % 3] == he.a) O.nbr[k] = F;
+      if (start_round_[he.a] == round_)
+        throw error(error_category::internal, "convex_hull: the horizon passes a vertex twice");
+      start_of_[he.a] = F;
+      start_round_[he.a] = round_;
+    }
+    for (std::uint32_t F : created_) {
+      const std::uint32_t b = faces_[F].v[1];
+      if (start_round_[b] != round_)
+        throw error(error_category::internal, "convex_hull: the horizon is not a closed loop");
+      const std::uint32_t G = start_of_[b];
+      faces_[F].nbr[1] = G;
+      faces_[G].nbr[2] = F;
+    }
+  }
+
+  void reset_rounds() {
+    round_ = 0;
     start_of_.assign(pts_.size(), none);
     start_round_.assign(pts_.size(), 0);
+  }
+
+  // The face whose cone from the centre contains p: from `start`, cross any edge whose
+  // plane through the centre has p on its far side. none when the step budget runs out.
+  std::uint32_t locate(const glm::dvec3& p, std::uint32_t start) {
+    std::uint32_t f = start;
+    const std::size_t budget =
+        64 + 4 * static_cast<std::size_t>(std::sqrt(static_cast<double>(faces_.size())));
+    for (std::size_t step = 0; step < budget; ++step) {
+      const face& F = faces_[f];
+      bool moved = false;
+      for (std::uint32_t t = 0; t < 3 && !moved; ++t) {
+        const std::uint32_t e = (t + static_cast<std::uint32_t>(step)) % 3;  // rotate: no cycling
+        double value = 0;
+        int o = orient3d_filter(prepare_orient3d(centre_, pts_[F.v[e]], pts_[F.v[(e + 1) % 3]]), p, value);
+        if (o == 0) {
+          ++exact_;
+          o = orient3d_exact(centre_, pts_[F.v[e]], pts_[F.v[(e + 1) % 3]], p);
+        }
+        if (o < 0) {
+          f = F.nbr[e];
+          moved = true;
+        }
+      }
+      if (!moved) return f;
+    }
+    return none;
+  }
+
+  // Random rounds of doubling size, each sorted along a Morton curve: the insertion order
+  // stays random at large scale (expected O(n log n)) and local within a round.
+  std::vector<std::uint32_t> brio_order(std::span<const std::uint32_t> candidates) const {
+    std::vector<std::uint32_t> order(candidates.begin(), candidates.end());
+    std::mt19937_64 rng(0x5eed5eedu);  // fixed: the same input always gives the same mesh
+    std::shuffle(order.begin(), order.end(), rng);
+    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    for (std::uint32_t q : order) lo = glm::min(lo, pts_[q]), hi = glm::max(hi, pts_[q]);
+    const glm::dvec3 extent = glm::max(hi - lo, glm::dvec3(std::numeric_limits<double>::min()));
+    auto spread = [](std::uint64_t v) {  // 21 bits to every third of 63
+      v &= 0x1FFFFF;
+      v = (v | v << 32) & 0x1F00000000FFFFull;
+      v = (v | v << 16) & 0x1F0000FF0000FFull;
+      v = (v | v << 8) & 0x100F00F00F00F00Full;
+      v = (v | v << 4) & 0x10C30C30C30C30C3ull;
+      v = (v | v << 2) & 0x1249249249249249ull;
+      return v;
+    };
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(order.size());
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      const glm::dvec3 t = (pts_[order[i]] - lo) / extent * 2097151.0;
+      keyed[i] = {spread(static_cast<std::uint64_t>(t.x)) | spread(static_cast<std::uint64_t>(t.y)) << 1 |
+                      spread(static_cast<std::uint64_t>(t.z)) << 2,
+                  order[i]};
+    }
+    for (std::size_t hi_end = keyed.size(); hi_end > 0;) {
+      const std::size_t lo_end = hi_end > 64 ? hi_end / 2 : 0;
+      std::sort(keyed.begin() + static_cast<std::ptrdiff_t>(lo_end),
+                keyed.begin() + static_cast<std::ptrdiff_t>(hi_end));
+      hi_end = lo_end;
+    }
+    for (std::size_t i = 0; i < keyed.size(); ++i) order[i] = keyed[i].second;
+    return order;
+  }
+
+  // Quickhull: repeatedly the furthest outside point of a face becomes a vertex.
+  void expand() {
+    reset_rounds();
+    std::vector<outside_point> points;
     while (!stack_.empty()) {
       const std::uint32_t f0 = stack_.back();
       stack_.pop_back();
-      if (!faces_[f0].alive || faces_[f0].outside.empty()) continue;
-      ++round;
-      const std::uint32_t eye = faces_[f0].outside[faces_[f0].furthest].index;
-      const glm::dvec3 eye_p = pts_[eye];
-
-      // The faces eye sees strictly form a disk; its boundary is the horizon.
-      visible.assign(1, f0);
-      horizon.clear();
-      faces_[f0].mark = 2 * round;
-      for (std::size_t i = 0; i < visible.size(); ++i) {
-        const std::uint32_t g = visible[i];
-        for (std::uint32_t e = 0; e < 3; ++e) {
-          const std::uint32_t h = faces_[g].nbr[e];
-          face& H = faces_[h];
-          if (H.mark == 2 * round) continue;
-          bool sees = false;
-          if (H.mark != 2 * round + 1) {
-            double value = 0;
-            sees = side(H, eye_p, value) > 0;
-            H.mark = sees ? 2 * round : 2 * round + 1;
-          }
-          if (sees)
-            visible.push_back(h);
-          else
-            horizon.push_back({faces_[g].v[e], faces_[g].v[(e + 1) % 3], h});
-        }
-      }
-
+      if (!faces_[f0].alive || sets_[f0].points.empty()) continue;
+      const std::uint32_t eye = sets_[f0].points[sets_[f0].furthest].index;
+      carve(f0, pts_[eye]);
       // Collect the outside points of the visible faces before their slots are reused.
       points.clear();
-      for (std::uint32_t g : visible) {
-        for (const outside_point& q : faces_[g].outside)
+      for (std::uint32_t g : visible_)
+        for (const outside_point& q : sets_[g].points)
           if (q.index != eye) points.push_back(q);
-        faces_[g].alive = false;
-        faces_[g].outside.clear();
-        free_.push_back(g);
-      }
-
-      // A cone of new faces from the eye to the horizon.
-      created.clear();
-      for (const horizon_edge& he : horizon) {
-        const std::uint32_t F = new_face(he.a, he.b, eye);
-        created.push_back(F);
-        faces_[F].nbr[0] = he.outer;
-        face& O = faces_[he.outer];
-        for (std::uint32_t k = 0; k < 3; ++k)
-          if (O.v[k] == he.b && O.v[(k + 1) % 3] == he.a) O.nbr[k] = F;
-        if (start_round_[he.a] == round)
-          throw error(error_category::internal, "convex_hull: the horizon passes a vertex twice");
-        start_of_[he.a] = F;
-        start_round_[he.a] = round;
-      }
-      for (std::uint32_t F : created) {
-        const std::uint32_t b = faces_[F].v[1];
-        if (start_round_[b] != round)
-          throw error(error_category::internal, "convex_hull: the horizon is not a closed loop");
-        const std::uint32_t G = start_of_[b];
-        faces_[F].nbr[1] = G;
-        faces_[G].nbr[2] = F;
-      }
-
+      cone(eye);
       // Points outside a deleted face are outside a new face or inside the new hull.
       for (const outside_point& q : points) {
-        for (std::uint32_t F : created) {
+        for (std::uint32_t F : created_) {
           double value = 0;
           if (side(faces_[F], q.p, value) > 0) {
             add_outside(F, q, value);
@@ -341,9 +487,15 @@ class engine {
 
   std::span<const glm::dvec3> pts_;
   std::vector<face> faces_;
+  std::vector<outside_set> sets_;  // quickhull only, parallel to faces_
+  bool with_sets_ = true;
   std::vector<std::uint32_t> free_, stack_;
   std::vector<std::uint32_t> start_of_;
   std::vector<std::uint64_t> start_round_;
+  std::uint64_t round_ = 0;
+  glm::dvec3 centre_{0.0};
+  std::vector<std::uint32_t> visible_, created_;
+  std::vector<horizon_edge> horizon_;
   std::array<std::uint32_t, 4> simplex_{};
   std::size_t exact_ = 0;
 };
@@ -398,7 +550,7 @@ inline std::vector<std::uint32_t> crease_counts(engine& eng, std::size_t n) {
       std::uint32_t opposite = G.v[0];
       for (std::uint32_t v : G.v)
         if (v != F.v[e] && v != F.v[(e + 1) % 3]) opposite = v;
-      if (eng.orient(F.v[0], F.v[1], F.v[2], opposite) != 0) {
+      if (eng.side(F, eng.point(opposite)) != 0) {
         ++count[F.v[e]];
         ++count[F.v[(e + 1) % 3]];
       }
@@ -424,9 +576,17 @@ inline void emit_faces(engine& eng, bool merge, result& out) {
   local.assign(static_cast<std::size_t>(max_index) + 1, none);
   out.face_offsets.assign(1, 0);
   if (!merge) {
+    std::vector<std::uint32_t> number(faces.size(), none);
+    std::uint32_t count = 0;
+    for (std::uint32_t f = 0; f < faces.size(); ++f)
+      if (faces[f].alive) number[f] = count++;
+    out.face_vertices.reserve(3 * count);
+    out.face_offsets.reserve(count + 1);
+    out.neighbours.reserve(3 * count);
     for (const face& F : faces) {
       if (!F.alive) continue;
       for (std::uint32_t v : F.v) out.face_vertices.push_back(vertex(v));
+      for (std::uint32_t g : F.nbr) out.neighbours.push_back(number[g]);
       out.face_offsets.push_back(static_cast<std::uint32_t>(out.face_vertices.size()));
     }
     return;
@@ -448,7 +608,7 @@ inline void emit_faces(engine& eng, bool merge, result& out) {
       std::uint32_t opposite = G.v[0];
       for (std::uint32_t v : G.v)
         if (v != F.v[e] && v != F.v[(e + 1) % 3]) opposite = v;
-      if (eng.orient(F.v[0], F.v[1], F.v[2], opposite) == 0) parent[find(f)] = find(g);
+      if (eng.side(F, eng.point(opposite)) == 0) parent[find(f)] = find(g);
     }
   }
   // Each facet is a convex polygon whose vertices are corners: every boundary vertex has
@@ -487,13 +647,36 @@ inline void emit_faces(engine& eng, bool merge, result& out) {
   }
 }
 
+/// True when a hull of an evenly spread sample of the points keeps most of the sample as
+/// vertices (points in convex position, e.g. on a sphere): then insertion with walks beats
+/// quickhull, whose outside sets only pay off when most points fall inside. O(sample).
+inline bool mostly_vertices(std::span<const glm::dvec3> pts) {
+  constexpr std::size_t sample = 512;
+  if (pts.size() < 8 * sample) return false;  // small inputs: quickhull is fast anyway
+  std::vector<glm::dvec3> some;
+  const std::size_t stride = pts.size() / sample;
+  for (std::size_t i = 0; i < pts.size(); i += stride) some.push_back(pts[i]);
+  std::vector<std::uint32_t> all(some.size());
+  std::iota(all.begin(), all.end(), 0u);
+  engine eng(some);
+  if (eng.run(all) != 3) return false;
+  std::vector<std::uint8_t> used(some.size(), 0);
+  std::size_t vertices = 0;
+  for (const face& F : eng.faces())
+    if (F.alive)
+      for (std::uint32_t v : F.v) vertices += used[v] == 0, used[v] = 1;
+  return 2 * vertices >= some.size();
+}
+
 /// The hull of all points as index lists; see convex_hull for the degenerate cases.
 inline result compute(std::span<const glm::dvec3> pts, const convex_hull_options& options) {
   result out;
   std::vector<std::uint32_t> all(pts.size());
   std::iota(all.begin(), all.end(), 0u);
   engine eng(pts);
-  out.dimension = eng.run(all);
+  const bool incremental = options.method == convex_hull_method::incremental ||
+                           (options.method == convex_hull_method::automatic && mostly_vertices(pts));
+  out.dimension = incremental ? eng.run_incremental(all) : eng.run(all);
   const auto& s = eng.simplex();
   out.face_offsets.assign(1, 0);
   if (out.dimension == 0) {
@@ -545,6 +728,37 @@ inline result compute(std::span<const glm::dvec3> pts, const convex_hull_options
   return out;
 }
 
+/// Writes the closed triangle mesh of r straight into m's records (the hull already knows
+/// every face's neighbours, so no edge needs to be looked up). O(faces).
+inline void link_triangles(halfedge_mesh& m, const result& r) {
+  using access = detail::mesh_access;
+  const std::size_t nf = r.face_offsets.size() - 1;
+  access::resize(m, r.vertices.size(), 3 * nf / 2, nf);
+  std::vector<std::uint32_t> he(3 * nf, none);  // half-edge of each face corner's edge
+  std::uint32_t edges = 0;
+  for (std::size_t c = 0; c < 3 * nf; ++c) {
+    if (he[c] != none) continue;
+    const std::size_t f = c / 3, e = c % 3, g = r.neighbours[c];
+    const std::uint32_t a = r.face_vertices[c], b = r.face_vertices[3 * f + (e + 1) % 3];
+    std::size_t k = 0;  // the corner of g whose edge runs b -> a
+    while (k < 3 && !(r.face_vertices[3 * g + k] == b && r.face_vertices[3 * g + (k + 1) % 3] == a)) ++k;
+    if (k == 3 || he[3 * g + k] != none)
+      throw error(error_category::internal, "convex_hull: face neighbours do not match");
+    he[c] = 2 * edges;
+    he[3 * g + k] = 2 * edges + 1;
+    ++edges;
+  }
+  auto& records = access::records(m);
+  auto& anchors = access::face_anchors(m);
+  for (std::size_t f = 0; f < nf; ++f) {
+    for (std::size_t e = 0; e < 3; ++e)
+      records[he[3 * f + e]] = {r.face_vertices[3 * f + (e + 1) % 3], he[3 * f + (e + 1) % 3],
+                                he[3 * f + (e + 2) % 3], static_cast<std::uint32_t>(f)};
+    anchors[f] = he[3 * f];
+  }
+  access::finish(m);
+}
+
 }  // namespace detail::hull
 
 /// The convex hull of `points` as a closed mesh whose faces point outward: triangles, or
@@ -579,7 +793,10 @@ halfedge_mesh convex_hull(std::span<const P> points, const convex_hull_options& 
   halfedge_mesh m;
   auto pos = m.add_vertex_property<P>(point_property_name);
   auto index = m.add_vertex_property<std::uint32_t>(input_index_property_name, detail::hull::none);
-  m.build(r.vertices.size(), r.face_offsets, r.face_vertices);
+  if (!r.neighbours.empty())
+    detail::hull::link_triangles(m, r);
+  else
+    m.build(r.vertices.size(), r.face_offsets, r.face_vertices);
   for (std::size_t v = 0; v < r.vertices.size(); ++v) {
     pos.vector()[v] = points[r.vertices[v]];
     index.vector()[v] = r.vertices[v];
