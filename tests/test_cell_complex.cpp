@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <string>
 
 #include "cellforge/cells/cell_complex.hpp"
+#include "cellforge/cells/validate.hpp"
 #include "cells_fixtures.hpp"
 
 using namespace cellforge;
@@ -330,4 +332,208 @@ TEST_CASE("cell complex: a face in three volumes") {
   in.volumes.push_back(v);
   const std::string msg = build_error(in);
   CHECK(contains(msg, "face " + std::to_string(shared) + " is in more than two volumes (0, 1, 2)"));
+}
+
+// ---------------------------------------------------------------- validate
+
+namespace {
+
+#define REQUIRE_CELLS_VALID(cc)    \
+  do {                             \
+    const auto vr_ = validate(cc); \
+    INFO(vr_.message);             \
+    REQUIRE(vr_.ok());             \
+  } while (0)
+
+// All volumes of `in` merged into one: faces between two of them, and edges left in no face,
+// are dropped (indices renumbered).
+cell_complex_input merged(const cell_complex_input& in) {
+  std::vector<int> count(in.faces.size(), 0);
+  for (const auto& v : in.volumes)
+    for (const auto& fs : v.faces) ++count[fs.first];
+  cell_complex_input out;
+  out.points = in.points;
+  std::vector<std::uint32_t> new_face(in.faces.size(), 0xFFFFFFFFu);
+  std::set<std::pair<std::uint32_t, std::uint32_t>> used;
+  for (std::size_t f = 0; f < in.faces.size(); ++f)
+    if (count[f] == 1) {
+      new_face[f] = static_cast<std::uint32_t>(out.faces.size());
+      out.faces.push_back(in.faces[f]);
+      for (const auto& loop : in.faces[f].loops)
+        for (std::size_t i = 0; i < loop.size(); ++i)
+          used.insert(std::minmax(loop[i], loop[(i + 1) % loop.size()]));
+    }
+  for (const auto& e : in.edges)
+    if (used.count(std::minmax(e[0], e[1]))) out.edges.push_back(e);
+  cell_complex_input::volume all;
+  for (const auto& v : in.volumes)
+    for (const auto& fs : v.faces)
+      if (count[fs.first] == 1) all.faces.emplace_back(new_face[fs.first], fs.second);
+  out.volumes = {all};
+  return out;
+}
+
+std::uint32_t point_index(const cell_complex_input& in, glm::dvec3 p) {
+  return static_cast<std::uint32_t>(std::find(in.points.begin(), in.points.end(), p) - in.points.begin());
+}
+
+}  // namespace
+
+TEST_CASE("validate: valid complexes and the Euler characteristic their topology implies") {
+  std::vector<fx::cube_cell> shell;  // a 3x3x3 grid without its middle cube: a cavity
+  for (int x = 0; x < 3; ++x)
+    for (int y = 0; y < 3; ++y)
+      for (int z = 0; z < 3; ++z)
+        if (x != 1 || y != 1 || z != 1) shell.push_back({x, y, z});
+  struct named {
+    const char* name;
+    cell_complex_input in;
+    long long euler;
+    double volume;
+  };
+  const std::vector<named> cases{
+      {"cube", fx::cube(), 1, 1},
+      {"two cubes", fx::two_cubes(), 1, 2},
+      {"2x2x1 grid", fx::grid(2, 2, 1), 1, 4},
+      {"3x2x4 grid", fx::grid(3, 2, 4), 1, 24},
+      {"frame of eight cubes (genus 1)", fx::frame(), 0, 8},
+      {"frame as one volume", merged(fx::frame()), -1, 8},
+      {"block with a hole (annular faces, genus-1 volume)", fx::block_with_hole(), 1, 8},
+      {"grid with a cavity", fx::lattice(shell), 2, 26},
+      {"hollow block as one volume", merged(fx::lattice(shell)), 3, 26},
+  };
+  for (const auto& c : cases) {
+    INFO(c.name);
+    const cell_complex cc = make_cell_complex(c.in);
+    const auto r = validate(cc);
+    INFO(r.message);
+    REQUIRE(r.ok());
+    REQUIRE(cc.num_objects() == 1);
+    CHECK(r.euler_checked[0] == 1);
+    CHECK(r.expected_euler[0] == c.euler);
+    CHECK(cc.object_euler(cell_object(0)) == c.euler);
+    double total = 0;
+    for (double v : r.signed_volumes) total += v;
+    CHECK(total == doctest::Approx(c.volume));
+  }
+  const cell_complex two = make_cell_complex(fx::disjoint_cubes());
+  const auto r = validate(two);
+  REQUIRE(r.ok());
+  CHECK(r.expected_euler == std::vector<long long>{1, 1});
+  CHECK(r.signed_volumes == std::vector<double>{1.0, 1.0});
+  const auto hole = validate(make_cell_complex(fx::block_with_hole()));
+  REQUIRE(hole.signed_volumes.size() == 1);
+  CHECK(hole.signed_volumes[0] == doctest::Approx(8.0));
+}
+
+TEST_CASE("validate: the same answers after scaling and a rigid motion") {
+  for (double scale : {1e-6, 1.0, 1e6}) {
+    auto in = fx::grid(2, 1, 2);
+    const double a = 0.7, b = 1.9;
+    for (auto& p : in.points) {
+      glm::dvec3 q{std::cos(a) * p.x - std::sin(a) * p.y, std::sin(a) * p.x + std::cos(a) * p.y, p.z};
+      q = {q.x, std::cos(b) * q.y - std::sin(b) * q.z, std::sin(b) * q.y + std::cos(b) * q.z};
+      p = scale * q + glm::dvec3(3 * scale, -5 * scale, 11 * scale);
+    }
+    const cell_complex cc = make_cell_complex(in);
+    const auto r = validate(cc);
+    INFO(r.message);
+    REQUIRE(r.ok());
+    for (double v : r.signed_volumes) CHECK(v == doctest::Approx(scale * scale * scale));
+    const cell_complex ref = make_cell_complex(fx::grid(2, 1, 2));
+    for (cell_edge e : cc.edges()) {
+      REQUIRE(cc.edge_faces(e).size() == ref.edge_faces(e).size());
+      for (std::size_t k = 0; k < cc.edge_faces(e).size(); ++k) {
+        CHECK(cc.edge_faces(e)[k] == ref.edge_faces(e)[k]);
+        CHECK(cc.edge_wedges(e)[k] == ref.edge_wedges(e)[k]);
+      }
+    }
+  }
+}
+
+TEST_CASE("validate: each broken invariant is named with its element") {
+  {
+    auto in = fx::two_cubes();
+    for (auto& v : in.volumes[1].faces) v.second = -v.second;  // volume 1 inside out
+    // The shared face now has both volumes on one side: make_cell_complex refuses that.
+    CHECK_THROWS_AS((void)make_cell_complex(in), error);
+    auto single = fx::cube();
+    for (auto& v : single.volumes[0].faces) v.second = -v.second;
+    const auto r = validate(make_cell_complex(single));
+    CHECK(r.broken == cells_invariant::orientation);
+    CHECK(r.element == 0);
+    CHECK(contains(r.message, "volume 0 has signed volume -1"));
+  }
+  {
+    auto in = fx::cube();
+    in.points[point_index(in, {1, 1, 1})] = {1, 1, 1.1};
+    const auto r = validate(make_cell_complex(in));
+    CHECK(r.broken == cells_invariant::non_planar);
+    CHECK(contains(r.message, "from the face's plane"));
+    cells_validation_options loose;
+    loose.planarity = 0.1;
+    CHECK(validate(make_cell_complex(in), loose).ok());
+  }
+  {
+    auto in = fx::cube();
+    in.points[point_index(in, {1, 1, 1})] = {1, 1, 0};
+    in.points[point_index(in, {1, 1, 0})] = {1, 1, 0};
+    const auto r = validate(make_cell_complex(in));
+    CHECK(r.broken == cells_invariant::degenerate_edge);
+  }
+  {
+    // A tall box on the cube's bottom: its bottom and front faces coincide with the cube's
+    // near their common edges.
+    auto in = fx::cube();
+    std::uint32_t b[4], t[4];
+    const glm::dvec3 corners[4] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    for (int i = 0; i < 4; ++i) {
+      b[i] = point_index(in, corners[i]);
+      t[i] = static_cast<std::uint32_t>(in.points.size());
+      in.points.push_back(corners[i] + glm::dvec3(0, 0, 2));
+    }
+    for (int i = 0; i < 4; ++i) {
+      in.edges.push_back({b[i], t[i]});
+      in.edges.push_back({t[i], t[(i + 1) % 4]});
+    }
+    cell_complex_input::volume tall;
+    const auto f0 = static_cast<std::uint32_t>(in.faces.size());
+    in.faces.push_back({{{b[0], b[3], b[2], b[1]}}});
+    in.faces.push_back({{{t[0], t[1], t[2], t[3]}}});
+    for (int i = 0; i < 4; ++i) in.faces.push_back({{{b[i], b[(i + 1) % 4], t[(i + 1) % 4], t[i]}}});
+    for (std::uint32_t f = f0; f < in.faces.size(); ++f) tall.faces.emplace_back(f, 1);
+    in.volumes.push_back(tall);
+    const cell_complex cc = make_cell_complex(in);
+    const auto r = validate(cc);
+    CHECK(r.broken == cells_invariant::rotation_order);
+    CHECK(contains(r.message, "lie on the same side of the edge"));
+  }
+  {
+    const auto r = validate(make_cell_complex(merged(fx::lattice({{0, 0, 0}, {1, 1, 0}}))));
+    CHECK(r.broken == cells_invariant::open_boundary);
+    CHECK(contains(r.message, "volume 0: edge"));
+  }
+  {
+    const auto r = validate(make_cell_complex(merged(fx::lattice({{0, 0, 0}, {1, 1, 1}}))));
+    CHECK(r.broken == cells_invariant::euler);
+    CHECK(contains(r.message, "pinched"));
+  }
+  {
+    // Cubes meeting at an edge or a vertex are valid; their outer surface is not a manifold,
+    // so the Euler check is skipped for them (and says so).
+    for (const auto& cubes : {std::vector<fx::cube_cell>{{0, 0, 0}, {1, 1, 0}},
+                              std::vector<fx::cube_cell>{{0, 0, 0}, {1, 1, 1}}}) {
+      const auto r = validate(make_cell_complex(fx::lattice(cubes)));
+      INFO(r.message);
+      CHECK(r.ok());
+      CHECK(r.euler_checked == std::vector<std::uint8_t>{0});
+    }
+  }
+  {
+    auto in = fx::cube();
+    in.edges.push_back({0, 7});  // a dangling edge: valid, Euler not checked
+    const auto r = validate(make_cell_complex(in));
+    CHECK(r.ok());
+    CHECK(r.euler_checked == std::vector<std::uint8_t>{0});
+  }
 }

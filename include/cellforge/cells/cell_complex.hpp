@@ -468,11 +468,17 @@ inline cell_complex make_cell_complex(cell_complex_input input) {
     }
   }
 
-  // Objects: connected components through edges; every face and volume joins the
-  // component of its vertices.
+  // Objects: connected components through edges, and through faces and volumes too, so
+  // that a face's hole and a volume's inner shell (a cavity) stay with their outer boundary.
   std::vector<uint32_t> parent(nv);
   std::iota(parent.begin(), parent.end(), 0u);
-  for (const auto& [a, b] : input.edges) parent[find_root(parent, a)] = find_root(parent, b);
+  auto join = [&](uint32_t a, uint32_t b) { parent[find_root(parent, a)] = find_root(parent, b); };
+  for (const auto& [a, b] : input.edges) join(a, b);
+  for (const auto& f : input.faces)
+    for (const auto& loop : f.loops) join(loop[0], f.loops[0][0]);
+  for (const auto& c : input.volumes)
+    for (const auto& fs : c.faces)
+      join(input.faces[fs.first].loops[0][0], input.faces[c.faces[0].first].loops[0][0]);
   cc.vertex_object_.assign(nv, 0xFFFFFFFFu);
   uint32_t no = 0;
   for (uint32_t v = 0; v < nv; ++v) {
