@@ -1,0 +1,413 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Stage 2 of the wireframe pipeline (seed 000 §4.2): find candidate faces. The default
+/// tracer is polynomial: every plane spanned by two adjacent edges collects the edges lying in
+/// it, and the bounded faces of that plane's planar arrangement are the candidates (nested
+/// cycles in one plane become holes). The seed's breadth-first circuit search with its pruning
+/// is kept, faithfully, as an option; it is exponential in the worst case, so it runs under a
+/// work budget.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <deque>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "cellforge/core/error.hpp"
+#include "cellforge/core/predicates.hpp"
+#include "cellforge/core/tolerance.hpp"
+#include "cellforge/wireframe/wire_graph.hpp"
+
+namespace cellforge {
+
+/// Which face-finding method circuit tracing uses.
+enum class tracer_kind : std::uint8_t {
+  planar,    ///< faces of each plane's planar arrangement; polynomial (default)
+  seed_bfs,  ///< the seed's breadth-first circuit search with pruning; exponential worst case
+};
+
+/// Options of trace_circuits.
+struct trace_options {
+  tracer_kind kind = tracer_kind::planar;
+  tolerance planarity{1e-9};  ///< a point lies in a plane when closer than this (relative to model size)
+  std::uint64_t work_budget =
+      200'000'000;                    ///< abstract steps (path extensions, incidences visited); 0 = none
+  std::size_t max_circuit_edges = 0;  ///< seed_bfs only: longest circuit searched; 0 = number of edges
+};
+
+/// Candidate faces and what it took to find them.
+struct trace_result : stage_report {
+  std::vector<wire_face> faces;      ///< candidates; seed_bfs reports every circuit found (with repeats)
+  std::size_t planes = 0;            ///< planar: distinct planes spanned by adjacent edges
+  std::size_t plane_components = 0;  ///< planar: connected in-plane edge sets traced
+  std::size_t holes = 0;             ///< planar: loops assigned as holes of a containing face
+  std::size_t circuits = 0;          ///< circuits found (before making them unique)
+  std::uint64_t work = 0;            ///< steps spent against the budget
+};
+
+namespace detail {
+
+/// One connected set of edges lying in one plane, with its traced faces.
+struct plane_component {
+  glm::dvec3 origin{0.0}, normal{0.0}, u{0.0}, w{0.0};  // plane frame: u × w = normal
+  std::vector<std::vector<std::uint32_t>> bounded;      // counter-clockwise walks (candidate faces)
+  std::vector<std::vector<std::uint32_t>> outer;        // clockwise walks (outer boundaries)
+};
+
+inline glm::dvec2 project(const plane_component& c, const glm::dvec3& p) {
+  const glm::dvec3 d = p - c.origin;
+  return {glm::dot(d, c.u), glm::dot(d, c.w)};
+}
+
+inline double signed_area_2d(const std::vector<glm::dvec2>& q) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    const auto& a = q[i];
+    const auto& b = q[(i + 1) % q.size()];
+    s += (a.x - q[0].x) * (b.y - q[0].y) - (b.x - q[0].x) * (a.y - q[0].y);
+  }
+  return 0.5 * s;
+}
+
+/// Even-odd test of a 2D point against a polygon. O(n).
+inline bool inside_2d(const std::vector<glm::dvec2>& poly, const glm::dvec2& q) {
+  bool in = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const auto& a = poly[i];
+    const auto& b = poly[j];
+    if ((a.y > q.y) != (b.y > q.y)) {
+      // Exact side test so that the parity does not depend on rounding of an intersection.
+      const int s = orient2d(b, a, q);
+      if ((a.y > b.y) ? s > 0 : s < 0) in = !in;
+    }
+  }
+  return in;
+}
+
+/// Traces the faces of one in-plane edge set: angular order around each vertex, walks with
+/// the face on the left. Edges walked on both sides by one walk (trees, bridges) are removed
+/// and the walk repeated. O(k log k) for k in-plane edges.
+inline void trace_plane_faces(const wire_graph& g, std::vector<std::uint32_t> edges, plane_component& c,
+                              work_budget& budget) {
+  std::unordered_map<std::uint32_t, std::uint32_t> local;  // vertex → local index
+  for (;;) {
+    local.clear();
+    std::vector<std::uint32_t> verts;
+    for (const auto e : edges)
+      for (const auto v : g.edges[e])
+        if (local.emplace(v, static_cast<std::uint32_t>(verts.size())).second) verts.push_back(v);
+    std::vector<glm::dvec2> q(verts.size());
+    for (std::size_t i = 0; i < verts.size(); ++i) q[i] = project(c, g.points[verts[i]]);
+    // Half-edge 2k goes start→end of edges[k], 2k+1 end→start.
+    const std::size_t nh = 2 * edges.size();
+    std::vector<std::uint32_t> from(nh), to(nh);
+    std::vector<std::vector<std::uint32_t>> out(verts.size());
+    for (std::uint32_t k = 0; k < edges.size(); ++k) {
+      const std::uint32_t a = local[g.edges[edges[k]][0]], b = local[g.edges[edges[k]][1]];
+      from[2 * k] = a, to[2 * k] = b, from[2 * k + 1] = b, to[2 * k + 1] = a;
+      out[a].push_back(2 * k);
+      out[b].push_back(2 * k + 1);
+    }
+    std::vector<std::uint32_t> pos(nh);
+    for (std::uint32_t v = 0; v < verts.size(); ++v) {
+      auto& o = out[v];
+      budget.spend(o.size());
+      const glm::dvec2 origin = q[v];
+      auto half = [&](std::uint32_t h) {
+        const glm::dvec2 d = q[to[h]] - origin;
+        return (d.y > 0.0 || (d.y == 0.0 && d.x > 0.0)) ? 0 : 1;
+      };
+      // Counter-clockwise order by angle, decided with exact orientation tests.
+      std::sort(o.begin(), o.end(), [&](std::uint32_t x, std::uint32_t y) {
+        const int hx = half(x), hy = half(y);
+        if (hx != hy) return hx < hy;
+        return orient2d(origin, q[to[x]], q[to[y]]) > 0;
+      });
+      for (std::uint32_t i = 0; i < o.size(); ++i) pos[o[i]] = i;
+    }
+    // next(h): at to(h), the outgoing half-edge just clockwise of the twin, which keeps the face on the left.
+    std::vector<std::uint32_t> walk_of(nh, no_index);
+    std::vector<std::vector<std::uint32_t>> walks;
+    for (std::uint32_t h0 = 0; h0 < nh; ++h0) {
+      if (walk_of[h0] != no_index) continue;
+      const auto id = static_cast<std::uint32_t>(walks.size());
+      walks.emplace_back();
+      std::uint32_t h = h0;
+      do {
+        walk_of[h] = id;
+        walks.back().push_back(h);
+        budget.spend();
+        const auto& o = out[to[h]];
+        const std::uint32_t twin = h ^ 1u;
+        h = o[(pos[twin] + o.size() - 1) % o.size()];
+      } while (h != h0);
+    }
+    std::vector<std::uint32_t> keep;
+    for (std::uint32_t k = 0; k < edges.size(); ++k)
+      if (walk_of[2 * k] != walk_of[2 * k + 1]) keep.push_back(edges[k]);
+    if (keep.size() != edges.size()) {
+      edges = std::move(keep);
+      if (edges.empty()) return;
+      continue;
+    }
+    for (const auto& wk : walks) {
+      std::vector<std::uint32_t> loop;
+      std::vector<glm::dvec2> poly;
+      for (const auto h : wk) {
+        loop.push_back(verts[from[h]]);
+        poly.push_back(q[from[h]]);
+      }
+      (signed_area_2d(poly) > 0.0 ? c.bounded : c.outer).push_back(std::move(loop));
+    }
+    return;
+  }
+}
+
+/// Key of a plane for grouping components: normal and offset rounded on a coarse grid.
+struct plane_key_hash {
+  std::size_t operator()(const std::array<std::int64_t, 4>& k) const noexcept {
+    std::size_t h = 1469598103934665603ull;
+    for (const auto x : k) h = (h ^ static_cast<std::size_t>(x)) * 1099511628211ull;
+    return h;
+  }
+};
+
+inline std::array<double, 4> plane_coords(const glm::dvec3& n, const glm::dvec3& o, double size) {
+  constexpr double q = 1e-6;
+  return {n.x / q, n.y / q, n.z / q, glm::dot(n, o) / (q * size)};
+}
+
+/// The polynomial planar-arrangement tracer. O(sum over vertices of degree² + sum over planes
+/// of k log k) for k edges in a plane.
+inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_result& r,
+                         work_budget& budget) {
+  const double tol = std::max(opt.planarity.absolute(bounding_box{g.center - 0.5 * g.size / std::sqrt(3.0),
+                                                                  g.center + 0.5 * g.size / std::sqrt(3.0)}),
+                              g.merge_tolerance);
+  const std::size_t nv = g.num_vertices(), ne = g.num_edges();
+  // Per vertex a deg × deg matrix of "this pair of edges has been assigned a plane".
+  std::vector<std::size_t> pair_base(nv + 1, 0);
+  for (std::uint32_t v = 0; v < nv; ++v) pair_base[v + 1] = pair_base[v] + g.degree(v) * g.degree(v);
+  std::vector<char> done(pair_base[nv], 0);
+  std::vector<std::uint32_t> vstamp(nv, no_index), estamp(ne, no_index), vtest(nv, no_index);
+  std::vector<char> vin(nv, 0);
+  std::vector<plane_component> comps;
+  std::unordered_map<std::array<std::int64_t, 4>, std::vector<std::uint32_t>, plane_key_hash> plane_of;
+  std::vector<std::uint32_t> group;  // component → plane group (first component of the group)
+
+  for (std::uint32_t v = 0; v < nv; ++v) {
+    const auto inc = g.around(v);
+    for (std::uint32_t i = 0; i < inc.size(); ++i)
+      for (std::uint32_t j = i + 1; j < inc.size(); ++j) {
+        if (done[pair_base[v] + i * inc.size() + j]) continue;
+        done[pair_base[v] + i * inc.size() + j] = 1;
+        budget.spend();
+        const glm::dvec3 da = g.points[inc[i].other] - g.points[v], db = g.points[inc[j].other] - g.points[v];
+        glm::dvec3 n = glm::cross(da, db);
+        const double ln = glm::length(n);
+        // Collinear pair: the far end of one edge lies within tolerance of the other's line.
+        if (ln <= tol * std::max(glm::length(da), glm::length(db))) continue;
+        n /= ln;
+        const auto cid = static_cast<std::uint32_t>(comps.size());
+        plane_component c;
+        c.origin = g.points[v];
+        c.normal = n;
+        c.u = glm::normalize(da - glm::dot(da, n) * n);
+        c.w = glm::cross(n, c.u);
+        // Breadth-first over edges lying in the plane, starting at v.
+        std::vector<std::uint32_t> cverts{v}, cedges;
+        vstamp[v] = cid;
+        for (std::size_t head = 0; head < cverts.size(); ++head) {
+          const std::uint32_t x = cverts[head];
+          for (const auto& in : g.around(x)) {
+            budget.spend();
+            if (estamp[in.edge] == cid) continue;
+            const std::uint32_t y = in.other;
+            if (vtest[y] != cid) {
+              vtest[y] = cid;
+              vin[y] = std::abs(glm::dot(n, g.points[y] - c.origin)) <= tol;
+            }
+            if (!vin[y]) continue;
+            estamp[in.edge] = cid;
+            cedges.push_back(in.edge);
+            if (vstamp[y] != cid) {
+              vstamp[y] = cid;
+              cverts.push_back(y);
+            }
+          }
+        }
+        // Every pair of in-plane edges at a vertex of this component spans this plane: mark them.
+        for (const auto x : cverts) {
+          const auto ix = g.around(x);
+          for (std::uint32_t a = 0; a < ix.size(); ++a) {
+            if (estamp[ix[a].edge] != cid) continue;
+            for (std::uint32_t b = a + 1; b < ix.size(); ++b)
+              if (estamp[ix[b].edge] == cid) done[pair_base[x] + a * ix.size() + b] = 1;
+          }
+        }
+        trace_plane_faces(g, std::move(cedges), c, budget);
+        // Group with earlier components of the same geometric plane (for holes).
+        const auto pc = plane_coords(n, c.origin, g.size);
+        std::uint32_t found = no_index;
+        for (int sign = 1; sign >= -1 && found == no_index; sign -= 2)
+          for (int combo = 0; combo < 16 && found == no_index; ++combo) {
+            std::array<std::int64_t, 4> k{};
+            for (int t = 0; t < 4; ++t) {
+              const double x = sign * pc[static_cast<std::size_t>(t)];
+              k[static_cast<std::size_t>(t)] = static_cast<std::int64_t>(std::floor(x)) + ((combo >> t) & 1);
+            }
+            const auto it = plane_of.find(k);
+            if (it == plane_of.end()) continue;
+            for (const auto other : it->second) {
+              const auto& oc = comps[other];
+              bool same = std::abs(std::abs(glm::dot(oc.normal, n)) - 1.0) < 1e-9;
+              for (std::size_t s = 0; s < cverts.size() && same;
+                   s += std::max<std::size_t>(1, cverts.size() / 8))
+                same = std::abs(glm::dot(oc.normal, g.points[cverts[s]] - oc.origin)) <= tol;
+              if (same) {
+                found = group[other];
+                break;
+              }
+            }
+          }
+        std::array<std::int64_t, 4> own{};
+        for (int t = 0; t < 4; ++t)
+          own[static_cast<std::size_t>(t)] =
+              static_cast<std::int64_t>(std::round(pc[static_cast<std::size_t>(t)]));
+        plane_of[own].push_back(cid);
+        group.push_back(found == no_index ? cid : found);
+        if (found == no_index) ++r.planes;
+        comps.push_back(std::move(c));
+      }
+  }
+  r.plane_components = comps.size();
+
+  // Holes: an outer walk of one component inside a bounded walk of another component of the
+  // same plane is a hole of the smallest such walk.
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> members;
+  for (std::uint32_t c = 0; c < comps.size(); ++c) members[group[c]].push_back(c);
+  std::vector<std::vector<wire_face>> faces_of(comps.size());
+  for (std::uint32_t c = 0; c < comps.size(); ++c)
+    for (const auto& b : comps[c].bounded) {
+      wire_face f;
+      f.loops.push_back(b);
+      faces_of[c].push_back(std::move(f));
+    }
+  for (const auto& [root, list] : members) {
+    if (list.size() < 2) continue;
+    const plane_component& frame = comps[root];
+    auto poly_of = [&](const std::vector<std::uint32_t>& loop) {
+      std::vector<glm::dvec2> poly;
+      for (const auto v : loop) poly.push_back(project(frame, g.points[v]));
+      return poly;
+    };
+    for (const auto c : list)
+      for (const auto& o : comps[c].outer) {
+        const glm::dvec2 probe = project(frame, g.points[o[0]]);
+        double best = 0.0;
+        std::pair<std::uint32_t, std::size_t> host{no_index, 0};
+        for (const auto d : list) {
+          if (d == c) continue;
+          for (std::size_t k = 0; k < comps[d].bounded.size(); ++k) {
+            budget.spend(comps[d].bounded[k].size());
+            const auto poly = poly_of(comps[d].bounded[k]);
+            if (!inside_2d(poly, probe)) continue;
+            const double a = std::abs(signed_area_2d(poly));
+            if (host.first == no_index || a < best) best = a, host = {d, k};
+          }
+        }
+        if (host.first == no_index) continue;
+        faces_of[host.first][host.second].loops.push_back(o);
+        for (auto& filler : faces_of[c]) filler.fills_hole = true;
+        ++r.holes;
+      }
+  }
+  for (auto& list : faces_of)
+    for (auto& f : list) {
+      update_normal(g, f);
+      r.faces.push_back(std::move(f));
+    }
+}
+
+/// The seed's breadth-first circuit search (§4.2), faithful: from each edge, paths grow from
+/// the end vertex of lower degree; paths with an inner circuit and paths starting with the
+/// same two edges as a found circuit are removed. Exponential worst case; budgeted.
+inline void trace_bfs(const wire_graph& g, const trace_options& opt, trace_result& r, work_budget& budget) {
+  const std::size_t max_len = opt.max_circuit_edges == 0 ? g.num_edges() : opt.max_circuit_edges;
+  struct path {
+    std::vector<std::uint32_t> verts;  // verts[0] = start; verts.back() = latest vertex
+    std::vector<std::uint32_t> edges;
+  };
+  for (std::uint32_t e = 0; e < g.num_edges(); ++e) {
+    const auto [s, t] = g.edges[e];
+    // Grow from the vertex with fewer edges; on a tie the end vertex (seed §4.2).
+    const std::uint32_t sel = g.degree(s) < g.degree(t) ? s : t;
+    const std::uint32_t other = sel == s ? t : s;
+    std::vector<path> current{{{other, sel}, {e}}}, next;
+    std::vector<std::uint32_t> closed_second;  // second edges of circuits found from e
+    while (!current.empty()) {
+      next.clear();
+      for (const auto& pth : current) {
+        if (pth.edges.size() >= max_len) continue;
+        if (pth.edges.size() >= 2 &&
+            std::find(closed_second.begin(), closed_second.end(), pth.edges[1]) != closed_second.end())
+          continue;
+        const std::uint32_t last = pth.verts.back();
+        for (const auto& in : g.around(last)) {
+          budget.spend();
+          if (std::find(pth.edges.begin(), pth.edges.end(), in.edge) != pth.edges.end()) continue;
+          if (in.other == pth.verts[0]) {
+            // A circuit: record it, and prune every path that starts with the same two edges.
+            wire_face f;
+            f.loops.push_back(pth.verts);
+            update_normal(g, f);
+            r.faces.push_back(std::move(f));
+            ++r.circuits;
+            const std::uint32_t second = pth.edges.size() >= 2 ? pth.edges[1] : in.edge;
+            closed_second.push_back(second);
+            continue;
+          }
+          // An inner circuit (the path returns to a vertex other than its start) is removed.
+          if (std::find(pth.verts.begin(), pth.verts.end(), in.other) != pth.verts.end()) continue;
+          path grown = pth;
+          grown.verts.push_back(in.other);
+          grown.edges.push_back(in.edge);
+          next.push_back(std::move(grown));
+        }
+      }
+      // Paths whose second edge already closed a circuit at this level are removed too.
+      std::erase_if(next, [&](const path& pth) {
+        return std::find(closed_second.begin(), closed_second.end(), pth.edges[1]) != closed_second.end();
+      });
+      current.swap(next);
+    }
+  }
+}
+
+}  // namespace detail
+
+/// Finds candidate faces of a labelled wireframe with the chosen tracer. Planar: polynomial,
+/// O(Σ deg(v)² + Σ_planes k log k); seed_bfs: exponential worst case, stopped by the work budget.
+inline trace_result trace_circuits(const wire_graph& g, const trace_options& options = {}) {
+  detail::stopwatch clock;
+  trace_result r;
+  detail::work_budget budget{options.work_budget, 0, "trace_circuits"};
+  if (options.kind == tracer_kind::planar)
+    detail::trace_planar(g, options, r, budget);
+  else
+    detail::trace_bfs(g, options, r, budget);
+  if (options.kind == tracer_kind::planar) r.circuits = r.faces.size();
+  r.work = budget.used;
+  r.milliseconds = clock.ms();
+  return r;
+}
+
+}  // namespace cellforge

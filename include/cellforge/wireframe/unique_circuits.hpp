@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Stage 3 of the wireframe pipeline (seed 000 §4.3): reduce the traced circuits to unique
+/// ones and put them in the seed's canonical order (each loop starts at its smallest label and
+/// runs towards the smaller neighbour; faces sorted by their loops).
+
+#include <algorithm>
+#include <cstdint>
+#include <map>
+#include <vector>
+
+#include "cellforge/wireframe/wire_graph.hpp"
+
+namespace cellforge {
+
+/// Options of unique_circuits (none yet; kept for a uniform stage interface).
+struct unique_options {};
+
+/// The unique candidate faces in canonical order.
+struct unique_result : stage_report {
+  std::vector<wire_face> faces;
+  std::size_t duplicates =
+      0;  ///< circuits that repeated an earlier one (same loops up to rotation and reversal)
+};
+
+/// Canonicalises every face and removes repeats; the comparison is by canonical loops, which
+/// the seed's edge-by-edge walk decides the same way. O(F log F · L) for loops of length L.
+inline unique_result unique_circuits(const wire_graph& g, std::vector<wire_face> faces,
+                                     const unique_options& = {}) {
+  detail::stopwatch clock;
+  unique_result r;
+  for (auto& f : faces) {
+    canonicalize(f);
+    update_normal(g, f);
+  }
+  std::map<std::vector<std::vector<std::uint32_t>>, std::size_t> seen;
+  for (auto& f : faces) {
+    if (seen.emplace(f.loops, r.faces.size()).second)
+      r.faces.push_back(std::move(f));
+    else
+      ++r.duplicates;
+  }
+  std::sort(r.faces.begin(), r.faces.end(),
+            [](const wire_face& a, const wire_face& b) { return a.loops < b.loops; });
+  r.milliseconds = clock.ms();
+  return r;
+}
+
+}  // namespace cellforge

@@ -1,0 +1,217 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// The data the stages of the wireframe → cell complex pipeline hand each other: the
+/// labelled graph of seed 000 §4.1 (vertices with incident edges and their direction),
+/// candidate faces as vertex loops, and the timing/diagnostics every stage reports.
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "cellforge/core/error.hpp"
+
+namespace cellforge {
+
+/// "No such element" for 32-bit indices.
+inline constexpr std::uint32_t no_index = 0xffffffffu;
+
+/// What every stage reports besides its own counts: wall time and human-readable notes.
+struct stage_report {
+  double milliseconds = 0.0;             ///< wall time of the stage
+  std::vector<std::string> diagnostics;  ///< things the stage changed or doubted, one per line
+};
+
+/// One edge as seen from one of its vertices (seed 000 §4.1, fig. 9: "+L1, -L2").
+struct wire_incidence {
+  std::uint32_t edge = 0;   ///< edge index
+  std::uint32_t other = 0;  ///< the vertex at the edge's other end
+  bool outgoing = false;    ///< true when the edge starts at this vertex
+};
+
+/// The labelled wireframe after reading: merged points, checked edges, vertex→edge incidence.
+struct wire_graph {
+  std::vector<glm::dvec3> points;           ///< vertex positions
+  std::vector<std::uint32_t> input_vertex;  ///< vertex → index of the caller's (representative) point
+  std::vector<std::array<std::uint32_t, 2>> edges;  ///< (start, end)
+  std::vector<std::uint32_t> input_edge;            ///< edge → index of the caller's edge
+  std::vector<std::uint32_t> first;                 ///< CSR offsets into `incidences`, size V + 1
+  std::vector<wire_incidence> incidences;           ///< per vertex, its incident edges
+  double size = 0.0;                                ///< bounding-box diagonal: the model's length scale
+  double merge_tolerance = 0.0;                     ///< absolute distance under which points were merged
+  glm::dvec3 center{0.0};                           ///< bounding-box centre (sums are taken about it)
+
+  std::size_t num_vertices() const noexcept { return points.size(); }
+  std::size_t num_edges() const noexcept { return edges.size(); }
+  std::size_t degree(std::uint32_t v) const noexcept { return first[v + 1] - first[v]; }
+  /// The incidences of vertex v. O(1).
+  std::span<const wire_incidence> around(std::uint32_t v) const noexcept {
+    return {incidences.data() + first[v], incidences.data() + first[v + 1]};
+  }
+  /// The edge joining a and b, or no_index. O(1) expected.
+  std::uint32_t find_edge(std::uint32_t a, std::uint32_t b) const {
+    const auto it = edge_index_.find(key(a, b));
+    return it == edge_index_.end() ? no_index : it->second;
+  }
+  /// Rebuilds incidences and the edge look-up from `points` and `edges`. O(V + E).
+  void link() {
+    const std::size_t nv = points.size();
+    first.assign(nv + 1, 0);
+    for (const auto& e : edges) {
+      ++first[e[0] + 1];
+      ++first[e[1] + 1];
+    }
+    for (std::size_t v = 0; v < nv; ++v) first[v + 1] += first[v];
+    incidences.assign(first.back(), {});
+    std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+    edge_index_.clear();
+    edge_index_.reserve(edges.size());
+    for (std::uint32_t i = 0; i < edges.size(); ++i) {
+      const auto [a, b] = edges[i];
+      incidences[fill[a]++] = {i, b, true};
+      incidences[fill[b]++] = {i, a, false};
+      edge_index_.emplace(key(a, b), i);
+    }
+  }
+
+ private:
+  static std::uint64_t key(std::uint32_t a, std::uint32_t b) noexcept {
+    if (a > b) std::swap(a, b);
+    return (std::uint64_t{a} << 32) | b;
+  }
+  std::unordered_map<std::uint64_t, std::uint32_t> edge_index_;
+};
+
+/// A (candidate) face: planar vertex loops. loops[0] is the outer boundary, counter-clockwise
+/// about `normal`; loops[1..] are holes, clockwise about it.
+struct wire_face {
+  std::vector<std::vector<std::uint32_t>> loops;
+  glm::dvec3 normal{0.0};  ///< unit normal, right-hand about loops[0]
+  double area = 0.0;       ///< area (outer minus holes)
+  /// Planar tracer: a bounded face of loops nested, as a hole, inside another face of the same
+  /// plane (the top of a frame's hole); kept only when an edge needs it (see arrange_faces).
+  bool fills_hole = false;
+};
+
+/// The area vector (Newell) of a face: normal × area, right-hand about loops[0]. O(size).
+inline glm::dvec3 area_vector(const wire_graph& g, const wire_face& f) {
+  glm::dvec3 s(0.0);
+  // Sums about one vertex of the face keep the rounding relative to the face, not the origin.
+  const glm::dvec3 o = g.points[f.loops[0][0]];
+  for (const auto& loop : f.loops)
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const glm::dvec3 a = g.points[loop[i]] - o, b = g.points[loop[(i + 1) % loop.size()]] - o;
+      s += glm::cross(a, b);
+    }
+  return 0.5 * s;
+}
+
+/// Sets f.normal and f.area from its loops. O(size).
+inline void update_normal(const wire_graph& g, wire_face& f) {
+  const glm::dvec3 a = area_vector(g, f);
+  f.area = glm::length(a);
+  f.normal = f.area > 0.0 ? a / f.area : glm::dvec3(0.0);
+}
+
+/// Rotates a vertex cycle to the seed's canonical order (§4.3): start at the smallest label and
+/// go on towards its smaller neighbour. Returns true when the cycle was reversed. O(n).
+inline bool canonical_cycle(std::vector<std::uint32_t>& c) {
+  if (c.size() < 2) return false;
+  const auto it = std::min_element(c.begin(), c.end());
+  std::rotate(c.begin(), it, c.end());
+  if (c.size() > 2 && c.back() < c[1]) {
+    std::reverse(c.begin() + 1, c.end());
+    return true;
+  }
+  return false;
+}
+
+/// Canonical orientation of a face: its outer loop in canonical order (the normal follows
+/// it), holes rotated to their smallest label and kept clockwise about that normal. O(size).
+inline void canonicalize(wire_face& f) {
+  if (canonical_cycle(f.loops[0])) {
+    f.normal = -f.normal;
+    for (std::size_t h = 1; h < f.loops.size(); ++h) std::reverse(f.loops[h].begin(), f.loops[h].end());
+  }
+  for (std::size_t h = 1; h < f.loops.size(); ++h) {
+    auto& l = f.loops[h];
+    std::rotate(l.begin(), std::min_element(l.begin(), l.end()), l.end());
+  }
+  std::sort(f.loops.begin() + 1, f.loops.end());
+}
+
+namespace detail {
+
+/// Wall-clock stopwatch for stage reports.
+struct stopwatch {
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  double ms() const {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+};
+
+/// Counts abstract work steps and throws a budget error naming the stage when exhausted.
+struct work_budget {
+  std::uint64_t limit = 0;  ///< 0: unlimited
+  std::uint64_t used = 0;
+  const char* stage = "";
+  void spend(std::uint64_t n = 1) {
+    used += n;
+    if (limit != 0 && used > limit)
+      throw error(error_category::budget, std::string(stage) + ": work budget of " + std::to_string(limit) +
+                                              " steps exhausted; raise the stage's `work_budget` option "
+                                              "or simplify the wireframe");
+  }
+};
+
+/// Disjoint sets with path halving.
+struct union_find {
+  std::vector<std::uint32_t> parent;
+  explicit union_find(std::size_t n = 0) : parent(n) {
+    for (std::size_t i = 0; i < n; ++i) parent[i] = static_cast<std::uint32_t>(i);
+  }
+  std::uint32_t find(std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  /// Joins the sets of a and b; the smaller root survives (deterministic representatives).
+  bool unite(std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return false;
+    if (a < b) std::swap(a, b);
+    parent[a] = b;
+    return true;
+  }
+};
+
+/// +1 when face f walks edge e from its start to its end, -1 when the other way, 0 when f
+/// does not use e. O(size of f).
+inline int walk_direction(const wire_graph& g, const wire_face& f, std::uint32_t e) {
+  const auto [s, t] = g.edges[e];
+  for (const auto& loop : f.loops)
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const std::uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
+      if (a == s && b == t) return 1;
+      if (a == t && b == s) return -1;
+    }
+  return 0;
+}
+
+/// Any unit vector perpendicular to unit n. O(1).
+inline glm::dvec3 any_perpendicular(const glm::dvec3& n) {
+  const glm::dvec3 axis = std::abs(n.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  return glm::normalize(glm::cross(n, axis));
+}
+
+}  // namespace detail
+}  // namespace cellforge

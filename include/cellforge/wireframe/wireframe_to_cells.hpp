@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// The whole wireframe → cell complex (3DCL) pipeline of seed 000 ch. IV: read (§4.1), trace
+/// (§4.2), unique circuits (§4.3), face reduction (§4.4), face arrangement (§4.5), extra faces
+/// (§4.6), objects and volumes (§4.7), relations (§4.8) and the cell list (§4.9), on anything
+/// that models Wireframe. Every stage's result (counts, diagnostics, time) is returned too.
+
+#include <cstdint>
+#include <vector>
+
+#include "cellforge/cells/cell_complex.hpp"
+#include "cellforge/core/wireframe.hpp"
+#include "cellforge/wireframe/circuit_tracer.hpp"
+#include "cellforge/wireframe/extra_faces.hpp"
+#include "cellforge/wireframe/face_arrangement.hpp"
+#include "cellforge/wireframe/face_reduction.hpp"
+#include "cellforge/wireframe/read_vertices.hpp"
+#include "cellforge/wireframe/relations.hpp"
+#include "cellforge/wireframe/unique_circuits.hpp"
+#include "cellforge/wireframe/volume_finder.hpp"
+
+namespace cellforge {
+
+/// Options of every stage, with the seed's defaults.
+struct wireframe_options {
+  read_options read{};
+  trace_options trace{};
+  unique_options unique{};
+  reduction_options reduction{};
+  arrangement_options arrangement{};
+  extra_face_options extra{};
+  volume_options volume{};
+  relations_options relations{};
+  bool keep_dangling = false;  ///< put edges that bound no face into the cell complex too
+  bool build_complex = true;   ///< call make_cell_complex on the result
+};
+
+/// The cell complex, its input, and every stage's report.
+struct wireframe_result {
+  cell_complex_input input;  ///< points, edges, faces (loops), volumes (signed faces)
+  cell_complex cells;        ///< make_cell_complex(input), when options.build_complex
+  /// input.points[i] is the caller's point input_vertex[i]; input.edges[k] the caller's edge input_edge[k].
+  std::vector<std::uint32_t> input_vertex, input_edge;
+  std::vector<std::uint32_t> unforced;  ///< indices into input.faces of walls no edge forces
+  read_result read;
+  trace_result trace;
+  unique_result unique;
+  reduction_result reduction;
+  arrangement_result arrangement;
+  extra_faces_result extra;
+  volume_result volume;
+  relations_result relations;
+  double assembly_milliseconds = 0.0;  ///< the seed's "cell list assembly" row
+};
+
+/// Converts a wireframe to a cell complex. Throws cellforge::error on bad input (see
+/// read_vertices), on an exhausted work budget, or when no face is found. Polynomial with the
+/// default planar tracer: O(Σ deg² + Σ planes k log k + F·L + grid pairs).
+template <Wireframe G>
+wireframe_result wireframe_to_cells(const G& wire, const wireframe_options& options = {}) {
+  wireframe_result r;
+  r.read = read_vertices(wire, options.read);
+  const wire_graph& g = r.read.graph;
+  r.trace = trace_circuits(g, options.trace);
+  r.unique = unique_circuits(g, std::move(r.trace.faces), options.unique);
+  r.trace.faces.clear();
+  r.reduction = reduce_faces(g, r.unique.faces, options.reduction);
+  r.arrangement = arrange_faces(g, r.unique.faces, r.reduction, options.arrangement);
+  extra_face_options extra = options.extra;
+  // The planar tracer finds every planar face; only the seed's search can miss some.
+  if (options.trace.kind == tracer_kind::planar) extra.add_missed = false;
+  r.extra = extra_faces(g, r.unique.faces, r.arrangement.selected, extra);
+  if (r.extra.faces.empty())
+    throw error(error_category::topology, "wireframe_to_cells: no face found: no planar circuit of the " +
+                                              std::to_string(g.num_edges()) +
+                                              " edges survives (skew or crossing cycles only)");
+  r.volume = find_volumes(g, r.extra.faces, options.volume);
+  r.relations = find_relations(g, r.extra.faces, r.volume, options.relations);
+
+  detail::stopwatch clock;
+  const std::vector<wire_face>& faces = r.extra.faces;
+  std::vector<char> edge_used(g.num_edges(), 0);
+  std::vector<std::uint32_t> face_id(faces.size(), no_index);
+  for (std::uint32_t i = 0; i < faces.size(); ++i) {
+    if (!r.volume.face_kept[i]) continue;
+    face_id[i] = static_cast<std::uint32_t>(r.input.faces.size());
+    r.input.faces.push_back({faces[i].loops});
+    for (const auto& loop : faces[i].loops)
+      for (std::size_t k = 0; k < loop.size(); ++k)
+        edge_used[g.find_edge(loop[k], loop[(k + 1) % loop.size()])] = 1;
+  }
+  // Vertices and edges: those the faces use (and dangling edges when asked), caller's order.
+  std::vector<std::array<std::uint32_t, 2>> edges;  // in the caller's vertex labels
+  std::vector<std::uint32_t> edge_origin;
+  for (std::uint32_t e = 0; e < g.num_edges(); ++e)
+    if (edge_used[e] || options.keep_dangling) {
+      edges.push_back({g.input_vertex[g.edges[e][0]], g.input_vertex[g.edges[e][1]]});
+      edge_origin.push_back(g.input_edge[e]);
+    }
+  if (options.keep_dangling) {
+    for (const auto e : r.read.dangling) {
+      const auto ab = wireframe_traits<G>::endpoints(wire, e);
+      edges.push_back({static_cast<std::uint32_t>(ab[0]), static_cast<std::uint32_t>(ab[1])});
+      edge_origin.push_back(e);
+    }
+  }
+  std::vector<std::uint32_t> label(wireframe_traits<G>::num_vertices(wire), no_index);
+  for (const auto& e : edges)
+    for (const auto v : e) label[v] = 0;
+  for (std::uint32_t v = 0; v < label.size(); ++v) {
+    if (label[v] == no_index) continue;
+    label[v] = static_cast<std::uint32_t>(r.input.points.size());
+    r.input.points.push_back(to_dvec3(wireframe_traits<G>::position(wire, v)));
+    r.input_vertex.push_back(v);
+  }
+  // Graph vertex → output label (graph vertices are the caller's representatives).
+  for (const auto& e : edges) r.input.edges.push_back({label[e[0]], label[e[1]]});
+  r.input_edge = std::move(edge_origin);
+  for (auto& f : r.input.faces)
+    for (auto& loop : f.loops)
+      for (auto& v : loop) v = label[g.input_vertex[v]];
+  for (const auto& vol : r.volume.volumes) {
+    cell_complex_input::volume out;
+    for (const auto& [f, s] : vol) out.faces.emplace_back(face_id[f], s);
+    r.input.volumes.push_back(std::move(out));
+  }
+  for (const auto i : r.volume.unforced)
+    if (face_id[i] != no_index) r.unforced.push_back(face_id[i]);
+  if (options.build_complex) r.cells = make_cell_complex(r.input);
+  r.assembly_milliseconds = clock.ms();
+  return r;
+}
+
+}  // namespace cellforge
