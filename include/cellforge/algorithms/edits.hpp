@@ -348,34 +348,10 @@ inline face_spec renamed(const halfedge_mesh& m, face_handle g, vertex_handle fr
   return s;
 }
 
-template <class Registry>
-concept registry_with_copy = requires(Registry& r, std::size_t i) {
-  r.copy_element(i, i);
-};
-
-// Gives each (dst, src) pair's dst the property values of src. A src shared by several
-// dsts is copied when the registry can copy; otherwise the first dst takes it by move and
-// the others keep their defaults.
-template <class Registry>
-void carry(Registry& r, std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs) {
-  std::sort(pairs.begin(), pairs.end(), [](const auto& x, const auto& y) { return x.second < y.second; });
-  for (std::size_t i = 0; i < pairs.size();) {
-    std::size_t j = i;
-    bool src_kept = false;
-    while (j < pairs.size() && pairs[j].second == pairs[i].second)
-      src_kept |= pairs[j++].first == pairs[i].second;
-    for (std::size_t t = i; t < j; ++t) {
-      const auto [dst, src] = pairs[t];
-      if (dst == src) continue;
-      if constexpr (registry_with_copy<Registry>) {
-        r.copy_element(dst, src);
-      } else if (!src_kept) {
-        r.move_element(dst, src);
-        break;
-      }
-    }
-    i = j;
-  }
+// Gives each (dst, src) pair's dst the property values of src (a src may feed several dsts).
+inline void carry(detail::property_registry& r,
+                  const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs) {
+  for (const auto& [dst, src] : pairs) r.copy_element(dst, src);
 }
 
 // Moves properties from the replaced faces (and their half-edges and edges) to `added`.

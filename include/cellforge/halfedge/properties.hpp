@@ -36,6 +36,8 @@ class property_array_base {
   virtual void push_back() = 0;
   /// Moves element src to dst (used by garbage collection, dst <= src).
   virtual void move_element(std::size_t dst, std::size_t src) = 0;
+  /// Copies element src to dst (used by edits whose new elements inherit a value).
+  virtual void copy_element(std::size_t dst, std::size_t src) = 0;
   /// Resets element i to the default value (used when an element is reused or removed).
   virtual void reset(std::size_t i) = 0;
   virtual std::unique_ptr<property_array_base> clone() const = 0;
@@ -57,6 +59,9 @@ class property_array final : public property_array_base {
   void push_back() override { data_.push_back(default_); }
   void move_element(std::size_t dst, std::size_t src) override {
     if (dst != src) data_[dst] = std::move(data_[src]);
+  }
+  void copy_element(std::size_t dst, std::size_t src) override {
+    if (dst != src) data_[dst] = data_[src];
   }
   void reset(std::size_t i) override { data_[i] = default_; }
   std::unique_ptr<property_array_base> clone() const override {
@@ -154,6 +159,9 @@ class property_registry {
   }
   void move_element(std::size_t dst, std::size_t src) {
     for (auto& a : arrays_) a->move_element(dst, src);
+  }
+  void copy_element(std::size_t dst, std::size_t src) {
+    for (auto& a : arrays_) a->copy_element(dst, src);
   }
   void reset(std::size_t i) {
     for (auto& a : arrays_) a->reset(i);
