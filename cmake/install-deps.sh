@@ -3,7 +3,7 @@
 #   bash cmake/install-deps.sh [--bench] [--compare] [--fuzz]
 #     (none)     compiler, CMake, make, GLM, doctest: enough to build the tests and examples
 #     --bench    Google Benchmark as well
-#     --compare  CGAL and OpenMesh, the baselines the benchmarks compare against (implies --bench)
+#     --compare  CGAL (with Eigen) and OpenMesh, the baselines the benchmarks compare against (implies --bench)
 #     --fuzz     clang and its compiler-rt (libFuzzer, ASan/UBSan runtimes for clang)
 # `apt-get update` runs once, and only when something must be installed; sudo is used only
 # when not running as root. Nothing is installed when everything is present already.
@@ -13,7 +13,7 @@ packages=(g++ cmake make libglm-dev doctest-dev)
 for arg in "$@"; do
   case "$arg" in
     --bench) packages+=(libbenchmark-dev) ;;
-    --compare) packages+=(libbenchmark-dev libcgal-dev libopenmesh-dev) ;;
+    --compare) packages+=(libbenchmark-dev libcgal-dev libopenmesh-dev libeigen3-dev) ;;
     # Debian 12's clang 14 needs libclang-rt-14-dev for -fsanitize=fuzzer (libclang_rt.fuzzer).
     --fuzz) packages+=(clang libclang-rt-14-dev) ;;
     -h | --help)
