@@ -5,8 +5,11 @@
 #include <set>
 #include <string>
 
+#include "cellforge/algorithms/shapes.hpp"
 #include "cellforge/cells/cell_complex.hpp"
+#include "cellforge/cells/conversion.hpp"
 #include "cellforge/cells/validate.hpp"
+#include "cellforge/halfedge/validate.hpp"
 #include "cells_fixtures.hpp"
 
 using namespace cellforge;
@@ -338,6 +341,13 @@ TEST_CASE("cell complex: a face in three volumes") {
 
 namespace {
 
+#define REQUIRE_VALID(m)          \
+  do {                            \
+    const auto vr_ = validate(m); \
+    INFO(vr_.message);            \
+    REQUIRE(vr_.ok());            \
+  } while (0)
+
 #define REQUIRE_CELLS_VALID(cc)    \
   do {                             \
     const auto vr_ = validate(cc); \
@@ -535,5 +545,194 @@ TEST_CASE("validate: each broken invariant is named with its element") {
     const auto r = validate(make_cell_complex(in));
     CHECK(r.ok());
     CHECK(r.euler_checked == std::vector<std::uint8_t>{0});
+  }
+}
+
+// ---------------------------------------------------------------- conversions
+
+namespace {
+
+double mesh_volume(const halfedge_mesh& m) { return signed_volume(to_soup<glm::dvec3>(m)); }
+
+// Faces of a complex as cycles of positions, each rotated to start at its smallest point and
+// read in the smaller direction, so two complexes with the same faces (whatever their numbering) compare
+// equal.
+std::multiset<std::vector<std::vector<std::array<double, 3>>>> face_shapes(const cell_complex& cc) {
+  std::multiset<std::vector<std::vector<std::array<double, 3>>>> out;
+  for (cell_face f : cc.faces()) {
+    std::vector<std::vector<std::array<double, 3>>> loops;
+    for (std::size_t l = 0; l < cc.num_loops(f); ++l) {
+      std::vector<std::array<double, 3>> loop;
+      for (cell_vertex v : cc.loop_vertices(f, l))
+        loop.push_back({cc.point(v).x, cc.point(v).y, cc.point(v).z});
+      std::rotate(loop.begin(), std::min_element(loop.begin(), loop.end()), loop.end());
+      auto reversed = loop;
+      std::reverse(reversed.begin() + 1, reversed.end());
+      loops.push_back(std::min(loop, reversed));
+    }
+    std::sort(loops.begin() + 1, loops.end());
+    out.insert(loops);
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("conversion: triangulating a face with holes") {
+  // An L-shaped outer loop (counter-clockwise about +z) with two square holes (clockwise).
+  const std::vector<std::vector<glm::dvec3>> loops{
+      {{0, 0, 0}, {6, 0, 0}, {6, 2, 0}, {2, 2, 0}, {2, 6, 0}, {0, 6, 0}},
+      {{3, 0.5, 0}, {3, 1.5, 0}, {4, 1.5, 0}, {4, 0.5, 0}},
+      {{0.5, 3, 0}, {0.5, 4, 0}, {1.5, 4, 0}, {1.5, 3, 0}}};
+  for (double sz : {1.0, -1.0}) {
+    auto ls = loops;
+    if (sz < 0)  // the same face seen from below: reverse every loop, normal -z
+      for (auto& l : ls) std::reverse(l.begin(), l.end());
+    const auto tris = detail::cells::triangulate_face(ls, {0, 0, sz}, "test");
+    CHECK(tris.size() == 14 + 2 * 2 - 2);
+    std::vector<glm::dvec3> flat;
+    for (const auto& l : ls) flat.insert(flat.end(), l.begin(), l.end());
+    double area = 0;
+    for (const auto& t : tris) {
+      const glm::dvec3 n = glm::cross(flat[t[1]] - flat[t[0]], flat[t[2]] - flat[t[0]]);
+      CHECK(n.z * sz >= 0);
+      area += 0.5 * std::abs(n.z);
+    }
+    CHECK(area == doctest::Approx(20.0 - 2.0));
+  }
+  // Nine holes in rows (rays from one hole hit the others) inside a zigzag outer loop whose
+  // teeth reach in front of the holes (bridges must pick a vertex inside the ray's triangle).
+  std::vector<std::vector<glm::dvec3>> many{{{0, 0, 0}, {12, 0, 0}}};
+  for (int t = 0; t < 6; ++t) {
+    many[0].push_back({12, 2 * t + 1, 0});
+    many[0].push_back({9.5, 2 * t + 1.2, 0});
+    many[0].push_back({12, 2 * t + 2, 0});
+  }
+  many[0].push_back({0, 12, 0});
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const double x = 1 + 2.5 * i, y = 1 + 3.5 * j;
+      many.push_back({{x, y, 0}, {x, y + 1, 0}, {x + 1, y + 1, 0}, {x + 1, y, 0}});
+    }
+  std::size_t corners = 0;
+  for (const auto& l : many) corners += l.size();
+  const auto tris = detail::cells::triangulate_face(many, {0, 0, 1}, "test");
+  CHECK(tris.size() == corners + 2 * 9 - 2);
+
+  // A hole outside the outer loop, or turning the wrong way, is refused.
+  auto outside = loops;
+  for (auto& p : outside[1]) p.x += 10;
+  CHECK_THROWS_AS((void)detail::cells::triangulate_face(outside, {0, 0, 1}, "test"), error);
+  auto wrong = loops;
+  std::reverse(wrong[2].begin(), wrong[2].end());
+  CHECK_THROWS_AS((void)detail::cells::triangulate_face(wrong, {0, 0, 1}, "test"), error);
+}
+
+TEST_CASE("conversion: volume boundaries to meshes and back") {
+  SUBCASE("cube") {
+    const cell_complex cc = make_cell_complex(fx::cube());
+    const halfedge_mesh m = volume_boundary_mesh(cc, cell_volume(0));
+    REQUIRE_VALID(m);
+    CHECK(m.num_vertices() == 8);
+    CHECK(m.num_faces() == 6);
+    CHECK(m.is_closed());
+    CHECK(mesh_volume(m) == doctest::Approx(1.0));
+    const cell_complex back = make_cell_complex(mesh_to_cell_complex(m).to_input());
+    REQUIRE_CELLS_VALID(back);
+    CHECK(face_shapes(back) == face_shapes(cc));
+    CHECK(back.num_edges() == 12);
+
+    const halfedge_mesh tri = volume_boundary_mesh(cc, cell_volume(0), {.triangulate_all = true});
+    REQUIRE_VALID(tri);
+    CHECK(tri.num_faces() == 12);
+    CHECK(mesh_volume(tri) == doctest::Approx(1.0));
+    const cell_complex unmerged = mesh_to_cell_complex(tri);
+    REQUIRE_CELLS_VALID(unmerged);
+    CHECK(unmerged.num_faces() == 12);
+    CHECK(unmerged.num_edges() == 18);
+    const cell_complex merged_back = mesh_to_cell_complex(tri, {.merge_coplanar = true});
+    REQUIRE_CELLS_VALID(merged_back);
+    CHECK(merged_back.num_faces() == 6);
+    CHECK(merged_back.num_edges() == 12);
+    CHECK(face_shapes(merged_back) == face_shapes(cc));
+  }
+  SUBCASE("every volume of a grid, with the complex's vertex and face of each element") {
+    const cell_complex cc = make_cell_complex(fx::grid(2, 2, 1));
+    for (cell_volume c : cc.volumes()) {
+      const halfedge_mesh m = volume_boundary_mesh(cc, c);
+      REQUIRE_VALID(m);
+      CHECK(m.is_closed());
+      CHECK(mesh_volume(m) == doctest::Approx(1.0));
+      const auto cv = m.get_vertex_property<std::uint32_t>("v:cell_vertex");
+      const auto pts = points<glm::dvec3>(m);
+      for (vertex_handle v : m.vertices()) CHECK(cc.point(cell_vertex(cv[v])) == pts[v]);
+      const auto cf = m.get_face_property<std::uint32_t>("f:cell_face");
+      for (face_handle f : m.faces()) {
+        bool in_volume = false;
+        for (const auto& fs : cc.volume_faces(c)) in_volume = in_volume || fs.handle.idx() == cf[f];
+        CHECK(in_volume);
+      }
+    }
+  }
+  SUBCASE("block with a hole: annular faces are triangulated, and merged back") {
+    const cell_complex cc = make_cell_complex(fx::block_with_hole());
+    const halfedge_mesh m = volume_boundary_mesh(cc, cell_volume(0));
+    REQUIRE_VALID(m);
+    CHECK(m.is_closed());
+    CHECK(m.num_vertices() == 16);
+    CHECK(m.num_faces() == 8 + 2 * 8);
+    CHECK(long(m.num_vertices()) - long(m.num_edges()) + long(m.num_faces()) == 0);  // a torus
+    CHECK(mesh_volume(m) == doctest::Approx(8.0));
+    const cell_complex back = mesh_to_cell_complex(m, {.merge_coplanar = true});
+    const auto r = validate(back);
+    INFO(r.message);
+    REQUIRE(r.ok());
+    CHECK(back.num_vertices() == 16);
+    CHECK(back.num_edges() == 24);
+    CHECK(back.num_faces() == 10);
+    CHECK(face_shapes(back) == face_shapes(cc));
+    CHECK(r.signed_volumes[0] == doctest::Approx(8.0));
+    CHECK(back.object_euler(cell_object(0)) == 1);
+  }
+}
+
+TEST_CASE("conversion: closed meshes to one-volume complexes") {
+  SUBCASE("torus and sphere") {
+    const cell_complex torus_cells = mesh_to_cell_complex(make_mesh(torus<glm::dvec3>(12, 8)));
+    const auto r = validate(torus_cells);
+    INFO(r.message);
+    REQUIRE(r.ok());
+    CHECK(torus_cells.num_volumes() == 1);
+    CHECK(torus_cells.object_euler(cell_object(0)) == -1);  // faces are disks, the volume is not a ball
+    CHECK(r.expected_euler[0] == -1);
+    const cell_complex sphere = mesh_to_cell_complex(make_mesh(uv_sphere<glm::dvec3>(16, 8)));
+    REQUIRE_CELLS_VALID(sphere);
+    CHECK(sphere.object_euler(cell_object(0)) == 1);
+  }
+  SUBCASE("an inside-out mesh gives faces with sign -1 and a positive volume") {
+    auto soup = hexahedron<glm::dvec3>();
+    polygon_soup<glm::dvec3> flipped;
+    flipped.points = soup.points;
+    for (std::size_t f = 0; f < soup.num_faces(); ++f) {
+      std::vector<std::uint32_t> face(soup.face(f).begin(), soup.face(f).end());
+      std::reverse(face.begin(), face.end());
+      flipped.add_face(face);
+    }
+    const cell_complex cc = mesh_to_cell_complex(make_mesh(flipped));
+    REQUIRE_CELLS_VALID(cc);
+    for (const auto& fs : cc.volume_faces(cell_volume(0))) CHECK(fs.sign == -1);
+  }
+  SUBCASE("an open mesh is refused") {
+    auto soup = hexahedron<glm::dvec3>();
+    polygon_soup<glm::dvec3> open;
+    open.points = soup.points;
+    for (std::size_t f = 1; f < soup.num_faces(); ++f) open.add_face(soup.face(f));
+    try {
+      (void)mesh_to_cell_complex(make_mesh(open));
+      FAIL("no error");
+    } catch (const error& e) {
+      CHECK(e.category() == error_category::topology);
+      CHECK(contains(e.what(), "4 boundary edges"));
+    }
   }
 }
