@@ -178,7 +178,7 @@ TEST_CASE("sample models: every ground truth is self-consistent") {
     check_consistent(cellforge::sample_pyramid(n));
   }
   for (int i = 1; i <= 6; ++i) check_consistent(cellforge::sample_seed(i));
-  check_consistent(cellforge::sample_uv_sphere(5, 4, true));
+  check_consistent(cellforge::sample_uv_sphere(5, 4));
   check_consistent(cellforge::sample_grid(4, 1, 2));
 }
 
@@ -189,7 +189,8 @@ TEST_CASE("sample models: sizes, objects and unforced faces") {
   check_sizes(cellforge::sample_prism(7), {14, 21, 9, 1, 1, 0});
   check_sizes(cellforge::sample_pyramid(32), {33, 64, 33, 1, 1, 0});
   check_sizes(cellforge::sample_uv_sphere(8, 6), {42, 88, 48, 1, 1, 0});
-  check_sizes(cellforge::sample_uv_sphere(8, 6, true), {42, 88, 49, 2, 1, 1});
+  // Odd slices: no meridian cycle crosses the rings, so each ring is an unforced wall.
+  check_sizes(cellforge::sample_uv_sphere(7, 6), {37, 77, 47, 6, 1, 5});
   check_sizes(cellforge::sample_two_cubes(), {12, 20, 11, 2, 1, 0});
   check_sizes(cellforge::sample_grid(2, 2, 2), {27, 54, 36, 8, 1, 0});
   // 3×3×3: 64 vertices, 144 edges, 108 faces; the 6 walls with no edge on the outside are unforced.
@@ -206,9 +207,9 @@ TEST_CASE("sample models: sizes, objects and unforced faces") {
   check_sizes(cellforge::sample_seed(1), {64, 132, 72, 2, 2, 0});
   check_sizes(cellforge::sample_seed(2), {16, 28, 16, 3, 1, 0});
   check_sizes(cellforge::sample_seed(3), {24, 40, 19, 2, 1, 0});
-  check_sizes(cellforge::sample_seed(4), {506, 1032, 529, 2, 1, 1});
+  check_sizes(cellforge::sample_seed(4), {539, 1080, 544, 2, 1, 0});
   check_sizes(cellforge::sample_seed(5), {462, 940, 480, 1, 1, 0});
-  check_sizes(cellforge::sample_seed(6), {702, 2100, 1412, 13, 1, 12});
+  check_sizes(cellforge::sample_seed(6), {710, 2124, 1428, 13, 1, 12});
 }
 
 TEST_CASE("sample models: merged and holed faces") {
@@ -323,7 +324,7 @@ TEST_CASE("sample models: bad parameters throw") {
   using cellforge::error;
   CHECK_THROWS_AS(cellforge::sample_prism(2), error);
   CHECK_THROWS_AS(cellforge::sample_pyramid(0), error);
-  CHECK_THROWS_AS(cellforge::sample_uv_sphere(8, 5, true), error);
+  CHECK_THROWS_AS(cellforge::sample_uv_sphere(8, 1), error);
   CHECK_THROWS_AS(cellforge::sample_grid(0, 1, 1), error);
   CHECK_THROWS_AS(cellforge::sample_seed(7), error);
   auto l = cellforge::empty_layout({0, 1, 2}, {0, 1, 2}, {0, 1});

@@ -48,6 +48,9 @@ struct sample_model {
 struct voxel_layout {
   std::vector<double> xs, ys, zs;
   std::vector<int> labels;  ///< size (xs-1)(ys-1)(zs-1), index i + nx * (j + ny * k)
+  /// Merge coplanar facets with the same labels on either side into one face; false: every
+  /// facet is its own face and every lattice line on the surface an edge (a quad-meshed box).
+  bool merge_faces = true;
   int& at(std::size_t i, std::size_t j, std::size_t k) {
     return labels[i + (xs.size() - 1) * (j + (ys.size() - 1) * k)];
   }
@@ -295,7 +298,7 @@ inline sample_model make_voxel_model(const voxel_layout& layout, std::string nam
         const facet_key n{k.a, k.p, static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k.u) + s[0]),
                           static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k.v) + s[1])};
         const auto it = facets.find(n);
-        if (it == facets.end() || it->second != pair || region.count(n)) continue;
+        if (!layout.merge_faces || it == facets.end() || it->second != pair || region.count(n)) continue;
         region[n] = r;
         todo.push_back(n);
       }
@@ -622,24 +625,25 @@ inline sample_model sample_pyramid(std::size_t n) {
 }
 
 /// A UV sphere of radius 1: `slices` meridians, `stacks` bands (quads, triangle fans at the
-/// poles); slices·(stacks − 1) + 2 vertices, slices·(2·stacks − 1) edges, slices·stacks faces.
-/// With `equator_wall` (even stacks) the equator polygon splits it into two volumes. O(slices · stacks).
-inline sample_model sample_uv_sphere(std::size_t slices, std::size_t stacks, bool equator_wall = false) {
-  if (slices < 3 || stacks < 2 || slices > 4096 || stacks > 4096 || (equator_wall && stacks % 2 != 0))
-    throw error(error_category::invalid_input,
-                "sample_uv_sphere: need 3..4096 slices, 2..4096 stacks (even with an equator wall)");
+/// poles); slices·(stacks − 1) + 2 vertices, slices·(2·stacks − 1) edges. With even slices it
+/// is one volume of slices·stacks faces (each ring's disk is crossed by the planar meridian
+/// cycles through the poles). With odd slices nothing crosses the ring disks, so by the rule
+/// "keep every candidate that crosses no other" every ring is an (unforced) wall: stacks
+/// volumes, slices·stacks + stacks − 1 faces. O(slices · stacks).
+inline sample_model sample_uv_sphere(std::size_t slices, std::size_t stacks) {
+  if (slices < 3 || stacks < 2 || slices > 4096 || stacks > 4096)
+    throw error(error_category::invalid_input, "sample_uv_sphere: need 3..4096 slices and 2..4096 stacks");
   ring_stack s;
   s.n = slices;
   for (std::size_t k = 1; k < stacks; ++k) {
     const double phi = std::numbers::pi * static_cast<double>(k) / static_cast<double>(stacks);
     s.radius.push_back(std::sin(phi));
     s.height.push_back(-std::cos(phi));
+    if (slices % 2 == 1) s.walls.push_back(k - 1);
   }
   s.bottom = -1.0;
   s.top = 1.0;
-  if (equator_wall) s.walls = {stacks / 2 - 1};
-  return make_ring_stack(s, "uv sphere " + std::to_string(slices) + "x" + std::to_string(stacks) +
-                                (equator_wall ? " split at the equator" : ""));
+  return make_ring_stack(s, "uv sphere " + std::to_string(slices) + "x" + std::to_string(stacks));
 }
 
 /// Two unit cubes sharing a face: 12 vertices, 20 edges, 11 faces, 2 volumes. O(1).
@@ -761,28 +765,32 @@ inline sample_model sample_seed(int i) {
       s.walls = {1};
       return make_ring_stack(s, "seed sample 3");
     }
-    case 4: {  // 483 V, 1024 E, 2 volumes
-      sample_model m = sample_uv_sphere(24, 22, true);
-      m.name = "seed sample 4";
-      return m;
+    case 4: {  // 483 V, 1024 E, 544 faces, 2 volumes: a quad-meshed 31×4×4 box halved by a wall
+      voxel_layout l = empty_layout(detail::iota_coords(31), detail::iota_coords(4), detail::iota_coords(4));
+      l.merge_faces = false;
+      for (std::size_t k = 0; k < 4; ++k)
+        for (std::size_t j = 0; j < 4; ++j)
+          for (std::size_t i = 0; i < 31; ++i) l.at(i, j, k) = i < 15 ? 1 : 2;
+      return make_voxel_model(l, "seed sample 4");
     }
     case 5: {  // 466 V, 944 E, 480 faces, 1 volume
       sample_model m = sample_uv_sphere(20, 24);
       m.name = "seed sample 5";
       return m;
     }
-    case 6: {  // 710 V, 2124 E = 3V - 6 (triangles), 13 volumes: a vase of 13 antiprism bands
+    case 6: {  // exactly 710 V, 2124 E, 1428 faces, 13 volumes: a vase of 11 antiprism bands
+               // between 12 wall rings of 59 points, with two cone caps
       ring_stack s;
-      s.n = 50;
+      s.n = 59;
       s.triangles = true;
-      for (std::size_t r = 0; r < 14; ++r) {
+      for (std::size_t r = 0; r < 12; ++r) {
         s.height.push_back(static_cast<double>(r));
         s.radius.push_back(4.0 + std::sin(0.5 * static_cast<double>(r)));
-        s.twist.push_back(std::numbers::pi / 50.0 * static_cast<double>(r));
-        if (r > 0 && r < 13) s.walls.push_back(r);
+        s.twist.push_back(std::numbers::pi / 59.0 * static_cast<double>(r));
+        s.walls.push_back(r);
       }
       s.bottom = -1.5;
-      s.top = 14.5;
+      s.top = 12.5;
       return make_ring_stack(s, "seed sample 6");
     }
     default:
