@@ -353,26 +353,24 @@ inline void trace_bfs(const wire_graph& g, const trace_options& opt, trace_resul
     const std::uint32_t other = sel == s ? t : s;
     std::vector<path> current{{{other, sel}, {e}}}, next;
     std::vector<std::uint32_t> closed_second;  // second edges of circuits found from e
+    std::vector<std::uint32_t> closed_now;     // ... at the current step
     while (!current.empty()) {
       next.clear();
+      closed_now.clear();
       for (const auto& pth : current) {
         if (pth.edges.size() >= max_len) continue;
-        if (pth.edges.size() >= 2 &&
-            std::find(closed_second.begin(), closed_second.end(), pth.edges[1]) != closed_second.end())
-          continue;
         const std::uint32_t last = pth.verts.back();
         for (const auto& in : g.around(last)) {
           budget.spend();
           if (std::find(pth.edges.begin(), pth.edges.end(), in.edge) != pth.edges.end()) continue;
           if (in.other == pth.verts[0]) {
-            // A circuit: record it, and prune every path that starts with the same two edges.
+            // A circuit: every circuit closing at this step is kept (seed fig. 11).
             wire_face f;
             f.loops.push_back(pth.verts);
             update_normal(g, f);
             r.faces.push_back(std::move(f));
             ++r.circuits;
-            const std::uint32_t second = pth.edges.size() >= 2 ? pth.edges[1] : in.edge;
-            closed_second.push_back(second);
+            closed_now.push_back(pth.edges.size() >= 2 ? pth.edges[1] : in.edge);
             continue;
           }
           // An inner circuit (the path returns to a vertex other than its start) is removed.
@@ -383,7 +381,8 @@ inline void trace_bfs(const wire_graph& g, const trace_options& opt, trace_resul
           next.push_back(std::move(grown));
         }
       }
-      // Paths whose second edge already closed a circuit at this level are removed too.
+      // Paths starting with the same two edges as a found circuit are removed (seed fig. 11).
+      closed_second.insert(closed_second.end(), closed_now.begin(), closed_now.end());
       std::erase_if(next, [&](const path& pth) {
         return std::find(closed_second.begin(), closed_second.end(), pth.edges[1]) != closed_second.end();
       });

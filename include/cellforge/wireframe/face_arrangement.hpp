@@ -95,9 +95,9 @@ inline bool faces_cross(const wire_graph& g, const wire_face& a, const face_plan
   dir /= l;
   const auto ia = cut_intervals(g, a, pb, dir, tol);
   auto ib = cut_intervals(g, b, pa, dir, tol);
-  // Both position lists are measured from different origins; shift b's to a's origin.
+  // ia is measured from pb.o, ib from pa.o: move ib to pb.o.
   const double shift = glm::dot(pa.o - pb.o, dir);
-  for (auto& x : ib) x -= shift;
+  for (auto& x : ib) x += shift;
   for (std::size_t i = 0; i + 1 < ia.size(); i += 2)
     for (std::size_t j = 0; j + 1 < ib.size(); j += 2) {
       const double lo = std::max(ia[i], ib[j]), hi = std::min(ia[i + 1], ib[j + 1]);
@@ -191,7 +191,9 @@ inline arrangement_result arrange_faces(const wire_graph& g, const std::vector<w
     };
     struct hash3 {
       std::size_t operator()(const std::array<std::int64_t, 3>& c) const noexcept {
-        return static_cast<std::size_t>(c[0] * 73856093LL ^ c[1] * 19349663LL ^ c[2] * 83492791LL);
+        return static_cast<std::size_t>(static_cast<std::uint64_t>(c[0]) * 73856093u ^
+                                        static_cast<std::uint64_t>(c[1]) * 19349663u ^
+                                        static_cast<std::uint64_t>(c[2]) * 83492791u);
       }
     };
     std::unordered_map<std::array<std::int64_t, 3>, std::vector<std::uint32_t>, hash3> grid;

@@ -60,7 +60,8 @@ inline reduction_result reduce_faces(const wire_graph& g, const std::vector<wire
     face_quality& q = r.quality[i];
     q.area = f.area;
     // Flatness: corner normals (cross products at each corner) compared pairwise by |cos|;
-    // collinear corners (a vertex inside a straight chain) have no normal and are skipped.
+    // collinear corners (a vertex inside a straight chain, within tolerance) have no normal and
+    // are skipped.
     std::vector<glm::dvec3> corner;
     for (const auto& loop : f.loops)
       for (std::size_t k = 0; k < loop.size(); ++k) {
@@ -69,7 +70,7 @@ inline reduction_result reduce_faces(const wire_graph& g, const std::vector<wire
         const glm::dvec3 b = g.points[loop[(k + 1) % loop.size()]] - p;
         const glm::dvec3 c = glm::cross(b, a);
         const double l = glm::length(c);
-        if (l > 1e-12 * glm::length(a) * glm::length(b)) corner.push_back(c / l);
+        if (l > tol * std::max(glm::length(a), glm::length(b))) corner.push_back(c / l);
       }
     q.flatness = 1.0;
     // Against the face normal rather than all pairs: the same minimum for planar faces, linear cost.
