@@ -81,7 +81,9 @@ struct face {
   orient3d_plane plane;  // filter data of the supporting plane
   std::array<std::uint32_t, 3> v{};
   std::array<std::uint32_t, 3> nbr{};
-  std::uint64_t mark = 0;  // 2·round: visible in this round; 2·round+1: not visible
+  std::uint64_t mark = 0;              // in round r: 4r visible, 4r+1 strictly below the eye, 4r+2 coplanar
+  std::array<std::uint8_t, 3> twin{};  // edge i of nbr[i] is edge i of this face, reversed
+  std::uint8_t flat = 0;               // bit i: the face across edge i lies in the same plane
   bool alive = false;
 };
 
@@ -98,8 +100,8 @@ struct result {
   std::vector<std::uint32_t> vertices;      // input index of each output vertex
   std::vector<std::uint32_t> face_offsets;  // CSR faces over `vertices`
   std::vector<std::uint32_t> face_vertices;
-  // For triangle output of a solid hull: per face corner e, the face across the edge from
-  // corner e to e+1 (3 per face), so the mesh can be linked without searching.
+  // For triangle output of a solid hull: per face corner c (3 f + e), the corner 3 g + k
+  // whose edge is the same edge reversed, so the mesh can be linked without searching.
   std::vector<std::uint32_t> neighbours;
   std::size_t non_corner_removed = 0;
   std::size_t exact_evaluations = 0;
@@ -127,10 +129,10 @@ class engine {
     return 3;
   }
 
-  /// Builds the hull by inserting the candidates one by one in a biased randomised
-  /// order (random rounds, each sorted along a Morton curve) and locating each by a walk
-  /// over the faces toward it, as seen from a point inside: no outside sets at all. Best
-  /// when (nearly) every point is a vertex, e.g. points on a sphere. O(n log n) expected.
+  /// Builds the hull by inserting the candidates one by one in the order given (see
+  /// brio_order) and locating each by a walk over the faces toward it, as seen from a point
+  /// inside: no outside sets at all. Best when (nearly) every point is a vertex, e.g. points
+  /// on a sphere. O(n log n) expected in BRIO order.
   int run_incremental(std::span<const std::uint32_t> candidates) {
     faces_.clear();
     sets_.clear();
@@ -155,9 +157,8 @@ class engine {
       }
     }
     reset_rounds();
-    const std::vector<std::uint32_t> order = brio_order(candidates);
     std::uint32_t last = 0;
-    for (std::uint32_t q : order) {
+    for (std::uint32_t q : candidates) {
       if (q == s[0] || q == s[1] || q == s[2] || q == s[3]) continue;
       const glm::dvec3& p = pts_[q];
       std::uint32_t f = locate(p, last);
@@ -180,7 +181,6 @@ class engine {
   const std::array<std::uint32_t, 4>& simplex() const noexcept { return simplex_; }
   std::size_t exact_evaluations() const noexcept { return exact_; }
 
-  const glm::dvec3& point(std::uint32_t i) const noexcept { return pts_[i]; }
   int side(const face& f, const glm::dvec3& q) {
     double value = 0;
     return side(f, q, value);
@@ -275,6 +275,7 @@ class engine {
     F.plane = prepare_orient3d(pts_[a], pts_[b], pts_[c]);
     F.v = {a, b, c};
     F.nbr = {none, none, none};
+    F.flat = 0;
     if (with_sets_) sets_[f].points.clear();  // keeps its capacity for the next use of the slot
     F.mark = 0;
     F.alive = true;
@@ -287,13 +288,16 @@ class engine {
     const std::uint32_t a = s[0], b = s[1], c = s[2], d = s[3];
     const std::array<std::array<std::uint32_t, 3>, 4> tri{{{a, b, c}, {a, d, b}, {b, d, c}, {c, d, a}}};
     for (const auto& t : tri) new_face(t[0], t[1], t[2]);
-    // Neighbours: the face holding the reversed edge.
+    // Neighbours: the face holding the reversed edge (no two faces are coplanar).
     for (std::uint32_t f = 0; f < 4; ++f)
       for (std::uint32_t e = 0; e < 3; ++e) {
         const std::uint32_t x = tri[f][e], y = tri[f][(e + 1) % 3];
         for (std::uint32_t g = 0; g < 4; ++g)
           for (std::uint32_t k = 0; k < 3; ++k)
-            if (tri[g][k] == y && tri[g][(k + 1) % 3] == x) faces_[f].nbr[e] = g;
+            if (tri[g][k] == y && tri[g][(k + 1) % 3] == x) {
+              faces_[f].nbr[e] = g;
+              faces_[f].twin[e] = static_cast<std::uint8_t>(k);
+            }
       }
   }
 
@@ -328,6 +332,8 @@ class engine {
 
   struct horizon_edge {
     std::uint32_t a, b, outer;  // edge a -> b of a visible face; `outer` is the face beyond
+    std::uint8_t outer_edge;    // the edge b -> a in `outer`
+    bool flat;                  // the eye lies in the plane of `outer`
   };
 
   // The faces `eye` sees strictly, found from f0 (one of them) across edges: a disk, whose
@@ -336,23 +342,24 @@ class engine {
     ++round_;
     visible_.assign(1, f0);
     horizon_.clear();
-    faces_[f0].mark = 2 * round_;
+    const std::uint64_t seen = 4 * round_, below = seen + 1, on = seen + 2;
+    faces_[f0].mark = seen;
     for (std::size_t i = 0; i < visible_.size(); ++i) {
       const std::uint32_t g = visible_[i];
       for (std::uint32_t e = 0; e < 3; ++e) {
         const std::uint32_t h = faces_[g].nbr[e];
         face& H = faces_[h];
-        if (H.mark == 2 * round_) continue;
-        bool sees = false;
-        if (H.mark != 2 * round_ + 1) {
+        if (H.mark == seen) continue;
+        if (H.mark != below && H.mark != on) {
           double value = 0;
-          sees = side(H, eye_p, value) > 0;
-          H.mark = sees ? 2 * round_ : 2 * round_ + 1;
+          const int s = side(H, eye_p, value);
+          H.mark = s > 0 ? seen : s < 0 ? below : on;
+          if (s > 0) {
+            visible_.push_back(h);
+            continue;
+          }
         }
-        if (sees)
-          visible_.push_back(h);
-        else
-          horizon_.push_back({faces_[g].v[e], faces_[g].v[(e + 1) % 3], h});
+        horizon_.push_back({faces_[g].v[e], faces_[g].v[(e + 1) % 3], h, faces_[g].twin[e], H.mark == on});
       }
     }
   }
@@ -369,10 +376,7 @@ class engine {
     for (const horizon_edge& he : horizon_) {
       const std::uint32_t F = new_face(he.a, he.b, eye);
       created_.push_back(F);
-      faces_[F].nbr[0] = he.outer;
-      face& O = faces_[he.outer];
-      for (std::uint32_t k = 0; k < 3; ++k)
-        if (O.v[k] == he.b && O.v[(k + 1) % 3] == he.a) O.nbr[k] = F;
+      link(F, 0, he.outer, he.outer_edge, he.flat);
       if (start_round_[he.a] == round_)
         throw error(error_category::internal, "convex_hull: the horizon passes a vertex twice");
       start_of_[he.a] = F;
@@ -383,9 +387,21 @@ class engine {
       if (start_round_[b] != round_)
         throw error(error_category::internal, "convex_hull: the horizon is not a closed loop");
       const std::uint32_t G = start_of_[b];
-      faces_[F].nbr[1] = G;
-      faces_[G].nbr[2] = F;
+      // Two cone faces (a, b, eye) and (b, c, eye) are coplanar when c is on F's plane.
+      link(F, 1, G, 2, side(faces_[F], pts_[faces_[G].v[1]]) == 0);
     }
+  }
+
+  // Makes edge i of F and edge k of G each other's twin, flat or not.
+  void link(std::uint32_t F, std::uint32_t i, std::uint32_t G, std::uint32_t k, bool flat) {
+    face& A = faces_[F];
+    face& B = faces_[G];
+    A.nbr[i] = G;
+    B.nbr[k] = F;
+    A.twin[i] = static_cast<std::uint8_t>(k);
+    B.twin[k] = static_cast<std::uint8_t>(i);
+    A.flat = static_cast<std::uint8_t>(flat ? A.flat | (1u << i) : A.flat & ~(1u << i));
+    B.flat = static_cast<std::uint8_t>(flat ? B.flat | (1u << k) : B.flat & ~(1u << k));
   }
 
   void reset_rounds() {
@@ -419,41 +435,6 @@ class engine {
       if (!moved) return f;
     }
     return none;
-  }
-
-  // Random rounds of doubling size, each sorted along a Morton curve: the insertion order
-  // stays random at large scale (expected O(n log n)) and local within a round.
-  std::vector<std::uint32_t> brio_order(std::span<const std::uint32_t> candidates) const {
-    std::vector<std::uint32_t> order(candidates.begin(), candidates.end());
-    std::mt19937_64 rng(0x5eed5eedu);  // fixed: the same input always gives the same mesh
-    std::shuffle(order.begin(), order.end(), rng);
-    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-    for (std::uint32_t q : order) lo = glm::min(lo, pts_[q]), hi = glm::max(hi, pts_[q]);
-    const glm::dvec3 extent = glm::max(hi - lo, glm::dvec3(std::numeric_limits<double>::min()));
-    auto spread = [](std::uint64_t v) {  // 21 bits to every third of 63
-      v &= 0x1FFFFF;
-      v = (v | v << 32) & 0x1F00000000FFFFull;
-      v = (v | v << 16) & 0x1F0000FF0000FFull;
-      v = (v | v << 8) & 0x100F00F00F00F00Full;
-      v = (v | v << 4) & 0x10C30C30C30C30C3ull;
-      v = (v | v << 2) & 0x1249249249249249ull;
-      return v;
-    };
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(order.size());
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      const glm::dvec3 t = (pts_[order[i]] - lo) / extent * 2097151.0;
-      keyed[i] = {spread(static_cast<std::uint64_t>(t.x)) | spread(static_cast<std::uint64_t>(t.y)) << 1 |
-                      spread(static_cast<std::uint64_t>(t.z)) << 2,
-                  order[i]};
-    }
-    for (std::size_t hi_end = keyed.size(); hi_end > 0;) {
-      const std::size_t lo_end = hi_end > 64 ? hi_end / 2 : 0;
-      std::sort(keyed.begin() + static_cast<std::ptrdiff_t>(lo_end),
-                keyed.begin() + static_cast<std::ptrdiff_t>(hi_end));
-      hi_end = lo_end;
-    }
-    for (std::size_t i = 0; i < keyed.size(); ++i) order[i] = keyed[i].second;
-    return order;
   }
 
   // Quickhull: repeatedly the furthest outside point of a face becomes a vertex.
@@ -500,6 +481,43 @@ class engine {
   std::size_t exact_ = 0;
 };
 
+/// A biased randomised insertion order: random rounds of doubling size, each sorted along
+/// a Morton curve, so that insertion stays random at large scale (expected O(n log n)) and
+/// local within a round. Fixed seed: the same input always gives the same mesh. O(n log n).
+inline std::vector<std::uint32_t> brio_order(std::span<const glm::dvec3> pts) {
+  std::vector<std::uint32_t> order(pts.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::mt19937_64 rng(0x5eed5eedu);
+  std::shuffle(order.begin(), order.end(), rng);
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (std::uint32_t q : order) lo = glm::min(lo, pts[q]), hi = glm::max(hi, pts[q]);
+  const glm::dvec3 extent = glm::max(hi - lo, glm::dvec3(std::numeric_limits<double>::min()));
+  auto spread = [](std::uint64_t v) {  // 21 bits to every third of 63
+    v &= 0x1FFFFF;
+    v = (v | v << 32) & 0x1F00000000FFFFull;
+    v = (v | v << 16) & 0x1F0000FF0000FFull;
+    v = (v | v << 8) & 0x100F00F00F00F00Full;
+    v = (v | v << 4) & 0x10C30C30C30C30C3ull;
+    v = (v | v << 2) & 0x1249249249249249ull;
+    return v;
+  };
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const glm::dvec3 t = (pts[order[i]] - lo) / extent * 2097151.0;
+    keyed[i] = {spread(static_cast<std::uint64_t>(t.x)) | spread(static_cast<std::uint64_t>(t.y)) << 1 |
+                    spread(static_cast<std::uint64_t>(t.z)) << 2,
+                order[i]};
+  }
+  for (std::size_t hi_end = keyed.size(); hi_end > 0;) {
+    const std::size_t lo_end = hi_end > 64 ? hi_end / 2 : 0;
+    std::sort(keyed.begin() + static_cast<std::ptrdiff_t>(lo_end),
+              keyed.begin() + static_cast<std::ptrdiff_t>(hi_end));
+    hi_end = lo_end;
+  }
+  for (std::size_t i = 0; i < keyed.size(); ++i) order[i] = keyed[i].second;
+  return order;
+}
+
 /// The convex polygon of coplanar points, counter-clockwise in the coordinate plane
 /// (axes i, j) where a, b, c are not collinear; collinear points dropped. O(n log n).
 inline std::vector<std::uint32_t> planar_hull(std::span<const glm::dvec3> pts,
@@ -536,25 +554,21 @@ inline std::vector<std::uint32_t> planar_hull(std::span<const glm::dvec3> pts,
   return chain;
 }
 
-/// Per vertex of the 3D hull, the number of creases (non-flat edges) around it. O(faces).
-inline std::vector<std::uint32_t> crease_counts(engine& eng, std::size_t n) {
-  std::vector<std::uint32_t> count(n, 0);
+/// Per vertex of the 3D hull, twice the number of creases (non-flat edges) around it,
+/// from the faces' flat bits: one sequential pass. Empty when no edge is flat at all (then
+/// every vertex is a corner). O(faces).
+inline std::vector<std::uint32_t> crease_counts(const engine& eng, std::size_t n) {
   const auto& faces = eng.faces();
-  for (std::uint32_t f = 0; f < faces.size(); ++f) {
-    const face& F = faces[f];
+  if (std::none_of(faces.begin(), faces.end(), [](const face& F) { return F.alive && F.flat != 0; }))
+    return {};
+  std::vector<std::uint32_t> count(n, 0);
+  for (const face& F : faces) {
     if (!F.alive) continue;
-    for (std::uint32_t e = 0; e < 3; ++e) {
-      const std::uint32_t g = F.nbr[e];
-      if (g < f) continue;  // each edge once
-      const face& G = faces[g];
-      std::uint32_t opposite = G.v[0];
-      for (std::uint32_t v : G.v)
-        if (v != F.v[e] && v != F.v[(e + 1) % 3]) opposite = v;
-      if (eng.side(F, eng.point(opposite)) != 0) {
+    for (std::uint32_t e = 0; e < 3; ++e)
+      if (!(F.flat >> e & 1u)) {
         ++count[F.v[e]];
         ++count[F.v[(e + 1) % 3]];
       }
-    }
   }
   return count;
 }
@@ -586,7 +600,7 @@ inline void emit_faces(engine& eng, bool merge, result& out) {
     for (const face& F : faces) {
       if (!F.alive) continue;
       for (std::uint32_t v : F.v) out.face_vertices.push_back(vertex(v));
-      for (std::uint32_t g : F.nbr) out.neighbours.push_back(number[g]);
+      for (std::uint32_t e = 0; e < 3; ++e) out.neighbours.push_back(3 * number[F.nbr[e]] + F.twin[e]);
       out.face_offsets.push_back(static_cast<std::uint32_t>(out.face_vertices.size()));
     }
     return;
@@ -601,15 +615,8 @@ inline void emit_faces(engine& eng, bool merge, result& out) {
   for (std::uint32_t f = 0; f < faces.size(); ++f) {
     const face& F = faces[f];
     if (!F.alive) continue;
-    for (std::uint32_t e = 0; e < 3; ++e) {
-      const std::uint32_t g = F.nbr[e];
-      if (g < f) continue;
-      const face& G = faces[g];
-      std::uint32_t opposite = G.v[0];
-      for (std::uint32_t v : G.v)
-        if (v != F.v[e] && v != F.v[(e + 1) % 3]) opposite = v;
-      if (eng.side(F, eng.point(opposite)) == 0) parent[find(f)] = find(g);
-    }
+    for (std::uint32_t e = 0; e < 3; ++e)
+      if (F.flat >> e & 1u) parent[find(f)] = find(F.nbr[e]);
   }
   // Each facet is a convex polygon whose vertices are corners: every boundary vertex has
   // exactly one outgoing boundary edge in it, so `succ` (per vertex) chains the loop.
@@ -651,8 +658,9 @@ inline void emit_faces(engine& eng, bool merge, result& out) {
 /// vertices (points in convex position, e.g. on a sphere): then insertion with walks beats
 /// quickhull, whose outside sets only pay off when most points fall inside. O(sample).
 inline bool mostly_vertices(std::span<const glm::dvec3> pts) {
-  constexpr std::size_t sample = 512;
-  if (pts.size() < 8 * sample) return false;  // small inputs: quickhull is fast anyway
+  // About one point in eight, 32 to 512 of them: a few percent of the hull's own cost.
+  if (pts.size() < 256) return false;
+  const std::size_t sample = std::clamp<std::size_t>(pts.size() / 8, 32, 512);
   std::vector<glm::dvec3> some;
   const std::size_t stride = pts.size() / sample;
   for (std::size_t i = 0; i < pts.size(); i += stride) some.push_back(pts[i]);
@@ -673,9 +681,19 @@ inline result compute(std::span<const glm::dvec3> pts, const convex_hull_options
   result out;
   std::vector<std::uint32_t> all(pts.size());
   std::iota(all.begin(), all.end(), 0u);
-  engine eng(pts);
   const bool incremental = options.method == convex_hull_method::incremental ||
                            (options.method == convex_hull_method::automatic && mostly_vertices(pts));
+  // Insertion copies the points into insertion order first: each insertion then touches
+  // points and faces created just before, in memory as in space (3x fewer cache misses).
+  std::vector<std::uint32_t> order;
+  std::vector<glm::dvec3> reordered;
+  if (incremental) {
+    order = brio_order(pts);
+    reordered.resize(pts.size());
+    for (std::size_t i = 0; i < order.size(); ++i) reordered[i] = pts[order[i]];
+    pts = reordered;
+  }
+  engine eng(pts);
   out.dimension = incremental ? eng.run_incremental(all) : eng.run(all);
   const auto& s = eng.simplex();
   out.face_offsets.assign(1, 0);
@@ -705,18 +723,20 @@ inline result compute(std::span<const glm::dvec3> pts, const convex_hull_options
     // vertices when inserted before the corners around them; rebuild from corners only.
     const std::vector<std::uint32_t> creases = crease_counts(eng, pts.size());
     std::vector<std::uint32_t> corners;
-    std::vector<std::uint8_t> used(pts.size(), 0);
-    for (const face& F : eng.faces())
-      if (F.alive)
-        for (std::uint32_t v : F.v) used[v] = 1;
     std::size_t non_corner = 0;
-    for (std::uint32_t v = 0; v < pts.size(); ++v)
-      if (used[v]) {
-        if (creases[v] >= 3)
-          corners.push_back(v);
-        else
-          ++non_corner;
-      }
+    if (!creases.empty()) {  // some edge is flat: look for vertices with fewer than 3 creases
+      std::vector<std::uint8_t> used(pts.size(), 0);
+      for (const face& F : eng.faces())
+        if (F.alive)
+          for (std::uint32_t v : F.v) used[v] = 1;
+      for (std::uint32_t v = 0; v < pts.size(); ++v)
+        if (used[v]) {
+          if (creases[v] >= 6)  // each crease counted from both of its faces
+            corners.push_back(v);
+          else
+            ++non_corner;
+        }
+    }
     if (non_corner > 0) {
       out.non_corner_removed = non_corner;
       if (eng.run(corners) != 3)
@@ -725,6 +745,8 @@ inline result compute(std::span<const glm::dvec3> pts, const convex_hull_options
     emit_faces(eng, options.merge_coplanar, out);
   }
   out.exact_evaluations = eng.exact_evaluations();
+  if (incremental)
+    for (std::uint32_t& v : out.vertices) v = order[v];
   return out;
 }
 
@@ -738,14 +760,11 @@ inline void link_triangles(halfedge_mesh& m, const result& r) {
   std::uint32_t edges = 0;
   for (std::size_t c = 0; c < 3 * nf; ++c) {
     if (he[c] != none) continue;
-    const std::size_t f = c / 3, e = c % 3, g = r.neighbours[c];
-    const std::uint32_t a = r.face_vertices[c], b = r.face_vertices[3 * f + (e + 1) % 3];
-    std::size_t k = 0;  // the corner of g whose edge runs b -> a
-    while (k < 3 && !(r.face_vertices[3 * g + k] == b && r.face_vertices[3 * g + (k + 1) % 3] == a)) ++k;
-    if (k == 3 || he[3 * g + k] != none)
+    const std::size_t d = r.neighbours[c];
+    if (d >= 3 * nf || he[d] != none || r.neighbours[d] != c)
       throw error(error_category::internal, "convex_hull: face neighbours do not match");
     he[c] = 2 * edges;
-    he[3 * g + k] = 2 * edges + 1;
+    he[d] = 2 * edges + 1;
     ++edges;
   }
   auto& records = access::records(m);
@@ -756,7 +775,8 @@ inline void link_triangles(halfedge_mesh& m, const result& r) {
                                 he[3 * f + (e + 2) % 3], static_cast<std::uint32_t>(f)};
     anchors[f] = he[3 * f];
   }
-  access::finish(m);
+  // A convex polytope's surface has one closed fan per vertex: the fan walk can be skipped.
+  access::finish(m, {}, access::fan_check::trust);
 }
 
 }  // namespace detail::hull

@@ -1,0 +1,100 @@
+// hull: the 3D convex hull of a point set, written as a mesh and drawn as a picture.
+//
+//   hull                    2000 random points in a ball (fixed seed)
+//   hull points.off         the vertices of any OFF, OBJ or PLY file (its faces are ignored)
+//   hull points.off merge   the same, one polygon per planar facet instead of triangles
+//
+// Writes, in the current directory, hull.off (the hull) and hull.svg (the hull over the
+// points: red points are hull vertices, grey ones lie inside), and prints what it found.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "cellforge/algorithms/convex_hull.hpp"
+#include "cellforge/halfedge/conversion.hpp"
+#include "cellforge/halfedge/validate.hpp"
+#include "cellforge/io/mesh_io.hpp"
+#include "cellforge/io/svg.hpp"
+
+namespace fs = std::filesystem;
+using point = glm::dvec3;
+
+namespace {
+
+// Uniform in the unit ball: Gaussian directions, radius by the cube root of a uniform.
+std::vector<point> random_ball(std::size_t n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> gauss;
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::vector<point> p(n);
+  for (point& q : p) {
+    q = glm::normalize(point(gauss(rng), gauss(rng), gauss(rng))) * std::cbrt(uniform(rng));
+  }
+  return p;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const bool from_file = argc > 1;
+  const bool merge = argc > 2 && std::string(argv[2]) == "merge";
+  if (argc > 3 || (argc > 2 && !merge)) {
+    std::fprintf(stderr, "usage: hull [points.off|.obj|.ply [merge]]\n");
+    return 2;
+  }
+  try {
+    const std::vector<point> points =
+        from_file ? cellforge::io::read_soup<point>(argv[1]).points : random_ball(2000, 2024);
+
+    cellforge::convex_hull_report report;
+    const auto t0 = std::chrono::steady_clock::now();
+    const cellforge::halfedge_mesh hull = cellforge::convex_hull(points, {.merge_coplanar = merge}, &report);
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+
+    const char* kind[] = {"empty", "one point", "a segment", "flat (a polygon, two faces back to back)",
+                          "solid"};
+    std::printf("input            %s\n", from_file ? argv[1] : "2000 random points in a ball (seed 2024)");
+    std::printf("points           %zu\n", report.input_points);
+    std::printf("hull             %s\n", kind[report.dimension + 1]);
+    std::printf("hull vertices    %zu\n", report.vertices);
+    std::printf("hull edges       %zu\n", report.edges);
+    std::printf("hull faces       %zu%s\n", report.faces, merge ? " (planar facets merged)" : " (triangles)");
+    std::printf("exact fallbacks  %zu orientation tests the filter could not decide\n",
+                report.exact_evaluations);
+    std::printf("time             %.3f ms\n", ms);
+    const cellforge::validation_result valid = cellforge::validate(hull);
+    std::printf("valid            %s, %s\n", valid.ok() ? "yes" : valid.message.c_str(),
+                hull.is_closed() ? "closed" : "not closed");
+
+    const fs::path out = "hull.off";
+    if (hull.num_faces() > 0) {
+      cellforge::io::write_mesh<point>(out, hull);
+      std::printf("wrote            %s\n", out.string().c_str());
+    }
+
+    // The picture: the hull see-through over every point, vertices in red.
+    cellforge::io::svg_scene scene;
+    std::vector<point> inside, corners;
+    std::vector<char> is_corner(points.size(), 0);
+    const auto index = hull.get_vertex_property<std::uint32_t>(cellforge::input_index_property_name);
+    for (cellforge::vertex_handle v : hull.vertices()) is_corner[index[v]] = 1;
+    for (std::size_t i = 0; i < points.size(); ++i) (is_corner[i] ? corners : inside).push_back(points[i]);
+    if (hull.num_faces() > 0)
+      scene.add_mesh(cellforge::to_soup<point>(hull), {.opacity = 0.5, .hidden_opacity = 0.25});
+    scene.add_points(inside, {.fill = "#7a7a7a", .stroke = "none", .hidden_opacity = 0.6}, 1.2);
+    scene.add_points(corners, {.fill = "#d0312d", .stroke = "#5a0f0d"}, 2.5);
+    scene.write(fs::path("hull.svg"), {.title = "convex hull"});
+    std::printf("wrote            hull.svg\n");
+    return valid.ok() ? 0 : 1;
+  } catch (const cellforge::error& e) {
+    std::fprintf(stderr, "hull: %s\n", e.what());
+    return 1;
+  }
+}
