@@ -155,6 +155,21 @@ TEST_CASE("non-orientable: Möbius strip and Klein bottle build and circulate") 
   const auto loops = m.boundary_loops();
   REQUIRE(loops.size() == 1);    // a Möbius strip has one boundary curve...
   CHECK(loops[0].size() == 24);  // ...twice as long as the strip
+  {
+    // The boundary circulator is a range whose consecutive half-edges share a vertex.
+    const auto range = m.halfedges_around_boundary(loops[0].front());
+    static_assert(std::ranges::forward_range<decltype(range)>);
+    REQUIRE(std::ranges::distance(range) == 24);
+    const std::vector<halfedge_handle> walk(range.begin(), std::ranges::next(range.begin(), 24));
+    for (std::size_t i = 0; i < walk.size(); ++i) {
+      const halfedge_handle a = walk[i], b = walk[(i + 1) % walk.size()];
+      CHECK(m.is_boundary(a));
+      const bool touch = m.head(a) == m.head(b) || m.head(a) == m.tail(b) || m.tail(a) == m.head(b) ||
+                         m.tail(a) == m.tail(b);
+      CHECK(touch);
+    }
+    CHECK(std::set<halfedge_handle>(walk.begin(), walk.end()).size() == 24);
+  }
   check_circulators(m, mob);
   const auto mob_order = shuffled(mob, 3);
   const halfedge_mesh mi = build_incrementally(mob_order);

@@ -219,6 +219,49 @@ struct project_tail {
   }
 };
 
+/// Iterator along a boundary loop: from each boundary half-edge to the one that continues
+/// the boundary at its far end (the other end of the same fan there).
+template <class Mesh>
+class boundary_iterator {
+ public:
+  using value_type = halfedge_handle;
+  using difference_type = std::ptrdiff_t;
+  using iterator_concept = std::forward_iterator_tag;
+
+  boundary_iterator() = default;
+  boundary_iterator(const Mesh* m, halfedge_handle start)
+      : m_(m), start_(start), cur_(start), done_(!start.is_valid() || !m->is_boundary(start)) {
+    if (!done_) far_ = m->head(start);
+  }
+  halfedge_handle operator*() const noexcept { return cur_; }
+  boundary_iterator& operator++() {
+    const halfedge_handle nxt = m_->boundary_successor(cur_, far_);
+    if (!nxt.is_valid()) {  // only on a corrupted mesh
+      done_ = true;
+      return *this;
+    }
+    far_ = m_->head(nxt) == far_ ? m_->tail(nxt) : m_->head(nxt);
+    cur_ = nxt;
+    done_ = cur_ == start_;
+    return *this;
+  }
+  boundary_iterator operator++(int) {
+    auto c = *this;
+    ++*this;
+    return c;
+  }
+  friend bool operator==(const boundary_iterator& a, const boundary_iterator& b) noexcept {
+    return a.done_ == b.done_ && (a.done_ || (a.cur_ == b.cur_ && a.far_ == b.far_));
+  }
+  friend bool operator==(const boundary_iterator& a, std::default_sentinel_t) noexcept { return a.done_; }
+
+ private:
+  const Mesh* m_ = nullptr;
+  halfedge_handle start_, cur_;
+  vertex_handle far_;
+  bool done_ = true;
+};
+
 /// Iterator over the live elements of one kind (skips removed ones).
 template <class Mesh, class Handle>
 class element_iterator {

@@ -240,23 +240,23 @@ class halfedge_mesh {
     return h == detail::edge_table::not_found ? halfedge_handle() : halfedge_handle(h);
   }
 
-  /// The boundary loop through boundary half-edge b, as boundary half-edges in order.
-  /// O(loop length) (times the number of fans at non-manifold vertices on it).
+  /// The boundary loop through boundary half-edge b, as a range of boundary half-edges in
+  /// order. O(1) per step (times the number of fans at a non-manifold vertex on it).
+  auto halfedges_around_boundary(halfedge_handle b) const {
+    using it = detail::boundary_iterator<halfedge_mesh>;
+    return detail::circulator_range<it>(it(this, b));
+  }
+  /// The same loop collected into a vector. O(loop length).
   std::vector<halfedge_handle> boundary_loop(halfedge_handle b) const {
     std::vector<halfedge_handle> loop;
-    if (!is_boundary(b)) return loop;
-    halfedge_handle cur = b;
-    vertex_handle far = head(b);
-    const std::size_t limit = unlinked_.size() + 1;
-    do {
-      loop.push_back(cur);
-      const halfedge_handle nxt = fan_partner(cur, far);
-      if (!nxt.is_valid()) break;  // only on a corrupted mesh; validate() says why
-      far = head(nxt) == far ? tail(nxt) : head(nxt);
-      cur = nxt;
-    } while (cur != b && loop.size() <= limit);
+    for (halfedge_handle h : halfedges_around_boundary(b)) {
+      loop.push_back(h);
+      if (loop.size() > unlinked_.size()) break;  // only on a corrupted mesh
+    }
     return loop;
   }
+  /// The boundary half-edge that continues the boundary from b at its end vertex v. O(#fans at v).
+  halfedge_handle boundary_successor(halfedge_handle b, vertex_handle v) const { return fan_partner(b, v); }
   /// All boundary loops. O(#boundary).
   std::vector<std::vector<halfedge_handle>> boundary_loops() const {
     std::vector<std::vector<halfedge_handle>> loops;
