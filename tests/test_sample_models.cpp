@@ -178,6 +178,7 @@ TEST_CASE("sample models: every ground truth is self-consistent") {
     check_consistent(cellforge::sample_pyramid(n));
   }
   for (int i = 1; i <= 6; ++i) check_consistent(cellforge::sample_seed(i));
+  check_consistent(cellforge::sample_close_edges());
   check_consistent(cellforge::sample_uv_sphere(5, 4));
   check_consistent(cellforge::sample_grid(4, 1, 2));
 }
@@ -203,6 +204,8 @@ TEST_CASE("sample models: sizes, objects and unforced faces") {
   check_sizes(cellforge::sample_split_edges(), {19, 23, 6, 1, 1, 0});
   check_sizes(cellforge::sample_frame(), {16, 24, 10, 1, 1, 0});
   check_sizes(cellforge::sample_block_with_hole(), {16, 24, 10, 1, 1, 0});
+  check_sizes(cellforge::sample_thin_slab(), {12, 20, 11, 2, 1, 0});
+  check_sizes(cellforge::sample_close_edges(), {770, 2304, 1536, 1, 1, 0});
   // The seed's samples 2 and 3 exactly; the others near (docs/sample_models.md).
   check_sizes(cellforge::sample_seed(1), {64, 132, 72, 2, 2, 0});
   check_sizes(cellforge::sample_seed(2), {16, 28, 16, 3, 1, 0});
@@ -340,4 +343,24 @@ TEST_CASE("sample models: bad parameters throw") {
   for (const auto& c : {std::array<std::size_t, 2>{1, 1}, {1, 0}, {2, 0}, {3, 0}, {3, 1}, {3, 2}, {2, 2}})
     p.at(c[0], c[1], 0) = 1;
   CHECK_THROWS_AS(cellforge::make_voxel_model(p, "pinched"), error);
+}
+
+TEST_CASE("sample models: the close-edges tube has no planar ring") {
+  const auto m = cellforge::sample_close_edges();
+  for (std::size_t r = 0; r < 16; ++r) {
+    // Best-fit plane by Newell's normal through the centroid; some point must be well off it.
+    glm::dvec3 n(0), c(0);
+    for (std::size_t i = 0; i < 48; ++i) {
+      const glm::dvec3 a = m.wire.points[r * 48 + i], b = m.wire.points[r * 48 + (i + 1) % 48];
+      n += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
+      c += a / 48.0;
+    }
+    n = glm::normalize(n);
+    double off = 0;
+    for (std::size_t i = 0; i < 48; ++i)
+      off = std::max(off, std::abs(glm::dot(m.wire.points[r * 48 + i] - c, n)));
+    CHECK(off > 1e-3);
+    CHECK(off < 1e-2);
+  }
+  for (const auto& f : m.faces) CHECK(f[0].size() == 3);
 }

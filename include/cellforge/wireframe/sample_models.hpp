@@ -12,6 +12,7 @@
 #include <compare>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -151,9 +152,10 @@ inline glm::dvec3 newell_normal(const std::vector<glm::dvec3>& pts, const std::v
   return n;
 }
 
-/// Counts the faces no edge forces (see sample_model::unforced_faces). O(total loop length · log).
+/// Counts the walls no edge forces (see sample_model::unforced_faces). O(L log L), L the total loop length.
 inline std::size_t count_unforced(const sample_model& m) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> edge_faces;
+  // (smaller vertex, larger vertex, face) for every face side, sorted: the faces of an edge are a run.
+  std::vector<std::array<std::uint32_t, 3>> sides;
   std::vector<glm::dvec3> normal;
   for (std::size_t f = 0; f < m.faces.size(); ++f) {
     glm::dvec3 n = newell_normal(m.wire.points, m.faces[f][0]);
@@ -161,9 +163,10 @@ inline std::size_t count_unforced(const sample_model& m) {
     for (const auto& loop : m.faces[f])
       for (std::size_t i = 0; i < loop.size(); ++i) {
         const std::uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
-        edge_faces[{std::min(a, b), std::max(a, b)}].push_back(static_cast<std::uint32_t>(f));
+        sides.push_back({std::min(a, b), std::max(a, b), static_cast<std::uint32_t>(f)});
       }
   }
+  std::sort(sides.begin(), sides.end());
   std::vector<int> volumes_of(m.faces.size(), 0);
   for (const auto& v : m.volumes)
     for (const std::uint32_t f : v) ++volumes_of[f];
@@ -173,11 +176,14 @@ inline std::size_t count_unforced(const sample_model& m) {
     for (const auto& loop : m.faces[f])
       for (std::size_t i = 0; i < loop.size() && !forced; ++i) {
         const std::uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
-        std::vector<std::uint32_t> others;
-        for (const std::uint32_t g : edge_faces[{std::min(a, b), std::max(a, b)}])
-          if (g != f) others.push_back(g);
-        if (others.size() < 2) forced = true;
-        if (others.size() == 2) {
+        const std::array<std::uint32_t, 3> lo{std::min(a, b), std::max(a, b), 0};
+        std::array<std::uint32_t, 2> others{};
+        std::size_t count = 0;
+        for (auto it = std::lower_bound(sides.begin(), sides.end(), lo);
+             it != sides.end() && (*it)[0] == lo[0] && (*it)[1] == lo[1]; ++it)
+          if ((*it)[2] != f && count++ < 2) others[count - 1] = (*it)[2];
+        if (count < 2) forced = true;
+        if (count == 2) {
           const glm::dvec3 &u = normal[others[0]], &v = normal[others[1]];
           const glm::dvec3 c(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
           // Two unit normals: a cross product this small means the faces are coplanar.
@@ -233,7 +239,7 @@ bool same_volumes(const FacesA& expected_faces, const VolumesA& expected_volumes
 /// Builds the model of a box union: facets between cells of different labels, merged into one
 /// face per edge-connected coplanar region with the same pair of labels; straight runs of the
 /// outlines become single edges. Throws invalid_input on a malformed layout or on a region whose
-/// outline touches itself at a vertex. O(cells + facets · log facets).
+/// outline touches itself at a vertex. O(cells + facets · log(facets per face)).
 inline sample_model make_voxel_model(const voxel_layout& layout, std::string name) {
   const std::array<std::size_t, 3> cells{layout.xs.size() - 1, layout.ys.size() - 1, layout.zs.size() - 1};
   if (layout.xs.size() < 2 || layout.ys.size() < 2 || layout.zs.size() < 2 ||
@@ -257,12 +263,19 @@ inline sample_model make_voxel_model(const voxel_layout& layout, std::string nam
   }
 
   // Facets of plane (axis a, position p), cell (u, v) in the plane's axes (a+1, a+2) mod 3.
+  // Dense slots, ordered by (a, p, u, v); a slot holds a facet when its two labels differ.
   struct facet_key {
     int a;
     std::size_t p, u, v;
-    auto operator<=>(const facet_key&) const = default;
   };
-  std::map<facet_key, std::pair<int, int>> facets;  // -> (label on the minus side, on the plus side)
+  std::array<std::size_t, 4> base{};
+  for (std::size_t a = 0; a < 3; ++a)
+    base[a + 1] = base[a] + (cells[a] + 1) * cells[(a + 1) % 3] * cells[(a + 2) % 3];
+  const auto slot = [&](const facet_key& k) {
+    const auto a = static_cast<std::size_t>(k.a);
+    return base[a] + (k.p * cells[(a + 1) % 3] + k.u) * cells[(a + 2) % 3] + k.v;
+  };
+  std::vector<std::pair<int, int>> facets(base[3], {0, 0});  // (label on the minus side, on the plus side)
   for (int a = 0; a < 3; ++a) {
     const int ua = (a + 1) % 3, va = (a + 2) % 3;
     for (std::size_t p = 0; p <= cells[a]; ++p)
@@ -275,35 +288,43 @@ inline sample_model make_voxel_model(const voxel_layout& layout, std::string nam
           const int minus = label(c);
           c[a] += 1;
           const int plus = label(c);
-          if (minus != plus) facets[{a, p, u, v}] = {minus, plus};
+          facets[slot({a, p, u, v})] = {minus, plus};
         }
   }
 
   // Regions: flood fill over facets sharing a side with the same label pair.
-  std::map<facet_key, std::size_t> region;
+  constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
+  std::vector<std::size_t> region(base[3], none);
   std::vector<std::vector<facet_key>> regions;
-  for (const auto& [key, pair] : facets) {
-    if (region.count(key)) continue;
-    const std::size_t r = regions.size();
-    regions.emplace_back();
-    std::vector<facet_key> todo{key};
-    region[key] = r;
-    while (!todo.empty()) {
-      const facet_key k = todo.back();
-      todo.pop_back();
-      regions[r].push_back(k);
-      const std::array<std::array<std::ptrdiff_t, 2>, 4> steps{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
-      for (const auto& s : steps) {
-        if ((s[0] < 0 && k.u == 0) || (s[1] < 0 && k.v == 0)) continue;
-        const facet_key n{k.a, k.p, static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k.u) + s[0]),
-                          static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k.v) + s[1])};
-        const auto it = facets.find(n);
-        if (!layout.merge_faces || it == facets.end() || it->second != pair || region.count(n)) continue;
-        region[n] = r;
-        todo.push_back(n);
-      }
-    }
-  }
+  for (int a = 0; a < 3; ++a)
+    for (std::size_t p = 0; p <= cells[static_cast<std::size_t>(a)]; ++p)
+      for (std::size_t u = 0; u < cells[static_cast<std::size_t>((a + 1) % 3)]; ++u)
+        for (std::size_t v = 0; v < cells[static_cast<std::size_t>((a + 2) % 3)]; ++v) {
+          const facet_key key{a, p, u, v};
+          const std::pair<int, int> pair = facets[slot(key)];
+          if (pair.first == pair.second || region[slot(key)] != none) continue;
+          const std::size_t r = regions.size();
+          regions.emplace_back();
+          std::vector<facet_key> todo{key};
+          region[slot(key)] = r;
+          while (!todo.empty()) {
+            const facet_key k = todo.back();
+            todo.pop_back();
+            regions[r].push_back(k);
+            const std::array<std::array<std::ptrdiff_t, 2>, 4> steps{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
+            for (const auto& s : steps) {
+              if ((s[0] < 0 && k.u == 0) || (s[1] < 0 && k.v == 0)) continue;
+              const facet_key n{k.a, k.p, static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k.u) + s[0]),
+                                static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k.v) + s[1])};
+              if (n.u >= cells[static_cast<std::size_t>((k.a + 1) % 3)] ||
+                  n.v >= cells[static_cast<std::size_t>((k.a + 2) % 3)])
+                continue;
+              if (!layout.merge_faces || facets[slot(n)] != pair || region[slot(n)] != none) continue;
+              region[slot(n)] = r;
+              todo.push_back(n);
+            }
+          }
+        }
 
   // Outline of each region as directed unit segments, counter-clockwise in (u, v); traced into loops.
   const auto lattice = [](int a, std::size_t p, std::size_t u, std::size_t v) {
@@ -321,9 +342,10 @@ inline sample_model make_voxel_model(const voxel_layout& layout, std::string nam
     std::map<std::pair<std::size_t, std::size_t>, std::pair<std::size_t, std::size_t>>
         next;  // (u,v) -> (u,v)
     const auto in_region = [&](std::ptrdiff_t u, std::ptrdiff_t v) {
-      if (u < 0 || v < 0) return false;
-      const auto it = region.find({a, p, static_cast<std::size_t>(u), static_cast<std::size_t>(v)});
-      return it != region.end() && it->second == r;
+      if (u < 0 || v < 0 || static_cast<std::size_t>(u) >= cells[static_cast<std::size_t>((a + 1) % 3)] ||
+          static_cast<std::size_t>(v) >= cells[static_cast<std::size_t>((a + 2) % 3)])
+        return false;
+      return region[slot({a, p, static_cast<std::size_t>(u), static_cast<std::size_t>(v)})] == r;
     };
     const auto add = [&](std::size_t u0, std::size_t v0, std::size_t u1, std::size_t v1) {
       if (!next.emplace(std::pair{u0, v0}, std::pair{u1, v1}).second)
@@ -420,7 +442,7 @@ inline sample_model make_voxel_model(const voxel_layout& layout, std::string nam
         if (vertex[q] != UINT32_MAX) cycle.push_back(vertex[q]);
       face.push_back(std::move(cycle));
     }
-    const auto [minus, plus] = facets.at(regions[r][0]);
+    const auto [minus, plus] = facets[slot(regions[r][0])];
     for (const int l : {minus, plus})
       if (l > 0)
         m.volumes[static_cast<std::size_t>(l - 1)].push_back(static_cast<std::uint32_t>(m.faces.size()));
@@ -749,6 +771,36 @@ inline sample_model sample_stepped_block() {
   return make_voxel_model(l, "stepped block");
 }
 
+/// The seed's failure case (§8.1): many close, adjacent, nearly coplanar triangles. A
+/// triangulated tube (48 points per ring, 16 rings twisted by half a step, cone caps) whose
+/// ring points are lifted by up to 1e-3 of the radius so that no ring is planar: the only
+/// faces are the 1 536 triangles, and a 4-cycle over two neighbours (bent by less than a
+/// degree) must not become a face. 770 vertices, 2 304 edges, 1 volume. O(1).
+inline sample_model sample_close_edges() {
+  ring_stack s;
+  s.n = 48;
+  s.triangles = true;
+  for (std::size_t r = 0; r < 16; ++r) {
+    s.height.push_back(0.5 * static_cast<double>(r));
+    s.radius.push_back(3.0 + 0.5 * std::sin(0.3 * static_cast<double>(r)));
+    s.twist.push_back(std::numbers::pi / 48.0 * static_cast<double>(r));
+  }
+  s.bottom = -0.8;
+  s.top = 8.3;
+  sample_model m = make_ring_stack(s, "close edges");
+  for (std::size_t v = 0; v < 16 * 48; ++v)
+    m.wire.points[v].z += 3e-3 * std::sin(1.7 * static_cast<double>(v) + 0.3 * static_cast<double>(v / 48));
+  return detail::finish(std::move(m));
+}
+
+/// A slab 1000 times thinner than it is wide, split into two volumes by a wall across it:
+/// close parallel faces and short edges next to long ones. 12 vertices, 20 edges, 11 faces. O(1).
+inline sample_model sample_thin_slab() {
+  voxel_layout l = empty_layout({0, 0.6, 1.0}, {0, 1.0}, {0, 1e-3});
+  l.labels = {1, 2};
+  return make_voxel_model(l, "thin slab");
+}
+
 /// A model of about the size of sample `i` (1..6) of seed 000 §7.2, tables 1 and 3 (see
 /// docs/sample_models.md for the mapping). O(size).
 inline sample_model sample_seed(int i) {
@@ -821,7 +873,8 @@ inline std::vector<sample_model> all_small_samples() {
                                 sample_split_edges(),
                                 sample_frame(),
                                 sample_block_with_hole(),
-                                sample_stepped_block()};
+                                sample_stepped_block(),
+                                sample_thin_slab()};
   return all;
 }
 
