@@ -171,15 +171,6 @@ inline void trace_plane_faces(const wire_graph& g, std::vector<std::uint32_t> ed
   }
 }
 
-/// Key of a plane for grouping components: normal and offset rounded on a coarse grid.
-struct plane_key_hash {
-  std::size_t operator()(const std::array<std::int64_t, 4>& k) const noexcept {
-    std::size_t h = 1469598103934665603ull;
-    for (const auto x : k) h = (h ^ static_cast<std::size_t>(x)) * 1099511628211ull;
-    return h;
-  }
-};
-
 inline std::array<double, 4> plane_coords(const glm::dvec3& n, const glm::dvec3& o, double size) {
   constexpr double q = 1e-6;
   return {n.x / q, n.y / q, n.z / q, glm::dot(n, o) / (q * size)};
@@ -199,8 +190,9 @@ inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_re
   std::vector<char> done(pair_base[nv], 0);
   std::vector<std::uint32_t> vstamp(nv, no_index), estamp(ne, no_index), vtest(nv, no_index);
   std::vector<char> vin(nv, 0);
+  std::uint32_t stamp = 0;
   std::vector<plane_component> comps;
-  std::unordered_map<std::array<std::int64_t, 4>, std::vector<std::uint32_t>, plane_key_hash> plane_of;
+  std::unordered_map<std::array<std::int64_t, 4>, std::vector<std::uint32_t>, cell_hash> plane_of;
   std::vector<std::uint32_t> group;  // component → plane group (first component of the group)
 
   for (std::uint32_t v = 0; v < nv; ++v) {
@@ -216,7 +208,7 @@ inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_re
         // Collinear pair: the far end of one edge lies within tolerance of the other's line.
         if (ln <= tol * std::max(glm::length(da), glm::length(db))) continue;
         n /= ln;
-        const auto cid = static_cast<std::uint32_t>(comps.size());
+        const std::uint32_t cid = stamp++;  // marks this search in the stamp arrays
         plane_component c;
         c.origin = g.points[v];
         c.normal = n;
@@ -253,7 +245,10 @@ inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_re
               if (estamp[ix[b].edge] == cid) done[pair_base[x] + a * ix.size() + b] = 1;
           }
         }
+        // A forest has no circuit: most planes spanned by two edges hold just those two.
+        if (cedges.size() < cverts.size()) continue;
         trace_plane_faces(g, std::move(cedges), c, budget);
+        const auto index = static_cast<std::uint32_t>(comps.size());
         // Group with earlier components of the same geometric plane (for holes).
         const auto pc = plane_coords(n, c.origin, g.size);
         std::uint32_t found = no_index;
@@ -282,8 +277,8 @@ inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_re
         for (int t = 0; t < 4; ++t)
           own[static_cast<std::size_t>(t)] =
               static_cast<std::int64_t>(std::round(pc[static_cast<std::size_t>(t)]));
-        plane_of[own].push_back(cid);
-        group.push_back(found == no_index ? cid : found);
+        plane_of[own].push_back(index);
+        group.push_back(found == no_index ? index : found);
         if (found == no_index) ++r.planes;
         comps.push_back(std::move(c));
       }

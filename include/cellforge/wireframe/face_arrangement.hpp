@@ -189,14 +189,7 @@ inline arrangement_result arrange_faces(const wire_graph& g, const std::vector<w
                                          static_cast<std::int64_t>(std::floor((p.y - g.center.y) / h)),
                                          static_cast<std::int64_t>(std::floor((p.z - g.center.z) / h))};
     };
-    struct hash3 {
-      std::size_t operator()(const std::array<std::int64_t, 3>& c) const noexcept {
-        return static_cast<std::size_t>(static_cast<std::uint64_t>(c[0]) * 73856093u ^
-                                        static_cast<std::uint64_t>(c[1]) * 19349663u ^
-                                        static_cast<std::uint64_t>(c[2]) * 83492791u);
-      }
-    };
-    std::unordered_map<std::array<std::int64_t, 3>, std::vector<std::uint32_t>, hash3> grid;
+    std::unordered_map<std::array<std::int64_t, 3>, std::vector<std::uint32_t>, detail::cell_hash> grid;
     std::vector<std::uint32_t> big;
     for (const auto i : usable) {
       const auto lo = cell(plane[i].box.min - tol), hi = cell(plane[i].box.max + tol);

@@ -50,13 +50,6 @@ inline std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec
                                                      const std::vector<char>& used, double tol) {
   const std::size_t n = p.size();
   union_find uf(n);
-  struct cell_hash {
-    std::size_t operator()(const std::array<std::int64_t, 3>& c) const noexcept {
-      return static_cast<std::size_t>(static_cast<std::uint64_t>(c[0]) * 73856093u ^
-                                      static_cast<std::uint64_t>(c[1]) * 19349663u ^
-                                      static_cast<std::uint64_t>(c[2]) * 83492791u);
-    }
-  };
   std::unordered_map<std::array<std::int64_t, 3>, std::vector<std::uint32_t>, cell_hash> cells;
   cells.reserve(n);
   auto cell_of = [&](const glm::dvec3& q) {

@@ -207,6 +207,21 @@ inline int walk_direction(const wire_graph& g, const wire_face& f, std::uint32_t
   return 0;
 }
 
+/// Hash of an integer grid cell (splitmix64 finaliser per coordinate). O(1).
+struct cell_hash {
+  template <std::size_t N>
+  std::size_t operator()(const std::array<std::int64_t, N>& c) const noexcept {
+    std::uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (const auto x : c) {
+      std::uint64_t z = h ^ (static_cast<std::uint64_t>(x) + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2));
+      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+      z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+      h = z ^ (z >> 31);
+    }
+    return static_cast<std::size_t>(h);
+  }
+};
+
 /// Any unit vector perpendicular to unit n. O(1).
 inline glm::dvec3 any_perpendicular(const glm::dvec3& n) {
   const glm::dvec3 axis = std::abs(n.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);

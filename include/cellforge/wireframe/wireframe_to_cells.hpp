@@ -7,6 +7,7 @@
 /// that models Wireframe. Every stage's result (counts, diagnostics, time) is returned too.
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "cellforge/cells/cell_complex.hpp"
@@ -51,7 +52,8 @@ struct wireframe_result {
   extra_faces_result extra;
   volume_result volume;
   relations_result relations;
-  double assembly_milliseconds = 0.0;  ///< the seed's "cell list assembly" row
+  double assembly_milliseconds = 0.0;    ///< the seed's "cell list assembly" row
+  std::vector<std::string> diagnostics;  ///< assembly notes (edges left out because they bound no face)
 };
 
 /// Converts a wireframe to a cell complex. Throws cellforge::error on bad input (see
@@ -65,7 +67,10 @@ wireframe_result wireframe_to_cells(const G& wire, const wireframe_options& opti
   r.trace = trace_circuits(g, options.trace);
   r.unique = unique_circuits(g, std::move(r.trace.faces), options.unique);
   r.trace.faces.clear();
-  r.reduction = reduce_faces(g, r.unique.faces, options.reduction);
+  reduction_options reduction = options.reduction;
+  // Faces of a planar arrangement are never the sum of two others; only the seed's search needs the test.
+  if (options.trace.kind == tracer_kind::planar) reduction.remove_face_sums = false;
+  r.reduction = reduce_faces(g, r.unique.faces, reduction);
   r.arrangement = arrange_faces(g, r.unique.faces, r.reduction, options.arrangement);
   extra_face_options extra = options.extra;
   // The planar tracer finds every planar face; only the seed's search can miss some.
@@ -93,11 +98,15 @@ wireframe_result wireframe_to_cells(const G& wire, const wireframe_options& opti
   // Vertices and edges: those the faces use (and dangling edges when asked), caller's order.
   std::vector<std::array<std::uint32_t, 2>> edges;  // in the caller's vertex labels
   std::vector<std::uint32_t> edge_origin;
-  for (std::uint32_t e = 0; e < g.num_edges(); ++e)
+  for (std::uint32_t e = 0; e < g.num_edges(); ++e) {
+    if (!edge_used[e])
+      r.diagnostics.push_back("edge " + std::to_string(g.input_edge[e]) + " bounds no face" +
+                              (options.keep_dangling ? "; kept as a dangling edge" : " and is left out"));
     if (edge_used[e] || options.keep_dangling) {
       edges.push_back({g.input_vertex[g.edges[e][0]], g.input_vertex[g.edges[e][1]]});
       edge_origin.push_back(g.input_edge[e]);
     }
+  }
   if (options.keep_dangling) {
     for (const auto e : r.read.dangling) {
       const auto ab = wireframe_traits<G>::endpoints(wire, e);
