@@ -6,6 +6,8 @@
 // binary still builds, times the model generation and prints the seed's figures with
 // "pending" in our columns.
 
+// Counting operator new for the peak heap of the scaling series (this binary only).
+#define CELLFORGE_BENCH_ALLOCATION_HOOKS
 #include "bench_support.hpp"
 
 #include <algorithm>
@@ -267,14 +269,25 @@ void print_tables(const cb::collecting_reporter& reporter, std::ostream& os) {
   summary.print(os);
 
   cb::table scaling("Scaling: k×k×k grids of unit cubes (every wall a face)",
-                    {"grid", "vertices", "edges", "faces", "volumes", "ours ms", "ms per 1000 edges"});
+                    {"grid", "vertices", "edges", "faces", "volumes", "ours ms", "ms per 1000 edges",
+                     "peak heap MB", "heap bytes per edge"});
   for (const int k : grid_sizes) {
     const auto& m = grid(k);
     const std::optional<double> t = reporter.ms("pipeline/grid_" + std::to_string(k));
+    std::optional<double> peak;
+#if CELLFORGE_BENCH_HAVE_PIPELINE
+    // Only for grids that were run (a filter may skip the big ones); the peak includes the result.
+    if (t)
+      peak = static_cast<double>(
+          cb::measure_heap([&] { return cellforge::wireframe_to_cells(m.wire); }).peak.value_or(0));
+#endif
+    const auto edges = static_cast<double>(m.wire.edges.size());
     scaling.add_row({std::to_string(k) + "³", cb::count(m.wire.points.size()), cb::count(m.wire.edges.size()),
                      cb::count(m.faces.size()), cb::count(m.volumes.size()), t ? cb::ms(t) : "pending",
-                     t ? cb::fixed(*t * 1000.0 / static_cast<double>(m.wire.edges.size()), 3) : "pending"});
+                     t ? cb::fixed(*t * 1000.0 / edges, 3) : "pending",
+                     peak ? cb::fixed(*peak / 1048576.0, 1) : "—", peak ? cb::fixed(*peak / edges, 0) : "—"});
   }
+  scaling.add_note("Memory grows linearly when the bytes per edge stay flat down the table.");
   scaling.print(os);
 }
 
