@@ -236,6 +236,11 @@ TEST_CASE("a repeated vertex keeps the tiling, with one zero-area triangle") {
   const auto tris = ear_clip(place(p), {}, &report);
   check_tiling(p, tris, 1, false);
   CHECK(report.degenerate_triangles == 1);
+  // The first vertex repeated at the end, as many files close their polygons, and a run of
+  // three equal vertices.
+  const poly2 closed{{0, 0}, {3, 0}, {3, 3}, {3, 3}, {3, 3}, {0, 3}, {0, 0}};
+  check_tiling(closed, ear_clip(place(closed), {}, &report), 3, false);
+  CHECK(report.degenerate_triangles == 3);
 }
 
 TEST_CASE("10,000-vertex comb, star and spiral finish and tile exactly") {

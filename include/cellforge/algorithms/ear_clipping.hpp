@@ -480,8 +480,9 @@ inline std::vector<index_triangle> clip_polygon(std::span<const glm::dvec3> p,
   tris.reserve(n - 2);
   clipper c(std::move(x), std::move(y), std::move(ring), sense);
   c.run(options.allow_non_simple, tris, report);
-  if (report.forced_ears == 0 && std::find(kept.begin(), kept.end(), 0) != kept.end())
-    restore_repeats(kept, tris, report);
+  // Every ring edge lies in exactly one clipped triangle (forced ears included), so the
+  // repeats can always go back in.
+  if (std::find(kept.begin(), kept.end(), 0) != kept.end()) restore_repeats(kept, tris, report);
   return tris;
 }
 
