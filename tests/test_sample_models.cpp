@@ -206,12 +206,12 @@ TEST_CASE("sample models: sizes, objects and unforced faces") {
   check_sizes(cellforge::sample_block_with_hole(), {16, 24, 10, 1, 1, 0});
   check_sizes(cellforge::sample_thin_slab(), {12, 20, 11, 2, 1, 0});
   check_sizes(cellforge::sample_close_edges(), {770, 2304, 1536, 1, 1, 0});
-  // The seed's samples 2 and 3 exactly; the others near (docs/sample_models.md).
-  check_sizes(cellforge::sample_seed(1), {64, 132, 72, 2, 2, 0});
+  // The seed's samples exactly, except sample 4 (near; docs/sample_models.md).
+  check_sizes(cellforge::sample_seed(1), {66, 128, 66, 2, 2, 0});
   check_sizes(cellforge::sample_seed(2), {16, 28, 16, 3, 1, 0});
   check_sizes(cellforge::sample_seed(3), {24, 40, 19, 2, 1, 0});
   check_sizes(cellforge::sample_seed(4), {539, 1080, 544, 2, 1, 0});
-  check_sizes(cellforge::sample_seed(5), {462, 940, 480, 1, 1, 0});
+  check_sizes(cellforge::sample_seed(5), {466, 944, 480, 1, 1, 0});
   check_sizes(cellforge::sample_seed(6), {710, 2124, 1428, 13, 1, 12});
 }
 

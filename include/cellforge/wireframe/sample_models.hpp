@@ -805,8 +805,8 @@ inline sample_model sample_thin_slab() {
 /// docs/sample_models.md for the mapping). O(size).
 inline sample_model sample_seed(int i) {
   switch (i) {
-    case 1:  // 66 V, 128 E, 2 volumes in 2 objects: two UV spheres
-      return disjoint_union(sample_uv_sphere(6, 6), sample_uv_sphere(6, 6), {3, 0, 0}, "seed sample 1");
+    case 1:  // exactly 66 V, 128 E, 66 faces (64 triangles + 2 long ones), 2 objects: two 32-gon pyramids
+      return disjoint_union(sample_pyramid(32), sample_pyramid(32), {3, 0, 0}, "seed sample 1");
     case 2: {  // 16 V, 28 E, 16 faces, 3 volumes: exactly a row of three cubes
       sample_model m = sample_grid(3, 1, 1);
       m.name = "seed sample 2";
@@ -825,8 +825,8 @@ inline sample_model sample_seed(int i) {
           for (std::size_t i = 0; i < 31; ++i) l.at(i, j, k) = i < 15 ? 1 : 2;
       return make_voxel_model(l, "seed sample 4");
     }
-    case 5: {  // 466 V, 944 E, 480 faces, 1 volume
-      sample_model m = sample_uv_sphere(20, 24);
+    case 5: {  // exactly 466 V, 944 E, 480 faces, 1 volume: a UV sphere of 16 slices × 30 stacks
+      sample_model m = sample_uv_sphere(16, 30);
       m.name = "seed sample 5";
       return m;
     }
