@@ -111,4 +111,16 @@ inline cellforge::cell_complex_input block_with_hole() {
   return in;
 }
 
+/// True when two inputs are identical: points, edges, face loops and signed volume faces.
+inline bool same_input(const cellforge::cell_complex_input& x, const cellforge::cell_complex_input& y) {
+  if (x.points != y.points || x.edges != y.edges || x.faces.size() != y.faces.size() ||
+      x.volumes.size() != y.volumes.size())
+    return false;
+  for (std::size_t f = 0; f < x.faces.size(); ++f)
+    if (x.faces[f].loops != y.faces[f].loops) return false;
+  for (std::size_t c = 0; c < x.volumes.size(); ++c)
+    if (x.volumes[c].faces != y.volumes[c].faces) return false;
+  return true;
+}
+
 }  // namespace cells_fixtures

@@ -308,7 +308,8 @@ inline cell_complex make_cell_complex(cell_complex_input input) {
     if (a == b) fail(bad, "edge " + S(e) + " joins vertex " + S(a) + " to itself");
     const auto [it, fresh] = edge_of.emplace(pair_key(a, b), static_cast<uint32_t>(e));
     if (!fresh)
-      fail(bad, "edges " + S(it->second) + " and " + S(e) + " both join vertices " + S(a) + " and " + S(b));
+      fail(bad, "edge " + S(e) + " repeats edge " + S(it->second) + " (both join vertices " + S(a) + " and " +
+                    S(b) + ")");
     ++cursor[a];
     ++cursor[b];
   }

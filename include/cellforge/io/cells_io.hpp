@@ -1,0 +1,570 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Files of the 3DCL: the "3dcl" text format (seed 000 §4.9: vertices, edges, faces,
+/// volumes, each with all its relations; docs/formats.md "3DCL text format") written and read
+/// back exactly, plus OBJ with one group per volume, PLY with faces coloured by volume and an
+/// exploded, shaded SVG picture.
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "cellforge/cells/cell_complex.hpp"
+#include "cellforge/cells/conversion.hpp"
+#include "cellforge/core/bounding_box.hpp"
+#include "cellforge/core/error.hpp"
+#include "cellforge/core/polygon_soup.hpp"
+#include "cellforge/io/detail/output_buffer.hpp"
+#include "cellforge/io/detail/read_file.hpp"
+#include "cellforge/io/obj.hpp"
+#include "cellforge/io/svg.hpp"
+
+namespace cellforge::io {
+
+/// How a 3DCL text file is written.
+struct cells_write_options {
+  std::string comment{};  ///< written as '#' lines after the header when not empty
+};
+
+namespace detail {
+
+inline void put_signed(std::string& out, std::uint32_t index, int sign) {
+  out += sign < 0 ? " -" : " +";
+  out += std::to_string(index);
+}
+
+inline void put_double(std::string& out, double v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, r.ptr);
+}
+
+/// The whole 3DCL text of cc. O(size of cc).
+inline std::string cells_text(const cell_complex& cc, const cells_write_options& options) {
+  std::string out = "3dcl 1\n";
+  for (std::string_view text = options.comment; !text.empty();) {
+    const std::size_t eol = std::min(text.find_first_of("\r\n"), text.size());
+    if (eol > 0) out += "# " + std::string(text.substr(0, eol)) + "\n";
+    text.remove_prefix(std::min(eol + 1, text.size()));
+  }
+  out += "vertices " + std::to_string(cc.num_vertices()) + "\n";
+  for (cell_vertex v : cc.vertices()) {
+    out += "v " + std::to_string(v.idx());
+    for (int k = 0; k < 3; ++k) out += ' ', put_double(out, cc.point(v)[k]);
+    out += " edges";
+    for (const auto& [e, s] : cc.vertex_edges(v)) put_signed(out, e.idx(), s);
+    out += '\n';
+  }
+  out += "edges " + std::to_string(cc.num_edges()) + "\n";
+  for (cell_edge e : cc.edges()) {
+    out += "e " + std::to_string(e.idx()) + " " + std::to_string(cc.source(e).idx()) + " " +
+           std::to_string(cc.target(e).idx()) + " faces";
+    for (const auto& [f, s] : cc.edge_faces(e)) put_signed(out, f.idx(), s);
+    out += " volumes";
+    for (cell_volume c : cc.edge_wedges(e))
+      out += c.is_valid() ? " " + std::to_string(c.idx()) : std::string(" -");
+    out += '\n';
+  }
+  out += "faces " + std::to_string(cc.num_faces()) + "\n";
+  for (cell_face f : cc.faces()) {
+    out += "f " + std::to_string(f.idx()) + " volumes";
+    for (const auto& [c, s] : cc.face_volumes(f)) put_signed(out, c.idx(), s);
+    for (std::size_t l = 0; l < cc.num_loops(f); ++l) {
+      out += " loop";
+      for (cell_vertex v : cc.loop_vertices(f, l)) out += " " + std::to_string(v.idx());
+      out += " edges";
+      for (const auto& [e, s] : cc.loop_edges(f, l)) put_signed(out, e.idx(), s);
+    }
+    out += '\n';
+  }
+  out += "volumes " + std::to_string(cc.num_volumes()) + "\n";
+  for (cell_volume c : cc.volumes()) {
+    out += "c " + std::to_string(c.idx()) + " faces";
+    for (const auto& [f, s] : cc.volume_faces(c)) put_signed(out, f.idx(), s);
+    out += '\n';
+  }
+  out += "end\n";
+  return out;
+}
+
+/// Tokens of one line of a 3DCL file, with errors that name file:line.
+class cells_line {
+ public:
+  cells_line(std::string_view text, std::string_view file, std::uint64_t line) : file_(file), line_(line) {
+    if (const auto hash = text.find('#'); hash != std::string_view::npos) text = text.substr(0, hash);
+    std::size_t i = 0;
+    while (i < text.size()) {
+      while (i < text.size() && (text[i] == ' ' || text[i] == '\t')) ++i;
+      std::size_t j = i;
+      while (j < text.size() && text[j] != ' ' && text[j] != '\t') ++j;
+      if (j > i) tokens_.push_back(text.substr(i, j - i));
+      i = j;
+    }
+  }
+  bool empty() const { return tokens_.empty(); }
+  bool done() const { return next_ == tokens_.size(); }
+  std::uint64_t line() const { return line_; }
+  std::string_view peek() const { return done() ? std::string_view() : tokens_[next_]; }
+
+  [[noreturn]] void fail(const std::string& msg) const {
+    throw error(error_category::io, msg, source_location{std::string(file_), line_});
+  }
+  std::string found() const { return done() ? "end of line" : "'" + std::string(tokens_[next_]) + "'"; }
+
+  void keyword(std::string_view k, std::string_view context) {
+    if (peek() != k) fail("expected '" + std::string(k) + "' " + std::string(context) + ", found " + found());
+    ++next_;
+  }
+  std::uint64_t index(std::string_view what, std::uint64_t limit) {
+    const std::string_view t = peek();
+    std::uint64_t v = 0;
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (t.empty() || r.ec != std::errc() || r.ptr != t.data() + t.size())
+      fail("expected " + std::string(what) + " (a non-negative integer), found " + found());
+    if (v >= limit) fail(std::string(what) + " " + std::string(t) + " " + range(limit));
+    ++next_;
+    return v;
+  }
+  double coordinate(std::string_view what) {
+    std::string_view t = peek();
+    if (!t.empty() && t[0] == '+') t.remove_prefix(1);
+    double v = 0;
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (t.empty() || r.ec != std::errc() || r.ptr != t.data() + t.size())
+      fail("expected " + std::string(what) + " (a number), found " + found());
+    if (!std::isfinite(v)) fail(std::string(what) + " '" + std::string(t) + "' is not finite");
+    ++next_;
+    return v;
+  }
+  /// "+i" or "-i": an index with an explicit sign.
+  std::pair<std::uint32_t, int> signed_index(std::string_view what, std::uint64_t limit) {
+    const std::string_view t = peek();
+    if (t.size() < 2 || (t[0] != '+' && t[0] != '-'))
+      fail("expected " + std::string(what) + " with its sign (like +3 or -3), found " + found());
+    const int sign = t[0] == '+' ? 1 : -1;
+    std::uint64_t v = 0;
+    const auto r = std::from_chars(t.data() + 1, t.data() + t.size(), v);
+    if (r.ec != std::errc() || r.ptr != t.data() + t.size())
+      fail("expected " + std::string(what) + " with its sign (like +3 or -3), found " + found());
+    if (v >= limit) fail(std::string(what) + " " + std::string(t) + " " + range(limit));
+    ++next_;
+    return {static_cast<std::uint32_t>(v), sign};
+  }
+  /// Signed indices until a keyword (a token starting with a letter) or the end of the line.
+  std::vector<std::pair<std::uint32_t, int>> signed_list(std::string_view what, std::uint64_t limit) {
+    std::vector<std::pair<std::uint32_t, int>> out;
+    while (!done() && !is_word(peek())) out.push_back(signed_index(what, limit));
+    return out;
+  }
+  std::vector<std::uint32_t> index_list(std::string_view what, std::uint64_t limit) {
+    std::vector<std::uint32_t> out;
+    while (!done() && !is_word(peek())) out.push_back(static_cast<std::uint32_t>(index(what, limit)));
+    return out;
+  }
+  void finish(std::string_view element) const {
+    if (!done()) fail("unexpected " + found() + " at the end of " + std::string(element));
+  }
+
+ private:
+  static std::string range(std::uint64_t limit) {
+    return limit == 0 ? "out of range (there are none)"
+                      : "out of range (0.." + std::to_string(limit - 1) + ")";
+  }
+  static bool is_word(std::string_view t) {
+    return !t.empty() && ((t[0] >= 'a' && t[0] <= 'z') || (t[0] >= 'A' && t[0] <= 'Z'));
+  }
+  std::string_view file_;
+  std::uint64_t line_;
+  std::vector<std::string_view> tokens_;
+  std::size_t next_ = 0;
+};
+
+/// Splits text into content lines (comments and blank lines skipped), keeping line numbers.
+class cells_lines {
+ public:
+  cells_lines(std::string_view text, std::string_view file) : text_(text), file_(file) {
+    if (text_.substr(0, 3) == "\xEF\xBB\xBF") text_.remove_prefix(3);
+  }
+  /// The next line with content; fails with `expected` at the end of the file.
+  cells_line next(std::string_view expected) {
+    while (pos_ < text_.size()) {
+      std::size_t eol = text_.find_first_of("\r\n", pos_);
+      if (eol == std::string_view::npos) eol = text_.size();
+      cells_line l(text_.substr(pos_, eol - pos_), file_, ++line_);
+      pos_ = eol;
+      if (pos_ < text_.size() && text_[pos_] == '\r') ++pos_;
+      if (pos_ < text_.size() && text_[pos_] == '\n') ++pos_;  // "\n" alone or after "\r"
+      if (!l.empty()) return l;
+    }
+    throw error(error_category::io, "expected " + std::string(expected) + ", found end of file",
+                source_location{std::string(file_), std::max<std::uint64_t>(line_, 1)});
+  }
+  bool at_end() {
+    // True when only blank or comment lines remain.
+    std::size_t save_pos = pos_;
+    const std::uint64_t save_line = line_;
+    try {
+      (void)next("");
+    } catch (const error&) {
+      return true;
+    }
+    pos_ = save_pos;
+    line_ = save_line;
+    return false;
+  }
+
+ private:
+  std::string_view text_, file_;
+  std::size_t pos_ = 0;
+  std::uint64_t line_ = 0;
+};
+
+/// The line of the element a make_cell_complex() message names first ("vertex 3", "edge 7",
+/// "face 2", "volume 1"), or 0.
+inline std::uint64_t line_of_element(const std::string& message,
+                                     const std::array<std::vector<std::uint64_t>, 4>& lines) {
+  static constexpr std::array<std::string_view, 4> names{"vertex ", "edge ", "face ", "volume "};
+  std::size_t best = std::string::npos;
+  std::uint64_t line = 0;
+  for (std::size_t k = 0; k < 4; ++k)
+    for (std::size_t at = message.find(names[k]); at != std::string::npos;
+         at = message.find(names[k], at + 1)) {
+      if (at > 0 && message[at - 1] != ' ' && message[at - 1] != '(') continue;
+      std::uint64_t i = 0;
+      const char* first = message.data() + at + names[k].size();
+      const auto r = std::from_chars(first, message.data() + message.size(), i);
+      if (r.ec != std::errc() || r.ptr == first) continue;
+      if (at < best && i < lines[k].size()) best = at, line = lines[k][i];
+      break;
+    }
+  return line;
+}
+
+}  // namespace detail
+
+/// Writes cc as 3DCL text (docs/formats.md). O(size of cc). Throws io when the stream fails.
+inline void write_3dcl(std::ostream& os, const cell_complex& cc, const cells_write_options& options = {}) {
+  const std::string text = detail::cells_text(cc, options);
+  os.write(text.data(), static_cast<std::streamsize>(text.size()));
+  if (!os) throw error(error_category::io, "3dcl: writing to the stream failed");
+}
+
+/// Writes cc to a 3DCL text file. O(size of cc). Throws io naming the path on failure.
+inline void write_3dcl(const std::filesystem::path& path, const cell_complex& cc,
+                       const cells_write_options& options = {}) {
+  detail::write_file(path, [&](std::ostream& os) { write_3dcl(os, cc, options); });
+}
+
+/// Parses 3DCL text: builds the complex from its coordinates, edges, face loops and volumes,
+/// then checks that every relation the file lists is the one the complex derives. Errors
+/// name file:line and what was expected. O(size of the text + n log n).
+inline cell_complex parse_3dcl(std::string_view text, std::string_view name = "<memory>") {
+  detail::cells_lines lines(text, name);
+  constexpr std::uint64_t max = 0xFFFFFFFEu;
+  {
+    auto l = lines.next("the header '3dcl 1'");
+    l.keyword("3dcl", "at the start of the file (the header '3dcl 1')");
+    if (l.peek() != "1") l.fail("unsupported 3dcl version " + l.found() + "; this reader knows version 1");
+    (void)l.index("the version", 2);
+    l.finish("the header");
+  }
+  cell_complex_input in;
+  std::array<std::vector<std::uint64_t>, 4> at;  // line of each vertex, edge, face, volume
+  std::vector<std::vector<std::pair<std::uint32_t, int>>> vertex_edges, edge_faces, face_volumes;
+  std::vector<std::vector<std::uint32_t>> edge_wedges;
+  std::vector<std::vector<std::vector<std::pair<std::uint32_t, int>>>> loop_edges;
+
+  auto section = [&](std::string_view keyword) {
+    auto l = lines.next("'" + std::string(keyword) + " <count>'");
+    l.keyword(keyword, "(the section '" + std::string(keyword) + " <count>')");
+    const std::uint64_t n = l.index("the number of " + std::string(keyword), max + 1);
+    l.finish("the section header");
+    return static_cast<std::size_t>(n);
+  };
+  auto element = [&](std::string_view tag, std::string_view what, std::size_t i, std::size_t n) {
+    auto l = lines.next(std::string(what) + " " + std::to_string(i) + " of " + std::to_string(n));
+    l.keyword(tag, "at the start of " + std::string(what) + " " + std::to_string(i) + " (there are " +
+                       std::to_string(n) + ")");
+    if (l.peek() != std::to_string(i))
+      l.fail("expected " + std::string(what) + " number " + std::to_string(i) + ", found " + l.found());
+    (void)l.index(what, max + 1);
+    return l;
+  };
+
+  const std::size_t nv = section("vertices");
+  for (std::size_t i = 0; i < nv; ++i) {
+    auto l = element("v", "vertex", i, nv);
+    const double x = l.coordinate("coordinate x of vertex " + std::to_string(i));
+    const double y = l.coordinate("coordinate y of vertex " + std::to_string(i));
+    const double z = l.coordinate("coordinate z of vertex " + std::to_string(i));
+    in.points.push_back({x, y, z});
+    l.keyword("edges", "after the coordinates of vertex " + std::to_string(i));
+    vertex_edges.push_back(l.signed_list("an edge", max));
+    l.finish("vertex " + std::to_string(i));
+    at[0].push_back(l.line());
+  }
+  const std::size_t ne = section("edges");
+  for (std::size_t i = 0; i < ne; ++i) {
+    auto l = element("e", "edge", i, ne);
+    const auto a = static_cast<std::uint32_t>(l.index("the start vertex of edge " + std::to_string(i), nv));
+    const auto b = static_cast<std::uint32_t>(l.index("the end vertex of edge " + std::to_string(i), nv));
+    in.edges.push_back({a, b});
+    l.keyword("faces", "after the vertices of edge " + std::to_string(i));
+    edge_faces.push_back(l.signed_list("a face", max));
+    l.keyword("volumes", "after the faces of edge " + std::to_string(i));
+    std::vector<std::uint32_t> w;
+    while (!l.done()) {
+      if (l.peek() == "-") {
+        (void)l.keyword("-", "");
+        w.push_back(0xFFFFFFFFu);
+      } else {
+        w.push_back(static_cast<std::uint32_t>(l.index("a volume (or '-' for outside)", max)));
+      }
+    }
+    edge_wedges.push_back(std::move(w));
+    at[1].push_back(l.line());
+  }
+  const std::size_t nf = section("faces");
+  for (std::size_t i = 0; i < nf; ++i) {
+    auto l = element("f", "face", i, nf);
+    const std::string fi = "face " + std::to_string(i);
+    l.keyword("volumes", "after the number of " + fi);
+    face_volumes.push_back(l.signed_list("a volume", max));
+    cell_complex_input::face face;
+    loop_edges.emplace_back();
+    while (!l.done()) {
+      l.keyword("loop", "(a vertex loop) in " + fi);
+      face.loops.push_back(l.index_list("a vertex of " + fi, nv));
+      l.keyword("edges", "after the vertices of a loop of " + fi);
+      loop_edges.back().push_back(l.signed_list("an edge of " + fi, ne));
+    }
+    if (face.loops.empty()) l.fail(fi + " has no 'loop'");
+    in.faces.push_back(std::move(face));
+    at[2].push_back(l.line());
+  }
+  const std::size_t nc = section("volumes");
+  for (std::size_t i = 0; i < nc; ++i) {
+    auto l = element("c", "volume", i, nc);
+    l.keyword("faces", "after the number of volume " + std::to_string(i));
+    cell_complex_input::volume vol;
+    for (const auto& [f, s] : l.signed_list("a face", nf)) vol.faces.emplace_back(f, s);
+    l.finish("volume " + std::to_string(i));
+    in.volumes.push_back(std::move(vol));
+    at[3].push_back(l.line());
+  }
+  {
+    auto l = lines.next("'end' after the last volume");
+    l.keyword("end", "after the last volume");
+    l.finish("the file");
+    if (!lines.at_end()) lines.next("").fail("unexpected content after 'end'");
+  }
+
+  cell_complex cc;
+  try {
+    cc = make_cell_complex(std::move(in));
+  } catch (const error& e) {
+    throw error(error_category::io, e.message(),
+                source_location{std::string(name), detail::line_of_element(e.message(), at)});
+  }
+  // The relations the file lists must be the derived ones, in the same order.
+  auto mismatch = [&](std::uint64_t line, const std::string& msg) {
+    throw error(error_category::io, msg + " (the file's relations disagree with its cells)",
+                source_location{std::string(name), line});
+  };
+  // Same entries, same order: a derived span of oriented handles against the listed pairs.
+  auto same = [](const auto& derived, const std::vector<std::pair<std::uint32_t, int>>& listed) {
+    return std::equal(
+        derived.begin(), derived.end(), listed.begin(), listed.end(),
+        [](const auto& d, const auto& l) { return d.handle.idx() == l.first && d.sign == l.second; });
+  };
+  for (cell_vertex v : cc.vertices())
+    if (!same(cc.vertex_edges(v), vertex_edges[v.idx()]))
+      mismatch(at[0][v.idx()], "vertex " + std::to_string(v.idx()) +
+                                   ": the listed edges are not those at it, with their directions");
+  for (cell_edge e : cc.edges()) {
+    if (!same(cc.edge_faces(e), edge_faces[e.idx()]))
+      mismatch(at[1][e.idx()], "edge " + std::to_string(e.idx()) +
+                                   ": the listed faces are not those at it in right-hand rotation order");
+    const auto w = cc.edge_wedges(e);
+    if (!std::equal(w.begin(), w.end(), edge_wedges[e.idx()].begin(), edge_wedges[e.idx()].end(),
+                    [](cell_volume c, std::uint32_t i) { return c.idx() == i; }))
+      mismatch(at[1][e.idx()],
+               "edge " + std::to_string(e.idx()) + ": the listed volumes are not those between its faces");
+  }
+  for (cell_face f : cc.faces()) {
+    if (!same(cc.face_volumes(f), face_volumes[f.idx()]))
+      mismatch(at[2][f.idx()], "face " + std::to_string(f.idx()) +
+                                   ": the listed volumes are not the face's, with their signs");
+    for (std::size_t k = 0; k < cc.num_loops(f); ++k)
+      if (!same(cc.loop_edges(f, k), loop_edges[f.idx()][k]))
+        mismatch(at[2][f.idx()], "face " + std::to_string(f.idx()) + ": loop " + std::to_string(k) +
+                                     " lists edges that do not join its vertices in order");
+  }
+  return cc;
+}
+
+/// Reads a 3DCL text file (see parse_3dcl). O(file size + n log n).
+inline cell_complex read_3dcl(const std::filesystem::path& path) {
+  const std::string bytes = detail::read_file(path);
+  return parse_3dcl(bytes, detail::display_name(path));
+}
+
+/// The faces of every volume, outward, as an OBJ model with one group "volume_<i>" per volume
+/// (a face between two volumes appears in both), faces with holes triangulated, edges in no
+/// face as `l` lines. O(size of cc).
+inline obj_data<glm::dvec3> cells_obj_data(const cell_complex& cc) {
+  obj_data<glm::dvec3> data;
+  data.soup.points.assign(cc.points().begin(), cc.points().end());
+  std::vector<std::uint32_t> face;
+  for (cell_volume c : cc.volumes()) {
+    data.groups.push_back(
+        {"volume_" + std::to_string(c.idx()), static_cast<std::uint32_t>(data.soup.num_faces())});
+    for (const auto& [f, sign] : cc.volume_faces(c)) {
+      if (cc.num_loops(f) == 1) {
+        face.clear();
+        for (cell_vertex v : cc.loop_vertices(f, 0)) face.push_back(v.idx());
+        if (sign < 0) std::reverse(face.begin(), face.end());
+        data.soup.add_face(face);
+        continue;
+      }
+      std::vector<std::vector<glm::dvec3>> loops(cc.num_loops(f));
+      std::vector<std::uint32_t> flat;
+      for (std::size_t l = 0; l < loops.size(); ++l)
+        for (cell_vertex v : cc.loop_vertices(f, l)) loops[l].push_back(cc.point(v)), flat.push_back(v.idx());
+      for (const auto& t : cellforge::detail::cells::triangulate_face(
+               loops, cc.face_normal(f), "cells obj: face " + std::to_string(f.idx())))
+        data.soup.add_face(sign < 0
+                               ? std::initializer_list<std::uint32_t>{flat[t[0]], flat[t[2]], flat[t[1]]}
+                               : std::initializer_list<std::uint32_t>{flat[t[0]], flat[t[1]], flat[t[2]]});
+    }
+  }
+  for (cell_edge e : cc.edges())
+    if (cc.edge_faces(e).empty()) data.lines.push_back({cc.source(e).idx(), cc.target(e).idx()});
+  return data;
+}
+
+/// Writes cells_obj_data(cc) with write_obj. O(size of cc).
+inline void write_cells_obj(std::ostream& os, const cell_complex& cc, const obj_write_options& options = {}) {
+  write_obj(os, cells_obj_data(cc), options);
+}
+inline void write_cells_obj(const std::filesystem::path& path, const cell_complex& cc,
+                            const obj_write_options& options = {}) {
+  write_obj(path, cells_obj_data(cc), options);
+}
+
+/// A distinct, saturated colour for volume i (hues spaced by the golden angle). O(1).
+inline glm::dvec3 volume_colour(std::size_t i) {
+  const double h = std::fmod(0.13 + 0.618033988749895 * static_cast<double>(i), 1.0) * 6.0, s = 0.55,
+               v = 0.92;
+  const double c = v * s, x = c * (1 - std::abs(std::fmod(h, 2.0) - 1)), m = v - c;
+  const int k = static_cast<int>(h) % 6;
+  const glm::dvec3 rgb = k == 0   ? glm::dvec3(c, x, 0)
+                         : k == 1 ? glm::dvec3(x, c, 0)
+                         : k == 2 ? glm::dvec3(0, c, x)
+                         : k == 3 ? glm::dvec3(0, x, c)
+                         : k == 4 ? glm::dvec3(x, 0, c)
+                                  : glm::dvec3(c, 0, x);
+  return rgb + m;
+}
+
+/// Writes an ASCII PLY of every volume's outward faces, each face with the colour of its
+/// volume (uchar red, green, blue face properties), faces with holes triangulated. O(size).
+inline void write_cells_ply(std::ostream& os, const cell_complex& cc) {
+  const obj_data<glm::dvec3> data = cells_obj_data(cc);
+  std::string out =
+      "ply\nformat ascii 1.0\ncomment 3DCL faces coloured by volume (cellforge)\nelement vertex " +
+      std::to_string(data.soup.points.size()) +
+      "\nproperty double x\nproperty double y\nproperty double z\nelement face " +
+      std::to_string(data.soup.num_faces()) +
+      "\nproperty list uchar int vertex_indices\nproperty uchar red\nproperty uchar green\n"
+      "property uchar blue\nend_header\n";
+  for (const glm::dvec3& p : data.soup.points) {
+    for (int k = 0; k < 3; ++k) detail::put_double(out, p[k]), out += k < 2 ? ' ' : '\n';
+  }
+  for (std::size_t g = 0; g < data.groups.size(); ++g) {
+    const std::size_t end =
+        g + 1 < data.groups.size() ? data.groups[g + 1].first_face : data.soup.num_faces();
+    const glm::dvec3 rgb = volume_colour(g) * 255.0;
+    for (std::size_t f = data.groups[g].first_face; f < end; ++f) {
+      const auto face = data.soup.face(f);
+      if (face.size() > 255)
+        throw error(error_category::invalid_input, "cells ply: face with more than 255 vertices");
+      out += std::to_string(face.size());
+      for (std::uint32_t v : face) out += ' ' + std::to_string(v);
+      for (int k = 0; k < 3; ++k) out += ' ' + std::to_string(static_cast<int>(std::lround(rgb[k])));
+      out += '\n';
+    }
+  }
+  os.write(out.data(), static_cast<std::streamsize>(out.size()));
+  if (!os) throw error(error_category::io, "cells ply: writing to the stream failed");
+}
+inline void write_cells_ply(const std::filesystem::path& path, const cell_complex& cc) {
+  detail::write_file(path, [&](std::ostream& os) { write_cells_ply(os, cc); });
+}
+
+/// How the exploded picture of a complex is drawn.
+struct cells_svg_options {
+  /// Each volume moves away from the model's centre by this fraction of the distance from
+  /// the centre to the volume's centre (0: assembled).
+  double explode = 0.35;
+  svg_options picture{};
+  svg_style style{};  ///< fill is replaced by each volume's colour
+};
+
+/// The exploded picture as a scene: one shaded mesh layer per volume, offset away from the
+/// model's centre; edges drawn where faces meet at an angle (not triangulation diagonals).
+/// O(size of cc).
+inline svg_scene cells_svg_scene(const cell_complex& cc, const cells_svg_options& options = {}) {
+  if (!(options.explode >= 0.0) || !std::isfinite(options.explode))
+    throw error(error_category::invalid_input, "cells svg: explode must be finite and >= 0");
+  bounding_box box;
+  for (const glm::dvec3& p : cc.points()) box.add(p);
+  const obj_data<glm::dvec3> data = cells_obj_data(cc);
+  svg_scene scene;
+  for (std::size_t g = 0; g < data.groups.size(); ++g) {
+    const std::size_t end =
+        g + 1 < data.groups.size() ? data.groups[g + 1].first_face : data.soup.num_faces();
+    polygon_soup<glm::dvec3> soup;
+    soup.points = data.soup.points;
+    bounding_box vb;
+    for (std::size_t f = data.groups[g].first_face; f < end; ++f) {
+      soup.add_face(data.soup.face(f));
+      for (std::uint32_t v : data.soup.face(f)) vb.add(data.soup.points[v]);
+    }
+    svg_style style = options.style;
+    const glm::dvec3 rgb = volume_colour(g);
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "#%02x%02x%02x", static_cast<int>(std::lround(rgb.x * 255)),
+                  static_cast<int>(std::lround(rgb.y * 255)), static_cast<int>(std::lround(rgb.z * 255)));
+    style.fill = hex;
+    if (style.feature_angle_deg == 0) style.feature_angle_deg = 1;
+    style.offset = options.explode * (vb.center() - box.center());
+    scene.add_mesh(soup, style);
+  }
+  return scene;
+}
+
+/// Writes the exploded, shaded picture of cc (see cells_svg_scene). O(picture).
+inline svg_result write_cells_svg(std::ostream& os, const cell_complex& cc,
+                                  const cells_svg_options& options = {}) {
+  return cells_svg_scene(cc, options).write(os, options.picture);
+}
+inline svg_result write_cells_svg(const std::filesystem::path& path, const cell_complex& cc,
+                                  const cells_svg_options& options = {}) {
+  return cells_svg_scene(cc, options).write(path, options.picture);
+}
+
+}  // namespace cellforge::io

@@ -1,0 +1,259 @@
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cellforge/cells/cell_complex.hpp"
+#include "cellforge/cells/validate.hpp"
+#include "cellforge/io/cells_io.hpp"
+#include "cellforge/io/obj.hpp"
+#include "cellforge/io/ply.hpp"
+#include "cells_fixtures.hpp"
+
+using namespace cellforge;
+namespace fx = cells_fixtures;
+
+namespace {
+
+std::string text_of(const cell_complex& cc) {
+  std::ostringstream os;
+  io::write_3dcl(os, cc);
+  return os.str();
+}
+
+std::vector<std::string> split_lines(const std::string& s) {
+  std::vector<std::string> out;
+  std::istringstream is(s);
+  for (std::string line; std::getline(is, line);) out.push_back(line);
+  return out;
+}
+
+std::string join_lines(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const auto& l : lines) s += l + "\n";
+  return s;
+}
+
+void same_complex(const cell_complex& a, const cell_complex& b) {
+  CHECK(fx::same_input(a.to_input(), b.to_input()));
+}
+
+}  // namespace
+
+TEST_CASE("3dcl: written in the seed's order and read back identically") {
+  const std::vector<cell_complex_input> inputs{fx::cube(),  fx::two_cubes(),      fx::grid(2, 2, 1),
+                                               fx::frame(), fx::disjoint_cubes(), fx::block_with_hole()};
+  for (const auto& in : inputs) {
+    auto moved = in;
+    for (auto& p : moved.points) p = p * 0.1 + glm::dvec3(1.0 / 3.0, -2e-7, 1e5);  // not short decimals
+    const cell_complex cc = make_cell_complex(moved);
+    const std::string text = text_of(cc);
+    const cell_complex back = io::parse_3dcl(text, "t.3dcl");
+    same_complex(cc, back);
+    CHECK(text_of(back) == text);
+    CHECK(validate(back).ok());
+  }
+  const std::string cube = text_of(make_cell_complex(fx::cube()));
+  const auto lines = split_lines(cube);
+  REQUIRE(lines.size() == 33);
+  CHECK(lines[0] == "3dcl 1");
+  CHECK(lines[1] == "vertices 8");
+  CHECK(lines[2].rfind("v 0 0 0 0 edges ", 0) == 0);
+  CHECK(lines[10] == "edges 12");
+  CHECK(lines[11].rfind("e 0 0 1 faces ", 0) == 0);
+  CHECK(lines[11].find(" volumes 0 -") != std::string::npos);  // the cube, then outside
+  CHECK(lines[23] == "faces 6");
+  CHECK(lines[24].rfind("f 0 volumes -0 loop ", 0) == 0);  // face x = 0: its normal (+x) points in
+  CHECK(lines[30] == "volumes 1");
+  CHECK(lines[31].rfind("c 0 faces ", 0) == 0);
+  CHECK(lines[32] == "end");
+  const std::string hole = text_of(make_cell_complex(fx::block_with_hole()));
+  CHECK(hole.find("f 0 volumes +0 loop 4 5 6 7 edges") != std::string::npos);
+  CHECK(hole.find(" loop 12 15 14 13 edges") != std::string::npos);
+
+  // Comments, blank lines, CRLF line ends and a byte-order mark are accepted.
+  std::string decorated = "\xEF\xBB\xBF# made by hand\r\n";
+  for (const auto& l : lines) decorated += l + "   # note\r\n\r\n";
+  same_complex(io::parse_3dcl(decorated), make_cell_complex(fx::cube()));
+
+  // Files.
+  const auto path = std::filesystem::temp_directory_path() / "cellforge_test_cells.3dcl";
+  const cell_complex two = make_cell_complex(fx::two_cubes());
+  io::write_3dcl(path, two, {.comment = "two cubes\nsharing a face"});
+  same_complex(io::read_3dcl(path), two);
+  std::filesystem::remove(path);
+  CHECK_THROWS_AS((void)io::read_3dcl(path), error);
+}
+
+TEST_CASE("3dcl: malformed files give file:line and what was expected") {
+  const auto good = split_lines(text_of(make_cell_complex(fx::cube())));
+  auto with = [&](std::size_t line, const std::string& text) {
+    auto l = good;
+    l[line - 1] = text;
+    return join_lines(l);
+  };
+  auto first = [&](std::size_t n) {
+    return join_lines(std::vector<std::string>(good.begin(), good.begin() + n));
+  };
+  auto replaced = [&](std::size_t line, const std::string& from, const std::string& to) {
+    auto l = good;
+    const auto at = l[line - 1].find(from);
+    REQUIRE(at != std::string::npos);
+    l[line - 1].replace(at, from.size(), to);
+    return join_lines(l);
+  };
+  // Line 25 is face 0 (x = 0, normal +x into the cube): "f 0 volumes -0 loop 0 1 2 3 edges
+  // +0 +1 +2 +3"; line 12 is edge 0 "e 0 0 1 faces +0 -4 volumes 0 -".
+  const std::string face0 = good[24], edge0 = good[11];
+  const auto swap_two = [](std::string s, const std::string& key) {
+    // Swaps the first two signed entries after `key`.
+    const auto at = s.find(key) + key.size();
+    const auto a_end = s.find(' ', at + 1), b_end = s.find(' ', a_end + 1);
+    const std::string a = s.substr(at + 1, a_end - at - 1),
+                      b = s.substr(a_end + 1, (b_end == std::string::npos ? s.size() : b_end) - a_end - 1);
+    return s.substr(0, at + 1) + b + " " + a + (b_end == std::string::npos ? "" : s.substr(b_end));
+  };
+  struct bad_case {
+    std::string text;
+    std::uint64_t line;
+    std::string message;
+  };
+  const std::vector<bad_case> cases{
+      {"", 1, "expected the header '3dcl 1', found end of file"},
+      {"# only a comment\n\n", 2, "expected the header '3dcl 1', found end of file"},
+      {with(1, "3dcl 2"), 1, "unsupported 3dcl version '2'"},
+      {with(1, "cells 1"), 1, "expected '3dcl' at the start of the file"},
+      {with(2, "verts 8"), 2, "expected 'vertices'"},
+      {with(2, "vertices x"), 2, "expected the number of vertices (a non-negative integer), found 'x'"},
+      {with(2, "vertices -1"), 2, "found '-1'"},
+      {with(2, "vertices 9"), 11, "expected 'v' at the start of vertex 8 (there are 9), found 'edges'"},
+      {replaced(3, "v 0 ", "v 5 "), 3, "expected vertex number 0, found '5'"},
+      {replaced(3, "v 0 0 0 0", "v 0 0 0"), 3, "expected coordinate z of vertex 0 (a number), found 'edges'"},
+      {replaced(3, "v 0 0", "v 0 nan"), 3, "coordinate x of vertex 0 'nan' is not finite"},
+      {replaced(3, "v 0 0", "v 0 1.5x"), 3, "expected coordinate x of vertex 0 (a number), found '1.5x'"},
+      {replaced(12, "e 0 0 1", "e 0 0 99"), 12, "the end vertex of edge 0 99 out of range (0..7)"},
+      {replaced(12, "faces +", "faces "), 12, "expected a face with its sign (like +3 or -3)"},
+      {replaced(12, " volumes", " vols"), 12, "expected 'volumes' after the faces of edge 0, found 'vols'"},
+      {first(20), 20, "expected edge 9 of 12, found end of file"},
+      {first(32), 32, "expected 'end' after the last volume, found end of file"},
+      {join_lines(good) + "v 9\n", 34, "unexpected content after 'end'"},
+      {with(33, "end now"), 33, "unexpected 'now' at the end of the file"},
+      {with(25, "f 0 volumes -0"), 25, "face 0 has no 'loop'"},
+      {replaced(25, " loop ", " lop "), 25, "expected 'loop' (a vertex loop) in face 0, found 'lop'"},
+      {replaced(25, " edges", " x"), 25,
+       "expected 'edges' after the vertices of a loop of face 0, found 'x'"},
+  };
+  auto run = [](const bad_case& c) {
+    try {
+      (void)io::parse_3dcl(c.text, "bad.3dcl");
+      FAIL("no error for: " << c.message);
+    } catch (const error& e) {
+      INFO(e.what());
+      CHECK(e.category() == error_category::io);
+      CHECK(e.file() == "bad.3dcl");
+      CHECK(e.line() == c.line);
+      CHECK(std::string(e.what()).find(c.message) != std::string::npos);
+      CHECK(std::string(e.what()).rfind("bad.3dcl:" + std::to_string(c.line) + ": ", 0) == 0);
+    }
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    INFO("case " << i);
+    run(cases[i]);
+  }
+
+  // Relations that disagree with the cells, and cells make_cell_complex refuses.
+  std::string v0 = good[2];
+  const auto plus = v0.find(" +");
+  v0[plus + 1] = '-';  // an edge leaving vertex 0 listed as arriving
+  const std::vector<bad_case> relations{
+      {with(3, v0), 3, "vertex 0: the listed edges are not those at it"},
+      {with(12, swap_two(edge0, " faces")), 12, "edge 0: the listed faces are not those at it"},
+      {replaced(12, "volumes 0 -", "volumes - 0"), 12, "edge 0: the listed volumes are not those between"},
+      {replaced(25, "volumes -0", "volumes +0"), 25, "face 0: the listed volumes are not the face's"},
+      {replaced(25, "loop 0 1 2 3", "loop 0 2 1 3"), 25, "face 0 loop 0: consecutive vertices 0 and 2"},
+      {replaced(32, "faces -0", "faces +0"), 32, "the boundary of volume 0 is not closed"},
+  };
+  for (std::size_t i = 0; i < relations.size(); ++i) {
+    INFO("relation case " << i);
+    run(relations[i]);
+  }
+  // A repeated edge: edge 1 given edge 0's endpoints.
+  auto l = good;
+  l[12] = "e 1 0 1" + l[12].substr(l[12].find(" faces"));
+  run({join_lines(l), 13, "edge 1 repeats edge 0"});
+  CHECK(cases.size() + relations.size() + 1 >= 25);
+}
+
+TEST_CASE("cells OBJ: one group per volume") {
+  const cell_complex cc = make_cell_complex(fx::two_cubes());
+  std::ostringstream os;
+  io::write_cells_obj(os, cc, {.comment = "two cubes"});
+  const auto data = io::parse_obj<glm::dvec3>(os.str(), "two.obj");
+  REQUIRE(data.groups.size() == 2);
+  CHECK(data.groups[0].name == "volume_0");
+  CHECK(data.groups[1].name == "volume_1");
+  CHECK(data.groups[1].first_face == 6);
+  CHECK(data.soup.num_faces() == 12);  // the shared face in both groups
+  CHECK(data.soup.points.size() == 12);
+  // Each group is a closed box with outward faces.
+  for (std::size_t g = 0; g < 2; ++g) {
+    polygon_soup<glm::dvec3> box;
+    box.points = data.soup.points;
+    for (std::size_t f = 6 * g; f < 6 * g + 6; ++f) box.add_face(data.soup.face(f));
+    const cell_complex one = mesh_to_cell_complex(make_mesh(box));
+    CHECK(validate(one).signed_volumes == std::vector<double>{1.0});
+  }
+  // Faces with holes are triangulated; dangling edges become lines.
+  auto in = fx::block_with_hole();
+  in.points.push_back({5, 5, 5});
+  in.edges.push_back({0, 16});
+  const auto holed = io::cells_obj_data(make_cell_complex(in));
+  CHECK(holed.soup.num_faces() == 8 + 2 * 8);
+  CHECK(holed.lines == std::vector<std::array<std::uint32_t, 2>>{{0, 16}});
+}
+
+TEST_CASE("cells PLY: faces coloured by volume") {
+  const cell_complex cc = make_cell_complex(fx::grid(2, 1, 1));
+  std::ostringstream os;
+  io::write_cells_ply(os, cc);
+  const std::string text = os.str();
+  CHECK(text.find("property uchar red") != std::string::npos);
+  const auto soup = io::parse_ply<glm::dvec3>(text, "grid.ply");
+  CHECK(soup.num_faces() == 12);
+  CHECK(soup.points.size() == 12);
+  // The colour columns: six faces of one colour, six of another.
+  std::set<std::string> colours;
+  for (const auto& line : split_lines(text))
+    if (line.rfind("4 ", 0) == 0)
+      colours.insert(line.substr(line.rfind(' ', line.rfind(' ', line.rfind(' ') - 1) - 1)));
+  CHECK(colours.size() == 2);
+  CHECK(io::volume_colour(0) != io::volume_colour(1));
+}
+
+TEST_CASE("cells SVG: volumes exploded apart, faces shaded") {
+  const cell_complex cc = make_cell_complex(fx::grid(2, 2, 1));
+  std::ostringstream a, b;
+  const auto ra = io::write_cells_svg(a, cc, {.explode = 0.0});
+  const auto rb = io::write_cells_svg(b, cc);
+  CHECK(ra.faces_drawn == 24);
+  CHECK(rb.faces_drawn == 24);
+  CHECK(a.str().rfind("<?xml", 0) == 0);
+  CHECK(a.str() != b.str());
+  // Exploded, the four volumes' layers are offset away from the centre by 35% of their
+  // centres' distance from it.
+  const auto scene = io::cells_svg_scene(cc);
+  CHECK(scene.num_layers() == 4);
+  const auto vis = scene.edge_visibility();
+  double max_x = -1e9;
+  for (const auto& e : vis) max_x = std::max({max_x, e.a.x, e.b.x});
+  CHECK(max_x == doctest::Approx(2.0 + 0.35 * 0.5));
+  CHECK_THROWS_AS((void)io::cells_svg_scene(cc, {.explode = -1}), error);
+  // A face with a hole is drawn without its triangulation's diagonals.
+  const auto holed = io::cells_svg_scene(make_cell_complex(fx::block_with_hole()));
+  std::size_t drawn_edges = 0;
+  for (const auto& e : holed.edge_visibility()) drawn_edges += e.layer == 0 ? 1 : 0;
+  CHECK(drawn_edges >= 24);
+}
