@@ -399,6 +399,42 @@ TEST_CASE("both algorithms give the same hull on every kind of input") {
   }
 }
 
+TEST_CASE("random small-grid inputs: duplicates, coplanar and collinear everywhere") {
+  // Few distinct values per coordinate make almost every orientation test an exact zero.
+  std::mt19937_64 rng(13);
+  std::uniform_int_distribution<int> size(1, 80), kind(0, 3);
+  int solids = 0, flats = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const int n = size(rng), k = kind(rng);
+    std::uniform_int_distribution<int> c(0, k == 0 ? 1 : k == 1 ? 3 : 6);
+    std::vector<glm::dvec3> pts;
+    for (int i = 0; i < n; ++i) {
+      glm::dvec3 p(c(rng), c(rng), c(rng));
+      if (k == 3) p.z = p.x + p.y;  // all on one plane
+      pts.push_back(p);
+    }
+    for (const auto method :
+         {cellforge::convex_hull_method::quickhull, cellforge::convex_hull_method::incremental}) {
+      for (const bool merge : {false, true}) {
+        convex_hull_report report;
+        const halfedge_mesh m = convex_hull(pts, {.merge_coplanar = merge, .method = method}, &report);
+        REQUIRE(cellforge::validate(m).ok());
+        if (report.dimension == 3) {
+          check_hull(pts, m, reference::int128);
+          solids += !merge;
+        } else {
+          CHECK(m.is_closed());
+          flats += report.dimension == 2 && !merge;
+          if (report.dimension == 2) CHECK(m.num_faces() == (merge ? 2u : 2 * (m.num_vertices() - 2)));
+          if (report.dimension < 2) CHECK(m.num_faces() == 0);
+        }
+      }
+    }
+  }
+  CHECK(solids > 300);
+  CHECK(flats > 100);
+}
+
 TEST_CASE_TEMPLATE("every point type gives the same hull", P, glm::dvec3, std::array<float, 3>, user::pt) {
   std::mt19937_64 rng(9);
   std::uniform_real_distribution<float> c(-1, 1);

@@ -41,12 +41,13 @@ enum class convex_hull_method : std::uint8_t {
 
 /// How convex_hull builds and shapes its output.
 struct convex_hull_options {
-  convex_hull_method method = convex_hull_method::automatic;
   /// Output one polygon per planar facet (e.g. 6 quads for a cube) instead of triangles.
   bool merge_coplanar = false;
   /// Inputs spanning fewer than 3 dimensions (all coplanar, all collinear, one distinct
   /// point) give a degenerate hull described in the report; false makes them an error.
   bool allow_degenerate = true;
+  /// The algorithm; the default picks by a sample (see convex_hull_method).
+  convex_hull_method method = convex_hull_method::automatic;
 };
 
 /// What convex_hull found.
