@@ -126,3 +126,36 @@ TEST_CASE("pipeline: stage reports") {
   CHECK(oct.unique.faces.size() == 11);
   CHECK(oct.arrangement.crossings.size() == 3);
 }
+
+TEST_CASE("pipeline: a solid inside another's cavity belongs to the cavity's boundary") {
+  // A 4-cube with a 1-cube floating inside: two objects, two volumes. The big volume's boundary
+  // is its 6 outer faces plus the small cube's 6 faces seen from outside (normals pointing in).
+  sample_model big = sample_cube({4, 4, 4});
+  const sample_model small = sample_cube({1, 1, 1});
+  const auto base = static_cast<std::uint32_t>(big.wire.points.size());
+  for (const auto& p : small.wire.points) big.wire.points.push_back(p + glm::dvec3(1.5, 1.5, 1.5));
+  for (const auto& e : small.wire.edges) big.wire.edges.push_back({e[0] + base, e[1] + base});
+  const auto r = wireframe_to_cells(big.wire);
+  CHECK(r.volume.objects == 2);
+  CHECK(r.volume.nested_shells == 1);
+  REQUIRE(r.input.volumes.size() == 2);
+  std::size_t sizes[2] = {r.input.volumes[0].faces.size(), r.input.volumes[1].faces.size()};
+  CHECK(std::min(sizes[0], sizes[1]) == 6);
+  CHECK(std::max(sizes[0], sizes[1]) == 12);
+  const auto v = validate(r.cells);
+  const std::string why = v.message;
+  INFO(why);
+  CHECK(v.ok());
+  for (const double vol : v.signed_volumes) CHECK(vol > 0.0);
+  double total = 0.0;
+  for (const double vol : v.signed_volumes) total += vol;
+  CHECK(total == doctest::Approx(64.0));
+}
+
+TEST_CASE("pipeline: a user's wireframe type through wireframe_traits") {
+  const sample_model m = sample_house();
+  const auto r = wireframe_to_cells(m.wire);
+  const auto r2 = wireframe_to_cells(to_wireframe<std::array<float, 3>>(m.wire));
+  CHECK(same_faces(r.input.faces, r2.input.faces));
+  CHECK(r2.input.volumes.size() == 2);
+}
