@@ -85,6 +85,8 @@ TEST_CASE("edge list: malformed input names the line and says what is wrong") {
       {"coordinate not a number", "vertices 1\n0 x 0\nedges 0\n", 2,
        "expected coordinate y of vertex 0, found 'x'"},
       {"too few vertices", "vertices 3\n0 0 0\n1 0 0\nedges 1\n0 1\n", 4, "found 'edges' after 2 vertices"},
+      {"a word in the vertices", "vertices 2\n0 0 0\nedgesX 1\n", 3,
+       "expected coordinate x of vertex 1, found 'edgesX'"},
       {"end of file in the vertices", "vertices 3\n0 0 0\n1 0 0\n", 3,
        "expected vertex 2 of 3, found end of file"},
       {"no edges section", "vertices 1\n0 0 0\n", 2, "expected 'edges <count>'"},

@@ -89,7 +89,11 @@ wireframe<P> parse_edge_list(std::string_view bytes, std::string_view name = "<m
   w.points.reserve(detail::plausible_count(nv, left(), 6));
   for (std::uint32_t v = 0; v < nv; ++v) {
     detail::expect_line(c, "vertex " + std::to_string(v) + " of " + std::to_string(nv));
-    if (static_cast<std::size_t>(c.end - c.pos) >= 5 && std::string_view(c.pos, 5) == "edges")
+    // The edges section arriving early is the likeliest mistake: say so rather than "expected a number".
+    const bool edges_keyword = static_cast<std::size_t>(c.end - c.pos) >= 5 &&
+                               std::string_view(c.pos, 5) == "edges" &&
+                               (c.end - c.pos == 5 || detail::is_blank(c.pos[5]) || detail::is_eol(c.pos[5]));
+    if (edges_keyword)
       c.fail("found 'edges' after " + std::to_string(v) + " vertices; the 'vertices' count says " +
              std::to_string(nv));
     const S x = c.coordinate<S>([&] { return "coordinate x of vertex " + std::to_string(v); });
