@@ -549,6 +549,33 @@ class halfedge_mesh {
     return n32(he_.size() / 2 - 1);
   }
 
+  // Reused working arrays of add_face/remove_face, so that an edit allocates nothing once
+  // warm. Per mesh (no global state); copying a mesh does not copy them.
+  struct scratch_buffers {
+    scratch_buffers() = default;
+    scratch_buffers(const scratch_buffers&) {}
+    scratch_buffers& operator=(const scratch_buffers&) { return *this; }
+    scratch_buffers(scratch_buffers&&) noexcept = default;
+    scratch_buffers& operator=(scratch_buffers&&) noexcept = default;
+
+    std::vector<std::uint32_t>& assign_u32(std::size_t slot, std::size_t n, std::uint32_t value) {
+      u32[slot].assign(n, value);
+      return u32[slot];
+    }
+    std::vector<std::uint8_t>& assign_u8(std::size_t slot, std::size_t n, std::uint8_t value) {
+      u8[slot].assign(n, value);
+      return u8[slot];
+    }
+    std::vector<std::vector<fan>>& fan_lists(std::size_t n) {
+      if (fans.size() < n) fans.resize(n);
+      for (std::size_t i = 0; i < n; ++i) fans[i].clear();
+      return fans;
+    }
+    std::vector<std::uint32_t> u32[4];
+    std::vector<std::uint8_t> u8[2];
+    std::vector<std::vector<fan>> fans;
+  };
+
   std::vector<record> he_;
   std::vector<std::uint32_t> vertex_anchor_;
   std::vector<std::uint32_t> face_anchor_;
@@ -556,6 +583,7 @@ class halfedge_mesh {
   std::size_t flipped_edges_ = 0;
   std::size_t removed_vertices_ = 0, removed_edges_ = 0, removed_faces_ = 0;
   detail::property_registry vprops_, hprops_, eprops_, fprops_;
+  scratch_buffers scratch_;
 };
 
 }  // namespace cellforge

@@ -61,8 +61,9 @@ inline face_handle halfedge_mesh::add_face(std::span<const vertex_handle> vs) {
 
   auto at = [&](std::size_t i) { return vs[i % n].idx(); };
   // Phase 1: find each edge's existing unlinked half-edge; check nothing becomes non-manifold.
-  std::vector<std::uint32_t> match(n, npos);
-  std::vector<std::uint8_t> flipped(n, 0);
+  scratch_buffers& sb = scratch_;
+  std::vector<std::uint32_t>& match = sb.assign_u32(0, n, npos);
+  std::vector<std::uint8_t>& flipped = sb.assign_u8(0, n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t a = at(i), b = at(i + 1);
     std::uint32_t m = unlinked_.find(detail::edge_table::key(b, a));
@@ -77,7 +78,7 @@ inline face_handle halfedge_mesh::add_face(std::span<const vertex_handle> vs) {
                                                 " already has two faces; a third would make it non-manifold");
     }
   }
-  std::vector<std::vector<fan>> fans(n);
+  std::vector<std::vector<fan>>& fans = sb.fan_lists(n);
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t v = at(i);
     if (is_isolated(vertex_handle(v))) continue;
@@ -101,8 +102,8 @@ inline face_handle halfedge_mesh::add_face(std::span<const vertex_handle> vs) {
 
   // Phase 2: link. Nothing below throws except on allocation failure.
   const std::uint32_t f = n32(face_anchor_.size());
-  std::vector<std::uint32_t> hs(n);
-  std::vector<std::uint8_t> is_new(n, 0);
+  std::vector<std::uint32_t>& hs = sb.assign_u32(1, n, npos);
+  std::vector<std::uint8_t>& is_new = sb.assign_u8(1, n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t a = at(i), b = at(i + 1);
     if (match[i] != npos) {
@@ -173,19 +174,21 @@ inline void halfedge_mesh::remove_face(face_handle fh) {
     throw error(error_category::invalid_input,
                 "remove_face: face " + std::to_string(fh.idx()) + " does not exist or was removed");
   const std::uint32_t f = fh.idx();
-  std::vector<std::uint32_t> hs, vs;
+  scratch_buffers& sb = scratch_;
+  std::vector<std::uint32_t>& hs = sb.assign_u32(0, 0, npos);
+  std::vector<std::uint32_t>& vs = sb.assign_u32(1, 0, npos);
   for (halfedge_handle h : halfedges_around(fh)) {
     hs.push_back(h.idx());
     vs.push_back(tail(h).idx());
   }
   const std::size_t n = hs.size();
-  std::vector<std::uint8_t> interior(n);
+  std::vector<std::uint8_t>& interior = sb.assign_u8(0, n, 0);
   for (std::size_t i = 0; i < n; ++i) interior[i] = he_[hs[i] ^ 1u].face != npos;
 
   // Read every corner's fans and, where the face splits a fan, from which side the walk enters it.
-  std::vector<std::vector<fan>> fans(n);
-  std::vector<std::size_t> split_fan(n, npos);
-  std::vector<std::uint32_t> entry(n, npos);
+  std::vector<std::vector<fan>>& fans = sb.fan_lists(n);
+  std::vector<std::uint32_t>& split_fan = sb.assign_u32(2, n, npos);
+  std::vector<std::uint32_t>& entry = sb.assign_u32(3, n, npos);
   for (std::size_t i = 0; i < n; ++i) {
     read_fans(vs[i], fans[i]);
     const std::size_t ip = (i + n - 1) % n;
@@ -194,7 +197,7 @@ inline void halfedge_mesh::remove_face(face_handle fh) {
       std::uint32_t ent = npos;
       walk_fan(fans[i][k].start, vs[i], nullptr, f, &ent);
       if (ent != npos) {
-        split_fan[i] = k;
+        split_fan[i] = n32(k);
         entry[i] = ent;
       }
     }
