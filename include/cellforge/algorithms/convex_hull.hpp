@@ -110,7 +110,8 @@ struct result {
   std::size_t exact_evaluations = 0;
 };
 
-/// Quickhull over a subset of the points, with exact orientation decisions.
+/// The 3D hull engine over a subset of the points (quickhull, or insertion with walks),
+/// every orientation decision exact.
 class engine {
  public:
   explicit engine(std::span<const glm::dvec3> pts) : pts_(pts) {}
