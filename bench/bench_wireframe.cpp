@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <map>
@@ -163,6 +164,39 @@ our_run measure(const cellforge::sample_model& m, int repeats) {
 
 // ------------------------------------------------------------------------------ benchmarks
 
+#if CELLFORGE_BENCH_HAVE_PIPELINE
+/// Registers the whole conversion of one model with the given options; the first result is
+/// checked against the ground truth, and a mismatch or an error (a spent work budget) skips it.
+benchmark::internal::Benchmark* register_pipeline(const std::string& name,
+                                                  std::function<const cellforge::sample_model&()> get,
+                                                  cellforge::wireframe_options options) {
+  return benchmark::RegisterBenchmark(name.c_str(),
+                                      [get, options](benchmark::State& s) {
+                                        const auto& m = get();
+                                        try {
+                                          cb::timed_loop(
+                                              s,
+                                              [&] { return cellforge::wireframe_to_cells(m.wire, options); },
+                                              [&](const cellforge::wireframe_result& r) {
+                                                const std::string status = truth_status(m, r);
+                                                if (status != "matches the ground truth")
+                                                  s.SkipWithError(status.c_str());
+                                              });
+                                        } catch (const cellforge::error& e) {
+                                          s.SkipWithError(e.what());
+                                        }
+                                      })
+      ->UseManualTime()
+      ->Unit(benchmark::kMillisecond);
+}
+
+cellforge::wireframe_options seed_tracer() {
+  cellforge::wireframe_options o;
+  o.trace.kind = cellforge::tracer_kind::seed_bfs;
+  return o;
+}
+#endif
+
 void register_all() {
   for (int i = 1; i <= 6; ++i) {
     benchmark::RegisterBenchmark(("generate/seed_sample_" + std::to_string(i)).c_str(),
@@ -175,44 +209,16 @@ void register_all() {
         ->Unit(benchmark::kMillisecond)
         ->MinTime(0.1);
 #if CELLFORGE_BENCH_HAVE_PIPELINE
-    benchmark::RegisterBenchmark(("pipeline/seed_sample_" + std::to_string(i)).c_str(),
-                                 [i](benchmark::State& s) {
-                                   const auto& m = sample(i);
-                                   try {
-                                     cb::timed_loop(
-                                         s, [&] { return cellforge::wireframe_to_cells(m.wire); },
-                                         [&](const cellforge::wireframe_result& r) {
-                                           if (truth_status(m, r) != "matches the ground truth")
-                                             s.SkipWithError(truth_status(m, r).c_str());
-                                         });
-                                   } catch (const cellforge::error& e) {
-                                     s.SkipWithError(e.what());
-                                   }
-                                 })
-        ->UseManualTime()
-        ->Unit(benchmark::kMillisecond)
-        ->MinTime(0.2);
+    const auto get = [i]() -> const cellforge::sample_model& { return sample(i); };
+    register_pipeline("pipeline/seed_sample_" + std::to_string(i), get, {})->MinTime(0.2);
+    // The seed's exponential search, kept as an option: once per sample, it may spend its budget.
+    register_pipeline("seed_bfs/seed_sample_" + std::to_string(i), get, seed_tracer())->Iterations(1);
 #endif
   }
 #if CELLFORGE_BENCH_HAVE_PIPELINE
   for (const int k : grid_sizes) {
-    benchmark::RegisterBenchmark(("pipeline/grid_" + std::to_string(k)).c_str(),
-                                 [k](benchmark::State& s) {
-                                   const auto& m = grid(k);
-                                   try {
-                                     cb::timed_loop(
-                                         s, [&] { return cellforge::wireframe_to_cells(m.wire); },
-                                         [&](const cellforge::wireframe_result& r) {
-                                           const std::string status = truth_status(m, r);
-                                           if (status != "matches the ground truth")
-                                             s.SkipWithError(status.c_str());
-                                         });
-                                   } catch (const cellforge::error& e) {
-                                     s.SkipWithError(e.what());
-                                   }
-                                 })
-        ->UseManualTime()
-        ->Unit(benchmark::kMillisecond)
+    register_pipeline("pipeline/grid_" + std::to_string(k),
+                      [k]() -> const cellforge::sample_model& { return grid(k); }, {})
         ->Iterations(k >= 20 ? 1 : 3);
   }
 #endif
@@ -267,6 +273,21 @@ void print_tables(const cb::collecting_reporter& reporter, std::ostream& os) {
       "Seed totals are the sums of the ten time rows; ours likewise (Google Benchmark's "
       "pipeline/seed_sample_i is the whole call).");
   summary.print(os);
+
+  cb::table tracers(
+      "Tracers: the default planar arrangement vs the seed's breadth-first search (whole conversion)",
+      {"sample", "edges", "planar ms", "seed BFS ms", "ratio (BFS / planar)", "seed BFS result"});
+  for (int i = 1; i <= 6; ++i) {
+    const std::string n = "seed_sample_" + std::to_string(i);
+    const std::optional<double> planar = reporter.ms("pipeline/" + n), bfs = reporter.ms("seed_bfs/" + n);
+    const cb::run_result* run = reporter.find("seed_bfs/" + n);
+    tracers.add_row({std::to_string(i), cb::count(sample(i).wire.edges.size()),
+                     planar ? cb::ms(planar) : "pending", bfs ? cb::ms(bfs) : "—", cb::ratio(bfs, planar),
+                     run == nullptr       ? "not run"
+                     : run->error.empty() ? "matches the ground truth"
+                                          : run->error});
+  }
+  tracers.print(os);
 
   cb::table scaling("Scaling: k×k×k grids of unit cubes (every wall a face)",
                     {"grid", "vertices", "edges", "faces", "volumes", "ours ms", "ms per 1000 edges",
