@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -192,4 +193,47 @@ TEST_CASE("the bundled stepped block is the generator's model and round-trips th
   const auto back = io::read_obj_wireframe<glm::dvec3>(tmp.path);
   CHECK(back.points == m.wire.points);
   CHECK(back.edges == m.wire.edges);
+}
+
+TEST_CASE("edge list: mutated files parse or throw an io error, never anything else") {
+  // Byte edits of a valid file (ASan/UBSan builds check memory safety along the way).
+  std::ostringstream os;
+  io::write_edge_list(os, cellforge::sample_house().wire, {.comment = "house"});
+  const std::string valid = os.str();
+  const std::string alphabet = "0123456789 -+.eE#\n\r\tvertices edgesnaif";
+  std::mt19937 rng(2024);
+  std::size_t parsed = 0, rejected = 0;
+  for (int round = 0; round < 3000; ++round) {
+    std::string text = valid;
+    for (int edits = 1 + static_cast<int>(rng() % 4); edits > 0 && !text.empty(); --edits) {
+      const std::size_t at = rng() % text.size();
+      switch (rng() % 3) {
+        case 0:
+          text.erase(at, 1 + rng() % 3);
+          break;
+        case 1:
+          text.insert(at, 1, alphabet[rng() % alphabet.size()]);
+          break;
+        default:
+          text[at] = alphabet[rng() % alphabet.size()];
+      }
+    }
+    try {
+      const auto w = io::parse_edge_list<glm::dvec3>(text, "m.edges");
+      // Whatever parses is a well-formed wireframe.
+      for (const auto& e : w.edges) {
+        CHECK(e[0] < w.points.size());
+        CHECK(e[1] < w.points.size());
+        CHECK(e[0] != e[1]);
+      }
+      ++parsed;
+    } catch (const cellforge::error& e) {
+      CHECK(e.category() == cellforge::error_category::io);
+      CHECK(e.file() == "m.edges");
+      CHECK(e.line() >= 1);
+      ++rejected;
+    }
+  }
+  CHECK(parsed > 0);
+  CHECK(rejected > 0);
 }
