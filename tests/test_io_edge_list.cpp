@@ -182,8 +182,9 @@ TEST_CASE("edge list and OBJ: every sample model's wireframe round-trips") {
 
 TEST_CASE("the bundled stepped block is the generator's model and round-trips through OBJ") {
   const auto m = cellforge::sample_stepped_block();
-  const std::filesystem::path bundled = std::filesystem::path(CELLFORGE_TEST_DATA_DIR) / ".." / ".." /
-                                        "examples" / "data" / "stepped_block.obj";
+  const std::filesystem::path bundled =  // lexically: tests/data need not exist in a fresh checkout
+      std::filesystem::path(CELLFORGE_TEST_DATA_DIR).parent_path().parent_path() / "examples" / "data" /
+      "stepped_block.obj";
   const auto file = io::read_obj_wireframe<glm::dvec3>(bundled);
   CHECK(file.points == m.wire.points);
   CHECK(file.edges == m.wire.edges);
