@@ -636,3 +636,72 @@ TEST_CASE("isolated vertices and a mesh without faces") {
   CHECK(r.vertices_after == 1);
   CHECK(r.faces_after == 0);
 }
+
+// ---------------------------------------------------------------- derived state without finish()
+
+// A closed child gets its vertex anchors, flipped count and (empty) unlinked table in closed
+// form instead of from mesh_access::finish(); an open one still goes through finish(). Both
+// must leave exactly the state finish() derives from the records alone.
+TEST_CASE("closed-form anchors and flipped count agree with finish(), closed and open") {
+  struct named {
+    const char* name;
+    soup s;
+    bool closed;
+  };
+  soup with_isolated = fixtures::torus(6, 5);
+  with_isolated.points.push_back({7, 7, 7});
+  const std::vector<named> cases = {
+      {"octahedron (closed, orientable)", octahedron(), true},
+      {"torus (closed, orientable)", fixtures::torus(8, 6), true},
+      {"torus + isolated vertex", with_isolated, true},
+      {"klein bottle (closed, non-orientable)", fixtures::klein(8, 6), true},
+      {"klein bottle (shapes)", cellforge::klein_bottle<glm::dvec3>(10, 8), true},
+      {"randomly flipped torus", fixtures::randomly_flipped(fixtures::torus(6, 5), 11), true},
+      {"plane (open)", fixtures::plane(5, 4), false},
+      {"mobius (open, non-orientable)", fixtures::mobius(12, 3), false},
+  };
+  for (const named& c : cases) {
+    for (int levels = 1; levels <= 2; ++levels) {
+      INFO(c.name << ", " << levels << " level(s)");
+      halfedge_mesh m = cellforge::make_mesh(c.s);
+      REQUIRE(m.is_closed() == c.closed);
+      const auto r = cellforge::loop_subdivide<glm::dvec3>(m, {.levels = levels});
+      const auto v = cellforge::validate(m);
+      INFO(v.message);
+      REQUIRE(v.ok());
+      CHECK(m.is_closed() == c.closed);
+
+      // The flipped count, recounted edge by edge.
+      std::size_t flipped = 0;
+      for (const auto e : m.edges()) flipped += m.is_flipped(e) ? 1 : 0;
+      CHECK(m.num_flipped_edges() == flipped);
+      CHECK(r.flipped_edges_after == flipped);
+      CHECK(m.unlinked_halfedges().size() == m.num_boundary_edges());
+
+      // Anchors: interior vertices end a face half-edge at them; isolated ones have none.
+      for (const auto vh : m.vertices()) {
+        if (m.is_isolated(vh)) {
+          CHECK(vh.idx() == c.s.points.size() - 1);  // only the one we added
+          continue;
+        }
+        const auto a = m.anchor(vh);
+        if (!m.is_boundary(vh)) {
+          CHECK(!m.is_boundary(a));
+          CHECK((m.head(a) == vh || m.tail(a) == vh));
+        }
+      }
+
+      // finish() from the records alone derives the same state.
+      halfedge_mesh again = m;
+      cellforge::detail::mesh_access::finish(again);
+      CHECK(cellforge::validate(again).ok());
+      CHECK(again.num_flipped_edges() == m.num_flipped_edges());
+      CHECK(again.num_boundary_edges() == m.num_boundary_edges());
+      for (const auto vh : m.vertices()) {
+        CHECK(again.is_isolated(vh) == m.is_isolated(vh));
+        CHECK(again.is_boundary(vh) == m.is_boundary(vh));
+        CHECK(again.valence(vh) == m.valence(vh));
+      }
+    }
+  }
+}

@@ -276,17 +276,45 @@ loop_result loop_subdivide(halfedge_mesh& mesh, const loop_options& options = {}
       const std::size_t ne = he.size() / 2, nf = access::face_anchors(mesh).size();
       const std::size_t child_nv = nv + ne, child_ne = 2 * ne + 3 * nf, child_nf = 4 * nf;
 
+      const bool last = level + 1 == options.levels;
+      // A closed child needs no finish(): its vertex anchors are written here in closed form
+      // (only at the last level: nothing in between reads them), the unlinked table stays
+      // empty and split_faces counts the flipped edges.
+      const bool closed = boundary_edges.empty();
+
       // Topology: throws (naming the face) before the mesh changes.
       std::vector<dl::record> child_he(2 * child_ne);
       std::vector<std::uint32_t> child_anchors(child_nf);
-      dl::split_faces(he, access::face_anchors(mesh), nv, child_he, child_anchors);
+      std::vector<std::uint32_t> child_vertex_anchors;
+      if (closed && last) {
+        // Parent entries are kept for isolated vertices (npos) and overwritten for the rest.
+        child_vertex_anchors.reserve(child_nv);
+        child_vertex_anchors = access::vertex_anchors(mesh);
+        child_vertex_anchors.resize(child_nv);
+        dl::write_edge_vertex_anchors(nv, static_cast<std::uint32_t>(ne), child_vertex_anchors.data());
+      }
+      const std::size_t child_flipped =
+          dl::split_faces(he, access::face_anchors(mesh), nv, child_he, child_anchors,
+                          closed && last ? child_vertex_anchors.data() : nullptr);
 
-      // Geometry, in double precision, from the parent.
-      std::vector<glm::dvec3> child_points(child_nv);
+      // Geometry, in double precision, from the parent. The masks store the edge points in
+      // order (nv + e for e = 0, 1, …) and then the vertex points, so the edge points are
+      // appended rather than written over a zeroed array.
+      std::vector<glm::dvec3> child_points;
+      child_points.reserve(child_nv);
+      child_points.resize(nv);
       const std::vector<P>& parent_points = pts.vector();
       const dl::mask_stats stats = dl::apply_masks<glm::dvec3>(
           he, nv, boundary_edges, params, [&](std::uint32_t v) { return to_dvec3(parent_points[v]); },
-          [&](std::uint32_t i, const glm::dvec3& p) { child_points[i] = p; });
+          [&](std::uint32_t i, const glm::dvec3& p) {
+            if (i < nv)
+              child_points[i] = p;
+            else
+              child_points.push_back(p);
+          });
+      if (child_points.size() != child_nv)  // the masks' order changed: a bug, not bad input
+        throw error(error_category::invalid_input,
+                    "loop_subdivide: internal error: edge points out of order");
       result.fixed_vertices += stats.fixed_vertices;
       for (const dl::attribute_job& job : jobs)
         dl::subdivide_attribute(job, he, nv, child_nv, boundary_edges, params);
@@ -302,13 +330,17 @@ loop_result loop_subdivide(halfedge_mesh& mesh, const loop_options& options = {}
       }
       he.swap(child_he);
       access::face_anchors(mesh).swap(child_anchors);
+      if (closed && last) access::vertex_anchors(mesh).swap(child_vertex_anchors);
       // Half-edge, edge and face properties restart from their defaults: their elements are new.
       access::halfedge_properties(mesh).resize(0);
       access::edge_properties(mesh).resize(0);
       access::face_properties(mesh).resize(0);
       access::resize(mesh, child_nv, child_ne, child_nf);
       dl::split_boundary(boundary_edges);
-      if (level + 1 == options.levels) {
+      if (last && closed) {
+        access::finish_closed(mesh, child_flipped);
+        finished = true;
+      } else if (last) {
         // Splitting faces of a valid mesh keeps every fan as it was: no need to re-check them.
         access::finish(mesh, {}, access::fan_check::trust);
         finished = true;

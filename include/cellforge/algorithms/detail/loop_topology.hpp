@@ -66,17 +66,25 @@ inline std::size_t face_size(std::span<const record> he, std::uint32_t h0, std::
 
 /// Splits every triangle of the parent (records `he`, face anchors `anchors`, `nv`
 /// vertices, no removed elements) into four: writes the child records (boundary children
-/// get only their head; finish() links their rings) and the child face anchors. Throws
-/// cellforge::error naming the first face that is not a triangle or whose records are
-/// inconsistent; the outputs are then partly written and must be discarded. O(F).
-inline void split_faces(std::span<const record> he, std::span<const std::uint32_t> anchors, std::uint32_t nv,
-                        std::vector<record>& out, std::vector<std::uint32_t>& out_anchors) {
+/// get only their head; finish() links their rings) and the child face anchors. With
+/// `vertex_anchors` (an array of at least nv entries), also writes each parent vertex's
+/// anchor as a child face half-edge ending at it (what a closed child needs; see
+/// write_edge_vertex_anchors for the others). Returns the number of face half-edges whose
+/// twin runs the same way, i.e. twice the parent's flipped edges, which is exactly the
+/// child's flipped edge count. Throws cellforge::error naming the first face that is not
+/// a triangle or whose records are inconsistent; the outputs are then partly written and
+/// must be discarded. O(F).
+inline std::size_t split_faces(std::span<const record> he, std::span<const std::uint32_t> anchors,
+                               std::uint32_t nv, std::vector<record>& out,
+                               std::vector<std::uint32_t>& out_anchors,
+                               std::uint32_t* vertex_anchors = nullptr) {
   const std::size_t nh = he.size();
   const auto ne = static_cast<std::uint32_t>(nh / 2);
   const auto nf = static_cast<std::uint32_t>(anchors.size());
   const std::uint32_t interior_base = 2 * ne;  // first interior child edge
   record* o = out.data();
   std::uint32_t* oa = out_anchors.data();
+  std::size_t flipped_sides = 0;
 
   for (std::uint32_t f = 0; f < nf; ++f) {
     std::uint32_t h[3];
@@ -101,6 +109,7 @@ inline void split_faces(std::span<const record> he, std::span<const std::uint32_
       const record& t = he[hk ^ 1u];
       const bool boundary = t.face == npos;
       const bool flipped = !boundary && t.head == r[k].head;
+      flipped_sides += flipped;
       if (!flipped && t.head != v[k])
         throw error(error_category::invalid_input, corrupted(f, "has an edge whose two half-edges disagree"));
       // q = 1 when this half-edge runs B→A: its first half then lies on the B child edge.
@@ -126,8 +135,18 @@ inline void split_faces(std::span<const record> he, std::span<const std::uint32_
       o[cut + 1] = record{mid[k], in + 2 * ((k + 1) % 3) + 1, in + 2 * kp + 1, fc + 3};
       oa[fc + k] = first[k];
     }
-    oa[fc + 3] = in + 2 * 1 + 1;  // leaves m[0], the centre face's first vertex
+    oa[fc + 3] = in + 2 * 1 + 1;    // leaves m[0], the centre face's first vertex
+    if (vertex_anchors != nullptr)  // second[k-1] ends at corner k, in corner face k
+      for (int k = 0; k < 3; ++k) vertex_anchors[v[k]] = second[(k + 2) % 3];
   }
+  return flipped_sides;
+}
+
+/// Writes the anchors of the child vertices on the parent's `ne` edges when the parent is
+/// closed: the first half of half-edge 2e is child half-edge 4e (2e has side 0 and runs
+/// A→B, so q = 0), a face half-edge ending at the edge's vertex nv + e. O(E), sequential.
+inline void write_edge_vertex_anchors(std::uint32_t nv, std::uint32_t ne, std::uint32_t* vertex_anchors) {
+  for (std::uint32_t e = 0; e < ne; ++e) vertex_anchors[nv + e] = 4 * e;
 }
 
 /// The boundary edges after one step, from those before: both halves of each. O(#boundary).

@@ -45,6 +45,16 @@ struct mesh_access {
     m.link_fans(options, r, check == fan_check::verify);
     return r;
   }
+
+  /// finish() for a CLOSED mesh (no boundary half-edge) built in closed form, when the
+  /// caller has also written every vertex anchor (a face half-edge ending at the vertex,
+  /// npos when isolated) and knows the number of flipped edges: the unlinked table is then
+  /// empty and there are no rings, so nothing needs a pass over the half-edges. O(1).
+  static void finish_closed(halfedge_mesh& m, std::size_t flipped_edges) noexcept {
+    m.removed_vertices_ = m.removed_edges_ = m.removed_faces_ = 0;
+    m.unlinked_.clear();
+    m.flipped_edges_ = flipped_edges;
+  }
 };
 
 }  // namespace cellforge::detail
