@@ -10,6 +10,8 @@
 #include "cellforge/cells/conversion.hpp"
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/halfedge/validate.hpp"
+#include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/wireframe/wireframe_to_cells.hpp"
 #include "cells_fixtures.hpp"
 
 using namespace cellforge;
@@ -727,6 +729,36 @@ TEST_CASE("conversion: closed meshes to one-volume complexes") {
     } catch (const error& e) {
       CHECK(e.category() == error_category::topology);
       CHECK(contains(e.what(), "4 boundary edges"));
+    }
+  }
+}
+
+TEST_CASE("sample models through the wireframe pipeline: valid complexes, closed outward boundaries") {
+  auto models = all_small_samples();
+  models.push_back(sample_seed(2));
+  models.push_back(sample_seed(3));
+  for (const auto& m : models) {
+    INFO(m.name);
+    const wireframe_result r = wireframe_to_cells(m.wire);
+    const cell_complex& cc = r.cells;
+    const auto v = validate(cc);
+    INFO(v.message);
+    REQUIRE(v.ok());
+    CHECK(cc.num_faces() == m.faces.size());
+    CHECK(cc.num_volumes() == m.volumes.size());
+    for (cell_object o : cc.objects())
+      if (v.euler_checked[o.idx()]) CHECK(v.expected_euler[o.idx()] == cc.object_euler(o));
+    for (cell_volume c : cc.volumes()) {
+      const halfedge_mesh mesh = volume_boundary_mesh(cc, c);
+      CHECK(mesh.is_closed());
+      CHECK(mesh_volume(mesh) == doctest::Approx(v.signed_volumes[c.idx()]));
+      const cell_complex one = mesh_to_cell_complex(mesh, {.merge_coplanar = true});
+      const auto w = validate(one);
+      INFO(w.message);
+      CHECK(w.ok());
+      // Coplanar neighbours split only by another volume's wall (stepped block) merge here.
+      CHECK(one.num_faces() <= cc.volume_faces(c).size());
+      CHECK(w.signed_volumes[0] == doctest::Approx(v.signed_volumes[c.idx()]));
     }
   }
 }

@@ -11,6 +11,8 @@
 #include "cellforge/io/cells_io.hpp"
 #include "cellforge/io/obj.hpp"
 #include "cellforge/io/ply.hpp"
+#include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/wireframe/wireframe_to_cells.hpp"
 #include "cells_fixtures.hpp"
 
 using namespace cellforge;
@@ -256,4 +258,19 @@ TEST_CASE("cells SVG: volumes exploded apart, faces shaded") {
   std::size_t drawn_edges = 0;
   for (const auto& e : holed.edge_visibility()) drawn_edges += e.layer == 0 ? 1 : 0;
   CHECK(drawn_edges >= 24);
+}
+
+TEST_CASE("3dcl, OBJ and SVG of the sample models' complexes") {
+  for (const auto& m : all_small_samples()) {
+    INFO(m.name);
+    const cell_complex cc = wireframe_to_cells(m.wire).cells;
+    const std::string text = text_of(cc);
+    const cell_complex back = io::parse_3dcl(text, m.name);
+    same_complex(cc, back);
+    CHECK(text_of(back) == text);
+    const auto obj = io::cells_obj_data(cc);
+    CHECK(obj.groups.size() == cc.num_volumes());
+    std::ostringstream svg;
+    CHECK(io::write_cells_svg(svg, cc).faces_drawn == obj.soup.num_faces());
+  }
 }
