@@ -191,6 +191,7 @@ inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_re
   std::vector<std::uint32_t> vstamp(nv, no_index), estamp(ne, no_index), vtest(nv, no_index);
   std::vector<char> vin(nv, 0);
   std::uint32_t stamp = 0;
+  std::vector<std::uint32_t> cverts, cedges;  // reused by every plane search
   std::vector<plane_component> comps;
   std::unordered_map<std::array<std::int64_t, 4>, std::vector<std::uint32_t>, cell_hash> plane_of;
   std::vector<std::uint32_t> group;  // component → plane group (first component of the group)
@@ -209,13 +210,10 @@ inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_re
         if (ln <= tol * std::max(glm::length(da), glm::length(db))) continue;
         n /= ln;
         const std::uint32_t cid = stamp++;  // marks this search in the stamp arrays
-        plane_component c;
-        c.origin = g.points[v];
-        c.normal = n;
-        c.u = glm::normalize(da - glm::dot(da, n) * n);
-        c.w = glm::cross(n, c.u);
+        const glm::dvec3 origin = g.points[v];
         // Breadth-first over edges lying in the plane, starting at v.
-        std::vector<std::uint32_t> cverts{v}, cedges;
+        cverts.assign(1, v);
+        cedges.clear();
         vstamp[v] = cid;
         for (std::size_t head = 0; head < cverts.size(); ++head) {
           const std::uint32_t x = cverts[head];
@@ -225,7 +223,7 @@ inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_re
             const std::uint32_t y = in.other;
             if (vtest[y] != cid) {
               vtest[y] = cid;
-              vin[y] = std::abs(glm::dot(n, g.points[y] - c.origin)) <= tol;
+              vin[y] = std::abs(glm::dot(n, g.points[y] - origin)) <= tol;
             }
             if (!vin[y]) continue;
             estamp[in.edge] = cid;
@@ -247,7 +245,12 @@ inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_re
         }
         // A forest has no circuit: most planes spanned by two edges hold just those two.
         if (cedges.size() < cverts.size()) continue;
-        trace_plane_faces(g, std::move(cedges), c, budget);
+        plane_component c;
+        c.origin = origin;
+        c.normal = n;
+        c.u = glm::normalize(da - glm::dot(da, n) * n);
+        c.w = glm::cross(n, c.u);
+        trace_plane_faces(g, cedges, c, budget);
         const auto index = static_cast<std::uint32_t>(comps.size());
         // Group with earlier components of the same geometric plane (for holes).
         const auto pc = plane_coords(n, c.origin, g.size);

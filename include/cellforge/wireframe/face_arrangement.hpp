@@ -183,11 +183,14 @@ inline arrangement_result arrange_faces(const wire_graph& g, const std::vector<w
     }
     std::nth_element(extent.begin(), extent.begin() + static_cast<std::ptrdiff_t>(extent.size() / 2),
                      extent.end());
-    const double h = std::max(extent[extent.size() / 2], g.size * 1e-6);
+    // Cells twice the median face size, the lattice shifted off round numbers so that faces of
+    // axis-aligned models do not all end on cell boundaries: about two cells per face.
+    const double h = 2.0 * std::max(extent[extent.size() / 2], g.size * 1e-6);
     auto cell = [&](const glm::dvec3& p) {
-      return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor((p.x - g.center.x) / h)),
-                                         static_cast<std::int64_t>(std::floor((p.y - g.center.y) / h)),
-                                         static_cast<std::int64_t>(std::floor((p.z - g.center.z) / h))};
+      return std::array<std::int64_t, 3>{
+          static_cast<std::int64_t>(std::floor((p.x - g.center.x) / h + 0.3719)),
+          static_cast<std::int64_t>(std::floor((p.y - g.center.y) / h + 0.2917)),
+          static_cast<std::int64_t>(std::floor((p.z - g.center.z) / h + 0.1343))};
     };
     std::unordered_map<std::array<std::int64_t, 3>, std::vector<std::uint32_t>, detail::cell_hash> grid;
     std::vector<std::uint32_t> big;

@@ -102,7 +102,7 @@ inline reduction_result reduce_faces(const wire_graph& g, const std::vector<wire
       for (std::size_t k = 0; k < loop.size(); ++k)
         edge_set[i].push_back(g.find_edge(loop[k], loop[(k + 1) % loop.size()]));
     std::sort(edge_set[i].begin(), edge_set[i].end());
-    if (r.quality[i].usable)
+    if (r.quality[i].usable && options.remove_face_sums)
       for (const auto e : edge_set[i]) faces_at_edge[e].push_back(i);
   }
   detail::work_budget budget{options.work_budget, 0, "reduce_faces"};
@@ -137,7 +137,8 @@ inline reduction_result reduce_faces(const wire_graph& g, const std::vector<wire
     }
   }
   // Secondary faces: two usable faces through the same corner; the larger one is secondary.
-  std::map<std::array<std::uint32_t, 2>, std::uint32_t> smallest_at_corner;
+  std::unordered_map<std::uint64_t, std::uint32_t> smallest_at_corner;
+  smallest_at_corner.reserve(4 * faces.size());
   for (std::uint32_t i = 0; i < faces.size(); ++i) {
     if (!r.quality[i].usable) continue;
     for (const auto& loop : faces[i].loops)
@@ -145,7 +146,7 @@ inline reduction_result reduce_faces(const wire_graph& g, const std::vector<wire
         std::uint32_t a = g.find_edge(loop[k], loop[(k + 1) % loop.size()]);
         std::uint32_t b = g.find_edge(loop[(k + 1) % loop.size()], loop[(k + 2) % loop.size()]);
         if (a > b) std::swap(a, b);
-        const auto [it, fresh] = smallest_at_corner.emplace(std::array<std::uint32_t, 2>{a, b}, i);
+        const auto [it, fresh] = smallest_at_corner.emplace((std::uint64_t{a} << 32) | b, i);
         if (fresh) continue;
         const std::uint32_t other = it->second;
         const std::uint32_t larger = r.quality[other].area >= r.quality[i].area ? other : i;

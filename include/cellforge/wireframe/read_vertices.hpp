@@ -50,15 +50,23 @@ inline std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec
                                                      const std::vector<char>& used, double tol) {
   const std::size_t n = p.size();
   union_find uf(n);
-  std::unordered_map<std::array<std::int64_t, 3>, std::vector<std::uint32_t>, cell_hash> cells;
+  // Cell → first point, then a linked list through `next`: no allocation per cell.
+  std::unordered_map<std::array<std::int64_t, 3>, std::uint32_t, cell_hash> cells;
   cells.reserve(n);
+  std::vector<std::uint32_t> next(n, no_index);
   auto cell_of = [&](const glm::dvec3& q) {
     return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(q.x / tol)),
                                        static_cast<std::int64_t>(std::floor(q.y / tol)),
                                        static_cast<std::int64_t>(std::floor(q.z / tol))};
   };
-  for (std::uint32_t i = 0; i < n; ++i)
-    if (used[i]) cells[cell_of(p[i])].push_back(i);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (!used[i]) continue;
+    const auto [it, fresh] = cells.emplace(cell_of(p[i]), i);
+    if (!fresh) {
+      next[i] = it->second;
+      it->second = i;
+    }
+  }
   for (std::uint32_t i = 0; i < n; ++i) {
     if (!used[i]) continue;
     const auto c = cell_of(p[i]);
@@ -67,7 +75,7 @@ inline std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec
         for (std::int64_t dz = -1; dz <= 1; ++dz) {
           const auto it = cells.find({c[0] + dx, c[1] + dy, c[2] + dz});
           if (it == cells.end()) continue;
-          for (const std::uint32_t j : it->second)
+          for (std::uint32_t j = it->second; j != no_index; j = next[j])
             if (j > i && glm::length(p[i] - p[j]) <= tol) uf.unite(i, j);
         }
   }

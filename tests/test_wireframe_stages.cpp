@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: MIT
+// The stages of the wireframe pipeline one at a time (seed 000 §4.1-4.8).
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+
+#include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/wireframe/wireframe_to_cells.hpp"
+
+using namespace cellforge;
+
+TEST_CASE("stages: reading labels vertices with incident edges and directions (4.1)") {
+  const auto r = read_vertices(sample_cube().wire);
+  const wire_graph& g = r.graph;
+  REQUIRE(g.num_vertices() == 8);
+  REQUIRE(g.num_edges() == 12);
+  for (std::uint32_t v = 0; v < 8; ++v) {
+    CHECK(g.degree(v) == 3);
+    for (const auto& in : g.around(v)) {
+      CHECK(g.edges[in.edge][in.outgoing ? 0 : 1] == v);
+      CHECK(g.edges[in.edge][in.outgoing ? 1 : 0] == in.other);
+      CHECK(g.find_edge(v, in.other) == in.edge);
+    }
+  }
+  CHECK(g.find_edge(0, 0) == no_index);
+  CHECK(g.size == doctest::Approx(std::sqrt(3.0)));
+}
+
+TEST_CASE("stages: the planar tracer finds each face once, holes included (4.2)") {
+  const auto cube = read_vertices(sample_cube().wire).graph;
+  const auto t = trace_circuits(cube);
+  CHECK(t.faces.size() == 6);
+  CHECK(t.planes == 6);
+  const auto frame = read_vertices(sample_frame().wire).graph;
+  const auto tf = trace_circuits(frame);
+  CHECK(tf.holes == 2);  // top and bottom are faces with a hole
+  std::size_t with_hole = 0, fillers = 0;
+  for (const auto& f : tf.faces) {
+    with_hole += f.loops.size() == 2;
+    fillers += f.fills_hole;
+    CHECK(f.area > 0.0);
+  }
+  CHECK(with_hole == 2);
+  CHECK(fillers == 2);
+  // A collinear chain does not split a face: the split-edge box still has 6 faces.
+  const auto split = read_vertices(sample_split_edges().wire).graph;
+  CHECK(trace_circuits(split).faces.size() == 6);
+}
+
+TEST_CASE("stages: the seed's search finds every face from each of its edges; unique keeps one (4.2, 4.3)") {
+  const auto g = read_vertices(sample_cube().wire).graph;
+  trace_options o;
+  o.kind = tracer_kind::seed_bfs;
+  const auto t = trace_circuits(g, o);
+  CHECK(t.circuits == 24);  // 12 edges × 2 faces each
+  const auto u = unique_circuits(g, t.faces);
+  CHECK(u.faces.size() == 6);
+  CHECK(u.duplicates == 18);
+  for (const auto& f : u.faces) {
+    // Canonical order: the smallest label first, then its smaller neighbour.
+    CHECK(f.loops[0][0] == *std::min_element(f.loops[0].begin(), f.loops[0].end()));
+    CHECK(f.loops[0][1] < f.loops[0].back());
+  }
+}
+
+TEST_CASE("stages: reduction marks face sums and non-planar circuits (4.4)") {
+  // Two cubes: the seed's search also finds the 2x1 rectangles, sums of two squares.
+  const auto g = read_vertices(sample_two_cubes().wire).graph;
+  trace_options o;
+  o.kind = tracer_kind::seed_bfs;
+  const auto u = unique_circuits(g, trace_circuits(g, o).faces);
+  const auto red = reduce_faces(g, u.faces);
+  CHECK(red.remaining == 11);
+  CHECK(u.faces.size() - red.remaining == red.face_sums + red.not_planar + red.not_flat);
+  for (std::size_t i = 0; i < u.faces.size(); ++i) {
+    CHECK(red.quality[i].area > 0.0);
+    if (red.quality[i].usable) CHECK(red.quality[i].flatness == doctest::Approx(1.0));
+  }
+}
+
+TEST_CASE("stages: ranks and chains (4.5)") {
+  const auto g = read_vertices(sample_split_edges().wire).graph;
+  const auto u = unique_circuits(g, trace_circuits(g).faces);
+  const auto red = reduce_faces(g, u.faces);
+  const auto a = arrange_faces(g, u.faces, red);
+  CHECK(a.chains == 7);  // seven box edges are split into chains
+  for (std::uint32_t e = 0; e < g.num_edges(); ++e) CHECK(a.edge_rank[e] == 2);
+  CHECK(a.rank_violations == 0);
+  CHECK(a.selected.size() == 6);
+}
+
+TEST_CASE("stages: volumes and relations agree with the cell complex's rotation order (4.7, 4.8)") {
+  for (const auto& m : {sample_house(), sample_grid(2, 2, 2), sample_frame(), sample_stepped_block()}) {
+    const std::string name = m.name;
+    INFO(name);
+    const auto r = wireframe_to_cells(m.wire);
+    // Edges of the result are the graph's edges in order here (clean input).
+    REQUIRE(r.input.edges.size() == r.read.graph.num_edges());
+    for (std::uint32_t e = 0; e < r.input.edges.size(); ++e) {
+      const auto ours = r.relations.edges[e].faces;
+      std::vector<std::uint32_t> theirs;
+      for (const auto& of : r.cells.edge_faces(cell_edge(e))) theirs.push_back(of.handle.idx());
+      REQUIRE(ours.size() == theirs.size());
+      // Same cyclic order (the starting face may differ).
+      const auto it = std::find(theirs.begin(), theirs.end(), ours.empty() ? 0u : ours[0]);
+      REQUIRE((ours.empty() || it != theirs.end()));
+      if (ours.empty()) continue;
+      std::rotate(theirs.begin(), it, theirs.end());
+      CHECK(ours == theirs);
+    }
+    // Outward pointers point out of each volume: their signs follow the volume's face signs.
+    for (std::size_t v = 0; v < r.relations.outward.size(); ++v)
+      CHECK(r.relations.outward[v].size() == r.volume.volumes[v].size());
+  }
+}
