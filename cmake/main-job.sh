@@ -5,7 +5,7 @@
 set -euo pipefail
 
 # The example program that is "the main job"; examples/<name>.cpp builds target <name>.
-main_example="mesh_info"
+main_example="wire2cells"
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
