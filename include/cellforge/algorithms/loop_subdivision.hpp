@@ -283,7 +283,7 @@ loop_result loop_subdivide(halfedge_mesh& mesh, const loop_options& options = {}
       const bool closed = boundary_edges.empty();
 
       // Topology: throws (naming the face) before the mesh changes.
-      std::vector<dl::record> child_he(2 * child_ne);
+      std::vector<dl::record> child_he;  // split_faces sizes it (2 * child_ne records)
       std::vector<std::uint32_t> child_anchors(child_nf);
       std::vector<std::uint32_t> child_vertex_anchors;
       if (closed && last) {
