@@ -281,7 +281,12 @@ inline std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t
 /// more than two volumes or twice on one side, a volume whose boundary is not closed.
 /// O(n log n) for n = total size of the input (the sort of faces about each edge).
 inline cell_complex make_cell_complex(cell_complex_input input) {
-  using namespace detail::cells;
+  using detail::cells::counts_to_starts;
+  using detail::cells::fail;
+  using detail::cells::find_root;
+  using detail::cells::newell;
+  using detail::cells::pair_key;
+  using detail::cells::S;
   using std::uint32_t;
   constexpr auto bad = error_category::invalid_input;
   constexpr auto topo = error_category::topology;
