@@ -75,7 +75,9 @@ mask_stats apply_masks(std::span<const record> he, std::uint32_t nv,
                        Store&& store) {
   const std::size_t nh = he.size();
   const auto ne = static_cast<std::uint32_t>(nh / 2);
-  std::vector<vertex_node<A>> node(nv);
+  std::vector<vertex_node<A>> node;
+  reserve_large(node, nv);
+  node.resize(nv);
 
   // Boundary edges first: a boundary vertex's mask sees only its boundary neighbours.
   for (const std::uint32_t e : boundary_edges) {
