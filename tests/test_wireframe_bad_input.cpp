@@ -231,6 +231,35 @@ TEST_CASE("bad input: diagnostics, and the right complex anyway") {
     CHECK(r.reduction.not_planar >= 1);
     CHECK(same_faces(cube.faces, r.input.faces));
   }
+  SUBCASE("T-junctions and overlapping edges are split") {
+    // A 1x1x1 box standing on a 2x1x1 box, drawn as two separate boxes: the small box's bottom
+    // edges overlap the big box's top edges, and two of its corners lie inside them.
+    wire w;
+    auto box = [&](glm::dvec3 a, glm::dvec3 b) {
+      const auto base = static_cast<std::uint32_t>(w.points.size());
+      for (std::uint32_t i = 0; i < 8; ++i)
+        w.points.push_back({i & 1 ? b.x : a.x, i & 2 ? b.y : a.y, i & 4 ? b.z : a.z});
+      const std::uint32_t edges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
+                                          {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+      for (const auto& e : edges) w.edges.push_back({base + e[0], base + e[1]});
+    };
+    box({0, 0, 0}, {2, 1, 1});
+    box({0, 0, 1}, {1, 1, 2});
+    const auto r = wireframe_to_cells(w);
+    CHECK(r.read.split_edges == 2);
+    CHECK(has_note(r.read, "split"));
+    CHECK(r.input.faces.size() == 12);
+    CHECK(r.input.volumes.size() == 2);
+    CHECK(validate(r.cells).ok());
+    wireframe_options no_split;
+    no_split.read.split_at_vertices = false;
+    try {
+      const auto bad = wireframe_to_cells(w, no_split);
+      CHECK(!validate(bad.cells).ok());
+    } catch (const error& e) {
+      CHECK(e.category() == error_category::topology);
+    }
+  }
   SUBCASE("close adjacent edges make no spurious faces or pyramids (seed ch. VIII)") {
     // A cube whose top face carries a vertex 1e-7 above its centre, joined to two corners:
     // the seed's flatness 0.9 accepts the near-flat triangles; exact planarity does not.

@@ -5,8 +5,10 @@
 /// merge points closer than a tolerance relative to the model size, check the edges and
 /// record for each vertex its incident edges with their direction.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -23,8 +25,9 @@ namespace cellforge {
 struct read_options {
   tolerance merge{1e-9};  ///< points closer than this (relative to the bounding-box diagonal) are one vertex
   bool prune_dangling = true;  ///< remove edges that cannot lie on any circuit (trees hanging off the graph)
-  bool strict =
-      false;  ///< throw on zero-length, duplicate and dangling edges instead of dropping them with a note
+  /// Throw on zero-length, duplicate and dangling edges instead of dropping them with a note.
+  bool strict = false;
+  bool split_at_vertices = true;  ///< split an edge where another vertex lies inside it (T-junction, overlap)
 };
 
 /// What read_vertices found; `graph` is the labelled wireframe the other stages use.
@@ -35,13 +38,20 @@ struct read_result : stage_report {
   std::size_t zero_length_edges = 0;    ///< dropped: both ends are the same vertex (after merging)
   std::size_t duplicate_edges = 0;      ///< dropped: join the same two vertices as an earlier edge
   std::size_t isolated_vertices = 0;    ///< points used by no remaining edge
+  std::size_t split_edges = 0;          ///< vertices found inside edges (each splits an edge there)
   std::vector<std::uint32_t> dangling;  ///< caller's indices of edges removed because no circuit can use them
 };
 
 namespace detail {
 
+inline std::string number_text(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", x);
+  return buf;
+}
+
 inline std::string point_text(const glm::dvec3& p) {
-  return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")";
+  return "(" + number_text(p.x) + ", " + number_text(p.y) + ", " + number_text(p.z) + ")";
 }
 
 /// Merges points within tol by hashing them to cells of side tol; returns each point's
@@ -82,6 +92,90 @@ inline std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec
   std::vector<std::uint32_t> rep(n);
   for (std::uint32_t i = 0; i < n; ++i) rep[i] = uf.find(i);
   return rep;
+}
+
+/// Splits edges at vertices lying strictly inside them (within tol): a grid of cells about the
+/// median edge length holds the vertices; each edge visits the cells along it. Pieces are
+/// appended in order along the edge and keep their edge's origin. Returns the number of splits.
+/// O(E · cells per edge · vertices per cell).
+inline std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vector<char>& is_vertex,
+                                     std::vector<std::array<std::uint32_t, 2>>& ends,
+                                     std::vector<std::uint32_t>& origin, double tol) {
+  std::vector<double> lengths;
+  for (const auto& e : ends)
+    if (e[0] != e[1]) lengths.push_back(glm::length(p[e[1]] - p[e[0]]));
+  if (lengths.empty()) return 0;
+  std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2),
+                   lengths.end());
+  const double h = std::max(lengths[lengths.size() / 2], 4.0 * tol);
+  auto cell_of = [&](const glm::dvec3& q) {
+    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(q.x / h)),
+                                       static_cast<std::int64_t>(std::floor(q.y / h)),
+                                       static_cast<std::int64_t>(std::floor(q.z / h))};
+  };
+  std::unordered_map<std::array<std::int64_t, 3>, std::uint32_t, cell_hash> cells;
+  std::vector<std::uint32_t> next(p.size(), no_index);
+  for (std::uint32_t v = 0; v < p.size(); ++v) {
+    if (!is_vertex[v]) continue;
+    const auto [it, fresh] = cells.emplace(cell_of(p[v]), v);
+    if (!fresh) {
+      next[v] = it->second;
+      it->second = v;
+    }
+  }
+  std::size_t splits = 0;
+  std::vector<std::pair<double, std::uint32_t>> inside;
+  std::vector<std::uint32_t> seen_stamp(p.size(), no_index);
+  const std::size_t n = ends.size();
+  for (std::size_t e = 0; e < n; ++e) {
+    const std::uint32_t a = ends[e][0], b = ends[e][1];
+    if (a == b) continue;
+    const glm::dvec3 pa = p[a], d = p[b] - pa;
+    const double len = glm::length(d);
+    inside.clear();
+    auto visit = [&](const std::array<std::int64_t, 3>& c) {
+      const auto it = cells.find(c);
+      if (it == cells.end()) return;
+      for (std::uint32_t v = it->second; v != no_index; v = next[v]) {
+        if (v == a || v == b || seen_stamp[v] == e) continue;
+        seen_stamp[v] = static_cast<std::uint32_t>(e);
+        const double t = glm::dot(p[v] - pa, d) / (len * len);
+        if (t * len <= tol || (1.0 - t) * len <= tol) continue;
+        if (glm::length(pa + t * d - p[v]) <= tol) inside.emplace_back(t, v);
+      }
+    };
+    const auto lo = cell_of(glm::min(pa, p[b]) - tol), hi = cell_of(glm::max(pa, p[b]) + tol);
+    const std::int64_t box_cells = (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
+    if (box_cells <= 64) {
+      // Short edges (the usual case): the few cells of the edge's box.
+      for (auto x = lo[0]; x <= hi[0]; ++x)
+        for (auto y = lo[1]; y <= hi[1]; ++y)
+          for (auto z = lo[2]; z <= hi[2]; ++z) visit({x, y, z});
+    } else {
+      // Long edges: sample every half cell and look at the 27 cells around each sample.
+      const auto steps = static_cast<std::size_t>(std::ceil(2.0 * len / h));
+      for (std::size_t s = 0; s <= steps; ++s) {
+        const auto c = cell_of(pa + d * (static_cast<double>(s) / static_cast<double>(steps)));
+        for (std::int64_t dx = -1; dx <= 1; ++dx)
+          for (std::int64_t dy = -1; dy <= 1; ++dy)
+            for (std::int64_t dz = -1; dz <= 1; ++dz) visit({c[0] + dx, c[1] + dy, c[2] + dz});
+      }
+    }
+    if (inside.empty()) continue;
+    std::sort(inside.begin(), inside.end());
+    splits += inside.size();
+    std::uint32_t from = a;
+    ends[e] = {a, inside[0].second};
+    from = inside[0].second;
+    for (std::size_t k = 1; k < inside.size(); ++k) {
+      ends.push_back({from, inside[k].second});
+      origin.push_back(origin[e]);
+      from = inside[k].second;
+    }
+    ends.push_back({from, b});
+    origin.push_back(origin[e]);
+  }
+  return splits;
 }
 
 }  // namespace detail
@@ -132,39 +226,59 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
   for (std::size_t v = 0; v < nv; ++v)
     if (used[v] && rep[v] != v) {
       ++r.merged_points;
-      r.diagnostics.push_back("vertex " + std::to_string(v) + " lies within " + std::to_string(tol) +
+      r.diagnostics.push_back("vertex " + std::to_string(v) + " lies within " + detail::number_text(tol) +
                               " of vertex " + std::to_string(rep[v]) + " and was merged into it");
     }
 
-  // Edges between representatives; zero-length and duplicate ones dropped (or rejected).
+  // Edges between representatives, split where another vertex lies inside them (a T-junction
+  // or one edge overlapping another); every piece remembers the caller's edge.
+  const std::vector<std::array<std::uint32_t, 2>> input_ends = ends;
+  std::vector<std::uint32_t> origin(ne);
+  for (std::uint32_t e = 0; e < ne; ++e) {
+    origin[e] = e;
+    ends[e] = {rep[ends[e][0]], rep[ends[e][1]]};
+  }
+  if (options.split_at_vertices) {
+    std::vector<char> is_rep(nv, 0);
+    for (std::uint32_t v = 0; v < nv; ++v) is_rep[v] = used[v] && rep[v] == v;
+    const std::size_t splits = detail::split_at_vertices(p, is_rep, ends, origin, tol);
+    if (splits > 0)
+      r.diagnostics.push_back(std::to_string(splits) +
+                              " vertices lie inside edges (T-junctions or overlapping edges); the edges were "
+                              "split there");
+    r.split_edges = splits;
+  }
+  const auto np = static_cast<std::uint32_t>(ends.size());
+
+  // Zero-length and duplicate pieces dropped (or rejected).
   std::unordered_map<std::uint64_t, std::uint32_t> seen;
   std::vector<std::uint32_t> kept;
   auto complain = [&](const std::string& what) {
     if (options.strict) throw error(error_category::invalid_input, "read_vertices: " + what);
     r.diagnostics.push_back(what);
   };
-  for (std::uint32_t e = 0; e < ne; ++e) {
-    std::uint32_t a = rep[ends[e][0]], b = rep[ends[e][1]];
+  for (std::uint32_t e = 0; e < np; ++e) {
+    const std::uint32_t a = ends[e][0], b = ends[e][1], o = origin[e];
     if (a == b) {
       ++r.zero_length_edges;
-      complain("edge " + std::to_string(e) + " has zero length (its ends " + std::to_string(ends[e][0]) +
-               " and " + std::to_string(ends[e][1]) + " are the same point) and was dropped");
+      complain("edge " + std::to_string(o) + " has zero length (its ends " +
+               std::to_string(input_ends[o][0]) + " and " + std::to_string(input_ends[o][1]) +
+               " are the same point) and was dropped");
       continue;
     }
     const std::uint64_t k = (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
-    const auto [it, fresh] = seen.emplace(k, e);
+    const auto [it, fresh] = seen.emplace(k, o);
     if (!fresh) {
       ++r.duplicate_edges;
-      complain("edge " + std::to_string(e) + " duplicates edge " + std::to_string(it->second) +
+      complain("edge " + std::to_string(o) + " duplicates edge " + std::to_string(it->second) +
                " (vertices " + std::to_string(a) + "-" + std::to_string(b) + ") and was dropped");
       continue;
     }
-    ends[e] = {a, b};
     kept.push_back(e);
   }
 
   // Dangling edges: repeatedly strip vertices of degree 1, since no circuit passes through them.
-  std::vector<char> alive(ne, 0);
+  std::vector<char> alive(np, 0);
   for (const auto e : kept) alive[e] = 1;
   if (options.prune_dangling) {
     std::vector<std::uint32_t> deg(nv, 0);
@@ -184,13 +298,14 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
       for (const auto e : inc[v]) {
         if (!alive[e]) continue;
         alive[e] = 0;
-        r.dangling.push_back(e);
+        r.dangling.push_back(origin[e]);
         const std::uint32_t w = ends[e][0] == v ? ends[e][1] : ends[e][0];
         --deg[v];
         if (--deg[w] == 1) stack.push_back(w);
       }
     }
     std::sort(r.dangling.begin(), r.dangling.end());
+    r.dangling.erase(std::unique(r.dangling.begin(), r.dangling.end()), r.dangling.end());
     for (const auto e : r.dangling)
       complain("edge " + std::to_string(e) + " is dangling (it lies on no circuit) and was removed");
   }
@@ -198,7 +313,7 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
   // Label the remaining vertices in the caller's order so that indices survive the trip.
   wire_graph& g = r.graph;
   std::vector<std::uint32_t> label(nv, no_index);
-  for (std::uint32_t e = 0; e < ne; ++e)
+  for (std::uint32_t e = 0; e < np; ++e)
     if (alive[e])
       for (const auto v : ends[e]) label[v] = 0;
   bounding_box kept_box;
@@ -212,10 +327,10 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
     g.input_vertex.push_back(v);
     kept_box.add(p[v]);
   }
-  for (std::uint32_t e = 0; e < ne; ++e)
+  for (std::uint32_t e = 0; e < np; ++e)
     if (alive[e]) {
       g.edges.push_back({label[ends[e][0]], label[ends[e][1]]});
-      g.input_edge.push_back(e);
+      g.input_edge.push_back(origin[e]);
     }
   if (g.edges.empty())
     throw error(error_category::topology, "read_vertices: no edge lies on a circuit (the " +
