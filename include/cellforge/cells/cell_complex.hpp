@@ -334,20 +334,20 @@ inline cell_complex make_cell_complex(cell_complex_input input) {
     if (loops.empty()) fail(bad, "face " + S(f) + " has no loop");
     for (std::size_t l = 0; l < loops.size(); ++l) {
       const auto& loop = loops[l];
-      const std::string where = "face " + S(f) + " loop " + S(l);
-      if (loop.size() < 3) fail(bad, where + " has " + S(loop.size()) + " vertices; a loop needs 3");
+      const auto where = [&] { return "face " + S(f) + " loop " + S(l); };  // built only on failure
+      if (loop.size() < 3) fail(bad, where() + " has " + S(loop.size()) + " vertices; a loop needs 3");
       for (const uint32_t a : loop)
-        if (a >= nv) fail(bad, where + " uses vertex " + S(a) + " but there are " + S(nv) + " vertices");
+        if (a >= nv) fail(bad, where() + " uses vertex " + S(a) + " but there are " + S(nv) + " vertices");
       for (std::size_t i = 0; i < loop.size(); ++i) {
         const uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
-        if (seen[a] == f) fail(topo, where + " visits vertex " + S(a) + " a second time in the face");
+        if (seen[a] == f) fail(topo, where() + " visits vertex " + S(a) + " a second time in the face");
         seen[a] = static_cast<uint32_t>(f);
         const auto it = edge_of.find(pair_key(a, b));
         if (it == edge_of.end())
           fail(topo,
-               where + ": consecutive vertices " + S(a) + " and " + S(b) + " are not joined by an edge");
+               where() + ": consecutive vertices " + S(a) + " and " + S(b) + " are not joined by an edge");
         if (used_by[it->second] == f)
-          fail(topo, where + " uses edge " + S(it->second) + " a second time in the face");
+          fail(topo, where() + " uses edge " + S(it->second) + " a second time in the face");
         used_by[it->second] = static_cast<uint32_t>(f);
         const bool along = input.edges[it->second][0] == a;
         cc.loop_vertices_.push_back(cell_vertex(a));

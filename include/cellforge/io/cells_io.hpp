@@ -100,6 +100,29 @@ inline std::string cells_text(const cell_complex& cc, const cells_write_options&
   return out;
 }
 
+/// A message fragment "text<id>tail<id2>tail2" assembled only when an error needs it, so a
+/// clean parse builds no strings.
+struct cells_label {
+  static constexpr std::uint64_t none = ~std::uint64_t{0};
+  std::string_view text;
+  std::uint64_t id = none;
+  std::string_view tail{};
+  std::uint64_t id2 = none;
+  std::string_view tail2{};
+  cells_label(const char* t) : text(t) {}  // NOLINT: implicit from literals on purpose
+  cells_label(std::string_view t, std::uint64_t i = none, std::string_view tl = {}, std::uint64_t i2 = none,
+              std::string_view tl2 = {})
+      : text(t), id(i), tail(tl), id2(i2), tail2(tl2) {}
+  std::string str() const {
+    std::string s(text);
+    if (id != none) s += std::to_string(id);
+    s += tail;
+    if (id2 != none) s += std::to_string(id2);
+    s += tail2;
+    return s;
+  }
+};
+
 /// Tokens of one line of a 3DCL file, with errors that name file:line.
 class cells_line {
  public:
@@ -124,58 +147,58 @@ class cells_line {
   }
   std::string found() const { return done() ? "end of line" : "'" + std::string(tokens_[next_]) + "'"; }
 
-  void keyword(std::string_view k, std::string_view context) {
-    if (peek() != k) fail("expected '" + std::string(k) + "' " + std::string(context) + ", found " + found());
+  void keyword(std::string_view k, const cells_label& context) {
+    if (peek() != k) fail("expected '" + std::string(k) + "' " + context.str() + ", found " + found());
     ++next_;
   }
-  std::uint64_t index(std::string_view what, std::uint64_t limit) {
+  std::uint64_t index(const cells_label& what, std::uint64_t limit) {
     const std::string_view t = peek();
     std::uint64_t v = 0;
     const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
     if (t.empty() || r.ec != std::errc() || r.ptr != t.data() + t.size())
-      fail("expected " + std::string(what) + " (a non-negative integer), found " + found());
-    if (v >= limit) fail(std::string(what) + " " + std::string(t) + " " + range(limit));
+      fail("expected " + what.str() + " (a non-negative integer), found " + found());
+    if (v >= limit) fail(what.str() + " " + std::string(t) + " " + range(limit));
     ++next_;
     return v;
   }
-  double coordinate(std::string_view what) {
+  double coordinate(const cells_label& what) {
     std::string_view t = peek();
     if (!t.empty() && t[0] == '+') t.remove_prefix(1);
     double v = 0;
     const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
     if (t.empty() || r.ec != std::errc() || r.ptr != t.data() + t.size())
-      fail("expected " + std::string(what) + " (a number), found " + found());
-    if (!std::isfinite(v)) fail(std::string(what) + " '" + std::string(t) + "' is not finite");
+      fail("expected " + what.str() + " (a number), found " + found());
+    if (!std::isfinite(v)) fail(what.str() + " '" + std::string(t) + "' is not finite");
     ++next_;
     return v;
   }
   /// "+i" or "-i": an index with an explicit sign.
-  std::pair<std::uint32_t, int> signed_index(std::string_view what, std::uint64_t limit) {
+  std::pair<std::uint32_t, int> signed_index(const cells_label& what, std::uint64_t limit) {
     const std::string_view t = peek();
     if (t.size() < 2 || (t[0] != '+' && t[0] != '-'))
-      fail("expected " + std::string(what) + " with its sign (like +3 or -3), found " + found());
+      fail("expected " + what.str() + " with its sign (like +3 or -3), found " + found());
     const int sign = t[0] == '+' ? 1 : -1;
     std::uint64_t v = 0;
     const auto r = std::from_chars(t.data() + 1, t.data() + t.size(), v);
     if (r.ec != std::errc() || r.ptr != t.data() + t.size())
-      fail("expected " + std::string(what) + " with its sign (like +3 or -3), found " + found());
-    if (v >= limit) fail(std::string(what) + " " + std::string(t) + " " + range(limit));
+      fail("expected " + what.str() + " with its sign (like +3 or -3), found " + found());
+    if (v >= limit) fail(what.str() + " " + std::string(t) + " " + range(limit));
     ++next_;
     return {static_cast<std::uint32_t>(v), sign};
   }
   /// Signed indices until a keyword (a token starting with a letter) or the end of the line.
-  std::vector<std::pair<std::uint32_t, int>> signed_list(std::string_view what, std::uint64_t limit) {
+  std::vector<std::pair<std::uint32_t, int>> signed_list(const cells_label& what, std::uint64_t limit) {
     std::vector<std::pair<std::uint32_t, int>> out;
     while (!done() && !is_word(peek())) out.push_back(signed_index(what, limit));
     return out;
   }
-  std::vector<std::uint32_t> index_list(std::string_view what, std::uint64_t limit) {
+  std::vector<std::uint32_t> index_list(const cells_label& what, std::uint64_t limit) {
     std::vector<std::uint32_t> out;
     while (!done() && !is_word(peek())) out.push_back(static_cast<std::uint32_t>(index(what, limit)));
     return out;
   }
-  void finish(std::string_view element) const {
-    if (!done()) fail("unexpected " + found() + " at the end of " + std::string(element));
+  void finish(const cells_label& element) const {
+    if (!done()) fail("unexpected " + found() + " at the end of " + element.str());
   }
 
  private:
@@ -199,7 +222,7 @@ class cells_lines {
     if (text_.substr(0, 3) == "\xEF\xBB\xBF") text_.remove_prefix(3);
   }
   /// The next line with content; fails with `expected` at the end of the file.
-  cells_line next(std::string_view expected) {
+  cells_line next(const cells_label& expected) {
     while (pos_ < text_.size()) {
       std::size_t eol = text_.find_first_of("\r\n", pos_);
       if (eol == std::string_view::npos) eol = text_.size();
@@ -209,7 +232,7 @@ class cells_lines {
       if (pos_ < text_.size() && text_[pos_] == '\n') ++pos_;  // "\n" alone or after "\r"
       if (!l.empty()) return l;
     }
-    throw error(error_category::io, "expected " + std::string(expected) + ", found end of file",
+    throw error(error_category::io, "expected " + expected.str() + ", found end of file",
                 source_location{std::string(file_), std::max<std::uint64_t>(line_, 1)});
   }
   bool at_end() {
@@ -288,47 +311,51 @@ inline cell_complex parse_3dcl(std::string_view text, std::string_view name = "<
   std::vector<std::vector<std::vector<std::pair<std::uint32_t, int>>>> loop_edges;
 
   auto section = [&](std::string_view keyword) {
-    auto l = lines.next("'" + std::string(keyword) + " <count>'");
-    l.keyword(keyword, "(the section '" + std::string(keyword) + " <count>')");
-    const std::uint64_t n = l.index("the number of " + std::string(keyword), max + 1);
+    const std::string k(keyword);
+    auto l = lines.next(detail::cells_label("'" + k + " <count>'"));
+    l.keyword(keyword, detail::cells_label("(the section '" + k + " <count>')"));
+    const std::uint64_t n = l.index(detail::cells_label("the number of " + k), max + 1);
     l.finish("the section header");
     return static_cast<std::size_t>(n);
   };
+  // `what` ends in a space: "vertex ", "edge ", ...
   auto element = [&](std::string_view tag, std::string_view what, std::size_t i, std::size_t n) {
-    auto l = lines.next(std::string(what) + " " + std::to_string(i) + " of " + std::to_string(n));
-    l.keyword(tag, "at the start of " + std::string(what) + " " + std::to_string(i) + " (there are " +
-                       std::to_string(n) + ")");
-    if (l.peek() != std::to_string(i))
-      l.fail("expected " + std::string(what) + " number " + std::to_string(i) + ", found " + l.found());
+    auto l = lines.next({what, i, " of ", n});
+    l.keyword(tag, {"at the start of " + std::string(what), i, " (there are ", n, ")"});
+    const std::string_view t = l.peek();
+    std::uint64_t got = 0;
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), got);
+    if (t.empty() || r.ec != std::errc() || r.ptr != t.data() + t.size() || got != i)
+      l.fail("expected " + std::string(what) + "number " + std::to_string(i) + ", found " + l.found());
     (void)l.index(what, max + 1);
     return l;
   };
 
   const std::size_t nv = section("vertices");
   for (std::size_t i = 0; i < nv; ++i) {
-    auto l = element("v", "vertex", i, nv);
-    const double x = l.coordinate("coordinate x of vertex " + std::to_string(i));
-    const double y = l.coordinate("coordinate y of vertex " + std::to_string(i));
-    const double z = l.coordinate("coordinate z of vertex " + std::to_string(i));
+    auto l = element("v", "vertex ", i, nv);
+    const double x = l.coordinate({"coordinate x of vertex ", i});
+    const double y = l.coordinate({"coordinate y of vertex ", i});
+    const double z = l.coordinate({"coordinate z of vertex ", i});
     in.points.push_back({x, y, z});
-    l.keyword("edges", "after the coordinates of vertex " + std::to_string(i));
+    l.keyword("edges", {"after the coordinates of vertex ", i});
     vertex_edges.push_back(l.signed_list("an edge", max));
-    l.finish("vertex " + std::to_string(i));
+    l.finish({"vertex ", i});
     at[0].push_back(l.line());
   }
   const std::size_t ne = section("edges");
   for (std::size_t i = 0; i < ne; ++i) {
-    auto l = element("e", "edge", i, ne);
-    const auto a = static_cast<std::uint32_t>(l.index("the start vertex of edge " + std::to_string(i), nv));
-    const auto b = static_cast<std::uint32_t>(l.index("the end vertex of edge " + std::to_string(i), nv));
+    auto l = element("e", "edge ", i, ne);
+    const auto a = static_cast<std::uint32_t>(l.index({"the start vertex of edge ", i}, nv));
+    const auto b = static_cast<std::uint32_t>(l.index({"the end vertex of edge ", i}, nv));
     in.edges.push_back({a, b});
-    l.keyword("faces", "after the vertices of edge " + std::to_string(i));
+    l.keyword("faces", {"after the vertices of edge ", i});
     edge_faces.push_back(l.signed_list("a face", max));
-    l.keyword("volumes", "after the faces of edge " + std::to_string(i));
+    l.keyword("volumes", {"after the faces of edge ", i});
     std::vector<std::uint32_t> w;
     while (!l.done()) {
       if (l.peek() == "-") {
-        (void)l.keyword("-", "");
+        l.keyword("-", "");
         w.push_back(0xFFFFFFFFu);
       } else {
         w.push_back(static_cast<std::uint32_t>(l.index("a volume (or '-' for outside)", max)));
@@ -339,29 +366,28 @@ inline cell_complex parse_3dcl(std::string_view text, std::string_view name = "<
   }
   const std::size_t nf = section("faces");
   for (std::size_t i = 0; i < nf; ++i) {
-    auto l = element("f", "face", i, nf);
-    const std::string fi = "face " + std::to_string(i);
-    l.keyword("volumes", "after the number of " + fi);
+    auto l = element("f", "face ", i, nf);
+    l.keyword("volumes", {"after the number of face ", i});
     face_volumes.push_back(l.signed_list("a volume", max));
     cell_complex_input::face face;
     loop_edges.emplace_back();
     while (!l.done()) {
-      l.keyword("loop", "(a vertex loop) in " + fi);
-      face.loops.push_back(l.index_list("a vertex of " + fi, nv));
-      l.keyword("edges", "after the vertices of a loop of " + fi);
-      loop_edges.back().push_back(l.signed_list("an edge of " + fi, ne));
+      l.keyword("loop", {"(a vertex loop) in face ", i});
+      face.loops.push_back(l.index_list({"a vertex of face ", i}, nv));
+      l.keyword("edges", {"after the vertices of a loop of face ", i});
+      loop_edges.back().push_back(l.signed_list({"an edge of face ", i}, ne));
     }
-    if (face.loops.empty()) l.fail(fi + " has no 'loop'");
+    if (face.loops.empty()) l.fail("face " + std::to_string(i) + " has no 'loop'");
     in.faces.push_back(std::move(face));
     at[2].push_back(l.line());
   }
   const std::size_t nc = section("volumes");
   for (std::size_t i = 0; i < nc; ++i) {
-    auto l = element("c", "volume", i, nc);
-    l.keyword("faces", "after the number of volume " + std::to_string(i));
+    auto l = element("c", "volume ", i, nc);
+    l.keyword("faces", {"after the number of volume ", i});
     cell_complex_input::volume vol;
     for (const auto& [f, s] : l.signed_list("a face", nf)) vol.faces.emplace_back(f, s);
-    l.finish("volume " + std::to_string(i));
+    l.finish({"volume ", i});
     in.volumes.push_back(std::move(vol));
     at[3].push_back(l.line());
   }
