@@ -112,6 +112,7 @@ class cell_complex {
  public:
   cell_complex() = default;
 
+  /// Numbers of elements of each kind (handles run from 0 to the count - 1). O(1).
   std::size_t num_vertices() const noexcept { return points_.size(); }
   std::size_t num_edges() const noexcept { return ends_.size(); }
   std::size_t num_faces() const noexcept { return face_loop_start_.size() - 1; }
@@ -126,6 +127,7 @@ class cell_complex {
   auto objects() const noexcept { return detail::cells::handle_range<cell_object>(num_objects()); }
 
   // ---- vertices
+  /// Position of v; all positions as one span. O(1).
   const glm::dvec3& point(cell_vertex v) const { return points_[v.idx()]; }
   std::span<const glm::dvec3> points() const noexcept { return points_; }
   /// Edges at v; sign +1 when the edge starts at v, -1 when it ends there. O(1).
@@ -134,6 +136,7 @@ class cell_complex {
   }
 
   // ---- edges
+  /// Start and end vertex of e (its direction, against which signs are given). O(1).
   cell_vertex source(cell_edge e) const { return cell_vertex(ends_[e.idx()][0]); }
   cell_vertex target(cell_edge e) const { return cell_vertex(ends_[e.idx()][1]); }
   std::array<cell_vertex, 2> edge_vertices(cell_edge e) const { return {source(e), target(e)}; }
@@ -157,6 +160,7 @@ class cell_complex {
   }
 
   // ---- faces
+  /// Number of loops of f: 1 + its number of holes. O(1).
   std::size_t num_loops(cell_face f) const {
     return face_loop_start_[f.idx() + 1] - face_loop_start_[f.idx()];
   }
@@ -182,10 +186,13 @@ class cell_complex {
   std::span<const oriented<cell_face>> volume_faces(cell_volume c) const {
     return csr(volume_faces_, volume_face_start_, c.idx());
   }
+  /// The object (connected component) volume c belongs to. O(1).
   cell_object volume_object(cell_volume c) const { return cell_object(volume_object_[c.idx()]); }
 
-  // ---- objects: connected components of the complex (through shared vertices)
+  // ---- objects: connected components through edges, face loops and volumes
+  /// The object vertex v belongs to; an edge, face or volume is in its vertices' object. O(1).
   cell_object vertex_object(cell_vertex v) const { return cell_object(vertex_object_[v.idx()]); }
+  /// The volumes of object o, in increasing order. O(1).
   std::span<const cell_volume> object_volumes(cell_object o) const {
     return csr(object_volumes_, object_volume_start_, o.idx());
   }
