@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Loop subdivision, seed 001 tables 3 and 4 and beyond: one level of Loop subdivision on
 // the seed's spheres (64 … 400 vertices), on stand-ins for its five table-4 meshes, and on
-// spheres of 10k, 100k and 1M triangles. cellforge, OpenMesh (Subdivider::Uniform::LoopT)
+// spheres of 10k, 100k and 1M triangles under three glibc heap settings (default, cold:
+// fresh pages at every size, warm: reused pages). cellforge, OpenMesh (Subdivider::Uniform::LoopT)
 // and CGAL (Subdivision_method_3::Loop_subdivision) subdivide the same meshes in one run,
 // all with double-precision points and Loop's original weights. Only the subdivision is
 // timed: each iteration first copies the prepared mesh, untimed.
@@ -9,16 +10,19 @@
 #include "bench_support.hpp"
 
 #include <malloc.h>
+#include <sys/resource.h>
 
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -171,29 +175,86 @@ std::size_t cgal(const prepared& in, cgal_mesh& m) {
 }
 #endif
 
-/// Makes glibc keep freed memory and serve large blocks from the heap, so that a repeated
-/// run reuses pages instead of faulting in fresh zeroed ones (process-wide, so the warm
-/// series runs last). Returns whether glibc accepted it.
-bool warm_heap() {
-  static const bool ok = mallopt(M_MMAP_THRESHOLD, 1 << 30) == 1 && mallopt(M_TRIM_THRESHOLD, 1 << 30) == 1;
-  return ok;
+/// The glibc settings a series runs under. mallopt is process-wide and an explicit
+/// M_MMAP_THRESHOLD switches off glibc's dynamic threshold for good, so the default series
+/// (and the seed tables) run first and each other series sets its own settings on entry.
+enum class heap { default_glibc, cold, warm };
+
+/// Whether any benchmark has called mallopt yet (after that, glibc's defaults are gone).
+bool& mallopt_called() {
+  static bool called = false;
+  return called;
+}
+
+/// Puts glibc in the state `h` needs; returns an error message, or nullptr. Cheap.
+const char* set_heap(heap h) {
+  switch (h) {
+    case heap::default_glibc:
+      return mallopt_called() ? "glibc defaults already changed by mallopt: run this series first" : nullptr;
+    case heap::cold:
+      // Every block of 64 KiB or more is its own mmap, unmapped on free, and free memory at
+      // the heap's top is returned at once: each run gets new zero-filled pages at any size.
+      mallopt_called() = true;
+      if (mallopt(M_MMAP_THRESHOLD, 64 * 1024) != 1 || mallopt(M_TRIM_THRESHOLD, 0) != 1 ||
+          mallopt(M_TOP_PAD, 0) != 1)
+        return "mallopt refused the cold settings";
+      malloc_trim(0);  // drop what an earlier warm series kept, so it cannot be reused
+      return nullptr;
+    case heap::warm:
+      // glibc keeps freed memory and serves large blocks from the heap: a repeated run
+      // reuses pages instead of faulting in fresh zeroed ones.
+      mallopt_called() = true;
+      if (mallopt(M_MMAP_THRESHOLD, 1 << 30) != 1 || mallopt(M_TRIM_THRESHOLD, 1 << 30) != 1 ||
+          mallopt(M_TOP_PAD, 128 * 1024) != 1)
+        return "mallopt refused the warm-heap settings";
+      return nullptr;
+  }
+  return nullptr;
+}
+
+/// Minor page faults of the process so far (each a page the kernel mapped, zero-filled
+/// when it is new anonymous memory).
+long minor_faults() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_minflt;
+}
+
+/// Transparent-huge-page faults so far, system-wide (/proc/vmstat thp_fault_alloc; 0 where
+/// it is missing): each of our minor faults that is one maps and zeroes 2 MiB, not 4 KiB.
+long huge_faults() {
+  std::ifstream vmstat("/proc/vmstat");
+  std::string key;
+  long value = 0;
+  while (vmstat >> key >> value)
+    if (key == "thp_fault_alloc") return value;
+  return 0;
 }
 
 /// Registers one benchmark: each iteration copies the input's mesh (untimed) and times
-/// `run` on it (CPU time of this thread; see bench_support.hpp).
+/// `run` on it (CPU time of this thread; see bench_support.hpp), counting its page faults.
 template <class Mesh, class Run>
-void add(const std::string& name, const std::string& key, Mesh prepared::*mesh, Run run, int faces) {
-  const bool warm = name.starts_with("loop/warm/");
-  auto* b = benchmark::RegisterBenchmark(name.c_str(), [key, mesh, run, warm](benchmark::State& state) {
-    if (warm && !warm_heap()) state.SkipWithError("mallopt refused the warm-heap settings");
+void add(const std::string& name, const std::string& key, Mesh prepared::*mesh, Run run, int faces, heap h) {
+  auto* b = benchmark::RegisterBenchmark(name.c_str(), [key, mesh, run, h](benchmark::State& state) {
+    if (const char* error = set_heap(h)) {
+      state.SkipWithError(error);
+      return;
+    }
     const prepared& in = input(key);
     double best = std::numeric_limits<double>::infinity();
     bool checked = false;
+    long faults = 0, huge = 0;
     for (auto _ : state) {
       auto copy = std::make_unique<Mesh>(in.*mesh);
+      // glibc serves a large request from a free heap chunk before it considers mmap; this
+      // hands those chunks' pages back (MADV_DONTNEED), so reusing them faults in zeroed pages.
+      if (h == heap::cold) malloc_trim(0);
+      const long f0 = minor_faults(), h0 = huge_faults();
       const double t0 = cb::thread_cpu_ms();
       const std::size_t faces_after = run(in, *copy);
       const double ms = cb::thread_cpu_ms() - t0;
+      faults += minor_faults() - f0;
+      huge += huge_faults() - h0;
       state.SetIterationTime(ms * 1e-3);
       best = std::min(best, ms);
       if (!checked && faces_after == 0) state.SkipWithError("wrong face count after subdivision");
@@ -202,6 +263,13 @@ void add(const std::string& name, const std::string& key, Mesh prepared::*mesh, 
     }
     state.counters["best_cpu_us"] = best * 1e3;
     state.counters["faces_in"] = static_cast<double>(in.source.num_faces());
+    // Per run and input triangle; huge faults are system-wide, so capped at our own faults.
+    const double per = static_cast<double>(std::max<std::int64_t>(state.iterations(), 1)) *
+                       static_cast<double>(in.source.num_faces());
+    state.counters["faults_per_tri"] = static_cast<double>(faults) / per;
+    state.counters["zeroed_kib_per_tri"] = (4.0 * static_cast<double>(faults - std::min(huge, faults)) +
+                                            2048.0 * static_cast<double>(std::min(huge, faults))) /
+                                           per;
   });
   b->UseManualTime()->Unit(benchmark::kMillisecond);
   if (faces >= 1'000'000)
@@ -212,22 +280,27 @@ void add(const std::string& name, const std::string& key, Mesh prepared::*mesh, 
     b->MinTime(0.1);
 }
 
-void add_all(const std::string& what, const std::string& key, int faces) {
-  add("loop/" + what + "/cellforge", key, &prepared::ours, ours, faces);
+void add_all(const std::string& what, const std::string& key, int faces, heap h = heap::default_glibc) {
+  add("loop/" + what + "/cellforge", key, &prepared::ours, ours, faces, h);
 #ifdef CELLFORGE_HAVE_OPENMESH
-  add("loop/" + what + "/openmesh", key, &prepared::om, openmesh, faces);
+  add("loop/" + what + "/openmesh", key, &prepared::om, openmesh, faces, h);
 #endif
 #ifdef CELLFORGE_HAVE_CGAL
-  add("loop/" + what + "/cgal", key, &prepared::cgal, cgal, faces);
+  add("loop/" + what + "/cgal", key, &prepared::cgal, cgal, faces, h);
 #endif
 }
+
+/// The benchmark-name prefix of a scaling series.
+std::string series_name(heap h) { return h == heap::cold ? "cold" : h == heap::warm ? "warm" : "default"; }
 
 void register_all() {
   for (const auto& f : table3)
     add_all("t3/" + std::to_string(f.vertices), "t3/" + std::to_string(f.vertices), 0);
   for (const auto& f : table4) add_all(std::string("t4/") + f.name, std::string("t4/") + f.name, 0);
-  for (const int f : scaling_faces) add_all("scale/" + std::to_string(f), "scale/" + std::to_string(f), f);
-  for (const int f : scaling_faces) add_all("warm/" + std::to_string(f), "scale/" + std::to_string(f), f);
+  // Registration order is run order: glibc's defaults first, then cold, then warm.
+  for (const heap h : {heap::default_glibc, heap::cold, heap::warm})
+    for (const int f : scaling_faces)
+      add_all(series_name(h) + "/" + std::to_string(f), "scale/" + std::to_string(f), f, h);
 }
 
 // ------------------------------------------------------------------------------ cross-check
@@ -288,31 +361,57 @@ cb::seed_row row(const cb::collecting_reporter& rep, const std::string& what, st
           get(rep, what, "cgal")};
 }
 
-/// The largest scaling case's times, and time per triangle at 1M over that at 10k.
+/// A scaling series' largest-case times, and each library's time per triangle at 1M over
+/// that at 10k.
 struct scaling {
-  std::optional<double> ours, om, cgal, growth;
+  std::optional<double> ours, om, cgal;
+  std::optional<double> growth, om_growth, cgal_growth;
 };
 
-/// Prints one scaling series ("scale" or "warm") as a table. O(rows).
+/// Counter `name` (per input triangle) of one run of `what` by `lib`, if it ran.
+std::optional<double> per_tri_counter(const cb::collecting_reporter& rep, const std::string& what,
+                                      const char* lib, const char* name) {
+  const cb::run_result* r = rep.find("loop/" + what + "/" + lib);
+  if (!r || !r->error.empty()) return std::nullopt;
+  const auto it = r->counters.find(name);
+  return it == r->counters.end() ? std::nullopt : std::optional<double>(it->second);
+}
+
+/// "ours / OpenMesh / CGAL" for counter `name` of `what`, with `digits` decimals.
+std::string three(const cb::collecting_reporter& rep, const std::string& what, const char* name, int digits) {
+  return cb::fixed(per_tri_counter(rep, what, "cellforge", name), digits) + " / " +
+         cb::fixed(per_tri_counter(rep, what, "openmesh", name), digits) + " / " +
+         cb::fixed(per_tri_counter(rep, what, "cgal", name), digits);
+}
+
+/// Prints one scaling series ("default", "cold" or "warm") as a table. O(rows).
 scaling print_scaling(const cb::collecting_reporter& rep, std::ostream& os, const std::string& series,
                       const std::string& title, const std::string& note) {
-  cb::table t(title, {"triangles in", "ours ms", "ours ns/tri", "OpenMesh ms", "CGAL ms", "OpenMesh / ours",
-                      "CGAL / ours"});
+  cb::table t(title,
+              {"triangles in", "ours ms", "ours ns/tri", "OpenMesh ns/tri", "CGAL ns/tri", "OpenMesh / ours",
+               "CGAL / ours", "page faults/tri ours / OM / CGAL", "zeroed KiB/tri ours / OM / CGAL"});
   scaling out;
-  std::optional<double> first_ns;
+  std::array<std::optional<double>, 3> first_ns;  // ours, OpenMesh, CGAL at the smallest size
+  const auto per_tri = [](std::optional<double> ms, int f) {
+    return ms ? std::optional<double>(*ms * 1e6 / f) : std::nullopt;
+  };
+  const auto growth = [](std::optional<double> now, std::optional<double> first) {
+    return now && first ? std::optional<double>(*now / *first) : std::nullopt;
+  };
   for (const int f : scaling_faces) {
     const std::string what = series + "/" + std::to_string(f);
     const auto o = get(rep, what, "cellforge"), om = get(rep, what, "openmesh"), cg = get(rep, what, "cgal");
-    std::optional<double> ns;
-    if (o) ns = *o * 1e6 / f;
-    if (!first_ns) first_ns = ns;
-    if (ns && first_ns) out.growth = *ns / *first_ns;
-    out = {o, om, cg, out.growth};
-    t.add_row({cb::count(static_cast<std::size_t>(f)), cb::ms(o), cb::fixed(ns, 1), cb::ms(om), cb::ms(cg),
-               cb::ratio(om, o), cb::ratio(cg, o)});
+    const std::array<std::optional<double>, 3> ns{per_tri(o, f), per_tri(om, f), per_tri(cg, f)};
+    if (f == scaling_faces.front()) first_ns = ns;
+    out = {o, om, cg, growth(ns[0], first_ns[0]), growth(ns[1], first_ns[1]), growth(ns[2], first_ns[2])};
+    t.add_row({cb::count(static_cast<std::size_t>(f)), cb::ms(o), cb::fixed(ns[0], 1), cb::fixed(ns[1], 0),
+               cb::fixed(ns[2], 0), cb::ratio(om, o), cb::ratio(cg, o), three(rep, what, "faults_per_tri", 3),
+               three(rep, what, "zeroed_kib_per_tri", 2)});
   }
+  t.add_row({"growth 1M / 10k", "", cb::fixed(out.growth, 2) + "x", cb::fixed(out.om_growth, 2) + "x",
+             cb::fixed(out.cgal_growth, 2) + "x", "", "", "", ""});
   t.add_note(note);
-  if (series == "scale" && made("scale/10000"))
+  if (series == "default" && made("scale/10000"))
     t.add_note("Cross-check (10k): " + cross_check("scale/10000") + ".");
   t.print(os);
   return out;
@@ -361,32 +460,53 @@ void print_tables(const cb::collecting_reporter& rep, std::ostream& os) {
       "The seed gives no sizes for these files; the stand-ins are generated by shapes.hpp (sizes above).");
   b.print(os);
 
-  const scaling cold =
-      print_scaling(rep, os, "scale", "Scaling: one level on closed spheres (same meshes for all three)",
-                    "Each run writes into freshly allocated memory, as a single call does; at 1M "
-                    "triangles (over 300 MB of new arrays) the kernel's page faults and page "
-                    "zeroing are a large share of every library's time.");
+  const std::string faults_note =
+      " Page faults: minor faults of the process during the timed run (getrusage ru_minflt), per "
+      "input triangle; a fault maps one 4 KiB page, or one 2 MiB page where transparent huge "
+      "pages apply (our large arrays carry a MADV_HUGEPAGE hint), zero-filled when it is new.";
+  const scaling dflt = print_scaling(
+      rep, os, "default",
+      "Scaling, default glibc settings: small runs recycle memory, large ones map fresh pages",
+      "No mallopt: these run first, with glibc's dynamic mmap threshold. At 10k and 100k glibc "
+      "serves the arrays from memory the process already has; at 1M (about 280 MB of new arrays) "
+      "they exceed the mmap threshold, so every run faults in and zeroes brand-new pages. The "
+      "sizes do not run under the same conditions." +
+          faults_note);
+  const scaling cold = print_scaling(
+      rep, os, "cold", "Scaling, cold: fresh zeroed pages at every size",
+      "mallopt(M_MMAP_THRESHOLD = 64 KiB, M_TRIM_THRESHOLD = 0, M_TOP_PAD = 0) and malloc_trim(0) "
+      "before each of these benchmarks, for all three libraries: every block of 64 KiB or more is "
+      "its own mmap, unmapped when freed, so each run, at 10k as at 1M, writes into new pages the "
+      "kernel zero-fills (the page-fault column shows it). Same memory conditions at every size: "
+      "this is the like-for-like growth measure for a single call on fresh memory." +
+          faults_note);
   const scaling warm = print_scaling(
-      rep, os, "warm", "Scaling with a warm heap (glibc keeps and reuses freed memory: no fresh pages)",
-      "mallopt(M_MMAP_THRESHOLD and M_TRIM_THRESHOLD = 1 GiB) before these runs, for all three libraries: "
-      "this isolates the algorithms' own cost (what repeated subdivision in one process sees).");
+      rep, os, "warm", "Scaling, warm heap: glibc keeps and reuses freed memory at every size",
+      "mallopt(M_MMAP_THRESHOLD and M_TRIM_THRESHOLD = 1 GiB) before each of these benchmarks, for all "
+      "three libraries: after the first iteration no fresh pages, which isolates the algorithms' own "
+      "cost (what repeated subdivision in one process sees)." +
+          faults_note);
 
   os << "\n### Targets (" << cb::count(static_cast<std::size_t>(scaling_faces.back())) << " triangles)\n\n";
-  for (const scaling* sc : {&cold, &warm}) {
-    const char* heap = sc == &cold ? "fresh memory" : "warm heap";
+  for (const auto& [sc, heap_name] :
+       {std::pair{&dflt, "default glibc settings"}, std::pair{&cold, "cold (fresh pages at every size)"},
+        std::pair{&warm, "warm heap"}}) {
     if (sc->ours) {
       const char* verdict = !sc->om || !sc->cgal                                           ? "NOT CHECKED"
                             : (*sc->om >= 1.5 * *sc->ours && *sc->cgal >= 1.5 * *sc->ours) ? "MET"
                                                                                            : "NOT MET";
-      os << "- " << heap
+      os << "- " << heap_name
          << ": at least 1.5x faster than OpenMesh LoopT and CGAL Loop_subdivision: " << verdict
          << " (OpenMesh " << cb::ratio(sc->om, sc->ours) << ", CGAL " << cb::ratio(sc->cgal, sc->ours)
          << ")\n";
     }
     if (sc->growth)
-      os << "- " << heap << ": linear growth, time per triangle at 1M within 1.5x of 10k: "
-         << (*sc->growth <= 1.5 ? "MET" : "NOT MET") << " (" << cb::fixed(sc->growth, 2) << "x)\n";
+      os << "- " << heap_name << ": linear growth, time per triangle at 1M within 1.5x of 10k: "
+         << (*sc->growth <= 1.5 ? "MET" : "NOT MET") << " (" << cb::fixed(sc->growth, 2) << "x; OpenMesh "
+         << cb::fixed(sc->om_growth, 2) << "x, CGAL " << cb::fixed(sc->cgal_growth, 2) << "x)\n";
   }
+  os << "\nThe like-for-like growth measure is the cold series: the same memory conditions "
+        "(new zero-filled pages) at every size.\n";
 }
 
 }  // namespace
