@@ -196,96 +196,102 @@ inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_re
   std::unordered_map<std::array<std::int64_t, 4>, std::vector<std::uint32_t>, cell_hash> plane_of;
   std::vector<std::uint32_t> group;  // component → plane group (first component of the group)
 
-  for (std::uint32_t v = 0; v < nv; ++v) {
-    const auto inc = g.around(v);
-    for (std::uint32_t i = 0; i < inc.size(); ++i)
-      for (std::uint32_t j = i + 1; j < inc.size(); ++j) {
-        if (done[pair_base[v] + i * inc.size() + j]) continue;
-        done[pair_base[v] + i * inc.size() + j] = 1;
-        budget.spend();
-        const glm::dvec3 da = g.points[inc[i].other] - g.points[v], db = g.points[inc[j].other] - g.points[v];
-        glm::dvec3 n = glm::cross(da, db);
-        const double ln = glm::length(n);
-        // Collinear pair: the far end of one edge lies within tolerance of the other's line.
-        if (ln <= tol * std::max(glm::length(da), glm::length(db))) continue;
-        n /= ln;
-        const std::uint32_t cid = stamp++;  // marks this search in the stamp arrays
-        const glm::dvec3 origin = g.points[v];
-        // Breadth-first over edges lying in the plane, starting at v.
-        cverts.assign(1, v);
-        cedges.clear();
-        vstamp[v] = cid;
-        for (std::size_t head = 0; head < cverts.size(); ++head) {
-          const std::uint32_t x = cverts[head];
-          for (const auto& in : g.around(x)) {
-            budget.spend();
-            if (estamp[in.edge] == cid) continue;
-            const std::uint32_t y = in.other;
-            if (vtest[y] != cid) {
-              vtest[y] = cid;
-              vin[y] = std::abs(glm::dot(n, g.points[y] - origin)) <= tol;
-            }
-            if (!vin[y]) continue;
-            estamp[in.edge] = cid;
-            cedges.push_back(in.edge);
-            if (vstamp[y] != cid) {
-              vstamp[y] = cid;
-              cverts.push_back(y);
-            }
-          }
-        }
-        // Every pair of in-plane edges at a vertex of this component spans this plane: mark them.
-        for (const auto x : cverts) {
-          const auto ix = g.around(x);
-          for (std::uint32_t a = 0; a < ix.size(); ++a) {
-            if (estamp[ix[a].edge] != cid) continue;
-            for (std::uint32_t b = a + 1; b < ix.size(); ++b)
-              if (estamp[ix[b].edge] == cid) done[pair_base[x] + a * ix.size() + b] = 1;
-          }
-        }
-        // A forest has no circuit: most planes spanned by two edges hold just those two.
-        if (cedges.size() < cverts.size()) continue;
-        plane_component c;
-        c.origin = origin;
-        c.normal = n;
-        c.u = glm::normalize(da - glm::dot(da, n) * n);
-        c.w = glm::cross(n, c.u);
-        trace_plane_faces(g, cedges, c, budget);
-        const auto index = static_cast<std::uint32_t>(comps.size());
-        // Group with earlier components of the same geometric plane (for holes).
-        const auto pc = plane_coords(n, c.origin, g.size);
-        std::uint32_t found = no_index;
-        for (int sign = 1; sign >= -1 && found == no_index; sign -= 2)
-          for (int combo = 0; combo < 16 && found == no_index; ++combo) {
-            std::array<std::int64_t, 4> k{};
-            for (int t = 0; t < 4; ++t) {
-              const double x = sign * pc[static_cast<std::size_t>(t)];
-              k[static_cast<std::size_t>(t)] = static_cast<std::int64_t>(std::floor(x)) + ((combo >> t) & 1);
-            }
-            const auto it = plane_of.find(k);
-            if (it == plane_of.end()) continue;
-            for (const auto other : it->second) {
-              const auto& oc = comps[other];
-              bool same = std::abs(std::abs(glm::dot(oc.normal, n)) - 1.0) < 1e-9;
-              for (std::size_t s = 0; s < cverts.size() && same;
-                   s += std::max<std::size_t>(1, cverts.size() / 8))
-                same = std::abs(glm::dot(oc.normal, g.points[cverts[s]] - oc.origin)) <= tol;
-              if (same) {
-                found = group[other];
-                break;
+  // Two passes: planes are first seeded from well-conditioned corners (angle over ~0.5°),
+  // whose normals are accurate; nearly straight corners only seed planes no corner covered.
+  for (int pass = 0; pass < 2; ++pass)
+    for (std::uint32_t v = 0; v < nv; ++v) {
+      const auto inc = g.around(v);
+      for (std::uint32_t i = 0; i < inc.size(); ++i)
+        for (std::uint32_t j = i + 1; j < inc.size(); ++j) {
+          if (done[pair_base[v] + i * inc.size() + j]) continue;
+          budget.spend();
+          const glm::dvec3 da = g.points[inc[i].other] - g.points[v],
+                           db = g.points[inc[j].other] - g.points[v];
+          glm::dvec3 n = glm::cross(da, db);
+          const double ln = glm::length(n), la = glm::length(da), lb = glm::length(db);
+          if (pass == 0 && ln < 1e-2 * la * lb) continue;
+          done[pair_base[v] + i * inc.size() + j] = 1;
+          // Collinear pair: the far end of one edge lies within tolerance of the other's line.
+          if (ln <= tol * std::max(la, lb)) continue;
+          n /= ln;
+          const std::uint32_t cid = stamp++;  // marks this search in the stamp arrays
+          const glm::dvec3 origin = g.points[v];
+          // Breadth-first over edges lying in the plane, starting at v.
+          cverts.assign(1, v);
+          cedges.clear();
+          vstamp[v] = cid;
+          for (std::size_t head = 0; head < cverts.size(); ++head) {
+            const std::uint32_t x = cverts[head];
+            for (const auto& in : g.around(x)) {
+              budget.spend();
+              if (estamp[in.edge] == cid) continue;
+              const std::uint32_t y = in.other;
+              if (vtest[y] != cid) {
+                vtest[y] = cid;
+                vin[y] = std::abs(glm::dot(n, g.points[y] - origin)) <= tol;
+              }
+              if (!vin[y]) continue;
+              estamp[in.edge] = cid;
+              cedges.push_back(in.edge);
+              if (vstamp[y] != cid) {
+                vstamp[y] = cid;
+                cverts.push_back(y);
               }
             }
           }
-        std::array<std::int64_t, 4> own{};
-        for (int t = 0; t < 4; ++t)
-          own[static_cast<std::size_t>(t)] =
-              static_cast<std::int64_t>(std::round(pc[static_cast<std::size_t>(t)]));
-        plane_of[own].push_back(index);
-        group.push_back(found == no_index ? index : found);
-        if (found == no_index) ++r.planes;
-        comps.push_back(std::move(c));
-      }
-  }
+          // Every pair of in-plane edges at a vertex of this component spans this plane: mark them.
+          for (const auto x : cverts) {
+            const auto ix = g.around(x);
+            for (std::uint32_t a = 0; a < ix.size(); ++a) {
+              if (estamp[ix[a].edge] != cid) continue;
+              for (std::uint32_t b = a + 1; b < ix.size(); ++b)
+                if (estamp[ix[b].edge] == cid) done[pair_base[x] + a * ix.size() + b] = 1;
+            }
+          }
+          // A forest has no circuit: most planes spanned by two edges hold just those two.
+          if (cedges.size() < cverts.size()) continue;
+          plane_component c;
+          c.origin = origin;
+          c.normal = n;
+          c.u = glm::normalize(da - glm::dot(da, n) * n);
+          c.w = glm::cross(n, c.u);
+          trace_plane_faces(g, cedges, c, budget);
+          const auto index = static_cast<std::uint32_t>(comps.size());
+          // Group with earlier components of the same geometric plane (for holes).
+          const auto pc = plane_coords(n, c.origin, g.size);
+          std::uint32_t found = no_index;
+          for (int sign = 1; sign >= -1 && found == no_index; sign -= 2)
+            for (int combo = 0; combo < 16 && found == no_index; ++combo) {
+              std::array<std::int64_t, 4> k{};
+              for (int t = 0; t < 4; ++t) {
+                const double x = sign * pc[static_cast<std::size_t>(t)];
+                k[static_cast<std::size_t>(t)] =
+                    static_cast<std::int64_t>(std::floor(x)) + ((combo >> t) & 1);
+              }
+              const auto it = plane_of.find(k);
+              if (it == plane_of.end()) continue;
+              for (const auto other : it->second) {
+                const auto& oc = comps[other];
+                bool same = std::abs(std::abs(glm::dot(oc.normal, n)) - 1.0) < 1e-9;
+                for (std::size_t s = 0; s < cverts.size() && same;
+                     s += std::max<std::size_t>(1, cverts.size() / 8))
+                  same = std::abs(glm::dot(oc.normal, g.points[cverts[s]] - oc.origin)) <= tol;
+                if (same) {
+                  found = group[other];
+                  break;
+                }
+              }
+            }
+          std::array<std::int64_t, 4> own{};
+          for (int t = 0; t < 4; ++t)
+            own[static_cast<std::size_t>(t)] =
+                static_cast<std::int64_t>(std::round(pc[static_cast<std::size_t>(t)]));
+          plane_of[own].push_back(index);
+          group.push_back(found == no_index ? index : found);
+          if (found == no_index) ++r.planes;
+          comps.push_back(std::move(c));
+        }
+    }
   r.plane_components = comps.size();
 
   // Holes: an outer walk of one component inside a bounded walk of another component of the

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cellforge/cells/cell_complex.hpp"
+#include "cellforge/cells/validate.hpp"
 #include "cellforge/core/wireframe.hpp"
 #include "cellforge/wireframe/circuit_tracer.hpp"
 #include "cellforge/wireframe/extra_faces.hpp"
@@ -35,6 +36,10 @@ struct wireframe_options {
   relations_options relations{};
   bool keep_dangling = false;  ///< put edges that bound no face into the cell complex too
   bool build_complex = true;   ///< call make_cell_complex on the result
+  /// Validate the complex (cells/validate.hpp) and throw a topology error naming the broken
+  /// invariant rather than return a wrong complex (input this pipeline cannot read, such as
+  /// edges crossing inside a face plane). Needs build_complex.
+  bool check_result = true;
 };
 
 /// The cell complex, its input, and every stage's report.
@@ -136,7 +141,17 @@ wireframe_result wireframe_to_cells(const G& wire, const wireframe_options& opti
   }
   for (const auto i : r.volume.unforced)
     if (face_id[i] != no_index) r.unforced.push_back(face_id[i]);
-  if (options.build_complex) r.cells = make_cell_complex(r.input);
+  if (options.build_complex) {
+    r.cells = make_cell_complex(r.input);
+    if (options.check_result) {
+      const auto v = validate(r.cells);
+      if (!v.ok())
+        throw error(error_category::topology,
+                    "wireframe_to_cells: the faces found do not make a valid cell complex (" + v.message +
+                        "); edges crossing each other inside a plane or other input this pipeline cannot "
+                        "read may cause this");
+    }
+  }
   r.assembly_milliseconds = clock.ms();
   return r;
 }
