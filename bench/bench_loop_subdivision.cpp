@@ -474,8 +474,9 @@ void print_tables(const cb::collecting_reporter& rep, std::ostream& os) {
           faults_note);
   const scaling cold = print_scaling(
       rep, os, "cold", "Scaling, cold: fresh zeroed pages at every size",
-      "mallopt(M_MMAP_THRESHOLD = 64 KiB, M_TRIM_THRESHOLD = 0, M_TOP_PAD = 0) and malloc_trim(0) "
-      "before each of these benchmarks, for all three libraries: every block of 64 KiB or more is "
+      "mallopt(M_MMAP_THRESHOLD = 64 KiB, M_TRIM_THRESHOLD = 0, M_TOP_PAD = 0) before each of "
+      "these benchmarks and malloc_trim(0) before every iteration (untimed), for all three libraries: every "
+      "block of 64 KiB or more is "
       "its own mmap, unmapped when freed, so each run, at 10k as at 1M, writes into new pages the "
       "kernel zero-fills (the page-fault column shows it). Same memory conditions at every size: "
       "this is the like-for-like growth measure for a single call on fresh memory." +
