@@ -21,7 +21,8 @@ namespace cellforge {
 struct relations_options {};
 
 /// Around one edge: faces in right-hand order about start → end, and the volume between
-/// each face and the next (no_index: none, the outside).
+/// each face and the next (no_index: none, the outside). Face indices are into the face list
+/// given to find_relations (wireframe_result::extra.faces), volumes as in find_volumes.
 struct edge_relation {
   std::vector<std::uint32_t> faces;
   std::vector<int> face_walks;         ///< +1 when the face walks the edge start → end
