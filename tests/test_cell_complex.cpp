@@ -1,5 +1,7 @@
 #include <doctest/doctest.h>
 
+#include "test_support.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -337,20 +339,6 @@ TEST_CASE("cell complex: a face in three volumes") {
 
 namespace {
 
-#define REQUIRE_VALID(m)          \
-  do {                            \
-    const auto vr_ = validate(m); \
-    INFO(vr_.message);            \
-    REQUIRE(vr_.ok());            \
-  } while (0)
-
-#define REQUIRE_CELLS_VALID(cc)    \
-  do {                             \
-    const auto vr_ = validate(cc); \
-    INFO(vr_.message);             \
-    REQUIRE(vr_.ok());             \
-  } while (0)
-
 // All volumes of `in` merged into one: faces between two of them, and edges left in no face,
 // are dropped (indices renumbered).
 cell_complex_input merged(const cell_complex_input& in) {
@@ -634,7 +622,7 @@ TEST_CASE("conversion: volume boundaries to meshes and back") {
     CHECK(m.is_closed());
     CHECK(mesh_volume(m) == doctest::Approx(1.0));
     const cell_complex back = make_cell_complex(mesh_to_cell_complex(m).to_input());
-    REQUIRE_CELLS_VALID(back);
+    REQUIRE_VALID(back);
     CHECK(face_shapes(back) == face_shapes(cc));
     CHECK(back.num_edges() == 12);
 
@@ -643,11 +631,11 @@ TEST_CASE("conversion: volume boundaries to meshes and back") {
     CHECK(tri.num_faces() == 12);
     CHECK(mesh_volume(tri) == doctest::Approx(1.0));
     const cell_complex unmerged = mesh_to_cell_complex(tri);
-    REQUIRE_CELLS_VALID(unmerged);
+    REQUIRE_VALID(unmerged);
     CHECK(unmerged.num_faces() == 12);
     CHECK(unmerged.num_edges() == 18);
     const cell_complex merged_back = mesh_to_cell_complex(tri, {.merge_coplanar = true});
-    REQUIRE_CELLS_VALID(merged_back);
+    REQUIRE_VALID(merged_back);
     CHECK(merged_back.num_faces() == 6);
     CHECK(merged_back.num_edges() == 12);
     CHECK(face_shapes(merged_back) == face_shapes(cc));
@@ -702,7 +690,7 @@ TEST_CASE("conversion: closed meshes to one-volume complexes") {
     CHECK(torus_cells.object_euler(cell_object(0)) == -1);  // faces are disks, the volume is not a ball
     CHECK(r.expected_euler[0] == -1);
     const cell_complex sphere = mesh_to_cell_complex(make_mesh(uv_sphere<glm::dvec3>(16, 8)));
-    REQUIRE_CELLS_VALID(sphere);
+    REQUIRE_VALID(sphere);
     CHECK(sphere.object_euler(cell_object(0)) == 1);
   }
   SUBCASE("an inside-out mesh gives faces with sign -1 and a positive volume") {
@@ -715,7 +703,7 @@ TEST_CASE("conversion: closed meshes to one-volume complexes") {
       flipped.add_face(face);
     }
     const cell_complex cc = mesh_to_cell_complex(make_mesh(flipped));
-    REQUIRE_CELLS_VALID(cc);
+    REQUIRE_VALID(cc);
     for (const auto& fs : cc.volume_faces(cell_volume(0))) CHECK(fs.sign == -1);
   }
   SUBCASE("an open mesh is refused") {

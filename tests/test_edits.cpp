@@ -1,5 +1,7 @@
 #include <doctest/doctest.h>
 
+#include "test_support.hpp"
+
 #include <algorithm>
 #include <array>
 #include <map>
@@ -26,19 +28,9 @@ CELLFORGE_REGISTER_POINT3(edits_test::pt, double, x, y, z);
 
 namespace {
 
-#define REQUIRE_VALID(m)          \
-  do {                            \
-    const auto vr_ = validate(m); \
-    INFO(vr_.message);            \
-    REQUIRE(vr_.ok());            \
-  } while (0)
-
 using soup = polygon_soup<glm::dvec3>;
 
-int euler(const halfedge_mesh& m) {
-  return static_cast<int>(m.num_vertices()) - static_cast<int>(m.num_edges()) +
-         static_cast<int>(m.num_faces());
-}
+using test_support::euler;
 
 bool same_soup(const soup& a, const soup& b) {
   return a.points == b.points && a.face_offsets == b.face_offsets && a.face_vertices == b.face_vertices;

@@ -1,5 +1,7 @@
 #include <doctest/doctest.h>
 
+#include "test_support.hpp"
+
 #include <algorithm>
 #include <map>
 #include <random>
@@ -15,13 +17,6 @@
 using namespace cellforge;
 
 namespace {
-
-#define REQUIRE_VALID(m)          \
-  do {                            \
-    const auto vr_ = validate(m); \
-    INFO(vr_.message);            \
-    REQUIRE(vr_.ok());            \
-  } while (0)
 
 // Shuffles the faces of a soup (same faces, another order).
 fixtures::soup shuffled(const fixtures::soup& s, std::uint64_t seed) {
@@ -46,10 +41,7 @@ halfedge_mesh build_incrementally(const fixtures::soup& s) {
   return m;
 }
 
-int euler(const halfedge_mesh& m) {
-  return static_cast<int>(m.num_vertices()) - static_cast<int>(m.num_edges()) +
-         static_cast<int>(m.num_faces());
-}
+using test_support::euler;
 
 // Checks every circulator of m against the soup it was built from.
 void check_circulators(const halfedge_mesh& m, const fixtures::soup& s) {

@@ -1,5 +1,7 @@
 #include <doctest/doctest.h>
 
+#include "test_support.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -25,17 +27,7 @@ CELLFORGE_REGISTER_POINT3(simplify_test::pt, float, x, y, z);
 
 namespace {
 
-#define REQUIRE_VALID(m)          \
-  do {                            \
-    const auto vr_ = validate(m); \
-    INFO(vr_.message);            \
-    REQUIRE(vr_.ok());            \
-  } while (0)
-
-int euler(const halfedge_mesh& m) {
-  return static_cast<int>(m.num_vertices()) - static_cast<int>(m.num_edges()) +
-         static_cast<int>(m.num_faces());
-}
+using test_support::euler;
 
 template <class P>
 glm::dvec3 face_normal(const halfedge_mesh& m, face_handle f) {
