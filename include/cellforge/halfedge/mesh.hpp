@@ -257,7 +257,7 @@ class halfedge_mesh {
   }
   /// The boundary half-edge that continues the boundary from b at its end vertex v. O(#fans at v).
   halfedge_handle boundary_successor(halfedge_handle b, vertex_handle v) const { return fan_partner(b, v); }
-  /// All boundary loops. O(#boundary).
+  /// All boundary loops. O(b log b) for b boundary edges.
   std::vector<std::vector<halfedge_handle>> boundary_loops() const {
     std::vector<std::vector<halfedge_handle>> loops;
     std::vector<halfedge_handle> all = boundary_halfedges();
@@ -459,6 +459,19 @@ class halfedge_mesh {
   struct fan {
     std::uint32_t start, end;
   };
+  // The fan of a list that ends at boundary half-edge x (fans.end() if none). O(#fans).
+  static std::vector<fan>::iterator fan_ending_at(std::vector<fan>& fans, std::uint32_t x) {
+    return std::find_if(fans.begin(), fans.end(), [x](const fan& f) { return f.start == x || f.end == x; });
+  }
+  // The end of fan f that is not x.
+  static std::uint32_t other_end(const fan& f, std::uint32_t x) noexcept {
+    return f.start == x ? f.end : f.start;
+  }
+  // A fan grew or shrank by one face at its end `from`: that end is now `to`. O(#fans).
+  static void move_fan_end(std::vector<fan>& fans, std::uint32_t from, std::uint32_t to) {
+    const auto it = fan_ending_at(fans, from);
+    if (it != fans.end()) (it->start == from ? it->start : it->end) = to;
+  }
   // The open fans of boundary vertex v in ring order (empty for interior/isolated).
   void read_fans(std::uint32_t v, std::vector<fan>& out) const {
     out.clear();

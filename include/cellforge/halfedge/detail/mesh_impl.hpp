@@ -90,11 +90,7 @@ inline face_handle halfedge_mesh::add_face(std::span<const vertex_handle> vs) {
     const std::uint32_t m_in = match[(i + n - 1) % n], m_out = match[i];
     if (m_in == npos || m_out == npos) continue;
     const std::uint32_t x_in = m_in ^ 1u, x_out = m_out ^ 1u;
-    auto fan_of = [&](std::uint32_t x) {
-      return std::find_if(fans[i].begin(), fans[i].end(),
-                          [&](const fan& f) { return f.start == x || f.end == x; });
-    };
-    if (fan_of(x_in) == fan_of(x_out) && fans[i].size() > 1)
+    if (fan_ending_at(fans[i], x_in) == fan_ending_at(fans[i], x_out) && fans[i].size() > 1)
       throw error(error_category::topology, "add_face: the face would close one fan of faces around " +
                                                 detail::vtx(v) +
                                                 " while other fans remain there (non-manifold vertex)");
@@ -137,30 +133,19 @@ inline face_handle halfedge_mesh::add_face(std::span<const vertex_handle> vs) {
     const std::uint32_t b_in = is_new[ip] ? hs[ip] ^ 1u : npos;
     const std::uint32_t b_out = is_new[i] ? hs[i] ^ 1u : npos;
     std::vector<fan>& fv = fans[i];
-    auto replace = [&](std::uint32_t from, std::uint32_t to) {
-      for (fan& x : fv) {
-        if (x.start == from) x.start = to;
-        if (x.end == from) x.end = to;
-      }
-    };
     if (is_new[ip] && is_new[i]) {
       fv.push_back({b_in, b_out});
     } else if (!is_new[ip] && is_new[i]) {
-      replace(hs[ip], b_out);
+      move_fan_end(fv, hs[ip], b_out);
     } else if (is_new[ip] && !is_new[i]) {
-      replace(hs[i], b_in);
+      move_fan_end(fv, hs[i], b_in);
     } else {
       const std::uint32_t x_in = hs[ip], x_out = hs[i];
-      auto ia =
-          std::find_if(fv.begin(), fv.end(), [&](const fan& x) { return x.start == x_in || x.end == x_in; });
-      auto ib = std::find_if(fv.begin(), fv.end(),
-                             [&](const fan& x) { return x.start == x_out || x.end == x_out; });
+      const auto ia = fan_ending_at(fv, x_in), ib = fan_ending_at(fv, x_out);
       if (ia == ib) {
         fv.erase(ia);  // the fan closes
       } else {
-        const std::uint32_t pa = ia->start == x_in ? ia->end : ia->start;
-        const std::uint32_t pb = ib->start == x_out ? ib->end : ib->start;
-        *ia = {pa, pb};
+        *ia = {other_end(*ia, x_in), other_end(*ib, x_out)};  // two fans merge into one
         fv.erase(ib);
       }
     }
@@ -224,12 +209,6 @@ inline void halfedge_mesh::remove_face(face_handle fh) {
     const std::uint32_t v = vs[i];
     const std::uint32_t h_in = hs[ip], h_out = hs[i];
     std::vector<fan>& fv = fans[i];
-    auto replace = [&](std::uint32_t from, std::uint32_t to) {
-      for (fan& x : fv) {
-        if (x.start == from) x.start = to;
-        if (x.end == from) x.end = to;
-      }
-    };
     if (interior[ip] && interior[i]) {
       if (fv.empty()) {
         fv.push_back({h_out, h_in});  // a closed fan opens up
@@ -241,13 +220,11 @@ inline void halfedge_mesh::remove_face(face_handle fh) {
                   fan{via_in ? h_out : h_in, old.end});
       }
     } else if (interior[ip]) {
-      replace(h_out ^ 1u, h_in);
+      move_fan_end(fv, h_out ^ 1u, h_in);
     } else if (interior[i]) {
-      replace(h_in ^ 1u, h_out);
+      move_fan_end(fv, h_in ^ 1u, h_out);
     } else {
-      const std::uint32_t x_in = h_in ^ 1u;
-      fv.erase(
-          std::find_if(fv.begin(), fv.end(), [&](const fan& x) { return x.start == x_in || x.end == x_in; }));
+      fv.erase(fan_ending_at(fv, h_in ^ 1u));  // the face was a fan of its own
     }
     write_fans(v, fv, npos);
   }
