@@ -4,7 +4,9 @@
 #   2. asan     Debug build with ASan + UBSan and -Werror, then ctest    (build/asan)
 #   3. clang    every example and test compiled (syntax and templates) by clang with -Werror,
 #               so that code g++ accepts but clang rejects does not land
-#   4. fuzz     libFuzzer targets built with clang, seed corpora replayed, then each fuzzer
+#   4. bench    every benchmark compiled in Release (not run: timings are not tests), so that
+#               benchmark code cannot rot; CGAL/OpenMesh parts only where they are installed
+#   5. fuzz     libFuzzer targets built with clang, seed corpora replayed, then each fuzzer
 #               run for CELLFORGE_FUZZ_SECONDS seconds (default 60)      (build/fuzz)
 # Every stage runs even when an earlier one failed; the exit status is non-zero if any failed.
 # Environment: CELLFORGE_FUZZ_SECONDS (default 60), CELLFORGE_FUZZ_JOBS (fuzzers run at once,
@@ -100,6 +102,7 @@ if [[ "${1:-}" == "--stage" ]]; then
     release | asan) preset_stage "$2" ;;
     fuzz) fuzz_stage ;;
     clang) clang_stage ;;
+    bench) cmake --preset bench && cmake --build --preset bench ;;
     *)
       echo "test-all: unknown stage '${2:-}'" >&2
       exit 2
@@ -110,10 +113,10 @@ fi
 
 start=$SECONDS
 if [[ "${CELLFORGE_SKIP_DEPS:-0}" != 1 ]]; then
-  bash "$root/cmake/install-deps.sh" --fuzz
+  bash "$root/cmake/install-deps.sh" --bench --fuzz
 fi
 
-stages=(release asan clang)
+stages=(release asan clang bench)
 if compgen -G "$root/tests/fuzz/fuzz_*.cpp" >/dev/null; then
   stages+=(fuzz)
 else
