@@ -30,6 +30,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -1186,6 +1187,84 @@ polygon_soup<P> triangulate_fan(const polygon_soup<P>& soup) {
     for (std::size_t i = 1; i + 1 < face.size(); ++i) out.add_face({face[0], face[i], face[i + 1]});
   }
   return out;
+}
+
+/// Closed solid of revolution about the z axis: `profile` lists (radius, z) pairs (x = radius,
+/// y = z) from one end to the other, swept with `segments` vertices per ring. An end with
+/// radius 0 is a pole vertex joined by a triangle fan; any other end is closed by one
+/// `segments`-gon (quads) or a triangle fan to a centre vertex (`triangles`). Interior
+/// radii must be positive. Quads between rings, split into two triangles when `triangles`.
+/// Faces point outward whichever way the profile runs. O(output).
+template <Point3 P = glm::dvec3>
+polygon_soup<P> solid_of_revolution(std::span<const glm::dvec2> profile, int segments,
+                                    bool triangles = false) {
+  namespace s = detail::shapes;
+  const char* what = "solid_of_revolution";
+  const auto m = static_cast<std::int64_t>(profile.size());
+  s::require(m >= 2, what, "the profile needs at least 2 (radius, z) points");
+  s::require_counts(what, {{"segments", segments, 3}},
+                    static_cast<double>(segments) * static_cast<double>(m) + 2,
+                    6.0 * segments * static_cast<double>(m + 1));
+  for (std::int64_t k = 0; k < m; ++k) {
+    const glm::dvec2 q = profile[static_cast<std::size_t>(k)];
+    s::require(std::isfinite(q.x) && std::isfinite(q.y) && q.x >= 0, what, [&] {
+      return "profile point " + std::to_string(k) + " must have a finite radius >= 0 and a finite z";
+    });
+    s::require(q.x > 0 || k == 0 || k == m - 1, what, [&] {
+      return "profile point " + std::to_string(k) + " has radius 0; only the two ends may lie on the axis";
+    });
+    s::require(k == 0 || q != profile[static_cast<std::size_t>(k - 1)], what, [&] {
+      return "profile points " + std::to_string(k - 1) + " and " + std::to_string(k) + " coincide";
+    });
+  }
+  s::require(m > 2 || profile[0].x > 0 || profile[1].x > 0, what,
+             "a profile of two axis points has no surface");
+  polygon_soup<P> soup;
+  // ring[k] = index of the first vertex of profile point k (one vertex when it is a pole).
+  std::vector<std::uint32_t> ring(static_cast<std::size_t>(m));
+  const auto n = static_cast<std::uint32_t>(segments);
+  for (std::int64_t k = 0; k < m; ++k) {
+    const glm::dvec2 q = profile[static_cast<std::size_t>(k)];
+    ring[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(soup.points.size());
+    if (q.x == 0) {
+      s::add_point(soup, {0, 0, q.y});
+      continue;
+    }
+    for (int i = 0; i < segments; ++i) {
+      const double phi = 2.0 * s::pi * i / segments;
+      s::add_point(soup, {q.x * std::cos(phi), q.x * std::sin(phi), q.y});
+    }
+  }
+  const auto pole = [&](std::int64_t k) { return profile[static_cast<std::size_t>(k)].x == 0; };
+  for (std::int64_t k = 0; k + 1 < m; ++k) {
+    const std::uint32_t a = ring[static_cast<std::size_t>(k)], b = ring[static_cast<std::size_t>(k + 1)];
+    if (pole(k))
+      s::add_fan(soup, a, b, n, true);
+    else if (pole(k + 1))
+      s::add_fan(soup, b, a, n, false);
+    else
+      for (std::uint32_t i = 0; i < n; ++i)
+        s::add_quad(soup, a + i, a + (i + 1) % n, b + (i + 1) % n, b + i, triangles);
+  }
+  // Caps: the first end seen from below (reversed winding), the last from above.
+  for (const std::int64_t k : {std::int64_t{0}, m - 1}) {
+    if (pole(k)) continue;
+    const std::uint32_t first = ring[static_cast<std::size_t>(k)];
+    const bool reverse = k == 0;
+    if (triangles) {
+      s::add_fan(soup, s::add_point(soup, {0, 0, profile[static_cast<std::size_t>(k)].y}), first, n, reverse);
+    } else {
+      std::vector<std::uint32_t> cap(n);
+      for (std::uint32_t i = 0; i < n; ++i) cap[i] = reverse ? first + (n - i) % n : first + i;
+      soup.add_face(cap);
+    }
+  }
+  // A profile running downwards winds every face inward: flip them all.
+  if (signed_volume(soup) < 0)
+    for (std::size_t f = 0; f < soup.num_faces(); ++f)
+      std::reverse(soup.face_vertices.begin() + soup.face_offsets[f],
+                   soup.face_vertices.begin() + soup.face_offsets[f + 1]);
+  return soup;
 }
 
 }  // namespace cellforge
