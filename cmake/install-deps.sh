@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian/Ubuntu packages cellforge needs, and only those that are missing.
 #   bash cmake/install-deps.sh [--bench] [--compare] [--fuzz]
-#     (none)     compiler, CMake, make, GLM, doctest: enough to build the tests and examples
+#     (none)     compiler, CMake, make, GLM, doctest: enough to build the tests and examples;
+#                node and npm (only when the commands are missing) for cmake/fetch-bunny.sh
 #     --bench    Google Benchmark as well
 #     --compare  CGAL (with Eigen) and OpenMesh, the baselines the benchmarks compare against (implies --bench)
 #     --fuzz     clang and its compiler-rt (libFuzzer, ASan/UBSan runtimes for clang)
@@ -10,6 +11,10 @@
 set -euo pipefail
 
 packages=(g++ cmake make libglm-dev doctest-dev)
+# The bunny test data comes through npm (cmake/fetch-bunny.sh). Checked by command rather
+# than by package, since node from another source (e.g. a nodejs build bundling npm) will do.
+command -v node >/dev/null 2>&1 || packages+=(nodejs)
+command -v npm >/dev/null 2>&1 || packages+=(npm)
 for arg in "$@"; do
   case "$arg" in
     --bench) packages+=(libbenchmark-dev) ;;
@@ -17,7 +22,7 @@ for arg in "$@"; do
     # Debian 12's clang 14 needs libclang-rt-14-dev for -fsanitize=fuzzer (libclang_rt.fuzzer).
     --fuzz) packages+=(clang libclang-rt-14-dev) ;;
     -h | --help)
-      sed -n '2,9p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+      sed -n '2,10p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
       exit 0
       ;;
     *)

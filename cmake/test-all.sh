@@ -8,6 +8,7 @@
 #               benchmark code cannot rot; CGAL/OpenMesh parts only where they are installed
 #   5. fuzz     libFuzzer targets built with clang, seed corpora replayed, then each fuzzer
 #               run for CELLFORGE_FUZZ_SECONDS seconds (default 60)      (build/fuzz)
+# Before the stages, cmake/fetch-bunny.sh puts the Stanford bunny (npm) in build/data.
 # Every stage runs even when an earlier one failed; the exit status is non-zero if any failed.
 # Environment: CELLFORGE_FUZZ_SECONDS (default 60), CELLFORGE_FUZZ_JOBS (fuzzers run at once,
 # default 2), CELLFORGE_SKIP_DEPS=1 to skip the package check.
@@ -125,6 +126,12 @@ fi
 
 passed=()
 failed=()
+# The Stanford bunny (npm package) for the thin-point test and benchmark, once, before the
+# stages; the default CELLFORGE_BUNNY_FILE is build/data/bunny.off. Skipped when present.
+if ! bash "$root/cmake/fetch-bunny.sh" "$root/build/data"; then
+  failed+=("bunny-data")
+  echo "=== test-all: fetching the bunny FAILED (bash cmake/fetch-bunny.sh build/data; needs node, npm and the npm registry); test_thin_bunny will fail under CI ===" >&2
+fi
 for stage in "${stages[@]}"; do
   echo
   echo "=== test-all: stage '$stage' ==="
