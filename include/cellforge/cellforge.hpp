@@ -26,6 +26,8 @@
 #include "cellforge/halfedge/orientation.hpp"
 #include "cellforge/halfedge/properties.hpp"
 #include "cellforge/halfedge/validate.hpp"
+#include "cellforge/thin/thin_points.hpp"
+#include "cellforge/smooth/smooth_edges.hpp"
 #include "cellforge/wireframe/circuit_tracer.hpp"
 #include "cellforge/wireframe/extra_faces.hpp"
 #include "cellforge/wireframe/face_arrangement.hpp"

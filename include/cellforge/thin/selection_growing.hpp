@@ -1,0 +1,365 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Selection growing (seed 000 §5.2 and §5.4): from a start face, every cycle grows each
+/// kept selection by one face among those adjacent to the most selected faces, drops
+/// duplicates, cuts selections longer than keep_ratio × the least boundary length, applies
+/// the §5.4 tolerance schedule down to the selection cap and records the least length and
+/// its boundary ("loop") per cycle. Two implementations give identical results: `fast`
+/// (hashed children, bitsets, only survivors materialised) and `faithful` (the seed's
+/// Boolean arrays and L1/L2 edge lists, duplicates found by comparing arrays).
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "cellforge/core/error.hpp"
+
+namespace cellforge {
+
+/// Which implementation grows the selections; both give the same lengths and loops.
+enum class thin_mode : std::uint8_t {
+  fast,      ///< hashed (parent, face) children, bitsets, only survivors materialised
+  faithful,  ///< the seed's data structures: Boolean arrays, L1/L2 lists, array comparison
+};
+
+/// Faces and their edges as the growing sees them. A "slot" is one face's use of an edge
+/// (a half-edge): slots of face f are face_start[f] .. face_start[f+1], in boundary order.
+struct thin_face_graph {
+  std::uint32_t num_faces = 0;
+  std::vector<std::uint32_t> face_start{0};
+  std::vector<std::uint32_t> slot_edge;                  ///< edge of each slot (0 .. edge_length.size())
+  std::vector<std::uint32_t> slot_other;                 ///< face on the other side of the slot's edge
+  std::vector<std::uint32_t> slot_face;                  ///< face owning the slot
+  std::vector<double> edge_length;                       ///< cached edge lengths (§5.1's pre-processing)
+  std::vector<std::array<std::uint32_t, 2>> edge_slots;  ///< the two slots of each edge
+};
+
+/// Parameters of grow_selections (the thin_options fields of the same names).
+struct growing_options {
+  int selection_cap = 40;
+  double keep_ratio = 1.1;
+  thin_mode mode = thin_mode::fast;
+  std::uint64_t work_budget = 2'000'000'000;
+};
+
+/// Per cycle (selection size 1 .. faces−1) the least boundary length and that selection's
+/// boundary as sorted inner slots (slots whose face is selected and whose twin's is not).
+struct growing_result {
+  std::vector<double> cycle_lengths;
+  std::vector<std::vector<std::uint32_t>> cycle_loops;
+  std::uint64_t selections_examined = 0;  ///< candidate selections generated
+  std::uint64_t duplicates_dropped = 0;
+  std::uint64_t selections_kept = 0;  ///< survivors summed over the cycles
+  std::size_t max_kept = 0;           ///< most survivors in one cycle
+};
+
+namespace detail::thin {
+
+/// The survivors of one cycle, in order (§5.2 cut, §5.4 schedule, final stable sort).
+inline std::vector<std::uint32_t> keep_selections(const std::vector<double>& length, double keep_ratio,
+                                                  std::size_t cap) {
+  std::vector<std::uint32_t> kept;
+  if (length.empty()) return kept;
+  const double least = *std::min_element(length.begin(), length.end());
+  const auto cut = [&](double limit) {
+    std::erase_if(kept, [&](std::uint32_t i) { return length[i] > limit; });
+  };
+  kept.resize(length.size());
+  std::iota(kept.begin(), kept.end(), 0u);
+  cut(keep_ratio * least);
+  double t = 0;
+  for (int adjust = 0; adjust < 20 && kept.size() > cap; ++adjust) {
+    const double ratio = std::min(static_cast<double>(cap) / static_cast<double>(kept.size()), 0.95);
+    t = adjust == 0 ? 0.1 * ratio : t * ratio;
+    cut((1 + t) * least);
+  }
+  if (kept.size() > cap) {
+    std::stable_sort(kept.begin(), kept.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return length[a] < length[b]; });
+    kept.resize(cap);
+  }
+  return kept;
+}
+
+/// Length of parent ∪ {f}: the seed's quick update, in one fixed order shared by both
+/// modes (subtract the edges leaving L1, then add those entering, in f's slot order) so
+/// that the two modes produce bit-identical sums. `selected(g)` tests the parent.
+template <class Selected>
+double child_length(const thin_face_graph& g, double parent_length, std::uint32_t f, Selected&& selected) {
+  double total = parent_length;
+  const std::uint32_t b = g.face_start[f], e = g.face_start[f + 1];
+  // An edge used twice by f (a face glued to itself) enters L1 first and then leaves it.
+  const auto repeated_before = [&](std::uint32_t s) {
+    for (std::uint32_t r = b; r < s; ++r)
+      if (g.slot_edge[r] == g.slot_edge[s]) return true;
+    return false;
+  };
+  const auto leaves = [&](std::uint32_t s) {
+    const std::uint32_t o = g.slot_other[s];
+    return o == f ? repeated_before(s) : selected(o);
+  };
+  for (std::uint32_t s = b; s < e; ++s)
+    if (leaves(s)) total -= g.edge_length[g.slot_edge[s]];
+  for (std::uint32_t s = b; s < e; ++s)
+    if (!leaves(s)) total += g.edge_length[g.slot_edge[s]];
+  return total;
+}
+
+[[noreturn]] inline void over_budget(std::uint64_t budget) {
+  throw error(
+      error_category::budget,
+      "find_thin_points: the selection growing examined more than " + std::to_string(budget) +
+          " candidate selections (thin_options::work_budget); raise work_budget or lower selection_cap");
+}
+
+inline std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+/// Fast mode: a survivor owns a face bitset, its inner boundary slots and a Zobrist hash.
+struct fast_selection {
+  std::vector<std::uint64_t> bits;
+  std::vector<std::uint32_t> boundary;  // inner slots: face selected, twin face not
+  double length = 0;
+  std::uint64_t hash = 0;
+  bool has(std::uint32_t f) const { return (bits[f >> 6] >> (f & 63)) & 1u; }
+};
+
+struct fast_child {
+  std::uint32_t parent, face;
+  std::uint64_t hash;
+  double length;
+};
+
+inline growing_result grow_fast(const thin_face_graph& g, std::uint32_t start, const growing_options& o) {
+  const std::uint32_t nf = g.num_faces;
+  const std::size_t words = (nf + 63) / 64;
+  std::vector<std::uint64_t> key(nf);
+  for (std::uint32_t f = 0; f < nf; ++f) key[f] = splitmix64(0x7468696E ^ (std::uint64_t{f} << 20) ^ f);
+  growing_result r;
+  std::vector<fast_selection> current(1);
+  {
+    fast_selection& s = current[0];
+    s.bits.assign(words, 0);
+    s.bits[start >> 6] |= std::uint64_t{1} << (start & 63);
+    for (std::uint32_t k = g.face_start[start]; k < g.face_start[start + 1]; ++k)
+      if (g.slot_other[k] != start) s.boundary.push_back(k);
+    s.length = child_length(g, 0.0, start, [](std::uint32_t) { return false; });
+    s.hash = key[start];
+  }
+  const auto record = [&](const fast_selection& s) {
+    r.cycle_lengths.push_back(s.length);
+    std::vector<std::uint32_t> loop = s.boundary;
+    std::sort(loop.begin(), loop.end());
+    r.cycle_loops.push_back(std::move(loop));
+  };
+  record(current[0]);
+  std::vector<std::uint32_t> count(nf, 0), touched, candidates;
+  std::vector<fast_child> children;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> by_hash;
+  std::vector<char> duplicate;
+  std::vector<double> lengths;
+  for (std::uint32_t size = 2; size < nf; ++size) {
+    children.clear();
+    for (std::uint32_t p = 0; p < current.size(); ++p) {
+      const fast_selection& s = current[p];
+      // An edge is in L1 exactly when one of its two faces is selected (closed mesh), so
+      // counting the outer faces of the boundary slots counts shared edges.
+      std::uint32_t most = 0;
+      for (const std::uint32_t k : s.boundary) {
+        const std::uint32_t out = g.slot_other[k];
+        if (count[out]++ == 0) touched.push_back(out);
+        most = std::max(most, count[out]);
+      }
+      candidates.clear();
+      for (const std::uint32_t f : touched) {
+        if (count[f] == most) candidates.push_back(f);
+        count[f] = 0;
+      }
+      touched.clear();
+      std::sort(candidates.begin(), candidates.end());
+      for (const std::uint32_t f : candidates)
+        children.push_back(
+            {p, f, s.hash ^ key[f], child_length(g, s.length, f, [&](std::uint32_t x) { return s.has(x); })});
+      r.selections_examined += candidates.size();
+      if (r.selections_examined > o.work_budget) over_budget(o.work_budget);
+    }
+    // Duplicates: equal hashes, confirmed by comparing the face sets; the first one stays.
+    by_hash.clear();
+    for (std::uint32_t i = 0; i < children.size(); ++i) by_hash.emplace_back(children[i].hash, i);
+    std::sort(by_hash.begin(), by_hash.end());
+    duplicate.assign(children.size(), 0);
+    const auto same = [&](const fast_child& a, const fast_child& b) {
+      const fast_selection &pa = current[a.parent], &pb = current[b.parent];
+      for (std::size_t w = 0; w < words; ++w) {
+        std::uint64_t x = pa.bits[w], y = pb.bits[w];
+        if ((a.face >> 6) == w) x |= std::uint64_t{1} << (a.face & 63);
+        if ((b.face >> 6) == w) y |= std::uint64_t{1} << (b.face & 63);
+        if (x != y) return false;
+      }
+      return true;
+    };
+    for (std::size_t i = 0; i < by_hash.size();) {
+      std::size_t j = i;
+      while (j < by_hash.size() && by_hash[j].first == by_hash[i].first) ++j;
+      for (std::size_t a = i + 1; a < j; ++a)
+        for (std::size_t b = i; b < a; ++b)
+          if (!duplicate[by_hash[b].second] &&
+              same(children[by_hash[a].second], children[by_hash[b].second])) {
+            duplicate[by_hash[a].second] = 1;
+            break;
+          }
+      i = j;
+    }
+    std::vector<std::uint32_t> unique;
+    lengths.clear();
+    for (std::uint32_t i = 0; i < children.size(); ++i)
+      if (!duplicate[i]) unique.push_back(i), lengths.push_back(children[i].length);
+    r.duplicates_dropped += children.size() - unique.size();
+    if (unique.empty())
+      throw error(error_category::internal,
+                  "find_thin_points: the selection stopped growing (disconnected faces)");
+    const std::vector<std::uint32_t> kept =
+        keep_selections(lengths, o.keep_ratio, static_cast<std::size_t>(o.selection_cap));
+    std::vector<fast_selection> next;
+    next.reserve(kept.size());
+    for (const std::uint32_t k : kept) {
+      const fast_child& c = children[unique[k]];
+      const fast_selection& parent = current[c.parent];
+      fast_selection s;
+      s.bits = parent.bits;
+      s.bits[c.face >> 6] |= std::uint64_t{1} << (c.face & 63);
+      s.boundary.reserve(parent.boundary.size() + 4);
+      for (const std::uint32_t k2 : parent.boundary)
+        if (g.slot_other[k2] != c.face) s.boundary.push_back(k2);
+      for (std::uint32_t k2 = g.face_start[c.face]; k2 < g.face_start[c.face + 1]; ++k2) {
+        const std::uint32_t o2 = g.slot_other[k2];
+        if (o2 != c.face && !parent.has(o2)) s.boundary.push_back(k2);
+      }
+      s.length = c.length, s.hash = c.hash;
+      next.push_back(std::move(s));
+    }
+    current = std::move(next);
+    r.selections_kept += current.size();
+    r.max_kept = std::max(r.max_kept, current.size());
+    record(current.front());  // the first survivor is the first least one (stable order)
+  }
+  return r;
+}
+
+/// Faithful mode: the seed's selection record.
+struct faithful_selection {
+  std::vector<char> selected;     // Boolean array over the faces
+  std::vector<std::uint32_t> l1;  // edges adjacent to one selected face
+  std::vector<std::uint32_t> l2;  // edges adjacent to two selected faces
+  double total = 0;
+};
+
+/// Inserts face f's edges: not in a list → L1 (added); in L1 → moved to L2 (removed).
+inline void insert_face(const thin_face_graph& g, faithful_selection& s, std::uint32_t f,
+                        std::vector<std::uint32_t>& added, std::vector<std::uint32_t>& removed) {
+  added.clear(), removed.clear();
+  for (std::uint32_t k = g.face_start[f]; k < g.face_start[f + 1]; ++k) {
+    const std::uint32_t e = g.slot_edge[k];
+    if (const auto it = std::find(s.l1.begin(), s.l1.end(), e); it != s.l1.end()) {
+      s.l1.erase(it);
+      s.l2.push_back(e);
+      removed.push_back(e);
+    } else if (std::find(s.l2.begin(), s.l2.end(), e) == s.l2.end()) {
+      s.l1.push_back(e);
+      added.push_back(e);
+    }
+  }
+  s.selected[f] = 1;
+  // The seed's quick total: subtract what left L1, add what entered.
+  for (const std::uint32_t e : removed) s.total -= g.edge_length[e];
+  for (const std::uint32_t e : added) s.total += g.edge_length[e];
+}
+
+inline growing_result grow_faithful(const thin_face_graph& g, std::uint32_t start, const growing_options& o) {
+  const std::uint32_t nf = g.num_faces;
+  growing_result r;
+  std::vector<std::uint32_t> added, removed;
+  std::vector<faithful_selection> current(1);
+  current[0].selected.assign(nf, 0);
+  insert_face(g, current[0], start, added, removed);
+  const auto record = [&](const faithful_selection& s) {
+    r.cycle_lengths.push_back(s.total);
+    std::vector<std::uint32_t> loop;
+    for (const std::uint32_t e : s.l1)
+      for (const std::uint32_t k : g.edge_slots[e])
+        if (s.selected[g.slot_face[k]]) loop.push_back(k);
+    std::sort(loop.begin(), loop.end());
+    r.cycle_loops.push_back(std::move(loop));
+  };
+  record(current[0]);
+  std::vector<faithful_selection> stored;
+  std::vector<double> lengths;
+  for (std::uint32_t size = 2; size < nf; ++size) {
+    stored.clear();
+    for (const faithful_selection& s : current) {
+      // Unselected faces adjacent to the most selected faces, by scanning every face.
+      std::vector<std::uint32_t> adjacent(nf, 0);
+      std::uint32_t most = 0;
+      for (std::uint32_t f = 0; f < nf; ++f) {
+        if (s.selected[f]) continue;
+        for (std::uint32_t k = g.face_start[f]; k < g.face_start[f + 1]; ++k)
+          if (g.slot_other[k] != f && s.selected[g.slot_other[k]]) ++adjacent[f];
+        most = std::max(most, adjacent[f]);
+      }
+      for (std::uint32_t f = 0; f < nf && most > 0; ++f) {
+        if (s.selected[f] || adjacent[f] != most) continue;
+        if (++r.selections_examined > o.work_budget) over_budget(o.work_budget);
+        std::vector<char> candidate = s.selected;
+        candidate[f] = 1;
+        const bool seen = std::any_of(stored.begin(), stored.end(),
+                                      [&](const faithful_selection& t) { return t.selected == candidate; });
+        if (seen) {
+          ++r.duplicates_dropped;
+          continue;
+        }
+        faithful_selection child = s;
+        insert_face(g, child, f, added, removed);
+        stored.push_back(std::move(child));
+      }
+    }
+    if (stored.empty())
+      throw error(error_category::internal,
+                  "find_thin_points: the selection stopped growing (disconnected faces)");
+    lengths.clear();
+    for (const faithful_selection& s : stored) lengths.push_back(s.total);
+    const std::vector<std::uint32_t> kept =
+        keep_selections(lengths, o.keep_ratio, static_cast<std::size_t>(o.selection_cap));
+    current.clear();
+    for (const std::uint32_t k : kept) current.push_back(std::move(stored[k]));
+    r.selections_kept += current.size();
+    r.max_kept = std::max(r.max_kept, current.size());
+    record(current.front());
+  }
+  return r;
+}
+
+}  // namespace detail::thin
+
+/// Grows selections from face `start` until all but one face are selected (seed §5.2,
+/// §5.4); per cycle the least boundary length and its loop. Fast: O(faces · cap · (boundary
+/// + candidates · degree + faces/64)); faithful: O(faces² · cap · candidates) and more.
+inline growing_result grow_selections(const thin_face_graph& g, std::uint32_t start,
+                                      const growing_options& o = {}) {
+  if (start >= g.num_faces)
+    throw error(error_category::invalid_input, "grow_selections: start face " + std::to_string(start) +
+                                                   " is not below the face count " +
+                                                   std::to_string(g.num_faces));
+  return o.mode == thin_mode::fast ? detail::thin::grow_fast(g, start, o)
+                                   : detail::thin::grow_faithful(g, start, o);
+}
+
+}  // namespace cellforge

@@ -1,0 +1,358 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// find_thin_points: the thin-point finder of seed 000 chapter V on a closed half-edge mesh
+/// or a cell-complex volume: central axis (§5.1), selection growing (§5.2, §5.4) and loop
+/// detection (§5.3), returning the thin loops as ordered closed vertex chains.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "cellforge/cells/cell_complex.hpp"
+#include "cellforge/cells/conversion.hpp"
+#include "cellforge/core/error.hpp"
+#include "cellforge/core/point_traits.hpp"
+#include "cellforge/halfedge/conversion.hpp"
+#include "cellforge/halfedge/mesh.hpp"
+#include "cellforge/thin/central_axis.hpp"
+#include "cellforge/thin/loop_detection.hpp"
+#include "cellforge/thin/selection_growing.hpp"
+
+namespace cellforge {
+
+/// Options of find_thin_points; every field is range-checked.
+struct thin_options {
+  int selection_cap = 40;           ///< n_s of §5.4: selections kept per cycle, 1..1000
+  double keep_ratio = 1.1;          ///< selections longer than keep_ratio × least are cut (§5.2), ≥ 1
+  int slabs = 20;                   ///< slabs per axis split (§5.1), 2..100000
+  double axis_tolerance_deg = 0.1;  ///< axis converged when it moves less than this, 0..90
+  int max_axis_iterations = 50;     ///< then the recent directions are averaged, 1..100000
+  thin_mode mode = thin_mode::fast;
+  thin_detection detection = thin_detection::prominence;
+  double min_strength = 1.0 / 50;             ///< 0..1
+  double suppression_fraction = 0.1;          ///< (0, 1]
+  int averaging_window = 5;                   ///< seed detector's ±window, 1..10000
+  std::uint64_t work_budget = 2'000'000'000;  ///< candidate selections examined, then error(budget)
+};
+
+/// One thin loop: a closed chain of vertices and edges.
+struct thin_loop {
+  std::vector<std::uint32_t> vertices;  ///< closed chain, in order (mesh or cell vertex ids)
+  std::vector<std::uint32_t> edges;     ///< edges[i] joins vertices[i] and vertices[i+1 mod n]
+  std::vector<glm::dvec3> points;       ///< positions of vertices
+  double length = 0;                    ///< sum of the chain's edge lengths
+  double total_length = 0;              ///< the cycle's least length (all its boundary chains)
+  std::size_t chains = 1;               ///< boundary chains of that selection; the longest is reported
+  double axis_position = 0;             ///< centroid along the axis, 0 at the start end, 1 at the other
+  std::size_t cycle = 0;                ///< 1-based cycle (selection size) it occurred at
+  double strength = 0;                  ///< detection strength (0..1), loops sorted strongest first
+};
+
+/// Everything find_thin_points found and how much work it took.
+struct thin_result {
+  glm::dvec3 axis_origin{0.0}, axis_direction{0, 0, 1};  ///< direction points away from the start end
+  int axis_iterations = 0;
+  bool axis_converged = false;
+  std::uint32_t start_face = 0;       ///< mesh face (or cell face) the growing started from
+  std::vector<double> cycle_lengths;  ///< least total length per cycle (index = cycle − 1)
+  std::vector<thin_loop> loops;       ///< reported thin loops, strongest first
+  bool values_smoothed = false;       ///< seed detector: alternating values were smoothed
+  std::uint64_t selections_examined = 0, duplicates_dropped = 0, selections_kept = 0;
+  std::size_t max_kept = 0;
+  double axis_ms = 0, growing_ms = 0, detection_ms = 0;
+};
+
+namespace detail::thin {
+
+inline void check_options(const thin_options& o) {
+  const auto bad = [](const std::string& what) {
+    throw error(error_category::invalid_input, "find_thin_points: " + what);
+  };
+  if (o.selection_cap < 1 || o.selection_cap > 1000)
+    bad("selection_cap is " + std::to_string(o.selection_cap) + "; allowed 1 to 1000");
+  if (!(o.keep_ratio >= 1) || !std::isfinite(o.keep_ratio))
+    bad("keep_ratio is " + std::to_string(o.keep_ratio) + "; allowed a finite value >= 1");
+  if (o.slabs < 2 || o.slabs > 100000) bad("slabs is " + std::to_string(o.slabs) + "; allowed 2 to 100000");
+  if (!(o.axis_tolerance_deg >= 0 && o.axis_tolerance_deg <= 90))
+    bad("axis_tolerance_deg is " + std::to_string(o.axis_tolerance_deg) + "; allowed 0 to 90");
+  if (o.max_axis_iterations < 1 || o.max_axis_iterations > 100000)
+    bad("max_axis_iterations is " + std::to_string(o.max_axis_iterations) + "; allowed 1 to 100000");
+  if (!(o.min_strength >= 0 && o.min_strength <= 1))
+    bad("min_strength is " + std::to_string(o.min_strength) + "; allowed 0 to 1");
+  if (!(o.suppression_fraction > 0 && o.suppression_fraction <= 1))
+    bad("suppression_fraction is " + std::to_string(o.suppression_fraction) + "; allowed above 0 up to 1");
+  if (o.averaging_window < 1 || o.averaging_window > 10000)
+    bad("averaging_window is " + std::to_string(o.averaging_window) + "; allowed 1 to 10000");
+  if (o.work_budget < 1) bad("work_budget is 0; allowed at least 1");
+  if (o.mode != thin_mode::fast && o.mode != thin_mode::faithful) bad("mode is not fast or faithful");
+  if (o.detection != thin_detection::prominence && o.detection != thin_detection::seed)
+    bad("detection is not prominence or seed");
+}
+
+/// The mesh as the growing sees it, plus what is needed to turn slots back into chains.
+struct thin_input {
+  thin_face_graph graph;
+  std::vector<std::uint32_t> face_id;      ///< mesh face of each compact face
+  std::vector<std::uint32_t> edge_id;      ///< mesh edge of each compact edge
+  std::vector<std::uint32_t> slot_vertex;  ///< mesh vertex the slot's half-edge leaves
+  std::vector<glm::dvec3> position;        ///< by mesh vertex index
+  std::vector<glm::dvec3> used_points;     ///< positions of the vertices with faces
+};
+
+template <Point3 P>
+thin_input prepare(const halfedge_mesh& m) {
+  const auto fail = [](error_category c, const std::string& what) {
+    throw error(c, "find_thin_points: " + what);
+  };
+  if (m.num_faces() == 0) fail(error_category::invalid_input, "the mesh has no faces");
+  if (!m.is_closed())
+    fail(error_category::topology,
+         "the mesh is open (" + std::to_string(m.num_boundary_edges()) +
+             " boundary edges); thin points need a closed solid: fill the holes first");
+  if (!m.is_consistently_oriented())
+    fail(error_category::topology, "the faces are not consistently oriented (" +
+                                       std::to_string(m.num_flipped_edges()) +
+                                       " edges are traversed the same way "
+                                       "by both faces); orient the mesh first (halfedge/orientation.hpp)");
+  const auto pts = points<P>(m);
+  thin_input in;
+  in.position.assign(m.vertices_size(), glm::dvec3(0.0));
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (const vertex_handle v : m.vertices()) {
+    const glm::dvec3 p = to_dvec3(pts[v]);
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      fail(error_category::invalid_input,
+           "vertex " + std::to_string(v.idx()) + " has a NaN or infinite coordinate");
+    in.position[v.idx()] = p;
+    if (!m.is_isolated(v)) {
+      in.used_points.push_back(p);
+      lo = glm::min(lo, p), hi = glm::max(hi, p);
+    }
+  }
+  const double diag = glm::length(hi - lo);
+  std::vector<std::uint32_t> compact_face(m.faces_size(), std::numeric_limits<std::uint32_t>::max());
+  for (const face_handle f : m.faces()) {
+    compact_face[f.idx()] = static_cast<std::uint32_t>(in.face_id.size());
+    in.face_id.push_back(f.idx());
+  }
+  std::vector<std::uint32_t> compact_edge(m.edges_size(), std::numeric_limits<std::uint32_t>::max());
+  thin_face_graph& g = in.graph;
+  g.num_faces = static_cast<std::uint32_t>(in.face_id.size());
+  g.face_start.assign(1, 0);
+  std::vector<std::uint32_t> face_vertices;
+  for (std::uint32_t cf = 0; cf < g.num_faces; ++cf) {
+    const face_handle f(in.face_id[cf]);
+    face_vertices.clear();
+    glm::dvec3 area(0.0);
+    for (const halfedge_handle h : m.halfedges_around(f)) {
+      const vertex_handle a = m.tail(h), b = m.head(h);
+      face_vertices.push_back(a.idx());
+      area += glm::cross(in.position[a.idx()], in.position[b.idx()]);
+      const edge_handle e = halfedge_mesh::edge(h);
+      if (compact_edge[e.idx()] == std::numeric_limits<std::uint32_t>::max()) {
+        compact_edge[e.idx()] = static_cast<std::uint32_t>(in.edge_id.size());
+        in.edge_id.push_back(e.idx());
+        g.edge_length.push_back(glm::length(in.position[a.idx()] - in.position[b.idx()]));
+        g.edge_slots.push_back({0, 0});
+      }
+      const std::uint32_t ce = compact_edge[e.idx()];
+      const auto slot = static_cast<std::uint32_t>(g.slot_edge.size());
+      g.edge_slots[ce][h.idx() & 1u] = slot;  // half-edge 2e+i is the edge's slot i
+      g.slot_edge.push_back(ce);
+      g.slot_other.push_back(compact_face[m.face(halfedge_mesh::twin(h)).idx()]);
+      g.slot_face.push_back(cf);
+      in.slot_vertex.push_back(a.idx());
+    }
+    g.face_start.push_back(static_cast<std::uint32_t>(g.slot_edge.size()));
+    std::vector<std::uint32_t> sorted = face_vertices;
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+      fail(error_category::invalid_input, "face " + std::to_string(f.idx()) + " repeats a vertex");
+    if (!(0.5 * glm::length(area) > 1e-14 * diag * diag))
+      fail(error_category::invalid_input, "face " + std::to_string(f.idx()) + " is degenerate (zero area)");
+  }
+  // One solid: every face reachable from face 0.
+  std::vector<char> seen(g.num_faces, 0);
+  std::vector<std::uint32_t> stack{0};
+  seen[0] = 1;
+  std::size_t reached = 1;
+  while (!stack.empty()) {
+    const std::uint32_t f = stack.back();
+    stack.pop_back();
+    for (std::uint32_t k = g.face_start[f]; k < g.face_start[f + 1]; ++k)
+      if (!seen[g.slot_other[k]]) seen[g.slot_other[k]] = 1, ++reached, stack.push_back(g.slot_other[k]);
+  }
+  if (reached != g.num_faces)
+    fail(error_category::topology, "the mesh has more than one connected part (" + std::to_string(reached) +
+                                       " of " + std::to_string(g.num_faces) +
+                                       " faces reachable); run it on each part");
+  return in;
+}
+
+/// Splits the boundary of a selection (its inner slots) into closed chains by walking
+/// round the selected region (consistent orientation makes next/twin a boundary walk).
+inline std::vector<std::vector<std::uint32_t>> boundary_chains(const thin_face_graph& g,
+                                                               const std::vector<std::uint32_t>& inner) {
+  std::vector<std::vector<std::uint32_t>> chains;
+  std::vector<char> used(inner.size(), 0);
+  const auto index_of = [&](std::uint32_t s) {
+    const auto it = std::lower_bound(inner.begin(), inner.end(), s);
+    return it != inner.end() && *it == s ? static_cast<std::ptrdiff_t>(it - inner.begin())
+                                         : std::ptrdiff_t{-1};
+  };
+  const auto next_in_face = [&](std::uint32_t s) {
+    const std::uint32_t f = g.slot_face[s];
+    return s + 1 < g.face_start[f + 1] ? s + 1 : g.face_start[f];
+  };
+  const auto twin = [&](std::uint32_t s) {
+    const auto& two = g.edge_slots[g.slot_edge[s]];
+    return two[0] == s ? two[1] : two[0];
+  };
+  for (std::size_t i = 0; i < inner.size(); ++i) {
+    if (used[i]) continue;
+    std::vector<std::uint32_t> chain;
+    std::uint32_t s = inner[i];
+    for (std::size_t guard = 0; guard <= g.slot_edge.size(); ++guard) {
+      const std::ptrdiff_t k = index_of(s);
+      if (k < 0 || used[static_cast<std::size_t>(k)]) break;
+      used[static_cast<std::size_t>(k)] = 1;
+      chain.push_back(s);
+      // Turn round the head vertex through selected faces to the next boundary slot.
+      std::uint32_t t = next_in_face(s);
+      for (std::size_t turn = 0; index_of(t) < 0 && turn <= g.slot_edge.size(); ++turn)
+        t = next_in_face(twin(t));
+      s = t;
+    }
+    chains.push_back(std::move(chain));
+  }
+  return chains;
+}
+
+inline thin_loop make_loop(const thin_input& in, const std::vector<std::uint32_t>& inner,
+                           const glm::dvec3& dir, double lo, double hi) {
+  const thin_face_graph& g = in.graph;
+  const auto chains = boundary_chains(g, inner);
+  thin_loop loop;
+  loop.chains = chains.size();
+  const auto chain_length = [&](const std::vector<std::uint32_t>& c) {
+    double s = 0;
+    for (const std::uint32_t k : c) s += g.edge_length[g.slot_edge[k]];
+    return s;
+  };
+  std::size_t best = 0;
+  for (std::size_t i = 0; i < chains.size(); ++i) {
+    loop.total_length += chain_length(chains[i]);
+    if (chain_length(chains[i]) > chain_length(chains[best])) best = i;
+  }
+  if (chains.empty()) return loop;
+  std::vector<std::uint32_t> c = chains[best];
+  std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());  // canonical start
+  glm::dvec3 centre(0.0);
+  for (const std::uint32_t k : c) {
+    loop.vertices.push_back(in.slot_vertex[k]);
+    loop.edges.push_back(in.edge_id[g.slot_edge[k]]);
+    loop.points.push_back(in.position[in.slot_vertex[k]]);
+    centre += in.position[in.slot_vertex[k]];
+  }
+  loop.length = chain_length(c);
+  centre /= static_cast<double>(c.size());
+  loop.axis_position = hi > lo ? std::clamp((glm::dot(dir, centre) - lo) / (hi - lo), 0.0, 1.0) : 0.0;
+  return loop;
+}
+
+inline double ms_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace detail::thin
+
+/// The thin loops of a closed, consistently oriented, connected mesh (seed 000 ch. V).
+/// O(faces · cap · (boundary + candidates · degree)) in fast mode; see docs/thin.md.
+template <Point3 P = glm::dvec3>
+thin_result find_thin_points(const halfedge_mesh& m, const thin_options& options = {}) {
+  namespace t = detail::thin;
+  t::check_options(options);
+  const t::thin_input in = t::prepare<P>(m);
+  const thin_face_graph& g = in.graph;
+  thin_result r;
+
+  auto clock = std::chrono::steady_clock::now();
+  const central_axis_result axis = central_axis(
+      in.used_points, {options.slabs, options.axis_tolerance_deg, options.max_axis_iterations, 5});
+  glm::dvec3 dir = axis.direction;
+  // Start face: the face centre farthest along the axis from the centroid (largest |G|).
+  std::uint32_t start = 0;
+  double far = -1, side = 0;
+  for (std::uint32_t f = 0; f < g.num_faces; ++f) {
+    glm::dvec3 c(0.0);
+    for (std::uint32_t k = g.face_start[f]; k < g.face_start[f + 1]; ++k) c += in.position[in.slot_vertex[k]];
+    c /= static_cast<double>(g.face_start[f + 1] - g.face_start[f]);
+    const double gv = glm::dot(dir, c - axis.centroid);
+    if (std::abs(gv) > far) far = std::abs(gv), start = f, side = gv;
+  }
+  if (side > 0) dir = -dir;  // the axis runs from the start end to the other end
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const glm::dvec3& p : in.used_points)
+    lo = std::min(lo, glm::dot(dir, p)), hi = std::max(hi, glm::dot(dir, p));
+  r.axis_origin = axis.origin, r.axis_direction = dir;
+  r.axis_iterations = axis.iterations, r.axis_converged = axis.converged;
+  r.start_face = in.face_id[start];
+  r.axis_ms = t::ms_since(clock);
+
+  clock = std::chrono::steady_clock::now();
+  const growing_result grown = grow_selections(
+      g, start, {options.selection_cap, options.keep_ratio, options.mode, options.work_budget});
+  r.growing_ms = t::ms_since(clock);
+  r.cycle_lengths = grown.cycle_lengths;
+  r.selections_examined = grown.selections_examined, r.duplicates_dropped = grown.duplicates_dropped;
+  r.selections_kept = grown.selections_kept, r.max_kept = grown.max_kept;
+
+  clock = std::chrono::steady_clock::now();
+  const detection_result found = detect_thin_cycles(
+      r.cycle_lengths, g.num_faces,
+      {options.detection, options.min_strength, options.suppression_fraction, options.averaging_window});
+  r.values_smoothed = found.smoothed;
+  for (const detected_cycle& d : found.cycles) {
+    thin_loop loop = t::make_loop(in, grown.cycle_loops[d.cycle - 1], dir, lo, hi);
+    loop.cycle = d.cycle, loop.strength = d.strength;
+    r.loops.push_back(std::move(loop));
+  }
+  r.detection_ms = t::ms_since(clock);
+  return r;
+}
+
+/// find_thin_points on volume v of a cell complex (its boundary via volume_boundary_mesh);
+/// loop vertices, edges and the start face are cell ids. Edges that are triangulation
+/// diagonals of a holed face have no cell edge: their id is 0xFFFFFFFF. O(as above).
+inline thin_result find_thin_points(const cell_complex& cc, cell_volume v, const thin_options& options = {}) {
+  const halfedge_mesh m = volume_boundary_mesh<glm::dvec3>(cc, v);
+  thin_result r = find_thin_points<glm::dvec3>(m, options);
+  const auto cell_vertex_of = m.get_vertex_property<std::uint32_t>("v:cell_vertex");
+  const auto cell_face_of = m.get_face_property<std::uint32_t>("f:cell_face");
+  r.start_face = cell_face_of[face_handle(r.start_face)];
+  for (thin_loop& loop : r.loops) {
+    for (std::uint32_t& x : loop.vertices) x = cell_vertex_of[vertex_handle(x)];
+    for (std::size_t i = 0; i < loop.edges.size(); ++i) {
+      const cell_vertex a(loop.vertices[i]), b(loop.vertices[(i + 1) % loop.vertices.size()]);
+      loop.edges[i] = std::numeric_limits<std::uint32_t>::max();
+      for (const auto& oe : cc.vertex_edges(a)) {
+        const auto ends = cc.edge_vertices(oe.handle);
+        if ((ends[0] == a && ends[1] == b) || (ends[0] == b && ends[1] == a)) {
+          loop.edges[i] = oe.handle.idx();
+          break;
+        }
+      }
+    }
+  }
+  return r;
+}
+
+}  // namespace cellforge
