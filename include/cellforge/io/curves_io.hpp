@@ -456,6 +456,12 @@ svg_result write_thin_loops_svg(const std::filesystem::path& path, const polygon
   svg_scene scene;
   scene.add_mesh(solid, options.solid);
   const std::size_t n = std::min(loops.size(), options.max_loops);
+  // Labels go just right of each loop's rightmost point on the screen, clear of the line.
+  const glm::dvec3 right = detail::screen_axes(options.picture.view)[0];
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const auto& p : solid.points)
+    lo = std::min(lo, glm::dot(to_dvec3(p), right)), hi = std::max(hi, glm::dot(to_dvec3(p), right));
+  const glm::dvec3 nudge = right * (hi > lo ? 0.03 * (hi - lo) : 0.0);
   // Weakest first, so the strongest loop is drawn on top where loops cross.
   for (std::size_t k = n; k-- > 0;) {
     svg_style st;
@@ -465,7 +471,10 @@ svg_result write_thin_loops_svg(const std::filesystem::path& path, const polygon
     scene.add_polyline(loops[k], st, true);
     if (options.labels && !loops[k].empty()) {
       st.font_size = 14;
-      scene.add_label(loops[k].front(), std::to_string(k + 1), st);
+      const auto at = std::max_element(
+          loops[k].begin(), loops[k].end(),
+          [&](const glm::dvec3& a, const glm::dvec3& b) { return glm::dot(a, right) < glm::dot(b, right); });
+      scene.add_label(*at + nudge, std::to_string(k + 1), st);
     }
   }
   return scene.write(path, options.picture);
