@@ -198,8 +198,8 @@ inline edge_curve quadratic_bezier_curve(const glm::dvec3& p0, const glm::dvec3&
 
 /// The seed's §6.4 fit: p0 → p1 as a function of `axis`, with the end directions t0 / t1 (any
 /// length; absent = free end) giving the slopes d(other)/d(axis). Both → cubic, one → quadratic,
-/// none → straight. Returns nothing when a given direction has a zero axis component (the curve is
-/// then not a function of that axis) or the axis range is zero. O(1).
+/// none → straight. Returns nothing when a given direction's axis component is below 1e-9 of its
+/// length (the curve is then not a function of that axis) or the axis range is zero. O(1).
 inline std::optional<edge_curve> fit_axis_curve(const glm::dvec3& p0, const glm::dvec3& p1, int axis,
                                                 const std::optional<glm::dvec3>& t0,
                                                 const std::optional<glm::dvec3>& t1) {
@@ -207,7 +207,8 @@ inline std::optional<edge_curve> fit_axis_curve(const glm::dvec3& p0, const glm:
   if (!(range != 0.0)) return std::nullopt;
   // A direction scaled so that its axis component equals the range is d point/dt of the x-param.
   auto scaled = [&](const glm::dvec3& d) -> std::optional<glm::dvec3> {
-    if (!(d[axis] != 0.0)) return std::nullopt;
+    // A direction (nearly) perpendicular to the axis has no finite slope on it.
+    if (!(std::abs(d[axis]) > 1e-9 * std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z))) return std::nullopt;
     glm::dvec3 s = d * (range / d[axis]);
     s[axis] = range;  // exact, so the axis coordinate stays linear in t
     if (!std::isfinite(s.x) || !std::isfinite(s.y) || !std::isfinite(s.z)) return std::nullopt;
