@@ -442,3 +442,13 @@ TEST_CASE("the Table 7 stand-ins have the seed's edge counts and smooth") {
     check_curves(m, r);
   }
 }
+
+TEST_CASE("smooth_table7_solid: figures 1..4 as meshes, others refused") {
+  for (int figure = 1; figure <= 4; ++figure) {
+    const smooth_table7_case c = smooth_table7_solid(figure);
+    CHECK(c.mesh.is_closed());
+    CHECK(std::abs(static_cast<double>(c.mesh.num_edges()) - static_cast<double>(c.seed_edges)) <= 1);
+  }
+  CHECK_THROWS_AS(smooth_table7_solid(0), error);
+  CHECK_THROWS_AS(smooth_table7_solid(5), error);
+}

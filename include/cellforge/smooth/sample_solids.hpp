@@ -9,8 +9,11 @@
 #include <vector>
 
 #include "cellforge/algorithms/shapes.hpp"
+#include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
+#include "cellforge/halfedge/conversion.hpp"
+#include "cellforge/halfedge/mesh.hpp"
 
 namespace cellforge {
 
@@ -36,6 +39,25 @@ std::vector<smooth_sample_solid<P>> table7_solids() {
   out.push_back({"sphere_317", "triangulated unit sphere with 317 vertices: 945 edges",
                  sphere_with_vertices<P>(317), 944, 186558});
   return out;
+}
+
+/// A Table 7 stand-in ready to smooth: the figure's name, description, mesh (glm::dvec3 points)
+/// and the seed's edge count and ms.
+struct smooth_table7_case {
+  std::string name, description;
+  halfedge_mesh mesh;
+  std::size_t seed_edges = 0;
+  double seed_ms = 0;
+};
+
+/// Test figure 1..4 of Table 7 as a mesh (see table7_solids()). O(size). Throws
+/// error(invalid_input) for another figure number.
+inline smooth_table7_case smooth_table7_solid(int figure) {
+  if (figure < 1 || figure > 4)
+    throw error(error_category::invalid_input,
+                "smooth_table7_solid: figure = " + std::to_string(figure) + ", must be 1..4");
+  auto s = table7_solids<glm::dvec3>()[static_cast<std::size_t>(figure - 1)];
+  return {s.name, s.description, make_mesh(s.soup), s.seed_edges, s.seed_ms};
 }
 
 }  // namespace cellforge
