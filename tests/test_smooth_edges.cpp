@@ -452,3 +452,32 @@ TEST_CASE("smooth_table7_solid: figures 1..4 as meshes, others refused") {
   CHECK_THROWS_AS(smooth_table7_solid(0), error);
   CHECK_THROWS_AS(smooth_table7_solid(5), error);
 }
+
+TEST_CASE("seed rules: cubic between interior vertices, quadratic with one, straight with none") {
+  // A 40-gon cylinder in 3 bands: interior vertices are the two middle rings (§6.2).
+  const halfedge_mesh m = make_mesh(cylinder(40, 3, true, false));
+  const smooth_result seed = smooth_edges(m, seed_smooth_options());
+  check_curves(m, seed);
+  CHECK(seed.num_cubic == 40 + 80);  // middle band's side edges + the middle rings
+  CHECK(seed.num_quadratic == 80);   // outer bands' side edges
+  CHECK(seed.num_straight == 80);    // the rims, between two surfaces
+  CHECK(seed.num_axis_form == m.num_edges());
+  const smooth_result ours = smooth_edges(m);
+  CHECK(ours.num_cubic == m.num_edges());
+}
+
+TEST_CASE("a moved sphere smooths as well as the axis-aligned one") {
+  const soup s = transformed(scaled(uv_sphere(16, 8), glm::dvec3(2.0)), some_rigid_motion());
+  const halfedge_mesh m = make_mesh(s);
+  const glm::dvec3 centre = glm::dvec3(some_rigid_motion()[3]);
+  for (curve_form f : all_forms) {
+    const smooth_result r = smooth_edges(m, with_form(f));
+    check_curves(m, r);
+    double chord = 0, curve = 0;
+    for (const edge_curve& c : r.curves) {
+      chord += std::abs(glm::length(0.5 * (c.bezier[0] + c.bezier[3]) - centre) - 2.0);
+      curve += std::abs(glm::length(c.point(0.5) - centre) - 2.0);
+    }
+    CHECK(curve * 5 < chord);
+  }
+}
