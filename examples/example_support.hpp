@@ -64,8 +64,8 @@ struct command_line {
 
 /// Parses argv: `with_value` names the options that take a value, `flag_names` those that do not.
 inline command_line parse_command_line(int argc, char** argv, const std::filesystem::path& default_input,
-                                       std::initializer_list<std::string_view> with_value,
-                                       std::initializer_list<std::string_view> flag_names) {
+                                       const std::vector<std::string_view>& with_value,
+                                       const std::vector<std::string_view>& flag_names) {
   command_line cl;
   cl.input = default_input;
   bool have_input = false;
@@ -143,6 +143,45 @@ inline std::filesystem::path output_dir(const std::filesystem::path& dir) {
     throw cellforge::error(cellforge::error_category::io,
                            "cannot create the output directory '" + dir.string() + "': " + ec.message());
   return dir;
+}
+
+/// What both examples start from: the command line, the output directory and the loaded solid.
+struct session {
+  command_line cl;
+  int volume = 0;
+  std::filesystem::path out;
+  solid s;
+  std::string stem;  ///< the input's file name without extension, for output names
+
+  /// Runs f(cells, volume) on a .3dcl input (cell ids in the result), else g(mesh); returns ms.
+  template <class OnCells, class OnMesh>
+  double run(OnCells&& f, OnMesh&& g) const {
+    return time_ms([&] { s.cells ? f(*s.cells, s.volume) : g(s.mesh); });
+  }
+
+  /// Prints "<name>: <input>" and the solid's size.
+  void print_solid(const char* name) const {
+    std::printf("%s: %s%s\n", name, cl.input.string().c_str(),
+                s.cells ? (" volume " + std::to_string(volume)).c_str() : "");
+    std::printf("  solid            %zu vertices, %zu edges, %zu faces (read in %.2f ms)\n",
+                s.mesh.num_vertices(), s.mesh.num_edges(), s.mesh.num_faces(), s.load_ms);
+  }
+};
+
+/// Parses the command line (plus --out and --volume, which both examples take), creates the
+/// output directory and loads the solid. Throws cellforge::error.
+inline session open_session(int argc, char** argv, const std::filesystem::path& default_input,
+                            std::initializer_list<std::string_view> with_value,
+                            std::initializer_list<std::string_view> flag_names) {
+  std::vector<std::string_view> names(with_value);
+  names.insert(names.end(), {"out", "volume"});
+  session x;
+  x.cl = parse_command_line(argc, argv, default_input, names, flag_names);
+  x.volume = static_cast<int>(x.cl.number("volume", 0, 0, 4e9, true));
+  x.out = output_dir(x.cl.text("out", "out"));
+  x.s = load_solid(x.cl.input, x.volume);
+  x.stem = x.cl.input.stem().string();
+  return x;
 }
 
 }  // namespace example

@@ -23,26 +23,17 @@ namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
   try {
-    const example::command_line cl =
-        example::parse_command_line(argc, argv, fs::path(CELLFORGE_DATA_DIR) / "cylinder16.off",
-                                    {"angle", "out", "volume"}, {"faithful"});
+    const example::session x = example::open_session(
+        argc, argv, fs::path(CELLFORGE_DATA_DIR) / "cylinder16.off", {"angle"}, {"faithful"});
+    const example::command_line& cl = x.cl;
     cellforge::smooth_options options =
         cl.has("faithful") ? cellforge::seed_smooth_options() : cellforge::smooth_options{};
     options.angle_deg = cl.number("angle", options.angle_deg, 0, 90);
-    const int volume = static_cast<int>(cl.number("volume", 0, 0, 4e9, true));
-    const fs::path out = example::output_dir(cl.text("out", "out"));
-
-    const example::solid s = example::load_solid(cl.input, volume);
     cellforge::smooth_result r;
-    const double ms = example::time_ms([&] {
-      r = s.cells ? cellforge::smooth_edges(*s.cells, s.volume, options)
-                  : cellforge::smooth_edges<glm::dvec3>(s.mesh, options);
-    });
-
-    std::printf("smooth_edges: %s%s\n", cl.input.string().c_str(),
-                s.cells ? (" volume " + std::to_string(volume)).c_str() : "");
-    std::printf("  solid            %zu vertices, %zu edges, %zu faces (read in %.2f ms)\n",
-                s.mesh.num_vertices(), s.mesh.num_edges(), s.mesh.num_faces(), s.load_ms);
+    const double ms =
+        x.run([&](const auto& cc, auto v) { r = cellforge::smooth_edges(cc, v, options); },
+              [&](const auto& mesh) { r = cellforge::smooth_edges<glm::dvec3>(mesh, options); });
+    x.print_solid("smooth_edges");
     std::printf("  rules            %s, angle %.4g degrees\n",
                 cl.has("faithful") ? "the seed's (--faithful)" : "extended", options.angle_deg);
     std::printf("  surfaces         %zu (creases between sectors: %zu)\n", r.num_surfaces, r.num_creases);
@@ -55,19 +46,19 @@ int main(int argc, char** argv) {
                              : "not converged");
     std::printf("  time             %.3f ms\n", ms);
 
-    const std::string stem = cl.input.stem().string();
+    const std::string& stem = x.stem;
     const std::span<const cellforge::edge_curve> curves(r.curves);
-    cellforge::io::write_curve_file(out / (stem + ".curves"), curves,
+    cellforge::io::write_curve_file(x.out / (stem + ".curves"), curves,
                                     {.comment = "smooth_edges " + cl.input.filename().string() +
                                                 ": one curve per edge, in edge order (docs/formats.md)"});
-    cellforge::io::write_polyline_file(out / (stem + ".polylines"), curves);
-    cellforge::io::write_polylines_obj(out / (stem + "_curves.obj"), curves, &s.soup);
+    cellforge::io::write_polyline_file(x.out / (stem + ".polylines"), curves);
+    cellforge::io::write_polylines_obj(x.out / (stem + "_curves.obj"), curves, &x.s.soup);
     cellforge::io::smoothing_svg_options picture;
     picture.picture.title = "smooth_edges: " + cl.input.filename().string();
     picture.picture.view.elevation_deg = 30;
-    cellforge::io::write_smoothing_svg(out / (stem + "_smooth.svg"), s.soup, curves, picture);
+    cellforge::io::write_smoothing_svg(x.out / (stem + "_smooth.svg"), x.s.soup, curves, picture);
     std::printf("  wrote            %s/%s.curves, .polylines, _curves.obj, _smooth.svg\n",
-                out.string().c_str(), stem.c_str());
+                x.out.string().c_str(), stem.c_str());
     return 0;
   } catch (const cellforge::error& e) {
     std::fprintf(stderr, "smooth_edges: %s\n", e.what());

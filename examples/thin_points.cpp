@@ -24,28 +24,20 @@ namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
   try {
-    const example::command_line cl = example::parse_command_line(
-        argc, argv, fs::path(CELLFORGE_DATA_DIR) / "dumbbell.off", {"cap", "out", "volume"}, {"faithful"});
+    const example::session x = example::open_session(
+        argc, argv, fs::path(CELLFORGE_DATA_DIR) / "dumbbell.off", {"cap"}, {"faithful"});
+    const example::command_line& cl = x.cl;
     cellforge::thin_options options;
     options.selection_cap = static_cast<int>(cl.number("cap", options.selection_cap, 1, 1000, true));
     if (cl.has("faithful")) {
       options.mode = cellforge::thin_mode::faithful;
       options.detection = cellforge::thin_detection::seed;
     }
-    const int volume = static_cast<int>(cl.number("volume", 0, 0, 4e9, true));
-    const fs::path out = example::output_dir(cl.text("out", "out"));
-
-    const example::solid s = example::load_solid(cl.input, volume);
     cellforge::thin_result r;
-    const double ms = example::time_ms([&] {
-      r = s.cells ? cellforge::find_thin_points(*s.cells, s.volume, options)
-                  : cellforge::find_thin_points<glm::dvec3>(s.mesh, options);
-    });
-
-    std::printf("thin_points: %s%s\n", cl.input.string().c_str(),
-                s.cells ? (" volume " + std::to_string(volume)).c_str() : "");
-    std::printf("  solid            %zu vertices, %zu edges, %zu faces (read in %.2f ms)\n",
-                s.mesh.num_vertices(), s.mesh.num_edges(), s.mesh.num_faces(), s.load_ms);
+    const double ms =
+        x.run([&](const auto& cc, auto v) { r = cellforge::find_thin_points(cc, v, options); },
+              [&](const auto& mesh) { r = cellforge::find_thin_points<glm::dvec3>(mesh, options); });
+    x.print_solid("thin_points");
     std::printf("  rules            %s, selection cap %d\n",
                 cl.has("faithful") ? "the seed's (--faithful)" : "fast", options.selection_cap);
     std::printf("  central axis     through (%.4g, %.4g, %.4g) along (%.4g, %.4g, %.4g)\n", r.axis_origin.x,
@@ -62,16 +54,16 @@ int main(int argc, char** argv) {
 
     std::vector<std::vector<glm::dvec3>> loops;
     for (const auto& l : r.loops) loops.push_back(l.points);
-    const std::string stem = cl.input.stem().string();
+    const std::string& stem = x.stem;
     const std::span<const std::vector<glm::dvec3>> chains(loops);
-    cellforge::io::write_polylines_obj(out / (stem + "_loops.obj"), chains, true, &s.soup,
+    cellforge::io::write_polylines_obj(x.out / (stem + "_loops.obj"), chains, true, &x.s.soup,
                                        {.comment = "thin_points " + cl.input.filename().string() +
                                                    ": the solid, then one closed l line per thin loop"});
     cellforge::io::thin_loops_svg_options picture;
     picture.picture.title = "thin_points: " + cl.input.filename().string();
     picture.picture.view.elevation_deg = 20;
-    cellforge::io::write_thin_loops_svg(out / (stem + "_thin.svg"), s.soup, chains, picture);
-    std::printf("  wrote            %s/%s_loops.obj, %s_thin.svg\n", out.string().c_str(), stem.c_str(),
+    cellforge::io::write_thin_loops_svg(x.out / (stem + "_thin.svg"), x.s.soup, chains, picture);
+    std::printf("  wrote            %s/%s_loops.obj, %s_thin.svg\n", x.out.string().c_str(), stem.c_str(),
                 stem.c_str());
     return 0;
   } catch (const cellforge::error& e) {

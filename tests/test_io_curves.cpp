@@ -198,7 +198,9 @@ TEST_CASE("curve file: malformed lines give io errors at file:line") {
       {"0; 0; 1", "expected ',' or the end of the line after the axis"},
       {"3, 0, 0, 0, 1, 1, 1, x, 2, 2, 3, 3, 3", "expected Bezier coordinate x2, found 'x'"},
   };
-  for (const auto& [line, says] : cases) {
+  for (const bad_case& bad : cases) {
+    const std::string& line = bad.line;
+    const std::string& says = bad.says;
     CAPTURE(line);
     const cellforge::error e = parse_error(ok + "# comment\n" + ok + line + "\n" + ok);
     CHECK(e.category() == cellforge::error_category::io);
@@ -282,8 +284,15 @@ TEST_CASE("OBJ polylines: one l line per curve, read back by the OBJ reader") {
       CHECK(same_bits(data.soup.points[e[1]], pl[j + 1]));
     }
   }
-  const std::string text = slurp(path);
-  CHECK(std::count(text.begin(), text.end(), 'l') >= static_cast<std::ptrdiff_t>(curves.size()));
+  // One l line per curve, each with 16 indices.
+  std::istringstream lines(slurp(path));
+  std::size_t l_lines = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (!line.starts_with("l ")) continue;
+    ++l_lines;
+    CHECK(std::count(line.begin(), line.end(), ' ') == 16);
+  }
+  CHECK(l_lines == curves.size());
   std::filesystem::remove(path);
 
   // Closed loops without faces: the l line returns to its first point.

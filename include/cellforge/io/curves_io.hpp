@@ -500,7 +500,9 @@ svg_result write_smoothing_svg(const std::filesystem::path& path, const polygon_
                 "write_smoothing_svg: gap must be within 0 .. 10 and curve_width positive");
   const auto polylines = curve_polylines(curves, options.segments);
   // The panel's extent on the screen, from the solid and the curves (which may bulge out of it).
-  const auto [right, up] = detail::screen_axes(options.picture.view);
+  const std::array<glm::dvec3, 2> axes = detail::screen_axes(options.picture.view);
+  const glm::dvec3 right = axes[0],
+                   up = axes[1];  // named copies: lambdas may capture them (C++20 bindings not)
   double lo = std::numeric_limits<double>::infinity(), hi = -lo, top = -lo;
   glm::dvec3 top_point(0.0);
   const auto extend = [&](const glm::dvec3& p) {
