@@ -125,6 +125,7 @@ struct found {
   double position = 0;  ///< its position along the axis, 0..1
   double z = 0;         ///< its centroid's z (the sample solids stand along z)
   std::vector<std::pair<std::size_t, double>> signature;  ///< (cycle, length) of every loop
+  std::vector<std::string> described;                     ///< every loop in words, for notes
 };
 std::map<std::string, found>& findings() {
   static std::map<std::string, found> f;
@@ -141,7 +142,16 @@ void register_case(const std::string& name, const cellforge::halfedge_mesh* mesh
             found f;
             f.loops = r.loops.size();
             f.cycles = r.cycle_lengths.size();
-            for (const cellforge::thin_loop& l : r.loops) f.signature.emplace_back(l.cycle, l.length);
+            for (const cellforge::thin_loop& l : r.loops) {
+              f.signature.emplace_back(l.cycle, l.length);
+              glm::dvec3 c(0.0);
+              for (const glm::dvec3& p : l.points) c += p / static_cast<double>(l.points.size());
+              f.described.push_back(
+                  "length " + cb::fixed(l.length, 3) + " (" + std::to_string(l.vertices.size()) +
+                  " edges) at " + cb::fixed(l.axis_position, 3) + " along the axis, cycle " +
+                  std::to_string(l.cycle) + ", strength " + cb::fixed(l.strength, 3) + ", centroid (" +
+                  cb::fixed(c.x, 2) + ", " + cb::fixed(c.y, 2) + ", " + cb::fixed(c.z, 2) + ")");
+            }
             if (!r.loops.empty()) {
               f.thinnest = r.loops.front().length;
               f.position = r.loops.front().axis_position;
@@ -308,9 +318,14 @@ void print_tables(const cb::collecting_reporter& reporter, const flags& f, std::
                  fast ? met(ours, target_bunny_ms) : "(not a target)",
                  fast ? "" : same_loops("fast/bunny/1", name) + " as fast", outcome(reporter, name)});
     }
+    const auto lo = m->get_vertex_property<glm::dvec3>("v:point").vector();
+    glm::dvec3 lower(std::numeric_limits<double>::infinity()), upper(-lower);
+    for (const glm::dvec3& p : lo) lower = glm::min(lower, p), upper = glm::max(upper, p);
+    b.add_note("Bunny bounding box (" + cb::fixed(lower.x, 2) + ", " + cb::fixed(lower.y, 2) + ", " +
+               cb::fixed(lower.z, 2) + ") to (" + cb::fixed(upper.x, 2) + ", " + cb::fixed(upper.y, 2) +
+               ", " + cb::fixed(upper.z, 2) + ").");
     if (const auto it = findings().find("fast/bunny/1"); it != findings().end())
-      b.add_note("Strongest loop: length " + cb::fixed(it->second.thinnest, 4) + " at " +
-                 cb::fixed(it->second.position, 3) + " along the axis.");
+      for (const std::string& d : it->second.described) b.add_note("Loop: " + d + ".");
   } else {
     b.add_row({"bunny", "—", "—", "—", cb::ms(seed_bunny_ms), "skipped", "—", "—", "",
                "no " + bunny_path().string() + ": run bash cmake/fetch-bunny.sh build/data"});
