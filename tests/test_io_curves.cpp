@@ -19,6 +19,7 @@
 #include "cellforge/algorithms/shapes.hpp"
 #include "cellforge/io/curves_io.hpp"
 #include "cellforge/io/obj.hpp"
+#include "cellforge/smooth/smooth_edges.hpp"
 
 namespace {
 
@@ -352,4 +353,35 @@ TEST_CASE("SVG: thin loops on a solid and straight beside smoothed edges") {
   CHECK(r2.edges == s.edges);
   std::filesystem::remove(path2);
   CHECK_THROWS_AS(io::write_smoothing_svg(path2, soup, curves, {.segments = 0}), cellforge::error);
+}
+
+TEST_CASE("curve file: smooth_edges' curves of a UV sphere round-trip") {
+  const auto mesh = cellforge::make_mesh(cellforge::uv_sphere<dvec3>(16, 8, false));
+  for (const auto& options : {cellforge::smooth_options{}, cellforge::seed_smooth_options()}) {
+    const cellforge::smooth_result r = cellforge::smooth_edges<dvec3>(mesh, options);
+    REQUIRE(r.curves.size() == mesh.num_edges());
+    const std::string text = io::curve_file_text(r.curves);
+    const auto back = io::parse_curve_file(text);
+    REQUIRE(back.size() == r.curves.size());
+    std::size_t cubic = 0;
+    for (std::size_t i = 0; i < back.size(); ++i) {
+      CAPTURE(i);
+      const edge_curve &a = r.curves[i], &b = back[i];
+      CHECK(b.edge == a.edge);  // one curve per edge, in edge order
+      CHECK(a.has_axis_form == b.has_axis_form);
+      if (a.has_axis_form) {
+        CHECK(a.axis == b.axis);
+        CHECK((same_bits(a.limits[0], b.limits[0]) && same_bits(a.limits[1], b.limits[1])));
+        for (int k = 0; k < 2; ++k)
+          for (int j = 0; j < 4; ++j) CHECK(same_bits(a.coefficients[k][j], b.coefficients[k][j]));
+      }
+      // The file keeps the axis form; the Bézier rebuilt from it is the same curve to rounding.
+      for (int k = 0; k < 4; ++k) CHECK(glm::length(a.bezier[k] - b.bezier[k]) < 1e-12);
+      CHECK(a.kind == b.kind);
+      cubic += b.kind == cellforge::curve_kind::cubic;
+    }
+    CHECK(cubic > back.size() / 2);
+    // Written again, the text is the same: the format is a fixed point after one round.
+    CHECK(io::curve_file_text(back) == text);
+  }
 }
