@@ -78,6 +78,9 @@ solid_geometry solid_geometry_of(const halfedge_mesh& m, const char* who = "smoo
       n += glm::cross(a, b);
       c += a;
       ids.push_back(m.tail(h).idx());
+      if (!(glm::length(b - a) > 1e-14 * size))
+        throw error(error_category::invalid_input,
+                    w + ": face " + std::to_string(f.idx()) + " is degenerate (an edge of zero length)");
       six_volume += glm::dot(g.positions[m.tail(h).idx()], glm::cross(g.positions[m.head(h).idx()], o));
     }
     std::sort(ids.begin(), ids.end());
