@@ -129,8 +129,8 @@ inline double angle_deg(const glm::dvec3& a, const glm::dvec3& b) {
 
 /// The central axis of a point set (seed §5.1): the best of the x-, y- and z-split lines,
 /// refined by splitting along the line until it moves < tolerance_deg. O(iterations · n).
-/// "Best" is the seed's smallest mean distance of the averages to the line; near-ties
-/// (symmetric solids fit every split exactly) go to the line the averages spread most along.
+/// "Best": the smallest mean distance of the averages to the line per unit of their spread;
+/// near-ties (symmetric solids fit every split) go to the line the averages spread most along.
 inline central_axis_result central_axis(std::span<const glm::dvec3> pts,
                                         const central_axis_options& options = {}) {
   namespace t = detail::thin;
@@ -140,16 +140,20 @@ inline central_axis_result central_axis(std::span<const glm::dvec3> pts,
   r.centroid /= static_cast<double>(pts.size());
   double size = 0;
   for (const glm::dvec3& p : pts) size = std::max(size, glm::length(p - r.centroid));
-  const double tie = 1e-6 * std::max(size, 1e-300);
+  // The seed's "distance between the line and the averages", made scale-free by the
+  // spread of the averages along the line. Symmetric solids fit every split line almost
+  // exactly, so near-ties (within 1e-3) go to the line the averages spread furthest along.
   t::fitted_line best;
+  double best_ratio = 0;
   for (int d = 0; d < 3; ++d) {
     glm::dvec3 axis(0.0);
     axis[d] = 1;
     const t::fitted_line line = t::fit_slabs(pts, axis, options.slabs);
     if (!line.ok) continue;
-    const bool better = !best.ok || line.residual < best.residual - tie ||
-                        (line.residual <= best.residual + tie && line.spread > best.spread + tie);
-    if (better) best = line, r.initial_split = d;
+    const double ratio = line.residual / std::max(line.spread, 1e-12 * size + 1e-300);
+    const bool better =
+        !best.ok || ratio < best_ratio - 1e-3 || (ratio <= best_ratio + 1e-3 && line.spread > best.spread);
+    if (better) best = line, best_ratio = ratio, r.initial_split = d;
   }
   if (!best.ok) {  // every split degenerate (all points in one place): keep z
     r.origin = r.centroid;

@@ -97,11 +97,12 @@ thin_sample<P> thin_chain(int bulbs, int segments, int rings, bool triangles, do
                                   [&](double z) { return detail::thin::chain_radius(z, bulbs, neck); });
 }
 
-/// Hourglass along z ∈ [−1, 1]: radius neck + (1 − neck)·z², the waist at z = 0. O(output).
+/// Hourglass along z ∈ [−2, 2]: radius neck + (1 − neck)·(z/2)², the waist at z = 0 (twice
+/// as long as wide, so that its central axis is well defined). O(output).
 template <Point3 P = glm::dvec3>
 thin_sample<P> thin_hourglass(int segments, int rings, bool triangles, double neck = 0.3) {
-  return detail::thin::revolve<P>("hourglass", segments, rings, triangles, -1, 1,
-                                  [&](double z) { return neck + (1.0 - neck) * z * z; });
+  return detail::thin::revolve<P>("hourglass", segments, rings, triangles, -2, 2,
+                                  [&](double z) { return neck + (1.0 - neck) * z * z / 4; });
 }
 
 /// Plain capped cylinder of radius 0.5 along z ∈ [−1.5, 1.5]: no neck. O(output).
