@@ -25,6 +25,8 @@ for tool in node npm; do
 done
 
 mkdir -p "$dir/npm"
+# npm keeps its cache under $HOME; a CI shell may have none, then the cache goes beside the package.
+[[ -n "${HOME:-}" ]] || export npm_config_cache="$dir/npm/.cache"
 if [[ ! -f "$pkg/package.json" ]]; then
   echo "fetch-bunny.sh: npm install bunny@$version into $dir/npm"
   # No prompts, no audit/fund round trips, no update check: runs unattended under CI=true.
