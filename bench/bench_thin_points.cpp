@@ -46,8 +46,8 @@ namespace cb = cellforge::bench;
 
 /// Seed 000 §7.3 table 5 (VB.NET; the seed names no machine for §7.3, §7.4 says a 996 MHz
 /// Pentium), seconds. Example 3's triangle time at threshold 40 reads "317176 s" in the
-/// text (the decimal point lost in the scan); read as 317.176 s, since its neighbours are
-/// 160–285 s and the threshold-100 time of the same solid is 1711 s.
+/// text (the decimal point lost in the scan); read as 317.176 s, since the other triangle
+/// times at threshold 40 are 24–285 s and the same solid at threshold 100 took 1711 s.
 struct seed_case {
   int faces;
   std::array<double, 2> seconds;  ///< thresholds 40 and 100
@@ -339,6 +339,10 @@ void print_tables(const cb::collecting_reporter& reporter, const flags& f, std::
 
 int main(int argc, char** argv) {
   const flags f = parse_flags(argc, argv);
+  if (f.faithful != "all" && f.faithful != "quad" && f.faithful != "none") {
+    std::cerr << "bench_thin_points: --faithful=" << f.faithful << " is not one of all, quad, none\n";
+    return 1;
+  }
   register_all(f);
   cb::collecting_reporter reporter;
   if (!cb::run_benchmarks(argc, argv, reporter)) return 1;
