@@ -240,6 +240,18 @@ TEST_CASE("curve file: the writer refuses curves its reader would reject") {
   }
 }
 
+TEST_CASE("curve file: a file that cannot be written is an io error naming it") {
+  const std::vector<edge_curve> one{cellforge::straight_curve(dvec3(0.0), dvec3(1.0))};
+  const auto path = temp_path("no-such-dir") / "x.curves";
+  try {
+    io::write_curve_file(path, one);
+    FAIL("no error");
+  } catch (const cellforge::error& e) {
+    CHECK(e.category() == cellforge::error_category::io);
+    CHECK(std::string(e.what()).find(path.string()) != std::string::npos);
+  }
+}
+
 TEST_CASE("polyline file: 15 segments per curve, exact round trip, errors at file:line") {
   const auto curves = awkward_curves();
   const auto path = temp_path("curves.polylines");

@@ -63,6 +63,12 @@ inline void put_comment(std::string& out, std::string_view text) {
   }
 }
 
+/// Writes text to a file (only called once the text is complete and checked). O(text).
+inline void write_text_file(const std::filesystem::path& path, const std::string& text) {
+  write_file(path,
+             [&](std::ostream& os) { os.write(text.data(), static_cast<std::streamsize>(text.size())); });
+}
+
 inline void check_segments(int segments, const char* who) {
   if (segments < 1 || segments > 10000)
     throw error(error_category::invalid_input,
@@ -180,7 +186,7 @@ inline void write_curve_file(std::ostream& os, std::span<const edge_curve> curve
 inline void write_curve_file(const std::filesystem::path& path, std::span<const edge_curve> curves,
                              const curve_write_options& options = {}) {
   const std::string text = curve_file_text(curves, options);  // checks before the file is created
-  detail::write_file(path, [&](std::ostream& os) { write_curve_file(os, curves, options); });
+  detail::write_text_file(path, text);
 }
 
 /// Parses curve-file text; curve i gets edge = i (the file holds no ids), v0 = v1 = 0, kind from
@@ -279,9 +285,7 @@ inline std::string polyline_file_text(std::span<const std::vector<glm::dvec3>> p
 inline void write_polyline_file(const std::filesystem::path& path,
                                 std::span<const std::vector<glm::dvec3>> polylines,
                                 const curve_write_options& options = {}) {
-  const std::string text = polyline_file_text(polylines, options);
-  detail::write_file(
-      path, [&](std::ostream& os) { os.write(text.data(), static_cast<std::streamsize>(text.size())); });
+  detail::write_text_file(path, polyline_file_text(polylines, options));
 }
 
 /// Writes every curve as options.segments pieces (the seed's display file: 15). O(n × segments).
