@@ -14,6 +14,7 @@
 
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "cellforge/algorithms/shapes.hpp"
@@ -524,4 +525,48 @@ TEST_CASE("triangulated cylinder with fan caps: rims are arcs, cap spokes and si
   CHECK(rings == 3 * 24);
   CHECK(straight == 2 * 24 + 2 * 24);
   CHECK(curve * 5 < chord);
+}
+
+TEST_CASE("a surface meeting itself at a sharp edge: crease_inside_surfaces keeps the edge sharp") {
+  // A ring swept from a teardrop: an arc of 280° plus a tip whose faces meet at ~124°, while the
+  // arc turns by ~31° per step, so the growth reaches round to the tip from both sides.
+  const int around = 16, arc = 10;
+  const double R = 1, r = 0.3;
+  std::vector<glm::dvec2> section{{R + 2 * r, 0}};
+  for (int j = 0; j < arc; ++j) {
+    const double a = (40.0 + 280.0 * j / (arc - 1)) * std::numbers::pi / 180;
+    section.push_back({R + r * std::cos(a), r * std::sin(a)});
+  }
+  soup s;
+  const auto k = static_cast<int>(section.size());
+  for (int i = 0; i < around; ++i) {
+    const double u = 2 * std::numbers::pi * i / around;
+    for (const glm::dvec2& q : section) s.points.push_back({q.x * std::cos(u), q.x * std::sin(u), q.y});
+  }
+  auto id = [&](int i, int j) { return static_cast<std::uint32_t>((i % around) * k + (j % k)); };
+  for (int i = 0; i < around; ++i)
+    for (int j = 0; j < k; ++j) s.add_face({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+  const halfedge_mesh m = make_mesh(s);
+  const smooth_result ours = smooth_edges(m);
+  check_curves(m, ours);
+  CHECK(ours.num_surfaces == 1);
+  CHECK(ours.num_creases == static_cast<std::size_t>(around));
+  // The tip ring (radius R + 2r) becomes arcs: both sides' normals cross along the ring.
+  double chord = 0, curve = 0;
+  for (const edge_curve& c : ours.curves) {
+    const auto radius = [](const glm::dvec3& p) { return std::hypot(p.x, p.y); };
+    if (std::abs(radius(c.bezier[0]) - (R + 2 * r)) > 1e-12 ||
+        std::abs(radius(c.bezier[3]) - (R + 2 * r)) > 1e-12)
+      continue;
+    chord += std::abs(radius(0.5 * (c.bezier[0] + c.bezier[3])) - (R + 2 * r));
+    curve += std::abs(radius(c.point(0.5)) - (R + 2 * r));
+    CHECK(std::abs(c.point(0.5).z) < 1e-12);  // the crease stays in its plane
+  }
+  CHECK(curve * 5 < chord);
+  smooth_options seed_like;
+  seed_like.crease_inside_surfaces = false;
+  const smooth_result seed = smooth_edges(m, seed_like);
+  check_curves(m, seed);
+  CHECK(seed.num_creases == 0);
+  CHECK(seed.num_surfaces == 1);
 }
