@@ -7,6 +7,7 @@
 
 #include "cellforge/cellforge.hpp"
 #include "cellforge/io/cells_io.hpp"
+#include "cellforge/io/curves_io.hpp"
 #include "cellforge/io/edge_list.hpp"
 #include "cellforge/io/mesh_io.hpp"
 #include "cellforge/io/obj.hpp"
