@@ -460,3 +460,33 @@ TEST_CASE_TEMPLATE("thin points: other point types", P, glm::dvec3, std::array<f
   CHECK(std::abs(centroid(r.loops.front()).z - s.neck_z) < 1e-5);
   CHECK(r.loops.front().length == doctest::Approx(s.neck_perimeter).epsilon(1e-5));
 }
+
+TEST_CASE(
+    "thin points: other closed solids (genus > 0, Platonic, tubes) give well-formed loops in both modes") {
+  const std::vector<cellforge::polygon_soup<glm::dvec3>> solids{
+      cellforge::hexahedron<glm::dvec3>(),
+      cellforge::tetrahedron<glm::dvec3>(),
+      cellforge::icosphere<glm::dvec3>(1),
+      cellforge::torus<glm::dvec3>(16, 6),
+      cellforge::lattice_tube_mesh<glm::dvec3>(3, 2, 1),
+      cellforge::spline_tube<glm::dvec3>()};
+  for (std::size_t i = 0; i < solids.size(); ++i) {
+    CAPTURE(i);
+    const cellforge::halfedge_mesh m = mesh_of(solids[i]);
+    thin_options o;
+    o.selection_cap = 8;
+    o.min_strength = 0;  // report every dip, to exercise the loop extraction
+    const thin_result fast = cellforge::find_thin_points(m, o);
+    CHECK(fast.cycle_lengths.size() == m.num_faces() - 1);
+    for (const auto& loop : fast.loops) {
+      check_chain(m, loop);
+      CHECK(loop.chains >= 1);
+      CHECK(loop.total_length >= loop.length - 1e-12);
+      CHECK(loop.total_length == doctest::Approx(fast.cycle_lengths[loop.cycle - 1]).epsilon(1e-9));
+    }
+    if (m.num_faces() <= 400) {
+      o.mode = cellforge::thin_mode::faithful;
+      CHECK(cellforge::find_thin_points(m, o).cycle_lengths == fast.cycle_lengths);
+    }
+  }
+}
