@@ -26,6 +26,9 @@ struct detection_options {
   double min_strength = 1.0 / 50;  ///< report scores above this × the largest (seed) / absolute (prominence)
   double suppression_fraction = 0.1;  ///< no stronger loop within this fraction of the cycles
   int averaging_window = 5;           ///< the seed's ±5 averaging
+  /// Prominence: the rims are read from the least length within ±envelope_cycles (at least
+  /// the candidate window); find_thin_points sets it to about one ring of faces.
+  std::size_t envelope_cycles = 0;
 };
 
 /// One detected cycle: its 1-based cycle number, its strength (0..1, strongest first).
@@ -38,8 +41,9 @@ struct detected_cycle {
 /// The detector's picks, strongest first, and what the seed detector did.
 struct detection_result {
   std::vector<detected_cycle> cycles;
-  std::vector<double> values;  ///< seed: the weighted (and maybe smoothed) values; prominence: the envelope m
-  bool smoothed = false;       ///< seed: the values alternated and were smoothed
+  std::vector<double>
+      values;             ///< seed: the weighted (and maybe smoothed) values; prominence: the wide envelope
+  bool smoothed = false;  ///< seed: the values alternated and were smoothed
 };
 
 namespace detail::thin {
@@ -130,45 +134,65 @@ inline detection_result detect_seed(std::span<const double> l, std::size_t faces
   return r;
 }
 
+/// The least of v over [i − half, i + half] for every i (monotone deque). O(n).
+inline std::vector<double> window_min(std::span<const double> v, std::ptrdiff_t half) {
+  const auto n = static_cast<std::ptrdiff_t>(v.size());
+  std::vector<double> out(v.size());
+  std::vector<std::ptrdiff_t> q(v.size());  // indices with increasing values
+  std::ptrdiff_t head = 0, tail = 0, next = 0;
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    for (; next <= std::min(n - 1, i + half); ++next) {
+      while (tail > head && v[static_cast<std::size_t>(q[static_cast<std::size_t>(tail - 1)])] >=
+                                v[static_cast<std::size_t>(next)])
+        --tail;
+      q[static_cast<std::size_t>(tail++)] = next;
+    }
+    while (q[static_cast<std::size_t>(head)] < i - half) ++head;
+    out[static_cast<std::size_t>(i)] = v[static_cast<std::size_t>(q[static_cast<std::size_t>(head)])];
+  }
+  return out;
+}
+
 inline detection_result detect_prominence(std::span<const double> l, const detection_options& o) {
   detection_result r;
   const auto n = static_cast<std::ptrdiff_t>(l.size());
-  const auto half = std::max<std::ptrdiff_t>(
-      1, static_cast<std::ptrdiff_t>(o.suppression_fraction * static_cast<double>(n) / 2));
-  std::vector<double> m(l.size());  // lower envelope: the least length within ±half cycles
-  for (std::ptrdiff_t i = 0; i < n; ++i) {
-    double x = l[static_cast<std::size_t>(i)];
-    for (std::ptrdiff_t j = std::max<std::ptrdiff_t>(0, i - half); j <= std::min(n - 1, i + half); ++j)
-      x = std::min(x, l[static_cast<std::size_t>(j)]);
-    m[static_cast<std::size_t>(i)] = x;
-  }
+  const auto half_of = [&](double fraction) {
+    return std::max<std::ptrdiff_t>(1, static_cast<std::ptrdiff_t>(fraction * static_cast<double>(n) / 2));
+  };
+  const std::ptrdiff_t half = half_of(o.suppression_fraction);
+  // m: the least length within ±half cycles (candidates); wide: the same over the wider
+  // envelope window, which bridges the bump of a partly grown ring so that the rims measure
+  // the solid's shape, not the ring-by-ring up and down of the growing.
+  const std::vector<double> m = window_min(l, half);
+  const std::vector<double> wide = window_min(
+      l, std::max(half, static_cast<std::ptrdiff_t>(std::min<std::size_t>(o.envelope_cycles, l.size()))));
   std::vector<detected_cycle> cand;
   for (std::ptrdiff_t i = 1; i + 1 < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
     if (l[k] != m[k]) continue;  // not the least length of its window
-    // Topographic prominence of the envelope's minimum: on each side, the highest envelope
-    // value before the envelope drops below m_i again (or the end). Both sides must rise:
-    // a neck, not the shrinking end of the solid nor a step down a taper.
+    // Topographic prominence: on each side, the highest wide-envelope value before it drops
+    // below l_i (or the end). Both sides must rise: a neck, not the shrinking end of the
+    // solid nor a step down a taper.
     double rim[2] = {0, 0};
     for (int side = 0; side < 2; ++side)
       for (std::ptrdiff_t j = side == 0 ? i - 1 : i + 1; j >= 0 && j < n; j += side == 0 ? -1 : 1) {
-        if (m[static_cast<std::size_t>(j)] < m[k]) break;
-        rim[side] = std::max(rim[side], m[static_cast<std::size_t>(j)]);
+        if (wide[static_cast<std::size_t>(j)] < l[k]) break;
+        rim[side] = std::max(rim[side], wide[static_cast<std::size_t>(j)]);
       }
     const double lowest_rim = std::min(rim[0], rim[1]);
     if (!(lowest_rim > 0)) continue;
-    const double strength = std::max(0.0, 1.0 - m[k] / lowest_rim);
+    const double strength = std::max(0.0, 1.0 - l[k] / lowest_rim);
     cand.push_back({k + 1, strength, strength});
   }
   r.cycles = suppress(std::move(cand), o.min_strength, o.suppression_fraction * static_cast<double>(n));
-  r.values = std::move(m);
+  r.values = wide;
   return r;
 }
 
 }  // namespace detail::thin
 
 /// The thin cycles among `lengths` (cycle i+1's least length at index i) of a solid with
-/// `faces` faces. Prominence: O(n² · suppression_fraction + k·n); seed: O(n · window + k²).
+/// `faces` faces. Prominence: O(n + k·n) for k candidates; seed: O(n · window + k²).
 inline detection_result detect_thin_cycles(std::span<const double> lengths, std::size_t faces,
                                            const detection_options& options = {}) {
   return options.detection == thin_detection::seed ? detail::thin::detect_seed(lengths, faces, options)

@@ -37,9 +37,11 @@ struct thin_options {
   int max_axis_iterations = 50;     ///< then the recent directions are averaged, 1..100000
   thin_mode mode = thin_mode::fast;
   thin_detection detection = thin_detection::prominence;
-  double min_strength = 1.0 / 50;             ///< 0..1
-  double suppression_fraction = 0.1;          ///< (0, 1]
-  int averaging_window = 5;                   ///< seed detector's ±window, 1..10000
+  double min_strength = 1.0 / 50;     ///< 0..1
+  double suppression_fraction = 0.1;  ///< (0, 1]
+  int averaging_window = 5;           ///< seed detector's ±window, 1..10000
+  double envelope_rings =
+      1.0;  ///< prominence: rim window in estimated rings of faces, 0..1000 (docs/thin.md)
   std::uint64_t work_budget = 2'000'000'000;  ///< candidate selections examined, then error(budget)
 };
 
@@ -67,6 +69,7 @@ struct thin_result {
   bool values_smoothed = false;       ///< seed detector: alternating values were smoothed
   std::uint64_t selections_examined = 0, duplicates_dropped = 0, selections_kept = 0;
   std::size_t max_kept = 0;
+  double ring_cycles = 0;  ///< estimated cycles per ring of faces (edges a plane across the axis cuts)
   double axis_ms = 0, growing_ms = 0, detection_ms = 0;
 };
 
@@ -89,6 +92,8 @@ inline void check_options(const thin_options& o) {
     bad("min_strength is " + std::to_string(o.min_strength) + "; allowed 0 to 1");
   if (!(o.suppression_fraction > 0 && o.suppression_fraction <= 1))
     bad("suppression_fraction is " + std::to_string(o.suppression_fraction) + "; allowed above 0 up to 1");
+  if (!(o.envelope_rings >= 0 && o.envelope_rings <= 1000))
+    bad("envelope_rings is " + std::to_string(o.envelope_rings) + "; allowed 0 to 1000");
   if (o.averaging_window < 1 || o.averaging_window > 10000)
     bad("averaging_window is " + std::to_string(o.averaging_window) + "; allowed 1 to 10000");
   if (o.work_budget < 1) bad("work_budget is 0; allowed at least 1");
@@ -315,10 +320,23 @@ thin_result find_thin_points(const halfedge_mesh& m, const thin_options& options
   r.selections_examined = grown.selections_examined, r.duplicates_dropped = grown.duplicates_dropped;
   r.selections_kept = grown.selections_kept, r.max_kept = grown.max_kept;
 
+  // Cycles per ring of faces: the summed axial extent of the edges over the axis extent is
+  // the mean number of edges a plane across the axis cuts, which is about the number of faces
+  // in one ring (exactly `segments` for quad rings, 2·segments for triangle rings).
+  double axial = 0;
+  for (std::size_t e = 0; e < g.edge_slots.size(); ++e) {
+    const std::uint32_t s0 = g.edge_slots[e][0];
+    axial += std::abs(
+        glm::dot(dir, in.position[in.slot_vertex[s0]] - in.position[in.slot_vertex[g.edge_slots[e][1]]]));
+  }
+  const double ring_cycles = hi > lo ? std::min(axial / (hi - lo), static_cast<double>(g.num_faces)) : 0.0;
+  r.ring_cycles = ring_cycles;
+
   clock = std::chrono::steady_clock::now();
   const detection_result found = detect_thin_cycles(
       r.cycle_lengths, g.num_faces,
-      {options.detection, options.min_strength, options.suppression_fraction, options.averaging_window});
+      {options.detection, options.min_strength, options.suppression_fraction, options.averaging_window,
+       static_cast<std::size_t>(std::lround(options.envelope_rings * ring_cycles))});
   r.values_smoothed = found.smoothed;
   for (const detected_cycle& d : found.cycles) {
     thin_loop loop = t::make_loop(in, grown.cycle_loops[d.cycle - 1], dir, lo, hi);
