@@ -520,3 +520,39 @@ TEST_CASE(
     }
   }
 }
+
+TEST_CASE("thin points: inward-facing faces give the same lengths and loops") {
+  const auto s = cellforge::thin_dumbbell(12, 21, true);
+  auto inward = s.soup;
+  for (std::size_t f = 0; f < inward.num_faces(); ++f)
+    std::reverse(inward.face_vertices.begin() + inward.face_offsets[f],
+                 inward.face_vertices.begin() + inward.face_offsets[f + 1]);
+  REQUIRE(cellforge::signed_volume(inward) < 0);
+  const thin_result a = cellforge::find_thin_points(mesh_of(s.soup));
+  const thin_result b = cellforge::find_thin_points(mesh_of(inward));
+  REQUIRE(a.cycle_lengths.size() == b.cycle_lengths.size());
+  for (std::size_t i = 0; i < a.cycle_lengths.size(); ++i)
+    CHECK(a.cycle_lengths[i] == doctest::Approx(b.cycle_lengths[i]).epsilon(1e-12));
+  REQUIRE(a.loops.size() == b.loops.size());
+  for (std::size_t i = 0; i < a.loops.size(); ++i) {
+    CHECK(a.loops[i].cycle == b.loops[i].cycle);
+    CHECK(a.loops[i].length == doctest::Approx(b.loops[i].length).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("grow_selections: a face graph that is not a closed surface is refused") {
+  cellforge::thin_face_graph g;  // two triangles sharing one edge: the other edges are unpaired
+  g.num_faces = 2;
+  g.face_start = {0, 3, 6};
+  g.slot_edge = {0, 1, 2, 0, 3, 4};
+  g.slot_other = {1, 0, 0, 0, 1, 1};
+  g.slot_face = {0, 0, 0, 1, 1, 1};
+  g.edge_length = {1, 1, 1, 1, 1};
+  g.edge_slots = {{0, 3}, {1, 1}, {2, 2}, {4, 4}, {5, 5}};
+  require_error(error_category::invalid_input, "not paired", [&] { (void)cellforge::grow_selections(g, 0); });
+  require_error(error_category::invalid_input, "start face 5",
+                [&] { (void)cellforge::grow_selections(g, 5); });
+  g.slot_face.pop_back();
+  require_error(error_category::invalid_input, "inconsistent sizes",
+                [&] { (void)cellforge::grow_selections(g, 0); });
+}

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <numeric>
@@ -352,12 +353,38 @@ inline growing_result grow_faithful(const thin_face_graph& g, std::uint32_t star
 /// Grows selections from face `start` until all but one face are selected (seed §5.2,
 /// §5.4); per cycle the least boundary length and its loop. Fast: O(faces · cap · (boundary
 /// + candidates · degree + faces/64)); faithful: O(faces² · cap · candidates) and more.
+/// Throws invalid_input for a graph that is not a closed surface, budget past work_budget.
 inline growing_result grow_selections(const thin_face_graph& g, std::uint32_t start,
                                       const growing_options& o = {}) {
+  const auto bad = [](const std::string& what) {
+    throw error(error_category::invalid_input, "grow_selections: " + what);
+  };
   if (start >= g.num_faces)
-    throw error(error_category::invalid_input, "grow_selections: start face " + std::to_string(start) +
-                                                   " is not below the face count " +
-                                                   std::to_string(g.num_faces));
+    bad("start face " + std::to_string(start) + " is not below the face count " +
+        std::to_string(g.num_faces));
+  // The graph must describe a closed surface: slots paired by edge, each seeing the other's face.
+  const std::size_t slots = g.slot_edge.size();
+  if (g.face_start.size() != std::size_t{g.num_faces} + 1 || g.face_start.front() != 0 ||
+      g.face_start.back() != slots || g.slot_other.size() != slots || g.slot_face.size() != slots ||
+      g.edge_slots.size() != g.edge_length.size() ||
+      !std::is_sorted(g.face_start.begin(), g.face_start.end()))
+    bad("the face graph's arrays have inconsistent sizes");
+  if (g.num_faces < 2) bad("a closed surface needs at least two faces");
+  for (std::uint32_t f = 0; f < g.num_faces; ++f)
+    for (std::uint32_t k = g.face_start[f]; k < g.face_start[f + 1]; ++k)
+      if (g.slot_face[k] != f)
+        bad("slot " + std::to_string(k) + " does not belong to face " + std::to_string(f));
+  for (std::uint32_t k = 0; k < slots; ++k) {
+    const std::uint32_t e = g.slot_edge[k];
+    if (e >= g.edge_slots.size() || !(g.edge_length[e] >= 0) || !std::isfinite(g.edge_length[e]))
+      bad("slot " + std::to_string(k) + " has an invalid edge or edge length");
+    const auto& two = g.edge_slots[e];
+    const std::uint32_t twin = two[0] == k ? two[1] : two[0];
+    if ((two[0] != k && two[1] != k) || twin == k || twin >= slots || g.slot_edge[twin] != e ||
+        g.slot_other[k] != g.slot_face[twin])
+      bad("slot " + std::to_string(k) +
+          " is not paired with the other face of its edge (an open or broken graph)");
+  }
   return o.mode == thin_mode::fast ? detail::thin::grow_fast(g, start, o)
                                    : detail::thin::grow_faithful(g, start, o);
 }
