@@ -556,3 +556,14 @@ TEST_CASE("grow_selections: a face graph that is not a closed surface is refused
   require_error(error_category::invalid_input, "inconsistent sizes",
                 [&] { (void)cellforge::grow_selections(g, 0); });
 }
+
+TEST_CASE("selection cut (5.2, 5.4): the 1.1 rule, the tolerance schedule and the stable sort") {
+  using cellforge::detail::thin::keep_selections;
+  // 1.2 > 1.1 × 1.0 is cut; order is kept (the least is not moved to the front).
+  CHECK(keep_selections({1.05, 1.0, 1.2, 1.1}, 1.1, 40) == std::vector<std::uint32_t>{0, 1, 3});
+  // More than the cap: t = 0.1 × min(2/4, 0.95) = 0.05 cuts at 1.05 (keeps 1.0, 1.05, 1.0),
+  // then t = 0.05 × min(2/3, 0.95) ≈ 0.033 cuts 1.05; two remain in generation order.
+  CHECK(keep_selections({1.05, 1.0, 1.08, 1.0}, 1.1, 2) == std::vector<std::uint32_t>{1, 3});
+  // Equal lengths never shrink below the cap by cutting: the stable sort keeps the first ones.
+  CHECK(keep_selections({2.0, 2.0, 2.0, 2.0}, 1.1, 3) == std::vector<std::uint32_t>{0, 1, 2});
+}

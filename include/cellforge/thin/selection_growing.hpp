@@ -111,6 +111,16 @@ double child_length(const thin_face_graph& g, double parent_length, std::uint32_
   return total;
 }
 
+/// The first selection of least length in survivor order: the survivors keep generation
+/// order (or a stable sort by length), so this is the first least child in generation order.
+template <class Selection, class Length>
+std::size_t first_least(const std::vector<Selection>& kept, Length&& length) {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < kept.size(); ++i)
+    if (length(kept[i]) < length(kept[best])) best = i;
+  return best;
+}
+
 [[noreturn]] inline void over_budget(std::uint64_t budget) {
   throw error(
       error_category::budget,
@@ -251,7 +261,7 @@ inline growing_result grow_fast(const thin_face_graph& g, std::uint32_t start, c
     current = std::move(next);
     r.selections_kept += current.size();
     r.max_kept = std::max(r.max_kept, current.size());
-    record(current.front());  // the first survivor is the first least one (stable order)
+    record(current[first_least(current, [](const fast_selection& x) { return x.length; })]);
   }
   return r;
 }
@@ -343,7 +353,7 @@ inline growing_result grow_faithful(const thin_face_graph& g, std::uint32_t star
     for (const std::uint32_t k : kept) current.push_back(std::move(stored[k]));
     r.selections_kept += current.size();
     r.max_kept = std::max(r.max_kept, current.size());
-    record(current.front());
+    record(current[first_least(current, [](const faithful_selection& x) { return x.total; })]);
   }
   return r;
 }
