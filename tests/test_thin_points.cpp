@@ -129,6 +129,10 @@ TEST_CASE("thin samples: table 5 solids have about the seed's face counts and on
             static_cast<std::size_t>((tri ? tris : quads)[static_cast<std::size_t>(ex - 1)]));
       CHECK(s.neck_ring > 0);
       CHECK(s.neck_perimeter > 0);
+      const cellforge::halfedge_mesh m = mesh_of(s.soup);
+      CHECK(m.is_closed());
+      CHECK(m.is_consistently_oriented());
+      CHECK(cellforge::signed_volume(s.soup) > 0);
     }
   require_error(error_category::invalid_input, "allowed 1 to 6",
                 [] { (void)cellforge::thin_table5_solid(7, false); });
