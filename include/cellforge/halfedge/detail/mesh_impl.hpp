@@ -26,7 +26,10 @@ bool all_distinct(std::span<const T> xs) {
         if (xs[i] == xs[j]) return false;
     return true;
   }
-  std::vector<T> c(xs.begin(), xs.end());
+  // Filled by push_back: g++ 12 -O2 misreads the range constructor here (-Wfree-nonheap-object).
+  std::vector<T> c;
+  c.reserve(xs.size());
+  for (const T& x : xs) c.push_back(x);
   std::sort(c.begin(), c.end());
   return std::adjacent_find(c.begin(), c.end()) == c.end();
 }
