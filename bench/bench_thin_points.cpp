@@ -283,7 +283,7 @@ void print_tables(const cb::collecting_reporter& reporter, const flags& f, std::
                           faithful = case_name("faithful", i, tri, thr);
         const std::optional<double> ours = reporter.ms(fast), slow = reporter.ms(faithful);
         const double seed = s.seconds[k] * 1e3;
-        ++cases;
+        if (ours) ++cases;
         if (ours && *ours < target_case_ms) ++met_count;
         if (ours && *ours > worst) {
           worst = *ours;
@@ -305,7 +305,8 @@ void print_tables(const cb::collecting_reporter& reporter, const flags& f, std::
   t.add_note("Faithful mode run for: " + f.faithful +
              " (flag --faithful=all|quad|none); \"same\": the same loops (cycle, length) as the fast mode.");
   t.add_note("Target: every case under 50 ms (fast mode): " + std::to_string(met_count) + " of " +
-             std::to_string(cases) + " MET; slowest " + worst_name + " " + cb::ms(worst) + " ms.");
+             std::to_string(cases) + " measured (of 24) MET; slowest " + worst_name + " " + cb::ms(worst) +
+             " ms.");
   t.print(os);
 
   cb::table b("The Stanford bunny", {"model", "mode", "threshold", "vertices", "triangles", "seed ms",
