@@ -115,7 +115,7 @@ void print_tables(const cb::collecting_reporter& reporter, std::ostream& os) {
               {"figure", "our stand-in", "edges", "seed edges", "faces", "seed ms", "ours ms",
                "ratio (seed / ours)", "seed rules ms", "ratio (seed / seed rules)",
                "ours: surfaces / cubic-quadratic-straight / cycles", "seed rules: the same", "< 50 ms"});
-  std::size_t met = 0;
+  std::size_t met = 0, measured = 0;
   for (int i = 1; i <= 4; ++i) {
     const auto& s = solid(i).sample;
     const cellforge::halfedge_mesh& m = solid(i).mesh;
@@ -124,6 +124,7 @@ void print_tables(const cb::collecting_reporter& reporter, std::ostream& os) {
     constexpr double none = std::numeric_limits<double>::quiet_NaN();
     const bool ok = ours && *ours < target_ms && faithful && *faithful < target_ms;
     met += ok ? 1 : 0;
+    measured += ours && faithful ? 1 : 0;
     t.add_row({std::to_string(i), s.name, cb::count(m.num_edges()), cb::count(s.seed_edges),
                cb::count(m.num_faces()), cb::ms(s.seed_ms), cb::ms(ours),
                cb::ratio(s.seed_ms, ours.value_or(none)), cb::ms(faithful),
@@ -133,7 +134,8 @@ void print_tables(const cb::collecting_reporter& reporter, std::ostream& os) {
   t.add_note(
       "Ours: smooth_options{} at 45° (creases smoothed, boundary vertex normals); seed rules: "
       "seed_smooth_options() at 45°.");
-  t.add_note("Target: every case under 50 ms (both settings): " + std::to_string(met) + " of 4 MET.");
+  t.add_note("Target: every case under 50 ms (both settings): " + std::to_string(met) + " of " +
+             std::to_string(measured) + " measured (of 4) MET.");
   t.add_note("No OpenMesh/CGAL column: neither fits curves to mesh edges (their smoothers move vertices).");
   t.print(os);
 }
