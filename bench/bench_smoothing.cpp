@@ -142,10 +142,4 @@ void print_tables(const cb::collecting_reporter& reporter, std::ostream& os) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  register_all();
-  cb::collecting_reporter reporter;
-  if (!cb::run_benchmarks(argc, argv, reporter)) return 1;
-  print_tables(reporter, std::cout);
-  return 0;
-}
+int main(int argc, char** argv) { return cb::table_main(argc, argv, register_all, print_tables); }

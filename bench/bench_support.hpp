@@ -26,6 +26,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <limits>
 #include <map>
 #include <new>
@@ -246,6 +247,17 @@ inline bool run_benchmarks(int& argc, char** argv, collecting_reporter& reporter
   benchmark::RunSpecifiedBenchmarks(&reporter);
   benchmark::Shutdown();
   return true;
+}
+
+/// The whole main() of a table benchmark: registers, runs (Google Benchmark's flags apply),
+/// then prints the tables from the kept results. Returns the process exit code.
+template <class Register, class Print>
+int table_main(int argc, char** argv, Register&& register_all, Print&& print_tables) {
+  register_all();
+  collecting_reporter reporter;
+  if (!run_benchmarks(argc, argv, reporter)) return 1;
+  print_tables(reporter, std::cout);
+  return 0;
 }
 
 // ------------------------------------------------------------------------------ files

@@ -356,9 +356,7 @@ int main(int argc, char** argv) {
     std::cerr << "bench_thin_points: --faithful=" << f.faithful << " is not one of all, quad, none\n";
     return 1;
   }
-  register_all(f);
-  cb::collecting_reporter reporter;
-  if (!cb::run_benchmarks(argc, argv, reporter)) return 1;
-  print_tables(reporter, f, std::cout);
-  return 0;
+  return cb::table_main(
+      argc, argv, [&] { register_all(f); },
+      [&](const cb::collecting_reporter& r, std::ostream& os) { print_tables(r, f, os); });
 }
