@@ -37,8 +37,12 @@ int main(int argc, char** argv) {
     std::printf("  rules            %s, angle %.4g degrees\n",
                 cl.has("faithful") ? "the seed's (--faithful)" : "extended", options.angle_deg);
     std::printf("  surfaces         %zu (creases between sectors: %zu)\n", r.num_surfaces, r.num_creases);
-    std::printf("  curves           %zu: %zu cubic, %zu quadratic, %zu straight\n", r.curves.size(),
-                r.num_cubic, r.num_quadratic, r.num_straight);
+    // Kinds count the vertex tangents that shaped a curve (seed 6.4); a cubic between coplanar
+    // faces is still a straight segment, so say how many curves actually bend.
+    std::size_t bending = 0;
+    for (const cellforge::edge_curve& c : r.curves) bending += c.chord_deviation() > 1e-9 * r.model_size;
+    std::printf("  curves           %zu: %zu cubic, %zu quadratic, %zu straight; %zu bend off their chords\n",
+                r.curves.size(), r.num_cubic, r.num_quadratic, r.num_straight, bending);
     std::printf("  forms            %zu axis polynomials, %zu Bezier\n", r.num_axis_form, r.num_bezier_form);
     std::printf("  readjustment     %d cycles, %s\n", r.iterations,
                 r.converged  ? "converged"

@@ -55,7 +55,7 @@ std::pair<double, double> radial_errors(const smooth_result& r) {
 }
 
 // Largest distance of the curve from the line through its ends, sampled at 65 points.
-double chord_deviation(const edge_curve& c) {
+double sampled_chord_deviation(const edge_curve& c) {
   const glm::dvec3 a = c.bezier[0], d = glm::normalize(c.bezier[3] - c.bezier[0]);
   double worst = 0;
   for (int i = 0; i <= 64; ++i) worst = std::max(worst, glm::length(glm::cross(c.point(i / 64.0) - a, d)));
@@ -174,7 +174,7 @@ TEST_CASE("edge_curve: builders are exact and agree with each other") {
   CHECK_FALSE(fit_axis_curve(a, b, 0, glm::dvec3(0, 1, 0), std::nullopt).has_value());
   const edge_curve s = straight_curve(a, b);
   CHECK(s.kind == curve_kind::straight);
-  CHECK(chord_deviation(s) < 1e-15);
+  CHECK(s.chord_deviation() < 1e-15);
   CHECK(s.polyline(15).size() == 16);
   CHECK_THROWS_AS(s.polyline(0), error);
   CHECK_THROWS_AS(axis_curve(3, {0, 1}, {}), error);
@@ -219,6 +219,11 @@ TEST_CASE("UV sphere 16x8: curve midpoints are at least 5x closer to the sphere 
       const smooth_result r = smooth_edges(m, with_form(f));
       const auto [chord, curve] = radial_errors(r);
       CHECK(curve * 5 < chord);
+      // chord_deviation() bounds the sampled distance from the chord and is positive on a sphere.
+      for (const edge_curve& c : r.curves) {
+        CHECK(c.chord_deviation() > 1e-6);
+        CHECK(sampled_chord_deviation(c) <= c.chord_deviation() * (1 + 1e-9) + 1e-15);
+      }
       CHECK(r.num_surfaces == 1);
       CHECK(r.num_cubic == m.num_edges());
       CHECK(r.converged);
@@ -243,7 +248,8 @@ TEST_CASE("edges between coplanar faces stay straight (split cube, moved box)") 
         const smooth_result r = smooth_edges(m, with_form(f, base));
         check_curves(m, r);
         double worst = 0;
-        for (const edge_curve& c : r.curves) worst = std::max(worst, chord_deviation(c));
+        for (const edge_curve& c : r.curves)
+          worst = std::max({worst, sampled_chord_deviation(c), c.chord_deviation()});
         CHECK(worst < 1e-9 * r.model_size);
         CHECK(r.converged);
       }
@@ -276,7 +282,7 @@ TEST_CASE("cylinder: rims become circle arcs with smooth_creases, stay straight 
     CHECK(curve * 5 < chord);
     // The side edges are straight: their ends' normals are radial, the chord vertical.
     for (const edge_curve& c : r.curves)
-      if (c.bezier[0].z != c.bezier[3].z) CHECK(chord_deviation(c) < 1e-12);
+      if (c.bezier[0].z != c.bezier[3].z) CHECK(c.chord_deviation() < 1e-12);
   }
   const smooth_result seed = smooth_edges(m, seed_smooth_options());
   check_curves(m, seed);
@@ -521,7 +527,7 @@ TEST_CASE("triangulated cylinder with fan caps: rims are arcs, cap spokes and si
       ++rings;
     } else if ((on_circle && a.x == b.x && a.y == b.y) ||
                (a.z == b.z && std::abs(std::abs(a.z) - 1) < 1e-12)) {
-      CHECK(chord_deviation(c) < 1e-9);  // a vertical side edge or a cap spoke
+      CHECK(c.chord_deviation() < 1e-9);  // a vertical side edge or a cap spoke
       ++straight;
     }
   }

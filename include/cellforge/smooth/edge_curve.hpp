@@ -63,6 +63,19 @@ struct edge_curve {
     out.push_back(bezier[3]);  // exact end, independent of rounding in i/segments
     return out;
   }
+  /// Largest distance of the inner control points from the chord's line: a bound on how far
+  /// the curve leaves its chord (convex hull), 0 exactly when it is a straight segment. O(1).
+  double chord_deviation() const {
+    const glm::dvec3 v = bezier[3] - bezier[0];
+    const double len2 = v.x * v.x + v.y * v.y + v.z * v.z;
+    double worst = 0.0;
+    for (int i = 1; i <= 2; ++i) {
+      const glm::dvec3 d = bezier[static_cast<std::size_t>(i)] - bezier[0];
+      const glm::dvec3 off = len2 > 0.0 ? d - ((d.x * v.x + d.y * v.y + d.z * v.z) / len2) * v : d;
+      worst = std::max(worst, std::sqrt(off.x * off.x + off.y * off.y + off.z * off.z));
+    }
+    return worst;
+  }
   /// Evaluate the axis form at axis value x (only meaningful when has_axis_form). O(1).
   glm::dvec3 axis_point(double x) const {
     glm::dvec3 p{};
