@@ -36,6 +36,19 @@ glm::dmat4 random_motion(std::mt19937_64& rng) {
   return glm::translate(glm::dmat4(1.0), 5.0 * glm::dvec3(u(rng), u(rng), u(rng))) * rot;
 }
 
+/// The dumbbells and hourglasses of the neck tests (resolutions, shapes).
+struct neck_shape {
+  bool hourglass;
+  int segments, rings;
+};
+const std::vector<neck_shape> neck_shapes{{false, 8, 21}, {false, 12, 21}, {false, 16, 31}, {false, 12, 9},
+                                          {true, 8, 15},  {true, 12, 21},  {true, 16, 25},  {true, 12, 9}};
+
+cellforge::thin_sample<> sample_of(const neck_shape& sh, bool triangles) {
+  return sh.hourglass ? cellforge::thin_hourglass(sh.segments, sh.rings, triangles)
+                      : cellforge::thin_dumbbell(sh.segments, sh.rings, triangles);
+}
+
 glm::dvec3 centroid(const cellforge::thin_loop& loop) {
   glm::dvec3 c(0.0);
   for (const glm::dvec3& p : loop.points) c += p;
@@ -67,6 +80,21 @@ void check_chain(const cellforge::halfedge_mesh& m, const cellforge::thin_loop& 
     length += glm::length(pts[a] - pts[b]);
   }
   CHECK(loop.length == doctest::Approx(length).epsilon(1e-12));
+}
+
+/// Two runs made the same choices: bit-identical lengths, the same counts and the same loops.
+void check_same_run(const thin_result& a, const thin_result& b) {
+  CHECK(a.cycle_lengths == b.cycle_lengths);  // bit-identical, not approximately
+  CHECK(a.selections_examined == b.selections_examined);
+  CHECK(a.duplicates_dropped == b.duplicates_dropped);
+  CHECK(a.selections_kept == b.selections_kept);
+  REQUIRE(a.loops.size() == b.loops.size());
+  for (std::size_t i = 0; i < a.loops.size(); ++i) {
+    CHECK(a.loops[i].cycle == b.loops[i].cycle);
+    CHECK(a.loops[i].vertices == b.loops[i].vertices);
+    CHECK(a.loops[i].edges == b.loops[i].edges);
+    CHECK(a.loops[i].strength == b.loops[i].strength);
+  }
 }
 
 cellforge::halfedge_mesh mesh_of(const cellforge::polygon_soup<glm::dvec3>& soup) {
@@ -142,16 +170,9 @@ TEST_CASE("thin samples: table 5 solids have about the seed's face counts and on
 
 TEST_CASE("thin points: the strongest and the thinnest loop lie at the neck of dumbbells and hourglasses") {
   std::mt19937_64 rng(20261122);
-  struct shape {
-    bool hourglass;
-    int segments, rings;
-  };
-  const std::vector<shape> shapes{{false, 8, 21}, {false, 12, 21}, {false, 16, 31}, {false, 12, 9},
-                                  {true, 8, 15},  {true, 12, 21},  {true, 16, 25},  {true, 12, 9}};
-  for (const shape& sh : shapes)
+  for (const neck_shape& sh : neck_shapes)
     for (const bool tri : {false, true}) {
-      const auto s = sh.hourglass ? cellforge::thin_hourglass(sh.segments, sh.rings, tri)
-                                  : cellforge::thin_dumbbell(sh.segments, sh.rings, tri);
+      const auto s = sample_of(sh, tri);
       const glm::dmat4 motion = random_motion(rng);
       const cellforge::halfedge_mesh m = mesh_of(cellforge::transformed(s.soup, motion));
       // Cap 1 is greedy enough to spiral along a triangle strip instead of ring by ring
@@ -206,7 +227,8 @@ TEST_CASE("thin points: every table-5 solid reports exactly its necks (prominenc
       }
 }
 
-TEST_CASE("thin points: plain cylinders and spheres report no neck stronger than 1/50, at any resolution") {
+TEST_CASE(
+    "thin points: plain cylinders and spheres report no neck stronger than 1/50, with or without clusters") {
   for (const int segments : {8, 16, 32})
     for (const int rings : {5, 9, 17, 33})
       for (const bool tri : {false, true})
@@ -217,15 +239,19 @@ TEST_CASE("thin points: plain cylinders and spheres report no neck stronger than
           CAPTURE(rings);
           CAPTURE(tri);
           const cellforge::halfedge_mesh m = mesh_of(s.soup);
-          for (const int cap : {1, 40}) {
-            CAPTURE(cap);
-            thin_options o;
-            o.selection_cap = cap;
-            const thin_result r = cellforge::find_thin_points(m, o);
-            for (const auto& loop : r.loops)
-              INFO("false loop at cycle " << loop.cycle << " strength " << loop.strength);
-            CHECK(r.loops.empty());
-          }
+          for (const int cap : {1, 40})
+            for (const bool clusters : {false, true}) {  // triangles clustered (8.2) too
+              CAPTURE(cap);
+              CAPTURE(clusters);
+              thin_options o;
+              o.selection_cap = cap;
+              o.cluster_faces = clusters;
+              const thin_result r = cellforge::find_thin_points(m, o);
+              CHECK((r.clustered_faces > 0) == (clusters && tri));
+              for (const auto& loop : r.loops)
+                INFO("false loop at cycle " << loop.cycle << " strength " << loop.strength);
+              CHECK(r.loops.empty());
+            }
         }
 }
 
@@ -241,31 +267,26 @@ TEST_CASE("thin points: without the ring-wide envelope, partly grown rings look 
   CHECK(!cellforge::find_thin_points(m, o).loops.empty());
 }
 
-TEST_CASE("thin points: fast and faithful modes give identical cycle lengths and loops") {
+TEST_CASE("thin points: fast and faithful modes give identical cycle lengths and loops, with clusters too") {
   for (const bool tri : {false, true})
     for (const auto& s : {cellforge::thin_dumbbell(8, 13, tri), cellforge::thin_hourglass(8, 11, tri),
                           cellforge::thin_table5_solid(1, tri)})
-      for (const int cap : {1, 10, 40}) {
-        CAPTURE(s.name);
-        CAPTURE(tri);
-        CAPTURE(cap);
-        const cellforge::halfedge_mesh m = mesh_of(s.soup);
-        thin_options o;
-        o.selection_cap = cap;
-        const thin_result fast = cellforge::find_thin_points(m, o);
-        o.mode = cellforge::thin_mode::faithful;
-        const thin_result faithful = cellforge::find_thin_points(m, o);
-        CHECK(fast.cycle_lengths == faithful.cycle_lengths);  // bit-identical, not approximately
-        CHECK(fast.selections_examined == faithful.selections_examined);
-        CHECK(fast.duplicates_dropped == faithful.duplicates_dropped);
-        CHECK(fast.selections_kept == faithful.selections_kept);
-        REQUIRE(fast.loops.size() == faithful.loops.size());
-        for (std::size_t i = 0; i < fast.loops.size(); ++i) {
-          CHECK(fast.loops[i].cycle == faithful.loops[i].cycle);
-          CHECK(fast.loops[i].vertices == faithful.loops[i].vertices);
-          CHECK(fast.loops[i].edges == faithful.loops[i].edges);
+      for (const int cap : {1, 10, 40})
+        for (const bool clusters : {false, true}) {  // with clusters (8.2) too
+          CAPTURE(s.name);
+          CAPTURE(tri);
+          CAPTURE(cap);
+          CAPTURE(clusters);
+          const cellforge::halfedge_mesh m = mesh_of(s.soup);
+          thin_options o;
+          o.selection_cap = cap;
+          o.cluster_faces = clusters;
+          const thin_result fast = cellforge::find_thin_points(m, o);
+          CHECK((fast.grown_faces < m.num_faces()) == (clusters && tri));
+          o.mode = cellforge::thin_mode::faithful;
+          const thin_result faithful = cellforge::find_thin_points(m, o);
+          check_same_run(fast, faithful);
         }
-      }
 }
 
 TEST_CASE("selection growing: every cycle's loop is the boundary of a selection of that size") {
@@ -507,20 +528,25 @@ TEST_CASE(
   for (std::size_t i = 0; i < solids.size(); ++i) {
     CAPTURE(i);
     const cellforge::halfedge_mesh m = mesh_of(solids[i]);
-    thin_options o;
-    o.selection_cap = 8;
-    o.min_strength = 0;  // report every dip, to exercise the loop extraction
-    const thin_result fast = cellforge::find_thin_points(m, o);
-    CHECK(fast.cycle_lengths.size() == m.num_faces() - 1);
-    for (const auto& loop : fast.loops) {
-      check_chain(m, loop);
-      CHECK(loop.chains >= 1);
-      CHECK(loop.total_length >= loop.length - 1e-12);
-      CHECK(loop.total_length == doctest::Approx(fast.cycle_lengths[loop.cycle - 1]).epsilon(1e-9));
-    }
-    if (m.num_faces() <= 400) {
-      o.mode = cellforge::thin_mode::faithful;
-      CHECK(cellforge::find_thin_points(m, o).cycle_lengths == fast.cycle_lengths);
+    for (const bool clusters : {false, true}) {
+      CAPTURE(clusters);
+      thin_options o;
+      o.selection_cap = 8;
+      o.min_strength = 0;  // report every dip, to exercise the loop extraction
+      o.cluster_faces = clusters;
+      const thin_result fast = cellforge::find_thin_points(m, o);
+      CHECK(fast.cycle_lengths.size() == fast.grown_faces - 1);
+      CHECK(fast.grown_faces + fast.clustered_faces >= m.num_faces());
+      for (const auto& loop : fast.loops) {
+        check_chain(m, loop);
+        CHECK(loop.chains >= 1);
+        CHECK(loop.total_length >= loop.length - 1e-12);
+        CHECK(loop.total_length == doctest::Approx(fast.cycle_lengths[loop.cycle - 1]).epsilon(1e-9));
+      }
+      if (m.num_faces() <= 400) {
+        o.mode = cellforge::thin_mode::faithful;
+        CHECK(cellforge::find_thin_points(m, o).cycle_lengths == fast.cycle_lengths);
+      }
     }
   }
 }
@@ -570,4 +596,46 @@ TEST_CASE("selection cut (5.2, 5.4): the 1.1 rule, the tolerance schedule and th
   CHECK(keep_selections({1.05, 1.0, 1.08, 1.0}, 1.1, 2) == std::vector<std::uint32_t>{1, 3});
   // Equal lengths never shrink below the cap by cutting: the stable sort keeps the first ones.
   CHECK(keep_selections({2.0, 2.0, 2.0, 2.0}, 1.1, 3) == std::vector<std::uint32_t>{0, 1, 2});
+}
+
+TEST_CASE("thin clusters (8.2): clustered triangles find the neck at caps 1 and 40, rigid motions included") {
+  std::mt19937_64 rng(20261123);
+  for (const neck_shape& sh : neck_shapes) {
+    const auto s = sample_of(sh, true);
+    const glm::dmat4 motion = random_motion(rng);
+    const cellforge::halfedge_mesh m = mesh_of(cellforge::transformed(s.soup, motion));
+    for (const int cap : {1, 40}) {
+      CAPTURE(s.name);
+      CAPTURE(sh.segments);
+      CAPTURE(sh.rings);
+      CAPTURE(cap);
+      thin_options o;
+      o.selection_cap = cap;
+      o.cluster_faces = true;
+      const thin_result r = cellforge::find_thin_points(m, o);
+      // Every band quad is recovered and each flat cap fan is one face again: the clusters
+      // are exactly the faces of the quad version of the solid.
+      CHECK(r.clustered_faces == m.num_faces());
+      CHECK(r.grown_faces == static_cast<std::uint32_t>(sh.segments * (sh.rings - 1) + 2));
+      REQUIRE(r.cycle_lengths.size() == r.grown_faces - 1);
+      REQUIRE(!r.loops.empty());
+      check_at_neck(r.loops.front(), s, motion);
+      for (const auto& loop : r.loops) check_chain(m, loop);
+      CHECK(r.loops.front().strength > 0.3);
+    }
+  }
+}
+
+TEST_CASE("thin clusters: quad meshes are unchanged by the option (nothing to pair)") {
+  for (int ex = 1; ex <= 6; ++ex) {
+    CAPTURE(ex);
+    const cellforge::halfedge_mesh m = mesh_of(cellforge::thin_table5_solid(ex, false).soup);
+    thin_options o;
+    const thin_result plain = cellforge::find_thin_points(m, o);
+    o.cluster_faces = true;
+    const thin_result clustered = cellforge::find_thin_points(m, o);
+    CHECK(clustered.clustered_faces == 0);
+    CHECK(clustered.grown_faces == m.num_faces());
+    check_same_run(clustered, plain);
+  }
 }

@@ -6,6 +6,7 @@
 /// detection (§5.3), returning the thin loops as ordered closed vertex chains.
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -43,6 +44,9 @@ struct thin_options {
   double envelope_rings =
       1.0;  ///< prominence: rim window in estimated rings of faces, 0..1000 (docs/thin.md)
   std::uint64_t work_budget = 2'000'000'000;  ///< candidate selections examined, then error(budget)
+  /// Merge flat triangle fans and pairs of triangles into clusters before growing (seed §8.2;
+  /// docs/thin.md "Clusters"). Off by default; on, cycles count clusters, not mesh faces.
+  bool cluster_faces = false;
 };
 
 /// One thin loop: a closed chain of vertices and edges.
@@ -69,7 +73,9 @@ struct thin_result {
   bool values_smoothed = false;       ///< seed detector: alternating values were smoothed
   std::uint64_t selections_examined = 0, duplicates_dropped = 0, selections_kept = 0;
   std::size_t max_kept = 0;
-  double ring_cycles = 0;  ///< estimated cycles per ring of faces (edges a plane across the axis cuts)
+  double ring_cycles = 0;         ///< estimated cycles per ring of faces (edges a plane across the axis cuts)
+  std::uint32_t grown_faces = 0;  ///< faces the growing ran over: mesh faces, or clusters (cluster_faces)
+  std::uint32_t clustered_faces = 0;  ///< cluster_faces: mesh faces merged into fans or pairs
   double axis_ms = 0, growing_ms = 0, detection_ms = 0;
 };
 
@@ -202,6 +208,183 @@ thin_input prepare(const halfedge_mesh& m) {
   return in;
 }
 
+/// Seed §8.2's clusters. First flat fans: in slot order, each vertex whose star is 3 or more
+/// unclustered triangles with normals within 1° of their mean, a simple rim and no rim edge
+/// between two of them becomes one cluster (a triangulated n-gon cap is one face again).
+/// Then pairs: two unclustered triangles sharing one edge are merged when each is the
+/// other's clear best partner, "best" being the quad with the largest smallest corner angle
+/// among those that bend by at most 20° and are strictly convex. A cluster is one face whose slots are its
+/// outer boundary in order; its inner edges leave the graph, so they can never be on a selection's boundary.
+/// O(slots · vertex degree).
+inline thin_input cluster_triangles(thin_input in, std::uint32_t& clustered) {
+  const thin_face_graph& g = in.graph;
+  constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+  const std::uint32_t nf = g.num_faces;
+  const auto slots = static_cast<std::uint32_t>(g.slot_edge.size());
+  const auto degree = [&](std::uint32_t f) { return g.face_start[f + 1] - g.face_start[f]; };
+  const auto next = [&](std::uint32_t s) {
+    const std::uint32_t f = g.slot_face[s];
+    return s + 1 < g.face_start[f + 1] ? s + 1 : g.face_start[f];
+  };
+  const auto prev = [&](std::uint32_t s) {
+    const std::uint32_t f = g.slot_face[s];
+    return s > g.face_start[f] ? s - 1 : g.face_start[f + 1] - 1;
+  };
+  const auto twin = [&](std::uint32_t s) {
+    const auto& two = g.edge_slots[g.slot_edge[s]];
+    return two[0] == s ? two[1] : two[0];
+  };
+  const auto at = [&](std::uint32_t s) { return in.position[in.slot_vertex[s]]; };
+  const auto unit_normal = [&](std::uint32_t f) {
+    const std::uint32_t k = g.face_start[f];
+    return glm::normalize(glm::cross(at(k + 1) - at(k), at(k + 2) - at(k)));
+  };
+  constexpr double degree_rad = 3.14159265358979323846 / 180;
+  std::vector<std::uint32_t> rep(nf, none);  // each clustered face's smallest member face
+  clustered = 0;
+
+  // Flat fans, rotating round the slots' tail vertices (twin of the previous slot).
+  std::vector<char> vertex_done(in.position.size(), 0);
+  std::vector<std::uint32_t> star, rim;
+  for (std::uint32_t k = 0; k < slots; ++k) {
+    const std::uint32_t v = in.slot_vertex[k];
+    if (vertex_done[v]) continue;
+    vertex_done[v] = 1;
+    star.clear();
+    bool ok = true;
+    std::uint32_t t = k;
+    do {
+      const std::uint32_t f = g.slot_face[t];
+      ok = degree(f) == 3 && rep[f] == none && star.size() < slots;
+      star.push_back(t);
+      t = twin(prev(t));
+    } while (ok && t != k);
+    if (!ok || star.size() < 3) continue;
+    glm::dvec3 mean(0.0);
+    for (const std::uint32_t x : star) mean += unit_normal(g.slot_face[x]);
+    rim.clear();
+    for (const std::uint32_t x : star) {
+      ok = ok && glm::dot(unit_normal(g.slot_face[x]), mean) >= std::cos(degree_rad) * glm::length(mean);
+      rim.push_back(in.slot_vertex[next(x)]);
+      for (const std::uint32_t y : star) ok = ok && g.slot_other[next(x)] != g.slot_face[y];
+    }
+    std::sort(rim.begin(), rim.end());
+    if (!ok || std::adjacent_find(rim.begin(), rim.end()) != rim.end()) continue;
+    std::uint32_t first = nf;
+    for (const std::uint32_t x : star) first = std::min(first, g.slot_face[x]);
+    for (const std::uint32_t x : star) rep[g.slot_face[x]] = first;
+    clustered += static_cast<std::uint32_t>(star.size());
+  }
+
+  // Pairs: quality of the quad made with the triangle across slot s, the smallest corner
+  // angle; −1 when the triangles share more than that edge, bend by more than 20° or the
+  // quad is not strictly convex.
+  const auto quality = [&](std::uint32_t s) {
+    const std::uint32_t f = g.slot_face[s], o = g.slot_other[s], t = twin(s);
+    if (o == f || rep[o] != none || degree(o) != 3) return -1.0;
+    std::uint32_t shared = 0;
+    for (std::uint32_t k = g.face_start[f]; k < g.face_start[f + 1]; ++k) shared += g.slot_other[k] == o;
+    if (shared != 1) return -1.0;  // two triangles glued along two edges are not a quad
+    // s runs a→c in f = (a, c, b); t runs c→a in o = (c, a, d); the quad is c, b, a, d.
+    const std::array<glm::dvec3, 4> q{at(next(s)), at(prev(s)), at(s), at(prev(t))};
+    const glm::dvec3 n1 = glm::cross(q[1] - q[0], q[2] - q[0]), n2 = glm::cross(q[2] - q[0], q[3] - q[0]);
+    if (!(glm::dot(n1, n2) >= std::cos(20 * degree_rad) * glm::length(n1) * glm::length(n2))) return -1.0;
+    double least = 4;
+    for (std::size_t i = 0; i < 4; ++i) {
+      const glm::dvec3 u = q[(i + 3) % 4] - q[i], w = q[(i + 1) % 4] - q[i];
+      if (!(glm::dot(glm::cross(w, u), n1 + n2) > 0)) return -1.0;  // a reflex or straight corner
+      least = std::min(least,
+                       std::acos(std::clamp(glm::dot(u, w) / (glm::length(u) * glm::length(w)), -1.0, 1.0)));
+    }
+    return least;
+  };
+  // Each triangle's clear best partner slot (better than the runner-up by a margin, so that
+  // round-off under a rigid motion cannot flip a tie); pairs are the mutual choices.
+  std::vector<std::uint32_t> best(nf, none);
+  for (std::uint32_t f = 0; f < nf; ++f) {
+    if (rep[f] != none || degree(f) != 3) continue;
+    double top = 0, second = -1;
+    for (std::uint32_t k = g.face_start[f]; k < g.face_start[f + 1]; ++k) {
+      const double qk = quality(k);
+      if (qk > top)
+        second = top, top = qk, best[f] = k;
+      else
+        second = std::max(second, qk);
+    }
+    if (best[f] != none && !(top > (1 + 1e-6) * second)) best[f] = none;
+  }
+  for (std::uint32_t f = 0; f < nf; ++f) {
+    if (best[f] == none) continue;
+    const std::uint32_t o = g.slot_other[best[f]];
+    if (f < o && best[o] != none && g.slot_other[best[o]] == f) rep[f] = rep[o] = f, clustered += 2;
+  }
+  if (clustered == 0) return in;  // nothing to merge (e.g. all quads): the graph is unchanged
+
+  // Clusters numbered by their smallest face; members listed in face order.
+  std::vector<std::uint32_t> id(nf, none), member_start(1, 0), members;
+  std::uint32_t clusters = 0;
+  for (std::uint32_t f = 0; f < nf; ++f) {
+    if (rep[f] == none) rep[f] = f;
+    if (rep[f] == f) id[f] = clusters++;
+  }
+  for (std::uint32_t f = 0; f < nf; ++f) id[f] = id[rep[f]];
+  member_start.assign(clusters + 1, 0);
+  for (std::uint32_t f = 0; f < nf; ++f) ++member_start[id[f] + 1];
+  for (std::uint32_t c = 0; c < clusters; ++c) member_start[c + 1] += member_start[c];
+  members.resize(nf);
+  std::vector<std::uint32_t> fill(member_start.begin(), member_start.end() - 1);
+  for (std::uint32_t f = 0; f < nf; ++f) members[fill[id[f]]++] = f;
+
+  thin_input out;
+  out.position = std::move(in.position), out.used_points = std::move(in.used_points);
+  thin_face_graph& c = out.graph;
+  c.num_faces = clusters;
+  c.face_start.assign(1, 0);
+  std::vector<std::uint32_t> new_slot(slots, none), new_edge(g.edge_slots.size(), none), old_edge;
+  const auto add_slot = [&](std::uint32_t k) {
+    const std::uint32_t e = g.slot_edge[k];
+    if (new_edge[e] == none) {
+      new_edge[e] = static_cast<std::uint32_t>(old_edge.size());
+      old_edge.push_back(e);
+      c.edge_length.push_back(g.edge_length[e]);
+      out.edge_id.push_back(in.edge_id[e]);
+    }
+    new_slot[k] = static_cast<std::uint32_t>(c.slot_edge.size());
+    c.slot_edge.push_back(new_edge[e]);
+    c.slot_other.push_back(id[g.slot_other[k]]);
+    c.slot_face.push_back(static_cast<std::uint32_t>(c.face_start.size() - 1));
+    out.slot_vertex.push_back(in.slot_vertex[k]);
+  };
+  for (std::uint32_t cl = 0; cl < clusters; ++cl) {
+    const std::uint32_t first = members[member_start[cl]];
+    out.face_id.push_back(in.face_id[first]);  // a cluster is named by its first mesh face
+    if (member_start[cl + 1] - member_start[cl] == 1) {
+      for (std::uint32_t k = g.face_start[first]; k < g.face_start[first + 1]; ++k) add_slot(k);
+    } else {
+      // Walk the outer boundary from its smallest slot, turning round each vertex through
+      // the cluster's own faces (as boundary_chains does); a disk has one such loop.
+      std::uint32_t outer = 0, start = none;
+      for (std::uint32_t i = member_start[cl]; i < member_start[cl + 1]; ++i)
+        for (std::uint32_t k = g.face_start[members[i]]; k < g.face_start[members[i] + 1]; ++k)
+          if (id[g.slot_other[k]] != cl) ++outer, start = std::min(start, k);
+      std::uint32_t walked = 0, s = start;
+      do {
+        add_slot(s);
+        std::uint32_t t = next(s);
+        for (std::uint32_t turn = 0; id[g.slot_other[t]] == cl && turn <= slots; ++turn) t = next(twin(t));
+        s = t;
+      } while (++walked <= outer && s != start);
+      if (walked != outer)
+        throw error(error_category::internal, "find_thin_points: face cluster " + std::to_string(cl) +
+                                                  " is not a disk; rerun without cluster_faces");
+    }
+    c.face_start.push_back(static_cast<std::uint32_t>(c.slot_edge.size()));
+  }
+  for (const std::uint32_t e : old_edge)
+    c.edge_slots.push_back({new_slot[g.edge_slots[e][0]], new_slot[g.edge_slots[e][1]]});
+  return out;
+}
+
 /// Splits the boundary of a selection (its inner slots) into closed chains by walking
 /// round the selected region (consistent orientation makes next/twin a boundary walk).
 inline std::vector<std::vector<std::uint32_t>> boundary_chains(const thin_face_graph& g,
@@ -285,9 +468,11 @@ template <Point3 P = glm::dvec3>
 thin_result find_thin_points(const halfedge_mesh& m, const thin_options& options = {}) {
   namespace t = detail::thin;
   t::check_options(options);
-  const t::thin_input in = t::prepare<P>(m);
-  const thin_face_graph& g = in.graph;
   thin_result r;
+  const t::thin_input in =
+      options.cluster_faces ? t::cluster_triangles(t::prepare<P>(m), r.clustered_faces) : t::prepare<P>(m);
+  const thin_face_graph& g = in.graph;
+  r.grown_faces = g.num_faces;
 
   auto clock = std::chrono::steady_clock::now();
   const central_axis_result axis = central_axis(
