@@ -7,6 +7,7 @@
 //   thin_points cells.3dcl [--volume N]  volume N (default 0) of a cell list; ids are cell ids
 //   options: --cap N (the selection cap n_s of seed 5.4, 1..1000, default 40)
 //            --faithful (the seed's data structures and its literal 5.3 detection)
+//            --cluster (seed 8.2: grow over flat triangle fans and triangle pairs; for triangle meshes)
 //            --out DIR (default out)
 //
 // Writes into DIR: <name>_loops.obj (the solid's faces plus one closed `l` line per loop) and
@@ -25,7 +26,7 @@ namespace fs = std::filesystem;
 int main(int argc, char** argv) {
   try {
     const example::session x = example::open_session(
-        argc, argv, fs::path(CELLFORGE_DATA_DIR) / "dumbbell.off", {"cap"}, {"faithful"});
+        argc, argv, fs::path(CELLFORGE_DATA_DIR) / "dumbbell.off", {"cap"}, {"faithful", "cluster"});
     const example::command_line& cl = x.cl;
     cellforge::thin_options options;
     options.selection_cap = static_cast<int>(cl.number("cap", options.selection_cap, 1, 1000, true));
@@ -33,13 +34,18 @@ int main(int argc, char** argv) {
       options.mode = cellforge::thin_mode::faithful;
       options.detection = cellforge::thin_detection::seed;
     }
+    options.cluster_faces = cl.has("cluster");
     cellforge::thin_result r;
     const double ms =
         x.run([&](const auto& cc, auto v) { r = cellforge::find_thin_points(cc, v, options); },
               [&](const auto& mesh) { r = cellforge::find_thin_points<glm::dvec3>(mesh, options); });
     x.print_solid("thin_points");
-    std::printf("  rules            %s, selection cap %d\n",
-                cl.has("faithful") ? "the seed's (--faithful)" : "fast", options.selection_cap);
+    std::printf("  rules            %s, selection cap %d%s\n",
+                cl.has("faithful") ? "the seed's (--faithful)" : "fast", options.selection_cap,
+                options.cluster_faces ? ", clustered faces" : "");
+    if (options.cluster_faces)
+      std::printf("  clusters         grew over %u faces (%u mesh faces merged into fans or pairs)\n",
+                  r.grown_faces, r.clustered_faces);
     std::printf("  central axis     through (%.4g, %.4g, %.4g) along (%.4g, %.4g, %.4g)\n", r.axis_origin.x,
                 r.axis_origin.y, r.axis_origin.z, r.axis_direction.x, r.axis_direction.y, r.axis_direction.z);
     std::printf("  start face       %u\n", r.start_face);
