@@ -16,7 +16,10 @@
 #include "cellforge/cells/conversion.hpp"
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/validate.hpp"
+#include "cellforge/thin/central_axis.hpp"
+#include "cellforge/thin/loop_detection.hpp"
 #include "cellforge/thin/sample_solids.hpp"
+#include "cellforge/thin/selection_growing.hpp"
 #include "cellforge/thin/thin_points.hpp"
 #include "test_support.hpp"
 

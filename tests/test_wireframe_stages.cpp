@@ -5,7 +5,14 @@
 
 #include <algorithm>
 
+#include "cellforge/wireframe/circuit_tracer.hpp"
+#include "cellforge/wireframe/extra_faces.hpp"
+#include "cellforge/wireframe/face_arrangement.hpp"
+#include "cellforge/wireframe/face_reduction.hpp"
+#include "cellforge/wireframe/read_vertices.hpp"
 #include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/wireframe/unique_circuits.hpp"
+#include "cellforge/wireframe/volume_finder.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 
 using namespace cellforge;
@@ -88,6 +95,87 @@ TEST_CASE("stages: ranks and chains (4.5)") {
   for (std::uint32_t e = 0; e < g.num_edges(); ++e) CHECK(a.edge_rank[e] == 2);
   CHECK(a.rank_violations == 0);
   CHECK(a.selected.size() == 6);
+}
+
+namespace {
+
+// The face stages (4.2 - 4.5) of a sample, up to the candidates and the arrangement's choice.
+struct arranged {
+  wire_graph graph;
+  std::vector<wire_face> candidates;
+  arrangement_result arrangement;
+};
+arranged arrange(const sample_model& m) {
+  arranged a{read_vertices(m.wire).graph, {}, {}};
+  a.candidates = unique_circuits(a.graph, trace_circuits(a.graph).faces).faces;
+  a.arrangement = arrange_faces(a.graph, a.candidates, reduce_faces(a.graph, a.candidates));
+  return a;
+}
+
+}  // namespace
+
+TEST_CASE("stages: extra face processing puts back a missed face and keeps the true ones (4.6)") {
+  const sample_model m = sample_two_cubes();
+  const arranged a = arrange(m);
+  const auto all = extra_faces(a.graph, a.candidates, a.arrangement.selected);
+  CHECK(all.added == 0);
+  CHECK(all.overlapping == 0);
+  CHECK(all.free == 0);
+  CHECK(same_faces(m.faces, all.faces));
+  // Drop one selected face: its edges now lack a face, and the retrace finds it again.
+  std::vector<std::uint32_t> missing = a.arrangement.selected;
+  missing.erase(missing.begin() + 3);
+  const auto repaired = extra_faces(a.graph, a.candidates, missing);
+  CHECK(repaired.added == 1);
+  CHECK(same_faces(m.faces, repaired.faces));
+  // Without add_missed the hole stays; with remove_free the faces around it, which now have an
+  // edge no other face shares, go too, until every edge left is shared.
+  extra_face_options keep;
+  keep.add_missed = false;
+  keep.remove_free = false;
+  CHECK(extra_faces(a.graph, a.candidates, missing, keep).faces.size() == m.faces.size() - 1);
+  keep.remove_free = true;
+  const auto trimmed = extra_faces(a.graph, a.candidates, missing, keep);
+  CHECK(trimmed.free > 0);
+  CHECK(trimmed.faces.size() == m.faces.size() - 1 - trimmed.free);
+  std::vector<int> uses(a.graph.num_edges(), 0);
+  for (const wire_face& f : trimmed.faces)
+    for (const auto& loop : f.loops)
+      for (std::size_t k = 0; k < loop.size(); ++k)
+        ++uses[a.graph.find_edge(loop[k], loop[(k + 1) % loop.size()])];
+  for (const int u : uses) CHECK(u != 1);
+}
+
+TEST_CASE("stages: the volume finder splits two cubes at their shared wall, merges a house (4.7)") {
+  const std::string disjoint = sample_disjoint_solids().name;
+  for (const sample_model& m : {sample_two_cubes(), sample_house(), sample_disjoint_solids()}) {
+    const std::string name = m.name;
+    INFO(name);
+    const arranged a = arrange(m);
+    const auto faces = extra_faces(a.graph, a.candidates, a.arrangement.selected).faces;
+    const auto v = find_volumes(a.graph, faces);
+    CHECK(v.objects == (name == disjoint ? 2u : 1u));
+    CHECK(same_volumes(m.faces, m.volumes, faces, v.volumes));
+    CHECK(v.unforced.size() == m.unforced_faces);
+    // Every face bounds a volume on at least one side; a shared wall bounds two.
+    REQUIRE(v.face_volumes.size() == faces.size());
+    std::size_t shared = 0;
+    for (const auto& sides : v.face_volumes) {
+      CHECK((sides[0] != no_index || sides[1] != no_index));
+      shared += sides[0] != no_index && sides[1] != no_index;
+    }
+    std::size_t uses = 0;
+    for (const auto& vol : v.volumes) uses += vol.size();
+    CHECK(uses == faces.size() + shared);
+    // Merging across unforced walls removes exactly those walls and one volume per wall.
+    volume_options merge;
+    merge.merge_unforced = true;
+    const auto merged = find_volumes(a.graph, faces, merge);
+    CHECK(merged.volumes.size() == v.volumes.size() - m.unforced_faces);
+    const auto kept =
+        static_cast<std::size_t>(std::count(merged.face_kept.begin(), merged.face_kept.end(), 1));
+    CHECK(kept == faces.size() - m.unforced_faces);
+  }
 }
 
 TEST_CASE("stages: volumes and relations agree with the cell complex's rotation order (4.7, 4.8)") {
