@@ -27,17 +27,14 @@
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
+#include "test_support.hpp"
 
 namespace io_test {
 
-/// A user point type registered by the one-line macro.
-struct user_point {
-  double x, y, z;
-};
+/// A user point type registered by the one-line macro (the tests' shared one).
+using user_point = test_support::user_point;
 
 }  // namespace io_test
-
-CELLFORGE_REGISTER_POINT3(io_test::user_point, double, x, y, z);
 
 namespace io_test {
 

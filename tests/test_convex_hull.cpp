@@ -21,13 +21,7 @@
 #include "cellforge/algorithms/convex_hull.hpp"
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/validate.hpp"
-
-namespace user {
-struct pt {
-  double x, y, z;
-};
-}  // namespace user
-CELLFORGE_REGISTER_POINT3(user::pt, double, x, y, z);
+#include "test_support.hpp"
 
 namespace {
 
@@ -435,7 +429,8 @@ TEST_CASE("random small-grid inputs: duplicates, coplanar and collinear everywhe
   CHECK(flats > 100);
 }
 
-TEST_CASE_TEMPLATE("every point type gives the same hull", P, glm::dvec3, std::array<float, 3>, user::pt) {
+TEST_CASE_TEMPLATE("every point type gives the same hull", P, glm::dvec3, std::array<float, 3>,
+                   test_support::user_point) {
   std::mt19937_64 rng(9);
   std::uniform_real_distribution<float> c(-1, 1);
   std::vector<P> pts;

@@ -22,13 +22,7 @@
 #include "cellforge/algorithms/ear_clipping.hpp"
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/validate.hpp"
-
-namespace user {
-struct pt {
-  double x, y, z;
-};
-}  // namespace user
-CELLFORGE_REGISTER_POINT3(user::pt, double, x, y, z);
+#include "test_support.hpp"
 
 namespace {
 
@@ -251,7 +245,7 @@ TEST_CASE("10,000-vertex comb, star and spiral finish and tile exactly") {
   }
 }
 
-TEST_CASE_TEMPLATE("every point type", P, glm::dvec3, std::array<float, 3>, user::pt) {
+TEST_CASE_TEMPLATE("every point type", P, glm::dvec3, std::array<float, 3>, test_support::user_point) {
   std::vector<P> poly;
   for (const auto& q : u_shape()) poly.push_back(cellforge::point_traits<P>::make(q.x, 0.5f, q.y));
   const auto tris = ear_clip(std::span<const P>(poly));

@@ -19,13 +19,6 @@
 
 using namespace cellforge;
 
-namespace edits_test {
-struct pt {
-  double x, y, z;
-};
-}  // namespace edits_test
-CELLFORGE_REGISTER_POINT3(edits_test::pt, double, x, y, z);
-
 namespace {
 
 using soup = polygon_soup<glm::dvec3>;
@@ -172,7 +165,7 @@ TEST_CASE("collapse on an open grid: boundary edges, interior into boundary vert
 }
 
 TEST_CASE_TEMPLATE("collapse position policies, three point types", P, glm::dvec3, std::array<float, 3>,
-                   edits_test::pt) {
+                   test_support::user_point) {
   for (collapse_position policy :
        {collapse_position::keep_head, collapse_position::midpoint, collapse_position::custom}) {
     halfedge_mesh m = make_mesh(icosahedron<P>());
@@ -304,7 +297,7 @@ TEST_CASE("collapse_edge goes either way, also across a flipped edge") {
 // ---------------------------------------------------------------------------- face collapse
 
 TEST_CASE_TEMPLATE("collapse_face on an icosahedron: 4 faces, 2 vertices, 6 edges, to the centroid", P,
-                   glm::dvec3, std::array<float, 3>, edits_test::pt) {
+                   glm::dvec3, std::array<float, 3>, test_support::user_point) {
   halfedge_mesh m = make_mesh(icosahedron<P>());
   const face_handle f(7);
   std::vector<vertex_handle> corners;
@@ -377,7 +370,7 @@ TEST_CASE("collapse_face: octahedron to tetrahedron, boundary faces, refusals") 
 // ---------------------------------------------------------------------------- split
 
 TEST_CASE_TEMPLATE("split_edge: interior, boundary, flipped and polygon edges", P, glm::dvec3,
-                   std::array<float, 3>, edits_test::pt) {
+                   std::array<float, 3>, test_support::user_point) {
   SUBCASE("interior edge of an icosahedron") {
     halfedge_mesh m = make_mesh(icosahedron<P>());
     const edge_handle e(5);

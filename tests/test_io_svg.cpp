@@ -13,13 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/io/svg.hpp"
-
-namespace svgtest {
-struct vec {
-  double x, y, z;
-};
-}  // namespace svgtest
-CELLFORGE_REGISTER_POINT3(svgtest::vec, double, x, y, z);
+#include "test_support.hpp"
 
 namespace {
 
@@ -142,7 +136,7 @@ std::vector<std::array<double, 2>> hidden_behind(const std::array<P, 3>& triangl
 }  // namespace
 
 TEST_CASE_TEMPLATE("a cube from a generic view: 3 faces toward the viewer, 9 visible and 3 hidden edges", P,
-                   glm::dvec3, std::array<float, 3>, svgtest::vec) {
+                   glm::dvec3, std::array<float, 3>, test_support::user_point) {
   io::svg_scene scene;
   scene.add_mesh(unit_cube<P>());
   io::svg_result r;
@@ -181,7 +175,7 @@ TEST_CASE_TEMPLATE("a cube from a generic view: 3 faces toward the viewer, 9 vis
 }
 
 TEST_CASE_TEMPLATE("a wireframe cube without faces has 12 visible edges", P, glm::dvec3, std::array<float, 3>,
-                   svgtest::vec) {
+                   test_support::user_point) {
   io::svg_scene scene;
   scene.add_wireframe(cube_wireframe<P>());
   io::svg_result r;

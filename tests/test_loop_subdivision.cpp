@@ -22,11 +22,7 @@
 #include "cellforge/halfedge/detail/mesh_access.hpp"
 #include "cellforge/halfedge/validate.hpp"
 #include "mesh_fixtures.hpp"
-
-struct cad_point {
-  double x, y, z;
-};
-CELLFORGE_REGISTER_POINT3(cad_point, double, x, y, z);
+#include "test_support.hpp"
 
 namespace {
 
@@ -413,7 +409,7 @@ TEST_CASE("Möbius strip, Klein bottle and a randomly oriented plane") {
 
 // ---------------------------------------------------------------- point types
 
-TEST_CASE_TEMPLATE("point types", P, glm::dvec3, std::array<float, 3>, cad_point) {
+TEST_CASE_TEMPLATE("point types", P, glm::dvec3, std::array<float, 3>, test_support::user_point) {
   const double tol = std::is_same_v<cellforge::scalar_t<P>, float> ? 2e-6 : 1e-12;
   one_level_checked<P>(octahedron(), {}, tol);
   one_level_checked<P>(fixtures::mobius(10, 2), {}, tol);

@@ -7,13 +7,7 @@
 #include "cellforge/halfedge/validate.hpp"
 #include "cellforge/io/mesh_io.hpp"
 #include "mesh_fixtures.hpp"
-
-namespace user {
-struct pt {
-  double x, y, z;
-};
-}  // namespace user
-CELLFORGE_REGISTER_POINT3(user::pt, double, x, y, z);
+#include "test_support.hpp"
 
 namespace {
 std::filesystem::path temp_dir() {
@@ -32,7 +26,7 @@ cellforge::polygon_soup<P> convert(const fixtures::soup& s) {
 }  // namespace
 
 TEST_CASE_TEMPLATE("meshes round-trip through OFF, OBJ and PLY for every point type", P, glm::dvec3,
-                   std::array<float, 3>, user::pt) {
+                   std::array<float, 3>, test_support::user_point) {
   // A non-orientable mesh with quads: faces must come back with their own orientation.
   const auto src = convert<P>(fixtures::glued_grid(7, 3, true, true, false, false, false));
   const cellforge::halfedge_mesh m = cellforge::make_mesh(src);

@@ -14,6 +14,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/predicates.hpp"
+#include "test_support.hpp"
 
 namespace {
 
@@ -175,13 +176,6 @@ glm::dvec3 nudge(glm::dvec3 p, int coordinate, int ulps) {
 }
 
 }  // namespace
-
-namespace user {
-struct pt {
-  double x, y, z;
-};
-}  // namespace user
-CELLFORGE_REGISTER_POINT3(user::pt, double, x, y, z);
 
 using cellforge::orient2d;
 using cellforge::orient3d;
@@ -353,7 +347,7 @@ TEST_CASE("non-finite inputs give 0, never undefined behaviour") {
 }
 
 TEST_CASE_TEMPLATE("orient3d works on every registered point type", P, glm::dvec3, std::array<float, 3>,
-                   user::pt) {
+                   test_support::user_point) {
   auto make = [](double x, double y, double z) { return cellforge::point_traits<P>::make(x, y, z); };
   const P a = make(0.1f, 0.2f, 0.3f), b = make(1, 0.25f, 0.5f), c = make(0.125f, 1, 0.75f);
   CHECK(orient3d(a, b, c, make(0.5f, 0.5f, 2)) == 1);

@@ -23,13 +23,7 @@
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/smooth/sample_solids.hpp"
 #include "cellforge/smooth/smooth_edges.hpp"
-
-namespace smooth_test {
-struct pt {
-  double x, y, z;
-};
-}  // namespace smooth_test
-CELLFORGE_REGISTER_POINT3(smooth_test::pt, double, x, y, z);
+#include "test_support.hpp"
 
 namespace {
 
@@ -399,7 +393,7 @@ TEST_CASE("readjustment: converges, midpoints lie on their curves, the budget an
 }
 
 TEST_CASE_TEMPLATE("point types give the same smoothing", P, glm::dvec3, std::array<float, 3>,
-                   smooth_test::pt) {
+                   test_support::user_point) {
   const halfedge_mesh m = make_mesh(uv_sphere<P>(16, 8));
   const smooth_result r = smooth_edges<P>(m);
   const auto [chord, curve] = radial_errors(r);

@@ -4,6 +4,7 @@
 
 #include <doctest/doctest.h>
 
+#include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 
 // Fails the test with validate()'s explanation; works for meshes and cell complexes alike.
@@ -13,6 +14,14 @@
     INFO(vr_.message);            \
     REQUIRE(vr_.ok());            \
   } while (0)
+
+namespace test_support {
+/// A user point type of the tests' own, registered with the one-line macro.
+struct user_point {
+  double x, y, z;
+};
+}  // namespace test_support
+CELLFORGE_REGISTER_POINT3(test_support::user_point, double, x, y, z);
 
 namespace test_support {
 /// V - E + F of the live elements.
