@@ -64,10 +64,7 @@ int main(int argc, char** argv) {
     std::printf("  wrote            %s/%s.curves, .polylines, _curves.obj, _smooth.svg\n",
                 x.out.string().c_str(), stem.c_str());
     return 0;
-  } catch (const cellforge::error& e) {
-    std::fprintf(stderr, "smooth_edges: %s\n", e.what());
-    return 1;
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) {  // cellforge::error included: its message says what to fix
     std::fprintf(stderr, "smooth_edges: %s\n", e.what());
     return 1;
   }

@@ -72,10 +72,7 @@ int main(int argc, char** argv) {
     std::printf("  wrote            %s/%s_loops.obj, %s_thin.svg\n", x.out.string().c_str(), stem.c_str(),
                 stem.c_str());
     return 0;
-  } catch (const cellforge::error& e) {
-    std::fprintf(stderr, "thin_points: %s\n", e.what());
-    return 1;
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) {  // cellforge::error included: its message says what to fix
     std::fprintf(stderr, "thin_points: %s\n", e.what());
     return 1;
   }
