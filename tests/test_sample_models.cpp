@@ -190,16 +190,18 @@ TEST_CASE("sample models: sizes, objects and unforced faces") {
   check_sizes(cellforge::sample_prism(7), {14, 21, 9, 1, 1, 0});
   check_sizes(cellforge::sample_pyramid(32), {33, 64, 33, 1, 1, 0});
   check_sizes(cellforge::sample_uv_sphere(8, 6), {42, 88, 48, 1, 1, 0});
-  // Odd slices: no meridian cycle crosses the rings, so each ring is an unforced wall.
-  check_sizes(cellforge::sample_uv_sphere(7, 6), {37, 77, 47, 6, 1, 5});
+  // Odd slices too: the rings are cycles no edge needs, so the sphere is one volume.
+  check_sizes(cellforge::sample_uv_sphere(7, 6), {37, 77, 42, 1, 1, 0});
   check_sizes(cellforge::sample_two_cubes(), {12, 20, 11, 2, 1, 0});
   check_sizes(cellforge::sample_grid(2, 2, 2), {27, 54, 36, 8, 1, 0});
-  // 3×3×3: 64 vertices, 144 edges, 108 faces; the 6 walls with no edge on the outside are unforced.
-  check_sizes(cellforge::sample_grid(3, 3, 3), {64, 144, 108, 27, 1, 6});
+  // 3×3×3: 64 vertices, 144 edges, 108 faces; no edge needs the 6 walls around the middle cube
+  // nor the middle squares of the 6 sides; 4×4×4: the 36 walls inside and 24 squares.
+  check_sizes(cellforge::sample_grid(3, 3, 3), {64, 144, 108, 27, 1, 12});
+  check_sizes(cellforge::sample_grid(4, 4, 4), {125, 300, 240, 64, 1, 60});
   check_sizes(cellforge::sample_L(), {12, 18, 8, 1, 1, 0});
   check_sizes(cellforge::sample_T(), {16, 24, 10, 1, 1, 0});
   check_sizes(cellforge::sample_U(), {16, 24, 10, 1, 1, 0});
-  check_sizes(cellforge::sample_house(), {9, 16, 10, 2, 1, 1});
+  check_sizes(cellforge::sample_house(), {9, 16, 9, 1, 1, 0});
   check_sizes(cellforge::sample_disjoint_solids(), {20, 30, 14, 2, 2, 0});
   check_sizes(cellforge::sample_split_edges(), {19, 23, 6, 1, 1, 0});
   check_sizes(cellforge::sample_frame(), {16, 24, 10, 1, 1, 0});

@@ -146,8 +146,8 @@ TEST_CASE("stages: extra face processing puts back a missed face and keeps the t
   for (const int u : uses) CHECK(u != 1);
 }
 
-TEST_CASE("stages: the volume finder splits two cubes at their shared wall, merges a house (4.7)") {
-  const std::string disjoint = sample_disjoint_solids().name;
+TEST_CASE("stages: the volume finder splits two cubes at their shared wall, drops a house's square (4.7)") {
+  const std::string disjoint = sample_disjoint_solids().name, house = sample_house().name;
   for (const sample_model& m : {sample_two_cubes(), sample_house(), sample_disjoint_solids()}) {
     const std::string name = m.name;
     INFO(name);
@@ -155,26 +155,39 @@ TEST_CASE("stages: the volume finder splits two cubes at their shared wall, merg
     const auto faces = extra_faces(a.graph, a.candidates, a.arrangement.selected).faces;
     const auto v = find_volumes(a.graph, faces);
     CHECK(v.objects == (name == disjoint ? 2u : 1u));
-    CHECK(same_volumes(m.faces, m.volumes, faces, v.volumes));
+    // The house's square is a candidate no edge needs: dropped, and named as an alternative.
+    CHECK(v.dropped.size() == (name == house ? 1u : 0u));
+    CHECK(v.alternatives.size() == v.dropped.size());
+    std::vector<wire_face> kept;
+    std::vector<std::uint32_t> index(faces.size(), no_index);
+    for (std::uint32_t i = 0; i < faces.size(); ++i)
+      if (v.face_kept[i]) index[i] = static_cast<std::uint32_t>(kept.size()), kept.push_back(faces[i]);
+    auto volumes = v.volumes;
+    for (auto& vol : volumes)
+      for (auto& [f, sign] : vol) f = index[f];
+    CHECK(same_volumes(m.faces, m.volumes, kept, volumes));
     CHECK(v.unforced.size() == m.unforced_faces);
-    // Every face bounds a volume on at least one side; a shared wall bounds two.
+    // Every kept face bounds a volume on at least one side; a shared wall bounds two.
     REQUIRE(v.face_volumes.size() == faces.size());
     std::size_t shared = 0;
-    for (const auto& sides : v.face_volumes) {
-      CHECK((sides[0] != no_index || sides[1] != no_index));
+    for (std::uint32_t i = 0; i < faces.size(); ++i) {
+      const auto& sides = v.face_volumes[i];
+      CHECK((sides[0] != no_index || sides[1] != no_index) == (v.face_kept[i] != 0));
       shared += sides[0] != no_index && sides[1] != no_index;
     }
     std::size_t uses = 0;
     for (const auto& vol : v.volumes) uses += vol.size();
-    CHECK(uses == faces.size() + shared);
-    // Merging across unforced walls removes exactly those walls and one volume per wall.
-    volume_options merge;
-    merge.merge_unforced = true;
-    const auto merged = find_volumes(a.graph, faces, merge);
-    CHECK(merged.volumes.size() == v.volumes.size() - m.unforced_faces);
-    const auto kept =
-        static_cast<std::size_t>(std::count(merged.face_kept.begin(), merged.face_kept.end(), 1));
-    CHECK(kept == faces.size() - m.unforced_faces);
+    CHECK(uses == kept.size() + shared);
+    // keep_walls keeps the square as a wall between box and roof; merging takes it out again.
+    volume_options walls;
+    walls.reading = face_reading::keep_walls;
+    const auto w = find_volumes(a.graph, faces, walls);
+    CHECK(w.volumes.size() == v.volumes.size() + v.dropped.size());
+    CHECK(w.unforced.size() == v.dropped.size());
+    walls.merge_unforced = true;
+    const auto merged = find_volumes(a.graph, faces, walls);
+    CHECK(merged.volumes.size() == v.volumes.size());
+    CHECK(merged.merged.size() == v.dropped.size());
   }
 }
 
@@ -183,10 +196,15 @@ TEST_CASE("stages: volumes and relations agree with the cell complex's rotation 
     const std::string name = m.name;
     INFO(name);
     const auto r = wireframe_to_cells(m.wire);
-    // Edges of the result are the graph's edges in order here (clean input).
+    // Edges of the result are the graph's edges in order here (clean input); its faces are the
+    // kept ones of the face stages, in order (the house's square is not one).
     REQUIRE(r.input.edges.size() == r.read.graph.num_edges());
+    std::vector<std::uint32_t> output_face(r.extra.faces.size(), no_index);
+    for (std::uint32_t i = 0, k = 0; i < r.extra.faces.size(); ++i)
+      if (r.volume.face_kept[i]) output_face[i] = k++;
     for (std::uint32_t e = 0; e < r.input.edges.size(); ++e) {
-      const auto ours = r.relations.edges[e].faces;
+      auto ours = r.relations.edges[e].faces;
+      for (auto& f : ours) f = output_face[f];
       std::vector<std::uint32_t> theirs;
       for (const auto& of : r.cells.edge_faces(cell_edge(e))) theirs.push_back(of.handle.idx());
       REQUIRE(ours.size() == theirs.size());

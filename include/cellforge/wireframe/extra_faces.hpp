@@ -34,25 +34,8 @@ struct extra_face_options {
 struct extra_faces_result : stage_report {
   std::vector<wire_face> faces;  ///< the selected faces, canonical order
   std::size_t added = 0, overlapping = 0, free = 0;
+  std::vector<dropped_face> removed;  ///< every selected face this stage removed, and why
 };
-
-namespace detail {
-
-/// For each edge, the faces using it. O(Σ L).
-inline std::vector<std::vector<std::uint32_t>> faces_at_edges(const wire_graph& g,
-                                                              const std::vector<wire_face>& f,
-                                                              const std::vector<char>& alive) {
-  std::vector<std::vector<std::uint32_t>> at(g.num_edges());
-  for (std::uint32_t i = 0; i < f.size(); ++i) {
-    if (!alive[i]) continue;
-    for (const auto& loop : f[i].loops)
-      for (std::size_t k = 0; k < loop.size(); ++k)
-        at[g.find_edge(loop[k], loop[(k + 1) % loop.size()])].push_back(i);
-  }
-  return at;
-}
-
-}  // namespace detail
 
 /// Adds missed faces, removes overlapping and free faces. O(V + E + F·L) plus, when faces are
 /// missing, one planar trace and a crossing test of each added face against the faces.
@@ -67,7 +50,7 @@ inline extra_faces_result extra_faces(const wire_graph& g, const std::vector<wir
   const double tol = options.retrace.planarity.relative * g.size;
 
   if (options.add_missed) {
-    auto at = detail::faces_at_edges(g, faces, alive);
+    auto at = detail::faces_at_edges(g, faces, &alive);
     bool lacking = false;
     for (const auto& a : at) lacking = lacking || a.size() < 2;
     if (lacking) {
@@ -78,6 +61,7 @@ inline extra_faces_result extra_faces(const wire_graph& g, const std::vector<wir
       for (const auto& f : faces) have.emplace(f.loops, 1);
       std::vector<detail::face_plane> planes;
       for (const auto& f : faces) planes.push_back({f.normal, g.points[f.loops[0][0]], {}});
+      detail::crossing_test cross(g);
       for (auto& f : traced) {
         if (have.count(f.loops)) continue;
         bool helps = false;
@@ -88,7 +72,7 @@ inline extra_faces_result extra_faces(const wire_graph& g, const std::vector<wir
         const detail::face_plane pf{f.normal, g.points[f.loops[0][0]], {}};
         bool crosses = false;
         for (std::size_t i = 0; i < faces.size() && !crosses; ++i)
-          crosses = detail::faces_cross(g, f, pf, faces[i], planes[i], tol);
+          crosses = cross(f, pf, faces[i], planes[i], tol);
         if (crosses) continue;
         r.diagnostics.push_back("added face " + std::to_string(f.loops[0].size()) + "-gon at vertex " +
                                 std::to_string(f.loops[0][0]) + " missed by the first trace");
@@ -101,7 +85,7 @@ inline extra_faces_result extra_faces(const wire_graph& g, const std::vector<wir
   }
 
   if (options.remove_overlapping) {
-    const auto at = detail::faces_at_edges(g, faces, alive);
+    const auto at = detail::faces_at_edges(g, faces, &alive);
     for (std::uint32_t e = 0; e < g.num_edges(); ++e) {
       const auto& list = at[e];
       for (std::size_t x = 0; x < list.size(); ++x)
@@ -119,6 +103,8 @@ inline extra_faces_result extra_faces(const wire_graph& g, const std::vector<wir
           const std::uint32_t larger = a.area >= b.area ? list[x] : list[y];
           alive[larger] = 0;
           ++r.overlapping;
+          r.removed.push_back(
+              {faces[larger], "it overlaps a smaller face in its plane at edge " + std::to_string(e)});
           r.diagnostics.push_back("a face overlapping a smaller face in its plane at edge " +
                                   std::to_string(e) + " was removed");
         }
@@ -127,7 +113,7 @@ inline extra_faces_result extra_faces(const wire_graph& g, const std::vector<wir
 
   if (options.remove_free) {
     // Iterate: removing one free face can free its neighbours.
-    auto at = detail::faces_at_edges(g, faces, alive);
+    auto at = detail::faces_at_edges(g, faces, &alive);
     std::vector<std::uint32_t> count(g.num_edges());
     for (std::uint32_t e = 0; e < g.num_edges(); ++e) count[e] = static_cast<std::uint32_t>(at[e].size());
     std::vector<std::uint32_t> stack;
@@ -141,6 +127,8 @@ inline extra_faces_result extra_faces(const wire_graph& g, const std::vector<wir
         if (!alive[i]) continue;
         alive[i] = 0;
         ++r.free;
+        r.removed.push_back(
+            {faces[i], "its edge " + std::to_string(e) + " has no other face, so it bounds no volume"});
         r.diagnostics.push_back("a face with free edge " + std::to_string(e) +
                                 " (no other face uses it) bounds no volume and was removed");
         for (const auto& loop : faces[i].loops)

@@ -3,21 +3,25 @@
 /// \file
 /// Stage 5 of the wireframe pipeline (seed 000 §4.5): smooth entity chains (straight runs of
 /// edges through degree-2 vertices), the Shpitalni–Lipson maximum ranks of edges and vertices,
-/// and the face selection. Selection rule (documented in docs/wireframe.md): keep every usable
-/// candidate whose interior crosses the interior of no other usable candidate. Candidate pairs
-/// come from a uniform grid over face bounding boxes, so the cost is not all-pairs.
+/// and the crossing rule of the face selection (docs/wireframe.md): of two candidates whose
+/// interiors cross, the one some edge needs wins; both go when neither or both are needed.
+/// Candidate pairs come from a uniform grid over face bounding boxes, so the cost is not
+/// all-pairs; the rest of the reading rule (faces no edge needs) is decided with the volumes.
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
 
 #include "cellforge/core/bounding_box.hpp"
+#include "cellforge/core/polygon_intersection.hpp"
 #include "cellforge/core/tolerance.hpp"
 #include "cellforge/wireframe/face_reduction.hpp"
 #include "cellforge/wireframe/wire_graph.hpp"
@@ -42,7 +46,7 @@ struct arrangement_result : stage_report {
   std::vector<std::uint32_t> vertex_rank;               ///< maximum rank R(v) of each vertex
   std::size_t rank_violations = 0;                      ///< edges with more selected faces than R(e)
   std::uint64_t pairs_tested = 0;
-  std::size_t hole_fillers_dropped = 0;  ///< candidates filling a hole loop that no edge needs
+  std::vector<std::uint32_t> crossed;  ///< candidates dropped by the crossing rule, increasing
 };
 
 namespace detail {
@@ -52,64 +56,257 @@ struct face_plane {
   bounding_box box;
 };
 
-/// Positions along `dir` where the interior of face f meets the plane p (pairs of
-/// entry/exit). Vertices within tol of the plane count as on its positive side.
-inline std::vector<double> cut_intervals(const wire_graph& g, const wire_face& f, const face_plane& p,
-                                         const glm::dvec3& dir, double tol) {
-  std::vector<double> s;
-  for (const auto& loop : f.loops)
-    for (std::size_t k = 0; k < loop.size(); ++k) {
-      const glm::dvec3 x = g.points[loop[k]], y = g.points[loop[(k + 1) % loop.size()]];
-      const double dx = glm::dot(p.n, x - p.o), dy = glm::dot(p.n, y - p.o);
-      if ((dx < -tol) == (dy < -tol)) continue;
-      const double t = std::clamp(dx / (dx - dy), 0.0, 1.0);
-      s.push_back(glm::dot(x + t * (y - x) - p.o, dir));
-    }
-  std::sort(s.begin(), s.end());
-  return s;
-}
+/// One end of an interval where a face's interior meets another face's plane: its position
+/// along the planes' common line and where it comes from (a vertex on the plane, exact, or the
+/// crossing of edge (from, to) with the plane, constructed).
+struct cut_end {
+  double s = 0.0;
+  std::uint32_t from = no_index, to = no_index;  ///< to == no_index: the vertex `from`
+};
 
-/// -1, 0, +1 for the vertices of f relative to plane p: whether some lie beyond tol each side.
-inline std::array<bool, 2> straddles(const wire_graph& g, const wire_face& f, const face_plane& p,
-                                     double tol) {
-  std::array<bool, 2> side{false, false};
-  for (const auto& loop : f.loops)
-    for (const auto v : loop) {
-      const double d = glm::dot(p.n, g.points[v] - p.o);
-      if (d > tol) side[0] = true;
-      if (d < -tol) side[1] = true;
-    }
-  return side;
-}
+/// Open intervals [2k, 2k+1] of the line along `dir` that lie inside face f and meet plane p
+/// from both sides. side[v] of f's vertices: +1 / -1 beyond tolerance, 0 on the plane (within
+/// tolerance, or a vertex of the other face). Seen from just above the plane a vertex on it
+/// counts as below, from just below as above; a point of the line is inside f's interior
+/// only if it is inside from both views, so a boundary edge lying in the plane bounds no
+/// interval (the fault that made faces meeting at such an edge "cross"). O(L log L).
+class interior_cuts {
+ public:
+  std::vector<cut_end> intervals;
 
-/// True when the interiors of faces a and b (in different planes) share a segment longer than tol.
-inline bool faces_cross(const wire_graph& g, const wire_face& a, const face_plane& pa, const wire_face& b,
-                        const face_plane& pb, double tol) {
-  glm::dvec3 dir = glm::cross(pa.n, pb.n);
-  const double l = glm::length(dir);
-  if (l < 1e-12) return false;  // parallel planes: coplanar faces never overlap after tracing
-  const auto sa = straddles(g, a, pb, tol);
-  if (!sa[0] || !sa[1]) return false;
-  const auto sb = straddles(g, b, pa, tol);
-  if (!sb[0] || !sb[1]) return false;
-  dir /= l;
-  const auto ia = cut_intervals(g, a, pb, dir, tol);
-  auto ib = cut_intervals(g, b, pa, dir, tol);
-  // ia is measured from pb.o, ib from pa.o: move ib to pb.o.
-  const double shift = glm::dot(pa.o - pb.o, dir);
-  for (auto& x : ib) x += shift;
-  for (std::size_t i = 0; i + 1 < ia.size(); i += 2)
-    for (std::size_t j = 0; j + 1 < ib.size(); j += 2) {
-      const double lo = std::max(ia[i], ib[j]), hi = std::min(ia[i + 1], ib[j + 1]);
-      if (hi - lo > tol) return true;
+  template <class Side>
+  void compute(const wire_graph& g, const wire_face& f, const face_plane& p, const glm::dvec3& dir,
+               Side&& side) {
+    for (int view = 0; view < 2; ++view) {
+      auto& ends = view == 0 ? above_ : below_;
+      ends.clear();
+      for (const auto& loop : f.loops)
+        for (std::size_t k = 0; k < loop.size(); ++k) {
+          const std::uint32_t x = loop[k], y = loop[(k + 1) % loop.size()];
+          const int sx = side(x), sy = side(y);
+          // Above the plane: a vertex on it counts as below; below the plane: as above.
+          const bool ux = view == 0 ? sx > 0 : sx >= 0, uy = view == 0 ? sy > 0 : sy >= 0;
+          if (ux == uy) continue;
+          if (sx == 0 || sy == 0) {
+            const std::uint32_t v = sx == 0 ? x : y;
+            ends.push_back({glm::dot(g.points[v] - g.center, dir), v, no_index});
+            continue;
+          }
+          const glm::dvec3 a = g.points[x], b = g.points[y];
+          const double da = glm::dot(p.n, a - p.o), db = glm::dot(p.n, b - p.o);
+          const glm::dvec3 c = a + (da / (da - db)) * (b - a);
+          ends.push_back({glm::dot(c - g.center, dir), x, y});
+        }
+      std::sort(ends.begin(), ends.end(), [](const cut_end& a, const cut_end& b) { return a.s < b.s; });
     }
-  return false;
+    // Intersection of the two interval sets.
+    intervals.clear();
+    for (std::size_t i = 0, j = 0; i + 1 < above_.size() && j + 1 < below_.size();) {
+      const cut_end& lo = above_[i].s >= below_[j].s ? above_[i] : below_[j];
+      const cut_end& hi = above_[i + 1].s <= below_[j + 1].s ? above_[i + 1] : below_[j + 1];
+      if (lo.s < hi.s) {
+        intervals.push_back(lo);
+        intervals.push_back(hi);
+      }
+      if (above_[i + 1].s < below_[j + 1].s)
+        i += 2;
+      else
+        j += 2;
+    }
+  }
+
+ private:
+  std::vector<cut_end> above_, below_;
+};
+
+/// The crossing test of the selection rule, with its scratch space (one per thread of work).
+/// Two faces in different planes cross when their interiors share a segment of the planes'
+/// common line longer than the tolerance: the parity along that line decides it from the
+/// vertices' sides alone (vertices of the other face lie on its plane by construction), and
+/// where a segment end is constructed (an edge crossing a plane) the exact test of
+/// core/polygon_intersection.hpp confirms that the edge really pierces the other face's
+/// interior. Independent of loop orientation. O(L log L) per pair, O(L_a · L_b) worst case to
+/// confirm.
+class crossing_test {
+ public:
+  explicit crossing_test(const wire_graph& g) : g_(g), mark_(g.num_vertices(), no_index) {}
+
+  bool operator()(const wire_face& a, const face_plane& pa, const wire_face& b, const face_plane& pb,
+                  double tol) {
+    glm::dvec3 dir = glm::cross(pa.n, pb.n);
+    const double l = glm::length(dir);
+    if (l < 1e-12) return false;  // parallel planes: coplanar faces never overlap after tracing
+    dir /= l;
+    if (!straddles(a, pb, b, tol) || !straddles(b, pa, a, tol)) return false;
+    cut(a, pb, b, dir, tol, ca_);
+    cut(b, pa, a, dir, tol, cb_);
+    const auto& ia = ca_.intervals;
+    const auto& ib = cb_.intervals;
+    for (std::size_t i = 0, j = 0; i + 1 < ia.size() && j + 1 < ib.size();) {
+      const bool lo_a = ia[i].s >= ib[j].s, hi_a = ia[i + 1].s <= ib[j + 1].s;
+      const cut_end& lo = lo_a ? ia[i] : ib[j];
+      const cut_end& hi = hi_a ? ia[i + 1] : ib[j + 1];
+      if (hi.s - lo.s > tol && confirmed(lo, lo_a ? b : a, hi, hi_a ? b : a)) return true;
+      if (ia[i + 1].s < ib[j + 1].s)
+        i += 2;
+      else
+        j += 2;
+    }
+    return false;
+  }
+
+ private:
+  const wire_graph& g_;
+  std::vector<std::uint32_t> mark_;
+  std::uint32_t stamp_ = 0;
+  interior_cuts ca_, cb_;
+
+  int side(std::uint32_t v, const face_plane& p, double tol) const {
+    if (mark_[v] == stamp_) return 0;
+    const double d = glm::dot(p.n, g_.points[v] - p.o);
+    return d > tol ? 1 : d < -tol ? -1 : 0;
+  }
+  void mark(const wire_face& f) {
+    ++stamp_;
+    for (const auto& loop : f.loops)
+      for (const auto v : loop) mark_[v] = stamp_;
+  }
+  /// Some vertex of f strictly on each side of p (vertices of `other` count as on it).
+  bool straddles(const wire_face& f, const face_plane& p, const wire_face& other, double tol) {
+    mark(other);
+    bool up = false, down = false;
+    for (const auto& loop : f.loops)
+      for (const auto v : loop) {
+        const int s = side(v, p, tol);
+        up = up || s > 0;
+        down = down || s < 0;
+      }
+    return up && down;
+  }
+  void cut(const wire_face& f, const face_plane& p, const wire_face& other, const glm::dvec3& dir, double tol,
+           interior_cuts& out) {
+    mark(other);
+    out.compute(g_, f, p, dir, [&](std::uint32_t v) { return side(v, p, tol); });
+  }
+  /// A shared segment whose ends are vertices is decided by the vertices' sides; an end made
+  /// by an edge crossing a plane is confirmed by that edge piercing the other face exactly.
+  bool confirmed(const cut_end& lo, const wire_face& lo_other, const cut_end& hi, const wire_face& hi_other) {
+    if (lo.to == no_index && hi.to == no_index) return true;
+    for (const auto* e : {&lo, &hi}) {
+      if (e->to == no_index) continue;
+      const wire_face& other = e == &lo ? lo_other : hi_other;
+      if (segment_pierces_polygon(g_.points, other.loops, plane_vertices(g_.points, other.loops),
+                                  g_.points[e->from], g_.points[e->to]))
+        return true;
+    }
+    return false;
+  }
+};
+
+/// The candidates pairs whose boxes meet, from a uniform grid of cells about twice the median
+/// face size: small faces are listed in the cells their box covers and a pair is reported in
+/// the one cell holding the low corner of the intersection of their boxes; a large face (over
+/// 512 cells) is paired with the small faces in the cells its plane passes through, and with
+/// the other large faces. O(Σ cells per face + pairs + Σ_large cells its plane meets).
+template <class Visit>
+void candidate_pairs(const wire_graph& g, const std::vector<std::uint32_t>& usable,
+                     const std::vector<face_plane>& plane, double tol, work_budget& budget, Visit&& visit) {
+  if (usable.size() < 2) return;
+  std::vector<double> extent;
+  for (const auto i : usable) {
+    const glm::dvec3 d = plane[i].box.max - plane[i].box.min;
+    extent.push_back(std::max({d.x, d.y, d.z}));
+  }
+  std::nth_element(extent.begin(), extent.begin() + static_cast<std::ptrdiff_t>(extent.size() / 2),
+                   extent.end());
+  // The lattice is shifted off round numbers so that faces of axis-aligned models do not all
+  // end on cell boundaries: about two cells per face.
+  const double h = 2.0 * std::max(extent[extent.size() / 2], g.size * 1e-6);
+  const glm::dvec3 shift(0.3719, 0.2917, 0.1343);
+  auto coord = [&](double x, int k) {
+    // Clamped: a cell index never overflows, whatever the coordinates.
+    const double c = std::floor((x - g.center[k]) / h + shift[k]);
+    return static_cast<std::int64_t>(std::clamp(c, -1e15, 1e15));
+  };
+  auto cell = [&](const glm::dvec3& p) {
+    return std::array<std::int64_t, 3>{coord(p.x, 0), coord(p.y, 1), coord(p.z, 2)};
+  };
+  std::unordered_map<std::array<std::int64_t, 3>, std::vector<std::uint32_t>, cell_hash> grid;
+  std::vector<std::uint32_t> big;
+  for (const auto i : usable) {
+    const auto lo = cell(plane[i].box.min - tol), hi = cell(plane[i].box.max + tol);
+    const double count = static_cast<double>(hi[0] - lo[0] + 1) * static_cast<double>(hi[1] - lo[1] + 1) *
+                         static_cast<double>(hi[2] - lo[2] + 1);
+    if (count > 512) {
+      big.push_back(i);
+      continue;
+    }
+    for (auto x = lo[0]; x <= hi[0]; ++x)
+      for (auto y = lo[1]; y <= hi[1]; ++y)
+        for (auto z = lo[2]; z <= hi[2]; ++z) grid[{x, y, z}].push_back(i);
+  }
+  auto boxes_meet = [&](std::uint32_t a, std::uint32_t b) {
+    const auto &A = plane[a].box, &B = plane[b].box;
+    for (int k = 0; k < 3; ++k)
+      if (A.min[k] > B.max[k] + tol || B.min[k] > A.max[k] + tol) return false;
+    return true;
+  };
+  for (const auto& [c, list] : grid)
+    for (std::size_t x = 0; x < list.size(); ++x)
+      for (std::size_t y = x + 1; y < list.size(); ++y) {
+        const std::uint32_t a = list[x], b = list[y];
+        if (!boxes_meet(a, b)) continue;
+        if (cell(glm::max(plane[a].box.min, plane[b].box.min) - tol) != c) continue;
+        visit(a, b);
+      }
+  // Large faces: walk the cells their plane passes through, column by column along the
+  // plane's steepest axis.
+  std::unordered_map<std::uint32_t, std::uint32_t> seen;
+  for (const auto b : big) {
+    seen.clear();
+    const glm::dvec3 n = plane[b].n, o = plane[b].o;
+    const int k = std::abs(n.x) >= std::abs(n.y) && std::abs(n.x) >= std::abs(n.z) ? 0
+                  : std::abs(n.y) >= std::abs(n.z)                                 ? 1
+                                                                                   : 2;
+    const int u = (k + 1) % 3, w = (k + 2) % 3;
+    const auto lo = cell(plane[b].box.min - tol), hi = cell(plane[b].box.max + tol);
+    for (auto cu = lo[u]; cu <= hi[u]; ++cu)
+      for (auto cw = lo[w]; cw <= hi[w]; ++cw) {
+        // The plane's k-range over this column (its four corners), widened by the tolerance.
+        double zmin = std::numeric_limits<double>::infinity(), zmax = -zmin;
+        for (int corner = 0; corner < 4; ++corner) {
+          glm::dvec3 p(0.0);
+          p[u] = (static_cast<double>(cu + (corner & 1)) - shift[u]) * h + g.center[u];
+          p[w] = (static_cast<double>(cw + (corner >> 1)) - shift[w]) * h + g.center[w];
+          const double z = o[k] - (n[u] * (p[u] - o[u]) + n[w] * (p[w] - o[w])) / n[k];
+          zmin = std::min(zmin, z);
+          zmax = std::max(zmax, z);
+        }
+        const auto z0 = std::max(lo[k], coord(zmin - tol, k)), z1 = std::min(hi[k], coord(zmax + tol, k));
+        for (auto cz = z0; cz <= z1; ++cz) {
+          budget.spend();
+          std::array<std::int64_t, 3> c{};
+          c[static_cast<std::size_t>(k)] = cz;
+          c[static_cast<std::size_t>(u)] = cu;
+          c[static_cast<std::size_t>(w)] = cw;
+          const auto it = grid.find(c);
+          if (it == grid.end()) continue;
+          for (const auto i : it->second)
+            if (seen.emplace(i, 0).second && boxes_meet(b, i)) visit(b, i);
+        }
+      }
+  }
+  for (std::size_t x = 0; x < big.size(); ++x)
+    for (std::size_t y = x + 1; y < big.size(); ++y)
+      if (boxes_meet(big[x], big[y])) visit(big[x], big[y]);
 }
 
 }  // namespace detail
 
-/// Finds chains and ranks and selects the faces (see the file comment for the rule).
-/// O(V + E + F·L + P·L) where P is the number of face pairs sharing a grid cell.
+/// Finds chains and ranks and selects the faces: the crossing rule of docs/wireframe.md (when
+/// two candidates cross, the one some edge needs wins; both go when neither or both are
+/// needed). O(V + E + F·L + P·L log L) where P is the number of candidate pairs the grid
+/// yields, plus O(rounds · F·L) for the needs, rounds being the chains of decisions (one or two).
 inline arrangement_result arrange_faces(const wire_graph& g, const std::vector<wire_face>& faces,
                                         const reduction_result& reduction,
                                         const arrangement_options& options = {}) {
@@ -164,106 +361,80 @@ inline arrangement_result arrange_faces(const wire_graph& g, const std::vector<w
   // Planes and boxes of the usable candidates.
   std::vector<std::uint32_t> usable;
   std::vector<detail::face_plane> plane(faces.size());
+  std::vector<char> alive(faces.size(), 0);
   for (std::uint32_t i = 0; i < faces.size(); ++i) {
     if (!reduction.quality[i].usable) continue;
     usable.push_back(i);
+    alive[i] = 1;
     plane[i].n = faces[i].normal;
     plane[i].o = g.points[faces[i].loops[0][0]];
     for (const auto v : faces[i].loops[0]) plane[i].box.add(g.points[v]);
   }
-  std::vector<char> crossed(faces.size(), 0);
   detail::work_budget budget{options.work_budget, 0, "arrange_faces"};
-  if (options.drop_crossing && usable.size() > 1) {
-    // Uniform grid with cells about the median face size; a pair is tested in the one cell
-    // holding the low corner of the intersection of their boxes.
-    std::vector<double> extent;
-    for (const auto i : usable) {
-      const glm::dvec3 d = plane[i].box.max - plane[i].box.min;
-      extent.push_back(std::max({d.x, d.y, d.z}));
-    }
-    std::nth_element(extent.begin(), extent.begin() + static_cast<std::ptrdiff_t>(extent.size() / 2),
-                     extent.end());
-    // Cells twice the median face size, the lattice shifted off round numbers so that faces of
-    // axis-aligned models do not all end on cell boundaries: about two cells per face.
-    const double h = 2.0 * std::max(extent[extent.size() / 2], g.size * 1e-6);
-    auto cell = [&](const glm::dvec3& p) {
-      return std::array<std::int64_t, 3>{
-          static_cast<std::int64_t>(std::floor((p.x - g.center.x) / h + 0.3719)),
-          static_cast<std::int64_t>(std::floor((p.y - g.center.y) / h + 0.2917)),
-          static_cast<std::int64_t>(std::floor((p.z - g.center.z) / h + 0.1343))};
-    };
-    std::unordered_map<std::array<std::int64_t, 3>, std::vector<std::uint32_t>, detail::cell_hash> grid;
-    std::vector<std::uint32_t> big;
-    for (const auto i : usable) {
-      const auto lo = cell(plane[i].box.min - tol), hi = cell(plane[i].box.max + tol);
-      const std::int64_t count = (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
-      if (count > 512) {
-        big.push_back(i);
-        continue;
-      }
-      for (auto x = lo[0]; x <= hi[0]; ++x)
-        for (auto y = lo[1]; y <= hi[1]; ++y)
-          for (auto z = lo[2]; z <= hi[2]; ++z) grid[{x, y, z}].push_back(i);
-    }
-    auto boxes_meet = [&](std::uint32_t a, std::uint32_t b) {
-      const auto &A = plane[a].box, &B = plane[b].box;
-      for (int k = 0; k < 3; ++k)
-        if (A.min[k] > B.max[k] + tol || B.min[k] > A.max[k] + tol) return false;
-      return true;
-    };
-    auto test = [&](std::uint32_t a, std::uint32_t b) {
+  if (options.drop_crossing) {
+    detail::crossing_test cross(g);
+    detail::candidate_pairs(g, usable, plane, tol, budget, [&](std::uint32_t a, std::uint32_t b) {
       ++r.pairs_tested;
       budget.spend(faces[a].loops[0].size() + faces[b].loops[0].size());
-      if (!detail::faces_cross(g, faces[a], plane[a], faces[b], plane[b], tol)) return;
-      crossed[a] = crossed[b] = 1;
-      r.crossings.push_back({std::min(a, b), std::max(a, b)});
-    };
-    for (const auto& [c, list] : grid)
-      for (std::size_t x = 0; x < list.size(); ++x)
-        for (std::size_t y = x + 1; y < list.size(); ++y) {
-          const std::uint32_t a = list[x], b = list[y];
-          if (!boxes_meet(a, b)) continue;
-          if (cell(glm::max(plane[a].box.min, plane[b].box.min) - tol) != c) continue;
-          test(a, b);
-        }
-    std::vector<char> is_big(faces.size(), 0);
-    for (const auto b : big) is_big[b] = 1;
-    for (const auto b : big)
-      for (const auto i : usable)
-        if (i != b && (!is_big[i] || i > b) && boxes_meet(b, i)) test(b, i);
+      if (cross(faces[a], plane[a], faces[b], plane[b], tol))
+        r.crossings.push_back({std::min(a, b), std::max(a, b)});
+    });
     std::sort(r.crossings.begin(), r.crossings.end());
-    for (const auto& [a, b] : r.crossings)
+    // The needed one of a crossing pair wins, in rounds: a face needed among all the
+    // candidates beats one that is not; failing that, a face needed once the contested
+    // candidates (those in a crossing pair) are left out beats one that is not needed even
+    // then (spurious cycles — rings, meridians — pad the edges of the real faces they cross
+    // or lie beside). A round's losers leave, which can make others needed: decide again.
+    // Pairs still crossing when no round decides anything both go.
+    const auto at = detail::faces_at_edges(g, faces, &alive);
+    std::vector<char> contested(faces.size(), 0), no_contest(faces.size(), 0);
+    for (bool changed = !r.crossings.empty(); changed;) {
+      changed = false;
+      budget.spend(r.crossings.size() + faces.size());
+      std::fill(contested.begin(), contested.end(), 0);
+      for (const auto& [a, b] : r.crossings)
+        if (alive[a] && alive[b]) contested[a] = contested[b] = 1;
+      for (std::size_t i = 0; i < faces.size(); ++i) no_contest[i] = alive[i] && !contested[i];
+      const std::vector<char> needed = detail::needed_faces(g, faces, at, alive);
+      // Needed among the uncontested faces: the face itself plus the faces no pair contests.
+      std::vector<char> needed_alone(faces.size(), 0);
+      {
+        std::vector<char> with(no_contest);
+        for (std::uint32_t i = 0; i < faces.size(); ++i) {
+          if (!contested[i]) continue;
+          with[i] = 1;
+          needed_alone[i] = detail::needed_faces_one(g, faces, at, with, i);
+          with[i] = 0;
+        }
+      }
+      std::vector<std::uint32_t> losers;
+      for (const auto& [a, b] : r.crossings) {
+        if (!alive[a] || !alive[b]) continue;
+        const int wins = needed[a] != needed[b]               ? (needed[a] ? 0 : 1)
+                         : needed_alone[a] != needed_alone[b] ? (needed_alone[a] ? 0 : 1)
+                                                              : -1;
+        if (wins < 0) continue;
+        const std::uint32_t winner = wins == 0 ? a : b, loser = wins == 0 ? b : a;
+        losers.push_back(loser);
+        r.diagnostics.push_back("candidate " + std::to_string(loser) + " crosses candidate " +
+                                std::to_string(winner) + ", which an edge needs; dropped");
+      }
+      for (const auto i : losers) changed = std::exchange(alive[i], 0) || changed;
+    }
+    for (const auto& [a, b] : r.crossings) {
+      if (!alive[a] || !alive[b]) continue;
       r.diagnostics.push_back("candidates " + std::to_string(a) + " and " + std::to_string(b) +
-                              " cross each other; neither is a face");
+                              " cross each other and neither wins; both dropped");
+      alive[a] = alive[b] = 2;  // still crossing the others they cross in this pass
+    }
+    for (const auto i : usable)
+      if (alive[i] != 1) {
+        alive[i] = 0;
+        r.crossed.push_back(i);
+      }
   }
   for (const auto i : usable)
-    if (!crossed[i]) r.selected.push_back(i);
-
-  // Hole rule: faces filling a hole loop are kept only when some edge needs them, i.e. when,
-  // without the hole fillers, an edge of theirs has fewer than two other faces or just two
-  // coplanar ones (then the filler is an imprint on a flat face, not the mouth of a hole).
-  {
-    std::vector<std::vector<std::uint32_t>> others(ne);
-    for (const auto i : r.selected)
-      if (!faces[i].fills_hole)
-        for (const auto& loop : faces[i].loops)
-          for (std::size_t k = 0; k < loop.size(); ++k)
-            others[g.find_edge(loop[k], loop[(k + 1) % loop.size()])].push_back(i);
-    std::erase_if(r.selected, [&](std::uint32_t i) {
-      if (!faces[i].fills_hole) return false;
-      for (const auto& loop : faces[i].loops)
-        for (std::size_t k = 0; k < loop.size(); ++k) {
-          const auto& o = others[g.find_edge(loop[k], loop[(k + 1) % loop.size()])];
-          if (o.size() < 2) return false;
-          if (o.size() == 2 && glm::length(glm::cross(faces[o[0]].normal, faces[o[1]].normal)) < 1e-9)
-            return false;
-        }
-      ++r.hole_fillers_dropped;
-      r.diagnostics.push_back("candidate " + std::to_string(i) +
-                              " fills a hole that no edge needs closed; dropped");
-      return true;
-    });
-  }
+    if (alive[i]) r.selected.push_back(i);
 
   // Rank check: more selected faces at an edge than its maximum rank.
   std::vector<std::vector<std::uint32_t>> at_edge(ne);

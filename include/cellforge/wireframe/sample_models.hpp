@@ -37,10 +37,10 @@ struct sample_model {
   std::vector<std::vector<std::vector<std::uint32_t>>> faces;
   /// Each volume: the indices of its faces, sorted.
   std::vector<std::vector<std::uint32_t>> volumes;
-  /// Walls that no edge forces: faces between two volumes each of whose edges keeps, without
-  /// the face, at least two other faces and not just two coplanar ones (the square under a
-  /// house's roof, the walls of a grid that touch its outside nowhere). Merging volumes across
-  /// them leaves a valid complex.
+  /// Faces no edge needs: each of their edges keeps, without the face, at least two other faces
+  /// and not just two coplanar ones. The reading rule (docs/wireframe.md) keeps such faces only
+  /// where the wireframe cannot decide which to drop: the inner walls and the middle squares of
+  /// the outside of a grid of at least 3 × 3 × 3 cubes. Every other model has none.
   std::size_t unforced_faces = 0;
 };
 
@@ -152,7 +152,9 @@ inline glm::dvec3 newell_normal(const std::vector<glm::dvec3>& pts, const std::v
   return n;
 }
 
-/// Counts the walls no edge forces (see sample_model::unforced_faces). O(L log L), L the total loop length.
+/// Counts the faces no edge needs (see sample_model::unforced_faces): a face is needed by an
+/// edge of it when, without it, that edge would lie on fewer than two faces or on just two
+/// coplanar ones. O(L log L), L the total loop length.
 inline std::size_t count_unforced(const sample_model& m) {
   // (smaller vertex, larger vertex, face) for every face side, sorted: the faces of an edge are a run.
   std::vector<std::array<std::uint32_t, 3>> sides;
@@ -167,14 +169,11 @@ inline std::size_t count_unforced(const sample_model& m) {
       }
   }
   std::sort(sides.begin(), sides.end());
-  std::vector<int> volumes_of(m.faces.size(), 0);
-  for (const auto& v : m.volumes)
-    for (const std::uint32_t f : v) ++volumes_of[f];
   std::size_t unforced = 0;
   for (std::size_t f = 0; f < m.faces.size(); ++f) {
-    bool forced = volumes_of[f] < 2;  // a face on the outside separates a volume from nothing
+    bool needed = false;
     for (const auto& loop : m.faces[f])
-      for (std::size_t i = 0; i < loop.size() && !forced; ++i) {
+      for (std::size_t i = 0; i < loop.size() && !needed; ++i) {
         const std::uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
         const std::array<std::uint32_t, 3> lo{std::min(a, b), std::max(a, b), 0};
         std::array<std::uint32_t, 2> others{};
@@ -182,15 +181,15 @@ inline std::size_t count_unforced(const sample_model& m) {
         for (auto it = std::lower_bound(sides.begin(), sides.end(), lo);
              it != sides.end() && (*it)[0] == lo[0] && (*it)[1] == lo[1]; ++it)
           if ((*it)[2] != f && count++ < 2) others[count - 1] = (*it)[2];
-        if (count < 2) forced = true;
+        if (count < 2) needed = true;
         if (count == 2) {
           const glm::dvec3 &u = normal[others[0]], &v = normal[others[1]];
           const glm::dvec3 c(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
           // Two unit normals: a cross product this small means the faces are coplanar.
-          forced = std::sqrt(c.x * c.x + c.y * c.y + c.z * c.z) < 1e-9;
+          needed = std::sqrt(c.x * c.x + c.y * c.y + c.z * c.z) < 1e-9;
         }
       }
-    if (!forced) ++unforced;
+    if (!needed) ++unforced;
   }
   return unforced;
 }
@@ -647,11 +646,9 @@ inline sample_model sample_pyramid(std::size_t n) {
 }
 
 /// A UV sphere of radius 1: `slices` meridians, `stacks` bands (quads, triangle fans at the
-/// poles); slices·(stacks − 1) + 2 vertices, slices·(2·stacks − 1) edges. With even slices it
-/// is one volume of slices·stacks faces (each ring's disk is crossed by the planar meridian
-/// cycles through the poles). With odd slices nothing crosses the ring disks, so by the rule
-/// "keep every candidate that crosses no other" every ring is an (unforced) wall: stacks
-/// volumes, slices·stacks + stacks − 1 faces. O(slices · stacks).
+/// poles); slices·(stacks − 1) + 2 vertices, slices·(2·stacks − 1) edges; one volume of
+/// slices·stacks faces. Its rings (and with even slices its meridian circles) are planar
+/// cycles of edges that no edge needs, so none is a face. O(slices · stacks).
 inline sample_model sample_uv_sphere(std::size_t slices, std::size_t stacks) {
   if (slices < 3 || stacks < 2 || slices > 4096 || stacks > 4096)
     throw error(error_category::invalid_input, "sample_uv_sphere: need 3..4096 slices and 2..4096 stacks");
@@ -661,7 +658,6 @@ inline sample_model sample_uv_sphere(std::size_t slices, std::size_t stacks) {
     const double phi = std::numbers::pi * static_cast<double>(k) / static_cast<double>(stacks);
     s.radius.push_back(std::sin(phi));
     s.height.push_back(-std::cos(phi));
-    if (slices % 2 == 1) s.walls.push_back(k - 1);
   }
   s.bottom = -1.0;
   s.top = 1.0;
@@ -712,12 +708,12 @@ inline sample_model sample_U() {
   return detail::extruded_footprint({0, 1, 2, 3}, {0, 1, 3}, {{0, 0}, {1, 0}, {2, 0}, {0, 1}, {2, 1}}, "U");
 }
 
-/// A unit cube with a pyramid roof: 9 vertices, 16 edges, 10 faces, 2 volumes; the square
-/// under the roof is the one unforced face. O(1).
+/// A unit cube with a pyramid roof: 9 vertices, 16 edges, 9 faces, 1 volume. The square under
+/// the roof is a cycle of edges but no edge needs it, so it is not a face (with
+/// face_reading::keep_walls it is a wall between box and roof: 10 faces, 2 volumes). O(1).
 inline sample_model sample_house() {
   ring_stack s = detail::regular_stack(4, {0.0, 1.0}, std::numbers::sqrt2 / 2);
   s.top = 1.6;
-  s.walls = {1};
   return make_ring_stack(s, "house");
 }
 
@@ -831,7 +827,9 @@ inline sample_model sample_seed(int i) {
       return m;
     }
     case 6: {  // exactly 710 V, 2124 E, 1428 faces, 13 volumes: a vase of 11 antiprism bands
-               // between 12 wall rings of 59 points, with two cone caps
+               // between 12 wall rings of 59 points, with two cone caps. The seed's reading:
+               // no edge needs the rings, so by default they are not faces (1 volume, 1416
+               // faces); face_reading::keep_walls reproduces the seed.
       ring_stack s;
       s.n = 59;
       s.triangles = true;

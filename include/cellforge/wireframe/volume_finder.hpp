@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -24,15 +25,32 @@
 #include <glm/vec2.hpp>
 
 #include "cellforge/core/bounding_box.hpp"
+#include "cellforge/core/polygon_intersection.hpp"
 #include "cellforge/wireframe/circuit_tracer.hpp"
 #include "cellforge/wireframe/wire_graph.hpp"
 
 namespace cellforge {
 
+/// How the faces no edge needs are read (docs/wireframe.md, "The reading rule").
+enum class face_reading : std::uint8_t {
+  /// A face only where some edge needs it: holes and dents stay open, walls no edge needs
+  /// go (the square under a roof), except where the wireframe cannot decide which to drop
+  /// (the inner walls of a grid): those stay and are reported as unforced. The default.
+  needed,
+  /// As `needed`, but every wall between two volumes stays (and is reported as unforced):
+  /// the seed's reading of its sample 6, a vase cut into 13 volumes by its rings.
+  keep_walls,
+  /// Every selected face stays: holes and dents are plugged, every wall is kept.
+  keep_all,
+};
+
 /// Options of find_volumes.
 struct volume_options {
-  /// Merge the volumes on both sides of every unforced face and drop such faces (a house with
-  /// a wall between box and roof becomes one volume).
+  face_reading reading = face_reading::needed;
+  /// Also merge the volumes on both sides of the walls the reading kept although no edge needs
+  /// them (reported in volume_result::unforced), one wall at a time and only while no needed
+  /// face ends up inside a volume and no edge is left on fewer than two faces or on two
+  /// coplanar ones; the walls merged are listed in volume_result::merged.
   bool merge_unforced = false;
 };
 
@@ -52,9 +70,14 @@ struct volume_result : stage_report {
   std::vector<std::array<std::uint32_t, 2>> face_volumes;
   /// Per volume: (face, +1 when the face's normal points out of the volume, -1 when in).
   std::vector<std::vector<std::pair<std::uint32_t, int>>> volumes;
-  std::vector<char> face_kept;  ///< false for faces dropped by merging (or with one volume on both sides)
-  std::vector<std::uint32_t> unforced;  ///< walls no edge forces (see find_volumes)
-  double manifold_milliseconds = 0.0;   ///< the seed's "manifold analysis" row: rotation order and shells
+  std::vector<char>
+      face_kept;  ///< false for faces the reading dropped, merged or with one region on both sides
+  std::vector<std::uint32_t> unforced;  ///< kept faces no edge needs: the wireframe does not decide them
+  std::vector<std::uint32_t> dropped;  ///< faces no edge needs that the reading removed (holes, roofs, rings)
+  std::vector<std::uint32_t> merged;   ///< walls merge_unforced removed
+  /// One line per dropped face: the other reading it stands for ("face 7 would close a hole").
+  std::vector<std::string> alternatives;
+  double manifold_milliseconds = 0.0;  ///< the seed's "manifold analysis" row: rotation order and shells
 };
 
 namespace detail {
@@ -91,57 +114,85 @@ inline std::vector<std::vector<edge_fan_entry>> edge_fans(const wire_graph& g,
   return fan;
 }
 
-/// Ray-parity test of point q against the closed surface made of `faces` (any orientation).
-/// Tries other ray directions when a ray grazes an edge. O(Σ L).
-inline bool inside_surface(const wire_graph& g, const std::vector<wire_face>& all,
-                           const std::vector<std::uint32_t>& faces, const glm::dvec3& q) {
-  const double tol = 1e-9 * g.size;
-  const glm::dvec3 dirs[] = {{0.5773, 0.5719, 0.5831},
-                             {-0.3129, 0.8447, 0.4341},
-                             {0.7071, -0.2137, -0.6741},
-                             {-0.6262, -0.5491, 0.5535},
-                             {0.1213, 0.2711, -0.9549}};
-  for (const auto& d0 : dirs) {
-    const glm::dvec3 r = glm::normalize(d0);
-    bool parity = false, grazed = false;
-    for (const auto i : faces) {
-      const wire_face& f = all[i];
-      const glm::dvec3 o = g.points[f.loops[0][0]];
-      const double den = glm::dot(f.normal, r);
-      if (std::abs(den) < 1e-9) continue;
-      const double t = glm::dot(f.normal, o - q) / den;
-      if (t <= 0.0) continue;
-      const glm::dvec3 x = q + t * r;
-      plane_component frame;
-      frame.origin = o;
-      frame.normal = f.normal;
-      frame.u = any_perpendicular(f.normal);
-      frame.w = glm::cross(f.normal, frame.u);
-      const glm::dvec2 px = project(frame, x);
-      bool in = false;
-      for (const auto& loop : f.loops) {
-        std::vector<glm::dvec2> poly;
-        for (const auto v : loop) poly.push_back(project(frame, g.points[v]));
-        for (std::size_t k = 0; k < poly.size(); ++k) {
-          const glm::dvec2 a = poly[k], b = poly[(k + 1) % poly.size()];
-          const glm::dvec2 ab = b - a;
-          const double len2 = glm::dot(ab, ab);
-          const double s = len2 > 0.0 ? std::clamp(glm::dot(px - a, ab) / len2, 0.0, 1.0) : 0.0;
-          if (glm::length(px - (a + s * ab)) <= tol) grazed = true;
-        }
-        if (inside_2d(poly, px)) in = !in;
+/// Whether the region bounded by `shell` (faces of one closed surface) contains the surface
+/// `inner` (faces of another, not crossing it): the exact point-in-solid test of
+/// core/polygon_intersection.hpp from a vertex of `inner` that is not a vertex of `shell`, so
+/// that a solid touching the other at a vertex or an edge never starts on its boundary; a
+/// start that is still undecided (on a face's plane, or every ray grazing) tries the next
+/// vertex. O(tries · Σ L).
+inline bool surface_inside(const wire_graph& g, const std::vector<wire_face>& faces,
+                           const std::vector<std::uint32_t>& shell, const std::vector<std::uint32_t>& inner,
+                           std::vector<std::uint32_t>& mark, std::uint32_t stamp) {
+  for (const auto i : shell)
+    for (const auto& loop : faces[i].loops)
+      for (const auto v : loop) mark[v] = stamp;
+  auto loops_of = [&](std::uint32_t i) -> const polygon_loops& { return faces[i].loops; };
+  std::size_t tries = 0;
+  for (const auto i : inner)
+    for (const auto& loop : faces[i].loops)
+      for (const auto v : loop) {
+        if (mark[v] == stamp) continue;
+        mark[v] = stamp;  // each vertex once
+        const polygon_location l = point_in_polyhedron(g.points, shell, loops_of, g.points[v]);
+        if (l != polygon_location::boundary) return l == polygon_location::inside;
+        if (++tries == 16) return false;
       }
-      if (in) parity = !parity;
-    }
-    if (!grazed) return parity;
-  }
   return false;
 }
 
+/// Which faces lie between two current roots of a union-find over regions, for
+/// merge_unforced: how many that must stay, and the walls that may go. Pairs are keyed by
+/// current roots; absorbing a root moves its pairs to the surviving root (the root with the
+/// shorter neighbour list is absorbed, so each pair moves O(log F) times). O(F log F) in all.
+struct region_links {
+  struct link {
+    std::uint32_t needed = 0;
+    std::vector<std::uint32_t> walls;
+  };
+  std::unordered_map<std::uint64_t, link> pairs;
+  std::vector<std::vector<std::uint32_t>> neighbours;
+
+  explicit region_links(std::size_t regions) : neighbours(regions) {}
+  static std::uint64_t key(std::uint32_t a, std::uint32_t b) noexcept {
+    if (a > b) std::swap(a, b);
+    return (std::uint64_t{a} << 32) | b;
+  }
+  void add(std::uint32_t a, std::uint32_t b, std::uint32_t face, bool wall) {
+    auto& l = pairs[key(a, b)];
+    if (wall)
+      l.walls.push_back(face);
+    else
+      ++l.needed;
+    neighbours[a].push_back(b);
+    neighbours[b].push_back(a);
+  }
+  /// Unites roots a and b in `uf` and moves the absorbed root's pairs to the survivor.
+  void unite(std::uint32_t a, std::uint32_t b, union_find& uf) {
+    if (neighbours[a].size() > neighbours[b].size()) std::swap(a, b);
+    uf.parent[a] = b;  // a is absorbed into b
+    pairs.erase(key(a, b));
+    for (const auto y0 : neighbours[a]) {
+      const auto y = uf.find(y0);
+      if (y == b) continue;
+      const auto it = pairs.find(key(a, y));
+      if (it == pairs.end()) continue;  // listed twice, moved already
+      link moved = std::move(it->second);
+      pairs.erase(it);
+      auto& l = pairs[key(b, y)];
+      l.needed += moved.needed;
+      l.walls.insert(l.walls.end(), moved.walls.begin(), moved.walls.end());
+      neighbours[b].push_back(y);
+    }
+    std::vector<std::uint32_t>().swap(neighbours[a]);
+  }
+};
+
 }  // namespace detail
 
-/// Finds objects and volumes (see the file comment). O(Σ L + E·k log k) for the shells, plus
-/// O(objects × faces) ray tests when several objects may nest.
+/// Finds objects and volumes and applies the reading rule to the faces no edge needs (see the
+/// file comment and docs/wireframe.md). O(Σ L + E·k log k) for the shells and the rule, plus
+/// the exact nesting tests when several surfaces may nest (O(surfaces · shells) box tests and
+/// O(Σ L) per test).
 inline volume_result find_volumes(const wire_graph& g, const std::vector<wire_face>& faces,
                                   const volume_options& options = {}) {
   detail::stopwatch clock;
@@ -149,14 +200,29 @@ inline volume_result find_volumes(const wire_graph& g, const std::vector<wire_fa
   const auto nf = static_cast<std::uint32_t>(faces.size());
   const auto fan = detail::edge_fans(g, faces);
 
-  // Objects: faces joined through shared edges.
-  detail::union_find obj(nf);
+  // Surfaces: faces joined through shared edges; objects: through shared vertices too, so that
+  // two solids touching at a vertex are one object.
+  detail::union_find surface(nf), object(nf);
   for (const auto& f : fan)
-    for (std::size_t k = 1; k < f.size(); ++k) obj.unite(f[0].face, f[k].face);
+    for (std::size_t k = 1; k < f.size(); ++k) {
+      surface.unite(f[0].face, f[k].face);
+      object.unite(f[0].face, f[k].face);
+    }
+  {
+    std::vector<std::uint32_t> first(g.num_vertices(), no_index);
+    for (std::uint32_t i = 0; i < nf; ++i)
+      for (const auto& loop : faces[i].loops)
+        for (const auto v : loop) {
+          if (first[v] == no_index)
+            first[v] = i;
+          else
+            object.unite(first[v], i);
+        }
+  }
   std::vector<std::uint32_t> object_id(nf, no_index);
   r.object_of_face.resize(nf);
   for (std::uint32_t i = 0; i < nf; ++i) {
-    const auto root = obj.find(i);
+    const auto root = object.find(i);
     if (object_id[root] == no_index) object_id[root] = static_cast<std::uint32_t>(r.objects++);
     r.object_of_face[i] = object_id[root];
   }
@@ -179,14 +245,14 @@ inline volume_result find_volumes(const wire_graph& g, const std::vector<wire_fa
   std::vector<std::uint32_t> shell_of(2 * std::size_t{nf}), shell_root_id(2 * std::size_t{nf}, no_index);
   std::vector<double> shell_volume;
   std::vector<std::vector<std::uint32_t>> shell_faces;
-  std::vector<std::uint32_t> shell_object;
+  std::vector<std::uint32_t> shell_surface;
   for (std::uint32_t s = 0; s < 2 * nf; ++s) {
     const auto root = side.find(s);
     if (shell_root_id[root] == no_index) {
       shell_root_id[root] = static_cast<std::uint32_t>(shell_volume.size());
       shell_volume.push_back(0.0);
       shell_faces.emplace_back();
-      shell_object.push_back(r.object_of_face[s / 2]);
+      shell_surface.push_back(surface.find(s / 2));
     }
     const auto sh = shell_of[s] = shell_root_id[root];
     const wire_face& f = faces[s / 2];
@@ -198,8 +264,9 @@ inline volume_result find_volumes(const wire_graph& g, const std::vector<wire_fa
   r.shells = shell_volume.size();
   r.manifold_milliseconds = clock.ms();
 
-  // Regions: every positive shell bounds one; a negative shell (an object's outside) belongs
-  // to the smallest positive shell of another object containing it, else to the unbounded region.
+  // Regions: every positive shell bounds one; a negative shell (a surface's outside) belongs
+  // to the smallest positive shell of another surface containing it, else to the unbounded
+  // region.
   std::vector<std::uint32_t> region_of_shell(r.shells, no_index);
   std::uint32_t regions = 0;
   for (std::size_t s = 0; s < r.shells; ++s)
@@ -208,63 +275,183 @@ inline volume_result find_volumes(const wire_graph& g, const std::vector<wire_fa
   for (std::size_t s = 0; s < r.shells; ++s)
     for (const auto i : shell_faces[s])
       for (const auto v : faces[i].loops[0]) shell_box[s].add(g.points[v]);
+  std::vector<std::size_t> positive;
+  for (std::size_t s = 0; s < r.shells; ++s)
+    if (shell_volume[s] > 0.0) positive.push_back(s);
+  std::sort(positive.begin(), positive.end(),
+            [&](std::size_t a, std::size_t b) { return shell_volume[a] < shell_volume[b]; });
+  std::vector<std::uint32_t> mark(g.num_vertices(), no_index);
+  std::uint32_t stamp = 0;
   for (std::size_t s = 0; s < r.shells; ++s) {
     if (shell_volume[s] > 0.0) continue;
     ++r.outside_shells;
-    if (r.objects < 2) continue;
-    const glm::dvec3 q = g.points[faces[shell_faces[s][0]].loops[0][0]];
-    std::size_t best = no_index;
-    for (std::size_t t = 0; t < r.shells; ++t) {
-      if (shell_volume[t] <= 0.0 || shell_object[t] == shell_object[s]) continue;
-      const auto& b = shell_box[t];
-      if (q.x < b.min.x || q.y < b.min.y || q.z < b.min.z || q.x > b.max.x || q.y > b.max.y || q.z > b.max.z)
+    const auto& b = shell_box[s];
+    // The smallest positive shell of another surface whose box holds this one's and which
+    // contains it (positive is sorted by volume).
+    for (const auto t : positive) {
+      if (shell_surface[t] == shell_surface[s]) continue;
+      const auto& c = shell_box[t];
+      if (b.min.x < c.min.x || b.min.y < c.min.y || b.min.z < c.min.z || b.max.x > c.max.x ||
+          b.max.y > c.max.y || b.max.z > c.max.z)
         continue;
-      if (best != no_index && shell_volume[t] >= shell_volume[best]) continue;
-      if (detail::inside_surface(g, faces, shell_faces[t], q)) best = t;
-    }
-    if (best != no_index) {
-      region_of_shell[s] = region_of_shell[best];
+      if (!detail::surface_inside(g, faces, shell_faces[t], shell_faces[s], mark, stamp++)) continue;
+      region_of_shell[s] = region_of_shell[t];
       ++r.nested_shells;
+      break;
     }
   }
 
-  // Merge across unforced faces when asked: the unbounded region is `regions`.
-  detail::union_find merged(regions + 1);
-  auto region = [&](std::uint32_t face, int s) {
-    const auto rg = region_of_shell[shell_of[side_id(face, s)]];
-    return rg == no_index ? regions : rg;
-  };
-  // Unforced faces: between two volumes, and at each edge at least two other faces remain,
-  // not just two coplanar ones (a wall whose edge shows on a flat outer surface is forced).
+  // The reading rule. O is the unbounded region, index `regions`.
+  const std::uint32_t O = regions;
+  std::vector<std::array<std::uint32_t, 2>> sides_of(nf);
+  std::vector<char> alive(nf, 0);
   for (std::uint32_t i = 0; i < nf; ++i) {
-    if (region(i, 1) == regions || region(i, -1) == regions || region(i, 1) == region(i, -1)) continue;
-    bool forced = false;
-    for (const auto& loop : faces[i].loops)
-      for (std::size_t k = 0; k < loop.size() && !forced; ++k) {
-        const auto& f = fan[g.find_edge(loop[k], loop[(k + 1) % loop.size()])];
-        if (f.size() < 3) forced = true;
-        if (f.size() == 3) {
-          std::array<std::uint32_t, 2> o{};
-          std::size_t n = 0;
-          for (const auto& en : f)
-            if (en.face != i) o[n++] = en.face;
-          forced = glm::length(glm::cross(faces[o[0]].normal, faces[o[1]].normal)) < 1e-9;
-        }
-      }
-    if (!forced) r.unforced.push_back(i);
+    for (int k = 0; k < 2; ++k) {
+      const auto rg = region_of_shell[shell_of[side_id(i, k == 0 ? 1 : -1)]];
+      sides_of[i][static_cast<std::size_t>(k)] = rg == no_index ? O : rg;
+    }
+    alive[i] = sides_of[i][0] != sides_of[i][1];
   }
-  if (options.merge_unforced)
-    for (const auto i : r.unforced) merged.unite(region(i, 1), region(i, -1));
-  const std::uint32_t outside = merged.find(regions);
+  const auto at = detail::faces_at_edges(g, faces, &alive);
+  const std::vector<char> needed = detail::needed_faces(g, faces, at, alive);
+  std::vector<char> unforced(nf, 0), seam(nf, 0);
+  for (std::uint32_t i = 0; i < nf; ++i) {
+    if (!alive[i] || needed[i]) continue;
+    unforced[i] = 1;
+    // A seam face continues, at every edge, in the plane of another face: a wall among walls.
+    seam[i] = 1;
+    for (const auto& loop : faces[i].loops)
+      for (std::size_t k = 0; k < loop.size() && seam[i]; ++k) {
+        bool flat = false;
+        for (const auto j : at[g.find_edge(loop[k], loop[(k + 1) % loop.size()])])
+          flat = flat || (j != i && detail::coplanar_normals(faces[i].normal, faces[j].normal));
+        seam[i] = flat;
+      }
+  }
+  // Groups: bounded regions joined by unforced walls. A group with an unforced face on the
+  // outside is a hole, dent or tunnel and becomes outside, unless a wall inside it is a seam
+  // (grid-like: undecidable); a group without one is one volume (unless keep_walls).
+  detail::union_find group(std::size_t{regions} + 1);
+  for (std::uint32_t i = 0; i < nf; ++i)
+    if (unforced[i] && sides_of[i][0] != O && sides_of[i][1] != O)
+      group.unite(sides_of[i][0], sides_of[i][1]);
+  std::vector<char> opens(regions + 1, 0), has_seam(regions + 1, 0), droppable(regions + 1, 0);
+  auto group_of = [&](std::uint32_t i) {
+    return group.find(sides_of[i][0] != O ? sides_of[i][0] : sides_of[i][1]);
+  };
+  for (std::uint32_t i = 0; i < nf; ++i) {
+    if (!unforced[i]) continue;
+    if (sides_of[i][0] == O || sides_of[i][1] == O)
+      opens[group_of(i)] = 1;
+    else if (seam[i])
+      has_seam[group_of(i)] = 1;
+  }
+  for (std::uint32_t gr = 0; gr < regions; ++gr)
+    droppable[gr] = options.reading != face_reading::keep_all &&
+                    (opens[gr] ? !has_seam[gr] : options.reading == face_reading::needed);
+  std::vector<char> drop(nf, 0);
+  detail::union_find merged(std::size_t{regions} + 1);
+  // Drop what the groups allow, then take back every group whose drop would leave an edge on
+  // fewer than two faces or two coplanar ones, or a kept face with one region on both sides.
+  for (bool violated = true; violated;) {
+    violated = false;
+    merged = detail::union_find(std::size_t{regions} + 1);
+    for (std::uint32_t i = 0; i < nf; ++i) {
+      drop[i] = unforced[i] && droppable[group_of(i)];
+      if (drop[i]) merged.unite(sides_of[i][0], sides_of[i][1]);
+    }
+    std::vector<std::uint32_t> kept;
+    auto normal = [&](std::uint32_t j) { return faces[j].normal; };
+    for (std::uint32_t e = 0; e < g.num_edges(); ++e) {
+      bool any = false;
+      kept.clear();
+      for (const auto j : at[e]) {
+        any = any || drop[j];
+        if (!drop[j]) kept.push_back(j);
+      }
+      if (!any || (!kept.empty() && !detail::edge_needs_more(kept, normal))) continue;
+      for (const auto j : at[e])
+        if (drop[j]) droppable[group_of(j)] = 0;
+      violated = true;
+    }
+    for (std::uint32_t i = 0; i < nf; ++i) {
+      if (!alive[i] || drop[i] || merged.find(sides_of[i][0]) != merged.find(sides_of[i][1])) continue;
+      for (const auto rg : sides_of[i])
+        if (rg != O) droppable[group.find(rg)] = 0;
+      violated = true;
+    }
+  }
+  for (std::uint32_t i = 0; i < nf; ++i) {
+    if (drop[i]) {
+      r.dropped.push_back(i);
+      const bool hole = opens[group_of(i)];
+      r.alternatives.push_back("face " + std::to_string(i) + " (" + std::to_string(faces[i].loops[0].size()) +
+                               "-gon) would " + (hole ? "close a hole or dent" : "split a volume in two"));
+      r.diagnostics.push_back("face " + std::to_string(i) +
+                              ": no edge needs it, so it is not a face (it would " +
+                              (hole ? "close a hole or dent)" : "split a volume in two)"));
+    } else if (unforced[i]) {
+      r.unforced.push_back(i);
+    }
+  }
+
+  // merge_unforced: one kept unforced wall at a time, with every other wall between the same
+  // two volumes, when none of those is needed and every edge keeps its faces.
+  if (options.merge_unforced) {
+    detail::region_links links(std::size_t{regions} + 1);
+    std::vector<char> is_wall(nf, 0);
+    for (const auto i : r.unforced) is_wall[i] = sides_of[i][0] != O && sides_of[i][1] != O;
+    for (std::uint32_t i = 0; i < nf; ++i) {
+      if (!alive[i] || drop[i]) continue;
+      const auto a = merged.find(sides_of[i][0]), b = merged.find(sides_of[i][1]);
+      if (a != b) links.add(a, b, i, is_wall[i] != 0);
+    }
+    std::vector<std::uint32_t> kept;
+    auto normal = [&](std::uint32_t j) { return faces[j].normal; };
+    for (const auto i : r.unforced) {
+      const auto a = merged.find(sides_of[i][0]), b = merged.find(sides_of[i][1]);
+      if (!is_wall[i] || a == b) continue;
+      const auto it = links.pairs.find(detail::region_links::key(a, b));
+      if (it == links.pairs.end() || it->second.needed != 0) continue;
+      const std::vector<std::uint32_t> walls = it->second.walls;
+      for (const auto w : walls) drop[w] = 1;  // tentatively: every wall between the two
+      bool ok = true;
+      for (std::size_t x = 0; x < walls.size() && ok; ++x)
+        for (const auto& loop : faces[walls[x]].loops)
+          for (std::size_t k = 0; k < loop.size() && ok; ++k) {
+            kept.clear();
+            for (const auto j : at[g.find_edge(loop[k], loop[(k + 1) % loop.size()])])
+              if (!drop[j]) kept.push_back(j);
+            ok = !kept.empty() && !detail::edge_needs_more(kept, normal);
+          }
+      if (!ok) {
+        for (const auto w : walls) drop[w] = 0;
+        continue;
+      }
+      for (const auto w : walls) {
+        r.merged.push_back(w);
+        r.diagnostics.push_back("wall " + std::to_string(w) + " merged away (merge_unforced)");
+      }
+      links.unite(a, b, merged);
+    }
+    std::erase_if(r.unforced, [&](std::uint32_t i) { return drop[i] != 0; });
+    std::sort(r.merged.begin(), r.merged.end());
+  }
+  for (const auto i : r.unforced)
+    r.diagnostics.push_back(
+        "face " + std::to_string(i) +
+        ": no edge needs it; kept, since the wireframe does not decide which such walls go");
+
+  const std::uint32_t outside = merged.find(O);
   std::vector<std::uint32_t> volume_id(regions + 1, no_index);
   r.face_volumes.resize(nf);
   r.face_kept.assign(nf, 1);
   for (std::uint32_t i = 0; i < nf; ++i) {
-    const std::uint32_t a = merged.find(region(i, 1)), b = merged.find(region(i, -1));
-    if (a == b) {
+    const std::uint32_t a = merged.find(sides_of[i][0]), b = merged.find(sides_of[i][1]);
+    if (a == b || drop[i]) {
       r.face_kept[i] = 0;
-      if (!options.merge_unforced)
-        r.diagnostics.push_back("face " + std::to_string(i) + " has the same volume on both sides");
+      if (!alive[i])
+        r.diagnostics.push_back("face " + std::to_string(i) + " has the same region on both sides");
       r.face_volumes[i] = {no_index, no_index};
       continue;
     }

@@ -102,6 +102,12 @@ struct wire_face {
   bool fills_hole = false;
 };
 
+/// A face a stage had and removed, and why (for the result's diagnostics: nothing is lost silently).
+struct dropped_face {
+  wire_face face;
+  std::string reason;
+};
+
 /// The area vector (Newell) of a face: normal × area, right-hand about loops[0]. O(size).
 inline glm::dvec3 area_vector(const wire_graph& g, const wire_face& f) {
   glm::dvec3 s(0.0);
@@ -205,6 +211,63 @@ inline int walk_direction(const wire_graph& g, const wire_face& f, std::uint32_t
       if (a == t && b == s) return -1;
     }
   return 0;
+}
+
+/// For each edge, the faces using it (only faces with alive[i] != 0 when `alive` is given).
+/// O(Σ L).
+inline std::vector<std::vector<std::uint32_t>> faces_at_edges(const wire_graph& g,
+                                                              const std::vector<wire_face>& faces,
+                                                              const std::vector<char>* alive = nullptr) {
+  std::vector<std::vector<std::uint32_t>> at(g.num_edges());
+  for (std::uint32_t i = 0; i < faces.size(); ++i) {
+    if (alive && !(*alive)[i]) continue;
+    for (const auto& loop : faces[i].loops)
+      for (std::size_t k = 0; k < loop.size(); ++k)
+        at[g.find_edge(loop[k], loop[(k + 1) % loop.size()])].push_back(i);
+  }
+  return at;
+}
+
+/// Two faces through one edge lie in one plane when their unit normals are parallel. O(1).
+inline bool coplanar_normals(const glm::dvec3& a, const glm::dvec3& b) {
+  return glm::length(glm::cross(a, b)) < 1e-9;
+}
+
+/// True when an edge lying on exactly the faces `others` (a face under test left out) would
+/// need another face: fewer than two faces, or just two coplanar ones (a seam inside a flat
+/// surface, which a wireframe draws only where a wall meets it). O(|others|).
+template <class Normal>
+bool edge_needs_more(const std::vector<std::uint32_t>& others, Normal&& normal) {
+  if (others.size() < 2) return true;
+  return others.size() == 2 && coplanar_normals(normal(others[0]), normal(others[1]));
+}
+
+/// True when some edge of face i needs it among the faces with alive[j] != 0: without it that
+/// edge would lie on fewer than two of them or on just two coplanar ones (the reading rule of
+/// docs/wireframe.md). `at` lists the faces of every edge. O(L_i · k) for k faces at an edge.
+inline bool needed_faces_one(const wire_graph& g, const std::vector<wire_face>& faces,
+                             const std::vector<std::vector<std::uint32_t>>& at,
+                             const std::vector<char>& alive, std::uint32_t i) {
+  std::vector<std::uint32_t> others;
+  auto normal = [&](std::uint32_t j) { return faces[j].normal; };
+  for (const auto& loop : faces[i].loops)
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      others.clear();
+      for (const auto j : at[g.find_edge(loop[k], loop[(k + 1) % loop.size()])])
+        if (j != i && alive[j]) others.push_back(j);
+      if (edge_needs_more(others, normal)) return true;
+    }
+  return false;
+}
+
+/// needed_faces_one for every face with alive[i] != 0 (0 for the others). O(Σ L · k).
+inline std::vector<char> needed_faces(const wire_graph& g, const std::vector<wire_face>& faces,
+                                      const std::vector<std::vector<std::uint32_t>>& at,
+                                      const std::vector<char>& alive) {
+  std::vector<char> needed(faces.size(), 0);
+  for (std::uint32_t i = 0; i < faces.size(); ++i)
+    if (alive[i]) needed[i] = needed_faces_one(g, faces, at, alive, i);
+  return needed;
 }
 
 /// Hash of an integer grid cell (splitmix64 finaliser per coordinate). O(1).

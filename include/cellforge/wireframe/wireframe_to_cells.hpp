@@ -42,13 +42,25 @@ struct wireframe_options {
   bool check_result = true;
 };
 
+/// A planar cycle of the wireframe that is not a face of the result, in the caller's vertex
+/// labels (loops[0] outer, then holes), and why.
+struct face_note {
+  std::vector<std::vector<std::uint32_t>> loops;
+  std::string reason;
+};
+
 /// The cell complex, its input, and every stage's report.
 struct wireframe_result {
   cell_complex_input input;  ///< points, edges, faces (loops), volumes (signed faces)
   cell_complex cells;        ///< make_cell_complex(input), when options.build_complex
   /// input.points[i] is the caller's point input_vertex[i]; input.edges[k] the caller's edge input_edge[k].
   std::vector<std::uint32_t> input_vertex, input_edge;
-  std::vector<std::uint32_t> unforced;  ///< indices into input.faces of walls no edge forces
+  std::vector<std::uint32_t> unforced;  ///< indices into input.faces of faces no edge needs (kept: undecided)
+  /// Cycles the reading rule did not take (no edge needs them), each with the reading it stands
+  /// for ("would close a hole or dent", "would split a volume in two"); see volume_options::reading.
+  std::vector<face_note> alternatives;
+  /// Faces selected and then removed (a free edge, an overlap): never silent.
+  std::vector<face_note> lost;
   read_result read;
   trace_result trace;
   unique_result unique;
@@ -81,11 +93,27 @@ wireframe_result wireframe_to_cells(const G& wire, const wireframe_options& opti
   // The planar tracer finds every planar face; only the seed's search can miss some.
   if (options.trace.kind == tracer_kind::planar) extra.add_missed = false;
   r.extra = extra_faces(g, r.unique.faces, r.arrangement.selected, extra);
+  auto note = [&](const wire_face& f, std::string reason) {
+    face_note n{f.loops, std::move(reason)};
+    for (auto& loop : n.loops)
+      for (auto& v : loop) v = g.input_vertex[v];
+    return n;
+  };
+  for (const auto& d : r.extra.removed) r.lost.push_back(note(d.face, d.reason));
   if (r.extra.faces.empty())
-    throw error(error_category::topology, "wireframe_to_cells: no face found: no planar circuit of the " +
-                                              std::to_string(g.num_edges()) +
-                                              " edges survives (skew or crossing cycles only)");
+    throw error(error_category::topology,
+                "wireframe_to_cells: no face found: no planar circuit of the " +
+                    std::to_string(g.num_edges()) + " edges survives (" +
+                    (r.lost.empty()
+                         ? std::string("skew or crossing cycles only")
+                         : std::to_string(r.lost.size()) +
+                               " selected faces were removed, the first because " + r.lost.front().reason) +
+                    ")");
   r.volume = find_volumes(g, r.extra.faces, options.volume);
+  for (std::size_t k = 0; k < r.volume.dropped.size(); ++k) {
+    const std::string& alt = r.volume.alternatives[k];
+    r.alternatives.push_back(note(r.extra.faces[r.volume.dropped[k]], alt.substr(alt.find(" would ") + 1)));
+  }
   r.relations = find_relations(g, r.extra.faces, r.volume, options.relations);
 
   detail::stopwatch clock;
