@@ -1,0 +1,467 @@
+// SPDX-License-Identifier: MIT
+// The wireframe → cell complex pipeline on the generated sweep of tests/wireframe_sweep.hpp:
+// every model converted with default options and compared with its truth (faces in the
+// caller's labels, volumes, objects, unforced walls, a valid complex). The totals and every
+// miss are printed on every run, each marked with whether the same model with its own labels
+// and place comes out exact (a miss that depends on the labelling); the exact rate must reach
+// 99.5 % with no error. Release runs the full sweep, the sanitizer build a sample of every
+// family; CELLFORGE_SWEEP=full|sample chooses instead.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <map>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include "cellforge/cells/validate.hpp"
+#include "cellforge/core/error.hpp"
+#include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/wireframe/wireframe_to_cells.hpp"
+#include "wireframe_sweep.hpp"
+
+namespace {
+
+using cellforge::sample_model;
+using faces_t = std::vector<std::vector<std::vector<std::uint32_t>>>;
+using wireframe_sweep::sweep_model;
+using wireframe_sweep::sweep_size;
+
+// The sweep to run: full in Release, the sample under the sanitizers, unless CELLFORGE_SWEEP
+// says otherwise. O(1).
+sweep_size chosen_size() {
+  if (const char* env = std::getenv("CELLFORGE_SWEEP")) {
+    const std::string v = env;
+    if (v == "full") return sweep_size::full;
+    if (v == "sample") return sweep_size::sample;
+    std::printf("CELLFORGE_SWEEP=%s is neither full nor sample: using the build's default\n", env);
+  }
+#ifdef NDEBUG
+  return sweep_size::full;
+#else
+  return sweep_size::sample;
+#endif
+}
+
+// Milliseconds since t.
+// O(1).
+double ms_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+// The result's faces in the caller's vertex labels, which the truth uses.
+// O(total loop length).
+faces_t result_faces(const cellforge::wireframe_result& r) {
+  faces_t out;
+  for (const auto& f : r.input.faces) {
+    out.push_back(f.loops);
+    for (auto& loop : out.back())
+      for (auto& v : loop) v = r.input_vertex[v];
+  }
+  return out;
+}
+
+// The faces of `a` that `b` lacks (multisets of canonical faces), each as its corner count
+// and holes: "4" a quadrilateral, "8h1" an octagon with one hole. O(F log F · face size).
+std::string unmatched(const faces_t& a, const faces_t& b) {
+  std::multiset<faces_t::value_type> rest;
+  for (const auto& f : b) rest.insert(cellforge::detail::canonical_face(f));
+  std::map<std::string, int> shapes;
+  for (const auto& f : a) {
+    const auto it = rest.find(cellforge::detail::canonical_face(f));
+    if (it != rest.end()) {
+      rest.erase(it);
+      continue;
+    }
+    ++shapes[std::to_string(f[0].size()) + (f.size() > 1 ? "h" + std::to_string(f.size() - 1) : "")];
+  }
+  std::string out;
+  for (const auto& [shape, n] : shapes)
+    out += (out.empty() ? "" : " ") + (n > 1 ? std::to_string(n) + "x" : "") + shape;
+  return out.empty() ? "-" : out;
+}
+
+// Why a result is not the truth, in one line; empty when it is exact.
+// O(F log F · face size).
+std::string miss_reason(const sample_model& m, const cellforge::wireframe_result& r) {
+  std::vector<std::string> why;
+  const faces_t faces = result_faces(r);
+  const bool faces_ok = cellforge::same_faces(m.faces, faces);
+  if (!faces_ok)
+    why.push_back("faces " + std::to_string(faces.size()) + " vs " + std::to_string(m.faces.size()) +
+                  " expected (extra " + unmatched(faces, m.faces) + "; missing " + unmatched(m.faces, faces) +
+                  ")");
+  if (r.input.volumes.size() != m.volumes.size())
+    why.push_back("volumes " + std::to_string(r.input.volumes.size()) + " vs " +
+                  std::to_string(m.volumes.size()) + " expected");
+  else if (faces_ok && !cellforge::same_volumes(m.faces, m.volumes, faces, r.input.volumes))
+    why.push_back("volumes differ (" + std::to_string(m.volumes.size()) + " each)");
+  if (const std::size_t want = wireframe_sweep::truth_objects(m); r.cells.num_objects() != want)
+    why.push_back("objects " + std::to_string(r.cells.num_objects()) + " vs " + std::to_string(want) +
+                  " expected");
+  if (r.unforced.size() != m.unforced_faces)
+    why.push_back("unforced " + std::to_string(r.unforced.size()) + " vs " +
+                  std::to_string(m.unforced_faces) + " expected");
+  if (const auto v = cellforge::validate(r.cells); !v.ok()) why.push_back("invalid complex: " + v.message);
+  std::string out;
+  for (const auto& w : why) out += (out.empty() ? "" : "; ") + w;
+  return out;
+}
+
+// What is wrong with a model's truth as such (independent of the pipeline); empty when sound:
+// distinct proper edges, each on a face; face loops of >= 3 distinct vertices along existing
+// edges, planar; each face in one or two volumes; each volume closed; no face twice.
+// O(L log L), L the total loop length.
+std::string unsound(const sample_model& m) {
+  const auto& pts = m.wire.points;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> sides;  // wire edge → face sides on it
+  for (const auto& e : m.wire.edges) {
+    if (e[0] == e[1] || e[0] >= pts.size() || e[1] >= pts.size()) return "a degenerate edge";
+    if (!sides.emplace(std::minmax(e[0], e[1]), 0).second) return "an edge twice";
+  }
+  glm::dvec3 lo = pts.at(0), hi = pts.at(0);
+  for (const auto& p : pts) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const double tolerance = 1e-9 * glm::length(hi - lo);
+  std::set<faces_t::value_type> seen;
+  for (std::size_t f = 0; f < m.faces.size(); ++f) {
+    const auto& face = m.faces[f];
+    if (!seen.insert(cellforge::detail::canonical_face(face)).second)
+      return "face " + std::to_string(f) + " twice";
+    const glm::dvec3 n = glm::normalize(cellforge::detail::newell_normal(pts, face[0]));
+    std::set<std::uint32_t> corners;
+    for (const auto& loop : face) {
+      if (loop.size() < 3)
+        return "face " + std::to_string(f) + " has a loop of " + std::to_string(loop.size());
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        if (!corners.insert(loop[i]).second) return "face " + std::to_string(f) + " repeats a vertex";
+        if (std::abs(glm::dot(pts[loop[i]] - pts[face[0][0]], n)) > tolerance)
+          return "face " + std::to_string(f) + " is not planar";
+        const auto it = sides.find(std::minmax(loop[i], loop[(i + 1) % loop.size()]));
+        if (it == sides.end()) return "face " + std::to_string(f) + " uses a missing edge";
+        ++it->second;
+      }
+    }
+  }
+  for (const auto& [e, n] : sides)
+    if (n == 0) return "edge " + std::to_string(e.first) + "-" + std::to_string(e.second) + " is on no face";
+  std::vector<int> volumes_of(m.faces.size(), 0);
+  for (std::size_t c = 0; c < m.volumes.size(); ++c) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+    for (const std::uint32_t f : m.volumes[c]) {
+      if (f >= m.faces.size()) return "volume " + std::to_string(c) + " names a missing face";
+      ++volumes_of[f];
+      for (const auto& loop : m.faces[f])
+        for (std::size_t i = 0; i < loop.size(); ++i)
+          ++uses[std::minmax(loop[i], loop[(i + 1) % loop.size()])];
+    }
+    for (const auto& [e, n] : uses)
+      if (n % 2 != 0) return "volume " + std::to_string(c) + " is open";
+  }
+  for (std::size_t f = 0; f < m.faces.size(); ++f)
+    if (volumes_of[f] < 1 || volumes_of[f] > 2)
+      return "face " + std::to_string(f) + " in " + std::to_string(volumes_of[f]) + " volumes";
+  return {};
+}
+
+// Converts a model and judges the result: empty when exact, else why (an error's message too).
+// O(one conversion).
+std::string judge(const sample_model& m) {
+  try {
+    return miss_reason(m, cellforge::wireframe_to_cells(m.wire));
+  } catch (const cellforge::error& e) {
+    return "error (" + std::string(cellforge::to_string(e.category())) + "): " + e.what();
+  } catch (const std::exception& e) {
+    return std::string("error (not a cellforge::error): ") + e.what();
+  }
+}
+
+struct family_total {
+  std::size_t models = 0, exact = 0, errors = 0;
+  double ms = 0;
+  std::vector<std::pair<std::size_t, std::string>> misses;  // (model index, name: reason)
+};
+
+}  // namespace
+
+TEST_CASE("wireframe sweep: the pipeline recovers >= 99.5 % of the generated models exactly") {
+  const sweep_size size = chosen_size();
+  const auto t0 = std::chrono::steady_clock::now();
+  const wireframe_sweep::sweep_set set = wireframe_sweep::make_sweep(size);
+  const double generate_ms = ms_since(t0);
+  std::map<std::string, family_total> totals;
+  std::size_t exact = 0, errors = 0;
+  const auto t1 = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < set.models.size(); ++i) {
+    const sweep_model& s = set.models[i];
+    family_total& t = totals[s.family];
+    ++t.models;
+    const auto start = std::chrono::steady_clock::now();
+    const std::string reason = judge(s.model);
+    t.ms += ms_since(start);
+    if (reason.rfind("error", 0) == 0) ++errors, ++t.errors;
+    if (reason.empty())
+      ++exact, ++t.exact;
+    else
+      t.misses.push_back({i, s.model.name + ": " + reason});
+  }
+  const double run_ms = ms_since(t1);
+  // Each miss again on the same model with its own labels and place: does it depend on them?
+  const wireframe_sweep::sweep_set plain = wireframe_sweep::make_sweep(size, false);
+  std::size_t order_only = 0;
+  for (auto& [family, t] : totals)
+    for (auto& [i, line] : t.misses) {
+      const bool fine = judge(plain.models.at(i).model).empty();
+      order_only += fine;
+      line += fine ? " [unshuffled: exact]" : " [unshuffled: missed too]";
+    }
+  const std::size_t n = set.models.size();
+  const double rate = n == 0 ? 0.0 : 100.0 * double(exact) / double(n);
+
+  std::printf(
+      "\nwireframe sweep (%s): %zu models, %zu exact (%.1f %%), %zu errors; generated in %.0f ms, "
+      "converted in %.0f ms\n",
+      size == sweep_size::full ? "full" : "sample", n, exact, rate, errors, generate_ms, run_ms);
+  std::printf("  %-16s %6s %6s %7s %7s %9s\n", "family", "models", "exact", "rate", "errors", "ms");
+  for (const auto& family : wireframe_sweep::sweep_families()) {
+    const family_total& t = totals[family];
+    std::printf("  %-16s %6zu %6zu %6.1f%% %7zu %9.1f\n", family.c_str(), t.models, t.exact,
+                t.models == 0 ? 0.0 : 100.0 * double(t.exact) / double(t.models), t.errors, t.ms);
+  }
+  for (const auto& d : set.draws)
+    std::printf(
+        "  random family '%s': %zu draws kept, %zu rejected (%zu not manifold, with a cavity or a "
+        "cell in pieces, %zu outlines touching themselves, %zu with a face no edge needs)\n",
+        d.family.c_str(), d.kept, d.rejected(), d.not_manifold, d.outline, d.unneeded);
+  for (const auto& l : set.left_out) std::printf("  library model left out: %s\n", l.c_str());
+  for (const auto& f : set.faults) std::printf("  GENERATOR FAULT: %s\n", f.c_str());
+  std::printf("misses (%zu; %zu of them exact on the unshuffled model):\n", n - exact, order_only);
+  for (const auto& family : wireframe_sweep::sweep_families())
+    for (const auto& miss : totals[family].misses)
+      std::printf("  [%s] %s\n", family.c_str(), miss.second.c_str());
+  std::fflush(stdout);
+
+  CHECK(set.faults.empty());
+  CHECK(errors == 0);
+  CHECK(rate >= 99.5);
+}
+
+TEST_CASE("wireframe sweep: the generator") {
+  using wireframe_sweep::faces_no_edge_needs;
+  const sweep_size size = chosen_size();
+  const wireframe_sweep::sweep_set set = wireframe_sweep::make_sweep(size);
+  for (const auto& f : set.faults) FAIL_CHECK(f);
+
+  SUBCASE("sizes, names, families") {
+    if (size == sweep_size::full)
+      CHECK(set.models.size() >= 500);
+    else
+      CHECK((set.models.size() >= 80 && set.models.size() <= 160));
+    std::set<std::string> names;
+    std::map<std::string, std::size_t> per_family;
+    for (const auto& s : set.models) {
+      const std::string name = s.model.name;
+      CHECK_MESSAGE(names.insert(name).second, name);
+      ++per_family[s.family];
+    }
+    for (const auto& family : wireframe_sweep::sweep_families()) {
+      CAPTURE(family);
+      CHECK(per_family[family] >= (size == sweep_size::full ? 6u : 2u));
+    }
+    CHECK(per_family.size() == wireframe_sweep::sweep_families().size());
+  }
+
+  SUBCASE("every truth is sound and follows the rule") {
+    for (const auto& s : set.models) {
+      const sample_model& m = s.model;
+      const std::string name = m.name, why = unsound(m);
+      CAPTURE(name);
+      CHECK_MESSAGE(why.empty(), why);
+      if (s.family == "grid") {
+        CHECK(m.unforced_faces == faces_no_edge_needs(m));
+        // All three sides >= 3, or two of them <= 2 (a 3 x 3 x 1 grid reads as a ring of boxes).
+        std::array<std::size_t, 3> k{};
+        REQUIRE(std::sscanf(name.c_str(), "grid %zux%zux%zu", &k[0], &k[1], &k[2]) == 3);
+        const auto small = std::count_if(k.begin(), k.end(), [](std::size_t x) { return x <= 2; });
+        CHECK((small == 0 || small >= 2));
+      } else {
+        CHECK((faces_no_edge_needs(m) == 0 && m.unforced_faces == 0));
+      }
+    }
+  }
+
+  SUBCASE("random families: draws counted, some rejected") {
+    REQUIRE(set.draws.size() == 2);
+    for (const auto& d : set.draws) {
+      CAPTURE(d.family);
+      CHECK(d.kept == (size == sweep_size::full ? 80u : 12u));
+      CHECK(d.rejected() > 0);
+    }
+    // The judge on hand-made layouts: cubes of one label meeting along an edge, a cavity, two
+    // labels meeting along an edge only (each manifold, the union not), a cell buried in a slab.
+    namespace d = wireframe_sweep::detail;
+    wireframe_sweep::family_draws draws{"hand-made"};
+    cellforge::voxel_layout edge = cellforge::empty_layout({0, 1, 2}, {0, 1, 2}, {0, 1});
+    edge.at(0, 0, 0) = edge.at(1, 1, 0) = 1;
+    CHECK(!d::accept(edge, 1, "edge", draws));
+    CHECK(draws.not_manifold == 1);
+    cellforge::voxel_layout hollow = cellforge::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1, 2, 3});
+    hollow.labels.assign(27, 1);
+    hollow.at(1, 1, 1) = 0;
+    CHECK(!d::accept(hollow, 1, "hollow", draws));
+    CHECK(draws.not_manifold == 2);
+    edge.at(1, 1, 0) = 2;
+    CHECK(!d::accept(edge, 2, "edge", draws));  // the union touches itself along the edge
+    CHECK(draws.not_manifold == 3);
+    cellforge::voxel_layout slab = cellforge::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1});
+    slab.labels.assign(9, 1);
+    slab.at(1, 1, 0) = 2;  // the middle cell: its top and bottom lie inside flat faces
+    CHECK(!d::accept(slab, 2, "slab", draws));
+    CHECK(draws.unneeded == 1);
+    slab.at(1, 1, 0) = 1;
+    slab.at(2, 0, 0) = slab.at(2, 1, 0) = slab.at(2, 2, 0) = 2;
+    CHECK(d::accept(slab, 2, "slab", draws).has_value());
+    CHECK(draws.kept == 1);
+  }
+
+  SUBCASE("faces no edge needs, on hand-made examples") {
+    // A house whose truth keeps the square under its roof as a wall: no edge needs it.
+    cellforge::ring_stack house;
+    house.n = 4;
+    house.radius = {1.0, 1.0};
+    house.height = {0.0, 1.0};
+    house.top = 1.6;
+    house.walls = {1};
+    CHECK(faces_no_edge_needs(cellforge::make_ring_stack(house, "house with its square")) == 1);
+    sample_model oct = cellforge::sample_octahedron();
+    oct.faces.push_back({{0, 1, 2, 3}});  // an equator as a face: its edges already have two triangles
+    CHECK(faces_no_edge_needs(oct) == 1);
+    CHECK(faces_no_edge_needs(cellforge::sample_two_cubes()) == 0);     // the wall's edges lie on flat faces
+    CHECK(faces_no_edge_needs(cellforge::sample_grid(3, 3, 1)) == 2);   // the middle cube's top and bottom
+    CHECK(faces_no_edge_needs(cellforge::sample_grid(3, 3, 3)) == 12);  // 6 inner walls, 6 outer middles
+    CHECK(faces_no_edge_needs(cellforge::sample_grid(5, 2, 2)) == 0);
+    CHECK(faces_no_edge_needs(cellforge::sample_frame()) == 0);
+    // A ring stack with every ring a wall: its rings lie between non-coplanar bands.
+    cellforge::ring_stack barrel;
+    barrel.n = 7;
+    barrel.radius = {1.0, 1.3, 1.4, 1.3, 1.0};
+    barrel.height = {0.0, 1.0, 2.0, 3.0, 4.0};
+    barrel.bottom = -1.0;
+    barrel.top = 5.0;
+    barrel.walls = {0, 1, 2, 3, 4};
+    const sample_model walled = cellforge::make_ring_stack(barrel, "walled barrel");
+    CHECK(faces_no_edge_needs(walled) == 5);
+    const sample_model open = wireframe_sweep::detail::without_walls(walled, "barrel");
+    CHECK(open.volumes.size() == 1);
+    CHECK(open.faces.size() == walled.faces.size() - 5);
+    CHECK(faces_no_edge_needs(open) == 0);
+    CHECK(wireframe_sweep::truth_objects(cellforge::sample_disjoint_solids()) == 2);
+    CHECK(wireframe_sweep::truth_objects(cellforge::sample_frame()) == 1);  // the hole stays with its face
+  }
+
+  SUBCASE("shuffling permutes, and the truth follows") {
+    const std::vector<sample_model> bases{cellforge::sample_stepped_block(), cellforge::sample_frame(),
+                                          cellforge::sample_grid(3, 3, 3),
+                                          wireframe_sweep::detail::geodesic_sphere(2),
+                                          wireframe_sweep::detail::holed_slab(true, 3, false, true)};
+    for (const auto& base : bases)
+      for (const bool rigid : {false, true}) {
+        const std::string name = base.name;
+        CAPTURE(name);
+        CAPTURE(rigid);
+        wireframe_sweep::relabelling t;
+        const sample_model m = wireframe_sweep::shuffled(base, 12345, rigid, &t);
+        const std::size_t nv = base.wire.points.size(), ne = base.wire.edges.size();
+        // Real permutations, not the identity; some edges turned round and some not.
+        std::vector<std::uint32_t> back(nv);
+        std::vector<bool> hit(nv, false);
+        std::size_t fixed = 0;
+        for (std::uint32_t v = 0; v < nv; ++v) {
+          REQUIRE(t.vertex[v] < nv);
+          CHECK(!hit[t.vertex[v]]);
+          hit[t.vertex[v]] = true;
+          back[t.vertex[v]] = v;
+          fixed += t.vertex[v] == v;
+        }
+        CHECK(fixed < nv / 2);
+        const auto flips = std::count(t.flipped.begin(), t.flipped.end(), true);
+        CHECK((flips > 0 && static_cast<std::size_t>(flips) < ne));
+        // The wire is the old one through the permutation and the motion.
+        glm::dvec3 lo = base.wire.points[0], hi = lo;
+        for (const auto& p : base.wire.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+        const double diag = glm::length(hi - lo);
+        for (std::uint32_t v = 0; v < nv; ++v)
+          CHECK(glm::length(m.wire.points[t.vertex[v]] - (t.rotation * base.wire.points[v] + t.shift)) <=
+                1e-12 * diag * 20);
+        std::set<std::uint32_t> places;
+        for (std::size_t e = 0; e < ne; ++e) {
+          places.insert(t.edge[e]);
+          std::array<std::uint32_t, 2> ab{t.vertex[base.wire.edges[e][0]], t.vertex[base.wire.edges[e][1]]};
+          if (t.flipped[e]) std::swap(ab[0], ab[1]);
+          CHECK(m.wire.edges[t.edge[e]] == ab);
+        }
+        CHECK(places.size() == ne);
+        if (rigid) {
+          const glm::dmat3 rt = glm::transpose(t.rotation) * t.rotation;
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) CHECK(std::abs(rt[i][j] - (i == j ? 1.0 : 0.0)) < 1e-12);
+          CHECK(glm::determinant(t.rotation) == doctest::Approx(1.0));
+          CHECK(glm::length(t.shift) <= 10.0 * std::sqrt(3.0) * diag);
+          CHECK(glm::length(t.shift) > 0.0);
+        } else {
+          CHECK(t.shift == glm::dvec3(0.0));
+        }
+        // The shuffled truth mapped back is the old truth; the rule's counts do not change.
+        faces_t faces = m.faces;
+        for (auto& f : faces)
+          for (auto& loop : f)
+            for (auto& v : loop) v = back[v];
+        CHECK(cellforge::same_faces(base.faces, faces));
+        CHECK(cellforge::same_volumes(base.faces, base.volumes, faces, m.volumes));
+        CHECK(faces_no_edge_needs(m) == faces_no_edge_needs(base));
+        CHECK(wireframe_sweep::truth_objects(m) == wireframe_sweep::truth_objects(base));
+        CHECK(unsound(m).empty());
+        // Deterministic: the same seed gives the same model.
+        const sample_model again = wireframe_sweep::shuffled(base, 12345, rigid);
+        CHECK(again.wire.points == m.wire.points);
+        CHECK(again.wire.edges == m.wire.edges);
+      }
+  }
+
+  SUBCASE("the same sweep twice") {
+    const auto again = wireframe_sweep::sweep_models(sweep_size::sample);
+    const auto first = wireframe_sweep::sweep_models(sweep_size::sample);
+    REQUIRE(again.size() == first.size());
+    const auto plain = wireframe_sweep::make_sweep(sweep_size::sample, false).models;
+    REQUIRE(plain.size() == first.size());
+    for (std::size_t i = 0; i < plain.size(); ++i) {
+      CHECK(plain[i].model.name == first[i].model.name);
+      CHECK(plain[i].model.faces.size() == first[i].model.faces.size());
+      CHECK(plain[i].model.wire.edges.size() == first[i].model.wire.edges.size());
+    }
+    for (std::size_t i = 0; i < again.size(); ++i) {
+      CHECK(again[i].model.name == first[i].model.name);
+      CHECK(again[i].model.wire.points == first[i].model.wire.points);
+      CHECK(again[i].model.wire.edges == first[i].model.wire.edges);
+    }
+    // A model the sample shares with the full sweep is shuffled the same way (seeded by its name).
+    if (size == sweep_size::full) {
+      std::map<std::string, const sample_model*> by_name;
+      for (const auto& s : set.models) by_name[s.model.name] = &s.model;
+      for (const auto& s : first)
+        if (const auto it = by_name.find(s.model.name); it != by_name.end())
+          CHECK(it->second->wire.edges == s.model.wire.edges);
+    }
+  }
+}
