@@ -23,6 +23,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/error.hpp"
+#include "cellforge/core/morton.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/predicates.hpp"
 #include "cellforge/halfedge/conversion.hpp"
@@ -496,22 +497,9 @@ inline std::vector<std::uint32_t> brio_order(std::span<const glm::dvec3> pts) {
   glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
   for (std::uint32_t q : order) lo = glm::min(lo, pts[q]), hi = glm::max(hi, pts[q]);
   const glm::dvec3 extent = glm::max(hi - lo, glm::dvec3(std::numeric_limits<double>::min()));
-  auto spread = [](std::uint64_t v) {  // 21 bits to every third of 63
-    v &= 0x1FFFFF;
-    v = (v | v << 32) & 0x1F00000000FFFFull;
-    v = (v | v << 16) & 0x1F0000FF0000FFull;
-    v = (v | v << 8) & 0x100F00F00F00F00Full;
-    v = (v | v << 4) & 0x10C30C30C30C30C3ull;
-    v = (v | v << 2) & 0x1249249249249249ull;
-    return v;
-  };
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(order.size());
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const glm::dvec3 t = (pts[order[i]] - lo) / extent * 2097151.0;
-    keyed[i] = {spread(static_cast<std::uint64_t>(t.x)) | spread(static_cast<std::uint64_t>(t.y)) << 1 |
-                    spread(static_cast<std::uint64_t>(t.z)) << 2,
-                order[i]};
-  }
+  for (std::size_t i = 0; i < order.size(); ++i)
+    keyed[i] = {morton_code(pts[order[i]], lo, extent), order[i]};
   for (std::size_t hi_end = keyed.size(); hi_end > 0;) {
     const std::size_t lo_end = hi_end > 64 ? hi_end / 2 : 0;
     std::sort(keyed.begin() + static_cast<std::ptrdiff_t>(lo_end),

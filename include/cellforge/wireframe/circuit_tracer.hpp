@@ -92,78 +92,102 @@ inline bool inside_2d(const std::vector<glm::dvec2>& poly, const glm::dvec2& q) 
   return in;
 }
 
+/// Buffers trace_plane_faces reuses from one plane to the next (a model has as many planes
+/// as faces), sized once for the whole graph.
+struct plane_scratch {
+  std::vector<std::uint32_t> local;  // graph vertex -> local index, valid where stamp matches
+  std::vector<std::uint32_t> stamp;
+  std::uint32_t round = 0;
+  std::vector<std::uint32_t> verts, from, to, first, out, pos, walk_of, walk_start, walk, keep;
+  std::vector<glm::dvec2> q;
+  explicit plane_scratch(std::size_t nv) : local(nv), stamp(nv, no_index) {}
+};
+
 /// Traces the faces of one in-plane edge set: angular order around each vertex, walks with
 /// the face on the left. Edges walked on both sides by one walk (trees, bridges) are removed
 /// and the walk repeated. O(k log k) for k in-plane edges.
-inline void trace_plane_faces(const wire_graph& g, std::vector<std::uint32_t> edges, plane_component& c,
-                              work_budget& budget) {
-  std::unordered_map<std::uint32_t, std::uint32_t> local;  // vertex → local index
+inline void trace_plane_faces(const wire_graph& g, std::vector<std::uint32_t>& edges, plane_component& c,
+                              plane_scratch& w, work_budget& budget) {
   for (;;) {
-    local.clear();
-    std::vector<std::uint32_t> verts;
+    ++w.round;
+    w.verts.clear();
     for (const auto e : edges)
       for (const auto v : g.edges[e])
-        if (local.emplace(v, static_cast<std::uint32_t>(verts.size())).second) verts.push_back(v);
-    std::vector<glm::dvec2> q(verts.size());
-    for (std::size_t i = 0; i < verts.size(); ++i) q[i] = project(c, g.points[verts[i]]);
-    // Half-edge 2k goes start→end of edges[k], 2k+1 end→start.
+        if (w.stamp[v] != w.round) {
+          w.stamp[v] = w.round;
+          w.local[v] = static_cast<std::uint32_t>(w.verts.size());
+          w.verts.push_back(v);
+        }
+    const std::size_t nv = w.verts.size();
+    w.q.resize(nv);
+    for (std::size_t i = 0; i < nv; ++i) w.q[i] = project(c, g.points[w.verts[i]]);
+    // Half-edge 2k goes start→end of edges[k], 2k+1 end→start; out[first[v]..first[v+1]) are
+    // the half-edges leaving local vertex v.
     const std::size_t nh = 2 * edges.size();
-    std::vector<std::uint32_t> from(nh), to(nh);
-    std::vector<std::vector<std::uint32_t>> out(verts.size());
+    w.from.resize(nh);
+    w.to.resize(nh);
+    w.first.assign(nv + 1, 0);
     for (std::uint32_t k = 0; k < edges.size(); ++k) {
-      const std::uint32_t a = local[g.edges[edges[k]][0]], b = local[g.edges[edges[k]][1]];
-      from[2 * k] = a, to[2 * k] = b, from[2 * k + 1] = b, to[2 * k + 1] = a;
-      out[a].push_back(2 * k);
-      out[b].push_back(2 * k + 1);
+      const std::uint32_t a = w.local[g.edges[edges[k]][0]], b = w.local[g.edges[edges[k]][1]];
+      w.from[2 * k] = a, w.to[2 * k] = b, w.from[2 * k + 1] = b, w.to[2 * k + 1] = a;
+      ++w.first[a + 1];
+      ++w.first[b + 1];
     }
-    std::vector<std::uint32_t> pos(nh);
-    for (std::uint32_t v = 0; v < verts.size(); ++v) {
-      auto& o = out[v];
-      budget.spend(o.size());
-      const glm::dvec2 origin = q[v];
+    for (std::size_t v = 0; v < nv; ++v) w.first[v + 1] += w.first[v];
+    w.out.resize(nh);
+    w.pos.assign(w.first.begin(), w.first.end() - 1);  // fill cursor, reused below as position
+    for (std::uint32_t h = 0; h < nh; ++h) w.out[w.pos[w.from[h]]++] = h;
+    w.pos.resize(nh);
+    for (std::uint32_t v = 0; v < nv; ++v) {
+      const auto begin = w.out.begin() + w.first[v], end = w.out.begin() + w.first[v + 1];
+      budget.spend(static_cast<std::uint64_t>(end - begin));
+      const glm::dvec2 origin = w.q[v];
       auto half = [&](std::uint32_t h) {
-        const glm::dvec2 d = q[to[h]] - origin;
+        const glm::dvec2 d = w.q[w.to[h]] - origin;
         return (d.y > 0.0 || (d.y == 0.0 && d.x > 0.0)) ? 0 : 1;
       };
       // Counter-clockwise order by angle, decided with exact orientation tests.
-      std::sort(o.begin(), o.end(), [&](std::uint32_t x, std::uint32_t y) {
+      std::sort(begin, end, [&](std::uint32_t x, std::uint32_t y) {
         const int hx = half(x), hy = half(y);
         if (hx != hy) return hx < hy;
-        return orient2d(origin, q[to[x]], q[to[y]]) > 0;
+        return orient2d(origin, w.q[w.to[x]], w.q[w.to[y]]) > 0;
       });
-      for (std::uint32_t i = 0; i < o.size(); ++i) pos[o[i]] = i;
+      for (std::uint32_t i = w.first[v]; i < w.first[v + 1]; ++i) w.pos[w.out[i]] = i - w.first[v];
     }
     // next(h): at to(h), the outgoing half-edge just clockwise of the twin, which keeps the face on the left.
-    std::vector<std::uint32_t> walk_of(nh, no_index);
-    std::vector<std::vector<std::uint32_t>> walks;
+    w.walk_of.assign(nh, no_index);
+    w.walk_start.clear();
+    w.walk.clear();
     for (std::uint32_t h0 = 0; h0 < nh; ++h0) {
-      if (walk_of[h0] != no_index) continue;
-      const auto id = static_cast<std::uint32_t>(walks.size());
-      walks.emplace_back();
+      if (w.walk_of[h0] != no_index) continue;
+      const auto id = static_cast<std::uint32_t>(w.walk_start.size());
+      w.walk_start.push_back(static_cast<std::uint32_t>(w.walk.size()));
       std::uint32_t h = h0;
       do {
-        walk_of[h] = id;
-        walks.back().push_back(h);
+        w.walk_of[h] = id;
+        w.walk.push_back(h);
         budget.spend();
-        const auto& o = out[to[h]];
+        const std::uint32_t v = w.to[h], degree = w.first[v + 1] - w.first[v];
         const std::uint32_t twin = h ^ 1u;
-        h = o[(pos[twin] + o.size() - 1) % o.size()];
+        h = w.out[w.first[v] + (w.pos[twin] + degree - 1) % degree];
       } while (h != h0);
     }
-    std::vector<std::uint32_t> keep;
+    w.walk_start.push_back(static_cast<std::uint32_t>(w.walk.size()));
+    w.keep.clear();
     for (std::uint32_t k = 0; k < edges.size(); ++k)
-      if (walk_of[2 * k] != walk_of[2 * k + 1]) keep.push_back(edges[k]);
-    if (keep.size() != edges.size()) {
-      edges = std::move(keep);
+      if (w.walk_of[2 * k] != w.walk_of[2 * k + 1]) w.keep.push_back(edges[k]);
+    if (w.keep.size() != edges.size()) {
+      edges.swap(w.keep);
       if (edges.empty()) return;
       continue;
     }
-    for (const auto& wk : walks) {
+    std::vector<glm::dvec2> poly;
+    for (std::size_t k = 0; k + 1 < w.walk_start.size(); ++k) {
       std::vector<std::uint32_t> loop;
-      std::vector<glm::dvec2> poly;
-      for (const auto h : wk) {
-        loop.push_back(verts[from[h]]);
-        poly.push_back(q[from[h]]);
+      poly.clear();
+      for (std::uint32_t i = w.walk_start[k]; i < w.walk_start[k + 1]; ++i) {
+        loop.push_back(w.verts[w.from[w.walk[i]]]);
+        poly.push_back(w.q[w.from[w.walk[i]]]);
       }
       (signed_area_2d(poly) > 0.0 ? c.bounded : c.outer).push_back(std::move(loop));
     }
@@ -191,7 +215,8 @@ inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_re
   std::vector<std::uint32_t> vstamp(nv, no_index), estamp(ne, no_index), vtest(nv, no_index);
   std::vector<char> vin(nv, 0);
   std::uint32_t stamp = 0;
-  std::vector<std::uint32_t> cverts, cedges;  // reused by every plane search
+  std::vector<std::uint32_t> cverts, cedges, local;  // reused by every plane search
+  plane_scratch scratch(nv);
   std::vector<plane_component> comps;
   std::unordered_map<std::array<std::int64_t, 4>, std::vector<std::uint32_t>, cell_hash> plane_of;
   std::vector<std::uint32_t> group;  // component → plane group (first component of the group)
@@ -216,15 +241,22 @@ inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_re
           n /= ln;
           const std::uint32_t cid = stamp++;  // marks this search in the stamp arrays
           const glm::dvec3 origin = g.points[v];
-          // Breadth-first over edges lying in the plane, starting at v.
+          // Breadth-first over edges lying in the plane, starting at v; each vertex's in-plane
+          // incidences are noted as it is scanned.
           cverts.assign(1, v);
           cedges.clear();
           vstamp[v] = cid;
           for (std::size_t head = 0; head < cverts.size(); ++head) {
             const std::uint32_t x = cverts[head];
-            for (const auto& in : g.around(x)) {
+            const auto ix = g.around(x);
+            local.clear();
+            for (std::uint32_t a = 0; a < ix.size(); ++a) {
+              const auto& in = ix[a];
               budget.spend();
-              if (estamp[in.edge] == cid) continue;
+              if (estamp[in.edge] == cid) {  // found from its other end
+                local.push_back(a);
+                continue;
+              }
               const std::uint32_t y = in.other;
               if (vtest[y] != cid) {
                 vtest[y] = cid;
@@ -233,20 +265,17 @@ inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_re
               if (!vin[y]) continue;
               estamp[in.edge] = cid;
               cedges.push_back(in.edge);
+              local.push_back(a);
               if (vstamp[y] != cid) {
                 vstamp[y] = cid;
                 cverts.push_back(y);
               }
             }
-          }
-          // Every pair of in-plane edges at a vertex of this component spans this plane: mark them.
-          for (const auto x : cverts) {
-            const auto ix = g.around(x);
-            for (std::uint32_t a = 0; a < ix.size(); ++a) {
-              if (estamp[ix[a].edge] != cid) continue;
-              for (std::uint32_t b = a + 1; b < ix.size(); ++b)
-                if (estamp[ix[b].edge] == cid) done[pair_base[x] + a * ix.size() + b] = 1;
-            }
+            // Every pair of in-plane edges at x spans this plane: mark them. O(k²) for k
+            // in-plane edges, not O(deg²), which matters at the poles of a sphere.
+            for (std::size_t p = 0; p < local.size(); ++p)
+              for (std::size_t q = p + 1; q < local.size(); ++q)
+                done[pair_base[x] + local[p] * ix.size() + local[q]] = 1;
           }
           // A forest has no circuit: most planes spanned by two edges hold just those two.
           if (cedges.size() < cverts.size()) continue;
@@ -255,7 +284,7 @@ inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_re
           c.normal = n;
           c.u = glm::normalize(da - glm::dot(da, n) * n);
           c.w = glm::cross(n, c.u);
-          trace_plane_faces(g, cedges, c, budget);
+          trace_plane_faces(g, cedges, c, scratch, budget);
           const auto index = static_cast<std::uint32_t>(comps.size());
           // Group with earlier components of the same geometric plane (for holes).
           const auto pc = plane_coords(n, c.origin, g.size);
@@ -318,18 +347,26 @@ inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_re
         const glm::dvec2 probe = project(frame, g.points[o[0]]);
         double best = 0.0;
         std::pair<std::uint32_t, std::size_t> host{no_index, 0};
+        std::uint32_t depth = 0;  // bounded walks of other components around this one
         for (const auto d : list) {
           if (d == c) continue;
           for (std::size_t k = 0; k < comps[d].bounded.size(); ++k) {
             budget.spend(comps[d].bounded[k].size());
             const auto poly = poly_of(comps[d].bounded[k]);
             if (!inside_2d(poly, probe)) continue;
+            ++depth;
             const double a = std::abs(signed_area_2d(poly));
             if (host.first == no_index || a < best) best = a, host = {d, k};
           }
         }
         if (host.first == no_index) continue;
-        faces_of[host.first][host.second].loops.push_back(o);
+        for (auto& f : faces_of[c]) f.depth = std::max(f.depth, depth);
+        // o turns clockwise about its own component's normal; the host's may point the other
+        // way (which pair of edges first spanned the plane decides it), and a hole must turn
+        // clockwise about its face's normal.
+        std::vector<std::uint32_t> hole = o;
+        if (glm::dot(comps[c].normal, comps[host.first].normal) < 0.0) std::reverse(hole.begin(), hole.end());
+        faces_of[host.first][host.second].loops.push_back(std::move(hole));
         for (auto& filler : faces_of[c]) filler.fills_hole = true;
         ++r.holes;
       }

@@ -21,6 +21,7 @@
 #include <glm/geometric.hpp>
 
 #include "cellforge/core/bounding_box.hpp"
+#include "cellforge/core/morton.hpp"
 #include "cellforge/core/polygon_intersection.hpp"
 #include "cellforge/core/tolerance.hpp"
 #include "cellforge/wireframe/face_reduction.hpp"
@@ -77,28 +78,34 @@ class interior_cuts {
   template <class Side>
   void compute(const wire_graph& g, const wire_face& f, const face_plane& p, const glm::dvec3& dir,
                Side&& side) {
-    for (int view = 0; view < 2; ++view) {
-      auto& ends = view == 0 ? above_ : below_;
-      ends.clear();
-      for (const auto& loop : f.loops)
-        for (std::size_t k = 0; k < loop.size(); ++k) {
-          const std::uint32_t x = loop[k], y = loop[(k + 1) % loop.size()];
-          const int sx = side(x), sy = side(y);
-          // Above the plane: a vertex on it counts as below; below the plane: as above.
-          const bool ux = view == 0 ? sx > 0 : sx >= 0, uy = view == 0 ? sy > 0 : sy >= 0;
-          if (ux == uy) continue;
-          if (sx == 0 || sy == 0) {
-            const std::uint32_t v = sx == 0 ? x : y;
-            ends.push_back({glm::dot(g.points[v] - g.center, dir), v, no_index});
-            continue;
-          }
+    above_.clear();
+    below_.clear();
+    for (const auto& loop : f.loops) {
+      sides_.resize(loop.size());
+      for (std::size_t k = 0; k < loop.size(); ++k) sides_[k] = static_cast<signed char>(side(loop[k]));
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        const std::size_t k1 = (k + 1) % loop.size();
+        const int sx = sides_[k], sy = sides_[k1];
+        if (sx == sy) continue;  // both beyond one side, or both on the plane: no end in either view
+        const std::uint32_t x = loop[k], y = loop[k1];
+        cut_end end;
+        if (sx == 0 || sy == 0) {
+          const std::uint32_t v = sx == 0 ? x : y;
+          end = {glm::dot(g.points[v] - g.center, dir), v, no_index};
+        } else {
           const glm::dvec3 a = g.points[x], b = g.points[y];
           const double da = glm::dot(p.n, a - p.o), db = glm::dot(p.n, b - p.o);
           const glm::dvec3 c = a + (da / (da - db)) * (b - a);
-          ends.push_back({glm::dot(c - g.center, dir), x, y});
+          end = {glm::dot(c - g.center, dir), x, y};
         }
-      std::sort(ends.begin(), ends.end(), [](const cut_end& a, const cut_end& b) { return a.s < b.s; });
+        // Seen from just above the plane a vertex on it counts as below; from below, as above.
+        if ((sx > 0) != (sy > 0)) above_.push_back(end);
+        if ((sx >= 0) != (sy >= 0)) below_.push_back(end);
+      }
     }
+    auto by_position = [](const cut_end& a, const cut_end& b) { return a.s < b.s; };
+    std::sort(above_.begin(), above_.end(), by_position);
+    std::sort(below_.begin(), below_.end(), by_position);
     // Intersection of the two interval sets.
     intervals.clear();
     for (std::size_t i = 0, j = 0; i + 1 < above_.size() && j + 1 < below_.size();) {
@@ -117,29 +124,31 @@ class interior_cuts {
 
  private:
   std::vector<cut_end> above_, below_;
+  std::vector<signed char> sides_;
 };
 
-/// The crossing test of the selection rule, with its scratch space (one per thread of work).
-/// Two faces in different planes cross when their interiors share a segment of the planes'
-/// common line longer than the tolerance: the parity along that line decides it from the
-/// vertices' sides alone (vertices of the other face lie on its plane by construction), and
-/// where a segment end is constructed (an edge crossing a plane) the exact test of
-/// core/polygon_intersection.hpp confirms that the edge really pierces the other face's
-/// interior. Independent of loop orientation. O(L log L) per pair, O(L_a · L_b) worst case to
-/// confirm.
+/// The crossing test of the selection rule, with its scratch space. Two faces in different
+/// planes cross when their interiors share a segment of the planes' common line longer than
+/// the tolerance: the parity along that line decides it from the vertices' sides alone (a
+/// vertex within the tolerance of a plane is on it, as the tracer and the planarity check
+/// decided, so the vertices the faces share are on both planes), and where a segment end is
+/// constructed (an edge crossing a plane) the exact test of core/polygon_intersection.hpp
+/// confirms that the edge really pierces the other face's interior. Independent of loop
+/// orientation. O(L log L) per pair, O(L_a + L_b) to confirm.
 class crossing_test {
  public:
-  explicit crossing_test(const wire_graph& g) : g_(g), mark_(g.num_vertices(), no_index) {}
+  explicit crossing_test(const wire_graph& g) : g_(g) {}
 
   bool operator()(const wire_face& a, const face_plane& pa, const wire_face& b, const face_plane& pb,
                   double tol) {
     glm::dvec3 dir = glm::cross(pa.n, pb.n);
     const double l = glm::length(dir);
     if (l < 1e-12) return false;  // parallel planes: coplanar faces never overlap after tracing
+    if (!straddles(a, pb, tol) || !straddles(b, pa, tol)) return false;
     dir /= l;
-    if (!straddles(a, pb, b, tol) || !straddles(b, pa, a, tol)) return false;
-    cut(a, pb, b, dir, tol, ca_);
-    cut(b, pa, a, dir, tol, cb_);
+    auto side_of = [&](const face_plane& p) { return [&, tol](std::uint32_t v) { return side(v, p, tol); }; };
+    ca_.compute(g_, a, pb, dir, side_of(pb));
+    cb_.compute(g_, b, pa, dir, side_of(pa));
     const auto& ia = ca_.intervals;
     const auto& ib = cb_.intervals;
     for (std::size_t i = 0, j = 0; i + 1 < ia.size() && j + 1 < ib.size();) {
@@ -157,40 +166,28 @@ class crossing_test {
 
  private:
   const wire_graph& g_;
-  std::vector<std::uint32_t> mark_;
-  std::uint32_t stamp_ = 0;
   interior_cuts ca_, cb_;
 
   int side(std::uint32_t v, const face_plane& p, double tol) const {
-    if (mark_[v] == stamp_) return 0;
     const double d = glm::dot(p.n, g_.points[v] - p.o);
     return d > tol ? 1 : d < -tol ? -1 : 0;
   }
-  void mark(const wire_face& f) {
-    ++stamp_;
-    for (const auto& loop : f.loops)
-      for (const auto v : loop) mark_[v] = stamp_;
-  }
-  /// Some vertex of f strictly on each side of p (vertices of `other` count as on it).
-  bool straddles(const wire_face& f, const face_plane& p, const wire_face& other, double tol) {
-    mark(other);
+  /// Some vertex of f strictly on each side of p.
+  bool straddles(const wire_face& f, const face_plane& p, double tol) const {
     bool up = false, down = false;
     for (const auto& loop : f.loops)
       for (const auto v : loop) {
         const int s = side(v, p, tol);
         up = up || s > 0;
         down = down || s < 0;
+        if (up && down) return true;
       }
-    return up && down;
-  }
-  void cut(const wire_face& f, const face_plane& p, const wire_face& other, const glm::dvec3& dir, double tol,
-           interior_cuts& out) {
-    mark(other);
-    out.compute(g_, f, p, dir, [&](std::uint32_t v) { return side(v, p, tol); });
+    return false;
   }
   /// A shared segment whose ends are vertices is decided by the vertices' sides; an end made
   /// by an edge crossing a plane is confirmed by that edge piercing the other face exactly.
-  bool confirmed(const cut_end& lo, const wire_face& lo_other, const cut_end& hi, const wire_face& hi_other) {
+  bool confirmed(const cut_end& lo, const wire_face& lo_other, const cut_end& hi,
+                 const wire_face& hi_other) const {
     if (lo.to == no_index && hi.to == no_index) return true;
     for (const auto* e : {&lo, &hi}) {
       if (e->to == no_index) continue;
@@ -203,17 +200,18 @@ class crossing_test {
   }
 };
 
-/// The candidates pairs whose boxes meet, from a uniform grid of cells about twice the median
+/// The pairs of faces whose boxes meet, from a uniform grid of cells about twice the median
 /// face size: small faces are listed in the cells their box covers and a pair is reported in
 /// the one cell holding the low corner of the intersection of their boxes; a large face (over
 /// 512 cells) is paired with the small faces in the cells its plane passes through, and with
-/// the other large faces. O(Σ cells per face + pairs + Σ_large cells its plane meets).
+/// the other large faces. Faces are indices into `plane`. O(Σ cells per face log + pairs +
+/// Σ_large cells its plane meets).
 template <class Visit>
-void candidate_pairs(const wire_graph& g, const std::vector<std::uint32_t>& usable,
-                     const std::vector<face_plane>& plane, double tol, work_budget& budget, Visit&& visit) {
-  if (usable.size() < 2) return;
+void candidate_pairs(const wire_graph& g, const std::vector<face_plane>& plane, double tol,
+                     work_budget& budget, Visit&& visit) {
+  if (plane.size() < 2) return;
   std::vector<double> extent;
-  for (const auto i : usable) {
+  for (std::uint32_t i = 0; i < plane.size(); ++i) {
     const glm::dvec3 d = plane[i].box.max - plane[i].box.min;
     extent.push_back(std::max({d.x, d.y, d.z}));
   }
@@ -231,9 +229,11 @@ void candidate_pairs(const wire_graph& g, const std::vector<std::uint32_t>& usab
   auto cell = [&](const glm::dvec3& p) {
     return std::array<std::int64_t, 3>{coord(p.x, 0), coord(p.y, 1), coord(p.z, 2)};
   };
-  std::unordered_map<std::array<std::int64_t, 3>, std::vector<std::uint32_t>, cell_hash> grid;
+  // The grid as (cell, face) entries sorted by cell: a cell's faces are a run.
+  using cell_key = std::array<std::int64_t, 3>;
+  std::vector<std::pair<cell_key, std::uint32_t>> grid;
   std::vector<std::uint32_t> big;
-  for (const auto i : usable) {
+  for (std::uint32_t i = 0; i < plane.size(); ++i) {
     const auto lo = cell(plane[i].box.min - tol), hi = cell(plane[i].box.max + tol);
     const double count = static_cast<double>(hi[0] - lo[0] + 1) * static_cast<double>(hi[1] - lo[1] + 1) *
                          static_cast<double>(hi[2] - lo[2] + 1);
@@ -243,27 +243,30 @@ void candidate_pairs(const wire_graph& g, const std::vector<std::uint32_t>& usab
     }
     for (auto x = lo[0]; x <= hi[0]; ++x)
       for (auto y = lo[1]; y <= hi[1]; ++y)
-        for (auto z = lo[2]; z <= hi[2]; ++z) grid[{x, y, z}].push_back(i);
+        for (auto z = lo[2]; z <= hi[2]; ++z) grid.push_back({{x, y, z}, i});
   }
+  std::sort(grid.begin(), grid.end());
   auto boxes_meet = [&](std::uint32_t a, std::uint32_t b) {
     const auto &A = plane[a].box, &B = plane[b].box;
     for (int k = 0; k < 3; ++k)
       if (A.min[k] > B.max[k] + tol || B.min[k] > A.max[k] + tol) return false;
     return true;
   };
-  for (const auto& [c, list] : grid)
-    for (std::size_t x = 0; x < list.size(); ++x)
-      for (std::size_t y = x + 1; y < list.size(); ++y) {
-        const std::uint32_t a = list[x], b = list[y];
+  for (std::size_t begin = 0, end = 0; begin < grid.size(); begin = end) {
+    const cell_key c = grid[begin].first;
+    while (end < grid.size() && grid[end].first == c) ++end;
+    for (std::size_t x = begin; x < end; ++x)
+      for (std::size_t y = x + 1; y < end; ++y) {
+        const std::uint32_t a = grid[x].second, b = grid[y].second;
         if (!boxes_meet(a, b)) continue;
         if (cell(glm::max(plane[a].box.min, plane[b].box.min) - tol) != c) continue;
         visit(a, b);
       }
+  }
   // Large faces: walk the cells their plane passes through, column by column along the
   // plane's steepest axis.
-  std::unordered_map<std::uint32_t, std::uint32_t> seen;
+  std::vector<std::uint32_t> seen(plane.size(), no_index);
   for (const auto b : big) {
-    seen.clear();
     const glm::dvec3 n = plane[b].n, o = plane[b].o;
     const int k = std::abs(n.x) >= std::abs(n.y) && std::abs(n.x) >= std::abs(n.z) ? 0
                   : std::abs(n.y) >= std::abs(n.z)                                 ? 1
@@ -289,10 +292,9 @@ void candidate_pairs(const wire_graph& g, const std::vector<std::uint32_t>& usab
           c[static_cast<std::size_t>(k)] = cz;
           c[static_cast<std::size_t>(u)] = cu;
           c[static_cast<std::size_t>(w)] = cw;
-          const auto it = grid.find(c);
-          if (it == grid.end()) continue;
-          for (const auto i : it->second)
-            if (seen.emplace(i, 0).second && boxes_meet(b, i)) visit(b, i);
+          auto it = std::lower_bound(grid.begin(), grid.end(), std::pair<cell_key, std::uint32_t>{c, 0});
+          for (; it != grid.end() && it->first == c; ++it)
+            if (const auto i = it->second; std::exchange(seen[i], b) != b && boxes_meet(b, i)) visit(b, i);
         }
       }
   }
@@ -358,25 +360,58 @@ inline arrangement_result arrange_faces(const wire_graph& g, const std::vector<w
     r.vertex_rank[v] = inner[v] ? r.edge_rank[g.around(v)[0].edge] : d * (d - 1) / 2;
   }
 
-  // Planes and boxes of the usable candidates.
+  // Planes and boxes of the usable candidates, laid out in Morton order of their boxes'
+  // centres so that faces near in space are near in memory: a pair test reads neighbours.
   std::vector<std::uint32_t> usable;
-  std::vector<detail::face_plane> plane(faces.size());
   std::vector<char> alive(faces.size(), 0);
-  for (std::uint32_t i = 0; i < faces.size(); ++i) {
-    if (!reduction.quality[i].usable) continue;
-    usable.push_back(i);
-    alive[i] = 1;
-    plane[i].n = faces[i].normal;
-    plane[i].o = g.points[faces[i].loops[0][0]];
-    for (const auto v : faces[i].loops[0]) plane[i].box.add(g.points[v]);
+  for (std::uint32_t i = 0; i < faces.size(); ++i)
+    if (reduction.quality[i].usable) usable.push_back(i), alive[i] = 1;
+  std::vector<detail::face_plane> plane(usable.size());
+  {
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;
+    const glm::dvec3 lo = g.center - 0.5 * g.size, extent(std::max(g.size, 1e-300));
+    for (const auto i : usable) {
+      bounding_box box;
+      for (const auto v : faces[i].loops[0]) box.add(g.points[v]);
+      keyed.push_back({detail::morton_code(box.center(), lo, extent), i});
+    }
+    std::sort(keyed.begin(), keyed.end());
+    for (std::size_t k = 0; k < keyed.size(); ++k) {
+      const std::uint32_t i = usable[k] = keyed[k].second;
+      plane[k].n = faces[i].normal;
+      plane[k].o = g.points[faces[i].loops[0][0]];
+      for (const auto v : faces[i].loops[0]) plane[k].box.add(g.points[v]);
+    }
   }
   detail::work_budget budget{options.work_budget, 0, "arrange_faces"};
   if (options.drop_crossing) {
     detail::crossing_test cross(g);
-    detail::candidate_pairs(g, usable, plane, tol, budget, [&](std::uint32_t a, std::uint32_t b) {
+    // Each face's corners side by side: the first test of a pair (does each face have corners
+    // strictly on both sides of the other's plane?) then reads two short runs, not scattered
+    // points — most pairs (neighbours on a surface) end there.
+    std::vector<std::uint32_t> corner_start(usable.size() + 1, 0);
+    std::vector<glm::dvec3> corner;
+    for (std::uint32_t k = 0; k < usable.size(); ++k) {
+      for (const auto v : faces[usable[k]].loops[0]) corner.push_back(g.points[v]);
+      corner_start[k + 1] = static_cast<std::uint32_t>(corner.size());
+    }
+    auto straddles = [&](std::uint32_t f, std::uint32_t o) {
+      bool up = false, down = false;
+      for (std::uint32_t k = corner_start[f]; k < corner_start[f + 1] && !(up && down); ++k) {
+        const double d = glm::dot(plane[o].n, corner[k] - plane[o].o);
+        up = up || d > tol;
+        down = down || d < -tol;
+      }
+      return up && down;
+    };
+    detail::candidate_pairs(g, plane, tol, budget, [&](std::uint32_t x, std::uint32_t y) {
       ++r.pairs_tested;
+      const std::uint32_t a = usable[x], b = usable[y];
       budget.spend(faces[a].loops[0].size() + faces[b].loops[0].size());
-      if (cross(faces[a], plane[a], faces[b], plane[b], tol))
+      // The face with fewer corners first: a ring against a neighbour's plane lies on one side.
+      const bool x_first = corner_start[x + 1] - corner_start[x] <= corner_start[y + 1] - corner_start[y];
+      if (x_first ? !straddles(x, y) || !straddles(y, x) : !straddles(y, x) || !straddles(x, y)) return;
+      if (cross(faces[a], plane[x], faces[b], plane[y], tol))
         r.crossings.push_back({std::min(a, b), std::max(a, b)});
     });
     std::sort(r.crossings.begin(), r.crossings.end());
@@ -388,6 +423,7 @@ inline arrangement_result arrange_faces(const wire_graph& g, const std::vector<w
     // Pairs still crossing when no round decides anything both go.
     const auto at = detail::faces_at_edges(g, faces, &alive);
     std::vector<char> contested(faces.size(), 0), no_contest(faces.size(), 0);
+    std::vector<std::uint32_t> scratch;
     for (bool changed = !r.crossings.empty(); changed;) {
       changed = false;
       budget.spend(r.crossings.size() + faces.size());
@@ -398,15 +434,9 @@ inline arrangement_result arrange_faces(const wire_graph& g, const std::vector<w
       const std::vector<char> needed = detail::needed_faces(g, faces, at, alive);
       // Needed among the uncontested faces: the face itself plus the faces no pair contests.
       std::vector<char> needed_alone(faces.size(), 0);
-      {
-        std::vector<char> with(no_contest);
-        for (std::uint32_t i = 0; i < faces.size(); ++i) {
-          if (!contested[i]) continue;
-          with[i] = 1;
-          needed_alone[i] = detail::needed_faces_one(g, faces, at, with, i);
-          with[i] = 0;
-        }
-      }
+      for (std::uint32_t i = 0; i < faces.size(); ++i)
+        if (contested[i] && alive[i])
+          needed_alone[i] = detail::needed_faces_one(g, faces, at, no_contest, i, scratch);
       std::vector<std::uint32_t> losers;
       for (const auto& [a, b] : r.crossings) {
         if (!alive[a] || !alive[b]) continue;
@@ -427,13 +457,13 @@ inline arrangement_result arrange_faces(const wire_graph& g, const std::vector<w
                               " cross each other and neither wins; both dropped");
       alive[a] = alive[b] = 2;  // still crossing the others they cross in this pass
     }
-    for (const auto i : usable)
-      if (alive[i] != 1) {
+    for (std::uint32_t i = 0; i < faces.size(); ++i)
+      if (reduction.quality[i].usable && alive[i] != 1) {
         alive[i] = 0;
         r.crossed.push_back(i);
       }
   }
-  for (const auto i : usable)
+  for (std::uint32_t i = 0; i < faces.size(); ++i)
     if (alive[i]) r.selected.push_back(i);
 
   // Rank check: more selected faces at an edge than its maximum rank.

@@ -9,9 +9,12 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <unordered_map>
 #include <vector>
+
+#include <glm/common.hpp>
 
 #include "cellforge/core/bounding_box.hpp"
 #include "cellforge/core/error.hpp"
@@ -54,7 +57,7 @@ inline std::string point_text(const glm::dvec3& p) {
   return "(" + number_text(p.x) + ", " + number_text(p.y) + ", " + number_text(p.z) + ")";
 }
 
-/// Merges points within tol by hashing them to cells of side tol; returns each point's
+/// Merges points within tol by hashing them to cells of side 64·tol; returns each point's
 /// representative (the smallest index of its cluster). O(n) expected.
 inline std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p,
                                                      const std::vector<char>& used, double tol) {
@@ -64,10 +67,17 @@ inline std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec
   std::unordered_map<std::array<std::int64_t, 3>, std::uint32_t, cell_hash> cells;
   cells.reserve(n);
   std::vector<std::uint32_t> next(n, no_index);
+  // Cells of 64 tolerances measured from the lowest corner: a point's tolerance ball seldom
+  // leaves its cell, and cell indices stay small however far the model is from the origin.
+  glm::dvec3 low(std::numeric_limits<double>::infinity()), high(-low);
+  for (std::uint32_t i = 0; i < n; ++i)
+    if (used[i]) low = glm::min(low, p[i]), high = glm::max(high, p[i]);
+  // (A zero tolerance merges equal points only; the cells then just have to be small.)
+  const double h = 64.0 * std::max(tol, 1e-12 * glm::length(high - low));
   auto cell_of = [&](const glm::dvec3& q) {
-    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(q.x / tol)),
-                                       static_cast<std::int64_t>(std::floor(q.y / tol)),
-                                       static_cast<std::int64_t>(std::floor(q.z / tol))};
+    const glm::dvec3 c = glm::floor((q - low) / h);
+    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(c.x), static_cast<std::int64_t>(c.y),
+                                       static_cast<std::int64_t>(c.z)};
   };
   for (std::uint32_t i = 0; i < n; ++i) {
     if (!used[i]) continue;
@@ -79,11 +89,12 @@ inline std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec
   }
   for (std::uint32_t i = 0; i < n; ++i) {
     if (!used[i]) continue;
-    const auto c = cell_of(p[i]);
-    for (std::int64_t dx = -1; dx <= 1; ++dx)
-      for (std::int64_t dy = -1; dy <= 1; ++dy)
-        for (std::int64_t dz = -1; dz <= 1; ++dz) {
-          const auto it = cells.find({c[0] + dx, c[1] + dy, c[2] + dz});
+    // Only the cells the ball of radius tol about p[i] reaches: almost always its own.
+    const auto lo = cell_of(p[i] - tol), hi = cell_of(p[i] + tol);
+    for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+      for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+        for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+          const auto it = cells.find({x, y, z});
           if (it == cells.end()) continue;
           for (std::uint32_t j = it->second; j != no_index; j = next[j])
             if (j > i && glm::length(p[i] - p[j]) <= tol) uf.unite(i, j);

@@ -187,6 +187,226 @@ struct region_links {
   }
 };
 
+/// The reading rule of docs/wireframe.md on the regions a set of faces bounds: which faces no
+/// edge needs are not faces, in rounds. Each round takes the faces no edge needs among those
+/// still kept and groups the bounded regions they join: a group with such a face on the
+/// outside is a hole, dent or tunnel and opens (its regions join the outside), unless a wall
+/// inside it is a seam (grid-like, undecidable: kept); a group without one becomes one volume
+/// (face_reading::needed only). The round's drops are taken back group by group while any
+/// would leave an edge on fewer than two faces or two coplanar ones, or a kept face with one
+/// region on both sides; an open group that fails may still merge its inner walls. When no
+/// group can go as a batch, the groups that fill a hole at odd depth in their plane are tried
+/// one at a time (the mouth around a box standing in a frame's hole goes, the box's top
+/// stays). Dropping faces makes the rest only more needed, so rounds end. O(rounds · Σ L · k).
+class face_reader {
+ public:
+  std::vector<char> drop, opened, unforced;  // per face
+  union_find merged;                         // regions, O = regions; joined across drops
+
+  face_reader(const wire_graph& g, const std::vector<wire_face>& faces,
+              const std::vector<std::vector<std::uint32_t>>& at,
+              const std::vector<std::array<std::uint32_t, 2>>& sides, const std::vector<char>& alive,
+              std::uint32_t regions, face_reading reading)
+      : drop(faces.size(), 0),
+        opened(faces.size(), 0),
+        unforced(faces.size(), 0),
+        merged(std::size_t{regions} + 1),
+        g_(g),
+        faces_(faces),
+        at_(at),
+        sides_(sides),
+        alive_(alive),
+        O_(regions),
+        reading_(reading),
+        root_faces_(std::size_t{regions} + 1) {
+    for (std::uint32_t i = 0; i < faces.size(); ++i)
+      if (alive[i])
+        for (const auto rg : sides[i]) root_faces_[rg].push_back(i);
+  }
+
+  void run() {
+    if (reading_ == face_reading::keep_all) return mark_unforced();
+    const std::size_t nf = faces_.size();
+    for (;;) {
+      mark_unforced();
+      // Groups of the current (merged) regions joined by unforced walls.
+      union_find group(merged.parent.size());
+      const std::uint32_t outside = merged.find(O_);
+      auto root = [&](std::uint32_t rg) { return merged.find(rg); };
+      for (std::uint32_t i = 0; i < nf; ++i)
+        if (unforced[i] && root(sides_[i][0]) != outside && root(sides_[i][1]) != outside)
+          group.unite(root(sides_[i][0]), root(sides_[i][1]));
+      auto group_of = [&](std::uint32_t i) {
+        return group.find(root(sides_[i][root(sides_[i][0]) != outside ? 0 : 1]));
+      };
+      std::vector<char> opens(group.parent.size(), 0), seam(group.parent.size(), 0),
+          odd(group.parent.size(), 0);
+      std::vector<std::uint32_t> groups;
+      for (std::uint32_t i = 0; i < nf; ++i) {
+        if (!unforced[i]) continue;
+        const auto gr = group_of(i);
+        groups.push_back(gr);
+        if (root(sides_[i][0]) == outside || root(sides_[i][1]) == outside) {
+          opens[gr] = 1;
+          odd[gr] = odd[gr] || faces_[i].depth % 2 == 1;
+        } else if (is_seam(i)) {
+          seam[gr] = 1;
+        }
+      }
+      std::sort(groups.begin(), groups.end());
+      groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
+      // 2: open (every unforced face of the group goes), 1: merge (only its walls go), 0: keep.
+      std::vector<int> mode(group.parent.size(), 0);
+      for (const auto gr : groups)
+        mode[gr] = opens[gr] ? (seam[gr] ? 0 : 2) : (reading_ == face_reading::needed ? 1 : 0);
+      if (reading_ == face_reading::keep_walls)
+        for (const auto gr : groups)
+          if (!opens[gr]) mode[gr] = 0;
+      auto picks = [&](const std::vector<int>& m) {
+        std::vector<std::uint32_t> faces;
+        for (std::uint32_t i = 0; i < nf; ++i) {
+          if (!unforced[i]) continue;
+          const int md = m[group_of(i)];
+          const bool wall = root(sides_[i][0]) != outside && root(sides_[i][1]) != outside;
+          if (md == 2 || (md == 1 && wall)) faces.push_back(i);
+        }
+        return faces;
+      };
+      // The batch: take back failing groups (an open one may still merge) until it holds.
+      const std::vector<int> first = mode;
+      for (;;) {
+        std::vector<std::uint32_t> failed;
+        check(picks(mode), [&](std::uint32_t i) { failed.push_back(group_of(i)); });
+        if (failed.empty()) break;
+        std::sort(failed.begin(), failed.end());
+        failed.erase(std::unique(failed.begin(), failed.end()), failed.end());
+        for (const auto gr : failed) mode[gr] = mode[gr] == 2 ? 1 : 0;
+      }
+      const auto batch = picks(mode);
+      if (!batch.empty()) {
+        commit(batch);
+        continue;
+      }
+      // Nothing goes as a batch: the hole fillers at odd depth, one group at a time.
+      bool done = true;
+      for (const auto gr : groups) {
+        if (first[gr] != 2 || !odd[gr]) continue;
+        std::vector<int> one(group.parent.size(), 0);
+        one[gr] = 2;
+        const auto pick = picks(one);
+        bool ok = true;
+        check(pick, [&](std::uint32_t) { ok = false; });
+        if (!ok) continue;
+        commit(pick);
+        done = false;
+        break;
+      }
+      if (done) break;
+    }
+  }
+
+ private:
+  const wire_graph& g_;
+  const std::vector<wire_face>& faces_;
+  const std::vector<std::vector<std::uint32_t>>& at_;
+  const std::vector<std::array<std::uint32_t, 2>>& sides_;
+  const std::vector<char>& alive_;
+  std::uint32_t O_;
+  face_reading reading_;
+  std::vector<std::vector<std::uint32_t>> root_faces_;  // per merged root, the faces bounding it
+  std::vector<std::uint32_t> scratch_;
+
+  bool kept(std::uint32_t i) const { return alive_[i] && !drop[i]; }
+  /// unforced[i]: kept, and needed by no edge among the kept faces.
+  void mark_unforced() {
+    std::vector<char> k(faces_.size(), 0);
+    for (std::uint32_t i = 0; i < faces_.size(); ++i) k[i] = kept(i);
+    for (std::uint32_t i = 0; i < faces_.size(); ++i)
+      unforced[i] = k[i] && !needed_faces_one(g_, faces_, at_, k, i, scratch_);
+  }
+  /// A seam continues, at every edge, in the plane of another kept face: a wall among walls.
+  bool is_seam(std::uint32_t i) const {
+    for (const auto& loop : faces_[i].loops)
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        bool flat = false;
+        for (const auto j : at_[g_.find_edge(loop[k], loop[(k + 1) % loop.size()])])
+          flat = flat || (j != i && kept(j) && coplanar_normals(faces_[i].normal, faces_[j].normal));
+        if (!flat) return false;
+      }
+    return true;
+  }
+  /// Calls blame(face) for faces of `pick` whose drop, with the others, would leave one of
+  /// its edges on fewer than two kept faces or two coplanar ones, or a kept face with one
+  /// region on both sides. Local: the pick's edges and the faces of the regions it joins.
+  template <class Blame>
+  void check(const std::vector<std::uint32_t>& pick, Blame&& blame) {
+    if (pick.empty()) return;
+    for (const auto i : pick) drop[i] = 1;
+    std::vector<std::uint32_t> keep;
+    auto normal = [&](std::uint32_t j) { return faces_[j].normal; };
+    for (const auto i : pick) {
+      bool bad = false;
+      for (const auto& loop : faces_[i].loops)
+        for (std::size_t k = 0; k < loop.size() && !bad; ++k) {
+          keep.clear();
+          for (const auto j : at_[g_.find_edge(loop[k], loop[(k + 1) % loop.size()])])
+            if (kept(j)) keep.push_back(j);
+          bad = keep.empty() || edge_needs_more(keep, normal);
+        }
+      if (bad) blame(i);
+    }
+    // The merge the pick makes, on the roots it touches only.
+    std::vector<std::uint32_t> touched;
+    for (const auto i : pick)
+      for (const auto rg : sides_[i]) touched.push_back(merged.find(rg));
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    auto index = [&](std::uint32_t rg) {
+      const auto root = merged.find(rg);
+      const auto it = std::lower_bound(touched.begin(), touched.end(), root);
+      return it != touched.end() && *it == root ? static_cast<std::uint32_t>(it - touched.begin()) : no_index;
+    };
+    union_find local(touched.size());
+    std::vector<std::vector<std::uint32_t>> picked_at(touched.size());
+    for (const auto i : pick) {
+      local.unite(index(sides_[i][0]), index(sides_[i][1]));
+      for (const auto rg : sides_[i]) picked_at[index(rg)].push_back(i);
+    }
+    // A kept face joined to itself has both sides among the touched roots, one of them not
+    // the outside (no kept face has the outside on both sides).
+    const std::uint32_t outside = merged.find(O_);
+    for (std::uint32_t t = 0; t < touched.size(); ++t) {
+      if (touched[t] == outside) continue;
+      for (const auto f : root_faces_[touched[t]]) {
+        if (!kept(f)) continue;
+        const auto a = index(sides_[f][0]), b = index(sides_[f][1]);
+        if (a == no_index || b == no_index || local.find(a) != local.find(b)) continue;
+        for (const auto i : picked_at[a]) blame(i);
+        for (const auto i : picked_at[b]) blame(i);
+      }
+    }
+    for (const auto i : pick) drop[i] = 0;
+  }
+  void commit(const std::vector<std::uint32_t>& pick) {
+    const std::uint32_t outside = merged.find(O_);
+    for (const auto i : pick) {
+      drop[i] = 1;
+      opened[i] = merged.find(sides_[i][0]) == outside || merged.find(sides_[i][1]) == outside;
+    }
+    for (const auto i : pick) {
+      const auto a = merged.find(sides_[i][0]), b = merged.find(sides_[i][1]);
+      if (a == b) continue;
+      merged.unite(a, b);
+      // The survivor takes the other's faces, the shorter list moved into the longer.
+      const auto keep = merged.find(a), gone = keep == a ? b : a;
+      if (root_faces_[keep].size() < root_faces_[gone].size())
+        std::swap(root_faces_[keep], root_faces_[gone]);
+      root_faces_[keep].insert(root_faces_[keep].end(), root_faces_[gone].begin(), root_faces_[gone].end());
+      std::vector<std::uint32_t>().swap(root_faces_[gone]);
+    }
+  }
+};
+
 }  // namespace detail
 
 /// Finds objects and volumes and applies the reading rule to the faces no edge needs (see the
@@ -313,84 +533,20 @@ inline volume_result find_volumes(const wire_graph& g, const std::vector<wire_fa
     alive[i] = sides_of[i][0] != sides_of[i][1];
   }
   const auto at = detail::faces_at_edges(g, faces, &alive);
-  const std::vector<char> needed = detail::needed_faces(g, faces, at, alive);
-  std::vector<char> unforced(nf, 0), seam(nf, 0);
-  for (std::uint32_t i = 0; i < nf; ++i) {
-    if (!alive[i] || needed[i]) continue;
-    unforced[i] = 1;
-    // A seam face continues, at every edge, in the plane of another face: a wall among walls.
-    seam[i] = 1;
-    for (const auto& loop : faces[i].loops)
-      for (std::size_t k = 0; k < loop.size() && seam[i]; ++k) {
-        bool flat = false;
-        for (const auto j : at[g.find_edge(loop[k], loop[(k + 1) % loop.size()])])
-          flat = flat || (j != i && detail::coplanar_normals(faces[i].normal, faces[j].normal));
-        seam[i] = flat;
-      }
-  }
-  // Groups: bounded regions joined by unforced walls. A group with an unforced face on the
-  // outside is a hole, dent or tunnel and becomes outside, unless a wall inside it is a seam
-  // (grid-like: undecidable); a group without one is one volume (unless keep_walls).
-  detail::union_find group(std::size_t{regions} + 1);
-  for (std::uint32_t i = 0; i < nf; ++i)
-    if (unforced[i] && sides_of[i][0] != O && sides_of[i][1] != O)
-      group.unite(sides_of[i][0], sides_of[i][1]);
-  std::vector<char> opens(regions + 1, 0), has_seam(regions + 1, 0), droppable(regions + 1, 0);
-  auto group_of = [&](std::uint32_t i) {
-    return group.find(sides_of[i][0] != O ? sides_of[i][0] : sides_of[i][1]);
-  };
-  for (std::uint32_t i = 0; i < nf; ++i) {
-    if (!unforced[i]) continue;
-    if (sides_of[i][0] == O || sides_of[i][1] == O)
-      opens[group_of(i)] = 1;
-    else if (seam[i])
-      has_seam[group_of(i)] = 1;
-  }
-  for (std::uint32_t gr = 0; gr < regions; ++gr)
-    droppable[gr] = options.reading != face_reading::keep_all &&
-                    (opens[gr] ? !has_seam[gr] : options.reading == face_reading::needed);
-  std::vector<char> drop(nf, 0);
-  detail::union_find merged(std::size_t{regions} + 1);
-  // Drop what the groups allow, then take back every group whose drop would leave an edge on
-  // fewer than two faces or two coplanar ones, or a kept face with one region on both sides.
-  for (bool violated = true; violated;) {
-    violated = false;
-    merged = detail::union_find(std::size_t{regions} + 1);
-    for (std::uint32_t i = 0; i < nf; ++i) {
-      drop[i] = unforced[i] && droppable[group_of(i)];
-      if (drop[i]) merged.unite(sides_of[i][0], sides_of[i][1]);
-    }
-    std::vector<std::uint32_t> kept;
-    auto normal = [&](std::uint32_t j) { return faces[j].normal; };
-    for (std::uint32_t e = 0; e < g.num_edges(); ++e) {
-      bool any = false;
-      kept.clear();
-      for (const auto j : at[e]) {
-        any = any || drop[j];
-        if (!drop[j]) kept.push_back(j);
-      }
-      if (!any || (!kept.empty() && !detail::edge_needs_more(kept, normal))) continue;
-      for (const auto j : at[e])
-        if (drop[j]) droppable[group_of(j)] = 0;
-      violated = true;
-    }
-    for (std::uint32_t i = 0; i < nf; ++i) {
-      if (!alive[i] || drop[i] || merged.find(sides_of[i][0]) != merged.find(sides_of[i][1])) continue;
-      for (const auto rg : sides_of[i])
-        if (rg != O) droppable[group.find(rg)] = 0;
-      violated = true;
-    }
-  }
+  detail::face_reader reader(g, faces, at, sides_of, alive, regions, options.reading);
+  reader.run();
+  std::vector<char>& drop = reader.drop;
+  detail::union_find& merged = reader.merged;
   for (std::uint32_t i = 0; i < nf; ++i) {
     if (drop[i]) {
       r.dropped.push_back(i);
-      const bool hole = opens[group_of(i)];
+      const bool hole = reader.opened[i] != 0;
       r.alternatives.push_back("face " + std::to_string(i) + " (" + std::to_string(faces[i].loops[0].size()) +
                                "-gon) would " + (hole ? "close a hole or dent" : "split a volume in two"));
       r.diagnostics.push_back("face " + std::to_string(i) +
                               ": no edge needs it, so it is not a face (it would " +
                               (hole ? "close a hole or dent)" : "split a volume in two)"));
-    } else if (unforced[i]) {
+    } else if (reader.unforced[i]) {
       r.unforced.push_back(i);
     }
   }

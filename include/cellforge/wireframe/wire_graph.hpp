@@ -98,8 +98,12 @@ struct wire_face {
   glm::dvec3 normal{0.0};  ///< unit normal, right-hand about loops[0]
   double area = 0.0;       ///< area (outer minus holes)
   /// Planar tracer: a bounded face of loops nested, as a hole, inside another face of the same
-  /// plane (the top of a frame's hole); kept only when an edge needs it (see arrange_faces).
+  /// plane (the top of a frame's hole); whether it is a face the reading rule decides.
   bool fills_hole = false;
+  /// Planar tracer: how many faces of the same plane, not joined to this one by edges,
+  /// enclose it. Even-odd, as nested outlines are read: at odd depth a face fills a hole (the
+  /// mouth of a frame's hole), at even depth it is an island (a box top inside that mouth).
+  std::uint32_t depth = 0;
 };
 
 /// A face a stage had and removed, and why (for the result's diagnostics: nothing is lost silently).
@@ -244,11 +248,12 @@ bool edge_needs_more(const std::vector<std::uint32_t>& others, Normal&& normal) 
 
 /// True when some edge of face i needs it among the faces with alive[j] != 0: without it that
 /// edge would lie on fewer than two of them or on just two coplanar ones (the reading rule of
-/// docs/wireframe.md). `at` lists the faces of every edge. O(L_i · k) for k faces at an edge.
+/// docs/wireframe.md). `at` lists the faces of every edge; `others` is scratch space.
+/// O(L_i · k) for k faces at an edge.
 inline bool needed_faces_one(const wire_graph& g, const std::vector<wire_face>& faces,
                              const std::vector<std::vector<std::uint32_t>>& at,
-                             const std::vector<char>& alive, std::uint32_t i) {
-  std::vector<std::uint32_t> others;
+                             const std::vector<char>& alive, std::uint32_t i,
+                             std::vector<std::uint32_t>& others) {
   auto normal = [&](std::uint32_t j) { return faces[j].normal; };
   for (const auto& loop : faces[i].loops)
     for (std::size_t k = 0; k < loop.size(); ++k) {
@@ -265,8 +270,9 @@ inline std::vector<char> needed_faces(const wire_graph& g, const std::vector<wir
                                       const std::vector<std::vector<std::uint32_t>>& at,
                                       const std::vector<char>& alive) {
   std::vector<char> needed(faces.size(), 0);
+  std::vector<std::uint32_t> others;
   for (std::uint32_t i = 0; i < faces.size(); ++i)
-    if (alive[i]) needed[i] = needed_faces_one(g, faces, at, alive, i);
+    if (alive[i]) needed[i] = needed_faces_one(g, faces, at, alive, i, others);
   return needed;
 }
 
