@@ -35,7 +35,8 @@
 namespace {
 
 using cellforge::sample_model;
-using faces_t = std::vector<std::vector<std::vector<std::uint32_t>>>;
+using wireframe_sweep::faces_t;
+using wireframe_sweep::miss_reason;
 using wireframe_sweep::sweep_model;
 using wireframe_sweep::sweep_size;
 
@@ -59,65 +60,6 @@ sweep_size chosen_size() {
 // O(1).
 double ms_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
-
-// The result's faces in the caller's vertex labels, which the truth uses.
-// O(total loop length).
-faces_t result_faces(const cellforge::wireframe_result& r) {
-  faces_t out;
-  for (const auto& f : r.input.faces) {
-    out.push_back(f.loops);
-    for (auto& loop : out.back())
-      for (auto& v : loop) v = r.input_vertex[v];
-  }
-  return out;
-}
-
-// The faces of `a` that `b` lacks (multisets of canonical faces), each as its corner count
-// and holes: "4" a quadrilateral, "8h1" an octagon with one hole. O(F log F · face size).
-std::string unmatched(const faces_t& a, const faces_t& b) {
-  std::multiset<faces_t::value_type> rest;
-  for (const auto& f : b) rest.insert(cellforge::detail::canonical_face(f));
-  std::map<std::string, int> shapes;
-  for (const auto& f : a) {
-    const auto it = rest.find(cellforge::detail::canonical_face(f));
-    if (it != rest.end()) {
-      rest.erase(it);
-      continue;
-    }
-    ++shapes[std::to_string(f[0].size()) + (f.size() > 1 ? "h" + std::to_string(f.size() - 1) : "")];
-  }
-  std::string out;
-  for (const auto& [shape, n] : shapes)
-    out += (out.empty() ? "" : " ") + (n > 1 ? std::to_string(n) + "x" : "") + shape;
-  return out.empty() ? "-" : out;
-}
-
-// Why a result is not the truth, in one line; empty when it is exact.
-// O(F log F · face size).
-std::string miss_reason(const sample_model& m, const cellforge::wireframe_result& r) {
-  std::vector<std::string> why;
-  const faces_t faces = result_faces(r);
-  const bool faces_ok = cellforge::same_faces(m.faces, faces);
-  if (!faces_ok)
-    why.push_back("faces " + std::to_string(faces.size()) + " vs " + std::to_string(m.faces.size()) +
-                  " expected (extra " + unmatched(faces, m.faces) + "; missing " + unmatched(m.faces, faces) +
-                  ")");
-  if (r.input.volumes.size() != m.volumes.size())
-    why.push_back("volumes " + std::to_string(r.input.volumes.size()) + " vs " +
-                  std::to_string(m.volumes.size()) + " expected");
-  else if (faces_ok && !cellforge::same_volumes(m.faces, m.volumes, faces, r.input.volumes))
-    why.push_back("volumes differ (" + std::to_string(m.volumes.size()) + " each)");
-  if (const std::size_t want = wireframe_sweep::truth_objects(m); r.cells.num_objects() != want)
-    why.push_back("objects " + std::to_string(r.cells.num_objects()) + " vs " + std::to_string(want) +
-                  " expected");
-  if (r.unforced.size() != m.unforced_faces)
-    why.push_back("unforced " + std::to_string(r.unforced.size()) + " vs " +
-                  std::to_string(m.unforced_faces) + " expected");
-  if (const auto v = cellforge::validate(r.cells); !v.ok()) why.push_back("invalid complex: " + v.message);
-  std::string out;
-  for (const auto& w : why) out += (out.empty() ? "" : "; ") + w;
-  return out;
 }
 
 // What is wrong with a model's truth as such (independent of the pipeline); empty when sound:

@@ -22,6 +22,7 @@
 #include <optional>
 #include <random>
 #include <set>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -32,8 +33,12 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/algorithms/convex_hull.hpp"
+#include "cellforge/cells/validate.hpp"
 #include "cellforge/core/error.hpp"
+#include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/wireframe/wireframe_to_cells.hpp"
 
 namespace wireframe_sweep {
 
@@ -71,9 +76,9 @@ struct sweep_set {
 /// O(1).
 inline const std::vector<std::string>& sweep_families() {
   static const std::vector<std::string> names{
-      "frame",         "plate",          "box ring",  "torus",    "bipyramid", "house",    "dent",
-      "notch",         "barrel",         "hourglass", "geodesic", "cross",     "polycube", "polycube cells",
-      "linked frames", "solid in frame", "touching",  "grid",     "library"};
+      "frame",          "plate",         "box ring",       "torus",    "bipyramid", "house",  "dent",
+      "notch",          "barrel",        "hourglass",      "geodesic", "polytope",  "cross",  "polycube",
+      "polycube cells", "linked frames", "solid in frame", "touching", "grid",      "library"};
   return names;
 }
 
@@ -933,6 +938,38 @@ inline std::optional<cellforge::sample_model> accept(const cellforge::voxel_layo
   return m;
 }
 
+/// The convex hull of `n` random points (in a ball, or in a box when `box`): its triangles and
+/// one volume. Random points are in general position, so the hull's faces are triangles and
+/// its 3-cycles that are not faces — separating triangles through the inside — are the
+/// planar cycles the reading must not take. O(n log n).
+inline cellforge::sample_model random_polytope(std::size_t n, bool box, random_source& rng,
+                                               std::string name) {
+  std::vector<glm::dvec3> points;
+  while (points.size() < n) {
+    const glm::dvec3 p(rng.between(-1, 1), rng.between(-1, 1), rng.between(-1, 1));
+    if (box || glm::length(p) <= 1.0) points.push_back(p);
+  }
+  const cellforge::halfedge_mesh hull = cellforge::convex_hull(std::span<const glm::dvec3>(points));
+  const auto soup = cellforge::to_soup<glm::dvec3>(hull);
+  cellforge::sample_model m;
+  m.name = std::move(name);
+  m.wire.points = soup.points;
+  std::vector<std::array<std::uint32_t, 2>> edges;
+  for (std::size_t f = 0; f < soup.num_faces(); ++f) {
+    const auto face = soup.face(f);
+    m.faces.push_back({std::vector<std::uint32_t>(face.begin(), face.end())});
+    for (std::size_t k = 0; k < face.size(); ++k)
+      edges.push_back(
+          {std::min(face[k], face[(k + 1) % face.size()]), std::max(face[k], face[(k + 1) % face.size()])});
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  m.wire.edges = edges;
+  m.volumes.emplace_back();
+  for (std::uint32_t f = 0; f < m.faces.size(); ++f) m.volumes[0].push_back(f);
+  return m;
+}
+
 /// Random polycubes, one volume per piece (a quarter of them two pieces apart), coplanar
 /// faces merged; `count` kept draws. O(count · draws per kept · layout).
 inline void random_polycubes(sweep_set& s, std::size_t count) {
@@ -1201,6 +1238,18 @@ inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
   }
 
   {
+    random_source rng(0x5851f42d4c957f2dull);
+    std::vector<sample_model> bases;
+    for (std::size_t k = 0; k < (full ? 24u : 4u); ++k) {
+      const std::size_t n = 8 + 4 * k;
+      const bool box = k % 2 == 1;
+      bases.push_back(
+          detail::random_polytope(n, box, rng, "polytope n=" + std::to_string(n) + (box ? " box" : " ball")));
+    }
+    detail::add_family(s, "polytope", std::move(bases), full);
+  }
+
+  {
     const std::array<bool, 6> all{true, true, true, true, true, true};
     struct cross_kind {
       std::size_t arm, centre, width;
@@ -1365,5 +1414,67 @@ inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
 /// The models of the sweep (make_sweep without the draw counts).
 /// O(make_sweep).
 inline std::vector<sweep_model> sweep_models(sweep_size size) { return make_sweep(size).models; }
+
+/// Face lists as the truth and the comparisons use: per face its loops.
+using faces_t = std::vector<std::vector<std::vector<std::uint32_t>>>;
+
+/// The result's faces in the caller's vertex labels, which the truth uses.
+/// O(total loop length).
+inline faces_t result_faces(const cellforge::wireframe_result& r) {
+  faces_t out;
+  for (const auto& f : r.input.faces) {
+    out.push_back(f.loops);
+    for (auto& loop : out.back())
+      for (auto& v : loop) v = r.input_vertex[v];
+  }
+  return out;
+}
+
+/// The faces of `a` that `b` lacks (multisets of canonical faces), each as its corner count
+/// and holes: "4" a quadrilateral, "8h1" an octagon with one hole. O(F log F · face size).
+inline std::string unmatched(const faces_t& a, const faces_t& b) {
+  std::multiset<faces_t::value_type> rest;
+  for (const auto& f : b) rest.insert(cellforge::detail::canonical_face(f));
+  std::map<std::string, int> shapes;
+  for (const auto& f : a) {
+    const auto it = rest.find(cellforge::detail::canonical_face(f));
+    if (it != rest.end()) {
+      rest.erase(it);
+      continue;
+    }
+    ++shapes[std::to_string(f[0].size()) + (f.size() > 1 ? "h" + std::to_string(f.size() - 1) : "")];
+  }
+  std::string out;
+  for (const auto& [shape, n] : shapes)
+    out += (out.empty() ? "" : " ") + (n > 1 ? std::to_string(n) + "x" : "") + shape;
+  return out.empty() ? "-" : out;
+}
+
+/// Why a result is not the truth, in one line; empty when it is exact.
+/// O(F log F · face size).
+inline std::string miss_reason(const cellforge::sample_model& m, const cellforge::wireframe_result& r) {
+  std::vector<std::string> why;
+  const faces_t faces = result_faces(r);
+  const bool faces_ok = cellforge::same_faces(m.faces, faces);
+  if (!faces_ok)
+    why.push_back("faces " + std::to_string(faces.size()) + " vs " + std::to_string(m.faces.size()) +
+                  " expected (extra " + unmatched(faces, m.faces) + "; missing " + unmatched(m.faces, faces) +
+                  ")");
+  if (r.input.volumes.size() != m.volumes.size())
+    why.push_back("volumes " + std::to_string(r.input.volumes.size()) + " vs " +
+                  std::to_string(m.volumes.size()) + " expected");
+  else if (faces_ok && !cellforge::same_volumes(m.faces, m.volumes, faces, r.input.volumes))
+    why.push_back("volumes differ (" + std::to_string(m.volumes.size()) + " each)");
+  if (const std::size_t want = truth_objects(m); r.cells.num_objects() != want)
+    why.push_back("objects " + std::to_string(r.cells.num_objects()) + " vs " + std::to_string(want) +
+                  " expected");
+  if (r.unforced.size() != m.unforced_faces)
+    why.push_back("unforced " + std::to_string(r.unforced.size()) + " vs " +
+                  std::to_string(m.unforced_faces) + " expected");
+  if (const auto v = cellforge::validate(r.cells); !v.ok()) why.push_back("invalid complex: " + v.message);
+  std::string out;
+  for (const auto& w : why) out += (out.empty() ? "" : "; ") + w;
+  return out;
+}
 
 }  // namespace wireframe_sweep
