@@ -72,11 +72,18 @@ polygon_soup<glm::dvec3> uv_sphere(int rings, int sectors) {
   return s;
 }
 
-/// Balanced tags, quoted attributes, no stray '<' or '&' in text: enough to catch broken output.
+/// Balanced tags, quoted attributes, no stray '<' or '&' in text, comments closed: enough to catch
+/// broken output.
 bool well_formed(const std::string& s) {
   std::vector<std::string> open;
   std::size_t i = 0;
   while ((i = s.find('<', i)) != std::string::npos) {
+    if (s.compare(i, 4, "<!--") == 0) {  // a comment: no "--" inside, ends with "-->"
+      const std::size_t close = s.find("--", i + 4);
+      if (close == std::string::npos || s.compare(close, 3, "-->") != 0) return false;
+      i = close + 3;
+      continue;
+    }
     const std::size_t end = s.find('>', i);
     if (end == std::string::npos) return false;
     const std::string tag = s.substr(i + 1, end - i - 1);
@@ -355,6 +362,56 @@ TEST_CASE("many triangles and segments: the grid finds every occluder (checked b
   CHECK(hidden_samples > 500);  // the test does test occlusion
 }
 
+TEST_CASE("a sphere's own edges: hidden exactly where ray casting says, in every row of the grid") {
+  // Short edges, many fully hidden behind the front half: they exercise the skipping of grid
+  // cells whose part of an edge is already hidden, on the grid's outer rows and columns too.
+  for (const double elevation : {25.0, -40.0, 70.0}) {
+    const auto sphere = uv_sphere(16, 32);
+    io::svg_scene scene;
+    scene.add_mesh(sphere);
+    io::svg_options o;
+    o.view.elevation_deg = elevation;
+    const double az = o.view.azimuth_deg * std::numbers::pi / 180, el = elevation * std::numbers::pi / 180;
+    const glm::dvec3 toward(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
+    // The farthest hit along the ray toward the camera, over the faces split into triangles.
+    const auto farthest_hit = [&](const glm::dvec3& x) {
+      double best = -1;
+      for (std::size_t f = 0; f < sphere.num_faces(); ++f) {
+        const auto vs = sphere.face(f);
+        for (std::size_t k = 1; k + 1 < vs.size(); ++k) {
+          const glm::dvec3 &t0 = sphere.points[vs[0]], &t1 = sphere.points[vs[k]],
+                           &t2 = sphere.points[vs[k + 1]];
+          const glm::dvec3 e1 = t1 - t0, e2 = t2 - t0, p = glm::cross(toward, e2);
+          const double det = glm::dot(e1, p);
+          if (std::abs(det) < 1e-14) continue;
+          const glm::dvec3 d = x - t0, q = glm::cross(d, e1);
+          const double u = glm::dot(d, p) / det, v = glm::dot(toward, q) / det, dist = glm::dot(e2, q) / det;
+          if (u >= 0 && v >= 0 && u + v <= 1) best = std::max(best, dist);
+        }
+      }
+      return best;
+    };
+    std::size_t checked = 0, hidden_samples = 0;
+    for (const auto& e : scene.edge_visibility(o)) {
+      for (const double t : {0.25, 0.5, 0.75}) {
+        bool in = false, near_end = false;
+        for (const auto& h : e.hidden) {
+          in = in || (t > h[0] && t < h[1]);
+          near_end = near_end || std::abs(t - h[0]) < 1e-3 || std::abs(t - h[1]) < 1e-3;
+        }
+        const double hit = farthest_hit(e.a + t * (e.b - e.a));
+        if (near_end || (hit > 1e-9 && hit < 1e-3)) continue;  // grazing: either answer is right
+        CHECK(in == (hit >= 1e-3));
+        ++checked;
+        hidden_samples += in ? 1 : 0;
+      }
+    }
+    INFO("elevation " << elevation << ": " << checked << " samples, " << hidden_samples << " hidden");
+    CHECK(checked > 2000);
+    CHECK(hidden_samples > 1000);
+  }
+}
+
 TEST_CASE("the picture does not depend on the model's scale or position") {
   const auto scaled = [](double s, glm::dvec3 shift) {
     auto cube = unit_cube<glm::dvec3>();
@@ -588,4 +645,165 @@ TEST_CASE("shading is two-sided and a non-orientable strip draws every face") {
   CHECK(r.edges >= static_cast<std::size_t>(2 * n));  // the one boundary loop has 2n edges
   CHECK(r.edges < static_cast<std::size_t>(3 * n));   // and the smooth rungs are mostly skipped
   CHECK(well_formed(text));
+}
+
+namespace {
+
+/// A regular n-gon of radius r about the z axis at height z, counter-clockwise seen from +z.
+polygon_soup<glm::dvec3> disc(std::uint32_t n, double r, double z) {
+  polygon_soup<glm::dvec3> s;
+  std::vector<std::uint32_t> loop(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const double a = 2 * std::numbers::pi * i / n;
+    s.points.push_back({r * std::cos(a), r * std::sin(a), z});
+    loop[i] = i;
+  }
+  s.add_face(loop);
+  return s;
+}
+
+/// Seen from straight above (+z), x to the right.
+const io::svg_options from_above{.view = {.azimuth_deg = -90, .elevation_deg = 90}};
+
+}  // namespace
+
+TEST_CASE("a 4096-gon in front of segments hides exactly the chords inside it") {
+  io::svg_scene scene;
+  scene.add_mesh(disc(4096, 1.0, 1.0));
+  std::vector<std::size_t> lines;
+  std::vector<double> heights;
+  for (int k = -12; k <= 12; ++k) {
+    const double y = 0.1 * k + 0.013;  // not through a vertex of the polygon
+    const std::vector<glm::dvec3> segment{{-2.0, y, 0.0}, {2.0, y, 0.0}};
+    lines.push_back(scene.add_polyline(segment));
+    heights.push_back(y);
+  }
+  io::svg_result r;
+  render(scene, from_above, &r);
+  CHECK(r.approximate_edges == 0);
+  CHECK(r.untested_edges == 0);
+  std::size_t checked = 0;
+  for (const auto& e : scene.edge_visibility(from_above)) {
+    if (e.layer == 0) {
+      CHECK(e.hidden.empty());  // the polygon's own edges are in front of everything
+      continue;
+    }
+    REQUIRE(e.exact);
+    const double y = heights[e.layer - 1];
+    if (std::abs(y) >= 1.0) {
+      CHECK(e.hidden.empty());
+    } else {
+      // The chord of the unit circle, x in +-sqrt(1 - y^2); t = (x + 2) / 4. The polygon's sides
+      // are within 1 - cos(pi / 4096) < 3e-7 of the circle.
+      const double half = std::sqrt(1.0 - y * y) / 4.0;
+      REQUIRE(e.hidden.size() == 1);
+      CHECK(e.hidden[0][0] == doctest::Approx(0.5 - half).epsilon(1e-5));
+      CHECK(e.hidden[0][1] == doctest::Approx(0.5 + half).epsilon(1e-5));
+    }
+    ++checked;
+  }
+  CHECK(checked == lines.size());
+}
+
+TEST_CASE(
+    "two 20 000-gons: back to back every edge is visible, one above the other the lower one is hidden") {
+  // Back to back: the same points, one face each way; every edge belongs to both faces.
+  polygon_soup<glm::dvec3> both = disc(20000, 1.0, 0.0);
+  std::vector<std::uint32_t> reversed(both.face(0).rbegin(), both.face(0).rend());
+  both.add_face(reversed);
+  io::svg_scene scene;
+  scene.add_mesh(both);
+  io::svg_result r;
+  render(scene, {}, &r);
+  CHECK(r.edges == 20000);
+  CHECK(r.visible_edges == 20000);
+  CHECK(r.approximate_edges + r.untested_edges == 0);
+
+  // A smaller disc below a larger one, seen from above: its edges are all hidden.
+  io::svg_scene stack;
+  stack.add_mesh(disc(20000, 1.0, 0.0));
+  stack.add_mesh(disc(20000, 0.9, -1.0));
+  io::svg_result rs;
+  const std::string text = render(stack, from_above, &rs);
+  CHECK(rs.edges == 40000);
+  CHECK(rs.visible_edges == 20000);
+  CHECK(rs.hidden_edges == 20000);
+  CHECK(rs.approximate_edges + rs.untested_edges == 0);
+  CHECK(well_formed(text));
+}
+
+TEST_CASE("past the work budget, edges are judged from one point and the picture says so") {
+  // A fan of sliver triangles meeting at one corner, with its points: every edge near the
+  // corner crosses cells holding every triangle.
+  polygon_soup<glm::dvec3> fan = disc(400, 1.0, 0.0);
+  polygon_soup<glm::dvec3> sliver;
+  sliver.points = fan.points;
+  for (std::uint32_t i = 1; i + 1 < 400; ++i) sliver.add_face({0, i, i + 1});
+  io::svg_scene scene;
+  scene.add_mesh(sliver);
+  scene.add_points(sliver.points);
+  io::svg_result exact;
+  const std::string full = render(scene, {}, &exact);
+  CHECK(exact.approximate_edges + exact.untested_edges + exact.approximate_points + exact.untested_points ==
+        0);
+  CHECK(full.find("work budget") == std::string::npos);
+
+  io::svg_options tight;
+  tight.work_budget = 2000;
+  io::svg_result r;
+  const std::string text = render(scene, tight, &r);
+  CHECK(r.edges == exact.edges);
+  CHECK(r.approximate_edges > 0);
+  CHECK(r.approximate_edges + r.untested_edges < r.edges);  // the first edges are still exact
+  CHECK(r.work <= 2 * tight.work_budget + 1000);            // bounded: one query's overshoot at most
+  CHECK(text.find("hidden-line work budget ran out") != std::string::npos);
+  CHECK(well_formed(text));
+  std::size_t inexact = 0;
+  for (const auto& e : scene.edge_visibility(tight)) {
+    if (e.exact) continue;
+    ++inexact;
+    CHECK((e.hidden.empty() || is_full(e)));  // hidden or visible as a whole
+  }
+  CHECK(inexact == r.approximate_edges + r.untested_edges);
+  // A budget of 1 unit: next to nothing is exact, nothing throws.
+  tight.work_budget = 1;
+  CHECK_NOTHROW(render(scene, tight, &r));
+  CHECK(r.approximate_edges + r.untested_edges > r.edges / 2);
+}
+
+TEST_CASE("a cube's hidden edges stay dashed and exact under any budget that fits it") {
+  io::svg_scene scene;
+  scene.add_mesh(unit_cube<glm::dvec3>());
+  io::svg_options o;
+  o.work_budget = 100000;
+  io::svg_result r;
+  const std::string text = render(scene, o, &r);
+  CHECK(r.hidden_edges == 3);
+  CHECK(r.visible_edges == 9);
+  CHECK(r.approximate_edges == 0);
+  CHECK(r.work > 0);
+  CHECK(text.find("stroke-dasharray") != std::string::npos);
+  CHECK(text == render(scene));  // the default budget draws the same picture
+}
+
+TEST_CASE("3000 stacked squares: the grid is coarsened, the top square still hides every other edge") {
+  // Every square covers nearly the whole picture, so a grid of one cell per face would list
+  // each of them in every cell (9 million entries).
+  polygon_soup<glm::dvec3> stack;
+  constexpr std::uint32_t n = 3000;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const double r = 1.0 - 0.5 * i / n, z = -0.001 * i;
+    const std::uint32_t b = static_cast<std::uint32_t>(stack.points.size());
+    for (const auto& [x, y] : {std::pair{-r, -r}, {r, -r}, {r, r}, {-r, r}})
+      stack.points.push_back({x, y, z});
+    stack.add_face({b, b + 1, b + 2, b + 3});
+  }
+  io::svg_scene scene;
+  scene.add_mesh(stack);
+  io::svg_result r;
+  render(scene, from_above, &r);
+  CHECK(r.faces_drawn == n);
+  CHECK(r.visible_edges == 4);
+  CHECK(r.hidden_edges == 4 * (n - 1));
+  CHECK(r.approximate_edges + r.untested_edges == 0);
 }

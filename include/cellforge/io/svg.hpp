@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <ostream>
@@ -88,6 +89,11 @@ struct svg_options {
   double depth_epsilon = 1e-6;
   /// Visible or hidden pieces shorter than this (projected, in pixels) join their neighbours.
   double min_piece_px = 0.05;
+  /// Work units (grid cells visited, faces considered, polygon sides examined) the exact
+  /// hidden-line tests may spend; 0: 1.6 x 10^7 + 256 per edge and point. Past it, edges and points
+  /// are judged from one point against a few of the nearest faces; past twice it, they are
+  /// drawn visible untested (svg_result counts both). The picture then stays near-linear.
+  std::uint64_t work_budget = 0;
 };
 
 /// What a picture holds; edge counts are of the visibility computation, drawn or not.
@@ -101,6 +107,11 @@ struct svg_result {
   std::size_t visible_pieces = 0, hidden_pieces = 0;  ///< pieces after splitting edges
   std::size_t points_visible = 0, points_hidden = 0;
   std::size_t labels = 0;
+  /// Past the work budget (svg_options::work_budget): edges and points judged hidden or not as
+  /// a whole from one point, and those not tested at all (drawn visible).
+  std::size_t approximate_edges = 0, untested_edges = 0;
+  std::size_t approximate_points = 0, untested_points = 0;
+  std::uint64_t work = 0;  ///< work units the hidden-line tests spent
 };
 
 /// One edge or segment of the scene and where it is hidden.
@@ -108,6 +119,7 @@ struct svg_edge_visibility {
   std::size_t layer = 0;                        ///< as returned by the add_ call
   glm::dvec3 a{0.0}, b{0.0};                    ///< ends, with the layer's offset applied
   std::vector<std::array<double, 2>> hidden{};  ///< sorted disjoint intervals of t (point a + t (b - a))
+  bool exact = true;  ///< false: past the work budget, judged as a whole from its midpoint or not at all
 };
 
 namespace detail {
@@ -340,17 +352,20 @@ class svg_scene {
   void clear() { *this = svg_scene(); }
 
   /// Every edge and segment with the parameter intervals where faces hide it, as `write`
-  /// would draw them. O(P + (E + F) x local density + F log F).
+  /// would draw them. O(P + (E + F) x local density + F log F), the density term capped by
+  /// options.work_budget.
   std::vector<svg_edge_visibility> edge_visibility(const svg_options& options = {}) const {
     const frame fr = render(options);
     std::vector<svg_edge_visibility> out;
     out.reserve(fr.edges.size());
-    for (const auto& e : fr.edges) out.push_back({e.layer, points_[e.a], points_[e.b], e.hidden});
+    for (const auto& e : fr.edges)
+      out.push_back({e.layer, points_[e.a], points_[e.b], e.hidden, e.quality == 0});
     return out;
   }
 
   /// Writes the picture to a stream; throws invalid_input on bad options, io if the stream
-  /// fails. O(P + (E + F) x local density + F log F + output size).
+  /// fails. O(P + (E + F) x local density + F log F + output size), the density term capped
+  /// by options.work_budget.
   svg_result write(std::ostream& os, const svg_options& options = {}) const {
     std::string text;
     const svg_result r = write_to(text, options);
@@ -390,6 +405,7 @@ class svg_scene {
     std::size_t layer = 0;
     std::uint32_t a = 0, b = 0;  // scene point indices
     std::vector<std::array<double, 2>> hidden;
+    std::uint8_t quality = 0;  // 0 exact, 1 judged from its midpoint, 2 untested (past the work budget)
   };
 
   // Everything the writer needs, computed once per picture.
@@ -402,6 +418,8 @@ class svg_scene {
     std::vector<edge> edges;
     std::vector<std::uint8_t> point_hidden;  // per point of points layers
     glm::dvec3 toward{0.0};                  // unit vector from the scene toward the camera
+    std::size_t approximate_points = 0, untested_points = 0;
+    std::uint64_t work = 0;
   };
 
   [[noreturn]] static void fail(const std::string& what) {
@@ -611,7 +629,11 @@ class svg_scene {
     std::stable_sort(fr.order.begin(), fr.order.end(),
                      [&](std::uint32_t a, std::uint32_t b) { return depth[a] < depth[b]; });
 
-    // Occluders: the drawn faces of layers that occlude.
+    // Occluders: the drawn faces of layers that occlude. A face hides what is behind it by
+    // more than eps; one sharing an end with an edge, by more than eps_shared (they meet
+    // there exactly, so only rounding needs covering).
+    const double eps = o.depth_epsilon * diag;
+    const double eps_shared = 1e-3 * eps;
     detail::occlusion_grid grid;
     {
       std::vector<glm::dvec3> poly;
@@ -621,7 +643,7 @@ class svg_scene {
         for (const auto v : face(f)) poly.push_back(fr.screen[v]);
         grid.add_face(f, poly);
       }
-      grid.build();
+      grid.build(eps_shared);  // the least margin the tests below ask for
     }
 
     // Every face side by welded vertex pair, sorted: the faces an edge belongs to.
@@ -646,22 +668,53 @@ class svg_scene {
 
     collect_edges(fr, faces_of);
 
-    // Split every edge into hidden and visible parts.
-    const double eps = o.depth_epsilon * diag;
-    const double eps_shared = 1e-3 * eps;  // faces sharing an end meet the edge there exactly
+    // Whether face f has welded vertex w: a scan of a small face, a binary search for a large
+    // one (so a 20 000-gon costs O(log) per test, not 20 000).
+    constexpr std::size_t large_face = detail::occlusion_grid::banded_face_size;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> large_corners;  // (face, welded vertex)
+    for (std::size_t f = 0; f < nf; ++f)
+      if (face(f).size() > large_face)
+        for (const auto v : face(f)) large_corners.emplace_back(static_cast<std::uint32_t>(f), fr.weld[v]);
+    std::sort(large_corners.begin(), large_corners.end());
+    const auto has_vertex = [&](std::uint32_t f, std::uint32_t w) {
+      const auto vs = face(f);
+      if (vs.size() > large_face)
+        return std::binary_search(large_corners.begin(), large_corners.end(), std::make_pair(f, w));
+      return std::any_of(vs.begin(), vs.end(), [&](std::uint32_t v) { return fr.weld[v] == w; });
+    };
+
+    // Split every edge into hidden and visible parts: exactly while the work budget lasts,
+    // then from the midpoint against a few of the nearest faces, then not at all.
+    std::size_t num_points = 0;
+    for (const auto& l : layers_)
+      if (l.kind == layer_kind::points) num_points += l.point_end - l.point_begin;
+    const std::uint64_t budget =
+        o.work_budget > 0 ? o.work_budget : 16'000'000 + 256 * std::uint64_t{fr.edges.size() + num_points};
+    const std::uint64_t hard_limit = budget > detail::occlusion_grid::no_limit / 2 ? budget : 2 * budget;
+    constexpr std::size_t approximate_faces = 16;  // nearest faces looked at past the budget
     for (auto& e : fr.edges) {
       const std::uint32_t wa = fr.weld[e.a], wb = fr.weld[e.b];
-      const auto adjacent = faces_of(detail::svg_edge_key(wa, wb));
+      const auto adjacent = faces_of(detail::svg_edge_key(wa, wb));  // sorted by face
       const auto margin = [&](std::uint32_t f) -> double {
-        for (const auto& s : adjacent)
-          if (s.second == f) return -1.0;
-        for (const auto v : face(f))
-          if (fr.weld[v] == wa || fr.weld[v] == wb) return eps_shared;
-        return eps;
+        if (!adjacent.empty() &&
+            std::binary_search(adjacent.begin(), adjacent.end(),
+                               std::pair<std::uint64_t, std::uint32_t>(adjacent[0].first, f)))
+          return -1.0;  // a face the edge belongs to
+        return has_vertex(f, wa) || has_vertex(f, wb) ? eps_shared : eps;
       };
-      grid.hidden_intervals(fr.screen[e.a], fr.screen[e.b], margin, e.hidden);
-      const double len = glm::length(glm::dvec2(fr.screen[e.b]) - glm::dvec2(fr.screen[e.a]));
-      normalise(e.hidden, len > 0.0 ? o.min_piece_px / len : 0.0);
+      const glm::dvec3 &a = fr.screen[e.a], &b = fr.screen[e.b];
+      if (grid.work() <= budget && grid.hidden_intervals(a, b, margin, e.hidden, budget)) {
+        const double len = glm::length(glm::dvec2(b) - glm::dvec2(a));
+        normalise(e.hidden, len > 0.0 ? o.min_piece_px / len : 0.0);
+        continue;
+      }
+      e.hidden.clear();
+      e.quality = 2;
+      if (grid.work() > hard_limit) continue;
+      const int h = grid.point_test(0.5 * (a + b), margin, hard_limit, approximate_faces);
+      if (h < 0) continue;
+      e.quality = 1;
+      if (h > 0) e.hidden.push_back({0.0, 1.0});
     }
 
     fr.point_hidden.assign(np, 0);
@@ -670,13 +723,16 @@ class svg_scene {
       for (std::uint32_t i = l.point_begin; i < l.point_end; ++i) {
         const std::uint32_t w = fr.weld[i];
         const auto margin = [&](std::uint32_t f) -> double {
-          for (const auto v : face(f))
-            if (fr.weld[v] == w) return -1.0;  // a vertex of the face is on it, not behind it
-          return eps;
+          return has_vertex(f, w) ? -1.0 : eps;  // a vertex of the face is on it, not behind it
         };
-        fr.point_hidden[i] = grid.point_hidden(fr.screen[i], margin) ? 1 : 0;
+        const bool exact = grid.work() <= budget;
+        const int h = grid.point_test(fr.screen[i], margin, exact ? budget : hard_limit,
+                                      exact ? std::numeric_limits<std::size_t>::max() : approximate_faces);
+        if (h < 0 || !exact) ++(h < 0 ? fr.untested_points : fr.approximate_points);
+        fr.point_hidden[i] = h > 0 ? 1 : 0;
       }
     }
+    fr.work = grid.work();
     return fr;
   }
 
@@ -747,6 +803,13 @@ class svg_scene {
   svg_result write_to(std::string& out, const svg_options& o) const {
     const frame fr = render(o);
     svg_result r;
+    for (const auto& e : fr.edges) {
+      r.approximate_edges += e.quality == 1 ? 1 : 0;
+      r.untested_edges += e.quality == 2 ? 1 : 0;
+    }
+    r.approximate_points = fr.approximate_points;
+    r.untested_points = fr.untested_points;
+    r.work = fr.work;
     const int prec = o.precision;
     const auto num = [&](double v) { detail::svg_number(out, v, prec); };
     const auto attr = [&](std::string_view name, std::string_view value) {
@@ -773,6 +836,12 @@ class svg_scene {
       detail::svg_escape(out, o.title);
       out += "</title>\n";
     }
+    if (r.approximate_edges + r.untested_edges + r.approximate_points + r.untested_points > 0)
+      out += "<!-- cellforge: the hidden-line work budget ran out: " +
+             std::to_string(r.approximate_edges + r.approximate_points) +
+             " edges and points judged from one point, " +
+             std::to_string(r.untested_edges + r.untested_points) +
+             " not tested (drawn visible); raise svg_options::work_budget for exact hidden lines -->\n";
     if (!o.background.empty() && o.background != "none") {
       out += "<rect width=\"100%\" height=\"100%\"";
       attr("fill", o.background);
