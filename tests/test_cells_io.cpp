@@ -1,6 +1,10 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <filesystem>
+#include <numbers>
 #include <set>
 #include <sstream>
 #include <string>
@@ -273,4 +277,102 @@ TEST_CASE("3dcl, OBJ and SVG of the sample models' complexes") {
     std::ostringstream svg;
     CHECK(io::write_cells_svg(svg, cc).faces_drawn == obj.soup.num_faces());
   }
+}
+
+TEST_CASE("cells SVG of 1000 volumes: one layer and six faces per volume, the nearest cube as if alone") {
+  const cell_complex cc = make_cell_complex(fx::grid(10, 10, 10));
+  const io::svg_scene scene = io::cells_svg_scene(cc);
+  CHECK(scene.num_layers() == 1000);
+  std::ostringstream os;
+  const io::svg_result r = io::write_cells_svg(os, cc);
+  const std::string text = os.str();
+  CHECK(r.faces_drawn == 6000);
+  CHECK(r.edges == 12000);  // each cube's own 12 edges, in its own layer
+  CHECK(r.visible_edges + r.hidden_edges + r.partly_hidden_edges == 12000);
+  CHECK(r.approximate_edges + r.untested_edges == 0);
+  std::size_t polygons = 0;
+  for (std::size_t at = text.find("<polygon"); at != std::string::npos; at = text.find("<polygon", at + 1))
+    ++polygons;
+  CHECK(polygons == 6000);
+  CHECK(text.find("stroke-dasharray") != std::string::npos);
+  // The default camera looks from the +x +y +z side: cube (9, 9, 9), volume 999, is in front of
+  // everything, so exactly its three edges at its far corner are hidden, by its own faces.
+  std::size_t visible = 0, hidden = 0, layer_edges = 0;
+  glm::dvec3 lo(1e9), hi(-1e9);
+  for (const auto& e : scene.edge_visibility()) {
+    if (e.layer != 999) continue;
+    ++layer_edges;
+    visible += e.hidden.empty() ? 1 : 0;
+    hidden += e.hidden.size() == 1 && e.hidden[0] == std::array<double, 2>{0.0, 1.0} ? 1 : 0;
+    lo = glm::min(lo, glm::min(e.a, e.b));
+    hi = glm::max(hi, glm::max(e.a, e.b));
+  }
+  CHECK(layer_edges == 12);
+  CHECK(visible == 9);
+  CHECK(hidden == 3);
+  // Exploded: the cube keeps its size and moves away from the centre (5, 5, 5).
+  CHECK(hi.x - lo.x == doctest::Approx(1.0));
+  CHECK(lo.x == doctest::Approx(9.0 + 0.35 * 4.5));
+}
+
+TEST_CASE("cells SVG of 512 separate cubes: every object drawn, its layer holding only its own cube") {
+  std::vector<fx::cube_cell> cubes;
+  for (int x = 0; x < 8; ++x)
+    for (int y = 0; y < 8; ++y)
+      for (int z = 0; z < 8; ++z) cubes.push_back({2 * x, 2 * y, 2 * z});
+  const cell_complex cc = make_cell_complex(fx::lattice(cubes));
+  CHECK(cc.num_objects() == 512);
+  const io::svg_scene scene = io::cells_svg_scene(cc, {.explode = 0.0});
+  CHECK(scene.num_layers() == 512);
+  std::ostringstream os;
+  const io::svg_result r = scene.write(os);
+  CHECK(r.faces_drawn == 512 * 6);
+  CHECK(r.edges == 512 * 12);
+  CHECK(r.approximate_edges + r.untested_edges == 0);
+  // Unexploded, each layer's edges lie on its own cube.
+  for (const auto& e : scene.edge_visibility()) {
+    const auto& c = cubes[e.layer];
+    for (const glm::dvec3& p : {e.a, e.b})
+      for (int k = 0; k < 3; ++k) CHECK((p[k] == c[k] || p[k] == c[k] + 1));
+  }
+}
+
+TEST_CASE("cells PLY: a face of more than 255 vertices gets a wider count type and reads back") {
+  // A prism over a 300-gon: two 300-gon caps and 300 side quads, one volume.
+  constexpr std::uint32_t n = 300;
+  cell_complex_input in;
+  for (std::uint32_t z = 0; z < 2; ++z)
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const double a = 2 * std::numbers::pi * i / n;
+      in.points.push_back({std::cos(a), std::sin(a), double(z)});
+    }
+  std::vector<std::uint32_t> bottom, top;
+  cell_complex_input::volume vol;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t j = (i + 1) % n;
+    in.edges.push_back({i, j});
+    in.edges.push_back({n + i, n + j});
+    in.edges.push_back({i, n + i});
+    bottom.push_back(i);
+    top.push_back(n + i);
+  }
+  in.faces.push_back({{bottom}});  // normal +z, into the prism
+  in.faces.push_back({{top}});     // normal +z, out of it
+  vol.faces = {{0, -1}, {1, +1}};
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t j = (i + 1) % n;
+    vol.faces.emplace_back(static_cast<std::uint32_t>(in.faces.size()), +1);
+    in.faces.push_back({{{i, j, n + j, n + i}}});  // normal outward
+  }
+  in.volumes.push_back(vol);
+  const cell_complex cc = make_cell_complex(in);
+  std::ostringstream os;
+  io::write_cells_ply(os, cc);
+  const std::string text = os.str();
+  CHECK(text.find("property list ushort int vertex_indices") != std::string::npos);
+  const auto soup = io::parse_ply<glm::dvec3>(text, "prism.ply");
+  REQUIRE(soup.num_faces() == n + 2);
+  std::size_t largest = 0;
+  for (std::size_t f = 0; f < soup.num_faces(); ++f) largest = std::max(largest, soup.face(f).size());
+  CHECK(largest == n);
 }

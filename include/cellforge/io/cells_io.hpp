@@ -507,16 +507,20 @@ inline glm::dvec3 volume_colour(std::size_t i) {
 }
 
 /// Writes an ASCII PLY of every volume's outward faces, each face with the colour of its
-/// volume (uchar red, green, blue face properties), faces with holes triangulated. O(size).
+/// volume (uchar red, green, blue face properties), faces with holes triangulated; the count
+/// type of the vertex lists is the narrowest that holds the largest face. O(size).
 inline void write_cells_ply(std::ostream& os, const cell_complex& cc) {
   const obj_data<glm::dvec3> data = cells_obj_data(cc);
+  std::size_t largest = 0;
+  for (std::size_t f = 0; f < data.soup.num_faces(); ++f)
+    largest = std::max(largest, data.soup.face(f).size());
+  const char* count_type = largest <= 0xFF ? "uchar" : largest <= 0xFFFF ? "ushort" : "uint";
   std::string out =
       "ply\nformat ascii 1.0\ncomment 3DCL faces coloured by volume (cellforge)\nelement vertex " +
       std::to_string(data.soup.points.size()) +
       "\nproperty double x\nproperty double y\nproperty double z\nelement face " +
-      std::to_string(data.soup.num_faces()) +
-      "\nproperty list uchar int vertex_indices\nproperty uchar red\nproperty uchar green\n"
-      "property uchar blue\nend_header\n";
+      std::to_string(data.soup.num_faces()) + "\nproperty list " + count_type +
+      " int vertex_indices\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
   for (const glm::dvec3& p : data.soup.points) {
     for (int k = 0; k < 3; ++k) detail::put_double(out, p[k]), out += k < 2 ? ' ' : '\n';
   }
@@ -526,8 +530,6 @@ inline void write_cells_ply(std::ostream& os, const cell_complex& cc) {
     const glm::dvec3 rgb = volume_colour(g) * 255.0;
     for (std::size_t f = data.groups[g].first_face; f < end; ++f) {
       const auto face = data.soup.face(f);
-      if (face.size() > 255)
-        throw error(error_category::invalid_input, "cells ply: face with more than 255 vertices");
       out += std::to_string(face.size());
       for (std::uint32_t v : face) out += ' ' + std::to_string(v);
       for (int k = 0; k < 3; ++k) out += ' ' + std::to_string(static_cast<int>(std::lround(rgb[k])));
@@ -550,9 +552,9 @@ struct cells_svg_options {
   svg_style style{};  ///< fill is replaced by each volume's colour
 };
 
-/// The exploded picture as a scene: one shaded mesh layer per volume, offset away from the
-/// model's centre; edges drawn where faces meet at an angle (not triangulation diagonals).
-/// O(size of cc).
+/// The exploded picture as a scene: one shaded mesh layer per volume holding only that
+/// volume's points, offset away from the model's centre; edges drawn where faces meet at an
+/// angle (not triangulation diagonals). O(size of cc).
 inline svg_scene cells_svg_scene(const cell_complex& cc, const cells_svg_options& options = {}) {
   if (!(options.explode >= 0.0) || !std::isfinite(options.explode))
     throw error(error_category::invalid_input, "cells svg: explode must be finite and >= 0");
@@ -560,16 +562,31 @@ inline svg_scene cells_svg_scene(const cell_complex& cc, const cells_svg_options
   for (const glm::dvec3& p : cc.points()) box.add(p);
   const obj_data<glm::dvec3> data = cells_obj_data(cc);
   svg_scene scene;
+  // Each layer gets only the points its volume's faces use, so the scene holds O(size of
+  // the volumes' boundaries) points, not (volumes x points).
+  constexpr std::uint32_t unused = 0xFFFFFFFFu;
+  std::vector<std::uint32_t> local(data.soup.points.size(), unused);
+  std::vector<std::uint32_t> face;
+  polygon_soup<glm::dvec3> soup;
   for (std::size_t g = 0; g < data.groups.size(); ++g) {
     const std::size_t end =
         g + 1 < data.groups.size() ? data.groups[g + 1].first_face : data.soup.num_faces();
-    polygon_soup<glm::dvec3> soup;
-    soup.points = data.soup.points;
+    soup.clear();
     bounding_box vb;
     for (std::size_t f = data.groups[g].first_face; f < end; ++f) {
-      soup.add_face(data.soup.face(f));
-      for (std::uint32_t v : data.soup.face(f)) vb.add(data.soup.points[v]);
+      face.clear();
+      for (std::uint32_t v : data.soup.face(f)) {
+        if (local[v] == unused) {
+          local[v] = static_cast<std::uint32_t>(soup.points.size());
+          soup.points.push_back(data.soup.points[v]);
+          vb.add(data.soup.points[v]);
+        }
+        face.push_back(local[v]);
+      }
+      soup.add_face(face);
     }
+    for (std::size_t f = data.groups[g].first_face; f < end; ++f)
+      for (std::uint32_t v : data.soup.face(f)) local[v] = unused;
     svg_style style = options.style;
     const glm::dvec3 rgb = volume_colour(g);
     char hex[8];
