@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job: installs what is missing, builds the main example in Release (build/release)
-# and runs it with no arguments on its bundled input. Its output files (e.g. the SVG picture)
-# land in out/ at the top of the repository.
+# and runs it on its bundled input with `-o out/`: its output files (e.g. the SVG picture) land in
+# out/ at the top of the repository, whatever the current directory.
 set -euo pipefail
 
 # The example program that is "the main job"; examples/<name>.cpp builds target <name>.
@@ -29,10 +29,9 @@ mkdir -p "$out"
 stamp="$root/build/release/.main-job-stamp"
 touch "$stamp"
 sleep 1 # so that files written by the run are strictly newer than the stamp
-cd "$out"
-echo "main-job: running $main_example in $out"
+echo "main-job: running $main_example -o $out"
 echo
-"$exe"
+"$exe" -o "$out"
 echo
 echo "main-job: done; files written to $out:"
 find "$out" -maxdepth 1 -type f -newer "$stamp" -printf '  %f (%s bytes)\n' | sort

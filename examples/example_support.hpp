@@ -1,4 +1,5 @@
-// Shared by the thin_points and smooth_edges examples: command-line options and loading a
+// Shared by the examples: command-line options (a `--name value` reader for thin_points and
+// smooth_edges; a table of options with help text and usage errors for wire2cells) and loading a
 // closed solid from an OBJ/OFF/PLY mesh or from one volume of a .3dcl cell list.
 #pragma once
 
@@ -6,9 +7,13 @@
 #include <cctype>
 #include <charconv>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
+#include <initializer_list>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -92,6 +97,123 @@ inline command_line parse_command_line(int argc, char** argv, const std::filesys
     }
   }
   return cl;
+}
+
+/// A usage error: an unknown option, a missing or malformed value, too many arguments. Programs
+/// report it with a pointer to --help and exit status 2, apart from errors in the input or the output.
+struct usage_error : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// One option of a program: its spellings ("-o", "--output"), the name of its value ("DIR"; empty
+/// for a flag), one line of help that states the default, and what it does with the value.
+struct option_spec {
+  std::vector<std::string_view> names;
+  std::string_view value;
+  std::string help;
+  std::function<void(std::string_view)> apply;  ///< gets the value ("" for a flag); throws usage_error
+};
+
+/// Applies the options in argv[1..] (`--name value`, `--name=value`, `-o value`) and returns the
+/// other arguments in order; "--" ends the options. Throws usage_error naming an unknown option
+/// or one without its value. O(arguments x options).
+inline std::vector<std::string> apply_options(int argc, char** argv, const std::vector<option_spec>& specs) {
+  std::vector<std::string> rest;
+  bool only_arguments = false;
+  for (int i = 1; i < argc; ++i) {
+    std::string_view arg = argv[i];
+    if (only_arguments || arg.size() < 2 || arg[0] != '-') {
+      rest.emplace_back(arg);
+      continue;
+    }
+    if (arg == "--") {
+      only_arguments = true;
+      continue;
+    }
+    std::optional<std::string_view> value;
+    if (const std::size_t eq = arg.find('='); arg.starts_with("--") && eq != std::string_view::npos) {
+      value = arg.substr(eq + 1);
+      arg = arg.substr(0, eq);
+    }
+    const auto spec = std::find_if(specs.begin(), specs.end(), [&](const option_spec& o) {
+      return std::find(o.names.begin(), o.names.end(), arg) != o.names.end();
+    });
+    if (spec == specs.end()) throw usage_error("unknown option '" + std::string(arg) + "'");
+    if (spec->value.empty()) {
+      if (value) throw usage_error(std::string(arg) + " takes no value");
+      spec->apply("");
+      continue;
+    }
+    if (!value) {
+      if (i + 1 >= argc)
+        throw usage_error(std::string(arg) + " needs a value (" + std::string(spec->value) + ")");
+      value = argv[++i];
+    }
+    spec->apply(*value);
+  }
+  return rest;
+}
+
+/// The options as --help lists them: spellings and value, then the help text wrapped at 100
+/// columns. O(options x help length).
+inline std::string options_help(const std::vector<option_spec>& specs) {
+  constexpr std::size_t indent = 28, width = 100;
+  std::string out;
+  for (const option_spec& o : specs) {
+    std::string line = " ";
+    for (const std::string_view n : o.names) line += (line.size() > 1 ? ", " : " ") + std::string(n);
+    if (!o.value.empty()) line += " " + std::string(o.value);
+    line.resize(std::max(indent, line.size() + 2), ' ');
+    std::size_t column = line.size();
+    for (std::size_t at = 0; at < o.help.size();) {
+      const std::size_t end = std::min(o.help.find(' ', at), o.help.size());
+      const std::string_view word = std::string_view(o.help).substr(at, end - at);
+      if (column > indent && column + word.size() > width) {
+        line.pop_back();  // the space after the last word
+        out += line + "\n";
+        line.assign(indent, ' ');
+        column = indent;
+      }
+      line += std::string(word) + " ";
+      column += word.size() + 1;
+      at = end + 1;
+    }
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    out += line + "\n";
+  }
+  return out;
+}
+
+/// The number `text` given to `option`, which must lie in [lo, hi]; throws usage_error naming
+/// the option and the range. O(1).
+inline double option_number(std::string_view option, std::string_view text, double lo, double hi) {
+  double x = 0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), x);
+  if (text.empty() || r.ec != std::errc{} || r.ptr != text.data() + text.size() || !(x >= lo && x <= hi))
+    throw usage_error(std::string(option) + " must be a number from " + command_line::fmt(lo) + " to " +
+                      command_line::fmt(hi) + ", got '" + std::string(text) + "'");
+  return x;
+}
+
+/// The whole number `text` given to `option` (0 .. 2^64 - 1); throws usage_error naming the option. O(1).
+inline std::uint64_t option_count(std::string_view option, std::string_view text) {
+  std::uint64_t n = 0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), n);
+  if (text.empty() || r.ec != std::errc{} || r.ptr != text.data() + text.size())
+    throw usage_error(std::string(option) + " must be a whole number >= 0, got '" + std::string(text) + "'");
+  return n;
+}
+
+/// The value named `text` among `choices` for `option`; throws usage_error listing the choices. O(choices).
+template <class T>
+T option_choice(std::string_view option, std::string_view text,
+                std::initializer_list<std::pair<std::string_view, T>> choices) {
+  std::string names;
+  for (const auto& [name, value] : choices) {
+    if (name == text) return value;
+    names += (names.empty() ? "" : ", ") + std::string(name);
+  }
+  throw usage_error(std::string(option) + " must be one of " + names + ", got '" + std::string(text) + "'");
 }
 
 /// A closed solid to work on: the mesh, and when it came from a .3dcl file, the complex and volume

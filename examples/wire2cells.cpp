@@ -2,60 +2,220 @@
 // three-dimensional cell list — vertices, edges, faces, volumes and their relations —
 // and writes it with pictures.
 //
-//   wire2cells                  the bundled stepped block (examples/data/stepped_block.obj)
-//   wire2cells model.obj        an OBJ wireframe (v and l lines)
-//   wire2cells model.edges      a plain edge list (docs/formats.md)
+//   wire2cells [options] [input]     input: an OBJ wireframe (v and l lines) or a plain edge
+//                                    list (docs/formats.md); none: the bundled stepped block
+//   wire2cells --help                every option with its default, the outputs, the exit codes
 //
-// Writes <name>.3dcl, <name>.obj (one group per volume), <name>.ply (coloured by volume)
-// and <name>.svg (volumes exploded apart) in the current directory and prints a per-stage
-// table like the seed's table 1 (seed 000_6c43f981384fedb6.txt, §7.2).
+// Writes <name>.3dcl, <name>.obj (one group per volume), <name>.ply (coloured by volume) and
+// <name>.svg (volumes exploded apart) into the output folder (-o, default ./out/), never over
+// the input, and prints a per-stage table like the seed's table 1 (seed
+// 000_6c43f981384fedb6.txt, §7.2).
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <new>
 #include <string>
+#include <system_error>
+#include <vector>
 
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/io/cells_io.hpp"
 #include "cellforge/io/edge_list.hpp"
 #include "cellforge/io/obj.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
+#include "example_support.hpp"
+
+namespace fs = std::filesystem;
 
 namespace {
+
+// Exit statuses (listed by --help and in the README).
+constexpr int exit_ok = 0;     // the cell complex was built and every file written
+constexpr int exit_input = 1;  // the input cannot be read as a solid (parse error, no faces, ...)
+constexpr int exit_usage = 2;  // unknown option, bad value, too many arguments
+constexpr int exit_output =
+    3;  // the output folder cannot be made or written, or a file would replace the input
+
+/// What the command line asks for.
+struct settings {
+  fs::path input = fs::path(CELLFORGE_DATA_DIR) / "stepped_block.obj";
+  fs::path output = "out";
+  bool svg = true;
+  bool help = false;
+  cellforge::wireframe_options pipeline{};
+};
+
+std::string number(double v) { return example::command_line::fmt(v); }
+
+/// The options, each bound to the field it sets. To add one, add an entry here.
+std::vector<example::option_spec> option_table(settings& s) {
+  using example::option_count;
+  using example::option_number;
+  const cellforge::wireframe_options d{};
+  cellforge::wireframe_options& p = s.pipeline;
+  return {
+      {{"-h", "--help"}, "", "print this help and exit", [&](std::string_view) { s.help = true; }},
+      {{"-o", "--output"},
+       "DIR",
+       "folder for the output files, created if missing (default: ./out/)",
+       [&](std::string_view v) {
+         if (v.empty()) throw example::usage_error("-o/--output needs a folder name");
+         s.output = fs::path(v);
+       }},
+      {{"--no-svg"}, "", "do not write the picture (<name>.svg)", [&](std::string_view) { s.svg = false; }},
+      {{"--tracer"},
+       "planar|seed",
+       "face tracer: each plane's planar arrangement, polynomial (default), or the seed's breadth-first "
+       "circuit search",
+       [&](std::string_view v) {
+         p.trace.kind = example::option_choice<cellforge::tracer_kind>(
+             "--tracer", v,
+             {{"planar", cellforge::tracer_kind::planar}, {"seed", cellforge::tracer_kind::seed_bfs}});
+       }},
+      {{"--merge-tolerance"},
+       "X",
+       "points closer than X times the bounding-box diagonal are one vertex (0 to 0.1, default " +
+           number(d.read.merge.relative) + ")",
+       [&](std::string_view v) { p.read.merge.relative = option_number("--merge-tolerance", v, 0.0, 0.1); }},
+      {{"--planarity"},
+       "X",
+       "a point lies in a plane when closer than X times the model's size, in tracing, face reduction "
+       "and arrangement (0 to 0.1, default " +
+           number(d.trace.planarity.relative) + ")",
+       [&](std::string_view v) {
+         const double x = option_number("--planarity", v, 0.0, 0.1);
+         p.trace.planarity.relative = p.extra.retrace.planarity.relative = x;
+         p.reduction.planarity.relative = p.arrangement.planarity.relative = x;
+       }},
+      {{"--strict"},
+       "",
+       "refuse zero-length, duplicate and dangling edges instead of dropping them with a note",
+       [&](std::string_view) { p.read.strict = true; }},
+      {{"--merge-unforced"},
+       "",
+       "also merge the volumes on both sides of walls no edge needs (e.g. the inner walls of a grid)",
+       [&](std::string_view) { p.volume.merge_unforced = true; }},
+      {{"--keep-dangling"},
+       "",
+       "keep edges that bound no face in the cell complex (default: leave them out with a note)",
+       [&](std::string_view) { p.keep_dangling = true; }},
+      {{"--budget"},
+       "N",
+       "work budget of each search stage in steps, 0 = unlimited (default: tracing " +
+           std::to_string(d.trace.work_budget) + ", face reduction " +
+           std::to_string(d.reduction.work_budget) + ", arrangement " +
+           std::to_string(d.arrangement.work_budget) + ")",
+       [&](std::string_view v) {
+         const std::uint64_t n = option_count("--budget", v);
+         p.trace.work_budget = p.extra.retrace.work_budget = p.reduction.work_budget =
+             p.arrangement.work_budget = n;
+       }},
+  };
+}
+
+void print_help(const std::vector<example::option_spec>& table) {
+  std::printf(
+      "usage: wire2cells [options] [input]\n\n"
+      "Converts a wireframe into a three-dimensional cell list (vertices, edges, faces, volumes and\n"
+      "their relations) and prints a per-stage table like the seed's table 1.\n\n"
+      "input: an OBJ wireframe (.obj: 'v' and 'l' lines) or a plain edge list (any other name;\n"
+      "       docs/formats.md); default: the bundled %s\n\n"
+      "options:\n%s\n"
+      "outputs, in the output folder, <name> being the input's file name without extension:\n"
+      "  <name>.3dcl   the cell list (docs/formats.md, \"3DCL text format\")\n"
+      "  <name>.obj    every volume's outward faces, one group per volume\n"
+      "  <name>.ply    the same faces coloured by volume (ASCII)\n"
+      "  <name>.svg    the volumes exploded apart, shaded, hidden edges dashed\n"
+      "No output is written over the input file: wire2cells refuses before writing anything.\n\n"
+      "exit status:\n"
+      "  %d  success\n"
+      "  %d  the input cannot be read as a solid (the message says why, e.g. file:line of a parse error)\n"
+      "  %d  usage error (unknown option, bad value)\n"
+      "  %d  output error: the folder cannot be created or written, or an output would replace the input\n",
+      (fs::path(CELLFORGE_DATA_DIR) / "stepped_block.obj").string().c_str(),
+      example::options_help(table).c_str(), exit_ok, exit_input, exit_usage, exit_output);
+}
+
+/// Throws io naming the file when writing `out` would replace `input` (the same path, or a
+/// link to the same file). O(path length).
+void refuse_to_overwrite(const fs::path& out, const fs::path& input) {
+  std::error_code ec, ec_out, ec_in;
+  const bool same_file = fs::exists(out, ec) && fs::equivalent(out, input, ec);
+  const fs::path out_path = fs::weakly_canonical(out, ec_out), in_path = fs::weakly_canonical(input, ec_in);
+  if (same_file || (!ec_out && !ec_in && out_path == in_path))
+    throw cellforge::error(cellforge::error_category::io, "refusing to write '" + out.string() +
+                                                              "': it is the input file; choose another " +
+                                                              "output folder with -o DIR");
+}
+
 void row(const char* stage, double ms, const char* what = nullptr, std::size_t count = 0) {
   if (what)
     std::printf("  %-26s %9.3f ms   %-18s %zu\n", stage, ms, what, count);
   else
     std::printf("  %-26s %9.3f ms\n", stage, ms);
 }
+
+void print_stages(const cellforge::wireframe_result& r) {
+  row("initial read", r.read.milliseconds, "vertices", r.read.input_vertices);
+  std::printf("  %-26s %12s   %-18s %zu\n", "", "", "edges", r.read.input_edges);
+  row("finding faces", r.trace.milliseconds, "circuits", r.trace.circuits);
+  row("reducing to unique faces", r.unique.milliseconds, "faces found", r.unique.faces.size());
+  row("area calculation", r.reduction.area_milliseconds);
+  row("face reduction", r.reduction.milliseconds - r.reduction.area_milliseconds, "remaining faces",
+      r.reduction.remaining);
+  std::printf("  %-26s %12s   %-18s %zu\n", "", "", "secondary faces", r.reduction.secondary);
+  row("face selection", r.arrangement.milliseconds, "faces selected", r.arrangement.selected.size());
+  row("face analysis", r.extra.milliseconds, "faces", r.extra.faces.size());
+  row("manifold analysis", r.volume.manifold_milliseconds);
+  row("volume processing", r.volume.milliseconds - r.volume.manifold_milliseconds, "volumes",
+      r.volume.volumes.size());
+  row("cell list assembly", r.relations.milliseconds + r.assembly_milliseconds);
+  const double total = r.read.milliseconds + r.trace.milliseconds + r.unique.milliseconds +
+                       r.reduction.milliseconds + r.arrangement.milliseconds + r.extra.milliseconds +
+                       r.volume.milliseconds + r.relations.milliseconds + r.assembly_milliseconds;
+  row("total", total);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::filesystem::path input = argc > 1
-                                          ? std::filesystem::path(argv[1])
-                                          : std::filesystem::path(CELLFORGE_DATA_DIR) / "stepped_block.obj";
+  settings s;
   try {
-    const auto wire = input.extension() == ".obj" ? cellforge::io::read_obj_wireframe<glm::dvec3>(input)
-                                                  : cellforge::io::read_edge_list<glm::dvec3>(input);
-    const cellforge::wireframe_result r = cellforge::wireframe_to_cells(wire);
-    const cellforge::cell_complex& cells = r.cells;
+    const std::vector<example::option_spec> table = option_table(s);
+    const std::vector<std::string> inputs = example::apply_options(argc, argv, table);
+    if (s.help) {
+      print_help(table);
+      return exit_ok;
+    }
+    if (inputs.size() > 1) throw example::usage_error("more than one input ('" + inputs[1] + "')");
+    if (!inputs.empty()) s.input = inputs[0];
+  } catch (const example::usage_error& e) {
+    std::fprintf(stderr, "wire2cells: %s\nTry 'wire2cells --help'.\n", e.what());
+    return exit_usage;
+  }
 
-    std::printf("wire2cells: %s\n\n", input.string().c_str());
-    row("initial read", r.read.milliseconds, "vertices", r.read.input_vertices);
-    std::printf("  %-26s %12s   %-18s %zu\n", "", "", "edges", r.read.input_edges);
-    row("finding faces", r.trace.milliseconds, "circuits", r.trace.circuits);
-    row("reducing to unique faces", r.unique.milliseconds, "faces found", r.unique.faces.size());
-    row("area calculation", r.reduction.area_milliseconds);
-    row("face reduction", r.reduction.milliseconds - r.reduction.area_milliseconds, "remaining faces",
-        r.reduction.remaining);
-    std::printf("  %-26s %12s   %-18s %zu\n", "", "", "secondary faces", r.reduction.secondary);
-    row("face selection", r.arrangement.milliseconds, "faces selected", r.arrangement.selected.size());
-    row("face analysis", r.extra.milliseconds, "faces", r.extra.faces.size());
-    row("manifold analysis", r.volume.manifold_milliseconds);
-    row("volume processing", r.volume.milliseconds - r.volume.manifold_milliseconds, "volumes",
-        r.volume.volumes.size());
-    row("cell list assembly", r.relations.milliseconds + r.assembly_milliseconds);
-    const double total = r.read.milliseconds + r.trace.milliseconds + r.unique.milliseconds +
-                         r.reduction.milliseconds + r.arrangement.milliseconds + r.extra.milliseconds +
-                         r.volume.milliseconds + r.relations.milliseconds + r.assembly_milliseconds;
-    row("total", total);
+  int failure = exit_input;  // the exit status of an exception thrown from here on
+  try {
+    std::string ext = s.input.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const auto wire = ext == ".obj" ? cellforge::io::read_obj_wireframe<glm::dvec3>(s.input)
+                                    : cellforge::io::read_edge_list<glm::dvec3>(s.input);
+
+    const std::string stem = s.input.stem().string();
+    std::vector<fs::path> outputs;
+    for (const char* e : {".3dcl", ".obj", ".ply", ".svg"})
+      if (s.svg || std::string_view(e) != ".svg") outputs.push_back(s.output / (stem + e));
+    failure = exit_output;
+    for (const fs::path& out : outputs) refuse_to_overwrite(out, s.input);
+    failure = exit_input;
+
+    const cellforge::wireframe_result r = cellforge::wireframe_to_cells(wire, s.pipeline);
+    const cellforge::cell_complex& cells = r.cells;
+    std::printf("wire2cells: %s\n\n", s.input.string().c_str());
+    print_stages(r);
 
     const cellforge::cells_validation_result valid = cellforge::validate(cells);
     std::printf("\ncell complex: %zu vertices, %zu edges, %zu faces, %zu volumes, %zu objects\n",
@@ -67,16 +227,27 @@ int main(int argc, char** argv) {
     for (const std::string& d : r.diagnostics) std::printf("  note: %s\n", d.c_str());
     std::printf("  validate: %s\n", valid.ok() ? "ok" : valid.message.c_str());
 
-    const std::string stem = input.stem().string();
-    cellforge::io::write_3dcl(std::filesystem::path(stem + ".3dcl"), cells);
-    cellforge::io::write_cells_obj(std::filesystem::path(stem + ".obj"), cells);
-    cellforge::io::write_cells_ply(std::filesystem::path(stem + ".ply"), cells);
-    cellforge::io::write_cells_svg(std::filesystem::path(stem + ".svg"), cells);
-    std::printf("\nwrote %s.3dcl, %s.obj, %s.ply and %s.svg\n", stem.c_str(), stem.c_str(), stem.c_str(),
-                stem.c_str());
-    return valid.ok() ? 0 : 1;
-  } catch (const cellforge::error& e) {
+    failure = exit_output;
+    example::output_dir(s.output);
+    cellforge::io::write_3dcl(outputs[0], cells);
+    cellforge::io::write_cells_obj(outputs[1], cells);
+    cellforge::io::write_cells_ply(outputs[2], cells);
+    if (s.svg) {
+      const cellforge::io::svg_result picture = cellforge::io::write_cells_svg(outputs[3], cells);
+      if (picture.approximate_edges + picture.untested_edges > 0)
+        std::printf("  picture: %zu of %zu edges past the hidden-line work budget (judged from one point)\n",
+                    picture.approximate_edges + picture.untested_edges, picture.edges);
+    }
+    std::printf("\nwrote");
+    for (std::size_t i = 0; i < outputs.size(); ++i)
+      std::printf("%s %s", i == 0 ? "" : i + 1 == outputs.size() ? " and" : ",", outputs[i].string().c_str());
+    std::printf("\n");
+    return valid.ok() ? exit_ok : exit_input;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "wire2cells: out of memory (std::bad_alloc)\n");
+    return failure;
+  } catch (const std::exception& e) {  // cellforge::error among them: its message names file:line
     std::fprintf(stderr, "wire2cells: %s\n", e.what());
-    return 1;
+    return failure;
   }
 }
