@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Wireframe → cell complex, seed 000 §7.2 tables 1 and 3: the seed's per-stage ms and counts
 // for its six samples beside ours on generated models of about the same sizes
-// (sample_seed(1..6), docs/sample_models.md), then a scaling series on k×k×k grids of cubes.
+// (sample_seed(1..6), docs/sample_models.md; sample 6 under the seed's reading, keep_walls),
+// then scaling series on k×k×k grids of cubes and on UV spheres.
 // The pipeline (wireframe/wireframe_to_cells.hpp) is used when present; without it the
 // binary still builds, times the model generation and prints the seed's figures with
 // "pending" in our columns.
@@ -94,6 +95,37 @@ const cellforge::sample_model& grid(int k) {
 
 constexpr std::array<int, 4> grid_sizes{5, 10, 20, 40};
 
+/// UV spheres from about 1 000 to 50 000 edges: rings and meridian circles are planar cycles
+/// that are not faces, and the poles have as many edges as slices.
+constexpr std::array<std::array<int, 2>, 5> sphere_sizes{
+    {{32, 16}, {64, 32}, {128, 48}, {180, 70}, {256, 96}}};
+
+const cellforge::sample_model& sphere(int slices, int stacks) {
+  static std::map<std::pair<int, int>, cellforge::sample_model> cache;
+  auto it = cache.find({slices, stacks});
+  if (it == cache.end())
+    it =
+        cache
+            .emplace(std::pair{slices, stacks}, cellforge::sample_uv_sphere(static_cast<std::size_t>(slices),
+                                                                            static_cast<std::size_t>(stacks)))
+            .first;
+  return it->second;
+}
+
+std::string sphere_name(const std::array<int, 2>& s) {
+  return "pipeline/sphere_" + std::to_string(s[0]) + "x" + std::to_string(s[1]);
+}
+
+#if CELLFORGE_BENCH_HAVE_PIPELINE
+/// The reading each seed sample is compared under: the seed took sample 6's rings as walls
+/// (docs/wireframe.md, "Where the seed reads otherwise"), which face_reading::keep_walls does.
+cellforge::wireframe_options seed_reading(int i) {
+  cellforge::wireframe_options o;
+  if (i == 6) o.volume.reading = cellforge::face_reading::keep_walls;
+  return o;
+}
+#endif
+
 // ------------------------------------------------------------------------------ our figures
 
 /// Our per-stage ms (best of several runs, stage by stage) and counts for one model.
@@ -128,13 +160,14 @@ std::string truth_status(const cellforge::sample_model& m, const cellforge::wire
 }
 #endif
 
-/// Runs the pipeline `repeats` times on m and keeps each stage's best time. O(repeats × pipeline).
-our_run measure(const cellforge::sample_model& m, int repeats) {
+/// Runs the pipeline `repeats` times on m with the given reading and keeps each stage's best
+/// time. O(repeats × pipeline).
+our_run measure(const cellforge::sample_model& m, int repeats, int sample_index) {
   our_run out;
 #if CELLFORGE_BENCH_HAVE_PIPELINE
   try {
     for (int i = 0; i < repeats; ++i) {
-      const auto r = cellforge::wireframe_to_cells(m.wire);
+      const auto r = cellforge::wireframe_to_cells(m.wire, seed_reading(sample_index));
       const auto ms = stage_ms(r);
       if (!out.ms) {
         out.ms = ms;
@@ -157,6 +190,7 @@ our_run measure(const cellforge::sample_model& m, int repeats) {
 #else
   (void)m;
   (void)repeats;
+  (void)sample_index;
   out.status = "pending (wireframe_to_cells.hpp not present)";
 #endif
   return out;
@@ -190,11 +224,6 @@ benchmark::internal::Benchmark* register_pipeline(const std::string& name,
       ->Unit(benchmark::kMillisecond);
 }
 
-cellforge::wireframe_options seed_tracer() {
-  cellforge::wireframe_options o;
-  o.trace.kind = cellforge::tracer_kind::seed_bfs;
-  return o;
-}
 #endif
 
 void register_all() {
@@ -210,9 +239,11 @@ void register_all() {
         ->MinTime(0.1);
 #if CELLFORGE_BENCH_HAVE_PIPELINE
     const auto get = [i]() -> const cellforge::sample_model& { return sample(i); };
-    register_pipeline("pipeline/seed_sample_" + std::to_string(i), get, {})->MinTime(0.2);
+    register_pipeline("pipeline/seed_sample_" + std::to_string(i), get, seed_reading(i))->MinTime(0.2);
     // The seed's exponential search, kept as an option: once per sample, it may spend its budget.
-    register_pipeline("seed_bfs/seed_sample_" + std::to_string(i), get, seed_tracer())->Iterations(1);
+    cellforge::wireframe_options bfs = seed_reading(i);
+    bfs.trace.kind = cellforge::tracer_kind::seed_bfs;
+    register_pipeline("seed_bfs/seed_sample_" + std::to_string(i), get, bfs)->Iterations(1);
 #endif
   }
 #if CELLFORGE_BENCH_HAVE_PIPELINE
@@ -221,6 +252,10 @@ void register_all() {
                       [k]() -> const cellforge::sample_model& { return grid(k); }, {})
         ->Iterations(k >= 20 ? 1 : 3);
   }
+  for (const auto& sz : sphere_sizes)
+    register_pipeline(sphere_name(sz),
+                      [sz]() -> const cellforge::sample_model& { return sphere(sz[0], sz[1]); }, {})
+        ->MinTime(0.5);
 #endif
 }
 
@@ -241,7 +276,7 @@ void print_tables(const cb::collecting_reporter& reporter, std::ostream& os) {
   for (int i = 1; i <= 6; ++i) {
     const auto& m = sample(i);
     const seed_sample& s = seed[static_cast<std::size_t>(i - 1)];
-    const our_run ours = measure(m, 5);
+    const our_run ours = measure(m, 5, i);
     cb::table t("Sample " + std::to_string(i) + " (" + m.name + ")",
                 {"row", "seed", "ours", "ratio (seed / ours)", "model truth"});
     for (std::size_t k = 0; k < stage_rows.size(); ++k) {
@@ -310,6 +345,23 @@ void print_tables(const cb::collecting_reporter& reporter, std::ostream& os) {
   }
   scaling.add_note("Memory grows linearly when the bytes per edge stay flat down the table.");
   scaling.print(os);
+
+  cb::table spheres(
+      "Scaling: UV spheres (planar rings and meridians that are not faces, poles of high degree)",
+      {"sphere", "vertices", "edges", "ours ms", "µs per edge", "per edge vs the smallest"});
+  std::optional<double> first;
+  for (const auto& sz : sphere_sizes) {
+    const auto& m = sphere(sz[0], sz[1]);
+    const std::optional<double> t = reporter.ms(sphere_name(sz));
+    const auto edges = static_cast<double>(m.wire.edges.size());
+    const std::optional<double> per = t ? std::optional<double>(*t * 1000.0 / edges) : std::nullopt;
+    if (!first && per) first = per;
+    spheres.add_row({std::to_string(sz[0]) + "×" + std::to_string(sz[1]), cb::count(m.wire.points.size()),
+                     cb::count(m.wire.edges.size()), t ? cb::ms(t) : "pending",
+                     per ? cb::fixed(*per, 2) : "pending", per && first ? cb::fixed(*per / *first, 2) : "—"});
+  }
+  spheres.add_note("Time per edge flat within 2× from 1 000 to 50 000 edges is the target.");
+  spheres.print(os);
 }
 
 }  // namespace

@@ -13,6 +13,8 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <numbers>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -196,9 +198,91 @@ inline void trace_plane_faces(const wire_graph& g, std::vector<std::uint32_t>& e
 }
 
 inline std::array<double, 4> plane_coords(const glm::dvec3& n, const glm::dvec3& o, double size) {
-  constexpr double q = 1e-6;
+  constexpr double q = 1e-3;  // quantum of the plane hash (normal, offset / size)
   return {n.x / q, n.y / q, n.z / q, glm::dot(n, o) / (q * size)};
 }
+
+/// At a vertex of high degree (a sphere's pole), which of its edges may lie in the plane of a
+/// pair (i, j): for each edge i the others sorted by their angle about i, folded to [0, π),
+/// so that the edges coplanar with i and j are those near j in that order (edges nearly
+/// along i lie in every plane through i and are always candidates). Candidates are then
+/// tested exactly as any edge is. O(deg² log deg) to build, O(candidates) per pair, instead
+/// of O(deg) per pair.
+class fan_index {
+ public:
+  void build(std::span<const glm::dvec3> dirs, double tol) {
+    n_ = dirs.size();
+    angle_.assign(n_ * n_, 0.0);
+    order_.assign(n_ * n_, 0);
+    rank_.assign(n_ * n_, 0);
+    along_.assign(n_, {});
+    window_.assign(n_, 0.0);
+    counts_.assign(n_, 0);
+    for (std::uint32_t i = 0; i < n_; ++i) {
+      const glm::dvec3 axis = glm::normalize(dirs[i]);
+      const glm::dvec3 e1 = any_perpendicular(axis), e2 = glm::cross(axis, e1);
+      std::uint32_t count = 0;
+      for (std::uint32_t k = 0; k < n_; ++k) {
+        if (k == i) continue;
+        const glm::dvec3 d = dirs[k] - glm::dot(dirs[k], axis) * axis;
+        const double across = glm::length(d);
+        if (across <= 4.0 * tol) {  // along i (or i itself): in every plane through i
+          along_[i].push_back(k);
+          continue;
+        }
+        double t = std::atan2(glm::dot(d, e2), glm::dot(d, e1));
+        if (t < 0.0) t += std::numbers::pi;
+        if (t >= std::numbers::pi) t -= std::numbers::pi;
+        angle_[i * n_ + k] = t;
+        order_[i * n_ + count++] = k;
+        // An edge within tol of a plane through i is within this angle of it, about i.
+        window_[i] = std::max(window_[i], 2.0 * tol / across + 1e-12);
+      }
+      counts_[i] = count;
+      const auto begin = order_.begin() + static_cast<std::ptrdiff_t>(i * n_);
+      std::sort(begin, begin + count,
+                [&](std::uint32_t a, std::uint32_t b) { return angle_[i * n_ + a] < angle_[i * n_ + b]; });
+      for (std::uint32_t r = 0; r < count; ++r) rank_[i * n_ + order_[i * n_ + r]] = r;
+    }
+  }
+  /// Calls f(k) for every edge k that may lie in the plane of edges i and j (i and j too).
+  template <class F>
+  void candidates(std::uint32_t i, std::uint32_t j, F&& f) const {
+    f(i);
+    for (const auto k : along_[i]) f(k);
+    const std::uint32_t count = counts_[i];
+    const double tj = angle_[i * n_ + j], w = window_[i];
+    const std::uint32_t* row = order_.data() + i * n_;
+    const std::uint32_t r = rank_[i * n_ + j];
+    auto near = [&](std::uint32_t k) {
+      const double d = std::abs(angle_[i * n_ + k] - tj);
+      return std::min(d, std::numbers::pi - d) <= w;  // folded angles wrap at π
+    };
+    // Walk both ways from j, wrapping, until an edge is out of the window (or all are seen).
+    std::uint32_t seen = 1;
+    f(j);
+    for (std::uint32_t s = 1; seen < count; ++s, ++seen)
+      if (const std::uint32_t k = row[(r + s) % count]; near(k))
+        f(k);
+      else
+        break;
+    for (std::uint32_t s = 1; seen < count; ++s, ++seen)
+      if (const std::uint32_t k = row[(r + count - s) % count]; near(k))
+        f(k);
+      else
+        break;
+  }
+  std::size_t degree() const noexcept { return n_; }
+  bool along(std::uint32_t i, std::uint32_t j) const {
+    return std::find(along_[i].begin(), along_[i].end(), j) != along_[i].end();
+  }
+
+ private:
+  std::size_t n_ = 0;
+  std::vector<double> angle_, window_;
+  std::vector<std::uint32_t> order_, rank_, counts_;
+  std::vector<std::vector<std::uint32_t>> along_;
+};
 
 /// The polynomial planar-arrangement tracer. O(sum over vertices of degree² + sum over planes
 /// of k log k) for k edges in a plane.
@@ -216,9 +300,12 @@ inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_re
   std::vector<char> vin(nv, 0);
   std::uint32_t stamp = 0;
   std::vector<std::uint32_t> cverts, cedges, local;  // reused by every plane search
+  std::vector<glm::dvec3> dirs;
+  fan_index fan;
   plane_scratch scratch(nv);
   std::vector<plane_component> comps;
-  std::unordered_map<std::array<std::int64_t, 4>, std::vector<std::uint32_t>, cell_hash> plane_of;
+  std::vector<std::array<double, 4>> plane_keys;          // per component: its plane's coordinates
+  std::vector<std::vector<std::uint32_t>> plane_samples;  // per component: a few of its vertices
   std::vector<std::uint32_t> group;  // component → plane group (first component of the group)
 
   // Two passes: planes are first seeded from well-conditioned corners (angle over ~0.5°),
@@ -226,6 +313,12 @@ inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_re
   for (int pass = 0; pass < 2; ++pass)
     for (std::uint32_t v = 0; v < nv; ++v) {
       const auto inc = g.around(v);
+      // The directions of v's edges side by side: at a vertex of high degree (a sphere's pole)
+      // every plane search starts by testing all of them against its plane.
+      dirs.resize(inc.size());
+      for (std::uint32_t k = 0; k < inc.size(); ++k) dirs[k] = g.points[inc[k].other] - g.points[v];
+      const bool indexed = inc.size() > 24;
+      if (indexed) fan.build(dirs, tol);
       for (std::uint32_t i = 0; i < inc.size(); ++i)
         for (std::uint32_t j = i + 1; j < inc.size(); ++j) {
           if (done[pair_base[v] + i * inc.size() + j]) continue;
@@ -250,9 +343,30 @@ inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_re
             const std::uint32_t x = cverts[head];
             const auto ix = g.around(x);
             local.clear();
-            for (std::uint32_t a = 0; a < ix.size(); ++a) {
+            budget.spend(ix.size());
+            if (head == 0) {
+              // x == v, scanned first (no edge of it is found yet): its contiguous directions,
+              // at a vertex of high degree only those the fan index names.
+              auto take = [&](std::uint32_t a) {
+                if (std::abs(glm::dot(n, dirs[a])) > tol || estamp[ix[a].edge] == cid) return;
+                const std::uint32_t y = ix[a].other;
+                vtest[y] = cid;
+                vin[y] = 1;
+                estamp[ix[a].edge] = cid;
+                cedges.push_back(ix[a].edge);
+                local.push_back(a);
+                if (vstamp[y] != cid) {
+                  vstamp[y] = cid;
+                  cverts.push_back(y);
+                }
+              };
+              if (indexed && !fan.along(i, j))
+                fan.candidates(i, j, take);
+              else
+                for (std::uint32_t a = 0; a < ix.size(); ++a) take(a);
+            }
+            for (std::uint32_t a = 0; a < ix.size() && head != 0; ++a) {
               const auto& in = ix[a];
-              budget.spend();
               if (estamp[in.edge] == cid) {  // found from its other end
                 local.push_back(a);
                 continue;
@@ -285,43 +399,68 @@ inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_re
           c.u = glm::normalize(da - glm::dot(da, n) * n);
           c.w = glm::cross(n, c.u);
           trace_plane_faces(g, cedges, c, scratch, budget);
-          const auto index = static_cast<std::uint32_t>(comps.size());
-          // Group with earlier components of the same geometric plane (for holes).
-          const auto pc = plane_coords(n, c.origin, g.size);
-          std::uint32_t found = no_index;
-          for (int sign = 1; sign >= -1 && found == no_index; sign -= 2)
-            for (int combo = 0; combo < 16 && found == no_index; ++combo) {
-              std::array<std::int64_t, 4> k{};
-              for (int t = 0; t < 4; ++t) {
-                const double x = sign * pc[static_cast<std::size_t>(t)];
-                k[static_cast<std::size_t>(t)] =
-                    static_cast<std::int64_t>(std::floor(x)) + ((combo >> t) & 1);
-              }
-              const auto it = plane_of.find(k);
-              if (it == plane_of.end()) continue;
-              for (const auto other : it->second) {
-                const auto& oc = comps[other];
-                bool same = std::abs(std::abs(glm::dot(oc.normal, n)) - 1.0) < 1e-9;
-                for (std::size_t s = 0; s < cverts.size() && same;
-                     s += std::max<std::size_t>(1, cverts.size() / 8))
-                  same = std::abs(glm::dot(oc.normal, g.points[cverts[s]] - oc.origin)) <= tol;
-                if (same) {
-                  found = group[other];
-                  break;
-                }
-              }
-            }
-          std::array<std::int64_t, 4> own{};
-          for (int t = 0; t < 4; ++t)
-            own[static_cast<std::size_t>(t)] =
-                static_cast<std::int64_t>(std::round(pc[static_cast<std::size_t>(t)]));
-          plane_of[own].push_back(index);
-          group.push_back(found == no_index ? index : found);
-          if (found == no_index) ++r.planes;
+          // Filed for grouping with the other components of the same geometric plane (holes).
+          plane_keys.push_back(plane_coords(n, c.origin - g.center, g.size));  // offsets about the centre
+          auto& sample = plane_samples.emplace_back();
+          for (std::size_t q = 0; q < cverts.size(); q += std::max<std::size_t>(1, cverts.size() / 8))
+            sample.push_back(cverts[q]);
           comps.push_back(std::move(c));
         }
     }
   r.plane_components = comps.size();
+
+  // Groups of components lying in one geometric plane. Planes are filed under their rounded
+  // coordinates (quanta far coarser than two estimates of one plane differ by); the same plane
+  // rounds the same way unless a coordinate sits near a half, and then the neighbour on that
+  // side is tried too; both normal signs. Each component joins the group of the first earlier
+  // component found in its plane. O(C log C).
+  {
+    using key4 = std::array<std::int64_t, 4>;
+    std::vector<std::pair<key4, std::uint32_t>> filed(comps.size());
+    for (std::uint32_t k = 0; k < comps.size(); ++k) {
+      key4 own{};
+      for (int t = 0; t < 4; ++t)
+        own[static_cast<std::size_t>(t)] =
+            static_cast<std::int64_t>(std::round(plane_keys[k][static_cast<std::size_t>(t)]));
+      filed[k] = {own, k};
+    }
+    std::sort(filed.begin(), filed.end());
+    group.resize(comps.size());
+    for (std::uint32_t k = 0; k < comps.size(); ++k) {
+      const auto& pc = plane_keys[k];
+      std::uint32_t found = no_index;
+      for (int sign = 1; sign >= -1 && found == no_index; sign -= 2) {
+        key4 base{};
+        std::array<int, 4> step{};
+        for (int t = 0; t < 4; ++t) {
+          const double x = sign * pc[static_cast<std::size_t>(t)];
+          base[static_cast<std::size_t>(t)] = static_cast<std::int64_t>(std::round(x));
+          const double f = x - std::floor(x);
+          step[static_cast<std::size_t>(t)] = std::abs(f - 0.5) < 0.05 ? (f < 0.5 ? 1 : -1) : 0;
+        }
+        for (int combo = 0; combo < 16 && found == no_index; ++combo) {
+          key4 key = base;
+          bool skip = false;
+          for (int t = 0; t < 4; ++t)
+            if ((combo >> t) & 1) {
+              skip = skip || step[static_cast<std::size_t>(t)] == 0;
+              key[static_cast<std::size_t>(t)] += step[static_cast<std::size_t>(t)];
+            }
+          if (skip) continue;
+          auto it = std::lower_bound(filed.begin(), filed.end(), std::pair<key4, std::uint32_t>{key, 0});
+          for (; it != filed.end() && it->first == key && it->second < k && found == no_index; ++it) {
+            const auto& oc = comps[it->second];
+            bool same = std::abs(std::abs(glm::dot(oc.normal, comps[k].normal)) - 1.0) < 1e-9;
+            for (const auto v : plane_samples[k])
+              same = same && std::abs(glm::dot(oc.normal, g.points[v] - oc.origin)) <= tol;
+            if (same) found = group[it->second];
+          }
+        }
+      }
+      group[k] = found == no_index ? k : found;
+      if (found == no_index) ++r.planes;
+    }
+  }
 
   // Holes: an outer walk of one component inside a bounded walk of another component of the
   // same plane is a hole of the smallest such walk.

@@ -52,7 +52,7 @@ inline extra_faces_result extra_faces(const wire_graph& g, const std::vector<wir
   if (options.add_missed) {
     auto at = detail::faces_at_edges(g, faces, &alive);
     bool lacking = false;
-    for (const auto& a : at) lacking = lacking || a.size() < 2;
+    for (std::size_t e = 0; e < at.size(); ++e) lacking = lacking || at[e].size() < 2;
     if (lacking) {
       trace_options t = options.retrace;
       t.kind = tracer_kind::planar;

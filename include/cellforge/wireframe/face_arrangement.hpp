@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -75,33 +76,39 @@ class interior_cuts {
  public:
   std::vector<cut_end> intervals;
 
-  template <class Side>
-  void compute(const wire_graph& g, const wire_face& f, const face_plane& p, const glm::dvec3& dir,
-               Side&& side) {
+  /// `corners`: the positions of f's loops, concatenated in order (contiguous for speed).
+  void compute(const wire_face& f, std::span<const glm::dvec3> corners, const face_plane& p,
+               const glm::dvec3& dir, const glm::dvec3& centre, double tol) {
     above_.clear();
     below_.clear();
+    std::size_t base = 0;
     for (const auto& loop : f.loops) {
-      sides_.resize(loop.size());
-      for (std::size_t k = 0; k < loop.size(); ++k) sides_[k] = static_cast<signed char>(side(loop[k]));
-      for (std::size_t k = 0; k < loop.size(); ++k) {
-        const std::size_t k1 = (k + 1) % loop.size();
+      const std::size_t n = loop.size();
+      sides_.resize(n);
+      for (std::size_t k = 0; k < n; ++k) {
+        const double d = glm::dot(p.n, corners[base + k] - p.o);
+        sides_[k] = static_cast<signed char>(d > tol ? 1 : d < -tol ? -1 : 0);
+      }
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t k1 = k + 1 == n ? 0 : k + 1;
         const int sx = sides_[k], sy = sides_[k1];
         if (sx == sy) continue;  // both beyond one side, or both on the plane: no end in either view
         const std::uint32_t x = loop[k], y = loop[k1];
         cut_end end;
         if (sx == 0 || sy == 0) {
-          const std::uint32_t v = sx == 0 ? x : y;
-          end = {glm::dot(g.points[v] - g.center, dir), v, no_index};
+          const bool at_x = sx == 0;
+          end = {glm::dot(corners[base + (at_x ? k : k1)] - centre, dir), at_x ? x : y, no_index};
         } else {
-          const glm::dvec3 a = g.points[x], b = g.points[y];
+          const glm::dvec3 a = corners[base + k], b = corners[base + k1];
           const double da = glm::dot(p.n, a - p.o), db = glm::dot(p.n, b - p.o);
           const glm::dvec3 c = a + (da / (da - db)) * (b - a);
-          end = {glm::dot(c - g.center, dir), x, y};
+          end = {glm::dot(c - centre, dir), x, y};
         }
         // Seen from just above the plane a vertex on it counts as below; from below, as above.
         if ((sx > 0) != (sy > 0)) above_.push_back(end);
         if ((sx >= 0) != (sy >= 0)) below_.push_back(end);
       }
+      base += n;
     }
     auto by_position = [](const cut_end& a, const cut_end& b) { return a.s < b.s; };
     std::sort(above_.begin(), above_.end(), by_position);
@@ -139,16 +146,18 @@ class crossing_test {
  public:
   explicit crossing_test(const wire_graph& g) : g_(g) {}
 
+  /// `ca`, `cb`: the faces' corners, all loops concatenated (gathered from the graph when empty).
   bool operator()(const wire_face& a, const face_plane& pa, const wire_face& b, const face_plane& pb,
-                  double tol) {
+                  double tol, std::span<const glm::dvec3> ca = {}, std::span<const glm::dvec3> cb = {}) {
     glm::dvec3 dir = glm::cross(pa.n, pb.n);
     const double l = glm::length(dir);
     if (l < 1e-12) return false;  // parallel planes: coplanar faces never overlap after tracing
-    if (!straddles(a, pb, tol) || !straddles(b, pa, tol)) return false;
+    if (ca.empty()) ca = gather(a, own_a_);
+    if (cb.empty()) cb = gather(b, own_b_);
+    if (!straddles(ca, pb, tol) || !straddles(cb, pa, tol)) return false;
     dir /= l;
-    auto side_of = [&](const face_plane& p) { return [&, tol](std::uint32_t v) { return side(v, p, tol); }; };
-    ca_.compute(g_, a, pb, dir, side_of(pb));
-    cb_.compute(g_, b, pa, dir, side_of(pa));
+    ca_.compute(a, ca, pb, dir, g_.center, tol);
+    cb_.compute(b, cb, pa, dir, g_.center, tol);
     const auto& ia = ca_.intervals;
     const auto& ib = cb_.intervals;
     for (std::size_t i = 0, j = 0; i + 1 < ia.size() && j + 1 < ib.size();) {
@@ -167,21 +176,23 @@ class crossing_test {
  private:
   const wire_graph& g_;
   interior_cuts ca_, cb_;
+  std::vector<glm::dvec3> own_a_, own_b_;
 
-  int side(std::uint32_t v, const face_plane& p, double tol) const {
-    const double d = glm::dot(p.n, g_.points[v] - p.o);
-    return d > tol ? 1 : d < -tol ? -1 : 0;
-  }
-  /// Some vertex of f strictly on each side of p.
-  bool straddles(const wire_face& f, const face_plane& p, double tol) const {
-    bool up = false, down = false;
+  std::span<const glm::dvec3> gather(const wire_face& f, std::vector<glm::dvec3>& out) const {
+    out.clear();
     for (const auto& loop : f.loops)
-      for (const auto v : loop) {
-        const int s = side(v, p, tol);
-        up = up || s > 0;
-        down = down || s < 0;
-        if (up && down) return true;
-      }
+      for (const auto v : loop) out.push_back(g_.points[v]);
+    return out;
+  }
+  /// Some corner strictly on each side of p.
+  static bool straddles(std::span<const glm::dvec3> corners, const face_plane& p, double tol) {
+    bool up = false, down = false;
+    for (const auto& c : corners) {
+      const double d = glm::dot(p.n, c - p.o);
+      up = up || d > tol;
+      down = down || d < -tol;
+      if (up && down) return true;
+    }
     return false;
   }
   /// A shared segment whose ends are vertices is decided by the vertices' sides; an end made
@@ -392,9 +403,14 @@ inline arrangement_result arrange_faces(const wire_graph& g, const std::vector<w
     std::vector<std::uint32_t> corner_start(usable.size() + 1, 0);
     std::vector<glm::dvec3> corner;
     for (std::uint32_t k = 0; k < usable.size(); ++k) {
-      for (const auto v : faces[usable[k]].loops[0]) corner.push_back(g.points[v]);
+      for (const auto& loop : faces[usable[k]].loops)
+        for (const auto v : loop) corner.push_back(g.points[v]);
       corner_start[k + 1] = static_cast<std::uint32_t>(corner.size());
     }
+    auto corners = [&](std::uint32_t k) {
+      return std::span<const glm::dvec3>(corner.data() + corner_start[k],
+                                         corner_start[k + 1] - corner_start[k]);
+    };
     auto straddles = [&](std::uint32_t f, std::uint32_t o) {
       bool up = false, down = false;
       for (std::uint32_t k = corner_start[f]; k < corner_start[f + 1] && !(up && down); ++k) {
@@ -407,11 +423,11 @@ inline arrangement_result arrange_faces(const wire_graph& g, const std::vector<w
     detail::candidate_pairs(g, plane, tol, budget, [&](std::uint32_t x, std::uint32_t y) {
       ++r.pairs_tested;
       const std::uint32_t a = usable[x], b = usable[y];
-      budget.spend(faces[a].loops[0].size() + faces[b].loops[0].size());
+      budget.spend(corner_start[x + 1] - corner_start[x] + corner_start[y + 1] - corner_start[y]);
       // The face with fewer corners first: a ring against a neighbour's plane lies on one side.
       const bool x_first = corner_start[x + 1] - corner_start[x] <= corner_start[y + 1] - corner_start[y];
       if (x_first ? !straddles(x, y) || !straddles(y, x) : !straddles(y, x) || !straddles(x, y)) return;
-      if (cross(faces[a], plane[x], faces[b], plane[y], tol))
+      if (cross(faces[a], plane[x], faces[b], plane[y], tol, corners(x), corners(y)))
         r.crossings.push_back({std::min(a, b), std::max(a, b)});
     });
     std::sort(r.crossings.begin(), r.crossings.end());

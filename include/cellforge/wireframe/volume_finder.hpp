@@ -203,8 +203,7 @@ class face_reader {
   std::vector<char> drop, opened, unforced;  // per face
   union_find merged;                         // regions, O = regions; joined across drops
 
-  face_reader(const wire_graph& g, const std::vector<wire_face>& faces,
-              const std::vector<std::vector<std::uint32_t>>& at,
+  face_reader(const wire_graph& g, const std::vector<wire_face>& faces, const edge_face_lists& at,
               const std::vector<std::array<std::uint32_t, 2>>& sides, const std::vector<char>& alive,
               std::uint32_t regions, face_reading reading)
       : drop(faces.size(), 0),
@@ -308,7 +307,7 @@ class face_reader {
  private:
   const wire_graph& g_;
   const std::vector<wire_face>& faces_;
-  const std::vector<std::vector<std::uint32_t>>& at_;
+  const edge_face_lists& at_;
   const std::vector<std::array<std::uint32_t, 2>>& sides_;
   const std::vector<char>& alive_;
   std::uint32_t O_;

@@ -18,6 +18,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/edge_table.hpp"
 #include "cellforge/core/error.hpp"
 
 namespace cellforge {
@@ -59,8 +60,8 @@ struct wire_graph {
   }
   /// The edge joining a and b, or no_index. O(1) expected.
   std::uint32_t find_edge(std::uint32_t a, std::uint32_t b) const {
-    const auto it = edge_index_.find(key(a, b));
-    return it == edge_index_.end() ? no_index : it->second;
+    const std::uint32_t e = edge_index_.find(key(a, b));
+    return e == detail::edge_table::not_found ? no_index : e;
   }
   /// Rebuilds incidences and the edge look-up from `points` and `edges`. O(V + E).
   void link() {
@@ -79,7 +80,7 @@ struct wire_graph {
       const auto [a, b] = edges[i];
       incidences[fill[a]++] = {i, b, true};
       incidences[fill[b]++] = {i, a, false};
-      edge_index_.emplace(key(a, b), i);
+      edge_index_.insert(key(a, b), i);
     }
   }
 
@@ -88,7 +89,7 @@ struct wire_graph {
     if (a > b) std::swap(a, b);
     return (std::uint64_t{a} << 32) | b;
   }
-  std::unordered_map<std::uint64_t, std::uint32_t> edge_index_;
+  detail::edge_table edge_index_;  // flat open addressing: the pipeline looks edges up often
 };
 
 /// A (candidate) face: planar vertex loops. loops[0] is the outer boundary, counter-clockwise
@@ -217,17 +218,40 @@ inline int walk_direction(const wire_graph& g, const wire_face& f, std::uint32_t
   return 0;
 }
 
-/// For each edge, the faces using it (only faces with alive[i] != 0 when `alive` is given).
-/// O(Σ L).
-inline std::vector<std::vector<std::uint32_t>> faces_at_edges(const wire_graph& g,
-                                                              const std::vector<wire_face>& faces,
-                                                              const std::vector<char>* alive = nullptr) {
-  std::vector<std::vector<std::uint32_t>> at(g.num_edges());
+/// For each edge, the faces using it, in face order: one flat array with offsets (a face that
+/// uses an edge twice is listed twice). at[e] is a span. O(1) per look-up.
+struct edge_face_lists {
+  std::vector<std::uint32_t> first;  ///< size E + 1
+  std::vector<std::uint32_t> faces;
+  std::span<const std::uint32_t> operator[](std::size_t e) const noexcept {
+    return {faces.data() + first[e], first[e + 1] - first[e]};
+  }
+  std::size_t size() const noexcept { return first.empty() ? 0 : first.size() - 1; }
+};
+
+/// edge_face_lists of `faces` (only faces with alive[i] != 0 when `alive` is given). O(Σ L).
+inline edge_face_lists faces_at_edges(const wire_graph& g, const std::vector<wire_face>& faces,
+                                      const std::vector<char>* alive = nullptr) {
+  edge_face_lists at;
+  std::vector<std::uint32_t> edge_of;  // per face side, in order: its edge
+  at.first.assign(g.num_edges() + 1, 0);
   for (std::uint32_t i = 0; i < faces.size(); ++i) {
     if (alive && !(*alive)[i]) continue;
     for (const auto& loop : faces[i].loops)
-      for (std::size_t k = 0; k < loop.size(); ++k)
-        at[g.find_edge(loop[k], loop[(k + 1) % loop.size()])].push_back(i);
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        const std::uint32_t e = g.find_edge(loop[k], loop[(k + 1) % loop.size()]);
+        edge_of.push_back(e);
+        ++at.first[e + 1];
+      }
+  }
+  for (std::size_t e = 0; e < g.num_edges(); ++e) at.first[e + 1] += at.first[e];
+  at.faces.resize(at.first.back());
+  std::vector<std::uint32_t> fill(at.first.begin(), at.first.end() - 1);
+  std::size_t side = 0;
+  for (std::uint32_t i = 0; i < faces.size(); ++i) {
+    if (alive && !(*alive)[i]) continue;
+    for (const auto& loop : faces[i].loops)
+      for (std::size_t k = 0; k < loop.size(); ++k) at.faces[fill[edge_of[side++]]++] = i;
   }
   return at;
 }
@@ -241,7 +265,7 @@ inline bool coplanar_normals(const glm::dvec3& a, const glm::dvec3& b) {
 /// need another face: fewer than two faces, or just two coplanar ones (a seam inside a flat
 /// surface, which a wireframe draws only where a wall meets it). O(|others|).
 template <class Normal>
-bool edge_needs_more(const std::vector<std::uint32_t>& others, Normal&& normal) {
+bool edge_needs_more(std::span<const std::uint32_t> others, Normal&& normal) {
   if (others.size() < 2) return true;
   return others.size() == 2 && coplanar_normals(normal(others[0]), normal(others[1]));
 }
@@ -251,8 +275,7 @@ bool edge_needs_more(const std::vector<std::uint32_t>& others, Normal&& normal) 
 /// docs/wireframe.md). `at` lists the faces of every edge; `others` is scratch space.
 /// O(L_i · k) for k faces at an edge.
 inline bool needed_faces_one(const wire_graph& g, const std::vector<wire_face>& faces,
-                             const std::vector<std::vector<std::uint32_t>>& at,
-                             const std::vector<char>& alive, std::uint32_t i,
+                             const edge_face_lists& at, const std::vector<char>& alive, std::uint32_t i,
                              std::vector<std::uint32_t>& others) {
   auto normal = [&](std::uint32_t j) { return faces[j].normal; };
   for (const auto& loop : faces[i].loops)
@@ -267,8 +290,7 @@ inline bool needed_faces_one(const wire_graph& g, const std::vector<wire_face>& 
 
 /// needed_faces_one for every face with alive[i] != 0 (0 for the others). O(Σ L · k).
 inline std::vector<char> needed_faces(const wire_graph& g, const std::vector<wire_face>& faces,
-                                      const std::vector<std::vector<std::uint32_t>>& at,
-                                      const std::vector<char>& alive) {
+                                      const edge_face_lists& at, const std::vector<char>& alive) {
   std::vector<char> needed(faces.size(), 0);
   std::vector<std::uint32_t> others;
   for (std::uint32_t i = 0; i < faces.size(); ++i)
