@@ -47,7 +47,7 @@ if(CASE STREQUAL "help")
   run(--help)
   expect_exit(0)
   foreach(option -h --help -o --output --no-svg --tracer --merge-tolerance --planarity --strict
-                 --merge-unforced --keep-dangling --budget)
+                 --reading --merge-unforced --keep-dangling --budget)
     expect_in("${out}" " ${option}")
   endforeach()
   foreach(word "usage: wire2cells" "exit status" ".3dcl" ".obj" ".ply" ".svg")
@@ -74,6 +74,18 @@ elseif(CASE STREQUAL "outputs")
   # A plain edge list (a unit cube) into a folder given with -o, without the picture.
   file(WRITE "${dir}/cube.edges" "vertices 8\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
                                  "edges 12\n0 1\n1 2\n2 3\n3 0\n4 5\n5 6\n6 7\n7 4\n0 4\n1 5\n2 6\n3 7\n")
+  # A house (a cube with a pyramid roof): the square under the roof is no face by default,
+  # a wall between two volumes with --reading keep-walls.
+  file(WRITE "${dir}/house.edges"
+       "vertices 9\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n0.5 0.5 1.6\n"
+       "edges 16\n0 1\n1 2\n2 3\n3 0\n4 5\n5 6\n6 7\n7 4\n0 4\n1 5\n2 6\n3 7\n4 8\n5 8\n6 8\n7 8\n")
+  run(--no-svg -o house_out house.edges)
+  expect_exit(0)
+  expect_in("${out}" "9 faces, 1 volumes")
+  expect_in("${out}" "not a face: a 4-gon")
+  run(--no-svg --reading keep-walls -o house_out house.edges)
+  expect_exit(0)
+  expect_in("${out}" "10 faces, 2 volumes")
   run(--no-svg --tracer seed -o cube_out cube.edges)
   expect_exit(0)
   expect_in("${out}" "6 faces, 1 volumes")
@@ -106,7 +118,7 @@ elseif(CASE STREQUAL "usage")
   run(--no-such-option wire.obj)
   expect_exit(2)
   expect_in("${err}" "--no-such-option")
-  foreach(bad "--planarity;abc" "--merge-tolerance;-1" "--budget;1.5" "--tracer;dfs" "--output")
+  foreach(bad "--planarity;abc" "--merge-tolerance;-1" "--budget;1.5" "--tracer;dfs" "--reading;plugs" "--output")
     run(${bad})
     expect_exit(2)
     list(GET bad 0 option)

@@ -93,9 +93,22 @@ std::vector<example::option_spec> option_table(settings& s) {
        "",
        "refuse zero-length, duplicate and dangling edges instead of dropping them with a note",
        [&](std::string_view) { p.read.strict = true; }},
+      {{"--reading"},
+       "needed|keep-walls|keep-all",
+       "which planar cycles are faces (docs/wireframe.md): only those some edge needs, so holes and dents "
+       "stay open and walls no edge needs go (default); as that, but every wall between two volumes stays; "
+       "or every cycle that crosses no face (holes plugged)",
+       [&](std::string_view v) {
+         p.volume.reading = example::option_choice<cellforge::face_reading>(
+             "--reading", v,
+             {{"needed", cellforge::face_reading::needed},
+              {"keep-walls", cellforge::face_reading::keep_walls},
+              {"keep-all", cellforge::face_reading::keep_all}});
+       }},
       {{"--merge-unforced"},
        "",
-       "also merge the volumes on both sides of walls no edge needs (e.g. the inner walls of a grid)",
+       "also merge the volumes on both sides of walls kept although no edge needs them (the inner walls "
+       "of a grid), one at a time, never across a needed face",
        [&](std::string_view) { p.volume.merge_unforced = true; }},
       {{"--keep-dangling"},
        "",
@@ -223,7 +236,13 @@ int main(int argc, char** argv) {
                 cells.num_objects());
     for (auto o : cells.objects())
       std::printf("  object %u: V - E + F - C = %lld\n", o.idx(), cells.object_euler(o));
-    std::printf("  walls no edge forces: %zu\n", r.unforced.size());
+    std::printf("  faces no edge needs, kept (undecided): %zu\n", r.unforced.size());
+    for (const cellforge::face_note& n : r.alternatives)
+      std::printf("  not a face: a %zu-gon at vertex %u (it %s)\n", n.loops[0].size(), n.loops[0][0],
+                  n.reason.c_str());
+    for (const cellforge::face_note& n : r.lost)
+      std::printf("  lost: a %zu-gon at vertex %u (%s)\n", n.loops[0].size(), n.loops[0][0],
+                  n.reason.c_str());
     for (const std::string& d : r.diagnostics) std::printf("  note: %s\n", d.c_str());
     std::printf("  validate: %s\n", valid.ok() ? "ok" : valid.message.c_str());
 
