@@ -136,6 +136,14 @@ TEST_CASE("bad input: K12 and the work budget") {
   wireframe_options tiny;
   tiny.trace.work_budget = 10;
   expect_error(sample_cube().wire, error_category::budget, "trace_circuits: work budget of 10", tiny);
+  // The reading rule's rounds and the crossing rounds are budgeted too.
+  wireframe_options rounds;
+  rounds.volume.work_budget = 5;
+  expect_error(sample_house().wire, error_category::budget, "find_volumes: work budget of 5", rounds);
+  wireframe_options crossing;
+  crossing.arrangement.work_budget = 20;
+  expect_error(sample_octahedron().wire, error_category::budget, "arrange_faces: work budget of 20",
+               crossing);
   // The seed's search misses a 40-gon prism's caps (shorter circuits prune them); extra face
   // processing (seed section 4.6) adds them back from the planar tracer.
   bfs.trace.work_budget = wireframe_options{}.trace.work_budget;

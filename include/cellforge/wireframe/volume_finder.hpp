@@ -52,6 +52,8 @@ struct volume_options {
   /// face ends up inside a volume and no edge is left on fewer than two faces or on two
   /// coplanar ones; the walls merged are listed in volume_result::merged.
   bool merge_unforced = false;
+  /// Abstract steps of the reading rule's rounds (faces looked at); 0 = none.
+  std::uint64_t work_budget = 200'000'000;
 };
 
 /// One face around an edge: the face, and +1 when it walks the edge from start to end.
@@ -223,10 +225,11 @@ class face_reader {
         for (const auto rg : sides[i]) root_faces_[rg].push_back(i);
   }
 
-  void run() {
+  void run(work_budget& budget) {
     if (reading_ == face_reading::keep_all) return mark_unforced();
     const std::size_t nf = faces_.size();
     for (;;) {
+      budget.spend(nf);
       mark_unforced();
       // Groups of the current (merged) regions joined by unforced walls.
       union_find group(merged.parent.size());
@@ -275,7 +278,9 @@ class face_reader {
       const std::vector<int> first = mode;
       for (;;) {
         std::vector<std::uint32_t> failed;
-        check(picks(mode), [&](std::uint32_t i) { failed.push_back(group_of(i)); });
+        const auto pick = picks(mode);
+        budget.spend(pick.size() + 1);
+        check(pick, [&](std::uint32_t i) { failed.push_back(group_of(i)); });
         if (failed.empty()) break;
         std::sort(failed.begin(), failed.end());
         failed.erase(std::unique(failed.begin(), failed.end()), failed.end());
@@ -294,6 +299,7 @@ class face_reader {
         one[gr] = 2;
         const auto pick = picks(one);
         bool ok = true;
+        budget.spend(pick.size() + 1);
         check(pick, [&](std::uint32_t) { ok = false; });
         if (!ok) continue;
         commit(pick);
@@ -533,7 +539,8 @@ inline volume_result find_volumes(const wire_graph& g, const std::vector<wire_fa
   }
   const auto at = detail::faces_at_edges(g, faces, &alive);
   detail::face_reader reader(g, faces, at, sides_of, alive, regions, options.reading);
-  reader.run();
+  detail::work_budget budget{options.work_budget, 0, "find_volumes"};
+  reader.run(budget);
   std::vector<char>& drop = reader.drop;
   detail::union_find& merged = reader.merged;
   for (std::uint32_t i = 0; i < nf; ++i) {
