@@ -4,6 +4,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -224,6 +225,11 @@ TEST_CASE("bad input: diagnostics, and the right complex anyway") {
     CHECK(r.extra.free == 1);
     CHECK(has_note(r.extra, "free edge"));
     CHECK(r.input.points.size() == 8);
+    // The lost triangle is named in the caller's labels, with why.
+    REQUIRE(r.lost.size() == 1);
+    CHECK(r.lost[0].loops[0].size() == 3);
+    CHECK(*std::min_element(r.lost[0].loops[0].begin(), r.lost[0].loops[0].end()) == b);
+    CHECK(r.lost[0].reason.find("bounds no volume") != std::string::npos);
   }
   SUBCASE("a skew quadrilateral next to a cube is not a face") {
     // (It is a separate object; its circuit is traced by the seed's search and rejected.)

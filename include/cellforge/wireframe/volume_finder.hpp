@@ -77,7 +77,8 @@ struct volume_result : stage_report {
   std::vector<std::uint32_t> unforced;  ///< kept faces no edge needs: the wireframe does not decide them
   std::vector<std::uint32_t> dropped;  ///< faces no edge needs that the reading removed (holes, roofs, rings)
   std::vector<std::uint32_t> merged;   ///< walls merge_unforced removed
-  /// One line per dropped face: the other reading it stands for ("face 7 would close a hole").
+  /// Per dropped face (same order): the other reading it stands for, "would close a hole or
+  /// dent" or "would split a volume in two".
   std::vector<std::string> alternatives;
   double manifold_milliseconds = 0.0;  ///< the seed's "manifold analysis" row: rotation order and shells
 };
@@ -546,12 +547,11 @@ inline volume_result find_volumes(const wire_graph& g, const std::vector<wire_fa
   for (std::uint32_t i = 0; i < nf; ++i) {
     if (drop[i]) {
       r.dropped.push_back(i);
-      const bool hole = reader.opened[i] != 0;
-      r.alternatives.push_back("face " + std::to_string(i) + " (" + std::to_string(faces[i].loops[0].size()) +
-                               "-gon) would " + (hole ? "close a hole or dent" : "split a volume in two"));
-      r.diagnostics.push_back("face " + std::to_string(i) +
-                              ": no edge needs it, so it is not a face (it would " +
-                              (hole ? "close a hole or dent)" : "split a volume in two)"));
+      r.alternatives.push_back(reader.opened[i] ? "would close a hole or dent"
+                                                : "would split a volume in two");
+      r.diagnostics.push_back("face " + std::to_string(i) + " (" + std::to_string(faces[i].loops[0].size()) +
+                              "-gon): no edge needs it, so it is not a face (it " + r.alternatives.back() +
+                              ")");
     } else if (reader.unforced[i]) {
       r.unforced.push_back(i);
     }

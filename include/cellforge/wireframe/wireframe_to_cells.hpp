@@ -110,10 +110,8 @@ wireframe_result wireframe_to_cells(const G& wire, const wireframe_options& opti
                                " selected faces were removed, the first because " + r.lost.front().reason) +
                     ")");
   r.volume = find_volumes(g, r.extra.faces, options.volume);
-  for (std::size_t k = 0; k < r.volume.dropped.size(); ++k) {
-    const std::string& alt = r.volume.alternatives[k];
-    r.alternatives.push_back(note(r.extra.faces[r.volume.dropped[k]], alt.substr(alt.find(" would ") + 1)));
-  }
+  for (std::size_t k = 0; k < r.volume.dropped.size(); ++k)
+    r.alternatives.push_back(note(r.extra.faces[r.volume.dropped[k]], r.volume.alternatives[k]));
   r.relations = find_relations(g, r.extra.faces, r.volume, options.relations);
 
   detail::stopwatch clock;
