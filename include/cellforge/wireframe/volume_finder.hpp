@@ -7,10 +7,12 @@
 /// coordinates). Here the same choice — the next face in rotation order around the edge — is
 /// made for every face side at once, so no turn direction is ever needed: sort the faces
 /// around each edge by angle; the side of one face facing the next face continues the same
-/// shell. Connected face sides are shells; a shell of negative signed volume is an object's
-/// outside surface and bounds no volume (the seed's outside-surface removal); an outside
-/// surface nested in another object's volume (a solid in a cavity) becomes part of that
-/// volume's boundary, found by ray parity.
+/// shell. Connected face sides are shells; a shell of negative signed volume is a surface's
+/// outside and bounds no volume (the seed's outside-surface removal); an outside surface
+/// nested in another surface's volume (a solid in a cavity) becomes part of that volume's
+/// boundary, found by an exact point-in-solid test. Then the reading rule (docs/wireframe.md)
+/// drops the faces no edge needs — the mouths of holes and dents, walls such as the square
+/// under a roof — and joins the regions on their sides.
 
 #include <algorithm>
 #include <array>
