@@ -131,7 +131,7 @@ void register_all() {
         add(
             s, who, n,
             [s, n, method = method] { return cellforge::convex_hull(data().get(s, n), {.method = method}); },
-            [](const cellforge::halfedge_mesh& m) { return m.is_closed() ? m.num_faces() : 0; });
+            [](const cellforge::surface_mesh<glm::dvec3>& m) { return m.is_closed() ? m.num_faces() : 0; });
 #ifdef CELLFORGE_HAVE_CGAL
       add(
           s, "cgal", n,

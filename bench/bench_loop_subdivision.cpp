@@ -98,7 +98,7 @@ using cgal_mesh = CGAL::Surface_mesh<cgal_point>;
 /// One input in each library's structure, built once and copied for every iteration.
 struct prepared {
   soup source;
-  cellforge::halfedge_mesh ours;
+  cellforge::surface_mesh<glm::dvec3> ours;
 #ifdef CELLFORGE_HAVE_OPENMESH
   om_mesh om;
 #endif
@@ -155,8 +155,8 @@ const prepared& input(const std::string& key) {
 
 // ------------------------------------------------------------------------------ the three subdividers
 
-std::size_t ours(const prepared& in, cellforge::halfedge_mesh& m) {
-  cellforge::loop_subdivide<point>(m);
+std::size_t ours(const prepared& in, cellforge::surface_mesh<glm::dvec3>& m) {
+  cellforge::loop_subdivide(m);
   return m.num_faces() == 4 * in.ours.num_faces() ? m.num_faces() : 0;
 }
 #ifdef CELLFORGE_HAVE_OPENMESH
@@ -309,10 +309,10 @@ void register_all() {
 /// implement the same masks, so the means must agree to rounding.
 std::string cross_check(const std::string& key) {
   const prepared& in = input(key);
-  cellforge::halfedge_mesh m = in.ours;
+  auto m = in.ours;
   ours(in, m);
   glm::dvec3 mean(0);
-  for (const point& p : cellforge::points<point>(m).vector()) mean += p;
+  for (const point& p : m.positions().vector()) mean += p;
   mean /= static_cast<double>(m.num_vertices());
   std::string out = "mean of the new vertices: ours (" + cb::fixed(mean.x, 12) + ", " +
                     cb::fixed(mean.y, 12) + ", " + cb::fixed(mean.z, 12) + ")";

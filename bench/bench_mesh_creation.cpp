@@ -85,12 +85,14 @@ inputs& data() {
 
 // ------------------------------------------------------------------------------ cellforge
 
-cellforge::halfedge_mesh cf_build(const soup& s) { return cellforge::make_mesh(s); }
-cellforge::halfedge_mesh cf_read(const fs::path& p) {
+cellforge::surface_mesh<glm::dvec3> cf_build(const soup& s) { return cellforge::make_mesh(s); }
+cellforge::surface_mesh<glm::dvec3> cf_read(const fs::path& p) {
   return cellforge::make_mesh(cellforge::io::read_off<point>(p));
 }
 soup cf_parse(const fs::path& p) { return cellforge::io::read_off<point>(p); }
-std::size_t faces_of(const cellforge::halfedge_mesh& m) { return m.is_closed() ? m.num_faces() : 0; }
+std::size_t faces_of(const cellforge::surface_mesh<glm::dvec3>& m) {
+  return m.is_closed() ? m.num_faces() : 0;
+}
 std::size_t faces_of(const soup& s) { return s.num_faces(); }
 
 // ------------------------------------------------------------------------------ OpenMesh
@@ -284,7 +286,8 @@ struct memory_row {
 std::vector<memory_row> measure_memory(int faces) {
   const soup& s = data().sphere(vertices_for_faces(faces));
   std::vector<memory_row> rows;
-  rows.push_back({"cellforge halfedge_mesh (make_mesh)", cb::measure_heap([&] { return cf_build(s); })});
+  rows.push_back(
+      {"cellforge surface_mesh<glm::dvec3> (make_mesh)", cb::measure_heap([&] { return cf_build(s); })});
 #ifdef CELLFORGE_HAVE_OPENMESH
   rows.push_back({"OpenMesh TriMesh (reserve + add_face)", cb::measure_heap([&] { return om_build(s); })});
 #endif

@@ -105,12 +105,12 @@ Mesh build_triangles(const soup& s) {
 }
 
 struct ours {
-  using mesh = cellforge::halfedge_mesh;
+  using mesh = cellforge::surface_mesh<glm::dvec3>;
   static mesh build(const soup& s) { return cellforge::make_mesh(s); }
-  static void run(mesh& m, std::size_t target) { cellforge::simplify<point>(m, {.target_faces = target}); }
+  static void run(mesh& m, std::size_t target) { cellforge::simplify(m, {.target_faces = target}); }
   static outcome look(const mesh& m) {
     outcome o{m.num_faces(), 0, 0};
-    const auto pts = cellforge::points<point>(m);
+    const auto pts = m.positions();
     for (auto v : m.vertices()) add_vertex(o, pts[v]);
     for (auto f : m.faces()) {
       std::vector<glm::dvec3> p;

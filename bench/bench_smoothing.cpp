@@ -33,14 +33,14 @@ constexpr double target_ms = 50;
 /// §7.4 table 7) and their meshes.
 struct solid_case {
   cellforge::smooth_sample_solid<glm::dvec3> sample;
-  cellforge::halfedge_mesh mesh;
+  cellforge::surface_mesh<glm::dvec3> mesh;
 };
 
 const std::vector<solid_case>& solids() {
   static const std::vector<solid_case> all = [] {
     std::vector<solid_case> out;
     for (auto& s : cellforge::table7_solids<glm::dvec3>()) {
-      cellforge::halfedge_mesh m = cellforge::make_mesh(s.soup);
+      auto m = cellforge::make_mesh(s.soup);
       out.push_back({std::move(s), std::move(m)});
     }
     return out;
@@ -73,13 +73,13 @@ void register_all() {
   for (int i = 1; i <= 4; ++i)
     for (const bool seed_rules : {false, true}) {
       const std::string name = case_name(seed_rules, i);
-      const cellforge::halfedge_mesh* m = &solid(i).mesh;
+      const cellforge::surface_mesh<glm::dvec3>* m = &solid(i).mesh;
       const cellforge::smooth_options o = options_for(seed_rules);
       benchmark::RegisterBenchmark(name.c_str(),
                                    [name, m, o](benchmark::State& s) {
                                      try {
                                        cb::timed_loop(
-                                           s, [&] { return cellforge::smooth_edges<glm::dvec3>(*m, o); },
+                                           s, [&] { return cellforge::smooth_edges(*m, o); },
                                            [&](const cellforge::smooth_result& r) {
                                              findings()[name] = {
                                                  r.num_surfaces, r.num_cubic, r.num_quadratic, r.num_straight,
@@ -118,7 +118,7 @@ void print_tables(const cb::collecting_reporter& reporter, std::ostream& os) {
   std::size_t met = 0, measured = 0;
   for (int i = 1; i <= 4; ++i) {
     const auto& s = solid(i).sample;
-    const cellforge::halfedge_mesh& m = solid(i).mesh;
+    const cellforge::surface_mesh<glm::dvec3>& m = solid(i).mesh;
     const std::optional<double> ours = reporter.ms(case_name(false, i)),
                                 faithful = reporter.ms(case_name(true, i));
     constexpr double none = std::numeric_limits<double>::quiet_NaN();

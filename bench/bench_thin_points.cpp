@@ -76,7 +76,7 @@ constexpr double target_case_ms = 50, target_bunny_ms = 1000;
 /// A table-5 stand-in (thin/sample_solids.hpp: its soup and ground truth) and its mesh.
 struct solid_case {
   cellforge::thin_sample<glm::dvec3> sample;
-  cellforge::halfedge_mesh mesh;
+  cellforge::surface_mesh<glm::dvec3> mesh;
 };
 
 const solid_case& solid(int example, bool triangles) {
@@ -96,8 +96,9 @@ std::filesystem::path bunny_path() {
 }
 
 /// The bunny, read once; empty when the file is absent.
-const std::optional<cellforge::halfedge_mesh>& bunny() {
-  static const std::optional<cellforge::halfedge_mesh> m = []() -> std::optional<cellforge::halfedge_mesh> {
+const std::optional<cellforge::surface_mesh<glm::dvec3>>& bunny() {
+  static const std::optional<cellforge::surface_mesh<glm::dvec3>> m =
+      []() -> std::optional<cellforge::surface_mesh<glm::dvec3>> {
     const std::filesystem::path p = bunny_path();
     if (p.empty() || !std::filesystem::exists(p)) return std::nullopt;
     return cellforge::io::read_mesh<glm::dvec3>(p);
@@ -134,12 +135,12 @@ std::map<std::string, found>& findings() {
   return f;
 }
 
-void register_case(const std::string& name, const cellforge::halfedge_mesh* mesh, cellforge::thin_options o,
-                   int iterations) {
+void register_case(const std::string& name, const cellforge::surface_mesh<glm::dvec3>* mesh,
+                   cellforge::thin_options o, int iterations) {
   auto* b = benchmark::RegisterBenchmark(name.c_str(), [name, mesh, o](benchmark::State& s) {
     try {
       cb::timed_loop(
-          s, [&] { return cellforge::find_thin_points<glm::dvec3>(*mesh, o); },
+          s, [&] { return cellforge::find_thin_points(*mesh, o); },
           [&](const cellforge::thin_result& r) {
             found f;
             f.loops = r.loops.size();
@@ -199,7 +200,7 @@ void register_all(const flags& f) {
   for (const bool tri : {false, true})
     for (int i = 1; i <= 6; ++i)
       for (const int t : thresholds) {
-        const cellforge::halfedge_mesh* m = &solid(i, tri).mesh;
+        const cellforge::surface_mesh<glm::dvec3>* m = &solid(i, tri).mesh;
         register_case(case_name("fast", i, tri, t), m, options_for(cellforge::thin_mode::fast, t), 0);
         if (tri)
           register_case(case_name("clustered", i, tri, t), m,

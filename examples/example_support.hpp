@@ -219,7 +219,7 @@ T option_choice(std::string_view option, std::string_view text,
 /// A closed solid to work on: the mesh, and when it came from a .3dcl file, the complex and volume
 /// (the algorithms then report cell ids).
 struct solid {
-  cellforge::halfedge_mesh mesh;
+  cellforge::surface_mesh<glm::dvec3> mesh;
   std::optional<cellforge::cell_complex> cells;
   cellforge::cell_volume volume{};
   cellforge::polygon_soup<glm::dvec3> soup;  // for pictures and OBJ output
@@ -244,7 +244,7 @@ inline solid load_solid(const std::filesystem::path& path, int volume) {
   } else {
     s.mesh = cellforge::io::read_mesh<glm::dvec3>(path);
   }
-  s.soup = cellforge::to_soup<glm::dvec3>(s.mesh);
+  s.soup = cellforge::to_soup(s.mesh);
   s.load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return s;
 }

@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
 
     cellforge::convex_hull_report report;
     const auto t0 = std::chrono::steady_clock::now();
-    const cellforge::halfedge_mesh hull = cellforge::convex_hull(points, {.merge_coplanar = merge}, &report);
+    const auto hull = cellforge::convex_hull(points, {.merge_coplanar = merge}, &report);
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
 
     const fs::path out = "hull.off";
     if (hull.num_faces() > 0) {
-      cellforge::io::write_mesh<point>(out, hull);
+      cellforge::io::write_mesh(out, hull);
       std::printf("wrote            %s\n", out.string().c_str());
     }
 
@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
     for (cellforge::vertex_handle v : hull.vertices()) is_corner[index[v]] = 1;
     for (std::size_t i = 0; i < points.size(); ++i) (is_corner[i] ? corners : inside).push_back(points[i]);
     if (hull.num_faces() > 0)
-      scene.add_mesh(cellforge::to_soup<point>(hull), {.opacity = 0.5, .hidden_opacity = 0.25});
+      scene.add_mesh(cellforge::to_soup(hull), {.opacity = 0.5, .hidden_opacity = 0.25});
     scene.add_points(inside, {.fill = "#7a7a7a", .stroke = "none", .hidden_opacity = 0.6}, 1.2);
     scene.add_points(corners, {.fill = "#d0312d", .stroke = "#5a0f0d"}, 2.5);
     scene.write(fs::path("hull.svg"), {.title = "convex hull"});

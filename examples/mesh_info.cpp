@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
     const auto soup = cellforge::io::read_soup<glm::dvec3>(input);
     const auto t1 = clock::now();
     cellforge::build_report report;
-    const cellforge::halfedge_mesh mesh =
+    const cellforge::surface_mesh<glm::dvec3> mesh =
         cellforge::make_mesh(soup, &report, {.split_nonmanifold_vertices = true});
     const auto t2 = clock::now();
     const cellforge::validation_result valid = cellforge::validate(mesh);
@@ -63,8 +63,8 @@ int main(int argc, char** argv) {
 
     // The picture: shaded faces, hidden edges dashed, boundary loops in red on top.
     cellforge::io::svg_scene scene;
-    scene.add_mesh(cellforge::to_soup<glm::dvec3>(mesh));
-    const auto pts = cellforge::points<glm::dvec3>(mesh);
+    scene.add_mesh(cellforge::to_soup(mesh));
+    const auto pts = mesh.positions();
     cellforge::io::svg_style boundary;
     boundary.stroke = "#c0392b";
     boundary.stroke_width = 2.5;

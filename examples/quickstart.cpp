@@ -16,7 +16,7 @@ int main() {
   soup.add_face({0, 2, 3, 1});
   soup.add_face({2, 4, 5, 3});
   soup.add_face({4, 1, 0, 5});  // glued with a half twist
-  cellforge::halfedge_mesh mesh = cellforge::make_mesh(soup);
+  auto mesh = cellforge::make_mesh(soup);
   for (auto f : mesh.faces_around(cellforge::vertex_handle(0))) std::printf("face %u\n", f.idx());
   std::printf("valid: %d, orientable: %d, boundary loops: %zu\n", cellforge::validate(mesh).ok(),
               cellforge::is_orientable(mesh), mesh.boundary_loops().size());

@@ -30,9 +30,8 @@ int main(int argc, char** argv) {
         cl.has("faithful") ? cellforge::seed_smooth_options() : cellforge::smooth_options{};
     options.angle_deg = cl.number("angle", options.angle_deg, 0, 90);
     cellforge::smooth_result r;
-    const double ms =
-        x.run([&](const auto& cc, auto v) { r = cellforge::smooth_edges(cc, v, options); },
-              [&](const auto& mesh) { r = cellforge::smooth_edges<glm::dvec3>(mesh, options); });
+    const double ms = x.run([&](const auto& cc, auto v) { r = cellforge::smooth_edges(cc, v, options); },
+                            [&](const auto& mesh) { r = cellforge::smooth_edges(mesh, options); });
     x.print_solid("smooth_edges");
     std::printf("  rules            %s, angle %.4g degrees\n",
                 cl.has("faithful") ? "the seed's (--faithful)" : "extended", options.angle_deg);

@@ -46,10 +46,10 @@ int main(int argc, char** argv) {
                                       });
     // Loop subdivision needs triangles; the library refuses other faces rather than guess.
     if (polygons) soup = cellforge::triangulate_fan(soup);
-    cellforge::halfedge_mesh mesh = cellforge::make_mesh(soup);
-    const cellforge::polygon_soup<point> before = cellforge::to_soup<point>(mesh);
+    auto mesh = cellforge::make_mesh(soup);
+    const cellforge::polygon_soup<point> before = cellforge::to_soup(mesh);
 
-    const cellforge::loop_result r = cellforge::loop_subdivide<point>(mesh, {.levels = levels});
+    const cellforge::loop_result r = cellforge::loop_subdivide(mesh, {.levels = levels});
     const cellforge::validation_result valid = cellforge::validate(mesh);
 
     std::printf("input              %s%s\n", input.string().c_str(),
@@ -69,10 +69,10 @@ int main(int argc, char** argv) {
     std::string ext = input.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
     const fs::path out = fs::path("subdivided" + ext);
-    cellforge::io::write_mesh<point>(out, mesh);
+    cellforge::io::write_mesh(out, mesh);
 
     // Input and result side by side: shift the result 1.3 widths to the right of the screen.
-    const cellforge::polygon_soup<point> after = cellforge::to_soup<point>(mesh);
+    const cellforge::polygon_soup<point> after = cellforge::to_soup(mesh);
     glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
     for (const point& p : before.points) {
       lo = glm::min(lo, p);

@@ -36,9 +36,8 @@ int main(int argc, char** argv) {
     }
     options.cluster_faces = cl.has("cluster");
     cellforge::thin_result r;
-    const double ms =
-        x.run([&](const auto& cc, auto v) { r = cellforge::find_thin_points(cc, v, options); },
-              [&](const auto& mesh) { r = cellforge::find_thin_points<glm::dvec3>(mesh, options); });
+    const double ms = x.run([&](const auto& cc, auto v) { r = cellforge::find_thin_points(cc, v, options); },
+                            [&](const auto& mesh) { r = cellforge::find_thin_points(mesh, options); });
     x.print_solid("thin_points");
     std::printf("  rules            %s, selection cap %d%s\n",
                 cl.has("faithful") ? "the seed's (--faithful)" : "fast", options.selection_cap,

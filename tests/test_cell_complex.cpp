@@ -16,6 +16,9 @@
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 #include "cells_fixtures.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace cell_complex_tests {
+
 using namespace cellforge;
 namespace fx = cells_fixtures;
 
@@ -536,7 +539,7 @@ TEST_CASE("validate: each broken invariant is named with its element") {
 
 namespace {
 
-double mesh_volume(const halfedge_mesh& m) { return signed_volume(to_soup<glm::dvec3>(m)); }
+double mesh_volume(const surface_mesh<glm::dvec3>& m) { return signed_volume(to_soup(m)); }
 
 // Faces of a complex as cycles of positions, each rotated to start at its smallest point and
 // read in the smaller direction, so two complexes with the same faces (whatever their numbering) compare
@@ -615,7 +618,7 @@ TEST_CASE("conversion: triangulating a face with holes") {
 TEST_CASE("conversion: volume boundaries to meshes and back") {
   SUBCASE("cube") {
     const cell_complex cc = make_cell_complex(fx::cube());
-    const halfedge_mesh m = volume_boundary_mesh(cc, cell_volume(0));
+    const auto m = volume_boundary_mesh(cc, cell_volume(0));
     REQUIRE_VALID(m);
     CHECK(m.num_vertices() == 8);
     CHECK(m.num_faces() == 6);
@@ -626,7 +629,7 @@ TEST_CASE("conversion: volume boundaries to meshes and back") {
     CHECK(face_shapes(back) == face_shapes(cc));
     CHECK(back.num_edges() == 12);
 
-    const halfedge_mesh tri = volume_boundary_mesh(cc, cell_volume(0), {.triangulate_all = true});
+    const auto tri = volume_boundary_mesh(cc, cell_volume(0), {.triangulate_all = true});
     REQUIRE_VALID(tri);
     CHECK(tri.num_faces() == 12);
     CHECK(mesh_volume(tri) == doctest::Approx(1.0));
@@ -643,12 +646,12 @@ TEST_CASE("conversion: volume boundaries to meshes and back") {
   SUBCASE("every volume of a grid, with the complex's vertex and face of each element") {
     const cell_complex cc = make_cell_complex(fx::grid(2, 2, 1));
     for (cell_volume c : cc.volumes()) {
-      const halfedge_mesh m = volume_boundary_mesh(cc, c);
+      const auto m = volume_boundary_mesh(cc, c);
       REQUIRE_VALID(m);
       CHECK(m.is_closed());
       CHECK(mesh_volume(m) == doctest::Approx(1.0));
       const auto cv = m.get_vertex_property<std::uint32_t>("v:cell_vertex");
-      const auto pts = points<glm::dvec3>(m);
+      const auto pts = m.positions();
       for (vertex_handle v : m.vertices()) CHECK(cc.point(cell_vertex(cv[v])) == pts[v]);
       const auto cf = m.get_face_property<std::uint32_t>("f:cell_face");
       for (face_handle f : m.faces()) {
@@ -660,7 +663,7 @@ TEST_CASE("conversion: volume boundaries to meshes and back") {
   }
   SUBCASE("block with a hole: annular faces are triangulated, and merged back") {
     const cell_complex cc = make_cell_complex(fx::block_with_hole());
-    const halfedge_mesh m = volume_boundary_mesh(cc, cell_volume(0));
+    const auto m = volume_boundary_mesh(cc, cell_volume(0));
     REQUIRE_VALID(m);
     CHECK(m.is_closed());
     CHECK(m.num_vertices() == 16);
@@ -737,7 +740,7 @@ TEST_CASE("sample models through the wireframe pipeline: valid complexes, closed
     for (cell_object o : cc.objects())
       if (v.euler_checked[o.idx()]) CHECK(v.expected_euler[o.idx()] == cc.object_euler(o));
     for (cell_volume c : cc.volumes()) {
-      const halfedge_mesh mesh = volume_boundary_mesh(cc, c);
+      const auto mesh = volume_boundary_mesh(cc, c);
       CHECK(mesh.is_closed());
       CHECK(mesh_volume(mesh) == doctest::Approx(v.signed_volumes[c.idx()]));
       const cell_complex one = mesh_to_cell_complex(mesh, {.merge_coplanar = true});
@@ -750,3 +753,5 @@ TEST_CASE("sample models through the wireframe pipeline: valid complexes, closed
     }
   }
 }
+
+}  // namespace cell_complex_tests

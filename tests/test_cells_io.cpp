@@ -19,6 +19,9 @@
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 #include "cells_fixtures.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace cells_io_tests {
+
 using namespace cellforge;
 namespace fx = cells_fixtures;
 
@@ -376,3 +379,5 @@ TEST_CASE("cells PLY: a face of more than 255 vertices gets a wider count type a
   for (std::size_t f = 0; f < soup.num_faces(); ++f) largest = std::max(largest, soup.face(f).size());
   CHECK(largest == n);
 }
+
+}  // namespace cells_io_tests

@@ -23,6 +23,9 @@
 #include "cellforge/halfedge/validate.hpp"
 #include "test_support.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace convex_hull_tests {
+
 namespace {
 
 using cellforge::convex_hull;
@@ -30,6 +33,7 @@ using cellforge::convex_hull_options;
 using cellforge::convex_hull_report;
 using cellforge::face_handle;
 using cellforge::halfedge_mesh;
+using cellforge::surface_mesh;
 using cellforge::vertex_handle;
 
 __extension__ typedef __int128 i128;
@@ -50,7 +54,7 @@ enum class reference { int128, predicate };
 
 // Every check of a 3D hull; `sample_faces` limits the all-points-against-a-face test.
 template <class P>
-void check_hull(const std::vector<P>& input, const halfedge_mesh& m, reference ref,
+void check_hull(const std::vector<P>& input, const surface_mesh<P>& m, reference ref,
                 std::size_t sample_faces = std::numeric_limits<std::size_t>::max()) {
   const auto v = cellforge::validate(m);
   INFO(v.message);
@@ -60,8 +64,8 @@ void check_hull(const std::vector<P>& input, const halfedge_mesh& m, reference r
   REQUIRE(static_cast<long>(m.num_vertices()) - static_cast<long>(m.num_edges()) +
               static_cast<long>(m.num_faces()) ==
           2);
-  const auto pos = cellforge::points<P>(m);
-  const auto index = m.get_vertex_property<std::uint32_t>(cellforge::input_index_property_name);
+  const auto pos = m.positions();
+  const auto index = m.template get_vertex_property<std::uint32_t>(cellforge::input_index_property_name);
   REQUIRE(index);
   std::vector<glm::dvec3> pts;
   for (const P& p : input) pts.push_back(cellforge::to_dvec3(p));
@@ -153,7 +157,7 @@ TEST_CASE("hull of random integer points in a ball, checked with __int128") {
     if (glm::dot(p, p) <= 1e6) pts.push_back(p);
   }
   convex_hull_report report;
-  const halfedge_mesh m = convex_hull(pts, {}, &report);
+  const auto m = convex_hull(pts, {}, &report);
   check_hull(pts, m, reference::int128);
   CHECK(report.dimension == 3);
   CHECK(report.input_points == pts.size());
@@ -166,13 +170,13 @@ TEST_CASE("hull of random integer points in a ball, checked with __int128") {
 TEST_CASE("the 10 x 10 x 10 lattice: the cube with coplanar points on every face") {
   const auto pts = lattice(10);
   convex_hull_report report;
-  const halfedge_mesh m = convex_hull(pts, {}, &report);
+  const auto m = convex_hull(pts, {}, &report);
   check_hull(pts, m, reference::int128);
   CHECK(m.num_vertices() == 8);
   CHECK(m.num_faces() == 12);
   CHECK(report.exact_evaluations > 0);  // lattices are full of exact zeros
 
-  const halfedge_mesh quads = convex_hull(pts, {.merge_coplanar = true});
+  const auto quads = convex_hull(pts, {.merge_coplanar = true});
   check_hull(pts, quads, reference::int128);
   CHECK(quads.num_vertices() == 8);
   CHECK(quads.num_faces() == 6);
@@ -180,7 +184,7 @@ TEST_CASE("the 10 x 10 x 10 lattice: the cube with coplanar points on every face
 
   // The same at tiny and huge scales (exact powers of two keep the lattice exact).
   for (const double s : {0x1p-1000, 0x1p-30, 0x1p900}) {
-    const halfedge_mesh scaled = convex_hull(lattice(6, s), {.merge_coplanar = true});
+    const auto scaled = convex_hull(lattice(6, s), {.merge_coplanar = true});
     CHECK(cellforge::validate(scaled).ok());
     CHECK(scaled.num_vertices() == 8);
     CHECK(scaled.num_faces() == 6);
@@ -196,12 +200,12 @@ TEST_CASE("many duplicates and points inside a tetrahedron") {
     pts.push_back(i % 3 == 0 ? corners[static_cast<std::size_t>(pick(rng))]
                              : glm::dvec3(c(rng), c(rng), c(rng)));
   for (const auto& q : corners) pts.push_back(q);
-  const halfedge_mesh m = convex_hull(pts);
+  const auto m = convex_hull(pts);
   check_hull(pts, m, reference::int128);
   CHECK(m.num_vertices() == 4);
   CHECK(m.num_faces() == 4);
   // Each corner is one of its duplicates.
-  const auto pos = cellforge::points<glm::dvec3>(m);
+  const auto pos = m.positions();
   std::set<std::array<double, 3>> got;
   for (vertex_handle v : m.vertices()) got.insert({pos[v].x, pos[v].y, pos[v].z});
   CHECK(got.size() == 4);
@@ -219,11 +223,11 @@ TEST_CASE("points on the faces and edges of an octahedron are not corners") {
           pts.push_back({x, y, z});
   std::shuffle(pts.begin(), pts.end(), std::mt19937_64(4));
   convex_hull_report report;
-  const halfedge_mesh m = convex_hull(pts, {}, &report);
+  const auto m = convex_hull(pts, {}, &report);
   check_hull(pts, m, reference::int128);
   CHECK(m.num_vertices() == 6);
   CHECK(m.num_faces() == 8);
-  const halfedge_mesh merged = convex_hull(pts, {.merge_coplanar = true});
+  const auto merged = convex_hull(pts, {.merge_coplanar = true});
   CHECK(merged.num_faces() == 8);
 }
 
@@ -236,7 +240,7 @@ TEST_CASE("coplanar input gives a flat hull: the polygon twice, back to back") {
     pts.push_back({x, y, 2 * x - 3 * y + 7});  // the plane z = 2x - 3y + 7
   }
   convex_hull_report report;
-  const halfedge_mesh m = convex_hull(pts, {}, &report);
+  const auto m = convex_hull(pts, {}, &report);
   CHECK(report.dimension == 2);
   CHECK(cellforge::validate(m).ok());
   CHECK(m.is_closed());
@@ -245,9 +249,9 @@ TEST_CASE("coplanar input gives a flat hull: the polygon twice, back to back") {
   CHECK(k >= 3);
   CHECK(m.num_faces() == 2 * (k - 2));
   // The polygon is the 2D hull: every point on the inner side of every boundary edge.
-  const halfedge_mesh poly = convex_hull(pts, {.merge_coplanar = true});
+  const auto poly = convex_hull(pts, {.merge_coplanar = true});
   REQUIRE(poly.num_faces() == 2);
-  const auto pos = cellforge::points<glm::dvec3>(poly);
+  const auto pos = poly.positions();
   const face_handle top = *poly.faces().begin();
   std::vector<glm::dvec3> ring;
   for (vertex_handle v : poly.vertices_around(top)) ring.push_back(pos[v]);
@@ -270,10 +274,10 @@ TEST_CASE("points on a circle: flat when exactly coplanar, a thin solid when til
     tilted.push_back({std::cos(t), std::sin(t) * 0.6, std::sin(t) * 0.8});
   }
   convex_hull_report report;
-  const halfedge_mesh m = convex_hull(flat, {}, &report);
+  const auto m = convex_hull(flat, {}, &report);
   CHECK(report.dimension == 2);
   CHECK(m.num_vertices() == static_cast<std::size_t>(n));
-  const halfedge_mesh t = convex_hull(tilted, {}, &report);
+  const auto t = convex_hull(tilted, {}, &report);
   CHECK(cellforge::validate(t).ok());
   if (report.dimension == 3) check_hull(tilted, t, reference::predicate);
 }
@@ -282,11 +286,11 @@ TEST_CASE("collinear, single-point, tiny and empty inputs") {
   convex_hull_report report;
   std::vector<glm::dvec3> line;
   for (int i = 0; i < 50; ++i) line.push_back({3 * i % 17, 2 * (3 * i % 17), -(3 * i % 17)});
-  halfedge_mesh m = convex_hull(line, {}, &report);
+  auto m = convex_hull(line, {}, &report);
   CHECK(report.dimension == 1);
   CHECK(m.num_vertices() == 2);
   CHECK(m.num_faces() == 0);
-  const auto pos = cellforge::points<glm::dvec3>(m);
+  const auto pos = m.positions();
   std::set<double> xs;
   for (vertex_handle v : m.vertices()) xs.insert(pos[v].x);
   CHECK(xs == std::set<double>{0.0, 16.0});  // the segment's two ends
@@ -330,7 +334,7 @@ TEST_CASE("NaN and infinite coordinates are rejected") {
 TEST_CASE("points on a sphere: every point is a corner (the seed's special case)") {
   const auto small = random_sphere(2000, 5);
   convex_hull_report report;
-  halfedge_mesh m = convex_hull(small, {}, &report);
+  auto m = convex_hull(small, {}, &report);
   check_hull(small, m, reference::predicate);
   CHECK(m.num_vertices() == small.size());
 
@@ -352,10 +356,10 @@ TEST_CASE("cross-sections on a sphere: coplanar rings stay, and merge into cap p
     }
   for (const auto& q : random_sphere(300, 8))
     if (std::fabs(q.z) < 0.45) pts.push_back(q);
-  const halfedge_mesh m = convex_hull(pts);
+  const auto m = convex_hull(pts);
   check_hull(pts, m, reference::predicate);
   CHECK(m.num_vertices() == pts.size());
-  const halfedge_mesh merged = convex_hull(pts, {.merge_coplanar = true});
+  const auto merged = convex_hull(pts, {.merge_coplanar = true});
   check_hull(pts, merged, reference::predicate);
   std::size_t caps = 0;
   for (face_handle f : merged.faces()) caps += merged.valence(f) == 24;
@@ -381,10 +385,10 @@ TEST_CASE("both algorithms give the same hull on every kind of input") {
     for (const auto method :
          {cellforge::convex_hull_method::quickhull, cellforge::convex_hull_method::incremental,
           cellforge::convex_hull_method::automatic}) {
-      const halfedge_mesh m = convex_hull(pts, {.method = method});
+      const auto m = convex_hull(pts, {.method = method});
       check_hull(pts, m, &pts == &inputs[1] ? reference::predicate : reference::int128);
       // The corners are the same points whichever algorithm ran (duplicates aside).
-      const auto pos = cellforge::points<glm::dvec3>(m);
+      const auto pos = m.positions();
       std::set<std::array<double, 3>> corners;
       for (vertex_handle v : m.vertices()) corners.insert({pos[v].x, pos[v].y, pos[v].z});
       if (reference_corners.empty()) reference_corners = corners;
@@ -411,7 +415,7 @@ TEST_CASE("random small-grid inputs: duplicates, coplanar and collinear everywhe
          {cellforge::convex_hull_method::quickhull, cellforge::convex_hull_method::incremental}) {
       for (const bool merge : {false, true}) {
         convex_hull_report report;
-        const halfedge_mesh m = convex_hull(pts, {.merge_coplanar = merge, .method = method}, &report);
+        const auto m = convex_hull(pts, {.merge_coplanar = merge, .method = method}, &report);
         REQUIRE(cellforge::validate(m).ok());
         if (report.dimension == 3) {
           check_hull(pts, m, reference::int128);
@@ -436,8 +440,10 @@ TEST_CASE_TEMPLATE("every point type gives the same hull", P, glm::dvec3, std::a
   std::vector<P> pts;
   for (int i = 0; i < 3000; ++i) pts.push_back(cellforge::point_traits<P>::make(c(rng), c(rng), c(rng)));
   convex_hull_report report;
-  const halfedge_mesh m = convex_hull(std::span<const P>(pts), {}, &report);
+  const auto m = convex_hull(std::span<const P>(pts), {}, &report);
   check_hull(pts, m, reference::predicate);
   CHECK(report.dimension == 3);
   CHECK(m.num_vertices() > 30);
 }
+
+}  // namespace convex_hull_tests

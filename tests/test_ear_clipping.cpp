@@ -24,6 +24,9 @@
 #include "cellforge/halfedge/validate.hpp"
 #include "test_support.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace ear_clipping_tests {
+
 namespace {
 
 using cellforge::ear_clip;
@@ -310,8 +313,8 @@ TEST_CASE("triangulate_faces: a closed polygon mesh becomes a closed triangle me
   soup.add_face({5, 4, 3, 2, 1, 0});
   soup.add_face({6, 7, 8, 9, 10, 11});
   for (std::uint32_t i = 0; i < 6; ++i) soup.add_face({i, (i + 1) % 6, 6 + (i + 1) % 6, 6 + i});
-  cellforge::halfedge_mesh m = cellforge::make_mesh(soup);
-  const auto report = cellforge::triangulate_faces<glm::dvec3>(m, {}, "f:source");
+  auto m = cellforge::make_mesh(soup);
+  const auto report = cellforge::triangulate_faces(m, {}, "f:source");
   CHECK(report.polygons == 8);
   CHECK(report.triangles_added == 2 * 4 + 6 * 2);
   CHECK(cellforge::validate(m).ok());
@@ -340,10 +343,12 @@ TEST_CASE("triangulate_faces refuses a diagonal that is already an edge, leaving
   soup.add_face({0, 1, 2, 3});
   soup.add_face({0, 2, 4});  // both diagonals of the quad already exist
   soup.add_face({1, 3, 5});
-  cellforge::halfedge_mesh m = cellforge::make_mesh(soup);
+  auto m = cellforge::make_mesh(soup);
   REQUIRE(cellforge::validate(m).ok());
-  CHECK_THROWS_AS(cellforge::triangulate_faces<glm::dvec3>(m), cellforge::error);
+  CHECK_THROWS_AS(cellforge::triangulate_faces(m), cellforge::error);
   CHECK(m.num_faces() == 3);
   CHECK(!m.has_garbage());
   CHECK(cellforge::validate(m).ok());
 }
+
+}  // namespace ear_clipping_tests

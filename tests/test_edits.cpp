@@ -17,6 +17,9 @@
 #include "cellforge/halfedge/validate.hpp"
 #include "mesh_fixtures.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace edits_tests {
+
 using namespace cellforge;
 
 namespace {
@@ -29,7 +32,7 @@ bool same_soup(const soup& a, const soup& b) {
   return a.points == b.points && a.face_offsets == b.face_offsets && a.face_vertices == b.face_vertices;
 }
 
-halfedge_mesh mesh_of(const soup& s) { return make_mesh(s); }
+surface_mesh<glm::dvec3> mesh_of(const soup& s) { return make_mesh(s); }
 
 // The two faces of an interior edge and their third corners.
 struct edge_star {
@@ -71,7 +74,7 @@ soup bipyramid() {
 // A strip of n quads split into triangles: every vertex is on the boundary.
 soup strip(int n) { return grid_plane(n, 1, true); }
 
-halfedge_handle halfedge_between(const halfedge_mesh& m, std::uint32_t a, std::uint32_t b) {
+halfedge_handle halfedge_between(const surface_mesh<glm::dvec3>& m, std::uint32_t a, std::uint32_t b) {
   const halfedge_handle h = m.find_halfedge(vertex_handle(a), vertex_handle(b));
   REQUIRE(h.is_valid());
   return h;
@@ -79,13 +82,13 @@ halfedge_handle halfedge_between(const halfedge_mesh& m, std::uint32_t a, std::u
 
 // Checks that a refused edit says `why` and leaves the mesh exactly as it was.
 template <class Edit>
-void expect_refused(halfedge_mesh& m, edit_refusal why, Edit&& edit) {
-  const soup before = to_soup<glm::dvec3>(m);
+void expect_refused(surface_mesh<glm::dvec3>& m, edit_refusal why, Edit&& edit) {
+  const soup before = to_soup(m);
   const std::size_t faces = m.faces_size(), edges = m.edges_size(), vertices = m.vertices_size();
   const edit_result r = edit(m);
   CHECK_FALSE(r.ok());
   CHECK(r.refusal == why);
-  CHECK(same_soup(before, to_soup<glm::dvec3>(m)));
+  CHECK(same_soup(before, to_soup(m)));
   CHECK(m.faces_size() == faces);
   CHECK(m.edges_size() == edges);
   CHECK(m.vertices_size() == vertices);
@@ -97,9 +100,9 @@ void expect_refused(halfedge_mesh& m, edit_refusal why, Edit&& edit) {
 // ---------------------------------------------------------------------------- collapse
 
 TEST_CASE("collapse_halfedge on an icosahedron removes 1 vertex, 3 edges, 2 faces") {
-  halfedge_mesh m = make_mesh(icosahedron());
+  auto m = make_mesh(icosahedron());
   for (edge_handle e : m.edges()) {
-    halfedge_mesh c = m;
+    auto c = m;
     const edge_star s = star(c, e);
     const halfedge_handle h = halfedge_mesh::halfedge(e, 0);
     REQUIRE(can_collapse(c, h) == edit_refusal::none);
@@ -123,9 +126,9 @@ TEST_CASE("collapse_halfedge on an icosahedron removes 1 vertex, 3 edges, 2 face
 }
 
 TEST_CASE("collapse on an open grid: boundary edges, interior into boundary vertex") {
-  const halfedge_mesh m0 = make_mesh(grid_plane(3, 3, true));  // 16 vertices, 18 faces, 12 boundary edges
+  const auto m0 = make_mesh(grid_plane(3, 3, true));  // 16 vertices, 18 faces, 12 boundary edges
   SUBCASE("a boundary edge removes one face and one boundary edge") {
-    halfedge_mesh m = m0;
+    auto m = m0;
     const halfedge_handle b = m.boundary_halfedges().front();
     const halfedge_handle h = halfedge_mesh::twin(b);  // the face side
     const edit_result r = collapse_halfedge(m, h);
@@ -140,7 +143,7 @@ TEST_CASE("collapse on an open grid: boundary edges, interior into boundary vert
     REQUIRE_VALID(m);
   }
   SUBCASE("an interior vertex into a boundary vertex keeps the boundary") {
-    halfedge_mesh m = m0;
+    auto m = m0;
     // Vertex 5 = (1,1) is interior, vertex 1 = (1,0) on the boundary.
     const halfedge_handle h = halfedge_between(m, 5, 1);
     REQUIRE_FALSE(m.is_boundary(vertex_handle(5)));
@@ -154,7 +157,7 @@ TEST_CASE("collapse on an open grid: boundary edges, interior into boundary vert
     REQUIRE_VALID(m);
   }
   SUBCASE("a boundary vertex into an interior one is refused when it would pinch, done otherwise") {
-    halfedge_mesh m = m0;
+    auto m = m0;
     const halfedge_handle h = halfedge_between(m, 1, 5);
     CHECK(can_collapse(m, h) == edit_refusal::none);  // 1 is the only boundary end: fine
     REQUIRE(collapse_halfedge(m, h).ok());
@@ -168,39 +171,41 @@ TEST_CASE_TEMPLATE("collapse position policies, three point types", P, glm::dvec
                    test_support::user_point) {
   for (collapse_position policy :
        {collapse_position::keep_head, collapse_position::midpoint, collapse_position::custom}) {
-    halfedge_mesh m = make_mesh(icosahedron<P>());
-    const auto pts = points<P>(m);
+    auto m = make_mesh(icosahedron<P>());
+    const auto pts = m.positions();
     const halfedge_handle h = halfedge_mesh::halfedge(edge_handle(3), 1);
     const glm::dvec3 a = to_dvec3(pts[m.tail(h)]), b = to_dvec3(pts[m.head(h)]);
     const glm::dvec3 custom(0.25, -0.5, 2.0);
-    const edit_result r = collapse_halfedge<P>(m, h, {policy, custom});
+    const edit_result r = collapse_halfedge(m, h, {policy, custom});
     REQUIRE(r.ok());
-    const glm::dvec3 got = to_dvec3(points<P>(m)[r.vertex]);
+    const glm::dvec3 got = to_dvec3(m.positions()[r.vertex]);
     const glm::dvec3 want = policy == collapse_position::keep_head  ? b
                             : policy == collapse_position::midpoint ? 0.5 * (a + b)
                                                                     : custom;
     CHECK(glm::length(got - want) < 1e-6);
     REQUIRE_VALID(m);
   }
-  halfedge_mesh m = make_mesh(icosahedron<P>());
+  auto m = make_mesh(icosahedron<P>());
   const auto nan = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_AS(
-      collapse_halfedge<P>(m, halfedge_handle(0), {collapse_position::custom, glm::dvec3(nan, 0, 0)}), error);
+      collapse_halfedge(m, halfedge_handle(0), {collapse_position::custom, glm::dvec3(nan, 0, 0)}), error);
   CHECK(m.num_faces() == 20);
 }
 
 TEST_CASE("collapse refusals say why and leave the mesh untouched") {
   SUBCASE("every edge of a tetrahedron") {
-    halfedge_mesh m = make_mesh(tetrahedron());
+    auto m = make_mesh(tetrahedron());
     for (halfedge_handle h : m.halfedges()) {
       CHECK(can_collapse(m, h) == edit_refusal::tetrahedron);
-      expect_refused(m, edit_refusal::tetrahedron, [&](halfedge_mesh& x) { return collapse_halfedge(x, h); });
+      expect_refused(m, edit_refusal::tetrahedron,
+                     [&](surface_mesh<glm::dvec3>& x) { return collapse_halfedge(x, h); });
     }
   }
   SUBCASE("link condition: an equator edge of a bipyramid shares the third equator vertex") {
-    halfedge_mesh m = mesh_of(bipyramid());
-    expect_refused(m, edit_refusal::link_condition,
-                   [&](halfedge_mesh& x) { return collapse_halfedge(x, halfedge_between(x, 0, 1)); });
+    auto m = mesh_of(bipyramid());
+    expect_refused(m, edit_refusal::link_condition, [&](surface_mesh<glm::dvec3>& x) {
+      return collapse_halfedge(x, halfedge_between(x, 0, 1));
+    });
     // An apex edge is fine and leaves a tetrahedron.
     REQUIRE(collapse_halfedge(m, halfedge_between(m, 3, 0)).ok());
     CHECK(m.num_vertices() == 4);
@@ -209,14 +214,14 @@ TEST_CASE("collapse refusals say why and leave the mesh untouched") {
     REQUIRE_VALID(m);
   }
   SUBCASE("an interior edge between two boundary vertices") {
-    halfedge_mesh m = make_mesh(strip(3));  // 8 vertices all on the boundary
+    auto m = make_mesh(strip(3));  // 8 vertices all on the boundary
     int interior = 0;
     for (edge_handle e : m.edges()) {
       if (m.is_boundary(e)) continue;
       ++interior;
       const halfedge_handle h = halfedge_mesh::halfedge(e, 0);
       expect_refused(m, edit_refusal::boundary_vertices,
-                     [&](halfedge_mesh& x) { return collapse_halfedge(x, h); });
+                     [&](surface_mesh<glm::dvec3>& x) { return collapse_halfedge(x, h); });
     }
     CHECK(interior == 5);
   }
@@ -224,33 +229,35 @@ TEST_CASE("collapse refusals say why and leave the mesh untouched") {
     soup s;
     s.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
     s.add_face({0, 1, 2});
-    halfedge_mesh m = mesh_of(s);
+    auto m = mesh_of(s);
     for (halfedge_handle h : m.halfedges())
       expect_refused(m, edit_refusal::isolated_triangle,
-                     [&](halfedge_mesh& x) { return collapse_halfedge(x, h); });
+                     [&](surface_mesh<glm::dvec3>& x) { return collapse_halfedge(x, h); });
   }
   SUBCASE("quads") {
-    halfedge_mesh m = mesh_of(fixtures::cube());
+    auto m = mesh_of(fixtures::cube());
     expect_refused(m, edit_refusal::not_triangle,
-                   [&](halfedge_mesh& x) { return collapse_halfedge(x, halfedge_handle(0)); });
+                   [&](surface_mesh<glm::dvec3>& x) { return collapse_halfedge(x, halfedge_handle(0)); });
   }
   SUBCASE("a bow-tie vertex") {
-    halfedge_mesh m = mesh_of(fixtures::bowtie());
-    expect_refused(m, edit_refusal::nonmanifold_vertex,
-                   [&](halfedge_mesh& x) { return collapse_halfedge(x, halfedge_between(x, 1, 0)); });
-    expect_refused(m, edit_refusal::nonmanifold_vertex,
-                   [&](halfedge_mesh& x) { return collapse_halfedge(x, halfedge_between(x, 0, 1)); });
+    auto m = mesh_of(fixtures::bowtie());
+    expect_refused(m, edit_refusal::nonmanifold_vertex, [&](surface_mesh<glm::dvec3>& x) {
+      return collapse_halfedge(x, halfedge_between(x, 1, 0));
+    });
+    expect_refused(m, edit_refusal::nonmanifold_vertex, [&](surface_mesh<glm::dvec3>& x) {
+      return collapse_halfedge(x, halfedge_between(x, 0, 1));
+    });
   }
   SUBCASE("a pillow of two triangles") {
-    halfedge_mesh m = mesh_of(pillow());
+    auto m = mesh_of(pillow());
     REQUIRE_VALID(m);
     expect_refused(m, edit_refusal::degenerate,
-                   [&](halfedge_mesh& x) { return collapse_halfedge(x, halfedge_handle(0)); });
+                   [&](surface_mesh<glm::dvec3>& x) { return collapse_halfedge(x, halfedge_handle(0)); });
   }
   SUBCASE("a triangle with two boundary sides at the end of a strip") {
     // Collapsing the corner's boundary edge is fine; its rung (interior, both ends on the
     // boundary) is not.
-    halfedge_mesh m = make_mesh(strip(1));  // a square of two triangles
+    auto m = make_mesh(strip(1));  // a square of two triangles
     const halfedge_handle b = m.boundary_halfedges().front();
     CHECK(can_collapse(m, halfedge_mesh::twin(b)) == edit_refusal::none);
     REQUIRE(collapse_halfedge(m, halfedge_mesh::twin(b)).ok());
@@ -258,10 +265,10 @@ TEST_CASE("collapse refusals say why and leave the mesh untouched") {
     REQUIRE_VALID(m);
     for (halfedge_handle h : m.halfedges())
       expect_refused(m, edit_refusal::isolated_triangle,
-                     [&](halfedge_mesh& x) { return collapse_halfedge(x, h); });
+                     [&](surface_mesh<glm::dvec3>& x) { return collapse_halfedge(x, h); });
   }
   SUBCASE("removed or out-of-range handles throw") {
-    halfedge_mesh m = make_mesh(icosahedron());
+    auto m = make_mesh(icosahedron());
     CHECK_THROWS_AS(collapse_halfedge(m, halfedge_handle(1000)), error);
     CHECK_THROWS_AS(can_collapse(m, halfedge_handle()), error);
     vertex_handle stranger;
@@ -272,7 +279,7 @@ TEST_CASE("collapse refusals say why and leave the mesh untouched") {
 }
 
 TEST_CASE("collapse_edge goes either way, also across a flipped edge") {
-  halfedge_mesh m = make_mesh(mobius_strip(12, 3));
+  auto m = make_mesh(mobius_strip(12, 3));
   edge_handle seam;
   for (edge_handle e : m.edges())
     if (m.is_flipped(e)) seam = e;
@@ -281,7 +288,7 @@ TEST_CASE("collapse_edge goes either way, also across a flipped edge") {
   // Both half-edges of a flipped edge run the same way.
   CHECK(m.tail(halfedge_mesh::halfedge(seam, 1)) == a);
   for (vertex_handle keep : {a, b}) {
-    halfedge_mesh c = m;
+    auto c = m;
     const edit_refusal why = can_collapse(c, seam, keep);
     const edit_result r = collapse_edge(c, seam, keep);
     CHECK(r.refusal == why);
@@ -298,16 +305,16 @@ TEST_CASE("collapse_edge goes either way, also across a flipped edge") {
 
 TEST_CASE_TEMPLATE("collapse_face on an icosahedron: 4 faces, 2 vertices, 6 edges, to the centroid", P,
                    glm::dvec3, std::array<float, 3>, test_support::user_point) {
-  halfedge_mesh m = make_mesh(icosahedron<P>());
+  auto m = make_mesh(icosahedron<P>());
   const face_handle f(7);
   std::vector<vertex_handle> corners;
   glm::dvec3 centroid(0.0);
   for (vertex_handle v : m.vertices_around(f)) {
     corners.push_back(v);
-    centroid += to_dvec3(points<P>(m)[v]) / 3.0;
+    centroid += to_dvec3(m.positions()[v]) / 3.0;
   }
   REQUIRE(can_collapse_face(m, f) == edit_refusal::none);
-  const edit_result r = collapse_face<P>(m, f);
+  const edit_result r = collapse_face(m, f);
   REQUIRE(r.ok());
   CHECK(r.vertex == corners[0]);
   CHECK(r.vertices_removed == 2);
@@ -319,27 +326,28 @@ TEST_CASE_TEMPLATE("collapse_face on an icosahedron: 4 faces, 2 vertices, 6 edge
   CHECK(m.num_edges() == 24);
   CHECK(euler(m) == 2);
   CHECK(m.valence(r.vertex) == 6);
-  CHECK(glm::length(to_dvec3(points<P>(m)[r.vertex]) - centroid) < 1e-6);
+  CHECK(glm::length(to_dvec3(m.positions()[r.vertex]) - centroid) < 1e-6);
   CHECK(m.is_consistently_oriented());
   REQUIRE_VALID(m);
 }
 
 TEST_CASE("collapse_face: octahedron to tetrahedron, boundary faces, refusals") {
   SUBCASE("octahedron") {
-    halfedge_mesh m = make_mesh(octahedron());
+    auto m = make_mesh(octahedron());
     REQUIRE(collapse_face(m, face_handle(0)).ok());
     CHECK(m.num_vertices() == 4);
     CHECK(m.num_faces() == 4);
     CHECK(m.num_edges() == 6);
     REQUIRE_VALID(m);
     for (face_handle f : m.faces())
-      expect_refused(m, edit_refusal::tetrahedron, [&](halfedge_mesh& x) { return collapse_face(x, f); });
+      expect_refused(m, edit_refusal::tetrahedron,
+                     [&](surface_mesh<glm::dvec3>& x) { return collapse_face(x, f); });
   }
   SUBCASE("every face of an open grid, one at a time") {
-    const halfedge_mesh m0 = make_mesh(grid_plane(4, 4, true));
+    const auto m0 = make_mesh(grid_plane(4, 4, true));
     int done = 0;
     for (face_handle f : m0.faces()) {
-      halfedge_mesh m = m0;
+      auto m = m0;
       const edit_refusal why = can_collapse_face(m, f);
       const edit_result r = collapse_face(m, f);
       CHECK(r.refusal == why);
@@ -354,15 +362,15 @@ TEST_CASE("collapse_face: octahedron to tetrahedron, boundary faces, refusals") 
     CHECK(done > 10);
   }
   SUBCASE("refusals") {
-    halfedge_mesh t = make_mesh(tetrahedron());
+    auto t = make_mesh(tetrahedron());
     expect_refused(t, edit_refusal::tetrahedron,
-                   [](halfedge_mesh& x) { return collapse_face(x, face_handle(0)); });
-    halfedge_mesh q = mesh_of(fixtures::cube());
+                   [](surface_mesh<glm::dvec3>& x) { return collapse_face(x, face_handle(0)); });
+    auto q = mesh_of(fixtures::cube());
     expect_refused(q, edit_refusal::not_triangle,
-                   [](halfedge_mesh& x) { return collapse_face(x, face_handle(0)); });
-    halfedge_mesh p = mesh_of(pillow());
+                   [](surface_mesh<glm::dvec3>& x) { return collapse_face(x, face_handle(0)); });
+    auto p = mesh_of(pillow());
     expect_refused(p, edit_refusal::degenerate,
-                   [](halfedge_mesh& x) { return collapse_face(x, face_handle(0)); });
+                   [](surface_mesh<glm::dvec3>& x) { return collapse_face(x, face_handle(0)); });
     CHECK_THROWS_AS(collapse_face(p, face_handle(9)), error);
   }
 }
@@ -372,10 +380,10 @@ TEST_CASE("collapse_face: octahedron to tetrahedron, boundary faces, refusals") 
 TEST_CASE_TEMPLATE("split_edge: interior, boundary, flipped and polygon edges", P, glm::dvec3,
                    std::array<float, 3>, test_support::user_point) {
   SUBCASE("interior edge of an icosahedron") {
-    halfedge_mesh m = make_mesh(icosahedron<P>());
+    auto m = make_mesh(icosahedron<P>());
     const edge_handle e(5);
     const edge_star s = star(m, e);
-    const glm::dvec3 mid = 0.5 * (to_dvec3(points<P>(m)[s.a]) + to_dvec3(points<P>(m)[s.b]));
+    const glm::dvec3 mid = 0.5 * (to_dvec3(m.positions()[s.a]) + to_dvec3(m.positions()[s.b]));
     const edit_result r = split_edge(m, e, from_dvec3<P>(mid));
     REQUIRE(r.ok());
     CHECK(r.faces_added == 2);
@@ -386,12 +394,12 @@ TEST_CASE_TEMPLATE("split_edge: interior, boundary, flipped and polygon edges", 
     CHECK(m.valence(s.a) == 5);
     CHECK(m.valence(s.c) == 6);
     CHECK(m.find_edge(s.a, s.b) == edge_handle());
-    CHECK(glm::length(to_dvec3(points<P>(m)[r.vertex]) - mid) < 1e-6);
+    CHECK(glm::length(to_dvec3(m.positions()[r.vertex]) - mid) < 1e-6);
     CHECK(m.is_consistently_oriented());
     REQUIRE_VALID(m);
   }
   SUBCASE("boundary edge") {
-    halfedge_mesh m = make_mesh(grid_plane<P>(2, 2, true));
+    auto m = make_mesh(grid_plane<P>(2, 2, true));
     const edge_handle e = halfedge_mesh::edge(m.boundary_halfedges().front());
     const edit_result r = split_edge(m, e);
     REQUIRE(r.ok());
@@ -404,7 +412,7 @@ TEST_CASE_TEMPLATE("split_edge: interior, boundary, flipped and polygon edges", 
     REQUIRE_VALID(m);
   }
   SUBCASE("flipped edge of a Möbius strip: both halves are seams") {
-    halfedge_mesh m = make_mesh(mobius_strip<P>(10, 2));
+    auto m = make_mesh(mobius_strip<P>(10, 2));
     edge_handle seam;
     for (edge_handle e : m.edges())
       if (m.is_flipped(e)) seam = e;
@@ -421,7 +429,7 @@ TEST_CASE_TEMPLATE("split_edge: interior, boundary, flipped and polygon edges", 
     REQUIRE_VALID(m);
   }
   SUBCASE("quads gain the vertex") {
-    halfedge_mesh m = make_mesh(hexahedron<P>());
+    auto m = make_mesh(hexahedron<P>());
     const edit_result r = split_edge(m, edge_handle(0));
     REQUIRE(r.ok());
     CHECK(r.faces_added == 0);
@@ -430,7 +438,7 @@ TEST_CASE_TEMPLATE("split_edge: interior, boundary, flipped and polygon edges", 
     for (face_handle f : m.faces_around(r.vertex)) CHECK(m.valence(f) == 5);
     REQUIRE_VALID(m);
   }
-  halfedge_mesh m = make_mesh(icosahedron<P>());
+  auto m = make_mesh(icosahedron<P>());
   const auto inf = std::numeric_limits<double>::infinity();
   CHECK_THROWS_AS(split_edge(m, edge_handle(0), from_dvec3<P>(glm::dvec3(inf, 0, 0))), error);
   CHECK_THROWS_AS(split_edge(m, edge_handle(30)), error);
@@ -440,7 +448,7 @@ TEST_CASE_TEMPLATE("split_edge: interior, boundary, flipped and polygon edges", 
 // ---------------------------------------------------------------------------- flip
 
 TEST_CASE("flip_edge on an icosahedron moves the edge to the other diagonal") {
-  halfedge_mesh m = make_mesh(icosahedron());
+  auto m = make_mesh(icosahedron());
   const edge_handle e(9);
   const edge_star s = star(m, e);
   REQUIRE(can_flip(m, e) == edit_refusal::none);
@@ -464,20 +472,23 @@ TEST_CASE("flip_edge on an icosahedron moves the edge to the other diagonal") {
 }
 
 TEST_CASE("flip_edge refusals and flipped edges") {
-  halfedge_mesh g = make_mesh(grid_plane(2, 2, true));
+  auto g = make_mesh(grid_plane(2, 2, true));
   const edge_handle be = halfedge_mesh::edge(g.boundary_halfedges().front());
-  expect_refused(g, edit_refusal::boundary_edge, [&](halfedge_mesh& x) { return flip_edge(x, be); });
-  halfedge_mesh t = make_mesh(tetrahedron());
-  expect_refused(t, edit_refusal::edge_exists, [](halfedge_mesh& x) { return flip_edge(x, edge_handle(0)); });
-  halfedge_mesh q = mesh_of(fixtures::cube());
+  expect_refused(g, edit_refusal::boundary_edge,
+                 [&](surface_mesh<glm::dvec3>& x) { return flip_edge(x, be); });
+  auto t = make_mesh(tetrahedron());
+  expect_refused(t, edit_refusal::edge_exists,
+                 [](surface_mesh<glm::dvec3>& x) { return flip_edge(x, edge_handle(0)); });
+  auto q = mesh_of(fixtures::cube());
   expect_refused(q, edit_refusal::not_triangle,
-                 [](halfedge_mesh& x) { return flip_edge(x, edge_handle(0)); });
-  halfedge_mesh p = mesh_of(pillow());
-  expect_refused(p, edit_refusal::degenerate, [](halfedge_mesh& x) { return flip_edge(x, edge_handle(0)); });
+                 [](surface_mesh<glm::dvec3>& x) { return flip_edge(x, edge_handle(0)); });
+  auto p = mesh_of(pillow());
+  expect_refused(p, edit_refusal::degenerate,
+                 [](surface_mesh<glm::dvec3>& x) { return flip_edge(x, edge_handle(0)); });
 
   // On a Möbius strip seam, the new triangles take the first face's orientation: the seam
   // moves off the flipped edge onto the two sides at the far corner.
-  halfedge_mesh m = make_mesh(mobius_strip(12, 3));
+  auto m = make_mesh(mobius_strip(12, 3));
   for (edge_handle e : m.edges()) {
     if (!m.is_flipped(e) || can_flip(m, e) != edit_refusal::none) continue;
     const std::size_t before = m.num_flipped_edges();
@@ -495,7 +506,7 @@ TEST_CASE("flip_edge refusals and flipped edges") {
 // ---------------------------------------------------------------------------- properties
 
 TEST_CASE("face, edge and half-edge properties follow the rewritten faces") {
-  halfedge_mesh m = make_mesh(icosphere(1));  // 80 faces
+  auto m = make_mesh(icosphere(1));  // 80 faces
   auto fid = m.add_face_property<int>("f:id", -1);
   auto fname = m.add_face_property<std::string>("f:name");
   auto eid = m.add_edge_property<int>("e:id", -1);
@@ -573,8 +584,9 @@ namespace {
 // Forces merging the vertices `from` into v on a soup (drop the faces through two of them,
 // rename the rest) and says whether the result is broken: not representable, a pinched or
 // vanished vertex, duplicate faces, or another Euler characteristic or number of boundary loops.
-bool forced_merge_breaks(const halfedge_mesh& m, std::vector<vertex_handle> from, vertex_handle v) {
-  const soup s = to_soup<glm::dvec3>(m);  // m has no garbage: soup indices are handles
+bool forced_merge_breaks(const surface_mesh<glm::dvec3>& m, std::vector<vertex_handle> from,
+                         vertex_handle v) {
+  const soup s = to_soup(m);  // m has no garbage: soup indices are handles
   auto merged = [&](std::uint32_t x) {
     return x == v.idx() ||
            std::any_of(from.begin(), from.end(), [&](vertex_handle y) { return y.idx() == x; });
@@ -592,7 +604,7 @@ bool forced_merge_breaks(const halfedge_mesh& m, std::vector<vertex_handle> from
     t.add_face(vs);
   }
   if (duplicate) return true;
-  halfedge_mesh r;
+  surface_mesh<glm::dvec3> r;
   try {
     r = make_mesh(t);
   } catch (const error&) {
@@ -612,7 +624,7 @@ bool forced_merge_breaks(const halfedge_mesh& m, std::vector<vertex_handle> from
 }
 
 template <class Handle>
-Handle pick_live(const halfedge_mesh& m, std::size_t size, std::mt19937_64& rng) {
+Handle pick_live(const surface_mesh<glm::dvec3>& m, std::size_t size, std::mt19937_64& rng) {
   for (;;) {
     const Handle h(static_cast<std::uint32_t>(rng() % size));
     if (!m.is_removed(h)) return h;
@@ -626,7 +638,7 @@ struct random_stats {
 // Applies `steps` random edits (half-edge collapse, face collapse, split, flip), validating
 // after every one and tracking the Euler characteristic, the number of boundary loops and
 // orientability. The mesh size is kept near its start by biasing towards splits or collapses.
-random_stats random_edits(halfedge_mesh m, int steps, std::uint64_t seed) {
+random_stats random_edits(surface_mesh<glm::dvec3> m, int steps, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   const int chi = euler(m);
   const bool orientable = is_orientable(m);
@@ -677,7 +689,7 @@ random_stats random_edits(halfedge_mesh m, int steps, std::uint64_t seed) {
       REQUIRE(m.boundary_loops().size() == loops);
     }
     if (step % 100 == 50) {  // refusals are exact here too
-      halfedge_mesh c = m;
+      auto c = m;
       c.garbage_collection();
       for (int t = 0; t < 10; ++t) {
         const halfedge_handle h(static_cast<std::uint32_t>(rng() % c.halfedges_size()));
@@ -744,7 +756,7 @@ TEST_CASE("collapse refusals are exact: refused collapses would break the surfac
   }
   std::array<int, num_edit_refusals> seen{}, face_seen{};
   for (const soup& s : inputs) {
-    halfedge_mesh m = make_mesh(s);
+    auto m = make_mesh(s);
     // Random flips first, so that low and high valences and odd links occur.
     for (int i = 0; i < 40 && m.num_faces() > 8; ++i) {
       const edge_handle e(static_cast<std::uint32_t>(rng() % m.edges_size()));
@@ -775,3 +787,5 @@ TEST_CASE("collapse refusals are exact: refused collapses would break the surfac
     CHECK(face_seen[static_cast<std::size_t>(why)] > 0);
   }
 }
+
+}  // namespace edits_tests

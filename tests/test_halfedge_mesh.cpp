@@ -7,12 +7,18 @@
 #include <random>
 #include <ranges>
 #include <set>
+#include <type_traits>
+#include <vector>
 
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 #include "cellforge/halfedge/orientation.hpp"
+#include "cellforge/halfedge/surface_mesh.hpp"
 #include "cellforge/halfedge/validate.hpp"
 #include "mesh_fixtures.hpp"
+
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace halfedge_mesh_tests {
 
 using namespace cellforge;
 
@@ -97,7 +103,7 @@ TEST_CASE("closed meshes: tetrahedron, cube, torus") {
     const int chi = item.chi;
     CAPTURE(item.name);
     build_report rep;
-    halfedge_mesh m = make_mesh(soup, &rep);
+    auto m = make_mesh(soup, &rep);
     REQUIRE_VALID(m);
     CHECK(m.is_closed());
     CHECK(m.num_boundary_edges() == 0);
@@ -108,7 +114,7 @@ TEST_CASE("closed meshes: tetrahedron, cube, torus") {
     CHECK(rep.edges == fixtures::soup_edges(soup).size());
     check_circulators(m, soup);
     const auto order = shuffled(soup, 7);
-    const halfedge_mesh inc = build_incrementally(order);
+    const auto inc = build_incrementally(order);
     REQUIRE_VALID(inc);
     CHECK(inc.num_edges() == m.num_edges());
     check_circulators(inc, order);
@@ -117,7 +123,7 @@ TEST_CASE("closed meshes: tetrahedron, cube, torus") {
 
 TEST_CASE("open meshes: plane and cylinder boundaries") {
   const auto plane = fixtures::plane(6, 5);
-  halfedge_mesh m = make_mesh(plane);
+  auto m = make_mesh(plane);
   REQUIRE_VALID(m);
   CHECK_FALSE(m.is_closed());
   CHECK(m.num_boundary_edges() == 2 * (6 + 5));
@@ -125,7 +131,7 @@ TEST_CASE("open meshes: plane and cylinder boundaries") {
   CHECK(m.boundary_loops()[0].size() == 22);
   check_circulators(m, plane);
   const auto cyl = fixtures::cylinder(8, 3);
-  halfedge_mesh c = make_mesh(cyl);
+  auto c = make_mesh(cyl);
   REQUIRE_VALID(c);
   const auto loops = c.boundary_loops();
   REQUIRE(loops.size() == 2);
@@ -138,7 +144,7 @@ TEST_CASE("open meshes: plane and cylinder boundaries") {
 TEST_CASE("non-orientable: Möbius strip and Klein bottle build and circulate") {
   const auto mob = fixtures::mobius(12, 2);
   build_report rep;
-  halfedge_mesh m = make_mesh(mob, &rep);
+  auto m = make_mesh(mob, &rep);
   REQUIRE_VALID(m);
   CHECK(rep.flipped_edges > 0);
   CHECK(m.num_flipped_edges() == rep.flipped_edges);
@@ -164,19 +170,19 @@ TEST_CASE("non-orientable: Möbius strip and Klein bottle build and circulate") 
   }
   check_circulators(m, mob);
   const auto mob_order = shuffled(mob, 3);
-  const halfedge_mesh mi = build_incrementally(mob_order);
+  const auto mi = build_incrementally(mob_order);
   REQUIRE_VALID(mi);
   check_circulators(mi, mob_order);
 
   const auto kb = fixtures::klein(8, 6);
-  halfedge_mesh k = make_mesh(kb);
+  auto k = make_mesh(kb);
   REQUIRE_VALID(k);
   CHECK(k.is_closed());
   CHECK(euler(k) == 0);
   CHECK_FALSE(is_orientable(k));
   CHECK(k.num_flipped_edges() > 0);
   check_circulators(k, kb);
-  halfedge_mesh k2 = k;
+  auto k2 = k;
   const orient_result r = orient(k2);
   REQUIRE_VALID(k2);
   CHECK_FALSE(r.orientable());
@@ -187,13 +193,13 @@ TEST_CASE("non-orientable: Möbius strip and Klein bottle build and circulate") 
 TEST_CASE("randomly oriented plane: faces keep their orientation, orient() repairs it") {
   for (std::uint64_t seed : {1u, 2u, 3u}) {
     const auto s = fixtures::randomly_flipped(fixtures::plane(7, 6), seed);
-    halfedge_mesh m = make_mesh(s);
+    auto m = make_mesh(s);
     REQUIRE_VALID(m);
     CHECK(m.num_flipped_edges() > 0);
     check_circulators(m, s);  // faces keep the vertex order they were given
     CHECK(is_orientable(m));
     const auto order = shuffled(s, seed);
-    halfedge_mesh inc = build_incrementally(order);
+    auto inc = build_incrementally(order);
     REQUIRE_VALID(inc);
     check_circulators(inc, order);
     const orient_result r = orient(m);
@@ -207,12 +213,12 @@ TEST_CASE("randomly oriented plane: faces keep their orientation, orient() repai
 
 TEST_CASE("non-manifold input: two open fans are representable, the rest is refused clearly") {
   const auto bow = fixtures::bowtie();
-  halfedge_mesh m = make_mesh(bow);
+  auto m = make_mesh(bow);
   REQUIRE_VALID(m);
   CHECK(std::ranges::distance(m.faces_around(vertex_handle(0))) == 2);
   check_circulators(m, bow);
   CHECK(m.boundary_loops().size() == 2);
-  halfedge_mesh mi = build_incrementally(bow);
+  auto mi = build_incrementally(bow);
   REQUIRE_VALID(mi);
   // Joining the two fans with a third triangle merges them into one.
   mi.add_face({vertex_handle(0), vertex_handle(2), vertex_handle(3)});
@@ -230,7 +236,7 @@ TEST_CASE("non-manifold input: two open fans are representable, the rest is refu
     CHECK(e.category() == error_category::topology);
     CHECK(std::string(e.what()).find("edge (0, 1)") != std::string::npos);
   }
-  halfedge_mesh t = build_incrementally(fixtures::tetrahedron());
+  auto t = build_incrementally(fixtures::tetrahedron());
   CHECK_THROWS_AS(t.add_face({vertex_handle(0), vertex_handle(1), t.add_vertex()}), error);
   REQUIRE_VALID(t);
 
@@ -243,7 +249,7 @@ TEST_CASE("non-manifold input: two open fans are representable, the rest is refu
     CHECK(std::string(e.what()).find("split_nonmanifold_vertices") != std::string::npos);
   }
   build_report rep;
-  const halfedge_mesh split = make_mesh(fixtures::double_cone(), &rep, {.split_nonmanifold_vertices = true});
+  const auto split = make_mesh(fixtures::double_cone(), &rep, {.split_nonmanifold_vertices = true});
   REQUIRE_VALID(split);
   REQUIRE(rep.split_vertices.size() == 1);
   CHECK(rep.split_vertices[0].second == 0);
@@ -251,7 +257,7 @@ TEST_CASE("non-manifold input: two open fans are representable, the rest is refu
   CHECK(split.is_closed());
   CHECK(split.valence(vertex_handle(0)) == 3);
   CHECK(split.valence(vertex_handle(rep.split_vertices[0].first)) == 3);
-  CHECK(points<glm::dvec3>(split)[vertex_handle(7)] == glm::dvec3(0, 0, 0));
+  CHECK(split.positions()[vertex_handle(7)] == glm::dvec3(0, 0, 0));
   // Two tetrahedra sharing a vertex, one of them also touched by an open fan.
   const fixtures::soup tet = fixtures::tetrahedron();
   fixtures::soup two = tet;
@@ -266,7 +272,7 @@ TEST_CASE("non-manifold input: two open fans are representable, the rest is refu
   two.points.push_back({0, -2, 0});
   two.add_face({0, static_cast<std::uint32_t>(2 * n), static_cast<std::uint32_t>(2 * n + 1)});
   CHECK_THROWS_AS((void)make_mesh(two), error);
-  const halfedge_mesh ts = make_mesh(two, &rep, {.split_nonmanifold_vertices = true});
+  const auto ts = make_mesh(two, &rep, {.split_nonmanifold_vertices = true});
   REQUIRE_VALID(ts);
   CHECK(rep.split_vertices.size() == 2);
   CHECK(ts.num_boundary_edges() == 3);
@@ -332,7 +338,7 @@ TEST_CASE("randomised add/remove keeps every invariant") {
 }
 
 TEST_CASE("remove_vertex removes its faces and keeps the rest valid") {
-  halfedge_mesh m = make_mesh(fixtures::torus(6, 5));
+  auto m = make_mesh(fixtures::torus(6, 5));
   const std::size_t f0 = m.num_faces();
   const std::size_t deg = std::ranges::distance(m.faces_around(vertex_handle(7)));
   m.remove_vertex(vertex_handle(7));
@@ -346,7 +352,7 @@ TEST_CASE("remove_vertex removes its faces and keeps the rest valid") {
 }
 
 TEST_CASE("properties: add, get by name, type checks, survive copies and compaction") {
-  halfedge_mesh m = make_mesh(fixtures::cube());
+  auto m = make_mesh(fixtures::cube());
   auto w = m.add_vertex_property<double>("v:weight", 1.5);
   auto tag = m.add_face_property<std::string>("f:name", "none");
   auto len = m.add_edge_property<float>("e:len");
@@ -361,12 +367,13 @@ TEST_CASE("properties: add, get by name, type checks, survive copies and compact
   CHECK_THROWS_AS((void)m.add_vertex_property<double>("v:weight"), error);
   CHECK_FALSE(m.get_vertex_property<double>("v:nothing").is_valid());
   CHECK(m.has_property<face_handle>("f:name"));
-  halfedge_mesh copy = m;
+  auto copy = m;
   w[vertex_handle(3)] = 9.0;
   CHECK(copy.get_vertex_property<double>("v:weight")[vertex_handle(3)] == 4.0);
   // New elements get the default value.
-  const vertex_handle nv = m.add_vertex();
+  const vertex_handle nv = m.add_vertex(glm::dvec3(7, 8, 9));
   CHECK(w[nv] == 1.5);
+  CHECK(m.position(nv) == glm::dvec3(7, 8, 9));
   REQUIRE_VALID(m);
   m.remove_face(face_handle(0));
   m.remove_vertex(vertex_handle(0));
@@ -380,7 +387,7 @@ TEST_CASE("properties: add, get by name, type checks, survive copies and compact
 }
 
 TEST_CASE("circulators are std::ranges") {
-  halfedge_mesh m = make_mesh(fixtures::tetrahedron());
+  auto m = make_mesh(fixtures::tetrahedron());
   static_assert(std::ranges::forward_range<decltype(m.faces_around(vertex_handle(0)))>);
   static_assert(std::ranges::forward_range<decltype(m.vertices_around(face_handle(0)))>);
   static_assert(std::ranges::forward_range<decltype(m.vertices())>);
@@ -395,7 +402,7 @@ TEST_CASE("circulators are std::ranges") {
 
 TEST_CASE("validate names the broken invariant") {
   // A mesh whose property was resized behind its back, via a copy of the registry.
-  halfedge_mesh m = make_mesh(fixtures::cube());
+  auto m = make_mesh(fixtures::cube());
   auto p = m.add_vertex_property<int>("v:x");
   p.vector().push_back(1);
   const auto r = validate(m);
@@ -406,9 +413,112 @@ TEST_CASE("validate names the broken invariant") {
 
 TEST_CASE("soup round trip keeps faces and their orientation") {
   const auto s = fixtures::randomly_flipped(fixtures::klein(5, 4), 5);
-  const halfedge_mesh m = make_mesh(s);
-  const auto back = to_soup<glm::dvec3>(m);
+  const auto m = make_mesh(s);
+  const auto back = to_soup(m);
   CHECK(back.points == s.points);
   CHECK(back.face_offsets == s.face_offsets);
   CHECK(back.face_vertices == s.face_vertices);
 }
+
+// ---------------------------------------------------------------------------- surface_mesh
+
+// A CAD-style point: private members, getters, a constructor, no default constructor.
+class sealed_point {
+ public:
+  sealed_point(double x, double y, double z) : x_(x), y_(y), z_(z) {}
+  double x() const { return x_; }
+  double y() const { return y_; }
+  double z() const { return z_; }
+  bool operator==(const sealed_point&) const = default;
+
+ private:
+  double x_, y_, z_;
+};
+
+}  // namespace halfedge_mesh_tests
+
+CELLFORGE_REGISTER_POINT3_GET_CTOR(halfedge_mesh_tests::sealed_point, double, x, y, z);
+
+namespace halfedge_mesh_tests {
+
+static_assert(!std::is_default_constructible_v<sealed_point>);
+static_assert(cellforge::Point3<sealed_point>);
+
+TEST_CASE("surface_mesh: positions of the caller's type, kept through copies, edits and compaction") {
+  using cellforge::surface_mesh;
+  surface_mesh<sealed_point> m;
+  static_assert(std::is_same_v<decltype(m)::point_type, sealed_point>);
+  const vertex_handle a = m.add_vertex({0, 0, 0}), b = m.add_vertex({1, 0, 0}), c = m.add_vertex({0, 1, 0});
+  const std::vector<sealed_point> more{{0, 0, 1}, {5, 5, 5}};
+  const vertex_handle d = m.add_vertices(more);
+  m.add_face({a, b, c});
+  m.add_face({a, d, b});
+  m.add_face({b, d, c});
+  m.add_face({c, d, a});
+  REQUIRE_VALID(m);
+  CHECK(m.num_vertices() == 5);
+  CHECK(m.position(b) == sealed_point(1, 0, 0));
+  CHECK(m.position(vertex_handle(4)) == sealed_point(5, 5, 5));
+  m.set_position(b, {2, 0, 0});
+  CHECK(m.points()[b.idx()] == sealed_point(2, 0, 0));
+
+  // Copies own their positions.
+  surface_mesh<sealed_point> copy = m;
+  copy.set_position(b, {3, 0, 0});
+  CHECK(m.position(b) == sealed_point(2, 0, 0));
+  CHECK(copy.position(b) == sealed_point(3, 0, 0));
+  surface_mesh<sealed_point> moved = std::move(copy);
+  CHECK(moved.position(b) == sealed_point(3, 0, 0));
+  copy = moved;  // a moved-from mesh can be assigned to
+  CHECK(copy.position(d) == sealed_point(0, 0, 1));
+
+  // Compaction moves positions with their vertices: the isolated vertex 4 goes.
+  m.remove_vertex(vertex_handle(4));
+  m.garbage_collection();
+  REQUIRE_VALID(m);
+  CHECK(m.num_vertices() == 4);
+  CHECK(m.points().size() == 4);
+  CHECK(m.position(d) == sealed_point(0, 0, 1));
+
+  // The positions cannot be removed or shadowed by a property of another type.
+  CHECK_THROWS_AS((void)m.remove_property<vertex_handle>(cellforge::point_property_name), error);
+  CHECK_THROWS_AS((void)m.add_vertex_property<glm::dvec3>(cellforge::point_property_name), error);
+  CHECK(m.position(a) == sealed_point(0, 0, 0));
+
+  // clear() keeps the mesh usable: positions come back with new vertices.
+  m.clear();
+  CHECK(m.num_vertices() == 0);
+  const vertex_handle e = m.add_vertex({4, 4, 4});
+  CHECK(m.position(e) == sealed_point(4, 4, 4));
+}
+
+TEST_CASE("circulators are common ranges: begin and end have one type") {
+  auto m = make_mesh(fixtures::cube());
+  const auto around = m.faces_around(vertex_handle(0));
+  static_assert(std::ranges::common_range<decltype(around)>);
+  static_assert(std::ranges::common_range<decltype(m.vertices_around(face_handle(0)))>);
+  static_assert(std::ranges::common_range<decltype(m.faces())>);
+  const std::vector<face_handle> faces(around.begin(), around.end());  // the pre-ranges constructor
+  CHECK(faces.size() == 3);
+  CHECK(std::vector<face_handle>(std::ranges::begin(around), std::ranges::end(around)) == faces);
+  const auto corners = m.vertices_around(face_handle(0));
+  CHECK(std::vector<vertex_handle>(corners.begin(), corners.end()).size() == 4);
+}
+
+TEST_CASE("surface_mesh: make_mesh and to_soup keep the soup's point type") {
+  cellforge::polygon_soup<sealed_point> s;
+  s.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  s.add_face({0, 2, 1});
+  s.add_face({0, 1, 3});
+  s.add_face({1, 2, 3});
+  s.add_face({2, 0, 3});
+  auto m = make_mesh(s);
+  static_assert(std::is_same_v<decltype(m), cellforge::surface_mesh<sealed_point>>);
+  REQUIRE_VALID(m);
+  CHECK(m.is_closed());
+  const auto back = to_soup(m);
+  CHECK(back.points == s.points);
+  CHECK(back.face_vertices == s.face_vertices);
+}
+
+}  // namespace halfedge_mesh_tests

@@ -21,6 +21,9 @@
 #include "cellforge/io/obj.hpp"
 #include "cellforge/smooth/smooth_edges.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace io_curves_tests {
+
 namespace {
 
 namespace io = cellforge::io;
@@ -370,7 +373,7 @@ TEST_CASE("SVG: thin loops on a solid and straight beside smoothed edges") {
 TEST_CASE("curve file: smooth_edges' curves of a UV sphere round-trip") {
   const auto mesh = cellforge::make_mesh(cellforge::uv_sphere<dvec3>(16, 8, false));
   for (const auto& options : {cellforge::smooth_options{}, cellforge::seed_smooth_options()}) {
-    const cellforge::smooth_result r = cellforge::smooth_edges<dvec3>(mesh, options);
+    const cellforge::smooth_result r = cellforge::smooth_edges(mesh, options);
     REQUIRE(r.curves.size() == mesh.num_edges());
     const std::string text = io::curve_file_text(r.curves);
     const auto back = io::parse_curve_file(text);
@@ -397,3 +400,5 @@ TEST_CASE("curve file: smooth_edges' curves of a UV sphere round-trip") {
     CHECK(io::curve_file_text(back) == text);
   }
 }
+
+}  // namespace io_curves_tests

@@ -17,6 +17,9 @@
 #include "cellforge/wireframe/sample_models.hpp"
 #include "io_test_support.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace io_edge_list_tests {
+
 namespace io = cellforge::io;
 using cellforge::wireframe;
 using edge = std::array<std::uint32_t, 2>;
@@ -238,3 +241,5 @@ TEST_CASE("edge list: mutated files parse or throw an io error, never anything e
   CHECK(parsed > 0);
   CHECK(rejected > 0);
 }
+
+}  // namespace io_edge_list_tests

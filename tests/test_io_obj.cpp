@@ -13,6 +13,9 @@
 #include "cellforge/io/obj.hpp"
 #include "io_test_support.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace io_obj_tests {
+
 namespace io = cellforge::io;
 using cellforge::polygon_soup;
 using edge = std::array<std::uint32_t, 2>;
@@ -202,3 +205,5 @@ TEST_CASE("OBJ: file errors name the path") {
   io_test::check_file_errors("bad.obj", "v 0 0 0\nf 1 2 3\n", 2,
                              [](const std::filesystem::path& p) { (void)io::read_obj<glm::dvec3>(p); });
 }
+
+}  // namespace io_obj_tests

@@ -15,6 +15,9 @@
 #include "cellforge/io/off.hpp"
 #include "io_test_support.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace io_off_tests {
+
 namespace io = cellforge::io;
 using cellforge::polygon_soup;
 
@@ -148,7 +151,7 @@ TEST_CASE("OFF: a large face's repeated vertex is found too") {
   std::string text = "OFF\n40 1 0\n";
   for (int i = 0; i < 40; ++i) text += std::to_string(i) + " 0 0\n";
   text += "40";
-  for (int i = 0; i < 40; ++i) text += " " + std::to_string(i == 33 ? 5 : i);
+  for (int i = 0; i < 40; ++i) text += ' ' + std::to_string(i == 33 ? 5 : i);
   io_test::check_rejected({"big face", text, 43, "face 0 uses vertex 5 twice"}, "t.off",
                           [](const std::string& s) { (void)parse(s); });
 }
@@ -220,3 +223,5 @@ TEST_CASE("OFF: file errors name the path") {
   io_test::check_file_errors("bad.off", "OFF\n1 0 0\n0 0\n", 3,
                              [](const std::filesystem::path& p) { (void)io::read_off<glm::dvec3>(p); });
 }
+
+}  // namespace io_off_tests

@@ -17,6 +17,9 @@
 #include "cellforge/io/ply.hpp"
 #include "io_test_support.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace io_ply_tests {
+
 namespace io = cellforge::io;
 using cellforge::polygon_soup;
 
@@ -343,3 +346,5 @@ TEST_CASE("PLY: file errors name the path") {
   io_test::check_file_errors("bad.ply", tetra_vertices().bytes, 0,
                              [](const std::filesystem::path& p) { (void)io::read_ply<glm::dvec3>(p); });
 }
+
+}  // namespace io_ply_tests

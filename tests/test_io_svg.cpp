@@ -15,6 +15,9 @@
 #include "cellforge/io/svg.hpp"
 #include "test_support.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace io_svg_tests {
+
 namespace {
 
 using cellforge::polygon_soup;
@@ -807,3 +810,5 @@ TEST_CASE("3000 stacked squares: the grid is coarsened, the top square still hid
   CHECK(r.hidden_edges == 4 * (n - 1));
   CHECK(r.approximate_edges + r.untested_edges == 0);
 }
+
+}  // namespace io_svg_tests

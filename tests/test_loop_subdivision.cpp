@@ -24,12 +24,16 @@
 #include "mesh_fixtures.hpp"
 #include "test_support.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace loop_subdivision_tests {
+
 namespace {
 
 using cellforge::halfedge_mesh;
 using cellforge::loop_boundary;
 using cellforge::loop_options;
 using cellforge::loop_weights;
+using cellforge::surface_mesh;
 using soup = fixtures::soup;
 using u32 = std::uint32_t;
 using key = std::pair<u32, u32>;
@@ -137,11 +141,11 @@ std::array<u32, 3> canonical(u32 a, u32 b, u32 c) {
 
 // Checks positions (to `tol`) and oriented faces of `after` against the reference.
 template <class P>
-void check_against(const halfedge_mesh& after, const reference& ref, const std::vector<u32>& map,
+void check_against(const surface_mesh<P>& after, const reference& ref, const std::vector<u32>& map,
                    double tol) {
   REQUIRE(after.num_vertices() == ref.out.points.size());
   REQUIRE(after.num_faces() == ref.out.num_faces());
-  const auto pts = cellforge::points<P>(after);
+  const auto pts = after.positions();
   double worst = 0;
   for (auto v : after.vertices())
     worst = std::max(worst, glm::length(cellforge::to_dvec3(pts[v]) - ref.out.points[map[v.idx()]]));
@@ -173,12 +177,12 @@ cellforge::polygon_soup<P> convert(const soup& s) {
 
 // One level on `s`, checked against the reference; returns the subdivided mesh.
 template <class P = glm::dvec3>
-halfedge_mesh one_level_checked(const soup& s, const loop_options& o = {}, double tol = 1e-12) {
-  halfedge_mesh m = cellforge::make_mesh(convert<P>(s));
-  const halfedge_mesh before = m;
+surface_mesh<P> one_level_checked(const soup& s, const loop_options& o = {}, double tol = 1e-12) {
+  auto m = cellforge::make_mesh(convert<P>(s));
+  const auto before = m;
   loop_options one = o;
   one.levels = 1;
-  const auto r = cellforge::loop_subdivide<P>(m, one);
+  const auto r = cellforge::loop_subdivide(m, one);
   const auto v = cellforge::validate(m);
   INFO(v.message);
   REQUIRE(v.ok());
@@ -187,7 +191,7 @@ halfedge_mesh one_level_checked(const soup& s, const loop_options& o = {}, doubl
   CHECK(r.edges_after == 2 * r.edges_before + 3 * r.faces_before);
   // The reference sees the same input points the mesh holds (after rounding to P).
   soup in = s;
-  const auto pts = cellforge::points<P>(before);
+  const auto pts = before.positions();
   for (std::size_t i = 0; i < in.points.size(); ++i)
     in.points[i] = cellforge::to_dvec3(pts[cellforge::vertex_handle(static_cast<u32>(i))]);
   const reference ref = reference_loop(in, o.weights, o.boundary);
@@ -196,6 +200,12 @@ halfedge_mesh one_level_checked(const soup& s, const loop_options& o = {}, doubl
 }
 
 // ---------------------------------------------------------------- topology queries
+
+// Whether loop_subdivide accepts a mesh of type M (false for a mesh without positions).
+template <class M>
+constexpr bool can_subdivide = requires(M& m) {
+  cellforge::loop_subdivide(m);
+};
 
 std::int64_t euler(const halfedge_mesh& m) {
   return static_cast<std::int64_t>(m.num_vertices()) - static_cast<std::int64_t>(m.num_edges()) +
@@ -263,11 +273,11 @@ TEST_CASE("Warren's weights match the reference") {
 
 TEST_CASE("two levels on a torus match the reference, and equal two single levels") {
   const soup s = fixtures::torus(8, 6);
-  halfedge_mesh m0 = cellforge::make_mesh(s);
-  halfedge_mesh m1 = m0;
-  cellforge::loop_subdivide<glm::dvec3>(m1);
-  halfedge_mesh m2 = m1;
-  cellforge::loop_subdivide<glm::dvec3>(m2);
+  auto m0 = cellforge::make_mesh(s);
+  auto m1 = m0;
+  cellforge::loop_subdivide(m1);
+  auto m2 = m1;
+  cellforge::loop_subdivide(m2);
 
   const reference r1 = reference_loop(s);
   const reference r2 = reference_loop(r1.out);
@@ -280,12 +290,12 @@ TEST_CASE("two levels on a torus match the reference, and equal two single level
         r2.edge_vertex.at(ekey(map1[m1.vertex(e, 0).idx()], map1[m1.vertex(e, 1).idx()]));
   check_against<glm::dvec3>(m2, r2, map2, 1e-12);
 
-  halfedge_mesh both = m0;
-  const auto r = cellforge::loop_subdivide<glm::dvec3>(both, {.levels = 2});
+  auto both = m0;
+  const auto r = cellforge::loop_subdivide(both, {.levels = 2});
   CHECK(cellforge::validate(both).ok());
   CHECK(r.level_ms.size() == 2);
   CHECK(r.faces_after == 16 * s.num_faces());
-  const auto a = cellforge::to_soup<glm::dvec3>(both), b = cellforge::to_soup<glm::dvec3>(m2);
+  const auto a = cellforge::to_soup(both), b = cellforge::to_soup(m2);
   CHECK(a.points == b.points);
   CHECK(a.face_vertices == b.face_vertices);
   CHECK(euler(both) == 0);
@@ -294,10 +304,10 @@ TEST_CASE("two levels on a torus match the reference, and equal two single level
 TEST_CASE("counts V' = V + E, E' = 2E + 3F, F' = 4F over three levels") {
   for (const soup& s : {fixtures::torus(5, 4), fixtures::plane(4, 3), fixtures::mobius(9, 2),
                         cellforge::icosphere<glm::dvec3>(1)}) {
-    halfedge_mesh m = cellforge::make_mesh(s);
+    auto m = cellforge::make_mesh(s);
     std::size_t v = m.num_vertices(), e = m.num_edges(), f = m.num_faces();
     const std::int64_t chi = euler(m);
-    const auto r = cellforge::loop_subdivide<glm::dvec3>(m, {.levels = 3});
+    const auto r = cellforge::loop_subdivide(m, {.levels = 3});
     for (int l = 0; l < 3; ++l) {
       v += e;
       e = 2 * e + 3 * f;
@@ -319,10 +329,10 @@ TEST_CASE("boundary rules on an open grid") {
   for (auto rule : {loop_boundary::bspline, loop_boundary::bspline_corners, loop_boundary::fixed}) {
     loop_options o;
     o.boundary = rule;
-    halfedge_mesh m = one_level_checked(grid, o);
+    auto m = one_level_checked(grid, o);
     CHECK(m.boundary_loops().size() == 1);
     CHECK(m.num_boundary_edges() == 2 * 2 * (5 + 4));
-    const auto pts = cellforge::points<glm::dvec3>(m);
+    const auto pts = m.positions();
     // A flat grid stays flat, and its straight sides stay on their lines.
     for (auto v : m.vertices()) {
       CHECK(pts[v].z == 0.0);
@@ -339,23 +349,23 @@ TEST_CASE("boundary rules on an open grid") {
 
 TEST_CASE("a cylinder keeps its two boundary loops, and they are B-spline curves") {
   const soup cyl = fixtures::cylinder(8, 3);
-  halfedge_mesh m = one_level_checked(cyl);
+  auto m = one_level_checked(cyl);
   CHECK(m.boundary_loops().size() == 2);
   CHECK(euler(m) == 0);
-  halfedge_mesh m3 = cellforge::make_mesh(cyl);
-  cellforge::loop_subdivide<glm::dvec3>(m3, {.levels = 3});
+  auto m3 = cellforge::make_mesh(cyl);
+  cellforge::loop_subdivide(m3, {.levels = 3});
   CHECK(cellforge::validate(m3).ok());
   CHECK(m3.boundary_loops().size() == 2);
   CHECK(m3.num_boundary_edges() == 2 * 8 * 8);
 }
 
 TEST_CASE("a vertex where two fans meet stays in place") {
-  halfedge_mesh m = cellforge::make_mesh(fixtures::bowtie());
-  const glm::dvec3 before = cellforge::points<glm::dvec3>(m)[cellforge::vertex_handle(0)];
-  const auto r = cellforge::loop_subdivide<glm::dvec3>(m, {.levels = 2});
+  auto m = cellforge::make_mesh(fixtures::bowtie());
+  const glm::dvec3 before = m.positions()[cellforge::vertex_handle(0)];
+  const auto r = cellforge::loop_subdivide(m, {.levels = 2});
   CHECK(cellforge::validate(m).ok());
   CHECK(r.fixed_vertices == 2);  // the same vertex, once per level
-  CHECK(cellforge::points<glm::dvec3>(m)[cellforge::vertex_handle(0)] == before);
+  CHECK(m.positions()[cellforge::vertex_handle(0)] == before);
   CHECK(m.boundary_loops().size() == 2);
   CHECK(components(m) == 2);
 }
@@ -381,13 +391,13 @@ TEST_CASE("Möbius strip, Klein bottle and a randomly oriented plane") {
     // One level against the reference: positions, and every child keeps its parent's orientation.
     one_level_checked(c.s);
 
-    halfedge_mesh m = cellforge::make_mesh(c.s);
+    auto m = cellforge::make_mesh(c.s);
     const std::int64_t chi = euler(m);
     const std::size_t loops = m.boundary_loops().size(), comps = components(m);
     std::size_t flipped = m.num_flipped_edges();
     REQUIRE(flipped > 0);
     for (int level = 0; level < 3; ++level) {
-      const auto r = cellforge::loop_subdivide<glm::dvec3>(m);
+      const auto r = cellforge::loop_subdivide(m);
       const auto v = cellforge::validate(m);
       INFO(v.message);
       REQUIRE(v.ok());
@@ -400,10 +410,9 @@ TEST_CASE("Möbius strip, Klein bottle and a randomly oriented plane") {
       CHECK(r.fixed_vertices == 0);
     }
     // Several levels in one call give the same mesh.
-    halfedge_mesh once = cellforge::make_mesh(c.s);
-    cellforge::loop_subdivide<glm::dvec3>(once, {.levels = 3});
-    CHECK(cellforge::to_soup<glm::dvec3>(once).face_vertices ==
-          cellforge::to_soup<glm::dvec3>(m).face_vertices);
+    auto once = cellforge::make_mesh(c.s);
+    cellforge::loop_subdivide(once, {.levels = 3});
+    CHECK(cellforge::to_soup(once).face_vertices == cellforge::to_soup(m).face_vertices);
   }
 }
 
@@ -413,25 +422,25 @@ TEST_CASE_TEMPLATE("point types", P, glm::dvec3, std::array<float, 3>, test_supp
   const double tol = std::is_same_v<cellforge::scalar_t<P>, float> ? 2e-6 : 1e-12;
   one_level_checked<P>(octahedron(), {}, tol);
   one_level_checked<P>(fixtures::mobius(10, 2), {}, tol);
-  halfedge_mesh m = cellforge::make_mesh(convert<P>(fixtures::plane(3, 3)));
-  const auto r = cellforge::loop_subdivide<P>(m, {.levels = 2});
+  auto m = cellforge::make_mesh(convert<P>(fixtures::plane(3, 3)));
+  const auto r = cellforge::loop_subdivide(m, {.levels = 2});
   CHECK(r.faces_after == 16 * 18);
   CHECK(cellforge::validate(m).ok());
-  CHECK(cellforge::points<P>(m).vector().size() == m.vertices_size());
+  CHECK(m.positions().vector().size() == m.vertices_size());
 }
 
 // ---------------------------------------------------------------- properties
 
 TEST_CASE("user vertex properties: interpolated when opted in, defaulted otherwise") {
   const soup s = fixtures::plane(4, 4);
-  halfedge_mesh m = cellforge::make_mesh(s);
-  const halfedge_mesh before = m;
+  auto m = cellforge::make_mesh(s);
+  const auto before = m;
   auto temp = m.add_vertex_property<double>("v:temperature", -1.0);
   auto shade = m.add_vertex_property<glm::vec3>("v:shade");
   auto label = m.add_vertex_property<int>("v:label", 7);
   auto fp = m.add_face_property<int>("f:region", 0);
   auto ep = m.add_edge_property<float>("e:weight", 2.5f);
-  const auto pts0 = cellforge::points<glm::dvec3>(m);
+  const auto pts0 = m.positions();
   for (auto v : m.vertices()) {
     temp[v] = 10.0 * pts0[v].x + pts0[v].y * pts0[v].y;
     shade[v] = glm::vec3(pts0[v]);
@@ -443,12 +452,12 @@ TEST_CASE("user vertex properties: interpolated when opted in, defaulted otherwi
 
   loop_options o;
   o.interpolate = {{"v:temperature"}, {"v:shade", cellforge::loop_property_rule::loop}};
-  cellforge::loop_subdivide<glm::dvec3>(m, o);
+  cellforge::loop_subdivide(m, o);
   REQUIRE(cellforge::validate(m).ok());
   temp = m.get_vertex_property<double>("v:temperature");
   shade = m.get_vertex_property<glm::vec3>("v:shade");
   label = m.get_vertex_property<int>("v:label");
-  const auto pts = cellforge::points<glm::dvec3>(m);
+  const auto pts = m.positions();
   const std::size_t nv = before.vertices_size();
   for (auto v : before.vertices()) {
     CHECK(temp[v] == t0[v.idx()]);                 // linear: old vertices keep their value
@@ -467,13 +476,13 @@ TEST_CASE("user vertex properties: interpolated when opted in, defaulted otherwi
 }
 
 TEST_CASE("property options that cannot be honoured are refused before anything changes") {
-  halfedge_mesh m = cellforge::make_mesh(fixtures::tetrahedron());
+  auto m = cellforge::make_mesh(fixtures::tetrahedron());
   m.add_vertex_property<int>("v:label");
   m.add_vertex_property<double>("v:t");
   auto refused = [&](std::vector<cellforge::loop_property> props, const char* needle) {
     loop_options o;
     o.interpolate = std::move(props);
-    const std::string msg = message_of([&] { cellforge::loop_subdivide<glm::dvec3>(m, o); });
+    const std::string msg = message_of([&] { cellforge::loop_subdivide(m, o); });
     INFO(msg);
     CHECK(msg.find(needle) != std::string::npos);
     CHECK(m.num_faces() == 4);
@@ -493,104 +502,92 @@ TEST_CASE("refuses quads, NaN, bad options and corrupted meshes with clear error
     mixed.points.push_back({0, 2, 0});
     mixed.points.push_back({1, 2, 0});
     mixed.add_face({3, 4, 7, 6});
-    halfedge_mesh m = cellforge::make_mesh(mixed);
-    const std::string msg = message_of([&] { cellforge::loop_subdivide<glm::dvec3>(m); });
+    auto m = cellforge::make_mesh(mixed);
+    const std::string msg = message_of([&] { cellforge::loop_subdivide(m); });
     CHECK(msg.find("face 4 has 4 vertices") != std::string::npos);
     CHECK(msg.find("triangulate") != std::string::npos);
     CHECK(m.num_faces() == 5);
     CHECK(cellforge::validate(m).ok());
     // With removed elements the face keeps the handle the caller knows, and nothing is collected.
     m.remove_face(cellforge::face_handle(0));
-    const std::string msg2 = message_of([&] { cellforge::loop_subdivide<glm::dvec3>(m); });
+    const std::string msg2 = message_of([&] { cellforge::loop_subdivide(m); });
     CHECK(msg2.find("face 4 has 4 vertices") != std::string::npos);
     CHECK(m.has_garbage());
-    halfedge_mesh cube = cellforge::make_mesh(fixtures::cube());
-    CHECK(message_of([&] { cellforge::loop_subdivide<glm::dvec3>(cube); }).find("face 0 has 4 vertices") !=
+    auto cube = cellforge::make_mesh(fixtures::cube());
+    CHECK(message_of([&] { cellforge::loop_subdivide(cube); }).find("face 0 has 4 vertices") !=
           std::string::npos);
   }
   SUBCASE("non-finite and huge coordinates name the vertex") {
     soup s = fixtures::tetrahedron();
     s.points[2].y = std::numeric_limits<double>::quiet_NaN();
-    halfedge_mesh m = cellforge::make_mesh(s);
-    CHECK(message_of([&] { cellforge::loop_subdivide<glm::dvec3>(m); }).find("vertex 2") !=
-          std::string::npos);
+    auto m = cellforge::make_mesh(s);
+    CHECK(message_of([&] { cellforge::loop_subdivide(m); }).find("vertex 2") != std::string::npos);
     s.points[2].y = std::numeric_limits<double>::infinity();
     m = cellforge::make_mesh(s);
-    CHECK(message_of([&] { cellforge::loop_subdivide<glm::dvec3>(m); }).find("not finite") !=
-          std::string::npos);
+    CHECK(message_of([&] { cellforge::loop_subdivide(m); }).find("not finite") != std::string::npos);
     s.points[2].y = 1e300;
     m = cellforge::make_mesh(s);
-    CHECK(message_of([&] { cellforge::loop_subdivide<glm::dvec3>(m); }).find("too large") !=
-          std::string::npos);
+    CHECK(message_of([&] { cellforge::loop_subdivide(m); }).find("too large") != std::string::npos);
     CHECK(m.num_vertices() == 4);
     // A removed vertex's position is not looked at.
     s.points.push_back({std::numeric_limits<double>::quiet_NaN(), 0, 0});
     s.points[2].y = 1;
     m = cellforge::make_mesh(s);
     m.remove_vertex(cellforge::vertex_handle(4));
-    CHECK(cellforge::loop_subdivide<glm::dvec3>(m).faces_after == 16);
+    CHECK(cellforge::loop_subdivide(m).faces_after == 16);
     CHECK(cellforge::validate(m).ok());
     s.points.pop_back();
     // Large but allowed coordinates stay finite through several levels.
     s.points[2].y = 1e280;
     m = cellforge::make_mesh(s);
-    cellforge::loop_subdivide<glm::dvec3>(m, {.levels = 3});
-    for (const auto& p : cellforge::points<glm::dvec3>(m).vector()) CHECK(std::isfinite(p.y));
+    cellforge::loop_subdivide(m, {.levels = 3});
+    for (const auto& p : m.positions().vector()) CHECK(std::isfinite(p.y));
   }
   SUBCASE("levels") {
-    halfedge_mesh m = cellforge::make_mesh(fixtures::torus());
-    const auto before = cellforge::to_soup<glm::dvec3>(m);
-    const auto r = cellforge::loop_subdivide<glm::dvec3>(m, {.levels = 0});
+    auto m = cellforge::make_mesh(fixtures::torus());
+    const auto before = cellforge::to_soup(m);
+    const auto r = cellforge::loop_subdivide(m, {.levels = 0});
     CHECK(r.faces_after == r.faces_before);
     CHECK(r.level_ms.empty());
-    CHECK(cellforge::to_soup<glm::dvec3>(m).points == before.points);
-    CHECK(cellforge::to_soup<glm::dvec3>(m).face_vertices == before.face_vertices);
-    CHECK(message_of([&] { cellforge::loop_subdivide<glm::dvec3>(m, {.levels = -1}); }).find("at least 0") !=
+    CHECK(cellforge::to_soup(m).points == before.points);
+    CHECK(cellforge::to_soup(m).face_vertices == before.face_vertices);
+    CHECK(message_of([&] { cellforge::loop_subdivide(m, {.levels = -1}); }).find("at least 0") !=
           std::string::npos);
     // 96 faces * 4^14 > 2^32: refused before any allocation (it would need terabytes).
-    const std::string msg = message_of([&] { cellforge::loop_subdivide<glm::dvec3>(m, {.levels = 14}); });
+    const std::string msg = message_of([&] { cellforge::loop_subdivide(m, {.levels = 14}); });
     CHECK(msg.find("32-bit") != std::string::npos);
-    CHECK(message_of([&] { cellforge::loop_subdivide<glm::dvec3>(m, {.levels = 1000000}); }).find("32-bit") !=
+    CHECK(message_of([&] { cellforge::loop_subdivide(m, {.levels = 1000000}); }).find("32-bit") !=
           std::string::npos);
-    CHECK(cellforge::to_soup<glm::dvec3>(m).face_vertices == before.face_vertices);
+    CHECK(cellforge::to_soup(m).face_vertices == before.face_vertices);
   }
-  SUBCASE("no positions, or positions of another type") {
-    halfedge_mesh m = cellforge::make_mesh(fixtures::tetrahedron());
-    CHECK(message_of([&] { cellforge::loop_subdivide<glm::vec3>(m); }).find("another type") !=
-          std::string::npos);
-    halfedge_mesh bare;
-    const std::uint32_t off[] = {0, 3}, idx[] = {0, 1, 2};
-    bare.add_vertices(3);
-    bare.build(3, off, idx);
-    CHECK(message_of([&] { cellforge::loop_subdivide<glm::dvec3>(bare); }).find("no vertex positions") !=
-          std::string::npos);
+  SUBCASE("a mesh without positions is refused at compile time") {
+    // What used to be a run-time "no vertex positions" error is now a type error.
+    CHECK_FALSE(can_subdivide<halfedge_mesh>);
+    CHECK(can_subdivide<surface_mesh<glm::dvec3>>);
+    CHECK(can_subdivide<surface_mesh<glm::vec3>>);
   }
   SUBCASE("bad enum values") {
-    halfedge_mesh m = cellforge::make_mesh(fixtures::tetrahedron());
+    auto m = cellforge::make_mesh(fixtures::tetrahedron());
     loop_options o;
     o.boundary = static_cast<loop_boundary>(9);
-    CHECK(message_of([&] { cellforge::loop_subdivide<glm::dvec3>(m, o); }).find("boundary") !=
-          std::string::npos);
+    CHECK(message_of([&] { cellforge::loop_subdivide(m, o); }).find("boundary") != std::string::npos);
     o = {};
     o.weights = static_cast<loop_weights>(9);
-    CHECK(message_of([&] { cellforge::loop_subdivide<glm::dvec3>(m, o); }).find("weights") !=
-          std::string::npos);
+    CHECK(message_of([&] { cellforge::loop_subdivide(m, o); }).find("weights") != std::string::npos);
   }
   SUBCASE("corrupted records") {
     using access = cellforge::detail::mesh_access;
-    halfedge_mesh m = cellforge::make_mesh(fixtures::torus(4, 3));
-    halfedge_mesh a = m, b = m, c = m, d = m;
+    auto m = cellforge::make_mesh(fixtures::torus(4, 3));
+    auto a = m, b = m, c = m, d = m;
     access::records(a)[access::face_anchors(a)[3]].head = 999;  // a vertex that does not exist
     access::face_anchors(b)[2] = access::face_anchors(b)[5];    // a half-edge of another face
     access::records(c)[access::face_anchors(c)[1]].next = 1u << 30;
     const std::uint32_t h = access::face_anchors(d)[0];
     access::records(d)[h ^ 1u].head = access::records(d)[access::records(d)[h].next].head;  // twins disagree
-    CHECK(message_of([&] { cellforge::loop_subdivide<glm::dvec3>(a); }).find("corrupted") !=
-          std::string::npos);
-    CHECK(message_of([&] { cellforge::loop_subdivide<glm::dvec3>(b); }).find("face 2") != std::string::npos);
-    CHECK(message_of([&] { cellforge::loop_subdivide<glm::dvec3>(c); }).find("face 1") != std::string::npos);
-    CHECK(message_of([&] { cellforge::loop_subdivide<glm::dvec3>(d); }).find("corrupted") !=
-          std::string::npos);
+    CHECK(message_of([&] { cellforge::loop_subdivide(a); }).find("corrupted") != std::string::npos);
+    CHECK(message_of([&] { cellforge::loop_subdivide(b); }).find("face 2") != std::string::npos);
+    CHECK(message_of([&] { cellforge::loop_subdivide(c); }).find("face 1") != std::string::npos);
+    CHECK(message_of([&] { cellforge::loop_subdivide(d); }).find("corrupted") != std::string::npos);
     CHECK(a.num_faces() == m.num_faces());
   }
 }
@@ -598,9 +595,9 @@ TEST_CASE("refuses quads, NaN, bad options and corrupted meshes with clear error
 // ---------------------------------------------------------------- the rest of the API
 
 TEST_CASE("loop_subdivided returns a copy; removed elements are collected first") {
-  halfedge_mesh m = cellforge::make_mesh(fixtures::torus(6, 4));
+  auto m = cellforge::make_mesh(fixtures::torus(6, 4));
   cellforge::loop_result r;
-  const halfedge_mesh s = cellforge::loop_subdivided<glm::dvec3>(m, {.levels = 2}, &r);
+  const auto s = cellforge::loop_subdivided(m, {.levels = 2}, &r);
   CHECK(m.num_faces() == 48);
   CHECK(s.num_faces() == 48 * 16);
   CHECK(r.faces_after == s.num_faces());
@@ -609,7 +606,7 @@ TEST_CASE("loop_subdivided returns a copy; removed elements are collected first"
   m.remove_face(cellforge::face_handle(4));  // the two triangles of one quad: one hole
   m.remove_face(cellforge::face_handle(5));
   CHECK(m.has_garbage());
-  const auto r2 = cellforge::loop_subdivide<glm::dvec3>(m);
+  const auto r2 = cellforge::loop_subdivide(m);
   CHECK(r2.faces_before == 46);
   CHECK(m.num_faces() == 46 * 4);
   CHECK(cellforge::validate(m).ok());
@@ -619,16 +616,16 @@ TEST_CASE("loop_subdivided returns a copy; removed elements are collected first"
 TEST_CASE("isolated vertices and a mesh without faces") {
   soup s = fixtures::tetrahedron();
   s.points.push_back({5, 5, 5});
-  halfedge_mesh m = cellforge::make_mesh(s);
-  cellforge::loop_subdivide<glm::dvec3>(m, {.levels = 2});
+  auto m = cellforge::make_mesh(s);
+  cellforge::loop_subdivide(m, {.levels = 2});
   CHECK(cellforge::validate(m).ok());
-  CHECK(cellforge::points<glm::dvec3>(m)[cellforge::vertex_handle(4)] == glm::dvec3(5, 5, 5));
+  CHECK(m.positions()[cellforge::vertex_handle(4)] == glm::dvec3(5, 5, 5));
   CHECK(m.is_isolated(cellforge::vertex_handle(4)));
 
   soup empty;
   empty.points = {{1, 2, 3}};
-  halfedge_mesh e = cellforge::make_mesh(empty);
-  const auto r = cellforge::loop_subdivide<glm::dvec3>(e, {.levels = 1000});
+  auto e = cellforge::make_mesh(empty);
+  const auto r = cellforge::loop_subdivide(e, {.levels = 1000});
   CHECK(r.vertices_after == 1);
   CHECK(r.faces_after == 0);
 }
@@ -659,9 +656,9 @@ TEST_CASE("closed-form anchors and flipped count agree with finish(), closed and
   for (const named& c : cases) {
     for (int levels = 1; levels <= 2; ++levels) {
       INFO(c.name << ", " << levels << " level(s)");
-      halfedge_mesh m = cellforge::make_mesh(c.s);
+      auto m = cellforge::make_mesh(c.s);
       REQUIRE(m.is_closed() == c.closed);
-      const auto r = cellforge::loop_subdivide<glm::dvec3>(m, {.levels = levels});
+      const auto r = cellforge::loop_subdivide(m, {.levels = levels});
       const auto v = cellforge::validate(m);
       INFO(v.message);
       REQUIRE(v.ok());
@@ -688,7 +685,7 @@ TEST_CASE("closed-form anchors and flipped count agree with finish(), closed and
       }
 
       // finish() from the records alone derives the same state.
-      halfedge_mesh again = m;
+      auto again = m;
       cellforge::detail::mesh_access::finish(again);
       CHECK(cellforge::validate(again).ok());
       CHECK(again.num_flipped_edges() == m.num_flipped_edges());
@@ -713,3 +710,5 @@ TEST_CASE("reserve_large: a plain reserve whose huge-page hint changes nothing v
   CHECK(big.front() == 7u);
   CHECK(big.back() == 7u);
 }
+
+}  // namespace loop_subdivision_tests

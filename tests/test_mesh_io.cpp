@@ -9,6 +9,9 @@
 #include "mesh_fixtures.hpp"
 #include "test_support.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace mesh_io_tests {
+
 namespace {
 std::filesystem::path temp_dir() {
   auto d = std::filesystem::temp_directory_path() / "cellforge_test_mesh_io";
@@ -29,17 +32,17 @@ TEST_CASE_TEMPLATE("meshes round-trip through OFF, OBJ and PLY for every point t
                    std::array<float, 3>, test_support::user_point) {
   // A non-orientable mesh with quads: faces must come back with their own orientation.
   const auto src = convert<P>(fixtures::glued_grid(7, 3, true, true, false, false, false));
-  const cellforge::halfedge_mesh m = cellforge::make_mesh(src);
+  const auto m = cellforge::make_mesh(src);
   REQUIRE(cellforge::validate(m).ok());
   for (const char* ext : {".off", ".obj", ".ply"}) {
     CAPTURE(ext);
     const auto path = temp_dir() / (std::string("mobius") + ext);
-    cellforge::io::write_mesh<P>(path, m);
+    cellforge::io::write_mesh(path, m);
     cellforge::build_report rep;
-    const cellforge::halfedge_mesh back = cellforge::io::read_mesh<P>(path, &rep);
+    const auto back = cellforge::io::read_mesh<P>(path, &rep);
     REQUIRE(cellforge::validate(back).ok());
     CHECK(rep.flipped_edges == m.num_flipped_edges());
-    const auto a = cellforge::to_soup<P>(m), b = cellforge::to_soup<P>(back);
+    const auto a = cellforge::to_soup(m), b = cellforge::to_soup(back);
     CHECK(a.face_vertices == b.face_vertices);
     CHECK(a.face_offsets == b.face_offsets);
     for (std::size_t i = 0; i < a.points.size(); ++i)
@@ -64,3 +67,5 @@ TEST_CASE("mesh files with bad topology or extension give located errors") {
   CHECK_THROWS_WITH_AS((void)cellforge::io::read_mesh<glm::dvec3>(temp_dir() / "x.stl"),
                        doctest::Contains("unknown mesh file extension '.stl'"), cellforge::error);
 }
+
+}  // namespace mesh_io_tests

@@ -27,6 +27,9 @@ class cad_point {
 CELLFORGE_REGISTER_POINT3(user::vec, double, x, y, z);
 CELLFORGE_REGISTER_POINT3_GET_SET(user::cad_point, double, X, Y, Z, SetX, SetY, SetZ);
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace point_traits_tests {
+
 static_assert(cellforge::Point3<glm::dvec3>);
 static_assert(cellforge::Point3<glm::vec3>);
 static_assert(cellforge::Point3<std::array<float, 3>>);
@@ -75,3 +78,5 @@ TEST_CASE("tolerance scales with the model") {
   CHECK_THROWS_AS(tol.absolute(bad), cellforge::error);
   CHECK_THROWS_AS(cellforge::tolerance{-1}.absolute(large), cellforge::error);
 }
+
+}  // namespace point_traits_tests

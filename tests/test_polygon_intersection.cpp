@@ -15,6 +15,9 @@
 #include "cellforge/core/morton.hpp"
 #include "cellforge/core/polygon_intersection.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace polygon_intersection_tests {
+
 using cellforge::polygon_location;
 using cellforge::polygon_loops;
 
@@ -110,3 +113,5 @@ TEST_CASE("morton codes: interleaved bits, Z order, clamped to the box") {
   CHECK(morton_code({0.1, 0.1, 0.1}, lo, extent) < morton_code({0.6, 0.1, 0.1}, lo, extent));
   CHECK(morton_code({-5, 2, 0.5}, lo, extent) == morton_code({0, 1, 0.5}, lo, extent));
 }
+
+}  // namespace polygon_intersection_tests

@@ -16,6 +16,9 @@
 #include "cellforge/core/predicates.hpp"
 #include "test_support.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace predicates_tests {
+
 namespace {
 
 __extension__ typedef __int128 i128;
@@ -366,3 +369,5 @@ TEST_CASE("collinear is exact in 3D") {
       cellforge::collinear(glm::dvec3(1, 2, 3), glm::dvec3(2, 4, 6), nudge(glm::dvec3(3, 6, 9), 2, 1)));
   CHECK_FALSE(cellforge::collinear(glm::dvec3(0), glm::dvec3(1, 0, 0), glm::dvec3(0, 0, 1)));
 }
+
+}  // namespace predicates_tests

@@ -20,6 +20,9 @@
 
 #include "cellforge/wireframe/sample_models.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace sample_models_tests {
+
 using cellforge::sample_model;
 
 namespace {
@@ -366,3 +369,5 @@ TEST_CASE("sample models: the close-edges tube has no planar ring") {
   }
   for (const auto& f : m.faces) CHECK(f[0].size() == 3);
 }
+
+}  // namespace sample_models_tests

@@ -25,6 +25,9 @@ struct cad_vec {
 }  // namespace test_user
 CELLFORGE_REGISTER_POINT3(test_user::cad_vec, double, x, y, z);
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace shapes_tests {
+
 namespace {
 
 using cellforge::polygon_soup;
@@ -618,3 +621,5 @@ TEST_CASE("invalid parameters throw invalid_input") {
   check_invalid([] { (void)spline_tube<P>({.samples_per_span = 0}); });
   check_invalid([] { (void)spline_tube<P>({.radius = 0}); });
 }
+
+}  // namespace shapes_tests

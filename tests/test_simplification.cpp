@@ -25,20 +25,29 @@ struct pt {
 }  // namespace simplify_test
 CELLFORGE_REGISTER_POINT3(simplify_test::pt, float, x, y, z);
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace simplification_tests {
+
 namespace {
 
 using test_support::euler;
 
+// Whether simplify<P> accepts a mesh of type M.
+template <class M, class P>
+constexpr bool can_simplify = requires(M& m) {
+  simplify<P>(m);
+};
+
 template <class P>
-glm::dvec3 face_normal(const halfedge_mesh& m, face_handle f) {
+glm::dvec3 face_normal(const surface_mesh<P>& m, face_handle f) {
   std::vector<glm::dvec3> p;
-  for (vertex_handle v : m.vertices_around(f)) p.push_back(to_dvec3(points<P>(m)[v]));
+  for (vertex_handle v : m.vertices_around(f)) p.push_back(to_dvec3(m.positions()[v]));
   return glm::cross(p[1] - p[0], p[2] - p[0]);
 }
 template <class P>
-glm::dvec3 face_centroid(const halfedge_mesh& m, face_handle f) {
+glm::dvec3 face_centroid(const surface_mesh<P>& m, face_handle f) {
   glm::dvec3 c(0.0);
-  for (vertex_handle v : m.vertices_around(f)) c += to_dvec3(points<P>(m)[v]) / 3.0;
+  for (vertex_handle v : m.vertices_around(f)) c += to_dvec3(m.positions()[v]) / 3.0;
   return c;
 }
 
@@ -48,12 +57,12 @@ TEST_CASE_TEMPLATE("icosphere(4) to 500 faces stays a closed, valid, outward sph
                    std::array<float, 3>, simplify_test::pt) {
   for (simplify_cost cost : {simplify_cost::quadric, simplify_cost::edge_length}) {
     CAPTURE(static_cast<int>(cost));
-    halfedge_mesh m = make_mesh(icosphere<P>(4));
+    auto m = make_mesh(icosphere<P>(4));
     REQUIRE(m.num_faces() == 5120);
     simplify_options o;
     o.target_faces = 500;
     o.cost = cost;
-    const simplify_result r = simplify<P>(m, o);
+    const simplify_result r = simplify(m, o);
     CHECK(r.faces_before == 5120);
     CHECK(r.vertices_before == 2562);
     CHECK(r.faces_after == 500);
@@ -72,11 +81,11 @@ TEST_CASE_TEMPLATE("icosphere(4) to 500 faces stays a closed, valid, outward sph
     // Every vertex stays near the unit sphere; every face still faces outwards.
     double worst = 0;
     for (vertex_handle v : m.vertices())
-      worst = std::max(worst, std::abs(glm::length(to_dvec3(points<P>(m)[v])) - 1.0));
+      worst = std::max(worst, std::abs(glm::length(to_dvec3(m.positions()[v])) - 1.0));
     CHECK(worst < (cost == simplify_cost::quadric ? 0.01 : 0.04));
     for (face_handle f : m.faces()) CHECK(glm::dot(face_normal<P>(m, f), face_centroid<P>(m, f)) > 0);
     // The enclosed volume is that of a 500-face polyhedron close to the ball.
-    const double volume = signed_volume(to_soup<P>(m));
+    const double volume = signed_volume(to_soup(m));
     CHECK(volume > 0.95 * 4.0 / 3.0 * std::numbers::pi);
     CHECK(volume < 1.01 * 4.0 / 3.0 * std::numbers::pi);
   }
@@ -84,8 +93,8 @@ TEST_CASE_TEMPLATE("icosphere(4) to 500 faces stays a closed, valid, outward sph
 
 TEST_CASE("genus, boundaries and orientability are kept") {
   SUBCASE("torus") {
-    halfedge_mesh m = make_mesh(torus(32, 16));
-    const simplify_result r = simplify<glm::dvec3>(m, {.target_faces = 200});
+    auto m = make_mesh(torus(32, 16));
+    const simplify_result r = simplify(m, {.target_faces = 200});
     CHECK(r.reached_target);
     CHECK(m.num_faces() <= 200);
     CHECK(euler(m) == 0);
@@ -94,10 +103,10 @@ TEST_CASE("genus, boundaries and orientability are kept") {
     REQUIRE_VALID(m);
   }
   SUBCASE("Möbius strip") {
-    halfedge_mesh m = make_mesh(mobius_strip(40, 6));
+    auto m = make_mesh(mobius_strip(40, 6));
     const std::size_t flipped = m.num_flipped_edges();
     REQUIRE(flipped > 0);
-    const simplify_result r = simplify<glm::dvec3>(m, {.target_faces = 100});
+    const simplify_result r = simplify(m, {.target_faces = 100});
     CHECK(r.reached_target);
     CHECK(euler(m) == 0);
     CHECK(m.boundary_loops().size() == 1);
@@ -106,8 +115,8 @@ TEST_CASE("genus, boundaries and orientability are kept") {
   }
   SUBCASE("Klein bottle, both costs") {
     for (simplify_cost cost : {simplify_cost::quadric, simplify_cost::edge_length}) {
-      halfedge_mesh m = make_mesh(klein_bottle(30, 20));
-      const simplify_result r = simplify<glm::dvec3>(m, {.target_faces = 150, .cost = cost});
+      auto m = make_mesh(klein_bottle(30, 20));
+      const simplify_result r = simplify(m, {.target_faces = 150, .cost = cost});
       CHECK(r.reached_target);
       CHECK(euler(m) == 0);
       CHECK(m.is_closed());
@@ -116,8 +125,8 @@ TEST_CASE("genus, boundaries and orientability are kept") {
     }
   }
   SUBCASE("randomly oriented plane: the faces' own orientations are kept") {
-    halfedge_mesh m = make_mesh(random_orientation_plane(12, 12, 3));
-    const simplify_result r = simplify<glm::dvec3>(m, {.target_faces = 60});
+    auto m = make_mesh(random_orientation_plane(12, 12, 3));
+    const simplify_result r = simplify(m, {.target_faces = 60});
     CHECK(r.reached_target);
     CHECK(euler(m) == 1);
     CHECK(is_orientable(m));
@@ -128,14 +137,14 @@ TEST_CASE("genus, boundaries and orientability are kept") {
 TEST_CASE("boundaries: held by quadric planes, or kept fixed") {
   const polygon_soup<glm::dvec3> grid = grid_plane(16, 16, true);
   SUBCASE("quadric: a flat square stays the same square") {
-    halfedge_mesh m = make_mesh(grid);
-    const simplify_result r = simplify<glm::dvec3>(m, {.target_faces = 40});
+    auto m = make_mesh(grid);
+    const simplify_result r = simplify(m, {.target_faces = 40});
     CHECK(r.reached_target);
     CHECK(r.max_error < 1e-12);  // every collapse stays in the plane and on the boundary lines
     glm::dvec3 lo(1e9), hi(-1e9);
     for (vertex_handle v : m.vertices()) {
-      lo = glm::min(lo, points<glm::dvec3>(m)[v]);
-      hi = glm::max(hi, points<glm::dvec3>(m)[v]);
+      lo = glm::min(lo, m.positions()[v]);
+      hi = glm::max(hi, m.positions()[v]);
     }
     CHECK(glm::length(lo - glm::dvec3(0, 0, 0)) < 1e-9);
     CHECK(glm::length(hi - glm::dvec3(1, 1, 0)) < 1e-9);
@@ -146,21 +155,20 @@ TEST_CASE("boundaries: held by quadric planes, or kept fixed") {
     REQUIRE_VALID(m);
   }
   SUBCASE("keep_boundary: boundary vertices neither move nor go") {
-    halfedge_mesh m = make_mesh(grid);
+    auto m = make_mesh(grid);
     std::set<std::array<double, 3>> boundary_before;
     for (vertex_handle v : m.vertices())
       if (m.is_boundary(v)) {
-        const glm::dvec3 p = points<glm::dvec3>(m)[v];
+        const glm::dvec3 p = m.positions()[v];
         boundary_before.insert({p.x, p.y, p.z});
       }
     for (simplify_cost cost : {simplify_cost::quadric, simplify_cost::edge_length}) {
-      const simplify_result r =
-          simplify<glm::dvec3>(m, {.target_faces = 70, .cost = cost, .keep_boundary = true});
+      const simplify_result r = simplify(m, {.target_faces = 70, .cost = cost, .keep_boundary = true});
       CHECK(r.reached_target);
       std::set<std::array<double, 3>> boundary_after;
       for (vertex_handle v : m.vertices())
         if (m.is_boundary(v)) {
-          const glm::dvec3 p = points<glm::dvec3>(m)[v];
+          const glm::dvec3 p = m.positions()[v];
           boundary_after.insert({p.x, p.y, p.z});
         }
       CHECK(boundary_after == boundary_before);
@@ -172,33 +180,32 @@ TEST_CASE("boundaries: held by quadric planes, or kept fixed") {
 
 TEST_CASE("stopping rules: edge length, error bound, normal constraint") {
   SUBCASE("edge length: only edges shorter than the bound are collapsed") {
-    halfedge_mesh m = make_mesh(icosphere(3));  // edges about 0.1 long
-    const simplify_result r =
-        simplify<glm::dvec3>(m, {.cost = simplify_cost::edge_length, .target_edge_length = 0.15});
+    auto m = make_mesh(icosphere(3));  // edges about 0.1 long
+    const simplify_result r = simplify(m, {.cost = simplify_cost::edge_length, .target_edge_length = 0.15});
     CHECK(r.collapses > 0);
     CHECK(r.max_error < 0.15);
     CHECK(r.reached_target);
     REQUIRE_VALID(m);
   }
   SUBCASE("quadric: error bound") {
-    halfedge_mesh m = make_mesh(icosphere(3));
-    const simplify_result r = simplify<glm::dvec3>(m, {.max_error = 3e-4});
+    auto m = make_mesh(icosphere(3));
+    const simplify_result r = simplify(m, {.max_error = 3e-4});
     CHECK(r.collapses > 0);
     CHECK(r.max_error <= 3e-4);
     CHECK(m.num_faces() > 100);
     REQUIRE_VALID(m);
   }
   SUBCASE("a tiny normal angle refuses most collapses on a sphere") {
-    halfedge_mesh m = make_mesh(icosphere(3));
-    const simplify_result r = simplify<glm::dvec3>(m, {.target_faces = 100, .max_normal_angle = 0.5});
+    auto m = make_mesh(icosphere(3));
+    const simplify_result r = simplify(m, {.target_faces = 100, .max_normal_angle = 0.5});
     CHECK(r.refusals(edit_refusal::normal_flip) > 0);
     CHECK_FALSE(r.reached_target);
     CHECK(r.faces_before - r.faces_after == 2 * r.collapses);
     REQUIRE_VALID(m);
   }
   SUBCASE("no target: as far as the checks allow, down to a tetrahedron-like minimum") {
-    halfedge_mesh m = make_mesh(icosphere(2));
-    const simplify_result r = simplify<glm::dvec3>(m, {.max_normal_angle = 180});
+    auto m = make_mesh(icosphere(2));
+    const simplify_result r = simplify(m, {.max_normal_angle = 180});
     CHECK(m.num_faces() < 20);
     CHECK(euler(m) == 2);
     CHECK(r.refused_total() > 0);
@@ -207,10 +214,10 @@ TEST_CASE("stopping rules: edge length, error bound, normal constraint") {
 }
 
 TEST_CASE("face properties survive simplification and garbage collection") {
-  halfedge_mesh m = make_mesh(icosphere(3));
+  auto m = make_mesh(icosphere(3));
   auto id = m.add_face_property<int>("f:id", -1);
   for (face_handle f : m.faces()) id[f] = static_cast<int>(f.idx());
-  simplify<glm::dvec3>(m, {.target_faces = 200});
+  simplify(m, {.target_faces = 200});
   id = m.get_face_property<int>("f:id");
   std::set<int> ids;
   for (face_handle f : m.faces()) {
@@ -222,23 +229,23 @@ TEST_CASE("face properties survive simplification and garbage collection") {
 
 TEST_CASE("bad input is refused before anything changes") {
   SUBCASE("quads") {
-    halfedge_mesh m = make_mesh(hexahedron());
-    CHECK_THROWS_AS(simplify<glm::dvec3>(m, {.target_faces = 2}), error);
+    auto m = make_mesh(hexahedron());
+    CHECK_THROWS_AS(simplify(m, {.target_faces = 2}), error);
     CHECK(m.num_faces() == 6);
   }
   SUBCASE("a non-finite position") {
-    halfedge_mesh m = make_mesh(icosphere(1));
-    points<glm::dvec3>(m)[vertex_handle(3)].y = std::numeric_limits<double>::quiet_NaN();
-    CHECK_THROWS_AS(simplify<glm::dvec3>(m, {.target_faces = 10}), error);
+    auto m = make_mesh(icosphere(1));
+    m.positions()[vertex_handle(3)].y = std::numeric_limits<double>::quiet_NaN();
+    CHECK_THROWS_AS(simplify(m, {.target_faces = 10}), error);
     CHECK(m.num_faces() == 80);
   }
-  SUBCASE("no positions of that type") {
-    halfedge_mesh m = make_mesh(icosphere(1));
-    using float_array = std::array<float, 3>;
-    CHECK_THROWS_AS(simplify<float_array>(m, {.target_faces = 10}), error);
+  SUBCASE("positions of another type, or none: refused at compile time") {
+    CHECK(can_simplify<surface_mesh<glm::dvec3>, glm::dvec3>);
+    CHECK_FALSE(can_simplify<surface_mesh<glm::dvec3>, std::array<float, 3>>);
+    CHECK_FALSE(can_simplify<cellforge::halfedge_mesh, glm::dvec3>);
   }
   SUBCASE("bad options") {
-    halfedge_mesh m = make_mesh(icosphere(1));
+    auto m = make_mesh(icosphere(1));
     const double nan = std::numeric_limits<double>::quiet_NaN();
     for (const simplify_options& o :
          {simplify_options{.max_normal_angle = 0}, simplify_options{.max_normal_angle = 181},
@@ -247,8 +254,10 @@ TEST_CASE("bad input is refused before anything changes") {
           simplify_options{.max_error = -1}, simplify_options{.max_error = nan},
           simplify_options{.boundary_weight = -1}, simplify_options{.max_rounds = 0},
           simplify_options{.cost = simplify_cost::edge_length, .target_edge_length = nan}}) {
-      CHECK_THROWS_AS(simplify<glm::dvec3>(m, o), error);
+      CHECK_THROWS_AS(simplify(m, o), error);
       CHECK(m.num_faces() == 80);
     }
   }
 }
+
+}  // namespace simplification_tests

@@ -25,6 +25,9 @@
 #include "cellforge/smooth/smooth_edges.hpp"
 #include "test_support.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace smooth_edges_tests {
+
 namespace {
 
 using namespace cellforge;  // test file only
@@ -104,8 +107,8 @@ glm::dmat4 some_rigid_motion() {
 // Every curve: exact ends, tangents perpendicular to the normals used, and the axis form (when
 // present) describing the same curve as the Bézier. `forced_axis`: the seed's form was forced, and
 // an end tangent pointing back along the axis is then followed backwards (same line, other way).
-void check_curves(const halfedge_mesh& m, const smooth_result& r, bool forced_axis = false) {
-  const auto pts = points<glm::dvec3>(m);
+void check_curves(const surface_mesh<glm::dvec3>& m, const smooth_result& r, bool forced_axis = false) {
+  const auto pts = m.positions();
   REQUIRE(r.curves.size() == m.num_edges());
   REQUIRE(r.ends.size() == r.curves.size());
   for (std::size_t i = 0; i < r.curves.size(); ++i) {
@@ -185,7 +188,7 @@ TEST_CASE("edge_curve: a quarter circle is parametric and close to the arc") {
 }
 
 TEST_CASE("continuous surfaces of a cube, a sphere, and at angle 0") {
-  const halfedge_mesh cube = make_mesh(box_grid(3, 3, 3, {1, 1, 1}));
+  const auto cube = make_mesh(box_grid(3, 3, 3, {1, 1, 1}));
   const solid_geometry g = solid_geometry_of(cube);
   const surface_partition p = continuous_surfaces(cube, g.face_normals, 45);
   REQUIRE(p.surfaces.size() == 6);
@@ -195,7 +198,7 @@ TEST_CASE("continuous surfaces of a cube, a sphere, and at angle 0") {
     CHECK(s.l1_edges.size() == 12);
     CHECK(s.interior_vertices.size() == 4);
   }
-  const halfedge_mesh sphere = make_mesh(uv_sphere(16, 8));
+  const auto sphere = make_mesh(uv_sphere(16, 8));
   const solid_geometry gs = solid_geometry_of(sphere);
   const surface_partition ps = continuous_surfaces(sphere, gs.face_normals, 45);
   REQUIRE(ps.surfaces.size() == 1);
@@ -206,7 +209,7 @@ TEST_CASE("continuous surfaces of a cube, a sphere, and at angle 0") {
 
 TEST_CASE("UV sphere 16x8: curve midpoints are at least 5x closer to the sphere than the chords") {
   for (bool triangles : {true, false}) {
-    const halfedge_mesh m = make_mesh(uv_sphere(16, 8, triangles));
+    const auto m = make_mesh(uv_sphere(16, 8, triangles));
     for (curve_form f : all_forms) {
       CAPTURE(triangles);
       CAPTURE(static_cast<int>(f));
@@ -236,7 +239,7 @@ TEST_CASE("edges between coplanar faces stay straight (split cube, moved box)") 
                         transformed(box_grid(1, 2, 3, {1, 2, 3}), some_rigid_motion()),
                         transformed(box_grid(2, 1, 4, {0.5, 0.1, 3}), some_rigid_motion())};
   for (const soup& s : boxes) {
-    const halfedge_mesh m = make_mesh(s);
+    const auto m = make_mesh(s);
     for (curve_form f : all_forms)
       for (const smooth_options& base : {smooth_options{}, seed_smooth_options()}) {
         const smooth_result r = smooth_edges(m, with_form(f, base));
@@ -251,8 +254,8 @@ TEST_CASE("edges between coplanar faces stay straight (split cube, moved box)") 
 }
 
 TEST_CASE("cylinder: rims become circle arcs with smooth_creases, stay straight with the seed's rules") {
-  const halfedge_mesh m = make_mesh(cylinder(40, 1, true, false));
-  const auto pts = points<glm::dvec3>(m);
+  const auto m = make_mesh(cylinder(40, 1, true, false));
+  const auto pts = m.positions();
   auto rim_errors = [&](const smooth_result& r) {
     double chord = 0, curve = 0;
     int n = 0;
@@ -286,7 +289,7 @@ TEST_CASE("cylinder: rims become circle arcs with smooth_creases, stay straight 
 }
 
 TEST_CASE("octahedron at 90 degrees: its edges become quarter circles in parametric form") {
-  const halfedge_mesh m = make_mesh(octahedron());
+  const auto m = make_mesh(octahedron());
   smooth_options o;
   o.angle_deg = 90;
   const smooth_result r = smooth_edges(m, o);
@@ -305,7 +308,7 @@ TEST_CASE("octahedron at 90 degrees: its edges become quarter circles in paramet
 }
 
 TEST_CASE("bad input is refused with a clear error") {
-  const halfedge_mesh m = make_mesh(uv_sphere(8, 4));
+  const auto m = make_mesh(uv_sphere(8, 4));
   auto category = [&](auto&& call) {
     try {
       call();
@@ -361,7 +364,7 @@ TEST_CASE("bad input is refused with a clear error") {
 }
 
 TEST_CASE("readjustment: converges, midpoints lie on their curves, the budget and the averaging fallback") {
-  const halfedge_mesh m = make_mesh(torus(12, 14, 1, 0.3, false));
+  const auto m = make_mesh(torus(12, 14, 1, 0.3, false));
   const smooth_result r = smooth_edges(m);
   REQUIRE(r.converged);
   CHECK_FALSE(r.averaged);
@@ -394,12 +397,12 @@ TEST_CASE("readjustment: converges, midpoints lie on their curves, the budget an
 
 TEST_CASE_TEMPLATE("point types give the same smoothing", P, glm::dvec3, std::array<float, 3>,
                    test_support::user_point) {
-  const halfedge_mesh m = make_mesh(uv_sphere<P>(16, 8));
-  const smooth_result r = smooth_edges<P>(m);
+  const auto m = make_mesh(uv_sphere<P>(16, 8));
+  const smooth_result r = smooth_edges(m);
   const auto [chord, curve] = radial_errors(r);
   CHECK(curve * 5 < chord);
   CHECK(r.num_cubic == m.num_edges());
-  const auto pts = points<P>(m);
+  const auto pts = m.positions();
   for (const edge_curve& c : r.curves) {
     CHECK(c.point(0) == to_dvec3(pts[vertex_handle(c.v0)]));
     CHECK(c.point(1) == to_dvec3(pts[vertex_handle(c.v1)]));
@@ -409,7 +412,7 @@ TEST_CASE_TEMPLATE("point types give the same smoothing", P, glm::dvec3, std::ar
 TEST_CASE("the cell complex overload matches the mesh call") {
   for (const soup& s :
        {uv_sphere(12, 6, false), cylinder(16, 2, true, false), box_grid(2, 2, 2, {1, 2, 1})}) {
-    const halfedge_mesh m = make_mesh(s);
+    const auto m = make_mesh(s);
     const cell_complex cc = mesh_to_cell_complex(m);
     const smooth_result rm = smooth_edges(m), rc = smooth_edges(cc, cell_volume(0));
     REQUIRE(rc.curves.size() == rm.curves.size());
@@ -439,7 +442,7 @@ TEST_CASE("the Table 7 stand-ins have the seed's edge counts and smooth") {
   REQUIRE(solids.size() == 4);
   for (const auto& s : solids) {
     CAPTURE(s.name);
-    const halfedge_mesh m = make_mesh(s.soup);
+    const auto m = make_mesh(s.soup);
     CHECK(std::abs(static_cast<double>(m.num_edges()) - static_cast<double>(s.seed_edges)) <= 1);
     const smooth_result r = smooth_edges(m);
     CHECK(r.converged);
@@ -459,7 +462,7 @@ TEST_CASE("smooth_table7_solid: figures 1..4 as meshes, others refused") {
 
 TEST_CASE("seed rules: cubic between interior vertices, quadratic with one, straight with none") {
   // A 40-gon cylinder in 3 bands: interior vertices are the two middle rings (§6.2).
-  const halfedge_mesh m = make_mesh(cylinder(40, 3, true, false));
+  const auto m = make_mesh(cylinder(40, 3, true, false));
   const smooth_result seed = smooth_edges(m, seed_smooth_options());
   check_curves(m, seed);
   CHECK(seed.num_cubic == 40 + 80);  // middle band's side edges + the middle rings
@@ -472,7 +475,7 @@ TEST_CASE("seed rules: cubic between interior vertices, quadratic with one, stra
 
 TEST_CASE("a moved sphere smooths as well as the axis-aligned one") {
   const soup s = transformed(scaled(uv_sphere(16, 8), glm::dvec3(2.0)), some_rigid_motion());
-  const halfedge_mesh m = make_mesh(s);
+  const auto m = make_mesh(s);
   const glm::dvec3 centre = glm::dvec3(some_rigid_motion()[3]);
   for (curve_form f : all_forms) {
     const smooth_result r = smooth_edges(m, with_form(f));
@@ -488,7 +491,7 @@ TEST_CASE("a moved sphere smooths as well as the axis-aligned one") {
 
 TEST_CASE("tolerances are relative: the same smoothing at 1e-6 and 1e6") {
   for (double scale : {1e-6, 1e6}) {
-    const halfedge_mesh m = make_mesh(scaled(uv_sphere(16, 8), glm::dvec3(scale)));
+    const auto m = make_mesh(scaled(uv_sphere(16, 8), glm::dvec3(scale)));
     const smooth_result r = smooth_edges(m);
     CHECK(r.converged);
     CHECK(r.num_cubic == m.num_edges());
@@ -504,7 +507,7 @@ TEST_CASE("tolerances are relative: the same smoothing at 1e-6 and 1e6") {
 TEST_CASE("triangulated cylinder with fan caps: rims are arcs, cap spokes and side edges straight") {
   // The diagonals tilt the side's vertex normals a little (the seed's weighting), so the arcs are
   // checked on average, like the sphere.
-  const halfedge_mesh m = make_mesh(cylinder(24, 2, true, true));
+  const auto m = make_mesh(cylinder(24, 2, true, true));
   const smooth_result r = smooth_edges(m);
   check_curves(m, r);
   CHECK(r.num_surfaces == 3);
@@ -549,7 +552,7 @@ TEST_CASE("a surface meeting itself at a sharp edge: crease_inside_surfaces keep
   auto id = [&](int i, int j) { return static_cast<std::uint32_t>((i % around) * k + (j % k)); };
   for (int i = 0; i < around; ++i)
     for (int j = 0; j < k; ++j) s.add_face({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
-  const halfedge_mesh m = make_mesh(s);
+  const auto m = make_mesh(s);
   const smooth_result ours = smooth_edges(m);
   check_curves(m, ours);
   CHECK(ours.num_surfaces == 1);
@@ -580,7 +583,7 @@ TEST_CASE("noisy solids: every curve finite, exact at its ends, perpendicular to
   for (int round = 0; round < 4; ++round) {
     soup s = round % 2 ? icosphere(2) : torus(10, 8, 1, 0.4, round == 2);
     for (auto& p : s.points) p += glm::dvec3(jitter(rng), jitter(rng), jitter(rng));
-    const halfedge_mesh m = make_mesh(s);
+    const auto m = make_mesh(s);
     for (curve_form f : all_forms)
       for (double angle : {10.0, 45.0, 90.0}) {
         smooth_options o = with_form(f);
@@ -594,3 +597,5 @@ TEST_CASE("noisy solids: every curve finite, exact at its ends, perpendicular to
       }
   }
 }
+
+}  // namespace smooth_edges_tests

@@ -19,6 +19,9 @@
 #include "cellforge/thin/thin_points.hpp"
 #include "test_support.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace thin_bunny_tests {
+
 #ifndef CELLFORGE_BUNNY_FILE
 #define CELLFORGE_BUNNY_FILE ""  // e.g. compiled outside CMake (test-all's clang stage)
 #endif
@@ -49,7 +52,7 @@ TEST_CASE("thin points: the Stanford bunny with threshold 1 finishes with well-f
   if (!have_bunny(path)) return;
 
   cellforge::build_report report;
-  const cellforge::halfedge_mesh m = cellforge::io::read_mesh<glm::dvec3>(path, &report);
+  const auto m = cellforge::io::read_mesh<glm::dvec3>(path, &report);
   REQUIRE_VALID(m);
   // bunny@1.0.1 (pinned in fetch-bunny.sh): a closed genus-0 surface, nothing split.
   CHECK(report.split_vertices.empty());
@@ -60,7 +63,7 @@ TEST_CASE("thin points: the Stanford bunny with threshold 1 finishes with well-f
 
   cellforge::thin_options options;
   options.selection_cap = 1;
-  const cellforge::thin_result r = cellforge::find_thin_points<glm::dvec3>(m, options);
+  const cellforge::thin_result r = cellforge::find_thin_points(m, options);
 
   CHECK(std::abs(glm::length(r.axis_direction) - 1.0) < 1e-9);
   CHECK(r.start_face < m.num_faces());
@@ -68,7 +71,7 @@ TEST_CASE("thin points: the Stanford bunny with threshold 1 finishes with well-f
   for (const double l : r.cycle_lengths) CHECK((std::isfinite(l) && l >= 0));
   REQUIRE(!r.loops.empty());
 
-  const auto pts = cellforge::points<glm::dvec3>(m);
+  const auto pts = m.positions();
   for (std::size_t i = 0; i < r.loops.size(); ++i) {
     const cellforge::thin_loop& loop = r.loops[i];
     INFO("loop " << i << " of " << r.loops.size() << ", cycle " << loop.cycle);
@@ -99,3 +102,5 @@ TEST_CASE("thin points: the Stanford bunny with threshold 1 finishes with well-f
     CHECK(loop.length == doctest::Approx(length).epsilon(1e-9));
   }
 }
+
+}  // namespace thin_bunny_tests

@@ -23,6 +23,9 @@
 #include "cellforge/thin/thin_points.hpp"
 #include "test_support.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace thin_points_tests {
+
 using cellforge::error_category;
 using cellforge::thin_options;
 using cellforge::thin_result;
@@ -71,10 +74,10 @@ void check_at_neck(const cellforge::thin_loop& loop, const cellforge::thin_sampl
 }
 
 /// The loop is a closed chain on the mesh: consecutive vertices joined by the listed edges.
-void check_chain(const cellforge::halfedge_mesh& m, const cellforge::thin_loop& loop) {
+void check_chain(const cellforge::surface_mesh<glm::dvec3>& m, const cellforge::thin_loop& loop) {
   REQUIRE(loop.vertices.size() == loop.edges.size());
   REQUIRE(loop.vertices.size() >= 3);
-  const auto pts = cellforge::points<glm::dvec3>(m);
+  const auto pts = m.positions();
   double length = 0;
   for (std::size_t i = 0; i < loop.vertices.size(); ++i) {
     const cellforge::vertex_handle a(loop.vertices[i]), b(loop.vertices[(i + 1) % loop.vertices.size()]);
@@ -100,8 +103,8 @@ void check_same_run(const thin_result& a, const thin_result& b) {
   }
 }
 
-cellforge::halfedge_mesh mesh_of(const cellforge::polygon_soup<glm::dvec3>& soup) {
-  cellforge::halfedge_mesh m = cellforge::make_mesh(soup);
+cellforge::surface_mesh<glm::dvec3> mesh_of(const cellforge::polygon_soup<glm::dvec3>& soup) {
+  auto m = cellforge::make_mesh(soup);
   REQUIRE_VALID(m);
   return m;
 }
@@ -127,7 +130,7 @@ TEST_CASE("solid_of_revolution: closed, valid, outward, with caps or poles") {
   for (const auto* profile : {&capped, &poles, &downward})
     for (const bool tri : {false, true}) {
       const auto soup = cellforge::solid_of_revolution<glm::dvec3>(*profile, 10, tri);
-      const cellforge::halfedge_mesh m = mesh_of(soup);
+      const auto m = mesh_of(soup);
       CHECK(m.is_closed());
       CHECK(m.is_consistently_oriented());
       CHECK(test_support::euler(m) == 2);
@@ -160,7 +163,7 @@ TEST_CASE("thin samples: table 5 solids have about the seed's face counts and on
             static_cast<std::size_t>((tri ? tris : quads)[static_cast<std::size_t>(ex - 1)]));
       CHECK(s.neck_ring > 0);
       CHECK(s.neck_perimeter > 0);
-      const cellforge::halfedge_mesh m = mesh_of(s.soup);
+      const auto m = mesh_of(s.soup);
       CHECK(m.is_closed());
       CHECK(m.is_consistently_oriented());
       CHECK(cellforge::signed_volume(s.soup) > 0);
@@ -177,7 +180,7 @@ TEST_CASE("thin points: the strongest and the thinnest loop lie at the neck of d
     for (const bool tri : {false, true}) {
       const auto s = sample_of(sh, tri);
       const glm::dmat4 motion = random_motion(rng);
-      const cellforge::halfedge_mesh m = mesh_of(cellforge::transformed(s.soup, motion));
+      const auto m = mesh_of(cellforge::transformed(s.soup, motion));
       // Cap 1 is greedy enough to spiral along a triangle strip instead of ring by ring
       // (the seed saw triangles fare worse); quads keep their rings even then.
       for (const int cap : tri ? std::vector<int>{40, 100} : std::vector<int>{1, 40, 100}) {
@@ -212,7 +215,7 @@ TEST_CASE("thin points: every table-5 solid reports exactly its necks (prominenc
         CAPTURE(s.name);
         CAPTURE(tri);
         CAPTURE(cap);
-        const cellforge::halfedge_mesh m = mesh_of(s.soup);
+        const auto m = mesh_of(s.soup);
         thin_options o;
         o.selection_cap = cap;
         const thin_result r = cellforge::find_thin_points(m, o);
@@ -241,7 +244,7 @@ TEST_CASE(
           CAPTURE(segments);
           CAPTURE(rings);
           CAPTURE(tri);
-          const cellforge::halfedge_mesh m = mesh_of(s.soup);
+          const auto m = mesh_of(s.soup);
           for (const int cap : {1, 40})
             for (const bool clusters : {false, true}) {  // triangles clustered (8.2) too
               CAPTURE(cap);
@@ -261,7 +264,7 @@ TEST_CASE(
 TEST_CASE("thin points: without the ring-wide envelope, partly grown rings look like weak necks") {
   // Why the rims are read from an envelope one ring wide: with envelope_rings = 0 a coarse
   // cylinder shows its ring completions as dips.
-  const cellforge::halfedge_mesh m = mesh_of(cellforge::thin_cylinder(16, 9, false).soup);
+  const auto m = mesh_of(cellforge::thin_cylinder(16, 9, false).soup);
   thin_options o;
   const thin_result with = cellforge::find_thin_points(m, o);
   CHECK(with.ring_cycles == doctest::Approx(16).epsilon(1e-9));  // 16 quads per ring
@@ -280,7 +283,7 @@ TEST_CASE("thin points: fast and faithful modes give identical cycle lengths and
           CAPTURE(tri);
           CAPTURE(cap);
           CAPTURE(clusters);
-          const cellforge::halfedge_mesh m = mesh_of(s.soup);
+          const auto m = mesh_of(s.soup);
           thin_options o;
           o.selection_cap = cap;
           o.cluster_faces = clusters;
@@ -294,10 +297,10 @@ TEST_CASE("thin points: fast and faithful modes give identical cycle lengths and
 
 TEST_CASE("selection growing: every cycle's loop is the boundary of a selection of that size") {
   const auto s = cellforge::thin_dumbbell(8, 11, true);
-  const cellforge::halfedge_mesh m = mesh_of(s.soup);
+  const auto m = mesh_of(s.soup);
   const thin_result r = cellforge::find_thin_points(m);
   // Cycle 1 is the start face alone: its perimeter.
-  const auto pts = cellforge::points<glm::dvec3>(m);
+  const auto pts = m.positions();
   double perimeter = 0;
   for (const auto h : m.halfedges_around(cellforge::face_handle(r.start_face)))
     perimeter += glm::length(pts[m.head(h)] - pts[m.tail(h)]);
@@ -310,7 +313,7 @@ TEST_CASE("selection growing: every cycle's loop is the boundary of a selection 
 TEST_CASE(
     "thin points: caps 1 and 1000 both finish; a larger cap never finds a longer least loop at the neck") {
   const auto s = cellforge::thin_table5_solid(1, true);  // 216 triangles
-  const cellforge::halfedge_mesh m = mesh_of(s.soup);
+  const auto m = mesh_of(s.soup);
   thin_options o;
   o.selection_cap = 1;
   const thin_result one = cellforge::find_thin_points(m, o);
@@ -330,7 +333,7 @@ TEST_CASE("thin points: the seed's detector runs, smooths alternating triangle v
   for (const bool tri : {false, true}) {
     CAPTURE(tri);
     const auto s = cellforge::thin_dumbbell(12, 21, tri);
-    const cellforge::halfedge_mesh m = mesh_of(s.soup);
+    const auto m = mesh_of(s.soup);
     thin_options o;
     o.detection = cellforge::thin_detection::seed;
     const thin_result r = cellforge::find_thin_points(m, o);
@@ -381,7 +384,7 @@ TEST_CASE("central axis: a rotated elongated solid's axis within 1 degree; the f
       const auto s =
           trial % 2 == 0 ? cellforge::thin_dumbbell(12, 22, tri) : cellforge::thin_hourglass(12, 24, tri);
       const glm::dmat4 motion = random_motion(rng);
-      const cellforge::halfedge_mesh m = mesh_of(cellforge::transformed(s.soup, motion));
+      const auto m = mesh_of(cellforge::transformed(s.soup, motion));
       const glm::dvec3 truth = glm::normalize(glm::dvec3(motion * glm::dvec4(0, 0, 1, 0)));
       for (const double tolerance : {0.1, 0.0}) {
         thin_options o;
@@ -397,9 +400,9 @@ TEST_CASE("central axis: a rotated elongated solid's axis within 1 degree; the f
     }
   // The axis-aligned solid: symmetric splits fit every line exactly; the long one must win.
   for (const bool tri : {false, true}) {
-    const cellforge::halfedge_mesh m = mesh_of(cellforge::thin_cylinder(12, 31, tri).soup);
+    const auto m = mesh_of(cellforge::thin_cylinder(12, 31, tri).soup);
     std::vector<glm::dvec3> pts;
-    for (const auto v : m.vertices()) pts.push_back(cellforge::points<glm::dvec3>(m)[v]);
+    for (const auto v : m.vertices()) pts.push_back(m.positions()[v]);
     const auto axis = cellforge::central_axis(pts);
     CHECK(std::abs(axis.direction.z) > std::cos(3.14159265358979 / 180));
     CHECK(axis.initial_split == 2);
@@ -408,9 +411,9 @@ TEST_CASE("central axis: a rotated elongated solid's axis within 1 degree; the f
 
 TEST_CASE("thin points: bad input gives a clear error") {
   const auto s = cellforge::thin_dumbbell(8, 11, false);
-  const cellforge::halfedge_mesh good = mesh_of(s.soup);
+  const auto good = mesh_of(s.soup);
   // Open: an uncapped cylinder.
-  const cellforge::halfedge_mesh open = mesh_of(cellforge::cylinder<glm::dvec3>(8, 4, false, false));
+  const auto open = mesh_of(cellforge::cylinder<glm::dvec3>(8, 4, false, false));
   require_error(error_category::topology, "open (16 boundary edges)",
                 [&] { (void)cellforge::find_thin_points(open); });
   // Degenerate: a tetrahedron with three collinear vertices.
@@ -420,20 +423,20 @@ TEST_CASE("thin points: bad input gives a clear error") {
   flat.add_face({0, 1, 3});
   flat.add_face({1, 2, 3});
   flat.add_face({2, 0, 3});
-  const cellforge::halfedge_mesh degenerate = mesh_of(flat);
+  const auto degenerate = mesh_of(flat);
   require_error(error_category::invalid_input, "face 0 is degenerate",
                 [&] { (void)cellforge::find_thin_points(degenerate); });
   // NaN coordinate.
   auto nan_soup = s.soup;
   nan_soup.points[3].y = std::nan("");
-  const cellforge::halfedge_mesh nan_mesh = cellforge::make_mesh(nan_soup);
+  const auto nan_mesh = cellforge::make_mesh(nan_soup);
   require_error(error_category::invalid_input, "vertex 3 has a NaN",
                 [&] { (void)cellforge::find_thin_points(nan_mesh); });
   // Not consistently oriented: one face reversed.
   auto flipped = s.soup;
   std::reverse(flipped.face_vertices.begin() + flipped.face_offsets[5],
                flipped.face_vertices.begin() + flipped.face_offsets[6]);
-  const cellforge::halfedge_mesh unoriented = cellforge::make_mesh(flipped);
+  const auto unoriented = cellforge::make_mesh(flipped);
   require_error(error_category::topology, "not consistently oriented",
                 [&] { (void)cellforge::find_thin_points(unoriented); });
   // Two separate solids.
@@ -446,7 +449,7 @@ TEST_CASE("thin points: bad input gives a clear error") {
     for (const std::uint32_t v : shifted.face(f)) face.push_back(v + base);
     two.add_face(face);
   }
-  const cellforge::halfedge_mesh parts = mesh_of(two);
+  const auto parts = mesh_of(two);
   require_error(error_category::topology, "more than one connected part",
                 [&] { (void)cellforge::find_thin_points(parts); });
   // Options out of range.
@@ -485,8 +488,8 @@ TEST_CASE("thin points: bad input gives a clear error") {
 TEST_CASE("thin points: the cell-complex overload gives the mesh call's loops in cell ids") {
   for (const bool tri : {false, true}) {
     const auto s = cellforge::thin_dumbbell(10, 15, tri);
-    const cellforge::halfedge_mesh m = mesh_of(s.soup);
-    const cellforge::cell_complex cc = cellforge::mesh_to_cell_complex<glm::dvec3>(m);
+    const auto m = mesh_of(s.soup);
+    const cellforge::cell_complex cc = cellforge::mesh_to_cell_complex(m);
     const thin_result a = cellforge::find_thin_points(m);
     const thin_result b = cellforge::find_thin_points(cc, cellforge::cell_volume(0));
     CHECK(a.cycle_lengths.size() == b.cycle_lengths.size());
@@ -512,8 +515,8 @@ TEST_CASE("thin points: the cell-complex overload gives the mesh call's loops in
 
 TEST_CASE_TEMPLATE("thin points: other point types", P, glm::dvec3, std::array<float, 3>) {
   const auto s = cellforge::thin_dumbbell<P>(12, 21, false);
-  const cellforge::halfedge_mesh m = cellforge::make_mesh(s.soup);
-  const thin_result r = cellforge::find_thin_points<P>(m);
+  const auto m = cellforge::make_mesh(s.soup);
+  const thin_result r = cellforge::find_thin_points(m);
   REQUIRE(!r.loops.empty());
   CHECK(std::abs(centroid(r.loops.front()).z - s.neck_z) < 1e-5);
   CHECK(r.loops.front().length == doctest::Approx(s.neck_perimeter).epsilon(1e-5));
@@ -530,7 +533,7 @@ TEST_CASE(
       cellforge::spline_tube<glm::dvec3>()};
   for (std::size_t i = 0; i < solids.size(); ++i) {
     CAPTURE(i);
-    const cellforge::halfedge_mesh m = mesh_of(solids[i]);
+    const auto m = mesh_of(solids[i]);
     for (const bool clusters : {false, true}) {
       CAPTURE(clusters);
       thin_options o;
@@ -606,7 +609,7 @@ TEST_CASE("thin clusters (8.2): clustered triangles find the neck at caps 1 and 
   for (const neck_shape& sh : neck_shapes) {
     const auto s = sample_of(sh, true);
     const glm::dmat4 motion = random_motion(rng);
-    const cellforge::halfedge_mesh m = mesh_of(cellforge::transformed(s.soup, motion));
+    const auto m = mesh_of(cellforge::transformed(s.soup, motion));
     for (const int cap : {1, 40}) {
       CAPTURE(s.name);
       CAPTURE(sh.segments);
@@ -632,7 +635,7 @@ TEST_CASE("thin clusters (8.2): clustered triangles find the neck at caps 1 and 
 TEST_CASE("thin clusters: quad meshes are unchanged by the option (nothing to pair)") {
   for (int ex = 1; ex <= 6; ++ex) {
     CAPTURE(ex);
-    const cellforge::halfedge_mesh m = mesh_of(cellforge::thin_table5_solid(ex, false).soup);
+    const auto m = mesh_of(cellforge::thin_table5_solid(ex, false).soup);
     thin_options o;
     const thin_result plain = cellforge::find_thin_points(m, o);
     o.cluster_faces = true;
@@ -642,3 +645,5 @@ TEST_CASE("thin clusters: quad meshes are unchanged by the option (nothing to pa
     check_same_run(clustered, plain);
   }
 }
+
+}  // namespace thin_points_tests

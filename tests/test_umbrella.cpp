@@ -14,6 +14,10 @@
 #include "cellforge/io/off.hpp"
 #include "cellforge/io/ply.hpp"
 #include "cellforge/io/svg.hpp"
+#include "cellforge/wireframe/sample_models.hpp"
+
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace umbrella_tests {
 
 TEST_CASE("umbrella: the main job on two cubes sharing a face") {
   const cellforge::sample_model model = cellforge::sample_two_cubes();
@@ -28,3 +32,5 @@ TEST_CASE("umbrella: the main job on two cubes sharing a face") {
   CHECK(back.num_volumes() == 2);
   CHECK(back.num_edges() == r.cells.num_edges());
 }
+
+}  // namespace umbrella_tests

@@ -13,6 +13,9 @@
 #include "cellforge/wireframe/sample_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace wireframe_bad_input_tests {
+
 using namespace cellforge;
 
 namespace {
@@ -293,3 +296,5 @@ TEST_CASE("bad input: diagnostics, and the right complex anyway") {
     CHECK(validate(r.cells).ok());
   }
 }
+
+}  // namespace wireframe_bad_input_tests

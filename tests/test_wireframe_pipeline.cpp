@@ -14,6 +14,9 @@
 #include "cellforge/wireframe/sample_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace wireframe_pipeline_tests {
+
 using namespace cellforge;
 
 namespace {
@@ -228,3 +231,5 @@ TEST_CASE("pipeline: a user's wireframe type through wireframe_traits") {
   CHECK(same_faces(r.input.faces, r2.input.faces));
   CHECK(r2.input.volumes.size() == 1);
 }
+
+}  // namespace wireframe_pipeline_tests

@@ -15,6 +15,9 @@
 #include "cellforge/wireframe/volume_finder.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace wireframe_stages_tests {
+
 using namespace cellforge;
 
 TEST_CASE("stages: reading labels vertices with incident edges and directions (4.1)") {
@@ -220,3 +223,5 @@ TEST_CASE("stages: volumes and relations agree with the cell complex's rotation 
       CHECK(r.relations.outward[v].size() == r.volume.volumes[v].size());
   }
 }
+
+}  // namespace wireframe_stages_tests

@@ -34,6 +34,9 @@
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 #include "wireframe_sweep.hpp"
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace wireframe_sweep_tests {
+
 namespace {
 
 using cellforge::sample_model;
@@ -603,3 +606,5 @@ TEST_CASE("reading: the same answer at scale 1e-6 and 1e6 after a rigid motion")
   }
   CHECK(seen.size() + 1 == wireframe_sweep::sweep_families().size());
 }
+
+}  // namespace wireframe_sweep_tests

@@ -8,7 +8,7 @@
 #include "cellforge/core/wireframe.hpp"
 
 // A CAD codebase's own graph: named nodes and edges that refer to node names.
-namespace cad {
+namespace traits_cad {
 struct node {
   std::string name;
   float x, y, z;
@@ -18,29 +18,32 @@ struct graph {
   std::vector<std::pair<std::string, std::string>> links;
   std::map<std::string, std::size_t> index;  // name -> position in nodes
 };
-}  // namespace cad
+}  // namespace traits_cad
 
 template <>
-struct cellforge::wireframe_traits<cad::graph> {
+struct cellforge::wireframe_traits<traits_cad::graph> {
   using point_type = std::array<float, 3>;
-  static std::size_t num_vertices(const cad::graph& g) { return g.nodes.size(); }
-  static point_type position(const cad::graph& g, std::size_t v) {
+  static std::size_t num_vertices(const traits_cad::graph& g) { return g.nodes.size(); }
+  static point_type position(const traits_cad::graph& g, std::size_t v) {
     return {g.nodes[v].x, g.nodes[v].y, g.nodes[v].z};
   }
-  static std::size_t num_edges(const cad::graph& g) { return g.links.size(); }
-  static std::array<std::size_t, 2> endpoints(const cad::graph& g, std::size_t e) {
+  static std::size_t num_edges(const traits_cad::graph& g) { return g.links.size(); }
+  static std::array<std::size_t, 2> endpoints(const traits_cad::graph& g, std::size_t e) {
     return {g.index.at(g.links[e].first), g.index.at(g.links[e].second)};
   }
 };
 
+// Own namespace: the test files of a group are compiled as one translation unit.
+namespace wireframe_traits_tests {
+
 struct not_a_graph {};
-static_assert(cellforge::Wireframe<cad::graph>);
+static_assert(cellforge::Wireframe<traits_cad::graph>);
 static_assert(cellforge::Wireframe<cellforge::wireframe<glm::dvec3>>);
 static_assert(!cellforge::Wireframe<not_a_graph>);
 static_assert(!cellforge::Wireframe<std::vector<int>>);
 
 TEST_CASE("a user's graph type adapts with one specialisation") {
-  cad::graph g;
+  traits_cad::graph g;
   const char* names[] = {"a", "b", "c", "d"};
   const float xyz[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   for (int i = 0; i < 4; ++i) {
@@ -58,3 +61,5 @@ TEST_CASE("a user's graph type adapts with one specialisation") {
   CHECK(w2.points[1] == std::array<float, 3>{1, 0, 0});
   CHECK(w2.edges == w.edges);
 }
+
+}  // namespace wireframe_traits_tests

@@ -949,8 +949,8 @@ inline cellforge::sample_model random_polytope(std::size_t n, bool box, random_s
     const glm::dvec3 p(rng.between(-1, 1), rng.between(-1, 1), rng.between(-1, 1));
     if (box || glm::length(p) <= 1.0) points.push_back(p);
   }
-  const cellforge::halfedge_mesh hull = cellforge::convex_hull(std::span<const glm::dvec3>(points));
-  const auto soup = cellforge::to_soup<glm::dvec3>(hull);
+  const auto hull = cellforge::convex_hull(std::span<const glm::dvec3>(points));
+  const auto soup = cellforge::to_soup(hull);
   cellforge::sample_model m;
   m.name = std::move(name);
   m.wire.points = soup.points;
@@ -1445,8 +1445,12 @@ inline std::string unmatched(const faces_t& a, const faces_t& b) {
     ++shapes[std::to_string(f[0].size()) + (f.size() > 1 ? "h" + std::to_string(f.size() - 1) : "")];
   }
   std::string out;
-  for (const auto& [shape, n] : shapes)
-    out += (out.empty() ? "" : " ") + (n > 1 ? std::to_string(n) + "x" : "") + shape;
+  for (const auto& [shape, n] : shapes) {
+    // Appended piece by piece: `"" + std::string(...)` trips g++ 12's false -Wrestrict at -O3.
+    if (!out.empty()) out += ' ';
+    if (n > 1) out += std::to_string(n) + 'x';
+    out += shape;
+  }
   return out.empty() ? "-" : out;
 }
 

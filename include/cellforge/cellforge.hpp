@@ -1,20 +1,25 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// Everything in cellforge except file I/O (include "cellforge/io/..." for that).
+/// Every public header of cellforge except three kinds, which you include by name when you
+/// want them: file I/O (`cellforge/io/...`), the generators of test and benchmark inputs
+/// (`algorithms/shapes.hpp`, `wireframe/sample_models.hpp`) and the seed's sample solids
+/// (`thin/sample_solids.hpp`, `smooth/sample_solids.hpp`), which are large and which an
+/// application rarely needs. The header hygiene test checks that this list is complete.
 
 #include "cellforge/algorithms/convex_hull.hpp"
 #include "cellforge/algorithms/ear_clipping.hpp"
 #include "cellforge/algorithms/edits.hpp"
 #include "cellforge/algorithms/loop_subdivision.hpp"
-#include "cellforge/algorithms/shapes.hpp"
 #include "cellforge/algorithms/simplification.hpp"
 #include "cellforge/cells/cell_complex.hpp"
 #include "cellforge/cells/conversion.hpp"
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/core/bounding_box.hpp"
 #include "cellforge/core/error.hpp"
+#include "cellforge/core/morton.hpp"
 #include "cellforge/core/point_traits.hpp"
+#include "cellforge/core/polygon_intersection.hpp"
 #include "cellforge/core/polygon_soup.hpp"
 #include "cellforge/core/predicates.hpp"
 #include "cellforge/core/tolerance.hpp"
@@ -25,16 +30,22 @@
 #include "cellforge/halfedge/mesh.hpp"
 #include "cellforge/halfedge/orientation.hpp"
 #include "cellforge/halfedge/properties.hpp"
+#include "cellforge/halfedge/surface_mesh.hpp"
 #include "cellforge/halfedge/validate.hpp"
-#include "cellforge/thin/thin_points.hpp"
+#include "cellforge/smooth/continuous_surfaces.hpp"
+#include "cellforge/smooth/edge_curve.hpp"
+#include "cellforge/smooth/normals.hpp"
 #include "cellforge/smooth/smooth_edges.hpp"
+#include "cellforge/thin/central_axis.hpp"
+#include "cellforge/thin/loop_detection.hpp"
+#include "cellforge/thin/selection_growing.hpp"
+#include "cellforge/thin/thin_points.hpp"
 #include "cellforge/wireframe/circuit_tracer.hpp"
 #include "cellforge/wireframe/extra_faces.hpp"
 #include "cellforge/wireframe/face_arrangement.hpp"
 #include "cellforge/wireframe/face_reduction.hpp"
 #include "cellforge/wireframe/read_vertices.hpp"
 #include "cellforge/wireframe/relations.hpp"
-#include "cellforge/wireframe/sample_models.hpp"
 #include "cellforge/wireframe/unique_circuits.hpp"
 #include "cellforge/wireframe/volume_finder.hpp"
 #include "cellforge/wireframe/wire_graph.hpp"

@@ -1,7 +1,9 @@
 # Checks every public header for the rules of the style guide that a compiler will not catch:
 #   - `#pragma once`;
 #   - no `using namespace` (it leaks into every user's code);
-#   - no <iostream> / <fstream> outside include/cellforge/io/ (the core does no I/O).
+#   - no <iostream> / <fstream> outside include/cellforge/io/ (the core does no I/O);
+#   - cellforge/cellforge.hpp includes every public header except io/, detail/ and the
+#     generators and sample data its comment names (so it says what it includes).
 # Prints every violation with file and line, then fails if there was any.
 cmake_minimum_required(VERSION 3.21)
 if(NOT INCLUDE_DIR)
@@ -44,6 +46,20 @@ foreach(header IN LISTS headers)
     math(EXPR problems "${problems} + 1")
   endif()
 endforeach()
+# The umbrella header's promise.
+set(umbrella_exempt "^cellforge/(io/|.*/detail/|cellforge\\.hpp$|algorithms/shapes\\.hpp$|wireframe/sample_models\\.hpp$|thin/sample_solids\\.hpp$|smooth/sample_solids\\.hpp$)")
+file(READ "${INCLUDE_DIR}/cellforge/cellforge.hpp" umbrella)
+foreach(header IN LISTS headers)
+  if(header MATCHES "${umbrella_exempt}")
+    continue()
+  endif()
+  string(FIND "${umbrella}" "#include \"${header}\"" at)
+  if(at EQUAL -1)
+    message("cellforge/cellforge.hpp: does not include ${header}")
+    math(EXPR problems "${problems} + 1")
+  endif()
+endforeach()
+
 list(LENGTH headers count)
 if(problems GREATER 0)
   message(FATAL_ERROR "header hygiene: ${problems} problem(s) in ${count} headers")

@@ -13,6 +13,7 @@
 #include <limits>
 #include <numeric>
 #include <random>
+#include <ranges>
 #include <span>
 #include <string>
 #include <string_view>
@@ -775,14 +776,19 @@ inline void link_triangles(halfedge_mesh& m, const result& r) {
 
 /// The convex hull of `points` as a closed mesh whose faces point outward: triangles, or
 /// one polygon per facet with options.merge_coplanar. Vertices are the hull's corners only
-/// (no point inside a facet or an edge), with their positions in "v:point" (type P, the
-/// input values) and their input indices in "v:input_index". Degenerate inputs (see
+/// (no point inside a facet or an edge), with the input values as positions (the range's
+/// own point type) and their input indices in "v:input_index". `points` is any contiguous
+/// range: std::vector, std::array, std::span, a C array. Degenerate inputs (see
 /// convex_hull_report::dimension) give a flat hull as two faces back to back, a segment as
 /// two vertices, a point as one vertex, unless options.allow_degenerate is false.
 /// Throws cellforge::error (invalid_input) for NaN/Inf coordinates. O(n log n) expected.
-template <Point3 P>
-halfedge_mesh convex_hull(std::span<const P> points, const convex_hull_options& options = {},
-                          convex_hull_report* report = nullptr) {
+template <std::ranges::contiguous_range R>
+requires std::ranges::sized_range<R> && Point3<std::ranges::range_value_t<R>>
+    surface_mesh<std::ranges::range_value_t<R>> convex_hull(const R& input,
+                                                            const convex_hull_options& options = {},
+                                                            convex_hull_report* report = nullptr) {
+  using P = std::ranges::range_value_t<R>;
+  const std::span<const P> points(std::ranges::data(input), std::ranges::size(input));
   if (points.size() >= detail::hull::none)
     throw error(error_category::invalid_input, "convex_hull: too many points for 32-bit indices");
   std::vector<glm::dvec3> pts(points.size());
@@ -802,9 +808,9 @@ halfedge_mesh convex_hull(std::span<const P> points, const convex_hull_options& 
                                                           : r.dimension == 1 ? "collinear"
                                                                              : "equal") +
                                                          "); set allow_degenerate to accept a flat hull");
-  halfedge_mesh m;
-  auto pos = m.add_vertex_property<P>(point_property_name);
-  auto index = m.add_vertex_property<std::uint32_t>(input_index_property_name, detail::hull::none);
+  surface_mesh<P> m;
+  auto pos = m.positions();
+  auto index = m.template add_vertex_property<std::uint32_t>(input_index_property_name, detail::hull::none);
   if (!r.neighbours.empty())
     detail::hull::link_triangles(m, r);
   else
@@ -823,13 +829,6 @@ halfedge_mesh convex_hull(std::span<const P> points, const convex_hull_options& 
     report->exact_evaluations = r.exact_evaluations;
   }
   return m;
-}
-
-/// convex_hull of a vector of points. O(n log n) expected.
-template <Point3 P>
-halfedge_mesh convex_hull(const std::vector<P>& points, const convex_hull_options& options = {},
-                          convex_hull_report* report = nullptr) {
-  return convex_hull(std::span<const P>(points), options, report);
 }
 
 }  // namespace cellforge

@@ -566,16 +566,16 @@ polygon_soup<P> triangulate(const polygon_soup<P>& soup, const ear_clip_options&
   return out;
 }
 
-/// Replaces every face of more than 3 vertices of m (positions of type P in "v:point") by
+/// Replaces every face of more than 3 vertices of m by
 /// its ear-clipped triangles, in place: vertices and their properties stay, the new faces
 /// get default face properties (with `source_face_property` non-empty, a uint32 face
 /// property of that name records each face's original index). Everything is checked before
 /// the mesh is touched: on error it is unchanged. Removed faces stay as garbage until
 /// garbage_collection(). O(Σ face size²) worst case.
 template <Point3 P>
-triangulate_report triangulate_faces(halfedge_mesh& m, const ear_clip_options& options = {},
+triangulate_report triangulate_faces(surface_mesh<P>& m, const ear_clip_options& options = {},
                                      std::string_view source_face_property = {}) {
-  const auto pos = points<P>(m);
+  const std::span<const P> pos = m.points();
   triangulate_report r;
   struct job {
     face_handle face;
@@ -594,7 +594,7 @@ triangulate_report triangulate_faces(halfedge_mesh& m, const ear_clip_options& o
     j.face = f;
     for (vertex_handle v : m.vertices_around(f)) j.vs.push_back(v);
     corners.clear();
-    for (vertex_handle v : j.vs) corners.push_back(to_dvec3(pos[v]));
+    for (vertex_handle v : j.vs) corners.push_back(to_dvec3(pos[v.idx()]));
     ear_clip_report er;
     try {
       j.tris = detail::ears::clip_polygon(corners, options, er);
@@ -621,7 +621,8 @@ triangulate_report triangulate_faces(halfedge_mesh& m, const ear_clip_options& o
   }
   property<face_handle, std::uint32_t> source;
   if (!source_face_property.empty()) {
-    source = m.property_or_add<face_handle, std::uint32_t>(source_face_property, halfedge_mesh::npos);
+    source =
+        m.template property_or_add<face_handle, std::uint32_t>(source_face_property, halfedge_mesh::npos);
     for (face_handle f : m.faces()) source[f] = f.idx();
   }
   for (const job& j : jobs) {

@@ -22,6 +22,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -33,6 +34,7 @@
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/detail/mesh_access.hpp"
 #include "cellforge/halfedge/mesh.hpp"
+#include "cellforge/halfedge/surface_mesh.hpp"
 
 namespace cellforge {
 
@@ -451,8 +453,8 @@ inline void check_edge_endpoint(const halfedge_mesh& m, edge_handle e, vertex_ha
 }
 
 template <Point3 P>
-void place(halfedge_mesh& m, vertex_handle v, const glm::dvec3& p) {
-  points<P>(m)[v] = from_dvec3<P>(p);
+void place(surface_mesh<P>& m, vertex_handle v, const glm::dvec3& p) {
+  m.set_position(v, from_dvec3<P>(p));
 }
 
 }  // namespace detail::edits
@@ -498,19 +500,17 @@ inline edit_result collapse_edge(halfedge_mesh& m, edge_handle e, vertex_handle 
   return detail::edits::do_collapse(m, u, keep, faces);
 }
 
-/// collapse_halfedge, then moves the kept vertex as `options` says (positions of type P in
-/// "v:point"). Same checks and cost; throws before editing if positions are missing.
+/// collapse_halfedge, then moves the kept vertex as `options` says. Same checks and cost.
 template <Point3 P>
-edit_result collapse_halfedge(halfedge_mesh& m, halfedge_handle h, const collapse_options& options) {
+edit_result collapse_halfedge(surface_mesh<P>& m, halfedge_handle h, const collapse_options& options) {
   detail::edits::check_handle(m.is_valid(h), "collapse_halfedge", "half-edge", h.idx());
-  const auto pts = points<P>(m);
-  const glm::dvec3 a = to_dvec3(pts[m.tail(h)]), b = to_dvec3(pts[m.head(h)]);
+  const glm::dvec3 a = to_dvec3(m.position(m.tail(h))), b = to_dvec3(m.position(m.head(h)));
   glm::dvec3 target = b;
   if (options.position == collapse_position::midpoint) target = 0.5 * (a + b);
   if (options.position == collapse_position::custom) target = options.point;
   detail::edits::check_finite(target, "collapse_halfedge");
-  edit_result r = collapse_halfedge(m, h);
-  if (r) detail::edits::place<P>(m, r.vertex, target);
+  edit_result r = collapse_halfedge(static_cast<halfedge_mesh&>(m), h);
+  if (r) detail::edits::place(m, r.vertex, target);
   return r;
 }
 
@@ -525,7 +525,8 @@ inline edit_refusal can_collapse_face(const halfedge_mesh& m, face_handle f) {
 }
 
 /// Collapses triangle f into its first vertex (seed 001 §IV.C): f and its up to three
-/// neighbours disappear, two vertices are removed; positions untouched. Refuses unless some
+/// neighbours disappear, two vertices are removed. On a mesh without positions the kept vertex
+/// stays where it is; a surface_mesh takes the overload below. Refuses unless some
 /// order of merging the corners is two valid edge collapses. O(sum of corner degrees, × log).
 inline edit_result collapse_face(halfedge_mesh& m, face_handle f) {
   detail::edits::check_handle(m.is_valid(f), "collapse_face", "face", f.idx());
@@ -551,21 +552,20 @@ inline edit_result collapse_face(halfedge_mesh& m, face_handle f) {
   return r;
 }
 
-/// collapse_face, then moves the kept vertex to the triangle's centroid (positions of type
-/// P in "v:point"). Same checks and cost.
+/// collapse_face, then moves the kept vertex to the triangle's centroid (every collapse_face
+/// on a surface_mesh does this). Same checks and cost.
 template <Point3 P>
-edit_result collapse_face(halfedge_mesh& m, face_handle f) {
+edit_result collapse_face(surface_mesh<P>& m, face_handle f) {
   detail::edits::check_handle(m.is_valid(f), "collapse_face", "face", f.idx());
-  const auto pts = points<P>(m);
   glm::dvec3 centroid(0.0);
   std::size_t n = 0;
   for (vertex_handle v : m.vertices_around(f)) {
-    centroid += to_dvec3(pts[v]);
+    centroid += to_dvec3(m.position(v));
     ++n;
   }
   centroid /= static_cast<double>(n);
-  edit_result r = collapse_face(m, f);
-  if (r) detail::edits::place<P>(m, r.vertex, centroid);
+  edit_result r = collapse_face(static_cast<halfedge_mesh&>(m), f);
+  if (r) detail::edits::place(m, r.vertex, centroid);
   return r;
 }
 
@@ -608,15 +608,14 @@ inline edit_result split_edge(halfedge_mesh& m, edge_handle e) {
   return r;
 }
 
-/// split_edge, placing the new vertex at `position` (stored as P in "v:point").
-/// Throws before editing if the position is not finite or positions are missing. Same cost.
+/// split_edge, placing the new vertex at `position`.
+/// Throws before editing if the position is not finite. Same cost.
 template <Point3 P>
-edit_result split_edge(halfedge_mesh& m, edge_handle e, const P& position) {
+edit_result split_edge(surface_mesh<P>& m, edge_handle e, const std::type_identity_t<P>& position) {
   detail::edits::check_handle(m.is_valid(e), "split_edge", "edge", e.idx());
   detail::edits::check_finite(to_dvec3(position), "split_edge");
-  auto pts = points<P>(m);
-  edit_result r = split_edge(m, e);
-  pts[r.vertex] = position;
+  edit_result r = split_edge(static_cast<halfedge_mesh&>(m), e);
+  m.set_position(r.vertex, position);
   return r;
 }
 

@@ -195,19 +195,19 @@ inline void subdivide_attribute(const attribute_job& job, std::span<const record
 
 }  // namespace detail::loop
 
-/// Applies `options.levels` levels of Loop subdivision to a triangle mesh in place, with
-/// positions in the vertex property "v:point" of type P. O(output size) per level.
+/// Applies `options.levels` levels of Loop subdivision to a triangle mesh in place.
+/// O(output size) per level.
 ///
 /// Numbering: the old vertices keep their handles; the vertex on old edge e is V + e.
 /// Removed elements are garbage-collected first. Throws cellforge::error (invalid_input)
 /// before changing anything when: levels < 0; the result would overflow 32-bit indices;
-/// there are no positions of type P; a coordinate is NaN, infinite or beyond ±1e290; a
+/// a coordinate is NaN, infinite or beyond ±1e290; a
 /// face is not a triangle (the error names it); an opted-in property is missing or of an
 /// unsupported type; or the records are corrupted. A vertex where several fans meet stays
 /// in place (counted in loop_result::fixed_vertices). If allocation fails at a later level,
 /// the mesh is left valid at the last completed level.
 template <Point3 P>
-loop_result loop_subdivide(halfedge_mesh& mesh, const loop_options& options = {}) {
+loop_result loop_subdivide(surface_mesh<P>& mesh, const loop_options& options = {}) {
   namespace dl = detail::loop;
   using access = detail::mesh_access;
   using clock = std::chrono::steady_clock;
@@ -216,7 +216,7 @@ loop_result loop_subdivide(halfedge_mesh& mesh, const loop_options& options = {}
     throw error(error_category::invalid_input,
                 "loop_subdivide: levels must be at least 0, got " + std::to_string(options.levels));
   const dl::mask_params params = dl::to_params(options);
-  auto pts = points<P>(mesh);
+  auto pts = mesh.positions();
 
   loop_result result;
   result.vertices_before = result.vertices_after = mesh.num_vertices();
@@ -327,8 +327,9 @@ loop_result loop_subdivide(halfedge_mesh& mesh, const loop_options& options = {}
         pts.vector().swap(child_points);
       } else {
         std::vector<P>& out = pts.vector();
-        out.resize(child_nv);
-        for (std::size_t i = 0; i < child_nv; ++i) out[i] = from_dvec3<P>(child_points[i]);
+        out.clear();  // rebuilt by push_back: P need not be default-constructible
+        out.reserve(child_nv);
+        for (std::size_t i = 0; i < child_nv; ++i) out.push_back(from_dvec3<P>(child_points[i]));
       }
       he.swap(child_he);
       access::face_anchors(mesh).swap(child_anchors);
@@ -366,10 +367,10 @@ loop_result loop_subdivide(halfedge_mesh& mesh, const loop_options& options = {}
 /// Returns a subdivided copy of `mesh` (which is left unchanged); see loop_subdivide.
 /// O(input size + output size).
 template <Point3 P>
-halfedge_mesh loop_subdivided(const halfedge_mesh& mesh, const loop_options& options = {},
-                              loop_result* result = nullptr) {
-  halfedge_mesh copy = mesh;
-  loop_result r = loop_subdivide<P>(copy, options);
+surface_mesh<P> loop_subdivided(const surface_mesh<P>& mesh, const loop_options& options = {},
+                                loop_result* result = nullptr) {
+  surface_mesh<P> copy = mesh;
+  loop_result r = loop_subdivide(copy, options);
   if (result) *result = std::move(r);
   return copy;
 }

@@ -265,15 +265,15 @@ inline void check_options(const simplify_options& o) {
 /// Collapses edges of a triangle mesh, cheapest first, until it has at most
 /// `options.target_faces` faces or no allowed collapse is under the bound. Every collapse
 /// passes the link-condition checks of collapse_halfedge, so connectivity, genus, boundary
-/// loops and orientability are kept; positions (type P, "v:point") move as the cost says.
+/// loops and orientability are kept; positions move as the cost says.
 /// O(n log n) per round (a heap with lazy invalidation by per-edge stamps). Throws
 /// error(invalid_input) for a non-triangle face, a non-finite position or bad options.
 template <Point3 P>
-simplify_result simplify(halfedge_mesh& m, const simplify_options& options = {}) {
+simplify_result simplify(surface_mesh<P>& m, const simplify_options& options = {}) {
   namespace ds = detail::simplification;
   const auto t0 = std::chrono::steady_clock::now();
   ds::check_options(options);
-  auto pts = points<P>(m);
+  auto pts = m.positions();
   for (face_handle f : m.faces())
     if (!detail::edits::is_triangle(m, f))
       throw error(error_category::invalid_input, "simplify: face " + std::to_string(f.idx()) +

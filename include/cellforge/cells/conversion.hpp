@@ -202,14 +202,14 @@ inline std::vector<std::array<std::uint32_t, 3>> triangulate_face(
 
 }  // namespace detail::cells
 
-/// The boundary of volume c as a closed half-edge mesh with normals pointing out of c:
-/// positions in "v:point" (type P), the complex's vertex of each mesh vertex in
+/// The boundary of volume c as a closed surface mesh with normals pointing out of c:
+/// positions of type P, the complex's vertex of each mesh vertex in
 /// "v:cell_vertex" and the face of each mesh face in "f:cell_face" (std::uint32_t). Faces
 /// with holes (all faces, with triangulate_all) are triangulated. O(size of c), plus
 /// O(k·n²) per triangulated face. Throws what make_mesh throws (e.g. a pinched boundary).
 template <Point3 P = glm::dvec3>
-halfedge_mesh volume_boundary_mesh(const cell_complex& cc, cell_volume c,
-                                   const boundary_mesh_options& options = {}) {
+surface_mesh<P> volume_boundary_mesh(const cell_complex& cc, cell_volume c,
+                                     const boundary_mesh_options& options = {}) {
   if (!(c.idx() < cc.num_volumes()))
     throw error(error_category::invalid_input,
                 "volume_boundary_mesh: there is no volume " + std::to_string(c.idx()));
@@ -247,9 +247,9 @@ halfedge_mesh volume_boundary_mesh(const cell_complex& cc, cell_volume c,
       cell_face_of.push_back(f.idx());
     }
   }
-  halfedge_mesh m = make_mesh(soup);
-  auto cv = m.add_vertex_property<std::uint32_t>("v:cell_vertex");
-  auto cf = m.add_face_property<std::uint32_t>("f:cell_face");
+  surface_mesh<P> m = make_mesh(soup);
+  auto cv = m.template add_vertex_property<std::uint32_t>("v:cell_vertex");
+  auto cf = m.template add_face_property<std::uint32_t>("f:cell_face");
   std::copy(cell_vertex_of.begin(), cell_vertex_of.end(), cv.vector().begin());
   std::copy(cell_face_of.begin(), cell_face_of.end(), cf.vector().begin());
   return m;
@@ -258,11 +258,11 @@ halfedge_mesh volume_boundary_mesh(const cell_complex& cc, cell_volume c,
 /// A closed, consistently oriented mesh as a one-volume cell complex: one face per mesh face,
 /// or, with merge_coplanar, one face per region of coplanar neighbouring faces (holes where the
 /// region surrounds others; a region that touches itself at a vertex stays unmerged). The
-/// face signs make the volume's signed volume positive. "v:point" of type P gives positions.
+/// face signs make the volume's signed volume positive.
 /// O(size of the mesh) (plus the regions' boundary walks). Throws topology when the mesh is
 /// not closed or not consistently oriented.
-template <Point3 P = glm::dvec3>
-cell_complex mesh_to_cell_complex(const halfedge_mesh& m, const mesh_to_cells_options& options = {}) {
+template <Point3 P>
+cell_complex mesh_to_cell_complex(const surface_mesh<P>& m, const mesh_to_cells_options& options = {}) {
   using std::uint32_t;
   constexpr uint32_t none = 0xFFFFFFFFu;
   if (!m.is_closed())
@@ -272,8 +272,7 @@ cell_complex mesh_to_cell_complex(const halfedge_mesh& m, const mesh_to_cells_op
   if (!m.is_consistently_oriented())
     throw error(error_category::topology,
                 "mesh_to_cell_complex: the mesh is not consistently oriented (orient it first)");
-  const auto pts = points<P>(m);
-  auto pos = [&](vertex_handle v) { return to_dvec3(pts[v]); };
+  auto pos = [&](vertex_handle v) { return to_dvec3(m.position(v)); };
   bounding_box box;
   for (vertex_handle v : m.vertices()) box.add(pos(v));
 

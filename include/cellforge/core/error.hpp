@@ -69,11 +69,21 @@ class error : public std::runtime_error {
   static std::string compose(const std::string& message, const source_location& where) {
     if (where.file.empty() && where.line == 0 && where.byte_offset == source_location::no_offset)
       return message;
+    // Appended piece by piece: `":" + std::to_string(n)` trips g++ 12's false -Wrestrict
+    // (GCC PR 105329) in a user's -O2 -Werror build.
     std::string s = where.file.empty() ? std::string("<input>") : where.file;
-    if (where.line != 0) s += ":" + std::to_string(where.line);
-    if (where.byte_offset != source_location::no_offset)
-      s += " (byte " + std::to_string(where.byte_offset) + ")";
-    return s + ": " + message;
+    if (where.line != 0) {
+      s += ':';
+      s += std::to_string(where.line);
+    }
+    if (where.byte_offset != source_location::no_offset) {
+      s += " (byte ";
+      s += std::to_string(where.byte_offset);
+      s += ')';
+    }
+    s += ": ";
+    s += message;
+    return s;
   }
 
   error_category category_;

@@ -16,8 +16,10 @@ namespace cellforge {
 
 /// Specialise for a point type P with: `using scalar = ...;`,
 /// `static scalar get(const P&, std::size_t i)` (i in 0..2) and
-/// `static P make(scalar x, scalar y, scalar z)`. The primary template is empty
-/// on purpose so that an unregistered type fails the `Point3` concept at the call.
+/// `static P make(scalar x, scalar y, scalar z)`. That is all cellforge needs: P must be
+/// copyable, never default-constructible. The primary template is empty on purpose so that
+/// an unregistered type, or a trait that lacks one of the three, fails the `Point3` concept
+/// at the call.
 template <class P>
 struct point_traits {};
 
@@ -26,7 +28,7 @@ template <class P>
 using point_scalar_t = typename point_traits<P>::scalar;
 }  // namespace detail
 
-/// A type registered through point_traits: its scalar is a floating-point or
+/// A copyable type registered through point_traits: its scalar is a floating-point or
 /// integral arithmetic type, coordinates can be read by index and a point made.
 template <class P>
 concept Point3 = requires {
@@ -36,7 +38,8 @@ concept Point3 = requires {
                                                              detail::point_scalar_t<P> s) {
   { point_traits<P>::get(p, i) } -> std::convertible_to<detail::point_scalar_t<P>>;
   { point_traits<P>::make(s, s, s) } -> std::same_as<P>;
-};
+}
+&&std::copyable<P>;
 
 /// GLM 3-vectors of any scalar and qualifier.
 template <class T, glm::qualifier Q>
@@ -84,43 +87,68 @@ constexpr P from_dvec3(const glm::dvec3& v) {
 }  // namespace cellforge
 
 /// Registers a struct with three public data members as a cellforge point, in one line
-/// at global scope: `CELLFORGE_REGISTER_POINT3(my::vec, double, x, y, z)`. The type must
-/// be aggregate-initialisable in member order or constructible from (x, y, z).
-#define CELLFORGE_REGISTER_POINT3(Type, Scalar, MX, MY, MZ)              \
-  template <>                                                            \
-  struct cellforge::point_traits<Type> {                                 \
-    using scalar = Scalar;                                               \
-    static constexpr Scalar get(const Type& p, std::size_t i) noexcept { \
-      return i == 0   ? static_cast<Scalar>(p.MX)                        \
-             : i == 1 ? static_cast<Scalar>(p.MY)                        \
-                      : static_cast<Scalar>(p.MZ);                       \
-    }                                                                    \
-    static constexpr Type make(Scalar x, Scalar y, Scalar z) {           \
-      Type p{};                                                          \
-      p.MX = x;                                                          \
-      p.MY = y;                                                          \
-      p.MZ = z;                                                          \
-      return p;                                                          \
-    }                                                                    \
+/// at global scope: `CELLFORGE_REGISTER_POINT3(my::vec, double, x, y, z)`. A point is made by
+/// assigning the members of a default-constructed one, or, for a type without a default
+/// constructor, by its constructor `Type(x, y, z)`.
+#define CELLFORGE_REGISTER_POINT3(Type, Scalar, MX, MY, MZ)                        \
+  template <>                                                                      \
+  struct cellforge::point_traits<Type> {                                           \
+    using scalar = Scalar;                                                         \
+    static constexpr Scalar get(const Type& p, std::size_t i) noexcept {           \
+      return i == 0   ? static_cast<Scalar>(p.MX)                                  \
+             : i == 1 ? static_cast<Scalar>(p.MY)                                  \
+                      : static_cast<Scalar>(p.MZ);                                 \
+    }                                                                              \
+    template <class T = Type> /* a template, so the untaken branch is discarded */ \
+    static constexpr T make(Scalar x, Scalar y, Scalar z) {                        \
+      if constexpr (std::is_default_constructible_v<T>) {                          \
+        T p{};                                                                     \
+        p.MX = x;                                                                  \
+        p.MY = y;                                                                  \
+        p.MZ = z;                                                                  \
+        return p;                                                                  \
+      } else {                                                                     \
+        return T(x, y, z);                                                         \
+      }                                                                            \
+    }                                                                              \
+  }
+
+// The `get` of the getter-based registrations (not for direct use).
+#define CELLFORGE_DETAIL_POINT3_GETTERS(Type, Scalar, GX, GY, GZ) \
+  static Scalar get(const Type& p, std::size_t i) {               \
+    return i == 0   ? static_cast<Scalar>(p.GX())                 \
+           : i == 1 ? static_cast<Scalar>(p.GY())                 \
+                    : static_cast<Scalar>(p.GZ());                \
   }
 
 /// Registers a class with getters and setters, e.g. a CAD kernel's point class:
 /// `CELLFORGE_REGISTER_POINT3_GET_SET(cad::Pt, double, X, Y, Z, SetX, SetY, SetZ)`.
-/// The class must be default-constructible.
-#define CELLFORGE_REGISTER_POINT3_GET_SET(Type, Scalar, GX, GY, GZ, SX, SY, SZ) \
-  template <>                                                                   \
-  struct cellforge::point_traits<Type> {                                        \
-    using scalar = Scalar;                                                      \
-    static Scalar get(const Type& p, std::size_t i) {                           \
-      return i == 0   ? static_cast<Scalar>(p.GX())                             \
-             : i == 1 ? static_cast<Scalar>(p.GY())                             \
-                      : static_cast<Scalar>(p.GZ());                            \
-    }                                                                           \
-    static Type make(Scalar x, Scalar y, Scalar z) {                            \
-      Type p{};                                                                 \
-      p.SX(x);                                                                  \
-      p.SY(y);                                                                  \
-      p.SZ(z);                                                                  \
-      return p;                                                                 \
-    }                                                                           \
+/// Without a default constructor, points are made by `Type(x, y, z)` instead of the setters.
+#define CELLFORGE_REGISTER_POINT3_GET_SET(Type, Scalar, GX, GY, GZ, SX, SY, SZ)    \
+  template <>                                                                      \
+  struct cellforge::point_traits<Type> {                                           \
+    using scalar = Scalar;                                                         \
+    CELLFORGE_DETAIL_POINT3_GETTERS(Type, Scalar, GX, GY, GZ)                      \
+    template <class T = Type> /* a template, so the untaken branch is discarded */ \
+    static T make(Scalar x, Scalar y, Scalar z) {                                  \
+      if constexpr (std::is_default_constructible_v<T>) {                          \
+        T p{};                                                                     \
+        p.SX(x);                                                                   \
+        p.SY(y);                                                                   \
+        p.SZ(z);                                                                   \
+        return p;                                                                  \
+      } else {                                                                     \
+        return T(x, y, z);                                                         \
+      }                                                                            \
+    }                                                                              \
+  }
+
+/// Registers an immutable class read through getters and made by its constructor
+/// `Type(x, y, z)`: `CELLFORGE_REGISTER_POINT3_GET_CTOR(cad::Pt, double, x, y, z)`.
+#define CELLFORGE_REGISTER_POINT3_GET_CTOR(Type, Scalar, GX, GY, GZ)         \
+  template <>                                                                \
+  struct cellforge::point_traits<Type> {                                     \
+    using scalar = Scalar;                                                   \
+    CELLFORGE_DETAIL_POINT3_GETTERS(Type, Scalar, GX, GY, GZ)                \
+    static Type make(Scalar x, Scalar y, Scalar z) { return Type(x, y, z); } \
   }

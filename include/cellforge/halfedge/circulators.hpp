@@ -101,6 +101,7 @@ class vertex_iterator {
   using value_type = decltype(Projection{}(std::declval<const Mesh&>(), halfedge_handle{}, vertex_handle{}));
   using difference_type = std::ptrdiff_t;
   using iterator_concept = std::forward_iterator_tag;
+  using iterator_category = std::input_iterator_tag;  // operator* returns a value, not a reference
 
   vertex_iterator() = default;
   vertex_iterator(const Mesh* m, vertex_handle v) : m_(m), w_(m, v) { skip(); }
@@ -128,14 +129,17 @@ class vertex_iterator {
 };
 
 // The ranges derive from nothing (not std::ranges::view_interface): clang 14 with
-// libstdc++ 12 rejects view_interface over these iterator types. They are still views.
+// libstdc++ 12 rejects view_interface over these iterator types. They are still views,
+// and common ranges.
 template <class Iterator>
 class circulator_range {
  public:
   circulator_range() = default;
   explicit circulator_range(Iterator first) : first_(first) {}
   Iterator begin() const { return first_; }
-  std::default_sentinel_t end() const noexcept { return {}; }
+  // A default-constructed iterator is an ended one, so begin and end have one type: the
+  // ranges are common ranges (std::vector(r.begin(), r.end()) works).
+  Iterator end() const noexcept { return Iterator{}; }
   bool empty() const { return first_ == std::default_sentinel; }
 
  private:
@@ -179,6 +183,7 @@ class face_iterator {
   using value_type = decltype(Projection{}(std::declval<const Mesh&>(), halfedge_handle{}));
   using difference_type = std::ptrdiff_t;
   using iterator_concept = std::forward_iterator_tag;
+  using iterator_category = std::input_iterator_tag;  // operator* returns a value, not a reference
 
   face_iterator() = default;
   face_iterator(const Mesh* m, halfedge_handle start)
@@ -227,6 +232,7 @@ class boundary_iterator {
   using value_type = halfedge_handle;
   using difference_type = std::ptrdiff_t;
   using iterator_concept = std::forward_iterator_tag;
+  using iterator_category = std::input_iterator_tag;  // operator* returns a value, not a reference
 
   boundary_iterator() = default;
   boundary_iterator(const Mesh* m, halfedge_handle start)
@@ -269,6 +275,7 @@ class element_iterator {
   using value_type = Handle;
   using difference_type = std::ptrdiff_t;
   using iterator_concept = std::forward_iterator_tag;
+  using iterator_category = std::input_iterator_tag;  // operator* returns a value, not a reference
 
   element_iterator() = default;
   element_iterator(const Mesh* m, std::uint32_t i, std::uint32_t end) : m_(m), i_(i), end_(end) { skip(); }

@@ -29,6 +29,9 @@ class property_array_base {
   property_array_base& operator=(const property_array_base&) = delete;
 
   const std::string& name() const noexcept { return name_; }
+  /// A pinned array (a surface_mesh's positions) cannot be removed while its mesh lives.
+  bool pinned() const noexcept { return pinned_; }
+  void pin() noexcept { pinned_ = true; }
   virtual const std::type_info& type() const noexcept = 0;
   virtual std::size_t size() const noexcept = 0;
   virtual void reserve(std::size_t n) = 0;
@@ -44,6 +47,7 @@ class property_array_base {
 
  private:
   std::string name_;
+  bool pinned_ = false;
 };
 
 template <class T>
@@ -129,9 +133,14 @@ class property_registry {
     return nullptr;
   }
 
-  bool remove(const property_array_base* a) noexcept {
+  /// Removes array a; a pinned array is refused with an error (its owner's typed view would dangle).
+  bool remove(const property_array_base* a) {
     auto it = std::find_if(arrays_.begin(), arrays_.end(), [&](const auto& p) { return p.get() == a; });
     if (it == arrays_.end()) return false;
+    if ((*it)->pinned())
+      throw error(
+          error_category::invalid_input,
+          "property '" + (*it)->name() + "' holds the positions of a surface_mesh and cannot be removed");
     arrays_.erase(it);
     return true;
   }

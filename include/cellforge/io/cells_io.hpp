@@ -41,9 +41,24 @@ struct cells_write_options {
 
 namespace detail {
 
+// Appends the decimal digits of n; appending pieces instead of `" " + std::to_string(n)`
+// also keeps g++ 12's false -Wrestrict (PR 105329) out of a user's -O2 -Werror build.
+inline void put_count(std::string& out, std::uint64_t n) {
+  char buf[24];
+  const auto r = std::to_chars(buf, buf + sizeof buf, n);
+  out.append(buf, r.ptr);
+}
+
+// Appends a keyword, a space and a count, e.g. "edges 12".
+inline void put_keyword(std::string& out, std::string_view keyword, std::uint64_t n) {
+  out += keyword;
+  out += ' ';
+  put_count(out, n);
+}
+
 inline void put_signed(std::string& out, std::uint32_t index, int sign) {
   out += sign < 0 ? " -" : " +";
-  out += std::to_string(index);
+  put_count(out, index);
 }
 
 inline void put_double(std::string& out, double v) {
@@ -57,42 +72,64 @@ inline std::string cells_text(const cell_complex& cc, const cells_write_options&
   std::string out = "3dcl 1\n";
   for (std::string_view text = options.comment; !text.empty();) {
     const std::size_t eol = std::min(text.find_first_of("\r\n"), text.size());
-    if (eol > 0) out += "# " + std::string(text.substr(0, eol)) + "\n";
+    if (eol > 0) {
+      out += "# ";
+      out += text.substr(0, eol);
+      out += '\n';
+    }
     text.remove_prefix(std::min(eol + 1, text.size()));
   }
-  out += "vertices " + std::to_string(cc.num_vertices()) + "\n";
+  put_keyword(out, "vertices", cc.num_vertices());
+  out += '\n';
   for (cell_vertex v : cc.vertices()) {
-    out += "v " + std::to_string(v.idx());
+    put_keyword(out, "v", v.idx());
     for (int k = 0; k < 3; ++k) out += ' ', put_double(out, cc.point(v)[k]);
     out += " edges";
     for (const auto& [e, s] : cc.vertex_edges(v)) put_signed(out, e.idx(), s);
     out += '\n';
   }
-  out += "edges " + std::to_string(cc.num_edges()) + "\n";
+  put_keyword(out, "edges", cc.num_edges());
+  out += '\n';
   for (cell_edge e : cc.edges()) {
-    out += "e " + std::to_string(e.idx()) + " " + std::to_string(cc.source(e).idx()) + " " +
-           std::to_string(cc.target(e).idx()) + " faces";
+    put_keyword(out, "e", e.idx());
+    out += ' ';
+    put_count(out, cc.source(e).idx());
+    out += ' ';
+    put_count(out, cc.target(e).idx());
+    out += " faces";
     for (const auto& [f, s] : cc.edge_faces(e)) put_signed(out, f.idx(), s);
     out += " volumes";
-    for (cell_volume c : cc.edge_wedges(e))
-      out += c.is_valid() ? " " + std::to_string(c.idx()) : std::string(" -");
+    for (cell_volume c : cc.edge_wedges(e)) {
+      out += ' ';
+      if (c.is_valid())
+        put_count(out, c.idx());
+      else
+        out += '-';
+    }
     out += '\n';
   }
-  out += "faces " + std::to_string(cc.num_faces()) + "\n";
+  put_keyword(out, "faces", cc.num_faces());
+  out += '\n';
   for (cell_face f : cc.faces()) {
-    out += "f " + std::to_string(f.idx()) + " volumes";
+    put_keyword(out, "f", f.idx());
+    out += " volumes";
     for (const auto& [c, s] : cc.face_volumes(f)) put_signed(out, c.idx(), s);
     for (std::size_t l = 0; l < cc.num_loops(f); ++l) {
       out += " loop";
-      for (cell_vertex v : cc.loop_vertices(f, l)) out += " " + std::to_string(v.idx());
+      for (cell_vertex v : cc.loop_vertices(f, l)) {
+        out += ' ';
+        put_count(out, v.idx());
+      }
       out += " edges";
       for (const auto& [e, s] : cc.loop_edges(f, l)) put_signed(out, e.idx(), s);
     }
     out += '\n';
   }
-  out += "volumes " + std::to_string(cc.num_volumes()) + "\n";
+  put_keyword(out, "volumes", cc.num_volumes());
+  out += '\n';
   for (cell_volume c : cc.volumes()) {
-    out += "c " + std::to_string(c.idx()) + " faces";
+    put_keyword(out, "c", c.idx());
+    out += " faces";
     for (const auto& [f, s] : cc.volume_faces(c)) put_signed(out, f.idx(), s);
     out += '\n';
   }

@@ -484,12 +484,12 @@ svg_result write_thin_loops_svg(const std::filesystem::path& path, const polygon
   return scene.write(path, options.picture);
 }
 
-/// write_thin_loops_svg for a half-edge mesh with positions of type P in "v:point". Costs as above.
-template <Point3 P = glm::dvec3>
-svg_result write_thin_loops_svg(const std::filesystem::path& path, const halfedge_mesh& solid,
+/// write_thin_loops_svg for a surface mesh. Costs as above.
+template <Point3 P>
+svg_result write_thin_loops_svg(const std::filesystem::path& path, const surface_mesh<P>& solid,
                                 std::span<const std::vector<glm::dvec3>> loops,
                                 const thin_loops_svg_options& options = {}) {
-  return write_thin_loops_svg(path, to_soup<P>(solid), loops, options);
+  return write_thin_loops_svg(path, to_soup(solid), loops, options);
 }
 
 /// Two panels in one view: the solid with its straight edges (left) and the same solid with its
@@ -551,12 +551,12 @@ svg_result write_smoothing_svg(const std::filesystem::path& path, const polygon_
   return scene.write(path, options.picture);
 }
 
-/// write_smoothing_svg for a half-edge mesh with positions of type P in "v:point". Costs as above.
-template <Point3 P = glm::dvec3>
-svg_result write_smoothing_svg(const std::filesystem::path& path, const halfedge_mesh& solid,
+/// write_smoothing_svg for a surface mesh. Costs as above.
+template <Point3 P>
+svg_result write_smoothing_svg(const std::filesystem::path& path, const surface_mesh<P>& solid,
                                std::span<const edge_curve> curves,
                                const smoothing_svg_options& options = {}) {
-  return write_smoothing_svg(path, to_soup<P>(solid), curves, options);
+  return write_smoothing_svg(path, to_soup(solid), curves, options);
 }
 
 }  // namespace cellforge::io

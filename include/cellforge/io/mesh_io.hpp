@@ -64,10 +64,11 @@ void write_soup(const std::filesystem::path& path, const polygon_soup<P>& soup) 
   }
 }
 
-/// Reads an OFF, OBJ or PLY file into a half-edge mesh with positions of type P.
-/// O(file size). Parse errors name file:line; topology errors name the element.
+/// Reads an OFF, OBJ or PLY file into a surface mesh with positions of type P (the one
+/// template argument a reader needs: a file has no point type). O(file size). Parse errors
+/// name file:line; topology errors name the element.
 template <Point3 P>
-halfedge_mesh read_mesh(const std::filesystem::path& path, build_report* report = nullptr) {
+surface_mesh<P> read_mesh(const std::filesystem::path& path, build_report* report = nullptr) {
   const polygon_soup<P> soup = read_soup<P>(path);
   try {
     return make_mesh(soup, report);
@@ -76,10 +77,10 @@ halfedge_mesh read_mesh(const std::filesystem::path& path, build_report* report 
   }
 }
 
-/// Writes the live part of a mesh (positions of type P) by extension. O(size of the mesh).
+/// Writes the live part of a mesh by extension. O(size of the mesh).
 template <Point3 P>
-void write_mesh(const std::filesystem::path& path, const halfedge_mesh& mesh) {
-  write_soup(path, to_soup<P>(mesh));
+void write_mesh(const std::filesystem::path& path, const surface_mesh<P>& mesh) {
+  write_soup(path, to_soup(mesh));
 }
 
 }  // namespace cellforge::io

@@ -37,8 +37,8 @@ struct solid_geometry {
 /// Checks m (closed, consistently oriented, no garbage, finite positions, no degenerate face,
 /// non-zero volume) and computes its solid_geometry; `who` prefixes the messages. O(V + F·k).
 /// Throws error(topology) or error(invalid_input) naming the problem.
-template <Point3 P = glm::dvec3>
-solid_geometry solid_geometry_of(const halfedge_mesh& m, const char* who = "smooth_edges") {
+template <Point3 P>
+solid_geometry solid_geometry_of(const surface_mesh<P>& m, const char* who = "smooth_edges") {
   const std::string w(who);
   if (m.has_garbage())
     throw error(error_category::invalid_input,
@@ -52,11 +52,10 @@ solid_geometry solid_geometry_of(const halfedge_mesh& m, const char* who = "smoo
                                               std::to_string(m.num_flipped_edges()) +
                                               " flipped edges); orient it first");
   solid_geometry g;
-  const auto pts = points<P>(m);
   g.positions.resize(m.vertices_size());
   bounding_box box;
   for (vertex_handle v : m.vertices()) {
-    const glm::dvec3 p = to_dvec3(pts[v]);
+    const glm::dvec3 p = to_dvec3(m.position(v));
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       throw error(error_category::invalid_input,
                   w + ": vertex " + std::to_string(v.idx()) + " has a non-finite coordinate");

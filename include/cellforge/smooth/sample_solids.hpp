@@ -45,7 +45,7 @@ std::vector<smooth_sample_solid<P>> table7_solids() {
 /// and the seed's edge count and ms.
 struct smooth_table7_case {
   std::string name, description;
-  halfedge_mesh mesh;
+  surface_mesh<glm::dvec3> mesh;
   std::size_t seed_edges = 0;
   double seed_ms = 0;
 };

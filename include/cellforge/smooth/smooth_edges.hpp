@@ -312,14 +312,14 @@ struct smoother {
 
 }  // namespace detail::smooth
 
-/// Smooths every edge of the closed solid m (positions "v:point" of type P) into a curve (seed 000
+/// Smooths every edge of the closed solid m into a curve (seed 000
 /// ch. VI with the beyond-seed options above). O(E · iterations) time, O(E) memory (plus
 /// stall_cycles copies of the midpoints). Throws error(topology) for an open or inconsistently
 /// oriented mesh, error(invalid_input) for degenerate faces, non-finite points or bad options.
-template <Point3 P = glm::dvec3>
-smooth_result smooth_edges(const halfedge_mesh& m, const smooth_options& options = {}) {
+template <Point3 P>
+smooth_result smooth_edges(const surface_mesh<P>& m, const smooth_options& options = {}) {
   detail::smooth::check_options(options);
-  const solid_geometry g = solid_geometry_of<P>(m, "smooth_edges");
+  const solid_geometry g = solid_geometry_of(m, "smooth_edges");
   return detail::smooth::smoother(m, g, options).run();
 }
 
@@ -329,8 +329,8 @@ smooth_result smooth_edges(const halfedge_mesh& m, const smooth_options& options
 /// (faces outside v: 0xFFFFFFFF). O(size of v · iterations). Throws what smooth_edges throws.
 inline smooth_result smooth_edges(const cell_complex& cc, cell_volume v, const smooth_options& options = {}) {
   detail::smooth::check_options(options);
-  const halfedge_mesh m = volume_boundary_mesh<glm::dvec3>(cc, v);
-  smooth_result r = smooth_edges<glm::dvec3>(m, options);
+  const surface_mesh<glm::dvec3> m = volume_boundary_mesh<glm::dvec3>(cc, v);
+  smooth_result r = smooth_edges(m, options);
   const auto cv = m.get_vertex_property<std::uint32_t>("v:cell_vertex");
   const auto cf = m.get_face_property<std::uint32_t>("f:cell_face");
   std::vector<std::size_t> keep;

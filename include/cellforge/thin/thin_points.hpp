@@ -119,7 +119,7 @@ struct thin_input {
 };
 
 template <Point3 P>
-thin_input prepare(const halfedge_mesh& m) {
+thin_input prepare(const surface_mesh<P>& m) {
   const auto fail = [](error_category c, const std::string& what) {
     throw error(c, "find_thin_points: " + what);
   };
@@ -133,12 +133,12 @@ thin_input prepare(const halfedge_mesh& m) {
                                        std::to_string(m.num_flipped_edges()) +
                                        " edges are traversed the same way "
                                        "by both faces); orient the mesh first (halfedge/orientation.hpp)");
-  const auto pts = points<P>(m);
+  const std::span<const P> pts = m.points();
   thin_input in;
   in.position.assign(m.vertices_size(), glm::dvec3(0.0));
   glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
   for (const vertex_handle v : m.vertices()) {
-    const glm::dvec3 p = to_dvec3(pts[v]);
+    const glm::dvec3 p = to_dvec3(pts[v.idx()]);
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       fail(error_category::invalid_input,
            "vertex " + std::to_string(v.idx()) + " has a NaN or infinite coordinate");
@@ -464,8 +464,8 @@ inline double ms_since(std::chrono::steady_clock::time_point t) {
 
 /// The thin loops of a closed, consistently oriented, connected mesh (seed 000 ch. V).
 /// O(faces · cap · (boundary + candidates · degree)) in fast mode; see docs/thin.md.
-template <Point3 P = glm::dvec3>
-thin_result find_thin_points(const halfedge_mesh& m, const thin_options& options = {}) {
+template <Point3 P>
+thin_result find_thin_points(const surface_mesh<P>& m, const thin_options& options = {}) {
   namespace t = detail::thin;
   t::check_options(options);
   thin_result r;
@@ -536,8 +536,8 @@ thin_result find_thin_points(const halfedge_mesh& m, const thin_options& options
 /// loop vertices, edges and the start face are cell ids. Edges that are triangulation
 /// diagonals of a holed face have no cell edge: their id is 0xFFFFFFFF. O(as above).
 inline thin_result find_thin_points(const cell_complex& cc, cell_volume v, const thin_options& options = {}) {
-  const halfedge_mesh m = volume_boundary_mesh<glm::dvec3>(cc, v);
-  thin_result r = find_thin_points<glm::dvec3>(m, options);
+  const surface_mesh<glm::dvec3> m = volume_boundary_mesh<glm::dvec3>(cc, v);
+  thin_result r = find_thin_points(m, options);
   const auto cell_vertex_of = m.get_vertex_property<std::uint32_t>("v:cell_vertex");
   const auto cell_face_of = m.get_face_property<std::uint32_t>("f:cell_face");
   r.start_face = cell_face_of[face_handle(r.start_face)];
