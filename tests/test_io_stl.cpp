@@ -375,8 +375,9 @@ TEST_CASE("STL: layout variations read the same triangle") {
        "solid t\nfacet normal nan -nan inf\nouter loop\nvertex 0.0 -0e0 +0\nvertex 1. 0 0\nvertex .0 1e0 "
        "0\nendloop\nendfacet\nendsolid t\n"},
   };
-  for (const auto& [what, text] : variants) {
-    CAPTURE(std::string(what));
+  for (const auto& variant : variants) {
+    const std::string what = variant.first, text = variant.second;
+    CAPTURE(what);
     const auto d = parse(text);
     CHECK(d.soup.points == expected.soup.points);
     CHECK(d.soup.face_vertices == expected.soup.face_vertices);
