@@ -284,6 +284,58 @@ TEST_CASE("STL: tolerance welding merges into the first vertex within reach, det
     CHECK_THROWS_AS(parse(tri, {.weld_tolerance = bad}), cellforge::error);
 }
 
+TEST_CASE("STL: welding matches the rule it states, checked against a brute-force reference") {
+  // Corners drawn from a small cloud, so that many merge (and some facets become degenerate).
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f);
+  std::vector<std::array<float, 3>> cloud(60);
+  for (auto& p : cloud) p = {coordinate(rng), coordinate(rng), coordinate(rng)};
+  std::uniform_int_distribution<std::size_t> pick(0, cloud.size() - 1);
+  std::uniform_real_distribution<float> jitter(-0.02f, 0.02f);
+  binary_stl b(800);
+  std::vector<std::array<glm::dvec3, 3>> facets;
+  for (int f = 0; f < 800; ++f) {
+    std::array<std::array<float, 3>, 3> c;
+    std::array<glm::dvec3, 3> d;
+    for (std::size_t k = 0; k < 3; ++k) {
+      c[k] = cloud[pick(rng)];
+      if (f % 2 == 1)
+        for (float& v : c[k]) v += jitter(rng);
+      d[k] = glm::dvec3(c[k][0], c[k][1], c[k][2]);
+    }
+    b.facet(c);
+    facets.push_back(d);
+  }
+  for (const double tol : {0.0, 0.01, 0.05, 0.3}) {
+    CAPTURE(tol);
+    // The rule: a corner joins the earliest vertex within tol (equal for tol = 0), else it is
+    // a new vertex; a facet with a repeated vertex is dropped with the vertices it created.
+    std::vector<glm::dvec3> points;
+    std::vector<std::uint32_t> faces;
+    for (const auto& f : facets) {
+      const std::size_t before = points.size();
+      std::array<std::uint32_t, 3> v{};
+      for (std::size_t k = 0; k < 3; ++k) {
+        std::size_t j = 0;
+        while (j < points.size() && !(glm::length(points[j] - f[k]) <= tol)) ++j;
+        if (j == points.size()) points.push_back(f[k]);
+        v[k] = static_cast<std::uint32_t>(j);
+      }
+      if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) {
+        points.resize(before);
+        continue;
+      }
+      faces.insert(faces.end(), v.begin(), v.end());
+    }
+    const auto d = parse(b.bytes, {.weld_tolerance = tol});
+    CHECK(d.soup.points == points);
+    CHECK(d.soup.face_vertices == faces);
+    CHECK(d.facets_read == 800);
+    CHECK(d.degenerate_facets == 800 - faces.size() / 3);
+    CHECK(d.degenerate_facets > 0);
+  }
+}
+
 TEST_CASE("STL: degenerate facets are dropped and counted, kept, or refused with their place") {
   // Facet 1 has two equal corners; facet 2 has three distinct ones on a line (kept: not a repeat).
   const std::string text =

@@ -20,13 +20,14 @@
 #include <ostream>
 #include <string>
 #include <string_view>
-#include <unordered_map>
+#include <type_traits>
 #include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include "cellforge/algorithms/ear_clipping.hpp"
+#include "cellforge/core/detail/edge_table.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
@@ -150,14 +151,16 @@ inline bool stl_read_as_ascii(std::string_view bytes) noexcept {
   return stl_at_keyword(c, "solid") && (bytes.size() < 84 || bytes.find('\0') == std::string_view::npos);
 }
 
-/// Maps corners to vertex indices: exact (hash of the coordinates), within a tolerance (a
-/// grid of cells of twice the tolerance) or not at all. A merged corner becomes the earliest
-/// vertex it matches; the latest vertices can be taken back (for dropped facets).
+/// Maps corners to vertex indices: exact (equal coordinates), within a tolerance (a grid of
+/// cells of side 4·tolerance) or not at all. Vertices are chained by a 64-bit key (the hash
+/// of the coordinates, or of the cell) in an open-addressing table: a key collision only adds
+/// a candidate, since each is compared before it is taken. A merged corner becomes the
+/// earliest vertex it matches; the latest vertices can be taken back (for dropped facets).
 template <Point3 P>
 class stl_welder {
  public:
   stl_welder(std::vector<P>& points, const stl_read_options& o)
-      : points_(points), weld_(o.weld), tol_(o.weld_tolerance), side_(2.0 * o.weld_tolerance) {
+      : points_(points), weld_(o.weld), tol_(o.weld_tolerance), side_(4.0 * o.weld_tolerance) {
     if (!(o.weld_tolerance >= 0.0) || !std::isfinite(o.weld_tolerance))
       throw error(error_category::invalid_input,
                   "stl_read_options::weld_tolerance must be finite and >= 0, got " +
@@ -166,40 +169,31 @@ class stl_welder {
 
   void reserve(std::size_t n) {
     if (!weld_) return;
-    if (tol_ > 0.0) {
-      cells_.reserve(n);
-      next_.reserve(n);
-      where_.reserve(n);
-    } else {
-      exact_.reserve(n);
-    }
+    heads_.reserve(n);
+    next_.reserve(n);
   }
 
   /// The vertex of corner p, new (appended to the points) or earlier. O(1) expected.
   std::uint32_t add(const P& p) {
     const auto fresh = static_cast<std::uint32_t>(points_.size());
-    if (weld_ && tol_ == 0.0) {
-      const auto [it, inserted] = exact_.try_emplace(key_of(p), fresh);
-      if (!inserted) return it->second;
-    } else if (weld_) {
-      const glm::dvec3 q = to_dvec3(p);
+    if (weld_) {
       std::uint32_t best = none;
-      const auto lo = cell_of(q - tol_), hi = cell_of(q + tol_);
-      for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
-        for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
-          for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
-            const auto it = cells_.find({x, y, z});
-            if (it == cells_.end()) continue;
-            for (std::uint32_t j = it->second; j != none; j = next_[j]) {
-              const glm::dvec3 d = where_[j] - q;
-              if (j < best && std::hypot(d.x, d.y, d.z) <= tol_) best = j;
-            }
-          }
+      if (tol_ == 0.0) {
+        for (std::uint32_t j = heads_.find(exact_key(p)); j != none && best == none; j = next_[j])
+          if (equal(points_[j], p)) best = j;
+      } else {
+        const glm::dvec3 q = to_dvec3(p);
+        const auto lo = cell_of(q - tol_), hi = cell_of(q + tol_);
+        for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+          for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+            for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+              for (std::uint32_t j = heads_.find(cell_key({x, y, z})); j != none; j = next_[j])
+                if (j < best && near(to_dvec3(points_[j]), q)) best = j;
+      }
       if (best != none) return best;
-      const auto [it, inserted] = cells_.try_emplace(cell_of(q), fresh);
-      next_.push_back(inserted ? none : it->second);
-      it->second = fresh;
-      where_.push_back(q);
+      const std::uint64_t k = key_of(p);
+      next_.push_back(heads_.find(k));
+      heads_.insert(k, fresh);
     }
     points_.push_back(p);
     return fresh;
@@ -208,17 +202,13 @@ class stl_welder {
   /// Takes back the vertices from index n on (the latest ones). O(vertices taken back).
   void undo_to(std::size_t n) {
     while (points_.size() > n) {
-      const auto i = static_cast<std::uint32_t>(points_.size() - 1);
-      if (weld_ && tol_ == 0.0) {
-        exact_.erase(key_of(points_.back()));
-      } else if (weld_) {
-        const auto it = cells_.find(cell_of(where_[i]));  // i is the latest, so its cell's head
-        if (next_[i] == none)
-          cells_.erase(it);
+      if (weld_) {
+        const std::uint64_t k = key_of(points_.back());  // the latest vertex heads its chain
+        if (next_.back() == none)
+          heads_.erase(k);
         else
-          it->second = next_[i];
+          heads_.insert(k, next_.back());
         next_.pop_back();
-        where_.pop_back();
       }
       points_.pop_back();
     }
@@ -226,34 +216,51 @@ class stl_welder {
 
   /// True when the corners welded to vertices a and b are one: the same vertex, or without
   /// welding the same place. O(1).
-  bool same(std::uint32_t a, std::uint32_t b) const {
-    if (weld_) return a == b;
-    for (std::size_t k = 0; k < 3; ++k)
-      if (coord(points_[a], k) != coord(points_[b], k)) return false;
-    return true;
-  }
+  bool same(std::uint32_t a, std::uint32_t b) const { return weld_ ? a == b : equal(points_[a], points_[b]); }
 
  private:
   using S = scalar_t<P>;
-  using key = std::array<S, 3>;
-  static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-  struct key_hash {
-    std::size_t operator()(const key& k) const noexcept {
-      std::uint64_t h = 0x9E3779B97F4A7C15ull;
-      for (const S s : k) h = (h ^ std::hash<S>{}(s)) * 0xBF58476D1CE4E5B9ull;  // -0 and +0 hash alike
-      return static_cast<std::size_t>(h ^ (h >> 31));
-    }
-  };
-  struct cell_hash {
-    std::size_t operator()(const std::array<std::int64_t, 3>& c) const noexcept {
-      std::uint64_t h = static_cast<std::uint64_t>(c[0]) * 0x9E3779B97F4A7C15ull;
-      h = (h ^ (h >> 29) ^ static_cast<std::uint64_t>(c[1])) * 0xBF58476D1CE4E5B9ull;
-      h = (h ^ (h >> 31) ^ static_cast<std::uint64_t>(c[2])) * 0x94D049BB133111EBull;
-      return static_cast<std::size_t>(h ^ (h >> 32));
-    }
-  };
+  static constexpr std::uint32_t none = cellforge::detail::edge_table::not_found;
 
-  static key key_of(const P& p) { return {coord(p, 0), coord(p, 1), coord(p, 2)}; }
+  static bool equal(const P& a, const P& b) {
+    for (std::size_t k = 0; k < 3; ++k)
+      if (coord(a, k) != coord(b, k)) return false;
+    return true;
+  }
+  bool near(const glm::dvec3& a, const glm::dvec3& b) const {
+    const glm::dvec3 d = a - b;  // each axis first: the exact distance only for real candidates
+    return std::fabs(d.x) <= tol_ && std::fabs(d.y) <= tol_ && std::fabs(d.z) <= tol_ &&
+           std::hypot(d.x, d.y, d.z) <= tol_;
+  }
+
+  /// Mixes three 64-bit words into a key; never the table's empty key. O(1).
+  static std::uint64_t mix(std::uint64_t a, std::uint64_t b, std::uint64_t c) noexcept {
+    std::uint64_t h = a * 0x9E3779B97F4A7C15ull;
+    h = (h ^ (h >> 29) ^ b) * 0xBF58476D1CE4E5B9ull;
+    h = (h ^ (h >> 31) ^ c) * 0x94D049BB133111EBull;
+    h ^= h >> 32;
+    return h == cellforge::detail::edge_table::empty_key ? 0 : h;
+  }
+  static std::uint64_t word(S v) noexcept {
+    if constexpr (std::is_floating_point_v<S>) {
+      v += S(0);  // -0 becomes +0: equal values, equal keys
+      if constexpr (sizeof(S) == 8) return std::bit_cast<std::uint64_t>(v);
+      if constexpr (sizeof(S) == 4) return std::bit_cast<std::uint32_t>(v);
+      if constexpr (sizeof(S) != 4 && sizeof(S) != 8) return std::hash<S>{}(v);
+    } else {
+      return static_cast<std::uint64_t>(v);
+    }
+  }
+  static std::uint64_t exact_key(const P& p) noexcept {
+    return mix(word(coord(p, 0)), word(coord(p, 1)), word(coord(p, 2)));
+  }
+  static std::uint64_t cell_key(const std::array<std::int64_t, 3>& c) noexcept {
+    return mix(static_cast<std::uint64_t>(c[0]), static_cast<std::uint64_t>(c[1]),
+               static_cast<std::uint64_t>(c[2]));
+  }
+  std::uint64_t key_of(const P& p) const noexcept {
+    return tol_ == 0.0 ? exact_key(p) : cell_key(cell_of(to_dvec3(p)));
+  }
 
   /// The grid cell of q. Cell indices are clamped to ±2^50, where doubles still resolve
   /// whole cells, so far-away points share the outermost cells (slower, still correct).
@@ -272,10 +279,8 @@ class stl_welder {
   std::vector<P>& points_;
   bool weld_;
   double tol_, side_;
-  std::unordered_map<key, std::uint32_t, key_hash> exact_;
-  std::unordered_map<std::array<std::int64_t, 3>, std::uint32_t, cell_hash> cells_;  // cell → latest vertex
-  std::vector<std::uint32_t> next_;  // per vertex: the one before it in its cell
-  std::vector<glm::dvec3> where_;    // per vertex: its coordinates in double
+  cellforge::detail::edge_table heads_;  // key -> the latest vertex with that key
+  std::vector<std::uint32_t> next_;      // per vertex: the one before it with the same key
 };
 
 /// Turns facets (three corners each) into welded soup faces and keeps the counts and solids.
