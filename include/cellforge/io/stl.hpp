@@ -82,7 +82,8 @@ struct stl_solid {
   bool name_mismatch() const noexcept { return !end_name.empty() && end_name != name; }
 };
 
-/// What reading an STL file gives: the welded triangles, the solids and the counts.
+/// What reading an STL file gives: the welded triangles, the solids and the counts. Facet
+/// normals are checked (ASCII: three numbers) but not kept; writers recompute them.
 template <Point3 P>
 struct stl_data {
   polygon_soup<P> soup;  ///< triangles; points in the order of their first corner
@@ -123,6 +124,7 @@ inline void stl_check_facet_limit(std::uint32_t n, std::string_view name) {
                          " facets, 3 corner indices each)");
 }
 
+/// True when the token at the cursor is `word` (lower case here, any case in the file). O(|word|).
 inline bool stl_at_keyword(const text_cursor& c, std::string_view word) noexcept {
   if (static_cast<std::size_t>(c.end - c.pos) < word.size()) return false;
   for (std::size_t i = 0; i < word.size(); ++i) {
@@ -133,22 +135,26 @@ inline bool stl_at_keyword(const text_cursor& c, std::string_view word) noexcept
   return q == c.end || is_blank(*q) || is_eol(*q);
 }
 
-/// True when the text starts with `solid` (any case), after an optional UTF-8 byte-order
-/// mark and white space. O(leading white space).
-inline bool stl_starts_with_solid(std::string_view bytes) noexcept {
+/// A cursor on the first token of the bytes (past a UTF-8 byte-order mark and white space),
+/// or at the end when there is none. O(leading white space).
+inline text_cursor stl_first_token(std::string_view bytes) noexcept {
   text_cursor c(bytes, {}, '\0');
   if (bytes.starts_with("\xEF\xBB\xBF")) c.pos += 3;
-  return c.next_content() && stl_at_keyword(c, "solid");
+  (void)c.next_content();
+  return c;
+}
+
+/// True when the text starts with `solid` (any case). O(leading white space).
+inline bool stl_starts_with_solid(std::string_view bytes) noexcept {
+  return stl_at_keyword(stl_first_token(bytes), "solid");
 }
 
 /// True when bytes that are not sized like binary STL are to be read as ASCII: they start
 /// with `solid` and (if long enough to be binary) hold no NUL byte, or they hold nothing but
 /// white space (the ASCII reader then reports an empty file). O(size).
 inline bool stl_read_as_ascii(std::string_view bytes) noexcept {
-  text_cursor c(bytes, {}, '\0');
-  if (bytes.starts_with("\xEF\xBB\xBF")) c.pos += 3;
-  if (!c.next_content()) return true;
-  return stl_at_keyword(c, "solid") && (bytes.size() < 84 || bytes.find('\0') == std::string_view::npos);
+  if (stl_first_token(bytes).at_end()) return true;
+  return stl_starts_with_solid(bytes) && (bytes.size() < 84 || bytes.find('\0') == std::string_view::npos);
 }
 
 /// Maps corners to vertex indices: exact (equal coordinates), within a tolerance (a grid of
@@ -615,11 +621,9 @@ inline void stl_check_name(std::string_view name, bool binary) {
 
 }  // namespace detail
 
-/// Writes a soup as STL (binary by default: float32 corners, normals from the corners,
-/// attribute 0; or ASCII, coordinates in shortest round-trip text of the point's scalar).
-/// Faces of more than 3 vertices are ear-clipped. Throws invalid_input on NaN/Inf corners,
-/// bad indices, a face ear clipping refuses, or (binary) a value beyond float32. O(size)
-/// for triangles; O(Σ face size²) worst case for polygons.
+/// Writes a soup as STL, binary (float32) by default or ASCII (shortest round-trip text);
+/// polygons ear-clipped, normals from the corners. Throws invalid_input on NaN/Inf or (binary)
+/// beyond-float32 corners, bad indices or names, polygons ear clipping refuses. O(size).
 template <Point3 P>
 void write_stl(std::ostream& os, const polygon_soup<P>& soup, const stl_write_options& options = {}) {
   detail::check_face_indices(soup, "stl");
