@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Shared by test_io_off.cpp, test_io_obj.cpp and test_io_ply.cpp: point types, random
-// soups with awkward coordinates, bitwise comparison and the malformed-input checker.
+// Shared by the io tests (test_io_off.cpp, test_io_obj.cpp, test_io_ply.cpp, test_io_stl.cpp): point types,
+// random soups with awkward coordinates, bitwise comparison and the malformed-input checker.
 
 #include <doctest/doctest.h>
 
@@ -129,6 +129,27 @@ void check_rejected(const bad_input& c, const char* name, Parse&& parse) {
     CHECK(e.line() == c.line);
     CHECK(e.message().find(c.message) != std::string::npos);
     CHECK(std::string(e.what()).starts_with(std::string(name) + ":" + std::to_string(c.line) + ": "));
+  }
+}
+
+/// Parses binary `bytes` with `parse` and checks for an io error at byte `offset` (no line)
+/// with the message part; what() must read "name (byte offset): message".
+template <class Parse>
+void check_rejected_at_byte(const char* what, const std::string& bytes, std::uint64_t offset,
+                            const char* message, const char* name, Parse&& parse) {
+  CAPTURE(std::string(what));
+  try {
+    parse(bytes);
+    FAIL("accepted malformed binary input");
+  } catch (const cellforge::error& e) {
+    const std::string text = e.what();
+    CAPTURE(text);
+    CHECK(e.category() == cellforge::error_category::io);
+    CHECK(e.file() == name);
+    CHECK(e.line() == 0);
+    CHECK(e.byte_offset() == offset);
+    CHECK(e.message().find(message) != std::string::npos);
+    CHECK(text.starts_with(std::string(name) + " (byte " + std::to_string(offset) + "): "));
   }
 }
 

@@ -64,8 +64,8 @@ TEST_CASE("mesh files with bad topology or extension give located errors") {
     CHECK(e.file() == path.string());
     CHECK(std::string(e.what()).find("edge (0, 1)") != std::string::npos);
   }
-  CHECK_THROWS_WITH_AS((void)cellforge::io::read_mesh<glm::dvec3>(temp_dir() / "x.stl"),
-                       doctest::Contains("unknown mesh file extension '.stl'"), cellforge::error);
+  CHECK_THROWS_WITH_AS((void)cellforge::io::read_mesh<glm::dvec3>(temp_dir() / "x.3mf"),
+                       doctest::Contains("unknown mesh file extension '.3mf'"), cellforge::error);
 }
 
 }  // namespace mesh_io_tests

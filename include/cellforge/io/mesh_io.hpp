@@ -16,11 +16,12 @@
 #include "cellforge/io/obj.hpp"
 #include "cellforge/io/off.hpp"
 #include "cellforge/io/ply.hpp"
+#include "cellforge/io/stl.hpp"
 
 namespace cellforge::io {
 
 /// The file formats a mesh can be read from and written to.
-enum class mesh_format { off, obj, ply };
+enum class mesh_format { off, obj, ply, stl };
 
 /// The format named by a path's extension (case-insensitive); throws for others. O(1).
 inline mesh_format format_of(const std::filesystem::path& path) {
@@ -30,11 +31,14 @@ inline mesh_format format_of(const std::filesystem::path& path) {
   if (ext == ".off") return mesh_format::off;
   if (ext == ".obj") return mesh_format::obj;
   if (ext == ".ply") return mesh_format::ply;
-  throw error(error_category::io, "unknown mesh file extension '" + ext + "' (expected .off, .obj or .ply)",
+  if (ext == ".stl") return mesh_format::stl;
+  throw error(error_category::io,
+              "unknown mesh file extension '" + ext + "' (expected .off, .obj, .ply or .stl)",
               {path.string(), 0});
 }
 
-/// Reads the faces of an OFF, OBJ or PLY file into a soup. O(file size).
+/// Reads the faces of an OFF, OBJ, PLY or STL file into a soup (STL: corners welded where
+/// equal, degenerate facets dropped; see read_stl for the details). O(file size).
 template <Point3 P>
 polygon_soup<P> read_soup(const std::filesystem::path& path) {
   switch (format_of(path)) {
@@ -44,11 +48,14 @@ polygon_soup<P> read_soup(const std::filesystem::path& path) {
       return read_obj<P>(path).soup;
     case mesh_format::ply:
       return read_ply<P>(path);
+    case mesh_format::stl:
+      return read_stl<P>(path).soup;
   }
   return {};
 }
 
-/// Writes a soup in the format its path's extension names. O(size of the soup).
+/// Writes a soup in the format its path's extension names (STL: binary, float32, polygons
+/// ear-clipped). O(size of the soup).
 template <Point3 P>
 void write_soup(const std::filesystem::path& path, const polygon_soup<P>& soup) {
   switch (format_of(path)) {
@@ -60,6 +67,9 @@ void write_soup(const std::filesystem::path& path, const polygon_soup<P>& soup) 
       break;
     case mesh_format::ply:
       write_ply(path, soup);
+      break;
+    case mesh_format::stl:
+      write_stl(path, soup);
       break;
   }
 }
