@@ -12,7 +12,9 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/io/svg.hpp"
+#include "mesh_fixtures.hpp"
 #include "test_support.hpp"
 
 // Own namespace: the test files of a group are compiled as one translation unit.
@@ -586,6 +588,13 @@ TEST_CASE("writing to a missing directory throws an io error naming the path") {
   const auto r = io::write_svg(ok, cube_wireframe<std::array<float, 3>>());
   CHECK(r.visible_edges == 12);
   CHECK(std::filesystem::file_size(ok) > 100);
+  std::filesystem::remove(ok);
+  // A surface mesh in one call: the cube's 6 faces, 12 edges, 3 faces toward the viewer.
+  const auto mesh = cellforge::make_mesh(fixtures::cube());
+  const auto m = io::write_svg(ok, mesh);
+  CHECK(m.faces_drawn == 6);
+  CHECK(m.faces_facing_viewer == 3);
+  CHECK(m.edges == 12);
   std::filesystem::remove(ok);
 }
 

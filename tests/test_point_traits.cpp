@@ -2,6 +2,7 @@
 
 #include <array>
 #include <glm/vec3.hpp>
+#include <type_traits>
 
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
@@ -23,9 +24,24 @@ class cad_point {
  private:
   double c_[3] = {0, 0, 0};
 };
+// Without default constructors: public members with a constructor, and getters/setters with one.
+struct fixed_vec {
+  fixed_vec(float a, float b, float c) : x(a), y(b), z(c) {}
+  float x, y, z;
+};
+class sealed_cad_point : public cad_point {  // the same getters and setters, no default constructor
+ public:
+  sealed_cad_point(double x, double y, double z) {
+    SetX(x);
+    SetY(y);
+    SetZ(z);
+  }
+};
 }  // namespace user
 CELLFORGE_REGISTER_POINT3(user::vec, double, x, y, z);
 CELLFORGE_REGISTER_POINT3_GET_SET(user::cad_point, double, X, Y, Z, SetX, SetY, SetZ);
+CELLFORGE_REGISTER_POINT3(user::fixed_vec, float, x, y, z);
+CELLFORGE_REGISTER_POINT3_GET_SET(user::sealed_cad_point, double, X, Y, Z, SetX, SetY, SetZ);
 
 // Own namespace: the test files of a group are compiled as one translation unit.
 namespace point_traits_tests {
@@ -35,11 +51,16 @@ static_assert(cellforge::Point3<glm::vec3>);
 static_assert(cellforge::Point3<std::array<float, 3>>);
 static_assert(cellforge::Point3<user::vec>);
 static_assert(cellforge::Point3<user::cad_point>);
+static_assert(!std::is_default_constructible_v<user::fixed_vec>);
+static_assert(!std::is_default_constructible_v<user::sealed_cad_point>);
+static_assert(cellforge::Point3<user::fixed_vec>);
+static_assert(cellforge::Point3<user::sealed_cad_point>);
 static_assert(!cellforge::Point3<int>);
 static_assert(!cellforge::Point3<std::array<float, 2>>);
 
 TEST_CASE_TEMPLATE("points round-trip through double precision", P, glm::dvec3, glm::vec3,
-                   std::array<float, 3>, user::vec, user::cad_point) {
+                   std::array<float, 3>, user::vec, user::cad_point, user::fixed_vec,
+                   user::sealed_cad_point) {
   const P p = cellforge::point_traits<P>::make(1, -2, 3.5);
   CHECK(cellforge::coord(p, 0) == 1);
   CHECK(cellforge::coord(p, 1) == -2);

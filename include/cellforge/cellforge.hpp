@@ -28,6 +28,7 @@
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/handles.hpp"
 #include "cellforge/halfedge/mesh.hpp"
+#include "cellforge/halfedge/mesh_geometry.hpp"
 #include "cellforge/halfedge/orientation.hpp"
 #include "cellforge/halfedge/properties.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"

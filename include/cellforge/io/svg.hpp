@@ -36,6 +36,8 @@
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
 #include "cellforge/core/wireframe.hpp"
+#include "cellforge/halfedge/conversion.hpp"
+#include "cellforge/halfedge/surface_mesh.hpp"
 #include "cellforge/io/detail/svg_visibility.hpp"
 
 namespace cellforge::io {
@@ -1034,6 +1036,14 @@ svg_result write_svg(const std::filesystem::path& path, const polygon_soup<P>& s
   svg_scene scene;
   scene.add_mesh(soup, style);
   return scene.write(path, options);
+}
+
+/// Writes a picture of one surface mesh (its live faces and edges) to a file, in one call.
+/// O(size + (E + F) x local density + F log F); throws like svg_scene::write.
+template <Point3 P>
+svg_result write_svg(const std::filesystem::path& path, const surface_mesh<P>& mesh,
+                     const svg_options& options = {}, const svg_style& style = {}) {
+  return write_svg(path, to_soup(mesh), options, style);
 }
 
 /// Writes a picture of one wireframe (its edges as lines) to a file.
