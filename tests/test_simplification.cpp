@@ -13,6 +13,7 @@
 #include "cellforge/algorithms/shapes.hpp"
 #include "cellforge/algorithms/simplification.hpp"
 #include "cellforge/halfedge/conversion.hpp"
+#include "cellforge/halfedge/mesh_geometry.hpp"
 #include "cellforge/halfedge/orientation.hpp"
 #include "cellforge/halfedge/validate.hpp"
 
@@ -37,19 +38,6 @@ template <class M, class P>
 constexpr bool can_simplify = requires(M& m) {
   simplify<P>(m);
 };
-
-template <class P>
-glm::dvec3 face_normal(const surface_mesh<P>& m, face_handle f) {
-  std::vector<glm::dvec3> p;
-  for (vertex_handle v : m.vertices_around(f)) p.push_back(to_dvec3(m.positions()[v]));
-  return glm::cross(p[1] - p[0], p[2] - p[0]);
-}
-template <class P>
-glm::dvec3 face_centroid(const surface_mesh<P>& m, face_handle f) {
-  glm::dvec3 c(0.0);
-  for (vertex_handle v : m.vertices_around(f)) c += to_dvec3(m.positions()[v]) / 3.0;
-  return c;
-}
 
 }  // namespace
 
@@ -83,7 +71,8 @@ TEST_CASE_TEMPLATE("icosphere(4) to 500 faces stays a closed, valid, outward sph
     for (vertex_handle v : m.vertices())
       worst = std::max(worst, std::abs(glm::length(to_dvec3(m.positions()[v])) - 1.0));
     CHECK(worst < (cost == simplify_cost::quadric ? 0.01 : 0.04));
-    for (face_handle f : m.faces()) CHECK(glm::dot(face_normal<P>(m, f), face_centroid<P>(m, f)) > 0);
+    for (face_handle f : m.faces())
+      CHECK(glm::dot(to_dvec3(face_normal(m, f)), to_dvec3(face_centroid(m, f))) > 0);
     // The enclosed volume is that of a 500-face polyhedron close to the ball.
     const double volume = signed_volume(to_soup(m));
     CHECK(volume > 0.95 * 4.0 / 3.0 * std::numbers::pi);
@@ -150,7 +139,7 @@ TEST_CASE("boundaries: held by quadric planes, or kept fixed") {
     CHECK(glm::length(hi - glm::dvec3(1, 1, 0)) < 1e-9);
     // The area is still exactly the square's.
     double area = 0;
-    for (face_handle f : m.faces()) area += 0.5 * glm::length(face_normal<glm::dvec3>(m, f));
+    for (face_handle f : m.faces()) area += face_area(m, f);
     CHECK(area == doctest::Approx(1.0).epsilon(1e-9));
     REQUIRE_VALID(m);
   }
