@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <array>
+#include <iterator>
+#include <type_traits>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -444,6 +446,20 @@ TEST_CASE_TEMPLATE("every point type gives the same hull", P, glm::dvec3, std::a
   check_hull(pts, m, reference::predicate);
   CHECK(report.dimension == 3);
   CHECK(m.num_vertices() > 30);
+}
+
+TEST_CASE("convex_hull takes any contiguous range and returns its point type") {
+  const std::array<std::array<float, 3>, 5> box{
+      {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.1f, 0.1f, 0.1f}}};
+  const auto a = convex_hull(box);
+  static_assert(
+      std::is_same_v<std::remove_cvref_t<decltype(a)>, cellforge::surface_mesh<std::array<float, 3>>>);
+  CHECK(a.num_vertices() == 4);  // the inner point is no corner
+  const glm::dvec3 c_array[4] = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 2}};
+  const auto b = convex_hull(c_array);
+  CHECK(b.num_faces() == 4);
+  CHECK(convex_hull(std::span<const glm::dvec3>(c_array)).num_faces() == 4);
+  CHECK(convex_hull(std::vector<glm::dvec3>(std::begin(c_array), std::end(c_array))).num_edges() == 6);
 }
 
 }  // namespace convex_hull_tests

@@ -32,9 +32,21 @@ namespace io_stl_tests {
 struct float_point {
   float x, y, z;
 };
+/// A CAD-style point: read through getters, made by its constructor only (no default one).
+class sealed_point {
+ public:
+  sealed_point(float x, float y, float z) : c_{x, y, z} {}
+  float x() const { return c_[0]; }
+  float y() const { return c_[1]; }
+  float z() const { return c_[2]; }
+
+ private:
+  float c_[3];
+};
 }  // namespace io_stl_tests
 // A point_traits specialisation must stand outside the tests' namespace.
 CELLFORGE_REGISTER_POINT3(io_stl_tests::float_point, float, x, y, z);
+CELLFORGE_REGISTER_POINT3_GET_CTOR(io_stl_tests::sealed_point, float, x, y, z);
 
 namespace io_stl_tests {
 
@@ -608,7 +620,8 @@ TEST_CASE("STL: a binary file beyond the 32-bit index limit is refused before an
 }
 
 TEST_CASE_TEMPLATE("STL: binary write, read, write gives the same bytes; points equal as float32", P,
-                   glm::dvec3, std::array<float, 3>, io_test::user_point, float_point, std::array<int, 3>) {
+                   glm::dvec3, std::array<float, 3>, io_test::user_point, float_point, sealed_point,
+                   std::array<int, 3>) {
   const auto soup = triangle_soup<P>(11, 100, 150);
   const std::string first = written(soup);
   REQUIRE(first.size() == 84 + 50 * soup.num_faces());
@@ -635,7 +648,7 @@ TEST_CASE_TEMPLATE("STL: binary write, read, write gives the same bytes; points 
 }
 
 TEST_CASE_TEMPLATE("STL: ASCII write, read, write gives the same text and the same values", P, glm::dvec3,
-                   std::array<float, 3>, io_test::user_point, float_point, std::array<int, 3>) {
+                   std::array<float, 3>, io_test::user_point, float_point, sealed_point, std::array<int, 3>) {
   auto soup = triangle_soup<P>(3, 60, 90);
   if constexpr (std::is_same_v<cellforge::scalar_t<P>, double>) {  // values only a double holds
     soup.points[5] = cellforge::point_traits<P>::make(0.1, std::numeric_limits<double>::max(), -1e-310);

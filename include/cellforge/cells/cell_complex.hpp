@@ -22,6 +22,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/newell.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/halfedge/handles.hpp"
 
@@ -248,17 +249,7 @@ inline std::string S(std::uint64_t x) { return std::to_string(x); }
   throw error(c, "make_cell_complex: " + msg);
 }
 
-/// Newell normal (twice the vector area) of a vertex loop. O(loop size).
-template <class Loop, class Point>
-glm::dvec3 newell(const Loop& loop, Point&& at) {
-  glm::dvec3 n(0.0);
-  const std::size_t k = loop.size();
-  for (std::size_t i = 0; i < k; ++i) {
-    const glm::dvec3 &a = at(loop[i]), &b = at(loop[(i + 1) % k]);
-    n += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
-  }
-  return n;
-}
+using cellforge::detail::newell;  // Newell normal of a vertex loop (core/detail/newell.hpp)
 
 /// Turns (a, b) into one 64-bit key regardless of order. O(1).
 inline std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) noexcept {

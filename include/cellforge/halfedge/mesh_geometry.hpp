@@ -16,6 +16,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/bounding_box.hpp"
+#include "cellforge/core/detail/newell.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"
@@ -28,12 +29,8 @@ namespace detail::geometry {
 // (exact for planar polygons, the least-squares normal for non-planar ones). O(|f|).
 template <Point3 P>
 glm::dvec3 newell(const surface_mesh<P>& m, face_handle f) {
-  glm::dvec3 n(0.0);
-  for (const halfedge_handle h : m.halfedges_around(f)) {
-    const glm::dvec3 a = to_dvec3(m.position(m.tail(h))), b = to_dvec3(m.position(m.head(h)));
-    n += glm::cross(a, b);
-  }
-  return n;
+  return cellforge::detail::newell(m.vertices_around(f),
+                                   [&](vertex_handle v) { return to_dvec3(m.position(v)); });
 }
 
 template <Point3 P>

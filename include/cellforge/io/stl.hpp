@@ -385,8 +385,7 @@ void stl_read_binary(std::string_view bytes, std::string_view name, bool starts_
   using S = scalar_t<P>;
   for (std::uint32_t f = 0; f < n; ++f) {
     const std::size_t at = 84 + std::size_t{50} * f;  // the normal (12 bytes) is not used
-    std::array<P, 3> corners;
-    for (std::size_t k = 0; k < 3; ++k) {
+    const auto corner = [&](std::size_t k) {
       std::array<S, 3> xyz{};
       for (std::size_t a = 0; a < 3; ++a) {
         const std::size_t vat = at + 12 + 12 * k + 4 * a;
@@ -399,8 +398,9 @@ void stl_read_binary(std::string_view bytes, std::string_view name, bool starts_
                   (std::isfinite(value) ? "does not fit the point's scalar type"
                                         : "is not finite (NaN and Inf coordinates are rejected)"));
       }
-      corners[k] = point_traits<P>::make(xyz[0], xyz[1], xyz[2]);
-    }
+      return point_traits<P>::make(xyz[0], xyz[1], xyz[2]);
+    };
+    const std::array<P, 3> corners{corner(0), corner(1), corner(2)};  // P needs no default constructor
     b.facet(corners, [&](const std::string& message) { stl_fail_at_byte(name, at, message); });
   }
   b.end_solid({});
@@ -502,7 +502,7 @@ class stl_ascii_reader {
     if (number_follows()) c_.fail(where_ + "the normal has more than 3 components: unexpected " + c_.token());
     keyword("outer", "'outer loop' after the normal");
     keyword("loop", "'loop' after 'outer'");
-    std::array<P, 3> corners;
+    std::array<std::array<S, 3>, 3> xyz{};  // points made at the end: P needs no default constructor
     std::size_t k = 0;
     for (;;) {
       if (!c_.next_content()) expected(k < 3 ? "'vertex'" : "'endloop'");
@@ -520,14 +520,16 @@ class stl_ascii_reader {
       if (number_follows())
         c_.fail("vertex " + std::to_string(k) + " of " + facet_name +
                 " has more than 3 coordinates: unexpected " + c_.token());
-      corners[k++] = point_traits<P>::make(x, y, z);
+      xyz[k++] = {x, y, z};
     }
     if (k < 3)
       c_.fail(facet_name + " has " + std::to_string(k) + " vertices; STL facets are triangles (3 vertices)");
     c_.pos += 7;
     keyword("endfacet", "'endfacet' after 'endloop'");
     where_.clear();
-    b_.facet(corners, [&](const std::string& message) { c_.fail_at(at, message); });
+    const auto corner = [&](std::size_t i) { return point_traits<P>::make(xyz[i][0], xyz[i][1], xyz[i][2]); };
+    b_.facet(std::array<P, 3>{corner(0), corner(1), corner(2)},
+             [&](const std::string& message) { c_.fail_at(at, message); });
   }
 
   text_cursor c_;
@@ -640,17 +642,17 @@ void write_stl(std::ostream& os, const polygon_soup<P>& soup, const stl_write_op
                         " has a coordinate beyond the float32 range of binary STL");
   }
   // Only a soup with polygons is copied: triangles are written as they stand.
+  bool polygons = false;
+  for (std::size_t f = 0; f < soup.num_faces() && !polygons; ++f) polygons = soup.face(f).size() != 3;
   polygon_soup<P> clipped;
-  const polygon_soup<P>* tris = &soup;
-  for (std::size_t f = 0; f < soup.num_faces() && tris == &soup; ++f) {
-    if (soup.face(f).size() == 3) continue;
+  if (polygons) {
     try {
       clipped = triangulate(soup, options.triangulation);
     } catch (const error& e) {
       throw error(e.category(), "write_stl: " + e.message());
     }
-    tris = &clipped;
   }
+  const polygon_soup<P>* tris = polygons ? &clipped : &soup;
   const std::size_t n = tris->num_faces();
   detail::output_buffer out(os);
   const auto corner = [&](std::size_t f, std::size_t k) -> const P& {

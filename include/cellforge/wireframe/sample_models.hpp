@@ -23,6 +23,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/newell.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/wireframe.hpp"
 
@@ -143,13 +144,7 @@ std::optional<std::vector<std::uint32_t>> match_faces(const FacesA& expected, co
 
 /// Newell normal of a closed polygon (not normalised; its length is twice the area). O(n).
 inline glm::dvec3 newell_normal(const std::vector<glm::dvec3>& pts, const std::vector<std::uint32_t>& loop) {
-  glm::dvec3 n(0);
-  for (std::size_t i = 0; i < loop.size(); ++i) {
-    const glm::dvec3& a = pts[loop[i]];
-    const glm::dvec3& b = pts[loop[(i + 1) % loop.size()]];
-    n += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
-  }
-  return n;
+  return newell(loop, [&](std::uint32_t v) { return pts[v]; });
 }
 
 /// Counts the faces no edge needs (see sample_model::unforced_faces): a face is needed by an
