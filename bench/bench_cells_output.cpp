@@ -50,8 +50,8 @@ const fs::path& grid_file(int k) {
 }
 
 /// The grid's cell complex, converted once.
-const cellforge::cell_complex& grid_cells(int k) {
-  static std::map<int, cellforge::cell_complex> cache;
+const cellforge::cell_complex<glm::dvec3>& grid_cells(int k) {
+  static std::map<int, cellforge::cell_complex<glm::dvec3>> cache;
   auto it = cache.find(k);
   if (it == cache.end()) {
     const auto n = static_cast<std::size_t>(k);
@@ -64,7 +64,7 @@ const cellforge::cell_complex& grid_cells(int k) {
 /// picture's counts.
 cellforge::io::svg_result end_to_end(const fs::path& input, const fs::path& out_dir) {
   const auto wire = cellforge::io::read_obj_wireframe<glm::dvec3>(input);
-  const cellforge::wireframe_result r = cellforge::wireframe_to_cells(wire);
+  const cellforge::wireframe_result<glm::dvec3> r = cellforge::wireframe_to_cells(wire);
   if (!cellforge::validate(r.cells).ok())
     throw cellforge::error(cellforge::error_category::topology, "the grid's complex does not validate");
   const std::string stem = input.stem().string();
@@ -115,7 +115,7 @@ void register_path(const std::string& path, int k, std::function<void(benchmark:
 template <class Write>
 void register_writer(const char* name, int k, const char* ext, Write write) {
   register_path(name, k, [=](benchmark::State& s) {
-    const cellforge::cell_complex& cc = grid_cells(k);
+    const cellforge::cell_complex<glm::dvec3>& cc = grid_cells(k);
     const fs::path file = scratch() / ("cells" + std::to_string(k) + ext);
     median_loop(s, [&] { return write(file, cc); });
   });
@@ -124,20 +124,20 @@ void register_writer(const char* name, int k, const char* ext, Write write) {
 void register_all() {
   using cellforge::cell_complex;
   for (const int k : grid_sizes) {
-    register_writer("write_3dcl", k, ".3dcl", [](const fs::path& p, const cell_complex& cc) {
+    register_writer("write_3dcl", k, ".3dcl", [](const fs::path& p, const cell_complex<glm::dvec3>& cc) {
       cellforge::io::write_3dcl(p, cc);
       return 0;
     });
-    register_writer("write_obj", k, ".obj", [](const fs::path& p, const cell_complex& cc) {
+    register_writer("write_obj", k, ".obj", [](const fs::path& p, const cell_complex<glm::dvec3>& cc) {
       cellforge::io::write_cells_obj(p, cc);
       return 0;
     });
-    register_writer("write_ply", k, ".ply", [](const fs::path& p, const cell_complex& cc) {
+    register_writer("write_ply", k, ".ply", [](const fs::path& p, const cell_complex<glm::dvec3>& cc) {
       cellforge::io::write_cells_ply(p, cc);
       return 0;
     });
     register_path("write_svg", k, [k](benchmark::State& s) {
-      const cell_complex& cc = grid_cells(k);
+      const cell_complex<glm::dvec3>& cc = grid_cells(k);
       const fs::path file = scratch() / ("cells" + std::to_string(k) + ".svg");
       median_loop(s, [&] {
         const cellforge::io::svg_result r = cellforge::io::write_cells_svg(file, cc);

@@ -136,7 +136,7 @@ struct our_run {
 };
 
 #if CELLFORGE_BENCH_HAVE_PIPELINE
-std::array<double, stage_rows.size()> stage_ms(const cellforge::wireframe_result& r) {
+std::array<double, stage_rows.size()> stage_ms(const cellforge::wireframe_result<glm::dvec3>& r) {
   return {r.read.milliseconds,
           r.trace.milliseconds,
           r.unique.milliseconds,
@@ -149,7 +149,7 @@ std::array<double, stage_rows.size()> stage_ms(const cellforge::wireframe_result
           r.assembly_milliseconds};
 }
 
-std::string truth_status(const cellforge::sample_model& m, const cellforge::wireframe_result& r) {
+std::string truth_status(const cellforge::sample_model& m, const cellforge::wireframe_result<glm::dvec3>& r) {
   if (!cellforge::same_faces(m.faces, r.input.faces))
     return "faces differ from the ground truth (" + std::to_string(r.input.faces.size()) + " vs " +
            std::to_string(m.faces.size()) + ")";
@@ -211,7 +211,7 @@ benchmark::internal::Benchmark* register_pipeline(const std::string& name,
                                           cb::timed_loop(
                                               s,
                                               [&] { return cellforge::wireframe_to_cells(m.wire, options); },
-                                              [&](const cellforge::wireframe_result& r) {
+                                              [&](const cellforge::wireframe_result<glm::dvec3>& r) {
                                                 const std::string status = truth_status(m, r);
                                                 if (status != "matches the ground truth")
                                                   s.SkipWithError(status.c_str());

@@ -220,7 +220,7 @@ T option_choice(std::string_view option, std::string_view text,
 /// (the algorithms then report cell ids).
 struct solid {
   cellforge::surface_mesh<glm::dvec3> mesh;
-  std::optional<cellforge::cell_complex> cells;
+  std::optional<cellforge::cell_complex<glm::dvec3>> cells;
   cellforge::cell_volume volume{};
   cellforge::polygon_soup<glm::dvec3> soup;  // for pictures and OBJ output
   double load_ms = 0;
@@ -234,7 +234,7 @@ inline solid load_solid(const std::filesystem::path& path, int volume) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".3dcl") {
-    s.cells = cellforge::io::read_3dcl(path);
+    s.cells = cellforge::io::read_3dcl<glm::dvec3>(path);
     if (volume < 0 || static_cast<std::size_t>(volume) >= s.cells->num_volumes())
       throw cellforge::error(cellforge::error_category::invalid_input,
                              "--volume " + std::to_string(volume) + ": '" + path.string() + "' has " +

@@ -170,7 +170,7 @@ void row(const char* stage, double ms, const char* what = nullptr, std::size_t c
     std::printf("  %-26s %9.3f ms\n", stage, ms);
 }
 
-void print_stages(const cellforge::wireframe_result& r) {
+void print_stages(const cellforge::wireframe_result<glm::dvec3>& r) {
   row("initial read", r.read.milliseconds, "vertices", r.read.input_vertices);
   std::printf("  %-26s %12s   %-18s %zu\n", "", "", "edges", r.read.input_edges);
   row("finding faces", r.trace.milliseconds, "circuits", r.trace.circuits);
@@ -225,8 +225,8 @@ int main(int argc, char** argv) {
     for (const fs::path& out : outputs) refuse_to_overwrite(out, s.input);
     failure = exit_input;
 
-    const cellforge::wireframe_result r = cellforge::wireframe_to_cells(wire, s.pipeline);
-    const cellforge::cell_complex& cells = r.cells;
+    const cellforge::wireframe_result<glm::dvec3> r = cellforge::wireframe_to_cells(wire, s.pipeline);
+    const cellforge::cell_complex<glm::dvec3>& cells = r.cells;
     std::printf("wire2cells: %s\n\n", s.input.string().c_str());
     print_stages(r);
 

@@ -17,8 +17,8 @@ using cube_cell = std::array<int, 3>;
 
 /// The complex of a set of unit cubes at integer positions: every lattice square that bounds
 /// a chosen cube is one face (normal along +axis), shared faces once, each cube one volume.
-inline cellforge::cell_complex_input lattice(const std::vector<cube_cell>& cubes) {
-  cellforge::cell_complex_input in;
+inline cellforge::cell_complex_input<glm::dvec3> lattice(const std::vector<cube_cell>& cubes) {
+  cellforge::cell_complex_input<glm::dvec3> in;
   std::map<std::array<int, 3>, std::uint32_t> vid;
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> eid;
   std::map<std::array<int, 4>, std::uint32_t> fid;  // (axis, x, y, z) of the face's min corner
@@ -35,7 +35,7 @@ inline cellforge::cell_complex_input lattice(const std::vector<cube_cell>& cubes
     }
   };
   for (const auto& c : cubes) {
-    cellforge::cell_complex_input::volume vol;
+    cellforge::cell_input_volume vol;
     for (int axis = 0; axis < 3; ++axis)
       for (int side = 0; side < 2; ++side) {
         std::array<int, 3> o = c;
@@ -62,9 +62,9 @@ inline cellforge::cell_complex_input lattice(const std::vector<cube_cell>& cubes
   return in;
 }
 
-inline cellforge::cell_complex_input cube() { return lattice({{0, 0, 0}}); }
-inline cellforge::cell_complex_input two_cubes() { return lattice({{0, 0, 0}, {1, 0, 0}}); }
-inline cellforge::cell_complex_input grid(int k, int m, int n) {
+inline cellforge::cell_complex_input<glm::dvec3> cube() { return lattice({{0, 0, 0}}); }
+inline cellforge::cell_complex_input<glm::dvec3> two_cubes() { return lattice({{0, 0, 0}, {1, 0, 0}}); }
+inline cellforge::cell_complex_input<glm::dvec3> grid(int k, int m, int n) {
   std::vector<cube_cell> cs;
   for (int x = 0; x < k; ++x)
     for (int y = 0; y < m; ++y)
@@ -72,19 +72,19 @@ inline cellforge::cell_complex_input grid(int k, int m, int n) {
   return lattice(cs);
 }
 /// A 3x3x1 grid without its middle cube: a genus-1 solid made of eight cube volumes.
-inline cellforge::cell_complex_input frame() {
+inline cellforge::cell_complex_input<glm::dvec3> frame() {
   std::vector<cube_cell> cs;
   for (int x = 0; x < 3; ++x)
     for (int y = 0; y < 3; ++y)
       if (x != 1 || y != 1) cs.push_back({x, y, 0});
   return lattice(cs);
 }
-inline cellforge::cell_complex_input disjoint_cubes() { return lattice({{0, 0, 0}, {2, 0, 0}}); }
+inline cellforge::cell_complex_input<glm::dvec3> disjoint_cubes() { return lattice({{0, 0, 0}, {2, 0, 0}}); }
 
 /// A 3x3x1 block with a 1x1 square hole through it, as ONE volume: top and bottom faces with a
 /// hole loop each, four outer and four inner side faces (genus 1).
-inline cellforge::cell_complex_input block_with_hole() {
-  cellforge::cell_complex_input in;
+inline cellforge::cell_complex_input<glm::dvec3> block_with_hole() {
+  cellforge::cell_complex_input<glm::dvec3> in;
   const double out[4][2] = {{0, 0}, {3, 0}, {3, 3}, {0, 3}}, hole[4][2] = {{1, 1}, {2, 1}, {2, 2}, {1, 2}};
   for (int z = 0; z < 2; ++z)
     for (int i = 0; i < 4; ++i) in.points.push_back({out[i][0], out[i][1], double(z)});
@@ -105,14 +105,15 @@ inline cellforge::cell_complex_input block_with_hole() {
     in.faces.push_back({{{i, j, 4 + j, 4 + i}}});            // outer side, normal outward
     in.faces.push_back({{{8 + i, 12 + i, 12 + j, 8 + j}}});  // inner side, normal into the hole
   }
-  cellforge::cell_complex_input::volume v;
+  cellforge::cell_input_volume v;
   for (std::uint32_t f = 0; f < in.faces.size(); ++f) v.faces.emplace_back(f, +1);
   in.volumes.push_back(v);
   return in;
 }
 
 /// True when two inputs are identical: points, edges, face loops and signed volume faces.
-inline bool same_input(const cellforge::cell_complex_input& x, const cellforge::cell_complex_input& y) {
+inline bool same_input(const cellforge::cell_complex_input<glm::dvec3>& x,
+                       const cellforge::cell_complex_input<glm::dvec3>& y) {
   if (x.points != y.points || x.edges != y.edges || x.faces.size() != y.faces.size() ||
       x.volumes.size() != y.volumes.size())
     return false;

@@ -16,6 +16,25 @@
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 #include "cells_fixtures.hpp"
 
+namespace cell_complex_tests {
+/// A CAD-style point: private coordinates, getters, made only by its constructor.
+class sealed_point {
+ public:
+  sealed_point(double x, double y, double z) : x_(x), y_(y), z_(z) {}
+  double x() const { return x_; }
+  double y() const { return y_; }
+  double z() const { return z_; }
+
+ private:
+  double x_, y_, z_;
+};
+struct float_point {
+  float x, y, z;
+};
+}  // namespace cell_complex_tests
+CELLFORGE_REGISTER_POINT3_GET_CTOR(cell_complex_tests::sealed_point, double, x, y, z);
+CELLFORGE_REGISTER_POINT3(cell_complex_tests::float_point, float, x, y, z);
+
 // Own namespace: the test files of a group are compiled as one translation unit.
 namespace cell_complex_tests {
 
@@ -25,7 +44,7 @@ namespace fx = cells_fixtures;
 namespace {
 
 // The edge joining the vertices at positions a and b (by coordinates).
-cell_edge edge_at(const cell_complex& cc, glm::dvec3 a, glm::dvec3 b) {
+cell_edge edge_at(const cell_complex<glm::dvec3>& cc, glm::dvec3 a, glm::dvec3 b) {
   for (cell_edge e : cc.edges()) {
     const glm::dvec3 p = cc.point(cc.source(e)), q = cc.point(cc.target(e));
     if ((p == a && q == b) || (p == b && q == a)) return e;
@@ -34,7 +53,7 @@ cell_edge edge_at(const cell_complex& cc, glm::dvec3 a, glm::dvec3 b) {
 }
 
 // The message of the error make_cell_complex throws on `in`, or "" if it does not throw.
-std::string build_error(cell_complex_input in) {
+std::string build_error(cell_complex_input<glm::dvec3> in) {
   try {
     (void)make_cell_complex(std::move(in));
   } catch (const error& e) {
@@ -48,7 +67,7 @@ bool contains(const std::string& s, const std::string& part) { return s.find(par
 }  // namespace
 
 TEST_CASE("cell complex: a cube") {
-  const cell_complex cc = make_cell_complex(fx::cube());
+  const cell_complex<glm::dvec3> cc = make_cell_complex(fx::cube());
   CHECK(cc.num_vertices() == 8);
   CHECK(cc.num_edges() == 12);
   CHECK(cc.num_faces() == 6);
@@ -100,7 +119,7 @@ TEST_CASE("cell complex: a cube") {
 }
 
 TEST_CASE("cell complex: two cubes sharing a face") {
-  const cell_complex cc = make_cell_complex(fx::two_cubes());
+  const cell_complex<glm::dvec3> cc = make_cell_complex(fx::two_cubes());
   CHECK(cc.num_vertices() == 12);
   CHECK(cc.num_edges() == 20);
   CHECK(cc.num_faces() == 11);
@@ -129,7 +148,7 @@ TEST_CASE("cell complex: two cubes sharing a face") {
 }
 
 TEST_CASE("cell complex: a 2x2x1 grid has an edge with four volumes around it") {
-  const cell_complex cc = make_cell_complex(fx::grid(2, 2, 1));
+  const cell_complex<glm::dvec3> cc = make_cell_complex(fx::grid(2, 2, 1));
   CHECK(cc.num_vertices() == 18);
   CHECK(cc.num_edges() == 33);
   CHECK(cc.num_faces() == 20);
@@ -173,7 +192,7 @@ TEST_CASE("cell complex: a 2x2x1 grid has an edge with four volumes around it") 
 }
 
 TEST_CASE("cell complex: objects and Euler characteristics") {
-  const cell_complex two = make_cell_complex(fx::disjoint_cubes());
+  const cell_complex<glm::dvec3> two = make_cell_complex(fx::disjoint_cubes());
   REQUIRE(two.num_objects() == 2);
   for (cell_object o : two.objects()) {
     CHECK(two.object_euler(o) == 1);
@@ -182,16 +201,16 @@ TEST_CASE("cell complex: objects and Euler characteristics") {
   }
   CHECK(two.volume_object(cell_volume(0)) != two.volume_object(cell_volume(1)));
 
-  const cell_complex frame = make_cell_complex(fx::frame());
+  const cell_complex<glm::dvec3> frame = make_cell_complex(fx::frame());
   REQUIRE(frame.num_objects() == 1);
   CHECK(frame.num_volumes() == 8);
   CHECK(frame.object_euler(cell_object(0)) == 0);  // a solid torus made of balls
 
-  const cell_complex g = make_cell_complex(fx::grid(3, 2, 2));
+  const cell_complex<glm::dvec3> g = make_cell_complex(fx::grid(3, 2, 2));
   CHECK(g.object_euler(cell_object(0)) == 1);
   CHECK(g.num_volumes() == 12);
 
-  const cell_complex hole = make_cell_complex(fx::block_with_hole());
+  const cell_complex<glm::dvec3> hole = make_cell_complex(fx::block_with_hole());
   CHECK(hole.num_vertices() == 16);
   CHECK(hole.num_edges() == 24);
   CHECK(hole.num_faces() == 10);
@@ -204,13 +223,13 @@ TEST_CASE("cell complex: objects and Euler characteristics") {
 
 TEST_CASE("cell complex: to_input gives back the input") {
   for (const auto& in : {fx::cube(), fx::two_cubes(), fx::block_with_hole(), fx::frame()}) {
-    const cell_complex cc = make_cell_complex(in);
+    const cell_complex<glm::dvec3> cc = make_cell_complex(in);
     CHECK(fx::same_input(cc.to_input(), in));
   }
 }
 
 TEST_CASE("cell complex: inconsistent input is refused, naming the element") {
-  const cell_complex_input good = fx::two_cubes();
+  const cell_complex_input<glm::dvec3> good = fx::two_cubes();
   {
     auto in = good;
     in.points[3].y = std::nan("");
@@ -331,7 +350,7 @@ TEST_CASE("cell complex: a face in three volumes") {
   for (const auto& [f, s] : in.volumes[0].faces)
     for (const auto& [g, t] : in.volumes[1].faces)
       if (f == g) shared = f;
-  cell_complex_input::volume v;
+  cell_input_volume v;
   v.faces.emplace_back(shared, 1);
   in.volumes.push_back(v);
   const std::string msg = build_error(in);
@@ -344,11 +363,11 @@ namespace {
 
 // All volumes of `in` merged into one: faces between two of them, and edges left in no face,
 // are dropped (indices renumbered).
-cell_complex_input merged(const cell_complex_input& in) {
+cell_complex_input<glm::dvec3> merged(const cell_complex_input<glm::dvec3>& in) {
   std::vector<int> count(in.faces.size(), 0);
   for (const auto& v : in.volumes)
     for (const auto& fs : v.faces) ++count[fs.first];
-  cell_complex_input out;
+  cell_complex_input<glm::dvec3> out;
   out.points = in.points;
   std::vector<std::uint32_t> new_face(in.faces.size(), 0xFFFFFFFFu);
   std::set<std::pair<std::uint32_t, std::uint32_t>> used;
@@ -362,7 +381,7 @@ cell_complex_input merged(const cell_complex_input& in) {
     }
   for (const auto& e : in.edges)
     if (used.count(std::minmax(e[0], e[1]))) out.edges.push_back(e);
-  cell_complex_input::volume all;
+  cell_input_volume all;
   for (const auto& v : in.volumes)
     for (const auto& fs : v.faces)
       if (count[fs.first] == 1) all.faces.emplace_back(new_face[fs.first], fs.second);
@@ -370,7 +389,7 @@ cell_complex_input merged(const cell_complex_input& in) {
   return out;
 }
 
-std::uint32_t point_index(const cell_complex_input& in, glm::dvec3 p) {
+std::uint32_t point_index(const cell_complex_input<glm::dvec3>& in, glm::dvec3 p) {
   return static_cast<std::uint32_t>(std::find(in.points.begin(), in.points.end(), p) - in.points.begin());
 }
 
@@ -384,7 +403,7 @@ TEST_CASE("validate: valid complexes and the Euler characteristic their topology
         if (x != 1 || y != 1 || z != 1) shell.push_back({x, y, z});
   struct named {
     const char* name;
-    cell_complex_input in;
+    cell_complex_input<glm::dvec3> in;
     long long euler;
     double volume;
   };
@@ -401,7 +420,7 @@ TEST_CASE("validate: valid complexes and the Euler characteristic their topology
   };
   for (const auto& c : cases) {
     INFO(c.name);
-    const cell_complex cc = make_cell_complex(c.in);
+    const cell_complex<glm::dvec3> cc = make_cell_complex(c.in);
     const auto r = validate(cc);
     INFO(r.message);
     REQUIRE(r.ok());
@@ -413,7 +432,7 @@ TEST_CASE("validate: valid complexes and the Euler characteristic their topology
     for (double v : r.signed_volumes) total += v;
     CHECK(total == doctest::Approx(c.volume));
   }
-  const cell_complex two = make_cell_complex(fx::disjoint_cubes());
+  const cell_complex<glm::dvec3> two = make_cell_complex(fx::disjoint_cubes());
   const auto r = validate(two);
   REQUIRE(r.ok());
   CHECK(r.expected_euler == std::vector<long long>{1, 1});
@@ -432,12 +451,12 @@ TEST_CASE("validate: the same answers after scaling and a rigid motion") {
       q = {q.x, std::cos(b) * q.y - std::sin(b) * q.z, std::sin(b) * q.y + std::cos(b) * q.z};
       p = scale * q + glm::dvec3(3 * scale, -5 * scale, 11 * scale);
     }
-    const cell_complex cc = make_cell_complex(in);
+    const cell_complex<glm::dvec3> cc = make_cell_complex(in);
     const auto r = validate(cc);
     INFO(r.message);
     REQUIRE(r.ok());
     for (double v : r.signed_volumes) CHECK(v == doctest::Approx(scale * scale * scale));
-    const cell_complex ref = make_cell_complex(fx::grid(2, 1, 2));
+    const cell_complex<glm::dvec3> ref = make_cell_complex(fx::grid(2, 1, 2));
     for (cell_edge e : cc.edges()) {
       REQUIRE(cc.edge_faces(e).size() == ref.edge_faces(e).size());
       for (std::size_t k = 0; k < cc.edge_faces(e).size(); ++k) {
@@ -493,14 +512,14 @@ TEST_CASE("validate: each broken invariant is named with its element") {
       in.edges.push_back({b[i], t[i]});
       in.edges.push_back({t[i], t[(i + 1) % 4]});
     }
-    cell_complex_input::volume tall;
+    cell_input_volume tall;
     const auto f0 = static_cast<std::uint32_t>(in.faces.size());
     in.faces.push_back({{{b[0], b[3], b[2], b[1]}}});
     in.faces.push_back({{{t[0], t[1], t[2], t[3]}}});
     for (int i = 0; i < 4; ++i) in.faces.push_back({{{b[i], b[(i + 1) % 4], t[(i + 1) % 4], t[i]}}});
     for (std::uint32_t f = f0; f < in.faces.size(); ++f) tall.faces.emplace_back(f, 1);
     in.volumes.push_back(tall);
-    const cell_complex cc = make_cell_complex(in);
+    const cell_complex<glm::dvec3> cc = make_cell_complex(in);
     const auto r = validate(cc);
     CHECK(r.broken == cells_invariant::rotation_order);
     CHECK(contains(r.message, "lie on the same side of the edge"));
@@ -544,7 +563,8 @@ double mesh_volume(const surface_mesh<glm::dvec3>& m) { return signed_volume(to_
 // Faces of a complex as cycles of positions, each rotated to start at its smallest point and
 // read in the smaller direction, so two complexes with the same faces (whatever their numbering) compare
 // equal.
-std::multiset<std::vector<std::vector<std::array<double, 3>>>> face_shapes(const cell_complex& cc) {
+std::multiset<std::vector<std::vector<std::array<double, 3>>>> face_shapes(
+    const cell_complex<glm::dvec3>& cc) {
   std::multiset<std::vector<std::vector<std::array<double, 3>>>> out;
   for (cell_face f : cc.faces()) {
     std::vector<std::vector<std::array<double, 3>>> loops;
@@ -617,14 +637,14 @@ TEST_CASE("conversion: triangulating a face with holes") {
 
 TEST_CASE("conversion: volume boundaries to meshes and back") {
   SUBCASE("cube") {
-    const cell_complex cc = make_cell_complex(fx::cube());
+    const cell_complex<glm::dvec3> cc = make_cell_complex(fx::cube());
     const auto m = volume_boundary_mesh(cc, cell_volume(0));
     REQUIRE_VALID(m);
     CHECK(m.num_vertices() == 8);
     CHECK(m.num_faces() == 6);
     CHECK(m.is_closed());
     CHECK(mesh_volume(m) == doctest::Approx(1.0));
-    const cell_complex back = make_cell_complex(mesh_to_cell_complex(m).to_input());
+    const cell_complex<glm::dvec3> back = make_cell_complex(mesh_to_cell_complex(m).to_input());
     REQUIRE_VALID(back);
     CHECK(face_shapes(back) == face_shapes(cc));
     CHECK(back.num_edges() == 12);
@@ -633,18 +653,18 @@ TEST_CASE("conversion: volume boundaries to meshes and back") {
     REQUIRE_VALID(tri);
     CHECK(tri.num_faces() == 12);
     CHECK(mesh_volume(tri) == doctest::Approx(1.0));
-    const cell_complex unmerged = mesh_to_cell_complex(tri);
+    const cell_complex<glm::dvec3> unmerged = mesh_to_cell_complex(tri);
     REQUIRE_VALID(unmerged);
     CHECK(unmerged.num_faces() == 12);
     CHECK(unmerged.num_edges() == 18);
-    const cell_complex merged_back = mesh_to_cell_complex(tri, {.merge_coplanar = true});
+    const cell_complex<glm::dvec3> merged_back = mesh_to_cell_complex(tri, {.merge_coplanar = true});
     REQUIRE_VALID(merged_back);
     CHECK(merged_back.num_faces() == 6);
     CHECK(merged_back.num_edges() == 12);
     CHECK(face_shapes(merged_back) == face_shapes(cc));
   }
   SUBCASE("every volume of a grid, with the complex's vertex and face of each element") {
-    const cell_complex cc = make_cell_complex(fx::grid(2, 2, 1));
+    const cell_complex<glm::dvec3> cc = make_cell_complex(fx::grid(2, 2, 1));
     for (cell_volume c : cc.volumes()) {
       const auto m = volume_boundary_mesh(cc, c);
       REQUIRE_VALID(m);
@@ -662,7 +682,7 @@ TEST_CASE("conversion: volume boundaries to meshes and back") {
     }
   }
   SUBCASE("block with a hole: annular faces are triangulated, and merged back") {
-    const cell_complex cc = make_cell_complex(fx::block_with_hole());
+    const cell_complex<glm::dvec3> cc = make_cell_complex(fx::block_with_hole());
     const auto m = volume_boundary_mesh(cc, cell_volume(0));
     REQUIRE_VALID(m);
     CHECK(m.is_closed());
@@ -670,7 +690,7 @@ TEST_CASE("conversion: volume boundaries to meshes and back") {
     CHECK(m.num_faces() == 8 + 2 * 8);
     CHECK(long(m.num_vertices()) - long(m.num_edges()) + long(m.num_faces()) == 0);  // a torus
     CHECK(mesh_volume(m) == doctest::Approx(8.0));
-    const cell_complex back = mesh_to_cell_complex(m, {.merge_coplanar = true});
+    const cell_complex<glm::dvec3> back = mesh_to_cell_complex(m, {.merge_coplanar = true});
     const auto r = validate(back);
     INFO(r.message);
     REQUIRE(r.ok());
@@ -685,14 +705,14 @@ TEST_CASE("conversion: volume boundaries to meshes and back") {
 
 TEST_CASE("conversion: closed meshes to one-volume complexes") {
   SUBCASE("torus and sphere") {
-    const cell_complex torus_cells = mesh_to_cell_complex(make_mesh(torus<glm::dvec3>(12, 8)));
+    const cell_complex<glm::dvec3> torus_cells = mesh_to_cell_complex(make_mesh(torus<glm::dvec3>(12, 8)));
     const auto r = validate(torus_cells);
     INFO(r.message);
     REQUIRE(r.ok());
     CHECK(torus_cells.num_volumes() == 1);
     CHECK(torus_cells.object_euler(cell_object(0)) == -1);  // faces are disks, the volume is not a ball
     CHECK(r.expected_euler[0] == -1);
-    const cell_complex sphere = mesh_to_cell_complex(make_mesh(uv_sphere<glm::dvec3>(16, 8)));
+    const cell_complex<glm::dvec3> sphere = mesh_to_cell_complex(make_mesh(uv_sphere<glm::dvec3>(16, 8)));
     REQUIRE_VALID(sphere);
     CHECK(sphere.object_euler(cell_object(0)) == 1);
   }
@@ -705,7 +725,7 @@ TEST_CASE("conversion: closed meshes to one-volume complexes") {
       std::reverse(face.begin(), face.end());
       flipped.add_face(face);
     }
-    const cell_complex cc = mesh_to_cell_complex(make_mesh(flipped));
+    const cell_complex<glm::dvec3> cc = mesh_to_cell_complex(make_mesh(flipped));
     REQUIRE_VALID(cc);
     for (const auto& fs : cc.volume_faces(cell_volume(0))) CHECK(fs.sign == -1);
   }
@@ -730,8 +750,8 @@ TEST_CASE("sample models through the wireframe pipeline: valid complexes, closed
   models.push_back(sample_seed(3));
   for (const auto& m : models) {
     INFO(m.name);
-    const wireframe_result r = wireframe_to_cells(m.wire);
-    const cell_complex& cc = r.cells;
+    const wireframe_result<glm::dvec3> r = wireframe_to_cells(m.wire);
+    const cell_complex<glm::dvec3>& cc = r.cells;
     const auto v = validate(cc);
     INFO(v.message);
     REQUIRE(v.ok());
@@ -743,7 +763,7 @@ TEST_CASE("sample models through the wireframe pipeline: valid complexes, closed
       const auto mesh = volume_boundary_mesh(cc, c);
       CHECK(mesh.is_closed());
       CHECK(mesh_volume(mesh) == doctest::Approx(v.signed_volumes[c.idx()]));
-      const cell_complex one = mesh_to_cell_complex(mesh, {.merge_coplanar = true});
+      const cell_complex<glm::dvec3> one = mesh_to_cell_complex(mesh, {.merge_coplanar = true});
       const auto w = validate(one);
       INFO(w.message);
       CHECK(w.ok());
@@ -751,6 +771,52 @@ TEST_CASE("sample models through the wireframe pipeline: valid complexes, closed
       CHECK(one.num_faces() <= cc.volume_faces(c).size());
       CHECK(w.signed_volumes[0] == doctest::Approx(v.signed_volumes[c.idx()]));
     }
+  }
+}
+
+TEST_CASE_TEMPLATE("cell complexes keep the caller's point type: build, normals, validate, conversions", P,
+                   sealed_point, float_point) {
+  // The sample models (glm::dvec3) converted to P through the wireframe: the pipeline, the
+  // complex and the boundary meshes all come back in P, with the same cells and volumes.
+  for (const auto& m : {sample_two_cubes(), sample_block_with_hole(), sample_house()}) {
+    INFO(m.name);
+    const wireframe<P> wire = to_wireframe<P>(m.wire);
+    const auto r = wireframe_to_cells(wire);
+    static_assert(std::is_same_v<std::remove_cvref_t<decltype(r.cells)>, cell_complex<P>>);
+    static_assert(std::is_same_v<decltype(r.input.points), std::vector<P>>);
+    const auto ref = wireframe_to_cells(m.wire);
+    const cell_complex<P>& cc = r.cells;
+    REQUIRE(cc.num_faces() == ref.cells.num_faces());
+    REQUIRE(cc.num_volumes() == ref.cells.num_volumes());
+    static_assert(std::is_same_v<decltype(cc.point(cell_vertex(0))), const P&>);
+    static_assert(std::is_same_v<decltype(cc.face_normal(cell_face(0))), P>);
+    // The caller's points come back unchanged, at the vertices the double run gives them.
+    for (cell_vertex v : cc.vertices()) {
+      REQUIRE(r.input_vertex[v.idx()] == ref.input_vertex[v.idx()]);
+      CHECK(to_dvec3(cc.point(v)) == to_dvec3(wire.points[r.input_vertex[v.idx()]]));
+      CHECK(glm::length(to_dvec3(cc.point(v)) - ref.cells.point(v)) < 1e-6);
+    }
+    for (cell_face f : cc.faces())
+      CHECK(glm::length(to_dvec3(cc.face_normal(f)) - ref.cells.face_normal(f)) < 1e-6);
+    const auto v = validate(cc), vref = validate(ref.cells);
+    INFO(v.message);
+    REQUIRE(v.ok());
+    for (cell_volume c : cc.volumes()) {
+      CHECK(v.signed_volumes[c.idx()] == doctest::Approx(vref.signed_volumes[c.idx()]));
+      CHECK(signed_volume(cc, c) == doctest::Approx(signed_volume(ref.cells, c)));
+      CHECK(signed_volume(cc, c, from_dvec3<P>(glm::dvec3(5, 6, 7))) ==
+            doctest::Approx(signed_volume(cc, c)));
+      const surface_mesh<P> mesh = volume_boundary_mesh(cc, c);
+      CHECK(mesh.is_closed());
+      const cell_complex<P> one = mesh_to_cell_complex(mesh, {.merge_coplanar = true});
+      REQUIRE_VALID(one);
+    }
+    // to_input and convert_points keep everything but the type.
+    const cell_complex_input<P> in = cc.to_input();
+    CHECK(make_cell_complex(in).num_faces() == cc.num_faces());
+    const cell_complex<glm::dvec3> back = convert_points<glm::dvec3>(cc);
+    CHECK(fx::same_input(back.to_input(), convert_points<glm::dvec3>(make_cell_complex(in)).to_input()));
+    REQUIRE_VALID(back);
   }
 }
 

@@ -18,6 +18,26 @@
 #include "cellforge/wireframe/sample_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 #include "cells_fixtures.hpp"
+#include "test_support.hpp"
+
+namespace cells_io_tests {
+/// A CAD-style point: private coordinates, getters, made only by its constructor.
+class sealed_point {
+ public:
+  sealed_point(double x, double y, double z) : c_{x, y, z} {}
+  double x() const { return c_[0]; }
+  double y() const { return c_[1]; }
+  double z() const { return c_[2]; }
+
+ private:
+  std::array<double, 3> c_;
+};
+struct float_point {
+  float x, y, z;
+};
+}  // namespace cells_io_tests
+CELLFORGE_REGISTER_POINT3_GET_CTOR(cells_io_tests::sealed_point, double, x, y, z);
+CELLFORGE_REGISTER_POINT3(cells_io_tests::float_point, float, x, y, z);
 
 // Own namespace: the test files of a group are compiled as one translation unit.
 namespace cells_io_tests {
@@ -27,7 +47,7 @@ namespace fx = cells_fixtures;
 
 namespace {
 
-std::string text_of(const cell_complex& cc) {
+std::string text_of(const cell_complex<glm::dvec3>& cc) {
   std::ostringstream os;
   io::write_3dcl(os, cc);
   return os.str();
@@ -46,21 +66,22 @@ std::string join_lines(const std::vector<std::string>& lines) {
   return s;
 }
 
-void same_complex(const cell_complex& a, const cell_complex& b) {
+void same_complex(const cell_complex<glm::dvec3>& a, const cell_complex<glm::dvec3>& b) {
   CHECK(fx::same_input(a.to_input(), b.to_input()));
 }
 
 }  // namespace
 
 TEST_CASE("3dcl: written in the seed's order and read back identically") {
-  const std::vector<cell_complex_input> inputs{fx::cube(),  fx::two_cubes(),      fx::grid(2, 2, 1),
-                                               fx::frame(), fx::disjoint_cubes(), fx::block_with_hole()};
+  const std::vector<cell_complex_input<glm::dvec3>> inputs{fx::cube(),           fx::two_cubes(),
+                                                           fx::grid(2, 2, 1),    fx::frame(),
+                                                           fx::disjoint_cubes(), fx::block_with_hole()};
   for (const auto& in : inputs) {
     auto moved = in;
     for (auto& p : moved.points) p = p * 0.1 + glm::dvec3(1.0 / 3.0, -2e-7, 1e5);  // not short decimals
-    const cell_complex cc = make_cell_complex(moved);
+    const cell_complex<glm::dvec3> cc = make_cell_complex(moved);
     const std::string text = text_of(cc);
-    const cell_complex back = io::parse_3dcl(text, "t.3dcl");
+    const cell_complex<glm::dvec3> back = io::parse_3dcl<glm::dvec3>(text, "t.3dcl");
     same_complex(cc, back);
     CHECK(text_of(back) == text);
     CHECK(validate(back).ok());
@@ -86,15 +107,15 @@ TEST_CASE("3dcl: written in the seed's order and read back identically") {
   // Comments, blank lines, CRLF line ends and a byte-order mark are accepted.
   std::string decorated = "\xEF\xBB\xBF# made by hand\r\n";
   for (const auto& l : lines) decorated += l + "   # note\r\n\r\n";
-  same_complex(io::parse_3dcl(decorated), make_cell_complex(fx::cube()));
+  same_complex(io::parse_3dcl<glm::dvec3>(decorated), make_cell_complex(fx::cube()));
 
   // Files.
   const auto path = std::filesystem::temp_directory_path() / "cellforge_test_cells.3dcl";
-  const cell_complex two = make_cell_complex(fx::two_cubes());
+  const cell_complex<glm::dvec3> two = make_cell_complex(fx::two_cubes());
   io::write_3dcl(path, two, {.comment = "two cubes\nsharing a face"});
-  same_complex(io::read_3dcl(path), two);
+  same_complex(io::read_3dcl<glm::dvec3>(path), two);
   std::filesystem::remove(path);
-  CHECK_THROWS_AS((void)io::read_3dcl(path), error);
+  CHECK_THROWS_AS((void)io::read_3dcl<glm::dvec3>(path), error);
 }
 
 TEST_CASE("3dcl: malformed files give file:line and what was expected") {
@@ -157,7 +178,7 @@ TEST_CASE("3dcl: malformed files give file:line and what was expected") {
   };
   auto run = [](const bad_case& c) {
     try {
-      (void)io::parse_3dcl(c.text, "bad.3dcl");
+      (void)io::parse_3dcl<glm::dvec3>(c.text, "bad.3dcl");
       FAIL("no error for: " << c.message);
     } catch (const error& e) {
       INFO(e.what());
@@ -197,7 +218,7 @@ TEST_CASE("3dcl: malformed files give file:line and what was expected") {
 }
 
 TEST_CASE("cells OBJ: one group per volume") {
-  const cell_complex cc = make_cell_complex(fx::two_cubes());
+  const cell_complex<glm::dvec3> cc = make_cell_complex(fx::two_cubes());
   std::ostringstream os;
   io::write_cells_obj(os, cc, {.comment = "two cubes"});
   const auto data = io::parse_obj<glm::dvec3>(os.str(), "two.obj");
@@ -212,7 +233,7 @@ TEST_CASE("cells OBJ: one group per volume") {
     polygon_soup<glm::dvec3> box;
     box.points = data.soup.points;
     for (std::size_t f = 6 * g; f < 6 * g + 6; ++f) box.add_face(data.soup.face(f));
-    const cell_complex one = mesh_to_cell_complex(make_mesh(box));
+    const cell_complex<glm::dvec3> one = mesh_to_cell_complex(make_mesh(box));
     CHECK(validate(one).signed_volumes == std::vector<double>{1.0});
   }
   // Faces with holes are triangulated; dangling edges become lines.
@@ -225,7 +246,7 @@ TEST_CASE("cells OBJ: one group per volume") {
 }
 
 TEST_CASE("cells PLY: faces coloured by volume") {
-  const cell_complex cc = make_cell_complex(fx::grid(2, 1, 1));
+  const cell_complex<glm::dvec3> cc = make_cell_complex(fx::grid(2, 1, 1));
   std::ostringstream os;
   io::write_cells_ply(os, cc);
   const std::string text = os.str();
@@ -243,7 +264,7 @@ TEST_CASE("cells PLY: faces coloured by volume") {
 }
 
 TEST_CASE("cells SVG: volumes exploded apart, faces shaded") {
-  const cell_complex cc = make_cell_complex(fx::grid(2, 2, 1));
+  const cell_complex<glm::dvec3> cc = make_cell_complex(fx::grid(2, 2, 1));
   std::ostringstream a, b;
   const auto ra = io::write_cells_svg(a, cc, {.explode = 0.0});
   const auto rb = io::write_cells_svg(b, cc);
@@ -270,9 +291,9 @@ TEST_CASE("cells SVG: volumes exploded apart, faces shaded") {
 TEST_CASE("3dcl, OBJ and SVG of the sample models' complexes") {
   for (const auto& m : all_small_samples()) {
     INFO(m.name);
-    const cell_complex cc = wireframe_to_cells(m.wire).cells;
+    const cell_complex<glm::dvec3> cc = wireframe_to_cells(m.wire).cells;
     const std::string text = text_of(cc);
-    const cell_complex back = io::parse_3dcl(text, m.name);
+    const cell_complex<glm::dvec3> back = io::parse_3dcl<glm::dvec3>(text, m.name);
     same_complex(cc, back);
     CHECK(text_of(back) == text);
     const auto obj = io::cells_obj_data(cc);
@@ -283,7 +304,7 @@ TEST_CASE("3dcl, OBJ and SVG of the sample models' complexes") {
 }
 
 TEST_CASE("cells SVG of 1000 volumes: one layer and six faces per volume, the nearest cube as if alone") {
-  const cell_complex cc = make_cell_complex(fx::grid(10, 10, 10));
+  const cell_complex<glm::dvec3> cc = make_cell_complex(fx::grid(10, 10, 10));
   const io::svg_scene scene = io::cells_svg_scene(cc);
   CHECK(scene.num_layers() == 1000);
   std::ostringstream os;
@@ -323,7 +344,7 @@ TEST_CASE("cells SVG of 512 separate cubes: every object drawn, its layer holdin
   for (int x = 0; x < 8; ++x)
     for (int y = 0; y < 8; ++y)
       for (int z = 0; z < 8; ++z) cubes.push_back({2 * x, 2 * y, 2 * z});
-  const cell_complex cc = make_cell_complex(fx::lattice(cubes));
+  const cell_complex<glm::dvec3> cc = make_cell_complex(fx::lattice(cubes));
   CHECK(cc.num_objects() == 512);
   const io::svg_scene scene = io::cells_svg_scene(cc, {.explode = 0.0});
   CHECK(scene.num_layers() == 512);
@@ -343,14 +364,14 @@ TEST_CASE("cells SVG of 512 separate cubes: every object drawn, its layer holdin
 TEST_CASE("cells PLY: a face of more than 255 vertices gets a wider count type and reads back") {
   // A prism over a 300-gon: two 300-gon caps and 300 side quads, one volume.
   constexpr std::uint32_t n = 300;
-  cell_complex_input in;
+  cell_complex_input<glm::dvec3> in;
   for (std::uint32_t z = 0; z < 2; ++z)
     for (std::uint32_t i = 0; i < n; ++i) {
       const double a = 2 * std::numbers::pi * i / n;
       in.points.push_back({std::cos(a), std::sin(a), double(z)});
     }
   std::vector<std::uint32_t> bottom, top;
-  cell_complex_input::volume vol;
+  cell_input_volume vol;
   for (std::uint32_t i = 0; i < n; ++i) {
     const std::uint32_t j = (i + 1) % n;
     in.edges.push_back({i, j});
@@ -368,7 +389,7 @@ TEST_CASE("cells PLY: a face of more than 255 vertices gets a wider count type a
     in.faces.push_back({{{i, j, n + j, n + i}}});  // normal outward
   }
   in.volumes.push_back(vol);
-  const cell_complex cc = make_cell_complex(in);
+  const cell_complex<glm::dvec3> cc = make_cell_complex(in);
   std::ostringstream os;
   io::write_cells_ply(os, cc);
   const std::string text = os.str();
@@ -378,6 +399,37 @@ TEST_CASE("cells PLY: a face of more than 255 vertices gets a wider count type a
   std::size_t largest = 0;
   for (std::size_t f = 0; f < soup.num_faces(); ++f) largest = std::max(largest, soup.face(f).size());
   CHECK(largest == n);
+}
+
+TEST_CASE_TEMPLATE("cells io in the caller's point type: the same files as glm::dvec3, read back typed", P,
+                   sealed_point, float_point) {
+  for (const auto& m : {sample_two_cubes(), sample_block_with_hole(), sample_stepped_block()}) {
+    INFO(m.name);
+    const cell_complex<glm::dvec3> ref = wireframe_to_cells(m.wire).cells;
+    const cell_complex<P> cc = wireframe_to_cells(to_wireframe<P>(m.wire)).cells;
+    auto text = [](const auto& c) {
+      std::ostringstream os;
+      io::write_3dcl(os, c, {.comment = "typed"});
+      return os.str();
+    };
+    // The models' coordinates are exact in float, so every writer writes the same bytes.
+    CHECK(text(cc) == text(ref));
+    std::ostringstream obj, obj_ref, ply, ply_ref, svg, svg_ref;
+    io::write_cells_obj(obj, cc);
+    io::write_cells_obj(obj_ref, ref);
+    CHECK(obj.str() == obj_ref.str());
+    io::write_cells_ply(ply, cc);
+    io::write_cells_ply(ply_ref, ref);
+    CHECK(ply.str() == ply_ref.str());
+    CHECK(io::write_cells_svg(svg, cc).visible_pieces == io::write_cells_svg(svg_ref, ref).visible_pieces);
+    CHECK(svg.str() == svg_ref.str());
+    const io::obj_data<P> data = io::cells_obj_data(cc);
+    CHECK(data.soup.num_faces() == io::cells_obj_data(ref).soup.num_faces());
+    // Read back in P: the same complex.
+    const cell_complex<P> back = io::parse_3dcl<P>(text(cc), m.name);
+    CHECK(fx::same_input(convert_points<glm::dvec3>(back).to_input(), ref.to_input()));
+    REQUIRE_VALID(back);
+  }
 }
 
 }  // namespace cells_io_tests

@@ -413,7 +413,7 @@ TEST_CASE("the cell complex overload matches the mesh call") {
   for (const soup& s :
        {uv_sphere(12, 6, false), cylinder(16, 2, true, false), box_grid(2, 2, 2, {1, 2, 1})}) {
     const auto m = make_mesh(s);
-    const cell_complex cc = mesh_to_cell_complex(m);
+    const cell_complex<glm::dvec3> cc = mesh_to_cell_complex(m);
     const smooth_result rm = smooth_edges(m), rc = smooth_edges(cc, cell_volume(0));
     REQUIRE(rc.curves.size() == rm.curves.size());
     CHECK(rc.num_surfaces == rm.num_surfaces);

@@ -495,7 +495,7 @@ TEST_CASE("thin points: the cell-complex overload gives the mesh call's loops in
   for (const bool tri : {false, true}) {
     const auto s = cellforge::thin_dumbbell(10, 15, tri);
     const auto m = mesh_of(s.soup);
-    const cellforge::cell_complex cc = cellforge::mesh_to_cell_complex(m);
+    const cellforge::cell_complex<glm::dvec3> cc = cellforge::mesh_to_cell_complex(m);
     const thin_result a = cellforge::find_thin_points(m);
     const thin_result b = cellforge::find_thin_points(cc, cellforge::cell_volume(0));
     CHECK(a.cycle_lengths.size() == b.cycle_lengths.size());

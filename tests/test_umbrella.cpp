@@ -21,13 +21,14 @@ namespace umbrella_tests {
 
 TEST_CASE("umbrella: the main job on two cubes sharing a face") {
   const cellforge::sample_model model = cellforge::sample_two_cubes();
-  const cellforge::wireframe_result r = cellforge::wireframe_to_cells(model.wire);
+  const cellforge::wireframe_result<glm::dvec3> r = cellforge::wireframe_to_cells(model.wire);
   CHECK(r.cells.num_faces() == 11);
   CHECK(r.cells.num_volumes() == 2);
   CHECK(cellforge::validate(r.cells).ok());
   std::ostringstream text;
   cellforge::io::write_3dcl(text, r.cells);
-  const cellforge::cell_complex back = cellforge::io::parse_3dcl(text.str(), "two_cubes.3dcl");
+  const cellforge::cell_complex<glm::dvec3> back =
+      cellforge::io::parse_3dcl<glm::dvec3>(text.str(), "two_cubes.3dcl");
   CHECK(back.num_faces() == 11);
   CHECK(back.num_volumes() == 2);
   CHECK(back.num_edges() == r.cells.num_edges());

@@ -22,7 +22,8 @@ using namespace cellforge;
 namespace {
 
 // Maps result vertices back to the caller's labels, the ones the ground truth uses.
-std::vector<std::vector<std::vector<std::uint32_t>>> faces_in_input_labels(const wireframe_result& r) {
+std::vector<std::vector<std::vector<std::uint32_t>>> faces_in_input_labels(
+    const wireframe_result<glm::dvec3>& r) {
   std::vector<std::vector<std::vector<std::uint32_t>>> out;
   for (const auto& f : r.input.faces) {
     auto loops = f.loops;
@@ -36,7 +37,7 @@ std::vector<std::vector<std::vector<std::uint32_t>>> faces_in_input_labels(const
 void check_model(const sample_model& m, const wireframe_options& options = {}) {
   const std::string name = m.name;
   INFO(name);
-  const wireframe_result r = wireframe_to_cells(m.wire, options);
+  const wireframe_result<glm::dvec3> r = wireframe_to_cells(m.wire, options);
   const auto faces = faces_in_input_labels(r);
   CHECK(faces.size() == m.faces.size());
   CHECK(r.input.volumes.size() == m.volumes.size());

@@ -449,17 +449,17 @@ const sample_model& model(const std::string& name) {
 }
 
 // Converts and compares with the truth; returns the result for further checks.
-wireframe_result exact(const sample_model& m, const wireframe_options& options = {}) {
+wireframe_result<glm::dvec3> exact(const sample_model& m, const wireframe_options& options = {}) {
   const std::string name = m.name;
   INFO(name);
-  const wireframe_result r = wireframe_to_cells(m.wire, options);
+  const wireframe_result<glm::dvec3> r = wireframe_to_cells(m.wire, options);
   const std::string why = wireframe_sweep::miss_reason(m, r);
   INFO(why);
   CHECK(why.empty());
   return r;
 }
 
-std::size_t count_reason(const wireframe_result& r, const std::string& reason) {
+std::size_t count_reason(const wireframe_result<glm::dvec3>& r, const std::string& reason) {
   return static_cast<std::size_t>(std::count_if(r.alternatives.begin(), r.alternatives.end(),
                                                 [&](const face_note& n) { return n.reason == reason; }));
 }

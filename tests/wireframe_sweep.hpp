@@ -1420,7 +1420,7 @@ using faces_t = std::vector<std::vector<std::vector<std::uint32_t>>>;
 
 /// The result's faces in the caller's vertex labels, which the truth uses.
 /// O(total loop length).
-inline faces_t result_faces(const cellforge::wireframe_result& r) {
+inline faces_t result_faces(const cellforge::wireframe_result<glm::dvec3>& r) {
   faces_t out;
   for (const auto& f : r.input.faces) {
     out.push_back(f.loops);
@@ -1456,7 +1456,8 @@ inline std::string unmatched(const faces_t& a, const faces_t& b) {
 
 /// Why a result is not the truth, in one line; empty when it is exact.
 /// O(F log F · face size).
-inline std::string miss_reason(const cellforge::sample_model& m, const cellforge::wireframe_result& r) {
+inline std::string miss_reason(const cellforge::sample_model& m,
+                               const cellforge::wireframe_result<glm::dvec3>& r) {
   std::vector<std::string> why;
   const faces_t faces = result_faces(r);
   const bool faces_ok = cellforge::same_faces(m.faces, faces);

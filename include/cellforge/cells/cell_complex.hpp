@@ -15,6 +15,7 @@
 #include <numeric>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -24,6 +25,7 @@
 
 #include "cellforge/core/detail/newell.hpp"
 #include "cellforge/core/error.hpp"
+#include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/handles.hpp"
 
 namespace cellforge {
@@ -48,27 +50,34 @@ struct oriented {
   friend bool operator==(const oriented&, const oriented&) = default;
 };
 
-/// What make_cell_complex() takes: positions, edges, faces as vertex loops, volumes as signed
-/// face sets (the contract of issue 4 between the wireframe pipeline and the cell complex).
+/// One face of a cell_complex_input: loops[0] is the outer boundary, counter-clockwise
+/// (right-hand) about the face's normal; loops[1..] are holes, clockwise about the same normal.
+/// Consecutive vertices (cyclically) are joined by an edge of the input.
+struct cell_input_face {
+  std::vector<std::vector<std::uint32_t>> loops;
+};
+/// One volume of a cell_complex_input: (face index, +1 when the face's normal points OUT of this
+/// volume, -1 when it points in).
+struct cell_input_volume {
+  std::vector<std::pair<std::uint32_t, int>> faces;
+};
+
+/// What make_cell_complex() takes: positions in the caller's point type P, edges, faces as
+/// vertex loops, volumes as signed face sets.
+template <Point3 P>
 struct cell_complex_input {
-  std::vector<glm::dvec3> points;                   ///< vertex positions
+  using point_type = P;
+  using face = cell_input_face;
+  using volume = cell_input_volume;
+  std::vector<P> points;                            ///< vertex positions
   std::vector<std::array<std::uint32_t, 2>> edges;  ///< every edge, dangling ones included
-  struct face {
-    /// loops[0]: the outer boundary, counter-clockwise (right-hand) about the face's normal;
-    /// loops[1..]: holes, clockwise about the same normal. Consecutive vertices (cyclically)
-    /// are joined by an edge in `edges`.
-    std::vector<std::vector<std::uint32_t>> loops;
-  };
   std::vector<face> faces;
-  struct volume {
-    /// (face index, +1 when the face's normal points OUT of this volume, -1 when it points in)
-    std::vector<std::pair<std::uint32_t, int>> faces;
-  };
   std::vector<volume> volumes;
 };
 
+class cell_topology;
+template <Point3 P>
 class cell_complex;
-cell_complex make_cell_complex(cell_complex_input input);
 
 namespace detail::cells {
 /// Handles 0 .. n-1 of one kind as a plain forward range (not a view_interface, which clang 14
@@ -108,13 +117,21 @@ class handle_range {
 };
 }  // namespace detail::cells
 
-/// The 3DCL. Immutable once built; every relation is an O(1) span into cached arrays.
-class cell_complex {
+namespace detail::cells {
+struct access;
+void build_topology(cell_topology& cc, std::span<const glm::dvec3> points,
+                    std::vector<std::array<std::uint32_t, 2>>&& edges,
+                    const std::vector<cell_input_face>& faces, const std::vector<cell_input_volume>& volumes);
+}  // namespace detail::cells
+
+/// Everything of a 3DCL but its positions: the relations, which do not depend on the point
+/// type (cell_complex<P> adds the positions). Every relation is an O(1) span into cached arrays.
+class cell_topology {
  public:
-  cell_complex() = default;
+  cell_topology() = default;
 
   /// Numbers of elements of each kind (handles run from 0 to the count - 1). O(1).
-  std::size_t num_vertices() const noexcept { return points_.size(); }
+  std::size_t num_vertices() const noexcept { return vertex_edge_start_.size() - 1; }
   std::size_t num_edges() const noexcept { return ends_.size(); }
   std::size_t num_faces() const noexcept { return face_loop_start_.size() - 1; }
   std::size_t num_volumes() const noexcept { return volume_face_start_.size() - 1; }
@@ -128,9 +145,6 @@ class cell_complex {
   auto objects() const noexcept { return detail::cells::handle_range<cell_object>(num_objects()); }
 
   // ---- vertices
-  /// Position of v; all positions as one span. O(1).
-  const glm::dvec3& point(cell_vertex v) const { return points_[v.idx()]; }
-  std::span<const glm::dvec3> points() const noexcept { return points_; }
   /// Edges at v; sign +1 when the edge starts at v, -1 when it ends there. O(1).
   std::span<const oriented<cell_edge>> vertex_edges(cell_vertex v) const {
     return csr(vertex_edges_, vertex_edge_start_, v.idx());
@@ -175,8 +189,6 @@ class cell_complex {
   std::span<const oriented<cell_edge>> loop_edges(cell_face f, std::size_t i) const {
     return csr(loop_edges_, loop_start_, face_loop_start_[f.idx()] + i);
   }
-  /// Unit Newell normal of the outer loop (zero for a degenerate loop). O(1).
-  const glm::dvec3& face_normal(cell_face f) const { return normals_[f.idx()]; }
   /// The volumes of f (at most two); sign +1 when f's normal points out of the volume. O(1).
   std::span<const oriented<cell_volume>> face_volumes(cell_face f) const {
     return csr(face_volumes_, face_volume_start_, f.idx());
@@ -206,19 +218,23 @@ class cell_complex {
            static_cast<long long>(n[3]);
   }
 
-  /// The input this complex was built from (indices and loop starts as given). O(size).
-  cell_complex_input to_input() const;
-
-  friend cell_complex make_cell_complex(cell_complex_input input);
+ protected:
+  /// The faces, edges and volumes of the input this complex was built from. O(size).
+  template <Point3 P>
+  void topology_to_input(cell_complex_input<P>& in) const;
 
  private:
+  friend struct detail::cells::access;
+  friend void detail::cells::build_topology(cell_topology&, std::span<const glm::dvec3>,
+                                            std::vector<std::array<std::uint32_t, 2>>&&,
+                                            const std::vector<cell_input_face>&,
+                                            const std::vector<cell_input_volume>&);
   template <class T>
   static std::span<const T> csr(const std::vector<T>& data, const std::vector<std::uint32_t>& start,
                                 std::size_t i) {
     return {data.data() + start[i], start[i + 1] - start[i]};
   }
 
-  std::vector<glm::dvec3> points_;
   std::vector<std::uint32_t> vertex_edge_start_{0};
   std::vector<oriented<cell_edge>> vertex_edges_;
   std::vector<std::array<std::uint32_t, 2>> ends_;
@@ -229,7 +245,8 @@ class cell_complex {
   std::vector<std::uint32_t> loop_start_{0};       // into loop_vertices_ / loop_edges_
   std::vector<cell_vertex> loop_vertices_;
   std::vector<oriented<cell_edge>> loop_edges_;
-  std::vector<glm::dvec3> normals_;
+  std::vector<glm::dvec3>
+      normals_;  // unit, in double whatever P is: the rotation orders were sorted with them
   std::vector<std::uint32_t> face_volume_start_{0};
   std::vector<oriented<cell_volume>> face_volumes_;
   std::vector<std::uint32_t> volume_face_start_{0};
@@ -240,6 +257,73 @@ class cell_complex {
   std::vector<cell_volume> object_volumes_;
   std::vector<std::array<std::size_t, 4>> object_counts_;
 };
+
+/// The 3DCL with positions in the caller's point type P: cell_topology's relations plus
+/// point(v) and face_normal(f) in P. Immutable once built (make_cell_complex).
+template <Point3 P>
+class cell_complex : public cell_topology {
+ public:
+  using point_type = P;
+  cell_complex() = default;
+
+  /// Position of v; all positions as one span. O(1).
+  const P& point(cell_vertex v) const { return points_[v.idx()]; }
+  std::span<const P> points() const noexcept { return points_; }
+  /// Unit Newell normal of f's outer loop (zero for a degenerate loop), in P. O(1).
+  P face_normal(cell_face f) const;
+
+  /// The input this complex was built from (indices and loop starts as given). O(size).
+  cell_complex_input<P> to_input() const {
+    cell_complex_input<P> in;
+    in.points = points_;
+    topology_to_input(in);
+    return in;
+  }
+
+  template <Point3 Q>
+  friend cell_complex<Q> make_cell_complex(cell_complex_input<Q> input);
+  template <Point3 Q, Point3 R>
+  friend cell_complex<Q> convert_points(const cell_complex<R>& cc);
+
+ private:
+  std::vector<P> points_;
+};
+
+namespace detail::cells {
+/// What the library's own geometry code reads of a complex in double precision, whatever P is.
+struct access {
+  static const glm::dvec3& unit_normal(const cell_topology& cc, cell_face f) { return cc.normals_[f.idx()]; }
+};
+
+/// The positions of a complex as glm::dvec3 for the library's geometry code: a view of the
+/// complex's own array when P is glm::dvec3, else a converted copy. O(1) or O(V).
+template <Point3 P>
+class dvec3_points {
+ public:
+  explicit dvec3_points(std::span<const P> points) {
+    if constexpr (std::is_same_v<P, glm::dvec3>) {
+      view_ = points;
+    } else {
+      copy_.reserve(points.size());
+      for (const P& p : points) copy_.push_back(to_dvec3(p));
+      view_ = copy_;
+    }
+  }
+  dvec3_points(const dvec3_points&) = delete;  // view_ may point into copy_
+  dvec3_points& operator=(const dvec3_points&) = delete;
+  std::span<const glm::dvec3> span() const noexcept { return view_; }
+  const glm::dvec3& operator[](std::size_t i) const { return view_[i]; }
+
+ private:
+  std::vector<glm::dvec3> copy_;
+  std::span<const glm::dvec3> view_;
+};
+}  // namespace detail::cells
+
+template <Point3 P>
+P cell_complex<P>::face_normal(cell_face f) const {
+  return from_dvec3<P>(detail::cells::access::unit_normal(*this, f));
+}
 
 namespace detail::cells {
 
@@ -272,23 +356,21 @@ inline std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t
 
 }  // namespace detail::cells
 
-/// Builds the 3DCL and derives every relation (vertex→edges with direction, edge→faces and
-/// edge→volumes in right-hand rotation order about the edge, face→volumes with signs, objects).
-/// Throws cellforge::error naming the element when the input is inconsistent: non-finite
-/// points, bad or duplicate edges, loops not joined by edges, signs other than ±1, a face in
-/// more than two volumes or twice on one side, a volume whose boundary is not closed.
-/// O(n log n) for n = total size of the input (the sort of faces about each edge).
-inline cell_complex make_cell_complex(cell_complex_input input) {
-  using detail::cells::counts_to_starts;
-  using detail::cells::fail;
-  using detail::cells::find_root;
-  using detail::cells::newell;
-  using detail::cells::pair_key;
-  using detail::cells::S;
+namespace detail::cells {
+/// The body of make_cell_complex on double positions (one copy for every point type). O(n log n).
+inline void build_topology(cell_topology& cc, std::span<const glm::dvec3> points,
+                           std::vector<std::array<std::uint32_t, 2>>&& input_edges,
+                           const std::vector<cell_input_face>& input_faces,
+                           const std::vector<cell_input_volume>& input_volumes) {
   using std::uint32_t;
   constexpr auto bad = error_category::invalid_input;
   constexpr auto topo = error_category::topology;
-  cell_complex cc;
+  struct {
+    std::span<const glm::dvec3> points;
+    const std::vector<std::array<std::uint32_t, 2>>& edges;
+    const std::vector<cell_input_face>& faces;
+    const std::vector<cell_input_volume>& volumes;
+  } input{points, input_edges, input_faces, input_volumes};
   const std::size_t nv = input.points.size(), ne = input.edges.size(), nf = input.faces.size(),
                     nc = input.volumes.size();
   if (nv >= 0xFFFFFFFFu || ne >= 0xFFFFFFFFu || nf >= 0xFFFFFFFFu || nc >= 0xFFFFFFFFu)
@@ -506,14 +588,40 @@ inline cell_complex make_cell_complex(cell_complex_input input) {
   cc.object_volumes_.resize(nc);
   for (std::size_t c = 0; c < nc; ++c) cc.object_volumes_[cursor[cc.volume_object_[c]]++] = cell_volume(c);
 
+  cc.ends_ = std::move(input_edges);
+}
+}  // namespace detail::cells
+
+/// Builds the 3DCL and derives every relation (vertex→edges with direction, edge→faces and
+/// edge→volumes in right-hand rotation order about the edge, face→volumes with signs, objects).
+/// Throws cellforge::error naming the element when the input is inconsistent: non-finite
+/// points, bad or duplicate edges, loops not joined by edges, signs other than ±1, a face in
+/// more than two volumes or twice on one side, a volume whose boundary is not closed.
+/// O(n log n) for n = total size of the input (the sort of faces about each edge).
+template <Point3 P>
+cell_complex<P> make_cell_complex(cell_complex_input<P> input) {
+  cell_complex<P> cc;
+  {
+    const detail::cells::dvec3_points<P> coords(input.points);
+    detail::cells::build_topology(cc, coords.span(), std::move(input.edges), input.faces, input.volumes);
+  }
   cc.points_ = std::move(input.points);
-  cc.ends_ = std::move(input.edges);
   return cc;
 }
 
-inline cell_complex_input cell_complex::to_input() const {
-  cell_complex_input in;
-  in.points = points_;
+/// The same complex with its positions converted to point type Q (relations kept, face normals
+/// as computed from the original positions). O(size of cc).
+template <Point3 Q, Point3 P>
+cell_complex<Q> convert_points(const cell_complex<P>& cc) {
+  cell_complex<Q> out;
+  static_cast<cell_topology&>(out) = cc;
+  out.points_.reserve(cc.num_vertices());
+  for (const P& p : cc.points()) out.points_.push_back(from_dvec3<Q>(to_dvec3(p)));
+  return out;
+}
+
+template <Point3 P>
+void cell_topology::topology_to_input(cell_complex_input<P>& in) const {
   in.edges = ends_;
   in.faces.resize(num_faces());
   for (cell_face f : faces()) {
@@ -525,7 +633,6 @@ inline cell_complex_input cell_complex::to_input() const {
   in.volumes.resize(num_volumes());
   for (cell_volume c : volumes())
     for (const auto& [f, s] : volume_faces(c)) in.volumes[c.idx()].faces.emplace_back(f.idx(), s);
-  return in;
 }
 
 }  // namespace cellforge

@@ -203,12 +203,12 @@ inline std::vector<std::array<std::uint32_t, 3>> triangulate_face(
 }  // namespace detail::cells
 
 /// The boundary of volume c as a closed surface mesh with normals pointing out of c:
-/// positions of type P, the complex's vertex of each mesh vertex in
+/// positions in the complex's point type P, the complex's vertex of each mesh vertex in
 /// "v:cell_vertex" and the face of each mesh face in "f:cell_face" (std::uint32_t). Faces
 /// with holes (all faces, with triangulate_all) are triangulated. O(size of c), plus
 /// O(k·n²) per triangulated face. Throws what make_mesh throws (e.g. a pinched boundary).
-template <Point3 P = glm::dvec3>
-surface_mesh<P> volume_boundary_mesh(const cell_complex& cc, cell_volume c,
+template <Point3 P>
+surface_mesh<P> volume_boundary_mesh(const cell_complex<P>& cc, cell_volume c,
                                      const boundary_mesh_options& options = {}) {
   if (!(c.idx() < cc.num_volumes()))
     throw error(error_category::invalid_input,
@@ -219,7 +219,7 @@ surface_mesh<P> volume_boundary_mesh(const cell_complex& cc, cell_volume c,
   auto id = [&](cell_vertex v) {
     const auto [it, fresh] = index.emplace(v.idx(), static_cast<std::uint32_t>(soup.points.size()));
     if (fresh) {
-      soup.points.push_back(from_dvec3<P>(cc.point(v)));
+      soup.points.push_back(cc.point(v));
       cell_vertex_of.push_back(v.idx());
     }
     return it->second;
@@ -237,9 +237,11 @@ surface_mesh<P> volume_boundary_mesh(const cell_complex& cc, cell_volume c,
     std::vector<std::vector<glm::dvec3>> loops(cc.num_loops(f));
     std::vector<cell_vertex> flat;
     for (std::size_t l = 0; l < loops.size(); ++l)
-      for (cell_vertex v : cc.loop_vertices(f, l)) loops[l].push_back(cc.point(v)), flat.push_back(v);
-    const auto tris = detail::cells::triangulate_face(
-        loops, cc.face_normal(f), "volume_boundary_mesh: face " + std::to_string(f.idx()));
+      for (cell_vertex v : cc.loop_vertices(f, l))
+        loops[l].push_back(to_dvec3(cc.point(v))), flat.push_back(v);
+    const auto tris =
+        detail::cells::triangulate_face(loops, detail::cells::access::unit_normal(cc, f),
+                                        "volume_boundary_mesh: face " + std::to_string(f.idx()));
     for (const auto& t : tris) {
       face = {id(flat[t[0]]), id(flat[t[1]]), id(flat[t[2]])};
       if (sign < 0) std::swap(face[1], face[2]);
@@ -262,7 +264,7 @@ surface_mesh<P> volume_boundary_mesh(const cell_complex& cc, cell_volume c,
 /// O(size of the mesh) (plus the regions' boundary walks). Throws topology when the mesh is
 /// not closed or not consistently oriented.
 template <Point3 P>
-cell_complex mesh_to_cell_complex(const surface_mesh<P>& m, const mesh_to_cells_options& options = {}) {
+cell_complex<P> mesh_to_cell_complex(const surface_mesh<P>& m, const mesh_to_cells_options& options = {}) {
   using std::uint32_t;
   constexpr uint32_t none = 0xFFFFFFFFu;
   if (!m.is_closed())
@@ -312,17 +314,17 @@ cell_complex mesh_to_cell_complex(const surface_mesh<P>& m, const mesh_to_cells_
   // Each region's boundary loops: half-edges whose twin lies in another region, chained at
   // their heads. A region whose boundary passes a vertex twice, or has several outer loops,
   // falls back to one face per mesh face.
-  cell_complex_input in;
+  cell_complex_input<P> in;
   std::vector<uint32_t> vid(m.vertices_size(), none), eid(m.edges_size(), none);
   auto vertex_id = [&](vertex_handle v) {
     if (vid[v.idx()] == none) {
       vid[v.idx()] = static_cast<uint32_t>(in.points.size());
-      in.points.push_back(pos(v));
+      in.points.push_back(m.position(v));
     }
     return vid[v.idx()];
   };
   auto add_loops = [&](const std::vector<std::vector<vertex_handle>>& loops) {
-    cell_complex_input::face face;
+    cell_input_face face;
     for (const auto& loop : loops) {
       face.loops.emplace_back();
       for (std::size_t i = 0; i < loop.size(); ++i) {
@@ -386,13 +388,13 @@ cell_complex mesh_to_cell_complex(const surface_mesh<P>& m, const mesh_to_cells_
   // One volume; the signs make its signed volume positive.
   double six = 0.0;
   for (const auto& face : in.faces) {
-    const glm::dvec3 apex = in.points[face.loops[0][0]] - box.center();
+    auto at = [&](std::uint32_t i) { return to_dvec3(in.points[i]) - box.center(); };
+    const glm::dvec3 apex = at(face.loops[0][0]);
     for (const auto& loop : face.loops)
       for (std::size_t i = 0; i < loop.size(); ++i)
-        six += glm::dot(apex, glm::cross(in.points[loop[i]] - box.center(),
-                                         in.points[loop[(i + 1) % loop.size()]] - box.center()));
+        six += glm::dot(apex, glm::cross(at(loop[i]), at(loop[(i + 1) % loop.size()])));
   }
-  cell_complex_input::volume vol;
+  cell_input_volume vol;
   for (std::size_t f = 0; f < in.faces.size(); ++f)
     vol.faces.emplace_back(static_cast<uint32_t>(f), six < 0 ? -1 : 1);
   if (!in.faces.empty()) in.volumes.push_back(std::move(vol));

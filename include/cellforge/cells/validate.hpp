@@ -57,18 +57,19 @@ struct cells_validation_result {
   explicit operator bool() const noexcept { return ok(); }
 };
 
-/// Signed volume enclosed by c's faces (normals out: positive), by the divergence theorem over
-/// each face's loops fanned from the face's first vertex, about `origin`. O(size of c).
-inline double signed_volume(const cell_complex& cc, cell_volume c,
-                            const glm::dvec3& origin = glm::dvec3(0.0)) {
+namespace detail::cells {
+
+/// Signed volume of c on double positions. O(size of c).
+inline double signed_volume_of(const cell_topology& cc, std::span<const glm::dvec3> pts, cell_volume c,
+                               const glm::dvec3& origin) {
   double six = 0.0;
   for (const auto& [f, sign] : cc.volume_faces(c)) {
-    const glm::dvec3 apex = cc.point(cc.loop_vertices(f, 0)[0]) - origin;
+    const glm::dvec3 apex = pts[cc.loop_vertices(f, 0)[0].idx()] - origin;
     double sum = 0.0;
     for (std::size_t l = 0; l < cc.num_loops(f); ++l) {
       const auto vs = cc.loop_vertices(f, l);
       for (std::size_t k = 0; k < vs.size(); ++k) {
-        const glm::dvec3 a = cc.point(vs[k]) - origin, b = cc.point(vs[(k + 1) % vs.size()]) - origin;
+        const glm::dvec3 a = pts[vs[k].idx()] - origin, b = pts[vs[(k + 1) % vs.size()].idx()] - origin;
         sum += glm::dot(apex, glm::cross(a, b));
       }
     }
@@ -76,8 +77,6 @@ inline double signed_volume(const cell_complex& cc, cell_volume c,
   }
   return six / 6.0;
 }
-
-namespace detail::cells {
 
 inline cells_validation_result broke(cells_validation_result r, cells_invariant what, std::uint32_t element,
                                      std::string msg) {
@@ -88,9 +87,10 @@ inline cells_validation_result broke(cells_validation_result r, cells_invariant 
 }
 
 /// Angle of the direction into face ef about edge e, in the plane perpendicular to e. O(1).
-inline double angle_about(const cell_complex& cc, cell_edge e, const oriented<cell_face>& ef) {
-  const glm::dvec3 d = cc.point(cc.target(e)) - cc.point(cc.source(e));
-  const glm::dvec3 into = glm::cross(cc.face_normal(ef.handle), double(ef.sign) * d);
+inline double angle_about(const cell_topology& cc, std::span<const glm::dvec3> pts, cell_edge e,
+                          const oriented<cell_face>& ef) {
+  const glm::dvec3 d = pts[cc.target(e).idx()] - pts[cc.source(e).idx()];
+  const glm::dvec3 into = glm::cross(access::unit_normal(cc, ef.handle), double(ef.sign) * d);
   const glm::dvec3 ad = glm::abs(d);
   const glm::dvec3 axis = ad.x <= ad.y && ad.x <= ad.z ? glm::dvec3(1, 0, 0)
                           : ad.y <= ad.z               ? glm::dvec3(0, 1, 0)
@@ -100,14 +100,14 @@ inline double angle_about(const cell_complex& cc, cell_edge e, const oriented<ce
 }
 
 /// The volume on the side of face ef toward negative rotation about the edge. O(1).
-inline cell_volume wedge_before(const cell_complex& cc, const oriented<cell_face>& ef) {
+inline cell_volume wedge_before(const cell_topology& cc, const oriented<cell_face>& ef) {
   for (const auto& v : cc.face_volumes(ef.handle))
     if (v.sign == ef.sign) return v.handle;
   return {};
 }
 
 /// Euler characteristic V - E + Σ(1 - holes) of a set of faces seen as a surface. O(size).
-inline long long surface_euler(const cell_complex& cc, const std::vector<cell_face>& faces,
+inline long long surface_euler(const cell_topology& cc, const std::vector<cell_face>& faces,
                                std::vector<std::uint32_t>& vmark, std::vector<std::uint32_t>& emark,
                                std::uint32_t stamp) {
   long long chi = 0;
@@ -125,37 +125,35 @@ inline long long surface_euler(const cell_complex& cc, const std::vector<cell_fa
 
 }  // namespace detail::cells
 
-/// Checks edges and faces (length, area, planarity, hole orientation), every volume boundary
-/// (closed and two-manifold along edges, positive signed volume), rotation orders about every
-/// edge against the geometry and the face→volume signs, and per object V - E + F - C against
-/// the value implied by its boundary surfaces (docs/cells.md). O(n log n) for n = size of cc.
-inline cells_validation_result validate(const cell_complex& cc,
-                                        const cells_validation_options& options = {}) {
+namespace detail::cells {
+/// validate() on double positions (one copy of the code for every point type).
+inline cells_validation_result validate_cells(const cell_topology& cc, std::span<const glm::dvec3> pts,
+                                              const cells_validation_options& options) {
   using detail::cells::broke;
   using detail::cells::S;
   using inv = cells_invariant;
   cells_validation_result r;
   bounding_box box;
-  for (const glm::dvec3& p : cc.points()) box.add(p);
+  for (const glm::dvec3& p : pts) box.add(p);
   const double diag = box.diagonal(), flat_tol = options.planarity * diag,
                min_len = options.min_edge_length * diag;
   const glm::dvec3 centre = box.center();
 
   for (cell_edge e : cc.edges())
-    if (!(glm::length(cc.point(cc.target(e)) - cc.point(cc.source(e))) > min_len))
+    if (!(glm::length(pts[cc.target(e).idx()] - pts[cc.source(e).idx()]) > min_len))
       return broke(std::move(r), inv::degenerate_edge, e.idx(),
                    "edge " + S(e.idx()) + " (" + S(cc.source(e).idx()) + "-" + S(cc.target(e).idx()) +
                        ") has (nearly) zero length");
 
   for (cell_face f : cc.faces()) {
-    const glm::dvec3 n = cc.face_normal(f);
+    const glm::dvec3 n = access::unit_normal(cc, f);
     if (glm::length(n) == 0.0)
       return broke(std::move(r), inv::degenerate_face, f.idx(),
                    "face " + S(f.idx()) + ": its outer loop has no area");
-    const glm::dvec3 o = cc.point(cc.loop_vertices(f, 0)[0]);
+    const glm::dvec3 o = pts[cc.loop_vertices(f, 0)[0].idx()];
     for (std::size_t l = 0; l < cc.num_loops(f); ++l) {
       for (cell_vertex v : cc.loop_vertices(f, l)) {
-        const double dist = std::abs(glm::dot(cc.point(v) - o, n));
+        const double dist = std::abs(glm::dot(pts[v.idx()] - o, n));
         if (dist > flat_tol)
           return broke(std::move(r), inv::non_planar, f.idx(),
                        "face " + S(f.idx()) + ": vertex " + S(v.idx()) + " is " + std::to_string(dist) +
@@ -163,7 +161,7 @@ inline cells_validation_result validate(const cell_complex& cc,
       }
       if (l > 0) {
         const auto vs = cc.loop_vertices(f, l);
-        const glm::dvec3 hn = detail::cells::newell(vs, [&](cell_vertex v) { return cc.point(v) - o; });
+        const glm::dvec3 hn = detail::cells::newell(vs, [&](cell_vertex v) { return pts[v.idx()] - o; });
         if (!(glm::dot(hn, n) < 0.0))
           return broke(std::move(r), inv::hole_orientation, f.idx(),
                        "face " + S(f.idx()) + ": hole loop " + S(l) +
@@ -193,7 +191,7 @@ inline cells_validation_result validate(const cell_complex& cc,
       return broke(std::move(r), inv::open_boundary, c.idx(),
                    "volume " + S(c.idx()) + ": edge " + S(bad) +
                        " is not used exactly twice, in opposite directions, by the volume's faces");
-    r.signed_volumes.push_back(signed_volume(cc, c, centre));
+    r.signed_volumes.push_back(detail::cells::signed_volume_of(cc, pts, c, centre));
   }
   const double min_volume = 1e-12 * diag * diag * diag;
   for (cell_volume c : cc.volumes())
@@ -212,7 +210,8 @@ inline cells_validation_result validate(const cell_complex& cc,
     double turn = 0.0;
     for (std::size_t k = 0; k < ef.size(); ++k) {
       const auto& next = ef[(k + 1) % ef.size()];
-      double step = detail::cells::angle_about(cc, e, next) - detail::cells::angle_about(cc, e, ef[k]);
+      double step =
+          detail::cells::angle_about(cc, pts, e, next) - detail::cells::angle_about(cc, pts, e, ef[k]);
       while (step <= 0.0) step += 2 * std::numbers::pi;
       if (step < options.min_angle || 2 * std::numbers::pi - step < options.min_angle)
         return broke(std::move(r), inv::rotation_order, e.idx(),
@@ -307,6 +306,31 @@ inline cells_validation_result validate(const cell_complex& cc,
                        " but its surfaces imply " + std::to_string(r.expected_euler[o.idx()]));
   }
   return r;
+}
+}  // namespace detail::cells
+
+/// Signed volume enclosed by c's faces (normals out: positive), by the divergence theorem over
+/// each face's loops fanned from the face's first vertex, about `origin` (default: the
+/// origin). O(size of c).
+template <Point3 P>
+double signed_volume(const cell_complex<P>& cc, cell_volume c) {
+  const detail::cells::dvec3_points<P> pts(cc.points());
+  return detail::cells::signed_volume_of(cc, pts.span(), c, glm::dvec3(0.0));
+}
+template <Point3 P>
+double signed_volume(const cell_complex<P>& cc, cell_volume c, const P& origin) {
+  const detail::cells::dvec3_points<P> pts(cc.points());
+  return detail::cells::signed_volume_of(cc, pts.span(), c, to_dvec3(origin));
+}
+
+/// Checks edges and faces (length, area, planarity, hole orientation), every volume boundary
+/// (closed and two-manifold along edges, positive signed volume), rotation orders about every
+/// edge against the geometry and the face→volume signs, and per object V - E + F - C against
+/// the value implied by its boundary surfaces (docs/cells.md). O(n log n) for n = size of cc.
+template <Point3 P>
+cells_validation_result validate(const cell_complex<P>& cc, const cells_validation_options& options = {}) {
+  const detail::cells::dvec3_points<P> pts(cc.points());
+  return detail::cells::validate_cells(cc, pts.span(), options);
 }
 
 }  // namespace cellforge

@@ -68,7 +68,8 @@ inline void put_double(std::string& out, double v) {
 }
 
 /// The whole 3DCL text of cc. O(size of cc).
-inline std::string cells_text(const cell_complex& cc, const cells_write_options& options) {
+inline std::string cells_text(const cell_topology& cc, std::span<const glm::dvec3> pts,
+                              const cells_write_options& options) {
   std::string out = "3dcl 1\n";
   for (std::string_view text = options.comment; !text.empty();) {
     const std::size_t eol = std::min(text.find_first_of("\r\n"), text.size());
@@ -83,7 +84,7 @@ inline std::string cells_text(const cell_complex& cc, const cells_write_options&
   out += '\n';
   for (cell_vertex v : cc.vertices()) {
     put_keyword(out, "v", v.idx());
-    for (int k = 0; k < 3; ++k) out += ' ', put_double(out, cc.point(v)[k]);
+    for (int k = 0; k < 3; ++k) out += ' ', put_double(out, pts[v.idx()][k]);
     out += " edges";
     for (const auto& [e, s] : cc.vertex_edges(v)) put_signed(out, e.idx(), s);
     out += '\n';
@@ -316,22 +317,24 @@ inline std::uint64_t line_of_element(const std::string& message,
 }  // namespace detail
 
 /// Writes cc as 3DCL text (docs/formats.md). O(size of cc). Throws io when the stream fails.
-inline void write_3dcl(std::ostream& os, const cell_complex& cc, const cells_write_options& options = {}) {
-  const std::string text = detail::cells_text(cc, options);
+template <Point3 P>
+void write_3dcl(std::ostream& os, const cell_complex<P>& cc, const cells_write_options& options = {}) {
+  const cellforge::detail::cells::dvec3_points<P> pts(cc.points());
+  const std::string text = detail::cells_text(cc, pts.span(), options);
   os.write(text.data(), static_cast<std::streamsize>(text.size()));
   if (!os) throw error(error_category::io, "3dcl: writing to the stream failed");
 }
 
 /// Writes cc to a 3DCL text file. O(size of cc). Throws io naming the path on failure.
-inline void write_3dcl(const std::filesystem::path& path, const cell_complex& cc,
-                       const cells_write_options& options = {}) {
+template <Point3 P>
+void write_3dcl(const std::filesystem::path& path, const cell_complex<P>& cc,
+                const cells_write_options& options = {}) {
   detail::write_file(path, [&](std::ostream& os) { write_3dcl(os, cc, options); });
 }
 
-/// Parses 3DCL text: builds the complex from its coordinates, edges, face loops and volumes,
-/// then checks that every relation the file lists is the one the complex derives. Errors
-/// name file:line and what was expected. O(size of the text + n log n).
-inline cell_complex parse_3dcl(std::string_view text, std::string_view name = "<memory>") {
+namespace detail {
+/// parse_3dcl in double precision. O(size of the text + n log n).
+inline cell_complex<glm::dvec3> parse_3dcl_dvec3(std::string_view text, std::string_view name) {
   detail::cells_lines lines(text, name);
   constexpr std::uint64_t max = 0xFFFFFFFEu;
   {
@@ -341,7 +344,7 @@ inline cell_complex parse_3dcl(std::string_view text, std::string_view name = "<
     (void)l.index("the version", 2);
     l.finish("the header");
   }
-  cell_complex_input in;
+  cell_complex_input<glm::dvec3> in;
   std::array<std::vector<std::uint64_t>, 4> at;  // line of each vertex, edge, face, volume
   std::vector<std::vector<std::pair<std::uint32_t, int>>> vertex_edges, edge_faces, face_volumes;
   std::vector<std::vector<std::uint32_t>> edge_wedges;
@@ -406,7 +409,7 @@ inline cell_complex parse_3dcl(std::string_view text, std::string_view name = "<
     auto l = element("f", "face ", i, nf);
     l.keyword("volumes", {"after the number of face ", i});
     face_volumes.push_back(l.signed_list("a volume", max));
-    cell_complex_input::face face;
+    cell_input_face face;
     loop_edges.emplace_back();
     while (!l.done()) {
       l.keyword("loop", {"(a vertex loop) in face ", i});
@@ -422,7 +425,7 @@ inline cell_complex parse_3dcl(std::string_view text, std::string_view name = "<
   for (std::size_t i = 0; i < nc; ++i) {
     auto l = element("c", "volume ", i, nc);
     l.keyword("faces", {"after the number of volume ", i});
-    cell_complex_input::volume vol;
+    cell_input_volume vol;
     for (const auto& [f, s] : l.signed_list("a face", nf)) vol.faces.emplace_back(f, s);
     l.finish({"volume ", i});
     in.volumes.push_back(std::move(vol));
@@ -435,7 +438,7 @@ inline cell_complex parse_3dcl(std::string_view text, std::string_view name = "<
     if (!lines.at_end()) lines.next("").fail("unexpected content after 'end'");
   }
 
-  cell_complex cc;
+  cell_complex<glm::dvec3> cc;
   try {
     cc = make_cell_complex(std::move(in));
   } catch (const error& e) {
@@ -478,19 +481,31 @@ inline cell_complex parse_3dcl(std::string_view text, std::string_view name = "<
   }
   return cc;
 }
+}  // namespace detail
 
-/// Reads a 3DCL text file (see parse_3dcl). O(file size + n log n).
-inline cell_complex read_3dcl(const std::filesystem::path& path) {
-  const std::string bytes = detail::read_file(path);
-  return parse_3dcl(bytes, detail::display_name(path));
+/// Parses 3DCL text into a complex with positions of type P: builds it from its coordinates,
+/// edges, face loops and volumes, then checks that every relation the file lists is the one
+/// the complex derives. Errors name file:line and what was expected. O(size of the text + n log n).
+template <Point3 P>
+cell_complex<P> parse_3dcl(std::string_view text, std::string_view name = "<memory>") {
+  if constexpr (std::is_same_v<P, glm::dvec3>)
+    return detail::parse_3dcl_dvec3(text, name);
+  else
+    return convert_points<P>(detail::parse_3dcl_dvec3(text, name));
 }
 
-/// The faces of every volume, outward, as an OBJ model with one group "volume_<i>" per volume
-/// (a face between two volumes appears in both), faces with holes triangulated, edges in no
-/// face as `l` lines. O(size of cc).
-inline obj_data<glm::dvec3> cells_obj_data(const cell_complex& cc) {
+/// Reads a 3DCL text file (see parse_3dcl). O(file size + n log n).
+template <Point3 P>
+cell_complex<P> read_3dcl(const std::filesystem::path& path) {
+  const std::string bytes = detail::read_file(path);
+  return parse_3dcl<P>(bytes, detail::display_name(path));
+}
+
+namespace detail {
+/// cells_obj_data on double positions (one copy of the code for every point type). O(size of cc).
+inline obj_data<glm::dvec3> cells_obj_data_dvec3(const cell_topology& cc, std::span<const glm::dvec3> pts) {
   obj_data<glm::dvec3> data;
-  data.soup.points.assign(cc.points().begin(), cc.points().end());
+  data.soup.points.assign(pts.begin(), pts.end());
   std::vector<std::uint32_t> face;
   for (cell_volume c : cc.volumes()) {
     data.groups.push_back(
@@ -506,9 +521,11 @@ inline obj_data<glm::dvec3> cells_obj_data(const cell_complex& cc) {
       std::vector<std::vector<glm::dvec3>> loops(cc.num_loops(f));
       std::vector<std::uint32_t> flat;
       for (std::size_t l = 0; l < loops.size(); ++l)
-        for (cell_vertex v : cc.loop_vertices(f, l)) loops[l].push_back(cc.point(v)), flat.push_back(v.idx());
+        for (cell_vertex v : cc.loop_vertices(f, l))
+          loops[l].push_back(pts[v.idx()]), flat.push_back(v.idx());
       for (const auto& t : cellforge::detail::cells::triangulate_face(
-               loops, cc.face_normal(f), "cells obj: face " + std::to_string(f.idx())))
+               loops, cellforge::detail::cells::access::unit_normal(cc, f),
+               "cells obj: face " + std::to_string(f.idx())))
         data.soup.add_face(sign < 0
                                ? std::initializer_list<std::uint32_t>{flat[t[0]], flat[t[2]], flat[t[1]]}
                                : std::initializer_list<std::uint32_t>{flat[t[0]], flat[t[1]], flat[t[2]]});
@@ -519,17 +536,45 @@ inline obj_data<glm::dvec3> cells_obj_data(const cell_complex& cc) {
   return data;
 }
 
-/// Writes cells_obj_data(cc) with write_obj. O(size of cc).
-inline void write_cells_obj(std::ostream& os, const cell_complex& cc, const obj_write_options& options = {}) {
-  write_obj(os, cells_obj_data(cc), options);
+template <Point3 P>
+obj_data<glm::dvec3> cells_obj_data_dvec3(const cell_complex<P>& cc) {
+  const cellforge::detail::cells::dvec3_points<P> pts(cc.points());
+  return cells_obj_data_dvec3(cc, pts.span());
 }
-inline void write_cells_obj(const std::filesystem::path& path, const cell_complex& cc,
-                            const obj_write_options& options = {}) {
-  write_obj(path, cells_obj_data(cc), options);
+}  // namespace detail
+
+/// The faces of every volume, outward, as an OBJ model in the complex's point type with one
+/// group "volume_<i>" per volume (a face between two volumes appears in both), faces with
+/// holes triangulated, edges in no face as `l` lines. O(size of cc).
+template <Point3 P>
+obj_data<P> cells_obj_data(const cell_complex<P>& cc) {
+  obj_data<glm::dvec3> data = detail::cells_obj_data_dvec3(cc);
+  if constexpr (std::is_same_v<P, glm::dvec3>) {
+    return data;
+  } else {
+    obj_data<P> out;
+    out.soup.points.assign(cc.points().begin(), cc.points().end());
+    out.soup.face_offsets = std::move(data.soup.face_offsets);
+    out.soup.face_vertices = std::move(data.soup.face_vertices);
+    out.groups = std::move(data.groups);
+    out.lines = std::move(data.lines);
+    return out;
+  }
+}
+
+/// Writes cells_obj_data(cc) with write_obj. O(size of cc).
+template <Point3 P>
+void write_cells_obj(std::ostream& os, const cell_complex<P>& cc, const obj_write_options& options = {}) {
+  write_obj(os, detail::cells_obj_data_dvec3(cc), options);
+}
+template <Point3 P>
+void write_cells_obj(const std::filesystem::path& path, const cell_complex<P>& cc,
+                     const obj_write_options& options = {}) {
+  write_obj(path, detail::cells_obj_data_dvec3(cc), options);
 }
 
 /// A distinct, saturated colour for volume i (hues spaced by the golden angle). O(1).
-inline glm::dvec3 volume_colour(std::size_t i) {
+inline std::array<double, 3> volume_colour(std::size_t i) {
   const double h = std::fmod(0.13 + 0.618033988749895 * static_cast<double>(i), 1.0) * 6.0, s = 0.55,
                v = 0.92;
   const double c = v * s, x = c * (1 - std::abs(std::fmod(h, 2.0) - 1)), m = v - c;
@@ -540,14 +585,11 @@ inline glm::dvec3 volume_colour(std::size_t i) {
                          : k == 3 ? glm::dvec3(0, x, c)
                          : k == 4 ? glm::dvec3(x, 0, c)
                                   : glm::dvec3(c, 0, x);
-  return rgb + m;
+  return {rgb.x + m, rgb.y + m, rgb.z + m};
 }
 
-/// Writes an ASCII PLY of every volume's outward faces, each face with the colour of its
-/// volume (uchar red, green, blue face properties), faces with holes triangulated; the count
-/// type of the vertex lists is the narrowest that holds the largest face. O(size).
-inline void write_cells_ply(std::ostream& os, const cell_complex& cc) {
-  const obj_data<glm::dvec3> data = cells_obj_data(cc);
+namespace detail {
+inline void write_cells_ply(std::ostream& os, const obj_data<glm::dvec3>& data) {
   std::size_t largest = 0;
   for (std::size_t f = 0; f < data.soup.num_faces(); ++f)
     largest = std::max(largest, data.soup.face(f).size());
@@ -564,19 +606,29 @@ inline void write_cells_ply(std::ostream& os, const cell_complex& cc) {
   for (std::size_t g = 0; g < data.groups.size(); ++g) {
     const std::size_t end =
         g + 1 < data.groups.size() ? data.groups[g + 1].first_face : data.soup.num_faces();
-    const glm::dvec3 rgb = volume_colour(g) * 255.0;
+    const std::array<double, 3> rgb = volume_colour(g);
     for (std::size_t f = data.groups[g].first_face; f < end; ++f) {
       const auto face = data.soup.face(f);
       out += std::to_string(face.size());
       for (std::uint32_t v : face) out += ' ' + std::to_string(v);
-      for (int k = 0; k < 3; ++k) out += ' ' + std::to_string(static_cast<int>(std::lround(rgb[k])));
+      for (int k = 0; k < 3; ++k) out += ' ' + std::to_string(static_cast<int>(std::lround(rgb[k] * 255.0)));
       out += '\n';
     }
   }
   os.write(out.data(), static_cast<std::streamsize>(out.size()));
   if (!os) throw error(error_category::io, "cells ply: writing to the stream failed");
 }
-inline void write_cells_ply(const std::filesystem::path& path, const cell_complex& cc) {
+}  // namespace detail
+
+/// Writes an ASCII PLY of every volume's outward faces, each face with the colour of its
+/// volume (uchar red, green, blue face properties), faces with holes triangulated; the count
+/// type of the vertex lists is the narrowest that holds the largest face. O(size).
+template <Point3 P>
+void write_cells_ply(std::ostream& os, const cell_complex<P>& cc) {
+  detail::write_cells_ply(os, detail::cells_obj_data_dvec3(cc));
+}
+template <Point3 P>
+void write_cells_ply(const std::filesystem::path& path, const cell_complex<P>& cc) {
   detail::write_file(path, [&](std::ostream& os) { write_cells_ply(os, cc); });
 }
 
@@ -589,15 +641,12 @@ struct cells_svg_options {
   svg_style style{};  ///< fill is replaced by each volume's colour
 };
 
-/// The exploded picture as a scene: one shaded mesh layer per volume holding only that
-/// volume's points, offset away from the model's centre; edges drawn where faces meet at an
-/// angle (not triangulation diagonals). O(size of cc).
-inline svg_scene cells_svg_scene(const cell_complex& cc, const cells_svg_options& options = {}) {
+namespace detail {
+inline svg_scene cells_svg_scene(const obj_data<glm::dvec3>& data, const cells_svg_options& options) {
   if (!(options.explode >= 0.0) || !std::isfinite(options.explode))
     throw error(error_category::invalid_input, "cells svg: explode must be finite and >= 0");
   bounding_box box;
-  for (const glm::dvec3& p : cc.points()) box.add(p);
-  const obj_data<glm::dvec3> data = cells_obj_data(cc);
+  for (const glm::dvec3& p : data.soup.points) box.add(p);
   svg_scene scene;
   // Each layer gets only the points its volume's faces use, so the scene holds O(size of
   // the volumes' boundaries) points, not (volumes x points).
@@ -625,10 +674,10 @@ inline svg_scene cells_svg_scene(const cell_complex& cc, const cells_svg_options
     for (std::size_t f = data.groups[g].first_face; f < end; ++f)
       for (std::uint32_t v : data.soup.face(f)) local[v] = unused;
     svg_style style = options.style;
-    const glm::dvec3 rgb = volume_colour(g);
+    const std::array<double, 3> rgb = volume_colour(g);
     char hex[8];
-    std::snprintf(hex, sizeof hex, "#%02x%02x%02x", static_cast<int>(std::lround(rgb.x * 255)),
-                  static_cast<int>(std::lround(rgb.y * 255)), static_cast<int>(std::lround(rgb.z * 255)));
+    std::snprintf(hex, sizeof hex, "#%02x%02x%02x", static_cast<int>(std::lround(rgb[0] * 255)),
+                  static_cast<int>(std::lround(rgb[1] * 255)), static_cast<int>(std::lround(rgb[2] * 255)));
     style.fill = hex;
     if (style.feature_angle_deg == 0) style.feature_angle_deg = 1;
     style.offset = options.explode * (vb.center() - box.center());
@@ -636,14 +685,25 @@ inline svg_scene cells_svg_scene(const cell_complex& cc, const cells_svg_options
   }
   return scene;
 }
+}  // namespace detail
+
+/// The exploded picture as a scene: one shaded mesh layer per volume holding only that
+/// volume's points, offset away from the model's centre; edges drawn where faces meet at an
+/// angle (not triangulation diagonals). O(size of cc).
+template <Point3 P>
+svg_scene cells_svg_scene(const cell_complex<P>& cc, const cells_svg_options& options = {}) {
+  return detail::cells_svg_scene(detail::cells_obj_data_dvec3(cc), options);
+}
 
 /// Writes the exploded, shaded picture of cc (see cells_svg_scene). O(picture).
-inline svg_result write_cells_svg(std::ostream& os, const cell_complex& cc,
-                                  const cells_svg_options& options = {}) {
+template <Point3 P>
+svg_result write_cells_svg(std::ostream& os, const cell_complex<P>& cc,
+                           const cells_svg_options& options = {}) {
   return cells_svg_scene(cc, options).write(os, options.picture);
 }
-inline svg_result write_cells_svg(const std::filesystem::path& path, const cell_complex& cc,
-                                  const cells_svg_options& options = {}) {
+template <Point3 P>
+svg_result write_cells_svg(const std::filesystem::path& path, const cell_complex<P>& cc,
+                           const cells_svg_options& options = {}) {
   return cells_svg_scene(cc, options).write(path, options.picture);
 }
 

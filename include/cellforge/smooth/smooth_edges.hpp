@@ -327,9 +327,10 @@ smooth_result smooth_edges(const surface_mesh<P>& m, const smooth_options& optio
 /// and vertex ids, sorted by edge; mesh edges that are no cell edge (diagonals of triangulated
 /// faces with holes) are left out; surface_of_face and vertex_normals are by cell face / vertex id
 /// (faces outside v: 0xFFFFFFFF). O(size of v · iterations). Throws what smooth_edges throws.
-inline smooth_result smooth_edges(const cell_complex& cc, cell_volume v, const smooth_options& options = {}) {
+inline smooth_result smooth_edges(const cell_complex<glm::dvec3>& cc, cell_volume v,
+                                  const smooth_options& options = {}) {
   detail::smooth::check_options(options);
-  const surface_mesh<glm::dvec3> m = volume_boundary_mesh<glm::dvec3>(cc, v);
+  const surface_mesh<glm::dvec3> m = volume_boundary_mesh(cc, v);
   smooth_result r = smooth_edges(m, options);
   const auto cv = m.get_vertex_property<std::uint32_t>("v:cell_vertex");
   const auto cf = m.get_face_property<std::uint32_t>("f:cell_face");

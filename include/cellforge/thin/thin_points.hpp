@@ -535,8 +535,9 @@ thin_result find_thin_points(const surface_mesh<P>& m, const thin_options& optio
 /// find_thin_points on volume v of a cell complex (its boundary via volume_boundary_mesh);
 /// loop vertices, edges and the start face are cell ids. Edges that are triangulation
 /// diagonals of a holed face have no cell edge: their id is 0xFFFFFFFF. O(as above).
-inline thin_result find_thin_points(const cell_complex& cc, cell_volume v, const thin_options& options = {}) {
-  const surface_mesh<glm::dvec3> m = volume_boundary_mesh<glm::dvec3>(cc, v);
+inline thin_result find_thin_points(const cell_complex<glm::dvec3>& cc, cell_volume v,
+                                    const thin_options& options = {}) {
+  const surface_mesh<glm::dvec3> m = volume_boundary_mesh(cc, v);
   thin_result r = find_thin_points(m, options);
   const auto cell_vertex_of = m.get_vertex_property<std::uint32_t>("v:cell_vertex");
   const auto cell_face_of = m.get_face_property<std::uint32_t>("f:cell_face");

@@ -49,10 +49,12 @@ struct face_note {
   std::string reason;
 };
 
-/// The cell complex, its input, and every stage's report.
+/// The cell complex (positions in the wireframe's point type P), its input, and every stage's report.
+template <Point3 P>
 struct wireframe_result {
-  cell_complex_input input;  ///< points, edges, faces (loops), volumes (signed faces)
-  cell_complex cells;        ///< make_cell_complex(input), when options.build_complex
+  using point_type = P;
+  cell_complex_input<P> input;  ///< points, edges, faces (loops), volumes (signed faces)
+  cell_complex<P> cells;        ///< make_cell_complex(input), when options.build_complex
   /// input.points[i] is the caller's point input_vertex[i]; input.edges[k] the caller's edge input_edge[k].
   std::vector<std::uint32_t> input_vertex, input_edge;
   std::vector<std::uint32_t> unforced;  ///< indices into input.faces of faces no edge needs (kept: undecided)
@@ -73,12 +75,14 @@ struct wireframe_result {
   std::vector<std::string> diagnostics;  ///< assembly notes (edges left out because they bound no face)
 };
 
-/// Converts a wireframe to a cell complex. Throws cellforge::error on bad input (see
-/// read_vertices), on an exhausted work budget, or when no face is found. Polynomial with the
-/// default planar tracer: O(Σ deg² + Σ planes k log k + F·L + grid pairs).
+/// Converts a wireframe to a cell complex whose positions are the wireframe's (its point type). Throws
+/// cellforge::error on bad input (see read_vertices), on an exhausted work budget, or when no face is found.
+/// Polynomial with the default planar tracer: O(Σ deg² + Σ planes k log k + F·L + grid pairs).
 template <Wireframe G>
-wireframe_result wireframe_to_cells(const G& wire, const wireframe_options& options = {}) {
-  wireframe_result r;
+wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
+    const G& wire, const wireframe_options& options = {}) {
+  using P = typename wireframe_traits<G>::point_type;
+  wireframe_result<P> r;
   r.read = read_vertices(wire, options.read);
   const wire_graph& g = r.read.graph;
   r.trace = trace_circuits(g, options.trace);
@@ -151,7 +155,7 @@ wireframe_result wireframe_to_cells(const G& wire, const wireframe_options& opti
   for (std::uint32_t v = 0; v < label.size(); ++v) {
     if (label[v] == no_index) continue;
     label[v] = static_cast<std::uint32_t>(r.input.points.size());
-    r.input.points.push_back(to_dvec3(wireframe_traits<G>::position(wire, v)));
+    r.input.points.push_back(static_cast<P>(wireframe_traits<G>::position(wire, v)));
     r.input_vertex.push_back(v);
   }
   // Graph vertex → output label (graph vertices are the caller's representatives).
@@ -161,7 +165,7 @@ wireframe_result wireframe_to_cells(const G& wire, const wireframe_options& opti
     for (auto& loop : f.loops)
       for (auto& v : loop) v = label[g.input_vertex[v]];
   for (const auto& vol : r.volume.volumes) {
-    cell_complex_input::volume out;
+    cell_input_volume out;
     for (const auto& [f, s] : vol) out.faces.emplace_back(face_id[f], s);
     r.input.volumes.push_back(std::move(out));
   }
