@@ -80,7 +80,7 @@ void register_all() {
                                      try {
                                        cb::timed_loop(
                                            s, [&] { return cellforge::smooth_edges(*m, o); },
-                                           [&](const cellforge::smooth_result& r) {
+                                           [&](const cellforge::smooth_result<glm::dvec3>& r) {
                                              findings()[name] = {
                                                  r.num_surfaces, r.num_cubic, r.num_quadratic, r.num_straight,
                                                  r.iterations,   r.converged, r.averaged};

@@ -141,11 +141,11 @@ void register_case(const std::string& name, const cellforge::surface_mesh<glm::d
     try {
       cb::timed_loop(
           s, [&] { return cellforge::find_thin_points(*mesh, o); },
-          [&](const cellforge::thin_result& r) {
+          [&](const cellforge::thin_result<glm::dvec3>& r) {
             found f;
             f.loops = r.loops.size();
             f.cycles = r.cycle_lengths.size();
-            for (const cellforge::thin_loop& l : r.loops) {
+            for (const auto& l : r.loops) {
               f.signature.emplace_back(l.cycle, l.length);
               glm::dvec3 c(0.0);
               for (const glm::dvec3& p : l.points) c += p / static_cast<double>(l.points.size());

@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
     cellforge::smooth_options options =
         cl.has("faithful") ? cellforge::seed_smooth_options() : cellforge::smooth_options{};
     options.angle_deg = cl.number("angle", options.angle_deg, 0, 90);
-    cellforge::smooth_result r;
+    cellforge::smooth_result<glm::dvec3> r;  // the points of the example's meshes
     const double ms = x.run([&](const auto& cc, auto v) { r = cellforge::smooth_edges(cc, v, options); },
                             [&](const auto& mesh) { r = cellforge::smooth_edges(mesh, options); });
     x.print_solid("smooth_edges");
@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
     // Kinds count the vertex tangents that shaped a curve (seed 6.4); a cubic between coplanar
     // faces is still a straight segment, so say how many curves actually bend.
     std::size_t bending = 0;
-    for (const cellforge::edge_curve& c : r.curves) bending += c.chord_deviation() > 1e-9 * r.model_size;
+    for (const auto& c : r.curves) bending += c.chord_deviation() > 1e-9 * r.model_size;
     std::printf("  curves           %zu: %zu cubic, %zu quadratic, %zu straight; %zu bend off their chords\n",
                 r.curves.size(), r.num_cubic, r.num_quadratic, r.num_straight, bending);
     std::printf("  forms            %zu axis polynomials, %zu Bezier\n", r.num_axis_form, r.num_bezier_form);
@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
     std::printf("  time             %.3f ms\n", ms);
 
     const std::string& stem = x.stem;
-    const std::span<const cellforge::edge_curve> curves(r.curves);
+    const auto& curves = r.curves;
     cellforge::io::write_curve_file(x.out / (stem + ".curves"), curves,
                                     {.comment = "smooth_edges " + cl.input.filename().string() +
                                                 ": one curve per edge, in edge order (docs/formats.md)"});

@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
       options.detection = cellforge::thin_detection::seed;
     }
     options.cluster_faces = cl.has("cluster");
-    cellforge::thin_result r;
+    cellforge::thin_result<glm::dvec3> r;  // the points of the example's meshes
     const double ms = x.run([&](const auto& cc, auto v) { r = cellforge::find_thin_points(cc, v, options); },
                             [&](const auto& mesh) { r = cellforge::find_thin_points(mesh, options); });
     x.print_solid("thin_points");
@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
     std::printf("  cycles           %zu\n", r.cycle_lengths.size());
     std::printf("  thin loops       %zu (strongest first)\n", r.loops.size());
     for (std::size_t i = 0; i < r.loops.size(); ++i) {
-      const cellforge::thin_loop& l = r.loops[i];
+      const auto& l = r.loops[i];
       std::printf("    %2zu: %3zu edges, length %.5g, at %.3f of the axis, cycle %zu, strength %.4g\n", i + 1,
                   l.edges.size(), l.length, l.axis_position, l.cycle, l.strength);
     }
@@ -60,14 +60,13 @@ int main(int argc, char** argv) {
     std::vector<std::vector<glm::dvec3>> loops;
     for (const auto& l : r.loops) loops.push_back(l.points);
     const std::string& stem = x.stem;
-    const std::span<const std::vector<glm::dvec3>> chains(loops);
-    cellforge::io::write_polylines_obj(x.out / (stem + "_loops.obj"), chains, true, &x.s.soup,
+    cellforge::io::write_polylines_obj(x.out / (stem + "_loops.obj"), loops, true, &x.s.soup,
                                        {.comment = "thin_points " + cl.input.filename().string() +
                                                    ": the solid, then one closed l line per thin loop"});
     cellforge::io::thin_loops_svg_options picture;
     picture.picture.title = "thin_points: " + cl.input.filename().string();
     picture.picture.view.elevation_deg = 20;
-    cellforge::io::write_thin_loops_svg(x.out / (stem + "_thin.svg"), x.s.soup, chains, picture);
+    cellforge::io::write_thin_loops_svg(x.out / (stem + "_thin.svg"), x.s.soup, r, picture);
     std::printf("  wrote            %s/%s_loops.obj, %s_thin.svg\n", x.out.string().c_str(), stem.c_str(),
                 stem.c_str());
     return 0;

@@ -423,23 +423,7 @@ TEST_CASE("soup round trip keeps faces and their orientation") {
 // ---------------------------------------------------------------------------- surface_mesh
 
 // A CAD-style point: private members, getters, a constructor, no default constructor.
-class sealed_point {
- public:
-  sealed_point(double x, double y, double z) : x_(x), y_(y), z_(z) {}
-  double x() const { return x_; }
-  double y() const { return y_; }
-  double z() const { return z_; }
-  bool operator==(const sealed_point&) const = default;
-
- private:
-  double x_, y_, z_;
-};
-
-}  // namespace halfedge_mesh_tests
-
-CELLFORGE_REGISTER_POINT3_GET_CTOR(halfedge_mesh_tests::sealed_point, double, x, y, z);
-
-namespace halfedge_mesh_tests {
+using test_support::sealed_point;
 
 static_assert(!std::is_default_constructible_v<sealed_point>);
 static_assert(cellforge::Point3<sealed_point>);

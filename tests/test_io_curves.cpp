@@ -11,6 +11,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -20,6 +21,9 @@
 #include "cellforge/io/curves_io.hpp"
 #include "cellforge/io/obj.hpp"
 #include "cellforge/smooth/smooth_edges.hpp"
+#include "cellforge/thin/sample_solids.hpp"
+#include "cellforge/thin/thin_points.hpp"
+#include "test_support.hpp"
 
 // Own namespace: the test files of a group are compiled as one translation unit.
 namespace io_curves_tests {
@@ -27,7 +31,7 @@ namespace io_curves_tests {
 namespace {
 
 namespace io = cellforge::io;
-using cellforge::edge_curve;
+using edge_curve = cellforge::edge_curve<glm::dvec3>;
 using glm::dvec3;
 
 bool same_bits(double a, double b) {
@@ -62,7 +66,7 @@ std::vector<edge_curve> awkward_curves() {
       for (double& v : row) v = u(rng) * std::ldexp(1.0, static_cast<int>(u(rng) * 300));
     if (i % 5 == 1) k[0][0] = k[1][0] = 0.0;                      // quadratic
     if (i % 5 == 2) k[0][0] = k[1][0] = k[0][1] = k[1][1] = 0.0;  // straight
-    out.push_back(cellforge::axis_curve(i % 3, limits, k));
+    out.push_back(cellforge::axis_curve<dvec3>(i % 3, limits, k));
     out.back().edge = static_cast<std::uint32_t>(out.size() - 1);
     const dvec3 p0(u(rng), -u(rng) * 1e-7, u(rng) * 1e200), p1(-0.1, 1.0 / 3.0, 2.5e-300);
     out.push_back(cellforge::hermite_curve(p0, dvec3(u(rng), u(rng), u(rng)), p1, dvec3(-1e-20, 0.0, -0.0)));
@@ -92,7 +96,7 @@ void check_same_curves(const std::vector<edge_curve>& a, const std::vector<edge_
 /// Parses text and returns the error it throws (fails the test when nothing is thrown).
 cellforge::error parse_error(const std::string& text) {
   try {
-    io::parse_curve_file(text, "bad.curves");
+    io::parse_curve_file<dvec3>(text, "bad.curves");
   } catch (const cellforge::error& e) {
     return e;
   }
@@ -106,7 +110,7 @@ constexpr const char* seed_line =
 }  // namespace
 
 TEST_CASE("curve file: the seed's example line means what the seed says (000 §6.5)") {
-  const auto curves = io::parse_curve_file(seed_line);
+  const auto curves = io::parse_curve_file<dvec3>(seed_line);
   REQUIRE(curves.size() == 1);
   const edge_curve& c = curves[0];
   CHECK(c.has_axis_form);
@@ -136,7 +140,7 @@ TEST_CASE("curve file: axis y and z, Bezier lines, comments, blanks and CRLF") {
       "1,2,-3,0,1,0,0,   0, 0, 0, 5   # y runs 2 -> -3\r\n"
       "3, 0, 0, 0, 1, 1, 0, 2, 2, 0, 3, 0, 0\r\n"
       "  2 , 1e-3 , -1E+2 , 0, 1, 0, 0, 0, 0, 0, 0";
-  const auto curves = io::parse_curve_file(text);
+  const auto curves = io::parse_curve_file<dvec3>(text);
   REQUIRE(curves.size() == 3);
   CHECK(curves[0].axis == 1);
   CHECK(curves[0].limits == std::array<double, 2>{2.0, -3.0});
@@ -157,11 +161,11 @@ TEST_CASE("curve file: write -> read is exact for axis-form and Bezier curves") 
   const auto curves = awkward_curves();
   const std::string text = io::curve_file_text(curves, {.comment = "awkward numbers\nsecond line"});
   CHECK(text.starts_with("# awkward numbers\n# second line\n"));
-  check_same_curves(curves, io::parse_curve_file(text));
+  check_same_curves(curves, io::parse_curve_file<dvec3>(text));
   // Through a file, and every line in the seed's ", " layout with 11 or 13 values.
   const auto path = temp_path("roundtrip.curves");
   io::write_curve_file(path, curves);
-  check_same_curves(curves, io::read_curve_file(path));
+  check_same_curves(curves, io::read_curve_file<dvec3>(path));
   std::istringstream lines(slurp(path));
   std::size_t n = 0;
   for (std::string line; std::getline(lines, line); ++n) {
@@ -215,7 +219,7 @@ TEST_CASE("curve file: malformed lines give io errors at file:line") {
   }
   // A missing file names its path.
   try {
-    io::read_curve_file(temp_path("does-not-exist.curves"));
+    io::read_curve_file<dvec3>(temp_path("does-not-exist.curves"));
     FAIL("no error");
   } catch (const cellforge::error& e) {
     CHECK(e.category() == cellforge::error_category::io);
@@ -224,9 +228,9 @@ TEST_CASE("curve file: malformed lines give io errors at file:line") {
 }
 
 TEST_CASE("curve file: the writer refuses curves its reader would reject") {
-  edge_curve nan_coefficient = cellforge::axis_curve(0, {0.0, 1.0}, {});
+  edge_curve nan_coefficient = cellforge::axis_curve<dvec3>(0, {0.0, 1.0}, {});
   nan_coefficient.coefficients[1][2] = std::nan("");
-  edge_curve flat = cellforge::axis_curve(1, {0.0, 1.0}, {});
+  edge_curve flat = cellforge::axis_curve<dvec3>(1, {0.0, 1.0}, {});
   flat.limits = {2.0, 2.0};
   edge_curve bad_axis = flat;
   bad_axis.axis = 3;
@@ -259,7 +263,7 @@ TEST_CASE("polyline file: 15 segments per curve, exact round trip, errors at fil
   const auto curves = awkward_curves();
   const auto path = temp_path("curves.polylines");
   io::write_polyline_file(path, curves);
-  const auto back = io::read_polyline_file(path);
+  const auto back = io::read_polyline_file<dvec3>(path);
   REQUIRE(back.size() == curves.size());
   for (std::size_t i = 0; i < curves.size(); ++i) {
     const auto expected = curves[i].polyline(15);
@@ -267,11 +271,11 @@ TEST_CASE("polyline file: 15 segments per curve, exact round trip, errors at fil
     for (std::size_t j = 0; j < 16; ++j) CHECK(same_bits(back[i][j], expected[j]));
   }
   std::filesystem::remove(path);
-  CHECK(io::parse_polyline_file("0, 0, 0, 1, 2, 3\n# c\n\n1,1,1,2,2,2,3,3,3").size() == 2);
+  CHECK(io::parse_polyline_file<dvec3>("0, 0, 0, 1, 2, 3\n# c\n\n1,1,1,2,2,2,3,3,3").size() == 2);
   for (const std::string bad : {"0, 0, 0, 1, 2", "0, 0, 0", "0, 0, 0, 1, 2, nan", "0, 0, 0, 1, 2, 3,"}) {
     CAPTURE(bad);
     try {
-      io::parse_polyline_file("0, 0, 0, 1, 1, 1\n" + bad, "p.txt");
+      io::parse_polyline_file<dvec3>("0, 0, 0, 1, 1, 1\n" + bad, "p.txt");
       FAIL("no error");
     } catch (const cellforge::error& e) {
       CHECK(e.category() == cellforge::error_category::io);
@@ -376,7 +380,7 @@ TEST_CASE("curve file: smooth_edges' curves of a UV sphere round-trip") {
     const cellforge::smooth_result r = cellforge::smooth_edges(mesh, options);
     REQUIRE(r.curves.size() == mesh.num_edges());
     const std::string text = io::curve_file_text(r.curves);
-    const auto back = io::parse_curve_file(text);
+    const auto back = io::parse_curve_file<dvec3>(text);
     REQUIRE(back.size() == r.curves.size());
     std::size_t cubic = 0;
     for (std::size_t i = 0; i < back.size(); ++i) {
@@ -399,6 +403,56 @@ TEST_CASE("curve file: smooth_edges' curves of a UV sphere round-trip") {
     // Written again, the text is the same: the format is a fixed point after one round.
     CHECK(io::curve_file_text(back) == text);
   }
+}
+
+TEST_CASE_TEMPLATE("curves, polylines and pictures in other point types", P, std::array<float, 3>,
+                   test_support::sealed_point) {
+  using S = cellforge::scalar_t<P>;
+  const auto mesh = cellforge::make_mesh(cellforge::uv_sphere<P>(10, 5));
+  const auto r = cellforge::smooth_edges(mesh);
+  const std::string text = io::curve_file_text(r.curves);  // a vector of edge_curve<P>
+  const auto back = io::parse_curve_file<P>(text);
+  static_assert(std::is_same_v<decltype(back), const std::vector<cellforge::edge_curve<P>>>);
+  REQUIRE(back.size() == r.curves.size());
+  // The same curves as glm::dvec3 (the double run on the very same points) write the same axis
+  // lines: only the Bezier lines differ, written in P's own scalar.
+  const auto d =
+      cellforge::smooth_edges(cellforge::make_mesh(test_support::soup_as_dvec3(cellforge::to_soup(mesh))));
+  std::size_t axis_lines = 0;
+  for (std::size_t i = 0; i < back.size(); ++i) {
+    CAPTURE(i);
+    CHECK(back[i].has_axis_form == r.curves[i].has_axis_form);
+    for (std::size_t k = 0; k < 4; ++k) {
+      const double tol = std::is_same_v<S, float> ? 1e-6 : 1e-12;
+      CHECK(glm::length(cellforge::to_dvec3(back[i].bezier[k]) -
+                        cellforge::to_dvec3(r.curves[i].bezier[k])) <= tol);
+      if (!r.curves[i].has_axis_form)  // Bezier points are written in P's scalar: exact
+        CHECK(cellforge::to_dvec3(back[i].bezier[k]) == cellforge::to_dvec3(r.curves[i].bezier[k]));
+    }
+    if (r.curves[i].has_axis_form) {
+      ++axis_lines;
+      CHECK(io::curve_file_text(std::span(&r.curves[i], 1)) ==
+            io::curve_file_text(std::span(&d.curves[i], 1)));
+    }
+  }
+  CHECK(axis_lines > 0);
+  CHECK(io::curve_file_text(back) == text);
+  // Polylines: evaluated in P, written in P's scalar, read back as P.
+  const auto polylines = io::curve_polylines(r.curves, 4);
+  static_assert(std::is_same_v<decltype(polylines), const std::vector<std::vector<P>>>);
+  const auto lines = io::parse_polyline_file<P>(io::polyline_file_text(polylines));
+  REQUIRE(lines.size() == polylines.size());
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    for (std::size_t j = 0; j < lines[i].size(); ++j)
+      CHECK(cellforge::to_dvec3(lines[i][j]) == cellforge::to_dvec3(polylines[i][j]));
+  // Pictures take the typed results: the smoothing and the thin loops of a P mesh.
+  const auto path = temp_path("typed.svg");
+  CHECK(io::write_smoothing_svg(path, mesh, r.curves).faces_drawn > 0);
+  const auto dumbbell = cellforge::make_mesh(cellforge::thin_dumbbell<P>(12, 21, false).soup);
+  const auto thin = cellforge::find_thin_points(dumbbell);
+  REQUIRE(!thin.loops.empty());
+  CHECK(io::write_thin_loops_svg(path, dumbbell, thin).labels == std::min<std::size_t>(thin.loops.size(), 5));
+  std::filesystem::remove(path);
 }
 
 }  // namespace io_curves_tests

@@ -63,7 +63,7 @@ TEST_CASE("thin points: the Stanford bunny with threshold 1 finishes with well-f
 
   cellforge::thin_options options;
   options.selection_cap = 1;
-  const cellforge::thin_result r = cellforge::find_thin_points(m, options);
+  const auto r = cellforge::find_thin_points(m, options);
 
   CHECK(std::abs(glm::length(r.axis_direction) - 1.0) < 1e-9);
   CHECK(r.start_face < m.num_faces());
@@ -73,7 +73,7 @@ TEST_CASE("thin points: the Stanford bunny with threshold 1 finishes with well-f
 
   const auto pts = m.positions();
   for (std::size_t i = 0; i < r.loops.size(); ++i) {
-    const cellforge::thin_loop& loop = r.loops[i];
+    const auto& loop = r.loops[i];
     INFO("loop " << i << " of " << r.loops.size() << ", cycle " << loop.cycle);
     CHECK(loop.length > 0);
     CHECK(loop.axis_position >= 0.0);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -28,7 +29,8 @@ namespace thin_points_tests {
 
 using cellforge::error_category;
 using cellforge::thin_options;
-using cellforge::thin_result;
+using thin_result = cellforge::thin_result<glm::dvec3>;
+using thin_loop = cellforge::thin_loop<glm::dvec3>;
 using cellforge::validate;
 
 namespace {
@@ -55,16 +57,16 @@ cellforge::thin_sample<> sample_of(const neck_shape& sh, bool triangles) {
                       : cellforge::thin_dumbbell(sh.segments, sh.rings, triangles);
 }
 
-glm::dvec3 centroid(const cellforge::thin_loop& loop) {
+template <cellforge::Point3 P>
+glm::dvec3 centroid(const cellforge::thin_loop<P>& loop) {
   glm::dvec3 c(0.0);
-  for (const glm::dvec3& p : loop.points) c += p;
+  for (const P& p : loop.points) c += cellforge::to_dvec3(p);
   return c / static_cast<double>(loop.points.size());
 }
 
 /// The loop lies at the known neck (within one ring spacing along the true axis) and its
 /// length is within 5 % of the neck polygon's perimeter.
-void check_at_neck(const cellforge::thin_loop& loop, const cellforge::thin_sample<>& s,
-                   const glm::dmat4& motion) {
+void check_at_neck(const thin_loop& loop, const cellforge::thin_sample<>& s, const glm::dmat4& motion) {
   const glm::dvec3 neck = glm::dvec3(motion * glm::dvec4(0, 0, s.neck_z, 1));
   const glm::dvec3 axis = glm::normalize(glm::dvec3(motion * glm::dvec4(0, 0, 1, 0)));
   INFO("cycle " << loop.cycle << ", strength " << loop.strength << ", length " << loop.length << " vs neck "
@@ -74,7 +76,7 @@ void check_at_neck(const cellforge::thin_loop& loop, const cellforge::thin_sampl
 }
 
 /// The loop is a closed chain on the mesh: consecutive vertices joined by the listed edges.
-void check_chain(const cellforge::surface_mesh<glm::dvec3>& m, const cellforge::thin_loop& loop) {
+void check_chain(const cellforge::surface_mesh<glm::dvec3>& m, const thin_loop& loop) {
   REQUIRE(loop.vertices.size() == loop.edges.size());
   REQUIRE(loop.vertices.size() >= 3);
   const auto pts = m.positions();
@@ -89,7 +91,8 @@ void check_chain(const cellforge::surface_mesh<glm::dvec3>& m, const cellforge::
 }
 
 /// Two runs made the same choices: bit-identical lengths, the same counts and the same loops.
-void check_same_run(const thin_result& a, const thin_result& b) {
+template <class A, class B>
+void check_same_run(const A& a, const B& b) {
   CHECK(a.cycle_lengths == b.cycle_lengths);  // bit-identical, not approximately
   CHECK(a.selections_examined == b.selections_examined);
   CHECK(a.duplicates_dropped == b.duplicates_dropped);
@@ -519,13 +522,43 @@ TEST_CASE("thin points: the cell-complex overload gives the mesh call's loops in
   }
 }
 
-TEST_CASE_TEMPLATE("thin points: other point types", P, glm::dvec3, std::array<float, 3>) {
+TEST_CASE_TEMPLATE("thin points: other point types get loops and axis in their own type", P, glm::dvec3,
+                   std::array<float, 3>, test_support::user_point, test_support::sealed_point) {
   const auto s = cellforge::thin_dumbbell<P>(12, 21, false);
   const auto m = cellforge::make_mesh(s.soup);
-  const thin_result r = cellforge::find_thin_points(m);
+  const auto r = cellforge::find_thin_points(m);
+  static_assert(std::is_same_v<decltype(r), const cellforge::thin_result<P>>);
+  static_assert(std::is_same_v<decltype(r.axis_origin), P>);
+  static_assert(std::is_same_v<decltype(r.axis_direction), P>);
+  static_assert(std::is_same_v<decltype(r.loops), std::vector<cellforge::thin_loop<P>>>);
+  static_assert(std::is_same_v<decltype(r.loops.front().points), std::vector<P>>);
   REQUIRE(!r.loops.empty());
   CHECK(std::abs(centroid(r.loops.front()).z - s.neck_z) < 1e-5);
   CHECK(r.loops.front().length == doctest::Approx(s.neck_perimeter).epsilon(1e-5));
+  // The glm::dvec3 run on the same numbers makes the same choices; only the output is converted.
+  const thin_result d = cellforge::find_thin_points(mesh_of(test_support::soup_as_dvec3(s.soup)));
+  check_same_run(r, d);
+  const double tol = std::is_same_v<cellforge::scalar_t<P>, float> ? 1e-6 : 0.0;
+  CHECK(glm::length(cellforge::to_dvec3(r.axis_origin) - d.axis_origin) <=
+        tol * (1 + glm::length(d.axis_origin)));
+  CHECK(glm::length(cellforge::to_dvec3(r.axis_direction) - d.axis_direction) <= tol);
+  for (std::size_t i = 0; i < r.loops.size(); ++i) {
+    REQUIRE(r.loops[i].points.size() == d.loops[i].points.size());
+    for (std::size_t k = 0; k < d.loops[i].points.size(); ++k)
+      CHECK(cellforge::to_dvec3(r.loops[i].points[k]) == d.loops[i].points[k]);  // the mesh's own points
+    CHECK(r.loops[i].length == d.loops[i].length);
+  }
+  // And the glm::dvec3 dumbbell itself (not rounded to P) gives the same loops within P's precision.
+  const thin_result g =
+      cellforge::find_thin_points(mesh_of(cellforge::thin_dumbbell<glm::dvec3>(12, 21, false).soup));
+  REQUIRE(g.loops.size() == r.loops.size());
+  for (std::size_t i = 0; i < g.loops.size(); ++i) {
+    CHECK(r.loops[i].vertices == g.loops[i].vertices);
+    CHECK(r.loops[i].length == doctest::Approx(g.loops[i].length).epsilon(1e-6));
+    for (std::size_t k = 0; k < g.loops[i].points.size(); ++k)
+      CHECK(glm::length(cellforge::to_dvec3(r.loops[i].points[k]) - g.loops[i].points[k]) <=
+            1e-6 * (1 + glm::length(g.loops[i].points[k])));
+  }
 }
 
 TEST_CASE(

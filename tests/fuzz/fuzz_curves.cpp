@@ -9,6 +9,8 @@
 #include <string>
 #include <string_view>
 
+#include <glm/vec3.hpp>
+
 #include "cellforge/io/curves_io.hpp"
 
 namespace {
@@ -30,10 +32,16 @@ void round_trip(std::string_view bytes, Parse&& parse, Write&& write) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
   round_trip(
-      bytes, [](std::string_view t, std::string_view n) { return cellforge::io::parse_curve_file(t, n); },
+      bytes,
+      [](std::string_view t, std::string_view n) {
+        return cellforge::io::parse_curve_file<glm::dvec3>(t, n);
+      },
       [](const auto& curves) { return cellforge::io::curve_file_text(curves); });
   round_trip(
-      bytes, [](std::string_view t, std::string_view n) { return cellforge::io::parse_polyline_file(t, n); },
+      bytes,
+      [](std::string_view t, std::string_view n) {
+        return cellforge::io::parse_polyline_file<glm::dvec3>(t, n);
+      },
       [](const auto& lines) { return cellforge::io::polyline_file_text(lines); });
   return 0;
 }

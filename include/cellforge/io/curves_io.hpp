@@ -15,9 +15,11 @@
 #include <limits>
 #include <numbers>
 #include <ostream>
+#include <ranges>
 #include <span>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -37,6 +39,7 @@
 #include "cellforge/io/obj.hpp"
 #include "cellforge/io/svg.hpp"
 #include "cellforge/smooth/edge_curve.hpp"
+#include "cellforge/thin/thin_result.hpp"
 
 namespace cellforge::io {
 
@@ -48,9 +51,10 @@ struct curve_write_options {
 
 namespace detail {
 
-inline void put_curve_number(std::string& out, double v) {
-  // Shortest text that reads back to the same double: at most 17 significant digits, exact.
-  char buf[32];
+template <class T>
+void put_curve_number(std::string& out, T v) {
+  // Shortest text that reads back to the same value (a double: at most 17 significant digits).
+  char buf[64];
   const auto r = std::to_chars(buf, buf + sizeof buf, v);
   out.append(buf, r.ptr);
 }
@@ -76,7 +80,8 @@ inline void check_segments(int segments, const char* who) {
 }
 
 /// Throws invalid_input unless curve i can be written so that its reader accepts it. O(1).
-inline void check_curve(const edge_curve& c, std::size_t i, const char* who) {
+template <Point3 P>
+void check_curve(const edge_curve<P>& c, std::size_t i, const char* who) {
   const auto bad = [&](const std::string& what) {
     throw error(error_category::invalid_input,
                 std::string(who) + ": curve " + std::to_string(i) + " " + what);
@@ -89,15 +94,18 @@ inline void check_curve(const edge_curve& c, std::size_t i, const char* who) {
       for (const double v : row)
         if (!std::isfinite(v)) bad("has a non-finite coefficient");
   } else {
-    for (const auto& p : c.bezier)
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+    for (const auto& p : c.bezier) {
+      const glm::dvec3 q = to_dvec3(p);
+      if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
         bad("has a non-finite Bezier control point");
-    if (c.bezier[0] == c.bezier[3]) bad("starts and ends at the same point");
+    }
+    if (to_dvec3(c.bezier[0]) == to_dvec3(c.bezier[3])) bad("starts and ends at the same point");
   }
 }
 
-/// One line of the curve file (no line end). O(1).
-inline void put_curve_line(std::string& out, const edge_curve& c) {
+/// One line of the curve file (no line end); Bézier coordinates in P's own scalar. O(1).
+template <Point3 P>
+void put_curve_line(std::string& out, const edge_curve<P>& c) {
   const auto sep = [&] { out += ", "; };
   if (c.has_axis_form) {
     out += static_cast<char>('0' + c.axis);
@@ -107,7 +115,7 @@ inline void put_curve_line(std::string& out, const edge_curve& c) {
   } else {
     out += '3';
     for (const auto& p : c.bezier)
-      for (int k = 0; k < 3; ++k) sep(), put_curve_number(out, p[k]);
+      for (std::size_t k = 0; k < 3; ++k) sep(), put_curve_number(out, coord(p, k));
   }
   out += '\n';
 }
@@ -161,51 +169,55 @@ inline std::string curve_value_name(std::size_t i, int axis) {
 
 }  // namespace detail
 
-/// The curve file's text: one line per curve, the seed's layout (docs/formats.md "Curve
-/// file"), numbers in shortest round-trip form. Throws invalid_input on curves the reader would refuse. O(n).
-inline std::string curve_file_text(std::span<const edge_curve> curves,
-                                   const curve_write_options& options = {}) {
+/// The curve file's text: one line per curve of a range of edge_curve<P> (a vector, array or
+/// span), the seed's layout (docs/formats.md "Curve file"), numbers in shortest round-trip form
+/// (Bézier points in P's scalar). Throws invalid_input on curves the reader would refuse. O(n).
+template <edge_curve_range R>
+std::string curve_file_text(const R& curves, const curve_write_options& options = {}) {
   std::string out;
   detail::put_comment(out, options.comment);
-  for (std::size_t i = 0; i < curves.size(); ++i) {
-    detail::check_curve(curves[i], i, "write_curve_file");
-    detail::put_curve_line(out, curves[i]);
+  std::size_t i = 0;
+  for (const auto& c : curves) {
+    detail::check_curve(c, i++, "write_curve_file");
+    detail::put_curve_line(out, c);
   }
   return out;
 }
 
 /// Writes the curve file to a stream. Throws like curve_file_text, io if the stream fails. O(n).
-inline void write_curve_file(std::ostream& os, std::span<const edge_curve> curves,
-                             const curve_write_options& options = {}) {
+template <edge_curve_range R>
+void write_curve_file(std::ostream& os, const R& curves, const curve_write_options& options = {}) {
   const std::string text = curve_file_text(curves, options);
   os.write(text.data(), static_cast<std::streamsize>(text.size()));
   if (!os) throw error(error_category::io, "writing the curve file failed (stream error)");
 }
 
 /// Writes the curve file; throws io naming the path when it cannot be written. O(n).
-inline void write_curve_file(const std::filesystem::path& path, std::span<const edge_curve> curves,
-                             const curve_write_options& options = {}) {
+template <edge_curve_range R>
+void write_curve_file(const std::filesystem::path& path, const R& curves,
+                      const curve_write_options& options = {}) {
   const std::string text = curve_file_text(curves, options);  // checks before the file is created
   detail::write_text_file(path, text);
 }
 
-/// Parses curve-file text; curve i gets edge = i (the file holds no ids), v0 = v1 = 0, kind from
-/// its coefficients. Throws io at file:line on a malformed line. O(size of the text).
-inline std::vector<edge_curve> parse_curve_file(std::string_view text, std::string_view name = "<memory>") {
+namespace detail {
+
+/// parse_curve_file in double precision.
+inline std::vector<edge_curve<glm::dvec3>> parse_curves(std::string_view text, std::string_view name) {
   if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
-  detail::text_cursor c(text, name);
-  std::vector<edge_curve> curves;
+  text_cursor c(text, name);
+  std::vector<edge_curve<glm::dvec3>> curves;
   std::vector<double> v;
   while (c.next_content()) {
     const char* line = c.pos;
     int axis = 0;  // set by the first value, so that later values are named by the layout
-    detail::read_number_list(
-        c, v, 13, [&](std::size_t i) { return detail::curve_value_name(i, axis); },
+    read_number_list(
+        c, v, 13, [&](std::size_t i) { return curve_value_name(i, axis); },
         [&](std::size_t i, double a, const char* at) {
           if (i != 0) return;
           if (!(a == 0.0 || a == 1.0 || a == 2.0 || a == 3.0)) {
             std::string found;
-            detail::put_curve_number(found, a);
+            put_curve_number(found, a);
             c.fail_at(at, "the axis must be 0, 1 or 2 (x, y, z) or 3 (Bezier points), found " + found);
           }
           axis = static_cast<int>(a);
@@ -218,16 +230,16 @@ inline std::vector<edge_curve> parse_curve_file(std::string_view text, std::stri
                           : "a curve on axis " + std::to_string(axis) +
                                 " needs 11 values (axis, two limits, 8 coefficients), found " +
                                 std::to_string(v.size()));
-    edge_curve curve;
+    edge_curve<glm::dvec3> curve;
     if (axis < 3) {
       if (v[1] == v[2]) {
         std::string lim;
-        detail::put_curve_number(lim, v[1]);
+        put_curve_number(lim, v[1]);
         c.fail_at(line, "the limits are equal (both " + lim + "): a curve must run along its axis");
       }
       std::array<std::array<double, 4>, 2> k{};
       for (int i = 0; i < 8; ++i) k[i / 4][i % 4] = v[3 + i];
-      curve = axis_curve(axis, {v[1], v[2]}, k);
+      curve = cellforge::detail::axis_curve(axis, {v[1], v[2]}, k);
     } else {
       for (int i = 0; i < 12; ++i) curve.bezier[i / 3][i % 3] = v[1 + i];
       if (curve.bezier[0] == curve.bezier[3]) c.fail_at(line, "the curve starts and ends at the same point");
@@ -240,40 +252,76 @@ inline std::vector<edge_curve> parse_curve_file(std::string_view text, std::stri
   return curves;
 }
 
-/// Reads a curve file. Throws io naming the path, or at file:line when malformed. O(file size).
-inline std::vector<edge_curve> read_curve_file(const std::filesystem::path& path) {
-  return parse_curve_file(detail::read_file(path), detail::display_name(path));
+template <Point3 P>
+std::vector<edge_curve<P>> curves_as(std::vector<edge_curve<glm::dvec3>>&& curves) {
+  if constexpr (std::is_same_v<P, glm::dvec3>) {
+    return std::move(curves);
+  } else {
+    std::vector<edge_curve<P>> out;
+    out.reserve(curves.size());
+    for (const auto& c : curves) out.push_back(curve_cast<P>(c));
+    return out;
+  }
+}
+
+}  // namespace detail
+
+/// Parses curve-file text into curves with control points of type P (the template argument: a
+/// file has no point type); curve i gets edge = i (the file holds no ids), v0 = v1 = 0, kind from
+/// its coefficients. The numbers are read and checked in double precision, then converted. Throws
+/// io at file:line on a malformed line. O(size of the text).
+template <Point3 P>
+std::vector<edge_curve<P>> parse_curve_file(std::string_view text, std::string_view name = "<memory>") {
+  return detail::curves_as<P>(detail::parse_curves(text, name));
+}
+
+/// Reads a curve file into curves of type P. Throws io naming the path, or at file:line when
+/// malformed. O(file size).
+template <Point3 P>
+std::vector<edge_curve<P>> read_curve_file(const std::filesystem::path& path) {
+  return parse_curve_file<P>(detail::read_file(path), detail::display_name(path));
 }
 
 // ---------------------------------------------------------------------------------------------
 // Polylines
 
-/// Every curve as `segments` straight pieces (segments + 1 points). O(n × segments).
-inline std::vector<std::vector<glm::dvec3>> curve_polylines(std::span<const edge_curve> curves,
-                                                            int segments = 15) {
+/// A random-access, sized range (vector, span, array) of polylines, each a sized forward range of
+/// points of one registered type: `std::vector<std::vector<P>>`, a span of those, a vector of spans.
+template <class R>
+concept polyline_range = std::ranges::random_access_range<R> && std::ranges::sized_range<R> &&
+    std::ranges::forward_range<std::ranges::range_value_t<R>> &&
+    std::ranges::sized_range<std::ranges::range_value_t<R>> &&
+    Point3<std::ranges::range_value_t<std::ranges::range_value_t<R>>>;
+
+/// Every curve as `segments` straight pieces (segments + 1 points of the curves' type). O(n × segments).
+template <edge_curve_range R>
+std::vector<std::vector<edge_curve_range_point_t<R>>> curve_polylines(const R& curves, int segments = 15) {
   detail::check_segments(segments, "curve_polylines");
-  std::vector<std::vector<glm::dvec3>> out;
-  out.reserve(curves.size());
-  for (const edge_curve& c : curves) out.push_back(c.polyline(segments));
+  std::vector<std::vector<edge_curve_range_point_t<R>>> out;
+  out.reserve(std::ranges::size(curves));
+  for (const auto& c : curves) out.push_back(c.polyline(segments));
   return out;
 }
 
 /// The polyline file's text: one polyline per line, `x0, y0, z0, x1, y1, z1, ...` (docs/formats.md
-/// "Polyline file"). Throws invalid_input on non-finite points or a polyline of < 2 points. O(points).
-inline std::string polyline_file_text(std::span<const std::vector<glm::dvec3>> polylines,
-                                      const curve_write_options& options = {}) {
+/// "Polyline file"), coordinates in the points' own scalar. Throws invalid_input on non-finite
+/// points or a polyline of < 2 points. O(points).
+template <polyline_range R>
+std::string polyline_file_text(const R& polylines, const curve_write_options& options = {}) {
   std::string out;
   detail::put_comment(out, options.comment);
-  for (std::size_t i = 0; i < polylines.size(); ++i) {
+  for (std::size_t i = 0; i < std::ranges::size(polylines); ++i) {
     const auto& pl = polylines[i];
-    if (pl.size() < 2)
+    if (std::ranges::size(pl) < 2)
       throw error(error_category::invalid_input,
                   "write_polyline_file: polyline " + std::to_string(i) + " has fewer than 2 points");
-    for (std::size_t j = 0; j < pl.size(); ++j) {
-      detail::check_point_finite(pl[j], i, "polyline_file");
-      for (int k = 0; k < 3; ++k) {
-        if (j != 0 || k != 0) out += ", ";
-        detail::put_curve_number(out, pl[j][k]);
+    bool first = true;
+    for (const auto& p : pl) {
+      detail::check_point_finite(p, i, "polyline_file");
+      for (std::size_t k = 0; k < 3; ++k) {
+        if (!first) out += ", ";
+        first = false;
+        detail::put_curve_number(out, coord(p, k));
       }
     }
     out += '\n';
@@ -282,30 +330,30 @@ inline std::string polyline_file_text(std::span<const std::vector<glm::dvec3>> p
 }
 
 /// Writes polylines as a polyline file. Throws like polyline_file_text, io when the file fails. O(points).
-inline void write_polyline_file(const std::filesystem::path& path,
-                                std::span<const std::vector<glm::dvec3>> polylines,
-                                const curve_write_options& options = {}) {
+template <polyline_range R>
+void write_polyline_file(const std::filesystem::path& path, const R& polylines,
+                         const curve_write_options& options = {}) {
   detail::write_text_file(path, polyline_file_text(polylines, options));
 }
 
 /// Writes every curve as options.segments pieces (the seed's display file: 15). O(n × segments).
-inline void write_polyline_file(const std::filesystem::path& path, std::span<const edge_curve> curves,
-                                const curve_write_options& options = {}) {
-  write_polyline_file(
-      path, std::span<const std::vector<glm::dvec3>>(curve_polylines(curves, options.segments)), options);
+template <edge_curve_range R>
+void write_polyline_file(const std::filesystem::path& path, const R& curves,
+                         const curve_write_options& options = {}) {
+  write_polyline_file(path, curve_polylines(curves, options.segments), options);
 }
 
-/// Parses polyline-file text: one polyline per line, 3k numbers (k >= 2). Throws io at
-/// file:line on a malformed line. O(size of the text).
-inline std::vector<std::vector<glm::dvec3>> parse_polyline_file(std::string_view text,
-                                                                std::string_view name = "<memory>") {
+namespace detail {
+
+/// parse_polyline_file in double precision.
+inline std::vector<std::vector<glm::dvec3>> parse_polylines(std::string_view text, std::string_view name) {
   if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
-  detail::text_cursor c(text, name);
+  text_cursor c(text, name);
   std::vector<std::vector<glm::dvec3>> out;
   std::vector<double> v;
   while (c.next_content()) {
     const char* line = c.pos;
-    detail::read_number_list(
+    read_number_list(
         c, v, std::size_t{3} << 24,
         [](std::size_t i) {
           return "coordinate " + std::string(1, "xyz"[i % 3]) + " of point " + std::to_string(i / 3);
@@ -321,9 +369,31 @@ inline std::vector<std::vector<glm::dvec3>> parse_polyline_file(std::string_view
   return out;
 }
 
-/// Reads a polyline file. Throws io naming the path, or at file:line when malformed. O(file size).
-inline std::vector<std::vector<glm::dvec3>> read_polyline_file(const std::filesystem::path& path) {
-  return parse_polyline_file(detail::read_file(path), detail::display_name(path));
+}  // namespace detail
+
+/// Parses polyline-file text into polylines of points of type P (the template argument: a file
+/// has no point type): one polyline per line, 3k numbers (k >= 2), read in double precision and
+/// converted. Throws io at file:line on a malformed line. O(size of the text).
+template <Point3 P>
+std::vector<std::vector<P>> parse_polyline_file(std::string_view text, std::string_view name = "<memory>") {
+  std::vector<std::vector<glm::dvec3>> d = detail::parse_polylines(text, name);
+  if constexpr (std::is_same_v<P, glm::dvec3>) {
+    return d;
+  } else {
+    std::vector<std::vector<P>> out(d.size());
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      out[i].reserve(d[i].size());
+      for (const glm::dvec3& p : d[i]) out[i].push_back(from_dvec3<P>(p));
+    }
+    return out;
+  }
+}
+
+/// Reads a polyline file into points of type P. Throws io naming the path, or at file:line when
+/// malformed. O(file size).
+template <Point3 P>
+std::vector<std::vector<P>> read_polyline_file(const std::filesystem::path& path) {
+  return parse_polyline_file<P>(detail::read_file(path), detail::display_name(path));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -331,13 +401,13 @@ inline std::vector<std::vector<glm::dvec3>> read_polyline_file(const std::filesy
 
 /// Polylines (and optionally a soup's faces) as OBJ: `v` lines, `f` lines, then one `l` line
 /// per polyline, closed back to its first point when `closed`. O(points + faces).
-template <Point3 P = glm::dvec3>
-void write_polylines_obj(std::ostream& os, std::span<const std::vector<glm::dvec3>> polylines,
-                         bool closed = false, const polygon_soup<P>* faces = nullptr,
-                         const curve_write_options& options = {}) {
+/// The soup's point type P is independent of the polylines' (glm::dvec3 when there are no faces).
+template <polyline_range R, Point3 P = glm::dvec3>
+void write_polylines_obj(std::ostream& os, const R& polylines, bool closed = false,
+                         const polygon_soup<P>* faces = nullptr, const curve_write_options& options = {}) {
   if (faces) detail::check_face_indices(*faces, "polylines_obj");
-  for (std::size_t i = 0; i < polylines.size(); ++i) {
-    if (polylines[i].size() < 2)
+  for (std::size_t i = 0; i < std::ranges::size(polylines); ++i) {
+    if (std::ranges::size(polylines[i]) < 2)
       throw error(error_category::invalid_input,
                   "write_polylines_obj: polyline " + std::to_string(i) + " has fewer than 2 points");
     for (const auto& p : polylines[i]) detail::check_point_finite(p, i, "polylines_obj");
@@ -353,33 +423,32 @@ void write_polylines_obj(std::ostream& os, std::span<const std::vector<glm::dvec
   for (const auto& pl : polylines)
     for (const auto& p : pl) {
       out.put("v ");
-      for (int k = 0; k < 3; ++k) out.number(p[k]), out.put(k < 2 ? ' ' : '\n');
+      for (std::size_t k = 0; k < 3; ++k) out.number(coord(p, k)), out.put(k < 2 ? ' ' : '\n');
     }
   for (const auto& pl : polylines) {
     out.put('l');
-    for (std::size_t j = 0; j < pl.size(); ++j) out.put(' '), out.number(base + j);
+    const std::size_t n = std::ranges::size(pl);
+    for (std::size_t j = 0; j < n; ++j) out.put(' '), out.number(base + j);
     if (closed) out.put(' '), out.number(base);
     out.put('\n');
-    base += pl.size();
+    base += n;
   }
   out.finish("OBJ");
 }
 
 /// Writes polylines (and optionally faces) to an OBJ file; see the stream overload. O(size).
-template <Point3 P = glm::dvec3>
-void write_polylines_obj(const std::filesystem::path& path,
-                         std::span<const std::vector<glm::dvec3>> polylines, bool closed = false,
+template <polyline_range R, Point3 P = glm::dvec3>
+void write_polylines_obj(const std::filesystem::path& path, const R& polylines, bool closed = false,
                          const polygon_soup<P>* faces = nullptr, const curve_write_options& options = {}) {
   detail::write_file(path,
                      [&](std::ostream& os) { write_polylines_obj(os, polylines, closed, faces, options); });
 }
 
 /// Writes every curve as one `l` polyline of options.segments pieces (faces too when given). O(n × segments).
-template <Point3 P = glm::dvec3>
-void write_polylines_obj(const std::filesystem::path& path, std::span<const edge_curve> curves,
+template <edge_curve_range R, Point3 P = glm::dvec3>
+void write_polylines_obj(const std::filesystem::path& path, const R& curves,
                          const polygon_soup<P>* faces = nullptr, const curve_write_options& options = {}) {
-  const auto polylines = curve_polylines(curves, options.segments);
-  write_polylines_obj(path, std::span<const std::vector<glm::dvec3>>(polylines), false, faces, options);
+  write_polylines_obj(path, curve_polylines(curves, options.segments), false, faces, options);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -448,18 +517,18 @@ inline void check_curves_svg(const svg_options& o, const char* who) {
 
 }  // namespace detail
 
-/// Draws a solid shaded with its thin loops as thick closed lines on it, the strongest (first)
-/// thickest; hidden parts of loops dashed. O(size of the solid × local density + loop points).
-template <Point3 P>
+/// Draws a solid shaded with its thin loops (any polyline_range: point chains of any registered
+/// type) as thick closed lines on it, the strongest (first) thickest; hidden parts of loops dashed.
+/// O(size of the solid × local density + loop points).
+template <Point3 P, polyline_range R>
 svg_result write_thin_loops_svg(const std::filesystem::path& path, const polygon_soup<P>& solid,
-                                std::span<const std::vector<glm::dvec3>> loops,
-                                const thin_loops_svg_options& options = {}) {
+                                const R& loops, const thin_loops_svg_options& options = {}) {
   detail::check_curves_svg(options.picture, "write_thin_loops_svg");
   if (options.colours.empty() || !(options.width > 0.0))
     throw error(error_category::invalid_input, "write_thin_loops_svg: needs a colour and a positive width");
   svg_scene scene;
   scene.add_mesh(solid, options.solid);
-  const std::size_t n = std::min(loops.size(), options.max_loops);
+  const std::size_t n = std::min<std::size_t>(std::ranges::size(loops), options.max_loops);
   // Labels go just right of each loop's rightmost point on the screen, clear of the line.
   const glm::dvec3 right = detail::screen_axes(options.picture.view)[0];
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
@@ -468,36 +537,61 @@ svg_result write_thin_loops_svg(const std::filesystem::path& path, const polygon
   const glm::dvec3 nudge = right * (hi > lo ? 0.03 * (hi - lo) : 0.0);
   // Weakest first, so the strongest loop is drawn on top where loops cross.
   for (std::size_t k = n; k-- > 0;) {
+    const auto& loop = loops[k];
     svg_style st;
     st.stroke = st.hidden_stroke = st.fill = options.colours[std::min(k, options.colours.size() - 1)];
     st.stroke_width = std::max(1.5, options.width * std::pow(0.7, static_cast<double>(k)));
     st.hidden_opacity = 0.45;
-    scene.add_polyline(loops[k], st, true);
-    if (options.labels && !loops[k].empty()) {
+    scene.add_polyline(loop, st, true);
+    if (options.labels && std::ranges::size(loop) != 0) {
       st.font_size = 14;
-      const auto at = std::max_element(
-          loops[k].begin(), loops[k].end(),
-          [&](const glm::dvec3& a, const glm::dvec3& b) { return glm::dot(a, right) < glm::dot(b, right); });
-      scene.add_label(*at + nudge, std::to_string(k + 1), st);
+      const auto at = std::ranges::max_element(loop, [&](const auto& a, const auto& b) {
+        return glm::dot(to_dvec3(a), right) < glm::dot(to_dvec3(b), right);
+      });
+      scene.add_label(to_dvec3(*at) + nudge, std::to_string(k + 1), st);
     }
   }
   return scene.write(path, options.picture);
 }
 
 /// write_thin_loops_svg for a surface mesh. Costs as above.
-template <Point3 P>
+template <Point3 P, polyline_range R>
 svg_result write_thin_loops_svg(const std::filesystem::path& path, const surface_mesh<P>& solid,
-                                std::span<const std::vector<glm::dvec3>> loops,
-                                const thin_loops_svg_options& options = {}) {
+                                const R& loops, const thin_loops_svg_options& options = {}) {
   return write_thin_loops_svg(path, to_soup(solid), loops, options);
 }
 
+namespace detail {
+/// The loops' points as one span each (no copy).
+template <Point3 Q>
+std::vector<std::span<const Q>> loop_points(const thin_result<Q>& r) {
+  std::vector<std::span<const Q>> out;
+  out.reserve(r.loops.size());
+  for (const thin_loop<Q>& l : r.loops) out.emplace_back(l.points);
+  return out;
+}
+}  // namespace detail
+
+/// write_thin_loops_svg for the loops of a find_thin_points result (in any point type Q). Costs as above.
+template <Point3 P, Point3 Q>
+svg_result write_thin_loops_svg(const std::filesystem::path& path, const polygon_soup<P>& solid,
+                                const thin_result<Q>& result, const thin_loops_svg_options& options = {}) {
+  return write_thin_loops_svg(path, solid, detail::loop_points(result), options);
+}
+
+/// write_thin_loops_svg for a surface mesh and a find_thin_points result. Costs as above.
+template <Point3 P, Point3 Q>
+svg_result write_thin_loops_svg(const std::filesystem::path& path, const surface_mesh<P>& solid,
+                                const thin_result<Q>& result, const thin_loops_svg_options& options = {}) {
+  return write_thin_loops_svg(path, to_soup(solid), detail::loop_points(result), options);
+}
+
 /// Two panels in one view: the solid with its straight edges (left) and the same solid with its
-/// smoothed curves as polylines (right). O((size of the solid + curves × segments) × local density).
-template <Point3 P>
+/// smoothed curves (any edge_curve_range) as polylines (right).
+/// O((size of the solid + curves × segments) × local density).
+template <Point3 P, edge_curve_range R>
 svg_result write_smoothing_svg(const std::filesystem::path& path, const polygon_soup<P>& solid,
-                               std::span<const edge_curve> curves,
-                               const smoothing_svg_options& options = {}) {
+                               const R& curves, const smoothing_svg_options& options = {}) {
   detail::check_curves_svg(options.picture, "write_smoothing_svg");
   if (!(options.gap >= 0.0 && options.gap <= 10.0) || !(options.curve_width > 0.0))
     throw error(error_category::invalid_input,
@@ -515,8 +609,13 @@ svg_result write_smoothing_svg(const std::filesystem::path& path, const polygon_
     if (glm::dot(p, up) > top) top = glm::dot(p, up), top_point = p;
   };
   for (const auto& p : solid.points) extend(to_dvec3(p));
-  for (const auto& pl : polylines)
-    for (const auto& p : pl) extend(p);
+  // All curves in one wireframe layer: one path element, however many curves.
+  wireframe<glm::dvec3> w;
+  for (const auto& pl : polylines) {
+    const auto base = static_cast<std::uint32_t>(w.points.size());
+    for (const auto& p : pl) w.points.push_back(to_dvec3(p)), extend(w.points.back());
+    for (std::uint32_t j = 0; j + 1 < pl.size(); ++j) w.edges.push_back({base + j, base + j + 1});
+  }
   const double width = hi > lo ? hi - lo : 1.0;
   const glm::dvec3 shift = right * (width * (1.0 + options.gap));
 
@@ -526,13 +625,6 @@ svg_result write_smoothing_svg(const std::filesystem::path& path, const polygon_
   faces.offset = shift;
   faces.draw_edges = false;
   scene.add_mesh(solid, faces);
-  // All curves in one wireframe layer: one path element, however many curves.
-  wireframe<glm::dvec3> w;
-  for (const auto& pl : polylines) {
-    const auto base = static_cast<std::uint32_t>(w.points.size());
-    w.points.insert(w.points.end(), pl.begin(), pl.end());
-    for (std::uint32_t j = 0; j + 1 < pl.size(); ++j) w.edges.push_back({base + j, base + j + 1});
-  }
   svg_style lines;
   lines.stroke = lines.hidden_stroke = options.curve_colour;
   lines.stroke_width = options.curve_width;
@@ -546,16 +638,15 @@ svg_result write_smoothing_svg(const std::filesystem::path& path, const polygon_
     const glm::dvec3 at = top_point - right * (glm::dot(top_point, right) - lo) + up * (0.08 * width);
     scene.add_label(at, "straight edges", text);
     text.offset = shift;
-    scene.add_label(at, "smoothed edges (" + std::to_string(curves.size()) + " curves)", text);
+    scene.add_label(at, "smoothed edges (" + std::to_string(std::ranges::size(curves)) + " curves)", text);
   }
   return scene.write(path, options.picture);
 }
 
 /// write_smoothing_svg for a surface mesh. Costs as above.
-template <Point3 P>
+template <Point3 P, edge_curve_range R>
 svg_result write_smoothing_svg(const std::filesystem::path& path, const surface_mesh<P>& solid,
-                               std::span<const edge_curve> curves,
-                               const smoothing_svg_options& options = {}) {
+                               const R& curves, const smoothing_svg_options& options = {}) {
   return write_smoothing_svg(path, to_soup(solid), curves, options);
 }
 

@@ -41,22 +41,24 @@ std::vector<smooth_sample_solid<P>> table7_solids() {
   return out;
 }
 
-/// A Table 7 stand-in ready to smooth: the figure's name, description, mesh (glm::dvec3 points)
+/// A Table 7 stand-in ready to smooth: the figure's name, description, mesh (points of type P)
 /// and the seed's edge count and ms.
+template <Point3 P = glm::dvec3>
 struct smooth_table7_case {
   std::string name, description;
-  surface_mesh<glm::dvec3> mesh;
+  surface_mesh<P> mesh;
   std::size_t seed_edges = 0;
   double seed_ms = 0;
 };
 
 /// Test figure 1..4 of Table 7 as a mesh (see table7_solids()). O(size). Throws
 /// error(invalid_input) for another figure number.
-inline smooth_table7_case smooth_table7_solid(int figure) {
+template <Point3 P = glm::dvec3>
+smooth_table7_case<P> smooth_table7_solid(int figure) {
   if (figure < 1 || figure > 4)
     throw error(error_category::invalid_input,
                 "smooth_table7_solid: figure = " + std::to_string(figure) + ", must be 1..4");
-  auto s = table7_solids<glm::dvec3>()[static_cast<std::size_t>(figure - 1)];
+  auto s = table7_solids<P>()[static_cast<std::size_t>(figure - 1)];
   return {s.name, s.description, make_mesh(s.soup), s.seed_edges, s.seed_ms};
 }
 

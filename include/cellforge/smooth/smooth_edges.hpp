@@ -15,6 +15,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -65,20 +66,18 @@ inline smooth_options seed_smooth_options() {
 }
 
 /// How one end of a curve was shaped: its tangent, when it has one, is perpendicular to both
-/// normals (equal except at a crease end, where they are the two sides' normals).
+/// normals (equal except at a crease end, where they are the two sides' normals). Directions are
+/// of the mesh's point type P (zero when absent).
+template <Point3 P>
 struct curve_end {
   bool has_tangent = false;
   bool crease = false;
-  glm::dvec3 normal_a{0.0}, normal_b{0.0};
-  glm::dvec3 direction{0.0};  ///< unit tangent direction along the curve (v0 → v1)
+  P normal_a = point_traits<P>::make(0, 0, 0), normal_b = point_traits<P>::make(0, 0, 0);
+  P direction = point_traits<P>::make(0, 0, 0);  ///< unit tangent direction along the curve (v0 → v1)
 };
 
-/// What smooth_edges() returns; curves[i].edge == i for a mesh (sorted cell-edge ids for a complex).
-struct smooth_result {
-  std::vector<edge_curve> curves;
-  std::vector<std::array<curve_end, 2>> ends;  ///< parallel to curves: at v0 and at v1
-  std::vector<glm::dvec3> midpoints;           ///< parallel to curves: readjusted midpoints (§6.5)
-  std::vector<glm::dvec3> vertex_normals;      ///< by vertex id: interior vertices (§6.2), else zero
+/// The part of smooth_result that holds no points.
+struct smooth_result_base {
   std::vector<std::uint32_t> surface_of_face;  ///< by face id (cell face id for a complex)
   std::size_t num_surfaces = 0;
   std::size_t num_cubic = 0, num_quadratic = 0, num_straight = 0;
@@ -92,7 +91,21 @@ struct smooth_result {
   double model_size = 0;
 };
 
+/// What smooth_edges() returns, in the mesh's point type P; curves[i].edge == i for a mesh
+/// (sorted cell-edge ids for a complex).
+template <Point3 P>
+struct smooth_result : smooth_result_base {
+  using point_type = P;
+  std::vector<edge_curve<P>> curves;
+  std::vector<std::array<curve_end<P>, 2>> ends;  ///< parallel to curves: at v0 and at v1
+  std::vector<P> midpoints;                       ///< parallel to curves: readjusted midpoints (§6.5)
+  std::vector<P> vertex_normals;                  ///< by vertex id: interior vertices (§6.2), else zero
+};
+
 namespace detail::smooth {
+
+using dend = curve_end<glm::dvec3>;
+using dresult = smooth_result<glm::dvec3>;
 
 inline void check_options(const smooth_options& o) {
   check_surface_angle(o.angle_deg, "smooth_edges");
@@ -115,7 +128,7 @@ inline void check_options(const smooth_options& o) {
 /// §6.5's recursive 7-point search: the curve parameter whose point is nearest the line through
 /// m along unit n. Each round keeps the two neighbours of the best of 7 points (a third of the
 /// interval); stops below 1e-12 in t. O(1) (at most 26 rounds).
-inline double nearest_to_line(const edge_curve& c, const glm::dvec3& m, const glm::dvec3& n) {
+inline double nearest_to_line(const dcurve& c, const glm::dvec3& m, const glm::dvec3& n) {
   double lo = 0, hi = 1;
   while (hi - lo > 1e-12) {
     std::array<double, 7> t{};
@@ -143,7 +156,7 @@ struct smoother {
   std::vector<std::uint8_t> form_choice;  // 0 undecided, 1 axis form, 2 Bézier
   std::vector<glm::dvec3> edge_normal, sector_normal, midpoints;
   vertex_sectors sectors;
-  smooth_result r;
+  dresult r;
 
   smoother(const halfedge_mesh& mesh, const solid_geometry& geometry, const smooth_options& options)
       : m(mesh), g(geometry), o(options) {}
@@ -151,12 +164,12 @@ struct smoother {
   glm::dvec3 pos(vertex_handle v) const { return g.positions[v.idx()]; }
 
   // The end of edge e at its vertex i (0: tail of half-edge 0, 1: its head).
-  curve_end end_of(edge_handle e, unsigned i, const glm::dvec3& chord) const {
+  dend end_of(edge_handle e, unsigned i, const glm::dvec3& chord) const {
     const halfedge_handle h0 = halfedge_mesh::halfedge(e, 0), h1 = halfedge_mesh::halfedge(e, 1);
     const halfedge_handle ca = i == 1 ? h0 : m.prev(h0), cb = i == 1 ? m.prev(h1) : h1;
     const std::uint32_t sa = sectors.sector_of_corner[ca.idx()], sb = sectors.sector_of_corner[cb.idx()];
     const std::uint32_t v = m.vertex(e, i).idx();
-    curve_end end;
+    dend end;
     end.crease = !smooth[e.idx()];
     end.normal_a = sector_normal[sa];
     end.normal_b = sector_normal[sb];
@@ -166,7 +179,7 @@ struct smoother {
       if (!(len > 1e-9 * chord_len)) return end;  // degenerate: no tangent
       if (glm::dot(t, chord) < 0) t = -t;
       if (!(glm::dot(t, chord) > 1e-9 * len * chord_len)) return end;
-      curve_end out = end;
+      dend out = end;
       out.has_tangent = true;
       out.direction = t / len;
       return out;
@@ -187,7 +200,7 @@ struct smoother {
 
   // The axis form's handle at an end is |range| / |t̂_axis|, the chord's is |chord|: their ratio
   // is |v̂_axis| / |t̂_axis|. Near 1 the x-parametrised cubic is as round as the parametric one.
-  bool axis_ok(const curve_end& end, int axis, const glm::dvec3& chord) const {
+  bool axis_ok(const dend& end, int axis, const glm::dvec3& chord) const {
     if (!end.has_tangent) return true;
     const double along = end.direction[axis] * (chord[axis] < 0 ? -1.0 : 1.0);
     if (!(along > 0)) return false;
@@ -202,12 +215,12 @@ struct smoother {
     for (edge_handle e : m.edges()) {
       const vertex_handle a = m.vertex(e, 0), b = m.vertex(e, 1);
       const glm::dvec3 p0 = pos(a), p1 = pos(b), chord = p1 - p0;
-      const curve_end e0 = end_of(e, 0, chord), e1 = end_of(e, 1, chord);
+      const dend e0 = end_of(e, 0, chord), e1 = end_of(e, 1, chord);
       std::optional<glm::dvec3> t0, t1;
       if (e0.has_tangent) t0 = e0.direction;
       if (e1.has_tangent) t1 = e1.direction;
-      const int axis = largest_range_axis(p0, p1);
-      std::optional<edge_curve> c;
+      const int axis = detail::largest_range_axis(p0, p1);
+      std::optional<dcurve> c;
       // automatic decides each edge's form once, in the first cycle, so that tangents moving a
       // hair across the threshold cannot make the readjustment flip between forms for ever.
       std::uint8_t& choice = form_choice[e.idx()];
@@ -218,10 +231,10 @@ struct smoother {
                 ? 1
                 : 2;
       const bool want_axis = choice == 1;
-      if (want_axis) c = fit_axis_curve(p0, p1, axis, t0, t1);
+      if (want_axis) c = detail::fit_axis_curve(p0, p1, axis, t0, t1);
       if (!c) {
         if (want_axis) ++r.num_axis_fallbacks;
-        c = fit_bezier_curve(p0, p1, t0, t1);
+        c = detail::fit_bezier_curve(p0, p1, t0, t1);
       }
       const int tangents = (t0 ? 1 : 0) + (t1 ? 1 : 0);
       c->kind = tangents == 2   ? curve_kind::cubic
@@ -237,7 +250,7 @@ struct smoother {
     }
   }
 
-  smooth_result run() {
+  dresult run() {
     surface_partition part = continuous_surfaces(m, g.face_normals, o.angle_deg);
     r.model_size = g.model_size;
     r.num_surfaces = part.surfaces.size();
@@ -256,7 +269,7 @@ struct smoother {
     sectors = make_vertex_sectors(m, g, smooth);
     midpoints.assign(m.edges_size(), glm::dvec3(0));
     for (edge_handle e : m.edges()) midpoints[e.idx()] = 0.5 * (pos(m.vertex(e, 0)) + pos(m.vertex(e, 1)));
-    r.curves.assign(m.edges_size(), edge_curve{});
+    r.curves.assign(m.edges_size(), dcurve{});
     r.ends.assign(m.edges_size(), {});
     std::vector<std::uint8_t> frozen(m.edges_size(), 0);
     std::deque<std::vector<glm::dvec3>> history;
@@ -272,7 +285,7 @@ struct smoother {
         if (frozen[e.idx()] || (!ends[0].has_tangent && !ends[1].has_tangent)) continue;
         const glm::dvec3 n = edge_normal[e.idx()];
         if (glm::dot(n, n) == 0) continue;
-        const edge_curve& c = r.curves[e.idx()];
+        const dcurve& c = r.curves[e.idx()];
         const glm::dvec3 next = c.point(nearest_to_line(c, midpoints[e.idx()], n));
         const double move = glm::length(next - midpoints[e.idx()]);
         midpoints[e.idx()] = next;
@@ -310,33 +323,43 @@ struct smoother {
   }
 };
 
-}  // namespace detail::smooth
-
-/// Smooths every edge of the closed solid m into a curve (seed 000
-/// ch. VI with the beyond-seed options above). O(E · iterations) time, O(E) memory (plus
-/// stall_cycles copies of the midpoints). Throws error(topology) for an open or inconsistently
-/// oriented mesh, error(invalid_input) for degenerate faces, non-finite points or bad options.
+/// The result in the mesh's point type: one conversion of every point at the end (none for
+/// glm::dvec3). O(E + V).
 template <Point3 P>
-smooth_result smooth_edges(const surface_mesh<P>& m, const smooth_options& options = {}) {
-  detail::smooth::check_options(options);
-  const solid_geometry g = solid_geometry_of(m, "smooth_edges");
-  return detail::smooth::smoother(m, g, options).run();
+smooth_result<P> result_as(dresult&& r) {
+  if constexpr (std::is_same_v<P, glm::dvec3>) {
+    return std::move(r);
+  } else {
+    smooth_result<P> out;
+    static_cast<smooth_result_base&>(out) = std::move(static_cast<smooth_result_base&>(r));
+    const auto end_as = [](const dend& e) {
+      curve_end<P> x;
+      x.has_tangent = e.has_tangent, x.crease = e.crease;
+      x.normal_a = from_dvec3<P>(e.normal_a), x.normal_b = from_dvec3<P>(e.normal_b);
+      x.direction = from_dvec3<P>(e.direction);
+      return x;
+    };
+    out.curves.reserve(r.curves.size());
+    for (const dcurve& c : r.curves) out.curves.push_back(curve_cast<P>(c));
+    out.ends.reserve(r.ends.size());
+    for (const auto& e : r.ends) out.ends.push_back({end_as(e[0]), end_as(e[1])});
+    out.midpoints.reserve(r.midpoints.size());
+    for (const glm::dvec3& p : r.midpoints) out.midpoints.push_back(from_dvec3<P>(p));
+    out.vertex_normals.reserve(r.vertex_normals.size());
+    for (const glm::dvec3& p : r.vertex_normals) out.vertex_normals.push_back(from_dvec3<P>(p));
+    return out;
+  }
 }
 
-/// smooth_edges() on volume v of a cell complex (via volume_boundary_mesh): curves carry cell edge
-/// and vertex ids, sorted by edge; mesh edges that are no cell edge (diagonals of triangulated
-/// faces with holes) are left out; surface_of_face and vertex_normals are by cell face / vertex id
-/// (faces outside v: 0xFFFFFFFF). O(size of v · iterations). Throws what smooth_edges throws.
-inline smooth_result smooth_edges(const cell_complex<glm::dvec3>& cc, cell_volume v,
-                                  const smooth_options& options = {}) {
-  detail::smooth::check_options(options);
-  const surface_mesh<glm::dvec3> m = volume_boundary_mesh(cc, v);
-  smooth_result r = smooth_edges(m, options);
+/// A volume's boundary-mesh result with cell ids (see smooth_edges on a cell complex): curves
+/// renumbered and sorted by cell edge, diagonals dropped, faces and vertex normals by cell id.
+template <Point3 P>
+smooth_result<P> with_cell_ids(const cell_topology& cc, const halfedge_mesh& m, smooth_result<P>&& r) {
   const auto cv = m.get_vertex_property<std::uint32_t>("v:cell_vertex");
   const auto cf = m.get_face_property<std::uint32_t>("f:cell_face");
   std::vector<std::size_t> keep;
   for (std::size_t i = 0; i < r.curves.size(); ++i) {
-    edge_curve& c = r.curves[i];
+    edge_curve<P>& c = r.curves[i];
     const cell_vertex a(cv[vertex_handle(c.v0)]), b(cv[vertex_handle(c.v1)]);
     for (const auto& oe : cc.vertex_edges(a)) {
       const auto ends = cc.edge_vertices(oe.handle);
@@ -351,10 +374,8 @@ inline smooth_result smooth_edges(const cell_complex<glm::dvec3>& cc, cell_volum
   }
   std::sort(keep.begin(), keep.end(),
             [&](std::size_t x, std::size_t y) { return r.curves[x].edge < r.curves[y].edge; });
-  smooth_result out = r;
-  out.curves.clear();
-  out.ends.clear();
-  out.midpoints.clear();
+  smooth_result<P> out;
+  static_cast<smooth_result_base&>(out) = r;
   for (std::size_t i : keep) {
     out.curves.push_back(r.curves[i]);
     out.ends.push_back(r.ends[i]);
@@ -362,9 +383,35 @@ inline smooth_result smooth_edges(const cell_complex<glm::dvec3>& cc, cell_volum
   }
   out.surface_of_face.assign(cc.num_faces(), 0xFFFFFFFFu);
   for (face_handle f : m.faces()) out.surface_of_face[cf[f]] = r.surface_of_face[f.idx()];
-  out.vertex_normals.assign(cc.num_vertices(), glm::dvec3(0));
+  out.vertex_normals.assign(cc.num_vertices(), point_traits<P>::make(0, 0, 0));
   for (vertex_handle x : m.vertices()) out.vertex_normals[cv[x]] = r.vertex_normals[x.idx()];
   return out;
+}
+
+}  // namespace detail::smooth
+
+/// Smooths every edge of the closed solid m into a curve (seed 000
+/// ch. VI with the beyond-seed options above); the curves, ends, midpoints and normals come back
+/// in m's point type P (computed in double precision, converted once). O(E · iterations) time,
+/// O(E) memory (plus stall_cycles copies of the midpoints). Throws error(topology) for an open or
+/// inconsistently oriented mesh, error(invalid_input) for degenerate faces, non-finite points or bad options.
+template <Point3 P>
+smooth_result<P> smooth_edges(const surface_mesh<P>& m, const smooth_options& options = {}) {
+  detail::smooth::check_options(options);
+  const solid_geometry g = solid_geometry_of(m, "smooth_edges");
+  return detail::smooth::result_as<P>(detail::smooth::smoother(m, g, options).run());
+}
+
+/// smooth_edges() on volume v of a cell complex (via volume_boundary_mesh): curves carry cell edge
+/// and vertex ids, sorted by edge; mesh edges that are no cell edge (diagonals of triangulated
+/// faces with holes) are left out; surface_of_face and vertex_normals are by cell face / vertex id
+/// (faces outside v: 0xFFFFFFFF). Points in the complex's point type P.
+/// O(size of v · iterations). Throws what smooth_edges throws.
+template <Point3 P>
+smooth_result<P> smooth_edges(const cell_complex<P>& cc, cell_volume v, const smooth_options& options = {}) {
+  detail::smooth::check_options(options);
+  const surface_mesh<P> m = volume_boundary_mesh(cc, v);
+  return detail::smooth::with_cell_ids(cc, m, smooth_edges(m, options));
 }
 
 }  // namespace cellforge

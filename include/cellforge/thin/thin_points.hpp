@@ -11,7 +11,9 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -26,6 +28,7 @@
 #include "cellforge/thin/central_axis.hpp"
 #include "cellforge/thin/loop_detection.hpp"
 #include "cellforge/thin/selection_growing.hpp"
+#include "cellforge/thin/thin_result.hpp"
 
 namespace cellforge {
 
@@ -47,36 +50,6 @@ struct thin_options {
   /// Merge flat triangle fans and pairs of triangles into clusters before growing (seed §8.2;
   /// docs/thin.md "Clusters"). Off by default; on, cycles count clusters, not mesh faces.
   bool cluster_faces = false;
-};
-
-/// One thin loop: a closed chain of vertices and edges.
-struct thin_loop {
-  std::vector<std::uint32_t> vertices;  ///< closed chain, in order (mesh or cell vertex ids)
-  std::vector<std::uint32_t> edges;     ///< edges[i] joins vertices[i] and vertices[i+1 mod n]
-  std::vector<glm::dvec3> points;       ///< positions of vertices
-  double length = 0;                    ///< sum of the chain's edge lengths
-  double total_length = 0;              ///< the cycle's least length (all its boundary chains)
-  std::size_t chains = 1;               ///< boundary chains of that selection; the longest is reported
-  double axis_position = 0;             ///< centroid along the axis, 0 at the start end, 1 at the other
-  std::size_t cycle = 0;                ///< 1-based cycle (selection size) it occurred at
-  double strength = 0;                  ///< detection strength (0..1), loops sorted strongest first
-};
-
-/// Everything find_thin_points found and how much work it took.
-struct thin_result {
-  glm::dvec3 axis_origin{0.0}, axis_direction{0, 0, 1};  ///< direction points away from the start end
-  int axis_iterations = 0;
-  bool axis_converged = false;
-  std::uint32_t start_face = 0;       ///< mesh face (or cell face) the growing started from
-  std::vector<double> cycle_lengths;  ///< least total length per cycle (index = cycle − 1)
-  std::vector<thin_loop> loops;       ///< reported thin loops, strongest first
-  bool values_smoothed = false;       ///< seed detector: alternating values were smoothed
-  std::uint64_t selections_examined = 0, duplicates_dropped = 0, selections_kept = 0;
-  std::size_t max_kept = 0;
-  double ring_cycles = 0;         ///< estimated cycles per ring of faces (edges a plane across the axis cuts)
-  std::uint32_t grown_faces = 0;  ///< faces the growing ran over: mesh faces, or clusters (cluster_faces)
-  std::uint32_t clustered_faces = 0;  ///< cluster_faces: mesh faces merged into fans or pairs
-  double axis_ms = 0, growing_ms = 0, detection_ms = 0;
 };
 
 namespace detail::thin {
@@ -424,11 +397,11 @@ inline std::vector<std::vector<std::uint32_t>> boundary_chains(const thin_face_g
   return chains;
 }
 
-inline thin_loop make_loop(const thin_input& in, const std::vector<std::uint32_t>& inner,
-                           const glm::dvec3& dir, double lo, double hi) {
+inline thin_loop<glm::dvec3> make_loop(const thin_input& in, const std::vector<std::uint32_t>& inner,
+                                       const glm::dvec3& dir, double lo, double hi) {
   const thin_face_graph& g = in.graph;
   const auto chains = boundary_chains(g, inner);
-  thin_loop loop;
+  thin_loop<glm::dvec3> loop;
   loop.chains = chains.size();
   const auto chain_length = [&](const std::vector<std::uint32_t>& c) {
     double s = 0;
@@ -460,17 +433,11 @@ inline double ms_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
 }
 
-}  // namespace detail::thin
-
-/// The thin loops of a closed, consistently oriented, connected mesh (seed 000 ch. V).
-/// O(faces · cap · (boundary + candidates · degree)) in fast mode; see docs/thin.md.
-template <Point3 P>
-thin_result find_thin_points(const surface_mesh<P>& m, const thin_options& options = {}) {
-  namespace t = detail::thin;
-  t::check_options(options);
-  thin_result r;
-  const t::thin_input in =
-      options.cluster_faces ? t::cluster_triangles(t::prepare<P>(m), r.clustered_faces) : t::prepare<P>(m);
+/// find_thin_points on a prepared mesh, in double precision. O(as find_thin_points).
+inline thin_result<glm::dvec3> find(thin_input prepared, const thin_options& options) {
+  thin_result<glm::dvec3> r;
+  const thin_input in =
+      options.cluster_faces ? cluster_triangles(std::move(prepared), r.clustered_faces) : std::move(prepared);
   const thin_face_graph& g = in.graph;
   r.grown_faces = g.num_faces;
 
@@ -495,12 +462,12 @@ thin_result find_thin_points(const surface_mesh<P>& m, const thin_options& optio
   r.axis_origin = axis.origin, r.axis_direction = dir;
   r.axis_iterations = axis.iterations, r.axis_converged = axis.converged;
   r.start_face = in.face_id[start];
-  r.axis_ms = t::ms_since(clock);
+  r.axis_ms = ms_since(clock);
 
   clock = std::chrono::steady_clock::now();
   const growing_result grown = grow_selections(
       g, start, {options.selection_cap, options.keep_ratio, options.mode, options.work_budget});
-  r.growing_ms = t::ms_since(clock);
+  r.growing_ms = ms_since(clock);
   r.cycle_lengths = grown.cycle_lengths;
   r.selections_examined = grown.selections_examined, r.duplicates_dropped = grown.duplicates_dropped;
   r.selections_kept = grown.selections_kept, r.max_kept = grown.max_kept;
@@ -524,39 +491,64 @@ thin_result find_thin_points(const surface_mesh<P>& m, const thin_options& optio
        static_cast<std::size_t>(std::lround(options.envelope_rings * ring_cycles))});
   r.values_smoothed = found.smoothed;
   for (const detected_cycle& d : found.cycles) {
-    thin_loop loop = t::make_loop(in, grown.cycle_loops[d.cycle - 1], dir, lo, hi);
+    thin_loop<glm::dvec3> loop = make_loop(in, grown.cycle_loops[d.cycle - 1], dir, lo, hi);
     loop.cycle = d.cycle, loop.strength = d.strength;
     r.loops.push_back(std::move(loop));
   }
-  r.detection_ms = t::ms_since(clock);
+  r.detection_ms = ms_since(clock);
   return r;
 }
 
-/// find_thin_points on volume v of a cell complex (its boundary via volume_boundary_mesh);
-/// loop vertices, edges and the start face are cell ids. Edges that are triangulation
-/// diagonals of a holed face have no cell edge: their id is 0xFFFFFFFF. O(as above).
-inline thin_result find_thin_points(const cell_complex<glm::dvec3>& cc, cell_volume v,
-                                    const thin_options& options = {}) {
-  const surface_mesh<glm::dvec3> m = volume_boundary_mesh(cc, v);
-  thin_result r = find_thin_points(m, options);
+/// A volume's boundary-mesh result with cell ids: loop vertices, edges (0xFFFFFFFF where the
+/// mesh edge is no cell edge) and the start face. O(loop size · vertex degree).
+inline void to_cell_ids(const cell_topology& cc, const halfedge_mesh& m, thin_result_base& r,
+                        std::span<thin_loop_base* const> loops) {
   const auto cell_vertex_of = m.get_vertex_property<std::uint32_t>("v:cell_vertex");
   const auto cell_face_of = m.get_face_property<std::uint32_t>("f:cell_face");
   r.start_face = cell_face_of[face_handle(r.start_face)];
-  for (thin_loop& loop : r.loops) {
-    for (std::uint32_t& x : loop.vertices) x = cell_vertex_of[vertex_handle(x)];
-    for (std::size_t i = 0; i < loop.edges.size(); ++i) {
-      const cell_vertex a(loop.vertices[i]), b(loop.vertices[(i + 1) % loop.vertices.size()]);
-      loop.edges[i] = std::numeric_limits<std::uint32_t>::max();
+  for (thin_loop_base* loop : loops) {
+    for (std::uint32_t& x : loop->vertices) x = cell_vertex_of[vertex_handle(x)];
+    for (std::size_t i = 0; i < loop->edges.size(); ++i) {
+      const cell_vertex a(loop->vertices[i]), b(loop->vertices[(i + 1) % loop->vertices.size()]);
+      loop->edges[i] = std::numeric_limits<std::uint32_t>::max();
       for (const auto& oe : cc.vertex_edges(a)) {
         const auto ends = cc.edge_vertices(oe.handle);
         if ((ends[0] == a && ends[1] == b) || (ends[0] == b && ends[1] == a)) {
-          loop.edges[i] = oe.handle.idx();
+          loop->edges[i] = oe.handle.idx();
           break;
         }
       }
     }
   }
-  return r;
+}
+
+template <Point3 P>
+thin_result<P> with_cell_ids(const cell_topology& cc, const halfedge_mesh& m, thin_result<P>&& r) {
+  std::vector<thin_loop_base*> loops;
+  for (thin_loop<P>& l : r.loops) loops.push_back(&l);
+  to_cell_ids(cc, m, r, loops);
+  return std::move(r);
+}
+
+}  // namespace detail::thin
+
+/// The thin loops of a closed, consistently oriented, connected mesh (seed 000 ch. V), with loop
+/// points and the axis in m's point type P (computed in double precision, converted once).
+/// O(faces · cap · (boundary + candidates · degree)) in fast mode; see docs/thin.md.
+template <Point3 P>
+thin_result<P> find_thin_points(const surface_mesh<P>& m, const thin_options& options = {}) {
+  detail::thin::check_options(options);
+  return detail::thin::result_as<P>(detail::thin::find(detail::thin::prepare<P>(m), options));
+}
+
+/// find_thin_points on volume v of a cell complex (its boundary via volume_boundary_mesh);
+/// loop vertices, edges and the start face are cell ids. Edges that are triangulation
+/// diagonals of a holed face have no cell edge: their id is 0xFFFFFFFF. Points in the
+/// complex's point type P. O(as above).
+template <Point3 P>
+thin_result<P> find_thin_points(const cell_complex<P>& cc, cell_volume v, const thin_options& options = {}) {
+  const surface_mesh<P> m = volume_boundary_mesh(cc, v);
+  return detail::thin::with_cell_ids(cc, m, find_thin_points(m, options));
 }
 
 }  // namespace cellforge
