@@ -12,6 +12,7 @@
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/wireframe/sample_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
+#include "test_support.hpp"
 
 // Own namespace: the test files of a group are compiled as one translation unit.
 namespace wireframe_bad_input_tests {
@@ -95,16 +96,11 @@ TEST_CASE("bad input: errors") {
   wire skew;
   skew.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0.3}, {0, 1, 0}};
   skew.edges = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
-  expect_error(skew, error_category::topology, "no face found");
+  expect_error(skew, error_category::topology,
+               "no face: none of the cycles of the 4 edges on cycles lies in a plane");
   wireframe_options bfs;
   bfs.trace.kind = tracer_kind::seed_bfs;
-  expect_error(skew, error_category::topology, "no face found", bfs);
-
-  // A lone planar polygon bounds no volume: its face has free edges.
-  wire square;
-  square.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
-  square.edges = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
-  expect_error(square, error_category::topology, "no face found");
+  expect_error(skew, error_category::topology, "skew cycles only", bfs);
 
   // Strict reading turns notes into errors.
   wireframe_options strict;
@@ -294,6 +290,40 @@ TEST_CASE("bad input: diagnostics, and the right complex anyway") {
     CHECK(same_faces(cube.faces, r.input.faces));
     CHECK(r.diagnostics.size() == 2);  // the two near-flat edges bound no face and are reported
     CHECK(validate(r.cells).ok());
+  }
+}
+
+TEST_CASE("circuits that close no volume come back as faces without volumes, with a diagnostic") {
+  auto has_diagnostic = [](const auto& r, const std::string& text) {
+    return std::any_of(r.diagnostics.begin(), r.diagnostics.end(),
+                       [&](const std::string& d) { return d.find(text) != std::string::npos; });
+  };
+  SUBCASE("a lone planar square: one face") {
+    wire square;
+    square.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    square.edges = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+    const auto r = wireframe_to_cells(square);
+    CHECK(has_diagnostic(r, "a single planar loop: one face, no volume"));
+    REQUIRE(r.cells.num_faces() == 1);
+    CHECK(r.cells.num_volumes() == 0);
+    CHECK(r.cells.num_edges() == 4);
+    CHECK(r.cells.face_volumes(cell_face(0)).empty());
+    CHECK(r.lost.empty());
+    const auto v = validate(r.cells);
+    INFO(v.message);
+    CHECK(v.ok());
+    CHECK(r.cells.object_euler(cell_object(0)) == 1);  // a disc: V - E + F = 4 - 4 + 1
+  }
+  SUBCASE("a U channel (a bottom and two walls): three faces") {
+    wire channel;
+    channel.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {0, 1, 1}, {1, 0, 1}, {1, 1, 1}};
+    channel.edges = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 4}, {3, 5}, {4, 5}, {1, 6}, {2, 7}, {6, 7}};
+    const auto r = wireframe_to_cells(channel);
+    CHECK(has_diagnostic(r, "3 planar faces that close no volume"));
+    CHECK(r.cells.num_faces() == 3);
+    CHECK(r.cells.num_volumes() == 0);
+    REQUIRE_VALID(r.cells);
+    CHECK(r.cells.object_euler(cell_object(0)) == 1);  // a strip: 8 - 10 + 3
   }
 }
 

@@ -507,30 +507,38 @@ inline obj_data<glm::dvec3> cells_obj_data_dvec3(const cell_topology& cc, std::s
   obj_data<glm::dvec3> data;
   data.soup.points.assign(pts.begin(), pts.end());
   std::vector<std::uint32_t> face;
+  auto add = [&](cell_face f, int sign) {
+    if (cc.num_loops(f) == 1) {
+      face.clear();
+      for (cell_vertex v : cc.loop_vertices(f, 0)) face.push_back(v.idx());
+      if (sign < 0) std::reverse(face.begin(), face.end());
+      data.soup.add_face(face);
+      return;
+    }
+    std::vector<std::vector<glm::dvec3>> loops(cc.num_loops(f));
+    std::vector<std::uint32_t> flat;
+    for (std::size_t l = 0; l < loops.size(); ++l)
+      for (cell_vertex v : cc.loop_vertices(f, l)) loops[l].push_back(pts[v.idx()]), flat.push_back(v.idx());
+    for (const auto& t : cellforge::detail::cells::triangulate_face(
+             loops, cellforge::detail::cells::access::unit_normal(cc, f),
+             "cells obj: face " + std::to_string(f.idx())))
+      data.soup.add_face(sign < 0 ? std::initializer_list<std::uint32_t>{flat[t[0]], flat[t[2]], flat[t[1]]}
+                                  : std::initializer_list<std::uint32_t>{flat[t[0]], flat[t[1]], flat[t[2]]});
+  };
   for (cell_volume c : cc.volumes()) {
     data.groups.push_back(
         {"volume_" + std::to_string(c.idx()), static_cast<std::uint32_t>(data.soup.num_faces())});
-    for (const auto& [f, sign] : cc.volume_faces(c)) {
-      if (cc.num_loops(f) == 1) {
-        face.clear();
-        for (cell_vertex v : cc.loop_vertices(f, 0)) face.push_back(v.idx());
-        if (sign < 0) std::reverse(face.begin(), face.end());
-        data.soup.add_face(face);
-        continue;
-      }
-      std::vector<std::vector<glm::dvec3>> loops(cc.num_loops(f));
-      std::vector<std::uint32_t> flat;
-      for (std::size_t l = 0; l < loops.size(); ++l)
-        for (cell_vertex v : cc.loop_vertices(f, l))
-          loops[l].push_back(pts[v.idx()]), flat.push_back(v.idx());
-      for (const auto& t : cellforge::detail::cells::triangulate_face(
-               loops, cellforge::detail::cells::access::unit_normal(cc, f),
-               "cells obj: face " + std::to_string(f.idx())))
-        data.soup.add_face(sign < 0
-                               ? std::initializer_list<std::uint32_t>{flat[t[0]], flat[t[2]], flat[t[1]]}
-                               : std::initializer_list<std::uint32_t>{flat[t[0]], flat[t[1]], flat[t[2]]});
-    }
+    for (const auto& [f, sign] : cc.volume_faces(c)) add(f, sign);
   }
+  // Faces of no volume (an open surface), as they are oriented, in a group of their own.
+  bool open_group = false;
+  for (cell_face f : cc.faces())
+    if (cc.face_volumes(f).empty()) {
+      if (!open_group)
+        data.groups.push_back({"faces_without_volume", static_cast<std::uint32_t>(data.soup.num_faces())});
+      open_group = true;
+      add(f, +1);
+    }
   for (cell_edge e : cc.edges())
     if (cc.edge_faces(e).empty()) data.lines.push_back({cc.source(e).idx(), cc.target(e).idx()});
   return data;
@@ -544,8 +552,9 @@ obj_data<glm::dvec3> cells_obj_data_dvec3(const cell_complex<P>& cc) {
 }  // namespace detail
 
 /// The faces of every volume, outward, as an OBJ model in the complex's point type with one
-/// group "volume_<i>" per volume (a face between two volumes appears in both), faces with
-/// holes triangulated, edges in no face as `l` lines. O(size of cc).
+/// group "volume_<i>" per volume (a face between two volumes appears in both), then the faces
+/// of no volume in a group "faces_without_volume", faces with holes triangulated, edges in no
+/// face as `l` lines. O(size of cc).
 template <Point3 P>
 obj_data<P> cells_obj_data(const cell_complex<P>& cc) {
   obj_data<glm::dvec3> data = detail::cells_obj_data_dvec3(cc);
@@ -620,8 +629,8 @@ inline void write_cells_ply(std::ostream& os, const obj_data<glm::dvec3>& data) 
 }
 }  // namespace detail
 
-/// Writes an ASCII PLY of every volume's outward faces, each face with the colour of its
-/// volume (uchar red, green, blue face properties), faces with holes triangulated; the count
+/// Writes an ASCII PLY of every volume's outward faces (then the faces of no volume), each face with the
+/// colour of its volume (uchar red, green, blue face properties), faces with holes triangulated; the count
 /// type of the vertex lists is the narrowest that holds the largest face. O(size).
 template <Point3 P>
 void write_cells_ply(std::ostream& os, const cell_complex<P>& cc) {

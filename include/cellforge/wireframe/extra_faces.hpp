@@ -128,7 +128,7 @@ inline extra_faces_result extra_faces(const wire_graph& g, const std::vector<wir
         alive[i] = 0;
         ++r.free;
         r.removed.push_back(
-            {faces[i], "its edge " + std::to_string(e) + " has no other face, so it bounds no volume"});
+            {faces[i], "its edge " + std::to_string(e) + " has no other face, so it bounds no volume", true});
         r.diagnostics.push_back("a face with free edge " + std::to_string(e) +
                                 " (no other face uses it) bounds no volume and was removed");
         for (const auto& loop : faces[i].loops)

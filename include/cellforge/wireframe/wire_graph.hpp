@@ -111,6 +111,7 @@ struct wire_face {
 struct dropped_face {
   wire_face face;
   std::string reason;
+  bool free_edge = false;  ///< removed only because an edge of it has no other face (it bounds no volume)
 };
 
 /// The area vector (Newell) of a face: normal × area, right-hand about loops[0]. O(size).

@@ -75,8 +75,28 @@ struct wireframe_result {
   std::vector<std::string> diagnostics;  ///< assembly notes (edges left out because they bound no face)
 };
 
-/// Converts a wireframe to a cell complex whose positions are the wireframe's (its point type). Throws
-/// cellforge::error on bad input (see read_vertices), on an exhausted work budget, or when no face is found.
+namespace detail {
+/// What a wireframe in which no face survives is, for the error message. O(1).
+inline std::string no_face_message(const wire_graph& g, const arrangement_result& arrangement,
+                                   const std::vector<face_note>& lost) {
+  const std::string edges = std::to_string(g.num_edges()) + " edges on cycles";
+  std::string what;
+  if (!lost.empty())
+    what = "every planar cycle of the " + edges + " was removed (" + std::to_string(lost.size()) +
+           " faces; the first because " + lost.front().reason + ")";
+  else if (!arrangement.crossed.empty())
+    what = "the planar cycles of the " + edges + " cross each other inside their planes (" +
+           std::to_string(arrangement.crossed.size()) + " dropped by the crossing rule)";
+  else
+    what = "none of the cycles of the " + edges + " lies in a plane (skew cycles only)";
+  return "wireframe_to_cells: no face: " + what;
+}
+}  // namespace detail
+
+/// Converts a wireframe to a cell complex whose positions are the wireframe's (its point type).
+/// Faces that close no volume (a lone planar loop, an open box) come back as faces without
+/// volumes, with a diagnostic. Throws cellforge::error on bad input (see read_vertices), on an
+/// exhausted work budget, or when no face is found (saying what the wireframe is instead).
 /// Polynomial with the default planar tracer: O(Σ deg² + Σ planes k log k + F·L + grid pairs).
 template <Wireframe G>
 wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
@@ -103,20 +123,32 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
       for (auto& v : loop) v = g.input_vertex[v];
     return n;
   };
-  for (const auto& d : r.extra.removed) r.lost.push_back(note(d.face, d.reason));
+  // Circuits that close no volume: when every face went for a free edge only, the faces are
+  // the answer (a 3DCL holds faces without volumes), with a diagnostic saying so.
+  bool open_surface = false;
+  if (r.extra.faces.empty()) {
+    for (const auto& d : r.extra.removed)
+      if (d.free_edge) r.extra.faces.push_back(d.face);
+    open_surface = !r.extra.faces.empty();
+  }
+  for (const auto& d : r.extra.removed)
+    if (!(open_surface && d.free_edge)) r.lost.push_back(note(d.face, d.reason));
   if (r.extra.faces.empty())
-    throw error(error_category::topology,
-                "wireframe_to_cells: no face found: no planar circuit of the " +
-                    std::to_string(g.num_edges()) + " edges survives (" +
-                    (r.lost.empty()
-                         ? std::string("skew or crossing cycles only")
-                         : std::to_string(r.lost.size()) +
-                               " selected faces were removed, the first because " + r.lost.front().reason) +
-                    ")");
-  r.volume = find_volumes(g, r.extra.faces, options.volume);
-  for (std::size_t k = 0; k < r.volume.dropped.size(); ++k)
-    r.alternatives.push_back(note(r.extra.faces[r.volume.dropped[k]], r.volume.alternatives[k]));
-  r.relations = find_relations(g, r.extra.faces, r.volume, options.relations);
+    throw error(error_category::topology, detail::no_face_message(g, r.arrangement, r.lost));
+  if (open_surface) {
+    const std::size_t n = r.extra.faces.size();
+    r.diagnostics.push_back(
+        n == 1
+            ? std::string("a single planar loop: one face, no volume")
+            : std::to_string(n) + " planar faces that close no volume (an open surface): faces, no volume");
+    r.volume.face_kept.assign(n, 1);
+    r.volume.face_volumes.assign(n, {no_index, no_index});
+  } else {
+    r.volume = find_volumes(g, r.extra.faces, options.volume);
+    for (std::size_t k = 0; k < r.volume.dropped.size(); ++k)
+      r.alternatives.push_back(note(r.extra.faces[r.volume.dropped[k]], r.volume.alternatives[k]));
+    r.relations = find_relations(g, r.extra.faces, r.volume, options.relations);
+  }
 
   detail::stopwatch clock;
   const std::vector<wire_face>& faces = r.extra.faces;
