@@ -105,6 +105,8 @@ std::string head(const fs::path& p, std::size_t n) {
 template <class P>
 double enclosed_volume(const cf::surface_mesh<P>& m) {
   const auto cc = cf::mesh_to_cell_complex(m);
+  // typed-results: (b) the complex of a mesh in the mesh's point type.
+  static_assert(is_p_once<P, decltype(cc.point(cf::cell_vertex(0)))>(typed_cells));
   const auto v = cf::validate(cc);
   return v.ok() && cc.num_volumes() == 1 ? v.signed_volumes[0] : -1;
 }
@@ -280,6 +282,7 @@ void run(const char* T, const fs::path& dir) {
 
   // cell complexes: 3DCL, OBJ, PLY, SVG
   cf::io::write_3dcl(file("block.3dcl"), cc);
+  // typed-results: (b) a file has no point type: read_3dcl<P>(...) if the reader takes one then.
   const auto cc2 = cf::io::read_3dcl(file("block.3dcl"));
   expect(cc2.num_vertices() == 12 && cc2.num_faces() == 11 && cc2.num_volumes() == 2 &&
              cf::validate(cc2).ok() && dist(cc2.point(cf::cell_vertex(5)), cc.point(cf::cell_vertex(5))) == 0,
@@ -294,6 +297,7 @@ void run(const char* T, const fs::path& dir) {
 
   // curves: curve file, polyline file, OBJ polylines, pictures
   cf::io::write_curve_file(file("curves.txt"), cspan(smooth.curves));
+  // typed-results: (a) read_curve_file<P> / read_polyline_file<P> if the readers take one then.
   const auto curves = cf::io::read_curve_file(file("curves.txt"));
   bool same_curves = curves.size() == smooth.curves.size();
   for (std::size_t i = 0; same_curves && i < curves.size(); ++i)
