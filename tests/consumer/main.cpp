@@ -30,14 +30,6 @@
 namespace fs = std::filesystem;
 namespace cf = cellforge;
 
-// typed-results: results that still come back in the library's own double vector on this
-// branch. Set each flag to true when its change lands: the static_asserts marked
-// "typed-results" below then require the application's point type.
-//   (a) thin_result<P>, smooth_result<P>, edge_curve<P>
-//   (b) cell_complex<P> (wireframe_to_cells, mesh_to_cell_complex, read_3dcl)
-inline constexpr bool typed_thin_smooth = false;  // typed-results: (a)
-inline constexpr bool typed_cells = false;        // typed-results: (b)
-
 namespace {
 
 int failures = 0;
@@ -51,12 +43,6 @@ void expect(bool ok, const char* type, const char* what) {
 /// The type of a result, without reference and const, is P.
 template <class P, class T>
 inline constexpr bool is_p = std::is_same_v<std::remove_cvref_t<T>, P>;
-
-/// A result that is typed only once a change lands: any registered point type today, P then.
-template <class P, class T>
-inline constexpr bool is_p_once(bool landed) {
-  return landed ? is_p<P, T> : cf::Point3<std::remove_cvref_t<T>>;
-}
 
 /// The element type of a range.
 template <class R>
@@ -105,8 +91,8 @@ std::string head(const fs::path& p, std::size_t n) {
 template <class P>
 double enclosed_volume(const cf::surface_mesh<P>& m) {
   const auto cc = cf::mesh_to_cell_complex(m);
-  // typed-results: (b) the complex of a mesh in the mesh's point type.
-  static_assert(is_p_once<P, decltype(cc.point(cf::cell_vertex(0)))>(typed_cells));
+  // the complex of a mesh in the mesh's point type.
+  static_assert(is_p<P, decltype(cc.point(cf::cell_vertex(0)))>);
   const auto v = cf::validate(cc);
   return v.ok() && cc.num_volumes() == 1 ? v.signed_volumes[0] : -1;
 }
@@ -185,8 +171,8 @@ void run(const char* T, const fs::path& dir) {
   const auto cube_wire = cad::block<P>(false), block_wire = cad::block<P>(true);
   const auto cube = cf::wireframe_to_cells(cube_wire);
   const auto blk = cf::wireframe_to_cells(block_wire);
-  // typed-results: (b) the cells' points in the wire model's point type.
-  static_assert(is_p_once<P, decltype(cube.cells.point(cf::cell_vertex(0)))>(typed_cells));
+  // the cells' points in the wire model's point type.
+  static_assert(is_p<P, decltype(cube.cells.point(cf::cell_vertex(0)))>);
   const auto& cc = blk.cells;
   expect(cube.cells.num_vertices() == 8 && cube.cells.num_edges() == 12 && cube.cells.num_faces() == 6 &&
              cube.cells.num_volumes() == 1,
@@ -208,8 +194,8 @@ void run(const char* T, const fs::path& dir) {
 
   // --- thin points and smoothing
   const auto thin = cf::find_thin_points(glass);
-  // typed-results: (a) thin_result<P>: loop points in the mesh's point type.
-  static_assert(is_p_once<P, elem<decltype(thin.loops.at(0).points)>>(typed_thin_smooth));
+  // thin_result<P>: loop points in the mesh's point type.
+  static_assert(is_p<P, elem<decltype(thin.loops.at(0).points)>>);
   expect(!thin.loops.empty(), T, "thin: the hourglass has a thin loop");
   if (!thin.loops.empty()) {
     const auto& neck = thin.loops.front();
@@ -223,9 +209,9 @@ void run(const char* T, const fs::path& dir) {
   }
   const auto octa90 = cf::make_mesh(cad::octahedron<P>());
   const auto smooth = cf::smooth_edges(octa90, {.angle_deg = 90});
-  // typed-results: (a) smooth_result<P>, edge_curve<P>: curve points in the mesh's point type.
-  static_assert(is_p_once<P, decltype(smooth.curves.at(0).point(0.5))>(typed_thin_smooth));
-  static_assert(is_p_once<P, elem<decltype(smooth.midpoints)>>(typed_thin_smooth));
+  // smooth_result<P>, edge_curve<P>: curve points in the mesh's point type.
+  static_assert(is_p<P, decltype(smooth.curves.at(0).point(0.5))>);
+  static_assert(is_p<P, elem<decltype(smooth.midpoints)>>);
   expect(smooth.curves.size() == 12 && smooth.num_surfaces == 1, T, "smooth: 12 curves, one surface");
   double worst = 0;
   for (const auto& c : smooth.curves) {
@@ -282,8 +268,8 @@ void run(const char* T, const fs::path& dir) {
 
   // cell complexes: 3DCL, OBJ, PLY, SVG
   cf::io::write_3dcl(file("block.3dcl"), cc);
-  // typed-results: (b) a file has no point type: read_3dcl<P>(...) if the reader takes one then.
-  const auto cc2 = cf::io::read_3dcl(file("block.3dcl"));
+  // A file has no point type: the reader is told P.
+  const auto cc2 = cf::io::read_3dcl<P>(file("block.3dcl"));
   expect(cc2.num_vertices() == 12 && cc2.num_faces() == 11 && cc2.num_volumes() == 2 &&
              cf::validate(cc2).ok() && dist(cc2.point(cf::cell_vertex(5)), cc.point(cf::cell_vertex(5))) == 0,
          T, "3DCL round trip");
@@ -296,22 +282,22 @@ void run(const char* T, const fs::path& dir) {
   expect(cf::io::write_cells_svg(file("cells.svg"), cc).faces_drawn >= 11, T, "cells SVG");
 
   // curves: curve file, polyline file, OBJ polylines, pictures
-  cf::io::write_curve_file(file("curves.txt"), cspan(smooth.curves));
-  // typed-results: (a) read_curve_file<P> / read_polyline_file<P> if the readers take one then.
-  const auto curves = cf::io::read_curve_file(file("curves.txt"));
+  cf::io::write_curve_file(file("curves.txt"), smooth.curves);
+  // The curve readers are told P too.
+  const auto curves = cf::io::read_curve_file<P>(file("curves.txt"));
   bool same_curves = curves.size() == smooth.curves.size();
   for (std::size_t i = 0; same_curves && i < curves.size(); ++i)
     for (double u : {0.0, 0.3, 1.0})
       same_curves = same_curves && dist(curves[i].point(u), smooth.curves[i].point(u)) < 1e-9;
   expect(same_curves, T, "curve file round trip");
-  cf::io::write_polyline_file(file("polylines.txt"), cspan(smooth.curves));
-  const auto polylines = cf::io::read_polyline_file(file("polylines.txt"));
+  cf::io::write_polyline_file(file("polylines.txt"), smooth.curves);
+  const auto polylines = cf::io::read_polyline_file<P>(file("polylines.txt"));
   expect(polylines.size() == 12 && polylines[0].size() == 16 &&
              dist(polylines[3].back(), smooth.curves[3].point(1)) < 1e-9,
          T, "polyline file round trip");
-  cf::io::write_polylines_obj(file("curves.obj"), cspan(smooth.curves));
+  cf::io::write_polylines_obj(file("curves.obj"), smooth.curves);
   expect(cf::io::read_obj<P>(file("curves.obj")).lines.size() == 12 * 15, T, "curves as OBJ lines");
-  expect(cf::io::write_smoothing_svg(file("smooth.svg"), octa90, cspan(smooth.curves)).faces_drawn > 0, T,
+  expect(cf::io::write_smoothing_svg(file("smooth.svg"), octa90, smooth.curves).faces_drawn > 0, T,
          "smoothing SVG");
   std::vector<std::remove_cvref_t<decltype(thin.loops.at(0).points)>> loops;
   for (const auto& l : thin.loops) loops.push_back(l.points);
