@@ -8,16 +8,16 @@
 #               are not tests), so that benchmark code cannot rot; CGAL/OpenMesh parts only
 #               where they are installed
 #   5. fuzz     libFuzzer targets built with clang, seed corpora replayed, then each fuzzer
-#               run for CELLFORGE_FUZZ_SECONDS seconds (default 30)      (build/fuzz)
+#               run for CELLFORGE_FUZZ_SECONDS seconds (default 20)      (build/fuzz)
 # Before the stages, cmake/fetch-bunny.sh puts the Stanford bunny (npm) in build/data.
 # Every stage runs even when an earlier one failed; the exit status is non-zero if any failed.
-# Environment: CELLFORGE_FUZZ_SECONDS (default 30), CELLFORGE_FUZZ_JOBS (fuzzers run at once,
+# Environment: CELLFORGE_FUZZ_SECONDS (default 20), CELLFORGE_FUZZ_JOBS (fuzzers run at once,
 # default 2), CELLFORGE_SKIP_DEPS=1 to skip the package check.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
-fuzz_seconds="${CELLFORGE_FUZZ_SECONDS:-30}"
+fuzz_seconds="${CELLFORGE_FUZZ_SECONDS:-20}"
 fuzz_jobs="${CELLFORGE_FUZZ_JOBS:-2}"
 
 # Runs one preset end to end: configure, build, test.
@@ -118,10 +118,13 @@ if [[ "${1:-}" == "--stage" ]]; then
     release | asan) preset_stage "$2" ;;
     fuzz) fuzz_stage ;;
     clang) clang_stage ;;
-    # Only whether the benchmarks compile matters here (timings are never taken in CI), so
-    # they are compiled without optimisation, in their own directory: build/bench stays a
-    # Release tree for real runs.
-    bench) cmake --preset bench -B build/bench-check -DCMAKE_BUILD_TYPE=Debug && cmake --build build/bench-check -j2 ;;
+    # Only whether the benchmarks compile and link matters here (timings are never taken in
+    # CI), so they are compiled without optimisation or debug information, in their own
+    # directory: build/bench stays a Release tree for real runs.
+    bench)
+      cmake --preset bench -B build/bench-check -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-O0 &&
+        cmake --build build/bench-check -j2
+      ;;
     *)
       echo "test-all: unknown stage '${2:-}'" >&2
       exit 2
