@@ -3,6 +3,7 @@
 #include "test_support.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 #include <string>
@@ -15,25 +16,6 @@
 #include "cellforge/wireframe/sample_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 #include "cells_fixtures.hpp"
-
-namespace cell_complex_tests {
-/// A CAD-style point: private coordinates, getters, made only by its constructor.
-class sealed_point {
- public:
-  sealed_point(double x, double y, double z) : x_(x), y_(y), z_(z) {}
-  double x() const { return x_; }
-  double y() const { return y_; }
-  double z() const { return z_; }
-
- private:
-  double x_, y_, z_;
-};
-struct float_point {
-  float x, y, z;
-};
-}  // namespace cell_complex_tests
-CELLFORGE_REGISTER_POINT3_GET_CTOR(cell_complex_tests::sealed_point, double, x, y, z);
-CELLFORGE_REGISTER_POINT3(cell_complex_tests::float_point, float, x, y, z);
 
 // Own namespace: the test files of a group are compiled as one translation unit.
 namespace cell_complex_tests {
@@ -775,7 +757,7 @@ TEST_CASE("sample models through the wireframe pipeline: valid complexes, closed
 }
 
 TEST_CASE_TEMPLATE("cell complexes keep the caller's point type: build, normals, validate, conversions", P,
-                   sealed_point, float_point) {
+                   test_support::sealed_point, std::array<float, 3>) {
   // The sample models (glm::dvec3) converted to P through the wireframe: the pipeline, the
   // complex and the boundary meshes all come back in P, with the same cells and volumes.
   for (const auto& m : {sample_two_cubes(), sample_block_with_hole(), sample_house()}) {

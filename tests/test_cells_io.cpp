@@ -20,25 +20,6 @@
 #include "cells_fixtures.hpp"
 #include "test_support.hpp"
 
-namespace cells_io_tests {
-/// A CAD-style point: private coordinates, getters, made only by its constructor.
-class sealed_point {
- public:
-  sealed_point(double x, double y, double z) : c_{x, y, z} {}
-  double x() const { return c_[0]; }
-  double y() const { return c_[1]; }
-  double z() const { return c_[2]; }
-
- private:
-  std::array<double, 3> c_;
-};
-struct float_point {
-  float x, y, z;
-};
-}  // namespace cells_io_tests
-CELLFORGE_REGISTER_POINT3_GET_CTOR(cells_io_tests::sealed_point, double, x, y, z);
-CELLFORGE_REGISTER_POINT3(cells_io_tests::float_point, float, x, y, z);
-
 // Own namespace: the test files of a group are compiled as one translation unit.
 namespace cells_io_tests {
 
@@ -402,7 +383,7 @@ TEST_CASE("cells PLY: a face of more than 255 vertices gets a wider count type a
 }
 
 TEST_CASE_TEMPLATE("cells io in the caller's point type: the same files as glm::dvec3, read back typed", P,
-                   sealed_point, float_point) {
+                   test_support::sealed_point, std::array<float, 3>) {
   for (const auto& m : {sample_two_cubes(), sample_block_with_hole(), sample_stepped_block()}) {
     INFO(m.name);
     const cell_complex<glm::dvec3> ref = wireframe_to_cells(m.wire).cells;
