@@ -74,29 +74,6 @@ cellforge::io::svg_result end_to_end(const fs::path& input, const fs::path& out_
   return cellforge::io::write_cells_svg(out_dir / (stem + ".svg"), r.cells);
 }
 
-/// One Google Benchmark loop of f(), keeping every iteration's CPU and wall time; sets the
-/// counters median_cpu_us and median_wall_us (the table's figures) and best_cpu_us.
-template <class F>
-void median_loop(benchmark::State& state, F&& f) {
-  std::vector<double> cpu, wall;
-  for (auto _ : state) {
-    const cb::clock::time_point w0 = cb::clock::now();
-    const double c0 = cb::thread_cpu_ms();
-    auto made = f();
-    cpu.push_back(cb::thread_cpu_ms() - c0);
-    wall.push_back(cb::ms_since(w0));
-    state.SetIterationTime(cpu.back() * 1e-3);
-    benchmark::DoNotOptimize(made);
-  }
-  const auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-  };
-  state.counters["median_cpu_us"] = median(cpu) * 1e3;
-  state.counters["median_wall_us"] = median(wall) * 1e3;
-  state.counters["best_cpu_us"] = *std::min_element(cpu.begin(), cpu.end()) * 1e3;
-}
-
 void register_path(const std::string& path, int k, std::function<void(benchmark::State&)> body) {
   benchmark::RegisterBenchmark((path + "/grid_" + std::to_string(k)).c_str(),
                                [body](benchmark::State& s) {
@@ -117,7 +94,7 @@ void register_writer(const char* name, int k, const char* ext, Write write) {
   register_path(name, k, [=](benchmark::State& s) {
     const cellforge::cell_complex<glm::dvec3>& cc = grid_cells(k);
     const fs::path file = scratch() / ("cells" + std::to_string(k) + ext);
-    median_loop(s, [&] { return write(file, cc); });
+    cb::median_loop(s, [&] { return write(file, cc); });
   });
 }
 
@@ -139,7 +116,7 @@ void register_all() {
     register_path("write_svg", k, [k](benchmark::State& s) {
       const cell_complex<glm::dvec3>& cc = grid_cells(k);
       const fs::path file = scratch() / ("cells" + std::to_string(k) + ".svg");
-      median_loop(s, [&] {
+      cb::median_loop(s, [&] {
         const cellforge::io::svg_result r = cellforge::io::write_cells_svg(file, cc);
         if (r.approximate_edges + r.untested_edges > 0)
           s.SkipWithError("the picture ran out of its work budget");
@@ -148,7 +125,7 @@ void register_all() {
     });
     register_path("read_convert", k, [k](benchmark::State& s) {
       const fs::path& input = grid_file(k);
-      median_loop(s, [&] {
+      cb::median_loop(s, [&] {
         return cellforge::wireframe_to_cells(cellforge::io::read_obj_wireframe<glm::dvec3>(input))
             .cells.num_volumes();
       });
@@ -157,7 +134,7 @@ void register_all() {
       const fs::path& input = grid_file(k);
       const fs::path out = scratch() / ("out" + std::to_string(k));
       fs::create_directories(out);
-      median_loop(s, [&] { return end_to_end(input, out).edges; });
+      cb::median_loop(s, [&] { return end_to_end(input, out).edges; });
     });
   }
 }

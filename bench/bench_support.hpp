@@ -115,6 +115,41 @@ void timed_loop(benchmark::State& state, Make&& make, Check&& check) {
   state.counters["best_wall_us"] = best_wall * 1e3;
 }
 
+/// The median of v (the mean of the middle two for an even count; 0 when empty). O(n log n).
+inline double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  if (v.empty()) return 0.0;
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+/// Like timed_loop, but keeps every iteration's CPU and wall time and sets the counters
+/// median_cpu_us and median_wall_us as well as best_cpu_us and best_wall_us (register with
+/// ->Iterations(n) for the median of n runs, and ->UseManualTime()). `check(object)` runs once,
+/// on the first result. O(iterations × cost of make).
+template <class Make, class Check>
+void median_loop(benchmark::State& state, Make&& make, Check&& check) {
+  std::vector<double> cpu, wall;
+  for (auto _ : state) {
+    const clock::time_point w0 = clock::now();
+    const double c0 = thread_cpu_ms();
+    auto made = make();
+    cpu.push_back(thread_cpu_ms() - c0);
+    wall.push_back(ms_since(w0));
+    state.SetIterationTime(cpu.back() * 1e-3);
+    benchmark::DoNotOptimize(made);
+    if (cpu.size() == 1) check(made);
+  }
+  if (cpu.empty()) return;
+  state.counters["median_cpu_us"] = median(cpu) * 1e3;
+  state.counters["median_wall_us"] = median(wall) * 1e3;
+  state.counters["best_cpu_us"] = *std::min_element(cpu.begin(), cpu.end()) * 1e3;
+  state.counters["best_wall_us"] = *std::min_element(wall.begin(), wall.end()) * 1e3;
+}
+template <class Make>
+void median_loop(benchmark::State& state, Make&& make) {
+  median_loop(state, std::forward<Make>(make), [](const auto&) {});
+}
+
 /// The 1-minute load average (from /proc/loadavg), to print next to the results. O(1).
 inline std::string load_average() {
   std::FILE* f = std::fopen("/proc/loadavg", "r");
@@ -228,6 +263,15 @@ class collecting_reporter : public benchmark::ConsoleReporter {
     const auto it = results_.find(std::string(name));
     if (it == results_.end() || !it->second.error.empty()) return std::nullopt;
     return it->second.ms;
+  }
+  /// Counter `counter` (in µs, e.g. median_cpu_us) of the result `name` in ms, if it ran
+  /// without error and has that counter.
+  std::optional<double> counter_ms(std::string_view name, std::string_view counter) const {
+    const auto it = results_.find(std::string(name));
+    if (it == results_.end() || !it->second.error.empty()) return std::nullopt;
+    const auto c = it->second.counters.find(std::string(counter));
+    if (c == it->second.counters.end()) return std::nullopt;
+    return c->second * 1e-3;
   }
   const run_result* find(std::string_view name) const {
     const auto it = results_.find(std::string(name));
