@@ -353,8 +353,13 @@ inline std::string ratio(std::optional<double> a, std::optional<double> b) {
 }
 /// An integer in groups of three digits, e.g. 1 000 000.
 inline std::string count(std::size_t n) {
-  std::string s = std::to_string(n);
-  for (std::size_t i = s.size(); i > 3; i -= 3) s.insert(i - 3, " ");
+  // Built front to back (not by insert, which g++ 12 -O3 warns about with -Wrestrict).
+  const std::string digits = std::to_string(n);
+  std::string s;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) s += ' ';
+    s += digits[i];
+  }
   return s;
 }
 
