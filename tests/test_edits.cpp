@@ -725,13 +725,18 @@ TEST_CASE("thousands of random edits keep every invariant and the topology") {
       {"klein", klein_bottle(12, 8)},
       {"random orientation plane", random_orientation_plane(8, 8, 7)},
   };
+#ifdef NDEBUG
+  constexpr int steps = 3000;
+#else
+  constexpr int steps = 1500;  // the sanitizer build: half the edits, the same checks after each
+#endif
   std::uint64_t seed = 1;
   for (const named& in : inputs) {
     CAPTURE(in.name);
-    const random_stats st = random_edits(make_mesh(in.s), 3000, seed++);
+    const random_stats st = random_edits(make_mesh(in.s), steps, seed++);
     for (int op = 0; op < 4; ++op) {
       CAPTURE(op);
-      CHECK(st.done[static_cast<std::size_t>(op)] > 100);
+      CHECK(st.done[static_cast<std::size_t>(op)] > steps / 30);
     }
     CHECK(st.refused[0] + st.refused[1] + st.refused[3] > 0);
   }
