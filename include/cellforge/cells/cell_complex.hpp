@@ -359,24 +359,17 @@ inline std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t
 namespace detail::cells {
 /// The body of make_cell_complex on double positions (one copy for every point type). O(n log n).
 inline void build_topology(cell_topology& cc, std::span<const glm::dvec3> points,
-                           std::vector<std::array<std::uint32_t, 2>>&& input_edges,
-                           const std::vector<cell_input_face>& input_faces,
-                           const std::vector<cell_input_volume>& input_volumes) {
+                           std::vector<std::array<std::uint32_t, 2>>&& edges,
+                           const std::vector<cell_input_face>& faces,
+                           const std::vector<cell_input_volume>& volumes) {
   using std::uint32_t;
   constexpr auto bad = error_category::invalid_input;
   constexpr auto topo = error_category::topology;
-  struct {
-    std::span<const glm::dvec3> points;
-    const std::vector<std::array<std::uint32_t, 2>>& edges;
-    const std::vector<cell_input_face>& faces;
-    const std::vector<cell_input_volume>& volumes;
-  } input{points, input_edges, input_faces, input_volumes};
-  const std::size_t nv = input.points.size(), ne = input.edges.size(), nf = input.faces.size(),
-                    nc = input.volumes.size();
+  const std::size_t nv = points.size(), ne = edges.size(), nf = faces.size(), nc = volumes.size();
   if (nv >= 0xFFFFFFFFu || ne >= 0xFFFFFFFFu || nf >= 0xFFFFFFFFu || nc >= 0xFFFFFFFFu)
     fail(bad, "more than 2^32 - 2 elements of one kind");
   for (std::size_t v = 0; v < nv; ++v) {
-    const glm::dvec3& p = input.points[v];
+    const glm::dvec3& p = points[v];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       fail(bad, "vertex " + S(v) + " has a non-finite coordinate (NaN or Inf)");
   }
@@ -386,7 +379,7 @@ inline void build_topology(cell_topology& cc, std::span<const glm::dvec3> points
   edge_of.reserve(2 * ne);
   std::vector<uint32_t> cursor(nv, 0);
   for (std::size_t e = 0; e < ne; ++e) {
-    const auto [a, b] = input.edges[e];
+    const auto [a, b] = edges[e];
     if (a >= nv || b >= nv)
       fail(bad,
            "edge " + S(e) + " joins vertex " + S(std::max(a, b)) + " but there are " + S(nv) + " vertices");
@@ -401,8 +394,8 @@ inline void build_topology(cell_topology& cc, std::span<const glm::dvec3> points
   counts_to_starts(cc.vertex_edge_start_, cursor);
   cc.vertex_edges_.resize(2 * ne);
   for (std::size_t e = 0; e < ne; ++e) {
-    cc.vertex_edges_[cursor[input.edges[e][0]]++] = {cell_edge(e), +1};
-    cc.vertex_edges_[cursor[input.edges[e][1]]++] = {cell_edge(e), -1};
+    cc.vertex_edges_[cursor[edges[e][0]]++] = {cell_edge(e), +1};
+    cc.vertex_edges_[cursor[edges[e][1]]++] = {cell_edge(e), -1};
   }
 
   // Faces: loops of vertices and signed edge uses; normals.
@@ -410,7 +403,7 @@ inline void build_topology(cell_topology& cc, std::span<const glm::dvec3> points
   std::vector<uint32_t> seen(nv, 0xFFFFFFFFu);  // face that last used each vertex
   std::vector<uint32_t> used_by(ne, 0xFFFFFFFFu);
   for (std::size_t f = 0; f < nf; ++f) {
-    const auto& loops = input.faces[f].loops;
+    const auto& loops = faces[f].loops;
     if (loops.empty()) fail(bad, "face " + S(f) + " has no loop");
     for (std::size_t l = 0; l < loops.size(); ++l) {
       const auto& loop = loops[l];
@@ -429,7 +422,7 @@ inline void build_topology(cell_topology& cc, std::span<const glm::dvec3> points
         if (used_by[it->second] == f)
           fail(topo, where() + " uses edge " + S(it->second) + " a second time in the face");
         used_by[it->second] = static_cast<uint32_t>(f);
-        const bool along = input.edges[it->second][0] == a;
+        const bool along = edges[it->second][0] == a;
         cc.loop_vertices_.push_back(cell_vertex(a));
         cc.loop_edges_.push_back({cell_edge(it->second), along ? +1 : -1});
         ++edge_uses[it->second];
@@ -437,7 +430,7 @@ inline void build_topology(cell_topology& cc, std::span<const glm::dvec3> points
       cc.loop_start_.push_back(static_cast<uint32_t>(cc.loop_vertices_.size()));
     }
     cc.face_loop_start_.push_back(static_cast<uint32_t>(cc.loop_start_.size() - 1));
-    const glm::dvec3 n = newell(loops[0], [&](uint32_t v) -> const glm::dvec3& { return input.points[v]; });
+    const glm::dvec3 n = newell(loops[0], [&](uint32_t v) -> const glm::dvec3& { return points[v]; });
     const double len = glm::length(n);
     cc.normals_.push_back(len > 0.0 && std::isfinite(len) ? n / len : glm::dvec3(0.0));
   }
@@ -448,9 +441,9 @@ inline void build_topology(cell_topology& cc, std::span<const glm::dvec3> points
   std::vector<int> net(ne, 0);
   std::vector<uint32_t> touched;
   for (std::size_t c = 0; c < nc; ++c) {
-    const auto& faces = input.volumes[c].faces;
-    if (faces.empty()) fail(bad, "volume " + S(c) + " has no face");
-    for (const auto& [f, sign] : faces) {
+    const auto& signed_faces = volumes[c].faces;
+    if (signed_faces.empty()) fail(bad, "volume " + S(c) + " has no face");
+    for (const auto& [f, sign] : signed_faces) {
       if (f >= nf) fail(bad, "volume " + S(c) + " uses face " + S(f) + " but there are " + S(nf) + " faces");
       if (sign != 1 && sign != -1)
         fail(bad, "volume " + S(c) + " uses face " + S(f) + " with sign " + std::to_string(sign) +
@@ -479,7 +472,7 @@ inline void build_topology(cell_topology& cc, std::span<const glm::dvec3> points
         const uint32_t bad_edge = e;
         for (uint32_t t : touched) net[t] = 0;
         fail(topo, "the boundary of volume " + S(c) + " is not closed: edge " + S(bad_edge) + " (" +
-                       S(input.edges[bad_edge][0]) + "-" + S(input.edges[bad_edge][1]) +
+                       S(edges[bad_edge][0]) + "-" + S(edges[bad_edge][1]) +
                        ") is not used equally often in both directions by its faces");
       }
     touched.clear();
@@ -502,8 +495,8 @@ inline void build_topology(cell_topology& cc, std::span<const glm::dvec3> points
     for (uint32_t k = cc.loop_start_[cc.face_loop_start_[f]]; k < cc.loop_start_[cc.face_loop_start_[f + 1]];
          ++k) {
       const auto [e, sign] = cc.loop_edges_[k];
-      const auto [a, b] = input.edges[e.idx()];
-      const glm::dvec3 d = input.points[b] - input.points[a];
+      const auto [a, b] = edges[e.idx()];
+      const glm::dvec3 d = points[b] - points[a];
       const glm::dvec3 into = glm::cross(cc.normals_[f], double(sign) * d);
       // A basis (u, w) of the plane perpendicular to d, from the axis least aligned with d.
       const glm::dvec3 ad = glm::abs(d);
@@ -559,12 +552,11 @@ inline void build_topology(cell_topology& cc, std::span<const glm::dvec3> points
   std::vector<uint32_t> parent(nv);
   std::iota(parent.begin(), parent.end(), 0u);
   auto join = [&](uint32_t a, uint32_t b) { parent[find_root(parent, a)] = find_root(parent, b); };
-  for (const auto& [a, b] : input.edges) join(a, b);
-  for (const auto& f : input.faces)
+  for (const auto& [a, b] : edges) join(a, b);
+  for (const auto& f : faces)
     for (const auto& loop : f.loops) join(loop[0], f.loops[0][0]);
-  for (const auto& c : input.volumes)
-    for (const auto& fs : c.faces)
-      join(input.faces[fs.first].loops[0][0], input.faces[c.faces[0].first].loops[0][0]);
+  for (const auto& c : volumes)
+    for (const auto& fs : c.faces) join(faces[fs.first].loops[0][0], faces[c.faces[0].first].loops[0][0]);
   cc.vertex_object_.assign(nv, 0xFFFFFFFFu);
   uint32_t no = 0;
   for (uint32_t v = 0; v < nv; ++v) {
@@ -574,13 +566,13 @@ inline void build_topology(cell_topology& cc, std::span<const glm::dvec3> points
   }
   cc.object_counts_.assign(no, {0, 0, 0, 0});
   for (uint32_t v = 0; v < nv; ++v) ++cc.object_counts_[cc.vertex_object_[v]][0];
-  for (const auto& ab : input.edges) ++cc.object_counts_[cc.vertex_object_[ab[0]]][1];
-  for (std::size_t f = 0; f < nf; ++f) ++cc.object_counts_[cc.vertex_object_[input.faces[f].loops[0][0]]][2];
+  for (const auto& ab : edges) ++cc.object_counts_[cc.vertex_object_[ab[0]]][1];
+  for (std::size_t f = 0; f < nf; ++f) ++cc.object_counts_[cc.vertex_object_[faces[f].loops[0][0]]][2];
   cc.volume_object_.resize(nc);
   cursor.assign(no, 0);
   for (std::size_t c = 0; c < nc; ++c) {
-    const uint32_t f = input.volumes[c].faces.front().first;
-    cc.volume_object_[c] = cc.vertex_object_[input.faces[f].loops[0][0]];
+    const uint32_t f = volumes[c].faces.front().first;
+    cc.volume_object_[c] = cc.vertex_object_[faces[f].loops[0][0]];
     ++cc.object_counts_[cc.volume_object_[c]][3];
     ++cursor[cc.volume_object_[c]];
   }
@@ -588,7 +580,7 @@ inline void build_topology(cell_topology& cc, std::span<const glm::dvec3> points
   cc.object_volumes_.resize(nc);
   for (std::size_t c = 0; c < nc; ++c) cc.object_volumes_[cursor[cc.volume_object_[c]]++] = cell_volume(c);
 
-  cc.ends_ = std::move(input_edges);
+  cc.ends_ = std::move(edges);
 }
 }  // namespace detail::cells
 

@@ -503,9 +503,10 @@ cell_complex<P> read_3dcl(const std::filesystem::path& path) {
 
 namespace detail {
 /// cells_obj_data on double positions (one copy of the code for every point type). O(size of cc).
-inline obj_data<glm::dvec3> cells_obj_data_dvec3(const cell_topology& cc, std::span<const glm::dvec3> pts) {
+/// cells_obj_data without its points (the caller puts them in, in the type it wants); pts
+/// are needed only to triangulate faces with holes. O(size of cc).
+inline obj_data<glm::dvec3> cells_obj_faces(const cell_topology& cc, std::span<const glm::dvec3> pts) {
   obj_data<glm::dvec3> data;
-  data.soup.points.assign(pts.begin(), pts.end());
   std::vector<std::uint32_t> face;
   auto add = [&](cell_face f, int sign) {
     if (cc.num_loops(f) == 1) {
@@ -547,7 +548,9 @@ inline obj_data<glm::dvec3> cells_obj_data_dvec3(const cell_topology& cc, std::s
 template <Point3 P>
 obj_data<glm::dvec3> cells_obj_data_dvec3(const cell_complex<P>& cc) {
   const cellforge::detail::cells::dvec3_points<P> pts(cc.points());
-  return cells_obj_data_dvec3(cc, pts.span());
+  obj_data<glm::dvec3> data = cells_obj_faces(cc, pts.span());
+  data.soup.points.assign(pts.span().begin(), pts.span().end());
+  return data;
 }
 }  // namespace detail
 
@@ -557,10 +560,11 @@ obj_data<glm::dvec3> cells_obj_data_dvec3(const cell_complex<P>& cc) {
 /// face as `l` lines. O(size of cc).
 template <Point3 P>
 obj_data<P> cells_obj_data(const cell_complex<P>& cc) {
-  obj_data<glm::dvec3> data = detail::cells_obj_data_dvec3(cc);
   if constexpr (std::is_same_v<P, glm::dvec3>) {
-    return data;
+    return detail::cells_obj_data_dvec3(cc);
   } else {
+    const cellforge::detail::cells::dvec3_points<P> pts(cc.points());
+    obj_data<glm::dvec3> data = detail::cells_obj_faces(cc, pts.span());
     obj_data<P> out;
     out.soup.points.assign(cc.points().begin(), cc.points().end());
     out.soup.face_offsets = std::move(data.soup.face_offsets);
