@@ -490,7 +490,8 @@ class engine {
 /// A biased randomised insertion order: random rounds of doubling size, each sorted along
 /// a Morton curve, so that insertion stays random at large scale (expected O(n log n)) and
 /// local within a round. Fixed seed: the same input always gives the same mesh. O(n log n).
-inline std::vector<std::uint32_t> brio_order(std::span<const glm::dvec3> pts) {
+template <class = void>
+std::vector<std::uint32_t> brio_order(std::span<const glm::dvec3> pts) {
   std::vector<std::uint32_t> order(pts.size());
   std::iota(order.begin(), order.end(), 0u);
   std::mt19937_64 rng(0x5eed5eedu);
@@ -513,9 +514,9 @@ inline std::vector<std::uint32_t> brio_order(std::span<const glm::dvec3> pts) {
 
 /// The convex polygon of coplanar points, counter-clockwise in the coordinate plane
 /// (axes i, j) where a, b, c are not collinear; collinear points dropped. O(n log n).
-inline std::vector<std::uint32_t> planar_hull(std::span<const glm::dvec3> pts,
-                                              std::span<const std::uint32_t> cand,
-                                              const std::array<std::uint32_t, 4>& s) {
+template <class = void>
+std::vector<std::uint32_t> planar_hull(std::span<const glm::dvec3> pts, std::span<const std::uint32_t> cand,
+                                       const std::array<std::uint32_t, 4>& s) {
   int i = 0, j = 1;
   for (const auto& [u, v] : {std::pair{0, 1}, std::pair{1, 2}, std::pair{2, 0}}) {
     const glm::dvec3 &a = pts[s[0]], &b = pts[s[1]], &c = pts[s[2]];
@@ -550,7 +551,8 @@ inline std::vector<std::uint32_t> planar_hull(std::span<const glm::dvec3> pts,
 /// Per vertex of the 3D hull, twice the number of creases (non-flat edges) around it,
 /// from the faces' flat bits: one sequential pass. Empty when no edge is flat at all (then
 /// every vertex is a corner). O(faces).
-inline std::vector<std::uint32_t> crease_counts(const engine& eng, std::size_t n) {
+template <class = void>
+std::vector<std::uint32_t> crease_counts(const engine& eng, std::size_t n) {
   const auto& faces = eng.faces();
   if (std::none_of(faces.begin(), faces.end(), [](const face& F) { return F.alive && F.flat != 0; }))
     return {};
@@ -567,7 +569,8 @@ inline std::vector<std::uint32_t> crease_counts(const engine& eng, std::size_t n
 }
 
 /// Writes the live triangles of the engine, or one polygon per planar facet, to `out`.
-inline void emit_faces(engine& eng, bool merge, result& out) {
+template <class = void>
+void emit_faces(engine& eng, bool merge, result& out) {
   const auto& faces = eng.faces();
   std::vector<std::uint32_t> local(0);
   auto vertex = [&](std::uint32_t input) {
@@ -650,7 +653,8 @@ inline void emit_faces(engine& eng, bool merge, result& out) {
 /// True when a hull of an evenly spread sample of the points keeps most of the sample as
 /// vertices (points in convex position, e.g. on a sphere): then insertion with walks beats
 /// quickhull, whose outside sets only pay off when most points fall inside. O(sample).
-inline bool mostly_vertices(std::span<const glm::dvec3> pts) {
+template <class = void>
+bool mostly_vertices(std::span<const glm::dvec3> pts) {
   // About one point in eight, 32 to 512 of them: a few percent of the hull's own cost.
   if (pts.size() < 256) return false;
   const std::size_t sample = std::clamp<std::size_t>(pts.size() / 8, 32, 512);
@@ -670,7 +674,8 @@ inline bool mostly_vertices(std::span<const glm::dvec3> pts) {
 }
 
 /// The hull of all points as index lists; see convex_hull for the degenerate cases.
-inline result compute(std::span<const glm::dvec3> pts, const convex_hull_options& options) {
+template <class = void>
+result compute(std::span<const glm::dvec3> pts, const convex_hull_options& options) {
   result out;
   std::vector<std::uint32_t> all(pts.size());
   std::iota(all.begin(), all.end(), 0u);
@@ -745,7 +750,8 @@ inline result compute(std::span<const glm::dvec3> pts, const convex_hull_options
 
 /// Writes the closed triangle mesh of r straight into m's records (the hull already knows
 /// every face's neighbours, so no edge needs to be looked up). O(faces).
-inline void link_triangles(halfedge_mesh& m, const result& r) {
+template <class = void>
+void link_triangles(halfedge_mesh& m, const result& r) {
   using access = detail::mesh_access;
   const std::size_t nf = r.face_offsets.size() - 1;
   access::resize(m, r.vertices.size(), 3 * nf / 2, nf);

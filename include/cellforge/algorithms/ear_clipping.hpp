@@ -141,8 +141,9 @@ struct buckets {
 };
 
 /// True when the closed segments ab and cd share a point (exact).
-inline bool segments_meet(const double* x, const double* y, std::uint32_t a, std::uint32_t b, std::uint32_t c,
-                          std::uint32_t d) {
+template <class = void>
+bool segments_meet(const double* x, const double* y, std::uint32_t a, std::uint32_t b, std::uint32_t c,
+                   std::uint32_t d) {
   // Disjoint bounding boxes settle most pairs without an orientation test.
   if (std::max(x[a], x[b]) < std::min(x[c], x[d]) || std::max(x[c], x[d]) < std::min(x[a], x[b]) ||
       std::max(y[a], y[b]) < std::min(y[c], y[d]) || std::max(y[c], y[d]) < std::min(y[a], y[b]))
@@ -162,7 +163,8 @@ inline bool segments_meet(const double* x, const double* y, std::uint32_t a, std
 }
 
 /// True when the walk p -> q -> s, with s on the line pq, turns back over itself (exact).
-inline bool folds_back(const double* x, const double* y, std::uint32_t p, std::uint32_t q, std::uint32_t s) {
+template <class = void>
+bool folds_back(const double* x, const double* y, std::uint32_t p, std::uint32_t q, std::uint32_t s) {
   if (orient2d(x[p], y[p], x[q], y[q], x[s], y[s]) != 0) return false;
   // On one line, compare directions along an axis on which the line is not constant.
   const bool use_x = x[q] != x[p];
@@ -174,9 +176,10 @@ inline bool folds_back(const double* x, const double* y, std::uint32_t p, std::u
 /// other than adjacent edges at their shared vertex, or {none, none} for a simple polygon.
 /// Edges are bucketed in a grid by the cells they cross; pairs sharing a cell are tested
 /// exactly. O(n + pairs of edges sharing a cell).
-inline std::pair<std::uint32_t, std::uint32_t> first_crossing(const std::vector<double>& x,
-                                                              const std::vector<double>& y,
-                                                              const std::vector<std::uint32_t>& ring) {
+template <class = void>
+std::pair<std::uint32_t, std::uint32_t> first_crossing(const std::vector<double>& x,
+                                                       const std::vector<double>& y,
+                                                       const std::vector<std::uint32_t>& ring) {
   const auto m = static_cast<std::uint32_t>(ring.size());
   double lx = x[ring[0]], hx = lx, ly = y[ring[0]], hy = ly;
   for (std::uint32_t v : ring)
@@ -364,8 +367,9 @@ class clipper {
 
 /// Puts back the vertices dropped as repeats of their predecessor: each splits the one
 /// triangle on the edge it interrupts into a zero-area one and a copy. O(n) expected.
-inline void restore_repeats(std::span<const std::uint8_t> kept, std::vector<index_triangle>& tris,
-                            ear_clip_report& report) {
+template <class = void>
+void restore_repeats(std::span<const std::uint8_t> kept, std::vector<index_triangle>& tris,
+                     ear_clip_report& report) {
   const auto n = static_cast<std::uint32_t>(kept.size());
   auto key = [](std::uint32_t a, std::uint32_t b) { return (static_cast<std::uint64_t>(a) << 32) | b; };
   std::unordered_map<std::uint64_t, std::uint32_t> owner;  // directed edge -> triangle
@@ -405,8 +409,9 @@ inline void restore_repeats(std::span<const std::uint8_t> kept, std::vector<inde
 }
 
 /// Ear clipping on double-precision points; see ear_clip.
-inline std::vector<index_triangle> clip_polygon(std::span<const glm::dvec3> p,
-                                                const ear_clip_options& options, ear_clip_report& report) {
+template <class = void>
+std::vector<index_triangle> clip_polygon(std::span<const glm::dvec3> p, const ear_clip_options& options,
+                                         ear_clip_report& report) {
   const std::size_t n = p.size();
   if (n < 3)
     throw error(error_category::invalid_input,

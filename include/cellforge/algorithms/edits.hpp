@@ -113,23 +113,27 @@ namespace detail::edits {
 
 // ------------------------------------------------------------------ small queries
 
-inline bool is_triangle(const halfedge_mesh& m, face_handle f) noexcept {
+template <class = void>
+bool is_triangle(const halfedge_mesh& m, face_handle f) noexcept {
   const halfedge_handle h = m.halfedge(f);
   return m.next(m.next(m.next(h))) == h;
 }
-inline bool face_has(const halfedge_mesh& m, face_handle f, vertex_handle x) {
+template <class = void>
+bool face_has(const halfedge_mesh& m, face_handle f, vertex_handle x) {
   for (vertex_handle v : m.vertices_around(f))
     if (v == x) return true;
   return false;
 }
 // The corner of triangle f that is neither x nor y.
-inline vertex_handle third_corner(const halfedge_mesh& m, face_handle f, vertex_handle x, vertex_handle y) {
+template <class = void>
+vertex_handle third_corner(const halfedge_mesh& m, face_handle f, vertex_handle x, vertex_handle y) {
   for (vertex_handle v : m.vertices_around(f))
     if (v != x && v != y) return v;
   return {};
 }
 // The half-edge of face f joining x and y in either direction (invalid if none).
-inline halfedge_handle side_of(const halfedge_mesh& m, face_handle f, vertex_handle x, vertex_handle y) {
+template <class = void>
+halfedge_handle side_of(const halfedge_mesh& m, face_handle f, vertex_handle x, vertex_handle y) {
   for (halfedge_handle h : m.halfedges_around(f)) {
     const vertex_handle a = m.tail(h), b = m.head(h);
     if ((a == x && b == y) || (a == y && b == x)) return h;
@@ -137,11 +141,13 @@ inline halfedge_handle side_of(const halfedge_mesh& m, face_handle f, vertex_han
   return {};
 }
 // True when the side x-y of face f has no face on its other side.
-inline bool side_is_boundary(const halfedge_mesh& m, face_handle f, vertex_handle x, vertex_handle y) {
+template <class = void>
+bool side_is_boundary(const halfedge_mesh& m, face_handle f, vertex_handle x, vertex_handle y) {
   return m.is_boundary(halfedge_mesh::twin(side_of(m, f, x, y)));
 }
 // Number of fans of faces at v: 0 isolated, 1 manifold, more for a bow-tie. O(#fans).
-inline std::size_t count_fans(const halfedge_mesh& m, vertex_handle v) {
+template <class = void>
+std::size_t count_fans(const halfedge_mesh& m, vertex_handle v) {
   const halfedge_handle a = m.anchor(v);
   if (!a.is_valid()) return 0;
   if (!m.is_boundary(a)) return 1;
@@ -154,7 +160,8 @@ inline std::size_t count_fans(const halfedge_mesh& m, vertex_handle v) {
   return n;
 }
 // The faces of an edge (one or two).
-inline std::vector<face_handle> edge_faces(const halfedge_mesh& m, edge_handle e) {
+template <class = void>
+std::vector<face_handle> edge_faces(const halfedge_mesh& m, edge_handle e) {
   std::vector<face_handle> out;
   for (unsigned i = 0; i < 2; ++i) {
     const halfedge_handle h = halfedge_mesh::halfedge(e, i);
@@ -163,8 +170,9 @@ inline std::vector<face_handle> edge_faces(const halfedge_mesh& m, edge_handle e
   return out;
 }
 // Sorted neighbour indices of v, skipping the listed vertices.
-inline std::vector<std::uint32_t> neighbours(const halfedge_mesh& m, vertex_handle v,
-                                             std::initializer_list<vertex_handle> skip) {
+template <class = void>
+std::vector<std::uint32_t> neighbours(const halfedge_mesh& m, vertex_handle v,
+                                      std::initializer_list<vertex_handle> skip) {
   std::vector<std::uint32_t> out;
   for (vertex_handle w : m.vertices_around(v))
     if (std::find(skip.begin(), skip.end(), w) == skip.end()) out.push_back(w.idx());
@@ -173,15 +181,17 @@ inline std::vector<std::uint32_t> neighbours(const halfedge_mesh& m, vertex_hand
   return out;
 }
 // True when some face at v, other than those in `skip`, is a triangle through x and y.
-inline bool has_triangle_at(const halfedge_mesh& m, vertex_handle v, vertex_handle x, vertex_handle y,
-                            std::span<const face_handle> skip) {
+template <class = void>
+bool has_triangle_at(const halfedge_mesh& m, vertex_handle v, vertex_handle x, vertex_handle y,
+                     std::span<const face_handle> skip) {
   for (face_handle g : m.faces_around(v)) {
     if (std::find(skip.begin(), skip.end(), g) != skip.end()) continue;
     if (is_triangle(m, g) && face_has(m, g, x) && face_has(m, g, y)) return true;
   }
   return false;
 }
-inline bool all_triangles_at(const halfedge_mesh& m, vertex_handle v) {
+template <class = void>
+bool all_triangles_at(const halfedge_mesh& m, vertex_handle v) {
   for (face_handle g : m.faces_around(v))
     if (!is_triangle(m, g)) return false;
   return true;
@@ -203,7 +213,8 @@ struct link_query {
 
 // The combinatorial link condition for surfaces with boundary: Lk(u) ∩ Lk(v) = Lk(uv) in
 // the mesh completed by a dummy vertex joined to every boundary edge. O(|nu| + |nv|).
-inline edit_refusal evaluate(const link_query& q) {
+template <class = void>
+edit_refusal evaluate(const link_query& q) {
   if (q.faces == 0) return edit_refusal::isolated_triangle;
   if (q.faces == 2 && q.opp[0] == q.opp[1]) return edit_refusal::degenerate;
   // The dummy vertex is in both links but not in the edge's: the fan would pinch.
@@ -222,8 +233,9 @@ inline edit_refusal evaluate(const link_query& q) {
 }
 
 // A half-edge collapse u -> v over edge e, checked; `faces` receives the edge's faces.
-inline edit_refusal check_collapse(const halfedge_mesh& m, edge_handle e, vertex_handle u, vertex_handle v,
-                                   std::vector<face_handle>& faces) {
+template <class = void>
+edit_refusal check_collapse(const halfedge_mesh& m, edge_handle e, vertex_handle u, vertex_handle v,
+                            std::vector<face_handle>& faces) {
   faces = edge_faces(m, e);
   for (face_handle f : faces)
     if (!is_triangle(m, f)) return edit_refusal::not_triangle;
@@ -252,15 +264,17 @@ struct face_collapse_plan {
 };
 
 // The other face across side x-y of face f (invalid at the boundary).
-inline face_handle across(const halfedge_mesh& m, face_handle f, vertex_handle x, vertex_handle y) {
+template <class = void>
+face_handle across(const halfedge_mesh& m, face_handle f, vertex_handle x, vertex_handle y) {
   const halfedge_handle t = halfedge_mesh::twin(side_of(m, f, x, y));
   return m.is_boundary(t) ? face_handle() : m.face(t);
 }
 
 // Checks one order of a face collapse of triangle f = {k, a, c}: the collapse a -> k on the
 // mesh, then c -> k on the mesh as the first would leave it, read off the current mesh.
-inline edit_refusal check_face_collapse_order(const halfedge_mesh& m, face_handle f, vertex_handle k,
-                                              vertex_handle a, vertex_handle c) {
+template <class = void>
+edit_refusal check_face_collapse_order(const halfedge_mesh& m, face_handle f, vertex_handle k,
+                                       vertex_handle a, vertex_handle c) {
   std::vector<face_handle> first;
   const edge_handle ak = halfedge_mesh::edge(side_of(m, f, a, k));
   if (auto r = check_collapse(m, ak, a, k, first); r != edit_refusal::none) return r;
@@ -308,7 +322,8 @@ inline edit_refusal check_face_collapse_order(const halfedge_mesh& m, face_handl
 // Checks a face collapse. Its result does not depend on the order in which the three
 // corners merge, so it is allowed when some order is two valid edge collapses (a corner of
 // valence 3 fails one order and passes another). Reports the first order's refusal.
-inline edit_refusal check_face_collapse(const halfedge_mesh& m, face_handle f, face_collapse_plan& plan) {
+template <class = void>
+edit_refusal check_face_collapse(const halfedge_mesh& m, face_handle f, face_collapse_plan& plan) {
   if (!is_triangle(m, f)) return edit_refusal::not_triangle;
   const halfedge_handle h0 = m.halfedge(f);
   const std::array<vertex_handle, 3> v{m.tail(h0), m.head(h0), m.head(m.next(h0))};
@@ -339,8 +354,9 @@ struct face_spec {
 };
 
 // The spec re-adding triangle or polygon g with vertex `from` renamed `to` (same order).
-inline face_spec renamed(const halfedge_mesh& m, face_handle g, vertex_handle from, vertex_handle to,
-                         vertex_handle from2 = {}) {
+template <class = void>
+face_spec renamed(const halfedge_mesh& m, face_handle g, vertex_handle from, vertex_handle to,
+                  vertex_handle from2 = {}) {
   face_spec s{{}, g, {}};
   for (halfedge_handle h : m.halfedges_around(g)) {
     const vertex_handle t = m.tail(h);
@@ -351,14 +367,15 @@ inline face_spec renamed(const halfedge_mesh& m, face_handle g, vertex_handle fr
 }
 
 // Gives each (dst, src) pair's dst the property values of src (a src may feed several dsts).
-inline void carry(detail::property_registry& r,
-                  const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs) {
+template <class = void>
+void carry(detail::property_registry& r, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs) {
   for (const auto& [dst, src] : pairs) r.copy_element(dst, src);
 }
 
 // Moves properties from the replaced faces (and their half-edges and edges) to `added`.
-inline void carry_properties(halfedge_mesh& m, std::span<const face_spec> specs,
-                             std::span<const face_handle> added, std::size_t old_edges) {
+template <class = void>
+void carry_properties(halfedge_mesh& m, std::span<const face_spec> specs, std::span<const face_handle> added,
+                      std::size_t old_edges) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> fp, hp, ep;
   std::vector<std::uint8_t> edge_done;
   for (std::size_t i = 0; i < added.size(); ++i) {
@@ -385,8 +402,9 @@ inline void carry_properties(halfedge_mesh& m, std::span<const face_spec> specs,
 // Removes `old_faces` and adds `specs` in their place, carrying properties. The caller has
 // checked that the result is representable; should add_face still refuse, the old faces
 // are restored (under new handles) and error(internal) is thrown. O(total face size).
-inline std::vector<face_handle> replace_faces(halfedge_mesh& m, std::span<const face_handle> old_faces,
-                                              std::span<const face_spec> specs) {
+template <class = void>
+std::vector<face_handle> replace_faces(halfedge_mesh& m, std::span<const face_handle> old_faces,
+                                       std::span<const face_spec> specs) {
   std::vector<face_spec> originals;
   originals.reserve(old_faces.size());
   for (face_handle f : old_faces) originals.push_back(renamed(m, f, {}, {}));
@@ -410,25 +428,29 @@ inline std::vector<face_handle> replace_faces(halfedge_mesh& m, std::span<const 
   return added;
 }
 
-inline edit_result refused(edit_refusal why) {
+template <class = void>
+edit_result refused(edit_refusal why) {
   edit_result r;
   r.refusal = why;
   return r;
 }
 
-inline void check_handle(bool ok, const char* what, const char* kind, std::uint32_t idx) {
+template <class = void>
+void check_handle(bool ok, const char* what, const char* kind, std::uint32_t idx) {
   if (!ok)
     throw error(error_category::invalid_input, std::string(what) + ": " + kind + " " + std::to_string(idx) +
                                                    " does not exist or was removed");
 }
-inline void check_finite(const glm::dvec3& p, const char* what) {
+template <class = void>
+void check_finite(const glm::dvec3& p, const char* what) {
   if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
     throw error(error_category::invalid_input, std::string(what) + ": the position is not finite");
 }
 
 // Collapse u -> v over edge e after the check passed.
-inline edit_result do_collapse(halfedge_mesh& m, vertex_handle u, vertex_handle v,
-                               std::span<const face_handle> edge_faces_) {
+template <class = void>
+edit_result do_collapse(halfedge_mesh& m, vertex_handle u, vertex_handle v,
+                        std::span<const face_handle> edge_faces_) {
   std::vector<face_handle> around;
   std::vector<face_spec> specs;
   for (face_handle g : m.faces_around(u)) {
@@ -445,7 +467,8 @@ inline edit_result do_collapse(halfedge_mesh& m, vertex_handle u, vertex_handle 
   return r;
 }
 
-inline void check_edge_endpoint(const halfedge_mesh& m, edge_handle e, vertex_handle keep, const char* what) {
+template <class = void>
+void check_edge_endpoint(const halfedge_mesh& m, edge_handle e, vertex_handle keep, const char* what) {
   check_handle(m.is_valid(e), what, "edge", e.idx());
   if (keep != m.vertex(e, 0) && keep != m.vertex(e, 1))
     throw error(error_category::invalid_input, std::string(what) + ": vertex " + std::to_string(keep.idx()) +
@@ -463,14 +486,16 @@ void place(surface_mesh<P>& m, vertex_handle v, const glm::dvec3& p) {
 
 /// Whether collapse_halfedge(m, h) would be done, or why not (mesh unchanged).
 /// O((d_u + d_v) log d) for the degrees d of the two ends. Throws on an invalid handle.
-inline edit_refusal can_collapse(const halfedge_mesh& m, halfedge_handle h) {
+template <class = void>
+edit_refusal can_collapse(const halfedge_mesh& m, halfedge_handle h) {
   detail::edits::check_handle(m.is_valid(h), "can_collapse", "half-edge", h.idx());
   std::vector<face_handle> faces;
   return detail::edits::check_collapse(m, halfedge_mesh::edge(h), m.tail(h), m.head(h), faces);
 }
 /// Whether edge e can be collapsed into its end `keep` (either direction, also on a
 /// flipped edge whose two half-edges run the same way). O((d_u + d_v) log d).
-inline edit_refusal can_collapse(const halfedge_mesh& m, edge_handle e, vertex_handle keep) {
+template <class = void>
+edit_refusal can_collapse(const halfedge_mesh& m, edge_handle e, vertex_handle keep) {
   detail::edits::check_edge_endpoint(m, e, keep, "can_collapse");
   const vertex_handle u = keep == m.vertex(e, 0) ? m.vertex(e, 1) : m.vertex(e, 0);
   std::vector<face_handle> faces;
@@ -480,7 +505,8 @@ inline edit_refusal can_collapse(const halfedge_mesh& m, edge_handle e, vertex_h
 /// Merges tail(h) into head(h), removing the edge's one or two triangles; positions are
 /// untouched. Refuses (see edit_refusal) when the result would not be a valid surface of the
 /// same topology. O((d_u + d_v) log d) plus add_face's O(degree) check per new boundary edge.
-inline edit_result collapse_halfedge(halfedge_mesh& m, halfedge_handle h) {
+template <class = void>
+edit_result collapse_halfedge(halfedge_mesh& m, halfedge_handle h) {
   detail::edits::check_handle(m.is_valid(h), "collapse_halfedge", "half-edge", h.idx());
   const vertex_handle u = m.tail(h), v = m.head(h);
   std::vector<face_handle> faces;
@@ -491,7 +517,8 @@ inline edit_result collapse_halfedge(halfedge_mesh& m, halfedge_handle h) {
 
 /// Collapses edge e into its end `keep` (the other end is removed); the way to collapse a
 /// flipped edge "backwards". Same checks and cost as collapse_halfedge.
-inline edit_result collapse_edge(halfedge_mesh& m, edge_handle e, vertex_handle keep) {
+template <class = void>
+edit_result collapse_edge(halfedge_mesh& m, edge_handle e, vertex_handle keep) {
   detail::edits::check_edge_endpoint(m, e, keep, "collapse_edge");
   const vertex_handle u = keep == m.vertex(e, 0) ? m.vertex(e, 1) : m.vertex(e, 0);
   std::vector<face_handle> faces;
@@ -518,7 +545,8 @@ edit_result collapse_halfedge(surface_mesh<P>& m, halfedge_handle h, const colla
 
 /// Whether collapse_face(m, f) would be done, or why not (mesh unchanged).
 /// O(sum of the degrees of f's corners, times log). Throws on an invalid handle.
-inline edit_refusal can_collapse_face(const halfedge_mesh& m, face_handle f) {
+template <class = void>
+edit_refusal can_collapse_face(const halfedge_mesh& m, face_handle f) {
   detail::edits::check_handle(m.is_valid(f), "can_collapse_face", "face", f.idx());
   detail::edits::face_collapse_plan plan;
   return detail::edits::check_face_collapse(m, f, plan);
@@ -528,7 +556,8 @@ inline edit_refusal can_collapse_face(const halfedge_mesh& m, face_handle f) {
 /// neighbours disappear, two vertices are removed. On a mesh without positions the kept vertex
 /// stays where it is; a surface_mesh takes the overload below. Refuses unless some
 /// order of merging the corners is two valid edge collapses. O(sum of corner degrees, × log).
-inline edit_result collapse_face(halfedge_mesh& m, face_handle f) {
+template <class = void>
+edit_result collapse_face(halfedge_mesh& m, face_handle f) {
   detail::edits::check_handle(m.is_valid(f), "collapse_face", "face", f.idx());
   detail::edits::face_collapse_plan plan;
   if (auto r = detail::edits::check_face_collapse(m, f, plan); r != edit_refusal::none)
@@ -574,7 +603,8 @@ edit_result collapse_face(surface_mesh<P>& m, face_handle f) {
 /// Adds a vertex on edge e: each triangle on e becomes two (a larger face just gains the
 /// vertex), every face keeping its orientation; on a flipped edge both halves stay flipped.
 /// Never refused. Position untouched. O(size of the faces of e).
-inline edit_result split_edge(halfedge_mesh& m, edge_handle e) {
+template <class = void>
+edit_result split_edge(halfedge_mesh& m, edge_handle e) {
   detail::edits::check_handle(m.is_valid(e), "split_edge", "edge", e.idx());
   const std::vector<face_handle> faces = detail::edits::edge_faces(m, e);
   const vertex_handle a = m.vertex(e, 0), b = m.vertex(e, 1);
@@ -623,7 +653,8 @@ edit_result split_edge(surface_mesh<P>& m, edge_handle e, const std::type_identi
 
 /// Whether flip_edge(m, e) would be done, or why not. O(degree of one end).
 /// Throws on an invalid handle.
-inline edit_refusal can_flip(const halfedge_mesh& m, edge_handle e) {
+template <class = void>
+edit_refusal can_flip(const halfedge_mesh& m, edge_handle e) {
   detail::edits::check_handle(m.is_valid(e), "can_flip", "edge", e.idx());
   const std::vector<face_handle> faces = detail::edits::edge_faces(m, e);
   if (faces.size() != 2) return edit_refusal::boundary_edge;
@@ -641,7 +672,8 @@ inline edit_refusal can_flip(const halfedge_mesh& m, edge_handle e) {
 /// triangles take the orientation of e's first face (the face of halfedge(e, 0)): on an
 /// oriented mesh that is everyone's; on a flipped edge the seam moves to the two sides at
 /// d. Refuses at the boundary, on non-triangles and when c-d exists. O(degree of c).
-inline edit_result flip_edge(halfedge_mesh& m, edge_handle e) {
+template <class = void>
+edit_result flip_edge(halfedge_mesh& m, edge_handle e) {
   if (auto r = can_flip(m, e); r != edit_refusal::none) return detail::edits::refused(r);
   const halfedge_handle h = halfedge_mesh::halfedge(e, 0);
   const face_handle f0 = m.face(h), f1 = m.face(halfedge_mesh::twin(h));

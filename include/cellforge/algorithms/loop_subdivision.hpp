@@ -136,8 +136,8 @@ attribute_array find_attribute(property_array_base& a) {
 }
 
 /// Resolves the opted-in properties before anything changes. O(#properties²).
-inline std::vector<attribute_job> resolve_attributes(halfedge_mesh& mesh,
-                                                     const std::vector<loop_property>& specs) {
+template <class = void>
+std::vector<attribute_job> resolve_attributes(halfedge_mesh& mesh, const std::vector<loop_property>& specs) {
   std::vector<attribute_job> jobs;
   for (std::size_t i = 0; i < specs.size(); ++i) {
     const std::string& name = specs[i].name;
@@ -161,7 +161,8 @@ inline std::vector<attribute_job> resolve_attributes(halfedge_mesh& mesh,
   return jobs;
 }
 
-inline mask_params to_params(const loop_options& o) {
+template <class = void>
+mask_params to_params(const loop_options& o) {
   if (o.weights != loop_weights::loop && o.weights != loop_weights::warren)
     throw error(error_category::invalid_input, "loop_subdivide: unknown loop_options::weights value");
   if (o.boundary != loop_boundary::bspline && o.boundary != loop_boundary::bspline_corners &&
@@ -173,9 +174,10 @@ inline mask_params to_params(const loop_options& o) {
 
 /// Subdivides one user attribute in place (its array grows to the child's vertex count).
 /// O(V + E).
-inline void subdivide_attribute(const attribute_job& job, std::span<const record> he, std::uint32_t nv,
-                                std::size_t child_nv, std::span<const std::uint32_t> boundary_edges,
-                                const mask_params& params) {
+template <class = void>
+void subdivide_attribute(const attribute_job& job, std::span<const record> he, std::uint32_t nv,
+                         std::size_t child_nv, std::span<const std::uint32_t> boundary_edges,
+                         const mask_params& params) {
   std::visit(
       [&](auto* array) {
         using T = typename array_value<std::remove_pointer_t<decltype(array)>>::type;

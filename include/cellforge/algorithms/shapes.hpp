@@ -58,14 +58,16 @@ void require(bool ok, const char* what, Message&& message) {
 
 /// Refuses outputs whose indices would not fit the soup's 32-bit indices (or would not fit
 /// in memory anyway), before anything is allocated.
-inline void require_size(double vertices, double indices, const char* what) {
+template <class = void>
+void require_size(double vertices, double indices, const char* what) {
   constexpr double limit = static_cast<double>(std::numeric_limits<std::uint32_t>::max() / 2);
   require(vertices <= limit && indices <= limit, what,
           "the requested shape is too large (about " + std::to_string(vertices) + " vertices, " +
               std::to_string(indices) + " face indices); reduce its resolution");
 }
 
-inline void require_at_least(int value, int minimum, const char* what, const char* name) {
+template <class = void>
+void require_at_least(int value, int minimum, const char* what, const char* name) {
   require(value >= minimum, what, [&] {
     return std::string(name) + " must be at least " + std::to_string(minimum) + ", got " +
            std::to_string(value);
@@ -80,13 +82,17 @@ struct count_parameter {
 };
 
 /// require_at_least for each parameter, then require_size for the output they imply.
-inline void require_counts(const char* what, std::initializer_list<count_parameter> params, double vertices,
-                           double indices) {
+template <class = void>
+void require_counts(const char* what, std::initializer_list<count_parameter> params, double vertices,
+                    double indices) {
   for (const count_parameter& p : params) require_at_least(p.value, p.minimum, what, p.name);
   require_size(vertices, indices, what);
 }
 
-inline std::uint32_t u32(std::int64_t i) { return static_cast<std::uint32_t>(i); }
+template <class = void>
+std::uint32_t u32(std::int64_t i) {
+  return static_cast<std::uint32_t>(i);
+}
 
 template <Point3 P>
 std::uint32_t add_point(polygon_soup<P>& soup, const glm::dvec3& p) {
@@ -169,7 +175,8 @@ void sweep_rings(polygon_soup<P>& soup, std::span<const ring_frame> rings, int a
 }
 
 /// The icosahedron with vertices (0, ±1, ±φ) and cyclic permutations, faces outward.
-inline const std::array<glm::dvec3, 12>& icosahedron_points() {
+template <class = void>
+const std::array<glm::dvec3, 12>& icosahedron_points() {
   static constexpr double g = std::numbers::phi;
   static const std::array<glm::dvec3, 12> p{{{-1, g, 0},
                                              {1, g, 0},
@@ -201,7 +208,8 @@ polygon_soup<P> solid(const std::array<glm::dvec3, N>& points, double scale, con
 }
 
 /// Undirected edge key of (a, b): the smaller index in the high half.
-inline std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) noexcept {
+template <class = void>
+std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) noexcept {
   const std::uint32_t lo = std::min(a, b), hi = std::max(a, b);
   return (static_cast<std::uint64_t>(lo) << 32) | hi;
 }
@@ -278,7 +286,8 @@ half_edge_pairing pair_half_edges(const polygon_soup<P>& soup, const char* what)
 
 /// True when a face has fewer than three vertices or repeats one. O(k^2) for the usual
 /// small faces (no allocation), O(k log k) beyond 16 vertices.
-inline bool degenerate_face(std::span<const std::uint32_t> face) {
+template <class = void>
+bool degenerate_face(std::span<const std::uint32_t> face) {
   if (face.size() < 3) return true;
   if (face.size() <= 16) {
     for (std::size_t i = 1; i < face.size(); ++i)
@@ -294,15 +303,17 @@ inline bool degenerate_face(std::span<const std::uint32_t> face) {
 
 /// Hash key of a voxel (or voxel corner) on the doubled lattice grid: three biased
 /// 21-bit coordinates in one word.
-inline std::uint64_t voxel_key(std::int64_t x, std::int64_t y, std::int64_t z) noexcept {
+template <class = void>
+std::uint64_t voxel_key(std::int64_t x, std::int64_t y, std::int64_t z) noexcept {
   constexpr std::int64_t bias = 1 << 20;
   return (static_cast<std::uint64_t>(x + bias) << 42) | (static_cast<std::uint64_t>(y + bias) << 21) |
          static_cast<std::uint64_t>(z + bias);
 }
 
 /// Uniform Catmull–Rom point and derivative on span [p1, p2] at t in [0, 1].
-inline void catmull_rom(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2,
-                        const glm::dvec3& p3, double t, glm::dvec3& point, glm::dvec3& tangent) {
+template <class = void>
+void catmull_rom(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2, const glm::dvec3& p3,
+                 double t, glm::dvec3& point, glm::dvec3& tangent) {
   const double t2 = t * t, t3 = t2 * t;
   point = 0.5 * ((2.0 * p1) + (-p0 + p2) * t + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * t2 +
                  (-p0 + 3.0 * p1 - 3.0 * p2 + p3) * t3);
@@ -311,7 +322,8 @@ inline void catmull_rom(const glm::dvec3& p0, const glm::dvec3& p1, const glm::d
 }
 
 /// A unit vector perpendicular to unit vector t.
-inline glm::dvec3 any_perpendicular(const glm::dvec3& t) {
+template <class = void>
+glm::dvec3 any_perpendicular(const glm::dvec3& t) {
   const glm::dvec3 axis = std::abs(t.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
   return glm::normalize(glm::cross(t, axis));
 }
@@ -926,7 +938,8 @@ struct spline_tube_options {
 
 /// Control points of the default curve (a gently winding 3D path, the stand-in for the
 /// seed's "eyespline" input). O(1).
-inline std::vector<glm::dvec3> default_spline_curve() {
+template <class = void>
+std::vector<glm::dvec3> default_spline_curve() {
   return {{0, 0, 0}, {1, 0.6, 0.2}, {2, 0.1, 0.8}, {3, -0.5, 0.4}, {4, 0, -0.2}, {5, 0.7, 0.1}};
 }
 

@@ -241,7 +241,8 @@ class simplifier {
   std::vector<quadric> q_;
 };
 
-inline void check_options(const simplify_options& o) {
+template <class = void>
+void check_options(const simplify_options& o) {
   auto fail = [](const std::string& what) {
     throw error(error_category::invalid_input, "simplify: " + what);
   };

@@ -119,6 +119,7 @@ class handle_range {
 
 namespace detail::cells {
 struct access;
+template <class = void>
 void build_topology(cell_topology& cc, std::span<const glm::dvec3> points,
                     std::vector<std::array<std::uint32_t, 2>>&& edges,
                     const std::vector<cell_input_face>& faces, const std::vector<cell_input_volume>& volumes);
@@ -225,6 +226,7 @@ class cell_topology {
 
  private:
   friend struct detail::cells::access;
+  template <class>
   friend void detail::cells::build_topology(cell_topology&, std::span<const glm::dvec3>,
                                             std::vector<std::array<std::uint32_t, 2>>&&,
                                             const std::vector<cell_input_face>&,
@@ -327,7 +329,10 @@ P cell_complex<P>::face_normal(cell_face f) const {
 
 namespace detail::cells {
 
-inline std::string S(std::uint64_t x) { return std::to_string(x); }
+template <class = void>
+std::string S(std::uint64_t x) {
+  return std::to_string(x);
+}
 
 [[noreturn]] inline void fail(error_category c, const std::string& msg) {
   throw error(c, "make_cell_complex: " + msg);
@@ -336,20 +341,23 @@ inline std::string S(std::uint64_t x) { return std::to_string(x); }
 using cellforge::detail::newell;  // Newell normal of a vertex loop (core/detail/newell.hpp)
 
 /// Turns (a, b) into one 64-bit key regardless of order. O(1).
-inline std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) noexcept {
+template <class = void>
+std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) noexcept {
   if (a > b) std::swap(a, b);
   return (std::uint64_t{a} << 32) | b;
 }
 
 /// Fills CSR `start` from per-row counts (counts become write cursors). O(rows).
-inline void counts_to_starts(std::vector<std::uint32_t>& start, std::vector<std::uint32_t>& cursor) {
+template <class = void>
+void counts_to_starts(std::vector<std::uint32_t>& start, std::vector<std::uint32_t>& cursor) {
   start.assign(cursor.size() + 1, 0);
   for (std::size_t i = 0; i < cursor.size(); ++i) start[i + 1] = start[i] + cursor[i];
   for (std::size_t i = 0; i < cursor.size(); ++i) cursor[i] = start[i];
 }
 
 /// Union-find root with path halving. O(α(n)) amortised.
-inline std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t x) {
+template <class = void>
+std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t x) {
   while (parent[x] != x) x = parent[x] = parent[parent[x]];
   return x;
 }
@@ -358,10 +366,11 @@ inline std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t
 
 namespace detail::cells {
 /// The body of make_cell_complex on double positions (one copy for every point type). O(n log n).
-inline void build_topology(cell_topology& cc, std::span<const glm::dvec3> points,
-                           std::vector<std::array<std::uint32_t, 2>>&& edges,
-                           const std::vector<cell_input_face>& faces,
-                           const std::vector<cell_input_volume>& volumes) {
+template <class>
+void build_topology(cell_topology& cc, std::span<const glm::dvec3> points,
+                    std::vector<std::array<std::uint32_t, 2>>&& edges,
+                    const std::vector<cell_input_face>& faces,
+                    const std::vector<cell_input_volume>& volumes) {
   using std::uint32_t;
   constexpr auto bad = error_category::invalid_input;
   constexpr auto topo = error_category::topology;

@@ -54,8 +54,9 @@ namespace detail::cells {
 /// The result is checked: every triangle turns the right way and the areas add up to the
 /// polygon's, otherwise it throws naming `who`. Returns indices into the loops concatenated.
 /// O(k·n²) for n vertices, k holes.
-inline std::vector<std::array<std::uint32_t, 3>> triangulate_face(
-    const std::vector<std::vector<glm::dvec3>>& loops, const glm::dvec3& n, const std::string& who) {
+template <class = void>
+std::vector<std::array<std::uint32_t, 3>> triangulate_face(const std::vector<std::vector<glm::dvec3>>& loops,
+                                                           const glm::dvec3& n, const std::string& who) {
   const int k = std::abs(n.x) >= std::abs(n.y) && std::abs(n.x) >= std::abs(n.z) ? 0
                 : std::abs(n.y) >= std::abs(n.z)                                 ? 1
                                                                                  : 2;

@@ -60,8 +60,9 @@ struct cells_validation_result {
 namespace detail::cells {
 
 /// Signed volume of c on double positions. O(size of c).
-inline double signed_volume_of(const cell_topology& cc, std::span<const glm::dvec3> pts, cell_volume c,
-                               const glm::dvec3& origin) {
+template <class = void>
+double signed_volume_of(const cell_topology& cc, std::span<const glm::dvec3> pts, cell_volume c,
+                        const glm::dvec3& origin) {
   double six = 0.0;
   for (const auto& [f, sign] : cc.volume_faces(c)) {
     const glm::dvec3 apex = pts[cc.loop_vertices(f, 0)[0].idx()] - origin;
@@ -78,17 +79,20 @@ inline double signed_volume_of(const cell_topology& cc, std::span<const glm::dve
   return six / 6.0;
 }
 
-inline cells_validation_result broke(cells_validation_result r, cells_invariant what, std::uint32_t element,
-                                     std::string msg) {
+// Takes r by reference: the message may read r, and arguments are evaluated in any order.
+template <class = void>
+cells_validation_result broke(cells_validation_result& r, cells_invariant what, std::uint32_t element,
+                              std::string msg) {
   r.broken = what;
   r.element = element;
   r.message = std::move(msg);
-  return r;
+  return std::move(r);
 }
 
 /// Angle of the direction into face ef about edge e, in the plane perpendicular to e. O(1).
-inline double angle_about(const cell_topology& cc, std::span<const glm::dvec3> pts, cell_edge e,
-                          const oriented<cell_face>& ef) {
+template <class = void>
+double angle_about(const cell_topology& cc, std::span<const glm::dvec3> pts, cell_edge e,
+                   const oriented<cell_face>& ef) {
   const glm::dvec3 d = pts[cc.target(e).idx()] - pts[cc.source(e).idx()];
   const glm::dvec3 into = glm::cross(access::unit_normal(cc, ef.handle), double(ef.sign) * d);
   const glm::dvec3 ad = glm::abs(d);
@@ -100,16 +104,18 @@ inline double angle_about(const cell_topology& cc, std::span<const glm::dvec3> p
 }
 
 /// The volume on the side of face ef toward negative rotation about the edge. O(1).
-inline cell_volume wedge_before(const cell_topology& cc, const oriented<cell_face>& ef) {
+template <class = void>
+cell_volume wedge_before(const cell_topology& cc, const oriented<cell_face>& ef) {
   for (const auto& v : cc.face_volumes(ef.handle))
     if (v.sign == ef.sign) return v.handle;
   return {};
 }
 
 /// Euler characteristic V - E + Σ(1 - holes) of a set of faces seen as a surface. O(size).
-inline long long surface_euler(const cell_topology& cc, const std::vector<cell_face>& faces,
-                               std::vector<std::uint32_t>& vmark, std::vector<std::uint32_t>& emark,
-                               std::uint32_t stamp) {
+template <class = void>
+long long surface_euler(const cell_topology& cc, const std::vector<cell_face>& faces,
+                        std::vector<std::uint32_t>& vmark, std::vector<std::uint32_t>& emark,
+                        std::uint32_t stamp) {
   long long chi = 0;
   for (cell_face f : faces) {
     chi += 1 - static_cast<long long>(cc.num_loops(f) - 1);
@@ -127,8 +133,9 @@ inline long long surface_euler(const cell_topology& cc, const std::vector<cell_f
 
 namespace detail::cells {
 /// validate() on double positions (one copy of the code for every point type).
-inline cells_validation_result validate_cells(const cell_topology& cc, std::span<const glm::dvec3> pts,
-                                              const cells_validation_options& options) {
+template <class = void>
+cells_validation_result validate_cells(const cell_topology& cc, std::span<const glm::dvec3> pts,
+                                       const cells_validation_options& options) {
   using detail::cells::broke;
   using detail::cells::S;
   using inv = cells_invariant;
@@ -141,21 +148,20 @@ inline cells_validation_result validate_cells(const cell_topology& cc, std::span
 
   for (cell_edge e : cc.edges())
     if (!(glm::length(pts[cc.target(e).idx()] - pts[cc.source(e).idx()]) > min_len))
-      return broke(std::move(r), inv::degenerate_edge, e.idx(),
+      return broke(r, inv::degenerate_edge, e.idx(),
                    "edge " + S(e.idx()) + " (" + S(cc.source(e).idx()) + "-" + S(cc.target(e).idx()) +
                        ") has (nearly) zero length");
 
   for (cell_face f : cc.faces()) {
     const glm::dvec3 n = access::unit_normal(cc, f);
     if (glm::length(n) == 0.0)
-      return broke(std::move(r), inv::degenerate_face, f.idx(),
-                   "face " + S(f.idx()) + ": its outer loop has no area");
+      return broke(r, inv::degenerate_face, f.idx(), "face " + S(f.idx()) + ": its outer loop has no area");
     const glm::dvec3 o = pts[cc.loop_vertices(f, 0)[0].idx()];
     for (std::size_t l = 0; l < cc.num_loops(f); ++l) {
       for (cell_vertex v : cc.loop_vertices(f, l)) {
         const double dist = std::abs(glm::dot(pts[v.idx()] - o, n));
         if (dist > flat_tol)
-          return broke(std::move(r), inv::non_planar, f.idx(),
+          return broke(r, inv::non_planar, f.idx(),
                        "face " + S(f.idx()) + ": vertex " + S(v.idx()) + " is " + std::to_string(dist) +
                            " from the face's plane (tolerance " + std::to_string(flat_tol) + ")");
       }
@@ -163,7 +169,7 @@ inline cells_validation_result validate_cells(const cell_topology& cc, std::span
         const auto vs = cc.loop_vertices(f, l);
         const glm::dvec3 hn = detail::cells::newell(vs, [&](cell_vertex v) { return pts[v.idx()] - o; });
         if (!(glm::dot(hn, n) < 0.0))
-          return broke(std::move(r), inv::hole_orientation, f.idx(),
+          return broke(r, inv::hole_orientation, f.idx(),
                        "face " + S(f.idx()) + ": hole loop " + S(l) +
                            " does not turn clockwise about the face's normal");
       }
@@ -188,7 +194,7 @@ inline cells_validation_result validate_cells(const cell_topology& cc, std::span
     }
     touched.clear();
     if (bad != 0xFFFFFFFFu)
-      return broke(std::move(r), inv::open_boundary, c.idx(),
+      return broke(r, inv::open_boundary, c.idx(),
                    "volume " + S(c.idx()) + ": edge " + S(bad) +
                        " is not used exactly twice, in opposite directions, by the volume's faces");
     r.signed_volumes.push_back(detail::cells::signed_volume_of(cc, pts, c, centre));
@@ -196,7 +202,7 @@ inline cells_validation_result validate_cells(const cell_topology& cc, std::span
   const double min_volume = 1e-12 * diag * diag * diag;
   for (cell_volume c : cc.volumes())
     if (!(r.signed_volumes[c.idx()] > min_volume))
-      return broke(std::move(r), inv::orientation, c.idx(),
+      return broke(r, inv::orientation, c.idx(),
                    "volume " + S(c.idx()) + " has signed volume " +
                        std::to_string(r.signed_volumes[c.idx()]) +
                        "; its faces' normals (with their signs) must point out of it");
@@ -214,17 +220,17 @@ inline cells_validation_result validate_cells(const cell_topology& cc, std::span
           detail::cells::angle_about(cc, pts, e, next) - detail::cells::angle_about(cc, pts, e, ef[k]);
       while (step <= 0.0) step += 2 * std::numbers::pi;
       if (step < options.min_angle || 2 * std::numbers::pi - step < options.min_angle)
-        return broke(std::move(r), inv::rotation_order, e.idx(),
+        return broke(r, inv::rotation_order, e.idx(),
                      "edge " + S(e.idx()) + ": faces " + S(ef[k].handle.idx()) + " and " +
                          S(next.handle.idx()) + " lie on the same side of the edge (they coincide near it)");
       turn += step;
       if (detail::cells::wedge_before(cc, next) != wedges[k])
-        return broke(std::move(r), inv::wedge_mismatch, e.idx(),
+        return broke(r, inv::wedge_mismatch, e.idx(),
                      "edge " + S(e.idx()) + ": between faces " + S(ef[k].handle.idx()) + " and " +
                          S(next.handle.idx()) + " the two faces' volumes disagree");
     }
     if (std::abs(turn - 2 * std::numbers::pi) > 1e-6)
-      return broke(std::move(r), inv::rotation_order, e.idx(),
+      return broke(r, inv::rotation_order, e.idx(),
                    "edge " + S(e.idx()) + ": its faces are not in right-hand rotation order (they turn " +
                        std::to_string(turn / std::numbers::pi) + " pi in all)");
   }
@@ -257,7 +263,7 @@ inline cells_validation_result validate_cells(const cell_topology& cc, std::span
     const std::uint32_t o = cc.volume_object(c).idx();
     if (chi % 2 != 0) {
       r.euler_checked[o] = 0;
-      return broke(std::move(r), inv::euler, o,
+      return broke(r, inv::euler, o,
                    "object " + S(o) + ": the boundary of volume " + S(c.idx()) +
                        " has odd Euler characteristic " + std::to_string(chi) +
                        " (it is pinched at a vertex, not a closed surface)");
@@ -301,7 +307,7 @@ inline cells_validation_result validate_cells(const cell_topology& cc, std::span
     if (chi % 2 != 0) r.euler_checked[o.idx()] = 0;
     r.expected_euler[o.idx()] = chi / 2 + holes[o.idx()] + volume_terms[o.idx()];
     if (r.euler_checked[o.idx()] && r.expected_euler[o.idx()] != cc.object_euler(o))
-      return broke(std::move(r), inv::euler, o.idx(),
+      return broke(r, inv::euler, o.idx(),
                    "object " + S(o.idx()) + ": V - E + F - C is " + std::to_string(cc.object_euler(o)) +
                        " but its surfaces imply " + std::to_string(r.expected_euler[o.idx()]));
   }

@@ -14,7 +14,8 @@
 namespace cellforge::detail {
 
 /// Spreads the low 21 bits of x to every third bit of a 63-bit word. O(1).
-inline std::uint64_t morton_spread(std::uint64_t x) noexcept {
+template <class = void>
+std::uint64_t morton_spread(std::uint64_t x) noexcept {
   x &= 0x1FFFFF;
   x = (x | x << 32) & 0x1F00000000FFFFull;
   x = (x | x << 16) & 0x1F0000FF0000FFull;
@@ -26,8 +27,8 @@ inline std::uint64_t morton_spread(std::uint64_t x) noexcept {
 
 /// The 63-bit Morton code of p in the box [lo, lo + extent] (extent > 0 on every axis; points
 /// outside are clamped to it). O(1).
-inline std::uint64_t morton_code(const glm::dvec3& p, const glm::dvec3& lo,
-                                 const glm::dvec3& extent) noexcept {
+template <class = void>
+std::uint64_t morton_code(const glm::dvec3& p, const glm::dvec3& lo, const glm::dvec3& extent) noexcept {
   const glm::dvec3 t = glm::clamp((p - lo) / extent * 2097151.0, 0.0, 2097151.0);
   return morton_spread(static_cast<std::uint64_t>(t.x)) |
          morton_spread(static_cast<std::uint64_t>(t.y)) << 1 |

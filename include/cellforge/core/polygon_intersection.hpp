@@ -34,8 +34,8 @@ using polygon_loops = std::vector<std::vector<std::uint32_t>>;
 
 /// Three vertices of a polygon that span its plane well: the first vertex, the one farthest
 /// from it and the one farthest from the line through both. O(size).
-inline std::array<std::uint32_t, 3> plane_vertices(std::span<const glm::dvec3> points,
-                                                   const polygon_loops& loops) {
+template <class = void>
+std::array<std::uint32_t, 3> plane_vertices(std::span<const glm::dvec3> points, const polygon_loops& loops) {
   const std::vector<std::uint32_t>& outer = loops[0];
   const std::uint32_t a = outer[0];
   std::uint32_t b = outer[1 % outer.size()];
@@ -53,8 +53,9 @@ inline std::array<std::uint32_t, 3> plane_vertices(std::span<const glm::dvec3> p
 /// Whether the line through p and q, seen along its direction, passes through the polygon's
 /// interior (inside), through a vertex or along an edge (boundary), or misses it. Exact:
 /// every decision is the sign of orient3d on input points. O(size).
-inline polygon_location line_through_polygon(std::span<const glm::dvec3> points, const polygon_loops& loops,
-                                             const glm::dvec3& p, const glm::dvec3& q) {
+template <class = void>
+polygon_location line_through_polygon(std::span<const glm::dvec3> points, const polygon_loops& loops,
+                                      const glm::dvec3& p, const glm::dvec3& q) {
   for (const auto& loop : loops)
     for (const auto v : loop)
       if (collinear(p, q, points[v])) return polygon_location::boundary;
@@ -101,9 +102,10 @@ inline polygon_location line_through_polygon(std::span<const glm::dvec3> points,
 /// True when the segment a–b crosses the polygon's plane (spanned by `plane`, see
 /// plane_vertices) with its ends strictly on opposite sides and passes through the polygon's
 /// interior, not its boundary. Exact. O(size).
-inline bool segment_pierces_polygon(std::span<const glm::dvec3> points, const polygon_loops& loops,
-                                    const std::array<std::uint32_t, 3>& plane, const glm::dvec3& a,
-                                    const glm::dvec3& b) {
+template <class = void>
+bool segment_pierces_polygon(std::span<const glm::dvec3> points, const polygon_loops& loops,
+                             const std::array<std::uint32_t, 3>& plane, const glm::dvec3& a,
+                             const glm::dvec3& b) {
   const glm::dvec3 &p0 = points[plane[0]], &p1 = points[plane[1]], &p2 = points[plane[2]];
   const int sa = orient3d(p0, p1, p2, a), sb = orient3d(p0, p1, p2, b);
   if (sa * sb >= 0) return false;

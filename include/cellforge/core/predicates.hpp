@@ -27,7 +27,8 @@ namespace detail::exact {
 // ------------------------------------------------------------------ words and products
 
 /// 64 x 64 -> 128-bit product as (high, low) words.
-inline void mul_words(std::uint64_t a, std::uint64_t b, std::uint64_t& hi, std::uint64_t& lo) noexcept {
+template <class = void>
+void mul_words(std::uint64_t a, std::uint64_t b, std::uint64_t& hi, std::uint64_t& lo) noexcept {
 #if defined(__SIZEOF_INT128__)
   __extension__ typedef unsigned __int128 u128;
   const u128 p = static_cast<u128>(a) * b;
@@ -52,7 +53,8 @@ struct dyadic {
 
 /// Splits a double into its dyadic form, exactly, from its bit pattern; false for NaN
 /// and infinities. O(1).
-inline bool decompose(double x, dyadic& d) noexcept {
+template <class = void>
+bool decompose(double x, dyadic& d) noexcept {
   const auto bits = std::bit_cast<std::uint64_t>(x);
   const auto biased = static_cast<int>((bits >> 52) & 0x7FF);
   if (biased == 0x7FF) return false;
@@ -93,8 +95,9 @@ class words {
 };
 
 /// acc += v · 2^shift, where v has n words; acc must be wide enough. O(size of acc).
-inline void add_shifted(std::uint64_t* acc, std::size_t acc_size, const std::uint64_t* v, std::size_t n,
-                        std::size_t shift) noexcept {
+template <class = void>
+void add_shifted(std::uint64_t* acc, std::size_t acc_size, const std::uint64_t* v, std::size_t n,
+                 std::size_t shift) noexcept {
   const std::size_t q = shift / 64;
   const unsigned r = static_cast<unsigned>(shift % 64);
   std::uint64_t carry = 0;
@@ -118,7 +121,8 @@ inline void add_shifted(std::uint64_t* acc, std::size_t acc_size, const std::uin
 }
 
 /// Sign of (a - b) for two naturals of the same width. O(width).
-inline int compare(const std::uint64_t* a, const std::uint64_t* b, std::size_t n) noexcept {
+template <class = void>
+int compare(const std::uint64_t* a, const std::uint64_t* b, std::size_t n) noexcept {
   for (std::size_t i = n; i-- > 0;)
     if (a[i] != b[i]) return a[i] > b[i] ? 1 : -1;
   return 0;
@@ -273,7 +277,8 @@ int plain_sign(const std::array<std::array<double, N>, N>& p) noexcept {
 }
 
 /// Knuth's two-difference: true when a - b rounds to itself, i.e. is exact (false on overflow).
-inline bool exact_difference(double a, double b, double& d) noexcept {
+template <class = void>
+bool exact_difference(double a, double b, double& d) noexcept {
   d = a - b;
   const double b_virtual = a - d;
   const double a_virtual = d + b_virtual;
@@ -304,8 +309,8 @@ struct orient3d_plane {
 };
 
 /// Prepares the plane through a, b, c for orient3d_filter. O(1).
-inline orient3d_plane prepare_orient3d(const glm::dvec3& a, const glm::dvec3& b,
-                                       const glm::dvec3& c) noexcept {
+template <class = void>
+orient3d_plane prepare_orient3d(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) noexcept {
   const glm::dvec3 u = b - a, v = c - a;
   const double yz = u.y * v.z, zy = u.z * v.y, zx = u.z * v.x, xz = u.x * v.z, xy = u.x * v.y, yx = u.y * v.x;
   orient3d_plane p;
@@ -318,7 +323,8 @@ inline orient3d_plane prepare_orient3d(const glm::dvec3& a, const glm::dvec3& b,
 /// The filtered orient3d of the prepared plane and d: +1 or -1 when the floating-point
 /// value provably has the true sign, 0 when the filter cannot decide (then the exact
 /// evaluation must). `value` receives the approximate determinant. O(1), about 20 flops.
-inline int orient3d_filter(const orient3d_plane& p, const glm::dvec3& d, double& value) noexcept {
+template <class = void>
+int orient3d_filter(const orient3d_plane& p, const glm::dvec3& d, double& value) noexcept {
   const double wx = d.x - p.a.x, wy = d.y - p.a.y, wz = d.z - p.a.z;
   const double det = wx * p.minor.x + wy * p.minor.y + wz * p.minor.z;
   const double ax = std::fabs(wx), ay = std::fabs(wy), az = std::fabs(wz);
@@ -332,8 +338,9 @@ inline int orient3d_filter(const orient3d_plane& p, const glm::dvec3& d, double&
 }
 
 /// The exact orient3d, without a filter. O(1) (about 24 multi-word products).
-inline int orient3d_exact(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
-                          const glm::dvec3& d) noexcept {
+template <class = void>
+int orient3d_exact(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                   const glm::dvec3& d) noexcept {
   // When the nine differences are exact (integer grids, nearby points) the 3 x 3
   // determinant of the differences has 6 monomials instead of 24.
   std::array<std::array<double, 3>, 3> diff{};
@@ -348,7 +355,8 @@ inline int orient3d_exact(const glm::dvec3& a, const glm::dvec3& b, const glm::d
 }
 
 /// The exact orient2d, without a filter. O(1) (six multi-word products).
-inline int orient2d_exact(double ax, double ay, double bx, double by, double cx, double cy) noexcept {
+template <class = void>
+int orient2d_exact(double ax, double ay, double bx, double by, double cx, double cy) noexcept {
   std::array<std::array<double, 2>, 2> diff{};
   if (exact::exact_difference(bx, ax, diff[0][0]) && exact::exact_difference(by, ay, diff[0][1]) &&
       exact::exact_difference(cx, ax, diff[1][0]) && exact::exact_difference(cy, ay, diff[1][1]))
@@ -362,7 +370,8 @@ inline int orient2d_exact(double ax, double ay, double bx, double by, double cx,
 /// Orientation of three 2D points: +1 when a, b, c turn counter-clockwise (positive
 /// signed area), -1 when clockwise, 0 when collinear; exact for all finite inputs (0 for
 /// NaN/Inf). O(1): a filter of ~15 flops, exact multi-word arithmetic when it cannot decide.
-inline int orient2d(double ax, double ay, double bx, double by, double cx, double cy) noexcept {
+template <class = void>
+int orient2d(double ax, double ay, double bx, double by, double cx, double cy) noexcept {
   const double left = (ax - cx) * (by - cy);
   const double right = (ay - cy) * (bx - cx);
   const double det = left - right;
@@ -374,13 +383,15 @@ inline int orient2d(double ax, double ay, double bx, double by, double cx, doubl
 }
 
 /// orient2d on GLM 2-vectors. O(1).
-inline int orient2d(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) noexcept {
+template <class = void>
+int orient2d(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) noexcept {
   return orient2d(a.x, a.y, b.x, b.y, c.x, c.y);
 }
 
 /// The approximate (rounded) value of the orient2d determinant, twice the signed area of
 /// a, b, c; its sign may be wrong near zero. O(1).
-inline double orient2d_value(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) noexcept {
+template <class = void>
+double orient2d_value(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) noexcept {
   return (a.x - c.x) * (b.y - c.y) - (a.y - c.y) * (b.x - c.x);
 }
 
@@ -388,8 +399,8 @@ inline double orient2d_value(const glm::dvec2& a, const glm::dvec2& b, const glm
 /// the right-hand normal (b - a) × (c - a) points to (a, b, c counter-clockwise seen from
 /// d), -1 on the other side, 0 when the four points are coplanar; exact for all finite
 /// inputs (0 for NaN/Inf). O(1): a ~30-flop filter, exact arithmetic when it cannot decide.
-inline int orient3d(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
-                    const glm::dvec3& d) noexcept {
+template <class = void>
+int orient3d(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const glm::dvec3& d) noexcept {
   double value = 0.0;
   const int s = detail::orient3d_filter(detail::prepare_orient3d(a, b, c), d, value);
   return s != 0 ? s : detail::orient3d_exact(a, b, c, d);
@@ -404,15 +415,17 @@ int orient3d(const P& a, const P& b, const P& c, const P& d) {
 
 /// The approximate (rounded) value of the orient3d determinant, six times the signed
 /// volume of the tetrahedron a, b, c, d; its sign may be wrong near zero. O(1).
-inline double orient3d_value(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
-                             const glm::dvec3& d) noexcept {
+template <class = void>
+double orient3d_value(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                      const glm::dvec3& d) noexcept {
   double value = 0.0;
   detail::orient3d_filter(detail::prepare_orient3d(a, b, c), d, value);
   return value;
 }
 
 /// True when three 3D points lie on one line (coincident points included); exact. O(1).
-inline bool collinear(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) noexcept {
+template <class = void>
+bool collinear(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) noexcept {
   // Collinear in space exactly when collinear in all three coordinate projections.
   return orient2d(a.x, a.y, b.x, b.y, c.x, c.y) == 0 && orient2d(a.y, a.z, b.y, b.z, c.y, c.z) == 0 &&
          orient2d(a.z, a.x, b.z, b.x, c.z, c.x) == 0;

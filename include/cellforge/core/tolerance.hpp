@@ -31,6 +31,9 @@ struct tolerance {
 };
 
 /// True when a and b are equal to within `tol` (absolute). O(1).
-inline bool nearly_equal(double a, double b, double tol) noexcept { return std::abs(a - b) <= tol; }
+template <class = void>
+bool nearly_equal(double a, double b, double tol) noexcept {
+  return std::abs(a - b) <= tol;
+}
 
 }  // namespace cellforge

@@ -25,6 +25,12 @@ namespace detail {
 struct mesh_access;
 }
 
+template <class = void>
+class basic_halfedge_mesh;
+/// The half-edge mesh. It is a class template on an unused parameter only so that its members
+/// are compiled where they are used, not in every file that includes this header.
+using halfedge_mesh = basic_halfedge_mesh<>;
+
 /// Counts and diagnostics from building a mesh from a face list.
 struct build_report {
   std::size_t vertices = 0, edges = 0, faces = 0;
@@ -51,11 +57,12 @@ struct build_options {
 /// small ring through the boundary half-edges around each of its two end vertices.
 /// Two faces may traverse their shared edge in the same direction (a non-orientable
 /// seam): the edge is then *flipped*, which is read off the two heads, not stored.
-class halfedge_mesh {
+template <class>
+class basic_halfedge_mesh {
  public:
   static constexpr std::uint32_t npos = 0xFFFFFFFFu;
 
-  halfedge_mesh() = default;
+  basic_halfedge_mesh() = default;
 
   // ---------------------------------------------------------------- sizes
 
@@ -83,16 +90,16 @@ class halfedge_mesh {
 
   /// Live vertices/edges/half-edges/faces, as forward ranges. O(1) to create.
   auto vertices() const noexcept {
-    return detail::element_range<halfedge_mesh, vertex_handle>(this, n32(vertices_size()));
+    return detail::element_range<basic_halfedge_mesh, vertex_handle>(this, n32(vertices_size()));
   }
   auto edges() const noexcept {
-    return detail::element_range<halfedge_mesh, edge_handle>(this, n32(edges_size()));
+    return detail::element_range<basic_halfedge_mesh, edge_handle>(this, n32(edges_size()));
   }
   auto halfedges() const noexcept {
-    return detail::element_range<halfedge_mesh, halfedge_handle>(this, n32(halfedges_size()));
+    return detail::element_range<basic_halfedge_mesh, halfedge_handle>(this, n32(halfedges_size()));
   }
   auto faces() const noexcept {
-    return detail::element_range<halfedge_mesh, face_handle>(this, n32(faces_size()));
+    return detail::element_range<basic_halfedge_mesh, face_handle>(this, n32(faces_size()));
   }
 
   bool is_removed(vertex_handle v) const noexcept { return vertex_anchor_[v.idx()] == removed_mark; }
@@ -183,33 +190,33 @@ class halfedge_mesh {
 
   /// Faces around v, fan after fan (a face appears once per fan it is in). O(1) per step.
   auto faces_around(vertex_handle v) const {
-    using it = detail::vertex_iterator<halfedge_mesh, vertex_event::face, detail::project_face>;
+    using it = detail::vertex_iterator<basic_halfedge_mesh, vertex_event::face, detail::project_face>;
     return detail::circulator_range<it>(it(this, v));
   }
   /// Edges incident to v in rotation order. O(1) per step.
   auto edges_around(vertex_handle v) const {
-    using it = detail::vertex_iterator<halfedge_mesh, vertex_event::edge, detail::project_edge>;
+    using it = detail::vertex_iterator<basic_halfedge_mesh, vertex_event::edge, detail::project_edge>;
     return detail::circulator_range<it>(it(this, v));
   }
   /// Neighbouring vertices of v in rotation order. O(1) per step.
   auto vertices_around(vertex_handle v) const {
-    using it = detail::vertex_iterator<halfedge_mesh, vertex_event::edge, detail::project_neighbour>;
+    using it = detail::vertex_iterator<basic_halfedge_mesh, vertex_event::edge, detail::project_neighbour>;
     return detail::circulator_range<it>(it(this, v));
   }
   /// For each incident edge, its half-edge that leaves v (on a flipped edge whose two
   /// half-edges both enter v, the one walked). O(1) per step.
   auto halfedges_around(vertex_handle v) const {
-    using it = detail::vertex_iterator<halfedge_mesh, vertex_event::edge, detail::project_outgoing>;
+    using it = detail::vertex_iterator<basic_halfedge_mesh, vertex_event::edge, detail::project_outgoing>;
     return detail::circulator_range<it>(it(this, v));
   }
   /// Half-edges of face f in order, starting at halfedge(f). O(1) per step.
   auto halfedges_around(face_handle f) const {
-    using it = detail::face_iterator<halfedge_mesh, detail::project_halfedge>;
+    using it = detail::face_iterator<basic_halfedge_mesh, detail::project_halfedge>;
     return detail::circulator_range<it>(it(this, halfedge(f)));
   }
   /// Vertices of face f in the order the face was given. O(1) per step.
   auto vertices_around(face_handle f) const {
-    using it = detail::face_iterator<halfedge_mesh, detail::project_tail>;
+    using it = detail::face_iterator<basic_halfedge_mesh, detail::project_tail>;
     return detail::circulator_range<it>(it(this, halfedge(f)));
   }
   /// Number of faces/edges around v, or vertices of f. O(result).
@@ -243,7 +250,7 @@ class halfedge_mesh {
   /// The boundary loop through boundary half-edge b, as a range of boundary half-edges in
   /// order. O(1) per step (times the number of fans at a non-manifold vertex on it).
   auto halfedges_around_boundary(halfedge_handle b) const {
-    using it = detail::boundary_iterator<halfedge_mesh>;
+    using it = detail::boundary_iterator<basic_halfedge_mesh>;
     return detail::circulator_range<it>(it(this, b));
   }
   /// The same loop collected into a vector. O(loop length).
@@ -415,7 +422,7 @@ class halfedge_mesh {
   /// Read-only access to a registry, for validation and I/O. O(1).
   template <class Handle>
   const detail::property_registry& registry() const noexcept {
-    return const_cast<halfedge_mesh*>(this)->registry<Handle>();
+    return const_cast<basic_halfedge_mesh*>(this)->registry<Handle>();
   }
 
   // ---------------------------------------------------------------- for validate()
@@ -460,7 +467,7 @@ class halfedge_mesh {
     std::uint32_t start, end;
   };
   // The fan of a list that ends at boundary half-edge x (fans.end() if none). O(#fans).
-  static std::vector<fan>::iterator fan_ending_at(std::vector<fan>& fans, std::uint32_t x) {
+  static typename std::vector<fan>::iterator fan_ending_at(std::vector<fan>& fans, std::uint32_t x) {
     return std::find_if(fans.begin(), fans.end(), [x](const fan& f) { return f.start == x || f.end == x; });
   }
   // The end of fan f that is not x.

@@ -115,7 +115,8 @@ std::pair<P, P> bounds(const surface_mesh<P>& m) {
 
 /// V − E + F of the live elements (2 − 2g − b for a connected orientable surface of genus g
 /// with b boundary loops). O(1).
-inline std::int64_t euler_characteristic(const halfedge_mesh& m) noexcept {
+template <class = void>
+std::int64_t euler_characteristic(const halfedge_mesh& m) noexcept {
   return static_cast<std::int64_t>(m.num_vertices()) - static_cast<std::int64_t>(m.num_edges()) +
          static_cast<std::int64_t>(m.num_faces());
 }
@@ -128,7 +129,8 @@ struct mesh_components {
 };
 
 /// Labels the connected components of m. O(V + E).
-inline mesh_components connected_components(const halfedge_mesh& m) {
+template <class = void>
+mesh_components connected_components(const halfedge_mesh& m) {
   mesh_components c;
   c.vertex_component.assign(m.vertices_size(), halfedge_mesh::npos);
   std::vector<vertex_handle> stack;

@@ -23,7 +23,8 @@ struct orient_result {
 namespace detail {
 // Breadth-first 2-colouring of faces: sign[f] says whether f must be reversed to agree
 // with its component's first face. Reports components that admit no such colouring.
-inline orient_result orientation_signs(const halfedge_mesh& m, std::vector<std::int8_t>& sign) {
+template <class = void>
+orient_result orientation_signs(const halfedge_mesh& m, std::vector<std::int8_t>& sign) {
   orient_result r;
   sign.assign(m.faces_size(), 0);
   std::vector<face_handle> queue;
@@ -57,7 +58,8 @@ inline orient_result orientation_signs(const halfedge_mesh& m, std::vector<std::
 }  // namespace detail
 
 /// True when the faces can be oriented consistently (no Möbius-like component). O(n).
-inline bool is_orientable(const halfedge_mesh& m) {
+template <class = void>
+bool is_orientable(const halfedge_mesh& m) {
   std::vector<std::int8_t> sign;
   return detail::orientation_signs(m, sign).orientable();
 }
@@ -65,7 +67,8 @@ inline bool is_orientable(const halfedge_mesh& m) {
 /// Reverses faces so that neighbours agree in orientation, per connected component
 /// (keeping each component's first face as given). On a non-orientable component the
 /// seams that remain are reported. O(n).
-inline orient_result orient(halfedge_mesh& m) {
+template <class = void>
+orient_result orient(halfedge_mesh& m) {
   std::vector<std::int8_t> sign;
   orient_result r = detail::orientation_signs(m, sign);
   for (face_handle f : m.faces())

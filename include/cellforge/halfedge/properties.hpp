@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <memory>
 #include <string>
 #include <string_view>
 #include <typeinfo>
@@ -43,7 +42,8 @@ class property_array_base {
   virtual void copy_element(std::size_t dst, std::size_t src) = 0;
   /// Resets element i to the default value (used when an element is reused or removed).
   virtual void reset(std::size_t i) = 0;
-  virtual std::unique_ptr<property_array_base> clone() const = 0;
+  /// A heap copy; the caller owns it (see owned_array).
+  virtual property_array_base* clone() const = 0;
 
  private:
   std::string name_;
@@ -68,9 +68,7 @@ class property_array final : public property_array_base {
     if (dst != src) data_[dst] = data_[src];
   }
   void reset(std::size_t i) override { data_[i] = default_; }
-  std::unique_ptr<property_array_base> clone() const override {
-    return std::make_unique<property_array>(*this);
-  }
+  property_array_base* clone() const override { return new property_array(*this); }
 
   std::vector<T>& data() noexcept { return data_; }
   const std::vector<T>& data() const noexcept { return data_; }
@@ -81,13 +79,37 @@ class property_array final : public property_array_base {
   T default_;
 };
 
+/// Sole owner of one heap-allocated array. A unique_ptr would do, but <memory> costs more to
+/// compile than this whole header (docs/benchmarks.md, compile time).
+class owned_array {
+ public:
+  explicit owned_array(property_array_base* a) noexcept : a_(a) {}
+  owned_array(owned_array&& o) noexcept : a_(std::exchange(o.a_, nullptr)) {}
+  owned_array& operator=(owned_array&& o) noexcept {
+    std::swap(a_, o.a_);
+    return *this;
+  }
+  owned_array(const owned_array&) = delete;
+  owned_array& operator=(const owned_array&) = delete;
+  ~owned_array() { delete a_; }
+  property_array_base* get() const noexcept { return a_; }
+  property_array_base* operator->() const noexcept { return a_; }
+  property_array_base& operator*() const noexcept { return *a_; }
+
+ private:
+  property_array_base* a_;
+};
+
 /// All properties of one element kind. Copying clones every array.
 class property_registry {
  public:
   property_registry() = default;
   property_registry(const property_registry& o) : size_(o.size_) {
     arrays_.reserve(o.arrays_.size());
-    for (const auto& a : o.arrays_) arrays_.push_back(a->clone());
+    for (const auto& a : o.arrays_) {
+      owned_array copy(a->clone());
+      arrays_.push_back(std::move(copy));
+    }
   }
   property_registry& operator=(const property_registry& o) {
     if (this != &o) {
@@ -108,9 +130,9 @@ class property_registry {
     if (find(name) != nullptr)
       throw error(error_category::invalid_input,
                   "a property named '" + std::string(name) + "' already exists");
-    auto a = std::make_unique<property_array<T>>(std::string(name), std::move(default_value));
-    a->resize(size_);
-    auto* raw = a.get();
+    auto* raw = new property_array<T>(std::string(name), std::move(default_value));
+    owned_array a(raw);
+    raw->resize(size_);
     arrays_.push_back(std::move(a));
     return raw;
   }
@@ -181,7 +203,7 @@ class property_registry {
   }
 
  private:
-  std::vector<std::unique_ptr<property_array_base>> arrays_;
+  std::vector<owned_array> arrays_;
   std::size_t size_ = 0;
 };
 

@@ -40,14 +40,16 @@ struct validation_result {
 };
 
 namespace detail {
-inline validation_result fail(mesh_invariant what, std::uint32_t element, std::string msg) {
+template <class = void>
+validation_result fail(mesh_invariant what, std::uint32_t element, std::string msg) {
   return {what, element, std::move(msg)};
 }
 }  // namespace detail
 
 /// Checks every invariant of m: records, face loops, edges, the unlinked table, vertex
 /// anchors, fans and boundary rings, property sizes. O(size of the mesh), expected.
-inline validation_result validate(const halfedge_mesh& m) {
+template <class = void>
+validation_result validate(const halfedge_mesh& m) {
   using detail::fail;
   const std::size_t nh = m.halfedges_size(), nv = m.vertices_size(), nf = m.faces_size();
   auto S = [](std::uint64_t x) { return std::to_string(x); };

@@ -43,33 +43,38 @@ namespace detail {
 
 // Appends the decimal digits of n; appending pieces instead of `" " + std::to_string(n)`
 // also keeps g++ 12's false -Wrestrict (PR 105329) out of a user's -O2 -Werror build.
-inline void put_count(std::string& out, std::uint64_t n) {
+template <class = void>
+void put_count(std::string& out, std::uint64_t n) {
   char buf[24];
   const auto r = std::to_chars(buf, buf + sizeof buf, n);
   out.append(buf, r.ptr);
 }
 
 // Appends a keyword, a space and a count, e.g. "edges 12".
-inline void put_keyword(std::string& out, std::string_view keyword, std::uint64_t n) {
+template <class = void>
+void put_keyword(std::string& out, std::string_view keyword, std::uint64_t n) {
   out += keyword;
   out += ' ';
   put_count(out, n);
 }
 
-inline void put_signed(std::string& out, std::uint32_t index, int sign) {
+template <class = void>
+void put_signed(std::string& out, std::uint32_t index, int sign) {
   out += sign < 0 ? " -" : " +";
   put_count(out, index);
 }
 
-inline void put_double(std::string& out, double v) {
+template <class = void>
+void put_double(std::string& out, double v) {
   char buf[32];
   const auto r = std::to_chars(buf, buf + sizeof buf, v);
   out.append(buf, r.ptr);
 }
 
 /// The whole 3DCL text of cc. O(size of cc).
-inline std::string cells_text(const cell_topology& cc, std::span<const glm::dvec3> pts,
-                              const cells_write_options& options) {
+template <class = void>
+std::string cells_text(const cell_topology& cc, std::span<const glm::dvec3> pts,
+                       const cells_write_options& options) {
   std::string out = "3dcl 1\n";
   for (std::string_view text = options.comment; !text.empty();) {
     const std::size_t eol = std::min(text.find_first_of("\r\n"), text.size());
@@ -295,8 +300,9 @@ class cells_lines {
 
 /// The line of the element a make_cell_complex() message names first ("vertex 3", "edge 7",
 /// "face 2", "volume 1"), or 0.
-inline std::uint64_t line_of_element(const std::string& message,
-                                     const std::array<std::vector<std::uint64_t>, 4>& lines) {
+template <class = void>
+std::uint64_t line_of_element(const std::string& message,
+                              const std::array<std::vector<std::uint64_t>, 4>& lines) {
   static constexpr std::array<std::string_view, 4> names{"vertex ", "edge ", "face ", "volume "};
   std::size_t best = std::string::npos;
   std::uint64_t line = 0;
@@ -334,7 +340,8 @@ void write_3dcl(const std::filesystem::path& path, const cell_complex<P>& cc,
 
 namespace detail {
 /// parse_3dcl in double precision. O(size of the text + n log n).
-inline cell_complex<glm::dvec3> parse_3dcl_dvec3(std::string_view text, std::string_view name) {
+template <class = void>
+cell_complex<glm::dvec3> parse_3dcl_dvec3(std::string_view text, std::string_view name) {
   detail::cells_lines lines(text, name);
   constexpr std::uint64_t max = 0xFFFFFFFEu;
   {
@@ -505,7 +512,8 @@ namespace detail {
 /// cells_obj_data on double positions (one copy of the code for every point type). O(size of cc).
 /// cells_obj_data without its points (the caller puts them in, in the type it wants); pts
 /// are needed only to triangulate faces with holes. O(size of cc).
-inline obj_data<glm::dvec3> cells_obj_faces(const cell_topology& cc, std::span<const glm::dvec3> pts) {
+template <class = void>
+obj_data<glm::dvec3> cells_obj_faces(const cell_topology& cc, std::span<const glm::dvec3> pts) {
   obj_data<glm::dvec3> data;
   std::vector<std::uint32_t> face;
   auto add = [&](cell_face f, int sign) {
@@ -587,7 +595,8 @@ void write_cells_obj(const std::filesystem::path& path, const cell_complex<P>& c
 }
 
 /// A distinct, saturated colour for volume i (hues spaced by the golden angle). O(1).
-inline std::array<double, 3> volume_colour(std::size_t i) {
+template <class = void>
+std::array<double, 3> volume_colour(std::size_t i) {
   const double h = std::fmod(0.13 + 0.618033988749895 * static_cast<double>(i), 1.0) * 6.0, s = 0.55,
                v = 0.92;
   const double c = v * s, x = c * (1 - std::abs(std::fmod(h, 2.0) - 1)), m = v - c;
@@ -602,7 +611,8 @@ inline std::array<double, 3> volume_colour(std::size_t i) {
 }
 
 namespace detail {
-inline void write_cells_ply(std::ostream& os, const obj_data<glm::dvec3>& data) {
+template <class = void>
+void write_cells_ply(std::ostream& os, const obj_data<glm::dvec3>& data) {
   std::size_t largest = 0;
   for (std::size_t f = 0; f < data.soup.num_faces(); ++f)
     largest = std::max(largest, data.soup.face(f).size());
@@ -655,7 +665,8 @@ struct cells_svg_options {
 };
 
 namespace detail {
-inline svg_scene cells_svg_scene(const obj_data<glm::dvec3>& data, const cells_svg_options& options) {
+template <class = void>
+svg_scene cells_svg_scene(const obj_data<glm::dvec3>& data, const cells_svg_options& options) {
   if (!(options.explode >= 0.0) || !std::isfinite(options.explode))
     throw error(error_category::invalid_input, "cells svg: explode must be finite and >= 0");
   bounding_box box;

@@ -59,7 +59,8 @@ void put_curve_number(std::string& out, T v) {
   out.append(buf, r.ptr);
 }
 
-inline void put_comment(std::string& out, std::string_view text) {
+template <class = void>
+void put_comment(std::string& out, std::string_view text) {
   while (!text.empty()) {
     const std::size_t eol = std::min(text.find_first_of("\r\n"), text.size());
     if (eol != 0) out.append("# ").append(text.substr(0, eol)).append("\n");
@@ -68,12 +69,14 @@ inline void put_comment(std::string& out, std::string_view text) {
 }
 
 /// Writes text to a file (only called once the text is complete and checked). O(text).
-inline void write_text_file(const std::filesystem::path& path, const std::string& text) {
+template <class = void>
+void write_text_file(const std::filesystem::path& path, const std::string& text) {
   write_file(path,
              [&](std::ostream& os) { os.write(text.data(), static_cast<std::streamsize>(text.size())); });
 }
 
-inline void check_segments(int segments, const char* who) {
+template <class = void>
+void check_segments(int segments, const char* who) {
   if (segments < 1 || segments > 10000)
     throw error(error_category::invalid_input,
                 std::string(who) + ": segments must be within 1 .. 10000, got " + std::to_string(segments));
@@ -160,7 +163,8 @@ void read_number_list(text_cursor& c, std::vector<double>& values, std::size_t m
 }
 
 /// Names the values of a curve line for error messages.
-inline std::string curve_value_name(std::size_t i, int axis) {
+template <class = void>
+std::string curve_value_name(std::size_t i, int axis) {
   static constexpr const char* axis_names[] = {"the axis", "the limit at the start", "the limit at the end"};
   if (i < 3 && (i == 0 || axis < 3)) return axis_names[i];
   if (axis < 3) return "coefficient " + std::string(1, static_cast<char>('a' + (i - 3)));
@@ -203,7 +207,8 @@ void write_curve_file(const std::filesystem::path& path, const R& curves,
 namespace detail {
 
 /// parse_curve_file in double precision.
-inline std::vector<edge_curve<glm::dvec3>> parse_curves(std::string_view text, std::string_view name) {
+template <class = void>
+std::vector<edge_curve<glm::dvec3>> parse_curves(std::string_view text, std::string_view name) {
   if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
   text_cursor c(text, name);
   std::vector<edge_curve<glm::dvec3>> curves;
@@ -346,7 +351,8 @@ void write_polyline_file(const std::filesystem::path& path, const R& curves,
 namespace detail {
 
 /// parse_polyline_file in double precision.
-inline std::vector<std::vector<glm::dvec3>> parse_polylines(std::string_view text, std::string_view name) {
+template <class = void>
+std::vector<std::vector<glm::dvec3>> parse_polylines(std::string_view text, std::string_view name) {
   if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
   text_cursor c(text, name);
   std::vector<std::vector<glm::dvec3>> out;
@@ -457,7 +463,8 @@ void write_polylines_obj(const std::filesystem::path& path, const R& curves,
 namespace detail {
 
 /// A solid's style for the pictures below: shaded faces, edges drawn only where visible.
-inline svg_style solid_style(std::string fill, std::string stroke, double stroke_width) {
+template <class = void>
+svg_style solid_style(std::string fill, std::string stroke, double stroke_width) {
   svg_style s;
   s.fill = std::move(fill);
   s.stroke = std::move(stroke);
@@ -498,7 +505,8 @@ struct smoothing_svg_options {
 namespace detail {
 
 /// The screen's right and up directions in world coordinates for a view (as svg_scene draws it). O(1).
-inline std::array<glm::dvec3, 2> screen_axes(const svg_view& v) {
+template <class = void>
+std::array<glm::dvec3, 2> screen_axes(const svg_view& v) {
   const double az = v.azimuth_deg * std::numbers::pi / 180.0, el = v.elevation_deg * std::numbers::pi / 180.0;
   const glm::dvec3 toward(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
   const glm::dvec3 right(-std::sin(az), std::cos(az), 0.0);
@@ -509,7 +517,8 @@ inline std::array<glm::dvec3, 2> screen_axes(const svg_view& v) {
   return out;
 }
 
-inline void check_curves_svg(const svg_options& o, const char* who) {
+template <class = void>
+void check_curves_svg(const svg_options& o, const char* who) {
   if (!(o.width > 0 && o.height > 0))
     throw error(error_category::invalid_input,
                 std::string(who) + ": picture width and height must be positive");

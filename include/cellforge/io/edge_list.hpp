@@ -63,7 +63,8 @@ std::uint32_t read_section_header(text_cursor& c, std::string_view expected, Wha
 }
 
 /// Moves to the next content line or fails naming what was expected there.
-inline void expect_line(text_cursor& c, const std::string& expected) {
+template <class = void>
+void expect_line(text_cursor& c, const std::string& expected) {
   if (!c.next_content()) c.fail_at(c.content_end(), "expected " + expected + ", found end of file");
 }
 

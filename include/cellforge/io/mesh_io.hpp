@@ -24,7 +24,8 @@ namespace cellforge::io {
 enum class mesh_format { off, obj, ply, stl };
 
 /// The format named by a path's extension (case-insensitive); throws for others. O(1).
-inline mesh_format format_of(const std::filesystem::path& path) {
+template <class = void>
+mesh_format format_of(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });

@@ -61,7 +61,8 @@ struct obj_write_options {
 namespace detail {
 
 /// Statements of the OBJ specification that carry nothing cellforge keeps.
-inline bool is_known_obj_statement(std::string_view k) noexcept {
+template <class = void>
+bool is_known_obj_statement(std::string_view k) noexcept {
   constexpr std::string_view known[] = {
       "vt",     "vn",         "vp",        "p",     "s",        "usemtl",   "mtllib", "lod",   "maplib",
       "usemap", "shadow_obj", "trace_obj", "bevel", "c_interp", "d_interp", "ctech",  "stech", "cstype",
@@ -72,7 +73,8 @@ inline bool is_known_obj_statement(std::string_view k) noexcept {
 
 /// Reads one face or line vertex reference (`v`, `v/vt`, `v//vn`, `v/vt/vn`) and returns the
 /// 0-based vertex index, resolving negative (relative) indices against the `nv` vertices so far.
-inline std::uint32_t read_obj_index(text_cursor& c, std::uint64_t nv, bool allow_normals) {
+template <class = void>
+std::uint32_t read_obj_index(text_cursor& c, std::uint64_t nv, bool allow_normals) {
   const char* start = c.pos;
   const auto bad = [&] {
     c.pos = start;
@@ -105,7 +107,8 @@ inline std::uint32_t read_obj_index(text_cursor& c, std::uint64_t nv, bool allow
 }
 
 /// Rest of the line as a group name, blanks trimmed; "default" when empty.
-inline std::string read_obj_name(text_cursor& c) {
+template <class = void>
+std::string read_obj_name(text_cursor& c) {
   c.skip_blanks();
   const char* first = c.pos;
   const char* last = c.pos;
@@ -264,8 +267,9 @@ void put_obj_vertices(output_buffer& out, const std::vector<P>& points) {
   }
 }
 
-inline void put_obj_lines(output_buffer& out, const std::vector<std::array<std::uint32_t, 2>>& lines,
-                          std::size_t n_points) {
+template <class = void>
+void put_obj_lines(output_buffer& out, const std::vector<std::array<std::uint32_t, 2>>& lines,
+                   std::size_t n_points) {
   for (const auto& e : lines) {
     if (e[0] >= n_points || e[1] >= n_points)
       throw error(error_category::invalid_input,

@@ -49,7 +49,8 @@ struct off_header {
 };
 
 /// Parses the header keyword at the cursor ([ST][C][N][4][n]OFF) or fails with what is accepted.
-inline off_header parse_off_keyword(text_cursor& c) {
+template <class = void>
+off_header parse_off_keyword(text_cursor& c) {
   const char* start = c.pos;
   const char* q = c.pos;
   off_header h;

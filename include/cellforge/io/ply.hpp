@@ -241,7 +241,8 @@ struct ply_layout {
   int indices = -1;                    ///< face property index of the vertex index list
 };
 
-inline ply_layout ply_check_layout(const ply_header& h, const text_cursor& c) {
+template <class = void>
+ply_layout ply_check_layout(const ply_header& h, const text_cursor& c) {
   ply_layout l;
   for (const auto& e : h.elements) {
     if (e.name == "vertex") l.vertex = &e;

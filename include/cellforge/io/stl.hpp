@@ -101,13 +101,17 @@ namespace detail {
 /// Most facets a binary STL may hold: 3 corner indices each must fit the soup's 32-bit offsets.
 inline constexpr std::uint64_t stl_max_facets = std::numeric_limits<std::uint32_t>::max() / 3;
 
-inline std::uint32_t stl_load_u32(const char* p) noexcept {
+template <class = void>
+std::uint32_t stl_load_u32(const char* p) noexcept {
   std::array<char, 4> raw;
   std::memcpy(raw.data(), p, 4);
   if constexpr (std::endian::native == std::endian::big) std::reverse(raw.begin(), raw.end());
   return std::bit_cast<std::uint32_t>(raw);
 }
-inline float stl_load_f32(const char* p) noexcept { return std::bit_cast<float>(stl_load_u32(p)); }
+template <class = void>
+float stl_load_f32(const char* p) noexcept {
+  return std::bit_cast<float>(stl_load_u32(p));
+}
 
 [[noreturn]] inline void stl_fail_at_byte(std::string_view name, std::uint64_t at,
                                           const std::string& message) {
@@ -116,7 +120,8 @@ inline float stl_load_f32(const char* p) noexcept { return std::bit_cast<float>(
 
 /// Refuses a binary facet count whose facets would overflow the soup's 32-bit indices, from
 /// the 84-byte header alone, before anything is allocated. O(1).
-inline void stl_check_facet_limit(std::uint32_t n, std::string_view name) {
+template <class = void>
+void stl_check_facet_limit(std::uint32_t n, std::string_view name) {
   if (n > stl_max_facets)
     stl_fail_at_byte(name, 80,
                      "the header's facet count " + std::to_string(n) +
@@ -125,7 +130,8 @@ inline void stl_check_facet_limit(std::uint32_t n, std::string_view name) {
 }
 
 /// True when the token at the cursor is `word` (lower case here, any case in the file). O(|word|).
-inline bool stl_at_keyword(const text_cursor& c, std::string_view word) noexcept {
+template <class = void>
+bool stl_at_keyword(const text_cursor& c, std::string_view word) noexcept {
   if (static_cast<std::size_t>(c.end - c.pos) < word.size()) return false;
   for (std::size_t i = 0; i < word.size(); ++i) {
     const char ch = c.pos[i];
@@ -137,7 +143,8 @@ inline bool stl_at_keyword(const text_cursor& c, std::string_view word) noexcept
 
 /// A cursor on the first token of the bytes (past a UTF-8 byte-order mark and white space),
 /// or at the end when there is none. O(leading white space).
-inline text_cursor stl_first_token(std::string_view bytes) noexcept {
+template <class = void>
+text_cursor stl_first_token(std::string_view bytes) noexcept {
   text_cursor c(bytes, {}, '\0');
   if (bytes.starts_with("\xEF\xBB\xBF")) c.pos += 3;
   (void)c.next_content();
@@ -145,14 +152,16 @@ inline text_cursor stl_first_token(std::string_view bytes) noexcept {
 }
 
 /// True when the text starts with `solid` (any case). O(leading white space).
-inline bool stl_starts_with_solid(std::string_view bytes) noexcept {
+template <class = void>
+bool stl_starts_with_solid(std::string_view bytes) noexcept {
   return stl_at_keyword(stl_first_token(bytes), "solid");
 }
 
 /// True when bytes that are not sized like binary STL are to be read as ASCII: they start
 /// with `solid` and (if long enough to be binary) hold no NUL byte, or they hold nothing but
 /// white space (the ASCII reader then reports an empty file). O(size).
-inline bool stl_read_as_ascii(std::string_view bytes) noexcept {
+template <class = void>
+bool stl_read_as_ascii(std::string_view bytes) noexcept {
   if (stl_first_token(bytes).at_end()) return true;
   return stl_starts_with_solid(bytes) && (bytes.size() < 84 || bytes.find('\0') == std::string_view::npos);
 }
@@ -583,7 +592,8 @@ namespace detail {
 
 /// The unit normal of triangle abc by the right-hand rule, zero when it has no area; scaled
 /// first so that no product overflows or underflows. O(1).
-inline glm::dvec3 stl_facet_normal(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+template <class = void>
+glm::dvec3 stl_facet_normal(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
   glm::dvec3 u = b - a, v = c - a;
   const auto finite = [](const glm::dvec3& w) {
     return std::isfinite(w.x) && std::isfinite(w.y) && std::isfinite(w.z);
@@ -604,7 +614,8 @@ inline glm::dvec3 stl_facet_normal(const glm::dvec3& a, const glm::dvec3& b, con
 /// Throws invalid_input unless `name` survives the trip through the chosen encoding: at
 /// most 80 bytes without trailing NUL or space (binary); one line without leading or
 /// trailing blanks or control characters (ASCII). O(name length).
-inline void stl_check_name(std::string_view name, bool binary) {
+template <class = void>
+void stl_check_name(std::string_view name, bool binary) {
   const auto refuse = [&](const std::string& why) {
     throw error(error_category::invalid_input, "write_stl: stl_write_options::solid_name " + why);
   };

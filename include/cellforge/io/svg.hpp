@@ -127,7 +127,8 @@ struct svg_edge_visibility {
 namespace detail {
 
 /// Appends v with `precision` decimals, trailing zeros dropped; locale-independent. O(1).
-inline void svg_number(std::string& out, double v, int precision) {
+template <class = void>
+void svg_number(std::string& out, double v, int precision) {
   static constexpr double powers[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
   const double scaled = v * powers[precision];
   if (std::abs(scaled) < 1e15) {
@@ -168,7 +169,8 @@ inline void svg_number(std::string& out, double v, int precision) {
 }
 
 /// Appends text escaped for XML content and attribute values; control characters become spaces.
-inline void svg_escape(std::string& out, std::string_view text) {
+template <class = void>
+void svg_escape(std::string& out, std::string_view text) {
   for (const char ch : text) {
     switch (ch) {
       case '&':
@@ -193,7 +195,8 @@ inline void svg_escape(std::string& out, std::string_view text) {
 }
 
 /// #rgb or #rrggbb as 0..1 components; nothing for any other colour syntax.
-inline std::optional<glm::dvec3> svg_parse_hex(std::string_view s) {
+template <class = void>
+std::optional<glm::dvec3> svg_parse_hex(std::string_view s) {
   const auto hex = [](char c) -> int {
     if (c >= '0' && c <= '9') return c - '0';
     if (c >= 'a' && c <= 'f') return c - 'a' + 10;
@@ -218,7 +221,8 @@ inline std::optional<glm::dvec3> svg_parse_hex(std::string_view s) {
   return rgb;
 }
 
-inline void svg_hex_colour(std::string& out, const glm::dvec3& rgb) {
+template <class = void>
+void svg_hex_colour(std::string& out, const glm::dvec3& rgb) {
   static constexpr char digits[] = "0123456789abcdef";
   out += '#';
   for (int i = 0; i < 3; ++i) {
@@ -243,7 +247,8 @@ glm::dvec3 svg_newell(std::size_t n, Get&& at) {
 template <class R>
 concept svg_point_range = std::ranges::forward_range<R> && Point3<std::ranges::range_value_t<R>>;
 
-inline std::uint64_t svg_edge_key(std::uint32_t a, std::uint32_t b) {
+template <class = void>
+std::uint64_t svg_edge_key(std::uint32_t a, std::uint32_t b) {
   return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
 }
 

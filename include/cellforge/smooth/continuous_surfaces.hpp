@@ -114,12 +114,14 @@ struct surface_partition {
 
 /// The angle in degrees between unit normals a and b, accurate near 0 and 180 (atan2, not acos,
 /// so that coplanar faces give exactly 0 rather than a rounding-dependent sliver). O(1).
-inline double normal_angle_deg(const glm::dvec3& a, const glm::dvec3& b) {
+template <class = void>
+double normal_angle_deg(const glm::dvec3& a, const glm::dvec3& b) {
   return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)) * (180.0 / std::numbers::pi);
 }
 
 /// Throws error(invalid_input) unless 0 ≤ angle_deg ≤ 90 (§6.1's user range). O(1).
-inline void check_surface_angle(double angle_deg, const char* who) {
+template <class = void>
+void check_surface_angle(double angle_deg, const char* who) {
   if (!(angle_deg >= 0.0 && angle_deg <= 90.0))
     throw error(
         error_category::invalid_input,
@@ -129,8 +131,9 @@ inline void check_surface_angle(double angle_deg, const char* who) {
 /// §6.1–6.2: grows surfaces from the lowest unused face across edges whose outward normals differ
 /// by less than angle_deg (strictly), repeating until every face has a surface. O(V + E + F).
 /// Throws error(invalid_input) for an angle outside 0..90.
-inline surface_partition continuous_surfaces(const halfedge_mesh& m, std::span<const glm::dvec3> face_normals,
-                                             double angle_deg) {
+template <class = void>
+surface_partition continuous_surfaces(const halfedge_mesh& m, std::span<const glm::dvec3> face_normals,
+                                      double angle_deg) {
   check_surface_angle(angle_deg, "continuous_surfaces");
   constexpr std::uint32_t none = 0xFFFFFFFFu;
   auto joins = [&](face_handle a, face_handle b) {

@@ -50,17 +50,20 @@ std::array<P, 4> zero_bezier() {
 }
 
 /// Bernstein form: t = 0 and t = 1 return the ends bitwise. O(1).
-inline glm::dvec3 bezier_point(const dbezier& b, double t) {
+template <class = void>
+glm::dvec3 bezier_point(const dbezier& b, double t) {
   const double s = 1.0 - t;
   return (s * s * s) * b[0] + (3.0 * s * s * t) * b[1] + (3.0 * s * t * t) * b[2] + (t * t * t) * b[3];
 }
 
-inline glm::dvec3 bezier_tangent(const dbezier& b, double t) {
+template <class = void>
+glm::dvec3 bezier_tangent(const dbezier& b, double t) {
   const double s = 1.0 - t;
   return (3.0 * s * s) * (b[1] - b[0]) + (6.0 * s * t) * (b[2] - b[1]) + (3.0 * t * t) * (b[3] - b[2]);
 }
 
-inline double bezier_chord_deviation(const dbezier& b) {
+template <class = void>
+double bezier_chord_deviation(const dbezier& b) {
   const glm::dvec3 v = b[3] - b[0];
   const double len2 = v.x * v.x + v.y * v.y + v.z * v.z;
   double worst = 0.0;
@@ -72,7 +75,8 @@ inline double bezier_chord_deviation(const dbezier& b) {
   return worst;
 }
 
-inline void check_polyline_segments(int segments) {
+template <class = void>
+void check_polyline_segments(int segments) {
   if (segments < 1)
     throw error(error_category::invalid_input,
                 "edge_curve::polyline: segments = " + std::to_string(segments) + ", must be >= 1");
@@ -173,12 +177,14 @@ namespace detail {
 using dcurve = edge_curve<glm::dvec3>;
 
 /// Power-basis coefficients in t of the Bézier's coordinate `c`: a0 + a1 t + a2 t² + a3 t³.
-inline std::array<double, 4> bezier_power(const dbezier& b, int c) {
+template <class = void>
+std::array<double, 4> bezier_power(const dbezier& b, int c) {
   const double b0 = b[0][c], b1 = b[1][c], b2 = b[2][c], b3 = b[3][c];
   return {b0, 3.0 * (b1 - b0), 3.0 * (b2 - 2.0 * b1 + b0), b3 - 3.0 * b2 + 3.0 * b1 - b0};
 }
 
-inline curve_kind kind_of_bezier(const dbezier& b) {
+template <class = void>
+curve_kind kind_of_bezier(const dbezier& b) {
   // The cubic term vanishes exactly for degree-elevated quadratics and lines.
   bool quadratic = false;
   for (int c = 0; c < 3; ++c) {
@@ -191,7 +197,8 @@ inline curve_kind kind_of_bezier(const dbezier& b) {
 }
 
 /// set_axis_form below, in double precision: substitutes t = (x − limits[0]) / (limits[1] − limits[0]).
-inline bool set_axis_form(dcurve& c, int axis) {
+template <class = void>
+bool set_axis_form(dcurve& c, int axis) {
   const double lo = c.bezier[0][axis], hi = c.bezier[3][axis];
   const double range = hi - lo;
   if (!(range != 0.0) || !std::isfinite(range)) {
@@ -214,13 +221,15 @@ inline bool set_axis_form(dcurve& c, int axis) {
 }
 
 /// largest_range_axis below, in double precision.
-inline int largest_range_axis(const glm::dvec3& p0, const glm::dvec3& p1) {
+template <class = void>
+int largest_range_axis(const glm::dvec3& p0, const glm::dvec3& p1) {
   const double dx = std::abs(p1.x - p0.x), dy = std::abs(p1.y - p0.y), dz = std::abs(p1.z - p0.z);
   return dx >= dy ? (dx >= dz ? 0 : 2) : (dy >= dz ? 1 : 2);
 }
 
 /// straight_curve below, in double precision.
-inline dcurve straight_curve(const glm::dvec3& p0, const glm::dvec3& p1) {
+template <class = void>
+dcurve straight_curve(const glm::dvec3& p0, const glm::dvec3& p1) {
   dcurve c;
   c.kind = curve_kind::straight;
   c.bezier = {p0, p0 + (p1 - p0) / 3.0, p1 - (p1 - p0) / 3.0, p1};
@@ -229,8 +238,9 @@ inline dcurve straight_curve(const glm::dvec3& p0, const glm::dvec3& p1) {
 }
 
 /// axis_curve below, in double precision.
-inline dcurve axis_curve(int axis, std::array<double, 2> limits,
-                         const std::array<std::array<double, 4>, 2>& coefficients) {
+template <class = void>
+dcurve axis_curve(int axis, std::array<double, 2> limits,
+                  const std::array<std::array<double, 4>, 2>& coefficients) {
   if (axis < 0 || axis > 2)
     throw error(error_category::invalid_input,
                 "axis_curve: axis = " + std::to_string(axis) + ", must be 0, 1 or 2");
@@ -267,8 +277,8 @@ inline dcurve axis_curve(int axis, std::array<double, 2> limits,
 }
 
 /// hermite_curve below, in double precision.
-inline dcurve hermite_curve(const glm::dvec3& p0, const glm::dvec3& d0, const glm::dvec3& p1,
-                            const glm::dvec3& d1) {
+template <class = void>
+dcurve hermite_curve(const glm::dvec3& p0, const glm::dvec3& d0, const glm::dvec3& p1, const glm::dvec3& d1) {
   dcurve c;
   c.bezier = {p0, p0 + d0 / 3.0, p1 - d1 / 3.0, p1};
   c.kind = detail::kind_of_bezier(c.bezier);
@@ -276,7 +286,8 @@ inline dcurve hermite_curve(const glm::dvec3& p0, const glm::dvec3& d0, const gl
 }
 
 /// quadratic_bezier_curve below, in double precision.
-inline dcurve quadratic_bezier_curve(const glm::dvec3& p0, const glm::dvec3& q, const glm::dvec3& p1) {
+template <class = void>
+dcurve quadratic_bezier_curve(const glm::dvec3& p0, const glm::dvec3& q, const glm::dvec3& p1) {
   dcurve c;
   c.bezier = {p0, p0 + (2.0 / 3.0) * (q - p0), p1 + (2.0 / 3.0) * (q - p1), p1};
   c.kind = detail::kind_of_bezier(c.bezier);
@@ -284,9 +295,10 @@ inline dcurve quadratic_bezier_curve(const glm::dvec3& p0, const glm::dvec3& q, 
 }
 
 /// fit_axis_curve below, in double precision.
-inline std::optional<dcurve> fit_axis_curve(const glm::dvec3& p0, const glm::dvec3& p1, int axis,
-                                            const std::optional<glm::dvec3>& t0,
-                                            const std::optional<glm::dvec3>& t1) {
+template <class = void>
+std::optional<dcurve> fit_axis_curve(const glm::dvec3& p0, const glm::dvec3& p1, int axis,
+                                     const std::optional<glm::dvec3>& t0,
+                                     const std::optional<glm::dvec3>& t1) {
   const double range = p1[axis] - p0[axis];
   if (!(range != 0.0)) return std::nullopt;
   // A direction scaled so that its axis component equals the range is d point/dt of the x-param.
@@ -318,8 +330,9 @@ inline std::optional<dcurve> fit_axis_curve(const glm::dvec3& p0, const glm::dve
 }
 
 /// fit_bezier_curve below, in double precision.
-inline dcurve fit_bezier_curve(const glm::dvec3& p0, const glm::dvec3& p1,
-                               const std::optional<glm::dvec3>& t0, const std::optional<glm::dvec3>& t1) {
+template <class = void>
+dcurve fit_bezier_curve(const glm::dvec3& p0, const glm::dvec3& p1, const std::optional<glm::dvec3>& t0,
+                        const std::optional<glm::dvec3>& t1) {
   const glm::dvec3 v = p1 - p0;
   const double chord = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
   auto unit = [](const std::optional<glm::dvec3>& d) -> std::optional<glm::dvec3> {

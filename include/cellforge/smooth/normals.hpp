@@ -22,7 +22,8 @@ namespace cellforge {
 /// §6.3 edge normals: N(x) = (N(a)·B + N(b)·A) / (A + B), normalised, with A, B the distances from
 /// the centres of faces a, b to the edge midpoint (the nearer face weighs more). Zero where the two
 /// face normals cancel. O(E).
-inline std::vector<glm::dvec3> edge_normals(const halfedge_mesh& m, const solid_geometry& g) {
+template <class = void>
+std::vector<glm::dvec3> edge_normals(const halfedge_mesh& m, const solid_geometry& g) {
   std::vector<glm::dvec3> out(m.edges_size(), glm::dvec3(0));
   for (edge_handle e : m.edges()) {
     const std::uint32_t fa = m.face(e, 0).idx(), fb = m.face(e, 1).idx();
@@ -48,14 +49,16 @@ struct vertex_sectors {
 
 /// The corner of face(h) at head(h) is h; the corner of the twin's face at head(h) is prev(twin).
 /// Valid on consistently oriented meshes (the smoother checks that first). O(1).
-inline halfedge_handle corner_across(const halfedge_mesh& m, halfedge_handle h) {
+template <class = void>
+halfedge_handle corner_across(const halfedge_mesh& m, halfedge_handle h) {
   return m.prev(halfedge_mesh::twin(h));
 }
 
 /// Splits the corners at every vertex into sectors joined across non-crease edges (smooth[e] != 0),
 /// by union–find. O((E + F·k) α).
-inline vertex_sectors make_vertex_sectors(const halfedge_mesh& m, const solid_geometry& g,
-                                          std::span<const std::uint8_t> smooth) {
+template <class = void>
+vertex_sectors make_vertex_sectors(const halfedge_mesh& m, const solid_geometry& g,
+                                   std::span<const std::uint8_t> smooth) {
   std::vector<std::uint32_t> parent(m.halfedges_size());
   std::iota(parent.begin(), parent.end(), 0u);
   auto find = [&](std::uint32_t x) {
@@ -98,9 +101,10 @@ inline vertex_sectors make_vertex_sectors(const halfedge_mesh& m, const solid_ge
 /// §6.3 vertex normals, per sector: the inverse-distance-weighted mean of the normals of the
 /// sector's smooth edges, d = distance from the vertex to the edge's current midpoint; a sector with
 /// no smooth edge (or whose mean cancels) takes its faces' mean normal. O(E + sectors).
-inline void sector_normals(const halfedge_mesh& m, const solid_geometry& g, const vertex_sectors& s,
-                           std::span<const std::uint8_t> smooth, std::span<const glm::dvec3> edge_normal,
-                           std::span<const glm::dvec3> midpoints, std::vector<glm::dvec3>& out) {
+template <class = void>
+void sector_normals(const halfedge_mesh& m, const solid_geometry& g, const vertex_sectors& s,
+                    std::span<const std::uint8_t> smooth, std::span<const glm::dvec3> edge_normal,
+                    std::span<const glm::dvec3> midpoints, std::vector<glm::dvec3>& out) {
   out.assign(s.size(), glm::dvec3(0));
   std::vector<double> weight(s.size(), 0.0);
   for (edge_handle e : m.edges()) {

@@ -56,7 +56,8 @@ struct smooth_options {
 
 /// The seed's exact rules (chapter VI): creases straight, normals at interior vertices only,
 /// no crease inside a surface, the axis form everywhere it exists. O(1).
-inline smooth_options seed_smooth_options() {
+template <class = void>
+smooth_options seed_smooth_options() {
   smooth_options o;
   o.smooth_creases = false;
   o.boundary_vertex_normals = false;
@@ -107,7 +108,8 @@ namespace detail::smooth {
 using dend = curve_end<glm::dvec3>;
 using dresult = smooth_result<glm::dvec3>;
 
-inline void check_options(const smooth_options& o) {
+template <class = void>
+void check_options(const smooth_options& o) {
   check_surface_angle(o.angle_deg, "smooth_edges");
   auto bad = [](const char* name, const std::string& value, const char* range) {
     throw error(error_category::invalid_input,
@@ -128,7 +130,8 @@ inline void check_options(const smooth_options& o) {
 /// §6.5's recursive 7-point search: the curve parameter whose point is nearest the line through
 /// m along unit n. Each round keeps the two neighbours of the best of 7 points (a third of the
 /// interval); stops below 1e-12 in t. O(1) (at most 26 rounds).
-inline double nearest_to_line(const dcurve& c, const glm::dvec3& m, const glm::dvec3& n) {
+template <class = void>
+double nearest_to_line(const dcurve& c, const glm::dvec3& m, const glm::dvec3& n) {
   double lo = 0, hi = 1;
   while (hi - lo > 1e-12) {
     std::array<double, 7> t{};

@@ -51,7 +51,8 @@ struct fitted_line {
 
 /// Unit principal eigenvector of a symmetric 3×3 matrix by power iteration from the
 /// column of largest norm (deterministic; 3×3 needs few steps). O(1).
-inline glm::dvec3 principal_direction(const std::array<std::array<double, 3>, 3>& c) {
+template <class = void>
+glm::dvec3 principal_direction(const std::array<std::array<double, 3>, 3>& c) {
   int best = 0;
   double best_norm = -1;
   for (int j = 0; j < 3; ++j) {
@@ -77,7 +78,8 @@ inline glm::dvec3 principal_direction(const std::array<std::array<double, 3>, 3>
 /// Splits the points into `slabs` groups by G = dot(axis, p) with the seed's
 /// F = min(floor(slabs·(G−Gmin)/(Gmax−Gmin)), slabs−1), averages each non-empty group and
 /// fits the least-squares line through the averages (their principal direction). O(n).
-inline fitted_line fit_slabs(std::span<const glm::dvec3> pts, const glm::dvec3& axis, int slabs) {
+template <class = void>
+fitted_line fit_slabs(std::span<const glm::dvec3> pts, const glm::dvec3& axis, int slabs) {
   fitted_line line;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const glm::dvec3& p : pts) {
@@ -119,7 +121,8 @@ inline fitted_line fit_slabs(std::span<const glm::dvec3> pts, const glm::dvec3& 
   return line;
 }
 
-inline double angle_deg(const glm::dvec3& a, const glm::dvec3& b) {
+template <class = void>
+double angle_deg(const glm::dvec3& a, const glm::dvec3& b) {
   const double c = std::clamp(std::abs(glm::dot(a, b)), 0.0, 1.0);
   // acos loses precision near 0; the cross product does not.
   return std::atan2(glm::length(glm::cross(a, b)), c) * 180.0 / std::numbers::pi;
@@ -131,8 +134,8 @@ inline double angle_deg(const glm::dvec3& a, const glm::dvec3& b) {
 /// refined by splitting along the line until it moves < tolerance_deg. O(iterations · n).
 /// "Best": the smallest mean distance of the averages to the line per unit of their spread;
 /// near-ties (symmetric solids fit every split) go to the line the averages spread most along.
-inline central_axis_result central_axis(std::span<const glm::dvec3> pts,
-                                        const central_axis_options& options = {}) {
+template <class = void>
+central_axis_result central_axis(std::span<const glm::dvec3> pts, const central_axis_options& options = {}) {
   namespace t = detail::thin;
   if (pts.empty()) throw error(error_category::invalid_input, "central_axis: there are no points");
   central_axis_result r;

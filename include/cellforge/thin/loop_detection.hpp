@@ -50,7 +50,8 @@ namespace detail::thin {
 
 /// Keeps the candidates above `floor` with no stronger one (or an equally strong earlier
 /// one) within `radius` cycles, strongest first. O(k²) in the candidates.
-inline std::vector<detected_cycle> suppress(std::vector<detected_cycle> cand, double floor, double radius) {
+template <class = void>
+std::vector<detected_cycle> suppress(std::vector<detected_cycle> cand, double floor, double radius) {
   std::vector<detected_cycle> out;
   for (const detected_cycle& c : cand) {
     if (!(c.strength > floor)) continue;
@@ -66,7 +67,8 @@ inline std::vector<detected_cycle> suppress(std::vector<detected_cycle> cand, do
   return out;
 }
 
-inline double mean(std::span<const double> v, std::ptrdiff_t lo, std::ptrdiff_t hi) {  // [lo, hi]
+template <class = void>
+double mean(std::span<const double> v, std::ptrdiff_t lo, std::ptrdiff_t hi) {  // [lo, hi]
   double s = 0;
   for (std::ptrdiff_t j = lo; j <= hi; ++j) s += v[static_cast<std::size_t>(j)];
   return s / static_cast<double>(hi - lo + 1);
@@ -74,7 +76,8 @@ inline double mean(std::span<const double> v, std::ptrdiff_t lo, std::ptrdiff_t 
 
 /// True when more than 60 % of the consecutive non-zero differences change sign: the
 /// up-down-up pattern triangle faces give (the seed's "tendency to alternate").
-inline bool alternates(std::span<const double> v) {
+template <class = void>
+bool alternates(std::span<const double> v) {
   std::size_t flips = 0, pairs = 0;
   double last = 0;
   for (std::size_t i = 1; i < v.size(); ++i) {
@@ -89,8 +92,8 @@ inline bool alternates(std::span<const double> v) {
   return pairs > 0 && static_cast<double>(flips) > 0.6 * static_cast<double>(pairs);
 }
 
-inline detection_result detect_seed(std::span<const double> l, std::size_t faces,
-                                    const detection_options& o) {
+template <class = void>
+detection_result detect_seed(std::span<const double> l, std::size_t faces, const detection_options& o) {
   detection_result r;
   const auto n = static_cast<std::ptrdiff_t>(l.size());
   std::vector<double> v(l.size());
@@ -135,7 +138,8 @@ inline detection_result detect_seed(std::span<const double> l, std::size_t faces
 }
 
 /// The least of v over [i − half, i + half] for every i (monotone deque). O(n).
-inline std::vector<double> window_min(std::span<const double> v, std::ptrdiff_t half) {
+template <class = void>
+std::vector<double> window_min(std::span<const double> v, std::ptrdiff_t half) {
   const auto n = static_cast<std::ptrdiff_t>(v.size());
   std::vector<double> out(v.size());
   std::vector<std::ptrdiff_t> q(v.size());  // indices with increasing values
@@ -153,7 +157,8 @@ inline std::vector<double> window_min(std::span<const double> v, std::ptrdiff_t 
   return out;
 }
 
-inline detection_result detect_prominence(std::span<const double> l, const detection_options& o) {
+template <class = void>
+detection_result detect_prominence(std::span<const double> l, const detection_options& o) {
   detection_result r;
   const auto n = static_cast<std::ptrdiff_t>(l.size());
   const auto half_of = [&](double fraction) {
@@ -193,8 +198,9 @@ inline detection_result detect_prominence(std::span<const double> l, const detec
 
 /// The thin cycles among `lengths` (cycle i+1's least length at index i) of a solid with
 /// `faces` faces. Prominence: O(n + k·n) for k candidates; seed: O(n · window + k²).
-inline detection_result detect_thin_cycles(std::span<const double> lengths, std::size_t faces,
-                                           const detection_options& options = {}) {
+template <class = void>
+detection_result detect_thin_cycles(std::span<const double> lengths, std::size_t faces,
+                                    const detection_options& options = {}) {
   return options.detection == thin_detection::seed ? detail::thin::detect_seed(lengths, faces, options)
                                                    : detail::thin::detect_prominence(lengths, options);
 }

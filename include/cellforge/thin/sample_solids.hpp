@@ -67,7 +67,8 @@ thin_sample<P> revolve(std::string name, int segments, int rings, bool triangles
 }
 
 /// Bulbs of radius 1 joined by necks of radius `neck`: `bulbs` bulbs over z ∈ [−bulbs, bulbs].
-inline double chain_radius(double z, int bulbs, double neck) {
+template <class = void>
+double chain_radius(double z, int bulbs, double neck) {
   const double u = (z + bulbs) / 2.0;                 // 0 .. bulbs, one bulb per unit
   const double x = u - std::floor(u);                 // position inside the bulb
   const bool end = u < 0.5 ? true : u > bulbs - 0.5;  // the outer halves of the end bulbs

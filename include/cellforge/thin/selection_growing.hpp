@@ -62,8 +62,9 @@ struct growing_result {
 namespace detail::thin {
 
 /// The survivors of one cycle, in order (§5.2 cut, §5.4 schedule, final stable sort).
-inline std::vector<std::uint32_t> keep_selections(const std::vector<double>& length, double keep_ratio,
-                                                  std::size_t cap) {
+template <class = void>
+std::vector<std::uint32_t> keep_selections(const std::vector<double>& length, double keep_ratio,
+                                           std::size_t cap) {
   std::vector<std::uint32_t> kept;
   if (length.empty()) return kept;
   const double least = *std::min_element(length.begin(), length.end());
@@ -128,7 +129,8 @@ std::size_t first_least(const std::vector<Selection>& kept, Length&& length) {
           " candidate selections (thin_options::work_budget); raise work_budget or lower selection_cap");
 }
 
-inline std::uint64_t splitmix64(std::uint64_t x) {
+template <class = void>
+std::uint64_t splitmix64(std::uint64_t x) {
   x += 0x9E3779B97F4A7C15ull;
   x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
   x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
@@ -150,7 +152,8 @@ struct fast_child {
   double length;
 };
 
-inline growing_result grow_fast(const thin_face_graph& g, std::uint32_t start, const growing_options& o) {
+template <class = void>
+growing_result grow_fast(const thin_face_graph& g, std::uint32_t start, const growing_options& o) {
   const std::uint32_t nf = g.num_faces;
   const std::size_t words = (nf + 63) / 64;
   std::vector<std::uint64_t> key(nf);
@@ -275,8 +278,9 @@ struct faithful_selection {
 };
 
 /// Inserts face f's edges: not in a list → L1 (added); in L1 → moved to L2 (removed).
-inline void insert_face(const thin_face_graph& g, faithful_selection& s, std::uint32_t f,
-                        std::vector<std::uint32_t>& added, std::vector<std::uint32_t>& removed) {
+template <class = void>
+void insert_face(const thin_face_graph& g, faithful_selection& s, std::uint32_t f,
+                 std::vector<std::uint32_t>& added, std::vector<std::uint32_t>& removed) {
   added.clear(), removed.clear();
   for (std::uint32_t k = g.face_start[f]; k < g.face_start[f + 1]; ++k) {
     const std::uint32_t e = g.slot_edge[k];
@@ -295,7 +299,8 @@ inline void insert_face(const thin_face_graph& g, faithful_selection& s, std::ui
   for (const std::uint32_t e : added) s.total += g.edge_length[e];
 }
 
-inline growing_result grow_faithful(const thin_face_graph& g, std::uint32_t start, const growing_options& o) {
+template <class = void>
+growing_result grow_faithful(const thin_face_graph& g, std::uint32_t start, const growing_options& o) {
   const std::uint32_t nf = g.num_faces;
   growing_result r;
   std::vector<std::uint32_t> added, removed;
@@ -364,8 +369,8 @@ inline growing_result grow_faithful(const thin_face_graph& g, std::uint32_t star
 /// §5.4); per cycle the least boundary length and its loop. Fast: O(faces · cap · (boundary
 /// + candidates · degree + faces/64)); faithful: O(faces² · cap · candidates) and more.
 /// Throws invalid_input for a graph that is not a closed surface, budget past work_budget.
-inline growing_result grow_selections(const thin_face_graph& g, std::uint32_t start,
-                                      const growing_options& o = {}) {
+template <class = void>
+growing_result grow_selections(const thin_face_graph& g, std::uint32_t start, const growing_options& o = {}) {
   const auto bad = [](const std::string& what) {
     throw error(error_category::invalid_input, "grow_selections: " + what);
   };

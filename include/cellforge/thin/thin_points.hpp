@@ -54,7 +54,8 @@ struct thin_options {
 
 namespace detail::thin {
 
-inline void check_options(const thin_options& o) {
+template <class = void>
+void check_options(const thin_options& o) {
   const auto bad = [](const std::string& what) {
     throw error(error_category::invalid_input, "find_thin_points: " + what);
   };
@@ -189,7 +190,8 @@ thin_input prepare(const surface_mesh<P>& m) {
 /// among those that bend by at most 20° and are strictly convex. A cluster is one face whose slots are its
 /// outer boundary in order; its inner edges leave the graph, so they can never be on a selection's boundary.
 /// O(slots · vertex degree).
-inline thin_input cluster_triangles(thin_input in, std::uint32_t& clustered) {
+template <class = void>
+thin_input cluster_triangles(thin_input in, std::uint32_t& clustered) {
   const thin_face_graph& g = in.graph;
   constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
   const std::uint32_t nf = g.num_faces;
@@ -360,8 +362,9 @@ inline thin_input cluster_triangles(thin_input in, std::uint32_t& clustered) {
 
 /// Splits the boundary of a selection (its inner slots) into closed chains by walking
 /// round the selected region (consistent orientation makes next/twin a boundary walk).
-inline std::vector<std::vector<std::uint32_t>> boundary_chains(const thin_face_graph& g,
-                                                               const std::vector<std::uint32_t>& inner) {
+template <class = void>
+std::vector<std::vector<std::uint32_t>> boundary_chains(const thin_face_graph& g,
+                                                        const std::vector<std::uint32_t>& inner) {
   std::vector<std::vector<std::uint32_t>> chains;
   std::vector<char> used(inner.size(), 0);
   const auto index_of = [&](std::uint32_t s) {
@@ -397,8 +400,9 @@ inline std::vector<std::vector<std::uint32_t>> boundary_chains(const thin_face_g
   return chains;
 }
 
-inline thin_loop<glm::dvec3> make_loop(const thin_input& in, const std::vector<std::uint32_t>& inner,
-                                       const glm::dvec3& dir, double lo, double hi) {
+template <class = void>
+thin_loop<glm::dvec3> make_loop(const thin_input& in, const std::vector<std::uint32_t>& inner,
+                                const glm::dvec3& dir, double lo, double hi) {
   const thin_face_graph& g = in.graph;
   const auto chains = boundary_chains(g, inner);
   thin_loop<glm::dvec3> loop;
@@ -429,12 +433,14 @@ inline thin_loop<glm::dvec3> make_loop(const thin_input& in, const std::vector<s
   return loop;
 }
 
-inline double ms_since(std::chrono::steady_clock::time_point t) {
+template <class = void>
+double ms_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
 }
 
 /// find_thin_points on a prepared mesh, in double precision. O(as find_thin_points).
-inline thin_result<glm::dvec3> find(thin_input prepared, const thin_options& options) {
+template <class = void>
+thin_result<glm::dvec3> find(thin_input prepared, const thin_options& options) {
   thin_result<glm::dvec3> r;
   const thin_input in =
       options.cluster_faces ? cluster_triangles(std::move(prepared), r.clustered_faces) : std::move(prepared);
@@ -501,8 +507,9 @@ inline thin_result<glm::dvec3> find(thin_input prepared, const thin_options& opt
 
 /// A volume's boundary-mesh result with cell ids: loop vertices, edges (0xFFFFFFFF where the
 /// mesh edge is no cell edge) and the start face. O(loop size · vertex degree).
-inline void to_cell_ids(const cell_topology& cc, const halfedge_mesh& m, thin_result_base& r,
-                        std::span<thin_loop_base* const> loops) {
+template <class = void>
+void to_cell_ids(const cell_topology& cc, const halfedge_mesh& m, thin_result_base& r,
+                 std::span<thin_loop_base* const> loops) {
   const auto cell_vertex_of = m.get_vertex_property<std::uint32_t>("v:cell_vertex");
   const auto cell_face_of = m.get_face_property<std::uint32_t>("f:cell_face");
   r.start_face = cell_face_of[face_handle(r.start_face)];

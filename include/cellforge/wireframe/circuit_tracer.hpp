@@ -64,12 +64,14 @@ struct plane_component {
   std::vector<std::vector<std::uint32_t>> outer;        // clockwise walks (outer boundaries)
 };
 
-inline glm::dvec2 project(const plane_component& c, const glm::dvec3& p) {
+template <class = void>
+glm::dvec2 project(const plane_component& c, const glm::dvec3& p) {
   const glm::dvec3 d = p - c.origin;
   return {glm::dot(d, c.u), glm::dot(d, c.w)};
 }
 
-inline double signed_area_2d(const std::vector<glm::dvec2>& q) {
+template <class = void>
+double signed_area_2d(const std::vector<glm::dvec2>& q) {
   double s = 0.0;
   for (std::size_t i = 0; i < q.size(); ++i) {
     const auto& a = q[i];
@@ -80,7 +82,8 @@ inline double signed_area_2d(const std::vector<glm::dvec2>& q) {
 }
 
 /// Even-odd test of a 2D point against a polygon. O(n).
-inline bool inside_2d(const std::vector<glm::dvec2>& poly, const glm::dvec2& q) {
+template <class = void>
+bool inside_2d(const std::vector<glm::dvec2>& poly, const glm::dvec2& q) {
   bool in = false;
   for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
     const auto& a = poly[i];
@@ -108,8 +111,9 @@ struct plane_scratch {
 /// Traces the faces of one in-plane edge set: angular order around each vertex, walks with
 /// the face on the left. Edges walked on both sides by one walk (trees, bridges) are removed
 /// and the walk repeated. O(k log k) for k in-plane edges.
-inline void trace_plane_faces(const wire_graph& g, std::vector<std::uint32_t>& edges, plane_component& c,
-                              plane_scratch& w, work_budget& budget) {
+template <class = void>
+void trace_plane_faces(const wire_graph& g, std::vector<std::uint32_t>& edges, plane_component& c,
+                       plane_scratch& w, work_budget& budget) {
   for (;;) {
     ++w.round;
     w.verts.clear();
@@ -197,7 +201,8 @@ inline void trace_plane_faces(const wire_graph& g, std::vector<std::uint32_t>& e
   }
 }
 
-inline std::array<double, 4> plane_coords(const glm::dvec3& n, const glm::dvec3& o, double size) {
+template <class = void>
+std::array<double, 4> plane_coords(const glm::dvec3& n, const glm::dvec3& o, double size) {
   constexpr double q = 1e-3;  // quantum of the plane hash (normal, offset / size)
   return {n.x / q, n.y / q, n.z / q, glm::dot(n, o) / (q * size)};
 }
@@ -286,8 +291,8 @@ class fan_index {
 
 /// The polynomial planar-arrangement tracer. O(sum over vertices of degree² + sum over planes
 /// of k log k) for k edges in a plane.
-inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_result& r,
-                         work_budget& budget) {
+template <class = void>
+void trace_planar(const wire_graph& g, const trace_options& opt, trace_result& r, work_budget& budget) {
   const double tol = std::max(opt.planarity.absolute(bounding_box{g.center - 0.5 * g.size / std::sqrt(3.0),
                                                                   g.center + 0.5 * g.size / std::sqrt(3.0)}),
                               g.merge_tolerance);
@@ -520,7 +525,8 @@ inline void trace_planar(const wire_graph& g, const trace_options& opt, trace_re
 /// The seed's breadth-first circuit search (§4.2), faithful: from each edge, paths grow from
 /// the end vertex of lower degree; paths with an inner circuit and paths starting with the
 /// same two edges as a found circuit are removed. Exponential worst case; budgeted.
-inline void trace_bfs(const wire_graph& g, const trace_options& opt, trace_result& r, work_budget& budget) {
+template <class = void>
+void trace_bfs(const wire_graph& g, const trace_options& opt, trace_result& r, work_budget& budget) {
   const std::size_t max_len = opt.max_circuit_edges == 0 ? g.num_edges() : opt.max_circuit_edges;
   struct path {
     std::vector<std::uint32_t> verts;  // verts[0] = start; verts.back() = latest vertex
@@ -575,7 +581,8 @@ inline void trace_bfs(const wire_graph& g, const trace_options& opt, trace_resul
 
 /// Finds candidate faces of a labelled wireframe with the chosen tracer. Planar: polynomial,
 /// O(Σ deg(v)² + Σ_planes k log k); seed_bfs: exponential worst case, stopped by the work budget.
-inline trace_result trace_circuits(const wire_graph& g, const trace_options& options = {}) {
+template <class = void>
+trace_result trace_circuits(const wire_graph& g, const trace_options& options = {}) {
   detail::stopwatch clock;
   trace_result r;
   detail::work_budget budget{options.work_budget, 0, "trace_circuits"};

@@ -39,9 +39,10 @@ struct extra_faces_result : stage_report {
 
 /// Adds missed faces, removes overlapping and free faces. O(V + E + F·L) plus, when faces are
 /// missing, one planar trace and a crossing test of each added face against the faces.
-inline extra_faces_result extra_faces(const wire_graph& g, const std::vector<wire_face>& candidates,
-                                      const std::vector<std::uint32_t>& selected,
-                                      const extra_face_options& options = {}) {
+template <class = void>
+extra_faces_result extra_faces(const wire_graph& g, const std::vector<wire_face>& candidates,
+                               const std::vector<std::uint32_t>& selected,
+                               const extra_face_options& options = {}) {
   detail::stopwatch clock;
   extra_faces_result r;
   std::vector<wire_face> faces;

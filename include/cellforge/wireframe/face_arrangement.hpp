@@ -320,9 +320,9 @@ void candidate_pairs(const wire_graph& g, const std::vector<face_plane>& plane, 
 /// two candidates cross, the one some edge needs wins; both go when neither or both are
 /// needed). O(V + E + F·L + P·L log L) where P is the number of candidate pairs the grid
 /// yields, plus O(rounds · F·L) for the needs, rounds being the chains of decisions (one or two).
-inline arrangement_result arrange_faces(const wire_graph& g, const std::vector<wire_face>& faces,
-                                        const reduction_result& reduction,
-                                        const arrangement_options& options = {}) {
+template <class = void>
+arrangement_result arrange_faces(const wire_graph& g, const std::vector<wire_face>& faces,
+                                 const reduction_result& reduction, const arrangement_options& options = {}) {
   detail::stopwatch clock;
   arrangement_result r;
   const double tol = options.planarity.relative * g.size;

@@ -49,8 +49,9 @@ struct reduction_result : stage_report {
 };
 
 /// Measures and reduces the candidates. O(F·L) for measures, O(Σ adjacent pairs · L) for sums.
-inline reduction_result reduce_faces(const wire_graph& g, const std::vector<wire_face>& faces,
-                                     const reduction_options& options = {}) {
+template <class = void>
+reduction_result reduce_faces(const wire_graph& g, const std::vector<wire_face>& faces,
+                              const reduction_options& options = {}) {
   detail::stopwatch clock;
   reduction_result r;
   const double tol = options.planarity.relative * g.size;

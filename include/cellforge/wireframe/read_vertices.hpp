@@ -47,20 +47,23 @@ struct read_result : stage_report {
 
 namespace detail {
 
-inline std::string number_text(double x) {
+template <class = void>
+std::string number_text(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", x);
   return buf;
 }
 
-inline std::string point_text(const glm::dvec3& p) {
+template <class = void>
+std::string point_text(const glm::dvec3& p) {
   return "(" + number_text(p.x) + ", " + number_text(p.y) + ", " + number_text(p.z) + ")";
 }
 
 /// Merges points within tol by hashing them to cells of side 64·tol; returns each point's
 /// representative (the smallest index of its cluster). O(n) expected.
-inline std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p,
-                                                     const std::vector<char>& used, double tol) {
+template <class = void>
+std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p, const std::vector<char>& used,
+                                              double tol) {
   const std::size_t n = p.size();
   union_find uf(n);
   // Cell → first point, then a linked list through `next`: no allocation per cell.
@@ -109,9 +112,10 @@ inline std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec
 /// median edge length holds the vertices; each edge visits the cells along it. Pieces are
 /// appended in order along the edge and keep their edge's origin. Returns the number of splits.
 /// O(E · cells per edge · vertices per cell).
-inline std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vector<char>& is_vertex,
-                                     std::vector<std::array<std::uint32_t, 2>>& ends,
-                                     std::vector<std::uint32_t>& origin, double tol) {
+template <class = void>
+std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vector<char>& is_vertex,
+                              std::vector<std::array<std::uint32_t, 2>>& ends,
+                              std::vector<std::uint32_t>& origin, double tol) {
   std::vector<double> lengths;
   for (const auto& e : ends)
     if (e[0] != e[1]) lengths.push_back(glm::length(p[e[1]] - p[e[0]]));

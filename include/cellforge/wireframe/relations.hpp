@@ -38,8 +38,9 @@ struct relations_result : stage_report {
 
 /// Derives rotation orders and outward pointers from the kept faces and the volumes.
 /// O(Σ L + E·k log k).
-inline relations_result find_relations(const wire_graph& g, const std::vector<wire_face>& faces,
-                                       const volume_result& volumes, const relations_options& = {}) {
+template <class = void>
+relations_result find_relations(const wire_graph& g, const std::vector<wire_face>& faces,
+                                const volume_result& volumes, const relations_options& = {}) {
   detail::stopwatch clock;
   relations_result r;
   const auto fan = detail::edge_fans(g, faces, &volumes.face_kept);

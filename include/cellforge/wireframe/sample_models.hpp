@@ -75,7 +75,8 @@ namespace detail {
 
 /// Canonical form of a vertex cycle up to rotation and reversal: starts at its smallest
 /// vertex and goes towards the smaller neighbour. O(length).
-inline std::vector<std::uint32_t> canonical_cycle(const std::vector<std::uint32_t>& loop) {
+template <class = void>
+std::vector<std::uint32_t> canonical_cycle(const std::vector<std::uint32_t>& loop) {
   const std::size_t n = loop.size();
   if (n == 0) return {};
   const std::size_t s = static_cast<std::size_t>(std::min_element(loop.begin(), loop.end()) - loop.begin());
@@ -143,14 +144,16 @@ std::optional<std::vector<std::uint32_t>> match_faces(const FacesA& expected, co
 }
 
 /// Newell normal of a closed polygon (not normalised; its length is twice the area). O(n).
-inline glm::dvec3 newell_normal(const std::vector<glm::dvec3>& pts, const std::vector<std::uint32_t>& loop) {
+template <class = void>
+glm::dvec3 newell_normal(const std::vector<glm::dvec3>& pts, const std::vector<std::uint32_t>& loop) {
   return newell(loop, [&](std::uint32_t v) { return pts[v]; });
 }
 
 /// Counts the faces no edge needs (see sample_model::unforced_faces): a face is needed by an
 /// edge of it when, without it, that edge would lie on fewer than two faces or on just two
 /// coplanar ones. O(L log L), L the total loop length.
-inline std::size_t count_unforced(const sample_model& m) {
+template <class = void>
+std::size_t count_unforced(const sample_model& m) {
   // (smaller vertex, larger vertex, face) for every face side, sorted: the faces of an edge are a run.
   std::vector<std::array<std::uint32_t, 3>> sides;
   std::vector<glm::dvec3> normal;
@@ -190,7 +193,8 @@ inline std::size_t count_unforced(const sample_model& m) {
 }
 
 /// Sorts each volume's faces and fills unforced_faces. O(model).
-inline sample_model finish(sample_model m) {
+template <class = void>
+sample_model finish(sample_model m) {
   for (auto& v : m.volumes) std::sort(v.begin(), v.end());
   m.unforced_faces = count_unforced(m);
   return m;
@@ -234,7 +238,8 @@ bool same_volumes(const FacesA& expected_faces, const VolumesA& expected_volumes
 /// face per edge-connected coplanar region with the same pair of labels; straight runs of the
 /// outlines become single edges. Throws invalid_input on a malformed layout or on a region whose
 /// outline touches itself at a vertex. O(cells + facets · log(facets per face)).
-inline sample_model make_voxel_model(const voxel_layout& layout, std::string name) {
+template <class = void>
+sample_model make_voxel_model(const voxel_layout& layout, std::string name) {
   const std::array<std::size_t, 3> cells{layout.xs.size() - 1, layout.ys.size() - 1, layout.zs.size() - 1};
   if (layout.xs.size() < 2 || layout.ys.size() < 2 || layout.zs.size() < 2 ||
       layout.labels.size() != cells[0] * cells[1] * cells[2])
@@ -450,7 +455,8 @@ inline sample_model make_voxel_model(const voxel_layout& layout, std::string nam
 
 /// Builds a ring stack (see ring_stack): rings joined by quad or triangle bands, closed by
 /// planar caps or cone apexes, split into volumes at the wall rings. O(rings · n).
-inline sample_model make_ring_stack(const ring_stack& s, std::string name) {
+template <class = void>
+sample_model make_ring_stack(const ring_stack& s, std::string name) {
   const std::size_t rings = s.radius.size(), n = s.n;
   if (n < 3 || rings == 0 || s.height.size() != rings || (!s.twist.empty() && s.twist.size() != rings))
     throw error(error_category::invalid_input, "make_ring_stack: ring data of different lengths");
@@ -518,7 +524,8 @@ inline sample_model make_ring_stack(const ring_stack& s, std::string name) {
 
 /// Splits edge `e` of a model at the points `at` (parameters in (0, 1), increasing): a chain of
 /// collinear edges through new degree-2 vertices; face cycles gain the new vertices. O(model).
-inline sample_model split_edge(sample_model m, std::size_t e, const std::vector<double>& at) {
+template <class = void>
+sample_model split_edge(sample_model m, std::size_t e, const std::vector<double>& at) {
   if (e >= m.wire.edges.size()) throw error(error_category::invalid_input, "split_edge: no such edge");
   const auto [a, b] = m.wire.edges[e];
   std::vector<std::uint32_t> chain{a};
@@ -547,8 +554,8 @@ inline sample_model split_edge(sample_model m, std::size_t e, const std::vector<
 }
 
 /// The disjoint union of two models, `b` moved by `offset`. O(size of both).
-inline sample_model disjoint_union(sample_model a, const sample_model& b, glm::dvec3 offset,
-                                   std::string name) {
+template <class = void>
+sample_model disjoint_union(sample_model a, const sample_model& b, glm::dvec3 offset, std::string name) {
   const auto nv = static_cast<std::uint32_t>(a.wire.points.size());
   const auto nf = static_cast<std::uint32_t>(a.faces.size());
   for (const auto& p : b.wire.points) a.wire.points.push_back(p + offset);
@@ -568,27 +575,31 @@ inline sample_model disjoint_union(sample_model a, const sample_model& b, glm::d
 
 /// The model with every point mapped to `linear * p + offset` (a scaling or rigid motion for
 /// tolerance tests); the ground truth is unchanged. O(V).
-inline sample_model transformed(sample_model m, const glm::dmat3& linear, glm::dvec3 offset) {
+template <class = void>
+sample_model transformed(sample_model m, const glm::dmat3& linear, glm::dvec3 offset) {
   for (auto& p : m.wire.points) p = linear * p + offset;
   return m;
 }
 
 /// A voxel layout of nx × ny × nz cells with the given coordinates, all empty.
-inline voxel_layout empty_layout(std::vector<double> xs, std::vector<double> ys, std::vector<double> zs) {
+template <class = void>
+voxel_layout empty_layout(std::vector<double> xs, std::vector<double> ys, std::vector<double> zs) {
   voxel_layout l{std::move(xs), std::move(ys), std::move(zs), {}};
   l.labels.assign((l.xs.size() - 1) * (l.ys.size() - 1) * (l.zs.size() - 1), 0);
   return l;
 }
 
 namespace detail {
-inline std::vector<double> iota_coords(std::size_t n) {
+template <class = void>
+std::vector<double> iota_coords(std::size_t n) {
   std::vector<double> c(n + 1);
   for (std::size_t i = 0; i <= n; ++i) c[i] = static_cast<double>(i);
   return c;
 }
 /// A regular n-gon prism or pyramid family member as a ring stack (the ring turned so that
 /// a square's sides are axis-aligned).
-inline ring_stack regular_stack(std::size_t n, std::vector<double> heights, double radius = 1.0) {
+template <class = void>
+ring_stack regular_stack(std::size_t n, std::vector<double> heights, double radius = 1.0) {
   ring_stack s;
   s.n = n;
   s.height = std::move(heights);
@@ -599,7 +610,8 @@ inline ring_stack regular_stack(std::size_t n, std::vector<double> heights, doub
 }  // namespace detail
 
 /// A tetrahedron: 4 vertices, 6 edges, 4 faces, 1 volume. O(1).
-inline sample_model sample_tetrahedron() {
+template <class = void>
+sample_model sample_tetrahedron() {
   sample_model m;
   m.name = "tetrahedron";
   m.wire.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -610,7 +622,8 @@ inline sample_model sample_tetrahedron() {
 }
 
 /// A box with corners (0,0,0) and `size`: 8 vertices, 12 edges, 6 faces, 1 volume. O(1).
-inline sample_model sample_cube(glm::dvec3 size = {1, 1, 1}) {
+template <class = void>
+sample_model sample_cube(glm::dvec3 size = {1, 1, 1}) {
   voxel_layout l = empty_layout({0, size.x}, {0, size.y}, {0, size.z});
   l.labels = {1};
   return make_voxel_model(l, "cube");
@@ -618,7 +631,8 @@ inline sample_model sample_cube(glm::dvec3 size = {1, 1, 1}) {
 
 /// An octahedron: 6 vertices, 12 edges, 8 faces, 1 volume; its three equatorial squares are
 /// cycles of existing edges but not faces. O(1).
-inline sample_model sample_octahedron() {
+template <class = void>
+sample_model sample_octahedron() {
   ring_stack s = detail::regular_stack(4, {0.0});
   s.twist = {0.0};
   s.bottom = -1.0;
@@ -627,13 +641,15 @@ inline sample_model sample_octahedron() {
 }
 
 /// A prism over a regular n-gon (3 <= n <= 1024): 2n vertices, 3n edges, n + 2 faces. O(n).
-inline sample_model sample_prism(std::size_t n) {
+template <class = void>
+sample_model sample_prism(std::size_t n) {
   if (n < 3 || n > 1024) throw error(error_category::invalid_input, "sample_prism: n must be in 3..1024");
   return make_ring_stack(detail::regular_stack(n, {0.0, 1.0}), "prism " + std::to_string(n));
 }
 
 /// A pyramid over a regular n-gon (3 <= n <= 1024): n + 1 vertices, 2n edges, n + 1 faces. O(n).
-inline sample_model sample_pyramid(std::size_t n) {
+template <class = void>
+sample_model sample_pyramid(std::size_t n) {
   if (n < 3 || n > 1024) throw error(error_category::invalid_input, "sample_pyramid: n must be in 3..1024");
   ring_stack s = detail::regular_stack(n, {0.0});
   s.top = 1.0;
@@ -644,7 +660,8 @@ inline sample_model sample_pyramid(std::size_t n) {
 /// poles); slices·(stacks − 1) + 2 vertices, slices·(2·stacks − 1) edges; one volume of
 /// slices·stacks faces. Its rings (and with even slices its meridian circles) are planar
 /// cycles of edges that no edge needs, so none is a face. O(slices · stacks).
-inline sample_model sample_uv_sphere(std::size_t slices, std::size_t stacks) {
+template <class = void>
+sample_model sample_uv_sphere(std::size_t slices, std::size_t stacks) {
   if (slices < 3 || stacks < 2 || slices > 4096 || stacks > 4096)
     throw error(error_category::invalid_input, "sample_uv_sphere: need 3..4096 slices and 2..4096 stacks");
   ring_stack s;
@@ -660,7 +677,8 @@ inline sample_model sample_uv_sphere(std::size_t slices, std::size_t stacks) {
 }
 
 /// Two unit cubes sharing a face: 12 vertices, 20 edges, 11 faces, 2 volumes. O(1).
-inline sample_model sample_two_cubes() {
+template <class = void>
+sample_model sample_two_cubes() {
   voxel_layout l = empty_layout({0, 1, 2}, {0, 1}, {0, 1});
   l.labels = {1, 2};
   return make_voxel_model(l, "two cubes");
@@ -668,7 +686,8 @@ inline sample_model sample_two_cubes() {
 
 /// A k × m × n grid of unit cubes, every cube its own volume and every interior wall a face.
 /// O(k·m·n · log).
-inline sample_model sample_grid(std::size_t k, std::size_t m, std::size_t n) {
+template <class = void>
+sample_model sample_grid(std::size_t k, std::size_t m, std::size_t n) {
   if (k == 0 || m == 0 || n == 0 || k * m * n > 1'000'000)
     throw error(error_category::invalid_input, "sample_grid: need 1 to 10^6 cubes");
   voxel_layout l = empty_layout(detail::iota_coords(k), detail::iota_coords(m), detail::iota_coords(n));
@@ -678,9 +697,9 @@ inline sample_model sample_grid(std::size_t k, std::size_t m, std::size_t n) {
 
 namespace detail {
 /// One volume: the listed (x, y) cells of a footprint, extruded one cell high.
-inline sample_model extruded_footprint(std::vector<double> xs, std::vector<double> ys,
-                                       const std::vector<std::array<std::size_t, 2>>& cells,
-                                       std::string name) {
+template <class = void>
+sample_model extruded_footprint(std::vector<double> xs, std::vector<double> ys,
+                                const std::vector<std::array<std::size_t, 2>>& cells, std::string name) {
   voxel_layout l = empty_layout(std::move(xs), std::move(ys), {0, 1});
   for (const auto& c : cells) l.at(c[0], c[1], 0) = 1;
   return make_voxel_model(l, std::move(name));
@@ -689,37 +708,43 @@ inline sample_model extruded_footprint(std::vector<double> xs, std::vector<doubl
 
 /// An L of two boxes with coplanar faces merged: 12 vertices, 18 edges, 8 faces (two
 /// non-convex hexagons), 1 volume. O(1).
-inline sample_model sample_L() {
+template <class = void>
+sample_model sample_L() {
   return detail::extruded_footprint({0, 1, 3}, {0, 1, 2.5}, {{0, 0}, {1, 0}, {0, 1}}, "L");
 }
 
 /// A T of two boxes, coplanar faces merged: 16 vertices, 24 edges, 10 faces, 1 volume. O(1).
-inline sample_model sample_T() {
+template <class = void>
+sample_model sample_T() {
   return detail::extruded_footprint({0, 1, 2, 3}, {0, 1.5, 2.5}, {{1, 0}, {0, 1}, {1, 1}, {2, 1}}, "T");
 }
 
 /// A U of three boxes, coplanar faces merged: 16 vertices, 24 edges, 10 faces, 1 volume. O(1).
-inline sample_model sample_U() {
+template <class = void>
+sample_model sample_U() {
   return detail::extruded_footprint({0, 1, 2, 3}, {0, 1, 3}, {{0, 0}, {1, 0}, {2, 0}, {0, 1}, {2, 1}}, "U");
 }
 
 /// A unit cube with a pyramid roof: 9 vertices, 16 edges, 9 faces, 1 volume. The square under
 /// the roof is a cycle of edges but no edge needs it, so it is not a face (with
 /// face_reading::keep_walls it is a wall between box and roof: 10 faces, 2 volumes). O(1).
-inline sample_model sample_house() {
+template <class = void>
+sample_model sample_house() {
   ring_stack s = detail::regular_stack(4, {0.0, 1.0}, std::numbers::sqrt2 / 2);
   s.top = 1.6;
   return make_ring_stack(s, "house");
 }
 
 /// Two objects: a cube and a hexagonal prism apart from it. O(1).
-inline sample_model sample_disjoint_solids() {
+template <class = void>
+sample_model sample_disjoint_solids() {
   return disjoint_union(sample_cube(), sample_prism(6), {3, 0.5, 0}, "disjoint solids");
 }
 
 /// A 2 × 1.5 × 1 box whose edges are split by collinear degree-2 vertices: four edges in two,
 /// two in three, one in four (19 vertices, 23 edges, 6 faces, 1 volume). O(1).
-inline sample_model sample_split_edges() {
+template <class = void>
+sample_model sample_split_edges() {
   sample_model m = sample_cube({2, 1.5, 1});
   // split_edge moves the pieces to the back, so edge 0 is always the next original edge.
   for (std::size_t i = 0; i < 7; ++i) {
@@ -734,7 +759,8 @@ inline sample_model sample_split_edges() {
 
 /// A square frame (genus 1): a 3 × 3 ring of cells around a square hole; top and bottom are
 /// faces with a hole; 16 vertices, 24 edges, 10 faces, 1 volume. O(1).
-inline sample_model sample_frame() {
+template <class = void>
+sample_model sample_frame() {
   voxel_layout l = empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 0.5});
   for (std::size_t i = 0; i < 3; ++i)
     for (std::size_t j = 0; j < 3; ++j) l.at(i, j, 0) = (i == 1 && j == 1) ? 0 : 1;
@@ -743,7 +769,8 @@ inline sample_model sample_frame() {
 
 /// A block with an off-centre rectangular through-hole along y: 16 vertices, 24 edges,
 /// 10 faces, 1 volume. O(1).
-inline sample_model sample_block_with_hole() {
+template <class = void>
+sample_model sample_block_with_hole() {
   voxel_layout l = empty_layout({0, 1, 2, 5}, {0, 3}, {0, 0.5, 1.5, 2});
   for (std::size_t i = 0; i < 3; ++i)
     for (std::size_t k = 0; k < 3; ++k) l.at(i, 0, k) = (i == 1 && k == 1) ? 0 : 1;
@@ -753,7 +780,8 @@ inline sample_model sample_block_with_hole() {
 /// The bundled CAD-like input: a stepped L-shaped block split by internal walls into four
 /// volumes (two staircase volumes with a staircase wall between them, a foot and a top box).
 /// O(1).
-inline sample_model sample_stepped_block() {
+template <class = void>
+sample_model sample_stepped_block() {
   voxel_layout l = empty_layout({0, 30, 60, 90}, {0, 25, 50}, {0, 10, 20, 30, 40});
   for (std::size_t k = 0; k < 3; ++k) l.at(0, 0, k) = 1, l.at(0, 1, k) = 2;
   for (std::size_t k = 0; k < 2; ++k) l.at(1, 0, k) = 1, l.at(1, 1, k) = 2;
@@ -767,7 +795,8 @@ inline sample_model sample_stepped_block() {
 /// ring points are lifted by up to 1e-3 of the radius so that no ring is planar: the only
 /// faces are the 1 536 triangles, and a 4-cycle over two neighbours (bent by less than a
 /// degree) must not become a face. 770 vertices, 2 304 edges, 1 volume. O(1).
-inline sample_model sample_close_edges() {
+template <class = void>
+sample_model sample_close_edges() {
   ring_stack s;
   s.n = 48;
   s.triangles = true;
@@ -786,7 +815,8 @@ inline sample_model sample_close_edges() {
 
 /// A slab 1000 times thinner than it is wide, split into two volumes by a wall across it:
 /// close parallel faces and short edges next to long ones. 12 vertices, 20 edges, 11 faces. O(1).
-inline sample_model sample_thin_slab() {
+template <class = void>
+sample_model sample_thin_slab() {
   voxel_layout l = empty_layout({0, 0.6, 1.0}, {0, 1.0}, {0, 1e-3});
   l.labels = {1, 2};
   return make_voxel_model(l, "thin slab");
@@ -794,7 +824,8 @@ inline sample_model sample_thin_slab() {
 
 /// A model of about the size of sample `i` (1..6) of seed 000 §7.2, tables 1 and 3 (see
 /// docs/sample_models.md for the mapping). O(size).
-inline sample_model sample_seed(int i) {
+template <class = void>
+sample_model sample_seed(int i) {
   switch (i) {
     case 1:  // exactly 66 V, 128 E, 66 faces (64 triangles + 2 long ones), 2 objects: two 32-gon pyramids
       return disjoint_union(sample_pyramid(32), sample_pyramid(32), {3, 0, 0}, "seed sample 1");
@@ -844,7 +875,8 @@ inline sample_model sample_seed(int i) {
 }
 
 /// Every small model above (the fixtures the pipeline tests run): O(total size).
-inline std::vector<sample_model> all_small_samples() {
+template <class = void>
+std::vector<sample_model> all_small_samples() {
   std::vector<sample_model> all{sample_tetrahedron(),
                                 sample_cube(),
                                 sample_octahedron(),

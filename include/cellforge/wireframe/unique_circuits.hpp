@@ -26,8 +26,8 @@ struct unique_result : stage_report {
 
 /// Canonicalises every face and removes repeats; the comparison is by canonical loops, which
 /// the seed's edge-by-edge walk decides the same way. O(F log F · L) for loops of length L.
-inline unique_result unique_circuits(const wire_graph& g, std::vector<wire_face> faces,
-                                     const unique_options& = {}) {
+template <class = void>
+unique_result unique_circuits(const wire_graph& g, std::vector<wire_face> faces, const unique_options& = {}) {
   detail::stopwatch clock;
   unique_result r;
   for (auto& f : faces) {

@@ -89,9 +89,9 @@ namespace detail {
 
 /// The faces around every edge, in right-hand rotation order about the edge's direction.
 /// O(Σ L + E·k log k) for k faces at an edge.
-inline std::vector<std::vector<edge_fan_entry>> edge_fans(const wire_graph& g,
-                                                          const std::vector<wire_face>& faces,
-                                                          const std::vector<char>* kept = nullptr) {
+template <class = void>
+std::vector<std::vector<edge_fan_entry>> edge_fans(const wire_graph& g, const std::vector<wire_face>& faces,
+                                                   const std::vector<char>* kept = nullptr) {
   std::vector<std::vector<edge_fan_entry>> fan(g.num_edges());
   for (std::uint32_t i = 0; i < faces.size(); ++i) {
     if (kept && !(*kept)[i]) continue;
@@ -125,9 +125,10 @@ inline std::vector<std::vector<edge_fan_entry>> edge_fans(const wire_graph& g,
 /// that a solid touching the other at a vertex or an edge never starts on its boundary; a
 /// start that is still undecided (on a face's plane, or every ray grazing) tries the next
 /// vertex. O(tries · Σ L).
-inline bool surface_inside(const wire_graph& g, const std::vector<wire_face>& faces,
-                           const std::vector<std::uint32_t>& shell, const std::vector<std::uint32_t>& inner,
-                           std::vector<std::uint32_t>& mark, std::uint32_t stamp) {
+template <class = void>
+bool surface_inside(const wire_graph& g, const std::vector<wire_face>& faces,
+                    const std::vector<std::uint32_t>& shell, const std::vector<std::uint32_t>& inner,
+                    std::vector<std::uint32_t>& mark, std::uint32_t stamp) {
   for (const auto i : shell)
     for (const auto& loop : faces[i].loops)
       for (const auto v : loop) mark[v] = stamp;
@@ -421,8 +422,9 @@ class face_reader {
 /// file comment and docs/wireframe.md). O(Σ L + E·k log k) for the shells and the rule, plus
 /// the exact nesting tests when several surfaces may nest (O(surfaces · shells) box tests and
 /// O(Σ L) per test).
-inline volume_result find_volumes(const wire_graph& g, const std::vector<wire_face>& faces,
-                                  const volume_options& options = {}) {
+template <class = void>
+volume_result find_volumes(const wire_graph& g, const std::vector<wire_face>& faces,
+                           const volume_options& options = {}) {
   detail::stopwatch clock;
   volume_result r;
   const auto nf = static_cast<std::uint32_t>(faces.size());

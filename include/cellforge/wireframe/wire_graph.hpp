@@ -115,7 +115,8 @@ struct dropped_face {
 };
 
 /// The area vector (Newell) of a face: normal × area, right-hand about loops[0]. O(size).
-inline glm::dvec3 area_vector(const wire_graph& g, const wire_face& f) {
+template <class = void>
+glm::dvec3 area_vector(const wire_graph& g, const wire_face& f) {
   glm::dvec3 s(0.0);
   // Sums about one vertex of the face keep the rounding relative to the face, not the origin.
   const glm::dvec3 o = g.points[f.loops[0][0]];
@@ -128,7 +129,8 @@ inline glm::dvec3 area_vector(const wire_graph& g, const wire_face& f) {
 }
 
 /// Sets f.normal and f.area from its loops. O(size).
-inline void update_normal(const wire_graph& g, wire_face& f) {
+template <class = void>
+void update_normal(const wire_graph& g, wire_face& f) {
   const glm::dvec3 a = area_vector(g, f);
   f.area = glm::length(a);
   f.normal = f.area > 0.0 ? a / f.area : glm::dvec3(0.0);
@@ -136,7 +138,8 @@ inline void update_normal(const wire_graph& g, wire_face& f) {
 
 /// Rotates a vertex cycle to the seed's canonical order (§4.3): start at the smallest label and
 /// go on towards its smaller neighbour. Returns true when the cycle was reversed. O(n).
-inline bool canonical_cycle(std::vector<std::uint32_t>& c) {
+template <class = void>
+bool canonical_cycle(std::vector<std::uint32_t>& c) {
   if (c.size() < 2) return false;
   const auto it = std::min_element(c.begin(), c.end());
   std::rotate(c.begin(), it, c.end());
@@ -149,7 +152,8 @@ inline bool canonical_cycle(std::vector<std::uint32_t>& c) {
 
 /// Canonical orientation of a face: its outer loop in canonical order (the normal follows
 /// it), holes rotated to their smallest label and kept clockwise about that normal. O(size).
-inline void canonicalize(wire_face& f) {
+template <class = void>
+void canonicalize(wire_face& f) {
   if (canonical_cycle(f.loops[0])) {
     f.normal = -f.normal;
     for (std::size_t h = 1; h < f.loops.size(); ++h) std::reverse(f.loops[h].begin(), f.loops[h].end());
@@ -208,7 +212,8 @@ struct union_find {
 
 /// +1 when face f walks edge e from its start to its end, -1 when the other way, 0 when f
 /// does not use e. O(size of f).
-inline int walk_direction(const wire_graph& g, const wire_face& f, std::uint32_t e) {
+template <class = void>
+int walk_direction(const wire_graph& g, const wire_face& f, std::uint32_t e) {
   const auto [s, t] = g.edges[e];
   for (const auto& loop : f.loops)
     for (std::size_t k = 0; k < loop.size(); ++k) {
@@ -231,8 +236,9 @@ struct edge_face_lists {
 };
 
 /// edge_face_lists of `faces` (only faces with alive[i] != 0 when `alive` is given). O(Σ L).
-inline edge_face_lists faces_at_edges(const wire_graph& g, const std::vector<wire_face>& faces,
-                                      const std::vector<char>* alive = nullptr) {
+template <class = void>
+edge_face_lists faces_at_edges(const wire_graph& g, const std::vector<wire_face>& faces,
+                               const std::vector<char>* alive = nullptr) {
   edge_face_lists at;
   std::vector<std::uint32_t> edge_of;  // per face side, in order: its edge
   at.first.assign(g.num_edges() + 1, 0);
@@ -258,7 +264,8 @@ inline edge_face_lists faces_at_edges(const wire_graph& g, const std::vector<wir
 }
 
 /// Two faces through one edge lie in one plane when their unit normals are parallel. O(1).
-inline bool coplanar_normals(const glm::dvec3& a, const glm::dvec3& b) {
+template <class = void>
+bool coplanar_normals(const glm::dvec3& a, const glm::dvec3& b) {
   return glm::length(glm::cross(a, b)) < 1e-9;
 }
 
@@ -275,9 +282,9 @@ bool edge_needs_more(std::span<const std::uint32_t> others, Normal&& normal) {
 /// edge would lie on fewer than two of them or on just two coplanar ones (the reading rule of
 /// docs/wireframe.md). `at` lists the faces of every edge; `others` is scratch space.
 /// O(L_i · k) for k faces at an edge.
-inline bool needed_faces_one(const wire_graph& g, const std::vector<wire_face>& faces,
-                             const edge_face_lists& at, const std::vector<char>& alive, std::uint32_t i,
-                             std::vector<std::uint32_t>& others) {
+template <class = void>
+bool needed_faces_one(const wire_graph& g, const std::vector<wire_face>& faces, const edge_face_lists& at,
+                      const std::vector<char>& alive, std::uint32_t i, std::vector<std::uint32_t>& others) {
   auto normal = [&](std::uint32_t j) { return faces[j].normal; };
   for (const auto& loop : faces[i].loops)
     for (std::size_t k = 0; k < loop.size(); ++k) {
@@ -290,8 +297,9 @@ inline bool needed_faces_one(const wire_graph& g, const std::vector<wire_face>& 
 }
 
 /// needed_faces_one for every face with alive[i] != 0 (0 for the others). O(Σ L · k).
-inline std::vector<char> needed_faces(const wire_graph& g, const std::vector<wire_face>& faces,
-                                      const edge_face_lists& at, const std::vector<char>& alive) {
+template <class = void>
+std::vector<char> needed_faces(const wire_graph& g, const std::vector<wire_face>& faces,
+                               const edge_face_lists& at, const std::vector<char>& alive) {
   std::vector<char> needed(faces.size(), 0);
   std::vector<std::uint32_t> others;
   for (std::uint32_t i = 0; i < faces.size(); ++i)
@@ -315,7 +323,8 @@ struct cell_hash {
 };
 
 /// Any unit vector perpendicular to unit n. O(1).
-inline glm::dvec3 any_perpendicular(const glm::dvec3& n) {
+template <class = void>
+glm::dvec3 any_perpendicular(const glm::dvec3& n) {
   const glm::dvec3 axis = std::abs(n.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
   return glm::normalize(glm::cross(n, axis));
 }

@@ -77,8 +77,9 @@ struct wireframe_result {
 
 namespace detail {
 /// What a wireframe in which no face survives is, for the error message. O(1).
-inline std::string no_face_message(const wire_graph& g, const arrangement_result& arrangement,
-                                   const std::vector<face_note>& lost) {
+template <class = void>
+std::string no_face_message(const wire_graph& g, const arrangement_result& arrangement,
+                            const std::vector<face_note>& lost) {
   const std::string edges = std::to_string(g.num_edges()) + " edges on cycles";
   std::string what;
   if (!lost.empty())

@@ -29,7 +29,8 @@ struct mask_params {
 
 /// β(n) of the interior vertex mask: Loop's (5/8 − (3/8 + cos(2π/n)/4)²)/n, or Warren's
 /// 3/(8n) (3/16 for n = 3). O(1).
-inline double beta(std::uint32_t n, bool warren) noexcept {
+template <class = void>
+double beta(std::uint32_t n, bool warren) noexcept {
   if (warren) return n == 3 ? 3.0 / 16.0 : 3.0 / (8.0 * n);
   const double c = 0.375 + 0.25 * std::cos(2.0 * std::numbers::pi / n);
   return (0.625 - c * c) / n;
@@ -56,8 +57,9 @@ struct vertex_node {
 
 /// The end vertices (a, b) of edge e, b the head of its half-edge 2e; throws when either
 /// does not exist. Both sides of a flipped edge end at b: a is then the tail of side 0. O(1).
-inline std::pair<std::uint32_t, std::uint32_t> edge_ends(std::span<const record> he, std::uint32_t e,
-                                                         std::uint32_t nv) {
+template <class = void>
+std::pair<std::uint32_t, std::uint32_t> edge_ends(std::span<const record> he, std::uint32_t e,
+                                                  std::uint32_t nv) {
   const record& r0 = he[2 * e];
   const std::uint32_t b = r0.head, h = he[2 * e + 1].head;
   const std::uint32_t a = h != b ? h : (r0.prev < he.size() ? he[r0.prev].head : npos);

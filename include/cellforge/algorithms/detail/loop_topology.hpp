@@ -61,13 +61,15 @@ void reserve_large(std::vector<T>& v, std::size_t n) {
 #endif
 }
 
-inline std::string corrupted(std::uint32_t f, const char* what) {
+template <class = void>
+std::string corrupted(std::uint32_t f, const char* what) {
   return "loop_subdivide: face " + std::to_string(f) + " " + what +
          "; the mesh is corrupted (validate() says where)";
 }
 
 /// Number of half-edges around face f, stopping past `limit` (for the error message only).
-inline std::size_t face_size(std::span<const record> he, std::uint32_t h0, std::size_t limit) {
+template <class = void>
+std::size_t face_size(std::span<const record> he, std::uint32_t h0, std::size_t limit) {
   std::size_t n = 0;
   std::uint32_t h = h0;
   do {
@@ -95,10 +97,10 @@ inline std::size_t face_size(std::span<const record> he, std::uint32_t h0, std::
 /// child's flipped edge count. Throws cellforge::error naming the first face that is not
 /// a triangle or whose records are inconsistent; the outputs are then partly written and
 /// must be discarded. O(F).
-inline std::size_t split_faces(std::span<const record> he, std::span<const std::uint32_t> anchors,
-                               std::uint32_t nv, std::vector<record>& out,
-                               std::vector<std::uint32_t>& out_anchors,
-                               std::uint32_t* vertex_anchors = nullptr) {
+template <class = void>
+std::size_t split_faces(std::span<const record> he, std::span<const std::uint32_t> anchors, std::uint32_t nv,
+                        std::vector<record>& out, std::vector<std::uint32_t>& out_anchors,
+                        std::uint32_t* vertex_anchors = nullptr) {
   const std::size_t nh = he.size();
   const auto ne = static_cast<std::uint32_t>(nh / 2);
   const auto nf = static_cast<std::uint32_t>(anchors.size());
@@ -175,12 +177,14 @@ inline std::size_t split_faces(std::span<const record> he, std::span<const std::
 /// Writes the anchors of the child vertices on the parent's `ne` edges when the parent is
 /// closed: the first half of half-edge 2e is child half-edge 4e (2e has side 0 and runs
 /// A→B, so q = 0), a face half-edge ending at the edge's vertex nv + e. O(E), sequential.
-inline void write_edge_vertex_anchors(std::uint32_t nv, std::uint32_t ne, std::uint32_t* vertex_anchors) {
+template <class = void>
+void write_edge_vertex_anchors(std::uint32_t nv, std::uint32_t ne, std::uint32_t* vertex_anchors) {
   for (std::uint32_t e = 0; e < ne; ++e) vertex_anchors[nv + e] = 4 * e;
 }
 
 /// The boundary edges after one step, from those before: both halves of each. O(#boundary).
-inline void split_boundary(std::vector<std::uint32_t>& boundary_edges) {
+template <class = void>
+void split_boundary(std::vector<std::uint32_t>& boundary_edges) {
   const std::size_t n = boundary_edges.size();
   boundary_edges.resize(2 * n);
   for (std::size_t i = n; i-- > 0;) {

@@ -13,8 +13,12 @@
 namespace cellforge {
 
 namespace detail {
-inline std::string vtx(std::uint32_t v) { return "vertex " + std::to_string(v); }
-inline std::string edge_name(std::uint32_t a, std::uint32_t b) {
+template <class = void>
+std::string vtx(std::uint32_t v) {
+  return "vertex " + std::to_string(v);
+}
+template <class = void>
+std::string edge_name(std::uint32_t a, std::uint32_t b) {
   return "edge (" + std::to_string(a) + ", " + std::to_string(b) + ")";
 }
 // True when the indices are pairwise distinct; O(n^2) for small n, O(n log n) otherwise.
@@ -35,7 +39,8 @@ bool all_distinct(std::span<const T> xs) {
 }
 }  // namespace detail
 
-inline halfedge_handle halfedge_mesh::find_halfedge(vertex_handle a, vertex_handle b) const noexcept {
+template <class Unused>
+halfedge_handle basic_halfedge_mesh<Unused>::find_halfedge(vertex_handle a, vertex_handle b) const noexcept {
   for (halfedge_handle h : halfedges_around(a)) {
     if (head(h) == b && tail(h) == a) return h;
     if (head(twin(h)) == b && tail(twin(h)) == a) return twin(h);
@@ -43,7 +48,8 @@ inline halfedge_handle halfedge_mesh::find_halfedge(vertex_handle a, vertex_hand
   return {};
 }
 
-inline edge_handle halfedge_mesh::find_edge(vertex_handle a, vertex_handle b) const noexcept {
+template <class Unused>
+edge_handle basic_halfedge_mesh<Unused>::find_edge(vertex_handle a, vertex_handle b) const noexcept {
   for (edge_handle e : edges_around(a)) {
     const halfedge_handle h = halfedge(e, 0);
     if ((head(h) == b && tail(h) == a) || (head(h) == a && tail(h) == b)) return e;
@@ -51,7 +57,8 @@ inline edge_handle halfedge_mesh::find_edge(vertex_handle a, vertex_handle b) co
   return {};
 }
 
-inline face_handle halfedge_mesh::add_face(std::span<const vertex_handle> vs) {
+template <class Unused>
+face_handle basic_halfedge_mesh<Unused>::add_face(std::span<const vertex_handle> vs) {
   const std::size_t n = vs.size();
   if (n < 3)
     throw error(error_category::invalid_input,
@@ -157,7 +164,8 @@ inline face_handle halfedge_mesh::add_face(std::span<const vertex_handle> vs) {
   return face_handle(f);
 }
 
-inline void halfedge_mesh::remove_face(face_handle fh) {
+template <class Unused>
+void basic_halfedge_mesh<Unused>::remove_face(face_handle fh) {
   if (!is_valid(fh))
     throw error(error_category::invalid_input,
                 "remove_face: face " + std::to_string(fh.idx()) + " does not exist or was removed");
@@ -235,7 +243,8 @@ inline void halfedge_mesh::remove_face(face_handle fh) {
   ++removed_faces_;
 }
 
-inline void halfedge_mesh::remove_vertex(vertex_handle v) {
+template <class Unused>
+void basic_halfedge_mesh<Unused>::remove_vertex(vertex_handle v) {
   check_vertex(v, "remove_vertex");
   std::vector<face_handle> around;
   for (face_handle f : faces_around(v)) around.push_back(f);
@@ -244,7 +253,8 @@ inline void halfedge_mesh::remove_vertex(vertex_handle v) {
   ++removed_vertices_;
 }
 
-inline void halfedge_mesh::reverse_face(face_handle fh) {
+template <class Unused>
+void basic_halfedge_mesh<Unused>::reverse_face(face_handle fh) {
   if (!is_valid(fh))
     throw error(error_category::invalid_input,
                 "reverse_face: face " + std::to_string(fh.idx()) + " does not exist or was removed");
@@ -282,8 +292,10 @@ inline void halfedge_mesh::reverse_face(face_handle fh) {
   face_anchor_[fh.idx()] = hs[n - 1];  // keeps the face's first vertex first
 }
 
-inline build_report halfedge_mesh::build(std::size_t nv, std::span<const std::uint32_t> offsets,
-                                         std::span<const std::uint32_t> fv, const build_options& options) {
+template <class Unused>
+build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const std::uint32_t> offsets,
+                                                std::span<const std::uint32_t> fv,
+                                                const build_options& options) {
   if (offsets.empty() || offsets[0] != 0 || offsets.back() != fv.size())
     throw error(error_category::invalid_input,
                 "build: face offsets must start at 0 and end at the number of face indices");
@@ -409,7 +421,9 @@ inline build_report halfedge_mesh::build(std::size_t nv, std::span<const std::ui
   return report;
 }
 
-inline void halfedge_mesh::link_fans(const build_options& options, build_report& report, bool verify_fans) {
+template <class Unused>
+void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_report& report,
+                                            bool verify_fans) {
   const std::size_t nv = vertex_anchor_.size();
   std::fill(vertex_anchor_.begin(), vertex_anchor_.end(), npos);
   flipped_edges_ = 0;
@@ -503,7 +517,8 @@ inline void halfedge_mesh::link_fans(const build_options& options, build_report&
   report.flipped_edges = flipped_edges_;
 }
 
-inline void halfedge_mesh::split_fans(const std::vector<std::uint32_t>& bad, build_report& report) {
+template <class Unused>
+void basic_halfedge_mesh<Unused>::split_fans(const std::vector<std::uint32_t>& bad, build_report& report) {
   // The face half-edges entering each listed vertex: one per face at it.
   std::vector<std::uint8_t> listed(vertex_anchor_.size(), 0), marked(he_.size(), 0);
   for (std::uint32_t v : bad) listed[v] = 1;
@@ -548,7 +563,8 @@ inline void halfedge_mesh::split_fans(const std::vector<std::uint32_t>& bad, bui
   }
 }
 
-inline void halfedge_mesh::garbage_collection() {
+template <class Unused>
+void basic_halfedge_mesh<Unused>::garbage_collection() {
   if (!has_garbage()) return;
   const std::size_t nv = vertices_size(), ne = edges_size(), nf = faces_size();
   std::vector<std::uint32_t> vmap(nv, npos), emap(ne, npos), fmap(nf, npos);

@@ -16,8 +16,9 @@ namespace cellforge::io::detail {
 
 /// A vertex index that occurs twice in `face`, if any. O(k^2) for small faces, O(k log k)
 /// beyond (sorting a copy in `scratch`, reused across faces so there is no allocation per face).
-inline std::optional<std::uint32_t> repeated_vertex(std::span<const std::uint32_t> face,
-                                                    std::vector<std::uint32_t>& scratch) {
+template <class = void>
+std::optional<std::uint32_t> repeated_vertex(std::span<const std::uint32_t> face,
+                                             std::vector<std::uint32_t>& scratch) {
   if (face.size() <= 16) {
     for (std::size_t i = 1; i < face.size(); ++i)
       for (std::size_t j = 0; j < i; ++j)

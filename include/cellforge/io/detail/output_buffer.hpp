@@ -96,7 +96,8 @@ class output_buffer {
 
 /// Writes `text` as comment lines, each prefixed (e.g. "# " or "comment "); empty lines are
 /// dropped because a line break inside a comment would end it. O(text).
-inline void put_comment_lines(output_buffer& out, std::string_view text, std::string_view prefix) {
+template <class = void>
+void put_comment_lines(output_buffer& out, std::string_view text, std::string_view prefix) {
   while (!text.empty()) {
     const std::size_t eol = std::min(text.find_first_of("\r\n"), text.size());
     if (eol != 0) {

@@ -71,7 +71,8 @@ decltype(auto) with_ply_type(ply_type t, F&& f) {
 }
 
 /// Both spellings of the PLY type names (the original and the sized ones).
-inline std::optional<ply_type> parse_ply_type(std::string_view s) noexcept {
+template <class = void>
+std::optional<ply_type> parse_ply_type(std::string_view s) noexcept {
   struct entry {
     std::string_view a, b;
     ply_type t;
@@ -157,7 +158,8 @@ struct ply_header {
 };
 
 /// Reads a header token (up to a blank or line end), failing with `expected` when there is none.
-inline std::string_view header_token(text_cursor& c, std::string_view expected) {
+template <class = void>
+std::string_view header_token(text_cursor& c, std::string_view expected) {
   c.skip_blanks();
   if (c.at_line_end()) c.fail("expected " + std::string(expected) + ", found " + c.token());
   const char* start = c.pos;
@@ -165,7 +167,8 @@ inline std::string_view header_token(text_cursor& c, std::string_view expected) 
   return {start, static_cast<std::size_t>(c.pos - start)};
 }
 
-inline ply_type header_type(text_cursor& c, std::string_view expected) {
+template <class = void>
+ply_type header_type(text_cursor& c, std::string_view expected) {
   const std::string_view name = header_token(c, expected);
   const auto t = parse_ply_type(name);
   if (!t) {
@@ -176,14 +179,16 @@ inline ply_type header_type(text_cursor& c, std::string_view expected) {
   return *t;
 }
 
-inline void header_line_end(text_cursor& c, std::string_view after) {
+template <class = void>
+void header_line_end(text_cursor& c, std::string_view after) {
   c.skip_blanks();
   if (!c.at_line_end()) c.fail("unexpected " + c.token() + " after " + std::string(after));
   c.next_line();
 }
 
 /// Parses and checks a PLY header. The cursor is left on the first data byte. O(header size).
-inline ply_header parse_ply_header(text_cursor& c) {
+template <class = void>
+ply_header parse_ply_header(text_cursor& c) {
   ply_header h;
   if (c.at_end()) c.fail("empty file: expected 'ply' on the first line");
   {

@@ -16,11 +16,15 @@
 namespace cellforge::io::detail {
 
 /// The display name of a path in error messages (the path as given, not made absolute).
-inline std::string display_name(const std::filesystem::path& path) { return path.string(); }
+template <class = void>
+std::string display_name(const std::filesystem::path& path) {
+  return path.string();
+}
 
 /// Reads the whole file into a string; throws an io error naming the path and the
 /// reason when it cannot be opened or read. O(file size).
-inline std::string read_file(const std::filesystem::path& path) {
+template <class = void>
+std::string read_file(const std::filesystem::path& path) {
   const auto fail = [&](const char* what, int err) -> error {
     return error(error_category::io, std::string("cannot ") + what + " '" + display_name(path) +
                                          "': " + (err != 0 ? std::strerror(err) : "read error"));

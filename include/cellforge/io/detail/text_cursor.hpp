@@ -20,7 +20,8 @@ constexpr bool is_blank(char c) noexcept { return c == ' ' || c == '\t' || c == 
 constexpr bool is_eol(char c) noexcept { return c == '\n' || c == '\r'; }
 
 /// 1-based line of position `at` in `text`; "\r\n", "\n" and a lone "\r" each end a line. O(at).
-inline std::uint64_t line_of(std::string_view text, std::size_t at) noexcept {
+template <class = void>
+std::uint64_t line_of(std::string_view text, std::size_t at) noexcept {
   at = std::min(at, text.size());
   std::uint64_t line = 1;
   for (std::size_t i = 0; i < at; ++i) {
@@ -30,7 +31,8 @@ inline std::uint64_t line_of(std::string_view text, std::size_t at) noexcept {
 }
 
 /// Quotes the token starting at p for an error message, cut to a readable length.
-inline std::string quote_token(const char* p, const char* end) {
+template <class = void>
+std::string quote_token(const char* p, const char* end) {
   const char* q = p;
   while (q != end && !is_blank(*q) && !is_eol(*q) && q - p < 32) ++q;
   std::string s = "'";
