@@ -12,7 +12,6 @@
 #include <cstdint>
 #include <limits>
 #include <numeric>
-#include <random>
 #include <ranges>
 #include <span>
 #include <string>
@@ -112,11 +111,16 @@ struct result {
   std::size_t exact_evaluations = 0;
 };
 
+template <class = void>
+class basic_engine;
+using engine = basic_engine<>;
+
 /// The 3D hull engine over a subset of the points (quickhull, or insertion with walks),
 /// every orientation decision exact.
-class engine {
+template <class>
+class basic_engine {
  public:
-  explicit engine(std::span<const glm::dvec3> pts) : pts_(pts) {}
+  explicit basic_engine(std::span<const glm::dvec3> pts) : pts_(pts) {}
 
   /// Builds the hull of the candidates; returns the dimension of their span. When it is
   /// 3, faces() lists the triangles. O(n log n) expected.
@@ -494,8 +498,15 @@ template <class = void>
 std::vector<std::uint32_t> brio_order(std::span<const glm::dvec3> pts) {
   std::vector<std::uint32_t> order(pts.size());
   std::iota(order.begin(), order.end(), 0u);
-  std::mt19937_64 rng(0x5eed5eedu);
-  std::shuffle(order.begin(), order.end(), rng);
+  // Fisher-Yates on splitmix64 rather than std::shuffle: the same order with every standard
+  // library (a distribution's output is implementation-defined), and no <random> to compile.
+  std::uint64_t state = 0x5eed5eedu;
+  for (std::size_t i = order.size(); i > 1; --i) {
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15u);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
+    std::swap(order[i - 1], order[(z ^ (z >> 31)) % i]);
+  }
   glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
   for (std::uint32_t q : order) lo = glm::min(lo, pts[q]), hi = glm::max(hi, pts[q]);
   const glm::dvec3 extent = glm::max(hi - lo, glm::dvec3(std::numeric_limits<double>::min()));

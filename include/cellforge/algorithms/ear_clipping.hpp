@@ -60,14 +60,19 @@ namespace detail::ears {
 
 inline constexpr std::uint32_t none = 0xFFFFFFFFu;
 
+template <class = void>
+struct basic_cell_grid;
+using cell_grid = basic_cell_grid<>;
+
 /// A uniform grid over a 2D box with about `count` roughly square cells; cover() lists the
 /// cells a small convex polygon (a segment or a triangle) overlaps, slab by slab, so that
 /// long thin shapes visit the cells they cross rather than their whole bounding box.
-struct cell_grid {
+template <class>
+struct basic_cell_grid {
   double lx = 0, ly = 0, hx = 0, hy = 0, sx = 0, sy = 0, margin_x = 0, margin_y = 0;
   std::size_t nx = 1, ny = 1;
 
-  cell_grid(double lx_, double ly_, double hx_, double hy_, std::size_t count)
+  basic_cell_grid(double lx_, double ly_, double hx_, double hy_, std::size_t count)
       : lx(lx_), ly(ly_), hx(hx_), hy(hy_) {
     const double w = hx - lx, h = hy - ly, cells = static_cast<double>(std::max<std::size_t>(1, count));
     // Square cells: nx / ny follows the box's aspect ratio (a long comb gets many columns).
@@ -208,10 +213,15 @@ std::pair<std::uint32_t, std::uint32_t> first_crossing(const std::vector<double>
   return {none, none};
 }
 
+template <class = void>
+class basic_clipper;
+using clipper = basic_clipper<>;
+
 /// The ear-clipping state over a 2D projection of the polygon (a ring of kept vertices).
-class clipper {
+template <class>
+class basic_clipper {
  public:
-  clipper(std::vector<double> x, std::vector<double> y, std::vector<std::uint32_t> ring, int sense)
+  basic_clipper(std::vector<double> x, std::vector<double> y, std::vector<std::uint32_t> ring, int sense)
       : x_(std::move(x)), y_(std::move(y)), sense_(sense), grid_(0, 0, 0, 0, 1) {
     const std::size_t n = x_.size();
     prev_.assign(n, none);

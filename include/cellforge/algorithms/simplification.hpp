@@ -120,9 +120,14 @@ struct candidate {
   vertex_handle keep, remove;
 };
 
-class simplifier {
+template <class = void>
+class basic_simplifier;
+using simplifier = basic_simplifier<>;
+
+template <class>
+class basic_simplifier {
  public:
-  simplifier(halfedge_mesh& m, std::vector<glm::dvec3>& pos, const simplify_options& o)
+  basic_simplifier(halfedge_mesh& m, std::vector<glm::dvec3>& pos, const simplify_options& o)
       : m_(m), pos_(pos), o_(o), cos_max_(std::cos(o.max_normal_angle * 3.14159265358979323846 / 180.0)) {
     fixed_.assign(m.vertices_size(), 0);
     if (o.keep_boundary)

@@ -75,7 +75,11 @@ struct cell_complex_input {
   std::vector<volume> volumes;
 };
 
-class cell_topology;
+template <class = void>
+class basic_cell_topology;
+/// The relations of a cell complex (see the class below); a class template on an unused
+/// parameter only so that its members compile where they are used.
+using cell_topology = basic_cell_topology<>;
 template <Point3 P>
 class cell_complex;
 
@@ -127,9 +131,10 @@ void build_topology(cell_topology& cc, std::span<const glm::dvec3> points,
 
 /// Everything of a 3DCL but its positions: the relations, which do not depend on the point
 /// type (cell_complex<P> adds the positions). Every relation is an O(1) span into cached arrays.
-class cell_topology {
+template <class>
+class basic_cell_topology {
  public:
-  cell_topology() = default;
+  basic_cell_topology() = default;
 
   /// Numbers of elements of each kind (handles run from 0 to the count - 1). O(1).
   std::size_t num_vertices() const noexcept { return vertex_edge_start_.size() - 1; }
@@ -227,7 +232,7 @@ class cell_topology {
  private:
   friend struct detail::cells::access;
   template <class>
-  friend void detail::cells::build_topology(cell_topology&, std::span<const glm::dvec3>,
+  friend void detail::cells::build_topology(basic_cell_topology&, std::span<const glm::dvec3>,
                                             std::vector<std::array<std::uint32_t, 2>>&&,
                                             const std::vector<cell_input_face>&,
                                             const std::vector<cell_input_volume>&);
@@ -621,8 +626,9 @@ cell_complex<Q> convert_points(const cell_complex<P>& cc) {
   return out;
 }
 
+template <class Unused>
 template <Point3 P>
-void cell_topology::topology_to_input(cell_complex_input<P>& in) const {
+void basic_cell_topology<Unused>::topology_to_input(cell_complex_input<P>& in) const {
   in.edges = ends_;
   in.faces.resize(num_faces());
   for (cell_face f : faces()) {

@@ -22,7 +22,8 @@
 namespace cellforge {
 
 namespace detail {
-struct mesh_access;
+template <class>
+struct basic_mesh_access;
 }
 
 template <class = void>
@@ -538,7 +539,8 @@ class basic_halfedge_mesh {
   // With verify_fans false (a construction that is valid by design) the O(n) walk that
   // checks each interior vertex has a single closed fan is skipped.
   void link_fans(const build_options& options, build_report& report, bool verify_fans = true);
-  friend struct detail::mesh_access;
+  template <class>
+  friend struct detail::basic_mesh_access;
 
   // Gives each closed fan of the listed vertices that their anchors do not reach a vertex of its own.
   void split_fans(const std::vector<std::uint32_t>& bad, build_report& report);

@@ -100,27 +100,32 @@ class owned_array {
   property_array_base* a_;
 };
 
+template <class = void>
+class basic_property_registry;
+using property_registry = basic_property_registry<>;
+
 /// All properties of one element kind. Copying clones every array.
-class property_registry {
+template <class>
+class basic_property_registry {
  public:
-  property_registry() = default;
-  property_registry(const property_registry& o) : size_(o.size_) {
+  basic_property_registry() = default;
+  basic_property_registry(const basic_property_registry& o) : size_(o.size_) {
     arrays_.reserve(o.arrays_.size());
     for (const auto& a : o.arrays_) {
       owned_array copy(a->clone());
       arrays_.push_back(std::move(copy));
     }
   }
-  property_registry& operator=(const property_registry& o) {
+  basic_property_registry& operator=(const basic_property_registry& o) {
     if (this != &o) {
-      property_registry copy(o);
+      basic_property_registry copy(o);
       swap(copy);
     }
     return *this;
   }
-  property_registry(property_registry&&) noexcept = default;
-  property_registry& operator=(property_registry&&) noexcept = default;
-  void swap(property_registry& o) noexcept {
+  basic_property_registry(basic_property_registry&&) noexcept = default;
+  basic_property_registry& operator=(basic_property_registry&&) noexcept = default;
+  void swap(basic_property_registry& o) noexcept {
     arrays_.swap(o.arrays_);
     std::swap(size_, o.size_);
   }

@@ -166,10 +166,16 @@ struct cells_label {
   }
 };
 
+template <class = void>
+class basic_cells_line;
+using cells_line = basic_cells_line<>;
+
 /// Tokens of one line of a 3DCL file, with errors that name file:line.
-class cells_line {
+template <class>
+class basic_cells_line {
  public:
-  cells_line(std::string_view text, std::string_view file, std::uint64_t line) : file_(file), line_(line) {
+  basic_cells_line(std::string_view text, std::string_view file, std::uint64_t line)
+      : file_(file), line_(line) {
     if (const auto hash = text.find('#'); hash != std::string_view::npos) text = text.substr(0, hash);
     std::size_t i = 0;
     while (i < text.size()) {
@@ -258,10 +264,15 @@ class cells_line {
   std::size_t next_ = 0;
 };
 
+template <class = void>
+class basic_cells_lines;
+using cells_lines = basic_cells_lines<>;
+
 /// Splits text into content lines (comments and blank lines skipped), keeping line numbers.
-class cells_lines {
+template <class>
+class basic_cells_lines {
  public:
-  cells_lines(std::string_view text, std::string_view file) : text_(text), file_(file) {
+  basic_cells_lines(std::string_view text, std::string_view file) : text_(text), file_(file) {
     if (text_.substr(0, 3) == "\xEF\xBB\xBF") text_.remove_prefix(3);
   }
   /// The next line with content; fails with `expected` at the end of the file.

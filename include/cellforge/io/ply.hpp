@@ -44,10 +44,15 @@ struct ply_write_options {
 
 namespace detail {
 
+template <class = void>
+class basic_ply_ascii_reader;
+using ply_ascii_reader = basic_ply_ascii_reader<>;
+
 /// Reads values of an ASCII PLY body: one element instance per line.
-class ply_ascii_reader {
+template <class>
+class basic_ply_ascii_reader {
  public:
-  explicit ply_ascii_reader(text_cursor& c) : c_(c) {}
+  explicit basic_ply_ascii_reader(text_cursor& c) : c_(c) {}
 
   std::size_t mark() {
     c_.skip_blanks();
@@ -121,10 +126,16 @@ class ply_ascii_reader {
   text_cursor& c_;
 };
 
+template <class = void>
+class basic_ply_binary_reader;
+using ply_binary_reader = basic_ply_binary_reader<>;
+
 /// Reads values of a binary PLY body of either byte order; errors name the byte offset.
-class ply_binary_reader {
+template <class>
+class basic_ply_binary_reader {
  public:
-  ply_binary_reader(std::string_view bytes, std::size_t offset, bool little_endian, std::string_view name)
+  basic_ply_binary_reader(std::string_view bytes, std::size_t offset, bool little_endian,
+                          std::string_view name)
       : begin_(bytes.data()),
         pos_(bytes.data() + offset),
         end_(bytes.data() + bytes.size()),

@@ -254,9 +254,14 @@ std::uint64_t svg_edge_key(std::uint32_t a, std::uint32_t b) {
 
 }  // namespace detail
 
+template <class = void>
+class basic_svg_scene;
+using svg_scene = basic_svg_scene<>;
+
 /// A picture under construction: layers of meshes, lines, points and labels, each with its
 /// style, written as one SVG. Every add_ call returns the new layer's index.
-class svg_scene {
+template <class>
+class basic_svg_scene {
  public:
   /// Adds a polygon soup drawn as shaded faces plus its edges (each undirected edge once).
   /// O(size of the soup). Throws invalid_input on non-finite points or bad indices.
@@ -356,7 +361,7 @@ class svg_scene {
 
   std::size_t num_layers() const noexcept { return layers_.size(); }
   bool empty() const noexcept { return layers_.empty(); }
-  void clear() { *this = svg_scene(); }
+  void clear() { *this = basic_svg_scene(); }
 
   /// Every edge and segment with the parameter intervals where faces hide it, as `write`
   /// would draw them. O(P + (E + F) x local density + F log F), the density term capped by
@@ -430,7 +435,7 @@ class svg_scene {
   };
 
   [[noreturn]] static void fail(const std::string& what) {
-    throw error(error_category::invalid_input, "svg_scene::" + what);
+    throw error(error_category::invalid_input, "basic_svg_scene::" + what);
   }
 
   static void check_style(const svg_style& s, const char* who) {

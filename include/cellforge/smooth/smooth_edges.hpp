@@ -150,8 +150,13 @@ double nearest_to_line(const dcurve& c, const glm::dvec3& m, const glm::dvec3& n
   return 0.5 * (lo + hi);
 }
 
+template <class = void>
+struct basic_smoother;
+using smoother = basic_smoother<>;
+
 /// The smoothing state of one mesh: fixed data (normals, sectors) and the per-cycle curves.
-struct smoother {
+template <class>
+struct basic_smoother {
   const halfedge_mesh& m;
   const solid_geometry& g;
   const smooth_options& o;
@@ -161,7 +166,7 @@ struct smoother {
   vertex_sectors sectors;
   dresult r;
 
-  smoother(const halfedge_mesh& mesh, const solid_geometry& geometry, const smooth_options& options)
+  basic_smoother(const halfedge_mesh& mesh, const solid_geometry& geometry, const smooth_options& options)
       : m(mesh), g(geometry), o(options) {}
 
   glm::dvec3 pos(vertex_handle v) const { return g.positions[v.idx()]; }

@@ -207,13 +207,18 @@ std::array<double, 4> plane_coords(const glm::dvec3& n, const glm::dvec3& o, dou
   return {n.x / q, n.y / q, n.z / q, glm::dot(n, o) / (q * size)};
 }
 
+template <class = void>
+class basic_fan_index;
+using fan_index = basic_fan_index<>;
+
 /// At a vertex of high degree (a sphere's pole), which of its edges may lie in the plane of a
 /// pair (i, j): for each edge i the others sorted by their angle about i, folded to [0, π),
 /// so that the edges coplanar with i and j are those near j in that order (edges nearly
 /// along i lie in every plane through i and are always candidates). Candidates are then
 /// tested exactly as any edge is. O(deg² log deg) to build, O(candidates) per pair, instead
 /// of O(deg) per pair.
-class fan_index {
+template <class>
+class basic_fan_index {
  public:
   void build(std::span<const glm::dvec3> dirs, double tol) {
     n_ = dirs.size();

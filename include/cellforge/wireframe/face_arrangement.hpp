@@ -66,13 +66,18 @@ struct cut_end {
   std::uint32_t from = no_index, to = no_index;  ///< to == no_index: the vertex `from`
 };
 
+template <class = void>
+class basic_interior_cuts;
+using interior_cuts = basic_interior_cuts<>;
+
 /// Open intervals [2k, 2k+1] of the line along `dir` that lie inside face f and meet plane p
 /// from both sides. side[v] of f's vertices: +1 / -1 beyond tolerance, 0 on the plane (within
 /// tolerance, or a vertex of the other face). Seen from just above the plane a vertex on it
 /// counts as below, from just below as above; a point of the line is inside f's interior
 /// only if it is inside from both views, so a boundary edge lying in the plane bounds no
 /// interval (the fault that made faces meeting at such an edge "cross"). O(L log L).
-class interior_cuts {
+template <class>
+class basic_interior_cuts {
  public:
   std::vector<cut_end> intervals;
 
@@ -134,6 +139,10 @@ class interior_cuts {
   std::vector<signed char> sides_;
 };
 
+template <class = void>
+class basic_crossing_test;
+using crossing_test = basic_crossing_test<>;
+
 /// The crossing test of the selection rule, with its scratch space. Two faces in different
 /// planes cross when their interiors share a segment of the planes' common line longer than
 /// the tolerance: the parity along that line decides it from the vertices' sides alone (a
@@ -142,9 +151,10 @@ class interior_cuts {
 /// constructed (an edge crossing a plane) the exact test of core/polygon_intersection.hpp
 /// confirms that the edge really pierces the other face's interior. Independent of loop
 /// orientation. O(L log L) per pair, O(L_a + L_b) to confirm.
-class crossing_test {
+template <class>
+class basic_crossing_test {
  public:
-  explicit crossing_test(const wire_graph& g) : g_(g) {}
+  explicit basic_crossing_test(const wire_graph& g) : g_(g) {}
 
   /// `ca`, `cb`: the faces' corners, all loops concatenated (gathered from the graph when empty).
   bool operator()(const wire_face& a, const face_plane& pa, const wire_face& b, const face_plane& pb,

@@ -146,11 +146,16 @@ bool surface_inside(const wire_graph& g, const std::vector<wire_face>& faces,
   return false;
 }
 
+template <class = void>
+struct basic_region_links;
+using region_links = basic_region_links<>;
+
 /// Which faces lie between two current roots of a union-find over regions, for
 /// merge_unforced: how many that must stay, and the walls that may go. Pairs are keyed by
 /// current roots; absorbing a root moves its pairs to the surviving root (the root with the
 /// shorter neighbour list is absorbed, so each pair moves O(log F) times). O(F log F) in all.
-struct region_links {
+template <class>
+struct basic_region_links {
   struct link {
     std::uint32_t needed = 0;
     std::vector<std::uint32_t> walls;
@@ -158,7 +163,7 @@ struct region_links {
   std::unordered_map<std::uint64_t, link> pairs;
   std::vector<std::vector<std::uint32_t>> neighbours;
 
-  explicit region_links(std::size_t regions) : neighbours(regions) {}
+  explicit basic_region_links(std::size_t regions) : neighbours(regions) {}
   static std::uint64_t key(std::uint32_t a, std::uint32_t b) noexcept {
     if (a > b) std::swap(a, b);
     return (std::uint64_t{a} << 32) | b;
@@ -193,6 +198,10 @@ struct region_links {
   }
 };
 
+template <class = void>
+class basic_face_reader;
+using face_reader = basic_face_reader<>;
+
 /// The reading rule of docs/wireframe.md on the regions a set of faces bounds: which faces no
 /// edge needs are not faces, in rounds. Each round takes the faces no edge needs among those
 /// still kept and groups the bounded regions they join: a group with such a face on the
@@ -204,14 +213,15 @@ struct region_links {
 /// group can go as a batch, the groups that fill a hole at odd depth in their plane are tried
 /// one at a time (the mouth around a box standing in a frame's hole goes, the box's top
 /// stays). Dropping faces makes the rest only more needed, so rounds end. O(rounds · Σ L · k).
-class face_reader {
+template <class>
+class basic_face_reader {
  public:
   std::vector<char> drop, opened, unforced;  // per face
   union_find merged;                         // regions, O = regions; joined across drops
 
-  face_reader(const wire_graph& g, const std::vector<wire_face>& faces, const edge_face_lists& at,
-              const std::vector<std::array<std::uint32_t, 2>>& sides, const std::vector<char>& alive,
-              std::uint32_t regions, face_reading reading)
+  basic_face_reader(const wire_graph& g, const std::vector<wire_face>& faces, const edge_face_lists& at,
+                    const std::vector<std::array<std::uint32_t, 2>>& sides, const std::vector<char>& alive,
+                    std::uint32_t regions, face_reading reading)
       : drop(faces.size(), 0),
         opened(faces.size(), 0),
         unforced(faces.size(), 0),

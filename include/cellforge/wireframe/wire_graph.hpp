@@ -39,8 +39,13 @@ struct wire_incidence {
   bool outgoing = false;    ///< true when the edge starts at this vertex
 };
 
+template <class = void>
+struct basic_wire_graph;
+using wire_graph = basic_wire_graph<>;
+
 /// The labelled wireframe after reading: merged points, checked edges, vertex→edge incidence.
-struct wire_graph {
+template <class>
+struct basic_wire_graph {
   std::vector<glm::dvec3> points;           ///< vertex positions
   std::vector<std::uint32_t> input_vertex;  ///< vertex → index of the caller's (representative) point
   std::vector<std::array<std::uint32_t, 2>> edges;  ///< (start, end)

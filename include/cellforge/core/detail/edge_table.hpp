@@ -12,7 +12,12 @@
 
 namespace cellforge::detail {
 
-class edge_table {
+template <class = void>
+class basic_edge_table;
+using edge_table = basic_edge_table<>;
+
+template <class>
+class basic_edge_table {
  public:
   static constexpr std::uint32_t not_found = 0xFFFFFFFFu;
 

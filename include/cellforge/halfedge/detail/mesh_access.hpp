@@ -10,7 +10,12 @@
 
 namespace cellforge::detail {
 
-struct mesh_access {
+template <class = void>
+struct basic_mesh_access;
+using mesh_access = basic_mesh_access<>;
+
+template <class>
+struct basic_mesh_access {
   using record = halfedge_mesh::record;
   static std::vector<record>& records(halfedge_mesh& m) noexcept { return m.he_; }
   static std::vector<std::uint32_t>& vertex_anchors(halfedge_mesh& m) noexcept { return m.vertex_anchor_; }

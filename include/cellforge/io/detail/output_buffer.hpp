@@ -25,14 +25,19 @@
 
 namespace cellforge::io::detail {
 
+template <class = void>
+class basic_output_buffer;
+using output_buffer = basic_output_buffer<>;
+
 /// Collects output in a 1 MiB buffer and hands it to the stream in big writes.
-class output_buffer {
+template <class>
+class basic_output_buffer {
  public:
   // Uninitialised storage: small outputs touch only the pages they use.
-  explicit output_buffer(std::ostream& os)
+  explicit basic_output_buffer(std::ostream& os)
       : os_(os), buf_(std::make_unique_for_overwrite<char[]>(capacity)) {}
-  output_buffer(const output_buffer&) = delete;
-  output_buffer& operator=(const output_buffer&) = delete;
+  basic_output_buffer(const basic_output_buffer&) = delete;
+  basic_output_buffer& operator=(const basic_output_buffer&) = delete;
   // No flush in the destructor: it would hide write errors during unwinding; callers call finish().
 
   void put(std::string_view s) {

@@ -25,12 +25,17 @@ namespace cellforge::io::detail {
 /// A half-open parameter interval [t0, t1] along a segment, t in [0, 1].
 using svg_interval = std::array<double, 2>;
 
+template <class = void>
+class basic_occlusion_grid;
+using occlusion_grid = basic_occlusion_grid<>;
+
 /// Faces projected to the screen: x, y in screen units, z = depth (larger is nearer the
 /// viewer). Segments and points are tested against the faces whose grid cells they cross,
 /// nearest faces first, so a query costs O(cells crossed + faces in front of it there), not
 /// O(all faces). Work is counted in units (a grid cell visited, a face considered, a polygon
 /// side examined); queries take a limit on the running total and report when they hit it.
-class occlusion_grid {
+template <class>
+class basic_occlusion_grid {
  public:
   /// Faces with more sides than this get their sides indexed by horizontal bands, so a test
   /// against them examines the sides near the query, not all of them.

@@ -51,8 +51,13 @@ std::string quote_token(const char* p, const char* end) {
   return s + "'";
 }
 
+template <class = void>
+struct basic_text_cursor;
+using text_cursor = basic_text_cursor<>;
+
 /// Reads a line-oriented text buffer: blanks, line ends, comments, numbers, tokens.
-struct text_cursor {
+template <class>
+struct basic_text_cursor {
   const char* begin;
   const char* pos;
   const char* end;
@@ -60,8 +65,8 @@ struct text_cursor {
   char comment = '#';         ///< starts a comment running to the end of the line; '\0' for none
   bool continuation = false;  ///< a '\' right before a line end joins the next line (OBJ)
 
-  text_cursor(std::string_view text, std::string_view file_name, char comment_char = '#',
-              bool line_continuation = false) noexcept
+  basic_text_cursor(std::string_view text, std::string_view file_name, char comment_char = '#',
+                    bool line_continuation = false) noexcept
       : begin(text.data()),
         pos(text.data()),
         end(text.data() + text.size()),
