@@ -96,9 +96,10 @@ TEST_CASE("swc: layout variations read the same samples") {
       {"byte-order mark", "\xEF\xBB\xBF" + plain},
       {"number spellings", "+1 1 0.0 -0e0 +0 2.0 -1\n2 +3 0 4e0 0 1. 1\n3 3 0 8 .0 5e-1 +2\n"},
   };
-  for (const auto& [what, text] : variants) {
-    CAPTURE(std::string(what));
-    const auto r = parse(text);
+  for (const auto& variant : variants) {
+    const std::string what = variant.first;
+    CAPTURE(what);
+    const auto r = parse(variant.second);
     CHECK(r.skeleton.points == expected.skeleton.points);
     CHECK(r.skeleton.radii == expected.skeleton.radii);
     CHECK(r.skeleton.edges == expected.skeleton.edges);
