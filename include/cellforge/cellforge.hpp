@@ -42,6 +42,7 @@
 #include "cellforge/thin/selection_growing.hpp"
 #include "cellforge/thin/thin_points.hpp"
 #include "cellforge/thin/thin_result.hpp"
+#include "cellforge/tubes/skeleton.hpp"
 #include "cellforge/wireframe/circuit_tracer.hpp"
 #include "cellforge/wireframe/extra_faces.hpp"
 #include "cellforge/wireframe/face_arrangement.hpp"

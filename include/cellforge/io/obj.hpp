@@ -99,11 +99,55 @@ std::uint32_t read_obj_index(text_cursor& c, std::uint64_t nv, bool allow_normal
     const std::string range = n == 0  ? std::string("no vertices are defined yet")
                               : v > 0 ? "1.." + std::to_string(n)
                                       : "-1..-" + std::to_string(n);
-    c.fail_at(start, std::string(v > 0 ? "face index " : "relative face index ") + std::to_string(v) +
-                         " out of range (" + range + ")" +
-                         (v > 0 ? "; vertices must be defined before the faces that use them" : ""));
+    // allow_normals is false exactly for `l` statements.
+    const std::string what = allow_normals ? "face" : "line";
+    c.fail_at(start, (v > 0 ? what : "relative " + what) + " index " + std::to_string(v) + " out of range (" +
+                         range + ")" +
+                         (v > 0 ? "; vertices must be defined before the " + what + "s that use them" : ""));
   }
   return static_cast<std::uint32_t>(resolved);
+}
+
+/// Reads the vertex references of the `l` statement at `line` and calls `segment(from, to, at)` for
+/// each of its segments (`at`: where `to` was read). A segment from a vertex to itself is an error
+/// unless `allow_repeated`; `option` names the option that accepts it (empty: none). O(line).
+template <class Segment>
+void read_obj_polyline(text_cursor& c, const char* line, std::uint64_t nv, bool allow_repeated,
+                       std::string_view option, Segment&& segment) {
+  std::size_t k = 0;
+  std::uint32_t prev = 0;
+  for (c.skip_blanks(); !c.at_line_end(); c.skip_blanks(), ++k) {
+    const char* at = c.pos;
+    const std::uint32_t v = read_obj_index(c, nv, false);
+    if (k > 0) {
+      if (v == prev && !allow_repeated)
+        c.fail_at(at, "line segment from vertex " + std::to_string(v + 1) + " to itself (zero length" +
+                          (option.empty() ? std::string(")") : "; " + std::string(option) + " accepts it)"));
+      segment(prev, v, at);
+    }
+    prev = v;
+  }
+  if (k < 2) c.fail_at(line, "'l' needs at least 2 vertices, found " + std::to_string(k));
+}
+
+/// A statement the reader does not keep, at `line`: skipped when the OBJ specification knows it;
+/// otherwise counted (`skipped`, `first_line`), or an error when `strict`. Text that is no statement
+/// at all (binary data, another format) is an error, so it does not pass as an empty model. O(keyword).
+template <class = void>
+void skip_obj_statement(text_cursor& c, const char* line, std::string_view keyword, bool strict,
+                        std::size_t& skipped, std::uint64_t& first_line) {
+  if (is_known_obj_statement(keyword)) return;
+  const auto letter = [](char ch) {
+    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || ch == '_';
+  };
+  const bool word = !keyword.empty() && letter(keyword.front()) &&
+                    std::all_of(keyword.begin(), keyword.end(),
+                                [&](char ch) { return letter(ch) || (ch >= '0' && ch <= '9'); });
+  if (!word) c.fail_at(line, "not an OBJ statement: " + quote_token(line, c.end));
+  if (strict) c.fail_at(line, "unknown statement " + quote_token(line, c.end));
+  if (skipped++ == 0)
+    first_line = line_of({c.begin, static_cast<std::size_t>(c.end - c.begin)},
+                         static_cast<std::size_t>(line - c.begin));
 }
 
 /// Rest of the line as a group name, blanks trimmed; "default" when empty.
@@ -163,21 +207,11 @@ obj_data<P> parse_obj(std::string_view bytes, std::string_view name = "<memory>"
                                                   "obj_read_options"))
         c.fail_at(line, "face " + *problem);
     } else if (keyword == "l") {
-      std::size_t k = 0;
-      std::uint32_t prev = 0;
-      for (c.skip_blanks(); !c.at_line_end(); c.skip_blanks(), ++k) {
-        const char* at = c.pos;
-        const std::uint32_t v = detail::read_obj_index(c, soup.points.size(), false);
-        if (k > 0) {
-          if (v == prev && !options.allow_repeated_vertices)
-            c.fail_at(at,
-                      "line segment from vertex " + std::to_string(v + 1) +
-                          " to itself (zero length; obj_read_options::allow_repeated_vertices accepts it)");
-          data.lines.push_back({prev, v});
-        }
-        prev = v;
-      }
-      if (k < 2) c.fail_at(line, "'l' needs at least 2 vertices, found " + std::to_string(k));
+      detail::read_obj_polyline(c, line, soup.points.size(), options.allow_repeated_vertices,
+                                "obj_read_options::allow_repeated_vertices",
+                                [&](std::uint32_t a, std::uint32_t b, const char*) {
+                                  data.lines.push_back({a, b});
+                                });
     } else if (keyword == "g" || keyword == "o") {
       std::string group = detail::read_obj_name(c);
       const auto nf = static_cast<std::uint32_t>(soup.num_faces());
@@ -186,19 +220,9 @@ obj_data<P> parse_obj(std::string_view bytes, std::string_view name = "<memory>"
         data.groups.back().name = std::move(group);
       else
         data.groups.push_back({std::move(group), nf});
-    } else if (!detail::is_known_obj_statement(keyword)) {
-      // Skipping is for statements of other dialects; text that is no statement at all
-      // (binary data, a different format) must not pass as an empty model.
-      const auto letter = [](char ch) {
-        return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || ch == '_';
-      };
-      const bool word = !keyword.empty() && letter(keyword.front()) &&
-                        std::all_of(keyword.begin(), keyword.end(),
-                                    [&](char ch) { return letter(ch) || (ch >= '0' && ch <= '9'); });
-      if (!word) c.fail_at(line, "not an OBJ statement: " + detail::quote_token(line, c.end));
-      if (options.strict) c.fail_at(line, "unknown statement " + detail::quote_token(line, c.end));
-      if (data.skipped_statements++ == 0)
-        data.first_skipped_line = detail::line_of(bytes, static_cast<std::size_t>(line - bytes.data()));
+    } else {
+      detail::skip_obj_statement(c, line, keyword, options.strict, data.skipped_statements,
+                                 data.first_skipped_line);
     }
     c.next_line();
   }

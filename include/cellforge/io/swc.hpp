@@ -1,0 +1,417 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// SWC, the neuron-morphology format, as a skeleton graph: one sample per line,
+/// `id type x y z radius parent`, `#` comments, parent -1 for a root. The single-point and
+/// the three-point (NeuroMorpho) soma conventions are understood. See docs/formats.md ("SWC").
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "cellforge/core/error.hpp"
+#include "cellforge/core/point_traits.hpp"
+#include "cellforge/io/detail/output_buffer.hpp"
+#include "cellforge/io/detail/read_file.hpp"
+#include "cellforge/io/detail/text_cursor.hpp"
+#include "cellforge/tubes/skeleton.hpp"
+
+namespace cellforge::io {
+
+/// A skeleton read from SWC, with what SWC says about each node beyond position and radius.
+/// Edges run from a sample's parent to the sample (away from the root), in file order.
+template <Point3 P>
+struct swc_result {
+  cellforge::skeleton<P> skeleton;  ///< nodes in file order (less the collapsed soma points)
+  std::vector<std::int32_t> types;  ///< the SWC structure type of each node (1 soma, 2 axon, ...)
+  std::vector<std::int64_t> ids;    ///< the sample id of each node in the file
+  std::size_t collapsed_somas = 0;  ///< three-point somas read as one node
+};
+
+/// How SWC files are read.
+struct swc_read_options {
+  /// Read a three-point soma (NeuroMorpho) as the one node at its centre, its radius that of the
+  /// soma, with the outer points' children attached to it. Off: three nodes and two edges.
+  bool collapse_three_point_soma = true;
+};
+
+/// How SWC files are written.
+struct swc_write_options {
+  /// Written as '#' comment lines at the top when not empty.
+  std::string comment{};
+  /// The type written for every node of a skeleton that has none (0: undefined).
+  std::int32_t type = 0;
+};
+
+namespace detail {
+
+/// The name of SWC field k (0-based) of a sample, for messages: "the radius of sample 3". O(1).
+template <class = void>
+std::string swc_field(std::int64_t id, int k) {
+  constexpr const char* names[] = {"id",           "type",   "x coordinate", "y coordinate",
+                                   "z coordinate", "radius", "parent"};
+  return std::string("the ") + names[k] + " of sample " + std::to_string(id) + " (field " +
+         std::to_string(k + 1) + " of 7: id type x y z radius parent)";
+}
+
+/// Each sample's index in the file (of `n`) by id; fails on the first id used twice. O(n log n).
+template <class = void>
+std::vector<std::pair<std::int64_t, std::uint32_t>> swc_index_by_id(text_cursor& c,
+                                                                    const std::vector<std::int64_t>& ids,
+                                                                    const std::vector<const char*>& lines) {
+  std::vector<std::pair<std::int64_t, std::uint32_t>> by_id(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) by_id[i] = {ids[i], static_cast<std::uint32_t>(i)};
+  if (!std::is_sorted(by_id.begin(), by_id.end())) std::sort(by_id.begin(), by_id.end());
+  std::uint32_t later = std::numeric_limits<std::uint32_t>::max(), earlier = later;
+  for (std::size_t k = 1; k < by_id.size(); ++k)
+    if (by_id[k].first == by_id[k - 1].first && by_id[k].second < later) {
+      later = by_id[k].second;
+      earlier = by_id[k - 1].second;
+    }
+  if (later != std::numeric_limits<std::uint32_t>::max())
+    c.fail_at(lines[later], "sample id " + std::to_string(ids[later]) + " is used twice (first on line " +
+                                std::to_string(line_of({c.begin, static_cast<std::size_t>(c.end - c.begin)},
+                                                       static_cast<std::size_t>(lines[earlier] - c.begin))) +
+                                ")");
+  return by_id;
+}
+
+/// Fails at a cycle of parents (samples that reach no root), naming its samples. O(n).
+template <class = void>
+void swc_check_cycles(text_cursor& c, const std::vector<std::uint32_t>& parent,
+                      const std::vector<std::int64_t>& ids, const std::vector<const char*>& lines) {
+  constexpr std::uint32_t root = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint8_t> state(parent.size(), 0);  // 0 unseen, 1 on the current walk, 2 reaches a root
+  std::vector<std::uint32_t> walk;
+  for (std::size_t start = 0; start < parent.size(); ++start) {
+    walk.clear();
+    std::uint32_t v = static_cast<std::uint32_t>(start);
+    while (v != root && state[v] == 0) {
+      state[v] = 1;
+      walk.push_back(v);
+      v = parent[v];
+    }
+    if (v != root && state[v] == 1) {
+      // v is on this walk: the cycle is the walk from v on. Name it from its earliest line.
+      const auto from = std::find(walk.begin(), walk.end(), v);
+      const auto first = std::min_element(from, walk.end());
+      std::string text = std::to_string(ids[*first]);
+      std::uint32_t u = parent[*first];
+      for (int shown = 0; u != *first && shown < 8; ++shown, u = parent[u])
+        text += " -> " + std::to_string(ids[u]);
+      text += u == *first ? " -> " + std::to_string(ids[u]) : std::string(" -> ...");
+      c.fail_at(lines[*first], "the parents form a cycle with no root: " + text +
+                                   " (each arrow leads to the parent; a tree starts at a parent -1)");
+    }
+    for (const std::uint32_t w : walk) state[w] = 2;
+  }
+}
+
+/// Marks the outer points of each three-point soma (NeuroMorpho: a type-1 centre with exactly
+/// two type-1 children at ±r along y, radius r, within 1 % of r) as folded into their centre:
+/// `into[i]` is the centre for them, i otherwise. Returns the number of somas. O(n).
+template <class = void>
+std::size_t swc_three_point_somas(const std::vector<std::array<double, 4>>& xyzr,
+                                  const std::vector<std::int32_t>& types,
+                                  const std::vector<std::uint32_t>& parent,
+                                  std::vector<std::uint32_t>& into) {
+  constexpr std::uint32_t root = std::numeric_limits<std::uint32_t>::max();
+  const std::size_t n = parent.size();
+  // The first two type-1 children of each type-1 sample, and how many it has.
+  std::vector<std::array<std::uint32_t, 2>> soma_children(n, {root, root});
+  std::vector<std::uint8_t> count(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t p = parent[i];
+    if (p == root || types[i] != 1 || types[p] != 1) continue;
+    if (count[p] < 2) soma_children[p][count[p]] = static_cast<std::uint32_t>(i);
+    if (count[p] < 3) ++count[p];
+  }
+  std::vector<std::uint8_t> role(n, 0);  // 1 centre, 2 outer point
+  std::size_t somas = 0;
+  for (std::size_t a = 0; a < n; ++a) {
+    if (count[a] != 2 || role[a] != 0) continue;
+    const auto [b, c] = soma_children[a];
+    if (role[b] != 0 || role[c] != 0) continue;
+    const double r = xyzr[a][3], tol = 0.01 * r;
+    const auto offset = [&](std::uint32_t q) {  // +1 / -1 when q is at the centre ± r along y, else 0
+      if (std::fabs(xyzr[q][0] - xyzr[a][0]) > tol || std::fabs(xyzr[q][2] - xyzr[a][2]) > tol ||
+          std::fabs(xyzr[q][3] - r) > tol)
+        return 0;
+      const double dy = xyzr[q][1] - xyzr[a][1];
+      return std::fabs(dy - r) <= tol ? 1 : std::fabs(dy + r) <= tol ? -1 : 0;
+    };
+    const int ob = offset(b), oc = offset(c);
+    if (ob == 0 || ob + oc != 0) continue;
+    role[a] = 1;
+    role[b] = role[c] = 2;
+    into[b] = into[c] = static_cast<std::uint32_t>(a);
+    ++somas;
+  }
+  return somas;
+}
+
+}  // namespace detail
+
+/// Parses SWC text held in memory; `name` is used in error messages. Throws an io error with
+/// file and line on malformed input (fields, numbers, radii, ids, parents, cycles). O(n log n)
+/// for n samples (the ids are sorted to find parents; O(n) when they are already in order).
+template <Point3 P>
+swc_result<P> parse_swc(std::string_view bytes, std::string_view name = "<memory>",
+                        const swc_read_options& options = {}) {
+  using S = scalar_t<P>;
+  constexpr std::uint32_t root = std::numeric_limits<std::uint32_t>::max();
+  detail::text_cursor c(bytes, name, '#');
+  if (bytes.starts_with("\xEF\xBB\xBF")) c.pos += 3;
+  std::vector<std::int64_t> ids, parent_ids;
+  std::vector<std::int32_t> types;
+  std::vector<P> points;
+  std::vector<std::array<double, 4>> xyzr;  // positions as read (in S) and radii, for the soma test
+  std::vector<const char*> lines;
+  while (c.next_content()) {
+    const char* line = c.pos;
+    const std::int64_t id =
+        c.integer([] { return std::string("the sample id (field 1 of 7: id type x y z radius parent)"); });
+    if (id <= 0)
+      c.fail_at(line, "sample id " + std::to_string(id) + " must be positive (SWC ids start at 1)");
+    if (ids.size() >= root - 1) c.fail_at(line, "too many samples for 32-bit indices");
+    c.skip_blanks();
+    const char* at = c.pos;
+    const std::int64_t type = c.integer([&] { return detail::swc_field(id, 1); });
+    if (type < 0 || type > std::numeric_limits<std::int32_t>::max())
+      c.fail_at(at, "the type " + std::to_string(type) + " of sample " + std::to_string(id) +
+                        (type < 0 ? " must not be negative" : " is too large"));
+    const S x = c.coordinate<S>([&] { return detail::swc_field(id, 2); });
+    const S y = c.coordinate<S>([&] { return detail::swc_field(id, 3); });
+    const S z = c.coordinate<S>([&] { return detail::swc_field(id, 4); });
+    c.skip_blanks();
+    at = c.pos;
+    const double radius = c.number<double>([&] { return detail::swc_field(id, 5); });
+    if (!std::isfinite(radius) || !(radius > 0))
+      c.fail_at(at, "the radius of sample " + std::to_string(id) + ", " + detail::quote_token(at, c.end) +
+                        (std::isfinite(radius) ? ", must be positive" : ", is not finite"));
+    c.skip_blanks();
+    at = c.pos;
+    const std::int64_t parent = c.integer([&] { return detail::swc_field(id, 6); });
+    if (parent == id) c.fail_at(at, "sample " + std::to_string(id) + " is its own parent");
+    if (parent < -1 || parent == 0)
+      c.fail_at(at, "the parent " + std::to_string(parent) + " of sample " + std::to_string(id) +
+                        " is neither -1 (a root) nor a sample id (ids are positive)");
+    c.skip_blanks();
+    if (!c.at_line_end())
+      c.fail("unexpected " + c.token() + " after the 7 fields of sample " + std::to_string(id) +
+             " (id type x y z radius parent)");
+    ids.push_back(id);
+    parent_ids.push_back(parent);
+    types.push_back(static_cast<std::int32_t>(type));
+    points.push_back(point_traits<P>::make(x, y, z));
+    xyzr.push_back({static_cast<double>(x), static_cast<double>(y), static_cast<double>(z), radius});
+    lines.push_back(line);
+    c.next_line();
+  }
+  const std::size_t n = ids.size();
+  const auto by_id = detail::swc_index_by_id(c, ids, lines);
+  std::vector<std::uint32_t> parent(n, root);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (parent_ids[i] == -1) continue;
+    const auto it = std::lower_bound(by_id.begin(), by_id.end(), std::pair{parent_ids[i], std::uint32_t{0}});
+    if (it == by_id.end() || it->first != parent_ids[i])
+      c.fail_at(lines[i], "the parent " + std::to_string(parent_ids[i]) + " of sample " +
+                              std::to_string(ids[i]) + " is not in the file");
+    parent[i] = it->second;
+  }
+  detail::swc_check_cycles(c, parent, ids, lines);
+
+  swc_result<P> out;
+  std::vector<std::uint32_t> into(n);
+  for (std::size_t i = 0; i < n; ++i) into[i] = static_cast<std::uint32_t>(i);
+  if (options.collapse_three_point_soma)
+    out.collapsed_somas = detail::swc_three_point_somas(xyzr, types, parent, into);
+  std::vector<std::uint32_t> node(n, root);  // file index -> node index
+  auto& s = out.skeleton;
+  const std::size_t kept = n - 2 * out.collapsed_somas;
+  s.points.reserve(kept);
+  s.radii.reserve(kept);
+  out.types.reserve(kept);
+  out.ids.reserve(kept);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (into[i] != i) continue;
+    node[i] = static_cast<std::uint32_t>(s.points.size());
+    s.points.push_back(points[i]);
+    s.radii.push_back(xyzr[i][3]);
+    out.types.push_back(types[i]);
+    out.ids.push_back(ids[i]);
+  }
+  s.edges.reserve(kept);
+  for (std::size_t i = 0; i < n; ++i)
+    if (into[i] == i && parent[i] != root) s.edges.push_back({node[into[parent[i]]], node[i]});
+  return out;
+}
+
+/// Reads an SWC file. Throws an io error naming the path when it cannot be read, or with file
+/// and line when it is malformed. O(file size + n log n).
+template <Point3 P>
+swc_result<P> read_swc(const std::filesystem::path& path, const swc_read_options& options = {}) {
+  const std::string bytes = detail::read_file(path);
+  return parse_swc<P>(bytes, detail::display_name(path), options);
+}
+
+namespace detail {
+
+/// What an SWC writer writes, worked out before the first byte: the nodes parents first
+/// (the smallest index first among those ready, so a skeleton already in that order keeps
+/// it), each node's parent, and its id and type.
+struct swc_plan {
+  std::vector<std::uint32_t> order;
+  std::vector<std::uint32_t> parent;
+  std::vector<std::int64_t> ids;
+  std::vector<std::int32_t> types;
+};
+
+/// Checks that g is a forest whose edges point away from the roots (each node at most one
+/// incoming edge, no cycle) and has no defect but coincident nodes, and plans its lines.
+/// `ids`/`types` empty: ids are 1, 2, ... in written order and every type is `type`.
+/// Throws invalid_input naming the node or edge otherwise. O(V log V + E).
+template <Skeleton G>
+swc_plan make_swc_plan(const G& g, std::vector<std::int64_t> ids, std::vector<std::int32_t> types,
+                       std::int32_t type) {
+  using T = skeleton_traits<G>;
+  constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+  const auto fail = [](const std::string& m) {
+    throw error(error_category::invalid_input, "write_swc: " + m);
+  };
+  const std::size_t nv = T::num_nodes(g), ne = T::num_edges(g);
+  if (nv >= none) fail("more than 2^32 - 2 nodes");
+  if ((!ids.empty() && ids.size() != nv) || (!types.empty() && types.size() != nv))
+    fail("the ids and types must have one entry per node (" + std::to_string(nv) + ")");
+  swc_plan plan;
+  plan.parent.assign(nv, none);
+  // Positions, radii, endpoints, self loops and duplicates as the tube mesher checks them;
+  // coincident nodes are no reason to refuse a file.
+  cellforge::detail::check_skeleton_writable(g, "write_swc");
+  std::vector<std::uint32_t> in_edge(nv, none);
+  for (std::size_t j = 0; j < ne; ++j) {
+    const std::array<std::size_t, 2> ab = T::endpoints(g, j);
+    if (plan.parent[ab[1]] != none)
+      fail("node " + std::to_string(ab[1]) + " is the end of edges " + std::to_string(in_edge[ab[1]]) +
+           " and " + std::to_string(j) +
+           "; SWC stores a tree, each node with one parent (edges run parent -> child)");
+    plan.parent[ab[1]] = static_cast<std::uint32_t>(ab[0]);
+    in_edge[ab[1]] = static_cast<std::uint32_t>(j);
+  }
+  // Parents first: children lists (CSR), then a min-heap of the nodes whose parent is written.
+  std::vector<std::uint32_t> first(nv + 1, 0), child(ne);
+  for (std::size_t i = 0; i < nv; ++i)
+    if (plan.parent[i] != none) ++first[plan.parent[i] + 1];
+  for (std::size_t i = 0; i < nv; ++i) first[i + 1] += first[i];
+  std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+  for (std::size_t i = 0; i < nv; ++i)
+    if (plan.parent[i] != none) child[fill[plan.parent[i]]++] = static_cast<std::uint32_t>(i);
+  const auto later = [](std::uint32_t a, std::uint32_t b) { return a > b; };
+  std::vector<std::uint32_t> ready;
+  for (std::size_t i = 0; i < nv; ++i)
+    if (plan.parent[i] == none) ready.push_back(static_cast<std::uint32_t>(i));  // already a heap
+  plan.order.reserve(nv);
+  while (!ready.empty()) {
+    std::pop_heap(ready.begin(), ready.end(), later);
+    const std::uint32_t v = ready.back();
+    ready.pop_back();
+    plan.order.push_back(v);
+    for (std::uint32_t k = first[v]; k < first[v + 1]; ++k) {
+      ready.push_back(child[k]);
+      std::push_heap(ready.begin(), ready.end(), later);
+    }
+  }
+  if (plan.order.size() != nv) {
+    std::vector<std::uint8_t> written(nv, 0);
+    for (const std::uint32_t v : plan.order) written[v] = 1;
+    const auto v = static_cast<std::size_t>(std::find(written.begin(), written.end(), 0) - written.begin());
+    fail("node " + std::to_string(v) + " lies on a cycle of edges or below one; SWC stores a forest");
+  }
+  if (ids.empty()) {
+    ids.resize(nv);
+    for (std::size_t k = 0; k < nv; ++k) ids[plan.order[k]] = static_cast<std::int64_t>(k + 1);
+  } else {
+    std::vector<std::int64_t> sorted = ids;
+    std::sort(sorted.begin(), sorted.end());
+    if (sorted.front() <= 0) fail("sample id " + std::to_string(sorted.front()) + " is not positive");
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+      fail("sample id " + std::to_string(*std::adjacent_find(sorted.begin(), sorted.end())) +
+           " is used twice");
+  }
+  if (types.empty()) types.assign(nv, type);
+  for (std::size_t i = 0; i < nv; ++i)
+    if (types[i] < 0)
+      fail("node " + std::to_string(i) + " has the negative type " + std::to_string(types[i]));
+  plan.ids = std::move(ids);
+  plan.types = std::move(types);
+  return plan;
+}
+
+/// Writes the planned lines. O(V).
+template <Skeleton G>
+void put_swc(std::ostream& os, const G& g, const swc_plan& plan, const swc_write_options& options) {
+  using T = skeleton_traits<G>;
+  output_buffer out(os);
+  put_comment_lines(out, options.comment, "# ");
+  for (const std::uint32_t v : plan.order) {
+    const auto p = skeleton_point_t<G>(T::position(g, v));
+    out.number(plan.ids[v]);
+    out.put(' ');
+    out.number(plan.types[v]);
+    for (std::size_t k = 0; k < 3; ++k) {
+      out.put(' ');
+      out.number(coord(p, k));
+    }
+    out.put(' ');
+    out.number(static_cast<double>(T::radius(g, v)));
+    out.put(' ');
+    out.number(plan.parent[v] == std::numeric_limits<std::uint32_t>::max() ? std::int64_t{-1}
+                                                                           : plan.ids[plan.parent[v]]);
+    out.put('\n');
+  }
+  out.finish("SWC");
+}
+
+}  // namespace detail
+
+/// Writes any Skeleton whose edges form a forest pointing away from its roots as SWC: ids 1, 2,
+/// ... with parents before children, every type `options.type`, numbers in shortest round-trip
+/// form. Throws invalid_input, before writing anything, on what SWC cannot hold. O(V log V + E).
+template <Skeleton G>
+void write_swc(std::ostream& os, const G& g, const swc_write_options& options = {}) {
+  detail::put_swc(os, g, detail::make_swc_plan(g, {}, {}, options.type), options);
+}
+
+/// Writes what parse_swc read, with its own ids and types (parents first). O(V log V + E).
+template <Point3 P>
+void write_swc(std::ostream& os, const swc_result<P>& swc, const swc_write_options& options = {}) {
+  detail::put_swc(os, swc.skeleton, detail::make_swc_plan(swc.skeleton, swc.ids, swc.types, options.type),
+                  options);
+}
+
+/// Writes an SWC file. A skeleton SWC cannot hold is refused before the file is opened, so an
+/// existing file is never truncated by a failed write; io errors name the path. O(V log V + E).
+template <Skeleton G>
+void write_swc(const std::filesystem::path& path, const G& g, const swc_write_options& options = {}) {
+  const detail::swc_plan plan = detail::make_swc_plan(g, {}, {}, options.type);
+  detail::write_file(path, [&](std::ostream& os) { detail::put_swc(os, g, plan, options); });
+}
+
+/// Writes an swc_result to a file (see the stream overload); refused before the file is opened. O(V log V +
+/// E).
+template <Point3 P>
+void write_swc(const std::filesystem::path& path, const swc_result<P>& swc,
+               const swc_write_options& options = {}) {
+  const detail::swc_plan plan = detail::make_swc_plan(swc.skeleton, swc.ids, swc.types, options.type);
+  detail::write_file(path, [&](std::ostream& os) { detail::put_swc(os, swc.skeleton, plan, options); });
+}
+
+}  // namespace cellforge::io
