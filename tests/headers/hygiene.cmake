@@ -2,6 +2,8 @@
 #   - `#pragma once`;
 #   - no `using namespace` (it leaks into every user's code);
 #   - no <iostream> / <fstream> outside include/cellforge/io/ (the core does no I/O);
+#   - no non-template `inline` function at namespace scope: it would be compiled in every file
+#     that includes the header, used or not (docs/infra.md; make it a template);
 #   - cellforge/cellforge.hpp includes every public header except io/, detail/ and the
 #     generators and sample data its comment names (so it says what it includes).
 # Prints every violation with file and line, then fails if there was any.
@@ -34,6 +36,12 @@ foreach(header IN LISTS headers)
     endif()
     if(code MATCHES "(^|[^A-Za-z0-9_])using[ \t]+namespace[ \t]")
       message("${header}:${n}: `using namespace` in a header leaks into users' code")
+      math(EXPR problems "${problems} + 1")
+    endif()
+    if(NOT code MATCHES "^inline[ \t]+[^(]*[ \t]operator" AND
+       code MATCHES "^inline[ \t]+([^=(]*[^A-Za-z0-9_=(])?([A-Za-z_][A-Za-z0-9_]*)[ \t]*\\(")
+      message("${header}:${n}: non-template inline function ${CMAKE_MATCH_2}(): it compiles in every "
+              "file that includes the header; make it a template (docs/infra.md)")
       math(EXPR problems "${problems} + 1")
     endif()
     if(NOT is_io AND code MATCHES "^[ \t]*#[ \t]*include[ \t]*<(iostream|fstream)>")
