@@ -3,9 +3,9 @@
 /// \file
 /// Every public header of cellforge except three kinds, which you include by name when you
 /// want them: file I/O (`cellforge/io/...`), the generators of test and benchmark inputs
-/// (`algorithms/shapes.hpp`, `wireframe/sample_models.hpp`) and the seed's sample solids
-/// (`thin/sample_solids.hpp`, `smooth/sample_solids.hpp`), which are large and which an
-/// application rarely needs. The header hygiene test checks that this list is complete.
+/// (`algorithms/shapes.hpp`, `wireframe/sample_models.hpp`, `tubes/sample_skeletons.hpp`)
+/// and the seed's sample solids (`thin/sample_solids.hpp`, `smooth/sample_solids.hpp`),
+/// which are large and which an application rarely needs. The header hygiene test checks that this list is complete.
 
 #include "cellforge/algorithms/convex_hull.hpp"
 #include "cellforge/algorithms/ear_clipping.hpp"
@@ -42,7 +42,11 @@
 #include "cellforge/thin/selection_growing.hpp"
 #include "cellforge/thin/thin_points.hpp"
 #include "cellforge/thin/thin_result.hpp"
+#include "cellforge/tubes/branch_mesh.hpp"
+#include "cellforge/tubes/node_path.hpp"
 #include "cellforge/tubes/skeleton.hpp"
+#include "cellforge/tubes/tube_construct.hpp"
+#include "cellforge/tubes/tube_mesh.hpp"
 #include "cellforge/wireframe/circuit_tracer.hpp"
 #include "cellforge/wireframe/extra_faces.hpp"
 #include "cellforge/wireframe/face_arrangement.hpp"

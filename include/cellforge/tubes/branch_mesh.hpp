@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Branch meshes (001_2f93ddd1ce4b9f26.txt, §V.A.1, algorithm 9): the surface around a junction.
+/// One cross-section per incident edge is projected onto a sphere about the junction, the
+/// convex hull of all projected points is taken, each cross-section's cap is removed, and
+/// every vertex is moved back along its ray to its cross-section's true place. Because each
+/// vertex only moves along its own ray from the centre, the surface stays star-shaped about
+/// the centre and so embedded (docs/tubes.md, "pulling the sphere in").
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "cellforge/algorithms/convex_hull.hpp"
+#include "cellforge/core/error.hpp"
+#include "cellforge/tubes/detail/tube_buffer.hpp"
+
+namespace cellforge::detail::tubes {
+
+/// One cross-section about a junction: the unit direction from the centre along its edge,
+/// the ring's radius and distance from the centre, the unit direction of its first vertex
+/// (perpendicular to `direction`), and whether it is virtual (kept as surface, no tube).
+struct junction_ring {
+  glm::dvec3 direction{0, 0, 1};
+  double radius = 1, distance = 1;
+  glm::dvec3 first{1, 0, 0};
+  bool is_virtual = false;
+};
+
+/// Vertex j of a ring about `centre`: counter-clockwise about the ring's direction. O(1).
+template <class = void>
+glm::dvec3 ring_vertex(const glm::dvec3& centre, const junction_ring& r, std::uint32_t j,
+                       std::uint32_t sides) {
+  const double a = 2.0 * std::numbers::pi * j / sides;
+  const glm::dvec3 v = glm::cross(r.direction, r.first);
+  return centre + r.distance * r.direction + r.radius * (std::cos(a) * r.first + std::sin(a) * v);
+}
+
+/// Distances from the centre for the rings about one junction so that no two cross-sections'
+/// caps overlap on the sphere: ring i's cap half-angle is at most `separation` times half the
+/// smallest angle between its direction and another's, and never wider than the cap of a ring
+/// at distance `centre_radius`. O(k²) for k rings.
+template <class = void>
+void place_rings(std::span<junction_ring> rings, double centre_radius, double separation) {
+  for (std::size_t i = 0; i < rings.size(); ++i) {
+    double closest = std::numbers::pi;
+    for (std::size_t j = 0; j < rings.size(); ++j)
+      if (j != i)
+        closest = std::min(
+            closest, std::acos(std::clamp(glm::dot(rings[i].direction, rings[j].direction), -1.0, 1.0)));
+    const double widest = std::atan2(rings[i].radius, centre_radius);
+    const double half_angle = std::min(widest, separation * closest / 2);
+    rings[i].distance = rings[i].radius / std::tan(half_angle);
+  }
+}
+
+/// Appends the junction surface of `rings` about `centre` to `out`: each ring's `sides`
+/// vertices (ring i's first vertex is `first_vertex[i]`, counter-clockwise about its
+/// direction), and the hull triangles that are not in a real ring's cap, tagged with
+/// `source`. Throws cellforge::error naming the node and `ring_edges[i]` (the skeleton edge
+/// of ring i) when a cap is not intact in the hull (two cross-sections overlap on the
+/// sphere). O(m log m), m = sides × rings.
+template <class = void>
+void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junction_ring> rings,
+                    std::uint32_t sides, tube_face_source source, std::span<const std::uint32_t> ring_edges,
+                    std::vector<std::uint32_t>& first_vertex) {
+  const std::size_t m = rings.size() * sides;
+  std::vector<glm::dvec3> on_sphere(m);
+  first_vertex.clear();
+  for (std::size_t i = 0; i < rings.size(); ++i) {
+    first_vertex.push_back(static_cast<std::uint32_t>(out.points.size()));
+    for (std::uint32_t j = 0; j < sides; ++j) {
+      const glm::dvec3 p = ring_vertex(centre, rings[i], j, sides);
+      on_sphere[i * sides + j] = glm::normalize(p - centre);
+      // Back along its ray to the ring's own place ("pulling the sphere in").
+      out.add_point(p);
+    }
+  }
+  convex_hull_options o;
+  o.merge_coplanar = false;
+  const hull::result h = hull::compute(on_sphere, o);
+  const std::string where = "node " + std::to_string(source.index);
+  if (h.dimension != 3 || h.vertices.size() != m)
+    throw error(error_category::invalid_input,
+                where + ": the cross-sections of its " + std::to_string(rings.size()) +
+                    " edges do not all lie on their junction's hull (edges too close in angle)");
+  std::vector<std::uint32_t> cap_triangles(rings.size(), 0);
+  for (std::size_t f = 0; f + 1 < h.face_offsets.size(); ++f) {
+    std::uint32_t tri[3];
+    std::size_t ring_of[3];
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t input = h.vertices[h.face_vertices[h.face_offsets[f] + k]];
+      ring_of[k] = input / sides;
+      tri[k] = first_vertex[ring_of[k]] + input % sides;
+    }
+    if (ring_of[0] == ring_of[1] && ring_of[1] == ring_of[2] && !rings[ring_of[0]].is_virtual) {
+      ++cap_triangles[ring_of[0]];
+      continue;
+    }
+    out.add_face(tri, source);
+  }
+  // A ring's cap is intact exactly when sides - 2 hull triangles span its vertices alone.
+  for (std::size_t i = 0; i < rings.size(); ++i)
+    if (!rings[i].is_virtual && cap_triangles[i] != sides - 2)
+      throw error(error_category::invalid_input,
+                  where + ": the cross-section of its edge " + std::to_string(ring_edges[i]) +
+                      " is cut by another's on the junction's hull (edges too close in angle)");
+}
+
+}  // namespace cellforge::detail::tubes

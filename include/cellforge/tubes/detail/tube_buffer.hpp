@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The tube mesher's output under construction: double positions, polygon faces in CSR form
+// and where each face came from; and the small vector helpers its stages share.
+
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+namespace cellforge {
+
+/// What part of the skeleton a face of a tube mesh was made for.
+enum class tube_face_kind : std::uint8_t {
+  extrusion,  ///< the tube along a skeleton edge (index: the edge)
+  junction,   ///< the surface around a branch or a sharp bend (index: the node)
+  end_cap,    ///< the disc closing a free end (index: the node)
+  sphere,     ///< the sphere of an isolated node (index: the node)
+};
+
+/// The skeleton element a face of a tube mesh came from (the face property "f:tube_source").
+struct tube_face_source {
+  tube_face_kind kind = tube_face_kind::extrusion;
+  std::uint32_t index = 0xFFFFFFFFu;
+  friend bool operator==(const tube_face_source&, const tube_face_source&) = default;
+};
+
+namespace detail::tubes {
+
+template <class = void>
+struct basic_buffer {
+  std::vector<glm::dvec3> points;
+  std::vector<std::uint32_t> face_offsets{0};
+  std::vector<std::uint32_t> face_vertices;
+  std::vector<tube_face_source> sources;
+
+  std::uint32_t add_point(const glm::dvec3& p) {
+    points.push_back(p);
+    return static_cast<std::uint32_t>(points.size() - 1);
+  }
+  void add_face(std::span<const std::uint32_t> vs, tube_face_source s) {
+    face_vertices.insert(face_vertices.end(), vs.begin(), vs.end());
+    face_offsets.push_back(static_cast<std::uint32_t>(face_vertices.size()));
+    sources.push_back(s);
+  }
+  std::size_t num_faces() const noexcept { return sources.size(); }
+};
+using buffer = basic_buffer<>;
+
+/// A unit vector perpendicular to unit vector d, chosen by d alone. O(1).
+template <class = void>
+glm::dvec3 any_perpendicular(const glm::dvec3& d) {
+  const glm::dvec3 a = std::abs(d.x) <= std::abs(d.y) && std::abs(d.x) <= std::abs(d.z) ? glm::dvec3(1, 0, 0)
+                       : std::abs(d.y) <= std::abs(d.z)                                 ? glm::dvec3(0, 1, 0)
+                                                                                        : glm::dvec3(0, 0, 1);
+  return glm::normalize(glm::cross(d, a));
+}
+
+/// The signed angle from u to w about unit axis n (both projected into n's plane). O(1).
+template <class = void>
+double angle_about(const glm::dvec3& u, const glm::dvec3& w, const glm::dvec3& n) {
+  return std::atan2(glm::dot(glm::cross(u, w), n), glm::dot(u, w));
+}
+
+}  // namespace detail::tubes
+}  // namespace cellforge

@@ -1,0 +1,250 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Sample skeletons for tests, examples and benchmarks (not included by cellforge.hpp): node
+/// lattices, complete graphs on a sphere, the Petersen graph, Möbius ladders, rings, a
+/// figure-eight, and random trees with branch angles and clearance that a tube mesh can
+/// honour. Every generator is deterministic for its arguments.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "cellforge/core/point_traits.hpp"
+#include "cellforge/tubes/skeleton.hpp"
+
+namespace cellforge::samples {
+
+namespace detail {
+template <Point3 P>
+void add_node(skeleton<P>& s, const glm::dvec3& p, double r) {
+  s.points.push_back(from_dvec3<P>(p));
+  s.radii.push_back(r);
+}
+template <Point3 P>
+void add_edge(skeleton<P>& s, std::size_t a, std::size_t b) {
+  s.edges.push_back({static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b)});
+}
+/// splitmix64: the same numbers on every platform. O(1).
+template <class = void>
+struct basic_splitmix {
+  std::uint64_t state;
+  std::uint64_t next() {
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15u);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
+    return z ^ (z >> 31);
+  }
+  double uniform(double lo, double hi) {
+    return lo + (hi - lo) * static_cast<double>(next() >> 11) * 0x1p-53;
+  }
+};
+using splitmix = basic_splitmix<>;
+}  // namespace detail
+
+/// The a × b × c node lattice with edges between axis neighbours (the seed's
+/// `Lattice_10_8_3` is lattice(10, 8, 3)): every inner node a branch of valence up to 6.
+/// O(abc).
+template <Point3 P = glm::dvec3>
+skeleton<P> lattice(int a, int b, int c, double spacing = 4, double radius = 0.5) {
+  skeleton<P> s;
+  const auto id = [&](int x, int y, int z) { return static_cast<std::size_t>(x + a * (y + b * z)); };
+  for (int z = 0; z < c; ++z)
+    for (int y = 0; y < b; ++y)
+      for (int x = 0; x < a; ++x) detail::add_node(s, spacing * glm::dvec3(x, y, z), radius);
+  for (int z = 0; z < c; ++z)
+    for (int y = 0; y < b; ++y)
+      for (int x = 0; x < a; ++x) {
+        if (x + 1 < a) detail::add_edge(s, id(x, y, z), id(x + 1, y, z));
+        if (y + 1 < b) detail::add_edge(s, id(x, y, z), id(x, y + 1, z));
+        if (z + 1 < c) detail::add_edge(s, id(x, y, z), id(x, y, z + 1));
+      }
+  return s;
+}
+
+/// A ring of n nodes on a circle of radius `circle`. O(n).
+template <Point3 P = glm::dvec3>
+skeleton<P> ring(int n, double circle = 10, double radius = 0.5) {
+  skeleton<P> s;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * std::numbers::pi * i / n;
+    detail::add_node(s, circle * glm::dvec3(std::cos(t), std::sin(t), 0), radius);
+    detail::add_edge(s, i, (i + 1) % n);
+  }
+  return s;
+}
+
+/// The complete graph K_n with its nodes spread on a sphere of radius `sphere`. O(n²).
+template <Point3 P = glm::dvec3>
+skeleton<P> complete_graph(int n, double sphere = 10, double radius = 0.3) {
+  skeleton<P> s;
+  for (int i = 0; i < n; ++i) {
+    const double z = 1 - (2 * i + 1.0) / n, r = std::sqrt(1 - z * z),
+                 t = i * std::numbers::pi * (3 - std::sqrt(5.0));
+    detail::add_node(s, sphere * glm::dvec3(r * std::cos(t), r * std::sin(t), z), radius);
+  }
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j) detail::add_edge(s, i, j);
+  return s;
+}
+
+/// The Petersen graph: an outer pentagon, an inner pentagram lifted off its plane, spokes.
+/// O(1).
+template <Point3 P = glm::dvec3>
+skeleton<P> petersen(double size = 10, double radius = 0.4) {
+  skeleton<P> s;
+  for (int i = 0; i < 5; ++i) {
+    const double t = 2 * std::numbers::pi * i / 5 + std::numbers::pi / 2;
+    detail::add_node(s, size * glm::dvec3(std::cos(t), std::sin(t), 0), radius);
+    detail::add_node(s, size * glm::dvec3(0.5 * std::cos(t), 0.5 * std::sin(t), 0.3), radius);
+  }
+  for (int i = 0; i < 5; ++i) {
+    detail::add_edge(s, 2 * i, 2 * ((i + 1) % 5));
+    detail::add_edge(s, 2 * i, 2 * i + 1);
+    detail::add_edge(s, 2 * i + 1, 2 * ((i + 2) % 5) + 1);
+  }
+  return s;
+}
+
+/// The Möbius ladder on n nodes (n even): a ring of n with chords between opposite nodes
+/// (the seed's `Mobius_16_16` stand-in is mobius_ladder(16)). O(n).
+template <Point3 P = glm::dvec3>
+skeleton<P> mobius_ladder(int n, double circle = 10, double radius = 0.4) {
+  skeleton<P> s = ring<P>(n, circle, radius);
+  // Chords cross at the centre: lift alternate ones so that they clear each other.
+  for (int i = 0; i < n / 2; ++i) {
+    const glm::dvec3 a = to_dvec3(s.points[i]), b = to_dvec3(s.points[i + n / 2]);
+    detail::add_node(s, 0.5 * (a + b) + glm::dvec3(0, 0, (i - (n / 2 - 1) / 2.0) * 4 * radius), radius);
+    detail::add_edge(s, i, s.points.size() - 1);
+    detail::add_edge(s, s.points.size() - 1, i + n / 2);
+  }
+  return s;
+}
+
+/// Two rings of n nodes sharing one node (a figure-eight: one branch of degree 4). O(n).
+template <Point3 P = glm::dvec3>
+skeleton<P> figure_eight(int n = 12, double circle = 5, double radius = 0.5) {
+  skeleton<P> s = ring<P>(n, circle, radius);
+  const std::size_t first = s.points.size();
+  for (int i = 1; i < n; ++i) {
+    const double t = std::numbers::pi + 2 * std::numbers::pi * i / n;
+    detail::add_node(s, glm::dvec3(2 * circle, 0, 0) + circle * glm::dvec3(std::cos(t), std::sin(t), 0),
+                     radius);
+  }
+  detail::add_edge(s, 0, first);
+  for (int i = 1; i + 1 < n; ++i) detail::add_edge(s, first + i - 1, first + i);
+  detail::add_edge(s, first + n - 2, 0);
+  return s;
+}
+
+/// How random_tree grows a tree.
+struct random_tree_options {
+  std::size_t nodes = 100;
+  double root_radius = 1.0;
+  double taper = 0.93;  ///< a child's radius over its parent's
+  double min_radius = 0.15;
+  double min_branch_angle = 60;    ///< degrees between any two edges at a node
+  double segment_over_radius = 6;  ///< segment length in parent radii (plus one root radius)
+  double chain_probability = 0.6;  ///< a node continues as a chain (degree 2) rather than branching
+};
+
+/// A random tree: chains of degree-2 nodes and branches of 2–3 children, every angle between
+/// two edges at a node at least `min_branch_angle`, and every segment clear of every other
+/// non-adjacent one by the sum of their radii (a candidate that is not is not grown).
+/// Deterministic for its seed. O(n) expected (a hash grid for the clearance test).
+template <Point3 P = glm::dvec3>
+skeleton<P> random_tree(std::uint64_t seed, const random_tree_options& o = {}) {
+  skeleton<P> s;
+  detail::splitmix rng{seed};
+  std::vector<glm::dvec3> pos{glm::dvec3(0.0)};
+  std::vector<double> rad{o.root_radius};
+  std::vector<std::uint32_t> parent{0xFFFFFFFFu};
+  const double cos_min = std::cos(o.min_branch_angle * std::numbers::pi / 180);
+  const double cell = 2 * (o.segment_over_radius + 1) * o.root_radius;
+  struct segment {
+    std::uint32_t a, b;
+  };
+  std::vector<segment> segments;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid;
+  const auto key = [&](const glm::dvec3& p) {
+    const auto q = [&](double x) {
+      return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(x / cell)) & 0x1FFFFF);
+    };
+    return q(p.x) | q(p.y) << 21 | q(p.z) << 42;
+  };
+  const auto segment_distance = [](glm::dvec3 p1, glm::dvec3 q1, glm::dvec3 p2, glm::dvec3 q2) {
+    // Closest points of two segments (clamped parameters, as in Ericson's Real-Time Collision Detection).
+    const glm::dvec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+    const double a = glm::dot(d1, d1), e = glm::dot(d2, d2), f = glm::dot(d2, r), c = glm::dot(d1, r),
+                 b = glm::dot(d1, d2), den = a * e - b * b;
+    double sp = den > 1e-300 ? std::clamp((b * f - c * e) / den, 0.0, 1.0) : 0.0;
+    double tp = (b * sp + f) / e;
+    if (tp < 0)
+      tp = 0, sp = std::clamp(-c / a, 0.0, 1.0);
+    else if (tp > 1)
+      tp = 1, sp = std::clamp((b - c) / a, 0.0, 1.0);
+    return glm::length(p1 + sp * d1 - (p2 + tp * d2));
+  };
+  const auto clear = [&](std::uint32_t from, const glm::dvec3& to, double r) {
+    const glm::dvec3 mid = 0.5 * (pos[from] + to);
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          const auto it = grid.find(key(mid + cell * glm::dvec3(dx, dy, dz)));
+          if (it == grid.end()) continue;
+          for (const std::uint32_t k : it->second) {
+            const segment& g = segments[k];
+            if (g.a == from || g.b == from) continue;  // adjacent: the angle rule covers it
+            if (segment_distance(pos[from], to, pos[g.a], pos[g.b]) <
+                1.5 * (r + std::max(rad[g.a], rad[g.b])))
+              return false;
+          }
+        }
+    return true;
+  };
+  std::vector<std::uint32_t> open{0};
+  std::vector<glm::dvec3> heading{glm::dvec3(0, 0, 1)};
+  while (!open.empty() && pos.size() < o.nodes) {
+    const std::size_t pick = rng.next() % open.size();
+    const std::uint32_t v = open[pick];
+    const glm::dvec3 h = heading[pick];
+    open[pick] = open.back(), heading[pick] = heading.back();
+    open.pop_back(), heading.pop_back();
+    const int children = v == 0                                    ? 3
+                         : rng.uniform(0, 1) < o.chain_probability ? 1
+                                                                   : 2 + static_cast<int>(rng.next() % 2);
+    std::vector<glm::dvec3> used;
+    if (parent[v] != 0xFFFFFFFFu) used.push_back(glm::normalize(pos[parent[v]] - pos[v]));
+    for (int k = 0; k < children && pos.size() < o.nodes; ++k)
+      for (int attempt = 0; attempt < 30; ++attempt) {
+        const glm::dvec3 d =
+            glm::normalize(h + (children == 1 ? 0.5 : 1.2) *
+                                   glm::dvec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)));
+        if (!std::all_of(used.begin(), used.end(),
+                         [&](const glm::dvec3& u) { return glm::dot(u, d) < cos_min; }))
+          continue;
+        const double r = std::max(o.min_radius, rad[v] * o.taper);
+        const glm::dvec3 p = pos[v] + (o.segment_over_radius * rad[v] + o.root_radius) * d;
+        if (!clear(v, p, r)) continue;
+        const auto c = static_cast<std::uint32_t>(pos.size());
+        pos.push_back(p), rad.push_back(r), parent.push_back(v);
+        segments.push_back({v, c});
+        grid[key(0.5 * (pos[v] + p))].push_back(static_cast<std::uint32_t>(segments.size() - 1));
+        used.push_back(d);
+        open.push_back(c), heading.push_back(d);
+        break;
+      }
+  }
+  for (std::size_t i = 0; i < pos.size(); ++i) detail::add_node(s, pos[i], rad[i]);
+  for (const segment& g : segments) detail::add_edge(s, g.a, g.b);
+  return s;
+}
+
+}  // namespace cellforge::samples

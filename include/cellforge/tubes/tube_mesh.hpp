@@ -1,0 +1,318 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Tube networks (001_2f93ddd1ce4b9f26.txt, ch. V): a skeleton graph with radii becomes one
+/// closed, oriented 2-manifold per connected component, whose genus is the graph's cycle rank.
+/// `make_tubes(g, options)` runs the stages: the tube construct (tube_construct.hpp), the
+/// branch meshes (branch_mesh.hpp), the node paths (node_path.hpp), and the mesh.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "cellforge/core/error.hpp"
+#include "cellforge/core/point_traits.hpp"
+#include "cellforge/halfedge/mesh_geometry.hpp"
+#include "cellforge/halfedge/surface_mesh.hpp"
+#include "cellforge/tubes/branch_mesh.hpp"
+#include "cellforge/tubes/detail/tube_buffer.hpp"
+#include "cellforge/tubes/node_path.hpp"
+#include "cellforge/tubes/skeleton.hpp"
+#include "cellforge/tubes/tube_construct.hpp"
+
+namespace cellforge {
+
+/// Name of the face property of a tube mesh that says what each face was made for.
+inline constexpr std::string_view tube_source_property_name = "f:tube_source";
+
+/// How make_tubes shapes the tubes. The defaults are the seed's where it has one.
+struct tube_options {
+  /// Vertices of each cross-section (8: an octagon; 4 gives the seed's square sections).
+  std::uint32_t sides = 8;
+  /// Fraction of half the angle between two edges at a junction that a cross-section's cap
+  /// may fill on the junction's sphere (below 1, so that caps never touch).
+  double cap_separation = 0.9;
+  /// A node of degree 2 whose path turns by more than this (degrees) is meshed as a junction
+  /// of two cross-sections, as a branch is (§V.D), instead of a mitred bend.
+  double bend_limit_degrees = 60;
+  /// §V.D method 1: a sharp bend's junction gets a virtual cross-section on the outside of
+  /// the bend (kept as surface, no tube), which keeps the bend round instead of pinched.
+  bool bend_virtual_section = true;
+  /// How cross-sections are turned along a path (§V.C); global by default.
+  tube_alignment alignment = tube_alignment::global;
+};
+
+/// What make_tubes built, and how long each stage took.
+template <Point3 P>
+struct tubes_result {
+  surface_mesh<P> mesh;  ///< with face property "f:tube_source" (tube_face_source)
+  tube_construct construct;
+  std::size_t junctions = 0;       ///< branches and sharp bends meshed as junctions
+  std::size_t bend_junctions = 0;  ///< of which sharp bends of degree-2 nodes
+  std::size_t paths = 0, closed_paths = 0, end_caps = 0, spheres = 0;
+  std::int64_t cycle_rank = 0;  ///< E − V + C of the skeleton
+  std::int64_t genus = 0;       ///< of the mesh: Σ over shells (2 − χ) / 2
+  std::size_t shells = 0;       ///< connected components of the mesh
+  double construct_ms = 0, junctions_ms = 0, paths_ms = 0, mesh_ms = 0, total_ms = 0;
+};
+
+namespace detail::tubes {
+
+template <class = void>
+double elapsed_ms(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since).count();
+}
+
+/// Unit points spread over the sphere (a Fibonacci lattice) for an isolated node. O(n).
+template <class = void>
+std::vector<glm::dvec3> sphere_directions(std::size_t n) {
+  std::vector<glm::dvec3> d(n);
+  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+  for (std::size_t i = 0; i < n; ++i) {
+    const double z = 1.0 - (2.0 * static_cast<double>(i) + 1.0) / static_cast<double>(n);
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z)), a = golden * static_cast<double>(i);
+    d[i] = {r * std::cos(a), r * std::sin(a), z};
+  }
+  return d;
+}
+
+}  // namespace detail::tubes
+
+/// Meshes the skeleton g as tubes: a closed, oriented 2-manifold per connected component
+/// (genus = cycle rank), quads along edges and triangles at junctions, positions in g's point
+/// type. Throws cellforge::error naming the node or edge for input it cannot mesh (see
+/// validate_skeleton; edges too short for the cross-sections at their ends; edges too close in
+/// angle at a junction). O(V + E) for bounded degree, O(k log k) per junction of degree k.
+template <Skeleton G>
+tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& options = {}) {
+  namespace dt = detail::tubes;
+  using P = skeleton_point_t<G>;
+  using T = skeleton_traits<G>;
+  using clock = std::chrono::steady_clock;
+  const auto t_start = clock::now();
+  if (options.sides < 3 || options.sides > 1024)
+    throw error(error_category::invalid_input, "make_tubes: sides must be between 3 and 1024");
+  if (!(options.cap_separation > 0 && options.cap_separation < 1))
+    throw error(error_category::invalid_input,
+                "make_tubes: cap_separation must lie strictly between 0 and 1");
+  check_skeleton(g);
+  const std::uint32_t n = options.sides;
+  const std::size_t nv = T::num_nodes(g), ne = T::num_edges(g);
+  std::vector<glm::dvec3> pos(nv);
+  std::vector<double> rad(nv);
+  std::vector<std::array<std::uint32_t, 2>> edges(ne);
+  for (std::size_t i = 0; i < nv; ++i) {
+    pos[i] = to_dvec3(P(T::position(g, i)));
+    rad[i] = static_cast<double>(T::radius(g, i));
+  }
+  for (std::size_t j = 0; j < ne; ++j) {
+    const auto ab = T::endpoints(g, j);
+    edges[j] = {static_cast<std::uint32_t>(ab[0]), static_cast<std::uint32_t>(ab[1])};
+  }
+  tubes_result<P> res;
+
+  // Sharp bends of degree-2 nodes become junctions (§V.D).
+  std::vector<std::uint32_t> degree(nv, 0);
+  std::vector<std::array<std::uint32_t, 2>> nbr(nv, {tube_node::none, tube_node::none});
+  for (const auto& e : edges)
+    for (int k = 0; k < 2; ++k) {
+      const std::uint32_t v = e[k], w = e[1 - k];
+      if (degree[v] < 2) nbr[v][degree[v]] = w;
+      ++degree[v];
+    }
+  std::vector<std::uint8_t> bend(nv, 0);
+  const double bend_cos = std::cos(options.bend_limit_degrees * std::numbers::pi / 180);
+  for (std::size_t v = 0; v < nv; ++v)
+    if (degree[v] == 2) {
+      const glm::dvec3 a = glm::normalize(pos[v] - pos[nbr[v][0]]),
+                       b = glm::normalize(pos[nbr[v][1]] - pos[v]);
+      if (glm::dot(a, b) < bend_cos) bend[v] = 1, ++res.bend_junctions;
+    }
+  res.construct = make_tube_construct(nv, edges, bend);
+  const tube_construct& tc = res.construct;
+  res.cycle_rank = tc.cycle_rank;
+  res.construct_ms = dt::elapsed_ms(t_start);
+
+  const auto node_pos = [&](std::uint32_t c) {
+    const tube_node& t = tc.nodes[c];
+    if (t.skeleton_node != tube_node::none) return pos[t.skeleton_node];
+    return 0.5 * (pos[edges[t.split_edge][0]] + pos[edges[t.split_edge][1]]);
+  };
+  const auto node_radius = [&](std::uint32_t c) {
+    const tube_node& t = tc.nodes[c];
+    if (t.skeleton_node != tube_node::none) return rad[t.skeleton_node];
+    return 0.5 * (rad[edges[t.split_edge][0]] + rad[edges[t.split_edge][1]]);
+  };
+  const auto is_junction = [&](std::uint32_t c) { return tc.nodes[c].kind == tube_node_kind::junction; };
+  const auto skeleton_name = [&](std::uint32_t c) {
+    const tube_node& t = tc.nodes[c];
+    return t.skeleton_node != tube_node::none ? "node " + std::to_string(t.skeleton_node)
+                                              : "the midpoint of edge " + std::to_string(t.split_edge);
+  };
+
+  // Branch meshes: one ring per path end at a junction.
+  const auto t_junctions = clock::now();
+  dt::buffer out;
+  struct end_ring {
+    dt::junction_ring ring;
+    glm::dvec3 centre;
+    std::uint32_t first_vertex = 0;
+  };
+  // ends[2p] / ends[2p + 1]: the ring at the start / end of path p, when that end is a junction.
+  std::vector<end_ring> ends(2 * tc.paths.size());
+  std::vector<std::vector<std::uint32_t>> at_junction(tc.nodes.size());
+  for (std::uint32_t p = 0; p < tc.paths.size(); ++p) {
+    const tube_path& path = tc.paths[p];
+    if (path.closed) continue;
+    if (is_junction(path.nodes.front())) at_junction[path.nodes.front()].push_back(2 * p);
+    if (is_junction(path.nodes.back())) at_junction[path.nodes.back()].push_back(2 * p + 1);
+  }
+  std::vector<dt::junction_ring> rings;
+  std::vector<std::uint32_t> ring_edges, first_vertex;
+  for (const std::uint32_t b : tc.junctions) {
+    const glm::dvec3 c = node_pos(b);
+    const double rb = node_radius(b);
+    rings.clear();
+    ring_edges.clear();
+    for (const std::uint32_t slot : at_junction[b]) {
+      const tube_path& path = tc.paths[slot / 2];
+      const bool at_start = slot % 2 == 0;
+      const std::uint32_t q = at_start ? path.nodes[1] : path.nodes[path.nodes.size() - 2];
+      dt::junction_ring r;
+      r.direction = glm::normalize(node_pos(q) - c);
+      r.radius = node_radius(q);
+      r.first = dt::any_perpendicular(r.direction);
+      rings.push_back(r);
+      ring_edges.push_back(at_start ? path.edges.front() : path.edges.back());
+    }
+    const std::size_t real = rings.size();
+    if (real == 2 && options.bend_virtual_section) {  // §V.D method 1: outside the bend
+      const glm::dvec3 s = rings[0].direction + rings[1].direction;
+      if (glm::length(s) > 1e-9) {
+        dt::junction_ring r;
+        r.direction = -glm::normalize(s);
+        r.radius = rb;
+        r.first = dt::any_perpendicular(r.direction);
+        r.is_virtual = true;
+        rings.push_back(r);
+        ring_edges.push_back(tube_node::none);
+      }
+    }
+    dt::place_rings(rings, rb, options.cap_separation);
+    for (std::size_t i = 0; i < real; ++i) {
+      const std::uint32_t slot = at_junction[b][i];
+      const tube_path& path = tc.paths[slot / 2];
+      const std::uint32_t q = slot % 2 == 0 ? path.nodes[1] : path.nodes[path.nodes.size() - 2];
+      const double length = glm::length(node_pos(q) - c);
+      if (!(rings[i].distance < 0.95 * length))
+        throw error(error_category::invalid_input,
+                    skeleton_name(b) + ": edge " + std::to_string(ring_edges[i]) + " (to " +
+                        skeleton_name(q) + ") is " + std::to_string(length) +
+                        " long, but its cross-section must sit " + std::to_string(rings[i].distance) +
+                        " from the junction to clear the other edges there (an edge too short for the radii, "
+                        "or edges too close in angle)");
+    }
+    dt::build_junction(out, c, rings, n, {tube_face_kind::junction, tc.nodes[b].skeleton_node}, ring_edges,
+                       first_vertex);
+    for (std::size_t i = 0; i < real; ++i) ends[at_junction[b][i]] = {rings[i], c, first_vertex[i]};
+    ++res.junctions;
+  }
+  res.junctions_ms = dt::elapsed_ms(t_junctions);
+
+  // Node paths.
+  const auto t_paths = clock::now();
+  std::vector<dt::station> stations;
+  for (std::uint32_t p = 0; p < tc.paths.size(); ++p) {
+    const tube_path& path = tc.paths[p];
+    const std::size_t m = path.nodes.size();
+    stations.assign(m, {});
+    for (std::size_t i = 0; i < m; ++i) {
+      dt::station& s = stations[i];
+      const std::uint32_t c = path.nodes[i];
+      const bool start_ring = i == 0 && !path.closed && is_junction(c);
+      const bool at_end_ring = i == m - 1 && !path.closed && is_junction(c);
+      if (start_ring || at_end_ring) {
+        const end_ring& e = ends[2 * p + (start_ring ? 0 : 1)];
+        s.fixed = true;
+        s.reversed = at_end_ring;
+        s.centre = e.centre + e.ring.distance * e.ring.direction;
+        s.tangent = at_end_ring ? -e.ring.direction : e.ring.direction;
+        s.radius = e.ring.radius;
+        s.first_vertex = e.first_vertex;
+        s.fixed_first = e.ring.first;
+        continue;
+      }
+      s.centre = node_pos(c);
+      s.radius = node_radius(c);
+      const bool has_prev = i > 0 || path.closed, has_next = i + 1 < m || path.closed;
+      const glm::dvec3 prev = has_prev ? node_pos(path.nodes[(i + m - 1) % m]) : s.centre;
+      const glm::dvec3 next = has_next ? node_pos(path.nodes[(i + 1) % m]) : s.centre;
+      const glm::dvec3 din = has_prev ? glm::normalize(s.centre - prev) : glm::dvec3(0.0);
+      const glm::dvec3 dout = has_next ? glm::normalize(next - s.centre) : glm::dvec3(0.0);
+      if (!(glm::length(din + dout) > 1e-9))
+        throw error(error_category::invalid_input,
+                    skeleton_name(c) +
+                        ": the path turns back on itself there (raise bend_limit_degrees' "
+                        "junction handling: it must stay below 180)");
+      s.tangent = glm::normalize(din + dout);
+      if (has_prev && has_next) {
+        const double cos_turn = std::clamp(glm::dot(din, dout), -1.0, 1.0);
+        const glm::dvec3 side = dout - din;
+        if (glm::length(side) > 1e-12 && cos_turn < 1.0) {
+          s.bend = glm::normalize(side - glm::dot(side, s.tangent) * s.tangent);
+          s.widen = 1.0 / std::cos(0.5 * std::acos(cos_turn));  // a mitre keeps the tube's width
+        }
+      }
+    }
+    // The stations at junction rings replace the junction nodes themselves.
+    const bool cap_start = !path.closed && !is_junction(path.nodes.front());
+    const bool cap_end = !path.closed && !is_junction(path.nodes.back());
+    dt::build_path(out, stations, path.closed, n, options.alignment, path.edges, cap_start,
+                   tc.nodes[path.nodes.front()].skeleton_node, cap_end,
+                   tc.nodes[path.nodes.back()].skeleton_node);
+    ++res.paths;
+    res.closed_paths += path.closed ? 1 : 0;
+    res.end_caps += (cap_start ? 1 : 0) + (cap_end ? 1 : 0);
+  }
+  // Isolated nodes: spheres.
+  for (const std::uint32_t v : tc.isolated) {
+    const std::vector<glm::dvec3> dirs = dt::sphere_directions(std::max<std::size_t>(12, n * n / 2));
+    convex_hull_options o;
+    const detail::hull::result h = detail::hull::compute(dirs, o);
+    std::vector<std::uint32_t> id(dirs.size());
+    for (std::size_t k = 0; k < h.vertices.size(); ++k)
+      id[k] = out.add_point(pos[v] + rad[v] * dirs[h.vertices[k]]);
+    for (std::size_t f = 0; f + 1 < h.face_offsets.size(); ++f) {
+      std::uint32_t tri[3];
+      for (std::size_t k = 0; k < 3; ++k) tri[k] = id[h.face_vertices[h.face_offsets[f] + k]];
+      out.add_face(tri, {tube_face_kind::sphere, v});
+    }
+    ++res.spheres;
+  }
+  res.paths_ms = dt::elapsed_ms(t_paths);
+
+  // The mesh, in the skeleton's point type.
+  const auto t_mesh = clock::now();
+  surface_mesh<P> mesh;
+  mesh.build(out.points.size(), out.face_offsets, out.face_vertices);
+  const std::span<P> pts = mesh.points();
+  for (std::size_t i = 0; i < out.points.size(); ++i) pts[i] = from_dvec3<P>(out.points[i]);
+  auto source = mesh.template add_face_property<tube_face_source>(tube_source_property_name);
+  for (std::size_t f = 0; f < out.sources.size(); ++f) source[face_handle(f)] = out.sources[f];
+  const mesh_components comps = connected_components(mesh);
+  res.shells = comps.count;
+  res.genus = (2 * static_cast<std::int64_t>(comps.count) - euler_characteristic(mesh)) / 2;
+  res.mesh = std::move(mesh);
+  res.mesh_ms = dt::elapsed_ms(t_mesh);
+  res.total_ms = dt::elapsed_ms(t_start);
+  return res;
+}
+
+}  // namespace cellforge

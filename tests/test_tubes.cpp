@@ -1,0 +1,319 @@
+// SPDX-License-Identifier: MIT
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "cellforge/halfedge/validate.hpp"
+#include "cellforge/tubes/sample_skeletons.hpp"
+#include "cellforge/tubes/tube_construct.hpp"
+#include "cellforge/tubes/tube_mesh.hpp"
+#include "test_support.hpp"
+
+// Own namespace: the test files of a group may be compiled as one translation unit.
+namespace tubes_tests {
+
+using namespace cellforge;
+using S = skeleton<glm::dvec3>;
+using edge = std::array<std::uint32_t, 2>;
+
+// The signed volume of a closed mesh (faces fanned): positive when its faces point outward.
+template <class P>
+double signed_volume(const surface_mesh<P>& m) {
+  double six = 0;
+  std::vector<glm::dvec3> p;
+  for (const face_handle f : m.faces()) {
+    p.clear();
+    for (const vertex_handle v : m.vertices_around(f)) p.push_back(to_dvec3(m.position(v)));
+    for (std::size_t i = 1; i + 1 < p.size(); ++i) six += glm::dot(p[0], glm::cross(p[i], p[i + 1]));
+  }
+  return six / 6;
+}
+
+// Everything a tube mesh must be, as one sentence per broken promise ("" when all hold).
+template <class P>
+std::string tube_mesh_problems(const tubes_result<P>& r) {
+  std::string out;
+  const auto v = validate(r.mesh);
+  if (!v.ok()) out += "invalid: " + v.message + "; ";
+  if (!r.mesh.is_closed()) out += std::to_string(r.mesh.num_boundary_edges()) + " boundary edges; ";
+  if (!r.mesh.is_consistently_oriented()) out += "not consistently oriented; ";
+  if (r.genus != r.cycle_rank)
+    out += "genus " + std::to_string(r.genus) + " but cycle rank " + std::to_string(r.cycle_rank) + "; ";
+  if (r.shells != r.construct.components)
+    out +=
+        std::to_string(r.shells) + " shells for " + std::to_string(r.construct.components) + " components; ";
+  if (!(signed_volume(r.mesh) > 0)) out += "faces point inward; ";
+  return out;
+}
+
+TEST_CASE("tube construct: junctions, paths, inserted nodes, rings") {
+  SUBCASE("a Y: one branch, three paths to free ends") {
+    const std::vector<edge> e{{0, 1}, {0, 2}, {0, 3}};
+    const tube_construct tc = make_tube_construct(4, e);
+    CHECK(tc.junctions == std::vector<std::uint32_t>{0});
+    REQUIRE(tc.paths.size() == 3);
+    for (std::size_t p = 0; p < 3; ++p) {
+      CHECK(tc.paths[p].nodes == std::vector<std::uint32_t>{0, static_cast<std::uint32_t>(p + 1)});
+      CHECK(tc.paths[p].edges == std::vector<std::uint32_t>{static_cast<std::uint32_t>(p)});
+      CHECK(!tc.paths[p].closed);
+    }
+    CHECK(tc.cycle_rank == 0);
+    CHECK(tc.components == 1);
+  }
+  SUBCASE("two adjacent branches get a node between them") {
+    // 0 and 1 are branches (degree 3) joined by edge 0.
+    const std::vector<edge> e{{0, 1}, {0, 2}, {0, 3}, {1, 4}, {1, 5}};
+    const tube_construct tc = make_tube_construct(6, e);
+    CHECK(tc.inserted_nodes == 1);
+    REQUIRE(tc.nodes.size() == 7);
+    CHECK(tc.nodes[6].split_edge == 0);
+    CHECK(tc.nodes[6].skeleton_node == tube_node::none);
+    REQUIRE(tc.paths.size() == 5);
+    CHECK(tc.paths[0].nodes == std::vector<std::uint32_t>{0, 6, 1});
+    CHECK(tc.paths[0].edges == std::vector<std::uint32_t>{0, 0});
+  }
+  SUBCASE("paths that leave a branch come first, then free starts, then rings") {
+    // A branch 0 with edges into it only, a free chain 5-6-7, a ring 8-9-10.
+    const std::vector<edge> e{{1, 0}, {2, 0}, {3, 0}, {5, 6}, {6, 7}, {8, 9}, {9, 10}, {10, 8}};
+    const tube_construct tc = make_tube_construct(11, e);
+    REQUIRE(tc.paths.size() == 5);
+    CHECK(tc.paths[0].nodes == std::vector<std::uint32_t>{0, 1});
+    CHECK(tc.paths[0].along == std::vector<std::uint8_t>{0});
+    CHECK(tc.paths[3].nodes == std::vector<std::uint32_t>{5, 6, 7});
+    CHECK(tc.paths[3].along == std::vector<std::uint8_t>{1, 1});
+    CHECK(tc.paths[4].closed);
+    CHECK(tc.paths[4].nodes == std::vector<std::uint32_t>{8, 9, 10});
+    CHECK(tc.paths[4].edges == std::vector<std::uint32_t>{5, 6, 7});
+    CHECK(tc.isolated == std::vector<std::uint32_t>{4});
+    CHECK(tc.components == 4);
+    CHECK(tc.cycle_rank == 1);
+  }
+  SUBCASE("a path of 100,000 nodes is traced without recursion") {
+    const std::uint32_t n = 100000;
+    std::vector<edge> e;
+    for (std::uint32_t i = 0; i + 1 < n; ++i) e.push_back({i, i + 1});
+    const tube_construct tc = make_tube_construct(n, e);
+    REQUIRE(tc.paths.size() == 1);
+    CHECK(tc.paths[0].nodes.size() == n);
+    CHECK(tc.paths[0].nodes.back() == n - 1);
+  }
+}
+
+TEST_CASE("tube meshes are closed oriented manifolds with genus = cycle rank") {
+  struct named {
+    std::string name;
+    S skeleton;
+  };
+  std::vector<named> set;
+  for (int n : {3, 4, 5, 7, 12, 100})
+    set.push_back({"ring " + std::to_string(n), samples::ring(n, n < 12 ? 5.0 : n)});
+  for (int n = 4; n <= 8; ++n) set.push_back({"K" + std::to_string(n), samples::complete_graph(n)});
+  set.push_back({"petersen", samples::petersen()});
+  for (int n : {8, 16}) set.push_back({"mobius ladder " + std::to_string(n), samples::mobius_ladder(n)});
+  set.push_back({"figure eight", samples::figure_eight()});
+  set.push_back({"lattice 3x3x3", samples::lattice(3, 3, 3)});
+  set.push_back({"lattice 10x8x3", samples::lattice(10, 8, 3)});
+  {
+    S star;
+    star.points.push_back({0, 0, 0});
+    star.radii.push_back(0.2);
+    for (std::uint32_t i = 0; i < 32; ++i) {
+      const double z = 1 - (2 * i + 1.0) / 32, r = std::sqrt(1 - z * z), t = 2.39996 * i;
+      star.points.push_back(6.0 * glm::dvec3(r * std::cos(t), r * std::sin(t), z));
+      star.radii.push_back(0.2);
+      star.edges.push_back({0, i + 1});
+    }
+    set.push_back({"32-valent star", star});
+  }
+  {
+    S spurs = samples::ring(12, 5.0);
+    for (std::uint32_t i = 0; i < 12; i += 3) {
+      spurs.points.push_back(1.6 * spurs.points[i]);
+      spurs.radii.push_back(0.4);
+      spurs.edges.push_back({i, static_cast<std::uint32_t>(spurs.points.size() - 1)});
+    }
+    set.push_back({"ring with spurs", spurs});
+  }
+  {
+    S two = samples::ring(6, 5.0);
+    two.points.push_back({40, 0, 0});  // an isolated node: a sphere
+    two.radii.push_back(1.0);
+    set.push_back({"ring and an isolated node", two});
+  }
+  std::size_t misses = 0;
+  for (const named& c : set) {
+    const auto r = make_tubes(c.skeleton);
+    const std::string problems = tube_mesh_problems(r);
+    if (!problems.empty()) {
+      ++misses;
+      MESSAGE("miss: " << c.name << ": " << problems);
+    }
+  }
+  std::printf("tube cycles: %zu skeletons, %zu misses\n", set.size(), misses);
+  CHECK(misses == 0);
+}
+
+TEST_CASE("random trees: closed genus-0 tubes, quads within 90 ± 30 degrees") {
+#ifdef NDEBUG
+  const int trees = 200;
+#else
+  const int trees = 25;  // the sanitizer build runs a sample of the same set
+#endif
+  std::size_t misses = 0, nodes = 0;
+  double lo = 180, hi = 0;
+  for (int t = 0; t < trees; ++t) {
+    samples::random_tree_options o;
+    o.nodes = 10 + static_cast<std::size_t>(t) * 37 % 1000;
+    const S s = samples::random_tree(static_cast<std::uint64_t>(t), o);
+    nodes += s.points.size();
+    const auto r = make_tubes(s);
+    std::string problems = tube_mesh_problems(r);
+    if (r.genus != 0) problems += "genus not 0; ";
+    // Every end of the tree is capped once; every face says where it came from.
+    std::size_t leaves = 0;
+    std::vector<int> degree(s.points.size(), 0);
+    for (const auto& e : s.edges) ++degree[e[0]], ++degree[e[1]];
+    for (int d : degree) leaves += d == 1 ? 1 : 0;
+    if (r.end_caps != leaves)
+      problems += "end caps " + std::to_string(r.end_caps) + " for " + std::to_string(leaves) + " leaves; ";
+    const auto source = r.mesh.template get_face_property<tube_face_source>(tube_source_property_name);
+    for (const face_handle f : r.mesh.faces()) {
+      const tube_face_source sf = source[f];
+      const bool edge_kind = sf.kind == tube_face_kind::extrusion;
+      if (sf.index >= (edge_kind ? s.edges.size() : s.points.size())) {
+        problems += "face " + std::to_string(f.idx()) + " has no source; ";
+        break;
+      }
+      if (!edge_kind) continue;
+      std::vector<glm::dvec3> p;
+      for (const vertex_handle v : r.mesh.vertices_around(f)) p.push_back(r.mesh.position(v));
+      for (std::size_t k = 0; k < p.size(); ++k) {
+        const glm::dvec3 a = glm::normalize(p[(k + p.size() - 1) % p.size()] - p[k]);
+        const glm::dvec3 b = glm::normalize(p[(k + 1) % p.size()] - p[k]);
+        const double angle = std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * 180 / 3.141592653589793;
+        lo = std::min(lo, angle), hi = std::max(hi, angle);
+      }
+    }
+    if (!problems.empty()) {
+      ++misses;
+      MESSAGE("miss: tree " << t << " (" << s.points.size() << " nodes): " << problems);
+    }
+  }
+  std::printf("tube trees: %d trees, %zu nodes, %zu misses; quad corners %.1f to %.1f degrees\n", trees,
+              nodes, misses, lo, hi);
+  CHECK(misses == 0);
+  CHECK(lo >= 60.0);
+  CHECK(hi <= 120.0);
+}
+
+TEST_CASE("tubes keep the caller's point type") {
+  const S plain = samples::random_tree(3, {60});
+  skeleton<test_support::sealed_point> sealed;
+  skeleton<std::array<float, 3>> floats;
+  for (std::size_t i = 0; i < plain.points.size(); ++i) {
+    const glm::dvec3 p = plain.points[i];
+    sealed.points.emplace_back(p.x, p.y, p.z);
+    floats.points.push_back({static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)});
+  }
+  sealed.radii = floats.radii = plain.radii;
+  sealed.edges = floats.edges = plain.edges;
+  const auto a = make_tubes(plain);
+  const auto b = make_tubes(sealed);
+  const auto c = make_tubes(floats);
+  static_assert(std::is_same_v<decltype(b.mesh), surface_mesh<test_support::sealed_point>>);
+  static_assert(std::is_same_v<decltype(c.mesh), surface_mesh<std::array<float, 3>>>);
+  CHECK(b.mesh.num_faces() == a.mesh.num_faces());
+  CHECK(c.mesh.num_faces() == a.mesh.num_faces());
+  CHECK(tube_mesh_problems(b).empty());
+  CHECK(tube_mesh_problems(c).empty());
+  // The sealed run is the same computation: the same positions, exactly.
+  for (const vertex_handle v : a.mesh.vertices()) {
+    const test_support::sealed_point& q = b.mesh.position(v);
+    CHECK(glm::dvec3(q.x(), q.y(), q.z()) == a.mesh.position(v));
+  }
+}
+
+TEST_CASE("twist: global alignment closes rings without a seam") {
+  // A helix closed into a ring (a coil around a torus). Its rings are its vertices 8i..8i+7,
+  // in order. The twist of a step: the angle about the tube from ring i's frame carried to
+  // ring i + 1 without rotation (double reflection) to ring i + 1's own frame. The global
+  // alignment turns every step by the same small angle, which adds up to the closing mismatch
+  // (at most half a vertex step); the seed's local alignment leaves the mismatch at a seam.
+  S coil;
+  const int n = 240;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * 3.141592653589793 * i / n, w = 12 * t;
+    coil.points.push_back(
+        {(20 + 5 * std::cos(w)) * std::cos(t), (20 + 5 * std::cos(w)) * std::sin(t), 5 * std::sin(w)});
+    coil.radii.push_back(0.5);
+    coil.edges.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>((i + 1) % n)});
+  }
+  const auto step_twists = [&](tube_alignment al) {
+    tube_options o;
+    o.alignment = al;
+    const auto r = make_tubes(coil, o);
+    REQUIRE(tube_mesh_problems(r).empty());
+    REQUIRE(r.mesh.num_vertices() == 8 * n);
+    std::vector<glm::dvec3> centre(n), first(n), tangent(n);
+    for (int i = 0; i < n; ++i) {
+      glm::dvec3 c(0.0);
+      for (int j = 0; j < 8; ++j) c += r.mesh.position(vertex_handle(8 * i + j)) / 8.0;
+      centre[i] = c;
+      first[i] = glm::normalize(r.mesh.position(vertex_handle(8 * i)) - c);
+    }
+    for (int i = 0; i < n; ++i) tangent[i] = glm::normalize(centre[(i + 1) % n] - centre[(i + n - 1) % n]);
+    std::vector<double> twist;
+    for (int i = 0; i + 1 < n; ++i) {
+      const glm::dvec3 v1 = centre[i + 1] - centre[i];
+      const double c1 = glm::dot(v1, v1);
+      const glm::dvec3 rl = first[i] - (2 / c1) * glm::dot(v1, first[i]) * v1;
+      const glm::dvec3 tl = tangent[i] - (2 / c1) * glm::dot(v1, tangent[i]) * v1;
+      const glm::dvec3 v2 = tangent[i + 1] - tl;
+      const glm::dvec3 carried = rl - (2 / glm::dot(v2, v2)) * glm::dot(v2, rl) * v2;
+      twist.push_back(std::atan2(glm::dot(glm::cross(carried, first[i + 1]), tangent[i + 1]),
+                                 glm::dot(carried, first[i + 1])) *
+                      180 / 3.141592653589793);
+    }
+    return twist;
+  };
+  const auto global = step_twists(tube_alignment::global);
+  const auto [lo, hi] = std::minmax_element(global.begin(), global.end());
+  MESSAGE("global alignment: every step twists between " << *lo << " and " << *hi << " degrees");
+  // The frames here are rebuilt from the mesh (ring centroids, and first vertices that the
+  // bends' mitres tilt), not the mesher's own: allow a fifth of a degree of difference.
+  CHECK(*hi - *lo < 0.25);
+  CHECK(std::abs(*hi) * (n - 1) <= 22.5 + 1.0);  // in all at most half of 360/8 degrees
+  const auto none = step_twists(tube_alignment::none);
+  const double worst_none = std::max(std::abs(*std::min_element(none.begin(), none.end())),
+                                     std::abs(*std::max_element(none.begin(), none.end())));
+  MESSAGE("without alignment the worst step twists " << worst_none << " degrees");
+  CHECK(worst_none > 1.0);
+}
+
+TEST_CASE("tubes: bad input is a located error") {
+  S s;
+  s.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  s.radii = {1, 1, 1, 1};
+  s.edges = {{0, 1}, {0, 2}, {0, 3}};
+  // Edges of length 1 with radius 1: the cross-sections cannot clear each other.
+  CHECK_THROWS_WITH_AS(make_tubes(s), doctest::Contains("too short"), error);
+  s.radii[2] = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_WITH_AS(make_tubes(s), doctest::Contains("node 2: radius"), error);
+  s.radii[2] = 0.1;
+  tube_options o;
+  o.sides = 2;
+  CHECK_THROWS_WITH_AS(make_tubes(s, o), doctest::Contains("sides"), error);
+}
+
+}  // namespace tubes_tests
