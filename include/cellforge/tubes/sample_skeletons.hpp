@@ -144,6 +144,65 @@ skeleton<P> figure_eight(int n = 12, double circle = 5, double radius = 0.5) {
   return s;
 }
 
+/// A grid of u × v nodes on a Möbius band (the seed's `Mobius_16_16` stand-in is
+/// mobius_grid(16, 16)): edges across and along the band, the last column joined to the
+/// first turned over. O(uv).
+template <Point3 P = glm::dvec3>
+skeleton<P> mobius_grid(int u, int v, double circle = 40, double width = 18, double radius = 0.4) {
+  skeleton<P> s;
+  for (int i = 0; i < u; ++i)
+    for (int j = 0; j < v; ++j) {
+      const double t = 2 * std::numbers::pi * i / u, w = width * (2.0 * j / (v - 1) - 1);
+      detail::add_node(s,
+                       glm::dvec3((circle + w * std::cos(t / 2)) * std::cos(t),
+                                  (circle + w * std::cos(t / 2)) * std::sin(t), w * std::sin(t / 2)),
+                       radius);
+    }
+  const auto id = [&](int i, int j) { return static_cast<std::size_t>(i * v + j); };
+  for (int i = 0; i < u; ++i)
+    for (int j = 0; j < v; ++j) {
+      if (j + 1 < v) detail::add_edge(s, id(i, j), id(i, j + 1));
+      if (i + 1 < u)
+        detail::add_edge(s, id(i, j), id(i + 1, j));
+      else
+        detail::add_edge(s, id(i, j), id(0, v - 1 - j));  // the half turn
+    }
+  return s;
+}
+
+/// The edge graph of an icosahedron of circumradius `size` (the seed's `polyhedron` stand-in):
+/// 12 branches of valence 5, 30 edges, cycle rank 19. O(1).
+template <Point3 P = glm::dvec3>
+skeleton<P> icosahedron_edges(double size = 10, double radius = 0.5) {
+  skeleton<P> s;
+  const double g = (1 + std::sqrt(5.0)) / 2, scale = size / std::sqrt(1 + g * g);
+  std::vector<glm::dvec3> p;
+  for (int a = -1; a <= 1; a += 2)
+    for (int b = -1; b <= 1; b += 2) {
+      p.push_back(scale * glm::dvec3(0, a, b * g));
+      p.push_back(scale * glm::dvec3(a, b * g, 0));
+      p.push_back(scale * glm::dvec3(b * g, 0, a));
+    }
+  for (const glm::dvec3& q : p) detail::add_node(s, q, radius);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::size_t j = i + 1; j < p.size(); ++j)
+      if (std::abs(glm::length(p[i] - p[j]) - 2 * scale) < 1e-9 * size) detail::add_edge(s, i, j);
+  return s;
+}
+
+/// A curved chain of n nodes along a conical spiral (the seed's `eyespline` stand-in: a spline
+/// through the eye). O(n).
+template <Point3 P = glm::dvec3>
+skeleton<P> spiral_chain(int n = 200, double size = 20, double radius = 0.4) {
+  skeleton<P> s;
+  for (int i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) / (n - 1), a = 3 * 2 * std::numbers::pi * t;
+    detail::add_node(s, size * glm::dvec3((0.3 + t) * std::cos(a), (0.3 + t) * std::sin(a), t), radius);
+    if (i > 0) detail::add_edge(s, i - 1, i);
+  }
+  return s;
+}
+
 /// How random_tree grows a tree.
 struct random_tree_options {
   std::size_t nodes = 100;

@@ -1,0 +1,138 @@
+// Tube networks, seed 001 §VI.B table 5: the seed's C++ and C# milliseconds for its five
+// skeletons beside ours on stand-ins built by tubes/sample_skeletons.hpp (the seed's files
+// are not published), then growth: random trees and lattices of 1k to 100k nodes (time per
+// node should stay flat) and edges per second. Every row is the median of its iterations.
+#include <benchmark/benchmark.h>
+
+#include <array>
+#include <cstdint>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "bench_support.hpp"
+#include "cellforge/tubes/sample_skeletons.hpp"
+#include "cellforge/tubes/tube_mesh.hpp"
+
+namespace {
+
+namespace cb = cellforge::bench;
+namespace cs = cellforge::samples;
+using skeleton = cellforge::skeleton<glm::dvec3>;
+
+/// Seed 001 table 5 (ms): the original C++ implementation, then the seed's C#.
+struct seed_case {
+  const char* file;
+  double cpp_ms, cs_ms;
+  const char* stand_in;
+};
+constexpr std::array<seed_case, 5> seed_table5{{
+    {"eyespline", 68.62, 9.540, "spiral_chain(200)"},
+    {"Lattice_10_8_3", 3231, 654.3, "lattice(10, 8, 3)"},
+    {"Mobius_16_16", 1354, 221.8, "mobius_grid(16, 16)"},
+    {"polyhedron", 320.5, 47.09, "icosahedron_edges()"},
+    {"Tree3", 255.9, 49.89, "random_tree(3), 1,000 nodes"},
+}};
+
+skeleton stand_in(const std::string& file) {
+  if (file == "eyespline") return cs::spiral_chain(200);
+  if (file == "Lattice_10_8_3") return cs::lattice(10, 8, 3);
+  if (file == "Mobius_16_16") return cs::mobius_grid(16, 16);
+  if (file == "polyhedron") return cs::icosahedron_edges();
+  return cs::random_tree(3, {.nodes = 1000});
+}
+
+struct growth_case {
+  std::string name;
+  skeleton s;
+};
+
+std::vector<growth_case>& growth() {
+  static std::vector<growth_case> cases = [] {
+    std::vector<growth_case> c;
+    for (std::size_t n : {1000u, 10000u, 100000u})
+      c.push_back({"tree " + cb::count(n), cs::random_tree(n, {.nodes = n})});
+    c.push_back(
+        {"neuron-like tree 10k (tapering)",
+         cs::random_tree(77, {.nodes = 10000, .root_radius = 2.0, .taper = 0.97, .min_radius = 0.2})});
+    for (int k : {10, 22, 32}) c.push_back({"lattice " + std::to_string(k) + "^3", cs::lattice(k, k, k)});
+    return c;
+  }();
+  return cases;
+}
+
+std::map<std::string, std::size_t>& sizes() {
+  static std::map<std::string, std::size_t> m;
+  return m;
+}
+
+void register_case(const std::string& name, const skeleton& s, int iterations) {
+  sizes()[name] = s.points.size();
+  sizes()[name + "#edges"] = s.edges.size();
+  benchmark::RegisterBenchmark(name.c_str(),
+                               [&s](benchmark::State& state) {
+                                 try {
+                                   cb::median_loop(
+                                       state, [&] { return cellforge::make_tubes(s); },
+                                       [&](const auto& r) {
+                                         if (r.genus != r.cycle_rank || !r.mesh.is_closed())
+                                           state.SkipWithError("the mesh's genus is not the cycle rank");
+                                         state.counters["faces"] = static_cast<double>(r.mesh.num_faces());
+                                       });
+                                 } catch (const std::exception& e) {
+                                   state.SkipWithError(e.what());
+                                 }
+                               })
+      ->Iterations(iterations)
+      ->UseManualTime()
+      ->Unit(benchmark::kMillisecond);
+}
+
+void register_all() {
+  static std::vector<skeleton> seeds;
+  seeds.reserve(seed_table5.size());
+  for (const seed_case& c : seed_table5) {
+    seeds.push_back(stand_in(c.file));
+    register_case(std::string("table5/") + c.file, seeds.back(), 15);
+  }
+  for (const growth_case& g : growth())
+    register_case("growth/" + g.name, g.s, g.s.points.size() > 50000 ? 5 : 9);
+}
+
+void print_tables(const cb::collecting_reporter& r, std::ostream& os) {
+  os << "\n## Tube networks: seed 001 §VI.B table 5 and growth\n\nLoad average " << cb::load_average()
+     << ". Ours: median CPU ms of the iterations (15 for table 5, 5–9 for growth), one thread.\n";
+  cb::table t("Seed table 5 (the seed's skeletons are not published: stand-ins of the same kind)",
+              {"file", "stand-in", "nodes", "edges", "seed C++ ms", "seed C# ms", "ours ms",
+               "ratio (C# / ours)", "ratio (C++ / ours)"});
+  for (const seed_case& c : seed_table5) {
+    const std::string name = std::string("table5/") + c.file;
+    const std::optional<double> ours = r.counter_ms(name, "median_cpu_us");
+    t.add_row({c.file, c.stand_in, cb::count(sizes()[name]), cb::count(sizes()[name + "#edges"]),
+               cb::ms(c.cpp_ms), cb::ms(c.cs_ms), cb::ms(ours), cb::ratio(c.cs_ms, ours),
+               cb::ratio(c.cpp_ms, ours)});
+  }
+  t.add_note("Targets (issue): the 10x8x3 lattice <= 5 ms; a 1,000-node tree <= 10 ms.");
+  t.print(os);
+  cb::table g("Growth", {"skeleton", "nodes", "edges", "ms", "µs per node", "edges per s"});
+  for (const growth_case& c : growth()) {
+    const std::string name = "growth/" + c.name;
+    const std::optional<double> ms = r.counter_ms(name, "median_cpu_us");
+    const double nodes = static_cast<double>(sizes()[name]),
+                 edges = static_cast<double>(sizes()[name + "#edges"]);
+    g.add_row({c.name, cb::count(sizes()[name]), cb::count(sizes()[name + "#edges"]), cb::ms(ms),
+               ms ? cb::fixed(*ms * 1e3 / nodes, 2) : "—",
+               ms ? cb::count(static_cast<std::size_t>(edges / (*ms * 1e-3))) : "—"});
+  }
+  g.add_note(
+      "Targets (issue): 100,000 nodes <= 1 s with time per node flat within 1.5x; >= 200k edges per second.");
+  g.print(os);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return cb::table_main(argc, argv, register_all, print_tables); }
