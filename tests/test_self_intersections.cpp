@@ -92,7 +92,9 @@ TEST_CASE("self_intersections: closed meshes have none") {
       {"tree tubes", tree_tube_mesh(4)},
       {"spline tube", spline_tube()},
   };
-  for (const auto& [name, soup] : shapes) {
+  for (const auto& shape : shapes) {
+    const char* const name = shape.first;  // no structured binding: clang 14 cannot CAPTURE one
+    const polygon_soup<dvec3>& soup = shape.second;
     CAPTURE(name);
     const self_intersection_result r = check(soup);
     CHECK(r.complete);
