@@ -544,12 +544,18 @@ self_intersection_result self_intersections(const surface_mesh<P>& m,
     }
     begin = end;
   }
-  if (!r.complete && options.throw_on_budget)
-    throw error(error_category::budget,
-                "self_intersections: the work budget of " + std::to_string(budget) +
-                    " candidate triangle pairs was exhausted after testing " +
-                    std::to_string(r.pairs_tested) + " pairs of " + std::to_string(n) +
-                    " triangles (raise self_intersection_options::max_candidate_pairs)");
+  if (!r.complete && options.throw_on_budget) {
+    // Appended piece by piece: `"..." + std::to_string(n)` trips g++ 12's false -Wrestrict
+    // (GCC PR 105329) in a user's -O2 -Werror build.
+    std::string message = "self_intersections: the work budget of ";
+    message += std::to_string(budget);
+    message += " candidate triangle pairs was exhausted after testing ";
+    message += std::to_string(r.pairs_tested);
+    message += " pairs of ";
+    message += std::to_string(n);
+    message += " triangles (raise self_intersection_options::max_candidate_pairs)";
+    throw error(error_category::budget, message);
+  }
   si::compact(found);
   r.intersecting_face_pairs = found.size();
   for (std::size_t i = 0; i < found.size() && i < options.max_reported; ++i)
