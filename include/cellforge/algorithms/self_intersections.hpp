@@ -114,10 +114,10 @@ int orient_uw(const vec& a, const vec& b, const vec& c, int u, int w) noexcept {
   return orient2d(a[u], a[w], b[u], b[w], c[u], c[w]);
 }
 
-/// The coordinate axis to drop so that triangle abc keeps a non-zero area in the other two
-/// (the dominant normal component first, then exactly checked); -1 when abc is degenerate.
+/// The coordinate axes ordered by the size of triangle abc's rounded normal component,
+/// largest first: the projection that drops the first keeps the most of its area. O(1).
 template <class = void>
-int drop_axis(const vec& a, const vec& b, const vec& c) noexcept {
+std::array<int, 3> axes_by_normal(const vec& a, const vec& b, const vec& c) noexcept {
   const vec e = b - a, f = c - a;
   std::array<double, 3> n = {std::fabs(e.y * f.z - e.z * f.y), std::fabs(e.z * f.x - e.x * f.z),
                              std::fabs(e.x * f.y - e.y * f.x)};
@@ -126,9 +126,74 @@ int drop_axis(const vec& a, const vec& b, const vec& c) noexcept {
   std::array<int, 3> order = {0, 1, 2};
   std::sort(order.begin(), order.end(),
             [&](int i, int j) { return n[static_cast<std::size_t>(i)] > n[static_cast<std::size_t>(j)]; });
-  for (const int k : order)
+  return order;
+}
+
+/// The coordinate axis to drop so that triangle abc keeps a non-zero area in the other two
+/// (the dominant normal component first, then exactly checked); -1 when abc is degenerate.
+template <class = void>
+int drop_axis(const vec& a, const vec& b, const vec& c) noexcept {
+  for (const int k : axes_by_normal(a, b, c))
     if (orient_uw(a, b, c, (k + 1) % 3, (k + 2) % 3) != 0) return k;
   return -1;
+}
+
+/// orient3d's floating-point filter alone: ±1 when it decides, 0 when only the exact
+/// evaluation could (an exactly coplanar configuration always gets there). O(1).
+template <class = void>
+int orient3d_filtered(const vec& a, const vec& b, const vec& c, const vec& d) noexcept {
+  double value = 0;
+  return cellforge::detail::orient3d_filter(cellforge::detail::prepare_orient3d(a, b, c), d, value);
+}
+
+// Cheap exact rejections for the configurations whose orient3d is exactly zero (flat
+// regions of axis-aligned meshes), where the exact evaluation is dear. Each rests on
+// π(T1 ∩ T2) ⊆ π(T1) ∩ π(T2) for a coordinate projection π, decided by exact orient2d.
+
+/// True when the projections on (u, w) of the closed triangles a and b are disjoint: an
+/// edge line of one has the other strictly outside. Then a and b are disjoint. O(1).
+template <class = void>
+bool projections_apart(const std::array<vec, 3>& a, const std::array<vec, 3>& b, int u, int w) noexcept {
+  for (const auto* t : {&a, &b}) {
+    const auto& x = *t;
+    const auto& y = t == &a ? b : a;
+    const int s = orient_uw(x[0], x[1], x[2], u, w);
+    if (s == 0) continue;
+    for (std::size_t i = 0; i < 3; ++i) {
+      const vec &p = x[i], &q = x[(i + 1) % 3];
+      if (orient_uw(p, q, y[0], u, w) == -s && orient_uw(p, q, y[1], u, w) == -s &&
+          orient_uw(p, q, y[2], u, w) == -s)
+        return true;
+    }
+  }
+  return false;
+}
+
+/// True when x, collinear with v and a in the projection on (u, w), lies on the ray from v
+/// away from a (exact coordinate comparisons). O(1).
+template <class = void>
+bool opposite_ray(const vec& v, const vec& a, const vec& x, int u, int w) noexcept {
+  const int k = a[u] != v[u] ? u : w;
+  return a[k] > v[k] ? x[k] < v[k] : x[k] > v[k];
+}
+
+/// T1 = (v, a, b), T2 = (v, c, d) projected on (u, w), T1 not collapsing: true when the
+/// line through v and a (or v and b) has T1 on one closed side and T2 on the other, T2
+/// touching it only on the ray away from a (b). Then π(T1) ∩ π(T2) = {π(v)}, and as π is
+/// one-to-one on T1's plane, T1 ∩ T2 = {v}. O(1).
+template <class = void>
+bool apart_at_vertex(const vec& v, const vec& a, const vec& b, const vec& c, const vec& d, int u,
+                     int w) noexcept {
+  const int s = orient_uw(v, a, b, u, w);
+  if (s == 0) return false;
+  auto beyond = [&](const vec& e, int side) {
+    for (const vec* x : {&c, &d}) {
+      const int o = orient_uw(v, e, *x, u, w);
+      if (o == side || (o == 0 && !opposite_ray(v, e, *x, u, w))) return false;
+    }
+    return true;
+  };
+  return beyond(a, s) || beyond(b, -s);
 }
 
 /// A triangle's corners and the projection in which it is not degenerate.
@@ -200,6 +265,12 @@ tri make_tri(const vec& a, const vec& b, const vec& c) noexcept {
 template <class = void>
 bool disjoint_pair_meets(const std::array<vec, 3>& a, const std::array<vec, 3>& b) noexcept {
   std::array<int, 3> sa{}, sb{};  // sides of a's corners against b's plane, and of b's against a's
+  for (std::size_t i = 0; i < 3; ++i) sa[i] = orient3d_filtered(b[0], b[1], b[2], a[i]);
+  if (sa[0] == sa[1] && sa[1] == sa[2] && sa[0] != 0) return false;
+  if (sa[0] == 0 || sa[1] == 0 || sa[2] == 0) {  // the exact evaluation is needed: try cheaper first
+    const int k = axes_by_normal(b[0], b[1], b[2])[0];
+    if (projections_apart(a, b, (k + 1) % 3, (k + 2) % 3)) return false;
+  }
   for (std::size_t i = 0; i < 3; ++i) sa[i] = orient3d(b[0], b[1], b[2], a[i]);
   if (sa[0] == sa[1] && sa[1] == sa[2] && sa[0] != 0) return false;
   for (std::size_t i = 0; i < 3; ++i) sb[i] = orient3d(a[0], a[1], a[2], b[i]);
@@ -216,6 +287,9 @@ bool disjoint_pair_meets(const std::array<vec, 3>& a, const std::array<vec, 3>& 
 /// T1 = (v, a, b) and T2 = (v, c, d) share exactly the vertex v: do they meet elsewhere? O(1).
 template <class = void>
 bool vertex_pair_meets(const vec& v, const vec& a, const vec& b, const vec& c, const vec& d) noexcept {
+  if (orient3d_filtered(v, c, d, a) * orient3d_filtered(v, c, d, b) > 0) return false;
+  const int k = axes_by_normal(v, a, b)[0];
+  if (apart_at_vertex(v, a, b, c, d, (k + 1) % 3, (k + 2) % 3)) return false;
   const int sa = orient3d(v, c, d, a), sb = orient3d(v, c, d, b);
   if (sa * sb > 0) return false;  // T1 meets T2's plane only at v
   const int sc = orient3d(v, a, b, c), sd = orient3d(v, a, b, d);
@@ -229,6 +303,10 @@ bool vertex_pair_meets(const vec& v, const vec& a, const vec& b, const vec& c, c
 /// T1 = (u, v, a) and T2 = (u, v, b) share the edge uv: do they overlap beyond it? O(1).
 template <class = void>
 bool edge_pair_meets(const vec& u, const vec& v, const vec& a, const vec& b) noexcept {
+  if (orient3d_filtered(u, v, a, b) != 0) return false;
+  // Strictly opposite sides of uv in some projection: no overlap whether coplanar or not.
+  const int k = axes_by_normal(u, v, a)[0], ku = (k + 1) % 3, kw = (k + 2) % 3;
+  if (orient_uw(u, v, a, ku, kw) * orient_uw(u, v, b, ku, kw) < 0) return false;
   if (orient3d(u, v, a, b) != 0) return false;
   const tri t = make_tri(u, v, a);
   return orient_uw(u, v, a, t.u, t.w) == orient_uw(u, v, b, t.u, t.w);
