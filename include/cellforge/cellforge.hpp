@@ -11,6 +11,7 @@
 #include "cellforge/algorithms/ear_clipping.hpp"
 #include "cellforge/algorithms/edits.hpp"
 #include "cellforge/algorithms/loop_subdivision.hpp"
+#include "cellforge/algorithms/self_intersections.hpp"
 #include "cellforge/algorithms/simplification.hpp"
 #include "cellforge/cells/cell_complex.hpp"
 #include "cellforge/cells/conversion.hpp"

@@ -1,0 +1,645 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// An exact self-intersection check for polygon meshes: every face is triangulated, pairs of
+/// triangles whose boxes meet are found with a uniform grid, and each pair is decided by the
+/// signs of orient3d / orient2d alone (core/predicates.hpp), with no epsilon anywhere.
+///
+/// What is tested. A face is tested as the triangles of its triangulation: a triangle as
+/// itself; a polygon that is exactly planar and strictly convex as the fan from its first
+/// vertex; any other polygon (non-planar — a quad whose corners are off one plane by a
+/// rounding error is one —, concave, with a straight corner) as the triangles ear clipping
+/// (algorithms/ear_clipping.hpp) makes of its projection, with no planarity limit and
+/// non-simple faces allowed; a polygon ear clipping refuses (no area) falls back to the fan.
+/// So a non-planar quad is tested as its two triangles. Triangles of one face are never
+/// tested against each other. Zero-area triangles (three collinear corners, or a NaN or
+/// infinite coordinate) are not tested at all: they are counted and their faces listed as
+/// a diagnostic.
+///
+/// When two triangles intersect. Triangles are closed sets (interior, edges and corners),
+/// and sharing is by vertex handle, not by position: two corners at one position but of
+/// different vertices touch, and touching is intersecting. For triangles T1, T2 of
+/// different faces:
+///   - no shared vertex: they intersect when the closed triangles have a common point
+///     (crossing, touching at a point or along a segment, coplanar overlap);
+///   - one shared vertex v, T1 = (v, a, b), T2 = (v, c, d): they intersect when they meet
+///     anywhere but v — when segment ab meets T2, or segment cd meets T1, or a corner a, b
+///     lies in T2's plane with the ray from v through it inside T2's closed corner at v (or
+///     c, d likewise for T1). These cases are complete: T1 ∩ T2 is convex and contains v;
+///     any other point w of it makes an end of T1 ∩ T2 other than v, which lies on an edge
+///     of one triangle inside the other — on ab or cd, or on an edge va (vb, vc, vd), which
+///     then lies in the other's plane with its direction inside the other's corner at v;
+///   - one shared edge uv, T1 = (u, v, a), T2 = (u, v, b): they intersect only when a, b
+///     and the edge are coplanar and a, b lie on the same side of the line uv — a fold, the
+///     two faces overlapping beyond the edge. Not coplanar: the planes meet in the line uv,
+///     and each triangle meets that line only in the edge. Coplanar on opposite sides: the
+///     union is the flat quad u-a-v-b and they meet only in the edge;
+///   - three shared vertices (two faces with the same corners): they coincide, so they
+///     intersect.
+/// Without a shared vertex, the test is that some edge of one triangle meets the other
+/// closed triangle (a common point extreme in T1 ∩ T2 lies on an edge of one of them): a
+/// segment crossing a plane meets the triangle where the signs of orient3d of the segment
+/// with the three edges agree; a segment in the plane is tested in a coordinate projection
+/// where the triangle does not collapse, which keeps incidence and order exact.
+///
+/// Cost. O(n log n + T) for n triangles, where T is the number of candidate pairs (triangles
+/// sharing a grid cell): the grid's cell side is the median of the triangles' largest box
+/// extents, grown until no more than 8n + 2^16 cell entries are needed, so a few huge
+/// triangles cannot blow it up; each pair is examined in exactly one cell (the one holding
+/// the low corner of the intersection of their boxes), so it is tested once. T is bounded
+/// by the option max_candidate_pairs (a work budget): past it the search stops with
+/// complete = false, or throws error(budget) if asked.
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "cellforge/algorithms/ear_clipping.hpp"
+#include "cellforge/core/error.hpp"
+#include "cellforge/core/point_traits.hpp"
+#include "cellforge/core/predicates.hpp"
+#include "cellforge/halfedge/handles.hpp"
+#include "cellforge/halfedge/surface_mesh.hpp"
+
+namespace cellforge {
+
+/// Limits of self_intersections.
+struct self_intersection_options {
+  /// Work budget: the most candidate pairs (two triangles in one grid cell) examined; 0
+  /// means 256 per triangle plus 2^20. A closed mesh with well-shaped triangles needs some
+  /// 10–30 per triangle.
+  std::size_t max_candidate_pairs = 0;
+  /// Past the budget: false stops and returns complete = false; true throws error(budget).
+  bool throw_on_budget = false;
+  /// How many intersecting face pairs (and faces with zero-area triangles) to list.
+  std::size_t max_reported = 100;
+};
+
+/// What self_intersections found.
+struct self_intersection_result {
+  /// Distinct pairs of faces with at least one intersecting pair of triangles.
+  std::size_t intersecting_face_pairs = 0;
+  /// Intersecting pairs of triangles (a face pair may hold several).
+  std::size_t intersecting_triangle_pairs = 0;
+  /// The first max_reported intersecting face pairs, by face index (first < second).
+  std::vector<std::pair<face_handle, face_handle>> face_pairs;
+  std::size_t faces = 0;                 ///< live faces
+  std::size_t triangles = 0;             ///< triangles of their triangulations
+  std::size_t ear_clipped_faces = 0;     ///< polygons not both planar and strictly convex
+  std::size_t candidate_pairs = 0;       ///< triangle pairs examined in grid cells (the budget counts these)
+  std::size_t pairs_tested = 0;          ///< pairs of different faces with overlapping boxes, tested exactly
+  std::size_t degenerate_triangles = 0;  ///< zero-area triangles (not tested)
+  std::vector<face_handle> degenerate_faces;  ///< the first max_reported faces holding one
+  double time_ms = 0;                         ///< wall-clock time of the whole check
+  bool complete = true;                       ///< false when the budget stopped the search
+};
+
+namespace detail::self_intersect {
+
+using vec = glm::dvec3;
+
+/// orient2d of a, b, c projected on the coordinate axes (u, w). O(1).
+template <class = void>
+int orient_uw(const vec& a, const vec& b, const vec& c, int u, int w) noexcept {
+  return orient2d(a[u], a[w], b[u], b[w], c[u], c[w]);
+}
+
+/// The coordinate axes ordered by the size of triangle abc's rounded normal component,
+/// largest first: the projection that drops the first keeps the most of its area. O(1).
+template <class = void>
+std::array<int, 3> axes_by_normal(const vec& a, const vec& b, const vec& c) noexcept {
+  const vec e = b - a, f = c - a;
+  std::array<double, 3> n = {std::fabs(e.y * f.z - e.z * f.y), std::fabs(e.z * f.x - e.x * f.z),
+                             std::fabs(e.x * f.y - e.y * f.x)};
+  for (double& x : n)
+    if (std::isnan(x)) x = 0;  // overflow: any order, the exact checks decide
+  std::array<int, 3> order = {0, 1, 2};
+  std::sort(order.begin(), order.end(),
+            [&](int i, int j) { return n[static_cast<std::size_t>(i)] > n[static_cast<std::size_t>(j)]; });
+  return order;
+}
+
+/// The coordinate axis to drop so that triangle abc keeps a non-zero area in the other two
+/// (the dominant normal component first, then exactly checked); -1 when abc is degenerate.
+template <class = void>
+int drop_axis(const vec& a, const vec& b, const vec& c) noexcept {
+  for (const int k : axes_by_normal(a, b, c))
+    if (orient_uw(a, b, c, (k + 1) % 3, (k + 2) % 3) != 0) return k;
+  return -1;
+}
+
+/// orient3d's floating-point filter alone: ±1 when it decides, 0 when only the exact
+/// evaluation could (an exactly coplanar configuration always gets there). O(1).
+template <class = void>
+int orient3d_filtered(const vec& a, const vec& b, const vec& c, const vec& d) noexcept {
+  double value = 0;
+  return cellforge::detail::orient3d_filter(cellforge::detail::prepare_orient3d(a, b, c), d, value);
+}
+
+// Cheap exact rejections for the configurations whose orient3d is exactly zero (flat
+// regions of axis-aligned meshes), where the exact evaluation is dear. Each rests on
+// π(T1 ∩ T2) ⊆ π(T1) ∩ π(T2) for a coordinate projection π, decided by exact orient2d.
+
+/// True when the projections on (u, w) of the closed triangles a and b are disjoint: an
+/// edge line of one has the other strictly outside. Then a and b are disjoint. O(1).
+template <class = void>
+bool projections_apart(const std::array<vec, 3>& a, const std::array<vec, 3>& b, int u, int w) noexcept {
+  for (const auto* t : {&a, &b}) {
+    const auto& x = *t;
+    const auto& y = t == &a ? b : a;
+    const int s = orient_uw(x[0], x[1], x[2], u, w);
+    if (s == 0) continue;
+    for (std::size_t i = 0; i < 3; ++i) {
+      const vec &p = x[i], &q = x[(i + 1) % 3];
+      if (orient_uw(p, q, y[0], u, w) == -s && orient_uw(p, q, y[1], u, w) == -s &&
+          orient_uw(p, q, y[2], u, w) == -s)
+        return true;
+    }
+  }
+  return false;
+}
+
+/// True when x, collinear with v and a in the projection on (u, w), lies on the ray from v
+/// away from a (exact coordinate comparisons). O(1).
+template <class = void>
+bool opposite_ray(const vec& v, const vec& a, const vec& x, int u, int w) noexcept {
+  const int k = a[u] != v[u] ? u : w;
+  return a[k] > v[k] ? x[k] < v[k] : x[k] > v[k];
+}
+
+/// T1 = (v, a, b), T2 = (v, c, d) projected on (u, w), T1 not collapsing: true when the
+/// line through v and a (or v and b) has T1 on one closed side and T2 on the other, T2
+/// touching it only on the ray away from a (b). Then π(T1) ∩ π(T2) = {π(v)}, and as π is
+/// one-to-one on T1's plane, T1 ∩ T2 = {v}. O(1).
+template <class = void>
+bool apart_at_vertex(const vec& v, const vec& a, const vec& b, const vec& c, const vec& d, int u,
+                     int w) noexcept {
+  const int s = orient_uw(v, a, b, u, w);
+  if (s == 0) return false;
+  auto beyond = [&](const vec& e, int side) {
+    for (const vec* x : {&c, &d}) {
+      const int o = orient_uw(v, e, *x, u, w);
+      if (o == side || (o == 0 && !opposite_ray(v, e, *x, u, w))) return false;
+    }
+    return true;
+  };
+  return beyond(a, s) || beyond(b, -s);
+}
+
+/// A triangle's corners and the projection in which it is not degenerate.
+struct tri {
+  std::array<vec, 3> p;
+  int u = 0, w = 1;  ///< kept axes of the projection
+};
+
+/// True when x (in the triangle's plane) lies in the closed triangle. O(1).
+template <class = void>
+bool point_in(const tri& t, const vec& x) noexcept {
+  const int s0 = orient_uw(t.p[0], t.p[1], x, t.u, t.w), s1 = orient_uw(t.p[1], t.p[2], x, t.u, t.w),
+            s2 = orient_uw(t.p[2], t.p[0], x, t.u, t.w);
+  return !((s0 > 0 || s1 > 0 || s2 > 0) && (s0 < 0 || s1 < 0 || s2 < 0));
+}
+
+/// True when r, collinear with p and q, lies on the closed segment pq. O(1).
+template <class = void>
+bool on_segment(const vec& p, const vec& q, const vec& r, int u, int w) noexcept {
+  return std::min(p[u], q[u]) <= r[u] && r[u] <= std::max(p[u], q[u]) && std::min(p[w], q[w]) <= r[w] &&
+         r[w] <= std::max(p[w], q[w]);
+}
+
+/// True when the closed segments pq and rs (in one plane, projected on (u, w)) meet. O(1).
+template <class = void>
+bool segments_meet(const vec& p, const vec& q, const vec& r, const vec& s, int u, int w) noexcept {
+  const int a = orient_uw(p, q, r, u, w), b = orient_uw(p, q, s, u, w), c = orient_uw(r, s, p, u, w),
+            d = orient_uw(r, s, q, u, w);
+  if (a * b < 0 && c * d < 0) return true;
+  return (a == 0 && on_segment(p, q, r, u, w)) || (b == 0 && on_segment(p, q, s, u, w)) ||
+         (c == 0 && on_segment(r, s, p, u, w)) || (d == 0 && on_segment(r, s, q, u, w));
+}
+
+/// True when segment pq meets the closed triangle t; sp, sq are orient3d(t, p) and
+/// orient3d(t, q). O(1).
+template <class = void>
+bool segment_meets(const vec& p, const vec& q, int sp, int sq, const tri& t) noexcept {
+  if (sp * sq > 0) return false;
+  if (sp == 0 && sq == 0)  // in the plane: inside, or across an edge
+    return point_in(t, p) || point_in(t, q) || segments_meet(p, q, t.p[0], t.p[1], t.u, t.w) ||
+           segments_meet(p, q, t.p[1], t.p[2], t.u, t.w) || segments_meet(p, q, t.p[2], t.p[0], t.u, t.w);
+  // pq meets the plane in one point x; orient3d(p, q, a, b) has the sign of x against the
+  // line ab within the plane times a constant, so x is inside when no two signs differ.
+  const int s0 = orient3d(p, q, t.p[0], t.p[1]), s1 = orient3d(p, q, t.p[1], t.p[2]),
+            s2 = orient3d(p, q, t.p[2], t.p[0]);
+  return !((s0 > 0 || s1 > 0 || s2 > 0) && (s0 < 0 || s1 < 0 || s2 < 0));
+}
+
+/// True when x ≠ v, in the plane of t = (v, c, d), lies in t's closed corner at v: the ray
+/// from v through x enters t. O(1).
+template <class = void>
+bool in_corner(const tri& t, const vec& x) noexcept {
+  const int s = orient_uw(t.p[0], t.p[1], t.p[2], t.u, t.w);
+  return orient_uw(t.p[0], t.p[1], x, t.u, t.w) * s >= 0 && orient_uw(t.p[0], x, t.p[2], t.u, t.w) * s >= 0;
+}
+
+/// Builds the tri of corners a, b, c (not degenerate). O(1).
+template <class = void>
+tri make_tri(const vec& a, const vec& b, const vec& c) noexcept {
+  const int k = drop_axis(a, b, c);
+  tri t;
+  t.p = {a, b, c};
+  t.u = (k + 1) % 3;
+  t.w = (k + 2) % 3;
+  return t;
+}
+
+/// Closed triangles a and b (both non-degenerate) with no shared vertex: do they meet? O(1).
+template <class = void>
+bool disjoint_pair_meets(const std::array<vec, 3>& a, const std::array<vec, 3>& b) noexcept {
+  std::array<int, 3> sa{}, sb{};  // sides of a's corners against b's plane, and of b's against a's
+  for (std::size_t i = 0; i < 3; ++i) sa[i] = orient3d_filtered(b[0], b[1], b[2], a[i]);
+  if (sa[0] == sa[1] && sa[1] == sa[2] && sa[0] != 0) return false;
+  if (sa[0] == 0 || sa[1] == 0 || sa[2] == 0) {  // the exact evaluation is needed: try cheaper first
+    const int k = axes_by_normal(b[0], b[1], b[2])[0];
+    if (projections_apart(a, b, (k + 1) % 3, (k + 2) % 3)) return false;
+  }
+  for (std::size_t i = 0; i < 3; ++i) sa[i] = orient3d(b[0], b[1], b[2], a[i]);
+  if (sa[0] == sa[1] && sa[1] == sa[2] && sa[0] != 0) return false;
+  for (std::size_t i = 0; i < 3; ++i) sb[i] = orient3d(a[0], a[1], a[2], b[i]);
+  if (sb[0] == sb[1] && sb[1] == sb[2] && sb[0] != 0) return false;
+  const tri ta = make_tri(a[0], a[1], a[2]), tb = make_tri(b[0], b[1], b[2]);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::size_t j = (i + 1) % 3;
+    if (segment_meets(a[i], a[j], sa[i], sa[j], tb)) return true;
+    if (segment_meets(b[i], b[j], sb[i], sb[j], ta)) return true;
+  }
+  return false;
+}
+
+/// T1 = (v, a, b) and T2 = (v, c, d) share exactly the vertex v: do they meet elsewhere? O(1).
+template <class = void>
+bool vertex_pair_meets(const vec& v, const vec& a, const vec& b, const vec& c, const vec& d) noexcept {
+  if (orient3d_filtered(v, c, d, a) * orient3d_filtered(v, c, d, b) > 0) return false;
+  const int k = axes_by_normal(v, a, b)[0];
+  if (apart_at_vertex(v, a, b, c, d, (k + 1) % 3, (k + 2) % 3)) return false;
+  const int sa = orient3d(v, c, d, a), sb = orient3d(v, c, d, b);
+  if (sa * sb > 0) return false;  // T1 meets T2's plane only at v
+  const int sc = orient3d(v, a, b, c), sd = orient3d(v, a, b, d);
+  if (sc * sd > 0) return false;
+  const tri t1 = make_tri(v, a, b), t2 = make_tri(v, c, d);
+  if (segment_meets(a, b, sa, sb, t2) || segment_meets(c, d, sc, sd, t1)) return true;
+  return (sa == 0 && in_corner(t2, a)) || (sb == 0 && in_corner(t2, b)) || (sc == 0 && in_corner(t1, c)) ||
+         (sd == 0 && in_corner(t1, d));
+}
+
+/// T1 = (u, v, a) and T2 = (u, v, b) share the edge uv: do they overlap beyond it? O(1).
+template <class = void>
+bool edge_pair_meets(const vec& u, const vec& v, const vec& a, const vec& b) noexcept {
+  if (orient3d_filtered(u, v, a, b) != 0) return false;
+  // Strictly opposite sides of uv in some projection: no overlap whether coplanar or not.
+  const int k = axes_by_normal(u, v, a)[0], ku = (k + 1) % 3, kw = (k + 2) % 3;
+  if (orient_uw(u, v, a, ku, kw) * orient_uw(u, v, b, ku, kw) < 0) return false;
+  if (orient3d(u, v, a, b) != 0) return false;
+  const tri t = make_tri(u, v, a);
+  return orient_uw(u, v, a, t.u, t.w) == orient_uw(u, v, b, t.u, t.w);
+}
+
+/// The exact pair test of self_intersections on two non-degenerate triangles: corners p, q
+/// and their vertex ids (equal ids are one shared vertex). O(1).
+template <class = void>
+bool pair_intersects(const std::array<vec, 3>& p, const std::array<std::uint32_t, 3>& ip,
+                     const std::array<vec, 3>& q, const std::array<std::uint32_t, 3>& iq) noexcept {
+  int shared = 0;
+  std::array<int, 3> match = {-1, -1, -1};  // match[i]: corner of q with p's id i
+  for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t j = 0; j < 3; ++j)
+      if (ip[i] == iq[j]) match[i] = static_cast<int>(j), ++shared;
+  if (shared == 0) return disjoint_pair_meets(p, q);
+  if (shared >= 3) return true;
+  if (shared == 1) {
+    std::size_t i = 0;
+    while (match[i] < 0) ++i;
+    const auto j = static_cast<std::size_t>(match[i]);
+    return vertex_pair_meets(p[i], p[(i + 1) % 3], p[(i + 2) % 3], q[(j + 1) % 3], q[(j + 2) % 3]);
+  }
+  std::size_t free_p = 0;  // the corner of p not shared, and of q
+  while (match[free_p] >= 0) ++free_p;
+  std::size_t free_q = 0;
+  while (free_q == static_cast<std::size_t>(match[(free_p + 1) % 3]) ||
+         free_q == static_cast<std::size_t>(match[(free_p + 2) % 3]))
+    ++free_q;
+  return edge_pair_meets(p[(free_p + 1) % 3], p[(free_p + 2) % 3], p[free_p], q[free_q]);
+}
+
+/// True when the triangle has zero area or a non-finite coordinate (exact). O(1).
+template <class = void>
+bool degenerate(const vec& a, const vec& b, const vec& c) noexcept {
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(a[k]) || !std::isfinite(b[k]) || !std::isfinite(c[k])) return true;
+  return collinear(a, b, c);
+}
+
+/// True when polygon p is exactly planar and strictly convex (every corner strictly on one
+/// side of every edge, in a projection where its first three corners do not collapse).
+/// O(|p|²); polygons of more than 16 corners are left to ear clipping.
+template <class = void>
+bool convex_planar(std::span<const vec> p) noexcept {
+  const std::size_t n = p.size();
+  if (n > 16) return false;
+  const int k = drop_axis(p[0], p[1], p[2]);
+  if (k < 0) return false;
+  const int u = (k + 1) % 3, w = (k + 2) % 3;
+  const int s = orient_uw(p[0], p[1], p[2], u, w);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j)
+      if (j != i && j != (i + 1) % n && orient_uw(p[i], p[(i + 1) % n], p[j], u, w) != s) return false;
+  for (std::size_t j = 3; j < n; ++j)
+    if (orient3d(p[0], p[1], p[2], p[j]) != 0) return false;
+  return true;
+}
+
+/// One triangle of a face's triangulation.
+struct entry {
+  std::array<std::uint32_t, 3> v;  ///< vertex indices
+  std::uint32_t face;
+  std::array<double, 6> box;        ///< min x, y, z, max x, y, z
+  std::array<std::uint32_t, 3> lo;  ///< grid cell of the box's low corner
+};
+
+/// The grid cell coordinate of x along one axis. O(1).
+template <class = void>
+std::uint32_t cell_of(double x, double origin, double inv_side, std::uint32_t cells) noexcept {
+  const double c = std::floor((x - origin) * inv_side);
+  if (!(c > 0)) return 0;
+  if (c >= static_cast<double>(cells - 1)) return cells - 1;
+  return static_cast<std::uint32_t>(c);
+}
+
+/// Sorts 64-bit keys: least-significant-digit radix sort, 16 bits a pass, skipping passes
+/// whose digit is the same in every key. O(n · passes).
+template <class = void>
+void radix_sort(std::vector<std::uint64_t>& keys) {
+  std::vector<std::uint64_t> tmp(keys.size());
+  std::vector<std::size_t> count(1 << 16);
+  std::uint64_t all_or = 0, all_and = ~std::uint64_t{0};
+  for (const std::uint64_t k : keys) all_or |= k, all_and &= k;
+  for (unsigned shift = 0; shift < 64; shift += 16) {
+    if ((((all_or ^ all_and) >> shift) & 0xFFFFu) == 0) continue;  // the digit never varies
+    std::fill(count.begin(), count.end(), std::size_t{0});
+    for (const std::uint64_t k : keys) ++count[(k >> shift) & 0xFFFFu];
+    std::size_t sum = 0;
+    for (std::size_t& c : count) {
+      const std::size_t here = c;
+      c = sum;
+      sum += here;
+    }
+    for (const std::uint64_t k : keys) tmp[count[(k >> shift) & 0xFFFFu]++] = k;
+    keys.swap(tmp);
+  }
+}
+
+/// Sorts and deduplicates the face-pair keys. O(n log n).
+template <class = void>
+void compact(std::vector<std::uint64_t>& keys) {
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+}
+
+/// Triangulates every live face of m into `out` as described in the file comment, with
+/// positions from `pos` (indexed by vertex). O(Σ face size) for convex faces.
+template <Point3 P>
+void triangulate_for_test(const surface_mesh<P>& m, std::span<const vec> pos, std::vector<entry>& out,
+                          self_intersection_result& r) {
+  std::vector<std::uint32_t> ids;
+  std::vector<vec> corners;
+  ear_clip_options clip;
+  clip.planarity_tolerance = std::numeric_limits<double>::infinity();
+  clip.allow_non_simple = true;
+  auto add = [&](std::uint32_t face, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    entry e;
+    e.v = {a, b, c};
+    e.face = face;
+    out.push_back(e);
+  };
+  for (const face_handle f : m.faces()) {
+    ++r.faces;
+    ids.clear();
+    corners.clear();
+    for (const vertex_handle v : m.vertices_around(f)) {
+      ids.push_back(v.idx());
+      corners.push_back(pos[v.idx()]);
+    }
+    const std::size_t n = ids.size();
+    if (n < 3) continue;
+    bool fan = n == 3 || convex_planar(std::span<const vec>(corners));
+    if (!fan) {
+      ++r.ear_clipped_faces;
+      ear_clip_report report;
+      try {
+        for (const index_triangle& t : ears::clip_polygon(corners, clip, report))
+          add(f.idx(), ids[t[0]], ids[t[1]], ids[t[2]]);
+      } catch (const error&) {
+        fan = true;  // no area, or a non-finite corner: its fan triangles are degenerate
+      }
+    }
+    if (fan)
+      for (std::size_t i = 1; i + 1 < n; ++i) add(f.idx(), ids[0], ids[i], ids[i + 1]);
+  }
+}
+
+}  // namespace detail::self_intersect
+
+/// Whether the closed triangles a and b have a common point (touching counts), exactly;
+/// false when either has zero area. O(1).
+template <Point3 P>
+bool triangles_intersect(const std::array<P, 3>& a, const std::array<P, 3>& b) {
+  namespace si = detail::self_intersect;
+  const std::array<glm::dvec3, 3> p = {to_dvec3(a[0]), to_dvec3(a[1]), to_dvec3(a[2])},
+                                  q = {to_dvec3(b[0]), to_dvec3(b[1]), to_dvec3(b[2])};
+  if (si::degenerate(p[0], p[1], p[2]) || si::degenerate(q[0], q[1], q[2])) return false;
+  return si::disjoint_pair_meets(p, q);
+}
+
+/// Finds the pairs of faces of m whose triangles intersect, exactly (see the file comment
+/// for what is tested and what counts as intersecting). O(n log n + candidate pairs) for n
+/// triangles, candidate pairs capped by options.max_candidate_pairs.
+template <Point3 P>
+self_intersection_result self_intersections(const surface_mesh<P>& m,
+                                            const self_intersection_options& options = {}) {
+  namespace si = detail::self_intersect;
+  const auto start = std::chrono::steady_clock::now();
+  self_intersection_result r;
+  std::vector<glm::dvec3> pos(m.vertices_size());
+  for (std::size_t i = 0; i < pos.size(); ++i) pos[i] = to_dvec3(m.points()[i]);
+
+  std::vector<si::entry> all;
+  all.reserve(m.num_faces() * 2);
+  si::triangulate_for_test(m, pos, all, r);
+  r.triangles = all.size();
+  if (all.size() >= 0xFFFFFFFFu)
+    throw error(error_category::invalid_input, "self_intersections: more than 2^32 - 1 triangles");
+
+  // Drop the zero-area triangles (reported); box the others.
+  std::vector<si::entry> tris;
+  tris.reserve(all.size());
+  for (si::entry& e : all) {
+    const glm::dvec3 &a = pos[e.v[0]], &b = pos[e.v[1]], &c = pos[e.v[2]];
+    if (si::degenerate(a, b, c)) {
+      ++r.degenerate_triangles;
+      const face_handle f(e.face);
+      if (r.degenerate_faces.size() < options.max_reported &&
+          (r.degenerate_faces.empty() || r.degenerate_faces.back() != f))
+        r.degenerate_faces.push_back(f);
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) {
+      e.box[static_cast<std::size_t>(k)] = std::min({a[k], b[k], c[k]});
+      e.box[static_cast<std::size_t>(k) + 3] = std::max({a[k], b[k], c[k]});
+    }
+    tris.push_back(e);
+  }
+  std::vector<si::entry>().swap(all);
+  const std::size_t n = tris.size();
+  const std::size_t budget =
+      options.max_candidate_pairs != 0 ? options.max_candidate_pairs : 256 * n + (std::size_t{1} << 20);
+  auto finish = [&] {
+    r.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return r;
+  };
+  if (n < 2) return finish();
+
+  // The grid: cell side from the median of the largest box extents, grown until the cell
+  // keys fit 32 bits and the entries 8n + 2^16.
+  std::array<double, 3> lo{}, hi{};
+  for (int k = 0; k < 3; ++k) {
+    lo[static_cast<std::size_t>(k)] = std::numeric_limits<double>::infinity();
+    hi[static_cast<std::size_t>(k)] = -std::numeric_limits<double>::infinity();
+  }
+  std::vector<double> extent(n);
+  for (std::size_t t = 0; t < n; ++t) {
+    const auto& b = tris[t].box;
+    for (std::size_t k = 0; k < 3; ++k) lo[k] = std::min(lo[k], b[k]), hi[k] = std::max(hi[k], b[k + 3]);
+    extent[t] = std::max({b[3] - b[0], b[4] - b[1], b[5] - b[2]});
+  }
+  std::nth_element(extent.begin(), extent.begin() + static_cast<std::ptrdiff_t>(n / 2), extent.end());
+  const double span = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  double side = extent[n / 2];
+  std::vector<double>().swap(extent);
+  if (!(side > 0) || !std::isfinite(side)) side = span / std::cbrt(static_cast<double>(n));
+  if (!(side > 0) || !std::isfinite(side)) side = 1;
+  const double max_entries = 8.0 * static_cast<double>(n) + 65536.0;
+  std::array<std::uint32_t, 3> cells{};
+  double inv = 0;
+  for (int attempt = 0;; ++attempt, side *= 1.5) {
+    inv = 1 / side;
+    double product = 1;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const double c = std::floor((hi[k] - lo[k]) * inv) + 1;
+      cells[k] = static_cast<std::uint32_t>(std::min(c, 4294967295.0));
+      product *= static_cast<double>(cells[k]);
+    }
+    if (!(inv > 0) || attempt > 200) {  // the box is a point or beyond range: one cell
+      cells = {1, 1, 1};
+      break;
+    }
+    if (product >= 4294967295.0) continue;
+    double entries = 0;
+    for (si::entry& e : tris) {
+      double count = 1;
+      for (std::size_t k = 0; k < 3; ++k) {
+        e.lo[k] = si::cell_of(e.box[k], lo[k], inv, cells[k]);
+        count *= static_cast<double>(si::cell_of(e.box[k + 3], lo[k], inv, cells[k]) - e.lo[k] + 1);
+      }
+      entries += count;
+    }
+    if (entries <= max_entries) break;
+  }
+  for (si::entry& e : tris)  // again, for the one-cell fallback
+    for (std::size_t k = 0; k < 3; ++k) e.lo[k] = si::cell_of(e.box[k], lo[k], inv, cells[k]);
+
+  // Cell entries as (cell key << 32 | triangle), sorted: the triangles of a cell in a run.
+  std::vector<std::uint64_t> keys;
+  for (std::size_t t = 0; t < n; ++t) {
+    const si::entry& e = tris[t];
+    std::array<std::uint32_t, 3> top{};
+    for (std::size_t k = 0; k < 3; ++k) top[k] = si::cell_of(e.box[k + 3], lo[k], inv, cells[k]);
+    for (std::uint32_t x = e.lo[0]; x <= top[0]; ++x)
+      for (std::uint32_t y = e.lo[1]; y <= top[1]; ++y)
+        for (std::uint32_t z = e.lo[2]; z <= top[2]; ++z) {
+          const std::uint64_t cell = (static_cast<std::uint64_t>(x) * cells[1] + y) * cells[2] + z;
+          keys.push_back(cell << 32 | t);
+        }
+  }
+  si::radix_sort(keys);
+
+  std::vector<std::uint64_t> found;  // face-pair keys, compacted as they grow
+  std::size_t compact_at = 1 << 16;
+  std::array<glm::dvec3, 3> p{}, q{};
+  for (std::size_t begin = 0; begin < keys.size() && r.complete;) {
+    const std::uint64_t cell = keys[begin] >> 32;
+    std::size_t end = begin + 1;
+    while (end < keys.size() && keys[end] >> 32 == cell) ++end;
+    const std::array<std::uint32_t, 3> here = {
+        static_cast<std::uint32_t>(cell / (static_cast<std::uint64_t>(cells[1]) * cells[2])),
+        static_cast<std::uint32_t>(cell / cells[2] % cells[1]), static_cast<std::uint32_t>(cell % cells[2])};
+    const std::size_t m_here = end - begin;
+    if (m_here * (m_here - 1) / 2 > budget - r.candidate_pairs) {
+      r.complete = false;
+      break;
+    }
+    r.candidate_pairs += m_here * (m_here - 1) / 2;
+    for (std::size_t i = begin; i < end; ++i) {
+      const si::entry& a = tris[static_cast<std::uint32_t>(keys[i])];
+      for (std::size_t j = i + 1; j < end; ++j) {
+        const si::entry& b = tris[static_cast<std::uint32_t>(keys[j])];
+        if (a.face == b.face) continue;
+        if (a.box[0] > b.box[3] || b.box[0] > a.box[3] || a.box[1] > b.box[4] || b.box[1] > a.box[4] ||
+            a.box[2] > b.box[5] || b.box[2] > a.box[5])
+          continue;
+        // Examined only in the cell of the low corner of the boxes' intersection.
+        if (std::max(a.lo[0], b.lo[0]) != here[0] || std::max(a.lo[1], b.lo[1]) != here[1] ||
+            std::max(a.lo[2], b.lo[2]) != here[2])
+          continue;
+        ++r.pairs_tested;
+        for (std::size_t k = 0; k < 3; ++k) p[k] = pos[a.v[k]], q[k] = pos[b.v[k]];
+        if (!si::pair_intersects(p, a.v, q, b.v)) continue;
+        ++r.intersecting_triangle_pairs;
+        const std::uint32_t f = std::min(a.face, b.face), g = std::max(a.face, b.face);
+        found.push_back(static_cast<std::uint64_t>(f) << 32 | g);
+        if (found.size() >= compact_at) {
+          si::compact(found);
+          compact_at = std::max(compact_at, 2 * found.size());
+        }
+      }
+    }
+    begin = end;
+  }
+  if (!r.complete && options.throw_on_budget) {
+    // Appended piece by piece: `"..." + std::to_string(n)` trips g++ 12's false -Wrestrict
+    // (GCC PR 105329) in a user's -O2 -Werror build.
+    std::string message = "self_intersections: the work budget of ";
+    message += std::to_string(budget);
+    message += " candidate triangle pairs was exhausted after testing ";
+    message += std::to_string(r.pairs_tested);
+    message += " pairs of ";
+    message += std::to_string(n);
+    message += " triangles (raise self_intersection_options::max_candidate_pairs)";
+    throw error(error_category::budget, message);
+  }
+  si::compact(found);
+  r.intersecting_face_pairs = found.size();
+  for (std::size_t i = 0; i < found.size() && i < options.max_reported; ++i)
+    r.face_pairs.emplace_back(face_handle(static_cast<std::uint32_t>(found[i] >> 32)),
+                              face_handle(static_cast<std::uint32_t>(found[i])));
+  return finish();
+}
+
+}  // namespace cellforge

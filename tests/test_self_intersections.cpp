@@ -1,0 +1,444 @@
+// self_intersections: closed meshes with none, two interpenetrating cubes counted by hand,
+// the shared-vertex, shared-edge, coplanar, piercing and fold cases, nearly coplanar
+// configurations at scales where an epsilon would decide wrongly, float points, the budget,
+// zero-area triangles, and random soups against a brute-force all-pairs run of the same
+// exact pair test.
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cstdint>
+#include <random>
+#include <utility>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "cellforge/algorithms/loop_subdivision.hpp"
+#include "cellforge/algorithms/self_intersections.hpp"
+#include "cellforge/algorithms/shapes.hpp"
+#include "cellforge/core/error.hpp"
+#include "cellforge/halfedge/conversion.hpp"
+#include "test_support.hpp"
+
+// Own namespace: the test files of a group may be compiled as one translation unit.
+namespace self_intersections_tests {
+
+namespace {
+
+using cellforge::polygon_soup;
+using cellforge::self_intersection_options;
+using cellforge::self_intersection_result;
+using cellforge::self_intersections;
+using cellforge::surface_mesh;
+using glm::dvec3;
+
+template <class P>
+self_intersection_result check(const polygon_soup<P>& soup, const self_intersection_options& o = {}) {
+  const surface_mesh<P> m = cellforge::make_mesh(soup);
+  return self_intersections(m, o);
+}
+
+// A soup of the given triangles, each with its own three vertices (nothing shared).
+polygon_soup<dvec3> separate(const std::vector<std::array<dvec3, 3>>& tris) {
+  polygon_soup<dvec3> s;
+  for (const auto& t : tris) {
+    const auto base = static_cast<std::uint32_t>(s.points.size());
+    for (const dvec3& p : t) s.points.push_back(p);
+    s.add_face({base, base + 1, base + 2});
+  }
+  return s;
+}
+
+// Triangles over one shared point list (shared indices are shared vertices).
+polygon_soup<dvec3> indexed(std::vector<dvec3> points,
+                            const std::vector<std::array<std::uint32_t, 3>>& faces) {
+  polygon_soup<dvec3> s;
+  s.points = std::move(points);
+  for (const auto& f : faces) s.add_face({f[0], f[1], f[2]});
+  return s;
+}
+
+std::size_t pairs(const polygon_soup<dvec3>& s) { return check(s).intersecting_face_pairs; }
+
+// Closes: the unit cube shifted by `offset`, appended to s.
+void add_cube(polygon_soup<dvec3>& s, const dvec3& offset, double size = 1) {
+  const polygon_soup<dvec3> c = cellforge::hexahedron();
+  const auto base = static_cast<std::uint32_t>(s.points.size());
+  for (const dvec3& p : c.points) s.points.push_back(offset + size * p);
+  for (std::size_t f = 0; f < c.num_faces(); ++f) {
+    std::vector<std::uint32_t> face;
+    for (const std::uint32_t v : c.face(f)) face.push_back(base + v);
+    s.add_face(face);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("self_intersections: closed meshes have none") {
+  using namespace cellforge;
+  const std::vector<std::pair<const char*, polygon_soup<dvec3>>> shapes = {
+      {"tetrahedron", tetrahedron()},
+      {"cube", hexahedron()},
+      {"octahedron", octahedron()},
+      {"icosahedron", icosahedron()},
+      {"dodecahedron", dodecahedron()},
+      {"icosphere 3", icosphere(3)},
+      {"uv sphere quads", uv_sphere(24, 12, false)},
+      {"torus quads", torus(32, 12, 1.0, 0.3, false)},
+      {"torus triangles", torus(40, 16, 1.0, 0.3, true)},
+      {"cylinder with polygon caps", cylinder(16, 4, true, false)},
+      {"lattice tubes 3x3x3", lattice_tube_mesh(3, 3, 3)},
+      {"lattice tubes 4x3x2 triangles", lattice_tube_mesh(4, 3, 2, {1.0, 0.5, true})},
+      {"tree tubes", tree_tube_mesh(4)},
+      {"spline tube", spline_tube()},
+  };
+  for (const auto& shape : shapes) {
+    const char* const name = shape.first;  // no structured binding: clang 14 cannot CAPTURE one
+    const polygon_soup<dvec3>& soup = shape.second;
+    CAPTURE(name);
+    const self_intersection_result r = check(soup);
+    CHECK(r.complete);
+    CHECK(r.intersecting_face_pairs == 0);
+    CHECK(r.intersecting_triangle_pairs == 0);
+    CHECK(r.degenerate_triangles == 0);
+    CHECK(r.faces == soup.num_faces());
+    CHECK(r.pairs_tested > 0);
+  }
+  // Loop-subdivided meshes.
+  for (const auto& soup : {icosahedron(), octahedron(), triangulate_fan(hexahedron())}) {
+    const surface_mesh<dvec3> m = loop_subdivided(make_mesh(soup), loop_options{.levels = 3});
+    const self_intersection_result r = self_intersections(m);
+    CHECK(r.triangles == m.num_faces());
+    CHECK(r.intersecting_face_pairs == 0);
+  }
+}
+
+TEST_CASE("self_intersections: two interpenetrating cubes") {
+  // Cube A = [0,1]^3, cube B = A + (0.5, 0.3, 0.7). The face x = 1 of A crosses B's faces
+  // y = 0.3 and z = 0.7 (B's faces y = 1.3, z = 1.7 are beyond A's face, and B's x faces are
+  // parallel to it); likewise y = 1 of A crosses x = 0.5 and z = 0.7, and z = 1 of A crosses
+  // x = 0.5 and y = 0.3; A's faces x, y, z = 0 lie outside B's range. 6 face pairs.
+  polygon_soup<dvec3> s;
+  add_cube(s, dvec3(0.0));
+  add_cube(s, dvec3(0.5, 0.3, 0.7));
+  const self_intersection_result r = check(s);
+  CHECK(r.intersecting_face_pairs == 6);
+  REQUIRE(r.face_pairs.size() == 6);
+  for (const auto& [f, g] : r.face_pairs) {
+    CHECK(f.idx() < 6);  // one face of each cube
+    CHECK(g.idx() >= 6);
+  }
+  CHECK(r.triangles == 24);
+  CHECK(r.ear_clipped_faces == 0);
+  // Apart: none. Sharing a face plane without overlapping (touching along a face): B at x + 1
+  // touches A along the whole face x = 1, and the faces around it touch along edges.
+  polygon_soup<dvec3> apart;
+  add_cube(apart, dvec3(0.0));
+  add_cube(apart, dvec3(2.0, 0.0, 0.0));
+  CHECK(pairs(apart) == 0);
+  polygon_soup<dvec3> touching;
+  add_cube(touching, dvec3(0.0));
+  add_cube(touching, dvec3(1.0, 0.25, 0.25), 0.5);
+  // B's face x = 1 lies on A's face x = 1 (coplanar overlap); B's four side faces touch A's
+  // face x = 1 along an edge.
+  CHECK(pairs(touching) == 5);
+  // Only max_reported pairs are listed, the count is complete.
+  self_intersection_options few;
+  few.max_reported = 2;
+  const self_intersection_result r2 = check(s, few);
+  CHECK(r2.intersecting_face_pairs == 6);
+  CHECK(r2.face_pairs.size() == 2);
+}
+
+TEST_CASE("self_intersections: a shared vertex") {
+  // T1 in the plane z = 0, T2 rising from the shared vertex 0: they meet only there.
+  const std::vector<dvec3> pts = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, -1, 1}, {-1, 0, 2}};
+  CHECK(pairs(indexed(pts, {{{0, 1, 2}}, {{0, 3, 4}}})) == 0);
+  // The same corner as two different vertices: touching counts.
+  CHECK(pairs(separate({{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}, {{{0, 0, 0}, {-1, -1, 1}, {-1, 0, 2}}}})) == 1);
+  // T2 passes through the shared vertex into T1's interior and out below.
+  CHECK(pairs(indexed({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.3, 0.3, 1}, {0.3, 0.3, -1}},
+                      {{{0, 1, 2}}, {{0, 3, 4}}})) == 1);
+  // Through the vertex but outside T1's corner: none.
+  CHECK(pairs(indexed({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-0.3, -0.3, 1}, {-0.3, -0.3, -1}},
+                      {{{0, 1, 2}}, {{0, 3, 4}}})) == 0);
+  // T2's far edge pierces T1 although no corner of T2 lies in T1's plane near it.
+  CHECK(pairs(indexed({{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {1, 1, 1}, {1, 1, -1}},
+                      {{{0, 1, 2}}, {{0, 3, 4}}})) == 1);
+  // A corner of T2 in T1's plane along T1's edge direction (T2's edge 0-3 runs inside T1's
+  // edge 0-1): they share a segment.
+  CHECK(pairs(indexed({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, 0, 0}, {0, -1, 1}},
+                      {{{0, 1, 2}}, {{0, 3, 4}}})) == 1);
+  // ... and pointing away from T1: only the vertex.
+  CHECK(pairs(indexed({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-0.5, 0, 0}, {0, -1, 1}},
+                      {{{0, 1, 2}}, {{0, 3, 4}}})) == 0);
+  // Coplanar: corners apart (a fan of two triangles around the vertex) vs overlapping.
+  CHECK(pairs(indexed({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}},
+                      {{{0, 1, 2}}, {{0, 3, 4}}})) == 0);
+  CHECK(pairs(indexed({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, 1, 0.0}},
+                      {{{0, 1, 2}}, {{0, 3, 4}}})) == 1);
+  CHECK(pairs(indexed({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0}}, {{{0, 1, 2}}, {{0, 3, 4}}})) ==
+        1);
+  // Coplanar, touching along a common ray from the vertex (edges 0-2 and 0-3 overlap).
+  CHECK(pairs(indexed({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 2, 0}, {-1, 1, 0}},
+                      {{{0, 1, 2}}, {{0, 3, 4}}})) == 1);
+  // Coplanar, T2 wholly inside T1's corner but beyond T1 (beyond its far edge): the corner
+  // contains T2's edges, so they overlap near the vertex.
+  CHECK(pairs(indexed({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {3, 1, 0}, {1, 3, 0}}, {{{0, 1, 2}}, {{0, 3, 4}}})) ==
+        1);
+}
+
+TEST_CASE("self_intersections: a shared edge, and the fold") {
+  // Edge 0-1 shared. A dihedral angle, a flat continuation, and a fold onto the first face.
+  const dvec3 a(0, 0, 0), b(1, 0, 0), c(0.3, 1, 0);
+  CHECK(pairs(indexed({a, b, c, {0.5, 0.5, 1}}, {{{0, 1, 2}}, {{1, 0, 3}}})) == 0);
+  CHECK(pairs(indexed({a, b, c, {0.5, -1, 0}}, {{{0, 1, 2}}, {{1, 0, 3}}})) == 0);
+  CHECK(pairs(indexed({a, b, c, {0.7, 0.5, 0}}, {{{0, 1, 2}}, {{1, 0, 3}}})) == 1);
+  CHECK(pairs(indexed({a, b, c, {3, 9, 0}}, {{{0, 1, 2}}, {{1, 0, 3}}})) == 1);
+  // Nearly folded: the other face a hair above the plane (exactly not coplanar).
+  CHECK(pairs(indexed({a, b, c, {0.7, 0.5, 1e-300}}, {{{0, 1, 2}}, {{1, 0, 3}}})) == 0);
+  // Two quads folded flat: faces 0 and 1 share edge 1-2 and lie on top of each other.
+  polygon_soup<dvec3> fold;
+  fold.points = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}, {1, 0.2, 0}, {1, 0.8, 0}};
+  fold.add_face({0, 1, 2, 3});  // a flat rectangle
+  fold.add_face({2, 1, 4, 5});  // a quad hinged on edge 1-2 and laid back onto it
+  const self_intersection_result r = check(fold);
+  CHECK(r.intersecting_face_pairs == 1);
+  CHECK(r.intersecting_triangle_pairs == 3);  // all but (0 2 3) with (2 1 4), which meet only at vertex 2
+}
+
+TEST_CASE("self_intersections: no shared vertex") {
+  // Piercing through the interior; crossing edges; coplanar overlap, touching, containment.
+  const std::array<dvec3, 3> base = {dvec3(0, 0, 0), dvec3(1, 0, 0), dvec3(0, 1, 0)};
+  auto with = [&](std::array<dvec3, 3> t) { return pairs(separate({base, t})); };
+  CHECK(with({dvec3(0.2, 0.2, -1), dvec3(0.3, 0.2, 1), dvec3(0.2, 0.3, 1)}) == 1);   // pierces
+  CHECK(with({dvec3(2, 2, -1), dvec3(3, 2, 1), dvec3(2, 3, 1)}) == 0);               // beside
+  CHECK(with({dvec3(0.2, 0.2, 0.1), dvec3(0.3, 0.2, 1), dvec3(0.2, 0.3, 1)}) == 0);  // above
+  CHECK(with({dvec3(0.2, 0.2, 0), dvec3(0.3, 0.2, 1), dvec3(0.2, 0.3, 1)}) == 1);    // corner on it
+  CHECK(with({dvec3(0.5, 0.5, 0), dvec3(2, 2, 1), dvec3(2, 2, -1)}) == 1);           // corner on its edge
+  CHECK(with({dvec3(0.6, 0.6, 0), dvec3(2, 2, 1), dvec3(2, 2, -1)}) == 0);           // just outside it
+  CHECK(with({dvec3(0.5, -1, 0.5), dvec3(0.5, 1, 0.5), dvec3(0.5, 0, -0.5)}) == 1);  // through an edge
+  CHECK(with({dvec3(0.2, 0.2, 0), dvec3(2, 0.2, 0), dvec3(0.2, 2, 0)}) == 1);        // coplanar overlap
+  CHECK(with({dvec3(0.1, 0.1, 0), dvec3(0.2, 0.1, 0), dvec3(0.1, 0.2, 0)}) == 1);    // coplanar inside
+  CHECK(with({dvec3(-1, -1, 0), dvec3(3, -1, 0), dvec3(-1, 3, 0)}) == 1);            // coplanar around
+  CHECK(with({dvec3(1, 0, 0), dvec3(2, 0, 0), dvec3(2, 1, 0)}) == 1);                // coplanar, a point
+  CHECK(with({dvec3(0.5, 0.5, 0), dvec3(1.5, -0.5, 0), dvec3(2, 1, 0)}) == 1);    // coplanar, along the edge
+  CHECK(with({dvec3(0.51, 0.51, 0), dvec3(1.5, -0.5, 0), dvec3(2, 1, 0)}) == 0);  // coplanar, apart
+  CHECK(with({dvec3(0, 1, 0), dvec3(1, 0, 0), dvec3(1, 1, 0)}) == 1);             // coplanar, an edge
+  // The public pair test on the caller's point type.
+  using fp = std::array<float, 3>;
+  CHECK(cellforge::triangles_intersect<fp>({fp{0, 0, 0}, fp{1, 0, 0}, fp{0, 1, 0}},
+                                           {fp{0.2f, 0.2f, -1}, fp{0.3f, 0.2f, 1}, fp{0.2f, 0.3f, 1}}));
+  CHECK_FALSE(cellforge::triangles_intersect<fp>({fp{0, 0, 0}, fp{1, 0, 0}, fp{0, 1, 0}},
+                                                 {fp{2, 2, -1}, fp{3, 2, 1}, fp{2, 3, 1}}));
+}
+
+TEST_CASE("self_intersections: nearly coplanar, where an epsilon decides wrongly") {
+  for (const double s : {1e-300, 1e-150, 1.0, 1e15, 1e150}) {
+    CAPTURE(s);
+    // The second triangle lies above the first's plane by one unit in the last place of
+    // the coordinates (or a subnormal): apart, though any tolerance would call it coplanar
+    // and overlapping.
+    const double h = s == 1e-300 ? 1e-310 : s * 0x1p-52;
+    const std::array<dvec3, 3> t = {s * dvec3(0, 0, 0), s * dvec3(1, 0, 0), s * dvec3(0, 1, 0)};
+    CHECK(pairs(separate(
+              {t, {dvec3(0.2 * s, 0.2 * s, h), dvec3(0.6 * s, 0.2 * s, h), dvec3(0.2 * s, 0.6 * s, h)}})) ==
+          0);
+    // Tilted by a hair so that it crosses the plane inside the triangle: it intersects.
+    CHECK(pairs(separate(
+              {t, {dvec3(0.2 * s, 0.2 * s, h), dvec3(0.6 * s, 0.2 * s, -h), dvec3(0.2 * s, 0.6 * s, h)}})) ==
+          1);
+    // Crossing the plane outside the triangle (beyond the hypotenuse, by a hair of the
+    // coordinates): apart.
+    CHECK(pairs(separate({t,
+                          {dvec3(0.5 * s, 0.5 * s, 0) + dvec3(s * 0x1p-50, s * 0x1p-50, h),
+                           dvec3(0.5 * s, 0.5 * s, 0) + dvec3(s * 0x1p-50, s * 0x1p-50, -h),
+                           dvec3(2 * s, 2 * s, 0)}})) == 0);
+    // The same exactly on the hypotenuse: it touches.
+    CHECK(pairs(separate(
+              {t, {dvec3(0.5 * s, 0.5 * s, h), dvec3(0.5 * s, 0.5 * s, -h), dvec3(2 * s, 2 * s, 0)}})) == 1);
+    // A shared edge with the other face a hair out of plane (a fold within an epsilon).
+    CHECK(pairs(indexed({t[0], t[1], t[2], dvec3(0.7 * s, 0.5 * s, h)}, {{{0, 1, 2}}, {{1, 0, 3}}})) == 0);
+    CHECK(pairs(indexed({t[0], t[1], t[2], dvec3(0.7 * s, 0.5 * s, 0)}, {{{0, 1, 2}}, {{1, 0, 3}}})) == 1);
+  }
+}
+
+TEST_CASE("self_intersections: polygons are tested as their triangulations") {
+  // A non-planar quad: two triangles, ear clipped; and a flat concave L hexagon.
+  polygon_soup<dvec3> q;
+  q.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0.5}, {0, 1, 0}};
+  q.add_face({0, 1, 2, 3});
+  const self_intersection_result r = check(q);
+  CHECK(r.triangles == 2);
+  CHECK(r.ear_clipped_faces == 1);
+  CHECK(r.intersecting_face_pairs == 0);
+  // An L-shaped prism: concave top and bottom (ear clipped into 4 triangles each).
+  polygon_soup<dvec3> l;
+  const std::vector<glm::dvec2> outline = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  for (const double z : {0.0, 1.0})
+    for (const auto& p : outline) l.points.push_back({p.x, p.y, z});
+  l.add_face({5, 4, 3, 2, 1, 0});
+  l.add_face({6, 7, 8, 9, 10, 11});
+  for (std::uint32_t i = 0; i < 6; ++i) {
+    const std::uint32_t j = (i + 1) % 6;
+    l.add_face({i, j, j + 6, i + 6});
+  }
+  const self_intersection_result rl = check(l);
+  CHECK(rl.triangles == 4 + 4 + 12);
+  CHECK(rl.ear_clipped_faces == 2);
+  CHECK(rl.intersecting_face_pairs == 0);
+  // A polygon with a straight corner (a T-junction vertex) is ear clipped, not fanned into
+  // a zero-area triangle.
+  polygon_soup<dvec3> t;
+  t.points = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}};
+  t.add_face({0, 1, 2, 3, 4});
+  const self_intersection_result rt = check(t);
+  CHECK(rt.degenerate_triangles == 0);
+  CHECK(rt.triangles == 3);
+}
+
+TEST_CASE("self_intersections: zero-area triangles are reported, not tested") {
+  polygon_soup<dvec3> s = separate({{{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}},  // collinear
+                                    {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
+                                    {{{0.5, 0, -1}, {0.5, 0, 1}, {0.5, 0.5, 0}}}});
+  const self_intersection_result r = check(s);
+  CHECK(r.degenerate_triangles == 1);
+  REQUIRE(r.degenerate_faces.size() == 1);
+  CHECK(r.degenerate_faces[0].idx() == 0);
+  CHECK(r.intersecting_face_pairs == 1);  // faces 1 and 2 only
+  REQUIRE(r.face_pairs.size() == 1);
+  CHECK(r.face_pairs[0].first.idx() == 1);
+  CHECK(r.face_pairs[0].second.idx() == 2);
+  // NaN corners are degenerate too.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  CHECK(check(separate({{{{nan, 0, 0}, {1, 0, 0}, {0, 1, 0}}}, {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}}))
+            .degenerate_triangles == 1);
+}
+
+TEST_CASE("self_intersections: float points") {
+  using fp = std::array<float, 3>;
+  const self_intersection_result r = check(cellforge::icosphere<fp>(3));
+  CHECK(r.intersecting_face_pairs == 0);
+  CHECK(r.triangles == 1280);
+  polygon_soup<fp> s = cellforge::hexahedron<fp>();
+  const std::size_t n = s.points.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const fp& p = s.points[i];
+    s.points.push_back({p[0] + 0.5f, p[1] + 0.3f, p[2] + 0.7f});
+  }
+  const std::size_t faces = s.num_faces();
+  for (std::size_t f = 0; f < faces; ++f) {
+    std::vector<std::uint32_t> face;
+    for (const std::uint32_t v : s.face(f)) face.push_back(v + static_cast<std::uint32_t>(n));
+    s.add_face(face);
+  }
+  CHECK(check(s).intersecting_face_pairs == 6);
+}
+
+TEST_CASE("self_intersections: the work budget") {
+  const polygon_soup<dvec3> soup = cellforge::icosphere(3);
+  self_intersection_options o;
+  o.max_candidate_pairs = 10;
+  const self_intersection_result r = check(soup, o);
+  CHECK_FALSE(r.complete);
+  CHECK(r.candidate_pairs <= 10);
+  o.throw_on_budget = true;
+  try {
+    (void)check(soup, o);
+    FAIL("no error");
+  } catch (const cellforge::error& e) {
+    CHECK(e.category() == cellforge::error_category::budget);
+    CHECK(e.message().find("max_candidate_pairs") != std::string::npos);
+  }
+  // Everything in one cell (a fan of long thin triangles around one vertex) is bounded too.
+  polygon_soup<dvec3> fan;
+  fan.points.push_back({0, 0, 0});
+  const int n = 1000;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * 3.141592653589793 * i / n;
+    fan.points.push_back({std::cos(a), std::sin(a), 0});
+  }
+  for (int i = 0; i < n; ++i)
+    fan.add_face({0, static_cast<std::uint32_t>(1 + i), static_cast<std::uint32_t>(1 + (i + 1) % n)});
+  self_intersection_options small;
+  small.max_candidate_pairs = 100000;
+  const self_intersection_result rf = check(fan, small);
+  CHECK_FALSE(rf.complete);
+  CHECK(rf.candidate_pairs <= 100000);
+  const self_intersection_result full = check(fan);
+  CHECK(full.complete);
+  CHECK(full.intersecting_face_pairs == 0);
+}
+
+namespace {
+
+// The brute-force reference: every pair of triangles of different faces, the same exact test.
+std::vector<std::uint64_t> brute_force(const polygon_soup<dvec3>& s) {
+  namespace si = cellforge::detail::self_intersect;
+  std::vector<std::uint64_t> out;
+  for (std::uint32_t f = 0; f < s.num_faces(); ++f)
+    for (std::uint32_t g = f + 1; g < s.num_faces(); ++g) {
+      const auto a = s.face(f), b = s.face(g);
+      const std::array<dvec3, 3> p = {s.points[a[0]], s.points[a[1]], s.points[a[2]]},
+                                 q = {s.points[b[0]], s.points[b[1]], s.points[b[2]]};
+      if (si::degenerate(p[0], p[1], p[2]) || si::degenerate(q[0], q[1], q[2])) continue;
+      if (si::pair_intersects(p, {a[0], a[1], a[2]}, q, {b[0], b[1], b[2]}))
+        out.push_back(static_cast<std::uint64_t>(f) << 32 | g);
+    }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("self_intersections: random soups against brute force") {
+  std::mt19937_64 rng(12);
+  for (int round = 0; round < 24; ++round) {
+    CAPTURE(round);
+    // Small triangles in a box: continuous coordinates, or a coarse integer lattice where
+    // coplanar, collinear and touching configurations are common.
+    const bool lattice = round % 2 == 1;
+    std::uniform_real_distribution<double> centre(0, 10), offset(-1, 1);
+    std::uniform_int_distribution<int> cell(0, 6), step(-2, 2);
+    std::vector<std::array<dvec3, 3>> tris;
+    const int count = 150 + 20 * round;
+    for (int i = 0; i < count; ++i) {
+      std::array<dvec3, 3> t{};
+      if (lattice) {
+        const dvec3 c(cell(rng), cell(rng), cell(rng));
+        for (dvec3& p : t) p = c + dvec3(step(rng), step(rng), step(rng));
+      } else {
+        const dvec3 c(centre(rng), centre(rng), centre(rng));
+        for (dvec3& p : t) p = c + dvec3(offset(rng), offset(rng), offset(rng));
+      }
+      tris.push_back(t);
+    }
+    const polygon_soup<dvec3> s = separate(tris);
+    self_intersection_options o;
+    o.max_reported = 1 << 20;
+    const self_intersection_result r = check(s, o);
+    const std::vector<std::uint64_t> expected = brute_force(s);
+    REQUIRE(r.complete);
+    CHECK(r.intersecting_face_pairs == expected.size());
+    CHECK(r.intersecting_triangle_pairs == expected.size());
+    REQUIRE(r.face_pairs.size() == expected.size());
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      CHECK(r.face_pairs[i].first.idx() == expected[i] >> 32);
+      CHECK(r.face_pairs[i].second.idx() == static_cast<std::uint32_t>(expected[i]));
+    }
+    CHECK(!expected.empty());
+    if (lattice) CHECK(r.degenerate_triangles > 0);
+  }
+}
+
+TEST_CASE("self_intersections: a sphere of 110,000 triangles") {
+  const surface_mesh<dvec3> m = cellforge::make_mesh(cellforge::sphere_with_vertices(55000));
+  const self_intersection_result r = self_intersections(m);
+  MESSAGE("110k-triangle sphere: " << r.time_ms << " ms, " << r.candidate_pairs << " candidate pairs, "
+                                   << r.pairs_tested << " tested");
+  CHECK(r.complete);
+  CHECK(r.triangles == m.num_faces());
+  CHECK(r.triangles > 100000);
+  CHECK(r.intersecting_face_pairs == 0);
+}
+
+}  // namespace self_intersections_tests
