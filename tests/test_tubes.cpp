@@ -14,6 +14,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/algorithms/self_intersections.hpp"
 #include "cellforge/halfedge/validate.hpp"
 #include "cellforge/tubes/sample_skeletons.hpp"
 #include "cellforge/tubes/tube_construct.hpp"
@@ -54,6 +55,15 @@ std::string tube_mesh_problems(const tubes_result<P>& r) {
     out +=
         std::to_string(r.shells) + " shells for " + std::to_string(r.construct.components) + " components; ";
   if (!(signed_volume(r.mesh) > 0)) out += "faces point inward; ";
+  // Exact: any two triangles of different faces that touch other than along the mesh's own
+  // shared vertices and edges.
+  const self_intersection_result si = self_intersections(r.mesh);
+  if (!si.complete) out += "the self-intersection check ran out of budget; ";
+  if (si.intersecting_face_pairs != 0) {
+    out += std::to_string(si.intersecting_face_pairs) + " intersecting face pairs (first: faces " +
+           std::to_string(si.face_pairs[0].first.idx()) + " and " + std::to_string(si.face_pairs[0].second.idx()) + "); ";
+  }
+  if (si.degenerate_triangles != 0) out += std::to_string(si.degenerate_triangles) + " degenerate triangles; ";
   return out;
 }
 

@@ -81,9 +81,11 @@ skeleton<P> ring(int n, double circle = 10, double radius = 0.5) {
   return s;
 }
 
-/// The complete graph K_n with its nodes spread on a sphere of radius `sphere`. O(n²).
+/// The complete graph K_n with its nodes spread on a sphere of radius `sphere` (a Fibonacci
+/// lattice). Its chords pass close to each other: for n = 8 the closest two non-adjacent ones
+/// are 0.046 × `sphere` apart, so the default radius leaves them clear up to K8. O(n²).
 template <Point3 P = glm::dvec3>
-skeleton<P> complete_graph(int n, double sphere = 10, double radius = 0.3) {
+skeleton<P> complete_graph(int n, double sphere = 10, double radius = 0.15) {
   skeleton<P> s;
   for (int i = 0; i < n; ++i) {
     const double z = 1 - (2 * i + 1.0) / n, r = std::sqrt(1 - z * z),
@@ -95,15 +97,16 @@ skeleton<P> complete_graph(int n, double sphere = 10, double radius = 0.3) {
   return s;
 }
 
-/// The Petersen graph: an outer pentagon, an inner pentagram lifted off its plane, spokes.
-/// O(1).
+/// The Petersen graph: an outer pentagon, spokes, and an inner pentagram whose nodes sit at
+/// different heights so that its crossing edges pass 0.13 × `size` apart. O(1).
 template <Point3 P = glm::dvec3>
 skeleton<P> petersen(double size = 10, double radius = 0.4) {
   skeleton<P> s;
   for (int i = 0; i < 5; ++i) {
     const double t = 2 * std::numbers::pi * i / 5 + std::numbers::pi / 2;
     detail::add_node(s, size * glm::dvec3(std::cos(t), std::sin(t), 0), radius);
-    detail::add_node(s, size * glm::dvec3(0.5 * std::cos(t), 0.5 * std::sin(t), 0.3), radius);
+    constexpr double height[5] = {2, 1, 4, 0, 3};  // the order that keeps the star's edges furthest apart
+    detail::add_node(s, size * glm::dvec3(0.5 * std::cos(t), 0.5 * std::sin(t), 0.3 + 0.15 * height[i]), radius);
   }
   for (int i = 0; i < 5; ++i) {
     detail::add_edge(s, 2 * i, 2 * ((i + 1) % 5));

@@ -41,7 +41,7 @@ struct tube_options {
   double cap_separation = 0.9;
   /// A node of degree 2 whose path turns by more than this (degrees) is meshed as a junction
   /// of two cross-sections, as a branch is (§V.D), instead of a mitred bend.
-  double bend_limit_degrees = 60;
+  double bend_limit_degrees = 45;
   /// §V.D method 1: a sharp bend's junction gets a virtual cross-section on the outside of
   /// the bend (kept as surface, no tube), which keeps the bend round instead of pinched.
   bool bend_virtual_section = true;
