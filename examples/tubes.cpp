@@ -2,11 +2,12 @@
 //
 //   tubes                                the bundled vessel tree (examples/data/vessel_tree.swc)
 //   tubes skeleton.swc|skeleton.obj      an SWC neuron/vessel file, or OBJ `v x y z r` + `l`
-//         [--sides N] [--alignment none|local|global] [--radius R]
+//         [--sides N] [--alignment none|local|global] [--radius R] [--levels L]
 //
-// --radius gives OBJ vertices without a fourth value that radius. Writes, in the current
-// directory, tubes.obj, tubes.ply, tubes.off and tubes.svg, and prints per-stage times, the
-// mesh's counts, and its genus beside the skeleton's cycle rank (they must agree).
+// --radius gives OBJ vertices without a fourth value that radius; --levels applies 0 to 4
+// levels of Loop subdivision. Writes, in the current directory, tubes.obj, tubes.ply,
+// tubes.off and tubes.svg, and prints per-stage times, the mesh's counts, and its genus
+// beside the skeleton's cycle rank (they must agree).
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -30,10 +31,12 @@ using point = glm::dvec3;
 
 int main(int argc, char** argv) {
   try {
-    const example::command_line cl = example::parse_command_line(
-        argc, argv, fs::path(CELLFORGE_DATA_DIR) / "vessel_tree.swc", {"sides", "alignment", "radius"}, {});
+    const example::command_line cl =
+        example::parse_command_line(argc, argv, fs::path(CELLFORGE_DATA_DIR) / "vessel_tree.swc",
+                                    {"sides", "alignment", "radius", "levels"}, {});
     cellforge::tube_options options;
     options.sides = static_cast<std::uint32_t>(cl.number("sides", 8, 3, 64, true));
+    options.subdivision_levels = static_cast<int>(cl.number("levels", 0, 0, 4, true));
     const std::string alignment = cl.text("alignment", "global");
     if (alignment == "none")
       options.alignment = cellforge::tube_alignment::none;
@@ -76,6 +79,8 @@ int main(int argc, char** argv) {
     std::printf("node paths         %9.3f ms   %zu end caps, %zu spheres\n", r.paths_ms, r.end_caps,
                 r.spheres);
     std::printf("mesh               %9.3f ms\n", r.mesh_ms);
+    if (options.subdivision_levels > 0)
+      std::printf("Loop subdivision   %9.3f ms   %d levels\n", r.subdivision_ms, options.subdivision_levels);
     std::printf("total              %9.3f ms\n", r.total_ms);
     std::printf("mesh               %zu vertices, %zu edges, %zu faces, %zu shells, closed %s\n",
                 r.mesh.num_vertices(), r.mesh.num_edges(), r.mesh.num_faces(), r.shells,

@@ -61,9 +61,14 @@ std::string tube_mesh_problems(const tubes_result<P>& r) {
   if (!si.complete) out += "the self-intersection check ran out of budget; ";
   if (si.intersecting_face_pairs != 0) {
     out += std::to_string(si.intersecting_face_pairs) + " intersecting face pairs (first: faces " +
-           std::to_string(si.face_pairs[0].first.idx()) + " and " + std::to_string(si.face_pairs[0].second.idx()) + "); ";
+           std::to_string(si.face_pairs[0].first.idx()) + " and " +
+           std::to_string(si.face_pairs[0].second.idx()) + "); ";
   }
-  if (si.degenerate_triangles != 0) out += std::to_string(si.degenerate_triangles) + " degenerate triangles; ";
+  if (si.degenerate_triangles != 0)
+    out += std::to_string(si.degenerate_triangles) + " degenerate triangles; ";
+  // The tube never narrows below half its nominal cross-section (the bound at bends).
+  if (!(r.min_section_ratio >= 0.5))
+    out += "a cross-section of " + std::to_string(r.min_section_ratio) + " of pi r^2; ";
   return out;
 }
 
@@ -181,7 +186,7 @@ TEST_CASE("random trees: closed genus-0 tubes, quads within 90 ± 30 degrees") {
   const int trees = 25;  // the sanitizer build runs a sample of the same set
 #endif
   std::size_t misses = 0, nodes = 0;
-  double lo = 180, hi = 0;
+  double lo = 180, hi = 0, smallest_section = 1e9;
   for (int t = 0; t < trees; ++t) {
     samples::random_tree_options o;
     o.nodes = 10 + static_cast<std::size_t>(t) * 37 % 1000;
@@ -189,6 +194,7 @@ TEST_CASE("random trees: closed genus-0 tubes, quads within 90 ± 30 degrees") {
     nodes += s.points.size();
     const auto r = make_tubes(s);
     std::string problems = tube_mesh_problems(r);
+    smallest_section = std::min(smallest_section, r.min_section_ratio);
     if (r.genus != 0) problems += "genus not 0; ";
     // Every end of the tree is capped once; every face says where it came from.
     std::size_t leaves = 0;
@@ -220,11 +226,56 @@ TEST_CASE("random trees: closed genus-0 tubes, quads within 90 ± 30 degrees") {
       MESSAGE("miss: tree " << t << " (" << s.points.size() << " nodes): " << problems);
     }
   }
-  std::printf("tube trees: %d trees, %zu nodes, %zu misses; quad corners %.1f to %.1f degrees\n", trees,
-              nodes, misses, lo, hi);
+  std::printf(
+      "tube trees: %d trees, %zu nodes, %zu misses; quad corners %.1f to %.1f degrees; smallest "
+      "cross-section "
+      "%.3f of pi r^2\n",
+      trees, nodes, misses, lo, hi, smallest_section);
   CHECK(misses == 0);
   CHECK(lo >= 60.0);
   CHECK(hi <= 120.0);
+}
+
+TEST_CASE("Loop levels keep closedness, genus and sources") {
+  // Embedding is not promised after subdivision (docs/tubes.md): Loop's averaging can fold
+  // the long thin triangles of a junction between small, distant rings (K5 with radius
+  // 0.15 at one level). The test prints how many face pairs intersect, and requires the rest.
+  const std::vector<S> set{samples::lattice(3, 3, 3), samples::complete_graph(5),
+                           samples::random_tree(5, {80}), samples::ring(12, 6.0)};
+  std::size_t folded = 0;
+  for (const S& s : set) {
+    const auto flat = make_tubes(s);
+    std::size_t triangles = 0;
+    for (const face_handle f : flat.mesh.faces()) triangles += flat.mesh.valence(f) - 2;
+    for (int levels : {1, 2}) {
+      INFO("skeleton " << &s - set.data() << ", levels " << levels);
+      tube_options o;
+      o.subdivision_levels = levels;
+      const auto r = make_tubes(s, o);
+      const auto v = validate(r.mesh);
+      CHECK(v.ok());
+      CHECK(r.mesh.is_closed());
+      CHECK(r.mesh.is_consistently_oriented());
+      CHECK(r.genus == r.cycle_rank);
+      CHECK(r.shells == r.construct.components);
+      CHECK(signed_volume(r.mesh) > 0);
+      CHECK(r.mesh.num_faces() == triangles << (2 * levels));
+      folded += self_intersections(r.mesh).intersecting_face_pairs;
+      // Every child keeps its ancestor's source: as many faces of each kind, times 4^levels.
+      const auto a = flat.mesh.template get_face_property<tube_face_source>(tube_source_property_name);
+      const auto b = r.mesh.template get_face_property<tube_face_source>(tube_source_property_name);
+      std::size_t caps_flat = 0, caps = 0;
+      for (const face_handle f : flat.mesh.faces())
+        caps_flat += a[f].kind == tube_face_kind::end_cap ? flat.mesh.valence(f) - 2 : 0;
+      for (const face_handle f : r.mesh.faces()) caps += b[f].kind == tube_face_kind::end_cap ? 1 : 0;
+      CHECK(caps == caps_flat << (2 * levels));
+    }
+  }
+  std::printf("tube Loop levels: %zu skeletons x 2 levels; %zu intersecting face pairs after subdivision\n",
+              set.size(), folded);
+  tube_options bad;
+  bad.subdivision_levels = 9;
+  CHECK_THROWS_WITH_AS(make_tubes(set[0], bad), doctest::Contains("subdivision_levels"), error);
 }
 
 TEST_CASE("tubes keep the caller's point type") {
@@ -309,6 +360,95 @@ TEST_CASE("twist: global alignment closes rings without a seam") {
                                      std::abs(*std::max_element(none.begin(), none.end())));
   MESSAGE("without alignment the worst step twists " << worst_none << " degrees");
   CHECK(worst_none > 1.0);
+}
+
+TEST_CASE("adversarial skeletons: an embedded mesh or an error naming the node, never a broken mesh") {
+  // Each case either meshes (then the mesh must pass every check, self-intersections
+  // included) or throws cellforge::error whose message names a node or an edge.
+  struct named {
+    std::string name;
+    S skeleton;
+  };
+  std::vector<named> set;
+  const auto star = [](std::vector<glm::dvec3> dirs, double length, double r_centre, double r_tip) {
+    S s;
+    s.points.push_back({0, 0, 0});
+    s.radii.push_back(r_centre);
+    for (const glm::dvec3& d : dirs) {
+      s.points.push_back(length * glm::normalize(d));
+      s.radii.push_back(r_tip);
+      s.edges.push_back({0, static_cast<std::uint32_t>(s.points.size() - 1)});
+    }
+    return s;
+  };
+  for (double deg : {5.0, 10.0, 20.0, 30.0}) {  // two branches of a Y close together
+    const double a = deg * 3.141592653589793 / 180;
+    set.push_back({"branches " + std::to_string(static_cast<int>(deg)) + " degrees apart",
+                   star({{1, 0, 0}, {std::cos(a), std::sin(a), 0}, {-1, 0.2, 0}}, 10, 0.5, 0.5)});
+  }
+  for (double deg : {150.0, 160.0, 170.0, 175.0, 178.0}) {  // a chain bending back on itself
+    const double a = (180 - deg) * 3.141592653589793 / 180;
+    S s;
+    s.points = {{-10, 0, 0}, {0, 0, 0}, {-10 * std::cos(a), 10 * std::sin(a), 0}};
+    s.radii = {0.5, 0.5, 0.5};
+    s.edges = {{0, 1}, {1, 2}};
+    set.push_back({"bend of " + std::to_string(static_cast<int>(deg)) + " degrees", s});
+  }
+  {
+    S s;  // radius jumps of 10:1 along edges
+    s.points = {{0, 0, 0}, {10, 0, 0}, {20, 0, 0}, {20, 10, 0}, {20, -10, 0}};
+    s.radii = {2.0, 0.2, 2.0, 0.2, 2.0};
+    s.edges = {{0, 1}, {1, 2}, {2, 3}, {2, 4}};
+    set.push_back({"radius jumps 10:1", s});
+  }
+  {
+    S s;  // edges shorter than 2r
+    s.points = {{0, 0, 0}, {0.8, 0, 0}, {-0.4, 0.7, 0}, {-0.4, -0.7, 0}};
+    s.radii = {0.5, 0.5, 0.5, 0.5};
+    s.edges = {{0, 1}, {0, 2}, {0, 3}};
+    set.push_back({"edges shorter than 2r", s});
+  }
+  {
+    std::vector<glm::dvec3> dirs;
+    for (int i = 0; i < 32; ++i) {
+      const double z = 1 - (2 * i + 1.0) / 32, r = std::sqrt(1 - z * z), t = 2.39996 * i;
+      dirs.push_back({r * std::cos(t), r * std::sin(t), z});
+    }
+    set.push_back({"32-valent star, thick", star(dirs, 6, 1.0, 0.8)});
+    set.push_back({"32-valent star, short", star(dirs, 1.5, 0.3, 0.3)});
+  }
+  {
+    S s = samples::ring(8, 5.0);
+    s.edges.push_back(s.edges[3]);  // a duplicate edge
+    set.push_back({"duplicate edge", s});
+    S t = samples::ring(8, 5.0);
+    t.points[2].y = std::numeric_limits<double>::quiet_NaN();
+    set.push_back({"NaN position", t});
+  }
+  std::size_t meshed = 0, refused = 0, misses = 0;
+  for (const named& c : set) {
+    try {
+      const auto r = make_tubes(c.skeleton);
+      const std::string problems = tube_mesh_problems(r);
+      ++meshed;
+      std::printf("  %-32s meshed: %zu faces\n", c.name.c_str(), r.mesh.num_faces());
+      if (!problems.empty()) {
+        ++misses;
+        MESSAGE("miss: " << c.name << ": a broken mesh: " << problems);
+      }
+    } catch (const error& e) {
+      ++refused;
+      const std::string what = e.what();
+      std::printf("  %-32s refused: %.110s\n", c.name.c_str(), what.c_str());
+      if (what.find("node") == std::string::npos && what.find("edge") == std::string::npos) {
+        ++misses;
+        MESSAGE("miss: " << c.name << ": the error names no node or edge: " << what);
+      }
+    }
+  }
+  std::printf("tube adversarial: %zu skeletons, %zu meshed, %zu refused with a located error, %zu misses\n",
+              set.size(), meshed, refused, misses);
+  CHECK(misses == 0);
 }
 
 TEST_CASE("tubes: bad input is a located error") {

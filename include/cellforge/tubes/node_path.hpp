@@ -7,6 +7,7 @@
 /// meets a junction's ring, or closes on itself, is spread evenly along its length (the
 /// global alignment the seed left undone); the seed's local alignment is an option.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -133,12 +134,25 @@ void build_path(buffer& out, std::span<const station> stations, bool closed, std
     const double turn = total > 0 ? spread * arc[i] / total : 0.0;
     const glm::dvec3 u = frame[i], v = glm::cross(s.tangent, u);
     first[i] = static_cast<std::uint32_t>(out.points.size());
+    glm::dvec3 area(0.0);  // twice the vector area of the ring (Newell)
     for (std::uint32_t j = 0; j < sides; ++j) {
       const double a = j * step + turn;
       glm::dvec3 e = std::cos(a) * u + std::sin(a) * v;
       e += (s.widen - 1) * glm::dot(e, s.bend) * s.bend;
       out.add_point(s.centre + s.radius * e);
+      if (j > 0)
+        area += glm::cross(out.points[out.points.size() - 2] - s.centre, out.points.back() - s.centre);
     }
+    area += glm::cross(out.points.back() - s.centre, out.points[first[i]] - s.centre);
+    // The cross-section the tube has across its axis: the ring's area seen along the tangent.
+    const double ratio = 0.5 * std::abs(glm::dot(area, s.tangent)) / (std::numbers::pi * s.radius * s.radius);
+    // Station i ends segment i - 1 and starts segment i (around the ring when closed).
+    const auto note = [&](std::size_t segment) {
+      const std::uint32_t e = segment_edge[segment];
+      if (e < out.section_ratio.size()) out.section_ratio[e] = std::min(out.section_ratio[e], ratio);
+    };
+    if (i > 0 || closed) note(i > 0 ? i - 1 : n - 1);
+    if (i + 1 < n || closed) note(i);
   }
   // Path position m of station i: fixed rings through their own order, the last one (or the
   // first, for a closed path) shifted by the chosen offset.

@@ -106,7 +106,8 @@ skeleton<P> petersen(double size = 10, double radius = 0.4) {
     const double t = 2 * std::numbers::pi * i / 5 + std::numbers::pi / 2;
     detail::add_node(s, size * glm::dvec3(std::cos(t), std::sin(t), 0), radius);
     constexpr double height[5] = {2, 1, 4, 0, 3};  // the order that keeps the star's edges furthest apart
-    detail::add_node(s, size * glm::dvec3(0.5 * std::cos(t), 0.5 * std::sin(t), 0.3 + 0.15 * height[i]), radius);
+    detail::add_node(s, size * glm::dvec3(0.5 * std::cos(t), 0.5 * std::sin(t), 0.3 + 0.15 * height[i]),
+                     radius);
   }
   for (int i = 0; i < 5; ++i) {
     detail::add_edge(s, 2 * i, 2 * ((i + 1) % 5));

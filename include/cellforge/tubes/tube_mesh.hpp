@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/algorithms/loop_subdivision.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/mesh_geometry.hpp"
@@ -47,6 +49,9 @@ struct tube_options {
   bool bend_virtual_section = true;
   /// How cross-sections are turned along a path (§V.C); global by default.
   tube_alignment alignment = tube_alignment::global;
+  /// Levels of Loop subdivision applied at the end (the seed smooths its tubes so); with
+  /// any, the faces are triangulated first (fans) and the result is all triangles.
+  int subdivision_levels = 0;
 };
 
 /// What make_tubes built, and how long each stage took.
@@ -60,7 +65,14 @@ struct tubes_result {
   std::int64_t cycle_rank = 0;  ///< E − V + C of the skeleton
   std::int64_t genus = 0;       ///< of the mesh: Σ over shells (2 − χ) / 2
   std::size_t shells = 0;       ///< connected components of the mesh
-  double construct_ms = 0, junctions_ms = 0, paths_ms = 0, mesh_ms = 0, total_ms = 0;
+  double construct_ms = 0, junctions_ms = 0, paths_ms = 0, mesh_ms = 0, subdivision_ms = 0, total_ms = 0;
+  /// Quality: per skeleton edge, the smallest cross-section along it (the area of a ring of
+  /// its path seen along the tube, over π r² of its node; a regular octagon is 0.90; NaN for
+  /// an edge with no ring of its own, e.g. between two junctions' rings), the smallest over
+  /// all edges, and the smallest and largest corner angle of any face (degrees).
+  std::vector<double> section_ratio;
+  double min_section_ratio = 0;
+  double min_corner_deg = 0, max_corner_deg = 0;
 };
 
 namespace detail::tubes {
@@ -228,6 +240,7 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
 
   // Node paths.
   const auto t_paths = clock::now();
+  out.section_ratio.assign(ne, std::numeric_limits<double>::infinity());
   std::vector<dt::station> stations;
   for (std::uint32_t p = 0; p < tc.paths.size(); ++p) {
     const tube_path& path = tc.paths[p];
@@ -300,17 +313,59 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
 
   // The mesh, in the skeleton's point type.
   const auto t_mesh = clock::now();
+  if (options.subdivision_levels < 0 || options.subdivision_levels > 8)
+    throw error(error_category::invalid_input, "make_tubes: subdivision_levels must be between 0 and 8");
+  if (options.subdivision_levels > 0) {  // Loop subdivision takes triangles: fan every face
+    dt::buffer tri;
+    tri.points = std::move(out.points);
+    for (std::size_t f = 0; f < out.sources.size(); ++f)
+      for (std::uint32_t k = out.face_offsets[f] + 1; k + 1 < out.face_offsets[f + 1]; ++k) {
+        const std::uint32_t t[3] = {out.face_vertices[out.face_offsets[f]], out.face_vertices[k],
+                                    out.face_vertices[k + 1]};
+        tri.add_face(t, out.sources[f]);
+      }
+    out = std::move(tri);
+  }
   surface_mesh<P> mesh;
   mesh.build(out.points.size(), out.face_offsets, out.face_vertices);
   const std::span<P> pts = mesh.points();
   for (std::size_t i = 0; i < out.points.size(); ++i) pts[i] = from_dvec3<P>(out.points[i]);
+  res.mesh_ms = dt::elapsed_ms(t_mesh);
+  if (options.subdivision_levels > 0) {
+    const auto t_sub = clock::now();
+    loop_subdivide(mesh, {.levels = options.subdivision_levels});
+    res.subdivision_ms = dt::elapsed_ms(t_sub);
+  }
+  // Face 4f + k of a Loop level is a child of face f: a face's source is its ancestor's.
+  const int shift = 2 * options.subdivision_levels;
   auto source = mesh.template add_face_property<tube_face_source>(tube_source_property_name);
-  for (std::size_t f = 0; f < out.sources.size(); ++f) source[face_handle(f)] = out.sources[f];
+  for (const face_handle f : mesh.faces()) source[f] = out.sources[f.idx() >> shift];
+  res.min_section_ratio = std::numeric_limits<double>::infinity();
+  for (double& q : out.section_ratio) {
+    if (std::isinf(q))
+      q = std::numeric_limits<double>::quiet_NaN();
+    else
+      res.min_section_ratio = std::min(res.min_section_ratio, q);
+  }
+  res.section_ratio = std::move(out.section_ratio);
+  res.min_corner_deg = 180, res.max_corner_deg = 0;
+  for (const face_handle f : mesh.faces()) {
+    const halfedge_handle h0 = mesh.halfedge(f);
+    halfedge_handle h = h0;
+    do {  // the corner at the head of h
+      const glm::dvec3 p = to_dvec3(mesh.position(mesh.head(h)));
+      const glm::dvec3 a = glm::normalize(to_dvec3(mesh.position(mesh.tail(h))) - p);
+      const glm::dvec3 b = glm::normalize(to_dvec3(mesh.position(mesh.head(mesh.next(h)))) - p);
+      const double deg = std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * 180 / std::numbers::pi;
+      res.min_corner_deg = std::min(res.min_corner_deg, deg),
+      res.max_corner_deg = std::max(res.max_corner_deg, deg);
+      h = mesh.next(h);
+    } while (h != h0);
+  }
   const mesh_components comps = connected_components(mesh);
   res.shells = comps.count;
   res.genus = (2 * static_cast<std::int64_t>(comps.count) - euler_characteristic(mesh)) / 2;
   res.mesh = std::move(mesh);
-  res.mesh_ms = dt::elapsed_ms(t_mesh);
   res.total_ms = dt::elapsed_ms(t_start);
   return res;
 }

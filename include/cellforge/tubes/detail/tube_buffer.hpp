@@ -36,6 +36,8 @@ struct basic_buffer {
   std::vector<std::uint32_t> face_offsets{0};
   std::vector<std::uint32_t> face_vertices;
   std::vector<tube_face_source> sources;
+  /// Per skeleton edge: the smallest area of a cross-section along it over π r² (its node's r).
+  std::vector<double> section_ratio;
 
   std::uint32_t add_point(const glm::dvec3& p) {
     points.push_back(p);
