@@ -69,7 +69,8 @@ struct tubes_result {
   /// Quality: per skeleton edge, the smallest cross-section along it (the area of a ring of
   /// its path seen along the tube, over π r² of its node; a regular octagon is 0.90; NaN for
   /// an edge with no ring of its own, e.g. between two junctions' rings), the smallest over
-  /// all edges, and the smallest and largest corner angle of any face (degrees).
+  /// all edges, and the smallest and largest corner angle of any face as built, before any
+  /// subdivision (degrees).
   std::vector<double> section_ratio;
   double min_section_ratio = 0;
   double min_corner_deg = 0, max_corner_deg = 0;
@@ -185,6 +186,15 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     if (path.closed) continue;
     if (is_junction(path.nodes.front())) at_junction[path.nodes.front()].push_back(2 * p);
     if (is_junction(path.nodes.back())) at_junction[path.nodes.back()].push_back(2 * p + 1);
+  }
+  {  // Room for every ring's vertices and every face, so that the buffer grows once.
+    std::size_t stations = 0, ends_at_junctions = 0;
+    for (const tube_path& path : tc.paths) stations += path.nodes.size();
+    for (const std::uint32_t b : tc.junctions) ends_at_junctions += at_junction[b].size();
+    out.points.reserve(n * (stations + ends_at_junctions));
+    out.sources.reserve(n * stations + 2 * n * ends_at_junctions);
+    out.face_offsets.reserve(n * stations + 2 * n * ends_at_junctions + 1);
+    out.face_vertices.reserve(4 * n * stations + 6 * n * ends_at_junctions);
   }
   std::vector<dt::junction_ring> rings;
   std::vector<std::uint32_t> ring_edges, first_vertex;
@@ -311,6 +321,20 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   }
   res.paths_ms = dt::elapsed_ms(t_paths);
 
+  // Corner angles of the faces as built (before any subdivision), on the flat buffer.
+  double cos_lo = 1, cos_hi = -1;  // the largest and smallest corner angle's cosines
+  for (std::size_t f = 0; f + 1 < out.face_offsets.size(); ++f) {
+    const std::uint32_t b = out.face_offsets[f], e = out.face_offsets[f + 1], k = e - b;
+    for (std::uint32_t c = 0; c < k; ++c) {
+      const glm::dvec3& p = out.points[out.face_vertices[b + c]];
+      const glm::dvec3 u = out.points[out.face_vertices[b + (c + k - 1) % k]] - p;
+      const glm::dvec3 w = out.points[out.face_vertices[b + (c + 1) % k]] - p;
+      const double cosine = glm::dot(u, w) / std::sqrt(glm::dot(u, u) * glm::dot(w, w));
+      cos_lo = std::min(cos_lo, cosine), cos_hi = std::max(cos_hi, cosine);
+    }
+  }
+  res.min_corner_deg = std::acos(std::clamp(cos_hi, -1.0, 1.0)) * 180 / std::numbers::pi;
+  res.max_corner_deg = std::acos(std::clamp(cos_lo, -1.0, 1.0)) * 180 / std::numbers::pi;
   // The mesh, in the skeleton's point type.
   const auto t_mesh = clock::now();
   if (options.subdivision_levels < 0 || options.subdivision_levels > 8)
@@ -348,23 +372,22 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
       res.min_section_ratio = std::min(res.min_section_ratio, q);
   }
   res.section_ratio = std::move(out.section_ratio);
-  res.min_corner_deg = 180, res.max_corner_deg = 0;
-  for (const face_handle f : mesh.faces()) {
-    const halfedge_handle h0 = mesh.halfedge(f);
-    halfedge_handle h = h0;
-    do {  // the corner at the head of h
-      const glm::dvec3 p = to_dvec3(mesh.position(mesh.head(h)));
-      const glm::dvec3 a = glm::normalize(to_dvec3(mesh.position(mesh.tail(h))) - p);
-      const glm::dvec3 b = glm::normalize(to_dvec3(mesh.position(mesh.head(mesh.next(h)))) - p);
-      const double deg = std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * 180 / std::numbers::pi;
-      res.min_corner_deg = std::min(res.min_corner_deg, deg),
-      res.max_corner_deg = std::max(res.max_corner_deg, deg);
-      h = mesh.next(h);
-    } while (h != h0);
-  }
-  const mesh_components comps = connected_components(mesh);
-  res.shells = comps.count;
-  res.genus = (2 * static_cast<std::int64_t>(comps.count) - euler_characteristic(mesh)) / 2;
+  // Shells by union-find over the faces' vertices (the mesh's own connectivity, measured, not
+  // assumed from the skeleton's components).
+  std::vector<std::uint32_t> parent(out.points.size());
+  for (std::uint32_t v = 0; v < parent.size(); ++v) parent[v] = v;
+  const auto find = [&](std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  std::size_t shells = out.points.size();
+  for (std::size_t f = 0; f + 1 < out.face_offsets.size(); ++f)
+    for (std::uint32_t k = out.face_offsets[f] + 1; k < out.face_offsets[f + 1]; ++k) {
+      const std::uint32_t a = find(out.face_vertices[out.face_offsets[f]]), b = find(out.face_vertices[k]);
+      if (a != b) parent[a] = b, --shells;
+    }
+  res.shells = shells;
+  res.genus = (2 * static_cast<std::int64_t>(shells) - euler_characteristic(mesh)) / 2;
   res.mesh = std::move(mesh);
   res.total_ms = dt::elapsed_ms(t_start);
   return res;
