@@ -88,6 +88,9 @@ int main(int argc, char** argv) {
     std::printf("genus              %lld (skeleton cycle rank %lld)%s\n", static_cast<long long>(r.genus),
                 static_cast<long long>(r.cycle_rank), r.genus == r.cycle_rank ? "" : "  MISMATCH");
     std::printf("valid              %s\n", valid.ok() ? "yes" : valid.message.c_str());
+    std::printf("quality            corners %.1f to %.1f degrees, smallest cross-section %.2f of pi r^2\n",
+                r.min_corner_deg, r.max_corner_deg, r.min_section_ratio);
+    for (const std::string& d : r.diagnostics) std::printf("note               %s\n", d.c_str());
 
     cellforge::io::write_mesh(outputs[0], r.mesh);
     cellforge::io::write_mesh(outputs[1], r.mesh);

@@ -245,8 +245,8 @@ TEST_CASE("random trees: closed genus-0 tubes, quads within 90 ± 30 degrees") {
 
 TEST_CASE("Loop levels keep closedness, genus and sources") {
   // Embedding is not promised after subdivision (docs/tubes.md): Loop's averaging can fold
-  // the long thin triangles of a junction between small, distant rings (K5 with radius
-  // 0.15 at one level). The test prints how many face pairs intersect, and requires the rest.
+  // the long thin triangles of a junction between small, distant rings. The test prints how
+  // many face pairs intersect, and requires the rest.
   const std::vector<S> set{samples::lattice(3, 3, 3), samples::complete_graph(5),
                            samples::random_tree(5, {80}), samples::ring(12, 6.0)};
   std::size_t folded = 0;
@@ -456,6 +456,25 @@ TEST_CASE("adversarial skeletons: an embedded mesh or an error naming the node, 
   std::printf("tube adversarial: %zu skeletons, %zu meshed, %zu refused with a located error, %zu misses\n",
               set.size(), meshed, refused, misses);
   CHECK(misses == 0);
+}
+
+TEST_CASE("tube diagnostics say what the mesher decided") {
+  S s;  // a root whose three branches all go up, a sharp bend on one, an isolated node
+  s.points = {{0, 0, 0}, {3, 0, 8}, {-3, 3, 8}, {-3, -3, 8}, {3, 6, 6}, {30, 0, 0}};
+  s.radii = {0.5, 0.5, 0.5, 0.5, 0.5, 0.5};
+  s.edges = {{0, 1}, {0, 2}, {0, 3}, {1, 4}};
+  const auto r = make_tubes(s);
+  CHECK(tube_mesh_problems(r) == "");
+  CHECK(r.bend_junctions == 1);
+  CHECK(r.virtual_sections == 2);  // the root's and the bend's
+  CHECK(r.spheres == 1);
+  CHECK(r.construct.inserted_nodes == 1);  // the root and the bend are adjacent junctions
+  REQUIRE(r.diagnostics.size() == 4);
+  CHECK(r.diagnostics[0] == "1 nodes of degree 2 turn by more than bend_limit_degrees: meshed as junctions");
+  CHECK(r.diagnostics[1] ==
+        "2 junctions have all their edges on one side: a virtual cross-section closes the other");
+  CHECK(r.diagnostics[2] == "1 nodes inserted between adjacent junctions (at the middle of their edge)");
+  CHECK(r.diagnostics[3] == "1 isolated nodes meshed as spheres");
 }
 
 TEST_CASE("tubes: bad input is a located error") {

@@ -45,7 +45,8 @@ struct tube_options {
   /// of two cross-sections, as a branch is (§V.D), instead of a mitred bend.
   double bend_limit_degrees = 45;
   /// §V.D method 1: a sharp bend's junction gets a virtual cross-section on the outside of
-  /// the bend (kept as surface, no tube), which keeps the bend round instead of pinched.
+  /// the bend (kept as surface, no tube), which keeps the bend round instead of pinched. A
+  /// junction of three or more edges that all leave to one side always gets one.
   bool bend_virtual_section = true;
   /// How cross-sections are turned along a path (§V.C); global by default.
   tube_alignment alignment = tube_alignment::global;
@@ -62,9 +63,10 @@ struct tubes_result {
   std::size_t junctions = 0;       ///< branches and sharp bends meshed as junctions
   std::size_t bend_junctions = 0;  ///< of which sharp bends of degree-2 nodes
   std::size_t paths = 0, closed_paths = 0, end_caps = 0, spheres = 0;
-  std::int64_t cycle_rank = 0;  ///< E − V + C of the skeleton
-  std::int64_t genus = 0;       ///< of the mesh: Σ over shells (2 − χ) / 2
-  std::size_t shells = 0;       ///< connected components of the mesh
+  std::size_t virtual_sections = 0;  ///< junctions given a virtual cross-section (see tube_options)
+  std::int64_t cycle_rank = 0;       ///< E − V + C of the skeleton
+  std::int64_t genus = 0;            ///< of the mesh: Σ over shells (2 − χ) / 2
+  std::size_t shells = 0;            ///< connected components of the mesh
   double construct_ms = 0, junctions_ms = 0, paths_ms = 0, mesh_ms = 0, subdivision_ms = 0, total_ms = 0;
   /// Quality: per skeleton edge, the smallest cross-section along it (the area of a ring of
   /// its path seen along the tube, over π r² of its node; a regular octagon is 0.90; NaN for
@@ -74,6 +76,9 @@ struct tubes_result {
   std::vector<double> section_ratio;
   double min_section_ratio = 0;
   double min_corner_deg = 0, max_corner_deg = 0;
+  /// What the mesher decided on its own, one sentence each (sharp bends, virtual sections,
+  /// inserted nodes, spheres, a genus that differs from the cycle rank).
+  std::vector<std::string> diagnostics;
 };
 
 namespace detail::tubes {
@@ -215,17 +220,23 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
       ring_edges.push_back(at_start ? path.edges.front() : path.edges.back());
     }
     const std::size_t real = rings.size();
-    if (real == 2 && options.bend_virtual_section) {  // §V.D method 1: outside the bend
-      const glm::dvec3 s = rings[0].direction + rings[1].direction;
-      if (glm::length(s) > 1e-9) {
-        dt::junction_ring r;
-        r.direction = -glm::normalize(s);
-        r.radius = rb;
-        r.first = dt::any_perpendicular(r.direction);
-        r.is_virtual = true;
-        rings.push_back(r);
-        ring_edges.push_back(tube_node::none);
-      }
+    // The junction is star-shaped about its centre only if the centre lies inside the hull of
+    // its directions: a junction whose edges all leave into one half-space (a bend; a root whose
+    // branches all go one way) gets a virtual section on the empty side (§V.D method 1).
+    glm::dvec3 sum(0.0);
+    for (std::size_t i = 0; i < real; ++i) sum += rings[i].direction;
+    bool one_side = glm::length(sum) > 1e-9;
+    for (std::size_t i = 0; one_side && i < real; ++i)
+      one_side = glm::dot(rings[i].direction, glm::normalize(sum)) > 1e-9;
+    if (one_side && (real >= 3 || options.bend_virtual_section)) {
+      dt::junction_ring r;
+      r.direction = -glm::normalize(sum);
+      r.radius = rb;
+      r.first = dt::any_perpendicular(r.direction);
+      r.is_virtual = true;
+      rings.push_back(r);
+      ring_edges.push_back(tube_node::none);
+      ++res.virtual_sections;
     }
     dt::place_rings(rings, rb, options.cap_separation);
     for (std::size_t i = 0; i < real; ++i) {
@@ -389,6 +400,17 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   res.shells = shells;
   res.genus = (2 * static_cast<std::int64_t>(shells) - euler_characteristic(mesh)) / 2;
   res.mesh = std::move(mesh);
+  const auto say = [&](std::size_t count, const std::string& what) {
+    if (count > 0) res.diagnostics.push_back(std::to_string(count) + " " + what);
+  };
+  say(res.bend_junctions, "nodes of degree 2 turn by more than bend_limit_degrees: meshed as junctions");
+  say(res.virtual_sections,
+      "junctions have all their edges on one side: a virtual cross-section closes the other");
+  say(tc.inserted_nodes, "nodes inserted between adjacent junctions (at the middle of their edge)");
+  say(res.spheres, "isolated nodes meshed as spheres");
+  if (res.genus != res.cycle_rank)
+    res.diagnostics.push_back("the mesh's genus " + std::to_string(res.genus) +
+                              " differs from the skeleton's cycle rank " + std::to_string(res.cycle_rank));
   res.total_ms = dt::elapsed_ms(t_start);
   return res;
 }
