@@ -458,6 +458,43 @@ TEST_CASE("adversarial skeletons: an embedded mesh or an error naming the node, 
   CHECK(misses == 0);
 }
 
+TEST_CASE("improved two-branch pipes (seed 001 §V.D): each method an option, every mesh embedded") {
+  // Bends of 50-170 degrees and trees, with the virtual section (method 1) on and off and
+  // extra hull points (method 3): every mesh must pass every check.
+  std::vector<S> set;
+  for (int deg = 50; deg <= 170; deg += 20) {
+    const double a = (180 - deg) * 3.141592653589793 / 180;
+    S s;
+    s.points = {{-10, 0, 0}, {0, 0, 0}, {-10 * std::cos(a), 10 * std::sin(a), 0}};
+    s.radii = {0.5, 0.5, 0.5};
+    s.edges = {{0, 1}, {1, 2}};
+    set.push_back(s);
+  }
+  for (std::uint64_t t = 0; t < 4; ++t) set.push_back(samples::random_tree(t, {120}));
+  std::size_t misses = 0, runs = 0;
+  for (const bool virtual_section : {true, false})
+    for (const std::uint32_t extra : {0u, 32u}) {
+      tube_options o;
+      o.bend_virtual_section = virtual_section;
+      o.junction_extra_points = extra;
+      for (const S& s : set) {
+        const auto r = make_tubes(s, o);
+        ++runs;
+        const std::string problems = tube_mesh_problems(r);
+        if (!problems.empty()) {
+          ++misses;
+          MESSAGE("miss: virtual " << virtual_section << ", extra " << extra << ": " << problems);
+        }
+      }
+    }
+  std::printf("tube two-branch methods: %zu meshes, %zu misses\n", runs, misses);
+  CHECK(misses == 0);
+  // Extra points add junction faces; the default adds none.
+  tube_options more;
+  more.junction_extra_points = 32;
+  CHECK(make_tubes(set[0], more).mesh.num_faces() > make_tubes(set[0]).mesh.num_faces());
+}
+
 TEST_CASE("tube diagnostics say what the mesher decided") {
   S s;  // a root whose three branches all go up, a sharp bend on one, an isolated node
   s.points = {{0, 0, 0}, {3, 0, 8}, {-3, 3, 8}, {-3, -3, 8}, {3, 6, 6}, {30, 0, 0}};

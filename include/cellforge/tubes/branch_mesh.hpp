@@ -62,9 +62,10 @@ void place_rings(std::span<junction_ring> rings, double centre_radius, double se
 template <class = void>
 void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junction_ring> rings,
                     std::uint32_t sides, tube_face_source source, std::span<const std::uint32_t> ring_edges,
-                    std::vector<std::uint32_t>& first_vertex) {
+                    std::vector<std::uint32_t>& first_vertex, std::span<const glm::dvec3> extra = {},
+                    double extra_distance = 0) {
   const std::size_t m = rings.size() * sides;
-  std::vector<glm::dvec3> on_sphere(m);
+  std::vector<glm::dvec3> on_sphere(m + extra.size());
   std::vector<double> cosines(sides), sines(sides);
   for (std::uint32_t j = 0; j < sides; ++j) {
     const double a = 2.0 * std::numbers::pi * j / sides;
@@ -87,12 +88,19 @@ void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junct
       out.add_point(centre + axis + r.radius * spoke);
     }
   }
+  // §V.D method 3: extra points on the sphere (the caller keeps them clear of every cap), at
+  // `extra_distance` along their rays: a rounder junction.
+  const auto extra_first = static_cast<std::uint32_t>(out.points.size());
+  for (std::size_t k = 0; k < extra.size(); ++k) {
+    on_sphere[m + k] = extra[k];
+    out.add_point(centre + extra_distance * extra[k]);
+  }
   convex_hull_options o;
   o.merge_coplanar = false;
   o.method = convex_hull_method::incremental;  // measured faster here than quickhull or the automatic choice
   const hull::result h = hull::compute(on_sphere, o);
   const std::string where = "node " + std::to_string(source.index);
-  if (h.dimension != 3 || h.vertices.size() != m)
+  if (h.dimension != 3 || h.vertices.size() != on_sphere.size())
     throw error(error_category::invalid_input,
                 where + ": the cross-sections of its " + std::to_string(rings.size()) +
                     " edges do not all lie on their junction's hull (edges too close in angle)");
@@ -102,10 +110,16 @@ void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junct
     std::size_t ring_of[3];
     for (std::size_t k = 0; k < 3; ++k) {
       const std::uint32_t input = h.vertices[h.face_vertices[h.face_offsets[f] + k]];
+      if (input >= m) {  // an extra point: in no ring
+        ring_of[k] = rings.size() + k;
+        tri[k] = extra_first + (input - static_cast<std::uint32_t>(m));
+        continue;
+      }
       ring_of[k] = input / sides;
       tri[k] = first_vertex[ring_of[k]] + input % sides;
     }
-    if (ring_of[0] == ring_of[1] && ring_of[1] == ring_of[2] && !rings[ring_of[0]].is_virtual) {
+    if (ring_of[0] == ring_of[1] && ring_of[1] == ring_of[2] && ring_of[0] < rings.size() &&
+        !rings[ring_of[0]].is_virtual) {
       ++cap_triangles[ring_of[0]];
       continue;
     }

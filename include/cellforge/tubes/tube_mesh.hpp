@@ -50,6 +50,10 @@ struct tube_options {
   bool bend_virtual_section = true;
   /// How cross-sections are turned along a path (§V.C); global by default.
   tube_alignment alignment = tube_alignment::global;
+  /// §V.D method 3: this many points spread evenly over each junction's sphere are added to
+  /// its hull, at the junction's radius, except those that would cut a cross-section's cap (0:
+  /// none, the default by measurement — docs/tubes.md).
+  std::uint32_t junction_extra_points = 0;
   /// Levels of Loop subdivision applied at the end (the seed smooths its tubes so); with
   /// any, the faces are triangulated first (fans) and the result is all triangles.
   int subdivision_levels = 0;
@@ -203,6 +207,8 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   }
   std::vector<dt::junction_ring> rings;
   std::vector<std::uint32_t> ring_edges, first_vertex;
+  const std::vector<glm::dvec3> extra_candidates = dt::sphere_directions(options.junction_extra_points);
+  std::vector<glm::dvec3> extra;
   for (const std::uint32_t b : tc.junctions) {
     const glm::dvec3 c = node_pos(b);
     const double rb = node_radius(b);
@@ -252,8 +258,15 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
                         " from the junction to clear the other edges there (an edge too short for the radii, "
                         "or edges too close in angle)");
     }
+    extra.clear();
+    for (const glm::dvec3& d : extra_candidates) {  // method 3: clear of every cap, with a margin
+      bool clear = true;
+      for (const dt::junction_ring& r : rings)
+        clear = clear && glm::dot(d, r.direction) < std::cos(1.25 * std::atan2(r.radius, r.distance));
+      if (clear) extra.push_back(d);
+    }
     dt::build_junction(out, c, rings, n, {tube_face_kind::junction, tc.nodes[b].skeleton_node}, ring_edges,
-                       first_vertex);
+                       first_vertex, extra, rb);
     for (std::size_t i = 0; i < real; ++i) ends[at_junction[b][i]] = {rings[i], c, first_vertex[i]};
     ++res.junctions;
   }
