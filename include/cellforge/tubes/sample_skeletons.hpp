@@ -230,17 +230,28 @@ skeleton<P> random_tree(std::uint64_t seed, const random_tree_options& o = {}) {
   std::vector<double> rad{o.root_radius};
   std::vector<std::uint32_t> parent{0xFFFFFFFFu};
   const double cos_min = std::cos(o.min_branch_angle * std::numbers::pi / 180);
-  const double cell = 2 * (o.segment_over_radius + 1) * o.root_radius;
+  // A hash grid of cells about the shortest segment's length: each segment is listed in every
+  // cell its box, widened by the largest clearance any test can ask for, meets; a test then
+  // reads only the cells of the candidate's own box. Cells stay sparse however dense the tree.
+  const double cell = o.segment_over_radius * o.min_radius + o.root_radius;
+  const double widest = 1.5 * 2 * std::max(o.root_radius, o.min_radius);
   struct segment {
     std::uint32_t a, b;
   };
   std::vector<segment> segments;
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid;
-  const auto key = [&](const glm::dvec3& p) {
-    const auto q = [&](double x) {
-      return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(x / cell)) & 0x1FFFFF);
-    };
-    return q(p.x) | q(p.y) << 21 | q(p.z) << 42;
+  const auto index = [&](double x) { return static_cast<std::int64_t>(std::floor(x / cell)); };
+  const auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+    const auto q = [](std::int64_t v) { return static_cast<std::uint64_t>(v) & 0x1FFFFF; };
+    return q(x) | q(y) << 21 | q(z) << 42;
+  };
+  const auto for_cells = [&](const glm::dvec3& a, const glm::dvec3& b, double widen, auto&& visit) {
+    const glm::dvec3 lo = glm::min(a, b) - widen, hi = glm::max(a, b) + widen;
+    for (std::int64_t x = index(lo.x); x <= index(hi.x); ++x)
+      for (std::int64_t y = index(lo.y); y <= index(hi.y); ++y)
+        for (std::int64_t z = index(lo.z); z <= index(hi.z); ++z)
+          if (!visit(key(x, y, z))) return false;
+    return true;
   };
   const auto segment_distance = [](glm::dvec3 p1, glm::dvec3 q1, glm::dvec3 p2, glm::dvec3 q2) {
     // Closest points of two segments (clamped parameters, as in Ericson's Real-Time Collision Detection).
@@ -256,21 +267,18 @@ skeleton<P> random_tree(std::uint64_t seed, const random_tree_options& o = {}) {
     return glm::length(p1 + sp * d1 - (p2 + tp * d2));
   };
   const auto clear = [&](std::uint32_t from, const glm::dvec3& to, double r) {
-    const glm::dvec3 mid = 0.5 * (pos[from] + to);
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dz = -1; dz <= 1; ++dz) {
-          const auto it = grid.find(key(mid + cell * glm::dvec3(dx, dy, dz)));
-          if (it == grid.end()) continue;
-          for (const std::uint32_t k : it->second) {
-            const segment& g = segments[k];
-            if (g.a == from || g.b == from) continue;  // adjacent: the angle rule covers it
-            if (segment_distance(pos[from], to, pos[g.a], pos[g.b]) <
-                1.5 * (r + std::max(rad[g.a], rad[g.b])))
-              return false;
-          }
-        }
-    return true;
+    return for_cells(pos[from], to, 0.0, [&](std::uint64_t k) {
+      const auto it = grid.find(k);
+      if (it == grid.end()) return true;
+      for (const std::uint32_t g : it->second) {
+        const segment& other = segments[g];
+        if (other.a == from || other.b == from) continue;  // adjacent: the angle rule covers it
+        if (segment_distance(pos[from], to, pos[other.a], pos[other.b]) <
+            1.5 * (r + std::max(rad[other.a], rad[other.b])))
+          return false;
+      }
+      return true;
+    });
   };
   std::vector<std::uint32_t> open{0};
   std::vector<glm::dvec3> heading{glm::dvec3(0, 0, 1)};
@@ -299,7 +307,10 @@ skeleton<P> random_tree(std::uint64_t seed, const random_tree_options& o = {}) {
         const auto c = static_cast<std::uint32_t>(pos.size());
         pos.push_back(p), rad.push_back(r), parent.push_back(v);
         segments.push_back({v, c});
-        grid[key(0.5 * (pos[v] + p))].push_back(static_cast<std::uint32_t>(segments.size() - 1));
+        for_cells(pos[v], p, widest, [&](std::uint64_t k) {
+          grid[k].push_back(static_cast<std::uint32_t>(segments.size() - 1));
+          return true;
+        });
         used.push_back(d);
         open.push_back(c), heading.push_back(d);
         break;
