@@ -221,7 +221,9 @@ struct random_tree_options {
 /// A random tree: chains of degree-2 nodes and branches of 2–3 children, every angle between
 /// two edges at a node at least `min_branch_angle`, and every segment clear of every other
 /// non-adjacent one by the sum of their radii (a candidate that is not is not grown).
-/// Deterministic for its seed. O(n) expected (a hash grid for the clearance test).
+/// Deterministic for its seed. About O(n) while the tree is sparse, more as it crowds (a
+/// hash grid answers the clearance test; candidates that fail are retried up to 30 times):
+/// measured 0.09 s for 10,000 nodes, 3.4 s for 100,000.
 template <Point3 P = glm::dvec3>
 skeleton<P> random_tree(std::uint64_t seed, const random_tree_options& o = {}) {
   skeleton<P> s;
