@@ -6,8 +6,8 @@
 //
 // --radius gives OBJ vertices without a fourth value that radius; --levels applies 0 to 4
 // levels of Loop subdivision. Writes, in the current directory, tubes.obj, tubes.ply,
-// tubes.off and tubes.svg, and prints per-stage times, the mesh's counts, and its genus
-// beside the skeleton's cycle rank (they must agree).
+// tubes.off and tubes.svg, and prints per-stage times, the mesh's counts, its genus beside
+// the skeleton's cycle rank (they must agree) and its self-intersections (there must be none).
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -16,6 +16,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "cellforge/algorithms/self_intersections.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/validate.hpp"
@@ -88,6 +89,10 @@ int main(int argc, char** argv) {
     std::printf("genus              %lld (skeleton cycle rank %lld)%s\n", static_cast<long long>(r.genus),
                 static_cast<long long>(r.cycle_rank), r.genus == r.cycle_rank ? "" : "  MISMATCH");
     std::printf("valid              %s\n", valid.ok() ? "yes" : valid.message.c_str());
+    const cellforge::self_intersection_result si = cellforge::self_intersections(r.mesh);
+    std::printf("self-intersections %zu intersecting face pairs (exact, %zu triangles, %.3f ms)%s\n",
+                si.intersecting_face_pairs, si.triangles, si.time_ms,
+                si.complete ? "" : ", budget exhausted");
     std::printf("quality            corners %.1f to %.1f degrees, smallest cross-section %.2f of pi r^2\n",
                 r.min_corner_deg, r.max_corner_deg, r.min_section_ratio);
     for (const std::string& d : r.diagnostics) std::printf("note               %s\n", d.c_str());
@@ -109,7 +114,7 @@ int main(int argc, char** argv) {
     picture.title = "tubes: " + cl.input.filename().string();
     scene.write(outputs[3], picture);
     std::printf("wrote              tubes.obj, tubes.ply, tubes.off, tubes.svg\n");
-    return valid.ok() && r.genus == r.cycle_rank ? 0 : 1;
+    return valid.ok() && r.genus == r.cycle_rank && si.intersecting_face_pairs == 0 ? 0 : 1;
   } catch (const cellforge::error& e) {
     std::fprintf(stderr, "tubes: %s\n", e.what());
     return 1;
