@@ -114,6 +114,16 @@ TEST_CASE("tube construct: junctions, paths, inserted nodes, rings") {
     CHECK(tc.components == 4);
     CHECK(tc.cycle_rank == 1);
   }
+  SUBCASE("from any Skeleton, validated") {
+    const tube_construct tc = make_tube_construct(samples::figure_eight());
+    CHECK(tc.junctions.size() == 1);  // the shared node, degree 4
+    CHECK(tc.paths.size() == 2);
+    CHECK(tc.cycle_rank == 2);
+    S bad = samples::ring(5, 5.0);
+    bad.radii[1] = -1;
+    CHECK_THROWS_WITH_AS(make_tube_construct(bad), doctest::Contains("node 1: radius -1 is not positive"),
+                         error);
+  }
   SUBCASE("a path of 100,000 nodes is traced without recursion") {
     const std::uint32_t n = 100000;
     std::vector<edge> e;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cellforge/core/error.hpp"
+#include "cellforge/tubes/skeleton.hpp"
 
 namespace cellforge {
 
@@ -189,6 +190,20 @@ tube_construct make_tube_construct(std::size_t num_nodes,
   tc.cycle_rank = static_cast<std::int64_t>(edges.size()) - static_cast<std::int64_t>(num_nodes) +
                   static_cast<std::int64_t>(components);
   return tc;
+}
+
+/// The tube construct of any Skeleton: junctions are its nodes of degree 3 or more (make_tubes
+/// adds the sharp bends its options ask for). Validates g first (check_skeleton). O(V + E).
+template <Skeleton G>
+tube_construct make_tube_construct(const G& g) {
+  check_skeleton(g);
+  using T = skeleton_traits<G>;
+  std::vector<std::array<std::uint32_t, 2>> edges(T::num_edges(g));
+  for (std::size_t j = 0; j < edges.size(); ++j) {
+    const std::array<std::size_t, 2> ab = T::endpoints(g, j);
+    edges[j] = {static_cast<std::uint32_t>(ab[0]), static_cast<std::uint32_t>(ab[1])};
+  }
+  return make_tube_construct(T::num_nodes(g), edges);
 }
 
 }  // namespace cellforge
