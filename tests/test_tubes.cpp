@@ -524,6 +524,21 @@ TEST_CASE("tube diagnostics say what the mesher decided") {
   CHECK(r.diagnostics[3] == "1 isolated nodes meshed as spheres");
 }
 
+TEST_CASE("tubes: the optional self-intersection check reports a skeleton without clearance") {
+  // K8 on a sphere of radius 10: its closest chords pass 0.46 apart, so tubes of radius 0.3
+  // must intersect there; at the sample's own radius (0.15) they must not.
+  tube_options o;
+  o.check_self_intersections = true;
+  const auto crowded = make_tubes(samples::complete_graph(8, 10, 0.3), o);
+  CHECK(crowded.self_intersections_checked);
+  CHECK(crowded.self_intersecting_face_pairs > 0);
+  REQUIRE(!crowded.diagnostics.empty());
+  CHECK(crowded.diagnostics.back().find("face pairs intersect") != std::string::npos);
+  const auto clear = make_tubes(samples::complete_graph(8), o);
+  CHECK(clear.self_intersections_checked);
+  CHECK(clear.self_intersecting_face_pairs == 0);
+}
+
 TEST_CASE("tubes: bad input is a located error") {
   S s;
   s.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};

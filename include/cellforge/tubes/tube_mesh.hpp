@@ -19,6 +19,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/algorithms/loop_subdivision.hpp"
+#include "cellforge/algorithms/self_intersections.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/mesh_geometry.hpp"
@@ -54,6 +55,10 @@ struct tube_options {
   /// its hull, at the junction's radius, except those that would cut a cross-section's cap (0:
   /// none, the default by measurement — docs/tubes.md).
   std::uint32_t junction_extra_points = 0;
+  /// Run the exact self-intersection check on the result (algorithms/self_intersections.hpp;
+  /// about twice the meshing time) and report it in tubes_result. make_tubes does not check
+  /// the skeleton's clearance: tubes whose edges pass closer than their radii intersect.
+  bool check_self_intersections = false;
   /// Levels of Loop subdivision applied at the end (the seed smooths its tubes so); with
   /// any, the faces are triangulated first (fans) and the result is all triangles.
   int subdivision_levels = 0;
@@ -80,6 +85,11 @@ struct tubes_result {
   std::vector<double> section_ratio;
   double min_section_ratio = 0;
   double min_corner_deg = 0, max_corner_deg = 0;
+  /// With options.check_self_intersections: face pairs that intersect (0 for an embedded
+  /// mesh), and whether the check finished within its budget.
+  std::size_t self_intersecting_face_pairs = 0;
+  bool self_intersections_checked = false;
+  double check_ms = 0;
   /// What the mesher decided on its own, one sentence each (sharp bends, virtual sections,
   /// inserted nodes, spheres, a genus that differs from the cycle rank).
   std::vector<std::string> diagnostics;
@@ -421,6 +431,17 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
       "junctions have all their edges on one side: a virtual cross-section closes the other");
   say(tc.inserted_nodes, "nodes inserted between adjacent junctions (at the middle of their edge)");
   say(res.spheres, "isolated nodes meshed as spheres");
+  if (options.check_self_intersections) {
+    const self_intersection_result si = self_intersections(res.mesh);
+    res.self_intersecting_face_pairs = si.intersecting_face_pairs;
+    res.self_intersections_checked = si.complete;
+    res.check_ms = si.time_ms;
+    if (si.intersecting_face_pairs > 0)
+      res.diagnostics.push_back(
+          std::to_string(si.intersecting_face_pairs) +
+          " face pairs intersect (tubes closer than their radii: the skeleton lacks clearance)");
+    if (!si.complete) res.diagnostics.push_back("the self-intersection check stopped at its work budget");
+  }
   if (res.genus != res.cycle_rank)
     res.diagnostics.push_back("the mesh's genus " + std::to_string(res.genus) +
                               " differs from the skeleton's cycle rank " + std::to_string(res.cycle_rank));
