@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <new>
 #include <random>
 #include <string>
 #include <vector>
@@ -93,7 +94,10 @@ int main(int argc, char** argv) {
     scene.write(fs::path("hull.svg"), {.title = "convex hull"});
     std::printf("wrote            hull.svg\n");
     return valid.ok() ? 0 : 1;
-  } catch (const cellforge::error& e) {
+  } catch (const std::bad_alloc&) {  // a model too big for this machine: say so, do not abort
+    std::fprintf(stderr, "hull: out of memory (std::bad_alloc)\n");
+    return 1;
+  } catch (const std::exception& e) {  // cellforge::error among them: its message says what to fix
     std::fprintf(stderr, "hull: %s\n", e.what());
     return 1;
   }

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <map>
+#include <new>
 
 #include "cellforge/cellforge.hpp"
 #include "cellforge/io/mesh_io.hpp"
@@ -80,7 +81,10 @@ int main(int argc, char** argv) {
     std::printf("picture            mesh_info.svg (%zu faces, %zu visible and %zu partly hidden edges)\n",
                 drawn.faces_drawn, drawn.visible_edges, drawn.partly_hidden_edges);
     return valid.ok() ? 0 : 1;
-  } catch (const cellforge::error& e) {
+  } catch (const std::bad_alloc&) {  // a model too big for this machine: say so, do not abort
+    std::fprintf(stderr, "mesh_info: out of memory (std::bad_alloc)\n");
+    return 1;
+  } catch (const std::exception& e) {  // cellforge::error among them: its message says what to fix
     std::fprintf(stderr, "mesh_info: %s\n", e.what());
     return 1;
   }

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <new>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -101,7 +102,10 @@ int main(int argc, char** argv) {
     scene.write(fs::path("subdivide.svg"), picture);
     std::printf("wrote              %s, subdivide.svg\n", out.string().c_str());
     return valid.ok() ? 0 : 1;
-  } catch (const cellforge::error& e) {
+  } catch (const std::bad_alloc&) {  // a model too big for this machine: say so, do not abort
+    std::fprintf(stderr, "subdivide: out of memory (std::bad_alloc)\n");
+    return 1;
+  } catch (const std::exception& e) {  // cellforge::error among them: its message says what to fix
     std::fprintf(stderr, "subdivide: %s\n", e.what());
     return 1;
   }

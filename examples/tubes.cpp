@@ -12,6 +12,7 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <new>
 #include <string>
 
 #include <glm/vec3.hpp>
@@ -115,7 +116,10 @@ int main(int argc, char** argv) {
     scene.write(outputs[3], picture);
     std::printf("wrote              tubes.obj, tubes.ply, tubes.off, tubes.svg\n");
     return valid.ok() && r.genus == r.cycle_rank && si.intersecting_face_pairs == 0 ? 0 : 1;
-  } catch (const cellforge::error& e) {
+  } catch (const std::bad_alloc&) {  // a model too big for this machine: say so, do not abort
+    std::fprintf(stderr, "tubes: out of memory (std::bad_alloc)\n");
+    return 1;
+  } catch (const std::exception& e) {  // cellforge::error among them: its message says what to fix
     std::fprintf(stderr, "tubes: %s\n", e.what());
     return 1;
   }
