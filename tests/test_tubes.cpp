@@ -16,6 +16,9 @@
 
 #include "cellforge/algorithms/self_intersections.hpp"
 #include "cellforge/halfedge/validate.hpp"
+#include "cellforge/tubes/branch_mesh.hpp"
+#include "cellforge/tubes/detail/tube_buffer.hpp"
+#include "cellforge/tubes/node_path.hpp"
 #include "cellforge/tubes/sample_skeletons.hpp"
 #include "cellforge/tubes/tube_construct.hpp"
 #include "cellforge/tubes/tube_mesh.hpp"
@@ -132,6 +135,95 @@ TEST_CASE("tube construct: junctions, paths, inserted nodes, rings") {
     REQUIRE(tc.paths.size() == 1);
     CHECK(tc.paths[0].nodes.size() == n);
     CHECK(tc.paths[0].nodes.back() == n - 1);
+  }
+}
+
+TEST_CASE("tube stages one by one: frames, ring placement, junction hulls, paths") {
+  namespace dt = detail::tubes;
+  SUBCASE("any_perpendicular and angle_about (tubes/detail/tube_buffer.hpp)") {
+    for (const glm::dvec3 d :
+         {glm::dvec3(1, 0, 0), glm::dvec3(0, 0, -1), glm::normalize(glm::dvec3(1, 2, 3))}) {
+      const glm::dvec3 u = dt::any_perpendicular(d);
+      CHECK(std::abs(glm::dot(u, d)) < 1e-15);
+      CHECK(glm::length(u) == doctest::Approx(1.0));
+    }
+    CHECK(dt::angle_about({1, 0, 0}, {0, 1, 0}, {0, 0, 1}) == doctest::Approx(3.141592653589793 / 2));
+    CHECK(dt::angle_about({1, 0, 0}, {0, 1, 0}, {0, 0, -1}) == doctest::Approx(-3.141592653589793 / 2));
+  }
+  SUBCASE("place_rings keeps every pair of caps apart (tubes/branch_mesh.hpp)") {
+    std::vector<dt::junction_ring> rings(3);
+    rings[0].direction = {1, 0, 0};
+    rings[1].direction = glm::normalize(glm::dvec3(1, 0.2, 0));  // 11.3 degrees from ring 0
+    rings[2].direction = {-1, 0, 0};
+    for (auto& r : rings) r.radius = 0.5;
+    dt::place_rings(rings, 0.5, 0.9);
+    for (std::size_t i = 0; i < 3; ++i)
+      for (std::size_t j = i + 1; j < 3; ++j) {
+        const double apart = std::acos(glm::dot(rings[i].direction, rings[j].direction));
+        const double caps =
+            std::atan2(rings[i].radius, rings[i].distance) + std::atan2(rings[j].radius, rings[j].distance);
+        CHECK(caps <= 0.9 * apart + 1e-12);
+      }
+    CHECK(rings[2].distance == doctest::Approx(0.5));  // far from the others: at the junction's radius
+  }
+  SUBCASE("build_junction: every real cap removed, the virtual one kept, a cut cap refused") {
+    std::vector<dt::junction_ring> rings(3);
+    rings[0].direction = {1, 0, 0};
+    rings[1].direction = {-0.5, 0.8660254037844386, 0};
+    rings[2].direction = {-0.5, -0.8660254037844386, 0};
+    for (auto& r : rings) r.radius = 0.5, r.first = dt::any_perpendicular(r.direction);
+    rings[2].is_virtual = true;
+    dt::place_rings(rings, 0.5, 0.9);
+    dt::buffer out;
+    std::vector<std::uint32_t> first;
+    const std::uint32_t edges[3] = {7, 8, tube_node::none};
+    dt::build_junction(out, glm::dvec3(0.0), rings, 8, {tube_face_kind::junction, 3}, edges, first);
+    CHECK(out.points.size() == 24);
+    CHECK(first == std::vector<std::uint32_t>{0, 8, 16});
+    // A hull of 24 points has 44 triangles; the two real caps (6 each) are removed.
+    CHECK(out.num_faces() == 44 - 12);
+    // Every vertex sits at its ring's true place, and the boundary is the two real rings.
+    std::vector<int> uses(24 * 24, 0);
+    for (std::size_t f = 0; f < out.num_faces(); ++f)
+      for (std::uint32_t k = out.face_offsets[f]; k < out.face_offsets[f + 1]; ++k) {
+        const std::uint32_t a = out.face_vertices[k];
+        const std::uint32_t b =
+            out.face_vertices[k + 1 == out.face_offsets[f + 1] ? out.face_offsets[f] : k + 1];
+        ++uses[a * 24 + b];
+      }
+    std::size_t open = 0;
+    for (std::uint32_t a = 0; a < 24; ++a)
+      for (std::uint32_t b = 0; b < 24; ++b) open += uses[a * 24 + b] == 1 && uses[b * 24 + a] == 0 ? 1 : 0;
+    CHECK(open == 16);  // the 8 edges of each removed cap
+    // Two rings 3 degrees apart cannot both be caps of the hull: an error naming the node and edge.
+    rings[1].direction = glm::normalize(glm::dvec3(1, 0.05, 0));
+    rings[1].first = dt::any_perpendicular(rings[1].direction);
+    for (auto& r : rings) r.distance = 0.5;
+    dt::buffer bad;
+    CHECK_THROWS_WITH_AS(
+        dt::build_junction(bad, glm::dvec3(0.0), rings, 8, {tube_face_kind::junction, 3}, edges, first),
+        doctest::Contains("node 3"), error);
+  }
+  SUBCASE("transport keeps frames perpendicular; build_path makes quads and caps (tubes/node_path.hpp)") {
+    dt::station a, b;
+    a.centre = {0, 0, 0}, a.tangent = {1, 0, 0};
+    b.centre = {1, 1, 0}, b.tangent = glm::normalize(glm::dvec3(0, 1, 0.2));
+    const glm::dvec3 u = dt::transport(glm::dvec3(0, 0, 1), a, b);
+    CHECK(std::abs(glm::dot(u, b.tangent)) < 1e-12);
+    CHECK(glm::length(u) == doctest::Approx(1.0));
+    // Three stations of an open path with free ends: 2 x 6 quads and 2 caps of 6.
+    std::vector<dt::station> st(3);
+    for (int i = 0; i < 3; ++i) st[i].centre = {2.0 * i, 0, 0}, st[i].tangent = {1, 0, 0}, st[i].radius = 0.5;
+    dt::buffer out;
+    out.section_ratio.assign(2, 1e9);
+    const std::uint32_t seg[2] = {0, 1};
+    dt::build_path(out, st, false, 6, tube_alignment::global, seg, true, 10, true, 11);
+    CHECK(out.points.size() == 18);
+    CHECK(out.num_faces() == 14);
+    CHECK(out.sources.front() == tube_face_source{tube_face_kind::extrusion, 0});
+    CHECK(out.sources.back() == tube_face_source{tube_face_kind::end_cap, 11});
+    // A regular hexagon has 3 sqrt(3) / 2 r^2 of area: 0.827 of pi r^2.
+    CHECK(out.section_ratio[0] == doctest::Approx(3 * std::sqrt(3.0) / 2 / 3.141592653589793));
   }
 }
 

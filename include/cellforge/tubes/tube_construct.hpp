@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/tubes/skeleton.hpp"
 
@@ -175,17 +176,9 @@ tube_construct make_tube_construct(std::size_t num_nodes,
       }
 
   // Components by union-find over the edges (isolated nodes are components of their own).
-  std::vector<std::uint32_t> parent(num_nodes);
-  for (std::uint32_t v = 0; v < num_nodes; ++v) parent[v] = v;
-  const auto find = [&](std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  detail::union_find sets(num_nodes);
   std::size_t components = num_nodes;
-  for (const auto& e : edges) {
-    const std::uint32_t a = find(e[0]), b = find(e[1]);
-    if (a != b) parent[a] = b, --components;
-  }
+  for (const auto& e : edges) components -= sets.unite(e[0], e[1]) ? 1 : 0;
   tc.components = components;
   tc.cycle_rank = static_cast<std::int64_t>(edges.size()) - static_cast<std::int64_t>(num_nodes) +
                   static_cast<std::int64_t>(components);

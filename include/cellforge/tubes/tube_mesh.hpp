@@ -20,6 +20,7 @@
 
 #include "cellforge/algorithms/loop_subdivision.hpp"
 #include "cellforge/algorithms/self_intersections.hpp"
+#include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/mesh_geometry.hpp"
@@ -339,11 +340,14 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     res.end_caps += (cap_start ? 1 : 0) + (cap_end ? 1 : 0);
   }
   // Isolated nodes: spheres.
+  // One unit sphere, hulled once, placed and scaled at every isolated node.
+  const std::vector<glm::dvec3> dirs = tc.isolated.empty()
+                                           ? std::vector<glm::dvec3>{}
+                                           : dt::sphere_directions(std::max<std::size_t>(12, n * n / 2));
+  const detail::hull::result h =
+      tc.isolated.empty() ? detail::hull::result{} : detail::hull::compute(dirs, {});
+  std::vector<std::uint32_t> id(dirs.size());
   for (const std::uint32_t v : tc.isolated) {
-    const std::vector<glm::dvec3> dirs = dt::sphere_directions(std::max<std::size_t>(12, n * n / 2));
-    convex_hull_options o;
-    const detail::hull::result h = detail::hull::compute(dirs, o);
-    std::vector<std::uint32_t> id(dirs.size());
     for (std::size_t k = 0; k < h.vertices.size(); ++k)
       id[k] = out.add_point(pos[v] + rad[v] * dirs[h.vertices[k]]);
     for (std::size_t f = 0; f + 1 < h.face_offsets.size(); ++f) {
@@ -408,18 +412,11 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   res.section_ratio = std::move(out.section_ratio);
   // Shells by union-find over the faces' vertices (the mesh's own connectivity, measured, not
   // assumed from the skeleton's components).
-  std::vector<std::uint32_t> parent(out.points.size());
-  for (std::uint32_t v = 0; v < parent.size(); ++v) parent[v] = v;
-  const auto find = [&](std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  detail::union_find sets(out.points.size());
   std::size_t shells = out.points.size();
   for (std::size_t f = 0; f + 1 < out.face_offsets.size(); ++f)
-    for (std::uint32_t k = out.face_offsets[f] + 1; k < out.face_offsets[f + 1]; ++k) {
-      const std::uint32_t a = find(out.face_vertices[out.face_offsets[f]]), b = find(out.face_vertices[k]);
-      if (a != b) parent[a] = b, --shells;
-    }
+    for (std::uint32_t k = out.face_offsets[f] + 1; k < out.face_offsets[f + 1]; ++k)
+      shells -= sets.unite(out.face_vertices[out.face_offsets[f]], out.face_vertices[k]) ? 1 : 0;
   res.shells = shells;
   res.genus = (2 * static_cast<std::int64_t>(shells) - euler_characteristic(mesh)) / 2;
   res.mesh = std::move(mesh);

@@ -19,6 +19,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/detail/edge_table.hpp"
+#include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
 
 namespace cellforge {
@@ -191,27 +192,6 @@ struct work_budget {
       throw error(error_category::budget, std::string(stage) + ": work budget of " + std::to_string(limit) +
                                               " steps exhausted; raise the stage's `work_budget` option "
                                               "or simplify the wireframe");
-  }
-};
-
-/// Disjoint sets with path halving.
-struct union_find {
-  std::vector<std::uint32_t> parent;
-  explicit union_find(std::size_t n = 0) : parent(n) {
-    for (std::size_t i = 0; i < n; ++i) parent[i] = static_cast<std::uint32_t>(i);
-  }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  /// Joins the sets of a and b; the smaller root survives (deterministic representatives).
-  bool unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return false;
-    if (a < b) std::swap(a, b);
-    parent[a] = b;
-    return true;
   }
 };
 
