@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian/Ubuntu packages cellforge needs, and only those that are missing.
 #   bash cmake/install-deps.sh [--bench] [--compare] [--fuzz]
-#     (none)     compiler, CMake, make, GLM, doctest: enough to build the tests and examples;
+#     (none)     compiler, CMake, make, GLM, doctest, Eigen: enough to build the tests and examples;
 #                node and npm (only when the commands are missing) for cmake/fetch-bunny.sh
 #     --bench    Google Benchmark as well
 #     --compare  CGAL (with Eigen) and OpenMesh, the baselines the benchmarks compare against (implies --bench)
@@ -10,7 +10,7 @@
 # when not running as root. Nothing is installed when everything is present already.
 set -euo pipefail
 
-packages=(g++ cmake make libglm-dev doctest-dev)
+packages=(g++ cmake make libglm-dev doctest-dev libeigen3-dev)
 # The bunny test data comes through npm (cmake/fetch-bunny.sh). Checked by command rather
 # than by package, since node from another source (e.g. a nodejs build bundling npm) will do.
 command -v node >/dev/null 2>&1 || packages+=(nodejs)

@@ -17,6 +17,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/splitmix.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/tubes/skeleton.hpp"
 
@@ -32,21 +33,6 @@ template <Point3 P>
 void add_edge(skeleton<P>& s, std::size_t a, std::size_t b) {
   s.edges.push_back({static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b)});
 }
-/// splitmix64: the same numbers on every platform. O(1).
-template <class = void>
-struct basic_splitmix {
-  std::uint64_t state;
-  std::uint64_t next() {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15u);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
-    return z ^ (z >> 31);
-  }
-  double uniform(double lo, double hi) {
-    return lo + (hi - lo) * static_cast<double>(next() >> 11) * 0x1p-53;
-  }
-};
-using splitmix = basic_splitmix<>;
 }  // namespace detail
 
 /// The a × b × c node lattice with edges between axis neighbours (the seed's
@@ -227,7 +213,7 @@ struct random_tree_options {
 template <Point3 P = glm::dvec3>
 skeleton<P> random_tree(std::uint64_t seed, const random_tree_options& o = {}) {
   skeleton<P> s;
-  detail::splitmix rng{seed};
+  cellforge::detail::splitmix rng{seed};
   std::vector<glm::dvec3> pos{glm::dvec3(0.0)};
   std::vector<double> rad{o.root_radius};
   std::vector<std::uint32_t> parent{0xFFFFFFFFu};

@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// How cellforge reads and makes a user's 2D point type (the junctions of a line drawing):
+/// `point2_traits<P>`, the concept `Point2<P>`, built-in support for GLM and std::array, and
+/// a one-line registration macro for any struct with two named members.
+
+#include <array>
+#include <concepts>
+#include <cstddef>
+#include <type_traits>
+
+#include <glm/vec2.hpp>
+
+namespace cellforge {
+
+/// Specialise for a 2D point type P with: `using scalar = ...;`,
+/// `static scalar get(const P&, std::size_t i)` (i in 0..1) and `static P make(scalar x, scalar y)`.
+/// The primary template is empty so that an unregistered type fails `Point2` at the call.
+template <class P>
+struct point2_traits {};
+
+namespace detail {
+template <class P>
+using point2_scalar_t = typename point2_traits<P>::scalar;
+}  // namespace detail
+
+/// A copyable type registered through point2_traits: arithmetic scalar, coordinates read by
+/// index, points made from two scalars.
+template <class P>
+concept Point2 = requires {
+  typename point2_traits<P>::scalar;
+}
+&&std::is_arithmetic_v<detail::point2_scalar_t<P>>&& requires(const P& p, std::size_t i,
+                                                              detail::point2_scalar_t<P> s) {
+  { point2_traits<P>::get(p, i) } -> std::convertible_to<detail::point2_scalar_t<P>>;
+  { point2_traits<P>::make(s, s) } -> std::same_as<P>;
+}
+&&std::copyable<P>;
+
+/// GLM 2-vectors of any scalar and qualifier.
+template <class T, glm::qualifier Q>
+struct point2_traits<glm::vec<2, T, Q>> {
+  using scalar = T;
+  static constexpr T get(const glm::vec<2, T, Q>& p, std::size_t i) noexcept {
+    return p[static_cast<typename glm::vec<2, T, Q>::length_type>(i)];
+  }
+  static constexpr glm::vec<2, T, Q> make(T x, T y) noexcept { return {x, y}; }
+};
+
+/// std::array<T, 2>.
+template <class T>
+requires std::is_arithmetic_v<T>
+struct point2_traits<std::array<T, 2>> {
+  using scalar = T;
+  static constexpr T get(const std::array<T, 2>& p, std::size_t i) noexcept { return p[i]; }
+  static constexpr std::array<T, 2> make(T x, T y) noexcept { return {x, y}; }
+};
+
+/// Scalar type of a registered 2D point.
+template <Point2 P>
+using scalar2_t = typename point2_traits<P>::scalar;
+
+/// Converts any registered 2D point to the double-precision GLM vector algorithms compute in. O(1).
+template <Point2 P>
+constexpr glm::dvec2 to_dvec2(const P& p) {
+  return {static_cast<double>(point2_traits<P>::get(p, 0)), static_cast<double>(point2_traits<P>::get(p, 1))};
+}
+
+/// Converts a double-precision GLM vector back to the user's 2D point type. O(1).
+template <Point2 P>
+constexpr P from_dvec2(const glm::dvec2& v) {
+  using S = scalar2_t<P>;
+  return point2_traits<P>::make(static_cast<S>(v.x), static_cast<S>(v.y));
+}
+
+}  // namespace cellforge
+
+/// Registers a struct with two public data members as a cellforge 2D point, in one line at
+/// global scope: `CELLFORGE_REGISTER_POINT2(my::pt, double, x, y)`. A point is made by
+/// assigning the members of a default-constructed one, or by the constructor `Type(x, y)`.
+#define CELLFORGE_REGISTER_POINT2(Type, Scalar, MX, MY)                            \
+  template <>                                                                      \
+  struct cellforge::point2_traits<Type> {                                          \
+    using scalar = Scalar;                                                         \
+    static constexpr Scalar get(const Type& p, std::size_t i) noexcept {           \
+      return i == 0 ? static_cast<Scalar>(p.MX) : static_cast<Scalar>(p.MY);       \
+    }                                                                              \
+    template <class T = Type> /* a template, so the untaken branch is discarded */ \
+    static constexpr T make(Scalar x, Scalar y) {                                  \
+      if constexpr (std::is_default_constructible_v<T>) {                          \
+        T p{};                                                                     \
+        p.MX = x;                                                                  \
+        p.MY = y;                                                                  \
+        return p;                                                                  \
+      } else {                                                                     \
+        return T(x, y);                                                            \
+      }                                                                            \
+    }                                                                              \
+  }
