@@ -11,6 +11,9 @@
 #include <type_traits>
 
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "cellforge/core/point_traits.hpp"
 
 namespace cellforge {
 
@@ -73,6 +76,26 @@ constexpr P from_dvec2(const glm::dvec2& v) {
   using S = scalar2_t<P>;
   return point2_traits<P>::make(static_cast<S>(v.x), static_cast<S>(v.y));
 }
+
+/// The 3D point type that the sketch stages give back for a drawing in 2D point type P: for
+/// `glm::vec<2, T>` it is `glm::vec<3, T>`, for `std::array<T, 2>` `std::array<T, 3>`. Specialise
+/// it (`using type = my::vec3;`) for a user's 2D type, or name the 3D type at the call.
+template <class P>
+struct lifted_point {};
+
+template <class T, glm::qualifier Q>
+struct lifted_point<glm::vec<2, T, Q>> {
+  using type = glm::vec<3, T, Q>;
+};
+
+template <class T>
+struct lifted_point<std::array<T, 2>> {
+  using type = std::array<T, 3>;
+};
+
+/// The 3D point type of a 2D point type (see lifted_point).
+template <class P>
+using lifted_point_t = typename lifted_point<P>::type;
 
 }  // namespace cellforge
 
