@@ -20,6 +20,7 @@
 
 #include "cellforge/core/detail/edge_table.hpp"
 #include "cellforge/core/detail/union_find.hpp"
+#include "cellforge/core/detail/work_budget.hpp"
 #include "cellforge/core/error.hpp"
 
 namespace cellforge {
@@ -172,28 +173,6 @@ void canonicalize(wire_face& f) {
 }
 
 namespace detail {
-
-/// Wall-clock stopwatch for stage reports.
-struct stopwatch {
-  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
-  double ms() const {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  }
-};
-
-/// Counts abstract work steps and throws a budget error naming the stage when exhausted.
-struct work_budget {
-  std::uint64_t limit = 0;  ///< 0: unlimited
-  std::uint64_t used = 0;
-  const char* stage = "";
-  void spend(std::uint64_t n = 1) {
-    used += n;
-    if (limit != 0 && used > limit)
-      throw error(error_category::budget, std::string(stage) + ": work budget of " + std::to_string(limit) +
-                                              " steps exhausted; raise the stage's `work_budget` option "
-                                              "or simplify the wireframe");
-  }
-};
 
 /// +1 when face f walks edge e from its start to its end, -1 when the other way, 0 when f
 /// does not use e. O(size of f).

@@ -1,0 +1,917 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Faces of a wireframe line drawing (seed 003_be08eec927fcc329.txt, "Finding faces"): the
+/// Varley–Company string algorithm — strings of half-edges, concatenation and cyclisation
+/// under the two rules, a master list of what must be true and a working list for hypotheses,
+/// a start at a trihedral junction, forced concatenations, voluntary mergers and hypotheses by
+/// priority and mating value — and the Dijkstra-style baseline it beats (shortest loops picked
+/// one by one at fixed edge costs). Every answer is checked and flagged when the check fails.
+/// The priority and mating-value formulas are ours: docs/sketch.md, "Finding faces".
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+#include <queue>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+
+#include "cellforge/core/detail/work_budget.hpp"
+#include "cellforge/core/error.hpp"
+#include "cellforge/sketch/line_drawing.hpp"
+
+namespace cellforge {
+
+/// Which face finder.
+enum class face_finder_kind : std::uint8_t {
+  varley_company,  ///< strings of half-edges with context-dependent costs (the seed's algorithm)
+  shortest_loops,  ///< the baseline: the shortest loop through an edge, one by one, fixed edge costs
+};
+
+/// Options of find_faces, with the defaults docs/sketch.md explains.
+struct face_finder_options {
+  face_finder_kind kind = face_finder_kind::varley_company;
+  /// Mating value: cost of a turn against the loop's turning sense so far (a reflex corner), in
+  /// edges. Convex faces are the common case; a non-convex loop must be that much shorter to win.
+  double reflex_turn_cost = 0.35;
+  /// Mating value: cost of an edge whose drawing direction is a third main direction of the loop
+  /// (a planar face of a normalon-like drawing holds edges of two of its three main directions).
+  double third_direction_cost = 2.0;
+  /// Drawing lines closer than this to parallel (degrees) share a direction class.
+  double parallel_tolerance_degrees = 0.5;
+  /// Check each hypothesis by propagating its forced consequences on a copy of the master list
+  /// and reject it when they reach a dead end (a half-edge that no face can continue).
+  bool look_ahead = true;
+  /// Work budget in abstract steps (string joins tried); 0 = unlimited. Exhausted: a budget error.
+  std::uint64_t work_budget = 400'000'000;
+  /// Compute ranked alternatives (the other finder, other starts) when the answer fails its check.
+  bool alternatives_when_flagged = true;
+};
+
+/// What the check of an answer found. An answer passes when every edge lies on exactly two
+/// loops and every loop is a simple polygon of the drawing without an edge across its inside.
+struct face_check {
+  std::size_t edges_on_two_loops = 0;
+  std::vector<std::uint32_t> edges_with_fewer_loops;  ///< edge indices, with 0 or 1 loops
+  std::vector<std::uint32_t> edges_with_more_loops;   ///< edge indices on 3 or more loops
+  std::vector<std::uint32_t> bad_loops;  ///< loops that are not simple polygons or have an inner chord
+  /// V − E + L per connected component summed, and 2 × components: equal for spheres (and for a
+  /// genus-g solid with 2g hole loops); less means a higher genus or a loop too few.
+  long long euler = 0, euler_sphere = 0;
+  bool ok() const noexcept {
+    return edges_with_fewer_loops.empty() && edges_with_more_loops.empty() && bad_loops.empty();
+  }
+};
+
+/// Another answer, when the first failed its check: loops, its check, and why it ranks there.
+struct face_alternative {
+  std::vector<std::vector<std::uint32_t>> loops;
+  face_check check;
+  std::string reason;
+};
+
+/// The faces of a drawing: loops as junction cycles (each edge's two half-edges on two loops,
+/// traversed in opposite directions), the check, counts, time and diagnostics.
+struct face_finder_result {
+  face_finder_kind kind = face_finder_kind::varley_company;
+  std::vector<std::vector<std::uint32_t>> loops;
+  face_check check;
+  bool flagged = false;                        ///< the check failed: see diagnostics and alternatives
+  std::vector<face_alternative> alternatives;  ///< best first, when flagged
+  std::size_t junctions = 0, edges = 0, direction_classes = 0;
+  std::size_t forced = 0;      ///< forced concatenations (one candidate left)
+  std::size_t voluntary = 0;   ///< voluntary mergers (a string closed into a face)
+  std::size_t hypotheses = 0;  ///< faces found by the working list
+  std::size_t rejected = 0;    ///< hypotheses whose consequences reached a dead end
+  std::uint64_t work = 0;      ///< steps spent from the budget
+  double milliseconds = 0.0;
+  std::vector<std::string> diagnostics;
+};
+
+namespace detail::faces {
+
+inline constexpr std::uint32_t none = ~std::uint32_t{0};
+
+/// The drawing as half-edges: half-edge 2e runs along edge e from its first junction, 2e + 1
+/// back; outgoing half-edges of each junction in a CSR table, and a parallel class per edge.
+template <class = void>
+struct basic_drawing_graph {
+  std::vector<glm::dvec2> p;
+  std::vector<std::uint32_t> head;  ///< junction a half-edge points to
+  std::vector<std::uint32_t> out_begin,
+      outs;  ///< outgoing half-edges of junction v: outs[out_begin[v]..out_begin[v+1])
+  std::vector<std::uint32_t> edge_class;  ///< parallel class of each edge
+  std::uint32_t classes = 0;
+  std::vector<std::uint32_t> main_class;  ///< up to three most used classes, if they cover most edges
+  double scale = 1.0;                     ///< bounding-box diagonal
+
+  std::uint32_t tail(std::uint32_t h) const { return head[h ^ 1u]; }
+  std::uint32_t degree(std::uint32_t v) const { return out_begin[v + 1] - out_begin[v]; }
+  std::size_t num_junctions() const { return p.size(); }
+  std::size_t num_half_edges() const { return head.size(); }
+};
+using drawing_graph = basic_drawing_graph<>;
+
+/// Builds the half-edge view of a drawing and its direction classes. O(V + E log E).
+template <LineDrawing D>
+drawing_graph make_graph(const D& d, const face_finder_options& o) {
+  using T = line_drawing_traits<D>;
+  drawing_graph g;
+  const std::size_t nv = T::num_junctions(d), ne = T::num_edges(d);
+  g.p.reserve(nv);
+  for (std::size_t i = 0; i < nv; ++i) {
+    const glm::dvec2 q = to_dvec2(drawing_point_t<D>(T::position(d, i)));
+    if (!std::isfinite(q.x) || !std::isfinite(q.y))
+      throw error(error_category::invalid_input,
+                  "find_faces: junction " + std::to_string(i) + " has a NaN or infinite coordinate");
+    g.p.push_back(q);
+  }
+  if (nv > 0) {
+    glm::dvec2 lo = g.p[0], hi = g.p[0];
+    for (const auto& q : g.p) lo = glm::min(lo, q), hi = glm::max(hi, q);
+    g.scale = std::max(glm::length(hi - lo), 1e-300);
+  }
+  g.head.resize(2 * ne);
+  std::vector<std::uint32_t> deg(nv + 1, 0);
+  for (std::size_t e = 0; e < ne; ++e) {
+    const auto ab = T::endpoints(d, e);
+    if (ab[0] >= nv || ab[1] >= nv)
+      throw error(error_category::invalid_input,
+                  "find_faces: edge " + std::to_string(e) + " names a junction that does not exist");
+    if (ab[0] == ab[1])
+      throw error(error_category::invalid_input, "find_faces: edge " + std::to_string(e) +
+                                                     " joins junction " + std::to_string(ab[0]) +
+                                                     " to itself");
+    g.head[2 * e] = static_cast<std::uint32_t>(ab[1]);
+    g.head[2 * e + 1] = static_cast<std::uint32_t>(ab[0]);
+    ++deg[ab[0]], ++deg[ab[1]];
+  }
+  g.out_begin.assign(nv + 1, 0);
+  for (std::size_t v = 0; v < nv; ++v) g.out_begin[v + 1] = g.out_begin[v] + deg[v];
+  g.outs.resize(2 * ne);
+  std::vector<std::uint32_t> fill(g.out_begin.begin(), g.out_begin.end() - 1);
+  for (std::uint32_t h = 0; h < 2 * ne; ++h) g.outs[fill[g.tail(h)]++] = h;
+  // Direction classes: angles mod π sorted, a new class where the gap exceeds the tolerance.
+  const double tol = o.parallel_tolerance_degrees * std::numbers::pi / 180.0;
+  std::vector<std::pair<double, std::uint32_t>> angle(ne);
+  for (std::uint32_t e = 0; e < ne; ++e) {
+    const glm::dvec2 v = g.p[g.head[2 * e]] - g.p[g.head[2 * e + 1]];
+    double a = std::atan2(v.y, v.x);
+    if (a < 0) a += std::numbers::pi;
+    if (a >= std::numbers::pi) a -= std::numbers::pi;
+    angle[e] = {a, e};
+  }
+  std::sort(angle.begin(), angle.end());
+  g.edge_class.assign(ne, 0);
+  std::uint32_t c = 0;
+  for (std::size_t k = 0; k < ne; ++k) {
+    if (k > 0 && angle[k].first - angle[k - 1].first > tol) ++c;
+    g.edge_class[angle[k].second] = c;
+  }
+  // Wrap around π: the last class joins the first when they are within tolerance.
+  if (ne > 1 && angle.front().first + std::numbers::pi - angle.back().first <= tol && c > 0)
+    for (auto& k : g.edge_class)
+      if (k == c) k = 0;
+  g.classes = ne == 0 ? 0 : c + 1;
+  // Main directions: the three largest classes, when they hold at least 60 % of the edges.
+  std::vector<std::pair<std::size_t, std::uint32_t>> count(g.classes);
+  for (std::uint32_t k = 0; k < g.classes; ++k) count[k] = {0, k};
+  for (const auto k : g.edge_class) ++count[k].first;
+  std::sort(count.begin(), count.end(),
+            [](auto a, auto b) { return a.first > b.first || (a.first == b.first && a.second < b.second); });
+  std::size_t top = 0;
+  for (std::size_t k = 0; k < std::min<std::size_t>(3, count.size()); ++k) top += count[k].first;
+  if (count.size() >= 3 && 10 * top >= 6 * ne && count[2].first >= 2)
+    for (std::size_t k = 0; k < 3; ++k) g.main_class.push_back(count[k].second);
+  return g;
+}
+
+/// Orientation of c about the line ab (> 0 left). O(1).
+template <class = void>
+double orient(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+/// Whether segments ab and cd cross (or touch) away from shared endpoints. O(1).
+template <class = void>
+bool segments_meet(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, glm::dvec2 d) {
+  const double d1 = orient(a, b, c), d2 = orient(a, b, d), d3 = orient(c, d, a), d4 = orient(c, d, b);
+  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return true;
+  const auto on = [](glm::dvec2 p, glm::dvec2 q, glm::dvec2 r, double o) {  // r on pq, collinear
+    return o == 0 && std::min(p.x, q.x) <= r.x && r.x <= std::max(p.x, q.x) && std::min(p.y, q.y) <= r.y &&
+           r.y <= std::max(p.y, q.y);
+  };
+  return on(a, b, c, d1) || on(a, b, d, d2) || on(c, d, a, d3) || on(c, d, b, d4);
+}
+
+/// Whether point q is strictly inside the polygon (even-odd). O(n).
+template <class = void>
+bool inside(const std::vector<glm::dvec2>& poly, glm::dvec2 q) {
+  bool in = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const glm::dvec2 a = poly[i], b = poly[j];
+    if ((a.y > q.y) != (b.y > q.y) && q.x < (b.x - a.x) * (q.y - a.y) / (b.y - a.y) + a.x) in = !in;
+  }
+  return in;
+}
+
+/// The string state: successor and predecessor of every half-edge (none: an open end or start).
+/// A string is a maximal chain; a closed chain is a face loop.
+struct string_state {
+  std::vector<std::uint32_t> next, prev;
+};
+
+/// The finder: a drawing graph, the master state, scratch marks, and the budget.
+template <class = void>
+struct basic_finder {
+  const drawing_graph& g;
+  const face_finder_options& o;
+  work_budget& budget;
+  std::vector<std::uint32_t> mark;  // per junction: stamp of the string being tested
+  std::uint32_t stamp = 0;
+  std::size_t forced = 0, voluntary = 0, hypotheses = 0, rejected = 0;
+
+  basic_finder(const drawing_graph& graph, const face_finder_options& options, work_budget& b)
+      : g(graph), o(options), budget(b), mark(graph.num_junctions(), 0) {}
+
+  std::uint32_t first_of(const string_state& s, std::uint32_t h) const {
+    std::uint32_t f = h;
+    while (s.prev[f] != none && s.prev[f] != h) f = s.prev[f];
+    return f;
+  }
+  std::uint32_t last_of(const string_state& s, std::uint32_t h) const {
+    std::uint32_t l = h;
+    while (s.next[l] != none && s.next[l] != h) l = s.next[l];
+    return l;
+  }
+  std::uint32_t next_stamp() {
+    if (++stamp == 0) std::fill(mark.begin(), mark.end(), 0), stamp = 1;
+    return stamp;
+  }
+
+  /// Whether a turn a→b→c may join: the seed's second rule, where b has a choice.
+  bool turn_allowed(const string_state& s, std::uint32_t h1, std::uint32_t h2) const {
+    if (h2 == (h1 ^ 1u)) return false;
+    // The reversed triple c→b→a already concatenated: two loops would share a corner path.
+    return !(g.degree(g.head[h1]) >= 3 && s.next[h2 ^ 1u] == (h1 ^ 1u));
+  }
+
+  /// Whether the closed chain through h (in s, or about to be) is a face loop: a simple polygon
+  /// (guaranteed by the joins) with no edge of the drawing across its inside. O(L·deg + L·chords).
+  bool closed_loop_ok(const std::vector<std::uint32_t>& loop_vertices) {
+    const std::size_t n = loop_vertices.size();
+    if (n < 3) return false;
+    const std::uint32_t st = next_stamp();
+    for (const auto v : loop_vertices) mark[v] = st;
+    std::vector<glm::dvec2> poly;
+    poly.reserve(n);
+    for (const auto v : loop_vertices) poly.push_back(g.p[v]);
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::uint32_t v = loop_vertices[k];
+      const std::uint32_t before = loop_vertices[(k + n - 1) % n], after = loop_vertices[(k + 1) % n];
+      for (std::uint32_t i = g.out_begin[v]; i < g.out_begin[v + 1]; ++i) {
+        const std::uint32_t w = g.head[g.outs[i]];
+        if (w < v || mark[w] != st || w == before || w == after) continue;
+        budget.spend();
+        // A chord: an edge between two loop junctions. Inside the polygon it splits the face.
+        const glm::dvec2 mid = 0.5 * (g.p[v] + g.p[w]);
+        if (inside(poly, mid)) return false;
+      }
+    }
+    return true;
+  }
+
+  /// Vertices of the chain from first half-edge f to last l (its tail then every head).
+  void chain_vertices(const string_state& s, std::uint32_t f, std::uint32_t l,
+                      std::vector<std::uint32_t>& out) const {
+    out.push_back(g.tail(f));
+    for (std::uint32_t h = f;; h = s.next[h]) {
+      out.push_back(g.head[h]);
+      if (h == l) break;
+    }
+  }
+
+  /// Whether the chain f..l of s (as segments) crosses the chain f2..l2. O(|a|·|b|).
+  bool chains_cross(const string_state& s, std::uint32_t f, std::uint32_t l, std::uint32_t f2,
+                    std::uint32_t l2) {
+    for (std::uint32_t a = f;; a = s.next[a]) {
+      const glm::dvec2 pa = g.p[g.tail(a)], pb = g.p[g.head[a]];
+      for (std::uint32_t b = f2;; b = s.next[b]) {
+        budget.spend();
+        const std::uint32_t ta = g.tail(a), ha = g.head[a], tb = g.tail(b), hb = g.head[b];
+        const glm::dvec2 pc = g.p[tb], pd = g.p[hb];
+        // Segments sharing a junction meet there; they must not overlap otherwise.
+        const bool share = ta == tb || ta == hb || ha == tb || ha == hb;
+        if (!share && segments_meet(pa, pb, pc, pd)) return true;
+        if (share) {
+          // Shared end: collinear overlap is a crossing too.
+          const std::uint32_t shared = (ta == tb || ta == hb) ? ta : ha;
+          const std::uint32_t oa = shared == ta ? ha : ta, ob = shared == tb ? hb : tb;
+          if (oa != ob && orient(g.p[shared], g.p[oa], g.p[ob]) == 0 &&
+              glm::dot(g.p[oa] - g.p[shared], g.p[ob] - g.p[shared]) > 0)
+            return true;
+        }
+        if (b == l2) break;
+      }
+      if (a == l) break;
+    }
+    return false;
+  }
+
+  /// Can the string ending with h1 continue with the string starting with h2? 0: no, 1: yes
+  /// (a longer open string), 2: yes and it closes a face loop that passes closed_loop_ok.
+  int can_join(const string_state& s, std::uint32_t h1, std::uint32_t h2) {
+    budget.spend();
+    if (s.next[h1] != none || s.prev[h2] != none || !turn_allowed(s, h1, h2)) return 0;
+    const std::uint32_t f1 = first_of(s, h1);
+    if (f1 == h2) {  // closing the string on itself: a cyclisation
+      std::vector<std::uint32_t> loop;
+      chain_vertices(s, f1, h1, loop);
+      loop.pop_back();
+      return closed_loop_ok(loop) ? 2 : 0;
+    }
+    const std::uint32_t l2 = last_of(s, h2);
+    const std::uint32_t start = g.tail(f1), end = g.head[l2];
+    const bool closes = end == start;
+    if (closes && !turn_allowed(s, l2, f1)) return 0;
+    // First rule: no junction but the joining one (and the start, when closing) in both strings.
+    const std::uint32_t st = next_stamp();
+    for (std::uint32_t h = f1;; h = s.next[h]) {
+      mark[g.tail(h)] = st;
+      if (h == h1) break;
+    }
+    for (std::uint32_t h = h2;; h = s.next[h]) {
+      const std::uint32_t v = g.head[h];
+      if (mark[v] == st && !(closes && h == l2)) return 0;
+      if (h == l2) break;
+    }
+    if (chains_cross(s, f1, h1, h2, l2)) return 0;
+    if (!closes) return 1;
+    std::vector<std::uint32_t> loop;
+    chain_vertices(s, f1, h1, loop);
+    loop.pop_back();
+    chain_vertices(s, h2, l2, loop);
+    loop.pop_back();
+    return closed_loop_ok(loop) ? 2 : 0;
+  }
+
+  static void join(string_state& s, std::uint32_t h1, std::uint32_t h2, const basic_finder& f) {
+    s.next[h1] = h2;
+    s.prev[h2] = h1;
+    const std::uint32_t l2 = f.last_of(s, h2), f1 = f.first_of(s, h1);
+    if (l2 != h1 && f1 != h2 && f.g.head[l2] == f.g.tail(f1) && s.next[l2] == none) {  // double concatenation
+      s.next[l2] = f1;
+      s.prev[f1] = l2;
+    }
+  }
+
+  /// Performs every forced concatenation reachable from the junctions in `work`. Returns false
+  /// on a dead end (an open end or start with no candidate left). O(joins tried).
+  bool propagate(string_state& s, std::vector<std::uint32_t> work, std::size_t* count) {
+    std::vector<char> queued(g.num_junctions(), 0);
+    for (const auto v : work) queued[v] = 1;
+    while (!work.empty()) {
+      const std::uint32_t v = work.back();
+      work.pop_back();
+      queued[v] = 0;
+      bool changed = true;
+      while (changed) {
+        changed = false;
+        for (std::uint32_t i = g.out_begin[v]; i < g.out_begin[v + 1] && !changed; ++i) {
+          const std::uint32_t in = g.outs[i] ^ 1u;  // a half-edge into v
+          if (s.next[in] != none) continue;
+          std::uint32_t only = none, n = 0;
+          for (std::uint32_t j = g.out_begin[v]; j < g.out_begin[v + 1] && n < 2; ++j)
+            if (can_join(s, in, g.outs[j]) != 0) only = g.outs[j], ++n;
+          if (n == 0) return false;
+          if (n == 1) {
+            join(s, in, only, *this), changed = true;
+            if (count) ++*count;
+            wake(s, in, work, queued);
+          }
+        }
+        for (std::uint32_t i = g.out_begin[v]; i < g.out_begin[v + 1] && !changed; ++i) {
+          const std::uint32_t out = g.outs[i];
+          if (s.prev[out] != none) continue;
+          std::uint32_t only = none, n = 0;
+          for (std::uint32_t j = g.out_begin[v]; j < g.out_begin[v + 1] && n < 2; ++j)
+            if (can_join(s, g.outs[j] ^ 1u, out) != 0) only = g.outs[j] ^ 1u, ++n;
+          if (n == 0) return false;
+          if (n == 1) {
+            join(s, only, out, *this), changed = true;
+            if (count) ++*count;
+            wake(s, only, work, queued);
+          }
+        }
+      }
+    }
+    return true;
+  }
+
+  /// After a join at h's head: the string's two ends have new contents, so their junctions'
+  /// candidates may have changed.
+  void wake(const string_state& s, std::uint32_t h, std::vector<std::uint32_t>& work,
+            std::vector<char>& queued) const {
+    const std::uint32_t f = first_of(s, h), l = last_of(s, h);
+    for (const std::uint32_t v : {g.tail(f), g.head[l], g.head[h]})
+      if (!queued[v]) queued[v] = 1, work.push_back(v);
+  }
+
+  /// Commits a loop given as half-edges in order (h0 → h1 → …) to s. O(L).
+  static void close_loop(string_state& s, const std::vector<std::uint32_t>& hs) {
+    for (std::size_t k = 0; k < hs.size(); ++k) {
+      const std::uint32_t a = hs[k], b = hs[(k + 1) % hs.size()];
+      s.next[a] = b;
+      s.prev[b] = a;
+    }
+  }
+
+  /// Look-ahead: the consequences of closing loop hs on a copy of s reach no dead end. O(E + joins).
+  bool consistent(const string_state& s, const std::vector<std::uint32_t>& hs) {
+    if (!o.look_ahead) return true;
+    string_state copy = s;
+    close_loop(copy, hs);
+    std::vector<std::uint32_t> work;
+    for (const auto h : hs) work.push_back(g.head[h]);
+    return propagate(copy, std::move(work), nullptr);
+  }
+
+  /// Half-edges of the loop closed by joining open string end h1 to string start h2.
+  std::vector<std::uint32_t> loop_half_edges(const string_state& s, std::uint32_t h1,
+                                             std::uint32_t h2) const {
+    std::vector<std::uint32_t> hs;
+    for (std::uint32_t h = first_of(s, h1);; h = s.next[h]) {
+      hs.push_back(h);
+      if (h == h1) break;
+    }
+    if (first_of(s, h1) != h2)
+      for (std::uint32_t h = h2;; h = s.next[h]) {
+        hs.push_back(h);
+        if (s.next[h] == none) break;
+      }
+    return hs;
+  }
+
+  /// Mating value of the loop so far: edges, plus a cost per reflex turn and per edge in a
+  /// third main direction. The turn sense is the first non-straight turn's.
+  struct mating {
+    double cost = 0;
+    int sense = 0;                 // +1 left, -1 right, 0 not yet known
+    std::uint32_t main_used = 0;   // bit k: main direction k used
+    std::uint32_t main_count = 0;  // distinct main directions used
+  };
+  void extend_mating(mating& m, std::uint32_t h_prev, std::uint32_t h) const {
+    m.cost += 1.0;
+    if (h_prev != none) {
+      const glm::dvec2 a = g.p[g.tail(h_prev)], b = g.p[g.head[h_prev]], c = g.p[g.head[h]];
+      const double t = orient(a, b, c);
+      const double len = glm::length(b - a) * glm::length(c - b);
+      if (std::abs(t) > 1e-12 * len) {
+        const int sg = t > 0 ? 1 : -1;
+        if (m.sense == 0)
+          m.sense = sg;
+        else if (sg != m.sense)
+          m.cost += o.reflex_turn_cost;
+      }
+    }
+    const std::uint32_t c = g.edge_class[h >> 1];
+    for (std::size_t k = 0; k < g.main_class.size(); ++k)
+      if (g.main_class[k] == c && !(m.main_used & (1u << k))) {
+        m.main_used |= 1u << k;
+        if (++m.main_count == 3) m.cost += o.third_direction_cost;
+      }
+  }
+
+  /// The working list: from the open string ending with h1 (the highest-priority string), the
+  /// cheapest closed loop by mating value, growing by whole strings, best first. Every loop
+  /// found is checked by look-ahead; returns the first that passes (empty: none). O(expansions · L).
+  std::vector<std::uint32_t> hypothesis(const string_state& s, std::uint32_t h1, std::size_t max_expansions) {
+    struct node {
+      double cost;
+      std::uint32_t parent;  // index into nodes
+      std::uint32_t first;   // first half-edge of the string this node appended (none: the seed)
+      std::uint32_t last;    // last half-edge of the loop so far
+      mating m;
+      bool closed;
+    };
+    std::vector<node> nodes;
+    const std::uint32_t f1 = first_of(s, h1);
+    mating m0;
+    for (std::uint32_t h = f1, p = none;; p = h, h = s.next[h]) {
+      extend_mating(m0, p, h);
+      if (h == h1) break;
+    }
+    nodes.push_back({m0.cost, none, none, h1, m0, false});
+    using item = std::pair<double, std::uint32_t>;
+    std::priority_queue<item, std::vector<item>, std::greater<>> open;
+    open.push({m0.cost, 0});
+    // A scratch state holding the partial loop's joins, so that can_join sees the context.
+    string_state scratch = s;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> applied;
+    std::size_t expansions = 0;
+    while (!open.empty() && expansions < max_expansions) {
+      const auto [cost, id] = open.top();
+      open.pop();
+      ++expansions;
+      // Re-create the partial in scratch: undo the previous, apply this node's joins.
+      for (auto it = applied.rbegin(); it != applied.rend(); ++it)
+        scratch.next[it->first] = none, scratch.prev[it->second] = none;
+      applied.clear();
+      std::vector<std::uint32_t> chain;
+      for (std::uint32_t k = id; k != 0; k = nodes[k].parent) chain.push_back(k);
+      std::uint32_t end = h1;
+      for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+        scratch.next[end] = nodes[*it].first;
+        scratch.prev[nodes[*it].first] = end;
+        applied.push_back({end, nodes[*it].first});
+        end = nodes[*it].last;
+      }
+      if (nodes[id].closed) {
+        // The loop: seed chain then every appended string.
+        std::vector<std::uint32_t> hs;
+        for (std::uint32_t h = f1;; h = scratch.next[h]) {
+          hs.push_back(h);
+          if (scratch.next[h] == none || scratch.next[h] == f1) break;
+        }
+        for (auto it = applied.rbegin(); it != applied.rend(); ++it)
+          scratch.next[it->first] = none, scratch.prev[it->second] = none;
+        applied.clear();
+        if (consistent(s, hs)) return hs;
+        ++rejected;
+        continue;
+      }
+      const std::uint32_t v = g.head[end];
+      for (std::uint32_t j = g.out_begin[v]; j < g.out_begin[v + 1]; ++j) {
+        const std::uint32_t h2 = g.outs[j];
+        const int r = can_join(scratch, end, h2);
+        if (r == 0) continue;
+        mating m = nodes[id].m;
+        std::uint32_t last = end;
+        if (h2 != f1) {  // a whole string appended (h2 == f1: the loop closes on the seed itself)
+          std::uint32_t prev = end;
+          for (std::uint32_t h = h2;; h = scratch.next[h]) {
+            extend_mating(m, prev, h);
+            prev = h, last = h;
+            if (scratch.next[h] == none) break;
+          }
+        }
+        if (r == 2) extend_mating(m, last, f1), m.cost -= 1.0;  // the closing turn, no new edge
+        nodes.push_back({m.cost, id, h2, last, m, r == 2});
+        open.push({m.cost, static_cast<std::uint32_t>(nodes.size() - 1)});
+      }
+    }
+    for (auto it = applied.rbegin(); it != applied.rend(); ++it)
+      scratch.next[it->first] = none, scratch.prev[it->second] = none;
+    return {};
+  }
+};
+using finder = basic_finder<>;
+
+/// The loops of a complete state, as junction cycles, each once. O(E).
+template <class = void>
+std::vector<std::vector<std::uint32_t>> loops_of(const drawing_graph& g, const string_state& s) {
+  std::vector<std::vector<std::uint32_t>> loops;
+  std::vector<char> seen(g.num_half_edges(), 0);
+  for (std::uint32_t h0 = 0; h0 < g.num_half_edges(); ++h0) {
+    if (seen[h0]) continue;
+    // Only closed chains are loops.
+    std::uint32_t h = h0;
+    std::size_t steps = 0;
+    while (s.next[h] != none && s.next[h] != h0 && steps <= g.num_half_edges()) h = s.next[h], ++steps;
+    if (s.next[h] != h0) continue;
+    std::vector<std::uint32_t> loop;
+    for (h = h0;;) {
+      seen[h] = 1;
+      loop.push_back(g.tail(h));
+      h = s.next[h];
+      if (h == h0) break;
+    }
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+/// Checks an answer: edges on two loops, loops simple without inner chords, the Euler count.
+/// O(Σ L² + E).
+template <class = void>
+face_check check_loops(const drawing_graph& g, const std::vector<std::vector<std::uint32_t>>& loops) {
+  face_check c;
+  const std::size_t ne = g.num_half_edges() / 2, nv = g.num_junctions();
+  std::vector<std::uint32_t> uses(ne, 0);
+  // Edge lookup by junction pair through the CSR table.
+  const auto find_edge = [&](std::uint32_t a, std::uint32_t b) {
+    for (std::uint32_t i = g.out_begin[a]; i < g.out_begin[a + 1]; ++i)
+      if (g.head[g.outs[i]] == b) return g.outs[i] >> 1;
+    return none;
+  };
+  for (std::uint32_t li = 0; li < loops.size(); ++li) {
+    const auto& loop = loops[li];
+    bool bad = loop.size() < 3;
+    for (std::size_t k = 0; k < loop.size() && !bad; ++k) {
+      const std::uint32_t e = find_edge(loop[k], loop[(k + 1) % loop.size()]);
+      if (e == none)
+        bad = true;
+      else
+        ++uses[e];
+    }
+    // Simple polygon: no two non-adjacent sides meet.
+    const std::size_t n = loop.size();
+    for (std::size_t i = 0; i < n && !bad; ++i)
+      for (std::size_t j = i + 1; j < n && !bad; ++j) {
+        if (j == i + 1 || (i == 0 && j == n - 1)) continue;
+        bad = segments_meet(g.p[loop[i]], g.p[loop[(i + 1) % n]], g.p[loop[j]], g.p[loop[(j + 1) % n]]);
+      }
+    if (bad) c.bad_loops.push_back(li);
+  }
+  for (std::uint32_t e = 0; e < ne; ++e) {
+    if (uses[e] == 2)
+      ++c.edges_on_two_loops;
+    else if (uses[e] < 2)
+      c.edges_with_fewer_loops.push_back(e);
+    else
+      c.edges_with_more_loops.push_back(e);
+  }
+  // Components (of junctions with edges) for the Euler count.
+  std::vector<std::uint32_t> comp(nv, none);
+  std::size_t components = 0, used_vertices = 0;
+  for (std::uint32_t v = 0; v < nv; ++v) {
+    if (comp[v] != none || g.degree(v) == 0) continue;
+    ++components;
+    std::vector<std::uint32_t> stack{v};
+    comp[v] = v;
+    while (!stack.empty()) {
+      const std::uint32_t u = stack.back();
+      stack.pop_back();
+      ++used_vertices;
+      for (std::uint32_t i = g.out_begin[u]; i < g.out_begin[u + 1]; ++i) {
+        const std::uint32_t w = g.head[g.outs[i]];
+        if (comp[w] == none) comp[w] = v, stack.push_back(w);
+      }
+    }
+  }
+  c.euler = static_cast<long long>(used_vertices) - static_cast<long long>(ne) +
+            static_cast<long long>(loops.size());
+  c.euler_sphere = 2 * static_cast<long long>(components);
+  return c;
+}
+
+/// Varley–Company on a graph: start, forced concatenations, voluntary mergers, hypotheses.
+/// `start_rank` picks which trihedral junction starts (0: the first). O(joins · L).
+template <class = void>
+std::vector<std::vector<std::uint32_t>> varley_company(const drawing_graph& g, const face_finder_options& o,
+                                                       work_budget& budget, std::size_t start_rank,
+                                                       face_finder_result& r) {
+  finder f(g, o, budget);
+  const std::uint32_t nh = static_cast<std::uint32_t>(g.num_half_edges());
+  string_state s{std::vector<std::uint32_t>(nh, none), std::vector<std::uint32_t>(nh, none)};
+  std::vector<std::uint32_t> all(g.num_junctions());
+  for (std::uint32_t v = 0; v < all.size(); ++v) all[v] = v;
+  // Start: at a trihedral junction concatenate two strings (this fixes the loops' sense).
+  std::size_t rank = 0;
+  for (std::uint32_t v = 0; v < g.num_junctions(); ++v) {
+    if (g.degree(v) != 3) continue;
+    if (rank++ != start_rank) continue;
+    const std::uint32_t in = g.outs[g.out_begin[v]] ^ 1u, out = g.outs[g.out_begin[v] + 1];
+    if (f.can_join(s, in, out) != 0) finder::join(s, in, out, f);
+    break;
+  }
+  bool dead = !f.propagate(s, all, &f.forced);
+  std::vector<std::uint32_t> open_ends;
+  while (!dead) {
+    open_ends.clear();
+    for (std::uint32_t h = 0; h < nh; ++h)
+      if (s.next[h] == none) open_ends.push_back(h);
+    if (open_ends.empty()) break;
+    // Voluntary mergers: a string that closes into a face with one join, shortest loop first.
+    std::uint32_t best_h1 = none, best_h2 = none;
+    std::size_t best_len = std::numeric_limits<std::size_t>::max();
+    for (const auto h1 : open_ends) {
+      const std::uint32_t v = g.head[h1];
+      for (std::uint32_t j = g.out_begin[v]; j < g.out_begin[v + 1]; ++j) {
+        const std::uint32_t h2 = g.outs[j];
+        if (s.prev[h2] != none) continue;
+        // Only a join that closes a loop is a merger: the joined string must end at our start.
+        if (h2 != f.first_of(s, h1) && g.head[f.last_of(s, h2)] != g.tail(f.first_of(s, h1))) continue;
+        if (f.can_join(s, h1, h2) != 2) continue;
+        const std::size_t len = f.loop_half_edges(s, h1, h2).size();
+        if (len < best_len) best_len = len, best_h1 = h1, best_h2 = h2;
+      }
+    }
+    std::vector<std::uint32_t> loop;
+    if (best_h1 != none) {
+      loop = f.loop_half_edges(s, best_h1, best_h2);
+      if (f.consistent(s, loop)) {
+        ++f.voluntary;
+      } else {
+        loop.clear();
+      }
+    }
+    if (loop.empty()) {
+      // Hypotheses: the highest-priority strings first — those whose end has the fewest
+      // candidates, then the longest (the most context).
+      std::vector<std::pair<std::pair<std::uint32_t, std::size_t>, std::uint32_t>> ranked;
+      for (const auto h1 : open_ends) {
+        const std::uint32_t v = g.head[h1];
+        std::uint32_t n = 0;
+        for (std::uint32_t j = g.out_begin[v]; j < g.out_begin[v + 1]; ++j)
+          n += f.can_join(s, h1, g.outs[j]) != 0;
+        std::size_t len = 0;
+        for (std::uint32_t h = h1; h != none && len <= nh; h = s.prev[h]) ++len;
+        ranked.push_back({{n, nh - len}, h1});
+      }
+      std::sort(ranked.begin(), ranked.end());
+      for (std::size_t k = 0; k < ranked.size() && loop.empty() && k < 8; ++k) {
+        loop = f.hypothesis(s, ranked[k].second, 20000);
+        if (!loop.empty()) ++f.hypotheses;
+      }
+    }
+    if (loop.empty()) {
+      r.diagnostics.push_back("varley_company: " + std::to_string(open_ends.size()) +
+                              " half-edges left that no face loop can take (no hypothesis passes)");
+      break;
+    }
+    finder::close_loop(s, loop);
+    std::vector<std::uint32_t> work;
+    for (const auto h : loop) work.push_back(g.head[h]);
+    dead = !f.propagate(s, std::move(work), &f.forced);
+  }
+  if (dead)
+    r.diagnostics.push_back(
+        "varley_company: a forced concatenation reached a dead end (a half-edge no face can continue)");
+  r.forced += f.forced;
+  r.voluntary += f.voluntary;
+  r.hypotheses += f.hypotheses;
+  r.rejected += f.rejected;
+  return loops_of(g, s);
+}
+
+/// The baseline: shortest loops at fixed edge costs (fewest edges, then shortest in the
+/// drawing), picked one by one while every edge of the loop is on fewer than two loops.
+/// Candidates per round: for each edge still open, its shortest cycle and the best cycle
+/// avoiding one more edge of that one (so that a loop taken once is not the only candidate).
+/// O(rounds · E · L · E log E).
+template <class = void>
+std::vector<std::vector<std::uint32_t>> shortest_loops(const drawing_graph& g, work_budget& budget) {
+  const std::size_t ne = g.num_half_edges() / 2, nv = g.num_junctions();
+  std::vector<std::uint32_t> left(ne, 2);
+  std::vector<std::vector<std::uint32_t>> loops;
+  std::vector<std::vector<std::uint32_t>> taken;  // sorted edge sets of the loops taken
+  std::vector<char> banned(ne, 0);
+  using cost = std::pair<std::uint32_t, double>;
+  // Shortest cycle through e (as edges) over open, unbanned edges. Dijkstra on (edges, length).
+  std::vector<cost> dist(nv);
+  std::vector<std::uint32_t> via(nv);
+  const auto cycle_through = [&](std::uint32_t e, std::vector<std::uint32_t>& edges) {
+    const std::uint32_t a = g.head[2 * e + 1], b = g.head[2 * e];
+    using item = std::pair<cost, std::uint32_t>;
+    std::fill(dist.begin(), dist.end(), cost{none, 0});
+    std::priority_queue<item, std::vector<item>, std::greater<>> q;
+    dist[a] = {0, 0};
+    q.push({dist[a], a});
+    while (!q.empty()) {
+      const auto [d, u] = q.top();
+      q.pop();
+      if (d != dist[u]) continue;
+      if (u == b) break;
+      for (std::uint32_t i = g.out_begin[u]; i < g.out_begin[u + 1]; ++i) {
+        budget.spend();
+        const std::uint32_t h = g.outs[i], w = g.head[h];
+        if ((h >> 1) == e || left[h >> 1] == 0 || banned[h >> 1]) continue;
+        const cost nd{d.first + 1, d.second + glm::length(g.p[w] - g.p[u])};
+        if (dist[w].first == none || nd < dist[w]) dist[w] = nd, via[w] = h, q.push({nd, w});
+      }
+    }
+    edges.clear();
+    if (dist[b].first == none) return cost{none, 0};
+    edges.push_back(e);
+    for (std::uint32_t v = b; v != a; v = g.tail(via[v])) edges.push_back(via[v] >> 1);
+    return cost{dist[b].first + 1, dist[b].second + glm::length(g.p[b] - g.p[a])};
+  };
+  // Junction cycle of a loop given as its edges, first edge first.
+  const auto cycle_of = [&](const std::vector<std::uint32_t>& edges) {
+    std::vector<std::uint32_t> loop;
+    std::uint32_t v = g.head[2 * edges[0] + 1];
+    for (const auto e : edges) {
+      loop.push_back(v);
+      v = g.head[2 * e] == v ? g.head[2 * e + 1] : g.head[2 * e];
+    }
+    return loop;
+  };
+  for (;;) {
+    std::vector<std::pair<cost, std::vector<std::uint32_t>>> candidates;
+    std::vector<std::uint32_t> first, second;
+    for (std::uint32_t e = 0; e < ne; ++e) {
+      if (left[e] == 0) continue;
+      const cost c = cycle_through(e, first);
+      if (c.first == none) continue;
+      candidates.push_back({c, first});
+      for (std::size_t k = 1; k < first.size(); ++k) {
+        banned[first[k]] = 1;
+        const cost c2 = cycle_through(e, second);
+        banned[first[k]] = 0;
+        if (c2.first != none) candidates.push_back({c2, second});
+      }
+    }
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    bool progress = false;
+    for (const auto& [c, edges] : candidates) {
+      (void)c;
+      bool open = true;
+      for (const auto e : edges) open = open && left[e] > 0;
+      if (!open) continue;
+      std::vector<std::uint32_t> key = edges;
+      std::sort(key.begin(), key.end());
+      if (std::find(taken.begin(), taken.end(), key) != taken.end()) continue;
+      for (const auto e : edges) --left[e];
+      taken.push_back(std::move(key));
+      loops.push_back(cycle_of(edges));
+      progress = true;
+    }
+    if (!progress) break;
+  }
+  return loops;
+}
+
+}  // namespace detail::faces
+
+/// Finds the faces of a wireframe line drawing (every edge drawn, hidden ones too, a parallel
+/// view of a polyhedron): loops as junction cycles, checked; flagged with ranked alternatives
+/// when the check fails. Throws invalid_input on a malformed drawing and budget when the work
+/// budget runs out. Practical cost about O(E · L²) for Varley–Company (L: loop length), O(F·E log E)
+/// baseline.
+template <LineDrawing D>
+face_finder_result find_faces(const D& drawing, const face_finder_options& options = {}) {
+  namespace df = detail::faces;
+  detail::stopwatch clock;
+  face_finder_result r;
+  r.kind = options.kind;
+  const df::drawing_graph g = df::make_graph(drawing, options);
+  r.junctions = g.num_junctions();
+  r.edges = g.num_half_edges() / 2;
+  r.direction_classes = g.classes;
+  detail::work_budget budget{options.work_budget, 0, "find_faces"};
+  if (r.edges == 0) throw error(error_category::invalid_input, "find_faces: the drawing has no edge");
+  if (options.kind == face_finder_kind::varley_company)
+    r.loops = df::varley_company(g, options, budget, 0, r);
+  else
+    r.loops = df::shortest_loops(g, budget);
+  r.check = df::check_loops(g, r.loops);
+  r.flagged = !r.check.ok();
+  if (r.loops.empty()) r.diagnostics.push_back("find_faces: no closed loop in the drawing");
+  if (!r.check.edges_with_fewer_loops.empty())
+    r.diagnostics.push_back(std::to_string(r.check.edges_with_fewer_loops.size()) +
+                            " edges lie on fewer than two loops (first: edge " +
+                            std::to_string(r.check.edges_with_fewer_loops.front()) + ")");
+  if (!r.check.edges_with_more_loops.empty())
+    r.diagnostics.push_back(std::to_string(r.check.edges_with_more_loops.size()) +
+                            " edges lie on three or more loops");
+  if (!r.check.bad_loops.empty())
+    r.diagnostics.push_back(std::to_string(r.check.bad_loops.size()) +
+                            " loops are not simple polygons of the drawing");
+  if (r.check.ok() && r.check.euler != r.check.euler_sphere)
+    r.diagnostics.push_back("V - E + L = " + std::to_string(r.check.euler) +
+                            " (a sphere per component: " + std::to_string(r.check.euler_sphere) +
+                            "): a solid of higher genus, or a loop too few");
+  if (r.flagged && options.alternatives_when_flagged) {
+    // Alternatives: the other finder, and Varley–Company from other starts; best check first.
+    std::vector<face_alternative> alt;
+    if (options.kind == face_finder_kind::varley_company) {
+      alt.push_back({df::shortest_loops(g, budget), {}, "the shortest-loops baseline"});
+      for (std::size_t k = 1; k <= 2; ++k) {
+        face_finder_result scratch;
+        alt.push_back({df::varley_company(g, options, budget, k, scratch),
+                       {},
+                       "Varley-Company from trihedral junction " + std::to_string(k)});
+      }
+    } else {
+      face_finder_result scratch;
+      alt.push_back({df::varley_company(g, options, budget, 0, scratch), {}, "Varley-Company"});
+    }
+    for (auto& a : alt) a.check = df::check_loops(g, a.loops);
+    const auto score = [](const face_alternative& a) {
+      return std::make_tuple(!a.check.ok(),
+                             a.check.edges_with_fewer_loops.size() + a.check.edges_with_more_loops.size() +
+                                 a.check.bad_loops.size(),
+                             a.check.euler_sphere - a.check.euler);
+    };
+    std::stable_sort(alt.begin(), alt.end(),
+                     [&](const auto& a, const auto& b) { return score(a) < score(b); });
+    for (auto& a : alt) a.reason += a.check.ok() ? " (passes the check)" : " (fails the check too)";
+    r.alternatives = std::move(alt);
+  }
+  r.work = budget.used;
+  r.milliseconds = clock.ms();
+  return r;
+}
+
+}  // namespace cellforge

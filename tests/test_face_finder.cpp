@@ -1,0 +1,205 @@
+// Face finding on line drawings (sketch/face_finder.hpp): the Varley–Company string algorithm
+// and the shortest-loops baseline on drawings of models with known faces, the check of every
+// answer, flagged answers with alternatives, bad drawings, a user's own drawing type, budgets.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "cellforge/sketch/face_finder.hpp"
+#include "cellforge/sketch/sample_drawings.hpp"
+
+namespace {
+
+using loops_t = std::vector<std::vector<std::uint32_t>>;
+
+// Loops as a multiset of canonical cycles (orientation and start free). O(Σ L log L).
+std::multiset<std::vector<std::uint32_t>> canonical(const loops_t& loops) {
+  std::multiset<std::vector<std::uint32_t>> s;
+  for (const auto& l : loops) s.insert(cellforge::detail::canonical_cycle(l));
+  return s;
+}
+
+bool same_loops(const loops_t& a, const loops_t& b) { return canonical(a) == canonical(b); }
+
+// Every directed junction pair of the answer is used once: each edge's two half-edges lie on
+// two loops, in opposite directions (the answer is an oriented surface). O(Σ L).
+bool half_edges_once(const loops_t& loops) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> used;
+  for (const auto& l : loops)
+    for (std::size_t k = 0; k < l.size(); ++k)
+      if (++used[{l[k], l[(k + 1) % l.size()]}] > 1) return false;
+  return true;
+}
+
+std::vector<cellforge::sample_model> classic_models() {
+  using namespace cellforge;
+  return {sample_tetrahedron(),
+          sample_cube(),
+          sample_octahedron(),
+          sample_prism(3),
+          sample_prism(5),
+          sample_prism(12),
+          sample_pyramid(4),
+          sample_pyramid(9),
+          sample_L(),
+          sample_T(),
+          sample_U(),
+          sample_house(),
+          sample_block_with_hole(),
+          sample_frame(),
+          sample_split_edges(),
+          sample_uv_sphere(8, 5)};
+}
+
+}  // namespace
+
+TEST_CASE("find_faces: Varley-Company returns exactly the true loops on drawings of classic solids") {
+  std::size_t drawings = 0, vc_right = 0, baseline_right = 0;
+  std::vector<std::string> misses;
+  for (const auto& m : classic_models())
+    for (std::uint64_t view = 1; view <= 4; ++view) {
+      const cellforge::sample_drawing s = cellforge::generic_drawing(m, view, "classic");
+      ++drawings;
+      const auto r = cellforge::find_faces(s.drawing);
+      CHECK(half_edges_once(r.loops));
+      if (same_loops(r.loops, s.loops)) {
+        ++vc_right;
+        CHECK(r.check.ok());
+        CHECK_FALSE(r.flagged);
+        CHECK(r.check.edges_on_two_loops == s.drawing.edges.size());
+      } else {
+        misses.push_back(s.name);
+      }
+      cellforge::face_finder_options base;
+      base.kind = cellforge::face_finder_kind::shortest_loops;
+      baseline_right += same_loops(cellforge::find_faces(s.drawing, base).loops, s.loops);
+    }
+  for (const auto& n : misses) MESSAGE("Varley-Company miss: " << n);
+  MESSAGE("classic drawings: Varley-Company " << vc_right << "/" << drawings << ", shortest loops "
+                                              << baseline_right << "/" << drawings);
+  CHECK(vc_right == drawings);
+  CHECK(baseline_right < drawings);  // the baseline's known failures (a loop taken twice, long loops)
+}
+
+TEST_CASE("find_faces: counts, the Euler check, and the stages it used") {
+  const auto s = cellforge::generic_drawing(cellforge::sample_prism(6), 3, "prism");
+  const auto r = cellforge::find_faces(s.drawing);
+  CHECK(r.junctions == 12);
+  CHECK(r.edges == 18);
+  CHECK(r.loops.size() == 8);
+  CHECK(r.check.euler == 2);
+  CHECK(r.check.euler_sphere == 2);
+  CHECK(r.forced > 0);  // a prism is read mostly by forced concatenations
+  CHECK(r.work > 0);
+  CHECK(r.milliseconds >= 0.0);
+  CHECK(r.diagnostics.empty());
+  // A genus-1 block with a through hole: V - E + L is still 2 (the hole's two loops).
+  const auto h = cellforge::find_faces(
+      cellforge::generic_drawing(cellforge::sample_block_with_hole(), 2, "slot").drawing);
+  CHECK(h.check.ok());
+  CHECK(h.check.euler == h.check.euler_sphere);
+}
+
+TEST_CASE("find_faces: an answer that fails its check comes back flagged with ranked alternatives") {
+  // A cube with one extra edge hanging off a corner: that edge can be on no loop.
+  auto s = cellforge::generic_drawing(cellforge::sample_cube(), 1, "cube");
+  const glm::dvec2 far = s.drawing.points[0] + glm::dvec2(0.37, -0.21);
+  s.drawing.points.push_back(far);
+  s.drawing.edges.push_back({0, static_cast<std::uint32_t>(s.drawing.points.size() - 1)});
+  const auto r = cellforge::find_faces(s.drawing);
+  CHECK(r.flagged);
+  CHECK_FALSE(r.check.ok());
+  REQUIRE_FALSE(r.check.edges_with_fewer_loops.empty());
+  CHECK(std::find(r.check.edges_with_fewer_loops.begin(), r.check.edges_with_fewer_loops.end(), 12u) !=
+        r.check.edges_with_fewer_loops.end());
+  REQUIRE_FALSE(r.diagnostics.empty());
+  CHECK(std::any_of(r.diagnostics.begin(), r.diagnostics.end(), [](const std::string& d) {
+    return d.find("fewer than two loops") != std::string::npos;
+  }));
+  REQUIRE(r.alternatives.size() >= 2);
+  for (const auto& a : r.alternatives) CHECK_FALSE(a.reason.empty());
+  // Ranked: an alternative that passes never comes after one that fails.
+  for (std::size_t k = 1; k < r.alternatives.size(); ++k)
+    CHECK((r.alternatives[k - 1].check.ok() || !r.alternatives[k].check.ok()));
+  // A tree has no closed loop at all.
+  cellforge::line_drawing<glm::dvec2> tree;
+  tree.points = {{0, 0}, {1, 0}, {0, 1}, {-1, -1}};
+  tree.edges = {{0, 1}, {0, 2}, {0, 3}};
+  const auto t = cellforge::find_faces(tree);
+  CHECK(t.loops.empty());
+  CHECK(t.flagged);
+  CHECK(std::any_of(t.diagnostics.begin(), t.diagnostics.end(),
+                    [](const std::string& d) { return d.find("no closed loop") != std::string::npos; }));
+}
+
+TEST_CASE("find_faces: malformed drawings are refused with a clear error") {
+  using cellforge::error;
+  cellforge::line_drawing<glm::dvec2> d;
+  CHECK_THROWS_AS(cellforge::find_faces(d), error);  // no edge
+  d.points = {{0, 0}, {1, 0}, {std::nan(""), 1}};
+  d.edges = {{0, 1}, {1, 2}, {2, 0}};
+  CHECK_THROWS_WITH_AS(cellforge::find_faces(d), doctest::Contains("NaN"), error);
+  d.points[2] = {0, 1};
+  d.edges.push_back({1, 1});
+  CHECK_THROWS_WITH_AS(cellforge::find_faces(d), doctest::Contains("to itself"), error);
+  d.edges.back() = {1, 7};
+  CHECK_THROWS_WITH_AS(cellforge::find_faces(d), doctest::Contains("does not exist"), error);
+}
+
+TEST_CASE("find_faces: a work budget stops the search with a budget error") {
+  const auto s = cellforge::generic_drawing(cellforge::sample_uv_sphere(8, 5), 1, "sphere");
+  for (const auto kind :
+       {cellforge::face_finder_kind::varley_company, cellforge::face_finder_kind::shortest_loops}) {
+    cellforge::face_finder_options o;
+    o.kind = kind;
+    o.work_budget = 50;
+    try {
+      (void)cellforge::find_faces(s.drawing, o);
+      FAIL("no budget error");
+    } catch (const cellforge::error& e) {
+      CHECK(e.category() == cellforge::error_category::budget);
+      CHECK(std::string(e.what()).find("find_faces") != std::string::npos);
+    }
+  }
+}
+
+namespace user {
+struct pt {
+  float u, v;
+};
+// A user's drawing: strokes as pairs of junction names, positions elsewhere.
+struct sketch {
+  std::vector<pt> where;
+  std::vector<std::pair<int, int>> strokes;
+};
+}  // namespace user
+CELLFORGE_REGISTER_POINT2(user::pt, float, u, v);
+template <>
+struct cellforge::line_drawing_traits<user::sketch> {
+  using point_type = user::pt;
+  static std::size_t num_junctions(const user::sketch& s) { return s.where.size(); }
+  static user::pt position(const user::sketch& s, std::size_t i) { return s.where[i]; }
+  static std::size_t num_edges(const user::sketch& s) { return s.strokes.size(); }
+  static std::array<std::size_t, 2> endpoints(const user::sketch& s, std::size_t e) {
+    return {static_cast<std::size_t>(s.strokes[e].first), static_cast<std::size_t>(s.strokes[e].second)};
+  }
+};
+
+TEST_CASE("find_faces: a user's own drawing type and float points") {
+  static_assert(cellforge::LineDrawing<user::sketch>);
+  const auto s = cellforge::generic_drawing(cellforge::sample_prism(4), 5, "prism");
+  user::sketch u;
+  for (const auto& p : s.drawing.points)
+    u.where.push_back({static_cast<float>(p.x), static_cast<float>(p.y)});
+  for (const auto& e : s.drawing.edges) u.strokes.push_back({static_cast<int>(e[0]), static_cast<int>(e[1])});
+  const auto r = cellforge::find_faces(u);
+  CHECK(same_loops(r.loops, s.loops));
+  CHECK_FALSE(r.flagged);
+}
