@@ -46,6 +46,10 @@ struct face_finder_options {
   /// Mating value: cost of an edge whose drawing direction is a third main direction of the loop
   /// (a planar face of a normalon-like drawing holds edges of two of its three main directions).
   double third_direction_cost = 2.0;
+  /// Mating value: cost of a loop whose junctions, taken out, split the drawing (a ring around a
+  /// cap, an equator). Faces of a polyhedron whose graph is 3-connected never do (Tutte); hole
+  /// loops do, so this is a cost, not a rule.
+  double separating_loop_cost = 1.5;
   /// Drawing lines closer than this to parallel (degrees) share a direction class.
   double parallel_tolerance_degrees = 0.5;
   /// Check each hypothesis by propagating its forced consequences on a copy of the master list
@@ -238,10 +242,60 @@ struct basic_finder {
   work_budget& budget;
   std::vector<std::uint32_t> mark;  // per junction: stamp of the string being tested
   std::uint32_t stamp = 0;
+  std::vector<std::uint32_t> component, component_size;  // connected components of junctions
   std::size_t forced = 0, voluntary = 0, hypotheses = 0, rejected = 0;
 
   basic_finder(const drawing_graph& graph, const face_finder_options& options, work_budget& b)
-      : g(graph), o(options), budget(b), mark(graph.num_junctions(), 0) {}
+      : g(graph),
+        o(options),
+        budget(b),
+        mark(graph.num_junctions(), 0),
+        component(graph.num_junctions(), none) {
+    for (std::uint32_t v = 0; v < g.num_junctions(); ++v) {
+      if (component[v] != none) continue;
+      const auto c = static_cast<std::uint32_t>(component_size.size());
+      std::vector<std::uint32_t> stack{v};
+      component[v] = c;
+      std::uint32_t n = 0;
+      while (!stack.empty()) {
+        const std::uint32_t u = stack.back();
+        stack.pop_back();
+        ++n;
+        for (std::uint32_t i = g.out_begin[u]; i < g.out_begin[u + 1]; ++i) {
+          const std::uint32_t w = g.head[g.outs[i]];
+          if (component[w] == none) component[w] = c, stack.push_back(w);
+        }
+      }
+      component_size.push_back(n);
+    }
+  }
+
+  /// Whether taking the loop's junctions out splits their component. O(V + E) of the component.
+  bool separating(const std::vector<std::uint32_t>& loop_vertices) {
+    const std::uint32_t st = next_stamp(), c = component[loop_vertices[0]];
+    for (const auto v : loop_vertices) mark[v] = st;
+    const std::uint32_t rest = component_size[c] - static_cast<std::uint32_t>(loop_vertices.size());
+    if (rest == 0) return false;
+    std::uint32_t seed = none;
+    for (const auto v : loop_vertices)
+      for (std::uint32_t i = g.out_begin[v]; i < g.out_begin[v + 1] && seed == none; ++i)
+        if (mark[g.head[g.outs[i]]] != st) seed = g.head[g.outs[i]];
+    if (seed == none) return true;  // every neighbour on the loop: the rest hangs elsewhere
+    std::vector<std::uint32_t> stack{seed};
+    mark[seed] = st;
+    std::uint32_t reached = 0;
+    while (!stack.empty()) {
+      const std::uint32_t u = stack.back();
+      stack.pop_back();
+      ++reached;
+      for (std::uint32_t i = g.out_begin[u]; i < g.out_begin[u + 1]; ++i) {
+        budget.spend();
+        const std::uint32_t w = g.head[g.outs[i]];
+        if (mark[w] != st) mark[w] = st, stack.push_back(w);
+      }
+    }
+    return reached < rest;
+  }
 
   std::uint32_t first_of(const string_state& s, std::uint32_t h) const {
     std::uint32_t f = h;
@@ -502,6 +556,7 @@ struct basic_finder {
       std::uint32_t last;    // last half-edge of the loop so far
       mating m;
       bool closed;
+      bool judged = false;  // the separation cost is added when a closed loop is first popped
     };
     std::vector<node> nodes;
     const std::uint32_t f1 = first_of(s, h1);
@@ -545,6 +600,16 @@ struct basic_finder {
         for (auto it = applied.rbegin(); it != applied.rend(); ++it)
           scratch.next[it->first] = none, scratch.prev[it->second] = none;
         applied.clear();
+        if (!nodes[id].judged) {
+          nodes[id].judged = true;
+          std::vector<std::uint32_t> vs;
+          for (const auto h : hs) vs.push_back(g.tail(h));
+          if (o.separating_loop_cost > 0 && separating(vs)) {
+            nodes[id].cost += o.separating_loop_cost;
+            open.push({nodes[id].cost, id});
+            continue;
+          }
+        }
         if (consistent(s, hs)) return hs;
         ++rejected;
         continue;
@@ -709,7 +774,10 @@ std::vector<std::vector<std::uint32_t>> varley_company(const drawing_graph& g, c
     std::vector<std::uint32_t> loop;
     if (best_h1 != none) {
       loop = f.loop_half_edges(s, best_h1, best_h2);
-      if (f.consistent(s, loop)) {
+      std::vector<std::uint32_t> vs;
+      for (const auto h : loop) vs.push_back(g.tail(h));
+      // A separating loop is left to the hypotheses, which weigh it against the others.
+      if (!(o.separating_loop_cost > 0 && f.separating(vs)) && f.consistent(s, loop)) {
         ++f.voluntary;
       } else {
         loop.clear();
