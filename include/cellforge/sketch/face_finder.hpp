@@ -784,17 +784,33 @@ std::vector<std::vector<std::uint32_t>> varley_company(const drawing_graph& g, c
       }
     }
     if (loop.empty()) {
-      // Hypotheses: the highest-priority strings first — those whose end has the fewest
-      // candidates, then the longest (the most context).
-      std::vector<std::pair<std::pair<std::uint32_t, std::size_t>, std::uint32_t>> ranked;
+      // Hypotheses: the highest-priority strings first — those beside a face already found
+      // (their loop's sense is then the surface's: a loop grown elsewhere may take the wrong
+      // sense and meet the others in a dead end much later), then those whose end has the
+      // fewest candidates, then the longest (the most context).
+      std::vector<char> closed(nh, 0), visited(nh, 0);
+      for (std::uint32_t h0 = 0; h0 < nh; ++h0) {
+        if (visited[h0] || s.next[h0] == none) continue;
+        std::uint32_t h = h0;
+        while (!visited[h] && s.next[h] != none) visited[h] = 1, h = s.next[h];
+        if (h == h0)
+          for (std::uint32_t x = h0;;) {
+            closed[x] = 1;
+            x = s.next[x];
+            if (x == h0) break;
+          }
+      }
+      std::vector<std::pair<std::array<std::size_t, 3>, std::uint32_t>> ranked;
       for (const auto h1 : open_ends) {
         const std::uint32_t v = g.head[h1];
         std::uint32_t n = 0;
         for (std::uint32_t j = g.out_begin[v]; j < g.out_begin[v + 1]; ++j)
           n += f.can_join(s, h1, g.outs[j]) != 0;
         std::size_t len = 0;
-        for (std::uint32_t h = h1; h != none && len <= nh; h = s.prev[h]) ++len;
-        ranked.push_back({{n, nh - len}, h1});
+        bool beside = false;
+        for (std::uint32_t h = h1; h != none && len <= nh; h = s.prev[h])
+          ++len, beside = beside || closed[h ^ 1u];
+        ranked.push_back({{beside ? 0u : 1u, n, nh - len}, h1});
       }
       std::sort(ranked.begin(), ranked.end());
       for (std::size_t k = 0; k < ranked.size() && loop.empty() && k < 8; ++k) {
