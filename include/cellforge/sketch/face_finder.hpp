@@ -50,6 +50,9 @@ struct face_finder_options {
   /// cap, an equator). Faces of a polyhedron whose graph is 3-connected never do (Tutte); hole
   /// loops do, so this is a cost, not a rule.
   double separating_loop_cost = 1.5;
+  /// Priority: the starting cost of a hypothesis seed per candidate beyond the first at its end
+  /// (a string with fewer ways on is more likely right), in edges.
+  double candidate_cost = 0.5;
   /// Drawing lines closer than this to parallel (degrees) share a direction class.
   double parallel_tolerance_degrees = 0.5;
   /// Check each hypothesis by propagating its forced consequences on a copy of the master list
@@ -545,44 +548,56 @@ struct basic_finder {
       }
   }
 
-  /// The working list: from the open string ending with h1 (the highest-priority string), the
-  /// cheapest closed loop by mating value, growing by whole strings, best first. Every loop
-  /// found is checked by look-ahead; returns the first that passes (empty: none). O(expansions · L).
-  std::vector<std::uint32_t> hypothesis(const string_state& s, std::uint32_t h1, std::size_t max_expansions) {
+  /// The working list: several seeds grown at once (the open strings ending with the given
+  /// half-edges, each with a starting cost: its priority), by whole strings, cheapest mating
+  /// value first, so that the smallest face closes first. Every loop found is checked by
+  /// look-ahead; returns the first that passes (empty: none). O(expansions · L).
+  std::vector<std::uint32_t> hypothesis(const string_state& s,
+                                        const std::vector<std::pair<std::uint32_t, double>>& seeds,
+                                        std::size_t max_expansions) {
     struct node {
       double cost;
-      std::uint32_t parent;  // index into nodes
-      std::uint32_t first;   // first half-edge of the string this node appended (none: the seed)
+      std::uint32_t parent;  // index into nodes; none: a seed
+      std::uint32_t first;   // first half-edge of the string this node appended (a seed: its index)
       std::uint32_t last;    // last half-edge of the loop so far
       mating m;
       bool closed;
       bool judged = false;  // the separation cost is added when a closed loop is first popped
     };
     std::vector<node> nodes;
-    const std::uint32_t f1 = first_of(s, h1);
-    mating m0;
-    for (std::uint32_t h = f1, p = none;; p = h, h = s.next[h]) {
-      extend_mating(m0, p, h);
-      if (h == h1) break;
-    }
-    nodes.push_back({m0.cost, none, none, h1, m0, false});
     using item = std::pair<double, std::uint32_t>;
     std::priority_queue<item, std::vector<item>, std::greater<>> open;
-    open.push({m0.cost, 0});
+    for (std::uint32_t k = 0; k < seeds.size(); ++k) {
+      const std::uint32_t h1 = seeds[k].first;
+      mating m0;
+      m0.cost = seeds[k].second;
+      for (std::uint32_t h = first_of(s, h1), p = none;; p = h, h = s.next[h]) {
+        extend_mating(m0, p, h);
+        if (h == h1) break;
+      }
+      nodes.push_back({m0.cost, none, k, h1, m0, false});
+      open.push({m0.cost, static_cast<std::uint32_t>(nodes.size() - 1)});
+    }
     // A scratch state holding the partial loop's joins, so that can_join sees the context.
     string_state scratch = s;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> applied;
+    const auto undo = [&] {
+      for (auto it = applied.rbegin(); it != applied.rend(); ++it)
+        scratch.next[it->first] = none, scratch.prev[it->second] = none;
+      applied.clear();
+    };
     std::size_t expansions = 0;
+    std::vector<std::uint32_t> chain;
     while (!open.empty() && expansions < max_expansions) {
       const auto [cost, id] = open.top();
       open.pop();
       ++expansions;
       // Re-create the partial in scratch: undo the previous, apply this node's joins.
-      for (auto it = applied.rbegin(); it != applied.rend(); ++it)
-        scratch.next[it->first] = none, scratch.prev[it->second] = none;
-      applied.clear();
-      std::vector<std::uint32_t> chain;
-      for (std::uint32_t k = id; k != 0; k = nodes[k].parent) chain.push_back(k);
+      undo();
+      chain.clear();
+      std::uint32_t root = id;
+      for (; nodes[root].parent != none; root = nodes[root].parent) chain.push_back(root);
+      const std::uint32_t h1 = seeds[nodes[root].first].first, f1 = first_of(s, h1);
       std::uint32_t end = h1;
       for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
         scratch.next[end] = nodes[*it].first;
@@ -597,9 +612,7 @@ struct basic_finder {
           hs.push_back(h);
           if (scratch.next[h] == none || scratch.next[h] == f1) break;
         }
-        for (auto it = applied.rbegin(); it != applied.rend(); ++it)
-          scratch.next[it->first] = none, scratch.prev[it->second] = none;
-        applied.clear();
+        undo();
         if (!nodes[id].judged) {
           nodes[id].judged = true;
           std::vector<std::uint32_t> vs;
@@ -634,8 +647,7 @@ struct basic_finder {
         open.push({m.cost, static_cast<std::uint32_t>(nodes.size() - 1)});
       }
     }
-    for (auto it = applied.rbegin(); it != applied.rend(); ++it)
-      scratch.next[it->first] = none, scratch.prev[it->second] = none;
+    undo();
     return {};
   }
 };
@@ -813,10 +825,20 @@ std::vector<std::vector<std::uint32_t>> varley_company(const drawing_graph& g, c
         ranked.push_back({{beside ? 0u : 1u, n, nh - len}, h1});
       }
       std::sort(ranked.begin(), ranked.end());
-      for (std::size_t k = 0; k < ranked.size() && loop.empty() && k < 8; ++k) {
-        loop = f.hypothesis(s, ranked[k].second, 20000);
-        if (!loop.empty()) ++f.hypotheses;
+      // Seeds by class, the best class grown together (the smallest face closes first): beside
+      // the faces found, then strings of two or more half-edges (a corner already chosen), then
+      // the rest. A loop's sense is the surface's only when it touches what is already decided.
+      std::array<std::vector<std::pair<std::uint32_t, double>>, 3> classes;
+      for (const auto& [key, h1] : ranked) {
+        const std::size_t cls = key[0] == 0 ? 0 : (nh - key[2] >= 2 ? 1 : 2);
+        classes[cls].push_back({h1, o.candidate_cost * (static_cast<double>(key[1]) - 1.0)});
       }
+      for (auto& seeds : classes) {
+        if (seeds.empty() || !loop.empty()) continue;
+        if (seeds.size() > 64) seeds.resize(64);
+        loop = f.hypothesis(s, seeds, 20000 + 5000 * seeds.size());
+      }
+      if (!loop.empty()) ++f.hypotheses;
     }
     if (loop.empty()) {
       r.diagnostics.push_back("varley_company: " + std::to_string(open_ends.size()) +
