@@ -1043,7 +1043,7 @@ struct sketch_sweep_options {
   /// edges must reach min_margin · 100 / E (sketch_margin_threshold: the junctions of a dense
   /// drawing are closer, the margin per edge spacing is kept).
   double min_margin = 1e-3;
-  int view_attempts = 200;  ///< random views tried per drawing before it is dropped
+  int view_attempts = 500;  ///< random views tried per drawing before it is dropped
 };
 
 /// The generic_margin a sweep drawing of `edges` edges must reach: options.min_margin up to
