@@ -407,8 +407,7 @@ TEST_CASE("project_model: normalon and quasi-normalon flags on known models") {
         CHECK(s.quasi_normalon);
     }
     if (s.family == "platonic" || s.family == "archimedean") CHECK(s.normalon == (s.model.name == "cube"));
-    if (s.family == "classic" || s.family == "prism" || s.family == "random convex")
-      CHECK_FALSE(s.quasi_normalon);
+    if (s.family == "prism" || s.family == "random convex") CHECK_FALSE(s.quasi_normalon);
   }
   MESSAGE(quasi << " of " << family << " quasi-normalon-family drawings are quasi-normalons by the rule");
   CHECK(quasi * 3 >= family);
