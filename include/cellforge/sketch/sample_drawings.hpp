@@ -504,7 +504,8 @@ sample_model random_convex_polytope(std::size_t n, bool on_sphere, std::uint64_t
   const double gap = 0.6 / std::sqrt(static_cast<double>(n));
   std::vector<glm::dvec3> pts;
   for (std::size_t tries = 0; pts.size() < n && tries < 1000 * n; ++tries) {
-    glm::dvec3 p(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    glm::dvec3 p;  // one coordinate per statement: the same numbers with every compiler
+    for (int a = 0; a < 3; ++a) p[a] = rng.uniform(-1, 1);
     const double len = glm::length(p);
     if (len > 1 || len < 1e-3) continue;
     if (on_sphere) p /= len;
@@ -630,7 +631,10 @@ std::vector<glm::dvec2> letter_footprint(int kind, double jitter, detail::splitm
     p = {{1, 0}, {2, 0}, {2, 2}, {3, 2}, {3, 3}, {0, 3}, {0, 2}, {1, 2}};
   else
     p = {{1, 0}, {2, 0}, {2, 1}, {3, 1}, {3, 2}, {2, 2}, {2, 3}, {1, 3}, {1, 2}, {0, 2}, {0, 1}, {1, 1}};
-  for (auto& q : p) q += glm::dvec2(rng.uniform(-jitter, jitter), rng.uniform(-jitter, jitter));
+  for (auto& q : p) {
+    q.x += rng.uniform(-jitter, jitter);
+    q.y += rng.uniform(-jitter, jitter);
+  }
   return p;
 }
 
@@ -780,9 +784,11 @@ template <class = void>
 std::optional<voxel_solid> random_normalon(std::size_t nx, std::size_t ny, std::size_t nz, std::size_t count,
                                            std::uint64_t seed) {
   detail::splitmix rng{seed ^ 0x6e6f726d616c6f6eu};
-  voxel_layout l =
-      empty_layout(detail::random_coords(nx, 0.5, 1.5, rng), detail::random_coords(ny, 0.5, 1.5, rng),
-                   detail::random_coords(nz, 0.5, 1.5, rng));
+  // One draw per statement: argument order is the compiler's choice.
+  std::vector<double> xs = detail::random_coords(nx, 0.5, 1.5, rng);
+  std::vector<double> ys = detail::random_coords(ny, 0.5, 1.5, rng);
+  std::vector<double> zs = detail::random_coords(nz, 0.5, 1.5, rng);
+  voxel_layout l = empty_layout(std::move(xs), std::move(ys), std::move(zs));
   const std::size_t cells = nx * ny * nz;
   count = std::clamp<std::size_t>(count, 1, cells);
   std::vector<std::size_t> set{detail::below(cells, rng)};
@@ -814,9 +820,10 @@ std::optional<voxel_solid> random_normalon(std::size_t nx, std::size_t ny, std::
 template <class = void>
 std::optional<voxel_solid> notched_block(std::size_t notches, std::uint64_t seed) {
   detail::splitmix rng{seed ^ 0x6e6f746368000000u};
-  voxel_layout l =
-      empty_layout(detail::random_coords(3, 0.4, 1.6, rng), detail::random_coords(3, 0.4, 1.6, rng),
-                   detail::random_coords(3, 0.4, 1.6, rng));
+  std::vector<double> xs = detail::random_coords(3, 0.4, 1.6, rng);
+  std::vector<double> ys = detail::random_coords(3, 0.4, 1.6, rng);
+  std::vector<double> zs = detail::random_coords(3, 0.4, 1.6, rng);
+  voxel_layout l = empty_layout(std::move(xs), std::move(ys), std::move(zs));
   std::fill(l.labels.begin(), l.labels.end(), 1);
   std::vector<std::size_t> candidates;
   for (std::size_t c = 0; c < 27; ++c) {
@@ -861,9 +868,10 @@ voxel_solid through_slot(std::size_t holes, std::uint64_t seed) {
   detail::splitmix rng{seed ^ 0x736c6f7400000000u};
   holes = std::clamp<std::size_t>(holes, 1, 4);
   const std::size_t nx = holes >= 2 ? 5 : 3, nz = holes >= 3 ? 5 : 3, ny = 1 + detail::below(2, rng);
-  voxel_layout l =
-      empty_layout(detail::random_coords(nx, 0.3, 1.5, rng), detail::random_coords(ny, 0.5, 2.0, rng),
-                   detail::random_coords(nz, 0.3, 1.5, rng));
+  std::vector<double> xs = detail::random_coords(nx, 0.3, 1.5, rng);
+  std::vector<double> ys = detail::random_coords(ny, 0.5, 2.0, rng);
+  std::vector<double> zs = detail::random_coords(nz, 0.3, 1.5, rng);
+  voxel_layout l = empty_layout(std::move(xs), std::move(ys), std::move(zs));
   std::fill(l.labels.begin(), l.labels.end(), 1);
   const std::array<std::array<std::size_t, 2>, 4> at{{{1, 1}, {3, 1}, {1, 3}, {3, 3}}};
   for (std::size_t h = 0; h < holes; ++h)
@@ -924,9 +932,9 @@ sample_model random_quasi_normalon(int kind, std::uint64_t seed) {
   switch (kind) {
     case 0: {
       const std::vector<glm::dvec2> rect{{0, 0}, {a, 0}, {a, b}, {0, b}};
-      return extruded_polygon(
-          chamfered_corners(rect, pick_corners(4, 1, 4, std::vector<bool>(4, true)), rng.uniform(0.15, 0.45)),
-          c, "chamfered block" + tag);
+      const std::vector<bool> which = pick_corners(4, 1, 4, std::vector<bool>(4, true));
+      const double size = rng.uniform(0.15, 0.45);
+      return extruded_polygon(chamfered_corners(rect, which, size), c, "chamfered block" + tag);
     }
     case 1: {
       std::vector<glm::dvec3> pts;
@@ -935,9 +943,7 @@ sample_model random_quasi_normalon(int kind, std::uint64_t seed) {
         if (rng.uniform(0, 1) < 0.4 || corner == 7) {
           for (int axis = 0; axis < 3; ++axis) {
             glm::dvec3 r = q;
-            const double len = axis == 0 ? a : axis == 1 ? b : c;
             r[axis] += ((corner >> axis & 1u) ? -1.0 : 1.0) * rng.uniform(0.15, 0.45) * std::min({a, b, c});
-            (void)len;
             pts.push_back(r);
           }
         } else {
@@ -960,9 +966,10 @@ sample_model random_quasi_normalon(int kind, std::uint64_t seed) {
         const glm::dvec2 u = p[i] - p[(i + p.size() - 1) % p.size()], v = p[(i + 1) % p.size()] - p[i];
         convex[i] = u.x * v.y - u.y * v.x > 0;
       }
-      return extruded_polygon(
-          chamfered_corners(p, pick_corners(p.size(), 1, 3, convex), rng.uniform(0.2, 0.45)), c,
-          std::string(letter == 0 ? "chamfered L" : "chamfered T") + tag);
+      const std::vector<bool> which = pick_corners(p.size(), 1, 3, convex);
+      const double size = rng.uniform(0.2, 0.45);
+      return extruded_polygon(chamfered_corners(p, which, size), c,
+                              std::string(letter == 0 ? "chamfered L" : "chamfered T") + tag);
     }
     default:
       return extruded_polygon({{0, 0}, {a, 0}, {a, b}, {a / 2, b + rng.uniform(0.3, 1.2)}, {0, b}}, c,
@@ -1227,12 +1234,14 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
       detail::splitmix rng{seed_of(3, k)};
       std::optional<voxel_solid> s;
       if (k % 3 == 2) {
-        s = notched_block(1 + detail::below(6, rng), rng.next());
+        const std::size_t notches = 1 + detail::below(6, rng);
+        s = notched_block(notches, rng.next());
       } else {
         const std::size_t nx = 2 + detail::below(4, rng), ny = 2 + detail::below(4, rng),
                           nz = 1 + detail::below(4, rng);
         const std::size_t cells = nx * ny * nz;
-        s = random_normalon(nx, ny, nz, 2 + detail::below(cells - 2, rng), rng.next());
+        const std::size_t count = 2 + detail::below(cells - 2, rng);
+        s = random_normalon(nx, ny, nz, count, rng.next());
       }
       if (!s) {
         ++fam("normalon").rejected;
@@ -1263,7 +1272,8 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
       if (k % 3 == 2) {
         const int kind = static_cast<int>(detail::below(3, rng));
         const double jitter = rng.uniform(0.05, 0.3);
-        kept += add(extruded_polygon(letter_footprint(kind, jitter, rng), rng.uniform(0.5, 2),
+        const std::vector<glm::dvec2> footprint = letter_footprint(kind, jitter, rng);
+        kept += add(extruded_polygon(footprint, rng.uniform(0.5, 2),
                                      std::string(kind == 0   ? "oblique L"
                                                  : kind == 1 ? "oblique T"
                                                              : "oblique cross") +
@@ -1271,7 +1281,8 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
                     "non-convex prism", 0, v);
       } else {
         const std::size_t n = 5 + detail::below(std::min<std::size_t>(emax / 3, 100) - 4, rng);
-        kept += add(extruded_polygon(random_star_polygon(n, rng), rng.uniform(0.3, 1.5),
+        const std::vector<glm::dvec2> footprint = random_star_polygon(n, rng);
+        kept += add(extruded_polygon(footprint, rng.uniform(0.3, 1.5),
                                      "star prism " + std::to_string(n) + " #" + std::to_string(k)),
                     "non-convex prism", 0, v);
       }
