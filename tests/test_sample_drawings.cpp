@@ -242,6 +242,91 @@ TEST_CASE("sketch_sweep: wireframe_to_cells reads every model back to its truth"
   CHECK(exact == models);
 }
 
+// The 2D convex hull's corners of a drawing (monotone chain). O(V log V).
+std::set<std::uint32_t> outline_corners(const sample_drawing& s) {
+  std::vector<std::uint32_t> order(s.drawing.points.size());
+  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  const auto& p = s.drawing.points;
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return p[a].x < p[b].x || (p[a].x == p[b].x && p[a].y < p[b].y);
+  });
+  const auto turn = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    return (p[b].x - p[a].x) * (p[c].y - p[a].y) - (p[b].y - p[a].y) * (p[c].x - p[a].x);
+  };
+  std::vector<std::uint32_t> hull;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t base = hull.size();
+    for (const std::uint32_t v : order) {
+      while (hull.size() >= base + 2 && turn(hull[hull.size() - 2], hull.back(), v) <= 0) hull.pop_back();
+      hull.push_back(v);
+    }
+    std::reverse(order.begin(), order.end());
+  }
+  return {hull.begin(), hull.end()};
+}
+
+TEST_CASE("sketch_classics: each shows the difficulty its name says, in every view") {
+  std::set<std::string> seen;
+  for (const auto& s : full_sweep()) {
+    if (s.family != "classic") continue;
+    CAPTURE(s.name);
+    const auto& m = s.model;
+    const std::string& n = m.name;
+    seen.insert(n);
+    std::vector<glm::dvec3> normal;
+    for (const auto& f : m.faces)
+      normal.push_back(glm::normalize(cellforge::detail::newell_normal(m.wire.points, f[0])));
+    const auto plane_of = [&](std::size_t f) { return glm::dot(normal[f], m.wire.points[m.faces[f][0][0]]); };
+    std::size_t holed = 0, holes = 0, coplanar_pairs = 0, hexagons = 0, internal = 0;
+    const auto outline = outline_corners(s);
+    for (std::size_t f = 0; f < m.faces.size(); ++f) {
+      holed += m.faces[f].size() > 1;
+      holes += m.faces[f].size() - 1;
+      hexagons += m.faces[f][0].size() == 6;
+      for (std::size_t g = f + 1; g < m.faces.size(); ++g)
+        coplanar_pairs += glm::length(glm::cross(normal[f], normal[g])) < 1e-9 &&
+                          std::abs(plane_of(f) - plane_of(g)) < 1e-9;
+      bool touches = false;
+      for (const auto& loop : m.faces[f])
+        for (std::size_t i = 0; i < loop.size(); ++i) {
+          touches = touches || outline.count(loop[i]) > 0;
+        }
+      internal += !touches;
+    }
+    // Edge pairs at a vertex that no face has as consecutive sides.
+    std::size_t lonely_pairs = 0;
+    std::set<std::array<std::uint32_t, 3>> in_face;  // (neighbour, vertex, neighbour), sorted ends
+    for (const auto& f : m.faces)
+      for (const auto& loop : f)
+        for (std::size_t i = 0; i < loop.size(); ++i) {
+          const std::uint32_t a = loop[(i + loop.size() - 1) % loop.size()], c = loop[(i + 1) % loop.size()];
+          in_face.insert({std::min(a, c), loop[i], std::max(a, c)});
+        }
+    for (std::uint32_t v = 0; v < m.wire.points.size(); ++v) {
+      std::vector<std::uint32_t> nb;
+      for (const auto& e : m.wire.edges)
+        if (e[0] == v || e[1] == v) nb.push_back(e[0] == v ? e[1] : e[0]);
+      for (std::size_t i = 0; i < nb.size(); ++i)
+        for (std::size_t j = i + 1; j < nb.size(); ++j) {
+          if (!in_face.count({std::min(nb[i], nb[j]), v, std::max(nb[i], nb[j])})) ++lonely_pairs;
+        }
+    }
+    if (n.find("pocket") != std::string::npos) CHECK(internal >= 5);  // the pocket's walls and floor
+    if (n.find("pocket") != std::string::npos || n.find("cube on a block") != std::string::npos)
+      CHECK(holed == 1);
+    if (n.find("U channel") != std::string::npos) CHECK(coplanar_pairs >= 1);
+    if (n.find("cube on a block") != std::string::npos) CHECK(internal >= 1);  // the small cube's top
+    if (n.find("corner step") != std::string::npos) CHECK(hexagons == 3);
+    if (n.find("octahedron") != std::string::npos) CHECK(lonely_pairs == 12);  // two at each vertex
+    if (n.find("slot") != std::string::npos || n.find("frame") != std::string::npos) {
+      CHECK(s.genus >= 1);
+      CHECK(holed == 2);  // front and back, or top and bottom
+      CHECK(holes == 2 * static_cast<std::size_t>(s.genus));
+    }
+  }
+  CHECK(seen.size() == cellforge::sketch_classics().size());
+}
+
 TEST_CASE("convex_polytope_model: Platonic and Archimedean solids have their known counts") {
   struct expected {
     const char* name;

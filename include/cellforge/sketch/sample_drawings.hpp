@@ -391,7 +391,7 @@ sample_model sample_frustum(std::size_t n, double top = 0.5, double height = 1.0
 
 /// A bipyramid over a regular n-gon (3 <= n <= 1024), apexes at heights -below and +above:
 /// n + 2 vertices, 3n edges, 2n faces; its equator is a planar cycle that is not a face, and
-/// at every degree-4 apex of n = 4 the opposite edges are collinear and share no face. O(n).
+/// at the degree-4 vertices (n = 4: all six) the opposite edges share no face. O(n).
 template <class = void>
 sample_model sample_bipyramid(std::size_t n, double below = 1.0, double above = 1.0) {
   if (n < 3 || n > 1024) throw error(error_category::invalid_input, "sample_bipyramid: n must be in 3..1024");
@@ -1006,7 +1006,7 @@ std::vector<voxel_solid> sketch_classics() {
   voxels({0, 0.7, 2.0, 2.6}, {0, 2.2}, {0, 0.6, 1.7}, {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 0, 1}, {2, 0, 1}},
          "classic: U channel (two faces in one plane)");
   voxels({0, 1.0, 1.8}, {0, 0.9, 2.0}, {0, 0.7, 1.6}, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 0, 1}},
-         "classic: corner step (collinear edges through T-vertices)");
+         "classic: corner step (a cube on a slab's corner: three L faces)");
   voxels({0, 1.0, 1.6, 2.7}, {0, 0.8, 1.7, 2.4}, {0, 0.9},
          {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {2, 1, 0}, {0, 2, 0}, {1, 2, 0}, {2, 2, 0}},
          "classic: frame (faces with holes, genus 1)");
@@ -1015,7 +1015,7 @@ std::vector<voxel_solid> sketch_classics() {
   out.push_back(through_slot(2, 7));
   out.back().model.name = "classic: block with two through-slots (genus 2)";
   sample_model oct = sample_bipyramid(4, 1.2, 0.9);
-  oct.name = "classic: skew octahedron (collinear edge pairs in no face, equator no face)";
+  oct.name = "classic: skew octahedron (edge pairs in no face, equator no face)";
   out.push_back({oct, 0});
   sample_model house = sample_house();
   house.name = "classic: house with a pyramid roof (the square under the roof is no face)";
