@@ -203,3 +203,57 @@ TEST_CASE("find_faces: a user's own drawing type and float points") {
   CHECK(same_loops(r.loops, s.loops));
   CHECK_FALSE(r.flagged);
 }
+
+TEST_CASE("find_faces: the generated sweep — Varley-Company exactly right on >= 99 %, none silently wrong") {
+  // Release: the whole sweep (>= 1,000 drawings up to 300 edges); the sanitizer build a sample
+  // of every family (the same drawings the whole sweep has).
+  cellforge::sketch_sweep_options options;
+#ifndef NDEBUG
+  options.limit = 120;
+#endif
+  const auto sweep = cellforge::sketch_sweep(options);
+#ifdef NDEBUG
+  CHECK(sweep.size() >= 1000);
+#endif
+  struct tally {
+    std::size_t drawings = 0, vc = 0, baseline = 0, max_edges = 0;
+  };
+  std::map<std::string, tally> family;
+  std::size_t vc = 0, baseline = 0, silent = 0, flagged_misses = 0;
+  std::vector<std::string> misses;
+  double slowest = 0;
+  std::string slowest_name;
+  for (const auto& s : sweep) {
+    const auto r = cellforge::find_faces(s.drawing);
+    cellforge::face_finder_options base;
+    base.kind = cellforge::face_finder_kind::shortest_loops;
+    base.alternatives_when_flagged = false;
+    const bool right = same_loops(r.loops, s.loops);
+    const bool base_right = same_loops(cellforge::find_faces(s.drawing, base).loops, s.loops);
+    auto& t = family[s.family];
+    ++t.drawings, t.vc += right, t.baseline += base_right;
+    t.max_edges = std::max(t.max_edges, s.drawing.edges.size());
+    vc += right, baseline += base_right;
+    if (r.milliseconds > slowest) slowest = r.milliseconds, slowest_name = s.name;
+    if (!right) {
+      misses.push_back(s.name + (r.flagged ? " (flagged: " + r.diagnostics.front() + ")" : " (NOT flagged)"));
+      if (r.flagged)
+        ++flagged_misses;
+      else
+        ++silent;
+    }
+  }
+  for (const auto& [name, t] : family)
+    MESSAGE(name << ": " << t.drawings << " drawings up to " << t.max_edges << " edges, Varley-Company "
+                 << t.vc << ", shortest loops " << t.baseline);
+  for (const auto& m : misses) MESSAGE("miss: " << m);
+  MESSAGE("sweep: " << sweep.size() << " drawings; Varley-Company right on " << vc << " ("
+                    << 100.0 * static_cast<double>(vc) / static_cast<double>(sweep.size())
+                    << " %), shortest loops on " << baseline << " ("
+                    << 100.0 * static_cast<double>(baseline) / static_cast<double>(sweep.size())
+                    << " %); misses flagged " << flagged_misses << ", silently wrong " << silent
+                    << "; slowest " << slowest << " ms (" << slowest_name << ")");
+  CHECK(100 * vc >= 99 * sweep.size());
+  CHECK(silent == 0);
+  CHECK(family.size() == cellforge::sketch_sweep_families().size());
+}
