@@ -669,10 +669,12 @@ struct basic_svg_reader {
 /// Cluster mean of points by index list without rounding drift: exact for equal points. O(k).
 template <class = void>
 glm::dvec2 svg_cluster_mean(const std::vector<glm::dvec2>& pts, const std::vector<std::uint32_t>& members) {
+  // Offsets divided before they are summed, so that far-apart members cannot overflow.
   const glm::dvec2 base = pts[members[0]];
+  const double k = static_cast<double>(members.size());
   glm::dvec2 sum{0, 0};
-  for (const std::uint32_t i : members) sum += pts[i] - base;
-  return base + sum / static_cast<double>(members.size());
+  for (const std::uint32_t i : members) sum += pts[i] / k - base / k;
+  return base + sum;
 }
 
 }  // namespace detail
