@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -367,6 +368,26 @@ TEST_CASE("drawing svg: the picture reads back to the same junctions and edges")
   CHECK(io::read_svg_drawing(path).drawing.edges.size() == s.drawing.edges.size());
   std::filesystem::remove(path);
   CHECK_THROWS_AS(io::drawing_svg_string(s.drawing, {{0, 1, 999}}), cellforge::error);
+}
+
+TEST_CASE("svg drawing: a 10,000-edge lattice through a picture and back") {
+  line_drawing<dvec2> d;
+  const std::uint32_t n = 70;
+  for (std::uint32_t i = 0; i <= n; ++i)
+    for (std::uint32_t j = 0; j <= n; ++j) d.points.push_back({j * 1.5, i * 0.75});
+  for (std::uint32_t i = 0; i <= n; ++i)
+    for (std::uint32_t j = 0; j < n; ++j) {
+      d.edges.push_back({i * (n + 1) + j, i * (n + 1) + j + 1});
+      d.edges.push_back({j * (n + 1) + i, (j + 1) * (n + 1) + i});
+    }
+  const std::string text = io::drawing_svg_string(d);
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto r = read(text);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  MESSAGE("SVG with " << d.edges.size() << " lines read in " << ms << " ms");
+  CHECK(r.drawing.points.size() == d.points.size());
+  CHECK(edge_set(r.drawing) == edge_set(d));
+  CHECK(r.snapped == 0);
 }
 
 TEST_CASE("svg drawing: the bundled stepped normalon reads to its text twin") {
