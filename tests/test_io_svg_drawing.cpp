@@ -370,6 +370,30 @@ TEST_CASE("drawing svg: the picture reads back to the same junctions and edges")
   CHECK_THROWS_AS(io::drawing_svg_string(s.drawing, {{0, 1, 999}}), cellforge::error);
 }
 
+TEST_CASE("svg drawing: other point types, left-out elements and their diagnostics") {
+  const std::string text =
+      svg("<line x1=\"0\" y1=\"0\" x2=\"10\" y2=\"0\"/>\n"
+          "<use href=\"#a\"/>\n"
+          "<rect width=\"0\" height=\"4\"/>\n"
+          "<g display=\"none\"><line x1=\"0\" y1=\"5\" x2=\"10\" y2=\"5\"/></g>\n"
+          "<polyline points=\"3 3\"/>");
+  const auto f = io::parse_svg_drawing<glm::vec2>(text, "d.svg");
+  CHECK(f.drawing.points == std::vector<glm::vec2>{{0, 0}, {10, 0}});
+  CHECK(f.skipped_elements == 2);
+  REQUIRE(f.diagnostics.size() == 4);
+  CHECK(f.diagnostics[0] == "d.svg:3: <use> is not a stroke or a group: left out");
+  CHECK(f.diagnostics[1] == "d.svg:4: <rect> of zero width or height draws nothing");
+  CHECK(f.diagnostics[2] == "d.svg:5: <g> is hidden (display none): left out");
+  CHECK(f.diagnostics[3].starts_with("d.svg:6: a polyline or polygon with fewer than 2 points"));
+  const auto shown = io::parse_svg_drawing<std::array<double, 2>>(text, "d.svg", {.skip_hidden = false});
+  CHECK(shown.drawing.edges.size() == 2);
+  CHECK(shown.drawing.points[3] == std::array<double, 2>{10, -5});
+  // Nothing to read: an empty drawing and a diagnostic, not an error.
+  const auto none = read(svg("<text>only words</text>"));
+  CHECK(none.drawing.points.empty());
+  CHECK(none.diagnostics.back().find("no straight stroke") != std::string::npos);
+}
+
 TEST_CASE("svg drawing: a 10,000-edge lattice through a picture and back") {
   line_drawing<dvec2> d;
   const std::uint32_t n = 70;

@@ -114,9 +114,8 @@ struct basic_svg_reader {
   std::uint64_t line(const char* at) {
     const std::size_t to = static_cast<std::size_t>(at - text.data());
     if (to < counted_to) return line_of(text, to);
+    // The tail from the last position on: a "\r\n" across the cut still counts once.
     counted_line += line_of(text.substr(counted_to), to - counted_to) - 1;
-    // line_of counts a '\r' at the cut as a line end; a "\r\n" split across the cut is rare and
-    // only shifts a diagnostic's line.
     counted_to = to;
     return counted_line;
   }
