@@ -1,0 +1,249 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Pictures of line drawings: the edges as `<line>`s, junction dots and labels, and face loops
+/// as translucent polygons in golden-angle hues, in drawing coordinates (y flipped back for
+/// SVG). The edges read back through read_svg_drawing; the rest is marked `data-cellforge`
+/// so that the reader skips it. See docs/formats.md ("SVG line drawings").
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+
+#include "cellforge/core/error.hpp"
+#include "cellforge/core/point2_traits.hpp"
+#include "cellforge/io/detail/output_buffer.hpp"
+#include "cellforge/sketch/line_drawing.hpp"
+
+namespace cellforge::io {
+
+/// How a drawing is pictured.
+struct drawing_svg_options {
+  double width_px = 640;             ///< width of the picture; the height follows the drawing's shape
+  double margin = 0.06;              ///< free space around the drawing, a fraction of its larger side
+  double stroke_px = 1.5;            ///< edge width in output pixels
+  std::string stroke = "#1f3b57";    ///< edge colour
+  bool junction_dots = true;         ///< a dot on every junction
+  double dot_px = 2.5;               ///< dot radius in output pixels
+  bool labels = false;               ///< junction numbers next to the dots
+  double font_px = 11;               ///< label size in output pixels
+  double face_opacity = 0.35;        ///< fill opacity of the face polygons
+  std::string background = "white";  ///< empty or "none": transparent
+  std::string title{};               ///< written as <title>
+};
+
+namespace detail {
+
+/// Appends a number in shortest round-trip form. O(1).
+template <class = void>
+void drawing_svg_number(std::string& out, double v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, r.ptr);
+}
+
+/// Appends text escaped for XML. O(text).
+template <class = void>
+void drawing_svg_escape(std::string& out, std::string_view text) {
+  for (const char ch : text) {
+    switch (ch) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += static_cast<unsigned char>(ch) < 0x20 ? ' ' : ch;
+    }
+  }
+}
+
+/// The k-th colour of a sequence of distinct hues (golden angle apart), as #rrggbb. O(1).
+template <class = void>
+std::string golden_colour(std::size_t k) {
+  const double h = std::fmod(static_cast<double>(k) * 137.50776405003785, 360.0) / 60.0;
+  const double s = 0.65, l = 0.5;  // HSL
+  const double c = (1 - std::abs(2 * l - 1)) * s, x = c * (1 - std::abs(std::fmod(h, 2.0) - 1)),
+               m = l - c / 2;
+  const int sector = static_cast<int>(h) % 6;
+  const double rgb[6][3] = {{c, x, 0}, {x, c, 0}, {0, c, x}, {0, x, c}, {x, 0, c}, {c, 0, x}};
+  std::string out = "#";
+  constexpr char hex[] = "0123456789abcdef";
+  for (int i = 0; i < 3; ++i) {
+    const int v = std::clamp(static_cast<int>(std::lround((rgb[sector][i] + m) * 255)), 0, 255);
+    out += hex[v >> 4];
+    out += hex[v & 15];
+  }
+  return out;
+}
+
+}  // namespace detail
+
+/// The SVG picture of a drawing and its face loops (junction cycles; each a polygon in its own
+/// colour) as text. Edges are `<line>`s with exact coordinates (x, -y) in a `<g
+/// data-cellforge="edges">`; faces, dots and labels are in groups read_svg_drawing skips. Throws
+/// invalid_input on NaN/Inf positions or an index out of range. O(V + E + total loop length).
+template <LineDrawing D>
+std::string drawing_svg_string(const D& d, const std::vector<std::vector<std::uint32_t>>& faces = {},
+                               const drawing_svg_options& options = {}) {
+  using T = line_drawing_traits<D>;
+  using P = drawing_point_t<D>;
+  const std::size_t nv = T::num_junctions(d), ne = T::num_edges(d);
+  std::vector<glm::dvec2> pts(nv);
+  for (std::size_t i = 0; i < nv; ++i) {
+    const glm::dvec2 p = to_dvec2(P(T::position(d, i)));
+    if (!std::isfinite(p.x) || !std::isfinite(p.y))
+      throw error(error_category::invalid_input,
+                  "drawing_svg: junction " + std::to_string(i) + " is not finite");
+    pts[i] = {p.x, -p.y};  // SVG's y points down
+  }
+  const auto check = [&](std::size_t v, const std::string& where) {
+    if (v >= nv)
+      throw error(error_category::invalid_input, "drawing_svg: " + where + " names junction " +
+                                                     std::to_string(v) + " of " + std::to_string(nv));
+  };
+  glm::dvec2 lo{0, 0}, hi{1, 1};
+  if (nv > 0) {
+    lo = hi = pts[0];
+    for (const auto& p : pts) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  }
+  double side = std::max(hi.x - lo.x, hi.y - lo.y);
+  if (!(side > 0)) side = std::max(1.0, std::abs(lo.x) + std::abs(lo.y));
+  const double pad = options.margin * side;
+  const glm::dvec2 vb0 = lo - pad, vb_size = (hi - lo) + 2 * pad;
+  const double w = std::max(vb_size.x, side * 1e-3), h = std::max(vb_size.y, side * 1e-3);
+  const double px = w / options.width_px;  // user units per output pixel
+  std::string out;
+  const auto num = [&](double v) { detail::drawing_svg_number(out, v); };
+  const auto attr = [&](std::string_view key, double v) {
+    out += ' ';
+    out += key;
+    out += "=\"";
+    num(v);
+    out += '"';
+  };
+  out += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\"";
+  attr("width", options.width_px);
+  attr("height", std::round(options.width_px * h / w));
+  out += " viewBox=\"";
+  num(vb0.x);
+  out += ' ';
+  num(vb0.y);
+  out += ' ';
+  num(w);
+  out += ' ';
+  num(h);
+  out += "\">\n";
+  if (!options.title.empty()) {
+    out += "<title>";
+    detail::drawing_svg_escape(out, options.title);
+    out += "</title>\n";
+  }
+  if (!options.background.empty() && options.background != "none") {
+    out += "<rect data-cellforge=\"background\"";
+    attr("x", vb0.x);
+    attr("y", vb0.y);
+    attr("width", w);
+    attr("height", h);
+    out += " fill=\"";
+    detail::drawing_svg_escape(out, options.background);
+    out += "\"/>\n";
+  }
+  if (!faces.empty()) {
+    out += "<g data-cellforge=\"faces\" stroke=\"none\" fill-rule=\"evenodd\"";
+    attr("fill-opacity", options.face_opacity);
+    out += ">\n";
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      if (faces[f].size() < 3) continue;
+      out += "<path fill=\"" + detail::golden_colour(f) + "\" d=\"";
+      for (std::size_t k = 0; k < faces[f].size(); ++k) {
+        check(faces[f][k], "face loop " + std::to_string(f));
+        out += k == 0 ? "M" : " L";
+        num(pts[faces[f][k]].x);
+        out += ' ';
+        num(pts[faces[f][k]].y);
+      }
+      out += " Z\"><title>face loop " + std::to_string(f) + "</title></path>\n";
+    }
+    out += "</g>\n";
+  }
+  out += "<g data-cellforge=\"edges\" fill=\"none\" stroke-linecap=\"round\" stroke=\"";
+  detail::drawing_svg_escape(out, options.stroke);
+  out += '"';
+  attr("stroke-width", options.stroke_px * px);
+  out += ">\n";
+  for (std::size_t e = 0; e < ne; ++e) {
+    const std::array<std::size_t, 2> ab = T::endpoints(d, e);
+    check(ab[0], "edge " + std::to_string(e));
+    check(ab[1], "edge " + std::to_string(e));
+    out += "<line";
+    attr("x1", pts[ab[0]].x);
+    attr("y1", pts[ab[0]].y);
+    attr("x2", pts[ab[1]].x);
+    attr("y2", pts[ab[1]].y);
+    out += "/>\n";
+  }
+  out += "</g>\n";
+  if (options.junction_dots && nv > 0) {
+    out += "<g data-cellforge=\"junctions\" fill=\"";
+    detail::drawing_svg_escape(out, options.stroke);
+    out += "\">\n";
+    for (std::size_t i = 0; i < nv; ++i) {
+      out += "<circle";
+      attr("cx", pts[i].x);
+      attr("cy", pts[i].y);
+      attr("r", options.dot_px * px);
+      out += "/>\n";
+    }
+    out += "</g>\n";
+  }
+  if (options.labels && nv > 0) {
+    out += "<g data-cellforge=\"labels\" font-family=\"sans-serif\"";
+    attr("font-size", options.font_px * px);
+    out += " fill=\"";
+    detail::drawing_svg_escape(out, options.stroke);
+    out += "\">\n";
+    for (std::size_t i = 0; i < nv; ++i) {
+      out += "<text";
+      attr("x", pts[i].x + 1.5 * options.dot_px * px);
+      attr("y", pts[i].y - 1.5 * options.dot_px * px);
+      out += ">" + std::to_string(i) + "</text>\n";
+    }
+    out += "</g>\n";
+  }
+  out += "</svg>\n";
+  return out;
+}
+
+/// Writes the picture of drawing_svg_string to a file; io errors name the path. O(V + E + loops).
+template <LineDrawing D>
+void write_drawing_svg(const std::filesystem::path& path, const D& d,
+                       const std::vector<std::vector<std::uint32_t>>& faces = {},
+                       const drawing_svg_options& options = {}) {
+  const std::string text = drawing_svg_string(d, faces, options);
+  detail::write_file(path, [&](std::ostream& os) {
+    os.write(text.data(), static_cast<std::streamsize>(text.size()));
+    if (!os) throw error(error_category::io, "writing SVG failed (stream error)");
+  });
+}
+
+}  // namespace cellforge::io

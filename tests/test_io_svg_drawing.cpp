@@ -1,0 +1,447 @@
+// SPDX-License-Identifier: MIT
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <unistd.h>
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+
+#include "cellforge/io/drawing_svg.hpp"
+#include "cellforge/io/drawing_text.hpp"
+#include "cellforge/io/svg_drawing.hpp"
+#include "cellforge/sketch/sample_drawings.hpp"
+
+// Own namespace: the test files of a group may be compiled as one translation unit.
+namespace io_svg_drawing_tests {
+
+namespace io = cellforge::io;
+using cellforge::line_drawing;
+using glm::dvec2;
+
+namespace {
+
+std::string svg(const std::string& body) {
+  return "<svg xmlns=\"http://www.w3.org/2000/svg\">\n" + body + "\n</svg>\n";
+}
+
+io::svg_drawing_result<dvec2> read(const std::string& text, const io::svg_drawing_options& o = {}) {
+  return io::parse_svg_drawing(text, "d.svg", o);
+}
+
+/// The edges of a drawing as sets of two positions (rounded to 1e-9), independent of numbering.
+std::set<std::array<double, 4>> edge_set(const line_drawing<dvec2>& d) {
+  const auto r = [](double v) { return std::round(v * 1e9) / 1e9 + 0.0; };
+  std::set<std::array<double, 4>> out;
+  for (const auto& [a, b] : d.edges) {
+    dvec2 p = d.points[a], q = d.points[b];
+    if (std::make_pair(q.x, q.y) < std::make_pair(p.x, p.y)) std::swap(p, q);
+    out.insert({r(p.x), r(p.y), r(q.x), r(q.y)});
+  }
+  return out;
+}
+
+std::set<std::array<double, 4>> edges_of(std::initializer_list<std::array<double, 4>> list) {
+  line_drawing<dvec2> d;
+  for (const auto& e : list) {
+    const auto n = static_cast<std::uint32_t>(d.points.size());
+    d.points.push_back({e[0], e[1]});
+    d.points.push_back({e[2], e[3]});
+    d.edges.push_back({n, n + 1});
+  }
+  return edge_set(d);
+}
+
+/// The message and line of the io error parsing `text` throws.
+std::pair<std::string, std::uint64_t> failure(const std::string& text,
+                                              const io::svg_drawing_options& o = {}) {
+  try {
+    (void)read(text, o);
+  } catch (const cellforge::error& e) {
+    CHECK(e.category() == cellforge::error_category::io);
+    CHECK(e.where().file == "d.svg");
+    return {e.message(), e.where().line};
+  }
+  FAIL("no error for: " << text);
+  return {};
+}
+
+}  // namespace
+
+TEST_CASE("svg drawing: every stroke element, y flipped") {
+  const auto r =
+      read(svg("<line x1=\"0\" y1=\"0\" x2=\"10\" y2=\"0\"/>\n"
+               "<polyline points=\"10,0 10,10 0,10\"/>\n"
+               "<polygon points=\"20 0, 30 0 30 10\"/>\n"
+               "<rect x=\"40\" y=\"0\" width=\"10\" height=\"5px\"/>\n"
+               "<path d=\"M0 10 L0 0\"/>"));
+  CHECK(r.elements == 5);
+  CHECK(r.segments == 1 + 2 + 3 + 4 + 1);
+  CHECK(r.drawing.points.size() == 4 + 3 + 4);
+  CHECK(edge_set(r.drawing) == edges_of({{0, 0, 10, 0},
+                                         {10, 0, 10, -10},
+                                         {0, -10, 10, -10},
+                                         {0, -10, 0, 0},
+                                         {20, 0, 30, 0},
+                                         {30, -10, 30, 0},
+                                         {20, 0, 30, -10},
+                                         {40, 0, 50, 0},
+                                         {50, -5, 50, 0},
+                                         {40, -5, 50, -5},
+                                         {40, -5, 40, 0}}));
+  // Junctions in order of first appearance: the line's ends first, y up.
+  CHECK(r.drawing.points[0] == dvec2(0, 0));
+  CHECK(r.drawing.points[1] == dvec2(10, 0));
+  CHECK(r.drawing.points[2] == dvec2(10, -10));
+  CHECK(r.snapped == 0);
+  CHECK(r.dropped_zero_length == 0);
+}
+
+TEST_CASE("svg drawing: path commands, relative forms, implicit repeats, number syntax") {
+  // M with repeated pairs (line-tos), relative m/l/h/v/z, "10-5" as two numbers, ".5", "1e1".
+  auto r = read(svg("<path d=\"M0,0 10,0 10-5 m-10 5 h-1e1 v.5e1 l10-5z\"/>"));
+  CHECK(edge_set(r.drawing) ==
+        edges_of({{0, 0, 10, 0}, {10, 0, 10, 5}, {-10, 0, 0, 0}, {-10, -5, -10, 0}, {-10, -5, 0, 0}}));
+  CHECK(r.segments == 5);  // the z is already back at (0, 0): no segment
+  CHECK(r.dropped_zero_length == 0);
+  // A stroke shorter than the snap distance is dropped.
+  r = read(svg("<path d=\"M0 0 H100 V100 Z M50 10 l0.01 0.01\"/>"));
+  CHECK(r.segments == 4);
+  CHECK(r.dropped_zero_length == 1);
+  CHECK(r.drawing.points.size() == 3);
+  // A leading m is absolute; H/V absolute; Z then a new subpath from the start point.
+  r = read(svg("<path d=\"m 5 5 H 15 V 15 Z L 5 25\"/>"));
+  CHECK(edge_set(r.drawing) ==
+        edges_of({{5, -5, 15, -5}, {15, -15, 15, -5}, {5, -5, 15, -15}, {5, -25, 5, -5}}));
+  // Commas and no separators at all: "M1.5.5" is 1.5, .5.
+  r = read(svg("<path d=\"M1.5.5L3.5.5 3.5,2.5+1.5,2.5Z\"/>"));
+  CHECK(r.drawing.points.size() == 4);
+  CHECK(r.drawing.points[0] == dvec2(1.5, -0.5));
+  CHECK(r.drawing.edges.size() == 4);
+}
+
+TEST_CASE("svg drawing: transforms on elements and groups, composed as SVG says") {
+  const auto ends = [](const std::string& body) {
+    const auto r = read(svg(body), {.snap_tolerance = 0});
+    REQUIRE(r.drawing.edges.size() == 1);
+    return std::array<dvec2, 2>{r.drawing.points[r.drawing.edges[0][0]],
+                                r.drawing.points[r.drawing.edges[0][1]]};
+  };
+  const auto near = [](dvec2 a, dvec2 b) { return glm::length(a - b) < 1e-12; };
+  auto e =
+      ends("<g transform=\"translate(100,0)\"><g transform=\"scale(2)\"><line x1=\"1\" x2=\"2\"/></g></g>");
+  CHECK(e[0] == dvec2(102, 0));
+  CHECK(e[1] == dvec2(104, 0));
+  e = ends("<line transform=\"translate(100,0) scale(2)\" x1=\"1\" x2=\"2\"/>");
+  CHECK(e[0] == dvec2(102, 0));
+  e = ends("<line transform=\"scale(2),translate(100)\" x1=\"1\" x2=\"2\"/>");
+  CHECK(e[0] == dvec2(202, 0));
+  e = ends("<line transform=\"rotate(90 5 5)\" x1=\"6\" y1=\"5\" x2=\"7\" y2=\"5\"/>");
+  CHECK(near(e[0], {5, -6}));
+  CHECK(near(e[1], {5, -7}));
+  e = ends("<line transform=\"matrix(1 0 0 1 3 4) skewX(45)\" x1=\"0\" y1=\"1\" x2=\"0\" y2=\"2\"/>");
+  CHECK(near(e[0], {4, -5}));
+  CHECK(near(e[1], {5, -6}));
+  e = ends(
+      "<g transform=\"skewY(45)\"><line transform=\"scale(1 3)\" x1=\"1\" y1=\"0\" x2=\"1\" y2=\"1\"/></g>");
+  CHECK(near(e[0], {1, -1}));
+  CHECK(near(e[1], {1, -4}));
+}
+
+TEST_CASE("svg drawing: snapping, chains placed at their mean, duplicates merged") {
+  // A 100 x 100 square whose corners miss by up to 0.05 (snap distance 1e-3 x 141 = 0.14).
+  const auto r =
+      read(svg("<line x1=\"0\" y1=\"0\" x2=\"100\" y2=\"0.05\"/>\n"
+               "<line x1=\"100\" y1=\"0\" x2=\"100.03\" y2=\"100\"/>\n"
+               "<line x1=\"100\" y1=\"100\" x2=\"0\" y2=\"100\"/>\n"
+               "<line x1=\"0.04\" y1=\"100\" x2=\"0\" y2=\"0\"/>\n"
+               "<line x1=\"100\" y1=\"100\" x2=\"0\" y2=\"100.01\"/>"));  // the top edge drawn twice
+  CHECK(r.drawing.points.size() == 4);
+  CHECK(r.drawing.edges.size() == 4);
+  CHECK(r.merged_duplicates == 1);
+  CHECK(r.snapped > 0);
+  CHECK(cellforge::validate_drawing(r.drawing).ok());
+  // Corner (100, 0): the mean of (100, 0.05) and (100, 0), y flipped.
+  CHECK(glm::length(r.drawing.points[1] - dvec2(100, -0.025)) < 1e-12);
+
+  // A chain of ends 0.1 apart: (0,0), (0.1,0), (0.2,0) are one junction at (0.1, 0), though the
+  // first and last are farther apart than the snap distance; a diagnostic says so.
+  const auto c =
+      read(svg("<line x1=\"0\" y1=\"0\" x2=\"100\" y2=\"0\"/>\n"
+               "<line x1=\"0.1\" y1=\"0\" x2=\"0\" y2=\"100\"/>\n"
+               "<line x1=\"0.2\" y1=\"0\" x2=\"100\" y2=\"100\"/>\n"
+               "<line x1=\"100\" y1=\"0\" x2=\"100\" y2=\"100\"/>\n"
+               "<line x1=\"100\" y1=\"100\" x2=\"0\" y2=\"100\"/>"));
+  CHECK(c.drawing.points.size() == 4);
+  CHECK(glm::length(c.drawing.points[0] - dvec2(0.1, 0)) < 1e-12);
+  CHECK(c.drawing.edges.size() == 5);
+  REQUIRE(!c.diagnostics.empty());
+  CHECK(c.diagnostics[0].find("chain of 3") != std::string::npos);
+  // Snap tolerance 0: only equal points meet.
+  CHECK(read(svg("<line x1=\"0\" y1=\"0\" x2=\"1\" y2=\"0\"/><line x1=\"1\" y1=\"1e-9\" x2=\"0\" y2=\"0\"/>"),
+             {.snap_tolerance = 0})
+            .drawing.points.size() == 3);
+}
+
+TEST_CASE("svg drawing: a stroke end on another stroke's interior splits it") {
+  // A T drawn as Inkscape users do: the stem ends on the bar (within the snap distance).
+  const auto r =
+      read(svg("<line x1=\"0\" y1=\"0\" x2=\"100\" y2=\"0\"/>\n"
+               "<line x1=\"40\" y1=\"0.05\" x2=\"40\" y2=\"50\"/>\n"
+               "<line x1=\"70\" y1=\"-0.02\" x2=\"70\" y2=\"50\"/>"));
+  CHECK(r.split_at_junctions == 2);
+  CHECK(r.drawing.points.size() == 6);
+  CHECK(r.drawing.edges.size() == 5);
+  // The bar is 0 -> (40, -0.05) -> (70, 0.02) -> 100: the junctions stay where the stems end.
+  CHECK(edge_set(r.drawing) == edges_of({{0, 0, 40, -0.05},
+                                         {40, -0.05, 70, 0.02},
+                                         {70, 0.02, 100, 0},
+                                         {40, -50, 40, -0.05},
+                                         {70, -50, 70, 0.02}}));
+  // Off: three edges, the T-junction left for validate_drawing to report.
+  const auto off =
+      read(svg("<line x1=\"0\" y1=\"0\" x2=\"100\" y2=\"0\"/><line x1=\"40\" y1=\"0\" x2=\"40\" y2=\"50\"/>"),
+           {.split_at_junctions = false});
+  CHECK(off.drawing.edges.size() == 2);
+  CHECK(cellforge::validate_drawing(off.drawing).defect == cellforge::drawing_defect::junction_on_edge);
+  // Overlapping collinear strokes become one chain: the shorter one splits the longer.
+  const auto o =
+      read(svg("<line x1=\"0\" y1=\"0\" x2=\"100\" y2=\"0\"/><line x1=\"0\" y1=\"0\" x2=\"60\" y2=\"0\"/>"));
+  CHECK(o.drawing.edges.size() == 2);
+  CHECK(o.merged_duplicates == 1);
+  // Crossing strokes (hidden lines) are not split.
+  const auto x = read(
+      svg("<line x1=\"0\" y1=\"0\" x2=\"100\" y2=\"100\"/><line x1=\"0\" y1=\"100\" x2=\"100\" y2=\"0\"/>"));
+  CHECK(x.drawing.edges.size() == 2);
+  CHECK(x.split_at_junctions == 0);
+}
+
+TEST_CASE("svg drawing: curves refused with their line, or skipped when asked") {
+  const std::string text =
+      svg("<line x1=\"0\" y1=\"0\" x2=\"10\" y2=\"0\"/>\n"
+          "<circle cx=\"5\" cy=\"5\" r=\"2\"/>\n"
+          "<path d=\"M10 0 C 10 5, 5 10, 0 10 L 0 0\"/>\n"
+          "<path d=\"M20 0 a5 5 0 01 10 0 l 0 10\"/>\n"
+          "<rect x=\"0\" y=\"0\" width=\"3\" height=\"3\" rx=\"1\"/>");
+  const auto [message, line] = failure(text);
+  CHECK(line == 3);
+  CHECK(message.find("curves are not read yet: <circle>") != std::string::npos);
+  CHECK(message.find("rounds-and-fillets") != std::string::npos);
+  CHECK(failure(svg("<path d=\"M0 0 L1 1\n Q 2 2 3 3\"/>")).second == 3);
+  const auto r = read(text, {.curves = io::svg_curves::skip});
+  CHECK(r.skipped_curves == 4);
+  // The paths go on from the curves' ends: (0, 10) -> (0, 0) and (30, 0) -> (30, 10).
+  CHECK(edge_set(r.drawing) == edges_of({{0, 0, 10, 0}, {0, -10, 0, 0}, {30, -10, 30, 0}}));
+}
+
+TEST_CASE("svg drawing: every error names its line and what was expected") {
+  const auto check = [](const std::string& text, std::uint64_t line, const std::string& part) {
+    const auto result = failure(text);
+    CHECK_MESSAGE(result.second == line, result.first);
+    CHECK_MESSAGE(result.first.find(part) != std::string::npos, result.first);
+  };
+  check("", 1, "no <svg> element");
+  check("<?xml version=\"1.0\"?>\n<html></html>", 2, "expected the root element <svg>, found <html>");
+  check(svg("<g>\n<line/>\n</svg>"), 4, "expected </g> closing <g> of line 2, found </svg>");
+  check("<svg>\n<g>\n", 3, "the file ends inside <g> of line 2");
+  check(svg("<!-- a comment\n that never ends"), 2, "the file ends inside a comment");
+  check(svg("<line x1=\"0\"\n y1=0/>"), 3, "expected the value of y1 in quotes");
+  check(svg("<line x1=\"0\" y1\n/>"), 3, "expected '=' after the attribute y1");
+  check(svg("<line x1=\"abc\"/>"), 2, "attribute x1: expected a number, found 'abc'");
+  check(svg("<line x1=\"3mm\"/>"), 2, "unexpected 'mm' after the number (only user units and px are read)");
+  check(svg("<line x1=\"1e999\"/>"), 2, "the number '1e999' is out of range");
+  check(svg("<polyline points=\"0 0 1 1 2\"/>"), 2, "an odd number of coordinates");
+  check(svg("<path d=\"L 1 1\"/>"), 2, "the data must start with M or m");
+  check(svg("<path d=\"M 1 1 L 2\"/>"), 2, "path command 'L' expects 2 numbers, found the end of the value");
+  check(svg("<path d=\"M 1 1 X 2\"/>"), 2, "unknown command 'X");
+  check(svg("<path d=\"M 1 1 L 2 2 z 3 3\"/>"), 2, "expected a command after 'z'");
+  check(svg("<path\n d=\"M 1 1 L 2 2 # 3\"/>"), 3, "expected a command letter, found '#'");
+  check(svg("<g transform=\"turn(3)\"><line/></g>"), 2, "unknown function 'turn(3)'");
+  check(svg("<g transform=\"rotate(1 2)\"></g>"), 2, "transform rotate takes 1 or 3 numbers, found 2");
+  check(svg("<g transform=\"scale(1 2\"></g>"), 2, "transform scale: expected a number or ')'");
+  check(svg("<rect width=\"-1\" height=\"2\"/>"), 2, "a negative width or height");
+  check(svg("<line x2=\"1e308\" transform=\"scale(10)\"/>"), 2, "overflows to infinity");
+  check("<svg></svg>\n</g>", 2, "closing tag </g> without an open element");
+  check("<svg></svg>\n<svg></svg>", 2, "content after the root element ends");
+  CHECK_THROWS_WITH_AS(io::read_svg_drawing("/nonexistent/x.svg"), doctest::Contains("/nonexistent/x.svg"),
+                       cellforge::error);
+  CHECK_THROWS_AS(read(svg(""), {.snap_tolerance = -1}), cellforge::error);
+}
+
+TEST_CASE("svg drawing: an Inkscape file (namespaces, metadata, a layer with a transform)") {
+  const std::string text = R"svg(<?xml version="1.0" encoding="UTF-8" standalone="no"?>
+<!-- Created with Inkscape (http://www.inkscape.org/) -->
+<!DOCTYPE svg PUBLIC "-//W3C//DTD SVG 1.1//EN" "http://www.w3.org/Graphics/SVG/1.1/DTD/svg11.dtd" [
+  <!ENTITY ns_svg "http://www.w3.org/2000/svg">
+]>
+<svg
+   width="210mm"
+   height="297mm"
+   viewBox="0 0 210 297"
+   version="1.1"
+   id="svg5"
+   inkscape:version="1.2.2 (b0a8486541, 2022-12-01)"
+   sodipodi:docname="box.svg"
+   xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape"
+   xmlns:sodipodi="http://sodipodi.sourceforge.net/DTD/sodipodi-0.dtd"
+   xmlns="http://www.w3.org/2000/svg"
+   xmlns:svg="http://www.w3.org/2000/svg">
+  <sodipodi:namedview
+     id="namedview7"
+     pagecolor="#ffffff"
+     inkscape:zoom="0.7"><inkscape:grid type="xygrid" id="grid1"/></sodipodi:namedview>
+  <defs id="defs2"><line x1="0" y1="0" x2="999" y2="999"/></defs>
+  <style>line { stroke: black; } /* a < b */</style>
+  <metadata><rdf:RDF xmlns:rdf="http://www.w3.org/1999/02/22-rdf-syntax-ns#"/></metadata>
+  <g
+     inkscape:label="Layer 1"
+     inkscape:groupmode="layer"
+     id="layer1"
+     transform="translate(-10,20)">
+    <path
+       style="fill:none;stroke:#000000;stroke-width:0.264583px"
+       d="m 10,10 h 50 v 30 H 10 Z"
+       id="path1"
+       sodipodi:nodetypes="ccccc" />
+    <path style="fill:none;stroke:#000000" d="M 10.02,10.03 30,0 l 50,0 -20,10" id="path2" />
+    <text x="0" y="0"><tspan>label</tspan></text>
+  </g>
+  <g inkscape:label="Hidden" inkscape:groupmode="layer" style="display:none">
+    <line x1="500" y1="500" x2="600" y2="600"/>
+  </g>
+</svg>
+)svg";
+  const auto r = read(text);
+  CHECK(r.elements == 2);
+  // The rectangle (4 edges) and the roof (3 edges) sharing corners (10,10) and (60,10).
+  CHECK(r.drawing.points.size() == 6);
+  CHECK(r.drawing.edges.size() == 7);
+  // (10, 10) twice and (10.02, 10.03) snapped to their mean, moved by the layer, y flipped.
+  CHECK(glm::length(r.drawing.points[0] - dvec2(0.02 / 3, -30.01)) < 1e-12);
+  CHECK(r.snapped == 3);
+  CHECK(r.skipped_elements >= 5);
+  CHECK(std::any_of(r.diagnostics.begin(), r.diagnostics.end(), [](const std::string& d) {
+    return d.find("d.svg:38: <g> is hidden") != std::string::npos;
+  }));
+  CHECK(cellforge::validate_drawing(r.drawing).defect == cellforge::drawing_defect::none);
+}
+
+TEST_CASE("drawing svg: the picture reads back to the same junctions and edges") {
+  for (const auto& model : {cellforge::sample_L(), cellforge::sample_house(), cellforge::sample_frame()}) {
+    const auto s = cellforge::generic_drawing(model, 11, "any", 0.01);
+    const std::string text =
+        io::drawing_svg_string(s.drawing, s.loops, {.labels = true, .title = s.name + " <faces & all>"});
+    CHECK(text.find("data-cellforge=\"faces\"") != std::string::npos);
+    CHECK(text.find("&lt;faces &amp; all&gt;") != std::string::npos);
+    const auto r = read(text);
+    CHECK(r.drawing.points.size() == s.drawing.points.size());
+    CHECK(edge_set(r.drawing) == edge_set(s.drawing));
+    CHECK(r.snapped == 0);
+    CHECK(r.split_at_junctions == 0);
+    // Junctions exactly where they were.
+    for (const auto& p : r.drawing.points)
+      CHECK(std::find(s.drawing.points.begin(), s.drawing.points.end(), p) != s.drawing.points.end());
+    // Without skipping the annotations, the junction dots are circles: refused.
+    CHECK_THROWS_AS(read(text, {.skip_annotations = false}), cellforge::error);
+  }
+  // Distinct hues for the faces.
+  const auto s = cellforge::generic_drawing(cellforge::sample_L(), 11, "any", 0.01);
+  const std::string text = io::drawing_svg_string(s.drawing, s.loops);
+  std::set<std::string> fills;
+  for (std::size_t at = text.find("<path fill=\""); at != std::string::npos;
+       at = text.find("<path fill=\"", at + 1))
+    fills.insert(text.substr(at + 12, 7));
+  CHECK(fills.size() == s.loops.size());
+  const auto path =
+      std::filesystem::temp_directory_path() / ("cellforge_drawing_" + std::to_string(getpid()) + ".svg");
+  io::write_drawing_svg(path, s.drawing, s.loops);
+  CHECK(io::read_svg_drawing(path).drawing.edges.size() == s.drawing.edges.size());
+  std::filesystem::remove(path);
+  CHECK_THROWS_AS(io::drawing_svg_string(s.drawing, {{0, 1, 999}}), cellforge::error);
+}
+
+TEST_CASE("svg drawing: other point types, left-out elements and their diagnostics") {
+  const std::string text =
+      svg("<line x1=\"0\" y1=\"0\" x2=\"10\" y2=\"0\"/>\n"
+          "<use href=\"#a\"/>\n"
+          "<rect width=\"0\" height=\"4\"/>\n"
+          "<g display=\"none\"><line x1=\"0\" y1=\"5\" x2=\"10\" y2=\"5\"/></g>\n"
+          "<polyline points=\"3 3\"/>");
+  const auto f = io::parse_svg_drawing<glm::vec2>(text, "d.svg");
+  CHECK(f.drawing.points == std::vector<glm::vec2>{{0, 0}, {10, 0}});
+  CHECK(f.skipped_elements == 2);
+  REQUIRE(f.diagnostics.size() == 4);
+  CHECK(f.diagnostics[0] == "d.svg:3: <use> is not a stroke or a group: left out");
+  CHECK(f.diagnostics[1] == "d.svg:4: <rect> of zero width or height draws nothing");
+  CHECK(f.diagnostics[2] == "d.svg:5: <g> is hidden (display none): left out");
+  CHECK(f.diagnostics[3].starts_with("d.svg:6: a polyline or polygon with fewer than 2 points"));
+  const auto shown = io::parse_svg_drawing<std::array<double, 2>>(text, "d.svg", {.skip_hidden = false});
+  CHECK(shown.drawing.edges.size() == 2);
+  CHECK(shown.drawing.points[3] == std::array<double, 2>{10, -5});
+  // Nothing to read: an empty drawing and a diagnostic, not an error.
+  const auto none = read(svg("<text>only words</text>"));
+  CHECK(none.drawing.points.empty());
+  CHECK(none.diagnostics.back().find("no straight stroke") != std::string::npos);
+}
+
+TEST_CASE("svg drawing: a 10,000-edge lattice through a picture and back") {
+  line_drawing<dvec2> d;
+  const std::uint32_t n = 70;
+  for (std::uint32_t i = 0; i <= n; ++i)
+    for (std::uint32_t j = 0; j <= n; ++j) d.points.push_back({j * 1.5, i * 0.75});
+  for (std::uint32_t i = 0; i <= n; ++i)
+    for (std::uint32_t j = 0; j < n; ++j) {
+      d.edges.push_back({i * (n + 1) + j, i * (n + 1) + j + 1});
+      d.edges.push_back({j * (n + 1) + i, (j + 1) * (n + 1) + i});
+    }
+  const std::string text = io::drawing_svg_string(d);
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto r = read(text);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  MESSAGE("SVG with " << d.edges.size() << " lines read in " << ms << " ms");
+  CHECK(r.drawing.points.size() == d.points.size());
+  CHECK(edge_set(r.drawing) == edge_set(d));
+  CHECK(r.snapped == 0);
+}
+
+TEST_CASE("svg drawing: the bundled stepped normalon reads to its text twin") {
+  // tests/data may not exist: go up lexically to the repository.
+  const auto dir =
+      std::filesystem::path(CELLFORGE_TEST_DATA_DIR).parent_path().parent_path() / "examples" / "data";
+  const auto svg_read = io::read_svg_drawing(dir / "stepped_normalon.svg");
+  const auto text = io::read_drawing_text(dir / "stepped_normalon.txt");
+  REQUIRE(svg_read.drawing.points.size() == text.points.size());
+  // Each junction read is within 0.05 (the hand-drawn misses) of its twin; the edges agree.
+  std::vector<std::uint32_t> twin;
+  for (const auto& p : svg_read.drawing.points) {
+    std::uint32_t best = 0;
+    for (std::uint32_t j = 1; j < text.points.size(); ++j)
+      if (glm::length(text.points[j] - p) < glm::length(text.points[best] - p)) best = j;
+    CHECK(glm::length(text.points[best] - p) < 0.05);
+    twin.push_back(best);
+  }
+  std::set<std::array<std::uint32_t, 2>> read_edges, text_edges;
+  for (const auto& [a, b] : svg_read.drawing.edges)
+    read_edges.insert({std::min(twin[a], twin[b]), std::max(twin[a], twin[b])});
+  for (const auto& [a, b] : text.edges) text_edges.insert({std::min(a, b), std::max(a, b)});
+  CHECK(read_edges.size() == svg_read.drawing.edges.size());
+  CHECK(read_edges == text_edges);
+  CHECK(svg_read.elements == 9);
+  CHECK(svg_read.merged_duplicates == 0);
+  CHECK(svg_read.split_at_junctions == 0);
+  CHECK(cellforge::validate_drawing(text).ok());
+  CHECK(cellforge::validate_drawing(svg_read.drawing).ok());
+  CHECK(svg_read.snapped > 0);  // drawn by hand: ends meet within the snap distance
+}
+
+}  // namespace io_svg_drawing_tests
