@@ -46,9 +46,9 @@ enum class inflation_method : std::uint8_t {
 /// weight is the term's share whatever the drawing's size. Defaults: docs/sketch.md.
 struct inflation_weights {
   double msda = 1.0;           ///< minimum standard deviation of the face-corner angles
-  double orthogonality = 1.0;  ///< cos² of corner angles at junctions that can be right corners
+  double orthogonality = 0.1;  ///< cos² of corner angles at junctions that can be right corners
   double parallelism = 1.0;    ///< lines parallel in the drawing are parallel in 3D
-  double isometry = 0.05;      ///< every line foreshortened alike (log length ratios equal)
+  double isometry = 0.01;      ///< every line foreshortened alike (log length ratios equal)
 };
 
 /// Options of inflate, with documented defaults.
