@@ -1,0 +1,893 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Inflation: a line drawing with its face loops becomes 3D. Every junction keeps its drawing
+/// (x, y); its depth z is found. Direct for drawings of normalons and quasi-normalons (the view
+/// is recovered from the three axis directions and depth propagated along axis edges), by
+/// optimisation of weighted compliance functions over the planar-face readings otherwise.
+/// Needs Eigen 3.3+. See docs/sketch.md, "Inflation".
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <unsupported/Eigen/NonLinearOptimization>
+#include <unsupported/Eigen/NumericalDiff>
+
+#include "cellforge/core/detail/splitmix.hpp"
+#include "cellforge/core/error.hpp"
+#include "cellforge/core/point2_traits.hpp"
+#include "cellforge/core/point_traits.hpp"
+#include "cellforge/sketch/line_drawing.hpp"
+
+namespace cellforge {
+
+/// How a reading was found.
+enum class inflation_method : std::uint8_t {
+  direct,        ///< view recovered from the three axis directions, depth propagated (exact)
+  optimisation,  ///< compliance functions minimised over the planar-face readings
+};
+
+/// Weights αⱼ of the compliance functions of the optimisation (face planarity is not weighted:
+/// it holds exactly by construction). Each term is normalised by its number of residuals, so a
+/// weight is the term's share whatever the drawing's size. Defaults: docs/sketch.md.
+struct inflation_weights {
+  double msda = 1.0;           ///< minimum standard deviation of the face-corner angles
+  double orthogonality = 0.1;  ///< cos² of corner angles at junctions that can be right corners
+  double parallelism = 1.0;    ///< lines parallel in the drawing are parallel in 3D
+  double isometry = 0.01;      ///< every line foreshortened alike (log length ratios equal)
+};
+
+/// Options of inflate, with documented defaults.
+struct inflation_options {
+  inflation_weights weights{};
+  bool allow_direct = true;        ///< try the direct method first
+  bool allow_optimisation = true;  ///< fall back to optimisation when direct does not apply
+  /// Lines within this angle (radians) of each other are taken as parallel: clustering of the
+  /// axis directions (direct) and the parallelism term. Tidied drawings: raise it to a degree.
+  double direction_tolerance = 1e-6;
+  /// Largest misclosure of a cycle of axis edges, relative to the drawing size, for a drawing to
+  /// be read directly; and the largest planarity residual the direct solution may keep.
+  double closure_tolerance = 1e-8;
+  /// Rank threshold (relative) of the planarity constraints' matrix: its null space holds the
+  /// planar-face readings.
+  double rank_tolerance = 1e-9;
+  int max_iterations = 400;  ///< Levenberg–Marquardt iterations per start (work budget)
+  int starts = 8;            ///< optimisation starts (deterministic from `seed`); the best is kept
+  std::uint64_t seed = 1;    ///< seed of the random starts
+};
+
+/// Value of each compliance function (unweighted, each normalised by its count) at a reading.
+/// planarity: the largest distance in z of a junction from its face's plane, relative to the
+/// drawing size (0 to rounding by construction).
+struct inflation_residuals {
+  double planarity = 0.0;
+  double parallelism = 0.0;
+  double orthogonality = 0.0;
+  double msda = 0.0;
+  double isometry = 0.0;
+};
+
+/// One reading of the drawing: the 3D points (x, y from the drawing), a score (larger is
+/// preferred) and why it ranks where it does.
+template <class Q>
+struct inflation_reading {
+  std::vector<Q> points;
+  double score = 0.0;
+  std::string reason;
+};
+
+/// What inflate found. points == readings[0].points.
+template <class Q>
+struct inflation_result {
+  using point_type = Q;
+  std::vector<Q> points;  ///< the preferred reading: junction i at (x_i, y_i, z_i), mean z 0
+  inflation_method method = inflation_method::direct;
+  /// Both readings, best first: a drawing and its Necker reversal (z → −z) fit every regularity
+  /// alike in a parallel view, so both come back, ranked by the view-from-above prior.
+  std::vector<inflation_reading<Q>> readings;
+  inflation_residuals before;  ///< at the start (optimisation) or of the direct solution
+  inflation_residuals after;   ///< of points
+  std::size_t freedom = 0;     ///< dimension of the planar-face readings, depth offset removed
+  std::size_t iterations = 0;  ///< Levenberg–Marquardt iterations over all starts
+  std::size_t starts = 0;      ///< optimisation starts run
+  double milliseconds = 0.0;
+  std::vector<std::string> diagnostics;
+  // The recovered view (direct only; view_found false otherwise).
+  bool view_found = false;
+  std::array<std::array<double, 2>, 3> axis_directions{};  ///< unit 2D images of the model axes
+  std::array<double, 3> foreshortening{};                  ///< s_i: drawing length of a unit axis segment
+  /// Model → view rotation of the preferred reading, row-major: column i is axis i in the view.
+  std::array<double, 9> view_rotation{};
+  double misclosure = 0.0;  ///< worst depth misclosure of an axis edge, relative to the drawing size
+};
+
+namespace detail {
+
+/// A drawing copied into normalised coordinates (centred on its bounding box, unit diagonal),
+/// its loops checked, and the relations the stages share.
+template <class = void>
+struct inflation_problem {
+  std::vector<glm::dvec2> p;    // normalised positions
+  std::vector<glm::dvec2> raw;  // the drawing's positions, kept exactly
+  std::vector<std::array<std::uint32_t, 2>> edges;
+  std::vector<std::vector<std::uint32_t>> loops;
+  std::vector<std::vector<std::uint32_t>> incident;  // edges at each junction
+  glm::dvec2 centre{0.0};
+  double size = 1.0;  // bounding-box diagonal of the drawing
+  // Planarity constraints: z_d − α z_a − β z_b − γ z_c = 0.
+  struct plane_row {
+    std::uint32_t d, a, b, c;
+    double alpha, beta, gamma;
+  };
+  std::vector<plane_row> rows;
+};
+
+/// Angle of a 2D direction modulo π, in [0, π). O(1).
+template <class = void>
+double line_angle(glm::dvec2 d) {
+  double a = std::atan2(d.y, d.x);
+  if (a < 0) a += std::numbers::pi;
+  if (a >= std::numbers::pi) a -= std::numbers::pi;
+  return a;
+}
+
+/// Distance between two line angles modulo π. O(1).
+template <class = void>
+double angle_distance(double a, double b) {
+  const double d = std::fmod(std::abs(a - b), std::numbers::pi);
+  return std::min(d, std::numbers::pi - d);
+}
+
+/// Reads and checks a drawing and its faces (each: outer loop, then holes); builds the
+/// planarity rows. Throws invalid_input naming the junction, edge or loop at fault. O(V + E log E + L).
+template <LineDrawing D>
+inflation_problem<> make_inflation_problem(
+    const D& drawing, const std::vector<std::vector<std::vector<std::uint32_t>>>& faces) {
+  using T = line_drawing_traits<D>;
+  inflation_problem<> pr;
+  const std::size_t nv = T::num_junctions(drawing), ne = T::num_edges(drawing);
+  if (nv < 4 || ne < 6)
+    throw error(error_category::invalid_input,
+                "inflate: a drawing of a solid has at least 4 junctions and 6 edges (got " +
+                    std::to_string(nv) + " and " + std::to_string(ne) + ")");
+  if (nv >= std::numeric_limits<std::uint32_t>::max())
+    throw error(error_category::invalid_input, "inflate: more than 2^32 - 2 junctions");
+  pr.p.reserve(nv);
+  glm::dvec2 lo{std::numeric_limits<double>::infinity()}, hi{-std::numeric_limits<double>::infinity()};
+  for (std::size_t i = 0; i < nv; ++i) {
+    const glm::dvec2 q = to_dvec2(drawing_point_t<D>(T::position(drawing, i)));
+    if (!std::isfinite(q.x) || !std::isfinite(q.y))
+      throw error(error_category::invalid_input,
+                  "inflate: junction " + std::to_string(i) + " has a non-finite coordinate");
+    pr.p.push_back(q);
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
+  }
+  pr.size = glm::length(hi - lo);
+  if (!(pr.size > 0) || !std::isfinite(pr.size))
+    throw error(error_category::invalid_input, "inflate: the drawing has no extent");
+  pr.centre = 0.5 * (lo + hi);
+  pr.raw = pr.p;
+  for (auto& q : pr.p) q = (q - pr.centre) / pr.size;
+  std::vector<std::array<std::uint32_t, 2>> sorted;
+  pr.incident.resize(nv);
+  for (std::size_t e = 0; e < ne; ++e) {
+    const std::array<std::size_t, 2> ab = T::endpoints(drawing, e);
+    if (ab[0] >= nv || ab[1] >= nv || ab[0] == ab[1])
+      throw error(error_category::invalid_input,
+                  "inflate: edge " + std::to_string(e) + " joins no two distinct junctions of the drawing");
+    const std::array<std::uint32_t, 2> ed{static_cast<std::uint32_t>(ab[0]),
+                                          static_cast<std::uint32_t>(ab[1])};
+    if (glm::length(pr.p[ed[1]] - pr.p[ed[0]]) < 1e-12)
+      throw error(error_category::invalid_input,
+                  "inflate: edge " + std::to_string(e) + " has zero length in the drawing");
+    pr.edges.push_back(ed);
+    pr.incident[ed[0]].push_back(static_cast<std::uint32_t>(e));
+    pr.incident[ed[1]].push_back(static_cast<std::uint32_t>(e));
+    sorted.push_back({std::min(ed[0], ed[1]), std::max(ed[0], ed[1])});
+  }
+  std::sort(sorted.begin(), sorted.end());
+  if (faces.size() < 4)
+    throw error(error_category::invalid_input, "inflate: a solid needs at least 4 faces (got " +
+                                                   std::to_string(faces.size()) + "); find the faces first");
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    if (faces[f].empty())
+      throw error(error_category::invalid_input, "inflate: face " + std::to_string(f) + " has no loop");
+    for (std::size_t l = 0; l < faces[f].size(); ++l) {
+      const auto& loop = faces[f][l];
+      const std::string where = "inflate: face " + std::to_string(f) +
+                                (faces[f].size() > 1 ? ", loop " + std::to_string(l) : std::string());
+      if (loop.size() < 3) throw error(error_category::invalid_input, where + " has fewer than 3 junctions");
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        const std::uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
+        if (a >= nv || b >= nv)
+          throw error(error_category::invalid_input, where + " names junction " +
+                                                         std::to_string(std::max(a, b)) +
+                                                         " of a drawing with " + std::to_string(nv));
+        if (!std::binary_search(sorted.begin(), sorted.end(), std::array{std::min(a, b), std::max(a, b)}))
+          throw error(error_category::invalid_input,
+                      where + " steps from junction " + std::to_string(a) + " to " + std::to_string(b) +
+                          ", which no edge joins: the loops do not belong to this drawing");
+      }
+      pr.loops.push_back(loop);
+    }
+  }
+  // Planarity rows: per face (all its loops), the reference triangle of largest area in the drawing.
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    std::vector<std::uint32_t> js;
+    for (const auto& loop : faces[f]) js.insert(js.end(), loop.begin(), loop.end());
+    std::sort(js.begin(), js.end());
+    js.erase(std::unique(js.begin(), js.end()), js.end());
+    if (js.size() < 4) continue;
+    const std::uint32_t a = faces[f][0][0];
+    std::uint32_t b = js[0], c = js[0];
+    double far = -1;
+    for (const auto v : js)
+      if (glm::length(pr.p[v] - pr.p[a]) > far) far = glm::length(pr.p[v] - pr.p[a]), b = v;
+    const glm::dvec2 u = pr.p[b] - pr.p[a];
+    double best = -1;
+    for (const auto v : js) {
+      const glm::dvec2 w = pr.p[v] - pr.p[a];
+      const double area = std::abs(u.x * w.y - u.y * w.x);
+      if (area > best) best = area, c = v;
+    }
+    if (!(best > 1e-12))
+      throw error(
+          error_category::invalid_input,
+          "inflate: face " + std::to_string(f) + " is a straight line in the drawing (a face seen edge-on)");
+    const glm::dvec2 v = pr.p[c] - pr.p[a];
+    const double det = u.x * v.y - u.y * v.x;
+    for (const auto d : js) {
+      if (d == a || d == b || d == c) continue;
+      const glm::dvec2 w = pr.p[d] - pr.p[a];
+      const double beta = (w.x * v.y - w.y * v.x) / det, gamma = (u.x * w.y - u.y * w.x) / det;
+      pr.rows.push_back({d, a, b, c, 1 - beta - gamma, beta, gamma});
+    }
+  }
+  return pr;
+}
+
+/// z_d − (α z_a + β z_b + γ z_c) for a planarity row. O(1).
+template <class Z>
+double plane_residual(const typename inflation_problem<>::plane_row& r, const Z& z) {
+  return z[r.d] - (r.alpha * z[r.a] + r.beta * z[r.b] + r.gamma * z[r.c]);
+}
+
+/// The regularities the compliance functions measure, gathered once from the drawing.
+template <class = void>
+struct compliance_terms {
+  std::vector<std::array<std::uint32_t, 3>> corners;  // (prev, junction, next) of face loops
+  std::vector<std::array<std::uint32_t, 3>> right;    // corners that can be right angles
+  std::vector<std::vector<std::uint32_t>> parallel;   // classes of 2D-parallel edges (≥ 2)
+  std::vector<glm::dvec2> parallel_direction;         // per class
+  std::size_t count() const {
+    std::size_t n = 0;
+    for (const auto& c : parallel) n += c.size();
+    return corners.size() + right.size() + n + 1;
+  }
+};
+
+/// Face-loop corners, Perkins right-corner candidates and 2D-parallel classes. O(E log E + L).
+template <class = void>
+compliance_terms<> make_compliance_terms(const inflation_problem<>& pr, double tolerance) {
+  compliance_terms<> t;
+  for (const auto& loop : pr.loops)
+    for (std::size_t k = 0; k < loop.size(); ++k)
+      t.corners.push_back({loop[(k + loop.size() - 1) % loop.size()], loop[k], loop[(k + 1) % loop.size()]});
+  // Perkins: a trihedral junction can be a right corner when it is a fork whose three angles
+  // all exceed 90°, or an arrow whose two inner angles are both below 90°.
+  for (std::uint32_t j = 0; j < pr.p.size(); ++j) {
+    if (pr.incident[j].size() != 3) continue;
+    std::array<std::pair<double, std::uint32_t>, 3> dir{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto& e = pr.edges[pr.incident[j][k]];
+      const std::uint32_t o = e[0] == j ? e[1] : e[0];
+      const glm::dvec2 d = pr.p[o] - pr.p[j];
+      dir[k] = {std::atan2(d.y, d.x), o};
+    }
+    std::sort(dir.begin(), dir.end());
+    std::array<double, 3> gap{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      gap[k] = dir[(k + 1) % 3].first - dir[k].first;
+      if (gap[k] < 0) gap[k] += 2 * std::numbers::pi;
+    }
+    const double half = std::numbers::pi / 2;
+    const bool fork = gap[0] > half && gap[1] > half && gap[2] > half && gap[0] < 2 * half &&
+                      gap[1] < 2 * half && gap[2] < 2 * half;
+    int wide = 0, narrow = 0;
+    for (const double g : gap) wide += g > 2 * half, narrow += g < half;
+    if (fork || (wide == 1 && narrow == 2))
+      for (std::size_t k = 0; k < 3; ++k) t.right.push_back({dir[k].second, j, dir[(k + 1) % 3].second});
+  }
+  // Parallel classes: edges sorted by angle, runs within the tolerance (wrapping at π).
+  std::vector<std::pair<double, std::uint32_t>> by_angle;
+  for (std::uint32_t e = 0; e < pr.edges.size(); ++e)
+    by_angle.push_back({line_angle(pr.p[pr.edges[e][1]] - pr.p[pr.edges[e][0]]), e});
+  std::sort(by_angle.begin(), by_angle.end());
+  std::vector<std::vector<std::uint32_t>> runs;
+  std::vector<double> run_angle;
+  for (std::size_t i = 0; i < by_angle.size(); ++i) {
+    if (i == 0 || by_angle[i].first - by_angle[i - 1].first > tolerance)
+      runs.emplace_back(), run_angle.push_back(by_angle[i].first);
+    runs.back().push_back(by_angle[i].second);
+  }
+  if (runs.size() > 1 && by_angle.back().first - std::numbers::pi > -tolerance - by_angle.front().first &&
+      angle_distance(by_angle.back().first, by_angle.front().first) <= tolerance) {
+    runs.front().insert(runs.front().end(), runs.back().begin(), runs.back().end());
+    runs.pop_back();
+    run_angle.pop_back();
+  }
+  for (std::size_t r = 0; r < runs.size(); ++r)
+    if (runs[r].size() >= 2) {
+      t.parallel.push_back(runs[r]);
+      t.parallel_direction.push_back({std::cos(run_angle[r]), std::sin(run_angle[r])});
+    }
+  return t;
+}
+
+/// Angle at q between the 3D segments to a and to b. O(1).
+template <class = void>
+double corner_cos(glm::dvec3 a, glm::dvec3 q, glm::dvec3 b) {
+  const glm::dvec3 u = a - q, v = b - q;
+  const double l = glm::length(u) * glm::length(v);
+  return l > 0 ? std::clamp(glm::dot(u, v) / l, -1.0, 1.0) : 1.0;
+}
+
+/// The compliance residual vector at depths z (normalised coordinates), with weights applied
+/// (w = 1 for the unweighted values). Its squared norm is Σ αⱼ Rⱼ(z). Fills per-term sums when
+/// asked. O(L + E).
+template <class Z>
+void compliance_residuals(const inflation_problem<>& pr, const compliance_terms<>& t,
+                          const inflation_weights& w, const Z& z, Eigen::VectorXd& out,
+                          inflation_residuals* terms = nullptr) {
+  const auto at = [&](std::uint32_t v) { return glm::dvec3(pr.p[v], z[v]); };
+  Eigen::Index k = 0;
+  double sum = 0;
+  // MSDA over face-corner angles.
+  std::vector<double> angle(t.corners.size());
+  double mean = 0;
+  for (std::size_t c = 0; c < t.corners.size(); ++c) {
+    const auto& q = t.corners[c];
+    angle[c] = std::acos(corner_cos(at(q[0]), at(q[1]), at(q[2])));
+    mean += angle[c];
+  }
+  mean /= static_cast<double>(std::max<std::size_t>(1, angle.size()));
+  const double msda_scale = std::sqrt(w.msda / static_cast<double>(std::max<std::size_t>(1, angle.size())));
+  sum = 0;
+  for (const double a : angle) out[k++] = msda_scale * (a - mean), sum += (a - mean) * (a - mean);
+  if (terms) terms->msda = sum / static_cast<double>(std::max<std::size_t>(1, angle.size()));
+  // Orthogonality at right-corner candidates.
+  const double ortho_scale =
+      std::sqrt(w.orthogonality / static_cast<double>(std::max<std::size_t>(1, t.right.size())));
+  sum = 0;
+  for (const auto& q : t.right) {
+    const double c = corner_cos(at(q[0]), at(q[1]), at(q[2]));
+    out[k++] = ortho_scale * c, sum += c * c;
+  }
+  if (terms) terms->orthogonality = sum / static_cast<double>(std::max<std::size_t>(1, t.right.size()));
+  // Parallelism: the depth slope of each line of a 2D-parallel class against the class mean.
+  std::size_t np = 0;
+  for (const auto& cls : t.parallel) np += cls.size();
+  const double par_scale = std::sqrt(w.parallelism / static_cast<double>(std::max<std::size_t>(1, np)));
+  sum = 0;
+  for (std::size_t c = 0; c < t.parallel.size(); ++c) {
+    std::vector<double> slope;
+    double m = 0;
+    for (const auto e : t.parallel[c]) {
+      const auto& ed = pr.edges[e];
+      const glm::dvec2 d = pr.p[ed[1]] - pr.p[ed[0]];
+      const double sign = glm::dot(d, t.parallel_direction[c]) >= 0 ? 1.0 : -1.0;
+      slope.push_back(sign * (z[ed[1]] - z[ed[0]]) / glm::length(d));
+      m += slope.back();
+    }
+    m /= static_cast<double>(slope.size());
+    for (const double s : slope) out[k++] = par_scale * (s - m), sum += (s - m) * (s - m);
+  }
+  if (terms) terms->parallelism = sum / static_cast<double>(std::max<std::size_t>(1, np));
+  // Isometry: log of each line's 3D/2D length ratio against their mean.
+  std::vector<double> ratio;
+  double m = 0;
+  for (const auto& ed : pr.edges) {
+    const glm::dvec2 d = pr.p[ed[1]] - pr.p[ed[0]];
+    const double dz = z[ed[1]] - z[ed[0]];
+    ratio.push_back(0.5 * std::log1p(dz * dz / glm::dot(d, d)));
+    m += ratio.back();
+  }
+  m /= static_cast<double>(ratio.size());
+  const double iso_scale = std::sqrt(w.isometry / static_cast<double>(ratio.size()));
+  sum = 0;
+  for (const double r : ratio) out[k++] = iso_scale * (r - m), sum += (r - m) * (r - m);
+  if (terms) terms->isometry = sum / static_cast<double>(ratio.size());
+  while (k < out.size()) out[k++] = 0;
+  if (terms) {
+    double worst = 0;
+    for (const auto& r : pr.rows) worst = std::max(worst, std::abs(plane_residual(r, z)));
+    terms->planarity = worst;
+  }
+}
+
+/// The residual functor of Eigen's Levenberg–Marquardt over t, with z = N t.
+template <class = void>
+struct inflation_functor {
+  using Scalar = double;
+  using InputType = Eigen::VectorXd;
+  using ValueType = Eigen::VectorXd;
+  using JacobianType = Eigen::MatrixXd;
+  enum { InputsAtCompileTime = Eigen::Dynamic, ValuesAtCompileTime = Eigen::Dynamic };
+  const inflation_problem<>* pr;
+  const compliance_terms<>* terms;
+  const Eigen::MatrixXd* basis;
+  inflation_weights weights;
+  Eigen::Index m;
+  Eigen::Index inputs() const { return basis->cols(); }
+  Eigen::Index values() const { return m; }
+  int operator()(const Eigen::VectorXd& t, Eigen::VectorXd& f) const {
+    const Eigen::VectorXd z = *basis * t;
+    compliance_residuals(*pr, *terms, weights, z, f);
+    return 0;
+  }
+};
+
+/// Result of the direct method in normalised coordinates.
+template <class = void>
+struct direct_solution {
+  bool ok = false;
+  std::vector<double> z;  // one Necker reading; the other is −z
+  std::array<glm::dvec2, 3> d{};
+  std::array<double, 3> s{};
+  std::array<double, 9> rotation{};
+  double misclosure = 0;
+  std::size_t reached = 0;   // junctions whose depth the hypothesis fixes
+  std::size_t coverage = 0;  // lines along the three axes
+  std::size_t corners = 0;   // junctions where lines along all three axes meet
+  std::string why;
+};
+
+/// Direct inflation: axis directions from clustered line directions, foreshortenings from
+/// Σ s_i² d_i d_iᵀ = I₂, depth along axis edges, the rest from face planarity. O(E² + K³ + U³),
+/// U the junctions no axis edge reaches.
+template <class = void>
+direct_solution<> direct_inflation(const inflation_problem<>& pr, const inflation_options& o) {
+  direct_solution<> best;
+  best.why = "fewer than three line directions";
+  const std::size_t ne = pr.edges.size(), nv = pr.p.size();
+  std::vector<double> ang(ne), len(ne);
+  for (std::size_t e = 0; e < ne; ++e) {
+    const glm::dvec2 d = pr.p[pr.edges[e][1]] - pr.p[pr.edges[e][0]];
+    ang[e] = line_angle(d), len[e] = glm::length(d);
+  }
+  // Greedy clustering by total line length within the tolerance; up to 5 clusters.
+  std::vector<bool> used(ne, false);
+  std::vector<std::vector<std::uint32_t>> clusters;
+  std::vector<direct_solution<>> consistent;  // hypotheses that close and fit planar faces
+  while (clusters.size() < 6) {
+    double best_w = 0;
+    std::size_t pick = ne;
+    for (std::size_t i = 0; i < ne; ++i) {
+      if (used[i]) continue;
+      double w = 0;
+      for (std::size_t j = 0; j < ne; ++j)
+        if (!used[j] && angle_distance(ang[i], ang[j]) <= o.direction_tolerance) w += len[j];
+      if (w > best_w) best_w = w, pick = i;
+    }
+    if (pick == ne) break;
+    std::vector<std::uint32_t> members;
+    for (std::size_t j = 0; j < ne; ++j)
+      if (!used[j] && angle_distance(ang[pick], ang[j]) <= o.direction_tolerance)
+        members.push_back(static_cast<std::uint32_t>(j)), used[j] = true;
+    clusters.push_back(std::move(members));
+  }
+  // Every triple of clusters is a candidate set of axes; the one reaching most junctions with
+  // a closing, consistent depth wins.
+  for (std::size_t c0 = 0; c0 < clusters.size(); ++c0)
+    for (std::size_t c1 = c0 + 1; c1 < clusters.size(); ++c1)
+      for (std::size_t c2 = c1 + 1; c2 < clusters.size(); ++c2) {
+        const std::array<std::size_t, 3> cs{c0, c1, c2};
+        direct_solution<> cand;
+        for (std::size_t i = 0; i < 3; ++i) {
+          double sx = 0, sy = 0;  // mean of doubled angles, weighted by length
+          for (const auto e : clusters[cs[i]])
+            sx += len[e] * std::cos(2 * ang[e]), sy += len[e] * std::sin(2 * ang[e]);
+          const double a = 0.5 * std::atan2(sy, sx);
+          cand.d[i] = {std::cos(a), std::sin(a)};
+        }
+        Eigen::Matrix3d m;
+        for (int i = 0; i < 3; ++i) {
+          const glm::dvec2 d = cand.d[static_cast<std::size_t>(i)];
+          m(0, i) = d.x * d.x, m(1, i) = d.x * d.y, m(2, i) = d.y * d.y;
+        }
+        Eigen::ColPivHouseholderQR<Eigen::Matrix3d> qr(m);
+        if (qr.rank() < 3) {
+          cand.why = "two axis directions coincide in the drawing";
+          continue;
+        }
+        const Eigen::Vector3d u = qr.solve(Eigen::Vector3d(1, 0, 1));
+        if (!(u.minCoeff() > 1e-12 && u.maxCoeff() < 1 - 1e-12)) {
+          if (best.reached == 0)
+            best.why =
+                "no three line directions are the image of three orthogonal axes (s_i² outside (0, 1))";
+          continue;
+        }
+        for (std::size_t i = 0; i < 3; ++i) cand.s[i] = std::sqrt(u[static_cast<Eigen::Index>(i)]);
+        const glm::dvec3 r1(cand.s[0] * cand.d[0].x, cand.s[1] * cand.d[1].x, cand.s[2] * cand.d[2].x);
+        const glm::dvec3 r2(cand.s[0] * cand.d[0].y, cand.s[1] * cand.d[1].y, cand.s[2] * cand.d[2].y);
+        const glm::dvec3 r3 = glm::cross(r1, r2);
+        cand.rotation = {r1.x, r1.y, r1.z, r2.x, r2.y, r2.z, r3.x, r3.y, r3.z};
+        // Axis edges: those within the tolerance of a cluster direction.
+        std::vector<int> axis(ne, -1);
+        for (std::size_t i = 0; i < 3; ++i)
+          for (const auto e : clusters[cs[i]]) axis[e] = static_cast<int>(i), ++cand.coverage;
+        // An axis hypothesis must be supported: two lines or more along each axis, and a
+        // junction where lines along all three meet (a corner). Else any three single lines
+        // would do (a pyramid's base square and one lateral line "read" as a skew corner).
+        bool supported = clusters[c0].size() >= 2 && clusters[c1].size() >= 2 && clusters[c2].size() >= 2;
+        for (std::uint32_t v = 0; v < nv && supported; ++v) {
+          unsigned seen = 0;
+          for (const auto e : pr.incident[v])
+            if (axis[e] >= 0) seen |= 1u << axis[e];
+          cand.corners += seen == 7u;
+        }
+        if (!supported || cand.corners == 0) {
+          if (best.reached == 0)
+            best.why = "no three line directions with two lines each meet at a corner (not a normalon view)";
+          continue;
+        }
+        const auto dz = [&](std::size_t e) {
+          const auto i = static_cast<std::size_t>(axis[e]);
+          const glm::dvec2 d = pr.p[pr.edges[e][1]] - pr.p[pr.edges[e][0]];
+          return glm::dot(d, cand.d[i]) / cand.s[i] * r3[static_cast<glm::length_t>(i)];
+        };
+        // Breadth-first depth from the largest component of the axis edges.
+        std::vector<double> z(nv, 0.0);
+        std::vector<int> comp(nv, -1);
+        std::vector<std::size_t> comp_size;
+        for (std::uint32_t s = 0; s < nv; ++s) {
+          if (comp[s] >= 0) continue;
+          const int id = static_cast<int>(comp_size.size());
+          std::vector<std::uint32_t> queue{s};
+          comp[s] = id;
+          for (std::size_t q = 0; q < queue.size(); ++q) {
+            const std::uint32_t v = queue[q];
+            for (const auto e : pr.incident[v]) {
+              if (axis[e] < 0) continue;
+              const std::uint32_t w = pr.edges[e][0] == v ? pr.edges[e][1] : pr.edges[e][0];
+              if (comp[w] >= 0) continue;
+              comp[w] = id;
+              z[w] = z[v] + (pr.edges[e][0] == v ? dz(e) : -dz(e));
+              queue.push_back(w);
+            }
+          }
+          comp_size.push_back(queue.size());
+        }
+        const int main =
+            static_cast<int>(std::max_element(comp_size.begin(), comp_size.end()) - comp_size.begin());
+        for (std::size_t e = 0; e < ne; ++e)
+          if (axis[e] >= 0 && comp[pr.edges[e][0]] == main)
+            cand.misclosure =
+                std::max(cand.misclosure, std::abs(z[pr.edges[e][1]] - z[pr.edges[e][0]] - dz(e)));
+        if (cand.misclosure > o.closure_tolerance) {
+          cand.why = "a cycle of axis edges does not close in depth (misclosure " +
+                     std::to_string(cand.misclosure) + " of the drawing size): not a normalon drawing";
+          if (best.reached == 0) best.why = cand.why;
+          continue;
+        }
+        // The junctions off the main component: least squares of face planarity and axis
+        // edges, the main component's depths fixed.
+        std::vector<Eigen::Index> unknown(nv, -1);
+        Eigen::Index nu = 0;
+        for (std::uint32_t v = 0; v < nv; ++v)
+          if (comp[v] != main) unknown[v] = nu++;
+        if (nu > 0) {
+          std::vector<std::pair<std::vector<std::pair<Eigen::Index, double>>, double>> eqs;
+          for (const auto& r : pr.rows) {
+            std::vector<std::pair<Eigen::Index, double>> row;
+            double rhs = 0;
+            const std::array<std::pair<std::uint32_t, double>, 4> terms{
+                {{r.d, 1.0}, {r.a, -r.alpha}, {r.b, -r.beta}, {r.c, -r.gamma}}};
+            for (const auto& [v, c] : terms)
+              if (unknown[v] >= 0)
+                row.push_back({unknown[v], c});
+              else
+                rhs -= c * z[v];
+            if (!row.empty()) eqs.push_back({std::move(row), rhs});
+          }
+          for (std::size_t e = 0; e < ne; ++e) {
+            if (axis[e] < 0) continue;
+            const auto a = pr.edges[e][0], b = pr.edges[e][1];
+            if (unknown[a] < 0 && unknown[b] < 0) continue;
+            std::vector<std::pair<Eigen::Index, double>> row;
+            double rhs = dz(e);
+            if (unknown[b] >= 0)
+              row.push_back({unknown[b], 1.0});
+            else
+              rhs -= z[b];
+            if (unknown[a] >= 0)
+              row.push_back({unknown[a], -1.0});
+            else
+              rhs += z[a];
+            eqs.push_back({std::move(row), rhs});
+          }
+          Eigen::MatrixXd a = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(eqs.size()), nu);
+          Eigen::VectorXd rhs(static_cast<Eigen::Index>(eqs.size()));
+          for (std::size_t i = 0; i < eqs.size(); ++i) {
+            for (const auto& [col, c] : eqs[i].first) a(static_cast<Eigen::Index>(i), col) += c;
+            rhs[static_cast<Eigen::Index>(i)] = eqs[i].second;
+          }
+          Eigen::ColPivHouseholderQR<Eigen::MatrixXd> ls(a);
+          ls.setThreshold(o.rank_tolerance);
+          cand.reached = comp_size[static_cast<std::size_t>(main)];
+          if (ls.rank() < nu) {
+            cand.why = std::to_string(nu - ls.rank()) +
+                       " junction depth(s) fixed neither by axis edges nor by face planes";
+            cand.z = z;  // the unfixed junctions at 0 (the drawing's mid-depth): a start for optimisation
+            consistent.push_back(std::move(cand));
+            continue;
+          }
+          const Eigen::VectorXd x = ls.solve(rhs);
+          for (std::uint32_t v = 0; v < nv; ++v)
+            if (unknown[v] >= 0) z[v] = x[unknown[v]];
+          double worst = 0;
+          for (const auto& r : pr.rows) worst = std::max(worst, std::abs(plane_residual(r, z)));
+          for (std::size_t e = 0; e < ne; ++e)
+            if (axis[e] >= 0)
+              worst = std::max(worst, std::abs(z[pr.edges[e][1]] - z[pr.edges[e][0]] - dz(e)));
+          if (worst > o.closure_tolerance) {
+            cand.why = "the oblique junctions fit no planar faces (residual " + std::to_string(worst) + ")";
+            continue;
+          }
+        }
+        cand.reached = nv;
+        cand.ok = true;
+        cand.z = std::move(z);
+        consistent.push_back(std::move(cand));
+      }
+  // The hypothesis with most axis lines, then most three-axis corners; a tie means the drawing
+  // does not say which three directions are the axes (a hexagonal prism): not read directly.
+  std::pair<std::size_t, std::size_t> top{0, 0};
+  std::size_t ties = 0;
+  for (const auto& c : consistent) top = std::max(top, std::pair{c.coverage, c.corners});
+  for (auto& c : consistent)
+    if (std::pair{c.coverage, c.corners} == top) {
+      if (ties++ == 0) best = c;
+    }
+  if (ties > 1) {
+    best.ok = false;
+    best.why = std::to_string(ties) + " choices of three line directions read alike as the axes (" +
+               std::to_string(top.first) + " lines, " + std::to_string(top.second) +
+               " corners each): the drawing does not say which are the axes";
+  }
+  return best;
+}
+
+/// An orthonormal basis of the depths that keep every face planar, with mean depth 0 (the
+/// depth offset removed): the null space of [C; 1ᵀ] from a column-pivoting QR of its
+/// transpose. O(V² (R + 1)).
+template <class = void>
+Eigen::MatrixXd planar_readings(const inflation_problem<>& pr, double rank_tolerance) {
+  const auto nv = static_cast<Eigen::Index>(pr.p.size());
+  const auto nr = static_cast<Eigen::Index>(pr.rows.size());
+  Eigen::MatrixXd ct = Eigen::MatrixXd::Zero(nv, nr + 1);
+  for (Eigen::Index i = 0; i < nr; ++i) {
+    const auto& r = pr.rows[static_cast<std::size_t>(i)];
+    ct(r.d, i) += 1, ct(r.a, i) -= r.alpha, ct(r.b, i) -= r.beta, ct(r.c, i) -= r.gamma;
+  }
+  ct.col(nr).setConstant(1.0 / std::sqrt(static_cast<double>(nv)));
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(ct);
+  qr.setThreshold(rank_tolerance);
+  const Eigen::Index rank = qr.rank();
+  const Eigen::MatrixXd q = qr.householderQ() * Eigen::MatrixXd::Identity(nv, nv);
+  return q.rightCols(nv - rank);
+}
+
+/// The view-from-above score of depths z: the lines most upright in the drawing (the most
+/// vertical class of 2D-parallel lines, else the most vertical line), each taken going up the
+/// picture, come towards the viewer by this much (Σ Δz / Σ 3D length, in (−1, 1)): positive
+/// when the object's "up" tilts towards the viewer, the top seen. Sets `lines`. O(E).
+template <class = void>
+double from_above_score(const inflation_problem<>& pr, const compliance_terms<>& t,
+                        const std::vector<double>& z, std::size_t& lines) {
+  std::vector<std::uint32_t> pick;
+  double upright = -1;
+  for (std::size_t c = 0; c < t.parallel.size(); ++c)
+    if (std::abs(t.parallel_direction[c].y) > upright)
+      upright = std::abs(t.parallel_direction[c].y), pick = t.parallel[c];
+  if (pick.empty())
+    for (std::uint32_t e = 0; e < pr.edges.size(); ++e) {
+      const glm::dvec2 d = pr.p[pr.edges[e][1]] - pr.p[pr.edges[e][0]];
+      if (std::abs(d.y) / glm::length(d) > upright) upright = std::abs(d.y) / glm::length(d), pick = {e};
+    }
+  double climb = 0, length = 0;
+  for (const auto e : pick) {
+    const auto& ed = pr.edges[e];
+    const glm::dvec2 d = pr.p[ed[1]] - pr.p[ed[0]];
+    const double dz = (d.y >= 0 ? 1.0 : -1.0) * (z[ed[1]] - z[ed[0]]);
+    climb += dz, length += std::sqrt(glm::dot(d, d) + dz * dz);
+  }
+  lines = pick.size();
+  return length > 0 ? climb / length : 0.0;
+}
+
+}  // namespace detail
+
+/// Inflates a line drawing with its faces (each: its outer loop, then its holes; junction
+/// cycles in any orientation) to 3D in point type Q (void: lifted_point_t of the drawing's point type):
+/// x, y kept, z found, both Necker readings returned best first. Direct when the drawing is a
+/// normalon or quasi-normalon view, else Levenberg–Marquardt over the planar-face readings.
+/// Throws invalid_input on a malformed drawing or loops, topology when no solid reading with
+/// planar faces exists. O(E² + V³ + starts · iterations · K · (L + E)), K the planar freedom.
+template <class Q = void, LineDrawing D>
+auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::uint32_t>>>& faces,
+             const inflation_options& user_options = {}) {
+  using R = std::conditional_t<std::is_void_v<Q>, lifted_point_t<drawing_point_t<D>>, Q>;
+  static_assert(Point3<R>, "inflate: the result point type must be a registered Point3");
+  const auto t0 = std::chrono::steady_clock::now();
+  inflation_result<R> res;
+  // Tolerances no finer than the drawing's own precision (float drawings are realizable only
+  // to rounding).
+  inflation_options options = user_options;
+  if constexpr (std::is_floating_point_v<scalar2_t<drawing_point_t<D>>>) {
+    const double eps = 64.0 * std::numeric_limits<scalar2_t<drawing_point_t<D>>>::epsilon();
+    options.rank_tolerance = std::max(options.rank_tolerance, eps);
+    options.closure_tolerance = std::max(options.closure_tolerance, eps);
+    options.direction_tolerance = std::max(options.direction_tolerance, eps);
+  }
+  const detail::inflation_problem<> pr = detail::make_inflation_problem(drawing, faces);
+  const std::size_t nv = pr.p.size();
+  const detail::compliance_terms<> terms = detail::make_compliance_terms(pr, options.direction_tolerance);
+  const auto m = static_cast<Eigen::Index>(terms.count() + pr.edges.size() + nv);
+  Eigen::VectorXd scratch(m);
+  const auto measure = [&](const std::vector<double>& z) {
+    inflation_residuals r;
+    detail::compliance_residuals(pr, terms, inflation_weights{1, 1, 1, 1}, z, scratch, &r);
+    return r;
+  };
+  const Eigen::MatrixXd basis = detail::planar_readings(pr, options.rank_tolerance);
+  res.freedom = static_cast<std::size_t>(basis.cols());
+
+  std::vector<double> z;
+  detail::direct_solution<> direct;
+  if (options.allow_direct) {
+    direct = detail::direct_inflation(pr, options);
+    if (direct.ok) {
+      z = direct.z;
+      res.method = inflation_method::direct;
+      res.view_found = true;
+      for (std::size_t i = 0; i < 3; ++i) {
+        res.axis_directions[i] = {direct.d[i].x, direct.d[i].y};
+        res.foreshortening[i] = direct.s[i];
+      }
+      res.view_rotation = direct.rotation;
+      res.misclosure = direct.misclosure;
+    } else {
+      res.diagnostics.push_back("inflate: direct method not applicable: " + direct.why);
+    }
+  }
+  if (z.empty()) {
+    if (!options.allow_optimisation)
+      throw error(error_category::invalid_input,
+                  "inflate: the direct method does not apply (" + direct.why + ") and optimisation is off");
+    // Only the flat and tilted readings z = a x + b y (2 after the offset): no solid.
+    if (basis.cols() <= 2)
+      throw error(
+          error_category::topology,
+          "inflate: the face loops admit only flat readings (planar-face freedom " +
+              std::to_string(basis.cols() + 1) +
+              " = the tilts and the offset): the drawing is not the view of a solid with these faces, "
+              "or it is too inexact; tidy it or raise rank_tolerance");
+    res.method = inflation_method::optimisation;
+    detail::inflation_functor<> f{&pr, &terms, &basis, options.weights, m};
+    detail::splitmix rng{options.seed};
+    std::vector<Eigen::VectorXd> starts;
+    if (direct.reached > 0 && !direct.z.empty()) {
+      Eigen::VectorXd zd(static_cast<Eigen::Index>(nv));
+      for (std::size_t i = 0; i < nv; ++i) zd[static_cast<Eigen::Index>(i)] = direct.z[i];
+      starts.push_back(basis.transpose() * zd);
+    }
+    while (static_cast<int>(starts.size()) < std::max(1, options.starts)) {
+      Eigen::VectorXd t(basis.cols());
+      for (Eigen::Index i = 0; i < t.size(); ++i) t[i] = rng.uniform(-1, 1);
+      // Depth range comparable to the drawing's (unit diagonal).
+      const Eigen::VectorXd zt = basis * t;
+      const double range = zt.maxCoeff() - zt.minCoeff();
+      starts.push_back(range > 0 ? Eigen::VectorXd(t * (0.5 / range)) : t);
+    }
+    double best = std::numeric_limits<double>::infinity();
+    Eigen::VectorXd best_t;
+    Eigen::VectorXd fv(m);
+    for (const auto& s : starts) {
+      Eigen::VectorXd t = s;
+      Eigen::NumericalDiff<detail::inflation_functor<>> nd(f);
+      Eigen::LevenbergMarquardt<Eigen::NumericalDiff<detail::inflation_functor<>>> lm(nd);
+      lm.parameters.maxfev = options.max_iterations * static_cast<int>(basis.cols() + 1);
+      lm.parameters.xtol = 1e-12;
+      lm.parameters.ftol = 1e-14;
+      lm.minimize(t);
+      res.iterations += static_cast<std::size_t>(lm.iter);
+      ++res.starts;
+      f(t, fv);
+      const double value = fv.squaredNorm();
+      if (std::isfinite(value) && value < best) best = value, best_t = t;
+      if (res.starts == 1) {
+        const Eigen::VectorXd z0 = basis * s;
+        res.before = measure(std::vector<double>(z0.data(), z0.data() + z0.size()));
+      }
+    }
+    if (best_t.size() == 0)
+      throw error(error_category::internal, "inflate: the optimisation produced no finite reading");
+    const Eigen::VectorXd zb = basis * best_t;
+    z.assign(zb.data(), zb.data() + zb.size());
+    res.diagnostics.push_back("inflate: optimisation objective " + std::to_string(best) + " after " +
+                              std::to_string(res.iterations) + " iterations over " +
+                              std::to_string(res.starts) + " starts");
+  } else {
+    res.before = measure(z);
+  }
+  // Mean depth 0, then the Necker pair ranked by the view-from-above prior.
+  double mean = 0;
+  for (const double v : z) mean += v;
+  mean /= static_cast<double>(nv);
+  for (double& v : z) v -= mean;
+  std::vector<double> mirror(z);
+  for (double& v : mirror) v = -v;
+  res.after = measure(z);
+  double range = 0;
+  for (const double v : z) range = std::max(range, std::abs(v));
+  if (range < 1e-6)
+    res.diagnostics.push_back(
+        "inflate: the reading found is flat (depth range below 1e-6 of the drawing size)");
+  std::size_t upright = 0;
+  const double score = detail::from_above_score(pr, terms, z, upright);
+  const auto lift = [&](const std::vector<double>& depth) {
+    std::vector<R> out;
+    out.reserve(nv);
+    for (std::size_t i = 0; i < nv; ++i) {
+      out.push_back(from_dvec3<R>(glm::dvec3(pr.raw[i], depth[i] * pr.size)));
+    }
+    return out;
+  };
+  const std::string rule = "view from above: the " + std::to_string(upright) +
+                           " most upright line(s) of the drawing, going up, come towards the viewer by ";
+  inflation_reading<R> a{lift(z), score, rule + std::to_string(score)};
+  inflation_reading<R> b{lift(mirror), -score, rule + std::to_string(-score) + " (the Necker reversal)"};
+  if (score < 0) std::swap(a, b);
+  if (std::abs(score) < 1e-9) a.reason += "; the prior cannot choose: both readings fit alike";
+  res.points = a.points;
+  if (res.view_found && score < 0) {
+    // The preferred reading is the mirrored one: each axis's depth flips (third row), and
+    // axis 3 is reversed (third column) so that the matrix stays a rotation.
+    for (std::size_t k = 6; k < 9; ++k) res.view_rotation[k] = -res.view_rotation[k];
+    for (std::size_t k = 2; k < 9; k += 3) res.view_rotation[k] = -res.view_rotation[k];
+    res.axis_directions[2] = {-res.axis_directions[2][0], -res.axis_directions[2][1]};
+  }
+  res.readings.push_back(std::move(a));
+  res.readings.push_back(std::move(b));
+  res.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return res;
+}
+
+/// inflate with every loop its own face (the hole loops of a face are then not tied to its
+/// outer loop: a hole ringed by edges of its own may float in depth, with a diagnostic). O(as above).
+template <class Q = void, LineDrawing D>
+auto inflate(const D& drawing, const std::vector<std::vector<std::uint32_t>>& loops,
+             const inflation_options& options = {}) {
+  std::vector<std::vector<std::vector<std::uint32_t>>> faces;
+  faces.reserve(loops.size());
+  for (const auto& l : loops) faces.push_back({l});
+  return inflate<Q>(drawing, faces, options);
+}
+
+}  // namespace cellforge
