@@ -1,0 +1,313 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// A line drawing becomes a cell complex in one call (seed 003_be08eec927fcc329.txt, finding
+/// faces and inflation, on top of seed 000's wireframe pipeline): faces of the drawing
+/// (sketch/face_finder.hpp) → their loops grouped into faces with holes → inflation to 3D
+/// (sketch/inflation.hpp) → a 3D wireframe → wireframe_to_cells. Every stage's result comes
+/// back, and the faces found in 2D are checked against the faces the 3D pipeline recovers.
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <iterator>
+#include <set>
+#include <string>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "cellforge/core/detail/work_budget.hpp"
+#include "cellforge/core/error.hpp"
+#include "cellforge/core/point2_traits.hpp"
+#include "cellforge/core/wireframe.hpp"
+#include "cellforge/sketch/face_finder.hpp"
+#include "cellforge/sketch/inflation.hpp"
+#include "cellforge/sketch/line_drawing.hpp"
+#include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/wireframe/wireframe_to_cells.hpp"
+
+namespace cellforge {
+
+/// Options of every stage of drawing_to_cells, with their own defaults.
+struct drawing_options {
+  face_finder_options faces{};
+  inflation_options inflation{};
+  wireframe_options cells{};
+  /// When the preferred reading gives no cell complex, or one whose faces disagree with the
+  /// drawing's, build the other (Necker) reading instead.
+  bool try_other_reading = true;
+};
+
+/// Every stage's result: the faces found, the faces with holes, the inflation, the 3D
+/// wireframe and the cell complex (positions in Q), and whether 2D and 3D faces agree.
+template <Point3 Q>
+struct drawing_result {
+  using point_type = Q;
+  face_finder_result faces;
+  /// The loops grouped into faces: each its outer loop, then its holes (junction cycles).
+  std::vector<std::vector<std::vector<std::uint32_t>>> face_loops;
+  inflation_result<Q> inflation;
+  std::size_t reading = 0;  ///< the inflation reading the complex is built from (0: the preferred)
+  wireframe<Q> wire;        ///< junction i at the reading's point i, the drawing's edges
+  wireframe_result<Q> cells;
+  /// The 3D pipeline's face loops are exactly the loops found in the drawing.
+  bool faces_agree = false;
+  /// Where they disagree: loops found only in the drawing, only in 3D (junction cycles).
+  std::vector<std::vector<std::uint32_t>> only_in_drawing, only_in_3d;
+  double milliseconds = 0.0;
+  std::vector<std::string> diagnostics;
+};
+
+namespace detail::sketch {
+
+/// Signed area of a junction cycle in the drawing. O(L).
+template <class = void>
+double loop_area(const std::vector<glm::dvec2>& p, const std::vector<std::uint32_t>& loop) {
+  double a = 0;
+  for (std::size_t k = 0; k < loop.size(); ++k) {
+    const glm::dvec2 u = p[loop[k]], v = p[loop[(k + 1) % loop.size()]];
+    a += u.x * v.y - u.y * v.x;
+  }
+  return 0.5 * a;
+}
+
+using face_set = std::vector<std::vector<std::vector<std::uint32_t>>>;
+
+/// Newell normal and centroid of a loop in 3D. O(L).
+template <class = void>
+std::pair<glm::dvec3, glm::dvec3> loop_plane(const std::vector<glm::dvec3>& p, const std::vector<std::uint32_t>& loop) {
+  glm::dvec3 n{0.0}, c{0.0};
+  for (std::size_t k = 0; k < loop.size(); ++k) {
+    const glm::dvec3 u = p[loop[k]], v = p[loop[(k + 1) % loop.size()]];
+    n += glm::dvec3((u.y - v.y) * (u.z + v.z), (u.z - v.z) * (u.x + v.x), (u.x - v.x) * (u.y + v.y));
+    c += u;
+  }
+  return {n, c / static_cast<double>(loop.size())};
+}
+
+/// Groups face loops into faces with holes (each face: outer loop, then holes).
+/// - Within one connected part of the drawing, a hole loop is a loop whose junctions, taken
+///   out, split the part (a hole's boundary separates what is inside it from the rest; outer
+///   loops of a polyhedron's faces do not); its face is the smallest loop of the part around
+///   it in the drawing traversed the other way (in the face's plane a hole runs against the
+///   outer loop, and a parallel view keeps that).
+/// - A part drawn inside a loop of another part (a hole through a block: the hole's walls are
+///   edges of their own, joined to the block by no edge) is inflated alone; a loop of it whose
+///   plane is parallel to a loop of the outer part around it in the drawing is a hole of that
+///   loop when it can be moved in depth onto its plane, and the reading and depth that put the
+///   most such loops onto their planes win. The Necker reading of each part is tried.
+/// Loops with no face around them stay faces of their own. O(parts · inflation + H · F · L).
+template <class = void>
+face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vector<std::uint32_t>>& loops,
+                     const inflation_options& inflation, std::vector<std::string>& diagnostics) {
+  const face_finder_options o;
+  work_budget budget{0, 0, "drawing_to_cells"};
+  faces::finder f(g, o, budget);
+  const std::size_t n = loops.size(), nv = g.num_junctions();
+  std::vector<double> area(n);
+  std::vector<std::uint32_t> part(n);
+  std::vector<std::vector<glm::dvec2>> poly(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    area[i] = loop_area(g.p, loops[i]);
+    part[i] = f.component[loops[i][0]];
+    for (const auto v : loops[i]) poly[i].push_back(g.p[v]);
+  }
+  const auto inside_loop = [&](std::size_t h, std::size_t c) {
+    if (std::abs(area[c]) <= std::abs(area[h])) return false;
+    for (const auto v : loops[h])
+      if (!faces::inside(poly[c], g.p[v])) return false;
+    return true;
+  };
+  std::vector<std::size_t> owner(n, n);
+  for (std::size_t h = 0; h < n; ++h) {
+    if (loops[h].size() < 3 || !f.separating(loops[h])) continue;
+    std::size_t best = n;
+    for (std::size_t c = 0; c < n; ++c)
+      if (c != h && part[c] == part[h] && area[c] * area[h] < 0 && inside_loop(h, c) &&
+          (best == n || std::abs(area[c]) < std::abs(area[best])))
+        best = c;
+    if (best == n)
+      diagnostics.push_back("loop " + std::to_string(h) + " splits the drawing but lies in no face loop running the other way");
+    owner[h] = best;
+  }
+  const auto faces_of = [&](const std::vector<std::size_t>& own, auto&& keep) {
+    face_set out;
+    std::vector<std::size_t> index(n, n);
+    for (std::size_t i = 0; i < n; ++i)
+      if (own[i] == n && keep(i)) index[i] = out.size(), out.push_back({loops[i]});
+    for (std::size_t h = 0; h < n; ++h)
+      if (own[h] != n && keep(h) && index[own[h]] != n) out[index[own[h]]].push_back(loops[h]);
+    return out;
+  };
+  const std::size_t parts = f.component_size.size();
+  std::vector<char> has_loop(parts, 0);
+  for (std::size_t i = 0; i < n; ++i) has_loop[part[i]] = 1;
+  if (std::count(has_loop.begin(), has_loop.end(), 1) < 2) return faces_of(owner, [](std::size_t) { return true; });
+
+  // Each part alone: its drawing, its faces, both readings (junction depths, global indices).
+  struct part_reading {
+    std::vector<std::vector<glm::dvec3>> readings;  // [reading][junction]; empty: not inflated
+    double span = 0;                                 // bounding-box area in the drawing
+  };
+  std::vector<part_reading> pr(parts);
+  double size = 0;
+  for (std::uint32_t c = 0; c < parts; ++c) {
+    if (!has_loop[c]) continue;
+    line_drawing<glm::dvec2> sub;
+    std::vector<std::uint32_t> local(nv, faces::none), global;
+    for (std::uint32_t v = 0; v < nv; ++v)
+      if (f.component[v] == c) local[v] = static_cast<std::uint32_t>(global.size()), global.push_back(v), sub.points.push_back(g.p[v]);
+    for (std::uint32_t h = 0; h < g.num_half_edges(); h += 2)
+      if (f.component[g.head[h]] == c) sub.edges.push_back({local[g.tail(h)], local[g.head[h]]});
+    face_set sub_faces = faces_of(owner, [&](std::size_t i) { return part[i] == c; });
+    for (auto& face : sub_faces)
+      for (auto& loop : face)
+        for (auto& v : loop) v = local[v];
+    glm::dvec2 lo = sub.points[0], hi = sub.points[0];
+    for (const auto& q : sub.points) lo = glm::min(lo, q), hi = glm::max(hi, q);
+    pr[c].span = (hi.x - lo.x) * (hi.y - lo.y);
+    size = std::max(size, glm::length(hi - lo));
+    try {
+      const auto res = inflate<glm::dvec3>(sub, sub_faces, inflation);
+      for (const auto& reading : res.readings) {
+        std::vector<glm::dvec3> pts(nv, glm::dvec3(0.0));
+        for (std::size_t k = 0; k < global.size(); ++k) pts[global[k]] = reading.points[k];
+        pr[c].readings.push_back(std::move(pts));
+      }
+    } catch (const error& e) {
+      diagnostics.push_back("part " + std::to_string(c) + " of the drawing cannot be inflated alone: " + e.what());
+    }
+  }
+  // Place the parts, largest first: the first as read, each next one by the reading and depth
+  // that put most of its loops onto the planes of loops of placed parts around them.
+  std::vector<std::uint32_t> order;
+  for (std::uint32_t c = 0; c < parts; ++c)
+    if (has_loop[c] && !pr[c].readings.empty()) order.push_back(c);
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return pr[a].span > pr[b].span; });
+  std::vector<glm::dvec3> placed(nv, glm::dvec3(0.0));
+  std::vector<char> is_placed(parts, 0);
+  const double parallel = std::sin(0.5 * 3.141592653589793 / 180.0), depth_tolerance = 1e-3 * size;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const std::uint32_t c = order[k];
+    std::size_t best_votes = 0, best_reading = 0;
+    double best_dz = 0;
+    std::vector<std::pair<std::size_t, std::size_t>> best_pairs;
+    for (std::size_t r = 0; r < pr[c].readings.size() && k > 0; ++r) {
+      const auto& pts = pr[c].readings[r];
+      std::vector<std::tuple<double, std::size_t, std::size_t>> offers;  // (dz, hole, outer)
+      for (std::size_t h = 0; h < n; ++h) {
+        if (part[h] != c) continue;
+        const auto [nh, ch] = loop_plane(pts, loops[h]);
+        for (std::size_t q = 0; q < n; ++q) {
+          if (!is_placed[part[q]] || area[q] * area[h] >= 0 || !inside_loop(h, q)) continue;
+          const auto [nq, cq] = loop_plane(placed, loops[q]);
+          if (glm::length(glm::cross(nh, nq)) > parallel * glm::length(nh) * glm::length(nq) || std::abs(nq.z) < 1e-12)
+            continue;
+          // Depth of q's plane at h's centroid, minus h's centroid depth.
+          const double zq = cq.z - (nq.x * (ch.x - cq.x) + nq.y * (ch.y - cq.y)) / nq.z;
+          offers.emplace_back(zq - ch.z, h, q);
+        }
+      }
+      for (const auto& [dz, h0, q0] : offers) {
+        std::vector<std::pair<std::size_t, std::size_t>> agree;
+        std::vector<char> used(n, 0);
+        for (const auto& [dz2, h, q] : offers)
+          if (std::abs(dz2 - dz) <= depth_tolerance && !used[h]) used[h] = 1, agree.push_back({h, q});
+        if (agree.size() > best_votes) best_votes = agree.size(), best_reading = r, best_dz = dz, best_pairs = agree;
+      }
+    }
+    for (std::uint32_t v = 0; v < nv; ++v)
+      if (f.component[v] == c) placed[v] = pr[c].readings[best_reading][v] + glm::dvec3(0, 0, best_dz);
+    is_placed[c] = 1;
+    for (const auto& [h, q] : best_pairs) owner[h] = owner[q] == n ? q : owner[q];
+    if (k > 0 && best_votes == 0)
+      diagnostics.push_back("part " + std::to_string(c) +
+                            " of the drawing lies in no face of the others: its depth against them is free");
+  }
+  return faces_of(owner, [](std::size_t) { return true; });
+}
+
+/// Canonical cycles of a set of loops, for comparison. O(Σ L log L).
+template <class = void>
+std::multiset<std::vector<std::uint32_t>> canonical_loops(const std::vector<std::vector<std::uint32_t>>& loops) {
+  std::multiset<std::vector<std::uint32_t>> s;
+  for (const auto& l : loops) s.insert(cellforge::detail::canonical_cycle(l));
+  return s;
+}
+
+}  // namespace detail::sketch
+
+/// Turns a wireframe line drawing (a parallel view of a polyhedron, hidden lines drawn) into a
+/// cell complex in point type Q (void: lifted_point_t of the drawing's point type): faces,
+/// inflation, the 3D pipeline; every stage's result and a 2D/3D face agreement check. Throws
+/// invalid_input on a malformed drawing, topology when no solid reading exists or the 3D
+/// pipeline refuses both readings, budget when a stage's budget runs out. O(the stages).
+template <class Q = void, LineDrawing D>
+auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
+  using R = std::conditional_t<std::is_void_v<Q>, lifted_point_t<drawing_point_t<D>>, Q>;
+  static_assert(Point3<R>, "drawing_to_cells: the result point type must be a registered Point3");
+  detail::stopwatch clock;
+  drawing_result<R> r;
+  r.faces = find_faces(drawing, options.faces);
+  if (r.faces.flagged)
+    r.diagnostics.push_back("the faces found fail their check (" +
+                            (r.faces.diagnostics.empty() ? std::string("see faces.check") : r.faces.diagnostics.front()) +
+                            "); inflating them anyway");
+  const detail::faces::drawing_graph g = detail::faces::make_graph(drawing, options.faces);
+  r.face_loops = detail::sketch::group_faces(g, r.faces.loops, options.inflation, r.diagnostics);
+  r.inflation = inflate<R>(drawing, r.face_loops, options.inflation);
+  const auto wanted = detail::sketch::canonical_loops(r.faces.loops);
+  std::string last_error;
+  bool built = false;
+  const std::size_t readings = options.try_other_reading ? r.inflation.readings.size() : 1;
+  for (std::size_t k = 0; k < readings && !(built && r.faces_agree); ++k) {
+    wireframe<R> w;
+    w.points = r.inflation.readings[k].points;
+    w.edges.reserve(line_drawing_traits<D>::num_edges(drawing));
+    for (std::size_t e = 0; e < line_drawing_traits<D>::num_edges(drawing); ++e) {
+      const auto ab = line_drawing_traits<D>::endpoints(drawing, e);
+      w.edges.push_back({static_cast<std::uint32_t>(ab[0]), static_cast<std::uint32_t>(ab[1])});
+    }
+    try {
+      wireframe_result<R> cells = wireframe_to_cells(w, options.cells);
+      std::vector<std::vector<std::uint32_t>> found;
+      for (const auto& f : cells.input.faces)
+        for (const auto& loop : f.loops) {
+          std::vector<std::uint32_t> l;
+          for (const auto v : loop) l.push_back(cells.input_vertex[v]);
+          found.push_back(std::move(l));
+        }
+      const auto got = detail::sketch::canonical_loops(found);
+      const bool agree = got == wanted;
+      if (built && !agree) continue;  // keep the first complex unless this one agrees
+      r.only_in_drawing.clear();
+      r.only_in_3d.clear();
+      std::set_difference(wanted.begin(), wanted.end(), got.begin(), got.end(), std::back_inserter(r.only_in_drawing));
+      std::set_difference(got.begin(), got.end(), wanted.begin(), wanted.end(), std::back_inserter(r.only_in_3d));
+      r.cells = std::move(cells);
+      r.wire = std::move(w);
+      r.reading = k;
+      r.faces_agree = agree;
+      built = true;
+    } catch (const error& e) {
+      if (e.category() != error_category::topology && e.category() != error_category::invalid_input) throw;
+      last_error = e.what();
+      r.diagnostics.push_back("reading " + std::to_string(k) + ": the 3D pipeline refused it: " + last_error);
+    }
+  }
+  if (!built)
+    throw error(error_category::topology,
+                "drawing_to_cells: no reading of the drawing gives a cell complex (" + last_error + ")");
+  if (!r.faces_agree)
+    r.diagnostics.push_back("the 3D pipeline's faces differ from the drawing's: " + std::to_string(r.only_in_drawing.size()) +
+                            " loops only in the drawing, " + std::to_string(r.only_in_3d.size()) + " only in 3D");
+  if (r.reading != 0)
+    r.diagnostics.push_back("built from the other (Necker) reading: the preferred one did not give the drawing's faces");
+  r.milliseconds = clock.ms();
+  return r;
+}
+
+}  // namespace cellforge
