@@ -433,6 +433,14 @@ TEST_CASE("sample solids: sizes by construction; bad sizes refused") {
   cellforge::voxel_layout w = cellforge::empty_layout({0, 1, 2}, {0, 1, 2}, {0, 1, 2});
   w.at(0, 0, 0) = w.at(1, 1, 1) = 1;
   CHECK_FALSE(cellforge::voxel_solid_model(w, "vertex contact").has_value());
+  // Skylines: the height repair leaves no edge-only contact between columns.
+  std::size_t skylines = 0;
+  for (std::uint64_t seed = 0; seed < 20; ++seed) {
+    const auto sky = cellforge::random_skyline(7, 6, 4, seed);
+    skylines += sky.has_value();
+    if (sky) CHECK(sky->genus == 0);
+  }
+  CHECK(skylines >= 16);
   // A hollow box (a cavity) is refused; a ring is genus 1.
   cellforge::voxel_layout hollow = cellforge::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1, 2, 3});
   std::fill(hollow.labels.begin(), hollow.labels.end(), 1);

@@ -814,6 +814,43 @@ std::optional<voxel_solid> random_normalon(std::size_t nx, std::size_t ny, std::
                                              "x" + std::to_string(nz) + " #" + std::to_string(seed));
 }
 
+/// A skyline: an nx × ny grid of columns of random widths, each 1..max_height cells of random
+/// heights tall, as a merged normalon solid. Where two diagonal columns both rise above the
+/// other two of their 2 × 2 block (they would touch along an edge only) the lower of those
+/// is raised; nullopt when the result still is no 2-manifold solid. O(cells log cells).
+template <class = void>
+std::optional<voxel_solid> random_skyline(std::size_t nx, std::size_t ny, std::size_t max_height,
+                                          std::uint64_t seed) {
+  detail::splitmix rng{seed ^ 0x736b796c696e6500u};
+  max_height = std::max<std::size_t>(max_height, 1);
+  std::vector<double> xs = detail::random_coords(nx, 0.5, 1.5, rng);
+  std::vector<double> ys = detail::random_coords(ny, 0.5, 1.5, rng);
+  std::vector<double> zs = detail::random_coords(max_height, 0.3, 1.0, rng);
+  voxel_layout l = empty_layout(std::move(xs), std::move(ys), std::move(zs));
+  std::vector<std::size_t> h(nx * ny);
+  for (auto& x : h) x = 1 + detail::below(max_height, rng);
+  for (bool again = true; again;) {  // heights only grow, to at most max_height: ends
+    again = false;
+    for (std::size_t j = 0; j + 1 < ny; ++j)
+      for (std::size_t i = 0; i + 1 < nx; ++i) {
+        std::size_t &a = h[i + nx * j], &b = h[i + 1 + nx * (j + 1)], &c = h[i + 1 + nx * j],
+                    &d = h[i + nx * (j + 1)];
+        if (std::min(a, b) > std::max(c, d)) {
+          (c < d ? c : d) = std::min(a, b);
+          again = true;
+        } else if (std::min(c, d) > std::max(a, b)) {
+          (a < b ? a : b) = std::min(c, d);
+          again = true;
+        }
+      }
+  }
+  for (std::size_t j = 0; j < ny; ++j)
+    for (std::size_t i = 0; i < nx; ++i)
+      for (std::size_t k = 0; k < h[i + nx * j]; ++k) l.at(i, j, k) = 1;
+  return voxel_solid_model(
+      std::move(l), "skyline " + std::to_string(nx) + "x" + std::to_string(ny) + " #" + std::to_string(seed));
+}
+
 /// A 3 × 3 × 3 block of random widths with `notches` random edge or corner cells cut away
 /// (cells with at least two coordinates on the block's outside); nullopt when the result is
 /// not a 2-manifold solid. O(1).
@@ -1256,6 +1293,10 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
       if (k % 3 == 2) {
         const std::size_t notches = 1 + detail::below(6, rng);
         s = notched_block(notches, rng.next());
+      } else if (k % 3 == 1) {
+        const std::size_t nx = 3 + detail::below(6, rng), ny = 3 + detail::below(6, rng);
+        const std::size_t height = 2 + detail::below(3, rng);
+        s = random_skyline(nx, ny, height, rng.next());
       } else {
         const std::size_t nx = 2 + detail::below(4, rng), ny = 2 + detail::below(4, rng),
                           nz = 1 + detail::below(4, rng);
