@@ -43,21 +43,22 @@ std::size_t checked_limit() {
 #endif
 }
 
-const std::vector<sample_drawing>& full_sweep(cellforge::sketch_sweep_report* report = nullptr) {
-  static cellforge::sketch_sweep_report rep;
-  static const std::vector<sample_drawing> all = cellforge::sketch_sweep({}, &rep);
-  if (report) *report = rep;
-  return all;
-}
-
-const std::vector<sample_drawing>& checked() {
-  static const std::vector<sample_drawing> sample = [] {
+// The sweep the cases check (full or sample), built once, with its report.
+struct sweep_run {
+  std::vector<sample_drawing> drawings;
+  cellforge::sketch_sweep_report report;
+};
+const sweep_run& run() {
+  static const sweep_run r = [] {
+    sweep_run x;
     cellforge::sketch_sweep_options o;
     o.limit = checked_limit();
-    return o.limit == 0 ? full_sweep() : cellforge::sketch_sweep(o);
+    x.drawings = cellforge::sketch_sweep(o, &x.report);
+    return x;
   }();
-  return sample;
+  return r;
 }
+const std::vector<sample_drawing>& checked() { return run().drawings; }
 
 // What is wrong with a drawing's truth, empty when nothing. O(L log L + V·E).
 std::string truth_faults(const sample_drawing& s) {
@@ -136,23 +137,29 @@ std::string truth_faults(const sample_drawing& s) {
 }
 
 TEST_CASE("sketch_sweep: at least 1000 drawings of every family, none over 300 edges, deterministic") {
-  cellforge::sketch_sweep_report rep;
-  const auto& all = full_sweep(&rep);
+  const auto& rep = run().report;
+  const auto& all = run().drawings;
+  const bool full = checked_limit() == 0;
   std::ostringstream table;
-  std::size_t emin = 1000, emax = 0;
+  std::size_t emin = 1000, emax = 0, planned = 0;
   for (const auto& f : rep.families) {
-    table << "  " << f.family << ": " << f.models << " models, " << f.drawings << " drawings, edges "
-          << f.min_edges << ".." << f.max_edges << ", rejected draws " << f.rejected << ", no generic view "
-          << f.no_view << "\n";
-    CHECK_MESSAGE(f.drawings >= 10, f.family);
+    table << "  " << f.family << ": " << f.models << " models, " << f.drawings << " drawings (of "
+          << f.planned << "), edges " << f.min_edges << ".." << f.max_edges << ", rejected draws "
+          << f.rejected << ", no generic view " << f.no_view << "\n";
+    CHECK_MESSAGE(f.drawings >= (full ? 10u : 1u), f.family);
     CHECK_MESSAGE(f.no_view * 50 <= f.drawings, f.family);  // at most 2 % without a generic view
+    CHECK(f.drawings + f.no_view <= f.planned);
     emin = std::min(emin, f.min_edges);
     emax = std::max(emax, f.max_edges);
+    planned += f.planned;
   }
-  MESSAGE("sketch sweep: " << all.size() << " drawings, edges " << emin << ".." << emax << ", generated in "
-                           << rep.ms << " ms\n"
-                           << table.str());
-  CHECK(all.size() >= 1000);
+  MESSAGE("sketch sweep" << std::string(full ? "" : " (sample)") << ": " << all.size() << " drawings of "
+                         << planned << " planned, edges " << emin << ".." << emax << ", generated in "
+                         << rep.ms << " ms\n"
+                         << table.str());
+  CHECK(planned >= 1000);
+  if (full) CHECK(all.size() >= 1000);
+  if (!full) CHECK(all.size() * 4 < planned);  // a sample indeed
   CHECK(rep.drawings == all.size());
   std::map<std::string, std::size_t> per_family;
   std::set<std::string> names;
@@ -163,23 +170,34 @@ TEST_CASE("sketch_sweep: at least 1000 drawings of every family, none over 300 e
   }
   for (const auto& f : cellforge::sketch_sweep_families()) CHECK_MESSAGE(per_family[f] > 0, f);
   CHECK(per_family.size() == cellforge::sketch_sweep_families().size());
-  // The limited sample is a subset of the full sweep, drawing for drawing.
+  // A smaller sample is a subset of the full sweep, drawing for drawing (compared on a few
+  // families: the full sweep of just those).
   cellforge::sketch_sweep_options o;
   o.limit = 100;
   const auto sample = cellforge::sketch_sweep(o);
   CHECK(sample.size() >= 90);
   CHECK(sample.size() <= 130);
+  cellforge::sketch_sweep_options some;
+  some.families = {"platonic", "cut cube", "stairs", "classic"};
+  const auto reference = full ? all : cellforge::sketch_sweep(some);
   std::map<std::string, const sample_drawing*> by_name;
-  for (const auto& s : all) by_name[s.name] = &s;
+  for (const auto& s : reference) by_name[s.name] = &s;
   std::set<std::string> sample_families;
+  std::size_t compared = 0;
   for (const auto& s : sample) {
     sample_families.insert(s.family);
+    if (!full && std::find(some.families.begin(), some.families.end(), s.family) == some.families.end())
+      continue;
     const auto it = by_name.find(s.name);
     REQUIRE_MESSAGE(it != by_name.end(), s.name);
     CHECK(it->second->drawing.points == s.drawing.points);
     CHECK(it->second->loops == s.loops);
+    ++compared;
   }
+  CHECK(compared >= 10);
   CHECK(sample_families.size() == cellforge::sketch_sweep_families().size());
+  for (const auto& s : reference)
+    if (!full) CHECK(std::find(some.families.begin(), some.families.end(), s.family) != some.families.end());
   // Another seed: other random models and views, the same fixed families.
   o.limit = 0;
   o.seed = 2;
@@ -187,7 +205,10 @@ TEST_CASE("sketch_sweep: at least 1000 drawings of every family, none over 300 e
   o.max_edges = 60;
   const auto other = cellforge::sketch_sweep(o);
   for (const auto& s : other) CHECK(s.drawing.edges.size() <= 60);
+  CHECK(other.front().name == all.front().name);
   CHECK(other.front().drawing.points != all.front().drawing.points);
+  some.families = {"no such family"};
+  CHECK_THROWS_AS(cellforge::sketch_sweep(some), cellforge::error);
 }
 
 TEST_CASE("sketch_sweep: every drawing generic, its truth a 2-manifold solid of the stated genus") {
@@ -267,8 +288,12 @@ std::set<std::uint32_t> outline_corners(const sample_drawing& s) {
 
 TEST_CASE("sketch_classics: each shows the difficulty its name says, in every view") {
   std::set<std::string> seen;
-  for (const auto& s : full_sweep()) {
-    if (s.family != "classic") continue;
+  cellforge::sketch_sweep_options o;
+  o.families = {"classic"};
+  const auto classics = cellforge::sketch_sweep(o);
+  CHECK(classics.size() == 3 * cellforge::sketch_classics().size());
+  for (const auto& s : classics) {
+    CHECK(s.family == "classic");
     CAPTURE(s.name);
     const auto& m = s.model;
     const std::string& n = m.name;
@@ -408,6 +433,14 @@ TEST_CASE("sample solids: sizes by construction; bad sizes refused") {
   cellforge::voxel_layout w = cellforge::empty_layout({0, 1, 2}, {0, 1, 2}, {0, 1, 2});
   w.at(0, 0, 0) = w.at(1, 1, 1) = 1;
   CHECK_FALSE(cellforge::voxel_solid_model(w, "vertex contact").has_value());
+  // Skylines: the height repair leaves no edge-only contact between columns.
+  std::size_t skylines = 0;
+  for (std::uint64_t seed = 0; seed < 20; ++seed) {
+    const auto sky = cellforge::random_skyline(7, 6, 4, seed);
+    skylines += sky.has_value();
+    if (sky) CHECK(sky->genus == 0);
+  }
+  CHECK(skylines >= 16);
   // A hollow box (a cavity) is refused; a ring is genus 1.
   cellforge::voxel_layout hollow = cellforge::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1, 2, 3});
   std::fill(hollow.labels.begin(), hollow.labels.end(), 1);

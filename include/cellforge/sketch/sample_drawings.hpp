@@ -814,6 +814,43 @@ std::optional<voxel_solid> random_normalon(std::size_t nx, std::size_t ny, std::
                                              "x" + std::to_string(nz) + " #" + std::to_string(seed));
 }
 
+/// A skyline: an nx × ny grid of columns of random widths, each 1..max_height cells of random
+/// heights tall, as a merged normalon solid. Where two diagonal columns both rise above the
+/// other two of their 2 × 2 block (they would touch along an edge only) the lower of those
+/// is raised; nullopt when the result still is no 2-manifold solid. O(cells log cells).
+template <class = void>
+std::optional<voxel_solid> random_skyline(std::size_t nx, std::size_t ny, std::size_t max_height,
+                                          std::uint64_t seed) {
+  detail::splitmix rng{seed ^ 0x736b796c696e6500u};
+  max_height = std::max<std::size_t>(max_height, 1);
+  std::vector<double> xs = detail::random_coords(nx, 0.5, 1.5, rng);
+  std::vector<double> ys = detail::random_coords(ny, 0.5, 1.5, rng);
+  std::vector<double> zs = detail::random_coords(max_height, 0.3, 1.0, rng);
+  voxel_layout l = empty_layout(std::move(xs), std::move(ys), std::move(zs));
+  std::vector<std::size_t> h(nx * ny);
+  for (auto& x : h) x = 1 + detail::below(max_height, rng);
+  for (bool again = true; again;) {  // heights only grow, to at most max_height: ends
+    again = false;
+    for (std::size_t j = 0; j + 1 < ny; ++j)
+      for (std::size_t i = 0; i + 1 < nx; ++i) {
+        std::size_t &a = h[i + nx * j], &b = h[i + 1 + nx * (j + 1)], &c = h[i + 1 + nx * j],
+                    &d = h[i + nx * (j + 1)];
+        if (std::min(a, b) > std::max(c, d)) {
+          (c < d ? c : d) = std::min(a, b);
+          again = true;
+        } else if (std::min(c, d) > std::max(a, b)) {
+          (a < b ? a : b) = std::min(c, d);
+          again = true;
+        }
+      }
+  }
+  for (std::size_t j = 0; j < ny; ++j)
+    for (std::size_t i = 0; i < nx; ++i)
+      for (std::size_t k = 0; k < h[i + nx * j]; ++k) l.at(i, j, k) = 1;
+  return voxel_solid_model(
+      std::move(l), "skyline " + std::to_string(nx) + "x" + std::to_string(ny) + " #" + std::to_string(seed));
+}
+
 /// A 3 × 3 × 3 block of random widths with `notches` random edge or corner cells cut away
 /// (cells with at least two coordinates on the block's outside); nullopt when the result is
 /// not a 2-manifold solid. O(1).
@@ -1046,6 +1083,8 @@ struct sketch_sweep_options {
   /// 0: every drawing; else a deterministic sample of about `limit` drawings (every k-th of
   /// each family, so every family stays), the same drawings the full sweep has.
   std::size_t limit = 0;
+  /// Families to build (names of sketch_sweep_families()); empty: all of them.
+  std::vector<std::string> families;
   /// generic_margin a view of a drawing of up to 100 edges must reach; a drawing of E > 100
   /// edges must reach min_margin · 100 / E (sketch_margin_threshold: the junctions of a dense
   /// drawing are closer, the margin per edge spacing is kept).
@@ -1060,11 +1099,12 @@ double sketch_margin_threshold(const sketch_sweep_options& options, std::size_t 
   return edges <= 100 ? options.min_margin : options.min_margin * 100.0 / static_cast<double>(edges);
 }
 
-/// Per family: models built, drawings made, random draws rejected (not a manifold solid or
-/// over max_edges), drawings dropped for want of a generic view, edge range.
+/// Per family: models built, drawings planned (models × views: what the sweep without a limit
+/// tries), drawings made, random draws rejected (not a manifold solid or over max_edges),
+/// drawings dropped for want of a generic view, edge range.
 struct sketch_sweep_family {
   std::string family;
-  std::size_t models = 0, drawings = 0, rejected = 0, no_view = 0;
+  std::size_t models = 0, planned = 0, drawings = 0, rejected = 0, no_view = 0;
   std::size_t min_edges = 0, max_edges = 0;
 };
 
@@ -1159,6 +1199,10 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
     throw error(error_category::invalid_input,
                 "sketch_sweep: views_per_model and view_attempts must be at least 1, min_margin >= 0");
   const std::vector<std::string> names = sketch_sweep_families();
+  for (const auto& f : options.families)
+    if (std::find(names.begin(), names.end(), f) == names.end())
+      throw error(error_category::invalid_input,
+                  "sketch_sweep: no family '" + f + "'; sketch_sweep_families() lists them");
   sketch_sweep_report rep;
   for (const auto& f : names) rep.families.push_back({f});
   const auto fam = [&](const std::string& f) -> sketch_sweep_family& {
@@ -1167,6 +1211,11 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
   std::vector<detail::sweep_item> items;
   const int v = options.views_per_model;
   // Adds a model when it is small enough; returns whether it did.
+  // Families to build: options.families, or all of them.
+  const auto wanted = [&](const char* family) {
+    return options.families.empty() ||
+           std::find(options.families.begin(), options.families.end(), family) != options.families.end();
+  };
   const auto add = [&](sample_model m, const std::string& family, int genus, int views) {
     if (m.wire.edges.size() > options.max_edges) {
       ++fam(family).rejected;
@@ -1185,20 +1234,28 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
     for (std::size_t n = 3; n <= most; n += n < 20 ? 1 : 4) out.push_back(n);
     return out;
   };
-  for (const std::size_t n : sizes(std::min<std::size_t>(emax / 3, 100))) add(sample_prism(n), "prism", 0, v);
-  for (const std::size_t n : sizes(std::min<std::size_t>(emax / 2, 100)))
-    add(sample_pyramid(n), "pyramid", 0, v);
-  for (const std::size_t n : sizes(std::min<std::size_t>(emax / 3, 12)))
-    add(sample_frustum(n, 0.25 + 0.05 * static_cast<double>(n)), "pyramid", 0, v);
-  for (const std::size_t n : sizes(std::min<std::size_t>(emax / 3, 100)))
-    if (n < 12 || n % 8 == 0) add(sample_bipyramid(n, 0.8, 1.3), "pyramid", 0, v);
-  for (const std::size_t n : sizes(std::min<std::size_t>(emax / 4, 75)))
-    add(sample_antiprism(n), "antiprism", 0, v);
-  for (auto& m : platonic_solids()) add(std::move(m), "platonic", 0, 4 * v);
-  for (auto& m : archimedean_solids()) add(std::move(m), "archimedean", 0, 4 * v);
+  if (wanted("prism"))
+    for (const std::size_t n : sizes(std::min<std::size_t>(emax / 3, 100)))
+      add(sample_prism(n), "prism", 0, v);
+  if (wanted("pyramid"))
+    for (const std::size_t n : sizes(std::min<std::size_t>(emax / 2, 100)))
+      add(sample_pyramid(n), "pyramid", 0, v);
+  if (wanted("pyramid"))
+    for (const std::size_t n : sizes(std::min<std::size_t>(emax / 3, 12)))
+      add(sample_frustum(n, 0.25 + 0.05 * static_cast<double>(n)), "pyramid", 0, v);
+  if (wanted("pyramid"))
+    for (const std::size_t n : sizes(std::min<std::size_t>(emax / 3, 100)))
+      if (n < 12 || n % 8 == 0) add(sample_bipyramid(n, 0.8, 1.3), "pyramid", 0, v);
+  if (wanted("antiprism"))
+    for (const std::size_t n : sizes(std::min<std::size_t>(emax / 4, 75)))
+      add(sample_antiprism(n), "antiprism", 0, v);
+  if (wanted("platonic"))
+    for (auto& m : platonic_solids()) add(std::move(m), "platonic", 0, 4 * v);
+  if (wanted("archimedean"))
+    for (auto& m : archimedean_solids()) add(std::move(m), "archimedean", 0, 4 * v);
   // Random families: draws until random_models are kept (or 20 times as many draws).
   const std::size_t want = options.random_models, budget = 20 * options.random_models + 20;
-  {
+  if (wanted("random convex")) {
     std::size_t kept = 0;
     for (std::size_t k = 0; kept < want && k < budget; ++k) {
       detail::splitmix rng{seed_of(1, k)};
@@ -1207,7 +1264,7 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
       kept += add(random_convex_polytope(n, sphere, rng.next()), "random convex", 0, v);
     }
   }
-  {
+  if (wanted("cut cube")) {
     std::size_t kept = 0;
     for (std::size_t k = 0; kept < want && k < budget; ++k) {
       detail::splitmix rng{seed_of(2, k)};
@@ -1225,10 +1282,10 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
       kept += add(std::move(m), "cut cube", 0, v);
     }
   }
-  add(sample_L(), "normalon", 0, v);
-  add(sample_T(), "normalon", 0, v);
-  add(sample_U(), "normalon", 0, v);
-  {
+  if (wanted("normalon")) add(sample_L(), "normalon", 0, v);
+  if (wanted("normalon")) add(sample_T(), "normalon", 0, v);
+  if (wanted("normalon")) add(sample_U(), "normalon", 0, v);
+  if (wanted("normalon")) {
     std::size_t kept = 0;
     for (std::size_t k = 0; kept < want && k < budget; ++k) {
       detail::splitmix rng{seed_of(3, k)};
@@ -1236,6 +1293,10 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
       if (k % 3 == 2) {
         const std::size_t notches = 1 + detail::below(6, rng);
         s = notched_block(notches, rng.next());
+      } else if (k % 3 == 1) {
+        const std::size_t nx = 3 + detail::below(6, rng), ny = 3 + detail::below(6, rng);
+        const std::size_t height = 2 + detail::below(3, rng);
+        s = random_skyline(nx, ny, height, rng.next());
       } else {
         const std::size_t nx = 2 + detail::below(4, rng), ny = 2 + detail::below(4, rng),
                           nz = 1 + detail::below(4, rng);
@@ -1250,47 +1311,53 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
       kept += add(std::move(s->model), "normalon", s->genus, v);
     }
   }
-  for (std::size_t steps = 1; steps <= 20; ++steps)
-    add(sample_stairs(steps, seed_of(4, steps)), "stairs", 0, v);
-  for (std::size_t steps = 25; 6 * steps + 6 <= emax; steps += 6)
-    add(sample_stairs(steps, seed_of(4, steps)), "stairs", 0, v);
-  add(sample_block_with_hole(), "through slot", 1, v);
-  add(sample_frame(), "through slot", 1, v);
-  for (std::size_t k = 0, kept = 0; kept < want && k < budget; ++k) {
-    detail::splitmix rng{seed_of(5, k)};
-    const std::size_t holes = 1 + detail::below(4, rng);
-    voxel_solid s = through_slot(holes, rng.next());
-    kept += add(std::move(s.model), "through slot", s.genus, v);
-  }
-  for (std::size_t k = 0, kept = 0; kept < want && k < budget; ++k) {
-    detail::splitmix rng{seed_of(6, k)};
-    kept += add(random_quasi_normalon(static_cast<int>(k % 6), rng.next()), "quasi-normalon", 0, v);
-  }
-  for (std::size_t k = 0, kept = 0; kept < want && k < budget; ++k) {
-    detail::splitmix rng{seed_of(7, k)};
-    try {
-      if (k % 3 == 2) {
-        const int kind = static_cast<int>(detail::below(3, rng));
-        const double jitter = rng.uniform(0.05, 0.3);
-        const std::vector<glm::dvec2> footprint = letter_footprint(kind, jitter, rng);
-        kept += add(extruded_polygon(footprint, rng.uniform(0.5, 2),
-                                     std::string(kind == 0   ? "oblique L"
-                                                 : kind == 1 ? "oblique T"
-                                                             : "oblique cross") +
-                                         " prism #" + std::to_string(k)),
-                    "non-convex prism", 0, v);
-      } else {
-        const std::size_t n = 5 + detail::below(std::min<std::size_t>(emax / 3, 100) - 4, rng);
-        const std::vector<glm::dvec2> footprint = random_star_polygon(n, rng);
-        kept += add(extruded_polygon(footprint, rng.uniform(0.3, 1.5),
-                                     "star prism " + std::to_string(n) + " #" + std::to_string(k)),
-                    "non-convex prism", 0, v);
-      }
-    } catch (const error&) {
-      ++fam("non-convex prism").rejected;  // a footprint that is not simple
+  if (wanted("stairs"))
+    for (std::size_t steps = 1; steps <= 20; ++steps)
+      add(sample_stairs(steps, seed_of(4, steps)), "stairs", 0, v);
+  if (wanted("stairs"))
+    for (std::size_t steps = 25; 6 * steps + 6 <= emax; steps += 6)
+      add(sample_stairs(steps, seed_of(4, steps)), "stairs", 0, v);
+  if (wanted("through slot")) add(sample_block_with_hole(), "through slot", 1, v);
+  if (wanted("through slot")) add(sample_frame(), "through slot", 1, v);
+  if (wanted("through slot"))
+    for (std::size_t k = 0, kept = 0; kept < want && k < budget; ++k) {
+      detail::splitmix rng{seed_of(5, k)};
+      const std::size_t holes = 1 + detail::below(4, rng);
+      voxel_solid s = through_slot(holes, rng.next());
+      kept += add(std::move(s.model), "through slot", s.genus, v);
     }
-  }
-  for (auto& c : sketch_classics()) add(std::move(c.model), "classic", c.genus, v);
+  if (wanted("quasi-normalon"))
+    for (std::size_t k = 0, kept = 0; kept < want && k < budget; ++k) {
+      detail::splitmix rng{seed_of(6, k)};
+      kept += add(random_quasi_normalon(static_cast<int>(k % 6), rng.next()), "quasi-normalon", 0, v);
+    }
+  if (wanted("non-convex prism"))
+    for (std::size_t k = 0, kept = 0; kept < want && k < budget; ++k) {
+      detail::splitmix rng{seed_of(7, k)};
+      try {
+        if (k % 3 == 2) {
+          const int kind = static_cast<int>(detail::below(3, rng));
+          const double jitter = rng.uniform(0.05, 0.3);
+          const std::vector<glm::dvec2> footprint = letter_footprint(kind, jitter, rng);
+          kept += add(extruded_polygon(footprint, rng.uniform(0.5, 2),
+                                       std::string(kind == 0   ? "oblique L"
+                                                   : kind == 1 ? "oblique T"
+                                                               : "oblique cross") +
+                                           " prism #" + std::to_string(k)),
+                      "non-convex prism", 0, v);
+        } else {
+          const std::size_t n = 5 + detail::below(std::min<std::size_t>(emax / 3, 100) - 4, rng);
+          const std::vector<glm::dvec2> footprint = random_star_polygon(n, rng);
+          kept += add(extruded_polygon(footprint, rng.uniform(0.3, 1.5),
+                                       "star prism " + std::to_string(n) + " #" + std::to_string(k)),
+                      "non-convex prism", 0, v);
+        }
+      } catch (const error&) {
+        ++fam("non-convex prism").rejected;  // a footprint that is not simple
+      }
+    }
+  if (wanted("classic"))
+    for (auto& c : sketch_classics()) add(std::move(c.model), "classic", c.genus, v);
 
   // The drawings: the sample keeps every stride-th drawing of each family.
   std::size_t total = 0;
@@ -1303,6 +1370,7 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
     auto& f = fam(it.family);
     const auto fi = static_cast<std::size_t>(&f - rep.families.data());
     bool counted = false;
+    f.planned += static_cast<std::size_t>(it.views);
     for (int view = 0; view < it.views; ++view) {
       if (index[fi]++ % stride != 0) continue;
       // Classics: fixed views; the others follow options.seed.
