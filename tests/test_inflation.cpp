@@ -559,3 +559,16 @@ TEST_CASE("inflate: bad drawings and loops are refused with a reason") {
   o.allow_optimisation = false;
   CHECK(category(p.drawing, p.loops, o) == invalid);
 }
+
+TEST_CASE("inflate: a hole's ring tied to its face only when the face is given with its holes") {
+  const sample_drawing s = cellforge::generic_drawing(cellforge::sample_frame(), 4, "normalon");
+  const auto whole = cellforge::inflate(s.drawing, s.model.faces);
+  CHECK(whole.method == cellforge::inflation_method::direct);
+  CHECK(std::min(depth_error(s, whole.readings[0].points), depth_error(s, whole.readings[1].points)) < 1e-9);
+  // As separate loops, the inner ring (joined to the outer one by no line) may slide in depth.
+  const auto loose = cellforge::inflate(s.drawing, s.loops);
+  CHECK(loose.method == cellforge::inflation_method::optimisation);
+  REQUIRE(!loose.diagnostics.empty());
+  CHECK(loose.diagnostics[0].find("fixed neither by axis edges nor by face planes") != std::string::npos);
+  CHECK(loose.after.planarity < 1e-12);
+}

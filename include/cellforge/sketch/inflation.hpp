@@ -325,8 +325,7 @@ compliance_terms<> make_compliance_terms(const inflation_problem<>& pr, double t
       runs.emplace_back(), run_angle.push_back(by_angle[i].first);
     runs.back().push_back(by_angle[i].second);
   }
-  if (runs.size() > 1 && by_angle.back().first - std::numbers::pi > -tolerance - by_angle.front().first &&
-      angle_distance(by_angle.back().first, by_angle.front().first) <= tolerance) {
+  if (runs.size() > 1 && angle_distance(by_angle.back().first, by_angle.front().first) <= tolerance) {
     runs.front().insert(runs.front().end(), runs.back().begin(), runs.back().end());
     runs.pop_back();
     run_angle.pop_back();
@@ -339,7 +338,7 @@ compliance_terms<> make_compliance_terms(const inflation_problem<>& pr, double t
   return t;
 }
 
-/// Angle at q between the 3D segments to a and to b. O(1).
+/// Cosine of the angle at q between the 3D segments to a and to b. O(1).
 template <class = void>
 double corner_cos(glm::dvec3 a, glm::dvec3 q, glm::dvec3 b) {
   const glm::dvec3 u = a - q, v = b - q;
