@@ -34,6 +34,10 @@
 #include "cellforge/halfedge/properties.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"
 #include "cellforge/halfedge/validate.hpp"
+// Inflation solves with Eigen: included when Eigen is on the include path (CMake links it when found).
+#if __has_include(<Eigen/Dense>)
+#include "cellforge/sketch/inflation.hpp"
+#endif
 #include "cellforge/smooth/continuous_surfaces.hpp"
 #include "cellforge/smooth/edge_curve.hpp"
 #include "cellforge/smooth/normals.hpp"

@@ -325,8 +325,7 @@ compliance_terms<> make_compliance_terms(const inflation_problem<>& pr, double t
       runs.emplace_back(), run_angle.push_back(by_angle[i].first);
     runs.back().push_back(by_angle[i].second);
   }
-  if (runs.size() > 1 && by_angle.back().first - std::numbers::pi > -tolerance - by_angle.front().first &&
-      angle_distance(by_angle.back().first, by_angle.front().first) <= tolerance) {
+  if (runs.size() > 1 && angle_distance(by_angle.back().first, by_angle.front().first) <= tolerance) {
     runs.front().insert(runs.front().end(), runs.back().begin(), runs.back().end());
     runs.pop_back();
     run_angle.pop_back();
@@ -339,7 +338,7 @@ compliance_terms<> make_compliance_terms(const inflation_problem<>& pr, double t
   return t;
 }
 
-/// Angle at q between the 3D segments to a and to b. O(1).
+/// Cosine of the angle at q between the 3D segments to a and to b. O(1).
 template <class = void>
 double corner_cos(glm::dvec3 a, glm::dvec3 q, glm::dvec3 b) {
   const glm::dvec3 u = a - q, v = b - q;
@@ -693,6 +692,34 @@ Eigen::MatrixXd planar_readings(const inflation_problem<>& pr, double rank_toler
   return q.rightCols(nv - rank);
 }
 
+/// Lines whose two face loops are coplanar at depths z (the sine of the angle between their
+/// normals below 1e-3): a reading in which faces merge. O(L log L).
+template <class Z>
+std::size_t coplanar_neighbours(const inflation_problem<>& pr, const Z& z) {
+  std::vector<glm::dvec3> normal;
+  std::vector<std::array<std::uint32_t, 3>> sides;  // (lo, hi, loop)
+  for (std::uint32_t l = 0; l < pr.loops.size(); ++l) {
+    const auto& loop = pr.loops[l];
+    glm::dvec3 n{0.0};
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const glm::dvec3 a(pr.p[loop[k]], z[loop[k]]);
+      const std::uint32_t nb = loop[(k + 1) % loop.size()];
+      const glm::dvec3 b(pr.p[nb], z[nb]);
+      n += glm::cross(a, b);
+      sides.push_back({std::min(loop[k], nb), std::max(loop[k], nb), l});
+    }
+    const double len = glm::length(n);
+    normal.push_back(len > 0 ? n / len : n);
+  }
+  std::sort(sides.begin(), sides.end());
+  std::size_t flat = 0;
+  for (std::size_t i = 0; i + 1 < sides.size(); ++i)
+    if (sides[i][0] == sides[i + 1][0] && sides[i][1] == sides[i + 1][1] &&
+        glm::length(glm::cross(normal[sides[i][2]], normal[sides[i + 1][2]])) < 1e-3)
+      ++flat;
+  return flat;
+}
+
 /// The view-from-above score of depths z: the lines most upright in the drawing (the most
 /// vertical class of 2D-parallel lines, else the most vertical line), each taken going up the
 /// picture, come towards the viewer by this much (Σ Δz / Σ 3D length, in (−1, 1)): positive
@@ -806,6 +833,7 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
       starts.push_back(range > 0 ? Eigen::VectorXd(t * (0.5 / range)) : t);
     }
     double best = std::numeric_limits<double>::infinity();
+    std::size_t best_flat = std::numeric_limits<std::size_t>::max();
     Eigen::VectorXd best_t;
     Eigen::VectorXd fv(m);
     for (const auto& s : starts) {
@@ -820,7 +848,12 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
       ++res.starts;
       f(t, fv);
       const double value = fv.squaredNorm();
-      if (std::isfinite(value) && value < best) best = value, best_t = t;
+      const Eigen::VectorXd zt = basis * t;
+      const std::size_t flat = detail::coplanar_neighbours(pr, zt);
+      // Fewest merged neighbours first (a reading in which two faces of an edge are coplanar
+      // has lost a face), then the lowest objective.
+      if (std::isfinite(value) && (flat < best_flat || (flat == best_flat && value < best)))
+        best = value, best_t = t, best_flat = flat;
       if (res.starts == 1) {
         const Eigen::VectorXd z0 = basis * s;
         res.before = measure(std::vector<double>(z0.data(), z0.data() + z0.size()));
@@ -830,6 +863,9 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
       throw error(error_category::internal, "inflate: the optimisation produced no finite reading");
     const Eigen::VectorXd zb = basis * best_t;
     z.assign(zb.data(), zb.data() + zb.size());
+    if (best_flat > 0)
+      res.diagnostics.push_back("inflate: in the best reading found, " + std::to_string(best_flat) +
+                                " line(s) join two coplanar faces (those faces would merge)");
     res.diagnostics.push_back("inflate: optimisation objective " + std::to_string(best) + " after " +
                               std::to_string(res.iterations) + " iterations over " +
                               std::to_string(res.starts) + " starts");
