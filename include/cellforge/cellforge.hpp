@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// Every public header of cellforge except three kinds, which you include by name when you
+/// Every public header of cellforge except four kinds, which you include by name when you
 /// want them: file I/O (`cellforge/io/...`), the generators of test and benchmark inputs
-/// (`algorithms/shapes.hpp`, `wireframe/sample_models.hpp`, `tubes/sample_skeletons.hpp`)
-/// and the seed's sample solids (`thin/sample_solids.hpp`, `smooth/sample_solids.hpp`),
-/// which are large and which an application rarely needs. The header hygiene test checks that this list is complete.
+/// (`algorithms/shapes.hpp`, `wireframe/sample_models.hpp`, `tubes/sample_skeletons.hpp`,
+/// `sketch/sample_drawings.hpp`), the seed's sample solids (`thin/sample_solids.hpp`,
+/// `smooth/sample_solids.hpp`), which are large and which an application rarely needs, and
+/// the two sketch stages that solve with Eigen (`sketch/inflation.hpp`,
+/// `sketch/drawing_to_cells.hpp`), so that nothing else needs Eigen or pays for parsing it.
+/// The header hygiene test checks that this list is complete.
 
 #include "cellforge/algorithms/convex_hull.hpp"
 #include "cellforge/algorithms/ear_clipping.hpp"
@@ -19,6 +22,7 @@
 #include "cellforge/core/bounding_box.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/morton.hpp"
+#include "cellforge/core/point2_traits.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_intersection.hpp"
 #include "cellforge/core/polygon_soup.hpp"
@@ -34,10 +38,8 @@
 #include "cellforge/halfedge/properties.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"
 #include "cellforge/halfedge/validate.hpp"
-// Inflation solves with Eigen: included when Eigen is on the include path (CMake links it when found).
-#if __has_include(<Eigen/Dense>)
-#include "cellforge/sketch/inflation.hpp"
-#endif
+#include "cellforge/sketch/face_finder.hpp"
+#include "cellforge/sketch/line_drawing.hpp"
 #include "cellforge/smooth/continuous_surfaces.hpp"
 #include "cellforge/smooth/edge_curve.hpp"
 #include "cellforge/smooth/normals.hpp"

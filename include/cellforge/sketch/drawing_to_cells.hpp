@@ -78,7 +78,8 @@ using face_set = std::vector<std::vector<std::vector<std::uint32_t>>>;
 
 /// Newell normal and centroid of a loop in 3D. O(L).
 template <class = void>
-std::pair<glm::dvec3, glm::dvec3> loop_plane(const std::vector<glm::dvec3>& p, const std::vector<std::uint32_t>& loop) {
+std::pair<glm::dvec3, glm::dvec3> loop_plane(const std::vector<glm::dvec3>& p,
+                                             const std::vector<std::uint32_t>& loop) {
   glm::dvec3 n{0.0}, c{0.0};
   for (std::size_t k = 0; k < loop.size(); ++k) {
     const glm::dvec3 u = p[loop[k]], v = p[loop[(k + 1) % loop.size()]];
@@ -130,7 +131,8 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
           (best == n || std::abs(area[c]) < std::abs(area[best])))
         best = c;
     if (best == n)
-      diagnostics.push_back("loop " + std::to_string(h) + " splits the drawing but lies in no face loop running the other way");
+      diagnostics.push_back("loop " + std::to_string(h) +
+                            " splits the drawing but lies in no face loop running the other way");
     owner[h] = best;
   }
   const auto faces_of = [&](const std::vector<std::size_t>& own, auto&& keep) {
@@ -145,12 +147,14 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
   const std::size_t parts = f.component_size.size();
   std::vector<char> has_loop(parts, 0);
   for (std::size_t i = 0; i < n; ++i) has_loop[part[i]] = 1;
-  if (std::count(has_loop.begin(), has_loop.end(), 1) < 2) return faces_of(owner, [](std::size_t) { return true; });
+  if (std::count(has_loop.begin(), has_loop.end(), 1) < 2)
+    return faces_of(owner, [](std::size_t) { return true; });
 
   // Each part alone: its drawing, its faces, both readings (junction depths, global indices).
   struct part_reading {
     std::vector<std::vector<glm::dvec3>> readings;  // [reading][junction]; empty: not inflated
-    double span = 0;                                 // bounding-box area in the drawing
+    std::vector<double> outward;                    // per reading: +1 when the loops' sense is outward
+    double span = 0;                                // bounding-box area in the drawing
   };
   std::vector<part_reading> pr(parts);
   double size = 0;
@@ -159,7 +163,9 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
     line_drawing<glm::dvec2> sub;
     std::vector<std::uint32_t> local(nv, faces::none), global;
     for (std::uint32_t v = 0; v < nv; ++v)
-      if (f.component[v] == c) local[v] = static_cast<std::uint32_t>(global.size()), global.push_back(v), sub.points.push_back(g.p[v]);
+      if (f.component[v] == c)
+        local[v] = static_cast<std::uint32_t>(global.size()), global.push_back(v),
+        sub.points.push_back(g.p[v]);
     for (std::uint32_t h = 0; h < g.num_half_edges(); h += 2)
       if (f.component[g.head[h]] == c) sub.edges.push_back({local[g.tail(h)], local[g.head[h]]});
     face_set sub_faces = faces_of(owner, [&](std::size_t i) { return part[i] == c; });
@@ -175,10 +181,18 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
       for (const auto& reading : res.readings) {
         std::vector<glm::dvec3> pts(nv, glm::dvec3(0.0));
         for (std::size_t k = 0; k < global.size(); ++k) pts[global[k]] = reading.points[k];
+        // The loops' sense is outward when the volume they bound is positive (divergence theorem).
+        double volume = 0;
+        for (std::size_t i = 0; i < n; ++i)
+          if (part[i] == c)
+            for (std::size_t k = 1; k + 1 < loops[i].size(); ++k)
+              volume += glm::dot(pts[loops[i][0]], glm::cross(pts[loops[i][k]], pts[loops[i][k + 1]]));
+        pr[c].outward.push_back(volume >= 0 ? 1.0 : -1.0);
         pr[c].readings.push_back(std::move(pts));
       }
     } catch (const error& e) {
-      diagnostics.push_back("part " + std::to_string(c) + " of the drawing cannot be inflated alone: " + e.what());
+      diagnostics.push_back("part " + std::to_string(c) +
+                            " of the drawing cannot be inflated alone: " + e.what());
     }
   }
   // Place the parts, largest first: the first as read, each next one by the reading and depth
@@ -189,22 +203,32 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
   std::sort(order.begin(), order.end(), [&](auto a, auto b) { return pr[a].span > pr[b].span; });
   std::vector<glm::dvec3> placed(nv, glm::dvec3(0.0));
   std::vector<char> is_placed(parts, 0);
+  std::vector<double> placed_outward(parts, 1.0);
   const double parallel = std::sin(0.5 * 3.141592653589793 / 180.0), depth_tolerance = 1e-3 * size;
   for (std::size_t k = 0; k < order.size(); ++k) {
     const std::uint32_t c = order[k];
     std::size_t best_votes = 0, best_reading = 0;
+    int best_outside = -1;
     double best_dz = 0;
     std::vector<std::pair<std::size_t, std::size_t>> best_pairs;
     for (std::size_t r = 0; r < pr[c].readings.size() && k > 0; ++r) {
       const auto& pts = pr[c].readings[r];
       std::vector<std::tuple<double, std::size_t, std::size_t>> offers;  // (dz, hole, outer)
+      glm::dvec3 centre{0.0};
+      std::size_t members = 0;
+      for (std::uint32_t v = 0; v < nv; ++v)
+        if (f.component[v] == c) centre += pts[v], ++members;
+      centre /= static_cast<double>(std::max<std::size_t>(members, 1));
       for (std::size_t h = 0; h < n; ++h) {
         if (part[h] != c) continue;
-        const auto [nh, ch] = loop_plane(pts, loops[h]);
+        const auto [nh0, ch] = loop_plane(pts, loops[h]);
+        const glm::dvec3 nh = pr[c].outward[r] * nh0;
         for (std::size_t q = 0; q < n; ++q) {
-          if (!is_placed[part[q]] || area[q] * area[h] >= 0 || !inside_loop(h, q)) continue;
-          const auto [nq, cq] = loop_plane(placed, loops[q]);
-          if (glm::length(glm::cross(nh, nq)) > parallel * glm::length(nh) * glm::length(nq) || std::abs(nq.z) < 1e-12)
+          if (!is_placed[part[q]] || !inside_loop(h, q)) continue;
+          const auto [nq0, cq] = loop_plane(placed, loops[q]);
+          const glm::dvec3 nq = placed_outward[part[q]] * nq0;
+          if (glm::length(glm::cross(nh, nq)) > parallel * glm::length(nh) * glm::length(nq) ||
+              std::abs(nq.z) < 1e-12)
             continue;
           // Depth of q's plane at h's centroid, minus h's centroid depth.
           const double zq = cq.z - (nq.x * (ch.x - cq.x) + nq.y * (ch.y - cq.y)) / nq.z;
@@ -216,12 +240,21 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
         std::vector<char> used(n, 0);
         for (const auto& [dz2, h, q] : offers)
           if (std::abs(dz2 - dz) <= depth_tolerance && !used[h]) used[h] = 1, agree.push_back({h, q});
-        if (agree.size() > best_votes) best_votes = agree.size(), best_reading = r, best_dz = dz, best_pairs = agree;
+        // Outside: the part's centre on the outer side of the face it meets (a boss, not a
+        // pocket: a part joined by one loop is drawn alike either way; see docs/sketch.md).
+        const auto [nq0, cq] = loop_plane(placed, loops[q0]);
+        const double side = glm::dot(centre + glm::dvec3(0, 0, dz) - cq, placed_outward[part[q0]] * nq0);
+        const int outside = side > 0 ? 1 : 0;
+        if (agree.size() > best_votes ||
+            (agree.size() == best_votes && best_votes > 0 && outside > best_outside))
+          best_votes = agree.size(), best_reading = r, best_dz = dz, best_pairs = agree,
+          best_outside = outside;
       }
     }
     for (std::uint32_t v = 0; v < nv; ++v)
       if (f.component[v] == c) placed[v] = pr[c].readings[best_reading][v] + glm::dvec3(0, 0, best_dz);
     is_placed[c] = 1;
+    placed_outward[c] = pr[c].outward[best_reading];
     for (const auto& [h, q] : best_pairs) owner[h] = owner[q] == n ? q : owner[q];
     if (k > 0 && best_votes == 0)
       diagnostics.push_back("part " + std::to_string(c) +
@@ -232,7 +265,8 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
 
 /// Canonical cycles of a set of loops, for comparison. O(Σ L log L).
 template <class = void>
-std::multiset<std::vector<std::uint32_t>> canonical_loops(const std::vector<std::vector<std::uint32_t>>& loops) {
+std::multiset<std::vector<std::uint32_t>> canonical_loops(
+    const std::vector<std::vector<std::uint32_t>>& loops) {
   std::multiset<std::vector<std::uint32_t>> s;
   for (const auto& l : loops) s.insert(cellforge::detail::canonical_cycle(l));
   return s;
@@ -253,9 +287,10 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
   drawing_result<R> r;
   r.faces = find_faces(drawing, options.faces);
   if (r.faces.flagged)
-    r.diagnostics.push_back("the faces found fail their check (" +
-                            (r.faces.diagnostics.empty() ? std::string("see faces.check") : r.faces.diagnostics.front()) +
-                            "); inflating them anyway");
+    r.diagnostics.push_back(
+        "the faces found fail their check (" +
+        (r.faces.diagnostics.empty() ? std::string("see faces.check") : r.faces.diagnostics.front()) +
+        "); inflating them anyway");
   const detail::faces::drawing_graph g = detail::faces::make_graph(drawing, options.faces);
   r.face_loops = detail::sketch::group_faces(g, r.faces.loops, options.inflation, r.diagnostics);
   r.inflation = inflate<R>(drawing, r.face_loops, options.inflation);
@@ -285,8 +320,10 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
       if (built && !agree) continue;  // keep the first complex unless this one agrees
       r.only_in_drawing.clear();
       r.only_in_3d.clear();
-      std::set_difference(wanted.begin(), wanted.end(), got.begin(), got.end(), std::back_inserter(r.only_in_drawing));
-      std::set_difference(got.begin(), got.end(), wanted.begin(), wanted.end(), std::back_inserter(r.only_in_3d));
+      std::set_difference(wanted.begin(), wanted.end(), got.begin(), got.end(),
+                          std::back_inserter(r.only_in_drawing));
+      std::set_difference(got.begin(), got.end(), wanted.begin(), wanted.end(),
+                          std::back_inserter(r.only_in_3d));
       r.cells = std::move(cells);
       r.wire = std::move(w);
       r.reading = k;
@@ -302,10 +339,12 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
     throw error(error_category::topology,
                 "drawing_to_cells: no reading of the drawing gives a cell complex (" + last_error + ")");
   if (!r.faces_agree)
-    r.diagnostics.push_back("the 3D pipeline's faces differ from the drawing's: " + std::to_string(r.only_in_drawing.size()) +
-                            " loops only in the drawing, " + std::to_string(r.only_in_3d.size()) + " only in 3D");
+    r.diagnostics.push_back(
+        "the 3D pipeline's faces differ from the drawing's: " + std::to_string(r.only_in_drawing.size()) +
+        " loops only in the drawing, " + std::to_string(r.only_in_3d.size()) + " only in 3D");
   if (r.reading != 0)
-    r.diagnostics.push_back("built from the other (Necker) reading: the preferred one did not give the drawing's faces");
+    r.diagnostics.push_back(
+        "built from the other (Necker) reading: the preferred one did not give the drawing's faces");
   r.milliseconds = clock.ms();
   return r;
 }
