@@ -1,9 +1,13 @@
 // Sketches, seed 003 "Finding faces": the Varley–Company face finder beside the
 // shortest-loops baseline on drawings of 10 to 1,000 edges — ms per drawing, right or wrong
 // against the model's faces, and the practical growth exponent (the seed: about e^2.7, its
-// largest drawing of 251 edges slightly over 1 s). Every row is the median of its iterations.
+// largest drawing of 251 edges slightly over 1 s). Then inflation and the whole of
+// drawing_to_cells per family of the generated sweep (ms, and how often the true cell complex
+// comes out), and direct inflation of a ~100-line normalon (issue target: 50 ms). Every row is
+// the median of its iterations.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <iostream>
@@ -14,7 +18,9 @@
 #include <vector>
 
 #include "bench_support.hpp"
+#include "cellforge/sketch/drawing_to_cells.hpp"
 #include "cellforge/sketch/face_finder.hpp"
+#include "cellforge/sketch/inflation.hpp"
 #include "cellforge/sketch/sample_drawings.hpp"
 
 namespace {
@@ -59,7 +65,107 @@ const char* kind_name(cellforge::face_finder_kind k) {
   return k == cellforge::face_finder_kind::varley_company ? "vc" : "sl";
 }
 
+// A few drawings of each sweep family, for the inflation and end-to-end rows.
+struct family_case {
+  std::string family;
+  std::vector<cellforge::sample_drawing> drawings;
+  std::vector<std::vector<std::vector<std::uint32_t>>> loops;
+};
+
+std::vector<family_case>& families() {
+  static std::vector<family_case> f = [] {
+    cellforge::sketch_sweep_options o;
+    o.limit = 130;  // about ten per family
+    std::vector<family_case> out;
+    for (auto& s : cellforge::sketch_sweep(o)) {
+      auto it =
+          std::find_if(out.begin(), out.end(), [&](const family_case& c) { return c.family == s.family; });
+      if (it == out.end()) out.push_back({s.family, {}, {}}), it = out.end() - 1;
+      it->loops.push_back(s.loops);
+      it->drawings.push_back(std::move(s));
+    }
+    return out;
+  }();
+  return f;
+}
+
+std::map<std::string, std::pair<std::size_t, std::size_t>>& truth() {
+  static std::map<std::string, std::pair<std::size_t, std::size_t>> m;
+  return m;
+}
+
+bool true_complex(const cellforge::sample_drawing& s, const cellforge::drawing_result<glm::dvec3>& r) {
+  std::vector<std::vector<std::vector<std::uint32_t>>> faces;
+  for (const auto& f : r.cells.input.faces) {
+    auto loops = f.loops;
+    for (auto& l : loops)
+      for (auto& v : l) v = r.cells.input_vertex[v];
+    faces.push_back(std::move(loops));
+  }
+  return cellforge::same_faces(s.model.faces, faces) &&
+         cellforge::same_volumes(s.model.faces, s.model.volumes, faces, r.cells.input.volumes);
+}
+
+// The issue's direct-inflation case: a comb normalon of about 100 lines.
+const cellforge::sample_drawing& comb() {
+  static const cellforge::sample_drawing s = [] {
+    cellforge::voxel_layout l =
+        cellforge::empty_layout(cellforge::detail::iota_coords(18), {0, 1, 2}, {0, 1});
+    for (std::size_t i = 0; i + 1 < 18; ++i) l.at(i, 0, 0) = 1, l.at(i, 1, 0) = i % 2 == 0;
+    return cellforge::generic_drawing(cellforge::make_voxel_model(l, "comb"), 1, "normalon");
+  }();
+  return s;
+}
+
 void register_all() {
+  for (const family_case& f : families()) {
+    benchmark::RegisterBenchmark(("inflate/" + f.family).c_str(),
+                                 [&f](benchmark::State& state) {
+                                   try {
+                                     cb::median_loop(state, [&] {
+                                       double sum = 0;
+                                       for (std::size_t k = 0; k < f.drawings.size(); ++k)
+                                         sum +=
+                                             cellforge::inflate(f.drawings[k].drawing, f.loops[k]).after.msda;
+                                       return sum;
+                                     });
+                                   } catch (const std::exception& e) {
+                                     state.SkipWithError(e.what());
+                                   }
+                                 })
+        ->Iterations(3)
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("drawing_to_cells/" + f.family).c_str(),
+                                 [&f](benchmark::State& state) {
+                                   cb::median_loop(
+                                       state,
+                                       [&] {
+                                         std::size_t ok = 0;
+                                         for (const auto& s : f.drawings) {
+                                           try {
+                                             ok += true_complex(s, cellforge::drawing_to_cells(s.drawing));
+                                           } catch (const cellforge::error&) {
+                                           }
+                                         }
+                                         return ok;
+                                       },
+                                       [&](std::size_t ok) {
+                                         truth()[f.family] = {ok, f.drawings.size()};
+                                       });
+                                 })
+        ->Iterations(3)
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond);
+  }
+  benchmark::RegisterBenchmark(
+      "inflate/comb",
+      [](benchmark::State& state) {
+        cb::median_loop(state, [] { return cellforge::inflate(comb().drawing, comb().loops).method; });
+      })
+      ->Iterations(15)
+      ->UseManualTime()
+      ->Unit(benchmark::kMillisecond);
   for (const drawing_case& c : cases())
     for (const auto kind :
          {cellforge::face_finder_kind::varley_company, cellforge::face_finder_kind::shortest_loops}) {
@@ -123,6 +229,20 @@ void print_tables(const cb::collecting_reporter& r, std::ostream& os) {
   for (const auto& [family, xy] : growth_vc)
     g.add_row({family, cb::fixed(exponent(xy), 2), cb::fixed(exponent(growth_sl[family]), 2), "2.7"});
   g.print(os);
+  cb::table in("Inflation and drawing_to_cells per family (about ten sweep drawings each)",
+               {"family", "drawings", "inflate ms per drawing", "drawing_to_cells ms per drawing",
+                "true cell complex"});
+  for (const family_case& f : families()) {
+    const double n = static_cast<double>(f.drawings.size());
+    const std::optional<double> a = r.counter_ms("inflate/" + f.family, "median_cpu_us"),
+                                b = r.counter_ms("drawing_to_cells/" + f.family, "median_cpu_us");
+    in.add_row({f.family, cb::count(f.drawings.size()), a ? cb::ms(*a / n) : "—", b ? cb::ms(*b / n) : "—",
+                std::to_string(truth()[f.family].first) + " of " + std::to_string(truth()[f.family].second)});
+  }
+  in.add_note("Direct inflation of a " + std::to_string(comb().drawing.edges.size()) +
+              "-line comb normalon: " + cb::ms(r.counter_ms("inflate/comb", "median_cpu_us")) +
+              " ms (issue target: 100 lines in <= 50 ms).");
+  in.print(os);
 }
 
 }  // namespace

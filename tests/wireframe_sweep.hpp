@@ -37,6 +37,7 @@
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/halfedge/conversion.hpp"
+#include "cellforge/sketch/sample_drawings.hpp"
 #include "cellforge/wireframe/sample_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 
@@ -358,22 +359,7 @@ inline int cell(const cellforge::voxel_layout& l, std::ptrdiff_t i, std::ptrdiff
 
 /// Whether the cells of a 2×2×2 block in `mask` (bit dx + 2dy + 4dz), and the others, are each
 /// connected through faces: the block's corner is then a manifold point of the solid. O(1).
-inline bool manifold_block(unsigned mask) {
-  const auto connected = [](unsigned set) {
-    if (set == 0) return true;
-    unsigned reached = set & (~set + 1u);
-    for (bool grew = true; grew;) {
-      grew = false;
-      for (unsigned b = 0; b < 8; ++b)
-        for (const unsigned d : {1u, 2u, 4u}) {
-          const unsigned n = 1u << (b ^ d);
-          if ((reached >> b & 1u) != 0 && (set & n) != 0 && (reached & n) == 0) reached |= n, grew = true;
-        }
-    }
-    return reached == set;
-  };
-  return connected(mask) && connected(~mask & 0xFFu);
-}
+inline bool manifold_block(unsigned mask) { return cellforge::detail::manifold_corner(mask); }
 
 /// True when the cells whose label `inside` accepts make a manifold solid (no two of them
 /// touching only along an edge or at a vertex). O(lattice points).

@@ -6,7 +6,7 @@
 /// (`algorithms/shapes.hpp`, `wireframe/sample_models.hpp`, `tubes/sample_skeletons.hpp`,
 /// `sketch/sample_drawings.hpp`), the seed's sample solids (`thin/sample_solids.hpp`,
 /// `smooth/sample_solids.hpp`), which are large and which an application rarely needs, and
-/// the two sketch stages that solve with Eigen (`sketch/inflation.hpp`,
+/// the sketch stages that solve with Eigen (`sketch/tidy.hpp`, `sketch/inflation.hpp`,
 /// `sketch/drawing_to_cells.hpp`), so that nothing else needs Eigen or pays for parsing it.
 /// The header hygiene test checks that this list is complete.
 

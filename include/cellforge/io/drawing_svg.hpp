@@ -25,6 +25,7 @@
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/io/detail/output_buffer.hpp"
+#include "cellforge/io/detail/xml.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 
 namespace cellforge::io {
@@ -52,29 +53,6 @@ void drawing_svg_number(std::string& out, double v) {
   char buf[32];
   const auto r = std::to_chars(buf, buf + sizeof buf, v);
   out.append(buf, r.ptr);
-}
-
-/// Appends text escaped for XML. O(text).
-template <class = void>
-void drawing_svg_escape(std::string& out, std::string_view text) {
-  for (const char ch : text) {
-    switch (ch) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += static_cast<unsigned char>(ch) < 0x20 ? ' ' : ch;
-    }
-  }
 }
 
 /// The k-th colour of a sequence of distinct hues (golden angle apart), as #rrggbb. O(1).
@@ -155,7 +133,7 @@ std::string drawing_svg_string(const D& d, const std::vector<std::vector<std::ui
   out += "\">\n";
   if (!options.title.empty()) {
     out += "<title>";
-    detail::drawing_svg_escape(out, options.title);
+    detail::svg_escape(out, options.title);
     out += "</title>\n";
   }
   if (!options.background.empty() && options.background != "none") {
@@ -165,7 +143,7 @@ std::string drawing_svg_string(const D& d, const std::vector<std::vector<std::ui
     attr("width", w);
     attr("height", h);
     out += " fill=\"";
-    detail::drawing_svg_escape(out, options.background);
+    detail::svg_escape(out, options.background);
     out += "\"/>\n";
   }
   if (!faces.empty()) {
@@ -187,7 +165,7 @@ std::string drawing_svg_string(const D& d, const std::vector<std::vector<std::ui
     out += "</g>\n";
   }
   out += "<g data-cellforge=\"edges\" fill=\"none\" stroke-linecap=\"round\" stroke=\"";
-  detail::drawing_svg_escape(out, options.stroke);
+  detail::svg_escape(out, options.stroke);
   out += '"';
   attr("stroke-width", options.stroke_px * px);
   out += ">\n";
@@ -205,7 +183,7 @@ std::string drawing_svg_string(const D& d, const std::vector<std::vector<std::ui
   out += "</g>\n";
   if (options.junction_dots && nv > 0) {
     out += "<g data-cellforge=\"junctions\" fill=\"";
-    detail::drawing_svg_escape(out, options.stroke);
+    detail::svg_escape(out, options.stroke);
     out += "\">\n";
     for (std::size_t i = 0; i < nv; ++i) {
       out += "<circle";
@@ -220,7 +198,7 @@ std::string drawing_svg_string(const D& d, const std::vector<std::vector<std::ui
     out += "<g data-cellforge=\"labels\" font-family=\"sans-serif\"";
     attr("font-size", options.font_px * px);
     out += " fill=\"";
-    detail::drawing_svg_escape(out, options.stroke);
+    detail::svg_escape(out, options.stroke);
     out += "\">\n";
     for (std::size_t i = 0; i < nv; ++i) {
       out += "<text";

@@ -39,6 +39,7 @@
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"
 #include "cellforge/io/detail/svg_visibility.hpp"
+#include "cellforge/io/detail/xml.hpp"
 
 namespace cellforge::io {
 
@@ -166,32 +167,6 @@ void svg_number(std::string& out, double v, int precision) {
   }
   const std::string_view s(buf, static_cast<std::size_t>(e - buf));
   out += s == "-0" ? std::string_view("0") : s;
-}
-
-/// Appends text escaped for XML content and attribute values; control characters become spaces.
-template <class = void>
-void svg_escape(std::string& out, std::string_view text) {
-  for (const char ch : text) {
-    switch (ch) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out += (static_cast<unsigned char>(ch) < 0x20 && ch != '\t' && ch != '\n' && ch != '\r') ? ' ' : ch;
-    }
-  }
 }
 
 /// #rgb or #rrggbb as 0..1 components; nothing for any other colour syntax.

@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
+#include <optional>
 #include <set>
 #include <string>
 #include <tuple>
@@ -26,14 +27,28 @@
 #include "cellforge/sketch/face_finder.hpp"
 #include "cellforge/sketch/inflation.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
+#include "cellforge/sketch/tidy.hpp"
 #include "cellforge/wireframe/sample_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 
 namespace cellforge {
 
+/// When drawing_to_cells tidies the drawing (sketch/tidy.hpp) before inflating it.
+enum class tidy_mode : std::uint8_t {
+  never,
+  when_needed,  ///< as drawn first; tidied when that gives no agreeing complex or no direct reading
+  always,
+};
+
 /// Options of every stage of drawing_to_cells, with their own defaults.
 struct drawing_options {
   face_finder_options faces{};
+  /// Make nearly parallel lines exactly parallel before inflating (a drawing typed with a few
+  /// decimals or snapped from strokes is not exact enough for direct inflation otherwise):
+  /// by default only when the drawing as it is gives no complex whose faces agree, or reads
+  /// only by optimisation (tidied, it may read directly).
+  tidy_mode tidy = tidy_mode::when_needed;
+  tidy_options tidying{};
   inflation_options inflation{};
   wireframe_options cells{};
   /// When the preferred reading gives no cell complex, or one whose faces disagree with the
@@ -43,16 +58,20 @@ struct drawing_options {
 
 /// Every stage's result: the faces found, the faces with holes, the inflation, the 3D
 /// wireframe and the cell complex (positions in Q), and whether 2D and 3D faces agree.
-template <Point3 Q>
+template <Point3 Q, Point2 P2 = glm::dvec2>
 struct drawing_result {
   using point_type = Q;
   face_finder_result faces;
+  tidy_result<P2> tidy;  ///< the drawing inflated: `tidy.applied` when tidied, else the input as drawn
   /// The loops grouped into faces: each its outer loop, then its holes (junction cycles).
   std::vector<std::vector<std::vector<std::uint32_t>>> face_loops;
   inflation_result<Q> inflation;
   std::size_t reading = 0;  ///< the inflation reading the complex is built from (0: the preferred)
   wireframe<Q> wire;        ///< junction i at the reading's point i, the drawing's edges
   wireframe_result<Q> cells;
+  /// Parts of the drawing joined to another by one face plane, which fit it as a boss or as a
+  /// pocket alike (both solids are drawn the same): read as a boss, with a diagnostic.
+  std::size_t ambiguous_parts = 0;
   /// The 3D pipeline's face loops are exactly the loops found in the drawing.
   bool faces_agree = false;
   /// Where they disagree: loops found only in the drawing, only in 3D (junction cycles).
@@ -103,7 +122,8 @@ std::pair<glm::dvec3, glm::dvec3> loop_plane(const std::vector<glm::dvec3>& p,
 /// Loops with no face around them stay faces of their own. O(parts · inflation + H · F · L).
 template <class = void>
 face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vector<std::uint32_t>>& loops,
-                     const inflation_options& inflation, std::vector<std::string>& diagnostics) {
+                     const inflation_options& inflation, std::vector<std::string>& diagnostics,
+                     std::size_t& ambiguous) {
   const face_finder_options o;
   work_budget budget{0, 0, "drawing_to_cells"};
   faces::finder f(g, o, budget);
@@ -209,6 +229,7 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
     const std::uint32_t c = order[k];
     std::size_t best_votes = 0, best_reading = 0;
     int best_outside = -1;
+    std::vector<std::pair<std::size_t, double>> candidates;  // (loops on planes, depth move)
     double best_dz = 0;
     std::vector<std::pair<std::size_t, std::size_t>> best_pairs;
     for (std::size_t r = 0; r < pr[c].readings.size() && k > 0; ++r) {
@@ -245,6 +266,7 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
         const auto [nq0, cq] = loop_plane(placed, loops[q0]);
         const double side = glm::dot(centre + glm::dvec3(0, 0, dz) - cq, placed_outward[part[q0]] * nq0);
         const int outside = side > 0 ? 1 : 0;
+        candidates.push_back({agree.size(), dz});
         if (agree.size() > best_votes ||
             (agree.size() == best_votes && best_votes > 0 && outside > best_outside))
           best_votes = agree.size(), best_reading = r, best_dz = dz, best_pairs = agree,
@@ -253,6 +275,16 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
     }
     for (std::uint32_t v = 0; v < nv; ++v)
       if (f.component[v] == c) placed[v] = pr[c].readings[best_reading][v] + glm::dvec3(0, 0, best_dz);
+    // Another placement as good: the drawing shows two solids (a boss or a pocket) alike.
+    bool tie = false;
+    for (const auto& [votes, dz] : candidates)
+      tie = tie || (votes == best_votes && std::abs(dz - best_dz) > depth_tolerance);
+    if (k > 0 && best_votes > 0 && tie) {
+      ++ambiguous;
+      diagnostics.push_back("part " + std::to_string(c) +
+                            " of the drawing fits its face as a boss or as a pocket alike: read as " +
+                            (best_outside == 1 ? "a boss" : "a pocket"));
+    }
     is_placed[c] = 1;
     placed_outward[c] = pr[c].outward[best_reading];
     for (const auto& [h, q] : best_pairs) owner[h] = owner[q] == n ? q : owner[q];
@@ -261,6 +293,38 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
                             " of the drawing lies in no face of the others: its depth against them is free");
   }
   return faces_of(owner, [](std::size_t) { return true; });
+}
+
+/// The 3D pipeline's result in another point type (the pipeline runs in double: its planarity
+/// tolerances are relative to double rounding, which a float reading would not meet). O(size).
+template <Point3 R>
+wireframe_result<R> converted(wireframe_result<glm::dvec3>&& d) {
+  if constexpr (std::is_same_v<R, glm::dvec3>) {
+    return std::move(d);
+  } else {
+    wireframe_result<R> r;
+    for (const auto& p : d.input.points) r.input.points.push_back(from_dvec3<R>(p));
+    r.input.edges = std::move(d.input.edges);
+    r.input.faces = std::move(d.input.faces);
+    r.input.volumes = std::move(d.input.volumes);
+    r.cells = convert_points<R>(d.cells);
+    r.input_vertex = std::move(d.input_vertex);
+    r.input_edge = std::move(d.input_edge);
+    r.unforced = std::move(d.unforced);
+    r.alternatives = std::move(d.alternatives);
+    r.lost = std::move(d.lost);
+    r.read = std::move(d.read);
+    r.trace = std::move(d.trace);
+    r.unique = std::move(d.unique);
+    r.reduction = std::move(d.reduction);
+    r.arrangement = std::move(d.arrangement);
+    r.extra = std::move(d.extra);
+    r.volume = std::move(d.volume);
+    r.relations = std::move(d.relations);
+    r.assembly_milliseconds = d.assembly_milliseconds;
+    r.diagnostics = std::move(d.diagnostics);
+    return r;
+  }
 }
 
 /// Canonical cycles of a set of loops, for comparison. O(Σ L log L).
@@ -284,7 +348,7 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
   using R = std::conditional_t<std::is_void_v<Q>, lifted_point_t<drawing_point_t<D>>, Q>;
   static_assert(Point3<R>, "drawing_to_cells: the result point type must be a registered Point3");
   detail::stopwatch clock;
-  drawing_result<R> r;
+  drawing_result<R, drawing_point_t<D>> r;
   r.faces = find_faces(drawing, options.faces);
   if (r.faces.flagged)
     r.diagnostics.push_back(
@@ -292,48 +356,122 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
         (r.faces.diagnostics.empty() ? std::string("see faces.check") : r.faces.diagnostics.front()) +
         "); inflating them anyway");
   const detail::faces::drawing_graph g = detail::faces::make_graph(drawing, options.faces);
-  r.face_loops = detail::sketch::group_faces(g, r.faces.loops, options.inflation, r.diagnostics);
-  r.inflation = inflate<R>(drawing, r.face_loops, options.inflation);
+  r.face_loops =
+      detail::sketch::group_faces(g, r.faces.loops, options.inflation, r.diagnostics, r.ambiguous_parts);
+  // One attempt: inflate `used` (in double: a float reading would miss the pipeline's
+  // planarity tolerance) and build the complex of each reading until one agrees.
+  struct attempt {
+    inflation_result<glm::dvec3> inflated;
+    std::optional<wireframe_result<glm::dvec3>> cells;
+    wireframe<glm::dvec3> wire;
+    std::size_t reading = 0;
+    bool agree = false;
+    std::vector<std::vector<std::uint32_t>> only_in_drawing, only_in_3d;
+    std::string error;
+  };
   const auto wanted = detail::sketch::canonical_loops(r.faces.loops);
-  std::string last_error;
-  bool built = false;
-  const std::size_t readings = options.try_other_reading ? r.inflation.readings.size() : 1;
-  for (std::size_t k = 0; k < readings && !(built && r.faces_agree); ++k) {
-    wireframe<R> w;
-    w.points = r.inflation.readings[k].points;
-    w.edges.reserve(line_drawing_traits<D>::num_edges(drawing));
-    for (std::size_t e = 0; e < line_drawing_traits<D>::num_edges(drawing); ++e) {
-      const auto ab = line_drawing_traits<D>::endpoints(drawing, e);
-      w.edges.push_back({static_cast<std::uint32_t>(ab[0]), static_cast<std::uint32_t>(ab[1])});
-    }
+  const auto run = [&](const line_drawing<drawing_point_t<D>>& used, std::vector<std::string>& notes) {
+    attempt a;
     try {
-      wireframe_result<R> cells = wireframe_to_cells(w, options.cells);
-      std::vector<std::vector<std::uint32_t>> found;
-      for (const auto& f : cells.input.faces)
-        for (const auto& loop : f.loops) {
-          std::vector<std::uint32_t> l;
-          for (const auto v : loop) l.push_back(cells.input_vertex[v]);
-          found.push_back(std::move(l));
-        }
-      const auto got = detail::sketch::canonical_loops(found);
-      const bool agree = got == wanted;
-      if (built && !agree) continue;  // keep the first complex unless this one agrees
-      r.only_in_drawing.clear();
-      r.only_in_3d.clear();
-      std::set_difference(wanted.begin(), wanted.end(), got.begin(), got.end(),
-                          std::back_inserter(r.only_in_drawing));
-      std::set_difference(got.begin(), got.end(), wanted.begin(), wanted.end(),
-                          std::back_inserter(r.only_in_3d));
-      r.cells = std::move(cells);
-      r.wire = std::move(w);
-      r.reading = k;
-      r.faces_agree = agree;
-      built = true;
+      a.inflated = inflate<glm::dvec3>(used, r.face_loops, options.inflation);
     } catch (const error& e) {
       if (e.category() != error_category::topology && e.category() != error_category::invalid_input) throw;
-      last_error = e.what();
-      r.diagnostics.push_back("reading " + std::to_string(k) + ": the 3D pipeline refused it: " + last_error);
+      a.error = e.what();
+      return a;
     }
+    const std::size_t readings = options.try_other_reading ? a.inflated.readings.size() : 1;
+    for (std::size_t k = 0; k < readings && !(a.cells && a.agree); ++k) {
+      wireframe<glm::dvec3> w;
+      w.points = a.inflated.readings[k].points;
+      w.edges = used.edges;
+      try {
+        wireframe_result<glm::dvec3> cells = wireframe_to_cells(w, options.cells);
+        std::vector<std::vector<std::uint32_t>> found;
+        for (const auto& f : cells.input.faces)
+          for (const auto& loop : f.loops) {
+            std::vector<std::uint32_t> l;
+            for (const auto v : loop) l.push_back(cells.input_vertex[v]);
+            found.push_back(std::move(l));
+          }
+        const auto got = detail::sketch::canonical_loops(found);
+        const bool agree = got == wanted;
+        if (a.cells && !agree) continue;  // keep the first complex unless this one agrees
+        a.only_in_drawing.clear();
+        a.only_in_3d.clear();
+        std::set_difference(wanted.begin(), wanted.end(), got.begin(), got.end(),
+                            std::back_inserter(a.only_in_drawing));
+        std::set_difference(got.begin(), got.end(), wanted.begin(), wanted.end(),
+                            std::back_inserter(a.only_in_3d));
+        a.cells = std::move(cells);
+        a.wire = std::move(w);
+        a.reading = k;
+        a.agree = agree;
+      } catch (const error& e) {
+        if (e.category() != error_category::topology && e.category() != error_category::invalid_input) throw;
+        a.error = e.what();
+        notes.push_back("reading " + std::to_string(k) + ": the 3D pipeline refused it: " + a.error);
+      }
+    }
+    return a;
+  };
+  // As drawn first (a tidy drawing is left alone: merging near-parallel lines of an exact
+  // drawing would change it); tidied when that gives no complex whose faces agree.
+  std::vector<std::string> notes;
+  r.tidy.drawing = to_line_drawing(drawing);
+  attempt best = options.tidy == tidy_mode::always ? attempt{} : run(r.tidy.drawing, notes);
+  const auto direct = [](const attempt& a) {
+    return a.cells && a.agree && a.inflated.method == inflation_method::direct;
+  };
+  if (options.tidy != tidy_mode::never && !direct(best)) {
+    tidy_result<drawing_point_t<D>> t = tidy_drawing(drawing, options.tidying);
+    for (const auto& d : t.diagnostics) r.diagnostics.push_back(d);
+    if (t.applied) {
+      std::vector<std::string> tidy_notes;
+      attempt tidied = run(t.drawing, tidy_notes);
+      // Tidied wins when it gives a complex where there was none, one whose faces agree where
+      // they did not, or a direct (exact) reading where there was an optimised one.
+      if ((tidied.cells && !best.cells) || (tidied.cells && tidied.agree && !best.agree) ||
+          (direct(tidied) && best.agree) || options.tidy == tidy_mode::always) {
+        best = std::move(tidied);
+        notes = std::move(tidy_notes);
+        r.tidy = std::move(t);
+      }
+    }
+  }
+  for (auto& n : notes) r.diagnostics.push_back(std::move(n));
+  const bool built = best.cells.has_value();
+  const std::string last_error = best.error;
+  if (built) {
+    const auto to_r = [](const std::vector<glm::dvec3>& pts) {
+      std::vector<R> out;
+      out.reserve(pts.size());
+      for (const auto& p : pts) out.push_back(from_dvec3<R>(p));
+      return out;
+    };
+    const inflation_result<glm::dvec3>& inflated = best.inflated;
+    r.inflation.points = to_r(inflated.points);
+    r.inflation.method = inflated.method;
+    for (const auto& reading : inflated.readings)
+      r.inflation.readings.push_back({to_r(reading.points), reading.score, reading.reason});
+    r.inflation.before = inflated.before;
+    r.inflation.after = inflated.after;
+    r.inflation.freedom = inflated.freedom;
+    r.inflation.iterations = inflated.iterations;
+    r.inflation.starts = inflated.starts;
+    r.inflation.milliseconds = inflated.milliseconds;
+    r.inflation.diagnostics = inflated.diagnostics;
+    r.inflation.view_found = inflated.view_found;
+    r.inflation.axis_directions = inflated.axis_directions;
+    r.inflation.foreshortening = inflated.foreshortening;
+    r.inflation.view_rotation = inflated.view_rotation;
+    r.inflation.misclosure = inflated.misclosure;
+    r.cells = detail::sketch::converted<R>(std::move(*best.cells));
+    r.wire.points = r.inflation.readings[best.reading].points;
+    r.wire.edges = std::move(best.wire.edges);
+    r.reading = best.reading;
+    r.faces_agree = best.agree;
+    r.only_in_drawing = std::move(best.only_in_drawing);
+    r.only_in_3d = std::move(best.only_in_3d);
   }
   if (!built)
     throw error(error_category::topology,
