@@ -79,9 +79,9 @@ TEST_CASE(
     "drawing_to_cells: the generated sweep — direct readings give the true complex; optimised ones counted") {
   cellforge::sketch_sweep_options options;
 #ifdef NDEBUG
-  options.limit = 300;
+  options.limit = 200;
 #else
-  options.limit = 40;  // Eigen unoptimised under the sanitizers: small drawings only
+  options.limit = 25;  // Eigen unoptimised under the sanitizers: small drawings only
   options.max_edges = 60;
 #endif
   const auto sweep = cellforge::sketch_sweep(options);
