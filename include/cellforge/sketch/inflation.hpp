@@ -49,6 +49,9 @@ struct inflation_weights {
   double orthogonality = 0.1;  ///< cos² of corner angles at junctions that can be right corners
   double parallelism = 1.0;    ///< lines parallel in the drawing are parallel in 3D
   double isometry = 0.01;      ///< every line foreshortened alike (log length ratios equal)
+  /// Every line a convex fold (hinge on the far corners of the next face behind this face's
+  /// plane); used only on drawings whose faces admit a strictly convex reading, see docs/sketch.md.
+  double convexity = 1.0;
 };
 
 /// Options of inflate, with documented defaults.
@@ -67,7 +70,15 @@ struct inflation_options {
   double rank_tolerance = 1e-9;
   int max_iterations = 400;  ///< Levenberg–Marquardt iterations per start (work budget)
   int starts = 8;            ///< optimisation starts (deterministic from `seed`); the best is kept
-  std::uint64_t seed = 1;    ///< seed of the random starts
+  /// Convexity prior (weights.convexity): margin of the hinge in the objective, a slope (depth
+  /// over 2D distance from the line); and the margin the convex start is solved for (0: no
+  /// convexity prior at all).
+  double convexity_margin = 0.01;
+  double convexity_start_margin = 0.1;
+  /// Starts when the faces admit a convex reading: the convex start, then random ones (capped
+  /// by `starts`); the convex start alone gave the true complex on every such sweep drawing.
+  int convex_starts = 1;
+  std::uint64_t seed = 1;  ///< seed of the random starts
 };
 
 /// Value of each compliance function (unweighted, each normalised by its count) at a reading.
@@ -79,6 +90,7 @@ struct inflation_residuals {
   double orthogonality = 0.0;
   double msda = 0.0;
   double isometry = 0.0;
+  double convexity = 0.0;  ///< mean squared hinge of the convexity term (0 when not used)
 };
 
 /// One reading of the drawing: the 3D points (x, y from the drawing), a score (larger is
@@ -125,6 +137,7 @@ struct inflation_problem {
   std::vector<glm::dvec2> raw;  // the drawing's positions, kept exactly
   std::vector<std::array<std::uint32_t, 2>> edges;
   std::vector<std::vector<std::uint32_t>> loops;
+  std::vector<std::uint32_t> loop_face;              // the face of each loop
   std::vector<std::vector<std::uint32_t>> incident;  // edges at each junction
   glm::dvec2 centre{0.0};
   double size = 1.0;  // bounding-box diagonal of the drawing
@@ -224,6 +237,7 @@ inflation_problem<> make_inflation_problem(
                           ", which no edge joins: the loops do not belong to this drawing");
       }
       pr.loops.push_back(loop);
+      pr.loop_face.push_back(static_cast<std::uint32_t>(f));
     }
   }
   // Planarity rows: per face (all its loops), the reference triangle of largest area in the drawing.
@@ -274,12 +288,161 @@ struct compliance_terms {
   std::vector<std::array<std::uint32_t, 3>> right;    // corners that can be right angles
   std::vector<std::vector<std::uint32_t>> parallel;   // classes of 2D-parallel edges (≥ 2)
   std::vector<glm::dvec2> parallel_direction;         // per class
+  // Convexity: h = scale · (z_d − α z_a − β z_b − γ z_c) ≤ 0 for a convex fold (empty: unused).
+  struct convex_row {
+    std::uint32_t d, a, b, c;
+    double alpha, beta, gamma, scale;
+  };
+  std::vector<convex_row> convex;
+  double convex_margin = 0.0;  // the hinge is max(0, h + margin)
   std::size_t count() const {
     std::size_t n = 0;
     for (const auto& c : parallel) n += c.size();
-    return corners.size() + right.size() + n + 1;
+    return corners.size() + right.size() + n + convex.size() + 1;
   }
 };
+
+/// Convexity rows, when every face is one loop and every line lies on exactly two loops (the
+/// loops are oriented coherently here, whatever their given senses): for each line and each of
+/// its two faces F, every junction d of the other face G off F, against F's plane through F's
+/// reference triangle, signed by F's facing (its signed area in the drawing) and scaled by
+/// 1 / (d's distance from the line). All h ≤ 0 is a convex fold at every line for one of the two
+/// Necker readings. O(E log E + Σ |F| |G|).
+template <class = void>
+std::vector<compliance_terms<>::convex_row> make_convexity_rows(const inflation_problem<>& pr) {
+  std::vector<compliance_terms<>::convex_row> out;
+  for (std::size_t l = 0; l < pr.loops.size(); ++l)
+    if (pr.loop_face[l] != l) return out;  // a face with holes: not a convex solid's
+  // Orient the loops coherently (each line run once each way), breadth-first over shared lines.
+  std::vector<std::array<std::uint32_t, 4>> sides;  // (lo, hi, loop, runs lo → hi)
+  for (std::uint32_t l = 0; l < pr.loops.size(); ++l)
+    for (std::size_t k = 0; k < pr.loops[l].size(); ++k) {
+      const std::uint32_t a = pr.loops[l][k], b = pr.loops[l][(k + 1) % pr.loops[l].size()];
+      sides.push_back({std::min(a, b), std::max(a, b), l, a < b ? 1u : 0u});
+    }
+  std::sort(sides.begin(), sides.end());
+  if (sides.size() != 2 * pr.edges.size()) return out;
+  for (std::size_t i = 0; i < sides.size(); i += 2)
+    if (sides[i][0] != sides[i + 1][0] || sides[i][1] != sides[i + 1][1] || sides[i][2] == sides[i + 1][2])
+      return out;  // a line not on exactly two loops
+  std::vector<std::vector<std::array<std::uint32_t, 3>>> across(pr.loops.size());  // (other, same sense)
+  for (std::size_t i = 0; i < sides.size(); i += 2) {
+    const std::uint32_t same = sides[i][3] == sides[i + 1][3];
+    across[sides[i][2]].push_back({sides[i + 1][2], same, 0});
+    across[sides[i + 1][2]].push_back({sides[i][2], same, 0});
+  }
+  std::vector<int> flip(pr.loops.size(), 0);  // +1 kept, −1 reversed, 0 not reached
+  for (std::size_t root = 0; root < pr.loops.size(); ++root) {
+    if (flip[root] != 0) continue;
+    flip[root] = 1;
+    std::vector<std::size_t> queue{root};
+    while (!queue.empty()) {
+      const std::size_t l = queue.back();
+      queue.pop_back();
+      for (const auto& [g, same, unused] : across[l]) {
+        const int want = same ? -flip[l] : flip[l];
+        if (flip[g] == 0)
+          flip[g] = want, queue.push_back(g);
+        else if (flip[g] != want)
+          return out;  // not orientable: no solid's boundary
+      }
+    }
+  }
+  std::vector<std::vector<std::uint32_t>> loops = pr.loops;
+  for (std::size_t l = 0; l < loops.size(); ++l)
+    if (flip[l] < 0) std::reverse(loops[l].begin(), loops[l].end());
+  std::vector<std::array<std::uint32_t, 3>> half;  // (from, to, loop)
+  for (std::uint32_t l = 0; l < loops.size(); ++l)
+    for (std::size_t k = 0; k < loops[l].size(); ++k)
+      half.push_back({loops[l][k], loops[l][(k + 1) % loops[l].size()], l});
+  std::sort(half.begin(), half.end());
+  // Per loop: the sign of its area and its reference triangle (as the planarity rows pick it).
+  std::vector<double> facing(loops.size());
+  std::vector<std::array<std::uint32_t, 3>> ref(loops.size());
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    const auto& loop = loops[l];
+    double area = 0;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const glm::dvec2 a = pr.p[loop[k]], b = pr.p[loop[(k + 1) % loop.size()]];
+      area += a.x * b.y - a.y * b.x;
+    }
+    if (!(std::abs(area) > 1e-12)) return {};
+    facing[l] = area > 0 ? 1.0 : -1.0;
+    const std::uint32_t a = loop[0];
+    std::uint32_t b = a, c = a;
+    double far = -1, best = -1;
+    for (const auto v : loop)
+      if (glm::length(pr.p[v] - pr.p[a]) > far) far = glm::length(pr.p[v] - pr.p[a]), b = v;
+    const glm::dvec2 u = pr.p[b] - pr.p[a];
+    for (const auto v : loop) {
+      const glm::dvec2 w = pr.p[v] - pr.p[a];
+      if (std::abs(u.x * w.y - u.y * w.x) > best) best = std::abs(u.x * w.y - u.y * w.x), c = v;
+    }
+    ref[l] = {a, b, c};
+  }
+  for (const auto& h : half) {
+    const auto twin = std::lower_bound(half.begin(), half.end(), std::array<std::uint32_t, 3>{h[1], h[0], 0});
+    if (twin == half.end() || (*twin)[0] != h[1] || (*twin)[1] != h[0]) return {};
+    const std::uint32_t f = h[2], g = (*twin)[2];
+    const auto [a, b, c] = ref[f];
+    const glm::dvec2 u = pr.p[b] - pr.p[a], v = pr.p[c] - pr.p[a];
+    const double det = u.x * v.y - u.y * v.x;
+    const glm::dvec2 line = pr.p[h[1]] - pr.p[h[0]];
+    for (const auto d : loops[g]) {
+      if (std::find(loops[f].begin(), loops[f].end(), d) != loops[f].end()) continue;
+      const glm::dvec2 w = pr.p[d] - pr.p[a], x = pr.p[d] - pr.p[h[0]];
+      const double dist = std::abs(line.x * x.y - line.y * x.x) / glm::length(line);
+      if (!(dist > 1e-12)) continue;
+      const double beta = (w.x * v.y - w.y * v.x) / det, gamma = (u.x * w.y - u.y * w.x) / det;
+      out.push_back({d, a, b, c, 1 - beta - gamma, beta, gamma, facing[f] / dist});
+    }
+  }
+  return out;
+}
+
+/// A convex reading over the planar-face readings z = N t: the least t with every convexity row
+/// at most −margin, by semismooth Newton on Σ max(0, A t + margin)² + λ‖t‖² (a convex piecewise
+/// quadratic; finite active-set steps). Empty when no reading reaches h < 0 on every row (the
+/// drawing admits no strictly convex reading with these faces). O(iterations · (R K² + K³)).
+template <class = void>
+Eigen::VectorXd convex_reading(const std::vector<compliance_terms<>::convex_row>& rows,
+                               const Eigen::MatrixXd& basis, double margin) {
+  const auto k = basis.cols();
+  Eigen::MatrixXd a(static_cast<Eigen::Index>(rows.size()), k);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto& r = rows[i];
+    a.row(static_cast<Eigen::Index>(i)) = r.scale * (basis.row(r.d) - r.alpha * basis.row(r.a) -
+                                                     r.beta * basis.row(r.b) - r.gamma * basis.row(r.c));
+  }
+  const double lambda = 1e-6;
+  const auto objective = [&](const Eigen::VectorXd& x) {
+    return (a * x).array().unaryExpr([&](double h) { return std::max(0.0, h + margin); }).square().sum() +
+           lambda * x.squaredNorm();
+  };
+  Eigen::VectorXd t = Eigen::VectorXd::Zero(k);
+  double value = objective(t);
+  for (int it = 0; it < 100; ++it) {
+    const Eigen::VectorXd v = a * t;
+    if (v.maxCoeff() <= -0.5 * margin) break;  // convex with room: enough for a start
+    // Newton step on the rows active at t, then backtracking (the objective is convex).
+    Eigen::MatrixXd h = lambda * Eigen::MatrixXd::Identity(k, k);
+    Eigen::VectorXd g = lambda * t;
+    for (Eigen::Index i = 0; i < a.rows(); ++i)
+      if (v[i] + margin > 0) {
+        h.noalias() += a.row(i).transpose() * a.row(i);
+        g += (v[i] + margin) * a.row(i).transpose();
+      }
+    const Eigen::VectorXd step = -h.ldlt().solve(g);
+    if (!step.allFinite()) return {};
+    double s = 1, next = objective(t + step);
+    while (next > value - 1e-4 * s * (-g.dot(step)) && s > 1e-8) s *= 0.5, next = objective(t + s * step);
+    if (!(next < value)) break;
+    t += s * step, value = next;
+  }
+  const Eigen::VectorXd v = a * t;
+  if (!t.allFinite() || v.size() == 0 || !(v.maxCoeff() < 0)) return {};
+  return t;
+}
 
 /// Face-loop corners, Perkins right-corner candidates and 2D-parallel classes. O(E log E + L).
 template <class = void>
@@ -411,6 +574,18 @@ void compliance_residuals(const inflation_problem<>& pr, const compliance_terms<
   sum = 0;
   for (const double r : ratio) out[k++] = iso_scale * (r - m), sum += (r - m) * (r - m);
   if (terms) terms->isometry = sum / static_cast<double>(ratio.size());
+  // Convexity: hinge on each row.
+  if (!t.convex.empty()) {
+    const double convex_scale = std::sqrt(w.convexity / static_cast<double>(t.convex.size()));
+    sum = 0;
+    for (const auto& r : t.convex) {
+      const double h =
+          std::max(0.0, r.scale * (z[r.d] - (r.alpha * z[r.a] + r.beta * z[r.b] + r.gamma * z[r.c])) +
+                            t.convex_margin);
+      out[k++] = convex_scale * h, sum += h * h;
+    }
+    if (terms) terms->convexity = sum / static_cast<double>(t.convex.size());
+  }
   while (k < out.size()) out[k++] = 0;
   if (terms) {
     double worst = 0;
@@ -774,12 +949,12 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
   }
   const detail::inflation_problem<> pr = detail::make_inflation_problem(drawing, faces);
   const std::size_t nv = pr.p.size();
-  const detail::compliance_terms<> terms = detail::make_compliance_terms(pr, options.direction_tolerance);
-  const auto m = static_cast<Eigen::Index>(terms.count() + pr.edges.size() + nv);
+  detail::compliance_terms<> terms = detail::make_compliance_terms(pr, options.direction_tolerance);
+  auto m = static_cast<Eigen::Index>(terms.count() + pr.edges.size() + nv);
   Eigen::VectorXd scratch(m);
   const auto measure = [&](const std::vector<double>& z) {
     inflation_residuals r;
-    detail::compliance_residuals(pr, terms, inflation_weights{1, 1, 1, 1}, z, scratch, &r);
+    detail::compliance_residuals(pr, terms, inflation_weights{1, 1, 1, 1, 1}, z, scratch, &r);
     return r;
   };
   const Eigen::MatrixXd basis = detail::planar_readings(pr, options.rank_tolerance);
@@ -816,15 +991,37 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
               " = the tilts and the offset): the drawing is not the view of a solid with these faces, "
               "or it is too inexact; tidy it or raise rank_tolerance");
     res.method = inflation_method::optimisation;
+    std::vector<Eigen::VectorXd> starts;
+    // Convexity prior: when the faces admit a strictly convex reading, it is a start and the
+    // hinge term joins the objective (every start is then ranked with it).
+    if (options.weights.convexity > 0 && options.convexity_start_margin > 0) {
+      auto rows = detail::make_convexity_rows(pr);
+      if (!rows.empty()) {
+        Eigen::VectorXd tc = detail::convex_reading(rows, basis, options.convexity_start_margin);
+        if (tc.size() > 0) {
+          const Eigen::VectorXd zt = basis * tc;
+          const double range = zt.maxCoeff() - zt.minCoeff();
+          if (range > 0) tc *= 0.5 / range;
+          starts.push_back(tc);
+          terms.convex = std::move(rows);
+          terms.convex_margin = options.convexity_margin;
+          m = static_cast<Eigen::Index>(terms.count() + pr.edges.size() + nv);
+          scratch.resize(m);
+          res.diagnostics.push_back("inflate: the faces admit a convex reading: convexity term on (" +
+                                    std::to_string(terms.convex.size()) + " hinges) and a convex start");
+        }
+      }
+    }
     detail::inflation_functor<> f{&pr, &terms, &basis, options.weights, m};
     detail::splitmix rng{options.seed};
-    std::vector<Eigen::VectorXd> starts;
     if (direct.reached > 0 && !direct.z.empty()) {
       Eigen::VectorXd zd(static_cast<Eigen::Index>(nv));
       for (std::size_t i = 0; i < nv; ++i) zd[static_cast<Eigen::Index>(i)] = direct.z[i];
       starts.push_back(basis.transpose() * zd);
     }
-    while (static_cast<int>(starts.size()) < std::max(1, options.starts)) {
+    const int wanted = terms.convex.empty() ? std::max(1, options.starts)
+                                            : std::max(1, std::min(options.starts, options.convex_starts));
+    while (static_cast<int>(starts.size()) < wanted) {
       Eigen::VectorXd t(basis.cols());
       for (Eigen::Index i = 0; i < t.size(); ++i) t[i] = rng.uniform(-1, 1);
       // Depth range comparable to the drawing's (unit diagonal).
