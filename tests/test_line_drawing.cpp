@@ -6,14 +6,17 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <glm/vec2.hpp>
 
+#include "cellforge/core/detail/splitmix.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
+#include "cellforge/sketch/detail/drawing_grid.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 #include "cellforge/sketch/sample_drawings.hpp"
 
@@ -254,3 +257,59 @@ TEST_CASE("check_drawing throws invalid_input with the message") {
 }
 
 }  // namespace line_drawing_tests
+
+TEST_CASE("drawing grid: the frame is exact, close pairs and grid neighbours match a brute-force search") {
+  namespace cd = cellforge::detail;
+  // A power-of-two scale and centring: distances scale exactly.
+  const auto f = cd::make_drawing_frame({{3, 1}, {11, 1}, {11, 5}});
+  REQUIRE(f.points.size() == 3);
+  CHECK(f.points[1].x - f.points[0].x == doctest::Approx(1.0));  // 8 units over a scale of 8
+  CHECK(f.diag == doctest::Approx(std::sqrt(1.0 + 0.25)));
+  CHECK(cd::make_drawing_frame({}).diag == 0);
+  // Close pairs on a jittered lattice, against all pairs.
+  std::vector<glm::dvec2> pts;
+  cellforge::detail::splitmix rng{7};
+  for (int i = 0; i < 300; ++i) pts.push_back({rng.uniform(-1, 1), rng.uniform(-1, 1)});
+  pts.push_back(pts[10]);  // an exact duplicate
+  for (const double eps : {0.0, 0.01, 0.08}) {
+    std::set<std::pair<std::uint32_t, std::uint32_t>> grid, brute;
+    cd::for_close_points(pts, eps, [&](std::uint32_t i, std::uint32_t j) {
+      CHECK(grid.insert({i, j}).second);
+    });
+    for (std::uint32_t i = 0; i < pts.size(); ++i)
+      for (std::uint32_t j = i + 1; j < pts.size(); ++j)
+        if (glm::length(pts[i] - pts[j]) <= eps) brute.insert({i, j});
+    CHECK(grid == brute);
+  }
+  // Segments: every pair that comes within eps of each other shares a cell, and so does every
+  // point within eps of a segment.
+  std::vector<std::pair<glm::dvec2, glm::dvec2>> segs;
+  for (int i = 0; i < 80; ++i) {
+    const glm::dvec2 a{rng.uniform(-0.9, 0.9), rng.uniform(-0.9, 0.9)};
+    segs.push_back({a, a + glm::dvec2(rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1))});
+  }
+  const double eps = 0.01;
+  std::set<std::pair<std::size_t, std::size_t>> pairs, near;
+  cd::for_grid_neighbours(
+      segs, pts, eps,
+      [&](std::size_t s, std::size_t t) {
+        pairs.insert({s, t});
+      },
+      [&](std::size_t s, std::size_t p) {
+        near.insert({s, p});
+      });
+  for (std::size_t s = 0; s < segs.size(); ++s)
+    for (std::size_t p = 0; p < pts.size(); ++p)
+      if (cd::segment_distance(pts[p], segs[s].first, segs[s].second) <= eps) CHECK(near.count({s, p}) == 1);
+  for (std::size_t s = 0; s < segs.size(); ++s)
+    for (std::size_t t = s + 1; t < segs.size(); ++t) {
+      const auto& [a, b] = segs[s];
+      const auto& [c, d] = segs[t];
+      const double gap = std::min({cd::segment_distance(a, c, d), cd::segment_distance(b, c, d),
+                                   cd::segment_distance(c, a, b), cd::segment_distance(d, a, b)});
+      if (gap <= eps) CHECK(pairs.count({s, t}) == 1);
+    }
+  CHECK(cd::segment_distance({0, 1}, {-1, 0}, {1, 0}) == doctest::Approx(1.0));
+  CHECK(cd::segment_distance({3, 0}, {-1, 0}, {1, 0}) == doctest::Approx(2.0));
+  CHECK(cd::segment_distance({2, 2}, {1, 1}, {1, 1}) == doctest::Approx(std::sqrt(2.0)));
+}

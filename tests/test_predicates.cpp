@@ -13,6 +13,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/predicates.hpp"
 #include "test_support.hpp"
 
@@ -371,3 +372,19 @@ TEST_CASE("collinear is exact in 3D") {
 }
 
 }  // namespace predicates_tests
+
+TEST_CASE("union_find: sets join, the smaller root survives, joining twice reports no change") {
+  cellforge::detail::union_find u(6);
+  for (std::uint32_t i = 0; i < 6; ++i) CHECK(u.find(i) == i);
+  CHECK(u.unite(4, 2));
+  CHECK(u.unite(5, 4));
+  CHECK_FALSE(u.unite(2, 5));  // already one set
+  CHECK(u.find(5) == 2);       // the smallest member is the representative
+  CHECK(u.find(4) == 2);
+  CHECK(u.unite(3, 0));
+  CHECK(u.find(3) == 0);
+  CHECK(u.find(1) == 1);
+  CHECK(u.find(2) != u.find(0));
+  CHECK(u.unite(5, 3));
+  for (const std::uint32_t i : {0u, 2u, 3u, 4u, 5u}) CHECK(u.find(i) == 0);
+}

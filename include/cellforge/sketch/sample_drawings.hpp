@@ -32,6 +32,7 @@
 
 #include "cellforge/algorithms/convex_hull.hpp"
 #include "cellforge/core/detail/splitmix.hpp"
+#include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 #include "cellforge/wireframe/sample_models.hpp"
@@ -75,15 +76,6 @@ glm::dmat3 random_rotation(splitmix& rng) {
   return m;
 }
 
-/// Distance from q to the segment ab. O(1).
-template <class = void>
-double point_segment_distance(glm::dvec2 q, glm::dvec2 a, glm::dvec2 b) {
-  const glm::dvec2 d = b - a;
-  const double len2 = glm::dot(d, d);
-  const double t = len2 > 0 ? std::clamp(glm::dot(q - a, d) / len2, 0.0, 1.0) : 0.0;
-  return glm::length(q - (a + t * d));
-}
-
 /// Whether an edge is parallel to one of the coordinate axes, to a relative tolerance. O(1).
 template <class = void>
 bool axis_parallel(glm::dvec3 d) {
@@ -113,7 +105,7 @@ double generic_margin(const sample_drawing& s) {
   for (const auto& e : s.drawing.edges)
     for (std::uint32_t v = 0; v < pts.size(); ++v)
       if (v != e[0] && v != e[1])
-        margin = std::min(margin, detail::point_segment_distance(pts[v], pts[e[0]], pts[e[1]]) / diag);
+        margin = std::min(margin, detail::segment_distance(pts[v], pts[e[0]], pts[e[1]]) / diag);
   for (const auto& face : s.model.faces) {
     std::vector<glm::dvec3> loop;
     for (const auto v : face[0]) loop.push_back(s.points[v]);
@@ -146,18 +138,12 @@ sample_drawing project_model(const sample_model& model, const glm::dmat3& view, 
     for (const auto& loop : face) s.loops.push_back(loop);
   // Normalon: every edge along an axis. Quasi-normalon: the axis edges alone connect every vertex.
   const std::size_t nv = model.wire.points.size();
-  std::vector<std::uint32_t> parent(nv);
-  for (std::uint32_t v = 0; v < nv; ++v) parent[v] = v;
-  const auto find = [&](std::uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
+  detail::union_find sets(nv);
   std::size_t axis_edges = 0, components = nv;
   for (const auto& e : model.wire.edges) {
     if (!detail::axis_parallel(model.wire.points[e[1]] - model.wire.points[e[0]])) continue;
     ++axis_edges;
-    const auto a = find(e[0]), b = find(e[1]);
-    if (a != b) parent[a] = b, --components;
+    components -= sets.unite(e[0], e[1]) ? 1 : 0;
   }
   s.normalon = axis_edges == model.wire.edges.size();
   s.quasi_normalon = !s.normalon && components == 1;
@@ -314,12 +300,8 @@ sample_model convex_polytope_model(const std::vector<glm::dvec3>& points, std::s
     for (std::size_t k = 0; k < 3; ++k)
       side[{corner(f, k), corner(f, (k + 1) % 3)}] = static_cast<std::uint32_t>(f);
   }
-  std::vector<std::uint32_t> parent(nf);
-  for (std::uint32_t f = 0; f < nf; ++f) parent[f] = f;
-  const auto find = [&](std::uint32_t f) {
-    while (parent[f] != f) f = parent[f] = parent[parent[f]];
-    return f;
-  };
+  detail::union_find groups(nf);
+  const auto find = [&](std::uint32_t f) { return groups.find(f); };
   for (std::size_t f = 0; f < nf; ++f)
     for (std::size_t k = 0; k < 3; ++k) {
       const auto it = side.find({corner(f, (k + 1) % 3), corner(f, k)});
@@ -329,7 +311,7 @@ sample_model convex_polytope_model(const std::vector<glm::dvec3>& points, std::s
       double off = 0;
       for (std::size_t j = 0; j < 3; ++j)
         off = std::max(off, std::abs(glm::dot(points[corner(g, j)] - points[corner(f, 0)], normal[f])));
-      if (off <= tol) parent[find(static_cast<std::uint32_t>(f))] = find(g);
+      if (off <= tol) groups.unite(static_cast<std::uint32_t>(f), g);
     }
   // Each group's outline: the directed sides whose reverse is in another group, chained.
   std::map<std::uint32_t, std::map<std::uint32_t, std::uint32_t>> outline;  // group -> tail -> head
@@ -1160,7 +1142,7 @@ double margin_until(const sample_drawing& s, double stop) {
     for (std::uint32_t v = 0; v < pts.size(); ++v) {
       const glm::dvec2 q = pts[v];
       if (v == e[0] || v == e[1] || q.x < elo.x || q.y < elo.y || q.x > ehi.x || q.y > ehi.y) continue;
-      margin = std::min(margin, point_segment_distance(q, a, b) / diag);
+      margin = std::min(margin, detail::segment_distance(q, a, b) / diag);
       if (margin < stop) return margin;
     }
   }
