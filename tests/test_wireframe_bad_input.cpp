@@ -154,6 +154,39 @@ TEST_CASE("bad input: K12 and the work budget") {
   CHECK(same_faces(sample_prism(40).faces, prism.input.faces));
 }
 
+TEST_CASE("bad input: read_vertices stays linear and defined far from the origin and at tiny scales") {
+  // A unit tetrahedron beside three cubes of side 1e-8: the median edge is tiny, and the
+  // tetrahedron's edges once walked 1e8 grid cells each (a hang); the cell count overflowed.
+  sample_model m = sample_tetrahedron();
+  for (int k = 0; k < 3; ++k)
+    m = disjoint_union(m, sample_cube({1e-8, 1e-8, 1e-8}), {2.0 + k, 0, 0}, "tetra and tiny cubes");
+  read_options exact;
+  exact.merge = tolerance{0.0};  // keep the tiny cubes' corners apart
+  const auto r = read_vertices(m.wire, exact);
+  CHECK(r.graph.num_edges() == m.wire.edges.size());
+  CHECK(r.split_edges == 0);
+  // A small budget now stops the same searches with a budget error naming the stage.
+  read_options tight = exact;
+  tight.work_budget = 50;
+  try {
+    (void)read_vertices(m.wire, tight);
+    FAIL("no budget error");
+  } catch (const error& e) {
+    CHECK(e.category() == error_category::budget);
+    CHECK(std::string(e.what()).find("read_vertices: work budget of 50") != std::string::npos);
+  }
+  // A cube 1e12 from the origin with a T-junction: grid keys stay in range (UBSan), the
+  // split is still found, and the complex is the cube's.
+  sample_model far = transformed(split_edge(sample_cube(), 0, {0.5}), glm::dmat3(1.0), {1e12, -1e12, 1e12});
+  far.wire.edges.push_back(
+      {far.wire.edges[far.wire.edges.size() - 2][0], far.wire.edges.back()[1]});  // the whole edge again
+  const auto fr = read_vertices(far.wire);
+  CHECK(fr.split_edges >= 1);
+  const auto cells = wireframe_to_cells(far.wire);
+  CHECK(cells.cells.num_volumes() == 1);
+  CHECK(validate(cells.cells).ok());
+}
+
 TEST_CASE("bad input: diagnostics, and the right complex anyway") {
   const sample_model cube = sample_cube();
   SUBCASE("duplicate and reversed edges") {

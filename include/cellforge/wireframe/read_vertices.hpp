@@ -31,6 +31,8 @@ struct read_options {
   /// Throw on zero-length, duplicate and dangling edges instead of dropping them with a note.
   bool strict = false;
   bool split_at_vertices = true;  ///< split an edge where another vertex lies inside it (T-junction, overlap)
+  /// Steps the merge and split searches may take (cells visited, vertices tested); 0: no limit.
+  std::uint64_t work_budget = 200'000'000;
 };
 
 /// What read_vertices found; `graph` is the labelled wireframe the other stages use.
@@ -46,6 +48,15 @@ struct read_result : stage_report {
 };
 
 namespace detail {
+
+/// Grid coordinate floor(x) as an integer, clamped to ±2^52 so that no finite input (a model
+/// 1e12 from the origin, a cell of 1e-12) overflows; clamping only merges far cells. O(1).
+template <class = void>
+std::int64_t grid_coordinate(double x) {
+  constexpr double limit = 4503599627370496.0;  // 2^52: exact in a double, far from int64 overflow
+  const double c = std::floor(x);
+  return static_cast<std::int64_t>(c != c ? 0.0 : std::clamp(c, -limit, limit));
+}
 
 template <class = void>
 std::string number_text(double x) {
@@ -63,7 +74,7 @@ std::string point_text(const glm::dvec3& p) {
 /// representative (the smallest index of its cluster). O(n) expected.
 template <class = void>
 std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p, const std::vector<char>& used,
-                                              double tol) {
+                                              double tol, work_budget& budget) {
   const std::size_t n = p.size();
   union_find uf(n);
   // Cell → first point, then a linked list through `next`: no allocation per cell.
@@ -76,11 +87,11 @@ std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p, 
   for (std::uint32_t i = 0; i < n; ++i)
     if (used[i]) low = glm::min(low, p[i]), high = glm::max(high, p[i]);
   // (A zero tolerance merges equal points only; the cells then just have to be small.)
-  const double h = 64.0 * std::max(tol, 1e-12 * glm::length(high - low));
+  double h = 64.0 * std::max(tol, 1e-12 * glm::length(high - low));
+  if (!(h > 0.0) || !std::isfinite(h)) h = 1.0;  // one point, or all points equal
   auto cell_of = [&](const glm::dvec3& q) {
-    const glm::dvec3 c = glm::floor((q - low) / h);
-    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(c.x), static_cast<std::int64_t>(c.y),
-                                       static_cast<std::int64_t>(c.z)};
+    const glm::dvec3 c = (q - low) / h;
+    return std::array<std::int64_t, 3>{grid_coordinate(c.x), grid_coordinate(c.y), grid_coordinate(c.z)};
   };
   for (std::uint32_t i = 0; i < n; ++i) {
     if (!used[i]) continue;
@@ -97,10 +108,13 @@ std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p, 
     for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
       for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
         for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+          budget.spend();
           const auto it = cells.find({x, y, z});
           if (it == cells.end()) continue;
-          for (std::uint32_t j = it->second; j != no_index; j = next[j])
+          for (std::uint32_t j = it->second; j != no_index; j = next[j]) {
+            budget.spend();
             if (j > i && glm::length(p[i] - p[j]) <= tol) uf.unite(i, j);
+          }
         }
   }
   std::vector<std::uint32_t> rep(n);
@@ -111,22 +125,31 @@ std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p, 
 /// Splits edges at vertices lying strictly inside them (within tol): a grid of cells about the
 /// median edge length holds the vertices; each edge visits the cells along it. Pieces are
 /// appended in order along the edge and keep their edge's origin. Returns the number of splits.
-/// O(E · cells per edge · vertices per cell).
+/// O(E + V + vertices in the visited cells), spent from `budget`.
 template <class = void>
 std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vector<char>& is_vertex,
                               std::vector<std::array<std::uint32_t, 2>>& ends,
-                              std::vector<std::uint32_t>& origin, double tol) {
+                              std::vector<std::uint32_t>& origin, double tol, work_budget& budget) {
   std::vector<double> lengths;
+  double total_length = 0.0;
+  glm::dvec3 low(std::numeric_limits<double>::infinity());
   for (const auto& e : ends)
-    if (e[0] != e[1]) lengths.push_back(glm::length(p[e[1]] - p[e[0]]));
+    if (e[0] != e[1]) {
+      lengths.push_back(glm::length(p[e[1]] - p[e[0]]));
+      total_length += lengths.back();
+      low = glm::min(low, glm::min(p[e[0]], p[e[1]]));
+    }
   if (lengths.empty()) return 0;
   std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2),
                    lengths.end());
-  const double h = std::max(lengths[lengths.size() / 2], 4.0 * tol);
+  // The median edge length, but never so small that walking all edges visits more than about
+  // 4 cells per edge or vertex: a few long edges beside many tiny ones stay linear.
+  const double work_cap = total_length / (4.0 * static_cast<double>(ends.size() + p.size()));
+  double h = std::max({lengths[lengths.size() / 2], 4.0 * tol, work_cap});
+  if (!(h > 0.0) || !std::isfinite(h)) h = 1.0;
   auto cell_of = [&](const glm::dvec3& q) {
-    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(q.x / h)),
-                                       static_cast<std::int64_t>(std::floor(q.y / h)),
-                                       static_cast<std::int64_t>(std::floor(q.z / h))};
+    const glm::dvec3 c = (q - low) / h;
+    return std::array<std::int64_t, 3>{grid_coordinate(c.x), grid_coordinate(c.y), grid_coordinate(c.z)};
   };
   std::unordered_map<std::array<std::int64_t, 3>, std::uint32_t, cell_hash> cells;
   std::vector<std::uint32_t> next(p.size(), no_index);
@@ -149,9 +172,11 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
     const double len = glm::length(d);
     inside.clear();
     auto visit = [&](const std::array<std::int64_t, 3>& c) {
+      budget.spend();
       const auto it = cells.find(c);
       if (it == cells.end()) return;
       for (std::uint32_t v = it->second; v != no_index; v = next[v]) {
+        budget.spend();
         if (v == a || v == b || seen_stamp[v] == e) continue;
         seen_stamp[v] = static_cast<std::uint32_t>(e);
         const double t = glm::dot(p[v] - pa, d) / (len * len);
@@ -160,7 +185,10 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
       }
     };
     const auto lo = cell_of(glm::min(pa, p[b]) - tol), hi = cell_of(glm::max(pa, p[b]) + tol);
-    const std::int64_t box_cells = (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
+    // In double: clamped coordinates would overflow an integer product.
+    const double box_cells = (static_cast<double>(hi[0] - lo[0]) + 1) *
+                             (static_cast<double>(hi[1] - lo[1]) + 1) *
+                             (static_cast<double>(hi[2] - lo[2]) + 1);
     if (box_cells <= 64) {
       // Short edges (the usual case): the few cells of the edge's box.
       for (auto x = lo[0]; x <= hi[0]; ++x)
@@ -168,7 +196,9 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
           for (auto z = lo[2]; z <= hi[2]; ++z) visit({x, y, z});
     } else {
       // Long edges: sample every half cell and look at the 27 cells around each sample.
-      const auto steps = static_cast<std::size_t>(std::ceil(2.0 * len / h));
+      // (Capped so that an edge of overflowing length cannot make the cast undefined; the
+      // budget ends such walks long before.)
+      const auto steps = static_cast<std::size_t>(std::min(std::ceil(2.0 * len / h), 1e15));
       for (std::size_t s = 0; s <= steps; ++s) {
         const auto c = cell_of(pa + d * (static_cast<double>(s) / static_cast<double>(steps)));
         for (std::int64_t dx = -1; dx <= 1; ++dx)
@@ -233,11 +263,12 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
     }
   }
   const double tol = options.merge.absolute(box);
+  detail::work_budget budget{options.work_budget, 0, "read_vertices"};
   if (box.diagonal() == 0.0)
     throw error(error_category::invalid_input, "read_vertices: all " + std::to_string(ne) +
                                                    " edges have zero length (every point is " +
                                                    detail::point_text(box.min) + ")");
-  const std::vector<std::uint32_t> rep = detail::merge_close_points(p, used, tol);
+  const std::vector<std::uint32_t> rep = detail::merge_close_points(p, used, tol, budget);
   for (std::size_t v = 0; v < nv; ++v)
     if (used[v] && rep[v] != v) {
       ++r.merged_points;
@@ -256,7 +287,7 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
   if (options.split_at_vertices) {
     std::vector<char> is_rep(nv, 0);
     for (std::uint32_t v = 0; v < nv; ++v) is_rep[v] = used[v] && rep[v] == v;
-    const std::size_t splits = detail::split_at_vertices(p, is_rep, ends, origin, tol);
+    const std::size_t splits = detail::split_at_vertices(p, is_rep, ends, origin, tol, budget);
     if (splits > 0)
       r.diagnostics.push_back(std::to_string(splits) +
                               " vertices lie inside edges (T-junctions or overlapping edges); the edges were "
