@@ -267,6 +267,25 @@ inline std::filesystem::path output_dir(const std::filesystem::path& dir) {
   return dir;
 }
 
+/// Throws io naming the file when writing `out` would replace `input` (the same path, or a
+/// link to the same file): no example ever writes over what it read. O(path length).
+inline void refuse_to_overwrite(const std::filesystem::path& out, const std::filesystem::path& input) {
+  std::error_code ec, ec_out, ec_in;
+  const bool same_file = std::filesystem::exists(out, ec) && std::filesystem::equivalent(out, input, ec);
+  const std::filesystem::path out_path = std::filesystem::weakly_canonical(out, ec_out),
+                              in_path = std::filesystem::weakly_canonical(input, ec_in);
+  if (same_file || (!ec_out && !ec_in && out_path == in_path))
+    throw cellforge::error(cellforge::error_category::io,
+                           "refusing to write '" + out.string() +
+                               "': it is the input file; run in another folder or choose another output");
+}
+
+/// refuse_to_overwrite for each output, before anything is written. O(outputs).
+inline void refuse_to_overwrite(std::initializer_list<std::filesystem::path> outputs,
+                                const std::filesystem::path& input) {
+  for (const auto& out : outputs) refuse_to_overwrite(out, input);
+}
+
 /// What both examples start from: the command line, the output directory and the loaded solid.
 struct session {
   command_line cl;
@@ -274,6 +293,13 @@ struct session {
   std::filesystem::path out;
   solid s;
   std::string stem;  ///< the input's file name without extension, for output names
+
+  /// The path of output `name` in the output directory, refused if it is the input file.
+  std::filesystem::path output(const std::string& name) const {
+    std::filesystem::path p = out / name;
+    refuse_to_overwrite(p, cl.input);
+    return p;
+  }
 
   /// Runs f(cells, volume) on a .3dcl input (cell ids in the result), else g(mesh); returns ms.
   template <class OnCells, class OnMesh>

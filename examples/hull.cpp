@@ -23,6 +23,8 @@
 #include "cellforge/io/mesh_io.hpp"
 #include "cellforge/io/svg.hpp"
 
+#include "example_support.hpp"
+
 namespace fs = std::filesystem;
 using point = glm::dvec3;
 
@@ -50,6 +52,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
+    if (from_file) example::refuse_to_overwrite({"hull.off", "hull.svg"}, argv[1]);
     const std::vector<point> points =
         from_file ? cellforge::io::read_soup<point>(argv[1]).points : random_ball(2000, 2024);
 

@@ -12,12 +12,14 @@
 #include "cellforge/cellforge.hpp"
 #include "cellforge/io/mesh_io.hpp"
 #include "cellforge/io/svg.hpp"
+#include "example_support.hpp"
 
 int main(int argc, char** argv) {
   const std::filesystem::path input = argc > 1
                                           ? std::filesystem::path(argv[1])
                                           : std::filesystem::path(CELLFORGE_DATA_DIR) / "mobius_band.obj";
   try {
+    example::refuse_to_overwrite("mesh_info.svg", input);
     using clock = std::chrono::steady_clock;
     const auto t0 = clock::now();
     const auto soup = cellforge::io::read_soup<glm::dvec3>(input);

@@ -57,13 +57,7 @@ int main(int argc, char** argv) {
     const std::string stem = cl.input.stem().string();
     const fs::path outputs[] = {stem + "_faces.svg", stem + "_wire.obj", stem + ".3dcl", stem + ".obj",
                                 stem + ".svg"};
-    for (const fs::path& out : outputs) {
-      std::error_code ec;
-      if (fs::exists(out, ec) && fs::equivalent(out, cl.input, ec))
-        throw cellforge::error(
-            cellforge::error_category::io,
-            "refusing to write '" + out.string() + "': it is the input file; run in another folder");
-    }
+    for (const fs::path& out : outputs) example::refuse_to_overwrite(out, cl.input);
 
     const auto r = cellforge::drawing_to_cells(drawing, options);
     std::printf("drawing            %zu junctions, %zu edges, %zu direction classes\n", r.faces.junctions,

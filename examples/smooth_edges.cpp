@@ -51,15 +51,15 @@ int main(int argc, char** argv) {
 
     const std::string& stem = x.stem;
     const auto& curves = r.curves;
-    cellforge::io::write_curve_file(x.out / (stem + ".curves"), curves,
+    cellforge::io::write_curve_file(x.output(stem + ".curves"), curves,
                                     {.comment = "smooth_edges " + cl.input.filename().string() +
                                                 ": one curve per edge, in edge order (docs/formats.md)"});
-    cellforge::io::write_polyline_file(x.out / (stem + ".polylines"), curves);
-    cellforge::io::write_polylines_obj(x.out / (stem + "_curves.obj"), curves, &x.s.soup);
+    cellforge::io::write_polyline_file(x.output(stem + ".polylines"), curves);
+    cellforge::io::write_polylines_obj(x.output(stem + "_curves.obj"), curves, &x.s.soup);
     cellforge::io::smoothing_svg_options picture;
     picture.picture.title = "smooth_edges: " + cl.input.filename().string();
     picture.picture.view.elevation_deg = 30;
-    cellforge::io::write_smoothing_svg(x.out / (stem + "_smooth.svg"), x.s.soup, curves, picture);
+    cellforge::io::write_smoothing_svg(x.output(stem + "_smooth.svg"), x.s.soup, curves, picture);
     std::printf("  wrote            %s/%s.curves, .polylines, _curves.obj, _smooth.svg\n",
                 x.out.string().c_str(), stem.c_str());
     return 0;

@@ -22,6 +22,8 @@
 #include "cellforge/io/mesh_io.hpp"
 #include "cellforge/io/svg.hpp"
 
+#include "example_support.hpp"
+
 namespace fs = std::filesystem;
 using point = glm::dvec3;
 
@@ -38,6 +40,10 @@ int main(int argc, char** argv) {
     levels = static_cast<int>(n);
   }
   try {
+    std::string ext = input.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    const fs::path out = fs::path("subdivided" + ext);
+    example::refuse_to_overwrite({out, "subdivide.svg"}, input);
     cellforge::polygon_soup<point> soup = cellforge::io::read_soup<point>(input);
     const bool polygons = std::any_of(soup.face_offsets.begin() + 1, soup.face_offsets.end(),
                                       [&, prev = std::uint32_t{0}](std::uint32_t o) mutable {
@@ -67,9 +73,6 @@ int main(int argc, char** argv) {
     std::printf("total              %.3f ms\n", r.total_ms());
     std::printf("valid              %s\n", valid.ok() ? "yes" : valid.message.c_str());
 
-    std::string ext = input.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    const fs::path out = fs::path("subdivided" + ext);
     cellforge::io::write_mesh(out, mesh);
 
     // Input and result side by side: shift the result 1.3 widths to the right of the screen.

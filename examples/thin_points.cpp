@@ -60,13 +60,13 @@ int main(int argc, char** argv) {
     std::vector<std::vector<glm::dvec3>> loops;
     for (const auto& l : r.loops) loops.push_back(l.points);
     const std::string& stem = x.stem;
-    cellforge::io::write_polylines_obj(x.out / (stem + "_loops.obj"), loops, true, &x.s.soup,
+    cellforge::io::write_polylines_obj(x.output(stem + "_loops.obj"), loops, true, &x.s.soup,
                                        {.comment = "thin_points " + cl.input.filename().string() +
                                                    ": the solid, then one closed l line per thin loop"});
     cellforge::io::thin_loops_svg_options picture;
     picture.picture.title = "thin_points: " + cl.input.filename().string();
     picture.picture.view.elevation_deg = 20;
-    cellforge::io::write_thin_loops_svg(x.out / (stem + "_thin.svg"), x.s.soup, r, picture);
+    cellforge::io::write_thin_loops_svg(x.output(stem + "_thin.svg"), x.s.soup, r, picture);
     std::printf("  wrote            %s/%s_loops.obj, %s_thin.svg\n", x.out.string().c_str(), stem.c_str(),
                 stem.c_str());
     return 0;

@@ -61,13 +61,7 @@ int main(int argc, char** argv) {
                              "'" + cl.input.string() + "': give an .swc or .obj skeleton");
     }
     const fs::path outputs[] = {"tubes.obj", "tubes.ply", "tubes.off", "tubes.svg"};
-    for (const fs::path& out : outputs) {
-      std::error_code ec;
-      if (fs::exists(out, ec) && fs::equivalent(out, cl.input, ec))
-        throw cellforge::error(
-            cellforge::error_category::io,
-            "refusing to write '" + out.string() + "': it is the input file; run in another folder");
-    }
+    for (const fs::path& out : outputs) example::refuse_to_overwrite(out, cl.input);
 
     const auto r = cellforge::make_tubes(skeleton, options);
     const cellforge::validation_result valid = cellforge::validate(r.mesh);

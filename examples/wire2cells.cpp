@@ -151,18 +151,6 @@ void print_help(const std::vector<example::option_spec>& table) {
       example::options_help(table).c_str(), exit_ok, exit_input, exit_usage, exit_output);
 }
 
-/// Throws io naming the file when writing `out` would replace `input` (the same path, or a
-/// link to the same file). O(path length).
-void refuse_to_overwrite(const fs::path& out, const fs::path& input) {
-  std::error_code ec, ec_out, ec_in;
-  const bool same_file = fs::exists(out, ec) && fs::equivalent(out, input, ec);
-  const fs::path out_path = fs::weakly_canonical(out, ec_out), in_path = fs::weakly_canonical(input, ec_in);
-  if (same_file || (!ec_out && !ec_in && out_path == in_path))
-    throw cellforge::error(cellforge::error_category::io, "refusing to write '" + out.string() +
-                                                              "': it is the input file; choose another " +
-                                                              "output folder with -o DIR");
-}
-
 void row(const char* stage, double ms, const char* what = nullptr, std::size_t count = 0) {
   if (what)
     std::printf("  %-26s %9.3f ms   %-18s %zu\n", stage, ms, what, count);
@@ -222,7 +210,7 @@ int main(int argc, char** argv) {
     for (const char* e : {".3dcl", ".obj", ".ply", ".svg"})
       if (s.svg || std::string_view(e) != ".svg") outputs.push_back(s.output / (stem + e));
     failure = exit_output;
-    for (const fs::path& out : outputs) refuse_to_overwrite(out, s.input);
+    for (const fs::path& out : outputs) example::refuse_to_overwrite(out, s.input);
     failure = exit_input;
 
     const cellforge::wireframe_result<glm::dvec3> r = cellforge::wireframe_to_cells(wire, s.pipeline);
