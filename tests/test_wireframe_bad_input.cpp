@@ -187,6 +187,17 @@ TEST_CASE("bad input: read_vertices stays linear and defined far from the origin
   CHECK(validate(cells.cells).ok());
 }
 
+TEST_CASE("bad input: 10^5 duplicate edges are counted, not listed") {
+  sample_model m = sample_cube();
+  const std::size_t copies = 100'000;
+  for (std::size_t i = 0; i < copies; ++i) m.wire.edges.push_back(m.wire.edges[i % 12]);
+  const auto r = wireframe_to_cells(m.wire);
+  CHECK(r.read.duplicate_edges == copies);
+  CHECK(r.read.diagnostics.size() < 20);
+  CHECK(has_note(r.read, "99992 more duplicate edges dropped (100000 in all)"));
+  CHECK(r.cells.num_volumes() == 1);
+}
+
 TEST_CASE("bad input: diagnostics, and the right complex anyway") {
   const sample_model cube = sample_cube();
   SUBCASE("duplicate and reversed edges") {

@@ -299,29 +299,42 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
   // Zero-length and duplicate pieces dropped (or rejected).
   std::unordered_map<std::uint64_t, std::uint32_t> seen;
   std::vector<std::uint32_t> kept;
-  auto complain = [&](const std::string& what) {
-    if (options.strict) throw error(error_category::invalid_input, "read_vertices: " + what);
-    r.diagnostics.push_back(what);
+  // The first few of each kind are named; the rest are counted (10^5 duplicates are one line).
+  constexpr std::size_t named_per_kind = 8;
+  auto complain = [&](std::size_t count_so_far, auto&& what) {
+    if (options.strict) throw error(error_category::invalid_input, "read_vertices: " + what());
+    if (count_so_far <= named_per_kind) r.diagnostics.push_back(what());
   };
   for (std::uint32_t e = 0; e < np; ++e) {
     const std::uint32_t a = ends[e][0], b = ends[e][1], o = origin[e];
     if (a == b) {
-      ++r.zero_length_edges;
-      complain("edge " + std::to_string(o) + " has zero length (its ends " +
+      complain(++r.zero_length_edges, [&] {
+        return "edge " + std::to_string(o) + " has zero length (its ends " +
                std::to_string(input_ends[o][0]) + " and " + std::to_string(input_ends[o][1]) +
-               " are the same point) and was dropped");
+               " are the same point) and was dropped";
+      });
       continue;
     }
     const std::uint64_t k = (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
     const auto [it, fresh] = seen.emplace(k, o);
     if (!fresh) {
-      ++r.duplicate_edges;
-      complain("edge " + std::to_string(o) + " duplicates edge " + std::to_string(it->second) +
-               " (vertices " + std::to_string(a) + "-" + std::to_string(b) + ") and was dropped");
+      const std::uint32_t first = it->second;  // (a structured binding cannot be captured in C++20)
+      complain(++r.duplicate_edges, [&] {
+        return "edge " + std::to_string(o) + " duplicates edge " + std::to_string(first) + " (vertices " +
+               std::to_string(a) + "-" + std::to_string(b) + ") and was dropped";
+      });
       continue;
     }
     kept.push_back(e);
   }
+  if (r.zero_length_edges > named_per_kind)
+    r.diagnostics.push_back("... " + std::to_string(r.zero_length_edges - named_per_kind) +
+                            " more zero-length edges dropped (" + std::to_string(r.zero_length_edges) +
+                            " in all)");
+  if (r.duplicate_edges > named_per_kind)
+    r.diagnostics.push_back("... " + std::to_string(r.duplicate_edges - named_per_kind) +
+                            " more duplicate edges dropped (" + std::to_string(r.duplicate_edges) +
+                            " in all)");
 
   // Dangling edges: repeatedly strip vertices of degree 1, since no circuit passes through them.
   std::vector<char> alive(np, 0);
@@ -352,8 +365,14 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
     }
     std::sort(r.dangling.begin(), r.dangling.end());
     r.dangling.erase(std::unique(r.dangling.begin(), r.dangling.end()), r.dangling.end());
+    std::size_t named = 0;
     for (const auto e : r.dangling)
-      complain("edge " + std::to_string(e) + " is dangling (it lies on no circuit) and was removed");
+      complain(++named, [&] {
+        return "edge " + std::to_string(e) + " is dangling (it lies on no circuit) and was removed";
+      });
+    if (named > named_per_kind)
+      r.diagnostics.push_back("... " + std::to_string(named - named_per_kind) +
+                              " more dangling edges removed (" + std::to_string(named) + " in all)");
   }
 
   // Label the remaining vertices in the caller's order so that indices survive the trip.
