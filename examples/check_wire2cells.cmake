@@ -92,6 +92,12 @@ elseif(CASE STREQUAL "outputs")
   if(NOT EXISTS "${dir}/cube_out/cube.3dcl" OR EXISTS "${dir}/cube_out/cube.svg")
     message(FATAL_ERROR "--no-svg -o cube_out: expected cube.3dcl and no cube.svg in cube_out/")
   endif()
+  # A mesh OBJ (faces, no lines), its extension in capitals: the faces' edges are the wireframe.
+  file(WRITE "${dir}/mesh.OBJ" "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                               "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n")
+  run(--no-svg -o mesh_out mesh.OBJ)
+  expect_exit(0)
+  expect_in("${out}" "8 vertices, 12 edges, 6 faces, 1 volumes")
 
 elseif(CASE STREQUAL "overwrite")
   # An output named like the input in the input's folder: refused before anything is written.

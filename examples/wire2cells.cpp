@@ -2,7 +2,7 @@
 // three-dimensional cell list — vertices, edges, faces, volumes and their relations —
 // and writes it with pictures.
 //
-//   wire2cells [options] [input]     input: an OBJ wireframe (v and l lines) or a plain edge
+//   wire2cells [options] [input]     input: an OBJ wireframe (v and l lines, f edges) or a plain edge
 //                                    list (docs/formats.md); none: the bundled stepped block
 //   wire2cells --help                every option with its default, the outputs, the exit codes
 //
@@ -133,7 +133,8 @@ void print_help(const std::vector<example::option_spec>& table) {
       "usage: wire2cells [options] [input]\n\n"
       "Converts a wireframe into a three-dimensional cell list (vertices, edges, faces, volumes and\n"
       "their relations) and prints a per-stage table like the seed's table 1.\n\n"
-      "input: an OBJ wireframe (.obj: 'v' and 'l' lines) or a plain edge list (any other name;\n"
+      "input: an OBJ wireframe (.obj: 'v' and 'l' lines; the edges of 'f' faces count as lines too)\n"
+      "       or a plain edge list (any other name;\n"
       "       docs/formats.md); default: the bundled %s\n\n"
       "options:\n%s\n"
       "outputs, in the output folder, <name> being the input's file name without extension:\n"
@@ -202,7 +203,8 @@ int main(int argc, char** argv) {
     std::string ext = s.input.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    const auto wire = ext == ".obj" ? cellforge::io::read_obj_wireframe<glm::dvec3>(s.input)
+    // An OBJ's faces are read as their edges: a mesh file is a wireframe too.
+    const auto wire = ext == ".obj" ? cellforge::io::read_obj_wireframe<glm::dvec3>(s.input, {}, true)
                                     : cellforge::io::read_edge_list<glm::dvec3>(s.input);
 
     const std::string stem = s.input.stem().string();
