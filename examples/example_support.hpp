@@ -325,7 +325,7 @@ inline session open_session(int argc, char** argv, const std::filesystem::path& 
   names.insert(names.end(), {"out", "volume"});
   session x;
   x.cl = parse_command_line(argc, argv, default_input, names, flag_names);
-  x.volume = static_cast<int>(x.cl.number("volume", 0, 0, 4e9, true));
+  x.volume = static_cast<int>(x.cl.number("volume", 0, 0, 2147483647.0, true));
   x.out = output_dir(x.cl.text("out", "out"));
   x.s = load_solid(x.cl.input, x.volume);
   x.stem = x.cl.input.stem().string();

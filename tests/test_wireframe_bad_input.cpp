@@ -187,6 +187,20 @@ TEST_CASE("bad input: read_vertices stays linear and defined far from the origin
   CHECK(validate(cells.cells).ok());
 }
 
+TEST_CASE("bad input: models beyond what a double can measure are named as such") {
+  for (const double scale : {1e-300, 1e-60, 1e60, 1e300}) {
+    CAPTURE(scale);
+    expect_error(transformed(sample_cube(), glm::dmat3(scale), {0, 0, 0}).wire, error_category::invalid_input,
+                 "scale the model into that range");
+  }
+  // Just inside the range the cube is read as a cube.
+  for (const double scale : {1e-45, 1e45}) {
+    CAPTURE(scale);
+    CHECK(wireframe_to_cells(transformed(sample_cube(), glm::dmat3(scale), {0, 0, 0}).wire)
+              .cells.num_volumes() == 1);
+  }
+}
+
 TEST_CASE("bad input: 10^5 duplicate edges are counted, not listed") {
   sample_model m = sample_cube();
   const std::size_t copies = 100'000;

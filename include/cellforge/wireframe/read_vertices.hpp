@@ -262,6 +262,21 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
       box.add(p[v]);
     }
   }
+  {
+    // Lengths, areas and volumes are products of coordinates: outside about 1e±50 (the crossing and planarity
+    // tests use fourth and sixth powers) they under- or overflow a double, and every later test would be
+    // wrong (say so, not "zero length").
+    const glm::dvec3 span = box.max - box.min;
+    const double extent = std::max({span.x, span.y, span.z});
+    const double reach = std::max({std::abs(box.min.x), std::abs(box.min.y), std::abs(box.min.z),
+                                   std::abs(box.max.x), std::abs(box.max.y), std::abs(box.max.z)});
+    if (!box.empty() && extent > 0.0 && (extent < 1e-50 || reach > 1e50))
+      throw error(error_category::invalid_input,
+                  "read_vertices: the model spans " + detail::number_text(extent) + " and reaches " +
+                      detail::number_text(reach) +
+                      " from the origin; lengths, areas and volumes are computed in double, which holds "
+                      "this only between 1e-50 and 1e50 units: scale the model into that range");
+  }
   const double tol = options.merge.absolute(box);
   detail::work_budget budget{options.work_budget, 0, "read_vertices"};
   if (box.diagonal() == 0.0)
