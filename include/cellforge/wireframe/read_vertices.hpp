@@ -263,9 +263,8 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
     }
   }
   {
-    // Lengths, areas and volumes are products of coordinates: outside about 1e±50 (the crossing and planarity
-    // tests use fourth and sixth powers) they under- or overflow a double, and every later test would be
-    // wrong (say so, not "zero length").
+    // Lengths, areas and volumes are products of coordinates, some tests use fourth powers (a
+    // cube reads right from about 1e-80 to 1e75 units): past 1e±50 say so, not "zero length".
     const glm::dvec3 span = box.max - box.min;
     const double extent = std::max({span.x, span.y, span.z});
     const double reach = std::max({std::abs(box.min.x), std::abs(box.min.y), std::abs(box.min.z),
