@@ -435,6 +435,15 @@ TEST_CASE("thin points: bad input gives a clear error") {
   const auto degenerate = mesh_of(flat);
   require_error(error_category::invalid_input, "face 0 is degenerate",
                 [&] { (void)cellforge::find_thin_points(degenerate); });
+  // Closed, oriented, one part, and enclosing nothing: a square and its reverse back to back.
+  cellforge::polygon_soup<glm::dvec3> sheet;
+  sheet.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  sheet.add_face({0, 1, 2, 3});
+  sheet.add_face({3, 2, 1, 0});
+  const auto folded = mesh_of(sheet);
+  REQUIRE(folded.is_closed());
+  require_error(error_category::invalid_input, "encloses no volume",
+                [&] { (void)cellforge::find_thin_points(folded); });
   // NaN coordinate.
   auto nan_soup = s.soup;
   nan_soup.points[3].y = std::nan("");

@@ -133,6 +133,7 @@ thin_input prepare(const surface_mesh<P>& m) {
   g.num_faces = static_cast<std::uint32_t>(in.face_id.size());
   g.face_start.assign(1, 0);
   std::vector<std::uint32_t> face_vertices;
+  double volume6 = 0.0;  // six times the enclosed volume, cones from the box corner
   for (std::uint32_t cf = 0; cf < g.num_faces; ++cf) {
     const face_handle f(in.face_id[cf]);
     face_vertices.clear();
@@ -163,7 +164,13 @@ thin_input prepare(const surface_mesh<P>& m) {
       fail(error_category::invalid_input, "face " + std::to_string(f.idx()) + " repeats a vertex");
     if (!(0.5 * glm::length(area) > 1e-14 * diag * diag))
       fail(error_category::invalid_input, "face " + std::to_string(f.idx()) + " is degenerate (zero area)");
+    volume6 += glm::dot(in.position[face_vertices[0]] - lo, area);  // (area is twice the vector area)
   }
+  // A closed surface can enclose nothing (a sheet folded onto itself): no solid, no thin points.
+  if (!(std::abs(volume6) / 6.0 > 1e-12 * diag * diag * diag))
+    fail(error_category::invalid_input,
+         "the mesh is closed but encloses no volume (under 1e-12 of its bounding box's diagonal cubed): "
+         "thin points need a solid, not a flat or folded sheet");
   // One solid: every face reachable from face 0.
   std::vector<char> seen(g.num_faces, 0);
   std::vector<std::uint32_t> stack{0};
