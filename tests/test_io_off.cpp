@@ -224,4 +224,34 @@ TEST_CASE("OFF: file errors name the path") {
                              [](const std::filesystem::path& p) { (void)io::read_off<glm::dvec3>(p); });
 }
 
+TEST_CASE("OFF: a write that fails leaves the old file as it was, and no partial file") {
+  const auto dir = std::filesystem::temp_directory_path() / "cellforge_write_atomic";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto path = dir / "kept.off";
+  polygon_soup<glm::dvec3> good;
+  good.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  good.add_face({0, 1, 2});
+  io::write_off(path, good);
+  const auto read_back = [&] {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
+  const std::string before = read_back();
+  auto bad = good;
+  bad.face_vertices.push_back(7);  // a face naming a point that does not exist
+  bad.face_offsets.push_back(static_cast<std::uint32_t>(bad.face_vertices.size()));
+  CHECK_THROWS_AS(io::write_off(path, bad), cellforge::error);
+  CHECK(read_back() == before);
+  CHECK(!std::filesystem::exists(dir / "kept.off.partial"));
+  // A folder is refused by name, and nothing is created beside it.
+  CHECK_THROWS_WITH_AS(io::write_off(dir, good),
+                       ("cannot open '" + dir.string() + "' for writing: it is a folder").c_str(),
+                       cellforge::error);
+  CHECK(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator{}) == 1);
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace io_off_tests

@@ -12,7 +12,6 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -38,6 +37,7 @@
 #include "cellforge/core/wireframe.hpp"
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"
+#include "cellforge/io/detail/output_buffer.hpp"
 #include "cellforge/io/detail/svg_visibility.hpp"
 #include "cellforge/io/detail/xml.hpp"
 
@@ -366,13 +366,10 @@ class basic_svg_scene {
   svg_result write(const std::filesystem::path& path, const svg_options& options = {}) const {
     std::string text;
     const svg_result r = write_to(text, options);
-    std::ofstream file(path, std::ios::binary | std::ios::trunc);
-    if (!file)
-      throw error(error_category::io, "svg: cannot open '" + path.string() +
-                                          "' for writing (does its directory exist and is it writable?)");
-    file.write(text.data(), static_cast<std::streamsize>(text.size()));
-    file.close();
-    if (!file) throw error(error_category::io, "svg: writing '" + path.string() + "' failed (disk full?)");
+    detail::write_file(path, [&](std::ostream& os) {
+      os.write(text.data(), static_cast<std::streamsize>(text.size()));
+      if (!os) throw error(error_category::io, "writing the picture failed (disk full?)");
+    });
     return r;
   }
 

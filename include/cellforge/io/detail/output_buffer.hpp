@@ -114,21 +114,51 @@ void put_comment_lines(output_buffer& out, std::string_view text, std::string_vi
   }
 }
 
-/// Opens `path` for binary writing, runs `write(stream)`, and turns any failure into an io
-/// error naming the path. O(what write costs).
+/// Runs `write(stream)` into a file beside `path` and renames it over `path` only when all of
+/// it is written, so a failure (a writer's check, a full disk) never leaves a broken, empty or
+/// half-replaced file; a device or pipe is written in place. Errors name the path. O(what write costs).
 template <class Write>
 void write_file(const std::filesystem::path& path, Write&& write) {
-  std::ofstream os(path, std::ios::binary | std::ios::trunc);
-  if (!os) throw error(error_category::io, "cannot open '" + display_name(path) + "' for writing");
-  try {
-    write(static_cast<std::ostream&>(os));
-  } catch (const error& e) {
-    if (e.category() != error_category::io) throw;
-    throw error(error_category::io, "cannot write '" + display_name(path) + "': " + e.message());
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(status))
+    throw error(error_category::io, "cannot open '" + display_name(path) + "' for writing: it is a folder");
+  const bool in_place = std::filesystem::exists(status) && !std::filesystem::is_regular_file(status);
+  std::filesystem::path target = path;
+  if (!in_place) target += ".partial";
+  const auto discard = [&] {
+    std::error_code ignored;
+    if (!in_place) std::filesystem::remove(target, ignored);
+  };
+  {
+    std::ofstream os(target, std::ios::binary | std::ios::trunc);
+    if (!os) throw error(error_category::io, "cannot open '" + display_name(path) + "' for writing");
+    try {
+      write(static_cast<std::ostream&>(os));
+    } catch (const error& e) {
+      os.close();
+      discard();
+      if (e.category() != error_category::io) throw;
+      throw error(error_category::io, "cannot write '" + display_name(path) + "': " + e.message());
+    } catch (...) {
+      os.close();
+      discard();
+      throw;
+    }
+    os.close();
+    if (!os) {
+      discard();
+      throw error(error_category::io, "cannot write '" + display_name(path) + "': closing the file failed");
+    }
   }
-  os.close();
-  if (!os)
-    throw error(error_category::io, "cannot write '" + display_name(path) + "': closing the file failed");
+  if (in_place) return;
+  std::filesystem::rename(target, path, ec);
+  if (ec) {
+    discard();
+    throw error(error_category::io, "cannot write '" + display_name(path) +
+                                        "': moving the finished file into place failed (" + ec.message() +
+                                        ")");
+  }
 }
 
 /// Throws invalid_input when point i has a NaN or infinite coordinate: writing it would make
