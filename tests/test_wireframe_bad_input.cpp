@@ -201,6 +201,20 @@ TEST_CASE("bad input: models beyond what a double can measure are named as such"
   }
 }
 
+TEST_CASE("bad input: edges dropped because their cycles cross say so") {
+  // A cube with both diagonals of one face: they cross inside the face, at no vertex.
+  sample_model m = sample_cube();
+  const auto& f = m.faces[0][0];
+  m.wire.edges.push_back({f[0], f[2]});
+  m.wire.edges.push_back({f[1], f[3]});
+  try {
+    const auto r = wireframe_to_cells(m.wire);
+    CHECK(has_note(r, "edge 12 bounds no face (it crosses edge 13 between their ends)"));
+  } catch (const error& e) {
+    CHECK(std::string(e.what()).find("cross") != std::string::npos);
+  }
+}
+
 TEST_CASE("bad input: 10^5 duplicate edges are counted, not listed") {
   sample_model m = sample_cube();
   const std::size_t copies = 100'000;

@@ -76,6 +76,27 @@ struct wireframe_result {
 };
 
 namespace detail {
+
+/// The first edge of g that edge e crosses at a point inside both (not at a vertex), within
+/// g's merge tolerance; no_index if none. O(E).
+template <class = void>
+std::uint32_t crossing_edge(const wire_graph& g, std::uint32_t e) {
+  const glm::dvec3 p = g.points[g.edges[e][0]], d1 = g.points[g.edges[e][1]] - p;
+  for (std::uint32_t f = 0; f < g.num_edges(); ++f) {
+    const auto [a, b] = g.edges[f];
+    if (f == e || a == g.edges[e][0] || a == g.edges[e][1] || b == g.edges[e][0] || b == g.edges[e][1])
+      continue;
+    const glm::dvec3 q = g.points[a], d2 = g.points[b] - q, w = p - q;
+    const double aa = glm::dot(d1, d1), bb = glm::dot(d1, d2), cc = glm::dot(d2, d2);
+    const double dd = glm::dot(d1, w), ee = glm::dot(d2, w), den = aa * cc - bb * bb;
+    if (!(den > 1e-12 * aa * cc)) continue;  // parallel
+    const double s = (bb * ee - cc * dd) / den, t = (aa * ee - bb * dd) / den;
+    if (!(s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0)) continue;
+    const double tol = std::max(g.merge_tolerance, 1e-9 * std::sqrt(std::max(aa, cc)));
+    if (glm::length((p + s * d1) - (q + t * d2)) <= tol) return f;
+  }
+  return no_index;
+}
 /// What a wireframe in which no face survives is, for the error message. O(1).
 template <class = void>
 std::string no_face_message(const wire_graph& g, const arrangement_result& arrangement,
@@ -166,10 +187,20 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   // Vertices and edges: those the faces use (and dangling edges when asked), caller's order.
   std::vector<std::array<std::uint32_t, 2>> edges;  // in the caller's vertex labels
   std::vector<std::uint32_t> edge_origin;
+  // An edge left out because it crosses another edge (a diagonal through a face): say so, or
+  // "bounds no face" hides why. Tested against every edge while that stays cheap.
+  const auto left_out = static_cast<std::size_t>(std::count(edge_used.begin(), edge_used.end(), char{0}));
+  const bool test_crossings = left_out * g.num_edges() <= 20'000'000;
   for (std::uint32_t e = 0; e < g.num_edges(); ++e) {
-    if (!edge_used[e])
-      r.diagnostics.push_back("edge " + std::to_string(g.input_edge[e]) + " bounds no face" +
-                              (options.keep_dangling ? "; kept as a dangling edge" : " and is left out"));
+    if (!edge_used[e]) {
+      const std::uint32_t other = test_crossings ? detail::crossing_edge(g, e) : no_index;
+      r.diagnostics.push_back(
+          "edge " + std::to_string(g.input_edge[e]) + " bounds no face" +
+          (other != no_index
+               ? " (it crosses edge " + std::to_string(g.input_edge[other]) + " between their ends)"
+               : std::string()) +
+          (options.keep_dangling ? "; kept as a dangling edge" : " and is left out"));
+    }
     if (edge_used[e] || options.keep_dangling) {
       edges.push_back({g.input_vertex[g.edges[e][0]], g.input_vertex[g.edges[e][1]]});
       edge_origin.push_back(g.input_edge[e]);
