@@ -220,6 +220,7 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   std::vector<std::uint32_t> ring_edges, first_vertex;
   const std::vector<glm::dvec3> extra_candidates = dt::sphere_directions(options.junction_extra_points);
   std::vector<glm::dvec3> extra;
+  dt::junction_scratch scratch;
   for (const std::uint32_t b : tc.junctions) {
     const glm::dvec3 c = node_pos(b);
     const double rb = node_radius(b);
@@ -277,7 +278,7 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
       if (clear) extra.push_back(d);
     }
     dt::build_junction(out, c, rings, n, {tube_face_kind::junction, tc.nodes[b].skeleton_node}, ring_edges,
-                       first_vertex, extra, rb);
+                       first_vertex, scratch, extra, rb);
     for (std::size_t i = 0; i < real; ++i) ends[at_junction[b][i]] = {rings[i], c, first_vertex[i]};
     ++res.junctions;
   }
