@@ -17,6 +17,7 @@
 #include "cellforge/algorithms/self_intersections.hpp"
 #include "cellforge/halfedge/validate.hpp"
 #include "cellforge/tubes/branch_mesh.hpp"
+#include "cellforge/tubes/detail/sphere_hull.hpp"
 #include "cellforge/tubes/detail/tube_buffer.hpp"
 #include "cellforge/tubes/node_path.hpp"
 #include "cellforge/tubes/sample_skeletons.hpp"
@@ -138,6 +139,93 @@ TEST_CASE("tube construct: junctions, paths, inserted nodes, rings") {
   }
 }
 
+// The junction hull (tubes/detail/sphere_hull.hpp) against the general incremental hull: the
+// same triangles on points in general position on a sphere; on cocircular rings (many valid
+// triangulations) a valid hull: every point a vertex, 2m - 4 triangles, each with every
+// point exactly on its inner side or its plane, every edge used once each way.
+TEST_CASE("sphere_hull: same faces as the general hull on sphere points, valid on cocircular rings") {
+  namespace dt = detail::tubes;
+  std::uint64_t state = 0x9E3779B97F4A7C15ull;
+  const auto uniform = [&] {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state >> 11) * 0x1p-53;
+  };
+  const auto random_direction = [&] {
+    while (true) {
+      const glm::dvec3 d(2 * uniform() - 1, 2 * uniform() - 1, 2 * uniform() - 1);
+      const double l = glm::length(d);
+      if (l > 0.1 && l <= 1) return d / l;
+    }
+  };
+  using tri = std::array<std::uint32_t, 3>;
+  const auto canonical = [](std::vector<tri> ts) {  // each triangle from its smallest vertex, sorted
+    for (tri& t : ts) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    std::sort(ts.begin(), ts.end());
+    return ts;
+  };
+  const auto general = [](const std::vector<glm::dvec3>& pts) {
+    convex_hull_options o;
+    o.merge_coplanar = false;
+    o.method = convex_hull_method::incremental;
+    const detail::hull::result h = detail::hull::compute(pts, o);
+    std::vector<tri> ts;
+    for (std::size_t f = 0; f + 1 < h.face_offsets.size(); ++f)
+      ts.push_back({h.vertices[h.face_vertices[h.face_offsets[f]]],
+                    h.vertices[h.face_vertices[h.face_offsets[f] + 1]],
+                    h.vertices[h.face_vertices[h.face_offsets[f] + 2]]});
+    return ts;
+  };
+  const auto valid = [](const std::vector<glm::dvec3>& pts, const std::vector<tri>& ts) {
+    if (ts.size() != 2 * pts.size() - 4) return false;
+    std::vector<std::array<std::uint32_t, 2>> half;
+    for (const tri& t : ts) {
+      for (std::size_t q = 0; q < pts.size(); ++q)
+        if (detail::orient3d_exact(pts[t[0]], pts[t[1]], pts[t[2]], pts[q]) > 0) return false;
+      for (int k = 0; k < 3; ++k) half.push_back({t[k], t[(k + 1) % 3]});
+    }
+    std::sort(half.begin(), half.end());
+    if (std::adjacent_find(half.begin(), half.end()) != half.end()) return false;
+    for (const auto& [a, b] : half)
+      if (!std::binary_search(half.begin(), half.end(), std::array<std::uint32_t, 2>{b, a})) return false;
+    return true;
+  };
+  dt::sphere_hull_scratch scratch;
+  std::vector<tri> ours;
+  int general_position = 0, rings_checked = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<glm::dvec3> pts(4 + trial % 45);
+    for (glm::dvec3& p : pts) p = random_direction();
+    REQUIRE(dt::sphere_hull(pts, scratch, ours));
+    CHECK(canonical(ours) == canonical(general(pts)));
+    ++general_position;
+  }
+  for (int trial = 0; trial < 200; ++trial) {  // k rings of `sides` exactly cocircular points
+    const std::size_t k = 2 + trial % 5, sides = 3 + trial % 6;
+    std::vector<glm::dvec3> pts;
+    for (std::size_t i = 0; i < k; ++i) {
+      const glm::dvec3 d = random_direction(), u = dt::any_perpendicular(d), v = glm::cross(d, u);
+      const double c = 0.9 + 0.05 * uniform(), r = std::sqrt(1 - c * c);
+      for (std::size_t j = 0; j < sides; ++j) {
+        const double a = 2 * 3.141592653589793 * static_cast<double>(j) / static_cast<double>(sides);
+        pts.push_back(c * d + r * (std::cos(a) * u + std::sin(a) * v));
+      }
+    }
+    if (dt::sphere_hull(pts, scratch, ours)) {  // it may give up (build_junction then uses the general hull)
+      CHECK(valid(pts, ours));
+      ++rings_checked;
+    }
+  }
+  CHECK(general_position == 200);
+  CHECK(rings_checked >= 150);
+  // Degenerate input: too few points, all on one circle (flat), a repeated point.
+  std::vector<glm::dvec3> flat;
+  for (int j = 0; j < 8; ++j) flat.push_back({std::cos(j * 0.7), std::sin(j * 0.7), 0});
+  CHECK(!dt::sphere_hull(std::span(flat).first(3), scratch, ours));
+  CHECK(!dt::sphere_hull(flat, scratch, ours));
+  std::vector<glm::dvec3> repeated{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, 0, 1}, {0, -1, 0}};
+  CHECK(!dt::sphere_hull(repeated, scratch, ours));
+}
+
 TEST_CASE("tube stages one by one: frames, ring placement, junction hulls, paths") {
   namespace dt = detail::tubes;
   SUBCASE("any_perpendicular and angle_about (tubes/detail/tube_buffer.hpp)") {
@@ -176,8 +264,9 @@ TEST_CASE("tube stages one by one: frames, ring placement, junction hulls, paths
     dt::place_rings(rings, 0.5, 0.9);
     dt::buffer out;
     std::vector<std::uint32_t> first;
+    dt::junction_scratch scratch;
     const std::uint32_t edges[3] = {7, 8, tube_node::none};
-    dt::build_junction(out, glm::dvec3(0.0), rings, 8, {tube_face_kind::junction, 3}, edges, first);
+    dt::build_junction(out, glm::dvec3(0.0), rings, 8, {tube_face_kind::junction, 3}, edges, first, scratch);
     CHECK(out.points.size() == 24);
     CHECK(first == std::vector<std::uint32_t>{0, 8, 16});
     // A hull of 24 points has 44 triangles; the two real caps (6 each) are removed.
@@ -200,9 +289,9 @@ TEST_CASE("tube stages one by one: frames, ring placement, junction hulls, paths
     rings[1].first = dt::any_perpendicular(rings[1].direction);
     for (auto& r : rings) r.distance = 0.5;
     dt::buffer bad;
-    CHECK_THROWS_WITH_AS(
-        dt::build_junction(bad, glm::dvec3(0.0), rings, 8, {tube_face_kind::junction, 3}, edges, first),
-        doctest::Contains("node 3"), error);
+    CHECK_THROWS_WITH_AS(dt::build_junction(bad, glm::dvec3(0.0), rings, 8, {tube_face_kind::junction, 3},
+                                            edges, first, scratch),
+                         doctest::Contains("node 3"), error);
   }
   SUBCASE("transport keeps frames perpendicular; build_path makes quads and caps (tubes/node_path.hpp)") {
     dt::station a, b;

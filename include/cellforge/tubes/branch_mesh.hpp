@@ -9,6 +9,7 @@
 /// the centre and so embedded (docs/tubes.md, "pulling the sphere in").
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -21,6 +22,7 @@
 
 #include "cellforge/algorithms/convex_hull.hpp"
 #include "cellforge/core/error.hpp"
+#include "cellforge/tubes/detail/sphere_hull.hpp"
 #include "cellforge/tubes/detail/tube_buffer.hpp"
 
 namespace cellforge::detail::tubes {
@@ -53,23 +55,37 @@ void place_rings(std::span<junction_ring> rings, double centre_radius, double se
   }
 }
 
+/// Buffers build_junction reuses from one junction to the next (none allocates once warm).
+struct junction_scratch {
+  std::vector<glm::dvec3> on_sphere;
+  std::vector<double> cosines, sines;
+  sphere_hull_scratch hull;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<std::uint32_t> cap_triangles;
+};
+
 /// Appends the junction surface of `rings` about `centre` to `out`: each ring's `sides`
 /// vertices (ring i's first vertex is `first_vertex[i]`, counter-clockwise about its
 /// direction), and the hull triangles that are not in a real ring's cap, tagged with
 /// `source`. Throws cellforge::error naming the node and `ring_edges[i]` (the skeleton edge
 /// of ring i) when a cap is not intact in the hull (two cross-sections overlap on the
-/// sphere). O(m log m), m = sides × rings.
+/// sphere). The hull is sphere_hull (tubes/detail/sphere_hull.hpp), or the general one when
+/// that gives up. O(m) typical, O(m²) worst, m = sides × rings.
 template <class = void>
 void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junction_ring> rings,
                     std::uint32_t sides, tube_face_source source, std::span<const std::uint32_t> ring_edges,
-                    std::vector<std::uint32_t>& first_vertex, std::span<const glm::dvec3> extra = {},
-                    double extra_distance = 0) {
+                    std::vector<std::uint32_t>& first_vertex, junction_scratch& scratch,
+                    std::span<const glm::dvec3> extra = {}, double extra_distance = 0) {
   const std::size_t m = rings.size() * sides;
-  std::vector<glm::dvec3> on_sphere(m + extra.size());
-  std::vector<double> cosines(sides), sines(sides);
-  for (std::uint32_t j = 0; j < sides; ++j) {
-    const double a = 2.0 * std::numbers::pi * j / sides;
-    cosines[j] = std::cos(a), sines[j] = std::sin(a);
+  std::vector<glm::dvec3>& on_sphere = scratch.on_sphere;
+  on_sphere.resize(m + extra.size());
+  std::vector<double>&cosines = scratch.cosines, &sines = scratch.sines;
+  if (cosines.size() != sides) {
+    cosines.resize(sides), sines.resize(sides);
+    for (std::uint32_t j = 0; j < sides; ++j) {
+      const double a = 2.0 * std::numbers::pi * j / sides;
+      cosines[j] = std::cos(a), sines[j] = std::sin(a);
+    }
   }
   first_vertex.clear();
   for (std::size_t i = 0; i < rings.size(); ++i) {
@@ -95,21 +111,31 @@ void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junct
     on_sphere[m + k] = extra[k];
     out.add_point(centre + extra_distance * extra[k]);
   }
-  convex_hull_options o;
-  o.merge_coplanar = false;
-  o.method = convex_hull_method::incremental;  // measured faster here than quickhull or the automatic choice
-  const hull::result h = hull::compute(on_sphere, o);
-  const std::string where = "node " + std::to_string(source.index);
-  if (h.dimension != 3 || h.vertices.size() != on_sphere.size())
-    throw error(error_category::invalid_input,
-                where + ": the cross-sections of its " + std::to_string(rings.size()) +
-                    " edges do not all lie on their junction's hull (edges too close in angle)");
-  std::vector<std::uint32_t> cap_triangles(rings.size(), 0);
-  for (std::size_t f = 0; f + 1 < h.face_offsets.size(); ++f) {
+  const auto where = [&] { return "node " + std::to_string(source.index); };
+  std::vector<std::array<std::uint32_t, 3>>& triangles = scratch.triangles;
+  if (!sphere_hull(on_sphere, scratch.hull, triangles)) {
+    convex_hull_options o;
+    o.merge_coplanar = false;
+    o.method = convex_hull_method::incremental;
+    const hull::result h = hull::compute(on_sphere, o);
+    if (h.dimension != 3 || h.vertices.size() != on_sphere.size())
+      throw error(error_category::invalid_input,
+                  where() + ": the cross-sections of its " + std::to_string(rings.size()) +
+                      " edges do not all lie on their junction's hull (edges too close in angle)");
+    triangles.clear();
+    for (std::size_t f = 0; f + 1 < h.face_offsets.size(); ++f) {
+      std::array<std::uint32_t, 3> t{};
+      for (std::size_t k = 0; k < 3; ++k) t[k] = h.vertices[h.face_vertices[h.face_offsets[f] + k]];
+      triangles.push_back(t);
+    }
+  }
+  std::vector<std::uint32_t>& cap_triangles = scratch.cap_triangles;
+  cap_triangles.assign(rings.size(), 0);
+  for (const std::array<std::uint32_t, 3>& t : triangles) {
     std::uint32_t tri[3];
     std::size_t ring_of[3];
     for (std::size_t k = 0; k < 3; ++k) {
-      const std::uint32_t input = h.vertices[h.face_vertices[h.face_offsets[f] + k]];
+      const std::uint32_t input = t[k];
       if (input >= m) {  // an extra point: in no ring
         ring_of[k] = rings.size() + k;
         tri[k] = extra_first + (input - static_cast<std::uint32_t>(m));
@@ -129,7 +155,7 @@ void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junct
   for (std::size_t i = 0; i < rings.size(); ++i)
     if (!rings[i].is_virtual && cap_triangles[i] != sides - 2)
       throw error(error_category::invalid_input,
-                  where + ": the cross-section of its edge " + std::to_string(ring_edges[i]) +
+                  where() + ": the cross-section of its edge " + std::to_string(ring_edges[i]) +
                       " is cut by another's on the junction's hull (edges too close in angle)");
 }
 

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -200,17 +201,37 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   };
   // ends[2p] / ends[2p + 1]: the ring at the start / end of path p, when that end is a junction.
   std::vector<end_ring> ends(2 * tc.paths.size());
-  std::vector<std::vector<std::uint32_t>> at_junction(tc.nodes.size());
-  for (std::uint32_t p = 0; p < tc.paths.size(); ++p) {
-    const tube_path& path = tc.paths[p];
-    if (path.closed) continue;
-    if (is_junction(path.nodes.front())) at_junction[path.nodes.front()].push_back(2 * p);
-    if (is_junction(path.nodes.back())) at_junction[path.nodes.back()].push_back(2 * p + 1);
+  // The path ends at each junction, in CSR form (one allocation, not one per node), in path
+  // order, a path's start before its end.
+  std::vector<std::uint32_t> end_start(tc.nodes.size() + 1, 0), end_slots;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (std::uint32_t p = 0; p < tc.paths.size(); ++p) {
+      const tube_path& path = tc.paths[p];
+      if (path.closed) continue;
+      const std::uint32_t ends_of[2] = {path.nodes.front(), path.nodes.back()};
+      for (std::uint32_t k = 0; k < 2; ++k)
+        if (is_junction(ends_of[k])) {
+          if (pass == 0)
+            ++end_start[ends_of[k] + 1];
+          else
+            end_slots[end_start[ends_of[k]]++] = 2 * p + k;
+        }
+    }
+    if (pass == 0) {
+      for (std::size_t v = 0; v < tc.nodes.size(); ++v) end_start[v + 1] += end_start[v];
+      end_slots.resize(end_start.back());
+    } else {  // filling advanced each start to the next node's: shift back
+      for (std::size_t v = tc.nodes.size(); v > 0; --v) end_start[v] = end_start[v - 1];
+      end_start[0] = 0;
+    }
   }
+  const auto at_junction = [&](std::uint32_t v) {
+    return std::span<const std::uint32_t>(end_slots.data() + end_start[v], end_start[v + 1] - end_start[v]);
+  };
   {  // Room for every ring's vertices and every face, so that the buffer grows once.
     std::size_t stations = 0, ends_at_junctions = 0;
     for (const tube_path& path : tc.paths) stations += path.nodes.size();
-    for (const std::uint32_t b : tc.junctions) ends_at_junctions += at_junction[b].size();
+    for (const std::uint32_t b : tc.junctions) ends_at_junctions += at_junction(b).size();
     out.points.reserve(n * (stations + ends_at_junctions));
     out.sources.reserve(n * stations + 2 * n * ends_at_junctions);
     out.face_offsets.reserve(n * stations + 2 * n * ends_at_junctions + 1);
@@ -220,12 +241,13 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   std::vector<std::uint32_t> ring_edges, first_vertex;
   const std::vector<glm::dvec3> extra_candidates = dt::sphere_directions(options.junction_extra_points);
   std::vector<glm::dvec3> extra;
+  dt::junction_scratch scratch;
   for (const std::uint32_t b : tc.junctions) {
     const glm::dvec3 c = node_pos(b);
     const double rb = node_radius(b);
     rings.clear();
     ring_edges.clear();
-    for (const std::uint32_t slot : at_junction[b]) {
+    for (const std::uint32_t slot : at_junction(b)) {
       const tube_path& path = tc.paths[slot / 2];
       const bool at_start = slot % 2 == 0;
       const std::uint32_t q = at_start ? path.nodes[1] : path.nodes[path.nodes.size() - 2];
@@ -257,7 +279,7 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     }
     dt::place_rings(rings, rb, options.cap_separation);
     for (std::size_t i = 0; i < real; ++i) {
-      const std::uint32_t slot = at_junction[b][i];
+      const std::uint32_t slot = at_junction(b)[i];
       const tube_path& path = tc.paths[slot / 2];
       const std::uint32_t q = slot % 2 == 0 ? path.nodes[1] : path.nodes[path.nodes.size() - 2];
       const double length = glm::length(node_pos(q) - c);
@@ -277,8 +299,8 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
       if (clear) extra.push_back(d);
     }
     dt::build_junction(out, c, rings, n, {tube_face_kind::junction, tc.nodes[b].skeleton_node}, ring_edges,
-                       first_vertex, extra, rb);
-    for (std::size_t i = 0; i < real; ++i) ends[at_junction[b][i]] = {rings[i], c, first_vertex[i]};
+                       first_vertex, scratch, extra, rb);
+    for (std::size_t i = 0; i < real; ++i) ends[at_junction(b)[i]] = {rings[i], c, first_vertex[i]};
     ++res.junctions;
   }
   res.junctions_ms = dt::elapsed_ms(t_junctions);

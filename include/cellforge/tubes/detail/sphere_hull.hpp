@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The convex hull of a few dozen points on one sphere (a tube junction's projected rings):
+// incremental insertion in input order over a flat triangle array with neighbour links,
+// exact orient3d signs (filtered), no set-up beyond scratch buffers the caller keeps. Each
+// new point finds a face it sees by scanning the newest faces first (consecutive points of a
+// ring are neighbours on the sphere), grows the visible region over the links and cones it.
+// It gives up (returns false) rather than guess: fewer than four points, a degenerate start,
+// or a point that sees no face or ends up not on the hull; the caller then uses the general
+// hull (algorithms/convex_hull.hpp), which reports such input properly.
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "cellforge/core/predicates.hpp"
+
+namespace cellforge::detail::tubes {
+
+/// Scratch of sphere_hull, kept by the caller across junctions so that none allocates.
+struct sphere_hull_scratch {
+  struct tri {
+    orient3d_plane plane;
+    std::array<std::uint32_t, 3> v{};  // counter-clockwise seen from outside
+    std::array<std::uint32_t, 3> n{};  // n[i]: the face across edge v[i] -> v[i + 1]
+    std::uint32_t mark = 0;            // insertion stamp: tested in this round
+    bool visible = false, alive = false;
+  };
+  std::vector<tri> faces;
+  std::vector<std::uint32_t> stack, visible, by_start, by_end;
+  std::vector<std::array<std::uint32_t, 2>> horizon;  // (visible face, edge)
+  std::vector<std::uint8_t> used;
+};
+
+/// The hull triangles of `pts` (outward, counter-clockwise) into `out`, as input indices;
+/// true when every point is a vertex of the hull. O(m²) worst case, about O(m) for a
+/// junction's rings in ring order; m ≤ 65,535.
+template <class = void>
+bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
+                 std::vector<std::array<std::uint32_t, 3>>& out) {
+  using tri = sphere_hull_scratch::tri;
+  out.clear();
+  const std::size_t m = pts.size();
+  if (m < 4 || m > 65535) return false;
+  const auto orient = [&](const tri& f, const glm::dvec3& q) {
+    double value = 0;
+    const int sgn = orient3d_filter(f.plane, q, value);
+    return sgn != 0 ? sgn : orient3d_exact(pts[f.v[0]], pts[f.v[1]], pts[f.v[2]], q);
+  };
+  auto& faces = s.faces;
+  faces.clear();
+  const auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    tri t;
+    t.plane = prepare_orient3d(pts[a], pts[b], pts[c]);
+    t.v = {a, b, c};
+    t.alive = true;
+    faces.push_back(t);
+    return static_cast<std::uint32_t>(faces.size() - 1);
+  };
+  // Start: points 0, 1, 2 and the first point off their plane (the last point first: on
+  // another ring, so the first tetrahedron is not flat).
+  std::uint32_t d = 0;
+  {
+    tri probe;
+    probe.plane = prepare_orient3d(pts[0], pts[1], pts[2]);
+    probe.v = {0, 1, 2};
+    const auto off = [&](std::size_t k) { return orient(probe, pts[k]) != 0; };
+    if (off(m - 1)) {
+      d = static_cast<std::uint32_t>(m - 1);
+    } else {
+      for (std::size_t k = 3; k + 1 < m && d == 0; ++k)
+        if (off(k)) d = static_cast<std::uint32_t>(k);
+    }
+    if (d == 0) return false;
+  }
+  {
+    tri probe;
+    probe.plane = prepare_orient3d(pts[0], pts[1], pts[2]);
+    probe.v = {0, 1, 2};
+    std::uint32_t a = 0, b = 1, c = 2;
+    if (orient(probe, pts[d]) > 0) std::swap(b, c);  // now orient(a, b, c, d) < 0
+    add(a, b, c), add(a, d, b), add(b, d, c), add(a, c, d);
+    for (std::uint32_t f = 0; f < 4; ++f)
+      for (std::uint32_t i = 0; i < 3; ++i)
+        for (std::uint32_t g = 0; g < 4; ++g)
+          for (std::uint32_t k = 0; k < 3; ++k)
+            if (faces[g].v[k] == faces[f].v[(i + 1) % 3] && faces[g].v[(k + 1) % 3] == faces[f].v[i])
+              faces[f].n[i] = g;
+  }
+  s.by_start.assign(m, 0);
+  s.by_end.assign(m, 0);
+  for (std::uint32_t p = 0; p < m; ++p) {
+    if (p <= 2 || p == d) continue;
+    const glm::dvec3& q = pts[p];
+    const std::uint32_t stamp = p + 1;
+    // A face that p sees: newest first.
+    std::uint32_t seen = 0xFFFFFFFFu;
+    for (std::size_t f = faces.size(); f-- > 0;) {
+      if (!faces[f].alive) continue;
+      faces[f].mark = stamp;
+      faces[f].visible = orient(faces[f], q) > 0;
+      if (faces[f].visible) {
+        seen = static_cast<std::uint32_t>(f);
+        break;
+      }
+    }
+    if (seen == 0xFFFFFFFFu) return false;  // inside or on the hull: not for this hull
+    // The visible region (connected) and its horizon.
+    s.stack.assign(1, seen);
+    s.visible.clear();
+    s.horizon.clear();
+    while (!s.stack.empty()) {
+      const std::uint32_t f = s.stack.back();
+      s.stack.pop_back();
+      s.visible.push_back(f);
+      for (std::uint32_t i = 0; i < 3; ++i) {
+        const std::uint32_t g = faces[f].n[i];
+        if (faces[g].mark != stamp) {
+          faces[g].mark = stamp;
+          faces[g].visible = orient(faces[g], q) > 0;
+          if (faces[g].visible) {
+            s.stack.push_back(g);
+            continue;
+          }
+        }
+        if (!faces[g].visible) s.horizon.push_back({f, i});
+      }
+    }
+    // The cone from p over the horizon: face (a, b, p) for horizon edge a -> b.
+    const std::size_t first_new = faces.size();
+    for (const auto& [f, i] : s.horizon) {
+      const std::uint32_t a = faces[f].v[i], b = faces[f].v[(i + 1) % 3], g = faces[f].n[i];
+      const std::uint32_t t = add(a, b, p);
+      faces[t].n[0] = g;
+      for (std::uint32_t k = 0; k < 3; ++k)
+        if (faces[g].n[k] == f && faces[g].v[k] == b) faces[g].n[k] = t;
+      s.by_start[a] = t, s.by_end[b] = t;
+    }
+    for (std::size_t t = first_new; t < faces.size(); ++t) {
+      tri& f = faces[t];
+      f.n[1] = s.by_start[f.v[1]];  // edge b -> p: twin of edge p -> b of the face starting at b
+      f.n[2] = s.by_end[f.v[0]];    // edge p -> a: twin of edge a -> p of the face ending at a
+      // The horizon must be one simple cycle; anything else is not for this hull.
+      if (f.n[1] < first_new || f.n[2] < first_new || faces[f.n[1]].v[0] != f.v[1] ||
+          faces[f.n[2]].v[1] != f.v[0])
+        return false;
+    }
+    for (const std::uint32_t f : s.visible) faces[f].alive = false;
+  }
+  s.used.assign(m, 0);
+  std::size_t vertices = 0;
+  for (const tri& f : faces)
+    if (f.alive) {
+      out.push_back(f.v);
+      for (const std::uint32_t v : f.v)
+        if (!s.used[v]) s.used[v] = 1, ++vertices;
+    }
+  return vertices == m;
+}
+
+}  // namespace cellforge::detail::tubes
