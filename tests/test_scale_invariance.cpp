@@ -105,11 +105,11 @@ sample_model placed(const sample_model& m, double s, const glm::dmat3& rot) {
   return cellforge::transformed(m, s * rot, s * glm::dvec3(0.25, -0.5, 0.75));
 }
 
-// A wedge: a triangle with a 0.05-radian corner, extruded by 1 (5 faces, 1 volume). O(1).
+// A wedge: a triangle with a 1e-3-radian corner, extruded by 1 (5 faces, 1 volume). O(1).
 sample_model thin_wedge() {
   sample_model m;
   m.name = "thin wedge";
-  const double t = 0.05;
+  const double t = 1e-3;
   m.wire.points = {{0, 0, 0}, {1, 0, 0}, {std::cos(t), std::sin(t), 0},
                    {0, 0, 1}, {1, 0, 1}, {std::cos(t), std::sin(t), 1}};
   m.wire.edges = {{0, 1}, {1, 2}, {2, 0}, {3, 4}, {4, 5}, {5, 3}, {0, 3}, {1, 4}, {2, 5}};
