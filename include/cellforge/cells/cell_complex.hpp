@@ -510,14 +510,15 @@ void build_topology(cell_topology& cc, std::span<const glm::dvec3> points,
          ++k) {
       const auto [e, sign] = cc.loop_edges_[k];
       const auto [a, b] = edges[e.idx()];
-      const glm::dvec3 d = points[b] - points[a];
+      // Unit d and u: the raw edge vector's products underflow / overflow at extreme scales.
+      const glm::dvec3 d = glm::normalize(points[b] - points[a]);
       const glm::dvec3 into = glm::cross(cc.normals_[f], double(sign) * d);
       // A basis (u, w) of the plane perpendicular to d, from the axis least aligned with d.
       const glm::dvec3 ad = glm::abs(d);
       const glm::dvec3 axis = ad.x <= ad.y && ad.x <= ad.z ? glm::dvec3(1, 0, 0)
                               : ad.y <= ad.z               ? glm::dvec3(0, 1, 0)
                                                            : glm::dvec3(0, 0, 1);
-      const glm::dvec3 u = glm::cross(d, axis), w = glm::cross(d, u);
+      const glm::dvec3 u = glm::normalize(glm::cross(d, axis)), w = glm::cross(d, u);
       const uint32_t slot = cursor[e.idx()]++;
       angle[slot] = std::atan2(glm::dot(into, w), glm::dot(into, u));
       cc.edge_faces_[slot] = {cell_face(f), sign};

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <numbers>
 #include <string>
 #include <unordered_map>
@@ -93,13 +94,15 @@ cells_validation_result broke(cells_validation_result& r, cells_invariant what, 
 template <class = void>
 double angle_about(const cell_topology& cc, std::span<const glm::dvec3> pts, cell_edge e,
                    const oriented<cell_face>& ef) {
-  const glm::dvec3 d = pts[cc.target(e).idx()] - pts[cc.source(e).idx()];
+  // Unit vectors throughout: products of the raw edge vector underflow or overflow for edges
+  // shorter than ~1e-9 or longer than ~1e9 (the angle must not depend on the model's scale).
+  const glm::dvec3 d = glm::normalize(pts[cc.target(e).idx()] - pts[cc.source(e).idx()]);
   const glm::dvec3 into = glm::cross(access::unit_normal(cc, ef.handle), double(ef.sign) * d);
   const glm::dvec3 ad = glm::abs(d);
   const glm::dvec3 axis = ad.x <= ad.y && ad.x <= ad.z ? glm::dvec3(1, 0, 0)
                           : ad.y <= ad.z               ? glm::dvec3(0, 1, 0)
                                                        : glm::dvec3(0, 0, 1);
-  const glm::dvec3 u = glm::cross(d, axis), w = glm::cross(d, u);
+  const glm::dvec3 u = glm::normalize(glm::cross(d, axis)), w = glm::cross(d, u);
   return std::atan2(glm::dot(into, w), glm::dot(into, u));
 }
 
@@ -179,6 +182,7 @@ cells_validation_result validate_cells(const cell_topology& cc, std::span<const 
   // Volume boundaries: each edge of the faces used exactly twice, in opposite directions.
   std::vector<int> uses(cc.num_edges(), 0), net(cc.num_edges(), 0);
   std::vector<std::uint32_t> touched;
+  std::vector<double> own_diag;
   for (cell_volume c : cc.volumes()) {
     for (const auto& [f, sign] : cc.volume_faces(c))
       for (std::size_t l = 0; l < cc.num_loops(f); ++l)
@@ -198,14 +202,23 @@ cells_validation_result validate_cells(const cell_topology& cc, std::span<const 
                    "volume " + S(c.idx()) + ": edge " + S(bad) +
                        " is not used exactly twice, in opposite directions, by the volume's faces");
     r.signed_volumes.push_back(detail::cells::signed_volume_of(cc, pts, c, centre));
+    // Each volume against its own size (its bounding-box diagonal cubed), not the model's: a
+    // small cell beside a large one is as valid as the same cell alone.
+    bounding_box vbox;
+    for (const auto& vf : cc.volume_faces(c))
+      for (cell_vertex v : cc.loop_vertices(vf.handle, 0)) vbox.add(pts[v.idx()]);
+    own_diag.push_back(vbox.diagonal());
   }
-  const double min_volume = 1e-12 * diag * diag * diag;
-  for (cell_volume c : cc.volumes())
-    if (!(r.signed_volumes[c.idx()] > min_volume))
+  for (cell_volume c : cc.volumes()) {
+    const double vd = own_diag[c.idx()], min_volume = 1e-12 * vd * vd * vd;
+    if (!(r.signed_volumes[c.idx()] > min_volume)) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%g (its own diagonal %g)", r.signed_volumes[c.idx()], vd);
       return broke(r, inv::orientation, c.idx(),
-                   "volume " + S(c.idx()) + " has signed volume " +
-                       std::to_string(r.signed_volumes[c.idx()]) +
+                   "volume " + S(c.idx()) + " has signed volume " + buf +
                        "; its faces' normals (with their signs) must point out of it");
+    }
+  }
 
   // Rotation order about each edge: strictly increasing angles making one full turn, and the
   // volume between consecutive faces the same from both faces.
