@@ -180,6 +180,16 @@ void check_file_errors(const std::string& name, const std::string& content, std:
     CHECK(e.category() == cellforge::error_category::io);
     CHECK(std::string(e.what()).find(missing.string()) != std::string::npos);
   }
+  // A device that never ends is refused by name, not read until memory runs out.
+  if (std::filesystem::exists("/dev/zero")) {
+    try {
+      read(std::filesystem::path("/dev/zero"));
+      FAIL("read /dev/zero");
+    } catch (const cellforge::error& e) {
+      CHECK(e.category() == cellforge::error_category::io);
+      CHECK(std::string(e.what()).find("'/dev/zero': not a regular file") != std::string::npos);
+    }
+  }
   const temp_path file(name);
   std::ofstream(file.path, std::ios::binary) << content;
   try {

@@ -30,12 +30,19 @@ std::string read_file(const std::filesystem::path& path) {
                                          "': " + (err != 0 ? std::strerror(err) : "read error"));
   };
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw fail("read", EISDIR);
+  const auto status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(status)) throw fail("read", EISDIR);
+  // A pipe or device (/dev/zero, a FIFO) has no end we can trust: it could block forever or
+  // never stop. Readers take regular files; copy the data to one first.
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw error(error_category::io,
+                "cannot read '" + display_name(path) +
+                    "': not a regular file (a pipe or device); save the data to a file first");
   errno = 0;
   const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
   if (!file) throw fail("open", errno);
   std::string bytes;
-  // Size from the file when it has one; pipes and special files fall back to chunked reads.
+  // Size from the file; the chunked reads below catch a file that grew since.
   const auto size = std::filesystem::file_size(path, ec);
   if (!ec) bytes.resize(static_cast<std::size_t>(size));
   std::size_t used = std::fread(bytes.data(), 1, bytes.size(), file.get());
