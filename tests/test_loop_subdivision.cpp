@@ -558,6 +558,13 @@ TEST_CASE("refuses quads, NaN, bad options and corrupted meshes with clear error
     CHECK(msg.find("32-bit") != std::string::npos);
     CHECK(message_of([&] { cellforge::loop_subdivide(m, {.levels = 1000000}); }).find("32-bit") !=
           std::string::npos);
+    // 96 * 4^9 = 25M faces fit; 4^10 = 100M exceed the default memory limit, refused up front.
+    const std::string big = message_of([&] { cellforge::loop_subdivide(m, {.levels = 10}); });
+    CHECK(big.find("10 levels would make 100663296 faces") != std::string::npos);
+    CHECK(big.find("loop_options::max_faces") != std::string::npos);
+    CHECK(message_of([&] {
+            cellforge::loop_subdivide(m, {.levels = 3, .max_faces = 1000});
+          }).find("6144 faces") != std::string::npos);
     CHECK(cellforge::to_soup(m).face_vertices == before.face_vertices);
   }
   SUBCASE("a mesh without positions is refused at compile time") {

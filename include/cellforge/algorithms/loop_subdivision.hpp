@@ -68,6 +68,9 @@ struct loop_options {
   /// old vertices and takes its default on the new ones; half-edge, edge and face
   /// properties stay registered but are reset to their defaults (their elements are new).
   std::vector<loop_property> interpolate{};
+  /// Most faces the result may have, checked before anything is allocated (a face costs about
+  /// 80 bytes with its vertices and edges: 50M faces ≈ 4 GB). 0: only the 32-bit index limit.
+  std::size_t max_faces = 50'000'000;
 };
 
 /// Counts before and after, and where the time went.
@@ -202,7 +205,8 @@ void subdivide_attribute(const attribute_job& job, std::span<const record> he, s
 ///
 /// Numbering: the old vertices keep their handles; the vertex on old edge e is V + e.
 /// Removed elements are garbage-collected first. Throws cellforge::error (invalid_input)
-/// before changing anything when: levels < 0; the result would overflow 32-bit indices;
+/// before changing anything when: levels < 0; the result would overflow 32-bit indices or
+/// exceed options.max_faces;
 /// a coordinate is NaN, infinite or beyond ±1e290; a
 /// face is not a triangle (the error names it); an opted-in property is missing or of an
 /// unsupported type; or the records are corrupted. A vertex where several fans meet stays
@@ -238,6 +242,13 @@ loop_result loop_subdivide(surface_mesh<P>& mesh, const loop_options& options = 
                       " would need " + std::to_string(c.faces) + " faces and " + std::to_string(2 * c.edges) +
                       " half-edges, more than 32-bit indices allow");
   }
+  // Then memory: the result's size against the caller's limit.
+  if (options.max_faces != 0 && c.faces > options.max_faces)
+    throw error(error_category::invalid_input,
+                "loop_subdivide: " + std::to_string(options.levels) + " levels would make " +
+                    std::to_string(c.faces) + " faces (about " + std::to_string(c.faces * 80 / 1'000'000) +
+                    " MB), more than loop_options::max_faces (" + std::to_string(options.max_faces) +
+                    "); ask for fewer levels or raise the limit");
   const std::vector<dl::attribute_job> jobs = dl::resolve_attributes(mesh, options.interpolate);
 
   // Loop's masks are convex combinations, so checking the input once covers every level;
