@@ -1,0 +1,115 @@
+#!/usr/bin/env bash
+# Nasty inputs through the example programs: check_nasty_inputs.sh BIN_DIR WORK_DIR [--small].
+# Writes each input (examples/nasty_inputs_gen.sh), runs the programs on it with a time limit
+# and ASan's memory cap, and checks every run: it ended by itself (no signal, no time-out, no
+# sanitizer report), with the exit status and the message that say what the input is.
+# --small leaves out the big inputs (sanitizer builds). Prints one line per run and totals.
+set -uo pipefail
+bin="$1"
+work="$2"
+small="${3:-}"
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+rm -rf "$work"
+mkdir -p "$work"
+bash "$here/nasty_inputs_gen.sh" "$work/in" || { echo "could not write the inputs"; exit 1; }
+mkfifo "$work/in/fifo.obj"
+export ASAN_OPTIONS="${ASAN_OPTIONS:-}:hard_rss_limit_mb=3000:detect_leaks=0"
+runs=0
+bad=0
+# case EXE INPUT STATUS PATTERN: STATUS 0 (success) or "error" (exit 1-3); PATTERN an extended
+# regex the program's stderr (errors) or stdout (success) must match.
+case_() {
+  local exe="$1" input="$2" want="$3" pattern="$4"
+  local dir="$work/run/$exe-$(basename "$input")"
+  mkdir -p "$dir"
+  runs=$((runs + 1))
+  (cd "$dir" && timeout 120 "$bin/$exe" "$input" >"$dir/stdout.txt" 2>"$dir/stderr.txt" </dev/null)
+  local rc=$?
+  local why=""
+  if grep -qE "AddressSanitizer|runtime error:|LeakSanitizer" "$dir/stderr.txt"; then why="sanitizer report"
+  elif ((rc == 124)); then why="time-out (hang)"
+  elif ((rc > 3)); then why="exit status $rc (crash or abort)"
+  elif [[ "$want" == 0 && $rc != 0 ]]; then why="exit status $rc, expected success"
+  elif [[ "$want" == error && $rc == 0 ]]; then why="succeeded, expected an error"
+  elif [[ "$want" == 0 ]] && ! grep -qE -- "$pattern" "$dir/stdout.txt"; then why="output lacks /$pattern/"
+  elif [[ "$want" == error ]] && ! grep -qE -- "$pattern" "$dir/stderr.txt"; then why="message lacks /$pattern/"
+  fi
+  if [[ -n "$why" ]]; then
+    bad=$((bad + 1))
+    echo "MISS $exe $(basename "$input"): $why"
+    tail -n 3 "$dir/stderr.txt" | sed 's/^/    /'
+  else
+    echo "ok   $exe $(basename "$input")"
+  fi
+}
+i="$work/in"
+w=wire2cells
+case_ $w "$i/binary_garbage.obj" error "binary_garbage.obj:1: not an OBJ statement"
+case_ $w "$i/comment_only.obj" error "no edges"
+case_ $w "$i/empty.obj" error "no edges"
+case_ $w "$i/points_only.obj" error "no edges"
+case_ $w "$i/cube_wire.obj" 0 "8 vertices, 12 edges, 6 faces, 1 volumes"
+case_ $w "$i/cube_mesh.obj" 0 "8 vertices, 12 edges, 6 faces, 1 volumes"
+case_ $w "$i/CUBE_UPPER.OBJ" 0 "6 faces, 1 volumes"
+case_ $w "$i/cube_1e-12.obj" 0 "6 faces, 1 volumes"
+case_ $w "$i/cube_1e12.obj" 0 "6 faces, 1 volumes"
+case_ $w "$i/cube_far.obj" 0 "6 faces, 1 volumes"
+case_ $w "$i/cube_1e-300.obj" error "spans 1e-300 .*scale the model"
+case_ $w "$i/cube_1e300.obj" error "spans 1e\\+300 .*scale the model"
+case_ $w "$i/lone_square.obj" 0 "1 faces, 0 volumes"
+case_ $w "$i/cube_missing_edge.obj" 0 "0 volumes"
+case_ $w "$i/cube_crossing_diagonals.obj" 0 "6 faces, 1 volumes"
+case_ $w "$i/face_index_out_of_range.obj" error "face_index_out_of_range.obj:15: face index 99 out of range"
+case_ $w "$i/line_index_out_of_range.obj" error "line_index_out_of_range.obj:21: line index 99 out of range"
+case_ $w "$i/nan.obj" error "nan.obj:1: coordinate z 'nan' is not finite"
+case_ $w "$i/overflow_coordinate.obj" error "overflow_coordinate.obj:1: coordinate z '1e400' is out of range"
+case_ $w "$i/self_loop.obj" error "self_loop.obj:4: line segment from vertex 1 to itself"
+case_ $w "$i/short_vertex.obj" error "short_vertex.obj:1: expected coordinate z"
+case_ $w "$i/huge_count.edges" error "huge_count.edges:1: the vertex count 99999999999 exceeds the 32-bit limit"
+case_ $w "$i/negative_count.edges" error "negative_count.edges:1: the vertex count must not be negative"
+case_ $w "$i/truncated.edges" error "truncated.edges:3: expected vertex 2 of 3, found end of file"
+case_ $w "$i/fifo.obj" error "fifo.obj': not a regular file"
+case_ $w /dev/zero error "'/dev/zero': not a regular file"
+case_ $w "$i/k7.obj" 0 "cell complex"
+case_ $w "$i/prism_1000.obj" 0 "2000 vertices, 3000 edges, 1002 faces, 1 volumes"
+if [[ "$small" != --small ]]; then
+  case_ $w "$i/k12.obj" 0 "cell complex"
+  case_ $w "$i/dup_1e5.obj" 0 "6 faces, 1 volumes"
+  case_ $w "$i/cubes_4096.obj" 0 "24576 faces, 4096 volumes"
+fi
+for exe in mesh_info hull subdivide thin_points smooth_edges; do
+  case_ $exe "$i/empty.off" error "empty.off:1: empty file"
+  case_ $exe "$i/bad_header.ply" error "bad_header.ply:3: element 'vertex' has no property 'y'"
+  case_ $exe "$i/truncated.stl" error "truncated.stl:4: facet 0: expected 'vertex', found end of file"
+  case_ $exe "$i/binary_garbage.obj" error "binary_garbage.obj:1: not an OBJ statement"
+  case_ $exe /dev/zero error "/dev/zero"
+done
+for exe in mesh_info hull subdivide; do
+  case_ $exe "$i/open_square.off" 0 "."
+  case_ $exe "$i/folded_sheet.off" 0 "."
+  case_ $exe "$i/degenerate_triangle.off" 0 "."
+  case_ $exe "$i/tetra.off" 0 "."
+  case_ $exe "$i/cube_mesh.obj" 0 "."
+  case_ $exe "$i/prism_1000.off" 0 "."
+  case_ $exe "$i/coplanar_20000.off" 0 "."
+done
+for exe in thin_points smooth_edges; do
+  case_ $exe "$i/open_square.off" error "(open|boundary edges)"
+  case_ $exe "$i/folded_sheet.off" error "encloses no volume"
+  case_ $exe "$i/coplanar_20000.off" error "has no faces"
+  case_ $exe "$i/tetra.off" 0 "."
+  case_ $exe "$i/cube_mesh.obj" 0 "."
+  case_ $exe "$i/truncated.3dcl" error "truncated.3dcl:3: expected 'edges <count>'"
+done
+case_ thin_points "$i/prism_1000.off" 0 "."
+case_ tubes "$i/coincident_nodes.swc" error "nodes 0 and 1 coincide"
+case_ tubes "$i/missing_parent.swc" error "missing_parent.swc:2: the parent 5 of sample 2 is not in the file"
+case_ tubes "$i/parent_cycle.swc" error "parent_cycle.swc:1: the parents form a cycle"
+case_ tubes "$i/zero_radius.swc" error "zero_radius.swc:3: the radius of sample 3, '0', must be positive"
+case_ tubes /dev/zero error "give an .swc or .obj skeleton"
+case_ sketch2cells "$i/empty.svg" error "the drawing has no edge"
+case_ sketch2cells "$i/not_xml.svg" error "not_xml.svg:2: no <svg> element"
+case_ sketch2cells "$i/unclosed.svg" error "unclosed.svg:2: the file ends inside <svg>"
+case_ sketch2cells /dev/zero error "/dev/zero"
+echo "nasty inputs: $runs runs, $((runs - bad)) as expected, $bad misses"
+((bad == 0))
