@@ -454,6 +454,19 @@ TEST_CASE("sample solids: sizes by construction; bad sizes refused") {
   CHECK(r->genus == 1);
   CHECK_THROWS_AS(cellforge::sample_antiprism(2), cellforge::error);
   CHECK_THROWS_AS(cellforge::sample_stairs(0, 1), cellforge::error);
+  // Lattices too big to hold are refused before their coordinates are drawn (10^15 cells would
+  // be a bad_alloc, 10^7 per side an overflow of nx * ny * nz).
+  CHECK_THROWS_WITH_AS(cellforge::random_normalon(100000, 100000, 100000, 10, 1),
+                       doctest::Contains("random_normalon: a lattice of 100000 x 100000 x 100000"),
+                       cellforge::error);
+  CHECK_THROWS_WITH_AS(cellforge::random_skyline(10000000, 10000000, 3, 1), doctest::Contains("at most 10^8"),
+                       cellforge::error);
+  CHECK_THROWS_WITH_AS(cellforge::random_normalon(0, 3, 3, 4, 1), doctest::Contains("1 or more"),
+                       cellforge::error);
+  CHECK_THROWS_WITH_AS(cellforge::empty_layout({0}, {0, 1}, {0, 1}),
+                       doctest::Contains("a lattice of 0 x 1 x 1"), cellforge::error);
+  CHECK_THROWS_WITH_AS(cellforge::empty_layout({}, {0, 1}, {0, 1}), doctest::Contains("two coordinates"),
+                       cellforge::error);
   CHECK_THROWS_AS(cellforge::extruded_polygon({{0, 0}, {1, 1}, {1, 0}, {0, 1}}, 1.0, "bow tie"),
                   cellforge::error);
   CHECK_THROWS_AS(cellforge::extruded_polygon({{0, 0}, {1, 0}, {2, 0}, {0, 1}}, 1.0, "collinear"),

@@ -735,4 +735,25 @@ TEST_CASE("tubes: bad input is a located error") {
   CHECK_THROWS_WITH_AS(make_tubes(s, o), doctest::Contains("sides"), error);
 }
 
+TEST_CASE("sample skeletons refuse sizes they cannot build, before allocating") {
+  // 10^15 nodes would be a bad_alloc (or an index overflow) deep in the loop; refused up front.
+  CHECK_THROWS_WITH_AS(samples::lattice(100000, 100000, 100000), doctest::Contains("more than the 10^8"),
+                       error);
+  CHECK_THROWS_WITH_AS(samples::complete_graph(20000), doctest::Contains("edges"), error);
+  CHECK_THROWS_WITH_AS(samples::lattice(4, 0, 4), doctest::Contains("lattice: b must be at least 1, got 0"),
+                       error);
+  CHECK_THROWS_WITH_AS(samples::ring(2), doctest::Contains("ring: n must be at least 3"), error);
+  CHECK_THROWS_WITH_AS(samples::mobius_ladder(7), doctest::Contains("even"), error);
+  CHECK_THROWS_WITH_AS(samples::mobius_grid(8, 1), doctest::Contains("v must be at least 2"), error);
+  CHECK_THROWS_WITH_AS(samples::spiral_chain(1), doctest::Contains("n must be at least 2"), error);
+  CHECK_THROWS_WITH_AS(samples::random_tree(1, {.nodes = 0}), doctest::Contains("nodes must be at least 1"),
+                       error);
+  // The smallest of each is built.
+  CHECK(samples::lattice(1, 1, 1).points.size() == 1);
+  CHECK(samples::ring(3).edges.size() == 3);
+  CHECK(samples::mobius_ladder(4).edges.size() == 8);
+  CHECK(samples::mobius_grid(2, 2).points.size() == 4);
+  CHECK(samples::random_tree(1, {.nodes = 1}).points.size() == 1);
+}
+
 }  // namespace tubes_tests

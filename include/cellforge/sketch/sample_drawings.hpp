@@ -765,6 +765,7 @@ std::optional<voxel_solid> voxel_solid_model(voxel_layout l, std::string name) {
 template <class = void>
 std::optional<voxel_solid> random_normalon(std::size_t nx, std::size_t ny, std::size_t nz, std::size_t count,
                                            std::uint64_t seed) {
+  detail::require_lattice("random_normalon", nx, ny, nz);
   detail::splitmix rng{seed ^ 0x6e6f726d616c6f6eu};
   // One draw per statement: argument order is the compiler's choice.
   std::vector<double> xs = detail::random_coords(nx, 0.5, 1.5, rng);
@@ -803,8 +804,9 @@ std::optional<voxel_solid> random_normalon(std::size_t nx, std::size_t ny, std::
 template <class = void>
 std::optional<voxel_solid> random_skyline(std::size_t nx, std::size_t ny, std::size_t max_height,
                                           std::uint64_t seed) {
-  detail::splitmix rng{seed ^ 0x736b796c696e6500u};
   max_height = std::max<std::size_t>(max_height, 1);
+  detail::require_lattice("random_skyline", nx, ny, max_height);
+  detail::splitmix rng{seed ^ 0x736b796c696e6500u};
   std::vector<double> xs = detail::random_coords(nx, 0.5, 1.5, rng);
   std::vector<double> ys = detail::random_coords(ny, 0.5, 1.5, rng);
   std::vector<double> zs = detail::random_coords(max_height, 0.3, 1.0, rng);

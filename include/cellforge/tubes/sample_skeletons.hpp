@@ -10,14 +10,18 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <numbers>
+#include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/detail/splitmix.hpp"
+#include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/tubes/skeleton.hpp"
 
@@ -33,6 +37,26 @@ template <Point3 P>
 void add_edge(skeleton<P>& s, std::size_t a, std::size_t b) {
   s.edges.push_back({static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b)});
 }
+
+/// Refuses a generator's arguments before anything is allocated: each count below its smallest
+/// value, or a skeleton of more than 10^8 nodes or edges (some GB of skeleton, and a tube mesh
+/// of it would need some hundred GB). Counts come in as doubles so that products cannot overflow.
+template <class = void>
+void require_skeleton(const char* what, std::initializer_list<std::pair<const char*, double>> counts,
+                      double smallest, double nodes, double edges) {
+  for (const auto& [name, value] : counts)
+    if (!(value >= smallest))
+      throw error(error_category::invalid_input, std::string(what) + ": " + name + " must be at least " +
+                                                     std::to_string(static_cast<long long>(smallest)) +
+                                                     ", got " +
+                                                     std::to_string(static_cast<long long>(value)));
+  constexpr double limit = 1e8;
+  if (nodes > limit || edges > limit)
+    throw error(error_category::invalid_input,
+                std::string(what) + ": the skeleton would have about " + std::to_string(nodes) +
+                    " nodes and " + std::to_string(edges) +
+                    " edges, more than the 10^8 a sample may have; make it smaller");
+}
 }  // namespace detail
 
 /// The a × b × c node lattice with edges between axis neighbours (the seed's
@@ -40,6 +64,8 @@ void add_edge(skeleton<P>& s, std::size_t a, std::size_t b) {
 /// O(abc).
 template <Point3 P = glm::dvec3>
 skeleton<P> lattice(int a, int b, int c, double spacing = 4, double radius = 0.5) {
+  const double n = double(a) * b * c;
+  detail::require_skeleton("lattice", {{"a", double(a)}, {"b", double(b)}, {"c", double(c)}}, 1, n, 3 * n);
   skeleton<P> s;
   const auto id = [&](int x, int y, int z) { return static_cast<std::size_t>(x + a * (y + b * z)); };
   for (int z = 0; z < c; ++z)
@@ -58,6 +84,7 @@ skeleton<P> lattice(int a, int b, int c, double spacing = 4, double radius = 0.5
 /// A ring of n nodes on a circle of radius `circle`. O(n).
 template <Point3 P = glm::dvec3>
 skeleton<P> ring(int n, double circle = 10, double radius = 0.5) {
+  detail::require_skeleton("ring", {{"n", double(n)}}, 3, n, n);  // two nodes would join by two edges
   skeleton<P> s;
   for (int i = 0; i < n; ++i) {
     const double t = 2 * std::numbers::pi * i / n;
@@ -72,6 +99,7 @@ skeleton<P> ring(int n, double circle = 10, double radius = 0.5) {
 /// are 0.046 × `sphere` apart, so the default radius leaves them clear up to K8. O(n²).
 template <Point3 P = glm::dvec3>
 skeleton<P> complete_graph(int n, double sphere = 10, double radius = 0.15) {
+  detail::require_skeleton("complete_graph", {{"n", double(n)}}, 2, n, 0.5 * n * (n - 1.0));
   skeleton<P> s;
   for (int i = 0; i < n; ++i) {
     const double z = 1 - (2 * i + 1.0) / n, r = std::sqrt(1 - z * z),
@@ -107,6 +135,9 @@ skeleton<P> petersen(double size = 10, double radius = 0.4) {
 /// (the seed's `Mobius_16_16` stand-in is mobius_ladder(16)). O(n).
 template <Point3 P = glm::dvec3>
 skeleton<P> mobius_ladder(int n, double circle = 10, double radius = 0.4) {
+  detail::require_skeleton("mobius_ladder", {{"n", double(n)}}, 4, 1.5 * n, 2.0 * n);
+  if (n % 2 != 0)
+    throw error(error_category::invalid_input, "mobius_ladder: n must be even, got " + std::to_string(n));
   skeleton<P> s = ring<P>(n, circle, radius);
   // Chords cross at the centre: lift alternate ones so that they clear each other.
   for (int i = 0; i < n / 2; ++i) {
@@ -121,6 +152,7 @@ skeleton<P> mobius_ladder(int n, double circle = 10, double radius = 0.4) {
 /// Two rings of n nodes sharing one node (a figure-eight: one branch of degree 4). O(n).
 template <Point3 P = glm::dvec3>
 skeleton<P> figure_eight(int n = 12, double circle = 5, double radius = 0.5) {
+  detail::require_skeleton("figure_eight", {{"n", double(n)}}, 3, 2.0 * n, 2.0 * n);
   skeleton<P> s = ring<P>(n, circle, radius);
   const std::size_t first = s.points.size();
   for (int i = 1; i < n; ++i) {
@@ -139,6 +171,9 @@ skeleton<P> figure_eight(int n = 12, double circle = 5, double radius = 0.5) {
 /// first turned over. O(uv).
 template <Point3 P = glm::dvec3>
 skeleton<P> mobius_grid(int u, int v, double circle = 40, double width = 18, double radius = 0.4) {
+  const double n = double(u) * v;
+  detail::require_skeleton("mobius_grid", {{"u", double(u)}, {"v", double(v)}}, 2, n,
+                           2 * n);  // v - 1 divides
   skeleton<P> s;
   for (int i = 0; i < u; ++i)
     for (int j = 0; j < v; ++j) {
@@ -184,6 +219,7 @@ skeleton<P> icosahedron_edges(double size = 10, double radius = 0.5) {
 /// through the eye). O(n).
 template <Point3 P = glm::dvec3>
 skeleton<P> spiral_chain(int n = 200, double size = 20, double radius = 0.4) {
+  detail::require_skeleton("spiral_chain", {{"n", double(n)}}, 2, n, n);  // n - 1 divides
   skeleton<P> s;
   for (int i = 0; i < n; ++i) {
     const double t = static_cast<double>(i) / (n - 1), a = 3 * 2 * std::numbers::pi * t;
@@ -212,6 +248,8 @@ struct random_tree_options {
 /// measured 0.09 s for 10,000 nodes, 3.4 s for 100,000.
 template <Point3 P = glm::dvec3>
 skeleton<P> random_tree(std::uint64_t seed, const random_tree_options& o = {}) {
+  detail::require_skeleton("random_tree", {{"nodes", static_cast<double>(o.nodes)}}, 1,
+                           static_cast<double>(o.nodes), static_cast<double>(o.nodes));
   skeleton<P> s;
   cellforge::detail::splitmix rng{seed};
   std::vector<glm::dvec3> pos{glm::dvec3(0.0)};

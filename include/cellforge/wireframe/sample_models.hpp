@@ -581,9 +581,27 @@ sample_model transformed(sample_model m, const glm::dmat3& linear, glm::dvec3 of
   return m;
 }
 
-/// A voxel layout of nx × ny × nz cells with the given coordinates, all empty.
+namespace detail {
+/// Refuses a lattice of nx × ny × nz cells with a side of no cells or more than 10^8 cells in
+/// all (GB of labels, and its model would need far more), before anything is allocated. O(1).
+template <class = void>
+void require_lattice(const char* what, std::size_t nx, std::size_t ny, std::size_t nz) {
+  const double cells = static_cast<double>(nx) * static_cast<double>(ny) * static_cast<double>(nz);
+  if (nx == 0 || ny == 0 || nz == 0 || cells > 1e8)
+    throw error(error_category::invalid_input,
+                std::string(what) + ": a lattice of " + std::to_string(nx) + " x " + std::to_string(ny) +
+                    " x " + std::to_string(nz) +
+                    " cells; each side needs 1 or more and all of them at most 10^8");
+}
+}  // namespace detail
+
+/// A voxel layout of nx × ny × nz cells with the given coordinates (nx + 1, ny + 1, nz + 1 of
+/// them), all empty; throws invalid_input for a side of no cells or more than 10^8 cells. O(cells).
 template <class = void>
 voxel_layout empty_layout(std::vector<double> xs, std::vector<double> ys, std::vector<double> zs) {
+  if (xs.empty() || ys.empty() || zs.empty())
+    throw error(error_category::invalid_input, "empty_layout: each axis needs at least two coordinates");
+  detail::require_lattice("empty_layout", xs.size() - 1, ys.size() - 1, zs.size() - 1);
   voxel_layout l{std::move(xs), std::move(ys), std::move(zs), {}};
   l.labels.assign((l.xs.size() - 1) * (l.ys.size() - 1) * (l.zs.size() - 1), 0);
   return l;
