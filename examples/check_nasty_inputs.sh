@@ -16,14 +16,19 @@ mkfifo "$work/in/fifo.obj"
 export ASAN_OPTIONS="${ASAN_OPTIONS:-}:hard_rss_limit_mb=3000:detect_leaks=0"
 runs=0
 bad=0
-# case EXE INPUT STATUS PATTERN: STATUS 0 (success) or "error" (exit 1-3); PATTERN an extended
-# regex the program's stderr (errors) or stdout (success) must match.
+# case EXE INPUT STATUS PATTERN [ARGUMENT...]: STATUS 0 (success) or "error" (exit 1-3); PATTERN
+# an extended regex the program's stderr (errors) or stdout (success) must match. With the
+# argument --no-svg the run must write no .svg file. A non-empty $memory_kb caps the run's
+# address space (ulimit -v; not in sanitizer builds, whose shadow memory needs terabytes of it).
+memory_kb=""
 case_() {
   local exe="$1" input="$2" want="$3" pattern="$4"
-  local dir="$work/run/$exe-$(basename "$input")"
+  shift 4
+  local dir="$work/run/$exe-$(basename "$input")${1:+-$(echo "$*" | tr -c 'a-zA-Z0-9.\n' _)}"
   mkdir -p "$dir"
   runs=$((runs + 1))
-  (cd "$dir" && timeout 120 "$bin/$exe" "$input" >"$dir/stdout.txt" 2>"$dir/stderr.txt" </dev/null)
+  (cd "$dir" && { [[ -z "$memory_kb" ]] || ulimit -v "$memory_kb"; } &&
+    timeout 120 "$bin/$exe" "$input" "$@" >"$dir/stdout.txt" 2>"$dir/stderr.txt" </dev/null)
   local rc=$?
   local why=""
   if grep -qE "AddressSanitizer|runtime error:|LeakSanitizer" "$dir/stderr.txt"; then why="sanitizer report"
@@ -33,13 +38,15 @@ case_() {
   elif [[ "$want" == error && $rc == 0 ]]; then why="succeeded, expected an error"
   elif [[ "$want" == 0 ]] && ! grep -qE -- "$pattern" "$dir/stdout.txt"; then why="output lacks /$pattern/"
   elif [[ "$want" == error ]] && ! grep -qE -- "$pattern" "$dir/stderr.txt"; then why="message lacks /$pattern/"
+  elif [[ " $* " == *" --no-svg "* ]] && [[ -n "$(find "$dir" -name '*.svg' -print -quit)" ]]; then
+    why="--no-svg, yet a picture was written"
   fi
   if [[ -n "$why" ]]; then
     bad=$((bad + 1))
-    echo "MISS $exe $(basename "$input"): $why"
+    echo "MISS $exe $(basename "$input") $*: $why"
     tail -n 3 "$dir/stderr.txt" | sed 's/^/    /'
   else
-    echo "ok   $exe $(basename "$input")"
+    echo "ok   $exe $(basename "$input") $*"
   fi
 }
 i="$work/in"
@@ -111,5 +118,20 @@ case_ sketch2cells "$i/empty.svg" error "the drawing has no edge"
 case_ sketch2cells "$i/not_xml.svg" error "not_xml.svg:2: no <svg> element"
 case_ sketch2cells "$i/unclosed.svg" error "unclosed.svg:2: the file ends inside <svg>"
 case_ sketch2cells /dev/zero error "/dev/zero"
+# Every program leaves its picture out when asked.
+case_ $w "$i/cube_wire.obj" 0 "6 faces, 1 volumes" --no-svg
+for exe in mesh_info hull subdivide thin_points smooth_edges; do
+  case_ $exe "$i/cube_mesh.obj" 0 "." --no-svg
+done
+case_ tubes "$here/data/vessel_tree.swc" 0 "tubes.off$" --no-svg
+case_ sketch2cells "$here/data/stepped_normalon.svg" 0 "stepped_normalon.obj$" --no-svg
+# Out of memory is a message naming what was being built and how big, not an abort.
+if [[ "$small" != --small ]]; then
+  memory_kb=300000
+  case_ subdivide "$i/tetra.off" error "out of memory while subdividing 4 faces 11 times \\(about 1.68e\\+07 faces\\)" 11 --no-svg
+  memory_kb=40000
+  case_ $w "$i/cubes_4096.obj" error "out of memory while .*(32768 points and 49152 edges|24576 faces)"
+  memory_kb=""
+fi
 echo "nasty inputs: $runs runs, $((runs - bad)) as expected, $bad misses"
 ((bad == 0))

@@ -16,6 +16,8 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <system_error>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -286,13 +288,58 @@ inline void refuse_to_overwrite(std::initializer_list<std::filesystem::path> out
   for (const auto& out : outputs) refuse_to_overwrite(out, input);
 }
 
+/// What a program is doing, and on how much, for the one message it prints when memory runs
+/// out: std::bad_alloc names no size, so each program notes what it is about to build.
+struct stage_note {
+  std::string what = "starting";
+  void operator()(std::string now) { what = std::move(now); }
+};
+
+/// Prints "<program>: out of memory while <stage> (std::bad_alloc): ..." to stderr. O(1).
+inline void report_out_of_memory(const char* program, const stage_note& stage) {
+  std::fprintf(
+      stderr,
+      "%s: out of memory while %s (std::bad_alloc); try a smaller input or a machine with more memory\n",
+      program, stage.what.c_str());
+}
+
+/// "'name' (12.3 MB)" for a stage note: the file and its size, or just the name when it has none. O(1).
+inline std::string file_and_size(const std::filesystem::path& path) {
+  std::error_code ec;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  std::string s = "'" + path.string() + "'";
+  if (ec) return s;
+  char buf[48];
+  std::snprintf(buf, sizeof buf, " (%.1f MB)", static_cast<double>(bytes) / 1e6);
+  return s + buf;
+}
+
+/// A count for a stage note, to three figures ("1.68e+07"). O(1).
+inline std::string about(double count) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", count);
+  return buf;
+}
+
+/// Removes every `flag` from argv (moving the rest down, argc shrinking) and says whether it was
+/// there: for the programs that read their arguments by position. O(argc).
+inline bool take_flag(int& argc, char** argv, std::string_view flag) {
+  int kept = 1;
+  for (int i = 1; i < argc; ++i)
+    if (std::string_view(argv[i]) != flag) argv[kept++] = argv[i];
+  const bool found = kept != argc;
+  argc = kept;
+  return found;
+}
+
 /// What both examples start from: the command line, the output directory and the loaded solid.
 struct session {
   command_line cl;
   int volume = 0;
   std::filesystem::path out;
   solid s;
-  std::string stem;  ///< the input's file name without extension, for output names
+  std::string stem;     ///< the input's file name without extension, for output names
+  bool picture = true;  ///< false: --no-svg, leave the picture out
 
   /// The path of output `name` in the output directory, refused if it is the input file.
   std::filesystem::path output(const std::string& name) const {
@@ -316,18 +363,22 @@ struct session {
   }
 };
 
-/// Parses the command line (plus --out and --volume, which both examples take), creates the
-/// output directory and loads the solid. Throws cellforge::error.
+/// Parses the command line (plus --out, --volume and --no-svg, which both examples take), creates
+/// the output directory and loads the solid, noting each step in `stage`. Throws cellforge::error.
 inline session open_session(int argc, char** argv, const std::filesystem::path& default_input,
                             std::initializer_list<std::string_view> with_value,
-                            std::initializer_list<std::string_view> flag_names) {
-  std::vector<std::string_view> names(with_value);
+                            std::initializer_list<std::string_view> flag_names, stage_note& stage) {
+  std::vector<std::string_view> names(with_value), flags(flag_names);
   names.insert(names.end(), {"out", "volume"});
+  flags.push_back("no-svg");
   session x;
-  x.cl = parse_command_line(argc, argv, default_input, names, flag_names);
+  x.cl = parse_command_line(argc, argv, default_input, names, flags);
   x.volume = static_cast<int>(x.cl.number("volume", 0, 0, 2147483647.0, true));
+  x.picture = !x.cl.has("no-svg");
   x.out = output_dir(x.cl.text("out", "out"));
+  stage("reading " + file_and_size(x.cl.input));
   x.s = load_solid(x.cl.input, x.volume);
+  stage("working on a solid of " + std::to_string(x.s.mesh.num_faces()) + " faces");
   x.stem = x.cl.input.stem().string();
   return x;
 }

@@ -3,6 +3,7 @@
 //   hull                    2000 random points in a ball (fixed seed)
 //   hull points.off         the vertices of any OFF, OBJ or PLY file (its faces are ignored)
 //   hull points.off merge   the same, one polygon per planar facet instead of triangles
+//   hull ... --no-svg       without the picture
 //
 // Writes, in the current directory, hull.off (the hull) and hull.svg (the hull over the
 // points: red points are hull vertices, grey ones lie inside), and prints what it found.
@@ -45,16 +46,20 @@ std::vector<point> random_ball(std::size_t n, std::uint64_t seed) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const bool picture = !example::take_flag(argc, argv, "--no-svg");
   const bool from_file = argc > 1;
   const bool merge = argc > 2 && std::string(argv[2]) == "merge";
   if (argc > 3 || (argc > 2 && !merge)) {
-    std::fprintf(stderr, "usage: hull [points.off|.obj|.ply [merge]]\n");
+    std::fprintf(stderr, "usage: hull [points.off|.obj|.ply [merge]] [--no-svg]\n");
     return 2;
   }
+  example::stage_note stage;
   try {
     if (from_file) example::refuse_to_overwrite({"hull.off", "hull.svg"}, argv[1]);
+    if (from_file) stage("reading " + example::file_and_size(argv[1]));
     const std::vector<point> points =
         from_file ? cellforge::io::read_soup<point>(argv[1]).points : random_ball(2000, 2024);
+    stage("building the hull of " + std::to_string(points.size()) + " points");
 
     cellforge::convex_hull_report report;
     const auto t0 = std::chrono::steady_clock::now();
@@ -78,12 +83,16 @@ int main(int argc, char** argv) {
                 hull.is_closed() ? "closed" : "not closed");
 
     const fs::path out = "hull.off";
+    stage("writing the hull of " + std::to_string(hull.num_faces()) + " faces");
     if (hull.num_faces() > 0) {
       cellforge::io::write_mesh(out, hull);
       std::printf("wrote            %s\n", out.string().c_str());
     }
 
+    if (!picture) return valid.ok() ? 0 : 1;
     // The picture: the hull see-through over every point, vertices in red.
+    stage("drawing " + std::to_string(hull.num_faces()) + " faces and " + std::to_string(points.size()) +
+          " points");
     cellforge::io::svg_scene scene;
     std::vector<point> inside, corners;
     std::vector<char> is_corner(points.size(), 0);
@@ -98,7 +107,7 @@ int main(int argc, char** argv) {
     std::printf("wrote            hull.svg\n");
     return valid.ok() ? 0 : 1;
   } catch (const std::bad_alloc&) {  // a model too big for this machine: say so, do not abort
-    std::fprintf(stderr, "hull: out of memory (std::bad_alloc)\n");
+    example::report_out_of_memory("hull", stage);
     return 1;
   } catch (const std::exception& e) {  // cellforge::error among them: its message says what to fix
     std::fprintf(stderr, "hull: %s\n", e.what());

@@ -3,6 +3,7 @@
 //
 //   mesh_info                 the bundled Möbius band (a non-orientable mesh)
 //   mesh_info model.off       any mesh file; writes mesh_info.svg in the current directory
+//   mesh_info ... --no-svg    without the picture
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -15,16 +16,24 @@
 #include "example_support.hpp"
 
 int main(int argc, char** argv) {
+  const bool picture = !example::take_flag(argc, argv, "--no-svg");
+  if (argc > 2) {
+    std::fprintf(stderr, "usage: mesh_info [model.off|.obj|.ply|.stl] [--no-svg]\n");
+    return 2;
+  }
   const std::filesystem::path input = argc > 1
                                           ? std::filesystem::path(argv[1])
                                           : std::filesystem::path(CELLFORGE_DATA_DIR) / "mobius_band.obj";
+  example::stage_note stage;
   try {
     example::refuse_to_overwrite("mesh_info.svg", input);
+    stage("reading " + example::file_and_size(input));
     using clock = std::chrono::steady_clock;
     const auto t0 = clock::now();
     const auto soup = cellforge::io::read_soup<glm::dvec3>(input);
     const auto t1 = clock::now();
     cellforge::build_report report;
+    stage("building the mesh of " + std::to_string(soup.num_faces()) + " faces");
     const cellforge::surface_mesh<glm::dvec3> mesh =
         cellforge::make_mesh(soup, &report, {.split_nonmanifold_vertices = true});
     const auto t2 = clock::now();
@@ -64,7 +73,9 @@ int main(int argc, char** argv) {
     std::printf("read / build       %.3f ms / %.3f ms\n", ms(t0, t1), ms(t1, t2));
     std::printf("validate           %s\n", valid.ok() ? "ok" : valid.message.c_str());
 
+    if (!picture) return valid.ok() ? 0 : 1;
     // The picture: shaded faces, hidden edges dashed, boundary loops in red on top.
+    stage("drawing " + std::to_string(mesh.num_faces()) + " faces");
     cellforge::io::svg_scene scene;
     scene.add_mesh(cellforge::to_soup(mesh));
     const auto pts = mesh.positions();
@@ -84,7 +95,7 @@ int main(int argc, char** argv) {
                 drawn.faces_drawn, drawn.visible_edges, drawn.partly_hidden_edges);
     return valid.ok() ? 0 : 1;
   } catch (const std::bad_alloc&) {  // a model too big for this machine: say so, do not abort
-    std::fprintf(stderr, "mesh_info: out of memory (std::bad_alloc)\n");
+    example::report_out_of_memory("mesh_info", stage);
     return 1;
   } catch (const std::exception& e) {  // cellforge::error among them: its message says what to fix
     std::fprintf(stderr, "mesh_info: %s\n", e.what());

@@ -3,11 +3,12 @@
 // then seed 000's wireframe pipeline).
 //
 //   sketch2cells                       the bundled stepped normalon (examples/data/stepped_normalon.svg)
-//   sketch2cells drawing.svg|drawing.txt [--finder varley-company|shortest-loops]
+//   sketch2cells drawing.svg|drawing.txt [--finder varley-company|shortest-loops] [--no-svg]
 //
 // Writes, in the current directory, <name>_faces.svg (the drawing with its faces shaded),
 // <name>_wire.obj (the 3D wireframe), and the cell complex as <name>.3dcl, <name>.obj and
-// <name>.svg; prints every stage's counts and times. Never writes over its input.
+// <name>.svg (--no-svg leaves out both pictures); prints every stage's counts and times. Never writes over
+// its input.
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -32,9 +33,11 @@
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
+  example::stage_note stage;
   try {
     const example::command_line cl = example::parse_command_line(
-        argc, argv, fs::path(CELLFORGE_DATA_DIR) / "stepped_normalon.svg", {"finder"}, {});
+        argc, argv, fs::path(CELLFORGE_DATA_DIR) / "stepped_normalon.svg", {"finder"}, {"no-svg"});
+    const bool pictures = !cl.has("no-svg");
     cellforge::drawing_options options;
     const std::string finder = cl.text("finder", "varley-company");
     if (finder == "shortest-loops")
@@ -45,6 +48,7 @@ int main(int argc, char** argv) {
     std::string ext = cl.input.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
     cellforge::line_drawing<glm::dvec2> drawing;
+    stage("reading " + example::file_and_size(cl.input));
     if (ext == ".svg") {
       const auto read = cellforge::io::read_svg_drawing(cl.input);
       drawing = read.drawing;
@@ -59,6 +63,8 @@ int main(int argc, char** argv) {
                                 stem + ".svg"};
     for (const fs::path& out : outputs) example::refuse_to_overwrite(out, cl.input);
 
+    stage("reading the solid of a drawing of " + std::to_string(drawing.points.size()) + " junctions and " +
+          std::to_string(drawing.edges.size()) + " lines");
     const auto r = cellforge::drawing_to_cells(drawing, options);
     std::printf("drawing            %zu junctions, %zu edges, %zu direction classes\n", r.faces.junctions,
                 r.faces.edges, r.faces.direction_classes);
@@ -88,21 +94,24 @@ int main(int argc, char** argv) {
     std::printf("total              %9.3f ms\n", r.milliseconds);
     for (const std::string& d : r.diagnostics) std::printf("note               %s\n", d.c_str());
 
-    std::vector<std::vector<std::uint32_t>> loops = r.faces.loops;
-    cellforge::io::drawing_svg_options picture;
-    picture.title = "sketch2cells: faces of " + cl.input.filename().string();
-    picture.labels = drawing.points.size() <= 60;
-    cellforge::io::write_drawing_svg(outputs[0], drawing, loops, picture);
+    stage("writing " + std::to_string(cells.num_faces()) + " faces");
+    if (pictures) {
+      cellforge::io::drawing_svg_options picture;
+      picture.title = "sketch2cells: faces of " + cl.input.filename().string();
+      picture.labels = drawing.points.size() <= 60;
+      cellforge::io::write_drawing_svg(outputs[0], drawing, r.faces.loops, picture);
+    }
     cellforge::io::write_obj(outputs[1], r.wire);
     cellforge::io::write_3dcl(outputs[2], cells);
     cellforge::io::write_cells_obj(outputs[3], cells);
-    cellforge::io::write_cells_svg(outputs[4], cells);
-    std::printf("wrote              %s, %s, %s, %s, %s\n", outputs[0].string().c_str(),
-                outputs[1].string().c_str(), outputs[2].string().c_str(), outputs[3].string().c_str(),
-                outputs[4].string().c_str());
+    if (pictures) cellforge::io::write_cells_svg(outputs[4], cells);
+    std::printf("wrote             ");
+    for (const fs::path& out : outputs)
+      if (pictures || out.extension() != ".svg") std::printf(" %s", out.string().c_str());
+    std::printf("\n");
     return valid.ok() && r.faces_agree ? 0 : 1;
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "sketch2cells: out of memory (std::bad_alloc)\n");
+    example::report_out_of_memory("sketch2cells", stage);
     return 1;
   } catch (const std::exception& e) {  // cellforge::error among them: parse errors name file:line
     std::fprintf(stderr, "sketch2cells: %s\n", e.what());

@@ -7,12 +7,14 @@
 //   options: --angle DEG (continuous-surface threshold, 0..90, default 45)
 //            --faithful (the seed's rules: no crease smoothing, axis form only)
 //            --out DIR (default out)
+//            --no-svg (leave the picture out)
 //
 // Writes into DIR: <name>.curves (the seed's curve file: axis, limits, two cubics per edge;
 // docs/formats.md), <name>.polylines (15 segments per curve), <name>_curves.obj (the solid's
 // faces plus one `l` line per curve) and <name>_smooth.svg (straight edges beside smoothed).
 #include <cstdio>
 #include <filesystem>
+#include <new>
 #include <string>
 
 #include "cellforge/io/curves_io.hpp"
@@ -22,9 +24,10 @@
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
+  example::stage_note stage;
   try {
     const example::session x = example::open_session(
-        argc, argv, fs::path(CELLFORGE_DATA_DIR) / "cylinder16.off", {"angle"}, {"faithful"});
+        argc, argv, fs::path(CELLFORGE_DATA_DIR) / "cylinder16.off", {"angle"}, {"faithful"}, stage);
     const example::command_line& cl = x.cl;
     cellforge::smooth_options options =
         cl.has("faithful") ? cellforge::seed_smooth_options() : cellforge::smooth_options{};
@@ -51,18 +54,26 @@ int main(int argc, char** argv) {
 
     const std::string& stem = x.stem;
     const auto& curves = r.curves;
+    stage("writing " + std::to_string(curves.size()) + " curves");
     cellforge::io::write_curve_file(x.output(stem + ".curves"), curves,
                                     {.comment = "smooth_edges " + cl.input.filename().string() +
                                                 ": one curve per edge, in edge order (docs/formats.md)"});
     cellforge::io::write_polyline_file(x.output(stem + ".polylines"), curves);
     cellforge::io::write_polylines_obj(x.output(stem + "_curves.obj"), curves, &x.s.soup);
-    cellforge::io::smoothing_svg_options picture;
-    picture.picture.title = "smooth_edges: " + cl.input.filename().string();
-    picture.picture.view.elevation_deg = 30;
-    cellforge::io::write_smoothing_svg(x.output(stem + "_smooth.svg"), x.s.soup, curves, picture);
-    std::printf("  wrote            %s/%s.curves, .polylines, _curves.obj, _smooth.svg\n",
-                x.out.string().c_str(), stem.c_str());
+    if (x.picture) {
+      stage("drawing " + std::to_string(curves.size()) + " curves on " +
+            std::to_string(x.s.soup.num_faces()) + " faces");
+      cellforge::io::smoothing_svg_options picture;
+      picture.picture.title = "smooth_edges: " + cl.input.filename().string();
+      picture.picture.view.elevation_deg = 30;
+      cellforge::io::write_smoothing_svg(x.output(stem + "_smooth.svg"), x.s.soup, curves, picture);
+    }
+    std::printf("  wrote            %s/%s.curves, .polylines, _curves.obj%s\n", x.out.string().c_str(),
+                stem.c_str(), x.picture ? ", _smooth.svg" : "");
     return 0;
+  } catch (const std::bad_alloc&) {  // a model too big for this machine: say so, do not abort
+    example::report_out_of_memory("smooth_edges", stage);
+    return 1;
   } catch (const std::exception& e) {  // cellforge::error included: its message says what to fix
     std::fprintf(stderr, "smooth_edges: %s\n", e.what());
     return 1;

@@ -2,10 +2,12 @@
 //
 //   subdivide                       the bundled open cup (examples/data/cup.off), 2 levels
 //   subdivide model.obj [levels]    any OFF, OBJ or PLY file (polygons are fan-triangulated)
+//   subdivide ... --no-svg          without the picture
 //
 // Writes, in the current directory, subdivided.<ext> (the input's format) and
 // subdivide.svg (input on the left, result on the right), and prints counts and times.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -28,6 +30,11 @@ namespace fs = std::filesystem;
 using point = glm::dvec3;
 
 int main(int argc, char** argv) {
+  const bool picture_wanted = !example::take_flag(argc, argv, "--no-svg");
+  if (argc > 3) {
+    std::fprintf(stderr, "usage: subdivide [model.off|.obj|.ply [levels]] [--no-svg]\n");
+    return 2;
+  }
   const fs::path input = argc > 1 ? fs::path(argv[1]) : fs::path(CELLFORGE_DATA_DIR) / "cup.off";
   int levels = 2;
   if (argc > 2) {
@@ -39,12 +46,15 @@ int main(int argc, char** argv) {
     }
     levels = static_cast<int>(n);
   }
+  example::stage_note stage;
   try {
     std::string ext = input.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
     const fs::path out = fs::path("subdivided" + ext);
     example::refuse_to_overwrite({out, "subdivide.svg"}, input);
+    stage("reading " + example::file_and_size(input));
     cellforge::polygon_soup<point> soup = cellforge::io::read_soup<point>(input);
+    stage("building the mesh of " + std::to_string(soup.num_faces()) + " faces");
     const bool polygons = std::any_of(soup.face_offsets.begin() + 1, soup.face_offsets.end(),
                                       [&, prev = std::uint32_t{0}](std::uint32_t o) mutable {
                                         const bool big = o - prev > 3;
@@ -56,6 +66,9 @@ int main(int argc, char** argv) {
     auto mesh = cellforge::make_mesh(soup);
     const cellforge::polygon_soup<point> before = cellforge::to_soup(mesh);
 
+    stage("subdividing " + std::to_string(mesh.num_faces()) + " faces " + std::to_string(levels) +
+          " times (about " + example::about(static_cast<double>(mesh.num_faces()) * std::pow(4.0, levels)) +
+          " faces)");
     const cellforge::loop_result r = cellforge::loop_subdivide(mesh, {.levels = levels});
     const cellforge::validation_result valid = cellforge::validate(mesh);
 
@@ -73,9 +86,15 @@ int main(int argc, char** argv) {
     std::printf("total              %.3f ms\n", r.total_ms());
     std::printf("valid              %s\n", valid.ok() ? "yes" : valid.message.c_str());
 
+    stage("writing " + std::to_string(mesh.num_faces()) + " faces");
     cellforge::io::write_mesh(out, mesh);
+    if (!picture_wanted) {
+      std::printf("wrote              %s\n", out.string().c_str());
+      return valid.ok() ? 0 : 1;
+    }
 
     // Input and result side by side: shift the result 1.3 widths to the right of the screen.
+    stage("drawing " + std::to_string(before.num_faces() + mesh.num_faces()) + " faces");
     const cellforge::polygon_soup<point> after = cellforge::to_soup(mesh);
     glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
     for (const point& p : before.points) {
@@ -106,7 +125,7 @@ int main(int argc, char** argv) {
     std::printf("wrote              %s, subdivide.svg\n", out.string().c_str());
     return valid.ok() ? 0 : 1;
   } catch (const std::bad_alloc&) {  // a model too big for this machine: say so, do not abort
-    std::fprintf(stderr, "subdivide: out of memory (std::bad_alloc)\n");
+    example::report_out_of_memory("subdivide", stage);
     return 1;
   } catch (const std::exception& e) {  // cellforge::error among them: its message says what to fix
     std::fprintf(stderr, "subdivide: %s\n", e.what());

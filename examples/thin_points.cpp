@@ -9,11 +9,13 @@
 //            --faithful (the seed's data structures and its literal 5.3 detection)
 //            --cluster (seed 8.2: grow over flat triangle fans and triangle pairs; for triangle meshes)
 //            --out DIR (default out)
+//            --no-svg (leave the picture out)
 //
 // Writes into DIR: <name>_loops.obj (the solid's faces plus one closed `l` line per loop) and
 // <name>_thin.svg (the solid with its loops drawn thick, strongest first).
 #include <cstdio>
 #include <filesystem>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -24,9 +26,10 @@
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
+  example::stage_note stage;
   try {
     const example::session x = example::open_session(
-        argc, argv, fs::path(CELLFORGE_DATA_DIR) / "dumbbell.off", {"cap"}, {"faithful", "cluster"});
+        argc, argv, fs::path(CELLFORGE_DATA_DIR) / "dumbbell.off", {"cap"}, {"faithful", "cluster"}, stage);
     const example::command_line& cl = x.cl;
     cellforge::thin_options options;
     options.selection_cap = static_cast<int>(cl.number("cap", options.selection_cap, 1, 1000, true));
@@ -57,19 +60,27 @@ int main(int argc, char** argv) {
     }
     std::printf("  time             %.3f ms\n", ms);
 
+    stage("writing " + std::to_string(r.loops.size()) + " loops");
     std::vector<std::vector<glm::dvec3>> loops;
     for (const auto& l : r.loops) loops.push_back(l.points);
     const std::string& stem = x.stem;
     cellforge::io::write_polylines_obj(x.output(stem + "_loops.obj"), loops, true, &x.s.soup,
                                        {.comment = "thin_points " + cl.input.filename().string() +
                                                    ": the solid, then one closed l line per thin loop"});
-    cellforge::io::thin_loops_svg_options picture;
-    picture.picture.title = "thin_points: " + cl.input.filename().string();
-    picture.picture.view.elevation_deg = 20;
-    cellforge::io::write_thin_loops_svg(x.output(stem + "_thin.svg"), x.s.soup, r, picture);
-    std::printf("  wrote            %s/%s_loops.obj, %s_thin.svg\n", x.out.string().c_str(), stem.c_str(),
-                stem.c_str());
+    if (x.picture) {
+      stage("drawing " + std::to_string(r.loops.size()) + " loops on " +
+            std::to_string(x.s.soup.num_faces()) + " faces");
+      cellforge::io::thin_loops_svg_options picture;
+      picture.picture.title = "thin_points: " + cl.input.filename().string();
+      picture.picture.view.elevation_deg = 20;
+      cellforge::io::write_thin_loops_svg(x.output(stem + "_thin.svg"), x.s.soup, r, picture);
+    }
+    std::printf("  wrote            %s/%s_loops.obj%s\n", x.out.string().c_str(), stem.c_str(),
+                x.picture ? (", " + stem + "_thin.svg").c_str() : "");
     return 0;
+  } catch (const std::bad_alloc&) {  // a model too big for this machine: say so, do not abort
+    example::report_out_of_memory("thin_points", stage);
+    return 1;
   } catch (const std::exception& e) {  // cellforge::error included: its message says what to fix
     std::fprintf(stderr, "thin_points: %s\n", e.what());
     return 1;

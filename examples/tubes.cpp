@@ -2,12 +2,12 @@
 //
 //   tubes                                the bundled vessel tree (examples/data/vessel_tree.swc)
 //   tubes skeleton.swc|skeleton.obj      an SWC neuron/vessel file, or OBJ `v x y z r` + `l`
-//         [--sides N] [--alignment none|local|global] [--radius R] [--levels L]
+//         [--sides N] [--alignment none|local|global] [--radius R] [--levels L] [--no-svg]
 //
 // --radius gives OBJ vertices without a fourth value that radius; --levels applies 0 to 4
-// levels of Loop subdivision. Writes, in the current directory, tubes.obj, tubes.ply,
-// tubes.off and tubes.svg, and prints per-stage times, the mesh's counts, its genus beside
-// the skeleton's cycle rank (they must agree) and its self-intersections (there must be none).
+// levels of Loop subdivision; --no-svg leaves the picture out. Writes, in the current directory, tubes.obj,
+// tubes.ply, tubes.off and tubes.svg, and prints per-stage times, the mesh's counts, its genus beside the
+// skeleton's cycle rank (they must agree) and its self-intersections (there must be none).
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -32,10 +32,12 @@ namespace fs = std::filesystem;
 using point = glm::dvec3;
 
 int main(int argc, char** argv) {
+  example::stage_note stage;
   try {
     const example::command_line cl =
         example::parse_command_line(argc, argv, fs::path(CELLFORGE_DATA_DIR) / "vessel_tree.swc",
-                                    {"sides", "alignment", "radius", "levels"}, {});
+                                    {"sides", "alignment", "radius", "levels"}, {"no-svg"});
+    const bool picture_wanted = !cl.has("no-svg");
     cellforge::tube_options options;
     options.sides = static_cast<std::uint32_t>(cl.number("sides", 8, 3, 64, true));
     options.subdivision_levels = static_cast<int>(cl.number("levels", 0, 0, 4, true));
@@ -50,6 +52,7 @@ int main(int argc, char** argv) {
     std::string ext = cl.input.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
     cellforge::skeleton<point> skeleton;
+    stage("reading " + example::file_and_size(cl.input));
     if (ext == ".swc") {
       skeleton = cellforge::io::read_swc<point>(cl.input).skeleton;
     } else if (ext == ".obj") {
@@ -62,6 +65,9 @@ int main(int argc, char** argv) {
     }
     const fs::path outputs[] = {"tubes.obj", "tubes.ply", "tubes.off", "tubes.svg"};
     for (const fs::path& out : outputs) example::refuse_to_overwrite(out, cl.input);
+    stage("meshing " + std::to_string(skeleton.points.size()) + " nodes and " +
+          std::to_string(skeleton.edges.size()) + " edges with " + std::to_string(options.sides) +
+          " sides and " + std::to_string(options.subdivision_levels) + " Loop levels");
 
     const auto r = cellforge::make_tubes(skeleton, options);
     const cellforge::validation_result valid = cellforge::validate(r.mesh);
@@ -92,9 +98,16 @@ int main(int argc, char** argv) {
                 r.min_corner_deg, r.max_corner_deg, r.min_section_ratio);
     for (const std::string& d : r.diagnostics) std::printf("note               %s\n", d.c_str());
 
+    stage("writing " + std::to_string(r.mesh.num_faces()) + " faces");
     cellforge::io::write_mesh(outputs[0], r.mesh);
     cellforge::io::write_mesh(outputs[1], r.mesh);
     cellforge::io::write_mesh(outputs[2], r.mesh);
+    const bool ok = valid.ok() && r.genus == r.cycle_rank && si.intersecting_face_pairs == 0;
+    if (!picture_wanted) {
+      std::printf("wrote              tubes.obj, tubes.ply, tubes.off\n");
+      return ok ? 0 : 1;
+    }
+    stage("drawing " + std::to_string(r.mesh.num_faces()) + " faces");
     cellforge::io::svg_scene scene;
     cellforge::io::svg_style style;
     style.fill = "#e06666";
@@ -109,9 +122,9 @@ int main(int argc, char** argv) {
     picture.title = "tubes: " + cl.input.filename().string();
     scene.write(outputs[3], picture);
     std::printf("wrote              tubes.obj, tubes.ply, tubes.off, tubes.svg\n");
-    return valid.ok() && r.genus == r.cycle_rank && si.intersecting_face_pairs == 0 ? 0 : 1;
+    return ok ? 0 : 1;
   } catch (const std::bad_alloc&) {  // a model too big for this machine: say so, do not abort
-    std::fprintf(stderr, "tubes: out of memory (std::bad_alloc)\n");
+    example::report_out_of_memory("tubes", stage);
     return 1;
   } catch (const std::exception& e) {  // cellforge::error among them: its message says what to fix
     std::fprintf(stderr, "tubes: %s\n", e.what());

@@ -199,11 +199,13 @@ int main(int argc, char** argv) {
   }
 
   int failure = exit_input;  // the exit status of an exception thrown from here on
+  example::stage_note stage;
   try {
     std::string ext = s.input.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     // An OBJ's faces are read as their edges: a mesh file is a wireframe too.
+    stage("reading " + example::file_and_size(s.input));
     const auto wire = ext == ".obj" ? cellforge::io::read_obj_wireframe<glm::dvec3>(s.input, {}, true)
                                     : cellforge::io::read_edge_list<glm::dvec3>(s.input);
 
@@ -215,6 +217,8 @@ int main(int argc, char** argv) {
     for (const fs::path& out : outputs) example::refuse_to_overwrite(out, s.input);
     failure = exit_input;
 
+    stage("converting a wireframe of " + std::to_string(wire.points.size()) + " points and " +
+          std::to_string(wire.edges.size()) + " edges");
     const cellforge::wireframe_result<glm::dvec3> r = cellforge::wireframe_to_cells(wire, s.pipeline);
     const cellforge::cell_complex<glm::dvec3>& cells = r.cells;
     std::printf("wire2cells: %s\n\n", s.input.string().c_str());
@@ -237,11 +241,14 @@ int main(int argc, char** argv) {
     std::printf("  validate: %s\n", valid.ok() ? "ok" : valid.message.c_str());
 
     failure = exit_output;
+    stage("writing a cell complex of " + std::to_string(cells.num_faces()) + " faces and " +
+          std::to_string(cells.num_volumes()) + " volumes");
     example::output_dir(s.output);
     cellforge::io::write_3dcl(outputs[0], cells);
     cellforge::io::write_cells_obj(outputs[1], cells);
     cellforge::io::write_cells_ply(outputs[2], cells);
     if (s.svg) {
+      stage("drawing " + std::to_string(cells.num_faces()) + " faces");
       const cellforge::io::svg_result picture = cellforge::io::write_cells_svg(outputs[3], cells);
       if (picture.approximate_edges + picture.untested_edges > 0)
         std::printf("  picture: %zu of %zu edges past the hidden-line work budget (judged from one point)\n",
@@ -253,7 +260,7 @@ int main(int argc, char** argv) {
     std::printf("\n");
     return valid.ok() ? exit_ok : exit_input;
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "wire2cells: out of memory (std::bad_alloc)\n");
+    example::report_out_of_memory("wire2cells", stage);
     return failure;
   } catch (const std::exception& e) {  // cellforge::error among them: its message names file:line
     std::fprintf(stderr, "wire2cells: %s\n", e.what());
