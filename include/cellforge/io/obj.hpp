@@ -150,17 +150,28 @@ void skip_obj_statement(text_cursor& c, const char* line, std::string_view keywo
                          static_cast<std::size_t>(line - c.begin));
 }
 
-/// Rest of the line as a group name, blanks trimmed; "default" when empty.
+/// Rest of the line as a group name, blanks trimmed; "default" when empty. A '\' before the line
+/// end joins the next line, as in every other statement, and stands for one blank. O(name).
 template <class = void>
 std::string read_obj_name(text_cursor& c) {
   c.skip_blanks();
-  const char* first = c.pos;
-  const char* last = c.pos;
+  std::string name;
+  std::size_t kept = 0;  // the name up to its last non-blank
   while (!c.at_line_end()) {
-    if (!is_blank(*c.pos)) last = c.pos + 1;
+    if (*c.pos == '\\') {
+      const char* before = c.pos;
+      c.skip_blanks();  // moves only over a continuation
+      if (c.pos != before) {
+        name += ' ';
+        continue;
+      }
+    }
+    name += *c.pos;
+    if (!is_blank(*c.pos)) kept = name.size();
     ++c.pos;
   }
-  return first == last ? std::string("default") : std::string(first, last);
+  name.resize(kept);
+  return name.empty() ? std::string("default") : name;
 }
 
 }  // namespace detail
@@ -306,16 +317,23 @@ void put_obj_lines(output_buffer& out, const std::vector<std::array<std::uint32_
   }
 }
 
-/// Faces as `f` lines, 1-based, with a `g` line before the first face of each group.
+/// A `g name` line; the name as write_obj checked it.
+template <class = void>
+void put_obj_group(output_buffer& out, const obj_group& group) {
+  out.put("g ");
+  out.put(group.name.empty() ? std::string_view("default") : std::string_view(group.name));
+  // A '\' at the line end would join the next line: an empty comment after it keeps it a '\'.
+  if (group.name.ends_with('\\')) out.put(" #");
+  out.put('\n');
+}
+
+/// Faces as `f` lines, 1-based, with a `g` line before the first face of each group; a last
+/// group with no faces (a file's trailing `g`) is written after them, so it reads back.
 template <Point3 P>
 void put_obj_faces(output_buffer& out, const polygon_soup<P>& soup, std::span<const obj_group> groups) {
   std::size_t g = 0;
   for (std::size_t f = 0; f < soup.num_faces(); ++f) {
-    for (; g < groups.size() && groups[g].first_face == f; ++g) {
-      out.put("g ");
-      out.put(groups[g].name.empty() ? std::string_view("default") : std::string_view(groups[g].name));
-      out.put('\n');
-    }
+    for (; g < groups.size() && groups[g].first_face == f; ++g) put_obj_group(out, groups[g]);
     out.put('f');
     for (const std::uint32_t v : soup.face(f)) {
       out.put(' ');
@@ -323,6 +341,7 @@ void put_obj_faces(output_buffer& out, const polygon_soup<P>& soup, std::span<co
     }
     out.put('\n');
   }
+  for (; g < groups.size(); ++g) put_obj_group(out, groups[g]);
 }
 
 }  // namespace detail
@@ -338,10 +357,16 @@ void write_obj(std::ostream& os, const obj_data<P>& data, const obj_write_option
         (g > 0 && data.groups[g].first_face < data.groups[g - 1].first_face))
       throw error(error_category::invalid_input, "write_obj: group " + std::to_string(g) +
                                                      " starts at a face out of order or past the last face");
-    // A line break or '#' would end the name early and turn the rest into statements or a comment.
-    if (data.groups[g].name.find_first_of("\r\n#") != std::string::npos)
+    // A line break or '#' would end the name early and turn the rest into statements or a comment;
+    // blanks at either end are not kept by a reader.
+    const std::string& name = data.groups[g].name;
+    if (name.find_first_of("\r\n#") != std::string::npos)
       throw error(error_category::invalid_input,
                   "write_obj: group name " + std::to_string(g) + " contains a line break or '#'");
+    if (!name.empty() && (detail::is_blank(name.front()) || detail::is_blank(name.back())))
+      throw error(error_category::invalid_input,
+                  "write_obj: group name " + std::to_string(g) + " ('" + name +
+                      "') starts or ends with a blank, which OBJ does not keep");
   }
   detail::output_buffer out(os);
   detail::put_comment_lines(out, options.comment, "# ");
