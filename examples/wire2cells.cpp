@@ -224,7 +224,8 @@ int main(int argc, char** argv) {
     std::printf("wire2cells: %s\n\n", s.input.string().c_str());
     print_stages(r);
 
-    const cellforge::cells_validation_result valid = cellforge::validate(cells);
+    const cellforge::cells_validation_result valid =
+        cellforge::validate(cells, cellforge::wireframe_check_options(s.pipeline));
     std::printf("\ncell complex: %zu vertices, %zu edges, %zu faces, %zu volumes, %zu objects\n",
                 cells.num_vertices(), cells.num_edges(), cells.num_faces(), cells.num_volumes(),
                 cells.num_objects());

@@ -473,6 +473,26 @@ TEST_CASE("validate: each broken invariant is named with its element") {
     CHECK(validate(make_cell_complex(in), loose).ok());
   }
   {
+    // A small face is judged at its own scale: a cube of side 1e-3 beside a unit cube, one corner
+    // lifted by 1e-6 (a tenth of a percent of its size) is bent; 1e-6 of the model's diagonal
+    // (the tolerance once used) would have passed it.
+    auto in = fx::disjoint_cubes();
+    for (auto& p : in.points)
+      if (p.x > 1.5) p = glm::dvec3(2, 0, 0) + 1e-3 * (p - glm::dvec3(2, 0, 0));
+    CHECK(validate(make_cell_complex(in)).ok());
+    const auto corner = std::find_if(in.points.begin(), in.points.end(), [](const glm::dvec3& p) {
+      return p.x > 2.0005 && p.y > 0.0005 && p.z > 0.0005;
+    });
+    REQUIRE(corner != in.points.end());
+    corner->z += 1e-6;
+    const auto r = validate(make_cell_complex(in));
+    CHECK(r.broken == cells_invariant::non_planar);
+    CHECK(contains(r.message, "from the face's plane"));
+    cells_validation_options model_scale;
+    model_scale.planarity_floor = 1e-6;
+    CHECK(validate(make_cell_complex(in), model_scale).ok());
+  }
+  {
     auto in = fx::cube();
     in.points[point_index(in, {1, 1, 1})] = {1, 1, 0};
     in.points[point_index(in, {1, 1, 0})] = {1, 1, 0};

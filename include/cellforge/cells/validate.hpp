@@ -36,8 +36,12 @@ enum class cells_invariant : std::uint8_t {
 
 /// How validate(cell_complex) measures.
 struct cells_validation_options {
-  /// Faces may depart from their plane by this fraction of the model's bounding-box diagonal.
+  /// Faces may depart from their plane by this fraction of their own bounding-box diagonal (a
+  /// small face is judged at its own scale, not the model's)...
   double planarity = 1e-6;
+  /// ... or by this fraction of the model's diagonal, when more: points carry rounding error of
+  /// their coordinates' size, and the wireframe pipeline makes faces flat to 1e-9 of it.
+  double planarity_floor = 1e-8;
   /// Edges must be longer than this fraction of the diagonal.
   double min_edge_length = 1e-12;
   /// Two faces about an edge closer than this angle (radians) count as coinciding.
@@ -145,7 +149,7 @@ cells_validation_result validate_cells(const cell_topology& cc, std::span<const 
   cells_validation_result r;
   bounding_box box;
   for (const glm::dvec3& p : pts) box.add(p);
-  const double diag = box.diagonal(), flat_tol = options.planarity * diag,
+  const double diag = box.diagonal(), flat_floor = options.planarity_floor * diag,
                min_len = options.min_edge_length * diag;
   const glm::dvec3 centre = box.center();
 
@@ -160,6 +164,9 @@ cells_validation_result validate_cells(const cell_topology& cc, std::span<const 
     if (glm::length(n) == 0.0)
       return broke(r, inv::degenerate_face, f.idx(), "face " + S(f.idx()) + ": its outer loop has no area");
     const glm::dvec3 o = pts[cc.loop_vertices(f, 0)[0].idx()];
+    bounding_box fbox;
+    for (cell_vertex v : cc.loop_vertices(f, 0)) fbox.add(pts[v.idx()]);
+    const double flat_tol = std::max(options.planarity * fbox.diagonal(), flat_floor);
     for (std::size_t l = 0; l < cc.num_loops(f); ++l) {
       for (cell_vertex v : cc.loop_vertices(f, l)) {
         const double dist = std::abs(glm::dot(pts[v.idx()] - o, n));

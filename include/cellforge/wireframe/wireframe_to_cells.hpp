@@ -6,6 +6,7 @@
 /// (§4.6), objects and volumes (§4.7), relations (§4.8) and the cell list (§4.9), on anything
 /// that models Wireframe. Every stage's result (counts, diagnostics, time) is returned too.
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -41,6 +42,19 @@ struct wireframe_options {
   /// edges crossing inside a face plane). Needs build_complex.
   bool check_result = true;
 };
+
+/// The validate() options that judge a complex wireframe_to_cells made with `options`: its faces
+/// are flat to the pipeline's own tolerances (fractions of the model's diagonal), so they are
+/// judged no finer than ten times those, however small a face is. O(1).
+template <class = void>
+cells_validation_options wireframe_check_options(const wireframe_options& options) {
+  cells_validation_options check;
+  check.planarity_floor =
+      std::max({check.planarity_floor, 10 * options.read.merge.relative,
+                10 * options.trace.planarity.relative, 10 * options.reduction.planarity.relative,
+                10 * options.arrangement.planarity.relative, 10 * options.extra.retrace.planarity.relative});
+  return check;
+}
 
 /// A planar cycle of the wireframe that is not a face of the result, in the caller's vertex
 /// labels (loops[0] outer, then holes), and why.
@@ -238,7 +252,7 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   if (options.build_complex) {
     r.cells = make_cell_complex(r.input);
     if (options.check_result) {
-      const auto v = validate(r.cells);
+      const auto v = validate(r.cells, wireframe_check_options(options));
       if (!v.ok())
         throw error(error_category::topology,
                     "wireframe_to_cells: the faces found do not make a valid cell complex (" + v.message +
