@@ -55,6 +55,11 @@ awk 'BEGIN{e="1 2 2 4 4 3 3 1 5 6 6 8 8 7 7 5 1 5 2 6 3 7 4 8";split(e,E," ");nv
   for(q=1;q<=24;q+=2)printf "l %d %d\n",nv+E[q],nv+E[q+1];nv+=8}}' > cubes_4096.obj
 # 20,000 coplanar points
 awk 'BEGIN{srand(7);print "OFF";print 20000,0,0;for(i=0;i<20000;i++)printf "%.17g %.17g 0\n",rand(),rand()}' > coplanar_20000.off
+# 20,000 points on a circle (every point a hull vertex: the hull is a 20,000-gon, two faces back
+# to back, 39,996 triangles), and that 20,000-gon as two polygon faces
+awk 'BEGIN{n=20000;pi=atan2(0,-1);print "OFF";print n,0,0;for(i=0;i<n;i++)printf "%.17g %.17g 0\n",cos(2*pi*i/n),sin(2*pi*i/n)}' > circle_20000.off
+awk 'BEGIN{n=20000;pi=atan2(0,-1);print "OFF";print n,2,0;for(i=0;i<n;i++)printf "%.17g %.17g 0\n",cos(2*pi*i/n),sin(2*pi*i/n);
+  printf "%d",n;for(i=0;i<n;i++)printf " %d",i;print "";printf "%d",n;for(i=n-1;i>=0;i--)printf " %d",i;print ""}' > twogons_20000.off
 # flat sheet (closed, zero volume) and an open surface
 printf 'OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n4 3 2 1 0\n' > folded_sheet.off
 printf 'OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n' > open_square.off
