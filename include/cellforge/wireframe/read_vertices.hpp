@@ -12,12 +12,14 @@
 #include <limits>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <glm/common.hpp>
 
 #include "cellforge/core/bounding_box.hpp"
 #include "cellforge/core/error.hpp"
+#include "cellforge/core/morton.hpp"
 #include "cellforge/core/tolerance.hpp"
 #include "cellforge/core/wireframe.hpp"
 #include "cellforge/wireframe/wire_graph.hpp"
@@ -33,6 +35,10 @@ struct read_options {
   bool split_at_vertices = true;  ///< split an edge where another vertex lies inside it (T-junction, overlap)
   /// Steps the merge and split searches may take (cells visited, vertices tested); 0: no limit.
   std::uint64_t work_budget = 200'000'000;
+  /// Number the graph's vertices along a Morton curve and its edges by their ends, so that the
+  /// pipeline's speed does not depend on the caller's numbering (results are mapped back to
+  /// it); false keeps the caller's order in the graph.
+  bool spatial_order = true;
 };
 
 /// What read_vertices found; `graph` is the labelled wireframe the other stages use.
@@ -389,7 +395,10 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
                               " more dangling edges removed (" + std::to_string(named) + " in all)");
   }
 
-  // Label the remaining vertices in the caller's order so that indices survive the trip.
+  // Label the remaining vertices: in space-filling-curve order (spatial_order), so that the
+  // stages' walks over neighbouring vertices, edges and faces stay in cache whatever order the
+  // caller numbered them in, or in the caller's order. Results are mapped back to the
+  // caller's labels and edge order (input_vertex, input_edge, read_order).
   wire_graph& g = r.graph;
   std::vector<std::uint32_t> label(nv, no_index);
   for (std::uint32_t e = 0; e < np; ++e)
@@ -401,16 +410,52 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
       if (used[v] && rep[v] == v) ++r.isolated_vertices;
       continue;
     }
-    label[v] = static_cast<std::uint32_t>(g.points.size());
-    g.points.push_back(p[v]);
     g.input_vertex.push_back(v);
     kept_box.add(p[v]);
+  }
+  if (options.spatial_order) {
+    const glm::dvec3 span = kept_box.max - kept_box.min;
+    const glm::dvec3 extent(span.x > 0.0 ? span.x : 1.0, span.y > 0.0 ? span.y : 1.0,
+                            span.z > 0.0 ? span.z : 1.0);
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> order(g.input_vertex.size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+      order[i] = {detail::morton_code(p[g.input_vertex[i]], kept_box.min, extent), g.input_vertex[i]};
+    std::sort(order.begin(), order.end());
+    for (std::size_t i = 0; i < order.size(); ++i) g.input_vertex[i] = order[i].second;
+  }
+  g.points.reserve(g.input_vertex.size());
+  for (const auto v : g.input_vertex) {
+    label[v] = static_cast<std::uint32_t>(g.points.size());
+    g.points.push_back(p[v]);
   }
   for (std::uint32_t e = 0; e < np; ++e)
     if (alive[e]) {
       g.edges.push_back({label[ends[e][0]], label[ends[e][1]]});
       g.input_edge.push_back(origin[e]);
     }
+  if (options.spatial_order) {
+    // Edges by their ends' labels (smaller end first): a vertex's edges are then listed by
+    // neighbour, and edges near in space are near in memory.
+    const auto ne_kept = static_cast<std::uint32_t>(g.edges.size());
+    std::vector<std::uint32_t> by_ends(ne_kept);
+    for (std::uint32_t i = 0; i < ne_kept; ++i) by_ends[i] = i;
+    const auto key = [&](std::uint32_t i) {
+      const auto [a, b] = g.edges[i];
+      return (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
+    };
+    std::sort(by_ends.begin(), by_ends.end(),
+              [&](std::uint32_t i, std::uint32_t j) { return key(i) < key(j); });
+    std::vector<std::array<std::uint32_t, 2>> edges(ne_kept);
+    std::vector<std::uint32_t> input_edge(ne_kept);
+    g.read_order.resize(ne_kept);
+    for (std::uint32_t i = 0; i < ne_kept; ++i) {
+      edges[i] = g.edges[by_ends[i]];
+      input_edge[i] = g.input_edge[by_ends[i]];
+      g.read_order[i] = by_ends[i];
+    }
+    g.edges = std::move(edges);
+    g.input_edge = std::move(input_edge);
+  }
   if (g.edges.empty())
     throw error(error_category::topology, "read_vertices: no edge lies on a circuit (the " +
                                               std::to_string(ne) +
