@@ -76,11 +76,13 @@ std::string point_text(const glm::dvec3& p) {
   return "(" + number_text(p.x) + ", " + number_text(p.y) + ", " + number_text(p.z) + ")";
 }
 
-/// Merges points within tol by hashing them to cells of side 64·tol; returns each point's
-/// representative (the smallest index of its cluster). O(n) expected.
+/// Merges the points listed in `order` within tol by hashing them to cells of side 64·tol;
+/// returns each point's representative (the smallest index of its cluster, whatever the
+/// order; a spatial order keeps the cell look-ups in cache). O(n) expected.
 template <class = void>
-std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p, const std::vector<char>& used,
-                                              double tol, work_budget& budget) {
+std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p,
+                                              const std::vector<std::uint32_t>& order, double tol,
+                                              work_budget& budget) {
   const std::size_t n = p.size();
   union_find uf(n);
   // Cell → first point, then a linked list through `next`: no allocation per cell.
@@ -90,8 +92,7 @@ std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p, 
   // Cells of 64 tolerances measured from the lowest corner: a point's tolerance ball seldom
   // leaves its cell, and cell indices stay small however far the model is from the origin.
   glm::dvec3 low(std::numeric_limits<double>::infinity()), high(-low);
-  for (std::uint32_t i = 0; i < n; ++i)
-    if (used[i]) low = glm::min(low, p[i]), high = glm::max(high, p[i]);
+  for (const std::uint32_t i : order) low = glm::min(low, p[i]), high = glm::max(high, p[i]);
   // (A zero tolerance merges equal points only; the cells then just have to be small.)
   double h = 64.0 * std::max(tol, 1e-12 * glm::length(high - low));
   if (!(h > 0.0) || !std::isfinite(h)) h = 1.0;  // one point, or all points equal
@@ -99,16 +100,14 @@ std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p, 
     const glm::dvec3 c = (q - low) / h;
     return std::array<std::int64_t, 3>{grid_coordinate(c.x), grid_coordinate(c.y), grid_coordinate(c.z)};
   };
-  for (std::uint32_t i = 0; i < n; ++i) {
-    if (!used[i]) continue;
+  for (const std::uint32_t i : order) {
     const auto [it, fresh] = cells.emplace(cell_of(p[i]), i);
     if (!fresh) {
       next[i] = it->second;
       it->second = i;
     }
   }
-  for (std::uint32_t i = 0; i < n; ++i) {
-    if (!used[i]) continue;
+  for (const std::uint32_t i : order) {
     // Only the cells the ball of radius tol about p[i] reaches: almost always its own.
     const auto lo = cell_of(p[i] - tol), hi = cell_of(p[i] + tol);
     for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
@@ -131,9 +130,11 @@ std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p, 
 /// Splits edges at vertices lying strictly inside them (within tol): a grid of cells about the
 /// median edge length holds the vertices; each edge visits the cells along it. Pieces are
 /// appended in order along the edge and keep their edge's origin. Returns the number of splits.
-/// O(E + V + vertices in the visited cells), spent from `budget`.
+/// Vertices are visited in `order` (a spatial order keeps the cell look-ups in cache; the
+/// result does not depend on it). O(E log E + V + vertices in the visited cells), spent from `budget`.
 template <class = void>
 std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vector<char>& is_vertex,
+                              const std::vector<std::uint32_t>& order,
                               std::vector<std::array<std::uint32_t, 2>>& ends,
                               std::vector<std::uint32_t>& origin, double tol, work_budget& budget) {
   std::vector<double> lengths;
@@ -159,7 +160,7 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
   };
   std::unordered_map<std::array<std::int64_t, 3>, std::uint32_t, cell_hash> cells;
   std::vector<std::uint32_t> next(p.size(), no_index);
-  for (std::uint32_t v = 0; v < p.size(); ++v) {
+  for (const std::uint32_t v : order) {
     if (!is_vertex[v]) continue;
     const auto [it, fresh] = cells.emplace(cell_of(p[v]), v);
     if (!fresh) {
@@ -171,7 +172,15 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
   std::vector<std::pair<double, std::uint32_t>> inside;
   std::vector<std::uint32_t> seen_stamp(p.size(), no_index);
   const std::size_t n = ends.size();
-  for (std::size_t e = 0; e < n; ++e) {
+  // Edges visited in the order of their first ends; the splits are applied afterwards in
+  // edge order, so the pieces are numbered as if visited in edge order.
+  std::vector<std::uint32_t> rank(p.size(), 0);
+  for (std::uint32_t i = 0; i < order.size(); ++i) rank[order[i]] = i;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> visit_order(n);
+  for (std::uint32_t e = 0; e < n; ++e) visit_order[e] = {rank[ends[e][0]], e};
+  std::sort(visit_order.begin(), visit_order.end());
+  std::vector<std::pair<std::uint32_t, std::vector<std::uint32_t>>> found;  // edge, vertices inside along it
+  for (const auto& [unused_rank, e] : visit_order) {
     const std::uint32_t a = ends[e][0], b = ends[e][1];
     if (a == b) continue;
     const glm::dvec3 pa = p[a], d = p[b] - pa;
@@ -215,13 +224,18 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
     if (inside.empty()) continue;
     std::sort(inside.begin(), inside.end());
     splits += inside.size();
-    std::uint32_t from = a;
-    ends[e] = {a, inside[0].second};
-    from = inside[0].second;
-    for (std::size_t k = 1; k < inside.size(); ++k) {
-      ends.push_back({from, inside[k].second});
+    found.emplace_back(e, std::vector<std::uint32_t>(inside.size()));
+    for (std::size_t k = 0; k < inside.size(); ++k) found.back().second[k] = inside[k].second;
+  }
+  std::sort(found.begin(), found.end());
+  for (const auto& [e, at] : found) {
+    const std::uint32_t a = ends[e][0], b = ends[e][1];
+    ends[e] = {a, at[0]};
+    std::uint32_t from = at[0];
+    for (std::size_t k = 1; k < at.size(); ++k) {
+      ends.push_back({from, at[k]});
       origin.push_back(origin[e]);
-      from = inside[k].second;
+      from = at[k];
     }
     ends.push_back({from, b});
     origin.push_back(origin[e]);
@@ -288,7 +302,22 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
     throw error(error_category::invalid_input, "read_vertices: all " + std::to_string(ne) +
                                                    " edges have zero length (every point is " +
                                                    detail::point_text(box.min) + ")");
-  const std::vector<std::uint32_t> rep = detail::merge_close_points(p, used, tol, budget);
+  // The used points in Morton order (or the caller's): the merge and split searches visit
+  // them so, and their hash-grid cells stay in cache whatever the caller's numbering.
+  std::vector<std::uint32_t> visit;
+  {
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> coded;
+    const glm::dvec3 span = box.max - box.min;
+    const glm::dvec3 extent(span.x > 0.0 ? span.x : 1.0, span.y > 0.0 ? span.y : 1.0,
+                            span.z > 0.0 ? span.z : 1.0);
+    for (std::uint32_t v = 0; v < nv; ++v)
+      if (used[v])
+        coded.emplace_back(options.spatial_order ? detail::morton_code(p[v], box.min, extent) : 0, v);
+    if (options.spatial_order) std::sort(coded.begin(), coded.end());
+    visit.reserve(coded.size());
+    for (const auto& c : coded) visit.push_back(c.second);
+  }
+  const std::vector<std::uint32_t> rep = detail::merge_close_points(p, visit, tol, budget);
   for (std::size_t v = 0; v < nv; ++v)
     if (used[v] && rep[v] != v) {
       ++r.merged_points;
@@ -307,7 +336,7 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
   if (options.split_at_vertices) {
     std::vector<char> is_rep(nv, 0);
     for (std::uint32_t v = 0; v < nv; ++v) is_rep[v] = used[v] && rep[v] == v;
-    const std::size_t splits = detail::split_at_vertices(p, is_rep, ends, origin, tol, budget);
+    const std::size_t splits = detail::split_at_vertices(p, is_rep, visit, ends, origin, tol, budget);
     if (splits > 0)
       r.diagnostics.push_back(std::to_string(splits) +
                               " vertices lie inside edges (T-junctions or overlapping edges); the edges were "
@@ -406,23 +435,14 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
       for (const auto v : ends[e]) label[v] = 0;
   bounding_box kept_box;
   for (std::uint32_t v = 0; v < nv; ++v) {
-    if (label[v] == no_index) {
-      if (used[v] && rep[v] == v) ++r.isolated_vertices;
-      continue;
-    }
-    g.input_vertex.push_back(v);
-    kept_box.add(p[v]);
+    if (label[v] != no_index)
+      kept_box.add(p[v]);
+    else if (used[v] && rep[v] == v)
+      ++r.isolated_vertices;
   }
-  if (options.spatial_order) {
-    const glm::dvec3 span = kept_box.max - kept_box.min;
-    const glm::dvec3 extent(span.x > 0.0 ? span.x : 1.0, span.y > 0.0 ? span.y : 1.0,
-                            span.z > 0.0 ? span.z : 1.0);
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> order(g.input_vertex.size());
-    for (std::size_t i = 0; i < order.size(); ++i)
-      order[i] = {detail::morton_code(p[g.input_vertex[i]], kept_box.min, extent), g.input_vertex[i]};
-    std::sort(order.begin(), order.end());
-    for (std::size_t i = 0; i < order.size(); ++i) g.input_vertex[i] = order[i].second;
-  }
+  // `visit` is in Morton order when spatial_order, else in the caller's.
+  for (const std::uint32_t v : visit)
+    if (label[v] != no_index) g.input_vertex.push_back(v);
   g.points.reserve(g.input_vertex.size());
   for (const auto v : g.input_vertex) {
     label[v] = static_cast<std::uint32_t>(g.points.size());
