@@ -180,7 +180,8 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
   for (std::uint32_t e = 0; e < n; ++e) visit_order[e] = {rank[ends[e][0]], e};
   std::sort(visit_order.begin(), visit_order.end());
   std::vector<std::pair<std::uint32_t, std::vector<std::uint32_t>>> found;  // edge, vertices inside along it
-  for (const auto& [unused_rank, e] : visit_order) {
+  for (const auto& visiting : visit_order) {
+    const std::uint32_t e = visiting.second;  // (a structured binding cannot be captured in C++20)
     const std::uint32_t a = ends[e][0], b = ends[e][1];
     if (a == b) continue;
     const glm::dvec3 pa = p[a], d = p[b] - pa;
