@@ -347,7 +347,20 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
   const auto np = static_cast<std::uint32_t>(ends.size());
 
   // Zero-length and duplicate pieces dropped (or rejected).
-  std::unordered_map<std::uint64_t, std::uint32_t> seen;
+  // Duplicates found by sorting the pieces by their ends: same_as[e] is the first piece joining
+  // the same two vertices (a hash table of 10^5 nodes costs more, freeing them most).
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> by_ends;
+  by_ends.reserve(np);
+  for (std::uint32_t e = 0; e < np; ++e)
+    if (ends[e][0] != ends[e][1])
+      by_ends.emplace_back(
+          (std::uint64_t{std::min(ends[e][0], ends[e][1])} << 32) | std::max(ends[e][0], ends[e][1]), e);
+  std::sort(by_ends.begin(), by_ends.end());
+  std::vector<std::uint32_t> same_as(np, no_index);
+  for (std::size_t i = 0; i < by_ends.size(); ++i)
+    same_as[by_ends[i].second] = i > 0 && by_ends[i - 1].first == by_ends[i].first
+                                     ? same_as[by_ends[i - 1].second]
+                                     : by_ends[i].second;
   std::vector<std::uint32_t> kept;
   // The first few of each kind are named; the rest are counted (10^5 duplicates are one line).
   constexpr std::size_t named_per_kind = 8;
@@ -365,10 +378,8 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
       });
       continue;
     }
-    const std::uint64_t k = (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
-    const auto [it, fresh] = seen.emplace(k, o);
-    if (!fresh) {
-      const std::uint32_t first = it->second;  // (a structured binding cannot be captured in C++20)
+    if (same_as[e] != e) {
+      const std::uint32_t first = origin[same_as[e]];
       complain(++r.duplicate_edges, [&] {
         return "edge " + std::to_string(o) + " duplicates edge " + std::to_string(first) + " (vertices " +
                std::to_string(a) + "-" + std::to_string(b) + ") and was dropped";
@@ -390,13 +401,18 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
   std::vector<char> alive(np, 0);
   for (const auto e : kept) alive[e] = 1;
   if (options.prune_dangling) {
-    std::vector<std::uint32_t> deg(nv, 0);
-    std::vector<std::vector<std::uint32_t>> inc(nv);
+    // Vertex → kept edges, one flat array in edge order.
+    std::vector<std::uint32_t> start(nv + 1, 0);
     for (const auto e : kept)
-      for (const auto v : ends[e]) {
-        ++deg[v];
-        inc[v].push_back(e);
-      }
+      for (const auto v : ends[e]) ++start[v + 1];
+    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+    std::vector<std::uint32_t> inc(start.back()), deg(nv);
+    for (std::size_t v = 0; v < nv; ++v) deg[v] = start[v + 1] - start[v];
+    {
+      std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+      for (const auto e : kept)
+        for (const auto v : ends[e]) inc[fill[v]++] = e;
+    }
     std::vector<std::uint32_t> stack;
     for (std::uint32_t v = 0; v < nv; ++v)
       if (deg[v] == 1) stack.push_back(v);
@@ -404,7 +420,8 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
       const std::uint32_t v = stack.back();
       stack.pop_back();
       if (deg[v] != 1) continue;
-      for (const auto e : inc[v]) {
+      for (std::uint32_t k = start[v]; k < start[v + 1]; ++k) {
+        const std::uint32_t e = inc[k];
         if (!alive[e]) continue;
         alive[e] = 0;
         r.dangling.push_back(origin[e]);
@@ -458,21 +475,19 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
     // Edges by their ends' labels (smaller end first): a vertex's edges are then listed by
     // neighbour, and edges near in space are near in memory.
     const auto ne_kept = static_cast<std::uint32_t>(g.edges.size());
-    std::vector<std::uint32_t> by_ends(ne_kept);
-    for (std::uint32_t i = 0; i < ne_kept; ++i) by_ends[i] = i;
-    const auto key = [&](std::uint32_t i) {
+    by_ends.resize(ne_kept);
+    for (std::uint32_t i = 0; i < ne_kept; ++i) {
       const auto [a, b] = g.edges[i];
-      return (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
-    };
-    std::sort(by_ends.begin(), by_ends.end(),
-              [&](std::uint32_t i, std::uint32_t j) { return key(i) < key(j); });
+      by_ends[i] = {(std::uint64_t{std::min(a, b)} << 32) | std::max(a, b), i};
+    }
+    std::sort(by_ends.begin(), by_ends.end());
     std::vector<std::array<std::uint32_t, 2>> edges(ne_kept);
     std::vector<std::uint32_t> input_edge(ne_kept);
     g.read_order.resize(ne_kept);
     for (std::uint32_t i = 0; i < ne_kept; ++i) {
-      edges[i] = g.edges[by_ends[i]];
-      input_edge[i] = g.input_edge[by_ends[i]];
-      g.read_order[i] = by_ends[i];
+      edges[i] = g.edges[by_ends[i].second];
+      input_edge[i] = g.input_edge[by_ends[i].second];
+      g.read_order[i] = by_ends[i].second;
     }
     g.edges = std::move(edges);
     g.input_edge = std::move(input_edge);
