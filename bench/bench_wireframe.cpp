@@ -2,7 +2,9 @@
 // Wireframe → cell complex, seed 000 §7.2 tables 1 and 3: the seed's per-stage ms and counts
 // for its six samples beside ours on generated models of about the same sizes
 // (sample_seed(1..6), docs/sample_models.md; sample 6 under the seed's reading, keep_walls),
-// then scaling series on k×k×k grids of cubes and on UV spheres.
+// then scaling series on k×k×k grids of cubes and on UV spheres, and every model in the
+// generator's numbering beside the same model with its vertices and edges numbered at random
+// (as files arrive): medians of 5 runs, the ratio shuffled / ordered and the targets checked.
 // The pipeline (wireframe/wireframe_to_cells.hpp) is used when present; without it the
 // binary still builds, times the model generation and prints the seed's figures with
 // "pending" in our columns.
@@ -13,12 +15,15 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <iostream>
 #include <limits>
 #include <map>
 #include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -112,6 +117,63 @@ const cellforge::sample_model& sphere(int slices, int stacks) {
   return it->second;
 }
 
+/// m with its vertices and its edges in a random order (Fisher–Yates on std::mt19937_64's
+/// raw output, so every library shuffles alike) and every other edge turned round; the truth
+/// relabelled to match. O(model).
+cellforge::sample_model shuffled(const cellforge::sample_model& m) {
+  std::mt19937_64 rng(0x5eed);
+  const auto permutation = [&](std::size_t n) {
+    std::vector<std::uint32_t> p(n);
+    for (std::size_t i = 0; i < n; ++i) p[i] = static_cast<std::uint32_t>(i);
+    for (std::size_t i = n; i > 1; --i) std::swap(p[i - 1], p[rng() % i]);
+    return p;
+  };
+  const std::vector<std::uint32_t> vertex = permutation(m.wire.points.size()),
+                                   edge = permutation(m.wire.edges.size());
+  cellforge::sample_model out = m;
+  for (std::size_t v = 0; v < vertex.size(); ++v) out.wire.points[vertex[v]] = m.wire.points[v];
+  for (std::size_t e = 0; e < edge.size(); ++e) {
+    const auto [a, b] = m.wire.edges[e];
+    out.wire.edges[edge[e]] = e % 2 ? std::array<std::uint32_t, 2>{vertex[b], vertex[a]}
+                                    : std::array<std::uint32_t, 2>{vertex[a], vertex[b]};
+  }
+  for (auto& face : out.faces)
+    for (auto& loop : face)
+      for (auto& v : loop) v = vertex[v];
+  return out;
+}
+
+/// The models of the input-order table: name, and the model in the generator's numbering.
+struct order_model {
+  std::string name;
+  std::function<const cellforge::sample_model&()> get;
+};
+
+std::vector<order_model> order_models() {
+  std::vector<order_model> out;
+  for (int i = 1; i <= 6; ++i)
+    out.push_back(
+        {"seed_sample_" + std::to_string(i), [i]() -> const cellforge::sample_model& { return sample(i); }});
+  for (const int k : grid_sizes)
+    out.push_back({"grid_" + std::to_string(k), [k]() -> const cellforge::sample_model& { return grid(k); }});
+  for (const auto& sz : sphere_sizes)
+    out.push_back({"sphere_" + std::to_string(sz[0]) + "x" + std::to_string(sz[1]),
+                   [sz]() -> const cellforge::sample_model& { return sphere(sz[0], sz[1]); }});
+  return out;
+}
+
+/// The shuffled copy of an order model (cached). O(model) the first time.
+const cellforge::sample_model& shuffled_model(const order_model& o) {
+  static std::map<std::string, cellforge::sample_model> cache;
+  auto it = cache.find(o.name);
+  if (it == cache.end()) it = cache.emplace(o.name, shuffled(o.get())).first;
+  return it->second;
+}
+
+/// Medians are of this many runs: 15 for models under 30 000 edges (a few ms each, where one
+/// slow run under load moves a median of 5), 5 for the two larger ones (40³, the 256×96 sphere).
+int order_repeats(const std::string& name) { return name == "grid_40" || name == "sphere_256x96" ? 5 : 15; }
+
 std::string sphere_name(const std::array<int, 2>& s) {
   return "pipeline/sphere_" + std::to_string(s[0]) + "x" + std::to_string(s[1]);
 }
@@ -199,27 +261,30 @@ our_run measure(const cellforge::sample_model& m, int repeats, int sample_index)
 // ------------------------------------------------------------------------------ benchmarks
 
 #if CELLFORGE_BENCH_HAVE_PIPELINE
-/// Registers the whole conversion of one model with the given options; the first result is
-/// checked against the ground truth, and a mismatch or an error (a spent work budget) skips it.
+/// Registers the whole conversion of one model with the given options, timed by `median`
+/// ? median_loop : timed_loop; the first result is checked against the ground truth, and a
+/// mismatch or an error (a spent work budget) skips it.
 benchmark::internal::Benchmark* register_pipeline(const std::string& name,
                                                   std::function<const cellforge::sample_model&()> get,
-                                                  cellforge::wireframe_options options) {
-  return benchmark::RegisterBenchmark(name.c_str(),
-                                      [get, options](benchmark::State& s) {
-                                        const auto& m = get();
-                                        try {
-                                          cb::timed_loop(
-                                              s,
-                                              [&] { return cellforge::wireframe_to_cells(m.wire, options); },
-                                              [&](const cellforge::wireframe_result<glm::dvec3>& r) {
-                                                const std::string status = truth_status(m, r);
-                                                if (status != "matches the ground truth")
-                                                  s.SkipWithError(status.c_str());
-                                              });
-                                        } catch (const cellforge::error& e) {
-                                          s.SkipWithError(e.what());
-                                        }
-                                      })
+                                                  cellforge::wireframe_options options, bool median = false) {
+  return benchmark::RegisterBenchmark(
+             name.c_str(),
+             [get, options, median](benchmark::State& s) {
+               const auto& m = get();
+               const auto make = [&] { return cellforge::wireframe_to_cells(m.wire, options); };
+               const auto check = [&](const cellforge::wireframe_result<glm::dvec3>& r) {
+                 const std::string status = truth_status(m, r);
+                 if (status != "matches the ground truth") s.SkipWithError(status.c_str());
+               };
+               try {
+                 if (median)
+                   cb::median_loop(s, make, check);
+                 else
+                   cb::timed_loop(s, make, check);
+               } catch (const cellforge::error& e) {
+                 s.SkipWithError(e.what());
+               }
+             })
       ->UseManualTime()
       ->Unit(benchmark::kMillisecond);
 }
@@ -256,6 +321,17 @@ void register_all() {
     register_pipeline(sphere_name(sz),
                       [sz]() -> const cellforge::sample_model& { return sphere(sz[0], sz[1]); }, {})
         ->MinTime(0.5);
+  // Ordered and shuffled one after the other, so that both see the same load.
+  for (const auto& o : order_models()) {
+    const cellforge::wireframe_options options =
+        o.name == "seed_sample_6" ? seed_reading(6) : cellforge::wireframe_options{};
+    const int repeats = order_repeats(o.name);
+    register_pipeline("order/ordered/" + o.name, o.get, options, true)->Iterations(repeats);
+    register_pipeline(
+        "order/shuffled/" + o.name, [o]() -> const cellforge::sample_model& { return shuffled_model(o); },
+        options, true)
+        ->Iterations(repeats);
+  }
 #endif
 }
 
@@ -362,6 +438,49 @@ void print_tables(const cb::collecting_reporter& reporter, std::ostream& os) {
   }
   spheres.add_note("Time per edge flat within 2× from 1 000 to 50 000 edges is the target.");
   spheres.print(os);
+
+  // Input order: the same models with their vertices and edges numbered at random.
+  cb::table order(
+      "Input order: generator numbering vs vertices and edges numbered at random (whole conversion)",
+      {"model", "edges", "ordered ms", "shuffled ms", "ratio (shuffled / ordered)", "≤ 1.2×"});
+  const auto median = [&](const std::string& name) { return reporter.counter_ms(name, "median_cpu_us"); };
+  double worst = 0.0;
+  bool all_ran = true;
+  for (const auto& o : order_models()) {
+    const std::optional<double> a = median("order/ordered/" + o.name), b = median("order/shuffled/" + o.name);
+    if (!a || !b) {
+      const cb::run_result* run = reporter.find("order/shuffled/" + o.name);
+      if (run != nullptr) all_ran = false;
+      if (run == nullptr && reporter.find("order/ordered/" + o.name) == nullptr) continue;  // filtered out
+    }
+    if (a && b) worst = std::max(worst, *b / *a);
+    order.add_row({o.name, cb::count(o.get().wire.edges.size()), cb::ms(a), cb::ms(b), cb::ratio(b, a),
+                   a && b ? (*b <= 1.2 * *a ? "MET" : "NOT MET") : "—"});
+  }
+  // Growth exponents from 10³ to 40³: time ∝ edges^x.
+  const auto exponent = [&](const std::string& kind) -> std::string {
+    const std::optional<double> t10 = median("order/" + kind + "/grid_10"),
+                                t40 = median("order/" + kind + "/grid_40");
+    if (!t10 || !t40) return "—";
+    const double e10 = static_cast<double>(grid(10).wire.edges.size()),
+                 e40 = static_cast<double>(grid(40).wire.edges.size());
+    return cb::fixed(std::log(*t40 / *t10) / std::log(e40 / e10), 2);
+  };
+  order.add_note(
+      "Medians of 15 runs (5 for 40³ and the 256×96 sphere; CPU time), ordered and shuffled measured "
+      "one after the other. Shuffled: vertices and edges permuted at random, every other edge turned "
+      "round; the result is checked against the relabelled truth.");
+  order.add_note("Growth from 10³ to 40³ (time ∝ edges^x): ordered x = " + exponent("ordered") +
+                 ", shuffled x = " + exponent("shuffled") + ".");
+  order.add_note(std::string("Target shuffled within 1.2× of ordered on every model: ") +
+                 (worst > 0.0 && all_ran ? (worst <= 1.2 ? "MET" : "NOT MET") : "not run") + " (worst " +
+                 (worst > 0.0 ? cb::fixed(worst, 2) + "×" : std::string("—")) + ").");
+  const std::optional<double> big = median("order/shuffled/grid_40");
+  order.add_note(
+      std::string("Target 40³ shuffled under 3 s: ") +
+      (big ? (*big < 3000.0 ? "MET" : "NOT MET") + std::string(" (") + cb::ms(big) + " ms)" : "not run") +
+      ".");
+  order.print(os);
 }
 
 }  // namespace

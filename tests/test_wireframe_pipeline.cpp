@@ -4,15 +4,20 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/wireframe/sample_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
+#include "wireframe_sweep.hpp"
 
 // Own namespace: the test files of a group are compiled as one translation unit.
 namespace wireframe_pipeline_tests {
@@ -172,6 +177,104 @@ TEST_CASE("pipeline: the same answer at any scale and after a rigid motion") {
       m.name = base.name + " scaled " + std::to_string(scale);
       check_model(m);
     }
+  }
+}
+
+namespace {
+
+// A result in labels that do not depend on its numbering: faces (canonical cycles, in the
+// labels `vertex` maps the caller's to), each volume as its faces with their sign relative to
+// the canonical direction, the caller's edges and vertices used. O(size log size).
+struct numbering_free {
+  std::vector<std::vector<std::vector<std::uint32_t>>> faces;
+  std::vector<std::vector<std::pair<std::vector<std::vector<std::uint32_t>>, int>>> volumes;
+  std::vector<std::uint32_t> edges, vertices;
+  bool operator==(const numbering_free&) const = default;
+};
+
+numbering_free in_labels(const wireframe_result<glm::dvec3>& r, const std::vector<std::uint32_t>& vertex,
+                         const std::vector<std::uint32_t>& edge) {
+  numbering_free out;
+  std::vector<int> direction;
+  for (const auto& f : r.input.faces) {
+    auto loops = f.loops;
+    for (auto& l : loops)
+      for (auto& v : l) v = vertex[r.input_vertex[v]];
+    out.faces.push_back(detail::canonical_face(loops));
+    // +1 when the canonical outer cycle runs the way the result's does.
+    const auto& outer = loops[0];
+    const std::size_t at = static_cast<std::size_t>(
+        std::find(outer.begin(), outer.end(), out.faces.back()[0][0]) - outer.begin());
+    direction.push_back(outer[(at + 1) % outer.size()] == out.faces.back()[0][1] ? 1 : -1);
+  }
+  for (const auto& vol : r.input.volumes) {
+    std::vector<std::pair<std::vector<std::vector<std::uint32_t>>, int>> faces;
+    for (const auto& [f, sign] : vol.faces) faces.emplace_back(out.faces[f], sign * direction[f]);
+    std::sort(faces.begin(), faces.end());
+    out.volumes.push_back(std::move(faces));
+  }
+  std::sort(out.faces.begin(), out.faces.end());
+  std::sort(out.volumes.begin(), out.volumes.end());
+  for (const auto e : r.input_edge) out.edges.push_back(edge[e]);
+  for (const auto v : r.input_vertex) out.vertices.push_back(vertex[v]);
+  std::sort(out.edges.begin(), out.edges.end());
+  std::sort(out.vertices.begin(), out.vertices.end());
+  return out;
+}
+
+std::vector<std::uint32_t> identity(std::size_t n) {
+  std::vector<std::uint32_t> p(n);
+  for (std::uint32_t i = 0; i < n; ++i) p[i] = i;
+  return p;
+}
+
+std::vector<std::uint32_t> inverse(const std::vector<std::uint32_t>& p) {
+  std::vector<std::uint32_t> q(p.size());
+  for (std::uint32_t i = 0; i < p.size(); ++i) q[p[i]] = i;
+  return q;
+}
+
+}  // namespace
+
+TEST_CASE("pipeline: the input's numbering changes nothing but the labels (read_options::spatial_order)") {
+  std::vector<sample_model> models{sample_cube(),
+                                   sample_frame(),
+                                   sample_house(),
+                                   sample_split_edges(),
+                                   sample_close_edges(),
+                                   sample_disjoint_solids(),
+                                   sample_block_with_hole(),
+                                   sample_stepped_block(),
+                                   sample_grid(3, 3, 3),
+                                   sample_uv_sphere(16, 8),
+                                   sample_seed(2)};
+  for (const sample_model& m : models) {
+    const std::string name = m.name;
+    INFO(name);
+    const auto ordered = wireframe_to_cells(m.wire);
+    // The spatial numbering inside is invisible: the caller's order gives exactly this result.
+    wireframe_options caller_order;
+    caller_order.read.spatial_order = false;
+    const auto plain = wireframe_to_cells(m.wire, caller_order);
+    CHECK(ordered.input_vertex == plain.input_vertex);
+    CHECK(ordered.input_edge == plain.input_edge);
+    CHECK(ordered.input.edges == plain.input.edges);
+    CHECK(ordered.diagnostics == plain.diagnostics);
+    CHECK(ordered.read.diagnostics == plain.read.diagnostics);
+    std::vector<std::vector<std::vector<std::uint32_t>>> loops_a, loops_b;
+    for (const auto& f : ordered.input.faces) loops_a.push_back(f.loops);
+    for (const auto& f : plain.input.faces) loops_b.push_back(f.loops);
+    std::sort(loops_a.begin(), loops_a.end());
+    std::sort(loops_b.begin(), loops_b.end());
+    CHECK(loops_a == loops_b);  // the same loops, same start and direction
+    const auto as_is = identity(m.wire.points.size()), edges_as_is = identity(m.wire.edges.size());
+    CHECK(in_labels(ordered, as_is, edges_as_is) == in_labels(plain, as_is, edges_as_is));
+    // Vertices and edges numbered at random, half the edges turned round: the same complex.
+    wireframe_sweep::relabelling t;
+    const sample_model s = wireframe_sweep::shuffled(m, wireframe_sweep::name_seed(name), false, &t);
+    const auto shuffled = wireframe_to_cells(s.wire);
+    CHECK(in_labels(ordered, as_is, edges_as_is) == in_labels(shuffled, inverse(t.vertex), inverse(t.edge)));
+    CHECK(validate(shuffled.cells).ok());
   }
 }
 

@@ -165,6 +165,10 @@ TEST_CASE("stages: the volume finder splits two cubes at their shared wall, drop
     std::vector<std::uint32_t> index(faces.size(), no_index);
     for (std::uint32_t i = 0; i < faces.size(); ++i)
       if (v.face_kept[i]) index[i] = static_cast<std::uint32_t>(kept.size()), kept.push_back(faces[i]);
+    // The graph numbers vertices spatially; the truth is in the caller's labels.
+    for (auto& f : kept)
+      for (auto& loop : f.loops)
+        for (auto& x : loop) x = a.graph.input_vertex[x];
     auto volumes = v.volumes;
     for (auto& vol : volumes)
       for (auto& [f, sign] : vol) f = index[f];
@@ -199,14 +203,21 @@ TEST_CASE("stages: volumes and relations agree with the cell complex's rotation 
     const std::string name = m.name;
     INFO(name);
     const auto r = wireframe_to_cells(m.wire);
-    // Edges of the result are the graph's edges in order here (clean input); its faces are the
-    // kept ones of the face stages, in order (the house's square is not one).
-    REQUIRE(r.input.edges.size() == r.read.graph.num_edges());
+    // Edges of the result are the graph's edges in the caller's order here (clean input: the
+    // graph's edge e is the output's read_order[e]); its faces are the kept ones of the face
+    // stages, in order (the house's square is not one).
+    const wire_graph& g = r.read.graph;
+    REQUIRE(r.input.edges.size() == g.num_edges());
+    REQUIRE(g.read_order.size() == g.num_edges());
+    std::vector<std::uint32_t> graph_edge(g.num_edges(), no_index);
+    for (std::uint32_t e = 0; e < g.num_edges(); ++e) graph_edge[g.read_order[e]] = e;
     std::vector<std::uint32_t> output_face(r.extra.faces.size(), no_index);
     for (std::uint32_t i = 0, k = 0; i < r.extra.faces.size(); ++i)
       if (r.volume.face_kept[i]) output_face[i] = k++;
     for (std::uint32_t e = 0; e < r.input.edges.size(); ++e) {
-      auto ours = r.relations.edges[e].faces;
+      REQUIRE(graph_edge[e] != no_index);
+      CHECK(r.input_edge[e] == g.input_edge[graph_edge[e]]);
+      auto ours = r.relations.edges[graph_edge[e]].faces;
       for (auto& f : ours) f = output_face[f];
       std::vector<std::uint32_t> theirs;
       for (const auto& of : r.cells.edge_faces(cell_edge(e))) theirs.push_back(of.handle.idx());

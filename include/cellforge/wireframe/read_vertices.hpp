@@ -12,12 +12,14 @@
 #include <limits>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <glm/common.hpp>
 
 #include "cellforge/core/bounding_box.hpp"
 #include "cellforge/core/error.hpp"
+#include "cellforge/core/morton.hpp"
 #include "cellforge/core/tolerance.hpp"
 #include "cellforge/core/wireframe.hpp"
 #include "cellforge/wireframe/wire_graph.hpp"
@@ -33,6 +35,10 @@ struct read_options {
   bool split_at_vertices = true;  ///< split an edge where another vertex lies inside it (T-junction, overlap)
   /// Steps the merge and split searches may take (cells visited, vertices tested); 0: no limit.
   std::uint64_t work_budget = 200'000'000;
+  /// Number the graph's vertices along a Morton curve and its edges by their ends, so that the
+  /// pipeline's speed does not depend on the caller's numbering (results are mapped back to
+  /// it); false keeps the caller's order in the graph.
+  bool spatial_order = true;
 };
 
 /// What read_vertices found; `graph` is the labelled wireframe the other stages use.
@@ -70,11 +76,13 @@ std::string point_text(const glm::dvec3& p) {
   return "(" + number_text(p.x) + ", " + number_text(p.y) + ", " + number_text(p.z) + ")";
 }
 
-/// Merges points within tol by hashing them to cells of side 64·tol; returns each point's
-/// representative (the smallest index of its cluster). O(n) expected.
+/// Merges the points listed in `order` within tol by hashing them to cells of side 64·tol;
+/// returns each point's representative (the smallest index of its cluster, whatever the
+/// order; a spatial order keeps the cell look-ups in cache). O(n) expected.
 template <class = void>
-std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p, const std::vector<char>& used,
-                                              double tol, work_budget& budget) {
+std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p,
+                                              const std::vector<std::uint32_t>& order, double tol,
+                                              work_budget& budget) {
   const std::size_t n = p.size();
   union_find uf(n);
   // Cell → first point, then a linked list through `next`: no allocation per cell.
@@ -84,8 +92,7 @@ std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p, 
   // Cells of 64 tolerances measured from the lowest corner: a point's tolerance ball seldom
   // leaves its cell, and cell indices stay small however far the model is from the origin.
   glm::dvec3 low(std::numeric_limits<double>::infinity()), high(-low);
-  for (std::uint32_t i = 0; i < n; ++i)
-    if (used[i]) low = glm::min(low, p[i]), high = glm::max(high, p[i]);
+  for (const std::uint32_t i : order) low = glm::min(low, p[i]), high = glm::max(high, p[i]);
   // (A zero tolerance merges equal points only; the cells then just have to be small.)
   double h = 64.0 * std::max(tol, 1e-12 * glm::length(high - low));
   if (!(h > 0.0) || !std::isfinite(h)) h = 1.0;  // one point, or all points equal
@@ -93,16 +100,14 @@ std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p, 
     const glm::dvec3 c = (q - low) / h;
     return std::array<std::int64_t, 3>{grid_coordinate(c.x), grid_coordinate(c.y), grid_coordinate(c.z)};
   };
-  for (std::uint32_t i = 0; i < n; ++i) {
-    if (!used[i]) continue;
+  for (const std::uint32_t i : order) {
     const auto [it, fresh] = cells.emplace(cell_of(p[i]), i);
     if (!fresh) {
       next[i] = it->second;
       it->second = i;
     }
   }
-  for (std::uint32_t i = 0; i < n; ++i) {
-    if (!used[i]) continue;
+  for (const std::uint32_t i : order) {
     // Only the cells the ball of radius tol about p[i] reaches: almost always its own.
     const auto lo = cell_of(p[i] - tol), hi = cell_of(p[i] + tol);
     for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
@@ -125,9 +130,11 @@ std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p, 
 /// Splits edges at vertices lying strictly inside them (within tol): a grid of cells about the
 /// median edge length holds the vertices; each edge visits the cells along it. Pieces are
 /// appended in order along the edge and keep their edge's origin. Returns the number of splits.
-/// O(E + V + vertices in the visited cells), spent from `budget`.
+/// Vertices are visited in `order` (a spatial order keeps the cell look-ups in cache; the
+/// result does not depend on it). O(E log E + V + vertices in the visited cells), spent from `budget`.
 template <class = void>
 std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vector<char>& is_vertex,
+                              const std::vector<std::uint32_t>& order,
                               std::vector<std::array<std::uint32_t, 2>>& ends,
                               std::vector<std::uint32_t>& origin, double tol, work_budget& budget) {
   std::vector<double> lengths;
@@ -153,7 +160,7 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
   };
   std::unordered_map<std::array<std::int64_t, 3>, std::uint32_t, cell_hash> cells;
   std::vector<std::uint32_t> next(p.size(), no_index);
-  for (std::uint32_t v = 0; v < p.size(); ++v) {
+  for (const std::uint32_t v : order) {
     if (!is_vertex[v]) continue;
     const auto [it, fresh] = cells.emplace(cell_of(p[v]), v);
     if (!fresh) {
@@ -165,7 +172,16 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
   std::vector<std::pair<double, std::uint32_t>> inside;
   std::vector<std::uint32_t> seen_stamp(p.size(), no_index);
   const std::size_t n = ends.size();
-  for (std::size_t e = 0; e < n; ++e) {
+  // Edges visited in the order of their first ends; the splits are applied afterwards in
+  // edge order, so the pieces are numbered as if visited in edge order.
+  std::vector<std::uint32_t> rank(p.size(), 0);
+  for (std::uint32_t i = 0; i < order.size(); ++i) rank[order[i]] = i;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> visit_order(n);
+  for (std::uint32_t e = 0; e < n; ++e) visit_order[e] = {rank[ends[e][0]], e};
+  std::sort(visit_order.begin(), visit_order.end());
+  std::vector<std::pair<std::uint32_t, std::vector<std::uint32_t>>> found;  // edge, vertices inside along it
+  for (const auto& visiting : visit_order) {
+    const std::uint32_t e = visiting.second;  // (a structured binding cannot be captured in C++20)
     const std::uint32_t a = ends[e][0], b = ends[e][1];
     if (a == b) continue;
     const glm::dvec3 pa = p[a], d = p[b] - pa;
@@ -209,13 +225,18 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
     if (inside.empty()) continue;
     std::sort(inside.begin(), inside.end());
     splits += inside.size();
-    std::uint32_t from = a;
-    ends[e] = {a, inside[0].second};
-    from = inside[0].second;
-    for (std::size_t k = 1; k < inside.size(); ++k) {
-      ends.push_back({from, inside[k].second});
+    found.emplace_back(e, std::vector<std::uint32_t>(inside.size()));
+    for (std::size_t k = 0; k < inside.size(); ++k) found.back().second[k] = inside[k].second;
+  }
+  std::sort(found.begin(), found.end());
+  for (const auto& [e, at] : found) {
+    const std::uint32_t a = ends[e][0], b = ends[e][1];
+    ends[e] = {a, at[0]};
+    std::uint32_t from = at[0];
+    for (std::size_t k = 1; k < at.size(); ++k) {
+      ends.push_back({from, at[k]});
       origin.push_back(origin[e]);
-      from = inside[k].second;
+      from = at[k];
     }
     ends.push_back({from, b});
     origin.push_back(origin[e]);
@@ -282,7 +303,22 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
     throw error(error_category::invalid_input, "read_vertices: all " + std::to_string(ne) +
                                                    " edges have zero length (every point is " +
                                                    detail::point_text(box.min) + ")");
-  const std::vector<std::uint32_t> rep = detail::merge_close_points(p, used, tol, budget);
+  // The used points in Morton order (or the caller's): the merge and split searches visit
+  // them so, and their hash-grid cells stay in cache whatever the caller's numbering.
+  std::vector<std::uint32_t> visit;
+  {
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> coded;
+    const glm::dvec3 span = box.max - box.min;
+    const glm::dvec3 extent(span.x > 0.0 ? span.x : 1.0, span.y > 0.0 ? span.y : 1.0,
+                            span.z > 0.0 ? span.z : 1.0);
+    for (std::uint32_t v = 0; v < nv; ++v)
+      if (used[v])
+        coded.emplace_back(options.spatial_order ? detail::morton_code(p[v], box.min, extent) : 0, v);
+    if (options.spatial_order) std::sort(coded.begin(), coded.end());
+    visit.reserve(coded.size());
+    for (const auto& c : coded) visit.push_back(c.second);
+  }
+  const std::vector<std::uint32_t> rep = detail::merge_close_points(p, visit, tol, budget);
   for (std::size_t v = 0; v < nv; ++v)
     if (used[v] && rep[v] != v) {
       ++r.merged_points;
@@ -301,7 +337,7 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
   if (options.split_at_vertices) {
     std::vector<char> is_rep(nv, 0);
     for (std::uint32_t v = 0; v < nv; ++v) is_rep[v] = used[v] && rep[v] == v;
-    const std::size_t splits = detail::split_at_vertices(p, is_rep, ends, origin, tol, budget);
+    const std::size_t splits = detail::split_at_vertices(p, is_rep, visit, ends, origin, tol, budget);
     if (splits > 0)
       r.diagnostics.push_back(std::to_string(splits) +
                               " vertices lie inside edges (T-junctions or overlapping edges); the edges were "
@@ -311,7 +347,20 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
   const auto np = static_cast<std::uint32_t>(ends.size());
 
   // Zero-length and duplicate pieces dropped (or rejected).
-  std::unordered_map<std::uint64_t, std::uint32_t> seen;
+  // Duplicates found by sorting the pieces by their ends: same_as[e] is the first piece joining
+  // the same two vertices (a hash table of 10^5 nodes costs more, freeing them most).
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> by_ends;
+  by_ends.reserve(np);
+  for (std::uint32_t e = 0; e < np; ++e)
+    if (ends[e][0] != ends[e][1])
+      by_ends.emplace_back(
+          (std::uint64_t{std::min(ends[e][0], ends[e][1])} << 32) | std::max(ends[e][0], ends[e][1]), e);
+  std::sort(by_ends.begin(), by_ends.end());
+  std::vector<std::uint32_t> same_as(np, no_index);
+  for (std::size_t i = 0; i < by_ends.size(); ++i)
+    same_as[by_ends[i].second] = i > 0 && by_ends[i - 1].first == by_ends[i].first
+                                     ? same_as[by_ends[i - 1].second]
+                                     : by_ends[i].second;
   std::vector<std::uint32_t> kept;
   // The first few of each kind are named; the rest are counted (10^5 duplicates are one line).
   constexpr std::size_t named_per_kind = 8;
@@ -329,10 +378,8 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
       });
       continue;
     }
-    const std::uint64_t k = (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
-    const auto [it, fresh] = seen.emplace(k, o);
-    if (!fresh) {
-      const std::uint32_t first = it->second;  // (a structured binding cannot be captured in C++20)
+    if (same_as[e] != e) {
+      const std::uint32_t first = origin[same_as[e]];
       complain(++r.duplicate_edges, [&] {
         return "edge " + std::to_string(o) + " duplicates edge " + std::to_string(first) + " (vertices " +
                std::to_string(a) + "-" + std::to_string(b) + ") and was dropped";
@@ -354,13 +401,18 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
   std::vector<char> alive(np, 0);
   for (const auto e : kept) alive[e] = 1;
   if (options.prune_dangling) {
-    std::vector<std::uint32_t> deg(nv, 0);
-    std::vector<std::vector<std::uint32_t>> inc(nv);
+    // Vertex → kept edges, one flat array in edge order.
+    std::vector<std::uint32_t> start(nv + 1, 0);
     for (const auto e : kept)
-      for (const auto v : ends[e]) {
-        ++deg[v];
-        inc[v].push_back(e);
-      }
+      for (const auto v : ends[e]) ++start[v + 1];
+    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+    std::vector<std::uint32_t> inc(start.back()), deg(nv);
+    for (std::size_t v = 0; v < nv; ++v) deg[v] = start[v + 1] - start[v];
+    {
+      std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+      for (const auto e : kept)
+        for (const auto v : ends[e]) inc[fill[v]++] = e;
+    }
     std::vector<std::uint32_t> stack;
     for (std::uint32_t v = 0; v < nv; ++v)
       if (deg[v] == 1) stack.push_back(v);
@@ -368,7 +420,8 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
       const std::uint32_t v = stack.back();
       stack.pop_back();
       if (deg[v] != 1) continue;
-      for (const auto e : inc[v]) {
+      for (std::uint32_t k = start[v]; k < start[v + 1]; ++k) {
+        const std::uint32_t e = inc[k];
         if (!alive[e]) continue;
         alive[e] = 0;
         r.dangling.push_back(origin[e]);
@@ -389,7 +442,10 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
                               " more dangling edges removed (" + std::to_string(named) + " in all)");
   }
 
-  // Label the remaining vertices in the caller's order so that indices survive the trip.
+  // Label the remaining vertices: in space-filling-curve order (spatial_order), so that the
+  // stages' walks over neighbouring vertices, edges and faces stay in cache whatever order the
+  // caller numbered them in, or in the caller's order. Results are mapped back to the
+  // caller's labels and edge order (input_vertex, input_edge, read_order).
   wire_graph& g = r.graph;
   std::vector<std::uint32_t> label(nv, no_index);
   for (std::uint32_t e = 0; e < np; ++e)
@@ -397,20 +453,45 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
       for (const auto v : ends[e]) label[v] = 0;
   bounding_box kept_box;
   for (std::uint32_t v = 0; v < nv; ++v) {
-    if (label[v] == no_index) {
-      if (used[v] && rep[v] == v) ++r.isolated_vertices;
-      continue;
-    }
+    if (label[v] != no_index)
+      kept_box.add(p[v]);
+    else if (used[v] && rep[v] == v)
+      ++r.isolated_vertices;
+  }
+  // `visit` is in Morton order when spatial_order, else in the caller's.
+  for (const std::uint32_t v : visit)
+    if (label[v] != no_index) g.input_vertex.push_back(v);
+  g.points.reserve(g.input_vertex.size());
+  for (const auto v : g.input_vertex) {
     label[v] = static_cast<std::uint32_t>(g.points.size());
     g.points.push_back(p[v]);
-    g.input_vertex.push_back(v);
-    kept_box.add(p[v]);
   }
   for (std::uint32_t e = 0; e < np; ++e)
     if (alive[e]) {
       g.edges.push_back({label[ends[e][0]], label[ends[e][1]]});
       g.input_edge.push_back(origin[e]);
     }
+  if (options.spatial_order) {
+    // Edges by their ends' labels (smaller end first): a vertex's edges are then listed by
+    // neighbour, and edges near in space are near in memory.
+    const auto ne_kept = static_cast<std::uint32_t>(g.edges.size());
+    by_ends.resize(ne_kept);
+    for (std::uint32_t i = 0; i < ne_kept; ++i) {
+      const auto [a, b] = g.edges[i];
+      by_ends[i] = {(std::uint64_t{std::min(a, b)} << 32) | std::max(a, b), i};
+    }
+    std::sort(by_ends.begin(), by_ends.end());
+    std::vector<std::array<std::uint32_t, 2>> edges(ne_kept);
+    std::vector<std::uint32_t> input_edge(ne_kept);
+    g.read_order.resize(ne_kept);
+    for (std::uint32_t i = 0; i < ne_kept; ++i) {
+      edges[i] = g.edges[by_ends[i].second];
+      input_edge[i] = g.input_edge[by_ends[i].second];
+      g.read_order[i] = by_ends[i].second;
+    }
+    g.edges = std::move(edges);
+    g.input_edge = std::move(input_edge);
+  }
   if (g.edges.empty())
     throw error(error_category::topology, "read_vertices: no edge lies on a circuit (the " +
                                               std::to_string(ne) +

@@ -18,7 +18,6 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
-#include "cellforge/core/detail/edge_table.hpp"
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/detail/work_budget.hpp"
 #include "cellforge/core/error.hpp"
@@ -52,11 +51,14 @@ struct basic_wire_graph {
   std::vector<std::uint32_t> input_vertex;  ///< vertex → index of the caller's (representative) point
   std::vector<std::array<std::uint32_t, 2>> edges;  ///< (start, end)
   std::vector<std::uint32_t> input_edge;            ///< edge → index of the caller's edge
-  std::vector<std::uint32_t> first;                 ///< CSR offsets into `incidences`, size V + 1
-  std::vector<wire_incidence> incidences;           ///< per vertex, its incident edges
-  double size = 0.0;                                ///< bounding-box diagonal: the model's length scale
-  double merge_tolerance = 0.0;                     ///< absolute distance under which points were merged
-  glm::dvec3 center{0.0};                           ///< bounding-box centre (sums are taken about it)
+  /// edge → its place in the caller's order (pieces of split edges after the caller's edges):
+  /// the order results list edges in, whatever the graph's own numbering. Empty: identity.
+  std::vector<std::uint32_t> read_order;
+  std::vector<std::uint32_t> first;        ///< CSR offsets into `incidences`, size V + 1
+  std::vector<wire_incidence> incidences;  ///< per vertex, its incident edges
+  double size = 0.0;                       ///< bounding-box diagonal: the model's length scale
+  double merge_tolerance = 0.0;            ///< absolute distance under which points were merged
+  glm::dvec3 center{0.0};                  ///< bounding-box centre (sums are taken about it)
 
   std::size_t num_vertices() const noexcept { return points.size(); }
   std::size_t num_edges() const noexcept { return edges.size(); }
@@ -65,12 +67,20 @@ struct basic_wire_graph {
   std::span<const wire_incidence> around(std::uint32_t v) const noexcept {
     return {incidences.data() + first[v], incidences.data() + first[v + 1]};
   }
-  /// The edge joining a and b, or no_index. O(1) expected.
-  std::uint32_t find_edge(std::uint32_t a, std::uint32_t b) const {
-    const std::uint32_t e = edge_index_.find(key(a, b));
-    return e == detail::edge_table::not_found ? no_index : e;
+  /// The edge joining a and b, or no_index: a scan of a's neighbours sorted by label (binary
+  /// search past 16). O(log deg a); flat, so it costs one or two cache lines when the
+  /// vertices are numbered spatially (read_options::spatial_order).
+  std::uint32_t find_edge(std::uint32_t a, std::uint32_t b) const noexcept {
+    if (a >= points.size()) return no_index;
+    const neighbour* lo = neighbours_.data() + first[a];
+    const neighbour* hi = neighbours_.data() + first[a + 1];
+    if (hi - lo > 16)
+      lo = std::lower_bound(lo, hi, b, [](const neighbour& n, std::uint32_t x) { return n.other < x; });
+    for (; lo != hi && lo->other <= b; ++lo)
+      if (lo->other == b) return lo->edge;
+    return no_index;
   }
-  /// Rebuilds incidences and the edge look-up from `points` and `edges`. O(V + E).
+  /// Rebuilds incidences and the edge look-up from `points` and `edges`. O(V + E + Σ deg log deg).
   void link() {
     const std::size_t nv = points.size();
     first.assign(nv + 1, 0);
@@ -80,23 +90,32 @@ struct basic_wire_graph {
     }
     for (std::size_t v = 0; v < nv; ++v) first[v + 1] += first[v];
     incidences.assign(first.back(), {});
+    neighbours_.assign(first.back(), {});
     std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
-    edge_index_.clear();
-    edge_index_.reserve(edges.size());
     for (std::uint32_t i = 0; i < edges.size(); ++i) {
       const auto [a, b] = edges[i];
+      neighbours_[fill[a]] = {b, i};
       incidences[fill[a]++] = {i, b, true};
+      neighbours_[fill[b]] = {a, i};
       incidences[fill[b]++] = {i, a, false};
-      edge_index_.insert(key(a, b), i);
+    }
+    // Already sorted when the edges are sorted by their ends (read_vertices' spatial order).
+    for (std::size_t v = 0; v < nv; ++v) {
+      const auto begin = neighbours_.begin() + first[v], end = neighbours_.begin() + first[v + 1];
+      if (!std::is_sorted(begin, end, by_other)) std::sort(begin, end, by_other);
     }
   }
 
  private:
-  static std::uint64_t key(std::uint32_t a, std::uint32_t b) noexcept {
-    if (a > b) std::swap(a, b);
-    return (std::uint64_t{a} << 32) | b;
+  struct neighbour {
+    std::uint32_t other, edge;
+  };
+  static bool by_other(const neighbour& x, const neighbour& y) noexcept {
+    return x.other < y.other || (x.other == y.other && x.edge < y.edge);
   }
-  detail::edge_table edge_index_;  // flat open addressing: the pipeline looks edges up often
+  // Per vertex (offsets `first`), its neighbours sorted by label: the flat edge look-up the
+  // stages use in their inner loops (a hash table costs a cache miss per look-up).
+  std::vector<neighbour> neighbours_;
 };
 
 /// A (candidate) face: planar vertex loops. loops[0] is the outer boundary, counter-clockwise

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -91,12 +92,12 @@ struct wireframe_result {
 
 namespace detail {
 
-/// The first edge of g that edge e crosses at a point inside both (not at a vertex), within
-/// g's merge tolerance; no_index if none. O(E).
+/// The first edge of g in `order` that edge e crosses at a point inside both (not at a
+/// vertex), within g's merge tolerance; no_index if none. O(E).
 template <class = void>
-std::uint32_t crossing_edge(const wire_graph& g, std::uint32_t e) {
+std::uint32_t crossing_edge(const wire_graph& g, std::span<const std::uint32_t> order, std::uint32_t e) {
   const glm::dvec3 p = g.points[g.edges[e][0]], d1 = g.points[g.edges[e][1]] - p;
-  for (std::uint32_t f = 0; f < g.num_edges(); ++f) {
+  for (const std::uint32_t f : order) {
     const auto [a, b] = g.edges[f];
     if (f == e || a == g.edges[e][0] || a == g.edges[e][1] || b == g.edges[e][0] || b == g.edges[e][1])
       continue;
@@ -205,9 +206,13 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   // "bounds no face" hides why. Tested against every edge while that stays cheap.
   const auto left_out = static_cast<std::size_t>(std::count(edge_used.begin(), edge_used.end(), char{0}));
   const bool test_crossings = left_out * g.num_edges() <= 20'000'000;
-  for (std::uint32_t e = 0; e < g.num_edges(); ++e) {
+  // The graph's edges in the caller's order (read_vertices may number them spatially).
+  std::vector<std::uint32_t> caller_order(g.num_edges());
+  for (std::uint32_t e = 0; e < g.num_edges(); ++e)
+    caller_order[g.read_order.empty() ? e : g.read_order[e]] = e;
+  for (const std::uint32_t e : caller_order) {
     if (!edge_used[e]) {
-      const std::uint32_t other = test_crossings ? detail::crossing_edge(g, e) : no_index;
+      const std::uint32_t other = test_crossings ? detail::crossing_edge(g, caller_order, e) : no_index;
       r.diagnostics.push_back(
           "edge " + std::to_string(g.input_edge[e]) + " bounds no face" +
           (other != no_index
@@ -239,12 +244,23 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   // Graph vertex → output label (graph vertices are the caller's representatives).
   for (const auto& e : edges) r.input.edges.push_back({label[e[0]], label[e[1]]});
   r.input_edge = std::move(edge_origin);
-  for (auto& f : r.input.faces)
-    for (auto& loop : f.loops)
+  // Faces in the canonical order of the output labels (smallest first, towards its smaller
+  // neighbour; holes from their smallest): the same loops whatever the graph's numbering.
+  std::vector<char> reversed(r.input.faces.size(), 0);
+  for (std::size_t i = 0; i < r.input.faces.size(); ++i) {
+    auto& loops = r.input.faces[i].loops;
+    for (auto& loop : loops)
       for (auto& v : loop) v = label[g.input_vertex[v]];
+    reversed[i] = canonical_cycle(loops[0]);
+    for (std::size_t h = 1; h < loops.size(); ++h) {
+      if (reversed[i]) std::reverse(loops[h].begin(), loops[h].end());
+      std::rotate(loops[h].begin(), std::min_element(loops[h].begin(), loops[h].end()), loops[h].end());
+    }
+    std::sort(loops.begin() + 1, loops.end());
+  }
   for (const auto& vol : r.volume.volumes) {
     cell_input_volume out;
-    for (const auto& [f, s] : vol) out.faces.emplace_back(face_id[f], s);
+    for (const auto& [f, s] : vol) out.faces.emplace_back(face_id[f], reversed[face_id[f]] ? -s : s);
     r.input.volumes.push_back(std::move(out));
   }
   for (const auto i : r.volume.unforced)
