@@ -38,6 +38,7 @@
 #include "cellforge/halfedge/properties.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"
 #include "cellforge/halfedge/validate.hpp"
+#include "cellforge/sketch/elliptical_arc.hpp"
 #include "cellforge/sketch/face_finder.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 #include "cellforge/smooth/continuous_surfaces.hpp"
