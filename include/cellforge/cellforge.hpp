@@ -7,7 +7,7 @@
 /// `sketch/sample_drawings.hpp`), the seed's sample solids (`thin/sample_solids.hpp`,
 /// `smooth/sample_solids.hpp`), which are large and which an application rarely needs, and
 /// the sketch stages that solve with Eigen (`sketch/tidy.hpp`, `sketch/inflation.hpp`,
-/// `sketch/drawing_to_cells.hpp`), so that nothing else needs Eigen or pays for parsing it.
+/// `sketch/drawing_to_cells.hpp`, `sketch/arc_detection.hpp`), so that nothing else needs Eigen or pays for parsing it.
 /// The header hygiene test checks that this list is complete.
 
 #include "cellforge/algorithms/convex_hull.hpp"
