@@ -4,7 +4,7 @@
 // L-shaped polylines, sampled like a pen and moved by noise of 0.2 % of the drawing's size.
 // Every arc must be found with its centre and axes within the stated tolerances, no line or
 // L leg read as an arc; totals are printed and every miss named. Release runs the full set,
-// the sanitizer build (no NDEBUG) a fifth of it.
+// the sanitizer build (no NDEBUG) a tenth of it.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -32,9 +32,9 @@ using cellforge::stroke_piece_kind;
 constexpr double pi = std::numbers::pi;
 
 #ifdef NDEBUG
-constexpr int scale = 5;
+constexpr bool full = true;
 #else
-constexpr int scale = 1;  // the sanitizer build: 10-50x slower
+constexpr bool full = false;  // the sanitizer build: 10-50x slower, a tenth of the strokes
 #endif
 
 // The generated drawings live in the unit square; its diagonal is the drawing's size.
@@ -78,7 +78,7 @@ double percentile(std::vector<double> v, double q) {
 
 TEST_CASE("arc detection: exact arcs, lines and L shapes with 0.2 % noise") {
   generator g{{20261203}};
-  const int n_arcs = 60 * scale, n_lines = 20 * scale, n_ells = 20 * scale;
+  const int n_arcs = full ? 300 : 30, n_lines = full ? 100 : 10, n_ells = full ? 100 : 10;
   std::vector<std::vector<glm::dvec2>> strokes;
   std::vector<elliptical_arc<glm::dvec2>> truth;
   std::vector<std::string> names;
@@ -275,6 +275,78 @@ TEST_CASE("arc detection: a round drawn in one stroke, another point type, bad i
   CHECK(f.max_distance < 1e-9);
   CHECK(cellforge::fit_ellipse(std::vector<glm::dvec2>{{0, 0}, {1, 1}, {2, 2}, {3, 3}, {4, 4}, {5, 5}})
             .rejection == arc_rejection::not_an_ellipse);
+}
+
+TEST_CASE("arc detection: circles in the faces of a quasi-normalon, fitted with the view's axes") {
+  // A round's ends are circles in faces normal to a model axis; in a parallel view the other
+  // two unit axes are drawn as u and v, and fit_view_circle fits only centre and radius. The
+  // same strokes through the free ellipse fit show what the view's axes add.
+  generator g{{31}};
+  const int n = full ? 200 : 20;
+  int accurate = 0, redrawn = 0;
+  std::vector<double> centre_err, radius_err, free_centre_err;
+  for (int k = 0; k < n; ++k) {
+    // A random rotation (uniform quaternion); its first two rows project the model axes.
+    const double u1 = g.rng.uniform(0, 1), u2 = g.rng.uniform(0, 2 * pi), u3 = g.rng.uniform(0, 2 * pi);
+    const double qa = std::sqrt(1 - u1) * std::sin(u2), qb = std::sqrt(1 - u1) * std::cos(u2);
+    const double qc = std::sqrt(u1) * std::sin(u3), qd = std::sqrt(u1) * std::cos(u3);
+    const double row0[3] = {1 - 2 * (qb * qb + qc * qc), 2 * (qa * qb - qc * qd), 2 * (qa * qc + qb * qd)};
+    const double row1[3] = {2 * (qa * qb + qc * qd), 1 - 2 * (qa * qa + qc * qc), 2 * (qb * qc - qa * qd)};
+    const int ia = k % 3, ib = (k + 1) % 3;
+    const glm::dvec2 u(row0[ia], row1[ia]), v(row0[ib], row1[ib]);
+    if (std::abs(u.x * v.y - u.y * v.x) < 0.2) {  // the face nearly edge-on: another view
+      --k;
+      continue;
+    }
+    const double r = g.rng.uniform(0.05, 0.3), sweep = g.rng.uniform(30, 180) * pi / 180,
+                 t0 = g.rng.uniform(0, 2 * pi);
+    const glm::dvec2 c(g.rng.uniform(0.3, 0.7), g.rng.uniform(0.3, 0.7));
+    // As for the free arcs: a bulge within 5 noise widths of the chord is a line at this noise.
+    double bulge = 0;
+    const glm::dvec2 e0 = c + r * (u * std::cos(t0) + v * std::sin(t0));
+    const glm::dvec2 e1 = c + r * (u * std::cos(t0 + sweep) + v * std::sin(t0 + sweep));
+    for (int i = 1; i < 100; ++i) {
+      const double t = t0 + sweep * i / 100;
+      const glm::dvec2 d = c + r * (u * std::cos(t) + v * std::sin(t)) - e0;
+      bulge = std::max(bulge, std::abs((e1 - e0).x * d.y - (e1 - e0).y * d.x) / glm::length(e1 - e0));
+    }
+    if (bulge < 5 * noise * size) {
+      ++redrawn;
+      --k;
+      continue;
+    }
+    std::vector<glm::dvec2> s;
+    const int m = std::max(8, static_cast<int>(sweep * r / (spacing * size)));
+    for (int i = 0; i <= m; ++i) {
+      const double t = t0 + sweep * i / m;
+      s.push_back(g.jitter(c + r * (u * std::cos(t) + v * std::sin(t))));
+    }
+    const auto f = cellforge::fit_view_circle(s, u, v);
+    REQUIRE(f.rejection == arc_rejection::none);
+    const double ce = glm::length(f.centre - c) / size, re = std::abs(f.radius - r) / r;
+    centre_err.push_back(ce);
+    radius_err.push_back(re);
+    const auto e = cellforge::fit_ellipse(s);
+    free_centre_err.push_back(glm::length(e.centre - c) / size);
+    // Stated: centre and radius within 1 % of the size (the radius's own error is printed).
+    if (ce <= 0.01 && std::abs(f.radius - r) <= 0.01 * size && f.max_distance <= 0.005 * size)
+      ++accurate;
+    else
+      MESSAGE("view circle " << k << " (radius " << r << ", sweep " << sweep * 180 / pi
+                             << " deg): centre off by " << ce << ", radius by " << re * 100 << " %");
+  }
+  MESSAGE("view circles: " << accurate << " of " << n << " with centre and radius within 1 % of the size ("
+                           << redrawn << " redrawn: bulge within 5 noise widths); centre error median "
+                           << percentile(centre_err, 0.5) << " max " << percentile(centre_err, 1)
+                           << ", radius error median " << percentile(radius_err, 0.5) * 100 << " % max "
+                           << percentile(radius_err, 1) * 100
+                           << " %; the free ellipse fit on the same strokes: centre "
+                           << "median " << percentile(free_centre_err, 0.5) << " max "
+                           << percentile(free_centre_err, 1));
+  CHECK(accurate == n);
+  CHECK_THROWS_AS(cellforge::fit_view_circle(std::vector<glm::dvec2>{{0, 0}, {1, 0}, {0, 1}},
+                                             glm::dvec2(1, 0), glm::dvec2(2, 0)),
+                  cellforge::error);
 }
 
 }  // namespace arc_detection_tests

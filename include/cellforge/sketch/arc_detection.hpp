@@ -318,75 +318,100 @@ bool direct_ellipse_fit(const std::vector<glm::dvec2>& q, ellipse_params& out) {
   return std::isfinite(out.c.x) && std::isfinite(out.c.y);
 }
 
-/// Levenberg–Marquardt on the points' signed distances to the ellipse over (centre, semi-axes,
-/// rotation). At each point's closest point the distance's derivative along the curve is zero,
-/// so each row of the Jacobian is the outward normal against the derivative of the curve point
-/// (the orthogonal-distance fit). Stops when a step changes the sum of squares by a relative
-/// 1e-6 or after max_steps; keeps both semi-axes at most max_axis. O(n × steps).
-template <class = void>
-std::size_t refine_ellipse(const std::vector<glm::dvec2>& q, ellipse_params& e, double max_axis,
-                           std::size_t max_steps = 30) {
-  const std::size_t n = q.size();
-  Eigen::MatrixXd jac(static_cast<Eigen::Index>(n), 5);
-  Eigen::VectorXd res(static_cast<Eigen::Index>(n));
-  const auto evaluate = [&](const ellipse_params& p, bool with_jacobian) {
-    double sum = 0;
-    const double c = std::cos(p.rot), s = std::sin(p.rot);
-    for (std::size_t k = 0; k < n; ++k) {
-      const auto [d, t] = ellipse_frame_distance(p.rx, p.ry, to_ellipse_frame(p, q[k]));
-      const auto i = static_cast<Eigen::Index>(k);
-      res(i) = d;
-      sum += d * d;
-      if (!with_jacobian) continue;
-      const double ct = std::cos(t), st = std::sin(t);
-      // The outward normal at the closest point, in the frame, then in the drawing.
-      glm::dvec2 nf(p.ry * ct, p.rx * st);
-      nf /= glm::length(nf);
-      const glm::dvec2 nw(c * nf.x - s * nf.y, s * nf.x + c * nf.y);
-      const glm::dvec2 xf(p.rx * ct, p.ry * st);
-      const glm::dvec2 dxrot(-s * xf.x - c * xf.y, c * xf.x - s * xf.y);
-      jac(i, 0) = -nw.x;
-      jac(i, 1) = -nw.y;
-      jac(i, 2) = -nf.x * ct;
-      jac(i, 3) = -nf.y * st;
-      jac(i, 4) = -glm::dot(nw, dxrot);
-    }
-    return sum;
-  };
-  double lambda = 1e-3;
-  double sum = evaluate(e, true);
+/// Levenberg–Marquardt with the diagonal of JᵀJ as damping (Marquardt's scaling), over K
+/// parameters and n residuals: `evaluate(x, jac or nullptr, res)` fills the residuals (and the
+/// Jacobian) and returns their sum of squares; steps to parameters that are not `admissible`
+/// are refused. Stops when a step gains less than a relative 1e-6, when no damping gives a
+/// gain, or after max_steps; returns the steps taken. O(steps × (evaluate + n K²)).
+template <int K, class Evaluate, class Admissible>
+std::size_t damped_least_squares(Eigen::Matrix<double, K, 1>& x, std::size_t n, Evaluate evaluate,
+                                 Admissible admissible, std::size_t max_steps) {
+  using Vec = Eigen::Matrix<double, K, 1>;
+  Eigen::Matrix<double, Eigen::Dynamic, K> jac(static_cast<Eigen::Index>(n), K);
+  Eigen::VectorXd res(static_cast<Eigen::Index>(n)), trial_res(static_cast<Eigen::Index>(n));
+  double lambda = 1e-3, sum = evaluate(x, &jac, res);
   std::size_t steps = 0;
-  for (; steps < max_steps; ++steps) {
-    const Eigen::Matrix<double, 5, 5> jtj = jac.transpose() * jac;
-    const Eigen::Matrix<double, 5, 1> g = jac.transpose() * res;
-    bool improved = false;
+  while (steps < max_steps) {
+    const Eigen::Matrix<double, K, K> jtj = jac.transpose() * jac;
+    const Vec g = jac.transpose() * res;
+    bool improved = false, done = false;
     for (int tries = 0; tries < 12 && !improved; ++tries) {
-      Eigen::Matrix<double, 5, 5> a = jtj;
-      for (int k = 0; k < 5; ++k) a(k, k) += lambda * std::max(jtj(k, k), 1e-12);
-      const Eigen::Matrix<double, 5, 1> step = a.ldlt().solve(-g);
-      ellipse_params trial{e.c + glm::dvec2(step(0), step(1)), e.rx + step(2), e.ry + step(3),
-                           e.rot + step(4)};
-      // Steps out of the admissible ellipses are refused: a nearly straight arc otherwise
-      // drifts towards an ever larger, flatter ellipse (lower residual, no use).
-      if (!(trial.rx > 0) || !(trial.ry > 0) || !(std::max(trial.rx, trial.ry) <= max_axis) ||
-          !std::isfinite(trial.rot)) {
+      Eigen::Matrix<double, K, K> a = jtj;
+      for (int k = 0; k < K; ++k) a(k, k) += lambda * std::max(jtj(k, k), 1e-12);
+      const Vec trial = x + a.ldlt().solve(-g);
+      if (!admissible(trial)) {
         lambda *= 10;
         continue;
       }
-      const double trial_sum = evaluate(trial, false);
-      if (trial_sum < sum) {
-        const double gain = (sum - trial_sum) / std::max(sum, 1e-300);
-        e = trial;
-        sum = evaluate(e, true);
+      const double ts = evaluate(trial, nullptr, trial_res);
+      if (ts < sum) {
+        done = sum - ts < 1e-6 * sum;
+        x = trial;
+        sum = evaluate(x, &jac, res);
         lambda = std::max(lambda / 10, 1e-12);
         improved = true;
-        if (gain < 1e-6) return steps + 1;
+        ++steps;
       } else {
         lambda *= 10;
       }
     }
-    if (!improved) break;
+    if (!improved || done) break;
   }
+  return steps;
+}
+
+/// At the closest point, parametric angle t, of an ellipse: the outward unit normal in the
+/// ellipse's frame and in the drawing, and the closest point in the frame. The distance's
+/// derivative for a parameter is −(normal · the closest point's derivative for it): the
+/// distance is stationary along the curve there. O(1).
+struct closest_point_frame {
+  glm::dvec2 normal_frame, normal, point_frame;
+};
+
+template <class = void>
+closest_point_frame at_closest(const ellipse_params& e, double t) {
+  const double ct = std::cos(t), st = std::sin(t), c = std::cos(e.rot), s = std::sin(e.rot);
+  glm::dvec2 nf(e.ry * ct, e.rx * st);
+  nf /= glm::length(nf);
+  return {nf, {c * nf.x - s * nf.y, s * nf.x + c * nf.y}, {e.rx * ct, e.ry * st}};
+}
+
+/// Levenberg–Marquardt on the points' signed distances to the ellipse over (centre, semi-axes,
+/// rotation): the orthogonal-distance fit. Keeps both semi-axes at most max_axis. O(n × steps).
+template <class = void>
+std::size_t refine_ellipse(const std::vector<glm::dvec2>& q, ellipse_params& e, double max_axis,
+                           std::size_t max_steps = 30) {
+  using Vec = Eigen::Matrix<double, 5, 1>;
+  const auto params = [](const Vec& x) { return ellipse_params{{x(0), x(1)}, x(2), x(3), x(4)}; };
+  const auto evaluate = [&](const Vec& x, Eigen::Matrix<double, Eigen::Dynamic, 5>* jac,
+                            Eigen::VectorXd& res) {
+    const ellipse_params p = params(x);
+    const double c = std::cos(p.rot), s = std::sin(p.rot);
+    double sum = 0;
+    for (std::size_t k = 0; k < q.size(); ++k) {
+      const auto [d, t] = ellipse_frame_distance(p.rx, p.ry, to_ellipse_frame(p, q[k]));
+      const auto i = static_cast<Eigen::Index>(k);
+      res(i) = d;
+      sum += d * d;
+      if (!jac) continue;
+      const closest_point_frame f = at_closest(p, t);
+      const glm::dvec2 xf = f.point_frame;
+      const glm::dvec2 turn(-s * xf.x - c * xf.y, c * xf.x - s * xf.y);  // d(point)/d(rotation)
+      jac->row(i) << -f.normal.x, -f.normal.y, -f.normal_frame.x * std::cos(t),
+          -f.normal_frame.y * std::sin(t), -glm::dot(f.normal, turn);
+    }
+    return sum;
+  };
+  // Steps out of the admissible ellipses are refused: a nearly straight arc otherwise drifts
+  // towards an ever larger, flatter ellipse (lower residual, no use).
+  const auto admissible = [&](const Vec& x) {
+    return x(2) > 0 && x(3) > 0 && std::max(x(2), x(3)) <= max_axis && std::isfinite(x(4)) &&
+           std::isfinite(x(0)) && std::isfinite(x(1));
+  };
+  Vec x;
+  x << e.c.x, e.c.y, e.rx, e.ry, e.rot;
+  const std::size_t steps = damped_least_squares<5>(x, q.size(), evaluate, admissible, max_steps);
+  e = params(x);
   return steps;
 }
 
@@ -530,6 +555,116 @@ auto fit_ellipse(const R& points, bool refine = true) {
     out.max_distance =
         std::max(out.max_distance,
                  std::abs(detail::ellipse_frame_distance(e.rx, e.ry, detail::to_ellipse_frame(e, p)).first));
+  return out;
+}
+
+/// A circle of a known plane seen in a parallel view, fitted to points: the 3D circle of radius
+/// `radius` whose plane's two unit axes the view maps to `u` and `v`, drawn as the ellipse
+/// centre + radius (u cos t + v sin t), whose semi-axes and rotation are also given.
+template <Point2 P>
+struct view_circle_fit {
+  arc_rejection rejection = arc_rejection::not_an_ellipse;  ///< none when the fit succeeded
+  P centre{};
+  double radius = 0;                    ///< in 3D, in the drawing's units
+  double rx = 0, ry = 0, rotation = 0;  ///< the drawn ellipse (rx >= ry)
+  double max_distance = 0;              ///< the largest distance of a point from it
+  std::size_t iterations = 0;
+};
+
+namespace detail {
+
+/// The drawn ellipse of the circle centre c, radius r, of the plane whose unit axes the view
+/// maps to u and v: the semi-axes are r times the singular values of [u v]. O(1).
+template <class = void>
+ellipse_params view_circle_ellipse(glm::dvec2 c, double r, glm::dvec2 u, glm::dvec2 v) {
+  Eigen::Matrix2d a;
+  a << u.x, v.x, u.y, v.y;
+  const Eigen::JacobiSVD<Eigen::Matrix2d> svd(a, Eigen::ComputeFullU);
+  const Eigen::Vector2d major = svd.matrixU().col(0);
+  return normalised(
+      {c, r * svd.singularValues()(0), r * svd.singularValues()(1), std::atan2(major(1), major(0))});
+}
+
+}  // namespace detail
+
+/// Fits the drawing of a circle lying in a known plane (a round's end in a face of a
+/// quasi-normalon: u and v are the drawn images of two unit model axes, s_i d_i from
+/// inflate's axis_directions and foreshortening): three unknowns (centre, radius) instead of an
+/// ellipse's five, so a short arc fixes them. Kåsa's algebraic circle fit in the frame where
+/// the ellipse is a circle (linear least squares, Eigen), then Levenberg–Marquardt on the
+/// points' distances in the drawing. Throws invalid_input when u and v are parallel or not
+/// finite. O(n × steps), at most 30 steps.
+template <std::ranges::input_range R>
+requires Point2<std::ranges::range_value_t<R>>
+auto fit_view_circle(const R& points, glm::dvec2 u, glm::dvec2 v) {
+  using P = std::ranges::range_value_t<R>;
+  view_circle_fit<P> out;
+  const double det = u.x * v.y - u.y * v.x;
+  if (!std::isfinite(det) || !(std::abs(det) > 1e-12 * std::max(glm::dot(u, u), glm::dot(v, v))))
+    throw error(
+        error_category::invalid_input,
+        "fit_view_circle: the plane's axes u and v are parallel or not finite in the drawing: a face seen "
+        "edge-on, whose circles are drawn as straight lines");
+  std::vector<glm::dvec2> q;
+  for (const auto& p : points) q.push_back(to_dvec2(P(p)));
+  if (q.size() < 3) return out;
+  // In the frame w = [u v]⁻¹ p the drawn ellipse is a circle: |w − w_c|² = r².
+  const auto to_w = [&](glm::dvec2 p) {
+    return glm::dvec2(v.y * p.x - v.x * p.y, -u.y * p.x + u.x * p.y) / det;
+  };
+  glm::dvec2 mean(0);
+  for (const glm::dvec2& p : q) mean += to_w(p);
+  mean /= static_cast<double>(q.size());
+  Eigen::MatrixXd a(static_cast<Eigen::Index>(q.size()), 3);
+  Eigen::VectorXd b(static_cast<Eigen::Index>(q.size()));
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    const glm::dvec2 w = to_w(q[k]) - mean;
+    const auto i = static_cast<Eigen::Index>(k);
+    a(i, 0) = w.x, a(i, 1) = w.y, a(i, 2) = 1;
+    b(i) = -glm::dot(w, w);
+  }
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
+  if (qr.rank() < 3) return out;
+  const Eigen::Vector3d kasa = qr.solve(b);
+  const glm::dvec2 wc(-kasa(0) / 2, -kasa(1) / 2);
+  const double r2 = glm::dot(wc, wc) - kasa(2);
+  if (!(r2 > 0)) return out;
+  glm::dvec2 c = mean + wc;
+  c = u * c.x + v * c.y;
+  // Levenberg–Marquardt over (centre, radius): the closest point's derivative is the identity
+  // for the centre and (point − centre) / r for the radius.
+  using Vec = Eigen::Matrix<double, 3, 1>;
+  Eigen::VectorXd last(static_cast<Eigen::Index>(q.size()));
+  const auto evaluate = [&](const Vec& x, Eigen::Matrix<double, Eigen::Dynamic, 3>* jac,
+                            Eigen::VectorXd& res) {
+    const detail::ellipse_params e = detail::view_circle_ellipse({x(0), x(1)}, x(2), u, v);
+    double sum = 0;
+    for (std::size_t k = 0; k < q.size(); ++k) {
+      const auto [d, t] = detail::ellipse_frame_distance(e.rx, e.ry, detail::to_ellipse_frame(e, q[k]));
+      const auto i = static_cast<Eigen::Index>(k);
+      res(i) = d;
+      sum += d * d;
+      if (!jac) continue;
+      const detail::closest_point_frame f = detail::at_closest(e, t);
+      jac->row(i) << -f.normal.x, -f.normal.y, -glm::dot(f.normal_frame, f.point_frame) / x(2);
+    }
+    return sum;
+  };
+  Vec x;
+  x << c.x, c.y, std::sqrt(r2);
+  out.iterations = detail::damped_least_squares<3>(
+      x, q.size(), evaluate,
+      [](const Vec& y) { return y(2) > 0 && std::isfinite(y(0)) && std::isfinite(y(1)); }, 30);
+  c = {x(0), x(1)};
+  const double r = x(2);
+  evaluate(x, nullptr, last);
+  for (Eigen::Index i = 0; i < last.size(); ++i)
+    out.max_distance = std::max(out.max_distance, std::abs(last(i)));
+  const detail::ellipse_params e = detail::view_circle_ellipse(c, r, u, v);
+  out.rejection = arc_rejection::none;
+  out.centre = from_dvec2<P>(c);
+  out.radius = r;
+  out.rx = e.rx, out.ry = e.ry, out.rotation = e.rot;
   return out;
 }
 
