@@ -7,7 +7,7 @@
 /// `sketch/sample_drawings.hpp`), the seed's sample solids (`thin/sample_solids.hpp`,
 /// `smooth/sample_solids.hpp`), which are large and which an application rarely needs, and
 /// the sketch stages that solve with Eigen (`sketch/tidy.hpp`, `sketch/inflation.hpp`,
-/// `sketch/drawing_to_cells.hpp`), so that nothing else needs Eigen or pays for parsing it.
+/// `sketch/drawing_to_cells.hpp`, `sketch/arc_detection.hpp`), so that nothing else needs Eigen or pays for parsing it.
 /// The header hygiene test checks that this list is complete.
 
 #include "cellforge/algorithms/convex_hull.hpp"
@@ -38,6 +38,7 @@
 #include "cellforge/halfedge/properties.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"
 #include "cellforge/halfedge/validate.hpp"
+#include "cellforge/sketch/elliptical_arc.hpp"
 #include "cellforge/sketch/face_finder.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 #include "cellforge/smooth/continuous_surfaces.hpp"

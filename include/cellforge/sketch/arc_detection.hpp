@@ -1,0 +1,834 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Arc detection: sampled strokes (polylines) become straight pieces and elliptical arcs. A
+/// stroke that fits a straight line within the tolerance stays straight; otherwise a conic is
+/// fitted (Fitzgibbon's direct least-squares ellipse fit, then a geometric refinement) and
+/// kept when every sample lies within the tolerance of it; otherwise the stroke is split at its
+/// farthest sample from the chord and each part is read again. Needs Eigen 3.3+. See
+/// docs/sketch.md, "Rounds and fillets".
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <iterator>
+#include <limits>
+#include <numbers>
+#include <ranges>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+
+#include "cellforge/core/error.hpp"
+#include "cellforge/core/point2_traits.hpp"
+#include "cellforge/sketch/elliptical_arc.hpp"
+#include "cellforge/sketch/line_drawing.hpp"
+
+namespace cellforge {
+
+/// Options of detect_arcs, with documented defaults (docs/sketch.md, "Arc detection").
+struct arc_detection_options {
+  /// A sample may lie this far from its piece's line or ellipse, as a fraction of the drawing's
+  /// size. The default suits strokes with noise up to 0.2 % of the size.
+  double tolerance = 0.005;
+  /// The drawing's size (the diagonal of its bounding box) in the strokes' units; 0: the
+  /// diagonal of the strokes' own bounding box. Give it when the strokes are part of a larger
+  /// drawing, so that the tolerance means the same for all of them.
+  double drawing_size = 0;
+  /// A piece with fewer samples is never an arc (a conic has five degrees of freedom).
+  std::size_t min_arc_samples = 8;
+  /// An arc sweeps at least this parametric angle (radians); shallower is read as straight.
+  double min_sweep = 10 * std::numbers::pi / 180;
+  /// An arc's semi-axes are at most this × the drawing's size: a larger ellipse through the
+  /// samples is a nearly straight stroke, not an arc.
+  double max_semi_axis = 2.0;
+  /// Refine the algebraic fit by Levenberg–Marquardt steps on the samples' distances to the
+  /// ellipse (the algebraic fit is biased on short, noisy arcs; see docs/sketch.md).
+  bool refine = true;
+};
+
+/// What a piece of a stroke is.
+enum class stroke_piece_kind : std::uint8_t { line, arc };
+
+/// Why a stroke (or a piece of one) is not an elliptical arc; `none` when it is one.
+enum class arc_rejection : std::uint8_t {
+  none,             ///< it is an arc
+  straight,         ///< it fits a straight line within the tolerance: kept straight
+  too_few_samples,  ///< fewer than min_arc_samples samples
+  not_an_ellipse,   ///< the conic fit is degenerate (samples on a line) or is no ellipse
+  too_large,        ///< the fitted ellipse is larger than max_semi_axis × the size: nearly straight
+  off_curve,        ///< a sample lies farther than the tolerance from the fitted ellipse
+  not_monotone,     ///< the samples run back and forth along the ellipse
+  sweep_too_small,  ///< the samples cover less than min_sweep of the ellipse
+  sweep_too_large,  ///< the samples wind round the ellipse more than once
+};
+
+/// The number of arc_rejection values (for per-reason counts).
+inline constexpr std::size_t arc_rejection_count = 9;
+
+/// A short name of a rejection ("straight", "off curve", ...). O(1).
+constexpr std::string_view to_string(arc_rejection r) noexcept {
+  switch (r) {
+    case arc_rejection::none:
+      return "arc";
+    case arc_rejection::straight:
+      return "straight";
+    case arc_rejection::too_few_samples:
+      return "too few samples";
+    case arc_rejection::not_an_ellipse:
+      return "not an ellipse";
+    case arc_rejection::too_large:
+      return "too large";
+    case arc_rejection::off_curve:
+      return "off curve";
+    case arc_rejection::not_monotone:
+      return "not monotone";
+    case arc_rejection::sweep_too_small:
+      return "sweep too small";
+    case arc_rejection::sweep_too_large:
+      return "sweep too large";
+  }
+  return "unknown";
+}
+
+/// An ellipse fitted to points: valid when `rejection` is none, straight (never set by the fit)
+/// or a later check; centre, semi-axes (rx >= ry) and rotation of the rx axis in (−π/2, π/2].
+template <Point2 P>
+struct ellipse_fit {
+  arc_rejection rejection = arc_rejection::not_an_ellipse;  ///< none when the fit is an ellipse
+  P centre{};
+  double rx = 0, ry = 0, rotation = 0;
+  double max_distance = 0;     ///< the largest distance of a point from the ellipse, in the points' units
+  std::size_t iterations = 0;  ///< refinement steps taken
+};
+
+/// A maximal straight or elliptical piece of a stroke: samples `first` to `last` (inclusive)
+/// of stroke `stroke`. Consecutive pieces of a stroke share their end sample.
+template <Point2 P>
+struct stroke_piece {
+  stroke_piece_kind kind = stroke_piece_kind::line;
+  std::size_t stroke = 0, first = 0, last = 0;
+  P from{}, to{};           ///< the ends: the end samples projected onto the line, or the arc's ends
+  elliptical_arc<P> arc{};  ///< the arc, when kind is arc (its first point is `from`)
+  double deviation = 0;     ///< the largest distance of a sample from the line or arc, / the size
+  arc_rejection why_not_arc = arc_rejection::none;  ///< for a line: why it is not an arc
+};
+
+/// One stroke's summary: its pieces are pieces[first_piece .. first_piece + num_pieces).
+struct stroke_summary {
+  std::size_t first_piece = 0, num_pieces = 0;
+  std::size_t samples = 0;  ///< distinct consecutive samples read
+  /// Why the whole stroke is not one arc (none when it is one; straight when it is one line).
+  arc_rejection whole = arc_rejection::none;
+};
+
+/// What detect_arcs found: the pieces of every stroke in order, per-stroke summaries, counts,
+/// and a sentence for each stroke that is neither one line nor one arc, or that was dropped.
+template <Point2 P>
+struct arc_detection_result {
+  std::vector<stroke_piece<P>> pieces;
+  std::vector<stroke_summary> strokes;
+  std::size_t num_lines = 0, num_arcs = 0;
+  std::size_t splits = 0;           ///< pieces split at their farthest sample
+  std::size_t merges = 0;           ///< neighbouring pieces joined again into one line or arc
+  std::size_t fits = 0;             ///< ellipse fits tried
+  std::size_t dropped_strokes = 0;  ///< strokes of fewer than two distinct samples
+  /// Over every ellipse fit tried, how often each reason rejected it (index: arc_rejection).
+  std::array<std::size_t, arc_rejection_count> rejections{};
+  double drawing_size = 0;  ///< the size the tolerance was taken of
+  double seconds = 0;
+  std::vector<std::string> diagnostics;
+};
+
+namespace detail {
+
+/// Distance from (y0, y1), y0, y1 >= 0, to the ellipse x0²/e0² + x1²/e1² = 1, e0 >= e1 > 0, and
+/// the closest point, by bisection on the Lagrange parameter (the closest point is
+/// (e0² y0 / (t + e0²), e1² y1 / (t + e1²)) for the root t of the constraint). O(log(1/ε)).
+template <class = void>
+std::pair<double, glm::dvec2> quadrant_ellipse_distance(double e0, double e1, double y0, double y1) {
+  if (y1 > 0) {
+    if (y0 > 0) {
+      const double z0 = y0 / e0, z1 = y1 / e1;
+      const double g0 = z0 * z0 + z1 * z1 - 1;
+      if (g0 == 0) return {0.0, {y0, y1}};
+      const double r0 = (e0 / e1) * (e0 / e1), n0 = r0 * z0;
+      // f(s) = (n0 / (s + r0))² + (z1 / (s + 1))² − 1 decreases from +∞ at s = −1 to −1: bracket.
+      double lo = z1 - 1, hi = g0 < 0 ? 0.0 : std::hypot(n0, z1) - 1, s = 0;
+      for (int i = 0; i < 200; ++i) {
+        s = 0.5 * (lo + hi);
+        if (s == lo || s == hi) break;
+        const double a = n0 / (s + r0), b = z1 / (s + 1), g = a * a + b * b - 1;
+        if (g > 0)
+          lo = s;
+        else if (g < 0)
+          hi = s;
+        else
+          break;
+      }
+      const glm::dvec2 x(r0 * y0 / (s + r0), y1 / (s + 1));
+      return {glm::length(x - glm::dvec2(y0, y1)), x};
+    }
+    return {std::abs(y1 - e1), {0.0, e1}};
+  }
+  const double num = e0 * y0, den = e0 * e0 - e1 * e1;
+  if (num < den) {
+    const double u = num / den;
+    const glm::dvec2 x(e0 * u, e1 * std::sqrt(std::max(0.0, 1 - u * u)));
+    return {glm::length(x - glm::dvec2(y0, 0.0)), x};
+  }
+  return {std::abs(y0 - e0), {e0, 0.0}};
+}
+
+/// A point in an ellipse's own frame (centre at the origin, rx along x): its signed distance
+/// (> 0 outside) and the parametric angle of its closest point. Newton steps on the angle first
+/// (a few steps for a point near the curve, which is every point a fit keeps); their answer is
+/// taken only when it is a minimum closer to the curve than half the smallest radius of
+/// curvature, where the closest point is unique; otherwise the bisection. O(log(1/ε)).
+template <class = void>
+std::pair<double, double> ellipse_frame_distance(double rx, double ry, glm::dvec2 p) {
+  const double inside = (p.x / rx) * (p.x / rx) + (p.y / ry) * (p.y / ry) - 1;
+  double t = std::atan2(rx * p.y, ry * p.x);
+  bool converged = false;
+  double fp = 0;
+  for (int i = 0; i < 8; ++i) {
+    const double ct = std::cos(t), st = std::sin(t);
+    const glm::dvec2 x(rx * ct, ry * st), d1(-rx * st, ry * ct);
+    const double f = glm::dot(x - p, d1);
+    fp = glm::dot(d1, d1) - glm::dot(x - p, x);  // x'' = −x
+    if (!(fp > 0)) break;
+    const double dt = f / fp;
+    t -= dt;
+    if (std::abs(dt) < 1e-13) {
+      converged = true;
+      break;
+    }
+  }
+  if (converged) {
+    const double dist = glm::length(p - glm::dvec2(rx * std::cos(t), ry * std::sin(t)));
+    const double lo = std::min(rx, ry), hi = std::max(rx, ry);
+    if (dist < 0.5 * lo * lo / hi)
+      return {inside < 0 ? -dist : dist, std::remainder(t, 2 * std::numbers::pi)};
+  }
+  const bool swap = ry > rx;
+  const double e0 = swap ? ry : rx, e1 = swap ? rx : ry;
+  const double y0 = swap ? p.y : p.x, y1 = swap ? p.x : p.y;
+  auto [dist, x] = quadrant_ellipse_distance(e0, e1, std::abs(y0), std::abs(y1));
+  x.x = std::copysign(x.x, y0);
+  x.y = std::copysign(x.y, y1);
+  if (swap) std::swap(x.x, x.y);
+  return {inside < 0 ? -dist : dist, std::atan2(x.y / ry, x.x / rx)};
+}
+
+/// An ellipse in double precision while it is being fitted.
+struct ellipse_params {
+  glm::dvec2 c{0};
+  double rx = 0, ry = 0, rot = 0;
+};
+
+/// The point p in the ellipse's own frame. O(1).
+template <class = void>
+glm::dvec2 to_ellipse_frame(const ellipse_params& e, glm::dvec2 p) {
+  const double c = std::cos(e.rot), s = std::sin(e.rot);
+  const glm::dvec2 d = p - e.c;
+  return {c * d.x + s * d.y, -s * d.x + c * d.y};
+}
+
+/// The same ellipse with rx its longer axis and the rotation in (−π/2, π/2]. O(1).
+template <class = void>
+ellipse_params normalised(ellipse_params e) {
+  if (e.ry > e.rx) std::swap(e.rx, e.ry), e.rot += std::numbers::pi / 2;
+  e.rot = std::remainder(e.rot, std::numbers::pi);
+  if (e.rot <= -std::numbers::pi / 2) e.rot += std::numbers::pi;
+  return e;
+}
+
+/// Fitzgibbon, Pilu and Fisher's direct least-squares ellipse fit, in Halíř and Flusser's
+/// numerically stable form (the scatter matrix split into quadratic and linear blocks, the
+/// linear block eliminated): the conic a x² + b xy + c y² + d x + e y + f = 0 minimising the
+/// algebraic residual under 4ac − b² = 1, which is always an ellipse. Points are centred and
+/// scaled to unit spread first. false when the points admit no ellipse (collinear, too few).
+/// O(n).
+template <class = void>
+bool direct_ellipse_fit(const std::vector<glm::dvec2>& q, ellipse_params& out) {
+  const std::size_t n = q.size();
+  if (n < 5) return false;
+  glm::dvec2 mean(0);
+  for (const glm::dvec2& p : q) mean += p;
+  mean /= static_cast<double>(n);
+  double spread = 0;
+  for (const glm::dvec2& p : q) spread += glm::dot(p - mean, p - mean);
+  spread = std::sqrt(spread / static_cast<double>(n));
+  if (!(spread > 0)) return false;
+  Eigen::Matrix3d s1 = Eigen::Matrix3d::Zero(), s2 = Eigen::Matrix3d::Zero(), s3 = Eigen::Matrix3d::Zero();
+  for (const glm::dvec2& p : q) {
+    const glm::dvec2 u = (p - mean) / spread;
+    const Eigen::Vector3d quad(u.x * u.x, u.x * u.y, u.y * u.y), lin(u.x, u.y, 1.0);
+    s1 += quad * quad.transpose();
+    s2 += quad * lin.transpose();
+    s3 += lin * lin.transpose();
+  }
+  const Eigen::FullPivLU<Eigen::Matrix3d> lu3(s3);
+  if (!lu3.isInvertible()) return false;
+  const Eigen::Matrix3d t = -lu3.solve(s2.transpose());
+  const Eigen::Matrix3d m = s1 + s2 * t;
+  // The constraint matrix's inverse applied to m: rows (m₂ / 2, −m₁, m₀ / 2).
+  Eigen::Matrix3d mc;
+  mc.row(0) = m.row(2) / 2;
+  mc.row(1) = -m.row(1);
+  mc.row(2) = m.row(0) / 2;
+  const Eigen::EigenSolver<Eigen::Matrix3d> es(mc);
+  if (es.info() != Eigen::Success) return false;
+  int pick = -1;
+  double best = 0;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d v = es.eigenvectors().col(k).real();
+    const double cond = 4 * v(0) * v(2) - v(1) * v(1);
+    if (cond > best) best = cond, pick = k;
+  }
+  if (pick < 0) return false;
+  const Eigen::Vector3d a1 = es.eigenvectors().col(pick).real();
+  const Eigen::Vector3d a2 = t * a1;
+  const double A = a1(0), B = a1(1), C = a1(2), D = a2(0), E = a2(1), F = a2(2);
+  Eigen::Matrix2d qm;
+  qm << 2 * A, B, B, 2 * C;
+  const Eigen::Vector2d centre = qm.fullPivLu().solve(Eigen::Vector2d(-D, -E));
+  const double f0 = A * centre(0) * centre(0) + B * centre(0) * centre(1) + C * centre(1) * centre(1) +
+                    D * centre(0) + E * centre(1) + F;
+  Eigen::Matrix2d form;
+  form << A, B / 2, B / 2, C;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> se(form);
+  const Eigen::Vector2d lam = se.eigenvalues();  // ascending: the smaller one is the longer axis
+  const double ax0 = -f0 / lam(0), ax1 = -f0 / lam(1);
+  if (!(ax0 > 0) || !(ax1 > 0) || !std::isfinite(ax0) || !std::isfinite(ax1)) return false;
+  const Eigen::Vector2d major = se.eigenvectors().col(0);
+  out.c = mean + spread * glm::dvec2(centre(0), centre(1));
+  out.rx = spread * std::sqrt(ax0);
+  out.ry = spread * std::sqrt(ax1);
+  out.rot = std::atan2(major(1), major(0));
+  return std::isfinite(out.c.x) && std::isfinite(out.c.y);
+}
+
+/// Levenberg–Marquardt with the diagonal of JᵀJ as damping (Marquardt's scaling), over K
+/// parameters and n residuals: `evaluate(x, jac or nullptr, res)` fills the residuals (and the
+/// Jacobian) and returns their sum of squares; steps to parameters that are not `admissible`
+/// are refused. Stops when a step gains less than a relative 1e-6, when no damping gives a
+/// gain, or after max_steps; returns the steps taken. O(steps × (evaluate + n K²)).
+template <int K, class Evaluate, class Admissible>
+std::size_t damped_least_squares(Eigen::Matrix<double, K, 1>& x, std::size_t n, Evaluate evaluate,
+                                 Admissible admissible, std::size_t max_steps) {
+  using Vec = Eigen::Matrix<double, K, 1>;
+  Eigen::Matrix<double, Eigen::Dynamic, K> jac(static_cast<Eigen::Index>(n), K);
+  Eigen::VectorXd res(static_cast<Eigen::Index>(n)), trial_res(static_cast<Eigen::Index>(n));
+  double lambda = 1e-3, sum = evaluate(x, &jac, res);
+  std::size_t steps = 0;
+  while (steps < max_steps) {
+    const Eigen::Matrix<double, K, K> jtj = jac.transpose() * jac;
+    const Vec g = jac.transpose() * res;
+    bool improved = false, done = false;
+    for (int tries = 0; tries < 12 && !improved; ++tries) {
+      Eigen::Matrix<double, K, K> a = jtj;
+      for (int k = 0; k < K; ++k) a(k, k) += lambda * std::max(jtj(k, k), 1e-12);
+      const Vec trial = x + a.ldlt().solve(-g);
+      if (!admissible(trial)) {
+        lambda *= 10;
+        continue;
+      }
+      const double ts = evaluate(trial, nullptr, trial_res);
+      if (ts < sum) {
+        done = sum - ts < 1e-6 * sum;
+        x = trial;
+        sum = evaluate(x, &jac, res);
+        lambda = std::max(lambda / 10, 1e-12);
+        improved = true;
+        ++steps;
+      } else {
+        lambda *= 10;
+      }
+    }
+    if (!improved || done) break;
+  }
+  return steps;
+}
+
+/// At the closest point, parametric angle t, of an ellipse: the outward unit normal in the
+/// ellipse's frame and in the drawing, and the closest point in the frame. The distance's
+/// derivative for a parameter is −(normal · the closest point's derivative for it): the
+/// distance is stationary along the curve there. O(1).
+struct closest_point_frame {
+  glm::dvec2 normal_frame, normal, point_frame;
+};
+
+template <class = void>
+closest_point_frame at_closest(const ellipse_params& e, double t) {
+  const double ct = std::cos(t), st = std::sin(t), c = std::cos(e.rot), s = std::sin(e.rot);
+  glm::dvec2 nf(e.ry * ct, e.rx * st);
+  nf /= glm::length(nf);
+  return {nf, {c * nf.x - s * nf.y, s * nf.x + c * nf.y}, {e.rx * ct, e.ry * st}};
+}
+
+/// Levenberg–Marquardt on the points' signed distances to the ellipse over (centre, semi-axes,
+/// rotation): the orthogonal-distance fit. Keeps both semi-axes at most max_axis. O(n × steps).
+template <class = void>
+std::size_t refine_ellipse(const std::vector<glm::dvec2>& q, ellipse_params& e, double max_axis,
+                           std::size_t max_steps = 30) {
+  using Vec = Eigen::Matrix<double, 5, 1>;
+  const auto params = [](const Vec& x) { return ellipse_params{{x(0), x(1)}, x(2), x(3), x(4)}; };
+  const auto evaluate = [&](const Vec& x, Eigen::Matrix<double, Eigen::Dynamic, 5>* jac,
+                            Eigen::VectorXd& res) {
+    const ellipse_params p = params(x);
+    const double c = std::cos(p.rot), s = std::sin(p.rot);
+    double sum = 0;
+    for (std::size_t k = 0; k < q.size(); ++k) {
+      const auto [d, t] = ellipse_frame_distance(p.rx, p.ry, to_ellipse_frame(p, q[k]));
+      const auto i = static_cast<Eigen::Index>(k);
+      res(i) = d;
+      sum += d * d;
+      if (!jac) continue;
+      const closest_point_frame f = at_closest(p, t);
+      const glm::dvec2 xf = f.point_frame;
+      const glm::dvec2 turn(-s * xf.x - c * xf.y, c * xf.x - s * xf.y);  // d(point)/d(rotation)
+      jac->row(i) << -f.normal.x, -f.normal.y, -f.normal_frame.x * std::cos(t),
+          -f.normal_frame.y * std::sin(t), -glm::dot(f.normal, turn);
+    }
+    return sum;
+  };
+  // Steps out of the admissible ellipses are refused: a nearly straight arc otherwise drifts
+  // towards an ever larger, flatter ellipse (lower residual, no use).
+  const auto admissible = [&](const Vec& x) {
+    return x(2) > 0 && x(3) > 0 && std::max(x(2), x(3)) <= max_axis && std::isfinite(x(4)) &&
+           std::isfinite(x(0)) && std::isfinite(x(1));
+  };
+  Vec x;
+  x << e.c.x, e.c.y, e.rx, e.ry, e.rot;
+  const std::size_t steps = damped_least_squares<5>(x, q.size(), evaluate, admissible, max_steps);
+  e = params(x);
+  return steps;
+}
+
+/// The total least-squares line through q[first..last]: (deviation, the end samples projected
+/// onto it). O(last − first).
+template <class = void>
+std::pair<double, std::array<glm::dvec2, 2>> fit_line(const std::vector<glm::dvec2>& q, std::size_t first,
+                                                      std::size_t last) {
+  const double n = static_cast<double>(last - first + 1);
+  glm::dvec2 mean(0);
+  for (std::size_t k = first; k <= last; ++k) mean += q[k];
+  mean /= n;
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (std::size_t k = first; k <= last; ++k) {
+    const Eigen::Vector2d d(q[k].x - mean.x, q[k].y - mean.y);
+    cov += d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> se(cov);
+  const Eigen::Vector2d dir_e = se.eigenvectors().col(1);  // the larger eigenvalue: the line's direction
+  const glm::dvec2 dir(dir_e(0), dir_e(1));
+  const glm::dvec2 nrm(-dir.y, dir.x);
+  double worst = 0;
+  for (std::size_t k = first; k <= last; ++k) worst = std::max(worst, std::abs(glm::dot(q[k] - mean, nrm)));
+  const auto project = [&](glm::dvec2 p) { return mean + dir * glm::dot(p - mean, dir); };
+  return {worst, {project(q[first]), project(q[last])}};
+}
+
+/// An arc read from samples: the ellipse, the parametric angle of the first sample's closest
+/// point, the signed sweep to the last sample's, and the largest distance.
+struct arc_reading {
+  arc_rejection why = arc_rejection::not_an_ellipse;
+  ellipse_params e{};
+  double start = 0, sweep = 0, max_distance = 0;
+  std::size_t iterations = 0;
+};
+
+/// Fits and checks an ellipse through q (in the order the stroke runs): the conic fit, the
+/// optional refinement, then every check of arc_rejection in its order. `eps` is the tolerance
+/// and `size` the drawing's size, in q's units. O(n × refinement steps).
+/// Checks an ellipse against the samples q (in the order the stroke runs): every check of
+/// arc_rejection from too_large on, in that order. O(n).
+template <class = void>
+arc_reading check_arc(const std::vector<glm::dvec2>& q, ellipse_params e, const arc_detection_options& o,
+                      double eps, double size) {
+  arc_reading r;
+  r.e = e;
+  if (!(std::max(r.e.rx, r.e.ry) <= o.max_semi_axis * size)) {
+    r.why = arc_rejection::too_large;
+    return r;
+  }
+  r.e = normalised(r.e);
+  std::vector<double> theta(q.size());
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    const auto [d, t] = ellipse_frame_distance(r.e.rx, r.e.ry, to_ellipse_frame(r.e, q[k]));
+    r.max_distance = std::max(r.max_distance, std::abs(d));
+    theta[k] = t;
+  }
+  if (r.max_distance > eps) {
+    r.why = arc_rejection::off_curve;
+    return r;
+  }
+  // Unwrap the closest points' angles; they must run one way, stepping back by no more than
+  // twice the tolerance along the curve (noise), and wind round less than once.
+  double total = 0;
+  std::vector<double> phi(q.size(), 0.0);
+  for (std::size_t k = 1; k < q.size(); ++k) {
+    total += std::remainder(theta[k] - theta[k - 1], 2 * std::numbers::pi);
+    phi[k] = total;
+  }
+  const double dir = total >= 0 ? 1.0 : -1.0;
+  double ahead = 0;
+  for (std::size_t k = 1; k < q.size(); ++k) {
+    ahead = std::max(ahead, dir * phi[k]);
+    const double speed = std::hypot(r.e.rx * std::sin(theta[k]), r.e.ry * std::cos(theta[k]));
+    if ((ahead - dir * phi[k]) * speed > 2 * eps) {
+      r.why = arc_rejection::not_monotone;
+      return r;
+    }
+  }
+  if (std::abs(total) < o.min_sweep) {
+    r.why = arc_rejection::sweep_too_small;
+    return r;
+  }
+  if (std::abs(total) > 2 * std::numbers::pi) {
+    r.why = arc_rejection::sweep_too_large;
+    return r;
+  }
+  r.start = theta.front();
+  r.sweep = total;
+  r.why = arc_rejection::none;
+  return r;
+}
+
+/// Fits and checks an ellipse through q: the conic fit, then (optionally) its refinement; the
+/// refined ellipse when it passes check_arc, else the algebraic one when that passes, else the
+/// refined one's rejection. `eps` is the tolerance and `size` the drawing's size, in q's units.
+/// O(n × refinement steps).
+template <class = void>
+arc_reading read_arc(const std::vector<glm::dvec2>& q, const arc_detection_options& o, double eps,
+                     double size) {
+  arc_reading r;
+  if (q.size() < std::max<std::size_t>(o.min_arc_samples, 5)) {
+    r.why = arc_rejection::too_few_samples;
+    return r;
+  }
+  ellipse_params algebraic;
+  if (!direct_ellipse_fit(q, algebraic)) return r;
+  if (!o.refine || !(std::max(algebraic.rx, algebraic.ry) <= o.max_semi_axis * size))
+    return check_arc(q, algebraic, o, eps, size);
+  ellipse_params refined = algebraic;
+  const std::size_t steps = refine_ellipse(q, refined, o.max_semi_axis * size);
+  r = check_arc(q, refined, o, eps, size);
+  r.iterations = steps;
+  if (r.why == arc_rejection::none) return r;
+  arc_reading a = check_arc(q, algebraic, o, eps, size);
+  a.iterations = steps;
+  return a.why == arc_rejection::none ? a : r;
+}
+
+}  // namespace detail
+
+/// Fits an ellipse to points (Fitzgibbon's direct least-squares fit; with `refine`, then
+/// Levenberg–Marquardt on the geometric distances) and reports the largest distance of a point
+/// from it. Only the fit's own failures are reported (not_an_ellipse): no tolerance is applied.
+/// O(n × refinement steps), at most 30 steps.
+template <std::ranges::input_range R>
+requires Point2<std::ranges::range_value_t<R>>
+auto fit_ellipse(const R& points, bool refine = true) {
+  using P = std::ranges::range_value_t<R>;
+  std::vector<glm::dvec2> q;
+  for (const auto& p : points) q.push_back(to_dvec2(P(p)));
+  ellipse_fit<P> out;
+  detail::ellipse_params e;
+  if (!detail::direct_ellipse_fit(q, e)) return out;
+  if (refine) out.iterations = detail::refine_ellipse(q, e, std::numeric_limits<double>::max());
+  e = detail::normalised(e);
+  out.rejection = arc_rejection::none;
+  out.centre = from_dvec2<P>(e.c);
+  out.rx = e.rx, out.ry = e.ry, out.rotation = e.rot;
+  for (const glm::dvec2& p : q)
+    out.max_distance =
+        std::max(out.max_distance,
+                 std::abs(detail::ellipse_frame_distance(e.rx, e.ry, detail::to_ellipse_frame(e, p)).first));
+  return out;
+}
+
+/// A circle of a known plane seen in a parallel view, fitted to points: the 3D circle of radius
+/// `radius` whose plane's two unit axes the view maps to `u` and `v`, drawn as the ellipse
+/// centre + radius (u cos t + v sin t), whose semi-axes and rotation are also given.
+template <Point2 P>
+struct view_circle_fit {
+  arc_rejection rejection = arc_rejection::not_an_ellipse;  ///< none when the fit succeeded
+  P centre{};
+  double radius = 0;                    ///< in 3D, in the drawing's units
+  double rx = 0, ry = 0, rotation = 0;  ///< the drawn ellipse (rx >= ry)
+  double max_distance = 0;              ///< the largest distance of a point from it
+  std::size_t iterations = 0;
+};
+
+namespace detail {
+
+/// The drawn ellipse of the circle centre c, radius r, of the plane whose unit axes the view
+/// maps to u and v: the semi-axes are r times the singular values of [u v]. O(1).
+template <class = void>
+ellipse_params view_circle_ellipse(glm::dvec2 c, double r, glm::dvec2 u, glm::dvec2 v) {
+  Eigen::Matrix2d a;
+  a << u.x, v.x, u.y, v.y;
+  const Eigen::JacobiSVD<Eigen::Matrix2d> svd(a, Eigen::ComputeFullU);
+  const Eigen::Vector2d major = svd.matrixU().col(0);
+  return normalised(
+      {c, r * svd.singularValues()(0), r * svd.singularValues()(1), std::atan2(major(1), major(0))});
+}
+
+}  // namespace detail
+
+/// Fits the drawing of a circle lying in a known plane (a round's end in a face of a
+/// quasi-normalon: u and v are the drawn images of two unit model axes, s_i d_i from
+/// inflate's axis_directions and foreshortening): three unknowns (centre, radius) instead of an
+/// ellipse's five, so a short arc fixes them. Kåsa's algebraic circle fit in the frame where
+/// the ellipse is a circle (linear least squares, Eigen), then Levenberg–Marquardt on the
+/// points' distances in the drawing. Throws invalid_input when u and v are parallel or not
+/// finite. O(n × steps), at most 30 steps.
+template <std::ranges::input_range R>
+requires Point2<std::ranges::range_value_t<R>>
+auto fit_view_circle(const R& points, glm::dvec2 u, glm::dvec2 v) {
+  using P = std::ranges::range_value_t<R>;
+  view_circle_fit<P> out;
+  const double det = u.x * v.y - u.y * v.x;
+  if (!std::isfinite(det) || !(std::abs(det) > 1e-12 * std::max(glm::dot(u, u), glm::dot(v, v))))
+    throw error(
+        error_category::invalid_input,
+        "fit_view_circle: the plane's axes u and v are parallel or not finite in the drawing: a face seen "
+        "edge-on, whose circles are drawn as straight lines");
+  std::vector<glm::dvec2> q;
+  for (const auto& p : points) q.push_back(to_dvec2(P(p)));
+  if (q.size() < 3) return out;
+  // In the frame w = [u v]⁻¹ p the drawn ellipse is a circle: |w − w_c|² = r².
+  const auto to_w = [&](glm::dvec2 p) {
+    return glm::dvec2(v.y * p.x - v.x * p.y, -u.y * p.x + u.x * p.y) / det;
+  };
+  glm::dvec2 mean(0);
+  for (const glm::dvec2& p : q) mean += to_w(p);
+  mean /= static_cast<double>(q.size());
+  Eigen::MatrixXd a(static_cast<Eigen::Index>(q.size()), 3);
+  Eigen::VectorXd b(static_cast<Eigen::Index>(q.size()));
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    const glm::dvec2 w = to_w(q[k]) - mean;
+    const auto i = static_cast<Eigen::Index>(k);
+    a(i, 0) = w.x, a(i, 1) = w.y, a(i, 2) = 1;
+    b(i) = -glm::dot(w, w);
+  }
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
+  if (qr.rank() < 3) return out;
+  const Eigen::Vector3d kasa = qr.solve(b);
+  const glm::dvec2 wc(-kasa(0) / 2, -kasa(1) / 2);
+  const double r2 = glm::dot(wc, wc) - kasa(2);
+  if (!(r2 > 0)) return out;
+  glm::dvec2 c = mean + wc;
+  c = u * c.x + v * c.y;
+  // Levenberg–Marquardt over (centre, radius): the closest point's derivative is the identity
+  // for the centre and (point − centre) / r for the radius.
+  using Vec = Eigen::Matrix<double, 3, 1>;
+  Eigen::VectorXd last(static_cast<Eigen::Index>(q.size()));
+  const auto evaluate = [&](const Vec& x, Eigen::Matrix<double, Eigen::Dynamic, 3>* jac,
+                            Eigen::VectorXd& res) {
+    const detail::ellipse_params e = detail::view_circle_ellipse({x(0), x(1)}, x(2), u, v);
+    double sum = 0;
+    for (std::size_t k = 0; k < q.size(); ++k) {
+      const auto [d, t] = detail::ellipse_frame_distance(e.rx, e.ry, detail::to_ellipse_frame(e, q[k]));
+      const auto i = static_cast<Eigen::Index>(k);
+      res(i) = d;
+      sum += d * d;
+      if (!jac) continue;
+      const detail::closest_point_frame f = detail::at_closest(e, t);
+      jac->row(i) << -f.normal.x, -f.normal.y, -glm::dot(f.normal_frame, f.point_frame) / x(2);
+    }
+    return sum;
+  };
+  Vec x;
+  x << c.x, c.y, std::sqrt(r2);
+  out.iterations = detail::damped_least_squares<3>(
+      x, q.size(), evaluate,
+      [](const Vec& y) { return y(2) > 0 && std::isfinite(y(0)) && std::isfinite(y(1)); }, 30);
+  c = {x(0), x(1)};
+  const double r = x(2);
+  evaluate(x, nullptr, last);
+  for (Eigen::Index i = 0; i < last.size(); ++i)
+    out.max_distance = std::max(out.max_distance, std::abs(last(i)));
+  const detail::ellipse_params e = detail::view_circle_ellipse(c, r, u, v);
+  out.rejection = arc_rejection::none;
+  out.centre = from_dvec2<P>(c);
+  out.radius = r;
+  out.rx = e.rx, out.ry = e.ry, out.rotation = e.rot;
+  return out;
+}
+
+/// Reads each stroke (a range of sampled points, in drawing order) as straight pieces and
+/// elliptical arcs: a stroke within the tolerance of a line is one line; else, if an ellipse
+/// fits it (every sample within the tolerance, running one way, sweeping min_sweep to 2π), one
+/// arc; else it is split at the sample farthest from its chord and each part read the same way;
+/// last, neighbouring pieces that together fit one line or one ellipse are joined. Throws
+/// invalid_input for a non-finite sample or bad options. O(Σ n_s × d_s × fit), d_s the depth
+/// of the splitting (1 for a line or an arc, log n_s for an even polygon-like stroke).
+template <std::ranges::input_range Strokes>
+requires std::ranges::input_range<std::ranges::range_value_t<Strokes>> &&
+    Point2<std::ranges::range_value_t<std::ranges::range_value_t<Strokes>>>
+auto detect_arcs(const Strokes& strokes, const arc_detection_options& options = {}) {
+  using P = std::ranges::range_value_t<std::ranges::range_value_t<Strokes>>;
+  const auto started = std::chrono::steady_clock::now();
+  const arc_detection_options& o = options;
+  if (!std::isfinite(o.tolerance) || !(o.tolerance > 0) || o.tolerance >= 0.5)
+    throw error(
+        error_category::invalid_input,
+        "detect_arcs: the tolerance " + detail::drawing_number(o.tolerance) + " is not a number in (0, 0.5)");
+  if (!std::isfinite(o.drawing_size) || o.drawing_size < 0)
+    throw error(error_category::invalid_input,
+                "detect_arcs: drawing_size " + detail::drawing_number(o.drawing_size) +
+                    " is not a finite size >= 0 (0: take the strokes' bounding-box diagonal)");
+  if (!(o.min_sweep >= 0) || !(o.max_semi_axis > 0) || !std::isfinite(o.max_semi_axis))
+    throw error(error_category::invalid_input, "detect_arcs: min_sweep must be >= 0 and max_semi_axis > 0");
+  arc_detection_result<P> res;
+  // Samples in double precision, consecutive repeats dropped.
+  std::vector<std::vector<glm::dvec2>> all;
+  glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (const auto& stroke : strokes) {
+    std::vector<glm::dvec2> q;
+    for (const auto& raw : stroke) {
+      const glm::dvec2 p = to_dvec2(P(raw));
+      if (!std::isfinite(p.x) || !std::isfinite(p.y))
+        throw error(error_category::invalid_input, "detect_arcs: sample " + std::to_string(q.size()) +
+                                                       " of stroke " + std::to_string(all.size()) +
+                                                       " is not finite");
+      if (q.empty() || p != q.back()) q.push_back(p);
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    all.push_back(std::move(q));
+  }
+  const double size =
+      o.drawing_size > 0 ? o.drawing_size : (all.empty() || !(hi.x >= lo.x) ? 0.0 : glm::length(hi - lo));
+  res.drawing_size = size;
+  const double eps = o.tolerance * size;
+  const auto reject = [&](arc_rejection why) { ++res.rejections[static_cast<std::size_t>(why)]; };
+  for (std::size_t si = 0; si < all.size(); ++si) {
+    const std::vector<glm::dvec2>& q = all[si];
+    stroke_summary sum;
+    sum.first_piece = res.pieces.size();
+    sum.samples = q.size();
+    if (q.size() < 2) {
+      ++res.dropped_strokes;
+      sum.whole = arc_rejection::too_few_samples;
+      res.diagnostics.push_back("stroke " + std::to_string(si) +
+                                ": fewer than two distinct samples; dropped");
+      res.strokes.push_back(sum);
+      continue;
+    }
+    // Reads samples [a, b] as one line or one arc, or returns false with the arc's rejection.
+    const auto read = [&](std::size_t a, std::size_t b, stroke_piece<P>& piece, arc_rejection& why) {
+      piece.stroke = si, piece.first = a, piece.last = b;
+      const auto [dev, ends] = detail::fit_line(q, a, b);
+      if (dev <= eps) {
+        piece.kind = stroke_piece_kind::line;
+        piece.from = from_dvec2<P>(ends[0]), piece.to = from_dvec2<P>(ends[1]);
+        piece.deviation = size > 0 ? dev / size : 0;
+        piece.why_not_arc = why = arc_rejection::straight;
+        return true;
+      }
+      ++res.fits;
+      const std::vector<glm::dvec2> sub(q.begin() + static_cast<std::ptrdiff_t>(a),
+                                        q.begin() + static_cast<std::ptrdiff_t>(b) + 1);
+      const detail::arc_reading r = detail::read_arc(sub, o, eps, size);
+      why = r.why;
+      if (r.why != arc_rejection::none) {
+        reject(r.why);
+        return false;
+      }
+      piece.kind = stroke_piece_kind::arc;
+      piece.arc = {from_dvec2<P>(r.e.c), r.e.rx, r.e.ry, r.e.rot, r.start, r.sweep};
+      piece.from = arc_point(piece.arc, 0.0), piece.to = arc_point(piece.arc, 1.0);
+      piece.deviation = size > 0 ? r.max_distance / size : 0;
+      piece.why_not_arc = arc_rejection::none;
+      return true;
+    };
+    std::vector<stroke_piece<P>> pieces;
+    // Depth-first over sample ranges, left part first, with an explicit stack (no recursion
+    // depth to worry about on long strokes).
+    std::vector<std::array<std::size_t, 2>> todo{{0, q.size() - 1}};
+    bool top = true;
+    while (!todo.empty()) {
+      const auto [a, b] = todo.back();
+      todo.pop_back();
+      stroke_piece<P> piece;
+      arc_rejection why = arc_rejection::none;
+      const bool ok = read(a, b, piece, why);
+      if (top) sum.whole = why, top = false;
+      if (ok) {
+        pieces.push_back(piece);
+        continue;
+      }
+      if (b - a < 2) {  // two samples always fit a line; kept for safety
+        piece.kind = stroke_piece_kind::line;
+        piece.from = from_dvec2<P>(q[a]), piece.to = from_dvec2<P>(q[b]);
+        pieces.push_back(piece);
+        continue;
+      }
+      // The farthest sample from the chord (from the first sample when the chord closes).
+      const glm::dvec2 p0 = q[a], p1 = q[b];
+      const glm::dvec2 chord = p1 - p0;
+      const double len = glm::length(chord);
+      std::size_t split = a + 1;
+      double far = -1;
+      for (std::size_t k = a + 1; k < b; ++k) {
+        const glm::dvec2 d = q[k] - p0;
+        const double dist = len > eps ? std::abs(chord.x * d.y - chord.y * d.x) / len : glm::length(d);
+        if (dist > far) far = dist, split = k;
+      }
+      ++res.splits;
+      todo.push_back({split, b});
+      todo.push_back({a, split});
+    }
+    // Join neighbours that together are one line or one arc, until none joins.
+    for (bool joined = true; joined;) {
+      joined = false;
+      for (std::size_t i = 0; i + 1 < pieces.size(); ++i) {
+        // Same kinds join into one of that kind; a line shorter than the arc beside it joins it
+        // when the two are one arc (a piece cut across the point where a line runs on
+        // tangentially into an arc is short and nearly straight).
+        const stroke_piece<P>&l = pieces[i], &r = pieces[i + 1];
+        const auto samples = [](const stroke_piece<P>& p) { return p.last - p.first; };
+        const bool same = l.kind == r.kind;
+        const bool into_arc =
+            !same && (l.kind == stroke_piece_kind::line ? samples(l) < samples(r) : samples(r) < samples(l));
+        if (!same && !into_arc) continue;
+        const stroke_piece_kind want = same ? l.kind : stroke_piece_kind::arc;
+        stroke_piece<P> both;
+        arc_rejection why = arc_rejection::none;
+        if (read(l.first, r.last, both, why) && both.kind == want) {
+          pieces[i] = both;
+          pieces.erase(pieces.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+          ++res.merges;
+          joined = true;
+        }
+      }
+    }
+    std::size_t lines = 0, arcs = 0;
+    for (const stroke_piece<P>& p : pieces) (p.kind == stroke_piece_kind::arc ? arcs : lines)++;
+    res.num_lines += lines, res.num_arcs += arcs;
+    if (pieces.size() > 1)
+      res.diagnostics.push_back("stroke " + std::to_string(si) + ": not one line or one arc (as one arc: " +
+                                std::string(to_string(sum.whole)) + "); read as " + std::to_string(lines) +
+                                " lines and " + std::to_string(arcs) + " arcs");
+    sum.num_pieces = pieces.size();
+    res.pieces.insert(res.pieces.end(), pieces.begin(), pieces.end());
+    res.strokes.push_back(sum);
+  }
+  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return res;
+}
+
+}  // namespace cellforge
