@@ -419,6 +419,9 @@ TEST_CASE("central axis: a rotated elongated solid's axis within 1 degree; the f
 }
 
 TEST_CASE("thin points: bad input gives a clear error") {
+  // A sample too big to build is refused before its profile is allocated (2^31 rings: 32 GB).
+  CHECK_THROWS_WITH_AS(cellforge::thin_dumbbell(16, 2000000000, false), doctest::Contains("too large"),
+                       cellforge::error);
   const auto s = cellforge::thin_dumbbell(8, 11, false);
   const auto good = mesh_of(s.soup);
   // Open: an uncapped cylinder.
