@@ -350,11 +350,12 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
   // Duplicates found by sorting the pieces by their ends: same_as[e] is the first piece joining
   // the same two vertices (a hash table of 10^5 nodes costs more, freeing them most).
   std::vector<std::pair<std::uint64_t, std::uint32_t>> by_ends;
+  const auto undirected = [](std::uint32_t a, std::uint32_t b) {
+    return (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
+  };
   by_ends.reserve(np);
   for (std::uint32_t e = 0; e < np; ++e)
-    if (ends[e][0] != ends[e][1])
-      by_ends.emplace_back(
-          (std::uint64_t{std::min(ends[e][0], ends[e][1])} << 32) | std::max(ends[e][0], ends[e][1]), e);
+    if (ends[e][0] != ends[e][1]) by_ends.emplace_back(undirected(ends[e][0], ends[e][1]), e);
   std::sort(by_ends.begin(), by_ends.end());
   std::vector<std::uint32_t> same_as(np, no_index);
   for (std::size_t i = 0; i < by_ends.size(); ++i)
@@ -478,7 +479,7 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
     by_ends.resize(ne_kept);
     for (std::uint32_t i = 0; i < ne_kept; ++i) {
       const auto [a, b] = g.edges[i];
-      by_ends[i] = {(std::uint64_t{std::min(a, b)} << 32) | std::max(a, b), i};
+      by_ends[i] = {undirected(a, b), i};
     }
     std::sort(by_ends.begin(), by_ends.end());
     std::vector<std::array<std::uint32_t, 2>> edges(ne_kept);
