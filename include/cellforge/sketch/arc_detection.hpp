@@ -17,6 +17,7 @@
 #include <iterator>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <ranges>
 #include <string>
 #include <string_view>
@@ -27,6 +28,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
+#include <unsupported/Eigen/NonLinearOptimization>
 
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
@@ -51,7 +53,7 @@ struct arc_detection_options {
   /// An arc's semi-axes are at most this × the drawing's size: a larger ellipse through the
   /// samples is a nearly straight stroke, not an arc.
   double max_semi_axis = 2.0;
-  /// Refine the algebraic fit by Levenberg–Marquardt steps on the samples' distances to the
+  /// Refine the algebraic fit by Levenberg–Marquardt (Eigen's) on the samples' distances to the
   /// ellipse (the algebraic fit is biased on short, noisy arcs; see docs/sketch.md).
   bool refine = true;
 };
@@ -108,7 +110,7 @@ struct ellipse_fit {
   P centre{};
   double rx = 0, ry = 0, rotation = 0;
   double max_distance = 0;     ///< the largest distance of a point from the ellipse, in the points' units
-  std::size_t iterations = 0;  ///< refinement steps taken
+  std::size_t iterations = 0;  ///< the refinement's distance evaluations (Eigen's nfev, at most 30)
 };
 
 /// A maximal straight or elliptical piece of a stroke: samples `first` to `last` (inclusive)
@@ -318,48 +320,6 @@ bool direct_ellipse_fit(const std::vector<glm::dvec2>& q, ellipse_params& out) {
   return std::isfinite(out.c.x) && std::isfinite(out.c.y);
 }
 
-/// Levenberg–Marquardt with the diagonal of JᵀJ as damping (Marquardt's scaling), over K
-/// parameters and n residuals: `evaluate(x, jac or nullptr, res)` fills the residuals (and the
-/// Jacobian) and returns their sum of squares; steps to parameters that are not `admissible`
-/// are refused. Stops when a step gains less than a relative 1e-6, when no damping gives a
-/// gain, or after max_steps; returns the steps taken. O(steps × (evaluate + n K²)).
-template <int K, class Evaluate, class Admissible>
-std::size_t damped_least_squares(Eigen::Matrix<double, K, 1>& x, std::size_t n, Evaluate evaluate,
-                                 Admissible admissible, std::size_t max_steps) {
-  using Vec = Eigen::Matrix<double, K, 1>;
-  Eigen::Matrix<double, Eigen::Dynamic, K> jac(static_cast<Eigen::Index>(n), K);
-  Eigen::VectorXd res(static_cast<Eigen::Index>(n)), trial_res(static_cast<Eigen::Index>(n));
-  double lambda = 1e-3, sum = evaluate(x, &jac, res);
-  std::size_t steps = 0;
-  while (steps < max_steps) {
-    const Eigen::Matrix<double, K, K> jtj = jac.transpose() * jac;
-    const Vec g = jac.transpose() * res;
-    bool improved = false, done = false;
-    for (int tries = 0; tries < 12 && !improved; ++tries) {
-      Eigen::Matrix<double, K, K> a = jtj;
-      for (int k = 0; k < K; ++k) a(k, k) += lambda * std::max(jtj(k, k), 1e-12);
-      const Vec trial = x + a.ldlt().solve(-g);
-      if (!admissible(trial)) {
-        lambda *= 10;
-        continue;
-      }
-      const double ts = evaluate(trial, nullptr, trial_res);
-      if (ts < sum) {
-        done = sum - ts < 1e-6 * sum;
-        x = trial;
-        sum = evaluate(x, &jac, res);
-        lambda = std::max(lambda / 10, 1e-12);
-        improved = true;
-        ++steps;
-      } else {
-        lambda *= 10;
-      }
-    }
-    if (!improved || done) break;
-  }
-  return steps;
-}
-
 /// At the closest point, parametric angle t, of an ellipse: the outward unit normal in the
 /// ellipse's frame and in the drawing, and the closest point in the frame. The distance's
 /// derivative for a parameter is −(normal · the closest point's derivative for it): the
@@ -376,43 +336,117 @@ closest_point_frame at_closest(const ellipse_params& e, double t) {
   return {nf, {c * nf.x - s * nf.y, s * nf.x + c * nf.y}, {e.rx * ct, e.ry * st}};
 }
 
-/// Levenberg–Marquardt on the points' signed distances to the ellipse over (centre, semi-axes,
-/// rotation): the orthogonal-distance fit. Keeps both semi-axes at most max_axis. O(n × steps).
+/// The residual functor of Eigen's Levenberg–Marquardt for an ellipse fitted to points q: the
+/// points' signed distances to the ellipse `model.ellipse(x)` of the parameters x, and the
+/// analytic Jacobian, a row per point from `model.row(e, t)` at its closest point's angle t.
+/// Eigen asks for the Jacobian where it last evaluated (the start, or an accepted step), so
+/// the angles of the last evaluation are kept and not searched again. Parameters that give no
+/// ellipse get residuals so large that Eigen refuses the step.
+template <class Model>
+struct ellipse_distance_functor {
+  const std::vector<glm::dvec2>* q;
+  Model model;
+  Eigen::VectorXd at{};         // the parameters of the last evaluation (empty: none kept)
+  std::vector<double> angle{};  // its closest points' parametric angles
+  Eigen::Index values() const { return static_cast<Eigen::Index>(q->size()); }
+  int operator()(const Eigen::VectorXd& x, Eigen::VectorXd& f) {
+    at.resize(0);
+    const std::optional<ellipse_params> e = model.ellipse(x);
+    if (!e) {
+      f.setConstant(1e150);
+      return 0;
+    }
+    angle.resize(q->size());
+    for (std::size_t k = 0; k < q->size(); ++k) {
+      const auto [d, t] = ellipse_frame_distance(e->rx, e->ry, to_ellipse_frame(*e, (*q)[k]));
+      f(static_cast<Eigen::Index>(k)) = d;
+      angle[k] = t;
+    }
+    at = x;
+    return 0;
+  }
+  int df(const Eigen::VectorXd& x, Eigen::MatrixXd& jac) {
+    if (at.size() != x.size() || at != x) {
+      Eigen::VectorXd f(values());
+      (*this)(x, f);
+    }
+    const std::optional<ellipse_params> e = model.ellipse(x);
+    if (!e) return -1;  // Eigen stops; an accepted step always has an ellipse
+    for (std::size_t k = 0; k < q->size(); ++k)
+      jac.row(static_cast<Eigen::Index>(k)) = model.row(*e, angle[k]);
+    return 0;
+  }
+};
+
+/// Eigen's Levenberg–Marquardt (MINPACK's lmder, Marquardt's scaling) on the points' distances
+/// to the model's ellipse, from and into x: stops when a step gains less than a relative 1e-6
+/// of the sum of squares, or after max_evaluations evaluations of the distances. Returns the
+/// evaluations made (Eigen's nfev). O(evaluations × n).
+template <class Model>
+std::size_t fit_distances(const std::vector<glm::dvec2>& q, const Model& model, Eigen::VectorXd& x,
+                          std::size_t max_evaluations) {
+  ellipse_distance_functor<Model> f{&q, model};
+  Eigen::LevenbergMarquardt<ellipse_distance_functor<Model>> lm(f);
+  lm.parameters.maxfev = static_cast<Eigen::Index>(max_evaluations);
+  lm.parameters.ftol = 1e-6;
+  lm.minimize(x);
+  return static_cast<std::size_t>(lm.nfev);
+}
+
+/// The largest distance of a point of q from the ellipse e. O(n).
+template <class = void>
+double max_distance(const std::vector<glm::dvec2>& q, const ellipse_params& e) {
+  double worst = 0;
+  for (const glm::dvec2& p : q)
+    worst = std::max(worst, std::abs(ellipse_frame_distance(e.rx, e.ry, to_ellipse_frame(e, p)).first));
+  return worst;
+}
+
+/// The free ellipse's parameters in the refinement: centre, each semi-axis as s with
+/// axis = bound / (1 + e⁻ˢ) (e^s when the bound is infinite), rotation. The map keeps every
+/// axis in (0, bound), so no step leaves the admissible ellipses: a nearly straight arc would
+/// otherwise drift towards an ever larger, flatter ellipse (lower residual, no use).
+template <class = void>
+struct free_ellipse_model {
+  double bound = std::numeric_limits<double>::infinity();
+  double axis(double s) const { return std::isfinite(bound) ? bound / (1 + std::exp(-s)) : std::exp(s); }
+  double slope(double axis) const { return std::isfinite(bound) ? axis * (1 - axis / bound) : axis; }
+  double parameter(double axis) const {
+    if (!std::isfinite(bound)) return std::log(axis);
+    const double a = std::min(axis, bound * (1 - 1e-12));  // an axis at the bound: just inside
+    return std::log(a / (bound - a));
+  }
+  std::optional<ellipse_params> ellipse(const Eigen::VectorXd& x) const {
+    const ellipse_params e{{x(0), x(1)}, axis(x(2)), axis(x(3)), x(4)};
+    const bool ok = e.rx > 0 && e.ry > 0 && std::isfinite(e.rx) && std::isfinite(e.ry) &&
+                    std::isfinite(e.c.x) && std::isfinite(e.c.y) && std::isfinite(e.rot);
+    return ok ? std::optional<ellipse_params>(e) : std::nullopt;
+  }
+  Eigen::Matrix<double, 1, 5> row(const ellipse_params& e, double t) const {
+    const closest_point_frame f = at_closest(e, t);
+    const double c = std::cos(e.rot), s = std::sin(e.rot);
+    const glm::dvec2 xf = f.point_frame;
+    const glm::dvec2 turn(-s * xf.x - c * xf.y, c * xf.x - s * xf.y);  // d(point)/d(rotation)
+    Eigen::Matrix<double, 1, 5> r;
+    r << -f.normal.x, -f.normal.y, -f.normal_frame.x * std::cos(t) * slope(e.rx),
+        -f.normal_frame.y * std::sin(t) * slope(e.ry), -glm::dot(f.normal, turn);
+    return r;
+  }
+};
+
+/// Levenberg–Marquardt (Eigen's) on the points' signed distances to the ellipse over (centre,
+/// semi-axes, rotation): the orthogonal-distance fit. Keeps both semi-axes in (0, max_axis]
+/// (infinity: no bound) by the parametrisation of free_ellipse_model. Returns the distance
+/// evaluations made. O(n × max_evaluations).
 template <class = void>
 std::size_t refine_ellipse(const std::vector<glm::dvec2>& q, ellipse_params& e, double max_axis,
-                           std::size_t max_steps = 30) {
-  using Vec = Eigen::Matrix<double, 5, 1>;
-  const auto params = [](const Vec& x) { return ellipse_params{{x(0), x(1)}, x(2), x(3), x(4)}; };
-  const auto evaluate = [&](const Vec& x, Eigen::Matrix<double, Eigen::Dynamic, 5>* jac,
-                            Eigen::VectorXd& res) {
-    const ellipse_params p = params(x);
-    const double c = std::cos(p.rot), s = std::sin(p.rot);
-    double sum = 0;
-    for (std::size_t k = 0; k < q.size(); ++k) {
-      const auto [d, t] = ellipse_frame_distance(p.rx, p.ry, to_ellipse_frame(p, q[k]));
-      const auto i = static_cast<Eigen::Index>(k);
-      res(i) = d;
-      sum += d * d;
-      if (!jac) continue;
-      const closest_point_frame f = at_closest(p, t);
-      const glm::dvec2 xf = f.point_frame;
-      const glm::dvec2 turn(-s * xf.x - c * xf.y, c * xf.x - s * xf.y);  // d(point)/d(rotation)
-      jac->row(i) << -f.normal.x, -f.normal.y, -f.normal_frame.x * std::cos(t),
-          -f.normal_frame.y * std::sin(t), -glm::dot(f.normal, turn);
-    }
-    return sum;
-  };
-  // Steps out of the admissible ellipses are refused: a nearly straight arc otherwise drifts
-  // towards an ever larger, flatter ellipse (lower residual, no use).
-  const auto admissible = [&](const Vec& x) {
-    return x(2) > 0 && x(3) > 0 && std::max(x(2), x(3)) <= max_axis && std::isfinite(x(4)) &&
-           std::isfinite(x(0)) && std::isfinite(x(1));
-  };
-  Vec x;
-  x << e.c.x, e.c.y, e.rx, e.ry, e.rot;
-  const std::size_t steps = damped_least_squares<5>(x, q.size(), evaluate, admissible, max_steps);
-  e = params(x);
-  return steps;
+                           std::size_t max_evaluations = 30) {
+  const free_ellipse_model<> model{max_axis};
+  Eigen::VectorXd x(5);
+  x << e.c.x, e.c.y, model.parameter(e.rx), model.parameter(e.ry), e.rot;
+  const std::size_t evaluations = fit_distances(q, model, x, max_evaluations);
+  e = model.ellipse(x).value_or(e);
+  return evaluations;
 }
 
 /// The total least-squares line through q[first..last]: (deviation, the end samples projected
@@ -536,7 +570,7 @@ arc_reading read_arc(const std::vector<glm::dvec2>& q, const arc_detection_optio
 /// Fits an ellipse to points (Fitzgibbon's direct least-squares fit; with `refine`, then
 /// Levenberg–Marquardt on the geometric distances) and reports the largest distance of a point
 /// from it. Only the fit's own failures are reported (not_an_ellipse): no tolerance is applied.
-/// O(n × refinement steps), at most 30 steps.
+/// O(n × evaluations), at most 30 evaluations of the distances.
 template <std::ranges::input_range R>
 requires Point2<std::ranges::range_value_t<R>>
 auto fit_ellipse(const R& points, bool refine = true) {
@@ -546,15 +580,12 @@ auto fit_ellipse(const R& points, bool refine = true) {
   ellipse_fit<P> out;
   detail::ellipse_params e;
   if (!detail::direct_ellipse_fit(q, e)) return out;
-  if (refine) out.iterations = detail::refine_ellipse(q, e, std::numeric_limits<double>::max());
+  if (refine) out.iterations = detail::refine_ellipse(q, e, std::numeric_limits<double>::infinity());
   e = detail::normalised(e);
   out.rejection = arc_rejection::none;
   out.centre = from_dvec2<P>(e.c);
   out.rx = e.rx, out.ry = e.ry, out.rotation = e.rot;
-  for (const glm::dvec2& p : q)
-    out.max_distance =
-        std::max(out.max_distance,
-                 std::abs(detail::ellipse_frame_distance(e.rx, e.ry, detail::to_ellipse_frame(e, p)).first));
+  out.max_distance = detail::max_distance(q, e);
   return out;
 }
 
@@ -568,7 +599,7 @@ struct view_circle_fit {
   double radius = 0;                    ///< in 3D, in the drawing's units
   double rx = 0, ry = 0, rotation = 0;  ///< the drawn ellipse (rx >= ry)
   double max_distance = 0;              ///< the largest distance of a point from it
-  std::size_t iterations = 0;
+  std::size_t iterations = 0;           ///< the fit's distance evaluations (Eigen's nfev, at most 30)
 };
 
 namespace detail {
@@ -585,6 +616,23 @@ ellipse_params view_circle_ellipse(glm::dvec2 c, double r, glm::dvec2 u, glm::dv
       {c, r * svd.singularValues()(0), r * svd.singularValues()(1), std::atan2(major(1), major(0))});
 }
 
+/// A view circle's parameters in the fit: centre and log radius (a positive radius whatever the
+/// step). The closest point's derivative is the identity for the centre and the point's offset
+/// from the centre for the log radius.
+template <class = void>
+struct view_circle_model {
+  glm::dvec2 u, v;
+  std::optional<ellipse_params> ellipse(const Eigen::VectorXd& x) const {
+    const double r = std::exp(x(2));
+    if (!(r > 0) || !std::isfinite(r) || !std::isfinite(x(0)) || !std::isfinite(x(1))) return std::nullopt;
+    return view_circle_ellipse({x(0), x(1)}, r, u, v);
+  }
+  Eigen::Matrix<double, 1, 3> row(const ellipse_params& e, double t) const {
+    const closest_point_frame f = at_closest(e, t);
+    return {-f.normal.x, -f.normal.y, -glm::dot(f.normal_frame, f.point_frame)};
+  }
+};
+
 }  // namespace detail
 
 /// Fits the drawing of a circle lying in a known plane (a round's end in a face of a
@@ -593,7 +641,7 @@ ellipse_params view_circle_ellipse(glm::dvec2 c, double r, glm::dvec2 u, glm::dv
 /// ellipse's five, so a short arc fixes them. Kåsa's algebraic circle fit in the frame where
 /// the ellipse is a circle (linear least squares, Eigen), then Levenberg–Marquardt on the
 /// points' distances in the drawing. Throws invalid_input when u and v are parallel or not
-/// finite. O(n × steps), at most 30 steps.
+/// finite. O(n × evaluations), at most 30 evaluations of the distances.
 template <std::ranges::input_range R>
 requires Point2<std::ranges::range_value_t<R>>
 auto fit_view_circle(const R& points, glm::dvec2 u, glm::dvec2 v) {
@@ -631,36 +679,15 @@ auto fit_view_circle(const R& points, glm::dvec2 u, glm::dvec2 v) {
   if (!(r2 > 0)) return out;
   glm::dvec2 c = mean + wc;
   c = u * c.x + v * c.y;
-  // Levenberg–Marquardt over (centre, radius): the closest point's derivative is the identity
-  // for the centre and (point − centre) / r for the radius.
-  using Vec = Eigen::Matrix<double, 3, 1>;
-  Eigen::VectorXd last(static_cast<Eigen::Index>(q.size()));
-  const auto evaluate = [&](const Vec& x, Eigen::Matrix<double, Eigen::Dynamic, 3>* jac,
-                            Eigen::VectorXd& res) {
-    const detail::ellipse_params e = detail::view_circle_ellipse({x(0), x(1)}, x(2), u, v);
-    double sum = 0;
-    for (std::size_t k = 0; k < q.size(); ++k) {
-      const auto [d, t] = detail::ellipse_frame_distance(e.rx, e.ry, detail::to_ellipse_frame(e, q[k]));
-      const auto i = static_cast<Eigen::Index>(k);
-      res(i) = d;
-      sum += d * d;
-      if (!jac) continue;
-      const detail::closest_point_frame f = detail::at_closest(e, t);
-      jac->row(i) << -f.normal.x, -f.normal.y, -glm::dot(f.normal_frame, f.point_frame) / x(2);
-    }
-    return sum;
-  };
-  Vec x;
-  x << c.x, c.y, std::sqrt(r2);
-  out.iterations = detail::damped_least_squares<3>(
-      x, q.size(), evaluate,
-      [](const Vec& y) { return y(2) > 0 && std::isfinite(y(0)) && std::isfinite(y(1)); }, 30);
+  // Levenberg–Marquardt over (centre, log radius): a positive radius whatever the step.
+  const detail::view_circle_model<> model{u, v};
+  Eigen::VectorXd x(3);
+  x << c.x, c.y, 0.5 * std::log(r2);
+  out.iterations = detail::fit_distances(q, model, x, 30);
   c = {x(0), x(1)};
-  const double r = x(2);
-  evaluate(x, nullptr, last);
-  for (Eigen::Index i = 0; i < last.size(); ++i)
-    out.max_distance = std::max(out.max_distance, std::abs(last(i)));
+  const double r = std::exp(x(2));
   const detail::ellipse_params e = detail::view_circle_ellipse(c, r, u, v);
+  out.max_distance = detail::max_distance(q, e);
   out.rejection = arc_rejection::none;
   out.centre = from_dvec2<P>(c);
   out.radius = r;
