@@ -6,13 +6,19 @@
 #include <doctest/doctest.h>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <limits>
 #include <random>
+#include <span>
 #include <utility>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/algorithms/ear_clipping.hpp"
 #include "cellforge/algorithms/loop_subdivision.hpp"
 #include "cellforge/algorithms/self_intersections.hpp"
 #include "cellforge/algorithms/shapes.hpp"
@@ -261,6 +267,44 @@ TEST_CASE("self_intersections: nearly coplanar, where an epsilon decides wrongly
     CHECK(pairs(indexed({t[0], t[1], t[2], dvec3(0.7 * s, 0.5 * s, h)}, {{{0, 1, 2}}, {{1, 0, 3}}})) == 0);
     CHECK(pairs(indexed({t[0], t[1], t[2], dvec3(0.7 * s, 0.5 * s, 0)}, {{{0, 1, 2}}, {{1, 0, 3}}})) == 1);
   }
+}
+
+TEST_CASE("self_intersections: a convex quad is split as ear clipping splits it") {
+  // The quad shortcut must give ear clipping's own two triangles: random quads near a
+  // square (off their plane, in random orientations and scales, some concave in
+  // projection), compared with clip_polygon one by one.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> jitter(-0.6, 0.6), angle(-3.14159, 3.14159), scale(-6, 6);
+  cellforge::ear_clip_options clip;
+  clip.planarity_tolerance = std::numeric_limits<double>::infinity();
+  clip.allow_non_simple = true;
+  int shortcut = 0, refused = 0, mismatches = 0;
+  for (int t = 0; t < 20000; ++t) {
+    const double a = angle(rng), b = angle(rng), s = std::pow(10.0, scale(rng));
+    const dvec3 u(std::cos(a), std::sin(a), 0),
+        w(-std::sin(a) * std::cos(b), std::cos(a) * std::cos(b), std::sin(b));
+    const dvec3 n = glm::cross(u, w);
+    std::vector<dvec3> q;
+    for (const auto& [x, y] : std::array<std::pair<double, double>, 4>{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}})
+      q.push_back(s * ((x + jitter(rng)) * u + (y + jitter(rng)) * w + 0.2 * jitter(rng) * n));
+    if (!cellforge::detail::self_intersect::convex_projected_quad(std::span<const dvec3>(q))) {
+      ++refused;
+      continue;
+    }
+    ++shortcut;
+    cellforge::ear_clip_report report;
+    const auto tris = cellforge::detail::ears::clip_polygon(q, clip, report);
+    const std::vector<cellforge::index_triangle> expected{{3, 0, 1}, {1, 2, 3}};
+    if (tris != expected) {
+      ++mismatches;
+      MESSAGE("miss: quad " << t << " is clipped otherwise");
+    }
+  }
+  std::printf("convex quads: %d by the shortcut (%d mismatches), %d left to ear clipping\n", shortcut,
+              mismatches, refused);
+  CHECK(shortcut > 10000);
+  CHECK(refused > 0);
+  CHECK(mismatches == 0);
 }
 
 TEST_CASE("self_intersections: polygons are tested as their triangulations") {

@@ -6,9 +6,11 @@
 /// signs of orient3d / orient2d alone (core/predicates.hpp), with no epsilon anywhere.
 ///
 /// What is tested. A face is tested as the triangles of its triangulation: a triangle as
-/// itself; a polygon that is exactly planar and strictly convex as the fan from its first
-/// vertex; any other polygon (non-planar — a quad whose corners are off one plane by a
-/// rounding error is one —, concave, with a straight corner) as the triangles ear clipping
+/// itself; a quad whose projection (as ear clipping projects it) is strictly convex as the
+/// triangles (3, 0, 1) and (1, 2, 3) — what ear clipping makes of it off its plane, the
+/// same region as any fan in its plane; a polygon that is exactly planar and strictly convex
+/// as the fan from its first vertex; any other polygon (non-planar — a quad whose corners are off one plane
+/// by a rounding error is one —, concave, with a straight corner) as the triangles ear clipping
 /// (algorithms/ear_clipping.hpp) makes of its projection, with no planarity limit and
 /// non-simple faces allowed; a polygon ear clipping refuses (no area) falls back to the fan.
 /// So a non-planar quad is tested as its two triangles. Triangles of one face are never
@@ -93,9 +95,11 @@ struct self_intersection_result {
   std::size_t intersecting_triangle_pairs = 0;
   /// The first max_reported intersecting face pairs, by face index (first < second).
   std::vector<std::pair<face_handle, face_handle>> face_pairs;
-  std::size_t faces = 0;                 ///< live faces
-  std::size_t triangles = 0;             ///< triangles of their triangulations
-  std::size_t ear_clipped_faces = 0;     ///< polygons not both planar and strictly convex
+  std::size_t faces = 0;      ///< live faces
+  std::size_t triangles = 0;  ///< triangles of their triangulations
+  /// Polygons not both planar and strictly convex (a quad convex in projection counts as
+  /// planar when orient3d's floating-point filter cannot tell it from planar).
+  std::size_t ear_clipped_faces = 0;
   std::size_t candidate_pairs = 0;       ///< triangle pairs examined in grid cells (the budget counts these)
   std::size_t pairs_tested = 0;          ///< pairs of different faces with overlapping boxes, tested exactly
   std::size_t degenerate_triangles = 0;  ///< zero-area triangles (not tested)
@@ -122,10 +126,12 @@ std::array<int, 3> axes_by_normal(const vec& a, const vec& b, const vec& c) noex
   std::array<double, 3> n = {std::fabs(e.y * f.z - e.z * f.y), std::fabs(e.z * f.x - e.x * f.z),
                              std::fabs(e.x * f.y - e.y * f.x)};
   for (double& x : n)
-    if (std::isnan(x)) x = 0;  // overflow: any order, the exact checks decide
-  std::array<int, 3> order = {0, 1, 2};
-  std::sort(order.begin(), order.end(),
-            [&](int i, int j) { return n[static_cast<std::size_t>(i)] > n[static_cast<std::size_t>(j)]; });
+    if (std::isnan(x)) x = 0;            // overflow: any order, the exact checks decide
+  std::array<int, 3> order = {0, 1, 2};  // a stable three-element sort, largest first
+  auto at = [&](int i) { return n[static_cast<std::size_t>(i)]; };
+  if (at(order[1]) > at(order[0])) std::swap(order[0], order[1]);
+  if (at(order[2]) > at(order[1])) std::swap(order[1], order[2]);
+  if (at(order[1]) > at(order[0])) std::swap(order[0], order[1]);
   return order;
 }
 
@@ -144,6 +150,20 @@ template <class = void>
 int orient3d_filtered(const vec& a, const vec& b, const vec& c, const vec& d) noexcept {
   double value = 0;
   return cellforge::detail::orient3d_filter(cellforge::detail::prepare_orient3d(a, b, c), d, value);
+}
+
+/// The same against a plane prepared once for several queries. O(1).
+template <class = void>
+int orient3d_filtered(const cellforge::detail::orient3d_plane& plane, const vec& d) noexcept {
+  double value = 0;
+  return cellforge::detail::orient3d_filter(plane, d, value);
+}
+
+/// orient3d(a, b, c, d) given its filtered sign: the exact evaluation only where the
+/// filter could not decide, so it equals orient3d. O(1).
+template <class = void>
+int orient3d_given(int filtered, const vec& a, const vec& b, const vec& c, const vec& d) noexcept {
+  return filtered != 0 ? filtered : cellforge::detail::orient3d_exact(a, b, c, d);
 }
 
 // Cheap exact rejections for the configurations whose orient3d is exactly zero (flat
@@ -265,15 +285,18 @@ tri make_tri(const vec& a, const vec& b, const vec& c) noexcept {
 template <class = void>
 bool disjoint_pair_meets(const std::array<vec, 3>& a, const std::array<vec, 3>& b) noexcept {
   std::array<int, 3> sa{}, sb{};  // sides of a's corners against b's plane, and of b's against a's
-  for (std::size_t i = 0; i < 3; ++i) sa[i] = orient3d_filtered(b[0], b[1], b[2], a[i]);
+  const auto plane_b = cellforge::detail::prepare_orient3d(b[0], b[1], b[2]);
+  for (std::size_t i = 0; i < 3; ++i) sa[i] = orient3d_filtered(plane_b, a[i]);
   if (sa[0] == sa[1] && sa[1] == sa[2] && sa[0] != 0) return false;
   if (sa[0] == 0 || sa[1] == 0 || sa[2] == 0) {  // the exact evaluation is needed: try cheaper first
     const int k = axes_by_normal(b[0], b[1], b[2])[0];
     if (projections_apart(a, b, (k + 1) % 3, (k + 2) % 3)) return false;
   }
-  for (std::size_t i = 0; i < 3; ++i) sa[i] = orient3d(b[0], b[1], b[2], a[i]);
+  for (std::size_t i = 0; i < 3; ++i) sa[i] = orient3d_given(sa[i], b[0], b[1], b[2], a[i]);
   if (sa[0] == sa[1] && sa[1] == sa[2] && sa[0] != 0) return false;
-  for (std::size_t i = 0; i < 3; ++i) sb[i] = orient3d(a[0], a[1], a[2], b[i]);
+  const auto plane_a = cellforge::detail::prepare_orient3d(a[0], a[1], a[2]);
+  for (std::size_t i = 0; i < 3; ++i)
+    sb[i] = orient3d_given(orient3d_filtered(plane_a, b[i]), a[0], a[1], a[2], b[i]);
   if (sb[0] == sb[1] && sb[1] == sb[2] && sb[0] != 0) return false;
   const tri ta = make_tri(a[0], a[1], a[2]), tb = make_tri(b[0], b[1], b[2]);
   for (std::size_t i = 0; i < 3; ++i) {
@@ -287,12 +310,17 @@ bool disjoint_pair_meets(const std::array<vec, 3>& a, const std::array<vec, 3>& 
 /// T1 = (v, a, b) and T2 = (v, c, d) share exactly the vertex v: do they meet elsewhere? O(1).
 template <class = void>
 bool vertex_pair_meets(const vec& v, const vec& a, const vec& b, const vec& c, const vec& d) noexcept {
-  if (orient3d_filtered(v, c, d, a) * orient3d_filtered(v, c, d, b) > 0) return false;
+  const auto plane2 = cellforge::detail::prepare_orient3d(v, c, d);
+  const int fa = orient3d_filtered(plane2, a), fb = orient3d_filtered(plane2, b);
+  if (fa * fb > 0) return false;
+  const auto plane1 = cellforge::detail::prepare_orient3d(v, a, b);
+  const int fc = orient3d_filtered(plane1, c), fd = orient3d_filtered(plane1, d);
+  if (fc * fd > 0) return false;  // T2 meets T1's plane only at v
   const int k = axes_by_normal(v, a, b)[0];
   if (apart_at_vertex(v, a, b, c, d, (k + 1) % 3, (k + 2) % 3)) return false;
-  const int sa = orient3d(v, c, d, a), sb = orient3d(v, c, d, b);
+  const int sa = orient3d_given(fa, v, c, d, a), sb = orient3d_given(fb, v, c, d, b);
   if (sa * sb > 0) return false;  // T1 meets T2's plane only at v
-  const int sc = orient3d(v, a, b, c), sd = orient3d(v, a, b, d);
+  const int sc = orient3d_given(fc, v, a, b, c), sd = orient3d_given(fd, v, a, b, d);
   if (sc * sd > 0) return false;
   const tri t1 = make_tri(v, a, b), t2 = make_tri(v, c, d);
   if (segment_meets(a, b, sa, sb, t2) || segment_meets(c, d, sc, sd, t1)) return true;
@@ -319,9 +347,12 @@ bool pair_intersects(const std::array<vec, 3>& p, const std::array<std::uint32_t
                      const std::array<vec, 3>& q, const std::array<std::uint32_t, 3>& iq) noexcept {
   int shared = 0;
   std::array<int, 3> match = {-1, -1, -1};  // match[i]: corner of q with p's id i
-  for (std::size_t i = 0; i < 3; ++i)
-    for (std::size_t j = 0; j < 3; ++j)
-      if (ip[i] == iq[j]) match[i] = static_cast<int>(j), ++shared;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::uint32_t id = ip[i];
+    const int j = id == iq[0] ? 0 : id == iq[1] ? 1 : id == iq[2] ? 2 : -1;
+    match[i] = j;
+    shared += j >= 0 ? 1 : 0;
+  }
   if (shared == 0) return disjoint_pair_meets(p, q);
   if (shared >= 3) return true;
   if (shared == 1) {
@@ -363,6 +394,32 @@ bool convex_planar(std::span<const vec> p) noexcept {
       if (j != i && j != (i + 1) % n && orient_uw(p[i], p[(i + 1) % n], p[j], u, w) != s) return false;
   for (std::size_t j = 3; j < n; ++j)
     if (orient3d(p[0], p[1], p[2], p[j]) != 0) return false;
+  return true;
+}
+
+/// For a quad that ear clipping would triangulate: true when its projection in ear
+/// clipping's plane (the dominant axis of Newell's normal about the centroid, computed as
+/// clip_polygon does) is strictly convex. Ear clipping then cuts the ear at corner 0 first,
+/// giving (3, 0, 1) and (1, 2, 3); this answers that without its set-up. O(1).
+template <class = void>
+bool convex_projected_quad(std::span<const vec> p) noexcept {
+  vec centroid(0.0), newell(0.0);
+  for (std::size_t i = 0; i < 4; ++i) {
+    if (!std::isfinite(p[i].x) || !std::isfinite(p[i].y) || !std::isfinite(p[i].z)) return false;
+    centroid += p[i];
+  }
+  centroid /= 4.0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const vec a = p[i] - centroid, b = p[(i + 1) % 4] - centroid;
+    newell += vec((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
+  }
+  int k = 0;
+  for (int a = 1; a < 3; ++a)
+    if (std::fabs(newell[a]) > std::fabs(newell[k])) k = a;
+  if (!(std::fabs(newell[k]) > 0)) return false;
+  const int u = (k + 1) % 3, w = (k + 2) % 3, sense = newell[k] > 0 ? 1 : -1;
+  for (std::size_t i = 0; i < 4; ++i)
+    if (orient_uw(p[i], p[(i + 1) % 4], p[(i + 2) % 4], u, w) != sense) return false;
   return true;
 }
 
@@ -439,7 +496,17 @@ void triangulate_for_test(const surface_mesh<P>& m, std::span<const vec> pos, st
     }
     const std::size_t n = ids.size();
     if (n < 3) continue;
-    bool fan = n == 3 || convex_planar(std::span<const vec>(corners));
+    const std::span<const vec> polygon(corners);
+    // A quad whose projection is strictly convex: off its plane (a rounding error is
+    // enough) ear clipping would cut it into these two triangles; in its plane they cover
+    // what the fan covers, which gives the same answers. No exact planarity test needed.
+    if (n == 4 && convex_projected_quad(polygon)) {
+      if (orient3d_filtered(corners[0], corners[1], corners[2], corners[3]) != 0) ++r.ear_clipped_faces;
+      add(f.idx(), ids[3], ids[0], ids[1]);
+      add(f.idx(), ids[1], ids[2], ids[3]);
+      continue;
+    }
+    bool fan = n == 3 || convex_planar(polygon);
     if (!fan) {
       ++r.ear_clipped_faces;
       ear_clip_report report;
