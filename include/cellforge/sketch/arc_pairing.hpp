@@ -17,6 +17,7 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -131,7 +132,8 @@ bool parallel(glm::dvec2 u, glm::dvec2 v, double angle) {
 /// line; then, among the rest, end curves that are translates of each other (same semi-axes and
 /// rotation, ends moved by the centres' difference) with parallel lines at corresponding ends,
 /// matched so that the total distance between partners is least. Throws invalid_input when an
-/// arc is not valid (validate_arcs: a zero radius, ends not on the curve, ...) or a line names
+/// arc is not valid (validate_arcs to 1e-9 of the size, 64 ε for float points: a zero radius,
+/// ends not on the curve, ...) or a line names
 /// a junction that does not exist; an arc that cannot be paired is reported in `unpaired` and a
 /// diagnostic. O(V + E + A² + groups' matchings), a group of g congruent curves costing up to
 /// the number of matchings of g (exact_group bounds it).
@@ -140,7 +142,11 @@ arc_pairing_result<P> pair_arcs(const arc_drawing<P>& d, const arc_pairing_optio
   using detail::pairing::chain;
   const auto t_start = std::chrono::steady_clock::now();
   arc_pairing_result<P> out;
-  if (const arc_validation v = validate_arcs(d); !v.ok())
+  // Arc ends on their junctions to 1e-9 of the size, or to the point type's own precision.
+  double end_tol = 1e-9;
+  if constexpr (std::is_floating_point_v<scalar2_t<P>>)
+    end_tol = std::max(end_tol, 64 * static_cast<double>(std::numeric_limits<scalar2_t<P>>::epsilon()));
+  if (const arc_validation v = validate_arcs(d, {end_tol}); !v.ok())
     throw error(error_category::invalid_input, "pair_arcs: " + v.message);
   const std::size_t nv = d.lines.points.size(), na = d.arcs.size();
   for (std::size_t e = 0; e < d.lines.edges.size(); ++e)
