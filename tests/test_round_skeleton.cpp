@@ -23,6 +23,7 @@
 
 #include "cellforge/core/error.hpp"
 #include "cellforge/sketch/arc_pairing.hpp"
+#include "cellforge/sketch/drawing_to_cells.hpp"
 #include "cellforge/sketch/round_skeleton.hpp"
 #include "cellforge/sketch/sample_round_drawings.hpp"
 
@@ -242,6 +243,62 @@ cellforge::arc_drawing<glm::dvec2> box_corner_blend(double tilt) {
     d.arcs.push_back({{j, j + 2}, r::affine_arc(proj(e.c), proj(e.u), proj(e.v), 0, g.Phi)});
   }
   return d;
+}
+
+TEST_CASE("round skeleton: the skeleton reads as the solid; its reading decides categories a and c") {
+  const auto drawings = sweep();
+  std::size_t solids = 0, as_truth = 0, as_mirror = 0, tried = 0;
+  std::vector<std::string> misses;
+  for (const auto& s : drawings) {
+    auto r = cellforge::round_skeleton(s.drawing);
+    std::vector<std::uint32_t> map;
+    if (!skeleton_difference(r.skeleton, s.skeleton.drawing, 1e-6 * diagonal(s.drawing.lines.points), map)
+             .empty())
+      continue;  // named by the sweep above
+    ++tried;
+    const auto cells = cellforge::drawing_to_cells<glm::dvec3>(r.skeleton);
+    // The complex's faces, in the truth's junction numbers, against the prism's.
+    auto faces = cells.face_loops;
+    for (auto& f : faces)
+      for (auto& loop : f)
+        for (auto& j : loop) j = map[j];
+    const bool solid = cells.faces_agree && cellforge::same_faces(s.skeleton.model.faces, faces);
+    solids += solid;
+    if (!solid) {
+      misses.push_back(s.name + ": the skeleton's cell complex is not the prism");
+      continue;
+    }
+    std::vector<double> depth;
+    for (const auto& p : cells.wire.points) depth.push_back(p.z);
+    cellforge::resolve_blend_categories(r, depth);
+    // The reading is the true one or its mirror: every category as the truth's, or a and c swapped.
+    bool same = true, mirrored = true;
+    for (const auto& t : s.rounds)
+      for (const auto& b : r.blends) {
+        if (std::minmax(map[b.junctions[0]], map[b.junctions[1]]) !=
+            std::minmax(t.vertices[0], t.vertices[1]))
+          continue;
+        const blend_category m = t.category == blend_category::a   ? blend_category::c
+                                 : t.category == blend_category::c ? blend_category::a
+                                                                   : t.category;
+        same = same && b.category == t.category;
+        mirrored = mirrored && b.category == m;
+      }
+    as_truth += same;
+    as_mirror += mirrored && !same;
+    if (!same && !mirrored) {
+      std::string got;
+      for (const auto& b : r.blends) got += std::string(" ") + category_name(b.category);
+      misses.push_back(s.name + ": categories" + got + " fit neither reading");
+    }
+  }
+  std::printf(
+      "round skeleton read by drawing_to_cells: the prism's cell complex on %zu of %zu; categories from "
+      "the reading: the true view's on %zu, its mirror's on %zu, neither on %zu\n",
+      solids, tried, as_truth, as_mirror, solids - as_truth - as_mirror);
+  for (const auto& m : misses) std::printf("  miss: %s\n", m.c_str());
+  CHECK(solids == tried);
+  CHECK(as_truth + as_mirror == solids);
 }
 
 TEST_CASE("arc pairing: bad input is refused or reported") {

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -198,6 +199,95 @@ round_skeleton_result<P> round_skeleton(const arc_drawing<P>& d, const round_ske
   out.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
   return out;
+}
+
+/// Decides category a or c (and b for fillets, which have no contour line) of every blend from a
+/// reading of the skeleton: depth[j] the depth of skeleton junction j, larger towards the viewer
+/// (inflation's z). The skeleton's face loops (found when classifying) are oriented coherently
+/// and outward (the reading's signed volume positive); a face faces the viewer when its outward
+/// loop runs counter-clockwise in the drawing; a blend is a, b or c as two, one or none of the
+/// faces at its new edge do. A rule-1 pair the reading does not put on the contour gets a
+/// diagnostic. Throws invalid_input when depth has the wrong size or no faces were found.
+/// O(L + blends · L), L the loops' total length.
+template <Point2 P>
+void resolve_blend_categories(round_skeleton_result<P>& r, const std::vector<double>& depth) {
+  const std::size_t nv = r.skeleton.points.size();
+  if (depth.size() != nv)
+    throw error(error_category::invalid_input, "resolve_blend_categories: " + std::to_string(depth.size()) +
+                                                   " depths for " + std::to_string(nv) +
+                                                   " skeleton junctions");
+  const auto& loops = r.faces.loops;
+  if (loops.empty())
+    throw error(
+        error_category::invalid_input,
+        "resolve_blend_categories: the skeleton has no faces (round_skeleton with classify on finds them)");
+  // Coherent orientation: across every edge its two loops run opposite ways.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::pair<std::size_t, bool>>> sides;
+  for (std::size_t l = 0; l < loops.size(); ++l)
+    for (std::size_t i = 0; i < loops[l].size(); ++i) {
+      const std::uint32_t a = loops[l][i], b = loops[l][(i + 1) % loops[l].size()];
+      sides[{std::min(a, b), std::max(a, b)}].push_back({l, a < b});
+    }
+  std::vector<int> sense(loops.size(), 0);
+  for (std::size_t seed = 0; seed < loops.size(); ++seed) {
+    if (sense[seed] != 0) continue;
+    sense[seed] = 1;
+    std::vector<std::size_t> stack{seed};
+    while (!stack.empty()) {
+      const std::size_t l = stack.back();
+      stack.pop_back();
+      for (std::size_t i = 0; i < loops[l].size(); ++i) {
+        const std::uint32_t a = loops[l][i], b = loops[l][(i + 1) % loops[l].size()];
+        const bool forward = a < b;
+        for (const auto& [m, fwd] : sides[{std::min(a, b), std::max(a, b)}]) {
+          if (m == l || sense[m] != 0) continue;
+          // Run opposite: same stored direction means opposite senses.
+          sense[m] = fwd == forward ? -sense[l] : sense[l];
+          stack.push_back(m);
+        }
+      }
+    }
+  }
+  std::vector<glm::dvec3> p(nv);
+  for (std::size_t j = 0; j < nv; ++j) p[j] = glm::dvec3(to_dvec2(r.skeleton.points[j]), depth[j]);
+  double volume = 0;
+  std::vector<double> area(loops.size(), 0);
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    const auto& lp = loops[l];
+    for (std::size_t i = 0; i < lp.size(); ++i) {
+      const glm::dvec3 a = p[lp[i]], b = p[lp[(i + 1) % lp.size()]];
+      area[l] += sense[l] * (a.x * b.y - b.x * a.y);
+      if (i >= 1 && i + 1 < lp.size()) volume += sense[l] * glm::dot(p[lp[0]], glm::cross(a, b));
+    }
+  }
+  const double outward = volume < 0 ? -1.0 : 1.0;
+  for (auto& b : r.blends) {
+    int front = 0, faces = 0;
+    for (std::size_t l = 0; l < loops.size(); ++l) {
+      const auto& lp = loops[l];
+      bool has = false;
+      for (std::size_t i = 0; i < lp.size() && !has; ++i) {
+        const std::uint32_t u = lp[i], v = lp[(i + 1) % lp.size()];
+        has = (u == b.junctions[0] && v == b.junctions[1]) || (u == b.junctions[1] && v == b.junctions[0]);
+      }
+      if (!has) continue;
+      ++faces;
+      front += outward * area[l] > 0;
+    }
+    if (faces != 2) {
+      r.diagnostics.push_back("blend " + std::to_string(b.pair) + ": its edge is on " +
+                              std::to_string(faces) + " faces, not two; category left as it was");
+      continue;
+    }
+    const blend_category c = front == 2   ? blend_category::a
+                             : front == 1 ? blend_category::b
+                                          : blend_category::c;
+    if (b.category == blend_category::b && c != blend_category::b)
+      r.diagnostics.push_back("blend " + std::to_string(b.pair) +
+                              " has a contour line but the reading does not put it on the contour");
+    else
+      b.category = c;
+  }
 }
 
 }  // namespace cellforge
