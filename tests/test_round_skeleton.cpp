@@ -116,7 +116,6 @@ TEST_CASE("round drawings: the generator's arcs meet their lines tangentially, t
     // The skeleton is the polyhedron's own drawing, readable as such.
     CHECK(cellforge::validate_drawing(s.skeleton.drawing).ok());
     const auto& q = s.drawing.lines.points;
-    const double eps = 1e-9 * diagonal(q);
     std::vector<std::vector<std::uint32_t>> lines_at(q.size());
     for (std::uint32_t e = 0; e < s.drawing.lines.edges.size(); ++e)
       for (const auto j : s.drawing.lines.edges[e]) lines_at[j].push_back(e);
@@ -142,7 +141,6 @@ TEST_CASE("round drawings: the generator's arcs meet their lines tangentially, t
       // The truth's edge is a skeleton edge between its two vertices.
       const auto& e = s.skeleton.drawing.edges[t.edge];
       CHECK(std::minmax(e[0], e[1]) == std::minmax(t.vertices[0], t.vertices[1]));
-      (void)eps;
     }
   }
   for (const auto& f : cellforge::round_sweep_families()) CHECK(families[f] > 0);

@@ -3,7 +3,7 @@
 /// \file
 /// Sample drawings of solids with rounded edges and fillets, with their ground truth: prisms
 /// over normalon and quasi-normalon footprints (blocks, L, T, U, crosses, chamfered blocks,
-/// wedges, ramps, trapezoids, gable houses) with 1–6 edges blended by a circular arc of random
+/// wedges, ramps, trapezoids, stairs, gable houses) with 1–6 edges blended by a circular arc of random
 /// radius (convex edges rounded, concave ones filleted), seen in a generic parallel view: each
 /// blend's two end curves are exact elliptical arcs. The truth is the skeleton drawing (the
 /// polyhedron's own drawing, what drawing_to_cells reads), which skeleton edges carry a blend,
@@ -87,17 +87,18 @@ struct end_curve {
   glm::dvec3 at(double phi) const { return c + u * std::cos(phi) + v * std::sin(phi); }
 };
 
-/// A circular blend of radius r on the edge A→B between faces of outward unit normals n1, n2
-/// (both ⊥ AB), cut by the end planes through A (normal gA) and B (normal gB): the cylinder's
-/// axis is at distance r from both face planes, inside the solid for a convex edge, outside for
-/// a concave one; its surface point of outward normal n(φ) = cos φ n1 + sin φ m is swept along
-/// the edge to each end plane. O(1).
+/// A blend's end curves and its normal frame: outward normal n(φ) = cos φ n1 + sin φ m, φ in [0, Phi].
 struct blend {
   std::array<end_curve, 2> ends;
   glm::dvec3 n1{0.0}, m{0.0};
   double Phi = 0;
-  glm::dvec3 normal(double phi) const { return n1 * std::cos(phi) + m * std::sin(phi); }
 };
+
+/// A circular blend of radius r on the edge A→B between faces of outward unit normals n1, n2
+/// (both ⊥ AB), cut by the end planes through A (normal gA) and B (normal gB): the cylinder's
+/// axis is at distance r from both face planes, inside the solid for a convex edge, outside for
+/// a concave one; its surface point of outward normal n(φ) is swept along the edge to each end
+/// plane, which is affine in (cos φ, sin φ). O(1).
 
 template <class = void>
 blend make_blend(glm::dvec3 A, glm::dvec3 B, glm::dvec3 n1, glm::dvec3 n2, bool convex, double r,
@@ -448,8 +449,8 @@ sample_round_drawing round_prism_drawing(const std::vector<glm::dvec2>& p, doubl
 /// The families of round_drawing_sweep, in its order. O(1).
 template <class = void>
 std::vector<std::string> round_sweep_families() {
-  return {"block",       "L",     "T",    "cross",     "U",    "chamfered block",
-          "chamfered L", "wedge", "ramp", "trapezoid", "gable"};
+  return {"block",       "L",     "T",    "cross",     "U",      "chamfered block",
+          "chamfered L", "wedge", "ramp", "trapezoid", "stairs", "gable"};
 }
 
 namespace detail::rounds {
@@ -510,6 +511,20 @@ std::vector<glm::dvec2> family_footprint(std::size_t family, splitmix& rng) {
       p = {{0, 0}, {a, 0}, {a - s2, b}, {s1, b}};
       break;
     }
+    case 10: {  // a staircase of 1..3 steps, as sample_stairs draws its profile
+      const std::size_t steps = 1 + below(3, rng);
+      std::vector<double> x{0.0}, z{0.0};
+      for (std::size_t k = 0; k < steps; ++k) {
+        x.push_back(x.back() + rng.uniform(0.6, 1.4));
+        z.push_back(z.back() + rng.uniform(0.4, 1.0));
+      }
+      p = {{0, 0}, {x[steps], 0}, {x[steps], z[steps]}};
+      for (std::size_t k = steps; k-- > 0;) {
+        p.push_back({x[k], z[k + 1]});
+        if (k > 0) p.push_back({x[k], z[k]});
+      }
+      break;
+    }
     default:
       p = {{0, 0}, {a, 0}, {a, b}, {a / 2, b + rng.uniform(0.3, 1.2)}, {0, b}};
       break;
@@ -547,12 +562,26 @@ std::vector<sample_round_drawing> round_drawing_sweep(const round_sweep_options&
     const double h = rng.uniform(0.8, 2.5);
     const std::size_t n = p.size();
     const std::string name = families[family] + " #" + std::to_string(k);
-    // Candidates in random order; each kept when it fits with those kept before.
+    // Candidates in random order, the rarer kinds (fillets at reflex corners, side edges along
+    // oblique sides) usually first; each kept when it fits with those kept before.
     std::vector<std::array<double, 3>> cand, kept;
+    std::vector<std::pair<double, std::size_t>> order;
     for (int kind = 0; kind < 3; ++kind)
-      for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t i = 0; i < n; ++i) {
+        const glm::dvec2 u = p[i] - p[(i + n - 1) % n], w = p[(i + 1) % n] - p[i];
+        const bool rare =
+            kind == 0 ? u.x * w.y - u.y * w.x < 0
+                      : std::abs(w.x) > 1e-9 * glm::length(w) && std::abs(w.y) > 1e-9 * glm::length(w);
+        const double key = rng.uniform(0, 1) - (rare ? 0.6 : 0.0);
+        order.push_back({key, cand.size()});
         cand.push_back({static_cast<double>(kind), static_cast<double>(i), 0});
-    for (std::size_t i = cand.size(); i > 1; --i) std::swap(cand[i - 1], cand[detail::below(i, rng)]);
+      }
+    std::sort(order.begin(), order.end());
+    {
+      std::vector<std::array<double, 3>> sorted;
+      for (const auto& [key, at] : order) sorted.push_back(cand[at]);
+      cand = std::move(sorted);
+    }
     const std::size_t want = 1 + detail::below(options.max_blends, rng);
     for (auto& c : cand) {
       if (kept.size() >= want) break;
