@@ -114,12 +114,13 @@ bool same_shape(const chain& a, const chain& b, double tol, double angle) {
   return d <= angle * std::max(1.0, a.rx / (a.rx - a.ry));
 }
 
-/// The unit direction of line e. O(1).
+/// The unit direction of line e, from its first junction to its second. O(1).
 template <class = void>
 glm::dvec2 line_direction(const std::vector<glm::dvec2>& q, const std::array<std::uint32_t, 2>& e) {
   return glm::normalize(q[e[1]] - q[e[0]]);
 }
 
+/// Whether unit vectors u and v are parallel (either way) within `angle` radians. O(1).
 template <class = void>
 bool parallel(glm::dvec2 u, glm::dvec2 v, double angle) {
   return std::abs(u.x * v.y - u.y * v.x) <= angle;
