@@ -39,6 +39,9 @@ struct arc_pairing_options {
   double tolerance = 1e-4;
   /// Lines are parallel, a contour line tangent, rotations equal within this angle (radians).
   double angle_tolerance = 1e-3;
+  /// Arc ends lie on their junctions within this fraction of the diagonal (validate_arcs), raised
+  /// to 64 ε for float points; a drawing typed or snapped to a few decimals needs more.
+  double end_tolerance = 1e-9;
   /// Largest group of mutually congruent end curves matched exactly (by the least total
   /// distance); a larger group is matched greedily, nearest first, with a diagnostic.
   std::size_t exact_group = 14;
@@ -131,20 +134,20 @@ bool parallel(glm::dvec2 u, glm::dvec2 v, double angle) {
 /// Pairs the arcs of `d` into blends by the seed's two rules, in order: end curves (arcs of one
 /// ellipse meeting end to end, each end on exactly one straight line) sharing a tangent contour
 /// line; then, among the rest, end curves that are translates of each other (same semi-axes and
-/// rotation, ends moved by the centres' difference) with parallel lines at corresponding ends,
-/// matched so that the total distance between partners is least. Throws invalid_input when an
-/// arc is not valid (validate_arcs to 1e-9 of the size, 64 ε for float points: a zero radius,
-/// ends not on the curve, ...) or a line names
-/// a junction that does not exist; an arc that cannot be paired is reported in `unpaired` and a
-/// diagnostic. O(V + E + A² + groups' matchings), a group of g congruent curves costing up to
-/// the number of matchings of g (exact_group bounds it).
+/// rotation, ends moved by the centres' difference) with parallel lines at corresponding ends and
+/// the new edge along neither, matched with the most pairs, then the fewest new edges parallel to no straight
+/// line of the drawing, then the least total distance between partners. Throws invalid_input when an arc is
+/// not valid (validate_arcs to end_tolerance of the size, 64 ε for float points: a zero radius, ends not on
+/// the curve, ...) or a line names a junction that does not exist; an arc that cannot be paired is reported
+/// in `unpaired` and a diagnostic. O(V + E + A² + groups' matchings), a group of g congruent curves costing
+/// up to the number of matchings of g (exact_group bounds it).
 template <Point2 P>
 arc_pairing_result<P> pair_arcs(const arc_drawing<P>& d, const arc_pairing_options& options = {}) {
   using detail::pairing::chain;
   const auto t_start = std::chrono::steady_clock::now();
   arc_pairing_result<P> out;
-  // Arc ends on their junctions to 1e-9 of the size, or to the point type's own precision.
-  double end_tol = 1e-9;
+  // Arc ends on their junctions to end_tolerance of the size, or to the point type's own precision.
+  double end_tol = options.end_tolerance;
   if constexpr (std::is_floating_point_v<scalar2_t<P>>)
     end_tol = std::max(end_tol, 64 * static_cast<double>(std::numeric_limits<scalar2_t<P>>::epsilon()));
   if (const arc_validation v = validate_arcs(d, {end_tol}); !v.ok())
@@ -384,13 +387,32 @@ arc_pairing_result<P> pair_arcs(const arc_drawing<P>& d, const arc_pairing_optio
   for (std::uint32_t i = 0; i < no; ++i)
     for (std::uint32_t k = i + 1; k < no; ++k) {
       bool crossed = false;
-      if (congruent(chains[open[i]], chains[open[k]], crossed)) {
+      // The new edge may not run along a line at its own corner: the skeleton would have
+      // collinear edges at a vertex (two corners on one line, e.g. along a shared side).
+      const chain& a = chains[open[i]];
+      const glm::dvec2 t = chains[open[k]].centre - a.centre;
+      bool along = !(glm::length(t) > 0);
+      for (std::size_t s = 0; s < 2 && !along; ++s)
+        along = detail::pairing::parallel(detail::pairing::line_direction(q, d.lines.edges[a.lines[s]]),
+                                          t / glm::length(t), ang);
+      if (!along && congruent(a, chains[open[k]], crossed)) {
         compatible[i].push_back({k, crossed});
         comp.unite(i, k);
       }
     }
+  // A pair's cost: the distance between the partners, plus a penalty that outweighs any sum of
+  // distances when the new edge would be parallel to no straight line of the drawing (an
+  // edge of a polyhedron mostly is: the other sides of its faces, a round's contour line).
+  std::vector<glm::dvec2> directions;
+  for (const auto& ln : d.lines.edges)
+    if (q[ln[0]] != q[ln[1]]) directions.push_back(detail::pairing::line_direction(q, ln));
   const auto dist = [&](std::uint32_t i, std::uint32_t k) {
-    return glm::length(chains[open[i]].centre - chains[open[k]].centre);
+    const glm::dvec2 t = chains[open[k]].centre - chains[open[i]].centre;
+    const double len = glm::length(t);
+    bool supported = false;
+    for (std::size_t e = 0; e < directions.size() && !supported && len > 0; ++e)
+      supported = detail::pairing::parallel(directions[e], t / len, ang);
+    return len + (supported ? 0.0 : 1000 * size);
   };
   std::vector<bool> grouped(no, false);
   for (std::uint32_t root = 0; root < no; ++root) {
@@ -404,7 +426,8 @@ arc_pairing_result<P> pair_arcs(const arc_drawing<P>& d, const arc_pairing_optio
     double best_cost = std::numeric_limits<double>::infinity();
     std::vector<bool> taken(no, false);
     if (g.size() <= options.exact_group) {
-      // Most pairs first, then least total distance: every matching of the group.
+      // Most pairs first, then the fewest new edges parallel to no line, then least total
+      // distance: every matching of the group.
       const auto search = [&](auto&& self, std::size_t at, double cost) -> void {
         while (at < g.size() && taken[g[at]]) ++at;
         if (at == g.size()) {

@@ -69,6 +69,9 @@ struct round_sweep_options {
   std::size_t max_blends = 6;  ///< blends per drawing: 1..max_blends (as many as fit)
   double min_margin = 2e-3;  ///< junction–junction and junction–line distance over the drawing's diagonal
   int view_attempts = 60;    ///< views tried per model before it is dropped
+  /// One radius for every blend of a drawing (8–30 % of its shortest side or height), as parts
+  /// are often designed; off: each blend its own.
+  bool equal_radii = false;
 };
 
 /// What round_drawing_sweep made: drawings, blends by kind and category, models dropped.
@@ -583,12 +586,15 @@ std::vector<sample_round_drawing> round_drawing_sweep(const round_sweep_options&
       cand = std::move(sorted);
     }
     const std::size_t want = 1 + detail::below(options.max_blends, rng);
+    double shortest = h;
+    for (std::size_t i = 0; i < n; ++i) shortest = std::min(shortest, glm::length(p[(i + 1) % n] - p[i]));
+    const double common = options.equal_radii ? rng.uniform(0.08, 0.3) * shortest : 0.0;
     for (auto& c : cand) {
       if (kept.size() >= want) break;
       const auto i = static_cast<std::size_t>(c[1]);
       const double side =
           std::min(glm::length(p[(i + 1) % n] - p[i]), glm::length(p[i] - p[(i + n - 1) % n]));
-      c[2] = rng.uniform(0.08, 0.3) * std::min(side, h);
+      c[2] = options.equal_radii ? common : rng.uniform(0.08, 0.3) * std::min(side, h);
       kept.push_back(c);
       try {
         round_prism_drawing(p, h, kept, glm::dmat3(1.0), name, families[family]);
