@@ -198,6 +198,21 @@ void skeleton_sweep(const std::vector<sample_round_drawing>& drawings, const cha
       for (const auto& dd : r.diagnostics) diag += "; " + dd;
       misses.push_back(s.name + ": " + why + diag);
     }
+    // The 2D geometry kept per blend: each end curve runs from its first end junction to its
+    // second (split arcs joined into one), and the second is the first moved along the new edge.
+    const double size = diagonal(s.drawing.lines.points);
+    for (const auto& b : r.blends) {
+      const auto& p = r.pairing.pairs[b.pair];
+      for (std::size_t k = 0; k < 2; ++k) {
+        CHECK(glm::length(cellforge::arc_point(b.curves[k], 0.0) - s.drawing.lines.points[p.ends[k][0]]) <
+              1e-9 * size);
+        CHECK(glm::length(cellforge::arc_point(b.curves[k], 1.0) - s.drawing.lines.points[p.ends[k][1]]) <
+              1e-9 * size);
+      }
+      CHECK(glm::length(b.curves[1].centre - b.curves[0].centre - b.axis) < 1e-9 * size);
+      CHECK(glm::length(cellforge::arc_point(b.curves[1], 0.5) - cellforge::arc_point(b.curves[0], 0.5) -
+                        b.axis) < 1e-9 * size);
+    }
     exact += why.empty();
     kinds_right += kinds;
     for (const auto& t : s.rounds) {
