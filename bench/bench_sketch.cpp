@@ -4,7 +4,8 @@
 // largest drawing of 251 edges slightly over 1 s). Then inflation and the whole of
 // drawing_to_cells per family of the generated sweep (ms, and how often the true cell complex
 // comes out), and direct inflation of a ~100-line normalon (issue target: 50 ms). Every row is
-// the median of its iterations.
+// the median of its iterations. Last, rounds and fillets: pairing the arcs and the polyhedral
+// skeleton per family of the generated round drawings.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -22,7 +23,9 @@
 #include "cellforge/sketch/drawing_to_cells.hpp"
 #include "cellforge/sketch/face_finder.hpp"
 #include "cellforge/sketch/inflation.hpp"
+#include "cellforge/sketch/round_skeleton.hpp"
 #include "cellforge/sketch/sample_drawings.hpp"
+#include "cellforge/sketch/sample_round_drawings.hpp"
 
 namespace {
 
@@ -143,7 +146,69 @@ const cellforge::sample_drawing& comb() {
   return s;
 }
 
+// The generated round drawings, per family.
+struct round_family {
+  std::string family;
+  std::vector<cellforge::sample_round_drawing> drawings;
+  std::size_t blends = 0;
+};
+
+std::vector<round_family>& round_families() {
+  static std::vector<round_family> f = [] {
+    std::vector<round_family> out;
+    for (auto& s : cellforge::round_drawing_sweep()) {
+      auto it =
+          std::find_if(out.begin(), out.end(), [&](const round_family& c) { return c.family == s.family; });
+      if (it == out.end()) out.push_back({s.family, {}, 0}), it = out.end() - 1;
+      it->blends += s.rounds.size();
+      it->drawings.push_back(std::move(s));
+    }
+    return out;
+  }();
+  return f;
+}
+
+// Per family: skeletons with the true junction and edge counts and no arc unpaired.
+std::map<std::string, std::size_t>& round_right() {
+  static std::map<std::string, std::size_t> m;
+  return m;
+}
+
 void register_all() {
+  for (const round_family& f : round_families()) {
+    benchmark::RegisterBenchmark(("rounds/pair_arcs/" + f.family).c_str(),
+                                 [&f](benchmark::State& state) {
+                                   cb::median_loop(state, [&] {
+                                     std::size_t pairs = 0;
+                                     for (const auto& s : f.drawings)
+                                       pairs += cellforge::pair_arcs(s.drawing).pairs.size();
+                                     return pairs;
+                                   });
+                                 })
+        ->Iterations(9)
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("rounds/skeleton/" + f.family).c_str(),
+                                 [&f](benchmark::State& state) {
+                                   cb::median_loop(
+                                       state,
+                                       [&] {
+                                         std::size_t ok = 0;
+                                         for (const auto& s : f.drawings) {
+                                           const auto r = cellforge::round_skeleton(s.drawing);
+                                           ok +=
+                                               r.pairing.unpaired.empty() && r.unknown == 0 &&
+                                               r.skeleton.points.size() == s.skeleton.drawing.points.size() &&
+                                               r.skeleton.edges.size() == s.skeleton.drawing.edges.size();
+                                         }
+                                         return ok;
+                                       },
+                                       [&](std::size_t ok) { round_right()[f.family] = ok; });
+                                 })
+        ->Iterations(9)
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond);
+  }
   for (const family_case& f : families()) {
     benchmark::RegisterBenchmark(("inflate/" + f.family).c_str(),
                                  [&f](benchmark::State& state) {
@@ -281,6 +346,22 @@ void print_tables(const cb::collecting_reporter& r, std::ostream& os) {
               "-line comb normalon: " + cb::ms(r.counter_ms("inflate/comb", "median_cpu_us")) +
               " ms (issue target: 100 lines in <= 50 ms).");
   in.print(os);
+  cb::table rt("Rounds and fillets: pairing and the skeleton per family of the generated round drawings",
+               {"family", "drawings", "blends", "pair_arcs ms per drawing", "round_skeleton ms per drawing",
+                "skeleton right"});
+  for (const round_family& f : round_families()) {
+    const double n = static_cast<double>(f.drawings.size());
+    const std::optional<double> a = r.counter_ms("rounds/pair_arcs/" + f.family, "median_cpu_us"),
+                                b = r.counter_ms("rounds/skeleton/" + f.family, "median_cpu_us");
+    rt.add_row({f.family, cb::count(f.drawings.size()), cb::count(f.blends), a ? cb::ms(*a / n) : "—",
+                b ? cb::ms(*b / n) : "—",
+                std::to_string(round_right()[f.family]) + " of " + std::to_string(f.drawings.size())});
+  }
+  rt.add_note(
+      "round_skeleton: pairing, the skeleton and face finding on it (round or fillet); right = no arc "
+      "unpaired, every blend's kind found, the true junction and edge counts (tests/test_round_skeleton.cpp "
+      "compares the drawings themselves).");
+  rt.print(os);
 }
 
 }  // namespace

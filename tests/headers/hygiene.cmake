@@ -55,7 +55,7 @@ foreach(header IN LISTS headers)
   endif()
 endforeach()
 # The umbrella header's promise.
-set(umbrella_exempt "^cellforge/(io/|.*/detail/|cellforge\\.hpp$|algorithms/shapes\\.hpp$|wireframe/sample_models\\.hpp$|tubes/sample_skeletons\\.hpp$|sketch/sample_drawings\\.hpp$|sketch/inflation\\.hpp$|sketch/drawing_to_cells\\.hpp$|sketch/tidy\\.hpp$|sketch/arc_detection\\.hpp$|thin/sample_solids\\.hpp$|smooth/sample_solids\\.hpp$)")
+set(umbrella_exempt "^cellforge/(io/|.*/detail/|cellforge\\.hpp$|algorithms/shapes\\.hpp$|wireframe/sample_models\\.hpp$|tubes/sample_skeletons\\.hpp$|sketch/sample_drawings\\.hpp$|sketch/sample_round_drawings\\.hpp$|sketch/inflation\\.hpp$|sketch/drawing_to_cells\\.hpp$|sketch/tidy\\.hpp$|sketch/arc_detection\\.hpp$|thin/sample_solids\\.hpp$|smooth/sample_solids\\.hpp$)")
 file(READ "${INCLUDE_DIR}/cellforge/cellforge.hpp" umbrella)
 foreach(header IN LISTS headers)
   if(header MATCHES "${umbrella_exempt}")

@@ -173,6 +173,13 @@ struct drawing_arc {
   elliptical_arc<P> curve{};
 };
 
+/// The seed's visibility categories of a round or fillet (003_be08eec927fcc329.txt, "Rounds and
+/// fillets"), by how its two faces face the viewer: `a` both (both arcs seen whole, no line
+/// between them), `b` one (a round's contour line is tangent to both arcs), `c` neither (one arc
+/// seen, the other hidden). In a wireframe drawing a and c are the two Necker readings of one
+/// drawing: `a_or_c` says the drawing alone cannot tell which (docs/sketch.md).
+enum class blend_category : std::uint8_t { a, b, c, a_or_c };
+
 /// A line drawing with elliptical arcs beside its straight edges. The straight part is an
 /// ordinary line drawing and reads as one by every sketch stage; the arcs share its junctions.
 template <Point2 P>
