@@ -400,10 +400,38 @@ std::vector<compliance_terms<>::convex_row> make_convexity_rows(const inflation_
   return out;
 }
 
+/// The residuals of the convex reading for Eigen's Levenberg–Marquardt: max(0, a_i t + margin)
+/// per convexity row, then √λ t (a small pull to the origin, so the least t is unique and
+/// m ≥ n). Its Jacobian is a_i on the active rows, 0 on the others, √λ I below: Gauss–Newton
+/// on it is the semismooth Newton step of the piecewise quadratic. O(R K) per call.
+template <class = void>
+struct convex_hinge_functor {
+  const Eigen::MatrixXd* a;
+  double margin;
+  double root_lambda;
+  Eigen::Index values() const { return a->rows() + a->cols(); }
+  int operator()(const Eigen::VectorXd& t, Eigen::VectorXd& f) const {
+    f.head(a->rows()) = ((*a * t).array() + margin).cwiseMax(0.0).matrix();
+    f.tail(a->cols()) = root_lambda * t;
+    return 0;
+  }
+  int df(const Eigen::VectorXd& t, Eigen::MatrixXd& jac) const {
+    const Eigen::VectorXd v = *a * t;
+    for (Eigen::Index i = 0; i < a->rows(); ++i)
+      if (v[i] + margin > 0)
+        jac.row(i) = a->row(i);
+      else
+        jac.row(i).setZero();
+    jac.bottomRows(a->cols()) = root_lambda * Eigen::MatrixXd::Identity(a->cols(), a->cols());
+    return 0;
+  }
+};
+
 /// A convex reading over the planar-face readings z = N t: the least t with every convexity row
-/// at most −margin, by semismooth Newton on Σ max(0, A t + margin)² + λ‖t‖² (a convex piecewise
-/// quadratic; finite active-set steps). Empty when no reading reaches h < 0 on every row (the
-/// drawing admits no strictly convex reading with these faces). O(iterations · (R K² + K³)).
+/// at most −margin, by Eigen's Levenberg–Marquardt on Σ max(0, A t + margin)² + λ‖t‖² (a convex
+/// piecewise quadratic; its trust region keeps the active-set steps from cycling), stopped as
+/// soon as every row is at most −margin/2. Empty when no reading reaches h < 0 on every row (the
+/// drawing admits no strictly convex reading with these faces). O(iterations · (R + K) K²).
 template <class = void>
 Eigen::VectorXd convex_reading(const std::vector<compliance_terms<>::convex_row>& rows,
                                const Eigen::MatrixXd& basis, double margin) {
@@ -414,33 +442,19 @@ Eigen::VectorXd convex_reading(const std::vector<compliance_terms<>::convex_row>
     a.row(static_cast<Eigen::Index>(i)) = r.scale * (basis.row(r.d) - r.alpha * basis.row(r.a) -
                                                      r.beta * basis.row(r.b) - r.gamma * basis.row(r.c));
   }
-  const double lambda = 1e-6;
-  const auto objective = [&](const Eigen::VectorXd& x) {
-    return (a * x).array().unaryExpr([&](double h) { return std::max(0.0, h + margin); }).square().sum() +
-           lambda * x.squaredNorm();
-  };
   Eigen::VectorXd t = Eigen::VectorXd::Zero(k);
-  double value = objective(t);
-  for (int it = 0; it < 100; ++it) {
-    const Eigen::VectorXd v = a * t;
-    if (v.maxCoeff() <= -0.5 * margin) break;  // convex with room: enough for a start
-    // Newton step on the rows active at t, then backtracking (the objective is convex).
-    Eigen::MatrixXd h = lambda * Eigen::MatrixXd::Identity(k, k);
-    Eigen::VectorXd g = lambda * t;
-    for (Eigen::Index i = 0; i < a.rows(); ++i)
-      if (v[i] + margin > 0) {
-        h.noalias() += a.row(i).transpose() * a.row(i);
-        g += (v[i] + margin) * a.row(i).transpose();
-      }
-    const Eigen::VectorXd step = -h.ldlt().solve(g);
-    if (!step.allFinite()) return {};
-    double s = 1, next = objective(t + step);
-    while (next > value - 1e-4 * s * (-g.dot(step)) && s > 1e-8) s *= 0.5, next = objective(t + s * step);
-    if (!(next < value)) break;
-    t += s * step, value = next;
-  }
+  if (a.rows() == 0 || k == 0) return {};
+  convex_hinge_functor<> f{&a, margin, std::sqrt(1e-6)};
+  Eigen::LevenbergMarquardt<convex_hinge_functor<>> lm(f);
+  // Eigen's own loop, one step at a time, so that it stops once the reading is convex with
+  // room (enough for a start); 100 iterations at most.
+  auto status = lm.minimizeInit(t);
+  while ((status == Eigen::LevenbergMarquardtSpace::NotStarted ||
+          status == Eigen::LevenbergMarquardtSpace::Running) &&
+         lm.iter <= 100 && !((a * t).maxCoeff() <= -0.5 * margin))
+    status = lm.minimizeOneStep(t);
   const Eigen::VectorXd v = a * t;
-  if (!t.allFinite() || v.size() == 0 || !(v.maxCoeff() < 0)) return {};
+  if (!t.allFinite() || !(v.maxCoeff() < 0)) return {};
   return t;
 }
 
