@@ -62,9 +62,9 @@ enum class radius_source : std::uint8_t { lifted, circle_2d, none };
 /// well the two end curves agree with it.
 struct edge_round {
   static constexpr std::uint32_t npos = ~std::uint32_t{0};
-  std::size_t blend = 0;                    ///< index into the skeleton's blends
-  std::uint32_t skeleton_edge = 0;          ///< the skeleton drawing's edge (the wireframe's edge)
-  std::uint32_t cell_edge = npos;           ///< the cell complex's edge (npos: not in the complex)
+  std::size_t blend = 0;                     ///< index into the skeleton's blends
+  std::uint32_t skeleton_edge = 0;           ///< the skeleton drawing's edge (the wireframe's edge)
+  std::uint32_t cell_edge = npos;            ///< the cell complex's edge (npos: not in the complex)
   std::array<std::uint32_t, 2> junctions{};  ///< the edge's skeleton junctions
   blend_kind kind = blend_kind::unknown;
   bool convex = true;  ///< a round (kind round) or a fillet (kind fillet)
@@ -111,7 +111,8 @@ namespace detail::blends {
 
 /// Newell normal (unit) and centroid of a face's outer loop, positions p. O(L).
 template <class = void>
-std::pair<glm::dvec3, glm::dvec3> plane_of(const std::vector<glm::dvec3>& p, const std::vector<std::uint32_t>& loop) {
+std::pair<glm::dvec3, glm::dvec3> plane_of(const std::vector<glm::dvec3>& p,
+                                           const std::vector<std::uint32_t>& loop) {
   auto [n, c] = detail::sketch::loop_plane(p, loop);
   const double len = glm::length(n);
   return {len > 0 ? n / len : n, c};
@@ -134,7 +135,8 @@ int edge_sense(const std::vector<std::uint32_t>& loop, std::uint32_t a, std::uin
 template <Point2 P>
 std::vector<edge_round> attributes(const round_skeleton_result<P>& sk,
                                    const std::vector<std::vector<std::vector<std::uint32_t>>>& faces,
-                                   const std::vector<glm::dvec3>& X, const std::vector<std::uint32_t>& input_edge,
+                                   const std::vector<glm::dvec3>& X,
+                                   const std::vector<std::uint32_t>& input_edge,
                                    std::vector<std::string>& diagnostics, const rounds_options& options) {
   std::vector<std::pair<glm::dvec3, glm::dvec3>> planes;
   for (const auto& f : faces) planes.push_back(plane_of(X, f[0]));
@@ -221,7 +223,8 @@ std::vector<edge_round> attributes(const round_skeleton_result<P>& sk,
     }
     const auto by_circles = [&](const std::string& why) {
       if (r.circle_angle[0] > options.circle_angle || r.circle_angle[1] > options.circle_angle) {
-        diagnostics.push_back(who + ": " + why + ", and its end curves are not circles square to the edge; no radius");
+        diagnostics.push_back(who + ": " + why +
+                              ", and its end curves are not circles square to the edge; no radius");
         return;
       }
       r.source = radius_source::circle_2d;
@@ -230,7 +233,8 @@ std::vector<edge_round> attributes(const round_skeleton_result<P>& sk,
       r.radius_spread = std::abs(major[0] - major[1]) / r.radius;
       r.setback = r.radius / std::tan(0.5 * r.wedge_angle);
       // Parallel end faces: one foreshortening.
-      r.consistent = std::max(r.radius_spread, std::abs(r.axis_ratio[0] - r.axis_ratio[1])) <= options.consistency;
+      r.consistent =
+          std::max(r.radius_spread, std::abs(r.axis_ratio[0] - r.axis_ratio[1])) <= options.consistency;
       diagnostics.push_back(who + ": " + why + "; its radius is its circles' major semi-axis in the drawing");
     };
     if (!lifted) {
@@ -309,7 +313,8 @@ bool metric_map(const std::vector<edge_round>& rounds,
   Eigen::MatrixXd A(static_cast<Eigen::Index>(rows.size()), 3);
   Eigen::VectorXd y(static_cast<Eigen::Index>(rows.size()));
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    for (std::size_t j = 0; j < 3; ++j) A(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = rows[i][j];
+    for (std::size_t j = 0; j < 3; ++j)
+      A(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = rows[i][j];
     y(static_cast<Eigen::Index>(i)) = rows[i][3];
   }
   const Eigen::VectorXd x = A.colPivHouseholderQr().solve(y);
@@ -328,7 +333,8 @@ bool metric_map(const std::vector<edge_round>& rounds,
 /// consistency diagnostics. Throws invalid_input when `reading` is not a reading of `sk`'s
 /// skeleton. O(blends · F · L).
 template <Point3 Q, Point2 P>
-std::vector<edge_round> round_attributes(const round_skeleton_result<P>& sk, const drawing_result<Q, P>& reading,
+std::vector<edge_round> round_attributes(const round_skeleton_result<P>& sk,
+                                         const drawing_result<Q, P>& reading,
                                          std::vector<std::string>& diagnostics,
                                          const rounds_options& options = {}) {
   const std::size_t nv = sk.skeleton.points.size();
@@ -338,7 +344,8 @@ std::vector<edge_round> round_attributes(const round_skeleton_result<P>& sk, con
                                                    " junctions, the skeleton " + std::to_string(nv));
   std::vector<glm::dvec3> X(nv);
   for (std::size_t j = 0; j < nv; ++j) X[j] = to_dvec3(reading.wire.points[j]);
-  return detail::blends::attributes(sk, reading.face_loops, X, reading.cells.input_edge, diagnostics, options);
+  return detail::blends::attributes(sk, reading.face_loops, X, reading.cells.input_edge, diagnostics,
+                                    options);
 }
 
 /// Reconstruction with rounds: round_skeleton, drawing_to_cells on the skeleton, then
@@ -353,8 +360,9 @@ rounds_result<Q, P> reconstruct_rounds(const arc_drawing<P>& d, const rounds_opt
   out.skeleton = round_skeleton(d, options.skeleton);
   out.diagnostics = out.skeleton.diagnostics;
   if (!out.skeleton.validation.ok())
-    throw error(error_category::invalid_input,
-                "reconstruct_rounds: the skeleton is not a readable drawing: " + out.skeleton.validation.message);
+    throw error(
+        error_category::invalid_input,
+        "reconstruct_rounds: the skeleton is not a readable drawing: " + out.skeleton.validation.message);
   out.reading = drawing_to_cells<Q>(out.skeleton.skeleton, options.reading);
   const std::size_t nv = out.skeleton.skeleton.points.size();
   std::vector<glm::dvec3> X(nv);
@@ -373,8 +381,9 @@ rounds_result<Q, P> reconstruct_rounds(const arc_drawing<P>& d, const rounds_opt
     std::vector<std::string> again;
     auto rounds = detail::blends::attributes(out.skeleton, faces, Y, input_edge, again, options);
     const auto count = [](const std::vector<edge_round>& v) {
-      return std::count_if(v.begin(), v.end(),
-                           [](const edge_round& r) { return r.source == radius_source::lifted && r.consistent; });
+      return std::count_if(v.begin(), v.end(), [](const edge_round& r) {
+        return r.source == radius_source::lifted && r.consistent;
+      });
     };
     if (count(rounds) > count(out.rounds)) {
       out.rounds = std::move(rounds), notes = std::move(again), X = std::move(Y);
@@ -390,6 +399,157 @@ rounds_result<Q, P> reconstruct_rounds(const arc_drawing<P>& d, const rounds_opt
   for (const auto& r : out.rounds) ++(r.consistent ? out.consistent : out.inconsistent);
   out.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
+  return out;
+}
+
+/// Options of rounded_mesh.
+struct rounded_mesh_options {
+  /// Largest distance of a blend strip's chords from its circle, relative to the skeleton
+  /// drawing's diagonal.
+  double chord_tolerance = 1e-3;
+  int max_segments = 256;  ///< segments per blend at most (work bound)
+};
+
+/// The rounded solid as a polygon mesh: every skeleton face trimmed back by the setbacks of its
+/// blends (a round's end face loses its corner to the end curve, a fillet's gains it), every
+/// blend a strip of quads; face_source[f] is the skeleton face (face_loops index) of mesh face f,
+/// or −1 − blend for a strip's quad. Faces are oriented outward.
+template <Point3 Q>
+struct rounded_mesh_result {
+  polygon_soup<Q> mesh;
+  std::vector<std::int64_t> face_source;
+  std::size_t strips = 0, strip_quads = 0, skipped = 0;  ///< skipped: blends with no radius
+  std::vector<std::string> diagnostics;
+};
+
+/// The rounded solid of a reconstruction: per blend with a radius, its axis the edge moved by
+/// radius / sin(wedge / 2) along the wedge's bisector, its cross-section arc from the tangent
+/// line in one face to the other in n = ⌈arc / (2 acos(1 − tolerance / radius))⌉ chords, each arc
+/// point moved along the edge onto the end planes; then every face loop with its blend corners
+/// replaced (tangent points in the blend's faces, the end curve in its end faces). Throws
+/// invalid_input when two blends share a junction or a corner is on a face that is neither a
+/// blend face nor its end face, or a face has holes. O(V + F · L + Σ segments).
+template <Point3 Q, Point2 P>
+rounded_mesh_result<Q> rounded_mesh(const rounds_result<Q, P>& r, const rounded_mesh_options& options = {}) {
+  rounded_mesh_result<Q> out;
+  const auto& faces = r.reading.face_loops;
+  const std::size_t nv = r.points.size();
+  std::vector<glm::dvec3> X(nv);
+  for (std::size_t j = 0; j < nv; ++j) X[j] = to_dvec3(r.points[j]);
+  if (nv == 0) return out;
+  glm::dvec3 lo = X[0], hi = X[0];
+  for (const auto& x : X) lo = glm::min(lo, x), hi = glm::max(hi, x);
+  const double tol = options.chord_tolerance * glm::length(glm::dvec2(hi - lo));
+  std::vector<std::vector<std::uint32_t>> outer;
+  for (const auto& f : faces) {
+    if (f.size() > 1)
+      throw error(error_category::invalid_input, "rounded_mesh: faces with holes are not meshed yet");
+    outer.push_back(f[0]);
+  }
+  // Outward loops: coherent senses, flipped when the volume they bound is negative.
+  std::vector<int> sense = detail::coherent_senses(outer);
+  double volume = 0;
+  for (std::size_t l = 0; l < outer.size(); ++l)
+    for (std::size_t k = 1; k + 1 < outer[l].size(); ++k)
+      volume += sense[l] * glm::dot(X[outer[l][0]], glm::cross(X[outer[l][k]], X[outer[l][k + 1]]));
+  for (std::size_t l = 0; l < outer.size(); ++l)
+    if (sense[l] * volume < 0) std::reverse(outer[l].begin(), outer[l].end());
+  // Per junction: the blend end at it (blend, end), if any.
+  constexpr std::uint32_t none = ~std::uint32_t{0};
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> at(nv, {none, none});
+  std::vector<std::uint32_t> index(nv, none);
+  const auto point = [&](const glm::dvec3& x) {
+    out.mesh.points.push_back(from_dvec3<Q>(x));
+    return static_cast<std::uint32_t>(out.mesh.points.size() - 1);
+  };
+  // Per blend and end: its arc's mesh points, from the tangent line in faces[0] to faces[1].
+  std::vector<std::array<std::vector<std::uint32_t>, 2>> arc(r.rounds.size());
+  std::vector<std::array<std::uint32_t, 2>> first_face(r.rounds.size());
+  for (std::size_t i = 0; i < r.rounds.size(); ++i) {
+    const edge_round& e = r.rounds[i];
+    if (!(e.radius > 0) || e.source == radius_source::none) {
+      ++out.skipped;
+      out.diagnostics.push_back("blend " + std::to_string(e.blend) + " has no radius; its edge stays sharp");
+      continue;
+    }
+    for (std::size_t k = 0; k < 2; ++k) {
+      if (at[e.junctions[k]].first != none)
+        throw error(error_category::invalid_input,
+                    "rounded_mesh: two blends meet at junction " + std::to_string(e.junctions[k]));
+      at[e.junctions[k]] = {static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k)};
+    }
+    const glm::dvec3 A = X[e.junctions[0]], d = glm::normalize(X[e.junctions[1]] - A);
+    std::array<glm::dvec3, 2> t{};
+    for (std::size_t s = 0; s < 2; ++s) {
+      const auto& loop = outer[e.faces[s]];
+      const int sn = detail::blends::edge_sense(loop, e.junctions[0], e.junctions[1]);
+      const glm::dvec3 n = detail::blends::plane_of(X, loop).first;
+      t[s] = glm::normalize(glm::cross(n, d * static_cast<double>(sn)));
+    }
+    const double wedge = std::acos(std::clamp(glm::dot(t[0], t[1]), -1.0, 1.0));
+    const glm::dvec3 axis = A + e.radius / std::sin(0.5 * wedge) * glm::normalize(t[0] + t[1]);
+    // From the axis: towards the tangent line in face 0, then turning towards face 1.
+    const glm::dvec3 u = glm::normalize(A + e.setback * t[0] - axis);
+    glm::dvec3 v = A + e.setback * t[1] - axis;
+    v = glm::normalize(v - glm::dot(v, u) * u);
+    const double sweep = std::numbers::pi - wedge;
+    const double step = tol < e.radius ? 2 * std::acos(1 - tol / e.radius) : sweep;
+    const int n = std::clamp(static_cast<int>(std::ceil(sweep / step)), 1, options.max_segments);
+    for (std::size_t k = 0; k < 2; ++k) {
+      const glm::dvec3 g = detail::blends::plane_of(X, outer[e.end_faces[k]]).first;
+      const glm::dvec3 c = X[e.junctions[k]];
+      for (int m = 0; m <= n; ++m) {
+        const double phi = sweep * m / n;
+        const glm::dvec3 q = axis + e.radius * (std::cos(phi) * u + std::sin(phi) * v);
+        arc[i][k].push_back(point(q + d * (glm::dot(g, c - q) / glm::dot(g, d))));
+      }
+    }
+    // The strip, oriented against faces[0]'s loop along its trimmed edge.
+    const bool along = detail::blends::edge_sense(outer[e.faces[0]], e.junctions[0], e.junctions[1]) > 0;
+    const auto& a0 = arc[i][along ? 1 : 0];
+    const auto& a1 = arc[i][along ? 0 : 1];
+    for (int m = 0; m < n; ++m) {
+      const auto mm = static_cast<std::size_t>(m);
+      const std::array<std::uint32_t, 4> quad{a0[mm], a1[mm], a1[mm + 1], a0[mm + 1]};
+      out.mesh.add_face(quad);
+      out.face_source.push_back(-1 - static_cast<std::int64_t>(e.blend));
+    }
+    ++out.strips, out.strip_quads += static_cast<std::size_t>(n);
+  }
+  for (std::size_t f = 0; f < outer.size(); ++f) {
+    const auto& loop = outer[f];
+    std::vector<std::uint32_t> face;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const std::uint32_t j = loop[k], prev = loop[(k + loop.size() - 1) % loop.size()],
+                          next = loop[(k + 1) % loop.size()];
+      const auto [bi, end] = at[j];
+      if (bi == none) {
+        if (index[j] == none) index[j] = point(X[j]);
+        face.push_back(index[j]);
+        continue;
+      }
+      const edge_round& e = r.rounds[bi];
+      const auto& curve = arc[bi][end];
+      const std::uint32_t other = e.junctions[1 - end];
+      if (f == e.faces[0] || f == e.faces[1]) {  // the tangent point in this face
+        if (prev != other && next != other)
+          throw error(error_category::invalid_input,
+                      "rounded_mesh: face " + std::to_string(f) + " holds a blend's corner but not its edge");
+        face.push_back(f == e.faces[0] ? curve.front() : curve.back());
+      } else if (f == e.end_faces[end]) {  // the end curve, from prev's side to next's
+        const bool prev_in_first = detail::blends::edge_sense(outer[e.faces[0]], prev, j) != 0;
+        if (prev_in_first)
+          face.insert(face.end(), curve.begin(), curve.end());
+        else
+          face.insert(face.end(), curve.rbegin(), curve.rend());
+      } else {
+        throw error(error_category::invalid_input,
+                    "rounded_mesh: junction " + std::to_string(j) + " of a blend is on a fourth face");
+      }
+    }
+    out.mesh.add_face(face);
+    out.face_source.push_back(static_cast<std::int64_t>(f));
+  }
   return out;
 }
 
