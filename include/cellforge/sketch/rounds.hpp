@@ -26,7 +26,6 @@
 
 #include <Eigen/Dense>
 
-#include "cellforge/cells/cell_complex.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/core/point_traits.hpp"
