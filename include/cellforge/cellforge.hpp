@@ -4,11 +4,11 @@
 /// Every public header of cellforge except four kinds, which you include by name when you
 /// want them: file I/O (`cellforge/io/...`), the generators of test and benchmark inputs
 /// (`algorithms/shapes.hpp`, `wireframe/sample_models.hpp`, `tubes/sample_skeletons.hpp`,
-/// `sketch/sample_drawings.hpp`, `sketch/sample_round_drawings.hpp`), the seed's sample solids (`thin/sample_solids.hpp`,
-/// `smooth/sample_solids.hpp`), which are large and which an application rarely needs, and
-/// the sketch stages that solve with Eigen (`sketch/tidy.hpp`, `sketch/inflation.hpp`,
-/// `sketch/drawing_to_cells.hpp`, `sketch/arc_detection.hpp`), so that nothing else needs Eigen or pays for parsing it.
-/// The header hygiene test checks that this list is complete.
+/// `sketch/sample_drawings.hpp`, `sketch/sample_round_drawings.hpp`), the seed's sample solids
+/// (`thin/sample_solids.hpp`, `smooth/sample_solids.hpp`), which are large and which an application rarely
+/// needs, and the sketch stages that solve with Eigen (`sketch/tidy.hpp`, `sketch/inflation.hpp`,
+/// `sketch/drawing_to_cells.hpp`, `sketch/arc_detection.hpp`), so that nothing else needs Eigen or pays for
+/// parsing it. The header hygiene test checks that this list is complete.
 
 #include "cellforge/algorithms/convex_hull.hpp"
 #include "cellforge/algorithms/ear_clipping.hpp"
@@ -43,6 +43,7 @@
 #include "cellforge/sketch/face_finder.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 #include "cellforge/sketch/round_skeleton.hpp"
+#include "cellforge/sketch/rounds.hpp"
 #include "cellforge/smooth/continuous_surfaces.hpp"
 #include "cellforge/smooth/edge_curve.hpp"
 #include "cellforge/smooth/normals.hpp"

@@ -201,27 +201,12 @@ round_skeleton_result<P> round_skeleton(const arc_drawing<P>& d, const round_ske
   return out;
 }
 
-/// Decides category a or c (and b for fillets, which have no contour line) of every blend from a
-/// reading of the skeleton: depth[j] the depth of skeleton junction j, larger towards the viewer
-/// (inflation's z). The skeleton's face loops (found when classifying) are oriented coherently
-/// and outward (the reading's signed volume positive); a face faces the viewer when its outward
-/// loop runs counter-clockwise in the drawing; a blend is a, b or c as two, one or none of the
-/// faces at its new edge do. A rule-1 pair the reading does not put on the contour gets a
-/// diagnostic. Throws invalid_input when depth has the wrong size or no faces were found.
-/// O(L + blends · L), L the loops' total length.
-template <Point2 P>
-void resolve_blend_categories(round_skeleton_result<P>& r, const std::vector<double>& depth) {
-  const std::size_t nv = r.skeleton.points.size();
-  if (depth.size() != nv)
-    throw error(error_category::invalid_input, "resolve_blend_categories: " + std::to_string(depth.size()) +
-                                                   " depths for " + std::to_string(nv) +
-                                                   " skeleton junctions");
-  const auto& loops = r.faces.loops;
-  if (loops.empty())
-    throw error(
-        error_category::invalid_input,
-        "resolve_blend_categories: the skeleton has no faces (round_skeleton with classify on finds them)");
-  // Coherent orientation: across every edge its two loops run opposite ways.
+namespace detail {
+
+/// A coherent orientation of face loops (junction cycles): +1 or −1 per loop, so that across
+/// every edge its two loops run opposite ways (each connected set of loops starts at +1). O(L log L).
+template <class = void>
+std::vector<int> coherent_senses(const std::vector<std::vector<std::uint32_t>>& loops) {
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::pair<std::size_t, bool>>> sides;
   for (std::size_t l = 0; l < loops.size(); ++l)
     for (std::size_t i = 0; i < loops[l].size(); ++i) {
@@ -248,6 +233,32 @@ void resolve_blend_categories(round_skeleton_result<P>& r, const std::vector<dou
       }
     }
   }
+  return sense;
+}
+
+}  // namespace detail
+
+/// Decides category a or c (and b for fillets, which have no contour line) of every blend from a
+/// reading of the skeleton: depth[j] the depth of skeleton junction j, larger towards the viewer
+/// (inflation's z). The skeleton's face loops (found when classifying) are oriented coherently
+/// and outward (the reading's signed volume positive); a face faces the viewer when its outward
+/// loop runs counter-clockwise in the drawing; a blend is a, b or c as two, one or none of the
+/// faces at its new edge do. A rule-1 pair the reading does not put on the contour gets a
+/// diagnostic. Throws invalid_input when depth has the wrong size or no faces were found.
+/// O(L + blends · L), L the loops' total length.
+template <Point2 P>
+void resolve_blend_categories(round_skeleton_result<P>& r, const std::vector<double>& depth) {
+  const std::size_t nv = r.skeleton.points.size();
+  if (depth.size() != nv)
+    throw error(error_category::invalid_input, "resolve_blend_categories: " + std::to_string(depth.size()) +
+                                                   " depths for " + std::to_string(nv) +
+                                                   " skeleton junctions");
+  const auto& loops = r.faces.loops;
+  if (loops.empty())
+    throw error(
+        error_category::invalid_input,
+        "resolve_blend_categories: the skeleton has no faces (round_skeleton with classify on finds them)");
+  const std::vector<int> sense = detail::coherent_senses(loops);
   std::vector<glm::dvec3> p(nv);
   for (std::size_t j = 0; j < nv; ++j) p[j] = glm::dvec3(to_dvec2(r.skeleton.points[j]), depth[j]);
   double volume = 0;

@@ -1,0 +1,555 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Reconstruction with rounds and fillets (seed 003_be08eec927fcc329.txt, "Rounds and fillets",
+/// stages 3 and 4): the skeleton drawing of round_skeleton is read by drawing_to_cells, then
+/// every skeleton edge that carried a blend gets its 3D radius from its end curves and the
+/// reconstructed face planes, and becomes a circular-arc blend between its two faces (a convex
+/// round or a concave fillet); rounded_mesh gives the rounded solid as a polygon mesh (faces
+/// trimmed back by each blend's setback, blend strips tessellated to a chord tolerance) for the
+/// io writers (OBJ, PLY). See docs/sketch.md, "Rounds and fillets".
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <numbers>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <Eigen/Dense>
+
+#include "cellforge/core/error.hpp"
+#include "cellforge/core/point2_traits.hpp"
+#include "cellforge/core/point_traits.hpp"
+#include "cellforge/core/polygon_soup.hpp"
+#include "cellforge/sketch/drawing_to_cells.hpp"
+#include "cellforge/sketch/elliptical_arc.hpp"
+#include "cellforge/sketch/round_skeleton.hpp"
+
+namespace cellforge {
+
+/// Options of reconstruct_rounds.
+struct rounds_options {
+  round_skeleton_options skeleton{};
+  drawing_options reading{};
+  /// Largest relative disagreement a blend may show and still be called consistent: between the
+  /// radii of its two end curves, of an end curve seen along the edge from a circle (1 − minor /
+  /// major), and of an end curve's centre from the blend's axis (over the radius).
+  double consistency = 1e-2;
+  /// An end curve is taken as a circle square to the edge (its radius the 2D major semi-axis,
+  /// whatever the reading) when its minor axis is within this angle (radians) of the edge's
+  /// drawing direction: the image of such a circle has its minor axis along the image of its
+  /// normal, the edge.
+  double circle_angle = 1e-3;
+};
+
+/// Where a blend's radius comes from: the end curves lifted onto the reading's end faces and
+/// seen along the edge; the 2D major semi-axes of end curves that are circles square to the
+/// edge (when the lifted curves disagree: a reading that is not metric); none.
+enum class radius_source : std::uint8_t { lifted, circle_2d, none };
+
+/// The round attribute of one skeleton edge: the blend that carried it, its radius in the
+/// reconstruction's units (x, y the drawing's), convex or concave, the blend's 3D frame, and how
+/// well the two end curves agree with it.
+struct edge_round {
+  static constexpr std::uint32_t npos = ~std::uint32_t{0};
+  std::size_t blend = 0;                     ///< index into the skeleton's blends
+  std::uint32_t skeleton_edge = 0;           ///< the skeleton drawing's edge (the wireframe's edge)
+  std::uint32_t cell_edge = npos;            ///< the cell complex's edge (npos: not in the complex)
+  std::array<std::uint32_t, 2> junctions{};  ///< the edge's skeleton junctions
+  blend_kind kind = blend_kind::unknown;
+  bool convex = true;  ///< a round (kind round) or a fillet (kind fillet)
+  double radius = 0;   ///< mean of the two end radii
+  std::array<double, 2> end_radius{};
+  /// The faces of the edge (face_loops indices) and, per end, the end face holding its end curve.
+  std::array<std::size_t, 2> faces{};
+  std::array<std::size_t, 2> end_faces{};
+  /// The wedge's angle between the two faces, seen along the edge, on the side that holds the
+  /// blend (the solid's for a round, the outside's for a fillet), radians.
+  double wedge_angle = 0;
+  /// Distance from the edge to each tangent line, in both faces: radius / tan(wedge_angle / 2).
+  double setback = 0;
+  /// Diagnostics: |r0 − r1| / radius; per end 1 − minor/major of its curve seen along the edge;
+  /// per end the distance of its curve's centre from the blend's axis over the radius.
+  double radius_spread = 0;
+  std::array<double, 2> roundness_defect{}, centre_offset{};
+  /// Per end: the angle between its 2D minor axis and the edge's drawing direction (0 for a circle
+  /// square to the edge), and minor over major semi-axis in 2D.
+  std::array<double, 2> circle_angle{}, axis_ratio{};
+  radius_source source = radius_source::none;
+  bool consistent = false;  ///< every diagnostic of its source within options.consistency
+};
+
+/// What reconstruct_rounds made: the skeleton and its blends, the skeleton's reading as a cell
+/// complex, one round attribute per blend, counts, time and diagnostics.
+template <Point3 Q, Point2 P>
+struct rounds_result {
+  round_skeleton_result<P> skeleton;
+  drawing_result<Q, P> reading;
+  std::vector<edge_round> rounds;
+  /// The skeleton's junctions in 3D as the rounds use them: the reading's, or, when its blends
+  /// disagree with circular ones and circles square to their edges fix the view, the reading
+  /// mapped by z → k z + a x + b y (depth_map = {k, a, b}) to make it metric.
+  std::vector<Q> points;
+  bool depth_corrected = false;
+  std::array<double, 3> depth_map{1, 0, 0};
+  std::size_t consistent = 0, inconsistent = 0;
+  double milliseconds = 0;
+  std::vector<std::string> diagnostics;
+};
+
+namespace detail::blends {
+
+/// Newell normal (unit) and centroid of a face's outer loop, positions p. O(L).
+template <class = void>
+std::pair<glm::dvec3, glm::dvec3> plane_of(const std::vector<glm::dvec3>& p,
+                                           const std::vector<std::uint32_t>& loop) {
+  auto [n, c] = detail::sketch::loop_plane(p, loop);
+  const double len = glm::length(n);
+  return {len > 0 ? n / len : n, c};
+}
+
+/// Position of the edge a→b in a loop: k with loop[k] = a, loop[k+1] = b (+1) or the reverse
+/// (−1), or 0 when the loop does not hold it. O(L).
+template <class = void>
+int edge_sense(const std::vector<std::uint32_t>& loop, std::uint32_t a, std::uint32_t b) {
+  for (std::size_t k = 0; k < loop.size(); ++k) {
+    const std::uint32_t u = loop[k], v = loop[(k + 1) % loop.size()];
+    if (u == a && v == b) return 1;
+    if (u == b && v == a) return -1;
+  }
+  return 0;
+}
+
+/// round_attributes on the skeleton's junctions at X (face loops `faces`, the complex's
+/// input_edge map). O(blends · F · L).
+template <Point2 P>
+std::vector<edge_round> attributes(const round_skeleton_result<P>& sk,
+                                   const std::vector<std::vector<std::vector<std::uint32_t>>>& faces,
+                                   const std::vector<glm::dvec3>& X,
+                                   const std::vector<std::uint32_t>& input_edge,
+                                   std::vector<std::string>& diagnostics, const rounds_options& options) {
+  std::vector<std::pair<glm::dvec3, glm::dvec3>> planes;
+  for (const auto& f : faces) planes.push_back(plane_of(X, f[0]));
+  std::vector<edge_round> out;
+  for (std::size_t i = 0; i < sk.blends.size(); ++i) {
+    const skeleton_blend<P>& b = sk.blends[i];
+    edge_round r;
+    r.blend = i;
+    r.skeleton_edge = b.edge;
+    r.junctions = b.junctions;
+    r.kind = b.kind;
+    r.convex = b.kind != blend_kind::fillet;
+    const std::string who = "blend " + std::to_string(b.pair);
+    for (std::size_t k = 0; k < input_edge.size(); ++k)
+      if (input_edge[k] == b.edge) r.cell_edge = static_cast<std::uint32_t>(k);
+    // Its two faces: the loops through the edge; its end faces: through a corner, not the edge.
+    std::vector<std::size_t> on_edge;
+    std::array<std::vector<std::size_t>, 2> at_end;
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      if (edge_sense(faces[f][0], b.junctions[0], b.junctions[1]) != 0) {
+        on_edge.push_back(f);
+        continue;
+      }
+      for (std::size_t k = 0; k < 2; ++k)
+        if (std::find(faces[f][0].begin(), faces[f][0].end(), b.junctions[k]) != faces[f][0].end())
+          at_end[k].push_back(f);
+    }
+    if (on_edge.size() != 2 || at_end[0].size() != 1 || at_end[1].size() != 1) {
+      diagnostics.push_back(who + ": its edge is on " + std::to_string(on_edge.size()) +
+                            " faces and its corners on " + std::to_string(at_end[0].size()) + " and " +
+                            std::to_string(at_end[1].size()) +
+                            " end faces (two and one each wanted); no radius");
+      out.push_back(r);
+      continue;
+    }
+    r.faces = {on_edge[0], on_edge[1]};
+    r.end_faces = {at_end[0][0], at_end[1][0]};
+    const glm::dvec3 d = glm::normalize(X[b.junctions[1]] - X[b.junctions[0]]);
+    // Into each face, square to the edge: a face's interior lies left of its loop about its normal.
+    std::array<glm::dvec3, 2> t{};
+    for (std::size_t s = 0; s < 2; ++s) {
+      const int sense = edge_sense(faces[r.faces[s]][0], b.junctions[0], b.junctions[1]);
+      t[s] = glm::normalize(glm::cross(planes[r.faces[s]].first, d * static_cast<double>(sense)));
+    }
+    r.wedge_angle = std::acos(std::clamp(glm::dot(t[0], t[1]), -1.0, 1.0));
+    const glm::dvec3 bisector = glm::normalize(t[0] + t[1]);
+    const double reach = 1.0 / std::sin(0.5 * r.wedge_angle);  // edge → axis, per unit radius
+    // The 2D reading of each end curve: a circle square to the edge has its minor axis along it.
+    const glm::dvec2 axis2 = b.axis / std::max(glm::length(b.axis), 1e-300);
+    std::array<double, 2> major{};
+    for (std::size_t k = 0; k < 2; ++k) {
+      const elliptical_arc<P>& e = b.curves[k];
+      const bool x_major = std::abs(e.rx) >= std::abs(e.ry);
+      major[k] = std::max(std::abs(e.rx), std::abs(e.ry));
+      r.axis_ratio[k] = major[k] > 0 ? std::min(std::abs(e.rx), std::abs(e.ry)) / major[k] : 0;
+      const double m = e.rotation + (x_major ? 0.5 * std::numbers::pi : 0.0);
+      r.circle_angle[k] = std::asin(std::min(1.0, std::abs(std::cos(m) * axis2.y - std::sin(m) * axis2.x)));
+    }
+    bool lifted = true;
+    std::array<glm::dvec3, 2> centre{};
+    for (std::size_t k = 0; k < 2; ++k) {
+      const glm::dvec3 n = planes[r.end_faces[k]].first, c = planes[r.end_faces[k]].second;
+      if (!(std::abs(n.z) > 1e-6)) {
+        diagnostics.push_back(who + ": end face " + std::to_string(r.end_faces[k]) +
+                              " is seen edge-on; its curve cannot be lifted");
+        lifted = false;
+        break;
+      }
+      // The ellipse's principal semi-axes, lifted onto the end plane, then seen along the edge.
+      const elliptical_arc<P>& e = b.curves[k];
+      const glm::dvec2 A = e.rx * glm::dvec2(std::cos(e.rotation), std::sin(e.rotation));
+      const glm::dvec2 B = e.ry * glm::dvec2(-std::sin(e.rotation), std::cos(e.rotation));
+      const auto lift = [&](glm::dvec2 w) { return glm::dvec3(w, -(n.x * w.x + n.y * w.y) / n.z); };
+      const glm::dvec2 q = to_dvec2(e.centre);
+      centre[k] = glm::dvec3(q, c.z + lift(q - glm::dvec2(c.x, c.y)).z);
+      glm::dvec3 U = lift(A), V = lift(B);
+      U -= glm::dot(U, d) * d, V -= glm::dot(V, d) * d;
+      // Semi-axes a ≥ b of the seen curve: a² and b² are the eigenvalues of the Gram matrix.
+      const double s = glm::dot(U, U) + glm::dot(V, V), det = glm::length(glm::cross(U, V));
+      const double root = std::sqrt(std::max(0.0, 0.25 * s * s - det * det));
+      const double a = std::sqrt(0.5 * s + root), bb = std::sqrt(std::max(0.0, 0.5 * s - root));
+      r.end_radius[k] = std::sqrt(det);
+      r.roundness_defect[k] = a > 0 ? 1 - bb / a : 1;
+    }
+    const auto by_circles = [&](const std::string& why) {
+      if (r.circle_angle[0] > options.circle_angle || r.circle_angle[1] > options.circle_angle) {
+        diagnostics.push_back(who + ": " + why +
+                              ", and its end curves are not circles square to the edge; no radius");
+        return;
+      }
+      r.source = radius_source::circle_2d;
+      r.end_radius = major;
+      r.radius = 0.5 * (major[0] + major[1]);
+      r.radius_spread = std::abs(major[0] - major[1]) / r.radius;
+      r.setback = r.radius / std::tan(0.5 * r.wedge_angle);
+      // Parallel end faces: one foreshortening.
+      r.consistent =
+          std::max(r.radius_spread, std::abs(r.axis_ratio[0] - r.axis_ratio[1])) <= options.consistency;
+      diagnostics.push_back(who + ": " + why + "; its radius is its circles' major semi-axis in the drawing");
+    };
+    if (!lifted) {
+      by_circles("its end curves cannot be lifted");
+      out.push_back(r);
+      continue;
+    }
+    r.source = radius_source::lifted;
+    r.radius = 0.5 * (r.end_radius[0] + r.end_radius[1]);
+    r.radius_spread = r.radius > 0 ? std::abs(r.end_radius[0] - r.end_radius[1]) / r.radius : 1;
+    r.setback = r.radius / std::tan(0.5 * r.wedge_angle);
+    for (std::size_t k = 0; k < 2; ++k) {
+      // The axis: the edge moved by radius / sin(angle / 2) along the wedge's bisector.
+      glm::dvec3 off = centre[k] - (X[b.junctions[0]] + r.radius * reach * bisector);
+      off -= glm::dot(off, d) * d;
+      r.centre_offset[k] = r.radius > 0 ? glm::length(off) / r.radius : 1;
+    }
+    const double worst = std::max({r.radius_spread, r.roundness_defect[0], r.roundness_defect[1],
+                                   r.centre_offset[0], r.centre_offset[1]});
+    r.consistent = r.radius > 0 && worst <= options.consistency;
+    if (!r.consistent)
+      by_circles("its end curves lifted onto the reading disagree with a circular blend by " +
+                 std::to_string(worst) + " (the reading is not metric?)");
+    out.push_back(r);
+  }
+  return out;
+}
+
+/// The depth map z → k z + a x + b y that makes a reading metric, from the blends whose end
+/// curves are circles square to their edges: a parallel view's planar readings of a polyhedron
+/// differ from the true one by such a map (x, y are the drawing's), and each circle fixes its
+/// edge's true depth extent (|drawing length| · ratio / √(1 − ratio²), ratio its minor over major
+/// semi-axis) and its end planes' true slopes (square to the edge): three equations per blend,
+/// solved by least squares (Eigen). The first circle's sign picks the reading (the Necker mirror
+/// is free); each other's sign is the one the first predicts. false when no circle is found or
+/// the system is singular. O(blends).
+template <class = void>
+bool metric_map(const std::vector<edge_round>& rounds,
+                const std::vector<std::vector<std::vector<std::uint32_t>>>& faces,
+                const std::vector<glm::dvec3>& X, const rounds_options& options, std::array<double, 3>& kab) {
+  std::vector<std::array<double, 4>> rows;  // k, a, b coefficients and the right-hand side
+  std::array<double, 3> first{};
+  bool have_first = false;
+  for (const auto& r : rounds) {
+    if (r.circle_angle[0] > options.circle_angle || r.circle_angle[1] > options.circle_angle) continue;
+    if (r.end_faces[0] == r.end_faces[1] && r.faces[0] == r.faces[1]) continue;  // no faces found
+    const double ratio = 0.5 * (r.axis_ratio[0] + r.axis_ratio[1]);
+    if (!(ratio < 1 - 1e-9)) continue;
+    const glm::dvec3 e = X[r.junctions[1]] - X[r.junctions[0]];
+    const double len2 = std::hypot(e.x, e.y);
+    double ez = len2 * ratio / std::sqrt(1 - ratio * ratio);  // the true depth extent, up to sign
+    if (have_first && first[0] * e.z + first[1] * e.x + first[2] * e.y < 0) ez = -ez;
+    rows.push_back({e.z, e.x, e.y, ez});
+    for (const std::size_t f : r.end_faces) {
+      const glm::dvec3 n = plane_of(X, faces[f][0]).first;
+      if (!(std::abs(n.z) > 1e-6)) continue;
+      // Slopes: the reading's plane z = p x + q y; the true one square to (e.x, e.y, ez).
+      rows.push_back({-n.x / n.z, 1, 0, -e.x / ez});
+      rows.push_back({-n.y / n.z, 0, 1, -e.y / ez});
+    }
+    if (!have_first && rows.size() >= 3) {
+      Eigen::Matrix3d A;
+      Eigen::Vector3d y;
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) A(i, j) = rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+        y(i) = rows[static_cast<std::size_t>(i)][3];
+      }
+      const Eigen::ColPivHouseholderQR<Eigen::Matrix3d> qr(A);
+      if (qr.rank() < 3) return false;
+      const Eigen::Vector3d x = qr.solve(y);
+      first = {x(0), x(1), x(2)};
+      have_first = true;
+    }
+  }
+  if (!have_first) return false;
+  Eigen::MatrixXd A(static_cast<Eigen::Index>(rows.size()), 3);
+  Eigen::VectorXd y(static_cast<Eigen::Index>(rows.size()));
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    for (std::size_t j = 0; j < 3; ++j)
+      A(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = rows[i][j];
+    y(static_cast<Eigen::Index>(i)) = rows[i][3];
+  }
+  const Eigen::VectorXd x = A.colPivHouseholderQr().solve(y);
+  kab = {x(0), x(1), x(2)};
+  return std::isfinite(kab[0]) && std::abs(kab[0]) > 1e-9;
+}
+
+}  // namespace detail::blends
+
+/// The round attributes of a skeleton already read: for each blend of `sk`, its two faces and
+/// end faces in `reading` (face loops of the skeleton's junctions, positions reading.wire), the
+/// radius of each end curve — the 2D ellipse lifted onto its end face's plane and seen along the
+/// edge is a circle of the blend's radius (any end plane, square to the edge or not), or, when
+/// the lifted curves disagree with a circular blend (a reading that is not metric), the 2D major
+/// semi-axis of end curves that are circles square to the edge — the wedge, the setback and the
+/// consistency diagnostics. Throws invalid_input when `reading` is not a reading of `sk`'s
+/// skeleton. O(blends · F · L).
+template <Point3 Q, Point2 P>
+std::vector<edge_round> round_attributes(const round_skeleton_result<P>& sk,
+                                         const drawing_result<Q, P>& reading,
+                                         std::vector<std::string>& diagnostics,
+                                         const rounds_options& options = {}) {
+  const std::size_t nv = sk.skeleton.points.size();
+  if (reading.wire.points.size() != nv)
+    throw error(error_category::invalid_input, "round_attributes: the reading has " +
+                                                   std::to_string(reading.wire.points.size()) +
+                                                   " junctions, the skeleton " + std::to_string(nv));
+  std::vector<glm::dvec3> X(nv);
+  for (std::size_t j = 0; j < nv; ++j) X[j] = to_dvec3(reading.wire.points[j]);
+  return detail::blends::attributes(sk, reading.face_loops, X, reading.cells.input_edge, diagnostics,
+                                    options);
+}
+
+/// Reconstruction with rounds: round_skeleton, drawing_to_cells on the skeleton, then
+/// round_attributes. The radii are in the reading's units: x, y are the drawing's, so a parallel
+/// view's scale is kept, and the Necker mirror (z → −z) leaves every radius as it is.
+/// Throws as round_skeleton and drawing_to_cells; invalid_input when the skeleton is not a
+/// readable drawing. O(round_skeleton + drawing_to_cells + blends · F · L).
+template <Point3 Q = glm::dvec3, Point2 P>
+rounds_result<Q, P> reconstruct_rounds(const arc_drawing<P>& d, const rounds_options& options = {}) {
+  const auto t_start = std::chrono::steady_clock::now();
+  rounds_result<Q, P> out;
+  out.skeleton = round_skeleton(d, options.skeleton);
+  out.diagnostics = out.skeleton.diagnostics;
+  if (!out.skeleton.validation.ok())
+    throw error(
+        error_category::invalid_input,
+        "reconstruct_rounds: the skeleton is not a readable drawing: " + out.skeleton.validation.message);
+  out.reading = drawing_to_cells<Q>(out.skeleton.skeleton, options.reading);
+  const std::size_t nv = out.skeleton.skeleton.points.size();
+  std::vector<glm::dvec3> X(nv);
+  for (std::size_t j = 0; j < nv; ++j) X[j] = to_dvec3(out.reading.wire.points[j]);
+  const auto& faces = out.reading.face_loops;
+  const auto& input_edge = out.reading.cells.input_edge;
+  std::vector<std::string> notes;
+  out.rounds = detail::blends::attributes(out.skeleton, faces, X, input_edge, notes, options);
+  const bool metric = std::all_of(out.rounds.begin(), out.rounds.end(), [](const edge_round& r) {
+    return r.source == radius_source::lifted && r.consistent;
+  });
+  std::array<double, 3> kab{};
+  if (!metric && detail::blends::metric_map(out.rounds, faces, X, options, kab)) {
+    std::vector<glm::dvec3> Y = X;
+    for (auto& y : Y) y.z = kab[0] * y.z + kab[1] * y.x + kab[2] * y.y;
+    std::vector<std::string> again;
+    auto rounds = detail::blends::attributes(out.skeleton, faces, Y, input_edge, again, options);
+    const auto count = [](const std::vector<edge_round>& v) {
+      return std::count_if(v.begin(), v.end(), [](const edge_round& r) {
+        return r.source == radius_source::lifted && r.consistent;
+      });
+    };
+    if (count(rounds) > count(out.rounds)) {
+      out.rounds = std::move(rounds), notes = std::move(again), X = std::move(Y);
+      out.depth_corrected = true;
+      out.depth_map = kab;
+      out.diagnostics.push_back("the reading's blends are not circular; its depths are mapped by z -> " +
+                                std::to_string(kab[0]) + " z + " + std::to_string(kab[1]) + " x + " +
+                                std::to_string(kab[2]) + " y, fixed by the blends' circles");
+    }
+  }
+  out.diagnostics.insert(out.diagnostics.end(), notes.begin(), notes.end());
+  for (const auto& x : X) out.points.push_back(from_dvec3<Q>(x));
+  for (const auto& r : out.rounds) ++(r.consistent ? out.consistent : out.inconsistent);
+  out.milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
+  return out;
+}
+
+/// Options of rounded_mesh.
+struct rounded_mesh_options {
+  /// Largest distance of a blend strip's chords from its circle, relative to the skeleton
+  /// drawing's diagonal.
+  double chord_tolerance = 1e-3;
+  int max_segments = 256;  ///< segments per blend at most (work bound)
+};
+
+/// The rounded solid as a polygon mesh: every skeleton face trimmed back by the setbacks of its
+/// blends (a round's end face loses its corner to the end curve, a fillet's gains it), every
+/// blend a strip of quads; face_source[f] is the skeleton face (face_loops index) of mesh face f,
+/// or −1 − blend for a strip's quad. Faces are oriented outward.
+template <Point3 Q>
+struct rounded_mesh_result {
+  polygon_soup<Q> mesh;
+  std::vector<std::int64_t> face_source;
+  std::size_t strips = 0, strip_quads = 0, skipped = 0;  ///< skipped: blends with no radius
+  std::vector<std::string> diagnostics;
+};
+
+/// The rounded solid of a reconstruction: per blend with a radius, its axis the edge moved by
+/// radius / sin(wedge / 2) along the wedge's bisector, its cross-section arc from the tangent
+/// line in one face to the other in n = ⌈arc / (2 acos(1 − tolerance / radius))⌉ chords, each arc
+/// point moved along the edge onto the end planes; then every face loop with its blend corners
+/// replaced (tangent points in the blend's faces, the end curve in its end faces). Throws
+/// invalid_input when two blends share a junction or a corner is on a face that is neither a
+/// blend face nor its end face, or a face has holes. O(V + F · L + Σ segments).
+template <Point3 Q, Point2 P>
+rounded_mesh_result<Q> rounded_mesh(const rounds_result<Q, P>& r, const rounded_mesh_options& options = {}) {
+  rounded_mesh_result<Q> out;
+  const auto& faces = r.reading.face_loops;
+  const std::size_t nv = r.points.size();
+  std::vector<glm::dvec3> X(nv);
+  for (std::size_t j = 0; j < nv; ++j) X[j] = to_dvec3(r.points[j]);
+  if (nv == 0) return out;
+  glm::dvec3 lo = X[0], hi = X[0];
+  for (const auto& x : X) lo = glm::min(lo, x), hi = glm::max(hi, x);
+  const double tol = options.chord_tolerance * glm::length(glm::dvec2(hi - lo));
+  std::vector<std::vector<std::uint32_t>> outer;
+  for (const auto& f : faces) {
+    if (f.size() > 1)
+      throw error(error_category::invalid_input, "rounded_mesh: faces with holes are not meshed yet");
+    outer.push_back(f[0]);
+  }
+  // Outward loops: coherent senses, flipped when the volume they bound is negative.
+  std::vector<int> sense = detail::coherent_senses(outer);
+  double volume = 0;
+  for (std::size_t l = 0; l < outer.size(); ++l)
+    for (std::size_t k = 1; k + 1 < outer[l].size(); ++k)
+      volume += sense[l] * glm::dot(X[outer[l][0]], glm::cross(X[outer[l][k]], X[outer[l][k + 1]]));
+  for (std::size_t l = 0; l < outer.size(); ++l)
+    if (sense[l] * volume < 0) std::reverse(outer[l].begin(), outer[l].end());
+  // Per junction: the blend end at it (blend, end), if any.
+  constexpr std::uint32_t none = ~std::uint32_t{0};
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> at(nv, {none, none});
+  std::vector<std::uint32_t> index(nv, none);
+  const auto point = [&](const glm::dvec3& x) {
+    out.mesh.points.push_back(from_dvec3<Q>(x));
+    return static_cast<std::uint32_t>(out.mesh.points.size() - 1);
+  };
+  // Per blend and end: its arc's mesh points, from the tangent line in faces[0] to faces[1].
+  std::vector<std::array<std::vector<std::uint32_t>, 2>> arc(r.rounds.size());
+  std::vector<std::array<std::uint32_t, 2>> first_face(r.rounds.size());
+  for (std::size_t i = 0; i < r.rounds.size(); ++i) {
+    const edge_round& e = r.rounds[i];
+    if (!(e.radius > 0) || e.source == radius_source::none) {
+      ++out.skipped;
+      out.diagnostics.push_back("blend " + std::to_string(e.blend) + " has no radius; its edge stays sharp");
+      continue;
+    }
+    for (std::size_t k = 0; k < 2; ++k) {
+      if (at[e.junctions[k]].first != none)
+        throw error(error_category::invalid_input,
+                    "rounded_mesh: two blends meet at junction " + std::to_string(e.junctions[k]));
+      at[e.junctions[k]] = {static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k)};
+    }
+    const glm::dvec3 A = X[e.junctions[0]], d = glm::normalize(X[e.junctions[1]] - A);
+    std::array<glm::dvec3, 2> t{};
+    for (std::size_t s = 0; s < 2; ++s) {
+      const auto& loop = outer[e.faces[s]];
+      const int sn = detail::blends::edge_sense(loop, e.junctions[0], e.junctions[1]);
+      const glm::dvec3 n = detail::blends::plane_of(X, loop).first;
+      t[s] = glm::normalize(glm::cross(n, d * static_cast<double>(sn)));
+    }
+    const double wedge = std::acos(std::clamp(glm::dot(t[0], t[1]), -1.0, 1.0));
+    const glm::dvec3 axis = A + e.radius / std::sin(0.5 * wedge) * glm::normalize(t[0] + t[1]);
+    // From the axis: towards the tangent line in face 0, then turning towards face 1.
+    const glm::dvec3 u = glm::normalize(A + e.setback * t[0] - axis);
+    glm::dvec3 v = A + e.setback * t[1] - axis;
+    v = glm::normalize(v - glm::dot(v, u) * u);
+    const double sweep = std::numbers::pi - wedge;
+    const double step = tol < e.radius ? 2 * std::acos(1 - tol / e.radius) : sweep;
+    const int n = std::clamp(static_cast<int>(std::ceil(sweep / step)), 1, options.max_segments);
+    for (std::size_t k = 0; k < 2; ++k) {
+      const glm::dvec3 g = detail::blends::plane_of(X, outer[e.end_faces[k]]).first;
+      const glm::dvec3 c = X[e.junctions[k]];
+      for (int m = 0; m <= n; ++m) {
+        const double phi = sweep * m / n;
+        const glm::dvec3 q = axis + e.radius * (std::cos(phi) * u + std::sin(phi) * v);
+        arc[i][k].push_back(point(q + d * (glm::dot(g, c - q) / glm::dot(g, d))));
+      }
+    }
+    // The strip, oriented against faces[0]'s loop along its trimmed edge.
+    const bool along = detail::blends::edge_sense(outer[e.faces[0]], e.junctions[0], e.junctions[1]) > 0;
+    const auto& a0 = arc[i][along ? 1 : 0];
+    const auto& a1 = arc[i][along ? 0 : 1];
+    for (int m = 0; m < n; ++m) {
+      const auto mm = static_cast<std::size_t>(m);
+      const std::array<std::uint32_t, 4> quad{a0[mm], a1[mm], a1[mm + 1], a0[mm + 1]};
+      out.mesh.add_face(quad);
+      out.face_source.push_back(-1 - static_cast<std::int64_t>(e.blend));
+    }
+    ++out.strips, out.strip_quads += static_cast<std::size_t>(n);
+  }
+  for (std::size_t f = 0; f < outer.size(); ++f) {
+    const auto& loop = outer[f];
+    std::vector<std::uint32_t> face;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const std::uint32_t j = loop[k], prev = loop[(k + loop.size() - 1) % loop.size()],
+                          next = loop[(k + 1) % loop.size()];
+      const auto [bi, end] = at[j];
+      if (bi == none) {
+        if (index[j] == none) index[j] = point(X[j]);
+        face.push_back(index[j]);
+        continue;
+      }
+      const edge_round& e = r.rounds[bi];
+      const auto& curve = arc[bi][end];
+      const std::uint32_t other = e.junctions[1 - end];
+      if (f == e.faces[0] || f == e.faces[1]) {  // the tangent point in this face
+        if (prev != other && next != other)
+          throw error(error_category::invalid_input,
+                      "rounded_mesh: face " + std::to_string(f) + " holds a blend's corner but not its edge");
+        face.push_back(f == e.faces[0] ? curve.front() : curve.back());
+      } else if (f == e.end_faces[end]) {  // the end curve, from prev's side to next's
+        const bool prev_in_first = detail::blends::edge_sense(outer[e.faces[0]], prev, j) != 0;
+        if (prev_in_first)
+          face.insert(face.end(), curve.begin(), curve.end());
+        else
+          face.insert(face.end(), curve.rbegin(), curve.rend());
+      } else {
+        throw error(error_category::invalid_input,
+                    "rounded_mesh: junction " + std::to_string(j) + " of a blend is on a fourth face");
+      }
+    }
+    out.mesh.add_face(face);
+    out.face_source.push_back(static_cast<std::int64_t>(f));
+  }
+  return out;
+}
+
+}  // namespace cellforge
