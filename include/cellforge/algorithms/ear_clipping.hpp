@@ -58,6 +58,27 @@ using index_triangle = std::array<std::uint32_t, 3>;
 
 namespace detail::ears {
 
+/// Newell's normal of polygon p, summed about its centroid for accuracy (not normalised). O(n).
+template <class = void>
+glm::dvec3 newell_normal(std::span<const glm::dvec3> p, const glm::dvec3& centroid) noexcept {
+  glm::dvec3 newell(0.0);
+  const std::size_t n = p.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::dvec3 a = p[i] - centroid, b = p[(i + 1) % n] - centroid;
+    newell += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
+  }
+  return newell;
+}
+
+/// The axis clipping projects along: the normal's largest component (the first on a tie). O(1).
+template <class = void>
+int dominant_axis(const glm::dvec3& normal) noexcept {
+  int k = 0;
+  for (int a = 1; a < 3; ++a)
+    if (std::fabs(normal[a]) > std::fabs(normal[k])) k = a;
+  return k;
+}
+
 inline constexpr std::uint32_t none = 0xFFFFFFFFu;
 
 template <class = void>
@@ -429,7 +450,7 @@ std::vector<index_triangle> clip_polygon(std::span<const glm::dvec3> p, const ea
   if (n >= none) throw error(error_category::invalid_input, "ear_clip: too many vertices for 32-bit indices");
   if (!(options.planarity_tolerance >= 0))
     throw error(error_category::invalid_input, "ear_clip: planarity_tolerance must be >= 0");
-  glm::dvec3 lo(p[0]), hi(p[0]), centroid(0.0), newell(0.0);
+  glm::dvec3 lo(p[0]), hi(p[0]), centroid(0.0);
   for (std::size_t i = 0; i < n; ++i) {
     if (!std::isfinite(p[i].x) || !std::isfinite(p[i].y) || !std::isfinite(p[i].z))
       throw error(error_category::invalid_input,
@@ -439,10 +460,7 @@ std::vector<index_triangle> clip_polygon(std::span<const glm::dvec3> p, const ea
     centroid += p[i];
   }
   centroid /= static_cast<double>(n);
-  for (std::size_t i = 0; i < n; ++i) {  // Newell's normal, about the centroid for accuracy
-    const glm::dvec3 a = p[i] - centroid, b = p[(i + 1) % n] - centroid;
-    newell += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
-  }
+  const glm::dvec3 newell = newell_normal(p, centroid);
   const double diagonal = glm::length(hi - lo), length = glm::length(newell);
   if (!(length > 1e-14 * diagonal * diagonal))
     throw error(error_category::invalid_input, "ear_clip: the polygon has no area (all " + std::to_string(n) +
@@ -462,9 +480,7 @@ std::vector<index_triangle> clip_polygon(std::span<const glm::dvec3> p, const ea
   // Project by dropping the dominant axis of the normal: exact (no rounding), so the
   // orientation tests are exact on the input coordinates. The kept axes (k+1, k+2) in
   // cyclic order see the polygon turn with the sign of that normal component.
-  int k = 0;
-  for (int a = 1; a < 3; ++a)
-    if (std::fabs(newell[a]) > std::fabs(newell[k])) k = a;
+  const int k = dominant_axis(newell);
   const int u = (k + 1) % 3, v = (k + 2) % 3;
   const int sense = newell[k] > 0 ? 1 : -1;
   std::vector<double> x(n), y(n);

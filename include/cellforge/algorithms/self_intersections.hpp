@@ -398,24 +398,19 @@ bool convex_planar(std::span<const vec> p) noexcept {
 }
 
 /// For a quad that ear clipping would triangulate: true when its projection in ear
-/// clipping's plane (the dominant axis of Newell's normal about the centroid, computed as
-/// clip_polygon does) is strictly convex. Ear clipping then cuts the ear at corner 0 first,
+/// clipping's plane (ears::newell_normal and ears::dominant_axis, as clip_polygon projects)
+/// is strictly convex. Ear clipping then cuts the ear at corner 0 first,
 /// giving (3, 0, 1) and (1, 2, 3); this answers that without its set-up. O(1).
 template <class = void>
 bool convex_projected_quad(std::span<const vec> p) noexcept {
-  vec centroid(0.0), newell(0.0);
+  vec centroid(0.0);
   for (std::size_t i = 0; i < 4; ++i) {
     if (!std::isfinite(p[i].x) || !std::isfinite(p[i].y) || !std::isfinite(p[i].z)) return false;
     centroid += p[i];
   }
   centroid /= 4.0;
-  for (std::size_t i = 0; i < 4; ++i) {
-    const vec a = p[i] - centroid, b = p[(i + 1) % 4] - centroid;
-    newell += vec((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
-  }
-  int k = 0;
-  for (int a = 1; a < 3; ++a)
-    if (std::fabs(newell[a]) > std::fabs(newell[k])) k = a;
+  const vec newell = ears::newell_normal(p, centroid);
+  const int k = ears::dominant_axis(newell);
   if (!(std::fabs(newell[k]) > 0)) return false;
   const int u = (k + 1) % 3, w = (k + 2) % 3, sense = newell[k] > 0 ? 1 : -1;
   for (std::size_t i = 0; i < 4; ++i)

@@ -84,6 +84,21 @@ bool axis_parallel(glm::dvec3 d) {
   return big == 1;
 }
 
+/// The smallest distance between two junctions and from a junction to an edge not at it,
+/// over `diag` (the drawing's size). O(V² + V·E).
+template <class Edges>
+double junction_spacing(const std::vector<glm::dvec2>& pts, const Edges& edges, double diag) {
+  double spacing = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    for (std::size_t j = i + 1; j < pts.size(); ++j)
+      spacing = std::min(spacing, glm::length(pts[i] - pts[j]) / diag);
+  for (const auto& e : edges)
+    for (std::uint32_t v = 0; v < pts.size(); ++v)
+      if (v != e[0] && v != e[1])
+        spacing = std::min(spacing, segment_distance(pts[v], pts[e[0]], pts[e[1]]) / diag);
+  return spacing;
+}
+
 }  // namespace detail
 
 /// How far a drawing is from an accident of the view, relative to its size (the bounding-box
@@ -98,14 +113,7 @@ double generic_margin(const sample_drawing& s) {
   for (const auto& p : pts) lo = glm::min(lo, p), hi = glm::max(hi, p);
   const double diag = glm::length(hi - lo);
   if (!(diag > 0)) return 0;
-  double margin = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < pts.size(); ++i)
-    for (std::size_t j = i + 1; j < pts.size(); ++j)
-      margin = std::min(margin, glm::length(pts[i] - pts[j]) / diag);
-  for (const auto& e : s.drawing.edges)
-    for (std::uint32_t v = 0; v < pts.size(); ++v)
-      if (v != e[0] && v != e[1])
-        margin = std::min(margin, detail::segment_distance(pts[v], pts[e[0]], pts[e[1]]) / diag);
+  double margin = detail::junction_spacing(pts, s.drawing.edges, diag);
   for (const auto& face : s.model.faces) {
     std::vector<glm::dvec3> loop;
     for (const auto v : face[0]) loop.push_back(s.points[v]);

@@ -434,16 +434,7 @@ sample_round_drawing round_prism_drawing(const std::vector<glm::dvec2>& p, doubl
   const auto& q = d.lines.points;
   glm::dvec2 lo = q[0], hi = q[0];
   for (const auto& v : q) lo = glm::min(lo, v), hi = glm::max(hi, v);
-  const double diag = glm::length(hi - lo);
-  double spacing = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < q.size(); ++i)
-    for (std::size_t j = i + 1; j < q.size(); ++j)
-      spacing = std::min(spacing, glm::length(q[i] - q[j]) / diag);
-  for (const auto& e : d.lines.edges)
-    for (std::uint32_t v = 0; v < q.size(); ++v)
-      if (v != e[0] && v != e[1])
-        spacing = std::min(spacing, detail::segment_distance(q[v], q[e[0]], q[e[1]]) / diag);
-  out.spacing = spacing;
+  out.spacing = detail::junction_spacing(q, d.lines.edges, glm::length(hi - lo));
   out.face_cos = face_cos;
   out.rim_gap = rim_gap;
   return out;
