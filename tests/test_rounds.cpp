@@ -99,13 +99,12 @@ TEST_CASE("rounds: every blend's radius within 1 % after reconstruction, its kin
       "rounds: %zu of %zu blends within 1 %% of the true radius (worst %.2e; fillets %zu/%zu, oblique "
       "%zu/%zu, "
       "end faces not square to the edge %zu/%zu), kind right on %zu, consistent %zu, misses flagged "
-      "inconsistent %zu of %zu; depths corrected by the circles in %zu drawings; %.2f ms per drawing\n",
+      "inconsistent %zu of %zu; depths fitted to circular blends in %zu drawings; %.2f ms per drawing\n",
       right, blends, worst, fillets_right, fillets, oblique_right, oblique, slanted_right, slanted, kinds,
       consistent, flagged_wrong, blends - right, corrected, ms / static_cast<double>(drawings.size()));
   for (const auto& m : misses) std::printf("  miss: %s\n", m.c_str());
-  // Not yet every blend (the issue's bar): a reading that is not metric, with no circle square to
-  // an edge to fix it, leaves slanted-end blends off by a few %; each is flagged inconsistent.
-  CHECK(static_cast<double>(right) >= 0.98 * static_cast<double>(blends));
+  CHECK(right == blends);
+  CHECK(consistent == blends);
   CHECK(flagged_wrong == blends - right);  // no wrong radius is called consistent
   CHECK(kinds == blends);
   CHECK(fillets > 0);

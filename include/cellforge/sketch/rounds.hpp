@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -25,6 +26,8 @@
 #include <glm/vec3.hpp>
 
 #include <Eigen/Dense>
+#include <unsupported/Eigen/NonLinearOptimization>
+#include <unsupported/Eigen/NumericalDiff>
 
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
@@ -129,14 +132,23 @@ int edge_sense(const std::vector<std::uint32_t>& loop, std::uint32_t a, std::uin
   return 0;
 }
 
+/// Smooth residuals per blend (zero where undefined), for fitting a depth map: per end, the
+/// lifted curve's conjugate semi-axes U, V seen along the edge give (U·U − V·V) / s and
+/// 2 U·V / s (a circle has both 0); the ends' radius difference over their sum; per end, the
+/// centre's offset from the axis over the radius (3 components).
+inline constexpr std::size_t residuals_per_blend = 11;
+
 /// round_attributes on the skeleton's junctions at X (face loops `faces`, the complex's
-/// input_edge map). O(blends · F · L).
+/// input_edge map); when `residuals` is given, it is filled with residuals_per_blend values per
+/// blend. O(blends · F · L).
 template <Point2 P>
 std::vector<edge_round> attributes(const round_skeleton_result<P>& sk,
                                    const std::vector<std::vector<std::vector<std::uint32_t>>>& faces,
                                    const std::vector<glm::dvec3>& X,
                                    const std::vector<std::uint32_t>& input_edge,
-                                   std::vector<std::string>& diagnostics, const rounds_options& options) {
+                                   std::vector<std::string>& diagnostics, const rounds_options& options,
+                                   std::vector<double>* residuals = nullptr) {
+  if (residuals) residuals->assign(residuals_per_blend * sk.blends.size(), 0.0);
   std::vector<std::pair<glm::dvec3, glm::dvec3>> planes;
   for (const auto& f : faces) planes.push_back(plane_of(X, f[0]));
   std::vector<edge_round> out;
@@ -219,6 +231,10 @@ std::vector<edge_round> attributes(const round_skeleton_result<P>& sk,
       const double a = std::sqrt(0.5 * s + root), bb = std::sqrt(std::max(0.0, 0.5 * s - root));
       r.end_radius[k] = std::sqrt(det);
       r.roundness_defect[k] = a > 0 ? 1 - bb / a : 1;
+      if (residuals && s > 0) {
+        (*residuals)[residuals_per_blend * i + 2 * k] = (glm::dot(U, U) - glm::dot(V, V)) / s;
+        (*residuals)[residuals_per_blend * i + 2 * k + 1] = 2 * glm::dot(U, V) / s;
+      }
     }
     const auto by_circles = [&](const std::string& why) {
       if (r.circle_angle[0] > options.circle_angle || r.circle_angle[1] > options.circle_angle) {
@@ -250,7 +266,12 @@ std::vector<edge_round> attributes(const round_skeleton_result<P>& sk,
       glm::dvec3 off = centre[k] - (X[b.junctions[0]] + r.radius * reach * bisector);
       off -= glm::dot(off, d) * d;
       r.centre_offset[k] = r.radius > 0 ? glm::length(off) / r.radius : 1;
+      if (residuals && r.radius > 0)
+        for (int c = 0; c < 3; ++c)
+          (*residuals)[residuals_per_blend * i + 5 + 3 * k + static_cast<std::size_t>(c)] = off[c] / r.radius;
     }
+    if (residuals && r.radius > 0)
+      (*residuals)[residuals_per_blend * i + 4] = 0.5 * (r.end_radius[0] - r.end_radius[1]) / r.radius;
     const double worst = std::max({r.radius_spread, r.roundness_defect[0], r.roundness_defect[1],
                                    r.centre_offset[0], r.centre_offset[1]});
     r.consistent = r.radius > 0 && worst <= options.consistency;
@@ -321,6 +342,63 @@ bool metric_map(const std::vector<edge_round>& rounds,
   return std::isfinite(kab[0]) && std::abs(kab[0]) > 1e-9;
 }
 
+/// The readings X mapped by z → k z + a x + b y.
+template <class = void>
+std::vector<glm::dvec3> depth_mapped(const std::vector<glm::dvec3>& X, const std::array<double, 3>& kab) {
+  std::vector<glm::dvec3> Y = X;
+  for (auto& y : Y) y.z = kab[0] * y.z + kab[1] * y.x + kab[2] * y.y;
+  return Y;
+}
+
+/// The residual functor of Eigen's Levenberg–Marquardt over (k, a, b): every blend's end curves
+/// lifted onto the mapped reading should be circles of one radius about the blend's axis.
+template <Point2 P>
+struct depth_map_functor {
+  using Scalar = double;
+  using InputType = Eigen::VectorXd;
+  using ValueType = Eigen::VectorXd;
+  using JacobianType = Eigen::MatrixXd;
+  enum { InputsAtCompileTime = Eigen::Dynamic, ValuesAtCompileTime = Eigen::Dynamic };
+  const round_skeleton_result<P>* sk;
+  const std::vector<std::vector<std::vector<std::uint32_t>>>* faces;
+  const std::vector<glm::dvec3>* X;
+  const std::vector<std::uint32_t>* input_edge;
+  const rounds_options* options;
+  Eigen::Index inputs() const { return 3; }
+  Eigen::Index values() const { return static_cast<Eigen::Index>(residuals_per_blend * sk->blends.size()); }
+  int operator()(const Eigen::VectorXd& x, Eigen::VectorXd& f) const {
+    std::vector<std::string> notes;
+    std::vector<double> res;
+    attributes(*sk, *faces, depth_mapped(*X, {x(0), x(1), x(2)}), *input_edge, notes, *options, &res);
+    for (std::size_t i = 0; i < res.size(); ++i)
+      f(static_cast<Eigen::Index>(i)) = std::isfinite(res[i]) ? res[i] : 1.0;
+    return 0;
+  }
+};
+
+/// The depth map that makes every blend circular, by Levenberg–Marquardt from `start` (numeric
+/// Jacobian; three unknowns, residuals_per_blend per blend). Returns the squared residual norm
+/// and sets kab. O(iterations · blends · F · L).
+template <Point2 P>
+double fit_depth_map(const round_skeleton_result<P>& sk,
+                     const std::vector<std::vector<std::vector<std::uint32_t>>>& faces,
+                     const std::vector<glm::dvec3>& X, const std::vector<std::uint32_t>& input_edge,
+                     const rounds_options& options, std::array<double, 3>& kab) {
+  const depth_map_functor<P> f{&sk, &faces, &X, &input_edge, &options};
+  Eigen::NumericalDiff<depth_map_functor<P>> nd(f);
+  Eigen::LevenbergMarquardt<Eigen::NumericalDiff<depth_map_functor<P>>> lm(nd);
+  lm.parameters.maxfev = 400;
+  lm.parameters.xtol = 1e-12;
+  lm.parameters.ftol = 1e-14;
+  Eigen::VectorXd x(3);
+  x << kab[0], kab[1], kab[2];
+  lm.minimize(x);
+  Eigen::VectorXd fv(f.values());
+  f(x, fv);
+  kab = {x(0), x(1), x(2)};
+  return fv.squaredNorm();
+}
+
 }  // namespace detail::blends
 
 /// The round attributes of a skeleton already read: for each blend of `sk`, its two faces and
@@ -373,10 +451,21 @@ rounds_result<Q, P> reconstruct_rounds(const arc_drawing<P>& d, const rounds_opt
   const bool metric = std::all_of(out.rounds.begin(), out.rounds.end(), [](const edge_round& r) {
     return r.source == radius_source::lifted && r.consistent;
   });
-  std::array<double, 3> kab{};
-  if (!metric && detail::blends::metric_map(out.rounds, faces, X, options, kab)) {
-    std::vector<glm::dvec3> Y = X;
-    for (auto& y : Y) y.z = kab[0] * y.z + kab[1] * y.x + kab[2] * y.y;
+  std::array<double, 3> kab{1, 0, 0};
+  if (!metric) {
+    // Starts: the circles' linear map when there is one, and the reading itself; the fit uses
+    // every blend, square to its edge or not.
+    std::vector<std::array<double, 3>> starts{{1, 0, 0}};
+    if (std::array<double, 3> linear{}; detail::blends::metric_map(out.rounds, faces, X, options, linear))
+      starts.insert(starts.begin(), linear);
+    double best = std::numeric_limits<double>::infinity();
+    for (auto start : starts) {
+      const double value = detail::blends::fit_depth_map(out.skeleton, faces, X, input_edge, options, start);
+      if (value < best && std::isfinite(start[0]) && std::abs(start[0]) > 1e-9) best = value, kab = start;
+    }
+  }
+  if (!metric && kab != std::array<double, 3>{1, 0, 0}) {
+    std::vector<glm::dvec3> Y = detail::blends::depth_mapped(X, kab);
     std::vector<std::string> again;
     auto rounds = detail::blends::attributes(out.skeleton, faces, Y, input_edge, again, options);
     const auto count = [](const std::vector<edge_round>& v) {
@@ -390,7 +479,7 @@ rounds_result<Q, P> reconstruct_rounds(const arc_drawing<P>& d, const rounds_opt
       out.depth_map = kab;
       out.diagnostics.push_back("the reading's blends are not circular; its depths are mapped by z -> " +
                                 std::to_string(kab[0]) + " z + " + std::to_string(kab[1]) + " x + " +
-                                std::to_string(kab[2]) + " y, fixed by the blends' circles");
+                                std::to_string(kab[2]) + " y, fitted so that its blends are circular");
     }
   }
   out.diagnostics.insert(out.diagnostics.end(), notes.begin(), notes.end());
