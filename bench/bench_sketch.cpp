@@ -4,8 +4,9 @@
 // largest drawing of 251 edges slightly over 1 s). Then inflation and the whole of
 // drawing_to_cells per family of the generated sweep (ms, and how often the true cell complex
 // comes out), and direct inflation of a ~100-line normalon (issue target: 50 ms). Every row is
-// the median of its iterations. Last, rounds and fillets: pairing the arcs and the polyhedral
-// skeleton per family of the generated round drawings.
+// the median of its iterations. Last, rounds and fillets per family of the generated round
+// drawings: pairing the arcs, the polyhedral skeleton, the reconstruction with rounds
+// (radii against the truth) and the rounded mesh.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -15,15 +16,18 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <random>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "bench_support.hpp"
+#include "cellforge/sketch/arc_detection.hpp"
 #include "cellforge/sketch/drawing_to_cells.hpp"
 #include "cellforge/sketch/face_finder.hpp"
 #include "cellforge/sketch/inflation.hpp"
 #include "cellforge/sketch/round_skeleton.hpp"
+#include "cellforge/sketch/rounds.hpp"
 #include "cellforge/sketch/sample_drawings.hpp"
 #include "cellforge/sketch/sample_round_drawings.hpp"
 
@@ -174,8 +178,139 @@ std::map<std::string, std::size_t>& round_right() {
   return m;
 }
 
+// Per family: blends whose reconstructed radius is within 1 % of the truth, and rounded meshes made.
+std::map<std::string, std::size_t>& radii_right() {
+  static std::map<std::string, std::size_t> m;
+  return m;
+}
+
+// Blends of one reconstruction within 1 % of their true radius: a blend is matched to its true
+// edge by the skeleton junctions' positions.
+std::size_t radii_within(const cellforge::sample_round_drawing& s,
+                         const cellforge::rounds_result<glm::dvec3, glm::dvec2>& r) {
+  const auto& truth = s.skeleton.drawing.points;
+  const auto& got = r.skeleton.skeleton.points;
+  glm::dvec2 lo = truth[0], hi = truth[0];
+  for (const auto& p : truth) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const double close = 1e-6 * glm::length(hi - lo);
+  std::size_t ok = 0;
+  for (const auto& t : s.rounds)
+    for (const auto& e : r.rounds) {
+      const auto near = [&](std::uint32_t i, std::uint32_t j) {
+        return glm::length(got[i] - truth[j]) < close;
+      };
+      const bool same = (near(e.junctions[0], t.vertices[0]) && near(e.junctions[1], t.vertices[1])) ||
+                        (near(e.junctions[0], t.vertices[1]) && near(e.junctions[1], t.vertices[0]));
+      if (same) ok += std::abs(e.radius - t.radius) <= 0.01 * t.radius;
+    }
+  return ok;
+}
+
+// A round drawing as a pen draws it: every edge and arc one stroke of samples about 1 % of the
+// size apart, each jittered by up to 0.2 % of the size (uniform per coordinate, fixed seed).
+struct sampled_drawing {
+  std::vector<std::vector<glm::dvec2>> strokes;
+  double size = 0;
+  std::size_t arcs = 0, lines = 0;
+};
+
+std::vector<sampled_drawing> sampled(const round_family& f) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> jitter(-1, 1);
+  std::vector<sampled_drawing> out;
+  for (const auto& s : f.drawings) {
+    sampled_drawing d;
+    const auto& p = s.drawing.lines.points;
+    glm::dvec2 lo = p[0], hi = p[0];
+    for (const auto& q : p) lo = glm::min(lo, q), hi = glm::max(hi, q);
+    d.size = glm::length(hi - lo);
+    const auto pen = [&](glm::dvec2 q) { return q + 2e-3 * d.size * glm::dvec2(jitter(rng), jitter(rng)); };
+    for (const auto& e : s.drawing.lines.edges) {
+      const glm::dvec2 a = p[e[0]], b = p[e[1]];
+      const int n = std::max(4, static_cast<int>(glm::length(b - a) / (1e-2 * d.size)));
+      std::vector<glm::dvec2> stroke;
+      for (int i = 0; i <= n; ++i) stroke.push_back(pen(a + (b - a) * (static_cast<double>(i) / n)));
+      d.strokes.push_back(std::move(stroke));
+      ++d.lines;
+    }
+    for (const auto& a : s.drawing.arcs) {
+      const double length = std::abs(a.curve.sweep) * std::max(a.curve.rx, a.curve.ry);
+      const int n = std::max(8, static_cast<int>(length / (1e-2 * d.size)));
+      std::vector<glm::dvec2> stroke;
+      for (int i = 0; i <= n; ++i)
+        stroke.push_back(pen(cellforge::arc_point(a.curve, static_cast<double>(i) / n)));
+      d.strokes.push_back(std::move(stroke));
+      ++d.arcs;
+    }
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
+// Per family: strokes found as exactly one arc or one line, as drawn, of all strokes.
+std::map<std::string, std::pair<std::size_t, std::size_t>>& detect_right() {
+  static std::map<std::string, std::pair<std::size_t, std::size_t>> m;
+  return m;
+}
+
 void register_all() {
   for (const round_family& f : round_families()) {
+    benchmark::RegisterBenchmark(
+        ("rounds/detect/" + f.family).c_str(),
+        [&f](benchmark::State& state) {
+          const std::vector<sampled_drawing> drawn = sampled(f);
+          std::size_t strokes = 0;
+          for (const auto& d : drawn) strokes += d.strokes.size();
+          cb::median_loop(
+              state,
+              [&] {
+                std::size_t ok = 0;
+                for (const auto& d : drawn) {
+                  const auto r = cellforge::detect_arcs(d.strokes, {.drawing_size = d.size});
+                  for (std::size_t k = 0; k < r.strokes.size(); ++k)
+                    ok += r.strokes[k].num_pieces == 1 &&
+                          (r.pieces[r.strokes[k].first_piece].kind == cellforge::stroke_piece_kind::arc) ==
+                              (k >= d.lines);
+                }
+                return ok;
+              },
+              [&](std::size_t ok) {
+                detect_right()[f.family] = {ok, strokes};
+              });
+        })
+        ->Iterations(5)
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("rounds/reconstruct/" + f.family).c_str(),
+                                 [&f](benchmark::State& state) {
+                                   cb::median_loop(
+                                       state,
+                                       [&] {
+                                         std::size_t ok = 0;
+                                         for (const auto& s : f.drawings)
+                                           ok += radii_within(s, cellforge::reconstruct_rounds(s.drawing));
+                                         return ok;
+                                       },
+                                       [&](std::size_t ok) { radii_right()[f.family] = ok; });
+                                 })
+        ->Iterations(5)
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("rounds/mesh/" + f.family).c_str(),
+                                 [&f](benchmark::State& state) {
+                                   std::vector<cellforge::rounds_result<glm::dvec3, glm::dvec2>> read;
+                                   for (const auto& s : f.drawings)
+                                     read.push_back(cellforge::reconstruct_rounds(s.drawing));
+                                   cb::median_loop(state, [&] {
+                                     std::size_t faces = 0;
+                                     for (const auto& r : read)
+                                       faces += cellforge::rounded_mesh(r).mesh.num_faces();
+                                     return faces;
+                                   });
+                                 })
+        ->Iterations(9)
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("rounds/pair_arcs/" + f.family).c_str(),
                                  [&f](benchmark::State& state) {
                                    cb::median_loop(state, [&] {
@@ -346,17 +481,33 @@ void print_tables(const cb::collecting_reporter& r, std::ostream& os) {
               "-line comb normalon: " + cb::ms(r.counter_ms("inflate/comb", "median_cpu_us")) +
               " ms (issue target: 100 lines in <= 50 ms).");
   in.print(os);
-  cb::table rt("Rounds and fillets: pairing and the skeleton per family of the generated round drawings",
-               {"family", "drawings", "blends", "pair_arcs ms per drawing", "round_skeleton ms per drawing",
-                "skeleton right"});
+  cb::table rt(
+      "Rounds and fillets per family of the generated round drawings (ms per drawing)",
+      {"family", "drawings", "blends", "detect_arcs (sampled)", "strokes right", "pair_arcs",
+       "round_skeleton", "skeleton right", "reconstruct_rounds", "radii within 1 %", "rounded_mesh"});
   for (const round_family& f : round_families()) {
     const double n = static_cast<double>(f.drawings.size());
-    const std::optional<double> a = r.counter_ms("rounds/pair_arcs/" + f.family, "median_cpu_us"),
-                                b = r.counter_ms("rounds/skeleton/" + f.family, "median_cpu_us");
-    rt.add_row({f.family, cb::count(f.drawings.size()), cb::count(f.blends), a ? cb::ms(*a / n) : "—",
-                b ? cb::ms(*b / n) : "—",
-                std::to_string(round_right()[f.family]) + " of " + std::to_string(f.drawings.size())});
+    const std::optional<double> x = r.counter_ms("rounds/detect/" + f.family, "median_cpu_us"),
+                                a = r.counter_ms("rounds/pair_arcs/" + f.family, "median_cpu_us"),
+                                b = r.counter_ms("rounds/skeleton/" + f.family, "median_cpu_us"),
+                                c = r.counter_ms("rounds/reconstruct/" + f.family, "median_cpu_us"),
+                                m = r.counter_ms("rounds/mesh/" + f.family, "median_cpu_us");
+    const auto per = [&](const std::optional<double>& x) { return x ? cb::ms(*x / n) : std::string("—"); };
+    const auto [found, strokes] = detect_right()[f.family];
+    rt.add_row({f.family, cb::count(f.drawings.size()), cb::count(f.blends), per(x),
+                std::to_string(found) + " of " + std::to_string(strokes), per(a), per(b),
+                std::to_string(round_right()[f.family]) + " of " + std::to_string(f.drawings.size()), per(c),
+                std::to_string(radii_right()[f.family]) + " of " + std::to_string(f.blends), per(m)});
   }
+  rt.add_note(
+      "detect_arcs: every edge and arc of the drawing one stroke, samples about 1 % of the size apart, each "
+      "jittered by up to 0.2 % of the size; right = the stroke found as one piece of its own kind (arcs "
+      "bulging "
+      "less than 5 noise widths are lines at this noise: tests/test_arc_detection.cpp, docs/sketch.md).");
+  rt.add_note(
+      "reconstruct_rounds: the skeleton, drawing_to_cells on it, each blend's radius from its end curves "
+      "(and, for readings that are not metric, the depth map fitted to circular blends); rounded_mesh: the "
+      "rounded solid as a polygon soup, chord tolerance 1e-3 of the diagonal.");
   rt.add_note(
       "round_skeleton: pairing, the skeleton and face finding on it (round or fillet); right = no arc "
       "unpaired, every blend's kind found, the true junction and edge counts (tests/test_round_skeleton.cpp "
