@@ -131,6 +131,7 @@ TEST_CASE("arc detection: exact arcs, lines and L shapes with 0.2 % noise") {
   }
 
   const auto r = cellforge::detect_arcs(strokes, {.drawing_size = size});
+  CHECK(r.self_crossing_strokes == 0);  // lines, arcs and Ls with a pen's jitter do not cross themselves
   REQUIRE(r.strokes.size() == strokes.size());
   CHECK(r.drawing_size == size);
   // Stated tolerances (docs/sketch.md, "Arc detection"), as fractions of the drawing's size:
@@ -276,6 +277,31 @@ TEST_CASE("arc detection: a round drawn in one stroke, another point type, bad i
   CHECK(f.max_distance < 1e-9);
   CHECK(cellforge::fit_ellipse(std::vector<glm::dvec2>{{0, 0}, {1, 1}, {2, 2}, {3, 3}, {4, 4}, {5, 5}})
             .rejection == arc_rejection::not_an_ellipse);
+  CHECK(r.self_crossing_strokes == 0);
+
+  // Self-intersecting strokes: a figure of eight (crossing at its centre) and a curl (a
+  // trochoid's loop); the pieces are read, the crossings counted and the first one located.
+  std::vector<std::vector<glm::dvec2>> crossed(2);
+  for (int i = 0; i <= 200; ++i) {
+    const double t = 2 * pi * i / 200.0 + 0.3;
+    crossed[0].push_back(glm::dvec2(0.5, 0.5) + 0.4 * glm::dvec2(std::sin(t), std::sin(t) * std::cos(t)));
+  }
+  for (int i = 0; i <= 120; ++i) {
+    const double t = 2 * pi * i / 120.0 - pi;
+    crossed[1].push_back(glm::dvec2(0.5, 0.5) + 0.12 * glm::dvec2(t - 1.5 * std::sin(t), -1.5 * std::cos(t)));
+  }
+  const auto x = cellforge::detect_arcs(crossed, {.drawing_size = size});
+  REQUIRE(x.strokes.size() == 2);
+  CHECK(x.self_crossing_strokes == 2);
+  CHECK(x.strokes[0].self_crossings == 1);
+  CHECK(x.strokes[1].self_crossings == 1);
+  CHECK(x.strokes[0].num_pieces > 1);
+  std::string said;
+  for (const auto& d : x.diagnostics)
+    if (d.find("crosses itself") != std::string::npos) said += d + "\n";
+  INFO(said);
+  CHECK(said.find("stroke 0: crosses itself once, first at (0.5") == 0);
+  CHECK(said.find("stroke 1: crosses itself once") != std::string::npos);
 }
 
 TEST_CASE("arc detection: circles in the faces of a quasi-normalon, fitted with the view's axes") {
@@ -360,7 +386,8 @@ TEST_CASE("arc detection: the round drawings sampled like a pen, 0.2 % noise") {
   cellforge::round_sweep_options o;
   o.drawings = full ? 240 : 24;
   generator g{{20261204}};
-  std::size_t lines = 0, lines_right = 0, arcs = 0, bulging = 0, bulging_found = 0, shallow_found = 0;
+  std::size_t lines = 0, lines_right = 0, arcs = 0, bulging = 0, bulging_found = 0, shallow_found = 0,
+              self_crossing = 0;
   std::vector<std::string> misses;
   for (const auto& s : cellforge::round_drawing_sweep(o)) {
     const auto& p = s.drawing.lines.points;
@@ -388,6 +415,7 @@ TEST_CASE("arc detection: the round drawings sampled like a pen, 0.2 % noise") {
     }
     const auto r = cellforge::detect_arcs(strokes, {.drawing_size = d});
     REQUIRE(r.strokes.size() == strokes.size());
+    self_crossing += r.self_crossing_strokes;
     const std::size_t nl = s.drawing.lines.edges.size();
     for (std::size_t k = 0; k < strokes.size(); ++k) {
       const auto& sum = r.strokes[k];
@@ -421,6 +449,7 @@ TEST_CASE("arc detection: the round drawings sampled like a pen, 0.2 % noise") {
   for (const auto& m : misses) std::printf("  miss: %s\n", m.c_str());
   CHECK(lines_right == lines);
   CHECK(bulging_found == bulging);
+  CHECK(self_crossing == 0);  // a pen's jitter is no self-intersection
   CHECK(bulging > 0);
 }
 

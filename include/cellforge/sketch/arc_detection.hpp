@@ -131,6 +131,10 @@ struct stroke_summary {
   std::size_t samples = 0;  ///< distinct consecutive samples read
   /// Why the whole stroke is not one arc (none when it is one; straight when it is one line).
   arc_rejection whole = arc_rejection::none;
+  /// Places where the stroke crosses itself (its sampled polyline, loops shorter than four
+  /// tolerances — a pen's jitter at a corner — not counted). Its pieces are read as usual; a
+  /// crossing is no junction, and a diagnostic names the first.
+  std::size_t self_crossings = 0;
 };
 
 /// What detect_arcs found: the pieces of every stroke in order, per-stroke summaries, counts,
@@ -140,10 +144,11 @@ struct arc_detection_result {
   std::vector<stroke_piece<P>> pieces;
   std::vector<stroke_summary> strokes;
   std::size_t num_lines = 0, num_arcs = 0;
-  std::size_t splits = 0;           ///< pieces split at their farthest sample
-  std::size_t merges = 0;           ///< neighbouring pieces joined again into one line or arc
-  std::size_t fits = 0;             ///< ellipse fits tried
-  std::size_t dropped_strokes = 0;  ///< strokes of fewer than two distinct samples
+  std::size_t splits = 0;                 ///< pieces split at their farthest sample
+  std::size_t merges = 0;                 ///< neighbouring pieces joined again into one line or arc
+  std::size_t fits = 0;                   ///< ellipse fits tried
+  std::size_t dropped_strokes = 0;        ///< strokes of fewer than two distinct samples
+  std::size_t self_crossing_strokes = 0;  ///< strokes that cross themselves (stroke_summary::self_crossings)
   /// Over every ellipse fit tried, how often each reason rejected it (index: arc_rejection).
   std::array<std::size_t, arc_rejection_count> rejections{};
   double drawing_size = 0;  ///< the size the tolerance was taken of
@@ -447,6 +452,49 @@ std::size_t refine_ellipse(const std::vector<glm::dvec2>& q, ellipse_params& e, 
   const std::size_t evaluations = fit_distances(q, model, x, max_evaluations);
   e = model.ellipse(x).value_or(e);
   return evaluations;
+}
+
+/// Where the polyline q crosses itself: proper crossings of two of its segments whose stretch of
+/// polyline between them is longer than `min_loop` (shorter loops are a pen's jitter). Returns
+/// the count and the first crossing point. Segments by their leftmost x, each compared with the
+/// ones starting before its right end: O(n log n + pairs whose x-ranges overlap).
+template <class = void>
+std::pair<std::size_t, glm::dvec2> self_crossings(const std::vector<glm::dvec2>& q, double min_loop) {
+  const std::size_t n = q.size() < 2 ? 0 : q.size() - 1;
+  std::vector<double> along(q.size(), 0.0);
+  for (std::size_t i = 1; i < q.size(); ++i) along[i] = along[i - 1] + glm::length(q[i] - q[i - 1]);
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  const auto lo = [&](std::size_t i) { return std::min(q[i].x, q[i + 1].x); };
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return lo(a) < lo(b); });
+  const auto orient = [](glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {
+    const double d = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    return (d > 0) - (d < 0);
+  };
+  std::size_t count = 0;
+  glm::dvec2 first{};
+  for (std::size_t u = 0; u < n; ++u) {
+    const std::size_t i = order[u];
+    const double hi = std::max(q[i].x, q[i + 1].x);
+    for (std::size_t w = u + 1; w < n && lo(order[w]) <= hi; ++w) {
+      const std::size_t j = order[w];
+      const std::size_t a = std::min(i, j), b = std::max(i, j);
+      if (b < a + 2 || along[b] - along[a + 1] <= min_loop) continue;
+      if (std::max(std::min(q[a].y, q[a + 1].y), std::min(q[b].y, q[b + 1].y)) >
+          std::min(std::max(q[a].y, q[a + 1].y), std::max(q[b].y, q[b + 1].y)))
+        continue;
+      if (orient(q[a], q[a + 1], q[b]) * orient(q[a], q[a + 1], q[b + 1]) < 0 &&
+          orient(q[b], q[b + 1], q[a]) * orient(q[b], q[b + 1], q[a + 1]) < 0) {
+        if (count++ == 0) {
+          const glm::dvec2 r = q[a + 1] - q[a], t = q[b + 1] - q[b];
+          const double den = r.x * t.y - r.y * t.x;
+          const glm::dvec2 d = q[b] - q[a];
+          first = q[a] + r * ((d.x * t.y - d.y * t.x) / den);
+        }
+      }
+    }
+  }
+  return {count, first};
 }
 
 /// The total least-squares line through q[first..last]: (deviation, the end samples projected
@@ -850,6 +898,16 @@ auto detect_arcs(const Strokes& strokes, const arc_detection_options& options = 
       res.diagnostics.push_back("stroke " + std::to_string(si) + ": not one line or one arc (as one arc: " +
                                 std::string(to_string(sum.whole)) + "); read as " + std::to_string(lines) +
                                 " lines and " + std::to_string(arcs) + " arcs");
+    if (const auto [crossings, at] = detail::self_crossings(q, 4 * eps); crossings > 0) {
+      sum.self_crossings = crossings;
+      ++res.self_crossing_strokes;
+      res.diagnostics.push_back(
+          "stroke " + std::to_string(si) + ": crosses itself " +
+          (crossings == 1 ? std::string("once") : std::to_string(crossings) + " times") + ", first at (" +
+          detail::drawing_number(at.x) + ", " + detail::drawing_number(at.y) +
+          "); read as its pieces, a crossing is no junction (draw a closed curve "
+          "as strokes that meet at junctions)");
+    }
     sum.num_pieces = pieces.size();
     res.pieces.insert(res.pieces.end(), pieces.begin(), pieces.end());
     res.strokes.push_back(sum);
