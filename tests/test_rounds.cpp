@@ -48,7 +48,8 @@ TEST_CASE("rounds: every blend's radius within 1 % after reconstruction, its kin
   const auto drawings = cellforge::round_drawing_sweep(o);
   REQUIRE(drawings.size() == sweep_drawings);
   std::size_t blends = 0, right = 0, kinds = 0, consistent = 0, oblique = 0, oblique_right = 0, slanted = 0,
-              slanted_right = 0, fillets = 0, fillets_right = 0, flagged_wrong = 0, corrected = 0;
+              slanted_right = 0, fillets = 0, fillets_right = 0, flagged_wrong = 0, corrected = 0,
+              categories_right = 0;
   double worst = 0, ms = 0;
   std::vector<std::string> misses;
   for (const auto& s : drawings) {
@@ -57,6 +58,7 @@ TEST_CASE("rounds: every blend's radius within 1 % after reconstruction, its kin
       const auto r = cellforge::reconstruct_rounds(s.drawing);
       ms += r.milliseconds;
       corrected += r.depth_corrected;
+      bool same = true, mirrored = true;  // categories as the truth's, or a and c swapped
       for (const auto& t : s.rounds) {
         ++blends;
         oblique += t.oblique, slanted += !t.perpendicular, fillets += !t.convex;
@@ -74,6 +76,12 @@ TEST_CASE("rounds: every blend's radius within 1 % after reconstruction, its kin
           misses.push_back(s.name + ": no blend on the true edge " + std::to_string(t.edge));
           continue;
         }
+        const cellforge::blend_category m =
+            t.category == cellforge::blend_category::a   ? cellforge::blend_category::c
+            : t.category == cellforge::blend_category::c ? cellforge::blend_category::a
+                                                         : t.category;
+        same = same && got->category == t.category;
+        mirrored = mirrored && got->category == m;
         const double err = std::abs(got->radius - t.radius) / t.radius;
         worst = std::max(worst, err);
         const bool ok = err <= 0.01;
@@ -90,6 +98,8 @@ TEST_CASE("rounds: every blend's radius within 1 % after reconstruction, its kin
                                             : ", inconsistent (spread " + std::to_string(got->radius_spread) +
                                                   ", centre " + std::to_string(got->centre_offset[0]) + ")"));
       }
+      categories_right += same || mirrored;
+      if (!same && !mirrored) misses.push_back(s.name + ": categories fit neither the view nor its mirror");
     } catch (const cellforge::error& e) {
       blends += s.rounds.size();
       misses.push_back(s.name + ": " + e.what());
@@ -99,12 +109,15 @@ TEST_CASE("rounds: every blend's radius within 1 % after reconstruction, its kin
       "rounds: %zu of %zu blends within 1 %% of the true radius (worst %.2e; fillets %zu/%zu, oblique "
       "%zu/%zu, "
       "end faces not square to the edge %zu/%zu), kind right on %zu, consistent %zu, misses flagged "
-      "inconsistent %zu of %zu; depths fitted to circular blends in %zu drawings; %.2f ms per drawing\n",
+      "inconsistent %zu of %zu; depths fitted to circular blends in %zu drawings; categories a/b/c of the "
+      "reading those of the view or its mirror in %zu of %zu drawings; %.2f ms per drawing\n",
       right, blends, worst, fillets_right, fillets, oblique_right, oblique, slanted_right, slanted, kinds,
-      consistent, flagged_wrong, blends - right, corrected, ms / static_cast<double>(drawings.size()));
+      consistent, flagged_wrong, blends - right, corrected, categories_right, drawings.size(),
+      ms / static_cast<double>(drawings.size()));
   for (const auto& m : misses) std::printf("  miss: %s\n", m.c_str());
   CHECK(right == blends);
   CHECK(consistent == blends);
+  CHECK(categories_right == drawings.size());
   CHECK(flagged_wrong == blends - right);  // no wrong radius is called consistent
   CHECK(kinds == blends);
   CHECK(fillets > 0);

@@ -69,6 +69,9 @@ struct edge_round {
   std::uint32_t cell_edge = npos;            ///< the cell complex's edge (npos: not in the complex)
   std::array<std::uint32_t, 2> junctions{};  ///< the edge's skeleton junctions
   blend_kind kind = blend_kind::unknown;
+  /// The seed's visibility category in this reading (a, b or c; a and c swap with the Necker
+  /// mirror), from resolve_blend_categories; a_or_c when the reading could not decide.
+  blend_category category = blend_category::a_or_c;
   bool convex = true;  ///< a round (kind round) or a fillet (kind fillet)
   double radius = 0;   ///< mean of the two end radii
   std::array<double, 2> end_radius{};
@@ -483,6 +486,20 @@ rounds_result<Q, P> reconstruct_rounds(const arc_drawing<P>& d, const rounds_opt
     }
   }
   out.diagnostics.insert(out.diagnostics.end(), notes.begin(), notes.end());
+  // Categories a and c are the reading's (its faces towards the viewer or away), so they are
+  // decided on the depths the radii were taken from.
+  std::vector<double> depth;
+  for (const auto& x : X) depth.push_back(x.z);
+  try {
+    const std::size_t said = out.skeleton.diagnostics.size();
+    resolve_blend_categories(out.skeleton, depth);
+    out.diagnostics.insert(out.diagnostics.end(),
+                           out.skeleton.diagnostics.begin() + static_cast<std::ptrdiff_t>(said),
+                           out.skeleton.diagnostics.end());
+  } catch (const error& e) {
+    out.diagnostics.push_back(std::string("categories a and c left undecided: ") + e.what());
+  }
+  for (auto& r : out.rounds) r.category = out.skeleton.blends[r.blend].category;
   for (const auto& x : X) out.points.push_back(from_dvec3<Q>(x));
   for (const auto& r : out.rounds) ++(r.consistent ? out.consistent : out.inconsistent);
   out.milliseconds =
