@@ -7,8 +7,8 @@
 /// `sketch/sample_drawings.hpp`, `sketch/sample_round_drawings.hpp`), the seed's sample solids
 /// (`thin/sample_solids.hpp`, `smooth/sample_solids.hpp`), which are large and which an application rarely
 /// needs, and the sketch stages that solve with Eigen (`sketch/tidy.hpp`, `sketch/inflation.hpp`,
-/// `sketch/drawing_to_cells.hpp`, `sketch/arc_detection.hpp`), so that nothing else needs Eigen or pays for
-/// parsing it. The header hygiene test checks that this list is complete.
+/// `sketch/drawing_to_cells.hpp`, `sketch/arc_detection.hpp`, `sketch/rounds.hpp`), so that nothing else
+/// needs Eigen or pays for parsing it. The header hygiene test checks that this list is complete.
 
 #include "cellforge/algorithms/convex_hull.hpp"
 #include "cellforge/algorithms/ear_clipping.hpp"
@@ -43,7 +43,6 @@
 #include "cellforge/sketch/face_finder.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 #include "cellforge/sketch/round_skeleton.hpp"
-#include "cellforge/sketch/rounds.hpp"
 #include "cellforge/smooth/continuous_surfaces.hpp"
 #include "cellforge/smooth/edge_curve.hpp"
 #include "cellforge/smooth/normals.hpp"

@@ -5,7 +5,9 @@
 #   - no non-template `inline` function at namespace scope: it would be compiled in every file
 #     that includes the header, used or not (docs/infra.md; make it a template);
 #   - cellforge/cellforge.hpp includes every public header except io/, detail/ and the
-#     generators and sample data its comment names (so it says what it includes).
+#     generators, sample data and Eigen stages its comment names (so it says what it includes),
+#     and none that needs Eigen, directly or through another header (so a user without Eigen
+#     can include it).
 # Prints every violation with file and line, then fails if there was any.
 cmake_minimum_required(VERSION 3.21)
 if(NOT INCLUDE_DIR)
@@ -55,7 +57,7 @@ foreach(header IN LISTS headers)
   endif()
 endforeach()
 # The umbrella header's promise.
-set(umbrella_exempt "^cellforge/(io/|.*/detail/|cellforge\\.hpp$|algorithms/shapes\\.hpp$|wireframe/sample_models\\.hpp$|tubes/sample_skeletons\\.hpp$|sketch/sample_drawings\\.hpp$|sketch/sample_round_drawings\\.hpp$|sketch/inflation\\.hpp$|sketch/drawing_to_cells\\.hpp$|sketch/tidy\\.hpp$|sketch/arc_detection\\.hpp$|thin/sample_solids\\.hpp$|smooth/sample_solids\\.hpp$)")
+set(umbrella_exempt "^cellforge/(io/|.*/detail/|cellforge\\.hpp$|algorithms/shapes\\.hpp$|wireframe/sample_models\\.hpp$|tubes/sample_skeletons\\.hpp$|sketch/sample_drawings\\.hpp$|sketch/sample_round_drawings\\.hpp$|sketch/inflation\\.hpp$|sketch/drawing_to_cells\\.hpp$|sketch/tidy\\.hpp$|sketch/arc_detection\\.hpp$|sketch/rounds\\.hpp$|thin/sample_solids\\.hpp$|smooth/sample_solids\\.hpp$)")
 file(READ "${INCLUDE_DIR}/cellforge/cellforge.hpp" umbrella)
 foreach(header IN LISTS headers)
   if(header MATCHES "${umbrella_exempt}")
@@ -64,6 +66,44 @@ foreach(header IN LISTS headers)
   string(FIND "${umbrella}" "#include \"${header}\"" at)
   if(at EQUAL -1)
     message("cellforge/cellforge.hpp: does not include ${header}")
+    math(EXPR problems "${problems} + 1")
+  endif()
+endforeach()
+# Headers that need Eigen: those that include it, then those that include one of them, until
+# no more are found.
+set(needs_eigen "")
+foreach(header IN LISTS headers)
+  file(STRINGS "${INCLUDE_DIR}/${header}" includes REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"]")
+  set(direct_${header} "")
+  foreach(line IN LISTS includes)
+    if(line MATCHES "<(unsupported/)?Eigen/")
+      list(APPEND needs_eigen "${header}")
+    elseif(line MATCHES "\"(cellforge/[^\"]+)\"")
+      list(APPEND direct_${header} "${CMAKE_MATCH_1}")
+    endif()
+  endforeach()
+endforeach()
+list(REMOVE_DUPLICATES needs_eigen)
+set(grew TRUE)
+while(grew)
+  set(grew FALSE)
+  foreach(header IN LISTS headers)
+    if(header IN_LIST needs_eigen)
+      continue()
+    endif()
+    foreach(inc IN LISTS direct_${header})
+      if(inc IN_LIST needs_eigen)
+        list(APPEND needs_eigen "${header}")
+        set(grew TRUE)
+        break()
+      endif()
+    endforeach()
+  endforeach()
+endwhile()
+foreach(inc IN LISTS direct_cellforge/cellforge.hpp)
+  if(inc IN_LIST needs_eigen)
+    message("cellforge/cellforge.hpp: includes ${inc}, which needs Eigen; the umbrella promises it does not "
+            "(list it in its comment and in umbrella_exempt instead)")
     math(EXPR problems "${problems} + 1")
   endif()
 endforeach()
