@@ -8,8 +8,6 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -25,6 +23,7 @@
 
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
+#include "cellforge/io/detail/arc_degrees.hpp"
 #include "cellforge/io/detail/output_buffer.hpp"
 #include "cellforge/io/detail/read_file.hpp"
 #include "cellforge/io/detail/text_cursor.hpp"
@@ -48,38 +47,6 @@ struct text_arc {
   bool large = false, ccw = false;
   const char* line = nullptr;
 };
-
-/// The rotation in radians of an arc statement's degrees; the writer inverts exactly this. O(1).
-template <class = void>
-double arc_text_radians(double degrees) {
-  return degrees * (std::numbers::pi / 180);
-}
-
-/// Degrees that arc_text_radians maps back to `radians` exactly when there are any (the
-/// shortest in text among the doubles next to radians · 180/π), else the nearest. O(1).
-template <class = void>
-double arc_text_degrees(double radians) {
-  const double guess = radians * (180 / std::numbers::pi);
-  double best = guess;
-  std::size_t best_len = std::numeric_limits<std::size_t>::max();
-  // Bit for bit: -0 and 0 are different text.
-  const auto same = [](double a, double b) {
-    return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
-  };
-  for (int side = 0; side < 2; ++side) {
-    double d = guess;
-    for (int k = 0; k < 5; ++k) {
-      if (same(arc_text_radians(d), radians)) {
-        char buf[32];
-        const auto r = std::to_chars(buf, buf + sizeof buf, d);
-        const auto len = static_cast<std::size_t>(r.ptr - buf);
-        if (len < best_len) best = d, best_len = len;
-      }
-      d = std::nextafter(d, (side == 0 ? -1 : 1) * std::numeric_limits<double>::infinity());
-    }
-  }
-  return best;
-}
 
 /// The reader of both drawing text formats: arcs read when `arcs`, else refused. O(size + E log E).
 template <Point2 P2>
@@ -230,7 +197,7 @@ arc_drawing<P2> parse_drawing_text_statements(std::string_view text, std::string
                             cellforge::detail::drawing_point_text(from) +
                             ": an arc needs distinct end points");
     result.arcs.push_back(
-        {ends, arc_from_endpoints<P2>({from, to, t.rx, t.ry, arc_text_radians(t.degrees), t.large, t.ccw})});
+        {ends, arc_from_endpoints<P2>({from, to, t.rx, t.ry, arc_radians(t.degrees), t.large, t.ccw})});
   }
   // What the writer checks: with radii far beyond the ends' distance rounding can leave the
   // computed curve off its junctions.
@@ -335,7 +302,7 @@ void put_drawing_text(std::ostream& os, const D& d, const drawing_text_write_opt
       out.number(a.ends[0]);
       out.put(' ');
       out.number(a.ends[1]);
-      for (const double v : {a.curve.rx, a.curve.ry, arc_text_degrees(a.curve.rotation)}) {
+      for (const double v : {a.curve.rx, a.curve.ry, arc_degrees(a.curve.rotation)}) {
         out.put(' ');
         out.number(v);
       }
