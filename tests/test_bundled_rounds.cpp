@@ -18,6 +18,7 @@
 #include "cellforge/io/drawing_svg.hpp"
 #include "cellforge/io/drawing_text.hpp"
 #include "cellforge/io/svg_drawing.hpp"
+#include "cellforge/sketch/arc_detection.hpp"
 #include "cellforge/sketch/rounds.hpp"
 #include "cellforge/sketch/sample_round_drawings.hpp"
 
@@ -80,6 +81,44 @@ TEST_CASE("bundled rounds: the L-bracket of sketch_rounds is the generated drawi
     CHECK(mesh.strips == 3);
     CHECK(mesh.skipped == 0);
   }
+}
+
+TEST_CASE("bundled rounds: the L-bracket drawn as sampled strokes, its arcs found by detect_arcs") {
+  // The drawing as a pen gives it: each line a stroke of its two ends, each arc a polyline of
+  // 24 samples. detect_arcs reads the strokes back into lines and arcs; an arc_drawing is built
+  // from the pieces (docs/formats.md, "Arcs in SVG", sampled strokes) and reconstructed.
+  const auto truth = l_bracket();
+  const auto& d = truth.drawing;
+  std::vector<std::vector<glm::dvec2>> strokes;
+  for (const auto& [a, b] : d.lines.edges) strokes.push_back({d.lines.points[a], d.lines.points[b]});
+  for (const auto& a : d.arcs) strokes.push_back(cellforge::sample_arc(a.curve, 24));
+  const auto found = cellforge::detect_arcs(strokes);
+  CHECK(found.num_arcs == d.arcs.size());
+  CHECK(found.num_lines == d.lines.edges.size());
+  // A junction per piece end, ends closer than 1e-9 of the size taken as one.
+  cellforge::arc_drawing<glm::dvec2> read;
+  const auto junction = [&](glm::dvec2 p) {
+    for (std::uint32_t j = 0; j < read.lines.points.size(); ++j)
+      if (glm::length(read.lines.points[j] - p) <= 1e-9 * found.drawing_size) return j;
+    read.lines.points.push_back(p);
+    return static_cast<std::uint32_t>(read.lines.points.size() - 1);
+  };
+  for (const auto& piece : found.pieces) {
+    const std::array<std::uint32_t, 2> ends{junction(piece.from), junction(piece.to)};
+    if (piece.kind == cellforge::stroke_piece_kind::line)
+      read.lines.edges.push_back(ends);
+    else
+      read.arcs.push_back({ends, piece.arc});
+  }
+  CHECK(read.lines.points.size() == d.lines.points.size());
+  CHECK(cellforge::validate_arcs(read).ok());
+  const auto r = cellforge::reconstruct_rounds(read);
+  CHECK(r.skeleton.rounds == 2);
+  CHECK(r.skeleton.fillets == 1);
+  REQUIRE(r.rounds.size() == 3);
+  for (const auto& t : truth.rounds)
+    CHECK(std::any_of(r.rounds.begin(), r.rounds.end(),
+                      [&](const cellforge::edge_round& e) { return std::abs(e.radius - t.radius) < 1e-6; }));
 }
 
 }  // namespace bundled_rounds_tests
