@@ -91,7 +91,18 @@ int main(int argc, char** argv) {
 
     stage("reconstructing a drawing of " + std::to_string(drawing.lines.points.size()) + " junctions and " +
           std::to_string(drawing.arcs.size()) + " arcs");
-    const auto r = cellforge::reconstruct_rounds(drawing);
+    const auto r = [&] {
+      try {
+        return cellforge::reconstruct_rounds(drawing);
+      } catch (const cellforge::error& e) {
+        // A skeleton with loose ends usually means arcs that found no partner: say which.
+        const auto pairs = cellforge::pair_arcs(drawing);
+        if (pairs.unpaired.empty()) throw;
+        std::string why = e.message();
+        for (const std::string& d : pairs.diagnostics) why += "\n  " + d;
+        throw cellforge::error(e.category(), why);
+      }
+    }();
     const auto& sk = r.skeleton;
     const auto& pairing = sk.pairing;
     std::printf(
