@@ -274,6 +274,18 @@ TEST_CASE("arc drawing text: generated drawings with rounds come back to roundin
   CHECK(arcs >= 48);
 }
 
+TEST_CASE("arc drawing text: float points, their arcs checked to float precision") {
+  const std::string text = "j 2 0\nj 0 2\nj -1.7 0.3\na 0 1 2 2 0 0 1\na 1 2 3.5 1.25 -33 1 0\n";
+  const auto d = io::parse_arc_drawing_text<glm::vec2>(text, "f.txt");
+  REQUIRE(d.arcs.size() == 2);
+  CHECK(cellforge::arc_point(d.arcs[0].curve, 0.5).x == doctest::Approx(std::sqrt(2.0)).epsilon(1e-6));
+  const std::string written = io::arc_drawing_text_string(d);
+  CHECK(statements(written) == text);
+  const auto again = io::parse_arc_drawing_text<glm::vec2>(written, "f.txt");
+  CHECK(again.arcs[1].curve.centre == d.arcs[1].curve.centre);
+  CHECK(again.arcs[1].curve.sweep == d.arcs[1].curve.sweep);
+}
+
 TEST_CASE("arc drawing text: malformed arcs give located errors saying what was expected") {
   const std::string ends = "j 0 0\nj 4 0\nj 4 4\n";  // lines 1-3
   const auto check = [&](const std::string& arc_lines, std::uint64_t line, const std::string& part) {

@@ -499,6 +499,12 @@ TEST_CASE("svg arc drawing: A commands become arcs, y flipped, ends snapped into
   REQUIRE(rel.drawing.arcs.size() == 2);
   CHECK(glm::length(rel.drawing.lines.points[rel.drawing.arcs[1].ends[1]] - dvec2(2, 0)) < 1e-12);
   CHECK(rel.drawing.arcs[0].curve.sweep < 0);  // sweep 1 on screen is clockwise, y up
+  // Float points: arcs checked to float precision.
+  const auto f = io::parse_svg_arc_drawing<glm::vec2>(svg("<path d=\"M 2 3 V 0 A 2 2 0 0 0 0 -2 H -3\"/>"));
+  REQUIRE(f.drawing.arcs.size() == 1);
+  CHECK(cellforge::arc_point(f.drawing.arcs[0].curve, 0.5).y ==
+        doctest::Approx(std::sqrt(2.0)).epsilon(1e-6));
+  CHECK(io::parse_svg_arc_drawing<glm::vec2>(io::arc_drawing_svg_string(f.drawing)).drawing.arcs.size() == 1);
   // The plain reader still refuses them, naming the arc reader.
   CHECK(failure(svg("<path d=\"M0 0 a1 1 0 011 1\"/>")).first.find("parse_svg_arc_drawing") !=
         std::string::npos);

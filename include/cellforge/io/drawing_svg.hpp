@@ -26,7 +26,7 @@
 
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
-#include "cellforge/io/detail/arc_degrees.hpp"
+#include "cellforge/io/detail/arc_io.hpp"
 #include "cellforge/io/detail/output_buffer.hpp"
 #include "cellforge/io/detail/xml.hpp"
 #include "cellforge/sketch/elliptical_arc.hpp"
@@ -243,7 +243,7 @@ std::string arc_drawing_svg_string(const arc_drawing<P>& d,
                                    const std::vector<std::vector<std::uint32_t>>& faces = {},
                                    const drawing_svg_options& options = {},
                                    const std::vector<std::size_t>& arc_colour = {}) {
-  if (const arc_validation v = validate_arcs(d); !v)
+  if (const arc_validation v = validate_arcs(d, {detail::arc_end_tolerance<P>()}); !v)
     throw error(error_category::invalid_input, "arc_drawing_svg: " + v.message);
   if (!arc_colour.empty() && arc_colour.size() != d.arcs.size())
     throw error(error_category::invalid_input, "arc_drawing_svg: " + std::to_string(arc_colour.size()) +
