@@ -118,6 +118,14 @@ case_ sketch2cells "$i/empty.svg" error "the drawing has no edge"
 case_ sketch2cells "$i/not_xml.svg" error "not_xml.svg:2: no <svg> element"
 case_ sketch2cells "$i/unclosed.svg" error "unclosed.svg:2: the file ends inside <svg>"
 case_ sketch2cells /dev/zero error "/dev/zero"
+case_ sketch_rounds "$i/empty.svg" error "the drawing has no edge"
+case_ sketch_rounds "$i/not_xml.svg" error "not_xml.svg:2: no <svg> element"
+case_ sketch_rounds "$i/zero_radius_arc.txt" error "zero_radius_arc.txt:3: the radius rx of arc 0 .* is 0"
+case_ sketch_rounds "$i/closed_arc.txt" error "closed_arc.txt:3: arc 0 starts and ends at junction 0"
+case_ sketch_rounds "$i/lone_arc.txt" error "arc 0 \(junctions 2 to 0\) has no partner"
+case_ sketch_rounds "$i/circle.svg" error "circle.svg:1: .*<circle> is a closed curve"
+case_ sketch_rounds /dev/zero error "/dev/zero"
+case_ sketch_rounds "$here/data/l_bracket_rounds.txt" 0 "3 consistent, 0 inconsistent"
 # Every program leaves its picture out when asked.
 case_ $w "$i/cube_wire.obj" 0 "6 faces, 1 volumes" --no-svg
 for exe in mesh_info hull subdivide thin_points smooth_edges; do

@@ -77,3 +77,8 @@ printf '1 1 0 0 0 1 2\n2 3 10 0 0 1 1\n' > parent_cycle.swc
 printf '<svg xmlns="http://www.w3.org/2000/svg"></svg>\n' > empty.svg
 printf '<svg xmlns="http://www.w3.org/2000/svg"><line x1="0" y1="0" x2="1" y2="1"/>\n' > unclosed.svg
 printf 'not xml at all\n' > not_xml.svg
+# drawings with arcs
+printf 'j 0 0\nj 1 0\na 0 1 0 1 0 0 1\n' > zero_radius_arc.txt
+printf 'j 0 0\nj 1 0\na 0 0 1 1 0 0 1\n' > closed_arc.txt
+printf 'j 0 0\nj 2 0\nj 2 2\ne 0 1\ne 1 2\na 2 0 2 2 0 0 1\n' > lone_arc.txt
+printf '<svg xmlns="http://www.w3.org/2000/svg"><circle cx="5" cy="5" r="2"/></svg>\n' > circle.svg

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <numbers>
 #include <set>
 #include <string>
 #include <utility>
@@ -17,10 +18,12 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "cellforge/core/detail/splitmix.hpp"
 #include "cellforge/io/drawing_svg.hpp"
 #include "cellforge/io/drawing_text.hpp"
 #include "cellforge/io/svg_drawing.hpp"
 #include "cellforge/sketch/sample_drawings.hpp"
+#include "cellforge/sketch/sample_round_drawings.hpp"
 
 // Own namespace: the test files of a group may be compiled as one translation unit.
 namespace io_svg_drawing_tests {
@@ -236,7 +239,7 @@ TEST_CASE("svg drawing: curves refused with their line, or skipped when asked") 
   const auto [message, line] = failure(text);
   CHECK(line == 3);
   CHECK(message.find("curves are not read yet: <circle>") != std::string::npos);
-  CHECK(message.find("rounds-and-fillets") != std::string::npos);
+  CHECK(message.find("elliptical arcs are read by parse_svg_arc_drawing") != std::string::npos);
   CHECK(failure(svg("<path d=\"M0 0 L1 1\n Q 2 2 3 3\"/>")).second == 3);
   const auto r = read(text, {.curves = io::svg_curves::skip});
   CHECK(r.skipped_curves == 4);
@@ -442,6 +445,199 @@ TEST_CASE("svg drawing: the bundled stepped normalon reads to its text twin") {
   CHECK(cellforge::validate_drawing(text).ok());
   CHECK(cellforge::validate_drawing(svg_read.drawing).ok());
   CHECK(svg_read.snapped > 0);  // drawn by hand: ends meet within the snap distance
+}
+
+namespace {
+
+using arc_drawing2 = cellforge::arc_drawing<dvec2>;
+
+io::svg_arc_drawing_result<dvec2> read_arcs(const std::string& text, const io::svg_drawing_options& o = {}) {
+  return io::parse_svg_arc_drawing(text, "d.svg", o);
+}
+
+/// The junction of `d` at p (within tol), or npos.
+std::size_t junction_at(const line_drawing<dvec2>& d, dvec2 p, double tol) {
+  for (std::size_t i = 0; i < d.points.size(); ++i)
+    if (glm::length(d.points[i] - p) <= tol) return i;
+  return ~std::size_t{0};
+}
+
+/// The largest distance between points at equal fractions along two arcs.
+double arc_gap(const cellforge::elliptical_arc<dvec2>& a, const cellforge::elliptical_arc<dvec2>& b) {
+  double gap = 0;
+  for (int k = 0; k <= 20; ++k)
+    gap = std::max(gap, glm::length(cellforge::arc_point(a, k / 20.0) - cellforge::arc_point(b, k / 20.0)));
+  return gap;
+}
+
+}  // namespace
+
+TEST_CASE("svg arc drawing: A commands become arcs, y flipped, ends snapped into junctions") {
+  // A quarter circle of radius 2 round the origin from (2, 0) to (0, 2) (y up): in SVG from
+  // (2, 0) to (0, -2), sweep flag 0 (counter-clockwise on screen), with lines at both ends and a
+  // line end 1e-4 off the arc's start.
+  const auto r =
+      read_arcs(svg("<path d=\"M 2 3 V 0 A 2 2 0 0 0 0 -2 H -3\"/>\n"
+                    "<line x1=\"2.0001\" y1=\"0\" x2=\"6\" y2=\"0\"/>"));
+  REQUIRE(r.drawing.arcs.size() == 1);
+  CHECK(r.arcs == 1);
+  CHECK(r.drawing.lines.edges.size() == 3);
+  CHECK(r.snapped == 3);  // the three ends at the arc's start meet at their mean
+  const auto& a = r.drawing.arcs[0];
+  const auto& pts = r.drawing.lines.points;
+  CHECK(glm::length(pts[a.ends[0]] - dvec2(2 + 1e-4 / 3, 0)) < 1e-12);
+  CHECK(glm::length(pts[a.ends[1]] - dvec2(0, 2)) < 1e-12);
+  CHECK(a.curve.sweep > 0);
+  CHECK(a.curve.sweep == doctest::Approx(std::numbers::pi / 2).epsilon(1e-4));
+  CHECK(glm::length(cellforge::arc_point(a.curve, 0.5) - dvec2(std::sqrt(2.0), std::sqrt(2.0))) < 1e-4);
+  CHECK(cellforge::validate_arcs(r.drawing).ok());
+  // The text twin reads to the same arc (up to the snapped start).
+  const auto t = io::parse_arc_drawing_text<dvec2>("j 2 0\nj 0 2\na 0 1 2 2 0 0 1\n");
+  CHECK(arc_gap(t.arcs[0].curve, a.curve) < 1e-4);
+  // Relative arcs, flags without separators, implicit repeats.
+  const auto rel = read_arcs(svg("<path d=\"M0 0 a1 1 0 011 1 1 1 0 011 -1\"/>"));
+  REQUIRE(rel.drawing.arcs.size() == 2);
+  CHECK(glm::length(rel.drawing.lines.points[rel.drawing.arcs[1].ends[1]] - dvec2(2, 0)) < 1e-12);
+  CHECK(rel.drawing.arcs[0].curve.sweep < 0);  // sweep 1 on screen is clockwise, y up
+  // Float points: arcs checked to float precision.
+  const auto f = io::parse_svg_arc_drawing<glm::vec2>(svg("<path d=\"M 2 3 V 0 A 2 2 0 0 0 0 -2 H -3\"/>"));
+  REQUIRE(f.drawing.arcs.size() == 1);
+  CHECK(cellforge::arc_point(f.drawing.arcs[0].curve, 0.5).y ==
+        doctest::Approx(std::sqrt(2.0)).epsilon(1e-6));
+  CHECK(io::parse_svg_arc_drawing<glm::vec2>(io::arc_drawing_svg_string(f.drawing)).drawing.arcs.size() == 1);
+  // The plain reader still refuses them, naming the arc reader.
+  CHECK(failure(svg("<path d=\"M0 0 a1 1 0 011 1\"/>")).first.find("parse_svg_arc_drawing") !=
+        std::string::npos);
+}
+
+TEST_CASE("svg arc drawing: an ellipse through any affine transform is the transformed ellipse") {
+  cellforge::detail::splitmix rng{3};
+  for (int i = 0; i < 40; ++i) {
+    CAPTURE(i);
+    const double m[6] = {rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2),
+                         rng.uniform(-2, 2), rng.uniform(-5, 5), rng.uniform(-5, 5)};
+    if (std::abs(m[0] * m[3] - m[1] * m[2]) < 0.2) continue;
+    const double rx = rng.uniform(0.5, 3), ry = rng.uniform(0.5, 3), deg = rng.uniform(-180, 180);
+    const bool large = rng.uniform(0, 1) < 0.5, sweep = rng.uniform(0, 1) < 0.5;
+    const dvec2 p0(rng.uniform(-1, 1), rng.uniform(-1, 1)), p1(rng.uniform(-1, 1), rng.uniform(-1, 1));
+    std::string d = "M " + std::to_string(p0.x) + " " + std::to_string(p0.y) + " A " + std::to_string(rx) +
+                    " " + std::to_string(ry) + " " + std::to_string(deg) + " " + (large ? "1 " : "0 ") +
+                    (sweep ? "1 " : "0 ") + std::to_string(p1.x) + " " + std::to_string(p1.y);
+    std::string matrix = "matrix(";
+    for (int k = 0; k < 6; ++k) matrix += std::to_string(m[k]) + (k < 5 ? " " : ")");
+    const auto r = read_arcs(svg("<g transform=\"" + matrix + "\"><path d=\"" + d + "\"/></g>"));
+    REQUIRE(r.drawing.arcs.size() == 1);
+    // The arc in its own frame (SVG's y down, so its sweep flag is the positive-angle sense
+    // there), each point mapped by the matrix and the y flip.
+    const auto parse = [](const std::string& v) { return std::stod(v); };
+    const auto local =
+        cellforge::arc_from_endpoints<dvec2>({{parse(std::to_string(p0.x)), parse(std::to_string(p0.y))},
+                                              {parse(std::to_string(p1.x)), parse(std::to_string(p1.y))},
+                                              parse(std::to_string(rx)),
+                                              parse(std::to_string(ry)),
+                                              parse(std::to_string(deg)) * std::numbers::pi / 180,
+                                              large,
+                                              sweep});
+    double mm[6];
+    for (int k = 0; k < 6; ++k) mm[k] = parse(std::to_string(m[k]));
+    const auto& got = r.drawing.arcs[0].curve;
+    double gap = 0;
+    for (int k = 0; k <= 20; ++k) {
+      const dvec2 q = cellforge::arc_point(local, k / 20.0);
+      const dvec2 want(mm[0] * q.x + mm[2] * q.y + mm[4], -(mm[1] * q.x + mm[3] * q.y + mm[5]));
+      gap = std::max(gap, glm::length(cellforge::arc_point(got, k / 20.0) - want));
+    }
+    CHECK(gap < 1e-9);
+  }
+  // A transform that flattens the ellipse is an error at the path's line.
+  const auto flat = [] {
+    (void)read_arcs(svg("<g transform=\"scale(1 0)\">\n<path d=\"M0 0 A1 1 0 0 1 1 1\"/></g>"));
+  };
+  CHECK_THROWS_WITH_AS(flat(), doctest::Contains("d.svg:3: an arc command's transforms flatten its ellipse"),
+                       cellforge::error);
+}
+
+TEST_CASE("svg arc drawing: closed curves and Beziers refused or skipped, SVG's degenerate arcs") {
+  const auto message = [](const std::string& text, const io::svg_drawing_options& o = {}) {
+    try {
+      (void)read_arcs(text, o);
+    } catch (const cellforge::error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK(message(svg("<circle cx=\"5\" cy=\"5\" r=\"2\"/>")).find("d.svg:2:") == 0);
+  CHECK(message(svg("<circle cx=\"5\" cy=\"5\" r=\"2\"/>"))
+            .find("<circle> is a closed curve, no round or fillet") != std::string::npos);
+  CHECK(message(svg("<ellipse cx=\"5\" cy=\"5\" rx=\"2\" ry=\"1\"/>")).find("closed curve") !=
+        std::string::npos);
+  CHECK(message(svg("<path d=\"M0 0\n C 1 1 2 2 3 0\"/>"))
+            .find("d.svg:3: only straight strokes and elliptical arcs") == 0);
+  const auto r =
+      read_arcs(svg("<circle cx=\"5\" cy=\"5\" r=\"2\"/>\n"
+                    "<path d=\"M0 0 Q 1 1 2 0 A 1 1 0 0 1 4 0 A 0 1 0 0 1 5 0 A 1 1 0 0 1 5 0\"/>"),
+                {.curves = io::svg_curves::skip});
+  CHECK(r.skipped_curves == 2);
+  // (2, 0) -> (4, 0) an arc; a zero radius draws a straight line (SVG), equal ends draw nothing.
+  REQUIRE(r.drawing.arcs.size() == 1);
+  CHECK(r.drawing.lines.edges.size() == 1);
+  CHECK(r.drawing.lines.points.size() == 3);
+  CHECK(r.diagnostics.size() >= 3);
+  // An arc whose ends snap together is left out with a diagnostic.
+  const auto tiny = read_arcs(svg("<path d=\"M0 0 H 100 V 100 M 50 50 A 1 1 0 0 1 50.01 50\"/>"));
+  CHECK(tiny.drawing.arcs.empty());
+  CHECK(tiny.dropped_zero_length == 1);
+  CHECK(std::any_of(tiny.diagnostics.begin(), tiny.diagnostics.end(), [](const std::string& s) {
+    return s.find("d.svg:2: an arc whose ends snapped to one junction") != std::string::npos;
+  }));
+}
+
+TEST_CASE("arc drawing svg: generated drawings with rounds through the picture and back") {
+  const auto samples = cellforge::round_drawing_sweep({.seed = 9, .drawings = 16});
+  REQUIRE(samples.size() == 16);
+  for (const auto& s : samples) {
+    CAPTURE(s.name);
+    const arc_drawing2& d = s.drawing;
+    std::vector<std::size_t> colour(d.arcs.size());
+    for (std::size_t k = 0; k < colour.size(); ++k) colour[k] = k / 2;
+    const std::string text = io::arc_drawing_svg_string(d, {}, {.labels = true}, colour);
+    const auto r = read_arcs(text);
+    CHECK(r.snapped == 0);
+    CHECK(r.drawing.lines.points.size() == d.lines.points.size());
+    CHECK(r.drawing.lines.edges.size() == d.lines.edges.size());
+    REQUIRE(r.drawing.arcs.size() == d.arcs.size());
+    // Junctions come back bit for bit (renumbered by first appearance), arcs to rounding.
+    const double tol = 1e-9;
+    for (const auto& p : r.drawing.lines.points)
+      CHECK(std::find(d.lines.points.begin(), d.lines.points.end(), p) != d.lines.points.end());
+    for (std::size_t k = 0; k < d.arcs.size(); ++k) {
+      const auto& a = d.arcs[k];
+      const auto& b = r.drawing.arcs[k];
+      CHECK(junction_at(r.drawing.lines, d.lines.points[a.ends[0]], 0) == b.ends[0]);
+      CHECK(junction_at(r.drawing.lines, d.lines.points[a.ends[1]], 0) == b.ends[1]);
+      CHECK(arc_gap(a.curve, b.curve) < tol);
+    }
+    // A drawing read from the picture comes back from its own picture bit for bit.
+    const auto again = read_arcs(io::arc_drawing_svg_string(r.drawing)).drawing;
+    REQUIRE(again.arcs.size() == r.drawing.arcs.size());
+    CHECK(again.lines.points == r.drawing.lines.points);
+    for (std::size_t k = 0; k < again.arcs.size(); ++k) {
+      CHECK(again.arcs[k].curve.centre == r.drawing.arcs[k].curve.centre);
+      CHECK(again.arcs[k].curve.sweep == r.drawing.arcs[k].curve.sweep);
+      CHECK(again.arcs[k].curve.rotation == r.drawing.arcs[k].curve.rotation);
+    }
+  }
+  // What the picture cannot hold is refused.
+  arc_drawing2 bad = samples[0].drawing;
+  bad.arcs[0].ends[1] = bad.arcs[0].ends[0];
+  CHECK_THROWS_WITH_AS(io::arc_drawing_svg_string(bad), doctest::Contains("arc_drawing_svg: arc 0"),
+                       cellforge::error);
+  CHECK_THROWS_AS(io::arc_drawing_svg_string(samples[0].drawing, {}, {}, {1, 2}), cellforge::error);
+  const auto path =
+      std::filesystem::temp_directory_path() / ("cellforge_arcs_" + std::to_string(getpid()) + ".svg");
+  io::write_arc_drawing_svg(path, samples[0].drawing);
+  CHECK(io::read_svg_arc_drawing(path).drawing.arcs.size() == samples[0].drawing.arcs.size());
+  std::filesystem::remove(path);
 }
 
 }  // namespace io_svg_drawing_tests

@@ -2,7 +2,9 @@
 // libFuzzer target for the SVG line-drawing reader (io/svg_drawing.hpp). Any input must parse or
 // throw cellforge::error; whatever parses is validated (validate_drawing must not crash, hang or
 // throw) and pictured with io/drawing_svg.hpp; the picture must read back (exact, without
-// snapping or splitting) to the same edges whenever the drawing has no two equal junctions.
+// snapping or splitting) to the same edges whenever the drawing has no two equal junctions. The
+// same input goes through the arc reader (parse_svg_arc_drawing): what it reads has valid arcs
+// and its picture (arc_drawing_svg_string) reads back with as many arcs and edges.
 
 #include <cstddef>
 #include <cstdint>
@@ -14,7 +16,30 @@
 
 #include "cellforge/io/drawing_svg.hpp"
 #include "cellforge/io/svg_drawing.hpp"
+#include "cellforge/sketch/elliptical_arc.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
+
+namespace {
+
+void check_arcs(std::string_view bytes, const cellforge::io::svg_drawing_options& options) {
+  cellforge::io::svg_arc_drawing_result<glm::dvec2> r;
+  try {
+    r = cellforge::io::parse_svg_arc_drawing(bytes, "fuzz.svg", options);
+  } catch (const cellforge::error&) {
+    return;
+  }
+  if (!cellforge::validate_arcs(r.drawing)) __builtin_trap();
+  const std::string picture = cellforge::io::arc_drawing_svg_string(r.drawing);
+  const auto back = cellforge::io::parse_svg_arc_drawing(picture, "picture.svg",
+                                                         {.snap_tolerance = 0, .split_at_junctions = false});
+  const auto v = cellforge::validate_drawing(r.drawing.lines, {.tolerance = 0});
+  if (v.defect != cellforge::drawing_defect::coincident_junctions &&
+      (back.drawing.arcs.size() != r.drawing.arcs.size() ||
+       back.drawing.lines.edges.size() != r.drawing.lines.edges.size()))
+    __builtin_trap();
+}
+
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
@@ -25,6 +50,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.split_at_junctions = (pick & 2) == 0;
   options.skip_annotations = (pick & 4) == 0;
   options.snap_tolerance = (pick & 24) == 0 ? 1e-3 : (pick & 24) == 8 ? 0.0 : (pick & 24) == 16 ? 0.1 : 0.45;
+  check_arcs(bytes, options);
   cellforge::io::svg_drawing_result<glm::dvec2> r;
   try {
     r = cellforge::io::parse_svg_drawing(bytes, "fuzz.svg", options);

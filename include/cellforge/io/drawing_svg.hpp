@@ -3,8 +3,9 @@
 /// \file
 /// Pictures of line drawings: the edges as `<line>`s, junction dots and labels, and face loops
 /// as translucent polygons in golden-angle hues, in drawing coordinates (y flipped back for
-/// SVG). The edges read back through read_svg_drawing; the rest is marked `data-cellforge`
-/// so that the reader skips it. See docs/formats.md ("SVG line drawings").
+/// SVG); drawings with arcs add them as `A` path commands. The edges read back through
+/// read_svg_drawing (and the arcs through parse_svg_arc_drawing); the rest is marked
+/// `data-cellforge` so that the reader skips it. See docs/formats.md ("SVG line drawings").
 
 #include <algorithm>
 #include <array>
@@ -13,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <numbers>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -24,8 +26,10 @@
 
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
+#include "cellforge/io/detail/arc_io.hpp"
 #include "cellforge/io/detail/output_buffer.hpp"
 #include "cellforge/io/detail/xml.hpp"
+#include "cellforge/sketch/elliptical_arc.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 
 namespace cellforge::io {
@@ -76,13 +80,15 @@ std::string golden_colour(std::size_t k) {
 
 }  // namespace detail
 
-/// The SVG picture of a drawing and its face loops (junction cycles; each a polygon in its own
-/// colour) as text. Edges are `<line>`s with exact coordinates (x, -y) in a `<g
-/// data-cellforge="edges">`; faces, dots and labels are in groups read_svg_drawing skips. Throws
-/// invalid_input on NaN/Inf positions or an index out of range. O(V + E + total loop length).
-template <LineDrawing D>
-std::string drawing_svg_string(const D& d, const std::vector<std::vector<std::uint32_t>>& faces = {},
-                               const drawing_svg_options& options = {}) {
+namespace detail {
+
+/// The picture of drawing_svg_string, with `extent` (SVG coordinates) inside the view box too
+/// and `strokes(out, pts, num)` writing more strokes into the edges group after the lines.
+/// O(V + E + loops + what strokes writes).
+template <LineDrawing D, class Strokes>
+std::string drawing_svg_picture(const D& d, const std::vector<std::vector<std::uint32_t>>& faces,
+                                const drawing_svg_options& options, const std::vector<glm::dvec2>& extent,
+                                Strokes&& strokes) {
   using T = line_drawing_traits<D>;
   using P = drawing_point_t<D>;
   const std::size_t nv = T::num_junctions(d), ne = T::num_edges(d);
@@ -103,6 +109,7 @@ std::string drawing_svg_string(const D& d, const std::vector<std::vector<std::ui
   if (nv > 0) {
     lo = hi = pts[0];
     for (const auto& p : pts) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    for (const auto& p : extent) lo = glm::min(lo, p), hi = glm::max(hi, p);
   }
   double side = std::max(hi.x - lo.x, hi.y - lo.y);
   if (!(side > 0)) side = std::max(1.0, std::abs(lo.x) + std::abs(lo.y));
@@ -180,6 +187,7 @@ std::string drawing_svg_string(const D& d, const std::vector<std::vector<std::ui
     attr("y2", pts[ab[1]].y);
     out += "/>\n";
   }
+  strokes(out, pts, num);
   out += "</g>\n";
   if (options.junction_dots && nv > 0) {
     out += "<g data-cellforge=\"junctions\" fill=\"";
@@ -210,6 +218,82 @@ std::string drawing_svg_string(const D& d, const std::vector<std::vector<std::ui
   }
   out += "</svg>\n";
   return out;
+}
+
+}  // namespace detail
+
+/// The SVG picture of a drawing and its face loops (junction cycles; each a polygon in its own
+/// colour) as text. Edges are `<line>`s with exact coordinates (x, -y) in a `<g
+/// data-cellforge="edges">`; faces, dots and labels are in groups read_svg_drawing skips. Throws
+/// invalid_input on NaN/Inf positions or an index out of range. O(V + E + total loop length).
+template <LineDrawing D>
+std::string drawing_svg_string(const D& d, const std::vector<std::vector<std::uint32_t>>& faces = {},
+                               const drawing_svg_options& options = {}) {
+  return detail::drawing_svg_picture(d, faces, options, {}, [](std::string&, const auto&, const auto&) {});
+}
+
+/// The picture of a drawing with arcs: as drawing_svg_string, and each arc a `<path d="M x0 y0
+/// A rx ry rotation large sweep x1 y1">` between its junctions in the edges group (y flipped:
+/// the rotation negated and the sweep flag the opposite of ccw), read back by
+/// parse_svg_arc_drawing. `arc_colour[k]`, when given for every arc, draws arc k in the k-th
+/// golden-angle hue (e.g. the pair it belongs to). Throws invalid_input as drawing_svg_string,
+/// and on an arc validate_arcs refuses. O(V + E + A + loops).
+template <Point2 P>
+std::string arc_drawing_svg_string(const arc_drawing<P>& d,
+                                   const std::vector<std::vector<std::uint32_t>>& faces = {},
+                                   const drawing_svg_options& options = {},
+                                   const std::vector<std::size_t>& arc_colour = {}) {
+  if (const arc_validation v = validate_arcs(d, {detail::arc_end_tolerance<P>()}); !v)
+    throw error(error_category::invalid_input, "arc_drawing_svg: " + v.message);
+  if (!arc_colour.empty() && arc_colour.size() != d.arcs.size())
+    throw error(error_category::invalid_input, "arc_drawing_svg: " + std::to_string(arc_colour.size()) +
+                                                   " arc colours for " + std::to_string(d.arcs.size()) +
+                                                   " arcs");
+  std::vector<glm::dvec2> extent;
+  for (const drawing_arc<P>& a : d.arcs)
+    for (int k = 0; k <= 16; ++k) {
+      const glm::dvec2 p = to_dvec2(arc_point(a.curve, k / 16.0));
+      extent.push_back({p.x, -p.y});
+    }
+  return detail::drawing_svg_picture(
+      d.lines, faces, options, extent,
+      [&](std::string& out, const std::vector<glm::dvec2>& pts, const auto& num) {
+        for (std::size_t k = 0; k < d.arcs.size(); ++k) {
+          const drawing_arc<P>& a = d.arcs[k];
+          const elliptical_arc<P>& c = a.curve;
+          out += "<path";
+          if (!arc_colour.empty()) out += " stroke=\"" + detail::golden_colour(arc_colour[k]) + "\"";
+          out += " d=\"M";
+          num(pts[a.ends[0]].x);
+          out += ' ';
+          num(pts[a.ends[0]].y);
+          out += " A";
+          num(c.rx);
+          out += ' ';
+          num(c.ry);
+          out += ' ';
+          num(detail::arc_degrees(-c.rotation));
+          out += std::abs(c.sweep) > std::numbers::pi ? " 1" : " 0";
+          out += c.sweep > 0 ? " 0 " : " 1 ";
+          num(pts[a.ends[1]].x);
+          out += ' ';
+          num(pts[a.ends[1]].y);
+          out += "\"><title>arc " + std::to_string(k) + "</title></path>\n";
+        }
+      });
+}
+
+/// Writes the picture of arc_drawing_svg_string to a file; io errors name the path. O(V + E + A + loops).
+template <Point2 P>
+void write_arc_drawing_svg(const std::filesystem::path& path, const arc_drawing<P>& d,
+                           const std::vector<std::vector<std::uint32_t>>& faces = {},
+                           const drawing_svg_options& options = {},
+                           const std::vector<std::size_t>& arc_colour = {}) {
+  const std::string text = arc_drawing_svg_string(d, faces, options, arc_colour);
+  detail::write_file(path, [&](std::ostream& os) {
+    os.write(text.data(), static_cast<std::streamsize>(text.size()));
+    if (!os) throw error(error_category::io, "writing SVG failed (stream error)");
+  });
 }
 
 /// Writes the picture of drawing_svg_string to a file; io errors name the path. O(V + E + loops).

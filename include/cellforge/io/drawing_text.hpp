@@ -2,14 +2,17 @@
 #pragma once
 /// \file
 /// The plain text format of line drawings: `j x y` a junction (numbered from 0 in file order),
-/// `e a b` an edge between two junction indices, `#` comments and blank lines; `a` is kept for
-/// arcs. See docs/formats.md ("Line drawing text").
+/// `e a b` an edge between two junction indices, `#` comments and blank lines; in drawings with
+/// rounds and fillets also `a i j rx ry rotation large ccw`, an elliptical arc from junction i to
+/// junction j in SVG's endpoint form. See docs/formats.md ("Line drawing text").
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <numbers>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -20,9 +23,11 @@
 
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
+#include "cellforge/io/detail/arc_io.hpp"
 #include "cellforge/io/detail/output_buffer.hpp"
 #include "cellforge/io/detail/read_file.hpp"
 #include "cellforge/io/detail/text_cursor.hpp"
+#include "cellforge/sketch/elliptical_arc.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 
 namespace cellforge::io {
@@ -33,19 +38,28 @@ struct drawing_text_write_options {
   std::string comment{};
 };
 
-/// Parses line-drawing text held in memory; `name` is used in error messages. Edges may name
-/// junctions defined later in the file. Throws an io error with file and line on malformed input
-/// (unknown keyword, bad or missing number, trailing junk, NaN/Inf, index out of range, an edge
-/// from a junction to itself or given twice, arcs). O(size of the text + E log E).
-template <Point2 P2 = glm::dvec2>
-line_drawing<P2> parse_drawing_text(std::string_view text, std::string_view name = "<memory>") {
+namespace detail {
+
+/// An arc statement as read, before its junctions are known to exist.
+struct text_arc {
+  std::array<std::int64_t, 2> ends{};
+  double rx = 0, ry = 0, degrees = 0;
+  bool large = false, ccw = false;
+  const char* line = nullptr;
+};
+
+/// The reader of both drawing text formats: arcs read when `arcs`, else refused. O(size + E log E).
+template <Point2 P2>
+arc_drawing<P2> parse_drawing_text_statements(std::string_view text, std::string_view name, bool arcs) {
   using S = scalar2_t<P2>;
   constexpr auto limit = std::numeric_limits<std::uint32_t>::max();
-  detail::text_cursor c(text, name, '#');
+  text_cursor c(text, name, '#');
   if (text.starts_with("\xEF\xBB\xBF")) c.pos += 3;
-  line_drawing<P2> d;
+  arc_drawing<P2> result;
+  line_drawing<P2>& d = result.lines;
   std::vector<const char*> edge_lines;
   std::vector<std::array<std::int64_t, 2>> raw;
+  std::vector<text_arc> raw_arcs;
   while (c.next_content()) {
     const char* line = c.pos;
     const char* q = c.pos;
@@ -87,12 +101,58 @@ line_drawing<P2> parse_drawing_text(std::string_view text, std::string_view name
                   "edge " + std::to_string(e) + " joins junction " + std::to_string(ab[0]) + " to itself");
       raw.push_back(ab);
       edge_lines.push_back(line);
-    } else if (key == "a") {
+    } else if (key == "a" && !arcs) {
       c.fail_at(line,
-                "arcs are not read yet (the rounds-and-fillets stage will read them): draw straight edges");
+                "an arc ('a i j rx ry rotation large ccw'): this reader takes straight edges only; read "
+                "drawings with arcs by read_arc_drawing_text / parse_arc_drawing_text (io/drawing_text.hpp)");
+    } else if (key == "a") {
+      const std::size_t k = raw_arcs.size();
+      if (k >= limit - 1) c.fail_at(line, "too many arcs");
+      const std::string form = " of arc " + std::to_string(k) + " (a i j rx ry rotation large ccw)";
+      text_arc t;
+      t.line = line;
+      for (int m = 0; m < 2; ++m) {
+        c.skip_blanks();
+        const char* at = c.pos;
+        t.ends[m] = c.integer(
+            [&] { return std::string(m == 0 ? "the first" : "the second") + " junction index" + form; });
+        if (t.ends[m] < 0)
+          c.fail_at(at, "junction index " + std::to_string(t.ends[m]) + form +
+                            " is negative (indices are 0-based)");
+      }
+      for (int m = 0; m < 2; ++m) {
+        c.skip_blanks();
+        const char* at = c.pos;
+        const char* axis = m == 0 ? "rx" : "ry";
+        const double r = c.coordinate<double>([&] { return std::string("the radius ") + axis + form; });
+        if (!(r > 0))
+          c.fail_at(at,
+                    std::string("the radius ") + axis + form + " is " + cellforge::detail::drawing_number(r) +
+                        ": radii must be > 0 (a zero radius is a corner: draw the two lines meeting there)");
+        (m == 0 ? t.rx : t.ry) = r;
+      }
+      t.degrees = c.coordinate<double>([&] { return "the rotation in degrees" + form; });
+      for (int m = 0; m < 2; ++m) {
+        c.skip_blanks();
+        const char* at = c.pos;
+        const char* flag = m == 0 ? "the large-arc flag" : "the ccw flag";
+        const std::int64_t f = c.integer([&] { return flag + std::string(" (0 or 1)") + form; });
+        if (f != 0 && f != 1)
+          c.fail_at(at, std::string(flag) + form + " is " + std::to_string(f) + ": expected 0 or 1");
+        (m == 0 ? t.large : t.ccw) = f == 1;
+      }
+      c.skip_blanks();
+      if (!c.at_line_end()) c.fail("unexpected " + c.token() + " after the 7 values" + form);
+      if (t.ends[0] == t.ends[1])
+        c.fail_at(line,
+                  "arc " + std::to_string(k) + " starts and ends at junction " + std::to_string(t.ends[0]) +
+                      ": a closed curve is no round or fillet (draw it as two arcs with a junction between)");
+      raw_arcs.push_back(t);
     } else {
       c.pos = q;
-      c.fail("expected 'j x y' (a junction), 'e a b' (an edge) or a '#' comment, found " + c.token());
+      c.fail(std::string("expected 'j x y' (a junction), 'e a b' (an edge)") +
+             (arcs ? ", 'a i j rx ry rotation large ccw' (an arc)" : "") + " or a '#' comment, found " +
+             c.token());
     }
     c.next_line();
   }
@@ -116,13 +176,62 @@ line_drawing<P2> parse_drawing_text(std::string_view text, std::string_view name
     if (keys[k][0] == keys[k - 1][0] && keys[k][1] == keys[k - 1][1] && keys[k][2] < later)
       later = keys[k][2], earlier = keys[k - 1][2];
   if (later != limit)
-    c.fail_at(edge_lines[later], "edge " + std::to_string(later) + " repeats edge " +
-                                     std::to_string(earlier) + " (line " +
-                                     std::to_string(detail::line_of(
-                                         text, static_cast<std::size_t>(edge_lines[earlier] - text.data()))) +
-                                     "; junctions " + std::to_string(d.edges[later][0]) + " and " +
-                                     std::to_string(d.edges[later][1]) + ")");
-  return d;
+    c.fail_at(edge_lines[later],
+              "edge " + std::to_string(later) + " repeats edge " + std::to_string(earlier) + " (line " +
+                  std::to_string(line_of(text, static_cast<std::size_t>(edge_lines[earlier] - text.data()))) +
+                  "; junctions " + std::to_string(d.edges[later][0]) + " and " +
+                  std::to_string(d.edges[later][1]) + ")");
+  result.arcs.reserve(raw_arcs.size());
+  for (std::size_t k = 0; k < raw_arcs.size(); ++k) {
+    const text_arc& t = raw_arcs[k];
+    for (const std::int64_t v : t.ends)
+      if (static_cast<std::uint64_t>(v) >= nv)
+        c.fail_at(t.line, "junction index " + std::to_string(v) + " of arc " + std::to_string(k) +
+                              " out of range (" + std::to_string(nv) + " junctions; indices are 0-based)");
+    const std::array<std::uint32_t, 2> ends{static_cast<std::uint32_t>(t.ends[0]),
+                                            static_cast<std::uint32_t>(t.ends[1])};
+    const P2 from = d.points[ends[0]], to = d.points[ends[1]];
+    if (to_dvec2(from) == to_dvec2(to))
+      c.fail_at(t.line, "arc " + std::to_string(k) + " joins junctions " + std::to_string(ends[0]) + " and " +
+                            std::to_string(ends[1]) + ", both at " +
+                            cellforge::detail::drawing_point_text(from) +
+                            ": an arc needs distinct end points");
+    result.arcs.push_back(
+        {ends, arc_from_endpoints<P2>({from, to, t.rx, t.ry, arc_radians(t.degrees), t.large, t.ccw})});
+  }
+  // What the writer checks: with radii far beyond the ends' distance rounding can leave the
+  // computed curve off its junctions.
+  if (const arc_validation v = validate_arcs(result, {arc_end_tolerance<P2>()}); !v)
+    c.fail_at(raw_arcs[v.arc].line, v.message + " (the arc's numbers are out of proportion to its ends)");
+  return result;
+}
+
+}  // namespace detail
+
+/// Parses line-drawing text held in memory; `name` is used in error messages. Edges may name
+/// junctions defined later in the file. Throws an io error with file and line on malformed input
+/// (unknown keyword, bad or missing number, trailing junk, NaN/Inf, index out of range, an edge
+/// from a junction to itself or given twice, arcs: those are parse_arc_drawing_text's).
+/// O(size of the text + E log E).
+template <Point2 P2 = glm::dvec2>
+line_drawing<P2> parse_drawing_text(std::string_view text, std::string_view name = "<memory>") {
+  return detail::parse_drawing_text_statements<P2>(text, name, false).lines;
+}
+
+/// Parses line-drawing text with arcs (`a i j rx ry rotation large ccw` statements, see
+/// docs/formats.md) into an arc_drawing; errors as parse_drawing_text's, and for arcs (bad or
+/// missing number, radius <= 0, flag not 0/1, ends one junction or one point). O(size + E log E).
+template <Point2 P2 = glm::dvec2>
+arc_drawing<P2> parse_arc_drawing_text(std::string_view text, std::string_view name = "<memory>") {
+  return detail::parse_drawing_text_statements<P2>(text, name, true);
+}
+
+/// Reads a line-drawing text file with arcs (see parse_arc_drawing_text); io errors name the
+/// path. O(file size + E log E).
+template <Point2 P2 = glm::dvec2>
+arc_drawing<P2> read_arc_drawing_text(const std::filesystem::path& path) {
+  const std::string bytes = detail::read_file(path);
+  return parse_arc_drawing_text<P2>(bytes, detail::display_name(path));
 }
 
 /// Reads a line-drawing text file. Throws an io error naming the path when it cannot be read, or
@@ -153,9 +262,10 @@ void check_drawing_writable(const D& d, std::string_view writer) {
   }
 }
 
-/// Writes the lines of a checked drawing. O(V + E).
-template <LineDrawing D>
-void put_drawing_text(std::ostream& os, const D& d, const drawing_text_write_options& options) {
+/// Writes the lines of a checked drawing, and its arcs when `arcs` is given. O(V + E + A).
+template <LineDrawing D, class Arc = drawing_arc<glm::dvec2>>
+void put_drawing_text(std::ostream& os, const D& d, const drawing_text_write_options& options,
+                      const std::vector<Arc>* arcs = nullptr) {
   using T = line_drawing_traits<D>;
   using P = drawing_point_t<D>;
   output_buffer out(os);
@@ -165,7 +275,11 @@ void put_drawing_text(std::ostream& os, const D& d, const drawing_text_write_opt
   out.number(nv);
   out.put(" junctions (j x y, numbered from 0), ");
   out.number(ne);
-  out.put(" edges (e a b)\n");
+  out.put(arcs ? " edges (e a b), " : " edges (e a b)\n");
+  if (arcs) {
+    out.number(arcs->size());
+    out.put(" arcs (a i j rx ry rotation_degrees large_arc ccw)\n");
+  }
   for (std::size_t i = 0; i < nv; ++i) {
     const P p = P(T::position(d, i));
     out.put("j ");
@@ -182,7 +296,33 @@ void put_drawing_text(std::ostream& os, const D& d, const drawing_text_write_opt
     out.number(ab[1]);
     out.put('\n');
   }
+  if (arcs)
+    for (const Arc& a : *arcs) {
+      out.put("a ");
+      out.number(a.ends[0]);
+      out.put(' ');
+      out.number(a.ends[1]);
+      for (const double v : {a.curve.rx, a.curve.ry, arc_degrees(a.curve.rotation)}) {
+        out.put(' ');
+        out.number(v);
+      }
+      out.put(std::abs(a.curve.sweep) > std::numbers::pi ? " 1" : " 0");
+      out.put(a.curve.sweep > 0 ? " 1\n" : " 0\n");
+    }
   out.finish("line drawing text");
+}
+
+/// Throws invalid_input, prefixed by `writer`, for what the arc text reader would reject or
+/// change: the straight part's defects (check_drawing_writable) and arcs that are not valid or
+/// whose curve does not start and end at its junctions (validate_arcs, to arc_end_tolerance:
+/// the format keeps only the ends' junctions, radii, rotation and flags). O(V + E log E + A).
+template <Point2 P>
+void check_arc_drawing_writable(const arc_drawing<P>& d, std::string_view writer) {
+  check_drawing_writable(d.lines, writer);
+  if (d.arcs.size() >= std::numeric_limits<std::uint32_t>::max() - 1)
+    throw error(error_category::invalid_input, std::string(writer) + ": more than 2^32 - 2 arcs");
+  const arc_validation v = validate_arcs(d, {arc_end_tolerance<P>()});
+  if (!v) throw error(error_category::invalid_input, std::string(writer) + ": " + v.message);
 }
 
 }  // namespace detail
@@ -209,6 +349,35 @@ template <LineDrawing D>
 std::string drawing_text_string(const D& d, const drawing_text_write_options& options = {}) {
   std::ostringstream os;
   write_drawing_text(os, d, options);
+  return os.str();
+}
+
+/// Writes a drawing with arcs as text: the straight part as write_drawing_text does, then one
+/// `a i j rx ry rotation large ccw` line per arc, numbers in shortest round-trip form (a drawing
+/// read from text comes back bit for bit). Throws invalid_input, before writing anything, for
+/// an arc not valid or not ending at its junctions. O(V + E log E + A).
+template <Point2 P>
+void write_arc_drawing_text(std::ostream& os, const arc_drawing<P>& d,
+                            const drawing_text_write_options& options = {}) {
+  detail::check_arc_drawing_writable(d, "write_arc_drawing_text");
+  detail::put_drawing_text(os, d.lines, options, &d.arcs);
+}
+
+/// Writes a line-drawing text file with arcs (see the stream overload); a drawing the format
+/// cannot hold is refused before the file is opened; io errors name the path. O(V + E log E + A).
+template <Point2 P>
+void write_arc_drawing_text(const std::filesystem::path& path, const arc_drawing<P>& d,
+                            const drawing_text_write_options& options = {}) {
+  detail::check_arc_drawing_writable(d, "write_arc_drawing_text");
+  detail::write_file(path,
+                     [&](std::ostream& os) { detail::put_drawing_text(os, d.lines, options, &d.arcs); });
+}
+
+/// The text of a drawing with arcs as a string (see write_arc_drawing_text). O(V + E log E + A).
+template <Point2 P>
+std::string arc_drawing_text_string(const arc_drawing<P>& d, const drawing_text_write_options& options = {}) {
+  std::ostringstream os;
+  write_arc_drawing_text(os, d, options);
   return os.str();
 }
 

@@ -3,8 +3,9 @@
 /// \file
 /// Line drawings from SVG, as a person draws them in Inkscape: the straight strokes of
 /// `<line>`, `<polyline>`, `<polygon>`, `<rect>` and `<path>` (M/L/H/V/Z, absolute and relative)
-/// inside any nesting of groups with transforms, snapped into junctions. See docs/formats.md
-/// ("SVG line drawings") and docs/sketch.md ("Input: line drawings").
+/// inside any nesting of groups with transforms, snapped into junctions; parse_svg_arc_drawing
+/// also reads the elliptical arcs of `A` path commands (rounds and fillets) into an arc_drawing.
+/// See docs/formats.md ("SVG line drawings") and docs/sketch.md ("Input: line drawings").
 
 #include <algorithm>
 #include <array>
@@ -29,16 +30,19 @@
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
+#include "cellforge/io/detail/arc_io.hpp"
 #include "cellforge/io/detail/read_file.hpp"
 #include "cellforge/io/detail/text_cursor.hpp"
 #include "cellforge/sketch/detail/drawing_grid.hpp"
+#include "cellforge/sketch/elliptical_arc.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 
 namespace cellforge::io {
 
-/// What the SVG reader does with curves (circles, ellipses, rounded rects, C/S/Q/T/A path commands).
+/// What the SVG reader does with curves (circles, ellipses, rounded rects, C/S/Q/T/A path
+/// commands; parse_svg_arc_drawing reads A itself and applies this to the others).
 enum class svg_curves : std::uint8_t {
-  refuse,  ///< a located io error: curves are the rounds-and-fillets stage, not read yet
+  refuse,  ///< a located io error naming what to do instead
   skip,    ///< left out, counted in svg_drawing_result::skipped_curves (a path goes on from the curve's end)
 };
 
@@ -58,11 +62,9 @@ struct svg_drawing_options {
   bool skip_hidden = true;
 };
 
-/// A line drawing read from SVG and what the reading did. The drawing is y-up: a junction's y
-/// is minus the SVG y (after transforms). Junctions are numbered in order of first appearance.
-template <Point2 P2>
-struct svg_drawing_result {
-  line_drawing<P2> drawing;
+/// What reading an SVG drawing did: counts and diagnostics (of svg_drawing_result and
+/// svg_arc_drawing_result).
+struct svg_reading_counts {
   std::size_t elements = 0;             ///< stroke elements read (line, polyline, polygon, rect, path)
   std::size_t segments = 0;             ///< straight segments in them, before snapping
   std::size_t snapped = 0;              ///< segment ends moved by snapping onto a junction
@@ -72,6 +74,21 @@ struct svg_drawing_result {
   std::size_t skipped_curves = 0;       ///< curves left out (svg_curves::skip)
   std::size_t skipped_elements = 0;     ///< elements not read: defs, text, metadata, hidden, annotations, ...
   std::vector<std::string> diagnostics;  ///< what was left out or looks doubtful, with lines
+};
+
+/// A line drawing read from SVG and what the reading did. The drawing is y-up: a junction's y
+/// is minus the SVG y (after transforms). Junctions are numbered in order of first appearance.
+template <Point2 P2>
+struct svg_drawing_result : svg_reading_counts {
+  line_drawing<P2> drawing;
+};
+
+/// A drawing with arcs read from SVG (parse_svg_arc_drawing) and what the reading did; y-up as
+/// svg_drawing_result's.
+template <Point2 P2>
+struct svg_arc_drawing_result : svg_reading_counts {
+  arc_drawing<P2> drawing;
+  std::size_t arcs = 0;  ///< arcs read (A path commands), before dropping those whose ends snapped together
 };
 
 namespace detail {
@@ -99,6 +116,15 @@ struct basic_svg_reader {
   const svg_drawing_options& options;
   // Segments in SVG user space after transforms, y not yet flipped, with their element.
   std::vector<std::pair<glm::dvec2, glm::dvec2>> segs;
+  /// An A command in the root's user space after transforms (y still down), in endpoint form.
+  struct arc_piece {
+    glm::dvec2 from, to;
+    double rx, ry, rotation;  // rotation in radians, in the y-down frame
+    bool large, sweep;        // SVG's flags in the y-down frame
+    const char* at;
+  };
+  bool read_arcs = false;  // A commands become arc_pieces (else curves as options.curves says)
+  std::vector<arc_piece> arcs;
   std::size_t elements = 0, skipped_curves = 0, skipped_elements = 0;
   std::vector<std::string> diagnostics;
   // Incremental line counting for diagnostics (positions only move forward).
@@ -300,9 +326,50 @@ struct basic_svg_reader {
   }
 
   [[noreturn]] void refuse_curve(const char* at, const std::string& what) const {
+    if (read_arcs)
+      fail(at, "only straight strokes and elliptical arcs (path command A) are read: " + what +
+                   (what.starts_with("<circle") || what.starts_with("<ellipse")
+                        ? " is a closed curve, no round or fillet (draw it as arcs between junctions)"
+                        : " (draw it as arcs or straight segments, or read with svg_drawing_options::curves "
+                          "= skip)"));
     fail(at, "curves are not read yet: " + what +
-                 " (elliptical arcs are the rounds-and-fillets stage; draw straight segments, or read with "
-                 "svg_drawing_options::curves = skip)");
+                 " (elliptical arcs are read by parse_svg_arc_drawing / read_svg_arc_drawing; draw straight "
+                 "segments, or read with svg_drawing_options::curves = skip)");
+  }
+
+  /// An A command from `a` to `b` in the element's frame: transformed by m into an arc_piece,
+  /// or a segment where SVG draws a straight line (a zero radius), or nothing (equal ends). O(1).
+  void arc(const svg_affine& m, glm::dvec2 a, glm::dvec2 b, const double* v, const char* at) {
+    if (a == b) {
+      note(at, "an arc command ending where it starts draws nothing (SVG): left out");
+      return;
+    }
+    if (v[0] == 0 || v[1] == 0) {
+      note(at, "an arc command with a zero radius is a straight line (SVG): read as one");
+      segment(m, a, b, at);
+      return;
+    }
+    const glm::dvec2 p = m(a), q = m(b);
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(q.x) || !std::isfinite(q.y))
+      fail(at, "a point overflows to infinity under its transforms");
+    arc_piece out{p, q, std::abs(v[0]), std::abs(v[1]), arc_radians(v[2]), v[3] != 0, v[4] != 0, at};
+    if (m.a != 1 || m.b != 0 || m.c != 0 || m.d != 1) {
+      // The ellipse's axes under the linear part A of m: the singular values and left singular
+      // vectors of L = A R(rotation) diag(rx, ry), from L Lᵀ; a reflection reverses the sweep.
+      const double cs = std::cos(out.rotation), sn = std::sin(out.rotation);
+      const double l00 = (m.a * cs + m.c * sn) * out.rx, l01 = (-m.a * sn + m.c * cs) * out.ry;
+      const double l10 = (m.b * cs + m.d * sn) * out.rx, l11 = (-m.b * sn + m.d * cs) * out.ry;
+      const double pp = l00 * l00 + l01 * l01, rr = l10 * l10 + l11 * l11, pq = l00 * l10 + l01 * l11;
+      const double det = l00 * l11 - l01 * l10;
+      const double s1 = std::sqrt((pp + rr) / 2 + std::hypot((pp - rr) / 2, pq));
+      if (!std::isfinite(s1) || !(std::abs(det) / s1 > 0) || !std::isfinite(det))
+        fail(at, "an arc command's transforms flatten its ellipse or overflow");
+      out.rx = s1;
+      out.ry = std::abs(det) / s1;
+      out.rotation = 0.5 * std::atan2(2 * pq, pp - rr);
+      if (m.a * m.d - m.b * m.c < 0) out.sweep = !out.sweep;
+    }
+    arcs.push_back(out);
   }
 
   /// Reads the `points` of a polyline or polygon (closed: back to the first point).
@@ -400,6 +467,17 @@ struct basic_svg_reader {
           cur = start;
           after_close = true;
           break;
+        case 'A':
+        case 'a':
+          if (read_arcs) {
+            arc_numbers(p, end, v, at, what);
+            const glm::dvec2 next = rel ? cur + glm::dvec2{v[5], v[6]} : glm::dvec2{v[5], v[6]};
+            arc(m, cur, next, v, at);
+            ++segs_in_path;
+            cur = next;
+            break;
+          }
+          [[fallthrough]];
         default: {
           if (options.curves == svg_curves::refuse) refuse_curve(at, what);
           const int n = (cmd == 'C' || cmd == 'c')                               ? 6
@@ -407,16 +485,7 @@ struct basic_svg_reader {
                         : (cmd == 'T' || cmd == 't')                             ? 2
                                                                                  : 7;
           if (n == 7) {
-            // Arc flags may be single digits with no separator ("a1 1 0 011 1").
-            numbers(p, end, v, 3, what);
-            for (int k = 3; k < 5; ++k) {
-              p = skip_separators(p, end);
-              if (p == end || (*p != '0' && *p != '1'))
-                fail(p == end ? at : p, what + ": expected an arc flag 0 or 1");
-              v[k] = *p++ - '0';
-            }
-            p = skip_separators(p, end);
-            numbers(p, end, v + 5, 2, what);
+            arc_numbers(p, end, v, at, what);
           } else {
             numbers(p, end, v, n, what);
           }
@@ -428,6 +497,21 @@ struct basic_svg_reader {
     }
   }
   std::size_t segs_in_path = 0, moves_in_path = 0;
+
+  /// The 7 values of an arc command: rx ry rotation large-arc sweep x y. Flags may be single
+  /// digits with no separator ("a1 1 0 011 1").
+  void arc_numbers(const char*& p, const char* end, double* v, const char* at,
+                   const std::string& what) const {
+    numbers(p, end, v, 3, what);
+    for (int k = 3; k < 5; ++k) {
+      p = skip_separators(p, end);
+      if (p == end || (*p != '0' && *p != '1'))
+        fail(p == end ? at : p, what + ": expected an arc flag 0 or 1");
+      v[k] = *p++ - '0';
+    }
+    p = skip_separators(p, end);
+    numbers(p, end, v + 5, 2, what);
+  }
 
   // ---- the document ---------------------------------------------------------------------
 
@@ -678,50 +762,55 @@ glm::dvec2 svg_cluster_mean(const std::vector<glm::dvec2>& pts, const std::vecto
 
 }  // namespace detail
 
-/// Parses SVG text held in memory into a line drawing; `name` is used in error messages. Each
-/// straight stroke segment becomes an edge; stroke ends within the snap tolerance are one
-/// junction; a junction on a stroke's interior splits it; y is flipped (drawings are y-up).
-/// Throws an io error with file and line on malformed XML, path data, transforms or refused
-/// curves. O(size + S log S + K), S segments, K the pairs sharing a cell of the snapping grids.
-template <Point2 P2 = glm::dvec2>
-svg_drawing_result<P2> parse_svg_drawing(std::string_view text, std::string_view name = "<memory>",
-                                         const svg_drawing_options& options = {}) {
+namespace detail {
+
+/// The SVG stroke reader of parse_svg_drawing (arcs = false: A commands as options.curves says)
+/// and parse_svg_arc_drawing (arcs = true). O(size + S log S + K).
+template <Point2 P2>
+svg_arc_drawing_result<P2> parse_svg_strokes(std::string_view text, std::string_view name,
+                                             const svg_drawing_options& options, bool arcs) {
   if (!std::isfinite(options.snap_tolerance) || options.snap_tolerance < 0 || options.snap_tolerance >= 0.5)
     throw error(error_category::invalid_input,
                 "parse_svg_drawing: snap_tolerance must be a finite number in [0, 0.5)");
-  detail::svg_reader r{text, name, options, {}, 0, 0, 0, {}, 0, 1};
+  svg_reader r{text, name, options, {}, arcs, {}, 0, 0, 0, {}, 0, 1};
   if (text.starts_with("\xEF\xBB\xBF")) r.text.remove_prefix(3);
   r.document();
-  svg_drawing_result<P2> out;
+  svg_arc_drawing_result<P2> out;
+  out.arcs = r.arcs.size();
   out.elements = r.elements;
   out.segments = r.segs.size();
   out.skipped_curves = r.skipped_curves;
   out.skipped_elements = r.skipped_elements;
   out.diagnostics = std::move(r.diagnostics);
-  const std::size_t ns = r.segs.size();
-  if (2 * ns >= std::numeric_limits<std::uint32_t>::max())
+  const std::size_t ns = r.segs.size(), na = r.arcs.size();
+  if (2 * (ns + na) >= std::numeric_limits<std::uint32_t>::max())
     throw error(error_category::io, "too many segments for 32-bit indices",
                 source_location{std::string(name), 0});
-  if (ns == 0) {
-    out.diagnostics.push_back(std::string(name) + ": no straight stroke found");
+  if (ns + na == 0) {
+    out.diagnostics.push_back(std::string(name) +
+                              (arcs ? ": no straight stroke or arc found" : ": no straight stroke found"));
     return out;
   }
-  // Stroke ends in the drawing's frame, y up.
-  std::vector<glm::dvec2> ends(2 * ns);
+  // Stroke ends in the drawing's frame, y up: the segments', then the arcs'.
+  std::vector<glm::dvec2> ends(2 * (ns + na));
   for (std::size_t s = 0; s < ns; ++s) {
     ends[2 * s] = {r.segs[s].first.x, -r.segs[s].first.y};
     ends[2 * s + 1] = {r.segs[s].second.x, -r.segs[s].second.y};
   }
+  for (std::size_t k = 0; k < na; ++k) {
+    ends[2 * (ns + k)] = {r.arcs[k].from.x, -r.arcs[k].from.y};
+    ends[2 * (ns + k) + 1] = {r.arcs[k].to.x, -r.arcs[k].to.y};
+  }
   const cellforge::detail::drawing_frame frame = cellforge::detail::make_drawing_frame(ends);
   const double eps = options.snap_tolerance * frame.diag;
-  cellforge::detail::union_find uf(2 * ns);
+  cellforge::detail::union_find uf(2 * (ns + na));
   cellforge::detail::for_close_points(frame.points, eps,
                                       [&](std::uint32_t i, std::uint32_t j) { uf.unite(i, j); });
   // Clusters numbered by first appearance (the union-find keeps the smallest index as root).
   constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> cluster(2 * ns, none), junction_of(2 * ns);
+  std::vector<std::uint32_t> cluster(2 * (ns + na), none), junction_of(2 * (ns + na));
   std::vector<std::vector<std::uint32_t>> members;
-  for (std::uint32_t i = 0; i < 2 * ns; ++i) {
+  for (std::uint32_t i = 0; i < 2 * (ns + na); ++i) {
     const std::uint32_t root = uf.find(i);
     if (cluster[root] == none) {
       cluster[root] = static_cast<std::uint32_t>(members.size());
@@ -733,8 +822,8 @@ svg_drawing_result<P2> parse_svg_drawing(std::string_view text, std::string_view
   const std::size_t nj = members.size();
   std::vector<glm::dvec2> at(nj), at_frame(nj);
   for (std::size_t j = 0; j < nj; ++j) {
-    at[j] = detail::svg_cluster_mean(ends, members[j]);
-    at_frame[j] = detail::svg_cluster_mean(frame.points, members[j]);
+    at[j] = svg_cluster_mean(ends, members[j]);
+    at_frame[j] = svg_cluster_mean(frame.points, members[j]);
     glm::dvec2 lo = at_frame[j], hi = at_frame[j];
     for (const std::uint32_t i : members[j]) {
       if (ends[i] != at[j]) ++out.snapped;
@@ -756,6 +845,21 @@ svg_drawing_result<P2> parse_svg_drawing(std::string_view text, std::string_view
       ++out.dropped_zero_length;
     else
       edges.push_back({a, b});
+  }
+  // Arcs whose ends snapped together are dropped (a closed curve is no round or fillet).
+  std::vector<std::array<std::uint32_t, 2>> arc_ends;
+  std::vector<std::size_t> arc_piece;
+  for (std::size_t k = 0; k < na; ++k) {
+    const std::uint32_t a = junction_of[2 * (ns + k)], b = junction_of[2 * (ns + k) + 1];
+    if (a == b) {
+      ++out.dropped_zero_length;
+      out.diagnostics.push_back(
+          std::string(name) + ":" + std::to_string(r.line(r.arcs[k].at)) +
+          ": an arc whose ends snapped to one junction: left out (a closed curve is no round)");
+    } else {
+      arc_ends.push_back({a, b});
+      arc_piece.push_back(k);
+    }
   }
   // Splits: junctions on an edge's interior (within eps, projecting strictly inside it).
   if (options.split_at_junctions && !edges.empty()) {
@@ -801,12 +905,13 @@ svg_drawing_result<P2> parse_svg_drawing(std::string_view text, std::string_view
       if (keys[q][0] == keys[q - 1][0] && keys[q][1] == keys[q - 1][1])
         keep[keys[q][2]] = 0, ++out.merged_duplicates;
     std::vector<std::uint32_t> renumber(nj, none);
-    auto& d = out.drawing;
+    auto& d = out.drawing.lines;
     for (std::size_t e = 0; e < edges.size(); ++e) {
       if (!keep[e]) continue;
       for (const std::uint32_t j : edges[e])
         if (renumber[j] == none) renumber[j] = 0;
     }
+    for (const auto& [a, b] : arc_ends) renumber[a] = renumber[b] = 0;
     for (std::size_t j = 0; j < nj; ++j)
       if (renumber[j] != none) {
         renumber[j] = static_cast<std::uint32_t>(d.points.size());
@@ -814,8 +919,64 @@ svg_drawing_result<P2> parse_svg_drawing(std::string_view text, std::string_view
       }
     for (std::size_t e = 0; e < edges.size(); ++e)
       if (keep[e]) d.edges.push_back({renumber[edges[e][0]], renumber[edges[e][1]]});
+    // Arcs between their snapped junctions, in the y-up frame: the rotation and the sweep's
+    // sense flip with y.
+    for (std::size_t k = 0; k < arc_ends.size(); ++k) {
+      const auto& piece = r.arcs[arc_piece[k]];
+      const std::array<std::uint32_t, 2> je{renumber[arc_ends[k][0]], renumber[arc_ends[k][1]]};
+      try {
+        out.drawing.arcs.push_back(
+            {je, arc_from_endpoints<P2>({d.points[je[0]], d.points[je[1]], piece.rx, piece.ry,
+                                         -piece.rotation, piece.large, !piece.sweep})});
+      } catch (const error& e) {
+        r.fail(piece.at, "an arc command between the junctions at " +
+                             cellforge::detail::drawing_point_text(d.points[je[0]]) + " and " +
+                             cellforge::detail::drawing_point_text(d.points[je[1]]) + ": " + e.message());
+      }
+    }
+    // With radii far beyond the distance of the ends, rounding can leave the curve off its
+    // junctions: refused here rather than by every later stage.
+    if (const arc_validation v = validate_arcs(out.drawing, {arc_end_tolerance<P2>()}); !v)
+      r.fail(r.arcs[arc_piece[v.arc]].at, "an arc command out of proportion to its ends: " + v.message);
   }
   return out;
+}
+
+}  // namespace detail
+
+/// Parses SVG text held in memory into a line drawing; `name` is used in error messages. Each
+/// straight stroke segment becomes an edge; stroke ends within the snap tolerance are one
+/// junction; a junction on a stroke's interior splits it; y is flipped (drawings are y-up).
+/// Throws an io error with file and line on malformed XML, path data, transforms or refused
+/// curves. O(size + S log S + K), S segments, K the pairs sharing a cell of the snapping grids.
+template <Point2 P2 = glm::dvec2>
+svg_drawing_result<P2> parse_svg_drawing(std::string_view text, std::string_view name = "<memory>",
+                                         const svg_drawing_options& options = {}) {
+  svg_arc_drawing_result<P2> r = detail::parse_svg_strokes<P2>(text, name, options, false);
+  svg_drawing_result<P2> out;
+  static_cast<svg_reading_counts&>(out) = std::move(static_cast<svg_reading_counts&>(r));
+  out.drawing = std::move(r.drawing.lines);
+  return out;
+}
+
+/// Parses SVG text into a drawing with arcs: as parse_svg_drawing, and each `A`/`a` path command
+/// an elliptical arc (its ellipse carried exactly through the transforms and the y flip, which
+/// reverses its sense), its ends snapped into junctions with the stroke ends. `<circle>`,
+/// `<ellipse>` (closed curves, no rounds), rounded rects and C/S/Q/T are refused or skipped as
+/// options.curves says. O(size + S log S + K).
+template <Point2 P2 = glm::dvec2>
+svg_arc_drawing_result<P2> parse_svg_arc_drawing(std::string_view text, std::string_view name = "<memory>",
+                                                 const svg_drawing_options& options = {}) {
+  return detail::parse_svg_strokes<P2>(text, name, options, true);
+}
+
+/// Reads an SVG drawing with arcs (see parse_svg_arc_drawing); io errors name the path, or the
+/// file and line when it is malformed. O(file size + S log S + K).
+template <Point2 P2 = glm::dvec2>
+svg_arc_drawing_result<P2> read_svg_arc_drawing(const std::filesystem::path& path,
+                                                const svg_drawing_options& options = {}) {
+  const std::string bytes = detail::read_file(path);
+  return parse_svg_arc_drawing<P2>(bytes, detail::display_name(path), options);
 }
 
 /// Reads an SVG line drawing (see parse_svg_drawing). Throws an io error naming the path when

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -120,9 +121,10 @@ struct arc_endpoints {
 
 /// The arc that SVG's endpoint form describes (the SVG specification's conversion, appendix
 /// "Elliptical arc implementation notes"): radii too small to span the ends are scaled up until
-/// they do, negative radii taken by magnitude. Throws invalid_input for a zero radius, equal
-/// ends or non-finite values (SVG draws a straight line or nothing there; for a sketch either
-/// is a drawing error). O(1).
+/// they do (radii spanning them to rounding are taken as spanning exactly), negative radii taken
+/// by magnitude; the sweep agrees with the flags (arc_endpoint_form gives them back). Throws invalid_input
+/// for a zero radius, equal ends or non-finite values (SVG draws a straight line or nothing there; for a
+/// sketch either is a drawing error). O(1).
 template <Point2 P>
 elliptical_arc<P> arc_from_endpoints(const arc_endpoints<P>& e) {
   const glm::dvec2 p0 = to_dvec2(e.from), p1 = to_dvec2(e.to);
@@ -142,10 +144,18 @@ elliptical_arc<P> arc_from_endpoints(const arc_endpoints<P>& e) {
   const glm::dvec2 h = (p0 - p1) * 0.5;
   const glm::dvec2 q(c * h.x + s * h.y, -s * h.x + c * h.y);  // the half chord in the ellipse's frame
   const double lambda = (q.x * q.x) / (rx * rx) + (q.y * q.y) / (ry * ry);
-  if (lambda > 1) rx *= std::sqrt(lambda), ry *= std::sqrt(lambda);
-  const double num = rx * rx * ry * ry - rx * rx * q.y * q.y - ry * ry * q.x * q.x;
-  const double den = rx * rx * q.y * q.y + ry * ry * q.x * q.x;
-  double k = std::sqrt(std::max(0.0, num / den));
+  // Radii that span the ends to rounding are taken as spanning them exactly (the centre at the
+  // chord's midpoint): the square root below would turn a rounding error of 1e-16 in lambda into
+  // a centre 1e-8 off, and an arc written in endpoint form would not read back the same.
+  constexpr double spanning = 64 * std::numeric_limits<double>::epsilon();
+  double k = 0;
+  if (lambda > 1 + spanning) {
+    rx *= std::sqrt(lambda), ry *= std::sqrt(lambda);
+  } else if (lambda < 1 - spanning) {
+    const double num = rx * rx * ry * ry - rx * rx * q.y * q.y - ry * ry * q.x * q.x;
+    const double den = rx * rx * q.y * q.y + ry * ry * q.x * q.x;
+    k = std::sqrt(std::max(0.0, num / den));
+  }
   if (e.large_arc == e.ccw) k = -k;
   const glm::dvec2 cq(k * rx * q.y / ry, -k * ry * q.x / rx);
   const glm::dvec2 mid = (p0 + p1) * 0.5;
@@ -156,6 +166,11 @@ elliptical_arc<P> arc_from_endpoints(const arc_endpoints<P>& e) {
   constexpr double two_pi = 2 * std::numbers::pi;
   if (e.ccw && sweep <= 0) sweep += two_pi;
   if (!e.ccw && sweep >= 0) sweep -= two_pi;
+  // A half ellipse sweeps π up to rounding: keep |sweep| on the side of π the large-arc flag
+  // says, so that arc_endpoint_form gives the flags back.
+  constexpr double pi = std::numbers::pi;
+  if (e.large_arc && !(std::abs(sweep) > pi)) sweep = std::copysign(std::nextafter(pi, 4.0), sweep);
+  if (!e.large_arc && std::abs(sweep) > pi) sweep = std::copysign(pi, sweep);
   return {from_dvec2<P>(centre), rx, ry, e.rotation, t0, sweep};
 }
 
