@@ -10,14 +10,17 @@
 // one has its arcs as path commands A (docs/formats.md). Writes, in the current directory,
 // <name>_arcs.svg (the drawing, each pair of arcs in its own colour), <name>_skeleton.txt and
 // <name>_skeleton.svg (the skeleton drawing, its faces shaded), the skeleton's cell complex as
-// <name>.3dcl and <name>.obj, and the rounded solid as <name>_rounded.obj; prints the arcs, the
+// <name>.3dcl and <name>.obj, the rounded solid as <name>_rounded.obj and the round attribute of
+// each skeleton edge as <name>_rounds.txt; prints the arcs, the
 // pairs, and every blend's kind, category, radius and consistency. Never writes over its input.
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <new>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -57,6 +60,24 @@ const char* category_name(cellforge::blend_category c) {
   }
 }
 
+// The skeleton's round attribute per edge, one line per blend, beside the .3dcl (whose edges
+// the first column numbers): what a CAD engine needs to put the rounds back as features.
+void write_round_attributes(const fs::path& path, const cellforge::rounds_result<glm::dvec3, glm::dvec2>& r,
+                            const std::string& input) {
+  std::ofstream out(path);
+  out << "# the rounds of " << input << " (sketch_rounds), one line per blend of the skeleton:\n"
+      << "# cell_edge junction junction kind category radius setback wedge_degrees consistent\n"
+      << "# cell_edge numbers the edges of the .3dcl (-1: not in the complex); junctions are the skeleton\n"
+      << "# drawing's; kind is round (convex) or fillet (concave); category a, b or c is this reading's\n";
+  out.precision(17);
+  for (const auto& e : r.rounds)
+    out << (e.cell_edge == cellforge::edge_round::npos ? -1 : static_cast<long long>(e.cell_edge)) << ' '
+        << e.junctions[0] << ' ' << e.junctions[1] << ' ' << kind_name(e.kind) << ' '
+        << category_name(e.category) << ' ' << e.radius << ' ' << e.setback << ' '
+        << e.wedge_angle * 180 / std::numbers::pi << ' ' << (e.consistent ? "yes" : "no") << '\n';
+  if (!out) throw cellforge::error(cellforge::error_category::io, "cannot write " + path.string());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -67,8 +88,9 @@ int main(int argc, char** argv) {
     std::string ext = cl.input.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
     const std::string stem = cl.input.stem().string();
-    const fs::path outputs[] = {stem + "_arcs.svg", stem + "_skeleton.txt", stem + "_skeleton.svg",
-                                stem + ".3dcl",     stem + ".obj",          stem + "_rounded.obj"};
+    const fs::path outputs[] = {stem + "_arcs.svg",  stem + "_skeleton.txt", stem + "_skeleton.svg",
+                                stem + ".3dcl",      stem + ".obj",          stem + "_rounded.obj",
+                                stem + "_rounds.txt"};
     for (const fs::path& out : outputs) example::refuse_to_overwrite(out, cl.input);
 
     stage("reading " + example::file_and_size(cl.input));
@@ -91,18 +113,7 @@ int main(int argc, char** argv) {
 
     stage("reconstructing a drawing of " + std::to_string(drawing.lines.points.size()) + " junctions and " +
           std::to_string(drawing.arcs.size()) + " arcs");
-    const auto r = [&] {
-      try {
-        return cellforge::reconstruct_rounds(drawing);
-      } catch (const cellforge::error& e) {
-        // A skeleton with loose ends usually means arcs that found no partner: say which.
-        const auto pairs = cellforge::pair_arcs(drawing);
-        if (pairs.unpaired.empty()) throw;
-        std::string why = e.message();
-        for (const std::string& d : pairs.diagnostics) why += "\n  " + d;
-        throw cellforge::error(e.category(), why);
-      }
-    }();
+    const auto r = cellforge::reconstruct_rounds(drawing);
     const auto& sk = r.skeleton;
     const auto& pairing = sk.pairing;
     std::printf(
@@ -133,24 +144,20 @@ int main(int argc, char** argv) {
         cells.num_volumes(), valid.ok() ? "ok" : valid.message.c_str());
     // The drawing alone tells category b only by a contour line; the reading's depths tell a,
     // b and c apart (for this reading: its Necker mirror swaps a and c).
-    auto by_reading = sk;
-    std::vector<double> depth;
-    for (const auto& x : r.points) depth.push_back(x.z);
-    cellforge::resolve_blend_categories(by_reading, depth);
     for (const auto& e : r.rounds) {
       std::printf(
-          "  blend %-3zu        %-6s category %s (the reading's: %s), radius %.6g (ends %.6g, %.6g; "
-          "spread %.2g), %s%s\n",
-          e.blend, kind_name(e.kind), category_name(sk.blends[e.blend].category),
-          category_name(by_reading.blends[e.blend].category), e.radius, e.end_radius[0], e.end_radius[1],
-          e.radius_spread,
+          "  blend %-3zu        %-6s on edge %u, category %s (the drawing's: %s), radius %.6g (ends %.6g, "
+          "%.6g; spread %.2g), %s%s\n",
+          e.blend, kind_name(e.kind), e.cell_edge, category_name(e.category),
+          category_name(pairing.pairs[sk.blends[e.blend].pair].category), e.radius, e.end_radius[0],
+          e.end_radius[1], e.radius_spread,
           e.source == cellforge::radius_source::lifted      ? "lifted"
           : e.source == cellforge::radius_source::circle_2d ? "from the 2D circles"
                                                             : "no radius",
           e.consistent ? ", consistent" : ", INCONSISTENT");
     }
     std::printf("blends             %zu consistent, %zu inconsistent%s\n", r.consistent, r.inconsistent,
-                r.depth_corrected ? " (depths corrected by the blends' circles)" : "");
+                r.depth_corrected ? " (depths fitted to circular blends)" : "");
     const auto mesh = cellforge::rounded_mesh(r);
     std::printf(
         "rounded mesh       %zu vertices, %zu faces (%zu blend strips of %zu quads, %zu blends skipped)\n",
@@ -178,6 +185,7 @@ int main(int argc, char** argv) {
     cellforge::io::write_3dcl(outputs[3], cells);
     cellforge::io::write_cells_obj(outputs[4], cells);
     cellforge::io::write_obj(outputs[5], mesh.mesh);
+    write_round_attributes(outputs[6], r, cl.input.filename().string());
     std::printf("wrote             ");
     for (const fs::path& out : outputs) std::printf(" %s", out.string().c_str());
     std::printf("\n");

@@ -81,6 +81,13 @@ TEST_CASE("bundled rounds: the L-bracket of sketch_rounds is the generated drawi
     CHECK(mesh.strips == 3);
     CHECK(mesh.skipped == 0);
   }
+  // With one arc taken away its partner is alone: the error names it and why.
+  auto lone = d;
+  lone.arcs.erase(lone.arcs.begin() + 1);
+  CHECK_THROWS_WITH_AS(cellforge::reconstruct_rounds(lone), doctest::Contains("arc 0 (junctions"),
+                       cellforge::error);
+  CHECK_THROWS_WITH_AS(cellforge::reconstruct_rounds(lone), doctest::Contains("has no partner"),
+                       cellforge::error);
 }
 
 TEST_CASE("bundled rounds: the L-bracket drawn as sampled strokes, its arcs found by detect_arcs") {

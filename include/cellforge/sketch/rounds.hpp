@@ -439,10 +439,14 @@ rounds_result<Q, P> reconstruct_rounds(const arc_drawing<P>& d, const rounds_opt
   rounds_result<Q, P> out;
   out.skeleton = round_skeleton(d, options.skeleton);
   out.diagnostics = out.skeleton.diagnostics;
-  if (!out.skeleton.validation.ok())
-    throw error(
-        error_category::invalid_input,
-        "reconstruct_rounds: the skeleton is not a readable drawing: " + out.skeleton.validation.message);
+  if (!out.skeleton.validation.ok()) {
+    // Loose ends in the skeleton usually come from arcs that found no partner: say which.
+    std::string why =
+        "reconstruct_rounds: the skeleton is not a readable drawing: " + out.skeleton.validation.message;
+    if (!out.skeleton.pairing.unpaired.empty())
+      for (const std::string& d : out.skeleton.pairing.diagnostics) why += "\n  " + d;
+    throw error(error_category::invalid_input, why);
+  }
   out.reading = drawing_to_cells<Q>(out.skeleton.skeleton, options.reading);
   const std::size_t nv = out.skeleton.skeleton.points.size();
   std::vector<glm::dvec3> X(nv);
