@@ -44,7 +44,8 @@ if(CELLFORGE_INSTALL)
   add_test(NAME consumer_install
            COMMAND "${CMAKE_COMMAND}" -DMODE=install ${_cellforge_consumer_common}
                    "-DCONFIG=${_cellforge_consumer_config}" -P "${_cellforge_consumer_script}")
-  set_tests_properties(consumer_install PROPERTIES LABELS "packaging" TIMEOUT 120
+  # The dearest cases wait for it: it starts first (COST above theirs).
+  set_tests_properties(consumer_install PROPERTIES LABELS "packaging" TIMEOUT 120 COST 1000
                                                    FIXTURES_SETUP cellforge_consumer_prefix)
   foreach(_cc IN ITEMS gcc clang)
     string(TOUPPER "${_cc}" _CC)
@@ -59,7 +60,17 @@ if(CELLFORGE_INSTALL)
                        "-DWORK_DIR=${CMAKE_BINARY_DIR}/consumer/${_cc}-${_config}"
                        "-DCXX_COMPILER=${_compiler}" "-DCOMPILER_NAME=${_cc}" "-DCONFIG=${_config}"
                        -P "${_cellforge_consumer_script}")
-      set_tests_properties(${_name} PROPERTIES LABELS "packaging" TIMEOUT 600
+      # COST: ctest -j2 starts the dearest cases first (the -O3 builds, then -O0), so that no
+      # long build is left for the end with one core idle. Roughly their CPU seconds.
+      if(_config STREQUAL "Release")
+        set(_cost 70)
+      else()
+        set(_cost 25)
+      endif()
+      if(_cc STREQUAL "gcc")
+        math(EXPR _cost "${_cost} + 30")
+      endif()
+      set_tests_properties(${_name} PROPERTIES LABELS "packaging" TIMEOUT 600 COST ${_cost}
                                                FIXTURES_REQUIRED cellforge_consumer_prefix
                                                SKIP_REGULAR_EXPRESSION "consumer: SKIPPED")
     endforeach()
@@ -79,6 +90,7 @@ unset(_id)
 unset(_names)
 unset(_compiler)
 unset(_config)
+unset(_cost)
 unset(_name)
 unset(_cellforge_consumer_common)
 unset(_cellforge_consumer_script)
