@@ -51,6 +51,11 @@ inline constexpr bool have_cgal = true;
 #else
 inline constexpr bool have_cgal = false;
 #endif
+#ifdef CELLFORGE_HAVE_QHULL
+inline constexpr bool have_qhull = true;
+#else
+inline constexpr bool have_qhull = false;
+#endif
 
 // ------------------------------------------------------------------------------ timing
 //
@@ -407,8 +412,11 @@ class table {
     os << "\n### " << title_ << "\n\n";
     line(headers_);
     os << '|';
+    // Appended, not `":" + std::string(…)` (an insert at the front, which g++ 12 -O3 warns
+    // about with -Wrestrict).
     for (std::size_t j = 0; j < headers_.size(); ++j)
-      os << (right[j] ? std::string(width[j] + 1, '-') + ":|" : ":" + std::string(width[j] + 1, '-') + "|");
+      os << (right[j] ? std::string(width[j] + 1, '-') + ":|"
+                      : std::string(":").append(width[j] + 1, '-') + "|");
     os << '\n';
     for (const auto& row : rows_) line(row);
     if (!notes_.empty()) os << '\n';

@@ -4,7 +4,7 @@
 #     (none)     compiler, CMake, make, GLM, doctest, Eigen: enough to build the tests and examples;
 #                node and npm (only when the commands are missing) for cmake/fetch-bunny.sh
 #     --bench    Google Benchmark as well
-#     --compare  CGAL (with Eigen) and OpenMesh, the baselines the benchmarks compare against (implies --bench)
+#     --compare  CGAL (with Eigen), OpenMesh and Qhull, the baselines the benchmarks compare against (implies --bench)
 #     --fuzz     clang and its compiler-rt (libFuzzer, ASan/UBSan runtimes for clang)
 # `apt-get update` runs once, and only when something must be installed; sudo is used only
 # when not running as root. Nothing is installed when everything is present already.
@@ -18,7 +18,7 @@ command -v npm >/dev/null 2>&1 || packages+=(npm)
 for arg in "$@"; do
   case "$arg" in
     --bench) packages+=(libbenchmark-dev) ;;
-    --compare) packages+=(libbenchmark-dev libcgal-dev libopenmesh-dev libeigen3-dev) ;;
+    --compare) packages+=(libbenchmark-dev libcgal-dev libopenmesh-dev libeigen3-dev libqhull-dev) ;;
     # Debian 12's clang 14 needs libclang-rt-14-dev for -fsanitize=fuzzer (libclang_rt.fuzzer).
     --fuzz) packages+=(clang libclang-rt-14-dev) ;;
     -h | --help)
