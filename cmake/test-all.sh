@@ -6,7 +6,7 @@
 #               so that code g++ accepts but clang rejects does not land
 #   4. bench    every benchmark configured in build/bench-check and compiled by g++ with
 #               -fsyntax-only (templates instantiated, no code generated, not linked or run:
-#               timings are not tests), so that benchmark code cannot rot; CGAL/OpenMesh parts
+#               timings are not tests), so that benchmark code cannot rot; CGAL/OpenMesh/Qhull parts
 #               only where they are installed
 #   5. fuzz     libFuzzer targets built with clang, seed corpora replayed, then each fuzzer
 #               run for CELLFORGE_FUZZ_SECONDS seconds (default 10)      (build/fuzz)
