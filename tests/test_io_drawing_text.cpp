@@ -16,6 +16,7 @@
 
 #include <glm/vec2.hpp>
 
+#include "cellforge/io/detail/arc_io.hpp"
 #include "cellforge/io/drawing_text.hpp"
 #include "cellforge/sketch/sample_drawings.hpp"
 #include "cellforge/sketch/sample_round_drawings.hpp"
@@ -196,6 +197,30 @@ bool same_arcs(const arc_drawing2& a, const arc_drawing2& b) {
 }
 
 }  // namespace
+
+TEST_CASE("arc rotations: degrees written are the shortest that read back to the same radians") {
+  using cellforge::io::detail::arc_degrees;
+  using cellforge::io::detail::arc_radians;
+  // Round degrees come back as they were typed.
+  for (const double d : {0.0, 30.0, -45.0, 90.0, 12.5, 179.99}) CHECK(arc_degrees(arc_radians(d)) == d);
+  // A rotation read from text (the image of some degrees) comes back bit for bit through the
+  // text of the degrees written for it: what makes drawings read and written again exact.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> angle(-400, 400);
+  int exact = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const double r = arc_radians(angle(rng));
+    std::ostringstream os;
+    os.precision(17);
+    os << arc_degrees(r);
+    exact += arc_radians(std::stod(os.str())) == r;
+  }
+  CHECK(exact == 2000);
+  // Any other rotation gets the nearest degrees.
+  const double r = std::nextafter(arc_radians(1.0), 1.0);
+  CHECK(std::abs(arc_radians(arc_degrees(r)) - r) <= 2 * std::numeric_limits<double>::epsilon());
+  CHECK(std::signbit(arc_degrees(-0.0)));  // -0 stays -0: the text differs
+}
 
 TEST_CASE("arc drawing text: an arc between two junctions in SVG's endpoint form, y up") {
   // A quarter circle of radius 2 round (0, 0) from (2, 0) to (0, 2), counter-clockwise, and

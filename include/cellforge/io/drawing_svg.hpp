@@ -14,7 +14,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
-#include <numbers>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -243,7 +242,7 @@ std::string arc_drawing_svg_string(const arc_drawing<P>& d,
                                    const std::vector<std::vector<std::uint32_t>>& faces = {},
                                    const drawing_svg_options& options = {},
                                    const std::vector<std::size_t>& arc_colour = {}) {
-  if (const arc_validation v = validate_arcs(d, {detail::arc_end_tolerance<P>()}); !v)
+  if (const arc_validation v = validate_arcs(d); !v)
     throw error(error_category::invalid_input, "arc_drawing_svg: " + v.message);
   if (!arc_colour.empty() && arc_colour.size() != d.arcs.size())
     throw error(error_category::invalid_input, "arc_drawing_svg: " + std::to_string(arc_colour.size()) +
@@ -273,8 +272,9 @@ std::string arc_drawing_svg_string(const arc_drawing<P>& d,
           num(c.ry);
           out += ' ';
           num(detail::arc_degrees(-c.rotation));
-          out += std::abs(c.sweep) > std::numbers::pi ? " 1" : " 0";
-          out += c.sweep > 0 ? " 0 " : " 1 ";
+          const auto flags = arc_endpoint_form(c);
+          out += flags.large_arc ? " 1" : " 0";
+          out += flags.ccw ? " 0 " : " 1 ";  // SVG's sweep flag is y-down's: the opposite of ccw
           num(pts[a.ends[1]].x);
           out += ' ';
           num(pts[a.ends[1]].y);

@@ -12,7 +12,6 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
-#include <numbers>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -201,7 +200,7 @@ arc_drawing<P2> parse_drawing_text_statements(std::string_view text, std::string
   }
   // What the writer checks: with radii far beyond the ends' distance rounding can leave the
   // computed curve off its junctions.
-  if (const arc_validation v = validate_arcs(result, {arc_end_tolerance<P2>()}); !v)
+  if (const arc_validation v = validate_arcs(result); !v)
     c.fail_at(raw_arcs[v.arc].line, v.message + " (the arc's numbers are out of proportion to its ends)");
   return result;
 }
@@ -306,22 +305,23 @@ void put_drawing_text(std::ostream& os, const D& d, const drawing_text_write_opt
         out.put(' ');
         out.number(v);
       }
-      out.put(std::abs(a.curve.sweep) > std::numbers::pi ? " 1" : " 0");
-      out.put(a.curve.sweep > 0 ? " 1\n" : " 0\n");
+      const auto flags = arc_endpoint_form(a.curve);
+      out.put(flags.large_arc ? " 1" : " 0");
+      out.put(flags.ccw ? " 1\n" : " 0\n");
     }
   out.finish("line drawing text");
 }
 
 /// Throws invalid_input, prefixed by `writer`, for what the arc text reader would reject or
 /// change: the straight part's defects (check_drawing_writable) and arcs that are not valid or
-/// whose curve does not start and end at its junctions (validate_arcs, to arc_end_tolerance:
+/// whose curve does not start and end at its junctions (validate_arcs:
 /// the format keeps only the ends' junctions, radii, rotation and flags). O(V + E log E + A).
 template <Point2 P>
 void check_arc_drawing_writable(const arc_drawing<P>& d, std::string_view writer) {
   check_drawing_writable(d.lines, writer);
   if (d.arcs.size() >= std::numeric_limits<std::uint32_t>::max() - 1)
     throw error(error_category::invalid_input, std::string(writer) + ": more than 2^32 - 2 arcs");
-  const arc_validation v = validate_arcs(d, {arc_end_tolerance<P>()});
+  const arc_validation v = validate_arcs(d);
   if (!v) throw error(error_category::invalid_input, std::string(writer) + ": " + v.message);
 }
 

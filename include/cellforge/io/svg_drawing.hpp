@@ -936,7 +936,7 @@ svg_arc_drawing_result<P2> parse_svg_strokes(std::string_view text, std::string_
     }
     // With radii far beyond the distance of the ends, rounding can leave the curve off its
     // junctions: refused here rather than by every later stage.
-    if (const arc_validation v = validate_arcs(out.drawing, {arc_end_tolerance<P2>()}); !v)
+    if (const arc_validation v = validate_arcs(out.drawing); !v)
       r.fail(r.arcs[arc_piece[v.arc]].at, "an arc command out of proportion to its ends: " + v.message);
   }
   return out;

@@ -32,6 +32,7 @@
 
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
+#include "cellforge/core/predicates.hpp"
 #include "cellforge/sketch/elliptical_arc.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 
@@ -467,10 +468,6 @@ std::pair<std::size_t, glm::dvec2> self_crossings(const std::vector<glm::dvec2>&
   for (std::size_t i = 0; i < n; ++i) order[i] = i;
   const auto lo = [&](std::size_t i) { return std::min(q[i].x, q[i + 1].x); };
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return lo(a) < lo(b); });
-  const auto orient = [](glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {
-    const double d = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-    return (d > 0) - (d < 0);
-  };
   std::size_t count = 0;
   glm::dvec2 first{};
   for (std::size_t u = 0; u < n; ++u) {
@@ -483,8 +480,8 @@ std::pair<std::size_t, glm::dvec2> self_crossings(const std::vector<glm::dvec2>&
       if (std::max(std::min(q[a].y, q[a + 1].y), std::min(q[b].y, q[b + 1].y)) >
           std::min(std::max(q[a].y, q[a + 1].y), std::max(q[b].y, q[b + 1].y)))
         continue;
-      if (orient(q[a], q[a + 1], q[b]) * orient(q[a], q[a + 1], q[b + 1]) < 0 &&
-          orient(q[b], q[b + 1], q[a]) * orient(q[b], q[b + 1], q[a + 1]) < 0) {
+      if (orient2d(q[a], q[a + 1], q[b]) * orient2d(q[a], q[a + 1], q[b + 1]) < 0 &&
+          orient2d(q[b], q[b + 1], q[a]) * orient2d(q[b], q[b + 1], q[a + 1]) < 0) {
         if (count++ == 0) {
           const glm::dvec2 r = q[a + 1] - q[a], t = q[b + 1] - q[b];
           const double den = r.x * t.y - r.y * t.x;

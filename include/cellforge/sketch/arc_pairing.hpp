@@ -146,11 +146,8 @@ arc_pairing_result<P> pair_arcs(const arc_drawing<P>& d, const arc_pairing_optio
   using detail::pairing::chain;
   const auto t_start = std::chrono::steady_clock::now();
   arc_pairing_result<P> out;
-  // Arc ends on their junctions to end_tolerance of the size, or to the point type's own precision.
-  double end_tol = options.end_tolerance;
-  if constexpr (std::is_floating_point_v<scalar2_t<P>>)
-    end_tol = std::max(end_tol, 64 * static_cast<double>(std::numeric_limits<scalar2_t<P>>::epsilon()));
-  if (const arc_validation v = validate_arcs(d, {end_tol}); !v.ok())
+  // Arc ends on their junctions to end_tolerance of the size (or the point type's own precision).
+  if (const arc_validation v = validate_arcs(d, {options.end_tolerance}); !v.ok())
     throw error(error_category::invalid_input, "pair_arcs: " + v.message);
   const std::size_t nv = d.lines.points.size(), na = d.arcs.size();
   for (std::size_t e = 0; e < d.lines.edges.size(); ++e)

@@ -17,6 +17,7 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <glm/common.hpp>
@@ -221,15 +222,19 @@ struct arc_validation {
 
 /// Checks each arc in order and returns the first that is wrong: a valid curve (validate_arc,
 /// radii above `tolerance` × the junctions' bounding-box diagonal), its ends existing, distinct
-/// junctions, each within that distance of the curve's first and last point. The straight part
+/// junctions, each within that distance of the curve's first and last point. The tolerance is
+/// at least the point type's own precision (64 ε of a floating-point scalar: float points hold
+/// a curve's ends only to that). The straight part
 /// is not checked here: with its arcs taken away it has loose ends by design (validate_drawing
 /// applies to it once the arcs are replaced, as the skeleton stage does). O(V + A).
 template <Point2 P>
 arc_validation validate_arcs(const arc_drawing<P>& d, const drawing_check_options& options = {}) {
-  const double tol = options.tolerance;
+  double tol = options.tolerance;
   if (!std::isfinite(tol) || tol < 0 || tol >= 0.5)
     throw error(error_category::invalid_input, "validate_arcs: the tolerance " + detail::drawing_number(tol) +
                                                    " is not a finite number in [0, 0.5)");
+  if constexpr (std::is_floating_point_v<scalar2_t<P>>)
+    tol = std::max(tol, 64 * static_cast<double>(std::numeric_limits<scalar2_t<P>>::epsilon()));
   const std::size_t nv = d.lines.points.size();
   glm::dvec2 lo(0), hi(0);
   for (std::size_t i = 0; i < nv; ++i) {

@@ -3,10 +3,8 @@
 /// \file
 /// What the arc readers and writers of text and SVG share: one conversion of rotations from
 /// degrees to radians for every reader and its exact inverse for the writers (so that arcs
-/// written and read again keep their rotation bit for bit), and the tolerance to which an arc's
-/// curve must end at its junctions.
+/// written and read again keep their rotation bit for bit).
 
-#include <algorithm>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -14,9 +12,6 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
-#include <type_traits>
-
-#include "cellforge/core/point2_traits.hpp"
 
 namespace cellforge::io::detail {
 
@@ -50,17 +45,6 @@ double arc_degrees(double radians) {
     }
   }
   return best;
-}
-
-/// The tolerance (of the drawing's diagonal) to which the readers and writers check that arcs
-/// end at their junctions: validate_arcs's default, or the point type's own precision (64 ε)
-/// when that is coarser (float points: the centre is rounded to float). O(1).
-template <Point2 P>
-double arc_end_tolerance() {
-  double tol = 1e-9;
-  if constexpr (std::is_floating_point_v<scalar2_t<P>>)
-    tol = std::max(tol, 64 * static_cast<double>(std::numeric_limits<scalar2_t<P>>::epsilon()));
-  return tol;
 }
 
 }  // namespace cellforge::io::detail
