@@ -7,14 +7,15 @@
 
 #include <algorithm>
 #include <array>
-#include <iterator>
-#include <type_traits>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 #include <numbers>
 #include <random>
 #include <set>
+#include <string>
+#include <type_traits>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -433,6 +434,91 @@ TEST_CASE("random small-grid inputs: duplicates, coplanar and collinear everywhe
   }
   CHECK(solids > 300);
   CHECK(flats > 100);
+}
+
+TEST_CASE("dropping the points inside the polytope of extremes first gives the same hull") {
+  std::mt19937_64 rng(21);
+  std::uniform_int_distribution<int> c(-1000, 1000), g(0, 4);
+  // The expected count where the polytope of extremes is the whole cube: its interior points.
+  auto strictly_inside = [](const std::vector<glm::dvec3>& pts, double lo, double hi) {
+    return static_cast<std::size_t>(std::count_if(pts.begin(), pts.end(), [&](const glm::dvec3& p) {
+      return p.x > lo && p.x < hi && p.y > lo && p.y < hi && p.z > lo && p.z < hi;
+    }));
+  };
+  struct input {
+    std::string name;
+    std::vector<glm::dvec3> pts;
+    std::size_t min_discarded, max_discarded;
+  };
+  std::vector<input> inputs;
+  std::vector<glm::dvec3> cube, ball, lattice20 = lattice(20), few_values, slab;
+  for (int i = 0; i < 30000; ++i) cube.push_back(glm::dvec3(c(rng), c(rng), c(rng)));
+  while (ball.size() < 20000) {
+    const glm::dvec3 p(c(rng), c(rng), c(rng));
+    if (glm::dot(p, p) <= 1e6) ball.push_back(p);
+  }
+  for (int i = 0; i < 10000; ++i) few_values.push_back(glm::dvec3(g(rng), g(rng), g(rng)));  // duplicates
+  for (int i = 0; i < 10000; ++i) slab.push_back(glm::dvec3(c(rng), c(rng), i % 2));         // two planes
+  const std::size_t lattice_inside = strictly_inside(lattice20, 0, 19),
+                    values_inside = strictly_inside(few_values, 0, 4);
+  inputs = {{"cube", cube, cube.size() / 2, cube.size()},
+            {"ball", ball, ball.size() / 2, ball.size()},
+            {"lattice 20^3", lattice20, lattice_inside, lattice_inside},  // 18^3: the rest lie on faces
+            {"5^3 values", few_values, values_inside, values_inside},
+            {"slab", slab, 0, 0}};  // every point on one of the two planes: none strictly inside
+  for (const auto& [name, pts, min_discarded, max_discarded] : inputs) {
+    INFO(name);
+    for (const bool merge : {false, true}) {
+      convex_hull_report with, without;
+      const auto a = convex_hull(
+          pts, {.merge_coplanar = merge, .method = cellforge::convex_hull_method::quickhull}, &with);
+      const auto b = convex_hull(pts,
+                                 {.merge_coplanar = merge,
+                                  .method = cellforge::convex_hull_method::quickhull,
+                                  .discard_interior = false},
+                                 &without);
+      check_hull(pts, a, reference::int128, 200);
+      CHECK(without.interior_discarded == 0);
+      CHECK(with.interior_discarded >= min_discarded);
+      CHECK(with.interior_discarded <= max_discarded);
+      CHECK(with.vertices == without.vertices);
+      CHECK(with.faces == without.faces);
+      std::set<std::array<double, 3>> ca, cb;
+      for (vertex_handle v : a.vertices())
+        ca.insert({a.positions()[v].x, a.positions()[v].y, a.positions()[v].z});
+      for (vertex_handle v : b.vertices())
+        cb.insert({b.positions()[v].x, b.positions()[v].y, b.positions()[v].z});
+      CHECK(ca == cb);
+    }
+  }
+}
+
+TEST_CASE("extremes on one plane with the solid beyond it: the filter steps aside") {
+  // Every extreme along the 14 directions lies on the tilted plane; one point off it, near the
+  // middle, makes the input solid. The filter's polytope is flat, so it must hull everything.
+  const glm::dvec3 n = glm::normalize(glm::dvec3(1, 2, 3));
+  const glm::dvec3 u = glm::normalize(glm::cross(n, glm::dvec3(1, 0, 0))), w = glm::cross(n, u);
+  std::vector<glm::dvec3> pts;
+  for (int i = 0; i < 6000; ++i) {
+    const double a = 2 * std::numbers::pi * i / 6000.0;
+    pts.push_back(100.0 * (std::cos(a) * u + std::sin(a) * w));
+  }
+  pts.push_back(0.5 * n);
+  convex_hull_report report;
+  const auto m = convex_hull(pts, {.method = cellforge::convex_hull_method::quickhull}, &report);
+  check_hull(pts, m, reference::predicate, 200);
+  CHECK(report.dimension == 3);
+  CHECK(report.interior_discarded == 0);
+  CHECK(m.num_vertices() >= 6001);  // the apex and the circle (rounded points off the plane may add none)
+}
+
+TEST_CASE("points on a sphere through quickhull with the filter: nothing is inside") {
+  const auto pts = random_sphere(8000, 5);
+  convex_hull_report report;
+  const auto m = convex_hull(pts, {.method = cellforge::convex_hull_method::quickhull}, &report);
+  check_hull(pts, m, reference::predicate, 200);
+  CHECK(m.num_vertices() == pts.size());
+  CHECK(report.interior_discarded == 0);
 }
 
 TEST_CASE_TEMPLATE("every point type gives the same hull", P, glm::dvec3, std::array<float, 3>,

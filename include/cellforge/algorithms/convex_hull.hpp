@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
@@ -49,6 +50,10 @@ struct convex_hull_options {
   bool allow_degenerate = true;
   /// The algorithm; the default picks by a sample (see convex_hull_method).
   convex_hull_method method = convex_hull_method::automatic;
+  /// Before quickhull on 4096 points or more, drop the points strictly inside the polytope
+  /// of 14 extreme points (along the axes and the cube diagonals; Akl and Toussaint): they
+  /// cannot be corners. The same hull; false hulls every point.
+  bool discard_interior = true;
 };
 
 /// What convex_hull found.
@@ -63,6 +68,9 @@ struct convex_hull_report {
   /// edge) in the first pass; when non-zero the hull was rebuilt from the corners alone.
   std::size_t non_corner_vertices_removed = 0;
   std::size_t exact_evaluations = 0;  ///< orient3d calls the floating-point filter could not decide
+  /// Points dropped before the hull as strictly inside the polytope of extreme points
+  /// (convex_hull_options::discard_interior).
+  std::size_t interior_discarded = 0;
 };
 
 /// Name of the vertex property holding, for each hull vertex, its index in the input.
@@ -664,14 +672,14 @@ void emit_faces(engine& eng, bool merge, result& out) {
 /// True when a hull of an evenly spread sample of the points keeps most of the sample as
 /// vertices (points in convex position, e.g. on a sphere): then insertion with walks beats
 /// quickhull, whose outside sets only pay off when most points fall inside. O(sample).
-template <class = void>
-bool mostly_vertices(std::span<const glm::dvec3> pts) {
+template <class At>
+bool mostly_vertices(std::size_t n, const At& point_at) {
   // About one point in eight, 32 to 512 of them: a few percent of the hull's own cost.
-  if (pts.size() < 256) return false;
-  const std::size_t sample = std::clamp<std::size_t>(pts.size() / 8, 32, 512);
+  if (n < 256) return false;
+  const std::size_t sample = std::clamp<std::size_t>(n / 8, 32, 512);
   std::vector<glm::dvec3> some;
-  const std::size_t stride = pts.size() / sample;
-  for (std::size_t i = 0; i < pts.size(); i += stride) some.push_back(pts[i]);
+  const std::size_t stride = n / sample;
+  for (std::size_t i = 0; i < n; i += stride) some.push_back(point_at(i));
   std::vector<std::uint32_t> all(some.size());
   std::iota(all.begin(), all.end(), 0u);
   engine eng(some);
@@ -684,14 +692,107 @@ bool mostly_vertices(std::span<const glm::dvec3> pts) {
   return 2 * vertices >= some.size();
 }
 
+/// Inputs smaller than this are hulled whole: the filter's two passes would not pay.
+inline constexpr std::size_t interior_filter_min_points = 4096;
+
+/// Akl-Toussaint filter: from the extreme points along the 3 axes and 4 cube diagonals
+/// (both ways), the points strictly inside their polytope, which cannot be hull corners, are
+/// dropped; the rest are copied to `kept` with their input indices. The test is exact: an
+/// axis-aligned box shown (exactly) to lie strictly inside the polytope takes most points
+/// with six comparisons, the others are kept unless the orient3d filter certifies them below
+/// every face. Returns false, keeping nothing, when the extremes span less than 3D.
+/// O(n) for two passes over the input.
+template <class At>
+bool discard_interior(std::size_t n, const At& point_at, std::vector<glm::dvec3>& kept,
+                      std::vector<std::uint32_t>& kept_index, std::size_t& exact) {
+  // Directions: +-x, +-y, +-z, then +-(1,1,1), +-(1,1,-1), +-(1,-1,1), +-(-1,1,1).
+  std::array<double, 14> best;
+  best.fill(-std::numeric_limits<double>::infinity());
+  std::array<std::uint32_t, 14> arg{};
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::dvec3 p = point_at(i);
+    const std::array<double, 7> d{
+        p.x, p.y, p.z, p.x + p.y + p.z, p.x + p.y - p.z, p.x - p.y + p.z, -p.x + p.y + p.z};
+    for (std::size_t k = 0; k < 7; ++k) {
+      if (d[k] > best[2 * k]) best[2 * k] = d[k], arg[2 * k] = static_cast<std::uint32_t>(i);
+      if (-d[k] > best[2 * k + 1]) best[2 * k + 1] = -d[k], arg[2 * k + 1] = static_cast<std::uint32_t>(i);
+    }
+  }
+  std::sort(arg.begin(), arg.end());
+  std::vector<glm::dvec3> extremes;
+  for (std::size_t k = 0; k < arg.size(); ++k)
+    if (k == 0 || arg[k] != arg[k - 1]) extremes.push_back(point_at(arg[k]));
+  std::vector<std::uint32_t> all(extremes.size());
+  std::iota(all.begin(), all.end(), 0u);
+  engine polytope(extremes);
+  if (polytope.run(all) != 3) return false;
+  std::vector<orient3d_plane> planes;
+  std::vector<const face*> faces;
+  for (const face& F : polytope.faces())
+    if (F.alive) planes.push_back(F.plane), faces.push_back(&F);
+
+  // The box: the extremes' bounding box shrunk toward their centroid, as large as it can be
+  // with all 8 corners strictly inside (exact tests), found by bisection.
+  glm::dvec3 lo = extremes[0], hi = extremes[0], centre(0.0);
+  for (const glm::dvec3& e : extremes) {
+    lo = glm::min(lo, e);
+    hi = glm::max(hi, e);
+    centre += e;
+  }
+  centre /= static_cast<double>(extremes.size());
+  auto box_inside = [&](double t, glm::dvec3& blo, glm::dvec3& bhi) {
+    blo = centre + t * (lo - centre);
+    bhi = centre + t * (hi - centre);
+    for (int c = 0; c < 8; ++c) {
+      const glm::dvec3 q((c & 1) ? bhi.x : blo.x, (c & 2) ? bhi.y : blo.y, (c & 4) ? bhi.z : blo.z);
+      for (const face* F : faces)
+        if (polytope.side(*F, q) >= 0) return false;
+    }
+    return true;
+  };
+  glm::dvec3 box_lo(1.0), box_hi(0.0);  // empty until a box is found
+  double inside_t = 0, outside_t = 1;
+  for (int step = 0; step < 24; ++step) {
+    const double t = 0.5 * (inside_t + outside_t);
+    glm::dvec3 blo, bhi;
+    if (box_inside(t, blo, bhi))
+      inside_t = t, box_lo = blo, box_hi = bhi;
+    else
+      outside_t = t;
+  }
+  exact += polytope.exact_evaluations();
+
+  kept.clear();
+  kept_index.clear();
+  std::size_t first = 0;  // the face that last kept a point is tried first: neighbours agree
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::dvec3 p = point_at(i);
+    if (p.x >= box_lo.x && p.x <= box_hi.x && p.y >= box_lo.y && p.y <= box_hi.y && p.z >= box_lo.z &&
+        p.z <= box_hi.z)
+      continue;
+    bool inside = true;
+    for (std::size_t k = 0; k < planes.size() && inside; ++k) {
+      const std::size_t f = (first + k) % planes.size();
+      double value = 0;
+      if (orient3d_filter(planes[f], p, value) >= 0) inside = false, first = f;  // 0: not certified
+    }
+    if (inside) continue;
+    kept.push_back(p);
+    kept_index.push_back(static_cast<std::uint32_t>(i));
+  }
+  return true;
+}
+
 /// The hull of all points as index lists; see convex_hull for the degenerate cases.
 template <class = void>
 result compute(std::span<const glm::dvec3> pts, const convex_hull_options& options) {
   result out;
   std::vector<std::uint32_t> all(pts.size());
   std::iota(all.begin(), all.end(), 0u);
-  const bool incremental = options.method == convex_hull_method::incremental ||
-                           (options.method == convex_hull_method::automatic && mostly_vertices(pts));
+  const bool incremental =
+      options.method == convex_hull_method::incremental ||
+      (options.method == convex_hull_method::automatic &&
+       mostly_vertices(pts.size(), [&](std::size_t i) -> const glm::dvec3& { return pts[i]; }));
   // Insertion copies the points into insertion order first: each insertion then touches
   // points and faces created just before, in memory as in space (3x fewer cache misses).
   std::vector<std::uint32_t> order;
@@ -808,14 +909,31 @@ requires std::ranges::sized_range<R> && Point3<std::ranges::range_value_t<R>>
   const std::span<const P> points(std::ranges::data(input), std::ranges::size(input));
   if (points.size() >= detail::hull::none)
     throw error(error_category::invalid_input, "convex_hull: too many points for 32-bit indices");
-  std::vector<glm::dvec3> pts(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
-    pts[i] = to_dvec3(points[i]);
-    if (!std::isfinite(pts[i].x) || !std::isfinite(pts[i].y) || !std::isfinite(pts[i].z))
+    const glm::dvec3 p = to_dvec3(points[i]);
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       throw error(error_category::invalid_input,
                   "convex_hull: point " + std::to_string(i) + " has a NaN or infinite coordinate");
   }
-  const detail::hull::result r = detail::hull::compute(pts, options);
+  const auto point_at = [&](std::size_t i) { return to_dvec3(points[i]); };
+  convex_hull_options run = options;
+  if (run.method == convex_hull_method::automatic)
+    run.method = detail::hull::mostly_vertices(points.size(), point_at) ? convex_hull_method::incremental
+                                                                        : convex_hull_method::quickhull;
+  std::vector<glm::dvec3> pts;
+  std::vector<std::uint32_t> kept_index;  // input index of each point in pts, when some were dropped
+  std::size_t filter_exact = 0;
+  if (!(run.method == convex_hull_method::quickhull && options.discard_interior &&
+        points.size() >= detail::hull::interior_filter_min_points &&
+        detail::hull::discard_interior(points.size(), point_at, pts, kept_index, filter_exact))) {
+    kept_index.clear();
+    pts.resize(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) pts[i] = point_at(i);
+  }
+  detail::hull::result r = detail::hull::compute(pts, run);
+  if (!kept_index.empty())
+    for (std::uint32_t& v : r.vertices) v = kept_index[v];
+  r.exact_evaluations += filter_exact;
   if (r.dimension < 3 && !options.allow_degenerate)
     throw error(error_category::invalid_input, r.dimension < 0
                                                    ? std::string("convex_hull: no points given")
@@ -844,6 +962,7 @@ requires std::ranges::sized_range<R> && Point3<std::ranges::range_value_t<R>>
     report->faces = m.num_faces();
     report->non_corner_vertices_removed = r.non_corner_removed;
     report->exact_evaluations = r.exact_evaluations;
+    report->interior_discarded = points.size() - pts.size();
   }
   return m;
 }
