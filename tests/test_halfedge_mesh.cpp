@@ -10,6 +10,8 @@
 #include <type_traits>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 #include "cellforge/halfedge/orientation.hpp"
@@ -503,6 +505,74 @@ TEST_CASE("surface_mesh: make_mesh and to_soup keep the soup's point type") {
   const auto back = to_soup(m);
   CHECK(back.points == s.points);
   CHECK(back.face_vertices == s.face_vertices);
+}
+
+TEST_CASE("edge_table: a bulk assign finds exactly what one insert per entry finds") {
+  std::mt19937_64 rng(31);
+  std::vector<cellforge::detail::edge_table::slot> entries;
+  std::set<std::uint64_t> keys;
+  while (entries.size() < 50000) {
+    const auto k = cellforge::detail::edge_table::key(static_cast<std::uint32_t>(rng() % 4000),
+                                                      static_cast<std::uint32_t>(rng() % 4000));
+    if (keys.insert(k).second) entries.push_back({k, static_cast<std::uint32_t>(entries.size())});
+  }
+  cellforge::detail::edge_table bulk, one_by_one;
+  bulk.assign(entries);
+  for (const auto& e : entries) one_by_one.insert(e.key, e.value);
+  CHECK(bulk.size() == entries.size());
+  std::size_t wrong = 0, false_hits = 0;
+  for (const auto& e : entries) wrong += bulk.find(e.key) != e.value || one_by_one.find(e.key) != e.value;
+  for (int i = 0; i < 20000; ++i) {
+    const auto k = cellforge::detail::edge_table::key(4000 + static_cast<std::uint32_t>(rng() % 100), 7);
+    false_hits += bulk.find(k) != cellforge::detail::edge_table::not_found;
+  }
+  CHECK(wrong == 0);
+  CHECK(false_hits == 0);
+  bulk.assign({});
+  CHECK(bulk.empty());
+}
+
+TEST_CASE("build: a large grid with holes and a flipped strip counts boundary and seams as the soup says") {
+  // 300 x 300 quads, every 7th removed (holes), the faces of one row wound the other way.
+  const std::uint32_t n = 300;
+  cellforge::polygon_soup<glm::dvec3> s;
+  for (std::uint32_t j = 0; j <= n; ++j)
+    for (std::uint32_t i = 0; i <= n; ++i) s.points.push_back({i, j, 0});
+  auto id = [&](std::uint32_t i, std::uint32_t j) { return j * (n + 1) + i; };
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;  // undirected edge -> faces
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+  for (std::uint32_t j = 0; j < n; ++j)
+    for (std::uint32_t i = 0; i < n; ++i) {
+      if ((j * n + i) % 7 == 3) continue;
+      std::vector<std::uint32_t> f{id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)};
+      if (j == 150) std::reverse(f.begin(), f.end());
+      for (std::size_t k = 0; k < 4; ++k) {
+        const std::uint32_t a = f[k], b = f[(k + 1) % 4];
+        ++uses[{std::min(a, b), std::max(a, b)}];
+        ++directed[{a, b}];
+      }
+      s.add_face(f);
+    }
+  std::size_t boundary = 0, flipped = 0;
+  for (const auto& [e, count] : uses) {
+    boundary += count == 1;
+    flipped += count == 2 && (directed[{e.first, e.second}] == 2 || directed[{e.second, e.first}] == 2);
+  }
+  cellforge::build_report report;
+  const auto m = make_mesh(s, &report);
+  REQUIRE_VALID(m);
+  CHECK(report.boundary_edges == boundary);
+  CHECK(m.num_boundary_edges() == boundary);
+  CHECK(report.flipped_edges == flipped);
+  CHECK(flipped > 400);  // both sides of the strip, less the edges at holes
+  CHECK(m.num_faces() == s.num_faces());
+  // Every boundary half-edge is found again by its end points (the bulk-built table).
+  std::size_t missing = 0;
+  for (const auto& [e, count] : uses)
+    if (count == 1 && !m.find_unlinked(vertex_handle(e.first), vertex_handle(e.second)).is_valid() &&
+        !m.find_unlinked(vertex_handle(e.second), vertex_handle(e.first)).is_valid())
+      ++missing;
+  CHECK(missing == 0);
 }
 
 }  // namespace halfedge_mesh_tests

@@ -708,8 +708,8 @@ TEST_CASE("closed-form anchors and flipped count agree with finish(), closed and
 
 TEST_CASE("reserve_large: a plain reserve whose huge-page hint changes nothing visible") {
   std::vector<std::uint32_t> big, small;
-  cellforge::detail::loop::reserve_large(big, std::size_t{3} << 20);  // 12 MB: hinted on Linux
-  cellforge::detail::loop::reserve_large(small, 10);
+  cellforge::detail::reserve_large(big, std::size_t{3} << 20);  // 12 MB: hinted on Linux
+  cellforge::detail::reserve_large(small, 10);
   CHECK(big.empty());
   CHECK(big.capacity() >= (std::size_t{3} << 20));
   CHECK(small.capacity() >= 10);

@@ -298,12 +298,12 @@ loop_result loop_subdivide(surface_mesh<P>& mesh, const loop_options& options = 
       // Topology: throws (naming the face) before the mesh changes.
       std::vector<dl::record> child_he;  // split_faces sizes it (2 * child_ne records)
       std::vector<std::uint32_t> child_anchors;
-      dl::reserve_large(child_anchors, child_nf);
+      detail::reserve_large(child_anchors, child_nf);
       child_anchors.resize(child_nf);
       std::vector<std::uint32_t> child_vertex_anchors;
       if (closed && last) {
         // Parent entries are kept for isolated vertices (npos) and overwritten for the rest.
-        dl::reserve_large(child_vertex_anchors, child_nv);
+        detail::reserve_large(child_vertex_anchors, child_nv);
         child_vertex_anchors = access::vertex_anchors(mesh);
         child_vertex_anchors.resize(child_nv);
         dl::write_edge_vertex_anchors(nv, static_cast<std::uint32_t>(ne), child_vertex_anchors.data());
@@ -316,7 +316,7 @@ loop_result loop_subdivide(surface_mesh<P>& mesh, const loop_options& options = 
       // order (nv + e for e = 0, 1, …) and then the vertex points, so the edge points are
       // appended rather than written over a zeroed array.
       std::vector<glm::dvec3> child_points;
-      dl::reserve_large(child_points, child_nv);
+      detail::reserve_large(child_points, child_nv);
       child_points.resize(nv);
       const std::vector<P>& parent_points = pts.vector();
       const dl::mask_stats stats = dl::apply_masks<glm::dvec3>(

@@ -539,6 +539,14 @@ class basic_halfedge_mesh {
   // With verify_fans false (a construction that is valid by design) the O(n) walk that
   // checks each interior vertex has a single closed fan is skipped.
   void link_fans(const build_options& options, build_report& report, bool verify_fans = true);
+  // What build's last pass already knows, so that link_fans need not read every record
+  // again: corners per vertex and the number of boundary half-edges (the caller has also
+  // set the vertex anchors and the flipped count, as link_fans' first pass would).
+  struct known_counts {
+    std::vector<std::uint32_t> corners;
+    std::size_t boundary = 0;
+  };
+  void link_fans(const build_options& options, build_report& report, bool verify_fans, known_counts* known);
   template <class>
   friend struct detail::basic_mesh_access;
 

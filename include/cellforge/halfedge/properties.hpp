@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "cellforge/core/detail/large_array.hpp"
 #include "cellforge/core/error.hpp"
 
 namespace cellforge {
@@ -59,7 +60,10 @@ class property_array final : public property_array_base {
   const std::type_info& type() const noexcept override { return typeid(T); }
   std::size_t size() const noexcept override { return data_.size(); }
   void reserve(std::size_t n) override { data_.reserve(n); }
-  void resize(std::size_t n) override { data_.resize(n, default_); }
+  void resize(std::size_t n) override {
+    detail::reserve_large(data_, n);
+    data_.resize(n, default_);
+  }
   void push_back() override { data_.push_back(default_); }
   void move_element(std::size_t dst, std::size_t src) override {
     if (dst != src) data_[dst] = std::move(data_[src]);

@@ -21,10 +21,7 @@
 #include <string>
 #include <vector>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
-
+#include "cellforge/core/detail/large_array.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 
@@ -44,22 +41,6 @@ struct counts {
     return vertices < limit && faces < limit && 2 * edges < limit;
   }
 };
-
-/// Reserves room for n elements in `v` (empty) and asks the kernel to back it with huge
-/// pages when it is large: a fresh 200 MB array then costs ~100 page faults instead of
-/// ~50 000 (at 1M triangles these faults cost more than the subdivision itself). Only a
-/// hint: without Linux or transparent huge pages, this is a plain reserve. O(1).
-template <class T>
-void reserve_large(std::vector<T>& v, std::size_t n) {
-  v.reserve(n);
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  constexpr std::uintptr_t huge = std::uintptr_t{2} << 20;
-  const auto begin = reinterpret_cast<std::uintptr_t>(v.data());
-  const std::uintptr_t end = begin + n * sizeof(T);
-  const std::uintptr_t first = (begin + huge - 1) & ~(huge - 1), last = end & ~(huge - 1);
-  if (last >= first + huge) (void)::madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
-#endif
-}
 
 template <class = void>
 std::string corrupted(std::uint32_t f, const char* what) {

@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "cellforge/core/detail/large_array.hpp"
+
 namespace cellforge::detail {
 
 template <class = void>
@@ -107,6 +109,23 @@ class basic_edge_table {
   const std::vector<slot>& slots() const noexcept { return slots_; }
   static constexpr std::uint64_t empty_key = ~std::uint64_t{0};
 
+  /// Replaces the contents by `entries` (distinct keys), inserted in order of their home slot
+  /// so that the table is written nearly front to back instead of at random: several times
+  /// faster than one insert per entry once the table outgrows the cache. O(n).
+  void assign(const std::vector<slot>& entries) {
+    clear();
+    reserve(entries.size());
+    if (entries.empty()) return;
+    const int bits = std::countr_zero(slots_.size());
+    const int shift = bits > 12 ? bits - 12 : 0;  // at most 4096 buckets of neighbouring slots
+    std::vector<std::uint32_t> start((std::size_t{1} << (bits - shift)) + 1, 0);
+    for (const slot& e : entries) ++start[(slot_of(e.key) >> shift) + 1];
+    for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
+    std::vector<std::uint32_t> order(entries.size());
+    for (std::uint32_t i = 0; i < entries.size(); ++i) order[start[slot_of(entries[i].key) >> shift]++] = i;
+    for (const std::uint32_t i : order) insert(entries[i].key, entries[i].value);
+  }
+
  private:
   std::size_t slot_of(std::uint64_t k) const noexcept {
     // Fibonacci hashing spreads the structured (tail, head) keys over the table.
@@ -115,7 +134,9 @@ class basic_edge_table {
   }
 
   void rehash(std::size_t cap) {
-    std::vector<slot> old(cap);
+    std::vector<slot> old;
+    reserve_large(old, cap);
+    old.resize(cap);
     old.swap(slots_);
     size_ = 0;
     for (const auto& s : old)

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "cellforge/core/detail/large_array.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 
 namespace cellforge {
@@ -307,7 +308,9 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
   // Pass 1, faces in order: check each face, then count its corners by the smaller end of
   // their edge (corner c is the edge fv[c] -> fv[c+1], cyclically within its face). The
   // counts sit two slots up so that the fill below leaves bucket lo at [start[lo], start[lo+1]).
-  std::vector<std::uint32_t> start(nv + 2, 0);
+  std::vector<std::uint32_t> start;
+  detail::reserve_large(start, nv + 2);
+  start.resize(nv + 2, 0);
   for (std::size_t f = 0; f < nf; ++f) {
     const std::uint32_t o = offsets[f], e = offsets[f + 1];
     if (e < o || e > nh)
@@ -330,7 +333,9 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
 
   // Pass 2: the corners bucketed by smaller end, each with its larger end beside it
   // (hi << 32 | corner), so matching reads one contiguous run per vertex.
-  std::vector<std::uint64_t> items(nh);
+  std::vector<std::uint64_t> items;
+  detail::reserve_large(items, nh);
+  items.resize(nh);
   for (std::size_t f = 0; f < nf; ++f) {
     const std::uint32_t o = offsets[f], e = offsets[f + 1];
     for (std::uint32_t c = o; c < e; ++c) {
@@ -344,7 +349,9 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
   };
 
   // Pass 3: match the corners of each edge within its bucket; a third one is an error.
-  std::vector<std::uint32_t> partner(nh, npos);
+  std::vector<std::uint32_t> partner;
+  detail::reserve_large(partner, nh);
+  partner.resize(nh, npos);
   std::size_t pairs = 0;
   auto pair_up = [&](std::uint32_t c, std::uint32_t d, std::uint32_t lo, std::uint32_t hi) {
     if (partner[d] != npos)
@@ -376,23 +383,32 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
                   static_cast<std::uint32_t>(items[i] >> 32));
     }
   }
-  items = {};
-  start = {};
+  detail::release(items);  // before the mesh arrays: the peak stays at the mesh plus `partner`
+  detail::release(start);
 
   const std::size_t ne = nh - pairs;
   clear_connectivity();
+  detail::reserve_large(vertex_anchor_, nv);
   vertex_anchor_.assign(nv, npos);
   vprops_.resize(nv);
+  detail::reserve_large(he_, 2 * ne);
   he_.assign(2 * ne, record{});
   hprops_.resize(2 * ne);
   eprops_.resize(ne);
+  detail::reserve_large(face_anchor_, nf);
   face_anchor_.resize(nf);
   fprops_.resize(nf);
 
   // Pass 4, faces in order: number the edges in order of first use (so half-edges of nearby
   // faces sit close in memory) and write the face's records. partner[c] becomes c's
   // half-edge once c is numbered: a corner whose partner comes later opens a new edge, one
-  // whose partner came earlier takes the twin of the partner's half-edge.
+  // whose partner came earlier takes the twin of the partner's half-edge. The same pass
+  // counts what link_fans' first pass would (corners, anchors, seams, boundary), so the
+  // records are not read again.
+  known_counts known;
+  detail::reserve_large(known.corners, nv);
+  known.corners.resize(nv, 0);
+  flipped_edges_ = 0;
   std::uint32_t next_edge = 0;
   for (std::size_t f = 0; f < nf; ++f) {
     const std::uint32_t o = offsets[f], e = offsets[f + 1];
@@ -400,62 +416,87 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
       const std::uint32_t p = partner[c];
       if (p != npos && p < c) {
         partner[c] = partner[p] ^ 1u;
+        flipped_edges_ += fv[p] == fv[c];  // both corners run the same way along the edge
       } else {
         partner[c] = 2 * next_edge++;
-        if (p == npos) he_[partner[c] ^ 1u].head = fv[c];  // boundary side: head at the face half-edge's tail
+        if (p == npos) {
+          he_[partner[c] ^ 1u].head = fv[c];  // boundary side: head at the face half-edge's tail
+          ++known.boundary;
+        }
       }
     }
     face_anchor_[f] = partner[o];
     for (std::uint32_t c = o; c < e; ++c) {
       const std::uint32_t cn = c + 1 == e ? o : c + 1, cp = c == o ? e - 1 : c - 1;
-      record& r = he_[partner[c]];
-      r.head = fv[cn];
+      const std::uint32_t h = partner[c], head = fv[cn];
+      record& r = he_[h];
+      r.head = head;
       r.next = partner[cn];
       r.prev = partner[cp];
       r.face = n32(f);
+      ++known.corners[head];
+      std::uint32_t& anchor = vertex_anchor_[head];
+      if (anchor == npos || h > anchor)
+        anchor = h;  // the last face half-edge into the vertex, as link_fans picks
     }
   }
-  partner = {};
+  detail::release(partner);
   build_report report;
-  link_fans(options, report);
+  link_fans(options, report, true, &known);
   return report;
 }
 
 template <class Unused>
 void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_report& report,
                                             bool verify_fans) {
+  link_fans(options, report, verify_fans, nullptr);
+}
+
+template <class Unused>
+void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_report& report,
+                                            bool verify_fans, known_counts* known) {
   const std::size_t nv = vertex_anchor_.size();
-  std::fill(vertex_anchor_.begin(), vertex_anchor_.end(), npos);
-  flipped_edges_ = 0;
   unlinked_.clear();
   // Corners per vertex (to check that the fans found reach every face), anchors, seams, boundary.
-  std::vector<std::uint32_t> corners(nv, 0);
+  std::vector<std::uint32_t> corners;
   std::size_t boundary = 0;
-  for (std::uint32_t h = 0; h < he_.size(); ++h) {
-    const record& r = he_[h];
-    if (r.face == npos) {
-      ++boundary;
-      continue;
+  if (known) {
+    corners = std::move(known->corners);
+    boundary = known->boundary;
+  } else {
+    std::fill(vertex_anchor_.begin(), vertex_anchor_.end(), npos);
+    flipped_edges_ = 0;
+    corners.assign(nv, 0);
+    for (std::uint32_t h = 0; h < he_.size(); ++h) {
+      const record& r = he_[h];
+      if (r.face == npos) {
+        ++boundary;
+        continue;
+      }
+      ++corners[r.head];
+      vertex_anchor_[r.head] = h;
+      if (h < (h ^ 1u) && he_[h ^ 1u].face != npos && he_[h ^ 1u].head == r.head) ++flipped_edges_;
     }
-    ++corners[r.head];
-    vertex_anchor_[r.head] = h;
-    if (h < (h ^ 1u) && he_[h ^ 1u].face != npos && he_[h ^ 1u].head == r.head) ++flipped_edges_;
   }
   // A closed mesh (the common case) needs neither the unlinked table nor the rings below:
   // skipping them saves two passes over the half-edges and four arrays.
   if (boundary > 0) {
-    unlinked_.reserve(boundary);
+    std::vector<detail::edge_table::slot> entries;
+    detail::reserve_large(entries, boundary);
     for (std::uint32_t h = 0; h < he_.size(); ++h)
       if (he_[h].face != npos && he_[h ^ 1u].face == npos)
-        unlinked_.insert(detail::edge_table::key(he_[he_[h].prev].head, he_[h].head), h);
+        entries.push_back({detail::edge_table::key(he_[he_[h].prev].head, he_[h].head), h});
+    unlinked_.assign(entries);
   }
 
   std::vector<std::uint32_t> covered, ring_first, ring_last;
   std::vector<std::uint8_t> seen;  // bit 0: head end done, bit 1: tail end done
   if (boundary > 0) {
+    for (auto* a : {&covered, &ring_first, &ring_last}) detail::reserve_large(*a, nv);
     covered.assign(nv, 0);
     ring_first.assign(nv, npos);
     ring_last.assign(nv, npos);
+    detail::reserve_large(seen, he_.size());
     seen.assign(he_.size(), 0);
   }
   for (std::uint32_t b = 0; boundary > 0 && b < he_.size(); ++b) {
