@@ -545,6 +545,9 @@ class basic_halfedge_mesh {
   struct known_counts {
     std::vector<std::uint32_t> corners;
     std::size_t boundary = 0;
+    // (tail, head) -> half-edge of each face half-edge whose twin is on the boundary, in
+    // increasing half-edge order.
+    std::vector<detail::edge_table::slot> unlinked;
   };
   void link_fans(const build_options& options, build_report& report, bool verify_fans, known_counts* known);
   template <class>

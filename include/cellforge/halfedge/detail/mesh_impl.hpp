@@ -325,7 +325,9 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
         throw error(error_category::invalid_input, "build: face " + std::to_string(f) + " uses vertex " +
                                                        std::to_string(v) + ", but there are only " +
                                                        std::to_string(nv) + " vertices");
-    if (!detail::all_distinct(face))
+    const bool distinct = face.size() == 3 ? face[0] != face[1] && face[1] != face[2] && face[0] != face[2]
+                                           : detail::all_distinct(face);
+    if (!distinct)
       throw error(error_category::invalid_input, "build: face " + std::to_string(f) + " repeats a vertex");
     for (std::uint32_t c = o; c < e; ++c) ++start[std::min(fv[c], fv[c + 1 == e ? o : c + 1]) + 2];
   }
@@ -333,9 +335,7 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
 
   // Pass 2: the corners bucketed by smaller end, each with its larger end beside it
   // (hi << 32 | corner), so matching reads one contiguous run per vertex.
-  std::vector<std::uint64_t> items;
-  detail::reserve_large(items, nh);
-  items.resize(nh);
+  detail::uninitialized_array<std::uint64_t> items(nh);  // every slot is written below
   for (std::size_t f = 0; f < nf; ++f) {
     const std::uint32_t o = offsets[f], e = offsets[f + 1];
     for (std::uint32_t c = o; c < e; ++c) {
@@ -383,7 +383,7 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
                   static_cast<std::uint32_t>(items[i] >> 32));
     }
   }
-  detail::release(items);  // before the mesh arrays: the peak stays at the mesh plus `partner`
+  items.free();  // before the mesh arrays: the peak stays at the mesh plus `partner`
   detail::release(start);
 
   const std::size_t ne = nh - pairs;
@@ -395,8 +395,8 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
   he_.assign(2 * ne, record{});
   hprops_.resize(2 * ne);
   eprops_.resize(ne);
-  detail::reserve_large(face_anchor_, nf);
-  face_anchor_.resize(nf);
+  face_anchor_.clear();
+  detail::reserve_large(face_anchor_, nf);  // filled in face order below
   fprops_.resize(nf);
 
   // Pass 4, faces in order: number the edges in order of first use (so half-edges of nearby
@@ -406,6 +406,7 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
   // counts what link_fans' first pass would (corners, anchors, seams, boundary), so the
   // records are not read again.
   known_counts known;
+  detail::reserve_large(known.unlinked, nh - 2 * pairs);
   detail::reserve_large(known.corners, nv);
   known.corners.resize(nv, 0);
   flipped_edges_ = 0;
@@ -422,10 +423,11 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
         if (p == npos) {
           he_[partner[c] ^ 1u].head = fv[c];  // boundary side: head at the face half-edge's tail
           ++known.boundary;
+          known.unlinked.push_back({detail::edge_table::key(fv[c], fv[c + 1 == e ? o : c + 1]), partner[c]});
         }
       }
     }
-    face_anchor_[f] = partner[o];
+    face_anchor_.push_back(partner[o]);
     for (std::uint32_t c = o; c < e; ++c) {
       const std::uint32_t cn = c + 1 == e ? o : c + 1, cp = c == o ? e - 1 : c - 1;
       const std::uint32_t h = partner[c], head = fv[cn];
@@ -460,9 +462,11 @@ void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_
   // Corners per vertex (to check that the fans found reach every face), anchors, seams, boundary.
   std::vector<std::uint32_t> corners;
   std::size_t boundary = 0;
+  std::vector<detail::edge_table::slot> entries;  // the unlinked table's contents, by half-edge
   if (known) {
     corners = std::move(known->corners);
     boundary = known->boundary;
+    entries = std::move(known->unlinked);
   } else {
     std::fill(vertex_anchor_.begin(), vertex_anchor_.end(), npos);
     flipped_edges_ = 0;
@@ -481,11 +485,12 @@ void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_
   // A closed mesh (the common case) needs neither the unlinked table nor the rings below:
   // skipping them saves two passes over the half-edges and four arrays.
   if (boundary > 0) {
-    std::vector<detail::edge_table::slot> entries;
-    detail::reserve_large(entries, boundary);
-    for (std::uint32_t h = 0; h < he_.size(); ++h)
-      if (he_[h].face != npos && he_[h ^ 1u].face == npos)
-        entries.push_back({detail::edge_table::key(he_[he_[h].prev].head, he_[h].head), h});
+    if (!known) {
+      detail::reserve_large(entries, boundary);
+      for (std::uint32_t h = 0; h < he_.size(); ++h)
+        if (he_[h].face != npos && he_[h ^ 1u].face == npos)
+          entries.push_back({detail::edge_table::key(he_[he_[h].prev].head, he_[h].head), h});
+    }
     unlinked_.assign(entries);
   }
 
@@ -499,8 +504,8 @@ void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_
     detail::reserve_large(seen, he_.size());
     seen.assign(he_.size(), 0);
   }
-  for (std::uint32_t b = 0; boundary > 0 && b < he_.size(); ++b) {
-    if (he_[b].face != npos) continue;
+  for (const detail::edge_table::slot& entry : entries) {  // the boundary half-edges, in order
+    const std::uint32_t b = entry.value ^ 1u;
     for (int side = 0; side < 2; ++side) {
       const std::uint32_t v = side == 0 ? he_[b].head : he_[b ^ 1u].head;
       if (seen[b] & (1u << side)) continue;
