@@ -76,6 +76,27 @@ std::string point_text(const glm::dvec3& p) {
   return "(" + number_text(p.x) + ", " + number_text(p.y) + ", " + number_text(p.z) + ")";
 }
 
+/// The edges that are no loops listed by their ends (smaller end, then larger, then index):
+/// two stable counting passes over the vertex labels, where a comparison sort of edges in a
+/// random order costs a mispredicted branch or a cache miss per step. O(E + V).
+template <class = void>
+std::vector<std::uint32_t> edges_by_ends(const std::vector<std::array<std::uint32_t, 2>>& ends,
+                                         std::size_t nv) {
+  std::vector<std::uint32_t> start(nv + 1, 0), by_larger, out;
+  for (const auto& [a, b] : ends)
+    if (a != b) ++start[std::max(a, b) + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  by_larger.resize(start.back());
+  for (std::uint32_t e = 0; e < ends.size(); ++e)
+    if (ends[e][0] != ends[e][1]) by_larger[start[std::max(ends[e][0], ends[e][1])]++] = e;
+  start.assign(nv + 1, 0);
+  for (const std::uint32_t e : by_larger) ++start[std::min(ends[e][0], ends[e][1]) + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  out.resize(by_larger.size());
+  for (const std::uint32_t e : by_larger) out[start[std::min(ends[e][0], ends[e][1])]++] = e;
+  return out;
+}
+
 /// Merges the points listed in `order` within tol by hashing them to cells of side 64·tol;
 /// returns each point's representative (the smallest index of its cluster, whatever the
 /// order; a spatial order keeps the cell look-ups in cache). O(n) expected.
@@ -154,8 +175,10 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
   const double work_cap = total_length / (4.0 * static_cast<double>(ends.size() + p.size()));
   double h = std::max({lengths[lengths.size() / 2], 4.0 * tol, work_cap});
   if (!(h > 0.0) || !std::isfinite(h)) h = 1.0;
+  // Cells centred on low + k·h: vertices of a lattice of that pitch (grids, CAD models) lie in
+  // the middle of cells, not on their walls, and a short edge's box covers 2 cells, not 27.
   auto cell_of = [&](const glm::dvec3& q) {
-    const glm::dvec3 c = (q - low) / h;
+    const glm::dvec3 c = (q - low) / h + 0.5;
     return std::array<std::int64_t, 3>{grid_coordinate(c.x), grid_coordinate(c.y), grid_coordinate(c.z)};
   };
   std::unordered_map<std::array<std::int64_t, 3>, std::uint32_t, cell_hash> cells;
@@ -176,12 +199,13 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
   // edge order, so the pieces are numbered as if visited in edge order.
   std::vector<std::uint32_t> rank(p.size(), 0);
   for (std::uint32_t i = 0; i < order.size(); ++i) rank[order[i]] = i;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> visit_order(n);
-  for (std::uint32_t e = 0; e < n; ++e) visit_order[e] = {rank[ends[e][0]], e};
-  std::sort(visit_order.begin(), visit_order.end());
+  // (A counting sort by rank, stable in edge order.)
+  std::vector<std::uint32_t> rank_start(order.size() + 1, 0), visit_order(n);
+  for (std::uint32_t e = 0; e < n; ++e) ++rank_start[rank[ends[e][0]] + 1];
+  for (std::size_t i = 0; i < order.size(); ++i) rank_start[i + 1] += rank_start[i];
+  for (std::uint32_t e = 0; e < n; ++e) visit_order[rank_start[rank[ends[e][0]]]++] = e;
   std::vector<std::pair<std::uint32_t, std::vector<std::uint32_t>>> found;  // edge, vertices inside along it
-  for (const auto& visiting : visit_order) {
-    const std::uint32_t e = visiting.second;  // (a structured binding cannot be captured in C++20)
+  for (const std::uint32_t e : visit_order) {
     const std::uint32_t a = ends[e][0], b = ends[e][1];
     if (a == b) continue;
     const glm::dvec3 pa = p[a], d = p[b] - pa;
@@ -349,19 +373,20 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
   // Zero-length and duplicate pieces dropped (or rejected).
   // Duplicates found by sorting the pieces by their ends: same_as[e] is the first piece joining
   // the same two vertices (a hash table of 10^5 nodes costs more, freeing them most).
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> by_ends;
   const auto undirected = [](std::uint32_t a, std::uint32_t b) {
     return (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
   };
-  by_ends.reserve(np);
-  for (std::uint32_t e = 0; e < np; ++e)
-    if (ends[e][0] != ends[e][1]) by_ends.emplace_back(undirected(ends[e][0], ends[e][1]), e);
-  std::sort(by_ends.begin(), by_ends.end());
   std::vector<std::uint32_t> same_as(np, no_index);
-  for (std::size_t i = 0; i < by_ends.size(); ++i)
-    same_as[by_ends[i].second] = i > 0 && by_ends[i - 1].first == by_ends[i].first
-                                     ? same_as[by_ends[i - 1].second]
-                                     : by_ends[i].second;
+  {
+    const std::vector<std::uint32_t> by_ends = detail::edges_by_ends(ends, nv);
+    for (std::size_t i = 0; i < by_ends.size(); ++i) {
+      const std::uint32_t e = by_ends[i], prev = i > 0 ? by_ends[i - 1] : no_index;
+      same_as[e] =
+          prev != no_index && undirected(ends[prev][0], ends[prev][1]) == undirected(ends[e][0], ends[e][1])
+              ? same_as[prev]
+              : e;
+    }
+  }
   std::vector<std::uint32_t> kept;
   // The first few of each kind are named; the rest are counted (10^5 duplicates are one line).
   constexpr std::size_t named_per_kind = 8;
@@ -476,19 +501,12 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
     // Edges by their ends' labels (smaller end first): a vertex's edges are then listed by
     // neighbour, and edges near in space are near in memory.
     const auto ne_kept = static_cast<std::uint32_t>(g.edges.size());
-    by_ends.resize(ne_kept);
-    for (std::uint32_t i = 0; i < ne_kept; ++i) {
-      const auto [a, b] = g.edges[i];
-      by_ends[i] = {undirected(a, b), i};
-    }
-    std::sort(by_ends.begin(), by_ends.end());
+    g.read_order = detail::edges_by_ends(g.edges, g.points.size());
     std::vector<std::array<std::uint32_t, 2>> edges(ne_kept);
     std::vector<std::uint32_t> input_edge(ne_kept);
-    g.read_order.resize(ne_kept);
     for (std::uint32_t i = 0; i < ne_kept; ++i) {
-      edges[i] = g.edges[by_ends[i].second];
-      input_edge[i] = g.input_edge[by_ends[i].second];
-      g.read_order[i] = by_ends[i].second;
+      edges[i] = g.edges[g.read_order[i]];
+      input_edge[i] = g.input_edge[g.read_order[i]];
     }
     g.edges = std::move(edges);
     g.input_edge = std::move(input_edge);
