@@ -176,7 +176,7 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
   double h = std::max({lengths[lengths.size() / 2], 4.0 * tol, work_cap});
   if (!(h > 0.0) || !std::isfinite(h)) h = 1.0;
   // Cells centred on low + k·h: vertices of a lattice of that pitch (grids, CAD models) lie in
-  // the middle of cells, not on their walls, and a short edge's box covers 2 cells, not 27.
+  // the middle of cells, not on their walls, and a short edge's box covers 2 cells, not 12.
   auto cell_of = [&](const glm::dvec3& q) {
     const glm::dvec3 c = (q - low) / h + 0.5;
     return std::array<std::int64_t, 3>{grid_coordinate(c.x), grid_coordinate(c.y), grid_coordinate(c.z)};
