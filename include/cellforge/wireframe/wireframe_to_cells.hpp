@@ -272,8 +272,8 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
     // the sorts and checks stay in cache, then renumbered to the output's: the same complex as
     // make_cell_complex(r.input), whatever order the caller numbered the wireframe in.
     const std::size_t nvo = r.input.points.size(), neo = r.input.edges.size();
-    std::vector<std::uint32_t> vertex_label, inner(nvo, no_index),
-        edge_label;  // inner → output, output → inner
+    std::vector<std::uint32_t> vertex_label, edge_label;  // inner → output
+    std::vector<std::uint32_t> inner(nvo, no_index);      // output vertex → inner
     vertex_label.reserve(nvo);
     edge_label.reserve(neo);
     for (std::uint32_t v = 0; v < g.num_vertices(); ++v) {
@@ -289,7 +289,10 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
       }
     std::vector<char> placed(neo, 0);
     for (const std::uint32_t out : graph_edge_out)
-      if (out != no_index) edge_label.push_back(out), placed[out] = 1;
+      if (out != no_index) {
+        edge_label.push_back(out);
+        placed[out] = 1;
+      }
     for (std::uint32_t out = 0; out < neo; ++out)
       if (!placed[out]) edge_label.push_back(out);
     cell_complex_input<P> in;
