@@ -152,20 +152,37 @@ std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p,
 /// median edge length holds the vertices; each edge visits the cells along it. Pieces are
 /// appended in order along the edge and keep their edge's origin. Returns the number of splits.
 /// Vertices are visited in `order` (a spatial order keeps the cell look-ups in cache; the
-/// result does not depend on it). O(E log E + V + vertices in the visited cells), spent from `budget`.
+/// result does not depend on it). O(E + V + vertices in the visited cells), spent from `budget`.
 template <class = void>
 std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vector<char>& is_vertex,
                               const std::vector<std::uint32_t>& order,
                               std::vector<std::array<std::uint32_t, 2>>& ends,
                               std::vector<std::uint32_t>& origin, double tol, work_budget& budget) {
+  // The search runs on the points of `order` copied in that order and on edges relabelled by
+  // rank (a point's place in it): near points near in memory whatever the caller's numbering.
+  const std::size_t n = ends.size(), m = order.size();
+  std::vector<std::uint32_t> rank(p.size(), 0);
+  for (std::uint32_t i = 0; i < m; ++i) rank[order[i]] = i;
+  std::vector<glm::dvec3> q(m);
+  for (std::uint32_t i = 0; i < m; ++i) q[i] = p[order[i]];
+  std::vector<std::array<std::uint32_t, 2>> by_rank(n);  // ends by rank
+  for (std::uint32_t e = 0; e < n; ++e) by_rank[e] = {rank[ends[e][0]], rank[ends[e][1]]};
+  // Edges visited in the order of their first ends (a counting sort by rank, stable in edge
+  // order); the splits are applied afterwards in edge order, so the pieces are numbered as if
+  // visited in edge order.
+  std::vector<std::uint32_t> rank_start(m + 1, 0), visit_order(n);
+  for (std::uint32_t e = 0; e < n; ++e) ++rank_start[by_rank[e][0] + 1];
+  for (std::size_t i = 0; i < m; ++i) rank_start[i + 1] += rank_start[i];
+  for (std::uint32_t e = 0; e < n; ++e) visit_order[rank_start[by_rank[e][0]]++] = e;
+
   std::vector<double> lengths;
   double total_length = 0.0;
   glm::dvec3 low(std::numeric_limits<double>::infinity());
-  for (const auto& e : ends)
-    if (e[0] != e[1]) {
-      lengths.push_back(glm::length(p[e[1]] - p[e[0]]));
+  for (const std::uint32_t e : visit_order)
+    if (by_rank[e][0] != by_rank[e][1]) {
+      lengths.push_back(glm::length(q[by_rank[e][1]] - q[by_rank[e][0]]));
       total_length += lengths.back();
-      low = glm::min(low, glm::min(p[e[0]], p[e[1]]));
+      low = glm::min(low, glm::min(q[by_rank[e][0]], q[by_rank[e][1]]));
     }
   if (lengths.empty()) return 0;
   std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2),
@@ -177,38 +194,28 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
   if (!(h > 0.0) || !std::isfinite(h)) h = 1.0;
   // Cells centred on low + k·h: vertices of a lattice of that pitch (grids, CAD models) lie in
   // the middle of cells, not on their walls, and a short edge's box covers 2 cells, not 12.
-  auto cell_of = [&](const glm::dvec3& q) {
-    const glm::dvec3 c = (q - low) / h + 0.5;
+  auto cell_of = [&](const glm::dvec3& x) {
+    const glm::dvec3 c = (x - low) / h + 0.5;
     return std::array<std::int64_t, 3>{grid_coordinate(c.x), grid_coordinate(c.y), grid_coordinate(c.z)};
   };
   std::unordered_map<std::array<std::int64_t, 3>, std::uint32_t, cell_hash> cells;
-  std::vector<std::uint32_t> next(p.size(), no_index);
-  for (const std::uint32_t v : order) {
-    if (!is_vertex[v]) continue;
-    const auto [it, fresh] = cells.emplace(cell_of(p[v]), v);
+  std::vector<std::uint32_t> next(m, no_index);  // by rank
+  for (std::uint32_t v = 0; v < m; ++v) {
+    if (!is_vertex[order[v]]) continue;
+    const auto [it, fresh] = cells.emplace(cell_of(q[v]), v);
     if (!fresh) {
       next[v] = it->second;
       it->second = v;
     }
   }
   std::size_t splits = 0;
-  std::vector<std::pair<double, std::uint32_t>> inside;
-  std::vector<std::uint32_t> seen_stamp(p.size(), no_index);
-  const std::size_t n = ends.size();
-  // Edges visited in the order of their first ends; the splits are applied afterwards in
-  // edge order, so the pieces are numbered as if visited in edge order.
-  std::vector<std::uint32_t> rank(p.size(), 0);
-  for (std::uint32_t i = 0; i < order.size(); ++i) rank[order[i]] = i;
-  // (A counting sort by rank, stable in edge order.)
-  std::vector<std::uint32_t> rank_start(order.size() + 1, 0), visit_order(n);
-  for (std::uint32_t e = 0; e < n; ++e) ++rank_start[rank[ends[e][0]] + 1];
-  for (std::size_t i = 0; i < order.size(); ++i) rank_start[i + 1] += rank_start[i];
-  for (std::uint32_t e = 0; e < n; ++e) visit_order[rank_start[rank[ends[e][0]]]++] = e;
+  std::vector<std::pair<double, std::uint32_t>> inside;  // (t, the caller's label)
+  std::vector<std::uint32_t> seen_stamp(m, no_index);
   std::vector<std::pair<std::uint32_t, std::vector<std::uint32_t>>> found;  // edge, vertices inside along it
   for (const std::uint32_t e : visit_order) {
-    const std::uint32_t a = ends[e][0], b = ends[e][1];
+    const std::uint32_t a = by_rank[e][0], b = by_rank[e][1];
     if (a == b) continue;
-    const glm::dvec3 pa = p[a], d = p[b] - pa;
+    const glm::dvec3 pa = q[a], d = q[b] - pa;
     const double len = glm::length(d);
     inside.clear();
     auto visit = [&](const std::array<std::int64_t, 3>& c) {
@@ -219,12 +226,12 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
         budget.spend();
         if (v == a || v == b || seen_stamp[v] == e) continue;
         seen_stamp[v] = static_cast<std::uint32_t>(e);
-        const double t = glm::dot(p[v] - pa, d) / (len * len);
+        const double t = glm::dot(q[v] - pa, d) / (len * len);
         if (t * len <= tol || (1.0 - t) * len <= tol) continue;
-        if (glm::length(pa + t * d - p[v]) <= tol) inside.emplace_back(t, v);
+        if (glm::length(pa + t * d - q[v]) <= tol) inside.emplace_back(t, order[v]);
       }
     };
-    const auto lo = cell_of(glm::min(pa, p[b]) - tol), hi = cell_of(glm::max(pa, p[b]) + tol);
+    const auto lo = cell_of(glm::min(pa, q[b]) - tol), hi = cell_of(glm::max(pa, q[b]) + tol);
     // In double: clamped coordinates would overflow an integer product.
     const double box_cells = (static_cast<double>(hi[0] - lo[0]) + 1) *
                              (static_cast<double>(hi[1] - lo[1]) + 1) *
