@@ -3,6 +3,7 @@
 // Hand-built cell complex inputs for the cells tests: unions of unit lattice cubes (a cube,
 // two cubes sharing a face, grids, frames, disjoint cubes) and a block with a square hole.
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <map>
@@ -121,6 +122,38 @@ inline bool same_input(const cellforge::cell_complex_input<glm::dvec3>& x,
     if (x.faces[f].loops != y.faces[f].loops) return false;
   for (std::size_t c = 0; c < x.volumes.size(); ++c)
     if (x.volumes[c].faces != y.volumes[c].faces) return false;
+  return true;
+}
+
+/// Whether two complexes are the same in every relation, position and normal (a complex and
+/// one built another way that must equal it).
+template <class P>
+bool same_complex(const cellforge::cell_complex<P>& x, const cellforge::cell_complex<P>& y) {
+  using namespace cellforge;
+  const auto eq = [](auto a, auto b) { return std::equal(a.begin(), a.end(), b.begin(), b.end()); };
+  if (x.num_vertices() != y.num_vertices() || x.num_edges() != y.num_edges() ||
+      x.num_faces() != y.num_faces() || x.num_volumes() != y.num_volumes() ||
+      x.num_objects() != y.num_objects() || !eq(x.points(), y.points()))
+    return false;
+  for (cell_vertex v : x.vertices())
+    if (!eq(x.vertex_edges(v), y.vertex_edges(v)) || x.vertex_object(v) != y.vertex_object(v)) return false;
+  for (cell_edge e : x.edges())
+    if (x.edge_vertices(e) != y.edge_vertices(e) || !eq(x.edge_faces(e), y.edge_faces(e)) ||
+        !eq(x.edge_wedges(e), y.edge_wedges(e)))
+      return false;
+  for (cell_face f : x.faces()) {
+    if (x.num_loops(f) != y.num_loops(f) || !eq(x.face_volumes(f), y.face_volumes(f)) ||
+        !(x.face_normal(f) == y.face_normal(f)))
+      return false;
+    for (std::size_t l = 0; l < x.num_loops(f); ++l)
+      if (!eq(x.loop_vertices(f, l), y.loop_vertices(f, l)) || !eq(x.loop_edges(f, l), y.loop_edges(f, l)))
+        return false;
+  }
+  for (cell_volume c : x.volumes())
+    if (!eq(x.volume_faces(c), y.volume_faces(c)) || x.volume_object(c) != y.volume_object(c)) return false;
+  for (cell_object o : x.objects())
+    if (!eq(x.object_volumes(o), y.object_volumes(o)) || x.object_counts(o) != y.object_counts(o))
+      return false;
   return true;
 }
 

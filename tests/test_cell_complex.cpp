@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
 #include <set>
 #include <string>
 
@@ -208,6 +209,53 @@ TEST_CASE("cell complex: to_input gives back the input") {
     const cell_complex<glm::dvec3> cc = make_cell_complex(in);
     CHECK(fx::same_input(cc.to_input(), in));
   }
+}
+
+TEST_CASE("cell complex: renumber_cells is make_cell_complex of the renumbered input") {
+  std::uint64_t state = 0x9e3779b97f4a7c15ull;
+  const auto permutation = [&](std::size_t n) {
+    std::vector<std::uint32_t> p(n);
+    for (std::uint32_t i = 0; i < n; ++i) p[i] = i;
+    for (std::size_t i = n; i > 1; --i) {
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      std::swap(p[i - 1], p[(state >> 33) % i]);
+    }
+    return p;
+  };
+  for (const auto& in : {fx::cube(), fx::two_cubes(), fx::grid(3, 2, 2), fx::block_with_hole(), fx::frame(),
+                         fx::disjoint_cubes()}) {
+    for (int round = 0; round < 3; ++round) {
+      const auto vl = permutation(in.points.size()), el = permutation(in.edges.size());
+      cell_complex_input<glm::dvec3> moved = in;
+      for (std::size_t v = 0; v < vl.size(); ++v) moved.points[vl[v]] = in.points[v];
+      for (std::size_t e = 0; e < el.size(); ++e)
+        moved.edges[el[e]] = {vl[in.edges[e][0]], vl[in.edges[e][1]]};
+      for (auto& f : moved.faces)
+        for (auto& loop : f.loops)
+          for (auto& v : loop) v = vl[v];
+      const auto direct = make_cell_complex(moved);
+      const auto renumbered = renumber_cells(make_cell_complex(in), vl, el);
+      CHECK(fx::same_complex(direct, renumbered));
+      CHECK(fx::same_input(renumbered.to_input(), moved));
+    }
+    // The identity changes nothing.
+    const auto cc = make_cell_complex(in);
+    std::vector<std::uint32_t> vi(in.points.size()), ei(in.edges.size());
+    std::iota(vi.begin(), vi.end(), 0u);
+    std::iota(ei.begin(), ei.end(), 0u);
+    CHECK(fx::same_complex(renumber_cells(cc, vi, ei), cc));
+  }
+  // Labels that are not permutations are refused.
+  const auto cc = make_cell_complex(fx::cube());
+  std::vector<std::uint32_t> v(cc.num_vertices()), e(cc.num_edges());
+  std::iota(v.begin(), v.end(), 0u);
+  std::iota(e.begin(), e.end(), 0u);
+  auto twice = v;
+  twice[1] = 0;
+  CHECK_THROWS_WITH_AS(renumber_cells(cc, twice, e),
+                       "renumber_cells: the vertex labels are not a permutation of 0..7", cellforge::error);
+  CHECK_THROWS_WITH_AS(renumber_cells(cc, v, std::vector<std::uint32_t>(3, 0)),
+                       "renumber_cells: 3 edge labels for 12 edges", cellforge::error);
 }
 
 TEST_CASE("cell complex: inconsistent input is refused, naming the element") {

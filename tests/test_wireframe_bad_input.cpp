@@ -12,6 +12,7 @@
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/wireframe/sample_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
+#include "cells_fixtures.hpp"
 #include "test_support.hpp"
 
 // Own namespace: the test files of a group are compiled as one translation unit.
@@ -283,6 +284,8 @@ TEST_CASE("bad input: diagnostics, and the right complex anyway") {
     const auto k = wireframe_to_cells(w, keep);
     CHECK(k.input.edges.size() == 14);
     CHECK(k.input.points.size() == 10);
+    // Kept dangling edges and their ends off the graph: still the complex of the input.
+    CHECK(cells_fixtures::same_complex(k.cells, make_cell_complex(k.input)));
   }
   SUBCASE("an isolated point and a stray polygon") {
     wire w = cube.wire;

@@ -17,6 +17,7 @@
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/wireframe/sample_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
+#include "cells_fixtures.hpp"
 #include "wireframe_sweep.hpp"
 
 // Own namespace: the test files of a group are compiled as one translation unit.
@@ -275,6 +276,10 @@ TEST_CASE("pipeline: the input's numbering changes nothing but the labels (read_
     const auto shuffled = wireframe_to_cells(s.wire);
     CHECK(in_labels(ordered, as_is, edges_as_is) == in_labels(shuffled, inverse(t.vertex), inverse(t.edge)));
     CHECK(validate(shuffled.cells).ok());
+    // Built in the graph's numbering and renumbered: the complex of the result's own input.
+    CHECK(cells_fixtures::same_complex(ordered.cells, make_cell_complex(ordered.input)));
+    CHECK(cells_fixtures::same_complex(shuffled.cells, make_cell_complex(shuffled.input)));
+    CHECK(cells_fixtures::same_complex(plain.cells, make_cell_complex(plain.input)));
   }
 }
 

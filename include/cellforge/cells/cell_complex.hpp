@@ -16,7 +16,6 @@
 #include <span>
 #include <string>
 #include <type_traits>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -127,6 +126,10 @@ template <class = void>
 void build_topology(cell_topology& cc, std::span<const glm::dvec3> points,
                     std::vector<std::array<std::uint32_t, 2>>&& edges,
                     const std::vector<cell_input_face>& faces, const std::vector<cell_input_volume>& volumes);
+template <class = void>
+void renumber_topology(const cell_topology& from, cell_topology& to,
+                       std::span<const std::uint32_t> vertex_label,
+                       std::span<const std::uint32_t> edge_label);
 }  // namespace detail::cells
 
 /// Everything of a 3DCL but its positions: the relations, which do not depend on the point
@@ -236,6 +239,10 @@ class basic_cell_topology {
                                             std::vector<std::array<std::uint32_t, 2>>&&,
                                             const std::vector<cell_input_face>&,
                                             const std::vector<cell_input_volume>&);
+  template <class>
+  friend void detail::cells::renumber_topology(const basic_cell_topology&, basic_cell_topology&,
+                                               std::span<const std::uint32_t>,
+                                               std::span<const std::uint32_t>);
   template <class T>
   static std::span<const T> csr(const std::vector<T>& data, const std::vector<std::uint32_t>& start,
                                 std::size_t i) {
@@ -291,6 +298,10 @@ class cell_complex : public cell_topology {
   friend cell_complex<Q> make_cell_complex(cell_complex_input<Q> input);
   template <Point3 Q, Point3 R>
   friend cell_complex<Q> convert_points(const cell_complex<R>& cc);
+  template <Point3 Q>
+  friend cell_complex<Q> renumber_cells(const cell_complex<Q>& cc,
+                                        std::span<const std::uint32_t> vertex_label,
+                                        std::span<const std::uint32_t> edge_label);
 
  private:
   std::vector<P> points_;
@@ -345,12 +356,10 @@ std::string S(std::uint64_t x) {
 
 using cellforge::detail::newell;  // Newell normal of a vertex loop (core/detail/newell.hpp)
 
-/// Turns (a, b) into one 64-bit key regardless of order. O(1).
-template <class = void>
-std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) noexcept {
-  if (a > b) std::swap(a, b);
-  return (std::uint64_t{a} << 32) | b;
-}
+/// One edge seen from one end: the other end and the edge.
+struct edge_link {
+  std::uint32_t other, edge;
+};
 
 /// Fills CSR `start` from per-row counts (counts become write cursors). O(rows).
 template <class = void>
@@ -388,29 +397,65 @@ void build_topology(cell_topology& cc, std::span<const glm::dvec3> points,
       fail(bad, "vertex " + S(v) + " has a non-finite coordinate (NaN or Inf)");
   }
 
-  // Edges: endpoints, no loops, no duplicates; vertex → edges with direction.
-  std::unordered_map<std::uint64_t, uint32_t> edge_of;
-  edge_of.reserve(2 * ne);
+  // Edges: endpoints, no loops, no duplicates; vertex → edges with direction. The first bad
+  // edge (out of range, a loop) and the first repeat are both found, and the earlier reported.
+  std::size_t first_bad = ne;
+  for (std::size_t e = 0; e < ne && first_bad == ne; ++e)
+    if (edges[e][0] >= nv || edges[e][1] >= nv || edges[e][0] == edges[e][1]) first_bad = e;
   std::vector<uint32_t> cursor(nv, 0);
-  for (std::size_t e = 0; e < ne; ++e) {
-    const auto [a, b] = edges[e];
-    if (a >= nv || b >= nv)
-      fail(bad,
-           "edge " + S(e) + " joins vertex " + S(std::max(a, b)) + " but there are " + S(nv) + " vertices");
-    if (a == b) fail(bad, "edge " + S(e) + " joins vertex " + S(a) + " to itself");
-    const auto [it, fresh] = edge_of.emplace(pair_key(a, b), static_cast<uint32_t>(e));
-    if (!fresh)
-      fail(bad, "edge " + S(e) + " repeats edge " + S(it->second) + " (both join vertices " + S(a) + " and " +
-                    S(b) + ")");
-    ++cursor[a];
-    ++cursor[b];
+  for (std::size_t e = 0; e < first_bad; ++e) {
+    ++cursor[edges[e][0]];
+    ++cursor[edges[e][1]];
   }
   counts_to_starts(cc.vertex_edge_start_, cursor);
-  cc.vertex_edges_.resize(2 * ne);
-  for (std::size_t e = 0; e < ne; ++e) {
-    cc.vertex_edges_[cursor[edges[e][0]]++] = {cell_edge(e), +1};
-    cc.vertex_edges_[cursor[edges[e][1]]++] = {cell_edge(e), -1};
+  // Per vertex, (neighbour, edge) sorted: the flat edge look-up of the face loops below (a
+  // hash table costs a cache miss and an allocation per edge, the more when the vertices are
+  // numbered at random).
+  std::vector<edge_link> links(2 * first_bad);
+  const auto by_other = [](const edge_link& x, const edge_link& y) {
+    return x.other < y.other || (x.other == y.other && x.edge < y.edge);
+  };
+  cc.vertex_edges_.resize(2 * first_bad);
+  for (std::size_t e = 0; e < first_bad; ++e) {
+    const auto [a, b] = edges[e];
+    links[cursor[a]] = {b, static_cast<uint32_t>(e)};
+    cc.vertex_edges_[cursor[a]++] = {cell_edge(e), +1};
+    links[cursor[b]] = {a, static_cast<uint32_t>(e)};
+    cc.vertex_edges_[cursor[b]++] = {cell_edge(e), -1};
   }
+  std::size_t repeat = ne, repeated = ne;  // the earliest edge joining the same vertices as an earlier one
+  for (std::size_t v = 0; v < nv; ++v) {
+    const auto begin = links.begin() + cc.vertex_edge_start_[v],
+               end = links.begin() + cc.vertex_edge_start_[v + 1];
+    std::sort(begin, end, by_other);
+    for (auto it = begin; it + 1 < end; ++it)
+      if (it->other == (it + 1)->other && (it + 1)->edge < repeat) {
+        auto group = it;  // the group's first edge is the one repeated
+        while (group != begin && (group - 1)->other == it->other) --group;
+        repeat = (it + 1)->edge;
+        repeated = group->edge;
+      }
+  }
+  if (repeat < first_bad) {
+    const auto [a, b] = edges[repeat];
+    fail(bad, "edge " + S(repeat) + " repeats edge " + S(repeated) + " (both join vertices " + S(a) +
+                  " and " + S(b) + ")");
+  }
+  if (first_bad < ne) {
+    const auto [a, b] = edges[first_bad];
+    if (a >= nv || b >= nv)
+      fail(bad, "edge " + S(first_bad) + " joins vertex " + S(std::max(a, b)) + " but there are " + S(nv) +
+                    " vertices");
+    fail(bad, "edge " + S(first_bad) + " joins vertex " + S(a) + " to itself");
+  }
+  const auto edge_of = [&](uint32_t a, uint32_t b) {
+    const edge_link* lo = links.data() + cc.vertex_edge_start_[a];
+    const edge_link* hi = links.data() + cc.vertex_edge_start_[a + 1];
+    if (hi - lo > 16) lo = std::lower_bound(lo, hi, edge_link{b, 0}, by_other);
+    for (; lo != hi && lo->other <= b; ++lo)
+      if (lo->other == b) return lo->edge;
+    return 0xFFFFFFFFu;
+  };
 
   // Faces: loops of vertices and signed edge uses; normals.
   std::vector<uint32_t> edge_uses(ne, 0);
@@ -429,17 +474,16 @@ void build_topology(cell_topology& cc, std::span<const glm::dvec3> points,
         const uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
         if (seen[a] == f) fail(topo, where() + " visits vertex " + S(a) + " a second time in the face");
         seen[a] = static_cast<uint32_t>(f);
-        const auto it = edge_of.find(pair_key(a, b));
-        if (it == edge_of.end())
+        const uint32_t e = edge_of(a, b);
+        if (e == 0xFFFFFFFFu)
           fail(topo,
                where() + ": consecutive vertices " + S(a) + " and " + S(b) + " are not joined by an edge");
-        if (used_by[it->second] == f)
-          fail(topo, where() + " uses edge " + S(it->second) + " a second time in the face");
-        used_by[it->second] = static_cast<uint32_t>(f);
-        const bool along = edges[it->second][0] == a;
+        if (used_by[e] == f) fail(topo, where() + " uses edge " + S(e) + " a second time in the face");
+        used_by[e] = static_cast<uint32_t>(f);
+        const bool along = edges[e][0] == a;
         cc.loop_vertices_.push_back(cell_vertex(a));
-        cc.loop_edges_.push_back({cell_edge(it->second), along ? +1 : -1});
-        ++edge_uses[it->second];
+        cc.loop_edges_.push_back({cell_edge(e), along ? +1 : -1});
+        ++edge_uses[e];
       }
       cc.loop_start_.push_back(static_cast<uint32_t>(cc.loop_vertices_.size()));
     }
@@ -624,6 +668,94 @@ cell_complex<Q> convert_points(const cell_complex<P>& cc) {
   static_cast<cell_topology&>(out) = cc;
   out.points_.reserve(cc.num_vertices());
   for (const P& p : cc.points()) out.points_.push_back(from_dvec3<Q>(to_dvec3(p)));
+  return out;
+}
+
+namespace detail::cells {
+/// The body of renumber_cells on the relations (positions apart). O(size of from).
+template <class>
+void renumber_topology(const cell_topology& from, cell_topology& to,
+                       std::span<const std::uint32_t> vertex_label,
+                       std::span<const std::uint32_t> edge_label) {
+  using std::uint32_t;
+  const std::size_t nv = from.num_vertices(), ne = from.num_edges();
+  const auto check = [](std::span<const uint32_t> label, std::size_t n, const char* what) {
+    if (label.size() != n)
+      throw error(error_category::invalid_input, std::string("renumber_cells: ") + S(label.size()) + " " +
+                                                     what + " labels for " + S(n) + " " + what + "s");
+    std::vector<char> seen(n, 0);
+    for (const uint32_t x : label) {
+      if (x >= n || seen[x])
+        throw error(error_category::invalid_input, std::string("renumber_cells: the ") + what +
+                                                       " labels are not a permutation of 0.." + S(n - 1));
+      seen[x] = 1;
+    }
+  };
+  check(vertex_label, nv, "vertex");
+  check(edge_label, ne, "edge");
+  // Faces and volumes keep their numbers: everything of theirs but vertex and edge handles stays.
+  to = from;
+  std::vector<uint32_t> old_edge(ne);
+  for (uint32_t e = 0; e < ne; ++e) {
+    old_edge[edge_label[e]] = e;
+    to.ends_[edge_label[e]] = {vertex_label[from.ends_[e][0]], vertex_label[from.ends_[e][1]]};
+  }
+  // Vertex → edges in the new edge order, as make_cell_complex fills them.
+  std::vector<uint32_t> cursor(nv, 0);
+  for (uint32_t v = 0; v < nv; ++v)
+    cursor[vertex_label[v]] = from.vertex_edge_start_[v + 1] - from.vertex_edge_start_[v];
+  counts_to_starts(to.vertex_edge_start_, cursor);
+  for (uint32_t e = 0; e < ne; ++e) {
+    to.vertex_edges_[cursor[to.ends_[e][0]]++] = {cell_edge(e), +1};
+    to.vertex_edges_[cursor[to.ends_[e][1]]++] = {cell_edge(e), -1};
+  }
+  // Faces about each edge: the same rotation, moved to the edge's new place.
+  for (uint32_t e = 0; e < ne; ++e) {
+    const uint32_t o = old_edge[e];
+    to.edge_face_start_[e + 1] =
+        to.edge_face_start_[e] + (from.edge_face_start_[o + 1] - from.edge_face_start_[o]);
+  }
+  for (uint32_t e = 0; e < ne; ++e) {
+    const uint32_t o = old_edge[e], n = from.edge_face_start_[o + 1] - from.edge_face_start_[o];
+    std::copy_n(from.edge_faces_.begin() + from.edge_face_start_[o], n,
+                to.edge_faces_.begin() + to.edge_face_start_[e]);
+    std::copy_n(from.edge_wedges_.begin() + from.edge_face_start_[o], n,
+                to.edge_wedges_.begin() + to.edge_face_start_[e]);
+  }
+  for (auto& v : to.loop_vertices_) v = cell_vertex(vertex_label[v.idx()]);
+  for (auto& ue : to.loop_edges_) ue.handle = cell_edge(edge_label[ue.handle.idx()]);
+  // Objects numbered by their first vertex, as make_cell_complex numbers them.
+  const std::size_t no = from.num_objects();
+  std::vector<uint32_t> old_vertex(nv), object_label(no, 0xFFFFFFFFu);
+  for (uint32_t v = 0; v < nv; ++v) old_vertex[vertex_label[v]] = v;
+  uint32_t next = 0;
+  for (uint32_t v = 0; v < nv; ++v) {
+    uint32_t& o = object_label[from.vertex_object_[old_vertex[v]]];
+    if (o == 0xFFFFFFFFu) o = next++;
+    to.vertex_object_[v] = o;
+  }
+  for (uint32_t o = 0; o < no; ++o) to.object_counts_[object_label[o]] = from.object_counts_[o];
+  cursor.assign(no, 0);
+  for (auto& o : to.volume_object_) ++cursor[o = object_label[o]];
+  counts_to_starts(to.object_volume_start_, cursor);
+  for (uint32_t c = 0; c < to.volume_object_.size(); ++c)
+    to.object_volumes_[cursor[to.volume_object_[c]]++] = cell_volume(c);
+}
+}  // namespace detail::cells
+
+/// The same complex with vertex v renumbered vertex_label[v] and edge e edge_label[e] (both
+/// permutations; faces and volumes keep theirs): equal to make_cell_complex of the input so
+/// renumbered, without its sorts and look-ups. Throws cellforge::error on labels that are not
+/// permutations. O(size of cc).
+template <Point3 P>
+cell_complex<P> renumber_cells(const cell_complex<P>& cc, std::span<const std::uint32_t> vertex_label,
+                               std::span<const std::uint32_t> edge_label) {
+  cell_complex<P> out;
+  detail::cells::renumber_topology(cc, out, vertex_label, edge_label);
+  std::vector<std::uint32_t> old_vertex(cc.num_vertices());  // (P need not be default-constructible)
+  for (std::uint32_t v = 0; v < old_vertex.size(); ++v) old_vertex[vertex_label[v]] = v;
+  out.points_.reserve(old_vertex.size());
+  for (const std::uint32_t v : old_vertex) out.points_.push_back(cc.points_[v]);
   return out;
 }
 

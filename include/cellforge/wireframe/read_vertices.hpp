@@ -76,6 +76,27 @@ std::string point_text(const glm::dvec3& p) {
   return "(" + number_text(p.x) + ", " + number_text(p.y) + ", " + number_text(p.z) + ")";
 }
 
+/// The edges that are no loops listed by their ends (smaller end, then larger, then index):
+/// two stable counting passes over the vertex labels, where a comparison sort of edges in a
+/// random order costs a mispredicted branch or a cache miss per step. O(E + V).
+template <class = void>
+std::vector<std::uint32_t> edges_by_ends(const std::vector<std::array<std::uint32_t, 2>>& ends,
+                                         std::size_t nv) {
+  std::vector<std::uint32_t> start(nv + 1, 0), by_larger, out;
+  for (const auto& [a, b] : ends)
+    if (a != b) ++start[std::max(a, b) + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  by_larger.resize(start.back());
+  for (std::uint32_t e = 0; e < ends.size(); ++e)
+    if (ends[e][0] != ends[e][1]) by_larger[start[std::max(ends[e][0], ends[e][1])]++] = e;
+  start.assign(nv + 1, 0);
+  for (const std::uint32_t e : by_larger) ++start[std::min(ends[e][0], ends[e][1]) + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  out.resize(by_larger.size());
+  for (const std::uint32_t e : by_larger) out[start[std::min(ends[e][0], ends[e][1])]++] = e;
+  return out;
+}
+
 /// Merges the points listed in `order` within tol by hashing them to cells of side 64·tol;
 /// returns each point's representative (the smallest index of its cluster, whatever the
 /// order; a spatial order keeps the cell look-ups in cache). O(n) expected.
@@ -131,20 +152,37 @@ std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p,
 /// median edge length holds the vertices; each edge visits the cells along it. Pieces are
 /// appended in order along the edge and keep their edge's origin. Returns the number of splits.
 /// Vertices are visited in `order` (a spatial order keeps the cell look-ups in cache; the
-/// result does not depend on it). O(E log E + V + vertices in the visited cells), spent from `budget`.
+/// result does not depend on it). O(E + V + vertices in the visited cells), spent from `budget`.
 template <class = void>
 std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vector<char>& is_vertex,
                               const std::vector<std::uint32_t>& order,
                               std::vector<std::array<std::uint32_t, 2>>& ends,
                               std::vector<std::uint32_t>& origin, double tol, work_budget& budget) {
+  // The search runs on the points of `order` copied in that order and on edges relabelled by
+  // rank (a point's place in it): near points near in memory whatever the caller's numbering.
+  const std::size_t n = ends.size(), m = order.size();
+  std::vector<std::uint32_t> rank(p.size(), 0);
+  for (std::uint32_t i = 0; i < m; ++i) rank[order[i]] = i;
+  std::vector<glm::dvec3> q(m);
+  for (std::uint32_t i = 0; i < m; ++i) q[i] = p[order[i]];
+  std::vector<std::array<std::uint32_t, 2>> by_rank(n);  // ends by rank
+  for (std::uint32_t e = 0; e < n; ++e) by_rank[e] = {rank[ends[e][0]], rank[ends[e][1]]};
+  // Edges visited in the order of their first ends (a counting sort by rank, stable in edge
+  // order); the splits are applied afterwards in edge order, so the pieces are numbered as if
+  // visited in edge order.
+  std::vector<std::uint32_t> rank_start(m + 1, 0), visit_order(n);
+  for (std::uint32_t e = 0; e < n; ++e) ++rank_start[by_rank[e][0] + 1];
+  for (std::size_t i = 0; i < m; ++i) rank_start[i + 1] += rank_start[i];
+  for (std::uint32_t e = 0; e < n; ++e) visit_order[rank_start[by_rank[e][0]]++] = e;
+
   std::vector<double> lengths;
   double total_length = 0.0;
   glm::dvec3 low(std::numeric_limits<double>::infinity());
-  for (const auto& e : ends)
-    if (e[0] != e[1]) {
-      lengths.push_back(glm::length(p[e[1]] - p[e[0]]));
+  for (const std::uint32_t e : visit_order)
+    if (by_rank[e][0] != by_rank[e][1]) {
+      lengths.push_back(glm::length(q[by_rank[e][1]] - q[by_rank[e][0]]));
       total_length += lengths.back();
-      low = glm::min(low, glm::min(p[e[0]], p[e[1]]));
+      low = glm::min(low, glm::min(q[by_rank[e][0]], q[by_rank[e][1]]));
     }
   if (lengths.empty()) return 0;
   std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2),
@@ -154,37 +192,30 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
   const double work_cap = total_length / (4.0 * static_cast<double>(ends.size() + p.size()));
   double h = std::max({lengths[lengths.size() / 2], 4.0 * tol, work_cap});
   if (!(h > 0.0) || !std::isfinite(h)) h = 1.0;
-  auto cell_of = [&](const glm::dvec3& q) {
-    const glm::dvec3 c = (q - low) / h;
+  // Cells centred on low + k·h: vertices of a lattice of that pitch (grids, CAD models) lie in
+  // the middle of cells, not on their walls, and a short edge's box covers 2 cells, not 12.
+  auto cell_of = [&](const glm::dvec3& x) {
+    const glm::dvec3 c = (x - low) / h + 0.5;
     return std::array<std::int64_t, 3>{grid_coordinate(c.x), grid_coordinate(c.y), grid_coordinate(c.z)};
   };
   std::unordered_map<std::array<std::int64_t, 3>, std::uint32_t, cell_hash> cells;
-  std::vector<std::uint32_t> next(p.size(), no_index);
-  for (const std::uint32_t v : order) {
-    if (!is_vertex[v]) continue;
-    const auto [it, fresh] = cells.emplace(cell_of(p[v]), v);
+  std::vector<std::uint32_t> next(m, no_index);  // by rank
+  for (std::uint32_t v = 0; v < m; ++v) {
+    if (!is_vertex[order[v]]) continue;
+    const auto [it, fresh] = cells.emplace(cell_of(q[v]), v);
     if (!fresh) {
       next[v] = it->second;
       it->second = v;
     }
   }
   std::size_t splits = 0;
-  std::vector<std::pair<double, std::uint32_t>> inside;
-  std::vector<std::uint32_t> seen_stamp(p.size(), no_index);
-  const std::size_t n = ends.size();
-  // Edges visited in the order of their first ends; the splits are applied afterwards in
-  // edge order, so the pieces are numbered as if visited in edge order.
-  std::vector<std::uint32_t> rank(p.size(), 0);
-  for (std::uint32_t i = 0; i < order.size(); ++i) rank[order[i]] = i;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> visit_order(n);
-  for (std::uint32_t e = 0; e < n; ++e) visit_order[e] = {rank[ends[e][0]], e};
-  std::sort(visit_order.begin(), visit_order.end());
+  std::vector<std::pair<double, std::uint32_t>> inside;  // (t, the caller's label)
+  std::vector<std::uint32_t> seen_stamp(m, no_index);
   std::vector<std::pair<std::uint32_t, std::vector<std::uint32_t>>> found;  // edge, vertices inside along it
-  for (const auto& visiting : visit_order) {
-    const std::uint32_t e = visiting.second;  // (a structured binding cannot be captured in C++20)
-    const std::uint32_t a = ends[e][0], b = ends[e][1];
+  for (const std::uint32_t e : visit_order) {
+    const std::uint32_t a = by_rank[e][0], b = by_rank[e][1];
     if (a == b) continue;
-    const glm::dvec3 pa = p[a], d = p[b] - pa;
+    const glm::dvec3 pa = q[a], d = q[b] - pa;
     const double len = glm::length(d);
     inside.clear();
     auto visit = [&](const std::array<std::int64_t, 3>& c) {
@@ -195,12 +226,12 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
         budget.spend();
         if (v == a || v == b || seen_stamp[v] == e) continue;
         seen_stamp[v] = static_cast<std::uint32_t>(e);
-        const double t = glm::dot(p[v] - pa, d) / (len * len);
+        const double t = glm::dot(q[v] - pa, d) / (len * len);
         if (t * len <= tol || (1.0 - t) * len <= tol) continue;
-        if (glm::length(pa + t * d - p[v]) <= tol) inside.emplace_back(t, v);
+        if (glm::length(pa + t * d - q[v]) <= tol) inside.emplace_back(t, order[v]);
       }
     };
-    const auto lo = cell_of(glm::min(pa, p[b]) - tol), hi = cell_of(glm::max(pa, p[b]) + tol);
+    const auto lo = cell_of(glm::min(pa, q[b]) - tol), hi = cell_of(glm::max(pa, q[b]) + tol);
     // In double: clamped coordinates would overflow an integer product.
     const double box_cells = (static_cast<double>(hi[0] - lo[0]) + 1) *
                              (static_cast<double>(hi[1] - lo[1]) + 1) *
@@ -349,19 +380,20 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
   // Zero-length and duplicate pieces dropped (or rejected).
   // Duplicates found by sorting the pieces by their ends: same_as[e] is the first piece joining
   // the same two vertices (a hash table of 10^5 nodes costs more, freeing them most).
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> by_ends;
   const auto undirected = [](std::uint32_t a, std::uint32_t b) {
     return (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
   };
-  by_ends.reserve(np);
-  for (std::uint32_t e = 0; e < np; ++e)
-    if (ends[e][0] != ends[e][1]) by_ends.emplace_back(undirected(ends[e][0], ends[e][1]), e);
-  std::sort(by_ends.begin(), by_ends.end());
   std::vector<std::uint32_t> same_as(np, no_index);
-  for (std::size_t i = 0; i < by_ends.size(); ++i)
-    same_as[by_ends[i].second] = i > 0 && by_ends[i - 1].first == by_ends[i].first
-                                     ? same_as[by_ends[i - 1].second]
-                                     : by_ends[i].second;
+  {
+    const std::vector<std::uint32_t> by_ends = detail::edges_by_ends(ends, nv);
+    for (std::size_t i = 0; i < by_ends.size(); ++i) {
+      const std::uint32_t e = by_ends[i], prev = i > 0 ? by_ends[i - 1] : no_index;
+      same_as[e] =
+          prev != no_index && undirected(ends[prev][0], ends[prev][1]) == undirected(ends[e][0], ends[e][1])
+              ? same_as[prev]
+              : e;
+    }
+  }
   std::vector<std::uint32_t> kept;
   // The first few of each kind are named; the rest are counted (10^5 duplicates are one line).
   constexpr std::size_t named_per_kind = 8;
@@ -476,19 +508,12 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
     // Edges by their ends' labels (smaller end first): a vertex's edges are then listed by
     // neighbour, and edges near in space are near in memory.
     const auto ne_kept = static_cast<std::uint32_t>(g.edges.size());
-    by_ends.resize(ne_kept);
-    for (std::uint32_t i = 0; i < ne_kept; ++i) {
-      const auto [a, b] = g.edges[i];
-      by_ends[i] = {undirected(a, b), i};
-    }
-    std::sort(by_ends.begin(), by_ends.end());
+    g.read_order = detail::edges_by_ends(g.edges, g.points.size());
     std::vector<std::array<std::uint32_t, 2>> edges(ne_kept);
     std::vector<std::uint32_t> input_edge(ne_kept);
-    g.read_order.resize(ne_kept);
     for (std::uint32_t i = 0; i < ne_kept; ++i) {
-      edges[i] = g.edges[by_ends[i].second];
-      input_edge[i] = g.input_edge[by_ends[i].second];
-      g.read_order[i] = by_ends[i].second;
+      edges[i] = g.edges[g.read_order[i]];
+      input_edge[i] = g.input_edge[g.read_order[i]];
     }
     g.edges = std::move(edges);
     g.input_edge = std::move(input_edge);

@@ -202,6 +202,7 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   // Vertices and edges: those the faces use (and dangling edges when asked), caller's order.
   std::vector<std::array<std::uint32_t, 2>> edges;  // in the caller's vertex labels
   std::vector<std::uint32_t> edge_origin;
+  std::vector<std::uint32_t> graph_edge_out(g.num_edges(), no_index);  // graph edge → output edge
   // An edge left out because it crosses another edge (a diagonal through a face): say so, or
   // "bounds no face" hides why. Tested against every edge while that stays cheap.
   const auto left_out = static_cast<std::size_t>(std::count(edge_used.begin(), edge_used.end(), char{0}));
@@ -221,6 +222,7 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
           (options.keep_dangling ? "; kept as a dangling edge" : " and is left out"));
     }
     if (edge_used[e] || options.keep_dangling) {
+      graph_edge_out[e] = static_cast<std::uint32_t>(edges.size());
       edges.push_back({g.input_vertex[g.edges[e][0]], g.input_vertex[g.edges[e][1]]});
       edge_origin.push_back(g.input_edge[e]);
     }
@@ -266,14 +268,59 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   for (const auto i : r.volume.unforced)
     if (face_id[i] != no_index) r.unforced.push_back(face_id[i]);
   if (options.build_complex) {
-    r.cells = make_cell_complex(r.input);
-    if (options.check_result) {
-      const auto v = validate(r.cells, wireframe_check_options(options));
-      if (!v.ok())
-        throw error(error_category::topology,
-                    "wireframe_to_cells: the faces found do not make a valid cell complex (" + v.message +
-                        "); edges crossing each other inside a plane or other input this pipeline cannot "
-                        "read may cause this");
+    // Built and checked in the graph's numbering (spatial: read_options::spatial_order), where
+    // the sorts and checks stay in cache, then renumbered to the output's: the same complex as
+    // make_cell_complex(r.input), whatever order the caller numbered the wireframe in.
+    const std::size_t nvo = r.input.points.size(), neo = r.input.edges.size();
+    std::vector<std::uint32_t> vertex_label, edge_label;  // inner → output
+    std::vector<std::uint32_t> inner(nvo, no_index);      // output vertex → inner
+    vertex_label.reserve(nvo);
+    edge_label.reserve(neo);
+    for (std::uint32_t v = 0; v < g.num_vertices(); ++v) {
+      const std::uint32_t out = label[g.input_vertex[v]];
+      if (out == no_index) continue;
+      inner[out] = static_cast<std::uint32_t>(vertex_label.size());
+      vertex_label.push_back(out);
+    }
+    for (std::uint32_t out = 0; out < nvo; ++out)  // ends of dangling edges kept off the graph
+      if (inner[out] == no_index) {
+        inner[out] = static_cast<std::uint32_t>(vertex_label.size());
+        vertex_label.push_back(out);
+      }
+    std::vector<char> placed(neo, 0);
+    for (const std::uint32_t out : graph_edge_out)
+      if (out != no_index) {
+        edge_label.push_back(out);
+        placed[out] = 1;
+      }
+    for (std::uint32_t out = 0; out < neo; ++out)
+      if (!placed[out]) edge_label.push_back(out);
+    cell_complex_input<P> in;
+    in.points.reserve(nvo);
+    for (const std::uint32_t out : vertex_label) in.points.push_back(r.input.points[out]);
+    in.edges.reserve(neo);
+    for (const std::uint32_t out : edge_label)
+      in.edges.push_back({inner[r.input.edges[out][0]], inner[r.input.edges[out][1]]});
+    in.faces = r.input.faces;
+    for (auto& f : in.faces)
+      for (auto& loop : f.loops)
+        for (auto& v : loop) v = inner[v];
+    in.volumes = r.input.volumes;
+    cell_complex<P> inside;
+    try {
+      inside = make_cell_complex(std::move(in));
+    } catch (const error&) {
+      r.cells = make_cell_complex(r.input);  // the error in the output's numbering
+      throw;
+    }
+    const bool valid = !options.check_result || validate(inside, wireframe_check_options(options)).ok();
+    r.cells = renumber_cells(inside, vertex_label, edge_label);
+    if (!valid) {
+      const auto v = validate(r.cells, wireframe_check_options(options));  // named in the output's numbering
+      throw error(error_category::topology,
+                  "wireframe_to_cells: the faces found do not make a valid cell complex (" + v.message +
+                      "); edges crossing each other inside a plane or other input this pipeline cannot "
+                      "read may cause this");
     }
   }
   r.assembly_milliseconds = clock.ms();
