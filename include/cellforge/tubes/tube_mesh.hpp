@@ -27,6 +27,7 @@
 #include "cellforge/halfedge/mesh_geometry.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"
 #include "cellforge/tubes/branch_mesh.hpp"
+#include "cellforge/tubes/detail/closed_build.hpp"
 #include "cellforge/tubes/detail/tube_buffer.hpp"
 #include "cellforge/tubes/node_path.hpp"
 #include "cellforge/tubes/skeleton.hpp"
@@ -381,18 +382,8 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   }
   res.paths_ms = dt::elapsed_ms(t_paths);
 
-  // Corner angles of the faces as built (before any subdivision), on the flat buffer.
-  double cos_lo = 1, cos_hi = -1;  // the largest and smallest corner angle's cosines
-  for (std::size_t f = 0; f + 1 < out.face_offsets.size(); ++f) {
-    const std::uint32_t b = out.face_offsets[f], e = out.face_offsets[f + 1], k = e - b;
-    for (std::uint32_t c = 0; c < k; ++c) {
-      const glm::dvec3& p = out.points[out.face_vertices[b + c]];
-      const glm::dvec3 u = out.points[out.face_vertices[b + (c + k - 1) % k]] - p;
-      const glm::dvec3 w = out.points[out.face_vertices[b + (c + 1) % k]] - p;
-      const double cosine = glm::dot(u, w) / std::sqrt(glm::dot(u, u) * glm::dot(w, w));
-      cos_lo = std::min(cos_lo, cosine), cos_hi = std::max(cos_hi, cosine);
-    }
-  }
+  // Corner angles of the faces as built (before any subdivision), taken by add_face.
+  const double cos_lo = out.cos_lo, cos_hi = out.cos_hi;
   res.min_corner_deg = std::acos(std::clamp(cos_hi, -1.0, 1.0)) * 180 / std::numbers::pi;
   res.max_corner_deg = std::acos(std::clamp(cos_lo, -1.0, 1.0)) * 180 / std::numbers::pi;
   // The mesh, in the skeleton's point type.
@@ -411,7 +402,10 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     out = std::move(tri);
   }
   surface_mesh<P> mesh;
-  mesh.build(out.points.size(), out.face_offsets, out.face_vertices);
+  // The faces are closed and oriented by construction: linked in emission order, where
+  // the twins are near (build, which reports what is wrong, only if they are not).
+  if (!dt::build_closed(mesh, out.points.size(), out.face_offsets, out.face_vertices))
+    mesh.build(out.points.size(), out.face_offsets, out.face_vertices);
   const std::span<P> pts = mesh.points();
   for (std::size_t i = 0; i < out.points.size(); ++i) pts[i] = from_dvec3<P>(out.points[i]);
   res.mesh_ms = dt::elapsed_ms(t_mesh);
