@@ -14,6 +14,7 @@
 #include <numbers>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -402,22 +403,36 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     out = std::move(tri);
   }
   surface_mesh<P> mesh;
+  const std::size_t num_points = out.points.size();
+  // Positions in the buffer's own type and the sources of unsubdivided faces move into the
+  // mesh instead of being copied (the mesh's arrays are then already at their size).
+  if constexpr (std::is_same_v<P, glm::dvec3>) mesh.positions().vector().swap(out.points);
+  const int shift = 2 * options.subdivision_levels;
+  property<face_handle, tube_face_source> source;
+  if (shift == 0) {
+    source = mesh.template add_face_property<tube_face_source>(tube_source_property_name);
+    source.vector().swap(out.sources);
+  }
   // The faces are closed and oriented by construction: linked in emission order, where
   // the twins are near (build, which reports what is wrong, only if they are not).
-  if (!dt::build_closed(mesh, out.points.size(), out.face_offsets, out.face_vertices))
-    mesh.build(out.points.size(), out.face_offsets, out.face_vertices);
-  const std::span<P> pts = mesh.points();
-  for (std::size_t i = 0; i < out.points.size(); ++i) pts[i] = from_dvec3<P>(out.points[i]);
+  if (!dt::build_closed(mesh, num_points, out.face_offsets, out.face_vertices)) {
+    if (shift == 0) source.vector().swap(out.sources);  // build drops face properties' values
+    mesh.build(num_points, out.face_offsets, out.face_vertices);
+    if (shift == 0) std::copy(out.sources.begin(), out.sources.end(), source.vector().begin());
+  }
+  if constexpr (!std::is_same_v<P, glm::dvec3>) {
+    const std::span<P> pts = mesh.points();
+    for (std::size_t i = 0; i < num_points; ++i) pts[i] = from_dvec3<P>(out.points[i]);
+  }
   res.mesh_ms = dt::elapsed_ms(t_mesh);
   if (options.subdivision_levels > 0) {
     const auto t_sub = clock::now();
     loop_subdivide(mesh, {.levels = options.subdivision_levels});
     res.subdivision_ms = dt::elapsed_ms(t_sub);
+    // Face 4f + k of a Loop level is a child of face f: a face's source is its ancestor's.
+    source = mesh.template add_face_property<tube_face_source>(tube_source_property_name);
+    for (const face_handle f : mesh.faces()) source[f] = out.sources[f.idx() >> shift];
   }
-  // Face 4f + k of a Loop level is a child of face f: a face's source is its ancestor's.
-  const int shift = 2 * options.subdivision_levels;
-  auto source = mesh.template add_face_property<tube_face_source>(tube_source_property_name);
-  for (const face_handle f : mesh.faces()) source[f] = out.sources[f.idx() >> shift];
   res.min_section_ratio = std::numeric_limits<double>::infinity();
   for (double& q : out.section_ratio) {
     if (std::isinf(q))
@@ -428,8 +443,8 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   res.section_ratio = std::move(out.section_ratio);
   // Shells by union-find over the faces' vertices (the mesh's own connectivity, measured, not
   // assumed from the skeleton's components).
-  detail::union_find sets(out.points.size());
-  std::size_t shells = out.points.size();
+  detail::union_find sets(num_points);
+  std::size_t shells = num_points;
   for (std::size_t f = 0; f + 1 < out.face_offsets.size(); ++f)
     for (std::uint32_t k = out.face_offsets[f] + 1; k < out.face_offsets[f + 1]; ++k)
       shells -= sets.unite(out.face_vertices[out.face_offsets[f]], out.face_vertices[k]) ? 1 : 0;

@@ -9,7 +9,7 @@
 // ones build writes (same edge numbering, same vertex anchors); anything that is not a
 // closed oriented surface is left to build, which reports it.
 
-#include <array>
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -19,77 +19,86 @@
 
 namespace cellforge::detail::tubes {
 
-/// Links faces (CSR over `num_vertices`) into `mesh` (empty) when they form a closed,
-/// consistently oriented surface and returns true; returns false, the mesh untouched,
-/// otherwise. The fans are still verified (a non-manifold vertex throws as build does).
-/// O(total face size × the longest unmatched list at a vertex), O(1) per corner for tubes.
+/// Links faces (CSR over `num_vertices`) into `mesh` (no faces yet; its vertex properties,
+/// if already sized, are kept) when they form a closed, consistently oriented surface and
+/// returns true; otherwise returns false with no connectivity (face properties sized, their
+/// values kept), for build to report what is wrong. The fans are still verified (a non-manifold vertex throws
+/// as build does). O(total face size × the longest unmatched list at a vertex), O(1) per corner for tubes.
 template <class = void>
 bool build_closed(halfedge_mesh& mesh, std::size_t num_vertices, std::span<const std::uint32_t> offsets,
                   std::span<const std::uint32_t> fv) {
   using access = mesh_access;
   constexpr std::uint32_t npos = halfedge_mesh::npos;
   const std::size_t nh = fv.size();
-  if (offsets.empty() || offsets[0] != 0 || offsets.back() != nh || num_vertices >= npos / 2 ||
-      nh >= npos / 2 || mesh.vertices_size() != 0 || mesh.halfedges_size() != 0)
+  // A closed surface has two corners per edge.
+  if (offsets.empty() || offsets[0] != 0 || offsets.back() != nh || nh % 2 != 0 || num_vertices >= npos / 2 ||
+      nh >= npos / 2 || mesh.halfedges_size() != 0 || mesh.faces_size() != 0)
     return false;
   const std::size_t nf = offsets.size() - 1;
-  // Unmatched corners leaving each vertex, as a list: pending[c] = {c's head vertex, the
-  // next corner in its tail's list}. partner[c] is c's twin corner once matched.
-  std::vector<std::uint32_t> first(num_vertices, npos), partner(nh);
-  std::vector<std::array<std::uint32_t, 2>> pending(nh);
+  access::resize(mesh, num_vertices, nh / 2, nf);
+  std::vector<halfedge_mesh::record>& he = access::records(mesh);
+  std::vector<std::uint32_t>& first = access::vertex_anchors(mesh);
+  // The records serve as the matching's scratch first (one record per corner, as many as
+  // there will be half-edges), so that the matching allocates nothing: the unmatched corners
+  // leaving each vertex v form a list from first[v] through he[c].next, he[c].head is corner
+  // c's head vertex, and he[c].prev its twin corner once matched.
   std::size_t unmatched = 0;
+  const auto give_up = [&] {  // face properties keep their values (the caller may swap them out)
+    he.clear();
+    access::halfedge_properties(mesh).resize(0);
+    access::edge_properties(mesh).resize(0);
+    access::face_anchors(mesh).clear();
+    std::fill(first.begin(), first.end(), npos);
+    return false;
+  };
   for (std::size_t f = 0; f < nf; ++f) {
     const std::uint32_t o = offsets[f], e = offsets[f + 1];
-    if (e < o + 3 || e > nh) return false;
+    if (e < o + 3 || e > nh) return give_up();
     for (std::uint32_t c = o; c < e; ++c) {
-      if (fv[c] >= num_vertices) return false;
+      if (fv[c] >= num_vertices) return give_up();
       for (std::uint32_t d = o; d < c; ++d)
-        if (fv[d] == fv[c]) return false;  // a repeated vertex: build names it
+        if (fv[d] == fv[c]) return give_up();  // a repeated vertex: build names it
     }
     for (std::uint32_t c = o; c < e; ++c) {
       const std::uint32_t a = fv[c], b = fv[c + 1 == e ? o : c + 1];
       // The twin leaves b for a: search b's list.
       std::uint32_t before = npos, d = first[b];
-      while (d != npos && pending[d][0] != a) before = d, d = pending[d][1];
+      while (d != npos && he[d].head != a) before = d, d = he[d].next;
       if (d != npos) {
-        (before == npos ? first[b] : pending[before][1]) = pending[d][1];
-        partner[c] = d, partner[d] = c;
+        (before == npos ? first[b] : he[before].next) = he[d].next;
+        he[c].prev = d, he[d].prev = c;
         --unmatched;
       } else {
-        pending[c] = {b, first[a]};
+        he[c].head = b, he[c].next = first[a];
         first[a] = c;
         ++unmatched;
       }
     }
   }
   // A boundary, an edge of three faces or two faces disagreeing in orientation: not closed.
-  if (unmatched != 0) return false;
-  pending = {};
-  first = {};
-  const std::size_t ne = nh / 2;
-  access::resize(mesh, num_vertices, ne, nf);
-  std::vector<halfedge_mesh::record>& he = access::records(mesh);
-  std::vector<std::uint32_t>& face_anchor = access::face_anchors(mesh);
+  if (unmatched != 0) return give_up();
   // As build's last pass: edges numbered in order of first use, a corner whose twin came
-  // earlier taking the twin of the twin's half-edge.
+  // earlier taking the twin of the twin's half-edge; then the records, over the scratch.
+  std::vector<std::uint32_t> half(nh);
   std::uint32_t next_edge = 0;
+  for (std::uint32_t c = 0; c < nh; ++c) {
+    const std::uint32_t p = he[c].prev;
+    half[c] = p < c ? half[p] ^ 1u : 2 * next_edge++;
+  }
+  std::vector<std::uint32_t>& face_anchor = access::face_anchors(mesh);
   for (std::size_t f = 0; f < nf; ++f) {
     const std::uint32_t o = offsets[f], e = offsets[f + 1];
-    for (std::uint32_t c = o; c < e; ++c) {
-      const std::uint32_t p = partner[c];
-      partner[c] = p < c ? partner[p] ^ 1u : 2 * next_edge++;
-    }
-    face_anchor[f] = partner[o];
+    face_anchor[f] = half[o];
     for (std::uint32_t c = o; c < e; ++c) {
       const std::uint32_t cn = c + 1 == e ? o : c + 1, cp = c == o ? e - 1 : c - 1;
-      halfedge_mesh::record& r = he[partner[c]];
+      halfedge_mesh::record& r = he[half[c]];
       r.head = fv[cn];
-      r.next = partner[cn];
-      r.prev = partner[cp];
+      r.next = half[cn];
+      r.prev = half[cp];
       r.face = static_cast<std::uint32_t>(f);
     }
   }
-  partner = {};
+  half = {};
   access::finish(mesh);  // anchors, and the walk around every vertex that finds a pinch
   return true;
 }
