@@ -10,6 +10,7 @@
 // closed oriented surface is left to build, which reports it.
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -85,21 +86,49 @@ bool build_closed(halfedge_mesh& mesh, std::size_t num_vertices, std::span<const
     const std::uint32_t p = he[c].prev;
     half[c] = p < c ? half[p] ^ 1u : 2 * next_edge++;
   }
+  // The records, and each vertex's anchor: as build's, the last half-edge that ends there.
   std::vector<std::uint32_t>& face_anchor = access::face_anchors(mesh);
+  std::vector<std::uint32_t>& anchor = first;  // every list is empty: all npos
   for (std::size_t f = 0; f < nf; ++f) {
     const std::uint32_t o = offsets[f], e = offsets[f + 1];
     face_anchor[f] = half[o];
     for (std::uint32_t c = o; c < e; ++c) {
       const std::uint32_t cn = c + 1 == e ? o : c + 1, cp = c == o ? e - 1 : c - 1;
-      halfedge_mesh::record& r = he[half[c]];
-      r.head = fv[cn];
+      const std::uint32_t h = half[c], v = fv[cn];
+      halfedge_mesh::record& r = he[h];
+      r.head = v;
       r.next = half[cn];
       r.prev = half[cp];
       r.face = static_cast<std::uint32_t>(f);
+      if (anchor[v] == npos || anchor[v] < h) anchor[v] = h;
     }
   }
   half = {};
-  access::finish(mesh);  // anchors, and the walk around every vertex that finds a pinch
+  // Each vertex's corners must form one fan. Walking around every vertex from its anchor
+  // reaches each half-edge at most once, and all of them exactly when no vertex has a second
+  // fan; eight walks go side by side so that their cache misses overlap.
+  constexpr std::size_t lanes = 8;
+  std::array<std::uint32_t, lanes> start{}, at{};
+  std::size_t reached = 0;
+  for (std::size_t v0 = 0; v0 < num_vertices && reached <= nh; v0 += lanes) {
+    std::size_t live = 0;
+    for (std::size_t k = 0; k < lanes; ++k) {
+      start[k] = at[k] = v0 + k < num_vertices ? anchor[v0 + k] : npos;
+      live += start[k] != npos ? 1 : 0;
+    }
+    while (live > 0 && reached <= nh)
+      for (std::size_t k = 0; k < lanes; ++k) {
+        if (at[k] == npos) continue;
+        ++reached;
+        at[k] = he[at[k]].next ^ 1u;  // the next half-edge into the same vertex
+        if (at[k] == start[k]) at[k] = npos, --live;
+      }
+  }
+  if (reached != nh) {
+    access::finish(mesh);  // names the vertex where fans meet (throws)
+    return true;
+  }
+  access::finish_closed(mesh, 0);  // every twin pair runs both ways: no flipped edge
   return true;
 }
 
