@@ -311,6 +311,7 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   const auto t_paths = clock::now();
   out.section_ratio.assign(ne, std::numeric_limits<double>::infinity());
   std::vector<dt::station> stations;
+  dt::path_scratch path_buffers;
   for (std::uint32_t p = 0; p < tc.paths.size(); ++p) {
     const tube_path& path = tc.paths[p];
     const std::size_t m = path.nodes.size();
@@ -358,7 +359,7 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     const bool cap_end = !path.closed && !is_junction(path.nodes.back());
     dt::build_path(out, stations, path.closed, n, options.alignment, path.edges, cap_start,
                    tc.nodes[path.nodes.front()].skeleton_node, cap_end,
-                   tc.nodes[path.nodes.back()].skeleton_node);
+                   tc.nodes[path.nodes.back()].skeleton_node, &path_buffers);
     ++res.paths;
     res.closed_paths += path.closed ? 1 : 0;
     res.end_caps += (cap_start ? 1 : 0) + (cap_end ? 1 : 0);

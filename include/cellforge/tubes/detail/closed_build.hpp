@@ -40,9 +40,12 @@ bool build_closed(halfedge_mesh& mesh, std::size_t num_vertices, std::span<const
   std::vector<halfedge_mesh::record>& he = access::records(mesh);
   std::vector<std::uint32_t>& first = access::vertex_anchors(mesh);
   // The records serve as the matching's scratch first (one record per corner, as many as
-  // there will be half-edges), so that the matching allocates nothing: the unmatched corners
-  // leaving each vertex v form a list from first[v] through he[c].next, he[c].head is corner
-  // c's head vertex, and he[c].prev its twin corner once matched.
+  // there will be half-edges), so that it allocates little: the unmatched corners leaving
+  // each vertex v form a list from first[v] through he[c].next, he[c].head being corner c's
+  // head vertex. Edges are numbered as build numbers them, in order of first use: a corner
+  // with no twin yet opens one (half[c] = 2e), the twin that comes later takes 2e + 1.
+  std::vector<std::uint32_t> half(nh);
+  std::uint32_t next_edge = 0;
   std::size_t unmatched = 0;
   const auto give_up = [&] {  // face properties keep their values (the caller may swap them out)
     he.clear();
@@ -67,25 +70,18 @@ bool build_closed(halfedge_mesh& mesh, std::size_t num_vertices, std::span<const
       while (d != npos && he[d].head != a) before = d, d = he[d].next;
       if (d != npos) {
         (before == npos ? first[b] : he[before].next) = he[d].next;
-        he[c].prev = d, he[d].prev = c;
+        half[c] = half[d] ^ 1u;
         --unmatched;
       } else {
         he[c].head = b, he[c].next = first[a];
         first[a] = c;
+        half[c] = 2 * next_edge++;
         ++unmatched;
       }
     }
   }
   // A boundary, an edge of three faces or two faces disagreeing in orientation: not closed.
   if (unmatched != 0) return give_up();
-  // As build's last pass: edges numbered in order of first use, a corner whose twin came
-  // earlier taking the twin of the twin's half-edge; then the records, over the scratch.
-  std::vector<std::uint32_t> half(nh);
-  std::uint32_t next_edge = 0;
-  for (std::uint32_t c = 0; c < nh; ++c) {
-    const std::uint32_t p = he[c].prev;
-    half[c] = p < c ? half[p] ^ 1u : 2 * next_edge++;
-  }
   // The records, and each vertex's anchor: as build's, the last half-edge that ends there.
   std::vector<std::uint32_t>& face_anchor = access::face_anchors(mesh);
   std::vector<std::uint32_t>& anchor = first;  // every list is empty: all npos
