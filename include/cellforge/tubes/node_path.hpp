@@ -169,19 +169,21 @@ void build_path(buffer& out, std::span<const station> stations, bool closed, std
   }
   // Path position m of station i: fixed rings through their own order, the last one (or the
   // first, for a closed path) shifted by the chosen offset.
+  // (No division per vertex: m < sides, and the shift is reduced to [0, sides) once.)
+  const auto offset_mod = static_cast<std::uint32_t>((offset % sides + sides) % sides);
   const auto vertex = [&](std::size_t i, std::uint32_t m, bool wrapped) -> std::uint32_t {
     const station& s = stations[i];
-    const std::int64_t shift = (wrapped || (ends_fixed && i == n - 1)) ? offset : 0;
-    const auto mm =
-        static_cast<std::uint32_t>(((static_cast<std::int64_t>(m) + shift) % sides + sides) % sides);
-    return s.fixed ? fixed_vertex(s, mm, sides) : first[i] + mm;
+    std::uint32_t mm = m + ((wrapped || (ends_fixed && i == n - 1)) ? offset_mod : 0);
+    if (mm >= sides) mm -= sides;
+    if (!s.fixed) return first[i] + mm;
+    return s.first_vertex + (s.reversed && mm != 0 ? sides - mm : mm);  // as fixed_vertex
   };
   const std::size_t segments = closed ? n : n - 1;
   for (std::size_t i = 0; i < segments; ++i) {
     const std::size_t b = (i + 1) % n;
     const bool wrapped = closed && b == 0;
     for (std::uint32_t j = 0; j < sides; ++j) {
-      const std::uint32_t jn = (j + 1) % sides;
+      const std::uint32_t jn = j + 1 == sides ? 0 : j + 1;
       const std::uint32_t quad[4] = {vertex(i, j, false), vertex(i, jn, false), vertex(b, jn, wrapped),
                                      vertex(b, j, wrapped)};
       out.add_face(quad, {tube_face_kind::extrusion, segment_edge[i]});

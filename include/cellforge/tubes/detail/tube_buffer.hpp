@@ -52,7 +52,7 @@ struct basic_buffer {
     const auto k = static_cast<std::uint32_t>(vs.size());
     for (std::uint32_t c = 0; c < k; ++c) {
       const glm::dvec3& p = points[vs[c]];
-      const glm::dvec3 u = points[vs[(c + k - 1) % k]] - p, w = points[vs[(c + 1) % k]] - p;
+      const glm::dvec3 u = points[vs[c == 0 ? k - 1 : c - 1]] - p, w = points[vs[c + 1 == k ? 0 : c + 1]] - p;
       const double cosine = glm::dot(u, w) / std::sqrt(glm::dot(u, u) * glm::dot(w, w));
       cos_lo = std::min(cos_lo, cosine), cos_hi = std::max(cos_hi, cosine);
     }
