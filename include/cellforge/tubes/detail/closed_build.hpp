@@ -38,21 +38,24 @@ bool build_closed(halfedge_mesh& mesh, std::size_t num_vertices, std::span<const
   const std::size_t nf = offsets.size() - 1;
   access::resize(mesh, num_vertices, nh / 2, nf);
   std::vector<halfedge_mesh::record>& he = access::records(mesh);
-  std::vector<std::uint32_t>& first = access::vertex_anchors(mesh);
-  // The records serve as the matching's scratch first (one record per corner, as many as
-  // there will be half-edges), so that it allocates little: the unmatched corners leaving
-  // each vertex v form a list from first[v] through he[c].next, he[c].head being corner c's
-  // head vertex. Edges are numbered as build numbers them, in order of first use: a corner
-  // with no twin yet opens one (half[c] = 2e), the twin that comes later takes 2e + 1.
-  std::vector<std::uint32_t> half(nh);
+  std::vector<std::uint32_t>& anchor = access::vertex_anchors(mesh);  // all npos
+  std::vector<std::uint32_t>& face_anchor = access::face_anchors(mesh);
+  // One pass, faces in order. Edges are numbered as build numbers them, in order of first
+  // use: a corner a -> b with no twin yet opens edge e and takes half-edge 2e; until its twin
+  // comes, the twin's record 2e + 1 serves as scratch, on a list of such open edges per
+  // vertex (from first[a] through .next, with .head = b), so the matching needs no arrays of
+  // its own; the twin b -> a finds it on a's list and takes 2e + 1. A face's records are
+  // written once all its corners have their half-edges.
+  std::vector<std::uint32_t> first(num_vertices, npos), corner_half;
   std::uint32_t next_edge = 0;
+  const std::size_t ne = nh / 2;
   std::size_t unmatched = 0;
   const auto give_up = [&] {  // face properties keep their values (the caller may swap them out)
     he.clear();
     access::halfedge_properties(mesh).resize(0);
     access::edge_properties(mesh).resize(0);
-    access::face_anchors(mesh).clear();
-    std::fill(first.begin(), first.end(), npos);
+    face_anchor.clear();
+    std::fill(anchor.begin(), anchor.end(), npos);
     return false;
   };
   for (std::size_t f = 0; f < nf; ++f) {
@@ -63,43 +66,40 @@ bool build_closed(halfedge_mesh& mesh, std::size_t num_vertices, std::span<const
       for (std::uint32_t d = o; d < c; ++d)
         if (fv[d] == fv[c]) return give_up();  // a repeated vertex: build names it
     }
+    corner_half.resize(e - o);
     for (std::uint32_t c = o; c < e; ++c) {
       const std::uint32_t a = fv[c], b = fv[c + 1 == e ? o : c + 1];
-      // The twin leaves b for a: search b's list.
-      std::uint32_t before = npos, d = first[b];
-      while (d != npos && he[d].head != a) before = d, d = he[d].next;
-      if (d != npos) {
-        (before == npos ? first[b] : he[before].next) = he[d].next;
-        half[c] = half[d] ^ 1u;
+      // The twin leaves b for a: an open edge on b's list whose other end is a.
+      std::uint32_t before = npos, t = first[b];
+      while (t != npos && he[t].head != a) before = t, t = he[t].next;
+      if (t != npos) {
+        (before == npos ? first[b] : he[before].next) = he[t].next;
+        corner_half[c - o] = t;
         --unmatched;
       } else {
-        he[c].head = b, he[c].next = first[a];
-        first[a] = c;
-        half[c] = 2 * next_edge++;
+        if (next_edge == ne) return give_up();  // more edges than a closed surface has
+        const std::uint32_t h = 2 * next_edge++;
+        he[h + 1].head = b, he[h + 1].next = first[a];
+        first[a] = h + 1;
+        corner_half[c - o] = h;
         ++unmatched;
       }
+    }
+    face_anchor[f] = corner_half[0];
+    const std::uint32_t k = e - o;
+    for (std::uint32_t i = 0; i < k; ++i) {
+      const std::uint32_t h = corner_half[i], v = fv[o + (i + 1 == k ? 0 : i + 1)];
+      halfedge_mesh::record& r = he[h];
+      r.head = v;
+      r.next = corner_half[i + 1 == k ? 0 : i + 1];
+      r.prev = corner_half[i == 0 ? k - 1 : i - 1];
+      r.face = static_cast<std::uint32_t>(f);
+      if (anchor[v] == npos || anchor[v] < h) anchor[v] = h;  // as build's: the last one in
     }
   }
   // A boundary, an edge of three faces or two faces disagreeing in orientation: not closed.
   if (unmatched != 0) return give_up();
-  // The records, and each vertex's anchor: as build's, the last half-edge that ends there.
-  std::vector<std::uint32_t>& face_anchor = access::face_anchors(mesh);
-  std::vector<std::uint32_t>& anchor = first;  // every list is empty: all npos
-  for (std::size_t f = 0; f < nf; ++f) {
-    const std::uint32_t o = offsets[f], e = offsets[f + 1];
-    face_anchor[f] = half[o];
-    for (std::uint32_t c = o; c < e; ++c) {
-      const std::uint32_t cn = c + 1 == e ? o : c + 1, cp = c == o ? e - 1 : c - 1;
-      const std::uint32_t h = half[c], v = fv[cn];
-      halfedge_mesh::record& r = he[h];
-      r.head = v;
-      r.next = half[cn];
-      r.prev = half[cp];
-      r.face = static_cast<std::uint32_t>(f);
-      if (anchor[v] == npos || anchor[v] < h) anchor[v] = h;
-    }
-  }
-  half = {};
+  first = {};
   // Each vertex's corners must form one fan. Walking around every vertex from its anchor
   // reaches each half-edge at most once, and all of them exactly when no vertex has a second
   // fan; eight walks go side by side so that their cache misses overlap.
