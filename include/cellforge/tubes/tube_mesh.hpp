@@ -312,10 +312,13 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   out.section_ratio.assign(ne, std::numeric_limits<double>::infinity());
   std::vector<dt::station> stations;
   dt::path_scratch path_buffers;
+  std::vector<glm::dvec3> at;  // the path's node positions, each looked up once
   for (std::uint32_t p = 0; p < tc.paths.size(); ++p) {
     const tube_path& path = tc.paths[p];
     const std::size_t m = path.nodes.size();
     stations.assign(m, {});
+    at.resize(m);
+    for (std::size_t i = 0; i < m; ++i) at[i] = node_pos(path.nodes[i]);
     for (std::size_t i = 0; i < m; ++i) {
       dt::station& s = stations[i];
       const std::uint32_t c = path.nodes[i];
@@ -332,11 +335,11 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
         s.fixed_first = e.ring.first;
         continue;
       }
-      s.centre = node_pos(c);
+      s.centre = at[i];
       s.radius = node_radius(c);
       const bool has_prev = i > 0 || path.closed, has_next = i + 1 < m || path.closed;
-      const glm::dvec3 prev = has_prev ? node_pos(path.nodes[(i + m - 1) % m]) : s.centre;
-      const glm::dvec3 next = has_next ? node_pos(path.nodes[(i + 1) % m]) : s.centre;
+      const glm::dvec3 prev = has_prev ? at[i == 0 ? m - 1 : i - 1] : s.centre;
+      const glm::dvec3 next = has_next ? at[i + 1 == m ? 0 : i + 1] : s.centre;
       const glm::dvec3 din = has_prev ? glm::normalize(s.centre - prev) : glm::dvec3(0.0);
       const glm::dvec3 dout = has_next ? glm::normalize(next - s.centre) : glm::dvec3(0.0);
       if (!(glm::length(din + dout) > 1e-9))
