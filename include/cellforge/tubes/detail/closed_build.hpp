@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The tube mesher's half-edge build: a CSR face list that should be a closed, consistently
-// oriented surface (every directed edge a -> b met by exactly one b -> a) is linked in two
-// passes over the faces in emission order, where basic_halfedge_mesh::build buckets every
-// corner by vertex first (four passes, two of them scattered over the whole mesh). The
-// tube's faces come ring by ring, so a corner's twin is almost always among the last few
-// dozen corners: an unmatched-corner list per vertex finds it in cache. The records are the
-// ones build writes (same edge numbering, same vertex anchors); anything that is not a
-// closed oriented surface is left to build, which reports it.
+// oriented surface (every directed edge a -> b met by exactly one b -> a) is linked in one
+// pass over the faces in emission order, then one walk around every vertex, where
+// basic_halfedge_mesh::build buckets every corner by vertex first (four passes, two of them
+// scattered over the whole mesh). The tube's faces come ring by ring, so a corner's twin is
+// almost always among the last few dozen corners: a list of open edges per vertex finds it
+// in cache. The records are the ones build writes (same edge numbering, same vertex
+// anchors); anything that is not a closed oriented surface is left to build, which reports it.
 
 #include <algorithm>
 #include <array>
@@ -23,8 +23,9 @@ namespace cellforge::detail::tubes {
 /// Links faces (CSR over `num_vertices`) into `mesh` (no faces yet; its vertex properties,
 /// if already sized, are kept) when they form a closed, consistently oriented surface and
 /// returns true; otherwise returns false with no connectivity (face properties sized, their
-/// values kept), for build to report what is wrong. The fans are still verified (a non-manifold vertex throws
-/// as build does). O(total face size × the longest unmatched list at a vertex), O(1) per corner for tubes.
+/// values kept), for build to report what is wrong. The fans are still verified (a vertex
+/// with two closed fans throws as build does). O(total face size × the longest open-edge list
+/// at a vertex): O(1) per corner for tubes.
 template <class = void>
 bool build_closed(halfedge_mesh& mesh, std::size_t num_vertices, std::span<const std::uint32_t> offsets,
                   std::span<const std::uint32_t> fv) {
