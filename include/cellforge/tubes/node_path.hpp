@@ -77,25 +77,37 @@ glm::dvec3 project_frame(const glm::dvec3& u, const glm::dvec3& t) {
   return l > 1e-12 ? p / l : any_perpendicular(t);
 }
 
+/// Buffers build_path reuses from one path to the next (none allocates once warm).
+struct path_scratch {
+  std::vector<glm::dvec3> frame;
+  std::vector<double> arc;
+  std::vector<std::uint32_t> first, cap;
+};
+
 /// Appends the tube through `stations` to `out`: new rings for the stations that are not
 /// fixed, quads between consecutive ones (outward), flat caps at free ends when `cap_start` /
 /// `cap_end`, faces tagged with `segment_edge[i]` for the tube from station i to i + 1 (and
 /// `start_node` / `end_node` for caps). `closed` joins the last station back to the first.
-/// O(stations × sides).
+/// `reuse` (optional) keeps the working arrays across calls. O(stations × sides).
 template <class = void>
 void build_path(buffer& out, std::span<const station> stations, bool closed, std::uint32_t sides,
                 tube_alignment alignment, std::span<const std::uint32_t> segment_edge, bool cap_start,
-                std::uint32_t start_node, bool cap_end, std::uint32_t end_node) {
+                std::uint32_t start_node, bool cap_end, std::uint32_t end_node,
+                path_scratch* reuse = nullptr) {
   const std::size_t n = stations.size();
+  path_scratch own;
+  path_scratch& scratch = reuse != nullptr ? *reuse : own;
   // Frames: the direction of each station's vertex 0 before the spread correction.
-  std::vector<glm::dvec3> frame(n);
+  std::vector<glm::dvec3>& frame = scratch.frame;
+  frame.resize(n);
   frame[0] = stations[0].fixed ? stations[0].fixed_first : any_perpendicular(stations[0].tangent);
   for (std::size_t i = 1; i < n; ++i)
     frame[i] = alignment == tube_alignment::global  ? transport(frame[i - 1], stations[i - 1], stations[i])
                : alignment == tube_alignment::local ? project_frame(frame[i - 1], stations[i].tangent)
                                                     : any_perpendicular(stations[i].tangent);
   // Arc length, for spreading the closing correction.
-  std::vector<double> arc(n + 1, 0.0);
+  std::vector<double>& arc = scratch.arc;
+  arc.assign(n + 1, 0.0);
   for (std::size_t i = 1; i < n; ++i)
     arc[i] = arc[i - 1] + glm::length(stations[i].centre - stations[i - 1].centre);
   arc[n] = arc[n - 1] + (closed ? glm::length(stations[0].centre - stations[n - 1].centre) : 0.0);
@@ -124,7 +136,8 @@ void build_path(buffer& out, std::span<const station> stations, bool closed, std
   }
   const double total = closed ? arc[n] : arc[n - 1];
   // Vertex ids of each station in path order (counter-clockwise about travel).
-  std::vector<std::uint32_t> first(n);
+  std::vector<std::uint32_t>& first = scratch.first;
+  first.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const station& s = stations[i];
     if (s.fixed) {
@@ -156,25 +169,28 @@ void build_path(buffer& out, std::span<const station> stations, bool closed, std
   }
   // Path position m of station i: fixed rings through their own order, the last one (or the
   // first, for a closed path) shifted by the chosen offset.
+  // (No division per vertex: m < sides, and the shift is reduced to [0, sides) once.)
+  const auto offset_mod = static_cast<std::uint32_t>((offset % sides + sides) % sides);
   const auto vertex = [&](std::size_t i, std::uint32_t m, bool wrapped) -> std::uint32_t {
     const station& s = stations[i];
-    const std::int64_t shift = (wrapped || (ends_fixed && i == n - 1)) ? offset : 0;
-    const auto mm =
-        static_cast<std::uint32_t>(((static_cast<std::int64_t>(m) + shift) % sides + sides) % sides);
-    return s.fixed ? fixed_vertex(s, mm, sides) : first[i] + mm;
+    std::uint32_t mm = m + ((wrapped || (ends_fixed && i == n - 1)) ? offset_mod : 0);
+    if (mm >= sides) mm -= sides;
+    if (!s.fixed) return first[i] + mm;
+    return s.first_vertex + (s.reversed && mm != 0 ? sides - mm : mm);  // as fixed_vertex
   };
   const std::size_t segments = closed ? n : n - 1;
   for (std::size_t i = 0; i < segments; ++i) {
     const std::size_t b = (i + 1) % n;
     const bool wrapped = closed && b == 0;
     for (std::uint32_t j = 0; j < sides; ++j) {
-      const std::uint32_t jn = (j + 1) % sides;
+      const std::uint32_t jn = j + 1 == sides ? 0 : j + 1;
       const std::uint32_t quad[4] = {vertex(i, j, false), vertex(i, jn, false), vertex(b, jn, wrapped),
                                      vertex(b, j, wrapped)};
       out.add_face(quad, {tube_face_kind::extrusion, segment_edge[i]});
     }
   }
-  std::vector<std::uint32_t> cap(sides);
+  std::vector<std::uint32_t>& cap = scratch.cap;
+  cap.resize(sides);
   if (cap_start && !closed) {  // facing back along the path
     for (std::uint32_t j = 0; j < sides; ++j) cap[j] = vertex(0, sides - 1 - j, false);
     out.add_face(cap, {tube_face_kind::end_cap, start_node});

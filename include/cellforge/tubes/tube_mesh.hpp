@@ -14,6 +14,7 @@
 #include <numbers>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -27,6 +28,7 @@
 #include "cellforge/halfedge/mesh_geometry.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"
 #include "cellforge/tubes/branch_mesh.hpp"
+#include "cellforge/tubes/detail/closed_build.hpp"
 #include "cellforge/tubes/detail/tube_buffer.hpp"
 #include "cellforge/tubes/node_path.hpp"
 #include "cellforge/tubes/skeleton.hpp"
@@ -309,10 +311,14 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   const auto t_paths = clock::now();
   out.section_ratio.assign(ne, std::numeric_limits<double>::infinity());
   std::vector<dt::station> stations;
+  dt::path_scratch path_buffers;
+  std::vector<glm::dvec3> at;  // the path's node positions, each looked up once
   for (std::uint32_t p = 0; p < tc.paths.size(); ++p) {
     const tube_path& path = tc.paths[p];
     const std::size_t m = path.nodes.size();
     stations.assign(m, {});
+    at.resize(m);
+    for (std::size_t i = 0; i < m; ++i) at[i] = node_pos(path.nodes[i]);
     for (std::size_t i = 0; i < m; ++i) {
       dt::station& s = stations[i];
       const std::uint32_t c = path.nodes[i];
@@ -329,11 +335,11 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
         s.fixed_first = e.ring.first;
         continue;
       }
-      s.centre = node_pos(c);
+      s.centre = at[i];
       s.radius = node_radius(c);
       const bool has_prev = i > 0 || path.closed, has_next = i + 1 < m || path.closed;
-      const glm::dvec3 prev = has_prev ? node_pos(path.nodes[(i + m - 1) % m]) : s.centre;
-      const glm::dvec3 next = has_next ? node_pos(path.nodes[(i + 1) % m]) : s.centre;
+      const glm::dvec3 prev = has_prev ? at[i == 0 ? m - 1 : i - 1] : s.centre;
+      const glm::dvec3 next = has_next ? at[i + 1 == m ? 0 : i + 1] : s.centre;
       const glm::dvec3 din = has_prev ? glm::normalize(s.centre - prev) : glm::dvec3(0.0);
       const glm::dvec3 dout = has_next ? glm::normalize(next - s.centre) : glm::dvec3(0.0);
       if (!(glm::length(din + dout) > 1e-9))
@@ -356,7 +362,7 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     const bool cap_end = !path.closed && !is_junction(path.nodes.back());
     dt::build_path(out, stations, path.closed, n, options.alignment, path.edges, cap_start,
                    tc.nodes[path.nodes.front()].skeleton_node, cap_end,
-                   tc.nodes[path.nodes.back()].skeleton_node);
+                   tc.nodes[path.nodes.back()].skeleton_node, &path_buffers);
     ++res.paths;
     res.closed_paths += path.closed ? 1 : 0;
     res.end_caps += (cap_start ? 1 : 0) + (cap_end ? 1 : 0);
@@ -381,18 +387,8 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   }
   res.paths_ms = dt::elapsed_ms(t_paths);
 
-  // Corner angles of the faces as built (before any subdivision), on the flat buffer.
-  double cos_lo = 1, cos_hi = -1;  // the largest and smallest corner angle's cosines
-  for (std::size_t f = 0; f + 1 < out.face_offsets.size(); ++f) {
-    const std::uint32_t b = out.face_offsets[f], e = out.face_offsets[f + 1], k = e - b;
-    for (std::uint32_t c = 0; c < k; ++c) {
-      const glm::dvec3& p = out.points[out.face_vertices[b + c]];
-      const glm::dvec3 u = out.points[out.face_vertices[b + (c + k - 1) % k]] - p;
-      const glm::dvec3 w = out.points[out.face_vertices[b + (c + 1) % k]] - p;
-      const double cosine = glm::dot(u, w) / std::sqrt(glm::dot(u, u) * glm::dot(w, w));
-      cos_lo = std::min(cos_lo, cosine), cos_hi = std::max(cos_hi, cosine);
-    }
-  }
+  // Corner angles of the faces as built (before any subdivision), taken by add_face.
+  const double cos_lo = out.cos_lo, cos_hi = out.cos_hi;
   res.min_corner_deg = std::acos(std::clamp(cos_hi, -1.0, 1.0)) * 180 / std::numbers::pi;
   res.max_corner_deg = std::acos(std::clamp(cos_lo, -1.0, 1.0)) * 180 / std::numbers::pi;
   // The mesh, in the skeleton's point type.
@@ -411,19 +407,36 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     out = std::move(tri);
   }
   surface_mesh<P> mesh;
-  mesh.build(out.points.size(), out.face_offsets, out.face_vertices);
-  const std::span<P> pts = mesh.points();
-  for (std::size_t i = 0; i < out.points.size(); ++i) pts[i] = from_dvec3<P>(out.points[i]);
+  const std::size_t num_points = out.points.size();
+  // Positions in the buffer's own type and the sources of unsubdivided faces move into the
+  // mesh instead of being copied (the mesh's arrays are then already at their size).
+  if constexpr (std::is_same_v<P, glm::dvec3>) mesh.positions().vector().swap(out.points);
+  const int shift = 2 * options.subdivision_levels;
+  property<face_handle, tube_face_source> source;
+  if (shift == 0) {
+    source = mesh.template add_face_property<tube_face_source>(tube_source_property_name);
+    source.vector().swap(out.sources);
+  }
+  // The faces are closed and oriented by construction: linked in emission order, where
+  // the twins are near (build, which reports what is wrong, only if they are not).
+  if (!dt::build_closed(mesh, num_points, out.face_offsets, out.face_vertices)) {
+    if (shift == 0) source.vector().swap(out.sources);  // build drops face properties' values
+    mesh.build(num_points, out.face_offsets, out.face_vertices);
+    if (shift == 0) std::copy(out.sources.begin(), out.sources.end(), source.vector().begin());
+  }
+  if constexpr (!std::is_same_v<P, glm::dvec3>) {
+    const std::span<P> pts = mesh.points();
+    for (std::size_t i = 0; i < num_points; ++i) pts[i] = from_dvec3<P>(out.points[i]);
+  }
   res.mesh_ms = dt::elapsed_ms(t_mesh);
   if (options.subdivision_levels > 0) {
     const auto t_sub = clock::now();
     loop_subdivide(mesh, {.levels = options.subdivision_levels});
     res.subdivision_ms = dt::elapsed_ms(t_sub);
+    // Face 4f + k of a Loop level is a child of face f: a face's source is its ancestor's.
+    source = mesh.template add_face_property<tube_face_source>(tube_source_property_name);
+    for (const face_handle f : mesh.faces()) source[f] = out.sources[f.idx() >> shift];
   }
-  // Face 4f + k of a Loop level is a child of face f: a face's source is its ancestor's.
-  const int shift = 2 * options.subdivision_levels;
-  auto source = mesh.template add_face_property<tube_face_source>(tube_source_property_name);
-  for (const face_handle f : mesh.faces()) source[f] = out.sources[f.idx() >> shift];
   res.min_section_ratio = std::numeric_limits<double>::infinity();
   for (double& q : out.section_ratio) {
     if (std::isinf(q))
@@ -434,8 +447,8 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   res.section_ratio = std::move(out.section_ratio);
   // Shells by union-find over the faces' vertices (the mesh's own connectivity, measured, not
   // assumed from the skeleton's components).
-  detail::union_find sets(out.points.size());
-  std::size_t shells = out.points.size();
+  detail::union_find sets(num_points);
+  std::size_t shells = num_points;
   for (std::size_t f = 0; f + 1 < out.face_offsets.size(); ++f)
     for (std::uint32_t k = out.face_offsets[f] + 1; k < out.face_offsets[f + 1]; ++k)
       shells -= sets.unite(out.face_vertices[out.face_offsets[f]], out.face_vertices[k]) ? 1 : 0;

@@ -3,6 +3,7 @@
 // The tube mesher's output under construction: double positions, polygon faces in CSR form
 // and where each face came from; and the small vector helpers its stages share.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -43,7 +44,18 @@ struct basic_buffer {
     points.push_back(p);
     return static_cast<std::uint32_t>(points.size() - 1);
   }
+  /// The largest and smallest cosine of any face's corner angle so far (the smallest and
+  /// largest corner), taken as each face is added, while its points are in cache.
+  double cos_lo = 1, cos_hi = -1;
+
   void add_face(std::span<const std::uint32_t> vs, tube_face_source s) {
+    const auto k = static_cast<std::uint32_t>(vs.size());
+    for (std::uint32_t c = 0; c < k; ++c) {
+      const glm::dvec3& p = points[vs[c]];
+      const glm::dvec3 u = points[vs[c == 0 ? k - 1 : c - 1]] - p, w = points[vs[c + 1 == k ? 0 : c + 1]] - p;
+      const double cosine = glm::dot(u, w) / std::sqrt(glm::dot(u, u) * glm::dot(w, w));
+      cos_lo = std::min(cos_lo, cosine), cos_hi = std::max(cos_hi, cosine);
+    }
     face_vertices.insert(face_vertices.end(), vs.begin(), vs.end());
     face_offsets.push_back(static_cast<std::uint32_t>(face_vertices.size()));
     sources.push_back(s);

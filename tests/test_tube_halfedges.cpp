@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: MIT
+#include <doctest/doctest.h>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "cellforge/halfedge/surface_mesh.hpp"
+#include "cellforge/halfedge/validate.hpp"
+#include "cellforge/tubes/detail/closed_build.hpp"
+#include "cellforge/tubes/sample_skeletons.hpp"
+#include "cellforge/tubes/tube_mesh.hpp"
+
+// Own namespace: the test files of a group may be compiled as one translation unit.
+namespace tube_halfedges_tests {
+
+using namespace cellforge;
+
+// Record for record and anchor for anchor the same mesh.
+bool same_records(const halfedge_mesh& a, const halfedge_mesh& b) {
+  if (a.halfedges_size() != b.halfedges_size() || a.vertices_size() != b.vertices_size() ||
+      a.faces_size() != b.faces_size())
+    return false;
+  for (std::uint32_t h = 0; h < a.halfedges_size(); ++h) {
+    const auto &x = a.raw(halfedge_handle(h)), &y = b.raw(halfedge_handle(h));
+    if (x.head != y.head || x.next != y.next || x.prev != y.prev || x.face != y.face) return false;
+  }
+  for (std::uint32_t v = 0; v < a.vertices_size(); ++v)
+    if (a.raw_vertex_anchor(vertex_handle(v)) != b.raw_vertex_anchor(vertex_handle(v))) return false;
+  for (std::uint32_t f = 0; f < a.faces_size(); ++f)
+    if (a.halfedge(face_handle(f)) != b.halfedge(face_handle(f))) return false;
+  return true;
+}
+
+TEST_CASE("tube half-edge link (tubes/detail/closed_build.hpp): build's mesh, or build's report") {
+  const std::vector<std::uint32_t> offsets{0, 3, 6, 9, 12}, tetra{0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2};
+  SUBCASE("a closed surface: the records build writes") {
+    halfedge_mesh ours, built;
+    REQUIRE(detail::tubes::build_closed(ours, 4, offsets, tetra));
+    built.build(4, offsets, tetra);
+    CHECK(same_records(ours, built));
+    CHECK(validate(ours).ok());
+    CHECK(ours.is_closed());
+    CHECK(ours.num_flipped_edges() == 0);
+    // A cube of quads (mixed sizes are tested through the tube meshes below).
+    const std::vector<std::uint32_t> qo{0, 4, 8, 12, 16, 20, 24},
+        cube{0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 1, 2, 6, 5, 2, 3, 7, 6, 3, 0, 4, 7};
+    halfedge_mesh q1, q2;
+    REQUIRE(detail::tubes::build_closed(q1, 8, qo, cube));
+    q2.build(8, qo, cube);
+    CHECK(same_records(q1, q2));
+    CHECK(validate(q1).ok());
+  }
+  SUBCASE("not a closed oriented surface: false and no connectivity, for build to report") {
+    halfedge_mesh open;
+    CHECK_FALSE(detail::tubes::build_closed(open, 4, std::span(offsets).first(4), std::span(tetra).first(9)));
+    CHECK(open.halfedges_size() == 0);
+    CHECK(open.faces_size() == 0);
+    const build_report r = open.build(4, std::span(offsets).first(4), std::span(tetra).first(9));
+    CHECK(r.boundary_edges == 3);
+    std::vector<std::uint32_t> flipped = tetra;
+    std::swap(flipped[1], flipped[2]);  // face 0 turned over
+    halfedge_mesh f;
+    CHECK_FALSE(detail::tubes::build_closed(f, 4, offsets, flipped));
+    std::vector<std::uint32_t> repeated = tetra;
+    repeated[2] = 0;
+    halfedge_mesh rep;
+    CHECK_FALSE(detail::tubes::build_closed(rep, 4, offsets, repeated));
+    CHECK_THROWS_AS(rep.build(4, offsets, repeated), error);
+    halfedge_mesh out_of_range;
+    CHECK_FALSE(detail::tubes::build_closed(out_of_range, 3, offsets, tetra));
+  }
+  SUBCASE("two closed fans at a vertex: build's error") {
+    // Two tetrahedra sharing vertex 3.
+    const std::vector<std::uint32_t> o{0, 3, 6, 9, 12, 15, 18, 21, 24},
+        fv{0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2, 3, 5, 4, 3, 4, 6, 4, 5, 6, 3, 6, 5};
+    halfedge_mesh m;
+    CHECK_THROWS_WITH_AS(detail::tubes::build_closed(m, 7, o, fv),
+                         doctest::Contains("vertex 3 form several closed fans"), error);
+  }
+  SUBCASE("tube meshes: valid, closed, the caller's point type kept") {
+    const skeleton<glm::dvec3> s = samples::lattice(3, 3, 3);
+    skeleton<glm::vec3> sf;
+    for (const glm::dvec3& p : s.points) sf.points.push_back(glm::vec3(p));
+    sf.radii = s.radii;
+    sf.edges = s.edges;
+    const auto rd = make_tubes(s);
+    const auto rf = make_tubes(sf);
+    CHECK(validate(rd.mesh).ok());
+    CHECK(validate(rf.mesh).ok());
+    CHECK(same_records(rd.mesh, rf.mesh));
+    CHECK(rd.genus == rd.cycle_rank);
+    CHECK(rf.genus == rf.cycle_rank);
+    const auto src = rf.mesh.get_face_property<tube_face_source>(tube_source_property_name);
+    REQUIRE(src);
+    CHECK(src.vector().size() == rf.mesh.num_faces());
+  }
+}
+
+}  // namespace tube_halfedges_tests
