@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "cellforge/core/detail/large_array.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 
 namespace cellforge::detail {
@@ -27,8 +28,11 @@ struct basic_mesh_access {
 
   /// Resizes the element arrays and every property registry (new entries default). O(n).
   static void resize(halfedge_mesh& m, std::size_t nv, std::size_t ne, std::size_t nf) {
+    detail::reserve_large(m.vertex_anchor_, nv);  // huge-page hints: fresh large arrays fault far less
     m.vertex_anchor_.resize(nv, halfedge_mesh::npos);
+    detail::reserve_large(m.he_, 2 * ne);
     m.he_.resize(2 * ne);
+    detail::reserve_large(m.face_anchor_, nf);
     m.face_anchor_.resize(nf, halfedge_mesh::npos);
     m.vprops_.resize(nv);
     m.hprops_.resize(2 * ne);
