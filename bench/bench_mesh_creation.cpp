@@ -267,25 +267,45 @@ void register_reads(const char* what, int key, int vertices, std::size_t faces) 
 #endif
 }
 
-std::string build_name(const char* lib, bool open, int f) {
-  return std::string("build_median/") + lib + (open ? "/open/" : "/closed/") + std::to_string(f);
+const char* series_of(cb::heap h) {
+  return h == cb::heap::cold ? "cold" : h == cb::heap::warm ? "warm" : "default";
+}
+
+std::string build_name(const char* lib, bool open, int f, cb::heap h = cb::heap::default_glibc) {
+  return std::string("build_median/") + lib + (open ? "/open/" : "/closed/") + series_of(h) + "/" +
+         std::to_string(f);
 }
 
 /// Registers the median-of-runs builds of the closed or open `f`-triangle sphere for every
-/// library: 7 runs at 10^6 triangles, 15 below.
-void register_build_medians(int f, bool open) {
+/// library under glibc heap settings `h` (default, cold: fresh zeroed pages in every run for
+/// every library, warm: freed memory kept and reused): 7 runs at 10^6 triangles, 15 below.
+void register_build_medians(int f, bool open, cb::heap h) {
   const int nv = vertices_for_faces(f);
   auto in = [nv, open]() -> const soup& { return open ? data().open_sphere(nv) : data().sphere(nv); };
   const int runs = f >= 1'000'000 ? 7 : 15;
   auto reg = [&](const char* lib, auto make, auto count) {
-    benchmark::RegisterBenchmark(build_name(lib, open, f).c_str(),
-                                 [in, make, count](benchmark::State& state) {
-                                   cb::median_loop(
-                                       state, [&] { return make(in()); },
-                                       [&](const auto& made) {
-                                         if (count(made) != in().num_faces())
-                                           state.SkipWithError("wrong face count");
-                                       });
+    benchmark::RegisterBenchmark(build_name(lib, open, f, h).c_str(),
+                                 [in, make, count, h](benchmark::State& state) {
+                                   if (const char* error = cb::set_heap(h)) {
+                                     state.SkipWithError(error);
+                                     return;
+                                   }
+                                   const soup& input = in();
+                                   std::vector<double> cpu;
+                                   for (auto _ : state) {
+                                     if (h == cb::heap::cold) malloc_trim(0);  // untimed: no page is reused
+                                     const double t0 = cb::thread_cpu_ms();
+                                     auto made = make(input);
+                                     cpu.push_back(cb::thread_cpu_ms() - t0);
+                                     state.SetIterationTime(cpu.back() * 1e-3);
+                                     if (cpu.size() == 1 && count(made) != input.num_faces())
+                                       state.SkipWithError("wrong face count");
+                                     benchmark::DoNotOptimize(made);
+                                   }
+                                   if (cpu.empty()) return;
+                                   state.counters["median_cpu_us"] = cb::median(cpu) * 1e3;
+                                   state.counters["best_cpu_us"] =
+                                       *std::min_element(cpu.begin(), cpu.end()) * 1e3;
                                  })
         ->UseManualTime()
         ->Unit(benchmark::kMillisecond)
@@ -328,8 +348,11 @@ void register_all() {
     tune(add(name("read", "cellforge_parse", f), faces, [nv] { return cf_parse(data().off(nv)); }), faces);
     register_reads("read", f, nv, faces);
   }
-  for (const int f : large_faces)
-    for (const bool open : {false, true}) register_build_medians(f, open);
+  // Registration order is run order: glibc's defaults first, then cold, then warm (mallopt is
+  // process-wide and cannot be undone).
+  for (const cb::heap h : {cb::heap::default_glibc, cb::heap::cold, cb::heap::warm})
+    for (const bool open : {false, true})
+      for (const int f : large_faces) register_build_medians(f, open, h);
 }
 
 // ------------------------------------------------------------------------------ tables
@@ -429,40 +452,66 @@ void print_tables(const cb::collecting_reporter& rep, std::ostream& os) {
   if (any_build) build.print(os);
   if (any_read) read.print(os);
 
-  // Closed and open builds, medians and minima of repeated runs, against CGAL's bulk mode.
-  cb::table bm("Build, closed and open: medians and minima of repeated runs",
-               {"mesh", "triangles", "runs", "ours median / min ms", "CGAL add_faces median / min ms",
-                "CGAL add_face median ms", "OpenMesh median ms", "add_faces / ours (medians)",
-                "add_faces / ours (minima)"});
+  // Closed and open builds, medians and minima of repeated runs, against CGAL's bulk mode,
+  // under each of the three heap settings.
   std::vector<std::pair<std::string, std::optional<double>>> minima_ratios;
-  for (const bool open : {false, true})
-    for (const int f : large_faces) {
-      auto med = [&](const char* lib) { return rep.counter_ms(build_name(lib, open, f), "median_cpu_us"); };
-      auto best = [&](const char* lib) { return rep.counter_ms(build_name(lib, open, f), "best_cpu_us"); };
-      const run_result_ptr r = rep.find(build_name("cellforge", open, f));
-      if (!r) continue;
-      const soup& in =
-          open ? data().open_sphere(vertices_for_faces(f)) : data().sphere(vertices_for_faces(f));
-      const std::optional<double> ratio_min =
-          best("cellforge") && best("cgal_add_faces")
-              ? std::optional<double>(*best("cgal_add_faces") / *best("cellforge"))
-              : std::nullopt;
-      bm.add_row({open ? "open (every 10th face removed)" : "closed sphere", cb::count(in.num_faces()),
-                  std::to_string(r->iterations), cb::ms(med("cellforge")) + " / " + cb::ms(best("cellforge")),
-                  cb::ms(med("cgal_add_faces")) + " / " + cb::ms(best("cgal_add_faces")),
-                  cb::ms(med("cgal_add_face")), cb::ms(med("openmesh")),
-                  cb::ratio(med("cgal_add_faces"), med("cellforge")),
-                  cb::ratio(best("cgal_add_faces"), best("cellforge"))});
-      minima_ratios.emplace_back(std::string(open ? "open " : "closed ") + cb::count(in.num_faces()),
-                                 ratio_min);
-    }
-  bm.add_note(
-      "CPU ms per run (Google Benchmark iterations, 7 at 10^6 triangles, 15 below); the peer mode compared "
-      "is "
-      "CGAL's bulk Euler::add_faces after reserve, its fastest. Favourable choice, stated: our large arrays "
-      "ask for transparent huge pages (madvise); CGAL's and OpenMesh's do not. Run the binary with "
-      "GLIBC_TUNABLES=glibc.malloc.hugetlb=1 to give every library huge pages (docs/benchmarks.md).");
-  if (!minima_ratios.empty()) bm.print(os);
+  for (const cb::heap h : {cb::heap::default_glibc, cb::heap::cold, cb::heap::warm}) {
+    const std::string series = series_of(h);
+    cb::table bm("Build, closed and open, " + series + " heap: medians and minima of repeated runs",
+                 {"mesh", "triangles", "runs", "ours median / min ms", "CGAL add_faces median / min ms",
+                  "CGAL add_face median ms", "OpenMesh median ms", "add_faces / ours (medians)",
+                  "add_faces / ours (minima)"});
+    bool any = false;
+    for (const bool open : {false, true})
+      for (const int f : large_faces) {
+        auto med = [&](const char* lib) {
+          return rep.counter_ms(build_name(lib, open, f, h), "median_cpu_us");
+        };
+        auto best = [&](const char* lib) {
+          return rep.counter_ms(build_name(lib, open, f, h), "best_cpu_us");
+        };
+        const run_result_ptr r = rep.find(build_name("cellforge", open, f, h));
+        if (!r) continue;
+        any = true;
+        const soup& in =
+            open ? data().open_sphere(vertices_for_faces(f)) : data().sphere(vertices_for_faces(f));
+        const std::optional<double> ratio_min =
+            best("cellforge") && best("cgal_add_faces")
+                ? std::optional<double>(*best("cgal_add_faces") / *best("cellforge"))
+                : std::nullopt;
+        bm.add_row({open ? "open (every 10th face removed)" : "closed sphere", cb::count(in.num_faces()),
+                    std::to_string(r->iterations),
+                    cb::ms(med("cellforge")) + " / " + cb::ms(best("cellforge")),
+                    cb::ms(med("cgal_add_faces")) + " / " + cb::ms(best("cgal_add_faces")),
+                    cb::ms(med("cgal_add_face")), cb::ms(med("openmesh")),
+                    cb::ratio(med("cgal_add_faces"), med("cellforge")),
+                    cb::ratio(best("cgal_add_faces"), best("cellforge"))});
+        minima_ratios.emplace_back(series + " " + (open ? "open " : "closed ") + cb::count(in.num_faces()),
+                                   ratio_min);
+      }
+    bm.add_note(h == cb::heap::default_glibc
+                    ? "glibc's defaults, after the benchmarks above in the same process: its dynamic mmap "
+                      "threshold has "
+                      "grown to 32 MiB, so blocks below it reuse pages the process already has and larger "
+                      "ones (our 48 MB "
+                      "half-edge array at 10^6) get fresh ones; the results depend on what ran before."
+                : h == cb::heap::cold
+                    ? "mallopt(M_MMAP_THRESHOLD = 64 KiB, M_TRIM_THRESHOLD = 0, M_TOP_PAD = 0) and "
+                      "malloc_trim(0) before "
+                      "every run (untimed): every library writes into fresh zero-filled pages in every run, "
+                      "as a single "
+                      "large build in an application does."
+                    : "mallopt(M_MMAP_THRESHOLD and M_TRIM_THRESHOLD = 1 GiB): after the first run no fresh "
+                      "pages for "
+                      "anyone, which isolates the algorithms (repeated builds in one process).");
+    bm.add_note(
+        "CPU ms per run (7 runs at 10^6 triangles, 15 below); the peer mode compared is CGAL's bulk "
+        "Euler::add_faces after reserve, its fastest. Favourable choice, stated: our large arrays ask for "
+        "transparent huge pages (madvise), CGAL's and OpenMesh's do not; "
+        "GLIBC_TUNABLES=glibc.malloc.hugetlb=1 "
+        "gives every library huge pages.");
+    if (any) bm.print(os);
+  }
 
   // Memory, measured outside the timed runs on the largest sphere (only when its build ran).
   const int big = large_faces.back();
@@ -482,7 +531,7 @@ void print_tables(const cb::collecting_reporter& rep, std::ostream& os) {
     mt.print(os);
   }
   std::vector<memory_row> mem_open;
-  if (rep.find(build_name("cellforge", true, big))) {
+  if (rep.find(build_name("cellforge", true, big, cb::heap::cold))) {
     mem_open = measure_memory(big, true);
     cb::table mo("Heap per triangle after building the open " + cb::count(static_cast<std::size_t>(big)) +
                      "-triangle sphere (every 10th face removed)",

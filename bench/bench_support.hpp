@@ -120,6 +120,43 @@ void timed_loop(benchmark::State& state, Make&& make, Check&& check) {
   state.counters["best_wall_us"] = best_wall * 1e3;
 }
 
+/// The glibc settings a series runs under. mallopt is process-wide and an explicit
+/// M_MMAP_THRESHOLD switches off glibc's dynamic threshold for good, so the default series
+/// (and the seed tables) run first and each other series sets its own settings on entry.
+enum class heap { default_glibc, cold, warm };
+
+/// Whether any benchmark has called mallopt yet (after that, glibc's defaults are gone).
+inline bool& mallopt_called() {
+  static bool called = false;
+  return called;
+}
+
+/// Puts glibc in the state `h` needs; returns an error message, or nullptr. Cheap.
+inline const char* set_heap(heap h) {
+  switch (h) {
+    case heap::default_glibc:
+      return mallopt_called() ? "glibc defaults already changed by mallopt: run this series first" : nullptr;
+    case heap::cold:
+      // Every block of 64 KiB or more is its own mmap, unmapped on free, and free memory at
+      // the heap's top is returned at once: each run gets new zero-filled pages at any size.
+      mallopt_called() = true;
+      if (mallopt(M_MMAP_THRESHOLD, 64 * 1024) != 1 || mallopt(M_TRIM_THRESHOLD, 0) != 1 ||
+          mallopt(M_TOP_PAD, 0) != 1)
+        return "mallopt refused the cold settings";
+      malloc_trim(0);  // drop what an earlier warm series kept, so it cannot be reused
+      return nullptr;
+    case heap::warm:
+      // glibc keeps freed memory and serves large blocks from the heap: a repeated run
+      // reuses pages instead of faulting in fresh zeroed ones.
+      mallopt_called() = true;
+      if (mallopt(M_MMAP_THRESHOLD, 1 << 30) != 1 || mallopt(M_TRIM_THRESHOLD, 1 << 30) != 1 ||
+          mallopt(M_TOP_PAD, 128 * 1024) != 1)
+        return "mallopt refused the warm-heap settings";
+      return nullptr;
+  }
+  return nullptr;
+}
+
 /// The median of v (the mean of the middle two for an even count; 0 when empty). O(n log n).
 inline double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
