@@ -111,18 +111,24 @@ const cellforge::cell_complex<glm::dvec3>& grid_cells(int k) {
   return it->second;
 }
 
-/// The main job: what wire2cells does between reading its arguments and exiting. Returns the
-/// picture's counts.
-cellforge::io::svg_result end_to_end(const fs::path& input, const fs::path& out_dir) {
+/// What the main job made: the complex's volume count and the picture's counts.
+struct job_result {
+  std::size_t volumes = 0;
+  cellforge::io::svg_result picture;
+};
+
+/// The main job: what wire2cells does between reading its arguments and exiting.
+job_result end_to_end(const fs::path& input, const fs::path& out_dir) {
   const auto wire = cellforge::io::read_obj_wireframe<glm::dvec3>(input);
   const cellforge::wireframe_result<glm::dvec3> r = cellforge::wireframe_to_cells(wire);
   if (!cellforge::validate(r.cells).ok())
-    throw cellforge::error(cellforge::error_category::topology, "the grid's complex does not validate");
+    throw cellforge::error(cellforge::error_category::topology,
+                           input.stem().string() + ": the complex does not validate");
   const std::string stem = input.stem().string();
   cellforge::io::write_3dcl(out_dir / (stem + ".3dcl"), r.cells);
   cellforge::io::write_cells_obj(out_dir / (stem + ".obj"), r.cells);
   cellforge::io::write_cells_ply(out_dir / (stem + ".ply"), r.cells);
-  return cellforge::io::write_cells_svg(out_dir / (stem + ".svg"), r.cells);
+  return {r.cells.num_volumes(), cellforge::io::write_cells_svg(out_dir / (stem + ".svg"), r.cells)};
 }
 
 void register_named(const std::string& name, int iterations, std::function<void(benchmark::State&)> body) {
@@ -140,17 +146,7 @@ void register_named(const std::string& name, int iterations, std::function<void(
 }
 
 void register_path(const std::string& path, int k, std::function<void(benchmark::State&)> body) {
-  benchmark::RegisterBenchmark((path + "/grid_" + std::to_string(k)).c_str(),
-                               [body](benchmark::State& s) {
-                                 try {
-                                   body(s);
-                                 } catch (const std::exception& e) {
-                                   s.SkipWithError(e.what());
-                                 }
-                               })
-      ->UseManualTime()
-      ->Unit(benchmark::kMillisecond)
-      ->Iterations(k >= 20 ? 5 : 11);
+  register_named(path + "/grid_" + std::to_string(k), k >= 20 ? 5 : 11, std::move(body));
 }
 
 /// Registers `name`/grid_k: write(file, complex) of the k-grid's complex into one scratch file.
@@ -170,20 +166,7 @@ void register_all() {
       const fs::path out = scratch() / ("out_" + m.name);
       fs::create_directories(out);
       cb::median_loop(
-          s,
-          [&] {
-            const auto wire = cellforge::io::read_obj_wireframe<glm::dvec3>(m.file);
-            const cellforge::wireframe_result<glm::dvec3> r = cellforge::wireframe_to_cells(wire);
-            if (!cellforge::validate(r.cells).ok())
-              throw cellforge::error(cellforge::error_category::topology,
-                                     m.name + ": the complex does not validate");
-            const std::string stem = m.name;
-            cellforge::io::write_3dcl(out / (stem + ".3dcl"), r.cells);
-            cellforge::io::write_cells_obj(out / (stem + ".obj"), r.cells);
-            cellforge::io::write_cells_ply(out / (stem + ".ply"), r.cells);
-            cellforge::io::write_cells_svg(out / (stem + ".svg"), r.cells);
-            return r.cells.num_volumes();
-          },
+          s, [&] { return end_to_end(m.file, out).volumes; },
           [&](std::size_t volumes) {
             if (volumes != m.volumes) s.SkipWithError("wrong volume count");
           });
@@ -222,7 +205,7 @@ void register_all() {
       const fs::path& input = grid_file(k);
       const fs::path out = scratch() / ("out" + std::to_string(k));
       fs::create_directories(out);
-      cb::median_loop(s, [&] { return end_to_end(input, out).edges; });
+      cb::median_loop(s, [&] { return end_to_end(input, out).picture.edges; });
     });
   }
 }
