@@ -206,7 +206,7 @@ void add(const std::string& name, const std::string& key, Mesh prepared::*mesh, 
       return;
     }
     const prepared& in = input(key);
-    double best = std::numeric_limits<double>::infinity();
+    std::vector<double> times;
     bool checked = false;
     long faults = 0, huge = 0;
     for (auto _ : state) {
@@ -221,12 +221,14 @@ void add(const std::string& name, const std::string& key, Mesh prepared::*mesh, 
       faults += minor_faults() - f0;
       huge += huge_faults() - h0;
       state.SetIterationTime(ms * 1e-3);
-      best = std::min(best, ms);
+      times.push_back(ms);
       if (!checked && faces_after == 0) state.SkipWithError("wrong face count after subdivision");
       checked = true;
       copy.reset();  // freed outside the timed span
     }
-    state.counters["best_cpu_us"] = best * 1e3;
+    if (times.empty()) return;
+    state.counters["best_cpu_us"] = *std::min_element(times.begin(), times.end()) * 1e3;
+    state.counters["median_cpu_us"] = cb::median(times) * 1e3;
     state.counters["faces_in"] = static_cast<double>(in.source.num_faces());
     // Per run and input triangle; huge faults are system-wide, so capped at our own faults.
     const double per = static_cast<double>(std::max<std::int64_t>(state.iterations(), 1)) *
@@ -238,7 +240,7 @@ void add(const std::string& name, const std::string& key, Mesh prepared::*mesh, 
   });
   b->UseManualTime()->Unit(benchmark::kMillisecond);
   if (faces >= 1'000'000)
-    b->Iterations(3);
+    b->Iterations(5);
   else if (faces >= 100'000)
     b->MinTime(0.3);
   else
@@ -310,7 +312,7 @@ std::string cross_check(const std::string& key) {
 // ------------------------------------------------------------------------------ tables
 
 std::optional<double> get(const cb::collecting_reporter& rep, const std::string& what, const char* lib) {
-  return rep.ms("loop/" + what + "/" + lib);
+  return rep.counter_ms("loop/" + what + "/" + lib, "median_cpu_us");
 }
 
 /// The prepared input `key`, if a benchmark made it (none is made while printing).
@@ -387,8 +389,9 @@ void print_tables(const cb::collecting_reporter& rep, std::ostream& os) {
         "points everywhere. OpenMesh: Subdivider::Uniform::LoopT on "
         "TriMesh_ArrayKernelT<DefaultTraitsDouble>. "
         "CGAL: Subdivision_method_3::Loop_subdivision on Surface_mesh<Simple_cartesian<double>::Point_3>.\n"
-        "Times: CPU ms of the subdivision alone (the input copy each iteration needs is not timed), best of "
-        "the iterations. Load average now: "
+        "Times: CPU ms of the subdivision alone (the input copy each iteration needs is not timed), median "
+        "of "
+        "the iterations (at least 5). Load average now: "
      << cb::load_average() << ".\n";
 
   std::vector<cb::seed_row> t3;

@@ -229,7 +229,7 @@ template <class Make>
 benchmark::internal::Benchmark* add(const std::string& name, std::size_t faces, Make make) {
   return benchmark::RegisterBenchmark(name.c_str(),
                                       [make, faces](benchmark::State& state) {
-                                        cb::timed_loop(state, make, [&](const auto& made) {
+                                        cb::median_loop(state, make, [&](const auto& made) {
                                           if (faces_of(made) != faces)
                                             state.SkipWithError("wrong face count (or an open mesh)");
                                         });
@@ -240,10 +240,10 @@ benchmark::internal::Benchmark* add(const std::string& name, std::size_t faces, 
 }
 
 /// Iteration policy: a fixed count for the million-face cases (each takes 0.1–3 s), a
-/// minimum time for the rest.
+/// minimum time for the rest (at least 5 runs either way: the tables print medians).
 void tune(benchmark::internal::Benchmark* b, std::size_t faces) {
   if (faces >= 1'000'000)
-    b->Iterations(3);
+    b->Iterations(5);
   else if (faces >= 100'000)
     b->MinTime(0.5);
   else
@@ -388,10 +388,13 @@ std::string verdict(std::optional<bool> met) {
 using run_result_ptr = const cb::run_result*;
 
 void print_tables(const cb::collecting_reporter& rep, std::ostream& os) {
+  // Every table below quotes the median of a benchmark's runs.
+  const auto median_ms = [&rep](const std::string& n) { return rep.counter_ms(n, "median_cpu_us"); };
   os << "\n## Mesh creation (seed 001, table 2)\n\nPoints are double precision in every structure. OpenMesh: "
      << (cb::have_openmesh ? "TriMesh_ArrayKernelT<DefaultTraitsDouble>" : "not found, skipped") << ". CGAL: "
      << (cb::have_cgal ? "Surface_mesh<Simple_cartesian<double>::Point_3>" : "not found, skipped")
-     << ".\nTimes: CPU ms of one run, best of the iterations (see bench_support.hpp); freeing the structure "
+     << ".\nTimes: CPU ms of one run, median of the iterations (at least 5; see bench_support.hpp); freeing "
+        "the structure "
         "is not timed. Load average now: "
      << cb::load_average() << ".\n";
 
@@ -401,9 +404,9 @@ void print_tables(const cb::collecting_reporter& rep, std::ostream& os) {
     if (!rep.find(name("off_load", "cellforge", n))) continue;  // filtered out
     t2.push_back({std::to_string(n) + " (" + std::to_string(2 * n - 4) + " tri)",
                   {fig.initial_ms, fig.improved_ms},
-                  rep.ms(name("off_load", "cellforge", n)),
-                  rep.ms(name("off_load", "openmesh", n)),
-                  rep.ms(name("off_load", "cgal", n))});
+                  median_ms(name("off_load", "cellforge", n)),
+                  median_ms(name("off_load", "openmesh", n)),
+                  median_ms(name("off_load", "cgal", n))});
   }
   cb::table t = cb::seed_table("Table 2: read an OFF sphere and build the half-edge mesh", "vertices",
                                {"seed initial ms", "seed improved ms"}, t2);
@@ -425,24 +428,24 @@ void print_tables(const cb::collecting_reporter& rep, std::ostream& os) {
   };
   bool any_build = false, any_read = false;
   for (const int f : large_faces) {
-    const auto ours = rep.ms(name("build", "cellforge", f));
-    const auto om = rep.ms(name("build", "openmesh", f));
-    const auto cgal1 = rep.ms(name("build", "cgal_add_face", f));
-    const auto cgal2 = rep.ms(name("build", "cgal_add_faces", f));
-    const auto cgal3 = rep.ms(name("build", "cgal_soup", f));
+    const auto ours = median_ms(name("build", "cellforge", f));
+    const auto om = median_ms(name("build", "openmesh", f));
+    const auto cgal1 = median_ms(name("build", "cgal_add_face", f));
+    const auto cgal2 = median_ms(name("build", "cgal_add_faces", f));
+    const auto cgal3 = median_ms(name("build", "cgal_soup", f));
     if (rep.find(name("build", "cellforge", f))) {
       any_build = true;
       build.add_row({cb::count(static_cast<std::size_t>(f)), cb::ms(ours), cb::ms(om), cb::ms(cgal1),
                      cb::ms(cgal2), cb::ms(cgal3), cb::ratio(om, ours),
                      cb::ratio(min_opt(min_opt(cgal1, cgal2), cgal3), ours)});
     }
-    const auto rours = rep.ms(name("read", "cellforge", f));
-    const auto rom = rep.ms(name("read", "openmesh", f));
-    const auto rcgal = rep.ms(name("read", "cgal", f));
+    const auto rours = median_ms(name("read", "cellforge", f));
+    const auto rom = median_ms(name("read", "openmesh", f));
+    const auto rcgal = median_ms(name("read", "cgal", f));
     if (!rep.find(name("read", "cellforge", f))) continue;
     any_read = true;
     read.add_row({cb::count(static_cast<std::size_t>(f)), cb::ms(rours),
-                  cb::ms(rep.ms(name("read", "cellforge_parse", f))), cb::ms(rom), cb::ms(rcgal),
+                  cb::ms(median_ms(name("read", "cellforge_parse", f))), cb::ms(rom), cb::ms(rcgal),
                   cb::ratio(rom, rours), cb::ratio(rcgal, rours)});
   }
   build.add_note(
@@ -570,12 +573,12 @@ void print_tables(const cb::collecting_reporter& rep, std::ostream& os) {
 
   // The project's done-when targets, stated without rounding in our favour.
   const std::string fs_big = cb::count(static_cast<std::size_t>(big));
-  const auto ours = rep.ms(name("build", "cellforge", big));
-  const auto om = rep.ms(name("build", "openmesh", big));
-  const auto cgal =
-      min_opt(rep.ms(name("build", "cgal_add_face", big)), rep.ms(name("build", "cgal_add_faces", big)));
-  const auto rours = rep.ms(name("read", "cellforge", big));
-  const auto rom = rep.ms(name("read", "openmesh", big));
+  const auto ours = median_ms(name("build", "cellforge", big));
+  const auto om = median_ms(name("build", "openmesh", big));
+  const auto cgal = min_opt(median_ms(name("build", "cgal_add_face", big)),
+                            median_ms(name("build", "cgal_add_faces", big)));
+  const auto rours = median_ms(name("read", "cellforge", big));
+  const auto rom = median_ms(name("read", "openmesh", big));
   if (!ours && !rours) return;
   os << "\n### Targets (" << fs_big << " triangles)\n\n";
   if (ours) {

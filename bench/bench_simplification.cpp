@@ -210,21 +210,24 @@ void register_one(const std::string& lib, std::size_t i) {
   benchmark::RegisterBenchmark(name.c_str(),
                                [i, name](benchmark::State& state) {
                                  const auto& in = prepared<Lib>(i);
-                                 double best = std::numeric_limits<double>::infinity();
+                                 std::vector<double> times;
                                  for (auto _ : state) {
                                    auto copy = std::make_unique<typename Lib::mesh>(in);  // untimed
                                    const double t0 = cb::thread_cpu_ms();
                                    Lib::run(*copy, inputs()[i].target_faces);
                                    const double ms = cb::thread_cpu_ms() - t0;
                                    state.SetIterationTime(ms * 1e-3);
-                                   best = std::min(best, ms);
+                                   times.push_back(ms);
                                    outcomes()[name] = Lib::look(*copy);
                                  }
-                                 state.counters["best_cpu_us"] = best * 1e3;
+                                 if (times.empty()) return;
+                                 state.counters["best_cpu_us"] =
+                                     *std::min_element(times.begin(), times.end()) * 1e3;
+                                 state.counters["median_cpu_us"] = cb::median(times) * 1e3;
                                })
       ->UseManualTime()
       ->Unit(benchmark::kMillisecond)
-      ->Iterations(3);
+      ->Iterations(5);
 }
 
 void register_all() {
@@ -252,13 +255,15 @@ void print_tables(const cb::collecting_reporter& rep, std::ostream& os) {
   os << "\n## Simplification (quadric error, to a face count)\n\nOpenMesh: "
      << (cb::have_openmesh ? "DecimaterT + ModQuadricT + ModNormalFlippingT(60°)" : "not found, skipped")
      << ". CGAL: " << (!cb::have_cgal ? "not found, skipped" : cgal_policy)
-     << ". CPU ms, best of 3; garbage collection included.\n";
+     << ". CPU ms, median of 5 runs; garbage collection included.\n";
   cb::table t("Decimate to a face count",
               {"input", "ours ms", "OpenMesh ms", "ratio", "CGAL ms", "ratio", "faces ours/OM/CGAL",
                "vertex radius error ours/OM/CGAL", "volume error % ours/OM/CGAL"});
   for (std::size_t i = 0; i < inputs().size(); ++i) {
     const std::string k = std::to_string(i);
-    const auto o = rep.ms("cellforge/" + k), om = rep.ms("openmesh/" + k), cg = rep.ms("cgal/" + k);
+    const auto o = rep.counter_ms("cellforge/" + k, "median_cpu_us"),
+               om = rep.counter_ms("openmesh/" + k, "median_cpu_us"),
+               cg = rep.counter_ms("cgal/" + k, "median_cpu_us");
     auto faces = [&](const std::string& lib) {
       const auto it = outcomes().find(lib + "/" + k);
       return it == outcomes().end() ? std::string("—") : std::to_string(it->second.faces);
