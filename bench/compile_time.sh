@@ -2,8 +2,10 @@
 # Compile time of cellforge's headers as ratios to a translation unit of standard headers
 # only (<vector> <string> <algorithm> <unordered_map> <span> <ranges>), compiled in the same
 # run: each TU includes one header (or a set) and makes one call, built with
-# `$CXX -std=c++20 -O0 -c`, the median of CELLFORGE_COMPILE_RUNS runs (default 5) of each.
-# Prints one row per TU: median seconds, ratio to the baseline, peak memory (MB).
+# `$CXX -std=c++20 -O0 -c`. The TUs are compiled in interleaved rounds (every TU once per
+# round, CELLFORGE_COMPILE_RUNS rounds, default 5), so that a change of load on a shared
+# machine falls on all of them alike; each row prints the median wall seconds and the median
+# CPU seconds (user + system) with their ratios to the baseline, and the peak memory (MB).
 # Usage: bash bench/compile_time.sh [compiler]   (default: g++)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -36,24 +38,32 @@ cases=(
 
 median() { sort -n | awk '{a[NR] = $1} END {print a[int((NR + 1) / 2)]}'; }
 
-printf '%-32s %9s %7s %8s\n' "translation unit ($cxx -O0)" "median s" "ratio" "peak MB"
-base=""
-for entry in "${cases[@]}"; do
-  name="${entry%%|*}"
+count=${#cases[@]}
+declare -a walls cpus mems
+for ((c = 0; c < count; ++c)); do
+  entry="${cases[$c]}"
   rest="${entry#*|}"
-  includes="${rest%|*}"
-  body="${rest##*|}"
-  tu="$work/tu.cpp"
-  printf '%s\nint main() { %s }\n' "$includes" "$body" >"$tu"
-  times=()
-  mem=0
-  for ((i = 0; i < runs; ++i)); do
-    out="$({ /usr/bin/time -f '%e %M' "$cxx" -std=c++20 -O0 -I"$root/include" -c "$tu" -o "$work/tu.o"; } 2>&1 | tail -n 1)"
-    times+=("${out% *}")
-    kb="${out#* }"
-    ((kb > mem)) && mem=$kb
+  printf '%s\nint main() { %s }\n' "${rest%|*}" "${rest##*|}" >"$work/tu$c.cpp"
+  walls[$c]=""
+  cpus[$c]=""
+  mems[$c]=0
+done
+for ((i = 0; i < runs; ++i)); do
+  for ((c = 0; c < count; ++c)); do
+    out="$({ /usr/bin/time -f '%e %U %S %M' "$cxx" -std=c++20 -O0 -I"$root/include" -c "$work/tu$c.cpp" -o "$work/tu.o"; } 2>&1 | tail -n 1)"
+    read -r wall user sys kb <<<"$out"
+    walls[$c]="${walls[$c]} $wall"
+    cpus[$c]="${cpus[$c]} $(echo "$user + $sys" | bc -l)"
+    ((kb > mems[$c])) && mems[$c]=$kb
   done
-  t="$(printf '%s\n' "${times[@]}" | median)"
-  [[ -z "$base" ]] && base="$t"
-  printf '%-32s %9.2f %6.2fx %8d\n' "$name" "$t" "$(echo "$t / $base" | bc -l)" "$((mem / 1024))"
+done
+
+printf '%-32s %8s %7s %8s %7s %8s\n' "translation unit ($cxx -O0)" "wall s" "ratio" "CPU s" "ratio" "peak MB"
+for ((c = 0; c < count; ++c)); do
+  name="${cases[$c]%%|*}"
+  w="$(printf '%s\n' ${walls[$c]} | median)"
+  u="$(printf '%s\n' ${cpus[$c]} | median)"
+  ((c == 0)) && base_w="$w" && base_u="$u"
+  printf '%-32s %8.2f %6.2fx %8.2f %6.2fx %8d\n' "$name" "$w" "$(echo "$w / $base_w" | bc -l)" "$u" \
+    "$(echo "$u / $base_u" | bc -l)" "$((mems[$c] / 1024))"
 done

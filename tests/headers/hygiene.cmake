@@ -2,6 +2,9 @@
 #   - `#pragma once`;
 #   - no `using namespace` (it leaks into every user's code);
 #   - no <iostream> / <fstream> outside include/cellforge/io/ (the core does no I/O);
+#   - <filesystem> only in io/file_path.hpp and <chrono> only in core/detail/stopwatch.hpp, each
+#     behind its platform switch (on POSIX neither is parsed: together about 0.7x of the
+#     standard-headers baseline's compile time, docs/benchmarks.md "Compile time");
 #   - no non-template `inline` function at namespace scope: it would be compiled in every file
 #     that includes the header, used or not (docs/infra.md; make it a template);
 #   - cellforge/cellforge.hpp includes every public header except io/, detail/ and the
@@ -49,6 +52,14 @@ foreach(header IN LISTS headers)
     if(NOT is_io AND code MATCHES "^[ \t]*#[ \t]*include[ \t]*<(iostream|fstream)>")
       message("${header}:${n}: <${CMAKE_MATCH_1}> outside cellforge/io/: the core does no I/O")
       math(EXPR problems "${problems} + 1")
+    endif()
+    if(code MATCHES "^[ \t]*#[ \t]*include[ \t]*<(filesystem|chrono)>")
+      set(slow_header "${CMAKE_MATCH_1}")
+      if(NOT "${slow_header}:${header}" MATCHES
+         "^(filesystem:cellforge/io/file_path\\.hpp|chrono:cellforge/core/detail/stopwatch\\.hpp)$")
+        message("${header}:${n}: <${slow_header}> is slow to compile; use io::file_path / detail::stopwatch")
+        math(EXPR problems "${problems} + 1")
+      endif()
     endif()
   endforeach()
   if(NOT has_pragma)

@@ -7,7 +7,6 @@
 /// the cubic B-spline rule; non-orientable meshes (Möbius strips, Klein bottles, faces of
 /// random orientation) subdivide like any other. See docs/loop_subdivision.md.
 
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -24,6 +23,7 @@
 
 #include "cellforge/algorithms/detail/loop_masks.hpp"
 #include "cellforge/algorithms/detail/loop_topology.hpp"
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/conversion.hpp"
@@ -216,7 +216,6 @@ template <Point3 P>
 loop_result loop_subdivide(surface_mesh<P>& mesh, const loop_options& options = {}) {
   namespace dl = detail::loop;
   using access = detail::mesh_access;
-  using clock = std::chrono::steady_clock;
 
   if (options.levels < 0)
     throw error(error_category::invalid_input,
@@ -283,7 +282,7 @@ loop_result loop_subdivide(surface_mesh<P>& mesh, const loop_options& options = 
   bool finished = true;  // vertex anchors, rings and the unlinked table match the records
   try {
     for (int level = 0; level < options.levels; ++level) {
-      const clock::time_point t0 = clock::now();
+      const detail::stopwatch t0;
       std::vector<dl::record>& he = access::records(mesh);
       const auto nv = static_cast<std::uint32_t>(mesh.vertices_size());
       const std::size_t ne = he.size() / 2, nf = access::face_anchors(mesh).size();
@@ -361,7 +360,7 @@ loop_result loop_subdivide(surface_mesh<P>& mesh, const loop_options& options = 
         access::finish(mesh, {}, access::fan_check::trust);
         finished = true;
       }
-      result.level_ms.push_back(std::chrono::duration<double, std::milli>(clock::now() - t0).count());
+      result.level_ms.push_back(t0.ms());
     }
   } catch (...) {
     if (!finished)

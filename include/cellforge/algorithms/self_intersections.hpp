@@ -54,7 +54,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -67,6 +66,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/algorithms/ear_clipping.hpp"
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/predicates.hpp"
@@ -537,7 +537,7 @@ template <Point3 P>
 self_intersection_result self_intersections(const surface_mesh<P>& m,
                                             const self_intersection_options& options = {}) {
   namespace si = detail::self_intersect;
-  const auto start = std::chrono::steady_clock::now();
+  const detail::stopwatch start;
   self_intersection_result r;
   std::vector<glm::dvec3> pos(m.vertices_size());
   for (std::size_t i = 0; i < pos.size(); ++i) pos[i] = to_dvec3(m.points()[i]);
@@ -573,7 +573,7 @@ self_intersection_result self_intersections(const surface_mesh<P>& m,
   const std::size_t budget =
       options.max_candidate_pairs != 0 ? options.max_candidate_pairs : 256 * n + (std::size_t{1} << 20);
   auto finish = [&] {
-    r.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    r.time_ms = start.ms();
     return r;
   };
   if (n < 2) return finish();

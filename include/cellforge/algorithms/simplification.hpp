@@ -6,7 +6,6 @@
 /// through the checked collapse of algorithms/edits.hpp, so topology is never changed.
 
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -20,6 +19,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/algorithms/edits.hpp"
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/conversion.hpp"
@@ -277,7 +277,7 @@ void check_options(const simplify_options& o) {
 template <Point3 P>
 simplify_result simplify(surface_mesh<P>& m, const simplify_options& options = {}) {
   namespace ds = detail::simplification;
-  const auto t0 = std::chrono::steady_clock::now();
+  const detail::stopwatch t0;
   ds::check_options(options);
   auto pts = m.positions();
   for (face_handle f : m.faces())
@@ -354,7 +354,7 @@ simplify_result simplify(surface_mesh<P>& m, const simplify_options& options = {
   result.faces_after = m.num_faces();
   result.vertices_after = m.num_vertices();
   result.reached_target = options.target_faces == 0 || m.num_faces() <= options.target_faces;
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  result.seconds = t0.seconds();
   return result;
 }
 

@@ -12,7 +12,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <filesystem>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -29,6 +28,7 @@
 #include "cellforge/core/polygon_soup.hpp"
 #include "cellforge/io/detail/output_buffer.hpp"
 #include "cellforge/io/detail/read_file.hpp"
+#include "cellforge/io/file_path.hpp"
 #include "cellforge/io/obj.hpp"
 #include "cellforge/io/svg.hpp"
 
@@ -344,8 +344,7 @@ void write_3dcl(std::ostream& os, const cell_complex<P>& cc, const cells_write_o
 
 /// Writes cc to a 3DCL text file. O(size of cc). Throws io naming the path on failure.
 template <Point3 P>
-void write_3dcl(const std::filesystem::path& path, const cell_complex<P>& cc,
-                const cells_write_options& options = {}) {
+void write_3dcl(const file_path& path, const cell_complex<P>& cc, const cells_write_options& options = {}) {
   detail::write_file(path, [&](std::ostream& os) { write_3dcl(os, cc, options); });
 }
 
@@ -514,7 +513,7 @@ cell_complex<P> parse_3dcl(std::string_view text, std::string_view name = "<memo
 
 /// Reads a 3DCL text file (see parse_3dcl). O(file size + n log n).
 template <Point3 P>
-cell_complex<P> read_3dcl(const std::filesystem::path& path) {
+cell_complex<P> read_3dcl(const file_path& path) {
   const std::string bytes = detail::read_file(path);
   return parse_3dcl<P>(bytes, detail::display_name(path));
 }
@@ -600,7 +599,7 @@ void write_cells_obj(std::ostream& os, const cell_complex<P>& cc, const obj_writ
   write_obj(os, detail::cells_obj_data_dvec3(cc), options);
 }
 template <Point3 P>
-void write_cells_obj(const std::filesystem::path& path, const cell_complex<P>& cc,
+void write_cells_obj(const file_path& path, const cell_complex<P>& cc,
                      const obj_write_options& options = {}) {
   write_obj(path, detail::cells_obj_data_dvec3(cc), options);
 }
@@ -662,7 +661,7 @@ void write_cells_ply(std::ostream& os, const cell_complex<P>& cc) {
   detail::write_cells_ply(os, detail::cells_obj_data_dvec3(cc));
 }
 template <Point3 P>
-void write_cells_ply(const std::filesystem::path& path, const cell_complex<P>& cc) {
+void write_cells_ply(const file_path& path, const cell_complex<P>& cc) {
   detail::write_file(path, [&](std::ostream& os) { write_cells_ply(os, cc); });
 }
 
@@ -737,7 +736,7 @@ svg_result write_cells_svg(std::ostream& os, const cell_complex<P>& cc,
   return cells_svg_scene(cc, options).write(os, options.picture);
 }
 template <Point3 P>
-svg_result write_cells_svg(const std::filesystem::path& path, const cell_complex<P>& cc,
+svg_result write_cells_svg(const file_path& path, const cell_complex<P>& cc,
                            const cells_svg_options& options = {}) {
   return cells_svg_scene(cc, options).write(path, options.picture);
 }

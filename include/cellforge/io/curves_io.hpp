@@ -11,7 +11,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <filesystem>
 #include <limits>
 #include <numbers>
 #include <ostream>
@@ -36,6 +35,7 @@
 #include "cellforge/io/detail/output_buffer.hpp"
 #include "cellforge/io/detail/read_file.hpp"
 #include "cellforge/io/detail/text_cursor.hpp"
+#include "cellforge/io/file_path.hpp"
 #include "cellforge/io/obj.hpp"
 #include "cellforge/io/svg.hpp"
 #include "cellforge/smooth/edge_curve.hpp"
@@ -70,7 +70,7 @@ void put_comment(std::string& out, std::string_view text) {
 
 /// Writes text to a file (only called once the text is complete and checked). O(text).
 template <class = void>
-void write_text_file(const std::filesystem::path& path, const std::string& text) {
+void write_text_file(const file_path& path, const std::string& text) {
   write_file(path,
              [&](std::ostream& os) { os.write(text.data(), static_cast<std::streamsize>(text.size())); });
 }
@@ -198,8 +198,7 @@ void write_curve_file(std::ostream& os, const R& curves, const curve_write_optio
 
 /// Writes the curve file; throws io naming the path when it cannot be written. O(n).
 template <edge_curve_range R>
-void write_curve_file(const std::filesystem::path& path, const R& curves,
-                      const curve_write_options& options = {}) {
+void write_curve_file(const file_path& path, const R& curves, const curve_write_options& options = {}) {
   const std::string text = curve_file_text(curves, options);  // checks before the file is created
   detail::write_text_file(path, text);
 }
@@ -283,7 +282,7 @@ std::vector<edge_curve<P>> parse_curve_file(std::string_view text, std::string_v
 /// Reads a curve file into curves of type P. Throws io naming the path, or at file:line when
 /// malformed. O(file size).
 template <Point3 P>
-std::vector<edge_curve<P>> read_curve_file(const std::filesystem::path& path) {
+std::vector<edge_curve<P>> read_curve_file(const file_path& path) {
   return parse_curve_file<P>(detail::read_file(path), detail::display_name(path));
 }
 
@@ -336,15 +335,13 @@ std::string polyline_file_text(const R& polylines, const curve_write_options& op
 
 /// Writes polylines as a polyline file. Throws like polyline_file_text, io when the file fails. O(points).
 template <polyline_range R>
-void write_polyline_file(const std::filesystem::path& path, const R& polylines,
-                         const curve_write_options& options = {}) {
+void write_polyline_file(const file_path& path, const R& polylines, const curve_write_options& options = {}) {
   detail::write_text_file(path, polyline_file_text(polylines, options));
 }
 
 /// Writes every curve as options.segments pieces (the seed's display file: 15). O(n × segments).
 template <edge_curve_range R>
-void write_polyline_file(const std::filesystem::path& path, const R& curves,
-                         const curve_write_options& options = {}) {
+void write_polyline_file(const file_path& path, const R& curves, const curve_write_options& options = {}) {
   write_polyline_file(path, curve_polylines(curves, options.segments), options);
 }
 
@@ -398,7 +395,7 @@ std::vector<std::vector<P>> parse_polyline_file(std::string_view text, std::stri
 /// Reads a polyline file into points of type P. Throws io naming the path, or at file:line when
 /// malformed. O(file size).
 template <Point3 P>
-std::vector<std::vector<P>> read_polyline_file(const std::filesystem::path& path) {
+std::vector<std::vector<P>> read_polyline_file(const file_path& path) {
   return parse_polyline_file<P>(detail::read_file(path), detail::display_name(path));
 }
 
@@ -444,7 +441,7 @@ void write_polylines_obj(std::ostream& os, const R& polylines, bool closed = fal
 
 /// Writes polylines (and optionally faces) to an OBJ file; see the stream overload. O(size).
 template <polyline_range R, Point3 P = glm::dvec3>
-void write_polylines_obj(const std::filesystem::path& path, const R& polylines, bool closed = false,
+void write_polylines_obj(const file_path& path, const R& polylines, bool closed = false,
                          const polygon_soup<P>* faces = nullptr, const curve_write_options& options = {}) {
   detail::write_file(path,
                      [&](std::ostream& os) { write_polylines_obj(os, polylines, closed, faces, options); });
@@ -452,8 +449,8 @@ void write_polylines_obj(const std::filesystem::path& path, const R& polylines, 
 
 /// Writes every curve as one `l` polyline of options.segments pieces (faces too when given). O(n × segments).
 template <edge_curve_range R, Point3 P = glm::dvec3>
-void write_polylines_obj(const std::filesystem::path& path, const R& curves,
-                         const polygon_soup<P>* faces = nullptr, const curve_write_options& options = {}) {
+void write_polylines_obj(const file_path& path, const R& curves, const polygon_soup<P>* faces = nullptr,
+                         const curve_write_options& options = {}) {
   write_polylines_obj(path, curve_polylines(curves, options.segments), false, faces, options);
 }
 
@@ -530,8 +527,8 @@ void check_curves_svg(const svg_options& o, const char* who) {
 /// type) as thick closed lines on it, the strongest (first) thickest; hidden parts of loops dashed.
 /// O(size of the solid × local density + loop points).
 template <Point3 P, polyline_range R>
-svg_result write_thin_loops_svg(const std::filesystem::path& path, const polygon_soup<P>& solid,
-                                const R& loops, const thin_loops_svg_options& options = {}) {
+svg_result write_thin_loops_svg(const file_path& path, const polygon_soup<P>& solid, const R& loops,
+                                const thin_loops_svg_options& options = {}) {
   detail::check_curves_svg(options.picture, "write_thin_loops_svg");
   if (options.colours.empty() || !(options.width > 0.0))
     throw error(error_category::invalid_input, "write_thin_loops_svg: needs a colour and a positive width");
@@ -565,8 +562,8 @@ svg_result write_thin_loops_svg(const std::filesystem::path& path, const polygon
 
 /// write_thin_loops_svg for a surface mesh. Costs as above.
 template <Point3 P, polyline_range R>
-svg_result write_thin_loops_svg(const std::filesystem::path& path, const surface_mesh<P>& solid,
-                                const R& loops, const thin_loops_svg_options& options = {}) {
+svg_result write_thin_loops_svg(const file_path& path, const surface_mesh<P>& solid, const R& loops,
+                                const thin_loops_svg_options& options = {}) {
   return write_thin_loops_svg(path, to_soup(solid), loops, options);
 }
 
@@ -583,14 +580,14 @@ std::vector<std::span<const Q>> loop_points(const thin_result<Q>& r) {
 
 /// write_thin_loops_svg for the loops of a find_thin_points result (in any point type Q). Costs as above.
 template <Point3 P, Point3 Q>
-svg_result write_thin_loops_svg(const std::filesystem::path& path, const polygon_soup<P>& solid,
+svg_result write_thin_loops_svg(const file_path& path, const polygon_soup<P>& solid,
                                 const thin_result<Q>& result, const thin_loops_svg_options& options = {}) {
   return write_thin_loops_svg(path, solid, detail::loop_points(result), options);
 }
 
 /// write_thin_loops_svg for a surface mesh and a find_thin_points result. Costs as above.
 template <Point3 P, Point3 Q>
-svg_result write_thin_loops_svg(const std::filesystem::path& path, const surface_mesh<P>& solid,
+svg_result write_thin_loops_svg(const file_path& path, const surface_mesh<P>& solid,
                                 const thin_result<Q>& result, const thin_loops_svg_options& options = {}) {
   return write_thin_loops_svg(path, to_soup(solid), detail::loop_points(result), options);
 }
@@ -599,8 +596,8 @@ svg_result write_thin_loops_svg(const std::filesystem::path& path, const surface
 /// smoothed curves (any edge_curve_range) as polylines (right).
 /// O((size of the solid + curves × segments) × local density).
 template <Point3 P, edge_curve_range R>
-svg_result write_smoothing_svg(const std::filesystem::path& path, const polygon_soup<P>& solid,
-                               const R& curves, const smoothing_svg_options& options = {}) {
+svg_result write_smoothing_svg(const file_path& path, const polygon_soup<P>& solid, const R& curves,
+                               const smoothing_svg_options& options = {}) {
   detail::check_curves_svg(options.picture, "write_smoothing_svg");
   if (!(options.gap >= 0.0 && options.gap <= 10.0) || !(options.curve_width > 0.0))
     throw error(error_category::invalid_input,
@@ -654,8 +651,8 @@ svg_result write_smoothing_svg(const std::filesystem::path& path, const polygon_
 
 /// write_smoothing_svg for a surface mesh. Costs as above.
 template <Point3 P, edge_curve_range R>
-svg_result write_smoothing_svg(const std::filesystem::path& path, const surface_mesh<P>& solid,
-                               const R& curves, const smoothing_svg_options& options = {}) {
+svg_result write_smoothing_svg(const file_path& path, const surface_mesh<P>& solid, const R& curves,
+                               const smoothing_svg_options& options = {}) {
   return write_smoothing_svg(path, to_soup(solid), curves, options);
 }
 

@@ -13,7 +13,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <filesystem>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -28,6 +27,7 @@
 #include "cellforge/io/detail/arc_io.hpp"
 #include "cellforge/io/detail/output_buffer.hpp"
 #include "cellforge/io/detail/xml.hpp"
+#include "cellforge/io/file_path.hpp"
 #include "cellforge/sketch/elliptical_arc.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 
@@ -285,7 +285,7 @@ std::string arc_drawing_svg_string(const arc_drawing<P>& d,
 
 /// Writes the picture of arc_drawing_svg_string to a file; io errors name the path. O(V + E + A + loops).
 template <Point2 P>
-void write_arc_drawing_svg(const std::filesystem::path& path, const arc_drawing<P>& d,
+void write_arc_drawing_svg(const file_path& path, const arc_drawing<P>& d,
                            const std::vector<std::vector<std::uint32_t>>& faces = {},
                            const drawing_svg_options& options = {},
                            const std::vector<std::size_t>& arc_colour = {}) {
@@ -298,7 +298,7 @@ void write_arc_drawing_svg(const std::filesystem::path& path, const arc_drawing<
 
 /// Writes the picture of drawing_svg_string to a file; io errors name the path. O(V + E + loops).
 template <LineDrawing D>
-void write_drawing_svg(const std::filesystem::path& path, const D& d,
+void write_drawing_svg(const file_path& path, const D& d,
                        const std::vector<std::vector<std::uint32_t>>& faces = {},
                        const drawing_svg_options& options = {}) {
   const std::string text = drawing_svg_string(d, faces, options);

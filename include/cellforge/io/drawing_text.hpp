@@ -10,7 +10,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <filesystem>
 #include <limits>
 #include <ostream>
 #include <sstream>
@@ -26,6 +25,7 @@
 #include "cellforge/io/detail/output_buffer.hpp"
 #include "cellforge/io/detail/read_file.hpp"
 #include "cellforge/io/detail/text_cursor.hpp"
+#include "cellforge/io/file_path.hpp"
 #include "cellforge/sketch/elliptical_arc.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 
@@ -228,7 +228,7 @@ arc_drawing<P2> parse_arc_drawing_text(std::string_view text, std::string_view n
 /// Reads a line-drawing text file with arcs (see parse_arc_drawing_text); io errors name the
 /// path. O(file size + E log E).
 template <Point2 P2 = glm::dvec2>
-arc_drawing<P2> read_arc_drawing_text(const std::filesystem::path& path) {
+arc_drawing<P2> read_arc_drawing_text(const file_path& path) {
   const std::string bytes = detail::read_file(path);
   return parse_arc_drawing_text<P2>(bytes, detail::display_name(path));
 }
@@ -236,7 +236,7 @@ arc_drawing<P2> read_arc_drawing_text(const std::filesystem::path& path) {
 /// Reads a line-drawing text file. Throws an io error naming the path when it cannot be read, or
 /// with file and line when it is malformed. O(file size + E log E).
 template <Point2 P2 = glm::dvec2>
-line_drawing<P2> read_drawing_text(const std::filesystem::path& path) {
+line_drawing<P2> read_drawing_text(const file_path& path) {
   const std::string bytes = detail::read_file(path);
   return parse_drawing_text<P2>(bytes, detail::display_name(path));
 }
@@ -338,8 +338,7 @@ void write_drawing_text(std::ostream& os, const D& d, const drawing_text_write_o
 /// Writes a line-drawing text file (see the stream overload); a drawing the format cannot hold
 /// is refused before the file is opened; io errors name the path. O(V + E log E).
 template <LineDrawing D>
-void write_drawing_text(const std::filesystem::path& path, const D& d,
-                        const drawing_text_write_options& options = {}) {
+void write_drawing_text(const file_path& path, const D& d, const drawing_text_write_options& options = {}) {
   detail::check_drawing_writable(d, "write_drawing_text");
   detail::write_file(path, [&](std::ostream& os) { detail::put_drawing_text(os, d, options); });
 }
@@ -366,7 +365,7 @@ void write_arc_drawing_text(std::ostream& os, const arc_drawing<P>& d,
 /// Writes a line-drawing text file with arcs (see the stream overload); a drawing the format
 /// cannot hold is refused before the file is opened; io errors name the path. O(V + E log E + A).
 template <Point2 P>
-void write_arc_drawing_text(const std::filesystem::path& path, const arc_drawing<P>& d,
+void write_arc_drawing_text(const file_path& path, const arc_drawing<P>& d,
                             const drawing_text_write_options& options = {}) {
   detail::check_arc_drawing_writable(d, "write_arc_drawing_text");
   detail::write_file(path,

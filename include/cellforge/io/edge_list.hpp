@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <filesystem>
 #include <limits>
 #include <ostream>
 #include <string>
@@ -22,6 +21,7 @@
 #include "cellforge/io/detail/output_buffer.hpp"
 #include "cellforge/io/detail/read_file.hpp"
 #include "cellforge/io/detail/text_cursor.hpp"
+#include "cellforge/io/file_path.hpp"
 
 namespace cellforge::io {
 
@@ -166,7 +166,7 @@ wireframe<P> parse_edge_list(std::string_view bytes, std::string_view name = "<m
 /// Reads an edge-list file. Throws an io error naming the path when it cannot be read, or with
 /// file and line when it is malformed. O(file size + E log E).
 template <Point3 P>
-wireframe<P> read_edge_list(const std::filesystem::path& path, const edge_list_read_options& options = {}) {
+wireframe<P> read_edge_list(const file_path& path, const edge_list_read_options& options = {}) {
   const std::string bytes = detail::read_file(path);
   return parse_edge_list<P>(bytes, detail::display_name(path), options);
 }
@@ -213,8 +213,7 @@ void write_edge_list(std::ostream& os, const G& g, const edge_list_write_options
 
 /// Writes an edge-list file; io errors name the path. O(V + E).
 template <Wireframe G>
-void write_edge_list(const std::filesystem::path& path, const G& g,
-                     const edge_list_write_options& options = {}) {
+void write_edge_list(const file_path& path, const G& g, const edge_list_write_options& options = {}) {
   detail::write_file(path, [&](std::ostream& os) { write_edge_list(os, g, options); });
 }
 

@@ -6,13 +6,13 @@
 
 #include <algorithm>
 #include <cctype>
-#include <filesystem>
 #include <string>
 
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/polygon_soup.hpp"
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/mesh.hpp"
+#include "cellforge/io/file_path.hpp"
 #include "cellforge/io/obj.hpp"
 #include "cellforge/io/off.hpp"
 #include "cellforge/io/ply.hpp"
@@ -25,8 +25,8 @@ enum class mesh_format { off, obj, ply, stl };
 
 /// The format named by a path's extension (case-insensitive); throws for others. O(1).
 template <class = void>
-mesh_format format_of(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
+mesh_format format_of(const file_path& path) {
+  std::string ext = path.extension();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".off") return mesh_format::off;
@@ -41,7 +41,7 @@ mesh_format format_of(const std::filesystem::path& path) {
 /// Reads the faces of an OFF, OBJ, PLY or STL file into a soup (STL: corners welded where
 /// equal, degenerate facets dropped; see read_stl for the details). O(file size).
 template <Point3 P>
-polygon_soup<P> read_soup(const std::filesystem::path& path) {
+polygon_soup<P> read_soup(const file_path& path) {
   switch (format_of(path)) {
     case mesh_format::off:
       return read_off<P>(path);
@@ -58,7 +58,7 @@ polygon_soup<P> read_soup(const std::filesystem::path& path) {
 /// Writes a soup in the format its path's extension names (STL: binary, float32, polygons
 /// ear-clipped). O(size of the soup).
 template <Point3 P>
-void write_soup(const std::filesystem::path& path, const polygon_soup<P>& soup) {
+void write_soup(const file_path& path, const polygon_soup<P>& soup) {
   switch (format_of(path)) {
     case mesh_format::off:
       write_off(path, soup);
@@ -79,7 +79,7 @@ void write_soup(const std::filesystem::path& path, const polygon_soup<P>& soup) 
 /// template argument a reader needs: a file has no point type). O(file size). Parse errors
 /// name file:line; topology errors name the element.
 template <Point3 P>
-surface_mesh<P> read_mesh(const std::filesystem::path& path, build_report* report = nullptr) {
+surface_mesh<P> read_mesh(const file_path& path, build_report* report = nullptr) {
   const polygon_soup<P> soup = read_soup<P>(path);
   try {
     return make_mesh(soup, report);
@@ -90,7 +90,7 @@ surface_mesh<P> read_mesh(const std::filesystem::path& path, build_report* repor
 
 /// Writes the live part of a mesh by extension. O(size of the mesh).
 template <Point3 P>
-void write_mesh(const std::filesystem::path& path, const surface_mesh<P>& mesh) {
+void write_mesh(const file_path& path, const surface_mesh<P>& mesh) {
   write_soup(path, to_soup(mesh));
 }
 

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <filesystem>
 #include <limits>
 #include <ostream>
 #include <span>
@@ -24,6 +23,7 @@
 #include "cellforge/io/detail/output_buffer.hpp"
 #include "cellforge/io/detail/read_file.hpp"
 #include "cellforge/io/detail/text_cursor.hpp"
+#include "cellforge/io/file_path.hpp"
 
 namespace cellforge::io {
 
@@ -243,7 +243,7 @@ obj_data<P> parse_obj(std::string_view bytes, std::string_view name = "<memory>"
 /// Reads an OBJ file. Throws an io error naming the path when it cannot be read, or with
 /// file and line when it is malformed. O(file size).
 template <Point3 P>
-obj_data<P> read_obj(const std::filesystem::path& path, const obj_read_options& options = {}) {
+obj_data<P> read_obj(const file_path& path, const obj_read_options& options = {}) {
   const std::string bytes = detail::read_file(path);
   return parse_obj<P>(bytes, detail::display_name(path), options);
 }
@@ -280,7 +280,7 @@ wireframe<P> to_wireframe(const obj_data<P>& data, bool include_face_edges = fal
 
 /// Reads an OBJ file's points and `l` edges as a wireframe (faces' edges too when asked). O(file size).
 template <Point3 P>
-wireframe<P> read_obj_wireframe(const std::filesystem::path& path, const obj_read_options& options = {},
+wireframe<P> read_obj_wireframe(const file_path& path, const obj_read_options& options = {},
                                 bool include_face_edges = false) {
   return to_wireframe(read_obj<P>(path, options), include_face_edges);
 }
@@ -400,22 +400,19 @@ void write_obj(std::ostream& os, const wireframe<P>& w, const obj_write_options&
 /// Writes OBJ data to a file (see the stream overload). Throws an io error naming the path
 /// when it cannot be written. O(size).
 template <Point3 P>
-void write_obj(const std::filesystem::path& path, const obj_data<P>& data,
-               const obj_write_options& options = {}) {
+void write_obj(const file_path& path, const obj_data<P>& data, const obj_write_options& options = {}) {
   detail::write_file(path, [&](std::ostream& os) { write_obj(os, data, options); });
 }
 
 /// Writes a soup to an OBJ file. O(size).
 template <Point3 P>
-void write_obj(const std::filesystem::path& path, const polygon_soup<P>& soup,
-               const obj_write_options& options = {}) {
+void write_obj(const file_path& path, const polygon_soup<P>& soup, const obj_write_options& options = {}) {
   detail::write_file(path, [&](std::ostream& os) { write_obj(os, soup, options); });
 }
 
 /// Writes a wireframe to an OBJ file. O(size).
 template <Point3 P>
-void write_obj(const std::filesystem::path& path, const wireframe<P>& w,
-               const obj_write_options& options = {}) {
+void write_obj(const file_path& path, const wireframe<P>& w, const obj_write_options& options = {}) {
   detail::write_file(path, [&](std::ostream& os) { write_obj(os, w, options); });
 }
 

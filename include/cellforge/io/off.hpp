@@ -6,7 +6,6 @@
 /// values (normals, colours, texture coordinates) checked and skipped. See docs/formats.md.
 
 #include <cstdint>
-#include <filesystem>
 #include <limits>
 #include <ostream>
 #include <string>
@@ -20,6 +19,7 @@
 #include "cellforge/io/detail/output_buffer.hpp"
 #include "cellforge/io/detail/read_file.hpp"
 #include "cellforge/io/detail/text_cursor.hpp"
+#include "cellforge/io/file_path.hpp"
 
 namespace cellforge::io {
 
@@ -202,7 +202,7 @@ polygon_soup<P> parse_off(std::string_view bytes, std::string_view name = "<memo
 /// Reads an OFF file. Throws an io error naming the path when it cannot be read, or with
 /// file and line when it is malformed. O(file size).
 template <Point3 P>
-polygon_soup<P> read_off(const std::filesystem::path& path, const off_read_options& options = {}) {
+polygon_soup<P> read_off(const file_path& path, const off_read_options& options = {}) {
   const std::string bytes = detail::read_file(path);
   return parse_off<P>(bytes, detail::display_name(path), options);
 }
@@ -244,8 +244,7 @@ void write_off(std::ostream& os, const polygon_soup<P>& soup, const off_write_op
 /// Writes a soup to an OFF file (see the stream overload). Throws an io error naming the
 /// path when it cannot be written. O(size).
 template <Point3 P>
-void write_off(const std::filesystem::path& path, const polygon_soup<P>& soup,
-               const off_write_options& options = {}) {
+void write_off(const file_path& path, const polygon_soup<P>& soup, const off_write_options& options = {}) {
   detail::write_file(path, [&](std::ostream& os) { write_off(os, soup, options); });
 }
 

@@ -11,7 +11,6 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
-#include <filesystem>
 #include <limits>
 #include <ostream>
 #include <span>
@@ -27,6 +26,7 @@
 #include "cellforge/io/detail/ply_header.hpp"
 #include "cellforge/io/detail/read_file.hpp"
 #include "cellforge/io/detail/text_cursor.hpp"
+#include "cellforge/io/file_path.hpp"
 
 namespace cellforge::io {
 
@@ -415,7 +415,7 @@ polygon_soup<P> parse_ply(std::string_view bytes, std::string_view name = "<memo
 /// Reads a PLY file. Throws an io error naming the path when it cannot be read, or with
 /// the place (line, or byte offset for binary) when it is malformed. O(file size).
 template <Point3 P>
-polygon_soup<P> read_ply(const std::filesystem::path& path, const ply_read_options& options = {}) {
+polygon_soup<P> read_ply(const file_path& path, const ply_read_options& options = {}) {
   const std::string bytes = detail::read_file(path);
   return parse_ply<P>(bytes, detail::display_name(path), options);
 }
@@ -497,8 +497,7 @@ void write_ply(std::ostream& os, const polygon_soup<P>& soup, const ply_write_op
 /// Writes a soup to a PLY file (see the stream overload). Throws an io error naming the
 /// path when it cannot be written. O(size).
 template <Point3 P>
-void write_ply(const std::filesystem::path& path, const polygon_soup<P>& soup,
-               const ply_write_options& options = {}) {
+void write_ply(const file_path& path, const polygon_soup<P>& soup, const ply_write_options& options = {}) {
   detail::write_file(path, [&](std::ostream& os) { write_ply(os, soup, options); });
 }
 

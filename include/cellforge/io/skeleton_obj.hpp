@@ -9,7 +9,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <filesystem>
 #include <limits>
 #include <ostream>
 #include <string>
@@ -21,6 +20,7 @@
 #include "cellforge/io/detail/output_buffer.hpp"
 #include "cellforge/io/detail/read_file.hpp"
 #include "cellforge/io/detail/text_cursor.hpp"
+#include "cellforge/io/file_path.hpp"
 #include "cellforge/io/obj.hpp"
 #include "cellforge/tubes/skeleton.hpp"
 
@@ -138,8 +138,7 @@ skeleton_obj_data<P> parse_skeleton_obj(std::string_view bytes, std::string_view
 /// Reads an OBJ file as a skeleton. Throws an io error naming the path when it cannot be read,
 /// or with file and line when it is malformed. O(file size + E log E).
 template <Point3 P>
-skeleton_obj_data<P> read_skeleton_obj(const std::filesystem::path& path,
-                                       const skeleton_obj_read_options& options = {}) {
+skeleton_obj_data<P> read_skeleton_obj(const file_path& path, const skeleton_obj_read_options& options = {}) {
   const std::string bytes = detail::read_file(path);
   return parse_skeleton_obj<P>(bytes, detail::display_name(path), options);
 }
@@ -189,8 +188,7 @@ void write_skeleton_obj(std::ostream& os, const G& g, const skeleton_obj_write_o
 /// Writes an OBJ skeleton file; a refused skeleton leaves an existing file untouched. io errors
 /// name the path. O(V log V + E log E).
 template <Skeleton G>
-void write_skeleton_obj(const std::filesystem::path& path, const G& g,
-                        const skeleton_obj_write_options& options = {}) {
+void write_skeleton_obj(const file_path& path, const G& g, const skeleton_obj_write_options& options = {}) {
   cellforge::detail::check_skeleton_writable(g, "write_skeleton_obj");
   detail::write_file(path, [&](std::ostream& os) { detail::put_skeleton_obj(os, g, options); });
 }

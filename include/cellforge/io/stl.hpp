@@ -13,7 +13,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -35,6 +34,7 @@
 #include "cellforge/io/detail/output_buffer.hpp"
 #include "cellforge/io/detail/read_file.hpp"
 #include "cellforge/io/detail/text_cursor.hpp"
+#include "cellforge/io/file_path.hpp"
 
 namespace cellforge::io {
 
@@ -572,12 +572,11 @@ stl_data<P> parse_stl(std::string_view bytes, std::string_view name = "<memory>"
 /// Reads an STL file. Throws an io error naming the path when it cannot be read, or with the
 /// place when it is malformed; a binary file beyond the 32-bit limit is refused unread. O(file size).
 template <Point3 P>
-stl_data<P> read_stl(const std::filesystem::path& path, const stl_read_options& options = {}) {
+stl_data<P> read_stl(const file_path& path, const stl_read_options& options = {}) {
   // A file large enough to exceed the limit is checked from its header before it is loaded.
-  std::error_code ec;
-  const auto size = std::filesystem::file_size(path, ec);
-  if (!ec && size > 84 + 50 * detail::stl_max_facets) {
-    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+  const std::uint64_t size = detail::status_of(path).size;
+  if (size > 84 + 50 * detail::stl_max_facets) {
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(detail::open_file(path, "rb"), &std::fclose);
     char head[84];
     if (file && std::fread(head, 1, sizeof head, file.get()) == sizeof head) {
       const std::uint32_t n = detail::stl_load_u32(head + 80);
@@ -724,8 +723,7 @@ void write_stl(std::ostream& os, const polygon_soup<P>& soup, const stl_write_op
 /// Writes a soup to an STL file (see the stream overload). Throws an io error naming the
 /// path when it cannot be written. O(size).
 template <Point3 P>
-void write_stl(const std::filesystem::path& path, const polygon_soup<P>& soup,
-               const stl_write_options& options = {}) {
+void write_stl(const file_path& path, const polygon_soup<P>& soup, const stl_write_options& options = {}) {
   detail::write_file(path, [&](std::ostream& os) { write_stl(os, soup, options); });
 }
 

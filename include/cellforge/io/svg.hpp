@@ -11,7 +11,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <filesystem>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -40,6 +39,7 @@
 #include "cellforge/io/detail/output_buffer.hpp"
 #include "cellforge/io/detail/svg_visibility.hpp"
 #include "cellforge/io/detail/xml.hpp"
+#include "cellforge/io/file_path.hpp"
 
 namespace cellforge::io {
 
@@ -363,7 +363,7 @@ class basic_svg_scene {
 
   /// Writes the picture to a file (nothing is created when the scene or options are invalid);
   /// throws io naming the path when it cannot be written. Costs as above.
-  svg_result write(const std::filesystem::path& path, const svg_options& options = {}) const {
+  svg_result write(const file_path& path, const svg_options& options = {}) const {
     std::string text;
     const svg_result r = write_to(text, options);
     detail::write_file(path, [&](std::ostream& os) {
@@ -1013,8 +1013,8 @@ class basic_svg_scene {
 /// Writes a picture of one polygon soup (shaded faces, visible and hidden edges) to a file.
 /// O(size + (E + F) x local density + F log F); throws like svg_scene::write.
 template <Point3 P>
-svg_result write_svg(const std::filesystem::path& path, const polygon_soup<P>& soup,
-                     const svg_options& options = {}, const svg_style& style = {}) {
+svg_result write_svg(const file_path& path, const polygon_soup<P>& soup, const svg_options& options = {},
+                     const svg_style& style = {}) {
   svg_scene scene;
   scene.add_mesh(soup, style);
   return scene.write(path, options);
@@ -1023,15 +1023,15 @@ svg_result write_svg(const std::filesystem::path& path, const polygon_soup<P>& s
 /// Writes a picture of one surface mesh (its live faces and edges) to a file, in one call.
 /// O(size + (E + F) x local density + F log F); throws like svg_scene::write.
 template <Point3 P>
-svg_result write_svg(const std::filesystem::path& path, const surface_mesh<P>& mesh,
-                     const svg_options& options = {}, const svg_style& style = {}) {
+svg_result write_svg(const file_path& path, const surface_mesh<P>& mesh, const svg_options& options = {},
+                     const svg_style& style = {}) {
   return write_svg(path, to_soup(mesh), options, style);
 }
 
 /// Writes a picture of one wireframe (its edges as lines) to a file.
 /// O(V + E); throws like svg_scene::write.
 template <Wireframe G>
-svg_result write_svg(const std::filesystem::path& path, const G& g, const svg_options& options = {},
+svg_result write_svg(const file_path& path, const G& g, const svg_options& options = {},
                      const svg_style& style = {}) {
   svg_scene scene;
   scene.add_wireframe(g, style);

@@ -13,7 +13,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <filesystem>
 #include <initializer_list>
 #include <limits>
 #include <numbers>
@@ -33,6 +32,7 @@
 #include "cellforge/io/detail/arc_io.hpp"
 #include "cellforge/io/detail/read_file.hpp"
 #include "cellforge/io/detail/text_cursor.hpp"
+#include "cellforge/io/file_path.hpp"
 #include "cellforge/sketch/detail/drawing_grid.hpp"
 #include "cellforge/sketch/elliptical_arc.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
@@ -973,7 +973,7 @@ svg_arc_drawing_result<P2> parse_svg_arc_drawing(std::string_view text, std::str
 /// Reads an SVG drawing with arcs (see parse_svg_arc_drawing); io errors name the path, or the
 /// file and line when it is malformed. O(file size + S log S + K).
 template <Point2 P2 = glm::dvec2>
-svg_arc_drawing_result<P2> read_svg_arc_drawing(const std::filesystem::path& path,
+svg_arc_drawing_result<P2> read_svg_arc_drawing(const file_path& path,
                                                 const svg_drawing_options& options = {}) {
   const std::string bytes = detail::read_file(path);
   return parse_svg_arc_drawing<P2>(bytes, detail::display_name(path), options);
@@ -982,8 +982,7 @@ svg_arc_drawing_result<P2> read_svg_arc_drawing(const std::filesystem::path& pat
 /// Reads an SVG line drawing (see parse_svg_drawing). Throws an io error naming the path when
 /// it cannot be read, or with file and line when it is malformed. O(file size + S log S + K).
 template <Point2 P2 = glm::dvec2>
-svg_drawing_result<P2> read_svg_drawing(const std::filesystem::path& path,
-                                        const svg_drawing_options& options = {}) {
+svg_drawing_result<P2> read_svg_drawing(const file_path& path, const svg_drawing_options& options = {}) {
   const std::string bytes = detail::read_file(path);
   return parse_svg_drawing<P2>(bytes, detail::display_name(path), options);
 }

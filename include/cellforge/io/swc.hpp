@@ -9,7 +9,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <filesystem>
 #include <limits>
 #include <ostream>
 #include <string>
@@ -22,6 +21,7 @@
 #include "cellforge/io/detail/output_buffer.hpp"
 #include "cellforge/io/detail/read_file.hpp"
 #include "cellforge/io/detail/text_cursor.hpp"
+#include "cellforge/io/file_path.hpp"
 #include "cellforge/tubes/skeleton.hpp"
 
 namespace cellforge::io {
@@ -258,7 +258,7 @@ swc_result<P> parse_swc(std::string_view bytes, std::string_view name = "<memory
 /// Reads an SWC file. Throws an io error naming the path when it cannot be read, or with file
 /// and line when it is malformed. O(file size + n log n).
 template <Point3 P>
-swc_result<P> read_swc(const std::filesystem::path& path, const swc_read_options& options = {}) {
+swc_result<P> read_swc(const file_path& path, const swc_read_options& options = {}) {
   const std::string bytes = detail::read_file(path);
   return parse_swc<P>(bytes, detail::display_name(path), options);
 }
@@ -400,7 +400,7 @@ void write_swc(std::ostream& os, const swc_result<P>& swc, const swc_write_optio
 /// Writes an SWC file. A skeleton SWC cannot hold is refused before the file is opened, so an
 /// existing file is never truncated by a failed write; io errors name the path. O(V log V + E).
 template <Skeleton G>
-void write_swc(const std::filesystem::path& path, const G& g, const swc_write_options& options = {}) {
+void write_swc(const file_path& path, const G& g, const swc_write_options& options = {}) {
   const detail::swc_plan plan = detail::make_swc_plan(g, {}, {}, options.type);
   detail::write_file(path, [&](std::ostream& os) { detail::put_swc(os, g, plan, options); });
 }
@@ -408,8 +408,7 @@ void write_swc(const std::filesystem::path& path, const G& g, const swc_write_op
 /// Writes an swc_result to a file (see the stream overload); refused before the file is opened. O(V log V +
 /// E).
 template <Point3 P>
-void write_swc(const std::filesystem::path& path, const swc_result<P>& swc,
-               const swc_write_options& options = {}) {
+void write_swc(const file_path& path, const swc_result<P>& swc, const swc_write_options& options = {}) {
   const detail::swc_plan plan = detail::make_swc_plan(swc.skeleton, swc.ids, swc.types, options.type);
   detail::write_file(path, [&](std::ostream& os) { detail::put_swc(os, swc.skeleton, plan, options); });
 }

@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -30,6 +29,7 @@
 #include <glm/vec2.hpp>
 #include <unsupported/Eigen/NonLinearOptimization>
 
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/core/predicates.hpp"
@@ -752,7 +752,7 @@ requires std::ranges::input_range<std::ranges::range_value_t<Strokes>> &&
     Point2<std::ranges::range_value_t<std::ranges::range_value_t<Strokes>>>
 auto detect_arcs(const Strokes& strokes, const arc_detection_options& options = {}) {
   using P = std::ranges::range_value_t<std::ranges::range_value_t<Strokes>>;
-  const auto started = std::chrono::steady_clock::now();
+  const detail::stopwatch started;
   const arc_detection_options& o = options;
   if (!std::isfinite(o.tolerance) || !(o.tolerance > 0) || o.tolerance >= 0.5)
     throw error(
@@ -909,7 +909,7 @@ auto detect_arcs(const Strokes& strokes, const arc_detection_options& options = 
     res.pieces.insert(res.pieces.end(), pieces.begin(), pieces.end());
     res.strokes.push_back(sum);
   }
-  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  res.seconds = started.seconds();
   return res;
 }
 

@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -25,6 +24,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
@@ -144,7 +144,7 @@ bool parallel(glm::dvec2 u, glm::dvec2 v, double angle) {
 template <Point2 P>
 arc_pairing_result<P> pair_arcs(const arc_drawing<P>& d, const arc_pairing_options& options = {}) {
   using detail::pairing::chain;
-  const auto t_start = std::chrono::steady_clock::now();
+  const detail::stopwatch t_start;
   arc_pairing_result<P> out;
   // Arc ends on their junctions to end_tolerance of the size (or the point type's own precision).
   if (const arc_validation v = validate_arcs(d, {options.end_tolerance}); !v.ok())
@@ -487,8 +487,7 @@ arc_pairing_result<P> pair_arcs(const arc_drawing<P>& d, const arc_pairing_optio
                    "lines there (a round's two arcs lie in parallel faces)")));
   }
   std::sort(out.unpaired.begin(), out.unpaired.end());
-  out.milliseconds =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
+  out.milliseconds = t_start.ms();
   return out;
 }
 

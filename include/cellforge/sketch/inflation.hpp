@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -28,6 +27,7 @@
 #include <unsupported/Eigen/NumericalDiff>
 
 #include "cellforge/core/detail/splitmix.hpp"
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/core/point_traits.hpp"
@@ -950,7 +950,7 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
              const inflation_options& user_options = {}) {
   using R = std::conditional_t<std::is_void_v<Q>, lifted_point_t<drawing_point_t<D>>, Q>;
   static_assert(Point3<R>, "inflate: the result point type must be a registered Point3");
-  const auto t0 = std::chrono::steady_clock::now();
+  const detail::stopwatch t0;
   inflation_result<R> res;
   // Tolerances no finer than the drawing's own precision (float drawings are realizable only
   // to rounding).
@@ -1122,7 +1122,7 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
   }
   res.readings.push_back(std::move(a));
   res.readings.push_back(std::move(b));
-  res.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  res.milliseconds = t0.ms();
   return res;
 }
 

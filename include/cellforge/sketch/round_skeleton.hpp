@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -22,6 +21,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/sketch/arc_pairing.hpp"
@@ -86,7 +86,7 @@ struct round_skeleton_result {
 /// Throws as pair_arcs. O(pairing + V + E + face finding).
 template <Point2 P>
 round_skeleton_result<P> round_skeleton(const arc_drawing<P>& d, const round_skeleton_options& options = {}) {
-  const auto t_start = std::chrono::steady_clock::now();
+  const detail::stopwatch t_start;
   round_skeleton_result<P> out;
   out.pairing = pair_arcs(d, options.pairing);
   const auto& pairs = out.pairing.pairs;
@@ -196,8 +196,7 @@ round_skeleton_result<P> round_skeleton(const arc_drawing<P>& d, const round_ske
   }
   for (const auto& b : out.blends)
     ++(b.kind == blend_kind::round ? out.rounds : b.kind == blend_kind::fillet ? out.fillets : out.unknown);
-  out.milliseconds =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
+  out.milliseconds = t_start.ms();
   return out;
 }
 

@@ -11,7 +11,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -29,6 +28,7 @@
 #include <unsupported/Eigen/NonLinearOptimization>
 #include <unsupported/Eigen/NumericalDiff>
 
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/core/point_traits.hpp"
@@ -435,7 +435,7 @@ std::vector<edge_round> round_attributes(const round_skeleton_result<P>& sk,
 /// readable drawing. O(round_skeleton + drawing_to_cells + blends · F · L).
 template <Point3 Q = glm::dvec3, Point2 P>
 rounds_result<Q, P> reconstruct_rounds(const arc_drawing<P>& d, const rounds_options& options = {}) {
-  const auto t_start = std::chrono::steady_clock::now();
+  const detail::stopwatch t_start;
   rounds_result<Q, P> out;
   out.skeleton = round_skeleton(d, options.skeleton);
   out.diagnostics = out.skeleton.diagnostics;
@@ -506,8 +506,7 @@ rounds_result<Q, P> reconstruct_rounds(const arc_drawing<P>& d, const rounds_opt
   for (auto& r : out.rounds) r.category = out.skeleton.blends[r.blend].category;
   for (const auto& x : X) out.points.push_back(from_dvec3<Q>(x));
   for (const auto& r : out.rounds) ++(r.consistent ? out.consistent : out.inconsistent);
-  out.milliseconds =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
+  out.milliseconds = t_start.ms();
   return out;
 }
 

@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -32,6 +31,7 @@
 
 #include "cellforge/algorithms/convex_hull.hpp"
 #include "cellforge/core/detail/splitmix.hpp"
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
@@ -1186,7 +1186,7 @@ struct sweep_item {
 template <class = void>
 std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {},
                                          sketch_sweep_report* report = nullptr) {
-  const auto start = std::chrono::steady_clock::now();
+  const detail::stopwatch start;
   if (options.views_per_model < 1 || options.view_attempts < 1 || !(options.min_margin >= 0))
     throw error(error_category::invalid_input,
                 "sketch_sweep: views_per_model and view_attempts must be at least 1, min_margin >= 0");
@@ -1387,7 +1387,7 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
     }
   }
   rep.drawings = out.size();
-  rep.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  rep.ms = start.ms();
   if (report) *report = std::move(rep);
   return out;
 }

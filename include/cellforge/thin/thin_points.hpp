@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -21,6 +20,7 @@
 
 #include "cellforge/cells/cell_complex.hpp"
 #include "cellforge/cells/conversion.hpp"
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/conversion.hpp"
@@ -440,11 +440,6 @@ thin_loop<glm::dvec3> make_loop(const thin_input& in, const std::vector<std::uin
   return loop;
 }
 
-template <class = void>
-double ms_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
-
 /// find_thin_points on a prepared mesh, in double precision. O(as find_thin_points).
 template <class = void>
 thin_result<glm::dvec3> find(thin_input prepared, const thin_options& options) {
@@ -454,7 +449,7 @@ thin_result<glm::dvec3> find(thin_input prepared, const thin_options& options) {
   const thin_face_graph& g = in.graph;
   r.grown_faces = g.num_faces;
 
-  auto clock = std::chrono::steady_clock::now();
+  detail::stopwatch clock;
   const central_axis_result axis = central_axis(
       in.used_points, {options.slabs, options.axis_tolerance_deg, options.max_axis_iterations, 5});
   glm::dvec3 dir = axis.direction;
@@ -475,12 +470,12 @@ thin_result<glm::dvec3> find(thin_input prepared, const thin_options& options) {
   r.axis_origin = axis.origin, r.axis_direction = dir;
   r.axis_iterations = axis.iterations, r.axis_converged = axis.converged;
   r.start_face = in.face_id[start];
-  r.axis_ms = ms_since(clock);
+  r.axis_ms = clock.ms();
 
-  clock = std::chrono::steady_clock::now();
+  clock.restart();
   const growing_result grown = grow_selections(
       g, start, {options.selection_cap, options.keep_ratio, options.mode, options.work_budget});
-  r.growing_ms = ms_since(clock);
+  r.growing_ms = clock.ms();
   r.cycle_lengths = grown.cycle_lengths;
   r.selections_examined = grown.selections_examined, r.duplicates_dropped = grown.duplicates_dropped;
   r.selections_kept = grown.selections_kept, r.max_kept = grown.max_kept;
@@ -497,7 +492,7 @@ thin_result<glm::dvec3> find(thin_input prepared, const thin_options& options) {
   const double ring_cycles = hi > lo ? std::min(axial / (hi - lo), static_cast<double>(g.num_faces)) : 0.0;
   r.ring_cycles = ring_cycles;
 
-  clock = std::chrono::steady_clock::now();
+  clock.restart();
   const detection_result found = detect_thin_cycles(
       r.cycle_lengths, g.num_faces,
       {options.detection, options.min_strength, options.suppression_fraction, options.averaging_window,
@@ -508,7 +503,7 @@ thin_result<glm::dvec3> find(thin_input prepared, const thin_options& options) {
     loop.cycle = d.cycle, loop.strength = d.strength;
     r.loops.push_back(std::move(loop));
   }
-  r.detection_ms = ms_since(clock);
+  r.detection_ms = clock.ms();
   return r;
 }
 

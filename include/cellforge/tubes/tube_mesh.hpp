@@ -7,7 +7,6 @@
 /// branch meshes (branch_mesh.hpp), the node paths (node_path.hpp), and the mesh.
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -22,6 +21,7 @@
 
 #include "cellforge/algorithms/loop_subdivision.hpp"
 #include "cellforge/algorithms/self_intersections.hpp"
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
@@ -102,8 +102,8 @@ struct tubes_result {
 namespace detail::tubes {
 
 template <class = void>
-double elapsed_ms(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since).count();
+double elapsed_ms(const detail::stopwatch& since) {
+  return since.ms();
 }
 
 /// Unit points spread over the sphere (a Fibonacci lattice) for an isolated node. O(n).
@@ -131,7 +131,9 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   namespace dt = detail::tubes;
   using P = skeleton_point_t<G>;
   using T = skeleton_traits<G>;
-  using clock = std::chrono::steady_clock;
+  struct clock {
+    static detail::stopwatch now() { return {}; }
+  };
   const auto t_start = clock::now();
   if (options.sides < 3 || options.sides > 1024)
     throw error(error_category::invalid_input, "make_tubes: sides must be between 3 and 1024");

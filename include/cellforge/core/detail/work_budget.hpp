@@ -3,22 +3,13 @@
 /// \file
 /// The stage reports' clock and the work budget every search spends from.
 
-#include <chrono>
 #include <cstdint>
 #include <string>
 
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/error.hpp"
 
 namespace cellforge::detail {
-
-/// Wall-clock stopwatch for stage reports.
-template <class = void>
-struct basic_stopwatch {
-  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
-  double ms() const {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  }
-};
 
 /// Counts abstract work steps and throws a budget error naming the stage when exhausted.
 template <class = void>
@@ -35,7 +26,6 @@ struct basic_work_budget {
   }
 };
 
-using stopwatch = basic_stopwatch<>;
 using work_budget = basic_work_budget<>;
 
 }  // namespace cellforge::detail

@@ -11,7 +11,6 @@
 #include <concepts>
 #include <cstdint>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <ostream>
@@ -118,20 +117,17 @@ void put_comment_lines(output_buffer& out, std::string_view text, std::string_vi
 /// it is written, so a failure (a writer's check, a full disk) never leaves a broken, empty or
 /// half-replaced file; a device or pipe is written in place. Errors name the path. O(what write costs).
 template <class Write>
-void write_file(const std::filesystem::path& path, Write&& write) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (std::filesystem::is_directory(status))
+void write_file(const file_path& path, Write&& write) {
+  const file_kind kind = status_of(path).kind;
+  if (kind == file_kind::directory)
     throw error(error_category::io, "cannot open '" + display_name(path) + "' for writing: it is a folder");
-  const bool in_place = std::filesystem::exists(status) && !std::filesystem::is_regular_file(status);
-  std::filesystem::path target = path;
-  if (!in_place) target += ".partial";
+  const bool in_place = kind == file_kind::other;
+  const file_path target = in_place ? path : path.with_suffix(".partial");
   const auto discard = [&] {
-    std::error_code ignored;
-    if (!in_place) std::filesystem::remove(target, ignored);
+    if (!in_place) remove_file(target);
   };
   {
-    std::ofstream os(target, std::ios::binary | std::ios::trunc);
+    std::ofstream os(target.native(), std::ios::binary | std::ios::trunc);
     if (!os) throw error(error_category::io, "cannot open '" + display_name(path) + "' for writing");
     try {
       write(static_cast<std::ostream&>(os));
@@ -152,12 +148,11 @@ void write_file(const std::filesystem::path& path, Write&& write) {
     }
   }
   if (in_place) return;
-  std::filesystem::rename(target, path, ec);
-  if (ec) {
+  const std::string why = rename_file(target, path);
+  if (!why.empty()) {
     discard();
     throw error(error_category::io, "cannot write '" + display_name(path) +
-                                        "': moving the finished file into place failed (" + ec.message() +
-                                        ")");
+                                        "': moving the finished file into place failed (" + why + ")");
   }
 }
 

@@ -7,44 +7,42 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <memory>
 #include <string>
 
 #include "cellforge/core/error.hpp"
+#include "cellforge/io/file_path.hpp"
 
 namespace cellforge::io::detail {
 
 /// The display name of a path in error messages (the path as given, not made absolute).
 template <class = void>
-std::string display_name(const std::filesystem::path& path) {
+std::string display_name(const file_path& path) {
   return path.string();
 }
 
 /// Reads the whole file into a string; throws an io error naming the path and the
 /// reason when it cannot be opened or read. O(file size).
 template <class = void>
-std::string read_file(const std::filesystem::path& path) {
+std::string read_file(const file_path& path) {
   const auto fail = [&](const char* what, int err) -> error {
     return error(error_category::io, std::string("cannot ") + what + " '" + display_name(path) +
                                          "': " + (err != 0 ? std::strerror(err) : "read error"));
   };
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (std::filesystem::is_directory(status)) throw fail("read", EISDIR);
+  const file_status status = status_of(path);
+  if (status.kind == file_kind::directory) throw fail("read", EISDIR);
   // A pipe or device (/dev/zero, a FIFO) has no end we can trust: it could block forever or
   // never stop. Readers take regular files; copy the data to one first.
-  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+  if (status.kind == file_kind::other)
     throw error(error_category::io,
                 "cannot read '" + display_name(path) +
                     "': not a regular file (a pipe or device); save the data to a file first");
   errno = 0;
-  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(open_file(path, "rb"), &std::fclose);
   if (!file) throw fail("open", errno);
   std::string bytes;
   // Size from the file; the chunked reads below catch a file that grew since.
-  const auto size = std::filesystem::file_size(path, ec);
-  if (!ec) bytes.resize(static_cast<std::size_t>(size));
+  bytes.resize(static_cast<std::size_t>(status.size));
   std::size_t used = std::fread(bytes.data(), 1, bytes.size(), file.get());
   if (used < bytes.size()) {
     if (std::ferror(file.get())) throw fail("read", errno);
