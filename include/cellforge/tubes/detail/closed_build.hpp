@@ -64,8 +64,7 @@ bool build_closed(halfedge_mesh& mesh, std::size_t num_vertices, std::span<const
   std::uint32_t next_edge = 0;
   const std::size_t ne = nh / 2;
   std::size_t unmatched = 0;
-  constexpr std::uint32_t lookahead = 32;  // corners: a ring of quads for octagons
-  const auto give_up = [&] {               // face properties keep their values (the caller may swap them out)
+  const auto give_up = [&] {  // face properties keep their values (the caller may swap them out)
     he.clear();
     access::halfedge_properties(mesh).resize(0);
     access::edge_properties(mesh).resize(0);
@@ -82,8 +81,9 @@ bool build_closed(halfedge_mesh& mesh, std::size_t num_vertices, std::span<const
         if (fv[d] == fv[c]) return give_up();  // a repeated vertex: build names it
     }
     if (corner_half.size() < e - o) corner_half.resize(e - o);
+    constexpr std::uint32_t lookahead = 32;  // corners: a ring of quads for octagons
     for (std::uint32_t c = o; c < e; ++c) {
-      // The lists a face two rings on will search, and then their first entries: a path's
+      // The list a corner two rings on will search, and the first entry of one a ring on: a path's
       // first ring matches a junction's corners from long ago, out of cache.
       if (c + 2 * lookahead < nh) prefetch(&first[fv[c + 2 * lookahead]]);
       if (c + lookahead < nh && first[fv[c + lookahead]] != npos) prefetch(&he[first[fv[c + lookahead]]]);
