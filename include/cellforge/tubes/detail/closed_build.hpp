@@ -15,10 +15,18 @@
 #include <span>
 #include <vector>
 
+#include "cellforge/core/detail/large_array.hpp"
 #include "cellforge/halfedge/detail/mesh_access.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 
 namespace cellforge::detail::tubes {
+
+/// A hint to load the line at p into cache (no effect where the compiler has no builtin). O(1).
+inline void prefetch([[maybe_unused]] const void* p) noexcept {
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(p);
+#endif
+}
 
 /// Links faces (CSR over `num_vertices`) into `mesh` (no faces yet; its vertex properties,
 /// if already sized, are kept) when they form a closed, consistently oriented surface and
@@ -37,8 +45,11 @@ bool build_closed(halfedge_mesh& mesh, std::size_t num_vertices, std::span<const
       nh >= npos / 2 || mesh.halfedges_size() != 0 || mesh.faces_size() != 0)
     return false;
   const std::size_t nf = offsets.size() - 1;
-  access::resize(mesh, num_vertices, nh / 2, nf);
+  // No half-edges yet: the records grow two by two as edges open (the write frontier only
+  // advances), so the largest array is never filled with placeholders first.
+  access::resize(mesh, num_vertices, 0, nf);
   std::vector<halfedge_mesh::record>& he = access::records(mesh);
+  reserve_large(he, nh);
   std::vector<std::uint32_t>& anchor = access::vertex_anchors(mesh);  // all npos
   std::vector<std::uint32_t>& face_anchor = access::face_anchors(mesh);
   // One pass, faces in order. Edges are numbered as build numbers them, in order of first
@@ -47,7 +58,9 @@ bool build_closed(halfedge_mesh& mesh, std::size_t num_vertices, std::span<const
   // vertex (from first[a] through .next, with .head = b), so the matching needs no arrays of
   // its own; the twin b -> a finds it on a's list and takes 2e + 1. A face's records are
   // written once all its corners have their half-edges.
-  std::vector<std::uint32_t> first(num_vertices, npos), corner_half;
+  uninitialized_array<std::uint32_t> first(num_vertices);
+  std::fill(first.begin(), first.end(), npos);
+  std::vector<std::uint32_t> corner_half(8);  // grown to the longest face, never shrunk
   std::uint32_t next_edge = 0;
   const std::size_t ne = nh / 2;
   std::size_t unmatched = 0;
@@ -67,8 +80,13 @@ bool build_closed(halfedge_mesh& mesh, std::size_t num_vertices, std::span<const
       for (std::uint32_t d = o; d < c; ++d)
         if (fv[d] == fv[c]) return give_up();  // a repeated vertex: build names it
     }
-    corner_half.resize(e - o);
+    if (corner_half.size() < e - o) corner_half.resize(e - o);
+    constexpr std::uint32_t lookahead = 32;  // corners: a ring of quads for octagons
     for (std::uint32_t c = o; c < e; ++c) {
+      // The list a corner two rings on will search, and the first entry of one a ring on: a path's
+      // first ring matches a junction's corners from long ago, out of cache.
+      if (c + 2 * lookahead < nh) prefetch(&first[fv[c + 2 * lookahead]]);
+      if (c + lookahead < nh && first[fv[c + lookahead]] != npos) prefetch(&he[first[fv[c + lookahead]]]);
       const std::uint32_t a = fv[c], b = fv[c + 1 == e ? o : c + 1];
       // The twin leaves b for a: an open edge on b's list whose other end is a.
       std::uint32_t before = npos, t = first[b];
@@ -80,7 +98,8 @@ bool build_closed(halfedge_mesh& mesh, std::size_t num_vertices, std::span<const
       } else {
         if (next_edge == ne) return give_up();  // more edges than a closed surface has
         const std::uint32_t h = 2 * next_edge++;
-        he[h + 1].head = b, he[h + 1].next = first[a];
+        he.push_back({});  // h: written with its face below
+        he.push_back({b, first[a], npos, npos});
         first[a] = h + 1;
         corner_half[c - o] = h;
         ++unmatched;
@@ -100,7 +119,9 @@ bool build_closed(halfedge_mesh& mesh, std::size_t num_vertices, std::span<const
   }
   // A boundary, an edge of three faces or two faces disagreeing in orientation: not closed.
   if (unmatched != 0) return give_up();
-  first = {};
+  first.free();
+  access::halfedge_properties(mesh).resize(nh);
+  access::edge_properties(mesh).resize(ne);
   // Each vertex's corners must form one fan. Walking around every vertex from its anchor
   // reaches each half-edge at most once, and all of them exactly when no vertex has a second
   // fan; eight walks go side by side so that their cache misses overlap.
@@ -109,6 +130,8 @@ bool build_closed(halfedge_mesh& mesh, std::size_t num_vertices, std::span<const
   std::size_t reached = 0;
   for (std::size_t v0 = 0; v0 < num_vertices && reached <= nh; v0 += lanes) {
     std::size_t live = 0;
+    for (std::size_t k = 0; k < lanes && v0 + 4 * lanes + k < num_vertices; ++k)
+      if (anchor[v0 + 4 * lanes + k] != npos) prefetch(&he[anchor[v0 + 4 * lanes + k]]);
     for (std::size_t k = 0; k < lanes; ++k) {
       start[k] = at[k] = v0 + k < num_vertices ? anchor[v0 + k] : npos;
       live += start[k] != npos ? 1 : 0;

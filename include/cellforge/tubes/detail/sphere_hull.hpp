@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdint>
+#include <new>
 #include <span>
 #include <utility>
 #include <vector>
@@ -51,15 +52,24 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
     const int sgn = orient3d_filter(f.plane, q, value);
     return sgn != 0 ? sgn : orient3d_exact(pts[f.v[0]], pts[f.v[1]], pts[f.v[2]], q);
   };
+  // The scratch arrays keep their size across calls and are filled through counts: clearing
+  // and pushing would value-initialise or call out of line for every element.
+  const auto push = [](auto& v, std::size_t& count, const auto& x) {
+    if (count == v.size()) v.resize(2 * count + 16);
+    v[count++] = x;
+  };
   auto& faces = s.faces;
-  faces.clear();
+  std::size_t nf = 0;
   const auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    tri t;
-    t.plane = prepare_orient3d(pts[a], pts[b], pts[c]);
+    if (nf == faces.size()) faces.resize(2 * nf + 16);
+    tri& t = faces[nf];
+    // The plane is built in place: a copy through the stack stalls on store forwarding.
+    ::new (static_cast<void*>(&t.plane)) orient3d_plane(prepare_orient3d(pts[a], pts[b], pts[c]));
     t.v = {a, b, c};
+    t.mark = 0;
+    t.visible = false;
     t.alive = true;
-    faces.push_back(t);
-    return static_cast<std::uint32_t>(faces.size() - 1);
+    return static_cast<std::uint32_t>(nf++);
   };
   // Start: points 0, 1, 2 and the first point off their plane (the last point first: on
   // another ring, so the first tetrahedron is not flat).
@@ -99,7 +109,7 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
     const std::uint32_t stamp = p + 1;
     // A face that p sees: newest first.
     std::uint32_t seen = 0xFFFFFFFFu;
-    for (std::size_t f = faces.size(); f-- > 0;) {
+    for (std::size_t f = nf; f-- > 0;) {
       if (!faces[f].alive) continue;
       faces[f].mark = stamp;
       faces[f].visible = orient(faces[f], q) > 0;
@@ -110,29 +120,28 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
     }
     if (seen == 0xFFFFFFFFu) return false;  // inside or on the hull: not for this hull
     // The visible region (connected) and its horizon.
-    s.stack.assign(1, seen);
-    s.visible.clear();
-    s.horizon.clear();
-    while (!s.stack.empty()) {
-      const std::uint32_t f = s.stack.back();
-      s.stack.pop_back();
-      s.visible.push_back(f);
+    std::size_t stacked = 0, visible = 0, horizon = 0;
+    push(s.stack, stacked, seen);
+    while (stacked > 0) {
+      const std::uint32_t f = s.stack[--stacked];
+      push(s.visible, visible, f);
       for (std::uint32_t i = 0; i < 3; ++i) {
         const std::uint32_t g = faces[f].n[i];
         if (faces[g].mark != stamp) {
           faces[g].mark = stamp;
           faces[g].visible = orient(faces[g], q) > 0;
           if (faces[g].visible) {
-            s.stack.push_back(g);
+            push(s.stack, stacked, g);
             continue;
           }
         }
-        if (!faces[g].visible) s.horizon.push_back({f, i});
+        if (!faces[g].visible) push(s.horizon, horizon, std::array<std::uint32_t, 2>{f, i});
       }
     }
     // The cone from p over the horizon: face (a, b, p) for horizon edge a -> b.
-    const std::size_t first_new = faces.size();
-    for (const auto& [f, i] : s.horizon) {
+    const std::size_t first_new = nf;
+    for (std::size_t h = 0; h < horizon; ++h) {
+      const auto [f, i] = s.horizon[h];
       const std::uint32_t a = faces[f].v[i], b = faces[f].v[(i + 1) % 3], g = faces[f].n[i];
       const std::uint32_t t = add(a, b, p);
       faces[t].n[0] = g;
@@ -140,7 +149,7 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
         if (faces[g].n[k] == f && faces[g].v[k] == b) faces[g].n[k] = t;
       s.by_start[a] = t, s.by_end[b] = t;
     }
-    for (std::size_t t = first_new; t < faces.size(); ++t) {
+    for (std::size_t t = first_new; t < nf; ++t) {
       tri& f = faces[t];
       f.n[1] = s.by_start[f.v[1]];  // edge b -> p: twin of edge p -> b of the face starting at b
       f.n[2] = s.by_end[f.v[0]];    // edge p -> a: twin of edge a -> p of the face ending at a
@@ -149,16 +158,18 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
           faces[f.n[2]].v[1] != f.v[0])
         return false;
     }
-    for (const std::uint32_t f : s.visible) faces[f].alive = false;
+    for (std::size_t k = 0; k < visible; ++k) faces[s.visible[k]].alive = false;
   }
   s.used.assign(m, 0);
   std::size_t vertices = 0;
-  for (const tri& f : faces)
+  for (std::size_t t = 0; t < nf; ++t) {
+    const tri& f = faces[t];
     if (f.alive) {
       out.push_back(f.v);
       for (const std::uint32_t v : f.v)
         if (!s.used[v]) s.used[v] = 1, ++vertices;
     }
+  }
   return vertices == m;
 }
 

@@ -53,7 +53,12 @@ struct basic_buffer {
     for (std::uint32_t c = 0; c < k; ++c) {
       const glm::dvec3& p = points[vs[c]];
       const glm::dvec3 u = points[vs[c == 0 ? k - 1 : c - 1]] - p, w = points[vs[c + 1 == k ? 0 : c + 1]] - p;
-      const double cosine = glm::dot(u, w) / std::sqrt(glm::dot(u, u) * glm::dot(w, w));
+      const double uw = glm::dot(u, w), uu = glm::dot(u, u), ww = glm::dot(w, w);
+      // A cosine certainly inside (cos_lo, cos_hi) changes neither: most corners skip the
+      // root and the division (the margin covers their rounding).
+      const double inside = std::min(cos_hi, -cos_lo);
+      if (inside > 0 && uw * uw < inside * inside * (uu * ww) * (1 - 1e-9)) continue;
+      const double cosine = uw / std::sqrt(uu * ww);
       cos_lo = std::min(cos_lo, cosine), cos_hi = std::max(cos_hi, cosine);
     }
     face_vertices.insert(face_vertices.end(), vs.begin(), vs.end());
