@@ -77,12 +77,12 @@ face_handle basic_halfedge_mesh<Unused>::add_face(std::span<const vertex_handle>
   std::vector<std::uint8_t>& flipped = sb.assign_u8(0, n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t a = at(i), b = at(i + 1);
-    std::uint32_t m = unlinked_.find(detail::edge_table::key(b, a));
-    if (m == detail::edge_table::not_found) {
-      m = unlinked_.find(detail::edge_table::key(a, b));
-      flipped[i] = m != detail::edge_table::not_found;
+    std::uint32_t m = unlinked_.find(table_key(b, a), unlinked_key());
+    if (m == detail::derived_key_table::not_found) {
+      m = unlinked_.find(table_key(a, b), unlinked_key());
+      flipped[i] = m != detail::derived_key_table::not_found;
     }
-    if (m != detail::edge_table::not_found) {
+    if (m != detail::derived_key_table::not_found) {
       match[i] = m;
     } else if (is_boundary(vertex_handle(a)) && find_edge(vertex_handle(a), vertex_handle(b)).is_valid()) {
       throw error(error_category::topology, "add_face: " + detail::edge_name(a, b) +
@@ -115,16 +115,17 @@ face_handle basic_halfedge_mesh<Unused>::add_face(std::span<const vertex_handle>
     const std::uint32_t a = at(i), b = at(i + 1);
     if (match[i] != npos) {
       const std::uint32_t m = match[i];
-      unlinked_.erase(flipped[i] ? detail::edge_table::key(a, b) : detail::edge_table::key(b, a));
+      unlinked_.erase(flipped[i] ? table_key(a, b) : table_key(b, a), unlinked_key());
       hs[i] = m ^ 1u;
       if (flipped[i]) ++flipped_edges_;
     } else {
       const std::uint32_t e = new_edge();
       hs[i] = 2 * e;
       is_new[i] = 1;
+      he_[2 * e].head = b;      // the table reads the key (a, b) off these two heads
       he_[2 * e + 1].head = a;  // the boundary side points back to the face half-edge's tail
       he_[2 * e + 1].face = npos;
-      unlinked_.insert(detail::edge_table::key(a, b), 2 * e);
+      unlinked_.insert(table_key(a, b), 2 * e, unlinked_key());
     }
   }
   for (std::size_t i = 0; i < n; ++i) {
@@ -207,9 +208,9 @@ void basic_halfedge_mesh<Unused>::remove_face(face_handle fh) {
       if (t_head == he_[h].head) --flipped_edges_;
       he_[h].face = npos;
       he_[h].head = t_tail;
-      unlinked_.insert(detail::edge_table::key(t_tail, t_head), t);
+      unlinked_.insert(table_key(t_tail, t_head), t, unlinked_key());
     } else {
-      unlinked_.erase(detail::edge_table::key(vs[i], vs[(i + 1) % n]));
+      unlinked_.erase(table_key(vs[i], vs[(i + 1) % n]), unlinked_key());
       he_[h] = record{};
       he_[t] = record{};
       ++removed_edges_;
@@ -268,7 +269,7 @@ void basic_halfedge_mesh<Unused>::reverse_face(face_handle fh) {
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t t = hs[i] ^ 1u;
     if (he_[t].face == npos)
-      unlinked_.erase(detail::edge_table::key(vs[i], vs[(i + 1) % n]));
+      unlinked_.erase(table_key(vs[i], vs[(i + 1) % n]), unlinked_key());
     else if (he_[t].head == he_[hs[i]].head)
       --flipped_edges_;
   }
@@ -285,7 +286,7 @@ void basic_halfedge_mesh<Unused>::reverse_face(face_handle fh) {
       // The boundary side keeps pointing at the face half-edge's tail; its ring slots follow its ends.
       std::swap(he_[t].next, he_[t].prev);
       he_[t].head = new_tail;
-      unlinked_.insert(detail::edge_table::key(new_tail, vs[i]), hs[i]);
+      unlinked_.insert(table_key(new_tail, vs[i]), hs[i], unlinked_key());
     } else if (he_[t].head == vs[i]) {
       ++flipped_edges_;
     }
@@ -389,8 +390,8 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
   const std::size_t ne = nh - pairs;
   clear_connectivity();
   detail::reserve_large(vertex_anchor_, nv);
-  vertex_anchor_.assign(nv, npos);
-  vprops_.resize(nv);
+  vertex_anchor_.assign(nv,
+                        npos);  // vertex properties (positions) follow when link_fans has freed its arrays
   detail::reserve_large(he_, 2 * ne);
   he_.assign(2 * ne, record{});
   hprops_.resize(2 * ne);
@@ -423,7 +424,7 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
         if (p == npos) {
           he_[partner[c] ^ 1u].head = fv[c];  // boundary side: head at the face half-edge's tail
           ++known.boundary;
-          known.unlinked.push_back({detail::edge_table::key(fv[c], fv[c + 1 == e ? o : c + 1]), partner[c]});
+          known.unlinked.push_back(partner[c]);
         }
       }
     }
@@ -462,11 +463,11 @@ void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_
   // Corners per vertex (to check that the fans found reach every face), anchors, seams, boundary.
   std::vector<std::uint32_t> corners;
   std::size_t boundary = 0;
-  std::vector<detail::edge_table::slot> entries;  // the unlinked table's contents, by half-edge
+  std::vector<std::uint32_t> unlinked;  // the unlinked table's contents, in increasing order
   if (known) {
     corners = std::move(known->corners);
     boundary = known->boundary;
-    entries = std::move(known->unlinked);
+    unlinked = std::move(known->unlinked);
   } else {
     std::fill(vertex_anchor_.begin(), vertex_anchor_.end(), npos);
     flipped_edges_ = 0;
@@ -486,33 +487,38 @@ void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_
   // skipping them saves two passes over the half-edges and four arrays.
   if (boundary > 0) {
     if (!known) {
-      detail::reserve_large(entries, boundary);
+      detail::reserve_large(unlinked, boundary);
       for (std::uint32_t h = 0; h < he_.size(); ++h)
-        if (he_[h].face != npos && he_[h ^ 1u].face == npos)
-          entries.push_back({detail::edge_table::key(he_[he_[h].prev].head, he_[h].head), h});
+        if (he_[h].face != npos && he_[h ^ 1u].face == npos) unlinked.push_back(h);
     }
+    std::vector<detail::derived_key_table::slot> entries;
+    detail::reserve_large(entries, unlinked.size());
+    for (const std::uint32_t h : unlinked)
+      entries.push_back(detail::derived_key_table::entry(unlinked_key()(h), h));
     unlinked_.assign(entries);
   }
 
   std::vector<std::uint32_t> covered, ring_first, ring_last;
-  std::vector<std::uint8_t> seen;  // bit 0: head end done, bit 1: tail end done
+  std::vector<std::uint64_t> seen;  // two bits per half-edge: head end done, tail end done
   if (boundary > 0) {
     for (auto* a : {&covered, &ring_first, &ring_last}) detail::reserve_large(*a, nv);
     covered.assign(nv, 0);
     ring_first.assign(nv, npos);
     ring_last.assign(nv, npos);
-    detail::reserve_large(seen, he_.size());
-    seen.assign(he_.size(), 0);
+    seen.assign((2 * he_.size() + 63) / 64, 0);
   }
-  for (const detail::edge_table::slot& entry : entries) {  // the boundary half-edges, in order
-    const std::uint32_t b = entry.value ^ 1u;
-    for (int side = 0; side < 2; ++side) {
+  auto mark = [&seen](std::uint32_t h, unsigned side) {
+    seen[h >> 5] |= std::uint64_t{1} << (2 * (h & 31u) + side);
+  };
+  for (const std::uint32_t h : unlinked) {  // the boundary half-edges, in order
+    const std::uint32_t b = h ^ 1u;
+    for (unsigned side = 0; side < 2; ++side) {
       const std::uint32_t v = side == 0 ? he_[b].head : he_[b ^ 1u].head;
-      if (seen[b] & (1u << side)) continue;
+      if (seen[b >> 5] >> (2 * (b & 31u) + side) & 1u) continue;
       std::size_t count = 0;
       const std::uint32_t e = walk_fan(b, v, &count);
-      seen[b] |= static_cast<std::uint8_t>(1u << side);
-      seen[e] |= static_cast<std::uint8_t>(he_[e].head == v ? 1u : 2u);
+      mark(b, side);
+      mark(e, he_[e].head == v ? 0u : 1u);
       covered[v] += n32(count);
       if (ring_first[v] == npos)
         ring_first[v] = b;
@@ -547,6 +553,7 @@ void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_
     if (!options.split_nonmanifold_vertices) {
       const std::uint32_t total = corners[v];
       clear_connectivity();
+      vprops_.resize(nv);
       throw error(error_category::topology,
                   "build: the " + std::to_string(total) + " faces around " + detail::vtx(v) +
                       (open ? " form a closed fan plus open ones" : " form several closed fans") +
@@ -555,6 +562,10 @@ void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_
     }
     nonmanifold.push_back(v);
   }
+  // Free the temporaries before the vertex properties (positions after a build) are allocated.
+  for (auto* a : {&corners, &unlinked, &covered, &ring_first, &ring_last}) detail::release(*a);
+  detail::release(seen);
+  vprops_.resize(nv);
   if (!nonmanifold.empty()) split_fans(nonmanifold, report);
   report.vertices = vertex_anchor_.size();
   report.edges = edges_size();
@@ -653,10 +664,11 @@ void basic_halfedge_mesh<Unused>::garbage_collection() {
   hprops_.resize(2 * std::size_t{ke});
   eprops_.resize(ke);
   fprops_.resize(kf);
-  unlinked_.clear();
+  std::vector<detail::derived_key_table::slot> entries;
   for (std::uint32_t h = 0; h < he_.size(); ++h)
     if (he_[h].face != npos && he_[h ^ 1u].face == npos)
-      unlinked_.insert(detail::edge_table::key(tail(halfedge_handle(h)).idx(), he_[h].head), h);
+      entries.push_back(detail::derived_key_table::entry(unlinked_key()(h), h));
+  unlinked_.assign(entries);
   removed_vertices_ = removed_edges_ = removed_faces_ = 0;
 }
 
