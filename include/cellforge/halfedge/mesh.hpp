@@ -555,10 +555,15 @@ class basic_halfedge_mesh {
   struct known_counts {
     std::vector<std::uint32_t> corners;
     std::size_t boundary = 0;
-    // Each face half-edge whose twin is on the boundary, in increasing order.
-    std::vector<std::uint32_t> unlinked;
+    // The unlinked table's entry of each face half-edge whose twin is on the boundary, in
+    // increasing half-edge order (8 bytes each: built from the face list, no record is read).
+    std::vector<detail::derived_key_table::slot> unlinked;
   };
   void link_fans(const build_options& options, build_report& report, bool verify_fans, known_counts* known);
+  // build's passes; with Triangles every face f is known to have the three corners 3f, 3f+1, 3f+2.
+  template <bool Triangles>
+  build_report build_faces(std::size_t nv, std::span<const std::uint32_t> offsets,
+                           std::span<const std::uint32_t> fv, const build_options& options);
   template <class>
   friend struct detail::basic_mesh_access;
 

@@ -38,6 +38,18 @@ bool all_distinct(std::span<const T> xs) {
   std::sort(c.begin(), c.end());
   return std::adjacent_find(c.begin(), c.end()) == c.end();
 }
+// The error for a third face on the edge (lo, hi): corners a and b already pair on it, c is
+// a third. Out of line so that build's matching loop stays small.
+template <class = void>
+[[noreturn]] void throw_third_face(std::span<const std::uint32_t> offsets, std::uint32_t lo, std::uint32_t hi,
+                                   std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  const auto face_of = [&](std::uint32_t x) {
+    return std::to_string(std::upper_bound(offsets.begin(), offsets.end(), x) - offsets.begin() - 1);
+  };
+  throw error(error_category::topology, "build: " + edge_name(lo, hi) + " is used by faces " + face_of(a) +
+                                            ", " + face_of(b) + " and " + face_of(c) +
+                                            "; a half-edge mesh allows at most two faces per edge");
+}
 }  // namespace detail
 
 template <class Unused>
@@ -303,8 +315,25 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
                 "build: face offsets must start at 0 and end at the number of face indices");
   if (nv >= removed_mark || fv.size() >= removed_mark / 2)
     throw error(error_category::invalid_input, "build: too many vertices or faces for 32-bit indices");
+  // A triangle mesh (the common case) runs passes that know every face has three corners at
+  // 3f: they read no offsets and their corner loops unroll.
+  const std::size_t nf = offsets.size() - 1;
+  bool triangles = fv.size() == 3 * nf;
+  for (std::size_t f = 1; triangles && f < nf; ++f) triangles = offsets[f] == 3 * f;
+  return triangles ? build_faces<true>(nv, offsets, fv, options)
+                   : build_faces<false>(nv, offsets, fv, options);
+}
+
+template <class Unused>
+template <bool Triangles>
+build_report basic_halfedge_mesh<Unused>::build_faces(std::size_t nv, std::span<const std::uint32_t> offsets,
+                                                      std::span<const std::uint32_t> fv,
+                                                      const build_options& options) {
   const std::size_t nf = offsets.size() - 1;
   const std::size_t nh = fv.size();
+  // Face f's corners are [first(f), last(f)).
+  const auto first = [&offsets](std::size_t f) { return Triangles ? n32(3 * f) : offsets[f]; };
+  const auto last = [&offsets](std::size_t f) { return Triangles ? n32(3 * f + 3) : offsets[f + 1]; };
 
   // Pass 1, faces in order: check each face, then count its corners by the smaller end of
   // their edge (corner c is the edge fv[c] -> fv[c+1], cyclically within its face). The
@@ -313,7 +342,7 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
   detail::reserve_large(start, nv + 2);
   start.resize(nv + 2, 0);
   for (std::size_t f = 0; f < nf; ++f) {
-    const std::uint32_t o = offsets[f], e = offsets[f + 1];
+    const std::uint32_t o = first(f), e = last(f);
     if (e < o || e > nh)
       throw error(error_category::invalid_input,
                   "build: face offsets must not decrease (face " + std::to_string(f) + ")");
@@ -335,53 +364,49 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
   for (std::size_t i = 2; i < start.size(); ++i) start[i] += start[i - 1];
 
   // Pass 2: the corners bucketed by smaller end, each with its larger end beside it
-  // (hi << 32 | corner), so matching reads one contiguous run per vertex.
+  // (hi << 32 | down << 31 | corner, down when the corner runs from hi to lo), so matching
+  // reads one contiguous run per vertex and sees seams without reading the faces again.
+  constexpr std::uint64_t down = std::uint64_t{1} << 31, corner_bits = down - 1;  // corners < 2^31
   detail::uninitialized_array<std::uint64_t> items(nh);  // every slot is written below
   for (std::size_t f = 0; f < nf; ++f) {
-    const std::uint32_t o = offsets[f], e = offsets[f + 1];
+    const std::uint32_t o = first(f), e = last(f);
     for (std::uint32_t c = o; c < e; ++c) {
       const std::uint32_t a = fv[c], b = fv[c + 1 == e ? o : c + 1];
-      items[start[std::min(a, b) + 1]++] = std::uint64_t{std::max(a, b)} << 32 | c;
+      items[start[std::min(a, b) + 1]++] = std::uint64_t{std::max(a, b)} << 32 | (a > b ? down : 0) | c;
     }
   }
-  auto face_of = [&](std::size_t c) {
-    return static_cast<std::size_t>(std::upper_bound(offsets.begin(), offsets.end(), c) - offsets.begin() -
-                                    1);
-  };
 
-  // Pass 3: match the corners of each edge within its bucket; a third one is an error.
-  std::vector<std::uint32_t> partner;
-  detail::reserve_large(partner, nh);
-  partner.resize(nh, npos);
-  std::size_t pairs = 0;
-  auto pair_up = [&](std::uint32_t c, std::uint32_t d, std::uint32_t lo, std::uint32_t hi) {
-    if (partner[d] != npos)
-      throw error(error_category::topology,
-                  "build: " + detail::edge_name(lo, hi) + " is used by faces " + std::to_string(face_of(d)) +
-                      ", " + std::to_string(face_of(partner[d])) + " and " + std::to_string(face_of(c)) +
-                      "; a half-edge mesh allows at most two faces per edge");
+  // Pass 3: match the corners of each edge within its bucket; a third one is an error. Each
+  // corner's partner is set to npos when its item is reached, so `partner` needs no fill.
+  detail::uninitialized_array<std::uint32_t> partner(nh);
+  std::size_t pairs = 0, flipped = 0;
+  const auto pair_up = [&](std::uint64_t x, std::uint64_t y, std::uint32_t lo) {
+    const auto c = static_cast<std::uint32_t>(x & corner_bits),
+               d = static_cast<std::uint32_t>(y & corner_bits);
+    if (partner[d] != npos) detail::throw_third_face(offsets, lo, n32(x >> 32), d, partner[d], c);
     partner[c] = d;
     partner[d] = c;
     ++pairs;
+    flipped += ((x ^ y) & down) == 0;  // both corners run the same way along the edge
   };
   for (std::uint32_t lo = 0; lo < nv; ++lo) {
     const std::uint32_t b0 = start[lo], b1 = start[lo + 1];
     if (b1 - b0 <= 24) {
       for (std::uint32_t i = b0; i < b1; ++i) {
-        const std::uint64_t hc = items[i] >> 32;
+        const std::uint64_t x = items[i];
+        partner[x & corner_bits] = npos;
         for (std::uint32_t j = i; j-- > b0;) {
-          if (items[j] >> 32 != hc) continue;
-          pair_up(static_cast<std::uint32_t>(items[i]), static_cast<std::uint32_t>(items[j]), lo,
-                  static_cast<std::uint32_t>(hc));
+          if (items[j] >> 32 != x >> 32) continue;
+          pair_up(x, items[j], lo);
           break;
         }
       }
     } else {  // a high-degree vertex: sort its bucket (by larger end, then corner) instead
-      std::sort(items.begin() + b0, items.begin() + b1);
+      std::sort(items.begin() + b0, items.begin() + b1,
+                [](std::uint64_t x, std::uint64_t y) { return (x & ~down) < (y & ~down); });
+      for (std::uint32_t i = b0; i < b1; ++i) partner[items[i] & corner_bits] = npos;
       for (std::uint32_t i = b0 + 1; i < b1; ++i)
-        if (items[i] >> 32 == items[i - 1] >> 32)
-          pair_up(static_cast<std::uint32_t>(items[i]), static_cast<std::uint32_t>(items[i - 1]), lo,
-                  static_cast<std::uint32_t>(items[i] >> 32));
+        if (items[i] >> 32 == items[i - 1] >> 32) pair_up(items[i], items[i - 1], lo);
     }
   }
   items.free();  // before the mesh arrays: the peak stays at the mesh plus `partner`
@@ -390,13 +415,12 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
   const std::size_t ne = nh - pairs;
   clear_connectivity();
   detail::reserve_large(vertex_anchor_, nv);
-  vertex_anchor_.assign(nv,
-                        npos);  // vertex properties (positions) follow when link_fans has freed its arrays
+  // Vertex properties (positions) are sized when link_fans has freed its arrays: a lower peak.
+  vertex_anchor_.assign(nv, npos);
   detail::reserve_large(he_, 2 * ne);
-  he_.assign(2 * ne, record{});
+  he_.resize(2 * ne);
   hprops_.resize(2 * ne);
   eprops_.resize(ne);
-  face_anchor_.clear();
   detail::reserve_large(face_anchor_, nf);  // filled in face order below
   fprops_.resize(nf);
 
@@ -404,28 +428,28 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
   // faces sit close in memory) and write the face's records. partner[c] becomes c's
   // half-edge once c is numbered: a corner whose partner comes later opens a new edge, one
   // whose partner came earlier takes the twin of the partner's half-edge. The same pass
-  // counts what link_fans' first pass would (corners, anchors, seams, boundary), so the
-  // records are not read again.
+  // counts what link_fans' first pass would (corners, anchors, boundary), so the records
+  // are not read again.
   known_counts known;
   detail::reserve_large(known.unlinked, nh - 2 * pairs);
   detail::reserve_large(known.corners, nv);
   known.corners.resize(nv, 0);
-  flipped_edges_ = 0;
+  flipped_edges_ = flipped;
   std::uint32_t next_edge = 0;
   for (std::size_t f = 0; f < nf; ++f) {
-    const std::uint32_t o = offsets[f], e = offsets[f + 1];
+    const std::uint32_t o = first(f), e = last(f);
     for (std::uint32_t c = o; c < e; ++c) {
       const std::uint32_t p = partner[c];
       if (p != npos && p < c) {
         partner[c] = partner[p] ^ 1u;
-        flipped_edges_ += fv[p] == fv[c];  // both corners run the same way along the edge
-      } else {
-        partner[c] = 2 * next_edge++;
-        if (p == npos) {
-          he_[partner[c] ^ 1u].head = fv[c];  // boundary side: head at the face half-edge's tail
-          ++known.boundary;
-          known.unlinked.push_back(partner[c]);
-        }
+        continue;
+      }
+      partner[c] = 2 * next_edge++;
+      if (p == npos) {  // boundary side: head at the face half-edge's tail
+        he_[partner[c] ^ 1u].head = fv[c];
+        ++known.boundary;
+        known.unlinked.push_back(
+            detail::derived_key_table::entry(table_key(fv[c], fv[c + 1 == e ? o : c + 1]), partner[c]));
       }
     }
     face_anchor_.push_back(partner[o]);
@@ -443,7 +467,7 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
         anchor = h;  // the last face half-edge into the vertex, as link_fans picks
     }
   }
-  detail::release(partner);
+  partner.free();
   build_report report;
   link_fans(options, report, true, &known);
   return report;
@@ -463,7 +487,7 @@ void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_
   // Corners per vertex (to check that the fans found reach every face), anchors, seams, boundary.
   std::vector<std::uint32_t> corners;
   std::size_t boundary = 0;
-  std::vector<std::uint32_t> unlinked;  // the unlinked table's contents, in increasing order
+  std::vector<detail::derived_key_table::slot> unlinked;  // the unlinked table's entries, by half-edge
   if (known) {
     corners = std::move(known->corners);
     boundary = known->boundary;
@@ -489,13 +513,10 @@ void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_
     if (!known) {
       detail::reserve_large(unlinked, boundary);
       for (std::uint32_t h = 0; h < he_.size(); ++h)
-        if (he_[h].face != npos && he_[h ^ 1u].face == npos) unlinked.push_back(h);
+        if (he_[h].face != npos && he_[h ^ 1u].face == npos)
+          unlinked.push_back(detail::derived_key_table::entry(unlinked_key()(h), h));
     }
-    std::vector<detail::derived_key_table::slot> entries;
-    detail::reserve_large(entries, unlinked.size());
-    for (const std::uint32_t h : unlinked)
-      entries.push_back(detail::derived_key_table::entry(unlinked_key()(h), h));
-    unlinked_.assign(entries);
+    unlinked_.assign(unlinked);
   }
 
   std::vector<std::uint32_t> covered, ring_first, ring_last;
@@ -510,8 +531,8 @@ void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_
   auto mark = [&seen](std::uint32_t h, unsigned side) {
     seen[h >> 5] |= std::uint64_t{1} << (2 * (h & 31u) + side);
   };
-  for (const std::uint32_t h : unlinked) {  // the boundary half-edges, in order
-    const std::uint32_t b = h ^ 1u;
+  for (const detail::derived_key_table::slot& entry : unlinked) {  // the boundary half-edges, in order
+    const std::uint32_t b = entry.value ^ 1u;
     for (unsigned side = 0; side < 2; ++side) {
       const std::uint32_t v = side == 0 ? he_[b].head : he_[b ^ 1u].head;
       if (seen[b >> 5] >> (2 * (b & 31u) + side) & 1u) continue;
@@ -563,7 +584,8 @@ void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_
     nonmanifold.push_back(v);
   }
   // Free the temporaries before the vertex properties (positions after a build) are allocated.
-  for (auto* a : {&corners, &unlinked, &covered, &ring_first, &ring_last}) detail::release(*a);
+  for (auto* a : {&corners, &covered, &ring_first, &ring_last}) detail::release(*a);
+  detail::release(unlinked);
   detail::release(seen);
   vprops_.resize(nv);
   if (!nonmanifold.empty()) split_fans(nonmanifold, report);
