@@ -532,6 +532,54 @@ TEST_CASE("edge_table: a bulk assign finds exactly what one insert per entry fin
   CHECK(bulk.empty());
 }
 
+TEST_CASE("derived_key_table: bulk assign, inserts and erases find exactly the keys stored") {
+  // Value i stands for keys[i]; the table stores only the value and 32 bits of the key's hash.
+  using table_t = cellforge::detail::derived_key_table;
+  std::mt19937_64 rng(37);
+  std::vector<std::uint64_t> keys;
+  std::set<std::uint64_t> seen;
+  while (keys.size() < 50000) {
+    const auto k =
+        table_t::key(static_cast<std::uint32_t>(rng() % 4000), static_cast<std::uint32_t>(rng() % 4000));
+    if (seen.insert(k).second) keys.push_back(k);
+  }
+  const auto key_of = [&keys](std::uint32_t v) { return keys[v]; };
+  std::vector<table_t::slot> entries;
+  for (std::uint32_t i = 0; i < keys.size(); ++i) entries.push_back(table_t::entry(keys[i], i));
+  table_t bulk, one_by_one;
+  bulk.assign(entries);
+  for (std::uint32_t i = 0; i < keys.size(); ++i) one_by_one.insert(keys[i], i, key_of);
+  CHECK(bulk.size() == keys.size());
+  CHECK(4 * bulk.size() <= 3 * bulk.capacity());
+  std::size_t wrong = 0, false_hits = 0;
+  for (std::uint32_t i = 0; i < keys.size(); ++i)
+    wrong += bulk.find(keys[i], key_of) != i || one_by_one.find(keys[i], key_of) != i;
+  for (int i = 0; i < 20000; ++i)
+    false_hits += bulk.find(table_t::key(4000 + static_cast<std::uint32_t>(rng() % 100), 7), key_of) !=
+                  table_t::not_found;
+  CHECK(wrong == 0);
+  CHECK(false_hits == 0);
+  // Erase all but every 16th entry: the rest stays findable across backward shifts and shrinks.
+  for (std::uint32_t i = 0; i < keys.size(); ++i)
+    if (i % 16 != 0) CHECK(bulk.erase(keys[i], key_of));
+  CHECK(bulk.size() == (keys.size() + 15) / 16);
+  CHECK(bulk.capacity() < 16384);
+  std::size_t lost = 0, kept = 0;
+  for (std::uint32_t i = 0; i < keys.size(); ++i) {
+    const std::uint32_t found = bulk.find(keys[i], key_of);
+    lost += i % 16 == 0 && found != i;
+    kept += i % 16 != 0 && found != table_t::not_found;
+  }
+  CHECK(lost == 0);
+  CHECK(kept == 0);
+  CHECK_FALSE(bulk.erase(keys[1], key_of));
+  std::size_t visited = 0;
+  bulk.for_each([&](std::uint32_t v) { visited += v % 16 == 0; });
+  CHECK(visited == bulk.size());
+  bulk.assign({});
+  CHECK(bulk.empty());
+}
+
 TEST_CASE("build: a large grid with holes and a flipped strip counts boundary and seams as the soup says") {
   // 300 x 300 quads, every 7th removed (holes), the faces of one row wound the other way.
   const std::uint32_t n = 300;

@@ -82,7 +82,7 @@ class basic_halfedge_mesh {
   /// size; properties excluded). O(1).
   std::size_t memory_bytes() const noexcept {
     return he_.capacity() * sizeof(record) + (vertex_anchor_.capacity() + face_anchor_.capacity()) * 4 +
-           unlinked_.capacity() * sizeof(detail::edge_table::slot);
+           unlinked_.capacity() * sizeof(detail::derived_key_table::slot);
   }
   /// True when any element was removed and garbage_collection() would compact. O(1).
   bool has_garbage() const noexcept { return removed_vertices_ + removed_edges_ + removed_faces_ > 0; }
@@ -232,20 +232,20 @@ class basic_halfedge_mesh {
   std::vector<halfedge_handle> boundary_halfedges() const {
     std::vector<halfedge_handle> out;
     out.reserve(unlinked_.size());
-    unlinked_.for_each([&](std::uint64_t, std::uint32_t h) { out.push_back(twin(halfedge_handle(h))); });
+    unlinked_.for_each([&](std::uint32_t h) { out.push_back(twin(halfedge_handle(h))); });
     return out;
   }
   /// The unlinked face half-edges (whose twin has no face), unordered. O(#boundary).
   std::vector<halfedge_handle> unlinked_halfedges() const {
     std::vector<halfedge_handle> out;
     out.reserve(unlinked_.size());
-    unlinked_.for_each([&](std::uint64_t, std::uint32_t h) { out.push_back(halfedge_handle(h)); });
+    unlinked_.for_each([&](std::uint32_t h) { out.push_back(halfedge_handle(h)); });
     return out;
   }
   /// The face half-edge from tail to head whose twin is unlinked, if any. O(1) expected.
   halfedge_handle find_unlinked(vertex_handle tail_v, vertex_handle head_v) const noexcept {
-    const std::uint32_t h = unlinked_.find(detail::edge_table::key(tail_v.idx(), head_v.idx()));
-    return h == detail::edge_table::not_found ? halfedge_handle() : halfedge_handle(h);
+    const std::uint32_t h = unlinked_.find(table_key(tail_v.idx(), head_v.idx()), unlinked_key());
+    return h == detail::derived_key_table::not_found ? halfedge_handle() : halfedge_handle(h);
   }
 
   /// The boundary loop through boundary half-edge b, as a range of boundary half-edges in
@@ -436,7 +436,7 @@ class basic_halfedge_mesh {
     std::uint32_t face = npos;
   };
   const record& raw(halfedge_handle h) const noexcept { return he_[h.idx()]; }
-  const detail::edge_table& unlinked_table() const noexcept { return unlinked_; }
+  const detail::derived_key_table& unlinked_table() const noexcept { return unlinked_; }
   std::uint32_t raw_vertex_anchor(vertex_handle v) const noexcept { return vertex_anchor_[v.idx()]; }
   static constexpr std::uint32_t removed_mark = 0xFFFFFFFEu;
 
@@ -454,6 +454,16 @@ class basic_halfedge_mesh {
   }
 
   static std::uint32_t n32(std::size_t n) noexcept { return static_cast<std::uint32_t>(n); }
+
+  static constexpr std::uint64_t table_key(std::uint32_t tail, std::uint32_t head) noexcept {
+    return detail::derived_key_table::key(tail, head);
+  }
+  // The unlinked table's key of face half-edge h, read off the records: its boundary twin's
+  // head is h's tail. The table stores no keys, so every edit keeps that head up to date
+  // before it inserts or erases h.
+  auto unlinked_key() const noexcept {
+    return [this](std::uint32_t h) { return table_key(he_[h ^ 1u].head, he_[h].head); };
+  }
 
   // The ring slot of boundary half-edge b at its end vertex v: next at its head, prev at its tail.
   std::uint32_t& ring_slot(std::uint32_t b, std::uint32_t v) noexcept {
@@ -545,11 +555,15 @@ class basic_halfedge_mesh {
   struct known_counts {
     std::vector<std::uint32_t> corners;
     std::size_t boundary = 0;
-    // (tail, head) -> half-edge of each face half-edge whose twin is on the boundary, in
-    // increasing half-edge order.
-    std::vector<detail::edge_table::slot> unlinked;
+    // The unlinked table's entry of each face half-edge whose twin is on the boundary, in
+    // increasing half-edge order (8 bytes each: built from the face list, no record is read).
+    std::vector<detail::derived_key_table::slot> unlinked;
   };
   void link_fans(const build_options& options, build_report& report, bool verify_fans, known_counts* known);
+  // build's passes; with Triangles every face f is known to have the three corners 3f, 3f+1, 3f+2.
+  template <bool Triangles>
+  build_report build_faces(std::size_t nv, std::span<const std::uint32_t> offsets,
+                           std::span<const std::uint32_t> fv, const build_options& options);
   template <class>
   friend struct detail::basic_mesh_access;
 
@@ -612,7 +626,7 @@ class basic_halfedge_mesh {
   std::vector<record> he_;
   std::vector<std::uint32_t> vertex_anchor_;
   std::vector<std::uint32_t> face_anchor_;
-  detail::edge_table unlinked_;  // (tail, head) of face half-edges whose twin has no face
+  detail::derived_key_table unlinked_;  // (tail, head) of face half-edges whose twin has no face
   std::size_t flipped_edges_ = 0;
   std::size_t removed_vertices_ = 0, removed_edges_ = 0, removed_faces_ = 0;
   detail::property_registry vprops_, hprops_, eprops_, fprops_;

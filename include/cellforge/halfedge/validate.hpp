@@ -153,7 +153,7 @@ validation_result validate(const halfedge_mesh& m) {
     if (f0 != f1) {
       ++unlinked;
       const halfedge_handle fh = f0 ? h0 : h1;
-      const std::uint32_t found = table.find(detail::edge_table::key(m.tail(fh).idx(), m.head(fh).idx()));
+      const std::uint32_t found = m.find_unlinked(m.tail(fh), m.head(fh)).idx();
       if (found != fh.idx())
         return fail(mesh_invariant::unlinked_table, e,
                     "boundary edge " + S(e) + ": its face half-edge " + S(fh.idx()) +

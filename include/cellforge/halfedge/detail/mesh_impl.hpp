@@ -38,6 +38,18 @@ bool all_distinct(std::span<const T> xs) {
   std::sort(c.begin(), c.end());
   return std::adjacent_find(c.begin(), c.end()) == c.end();
 }
+// The error for a third face on the edge (lo, hi): corners a and b already pair on it, c is
+// a third. Out of line so that build's matching loop stays small.
+template <class = void>
+[[noreturn]] void throw_third_face(std::span<const std::uint32_t> offsets, std::uint32_t lo, std::uint32_t hi,
+                                   std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  const auto face_of = [&](std::uint32_t x) {
+    return std::to_string(std::upper_bound(offsets.begin(), offsets.end(), x) - offsets.begin() - 1);
+  };
+  throw error(error_category::topology, "build: " + edge_name(lo, hi) + " is used by faces " + face_of(a) +
+                                            ", " + face_of(b) + " and " + face_of(c) +
+                                            "; a half-edge mesh allows at most two faces per edge");
+}
 }  // namespace detail
 
 template <class Unused>
@@ -77,12 +89,12 @@ face_handle basic_halfedge_mesh<Unused>::add_face(std::span<const vertex_handle>
   std::vector<std::uint8_t>& flipped = sb.assign_u8(0, n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t a = at(i), b = at(i + 1);
-    std::uint32_t m = unlinked_.find(detail::edge_table::key(b, a));
-    if (m == detail::edge_table::not_found) {
-      m = unlinked_.find(detail::edge_table::key(a, b));
-      flipped[i] = m != detail::edge_table::not_found;
+    std::uint32_t m = unlinked_.find(table_key(b, a), unlinked_key());
+    if (m == detail::derived_key_table::not_found) {
+      m = unlinked_.find(table_key(a, b), unlinked_key());
+      flipped[i] = m != detail::derived_key_table::not_found;
     }
-    if (m != detail::edge_table::not_found) {
+    if (m != detail::derived_key_table::not_found) {
       match[i] = m;
     } else if (is_boundary(vertex_handle(a)) && find_edge(vertex_handle(a), vertex_handle(b)).is_valid()) {
       throw error(error_category::topology, "add_face: " + detail::edge_name(a, b) +
@@ -115,16 +127,17 @@ face_handle basic_halfedge_mesh<Unused>::add_face(std::span<const vertex_handle>
     const std::uint32_t a = at(i), b = at(i + 1);
     if (match[i] != npos) {
       const std::uint32_t m = match[i];
-      unlinked_.erase(flipped[i] ? detail::edge_table::key(a, b) : detail::edge_table::key(b, a));
+      unlinked_.erase(flipped[i] ? table_key(a, b) : table_key(b, a), unlinked_key());
       hs[i] = m ^ 1u;
       if (flipped[i]) ++flipped_edges_;
     } else {
       const std::uint32_t e = new_edge();
       hs[i] = 2 * e;
       is_new[i] = 1;
+      he_[2 * e].head = b;      // the table reads the key (a, b) off these two heads
       he_[2 * e + 1].head = a;  // the boundary side points back to the face half-edge's tail
       he_[2 * e + 1].face = npos;
-      unlinked_.insert(detail::edge_table::key(a, b), 2 * e);
+      unlinked_.insert(table_key(a, b), 2 * e, unlinked_key());
     }
   }
   for (std::size_t i = 0; i < n; ++i) {
@@ -207,9 +220,9 @@ void basic_halfedge_mesh<Unused>::remove_face(face_handle fh) {
       if (t_head == he_[h].head) --flipped_edges_;
       he_[h].face = npos;
       he_[h].head = t_tail;
-      unlinked_.insert(detail::edge_table::key(t_tail, t_head), t);
+      unlinked_.insert(table_key(t_tail, t_head), t, unlinked_key());
     } else {
-      unlinked_.erase(detail::edge_table::key(vs[i], vs[(i + 1) % n]));
+      unlinked_.erase(table_key(vs[i], vs[(i + 1) % n]), unlinked_key());
       he_[h] = record{};
       he_[t] = record{};
       ++removed_edges_;
@@ -268,7 +281,7 @@ void basic_halfedge_mesh<Unused>::reverse_face(face_handle fh) {
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t t = hs[i] ^ 1u;
     if (he_[t].face == npos)
-      unlinked_.erase(detail::edge_table::key(vs[i], vs[(i + 1) % n]));
+      unlinked_.erase(table_key(vs[i], vs[(i + 1) % n]), unlinked_key());
     else if (he_[t].head == he_[hs[i]].head)
       --flipped_edges_;
   }
@@ -285,7 +298,7 @@ void basic_halfedge_mesh<Unused>::reverse_face(face_handle fh) {
       // The boundary side keeps pointing at the face half-edge's tail; its ring slots follow its ends.
       std::swap(he_[t].next, he_[t].prev);
       he_[t].head = new_tail;
-      unlinked_.insert(detail::edge_table::key(new_tail, vs[i]), hs[i]);
+      unlinked_.insert(table_key(new_tail, vs[i]), hs[i], unlinked_key());
     } else if (he_[t].head == vs[i]) {
       ++flipped_edges_;
     }
@@ -302,8 +315,25 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
                 "build: face offsets must start at 0 and end at the number of face indices");
   if (nv >= removed_mark || fv.size() >= removed_mark / 2)
     throw error(error_category::invalid_input, "build: too many vertices or faces for 32-bit indices");
+  // A triangle mesh (the common case) runs passes that know every face has three corners at
+  // 3f: they read no offsets and their corner loops unroll.
+  const std::size_t nf = offsets.size() - 1;
+  bool triangles = fv.size() == 3 * nf;
+  for (std::size_t f = 1; triangles && f < nf; ++f) triangles = offsets[f] == 3 * f;
+  return triangles ? build_faces<true>(nv, offsets, fv, options)
+                   : build_faces<false>(nv, offsets, fv, options);
+}
+
+template <class Unused>
+template <bool Triangles>
+build_report basic_halfedge_mesh<Unused>::build_faces(std::size_t nv, std::span<const std::uint32_t> offsets,
+                                                      std::span<const std::uint32_t> fv,
+                                                      const build_options& options) {
   const std::size_t nf = offsets.size() - 1;
   const std::size_t nh = fv.size();
+  // Face f's corners are [first(f), last(f)).
+  const auto first = [&offsets](std::size_t f) { return Triangles ? n32(3 * f) : offsets[f]; };
+  const auto last = [&offsets](std::size_t f) { return Triangles ? n32(3 * f + 3) : offsets[f + 1]; };
 
   // Pass 1, faces in order: check each face, then count its corners by the smaller end of
   // their edge (corner c is the edge fv[c] -> fv[c+1], cyclically within its face). The
@@ -312,7 +342,7 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
   detail::reserve_large(start, nv + 2);
   start.resize(nv + 2, 0);
   for (std::size_t f = 0; f < nf; ++f) {
-    const std::uint32_t o = offsets[f], e = offsets[f + 1];
+    const std::uint32_t o = first(f), e = last(f);
     if (e < o || e > nh)
       throw error(error_category::invalid_input,
                   "build: face offsets must not decrease (face " + std::to_string(f) + ")");
@@ -334,53 +364,49 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
   for (std::size_t i = 2; i < start.size(); ++i) start[i] += start[i - 1];
 
   // Pass 2: the corners bucketed by smaller end, each with its larger end beside it
-  // (hi << 32 | corner), so matching reads one contiguous run per vertex.
+  // (hi << 32 | down << 31 | corner, down when the corner runs from hi to lo), so matching
+  // reads one contiguous run per vertex and sees seams without reading the faces again.
+  constexpr std::uint64_t down = std::uint64_t{1} << 31, corner_bits = down - 1;  // corners < 2^31
   detail::uninitialized_array<std::uint64_t> items(nh);  // every slot is written below
   for (std::size_t f = 0; f < nf; ++f) {
-    const std::uint32_t o = offsets[f], e = offsets[f + 1];
+    const std::uint32_t o = first(f), e = last(f);
     for (std::uint32_t c = o; c < e; ++c) {
       const std::uint32_t a = fv[c], b = fv[c + 1 == e ? o : c + 1];
-      items[start[std::min(a, b) + 1]++] = std::uint64_t{std::max(a, b)} << 32 | c;
+      items[start[std::min(a, b) + 1]++] = std::uint64_t{std::max(a, b)} << 32 | (a > b ? down : 0) | c;
     }
   }
-  auto face_of = [&](std::size_t c) {
-    return static_cast<std::size_t>(std::upper_bound(offsets.begin(), offsets.end(), c) - offsets.begin() -
-                                    1);
-  };
 
-  // Pass 3: match the corners of each edge within its bucket; a third one is an error.
-  std::vector<std::uint32_t> partner;
-  detail::reserve_large(partner, nh);
-  partner.resize(nh, npos);
-  std::size_t pairs = 0;
-  auto pair_up = [&](std::uint32_t c, std::uint32_t d, std::uint32_t lo, std::uint32_t hi) {
-    if (partner[d] != npos)
-      throw error(error_category::topology,
-                  "build: " + detail::edge_name(lo, hi) + " is used by faces " + std::to_string(face_of(d)) +
-                      ", " + std::to_string(face_of(partner[d])) + " and " + std::to_string(face_of(c)) +
-                      "; a half-edge mesh allows at most two faces per edge");
+  // Pass 3: match the corners of each edge within its bucket; a third one is an error. Each
+  // corner's partner is set to npos when its item is reached, so `partner` needs no fill.
+  detail::uninitialized_array<std::uint32_t> partner(nh);
+  std::size_t pairs = 0, flipped = 0;
+  const auto pair_up = [&](std::uint64_t x, std::uint64_t y, std::uint32_t lo) {
+    const auto c = static_cast<std::uint32_t>(x & corner_bits),
+               d = static_cast<std::uint32_t>(y & corner_bits);
+    if (partner[d] != npos) detail::throw_third_face(offsets, lo, n32(x >> 32), d, partner[d], c);
     partner[c] = d;
     partner[d] = c;
     ++pairs;
+    flipped += ((x ^ y) & down) == 0;  // both corners run the same way along the edge
   };
   for (std::uint32_t lo = 0; lo < nv; ++lo) {
     const std::uint32_t b0 = start[lo], b1 = start[lo + 1];
     if (b1 - b0 <= 24) {
       for (std::uint32_t i = b0; i < b1; ++i) {
-        const std::uint64_t hc = items[i] >> 32;
+        const std::uint64_t x = items[i];
+        partner[x & corner_bits] = npos;
         for (std::uint32_t j = i; j-- > b0;) {
-          if (items[j] >> 32 != hc) continue;
-          pair_up(static_cast<std::uint32_t>(items[i]), static_cast<std::uint32_t>(items[j]), lo,
-                  static_cast<std::uint32_t>(hc));
+          if (items[j] >> 32 != x >> 32) continue;
+          pair_up(x, items[j], lo);
           break;
         }
       }
     } else {  // a high-degree vertex: sort its bucket (by larger end, then corner) instead
-      std::sort(items.begin() + b0, items.begin() + b1);
+      std::sort(items.begin() + b0, items.begin() + b1,
+                [](std::uint64_t x, std::uint64_t y) { return (x & ~down) < (y & ~down); });
+      for (std::uint32_t i = b0; i < b1; ++i) partner[items[i] & corner_bits] = npos;
       for (std::uint32_t i = b0 + 1; i < b1; ++i)
-        if (items[i] >> 32 == items[i - 1] >> 32)
-          pair_up(static_cast<std::uint32_t>(items[i]), static_cast<std::uint32_t>(items[i - 1]), lo,
-                  static_cast<std::uint32_t>(items[i] >> 32));
+        if (items[i] >> 32 == items[i - 1] >> 32) pair_up(items[i], items[i - 1], lo);
     }
   }
   items.free();  // before the mesh arrays: the peak stays at the mesh plus `partner`
@@ -389,13 +415,12 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
   const std::size_t ne = nh - pairs;
   clear_connectivity();
   detail::reserve_large(vertex_anchor_, nv);
+  // Vertex properties (positions) are sized when link_fans has freed its arrays: a lower peak.
   vertex_anchor_.assign(nv, npos);
-  vprops_.resize(nv);
   detail::reserve_large(he_, 2 * ne);
-  he_.assign(2 * ne, record{});
+  he_.resize(2 * ne);
   hprops_.resize(2 * ne);
   eprops_.resize(ne);
-  face_anchor_.clear();
   detail::reserve_large(face_anchor_, nf);  // filled in face order below
   fprops_.resize(nf);
 
@@ -403,28 +428,28 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
   // faces sit close in memory) and write the face's records. partner[c] becomes c's
   // half-edge once c is numbered: a corner whose partner comes later opens a new edge, one
   // whose partner came earlier takes the twin of the partner's half-edge. The same pass
-  // counts what link_fans' first pass would (corners, anchors, seams, boundary), so the
-  // records are not read again.
+  // counts what link_fans' first pass would (corners, anchors, boundary), so the records
+  // are not read again.
   known_counts known;
   detail::reserve_large(known.unlinked, nh - 2 * pairs);
   detail::reserve_large(known.corners, nv);
   known.corners.resize(nv, 0);
-  flipped_edges_ = 0;
+  flipped_edges_ = flipped;
   std::uint32_t next_edge = 0;
   for (std::size_t f = 0; f < nf; ++f) {
-    const std::uint32_t o = offsets[f], e = offsets[f + 1];
+    const std::uint32_t o = first(f), e = last(f);
     for (std::uint32_t c = o; c < e; ++c) {
       const std::uint32_t p = partner[c];
       if (p != npos && p < c) {
         partner[c] = partner[p] ^ 1u;
-        flipped_edges_ += fv[p] == fv[c];  // both corners run the same way along the edge
-      } else {
-        partner[c] = 2 * next_edge++;
-        if (p == npos) {
-          he_[partner[c] ^ 1u].head = fv[c];  // boundary side: head at the face half-edge's tail
-          ++known.boundary;
-          known.unlinked.push_back({detail::edge_table::key(fv[c], fv[c + 1 == e ? o : c + 1]), partner[c]});
-        }
+        continue;
+      }
+      partner[c] = 2 * next_edge++;
+      if (p == npos) {  // boundary side: head at the face half-edge's tail
+        he_[partner[c] ^ 1u].head = fv[c];
+        ++known.boundary;
+        known.unlinked.push_back(
+            detail::derived_key_table::entry(table_key(fv[c], fv[c + 1 == e ? o : c + 1]), partner[c]));
       }
     }
     face_anchor_.push_back(partner[o]);
@@ -442,7 +467,7 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
         anchor = h;  // the last face half-edge into the vertex, as link_fans picks
     }
   }
-  detail::release(partner);
+  partner.free();
   build_report report;
   link_fans(options, report, true, &known);
   return report;
@@ -462,11 +487,11 @@ void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_
   // Corners per vertex (to check that the fans found reach every face), anchors, seams, boundary.
   std::vector<std::uint32_t> corners;
   std::size_t boundary = 0;
-  std::vector<detail::edge_table::slot> entries;  // the unlinked table's contents, by half-edge
+  std::vector<detail::derived_key_table::slot> unlinked;  // the unlinked table's entries, by half-edge
   if (known) {
     corners = std::move(known->corners);
     boundary = known->boundary;
-    entries = std::move(known->unlinked);
+    unlinked = std::move(known->unlinked);
   } else {
     std::fill(vertex_anchor_.begin(), vertex_anchor_.end(), npos);
     flipped_edges_ = 0;
@@ -486,33 +511,35 @@ void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_
   // skipping them saves two passes over the half-edges and four arrays.
   if (boundary > 0) {
     if (!known) {
-      detail::reserve_large(entries, boundary);
+      detail::reserve_large(unlinked, boundary);
       for (std::uint32_t h = 0; h < he_.size(); ++h)
         if (he_[h].face != npos && he_[h ^ 1u].face == npos)
-          entries.push_back({detail::edge_table::key(he_[he_[h].prev].head, he_[h].head), h});
+          unlinked.push_back(detail::derived_key_table::entry(unlinked_key()(h), h));
     }
-    unlinked_.assign(entries);
+    unlinked_.assign(unlinked);
   }
 
   std::vector<std::uint32_t> covered, ring_first, ring_last;
-  std::vector<std::uint8_t> seen;  // bit 0: head end done, bit 1: tail end done
+  std::vector<std::uint64_t> seen;  // two bits per half-edge: head end done, tail end done
   if (boundary > 0) {
     for (auto* a : {&covered, &ring_first, &ring_last}) detail::reserve_large(*a, nv);
     covered.assign(nv, 0);
     ring_first.assign(nv, npos);
     ring_last.assign(nv, npos);
-    detail::reserve_large(seen, he_.size());
-    seen.assign(he_.size(), 0);
+    seen.assign((2 * he_.size() + 63) / 64, 0);
   }
-  for (const detail::edge_table::slot& entry : entries) {  // the boundary half-edges, in order
+  auto mark = [&seen](std::uint32_t h, unsigned side) {
+    seen[h >> 5] |= std::uint64_t{1} << (2 * (h & 31u) + side);
+  };
+  for (const detail::derived_key_table::slot& entry : unlinked) {  // the boundary half-edges, in order
     const std::uint32_t b = entry.value ^ 1u;
-    for (int side = 0; side < 2; ++side) {
+    for (unsigned side = 0; side < 2; ++side) {
       const std::uint32_t v = side == 0 ? he_[b].head : he_[b ^ 1u].head;
-      if (seen[b] & (1u << side)) continue;
+      if (seen[b >> 5] >> (2 * (b & 31u) + side) & 1u) continue;
       std::size_t count = 0;
       const std::uint32_t e = walk_fan(b, v, &count);
-      seen[b] |= static_cast<std::uint8_t>(1u << side);
-      seen[e] |= static_cast<std::uint8_t>(he_[e].head == v ? 1u : 2u);
+      mark(b, side);
+      mark(e, he_[e].head == v ? 0u : 1u);
       covered[v] += n32(count);
       if (ring_first[v] == npos)
         ring_first[v] = b;
@@ -547,6 +574,7 @@ void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_
     if (!options.split_nonmanifold_vertices) {
       const std::uint32_t total = corners[v];
       clear_connectivity();
+      vprops_.resize(nv);
       throw error(error_category::topology,
                   "build: the " + std::to_string(total) + " faces around " + detail::vtx(v) +
                       (open ? " form a closed fan plus open ones" : " form several closed fans") +
@@ -555,6 +583,11 @@ void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_
     }
     nonmanifold.push_back(v);
   }
+  // Free the temporaries before the vertex properties (positions after a build) are allocated.
+  for (auto* a : {&corners, &covered, &ring_first, &ring_last}) detail::release(*a);
+  detail::release(unlinked);
+  detail::release(seen);
+  vprops_.resize(nv);
   if (!nonmanifold.empty()) split_fans(nonmanifold, report);
   report.vertices = vertex_anchor_.size();
   report.edges = edges_size();
@@ -653,10 +686,11 @@ void basic_halfedge_mesh<Unused>::garbage_collection() {
   hprops_.resize(2 * std::size_t{ke});
   eprops_.resize(ke);
   fprops_.resize(kf);
-  unlinked_.clear();
+  std::vector<detail::derived_key_table::slot> entries;
   for (std::uint32_t h = 0; h < he_.size(); ++h)
     if (he_[h].face != npos && he_[h ^ 1u].face == npos)
-      unlinked_.insert(detail::edge_table::key(tail(halfedge_handle(h)).idx(), he_[h].head), h);
+      entries.push_back(detail::derived_key_table::entry(unlinked_key()(h), h));
+  unlinked_.assign(entries);
   removed_vertices_ = removed_edges_ = removed_faces_ = 0;
 }
 
