@@ -4,7 +4,8 @@
 # run: each TU includes one header (or a set) and makes one call, built with
 # `$CXX -std=c++20 -O0 -c`. The TUs are compiled in interleaved rounds (every TU once per
 # round, CELLFORGE_COMPILE_RUNS rounds, default 5), so that a change of load on a shared
-# machine falls on all of them alike; each row prints the median wall seconds and the median
+# machine falls on all of them alike (the last row is the umbrella as it was before the line-drawing
+# headers moved to cellforge/sketch.hpp); each row prints the median wall seconds and the median
 # CPU seconds (user + system) with their ratios to the baseline, and the peak memory (MB).
 # Usage: bash bench/compile_time.sh [compiler]   (default: g++)
 set -euo pipefail
@@ -34,6 +35,17 @@ cases=(
 #include \"cellforge/io/edge_list.hpp\"
 #include \"cellforge/io/mesh_io.hpp\"
 #include \"cellforge/io/svg.hpp\"|cellforge::halfedge_mesh m; return static_cast<int>(m.num_vertices());"
+  "+ io + sketch (non-Eigen)|#include \"cellforge/cellforge.hpp\"
+#include \"cellforge/io/cells_io.hpp\"
+#include \"cellforge/io/curves_io.hpp\"
+#include \"cellforge/io/edge_list.hpp\"
+#include \"cellforge/io/mesh_io.hpp\"
+#include \"cellforge/io/svg.hpp\"
+#include \"cellforge/sketch/arc_pairing.hpp\"
+#include \"cellforge/sketch/elliptical_arc.hpp\"
+#include \"cellforge/sketch/face_finder.hpp\"
+#include \"cellforge/sketch/line_drawing.hpp\"
+#include \"cellforge/sketch/round_skeleton.hpp\"|cellforge::halfedge_mesh m; return static_cast<int>(m.num_vertices());"
 )
 
 median() { sort -n | awk '{a[NR] = $1} END {print a[int((NR + 1) / 2)]}'; }

@@ -7,10 +7,10 @@
 #     standard-headers baseline's compile time, docs/benchmarks.md "Compile time");
 #   - no non-template `inline` function at namespace scope: it would be compiled in every file
 #     that includes the header, used or not (docs/infra.md; make it a template);
-#   - cellforge/cellforge.hpp includes every public header except io/, detail/ and the
-#     generators, sample data and Eigen stages its comment names (so it says what it includes),
-#     and none that needs Eigen, directly or through another header (so a user without Eigen
-#     can include it).
+#   - cellforge/cellforge.hpp includes every public header except io/, detail/, sketch/ and the
+#     generators and sample data its comment names (so it says what it includes), and none that
+#     needs Eigen, directly or through another header (so a user without Eigen can include it);
+#     cellforge/sketch.hpp includes every sketch/ header except the generators.
 # Prints every violation with file and line, then fails if there was any.
 cmake_minimum_required(VERSION 3.21)
 if(NOT INCLUDE_DIR)
@@ -68,7 +68,7 @@ foreach(header IN LISTS headers)
   endif()
 endforeach()
 # The umbrella header's promise.
-set(umbrella_exempt "^cellforge/(io/|.*/detail/|cellforge\\.hpp$|algorithms/shapes\\.hpp$|wireframe/sample_models\\.hpp$|tubes/sample_skeletons\\.hpp$|sketch/sample_drawings\\.hpp$|sketch/sample_round_drawings\\.hpp$|sketch/inflation\\.hpp$|sketch/drawing_to_cells\\.hpp$|sketch/tidy\\.hpp$|sketch/arc_detection\\.hpp$|sketch/rounds\\.hpp$|thin/sample_solids\\.hpp$|smooth/sample_solids\\.hpp$)")
+set(umbrella_exempt "^cellforge/(io/|.*/detail/|cellforge\\.hpp$|sketch\\.hpp$|sketch/|algorithms/shapes\\.hpp$|wireframe/sample_models\\.hpp$|tubes/sample_skeletons\\.hpp$|thin/sample_solids\\.hpp$|smooth/sample_solids\\.hpp$)")
 file(READ "${INCLUDE_DIR}/cellforge/cellforge.hpp" umbrella)
 foreach(header IN LISTS headers)
   if(header MATCHES "${umbrella_exempt}")
@@ -77,6 +77,18 @@ foreach(header IN LISTS headers)
   string(FIND "${umbrella}" "#include \"${header}\"" at)
   if(at EQUAL -1)
     message("cellforge/cellforge.hpp: does not include ${header}")
+    math(EXPR problems "${problems} + 1")
+  endif()
+endforeach()
+# The line-drawing umbrella's promise: every sketch/ header but the generators.
+file(READ "${INCLUDE_DIR}/cellforge/sketch.hpp" sketch_umbrella)
+foreach(header IN LISTS headers)
+  if(NOT header MATCHES "^cellforge/sketch/" OR header MATCHES "/detail/|/sample_(round_)?drawings\\.hpp$")
+    continue()
+  endif()
+  string(FIND "${sketch_umbrella}" "#include \"${header}\"" at)
+  if(at EQUAL -1)
+    message("cellforge/sketch.hpp: does not include ${header}")
     math(EXPR problems "${problems} + 1")
   endif()
 endforeach()

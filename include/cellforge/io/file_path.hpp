@@ -168,6 +168,25 @@ std::FILE* open_file(const file_path& path, const char* mode) {
 #endif
 }
 
+/// Owns an open std::FILE and closes it when it goes out of scope (what a
+/// std::unique_ptr with fclose would do, without <memory> in every io header).
+template <class = void>
+class basic_file_handle {
+ public:
+  explicit basic_file_handle(std::FILE* file) noexcept : file_(file) {}
+  basic_file_handle(const basic_file_handle&) = delete;
+  basic_file_handle& operator=(const basic_file_handle&) = delete;
+  ~basic_file_handle() {
+    if (file_ != nullptr) std::fclose(file_);
+  }
+  [[nodiscard]] std::FILE* get() const noexcept { return file_; }
+  explicit operator bool() const noexcept { return file_ != nullptr; }
+
+ private:
+  std::FILE* file_;
+};
+using file_handle = basic_file_handle<>;
+
 /// Removes a file, ignoring failure (used to clean up a partial output). O(1).
 template <class = void>
 void remove_file(const file_path& path) noexcept {

@@ -15,7 +15,6 @@
 #include <cstring>
 #include <functional>
 #include <limits>
-#include <memory>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -576,7 +575,7 @@ stl_data<P> read_stl(const file_path& path, const stl_read_options& options = {}
   // A file large enough to exceed the limit is checked from its header before it is loaded.
   const std::uint64_t size = detail::status_of(path).size;
   if (size > 84 + 50 * detail::stl_max_facets) {
-    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(detail::open_file(path, "rb"), &std::fclose);
+    const detail::file_handle file(detail::open_file(path, "rb"));
     char head[84];
     if (file && std::fread(head, 1, sizeof head, file.get()) == sizeof head) {
       const std::uint32_t n = detail::stl_load_u32(head + 80);

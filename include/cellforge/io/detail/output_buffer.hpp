@@ -12,7 +12,6 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
-#include <memory>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -33,10 +32,10 @@ template <class>
 class basic_output_buffer {
  public:
   // Uninitialised storage: small outputs touch only the pages they use.
-  explicit basic_output_buffer(std::ostream& os)
-      : os_(os), buf_(std::make_unique_for_overwrite<char[]>(capacity)) {}
+  explicit basic_output_buffer(std::ostream& os) : os_(os), buf_(new char[capacity]) {}
   basic_output_buffer(const basic_output_buffer&) = delete;
   basic_output_buffer& operator=(const basic_output_buffer&) = delete;
+  ~basic_output_buffer() { delete[] buf_; }
   // No flush in the destructor: it would hide write errors during unwinding; callers call finish().
 
   void put(std::string_view s) {
@@ -47,7 +46,7 @@ class basic_output_buffer {
         return;
       }
     }
-    std::memcpy(buf_.get() + used_, s.data(), s.size());
+    std::memcpy(buf_ + used_, s.data(), s.size());
     used_ += s.size();
   }
   void put(char c) {
@@ -60,8 +59,8 @@ class basic_output_buffer {
   requires std::is_arithmetic_v<T>
   void number(T value) {
     if (capacity - used_ < max_number_chars) flush();
-    const auto r = std::to_chars(buf_.get() + used_, buf_.get() + capacity, value);
-    used_ = static_cast<std::size_t>(r.ptr - buf_.get());
+    const auto r = std::to_chars(buf_ + used_, buf_ + capacity, value);
+    used_ = static_cast<std::size_t>(r.ptr - buf_);
   }
 
   /// Appends the raw bytes of a value in little- or big-endian order.
@@ -74,12 +73,12 @@ class basic_output_buffer {
     if ((std::endian::native == std::endian::little) != little_endian) {
       for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(bytes[i], bytes[sizeof(T) - 1 - i]);
     }
-    std::memcpy(buf_.get() + used_, bytes, sizeof(T));
+    std::memcpy(buf_ + used_, bytes, sizeof(T));
     used_ += sizeof(T);
   }
 
   void flush() {
-    if (used_ != 0) os_.write(buf_.get(), static_cast<std::streamsize>(used_));
+    if (used_ != 0) os_.write(buf_, static_cast<std::streamsize>(used_));
     used_ = 0;
   }
 
@@ -94,7 +93,7 @@ class basic_output_buffer {
   static constexpr std::size_t capacity = std::size_t{1} << 20;
   static constexpr std::size_t max_number_chars = 64;  // longest to_chars output of any scalar
   std::ostream& os_;
-  std::unique_ptr<char[]> buf_;
+  char* buf_;  // new char[] leaves it uninitialised, as make_unique_for_overwrite would (no <memory>)
   std::size_t used_ = 0;
 };
 

@@ -7,7 +7,6 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <memory>
 #include <string>
 
 #include "cellforge/core/error.hpp"
@@ -38,7 +37,7 @@ std::string read_file(const file_path& path) {
                 "cannot read '" + display_name(path) +
                     "': not a regular file (a pipe or device); save the data to a file first");
   errno = 0;
-  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(open_file(path, "rb"), &std::fclose);
+  const file_handle file(open_file(path, "rb"));
   if (!file) throw fail("open", errno);
   std::string bytes;
   // Size from the file; the chunked reads below catch a file that grew since.

@@ -22,7 +22,8 @@
 namespace cellforge::detail::tubes {
 
 /// A hint to load the line at p into cache (no effect where the compiler has no builtin). O(1).
-inline void prefetch([[maybe_unused]] const void* p) noexcept {
+template <class T>
+void prefetch([[maybe_unused]] const T* p) noexcept {
 #if defined(__GNUC__) || defined(__clang__)
   __builtin_prefetch(p);
 #endif
