@@ -319,7 +319,13 @@ build_report basic_halfedge_mesh<Unused>::build(std::size_t nv, std::span<const 
   // 3f: they read no offsets and their corner loops unroll.
   const std::size_t nf = offsets.size() - 1;
   bool triangles = fv.size() == 3 * nf;
-  for (std::size_t f = 1; triangles && f < nf; ++f) triangles = offsets[f] == 3 * f;
+  // Blocks without an early exit inside, so that the compiler vectorises this extra read of
+  // the offsets (an early exit per face made it ~1.5 % of a closed build at 10^6).
+  for (std::size_t f0 = 1; triangles && f0 < nf; f0 += 4096) {
+    std::uint32_t differ = 0;
+    for (std::size_t f = f0, end = std::min(nf, f0 + 4096); f < end; ++f) differ |= offsets[f] ^ n32(3 * f);
+    triangles = differ == 0;
+  }
   return triangles ? build_faces<true>(nv, offsets, fv, options)
                    : build_faces<false>(nv, offsets, fv, options);
 }
