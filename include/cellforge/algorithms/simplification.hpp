@@ -5,13 +5,12 @@
 /// collision detection): shortest edge first, or Garland–Heckbert quadric error metrics,
 /// through the checked collapse of algorithms/edits.hpp, so topology is never changed.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <limits>
-#include <queue>
 #include <string>
 #include <vector>
 
@@ -304,25 +303,32 @@ simplify_result simplify(surface_mesh<P>& m, const simplify_options& options = {
       return cost > o.cost || (cost == o.cost && edge > o.edge);
     }
   };
-  std::priority_queue<entry, std::vector<entry>, std::greater<>> heap;
+  // A min-heap by (cost, edge) through push_heap/pop_heap: what std::priority_queue with
+  // std::greater does, without <queue> and <functional> in every file that includes this.
+  std::vector<entry> heap;
+  const auto later = [](const entry& a, const entry& b) { return a > b; };
   std::vector<std::uint32_t> stamp;
   const double length_bound = options.target_edge_length * options.target_edge_length;
   auto push = [&](edge_handle e) {
     if (stamp.size() <= e.idx()) stamp.resize(m.edges_size() + m.edges_size() / 2 + 16, 0);
     const std::uint32_t st = ++stamp[e.idx()];  // older entries of e are stale now
     const ds::candidate c = s.evaluate(e);
-    if (c.ok) heap.push({c.cost, e.idx(), st});
+    if (c.ok) {
+      heap.push_back({c.cost, e.idx(), st});
+      std::push_heap(heap.begin(), heap.end(), later);
+    }
   };
   auto done = [&] { return options.target_faces > 0 && m.num_faces() <= options.target_faces; };
 
   for (int round = 0; round < options.max_rounds && !done(); ++round) {
     ++result.rounds;
-    heap = {};
+    heap.clear();
     for (edge_handle e : m.edges()) push(e);
     std::size_t collapses = 0;
     while (!heap.empty() && !done()) {
-      const entry top = heap.top();
-      heap.pop();
+      std::pop_heap(heap.begin(), heap.end(), later);
+      const entry top = heap.back();
+      heap.pop_back();
       const edge_handle e(top.edge);
       if (m.is_removed(e) || stamp[e.idx()] != top.stamp) continue;
       if (options.cost == simplify_cost::edge_length && length_bound > 0 && top.cost >= length_bound) break;

@@ -10,7 +10,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <deque>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -280,7 +279,7 @@ struct basic_smoother {
     r.curves.assign(m.edges_size(), dcurve{});
     r.ends.assign(m.edges_size(), {});
     std::vector<std::uint8_t> frozen(m.edges_size(), 0);
-    std::deque<std::vector<glm::dvec3>> history;
+    std::vector<std::vector<glm::dvec3>> history;  // the last stall_cycles + 1 midpoint sets, oldest first
     const double limit = o.convergence * g.model_size;
     std::size_t same_count = 0;
     for (bool done = false;;) {
@@ -306,7 +305,7 @@ struct basic_smoother {
       ++r.iterations;
       r.moving.push_back(moving);
       history.push_back(midpoints);
-      if (history.size() > static_cast<std::size_t>(o.stall_cycles) + 1) history.pop_front();
+      if (history.size() > static_cast<std::size_t>(o.stall_cycles) + 1) history.erase(history.begin());
       if (moving == 0) {
         r.converged = done = true;
         continue;

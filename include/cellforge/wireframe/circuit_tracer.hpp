@@ -12,7 +12,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <deque>
 #include <numbers>
 #include <span>
 #include <string>

@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -58,13 +57,14 @@ extra_faces_result extra_faces(const wire_graph& g, const std::vector<wire_face>
       trace_options t = options.retrace;
       t.kind = tracer_kind::planar;
       auto traced = unique_circuits(g, trace_circuits(g, t).faces).faces;
-      std::map<std::vector<std::vector<std::uint32_t>>, char> have;
-      for (const auto& f : faces) have.emplace(f.loops, 1);
+      std::vector<std::vector<std::vector<std::uint32_t>>> have;  // sorted, for binary search
+      for (const auto& f : faces) have.push_back(f.loops);
+      std::sort(have.begin(), have.end());
       std::vector<detail::face_plane> planes;
       for (const auto& f : faces) planes.push_back({f.normal, g.points[f.loops[0][0]], {}});
       detail::crossing_test cross(g);
       for (auto& f : traced) {
-        if (have.count(f.loops)) continue;
+        if (std::binary_search(have.begin(), have.end(), f.loops)) continue;
         bool helps = false;
         for (const auto& loop : f.loops)
           for (std::size_t k = 0; k < loop.size() && !helps; ++k)

@@ -10,7 +10,6 @@
 #include <cmath>
 #include <cstdint>
 #include <iterator>
-#include <map>
 #include <unordered_map>
 #include <vector>
 
@@ -108,9 +107,12 @@ reduction_result reduce_faces(const wire_graph& g, const std::vector<wire_face>&
   }
   detail::work_budget budget{options.work_budget, 0, "reduce_faces"};
   if (options.remove_face_sums) {
-    std::map<std::vector<std::uint32_t>, std::uint32_t> by_edges;
+    // Usable faces by edge set, stably sorted: among equal sets the first face is found.
+    std::vector<std::uint32_t> by_edges;
     for (std::uint32_t i = 0; i < faces.size(); ++i)
-      if (r.quality[i].usable) by_edges.emplace(edge_set[i], i);
+      if (r.quality[i].usable) by_edges.push_back(i);
+    std::stable_sort(by_edges.begin(), by_edges.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return edge_set[a] < edge_set[b]; });
     std::vector<std::uint32_t> sum;
     for (std::uint32_t i = 0; i < faces.size(); ++i) {
       if (!r.quality[i].usable) continue;
@@ -125,13 +127,16 @@ reduction_result reduce_faces(const wire_graph& g, const std::vector<wire_face>&
         sum.clear();
         std::set_symmetric_difference(edge_set[i].begin(), edge_set[i].end(), edge_set[j].begin(),
                                       edge_set[j].end(), std::back_inserter(sum));
-        const auto it = by_edges.find(sum);
-        if (it == by_edges.end()) continue;
-        face_quality& h = r.quality[it->second];
+        const auto it = std::lower_bound(
+            by_edges.begin(), by_edges.end(), sum,
+            [&](std::uint32_t a, const std::vector<std::uint32_t>& key) { return edge_set[a] < key; });
+        if (it == by_edges.end() || edge_set[*it] != sum) continue;
+        const std::uint32_t h_index = *it;
+        face_quality& h = r.quality[h_index];
         if (h.usable && h.area > r.quality[i].area && h.area > r.quality[j].area) {
           h.usable = false;
           ++r.face_sums;
-          r.diagnostics.push_back("candidate " + std::to_string(it->second) + " is the sum of candidates " +
+          r.diagnostics.push_back("candidate " + std::to_string(h_index) + " is the sum of candidates " +
                                   std::to_string(i) + " and " + std::to_string(j) + " and was rejected");
         }
       }

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <map>
 #include <vector>
 
 #include "cellforge/wireframe/wire_graph.hpp"
@@ -34,15 +33,17 @@ unique_result unique_circuits(const wire_graph& g, std::vector<wire_face> faces,
     canonicalize(f);
     update_normal(g, f);
   }
-  std::map<std::vector<std::vector<std::uint32_t>>, std::size_t> seen;
-  for (auto& f : faces) {
-    if (seen.emplace(f.loops, r.faces.size()).second)
-      r.faces.push_back(std::move(f));
-    else
+  // Sorted by loops, stably: the first of each run of equal faces is the earliest, which is kept.
+  std::vector<std::uint32_t> order(faces.size());
+  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return faces[a].loops < faces[b].loops; });
+  for (const std::uint32_t i : order) {
+    if (!r.faces.empty() && r.faces.back().loops == faces[i].loops)
       ++r.duplicates;
+    else
+      r.faces.push_back(std::move(faces[i]));
   }
-  std::sort(r.faces.begin(), r.faces.end(),
-            [](const wire_face& a, const wire_face& b) { return a.loops < b.loops; });
   r.milliseconds = clock.ms();
   return r;
 }
