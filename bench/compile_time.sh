@@ -22,30 +22,28 @@ std_headers='#include <algorithm>
 #include <unordered_map>
 #include <vector>'
 
+umbrella_and_io='#include "cellforge/cellforge.hpp"
+#include "cellforge/io/cells_io.hpp"
+#include "cellforge/io/curves_io.hpp"
+#include "cellforge/io/edge_list.hpp"
+#include "cellforge/io/mesh_io.hpp"
+#include "cellforge/io/svg.hpp"'
+one_call='cellforge::halfedge_mesh m; return static_cast<int>(m.num_vertices());'
+
 # name|includes|body of main
 cases=(
   "baseline (standard headers)|${std_headers}|std::vector<int> v{3, 1, 2}; std::ranges::sort(v); return v[0];"
   "halfedge/mesh.hpp|#include \"cellforge/halfedge/mesh.hpp\"|cellforge::halfedge_mesh m; m.add_vertices(3); return static_cast<int>(m.num_vertices());"
   "halfedge/surface_mesh.hpp|#include \"cellforge/halfedge/surface_mesh.hpp\"
 #include <glm/vec3.hpp>|cellforge::surface_mesh<glm::dvec3> m; m.add_vertex({1, 2, 3}); return static_cast<int>(m.num_vertices());"
-  "cellforge.hpp|#include \"cellforge/cellforge.hpp\"|cellforge::halfedge_mesh m; return static_cast<int>(m.num_vertices());"
-  "cellforge.hpp + io|#include \"cellforge/cellforge.hpp\"
-#include \"cellforge/io/cells_io.hpp\"
-#include \"cellforge/io/curves_io.hpp\"
-#include \"cellforge/io/edge_list.hpp\"
-#include \"cellforge/io/mesh_io.hpp\"
-#include \"cellforge/io/svg.hpp\"|cellforge::halfedge_mesh m; return static_cast<int>(m.num_vertices());"
-  "+ io + sketch (non-Eigen)|#include \"cellforge/cellforge.hpp\"
-#include \"cellforge/io/cells_io.hpp\"
-#include \"cellforge/io/curves_io.hpp\"
-#include \"cellforge/io/edge_list.hpp\"
-#include \"cellforge/io/mesh_io.hpp\"
-#include \"cellforge/io/svg.hpp\"
+  "cellforge.hpp|#include \"cellforge/cellforge.hpp\"|${one_call}"
+  "cellforge.hpp + io|${umbrella_and_io}|${one_call}"
+  "+ io + sketch (non-Eigen)|${umbrella_and_io}
 #include \"cellforge/sketch/arc_pairing.hpp\"
 #include \"cellforge/sketch/elliptical_arc.hpp\"
 #include \"cellforge/sketch/face_finder.hpp\"
 #include \"cellforge/sketch/line_drawing.hpp\"
-#include \"cellforge/sketch/round_skeleton.hpp\"|cellforge::halfedge_mesh m; return static_cast<int>(m.num_vertices());"
+#include \"cellforge/sketch/round_skeleton.hpp\"|${one_call}"
 )
 
 median() { sort -n | awk '{a[NR] = $1} END {print a[int((NR + 1) / 2)]}'; }

@@ -42,6 +42,14 @@
 
 namespace cellforge::io {
 
+namespace detail {
+/// A path type other than a string that gives its name with `string()`: std::filesystem::path.
+template <class Path>
+concept path_like = !std::convertible_to<const Path&, std::string_view> && requires(const Path& p) {
+  { p.string() } -> std::convertible_to<std::string>;
+};
+}  // namespace detail
+
 /// A file name for the io functions, from a string or a `std::filesystem::path`.
 class file_path {
  public:
@@ -50,21 +58,16 @@ class file_path {
   file_path(std::string_view name) : name_(std::string(name)) {}  // NOLINT
   /// From `std::filesystem::path` or any path type with `string()` (and, for the
   /// std::filesystem mode, convertible to `std::filesystem::path`).
-  template <class Path>
-  requires(!std::convertible_to<const Path&, std::string_view> &&
-           requires(const Path& p) {
-             { p.string() } -> std::convertible_to<std::string>;
-           }) file_path(const Path& path)  // NOLINT
-#if CELLFORGE_IO_STD_FILESYSTEM
-      : name_(path){}
-#else
-      : name_(path.string()) {
-  }
-#endif
+  template <detail::path_like Path>
+  file_path(const Path& path) : name_(stored(path)) {}  // NOLINT
 
-        /// The name as text, for messages (narrow; on Windows in the current code page). O(length).
-        [[nodiscard]] std::string string() const {
-    return native_string();
+  /// The name as text, for messages (narrow; on Windows in the current code page). O(length).
+  [[nodiscard]] std::string string() const {
+#if CELLFORGE_IO_STD_FILESYSTEM
+    return name_.string();
+#else
+    return name_;
+#endif
   }
 
   /// The part after the last '.' of the last component, with the dot (".off"), or "". O(length).
@@ -100,11 +103,12 @@ class file_path {
 #endif
 
  private:
-  [[nodiscard]] std::string native_string() const {
+  template <class Path>
+  static auto stored(const Path& path) {
 #if CELLFORGE_IO_STD_FILESYSTEM
-    return name_.string();
+    return std::filesystem::path(path);
 #else
-    return name_;
+    return path.string();
 #endif
   }
 

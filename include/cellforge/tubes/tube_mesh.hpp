@@ -102,11 +102,6 @@ struct tubes_result {
 
 namespace detail::tubes {
 
-template <class = void>
-double elapsed_ms(const detail::stopwatch& since) {
-  return since.ms();
-}
-
 /// Unit points spread over the sphere (a Fibonacci lattice) for an isolated node. O(n).
 template <class = void>
 std::vector<glm::dvec3> sphere_directions(std::size_t n) {
@@ -132,10 +127,7 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   namespace dt = detail::tubes;
   using P = skeleton_point_t<G>;
   using T = skeleton_traits<G>;
-  struct clock {
-    static detail::stopwatch now() { return {}; }
-  };
-  const auto t_start = clock::now();
+  const detail::stopwatch t_start;
   if (options.sides < 3 || options.sides > 1024)
     throw error(error_category::invalid_input, "make_tubes: sides must be between 3 and 1024");
   if (!(options.cap_separation > 0 && options.cap_separation < 1))
@@ -177,7 +169,7 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   res.construct = make_tube_construct(nv, edges, bend);
   const tube_construct& tc = res.construct;
   res.cycle_rank = tc.cycle_rank;
-  res.construct_ms = dt::elapsed_ms(t_start);
+  res.construct_ms = t_start.ms();
 
   const auto node_pos = [&](std::uint32_t c) {
     const tube_node& t = tc.nodes[c];
@@ -197,7 +189,7 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   };
 
   // Branch meshes: one ring per path end at a junction.
-  const auto t_junctions = clock::now();
+  const detail::stopwatch t_junctions;
   dt::buffer out;
   struct end_ring {
     dt::junction_ring ring;
@@ -309,10 +301,10 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     for (std::size_t i = 0; i < real; ++i) ends[at_junction(b)[i]] = {rings[i], c, first_vertex[i]};
     ++res.junctions;
   }
-  res.junctions_ms = dt::elapsed_ms(t_junctions);
+  res.junctions_ms = t_junctions.ms();
 
   // Node paths.
-  const auto t_paths = clock::now();
+  const detail::stopwatch t_paths;
   out.section_ratio.assign(ne, std::numeric_limits<double>::infinity());
   std::vector<dt::station> stations;
   dt::path_scratch path_buffers;
@@ -389,14 +381,14 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     }
     ++res.spheres;
   }
-  res.paths_ms = dt::elapsed_ms(t_paths);
+  res.paths_ms = t_paths.ms();
 
   // Corner angles of the faces as built (before any subdivision), taken by add_face.
   const double cos_lo = out.cos_lo, cos_hi = out.cos_hi;
   res.min_corner_deg = std::acos(std::clamp(cos_hi, -1.0, 1.0)) * 180 / std::numbers::pi;
   res.max_corner_deg = std::acos(std::clamp(cos_lo, -1.0, 1.0)) * 180 / std::numbers::pi;
   // The mesh, in the skeleton's point type.
-  const auto t_mesh = clock::now();
+  const detail::stopwatch t_mesh;
   if (options.subdivision_levels < 0 || options.subdivision_levels > 8)
     throw error(error_category::invalid_input, "make_tubes: subdivision_levels must be between 0 and 8");
   if (options.subdivision_levels > 0) {  // Loop subdivision takes triangles: fan every face
@@ -432,11 +424,11 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     const std::span<P> pts = mesh.points();
     for (std::size_t i = 0; i < num_points; ++i) pts[i] = from_dvec3<P>(out.points[i]);
   }
-  res.mesh_ms = dt::elapsed_ms(t_mesh);
+  res.mesh_ms = t_mesh.ms();
   if (options.subdivision_levels > 0) {
-    const auto t_sub = clock::now();
+    const detail::stopwatch t_sub;
     loop_subdivide(mesh, {.levels = options.subdivision_levels});
-    res.subdivision_ms = dt::elapsed_ms(t_sub);
+    res.subdivision_ms = t_sub.ms();
     // Face 4f + k of a Loop level is a child of face f: a face's source is its ancestor's.
     source = mesh.template add_face_property<tube_face_source>(tube_source_property_name);
     for (const face_handle f : mesh.faces()) source[f] = out.sources[f.idx() >> shift];
@@ -481,7 +473,7 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   if (res.genus != res.cycle_rank)
     res.diagnostics.push_back("the mesh's genus " + std::to_string(res.genus) +
                               " differs from the skeleton's cycle rank " + std::to_string(res.cycle_rank));
-  res.total_ms = dt::elapsed_ms(t_start);
+  res.total_ms = t_start.ms();
   return res;
 }
 

@@ -534,14 +534,13 @@ void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_
     ring_last.assign(nv, npos);
     seen.assign((2 * he_.size() + 63) / 64, 0);
   }
-  auto mark = [&seen](std::uint32_t h, unsigned side) {
-    seen[h >> 5] |= std::uint64_t{1} << (2 * (h & 31u) + side);
-  };
+  const auto bit = [](std::uint32_t h, unsigned side) { return std::uint64_t{1} << (2 * (h & 31u) + side); };
+  const auto mark = [&](std::uint32_t h, unsigned side) { seen[h >> 5] |= bit(h, side); };
   for (const detail::derived_key_table::slot& entry : unlinked) {  // the boundary half-edges, in order
     const std::uint32_t b = entry.value ^ 1u;
     for (unsigned side = 0; side < 2; ++side) {
       const std::uint32_t v = side == 0 ? he_[b].head : he_[b ^ 1u].head;
-      if (seen[b >> 5] >> (2 * (b & 31u) + side) & 1u) continue;
+      if (seen[b >> 5] & bit(b, side)) continue;
       std::size_t count = 0;
       const std::uint32_t e = walk_fan(b, v, &count);
       mark(b, side);
