@@ -46,6 +46,13 @@ class sealed_point {
 }  // namespace io_stl_tests
 // A point_traits specialisation must stand outside the tests' namespace.
 CELLFORGE_REGISTER_POINT3(io_stl_tests::float_point, float, x, y, z);
+namespace io_stl_tests {
+/// A point with long double coordinates: the welder keys them by sign, exponent and mantissa.
+struct wide_point {
+  long double x, y, z;
+};
+}  // namespace io_stl_tests
+CELLFORGE_REGISTER_POINT3(io_stl_tests::wide_point, long double, x, y, z);
 CELLFORGE_REGISTER_POINT3_GET_CTOR(io_stl_tests::sealed_point, float, x, y, z);
 
 namespace io_stl_tests {
@@ -233,6 +240,21 @@ TEST_CASE("STL: an ASCII cube welds 36 corners into 8 vertices") {
     for (std::size_t k = 0; k < 3; ++k) edges.emplace_back(d.soup.face(f)[k], d.soup.face(f)[(k + 1) % 3]);
   for (const auto& [a, b] : edges)
     CHECK(std::count(edges.begin(), edges.end(), std::pair<std::uint32_t, std::uint32_t>{b, a}) == 1);
+}
+
+TEST_CASE("STL: long double points weld exactly as doubles do, -0 with +0") {
+  const auto wide = io::parse_stl<wide_point>(cube_ascii(), "t.stl", {});
+  const auto d = parse(cube_ascii());
+  CHECK(wide.vertices_after_weld == 8);
+  CHECK(wide.soup.face_vertices == d.soup.face_vertices);
+  const std::string signed_zeros =
+      "solid z\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+      "vertex 0 1 0\nendloop\nendfacet\nfacet normal 0 0 1\nouter loop\n"
+      "vertex -0 -0 0\nvertex 0 -1 0\nvertex 1 0 -0\nendloop\nendfacet\nendsolid z\n";
+  const auto z = io::parse_stl<wide_point>(signed_zeros, "z.stl", {});
+  CHECK(z.vertices_before_weld == 6);
+  CHECK(z.vertices_after_weld == 4);
+  CHECK(z.soup.face_vertices == std::vector<std::uint32_t>{0, 1, 2, 0, 3, 1});
 }
 
 TEST_CASE("STL: a binary cube welds the same way; no welding keeps every corner") {

@@ -14,7 +14,6 @@
 #include <string_view>
 #include <type_traits>
 #include <typeinfo>
-#include <variant>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -114,28 +113,35 @@ struct array_value<property_array<T>> {
   using type = T;
 };
 
+/// The value types a user vertex property may have to be interpolated; a job's `kind` indexes
+/// this list (a tag list and a switch instead of std::variant, which every includer would parse).
+template <class... T>
+struct value_types {};
+using attribute_types =
+    value_types<float, double, glm::vec2, glm::vec3, glm::vec4, glm::dvec2, glm::dvec3, glm::dvec4>;
+
 /// A user vertex property the masks can interpolate, with its rule.
-using attribute_array =
-    std::variant<property_array<float>*, property_array<double>*, property_array<glm::vec2>*,
-                 property_array<glm::vec3>*, property_array<glm::vec4>*, property_array<glm::dvec2>*,
-                 property_array<glm::dvec3>*, property_array<glm::dvec4>*>;
 struct attribute_job {
-  attribute_array array;
+  property_array_base* array;
+  std::uint8_t kind;  ///< index of the array's value type in attribute_types
   loop_property_rule rule;
 };
 
-template <std::size_t I = 0>
-attribute_array find_attribute(property_array_base& a) {
-  if constexpr (I == std::variant_size_v<attribute_array>) {
-    throw error(error_category::invalid_input,
-                "loop_subdivide: vertex property '" + a.name() + "' has type " + a.type().name() +
-                    "; only float, double and glm vectors of them (2 to 4 components) can be interpolated");
-  } else {
-    using ptr = std::variant_alternative_t<I, attribute_array>;
-    using T = typename array_value<std::remove_pointer_t<ptr>>::type;
-    if (a.type() == typeid(T)) return static_cast<ptr>(&a);
-    return find_attribute<I + 1>(a);
-  }
+/// The index of `a`'s value type in attribute_types; throws when it is not there. O(1).
+template <class... T>
+std::uint8_t attribute_kind(property_array_base& a, value_types<T...>) {
+  std::uint8_t kind = 0;
+  if (((a.type() == typeid(T) || (++kind, false)) || ...)) return kind;
+  throw error(error_category::invalid_input,
+              "loop_subdivide: vertex property '" + a.name() + "' has type " + a.type().name() +
+                  "; only float, double and glm vectors of them (2 to 4 components) can be interpolated");
+}
+
+/// Calls f with the job's array cast to its own type. O(1) besides f.
+template <class F, class... T>
+void visit_attribute(const attribute_job& job, F&& f, value_types<T...>) {
+  std::uint8_t kind = 0;
+  (void)((job.kind == kind++ && (f(static_cast<property_array<T>*>(job.array)), true)) || ...);
 }
 
 /// Resolves the opted-in properties before anything changes. O(#properties²).
@@ -159,7 +165,7 @@ std::vector<attribute_job> resolve_attributes(halfedge_mesh& mesh, const std::ve
     if (specs[i].rule != loop_property_rule::linear && specs[i].rule != loop_property_rule::loop)
       throw error(error_category::invalid_input,
                   "loop_subdivide: unknown rule for vertex property '" + name + "'");
-    jobs.push_back({find_attribute(*a), specs[i].rule});
+    jobs.push_back({a, attribute_kind(*a, attribute_types{}), specs[i].rule});
   }
   return jobs;
 }
@@ -181,7 +187,8 @@ template <class = void>
 void subdivide_attribute(const attribute_job& job, std::span<const record> he, std::uint32_t nv,
                          std::size_t child_nv, std::span<const std::uint32_t> boundary_edges,
                          const mask_params& params) {
-  std::visit(
+  visit_attribute(
+      job,
       [&](auto* array) {
         using T = typename array_value<std::remove_pointer_t<decltype(array)>>::type;
         using A = typename accumulator<T>::type;
@@ -195,7 +202,7 @@ void subdivide_attribute(const attribute_job& job, std::span<const record> he, s
           apply_linear<A>(he, nv, read, store);
         array->data().swap(out);
       },
-      job.array);
+      attribute_types{});
 }
 
 }  // namespace detail::loop

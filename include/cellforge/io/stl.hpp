@@ -13,7 +13,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <functional>
 #include <limits>
 #include <ostream>
 #include <string>
@@ -260,7 +259,14 @@ class stl_welder {
       v += S(0);  // -0 becomes +0: equal values, equal keys
       if constexpr (sizeof(S) == 8) return std::bit_cast<std::uint64_t>(v);
       if constexpr (sizeof(S) == 4) return std::bit_cast<std::uint32_t>(v);
-      if constexpr (sizeof(S) != 4 && sizeof(S) != 8) return std::hash<S>{}(v);
+      if constexpr (sizeof(S) != 4 && sizeof(S) != 8) {
+        // Wider floats: sign, exponent and the top 63 bits of the mantissa (equal values, equal words).
+        if (!std::isfinite(v)) return 0x7FF0000000000000ull;
+        int e = 0;
+        const S m = std::frexp(v, &e);
+        return static_cast<std::uint64_t>(std::ldexp(std::fabs(m), 63)) ^
+               (static_cast<std::uint64_t>(e) << 1) ^ static_cast<std::uint64_t>(m < 0);
+      }
     } else {
       return static_cast<std::uint64_t>(v);
     }
