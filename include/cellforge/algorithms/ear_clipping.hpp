@@ -13,14 +13,13 @@
 #include <span>
 #include <string>
 #include <string_view>
-#include <unordered_map>
-#include <unordered_set>
 #include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/edge_table.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
@@ -403,10 +402,10 @@ void restore_repeats(std::span<const std::uint8_t> kept, std::vector<index_trian
                      ear_clip_report& report) {
   const auto n = static_cast<std::uint32_t>(kept.size());
   auto key = [](std::uint32_t a, std::uint32_t b) { return (static_cast<std::uint64_t>(a) << 32) | b; };
-  std::unordered_map<std::uint64_t, std::uint32_t> owner;  // directed edge -> triangle
+  edge_table owner;  // directed edge -> triangle
   owner.reserve(3 * tris.size());
   for (std::uint32_t t = 0; t < tris.size(); ++t)
-    for (int k = 0; k < 3; ++k) owner[key(tris[t][k], tris[t][(k + 1) % 3])] = t;
+    for (int k = 0; k < 3; ++k) owner.insert(key(tris[t][k], tris[t][(k + 1) % 3]), t);
   std::uint32_t start = 0;
   while (!kept[start]) ++start;
   std::uint32_t u = start;  // the last vertex already in the ring
@@ -418,22 +417,21 @@ void restore_repeats(std::span<const std::uint8_t> kept, std::vector<index_trian
     }
     std::uint32_t w = (c + 1) % n;
     while (!kept[w]) w = (w + 1) % n;
-    const auto it = owner.find(key(u, w));
-    if (it == owner.end()) throw error(error_category::internal, "ear_clip: lost a boundary edge");
-    const std::uint32_t t = it->second;
+    const std::uint32_t t = owner.find(key(u, w));
+    if (t == edge_table::not_found) throw error(error_category::internal, "ear_clip: lost a boundary edge");
     index_triangle tri = tris[t];
     while (tri[0] != u) std::rotate(tri.begin(), tri.begin() + 1, tri.end());
     const std::uint32_t y = tri[2];  // tri = (u, w, y)
     tris[t] = {u, c, y};             // zero area: c repeats u
     tris.push_back({c, w, y});
-    owner.erase(it);
-    owner[key(u, c)] = t;
-    owner[key(c, y)] = t;
-    owner[key(y, u)] = t;
+    owner.erase(key(u, w));
+    owner.insert(key(u, c), t);
+    owner.insert(key(c, y), t);
+    owner.insert(key(y, u), t);
     const auto t2 = static_cast<std::uint32_t>(tris.size() - 1);
-    owner[key(c, w)] = t2;
-    owner[key(w, y)] = t2;
-    owner[key(y, c)] = t2;
+    owner.insert(key(c, w), t2);
+    owner.insert(key(w, y), t2);
+    owner.insert(key(y, c), t2);
     ++report.degenerate_triangles;
     u = c;
   }
@@ -615,7 +613,7 @@ triangulate_report triangulate_faces(surface_mesh<P>& m, const ear_clip_options&
   };
   std::vector<job> jobs;
   std::vector<glm::dvec3> corners;
-  std::unordered_set<std::uint64_t> diagonals;
+  detail::edge_table diagonals;  // undirected vertex pairs of the diagonals so far
   auto key = [](vertex_handle a, vertex_handle b) {
     return (static_cast<std::uint64_t>(std::min(a.idx(), b.idx())) << 32) | std::max(a.idx(), b.idx());
   };
@@ -640,7 +638,7 @@ triangulate_report triangulate_faces(surface_mesh<P>& m, const ear_clip_options&
         const std::uint32_t a = t[k], b = t[(k + 1) % 3];
         if ((a + 1) % n == b || (b + 1) % n == a) continue;  // a polygon side
         const vertex_handle va = j.vs[a], vb = j.vs[b];
-        if (a < b && (m.find_edge(va, vb).is_valid() || !diagonals.insert(key(va, vb)).second))
+        if (a < b && (m.find_edge(va, vb).is_valid() || !diagonals.try_insert(key(va, vb), 0)))
           throw error(error_category::topology,
                       "triangulate_faces: face " + std::to_string(f.idx()) + " needs the diagonal " +
                           std::to_string(va.idx()) + "-" + std::to_string(vb.idx()) +

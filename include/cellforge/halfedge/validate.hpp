@@ -6,9 +6,9 @@
 
 #include <cstdint>
 #include <string>
-#include <unordered_set>
 #include <vector>
 
+#include "cellforge/core/detail/edge_table.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 
 namespace cellforge {
@@ -110,7 +110,7 @@ validation_result validate(const halfedge_mesh& m) {
 
   // Edges: endpoints agree, at least one face, flipped count, unlinked table, no duplicates.
   std::size_t flipped = 0, unlinked = 0;
-  std::unordered_set<std::uint64_t> pairs;
+  detail::edge_table pairs;  // undirected vertex pairs seen so far
   pairs.reserve(nh / 2);
   const auto& table = m.unlinked_table();
   for (std::uint32_t e = 0; e < nh / 2; ++e) {
@@ -145,8 +145,8 @@ validation_result validate(const halfedge_mesh& m) {
     if (same_dir != m.is_flipped(eh))
       return fail(mesh_invariant::flipped_count, e,
                   "edge " + S(e) + ": is_flipped() disagrees with its heads");
-    if (!pairs.insert((std::uint64_t{std::min(a0.idx(), b0.idx())} << 32) | std::max(a0.idx(), b0.idx()))
-             .second)
+    if (!pairs.try_insert(detail::edge_table::key(std::min(a0.idx(), b0.idx()), std::max(a0.idx(), b0.idx())),
+                          e))
       return fail(mesh_invariant::duplicate_edge, e,
                   "edge " + S(e) + " joins vertices " + S(a0.idx()) + " and " + S(b0.idx()) +
                       ", as another edge does");

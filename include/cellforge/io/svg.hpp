@@ -20,7 +20,6 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
-#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -30,6 +29,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/bounding_box.hpp"
+#include "cellforge/core/detail/edge_table.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
@@ -733,7 +733,7 @@ class basic_svg_scene {
         }
       }
       if (l.kind != layer_kind::mesh || !l.style.draw_edges) continue;
-      std::unordered_set<std::uint64_t> seen;
+      cellforge::detail::edge_table seen;  // welded edges drawn so far
       const double cos_feature = std::cos(l.style.feature_angle_deg * std::numbers::pi / 180.0);
       for (std::uint32_t f = l.face_begin; f < l.face_end; ++f) {
         const auto vs = face(f);
@@ -742,7 +742,7 @@ class basic_svg_scene {
           const std::uint32_t wa = fr.weld[a], wb = fr.weld[b];
           if (wa == wb) continue;
           const std::uint64_t key = detail::svg_edge_key(wa, wb);
-          if (!seen.insert(key).second) continue;
+          if (!seen.try_insert(key, 0)) continue;
           if (l.style.feature_angle_deg > 0.0 && !is_feature(fr, faces_of(key), li, wa, wb, cos_feature))
             continue;
           fr.edges.push_back({li, a, b, {}});

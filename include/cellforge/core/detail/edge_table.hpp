@@ -88,6 +88,14 @@ class basic_edge_table {
     }
   }
 
+  /// Inserts k -> v unless k is present; returns whether it inserted (a set's insert). O(1)
+  /// expected, amortised.
+  bool try_insert(std::uint64_t k, std::uint32_t v) {
+    if (find(k) != not_found) return false;
+    insert(k, v);
+    return true;
+  }
+
   /// Removes k; returns whether it was present. O(1) expected (backward-shift deletion,
   /// so no tombstones accumulate); shrinks the table when it is mostly empty.
   bool erase(std::uint64_t k) noexcept {
@@ -239,6 +247,14 @@ class basic_derived_key_table {
         return;
       }
     }
+  }
+
+  /// Inserts k -> v unless k is present; returns whether it inserted (a set's insert). O(1)
+  /// expected, amortised.
+  bool try_insert(std::uint64_t k, std::uint32_t v) {
+    if (find(k) != not_found) return false;
+    insert(k, v);
+    return true;
   }
 
   /// Removes k; returns whether it was present. O(1) expected (backward-shift deletion, so

@@ -10,9 +10,10 @@
 #include <cmath>
 #include <concepts>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <ostream>
+#include <streambuf>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -112,6 +113,45 @@ void put_comment_lines(output_buffer& out, std::string_view text, std::string_vi
   }
 }
 
+/// A stream buffer over a std::FILE opened for writing: the writers' std::ostream for a file
+/// without <fstream> (which every includer would parse). Writes go straight to fwrite, which
+/// buffers; output_buffer hands it 1 MiB at a time. close() reports whether everything reached
+/// the file. O(1) per call besides the bytes.
+template <class = void>
+class basic_file_sink : public std::streambuf {
+ public:
+  explicit basic_file_sink(const file_path& path) : file_(open_file(path, "wb")) {}
+  basic_file_sink(const basic_file_sink&) = delete;
+  basic_file_sink& operator=(const basic_file_sink&) = delete;
+  ~basic_file_sink() override {
+    if (file_ != nullptr) std::fclose(file_);
+  }
+  [[nodiscard]] bool is_open() const noexcept { return file_ != nullptr; }
+  /// Closes the file; false when a write or the close failed.
+  bool close() noexcept {
+    if (file_ == nullptr) return false;
+    const bool ok = std::ferror(file_) == 0;
+    const bool closed = std::fclose(file_) == 0;
+    file_ = nullptr;
+    return ok && closed;
+  }
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
+    const char byte = traits_type::to_char_type(c);
+    return std::fwrite(&byte, 1, 1, file_) == 1 ? c : traits_type::eof();
+  }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    return static_cast<std::streamsize>(std::fwrite(s, 1, static_cast<std::size_t>(n), file_));
+  }
+  int sync() override { return std::fflush(file_) == 0 ? 0 : -1; }
+
+ private:
+  std::FILE* file_;
+};
+using file_sink = basic_file_sink<>;
+
 /// Runs `write(stream)` into a file beside `path` and renames it over `path` only when all of
 /// it is written, so a failure (a writer's check, a full disk) never leaves a broken, empty or
 /// half-replaced file; a device or pipe is written in place. Errors name the path. O(what write costs).
@@ -126,22 +166,23 @@ void write_file(const file_path& path, Write&& write) {
     if (!in_place) remove_file(target);
   };
   {
-    std::ofstream os(target.native(), std::ios::binary | std::ios::trunc);
-    if (!os) throw error(error_category::io, "cannot open '" + display_name(path) + "' for writing");
+    file_sink sink(target);
+    if (!sink.is_open())
+      throw error(error_category::io, "cannot open '" + display_name(path) + "' for writing");
+    std::ostream os(&sink);
     try {
-      write(static_cast<std::ostream&>(os));
+      write(os);
     } catch (const error& e) {
-      os.close();
+      sink.close();
       discard();
       if (e.category() != error_category::io) throw;
       throw error(error_category::io, "cannot write '" + display_name(path) + "': " + e.message());
     } catch (...) {
-      os.close();
+      sink.close();
       discard();
       throw;
     }
-    os.close();
-    if (!os) {
+    if (!os.flush() || !sink.close()) {
       discard();
       throw error(error_category::io, "cannot write '" + display_name(path) + "': closing the file failed");
     }
