@@ -23,6 +23,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/morton.hpp"
 #include "cellforge/core/point_traits.hpp"
@@ -682,8 +683,8 @@ bool mostly_vertices(std::size_t n, const At& point_at) {
   for (std::size_t i = 0; i < n; i += stride) some.push_back(point_at(i));
   std::vector<std::uint32_t> all(some.size());
   std::iota(all.begin(), all.end(), 0u);
-  engine eng(some);
-  if (eng.run(all) != 3) return false;
+  engine eng(detail::span_of(some));
+  if (eng.run(detail::span_of(all)) != 3) return false;
   std::vector<std::uint8_t> used(some.size(), 0);
   std::size_t vertices = 0;
   for (const face& F : eng.faces())
@@ -724,8 +725,8 @@ bool discard_interior(std::size_t n, const At& point_at, std::vector<glm::dvec3>
     if (k == 0 || arg[k] != arg[k - 1]) extremes.push_back(point_at(arg[k]));
   std::vector<std::uint32_t> all(extremes.size());
   std::iota(all.begin(), all.end(), 0u);
-  engine polytope(extremes);
-  if (polytope.run(all) != 3) return false;
+  engine polytope(detail::span_of(extremes));
+  if (polytope.run(detail::span_of(all)) != 3) return false;
   std::vector<orient3d_plane> planes;
   std::vector<const face*> faces;
   for (const face& F : polytope.faces())
@@ -801,10 +802,10 @@ result compute(std::span<const glm::dvec3> pts, const convex_hull_options& optio
     order = brio_order(pts);
     reordered.resize(pts.size());
     for (std::size_t i = 0; i < order.size(); ++i) reordered[i] = pts[order[i]];
-    pts = reordered;
+    pts = detail::span_of(reordered);
   }
   engine eng(pts);
-  out.dimension = incremental ? eng.run_incremental(all) : eng.run(all);
+  out.dimension = incremental ? eng.run_incremental(detail::span_of(all)) : eng.run(detail::span_of(all));
   const auto& s = eng.simplex();
   out.face_offsets.assign(1, 0);
   if (out.dimension == 0) {
@@ -812,7 +813,7 @@ result compute(std::span<const glm::dvec3> pts, const convex_hull_options& optio
   } else if (out.dimension == 1) {
     out.vertices = {s[0], s[1]};
   } else if (out.dimension == 2) {
-    out.vertices = planar_hull(pts, all, s);
+    out.vertices = planar_hull(pts, detail::span_of(all), s);
     const auto k = static_cast<std::uint32_t>(out.vertices.size());
     if (options.merge_coplanar) {  // the polygon and its reverse
       for (std::uint32_t i = 0; i < k; ++i) out.face_vertices.push_back(i);
@@ -849,7 +850,7 @@ result compute(std::span<const glm::dvec3> pts, const convex_hull_options& optio
     }
     if (non_corner > 0) {
       out.non_corner_removed = non_corner;
-      if (eng.run(corners) != 3)
+      if (eng.run(detail::span_of(corners)) != 3)
         throw error(error_category::internal, "convex_hull: the corners of a solid hull span less than 3D");
     }
     emit_faces(eng, options.merge_coplanar, out);
@@ -930,7 +931,7 @@ requires std::ranges::sized_range<R> && Point3<std::ranges::range_value_t<R>>
     pts.resize(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) pts[i] = point_at(i);
   }
-  detail::hull::result r = detail::hull::compute(pts, run);
+  detail::hull::result r = detail::hull::compute(detail::span_of(pts), run);
   if (!kept_index.empty())
     for (std::uint32_t& v : r.vertices) v = kept_index[v];
   r.exact_evaluations += filter_exact;

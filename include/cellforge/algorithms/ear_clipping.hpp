@@ -20,6 +20,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/detail/edge_table.hpp"
+#include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
@@ -511,7 +512,8 @@ std::vector<index_triangle> clip_polygon(std::span<const glm::dvec3> p, const ea
   c.run(options.allow_non_simple, tris, report);
   // Every ring edge lies in exactly one clipped triangle (forced ears included), so the
   // repeats can always go back in.
-  if (std::find(kept.begin(), kept.end(), 0) != kept.end()) restore_repeats(kept, tris, report);
+  if (std::find(kept.begin(), kept.end(), 0) != kept.end())
+    restore_repeats(detail::span_of(kept), tris, report);
   return tris;
 }
 
@@ -529,7 +531,7 @@ std::vector<index_triangle> ear_clip(std::span<const P> polygon, const ear_clip_
   std::vector<glm::dvec3> p(polygon.size());
   for (std::size_t i = 0; i < polygon.size(); ++i) p[i] = to_dvec3(polygon[i]);
   ear_clip_report r;
-  std::vector<index_triangle> tris = detail::ears::clip_polygon(p, options, r);
+  std::vector<index_triangle> tris = detail::ears::clip_polygon(detail::span_of(p), options, r);
   if (report) *report = r;
   return tris;
 }
@@ -578,7 +580,7 @@ polygon_soup<P> triangulate(const polygon_soup<P>& soup, const ear_clip_options&
     ear_clip_report er;
     std::vector<index_triangle> tris;
     try {
-      tris = detail::ears::clip_polygon(corners, options, er);
+      tris = detail::ears::clip_polygon(detail::span_of(corners), options, er);
     } catch (const error& e) {
       throw error(e.category(), "triangulate: face " + std::to_string(f) + ": " + e.message());
     }
@@ -626,7 +628,7 @@ triangulate_report triangulate_faces(surface_mesh<P>& m, const ear_clip_options&
     for (vertex_handle v : j.vs) corners.push_back(to_dvec3(pos[v.idx()]));
     ear_clip_report er;
     try {
-      j.tris = detail::ears::clip_polygon(corners, options, er);
+      j.tris = detail::ears::clip_polygon(detail::span_of(corners), options, er);
     } catch (const error& e) {
       throw error(e.category(), "triangulate_faces: face " + std::to_string(f.idx()) + ": " + e.message());
     }

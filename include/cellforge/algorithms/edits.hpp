@@ -29,6 +29,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/conversion.hpp"
@@ -252,8 +253,8 @@ edit_refusal check_collapse(const halfedge_mesh& m, edge_handle e, vertex_handle
   q.nu = neighbours(m, u, {u, v});
   q.nv = neighbours(m, v, {u, v});
   if (q.faces == 2 && q.opp[0] != q.opp[1])
-    q.tetra =
-        has_triangle_at(m, u, q.opp[0], q.opp[1], faces) && has_triangle_at(m, v, q.opp[0], q.opp[1], faces);
+    q.tetra = has_triangle_at(m, u, q.opp[0], q.opp[1], detail::span_of(faces)) &&
+              has_triangle_at(m, v, q.opp[0], q.opp[1], detail::span_of(faces));
   return evaluate(q);
 }
 
@@ -313,9 +314,9 @@ edit_refusal check_face_collapse_order(const halfedge_mesh& m, face_handle f, ve
     q.nv = std::move(merged);
   }
   if (q.faces == 2 && q.opp[0] != q.opp[1])
-    q.tetra = has_triangle_at(m, c, q.opp[0], q.opp[1], removed) &&
-              (has_triangle_at(m, a, q.opp[0], q.opp[1], removed) ||
-               has_triangle_at(m, k, q.opp[0], q.opp[1], removed));
+    q.tetra = has_triangle_at(m, c, q.opp[0], q.opp[1], detail::span_of(removed)) &&
+              (has_triangle_at(m, a, q.opp[0], q.opp[1], detail::span_of(removed)) ||
+               has_triangle_at(m, k, q.opp[0], q.opp[1], detail::span_of(removed)));
   return evaluate(q);
 }
 
@@ -413,18 +414,18 @@ std::vector<face_handle> replace_faces(halfedge_mesh& m, std::span<const face_ha
   std::vector<face_handle> added;
   added.reserve(specs.size());
   try {
-    for (const face_spec& s : specs) added.push_back(m.add_face(s.vertices));
+    for (const face_spec& s : specs) added.push_back(m.add_face(detail::span_of(s.vertices)));
   } catch (const error& ex) {
     for (face_handle f : added) m.remove_face(f);
     std::vector<face_handle> restored;
-    for (const face_spec& s : originals) restored.push_back(m.add_face(s.vertices));
-    carry_properties(m, originals, restored, old_edges);
+    for (const face_spec& s : originals) restored.push_back(m.add_face(detail::span_of(s.vertices)));
+    carry_properties(m, detail::span_of(originals), detail::span_of(restored), old_edges);
     throw error(error_category::internal,
                 std::string("a checked mesh edit was refused by add_face (the mesh is restored; please "
                             "report): ") +
                     ex.what());
   }
-  carry_properties(m, specs, added, old_edges);
+  carry_properties(m, specs, detail::span_of(added), old_edges);
   return added;
 }
 
@@ -458,7 +459,7 @@ edit_result do_collapse(halfedge_mesh& m, vertex_handle u, vertex_handle v,
     if (std::find(edge_faces_.begin(), edge_faces_.end(), g) == edge_faces_.end())
       specs.push_back(renamed(m, g, u, v));
   }
-  replace_faces(m, around, specs);
+  replace_faces(m, detail::span_of(around), detail::span_of(specs));
   m.remove_vertex(u);
   edit_result r;
   r.vertex = v;
@@ -512,7 +513,7 @@ edit_result collapse_halfedge(halfedge_mesh& m, halfedge_handle h) {
   std::vector<face_handle> faces;
   if (auto r = detail::edits::check_collapse(m, halfedge_mesh::edge(h), u, v, faces); r != edit_refusal::none)
     return detail::edits::refused(r);
-  return detail::edits::do_collapse(m, u, v, faces);
+  return detail::edits::do_collapse(m, u, v, detail::span_of(faces));
 }
 
 /// Collapses edge e into its end `keep` (the other end is removed); the way to collapse a
@@ -524,7 +525,7 @@ edit_result collapse_edge(halfedge_mesh& m, edge_handle e, vertex_handle keep) {
   std::vector<face_handle> faces;
   if (auto r = detail::edits::check_collapse(m, e, u, keep, faces); r != edit_refusal::none)
     return detail::edits::refused(r);
-  return detail::edits::do_collapse(m, u, keep, faces);
+  return detail::edits::do_collapse(m, u, keep, detail::span_of(faces));
 }
 
 /// collapse_halfedge, then moves the kept vertex as `options` says. Same checks and cost.
@@ -571,7 +572,7 @@ edit_result collapse_face(halfedge_mesh& m, face_handle f) {
       if (std::find(plan.removed.begin(), plan.removed.end(), g) == plan.removed.end())
         specs.push_back(detail::edits::renamed(m, g, plan.a, plan.k, plan.c));
     }
-  detail::edits::replace_faces(m, around, specs);
+  detail::edits::replace_faces(m, detail::span_of(around), detail::span_of(specs));
   m.remove_vertex(plan.a);
   m.remove_vertex(plan.c);
   edit_result r;
@@ -631,7 +632,7 @@ edit_result split_edge(halfedge_mesh& m, edge_handle e) {
       specs.push_back(std::move(s));
     }
   }
-  detail::edits::replace_faces(m, faces, specs);
+  detail::edits::replace_faces(m, detail::span_of(faces), detail::span_of(specs));
   edit_result r;
   r.vertex = w;
   r.faces_added = specs.size() - faces.size();

@@ -22,6 +22,7 @@
 
 #include "cellforge/algorithms/detail/loop_masks.hpp"
 #include "cellforge/algorithms/detail/loop_topology.hpp"
+#include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
@@ -277,7 +278,7 @@ loop_result loop_subdivide(surface_mesh<P>& mesh, const loop_options& options = 
     const std::vector<dl::record>& he = access::records(mesh);
     for (face_handle f : mesh.faces()) {
       const std::uint32_t h = mesh.halfedge(f).idx();
-      if (const std::size_t n = dl::face_size(he, h, he.size()); n != 3)
+      if (const std::size_t n = dl::face_size(detail::span_of(he), h, he.size()); n != 3)
         dl::not_a_triangle(f.idx(), n, he.size());
     }
     mesh.garbage_collection();  // every check passed: from here on the mesh changes
@@ -338,7 +339,8 @@ loop_result loop_subdivide(surface_mesh<P>& mesh, const loop_options& options = 
                     "loop_subdivide: internal error: edge points out of order");
       result.fixed_vertices += stats.fixed_vertices;
       for (const dl::attribute_job& job : jobs)
-        dl::subdivide_attribute(job, he, nv, child_nv, boundary_edges, params);
+        dl::subdivide_attribute(job, detail::span_of(he), nv, child_nv, detail::span_of(boundary_edges),
+                                params);
 
       // Commit: nothing below throws except on allocation failure.
       finished = false;

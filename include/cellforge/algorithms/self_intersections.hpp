@@ -66,6 +66,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/algorithms/ear_clipping.hpp"
+#include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
@@ -506,7 +507,7 @@ void triangulate_for_test(const surface_mesh<P>& m, std::span<const vec> pos, st
       ++r.ear_clipped_faces;
       ear_clip_report report;
       try {
-        for (const index_triangle& t : ears::clip_polygon(corners, clip, report))
+        for (const index_triangle& t : ears::clip_polygon(detail::span_of(corners), clip, report))
           add(f.idx(), ids[t[0]], ids[t[1]], ids[t[2]]);
       } catch (const error&) {
         fan = true;  // no area, or a non-finite corner: its fan triangles are degenerate

@@ -23,6 +23,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/detail/newell.hpp"
+#include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/handles.hpp"
@@ -324,7 +325,7 @@ class dvec3_points {
     } else {
       copy_.reserve(points.size());
       for (const P& p : points) copy_.push_back(to_dvec3(p));
-      view_ = copy_;
+      view_ = detail::span_of(copy_);
     }
   }
   dvec3_points(const dvec3_points&) = delete;  // view_ may point into copy_

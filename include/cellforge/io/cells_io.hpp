@@ -24,6 +24,7 @@
 #include "cellforge/cells/cell_complex.hpp"
 #include "cellforge/cells/conversion.hpp"
 #include "cellforge/core/bounding_box.hpp"
+#include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/polygon_soup.hpp"
 #include "cellforge/io/detail/output_buffer.hpp"
@@ -531,7 +532,7 @@ obj_data<glm::dvec3> cells_obj_faces(const cell_topology& cc, std::span<const gl
       face.clear();
       for (cell_vertex v : cc.loop_vertices(f, 0)) face.push_back(v.idx());
       if (sign < 0) std::reverse(face.begin(), face.end());
-      data.soup.add_face(face);
+      data.soup.add_face(cellforge::detail::span_of(face));
       return;
     }
     std::vector<std::vector<glm::dvec3>> loops(cc.num_loops(f));
@@ -703,7 +704,7 @@ svg_scene cells_svg_scene(const obj_data<glm::dvec3>& data, const cells_svg_opti
         }
         face.push_back(local[v]);
       }
-      soup.add_face(face);
+      soup.add_face(cellforge::detail::span_of(face));
     }
     for (std::size_t f = data.groups[g].first_face; f < end; ++f)
       for (std::uint32_t v : data.soup.face(f)) local[v] = unused;

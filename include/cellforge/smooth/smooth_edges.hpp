@@ -22,6 +22,7 @@
 
 #include "cellforge/cells/cell_complex.hpp"
 #include "cellforge/cells/conversion.hpp"
+#include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/mesh.hpp"
@@ -216,7 +217,8 @@ struct basic_smoother {
   }
 
   void build_curves() {
-    sector_normals(m, g, sectors, smooth, edge_normal, midpoints, sector_normal);
+    sector_normals(m, g, sectors, detail::span_of(smooth), detail::span_of(edge_normal),
+                   detail::span_of(midpoints), sector_normal);
     r.num_cubic = r.num_quadratic = r.num_straight = 0;
     r.num_axis_form = r.num_bezier_form = r.num_axis_fallbacks = 0;
     for (edge_handle e : m.edges()) {
@@ -258,7 +260,7 @@ struct basic_smoother {
   }
 
   dresult run() {
-    surface_partition part = continuous_surfaces(m, g.face_normals, o.angle_deg);
+    surface_partition part = continuous_surfaces(m, detail::span_of(g.face_normals), o.angle_deg);
     r.model_size = g.model_size;
     r.num_surfaces = part.surfaces.size();
     r.surface_of_face = std::move(part.surface_of_face);
@@ -273,7 +275,7 @@ struct basic_smoother {
       r.num_creases += smooth[e.idx()] ? 0 : 1;
     }
     edge_normal = edge_normals(m, g);
-    sectors = make_vertex_sectors(m, g, smooth);
+    sectors = make_vertex_sectors(m, g, detail::span_of(smooth));
     midpoints.assign(m.edges_size(), glm::dvec3(0));
     for (edge_handle e : m.edges()) midpoints[e.idx()] = 0.5 * (pos(m.vertex(e, 0)) + pos(m.vertex(e, 1)));
     r.curves.assign(m.edges_size(), dcurve{});

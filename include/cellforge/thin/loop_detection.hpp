@@ -12,6 +12,8 @@
 #include <span>
 #include <vector>
 
+#include "cellforge/core/detail/span_of.hpp"
+
 namespace cellforge {
 
 /// How thin loops are picked from the cycle lengths.
@@ -102,7 +104,7 @@ detection_result detect_seed(std::span<const double> l, std::size_t faces, const
     v[static_cast<std::size_t>(i)] =
         l[static_cast<std::size_t>(i)] > 0 ? std::min(cycle, rest) / l[static_cast<std::size_t>(i)] : 0;
   }
-  if (n >= 3 && alternates(v)) {
+  if (n >= 3 && alternates(detail::span_of(v))) {
     // Averaging with the neighbours, weights 1/4, 1/2, 1/4: cancels a period-2 alternation.
     std::vector<double> s(v.size());
     for (std::ptrdiff_t i = 0; i < n; ++i) {
@@ -116,12 +118,13 @@ detection_result detect_seed(std::span<const double> l, std::size_t faces, const
   const std::ptrdiff_t w = o.averaging_window;
   std::vector<double> avg(v.size());
   for (std::ptrdiff_t i = 0; i < n; ++i)
-    avg[static_cast<std::size_t>(i)] = mean(v, std::max<std::ptrdiff_t>(0, i - w), std::min(n - 1, i + w));
+    avg[static_cast<std::size_t>(i)] =
+        mean(detail::span_of(v), std::max<std::ptrdiff_t>(0, i - w), std::min(n - 1, i + w));
   std::vector<detected_cycle> cand;
   double best = 0;
   for (std::ptrdiff_t i = 1; i + 1 < n; ++i) {
-    const double left = mean(avg, std::max<std::ptrdiff_t>(0, i - w), i - 1);
-    const double right = mean(avg, i + 1, std::min(n - 1, i + w));
+    const double left = mean(detail::span_of(avg), std::max<std::ptrdiff_t>(0, i - w), i - 1);
+    const double right = mean(detail::span_of(avg), i + 1, std::min(n - 1, i + w));
     const double x = v[static_cast<std::size_t>(i)];
     if (x > left && x > right && x > v[static_cast<std::size_t>(i - 1)] &&
         x > v[static_cast<std::size_t>(i + 1)]) {

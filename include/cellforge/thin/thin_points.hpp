@@ -20,6 +20,7 @@
 
 #include "cellforge/cells/cell_complex.hpp"
 #include "cellforge/cells/conversion.hpp"
+#include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
@@ -450,8 +451,9 @@ thin_result<glm::dvec3> find(thin_input prepared, const thin_options& options) {
   r.grown_faces = g.num_faces;
 
   detail::stopwatch clock;
-  const central_axis_result axis = central_axis(
-      in.used_points, {options.slabs, options.axis_tolerance_deg, options.max_axis_iterations, 5});
+  const central_axis_result axis =
+      central_axis(detail::span_of(in.used_points),
+                   {options.slabs, options.axis_tolerance_deg, options.max_axis_iterations, 5});
   glm::dvec3 dir = axis.direction;
   // Start face: the face centre farthest along the axis from the centroid (largest |G|).
   std::uint32_t start = 0;
@@ -494,7 +496,7 @@ thin_result<glm::dvec3> find(thin_input prepared, const thin_options& options) {
 
   clock.restart();
   const detection_result found = detect_thin_cycles(
-      r.cycle_lengths, g.num_faces,
+      detail::span_of(r.cycle_lengths), g.num_faces,
       {options.detection, options.min_strength, options.suppression_fraction, options.averaging_window,
        static_cast<std::size_t>(std::lround(options.envelope_rings * ring_cycles))});
   r.values_smoothed = found.smoothed;

@@ -21,6 +21,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/algorithms/convex_hull.hpp"
+#include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/tubes/detail/sphere_hull.hpp"
 #include "cellforge/tubes/detail/tube_buffer.hpp"
@@ -113,11 +114,11 @@ void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junct
   }
   const auto where = [&] { return "node " + std::to_string(source.index); };
   std::vector<std::array<std::uint32_t, 3>>& triangles = scratch.triangles;
-  if (!sphere_hull(on_sphere, scratch.hull, triangles)) {
+  if (!sphere_hull(detail::span_of(on_sphere), scratch.hull, triangles)) {
     convex_hull_options o;
     o.merge_coplanar = false;
     o.method = convex_hull_method::incremental;
-    const hull::result h = hull::compute(on_sphere, o);
+    const hull::result h = hull::compute(detail::span_of(on_sphere), o);
     if (h.dimension != 3 || h.vertices.size() != on_sphere.size())
       throw error(error_category::invalid_input,
                   where() + ": the cross-sections of its " + std::to_string(rings.size()) +

@@ -17,6 +17,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/tubes/branch_mesh.hpp"
 #include "cellforge/tubes/detail/tube_buffer.hpp"
 
@@ -193,11 +194,11 @@ void build_path(buffer& out, std::span<const station> stations, bool closed, std
   cap.resize(sides);
   if (cap_start && !closed) {  // facing back along the path
     for (std::uint32_t j = 0; j < sides; ++j) cap[j] = vertex(0, sides - 1 - j, false);
-    out.add_face(cap, {tube_face_kind::end_cap, start_node});
+    out.add_face(detail::span_of(cap), {tube_face_kind::end_cap, start_node});
   }
   if (cap_end && !closed) {
     for (std::uint32_t j = 0; j < sides; ++j) cap[j] = vertex(n - 1, j, false);
-    out.add_face(cap, {tube_face_kind::end_cap, end_node});
+    out.add_face(detail::span_of(cap), {tube_face_kind::end_cap, end_node});
   }
 }
 

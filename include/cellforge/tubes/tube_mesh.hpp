@@ -22,6 +22,7 @@
 #include "cellforge/algorithms/loop_subdivision.hpp"
 #include "cellforge/algorithms/self_intersections.hpp"
 #include "cellforge/core/detail/large_array.hpp"
+#include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
@@ -275,7 +276,7 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
       ring_edges.push_back(tube_node::none);
       ++res.virtual_sections;
     }
-    dt::place_rings(rings, rb, options.cap_separation);
+    dt::place_rings(detail::span_of(rings), rb, options.cap_separation);
     for (std::size_t i = 0; i < real; ++i) {
       const std::uint32_t slot = at_junction(b)[i];
       const tube_path& path = tc.paths[slot / 2];
@@ -296,8 +297,9 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
         clear = clear && glm::dot(d, r.direction) < std::cos(1.25 * std::atan2(r.radius, r.distance));
       if (clear) extra.push_back(d);
     }
-    dt::build_junction(out, c, rings, n, {tube_face_kind::junction, tc.nodes[b].skeleton_node}, ring_edges,
-                       first_vertex, scratch, extra, rb);
+    dt::build_junction(out, c, detail::span_of(rings), n,
+                       {tube_face_kind::junction, tc.nodes[b].skeleton_node}, detail::span_of(ring_edges),
+                       first_vertex, scratch, detail::span_of(extra), rb);
     for (std::size_t i = 0; i < real; ++i) ends[at_junction(b)[i]] = {rings[i], c, first_vertex[i]};
     ++res.junctions;
   }
@@ -356,9 +358,9 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     // The stations at junction rings replace the junction nodes themselves.
     const bool cap_start = !path.closed && !is_junction(path.nodes.front());
     const bool cap_end = !path.closed && !is_junction(path.nodes.back());
-    dt::build_path(out, stations, path.closed, n, options.alignment, path.edges, cap_start,
-                   tc.nodes[path.nodes.front()].skeleton_node, cap_end,
-                   tc.nodes[path.nodes.back()].skeleton_node, &path_buffers);
+    dt::build_path(out, detail::span_of(stations), path.closed, n, options.alignment,
+                   detail::span_of(path.edges), cap_start, tc.nodes[path.nodes.front()].skeleton_node,
+                   cap_end, tc.nodes[path.nodes.back()].skeleton_node, &path_buffers);
     ++res.paths;
     res.closed_paths += path.closed ? 1 : 0;
     res.end_caps += (cap_start ? 1 : 0) + (cap_end ? 1 : 0);
@@ -369,7 +371,7 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
                                            ? std::vector<glm::dvec3>{}
                                            : dt::sphere_directions(std::max<std::size_t>(12, n * n / 2));
   const detail::hull::result h =
-      tc.isolated.empty() ? detail::hull::result{} : detail::hull::compute(dirs, {});
+      tc.isolated.empty() ? detail::hull::result{} : detail::hull::compute(detail::span_of(dirs), {});
   std::vector<std::uint32_t> id(dirs.size());
   for (const std::uint32_t v : tc.isolated) {
     for (std::size_t k = 0; k < h.vertices.size(); ++k)
@@ -415,7 +417,8 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   }
   // The faces are closed and oriented by construction: linked in emission order, where
   // the twins are near (build, which reports what is wrong, only if they are not).
-  if (!dt::build_closed(mesh, num_points, out.face_offsets, out.face_vertices)) {
+  if (!dt::build_closed(mesh, num_points, detail::span_of(out.face_offsets),
+                        detail::span_of(out.face_vertices))) {
     if (shift == 0) source.vector().swap(out.sources);  // build drops face properties' values
     mesh.build(num_points, out.face_offsets, out.face_vertices);
     if (shift == 0) std::copy(out.sources.begin(), out.sources.end(), source.vector().begin());

@@ -22,6 +22,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/predicates.hpp"
 #include "cellforge/core/tolerance.hpp"
@@ -327,7 +328,7 @@ void trace_planar(const wire_graph& g, const trace_options& opt, trace_result& r
       dirs.resize(inc.size());
       for (std::uint32_t k = 0; k < inc.size(); ++k) dirs[k] = g.points[inc[k].other] - g.points[v];
       const bool indexed = inc.size() > 24;
-      if (indexed) fan.build(dirs, tol);
+      if (indexed) fan.build(detail::span_of(dirs), tol);
       for (std::uint32_t i = 0; i < inc.size(); ++i)
         for (std::uint32_t j = i + 1; j < inc.size(); ++j) {
           if (done[pair_base[v] + i * inc.size() + j]) continue;

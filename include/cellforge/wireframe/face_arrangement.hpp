@@ -22,6 +22,7 @@
 #include <glm/geometric.hpp>
 
 #include "cellforge/core/bounding_box.hpp"
+#include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/morton.hpp"
 #include "cellforge/core/polygon_intersection.hpp"
 #include "cellforge/core/tolerance.hpp"
@@ -192,7 +193,7 @@ class basic_crossing_test {
     out.clear();
     for (const auto& loop : f.loops)
       for (const auto v : loop) out.push_back(g_.points[v]);
-    return out;
+    return detail::span_of(out);
   }
   /// Some corner strictly on each side of p.
   static bool straddles(std::span<const glm::dvec3> corners, const face_plane& p, double tol) {
@@ -213,8 +214,9 @@ class basic_crossing_test {
     for (const auto* e : {&lo, &hi}) {
       if (e->to == no_index) continue;
       const wire_face& other = e == &lo ? lo_other : hi_other;
-      if (segment_pierces_polygon(g_.points, other.loops, plane_vertices(g_.points, other.loops),
-                                  g_.points[e->from], g_.points[e->to]))
+      if (segment_pierces_polygon(detail::span_of(g_.points), other.loops,
+                                  plane_vertices(detail::span_of(g_.points), other.loops), g_.points[e->from],
+                                  g_.points[e->to]))
         return true;
     }
     return false;

@@ -14,6 +14,7 @@
 
 #include "cellforge/cells/cell_complex.hpp"
 #include "cellforge/cells/validate.hpp"
+#include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/wireframe.hpp"
 #include "cellforge/wireframe/circuit_tracer.hpp"
 #include "cellforge/wireframe/extra_faces.hpp"
@@ -213,7 +214,8 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
     caller_order[g.read_order.empty() ? e : g.read_order[e]] = e;
   for (const std::uint32_t e : caller_order) {
     if (!edge_used[e]) {
-      const std::uint32_t other = test_crossings ? detail::crossing_edge(g, caller_order, e) : no_index;
+      const std::uint32_t other =
+          test_crossings ? detail::crossing_edge(g, detail::span_of(caller_order), e) : no_index;
       r.diagnostics.push_back(
           "edge " + std::to_string(g.input_edge[e]) + " bounds no face" +
           (other != no_index
