@@ -44,11 +44,12 @@ struct junction_ring {
 template <class = void>
 void place_rings(std::span<junction_ring> rings, double centre_radius, double separation) {
   for (std::size_t i = 0; i < rings.size(); ++i) {
-    double closest = std::numbers::pi;
+    // acos falls as its argument grows: the smallest angle is that of the largest cosine.
+    double largest = -1;
     for (std::size_t j = 0; j < rings.size(); ++j)
       if (j != i)
-        closest = std::min(
-            closest, std::acos(std::clamp(glm::dot(rings[i].direction, rings[j].direction), -1.0, 1.0)));
+        largest = std::max(largest, std::clamp(glm::dot(rings[i].direction, rings[j].direction), -1.0, 1.0));
+    const double closest = std::min(std::numbers::pi, std::acos(largest));
     const double widest = std::atan2(rings[i].radius, centre_radius);
     const double half_angle = std::min(widest, separation * closest / 2);
     rings[i].distance = rings[i].radius / std::tan(half_angle);
@@ -105,8 +106,11 @@ void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junct
       // which would each cost the hull an exact evaluation. The offsets only choose among
       // triangulations of such sets, every one of which is valid for the true directions.
       // Each point sits lower on the sphere than the points of its ring that the hull inserts
-      // before it, so that it rarely sees (and redoes) their cap: 10% of the hull's work.
-      const double jitter = 1 + 1e-9 * (8.0 * rank[j] / sides + static_cast<double>((7 * i) % 5) - 6);
+      // before it, so that it rarely sees (and redoes) their cap: 10% of the hull's work; the
+      // smaller (i, j) term and the per-ring step keep symmetric rings' sets apart.
+      const double jitter =
+          1 + 1e-9 * ((8.0 * rank[j] + static_cast<double>((7 * i + 3 * j) % 11) / 11) / sides +
+                      0.5 * static_cast<double>((5 * i) % 13) - 7);
       on_sphere[i * sides + j] = glm::normalize(axis + (r.radius * jitter) * spoke);
       // Back along its ray to the ring's own place ("pulling the sphere in").
       out.add_point(centre + axis + r.radius * spoke);
