@@ -64,6 +64,7 @@ struct junction_scratch {
   sphere_hull_scratch hull;
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<std::uint32_t> cap_triangles;
+  std::vector<std::uint32_t> ring_of_point;  ///< per ring point of the hull, its ring
 };
 
 /// Appends the junction surface of `rings` about `centre` to `out`: each ring's `sides`
@@ -95,6 +96,7 @@ void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junct
     for (std::uint32_t g = 0; g < sides; ++g) rank[positions[g]] = g;
   }
   first_vertex.clear();
+  scratch.ring_of_point.resize(m);
   for (std::size_t i = 0; i < rings.size(); ++i) {
     first_vertex.push_back(static_cast<std::uint32_t>(out.points.size()));
     const junction_ring& r = rings[i];
@@ -114,6 +116,7 @@ void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junct
       on_sphere[i * sides + j] = glm::normalize(axis + (r.radius * jitter) * spoke);
       // Back along its ray to the ring's own place ("pulling the sphere in").
       out.add_point(centre + axis + r.radius * spoke);
+      scratch.ring_of_point[i * sides + j] = static_cast<std::uint32_t>(i);
     }
   }
   // §V.D method 3: extra points on the sphere (the caller keeps them clear of every cap), at
@@ -153,8 +156,9 @@ void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junct
         tri[k] = extra_first + (input - static_cast<std::uint32_t>(m));
         continue;
       }
-      ring_of[k] = input / sides;
-      tri[k] = first_vertex[ring_of[k]] + input % sides;
+      // From a table, not input / sides: a division per corner costs more than the rest.
+      ring_of[k] = scratch.ring_of_point[input];
+      tri[k] = first_vertex[0] + input;  // the rings' vertices are consecutive from the first
     }
     if (ring_of[0] == ring_of[1] && ring_of[1] == ring_of[2] && ring_of[0] < rings.size() &&
         !rings[ring_of[0]].is_virtual) {
