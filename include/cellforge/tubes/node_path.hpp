@@ -81,7 +81,7 @@ glm::dvec3 project_frame(const glm::dvec3& u, const glm::dvec3& t) {
 /// Buffers build_path reuses from one path to the next (none allocates once warm).
 struct path_scratch {
   std::vector<glm::dvec3> frame;
-  std::vector<double> arc;
+  std::vector<double> arc, cosines, sines;
   std::vector<std::uint32_t> first, cap;
 };
 
@@ -136,6 +136,13 @@ void build_path(buffer& out, std::span<const station> stations, bool closed, std
     spread = alignment == tube_alignment::none ? 0.0 : phi + offset * step;
   }
   const double total = closed ? arc[n] : arc[n - 1];
+  // The ring's directions at turn 0, once per side count: a ring turned by t is the frame
+  // turned by t (one sincos per ring instead of one per vertex).
+  std::vector<double>&cosines = scratch.cosines, &sines = scratch.sines;
+  if (cosines.size() != sides) {
+    cosines.resize(sides), sines.resize(sides);
+    for (std::uint32_t j = 0; j < sides; ++j) cosines[j] = std::cos(j * step), sines[j] = std::sin(j * step);
+  }
   // Vertex ids of each station in path order (counter-clockwise about travel).
   std::vector<std::uint32_t>& first = scratch.first;
   first.resize(n);
@@ -146,12 +153,13 @@ void build_path(buffer& out, std::span<const station> stations, bool closed, std
       continue;
     }
     const double turn = total > 0 ? spread * arc[i] / total : 0.0;
-    const glm::dvec3 u = frame[i], v = glm::cross(s.tangent, u);
+    const double ct = std::cos(turn), st = std::sin(turn);
+    const glm::dvec3 u0 = frame[i], v0 = glm::cross(s.tangent, u0);
+    const glm::dvec3 u = ct * u0 + st * v0, v = ct * v0 - st * u0;
     first[i] = static_cast<std::uint32_t>(out.points.size());
     glm::dvec3 area(0.0);  // twice the vector area of the ring (Newell)
     for (std::uint32_t j = 0; j < sides; ++j) {
-      const double a = j * step + turn;
-      glm::dvec3 e = std::cos(a) * u + std::sin(a) * v;
+      glm::dvec3 e = cosines[j] * u + sines[j] * v;
       e += (s.widen - 1) * glm::dot(e, s.bend) * s.bend;
       out.add_point(s.centre + s.radius * e);
       if (j > 0)

@@ -448,9 +448,18 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   // assumed from the skeleton's components).
   detail::union_find sets(num_points);
   std::size_t shells = num_points;
-  for (std::size_t f = 0; f + 1 < out.face_offsets.size(); ++f)
-    for (std::uint32_t k = out.face_offsets[f] + 1; k < out.face_offsets[f + 1]; ++k)
-      shells -= sets.unite(out.face_vertices[out.face_offsets[f]], out.face_vertices[k]) ? 1 : 0;
+  for (std::size_t f = 0; f + 1 < out.face_offsets.size(); ++f) {
+    // The face's first root is found once (unite would find it again for every corner).
+    std::uint32_t root = sets.find(out.face_vertices[out.face_offsets[f]]);
+    for (std::uint32_t k = out.face_offsets[f] + 1; k < out.face_offsets[f + 1]; ++k) {
+      const std::uint32_t other = sets.find(out.face_vertices[k]);
+      if (other == root) continue;
+      // As unite: the smaller root survives.
+      sets.parent[std::max(root, other)] = std::min(root, other);
+      root = std::min(root, other);
+      --shells;
+    }
+  }
   res.shells = shells;
   res.genus = (2 * static_cast<std::int64_t>(shells) - euler_characteristic(mesh)) / 2;
   res.mesh = std::move(mesh);

@@ -46,8 +46,8 @@ bool build_closed(halfedge_mesh& mesh, std::size_t num_vertices, std::span<const
       nh >= npos / 2 || mesh.halfedges_size() != 0 || mesh.faces_size() != 0)
     return false;
   const std::size_t nf = offsets.size() - 1;
-  // No half-edges yet: the records grow two by two as edges open (the write frontier only
-  // advances), so the largest array is never filled with placeholders first.
+  // No half-edges yet: the records grow as edges open (the write frontier only advances), so
+  // the largest array is never filled with placeholders first.
   access::resize(mesh, num_vertices, 0, nf);
   std::vector<halfedge_mesh::record>& he = access::records(mesh);
   reserve_large(he, nh);
@@ -73,50 +73,73 @@ bool build_closed(halfedge_mesh& mesh, std::size_t num_vertices, std::span<const
     std::fill(anchor.begin(), anchor.end(), npos);
     return false;
   };
-  for (std::size_t f = 0; f < nf; ++f) {
-    const std::uint32_t o = offsets[f], e = offsets[f + 1];
-    if (e < o + 3 || e > nh) return give_up();
-    for (std::uint32_t c = o; c < e; ++c) {
-      if (fv[c] >= num_vertices) return give_up();
-      for (std::uint32_t d = o; d < c; ++d)
-        if (fv[d] == fv[c]) return give_up();  // a repeated vertex: build names it
+  constexpr std::uint32_t lookahead = 32;  // corners: a ring of quads for octagons
+  // The records grow by a chunk that stays in cache until written over: push_back per record
+  // was an out-of-line call (4% of make_tubes' instructions).
+  constexpr std::size_t chunk = 4096;
+  // One face of k corners from fv[o] on; false when it cannot be part of a closed surface.
+  // K > 0 is k known at compile time (triangles and quads, nearly every face of a tube mesh):
+  // the loops unroll and the wrap-arounds fold away.
+  const auto link = [&]<std::uint32_t K>(std::uint32_t f, std::uint32_t o, std::uint32_t k_run) {
+    const std::uint32_t k = K != 0 ? K : k_run;
+    const std::uint32_t* const vs = fv.data() + o;
+    for (std::uint32_t c = 0; c < k; ++c) {
+      if (vs[c] >= num_vertices) return false;
+      for (std::uint32_t d = 0; d < c; ++d)
+        if (vs[d] == vs[c]) return false;  // a repeated vertex: build names it
     }
-    if (corner_half.size() < e - o) corner_half.resize(e - o);
-    constexpr std::uint32_t lookahead = 32;  // corners: a ring of quads for octagons
-    for (std::uint32_t c = o; c < e; ++c) {
+    std::uint32_t local[K != 0 ? K : 1];
+    std::uint32_t* const half = K != 0 ? local : corner_half.data();
+    for (std::uint32_t i = 0; i < k; ++i) {
       // The list a corner two rings on will search, and the first entry of one a ring on: a path's
       // first ring matches a junction's corners from long ago, out of cache.
+      const std::uint32_t c = o + i;
       if (c + 2 * lookahead < nh) prefetch(&first[fv[c + 2 * lookahead]]);
       if (c + lookahead < nh && first[fv[c + lookahead]] != npos) prefetch(&he[first[fv[c + lookahead]]]);
-      const std::uint32_t a = fv[c], b = fv[c + 1 == e ? o : c + 1];
+      const std::uint32_t a = vs[i], b = vs[i + 1 == k ? 0 : i + 1];
       // The twin leaves b for a: an open edge on b's list whose other end is a.
       std::uint32_t before = npos, t = first[b];
       while (t != npos && he[t].head != a) before = t, t = he[t].next;
       if (t != npos) {
         (before == npos ? first[b] : he[before].next) = he[t].next;
-        corner_half[c - o] = t;
+        half[i] = t;
         --unmatched;
       } else {
-        if (next_edge == ne) return give_up();  // more edges than a closed surface has
+        if (next_edge == ne) return false;  // more edges than a closed surface has
         const std::uint32_t h = 2 * next_edge++;
-        he.push_back({});  // h: written with its face below
-        he.push_back({b, first[a], npos, npos});
+        if (h == he.size()) he.resize(std::min(nh, he.size() + chunk));
+        he[h + 1] = {b, first[a], npos, npos};  // h: written with its face below
         first[a] = h + 1;
-        corner_half[c - o] = h;
+        half[i] = h;
         ++unmatched;
       }
     }
-    face_anchor[f] = corner_half[0];
-    const std::uint32_t k = e - o;
+    face_anchor[f] = half[0];
     for (std::uint32_t i = 0; i < k; ++i) {
-      const std::uint32_t h = corner_half[i], v = fv[o + (i + 1 == k ? 0 : i + 1)];
+      const std::uint32_t h = half[i], v = vs[i + 1 == k ? 0 : i + 1];
       halfedge_mesh::record& r = he[h];
       r.head = v;
-      r.next = corner_half[i + 1 == k ? 0 : i + 1];
-      r.prev = corner_half[i == 0 ? k - 1 : i - 1];
-      r.face = static_cast<std::uint32_t>(f);
+      r.next = half[i + 1 == k ? 0 : i + 1];
+      r.prev = half[i == 0 ? k - 1 : i - 1];
+      r.face = f;
       if (anchor[v] == npos || anchor[v] < h) anchor[v] = h;  // as build's: the last one in
     }
+    return true;
+  };
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::uint32_t o = offsets[f], e = offsets[f + 1];
+    if (e < o + 3 || e > nh) return give_up();
+    const auto ff = static_cast<std::uint32_t>(f);
+    bool ok;
+    if (e - o == 4) {
+      ok = link.template operator()<4>(ff, o, 4);
+    } else if (e - o == 3) {
+      ok = link.template operator()<3>(ff, o, 3);
+    } else {
+      if (corner_half.size() < e - o) corner_half.resize(e - o);
+      ok = link.template operator()<0>(ff, o, e - o);
+    }
+    if (!ok) return give_up();
   }
   // A boundary, an edge of three faces or two faces disagreeing in orientation: not closed.
   if (unmatched != 0) return give_up();

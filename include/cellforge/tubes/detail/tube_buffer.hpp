@@ -50,10 +50,28 @@ struct basic_buffer {
 
   void add_face(std::span<const std::uint32_t> vs, tube_face_source s) {
     const auto k = static_cast<std::uint32_t>(vs.size());
+    // The corner at c between u = p[c - 1] - p[c] and w = p[c + 1] - p[c]: each edge vector is
+    // formed and squared once (u is minus the edge before, exactly, so the values are the same).
+    constexpr std::uint32_t small = 8;
+    glm::dvec3 edge[small];
+    double length2[small];
+    const bool reuse = k <= small;
+    if (reuse)
+      for (std::uint32_t c = 0; c < k; ++c) {
+        edge[c] = points[vs[c + 1 == k ? 0 : c + 1]] - points[vs[c]];
+        length2[c] = glm::dot(edge[c], edge[c]);
+      }
     for (std::uint32_t c = 0; c < k; ++c) {
-      const glm::dvec3& p = points[vs[c]];
-      const glm::dvec3 u = points[vs[c == 0 ? k - 1 : c - 1]] - p, w = points[vs[c + 1 == k ? 0 : c + 1]] - p;
-      const double uw = glm::dot(u, w), uu = glm::dot(u, u), ww = glm::dot(w, w);
+      double uw, uu, ww;
+      if (reuse) {
+        const std::uint32_t b = c == 0 ? k - 1 : c - 1;
+        uw = -glm::dot(edge[b], edge[c]), uu = length2[b], ww = length2[c];
+      } else {
+        const glm::dvec3& p = points[vs[c]];
+        const glm::dvec3 u = points[vs[c == 0 ? k - 1 : c - 1]] - p,
+                         w = points[vs[c + 1 == k ? 0 : c + 1]] - p;
+        uw = glm::dot(u, w), uu = glm::dot(u, u), ww = glm::dot(w, w);
+      }
       // A cosine certainly inside (cos_lo, cos_hi) changes neither: most corners skip the
       // root and the division (the margin covers their rounding).
       const double inside = std::min(cos_hi, -cos_lo);
