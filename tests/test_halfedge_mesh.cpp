@@ -3,15 +3,19 @@
 #include "test_support.hpp"
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <random>
 #include <ranges>
 #include <set>
+#include <span>
 #include <type_traits>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/edge_table.hpp"
+#include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 #include "cellforge/halfedge/orientation.hpp"
@@ -530,6 +534,48 @@ TEST_CASE("edge_table: a bulk assign finds exactly what one insert per entry fin
   CHECK(false_hits == 0);
   bulk.assign({});
   CHECK(bulk.empty());
+}
+
+TEST_CASE("edge_table: try_insert keeps the first value, as a set's insert does, against std::map") {
+  std::mt19937_64 rng(41);
+  cellforge::detail::edge_table table;
+  std::map<std::uint64_t, std::uint32_t> reference;
+  std::size_t disagreements = 0;
+  for (std::uint32_t i = 0; i < 30000; ++i) {
+    const auto k = cellforge::detail::edge_table::key(static_cast<std::uint32_t>(rng() % 150),
+                                                      static_cast<std::uint32_t>(rng() % 150));
+    disagreements += table.try_insert(k, i) != reference.emplace(k, i).second;
+  }
+  CHECK(disagreements == 0);
+  CHECK(table.size() == reference.size());
+  std::size_t wrong = 0;
+  for (const auto& [k, v] : reference) wrong += table.find(k) != v;
+  CHECK(wrong == 0);
+  table.insert(reference.begin()->first, 7);  // insert still overwrites
+  CHECK(table.find(reference.begin()->first) == 7);
+  CHECK(table.size() == reference.size());
+}
+
+TEST_CASE("span_of: the elements of a vector or an array, const or not, in place") {
+  using cellforge::detail::span_of;
+  std::vector<int> v{1, 2, 3};
+  const std::vector<int>& cv = v;
+  std::array<double, 2> a{0.5, 1.5};
+  const std::array<double, 2>& ca = a;
+  static_assert(std::is_same_v<decltype(span_of(v)), std::span<int>>);
+  static_assert(std::is_same_v<decltype(span_of(cv)), std::span<const int>>);
+  static_assert(std::is_same_v<decltype(span_of(a)), std::span<double>>);
+  static_assert(std::is_same_v<decltype(span_of(ca)), std::span<const double>>);
+  CHECK(span_of(cv).data() == v.data());
+  CHECK(span_of(cv).size() == 3);
+  CHECK(span_of(ca).data() == a.data());
+  CHECK(span_of(ca).size() == 2);
+  span_of(v)[1] = 20;
+  span_of(a)[0] = -1;
+  CHECK(v == std::vector<int>{1, 20, 3});
+  CHECK(a[0] == -1);
+  std::vector<int> empty;
+  CHECK(span_of(empty).empty());
 }
 
 TEST_CASE("derived_key_table: bulk assign, inserts and erases find exactly the keys stored") {

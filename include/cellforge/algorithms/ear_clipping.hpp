@@ -402,7 +402,7 @@ template <class = void>
 void restore_repeats(std::span<const std::uint8_t> kept, std::vector<index_triangle>& tris,
                      ear_clip_report& report) {
   const auto n = static_cast<std::uint32_t>(kept.size());
-  auto key = [](std::uint32_t a, std::uint32_t b) { return (static_cast<std::uint64_t>(a) << 32) | b; };
+  const auto key = edge_table::key;
   edge_table owner;  // directed edge -> triangle
   owner.reserve(3 * tris.size());
   for (std::uint32_t t = 0; t < tris.size(); ++t)

@@ -72,28 +72,14 @@ class basic_edge_table {
   }
 
   /// Inserts or overwrites k -> v. O(1) expected, amortised.
-  void insert(std::uint64_t k, std::uint32_t v) {
-    if (2 * (size_ + 1) > slots_.size()) rehash(slots_.empty() ? 16 : slots_.size() * 2);
-    const std::size_t mask = slots_.size() - 1;
-    for (std::size_t i = slot_of(k);; i = (i + 1) & mask) {
-      if (slots_[i].key == k) {
-        slots_[i].value = v;
-        return;
-      }
-      if (slots_[i].key == empty_key) {
-        slots_[i] = {k, v};
-        ++size_;
-        return;
-      }
-    }
-  }
+  void insert(std::uint64_t k, std::uint32_t v) { slots_[claim(k, v)].value = v; }
 
   /// Inserts k -> v unless k is present; returns whether it inserted (a set's insert). O(1)
   /// expected, amortised.
   bool try_insert(std::uint64_t k, std::uint32_t v) {
-    if (find(k) != not_found) return false;
-    insert(k, v);
-    return true;
+    const std::size_t before = size_;
+    claim(k, v);
+    return size_ != before;
   }
 
   /// Removes k; returns whether it was present. O(1) expected (backward-shift deletion,
@@ -147,6 +133,20 @@ class basic_edge_table {
   }
 
  private:
+  /// The slot holding k, which gets k -> v first if k was absent (one probe sequence). O(1)
+  /// expected, amortised.
+  std::size_t claim(std::uint64_t k, std::uint32_t v) {
+    if (2 * (size_ + 1) > slots_.size()) rehash(slots_.empty() ? 16 : slots_.size() * 2);
+    const std::size_t mask = slots_.size() - 1;
+    for (std::size_t i = slot_of(k);; i = (i + 1) & mask) {
+      if (slots_[i].key == k) return i;
+      if (slots_[i].key == empty_key) {
+        slots_[i] = {k, v};
+        ++size_;
+        return i;
+      }
+    }
+  }
   std::size_t slot_of(std::uint64_t k) const noexcept {
     // Fibonacci hashing spreads the structured (tail, head) keys over the table.
     const std::uint64_t h = (k ^ (k >> 29)) * 0x9E3779B97F4A7C15ull;
@@ -247,14 +247,6 @@ class basic_derived_key_table {
         return;
       }
     }
-  }
-
-  /// Inserts k -> v unless k is present; returns whether it inserted (a set's insert). O(1)
-  /// expected, amortised.
-  bool try_insert(std::uint64_t k, std::uint32_t v) {
-    if (find(k) != not_found) return false;
-    insert(k, v);
-    return true;
   }
 
   /// Removes k; returns whether it was present. O(1) expected (backward-shift deletion, so

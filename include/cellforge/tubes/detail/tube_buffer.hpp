@@ -50,28 +50,15 @@ struct basic_buffer {
 
   void add_face(std::span<const std::uint32_t> vs, tube_face_source s) {
     const auto k = static_cast<std::uint32_t>(vs.size());
-    // The corner at c between u = p[c - 1] - p[c] and w = p[c + 1] - p[c]: each edge vector is
-    // formed and squared once (u is minus the edge before, exactly, so the values are the same).
-    constexpr std::uint32_t small = 8;
-    glm::dvec3 edge[small];
-    double length2[small];
-    const bool reuse = k <= small;
-    if (reuse)
-      for (std::uint32_t c = 0; c < k; ++c) {
-        edge[c] = points[vs[c + 1 == k ? 0 : c + 1]] - points[vs[c]];
-        length2[c] = glm::dot(edge[c], edge[c]);
-      }
+    // The corner at c lies between u = p[c - 1] - p[c], minus the edge before it (exactly),
+    // and w = p[c + 1] - p[c], the edge after it: each edge vector is formed and squared once.
+    glm::dvec3 before = points[vs[0]] - points[vs[k - 1]];
+    double before2 = glm::dot(before, before);
     for (std::uint32_t c = 0; c < k; ++c) {
-      double uw, uu, ww;
-      if (reuse) {
-        const std::uint32_t b = c == 0 ? k - 1 : c - 1;
-        uw = -glm::dot(edge[b], edge[c]), uu = length2[b], ww = length2[c];
-      } else {
-        const glm::dvec3& p = points[vs[c]];
-        const glm::dvec3 u = points[vs[c == 0 ? k - 1 : c - 1]] - p,
-                         w = points[vs[c + 1 == k ? 0 : c + 1]] - p;
-        uw = glm::dot(u, w), uu = glm::dot(u, u), ww = glm::dot(w, w);
-      }
+      const glm::dvec3 after = points[vs[c + 1 == k ? 0 : c + 1]] - points[vs[c]];
+      const double after2 = glm::dot(after, after);
+      const double uw = -glm::dot(before, after), uu = before2, ww = after2;
+      before = after, before2 = after2;
       // A cosine certainly inside (cos_lo, cos_hi) changes neither: most corners skip the
       // root and the division (the margin covers their rounding).
       const double inside = std::min(cos_hi, -cos_lo);
