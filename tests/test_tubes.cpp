@@ -143,7 +143,8 @@ TEST_CASE("tube construct: junctions, paths, inserted nodes, rings") {
 // same triangles on points in general position on a sphere; on cocircular rings (many valid
 // triangulations) a valid hull: every point a vertex, 2m - 4 triangles, each with every
 // point exactly on its inner side or its plane, every edge used once each way.
-TEST_CASE("sphere_hull: same faces as the general hull on sphere points, valid on cocircular rings") {
+TEST_CASE(
+    "sphere_hull: same faces as the general hull on sphere points, valid on cocircular rings, merged rings") {
   namespace dt = detail::tubes;
   std::uint64_t state = 0x9E3779B97F4A7C15ull;
   const auto uniform = [&] {
@@ -217,6 +218,69 @@ TEST_CASE("sphere_hull: same faces as the general hull on sphere points, valid o
   }
   CHECK(general_position == 200);
   CHECK(rings_checked >= 150);
+  // Whole rings merged (ring_size given): every triangle that spans two rings or more has every
+  // point on its inner side or plane, each ring's cap is sides - 2 triangles of its own points,
+  // every edge is used once each way; rings listed clockwise are taken as well.
+  int merged = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const std::size_t k = 2 + trial % 6, sides = 3 + trial % 7;
+    std::vector<glm::dvec3> pts;
+    std::vector<glm::dvec3> directions;
+    for (std::size_t i = 0; i < k; ++i) {
+      glm::dvec3 d = random_direction();
+      for (int attempt = 0; attempt < 100; ++attempt) {  // caps of half-angle 0.3 stay apart
+        bool apart = true;
+        for (const glm::dvec3& e : directions) apart = apart && glm::dot(d, e) < std::cos(0.7);
+        if (apart) break;
+        d = random_direction();
+      }
+      directions.push_back(d);
+      const glm::dvec3 u = dt::any_perpendicular(d), v = glm::cross(d, u);
+      const double c = std::cos(0.3), r = std::sin(0.3);
+      const bool clockwise = (trial + i) % 3 == 0;
+      for (std::size_t j = 0; j < sides; ++j) {
+        const double a =
+            (clockwise ? -2 : 2) * 3.141592653589793 * static_cast<double>(j) / static_cast<double>(sides);
+        pts.push_back(c * d + r * (std::cos(a) * u + std::sin(a) * v));
+      }
+    }
+    bool apart = true;
+    for (std::size_t i = 0; i < k; ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        apart = apart && glm::dot(directions[i], directions[j]) < std::cos(0.7);
+    if (!apart) continue;
+    REQUIRE(dt::sphere_hull(pts, scratch, ours, static_cast<std::uint32_t>(sides)));
+    ++merged;
+    CHECK(ours.size() == 2 * pts.size() - 4);
+    std::vector<std::size_t> cap(k, 0);
+    std::vector<std::array<std::uint32_t, 2>> half;
+    for (const tri& t : ours) {
+      const std::size_t ring = t[0] / sides;
+      if (t[1] / sides == ring && t[2] / sides == ring) {
+        ++cap[ring];
+      } else {
+        for (std::size_t q = 0; q < pts.size(); ++q)
+          CHECK(detail::orient3d_exact(pts[t[0]], pts[t[1]], pts[t[2]], pts[q]) <= 0);
+      }
+      for (int e = 0; e < 3; ++e) half.push_back({t[e], t[(e + 1) % 3]});
+    }
+    for (const std::size_t c : cap) CHECK(c == sides - 2);
+    std::sort(half.begin(), half.end());
+    CHECK(std::adjacent_find(half.begin(), half.end()) == half.end());
+    for (const auto& [a, b] : half)
+      CHECK(std::binary_search(half.begin(), half.end(), std::array<std::uint32_t, 2>{b, a}));
+  }
+  CHECK(merged >= 250);
+  {  // Two rings whose caps overlap: not a hull with both caps, so no answer.
+    std::vector<glm::dvec3> pts;
+    for (const glm::dvec3& d : {glm::dvec3(0, 0, 1), glm::normalize(glm::dvec3(0.3, 0, 1))}) {
+      const glm::dvec3 u = dt::any_perpendicular(d), v = glm::cross(d, u);
+      for (int j = 0; j < 8; ++j)
+        pts.push_back(std::cos(0.4) * d +
+                      std::sin(0.4) * (std::cos(j * 0.785398) * u + std::sin(j * 0.785398) * v));
+    }
+    CHECK(!dt::sphere_hull(pts, scratch, ours, 8));
+  }
   // Degenerate input: too few points, all on one circle (flat), a repeated point.
   std::vector<glm::dvec3> flat;
   for (int j = 0; j < 8; ++j) flat.push_back({std::cos(j * 0.7), std::sin(j * 0.7), 0});

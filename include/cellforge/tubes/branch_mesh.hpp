@@ -61,7 +61,6 @@ void place_rings(std::span<junction_ring> rings, double centre_radius, double se
 struct junction_scratch {
   std::vector<glm::dvec3> on_sphere;
   std::vector<double> cosines, sines;
-  std::vector<std::uint32_t> rank;  ///< per ring position, when sphere_hull inserts it (ring_order)
   sphere_hull_scratch hull;
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<std::uint32_t> cap_triangles;
@@ -84,17 +83,12 @@ void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junct
   std::vector<glm::dvec3>& on_sphere = scratch.on_sphere;
   on_sphere.resize(m + extra.size());
   std::vector<double>&cosines = scratch.cosines, &sines = scratch.sines;
-  std::vector<std::uint32_t>& rank = scratch.rank;
   if (cosines.size() != sides) {
     cosines.resize(sides), sines.resize(sides);
     for (std::uint32_t j = 0; j < sides; ++j) {
       const double a = 2.0 * std::numbers::pi * j / sides;
       cosines[j] = std::cos(a), sines[j] = std::sin(a);
     }
-    std::vector<std::uint32_t> positions, gap_start;
-    ring_order(sides, positions, gap_start);
-    rank.resize(sides);
-    for (std::uint32_t g = 0; g < sides; ++g) rank[positions[g]] = g;
   }
   first_vertex.clear();
   scratch.ring_of_point.resize(m);
@@ -104,16 +98,13 @@ void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junct
     const glm::dvec3 axis = r.distance * r.direction, v = glm::cross(r.direction, r.first);
     for (std::uint32_t j = 0; j < sides; ++j) {
       const glm::dvec3 spoke = cosines[j] * r.first + sines[j] * v;
-      // The hull sees each direction off its ring's circle by a few parts in 10^9: a ring's
-      // points are cocircular and symmetric junctions (lattices) have more cocircular sets,
-      // which would each cost the hull an exact evaluation. The offsets only choose among
-      // triangulations of such sets, every one of which is valid for the true directions.
-      // Each point sits lower on the sphere than the points of its ring that the hull inserts
-      // before it, so that it rarely sees (and redoes) their cap: 10% of the hull's work; the
-      // smaller (i, j) term and the per-ring step keep symmetric rings' sets apart.
-      const double jitter =
-          1 + 1e-9 * ((8.0 * rank[j] + static_cast<double>((7 * i + 3 * j) % 11) / 11) / sides +
-                      0.5 * static_cast<double>((5 * i) % 13) - 7);
+      // The hull sees each direction off its ring's circle by a few parts in 10^9: symmetric
+      // junctions (lattices) have cocircular sets of points from different rings, which would
+      // each cost the hull an exact evaluation. The offsets only choose among triangulations of
+      // such sets, every one of which is valid for the true directions; the (i, j) term and the
+      // per-ring step keep symmetric rings' sets apart.
+      const double jitter = 1 + 1e-9 * (static_cast<double>((7 * i + 3 * j) % 11) / (11.0 * sides) +
+                                        0.5 * static_cast<double>((5 * i) % 13) - 7);
       on_sphere[i * sides + j] = glm::normalize(axis + (r.radius * jitter) * spoke);
       // Back along its ray to the ring's own place ("pulling the sphere in").
       out.add_point(centre + axis + r.radius * spoke);

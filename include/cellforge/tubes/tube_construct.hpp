@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "cellforge/core/detail/large_array.hpp"
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/tubes/skeleton.hpp"
@@ -149,6 +150,13 @@ tube_construct make_tube_construct(std::size_t num_nodes,
   // Each path is walked into one buffer and copied out at its size: one allocation per array
   // instead of the growth steps of each (half of this function's time on a random tree).
   tube_path p;
+  {  // Room for every open path (each has two ends, at junctions or free ends): the array of
+     // paths then grows at most for rings, instead of copying itself into fresh pages.
+    std::size_t ends = 0;
+    for (std::uint32_t v = 0; v < num_nodes; ++v)
+      ends += is_junction(v) ? inc.degree(v) : inc.degree(v) == 1 ? 1 : 0;
+    detail::reserve_large(tc.paths, ends / 2);
+  }
   const auto start = [&]() -> tube_path& {
     p.nodes.clear(), p.edges.clear(), p.along.clear();
     p.closed = false;

@@ -1,15 +1,19 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The convex hull of a few dozen points on one sphere (a tube junction's projected rings):
-// incremental insertion over a flat triangle array with neighbour links, exact orient3d signs
-// (filtered), no set-up beyond scratch buffers the caller keeps. Given the ring size, the
-// points go in coarse to fine (one point of every ring, then each ring's gaps halved in turn),
-// so that each new point only cuts the few faces near it; each finds a face it sees among the
-// faces around an inserted neighbour on its ring (else scanning the newest faces first), grows
-// the visible region over the links and cones it.
+// a flat triangle array with neighbour links, exact orient3d signs (filtered), no set-up
+// beyond scratch buffers the caller keeps. Given the ring size, whole rings go in at once:
+// the first ring as a two-sided disc, then each next ring merged by finding the faces it
+// sees (a circle bound rejects most faces in one evaluation), walking their horizon and
+// wrapping a band of triangles between the horizon and the ring, one orient test per band
+// triangle, the ring's cap closed by a fan. A junction's hull thus never triangulates a cap
+// point by point (the caps are nearly planar sets that cost the point insertion most of its
+// work and are dropped anyway). Other points go in one at a time: each finds a face it sees
+// (newest first), grows the visible region over the links and cones it.
 // It gives up (returns false) rather than guess: fewer than four points, a degenerate start,
-// or a point that sees no face or ends up not on the hull; the caller then uses the general
-// hull (algorithms/convex_hull.hpp), which reports such input properly.
+// a point or ring that sees no face, a ring that sees another's cap, or a result that is not
+// locally convex at every edge outside the caps; the caller then uses the general hull
+// (algorithms/convex_hull.hpp), which reports such input properly.
 
 #include <array>
 #include <cstdint>
@@ -32,9 +36,11 @@ struct sphere_hull_scratch {
     std::array<std::uint32_t, 3> n{};  // n[i]: the face across edge v[i] -> v[i + 1]
     std::uint32_t mark = 0;            // insertion stamp: tested in this round
     bool visible = false, alive = false;
+    std::uint16_t cap = 0;  // ring r's cap (merged rings): r + 1; 0 otherwise
   };
   std::vector<tri> faces;
-  std::vector<std::uint32_t> stack, visible, by_start, by_end, order, near, incident, positions, gap_start;
+  std::vector<std::uint32_t> stack, visible, used_faces, by_start, by_end, order, near, incident, positions,
+      gap_start;
   std::vector<std::array<std::uint32_t, 2>> horizon;  // (visible face, edge)
   std::vector<std::uint8_t> used;
 };
@@ -79,9 +85,11 @@ void ring_order(std::uint32_t sides, std::vector<std::uint32_t>& positions,
 
 /// The hull triangles of `pts` (outward, counter-clockwise) into `out`, as input indices;
 /// true when every point is a vertex of the hull. `ring_size` > 0: the first points are rings
-/// of that many consecutive points each, in order around their circle (any points after the
-/// last whole ring are inserted last, in input order). O(m²) worst case, about O(m) for a
-/// junction's rings; m ≤ 65,535.
+/// of that many consecutive points each, in order around their circle, each ring a convex
+/// polygon whose plane has every other point strictly on one side (a junction's cross-
+/// sections: any points after the last whole ring are inserted last, in input order). Each
+/// ring's cap then comes out as a fan from its first point. O(m²) worst case, about O(m) for
+/// a junction's rings; m ≤ 65,535.
 template <class = void>
 bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
                  std::vector<std::array<std::uint32_t, 3>>& out, std::uint32_t ring_size = 0) {
@@ -90,21 +98,25 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
   out.clear();
   const std::size_t m = pts.size();
   if (m < 4 || m > 65535) return false;
-  // Insertion order, and for each point a ring neighbour inserted before it (none: scan).
+  const std::size_t rings = ring_size > 1 ? m / ring_size : 0;
+  // Two rings or more of at least three points: merged ring by ring (see the file comment).
+  const bool merge = ring_size >= 3 && rings >= 2;
+  // Insertion order of the points inserted one at a time, and for each a ring neighbour
+  // inserted before it (none: scan).
   std::vector<std::uint32_t>&order = s.order, &near = s.near;
   order.resize(m);
   near.assign(m, none);
-  const std::size_t rings = ring_size > 1 ? m / ring_size : 0;
-  if (rings > 0 && s.positions.size() != ring_size) ring_order(ring_size, s.positions, s.gap_start);
+  if (!merge && rings > 0 && s.positions.size() != ring_size) ring_order(ring_size, s.positions, s.gap_start);
   {
     std::size_t k = 0;
-    for (std::size_t g = 0; g < (rings > 0 ? ring_size : 0); ++g)
+    for (std::size_t g = 0; g < (rings > 0 && !merge ? ring_size : 0); ++g)
       for (std::size_t r = 0; r < rings; ++r) {
         const auto base = static_cast<std::uint32_t>(r * ring_size);
         order[k++] = base + s.positions[g];
         if (g > 0) near[base + s.positions[g]] = base + s.gap_start[g];
       }
-    for (std::size_t i = rings * ring_size; i < m; ++i) order[k++] = static_cast<std::uint32_t>(i);
+    for (std::size_t i = merge ? 0 : rings * ring_size; i < m; ++i)
+      order[k++] = static_cast<std::uint32_t>(i);
   }
   const auto orient = [&](const tri& f, const glm::dvec3& q) {
     return sphere_hull_orient(f.plane, pts[f.v[0]], pts[f.v[1]], pts[f.v[2]], q);
@@ -117,7 +129,7 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
   };
   auto& faces = s.faces;
   std::size_t nf = 0;
-  const auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  const auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint16_t cap = 0) {
     if (nf == faces.size()) faces.resize(2 * nf + 16);
     tri& t = faces[nf];
     // The plane is built in place: a copy through the stack stalls on store forwarding.
@@ -126,13 +138,203 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
     t.mark = 0;
     t.visible = false;
     t.alive = true;
+    t.cap = cap;
     return static_cast<std::uint32_t>(nf++);
   };
-  // Start: the first three points in order and the first point off their plane (the last
-  // point first: far from them, so the first tetrahedron is not flat).
-  const std::uint32_t p0 = order[0], p1 = order[1], p2 = order[2];
-  std::size_t d_at = 0;
-  {
+  std::vector<std::uint32_t>& incident = s.incident;  // per inserted point: a live face on it
+  incident.resize(m);
+  s.by_start.assign(m, 0);
+  s.by_end.assign(m, 0);
+  std::size_t step = 3;  // the first point of `order` inserted one at a time
+  std::size_t d_at = 0;  // the start's fourth point in `order` (point insertion only)
+  std::uint32_t stamp = 0;
+  if (merge) {
+    // Ring r's point j (0 <= j < ring_size), counter-clockwise seen from outside.
+    const std::uint32_t n = ring_size;
+    bool reversed = false;
+    std::uint32_t base = 0;
+    const auto rv = [&](std::uint32_t j) { return base + (reversed && j != 0 ? n - j : j); };
+    // +1: q lies on the outer side of ring r's plane as listed (the ring runs clockwise seen
+    // from outside); -1: the inner side; 0: on the plane (degenerate, given up).
+    const auto side = [&](std::uint32_t r, const glm::dvec3& q) {
+      const glm::dvec3 &a = pts[r * n], &b = pts[r * n + n / 3], &c = pts[r * n + (2 * n) / 3];
+      return sphere_hull_orient(prepare_orient3d(a, b, c), a, b, c, q);
+    };
+    // The first ring: a two-sided disc, the fan from its point 0 on top (faces 0 .. n - 3,
+    // u_k = (r0, r_k+1, r_k+2)) and reversed below (faces n - 2 .. 2n - 5).
+    {
+      const int o = side(0, pts[n]);  // ring 1's first point lies inside
+      if (o == 0) return false;
+      reversed = o > 0;
+      const std::uint32_t fan = n - 2;
+      for (std::uint32_t k = 0; k < fan; ++k) add(rv(0), rv(k + 1), rv(k + 2), 1);
+      for (std::uint32_t k = 0; k < fan; ++k) add(rv(0), rv(k + 2), rv(k + 1), 0);
+      for (std::uint32_t k = 0; k < fan; ++k) {
+        tri &up = faces[k], &down = faces[fan + k];
+        up.n = {k == 0 ? fan : k - 1, fan + k, k + 1 == fan ? 2 * fan - 1 : k + 1};
+        down.n = {k + 1 == fan ? fan - 1 : fan + k + 1, k, k == 0 ? 0 : fan + k - 1};
+      }
+    }
+    std::vector<std::uint32_t>& cycle = s.stack;        // the horizon, as indices into s.horizon
+    std::vector<std::uint32_t>& ring_face = s.visible;  // per ring edge j -> j + 1: its band face
+    if (ring_face.size() < n) ring_face.resize(n);
+    for (std::uint32_t r = 1; r < rings; ++r) {
+      base = r * n;
+      reversed = false;
+      {
+        const int o = side(r, pts[faces[0].v[0]]);  // a point of ring 0 lies inside
+        if (o == 0) return false;
+        reversed = o > 0;
+      }
+      // A circle about the ring bounds every ring point's height over a face's plane: most
+      // faces that the ring cannot see are rejected in one evaluation instead of n.
+      glm::dvec3 centre(0.0);
+      for (std::uint32_t j = 0; j < n; ++j) centre += pts[base + j];
+      centre /= static_cast<double>(n);
+      const glm::dvec3 normal =
+          glm::normalize(glm::cross(pts[base + n / 3] - pts[base], pts[base + (2 * n) / 3] - pts[base]));
+      double spread = 0, thickness = 0;  // the largest in-plane and off-plane distances from the centre
+      for (std::uint32_t j = 0; j < n; ++j) {
+        const glm::dvec3 w = pts[base + j] - centre;
+        const double z = glm::dot(w, normal);
+        thickness = std::max(thickness, std::fabs(z));
+        spread = std::max(spread, std::sqrt(std::max(0.0, glm::dot(w, w) - z * z)));
+      }
+      ++stamp;
+      const auto ring_sees = [&](tri& t) {
+        t.mark = stamp;
+        t.visible = false;
+        const glm::dvec3& nrm = t.plane.minor;
+        const double along = glm::dot(nrm, normal), nn = glm::dot(nrm, nrm);
+        const double bound = glm::dot(centre - t.plane.a, nrm) +
+                             spread * std::sqrt(std::max(0.0, nn - along * along)) +
+                             thickness * std::fabs(along);
+        // The margin covers the rounding of the bound and of the plane's normal (a few ulps of
+        // the products the permanent sums), for points a few units from the origin.
+        if (bound < -1e-10 * (t.plane.perm.x + t.plane.perm.y + t.plane.perm.z)) return false;
+        for (std::uint32_t j = 0; j < n; ++j)
+          if (orient(t, pts[base + j]) > 0) return t.visible = true;
+        return false;
+      };
+      // A face the ring sees: newest first (the caps of earlier rings are rejected at once).
+      std::uint32_t seen = none;
+      for (std::size_t f = nf; seen == none && f-- > 0;)
+        if (faces[f].alive && ring_sees(faces[f])) seen = static_cast<std::uint32_t>(f);
+      if (seen == none) return false;
+      // The visible region and its horizon; a cap seen means two rings overlap.
+      std::size_t stacked = 0, visible = 0, horizon = 0;
+      std::vector<std::uint32_t>& stack = s.near;  // free while rings merge (no point uses it)
+      push(stack, stacked, seen);
+      while (stacked > 0) {
+        const std::uint32_t f = stack[--stacked];
+        if (faces[f].cap != 0) return false;
+        push(s.used_faces, visible, f);
+        for (std::uint32_t i = 0; i < 3; ++i) {
+          const std::uint32_t g = faces[f].n[i];
+          if (faces[g].mark != stamp && ring_sees(faces[g])) {
+            push(stack, stacked, g);
+            continue;
+          }
+          if (!faces[g].visible) push(s.horizon, horizon, std::array<std::uint32_t, 2>{f, i});
+        }
+      }
+      // The horizon as one cycle h0 -> h1 -> ... (each edge a -> b of a visible face).
+      for (std::size_t h = 0; h < horizon; ++h) s.by_start[faces[s.horizon[h][0]].v[s.horizon[h][1]]] = none;
+      for (std::size_t h = 0; h < horizon; ++h) {
+        std::uint32_t& at = s.by_start[faces[s.horizon[h][0]].v[s.horizon[h][1]]];
+        if (at != none) return false;  // the region touches itself at a vertex
+        at = static_cast<std::uint32_t>(h);
+      }
+      if (cycle.size() < horizon + 1) cycle.resize(horizon + 1);
+      const auto head_of = [&](std::uint32_t h) {
+        const auto [f, i] = s.horizon[h];
+        return faces[f].v[i == 2 ? 0 : i + 1];
+      };
+      const auto tail_of = [&](std::uint32_t h) { return faces[s.horizon[h][0]].v[s.horizon[h][1]]; };
+      {
+        std::uint32_t h = 0;
+        for (std::size_t k = 0; k < horizon; ++k) {
+          cycle[k] = h;
+          h = s.by_start[head_of(h)];
+          if (h == none || (h == 0) != (k + 1 == horizon)) return false;  // not one simple cycle
+        }
+        cycle[horizon] = 0;
+      }
+      const auto hv = [&](std::size_t k) { return tail_of(cycle[k]); };  // h_k, h_H = h_0
+      // The band's first triangle, on horizon edge h0 -> h1: the ring point with every other
+      // ring point on its inner side (all lie inside the face beyond that edge, so the pencil
+      // of planes about the edge orders them).
+      std::uint32_t c = 0;
+      {
+        orient3d_plane plane = prepare_orient3d(pts[hv(0)], pts[hv(1)], pts[rv(0)]);
+        for (std::uint32_t j = 1; j < n; ++j)
+          if (sphere_hull_orient(plane, pts[hv(0)], pts[hv(1)], pts[rv(c)], pts[rv(j)]) > 0) {
+            c = j;
+            plane = prepare_orient3d(pts[hv(0)], pts[hv(1)], pts[rv(c)]);
+          }
+      }
+      // The band: from the edge r_j -> h_i, either (h_i, h_i+1, r_j) along the horizon or
+      // (r_j, h_i, r_j+1) along the ring, whichever has the other candidate inside. Its faces
+      // are linked to the last one as they come (edges 1 / 2 of a horizon triangle and 0 / 1
+      // of a ring triangle are the band's), to the outside over the horizon, to the cap below.
+      const std::size_t first_new = nf;
+      std::uint32_t j = c;
+      std::size_t i = 0, along_ring = 0;
+      std::uint32_t last = none, last_edge = 0, first_edge = 0;
+      while (i < horizon || along_ring < n) {
+        bool ring_side = i == horizon;
+        if (!ring_side && along_ring < n && !(i == 0 && along_ring == 0)) {
+          const glm::dvec3 &a = pts[hv(i)], &b = pts[hv(i + 1)], &p = pts[rv(j)];
+          ring_side =
+              sphere_hull_orient(prepare_orient3d(a, b, p), a, b, p, pts[rv(j + 1 == n ? 0 : j + 1)]) > 0;
+        }
+        std::uint32_t t, in_edge, out_edge;
+        if (ring_side) {
+          const std::uint32_t j1 = j + 1 == n ? 0 : j + 1;
+          t = add(rv(j), hv(i), rv(j1));
+          ring_face[j] = t;
+          in_edge = 0, out_edge = 1;
+          j = j1, ++along_ring;
+        } else {
+          t = add(hv(i), hv(i + 1), rv(j));
+          const auto [f, e] = s.horizon[cycle[i]];
+          const std::uint32_t g = faces[f].n[e], b = hv(i + 1);
+          faces[t].n[0] = g;
+          for (std::uint32_t k = 0; k < 3; ++k)
+            if (faces[g].n[k] == f && faces[g].v[k] == b) faces[g].n[k] = t;
+          in_edge = 2, out_edge = 1;
+          ++i;
+        }
+        if (last == none) {
+          first_edge = in_edge;
+        } else {
+          faces[last].n[last_edge] = t;
+          faces[t].n[in_edge] = last;
+        }
+        last = t, last_edge = out_edge;
+      }
+      if (j != c) return false;
+      faces[last].n[last_edge] = static_cast<std::uint32_t>(first_new);
+      faces[first_new].n[first_edge] = last;
+      // The cap: the fan u_k = (r0, r_k+1, r_k+2), its rim linked to the band's ring faces.
+      const auto fan0 = static_cast<std::uint32_t>(nf), fan = n - 2;
+      for (std::uint32_t k = 0; k < fan; ++k)
+        add(rv(0), rv(k + 1), rv(k + 2), static_cast<std::uint16_t>(r + 1));
+      for (std::uint32_t k = 0; k < fan; ++k) {
+        const std::uint32_t u = fan0 + k;
+        faces[u].n = {k == 0 ? ring_face[0] : u - 1, ring_face[k + 1],
+                      k + 1 == fan ? ring_face[n - 1] : u + 1};
+      }
+      for (std::uint32_t k = 0; k < n; ++k)
+        faces[ring_face[k]].n[2] = k == 0 ? fan0 : fan0 + std::min(k - 1, fan - 1);
+      for (std::size_t k = 0; k < visible; ++k) faces[s.used_faces[k]].alive = false;
+    }
+    near.assign(m, none);
+    step = rings * n;
+  } else {
+    // Start: the first three points in order and the first point off their plane (the last
+    // point first: far from them, so the first tetrahedron is not flat).
+    const std::uint32_t p0 = order[0], p1 = order[1], p2 = order[2];
     tri probe;
     probe.plane = prepare_orient3d(pts[p0], pts[p1], pts[p2]);
     probe.v = {p0, p1, p2};
@@ -144,14 +346,7 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
         if (off(k)) d_at = k;
     }
     if (d_at == 0) return false;
-  }
-  std::vector<std::uint32_t>& incident = s.incident;  // per inserted point: a live face on it
-  incident.resize(m);
-  {
     const std::uint32_t d = order[d_at];
-    tri probe;
-    probe.plane = prepare_orient3d(pts[p0], pts[p1], pts[p2]);
-    probe.v = {p0, p1, p2};
     std::uint32_t a = p0, b = p1, c = p2;
     if (orient(probe, pts[d]) > 0) std::swap(b, c);  // now orient(a, b, c, d) < 0
     // One call site besides the cone's: add is then inlined into both (-57 M instructions, 100k tree).
@@ -166,13 +361,11 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
               faces[f].n[i] = g;
       }
   }
-  s.by_start.assign(m, 0);
-  s.by_end.assign(m, 0);
-  for (std::size_t step = 3; step < m; ++step) {
-    if (step == d_at) continue;
+  for (; step < m; ++step) {
+    if (step == d_at && !merge) continue;
     const std::uint32_t p = order[step];
     const glm::dvec3& q = pts[p];
-    const std::uint32_t stamp = p + 1;
+    stamp = static_cast<std::uint32_t>(m) + p + 1;  // above the rings' stamps
     const auto judge = [&](tri& t) {
       t.mark = stamp;
       t.visible = orient(t, q) > 0;
@@ -203,6 +396,7 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
     push(s.stack, stacked, seen);
     while (stacked > 0) {
       const std::uint32_t f = s.stack[--stacked];
+      if (faces[f].cap != 0 && merge) return false;  // a merged ring's cap is not to be cut
       push(s.visible, visible, f);
       for (std::uint32_t i = 0; i < 3; ++i) {
         const std::uint32_t g = faces[f].n[i];
@@ -238,6 +432,22 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
     }
     for (std::size_t k = 0; k < visible; ++k) faces[s.visible[k]].alive = false;
   }
+  // Merged rings were placed by local choices: the result is their hull only if it is locally
+  // convex at every edge outside the caps (a closed, locally convex surface is convex).
+  if (merge)
+    for (std::uint32_t f = 0; f < nf; ++f) {
+      const tri& t = faces[f];
+      if (!t.alive) continue;
+      for (std::uint32_t i = 0; i < 3; ++i) {
+        const std::uint32_t g = t.n[i];
+        if (g < f || (t.cap != 0 && t.cap == faces[g].cap)) continue;
+        const tri& u = faces[g];
+        const std::uint32_t across = u.v[0] != t.v[i] && u.v[0] != t.v[i == 2 ? 0 : i + 1]   ? u.v[0]
+                                     : u.v[1] != t.v[i] && u.v[1] != t.v[i == 2 ? 0 : i + 1] ? u.v[1]
+                                                                                             : u.v[2];
+        if (!u.alive || orient(t, pts[across]) > 0) return false;
+      }
+    }
   s.used.assign(m, 0);
   std::size_t vertices = 0;
   for (std::size_t t = 0; t < nf; ++t) {
