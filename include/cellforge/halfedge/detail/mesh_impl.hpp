@@ -50,6 +50,17 @@ template <class = void>
                                             ", " + face_of(b) + " and " + face_of(c) +
                                             "; a half-edge mesh allows at most two faces per edge");
 }
+// The error for face f (its vertices `face`, nv vertices in all) that uses a vertex out of
+// range or repeats one. Out of line so that build's counting loop stays small.
+template <class = void>
+[[noreturn]] void throw_bad_face(std::size_t f, std::span<const std::uint32_t> face, std::size_t nv) {
+  for (std::uint32_t v : face)
+    if (v >= nv)
+      throw error(error_category::invalid_input, "build: face " + std::to_string(f) + " uses vertex " +
+                                                     std::to_string(v) + ", but there are only " +
+                                                     std::to_string(nv) + " vertices");
+  throw error(error_category::invalid_input, "build: face " + std::to_string(f) + " repeats a vertex");
+}
 }  // namespace detail
 
 template <class Unused>
@@ -347,7 +358,19 @@ build_report basic_halfedge_mesh<Unused>::build_faces(std::size_t nv, std::span<
   std::vector<std::uint32_t> start;
   detail::reserve_large(start, nv + 2);
   start.resize(nv + 2, 0);
-  for (std::size_t f = 0; f < nf; ++f) {
+  if constexpr (Triangles) {
+    // The face's vertices are loaded once (the counts' stores may alias them) and checked
+    // in one branch.
+    for (std::size_t f = 0; f < nf; ++f) {
+      const std::uint32_t a = fv[3 * f], b = fv[3 * f + 1], c = fv[3 * f + 2];
+      if ((std::max({a, b, c}) >= nv) | (a == b) | (b == c) | (a == c)) [[unlikely]]
+        detail::throw_bad_face(f, fv.subspan(3 * f, 3), nv);
+      ++start[std::min(a, b) + 2];
+      ++start[std::min(b, c) + 2];
+      ++start[std::min(c, a) + 2];
+    }
+  }
+  for (std::size_t f = 0; !Triangles && f < nf; ++f) {
     const std::uint32_t o = first(f), e = last(f);
     if (e < o || e > nh)
       throw error(error_category::invalid_input,
@@ -356,15 +379,8 @@ build_report basic_halfedge_mesh<Unused>::build_faces(std::size_t nv, std::span<
       throw error(error_category::invalid_input,
                   "build: face " + std::to_string(f) + " has fewer than 3 vertices");
     const std::span<const std::uint32_t> face = fv.subspan(o, e - o);
-    for (std::uint32_t v : face)
-      if (v >= nv)
-        throw error(error_category::invalid_input, "build: face " + std::to_string(f) + " uses vertex " +
-                                                       std::to_string(v) + ", but there are only " +
-                                                       std::to_string(nv) + " vertices");
-    const bool distinct = face.size() == 3 ? face[0] != face[1] && face[1] != face[2] && face[0] != face[2]
-                                           : detail::all_distinct(face);
-    if (!distinct)
-      throw error(error_category::invalid_input, "build: face " + std::to_string(f) + " repeats a vertex");
+    const bool in_range = std::all_of(face.begin(), face.end(), [nv](std::uint32_t v) { return v < nv; });
+    if (!in_range || !detail::all_distinct(face)) detail::throw_bad_face(f, face, nv);
     for (std::uint32_t c = o; c < e; ++c) ++start[std::min(fv[c], fv[c + 1 == e ? o : c + 1]) + 2];
   }
   for (std::size_t i = 2; i < start.size(); ++i) start[i] += start[i - 1];
@@ -374,12 +390,20 @@ build_report basic_halfedge_mesh<Unused>::build_faces(std::size_t nv, std::span<
   // reads one contiguous run per vertex and sees seams without reading the faces again.
   constexpr std::uint64_t down = std::uint64_t{1} << 31, corner_bits = down - 1;  // corners < 2^31
   detail::uninitialized_array<std::uint64_t> items(nh);  // every slot is written below
-  for (std::size_t f = 0; f < nf; ++f) {
-    const std::uint32_t o = first(f), e = last(f);
-    for (std::uint32_t c = o; c < e; ++c) {
-      const std::uint32_t a = fv[c], b = fv[c + 1 == e ? o : c + 1];
-      items[start[std::min(a, b) + 1]++] = std::uint64_t{std::max(a, b)} << 32 | (a > b ? down : 0) | c;
+  const auto put = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    items[start[std::min(a, b) + 1]++] = std::uint64_t{std::max(a, b)} << 32 | (a > b ? down : 0) | c;
+  };
+  if constexpr (Triangles) {  // the vertices loaded once, as in pass 1
+    for (std::size_t f = 0; f < nf; ++f) {
+      const std::uint32_t c0 = n32(3 * f), a = fv[c0], b = fv[c0 + 1], c = fv[c0 + 2];
+      put(a, b, c0);
+      put(b, c, c0 + 1);
+      put(c, a, c0 + 2);
     }
+  }
+  for (std::size_t f = 0; !Triangles && f < nf; ++f) {
+    const std::uint32_t o = first(f), e = last(f);
+    for (std::uint32_t c = o; c < e; ++c) put(fv[c], fv[c + 1 == e ? o : c + 1], c);
   }
 
   // Pass 3: match the corners of each edge within its bucket; a third one is an error. Each
@@ -431,8 +455,8 @@ build_report basic_halfedge_mesh<Unused>::build_faces(std::size_t nv, std::span<
   fprops_.resize(nf);
 
   // Pass 4, faces in order: number the edges in order of first use (so half-edges of nearby
-  // faces sit close in memory) and write the face's records. partner[c] becomes c's
-  // half-edge once c is numbered: a corner whose partner comes later opens a new edge, one
+  // faces sit close in memory) and write the face's records. A corner whose partner comes
+  // later opens a new edge and leaves its half-edge in partner[c] for that partner; one
   // whose partner came earlier takes the twin of the partner's half-edge. The same pass
   // counts what link_fans' first pass would (corners, anchors, boundary), so the records
   // are not read again.
@@ -442,35 +466,54 @@ build_report basic_halfedge_mesh<Unused>::build_faces(std::size_t nv, std::span<
   known.corners.resize(nv, 0);
   flipped_edges_ = flipped;
   std::uint32_t next_edge = 0;
-  for (std::size_t f = 0; f < nf; ++f) {
-    const std::uint32_t o = first(f), e = last(f);
-    for (std::uint32_t c = o; c < e; ++c) {
-      const std::uint32_t p = partner[c];
-      if (p != npos && p < c) {
-        partner[c] = partner[p] ^ 1u;
-        continue;
-      }
-      partner[c] = 2 * next_edge++;
-      if (p == npos) {  // boundary side: head at the face half-edge's tail
-        he_[partner[c] ^ 1u].head = fv[c];
-        ++known.boundary;
-        known.unlinked.push_back(
-            detail::derived_key_table::entry(table_key(fv[c], fv[c + 1 == e ? o : c + 1]), partner[c]));
-      }
+  // The last face half-edge into each vertex, as link_fans picks: a maximum in which npos
+  // (no corner yet) counts as the smallest, without a branch.
+  const auto raise_anchor = [this](std::uint32_t v, std::uint32_t h) {
+    std::uint32_t& anchor = vertex_anchor_[v];
+    anchor = std::max(anchor + 1, h + 1) - 1;
+  };
+  // The half-edge of corner c (whose edge ends at `head`) with partner p: the twin of the
+  // partner's if the partner came first (npos never does), else a new edge's.
+  const auto number = [&](std::uint32_t c, std::uint32_t p, std::uint32_t head) {
+    if (p < c) return partner[p] ^ 1u;
+    const std::uint32_t h = 2 * next_edge++;
+    partner[c] = h;
+    if (p == npos) [[unlikely]] {  // boundary side: head at the face half-edge's tail
+      he_[h ^ 1u].head = fv[c];
+      ++known.boundary;
+      known.unlinked.push_back(detail::derived_key_table::entry(table_key(fv[c], head), h));
     }
+    return h;
+  };
+  if constexpr (Triangles) {
+    // The face's three half-edges stay in registers and each record is stored whole (the
+    // general loop below, whose field stores may alias its partner loads, takes twice as long).
+    for (std::size_t f = 0; f < nf; ++f) {
+      const std::uint32_t c0 = n32(3 * f), a = fv[c0], b = fv[c0 + 1], c = fv[c0 + 2];
+      const std::uint32_t h0 = number(c0, partner[c0], b), h1 = number(c0 + 1, partner[c0 + 1], c),
+                          h2 = number(c0 + 2, partner[c0 + 2], a);
+      face_anchor_.push_back(h0);
+      he_[h0] = record{b, h1, h2, n32(f)};
+      he_[h1] = record{c, h2, h0, n32(f)};
+      he_[h2] = record{a, h0, h1, n32(f)};
+      ++known.corners[b];
+      ++known.corners[c];
+      ++known.corners[a];
+      raise_anchor(b, h0);
+      raise_anchor(c, h1);
+      raise_anchor(a, h2);
+    }
+  }
+  for (std::size_t f = 0; !Triangles && f < nf; ++f) {
+    const std::uint32_t o = first(f), e = last(f);
+    for (std::uint32_t c = o; c < e; ++c) partner[c] = number(c, partner[c], fv[c + 1 == e ? o : c + 1]);
     face_anchor_.push_back(partner[o]);
     for (std::uint32_t c = o; c < e; ++c) {
       const std::uint32_t cn = c + 1 == e ? o : c + 1, cp = c == o ? e - 1 : c - 1;
       const std::uint32_t h = partner[c], head = fv[cn];
-      record& r = he_[h];
-      r.head = head;
-      r.next = partner[cn];
-      r.prev = partner[cp];
-      r.face = n32(f);
+      he_[h] = record{head, partner[cn], partner[cp], n32(f)};
       ++known.corners[head];
-      std::uint32_t& anchor = vertex_anchor_[head];
-      if (anchor == npos || h > anchor)
-        anchor = h;  // the last face half-edge into the vertex, as link_fans picks
+      raise_anchor(head, h);
     }
   }
   partner.free();
