@@ -15,13 +15,16 @@
 // locally convex at every edge outside the caps; the caller then uses the general hull
 // (algorithms/convex_hull.hpp), which reports such input properly.
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <new>
 #include <span>
 #include <utility>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/predicates.hpp"
