@@ -42,8 +42,9 @@ struct sphere_hull_scratch {
     std::uint16_t cap = 0;  // ring r's cap (merged rings): r + 1; 0 otherwise
   };
   std::vector<tri> faces;
-  std::vector<std::uint32_t> stack, visible, used_faces, by_start, by_end, order, near, incident, positions,
-      gap_start;
+  std::vector<std::uint32_t> stack, visible, by_start, by_end;
+  std::vector<std::uint32_t> cycle;  // merging a ring: its horizon, as indices into `horizon`
+  std::vector<std::uint32_t> band;   // merging a ring: per ring edge j -> j + 1, its band face
   std::vector<std::array<std::uint32_t, 2>> horizon;  // (visible face, edge)
   std::vector<std::uint8_t> used;
 };
@@ -66,33 +67,14 @@ template <class = void>
   return sgn != 0 ? sgn : sphere_hull_exact(a, b, c, q);
 }
 
-/// The positions 0 .. sides - 1 around a ring, coarse to fine: 0, then the middle of each gap
-/// between positions already listed, breadth first; `gap_start[g]` is the listed position
-/// that begins the gap position g splits (its neighbour on the ring). O(sides).
-template <class = void>
-void ring_order(std::uint32_t sides, std::vector<std::uint32_t>& positions,
-                std::vector<std::uint32_t>& gap_start) {
-  positions.assign(1, 0);
-  gap_start.assign(1, 0);
-  std::vector<std::array<std::uint32_t, 2>> gaps{{0, sides}};
-  for (std::size_t g = 0; g < gaps.size(); ++g) {
-    const auto [a, b] = gaps[g];
-    if (b - a < 2) continue;
-    const std::uint32_t j = (a + b) / 2;
-    positions.push_back(j);
-    gap_start.push_back(a);
-    gaps.push_back({a, j});
-    gaps.push_back({j, b});
-  }
-}
-
 /// The hull triangles of `pts` (outward, counter-clockwise) into `out`, as input indices;
 /// true when every point is a vertex of the hull. `ring_size` > 0: the first points are rings
 /// of that many consecutive points each, in order around their circle, each ring a convex
 /// polygon whose plane has every other point strictly on one side (a junction's cross-
 /// sections: any points after the last whole ring are inserted last, in input order). Each
-/// ring's cap then comes out as a fan from its first point. O(m²) worst case, about O(m) for
-/// a junction's rings; m ≤ 65,535.
+/// ring's cap then comes out as a fan from its first point. With fewer than two whole rings
+/// of at least three points, every point goes in one at a time, in input order. O(m²) worst
+/// case, about O(m) for a junction's rings; m ≤ 65,535.
 template <class = void>
 bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
                  std::vector<std::array<std::uint32_t, 3>>& out, std::uint32_t ring_size = 0) {
@@ -104,23 +86,6 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
   const std::size_t rings = ring_size > 1 ? m / ring_size : 0;
   // Two rings or more of at least three points: merged ring by ring (see the file comment).
   const bool merge = ring_size >= 3 && rings >= 2;
-  // Insertion order of the points inserted one at a time, and for each a ring neighbour
-  // inserted before it (none: scan).
-  std::vector<std::uint32_t>&order = s.order, &near = s.near;
-  order.resize(m);
-  near.assign(m, none);
-  if (!merge && rings > 0 && s.positions.size() != ring_size) ring_order(ring_size, s.positions, s.gap_start);
-  {
-    std::size_t k = 0;
-    for (std::size_t g = 0; g < (rings > 0 && !merge ? ring_size : 0); ++g)
-      for (std::size_t r = 0; r < rings; ++r) {
-        const auto base = static_cast<std::uint32_t>(r * ring_size);
-        order[k++] = base + s.positions[g];
-        if (g > 0) near[base + s.positions[g]] = base + s.gap_start[g];
-      }
-    for (std::size_t i = merge ? 0 : rings * ring_size; i < m; ++i)
-      order[k++] = static_cast<std::uint32_t>(i);
-  }
   const auto orient = [&](const tri& f, const glm::dvec3& q) {
     return sphere_hull_orient(f.plane, pts[f.v[0]], pts[f.v[1]], pts[f.v[2]], q);
   };
@@ -144,12 +109,10 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
     t.cap = cap;
     return static_cast<std::uint32_t>(nf++);
   };
-  std::vector<std::uint32_t>& incident = s.incident;  // per inserted point: a live face on it
-  incident.resize(m);
   s.by_start.assign(m, 0);
   s.by_end.assign(m, 0);
-  std::size_t step = 3;  // the first point of `order` inserted one at a time
-  std::size_t d_at = 0;  // the start's fourth point in `order` (point insertion only)
+  std::uint32_t first_single = 3;  // the points from here on are inserted one at a time
+  std::uint32_t d = 0;             // the start's fourth point (point insertion only)
   std::uint32_t stamp = 0;
   if (merge) {
     // Ring r's point j (0 <= j < ring_size), counter-clockwise seen from outside.
@@ -178,8 +141,7 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
         down.n = {k + 1 == fan ? fan - 1 : fan + k + 1, k, k == 0 ? 0 : fan + k - 1};
       }
     }
-    std::vector<std::uint32_t>& cycle = s.stack;        // the horizon, as indices into s.horizon
-    std::vector<std::uint32_t>& ring_face = s.visible;  // per ring edge j -> j + 1: its band face
+    std::vector<std::uint32_t>&cycle = s.cycle, &ring_face = s.band;
     if (ring_face.size() < n) ring_face.resize(n);
     for (std::uint32_t r = 1; r < rings; ++r) {
       base = r * n;
@@ -226,16 +188,15 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
       if (seen == none) return false;
       // The visible region and its horizon; a cap seen means two rings overlap.
       std::size_t stacked = 0, visible = 0, horizon = 0;
-      std::vector<std::uint32_t>& stack = s.near;  // free while rings merge (no point uses it)
-      push(stack, stacked, seen);
+      push(s.stack, stacked, seen);
       while (stacked > 0) {
-        const std::uint32_t f = stack[--stacked];
+        const std::uint32_t f = s.stack[--stacked];
         if (faces[f].cap != 0) return false;
-        push(s.used_faces, visible, f);
+        push(s.visible, visible, f);
         for (std::uint32_t i = 0; i < 3; ++i) {
           const std::uint32_t g = faces[f].n[i];
           if (faces[g].mark != stamp && ring_sees(faces[g])) {
-            push(stack, stacked, g);
+            push(s.stack, stacked, g);
             continue;
           }
           if (!faces[g].visible) push(s.horizon, horizon, std::array<std::uint32_t, 2>{f, i});
@@ -330,43 +291,37 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
       }
       for (std::uint32_t k = 0; k < n; ++k)
         faces[ring_face[k]].n[2] = k == 0 ? fan0 : fan0 + std::min(k - 1, fan - 1);
-      for (std::size_t k = 0; k < visible; ++k) faces[s.used_faces[k]].alive = false;
+      for (std::size_t k = 0; k < visible; ++k) faces[s.visible[k]].alive = false;
     }
-    near.assign(m, none);
-    step = rings * n;
+    first_single = static_cast<std::uint32_t>(rings * n);
   } else {
-    // Start: the first three points in order and the first point off their plane (the last
-    // point first: far from them, so the first tetrahedron is not flat).
-    const std::uint32_t p0 = order[0], p1 = order[1], p2 = order[2];
+    // Start: points 0, 1, 2 and the first point off their plane (the last point first: far
+    // from them, so the first tetrahedron is not flat).
     tri probe;
-    probe.plane = prepare_orient3d(pts[p0], pts[p1], pts[p2]);
-    probe.v = {p0, p1, p2};
-    const auto off = [&](std::size_t k) { return orient(probe, pts[order[k]]) != 0; };
+    probe.plane = prepare_orient3d(pts[0], pts[1], pts[2]);
+    probe.v = {0, 1, 2};
+    const auto off = [&](std::size_t k) { return orient(probe, pts[k]) != 0; };
     if (off(m - 1)) {
-      d_at = m - 1;
+      d = static_cast<std::uint32_t>(m - 1);
     } else {
-      for (std::size_t k = 3; k + 1 < m && d_at == 0; ++k)
-        if (off(k)) d_at = k;
+      for (std::uint32_t k = 3; k + 1 < m && d == 0; ++k)
+        if (off(k)) d = k;
     }
-    if (d_at == 0) return false;
-    const std::uint32_t d = order[d_at];
-    std::uint32_t a = p0, b = p1, c = p2;
+    if (d == 0) return false;
+    std::uint32_t a = 0, b = 1, c = 2;
     if (orient(probe, pts[d]) > 0) std::swap(b, c);  // now orient(a, b, c, d) < 0
     // One call site besides the cone's: add is then inlined into both (-57 M instructions, 100k tree).
     const std::array<std::uint32_t, 3> start[4] = {{a, b, c}, {a, d, b}, {b, d, c}, {a, c, d}};
     for (const std::array<std::uint32_t, 3>& t : start) add(t[0], t[1], t[2]);
     for (std::uint32_t f = 0; f < 4; ++f)
-      for (std::uint32_t i = 0; i < 3; ++i) {
-        incident[faces[f].v[i]] = f;
+      for (std::uint32_t i = 0; i < 3; ++i)
         for (std::uint32_t g = 0; g < 4; ++g)
           for (std::uint32_t k = 0; k < 3; ++k)
             if (faces[g].v[k] == faces[f].v[(i + 1) % 3] && faces[g].v[(k + 1) % 3] == faces[f].v[i])
               faces[f].n[i] = g;
-      }
   }
-  for (; step < m; ++step) {
-    if (step == d_at && !merge) continue;
-    const std::uint32_t p = order[step];
+  for (std::uint32_t p = first_single; p < m; ++p) {
+    if (p == d && !merge) continue;
     const glm::dvec3& q = pts[p];
     stamp = static_cast<std::uint32_t>(m) + p + 1;  // above the rings' stamps
     const auto judge = [&](tri& t) {
@@ -374,25 +329,10 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
       t.visible = orient(t, q) > 0;
       return t.visible;
     };
-    const auto sees = [&](std::uint32_t f) { return judge(faces[f]); };
-    // A face that p sees: around its inserted ring neighbour (a few faces), else newest first.
+    // A face that p sees: newest first.
     std::uint32_t seen = none;
-    if (near[p] != none) {
-      const std::uint32_t a = near[p], f0 = incident[a];
-      std::uint32_t f = f0;
-      for (int turns = 0; turns < 64 && faces[f].alive; ++turns) {  // dead: a left the hull
-        if (sees(f)) {
-          seen = f;
-          break;
-        }
-        const tri& t = faces[f];
-        f = t.n[t.v[0] == a ? 0 : t.v[1] == a ? 1 : 2];  // the next face around a
-        if (f == f0) break;
-      }
-    }
     for (std::size_t f = nf; seen == none && f-- > 0;)
-      if (faces[f].alive && faces[f].mark != stamp && sees(static_cast<std::uint32_t>(f)))
-        seen = static_cast<std::uint32_t>(f);
+      if (faces[f].alive && judge(faces[f])) seen = static_cast<std::uint32_t>(f);
     if (seen == none) return false;  // inside or on the hull: not for this hull
     // The visible region (connected) and its horizon.
     std::size_t stacked = 0, visible = 0, horizon = 0;
@@ -422,7 +362,6 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
       for (std::uint32_t k = 0; k < 3; ++k)
         if (faces[g].n[k] == f && faces[g].v[k] == b) faces[g].n[k] = t;
       s.by_start[a] = t, s.by_end[b] = t;
-      incident[a] = t, incident[p] = t;
     }
     for (std::size_t t = first_new; t < nf; ++t) {
       tri& f = faces[t];
