@@ -348,6 +348,21 @@ TEST_CASE("tube stages one by one: frames, ring placement, junction hulls, paths
     for (std::uint32_t a = 0; a < 24; ++a)
       for (std::uint32_t b = 0; b < 24; ++b) open += uses[a * 24 + b] == 1 && uses[b * 24 + a] == 0 ? 1 : 0;
     CHECK(open == 16);  // the 8 edges of each removed cap
+    // The same shape about another centre takes the remembered hull: the same faces, moved.
+    CHECK(scratch.reused == 0);
+    dt::buffer again;
+    again.add_point(glm::dvec3(0.0));  // the vertices then start at 1
+    dt::build_junction(again, glm::dvec3(5, -2, 1), rings, 8, {tube_face_kind::junction, 4}, edges, first,
+                       scratch);
+    CHECK(scratch.reused == 1);
+    REQUIRE(again.num_faces() == out.num_faces());
+    CHECK(again.face_vertices.size() == out.face_vertices.size());
+    bool moved = true;
+    for (std::size_t k = 0; k < out.face_vertices.size(); ++k)
+      moved = moved && again.face_vertices[k] == out.face_vertices[k] + 1;
+    for (std::size_t v = 0; v < out.points.size(); ++v)
+      moved = moved && glm::length(again.points[v + 1] - out.points[v] - glm::dvec3(5, -2, 1)) < 1e-12;
+    CHECK(moved);
     // Two rings 3 degrees apart cannot both be caps of the hull: an error naming the node and edge.
     rings[1].direction = glm::normalize(glm::dvec3(1, 0.05, 0));
     rings[1].first = dt::any_perpendicular(rings[1].direction);
@@ -437,6 +452,24 @@ TEST_CASE("tube meshes are closed oriented manifolds with genus = cycle rank") {
   }
   std::printf("tube cycles: %zu skeletons, %zu misses\n", set.size(), misses);
   CHECK(misses == 0);
+}
+
+TEST_CASE("a lattice's junctions of one shape share one hull; a turned lattice's mesh is as sound") {
+  // An axis lattice has 27 junction shapes (each axis: low end, inside, high end), each
+  // meshed once; the rest take their shape's hull.
+  const auto r = make_tubes(samples::lattice(5, 4, 4));
+  CHECK(r.junctions == 80);
+  CHECK(r.reused_junction_hulls == 80 - 27);
+  CHECK(tube_mesh_problems(r).empty());
+  // Turned by an angle that no spacing is exact in: few junctions repeat bit for bit, and the
+  // mesh is the same kind of mesh.
+  S turned = samples::lattice(5, 4, 4);
+  const double c = std::cos(0.3), s = std::sin(0.3);
+  for (glm::dvec3& p : turned.points) p = {c * p.x - s * p.y + 0.3, s * p.x + c * p.y + 1.7, p.z + 2.1};
+  const auto t = make_tubes(turned);
+  CHECK(t.junctions == 80);
+  CHECK(t.mesh.num_faces() == r.mesh.num_faces());
+  CHECK(tube_mesh_problems(t).empty());
 }
 
 TEST_CASE("random trees: closed genus-0 tubes, quads within 90 ± 30 degrees") {

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -57,7 +58,18 @@ void place_rings(std::span<junction_ring> rings, double centre_radius, double se
   }
 }
 
-/// Buffers build_junction reuses from one junction to the next (none allocates once warm).
+/// A junction's hull kept with the exact points it was taken of (see junction_scratch).
+struct remembered_hull {
+  std::uint64_t key = 0;  ///< shape_key of the points; 0: empty
+  std::uint32_t sides = 0;
+  std::vector<glm::dvec3> points;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+
+/// Buffers build_junction reuses from one junction to the next (none allocates once warm),
+/// and the hulls of the last junction shapes: a regular skeleton (a lattice, a scaffold)
+/// repeats a few shapes thousands of times, and the hull is a function of its points alone,
+/// so a shape whose points are bit for bit those of a remembered one takes its triangles.
 struct junction_scratch {
   std::vector<glm::dvec3> on_sphere;
   std::vector<double> cosines, sines;
@@ -65,7 +77,19 @@ struct junction_scratch {
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<std::uint32_t> cap_triangles;
   std::vector<std::uint32_t> ring_of_point;  ///< per ring point of the hull, its ring
+  std::array<remembered_hull, 32> remembered;
+  std::uint32_t next_remembered = 0;  ///< the slot the next new shape replaces (round robin)
+  std::size_t reused = 0;             ///< junctions whose hull was a remembered one
 };
+
+/// A hash of the bits of `points` and `sides`, never 0. O(m).
+template <class = void>
+std::uint64_t shape_key(std::span<const glm::dvec3> points, std::uint32_t sides) {
+  std::uint64_t h = 0xcbf29ce484222325ull ^ sides;
+  for (const glm::dvec3& p : points)
+    for (int k = 0; k < 3; ++k) h = (h ^ std::bit_cast<std::uint64_t>(p[k])) * 0x100000001b3ull;
+  return h == 0 ? 1 : h;
+}
 
 /// Appends the junction surface of `rings` about `centre` to `out`: each ring's `sides`
 /// vertices (ring i's first vertex is `first_vertex[i]`, counter-clockwise about its
@@ -119,8 +143,17 @@ void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junct
     out.add_point(centre + extra_distance * extra[k]);
   }
   const auto where = [&] { return "node " + std::to_string(source.index); };
+  const std::uint64_t key = shape_key(detail::span_of(on_sphere), sides);
+  const remembered_hull* known = nullptr;
+  for (const remembered_hull& h : scratch.remembered)
+    if (h.key == key && h.sides == sides && h.points == on_sphere) {
+      known = &h;
+      break;
+    }
   std::vector<std::array<std::uint32_t, 3>>& triangles = scratch.triangles;
-  if (!sphere_hull(detail::span_of(on_sphere), scratch.hull, triangles, sides)) {
+  if (known != nullptr) {
+    ++scratch.reused;
+  } else if (!sphere_hull(detail::span_of(on_sphere), scratch.hull, triangles, sides)) {
     convex_hull_options o;
     o.merge_coplanar = false;
     o.method = convex_hull_method::incremental;
@@ -136,9 +169,17 @@ void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junct
       triangles.push_back(t);
     }
   }
+  if (known == nullptr) {
+    remembered_hull& slot = scratch.remembered[scratch.next_remembered];
+    scratch.next_remembered = (scratch.next_remembered + 1) % scratch.remembered.size();
+    slot.key = key, slot.sides = sides;
+    slot.points.assign(on_sphere.begin(), on_sphere.end());
+    slot.triangles.assign(triangles.begin(), triangles.end());
+    known = &slot;
+  }
   std::vector<std::uint32_t>& cap_triangles = scratch.cap_triangles;
   cap_triangles.assign(rings.size(), 0);
-  for (const std::array<std::uint32_t, 3>& t : triangles) {
+  for (const std::array<std::uint32_t, 3>& t : known->triangles) {
     std::uint32_t tri[3];
     std::size_t ring_of[3];
     for (std::size_t k = 0; k < 3; ++k) {

@@ -79,9 +79,12 @@ struct tubes_result {
   std::size_t bend_junctions = 0;  ///< of which sharp bends of degree-2 nodes
   std::size_t paths = 0, closed_paths = 0, end_caps = 0, spheres = 0;
   std::size_t virtual_sections = 0;  ///< junctions given a virtual cross-section (see tube_options)
-  std::int64_t cycle_rank = 0;       ///< E − V + C of the skeleton
-  std::int64_t genus = 0;            ///< of the mesh: Σ over shells (2 − χ) / 2
-  std::size_t shells = 0;            ///< connected components of the mesh
+  /// Junctions whose hull was that of an earlier junction of the same shape (bit for bit the
+  /// same points on its sphere: a regular lattice's junctions nearly all are).
+  std::size_t reused_junction_hulls = 0;
+  std::int64_t cycle_rank = 0;  ///< E − V + C of the skeleton
+  std::int64_t genus = 0;       ///< of the mesh: Σ over shells (2 − χ) / 2
+  std::size_t shells = 0;       ///< connected components of the mesh
   double construct_ms = 0, junctions_ms = 0, paths_ms = 0, mesh_ms = 0, subdivision_ms = 0, total_ms = 0;
   /// Quality: per skeleton edge, the smallest cross-section along it (the area of a ring of
   /// its path seen along the tube, over π r² of its node; a regular octagon is 0.90; NaN for
@@ -306,6 +309,7 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     for (std::size_t i = 0; i < real; ++i) ends[at_junction(b)[i]] = {rings[i], c, first_vertex[i]};
     ++res.junctions;
   }
+  res.reused_junction_hulls = scratch.reused;
   res.junctions_ms = t_junctions.ms();
 
   // Node paths.
