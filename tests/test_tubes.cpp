@@ -281,6 +281,26 @@ TEST_CASE(
     }
     CHECK(!dt::sphere_hull(pts, scratch, ours, 8));
   }
+  // Rings then loose points (§V.D's extra points), as many as a ring has: the loose points are
+  // inserted one by one, never merged as a ring of their own (they are in no order).
+  int with_extras = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<glm::dvec3> pts;
+    for (const glm::dvec3 d : {glm::dvec3(0, 0, 1), glm::dvec3(0, 0, -1)}) {
+      const glm::dvec3 u = dt::any_perpendicular(d), v = glm::cross(d, u);
+      for (int j = 0; j < 8; ++j)
+        pts.push_back(std::cos(0.3) * d +
+                      std::sin(0.3) * (std::cos(j * 0.785398) * u + std::sin(j * 0.785398) * v));
+    }
+    while (pts.size() < 24) {
+      const glm::dvec3 p = random_direction();
+      if (std::abs(p.z) < 0.5) pts.push_back(p);
+    }
+    REQUIRE(dt::sphere_hull(pts, scratch, ours, 8, 2));
+    CHECK(valid(pts, ours));
+    ++with_extras;
+  }
+  CHECK(with_extras == 200);
   // Degenerate input: too few points, all on one circle (flat), a repeated point.
   std::vector<glm::dvec3> flat;
   for (int j = 0; j < 8; ++j) flat.push_back({std::cos(j * 0.7), std::sin(j * 0.7), 0});

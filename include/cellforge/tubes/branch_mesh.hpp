@@ -153,7 +153,7 @@ void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junct
   std::vector<std::array<std::uint32_t, 3>>& triangles = scratch.triangles;
   if (known != nullptr) {
     ++scratch.reused;
-  } else if (!sphere_hull(detail::span_of(on_sphere), scratch.hull, triangles, sides)) {
+  } else if (!sphere_hull(detail::span_of(on_sphere), scratch.hull, triangles, sides, rings.size())) {
     convex_hull_options o;
     o.merge_coplanar = false;
     o.method = convex_hull_method::incremental;

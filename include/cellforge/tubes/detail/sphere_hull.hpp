@@ -68,22 +68,24 @@ template <class = void>
 }
 
 /// The hull triangles of `pts` (outward, counter-clockwise) into `out`, as input indices;
-/// true when every point is a vertex of the hull. `ring_size` > 0: the first points are rings
-/// of that many consecutive points each, in order around their circle, each ring a convex
-/// polygon whose plane has every other point strictly on one side (a junction's cross-
-/// sections: any points after the last whole ring are inserted last, in input order). Each
-/// ring's cap then comes out as a fan from its first point. With fewer than two whole rings
-/// of at least three points, every point goes in one at a time, in input order. O(m²) worst
-/// case, about O(m) for a junction's rings; m ≤ 65,535.
+/// true when every point is a vertex of the hull. `ring_size` > 0: the first points are
+/// `ring_count` rings (at most as many as fit) of that many consecutive points each, in order
+/// around their circle, each ring a convex polygon whose plane has every other point strictly
+/// on one side (a junction's cross-sections: the points after the last ring, such as §V.D's
+/// extra points, are inserted last, in input order). Each ring's cap then comes out as a fan
+/// from its first point. With fewer than two rings of at least three points, every point goes
+/// in one at a time, in input order. O(m²) worst case, about O(m) for a junction's rings;
+/// m ≤ 65,535.
 template <class = void>
 bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
-                 std::vector<std::array<std::uint32_t, 3>>& out, std::uint32_t ring_size = 0) {
+                 std::vector<std::array<std::uint32_t, 3>>& out, std::uint32_t ring_size = 0,
+                 std::size_t ring_count = std::size_t(-1)) {
   using tri = sphere_hull_scratch::tri;
   constexpr std::uint32_t none = 0xFFFFFFFFu;
   out.clear();
   const std::size_t m = pts.size();
   if (m < 4 || m > 65535) return false;
-  const std::size_t rings = ring_size > 1 ? m / ring_size : 0;
+  const std::size_t rings = ring_size > 1 ? std::min(ring_count, m / ring_size) : 0;
   // Two rings or more of at least three points: merged ring by ring (see the file comment).
   const bool merge = ring_size >= 3 && rings >= 2;
   const auto orient = [&](const tri& f, const glm::dvec3& q) {
