@@ -301,6 +301,36 @@ TEST_CASE(
     ++with_extras;
   }
   CHECK(with_extras == 200);
+  {  // The certificate a remembered hull passes on a near shape's points (tubes/branch_mesh.hpp).
+    std::vector<glm::dvec3> pts(30);
+    for (glm::dvec3& p : pts) p = random_direction();
+    REQUIRE(dt::sphere_hull(pts, scratch, ours));
+    std::vector<std::array<std::uint32_t, 4>> checks;
+    REQUIRE(dt::hull_edge_checks(ours, 0, 0, checks));
+    CHECK(checks.size() == 3 * pts.size() - 6);  // every edge, once
+    CHECK(dt::hull_locally_convex(pts, checks));
+    std::vector<glm::dvec3> moved = pts;
+    moved[7] *= 0.5;  // pulled in: a dent
+    CHECK(!dt::hull_locally_convex(moved, checks));
+    moved = pts;
+    moved[7] *= 1.5;  // pushed out: the hull's faces about it are others
+    CHECK(!dt::hull_locally_convex(moved, checks));
+    std::vector<tri> twice = ours;
+    twice.push_back(ours.front());  // an edge used twice the same way: not a closed surface
+    CHECK(!dt::hull_edge_checks(twice, 0, 0, checks));
+    // Two rings of 8: their caps' inner edges (5 each) are not tested.
+    std::vector<glm::dvec3> two;
+    for (const glm::dvec3 d : {glm::dvec3(0, 0, 1), glm::dvec3(0, 0, -1)}) {
+      const glm::dvec3 u = dt::any_perpendicular(d), v = glm::cross(d, u);
+      for (int j = 0; j < 8; ++j)
+        two.push_back(std::cos(0.3) * d +
+                      std::sin(0.3) * (std::cos(j * 0.785398) * u + std::sin(j * 0.785398) * v));
+    }
+    REQUIRE(dt::sphere_hull(two, scratch, ours, 8, 2));
+    REQUIRE(dt::hull_edge_checks(ours, 8, 2, checks));
+    CHECK(checks.size() == 3 * two.size() - 6 - 10);
+    CHECK(dt::hull_locally_convex(two, checks));
+  }
   // Degenerate input: too few points, all on one circle (flat), a repeated point.
   std::vector<glm::dvec3> flat;
   for (int j = 0; j < 8; ++j) flat.push_back({std::cos(j * 0.7), std::sin(j * 0.7), 0});
@@ -481,13 +511,14 @@ TEST_CASE("a lattice's junctions of one shape share one hull; a turned lattice's
   CHECK(r.junctions == 80);
   CHECK(r.reused_junction_hulls == 80 - 27);
   CHECK(tube_mesh_problems(r).empty());
-  // Turned by an angle that no spacing is exact in: few junctions repeat bit for bit, and the
-  // mesh is the same kind of mesh.
+  // Turned by an angle that no spacing is exact in: few junctions repeat bit for bit, but
+  // nearly all repeat but for rounding and take a remembered hull after its certificate.
   S turned = samples::lattice(5, 4, 4);
   const double c = std::cos(0.3), s = std::sin(0.3);
   for (glm::dvec3& p : turned.points) p = {c * p.x - s * p.y + 0.3, s * p.x + c * p.y + 1.7, p.z + 2.1};
   const auto t = make_tubes(turned);
   CHECK(t.junctions == 80);
+  CHECK(t.reused_junction_hulls >= 80 - 27 - 5);  // the same shapes but for rounding, certified
   CHECK(t.mesh.num_faces() == r.mesh.num_faces());
   CHECK(tube_mesh_problems(t).empty());
 }

@@ -58,36 +58,46 @@ void place_rings(std::span<junction_ring> rings, double centre_radius, double se
   }
 }
 
-/// A junction's hull kept with the exact points it was taken of (see junction_scratch).
+/// A junction's hull kept with the points it was taken of (see junction_scratch).
 struct remembered_hull {
-  std::uint64_t key = 0;  ///< shape_key of the points; 0: empty
+  std::uint64_t key = 0, near_key = 0;  ///< shape_key of the points, exact and rounded; 0: empty
   std::uint32_t sides = 0;
+  std::size_t rings = 0;
   std::vector<glm::dvec3> points;
   std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<std::array<std::uint32_t, 4>> edge_checks;  ///< hull_edge_checks, once a near shape asks
+  bool has_edge_checks = false;
 };
 
 /// Buffers build_junction reuses from one junction to the next (none allocates once warm),
-/// and the hulls of the last junction shapes: a regular skeleton (a lattice, a scaffold)
-/// repeats a few shapes thousands of times, and the hull is a function of its points alone,
-/// so a shape whose points are bit for bit those of a remembered one takes its triangles.
+/// and the hulls of the last junction shapes. A regular skeleton (a lattice, a scaffold)
+/// repeats a few shapes thousands of times. The hull is a function of its points, so a shape
+/// whose points are bit for bit a remembered one's takes its triangles; one whose points differ
+/// by rounding alone (a turned lattice) takes them when they pass sphere_hull's own
+/// certificate on its points: locally convex at every edge outside the caps.
 struct junction_scratch {
   std::vector<glm::dvec3> on_sphere;
   std::vector<double> cosines, sines;
   sphere_hull_scratch hull;
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<std::uint32_t> cap_triangles;
-  std::vector<std::uint32_t> ring_of_point;  ///< per ring point of the hull, its ring
-  std::array<remembered_hull, 32> remembered;
-  std::uint32_t next_remembered = 0;  ///< the slot the next new shape replaces (round robin)
-  std::size_t reused = 0;             ///< junctions whose hull was a remembered one
+  std::vector<std::uint32_t> ring_of_point;    ///< per ring point of the hull, its ring
+  std::array<remembered_hull, 32> remembered;  // an axis lattice has 27 junction shapes
+  std::uint32_t next_remembered = 0;           ///< the slot the next new shape replaces (round robin)
+  std::size_t reused = 0;                      ///< junctions whose hull was a remembered one
 };
 
-/// A hash of the bits of `points` and `sides`, never 0. O(m).
+/// A hash of `points` and `sides`, never 0: of their bits (`exact`), or of the points rounded
+/// to 2^-20 (shapes that differ by rounding alone share it, but for a point on a rounding
+/// boundary). O(m).
 template <class = void>
-std::uint64_t shape_key(std::span<const glm::dvec3> points, std::uint32_t sides) {
+std::uint64_t shape_key(std::span<const glm::dvec3> points, std::uint32_t sides, bool exact) {
   std::uint64_t h = 0xcbf29ce484222325ull ^ sides;
   for (const glm::dvec3& p : points)
-    for (int k = 0; k < 3; ++k) h = (h ^ std::bit_cast<std::uint64_t>(p[k])) * 0x100000001b3ull;
+    for (int k = 0; k < 3; ++k)
+      h = (h ^ (exact ? std::bit_cast<std::uint64_t>(p[k])
+                      : static_cast<std::uint64_t>(static_cast<std::int64_t>(p[k] * 0x1p20)))) *
+          0x100000001b3ull;
   return h == 0 ? 1 : h;
 }
 
@@ -143,13 +153,26 @@ void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junct
     out.add_point(centre + extra_distance * extra[k]);
   }
   const auto where = [&] { return "node " + std::to_string(source.index); };
-  const std::uint64_t key = shape_key(detail::span_of(on_sphere), sides);
-  const remembered_hull* known = nullptr;
-  for (const remembered_hull& h : scratch.remembered)
-    if (h.key == key && h.sides == sides && h.points == on_sphere) {
+  // A remembered shape: the same points, or the same but for rounding (then certified).
+  const std::uint64_t key = shape_key(detail::span_of(on_sphere), sides, true);
+  const std::uint64_t near_key = shape_key(detail::span_of(on_sphere), sides, false);
+  remembered_hull *known = nullptr, *near = nullptr;
+  for (remembered_hull& h : scratch.remembered) {
+    if (h.sides != sides || h.rings != rings.size() || h.points.size() != on_sphere.size()) continue;
+    if (h.key == key && h.points == on_sphere) {
       known = &h;
       break;
     }
+    if (near == nullptr && h.near_key == near_key) near = &h;
+  }
+  if (known == nullptr && near != nullptr) {
+    if (!near->has_edge_checks)
+      near->has_edge_checks =
+          hull_edge_checks(detail::span_of(near->triangles), sides, rings.size(), near->edge_checks);
+    if (near->has_edge_checks &&
+        hull_locally_convex(detail::span_of(on_sphere), detail::span_of(near->edge_checks)))
+      known = near;
+  }
   std::vector<std::array<std::uint32_t, 3>>& triangles = scratch.triangles;
   if (known != nullptr) {
     ++scratch.reused;
@@ -172,9 +195,10 @@ void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junct
   if (known == nullptr) {
     remembered_hull& slot = scratch.remembered[scratch.next_remembered];
     scratch.next_remembered = (scratch.next_remembered + 1) % scratch.remembered.size();
-    slot.key = key, slot.sides = sides;
+    slot.key = key, slot.near_key = near_key, slot.sides = sides, slot.rings = rings.size();
     slot.points.assign(on_sphere.begin(), on_sphere.end());
     slot.triangles.assign(triangles.begin(), triangles.end());
+    slot.has_edge_checks = false;
     known = &slot;
   }
   std::vector<std::uint32_t>& cap_triangles = scratch.cap_triangles;

@@ -405,4 +405,50 @@ bool sphere_hull(std::span<const glm::dvec3> pts, sphere_hull_scratch& s,
   return vertices == m;
 }
 
+/// The local-convexity tests of a closed triangulated surface: per edge outside the caps,
+/// (a, b, c, d) for its faces (a, b, c) and (b, a, d), into `checks`. The first `ring_count`
+/// runs of `ring_size` points are rings whose caps are skipped (edges inside one ring's cap),
+/// as sphere_hull's own certificate skips them.
+/// False when an edge is not used once each way. O(F log F) for F triangles.
+template <class = void>
+bool hull_edge_checks(std::span<const std::array<std::uint32_t, 3>> triangles, std::uint32_t ring_size,
+                      std::size_t ring_count, std::vector<std::array<std::uint32_t, 4>>& checks) {
+  // (smaller end, larger end, the third vertex, whether the face runs smaller -> larger)
+  std::vector<std::array<std::uint32_t, 4>> sides;
+  sides.reserve(3 * triangles.size());
+  for (const std::array<std::uint32_t, 3>& t : triangles)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
+      sides.push_back({std::min(a, b), std::max(a, b), c, a < b ? 1u : 0u});
+    }
+  std::sort(sides.begin(), sides.end());
+  checks.clear();
+  // A point in no ring is a ring of its own (numbered from the top, clear of the rings').
+  const std::size_t ring_points = ring_size == 0 ? 0 : ring_size * ring_count;
+  const auto ring = [&](std::uint32_t v) { return v < ring_points ? v / ring_size : 0xFFFFFFFFu - v; };
+  for (std::size_t k = 0; k < sides.size(); k += 2) {
+    const std::array<std::uint32_t, 4>&e = sides[k], &f = sides[k + 1];
+    if (k + 1 == sides.size() || e[0] != f[0] || e[1] != f[1] || e[3] == f[3]) return false;
+    if (k + 2 < sides.size() && sides[k + 2][0] == e[0] && sides[k + 2][1] == e[1]) return false;
+    const std::array<std::uint32_t, 4>& forward = e[3] != 0 ? e : f;  // (a, b, c), a < b
+    const std::array<std::uint32_t, 4>& back = e[3] != 0 ? f : e;     // (b, a, d)
+    const std::uint32_t a = forward[0], b = forward[1], c = forward[2], d = back[2];
+    if (ring(a) == ring(b) && ring(b) == ring(c) && ring(c) == ring(d)) continue;  // inside a cap
+    checks.push_back({a, b, c, d});
+  }
+  return true;
+}
+
+/// Whether the surface whose edge tests are `checks` (hull_edge_checks) is locally convex at
+/// every one of them on `pts`, exactly. O(E).
+template <class = void>
+bool hull_locally_convex(std::span<const glm::dvec3> pts,
+                         std::span<const std::array<std::uint32_t, 4>> checks) {
+  for (const std::array<std::uint32_t, 4>& e : checks) {
+    const glm::dvec3 &a = pts[e[0]], &b = pts[e[1]], &c = pts[e[2]];
+    if (sphere_hull_orient(prepare_orient3d(a, b, c), a, b, c, pts[e[3]]) > 0) return false;
+  }
+  return true;
+}
+
 }  // namespace cellforge::detail::tubes
