@@ -283,8 +283,7 @@ TEST_CASE(
   }
   // Rings then loose points (§V.D's extra points), as many as a ring has: the loose points are
   // inserted one by one, never merged as a ring of their own (they are in no order).
-  int with_extras = 0;
-  for (int trial = 0; trial < 200; ++trial) {
+  const auto polar_rings = [] {  // rings of 8 about the two poles, 0.3 rad from them
     std::vector<glm::dvec3> pts;
     for (const glm::dvec3 d : {glm::dvec3(0, 0, 1), glm::dvec3(0, 0, -1)}) {
       const glm::dvec3 u = dt::any_perpendicular(d), v = glm::cross(d, u);
@@ -292,6 +291,11 @@ TEST_CASE(
         pts.push_back(std::cos(0.3) * d +
                       std::sin(0.3) * (std::cos(j * 0.785398) * u + std::sin(j * 0.785398) * v));
     }
+    return pts;
+  };
+  int with_extras = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<glm::dvec3> pts = polar_rings();
     while (pts.size() < 24) {
       const glm::dvec3 p = random_direction();
       if (std::abs(p.z) < 0.5) pts.push_back(p);
@@ -319,13 +323,7 @@ TEST_CASE(
     twice.push_back(ours.front());  // an edge used twice the same way: not a closed surface
     CHECK(!dt::hull_edge_checks(twice, 0, 0, checks));
     // Two rings of 8: their caps' inner edges (5 each) are not tested.
-    std::vector<glm::dvec3> two;
-    for (const glm::dvec3 d : {glm::dvec3(0, 0, 1), glm::dvec3(0, 0, -1)}) {
-      const glm::dvec3 u = dt::any_perpendicular(d), v = glm::cross(d, u);
-      for (int j = 0; j < 8; ++j)
-        two.push_back(std::cos(0.3) * d +
-                      std::sin(0.3) * (std::cos(j * 0.785398) * u + std::sin(j * 0.785398) * v));
-    }
+    const std::vector<glm::dvec3> two = polar_rings();
     REQUIRE(dt::sphere_hull(two, scratch, ours, 8, 2));
     REQUIRE(dt::hull_edge_checks(ours, 8, 2, checks));
     CHECK(checks.size() == 3 * two.size() - 6 - 10);

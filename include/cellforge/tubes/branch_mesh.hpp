@@ -92,12 +92,14 @@ struct junction_scratch {
 /// boundary). O(m).
 template <class = void>
 std::uint64_t shape_key(std::span<const glm::dvec3> points, std::uint32_t sides, bool exact) {
+  // Rounded: the points are unit vectors, so the cast is defined (the guard keeps it so).
+  const auto bits = [exact](double x) -> std::uint64_t {
+    if (exact) return std::bit_cast<std::uint64_t>(x);
+    return std::fabs(x) < 0x1p40 ? static_cast<std::uint64_t>(static_cast<std::int64_t>(x * 0x1p20)) : 0;
+  };
   std::uint64_t h = 0xcbf29ce484222325ull ^ sides;
   for (const glm::dvec3& p : points)
-    for (int k = 0; k < 3; ++k)
-      h = (h ^ (exact ? std::bit_cast<std::uint64_t>(p[k])
-                      : static_cast<std::uint64_t>(static_cast<std::int64_t>(p[k] * 0x1p20)))) *
-          0x100000001b3ull;
+    for (int k = 0; k < 3; ++k) h = (h ^ bits(p[k])) * 0x100000001b3ull;
   return h == 0 ? 1 : h;
 }
 

@@ -79,8 +79,9 @@ struct tubes_result {
   std::size_t bend_junctions = 0;  ///< of which sharp bends of degree-2 nodes
   std::size_t paths = 0, closed_paths = 0, end_caps = 0, spheres = 0;
   std::size_t virtual_sections = 0;  ///< junctions given a virtual cross-section (see tube_options)
-  /// Junctions whose hull was that of an earlier junction of the same shape (bit for bit the
-  /// same points on its sphere: a regular lattice's junctions nearly all are).
+  /// Junctions whose hull was that of an earlier junction of the same shape: the same points
+  /// on its sphere, bit for bit or but for rounding and certified (docs/tubes.md, "Junction
+  /// shapes seen before"); a regular lattice's junctions nearly all are.
   std::size_t reused_junction_hulls = 0;
   std::int64_t cycle_rank = 0;  ///< E − V + C of the skeleton
   std::int64_t genus = 0;       ///< of the mesh: Σ over shells (2 − χ) / 2

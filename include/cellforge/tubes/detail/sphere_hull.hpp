@@ -423,12 +423,13 @@ bool hull_edge_checks(std::span<const std::array<std::uint32_t, 3>> triangles, s
     }
   std::sort(sides.begin(), sides.end());
   checks.clear();
+  if (sides.size() % 2 != 0) return false;  // an odd number of corners cannot pair up
   // A point in no ring is a ring of its own (numbered from the top, clear of the rings').
   const std::size_t ring_points = ring_size == 0 ? 0 : ring_size * ring_count;
   const auto ring = [&](std::uint32_t v) { return v < ring_points ? v / ring_size : 0xFFFFFFFFu - v; };
   for (std::size_t k = 0; k < sides.size(); k += 2) {
     const std::array<std::uint32_t, 4>&e = sides[k], &f = sides[k + 1];
-    if (k + 1 == sides.size() || e[0] != f[0] || e[1] != f[1] || e[3] == f[3]) return false;
+    if (e[0] != f[0] || e[1] != f[1] || e[3] == f[3]) return false;
     if (k + 2 < sides.size() && sides[k + 2][0] == e[0] && sides[k + 2][1] == e[1]) return false;
     const std::array<std::uint32_t, 4>& forward = e[3] != 0 ? e : f;  // (a, b, c), a < b
     const std::array<std::uint32_t, 4>& back = e[3] != 0 ? f : e;     // (b, a, d)
