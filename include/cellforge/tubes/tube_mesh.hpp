@@ -243,6 +243,70 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     detail::reserve_large(out.face_offsets, n * stations + 2 * n * ends_at_junctions + 1);
     detail::reserve_large(out.face_vertices, 4 * n * stations + 6 * n * ends_at_junctions);
   }
+  // Node paths: each meshed as soon as the junctions at its ends are (below), so that its first
+  // ring's corners meet their twins at the junction while those are still in cache.
+  out.section_ratio.assign(ne, std::numeric_limits<double>::infinity());
+  std::vector<dt::station> stations;
+  dt::path_scratch path_buffers;
+  std::vector<glm::dvec3> at;  // the path's node positions, each looked up once
+  std::vector<std::uint8_t> path_done(tc.paths.size(), 0), junction_done(tc.nodes.size(), 0);
+  const auto mesh_path = [&](std::uint32_t p) {
+    path_done[p] = 1;
+    const tube_path& path = tc.paths[p];
+    const std::size_t m = path.nodes.size();
+    stations.assign(m, {});
+    at.resize(m);
+    for (std::size_t i = 0; i < m; ++i) at[i] = node_pos(path.nodes[i]);
+    for (std::size_t i = 0; i < m; ++i) {
+      dt::station& s = stations[i];
+      const std::uint32_t c = path.nodes[i];
+      const bool start_ring = i == 0 && !path.closed && is_junction(c);
+      const bool at_end_ring = i == m - 1 && !path.closed && is_junction(c);
+      if (start_ring || at_end_ring) {
+        const end_ring& e = ends[2 * p + (start_ring ? 0 : 1)];
+        s.fixed = true;
+        s.reversed = at_end_ring;
+        s.centre = e.centre + e.ring.distance * e.ring.direction;
+        s.tangent = at_end_ring ? -e.ring.direction : e.ring.direction;
+        s.radius = e.ring.radius;
+        s.first_vertex = e.first_vertex;
+        s.fixed_first = e.ring.first;
+        continue;
+      }
+      s.centre = at[i];
+      s.radius = node_radius(c);
+      const bool has_prev = i > 0 || path.closed, has_next = i + 1 < m || path.closed;
+      const glm::dvec3 prev = has_prev ? at[i == 0 ? m - 1 : i - 1] : s.centre;
+      const glm::dvec3 next = has_next ? at[i + 1 == m ? 0 : i + 1] : s.centre;
+      const glm::dvec3 din = has_prev ? glm::normalize(s.centre - prev) : glm::dvec3(0.0);
+      const glm::dvec3 dout = has_next ? glm::normalize(next - s.centre) : glm::dvec3(0.0);
+      if (!(glm::length(din + dout) > 1e-9))
+        throw error(error_category::invalid_input,
+                    skeleton_name(c) +
+                        ": the path turns back on itself there (raise bend_limit_degrees' "
+                        "junction handling: it must stay below 180)");
+      s.tangent = glm::normalize(din + dout);
+      if (has_prev && has_next) {
+        const double cos_turn = std::clamp(glm::dot(din, dout), -1.0, 1.0);
+        const glm::dvec3 side = dout - din;
+        if (glm::length(side) > 1e-12 && cos_turn < 1.0) {
+          s.bend = glm::normalize(side - glm::dot(side, s.tangent) * s.tangent);
+          s.widen = 1.0 / std::cos(0.5 * std::acos(cos_turn));  // a mitre keeps the tube's width
+        }
+      }
+    }
+    // The stations at junction rings replace the junction nodes themselves.
+    const bool cap_start = !path.closed && !is_junction(path.nodes.front());
+    const bool cap_end = !path.closed && !is_junction(path.nodes.back());
+    dt::build_path(out, detail::span_of(stations), path.closed, n, options.alignment,
+                   detail::span_of(path.edges), cap_start, tc.nodes[path.nodes.front()].skeleton_node,
+                   cap_end, tc.nodes[path.nodes.back()].skeleton_node, &path_buffers);
+    ++res.paths;
+    res.closed_paths += path.closed ? 1 : 0;
+    res.end_caps += (cap_start ? 1 : 0) + (cap_end ? 1 : 0);
+  };
+  const auto ready = [&](std::uint32_t c) { return !is_junction(c) || junction_done[c] != 0; };
+  double paths_seconds = 0;  // of the paths meshed between junctions
   std::vector<dt::junction_ring> rings;
   std::vector<std::uint32_t> ring_edges, first_vertex;
   const std::vector<glm::dvec3> extra_candidates = dt::sphere_directions(options.junction_extra_points);
@@ -309,70 +373,21 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
                        first_vertex, scratch, detail::span_of(extra), rb);
     for (std::size_t i = 0; i < real; ++i) ends[at_junction(b)[i]] = {rings[i], c, first_vertex[i]};
     ++res.junctions;
+    junction_done[b] = 1;
+    const detail::stopwatch t_these_paths;
+    for (const std::uint32_t slot : at_junction(b)) {
+      const tube_path& path = tc.paths[slot / 2];
+      if (!path_done[slot / 2] && ready(path.nodes.front()) && ready(path.nodes.back())) mesh_path(slot / 2);
+    }
+    paths_seconds += t_these_paths.seconds();
   }
   res.reused_junction_hulls = scratch.reused;
-  res.junctions_ms = t_junctions.ms();
+  res.junctions_ms = t_junctions.ms() - 1e3 * paths_seconds;
 
-  // Node paths.
+  // Paths not yet meshed: those with no junction at either end (free paths, rings).
   const detail::stopwatch t_paths;
-  out.section_ratio.assign(ne, std::numeric_limits<double>::infinity());
-  std::vector<dt::station> stations;
-  dt::path_scratch path_buffers;
-  std::vector<glm::dvec3> at;  // the path's node positions, each looked up once
-  for (std::uint32_t p = 0; p < tc.paths.size(); ++p) {
-    const tube_path& path = tc.paths[p];
-    const std::size_t m = path.nodes.size();
-    stations.assign(m, {});
-    at.resize(m);
-    for (std::size_t i = 0; i < m; ++i) at[i] = node_pos(path.nodes[i]);
-    for (std::size_t i = 0; i < m; ++i) {
-      dt::station& s = stations[i];
-      const std::uint32_t c = path.nodes[i];
-      const bool start_ring = i == 0 && !path.closed && is_junction(c);
-      const bool at_end_ring = i == m - 1 && !path.closed && is_junction(c);
-      if (start_ring || at_end_ring) {
-        const end_ring& e = ends[2 * p + (start_ring ? 0 : 1)];
-        s.fixed = true;
-        s.reversed = at_end_ring;
-        s.centre = e.centre + e.ring.distance * e.ring.direction;
-        s.tangent = at_end_ring ? -e.ring.direction : e.ring.direction;
-        s.radius = e.ring.radius;
-        s.first_vertex = e.first_vertex;
-        s.fixed_first = e.ring.first;
-        continue;
-      }
-      s.centre = at[i];
-      s.radius = node_radius(c);
-      const bool has_prev = i > 0 || path.closed, has_next = i + 1 < m || path.closed;
-      const glm::dvec3 prev = has_prev ? at[i == 0 ? m - 1 : i - 1] : s.centre;
-      const glm::dvec3 next = has_next ? at[i + 1 == m ? 0 : i + 1] : s.centre;
-      const glm::dvec3 din = has_prev ? glm::normalize(s.centre - prev) : glm::dvec3(0.0);
-      const glm::dvec3 dout = has_next ? glm::normalize(next - s.centre) : glm::dvec3(0.0);
-      if (!(glm::length(din + dout) > 1e-9))
-        throw error(error_category::invalid_input,
-                    skeleton_name(c) +
-                        ": the path turns back on itself there (raise bend_limit_degrees' "
-                        "junction handling: it must stay below 180)");
-      s.tangent = glm::normalize(din + dout);
-      if (has_prev && has_next) {
-        const double cos_turn = std::clamp(glm::dot(din, dout), -1.0, 1.0);
-        const glm::dvec3 side = dout - din;
-        if (glm::length(side) > 1e-12 && cos_turn < 1.0) {
-          s.bend = glm::normalize(side - glm::dot(side, s.tangent) * s.tangent);
-          s.widen = 1.0 / std::cos(0.5 * std::acos(cos_turn));  // a mitre keeps the tube's width
-        }
-      }
-    }
-    // The stations at junction rings replace the junction nodes themselves.
-    const bool cap_start = !path.closed && !is_junction(path.nodes.front());
-    const bool cap_end = !path.closed && !is_junction(path.nodes.back());
-    dt::build_path(out, detail::span_of(stations), path.closed, n, options.alignment,
-                   detail::span_of(path.edges), cap_start, tc.nodes[path.nodes.front()].skeleton_node,
-                   cap_end, tc.nodes[path.nodes.back()].skeleton_node, &path_buffers);
-    ++res.paths;
-    res.closed_paths += path.closed ? 1 : 0;
-    res.end_caps += (cap_start ? 1 : 0) + (cap_end ? 1 : 0);
-  }
+  for (std::uint32_t p = 0; p < tc.paths.size(); ++p)
+    if (!path_done[p]) mesh_path(p);
   // Isolated nodes: spheres.
   // One unit sphere, hulled once, placed and scaled at every isolated node.
   const std::vector<glm::dvec3> dirs = tc.isolated.empty()
@@ -391,7 +406,7 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     }
     ++res.spheres;
   }
-  res.paths_ms = t_paths.ms();
+  res.paths_ms = t_paths.ms() + 1e3 * paths_seconds;
 
   // Corner angles of the faces as built (before any subdivision), taken by add_face.
   const double cos_lo = out.cos_lo, cos_hi = out.cos_hi;
