@@ -77,7 +77,8 @@ int main(int argc, char** argv) {
         "construct          %9.3f ms   %zu junctions (%zu sharp bends), %zu paths (%zu rings), "
         "%zu nodes inserted\n",
         r.construct_ms, r.junctions, r.bend_junctions, r.paths, r.closed_paths, r.construct.inserted_nodes);
-    std::printf("branch meshes      %9.3f ms\n", r.junctions_ms);
+    std::printf("branch meshes      %9.3f ms   %zu hulls taken from a junction of the same shape\n",
+                r.junctions_ms, r.reused_junction_hulls);
     std::printf("node paths         %9.3f ms   %zu end caps, %zu spheres\n", r.paths_ms, r.end_caps,
                 r.spheres);
     std::printf("mesh               %9.3f ms\n", r.mesh_ms);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/io/swc.hpp"
+#include "cellforge/tubes/sample_skeletons.hpp"
 #include "io_test_support.hpp"
 #include "skeleton_test_support.hpp"
 
@@ -222,6 +224,20 @@ TEST_CASE("swc: malformed files name the line and say exactly what is wrong") {
        "expected the sample id (field 1" + field_list + ", found '\\x01\\x02\\x00\\xff'"},
       {"another format's header", "ply\nformat ascii 1.0\n", 1,
        "expected the sample id (field 1" + field_list + ", found 'ply'"},
+      {"a LINK with one sample", "1 1 0 0 0 2 -1\n2 3 0 4 0 1 1\n# LINK 2\n", 3,
+       "expected the second sample of a LINK line (# LINK from to), found end of line"},
+      {"a LINK with three samples", "1 1 0 0 0 2 -1\n# LINK 1 2 3\n2 3 0 4 0 1 1\n", 2,
+       "unexpected '3' after the two samples of a LINK line (# LINK from to)"},
+      {"a LINK to a missing sample", "1 1 0 0 0 2 -1\n2 3 0 4 0 1 1\n# LINK 2 7\n", 3,
+       "the LINK's sample 7 is not in the file"},
+      {"a LINK of a sample to itself", "1 1 0 0 0 2 -1\n2 3 0 4 0 1 1\n# LINK 2 2\n", 3,
+       "the LINK 2 2 joins a sample to itself"},
+      {"a LINK that repeats a parent edge", "1 1 0 0 0 2 -1\n2 3 0 4 0 1 1\n# LINK 2 1\n", 3,
+       "the LINK 2 1 repeats an edge between the same two samples"},
+      {"a LINK that repeats a LINK", "1 1 0 0 0 2 -1\n2 3 0 4 0 1 1\n3 3 4 4 0 1 2\n# LINK 1 3\n# LINK 3 1\n",
+       5, "the LINK 3 1 repeats an edge between the same two samples"},
+      {"a LINK inside a three-point soma", "1 1 0 0 0 2 -1\n2 1 0 -2 0 2 1\n3 1 0 2 0 2 1\n# LINK 2 3\n", 4,
+       "the LINK 2 3 joins two samples read as one soma node"},
   };
   for (const auto& c : cases)
     skeleton_test::check_rejected(c, "n.swc", [](const std::string& t) { (void)parse(t); });
@@ -313,12 +329,6 @@ TEST_CASE("swc: the writer refuses what SWC cannot hold, before touching the fil
   s.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   s.radii = {1, 1, 1};
   s.edges = {{0, 2}, {1, 2}};
-  refused(
-      s,
-      "write_swc: node 2 is the end of edges 0 and 1; SWC stores a tree, each node with one parent (edges "
-      "run parent -> child)");
-  s.edges = {{0, 1}, {1, 2}, {2, 0}};
-  refused(s, "write_swc: node 0 lies on a cycle of edges or below one; SWC stores a forest");
   s.edges = {{0, 1}};
   s.radii[1] = 0;
   refused(s, "write_swc: node 1: radius 0 is not positive");
@@ -335,13 +345,54 @@ TEST_CASE("swc: the writer refuses what SWC cannot hold, before touching the fil
   r.types[0] = -1;
   CHECK_THROWS_WITH_AS(swc_text(r), "write_swc: node 0 has the negative type -1", cellforge::error);
 
+  s.edges = {{0, 1}, {1, 0}};
+  refused(s, "write_swc: edge 1 repeats edge 0 (nodes 1 and 0)");
+
   // A refused skeleton leaves an existing file as it was.
   const io_test::temp_path file("keep.swc");
   std::ofstream(file.path, std::ios::binary) << "1 1 0 0 0 1 -1\n";
-  s.edges = {{0, 2}, {1, 2}};
+  s.edges = {{0, 2}, {2, 2}};
   CHECK_THROWS_AS(io::write_swc(file.path, s), cellforge::error);
   std::ifstream in(file.path, std::ios::binary);
   CHECK(std::string(std::istreambuf_iterator<char>(in), {}) == "1 1 0 0 0 1 -1\n");
+}
+
+TEST_CASE("swc: edges beyond a forest are LINK lines, written and read back") {
+  // A node with two incoming edges, and a cycle: the first edge into a node that closes no
+  // cycle is its parent, every other edge a LINK at the end.
+  cellforge::skeleton<glm::dvec3> s;
+  s.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  s.radii = {1, 1, 1};
+  s.edges = {{0, 2}, {1, 2}};
+  CHECK(swc_text(s) == "1 0 0 0 0 1 -1\n2 0 1 0 0 1 -1\n3 0 0 1 0 1 1\n# LINK 2 3\n");
+  s.edges = {{0, 1}, {1, 2}, {2, 0}};
+  const std::string ring = swc_text(s);
+  CHECK(ring == "1 0 0 0 0 1 -1\n2 0 1 0 0 1 1\n3 0 0 1 0 1 2\n# LINK 3 1\n");
+  const auto back = parse(ring);
+  CHECK(back.skeleton.edges == std::vector<edge>{{0, 1}, {1, 2}, {2, 0}});
+  // Graphs with cycles round-trip: the same nodes and the same directed edges (tree edges
+  // first, in written order, then the LINKs).
+  for (const auto& g : {cellforge::samples::lattice(3, 3, 2), cellforge::samples::petersen(),
+                        cellforge::samples::mobius_ladder(8)}) {
+    const auto r = parse(swc_text(g));
+    CHECK(r.skeleton.points == g.points);
+    CHECK(r.skeleton.radii == g.radii);
+    std::vector<edge> a(g.edges.begin(), g.edges.end()), b = r.skeleton.edges;
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    CHECK(a == b);
+    CHECK(swc_text(r) == swc_text(g));
+  }
+  // LINK lines may come anywhere, a LINK may name a sample defined after it, and a comment that
+  // only starts with the word is prose.
+  const auto early = parse(
+      "# LINK 3 1\n# LINK to the paper: see the header\n1 1 0 0 0 1 -1\n2 3 0 5 0 1 1\n3 3 5 5 0 1 2\n");
+  CHECK(early.skeleton.edges == std::vector<edge>{{0, 1}, {1, 2}, {2, 0}});
+  // A LINK to a three-point soma's outer point joins its centre.
+  const auto soma =
+      parse("1 1 0 0 0 2 -1\n2 1 0 -2 0 2 1\n3 1 0 2 0 2 1\n4 3 10 0 0 1 1\n5 3 0 10 0 1 4\n# LINK 5 3\n");
+  CHECK(soma.collapsed_somas == 1);
+  CHECK(soma.skeleton.edges == std::vector<edge>{{0, 1}, {1, 2}, {2, 0}});
 }
 
 TEST_CASE("swc: files are read and written by path, errors naming the file") {

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // libFuzzer target for the SWC reader (io/swc.hpp). Any input must parse or throw
-// cellforge::error; whatever parses must be writable (the reader only accepts forests with
-// positive radii) and come back unchanged after a write and a re-read.
+// cellforge::error; whatever parses must be writable (the reader only accepts a forest plus
+// LINK edges, no self-loop or repeated edge, positive radii) and come back unchanged after a
+// write and a re-read.
 
 #include <cstddef>
 #include <cstdint>

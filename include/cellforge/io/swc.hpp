@@ -3,7 +3,9 @@
 /// \file
 /// SWC, the neuron-morphology format, as a skeleton graph: one sample per line,
 /// `id type x y z radius parent`, `#` comments, parent -1 for a root. The single-point and
-/// the three-point (NeuroMorpho) soma conventions are understood. See docs/formats.md ("SWC").
+/// the three-point (NeuroMorpho) soma conventions are understood. A graph with cycles (vessels
+/// that join again) keeps its extra edges as `# LINK from to` comment lines, which other SWC
+/// readers skip. See docs/formats.md ("SWC").
 
 #include <algorithm>
 #include <array>
@@ -16,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/io/detail/output_buffer.hpp"
@@ -27,7 +30,8 @@
 namespace cellforge::io {
 
 /// A skeleton read from SWC, with what SWC says about each node beyond position and radius.
-/// Edges run from a sample's parent to the sample (away from the root), in file order.
+/// Edges run from a sample's parent to the sample (away from the root), in file order, then
+/// one per `# LINK from to` line, in file order.
 template <Point3 P>
 struct swc_result {
   cellforge::skeleton<P> skeleton;  ///< nodes in file order (less the collapsed soma points)
@@ -158,6 +162,84 @@ std::size_t swc_three_point_somas(const std::vector<std::array<double, 4>>& xyzr
   return somas;
 }
 
+/// Reads a comment line that is a LINK (`# LINK from to`: an edge beyond the tree, from sample
+/// `from` to sample `to`) into `ids` / `at`; any other comment is left alone. The cursor is on
+/// the '#'. Throws at the line when it starts as a LINK (a number after the word) but is not
+/// one. O(line).
+template <class = void>
+void swc_link_line(text_cursor& c, std::vector<std::array<std::int64_t, 2>>& ids,
+                   std::vector<const char*>& at) {
+  const char* line = c.pos;
+  const char* q = c.pos + 1;
+  while (q != c.end && is_blank(*q)) ++q;
+  if (c.end - q < 5 || std::string_view(q, 4) != "LINK" || !is_blank(q[4])) return;
+  q += 4;
+  while (q != c.end && is_blank(*q)) ++q;
+  if (q == c.end || !((*q >= '0' && *q <= '9') || *q == '-' || *q == '+')) return;  // prose
+  const char* const saved = c.pos;
+  const char comment = c.comment;
+  c.comment = '\0';  // the rest of the line is the LINK's
+  c.pos = q;
+  const auto field = [](const char* which) {
+    return std::string("the ") + which + " sample of a LINK line (# LINK from to)";
+  };
+  const std::int64_t from = c.integer([&] { return field("first"); });
+  const std::int64_t to = c.integer([&] { return field("second"); });
+  c.skip_blanks();
+  if (!c.at_line_end())
+    c.fail("unexpected " + c.token() + " after the two samples of a LINK line (# LINK from to)");
+  c.comment = comment;
+  c.pos = saved;
+  ids.push_back({from, to});
+  at.push_back(line);
+}
+
+/// Appends the edges of the LINK lines (ids resolved through `by_id`, samples folded into a
+/// soma through `into`, nodes through `node`) to `edges`; throws at a LINK's line when a sample
+/// is not in the file, when it joins a node to itself, or when it repeats an edge. O((E + L) log(E + L)).
+template <class = void>
+void swc_add_links(text_cursor& c, const std::vector<std::pair<std::int64_t, std::uint32_t>>& by_id,
+                   const std::vector<std::uint32_t>& into, const std::vector<std::uint32_t>& node,
+                   const std::vector<std::array<std::int64_t, 2>>& link_ids,
+                   const std::vector<const char*>& link_lines,
+                   std::vector<std::array<std::uint32_t, 2>>& edges) {
+  if (link_ids.empty()) return;
+  const std::size_t tree_edges = edges.size();
+  for (std::size_t k = 0; k < link_ids.size(); ++k) {
+    std::array<std::uint32_t, 2> e{};
+    for (std::size_t end = 0; end < 2; ++end) {
+      const std::int64_t id = link_ids[k][end];
+      const auto it = std::lower_bound(by_id.begin(), by_id.end(), std::pair{id, std::uint32_t{0}});
+      if (it == by_id.end() || it->first != id)
+        c.fail_at(link_lines[k], "the LINK's sample " + std::to_string(id) + " is not in the file");
+      e[end] = node[into[it->second]];
+    }
+    const std::string text = std::to_string(link_ids[k][0]) + " " + std::to_string(link_ids[k][1]);
+    if (e[0] == e[1])
+      c.fail_at(link_lines[k],
+                "the LINK " + text +
+                    (link_ids[k][0] == link_ids[k][1] ? " joins a sample to itself"
+                                                      : " joins two samples read as one soma node"));
+    edges.push_back(e);
+  }
+  // A LINK may not repeat an edge (the tree's or another LINK's), either way round.
+  std::vector<std::array<std::uint32_t, 3>> keys(edges.size());
+  for (std::size_t j = 0; j < edges.size(); ++j)
+    keys[j] = {std::min(edges[j][0], edges[j][1]), std::max(edges[j][0], edges[j][1]),
+               static_cast<std::uint32_t>(j)};
+  std::sort(keys.begin(), keys.end());
+  std::size_t repeat = edges.size();  // the first LINK (in file order) that repeats an edge
+  for (std::size_t j = 1; j < keys.size(); ++j)
+    if (keys[j][0] == keys[j - 1][0] && keys[j][1] == keys[j - 1][1])
+      repeat = std::min<std::size_t>(repeat, keys[j][2]);
+  if (repeat < edges.size()) {
+    const std::size_t k = repeat - tree_edges;
+    c.fail_at(link_lines[k], "the LINK " + std::to_string(link_ids[k][0]) + " " +
+                                 std::to_string(link_ids[k][1]) +
+                                 " repeats an edge between the same two samples");
+  }
+}
+
 }  // namespace detail
 
 /// Parses SWC text held in memory; `name` is used in error messages. Throws an io error with
@@ -175,7 +257,16 @@ swc_result<P> parse_swc(std::string_view bytes, std::string_view name = "<memory
   std::vector<P> points;
   std::vector<std::array<double, 4>> xyzr;  // positions as read (in S) and radii, for the soma test
   std::vector<const char*> lines;
-  while (c.next_content()) {
+  std::vector<std::array<std::int64_t, 2>> link_ids;  // `# LINK from to` lines, and where they are
+  std::vector<const char*> link_lines;
+  for (;;) {
+    c.skip_blanks();
+    if (c.at_end()) break;
+    if (c.at_line_end()) {  // a blank or comment line; a comment may be a LINK
+      if (*c.pos == '#') detail::swc_link_line(c, link_ids, link_lines);
+      c.next_line();
+      continue;
+    }
     const char* line = c.pos;
     const std::int64_t id =
         c.integer([] { return std::string("the sample id (field 1 of 7: id type x y z radius parent)"); });
@@ -249,9 +340,10 @@ swc_result<P> parse_swc(std::string_view bytes, std::string_view name = "<memory
     out.types.push_back(types[i]);
     out.ids.push_back(ids[i]);
   }
-  s.edges.reserve(kept);
+  s.edges.reserve(kept + link_ids.size());
   for (std::size_t i = 0; i < n; ++i)
     if (into[i] == i && parent[i] != root) s.edges.push_back({node[into[parent[i]]], node[i]});
+  detail::swc_add_links(c, by_id, into, node, link_ids, link_lines, s.edges);
   return out;
 }
 
@@ -267,18 +359,20 @@ namespace detail {
 
 /// What an SWC writer writes, worked out before the first byte: the nodes parents first
 /// (the smallest index first among those ready, so a skeleton already in that order keeps
-/// it), each node's parent, and its id and type.
+/// it), each node's parent, its id and type, and the edges beyond the forest (LINK lines).
 struct swc_plan {
   std::vector<std::uint32_t> order;
   std::vector<std::uint32_t> parent;
   std::vector<std::int64_t> ids;
   std::vector<std::int32_t> types;
+  std::vector<std::array<std::uint32_t, 2>> links;
 };
 
-/// Checks that g is a forest whose edges point away from the roots (each node at most one
-/// incoming edge, no cycle) and has no defect but coincident nodes, and plans its lines.
+/// Checks that g has no defect but coincident nodes and plans its lines: in edge order, an
+/// edge a -> b makes a the parent of b when b has none yet and the edge closes no cycle;
+/// every other edge is a LINK (so a forest whose edges point away from its roots has none).
 /// `ids`/`types` empty: ids are 1, 2, ... in written order and every type is `type`.
-/// Throws invalid_input naming the node or edge otherwise. O(V log V + E).
+/// Throws invalid_input naming the node or edge otherwise. O(V log V + E α(V)).
 template <Skeleton G>
 swc_plan make_swc_plan(const G& g, std::vector<std::int64_t> ids, std::vector<std::int32_t> types,
                        std::int32_t type) {
@@ -296,18 +390,20 @@ swc_plan make_swc_plan(const G& g, std::vector<std::int64_t> ids, std::vector<st
   // Positions, radii, endpoints, self loops and duplicates as the tube mesher checks them;
   // coincident nodes are no reason to refuse a file.
   cellforge::detail::check_skeleton_writable(g, "write_swc");
-  std::vector<std::uint32_t> in_edge(nv, none);
+  cellforge::detail::union_find trees(nv);
+  std::size_t tree_edges = 0;
   for (std::size_t j = 0; j < ne; ++j) {
     const std::array<std::size_t, 2> ab = T::endpoints(g, j);
-    if (plan.parent[ab[1]] != none)
-      fail("node " + std::to_string(ab[1]) + " is the end of edges " + std::to_string(in_edge[ab[1]]) +
-           " and " + std::to_string(j) +
-           "; SWC stores a tree, each node with one parent (edges run parent -> child)");
-    plan.parent[ab[1]] = static_cast<std::uint32_t>(ab[0]);
-    in_edge[ab[1]] = static_cast<std::uint32_t>(j);
+    const auto a = static_cast<std::uint32_t>(ab[0]), b = static_cast<std::uint32_t>(ab[1]);
+    if (plan.parent[b] == none && trees.unite(a, b)) {
+      plan.parent[b] = a;
+      ++tree_edges;
+    } else {
+      plan.links.push_back({a, b});
+    }
   }
   // Parents first: children lists (CSR), then a min-heap of the nodes whose parent is written.
-  std::vector<std::uint32_t> first(nv + 1, 0), child(ne);
+  std::vector<std::uint32_t> first(nv + 1, 0), child(tree_edges);
   for (std::size_t i = 0; i < nv; ++i)
     if (plan.parent[i] != none) ++first[plan.parent[i] + 1];
   for (std::size_t i = 0; i < nv; ++i) first[i + 1] += first[i];
@@ -328,12 +424,6 @@ swc_plan make_swc_plan(const G& g, std::vector<std::int64_t> ids, std::vector<st
       ready.push_back(child[k]);
       std::push_heap(ready.begin(), ready.end(), later);
     }
-  }
-  if (plan.order.size() != nv) {
-    std::vector<std::uint8_t> written(nv, 0);
-    for (const std::uint32_t v : plan.order) written[v] = 1;
-    const auto v = static_cast<std::size_t>(std::find(written.begin(), written.end(), 0) - written.begin());
-    fail("node " + std::to_string(v) + " lies on a cycle of edges or below one; SWC stores a forest");
   }
   if (ids.empty()) {
     ids.resize(nv);
@@ -377,14 +467,23 @@ void put_swc(std::ostream& os, const G& g, const swc_plan& plan, const swc_write
                                                                            : plan.ids[plan.parent[v]]);
     out.put('\n');
   }
+  for (const std::array<std::uint32_t, 2>& l : plan.links) {
+    out.put("# LINK ");
+    out.number(plan.ids[l[0]]);
+    out.put(' ');
+    out.number(plan.ids[l[1]]);
+    out.put('\n');
+  }
   out.finish("SWC");
 }
 
 }  // namespace detail
 
-/// Writes any Skeleton whose edges form a forest pointing away from its roots as SWC: ids 1, 2,
+/// Writes any Skeleton as SWC: a spanning forest of its edges as the samples' parents (ids 1, 2,
 /// ... with parents before children, every type `options.type`, numbers in shortest round-trip
-/// form. Throws invalid_input, before writing anything, on what SWC cannot hold. O(V log V + E).
+/// form), every other edge as a `# LINK from to` line at the end (read back by parse_swc;
+/// skipped as a comment by other readers). Throws invalid_input, before writing anything, on
+/// what SWC cannot hold (a bad radius or position, a self-loop, a repeated edge). O(V log V + E α(V)).
 template <Skeleton G>
 void write_swc(std::ostream& os, const G& g, const swc_write_options& options = {}) {
   detail::put_swc(os, g, detail::make_swc_plan(g, {}, {}, options.type), options);
