@@ -196,7 +196,8 @@ void swc_link_line(text_cursor& c, std::vector<std::array<std::int64_t, 2>>& ids
 
 /// Appends the edges of the LINK lines (ids resolved through `by_id`, samples folded into a
 /// soma through `into`, nodes through `node`) to `edges`; throws at a LINK's line when a sample
-/// is not in the file, when it joins a node to itself, or when it repeats an edge. O((E + L) log(E + L)).
+/// is not in the file, when it joins a node to itself, or when it repeats an edge. O(E + L log n)
+/// expected.
 template <class = void>
 void swc_add_links(text_cursor& c, const std::vector<std::pair<std::int64_t, std::uint32_t>>& by_id,
                    const std::vector<std::uint32_t>& into, const std::vector<std::uint32_t>& node,
@@ -222,16 +223,11 @@ void swc_add_links(text_cursor& c, const std::vector<std::pair<std::int64_t, std
                                                       : " joins two samples read as one soma node"));
     edges.push_back(e);
   }
-  // A LINK may not repeat an edge (the tree's or another LINK's), either way round.
-  std::vector<std::array<std::uint32_t, 3>> keys(edges.size());
-  for (std::size_t j = 0; j < edges.size(); ++j)
-    keys[j] = {std::min(edges[j][0], edges[j][1]), std::max(edges[j][0], edges[j][1]),
-               static_cast<std::uint32_t>(j)};
-  std::sort(keys.begin(), keys.end());
-  std::size_t repeat = edges.size();  // the first LINK (in file order) that repeats an edge
-  for (std::size_t j = 1; j < keys.size(); ++j)
-    if (keys[j][0] == keys[j - 1][0] && keys[j][1] == keys[j - 1][1])
-      repeat = std::min<std::size_t>(repeat, keys[j][2]);
+  // A LINK may not repeat an edge (the tree's or another LINK's), either way round; the tree
+  // edges repeat none among themselves, so the first repeat is a LINK.
+  const std::size_t repeat = cellforge::detail::first_repeated_edge(edges.size(), [&](std::size_t j) {
+    return std::array<std::size_t, 2>{edges[j][0], edges[j][1]};
+  })[0];
   if (repeat < edges.size()) {
     const std::size_t k = repeat - tree_edges;
     c.fail_at(link_lines[k], "the LINK " + std::to_string(link_ids[k][0]) + " " +

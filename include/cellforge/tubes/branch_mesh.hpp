@@ -156,16 +156,25 @@ void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junct
   }
   const auto where = [&] { return "node " + std::to_string(source.index); };
   // A remembered shape: the same points, or the same but for rounding (then certified).
+  const auto same_kind = [&](const remembered_hull& h) {
+    return h.sides == sides && h.rings == rings.size() && h.points.size() == on_sphere.size();
+  };
   const std::uint64_t key = shape_key(detail::span_of(on_sphere), sides, true);
-  const std::uint64_t near_key = shape_key(detail::span_of(on_sphere), sides, false);
   remembered_hull *known = nullptr, *near = nullptr;
-  for (remembered_hull& h : scratch.remembered) {
-    if (h.sides != sides || h.rings != rings.size() || h.points.size() != on_sphere.size()) continue;
-    if (h.key == key && h.points == on_sphere) {
+  for (remembered_hull& h : scratch.remembered)
+    if (same_kind(h) && h.key == key && h.points == on_sphere) {
       known = &h;
       break;
     }
-    if (near == nullptr && h.near_key == near_key) near = &h;
+  // The rounded key only when no shape matched exactly (a lattice's junctions nearly all do).
+  std::uint64_t near_key = 0;
+  if (known == nullptr) {
+    near_key = shape_key(detail::span_of(on_sphere), sides, false);
+    for (remembered_hull& h : scratch.remembered)
+      if (same_kind(h) && h.near_key == near_key) {
+        near = &h;
+        break;
+      }
   }
   if (known == nullptr && near != nullptr) {
     if (!near->has_edge_checks)

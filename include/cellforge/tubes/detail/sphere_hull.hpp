@@ -414,23 +414,23 @@ template <class = void>
 bool hull_edge_checks(std::span<const std::array<std::uint32_t, 3>> triangles, std::uint32_t ring_size,
                       std::size_t ring_count, std::vector<std::array<std::uint32_t, 4>>& checks) {
   // (smaller end, larger end, the third vertex, whether the face runs smaller -> larger)
-  std::vector<std::array<std::uint32_t, 4>> sides;
-  sides.reserve(3 * triangles.size());
+  std::vector<std::array<std::uint32_t, 4>> halves;
+  halves.reserve(3 * triangles.size());
   for (const std::array<std::uint32_t, 3>& t : triangles)
     for (std::size_t k = 0; k < 3; ++k) {
       const std::uint32_t a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
-      sides.push_back({std::min(a, b), std::max(a, b), c, a < b ? 1u : 0u});
+      halves.push_back({std::min(a, b), std::max(a, b), c, a < b ? 1u : 0u});
     }
-  std::sort(sides.begin(), sides.end());
+  std::sort(halves.begin(), halves.end());
   checks.clear();
-  if (sides.size() % 2 != 0) return false;  // an odd number of corners cannot pair up
+  if (halves.size() % 2 != 0) return false;  // an odd number of corners cannot pair up
   // A point in no ring is a ring of its own (numbered from the top, clear of the rings').
   const std::size_t ring_points = ring_size == 0 ? 0 : ring_size * ring_count;
   const auto ring = [&](std::uint32_t v) { return v < ring_points ? v / ring_size : 0xFFFFFFFFu - v; };
-  for (std::size_t k = 0; k < sides.size(); k += 2) {
-    const std::array<std::uint32_t, 4>&e = sides[k], &f = sides[k + 1];
+  for (std::size_t k = 0; k < halves.size(); k += 2) {
+    const std::array<std::uint32_t, 4>&e = halves[k], &f = halves[k + 1];
     if (e[0] != f[0] || e[1] != f[1] || e[3] == f[3]) return false;
-    if (k + 2 < sides.size() && sides[k + 2][0] == e[0] && sides[k + 2][1] == e[1]) return false;
+    if (k + 2 < halves.size() && halves[k + 2][0] == e[0] && halves[k + 2][1] == e[1]) return false;
     const std::array<std::uint32_t, 4>& forward = e[3] != 0 ? e : f;  // (a, b, c), a < b
     const std::array<std::uint32_t, 4>& back = e[3] != 0 ? f : e;     // (b, a, d)
     const std::uint32_t a = forward[0], b = forward[1], c = forward[2], d = back[2];
