@@ -72,6 +72,52 @@ TEST_CASE("tube half-edge link (tubes/detail/closed_build.hpp): build's mesh, or
     halfedge_mesh out_of_range;
     CHECK_FALSE(detail::tubes::build_closed(out_of_range, 3, offsets, tetra));
   }
+  SUBCASE("the linker as faces come: components counted, or every face given back in order") {
+    // Two tetrahedra (vertices 0-3 and 4-7): two components.
+    std::vector<std::uint32_t> two = tetra;
+    for (const std::uint32_t v : tetra) two.push_back(v + 4);
+    detail::tubes::closed_linker linker;
+    for (std::size_t f = 0; f < 8; ++f) CHECK(linker.add_face(std::span(two).subspan(3 * f, 3)));
+    CHECK(linker.num_faces() == 8);
+    halfedge_mesh m;
+    CHECK(linker.finish(m, 8) == 2);
+    CHECK(validate(m).ok());
+    CHECK(m.num_faces() == 8);
+    CHECK(m.is_closed());
+    // One more vertex than the faces use: an isolated vertex is a component of its own.
+    detail::tubes::closed_linker with_isolated;
+    for (std::size_t f = 0; f < 4; ++f) with_isolated.add_face(std::span(tetra).subspan(3 * f, 3));
+    halfedge_mesh mi;
+    CHECK(with_isolated.finish(mi, 5) == 2);
+    CHECK(validate(mi).ok());
+    // A face with a repeated vertex in the middle: linking stops there, and faces() gives back
+    // all of them (those linked before, read back from their records, and those after).
+    const std::vector<std::uint32_t> faces{0, 2, 1, 0, 1, 3, 1, 1, 2, 1, 2, 3, 0, 3, 2};
+    detail::tubes::closed_linker failing;
+    bool all = true;
+    for (std::size_t f = 0; f < 5; ++f) all = failing.add_face(std::span(faces).subspan(3 * f, 3)) && all;
+    CHECK_FALSE(all);
+    CHECK(failing.num_faces() == 5);
+    halfedge_mesh untouched;
+    CHECK(failing.finish(untouched, 4) == detail::tubes::closed_linker::npos);
+    CHECK(untouched.halfedges_size() == 0);
+    std::vector<std::uint32_t> back_offsets, back;
+    failing.faces(back_offsets, back);
+    CHECK(back == faces);
+    CHECK(back_offsets == std::vector<std::uint32_t>{0, 3, 6, 9, 12, 15});
+    // An open surface: every face linked, but finish refuses, and the faces come back as given.
+    detail::tubes::closed_linker open;
+    for (std::size_t f = 0; f < 3; ++f) CHECK(open.add_face(std::span(tetra).subspan(3 * f, 3)));
+    halfedge_mesh mo;
+    CHECK(open.finish(mo, 4) == detail::tubes::closed_linker::npos);
+    open.faces(back_offsets, back);
+    CHECK(back == std::vector<std::uint32_t>(tetra.begin(), tetra.begin() + 9));
+    // Too few vertices for the faces given.
+    detail::tubes::closed_linker short_of_vertices;
+    for (std::size_t f = 0; f < 4; ++f) short_of_vertices.add_face(std::span(tetra).subspan(3 * f, 3));
+    halfedge_mesh ms;
+    CHECK(short_of_vertices.finish(ms, 3) == detail::tubes::closed_linker::npos);
+  }
   SUBCASE("two closed fans at a vertex: build's error") {
     // Two tetrahedra sharing vertex 3.
     const std::vector<std::uint32_t> o{0, 3, 6, 9, 12, 15, 18, 21, 24},

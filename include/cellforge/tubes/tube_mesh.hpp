@@ -14,6 +14,7 @@
 #include <span>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -26,6 +27,7 @@
 #include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
+#include "cellforge/core/morton.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/mesh_geometry.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"
@@ -201,11 +203,21 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     glm::dvec3 centre;
     std::uint32_t first_vertex = 0;
   };
-  // ends[2p] / ends[2p + 1]: the ring at the start / end of path p, when that end is a junction.
-  // Huge-page hinted: at 10^5 paths this is 20 MB, fresh every call.
+  // The ring at the start / end (slot 2p / 2p + 1) of path p, when that end is a junction, from
+  // when the junction is built until the path is: a slot names its ring in a pool whose freed
+  // rings are taken again (a path is meshed once both its junctions are, so few wait at once).
+  std::vector<std::uint32_t> end_of_slot(2 * tc.paths.size(), tube_node::none), free_ends;
   std::vector<end_ring> ends;
-  detail::reserve_large(ends, 2 * tc.paths.size());
-  ends.resize(2 * tc.paths.size());
+  const auto keep_end = [&](std::uint32_t slot, const end_ring& e) {
+    if (free_ends.empty()) {
+      end_of_slot[slot] = static_cast<std::uint32_t>(ends.size());
+      ends.push_back(e);
+    } else {
+      end_of_slot[slot] = free_ends.back();
+      free_ends.pop_back();
+      ends[end_of_slot[slot]] = e;
+    }
+  };
   // The path ends at each junction, in CSR form (one allocation, not one per node), in path
   // order, a path's start before its end.
   std::vector<std::uint32_t> end_start(tc.nodes.size() + 1, 0), end_slots;
@@ -240,9 +252,15 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     // Huge-page hints: these arrays are fresh every call, and 4 KB faults cost as much as filling them.
     detail::reserve_large(out.points, n * (stations + ends_at_junctions));
     detail::reserve_large(out.sources, n * stations + 2 * n * ends_at_junctions);
-    detail::reserve_large(out.face_offsets, n * stations + 2 * n * ends_at_junctions + 1);
-    detail::reserve_large(out.face_vertices, 4 * n * stations + 6 * n * ends_at_junctions);
+    out.linker.reserve(n * (stations + ends_at_junctions), 4 * n * stations + 6 * n * ends_at_junctions,
+                       n * stations + 2 * n * ends_at_junctions);
   }
+  // The faces are closed and oriented by construction: linked as they come, while their twins
+  // are near (build, which reports what is wrong, only if they are not).
+  out.linking = true;
+  if (options.subdivision_levels < 0 || options.subdivision_levels > 8)
+    throw error(error_category::invalid_input, "make_tubes: subdivision_levels must be between 0 and 8");
+  out.triangulate = options.subdivision_levels > 0;  // Loop subdivision takes triangles
   // Node paths: each meshed as soon as the junctions at its ends are (below), so that its first
   // ring's corners meet their twins at the junction while those are still in cache.
   out.section_ratio.assign(ne, std::numeric_limits<double>::infinity());
@@ -263,7 +281,9 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
       const bool start_ring = i == 0 && !path.closed && is_junction(c);
       const bool at_end_ring = i == m - 1 && !path.closed && is_junction(c);
       if (start_ring || at_end_ring) {
-        const end_ring& e = ends[2 * p + (start_ring ? 0 : 1)];
+        const std::uint32_t slot = 2 * p + (start_ring ? 0 : 1);
+        const end_ring& e = ends[end_of_slot[slot]];
+        free_ends.push_back(end_of_slot[slot]);  // read now, before the next keep_end
         s.fixed = true;
         s.reversed = at_end_ring;
         s.centre = e.centre + e.ring.distance * e.ring.direction;
@@ -312,7 +332,25 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   const std::vector<glm::dvec3> extra_candidates = dt::sphere_directions(options.junction_extra_points);
   std::vector<glm::dvec3> extra;
   dt::junction_scratch scratch;
-  for (const std::uint32_t b : tc.junctions) {
+  // Junctions in Morton order of their centres. A path is meshed once the junctions at both its
+  // ends are, and its end rings link to twins made there: in node order a lattice's neighbour
+  // along z was built a whole layer of junctions before (at 46^3, ~20 MB of output back, out
+  // of cache), along a Z-curve nearly always a few junctions before.
+  std::vector<std::uint32_t> junction_order;
+  {
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;
+    keyed.reserve(tc.junctions.size());
+    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const std::uint32_t b : tc.junctions) lo = glm::min(lo, node_pos(b)), hi = glm::max(hi, node_pos(b));
+    const glm::dvec3 span = hi - lo;
+    const glm::dvec3 extent(span.x > 0 ? span.x : 1, span.y > 0 ? span.y : 1, span.z > 0 ? span.z : 1);
+    for (const std::uint32_t b : tc.junctions)
+      keyed.emplace_back(detail::morton_code(node_pos(b), lo, extent), b);
+    std::sort(keyed.begin(), keyed.end());
+    junction_order.reserve(keyed.size());
+    for (const auto& k : keyed) junction_order.push_back(k.second);
+  }
+  for (const std::uint32_t b : junction_order) {
     const glm::dvec3 c = node_pos(b);
     const double rb = node_radius(b);
     rings.clear();
@@ -371,7 +409,7 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     dt::build_junction(out, c, detail::span_of(rings), n,
                        {tube_face_kind::junction, tc.nodes[b].skeleton_node}, detail::span_of(ring_edges),
                        first_vertex, scratch, detail::span_of(extra), rb);
-    for (std::size_t i = 0; i < real; ++i) ends[at_junction(b)[i]] = {rings[i], c, first_vertex[i]};
+    for (std::size_t i = 0; i < real; ++i) keep_end(at_junction(b)[i], {rings[i], c, first_vertex[i]});
     ++res.junctions;
     junction_done[b] = 1;
     const detail::stopwatch t_these_paths;
@@ -414,19 +452,6 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   res.max_corner_deg = std::acos(std::clamp(cos_lo, -1.0, 1.0)) * 180 / std::numbers::pi;
   // The mesh, in the skeleton's point type.
   const detail::stopwatch t_mesh;
-  if (options.subdivision_levels < 0 || options.subdivision_levels > 8)
-    throw error(error_category::invalid_input, "make_tubes: subdivision_levels must be between 0 and 8");
-  if (options.subdivision_levels > 0) {  // Loop subdivision takes triangles: fan every face
-    dt::buffer tri;
-    tri.points = std::move(out.points);
-    for (std::size_t f = 0; f < out.sources.size(); ++f)
-      for (std::uint32_t k = out.face_offsets[f] + 1; k + 1 < out.face_offsets[f + 1]; ++k) {
-        const std::uint32_t t[3] = {out.face_vertices[out.face_offsets[f]], out.face_vertices[k],
-                                    out.face_vertices[k + 1]};
-        tri.add_face(t, out.sources[f]);
-      }
-    out = std::move(tri);
-  }
   surface_mesh<P> mesh;
   const std::size_t num_points = out.points.size();
   // Positions in the buffer's own type and the sources of unsubdivided faces move into the
@@ -438,13 +463,19 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     source = mesh.template add_face_property<tube_face_source>(tube_source_property_name);
     source.vector().swap(out.sources);
   }
-  // The faces are closed and oriented by construction: linked in emission order, where
-  // the twins are near (build, which reports what is wrong, only if they are not).
-  if (!dt::build_closed(mesh, num_points, detail::span_of(out.face_offsets),
-                        detail::span_of(out.face_vertices))) {
+  std::size_t shells = out.linker.finish(mesh, num_points);
+  if (shells == dt::closed_linker::npos) {  // not closed: build says what is wrong
+    std::vector<std::uint32_t> offsets, fv;
+    out.linker.faces(offsets, fv);
     if (shift == 0) source.vector().swap(out.sources);  // build drops face properties' values
-    mesh.build(num_points, out.face_offsets, out.face_vertices);
+    mesh.build(num_points, offsets, fv);
     if (shift == 0) std::copy(out.sources.begin(), out.sources.end(), source.vector().begin());
+    // Shells by union-find over the faces' vertices (the mesh's own connectivity, measured).
+    detail::union_find sets(num_points);
+    shells = num_points;
+    for (std::size_t f = 0; f + 1 < offsets.size(); ++f)
+      for (std::uint32_t k = offsets[f] + 1; k < offsets[f + 1]; ++k)
+        shells -= sets.unite(fv[offsets[f]], fv[k]) ? 1 : 0;
   }
   if constexpr (!std::is_same_v<P, glm::dvec3>) {
     const std::span<P> pts = mesh.points();
@@ -467,22 +498,6 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
       res.min_section_ratio = std::min(res.min_section_ratio, q);
   }
   res.section_ratio = std::move(out.section_ratio);
-  // Shells by union-find over the faces' vertices (the mesh's own connectivity, measured, not
-  // assumed from the skeleton's components).
-  detail::union_find sets(num_points);
-  std::size_t shells = num_points;
-  for (std::size_t f = 0; f + 1 < out.face_offsets.size(); ++f) {
-    // The face's first root is found once (unite would find it again for every corner).
-    std::uint32_t root = sets.find(out.face_vertices[out.face_offsets[f]]);
-    for (std::uint32_t k = out.face_offsets[f] + 1; k < out.face_offsets[f + 1]; ++k) {
-      const std::uint32_t other = sets.find(out.face_vertices[k]);
-      if (other == root) continue;
-      // As unite: the smaller root survives.
-      sets.parent[std::max(root, other)] = std::min(root, other);
-      root = std::min(root, other);
-      --shells;
-    }
-  }
   res.shells = shells;
   res.genus = (2 * static_cast<std::int64_t>(shells) - euler_characteristic(mesh)) / 2;
   res.mesh = std::move(mesh);

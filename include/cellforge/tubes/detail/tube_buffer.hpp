@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The tube mesher's output under construction: double positions, polygon faces in CSR form
-// and where each face came from; and the small vector helpers its stages share.
+// The tube mesher's output under construction: double positions, polygon faces (linked into
+// half-edges as they come, or kept in CSR form) and where each face came from; and the small
+// vector helpers its stages share.
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +12,8 @@
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
+
+#include "cellforge/tubes/detail/closed_build.hpp"
 
 namespace cellforge {
 
@@ -34,6 +37,12 @@ namespace detail::tubes {
 template <class = void>
 struct basic_buffer {
   std::vector<glm::dvec3> points;
+  /// With `linking`, each face goes straight to `linker` and the face lists stay empty.
+  bool linking = false;
+  /// Faces of more than three corners go in as fans (for Loop subdivision); corner angles are
+  /// still those of the faces as given.
+  bool triangulate = false;
+  closed_linker linker;
   std::vector<std::uint32_t> face_offsets{0};
   std::vector<std::uint32_t> face_vertices;
   std::vector<tube_face_source> sources;
@@ -66,8 +75,19 @@ struct basic_buffer {
       const double cosine = uw / std::sqrt(uu * ww);
       cos_lo = std::min(cos_lo, cosine), cos_hi = std::max(cos_hi, cosine);
     }
-    face_vertices.insert(face_vertices.end(), vs.begin(), vs.end());
-    face_offsets.push_back(static_cast<std::uint32_t>(face_vertices.size()));
+    if (!triangulate || k == 3) return emit(vs, s);
+    for (std::uint32_t c = 1; c + 1 < k; ++c) {
+      const std::uint32_t tri[3] = {vs[0], vs[c], vs[c + 1]};
+      emit(tri, s);
+    }
+  }
+  void emit(std::span<const std::uint32_t> vs, tube_face_source s) {
+    if (linking) {
+      linker.add_face(vs);  // a face it cannot link is kept, and finish reports it
+    } else {
+      face_vertices.insert(face_vertices.end(), vs.begin(), vs.end());
+      face_offsets.push_back(static_cast<std::uint32_t>(face_vertices.size()));
+    }
     sources.push_back(s);
   }
   std::size_t num_faces() const noexcept { return sources.size(); }
