@@ -10,12 +10,10 @@
 #include "bench_support.hpp"
 
 #include <malloc.h>
-#include <sys/resource.h>
 
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <functional>
 #include <iostream>
 #include <map>
@@ -177,25 +175,6 @@ std::size_t cgal(const prepared& in, cgal_mesh& m) {
 }
 #endif
 
-/// Minor page faults of the process so far (each a page the kernel mapped, zero-filled
-/// when it is new anonymous memory).
-long minor_faults() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_minflt;
-}
-
-/// Transparent-huge-page faults so far, system-wide (/proc/vmstat thp_fault_alloc; 0 where
-/// it is missing): each of our minor faults that is one maps and zeroes 2 MiB, not 4 KiB.
-long huge_faults() {
-  std::ifstream vmstat("/proc/vmstat");
-  std::string key;
-  long value = 0;
-  while (vmstat >> key >> value)
-    if (key == "thp_fault_alloc") return value;
-  return 0;
-}
-
 /// Registers one benchmark: each iteration copies the input's mesh (untimed) and times
 /// `run` on it (CPU time of this thread; see bench_support.hpp), counting its page faults.
 template <class Mesh, class Run>
@@ -214,12 +193,12 @@ void add(const std::string& name, const std::string& key, Mesh prepared::*mesh, 
       // glibc serves a large request from a free heap chunk before it considers mmap; this
       // hands those chunks' pages back (MADV_DONTNEED), so reusing them faults in zeroed pages.
       if (h == heap::cold) malloc_trim(0);
-      const long f0 = minor_faults(), h0 = huge_faults();
+      const long f0 = cb::minor_faults(), h0 = cb::huge_faults();
       const double t0 = cb::thread_cpu_ms();
       const std::size_t faces_after = run(in, *copy);
       const double ms = cb::thread_cpu_ms() - t0;
-      faults += minor_faults() - f0;
-      huge += huge_faults() - h0;
+      faults += cb::minor_faults() - f0;
+      huge += cb::huge_faults() - h0;
       state.SetIterationTime(ms * 1e-3);
       times.push_back(ms);
       if (!checked && faces_after == 0) state.SkipWithError("wrong face count after subdivision");
