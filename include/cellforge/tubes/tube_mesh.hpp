@@ -88,6 +88,9 @@ struct tubes_result {
   std::int64_t cycle_rank = 0;  ///< E − V + C of the skeleton
   std::int64_t genus = 0;       ///< of the mesh: Σ over shells (2 − χ) / 2
   std::size_t shells = 0;       ///< connected components of the mesh
+  /// Stage times. Faces are linked into half-edges as they are made, so the junction and path
+  /// stages include their faces' linking; mesh_ms is the check of every vertex's fan, the shells
+  /// and the move into the caller's point type.
   double construct_ms = 0, junctions_ms = 0, paths_ms = 0, mesh_ms = 0, subdivision_ms = 0, total_ms = 0;
   /// Quality: per skeleton edge, the smallest cross-section along it (the area of a ring of
   /// its path seen along the tube, over π r² of its node; a regular octagon is 0.90; NaN for
