@@ -125,6 +125,102 @@ std::vector<glm::dvec3> sphere_directions(std::size_t n) {
   return d;
 }
 
+/// The open paths' ends at each junction, in CSR form (one allocation, not one per node), in
+/// path order, a path's start before its end: slot 2p / 2p + 1 is the start / end of path p.
+struct junction_ends {
+  std::vector<std::uint32_t> start, slots;
+  std::span<const std::uint32_t> at(std::uint32_t v) const noexcept {
+    return {slots.data() + start[v], start[v + 1] - start[v]};
+  }
+};
+
+/// The ends of tc's open paths at junctions, grouped by junction. O(nodes + paths).
+template <class = void>
+junction_ends path_ends_at_junctions(const tube_construct& tc) {
+  junction_ends e;
+  e.start.assign(tc.nodes.size() + 1, 0);
+  const auto is_junction = [&](std::uint32_t c) { return tc.nodes[c].kind == tube_node_kind::junction; };
+  for (int pass = 0; pass < 2; ++pass) {
+    for (std::uint32_t p = 0; p < tc.paths.size(); ++p) {
+      const tube_path& path = tc.paths[p];
+      if (path.closed) continue;
+      const std::uint32_t ends_of[2] = {path.nodes.front(), path.nodes.back()};
+      for (std::uint32_t k = 0; k < 2; ++k)
+        if (is_junction(ends_of[k])) {
+          if (pass == 0)
+            ++e.start[ends_of[k] + 1];
+          else
+            e.slots[e.start[ends_of[k]]++] = 2 * p + k;
+        }
+    }
+    if (pass == 0) {
+      for (std::size_t v = 0; v < tc.nodes.size(); ++v) e.start[v + 1] += e.start[v];
+      e.slots.resize(e.start.back());
+    } else {  // filling advanced each start to the next node's: shift back
+      for (std::size_t v = tc.nodes.size(); v > 0; --v) e.start[v] = e.start[v - 1];
+      e.start[0] = 0;
+    }
+  }
+  return e;
+}
+
+/// The nodes in Morton order of their positions `at(node)` (ties by index). A path is meshed
+/// once the junctions at both its ends are, and its end rings link to twins made there: in
+/// node order a lattice's neighbour along z was built a whole layer of junctions before (at
+/// 46^3, ~20 MB of output back, out of cache), along a Z-curve nearly always a few junctions
+/// before. O(n log n).
+template <class Position>
+std::vector<std::uint32_t> morton_order(std::span<const std::uint32_t> nodes, Position&& at) {
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;
+  keyed.reserve(nodes.size());
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const std::uint32_t b : nodes) lo = glm::min(lo, at(b)), hi = glm::max(hi, at(b));
+  const glm::dvec3 span = hi - lo;
+  const glm::dvec3 extent(span.x > 0 ? span.x : 1, span.y > 0 ? span.y : 1, span.z > 0 ? span.z : 1);
+  for (const std::uint32_t b : nodes) keyed.emplace_back(detail::morton_code(at(b), lo, extent), b);
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<std::uint32_t> order;
+  order.reserve(keyed.size());
+  for (const auto& k : keyed) order.push_back(k.second);
+  return order;
+}
+
+/// Moves the buffer's points (converted to P) and linked faces into `mesh` (empty), with the
+/// face sources as the property "f:tube_source" when `sources_as_property`, and returns the
+/// mesh's connected components. Faces that are not a closed oriented surface go to build,
+/// which reports them (throws) or builds what they are. O(V + F).
+template <Point3 P>
+std::size_t take_mesh(buffer& out, surface_mesh<P>& mesh, bool sources_as_property) {
+  const std::size_t num_points = out.points.size();
+  // Positions in the buffer's own type and the sources move into the mesh instead of being
+  // copied (the mesh's arrays are then already at their size).
+  if constexpr (std::is_same_v<P, glm::dvec3>) mesh.positions().vector().swap(out.points);
+  property<face_handle, tube_face_source> source;
+  if (sources_as_property) {
+    source = mesh.template add_face_property<tube_face_source>(tube_source_property_name);
+    source.vector().swap(out.sources);
+  }
+  std::size_t shells = out.linker.finish(mesh, num_points);
+  if (shells == closed_linker::npos) {  // not closed: build says what is wrong
+    std::vector<std::uint32_t> offsets, fv;
+    out.linker.faces(offsets, fv);
+    if (sources_as_property) source.vector().swap(out.sources);  // build drops face properties' values
+    mesh.build(num_points, offsets, fv);
+    if (sources_as_property) std::copy(out.sources.begin(), out.sources.end(), source.vector().begin());
+    // Shells by union-find over the faces' vertices (the mesh's own connectivity, measured).
+    union_find sets(num_points);
+    shells = num_points;
+    for (std::size_t f = 0; f + 1 < offsets.size(); ++f)
+      for (std::uint32_t k = offsets[f] + 1; k < offsets[f + 1]; ++k)
+        shells -= sets.unite(fv[offsets[f]], fv[k]) ? 1 : 0;
+  }
+  if constexpr (!std::is_same_v<P, glm::dvec3>) {
+    const std::span<P> pts = mesh.points();
+    for (std::size_t i = 0; i < num_points; ++i) pts[i] = from_dvec3<P>(out.points[i]);
+  }
+  return shells;
+}
+
 }  // namespace detail::tubes
 
 /// Meshes the skeleton g as tubes: a closed, oriented 2-manifold per connected component
@@ -221,33 +317,8 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
       ends[end_of_slot[slot]] = e;
     }
   };
-  // The path ends at each junction, in CSR form (one allocation, not one per node), in path
-  // order, a path's start before its end.
-  std::vector<std::uint32_t> end_start(tc.nodes.size() + 1, 0), end_slots;
-  for (int pass = 0; pass < 2; ++pass) {
-    for (std::uint32_t p = 0; p < tc.paths.size(); ++p) {
-      const tube_path& path = tc.paths[p];
-      if (path.closed) continue;
-      const std::uint32_t ends_of[2] = {path.nodes.front(), path.nodes.back()};
-      for (std::uint32_t k = 0; k < 2; ++k)
-        if (is_junction(ends_of[k])) {
-          if (pass == 0)
-            ++end_start[ends_of[k] + 1];
-          else
-            end_slots[end_start[ends_of[k]]++] = 2 * p + k;
-        }
-    }
-    if (pass == 0) {
-      for (std::size_t v = 0; v < tc.nodes.size(); ++v) end_start[v + 1] += end_start[v];
-      end_slots.resize(end_start.back());
-    } else {  // filling advanced each start to the next node's: shift back
-      for (std::size_t v = tc.nodes.size(); v > 0; --v) end_start[v] = end_start[v - 1];
-      end_start[0] = 0;
-    }
-  }
-  const auto at_junction = [&](std::uint32_t v) {
-    return std::span<const std::uint32_t>(end_slots.data() + end_start[v], end_start[v + 1] - end_start[v]);
-  };
+  const dt::junction_ends ends_by_junction = dt::path_ends_at_junctions(tc);
+  const auto at_junction = [&](std::uint32_t v) { return ends_by_junction.at(v); };
   {  // Room for every ring's vertices and every face, so that the buffer grows once.
     std::size_t stations = 0, ends_at_junctions = 0;
     for (const tube_path& path : tc.paths) stations += path.nodes.size();
@@ -335,24 +406,8 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   const std::vector<glm::dvec3> extra_candidates = dt::sphere_directions(options.junction_extra_points);
   std::vector<glm::dvec3> extra;
   dt::junction_scratch scratch;
-  // Junctions in Morton order of their centres. A path is meshed once the junctions at both its
-  // ends are, and its end rings link to twins made there: in node order a lattice's neighbour
-  // along z was built a whole layer of junctions before (at 46^3, ~20 MB of output back, out
-  // of cache), along a Z-curve nearly always a few junctions before.
-  std::vector<std::uint32_t> junction_order;
-  {
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;
-    keyed.reserve(tc.junctions.size());
-    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi = -lo;
-    for (const std::uint32_t b : tc.junctions) lo = glm::min(lo, node_pos(b)), hi = glm::max(hi, node_pos(b));
-    const glm::dvec3 span = hi - lo;
-    const glm::dvec3 extent(span.x > 0 ? span.x : 1, span.y > 0 ? span.y : 1, span.z > 0 ? span.z : 1);
-    for (const std::uint32_t b : tc.junctions)
-      keyed.emplace_back(detail::morton_code(node_pos(b), lo, extent), b);
-    std::sort(keyed.begin(), keyed.end());
-    junction_order.reserve(keyed.size());
-    for (const auto& k : keyed) junction_order.push_back(k.second);
-  }
+  // Junctions along a Z-curve, so that a path's end rings meet their twins in cache.
+  const std::vector<std::uint32_t> junction_order = dt::morton_order(detail::span_of(tc.junctions), node_pos);
   for (const std::uint32_t b : junction_order) {
     const glm::dvec3 c = node_pos(b);
     const double rb = node_radius(b);
@@ -456,41 +511,15 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   // The mesh, in the skeleton's point type.
   const detail::stopwatch t_mesh;
   surface_mesh<P> mesh;
-  const std::size_t num_points = out.points.size();
-  // Positions in the buffer's own type and the sources of unsubdivided faces move into the
-  // mesh instead of being copied (the mesh's arrays are then already at their size).
-  if constexpr (std::is_same_v<P, glm::dvec3>) mesh.positions().vector().swap(out.points);
   const int shift = 2 * options.subdivision_levels;
-  property<face_handle, tube_face_source> source;
-  if (shift == 0) {
-    source = mesh.template add_face_property<tube_face_source>(tube_source_property_name);
-    source.vector().swap(out.sources);
-  }
-  std::size_t shells = out.linker.finish(mesh, num_points);
-  if (shells == dt::closed_linker::npos) {  // not closed: build says what is wrong
-    std::vector<std::uint32_t> offsets, fv;
-    out.linker.faces(offsets, fv);
-    if (shift == 0) source.vector().swap(out.sources);  // build drops face properties' values
-    mesh.build(num_points, offsets, fv);
-    if (shift == 0) std::copy(out.sources.begin(), out.sources.end(), source.vector().begin());
-    // Shells by union-find over the faces' vertices (the mesh's own connectivity, measured).
-    detail::union_find sets(num_points);
-    shells = num_points;
-    for (std::size_t f = 0; f + 1 < offsets.size(); ++f)
-      for (std::uint32_t k = offsets[f] + 1; k < offsets[f + 1]; ++k)
-        shells -= sets.unite(fv[offsets[f]], fv[k]) ? 1 : 0;
-  }
-  if constexpr (!std::is_same_v<P, glm::dvec3>) {
-    const std::span<P> pts = mesh.points();
-    for (std::size_t i = 0; i < num_points; ++i) pts[i] = from_dvec3<P>(out.points[i]);
-  }
+  const std::size_t shells = dt::take_mesh(out, mesh, shift == 0);
   res.mesh_ms = t_mesh.ms();
   if (options.subdivision_levels > 0) {
     const detail::stopwatch t_sub;
     loop_subdivide(mesh, {.levels = options.subdivision_levels});
     res.subdivision_ms = t_sub.ms();
     // Face 4f + k of a Loop level is a child of face f: a face's source is its ancestor's.
-    source = mesh.template add_face_property<tube_face_source>(tube_source_property_name);
+    auto source = mesh.template add_face_property<tube_face_source>(tube_source_property_name);
     for (const face_handle f : mesh.faces()) source[f] = out.sources[f.idx() >> shift];
   }
   res.min_section_ratio = std::numeric_limits<double>::infinity();
