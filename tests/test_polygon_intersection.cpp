@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -112,6 +113,20 @@ TEST_CASE("morton codes: interleaved bits, Z order, clamped to the box") {
   CHECK(morton_code({0, 0, 1}, lo, extent) == morton_spread(0x1FFFFF) << 2);
   CHECK(morton_code({0.1, 0.1, 0.1}, lo, extent) < morton_code({0.6, 0.1, 0.1}, lo, extent));
   CHECK(morton_code({-5, 2, 0.5}, lo, extent) == morton_code({0, 1, 0.5}, lo, extent));
+}
+
+TEST_CASE("morton order: ids along the Z-curve of their own box, ties by id, flat axes allowed") {
+  using cellforge::detail::morton_order;
+  // The four corners of a unit square in the plane z = 3 (z is flat), given out of order, and
+  // a repeated point: Z order visits (0,0), (1,0), (0,1), (1,1); equal points keep id order.
+  const std::vector<glm::dvec3> p{{1, 1, 3}, {0, 1, 3}, {1, 0, 3}, {0, 0, 3}, {1, 0, 3}};
+  const std::vector<std::uint32_t> ids{0, 1, 2, 3, 4};
+  const auto at = [&](std::uint32_t i) { return p[i]; };
+  CHECK(morton_order(std::span<const std::uint32_t>(ids), at) == std::vector<std::uint32_t>{3, 2, 4, 1, 0});
+  // Only the ids given, in the box of those alone.
+  const std::vector<std::uint32_t> some{0, 3};
+  CHECK(morton_order(std::span<const std::uint32_t>(some), at) == std::vector<std::uint32_t>{3, 0});
+  CHECK(morton_order(std::span<const std::uint32_t>(), at).empty());
 }
 
 }  // namespace polygon_intersection_tests

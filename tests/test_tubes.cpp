@@ -384,12 +384,14 @@ TEST_CASE("tube stages one by one: frames, ring placement, junction hulls, paths
     // A hull of 24 points has 44 triangles; the two real caps (6 each) are removed.
     CHECK(out.num_faces() == 44 - 12);
     // Every vertex sits at its ring's true place, and the boundary is the two real rings.
+    std::vector<std::uint32_t> offsets, fv;  // the faces as linked, read back
+    out.linker.faces(offsets, fv);
+    REQUIRE(offsets.size() == out.num_faces() + 1);
     std::vector<int> uses(24 * 24, 0);
     for (std::size_t f = 0; f < out.num_faces(); ++f)
-      for (std::uint32_t k = out.face_offsets[f]; k < out.face_offsets[f + 1]; ++k) {
-        const std::uint32_t a = out.face_vertices[k];
-        const std::uint32_t b =
-            out.face_vertices[k + 1 == out.face_offsets[f + 1] ? out.face_offsets[f] : k + 1];
+      for (std::uint32_t k = offsets[f]; k < offsets[f + 1]; ++k) {
+        const std::uint32_t a = fv[k];
+        const std::uint32_t b = fv[k + 1 == offsets[f + 1] ? offsets[f] : k + 1];
         ++uses[a * 24 + b];
       }
     std::size_t open = 0;
@@ -404,10 +406,13 @@ TEST_CASE("tube stages one by one: frames, ring placement, junction hulls, paths
                        scratch);
     CHECK(scratch.reused == 1);
     REQUIRE(again.num_faces() == out.num_faces());
-    CHECK(again.face_vertices.size() == out.face_vertices.size());
+    std::vector<std::uint32_t> again_offsets, again_fv;
+    again.linker.faces(again_offsets, again_fv);
+    CHECK(again_offsets == offsets);
+    CHECK(again_fv.size() == fv.size());
     bool moved = true;
-    for (std::size_t k = 0; k < out.face_vertices.size(); ++k)
-      moved = moved && again.face_vertices[k] == out.face_vertices[k] + 1;
+    for (std::size_t k = 0; k < fv.size() && k < again_fv.size(); ++k)
+      moved = moved && again_fv[k] == fv[k] + 1;
     for (std::size_t v = 0; v < out.points.size(); ++v)
       moved = moved && glm::length(again.points[v + 1] - out.points[v] - glm::dvec3(5, -2, 1)) < 1e-12;
     CHECK(moved);

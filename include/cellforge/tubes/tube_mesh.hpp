@@ -14,7 +14,6 @@
 #include <span>
 #include <string>
 #include <type_traits>
-#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -25,7 +24,6 @@
 #include "cellforge/core/detail/large_array.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
-#include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/morton.hpp"
 #include "cellforge/core/point_traits.hpp"
@@ -164,27 +162,6 @@ junction_ends path_ends_at_junctions(const tube_construct& tc) {
   return e;
 }
 
-/// The nodes in Morton order of their positions `at(node)` (ties by index). A path is meshed
-/// once the junctions at both its ends are, and its end rings link to twins made there: in
-/// node order a lattice's neighbour along z was built a whole layer of junctions before (at
-/// 46^3, ~20 MB of output back, out of cache), along a Z-curve nearly always a few junctions
-/// before. O(n log n).
-template <class Position>
-std::vector<std::uint32_t> morton_order(std::span<const std::uint32_t> nodes, Position&& at) {
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;
-  keyed.reserve(nodes.size());
-  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (const std::uint32_t b : nodes) lo = glm::min(lo, at(b)), hi = glm::max(hi, at(b));
-  const glm::dvec3 span = hi - lo;
-  const glm::dvec3 extent(span.x > 0 ? span.x : 1, span.y > 0 ? span.y : 1, span.z > 0 ? span.z : 1);
-  for (const std::uint32_t b : nodes) keyed.emplace_back(detail::morton_code(at(b), lo, extent), b);
-  std::sort(keyed.begin(), keyed.end());
-  std::vector<std::uint32_t> order;
-  order.reserve(keyed.size());
-  for (const auto& k : keyed) order.push_back(k.second);
-  return order;
-}
-
 /// Moves the buffer's points (converted to P) and linked faces into `mesh` (empty), with the
 /// face sources as the property "f:tube_source" when `sources_as_property`, and returns the
 /// mesh's connected components. Faces that are not a closed oriented surface go to build,
@@ -207,12 +184,7 @@ std::size_t take_mesh(buffer& out, surface_mesh<P>& mesh, bool sources_as_proper
     if (sources_as_property) source.vector().swap(out.sources);  // build drops face properties' values
     mesh.build(num_points, offsets, fv);
     if (sources_as_property) std::copy(out.sources.begin(), out.sources.end(), source.vector().begin());
-    // Shells by union-find over the faces' vertices (the mesh's own connectivity, measured).
-    union_find sets(num_points);
-    shells = num_points;
-    for (std::size_t f = 0; f + 1 < offsets.size(); ++f)
-      for (std::uint32_t k = offsets[f] + 1; k < offsets[f + 1]; ++k)
-        shells -= sets.unite(fv[offsets[f]], fv[k]) ? 1 : 0;
+    shells = connected_components(mesh).count;
   }
   if constexpr (!std::is_same_v<P, glm::dvec3>) {
     const std::span<P> pts = mesh.points();
@@ -331,7 +303,6 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   }
   // The faces are closed and oriented by construction: linked as they come, while their twins
   // are near (build, which reports what is wrong, only if they are not).
-  out.linking = true;
   if (options.subdivision_levels < 0 || options.subdivision_levels > 8)
     throw error(error_category::invalid_input, "make_tubes: subdivision_levels must be between 0 and 8");
   out.triangulate = options.subdivision_levels > 0;  // Loop subdivision takes triangles
@@ -406,8 +377,12 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   const std::vector<glm::dvec3> extra_candidates = dt::sphere_directions(options.junction_extra_points);
   std::vector<glm::dvec3> extra;
   dt::junction_scratch scratch;
-  // Junctions along a Z-curve, so that a path's end rings meet their twins in cache.
-  const std::vector<std::uint32_t> junction_order = dt::morton_order(detail::span_of(tc.junctions), node_pos);
+  // Junctions along a Z-curve: a path is meshed once the junctions at both its ends are, and its
+  // end rings link to twins made there. In node order a lattice's neighbour along z was built a
+  // whole layer of junctions before (at 46^3, ~20 MB of output back, out of cache); along the
+  // curve it is nearly always a few junctions before.
+  const std::vector<std::uint32_t> junction_order =
+      detail::morton_order(detail::span_of(tc.junctions), node_pos);
   for (const std::uint32_t b : junction_order) {
     const glm::dvec3 c = node_pos(b);
     const double rb = node_radius(b);

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -337,18 +338,11 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
   // The used points in Morton order (or the caller's): the merge and split searches visit
   // them so, and their hash-grid cells stay in cache whatever the caller's numbering.
   std::vector<std::uint32_t> visit;
-  {
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> coded;
-    const glm::dvec3 span = box.max - box.min;
-    const glm::dvec3 extent(span.x > 0.0 ? span.x : 1.0, span.y > 0.0 ? span.y : 1.0,
-                            span.z > 0.0 ? span.z : 1.0);
-    for (std::uint32_t v = 0; v < nv; ++v)
-      if (used[v])
-        coded.emplace_back(options.spatial_order ? detail::morton_code(p[v], box.min, extent) : 0, v);
-    if (options.spatial_order) std::sort(coded.begin(), coded.end());
-    visit.reserve(coded.size());
-    for (const auto& c : coded) visit.push_back(c.second);
-  }
+  for (std::uint32_t v = 0; v < nv; ++v)
+    if (used[v]) visit.push_back(v);
+  if (options.spatial_order)  // keyed in the used points' box (`box` above)
+    visit =
+        detail::morton_order(std::span<const std::uint32_t>(visit), [&](std::uint32_t v) { return p[v]; });
   const std::vector<std::uint32_t> rep = detail::merge_close_points(p, visit, tol, budget);
   for (std::size_t v = 0; v < nv; ++v)
     if (used[v] && rep[v] != v) {

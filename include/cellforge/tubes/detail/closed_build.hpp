@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <numeric>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "cellforge/core/detail/large_array.hpp"
@@ -128,11 +129,14 @@ class basic_closed_linker {
     return components;
   }
 
-  /// Every face given, in order, as a face list (CSR) for build; frees the records. O(corners).
+  /// Every face given, in order, as a face list (CSR) for build; frees the records, and the
+  /// linker holds no face afterwards. O(corners).
   void faces(std::vector<std::uint32_t>& offsets, std::vector<std::uint32_t>& vertices) {
     fail();
-    offsets.swap(offsets_);
-    vertices.swap(fv_);
+    offsets = std::move(offsets_);
+    vertices = std::move(fv_);
+    offsets_.assign(1, 0);
+    fv_.clear();
   }
 
  private:
@@ -254,22 +258,5 @@ class basic_closed_linker {
   std::vector<std::uint32_t> offsets_, fv_;  // once failed: every face as a list
 };
 using closed_linker = basic_closed_linker<>;
-
-/// Links faces (CSR over `num_vertices`) into `mesh` (no faces yet; its vertex properties, if
-/// already sized, are kept) when they form a closed, consistently oriented surface and returns
-/// true; otherwise returns false with no connectivity, for build to report what is wrong. A
-/// vertex with two closed fans throws as build does. O(total face size) for tube meshes.
-template <class = void>
-bool build_closed(halfedge_mesh& mesh, std::size_t num_vertices, std::span<const std::uint32_t> offsets,
-                  std::span<const std::uint32_t> fv) {
-  if (offsets.empty() || offsets[0] != 0 || offsets.back() != fv.size()) return false;
-  closed_linker linker;
-  linker.reserve(num_vertices, fv.size(), offsets.size() - 1);
-  for (std::size_t f = 0; f + 1 < offsets.size(); ++f) {
-    if (offsets[f + 1] < offsets[f] + 3 || offsets[f + 1] > fv.size()) return false;
-    if (!linker.add_face(fv.subspan(offsets[f], offsets[f + 1] - offsets[f]))) return false;
-  }
-  return linker.finish(mesh, num_vertices) != closed_linker::npos;
-}
 
 }  // namespace cellforge::detail::tubes

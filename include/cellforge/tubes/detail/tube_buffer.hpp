@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The tube mesher's output under construction: double positions, polygon faces (linked into
-// half-edges as they come, or kept in CSR form) and where each face came from; and the small
-// vector helpers its stages share.
+// half-edges as they come) and where each face came from; and the small vector helpers its
+// stages share.
 
 #include <algorithm>
 #include <cmath>
@@ -37,14 +37,11 @@ namespace detail::tubes {
 template <class = void>
 struct basic_buffer {
   std::vector<glm::dvec3> points;
-  /// With `linking`, each face goes straight to `linker` and the face lists stay empty.
-  bool linking = false;
   /// Faces of more than three corners go in as fans (for Loop subdivision); corner angles are
   /// still those of the faces as given.
   bool triangulate = false;
+  /// Every face, linked as it comes (linker.faces() gives them back as a face list).
   closed_linker linker;
-  std::vector<std::uint32_t> face_offsets{0};
-  std::vector<std::uint32_t> face_vertices;
   std::vector<tube_face_source> sources;
   /// Per skeleton edge: the smallest area of a cross-section along it over π r² (its node's r).
   std::vector<double> section_ratio;
@@ -82,12 +79,7 @@ struct basic_buffer {
     }
   }
   void emit(std::span<const std::uint32_t> vs, tube_face_source s) {
-    if (linking) {
-      linker.add_face(vs);  // a face it cannot link is kept, and finish reports it
-    } else {
-      face_vertices.insert(face_vertices.end(), vs.begin(), vs.end());
-      face_offsets.push_back(static_cast<std::uint32_t>(face_vertices.size()));
-    }
+    linker.add_face(vs);  // a face it cannot link is kept, and finish reports it
     sources.push_back(s);
   }
   std::size_t num_faces() const noexcept { return sources.size(); }
