@@ -676,6 +676,32 @@ TEST_CASE("conversion: triangulating a face with holes") {
   const auto tris = detail::cells::triangulate_face(many, {0, 0, 1}, "test");
   CHECK(tris.size() == corners + 2 * 9 - 2);
 
+  // The second hole's ray hits the first hole's bridge, which is on the ring twice (there and
+  // back): the copy facing the hole must be taken, or the splice crosses the first hole.
+  const std::vector<std::vector<glm::dvec3>> bridge_hit{{{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}},
+                                                        {{6, 6, 0}, {6, 7, 0}, {7, 7, 0}, {7, 6, 0}},
+                                                        {{1, 7.5, 0}, {1, 8.5, 0}, {2, 8.5, 0}, {2, 7.5, 0}}};
+  CHECK(detail::cells::triangulate_face(bridge_hit, {0, 0, 1}, "test").size() == 12 + 2 * 2 - 2);
+  // Grids of 1..6 × 1..6 aligned square holes (rays along rows and columns through every
+  // bridge), straight, sheared and staggered: 2 to 37 loops.
+  for (int n = 1; n <= 6; ++n)
+    for (int shift = 0; shift < 3; ++shift) {
+      const double side = 3.0 * n + 1;
+      std::vector<std::vector<glm::dvec3>> grid{{{0, 0, 0}, {side, 0, 0}, {side, side, 0}, {0, side, 0}}};
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          const double x = 1 + 3 * i, y = 1 + 3 * j +
+                                          (shift == 1   ? 0.5 * i
+                                           : shift == 2 ? (i % 2) * 2.0
+                                                        : 0.0);
+          if (y + 1 < side) grid.push_back({{x, y, 0}, {x, y + 1, 0}, {x + 1, y + 1, 0}, {x + 1, y, 0}});
+        }
+      CAPTURE(n);
+      CAPTURE(shift);
+      const std::size_t holes = grid.size() - 1;
+      CHECK(detail::cells::triangulate_face(grid, {0, 0, 1}, "test").size() == 4 + 4 * holes + 2 * holes - 2);
+    }
+
   // A hole outside the outer loop, or turning the wrong way, is refused.
   auto outside = loops;
   for (auto& p : outside[1]) p.x += 10;

@@ -99,17 +99,29 @@ std::vector<std::array<std::uint32_t, 3>> triangulate_face(const std::vector<std
   };
   std::sort(holes.begin(), holes.end(),
             [&](std::uint32_t a, std::uint32_t b) { return p[rightmost(a)].x > p[rightmost(b)].x; });
+  // The ring holds every bridge made so far twice (there and back), so a position may be on
+  // the ring twice: of two copies, take the one whose corner opens towards M (the inside of
+  // the ring is on the left of its edges), or the second hole is spliced into the outside.
+  auto opens_towards = [&](std::size_t i, const glm::dvec2& M) {
+    const glm::dvec2 a = p[ring[(i + ring.size() - 1) % ring.size()]], v = p[ring[i]],
+                     b = p[ring[(i + 1) % ring.size()]];
+    const int in = orient2d(a, v, M), out = orient2d(v, b, M);
+    return orient2d(a, v, b) >= 0 ? in >= 0 && out >= 0 : in >= 0 || out >= 0;
+  };
   for (std::uint32_t h : holes) {
     const std::uint32_t m = rightmost(h);
     const glm::dvec2 M = p[m];
     double best = std::numeric_limits<double>::infinity();
     std::size_t hit = ring.size();
+    bool hit_faces_m = false;  // M on the left of the hit edge: the copy of a bridge facing M
     for (std::size_t i = 0; i < ring.size(); ++i) {
       const glm::dvec2 a = p[ring[i]], b = p[ring[(i + 1) % ring.size()]];
       if ((a.y > M.y) == (b.y > M.y) && a.y != M.y && b.y != M.y) continue;
       if (a.y == b.y) continue;  // horizontal: its ends are found through their other edges
       const double x = a.x + (M.y - a.y) * (b.x - a.x) / (b.y - a.y);
-      if (x >= M.x && x < best) best = x, hit = i;
+      const bool faces_m = orient2d(a, b, M) > 0;
+      if (x >= M.x && (x < best || (x == best && faces_m && !hit_faces_m)))
+        best = x, hit = i, hit_faces_m = faces_m;
     }
     if (hit == ring.size()) fail("hole " + std::to_string(h) + " is not inside the outer loop");
     // Candidate: the hit edge's end with the larger x; then any ring vertex inside the
@@ -129,6 +141,12 @@ std::vector<std::array<std::uint32_t, 3>> triangulate_face(const std::vector<std
           best_slope = slope, best_dist = dist, pos = i;
       }
     }
+    if (!opens_towards(pos, M))
+      for (std::size_t i = 0; i < ring.size(); ++i)
+        if (i != pos && p[ring[i]] == p[ring[pos]] && opens_towards(i, M)) {
+          pos = i;
+          break;
+        }
     std::vector<std::uint32_t> bridged(ring.begin(), ring.begin() + static_cast<std::ptrdiff_t>(pos) + 1);
     const std::uint32_t len = start[h + 1] - start[h];
     for (std::uint32_t j = 0; j <= len; ++j) bridged.push_back(start[h] + (m - start[h] + j) % len);
