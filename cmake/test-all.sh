@@ -103,7 +103,7 @@ clang_stage() {
   eigen=$(pkg-config --cflags-only-I eigen3 2>/dev/null || echo "-I/usr/include/eigen3")
   eigen=${eigen%% *}
   local flags=(-std=c++20 -fsyntax-only -Wall -Wextra -Wpedantic -Werror -Iinclude -Itests
-    "-isystem${eigen#-I}" '-DCELLFORGE_DATA_DIR=""' '-DCELLFORGE_TEST_DATA_DIR=""')
+    "-isystem${eigen#-I}" '-DCELLFORGE_DATA_DIR=""' '-DCELLFORGE_TEST_DATA_DIR=""' '-DCELLFORGE_TEST_PROJECT_VERSION=""')
   mkdir -p build/clang
   local all=build/clang/all_tests.cpp
   find "$root/tests" -maxdepth 1 -name 'test_*.cpp' | sort | sed 's|.*|#include "&"|' >"$all"

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <sstream>
+#include <string>
 
 #include "cellforge/cellforge.hpp"
 #include "cellforge/io/cells_io.hpp"
@@ -18,6 +19,15 @@
 
 // Own namespace: the test files of a group are compiled as one translation unit.
 namespace umbrella_tests {
+
+TEST_CASE("umbrella: the version header agrees with itself and with the CMake project") {
+  const std::string composed = std::to_string(CELLFORGE_VERSION_MAJOR) + "." +
+                               std::to_string(CELLFORGE_VERSION_MINOR) + "." + std::to_string(CELLFORGE_VERSION_PATCH);
+  CHECK(composed == CELLFORGE_VERSION_STRING);
+  CHECK(composed == CELLFORGE_TEST_PROJECT_VERSION);  // CMakeLists.txt parsed version.hpp
+  CHECK(cellforge::version.minor == CELLFORGE_VERSION_MINOR);
+  CHECK(std::string(cellforge::version.string) == CELLFORGE_VERSION_STRING);
+}
 
 TEST_CASE("umbrella: the main job on two cubes sharing a face") {
   const cellforge::sample_model model = cellforge::sample_two_cubes();

@@ -63,4 +63,5 @@
 #include "cellforge/wireframe/unique_circuits.hpp"
 #include "cellforge/wireframe/volume_finder.hpp"
 #include "cellforge/wireframe/wire_graph.hpp"
+#include "cellforge/version.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
