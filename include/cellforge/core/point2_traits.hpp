@@ -93,9 +93,35 @@ struct lifted_point<std::array<T, 2>> {
   using type = std::array<T, 3>;
 };
 
+namespace detail {
+/// lifted_point<P>::type, or a static assertion that says what to do (not "no type named
+/// 'type' in lifted_point").
+template <class P>
+struct lifted_or_assert {
+  static_assert(
+      requires { typename lifted_point<P>::type; },
+      "cellforge: no 3D point type is known for this 2D point type: name it at the call "
+      "(e.g. drawing_to_cells<my::vec3>(drawing)) or specialise cellforge::lifted_point<P> "
+      "with `using type = my::vec3;`");
+  using type = typename lifted_point<P>::type;
+};
+/// The 3D point type a sketch stage returns: Q when the caller names one, else lifted_point_t<P>,
+/// looked up only then, so that naming Q needs no lifted_point.
+template <class Q, class P>
+struct result_point {
+  using type = Q;
+};
+template <class P>
+struct result_point<void, P> {
+  using type = typename lifted_or_assert<P>::type;
+};
+template <class Q, class P>
+using result_point_t = typename result_point<Q, P>::type;
+}  // namespace detail
+
 /// The 3D point type of a 2D point type (see lifted_point).
 template <class P>
-using lifted_point_t = typename lifted_point<P>::type;
+using lifted_point_t = typename detail::lifted_or_assert<P>::type;
 
 }  // namespace cellforge
 
@@ -120,4 +146,41 @@ using lifted_point_t = typename lifted_point<P>::type;
         return T(x, y);                                                            \
       }                                                                            \
     }                                                                              \
+  }
+
+// The `get` of the getter-based 2D registrations (not for direct use).
+#define CELLFORGE_DETAIL_POINT2_GETTERS(Type, Scalar, GX, GY)                  \
+  static Scalar get(const Type& p, std::size_t i) {                            \
+    return i == 0 ? static_cast<Scalar>(p.GX()) : static_cast<Scalar>(p.GY()); \
+  }
+
+/// Registers a 2D point class with getters and setters, e.g. a CAD sketcher's point class:
+/// `CELLFORGE_REGISTER_POINT2_GET_SET(cad::Pt2d, double, X, Y, SetX, SetY)`. Without a default
+/// constructor, points are made by `Type(x, y)` instead of the setters.
+#define CELLFORGE_REGISTER_POINT2_GET_SET(Type, Scalar, GX, GY, SX, SY)            \
+  template <>                                                                      \
+  struct cellforge::point2_traits<Type> {                                          \
+    using scalar = Scalar;                                                         \
+    CELLFORGE_DETAIL_POINT2_GETTERS(Type, Scalar, GX, GY)                          \
+    template <class T = Type> /* a template, so the untaken branch is discarded */ \
+    static T make(Scalar x, Scalar y) {                                            \
+      if constexpr (std::is_default_constructible_v<T>) {                          \
+        T p{};                                                                     \
+        p.SX(x);                                                                   \
+        p.SY(y);                                                                   \
+        return p;                                                                  \
+      } else {                                                                     \
+        return T(x, y);                                                            \
+      }                                                                            \
+    }                                                                              \
+  }
+
+/// Registers an immutable 2D point class read through getters and made by its constructor
+/// `Type(x, y)`: `CELLFORGE_REGISTER_POINT2_GET_CTOR(cad::Pt2d, double, x, y)`.
+#define CELLFORGE_REGISTER_POINT2_GET_CTOR(Type, Scalar, GX, GY) \
+  template <>                                                    \
+  struct cellforge::point2_traits<Type> {                        \
+    using scalar = Scalar;                                       \
+    CELLFORGE_DETAIL_POINT2_GETTERS(Type, Scalar, GX, GY)        \
+    static Type make(Scalar x, Scalar y) { return Type(x, y); }  \
   }

@@ -622,7 +622,8 @@ auto fit_ellipse(const R& points, bool refine = true) {
   using P = std::ranges::range_value_t<R>;
   std::vector<glm::dvec2> q;
   for (const auto& p : points) q.push_back(to_dvec2(P(p)));
-  ellipse_fit<P> out;
+  // The centre is the origin until a fit sets it: P need not be default-constructible.
+  ellipse_fit<P> out{.centre = from_dvec2<P>(glm::dvec2(0.0))};
   detail::ellipse_params e;
   if (!detail::direct_ellipse_fit(q, e)) return out;
   if (refine) out.iterations = detail::refine_ellipse(q, e, std::numeric_limits<double>::infinity());
@@ -691,7 +692,7 @@ template <std::ranges::input_range R>
 requires Point2<std::ranges::range_value_t<R>>
 auto fit_view_circle(const R& points, glm::dvec2 u, glm::dvec2 v) {
   using P = std::ranges::range_value_t<R>;
-  view_circle_fit<P> out;
+  view_circle_fit<P> out{.centre = from_dvec2<P>(glm::dvec2(0.0))};  // P need not be default-constructible
   const double det = u.x * v.y - u.y * v.x;
   if (!std::isfinite(det) || !(std::abs(det) > 1e-12 * std::max(glm::dot(u, u), glm::dot(v, v))))
     throw error(
@@ -787,6 +788,11 @@ auto detect_arcs(const Strokes& strokes, const arc_detection_options& options = 
   res.drawing_size = size;
   const double eps = o.tolerance * size;
   const auto reject = [&](arc_rejection why) { ++res.rejections[static_cast<std::size_t>(why)]; };
+  // A piece whose points read() sets; built from values, so P need not be default-constructible.
+  const P origin = from_dvec2<P>(glm::dvec2(0.0));
+  const auto blank_piece = [&] {
+    return stroke_piece<P>{.from = origin, .to = origin, .arc = {.centre = origin}};
+  };
   for (std::size_t si = 0; si < all.size(); ++si) {
     const std::vector<glm::dvec2>& q = all[si];
     stroke_summary sum;
@@ -835,7 +841,7 @@ auto detect_arcs(const Strokes& strokes, const arc_detection_options& options = 
     while (!todo.empty()) {
       const auto [a, b] = todo.back();
       todo.pop_back();
-      stroke_piece<P> piece;
+      stroke_piece<P> piece = blank_piece();
       arc_rejection why = arc_rejection::none;
       const bool ok = read(a, b, piece, why);
       if (top) sum.whole = why, top = false;
@@ -878,7 +884,7 @@ auto detect_arcs(const Strokes& strokes, const arc_detection_options& options = 
             !same && (l.kind == stroke_piece_kind::line ? samples(l) < samples(r) : samples(r) < samples(l));
         if (!same && !into_arc) continue;
         const stroke_piece_kind want = same ? l.kind : stroke_piece_kind::arc;
-        stroke_piece<P> both;
+        stroke_piece<P> both = blank_piece();
         arc_rejection why = arc_rejection::none;
         if (read(l.first, r.last, both, why) && both.kind == want) {
           pieces[i] = both;

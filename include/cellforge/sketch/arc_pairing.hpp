@@ -310,15 +310,17 @@ arc_pairing_result<P> pair_arcs(const arc_drawing<P>& d, const arc_pairing_optio
     chain& a = chains[i];
     chain& b = chains[k];
     a.paired = b.paired = true;
-    arc_pair<P> p;
-    p.rule = rule;
-    p.category = rule == pairing_rule::contour_line ? blend_category::b : blend_category::a_or_c;
-    p.arcs = {a.arcs, b.arcs};
-    p.ends = {a.ends, b.ends};
-    p.lines = {a.lines, b.lines};
-    p.corners = {from_dvec2<P>(a.corner), from_dvec2<P>(b.corner)};
-    p.curves = {elliptical_arc<P>{from_dvec2<P>(a.centre), a.rx, a.ry, a.rotation, a.start, a.sweep},
-                elliptical_arc<P>{from_dvec2<P>(b.centre), b.rx, b.ry, b.rotation, b.start, b.sweep}};
+    // Every member holding a P is given here: P need not be default-constructible.
+    arc_pair<P> p{
+        .arcs = {a.arcs, b.arcs},
+        .ends = {a.ends, b.ends},
+        .lines = {a.lines, b.lines},
+        .corners = {from_dvec2<P>(a.corner), from_dvec2<P>(b.corner)},
+        .curves = {elliptical_arc<P>{from_dvec2<P>(a.centre), a.rx, a.ry, a.rotation, a.start, a.sweep},
+                   elliptical_arc<P>{from_dvec2<P>(b.centre), b.rx, b.ry, b.rotation, b.start, b.sweep}},
+        .rule = rule,
+        .category = rule == pairing_rule::contour_line ? blend_category::b : blend_category::a_or_c,
+    };
     if (crossed) {
       std::reverse(p.arcs[1].begin(), p.arcs[1].end());
       std::swap(p.ends[1][0], p.ends[1][1]);

@@ -345,7 +345,7 @@ std::multiset<std::vector<std::uint32_t>> canonical_loops(
 /// pipeline refuses both readings, budget when a stage's budget runs out. O(the stages).
 template <class Q = void, LineDrawing D>
 auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
-  using R = std::conditional_t<std::is_void_v<Q>, lifted_point_t<drawing_point_t<D>>, Q>;
+  using R = detail::result_point_t<Q, drawing_point_t<D>>;
   static_assert(Point3<R>, "drawing_to_cells: the result point type must be a registered Point3");
   detail::stopwatch clock;
   drawing_result<R, drawing_point_t<D>> r;

@@ -948,7 +948,7 @@ double from_above_score(const inflation_problem<>& pr, const compliance_terms<>&
 template <class Q = void, LineDrawing D>
 auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::uint32_t>>>& faces,
              const inflation_options& user_options = {}) {
-  using R = std::conditional_t<std::is_void_v<Q>, lifted_point_t<drawing_point_t<D>>, Q>;
+  using R = detail::result_point_t<Q, drawing_point_t<D>>;
   static_assert(Point3<R>, "inflate: the result point type must be a registered Point3");
   const detail::stopwatch t0;
   inflation_result<R> res;

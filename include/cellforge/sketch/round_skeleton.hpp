@@ -132,15 +132,16 @@ round_skeleton_result<P> round_skeleton(const arc_drawing<P>& d, const round_ske
     out.skeleton.edges.push_back({a, b});
   }
   for (std::size_t i = 0; i < pairs.size(); ++i) {
-    skeleton_blend<P> b;
-    b.pair = i;
-    b.junctions = {first_corner + static_cast<std::uint32_t>(2 * i),
-                   first_corner + static_cast<std::uint32_t>(2 * i + 1)};
-    b.edge = static_cast<std::uint32_t>(out.skeleton.edges.size());
+    // The curves are given here: P need not be default-constructible.
+    skeleton_blend<P> b{.pair = i,
+                        .junctions = {first_corner + static_cast<std::uint32_t>(2 * i),
+                                      first_corner + static_cast<std::uint32_t>(2 * i + 1)},
+                        .edge = static_cast<std::uint32_t>(out.skeleton.edges.size()),
+                        .kind = blend_kind::unknown,
+                        .category = pairs[i].category,
+                        .curves = pairs[i].curves,
+                        .axis = to_dvec2(pairs[i].corners[1]) - to_dvec2(pairs[i].corners[0])};
     out.skeleton.edges.push_back(b.junctions);
-    b.curves = pairs[i].curves;
-    b.category = pairs[i].category;
-    b.axis = to_dvec2(pairs[i].corners[1]) - to_dvec2(pairs[i].corners[0]);
     out.blends.push_back(std::move(b));
   }
   out.validation = validate_drawing(out.skeleton);
