@@ -2,7 +2,8 @@
 # Installs the Debian/Ubuntu packages cellforge needs, and only those that are missing.
 #   bash cmake/install-deps.sh [--bench] [--compare] [--fuzz]
 #     (none)     compiler, CMake, make, GLM, doctest, Eigen: enough to build the tests and examples;
-#                node and npm (only when the commands are missing) for cmake/fetch-bunny.sh
+#                node and npm (only when the commands are missing) for cmake/fetch-bunny.sh;
+#                libcgal-demo (CGAL's demo meshes) for cmake/fetch-cgal-data.sh
 #     --bench    Google Benchmark as well
 #     --compare  CGAL (with Eigen), OpenMesh and Qhull, the baselines the benchmarks compare against (implies --bench)
 #     --fuzz     clang and its compiler-rt (libFuzzer, ASan/UBSan runtimes for clang)
@@ -11,6 +12,8 @@
 set -euo pipefail
 
 packages=(g++ cmake make libglm-dev doctest-dev libeigen3-dev)
+# The real-mesh sweep's data: CGAL's demo meshes, unpacked by cmake/fetch-cgal-data.sh.
+packages+=(libcgal-demo)
 # The bunny test data comes through npm (cmake/fetch-bunny.sh). Checked by command rather
 # than by package, since node from another source (e.g. a nodejs build bundling npm) will do.
 command -v node >/dev/null 2>&1 || packages+=(nodejs)
@@ -22,7 +25,7 @@ for arg in "$@"; do
     # Debian 12's clang 14 needs libclang-rt-14-dev for -fsanitize=fuzzer (libclang_rt.fuzzer).
     --fuzz) packages+=(clang libclang-rt-14-dev) ;;
     -h | --help)
-      sed -n '2,10p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+      sed -n '2,11p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
       exit 0
       ;;
     *)

@@ -10,7 +10,8 @@
 #               only where they are installed
 #   5. fuzz     libFuzzer targets built with clang, seed corpora replayed, then each fuzzer
 #               run for CELLFORGE_FUZZ_SECONDS seconds (default 10)      (build/fuzz)
-# Before the stages, cmake/fetch-bunny.sh puts the Stanford bunny (npm) in build/data.
+# Before the stages, cmake/fetch-bunny.sh puts the Stanford bunny (npm) in build/data, and
+# cmake/fetch-cgal-data.sh CGAL's demo meshes (Debian's libcgal-demo) in build/data/cgal.
 # Every stage runs even when an earlier one failed; the exit status is non-zero if any failed.
 # Environment: CELLFORGE_FUZZ_SECONDS (default 10), CELLFORGE_FUZZ_JOBS (fuzzers run at once,
 # default 2), CELLFORGE_SKIP_DEPS=1 to skip the package check.
@@ -168,6 +169,12 @@ failed=()
 if ! bash "$root/cmake/fetch-bunny.sh" "$root/build/data"; then
   failed+=("bunny-data")
   echo "=== test-all: fetching the bunny FAILED (bash cmake/fetch-bunny.sh build/data; needs node, npm and the npm registry); test_thin_bunny will fail under CI ===" >&2
+fi
+# CGAL's demo meshes for the real-mesh sweep (test_real_meshes), once, before the stages; the
+# default CELLFORGE_REAL_MESH_DIR is build/data. Skipped when unpacked already.
+if ! bash "$root/cmake/fetch-cgal-data.sh" "$root/build/data"; then
+  failed+=("cgal-data")
+  echo "=== test-all: fetching CGAL's demo meshes FAILED (bash cmake/fetch-cgal-data.sh build/data; needs libcgal-demo); test_real_meshes will fail under CI ===" >&2
 fi
 for stage in "${stages[@]}"; do
   echo
