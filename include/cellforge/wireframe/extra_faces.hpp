@@ -5,15 +5,18 @@
 /// cone base: its breadth-first search prunes the long base circuit) are added from the planar
 /// tracer at edges with fewer than two faces; overlapping faces (two selected faces on the same
 /// side of a common edge in one plane) lose the larger one; and faces with a free edge (an edge
-/// no other selected face uses), which can bound no volume, are removed.
+/// no other selected face uses), which can bound no volume, are removed, with the faces no edge
+/// needed beside them (so an open surface invents no volume).
 
 #include <algorithm>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
 
+#include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/wireframe/circuit_tracer.hpp"
 #include "cellforge/wireframe/face_arrangement.hpp"
 #include "cellforge/wireframe/unique_circuits.hpp"
@@ -26,6 +29,13 @@ struct extra_face_options {
   bool add_missed = true;  ///< retrace with the planar tracer where edges lack faces
   bool remove_overlapping = true;
   bool remove_free = true;  ///< drop faces with an edge no other face shares (laminae)
+  /// With remove_free: a face no edge needed while the faces around it were there, next to a
+  /// face removed for a free edge, goes too (it would close a volume only because an open
+  /// surface was taken away: the base of a valence-3 vertex's tetrahedron in an open mesh).
+  bool drop_newly_needed = true;
+  /// With remove_free: a surface (faces joined through edges) with an edge on one face only is
+  /// open and bounds no volume; what the free-face removal leaves of it (closed pockets) goes too.
+  bool drop_open_surfaces = true;
   trace_options retrace{};  ///< tracer used for missed faces (kind is forced to planar)
 };
 
@@ -33,15 +43,24 @@ struct extra_face_options {
 struct extra_faces_result : stage_report {
   std::vector<wire_face> faces;  ///< the selected faces, canonical order
   std::size_t added = 0, overlapping = 0, free = 0;
+  std::size_t newly_needed = 0;  ///< faces removed by drop_newly_needed
+  std::size_t open_surface = 0;  ///< faces removed by drop_open_surfaces
   std::vector<dropped_face> removed;  ///< every selected face this stage removed, and why
+  /// Edges on exactly one selected face before any free face was removed: the rim of an open
+  /// surface, or the edge of a hole the crossing rule cut (graph labels, increasing).
+  std::vector<std::uint32_t> open_edges;
 };
 
-/// Adds missed faces, removes overlapping and free faces. O(V + E + F·L) plus, when faces are
-/// missing, one planar trace and a crossing test of each added face against the faces.
+/// Adds missed faces, removes overlapping and free faces, and with them the faces that only an
+/// open surface's removal would make needed. `crossed`: the candidates the crossing rule
+/// dropped (arrangement_result::crossed); those that leave an edge on fewer than two faces
+/// count as there when deciding which faces were needed before the removals. O(V + E + F·L)
+/// plus, when faces are missing, one planar trace and a crossing test of each added face.
 template <class = void>
 extra_faces_result extra_faces(const wire_graph& g, const std::vector<wire_face>& candidates,
                                const std::vector<std::uint32_t>& selected,
-                               const extra_face_options& options = {}) {
+                               const extra_face_options& options = {},
+                               std::span<const std::uint32_t> crossed = {}) {
   detail::stopwatch clock;
   extra_faces_result r;
   std::vector<wire_face> faces;
@@ -120,25 +139,87 @@ extra_faces_result extra_faces(const wire_graph& g, const std::vector<wire_face>
     std::vector<std::uint32_t> stack;
     for (std::uint32_t e = 0; e < g.num_edges(); ++e)
       if (count[e] == 1) stack.push_back(e);
-    while (!stack.empty()) {
-      const std::uint32_t e = stack.back();
-      stack.pop_back();
-      if (count[e] != 1) continue;
-      for (const auto i : at[e]) {
-        if (!alive[i]) continue;
-        alive[i] = 0;
-        ++r.free;
-        r.removed.push_back(
-            {faces[i], "its edge " + std::to_string(e) + " has no other face, so it bounds no volume", true});
-        r.diagnostics.push_back("a face with free edge " + std::to_string(e) +
-                                " (no other face uses it) bounds no volume and was removed");
-        for (const auto& loop : faces[i].loops)
-          for (std::size_t k = 0; k < loop.size(); ++k) {
-            const auto f = g.find_edge(loop[k], loop[(k + 1) % loop.size()]);
-            if (--count[f] == 1) stack.push_back(f);
-          }
+    r.open_edges = stack;
+    // Which faces some edge needs before anything goes: a face that becomes needed only once
+    // free faces around it are gone closes a volume the wireframe does not draw.
+    std::vector<char> needed;
+    if (options.drop_newly_needed && !stack.empty()) {
+      // The faces the crossing rule cut out of a surface (those leaving an edge on fewer than
+      // two faces) were around too: a face needed only because they went is not needed either.
+      std::vector<wire_face> around = faces;
+      std::vector<char> there = alive;
+      for (const auto i : crossed) {
+        bool cut = false;
+        for (const auto& loop : candidates[i].loops)
+          for (std::size_t k = 0; k < loop.size() && !cut; ++k)
+            cut = count[g.find_edge(loop[k], loop[(k + 1) % loop.size()])] < 2;
+        if (!cut) continue;
+        around.push_back(candidates[i]);
+        there.push_back(1);
+      }
+      needed = detail::needed_faces(g, around, detail::faces_at_edges(g, around, &there), there);
+      needed.resize(faces.size());
+    }
+    // The open surfaces: faces joined through edges, with an edge on one face only.
+    std::vector<char> open_surface(faces.size(), 0);
+    if (options.drop_open_surfaces && !stack.empty()) {
+      detail::union_find surface(faces.size());
+      for (std::uint32_t e = 0; e < g.num_edges(); ++e)
+        for (const auto i : at[e]) surface.unite(at[e][0], i);
+      for (const auto e : stack) open_surface[surface.find(at[e][0])] = 1;
+      for (std::uint32_t i = 0; i < faces.size(); ++i) open_surface[i] = alive[i] && open_surface[surface.find(i)];
+    }
+    std::vector<std::uint32_t> beside;  // unneeded faces next to a removed one, to drop
+    auto remove = [&](std::uint32_t i, std::string reason, bool free_edge) {
+      alive[i] = 0;
+      r.removed.push_back({faces[i], std::move(reason), free_edge});
+      for (const auto& loop : faces[i].loops)
+        for (std::size_t k = 0; k < loop.size(); ++k) {
+          const auto f = g.find_edge(loop[k], loop[(k + 1) % loop.size()]);
+          if (--count[f] == 1) stack.push_back(f);
+          if (!needed.empty())
+            for (const auto j : at[f])
+              if (alive[j] && !needed[j]) beside.push_back(j);
+        }
+    };
+    while (!stack.empty() || !beside.empty()) {
+      while (!stack.empty()) {
+        const std::uint32_t e = stack.back();
+        stack.pop_back();
+        if (count[e] != 1) continue;
+        for (const auto i : at[e]) {
+          if (!alive[i]) continue;
+          ++r.free;
+          r.diagnostics.push_back("a face with free edge " + std::to_string(e) +
+                                  " (no other face uses it) bounds no volume and was removed");
+          remove(i, "its edge " + std::to_string(e) + " has no other face, so it bounds no volume", true);
+        }
+      }
+      while (!beside.empty()) {
+        const std::uint32_t j = beside.back();
+        beside.pop_back();
+        if (!alive[j]) continue;
+        ++r.newly_needed;
+        r.diagnostics.push_back("a face no edge needed beside faces removed for a free edge was removed");
+        remove(j,
+               "no edge needed it while the faces beside it were there; they were removed for a free edge "
+               "(an open surface), and it would close a volume the wireframe does not draw",
+               false);
       }
     }
+    // What is left of an open surface is closed pockets of it (a valence-3 vertex's tetrahedron
+    // whose base closes a notch of the rim): the input does not draw them as solids either.
+    for (std::uint32_t i = 0; i < faces.size(); ++i) {
+      if (!alive[i] || !open_surface[i]) continue;
+      ++r.open_surface;
+      alive[i] = 0;
+      r.removed.push_back(
+          {faces[i], "it is part of an open surface (a surface with an edge on one face only), which bounds no volume",
+           true});
+    }
+    if (r.open_surface > 0)
+      r.diagnostics.push_back(std::to_string(r.open_surface) +
+                              " faces left of open surfaces by the free-face removal were removed (no volume)");
   }
   for (std::uint32_t i = 0; i < faces.size(); ++i)
     if (alive[i]) r.faces.push_back(std::move(faces[i]));
