@@ -98,17 +98,6 @@ inline bool collinear(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3
          cellforge::orient2d(a.z, a.x, b.z, b.x, c.z, c.x) == 0;
 }
 
-/// orient2d of a, b, c in the first coordinate projection where a, b, c do not collapse, and
-/// that projection's index (3 when a, b, c are collinear).
-inline std::pair<int, int> orient_in_plane(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-  for (int k = 0; k < 3; ++k) {
-    const int u = (k + 1) % 3, w = (k + 2) % 3;
-    const int s = cellforge::orient2d(a[u], a[w], b[u], b[w], c[u], c[w]);
-    if (s != 0) return {s, k};
-  }
-  return {0, 3};
-}
-
 }  // namespace detail
 
 inline fixture make_fixture(const cellforge::polygon_soup<glm::dvec3>& soup);
@@ -290,9 +279,13 @@ inline fixture analyse(const cellforge::polygon_soup<glm::dvec3>& soup,
           if (!detail::collinear(pts[u], pts[v], pts[w])) return w;
         return frame[face][2];
       };
-      const auto [sf, axis] = detail::orient_in_plane(pts[u], pts[v], pts[off_line(f)]);
+      // Seen along the axis nearest f's normal, where neither far corner's triangle with uv
+      // collapses (a nearly coplanar pair seen edge-on would get its sides by rounding).
+      const dvec3 n = glm::abs(unit_normal[f]);
+      const int axis = n.x >= n.y && n.x >= n.z ? 0 : n.y >= n.z ? 1 : 2;
       const int uu = (axis + 1) % 3, ww = (axis + 2) % 3;
-      const dvec3 &a = pts[u], &c = pts[v], &d = pts[off_line(g)];
+      const dvec3 &a = pts[u], &c = pts[v], &b = pts[off_line(f)], &d = pts[off_line(g)];
+      const int sf = cellforge::orient2d(a[uu], a[ww], c[uu], c[ww], b[uu], b[ww]);
       const int sg = cellforge::orient2d(a[uu], a[ww], c[uu], c[ww], d[uu], d[ww]);
       if (sf * sg < 0 && !kept) {
         ++(exact ? fx.flat_edges : fx.nearly_flat_edges);

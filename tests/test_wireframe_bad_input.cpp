@@ -401,3 +401,81 @@ TEST_CASE("circuits that close no volume come back as faces without volumes, wit
 }
 
 }  // namespace wireframe_bad_input_tests
+
+namespace wireframe_bad_input_tests {
+
+namespace {
+/// A cap of three triangles about a valence-3 vertex v over the triangle a b c, and three
+/// triangles hanging outwards from a b, b c, c a: an open surface whose rim a d b e c f is not
+/// planar. Triangle a b c is a planar cycle of its edges that no edge needs while the outer
+/// triangles are there; once they go for their free edges it would close a tetrahedron.
+wire open_cap(glm::dvec3 shift = glm::dvec3(0.0)) {
+  wire w;
+  w.points = {{0, 0, 1},  {1, 0, 0},    {-0.5, 0.866, 0}, {-0.5, -0.866, 0},
+              {0.75, 1.3, -0.3}, {-1.5, 0, -0.6}, {0.75, -1.3, -0.1}};
+  for (auto& p : w.points) p += shift;
+  // v = 0, a = 1, b = 2, c = 3, d = 4, e = 5, f = 6.
+  w.edges = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {2, 3}, {3, 1}, {1, 4}, {4, 2}, {2, 5}, {5, 3}, {3, 6}, {6, 1}};
+  return w;
+}
+
+/// The faces of r as sorted vertex sets in the caller's labels.
+template <class Result>
+std::vector<std::vector<std::uint32_t>> face_sets(const Result& r) {
+  std::vector<std::vector<std::uint32_t>> out;
+  for (const auto& f : r.input.faces) {
+    std::vector<std::uint32_t> s;
+    for (const auto& loop : f.loops)
+      for (const auto v : loop) s.push_back(r.input_vertex[v]);
+    std::sort(s.begin(), s.end());
+    out.push_back(std::move(s));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+}  // namespace
+
+TEST_CASE("open surfaces and faces that cross each other invent no volume") {
+  SUBCASE("an open cap: its six triangles, no tetrahedron at its valence-3 vertex") {
+    const wire w = open_cap();
+    const auto r = wireframe_to_cells(w);
+    CHECK(r.cells.num_volumes() == 0);
+    const std::vector<std::vector<std::uint32_t>> mesh = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3},
+                                                          {1, 2, 4}, {1, 3, 6}, {2, 3, 5}};
+    CHECK(face_sets(r) == mesh);  // the base 1 2 3 is not among them
+    CHECK(r.extra.open_edges.size() == 6);
+    CHECK(r.extra.newly_needed == 1);
+    CHECK(has_note(r, "not a closed solid: 6 edges lie on one face only"));
+    CHECK(has_note(r, "no volume: the faces are the answer"));
+    REQUIRE_VALID(r.cells);
+    // The cascade alone, as before the rule: the base becomes needed and closes a tetrahedron.
+    wireframe_options old;
+    old.extra.drop_newly_needed = false;
+    old.extra.drop_open_surfaces = false;
+    CHECK(wireframe_to_cells(w, old).cells.num_volumes() == 1);
+  }
+  SUBCASE("a cube beside an open cap keeps its volume") {
+    wire w = sample_cube().wire;
+    const wire cap = open_cap(glm::dvec3(5, 0, 0));
+    const auto base = static_cast<std::uint32_t>(w.points.size());
+    w.points.insert(w.points.end(), cap.points.begin(), cap.points.end());
+    for (const auto& e : cap.edges) w.edges.push_back({e[0] + base, e[1] + base});
+    const auto r = wireframe_to_cells(w);
+    CHECK(r.cells.num_volumes() == 1);
+    CHECK(r.cells.num_faces() == 6);
+    CHECK(r.lost.size() == 7);  // the cap's six triangles and its base, each with why
+    CHECK(has_note(r, "volumes come only from the closed parts"));
+    REQUIRE_VALID(r.cells);
+  }
+  SUBCASE("a tetrahedron pierced by a triangle: no volume, and the piercing is named") {
+    wire w;
+    w.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.2, 0.2, -0.5}, {0.2, 0.2, 0.3}, {2, 2, -0.2}};
+    w.edges = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}, {4, 5}, {5, 6}, {6, 4}};
+    const auto r = wireframe_to_cells(w);
+    CHECK(r.cells.num_volumes() == 0);
+    CHECK(has_note(r, "edges pierce faces: the surface intersects itself"));
+    CHECK(!r.arrangement.crossed.empty());
+  }
+}
+
+}  // namespace wireframe_bad_input_tests

@@ -138,9 +138,22 @@ TEST_CASE("stages: extra face processing puts back a missed face and keeps the t
   keep.remove_free = false;
   CHECK(extra_faces(a.graph, a.candidates, missing, keep).faces.size() == m.faces.size() - 1);
   keep.remove_free = true;
+  // The two cubes are one surface (they share edges), open at the hole: none of it bounds a
+  // volume, so what the free-face removal leaves (the other cube) goes too.
+  const auto open = extra_faces(a.graph, a.candidates, missing, keep);
+  // Its open edges are edges of the missing face (the one it shares with the wall keeps two faces).
+  const wire_face& gone = a.candidates[a.arrangement.selected[3]];
+  REQUIRE(!open.open_edges.empty());
+  for (const auto e : open.open_edges) CHECK(detail::walk_direction(a.graph, gone, e) != 0);
+  CHECK(open.faces.empty());
+  CHECK(open.free + open.newly_needed + open.open_surface == m.faces.size() - 1);
+  CHECK(open.open_surface > 0);
+  keep.drop_open_surfaces = false;
   const auto trimmed = extra_faces(a.graph, a.candidates, missing, keep);
   CHECK(trimmed.free > 0);
-  CHECK(trimmed.faces.size() == m.faces.size() - 1 - trimmed.free);
+  CHECK(trimmed.open_surface == 0);
+  CHECK(trimmed.faces.size() == m.faces.size() - 1 - trimmed.free - trimmed.newly_needed);
+  CHECK(!trimmed.faces.empty());
   std::vector<int> uses(a.graph.num_edges(), 0);
   for (const wire_face& f : trimmed.faces)
     for (const auto& loop : f.loops)
