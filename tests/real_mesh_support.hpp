@@ -61,10 +61,11 @@ struct fixture {
 
   // What the mesh is.
   std::size_t mesh_vertices = 0, mesh_faces = 0;
-  std::size_t duplicate_vertices = 0;  ///< vertices at exactly the position of an earlier one (welded)
+  std::size_t duplicate_vertices = 0;     ///< vertices at exactly the position of an earlier one (welded)
   std::size_t repeated_corner_faces = 0;  ///< faces using one vertex twice after welding (dropped)
   std::size_t zero_area_faces = 0;        ///< faces whose corners are all collinear, exactly (dropped)
-  std::size_t non_planar_faces = 0;     ///< polygons with a corner off their plane by more than the rounding tolerance
+  std::size_t non_planar_faces =
+      0;  ///< polygons with a corner off their plane by more than the rounding tolerance
   std::size_t nearly_planar_faces = 0;  ///< polygons planar within the rounding tolerance, not exactly
   std::size_t boundary_edges = 0, boundary_loops = 0;
   /// Boundary loops that are simple and exactly planar: the wireframe holds the cycle of a face
@@ -73,8 +74,9 @@ struct fixture {
   std::size_t non_manifold_edges = 0;     ///< edges of three or more faces
   std::size_t non_manifold_vertices = 0;  ///< vertices whose faces form more than one fan
   std::size_t folded_edges = 0;           ///< two coplanar faces on the same side of their edge
-  std::size_t flat_edges = 0;         ///< edges between exactly coplanar faces (not in the wireframe)
-  std::size_t nearly_flat_edges = 0;  ///< between faces coplanar within the rounding tolerance only (merged too)
+  std::size_t flat_edges = 0;             ///< edges between exactly coplanar faces (not in the wireframe)
+  std::size_t nearly_flat_edges =
+      0;  ///< between faces coplanar within the rounding tolerance only (merged too)
   std::size_t intersecting_face_pairs = 0;
   bool intersections_known = true;  ///< false when the exact check could not run (non-manifold edges, budget)
   std::size_t components = 0, closed_components = 0;
@@ -413,11 +415,11 @@ inline fixture analyse(const cellforge::polygon_soup<glm::dvec3>& soup,
 
   // The class, worst first.
   const bool bad_faces = fx.repeated_corner_faces + fx.zero_area_faces + fx.non_planar_faces > 0;
-  fx.kind = bad_faces                                                         ? mesh_class::degenerate
-            : fx.non_manifold_edges + fx.non_manifold_vertices > 0            ? mesh_class::non_manifold
-            : fx.self_intersecting() || !fx.intersections_known               ? mesh_class::self_intersecting
-            : fx.open()                                                       ? mesh_class::open
-                                                                              : mesh_class::closed;
+  fx.kind = bad_faces                                              ? mesh_class::degenerate
+            : fx.non_manifold_edges + fx.non_manifold_vertices > 0 ? mesh_class::non_manifold
+            : fx.self_intersecting() || !fx.intersections_known    ? mesh_class::self_intersecting
+            : fx.open()                                            ? mesh_class::open
+                                                                   : mesh_class::closed;
   auto add = [&](std::size_t n, const char* what) {
     if (n == 0) return;
     if (!fx.notes.empty()) fx.notes += ", ";

@@ -56,7 +56,8 @@ fs::path data_dir() {
 
 bool mesh_file(const fs::path& p) {
   std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl";
 }
 
@@ -75,10 +76,11 @@ std::vector<fs::path> mesh_files() {
     std::sort(files.begin(), files.end());
     return files;
   }
-  const std::string what = "real meshes missing in '" + dir.string() + "' (" +
-                           (cgal ? "" : "no meshes in cgal/: run `bash cmake/fetch-cgal-data.sh build/data`, needs libcgal-demo") +
-                           (!cgal && !bunny ? "; " : "") +
-                           (bunny ? "" : "no bunny.off: run `bash cmake/fetch-bunny.sh build/data`, needs node and npm") + ")";
+  const std::string what =
+      "real meshes missing in '" + dir.string() + "' (" +
+      (cgal ? "" : "no meshes in cgal/: run `bash cmake/fetch-cgal-data.sh build/data`, needs libcgal-demo") +
+      (!cgal && !bunny ? "; " : "") +
+      (bunny ? "" : "no bunny.off: run `bash cmake/fetch-bunny.sh build/data`, needs node and npm") + ")";
   if (std::getenv("CI") != nullptr) FAIL(what);
   MESSAGE("skipped: " << what);
   return {};
@@ -186,10 +188,10 @@ run judge(const fs::path& path) {
   for (const auto& [f, in_solid] : truth) missing += !have.count(f);
   for (const auto& f : have) extra += !truth.count(f);
   const bool not_solid = says_not_a_solid(r);
-  const std::string counts = std::to_string(r.input.faces.size()) + " faces (" + std::to_string(fx.faces.size()) +
-                             " expected: " + std::to_string(missing) + " missing, " + std::to_string(extra) +
-                             " extra), " + std::to_string(r.input.volumes.size()) + " volumes (" +
-                             std::to_string(fx.volumes) + " expected)";
+  const std::string counts =
+      std::to_string(r.input.faces.size()) + " faces (" + std::to_string(fx.faces.size()) +
+      " expected: " + std::to_string(missing) + " missing, " + std::to_string(extra) + " extra), " +
+      std::to_string(r.input.volumes.size()) + " volumes (" + std::to_string(fx.volumes) + " expected)";
   if (solid) {
     if (missing == 0 && extra == 0 && r.input.volumes.size() == fx.volumes && !not_solid) {
       out.result = outcome::exact;
@@ -197,7 +199,8 @@ run judge(const fs::path& path) {
       out.result = outcome::flagged;
       out.why = counts + "; " +
                 (not_solid ? "said not a closed solid"
-                           : std::to_string(r.unforced.size()) + " faces reported unforced (walls the wireframe cannot decide)");
+                           : std::to_string(r.unforced.size()) +
+                                 " faces reported unforced (walls the wireframe cannot decide)");
     } else {
       out.result = outcome::wrong;
       out.why = counts + ", passed as good";
@@ -236,7 +239,8 @@ TEST_CASE("real meshes: CGAL's demo meshes and the bunny as wireframes") {
   std::map<std::string, std::map<outcome, std::size_t>> table;
   std::map<outcome, std::size_t> totals;
   for (const auto& x : runs) ++table[x.kind][x.result], ++totals[x.result];
-  const outcome order[] = {outcome::exact, outcome::not_a_solid, outcome::flagged, outcome::refused, outcome::wrong};
+  const outcome order[] = {outcome::exact, outcome::not_a_solid, outcome::flagged, outcome::refused,
+                           outcome::wrong};
   std::string report = "real meshes: " + std::to_string(runs.size()) + " of " + std::to_string(all.size()) +
                        " files in " + std::to_string(static_cast<long>(total_ms)) + " ms;";
   for (const auto o : order) report += " " + std::string(outcome_name(o)) + " " + std::to_string(totals[o]);
@@ -275,7 +279,8 @@ TEST_CASE("real meshes: CGAL's demo meshes and the bunny as wireframes") {
   for (const auto& x : runs) {
     INFO(x.name << " (" << x.kind << "): " << outcome_name(x.result) << ": " << x.why);
     CHECK(x.result != outcome::wrong);
-    if (x.kind == "open" || x.kind == "self-intersecting" || x.kind == "non-manifold" || x.kind == "degenerate")
+    if (x.kind == "open" || x.kind == "self-intersecting" || x.kind == "non-manifold" ||
+        x.kind == "degenerate")
       CHECK(x.result == outcome::not_a_solid);
   }
   // Clean closed meshes: exact, or flagged with the reason (printed above). The flagged ones

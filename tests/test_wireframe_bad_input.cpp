@@ -411,7 +411,7 @@ namespace {
 /// triangles are there; once they go for their free edges it would close a tetrahedron.
 wire open_cap(glm::dvec3 shift = glm::dvec3(0.0)) {
   wire w;
-  w.points = {{0, 0, 1},  {1, 0, 0},    {-0.5, 0.866, 0}, {-0.5, -0.866, 0},
+  w.points = {{0, 0, 1},         {1, 0, 0},       {-0.5, 0.866, 0},  {-0.5, -0.866, 0},
               {0.75, 1.3, -0.3}, {-1.5, 0, -0.6}, {0.75, -1.3, -0.1}};
   for (auto& p : w.points) p += shift;
   // v = 0, a = 1, b = 2, c = 3, d = 4, e = 5, f = 6.

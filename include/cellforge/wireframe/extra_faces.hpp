@@ -43,8 +43,8 @@ struct extra_face_options {
 struct extra_faces_result : stage_report {
   std::vector<wire_face> faces;  ///< the selected faces, canonical order
   std::size_t added = 0, overlapping = 0, free = 0;
-  std::size_t newly_needed = 0;  ///< faces removed by drop_newly_needed
-  std::size_t open_surface = 0;  ///< faces removed by drop_open_surfaces
+  std::size_t newly_needed = 0;       ///< faces removed by drop_newly_needed
+  std::size_t open_surface = 0;       ///< faces removed by drop_open_surfaces
   std::vector<dropped_face> removed;  ///< every selected face this stage removed, and why
   /// Edges on exactly one selected face before any free face was removed: the rim of an open
   /// surface, or the edge of a hole the crossing rule cut (graph labels, increasing).
@@ -146,19 +146,24 @@ extra_faces_result extra_faces(const wire_graph& g, const std::vector<wire_face>
     if (options.drop_newly_needed && !stack.empty()) {
       // The faces the crossing rule cut out of a surface (those leaving an edge on fewer than
       // two faces) were around too: a face needed only because they went is not needed either.
-      std::vector<wire_face> around = faces;
-      std::vector<char> there = alive;
+      std::vector<std::uint32_t> cut;
       for (const auto i : crossed) {
-        bool cut = false;
+        bool leaves_hole = false;
         for (const auto& loop : candidates[i].loops)
-          for (std::size_t k = 0; k < loop.size() && !cut; ++k)
-            cut = count[g.find_edge(loop[k], loop[(k + 1) % loop.size()])] < 2;
-        if (!cut) continue;
-        around.push_back(candidates[i]);
-        there.push_back(1);
+          for (std::size_t k = 0; k < loop.size() && !leaves_hole; ++k)
+            leaves_hole = count[g.find_edge(loop[k], loop[(k + 1) % loop.size()])] < 2;
+        if (leaves_hole) cut.push_back(i);
       }
-      needed = detail::needed_faces(g, around, detail::faces_at_edges(g, around, &there), there);
-      needed.resize(faces.size());
+      if (cut.empty()) {
+        needed = detail::needed_faces(g, faces, at, alive);
+      } else {
+        std::vector<wire_face> around = faces;  // copied only when the crossing rule cut holes
+        std::vector<char> there = alive;
+        for (const auto i : cut) around.push_back(candidates[i]);
+        there.resize(around.size(), 1);
+        needed = detail::needed_faces(g, around, detail::faces_at_edges(g, around, &there), there);
+        needed.resize(faces.size());
+      }
     }
     // The open surfaces: faces joined through edges, with an edge on one face only.
     std::vector<char> open_surface(faces.size(), 0);
@@ -167,7 +172,8 @@ extra_faces_result extra_faces(const wire_graph& g, const std::vector<wire_face>
       for (std::uint32_t e = 0; e < g.num_edges(); ++e)
         for (const auto i : at[e]) surface.unite(at[e][0], i);
       for (const auto e : stack) open_surface[surface.find(at[e][0])] = 1;
-      for (std::uint32_t i = 0; i < faces.size(); ++i) open_surface[i] = alive[i] && open_surface[surface.find(i)];
+      for (std::uint32_t i = 0; i < faces.size(); ++i)
+        open_surface[i] = alive[i] && open_surface[surface.find(i)];
     }
     std::vector<std::uint32_t> beside;  // unneeded faces next to a removed one, to drop
     auto remove = [&](std::uint32_t i, std::string reason, bool free_edge) {
@@ -214,12 +220,14 @@ extra_faces_result extra_faces(const wire_graph& g, const std::vector<wire_face>
       ++r.open_surface;
       alive[i] = 0;
       r.removed.push_back(
-          {faces[i], "it is part of an open surface (a surface with an edge on one face only), which bounds no volume",
+          {faces[i],
+           "it is part of an open surface (a surface with an edge on one face only), which bounds no volume",
            true});
     }
     if (r.open_surface > 0)
-      r.diagnostics.push_back(std::to_string(r.open_surface) +
-                              " faces left of open surfaces by the free-face removal were removed (no volume)");
+      r.diagnostics.push_back(
+          std::to_string(r.open_surface) +
+          " faces left of open surfaces by the free-face removal were removed (no volume)");
   }
   for (std::uint32_t i = 0; i < faces.size(); ++i)
     if (alive[i]) r.faces.push_back(std::move(faces[i]));

@@ -123,7 +123,8 @@ std::string open_surface_message(const wire_graph& g, const std::vector<wire_fac
   std::vector<char> cut(g.num_edges(), 0);  // edges of candidates the crossing rule dropped
   for (const auto i : arrangement.crossed)
     for (const auto& loop : candidates[i].loops)
-      for (std::size_t k = 0; k < loop.size(); ++k) cut[g.find_edge(loop[k], loop[(k + 1) % loop.size()])] = 1;
+      for (std::size_t k = 0; k < loop.size(); ++k)
+        cut[g.find_edge(loop[k], loop[(k + 1) % loop.size()])] = 1;
   std::size_t pierced = 0;
   std::uint32_t first_rim = no_index, first_cut = no_index;  // caller's labels
   for (const auto e : extra.open_edges) {
@@ -138,8 +139,8 @@ std::string open_surface_message(const wire_graph& g, const std::vector<wire_fac
   const std::size_t rim = extra.open_edges.size() - pierced;
   std::string what = "not a closed solid: ";
   if (rim > 0)
-    what += std::to_string(rim) + " edges lie on one face only (an open surface; edge " + std::to_string(first_rim) +
-            " is one)";
+    what += std::to_string(rim) + " edges lie on one face only (an open surface; edge " +
+            std::to_string(first_rim) + " is one)";
   if (pierced > 0)
     what += std::string(rim > 0 ? "; " : "") + std::to_string(pierced) +
             " edges lost a face to faces that cross each other, neither needed more (edges pierce faces: "
@@ -195,7 +196,8 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   extra_face_options extra = options.extra;
   // The planar tracer finds every planar face; only the seed's search can miss some.
   if (options.trace.kind == tracer_kind::planar) extra.add_missed = false;
-  r.extra = extra_faces(g, r.unique.faces, r.arrangement.selected, extra, detail::span_of(r.arrangement.crossed));
+  r.extra =
+      extra_faces(g, r.unique.faces, r.arrangement.selected, extra, detail::span_of(r.arrangement.crossed));
   auto note = [&](const wire_face& f, std::string reason) {
     face_note n{f.loops, std::move(reason)};
     for (auto& loop : n.loops)
@@ -215,7 +217,8 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   if (r.extra.faces.empty())
     throw error(error_category::topology, detail::no_face_message(g, r.arrangement, r.lost));
   if (!r.extra.open_edges.empty())
-    r.diagnostics.push_back(detail::open_surface_message(g, r.unique.faces, r.arrangement, r.extra, open_surface));
+    r.diagnostics.push_back(
+        detail::open_surface_message(g, r.unique.faces, r.arrangement, r.extra, open_surface));
   if (open_surface) {
     const std::size_t n = r.extra.faces.size();
     r.diagnostics.push_back(
