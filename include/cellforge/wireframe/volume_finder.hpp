@@ -18,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -146,6 +147,52 @@ bool surface_inside(const wire_graph& g, const std::vector<wire_face>& faces,
         if (++tries == 16) return false;
       }
   return false;
+}
+
+/// True when the faces `boundary` of one volume make a 2-manifold there: each edge on at most
+/// two of them, and around each vertex one fan (two parts of a volume touching along an edge or
+/// at a vertex break make_cell_complex's volumes). `corners` is scratch. O(Σ L log Σ L).
+template <class = void>
+bool manifold_boundary(const wire_graph& g, const std::vector<wire_face>& faces,
+                       std::span<const std::uint32_t> boundary,
+                       std::vector<std::array<std::uint32_t, 3>>& corners) {
+  corners.clear();  // (vertex, edge before it, edge after it) per corner
+  for (const auto f : boundary)
+    for (const auto& loop : faces[f].loops)
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        const std::uint32_t v = loop[k], prev = loop[(k + loop.size() - 1) % loop.size()],
+                            next = loop[(k + 1) % loop.size()];
+        corners.push_back({v, g.find_edge(prev, v), g.find_edge(v, next)});
+      }
+  std::sort(corners.begin(), corners.end());
+  std::vector<std::uint32_t> edges, up;
+  for (std::size_t b = 0, e = 0; b < corners.size(); b = e) {
+    for (e = b; e < corners.size() && corners[e][0] == corners[b][0]; ++e) {
+    }
+    edges.clear();
+    for (std::size_t k = b; k < e; ++k) edges.push_back(corners[k][1]), edges.push_back(corners[k][2]);
+    std::sort(edges.begin(), edges.end());
+    // Each edge at the vertex on at most two corners (at most two faces of the volume).
+    for (std::size_t k = 0; k + 2 < edges.size(); ++k)
+      if (edges[k] == edges[k + 2]) return false;
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    up.resize(edges.size());
+    for (std::uint32_t k = 0; k < up.size(); ++k) up[k] = k;
+    auto find = [&](std::uint32_t x) {
+      while (up[x] != x) x = up[x] = up[up[x]];
+      return x;
+    };
+    auto index = [&](std::uint32_t edge) {
+      return static_cast<std::uint32_t>(std::lower_bound(edges.begin(), edges.end(), edge) - edges.begin());
+    };
+    std::size_t fans = edges.size();
+    for (std::size_t k = b; k < e; ++k) {
+      const auto x = find(index(corners[k][1])), y = find(index(corners[k][2]));
+      if (x != y) up[x] = y, --fans;
+    }
+    if (fans != 1) return false;
+  }
+  return true;
 }
 
 template <class = void>
@@ -348,7 +395,7 @@ class basic_face_reader {
   std::vector<std::uint32_t> up_, size_;  // rollback union-find over roots_
   std::vector<char> out_, amb_;           // per local root: holds the outside; holds an ambiguous region
   std::vector<std::vector<std::uint32_t>> bound_;  // per local root: faces (kept, any) bounding it
-  std::vector<std::uint32_t> edges_;               // edges of the group's faces
+  std::vector<std::array<std::uint32_t, 3>> corners_;  // scratch of manifold_boundary
   struct undo {
     int kind;  // 0: face state, 1: union (child), 2: bound_ growth
     std::uint32_t a, b;
@@ -514,22 +561,18 @@ class basic_face_reader {
   /// A complete assignment: no volume uses an edge more than twice; keep_walls merges no two
   /// volumes. Returns false when it fails.
   bool certified() {
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> uses;  // (edge, local root)
-    std::vector<std::uint32_t> members(roots_.size(), 0);
+    std::vector<std::uint32_t> members(roots_.size(), 0), boundary;
     for (std::uint32_t x = 0; x < roots_.size(); ++x) ++members[lroot_of_local(x)];
     for (std::uint32_t r = 0; r < roots_.size(); ++r) {
       // Only volumes this group merged can break the manifold.
       if (up_[r] != r || out_[r] || members[r] < 2) continue;
-      for (const auto j : bound_[r]) {
-        if (!present(j)) continue;
-        const bool a = lroot(sides_[j][0]) == r, b = lroot(sides_[j][1]) == r;
-        if (a == b) continue;
-        for_edges(j, [&](std::uint32_t e) { uses.push_back({e, r}); });
-      }
+      boundary.clear();
+      for (const auto j : bound_[r])
+        if (present(j) && (lroot(sides_[j][0]) == r) != (lroot(sides_[j][1]) == r)) boundary.push_back(j);
+      std::sort(boundary.begin(), boundary.end());
+      boundary.erase(std::unique(boundary.begin(), boundary.end()), boundary.end());
+      if (!manifold_boundary(g_, faces_, boundary, corners_)) return false;
     }
-    std::sort(uses.begin(), uses.end());
-    for (std::size_t k = 0; k + 2 < uses.size(); ++k)
-      if (uses[k] == uses[k + 2]) return false;
     if (reading_ == face_reading::keep_walls)
       for (std::uint32_t l = 0; l < G_.size(); ++l)
         if (st_[l] == 2 && !out_[lroot(sides_[G_[l]][0])]) return false;
@@ -861,6 +904,7 @@ volume_result find_volumes(const wire_graph& g, const std::vector<wire_face>& fa
     }
     std::vector<std::uint32_t> kept;
     std::vector<std::uint32_t> uses;
+    std::vector<std::array<std::uint32_t, 3>> corners;
     auto normal = [&](std::uint32_t j) { return faces[j].normal; };
     for (const auto i : r.unforced) {
       const auto a = merged.find(sides_of[i][0]), b = merged.find(sides_of[i][1]);
@@ -878,20 +922,17 @@ volume_result find_volumes(const wire_graph& g, const std::vector<wire_face>& fa
               if (!drop[j]) kept.push_back(j);
             ok = !kept.empty() && !detail::edge_needs_more(kept, normal);
           }
-      // The merged volume: each of its edges on at most two of its faces.
+      // The merged volume: each of its edges on at most two of its faces, one fan at each vertex.
       uses.clear();
       for (const auto root : {a, b})
         for (const auto j : bounding[root]) {
           if (drop[j]) continue;
           const auto p = merged.find(sides_of[j][0]), q = merged.find(sides_of[j][1]);
-          if ((p == a || p == b) && (q == a || q == b)) continue;
-          if (root == a && (p == b || q == b)) continue;  // listed under b too: count once
-          for (const auto& loop : faces[j].loops)
-            for (std::size_t k = 0; k < loop.size(); ++k)
-              uses.push_back(g.find_edge(loop[k], loop[(k + 1) % loop.size()]));
+          if ((p == a || p == b) != (q == a || q == b)) uses.push_back(j);
         }
       std::sort(uses.begin(), uses.end());
-      for (std::size_t k = 0; k + 2 < uses.size() && ok; ++k) ok = uses[k] != uses[k + 2];
+      uses.erase(std::unique(uses.begin(), uses.end()), uses.end());
+      ok = ok && detail::manifold_boundary(g, faces, uses, corners);
       if (!ok) {
         for (const auto w : walls) drop[w] = 0;
         continue;
