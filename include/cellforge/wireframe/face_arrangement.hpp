@@ -4,7 +4,8 @@
 /// Stage 5 of the wireframe pipeline (seed 000 §4.5): smooth entity chains (straight runs of
 /// edges through degree-2 vertices), the Shpitalni–Lipson maximum ranks of edges and vertices,
 /// and the crossing rule of the face selection (docs/wireframe.md): of two candidates whose
-/// interiors cross, the one some edge needs wins; both go when neither or both are needed.
+/// interiors cross, the one some edge needs wins; the pairs no edge decides are decided by the
+/// certified choice (no pair kept whole, every genuine edge kept genuine) that keeps the fewest.
 /// Candidate pairs come from a uniform grid over face bounding boxes, so the cost is not
 /// all-pairs; the rest of the reading rule (faces no edge needs) is decided with the volumes.
 
@@ -546,8 +547,8 @@ void candidate_pairs(const wire_graph& g, const std::vector<face_plane>& plane, 
 }  // namespace detail
 
 /// Finds chains and ranks and selects the faces: the crossing rule of docs/wireframe.md (when
-/// two candidates cross, the one some edge needs wins; both go when neither or both are
-/// needed). O(V + E + F·L + P·L log L) where P is the number of candidate pairs the grid
+/// two candidates cross, the one some edge needs wins; the pairs left are decided by a
+/// budgeted search for the certified choice that keeps the fewest). O(V + E + F·L + P·L log L) where P is the number of candidate pairs the grid
 /// yields, plus O(rounds · F·L) for the needs, rounds being the chains of decisions (one or two).
 template <class = void>
 arrangement_result arrange_faces(const wire_graph& g, const std::vector<wire_face>& faces,
@@ -665,7 +666,7 @@ arrangement_result arrange_faces(const wire_graph& g, const std::vector<wire_fac
     // candidates (those in a crossing pair) are left out beats one that is not needed even
     // then (spurious cycles — rings, meridians — pad the edges of the real faces they cross
     // or lie beside). A round's losers leave, which can make others needed: decide again.
-    // Pairs still crossing when no round decides anything both go.
+    // Pairs still crossing when no round decides anything go to the search below.
     const auto at = detail::faces_at_edges(g, faces, &alive);
     std::vector<char> contested(faces.size(), 0), no_contest(faces.size(), 0);
     std::vector<std::uint32_t> scratch;

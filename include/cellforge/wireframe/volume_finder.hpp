@@ -12,7 +12,8 @@
 /// nested in another surface's volume (a solid in a cavity) becomes part of that volume's
 /// boundary, found by an exact point-in-solid test. Then the reading rule (docs/wireframe.md)
 /// drops the faces no edge needs — the mouths of holes and dents, walls such as the square
-/// under a roof — and joins the regions on their sides.
+/// under a roof — and joins the regions on their sides, each group of such faces decided by
+/// an exact, budgeted search for the best certified reading.
 
 #include <algorithm>
 #include <array>
@@ -55,7 +56,9 @@ struct volume_options {
   /// face ends up inside a volume and no edge is left on fewer than two faces or on two
   /// coplanar ones; the walls merged are listed in volume_result::merged.
   bool merge_unforced = false;
-  /// Abstract steps of the reading rule's rounds (faces looked at); 0 = none.
+  /// Abstract steps of the reading rule (faces looked at by its rounds and its group searches);
+  /// 0 = none. A group search that reaches it (or 2^15 nodes) takes its best certified reading
+  /// and says so in a diagnostic; the rounds themselves throw a budget error past it.
   std::uint64_t work_budget = 200'000'000;
 };
 
