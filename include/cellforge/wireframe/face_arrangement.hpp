@@ -405,7 +405,7 @@ class basic_crossing_decision {
     have_best_ = stopped_ = false;
     nodes_ = 0;
     const std::uint64_t left =
-        budget.limit == 0 ? component_nodes : (budget.limit > budget.used ? budget.limit - budget.used : 0);
+        budget.limit == 0 ? ~std::uint64_t{0} : (budget.limit > budget.used ? budget.limit - budget.used : 0);
     limit_ = std::min<std::uint64_t>(component_nodes, left / (G_.size() + 1) + 1);
     dfs(0, 0);
     budget.spend(std::min<std::uint64_t>(nodes_ * (G_.size() + 1), left));

@@ -686,10 +686,11 @@ class basic_face_reader {
     nodes_ = 0;
     leaves_ = 0;
     stopped_ = false;
-    const std::uint64_t left = budget.limit == 0 ? group_nodes : (budget.limit > budget.used ? budget.limit - budget.used : 0);
-    limit_ = std::min<std::uint64_t>(group_nodes, left / 4 + 1);
+    const std::uint64_t left = budget.limit == 0 ? ~std::uint64_t{0} : (budget.limit > budget.used ? budget.limit - budget.used : 0);
+    // Each node looks at the group's faces: the search stops before the budget would throw.
+    limit_ = std::min<std::uint64_t>(group_nodes, left / (G_.size() + 1) + 1);
     dfs(0);
-    budget.spend(nodes_ * (G_.size() + 1));
+    budget.spend(std::min<std::uint64_t>(nodes_ * (G_.size() + 1), left));
     std::vector<std::uint32_t> picked;
     if (have_best_) {
       // Readings alike in every key keep the faces they disagree on (the wireframe does not decide).
