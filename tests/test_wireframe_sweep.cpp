@@ -571,6 +571,72 @@ TEST_CASE("crossing: a cycle that pierces real faces loses to them") {
   }
 }
 
+TEST_CASE("reading: a group is decided face by face, not whole") {
+  // Mouths bounded by the tops of several boxes, beside boxes between holes whose tops are
+  // needed only once the mouths are open: opening every group whole failed, so every mouth
+  // stayed plugged (one volume of air per hole).
+  for (std::size_t k = 0; k < sweep().models.size(); ++k) {
+    const auto& m = sweep().models[k];
+    if ((m.family != "hole grid" && m.family != "double frame") || !in_family_sample(k)) continue;
+    const auto r = exact(m.model);
+    CHECK(r.unforced.empty());
+  }
+  const auto grid = exact(model("plate hole grid 2x2"));
+  CHECK(count_reason(grid, "would close a hole or dent") == 8);  // top and bottom of four holes
+  CHECK(grid.volume.groups >= 1);
+  const auto pair = exact(model("double frame boxes wide"));
+  CHECK(count_reason(pair, "would close a hole or dent") == 4);
+  // A grid is still undecided: its walls behind the middles of its sides stay, reported unforced.
+  const auto cubes = exact(model("grid 3x3x3"));
+  CHECK(cubes.unforced.size() == 12);
+}
+
+TEST_CASE("reading: the disc in the hole of a ring face of a stepped bore goes") {
+  // The smaller bore's n-gon lies in the hole of the step's ring face, in its plane: a seam at
+  // every edge, so the old rule froze it as a wall between two bores (a rotor in 3 volumes).
+  for (std::size_t k = 0; k < sweep().models.size(); ++k) {
+    const auto& m = sweep().models[k];
+    if (m.family != "stepped bore" || !in_family_sample(k)) continue;
+    const auto r = exact(m.model);
+    CHECK(r.input.volumes.size() == 1);
+    CHECK(r.unforced.empty());
+  }
+  const auto coupling = exact(model("coupling n=12"));
+  CHECK(count_reason(coupling, "would close a hole or dent") == 4);  // the bore's four discs
+}
+
+TEST_CASE("crossing: pairs no round decides are decided by the certified choice") {
+  // Two linked solid tori: the quads of each band through the other's hole cross its planar
+  // rings; dropping both sides of every pair left no volume and edges out of the complex.
+  for (std::size_t k = 0; k < sweep().models.size(); ++k) {
+    const auto& m = sweep().models[k];
+    if (m.family != "linked tori" || !in_family_sample(k)) continue;
+    const auto r = exact(m.model);
+    CHECK(r.input.volumes.size() == 2);
+    CHECK(r.cells.num_objects() == 2);
+    CHECK(r.lost.empty());
+    CHECK(r.input.edges.size() == m.model.wire.edges.size());  // no input edge left out
+    CHECK(!r.arrangement.crossed.empty());
+  }
+}
+
+TEST_CASE("merge_unforced: a merge never leaves a volume pinched at an edge or a vertex") {
+  // Grids turned at random: merging across every wall two volumes share made volumes that use
+  // an edge four times or touch themselves at a vertex, and validation refused the complex.
+  wireframe_options merge;
+  merge.volume.merge_unforced = true;
+  for (const char* name : {"grid 4x4x4 rot#1", "grid 5x5x5 rot#1", "grid 4x4x3"}) {
+    INFO(name);
+    const auto r = wireframe_to_cells(model(name).wire, merge);
+    const auto v = validate(r.cells);
+    const std::string why = v.message;
+    INFO(why);
+    CHECK(v.ok());
+    CHECK(!r.volume.merged.empty());
+    CHECK(r.input.volumes.size() < model(name).volumes.size());
+  }
+}
+
 TEST_CASE("touching solids: one object, volumes decided off each other's boundary") {
   // Cubes [0,1]^3 and [1,2]^3 share one vertex: one object, two volumes; the nesting test
   // must not start on the shared vertex (it found volume 1 inside volume 0 with volume 0).

@@ -79,7 +79,8 @@ inline const std::vector<std::string>& sweep_families() {
   static const std::vector<std::string> names{
       "frame",          "plate",         "box ring",       "torus",    "bipyramid", "house",  "dent",
       "notch",          "barrel",        "hourglass",      "geodesic", "polytope",  "cross",  "polycube",
-      "polycube cells", "linked frames", "solid in frame", "touching", "grid",      "library"};
+      "polycube cells", "linked frames", "solid in frame", "touching", "grid",      "hole grid",
+      "double frame",   "linked tori",   "stepped bore",   "holed face", "library"};
   return names;
 }
 
@@ -1032,6 +1033,204 @@ inline void random_cell_polycubes(sweep_set& s, std::size_t count) {
   s.draws.push_back(draws);
 }
 
+// ---- families of the exact reading (issue 38): ambiguous groups decided face by face ---------
+
+/// A plate (wide bars, small holes) or frame (thin bars, big holes) with a rows × cols grid of
+/// square through-holes, every box of its lattice its own volume except the boxes where four
+/// bars cross, each joined to the bar after it: the mouth of each hole is bounded by the tops
+/// of four boxes, and the boxes between two holes have no outer edge (their tops are needed
+/// only once the mouths beside them are open). O(rows · cols).
+inline cellforge::sample_model hole_grid(std::size_t rows, std::size_t cols, bool frame) {
+  const double bar = frame ? 0.3 : 1.0, hole = frame ? 1.0 : 0.5, thick = frame ? 0.4 : 0.25;
+  const auto widths = [&](std::size_t n) {
+    std::vector<double> w;
+    for (std::size_t c = 0; c <= 2 * n; ++c) w.push_back((c % 2 == 0 ? bar : hole) * (1.0 + 0.125 * double(c % 3)));
+    return w;
+  };
+  cellforge::voxel_layout l =
+      cellforge::empty_layout(from_widths(widths(cols)), from_widths(widths(rows)), {0.0, thick});
+  const auto crossing = [&](std::size_t i, std::size_t j) {
+    return i % 2 == 0 && j % 2 == 0 && i > 0 && j > 0 && i < 2 * cols && j < 2 * rows;
+  };
+  int next = 1;
+  for (std::size_t j = 0; j <= 2 * rows; ++j)
+    for (std::size_t i = 0; i <= 2 * cols; ++i)
+      if (!(i % 2 == 1 && j % 2 == 1) && !crossing(i, j)) l.at(i, j, 0) = next++;
+  for (std::size_t j = 0; j <= 2 * rows; ++j)
+    for (std::size_t i = 0; i <= 2 * cols; ++i)
+      if (crossing(i, j)) l.at(i, j, 0) = l.at(i + 1, j, 0);
+  return cellforge::make_voxel_model(l, std::string(frame ? "frame" : "plate") + " hole grid " +
+                                            std::to_string(rows) + "x" + std::to_string(cols));
+}
+
+/// Two frames side by side sharing a side: every box its own volume (the two boxes between the
+/// holes have no outer edge), one volume per frame, or bands (the rows without holes, and each
+/// piece of the row with them). O(1).
+inline cellforge::sample_model double_frame(int labels, bool wide) {
+  const double hole = wide ? 1.0 : 0.6;
+  const std::vector<double> xs = from_widths({0.3, hole, 0.3, 0.35, hole * 1.1, 0.3});
+  const std::vector<double> ys = from_widths({0.3, hole, 0.4});
+  cellforge::voxel_layout l = cellforge::empty_layout(xs, ys, {0, 0.4});
+  int next = 1;
+  for (std::size_t j = 0; j < 3; ++j)
+    for (std::size_t i = 0; i < 6; ++i) {
+      if (j == 1 && (i == 1 || i == 4)) continue;
+      l.at(i, j, 0) = labels == 0   ? next++
+                      : labels == 1 ? (i < 3 ? 1 : 2)
+                      : j != 1      ? 1 + static_cast<int>(j / 2)
+                                    : 3 + static_cast<int>(i < 1 ? 0 : i < 4 ? 1 : 2);
+    }
+  static const char* const kind[] = {"boxes", "frames", "bands"};
+  return cellforge::make_voxel_model(
+      l, std::string("double frame ") + kind[labels] + (wide ? " wide" : " narrow"));
+}
+
+/// Two linked solid tori (sections: 0 a diamond, 1 a hexagon, 2 an octagon, none with a flat
+/// side) of n segments: each passes through the other's hole, where the other's planar n-gon
+/// rings (spurious disks across the hole) cross the quads of its band. O(n).
+inline cellforge::sample_model linked_tori(std::size_t n, int section) {
+  std::vector<std::array<double, 2>> p;
+  if (section == 0) p = {{4, 0}, {3, 1}, {2, 0}, {3, -1}};
+  if (section == 1) p = hexagon(3, 1, false);
+  if (section == 2)
+    for (int k = 0; k < 8; ++k) {
+      const double t = 2 * std::numbers::pi * k / 8 + 0.3;
+      p.push_back({3 + std::cos(t), std::sin(t)});
+    }
+  static const char* const kind[] = {"diamond", "hexagon", "octagon"};
+  const cellforge::sample_model a = revolved(p, n, false, "a"), b = revolved(p, n, false, "b");
+  // b upright in the xz plane, turned about its axis, its centre on a's ring.
+  glm::dmat3 up(0.0);
+  up[0] = {1, 0, 0};
+  up[1] = {0, 0, 1};
+  up[2] = {0, -1, 0};
+  const double t = 0.37;
+  const glm::dmat3 spin(glm::dvec3(std::cos(t), std::sin(t), 0), glm::dvec3(-std::sin(t), std::cos(t), 0),
+                        glm::dvec3(0, 0, 1));
+  return cellforge::disjoint_union(a, cellforge::transformed(b, up * spin, glm::dvec3(0.0)), {3, 0, 0},
+                                   "linked tori " + std::string(kind[section]) + " n=" + std::to_string(n));
+}
+
+/// A solid of revolution of an axis-parallel (r, z) profile with a bore (r > 0 everywhere), in
+/// n segments as a CAD part is drawn: quads on the cylinders, one ring-shaped face (an n-gon
+/// with an n-gon hole) per flat step. Where the bore steps, the smaller bore's n-gon lies in the
+/// hole of the step face of the same plane: a disc no edge needs. One volume. O(n · profile).
+inline cellforge::sample_model stepped_part(const std::vector<std::array<double, 2>>& profile, std::size_t n,
+                                            std::string name) {
+  model_builder b;
+  std::map<std::array<double, 2>, std::vector<std::uint32_t>> rings;
+  const auto ring = [&](double r, double z) -> const std::vector<std::uint32_t>& {
+    auto& v = rings[{r, z}];
+    for (std::size_t j = 0; v.size() < n; ++j) {
+      const double t = 2 * std::numbers::pi * double(j) / double(n) + 0.1;
+      v.push_back(b.point({r * std::cos(t), r * std::sin(t), z}));
+    }
+    return v;
+  };
+  std::vector<std::uint32_t> faces;
+  for (std::size_t i = 0; i < profile.size(); ++i) {
+    const auto p = profile[i], q = profile[(i + 1) % profile.size()];
+    if (p[0] == q[0]) {
+      const std::vector<std::uint32_t> lo = ring(p[0], p[1]), hi = ring(q[0], q[1]);
+      for (std::size_t j = 0; j < n; ++j)
+        faces.push_back(b.face({{lo[j], lo[(j + 1) % n], hi[(j + 1) % n], hi[j]}}));
+    } else {
+      faces.push_back(b.face({ring(std::max(p[0], q[0]), p[1]), ring(std::min(p[0], q[0]), p[1])}));
+    }
+  }
+  b.volume(faces);
+  return b.done(std::move(name));
+}
+
+/// A box with k = 2..5 polygonal holes in its top face: through holes, blind pockets with a
+/// flat floor, or both in turn; one volume, the top face one face with k holes. O(k · sides).
+inline cellforge::sample_model holed_box(std::size_t k, std::size_t sides, int kind) {
+  model_builder b;
+  const double L = 1.2 * double(k) + 0.4, W = 1.5, H = 0.6;
+  std::array<std::uint32_t, 8> c{};
+  for (int i = 0; i < 8; ++i) c[i] = b.point({L * (i & 1), W * (i >> 1 & 1), H * (i >> 2 & 1)});
+  std::vector<std::vector<std::uint32_t>> top{{c[4], c[5], c[7], c[6]}}, bottom{{c[0], c[1], c[3], c[2]}};
+  std::vector<std::uint32_t> faces;
+  for (std::size_t h = 0; h < k; ++h) {
+    const double cx = 0.8 + 1.2 * double(h), cy = 0.75 + 0.1 * double(h % 2), r = 0.3 + 0.05 * double(h % 3);
+    const std::size_t s = sides + h % 2;
+    const bool pocket = kind == 1 || (kind == 2 && h % 2 == 1);
+    std::vector<std::uint32_t> up, down;
+    for (std::size_t j = 0; j < s; ++j) {
+      const double t = 2 * std::numbers::pi * double(j) / double(s) + 0.2 * double(h);
+      up.push_back(b.point({cx + r * std::cos(t), cy + r * std::sin(t), H}));
+      down.push_back(b.point({cx + r * std::cos(t), cy + r * std::sin(t), pocket ? H * 0.4 : 0.0}));
+    }
+    for (std::size_t j = 0; j < s; ++j) faces.push_back(b.face({{up[j], up[(j + 1) % s], down[(j + 1) % s], down[j]}}));
+    top.push_back(up);
+    if (pocket)
+      faces.push_back(b.face({down}));
+    else
+      bottom.push_back(down);
+  }
+  faces.push_back(b.face(top));
+  faces.push_back(b.face(bottom));
+  for (const auto& q : std::array<std::array<int, 4>, 4>{{{0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}}})
+    faces.push_back(b.face({{c[q[0]], c[q[1]], c[q[2]], c[q[3]]}}));
+  b.volume(faces);
+  static const char* const what[] = {"through", "pockets", "mixed"};
+  return b.done("holed box k=" + std::to_string(k) + " sides=" + std::to_string(sides) + " " + what[kind]);
+}
+
+/// The families of the exact reading: hole grids, double frames, linked tori, stepped bores,
+/// faces with several holes (sweep_families names them). Each in its own block, so that other
+/// copies of the sweep (noisy ones, say) can take them up. O(total size).
+inline void add_reading_families(sweep_set& s, bool full) {
+  using cellforge::sample_model;
+  {
+    std::vector<sample_model> bases;
+    for (const bool frame : {false, true})
+      for (const auto& [rows, cols] : std::vector<std::array<std::size_t, 2>>{{2, 2}, {3, 3}, {2, 3}, {1, 3}})
+        if (full || (rows == 2 && cols == (frame ? 3u : 2u)))
+          bases.push_back(hole_grid(rows, cols, frame));
+    add_family(s, "hole grid", std::move(bases), full);
+  }
+  {
+    std::vector<sample_model> bases;
+    for (const int labels : {0, 1, 2})
+      for (const bool wide : {true, false})
+        if (full || (labels == 0 && wide) || (labels == 2 && !wide)) bases.push_back(double_frame(labels, wide));
+    add_family(s, "double frame", std::move(bases), full);
+  }
+  {
+    std::vector<sample_model> bases;
+    for (const std::size_t n : {8, 12, 16, 24})
+      for (const int section : {0, 1, 2})
+        if (full || (n == 8 && section != 1)) bases.push_back(linked_tori(n, section));
+    add_family(s, "linked tori", std::move(bases), full);
+  }
+  {
+    using profile = std::vector<std::array<double, 2>>;
+    const std::vector<std::pair<std::string, profile>> parts{
+        {"bore step", {{1, 0}, {3, 0}, {3, 4}, {1.5, 4}, {1.5, 2}, {1, 2}}},
+        {"bore step down", {{1.5, 0}, {3, 0}, {3, 4}, {1, 4}, {1, 2.5}, {1.5, 2.5}}},
+        {"rotor", {{1, 0}, {2, 0}, {2, 1}, {3, 1}, {3, 3}, {2, 3}, {2, 4}, {1.5, 4}, {1.5, 2}, {1, 2}}},
+        {"coupling",
+         {{1, 0}, {3, 0}, {3, 1}, {2.5, 1}, {2.5, 3}, {3, 3}, {3, 4}, {1, 4}, {1, 3}, {1.5, 3}, {1.5, 1}, {1, 1}}},
+        {"bore two steps", {{0.5, 0}, {2.5, 0}, {2.5, 3}, {1.5, 3}, {1.5, 2}, {1, 2}, {1, 1}, {0.5, 1}}}};
+    std::vector<sample_model> bases;
+    for (std::size_t p = 0; p < parts.size(); ++p)
+      for (const std::size_t n : {8, 12, 24, 32})
+        if (full || (n == 12 && (p == 0 || p == 3)))
+          bases.push_back(stepped_part(parts[p].second, n, parts[p].first + " n=" + std::to_string(n)));
+    add_family(s, "stepped bore", std::move(bases), full);
+  }
+  {
+    std::vector<sample_model> bases;
+    for (std::size_t k = 2; k <= 5; ++k)
+      for (const int kind : {0, 1, 2})
+        for (const std::size_t sides : {3, 4, 6})
+          if (full ? sides != 3 || k % 2 == 0 : (k == 3 && sides == 4 && kind != 1))
+            bases.push_back(holed_box(k, sides, kind));
+    add_family(s, "holed face", std::move(bases), full);
+  }
+}
+
 }  // namespace detail
 
 /// Builds the sweep: every family's models (see sweep_families), shuffled (unless `shuffle` is
@@ -1367,6 +1566,8 @@ inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
                          i % 2 == 1);
     }
   }
+
+  detail::add_reading_families(s, full);
 
   {
     std::vector<sample_model> library = cellforge::all_small_samples();

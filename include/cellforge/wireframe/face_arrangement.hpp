@@ -4,7 +4,8 @@
 /// Stage 5 of the wireframe pipeline (seed 000 §4.5): smooth entity chains (straight runs of
 /// edges through degree-2 vertices), the Shpitalni–Lipson maximum ranks of edges and vertices,
 /// and the crossing rule of the face selection (docs/wireframe.md): of two candidates whose
-/// interiors cross, the one some edge needs wins; both go when neither or both are needed.
+/// interiors cross, the one some edge needs wins; the pairs no edge decides are decided by the
+/// certified choice (no pair kept whole, every genuine edge kept genuine) that keeps the fewest.
 /// Candidate pairs come from a uniform grid over face bounding boxes, so the cost is not
 /// all-pairs; the rest of the reading rule (faces no edge needs) is decided with the volumes.
 
@@ -223,6 +224,223 @@ class basic_crossing_test {
   }
 };
 
+template <class = void>
+class basic_crossing_decision;
+using crossing_decision = basic_crossing_decision<>;
+
+/// Decides the crossing pairs the rounds of the selection rule leave open: a branch and bound
+/// over the contested faces of each component (faces joined by a crossing pair or a shared
+/// edge), keep or drop each. A reading is certified when no crossing pair keeps both faces and
+/// every edge whose candidates made it genuine (three faces, or two not coplanar) still does;
+/// the best keeps the fewest contested faces, and readings equal in that keep only the faces
+/// all of them keep (the old "both go", where it is certified). Keeping a face drops its
+/// partners; dropping one keeps the faces an edge then needs. Per component at most
+/// `component_nodes` nodes; past that (or past the work budget) the best reading found, with a
+/// diagnostic. O(nodes · L · k) per component.
+template <class>
+class basic_crossing_decision {
+ public:
+  std::uint64_t component_nodes = 1u << 15;
+  std::vector<std::string> notes;
+
+  basic_crossing_decision(const wire_graph& g, const std::vector<wire_face>& faces, const edge_face_lists& at,
+                          std::vector<char>& alive)
+      : g_(g), faces_(faces), at_(at), alive_(alive), local_(faces.size(), no_index) {}
+
+  /// Drops (alive = 0) the losers of `pairs` (both alive); returns them.
+  std::vector<std::uint32_t> run(const std::vector<std::array<std::uint32_t, 2>>& pairs, work_budget& budget) {
+    std::vector<std::uint32_t> losers;
+    if (pairs.empty()) return losers;
+    const std::uint32_t nf = static_cast<std::uint32_t>(faces_.size());
+    partners_.assign(nf, {});
+    std::vector<std::uint32_t> contested;
+    for (const auto& [a, b] : pairs) {
+      partners_[a].push_back(b);
+      partners_[b].push_back(a);
+      contested.push_back(a);
+      contested.push_back(b);
+    }
+    std::sort(contested.begin(), contested.end());
+    contested.erase(std::unique(contested.begin(), contested.end()), contested.end());
+    genuine0_.assign(g_.num_edges(), 2);  // 2: not computed yet
+    union_find comp(nf);
+    std::vector<char> is_contested(nf, 0);
+    for (const auto f : contested) is_contested[f] = 1;
+    for (const auto& [a, b] : pairs) comp.unite(a, b);
+    for (const auto f : contested)
+      for_edges(f, [&](std::uint32_t e) {
+        for (const auto j : at_[e])
+          if (j != f && is_contested[j]) comp.unite(f, j);
+      });
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> by_comp;
+    for (const auto f : contested) by_comp.push_back({comp.find(f), f});
+    std::sort(by_comp.begin(), by_comp.end());
+    for (std::size_t b = 0, e = 0; b < by_comp.size(); b = e) {
+      G_.clear();
+      for (e = b; e < by_comp.size() && by_comp[e].first == by_comp[b].first; ++e) G_.push_back(by_comp[e].second);
+      decide(budget, losers);
+    }
+    for (const auto f : losers) alive_[f] = 0;
+    std::sort(losers.begin(), losers.end());
+    return losers;
+  }
+
+ private:
+  const wire_graph& g_;
+  const std::vector<wire_face>& faces_;
+  const edge_face_lists& at_;
+  std::vector<char>& alive_;
+  std::vector<std::vector<std::uint32_t>> partners_;
+  std::vector<char> genuine0_;  // per edge: its faces at the start made it genuine
+  std::vector<std::uint32_t> local_, G_, scratch_, queue_;
+  std::vector<char> st_;  // per component face: 0 open, 1 keep, 2 drop
+  std::vector<std::pair<std::uint32_t, char>> trail_;
+  std::vector<std::vector<char>> optima_;
+  std::uint32_t best_ = 0;
+  bool have_best_ = false, stopped_ = false;
+  std::uint64_t nodes_ = 0, limit_ = 0;
+
+  template <class Visit>
+  void for_edges(std::uint32_t i, Visit&& visit) const {
+    for (const auto& loop : faces_[i].loops)
+      for (std::size_t k = 0; k < loop.size(); ++k) visit(g_.find_edge(loop[k], loop[(k + 1) % loop.size()]));
+  }
+  bool present(std::uint32_t j) const {
+    if (!alive_[j]) return false;
+    const auto l = local_[j];
+    return l == no_index || st_[l] != 2;
+  }
+  bool genuine(std::uint32_t e, std::uint32_t skip) {
+    scratch_.clear();
+    for (const auto j : at_[e])
+      if (j != skip && present(j)) scratch_.push_back(j);
+    auto normal = [&](std::uint32_t j) { return faces_[j].normal; };
+    return !edge_needs_more(scratch_, normal);
+  }
+  void set(std::uint32_t l, char v) {
+    trail_.push_back({l, st_[l]});
+    st_[l] = v;
+    queue_.push_back(l);
+  }
+  bool assign(std::uint32_t l, char v) {
+    if (st_[l] != 0) return st_[l] == v;
+    queue_.clear();
+    set(l, v);
+    while (!queue_.empty()) {
+      const auto x = queue_.back();
+      queue_.pop_back();
+      const auto f = G_[x];
+      if (st_[x] == 1) {
+        for (const auto p : partners_[f]) {
+          const auto lp = local_[p];
+          if (lp == no_index || !alive_[p]) continue;
+          if (st_[lp] == 1) return false;
+          if (st_[lp] == 0) set(lp, 2);
+        }
+        continue;
+      }
+      bool ok = true;
+      for_edges(f, [&](std::uint32_t e) {
+        if (!ok) return;
+        if (genuine0_[e] == 2) {
+          scratch_.clear();
+          for (const auto j : at_[e])
+            if (alive_[j]) scratch_.push_back(j);
+          auto normal = [&](std::uint32_t j) { return faces_[j].normal; };
+          genuine0_[e] = !edge_needs_more(scratch_, normal);
+        }
+        if (!genuine0_[e]) return;
+        if (!genuine(e, no_index)) {
+          ok = false;
+          return;
+        }
+        for (const auto j : at_[e]) {
+          const auto lj = local_[j];
+          if (lj == no_index || st_[lj] != 0 || !alive_[j]) continue;
+          if (!genuine(e, j)) set(lj, 1);
+        }
+      });
+      if (!ok) return false;
+    }
+    return true;
+  }
+  void undo_to(std::size_t mark) {
+    while (trail_.size() > mark) {
+      st_[trail_.back().first] = trail_.back().second;
+      trail_.pop_back();
+    }
+  }
+  void dfs(std::size_t pos, std::uint32_t kept) {
+    if (stopped_) return;
+    if (++nodes_ > limit_) {
+      stopped_ = true;
+      return;
+    }
+    while (pos < G_.size() && st_[pos] != 0) kept += st_[pos++] == 1;
+    if (have_best_ && kept > best_) return;
+    if (pos == G_.size()) {
+      if (!have_best_ || kept < best_) optima_.clear();
+      best_ = kept;
+      have_best_ = true;
+      if (optima_.size() < 8) optima_.push_back(st_);
+      return;
+    }
+    for (const char v : {char{2}, char{1}}) {
+      const std::size_t mark = trail_.size();
+      // Faces before pos are decided; count the ones this step decides from pos on.
+      if (assign(static_cast<std::uint32_t>(pos), v)) dfs(pos, kept);
+      undo_to(mark);
+      if (stopped_ || (have_best_ && best_ == 0)) return;
+    }
+  }
+  void decide(work_budget& budget, std::vector<std::uint32_t>& losers) {
+    // Larger faces last: the smaller ones are tried (dropped) first.
+    std::sort(G_.begin(), G_.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return faces_[a].area != faces_[b].area ? faces_[a].area < faces_[b].area : a < b;
+    });
+    for (std::uint32_t l = 0; l < G_.size(); ++l) local_[G_[l]] = l;
+    st_.assign(G_.size(), 0);
+    trail_.clear();
+    optima_.clear();
+    have_best_ = stopped_ = false;
+    nodes_ = 0;
+    const std::uint64_t left =
+        budget.limit == 0 ? ~std::uint64_t{0} : (budget.limit > budget.used ? budget.limit - budget.used : 0);
+    limit_ = std::min<std::uint64_t>(component_nodes, left / (G_.size() + 1) + 1);
+    dfs(0, 0);
+    budget.spend(std::min<std::uint64_t>(nodes_ * (G_.size() + 1), left));
+    std::vector<char> choice;
+    if (have_best_) {
+      choice = optima_.front();
+      if (optima_.size() > 1) {
+        // Readings equal in the count keep only what all of them keep, when that is certified.
+        std::vector<char> meet(G_.size(), 1);
+        for (const auto& o : optima_)
+          for (std::uint32_t l = 0; l < G_.size(); ++l)
+            if (o[l] == 2) meet[l] = 2;
+        st_.assign(G_.size(), 0);
+        bool ok = true;
+        for (std::uint32_t l = 0; l < G_.size() && ok; ++l) ok = meet[l] != 2 || assign(l, 2);
+        for (std::uint32_t l = 0; l < G_.size() && ok; ++l) ok = assign(l, meet[l]);
+        undo_to(0);
+        if (ok) choice = meet;
+      }
+    }
+    if (!have_best_) {
+      // Nothing certified within the budget or at all: the old rule, both faces of each pair go.
+      choice.assign(G_.size(), 2);
+      notes.push_back("no certified choice among " + std::to_string(G_.size()) +
+                      " crossing candidates; all of them dropped");
+    } else if (stopped_) {
+      notes.push_back("the choice among " + std::to_string(G_.size()) +
+                      " crossing candidates stopped at its work budget; the best found is taken");
+    }
+    for (std::uint32_t l = 0; l < G_.size(); ++l)
+      if (choice[l] == 2) losers.push_back(G_[l]);
+    for (const auto f : G_) local_[f] = no_index;
+  }
+};
+
 /// The pairs of faces whose boxes meet, from a uniform grid of cells about twice the median
 /// face size: small faces are listed in the cells their box covers and a pair is reported in
 /// the one cell holding the low corner of the intersection of their boxes; a large face (over
@@ -329,8 +547,8 @@ void candidate_pairs(const wire_graph& g, const std::vector<face_plane>& plane, 
 }  // namespace detail
 
 /// Finds chains and ranks and selects the faces: the crossing rule of docs/wireframe.md (when
-/// two candidates cross, the one some edge needs wins; both go when neither or both are
-/// needed). O(V + E + F·L + P·L log L) where P is the number of candidate pairs the grid
+/// two candidates cross, the one some edge needs wins; the pairs left are decided by a
+/// budgeted search for the certified choice that keeps the fewest). O(V + E + F·L + P·L log L) where P is the number of candidate pairs the grid
 /// yields, plus O(rounds · F·L) for the needs, rounds being the chains of decisions (one or two).
 template <class = void>
 arrangement_result arrange_faces(const wire_graph& g, const std::vector<wire_face>& faces,
@@ -448,7 +666,7 @@ arrangement_result arrange_faces(const wire_graph& g, const std::vector<wire_fac
     // candidates (those in a crossing pair) are left out beats one that is not needed even
     // then (spurious cycles — rings, meridians — pad the edges of the real faces they cross
     // or lie beside). A round's losers leave, which can make others needed: decide again.
-    // Pairs still crossing when no round decides anything both go.
+    // Pairs still crossing when no round decides anything go to the search below.
     const auto at = detail::faces_at_edges(g, faces, &alive);
     std::vector<char> contested(faces.size(), 0), no_contest(faces.size(), 0);
     std::vector<std::uint32_t> scratch;
@@ -479,12 +697,15 @@ arrangement_result arrange_faces(const wire_graph& g, const std::vector<wire_fac
       }
       for (const auto i : losers) changed = std::exchange(alive[i], 0) || changed;
     }
-    for (const auto& [a, b] : r.crossings) {
-      if (!alive[a] || !alive[b]) continue;
-      r.diagnostics.push_back("candidates " + std::to_string(a) + " and " + std::to_string(b) +
-                              " cross each other and neither wins; both dropped");
-      alive[a] = alive[b] = 2;  // still crossing the others they cross in this pass
-    }
+    // Pairs no round decides: a search for the certified choice that keeps the fewest.
+    std::vector<std::array<std::uint32_t, 2>> open;
+    for (const auto& [a, b] : r.crossings)
+      if (alive[a] && alive[b]) open.push_back({a, b});
+    detail::crossing_decision decision(g, faces, at, alive);
+    for (const auto i : decision.run(open, budget))
+      r.diagnostics.push_back("candidate " + std::to_string(i) +
+                              " crosses a candidate no round decided against; the certified choice drops it");
+    for (auto& n : decision.notes) r.diagnostics.push_back(std::move(n));
     for (std::uint32_t i = 0; i < faces.size(); ++i)
       if (reduction.quality[i].usable && alive[i] != 1) {
         alive[i] = 0;

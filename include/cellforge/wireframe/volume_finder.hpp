@@ -12,12 +12,14 @@
 /// nested in another surface's volume (a solid in a cavity) becomes part of that volume's
 /// boundary, found by an exact point-in-solid test. Then the reading rule (docs/wireframe.md)
 /// drops the faces no edge needs — the mouths of holes and dents, walls such as the square
-/// under a roof — and joins the regions on their sides.
+/// under a roof — and joins the regions on their sides, each group of such faces decided by
+/// an exact, budgeted search for the best certified reading.
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -54,7 +56,9 @@ struct volume_options {
   /// face ends up inside a volume and no edge is left on fewer than two faces or on two
   /// coplanar ones; the walls merged are listed in volume_result::merged.
   bool merge_unforced = false;
-  /// Abstract steps of the reading rule's rounds (faces looked at); 0 = none.
+  /// Abstract steps of the reading rule (faces looked at by its rounds and its group searches);
+  /// 0 = none. A group search that reaches it (or 2^15 nodes) takes its best certified reading
+  /// and says so in a diagnostic; the rounds themselves throw a budget error past it.
   std::uint64_t work_budget = 200'000'000;
 };
 
@@ -83,6 +87,8 @@ struct volume_result : stage_report {
   /// dent" or "would split a volume in two".
   std::vector<std::string> alternatives;
   double manifold_milliseconds = 0.0;  ///< the seed's "manifold analysis" row: rotation order and shells
+  std::size_t groups = 0;    ///< groups of faces no edge needs that the reading searched
+  std::size_t readings = 0;  ///< certified readings the searches met (the best of each group is taken)
 };
 
 namespace detail {
@@ -146,6 +152,52 @@ bool surface_inside(const wire_graph& g, const std::vector<wire_face>& faces,
   return false;
 }
 
+/// True when the faces `boundary` of one volume make a 2-manifold there: each edge on at most
+/// two of them, and around each vertex one fan (two parts of a volume touching along an edge or
+/// at a vertex break make_cell_complex's volumes). `corners` is scratch. O(Σ L log Σ L).
+template <class = void>
+bool manifold_boundary(const wire_graph& g, const std::vector<wire_face>& faces,
+                       std::span<const std::uint32_t> boundary,
+                       std::vector<std::array<std::uint32_t, 3>>& corners) {
+  corners.clear();  // (vertex, edge before it, edge after it) per corner
+  for (const auto f : boundary)
+    for (const auto& loop : faces[f].loops)
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        const std::uint32_t v = loop[k], prev = loop[(k + loop.size() - 1) % loop.size()],
+                            next = loop[(k + 1) % loop.size()];
+        corners.push_back({v, g.find_edge(prev, v), g.find_edge(v, next)});
+      }
+  std::sort(corners.begin(), corners.end());
+  std::vector<std::uint32_t> edges, up;
+  for (std::size_t b = 0, e = 0; b < corners.size(); b = e) {
+    for (e = b; e < corners.size() && corners[e][0] == corners[b][0]; ++e) {
+    }
+    edges.clear();
+    for (std::size_t k = b; k < e; ++k) edges.push_back(corners[k][1]), edges.push_back(corners[k][2]);
+    std::sort(edges.begin(), edges.end());
+    // Each edge at the vertex on at most two corners (at most two faces of the volume).
+    for (std::size_t k = 0; k + 2 < edges.size(); ++k)
+      if (edges[k] == edges[k + 2]) return false;
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    up.resize(edges.size());
+    for (std::uint32_t k = 0; k < up.size(); ++k) up[k] = k;
+    auto find = [&](std::uint32_t x) {
+      while (up[x] != x) x = up[x] = up[up[x]];
+      return x;
+    };
+    auto index = [&](std::uint32_t edge) {
+      return static_cast<std::uint32_t>(std::lower_bound(edges.begin(), edges.end(), edge) - edges.begin());
+    };
+    std::size_t fans = edges.size();
+    for (std::size_t k = b; k < e; ++k) {
+      const auto x = find(index(corners[k][1])), y = find(index(corners[k][2]));
+      if (x != y) up[x] = y, --fans;
+    }
+    if (fans != 1) return false;
+  }
+  return true;
+}
+
 template <class = void>
 struct basic_region_links;
 using region_links = basic_region_links<>;
@@ -203,21 +255,29 @@ class basic_face_reader;
 using face_reader = basic_face_reader<>;
 
 /// The reading rule of docs/wireframe.md on the regions a set of faces bounds: which faces no
-/// edge needs are not faces, in rounds. Each round takes the faces no edge needs among those
-/// still kept and groups the bounded regions they join: a group with such a face on the
-/// outside is a hole, dent or tunnel and opens (its regions join the outside), unless a wall
-/// inside it is a seam (grid-like, undecidable: kept); a group without one becomes one volume
-/// (face_reading::needed only). The round's drops are taken back group by group while any
-/// would leave an edge on fewer than two faces or two coplanar ones, or a kept face with one
-/// region on both sides; an open group that fails may still merge its inner walls. When no
-/// group can go as a batch, the groups that fill a hole at odd depth in their plane are tried
-/// one at a time (the mouth around a box standing in a frame's hole goes, the box's top
-/// stays). Dropping faces makes the rest only more needed, so rounds end. O(rounds · Σ L · k).
+/// edge needs are not faces. In rounds: the faces no edge needs among those still kept are
+/// grouped (two such faces are in one group when they share an edge or a bounded region), and
+/// each group is decided by an exact search over its faces (drop or keep each): a reading is
+/// certified when every edge keeps two non-coplanar faces or three, no kept face has one
+/// volume on both sides, no volume uses an edge more than twice, and no wall the wireframe
+/// cannot decide (a seam wall: no edge needs it and it continues in the plane of another face
+/// at every edge, as inside a grid) is dropped or turned to the outside; among certified
+/// readings the search takes the one with the fewest kept faces no edge needs, then the fewest
+/// kept faces, then the largest area dropped (readings equal in all three keep the faces they
+/// disagree on, reported as unforced). Branch and bound, drop first, with propagation: a face
+/// an edge needs is kept, a face with one volume on both sides goes. Dropping faces makes the
+/// rest only more needed, so rounds end. O(rounds · Σ L · k) plus the search, which spends
+/// from the work budget (per group at most `group_nodes` nodes; past that, the best reading
+/// found and a diagnostic).
 template <class>
 class basic_face_reader {
  public:
   std::vector<char> drop, opened, unforced;  // per face
   union_find merged;                         // regions, O = regions; joined across drops
+  std::vector<std::string> notes;            // what the search could not settle, for diagnostics
+  std::vector<char> undecided;               // per face: kept because equally good readings disagree
+  std::size_t groups_searched = 0, readings_certified = 0;
+  std::uint64_t group_nodes = 1u << 15;
 
   basic_face_reader(const wire_graph& g, const std::vector<wire_face>& faces, const edge_face_lists& at,
                     const std::vector<std::array<std::uint32_t, 2>>& sides, const std::vector<char>& alive,
@@ -226,6 +286,7 @@ class basic_face_reader {
         opened(faces.size(), 0),
         unforced(faces.size(), 0),
         merged(std::size_t{regions} + 1),
+        undecided(faces.size(), 0),
         g_(g),
         faces_(faces),
         at_(at),
@@ -233,95 +294,87 @@ class basic_face_reader {
         alive_(alive),
         O_(regions),
         reading_(reading),
-        root_faces_(std::size_t{regions} + 1) {
+        root_faces_(std::size_t{regions} + 1),
+        seam_wall_(faces.size(), 0),
+        ambiguous_(std::size_t{regions} + 1, 0),
+        kept_cache_(alive),
+        local_(faces.size(), no_index) {
     for (std::uint32_t i = 0; i < faces.size(); ++i)
       if (alive[i])
         for (const auto rg : sides[i]) root_faces_[rg].push_back(i);
+    // Walls the wireframe cannot decide, on the faces as given: a seam wall no edge needs whose
+    // regions reach, through such walls, a region with a face no edge needs to the outside (a
+    // grid's inner walls behind the middles of its sides). Those walls stay and those regions
+    // never open; a seam wall of a closed group (a 3D cross's inner cube) may merge, and a face
+    // filling a hole of its plane (a disc in a ring face: a stepped bore) is no seam wall.
+    std::vector<std::uint32_t> scratch;
+    union_find through(std::size_t{regions} + 1);
+    std::vector<char> mouth(std::size_t{regions} + 1, 0);
+    std::vector<std::uint32_t> seams;
+    for (std::uint32_t i = 0; i < faces.size(); ++i) {
+      if (!alive[i] || needed_faces_one(g_, faces_, at_, alive_, i, scratch)) continue;
+      if (sides[i][0] == O_ || sides[i][1] == O_) {
+        mouth[sides[i][0] == O_ ? sides[i][1] : sides[i][0]] = 1;
+      } else if (faces[i].depth % 2 == 0 && is_seam(i)) {  // a face filling a hole is no wall among walls
+        seams.push_back(i);
+        through.unite(sides[i][0], sides[i][1]);
+      }
+    }
+    std::vector<char> reached(std::size_t{regions} + 1, 0);
+    for (std::uint32_t rg = 0; rg < regions; ++rg)
+      if (mouth[rg]) reached[through.find(rg)] = 1;
+    for (const auto i : seams)
+      if (reached[through.find(sides[i][0])]) {
+        seam_wall_[i] = 1;
+        ambiguous_[sides[i][0]] = ambiguous_[sides[i][1]] = 1;
+      }
   }
 
   void run(work_budget& budget) {
     if (reading_ == face_reading::keep_all) return mark_unforced();
-    const std::size_t nf = faces_.size();
+    const auto nf = static_cast<std::uint32_t>(faces_.size());
     for (;;) {
       budget.spend(nf);
       mark_unforced();
-      // Groups of the current (merged) regions joined by unforced walls.
-      union_find group(merged.parent.size());
-      const std::uint32_t outside = merged.find(O_);
-      auto root = [&](std::uint32_t rg) { return merged.find(rg); };
+      // Groups: the free faces no edge needs, joined through shared edges and bounded regions.
+      std::vector<std::uint32_t> free;
       for (std::uint32_t i = 0; i < nf; ++i)
-        if (unforced[i] && root(sides_[i][0]) != outside && root(sides_[i][1]) != outside)
-          group.unite(root(sides_[i][0]), root(sides_[i][1]));
-      auto group_of = [&](std::uint32_t i) {
-        return group.find(root(sides_[i][root(sides_[i][0]) != outside ? 0 : 1]));
-      };
-      std::vector<char> opens(group.parent.size(), 0), seam(group.parent.size(), 0),
-          odd(group.parent.size(), 0);
-      std::vector<std::uint32_t> groups;
-      for (std::uint32_t i = 0; i < nf; ++i) {
-        if (!unforced[i]) continue;
-        const auto gr = group_of(i);
-        groups.push_back(gr);
-        if (root(sides_[i][0]) == outside || root(sides_[i][1]) == outside) {
-          opens[gr] = 1;
-          odd[gr] = odd[gr] || faces_[i].depth % 2 == 1;
-        } else if (is_seam(i)) {
-          seam[gr] = 1;
+        if (unforced[i] && !frozen(i)) free.push_back(i);
+      if (free.empty()) break;
+      union_find group(nf + merged.parent.size());
+      const std::uint32_t outside = merged.find(O_);
+      for (const auto i : free) {
+        for (const auto rg : sides_[i])
+          if (const auto r = merged.find(rg); r != outside) group.unite(i, nf + r);
+        for (const auto& loop : faces_[i].loops)
+          for (std::size_t k = 0; k < loop.size(); ++k)
+            for (const auto j : at_[g_.find_edge(loop[k], loop[(k + 1) % loop.size()])])
+              if (j != i && unforced[j] && !frozen(j)) group.unite(i, j);
+      }
+      std::vector<std::pair<std::uint32_t, std::uint32_t>> by_group;  // (root, face)
+      for (const auto i : free) by_group.push_back({group.find(i), i});
+      std::sort(by_group.begin(), by_group.end());
+      bool changed = false;
+      std::vector<std::uint32_t> members;
+      for (std::size_t b = 0, e = 0; b < by_group.size(); b = e) {
+        members.clear();
+        for (e = b; e < by_group.size() && by_group[e].first == by_group[b].first; ++e)
+          members.push_back(by_group[e].second);
+        // Earlier groups of the round may have made some of these needed or merged their sides.
+        std::erase_if(members, [&](std::uint32_t i) {
+          return drop[i] || frozen(i) || merged.find(sides_[i][0]) == merged.find(sides_[i][1]) ||
+                 needed_faces_one(g_, faces_, at_, kept_now(), i, scratch_);
+        });
+        if (members.empty()) continue;
+        const auto picked = search(members, budget);
+        if (!picked.empty()) {
+          commit(picked);
+          changed = true;
         }
       }
-      std::sort(groups.begin(), groups.end());
-      groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
-      // 2: open (every unforced face of the group goes), 1: merge (only its walls go), 0: keep.
-      std::vector<int> mode(group.parent.size(), 0);
-      for (const auto gr : groups)
-        mode[gr] = opens[gr] ? (seam[gr] ? 0 : 2) : (reading_ == face_reading::needed ? 1 : 0);
-      if (reading_ == face_reading::keep_walls)
-        for (const auto gr : groups)
-          if (!opens[gr]) mode[gr] = 0;
-      auto picks = [&](const std::vector<int>& m) {
-        std::vector<std::uint32_t> faces;
-        for (std::uint32_t i = 0; i < nf; ++i) {
-          if (!unforced[i]) continue;
-          const int md = m[group_of(i)];
-          const bool wall = root(sides_[i][0]) != outside && root(sides_[i][1]) != outside;
-          if (md == 2 || (md == 1 && wall)) faces.push_back(i);
-        }
-        return faces;
-      };
-      // The batch: take back failing groups (an open one may still merge) until it holds.
-      const std::vector<int> first = mode;
-      for (;;) {
-        std::vector<std::uint32_t> failed;
-        const auto pick = picks(mode);
-        budget.spend(pick.size() + 1);
-        check(pick, [&](std::uint32_t i) { failed.push_back(group_of(i)); });
-        if (failed.empty()) break;
-        std::sort(failed.begin(), failed.end());
-        failed.erase(std::unique(failed.begin(), failed.end()), failed.end());
-        for (const auto gr : failed) mode[gr] = mode[gr] == 2 ? 1 : 0;
-      }
-      const auto batch = picks(mode);
-      if (!batch.empty()) {
-        commit(batch);
-        continue;
-      }
-      // Nothing goes as a batch: the hole fillers at odd depth, one group at a time.
-      bool done = true;
-      for (const auto gr : groups) {
-        if (first[gr] != 2 || !odd[gr]) continue;
-        std::vector<int> one(group.parent.size(), 0);
-        one[gr] = 2;
-        const auto pick = picks(one);
-        bool ok = true;
-        budget.spend(pick.size() + 1);
-        check(pick, [&](std::uint32_t) { ok = false; });
-        if (!ok) continue;
-        commit(pick);
-        done = false;
-        break;
-      }
-      if (done) break;
+      if (!changed) break;
     }
+    mark_unforced();
   }
 
  private:
@@ -333,96 +386,360 @@ class basic_face_reader {
   std::uint32_t O_;
   face_reading reading_;
   std::vector<std::vector<std::uint32_t>> root_faces_;  // per merged root, the faces bounding it
+  std::vector<char> seam_wall_, ambiguous_;             // per face; per merged root
   std::vector<std::uint32_t> scratch_;
+  std::vector<char> kept_cache_;
+
+  // ---- the search's state (one group at a time) ----
+  std::vector<std::uint32_t> local_;      // face → index in the group, no_index otherwise
+  std::vector<std::uint32_t> G_;          // the group's faces, in search order
+  std::vector<char> st_;                  // per group face: 0 undecided, 1 keep, 2 drop
+  std::vector<std::uint32_t> roots_;      // the merged roots the group touches (sorted)
+  std::vector<std::uint32_t> up_, size_;  // rollback union-find over roots_
+  std::vector<char> out_, amb_;           // per local root: holds the outside; holds an ambiguous region
+  std::vector<std::vector<std::uint32_t>> bound_;  // per local root: faces (kept, any) bounding it
+  std::vector<std::array<std::uint32_t, 3>> corners_;  // scratch of manifold_boundary
+  struct undo {
+    int kind;  // 0: face state, 1: union (child), 2: bound_ growth
+    std::uint32_t a, b;
+  };
+  std::vector<undo> trail_;
+  std::vector<std::uint32_t> queue_;
+  struct score {
+    std::uint32_t c1 = 0, volumes = 0, c2 = 0;
+    double area = 0.0;
+  };
+  score best_;
+  bool have_best_ = false;
+  std::vector<std::vector<char>> optima_;
+  std::uint64_t nodes_ = 0, limit_ = 0;
+  bool stopped_ = false;
+  std::size_t leaves_ = 0;
 
   bool kept(std::uint32_t i) const { return alive_[i] && !drop[i]; }
+  /// Per face: kept (alive, not dropped); updated by commit.
+  const std::vector<char>& kept_now() const { return kept_cache_; }
+  /// Seam walls never go; a face between the outside and a region next to a seam wall never goes
+  /// (it would turn the wall to the outside); keep_walls keeps every wall between two volumes.
+  bool frozen(std::uint32_t i) {
+    if (seam_wall_[i]) return true;
+    const auto a = merged.find(sides_[i][0]), b = merged.find(sides_[i][1]), o = merged.find(O_);
+    return (a == o && ambiguous_[b]) || (b == o && ambiguous_[a]);
+  }
   /// unforced[i]: kept, and needed by no edge among the kept faces.
   void mark_unforced() {
-    std::vector<char> k(faces_.size(), 0);
-    for (std::uint32_t i = 0; i < faces_.size(); ++i) k[i] = kept(i);
+    const auto& k = kept_now();
     for (std::uint32_t i = 0; i < faces_.size(); ++i)
       unforced[i] = k[i] && !needed_faces_one(g_, faces_, at_, k, i, scratch_);
   }
-  /// A seam continues, at every edge, in the plane of another kept face: a wall among walls.
+  /// A seam continues, at every edge, in the plane of another alive face: a wall among walls.
   bool is_seam(std::uint32_t i) const {
     for (const auto& loop : faces_[i].loops)
       for (std::size_t k = 0; k < loop.size(); ++k) {
         bool flat = false;
         for (const auto j : at_[g_.find_edge(loop[k], loop[(k + 1) % loop.size()])])
-          flat = flat || (j != i && kept(j) && coplanar_normals(faces_[i].normal, faces_[j].normal));
+          flat = flat || (j != i && alive_[j] && coplanar_normals(faces_[i].normal, faces_[j].normal));
         if (!flat) return false;
       }
     return true;
   }
-  /// Calls blame(face) for faces of `pick` whose drop, with the others, would leave one of
-  /// its edges on fewer than two kept faces or two coplanar ones, or a kept face with one
-  /// region on both sides. Local: the pick's edges and the faces of the regions it joins.
-  template <class Blame>
-  void check(const std::vector<std::uint32_t>& pick, Blame&& blame) {
-    if (pick.empty()) return;
-    for (const auto i : pick) drop[i] = 1;
-    std::vector<std::uint32_t> keep;
+  template <class Visit>
+  void for_edges(std::uint32_t i, Visit&& visit) const {
+    for (const auto& loop : faces_[i].loops)
+      for (std::size_t k = 0; k < loop.size(); ++k) visit(g_.find_edge(loop[k], loop[(k + 1) % loop.size()]));
+  }
+
+  // During a search: is face j present (kept so far or still open)?
+  bool present(std::uint32_t j) const {
+    if (!kept(j)) return false;
+    const auto l = local_[j];
+    return l == no_index || st_[l] != 2;
+  }
+  std::uint32_t lroot(std::uint32_t rg) {
+    const auto r = merged.find(rg);
+    auto x = static_cast<std::uint32_t>(std::lower_bound(roots_.begin(), roots_.end(), r) - roots_.begin());
+    if (x == roots_.size() || roots_[x] != r) return no_index - 1;  // a region the group does not touch
+    while (up_[x] != x) x = up_[x];
+    return x;
+  }
+  /// The present faces at edge e, other than `skip`, make a genuine edge.
+  bool edge_ok(std::uint32_t e, std::uint32_t skip) {
+    scratch_.clear();
+    for (const auto j : at_[e])
+      if (j != skip && present(j)) scratch_.push_back(j);
     auto normal = [&](std::uint32_t j) { return faces_[j].normal; };
-    for (const auto i : pick) {
-      bool bad = false;
-      for (const auto& loop : faces_[i].loops)
-        for (std::size_t k = 0; k < loop.size() && !bad; ++k) {
-          keep.clear();
-          for (const auto j : at_[g_.find_edge(loop[k], loop[(k + 1) % loop.size()])])
-            if (kept(j)) keep.push_back(j);
-          bad = keep.empty() || edge_needs_more(keep, normal);
+    return !edge_needs_more(scratch_, normal);
+  }
+  void set(std::uint32_t l, char v) {
+    trail_.push_back({0, l, static_cast<std::uint32_t>(st_[l])});
+    st_[l] = v;
+  }
+  /// Assigns v to group face l and propagates; false on a conflict (the caller undoes the trail).
+  bool assign(std::uint32_t l, char v) {
+    if (st_[l] != 0) return st_[l] == v;
+    set(l, v);
+    queue_.clear();
+    queue_.push_back(l);
+    while (!queue_.empty()) {
+      const auto x = queue_.back();
+      queue_.pop_back();
+      const auto f = G_[x];
+      if (st_[x] == 1) {
+        if (lroot(sides_[f][0]) == lroot(sides_[f][1])) return false;
+        continue;
+      }
+      // Dropped: every edge must stay genuine; faces that keep it so are forced.
+      bool ok = true;
+      for_edges(f, [&](std::uint32_t e) {
+        if (!ok) return;
+        if (!edge_ok(e, no_index)) {
+          ok = false;
+          return;
         }
-      if (bad) blame(i);
+        for (const auto j : at_[e]) {
+          const auto lj = local_[j];
+          if (lj == no_index || st_[lj] != 0 || !present(j)) continue;
+          if (!edge_ok(e, j)) {
+            set(lj, 1);
+            queue_.push_back(lj);
+          }
+        }
+      });
+      if (!ok) return false;
+      auto a = lroot(sides_[f][0]), b = lroot(sides_[f][1]);
+      if (a == b) continue;
+      if ((out_[a] && amb_[b]) || (out_[b] && amb_[a])) return false;
+      // Faces between a and b: an open one must go, a kept one makes the reading invalid.
+      if (bound_[a].size() > bound_[b].size()) std::swap(a, b);
+      for (const auto j : bound_[a]) {
+        if (!present(j)) continue;
+        const auto p = lroot(sides_[j][0]), q = lroot(sides_[j][1]);
+        if (!((p == a && q == b) || (p == b && q == a))) continue;
+        const auto lj = local_[j];
+        if (lj == no_index || st_[lj] == 1) return false;
+        set(lj, 2);
+        queue_.push_back(lj);
+      }
+      up_[a] = b;  // a (the smaller list) is absorbed
+      trail_.push_back({1, a, static_cast<std::uint32_t>(bound_[b].size())});
+      bound_[b].insert(bound_[b].end(), bound_[a].begin(), bound_[a].end());
+      trail_.push_back({2, b, static_cast<std::uint32_t>(out_[b] | (amb_[b] << 1))});
+      out_[b] = out_[b] || out_[a];
+      amb_[b] = amb_[b] || amb_[a];
     }
-    // The merge the pick makes, on the roots it touches only.
-    std::vector<std::uint32_t> touched;
-    for (const auto i : pick)
-      for (const auto rg : sides_[i]) touched.push_back(merged.find(rg));
-    std::sort(touched.begin(), touched.end());
-    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-    auto index = [&](std::uint32_t rg) {
-      const auto root = merged.find(rg);
-      const auto it = std::lower_bound(touched.begin(), touched.end(), root);
-      return it != touched.end() && *it == root ? static_cast<std::uint32_t>(it - touched.begin()) : no_index;
-    };
-    union_find local(touched.size());
-    std::vector<std::vector<std::uint32_t>> picked_at(touched.size());
-    for (const auto i : pick) {
-      local.unite(index(sides_[i][0]), index(sides_[i][1]));
-      for (const auto rg : sides_[i]) picked_at[index(rg)].push_back(i);
-    }
-    // A kept face joined to itself has both sides among the touched roots, one of them not
-    // the outside (no kept face has the outside on both sides).
-    const std::uint32_t outside = merged.find(O_);
-    for (std::uint32_t t = 0; t < touched.size(); ++t) {
-      if (touched[t] == outside) continue;
-      for (const auto f : root_faces_[touched[t]]) {
-        if (!kept(f)) continue;
-        const auto a = index(sides_[f][0]), b = index(sides_[f][1]);
-        if (a == no_index || b == no_index || local.find(a) != local.find(b)) continue;
-        for (const auto i : picked_at[a]) blame(i);
-        for (const auto i : picked_at[b]) blame(i);
+    return true;
+  }
+  void undo_to(std::size_t mark) {
+    while (trail_.size() > mark) {
+      const undo u = trail_.back();
+      trail_.pop_back();
+      if (u.kind == 0) {
+        st_[u.a] = static_cast<char>(u.b);
+      } else if (u.kind == 2) {
+        out_[u.a] = static_cast<char>(u.b & 1);
+        amb_[u.a] = static_cast<char>((u.b >> 1) & 1);
+      } else {
+        const auto b = up_[u.a];
+        bound_[b].resize(u.b);
+        up_[u.a] = u.a;
       }
     }
-    for (const auto i : pick) drop[i] = 0;
+  }
+  /// Needed among the present faces, counting open faces as dropped when `pessimistic`.
+  bool needed_now(std::uint32_t f, bool pessimistic) {
+    bool need = false;
+    for_edges(f, [&](std::uint32_t e) {
+      if (need) return;
+      scratch_.clear();
+      for (const auto j : at_[e]) {
+        if (j == f || !present(j)) continue;
+        if (pessimistic && local_[j] != no_index && st_[local_[j]] == 0) continue;
+        scratch_.push_back(j);
+      }
+      auto normal = [&](std::uint32_t j) { return faces_[j].normal; };
+      need = edge_needs_more(scratch_, normal);
+    });
+    return need;
+  }
+  /// A complete assignment: no volume uses an edge more than twice; keep_walls merges no two
+  /// volumes. Returns false when it fails.
+  bool certified() {
+    std::vector<std::uint32_t> members(roots_.size(), 0), boundary;
+    for (std::uint32_t x = 0; x < roots_.size(); ++x) ++members[lroot_of_local(x)];
+    for (std::uint32_t r = 0; r < roots_.size(); ++r) {
+      // Only volumes this group merged can break the manifold.
+      if (up_[r] != r || out_[r] || members[r] < 2) continue;
+      boundary.clear();
+      for (const auto j : bound_[r])
+        if (present(j) && (lroot(sides_[j][0]) == r) != (lroot(sides_[j][1]) == r)) boundary.push_back(j);
+      std::sort(boundary.begin(), boundary.end());
+      boundary.erase(std::unique(boundary.begin(), boundary.end()), boundary.end());
+      if (!manifold_boundary(g_, faces_, boundary, corners_)) return false;
+    }
+    if (reading_ == face_reading::keep_walls)
+      for (std::uint32_t l = 0; l < G_.size(); ++l)
+        if (st_[l] == 2 && !out_[lroot(sides_[G_[l]][0])]) return false;
+    return true;
+  }
+  std::uint32_t lroot_of_local(std::uint32_t x) const {
+    while (up_[x] != x) x = up_[x];
+    return x;
+  }
+  static int compare(const score& a, const score& b) {
+    if (a.c1 != b.c1) return a.c1 < b.c1 ? -1 : 1;
+    if (a.volumes != b.volumes) return a.volumes < b.volumes ? -1 : 1;
+    if (a.c2 != b.c2) return a.c2 < b.c2 ? -1 : 1;
+    const double tol = 1e-9 * std::max({a.area, b.area, 1e-300});
+    if (std::abs(a.area - b.area) <= tol) return 0;
+    return a.area > b.area ? -1 : 1;
+  }
+  void leaf() {
+    ++leaves_;
+    if (!certified()) return;
+    ++readings_certified;
+    score s;
+    for (std::uint32_t x = 0; x < roots_.size(); ++x) s.volumes += up_[x] == x && !out_[x];
+    for (std::uint32_t l = 0; l < G_.size(); ++l) {
+      if (st_[l] == 2) {
+        s.area += faces_[G_[l]].area;
+      } else {
+        ++s.c2;
+        s.c1 += !needed_now(G_[l], false);
+      }
+    }
+    const int c = have_best_ ? compare(s, best_) : -1;
+    if (c > 0) return;
+    if (c < 0) {
+      best_ = s;
+      have_best_ = true;
+      optima_.clear();
+    }
+    if (optima_.size() < 8) optima_.push_back(st_);
+  }
+  void dfs(std::size_t pos) {
+    if (stopped_) return;
+    if (++nodes_ > limit_) {
+      stopped_ = true;
+      return;
+    }
+    while (pos < G_.size() && st_[pos] != 0) ++pos;
+    if (pos == G_.size()) return leaf();
+    if (have_best_) {
+      // Bound: faces kept so far, and those of them unneeded even if every open face goes.
+      score lb;
+      for (std::uint32_t l = 0; l < G_.size(); ++l)
+        if (st_[l] == 1) {
+          ++lb.c2;
+          lb.c1 += !needed_now(G_[l], true);
+        }
+      if (lb.c1 > best_.c1) return;
+      if (best_.c2 == 0) return;  // every face dropped: nothing beats or ties it
+    }
+    for (const char v : {char{2}, char{1}}) {
+      const std::size_t mark = trail_.size();
+      if (assign(static_cast<std::uint32_t>(pos), v)) dfs(pos + 1);
+      undo_to(mark);
+      if (stopped_) return;
+    }
+  }
+  /// The best certified reading of the group's faces `members`: the faces to drop.
+  std::vector<std::uint32_t> search(std::vector<std::uint32_t> members, work_budget& budget) {
+    ++groups_searched;
+    // Larger faces first: the first readings found drop the larger mouths.
+    std::sort(members.begin(), members.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return faces_[a].area != faces_[b].area ? faces_[a].area > faces_[b].area : a < b;
+    });
+    G_ = members;
+    for (std::uint32_t l = 0; l < G_.size(); ++l) local_[G_[l]] = l;
+    st_.assign(G_.size(), 0);
+    roots_.clear();
+    roots_.push_back(merged.find(O_));
+    for (const auto f : G_)
+      for (const auto rg : sides_[f]) roots_.push_back(merged.find(rg));
+    std::sort(roots_.begin(), roots_.end());
+    roots_.erase(std::unique(roots_.begin(), roots_.end()), roots_.end());
+    const std::size_t nr = roots_.size();
+    up_.resize(nr);
+    out_.assign(nr, 0);
+    amb_.assign(nr, 0);
+    bound_.assign(nr, {});
+    const auto o = merged.find(O_);
+    for (std::uint32_t x = 0; x < nr; ++x) {
+      up_[x] = x;
+      out_[x] = roots_[x] == o;
+      amb_[x] = ambiguous_[roots_[x]];
+      if (roots_[x] == o) continue;  // the outside's faces matter only through the other side
+      for (const auto j : root_faces_[roots_[x]])
+        if (kept(j)) bound_[x].push_back(j);
+    }
+    // Faces whose other side is the outside are listed with their bounded side only; list
+    // them under the outside too, so that a merge with the outside finds them.
+    if (const auto xo = static_cast<std::uint32_t>(std::lower_bound(roots_.begin(), roots_.end(), o) - roots_.begin());
+        xo < nr)
+      for (std::uint32_t x = 0; x < nr; ++x)
+        if (x != xo)
+          for (const auto j : bound_[x])
+            if (merged.find(sides_[j][0]) == o || merged.find(sides_[j][1]) == o) bound_[xo].push_back(j);
+    trail_.clear();
+    have_best_ = false;
+    optima_.clear();
+    nodes_ = 0;
+    leaves_ = 0;
+    stopped_ = false;
+    const std::uint64_t left = budget.limit == 0 ? ~std::uint64_t{0} : (budget.limit > budget.used ? budget.limit - budget.used : 0);
+    // Each node looks at the group's faces: the search stops before the budget would throw.
+    limit_ = std::min<std::uint64_t>(group_nodes, left / (G_.size() + 1) + 1);
+    dfs(0);
+    budget.spend(std::min<std::uint64_t>(nodes_ * (G_.size() + 1), left));
+    std::vector<std::uint32_t> picked;
+    if (have_best_) {
+      // Readings alike in every key keep the faces they disagree on (the wireframe does not decide).
+      std::vector<char> choice = optima_.front();
+      if (optima_.size() > 1) {
+        std::vector<char> meet(G_.size(), 2);
+        for (const auto& opt : optima_)
+          for (std::uint32_t l = 0; l < G_.size(); ++l)
+            if (opt[l] != 2) meet[l] = 1;
+        // The meet is certified when it assigns cleanly and passes the checks.
+        st_.assign(G_.size(), 0);
+        bool ok = true;
+        for (std::uint32_t l = 0; l < G_.size() && ok; ++l) ok = assign(l, meet[l]);
+        ok = ok && st_ == meet && certified();
+        undo_to(0);
+        if (ok) {
+          for (std::uint32_t l = 0; l < G_.size(); ++l)
+            if (meet[l] != choice[l]) undecided[G_[l]] = 1;
+          choice = meet;
+        }
+        notes.push_back(std::to_string(optima_.size()) + (optima_.size() == 8 ? " or more" : "") +
+                        " equally good readings of a group of " + std::to_string(G_.size()) +
+                        " faces no edge needs" + (ok ? "; the faces they disagree on are kept" : "; the first is taken"));
+      }
+      for (std::uint32_t l = 0; l < G_.size(); ++l)
+        if (choice[l] == 2) picked.push_back(G_[l]);
+    }
+    if (stopped_)
+      notes.push_back("the search of a group of " + std::to_string(G_.size()) + " faces no edge needs stopped after " +
+                      std::to_string(nodes_) + " steps (work budget); the best reading found is taken");
+    for (const auto f : G_) local_[f] = no_index;
+    std::sort(picked.begin(), picked.end());
+    return picked;
   }
   void commit(const std::vector<std::uint32_t>& pick) {
-    const std::uint32_t outside = merged.find(O_);
-    for (const auto i : pick) {
-      drop[i] = 1;
-      opened[i] = merged.find(sides_[i][0]) == outside || merged.find(sides_[i][1]) == outside;
-    }
+    for (const auto i : pick) drop[i] = 1, kept_cache_[i] = 0;
     for (const auto i : pick) {
       const auto a = merged.find(sides_[i][0]), b = merged.find(sides_[i][1]);
       if (a == b) continue;
       merged.unite(a, b);
       // The survivor takes the other's faces, the shorter list moved into the longer.
       const auto keep = merged.find(a), gone = keep == a ? b : a;
-      if (root_faces_[keep].size() < root_faces_[gone].size())
-        std::swap(root_faces_[keep], root_faces_[gone]);
+      ambiguous_[keep] = ambiguous_[keep] || ambiguous_[gone];
+      if (root_faces_[keep].size() < root_faces_[gone].size()) std::swap(root_faces_[keep], root_faces_[gone]);
       root_faces_[keep].insert(root_faces_[keep].end(), root_faces_[gone].begin(), root_faces_[gone].end());
       std::vector<std::uint32_t>().swap(root_faces_[gone]);
     }
+    const auto o = merged.find(O_);
+    for (const auto i : pick) opened[i] = merged.find(sides_[i][0]) == o;
   }
 };
 
@@ -556,6 +873,9 @@ volume_result find_volumes(const wire_graph& g, const std::vector<wire_face>& fa
   detail::face_reader reader(g, faces, at, sides_of, alive, regions, options.reading);
   detail::work_budget budget{options.work_budget, 0, "find_volumes"};
   reader.run(budget);
+  r.groups = reader.groups_searched;
+  r.readings = reader.readings_certified;
+  for (auto& note : reader.notes) r.diagnostics.push_back(std::move(note));
   std::vector<char>& drop = reader.drop;
   detail::union_find& merged = reader.merged;
   for (std::uint32_t i = 0; i < nf; ++i) {
@@ -572,17 +892,23 @@ volume_result find_volumes(const wire_graph& g, const std::vector<wire_face>& fa
   }
 
   // merge_unforced: one kept unforced wall at a time, with every other wall between the same
-  // two volumes, when none of those is needed and every edge keeps its faces.
+  // two volumes, when none of those is needed, every edge keeps its faces and the merged
+  // volume uses no edge more than twice (two parts of it meeting along an edge).
   if (options.merge_unforced) {
     detail::region_links links(std::size_t{regions} + 1);
     std::vector<char> is_wall(nf, 0);
     for (const auto i : r.unforced) is_wall[i] = sides_of[i][0] != O && sides_of[i][1] != O;
+    std::vector<std::vector<std::uint32_t>> bounding(std::size_t{regions} + 1);  // per merged root
     for (std::uint32_t i = 0; i < nf; ++i) {
       if (!alive[i] || drop[i]) continue;
       const auto a = merged.find(sides_of[i][0]), b = merged.find(sides_of[i][1]);
       if (a != b) links.add(a, b, i, is_wall[i] != 0);
+      bounding[a].push_back(i);
+      bounding[b].push_back(i);
     }
     std::vector<std::uint32_t> kept;
+    std::vector<std::uint32_t> uses;
+    std::vector<std::array<std::uint32_t, 3>> corners;
     auto normal = [&](std::uint32_t j) { return faces[j].normal; };
     for (const auto i : r.unforced) {
       const auto a = merged.find(sides_of[i][0]), b = merged.find(sides_of[i][1]);
@@ -600,6 +926,17 @@ volume_result find_volumes(const wire_graph& g, const std::vector<wire_face>& fa
               if (!drop[j]) kept.push_back(j);
             ok = !kept.empty() && !detail::edge_needs_more(kept, normal);
           }
+      // The merged volume: each of its edges on at most two of its faces, one fan at each vertex.
+      uses.clear();
+      for (const auto root : {a, b})
+        for (const auto j : bounding[root]) {
+          if (drop[j]) continue;
+          const auto p = merged.find(sides_of[j][0]), q = merged.find(sides_of[j][1]);
+          if ((p == a || p == b) != (q == a || q == b)) uses.push_back(j);
+        }
+      std::sort(uses.begin(), uses.end());
+      uses.erase(std::unique(uses.begin(), uses.end()), uses.end());
+      ok = ok && detail::manifold_boundary(g, faces, uses, corners);
       if (!ok) {
         for (const auto w : walls) drop[w] = 0;
         continue;
@@ -609,6 +946,10 @@ volume_result find_volumes(const wire_graph& g, const std::vector<wire_face>& fa
         r.diagnostics.push_back("wall " + std::to_string(w) + " merged away (merge_unforced)");
       }
       links.unite(a, b, merged);
+      const auto keep = merged.find(a), gone = keep == a ? b : a;
+      if (bounding[keep].size() < bounding[gone].size()) std::swap(bounding[keep], bounding[gone]);
+      bounding[keep].insert(bounding[keep].end(), bounding[gone].begin(), bounding[gone].end());
+      std::vector<std::uint32_t>().swap(bounding[gone]);
     }
     std::erase_if(r.unforced, [&](std::uint32_t i) { return drop[i] != 0; });
     std::sort(r.merged.begin(), r.merged.end());
