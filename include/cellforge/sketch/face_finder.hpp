@@ -120,6 +120,9 @@ struct face_finder_result {
   std::size_t walls = 0;       ///< loops the wall search added (faces beyond two per edge)
   std::size_t unneeded = 0;    ///< loops dropped because no edge needs them (a hole's mouth)
   bool budget_fallback = false;  ///< the finder ran out of budget: the baseline's answer, flagged
+  /// Loops were added or dropped after the string algorithm, and the wall search from no loops
+  /// found others (in `alternatives`): flagged.
+  bool ambiguous = false;
   std::uint64_t work = 0;      ///< steps spent from the budget
   double milliseconds = 0.0;
   std::vector<std::string> diagnostics;
@@ -768,11 +771,38 @@ struct basic_face_rules {
     }
     return 0.5 * a;
   }
+  /// Whether a line from a loop junction into the loop's inside runs along one of the loop's
+  /// directions: it then lies in the face's plane and enters the face, so the loop is no face
+  /// (the chord rule for lines that end off the loop). O(L · degree).
+  bool entered(const std::vector<std::uint32_t>& loop, const std::vector<std::uint32_t>& cs, double ar) const {
+    const std::size_t n = loop.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::uint32_t v = loop[k], before = loop[(k + n - 1) % n], after = loop[(k + 1) % n];
+      // The inside at v: counter-clockwise from the line to `after` to the line to `before` when
+      // the loop runs counter-clockwise, the other way round otherwise.
+      const glm::dvec2 to_after = g.p[after] - g.p[v], to_before = g.p[before] - g.p[v];
+      const glm::dvec2 from = ar > 0 ? to_after : to_before, to = ar > 0 ? to_before : to_after;
+      const auto sweep = [&](glm::dvec2 d) {  // angle counter-clockwise from `from` to d, in [0, 2π)
+        double t = std::atan2(from.x * d.y - from.y * d.x, glm::dot(from, d));
+        return t < 0 ? t + 2 * std::numbers::pi : t;
+      };
+      const double wedge = sweep(to);
+      for (std::uint32_t i = g.out_begin[v]; i < g.out_begin[v + 1]; ++i) {
+        const std::uint32_t w = g.head[g.outs[i]];
+        if (w == before || w == after || !std::binary_search(cs.begin(), cs.end(), strict_class[g.outs[i] >> 1]))
+          continue;
+        const double t = sweep(g.p[w] - g.p[v]);
+        if (t > 1e-9 && t < wedge - 1e-9) return true;
+      }
+    }
+    return false;
+  }
   /// Why a new loop breaks the rules against the loops kept (empty: it does not). O(L · faces per edge).
   const char* conflict(const std::vector<std::uint32_t>& loop) const {
     const auto cs = classes_of(loop);
     const double ar = signed_area(g.p, loop);
     const std::size_t n = loop.size();
+    if (entered(loop, cs, ar)) return "a line in its plane enters it";
     for (std::size_t k = 0; k < n; ++k) {
       const std::uint32_t a = loop[k], b = loop[(k + 1) % n], c = loop[(k + 2) % n];
       const std::uint32_t e = edge_between(a, b), f = edge_between(b, c);
@@ -981,6 +1011,22 @@ std::array<std::size_t, 2> complete_walls(finder& f, face_rules& rules, std::siz
     if (worst != none) rules.remove(worst), dropped = true, ++unneeded;
   }
   return {added, unneeded};
+}
+
+/// Loops as a sorted list of canonical cycles, for comparing answers. O(Σ L log L).
+template <class = void>
+std::vector<std::vector<std::uint32_t>> canonical_set(const std::vector<std::vector<std::uint32_t>>& loops) {
+  std::vector<std::vector<std::uint32_t>> out;
+  for (const auto& l : loops) {
+    // Start at the smallest junction, towards its smaller neighbour.
+    const std::size_t n = l.size(), s0 = static_cast<std::size_t>(std::min_element(l.begin(), l.end()) - l.begin());
+    const bool forward = n < 2 || l[(s0 + 1) % n] <= l[(s0 + n - 1) % n];
+    std::vector<std::uint32_t> c(n);
+    for (std::size_t i = 0; i < n; ++i) c[i] = l[forward ? (s0 + i) % n : (s0 + n - i) % n];
+    out.push_back(std::move(c));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 /// The loops of a complete state, as junction cycles, each once. O(E).
@@ -1334,10 +1380,31 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
       r.diagnostics.push_back(std::string(e.what()) + " while searching walls");
       r.budget_fallback = true;
     }
+    // Where the string algorithm alone did not answer (loops added, taken out or dropped), the
+    // same search from nothing must find the same loops: two searches that disagree on what the
+    // rules allow leave the drawing ambiguous, and the answer is flagged with the other.
+    const bool completed = r.walls > 0 || r.unneeded > 0 || rules.loops.size() != r.loops.size();
     r.loops = std::move(rules.loops);
+    if (completed && !r.budget_fallback) {
+      df::face_rules fresh(g, options.coplanar_tolerance_degrees);
+      try {
+        (void)df::complete_walls(f, fresh, options.wall_expansions);
+        if (df::canonical_set(fresh.loops) != df::canonical_set(r.loops)) {
+          r.ambiguous = true;
+          r.diagnostics.push_back("the wall search from no loops finds other faces (" +
+                                  std::to_string(fresh.loops.size()) + " loops): ambiguous");
+          r.alternatives.push_back({fresh.loops, df::check_loops(g, fresh.loops, options.coplanar_tolerance_degrees),
+                                    "the wall search from no loops"});
+        }
+      } catch (const error& e) {
+        if (e.category() != error_category::budget) throw;
+        r.ambiguous = true;
+        r.diagnostics.push_back(std::string(e.what()) + " while cross-checking the walls");
+      }
+    }
   }
   r.check = df::check_loops(g, r.loops, options.coplanar_tolerance_degrees);
-  r.flagged = !r.check.ok() || r.budget_fallback;
+  r.flagged = !r.check.ok() || r.budget_fallback || r.ambiguous;
   if (r.loops.empty()) r.diagnostics.push_back("find_faces: no closed loop in the drawing");
   if (!r.check.edges_with_fewer_loops.empty())
     r.diagnostics.push_back(std::to_string(r.check.edges_with_fewer_loops.size()) +
@@ -1359,7 +1426,7 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
                             "): a solid of higher genus, or a loop too few");
   if (r.flagged && options.alternatives_when_flagged) {
     // Alternatives: the other finder, and Varley–Company from other starts; best check first.
-    std::vector<face_alternative> alt;
+    std::vector<face_alternative> alt = std::move(r.alternatives);  // the wall search's, if any
     budget.used = 0;  // each alternative its own budget: the answer may have spent it all
     if (options.kind == face_finder_kind::varley_company) {
       if (!r.budget_fallback) alt.push_back({df::shortest_loops(g, budget), {}, "the shortest-loops baseline"});
