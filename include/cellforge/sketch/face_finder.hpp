@@ -119,6 +119,7 @@ struct face_finder_result {
   std::size_t rejected = 0;    ///< hypotheses whose consequences reached a dead end
   std::size_t walls = 0;       ///< loops the wall search added (faces beyond two per edge)
   std::size_t unneeded = 0;    ///< loops dropped because no edge needs them (a hole's mouth)
+  std::size_t unforced = 0;    ///< loops kept that no edge needs (walls inside a grid): flagged ambiguous
   bool budget_fallback = false;  ///< the finder ran out of budget: the baseline's answer, flagged
   /// Loops were added or dropped after the string algorithm, and the wall search from no loops
   /// found others (in `alternatives`): flagged.
@@ -878,6 +879,13 @@ struct basic_face_rules {
     }
     return false;
   }
+  /// Whether loop l, taken out, would leave one of its edges on three faces or more.
+  bool grid_wall(std::uint32_t l) const {
+    const auto& loop = loops[l];
+    for (std::size_t k = 0; k < loop.size(); ++k)
+      if (on_edge[edge_between(loop[k], loop[(k + 1) % loop.size()])].size() > 3) return true;
+    return false;
+  }
   /// Takes loop l out (the last index moves into its place). O(L · faces per edge).
   void remove(std::uint32_t l) {
     const auto drop = [&](std::uint32_t x) {
@@ -1002,12 +1010,16 @@ std::array<std::size_t, 2> complete_walls(finder& f, face_rules& rules, std::siz
     }
   }
   // A face exists only where an edge needs it (the reading rule's first clause, in the drawing):
-  // loops no edge needs go, the longest first (a hole's mouth taken for a wall, say).
+  // loops no edge needs go, the longest first, where every edge keeps just two faces (a hole's
+  // mouth taken for a wall). A loop no edge needs whose edge keeps three faces or more is a wall
+  // inside a grid, which the drawing cannot decide: it stays, counted in `unforced`.
   for (bool dropped = true; dropped;) {
     dropped = false;
     std::uint32_t worst = none;
-    for (std::uint32_t l = 0; l < rules.loops.size(); ++l)
-      if (!rules.needed(l) && (worst == none || rules.loops[l].size() > rules.loops[worst].size())) worst = l;
+    for (std::uint32_t l = 0; l < rules.loops.size(); ++l) {
+      if (rules.needed(l) || rules.grid_wall(l)) continue;
+      if (worst == none || rules.loops[l].size() > rules.loops[worst].size()) worst = l;
+    }
     if (worst != none) rules.remove(worst), dropped = true, ++unneeded;
   }
   return {added, unneeded};
@@ -1383,6 +1395,13 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
     // Where the string algorithm alone did not answer (loops added, taken out or dropped), the
     // same search from nothing must find the same loops: two searches that disagree on what the
     // rules allow leave the drawing ambiguous, and the answer is flagged with the other.
+    for (std::uint32_t l = 0; l < rules.loops.size(); ++l) r.unforced += !rules.needed(l);
+    if (r.unforced > 0) {
+      r.ambiguous = true;
+      r.diagnostics.push_back(std::to_string(r.unforced) +
+                              " loops are walls no edge needs (inside a grid): kept, but the drawing "
+                              "reads as well without them");
+    }
     const bool completed = r.walls > 0 || r.unneeded > 0 || rules.loops.size() != r.loops.size();
     r.loops = std::move(rules.loops);
     if (completed && !r.budget_fallback) {
