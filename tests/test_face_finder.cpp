@@ -79,6 +79,7 @@ TEST_CASE("find_faces: Varley-Company returns exactly the true loops on drawings
       }
       cellforge::face_finder_options base;
       base.kind = cellforge::face_finder_kind::shortest_loops;
+      base.walls = false;  // the baseline alone (the wall search repairs some of its answers)
       baseline_right += same_loops(cellforge::find_faces(s.drawing, base).loops, s.loops);
     }
   for (const auto& n : misses) MESSAGE("Varley-Company miss: " << n);
@@ -266,4 +267,88 @@ TEST_CASE("find_faces: the generated sweep — exact or flagged, none silently w
   CHECK(100 * more.vc >= 95 * more.drawings);
   CHECK(more.drawings * 5 >= sweep.size());  // the families of several volumes are a fifth at least
   CHECK(family.size() == cellforge::sketch_sweep_families().size());
+}
+
+TEST_CASE("find_faces: internal walls, solids along an edge and a roof's square are found in 2D") {
+  using cellforge::find_faces;
+  struct expect {
+    cellforge::sample_model model;
+    std::size_t most_loops_on_an_edge;
+  };
+  cellforge::voxel_layout row = cellforge::empty_layout({0, 1.3, 2.1}, {0, 1}, {0, 0.8});
+  row.labels = {1, 2};
+  const std::vector<expect> cases{
+      {cellforge::make_voxel_model(row, "row of two boxes"), 3},
+      {cellforge::sample_grid(2, 2, 1), 4},
+      {*cellforge::sliced_polytope(0, 0, true, 3), 3},
+      {cellforge::roof_on_box(0, 5), 3},
+      {cellforge::touching_solids(0, 2), 4},
+      {cellforge::touching_solids(3, 2), 2},
+      {cellforge::bar_frame(1, 4), 4}};  // a corner block of its own: four bars meet at its edges
+  for (const auto& c : cases)
+    for (std::uint64_t view = 1; view <= 3; ++view) {
+      const auto s = cellforge::generic_drawing(c.model, view, "walls");
+      CAPTURE(s.name);
+      const auto r = find_faces(s.drawing);
+      CHECK(same_loops(r.loops, s.loops));
+      CHECK_FALSE(r.flagged);
+      CHECK(r.check.ok());
+      std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> uses;
+      for (const auto& l : r.loops)
+        for (std::size_t k = 0; k < l.size(); ++k)
+          ++uses[{std::min(l[k], l[(k + 1) % l.size()]), std::max(l[k], l[(k + 1) % l.size()])}];
+      std::size_t most = 0;
+      for (const auto& [e, n] : uses) most = std::max(most, n);
+      CHECK(most == c.most_loops_on_an_edge);
+      // Without the wall search the string algorithm's answer misses faces, and its check says so
+      // (the issue's silent answers: the outer boundary alone, seams no wall meets).
+      cellforge::face_finder_options plain;
+      plain.walls = false;
+      const auto p = find_faces(s.drawing, plain);
+      if (!same_loops(p.loops, s.loops)) CHECK((p.flagged || c.model.name.find("roof") != std::string::npos));
+    }
+}
+
+TEST_CASE("find_faces: the check names seams, shared corners and loops a line in their plane enters") {
+  // A row of two boxes without its wall: four edges on two coplanar loops each.
+  cellforge::voxel_layout row = cellforge::empty_layout({0, 1.3, 2.1}, {0, 1}, {0, 0.8});
+  row.labels = {1, 2};
+  const auto s = cellforge::generic_drawing(cellforge::make_voxel_model(row, "row"), 2, "walls");
+  loops_t outer;
+  for (const auto& l : s.loops) {
+    std::size_t inner = 0;  // the wall's junctions lie at x = 1.3
+    for (const auto v : l) inner += std::abs(s.model.wire.points[v].x - 1.3) < 1e-12;
+    if (inner < l.size()) outer.push_back(l);
+  }
+  REQUIRE(outer.size() + 1 == s.loops.size());
+  const auto g = cellforge::detail::faces::make_graph(s.drawing, {});
+  const auto c = cellforge::detail::faces::check_loops(g, outer);
+  CHECK(c.seam_edges.size() == 4);
+  CHECK_FALSE(c.ok());
+  CHECK(c.edges_with_fewer_loops.empty());
+  // The same loop twice turns the same corners.
+  loops_t twice = s.loops;
+  twice.push_back(s.loops.front());
+  CHECK_FALSE(cellforge::detail::faces::check_loops(g, twice).rule_breaking_loops.empty());
+  // The truth passes.
+  CHECK(cellforge::detail::faces::check_loops(g, s.loops).ok());
+}
+
+TEST_CASE("find_faces: out of budget, the baseline answers, flagged") {
+  const auto s = cellforge::generic_drawing(cellforge::sample_uv_sphere(8, 5), 1, "sphere");
+  cellforge::face_finder_options full;
+  full.walls = false;
+  const auto vc = cellforge::find_faces(s.drawing, full);
+  cellforge::face_finder_options base = full;
+  base.kind = cellforge::face_finder_kind::shortest_loops;
+  const auto bl = cellforge::find_faces(s.drawing, base);
+  REQUIRE(bl.work < vc.work);
+  cellforge::face_finder_options tight = full;
+  tight.work_budget = (bl.work + vc.work) / 2;
+  const auto r = cellforge::find_faces(s.drawing, tight);
+  CHECK(r.budget_fallback);
+  CHECK(r.flagged);
+  CHECK(same_loops(r.loops, bl.loops));
+  CHECK(std::any_of(r.diagnostics.begin(), r.diagnostics.end(),
+                    [](const std::string& d) { return d.find("baseline answers instead") != std::string::npos; }));
 }

@@ -690,6 +690,7 @@ template <class = void>
 struct basic_face_rules {
   const drawing_graph& g;
   std::vector<std::uint32_t> strict_class;  ///< per edge: exact direction class
+  std::vector<double> class_angle;          ///< per class: its direction's angle in [0, π)
   std::vector<std::uint32_t> capacity;      ///< per edge: most faces it can carry
   std::vector<std::vector<std::uint32_t>> loops;
   std::vector<std::vector<std::uint32_t>> classes;  ///< per loop: its exact direction classes, sorted
@@ -716,13 +717,25 @@ struct basic_face_rules {
     for (std::size_t k = 0; k < ne; ++k) {
       if (k > 0 && angle[k].first - angle[k - 1].first > tol) ++c;
       strict_class[angle[k].second] = c;
+      if (class_angle.size() <= c) class_angle.push_back(angle[k].first);
     }
     if (ne > 1 && angle.front().first + std::numbers::pi - angle.back().first <= tol && c > 0)
       for (auto& k : strict_class)
         if (k == c) k = 0;
+    // Capacity from the junctions where the chain of e through degree-2 junctions (a split edge:
+    // every face of one piece is a face of the others) ends.
     capacity.resize(ne);
-    for (std::uint32_t e = 0; e < ne; ++e)
-      capacity[e] = std::min(g.degree(g.head[2 * e]), g.degree(g.head[2 * e + 1])) - 1;
+    for (std::uint32_t e = 0; e < ne; ++e) {
+      std::uint32_t most = std::numeric_limits<std::uint32_t>::max();
+      for (std::uint32_t h : {2 * e, 2 * e + 1}) {
+        for (std::size_t steps = 0; g.degree(g.head[h]) == 2 && steps < ne; ++steps) {
+          const std::uint32_t v = g.head[h], a = g.outs[g.out_begin[v]], b = g.outs[g.out_begin[v] + 1];
+          h = (a >> 1) == (h >> 1) ? b : a;
+        }
+        if (g.degree(g.head[h]) != 2) most = std::min(most, g.degree(g.head[h]) - 1);
+      }
+      capacity[e] = std::max<std::uint32_t>(most == std::numeric_limits<std::uint32_t>::max() ? 2 : most, 2);
+    }
     at_junction.resize(g.num_junctions());
     for (std::uint32_t v = 0; v < g.num_junctions(); ++v) {
       auto& cs = at_junction[v];
@@ -741,6 +754,7 @@ struct basic_face_rules {
     return {std::min(a, b), std::max(a, b)};
   }
   bool corner_used(std::uint32_t v, std::uint32_t e1, std::uint32_t e2) const {
+    if (g.degree(v) == 2) return false;  // a split edge: its faces all go straight on here
     const auto c = pair(e1, e2);
     return std::find(corners[v].begin(), corners[v].end(), c) != corners[v].end();
   }
@@ -752,10 +766,16 @@ struct basic_face_rules {
     cs.erase(std::unique(cs.begin(), cs.end()), cs.end());
     return cs;
   }
+  /// Whether class c's direction is plainly not e's (half a degree: a direction along e, split
+  /// from e's class by rounding, adds nothing to a plane through e).
+  bool across(std::uint32_t c, std::uint32_t e) const {
+    const double d = std::abs(class_angle[c] - class_angle[strict_class[e]]);
+    return std::min(d, std::numbers::pi - d) > std::numbers::pi / 360.0;
+  }
   /// Whether loops with classes a and b, sharing edge e, are coplanar (a direction besides e's in both).
   bool coplanar(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b, std::uint32_t e) const {
     for (const auto c : a)
-      if (c != strict_class[e] && std::binary_search(b.begin(), b.end(), c)) return true;
+      if (across(c, e) && std::binary_search(b.begin(), b.end(), c)) return true;
     return false;
   }
   /// The side of edge e (+1 left of its half-edge 2e, −1 right) a loop of signed area `area`
@@ -850,7 +870,7 @@ struct basic_face_rules {
         if (common.empty()) return false;
       }
     for (const auto c : common)
-      if (c != strict_class[e] && !std::binary_search(classes[l1].begin(), classes[l1].end(), c) &&
+      if (across(c, e) && !std::binary_search(classes[l1].begin(), classes[l1].end(), c) &&
           !std::binary_search(classes[l2].begin(), classes[l2].end(), c))
         return true;
     return false;
@@ -1364,6 +1384,11 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
   r.edges = g.num_half_edges() / 2;
   r.direction_classes = g.classes;
   detail::work_budget budget{options.work_budget, 0, "find_faces"};
+  // Parallel in space shows as parallel to the point type's rounding: float drawings need more.
+  const double coplanar_tolerance =
+      std::max(options.coplanar_tolerance_degrees,
+               100.0 * static_cast<double>(std::numeric_limits<detail::point2_scalar_t<drawing_point_t<D>>>::epsilon()) *
+                   180.0 / std::numbers::pi);
   if (r.edges == 0) throw error(error_category::invalid_input, "find_faces: the drawing has no edge");
   try {
     if (options.kind == face_finder_kind::varley_company)
@@ -1380,7 +1405,7 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
   }
   if (options.walls) {
     // Faces beyond two per edge: the loops that edges still need, each allowed by the rules.
-    df::face_rules rules(g, options.coplanar_tolerance_degrees);
+    df::face_rules rules(g, coplanar_tolerance);
     for (const auto& loop : r.loops)
       if (loop.size() >= 3 && rules.conflict(loop) == nullptr) rules.add(loop);
     df::finder f(g, options, budget);
@@ -1405,14 +1430,14 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
     const bool completed = r.walls > 0 || r.unneeded > 0 || rules.loops.size() != r.loops.size();
     r.loops = std::move(rules.loops);
     if (completed && !r.budget_fallback) {
-      df::face_rules fresh(g, options.coplanar_tolerance_degrees);
+      df::face_rules fresh(g, coplanar_tolerance);
       try {
         (void)df::complete_walls(f, fresh, options.wall_expansions);
         if (df::canonical_set(fresh.loops) != df::canonical_set(r.loops)) {
           r.ambiguous = true;
           r.diagnostics.push_back("the wall search from no loops finds other faces (" +
                                   std::to_string(fresh.loops.size()) + " loops): ambiguous");
-          r.alternatives.push_back({fresh.loops, df::check_loops(g, fresh.loops, options.coplanar_tolerance_degrees),
+          r.alternatives.push_back({fresh.loops, df::check_loops(g, fresh.loops, coplanar_tolerance),
                                     "the wall search from no loops"});
         }
       } catch (const error& e) {
@@ -1422,7 +1447,7 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
       }
     }
   }
-  r.check = df::check_loops(g, r.loops, options.coplanar_tolerance_degrees);
+  r.check = df::check_loops(g, r.loops, coplanar_tolerance);
   r.flagged = !r.check.ok() || r.budget_fallback || r.ambiguous;
   if (r.loops.empty()) r.diagnostics.push_back("find_faces: no closed loop in the drawing");
   if (!r.check.edges_with_fewer_loops.empty())
@@ -1459,7 +1484,7 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
       face_finder_result scratch;
       alt.push_back({df::varley_company(g, options, budget, 0, scratch), {}, "Varley-Company"});
     }
-    for (auto& a : alt) a.check = df::check_loops(g, a.loops, options.coplanar_tolerance_degrees);
+    for (auto& a : alt) a.check = df::check_loops(g, a.loops, coplanar_tolerance);
     const auto score = [](const face_alternative& a) {
       return std::make_tuple(!a.check.ok(),
                              a.check.edges_with_fewer_loops.size() + a.check.seam_edges.size() +
