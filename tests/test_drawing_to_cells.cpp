@@ -251,9 +251,9 @@ TEST_CASE("drawing_to_cells: drawings of several volumes are the true complex or
   // into the 3D reading; an answer whose complex is not the truth must come back flagged.
   cellforge::voxel_layout row = cellforge::empty_layout({0, 1.3, 2.1}, {0, 1}, {0, 0.8});
   row.labels = {1, 2};
-  const std::vector<cellforge::sample_model> models{cellforge::make_voxel_model(row, "row of two boxes"),
-                                                    cellforge::touching_solids(0, 2), cellforge::roof_on_box(0, 5),
-                                                    cellforge::sample_grid(2, 2, 1)};
+  const std::vector<cellforge::sample_model> models{
+      cellforge::make_voxel_model(row, "row of two boxes"), cellforge::touching_solids(0, 2),
+      cellforge::roof_on_box(0, 5), cellforge::sample_grid(2, 2, 1)};
   std::size_t right = 0, flagged = 0;
   for (const auto& m : models)
     for (std::uint64_t view = 1; view <= 2; ++view) {

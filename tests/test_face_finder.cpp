@@ -256,12 +256,15 @@ TEST_CASE("find_faces: the generated sweep — exact or flagged, none silently w
     MESSAGE(name << ": " << t.drawings << " drawings up to " << t.max_edges << " edges, exact " << t.vc
                  << ", flagged " << t.flagged << ", shortest loops " << t.baseline);
   for (const auto& m : misses) MESSAGE("miss: " << m);
-  const auto pct = [](std::size_t a, std::size_t b) { return 100.0 * static_cast<double>(a) / static_cast<double>(b); };
-  MESSAGE("sweep: " << sweep.size() << " drawings; two faces per edge: exact " << two.vc << " of " << two.drawings
-                    << " (" << pct(two.vc, two.drawings) << " %); several: exact " << more.vc << " of "
-                    << more.drawings << " (" << pct(more.vc, more.drawings) << " %); misses " << misses.size()
-                    << ", silently wrong " << silent << "; shortest loops exact on " << two.baseline + more.baseline
-                    << "; slowest " << slowest << " ms (" << slowest_name << ")");
+  const auto pct = [](std::size_t a, std::size_t b) {
+    return 100.0 * static_cast<double>(a) / static_cast<double>(b);
+  };
+  MESSAGE("sweep: " << sweep.size() << " drawings; two faces per edge: exact " << two.vc << " of "
+                    << two.drawings << " (" << pct(two.vc, two.drawings) << " %); several: exact " << more.vc
+                    << " of " << more.drawings << " (" << pct(more.vc, more.drawings) << " %); misses "
+                    << misses.size() << ", silently wrong " << silent << "; shortest loops exact on "
+                    << two.baseline + more.baseline << "; slowest " << slowest << " ms (" << slowest_name
+                    << ")");
   CHECK(silent == 0);
   CHECK(100 * two.vc >= 99 * two.drawings);
   CHECK(100 * more.vc >= 95 * more.drawings);
@@ -349,6 +352,7 @@ TEST_CASE("find_faces: out of budget, the baseline answers, flagged") {
   CHECK(r.budget_fallback);
   CHECK(r.flagged);
   CHECK(same_loops(r.loops, bl.loops));
-  CHECK(std::any_of(r.diagnostics.begin(), r.diagnostics.end(),
-                    [](const std::string& d) { return d.find("baseline answers instead") != std::string::npos; }));
+  CHECK(std::any_of(r.diagnostics.begin(), r.diagnostics.end(), [](const std::string& d) {
+    return d.find("baseline answers instead") != std::string::npos;
+  }));
 }

@@ -149,7 +149,8 @@ std::string truth_faults(const sample_drawing& s) {
       ++bounds[f];
       for (const auto& loop : model.faces[f])
         for (std::size_t i = 0; i < loop.size(); ++i)
-          ++twice[{std::min(loop[i], loop[(i + 1) % loop.size()]), std::max(loop[i], loop[(i + 1) % loop.size()])}];
+          ++twice[{std::min(loop[i], loop[(i + 1) % loop.size()]),
+                   std::max(loop[i], loop[(i + 1) % loop.size()])}];
     }
     for (const auto& [e, n] : twice)
       if (n != 2) out << "volume " << c << " is not closed at edge " << e.first << "-" << e.second << "; ";

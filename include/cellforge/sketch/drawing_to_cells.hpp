@@ -495,7 +495,8 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
   for (const auto& face : r.cells.input.faces)
     for (const auto& loop : face.loops)
       for (std::size_t k = 0; k < loop.size(); ++k) {
-        const std::uint32_t a = r.cells.input_vertex[loop[k]], b = r.cells.input_vertex[loop[(k + 1) % loop.size()]];
+        const std::uint32_t a = r.cells.input_vertex[loop[k]],
+                            b = r.cells.input_vertex[loop[(k + 1) % loop.size()]];
         sides.insert({std::min(a, b), std::max(a, b)});
       }
   for (std::uint32_t e = 0; e < r.wire.edges.size(); ++e) {
@@ -503,7 +504,8 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
     if (!sides.count({std::min(a, b), std::max(a, b)})) r.unused_edges.push_back(e);
   }
   if (!r.unused_edges.empty())
-    r.diagnostics.push_back(std::to_string(r.unused_edges.size()) + " drawn edges bound no face of the complex (first: edge " +
+    r.diagnostics.push_back(std::to_string(r.unused_edges.size()) +
+                            " drawn edges bound no face of the complex (first: edge " +
                             std::to_string(r.unused_edges.front()) + ")");
   if (!r.cells.unforced.empty())
     r.diagnostics.push_back(std::to_string(r.cells.unforced.size()) +

@@ -83,7 +83,7 @@ struct face_check {
   std::size_t edges_on_two_loops = 0;
   std::vector<std::uint32_t> edges_with_fewer_loops;  ///< edge indices, with 0 or 1 loops
   std::vector<std::uint32_t> edges_with_more_loops;   ///< edge indices on 3 or more loops (walls, contacts)
-  std::vector<std::uint32_t> bad_loops;  ///< loops that are not simple polygons or have an inner chord
+  std::vector<std::uint32_t> bad_loops;   ///< loops that are not simple polygons or have an inner chord
   std::vector<std::uint32_t> seam_edges;  ///< edges on just two loops, coplanar: a wall must meet them
   /// Loops that turn a corner an earlier loop turns, overlap a coplanar one at an edge, or put
   /// an edge over the faces its junctions can hold.
@@ -113,18 +113,18 @@ struct face_finder_result {
   bool flagged = false;                        ///< the check failed: see diagnostics and alternatives
   std::vector<face_alternative> alternatives;  ///< best first, when flagged
   std::size_t junctions = 0, edges = 0, direction_classes = 0;
-  std::size_t forced = 0;      ///< forced concatenations (one candidate left)
-  std::size_t voluntary = 0;   ///< voluntary mergers (a string closed into a face)
-  std::size_t hypotheses = 0;  ///< faces found by the working list
-  std::size_t rejected = 0;    ///< hypotheses whose consequences reached a dead end
-  std::size_t walls = 0;       ///< loops the wall search added (faces beyond two per edge)
-  std::size_t unneeded = 0;    ///< loops dropped because no edge needs them (a hole's mouth)
-  std::size_t unforced = 0;    ///< loops kept that no edge needs (walls inside a grid): flagged ambiguous
+  std::size_t forced = 0;        ///< forced concatenations (one candidate left)
+  std::size_t voluntary = 0;     ///< voluntary mergers (a string closed into a face)
+  std::size_t hypotheses = 0;    ///< faces found by the working list
+  std::size_t rejected = 0;      ///< hypotheses whose consequences reached a dead end
+  std::size_t walls = 0;         ///< loops the wall search added (faces beyond two per edge)
+  std::size_t unneeded = 0;      ///< loops dropped because no edge needs them (a hole's mouth)
+  std::size_t unforced = 0;      ///< loops kept that no edge needs (walls inside a grid): flagged ambiguous
   bool budget_fallback = false;  ///< the finder ran out of budget: the baseline's answer, flagged
   /// Loops were added or dropped after the string algorithm, and the wall search from no loops
   /// found others (in `alternatives`): flagged.
   bool ambiguous = false;
-  std::uint64_t work = 0;      ///< steps spent from the budget
+  std::uint64_t work = 0;  ///< steps spent from the budget
   double milliseconds = 0.0;
   std::vector<std::string> diagnostics;
 };
@@ -739,7 +739,8 @@ struct basic_face_rules {
     at_junction.resize(g.num_junctions());
     for (std::uint32_t v = 0; v < g.num_junctions(); ++v) {
       auto& cs = at_junction[v];
-      for (std::uint32_t i = g.out_begin[v]; i < g.out_begin[v + 1]; ++i) cs.push_back(strict_class[g.outs[i] >> 1]);
+      for (std::uint32_t i = g.out_begin[v]; i < g.out_begin[v + 1]; ++i)
+        cs.push_back(strict_class[g.outs[i] >> 1]);
       std::sort(cs.begin(), cs.end());
       cs.erase(std::unique(cs.begin(), cs.end()), cs.end());
     }
@@ -773,7 +774,8 @@ struct basic_face_rules {
     return std::min(d, std::numbers::pi - d) > std::numbers::pi / 360.0;
   }
   /// Whether loops with classes a and b, sharing edge e, are coplanar (a direction besides e's in both).
-  bool coplanar(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b, std::uint32_t e) const {
+  bool coplanar(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b,
+                std::uint32_t e) const {
     for (const auto c : a)
       if (across(c, e) && std::binary_search(b.begin(), b.end(), c)) return true;
     return false;
@@ -795,7 +797,8 @@ struct basic_face_rules {
   /// Whether a line from a loop junction into the loop's inside runs along one of the loop's
   /// directions: it then lies in the face's plane and enters the face, so the loop is no face
   /// (the chord rule for lines that end off the loop). O(L · degree).
-  bool entered(const std::vector<std::uint32_t>& loop, const std::vector<std::uint32_t>& cs, double ar) const {
+  bool entered(const std::vector<std::uint32_t>& loop, const std::vector<std::uint32_t>& cs,
+               double ar) const {
     const std::size_t n = loop.size();
     for (std::size_t k = 0; k < n; ++k) {
       const std::uint32_t v = loop[k], before = loop[(k + n - 1) % n], after = loop[(k + 1) % n];
@@ -810,7 +813,8 @@ struct basic_face_rules {
       const double wedge = sweep(to);
       for (std::uint32_t i = g.out_begin[v]; i < g.out_begin[v + 1]; ++i) {
         const std::uint32_t w = g.head[g.outs[i]];
-        if (w == before || w == after || !std::binary_search(cs.begin(), cs.end(), strict_class[g.outs[i] >> 1]))
+        if (w == before || w == after ||
+            !std::binary_search(cs.begin(), cs.end(), strict_class[g.outs[i] >> 1]))
           continue;
         const double t = sweep(g.p[w] - g.p[v]);
         if (t > 1e-9 && t < wedge - 1e-9) return true;
@@ -1017,7 +1021,8 @@ std::array<std::size_t, 2> complete_walls(finder& f, face_rules& rules, std::siz
       if (loop.empty()) continue;
       offers.push_back({{loop.size(), 0.0}, std::move(loop)});
     }
-    std::stable_sort(offers.begin(), offers.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    std::stable_sort(offers.begin(), offers.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
     for (auto& [cost, loop] : offers) {
       (void)cost;
       bool needed = false;
@@ -1051,7 +1056,8 @@ std::vector<std::vector<std::uint32_t>> canonical_set(const std::vector<std::vec
   std::vector<std::vector<std::uint32_t>> out;
   for (const auto& l : loops) {
     // Start at the smallest junction, towards its smaller neighbour.
-    const std::size_t n = l.size(), s0 = static_cast<std::size_t>(std::min_element(l.begin(), l.end()) - l.begin());
+    const std::size_t n = l.size(),
+                      s0 = static_cast<std::size_t>(std::min_element(l.begin(), l.end()) - l.begin());
     const bool forward = n < 2 || l[(s0 + 1) % n] <= l[(s0 + n - 1) % n];
     std::vector<std::uint32_t> c(n);
     for (std::size_t i = 0; i < n; ++i) c[i] = l[forward ? (s0 + i) % n : (s0 + n - i) % n];
@@ -1385,10 +1391,11 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
   r.direction_classes = g.classes;
   detail::work_budget budget{options.work_budget, 0, "find_faces"};
   // Parallel in space shows as parallel to the point type's rounding: float drawings need more.
-  const double coplanar_tolerance =
-      std::max(options.coplanar_tolerance_degrees,
-               100.0 * static_cast<double>(std::numeric_limits<detail::point2_scalar_t<drawing_point_t<D>>>::epsilon()) *
-                   180.0 / std::numbers::pi);
+  const double coplanar_tolerance = std::max(
+      options.coplanar_tolerance_degrees,
+      100.0 *
+          static_cast<double>(std::numeric_limits<detail::point2_scalar_t<drawing_point_t<D>>>::epsilon()) *
+          180.0 / std::numbers::pi);
   if (r.edges == 0) throw error(error_category::invalid_input, "find_faces: the drawing has no edge");
   try {
     if (options.kind == face_finder_kind::varley_company)
@@ -1459,8 +1466,9 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
                             " edges lie on just two coplanar loops and no wall meets them (first: edge " +
                             std::to_string(r.check.seam_edges.front()) + ")");
   if (!r.check.rule_breaking_loops.empty())
-    r.diagnostics.push_back(std::to_string(r.check.rule_breaking_loops.size()) +
-                            " loops turn a corner another loop turns, overlap a coplanar loop, or overload an edge");
+    r.diagnostics.push_back(
+        std::to_string(r.check.rule_breaking_loops.size()) +
+        " loops turn a corner another loop turns, overlap a coplanar loop, or overload an edge");
   if (!r.check.bad_loops.empty())
     r.diagnostics.push_back(std::to_string(r.check.bad_loops.size()) +
                             " loops are not simple polygons of the drawing");
@@ -1473,7 +1481,8 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
     std::vector<face_alternative> alt = std::move(r.alternatives);  // the wall search's, if any
     budget.used = 0;  // each alternative its own budget: the answer may have spent it all
     if (options.kind == face_finder_kind::varley_company) {
-      if (!r.budget_fallback) alt.push_back({df::shortest_loops(g, budget), {}, "the shortest-loops baseline"});
+      if (!r.budget_fallback)
+        alt.push_back({df::shortest_loops(g, budget), {}, "the shortest-loops baseline"});
       for (std::size_t k = 1; k <= 2 && !r.budget_fallback; ++k) {
         face_finder_result scratch;
         alt.push_back({df::varley_company(g, options, budget, k, scratch),

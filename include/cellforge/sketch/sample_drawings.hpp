@@ -1039,8 +1039,10 @@ sample_model convex_cells_model(const std::vector<std::vector<glm::dvec3>>& cell
       std::vector<std::uint32_t> loop;
       for (const auto v : face[0]) loop.push_back(global[v]);
       for (std::size_t k = 0; k < loop.size(); ++k)
-        edges.insert({std::min(loop[k], loop[(k + 1) % loop.size()]), std::max(loop[k], loop[(k + 1) % loop.size()])});
-      const auto [it, fresh] = face_id.insert({detail::canonical_cycle(loop), static_cast<std::uint32_t>(m.faces.size())});
+        edges.insert(
+            {std::min(loop[k], loop[(k + 1) % loop.size()]), std::max(loop[k], loop[(k + 1) % loop.size()])});
+      const auto [it, fresh] =
+          face_id.insert({detail::canonical_cycle(loop), static_cast<std::uint32_t>(m.faces.size())});
       if (fresh) m.faces.push_back({std::move(loop)});
       volume.push_back(it->second);
     }
@@ -1056,7 +1058,8 @@ sample_model convex_cells_model(const std::vector<std::vector<glm::dvec3>>& cell
 /// 4 % of the size of a corner (sliver cells). `diagonal`: one more wall, the box's plane through
 /// two opposite vertical edges, first. O(cells · n log n).
 template <class = void>
-std::optional<sample_model> sliced_polytope(std::size_t base, std::size_t cuts, bool diagonal, std::uint64_t seed) {
+std::optional<sample_model> sliced_polytope(std::size_t base, std::size_t cuts, bool diagonal,
+                                            std::uint64_t seed) {
   detail::splitmix rng{seed ^ 0x736c696365000000u};
   std::vector<glm::dvec3> start;
   const double a = rng.uniform(0.8, 2.0), b = rng.uniform(0.8, 2.0), c = rng.uniform(0.8, 2.0);
@@ -1064,14 +1067,15 @@ std::optional<sample_model> sliced_polytope(std::size_t base, std::size_t cuts, 
     for (unsigned k = 0; k < 8; ++k)
       start.push_back({(k & 1u) ? a : 0.0, (k & 2u) ? b : 0.0, (k & 4u) ? c : 0.0});
   } else {
-    if (base < 3 || base > 12) throw error(error_category::invalid_input, "sliced_polytope: base must be 0 or 3..12");
+    if (base < 3 || base > 12)
+      throw error(error_category::invalid_input, "sliced_polytope: base must be 0 or 3..12");
     for (std::size_t i = 0; i < base; ++i) {
       const double t = 2 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(base);
       for (const double z : {0.0, c}) start.push_back({std::cos(t), std::sin(t), z});
     }
   }
   const double size = detail::diagonal_of(start);
-  std::vector<std::pair<glm::dvec3, double>> planes;  // n · x = d
+  std::vector<std::pair<glm::dvec3, double>> planes;                           // n · x = d
   if (diagonal && base == 0) planes.push_back({glm::dvec3(b, -a, 0.0), 0.0});  // through (0,0,z), (a,b,z)
   glm::dvec3 centre(0.0);
   for (const auto& p : start) centre += p;
@@ -1081,7 +1085,8 @@ std::optional<sample_model> sliced_polytope(std::size_t base, std::size_t cuts, 
     do n = {rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)};
     while (glm::length(n) > 1 || glm::length(n) < 0.2);
     n = glm::normalize(n);
-    const glm::dvec3 at = centre + 0.25 * size * glm::dvec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    const glm::dvec3 at =
+        centre + 0.25 * size * glm::dvec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
     planes.push_back({n, glm::dot(n, at)});
   }
   std::vector<std::vector<glm::dvec3>> cells{start};
@@ -1111,7 +1116,8 @@ std::optional<sample_model> sliced_polytope(std::size_t base, std::size_t cuts, 
         if (!((side[e[0]] < 0 && side[e[1]] > 0) || (side[e[0]] > 0 && side[e[1]] < 0))) continue;
         // The same segment gives the same point in every cell: ends in lexicographic order.
         std::uint32_t u = e[0], w = e[1];
-        if (std::array<double, 3>{p[w].x, p[w].y, p[w].z} < std::array<double, 3>{p[u].x, p[u].y, p[u].z}) std::swap(u, w);
+        if (std::array<double, 3>{p[w].x, p[w].y, p[w].z} < std::array<double, 3>{p[u].x, p[u].y, p[u].z})
+          std::swap(u, w);
         const double t = side[u] / (side[u] - side[w]);
         const glm::dvec3 x = p[u] + t * (p[w] - p[u]);
         lo.push_back(x), hi.push_back(x);
@@ -1122,7 +1128,8 @@ std::optional<sample_model> sliced_polytope(std::size_t base, std::size_t cuts, 
     cells = std::move(next);
   }
   std::string name = (base == 0 ? std::string("sliced box") : "sliced prism " + std::to_string(base)) +
-                     (diagonal ? " (diagonal wall)" : "") + ", " + std::to_string(cuts) + " cuts #" + std::to_string(seed);
+                     (diagonal ? " (diagonal wall)" : "") + ", " + std::to_string(cuts) + " cuts #" +
+                     std::to_string(seed);
   sample_model m = convex_cells_model(cells, std::move(name));
   // Well shaped: no edge shorter than 3 % of the size.
   for (const auto& e : m.wire.edges)
@@ -1140,7 +1147,8 @@ sample_model roof_on_box(int kind, std::uint64_t seed) {
   const double a = rng.uniform(0.8, 2.0), b = rng.uniform(0.8, 2.5), c = rng.uniform(0.5, 1.5),
                h = rng.uniform(0.4, 1.2);
   std::vector<glm::dvec3> box, roof;
-  for (unsigned k = 0; k < 8; ++k) box.push_back({(k & 1u) ? a : 0.0, (k & 2u) ? b : 0.0, (k & 4u) ? c : 0.0});
+  for (unsigned k = 0; k < 8; ++k)
+    box.push_back({(k & 1u) ? a : 0.0, (k & 2u) ? b : 0.0, (k & 4u) ? c : 0.0});
   std::vector<glm::dvec2> section{{0, c}, {a, c}};  // (x, z) along y
   std::string what;
   if (kind == 0) {
@@ -1172,8 +1180,9 @@ sample_model bar_frame(std::size_t holes, std::uint64_t seed) {
   holes = std::clamp<std::size_t>(holes, 1, 2);
   const std::size_t nx = holes == 2 ? 5 : 3 + detail::below(3, rng), ny = 3 + detail::below(3, rng),
                     nz = 1 + detail::below(2, rng);
-  voxel_layout l = empty_layout(detail::random_coords(nx, 0.3, 1.2, rng), detail::random_coords(ny, 0.3, 1.2, rng),
-                                detail::random_coords(nz, 0.3, 0.8, rng));
+  voxel_layout l =
+      empty_layout(detail::random_coords(nx, 0.3, 1.2, rng), detail::random_coords(ny, 0.3, 1.2, rng),
+                   detail::random_coords(nz, 0.3, 0.8, rng));
   const std::size_t mid = nx / 2;
   for (std::size_t k = 0; k < nz; ++k)
     for (std::size_t j = 0; j < ny; ++j)
@@ -1182,14 +1191,16 @@ sample_model bar_frame(std::size_t holes, std::uint64_t seed) {
         if (!row && !column) continue;
         // Bars: rows 1 (bottom) and 2 (top), split at the middle bar (+10 right of it), 20 + the
         // column index for columns. A cell where bars cross goes to one of them at random.
-        const int row_bar = (j == 0 ? 1 : 2) + (holes == 2 && i > mid ? 10 : 0), column_bar = 20 + static_cast<int>(i);
+        const int row_bar = (j == 0 ? 1 : 2) + (holes == 2 && i > mid ? 10 : 0),
+                  column_bar = 20 + static_cast<int>(i);
         if (k > 0) {
           l.at(i, j, k) = l.at(i, j, 0);
         } else if (row && column) {
           const double u = rng.uniform(0, 1);  // a third of the corners are blocks of their own
-          l.at(i, j, k) = u < 0.33 ? 100 + static_cast<int>(i + nx * j)
-                          : u < 0.66 ? column_bar
-                          : (holes == 2 && i == mid && u < 0.83) ? row_bar + 10 : row_bar;
+          l.at(i, j, k) = u < 0.33                               ? 100 + static_cast<int>(i + nx * j)
+                          : u < 0.66                             ? column_bar
+                          : (holes == 2 && i == mid && u < 0.83) ? row_bar + 10
+                                                                 : row_bar;
         } else {
           l.at(i, j, k) = row ? row_bar : column_bar;
         }
@@ -1197,8 +1208,8 @@ sample_model bar_frame(std::size_t holes, std::uint64_t seed) {
   std::map<int, int> compact;  // labels 1..bars, as make_voxel_model wants them
   for (auto& x : l.labels)
     if (x != 0) x = compact.insert({x, static_cast<int>(compact.size()) + 1}).first->second;
-  return make_voxel_model(l, "frame of bars, " + std::to_string(holes) + " hole" + (holes == 2 ? "s" : "") + " #" +
-                                 std::to_string(seed));
+  return make_voxel_model(l, "frame of bars, " + std::to_string(holes) + " hole" + (holes == 2 ? "s" : "") +
+                                 " #" + std::to_string(seed));
 }
 
 /// A block split into boxes by random guillotine cuts along lattice planes (each box its own
@@ -1209,12 +1220,14 @@ template <class = void>
 std::optional<sample_model> cell_block(std::size_t nx, std::size_t ny, std::size_t nz, bool every_cell,
                                        std::uint64_t seed) {
   detail::splitmix rng{seed ^ 0x63656c6c00000000u};
-  voxel_layout l = empty_layout(detail::random_coords(nx, 0.4, 1.4, rng), detail::random_coords(ny, 0.4, 1.4, rng),
-                                detail::random_coords(nz, 0.4, 1.4, rng));
+  voxel_layout l =
+      empty_layout(detail::random_coords(nx, 0.4, 1.4, rng), detail::random_coords(ny, 0.4, 1.4, rng),
+                   detail::random_coords(nz, 0.4, 1.4, rng));
   int next = 1;
   if (every_cell) {
     const std::size_t count = 2 + detail::below(nx * ny * nz - 1, rng);
-    std::vector<std::array<std::size_t, 3>> grown{{detail::below(nx, rng), detail::below(ny, rng), detail::below(nz, rng)}};
+    std::vector<std::array<std::size_t, 3>> grown{
+        {detail::below(nx, rng), detail::below(ny, rng), detail::below(nz, rng)}};
     l.at(grown[0][0], grown[0][1], grown[0][2]) = next++;
     for (std::size_t tries = 0; grown.size() < count && tries < 50 * count; ++tries) {
       auto c = grown[detail::below(grown.size(), rng)];
@@ -1243,7 +1256,8 @@ std::optional<sample_model> cell_block(std::size_t nx, std::size_t ny, std::size
       std::vector<std::size_t> axes;
       for (std::size_t a = 0; a < 3; ++a)
         if (box[2 * a + 1] - box[2 * a] > 1) axes.push_back(a);
-      if (!axes.empty() && (box == std::array<std::size_t, 6>{0, nx, 0, ny, 0, nz} || rng.uniform(0, 1) < 0.7)) {
+      if (!axes.empty() &&
+          (box == std::array<std::size_t, 6>{0, nx, 0, ny, 0, nz} || rng.uniform(0, 1) < 0.7)) {
         const std::size_t a = axes[detail::below(axes.size(), rng)];
         const std::size_t at = box[2 * a] + 1 + detail::below(box[2 * a + 1] - box[2 * a] - 1, rng);
         auto first = box, second = box;
@@ -1257,8 +1271,9 @@ std::optional<sample_model> cell_block(std::size_t nx, std::size_t ny, std::size
       ++next;
     }
   }
-  return make_voxel_model(l, std::string(every_cell ? "cells" : "guillotine block") + " " + std::to_string(nx) + "x" +
-                                 std::to_string(ny) + "x" + std::to_string(nz) + " #" + std::to_string(seed));
+  return make_voxel_model(l, std::string(every_cell ? "cells" : "guillotine block") + " " +
+                                 std::to_string(nx) + "x" + std::to_string(ny) + "x" + std::to_string(nz) +
+                                 " #" + std::to_string(seed));
 }
 
 /// Boxes that touch along edges or at vertices only (kind 0: two along an edge; 1: a box on
@@ -1273,7 +1288,8 @@ sample_model touching_solids(int kind, std::uint64_t seed) {
   if (kind == 6) {
     const double a = rng.uniform(0.6, 1.5), b = rng.uniform(0.6, 1.5), c = rng.uniform(0.6, 1.5);
     std::vector<glm::dvec3> box, prism;
-    for (unsigned k = 0; k < 8; ++k) box.push_back({(k & 1u) ? a : 0.0, (k & 2u) ? b : 0.0, (k & 4u) ? c : 0.0});
+    for (unsigned k = 0; k < 8; ++k)
+      box.push_back({(k & 1u) ? a : 0.0, (k & 2u) ? b : 0.0, (k & 4u) ? c : 0.0});
     // The prism's triangle has a corner at (a, b) and lies in the quadrant beyond it.
     const std::vector<glm::dvec2> tri{{a, b},
                                       {a + rng.uniform(0.6, 1.4), b + rng.uniform(0.1, 0.5)},
@@ -1282,17 +1298,32 @@ sample_model touching_solids(int kind, std::uint64_t seed) {
       for (const double z : {0.0, c}) prism.push_back({q.x, q.y, z});
     return convex_cells_model({box, prism}, "box and prism along an edge" + tag);
   }
-  const std::array<std::array<std::size_t, 3>, 7> lattice{{{2, 2, 1}, {2, 1, 2}, {3, 3, 1}, {2, 2, 2}, {2, 2, 2}, {3, 2, 1}, {1, 1, 1}}};
+  const std::array<std::array<std::size_t, 3>, 7> lattice{
+      {{2, 2, 1}, {2, 1, 2}, {3, 3, 1}, {2, 2, 2}, {2, 2, 2}, {3, 2, 1}, {1, 1, 1}}};
   const auto n = lattice[static_cast<std::size_t>(kind)];
   voxel_layout l = empty_layout(coords(n[0]), coords(n[1]), coords(n[2]));
   std::string what;
   switch (kind) {
-    case 0: l.at(0, 0, 0) = 1, l.at(1, 1, 0) = 2, what = "two boxes along an edge"; break;
-    case 1: l.at(0, 0, 0) = 1, l.at(1, 0, 1) = 2, what = "a box on a box along an edge"; break;
-    case 2: l.at(0, 0, 0) = 1, l.at(1, 1, 0) = 2, l.at(2, 2, 0) = 3, what = "three boxes in a chain of edges"; break;
-    case 3: l.at(0, 0, 0) = 1, l.at(1, 1, 1) = 2, what = "two boxes at a vertex"; break;
-    case 4: l.at(0, 0, 0) = 1, l.at(1, 1, 0) = 2, l.at(1, 0, 1) = 3, l.at(0, 1, 1) = 4, what = "3D checkerboard of four boxes"; break;
-    default: l.at(0, 0, 0) = 1, l.at(1, 0, 0) = 2, l.at(2, 1, 0) = 3, what = "two joined boxes and one along an edge"; break;
+    case 0:
+      l.at(0, 0, 0) = 1, l.at(1, 1, 0) = 2, what = "two boxes along an edge";
+      break;
+    case 1:
+      l.at(0, 0, 0) = 1, l.at(1, 0, 1) = 2, what = "a box on a box along an edge";
+      break;
+    case 2:
+      l.at(0, 0, 0) = 1, l.at(1, 1, 0) = 2, l.at(2, 2, 0) = 3, what = "three boxes in a chain of edges";
+      break;
+    case 3:
+      l.at(0, 0, 0) = 1, l.at(1, 1, 1) = 2, what = "two boxes at a vertex";
+      break;
+    case 4:
+      l.at(0, 0, 0) = 1, l.at(1, 1, 0) = 2, l.at(1, 0, 1) = 3, l.at(0, 1, 1) = 4,
+                 what = "3D checkerboard of four boxes";
+      break;
+    default:
+      l.at(0, 0, 0) = 1, l.at(1, 0, 0) = 2, l.at(2, 1, 0) = 3,
+                 what = "two joined boxes and one along an edge";
+      break;
   }
   return make_voxel_model(l, what + tag);
 }
@@ -1334,11 +1365,12 @@ sample_model revolved_solid(int kind, std::uint64_t seed) {
   }
   if (kind == 3) {
     s.triangles = true;
-    for (std::size_t r = 0; r < rings; ++r) s.twist.push_back(std::numbers::pi / static_cast<double>(s.n) * static_cast<double>(r));
+    for (std::size_t r = 0; r < rings; ++r)
+      s.twist.push_back(std::numbers::pi / static_cast<double>(s.n) * static_cast<double>(r));
   }
   static const char* what[] = {"barrel", "spindle", "walled cylinder", "twisted stack"};
-  return make_ring_stack(s, std::string(what[kind]) + " " + std::to_string(s.n) + "-gon, " + std::to_string(rings) +
-                                " rings" + tag);
+  return make_ring_stack(s, std::string(what[kind]) + " " + std::to_string(s.n) + "-gon, " +
+                                std::to_string(rings) + " rings" + tag);
 }
 
 /// Hand-made drawings of the kinds seed 003 (003_be08eec927fcc329.txt) shows as hard for face
@@ -1446,9 +1478,9 @@ struct sketch_sweep_report {
 /// The family names of the sweep, in its order. O(1).
 template <class = void>
 std::vector<std::string> sketch_sweep_families() {
-  return {"prism",          "pyramid",          "antiprism", "platonic", "archimedean",
-          "random convex",  "cut cube",         "normalon",  "stairs",   "through slot",
-          "quasi-normalon", "non-convex prism", "classic",  "cell block", "sliced",
+  return {"prism",          "pyramid",          "antiprism", "platonic",   "archimedean",
+          "random convex",  "cut cube",         "normalon",  "stairs",     "through slot",
+          "quasi-normalon", "non-convex prism", "classic",   "cell block", "sliced",
           "roof on box",    "bar frame",        "touching",  "revolved"};
 }
 
@@ -1693,12 +1725,14 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
       for (std::size_t i = 0; i < k; ++i) l.labels[i] = static_cast<int>(i + 1);
       add(make_voxel_model(l, "row of " + std::to_string(k) + " boxes"), "cell block", 0, v);
     }
-    for (const auto& n : std::vector<std::array<std::size_t, 3>>{{2, 2, 1}, {3, 2, 1}, {2, 2, 2}, {4, 2, 1}, {3, 2, 2}})
+    for (const auto& n :
+         std::vector<std::array<std::size_t, 3>>{{2, 2, 1}, {3, 2, 1}, {2, 2, 2}, {4, 2, 1}, {3, 2, 2}})
       add(sample_grid(n[0], n[1], n[2]), "cell block", 0, v);
     std::size_t kept = 0;
     for (std::size_t k = 0; kept < want && k < budget; ++k) {
       detail::splitmix rng{seed_of(8, k)};
-      const std::size_t nx = 1 + detail::below(4, rng), ny = 1 + detail::below(3, rng), nz = 1 + detail::below(3, rng);
+      const std::size_t nx = 1 + detail::below(4, rng), ny = 1 + detail::below(3, rng),
+                        nz = 1 + detail::below(3, rng);
       std::optional<sample_model> m;
       if (nx * ny * nz >= 2) {
         try {
