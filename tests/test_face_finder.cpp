@@ -79,6 +79,7 @@ TEST_CASE("find_faces: Varley-Company returns exactly the true loops on drawings
       }
       cellforge::face_finder_options base;
       base.kind = cellforge::face_finder_kind::shortest_loops;
+      base.walls = false;  // the baseline alone (the wall search repairs some of its answers)
       baseline_right += same_loops(cellforge::find_faces(s.drawing, base).loops, s.loops);
     }
   for (const auto& n : misses) MESSAGE("Varley-Company miss: " << n);
@@ -204,22 +205,32 @@ TEST_CASE("find_faces: a user's own drawing type and float points") {
   CHECK_FALSE(r.flagged);
 }
 
-TEST_CASE("find_faces: the generated sweep — Varley-Company exactly right on >= 99 %, none silently wrong") {
-  // Release: the whole sweep (>= 1,000 drawings up to 300 edges); the sanitizer build a sample
-  // of every family (the same drawings the whole sweep has).
+// Whether every edge of a drawing's truth lies on exactly two loops (one solid, no walls).
+bool two_per_edge(const cellforge::sample_drawing& s) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  for (const auto& l : s.loops)
+    for (std::size_t k = 0; k < l.size(); ++k)
+      ++uses[{std::min(l[k], l[(k + 1) % l.size()]), std::max(l[k], l[(k + 1) % l.size()])}];
+  return std::all_of(uses.begin(), uses.end(), [](const auto& u) { return u.second == 2; });
+}
+
+TEST_CASE("find_faces: the generated sweep — exact or flagged, none silently wrong") {
+  // Release: the whole sweep (>= 2,000 drawings up to 300 edges, 19 families, one solid or
+  // several volumes); the sanitizer build a sample of every family (the same drawings).
   cellforge::sketch_sweep_options options;
 #ifndef NDEBUG
   options.limit = 120;
 #endif
   const auto sweep = cellforge::sketch_sweep(options);
 #ifdef NDEBUG
-  CHECK(sweep.size() >= 1000);
+  CHECK(sweep.size() >= 2000);
 #endif
   struct tally {
-    std::size_t drawings = 0, vc = 0, baseline = 0, max_edges = 0;
+    std::size_t drawings = 0, vc = 0, baseline = 0, flagged = 0, max_edges = 0;
   };
   std::map<std::string, tally> family;
-  std::size_t vc = 0, baseline = 0, silent = 0, flagged_misses = 0;
+  tally two, more;  // drawings whose every edge has two faces, and the rest
+  std::size_t silent = 0;
   std::vector<std::string> misses;
   double slowest = 0;
   std::string slowest_name;
@@ -228,32 +239,120 @@ TEST_CASE("find_faces: the generated sweep — Varley-Company exactly right on >
     cellforge::face_finder_options base;
     base.kind = cellforge::face_finder_kind::shortest_loops;
     base.alternatives_when_flagged = false;
+    base.walls = false;
     const bool right = same_loops(r.loops, s.loops);
     const bool base_right = same_loops(cellforge::find_faces(s.drawing, base).loops, s.loops);
-    auto& t = family[s.family];
-    ++t.drawings, t.vc += right, t.baseline += base_right;
-    t.max_edges = std::max(t.max_edges, s.drawing.edges.size());
-    vc += right, baseline += base_right;
+    for (tally* t : {&family[s.family], two_per_edge(s) ? &two : &more}) {
+      ++t->drawings, t->vc += right, t->baseline += base_right, t->flagged += r.flagged;
+      t->max_edges = std::max(t->max_edges, s.drawing.edges.size());
+    }
     if (r.milliseconds > slowest) slowest = r.milliseconds, slowest_name = s.name;
     if (!right) {
       misses.push_back(s.name + (r.flagged ? " (flagged: " + r.diagnostics.front() + ")" : " (NOT flagged)"));
-      if (r.flagged)
-        ++flagged_misses;
-      else
-        ++silent;
+      silent += !r.flagged;
     }
   }
   for (const auto& [name, t] : family)
-    MESSAGE(name << ": " << t.drawings << " drawings up to " << t.max_edges << " edges, Varley-Company "
-                 << t.vc << ", shortest loops " << t.baseline);
+    MESSAGE(name << ": " << t.drawings << " drawings up to " << t.max_edges << " edges, exact " << t.vc
+                 << ", flagged " << t.flagged << ", shortest loops " << t.baseline);
   for (const auto& m : misses) MESSAGE("miss: " << m);
-  MESSAGE("sweep: " << sweep.size() << " drawings; Varley-Company right on " << vc << " ("
-                    << 100.0 * static_cast<double>(vc) / static_cast<double>(sweep.size())
-                    << " %), shortest loops on " << baseline << " ("
-                    << 100.0 * static_cast<double>(baseline) / static_cast<double>(sweep.size())
-                    << " %); misses flagged " << flagged_misses << ", silently wrong " << silent
-                    << "; slowest " << slowest << " ms (" << slowest_name << ")");
-  CHECK(100 * vc >= 99 * sweep.size());
+  const auto pct = [](std::size_t a, std::size_t b) {
+    return 100.0 * static_cast<double>(a) / static_cast<double>(b);
+  };
+  MESSAGE("sweep: " << sweep.size() << " drawings; two faces per edge: exact " << two.vc << " of "
+                    << two.drawings << " (" << pct(two.vc, two.drawings) << " %); several: exact " << more.vc
+                    << " of " << more.drawings << " (" << pct(more.vc, more.drawings) << " %); misses "
+                    << misses.size() << ", silently wrong " << silent << "; shortest loops exact on "
+                    << two.baseline + more.baseline << "; slowest " << slowest << " ms (" << slowest_name
+                    << ")");
   CHECK(silent == 0);
+  CHECK(100 * two.vc >= 99 * two.drawings);
+  CHECK(100 * more.vc >= 95 * more.drawings);
+  CHECK(more.drawings * 5 >= sweep.size());  // the families of several volumes are a fifth at least
   CHECK(family.size() == cellforge::sketch_sweep_families().size());
+}
+
+TEST_CASE("find_faces: internal walls, solids along an edge and a roof's square are found in 2D") {
+  using cellforge::find_faces;
+  struct expect {
+    cellforge::sample_model model;
+    std::size_t most_loops_on_an_edge;
+  };
+  cellforge::voxel_layout row = cellforge::empty_layout({0, 1.3, 2.1}, {0, 1}, {0, 0.8});
+  row.labels = {1, 2};
+  const std::vector<expect> cases{
+      {cellforge::make_voxel_model(row, "row of two boxes"), 3},
+      {cellforge::sample_grid(2, 2, 1), 4},
+      {*cellforge::sliced_polytope(0, 0, true, 3), 3},
+      {cellforge::roof_on_box(0, 5), 3},
+      {cellforge::touching_solids(0, 2), 4},
+      {cellforge::touching_solids(3, 2), 2},
+      {cellforge::bar_frame(1, 4), 4}};  // a corner block of its own: four bars meet at its edges
+  for (const auto& c : cases)
+    for (std::uint64_t view = 1; view <= 3; ++view) {
+      const auto s = cellforge::generic_drawing(c.model, view, "walls");
+      CAPTURE(s.name);
+      const auto r = find_faces(s.drawing);
+      CHECK(same_loops(r.loops, s.loops));
+      CHECK_FALSE(r.flagged);
+      CHECK(r.check.ok());
+      std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> uses;
+      for (const auto& l : r.loops)
+        for (std::size_t k = 0; k < l.size(); ++k)
+          ++uses[{std::min(l[k], l[(k + 1) % l.size()]), std::max(l[k], l[(k + 1) % l.size()])}];
+      std::size_t most = 0;
+      for (const auto& [e, n] : uses) most = std::max(most, n);
+      CHECK(most == c.most_loops_on_an_edge);
+      // Without the wall search the string algorithm's answer misses faces, and its check says so
+      // (the issue's silent answers: the outer boundary alone, seams no wall meets).
+      cellforge::face_finder_options plain;
+      plain.walls = false;
+      const auto p = find_faces(s.drawing, plain);
+      if (!same_loops(p.loops, s.loops)) CHECK((p.flagged || c.model.name.find("roof") != std::string::npos));
+    }
+}
+
+TEST_CASE("find_faces: the check names seams, shared corners and loops a line in their plane enters") {
+  // A row of two boxes without its wall: four edges on two coplanar loops each.
+  cellforge::voxel_layout row = cellforge::empty_layout({0, 1.3, 2.1}, {0, 1}, {0, 0.8});
+  row.labels = {1, 2};
+  const auto s = cellforge::generic_drawing(cellforge::make_voxel_model(row, "row"), 2, "walls");
+  loops_t outer;
+  for (const auto& l : s.loops) {
+    std::size_t inner = 0;  // the wall's junctions lie at x = 1.3
+    for (const auto v : l) inner += std::abs(s.model.wire.points[v].x - 1.3) < 1e-12;
+    if (inner < l.size()) outer.push_back(l);
+  }
+  REQUIRE(outer.size() + 1 == s.loops.size());
+  const auto g = cellforge::detail::faces::make_graph(s.drawing, {});
+  const auto c = cellforge::detail::faces::check_loops(g, outer);
+  CHECK(c.seam_edges.size() == 4);
+  CHECK_FALSE(c.ok());
+  CHECK(c.edges_with_fewer_loops.empty());
+  // The same loop twice turns the same corners.
+  loops_t twice = s.loops;
+  twice.push_back(s.loops.front());
+  CHECK_FALSE(cellforge::detail::faces::check_loops(g, twice).rule_breaking_loops.empty());
+  // The truth passes.
+  CHECK(cellforge::detail::faces::check_loops(g, s.loops).ok());
+}
+
+TEST_CASE("find_faces: out of budget, the baseline answers, flagged") {
+  const auto s = cellforge::generic_drawing(cellforge::sample_uv_sphere(8, 5), 1, "sphere");
+  cellforge::face_finder_options full;
+  full.walls = false;
+  const auto vc = cellforge::find_faces(s.drawing, full);
+  cellforge::face_finder_options base = full;
+  base.kind = cellforge::face_finder_kind::shortest_loops;
+  const auto bl = cellforge::find_faces(s.drawing, base);
+  REQUIRE(bl.work < vc.work);
+  cellforge::face_finder_options tight = full;
+  tight.work_budget = (bl.work + vc.work) / 2;
+  const auto r = cellforge::find_faces(s.drawing, tight);
+  CHECK(r.budget_fallback);
+  CHECK(r.flagged);
+  CHECK(same_loops(r.loops, bl.loops));
+  CHECK(std::any_of(r.diagnostics.begin(), r.diagnostics.end(), [](const std::string& d) {
+    return d.find("baseline answers instead") != std::string::npos;
+  }));
 }

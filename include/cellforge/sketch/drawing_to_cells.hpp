@@ -76,6 +76,12 @@ struct drawing_result {
   bool faces_agree = false;
   /// Where they disagree: loops found only in the drawing, only in 3D (junction cycles).
   std::vector<std::vector<std::uint32_t>> only_in_drawing, only_in_3d;
+  /// Drawn edges that bound no face of the complex (every drawn edge should bound one).
+  std::vector<std::uint32_t> unused_edges;
+  /// Not certified, reasons in `diagnostics`: the faces found fail their check or are ambiguous,
+  /// 2D and 3D faces disagree, a drawn edge is unused, a part fits as a boss or a pocket, or the
+  /// 3D reading keeps walls no edge needs. Alternatives: `faces.alternatives`, `cells.alternatives`.
+  bool flagged = false;
   double milliseconds = 0.0;
   std::vector<std::string> diagnostics;
 };
@@ -483,6 +489,29 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
   if (r.reading != 0)
     r.diagnostics.push_back(
         "built from the other (Necker) reading: the preferred one did not give the drawing's faces");
+  // Never silently wrong: every drawn edge bounds a face of the complex, the 2D and 3D faces
+  // agree, and neither stage reports an ambiguity; otherwise the answer is flagged.
+  std::set<std::pair<std::uint32_t, std::uint32_t>> sides;
+  for (const auto& face : r.cells.input.faces)
+    for (const auto& loop : face.loops)
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        const std::uint32_t a = r.cells.input_vertex[loop[k]],
+                            b = r.cells.input_vertex[loop[(k + 1) % loop.size()]];
+        sides.insert({std::min(a, b), std::max(a, b)});
+      }
+  for (std::uint32_t e = 0; e < r.wire.edges.size(); ++e) {
+    const auto [a, b] = r.wire.edges[e];
+    if (!sides.count({std::min(a, b), std::max(a, b)})) r.unused_edges.push_back(e);
+  }
+  if (!r.unused_edges.empty())
+    r.diagnostics.push_back(std::to_string(r.unused_edges.size()) +
+                            " drawn edges bound no face of the complex (first: edge " +
+                            std::to_string(r.unused_edges.front()) + ")");
+  if (!r.cells.unforced.empty())
+    r.diagnostics.push_back(std::to_string(r.cells.unforced.size()) +
+                            " faces of the 3D reading are walls no edge needs (kept, undecided)");
+  r.flagged = r.faces.flagged || !r.faces_agree || !r.unused_edges.empty() || r.ambiguous_parts > 0 ||
+              !r.cells.unforced.empty();
   r.milliseconds = clock.ms();
   return r;
 }

@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <numbers>
 #include <queue>
@@ -63,20 +64,36 @@ struct face_finder_options {
   std::uint64_t work_budget = 400'000'000;
   /// Compute ranked alternatives (the other finder, other starts) when the answer fails its check.
   bool alternatives_when_flagged = true;
+  /// Faces beyond two per edge: after the finder, search the loops its edges still need (internal
+  /// walls, solids touching along an edge; docs/sketch.md, "Walls and contacts").
+  bool walls = true;
+  /// Lines closer than this to parallel (degrees) are parallel in space, for the coplanarity of
+  /// two faces at an edge (an exact drawing: rounding only; a tidied one: its tidying tolerance).
+  double coplanar_tolerance_degrees = 1e-6;
+  /// Paths one wall search tries before it gives up on an edge.
+  std::size_t wall_expansions = 20000;
 };
 
-/// What the check of an answer found. An answer passes when every edge lies on exactly two
-/// loops and every loop is a simple polygon of the drawing without an edge across its inside.
+/// What the check of an answer found. An answer passes when every edge lies on two loops or
+/// more, every loop is a simple polygon of the drawing without an edge across its inside, no
+/// two loops turn the same corner or overlap as coplanar faces at an edge, no edge holds more
+/// loops than its junctions allow, and no edge lies on just two coplanar loops (a seam no wall
+/// meets). Coplanar: docs/sketch.md, "Walls and contacts".
 struct face_check {
   std::size_t edges_on_two_loops = 0;
   std::vector<std::uint32_t> edges_with_fewer_loops;  ///< edge indices, with 0 or 1 loops
-  std::vector<std::uint32_t> edges_with_more_loops;   ///< edge indices on 3 or more loops
-  std::vector<std::uint32_t> bad_loops;  ///< loops that are not simple polygons or have an inner chord
+  std::vector<std::uint32_t> edges_with_more_loops;   ///< edge indices on 3 or more loops (walls, contacts)
+  std::vector<std::uint32_t> bad_loops;   ///< loops that are not simple polygons or have an inner chord
+  std::vector<std::uint32_t> seam_edges;  ///< edges on just two loops, coplanar: a wall must meet them
+  /// Loops that turn a corner an earlier loop turns, overlap a coplanar one at an edge, or put
+  /// an edge over the faces its junctions can hold.
+  std::vector<std::uint32_t> rule_breaking_loops;
   /// V − E + L per connected component summed, and 2 × components: equal for spheres (and for a
   /// genus-g solid with 2g hole loops); less means a higher genus or a loop too few.
   long long euler = 0, euler_sphere = 0;
   bool ok() const noexcept {
-    return edges_with_fewer_loops.empty() && edges_with_more_loops.empty() && bad_loops.empty();
+    return edges_with_fewer_loops.empty() && bad_loops.empty() && seam_edges.empty() &&
+           rule_breaking_loops.empty();
   }
 };
 
@@ -96,11 +113,18 @@ struct face_finder_result {
   bool flagged = false;                        ///< the check failed: see diagnostics and alternatives
   std::vector<face_alternative> alternatives;  ///< best first, when flagged
   std::size_t junctions = 0, edges = 0, direction_classes = 0;
-  std::size_t forced = 0;      ///< forced concatenations (one candidate left)
-  std::size_t voluntary = 0;   ///< voluntary mergers (a string closed into a face)
-  std::size_t hypotheses = 0;  ///< faces found by the working list
-  std::size_t rejected = 0;    ///< hypotheses whose consequences reached a dead end
-  std::uint64_t work = 0;      ///< steps spent from the budget
+  std::size_t forced = 0;        ///< forced concatenations (one candidate left)
+  std::size_t voluntary = 0;     ///< voluntary mergers (a string closed into a face)
+  std::size_t hypotheses = 0;    ///< faces found by the working list
+  std::size_t rejected = 0;      ///< hypotheses whose consequences reached a dead end
+  std::size_t walls = 0;         ///< loops the wall search added (faces beyond two per edge)
+  std::size_t unneeded = 0;      ///< loops dropped because no edge needs them (a hole's mouth)
+  std::size_t unforced = 0;      ///< loops kept that no edge needs (walls inside a grid): flagged ambiguous
+  bool budget_fallback = false;  ///< the finder ran out of budget: the baseline's answer, flagged
+  /// Loops were added or dropped after the string algorithm, and the wall search from no loops
+  /// found others (in `alternatives`): flagged.
+  bool ambiguous = false;
+  std::uint64_t work = 0;  ///< steps spent from the budget
   double milliseconds = 0.0;
   std::vector<std::string> diagnostics;
 };
@@ -654,6 +678,395 @@ struct basic_finder {
 };
 using finder = basic_finder<>;
 
+/// Faces beyond two per edge (walls, solids touching along an edge): what any set of face loops
+/// of a generic parallel view obeys, however many faces an edge has, and the state the search
+/// for the loops still needed keeps. Two faces sharing an edge are *coplanar* when each has an
+/// edge along one more drawing direction (lines parallel in the drawing are parallel in space:
+/// both planes hold the edge and that direction); coplanar faces at an edge lie on its two
+/// sides (else they overlap), and an edge on just two coplanar faces is a seam that a wall must
+/// meet. No two faces turn the same corner (the same two lines at a junction); an edge between
+/// junctions of degrees p and q lies on at most min(p, q) − 1 faces.
+template <class = void>
+struct basic_face_rules {
+  const drawing_graph& g;
+  std::vector<std::uint32_t> strict_class;  ///< per edge: exact direction class
+  std::vector<double> class_angle;          ///< per class: its direction's angle in [0, π)
+  std::vector<std::uint32_t> capacity;      ///< per edge: most faces it can carry
+  std::vector<std::vector<std::uint32_t>> loops;
+  std::vector<std::vector<std::uint32_t>> classes;  ///< per loop: its exact direction classes, sorted
+  std::vector<double> area;                         ///< per loop: signed area in the drawing
+  std::vector<std::vector<std::uint32_t>> on_edge;  ///< per edge: loops on it
+  std::vector<std::vector<std::array<std::uint32_t, 2>>> corners;  ///< per junction: edge pairs turned
+  std::vector<std::vector<std::uint32_t>> at_junction;  ///< per junction: exact classes of its lines, sorted
+
+  basic_face_rules(const drawing_graph& graph, double tolerance_degrees)
+      : g(graph), on_edge(graph.num_half_edges() / 2), corners(graph.num_junctions()) {
+    const std::size_t ne = g.num_half_edges() / 2;
+    const double tol = tolerance_degrees * std::numbers::pi / 180.0;
+    std::vector<std::pair<double, std::uint32_t>> angle(ne);
+    for (std::uint32_t e = 0; e < ne; ++e) {
+      const glm::dvec2 v = g.p[g.head[2 * e]] - g.p[g.head[2 * e + 1]];
+      double a = std::atan2(v.y, v.x);
+      if (a < 0) a += std::numbers::pi;
+      if (a >= std::numbers::pi) a -= std::numbers::pi;
+      angle[e] = {a, e};
+    }
+    std::sort(angle.begin(), angle.end());
+    strict_class.assign(ne, 0);
+    std::uint32_t c = 0;
+    for (std::size_t k = 0; k < ne; ++k) {
+      if (k > 0 && angle[k].first - angle[k - 1].first > tol) ++c;
+      strict_class[angle[k].second] = c;
+      if (class_angle.size() <= c) class_angle.push_back(angle[k].first);
+    }
+    if (ne > 1 && angle.front().first + std::numbers::pi - angle.back().first <= tol && c > 0)
+      for (auto& k : strict_class)
+        if (k == c) k = 0;
+    // Capacity from the junctions where the chain of e through degree-2 junctions (a split edge:
+    // every face of one piece is a face of the others) ends.
+    capacity.resize(ne);
+    for (std::uint32_t e = 0; e < ne; ++e) {
+      std::uint32_t most = std::numeric_limits<std::uint32_t>::max();
+      for (std::uint32_t h : {2 * e, 2 * e + 1}) {
+        for (std::size_t steps = 0; g.degree(g.head[h]) == 2 && steps < ne; ++steps) {
+          const std::uint32_t v = g.head[h], a = g.outs[g.out_begin[v]], b = g.outs[g.out_begin[v] + 1];
+          h = (a >> 1) == (h >> 1) ? b : a;
+        }
+        if (g.degree(g.head[h]) != 2) most = std::min(most, g.degree(g.head[h]) - 1);
+      }
+      capacity[e] = std::max<std::uint32_t>(most == std::numeric_limits<std::uint32_t>::max() ? 2 : most, 2);
+    }
+    at_junction.resize(g.num_junctions());
+    for (std::uint32_t v = 0; v < g.num_junctions(); ++v) {
+      auto& cs = at_junction[v];
+      for (std::uint32_t i = g.out_begin[v]; i < g.out_begin[v + 1]; ++i)
+        cs.push_back(strict_class[g.outs[i] >> 1]);
+      std::sort(cs.begin(), cs.end());
+      cs.erase(std::unique(cs.begin(), cs.end()), cs.end());
+    }
+  }
+
+  std::uint32_t edge_between(std::uint32_t a, std::uint32_t b) const {
+    for (std::uint32_t i = g.out_begin[a]; i < g.out_begin[a + 1]; ++i)
+      if (g.head[g.outs[i]] == b) return g.outs[i] >> 1;
+    return none;
+  }
+  static std::array<std::uint32_t, 2> pair(std::uint32_t a, std::uint32_t b) {
+    return {std::min(a, b), std::max(a, b)};
+  }
+  bool corner_used(std::uint32_t v, std::uint32_t e1, std::uint32_t e2) const {
+    if (g.degree(v) == 2) return false;  // a split edge: its faces all go straight on here
+    const auto c = pair(e1, e2);
+    return std::find(corners[v].begin(), corners[v].end(), c) != corners[v].end();
+  }
+  std::vector<std::uint32_t> classes_of(const std::vector<std::uint32_t>& loop) const {
+    std::vector<std::uint32_t> cs;
+    for (std::size_t k = 0; k < loop.size(); ++k)
+      cs.push_back(strict_class[edge_between(loop[k], loop[(k + 1) % loop.size()])]);
+    std::sort(cs.begin(), cs.end());
+    cs.erase(std::unique(cs.begin(), cs.end()), cs.end());
+    return cs;
+  }
+  /// Whether class c's direction is plainly not e's (half a degree: a direction along e, split
+  /// from e's class by rounding, adds nothing to a plane through e).
+  bool across(std::uint32_t c, std::uint32_t e) const {
+    const double d = std::abs(class_angle[c] - class_angle[strict_class[e]]);
+    return std::min(d, std::numbers::pi - d) > std::numbers::pi / 360.0;
+  }
+  /// Whether loops with classes a and b, sharing edge e, are coplanar (a direction besides e's in both).
+  bool coplanar(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b,
+                std::uint32_t e) const {
+    for (const auto c : a)
+      if (across(c, e) && std::binary_search(b.begin(), b.end(), c)) return true;
+    return false;
+  }
+  /// The side of edge e (+1 left of its half-edge 2e, −1 right) a loop of signed area `area`
+  /// covers, the loop running from junction `from` to `to` along e.
+  int side(double loop_area, std::uint32_t e, std::uint32_t from) const {
+    const bool forward = g.head[2 * e + 1] == from;
+    return (loop_area > 0) == forward ? 1 : -1;
+  }
+  static double signed_area(const std::vector<glm::dvec2>& p, const std::vector<std::uint32_t>& loop) {
+    double a = 0;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const glm::dvec2 u = p[loop[k]], v = p[loop[(k + 1) % loop.size()]];
+      a += u.x * v.y - u.y * v.x;
+    }
+    return 0.5 * a;
+  }
+  /// Whether a line from a loop junction into the loop's inside runs along one of the loop's
+  /// directions: it then lies in the face's plane and enters the face, so the loop is no face
+  /// (the chord rule for lines that end off the loop). O(L · degree).
+  bool entered(const std::vector<std::uint32_t>& loop, const std::vector<std::uint32_t>& cs,
+               double ar) const {
+    const std::size_t n = loop.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::uint32_t v = loop[k], before = loop[(k + n - 1) % n], after = loop[(k + 1) % n];
+      // The inside at v: counter-clockwise from the line to `after` to the line to `before` when
+      // the loop runs counter-clockwise, the other way round otherwise.
+      const glm::dvec2 to_after = g.p[after] - g.p[v], to_before = g.p[before] - g.p[v];
+      const glm::dvec2 from = ar > 0 ? to_after : to_before, to = ar > 0 ? to_before : to_after;
+      const auto sweep = [&](glm::dvec2 d) {  // angle counter-clockwise from `from` to d, in [0, 2π)
+        double t = std::atan2(from.x * d.y - from.y * d.x, glm::dot(from, d));
+        return t < 0 ? t + 2 * std::numbers::pi : t;
+      };
+      const double wedge = sweep(to);
+      for (std::uint32_t i = g.out_begin[v]; i < g.out_begin[v + 1]; ++i) {
+        const std::uint32_t w = g.head[g.outs[i]];
+        if (w == before || w == after ||
+            !std::binary_search(cs.begin(), cs.end(), strict_class[g.outs[i] >> 1]))
+          continue;
+        const double t = sweep(g.p[w] - g.p[v]);
+        if (t > 1e-9 && t < wedge - 1e-9) return true;
+      }
+    }
+    return false;
+  }
+  /// Why a new loop breaks the rules against the loops kept (empty: it does not). O(L · faces per edge).
+  const char* conflict(const std::vector<std::uint32_t>& loop) const {
+    const auto cs = classes_of(loop);
+    const double ar = signed_area(g.p, loop);
+    const std::size_t n = loop.size();
+    if (entered(loop, cs, ar)) return "a line in its plane enters it";
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::uint32_t a = loop[k], b = loop[(k + 1) % n], c = loop[(k + 2) % n];
+      const std::uint32_t e = edge_between(a, b), f = edge_between(b, c);
+      if (corner_used(b, e, f)) return "turns a corner another face turns";
+      if (on_edge[e].size() + 1 > capacity[e]) return "more faces at an edge than its junctions hold";
+      for (const auto l : on_edge[e])
+        if (coplanar(cs, classes[l], e) && side(ar, e, a) == side(area[l], e, from_of(l, e)))
+          return "overlaps a coplanar face";
+    }
+    return nullptr;
+  }
+  /// The junction loop l leaves along edge e from (its traversal's tail of e).
+  std::uint32_t from_of(std::uint32_t l, std::uint32_t e) const {
+    const auto& loop = loops[l];
+    for (std::size_t k = 0; k < loop.size(); ++k)
+      if (edge_between(loop[k], loop[(k + 1) % loop.size()]) == e) return loop[k];
+    return none;
+  }
+  void add(std::vector<std::uint32_t> loop) {
+    const auto l = static_cast<std::uint32_t>(loops.size());
+    const std::size_t n = loop.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::uint32_t a = loop[k], b = loop[(k + 1) % n], c = loop[(k + 2) % n];
+      const std::uint32_t e = edge_between(a, b), f = edge_between(b, c);
+      on_edge[e].push_back(l);
+      corners[b].push_back(pair(e, f));
+    }
+    classes.push_back(classes_of(loop));
+    area.push_back(signed_area(g.p, loop));
+    loops.push_back(std::move(loop));
+  }
+  /// Whether loops l1 and l2 at edge e are the ends of prisms along one direction s (a line of
+  /// class s at each of their junctions, s in neither loop nor e's): read as right prisms, both
+  /// are perpendicular to s and so coplanar. A reading prior, not a fact of the drawing (a roof's
+  /// gable and the wall under it); docs/sketch.md, "Walls and contacts". O(L · degree).
+  bool prism_ends(std::uint32_t l1, std::uint32_t l2, std::uint32_t e) const {
+    std::vector<std::uint32_t> common = at_junction[loops[l1][0]], next;
+    for (const std::uint32_t l : {l1, l2})
+      for (const auto v : loops[l]) {
+        next.clear();
+        std::set_intersection(common.begin(), common.end(), at_junction[v].begin(), at_junction[v].end(),
+                              std::back_inserter(next));
+        common.swap(next);
+        if (common.empty()) return false;
+      }
+    for (const auto c : common)
+      if (across(c, e) && !std::binary_search(classes[l1].begin(), classes[l1].end(), c) &&
+          !std::binary_search(classes[l2].begin(), classes[l2].end(), c))
+        return true;
+    return false;
+  }
+  /// Whether edge e, on just two loops, is a seam: they are coplanar (or prism ends along one line).
+  bool seam(std::uint32_t e) const {
+    if (on_edge[e].size() != 2) return false;
+    const auto l1 = on_edge[e][0], l2 = on_edge[e][1];
+    return coplanar(classes[l1], classes[l2], e) || prism_ends(l1, l2, e);
+  }
+  /// Whether edge e needs another face: fewer than two, or just two coplanar ones (a seam).
+  bool needy(std::uint32_t e) const { return on_edge[e].size() < 2 || seam(e); }
+  /// Whether loop l is needed: without it, one of its edges would need another face.
+  bool needed(std::uint32_t l) const {
+    const auto& loop = loops[l];
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const std::uint32_t e = edge_between(loop[k], loop[(k + 1) % loop.size()]);
+      if (on_edge[e].size() <= 2) return true;
+      if (on_edge[e].size() == 3) {
+        std::array<std::uint32_t, 2> rest{};
+        std::size_t n = 0;
+        for (const auto x : on_edge[e])
+          if (x != l) rest[n++] = x;
+        if (coplanar(classes[rest[0]], classes[rest[1]], e) || prism_ends(rest[0], rest[1], e)) return true;
+      }
+    }
+    return false;
+  }
+  /// Whether loop l, taken out, would leave one of its edges on three faces or more.
+  bool grid_wall(std::uint32_t l) const {
+    const auto& loop = loops[l];
+    for (std::size_t k = 0; k < loop.size(); ++k)
+      if (on_edge[edge_between(loop[k], loop[(k + 1) % loop.size()])].size() > 3) return true;
+    return false;
+  }
+  /// Takes loop l out (the last index moves into its place). O(L · faces per edge).
+  void remove(std::uint32_t l) {
+    const auto drop = [&](std::uint32_t x) {
+      const auto& loop = loops[x];
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        const std::uint32_t a = loop[k], b = loop[(k + 1) % loop.size()], c = loop[(k + 2) % loop.size()];
+        const std::uint32_t e = edge_between(a, b), f = edge_between(b, c);
+        on_edge[e].erase(std::find(on_edge[e].begin(), on_edge[e].end(), x));
+        corners[b].erase(std::find(corners[b].begin(), corners[b].end(), pair(e, f)));
+      }
+    };
+    drop(l);
+    const auto last = static_cast<std::uint32_t>(loops.size() - 1);
+    if (l != last) {
+      for (auto& on : on_edge)
+        for (auto& x : on)
+          if (x == last) x = l;
+      loops[l] = std::move(loops[last]);
+      classes[l] = std::move(classes[last]);
+      area[l] = area[last];
+    }
+    loops.pop_back(), classes.pop_back(), area.pop_back();
+  }
+};
+using face_rules = basic_face_rules<>;
+
+/// The cheapest loop through edge e that the rules allow beside the loops kept: best-first over
+/// simple paths from e's head back to its tail, by the mating value (edges, reflex turns, a third
+/// main direction), each step turning an unused corner and crossing no line of the path, the
+/// closed loop without a chord inside. Empty when none within `max_expansions`. O(expansions · L).
+template <class = void>
+std::vector<std::uint32_t> wall_through(finder& f, const face_rules& rules, std::uint32_t e,
+                                        std::size_t max_expansions) {
+  const drawing_graph& g = f.g;
+  struct node {
+    double cost;
+    std::uint32_t parent, h, depth;
+    finder::mating m;
+  };
+  std::vector<node> nodes;
+  using item = std::pair<double, std::uint32_t>;
+  std::priority_queue<item, std::vector<item>, std::greater<>> open;
+  const std::uint32_t h0 = 2 * e, a = g.tail(h0);
+  finder::mating m0;
+  f.extend_mating(m0, none, h0);
+  nodes.push_back({m0.cost, none, h0, 1, m0});
+  open.push({m0.cost, 0});
+  std::vector<std::uint32_t> path;
+  for (std::size_t expansions = 0; !open.empty() && expansions < max_expansions; ++expansions) {
+    const std::uint32_t id = open.top().second;
+    open.pop();
+    path.clear();
+    for (std::uint32_t k = id; k != none; k = nodes[k].parent) path.push_back(nodes[k].h);
+    std::reverse(path.begin(), path.end());
+    const std::uint32_t last = path.back(), v = g.head[last];
+    for (std::uint32_t j = g.out_begin[v]; j < g.out_begin[v + 1]; ++j) {
+      const std::uint32_t h = g.outs[j], w = g.head[h], eh = h >> 1;
+      f.budget.spend();
+      if (eh == (last >> 1) || eh == e || rules.corner_used(v, last >> 1, eh)) continue;
+      if (rules.on_edge[eh].size() + 1 > rules.capacity[eh]) continue;
+      bool repeat = false;
+      for (const auto p : path) repeat = repeat || (g.tail(p) == w && w != a);
+      if (repeat) continue;
+      // The new line crosses no line of the path (shared junctions aside), nor folds back on one.
+      bool crosses = false;
+      for (std::size_t k = 0; k + 1 < path.size() && !crosses; ++k) {
+        const std::uint32_t p = path[k];
+        const std::uint32_t pa = g.tail(p), pb = g.head[p];
+        if (pa == w || pb == w) {
+          const std::uint32_t shared = w, other = pa == w ? pb : pa;
+          crosses = orient(g.p[shared], g.p[other], g.p[v]) == 0 &&
+                    glm::dot(g.p[other] - g.p[shared], g.p[v] - g.p[shared]) > 0;
+          continue;
+        }
+        crosses = segments_meet(g.p[pa], g.p[pb], g.p[v], g.p[w]);
+      }
+      if (crosses) continue;
+      finder::mating m = nodes[id].m;
+      f.extend_mating(m, last, h);
+      if (w == a) {
+        if (rules.corner_used(a, eh, e) || path.size() < 2) continue;
+        std::vector<std::uint32_t> loop;
+        for (const auto p : path) loop.push_back(g.tail(p));
+        loop.push_back(v);
+        if (!f.closed_loop_ok(loop) || rules.conflict(loop) != nullptr) continue;
+        return loop;  // the cheapest closing step of the cheapest path: good enough, first found
+      }
+      nodes.push_back({m.cost, id, h, nodes[id].depth + 1, m});
+      open.push({m.cost, static_cast<std::uint32_t>(nodes.size() - 1)});
+    }
+  }
+  return {};
+}
+
+/// Completes an answer with the loops its edges still need (walls, contacts): rounds in which
+/// every needy edge offers its cheapest allowed loop and the offers are taken cheapest first
+/// while they still fit; then the loops no edge needs go. Returns the loops added and dropped.
+/// O(rounds · needy edges · search).
+template <class = void>
+std::array<std::size_t, 2> complete_walls(finder& f, face_rules& rules, std::size_t max_expansions) {
+  const std::size_t ne = f.g.num_half_edges() / 2;
+  std::size_t added = 0, unneeded = 0;
+  for (bool progress = true; progress;) {
+    progress = false;
+    std::vector<std::pair<std::pair<std::size_t, double>, std::vector<std::uint32_t>>> offers;
+    for (std::uint32_t e = 0; e < ne; ++e) {
+      if (!rules.needy(e)) continue;
+      auto loop = wall_through(f, rules, e, max_expansions);
+      if (loop.empty()) continue;
+      offers.push_back({{loop.size(), 0.0}, std::move(loop)});
+    }
+    std::stable_sort(offers.begin(), offers.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (auto& [cost, loop] : offers) {
+      (void)cost;
+      bool needed = false;
+      for (std::size_t k = 0; k < loop.size(); ++k)
+        needed = needed || rules.needy(rules.edge_between(loop[k], loop[(k + 1) % loop.size()]));
+      if (!needed || rules.conflict(loop) != nullptr) continue;
+      rules.add(std::move(loop));
+      ++added;
+      progress = true;
+    }
+  }
+  // A face exists only where an edge needs it (the reading rule's first clause, in the drawing):
+  // loops no edge needs go, the longest first, where every edge keeps just two faces (a hole's
+  // mouth taken for a wall). A loop no edge needs whose edge keeps three faces or more is a wall
+  // inside a grid, which the drawing cannot decide: it stays, counted in `unforced`.
+  for (bool dropped = true; dropped;) {
+    dropped = false;
+    std::uint32_t worst = none;
+    for (std::uint32_t l = 0; l < rules.loops.size(); ++l) {
+      if (rules.needed(l) || rules.grid_wall(l)) continue;
+      if (worst == none || rules.loops[l].size() > rules.loops[worst].size()) worst = l;
+    }
+    if (worst != none) rules.remove(worst), dropped = true, ++unneeded;
+  }
+  return {added, unneeded};
+}
+
+/// Loops as a sorted list of canonical cycles, for comparing answers. O(Σ L log L).
+template <class = void>
+std::vector<std::vector<std::uint32_t>> canonical_set(const std::vector<std::vector<std::uint32_t>>& loops) {
+  std::vector<std::vector<std::uint32_t>> out;
+  for (const auto& l : loops) {
+    // Start at the smallest junction, towards its smaller neighbour.
+    const std::size_t n = l.size(),
+                      s0 = static_cast<std::size_t>(std::min_element(l.begin(), l.end()) - l.begin());
+    const bool forward = n < 2 || l[(s0 + 1) % n] <= l[(s0 + n - 1) % n];
+    std::vector<std::uint32_t> c(n);
+    for (std::size_t i = 0; i < n; ++i) c[i] = l[forward ? (s0 + i) % n : (s0 + n - i) % n];
+    out.push_back(std::move(c));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 /// The loops of a complete state, as junction cycles, each once. O(E).
 template <class = void>
 std::vector<std::vector<std::uint32_t>> loops_of(const drawing_graph& g, const string_state& s) {
@@ -681,7 +1094,8 @@ std::vector<std::vector<std::uint32_t>> loops_of(const drawing_graph& g, const s
 /// Checks an answer: edges on two loops, loops simple without inner chords, the Euler count.
 /// O(Σ L² + E).
 template <class = void>
-face_check check_loops(const drawing_graph& g, const std::vector<std::vector<std::uint32_t>>& loops) {
+face_check check_loops(const drawing_graph& g, const std::vector<std::vector<std::uint32_t>>& loops,
+                       double coplanar_tolerance_degrees = 1e-6) {
   face_check c;
   const std::size_t ne = g.num_half_edges() / 2, nv = g.num_junctions();
   std::vector<std::uint32_t> uses(ne, 0);
@@ -710,6 +1124,15 @@ face_check check_loops(const drawing_graph& g, const std::vector<std::vector<std
       }
     if (bad) c.bad_loops.push_back(li);
   }
+  // The rules of faces at an edge and at a corner, loop by loop against those before it.
+  face_rules rules(g, coplanar_tolerance_degrees);
+  for (std::uint32_t li = 0; li < loops.size(); ++li) {
+    if (std::find(c.bad_loops.begin(), c.bad_loops.end(), li) != c.bad_loops.end()) continue;
+    if (rules.conflict(loops[li]) != nullptr) c.rule_breaking_loops.push_back(li);
+    rules.add(loops[li]);
+  }
+  for (std::uint32_t e = 0; e < ne; ++e)
+    if (rules.seam(e)) c.seam_edges.push_back(e);
   for (std::uint32_t e = 0; e < ne; ++e) {
     if (uses[e] == 2)
       ++c.edges_on_two_loops;
@@ -967,21 +1390,85 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
   r.edges = g.num_half_edges() / 2;
   r.direction_classes = g.classes;
   detail::work_budget budget{options.work_budget, 0, "find_faces"};
+  // Parallel in space shows as parallel to the point type's rounding: float drawings need more.
+  const double coplanar_tolerance = std::max(
+      options.coplanar_tolerance_degrees,
+      100.0 *
+          static_cast<double>(std::numeric_limits<detail::point2_scalar_t<drawing_point_t<D>>>::epsilon()) *
+          180.0 / std::numbers::pi);
   if (r.edges == 0) throw error(error_category::invalid_input, "find_faces: the drawing has no edge");
-  if (options.kind == face_finder_kind::varley_company)
-    r.loops = df::varley_company(g, options, budget, 0, r);
-  else
+  try {
+    if (options.kind == face_finder_kind::varley_company)
+      r.loops = df::varley_company(g, options, budget, 0, r);
+    else
+      r.loops = df::shortest_loops(g, budget);
+  } catch (const error& e) {
+    if (e.category() != error_category::budget || options.kind != face_finder_kind::varley_company) throw;
+    // Out of budget: the baseline's answer (fast at any size), flagged whatever its check says.
+    r.diagnostics.push_back(std::string(e.what()) + "; the shortest-loops baseline answers instead");
+    r.budget_fallback = true;
+    budget.used = 0;
     r.loops = df::shortest_loops(g, budget);
-  r.check = df::check_loops(g, r.loops);
-  r.flagged = !r.check.ok();
+  }
+  if (options.walls) {
+    // Faces beyond two per edge: the loops that edges still need, each allowed by the rules.
+    df::face_rules rules(g, coplanar_tolerance);
+    for (const auto& loop : r.loops)
+      if (loop.size() >= 3 && rules.conflict(loop) == nullptr) rules.add(loop);
+    df::finder f(g, options, budget);
+    try {
+      const auto [added, dropped] = df::complete_walls(f, rules, options.wall_expansions);
+      r.walls = added, r.unneeded = dropped;
+    } catch (const error& e) {
+      if (e.category() != error_category::budget) throw;
+      r.diagnostics.push_back(std::string(e.what()) + " while searching walls");
+      r.budget_fallback = true;
+    }
+    // Where the string algorithm alone did not answer (loops added, taken out or dropped), the
+    // same search from nothing must find the same loops: two searches that disagree on what the
+    // rules allow leave the drawing ambiguous, and the answer is flagged with the other.
+    for (std::uint32_t l = 0; l < rules.loops.size(); ++l) r.unforced += !rules.needed(l);
+    if (r.unforced > 0) {
+      r.ambiguous = true;
+      r.diagnostics.push_back(std::to_string(r.unforced) +
+                              " loops are walls no edge needs (inside a grid): kept, but the drawing "
+                              "reads as well without them");
+    }
+    const bool completed = r.walls > 0 || r.unneeded > 0 || rules.loops.size() != r.loops.size();
+    r.loops = std::move(rules.loops);
+    if (completed && !r.budget_fallback) {
+      df::face_rules fresh(g, coplanar_tolerance);
+      try {
+        (void)df::complete_walls(f, fresh, options.wall_expansions);
+        if (df::canonical_set(fresh.loops) != df::canonical_set(r.loops)) {
+          r.ambiguous = true;
+          r.diagnostics.push_back("the wall search from no loops finds other faces (" +
+                                  std::to_string(fresh.loops.size()) + " loops): ambiguous");
+          r.alternatives.push_back({fresh.loops, df::check_loops(g, fresh.loops, coplanar_tolerance),
+                                    "the wall search from no loops"});
+        }
+      } catch (const error& e) {
+        if (e.category() != error_category::budget) throw;
+        r.ambiguous = true;
+        r.diagnostics.push_back(std::string(e.what()) + " while cross-checking the walls");
+      }
+    }
+  }
+  r.check = df::check_loops(g, r.loops, coplanar_tolerance);
+  r.flagged = !r.check.ok() || r.budget_fallback || r.ambiguous;
   if (r.loops.empty()) r.diagnostics.push_back("find_faces: no closed loop in the drawing");
   if (!r.check.edges_with_fewer_loops.empty())
     r.diagnostics.push_back(std::to_string(r.check.edges_with_fewer_loops.size()) +
                             " edges lie on fewer than two loops (first: edge " +
                             std::to_string(r.check.edges_with_fewer_loops.front()) + ")");
-  if (!r.check.edges_with_more_loops.empty())
-    r.diagnostics.push_back(std::to_string(r.check.edges_with_more_loops.size()) +
-                            " edges lie on three or more loops");
+  if (!r.check.seam_edges.empty())
+    r.diagnostics.push_back(std::to_string(r.check.seam_edges.size()) +
+                            " edges lie on just two coplanar loops and no wall meets them (first: edge " +
+                            std::to_string(r.check.seam_edges.front()) + ")");
+  if (!r.check.rule_breaking_loops.empty())
+    r.diagnostics.push_back(
+        std::to_string(r.check.rule_breaking_loops.size()) +
+        " loops turn a corner another loop turns, overlap a coplanar loop, or overload an edge");
   if (!r.check.bad_loops.empty())
     r.diagnostics.push_back(std::to_string(r.check.bad_loops.size()) +
                             " loops are not simple polygons of the drawing");
@@ -991,10 +1478,12 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
                             "): a solid of higher genus, or a loop too few");
   if (r.flagged && options.alternatives_when_flagged) {
     // Alternatives: the other finder, and Varley–Company from other starts; best check first.
-    std::vector<face_alternative> alt;
+    std::vector<face_alternative> alt = std::move(r.alternatives);  // the wall search's, if any
+    budget.used = 0;  // each alternative its own budget: the answer may have spent it all
     if (options.kind == face_finder_kind::varley_company) {
-      alt.push_back({df::shortest_loops(g, budget), {}, "the shortest-loops baseline"});
-      for (std::size_t k = 1; k <= 2; ++k) {
+      if (!r.budget_fallback)
+        alt.push_back({df::shortest_loops(g, budget), {}, "the shortest-loops baseline"});
+      for (std::size_t k = 1; k <= 2 && !r.budget_fallback; ++k) {
         face_finder_result scratch;
         alt.push_back({df::varley_company(g, options, budget, k, scratch),
                        {},
@@ -1004,11 +1493,11 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
       face_finder_result scratch;
       alt.push_back({df::varley_company(g, options, budget, 0, scratch), {}, "Varley-Company"});
     }
-    for (auto& a : alt) a.check = df::check_loops(g, a.loops);
+    for (auto& a : alt) a.check = df::check_loops(g, a.loops, coplanar_tolerance);
     const auto score = [](const face_alternative& a) {
       return std::make_tuple(!a.check.ok(),
-                             a.check.edges_with_fewer_loops.size() + a.check.edges_with_more_loops.size() +
-                                 a.check.bad_loops.size(),
+                             a.check.edges_with_fewer_loops.size() + a.check.seam_edges.size() +
+                                 a.check.rule_breaking_loops.size() + a.check.bad_loops.size(),
                              a.check.euler_sphere - a.check.euler);
     };
     std::stable_sort(alt.begin(), alt.end(),
