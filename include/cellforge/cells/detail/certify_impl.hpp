@@ -72,6 +72,11 @@ struct face_info {
   int axis = 0;
   double level = 0.0;
   std::array<uint32_t, 3> plane{};
+  /// Exactly planar, one loop, strictly convex in the projection on axes (u, w), turning `turn`.
+  bool convex = false;
+  /// An axis-aligned rectangle: four vertices, edges parallel to the axes; the face is its box.
+  bool rectangle = false;
+  int u = 0, w = 1, turn = 1;
   uint32_t tri_begin = 0, tri_end = 0;  ///< into the triangle list, once triangulated
   bool triangulated = false;
 };
@@ -722,6 +727,66 @@ class basic_certifier {
         }
       if (flat) fi.planar = 2, fi.plane = {a, b, c};
     }
+    for (const cell_face f : cc_.faces()) classify_convex(f);
+  }
+
+  /// Sets the projection of planar face f and whether it is strictly convex (one loop of at most
+  /// 32 vertices, every vertex strictly inside every other edge's line). O(n²) orient2d.
+  void classify_convex(cell_face f) {
+    face_info& fi = info_[f.idx()];
+    if (fi.planar == 0) return;
+    int k = fi.axis;
+    if (fi.planar == 2) k = self_intersect::drop_axis(pts_[fi.plane[0]], pts_[fi.plane[1]], pts_[fi.plane[2]]);
+    if (k < 0) return;
+    fi.u = (k + 1) % 3, fi.w = (k + 2) % 3;
+    const auto loop = cc_.loop_vertices(f, 0);
+    const std::size_t n = loop.size();
+    if (cc_.num_loops(f) != 1 || n > 32) return;
+    if (fi.planar == 1 && n == 4) {
+      // Edges alternately along u and along w, each of positive length: a rectangle.
+      auto along = [&](std::size_t i, int axis) {
+        const vec &p = pts_[loop[i].idx()], &q = pts_[loop[(i + 1) % 4].idx()];
+        const int other = axis == fi.u ? fi.w : fi.u;
+        return p[axis] != q[axis] && p[other] == q[other];
+      };
+      const int a0 = along(0, fi.u) ? fi.u : fi.w, a1 = a0 == fi.u ? fi.w : fi.u;
+      fi.rectangle = along(0, a0) && along(1, a1) && along(2, a0) && along(3, a1);
+    }
+    const int s = o2(fi, loop[0].idx(), loop[1].idx(), loop[2].idx());
+    if (s == 0) return;
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < n; ++j)
+        if (j != i && j != (i + 1) % n && o2(fi, loop[i].idx(), loop[(i + 1) % n].idx(), loop[j].idx()) != s)
+          return;
+    fi.convex = true;
+    fi.turn = s;
+  }
+
+  /// orient2d of vertices a, b, c in face fi's projection. O(1).
+  int o2(const face_info& fi, uint32_t a, uint32_t b, uint32_t c) const {
+    const vec &p = pts_[a], &q = pts_[b], &r = pts_[c];
+    return orient2d(p[fi.u], p[fi.w], q[fi.u], q[fi.w], r[fi.u], r[fi.w]);
+  }
+
+  /// True when vertex z (on f's plane) lies in the closed convex face f. O(|f|).
+  bool in_convex(uint32_t f, uint32_t z) const {
+    const face_info& fi = info_[f];
+    const auto loop = cc_.loop_vertices(cell_face(f), 0);
+    for (std::size_t i = 0; i < loop.size(); ++i)
+      if (fi.turn * o2(fi, loop[i].idx(), loop[(i + 1) % loop.size()].idx(), z) < 0) return false;
+    return true;
+  }
+
+  /// True when the closed segments ab and cd (one plane, f's projection) meet. O(1).
+  bool segments_meet2(const face_info& fi, uint32_t a, uint32_t b, uint32_t c, uint32_t d) const {
+    const int s1 = o2(fi, a, b, c), s2 = o2(fi, a, b, d), s3 = o2(fi, c, d, a), s4 = o2(fi, c, d, b);
+    if (s1 * s2 < 0 && s3 * s4 < 0) return true;
+    auto on = [&](uint32_t p, uint32_t q, uint32_t r) {
+      for (const int k : {fi.u, fi.w})
+        if (pts_[r][k] < std::min(pts_[p][k], pts_[q][k]) || pts_[r][k] > std::max(pts_[p][k], pts_[q][k])) return false;
+      return true;
+    };
+    return (s1 == 0 && on(a, b, c)) || (s2 == 0 && on(a, b, d)) || (s3 == 0 && on(c, d, a)) || (s4 == 0 && on(c, d, b));
   }
 
   /// Side of p against the plane of planar face fi (p not one of its vertices). O(1).
@@ -745,65 +810,241 @@ class basic_certifier {
     return {tris_.data() + fi.tri_begin, tris_.data() + fi.tri_end};
   }
 
-  /// Marks face f's vertices with `stamp`. O(face).
-  void mark(uint32_t f, uint32_t stamp) {
-    for (std::size_t l = 0; l < cc_.num_loops(cell_face(f)); ++l)
-      for (const cell_vertex v : cc_.loop_vertices(cell_face(f), l)) mark_[v.idx()] = stamp;
+  /// One face of a pair as the other sees it: the face, its vertex marks (stamp_ at its
+  /// vertices) and its vertices' places in its outer loop.
+  struct role {
+    uint32_t face;
+    const std::vector<uint32_t>& in;
+    const std::vector<uint32_t>& place;
+  };
+
+  /// True when vertices a and b of face x follow each other in one of its loops. O(1) for a
+  /// face of one loop, O(degree) otherwise.
+  bool consecutive(const role& x, uint32_t a, uint32_t b) const {
+    const cell_face f(x.face);
+    if (cc_.num_loops(f) == 1) {
+      const std::size_t n = cc_.loop_vertices(f, 0).size();
+      const std::size_t d = (x.place[b] + n - x.place[a]) % n;
+      return d == 1 || d == n - 1;
+    }
+    const uint32_t e = edge_between(a, b);
+    if (e == none) return false;
+    for (const auto& of : cc_.edge_faces(cell_edge(e)))
+      if (of.handle.idx() == x.face) return true;
+    return false;
   }
 
-  /// True when the vertices of face g not marked (not shared with face f, marked) lie strictly on
-  /// one side of f's plane and the shared ones are at most one vertex or one common edge: then
-  /// g meets f only there. O(size of g).
-  bool separated_by_plane(uint32_t f, uint32_t g, uint32_t stamp) {
-    const face_info& fi = info_[f];
-    if (fi.planar == 0) return false;
-    int sign = 0;
+  /// Segment z1-z2 in the plane of convex face f: true when it meets f other than at a shared
+  /// vertex or as a shared edge. O(|f|).
+  bool segment_in_plane_meets(const role& f, uint32_t z1, uint32_t z2) const {
+    const face_info& fi = info_[f.face];
+    const auto loop = cc_.loop_vertices(cell_face(f.face), 0);
+    const std::size_t n = loop.size();
+    const bool s1 = f.in[z1] == stamp_, s2 = f.in[z2] == stamp_;
+    if (s1 && s2) return !consecutive(f, z1, z2);  // a chord of a strictly convex face crosses it
+    if (s1 || s2) {
+      const uint32_t v = s1 ? z1 : z2, x = s1 ? z2 : z1;
+      const uint32_t at = f.place[v];
+      const uint32_t prev = loop[(at + n - 1) % n].idx(), next = loop[(at + 1) % n].idx();
+      return fi.turn * o2(fi, v, next, x) >= 0 && fi.turn * o2(fi, prev, v, x) >= 0;
+    }
+    if (in_convex(f.face, z1) || in_convex(f.face, z2)) return true;
+    for (std::size_t i = 0; i < n; ++i)
+      if (segments_meet2(fi, z1, z2, loop[i].idx(), loop[(i + 1) % n].idx())) return true;
+    return false;
+  }
+
+  /// What f's plane decides about the pair (f, g): 0 they meet only at shared vertices and along
+  /// shared edges, 1 they meet elsewhere, -1 not decided here. g's vertices strictly on one side
+  /// but for at most one shared vertex or a shared edge: 0. f convex, g planar on one closed
+  /// side: g meets the plane only in its vertices and edges on it, tested in f's plane; g convex
+  /// in f's plane: coplanar_meet. O(|f|·|g|) at worst.
+  int decide(const role& f, const role& g) {
+    const face_info& fi = info_[f.face];
+    if (fi.planar == 0) return -1;
+    const face_info& gi = info_[g.face];
+    on_.clear();
+    bool pos = false, neg = false, zero = false;
     std::size_t shared = 0;
     std::array<uint32_t, 2> two{none, none};
-    for (std::size_t l = 0; l < cc_.num_loops(cell_face(g)); ++l)
-      for (const cell_vertex v : cc_.loop_vertices(cell_face(g), l)) {
-        if (mark_[v.idx()] == stamp) {
+    const cell_face gf(g.face);
+    for (std::size_t l = 0; l < cc_.num_loops(gf); ++l)
+      for (const cell_vertex v : cc_.loop_vertices(gf, l)) {
+        if (f.in[v.idx()] == stamp_) {
           if (shared < 2) two[shared] = v.idx();
           ++shared;
+          on_.push_back(1);
           continue;
         }
         const int s = side(fi, pts_[v.idx()]);
-        if (s == 0 || (sign != 0 && s != sign)) return false;
-        sign = s;
+        pos |= s > 0, neg |= s < 0, zero |= s == 0;
+        if (pos && neg) return -1;  // g straddles f's plane
+        on_.push_back(s == 0);
       }
-    if (sign == 0) return false;
-    if (shared <= 1) return true;
-    // Two shared vertices: fine when they are an edge of both faces (the segment lies in both).
-    if (shared > 2) return false;
-    const uint32_t e = edge_between(two[0], two[1]);
-    if (e == none) return false;
-    bool in_f = false, in_g = false;
-    for (const auto& of : cc_.edge_faces(cell_edge(e))) in_f |= of.handle.idx() == f, in_g |= of.handle.idx() == g;
-    return in_f && in_g;
+    if (!zero && (pos || neg)) {
+      if (shared <= 1) return 0;
+      if (shared == 2 && consecutive(f, two[0], two[1]) && consecutive(g, two[0], two[1])) return 0;
+    }
+    if (!fi.convex || gi.planar == 0) return -1;
+    if (!pos && !neg) return gi.convex ? coplanar_meet(f, g, shared, two) : -1;
+    std::size_t at = 0;
+    for (std::size_t l = 0; l < cc_.num_loops(gf); ++l) {
+      const auto loop = cc_.loop_vertices(gf, l);
+      const std::size_t base = at;
+      for (std::size_t k = 0; k < loop.size(); ++k, ++at) {
+        if (!on_[at]) continue;
+        const uint32_t z = loop[k].idx();
+        if (f.in[z] != stamp_ && in_convex(f.face, z)) return 1;
+        const std::size_t k2 = (k + 1) % loop.size();
+        if (on_[base + k2] && segment_in_plane_meets(f, z, loop[k2].idx())) return 1;
+      }
+    }
+    return 0;
   }
 
-  /// True when faces f and g meet other than at shared vertices and along shared edges. O(|f|·|g|).
+  /// The edge line a→b of a convex face turning sx, against the vertices ys of another face in
+  /// its plane: -1 when some lies strictly inside, else whether the two meet on the line other
+  /// than at a shared vertex or along the shared edge (touch_on_line). O(|ys|).
+  int line_test(const face_info& fi, uint32_t a, uint32_t b, int sx, std::span<const cell_vertex> ys) const {
+    std::array<uint32_t, 3> line{};
+    std::size_t online = 0;
+    for (const cell_vertex y : ys) {
+      const int s = sx * o2(fi, a, b, y.idx());
+      if (s > 0) return -1;
+      if (s == 0 && online < 3) line[online++] = y.idx();
+    }
+    return touch_on_line(fi, a, b, line, online) ? 1 : 0;
+  }
+
+  /// Convex faces f and g in one plane: they meet other than at shared vertices and edges unless
+  /// an edge line of one has the other on its closed outer side, touching the line only at
+  /// shared vertices or along a shared edge (two convex polygons with disjoint interiors have
+  /// such a line; through their common vertex when they share one). O(|f|·|g|), O(1) for a
+  /// shared edge.
+  int coplanar_meet(const role& f, const role& g, std::size_t shared, const std::array<uint32_t, 2>& two) const {
+    const face_info& fi = info_[f.face];
+    const auto F = cc_.loop_vertices(cell_face(f.face), 0), G = cc_.loop_vertices(cell_face(g.face), 0);
+    const int sg = o2(fi, G[0].idx(), G[1].idx(), G[2].idx());
+    if (sg == 0) return 1;
+    if (shared == 2 && consecutive(f, two[0], two[1]) && consecutive(g, two[0], two[1])) {
+      // A shared edge a→b (f's direction): they touch along it when g lies beyond its line.
+      uint32_t a = two[0], b = two[1];
+      if (F[(f.place[a] + 1) % F.size()].idx() != b) std::swap(a, b);
+      for (const cell_vertex x : G)
+        if (x.idx() != a && x.idx() != b) return fi.turn * o2(fi, a, b, x.idx()) < 0 ? 0 : 1;
+      return 1;
+    }
+    if (shared == 1) {
+      const uint32_t v = two[0];
+      for (int pass = 0; pass < 2; ++pass) {
+        const auto X = pass == 0 ? F : G, Y = pass == 0 ? G : F;
+        const role& x = pass == 0 ? f : g;
+        const int sx = pass == 0 ? fi.turn : sg;
+        const std::size_t at = x.place[v], n = X.size();
+        const uint32_t prev = X[(at + n - 1) % n].idx(), next = X[(at + 1) % n].idx();
+        for (const auto& [a, b] : {std::pair{prev, v}, std::pair{v, next}})
+          if (const int t = line_test(fi, a, b, sx, Y); t >= 0) return t;
+      }
+      return 1;
+    }
+    for (int pass = 0; pass < 2; ++pass) {
+      const auto X = pass == 0 ? F : G, Y = pass == 0 ? G : F;
+      const int sx = pass == 0 ? fi.turn : sg;
+      for (std::size_t i = 0; i < X.size(); ++i)
+        if (const int t = line_test(fi, X[i].idx(), X[(i + 1) % X.size()].idx(), sx, Y); t >= 0) return t;
+    }
+    return 1;  // no edge line separates them: their interiors overlap
+  }
+
+  /// Points of the closed segment ab (ids) and the hull of the collinear vertices `line` (one
+  /// vertex or an edge) in common, other than a shared vertex or the shared edge itself. O(1).
+  bool touch_on_line(const face_info& fi, uint32_t a, uint32_t b, const std::array<uint32_t, 3>& line,
+                     std::size_t n) const {
+    if (n == 0) return false;
+    if (n > 2) return true;
+    const int t = pts_[a][fi.u] != pts_[b][fi.u] ? fi.u : fi.w;
+    auto coord = [&](uint32_t v) { return pts_[v][t]; };
+    if (n == 1) {
+      const uint32_t z = line[0];
+      if (z == a || z == b) return false;
+      return std::min(coord(a), coord(b)) <= coord(z) && coord(z) <= std::max(coord(a), coord(b));
+    }
+    const uint32_t z1 = line[0], z2 = line[1];
+    if ((z1 == a && z2 == b) || (z1 == b && z2 == a)) return false;
+    const double lo = std::max(std::min(coord(a), coord(b)), std::min(coord(z1), coord(z2)));
+    const double hi = std::min(std::max(coord(a), coord(b)), std::max(coord(z1), coord(z2)));
+    if (lo > hi) return false;
+    if (lo < hi) return true;
+    // One common point: fine when it is one vertex of both.
+    for (const uint32_t x : {a, b})
+      for (const uint32_t z : {z1, z2})
+        if (x == z && coord(x) == lo) return false;
+    return true;
+  }
+
+  /// Marks face f's vertices in `marks` with the current stamp, and their outer-loop places. O(face).
+  void mark(uint32_t f, std::vector<uint32_t>& marks, std::vector<uint32_t>& places) {
+    for (std::size_t l = 0; l < cc_.num_loops(cell_face(f)); ++l) {
+      const auto loop = cc_.loop_vertices(cell_face(f), l);
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        marks[loop[k].idx()] = stamp_;
+        if (l == 0) places[loop[k].idx()] = static_cast<uint32_t>(k);
+      }
+    }
+  }
+
+  /// Two axis-aligned rectangles (each equal to its box) meet exactly in their boxes'
+  /// intersection: fine when that is a shared vertex or a shared edge. O(1).
+  bool rectangles_meet(uint32_t f, uint32_t g) const {
+    const auto &a = info_[f].box, &b = info_[g].box;
+    vec lo, hi;
+    int dims = 0;
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::max(a[static_cast<std::size_t>(k)], b[static_cast<std::size_t>(k)]);
+      hi[k] = std::min(a[static_cast<std::size_t>(k) + 3], b[static_cast<std::size_t>(k) + 3]);
+      if (lo[k] > hi[k]) return false;
+      dims += lo[k] < hi[k] ? 1 : 0;
+    }
+    if (dims == 2) return true;
+    // The intersection's ends must be vertices of both: among the (at most four) shared ids.
+    const auto F = cc_.loop_vertices(cell_face(f), 0), G = cc_.loop_vertices(cell_face(g), 0);
+    bool at_lo = false, at_hi = false;
+    for (const cell_vertex x : F)
+      for (const cell_vertex y : G)
+        if (x == y) {
+          const vec& p = pts_[x.idx()];
+          at_lo |= p == lo;
+          at_hi |= p == hi;
+        }
+    // (A segment along one axis between two corners of a rectangle is one of its sides.)
+    return !(at_lo && at_hi);
+  }
+
+  /// True when faces f and g meet other than at shared vertices and along shared edges: two
+  /// rectangles by their boxes, else what either face's plane decides, else triangle by
+  /// triangle. O(|f|·|g|).
   bool faces_meet(uint32_t f, uint32_t g) {
-    const uint32_t stamp = ++stamp_;
-    mark(f, stamp);
-    if (separated_by_plane(f, g, stamp)) return false;
-    const uint32_t stamp2 = ++stamp_;
-    mark(g, stamp2);
-    if (separated_by_plane(g, f, stamp2)) return false;
+    if (info_[f].rectangle && info_[g].rectangle) return rectangles_meet(f, g);
+    ++stamp_;
+    mark(f, in_f_, place_f_);
+    mark(g, in_g_, place_g_);
+    const role rf{f, in_f_, place_f_}, rg{g, in_g_, place_g_};
+    if (const int t = decide(rf, rg); t >= 0) return t == 1;
+    if (const int t = decide(rg, rf); t >= 0) return t == 1;
     ++r_.triangle_pairs_tested;
     triangles(f);  // both made before either span is taken: the list may grow
     const auto tg = triangles(g);
     const auto tf = triangles(f);
     std::array<vec, 3> p{}, q{};
-    for (const auto& a : tf) {
-      for (std::size_t k = 0; k < 3; ++k) p[k] = pts_[a[k]];
+    for (const auto& ta : tf) {
+      for (std::size_t k = 0; k < 3; ++k) p[k] = pts_[ta[k]];
       const std::array<double, 6> ba = tri_box(p);
-      for (const auto& b : tg) {
-        for (std::size_t k = 0; k < 3; ++k) q[k] = pts_[b[k]];
+      for (const auto& tb : tg) {
+        for (std::size_t k = 0; k < 3; ++k) q[k] = pts_[tb[k]];
         const std::array<double, 6> bb = tri_box(q);
         if (ba[0] > bb[3] || bb[0] > ba[3] || ba[1] > bb[4] || bb[1] > ba[4] || ba[2] > bb[5] || bb[2] > ba[5])
           continue;
-        if (self_intersect::pair_intersects(p, a, q, b)) return true;
+        if (self_intersect::pair_intersects(p, ta, q, tb)) return true;
       }
     }
     if (!budget_.spend(tf.size() * tg.size())) stop();
@@ -819,10 +1060,10 @@ class basic_certifier {
   /// True when segment (p, q) with complex ids ip, iq (or none) meets face f other than at a
   /// shared vertex. O(|f|).
   bool segment_meets(uint32_t f, const vec& p, const vec& q, uint32_t ip, uint32_t iq) {
-    const uint32_t stamp = ++stamp_;
-    mark(f, stamp);
+    ++stamp_;
+    mark(f, in_f_, place_f_);
     const face_info& fi = info_[f];
-    const bool sp = ip != none && mark_[ip] == stamp, sq = iq != none && mark_[iq] == stamp;
+    const bool sp = ip != none && in_f_[ip] == stamp_, sq = iq != none && in_f_[iq] == stamp_;
     // Off the plane but for shared ends: it meets the face at most there.
     if (fi.planar != 0 && !(sp && sq)) {
       const int a = sp ? 0 : side(fi, p), b = sq ? 0 : side(fi, q);
@@ -835,7 +1076,10 @@ class basic_certifier {
 
   void check_crossings() {
     classify_planes();
-    mark_.assign(cc_.num_vertices(), 0);
+    in_f_.assign(cc_.num_vertices(), 0);
+    in_g_.assign(cc_.num_vertices(), 0);
+    place_f_.assign(cc_.num_vertices(), 0);
+    place_g_.assign(cc_.num_vertices(), 0);
     // Items: faces, then segments (faceless complex edges, then input edges off the faces).
     struct segment {
       vec p, q;
@@ -939,7 +1183,8 @@ class basic_certifier {
   budget budget_;
   std::vector<face_info> info_;
   std::vector<std::array<uint32_t, 3>> tris_;
-  std::vector<uint32_t> mark_;
+  std::vector<uint32_t> in_f_, in_g_, place_f_, place_g_;  ///< vertex marks of the two faces of a pair
+  std::vector<char> on_;                      ///< per vertex of g: on f's plane
   uint32_t stamp_ = 0;
   std::vector<uint32_t> match_;  ///< input vertex → complex vertex (or a representative past them)
   std::size_t reps_ = 0;
