@@ -291,8 +291,9 @@ class basic_certifier {
  private:
   using K = certificate_failure::kind;
 
-  void fail(K kind, std::string message, std::vector<uint32_t> elements) {
-    r_.failures.push_back({kind, std::move(message), std::move(elements)});
+  // The elements by const reference: the message may be built from them in the same call.
+  void fail(K kind, std::string message, const std::vector<uint32_t>& elements) {
+    r_.failures.push_back({kind, std::move(message), elements});
   }
 
   void count_faces() {
@@ -328,7 +329,7 @@ class basic_certifier {
            (seams.size() == 1 ? "edge " : "edges ") + list(seams, o_.max_named) +
                (seams.size() == 1 ? " lies" : " lie") +
                " on two coplanar faces only: a seam inside a flat surface, not an edge of a solid",
-           std::move(seams));
+           seams);
   }
 
   /// Faces a and b at e lie in one plane, on opposite sides of e. O(1).
@@ -449,16 +450,16 @@ class basic_certifier {
       const std::size_t n = xs.size() / stride;
       return n > 1 ? " (and " + std::to_string(n - 1) + " more volumes)" : std::string();
     };
-    if (!open.empty()) fail(K::open_volume, first_open + more(open, 2), std::move(open));
+    if (!open.empty()) fail(K::open_volume, first_open + more(open, 2), open);
     if (!four.empty()) fail(K::non_manifold_volume, first_four + more(four, 2), four);
     if (!pinched.empty()) {
       if (auto* f = find_failure(K::non_manifold_volume)) {
         f->elements.insert(f->elements.end(), pinched.begin(), pinched.end());
       } else {
-        fail(K::non_manifold_volume, first_pinch + more(pinched, 2), std::move(pinched));
+        fail(K::non_manifold_volume, first_pinch + more(pinched, 2), pinched);
       }
     }
-    if (!inverted.empty()) fail(K::inverted_volume, first_inverted + more(inverted, 1), std::move(inverted));
+    if (!inverted.empty()) fail(K::inverted_volume, first_inverted + more(inverted, 1), inverted);
   }
 
   certificate_failure* find_failure(K kind) {
@@ -633,7 +634,7 @@ class basic_certifier {
       fail(K::unused_input_edge,
            (unused.size() == 1 ? "input edge " : "input edges ") + list(unused, o_.max_named) +
                (unused.size() == 1 ? " lies" : " lie") + " on a cycle of the wireframe but on no face",
-           std::move(unused));
+           unused);
   }
 
   /// Edges (those with first[e]) that lie on no cycle of the graph they make: iterative
@@ -1137,11 +1138,11 @@ class basic_certifier {
       fail(K::faces_cross,
            "faces " + std::to_string(cross[0]) + " and " + std::to_string(cross[1]) + " cross" +
                (n > 1 ? " (and " + std::to_string(n - 1) + " more pairs: faces " + pair_list(cross) + ")" : std::string()),
-           std::move(cross));
+           cross);
     }
     if (!pierce_input.empty())
-      fail(K::input_edge_pierces_face, pierce_message("input edge", pierce_input), std::move(pierce_input));
-    if (!pierce_edge.empty()) fail(K::edge_pierces_face, pierce_message("edge", pierce_edge), std::move(pierce_edge));
+      fail(K::input_edge_pierces_face, pierce_message("input edge", pierce_input), pierce_input);
+    if (!pierce_edge.empty()) fail(K::edge_pierces_face, pierce_message("edge", pierce_edge), pierce_edge);
   }
 
   static void sort_pairs(std::vector<uint32_t>& xs) {
