@@ -16,8 +16,9 @@ mkfifo "$work/in/fifo.obj"
 export ASAN_OPTIONS="${ASAN_OPTIONS:-}:hard_rss_limit_mb=3000:detect_leaks=0"
 runs=0
 bad=0
-# case EXE INPUT STATUS PATTERN [ARGUMENT...]: STATUS 0 (success) or "error" (exit 1-3); PATTERN
-# an extended regex the program's stderr (errors) or stdout (success) must match. With the
+# case EXE INPUT STATUS PATTERN [ARGUMENT...]: STATUS 0 (success), "error" (exit 1-3) or 4 (read,
+# but not a closed solid: wire2cells); PATTERN an extended regex the program's stderr (errors),
+# stdout (success) or either (4) must match. With the
 # argument --no-svg the run must write no .svg file. A non-empty $memory_kb caps the run's
 # address space (ulimit -v; not in sanitizer builds, whose shadow memory needs terabytes of it).
 memory_kb=""
@@ -33,10 +34,13 @@ case_() {
   local why=""
   if grep -qE "AddressSanitizer|runtime error:|LeakSanitizer" "$dir/stderr.txt"; then why="sanitizer report"
   elif ((rc == 124)); then why="time-out (hang)"
-  elif ((rc > 3)); then why="exit status $rc (crash or abort)"
+  elif ((rc > 4)) || { ((rc == 4)) && [[ "$exe" != wire2cells ]]; }; then why="exit status $rc (crash or abort)"
   elif [[ "$want" == 0 && $rc != 0 ]]; then why="exit status $rc, expected success"
-  elif [[ "$want" == error && $rc == 0 ]]; then why="succeeded, expected an error"
+  elif [[ "$want" == 4 && $rc != 4 ]]; then why="exit status $rc, expected 4 (not a closed solid)"
+  elif [[ "$want" == error ]] && ((rc == 0 || rc == 4)); then why="exit status $rc, expected an error"
   elif [[ "$want" == 0 ]] && ! grep -qE -- "$pattern" "$dir/stdout.txt"; then why="output lacks /$pattern/"
+  elif [[ "$want" == 4 ]] && ! cat "$dir/stdout.txt" "$dir/stderr.txt" | grep -qE -- "$pattern"; then
+    why="output lacks /$pattern/"
   elif [[ "$want" == error ]] && ! grep -qE -- "$pattern" "$dir/stderr.txt"; then why="message lacks /$pattern/"
   elif [[ " $* " == *" --no-svg "* ]] && [[ -n "$(find "$dir" -name '*.svg' -print -quit)" ]]; then
     why="--no-svg, yet a picture was written"
