@@ -8,9 +8,13 @@
 /// pierces a face — the last two exactly (signs of orient3d / orient2d on the input points; the
 /// tolerances only match positions and judge flat seams). See docs/cells.md, "The certificate".
 
+#include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "cellforge/cells/cell_complex.hpp"
 #include "cellforge/core/tolerance.hpp"
@@ -145,11 +149,17 @@ struct certificate_result {
   std::uint64_t work = 0;                 ///< steps spent (see certify_options::work_budget)
 };
 
-}  // namespace cellforge
-
-#include "cellforge/cells/detail/certify_impl.hpp"
-
-namespace cellforge {
+namespace detail::certify {
+/// The wireframe as certify reads it: positions and edges in the caller's numbering.
+struct input_wire {
+  std::vector<glm::dvec3> points;
+  std::vector<std::array<std::uint32_t, 2>> edges;
+};
+/// certify on double positions (one copy for every point type); in certify_impl.hpp.
+template <class = void>
+certificate_result run(const cell_topology& cc, std::span<const glm::dvec3> pts, const input_wire* wire,
+                       const certify_options& options);
+}  // namespace detail::certify
 
 /// Certifies a complex against its own invariants only: genuine edges, closed oriented manifold
 /// volumes of positive volume, no crossing faces, no faceless edge through a face.
@@ -181,3 +191,5 @@ certificate_result certify(const cell_complex<P>& c, const G& wire, const certif
 }
 
 }  // namespace cellforge
+
+#include "cellforge/cells/detail/certify_impl.hpp"

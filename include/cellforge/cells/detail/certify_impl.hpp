@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// The engine of cells/certify.hpp (included from there, after its declarations).
+/// The engine of cells/certify.hpp (included at its end; including this first includes that).
 
 #include <algorithm>
 #include <array>
@@ -20,6 +20,7 @@
 
 #include "cellforge/algorithms/detail/triangle_pairs.hpp"
 #include "cellforge/cells/cell_complex.hpp"
+#include "cellforge/cells/certify.hpp"
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/core/bounding_box.hpp"
 #include "cellforge/core/detail/span_of.hpp"
@@ -32,12 +33,6 @@ namespace cellforge::detail::certify {
 using vec = glm::dvec3;
 using std::uint32_t;
 inline constexpr uint32_t none = 0xFFFFFFFFu;
-
-/// The wireframe as certify reads it: positions and edges in the caller's numbering.
-struct input_wire {
-  std::vector<vec> points;
-  std::vector<std::array<uint32_t, 2>> edges;
-};
 
 /// "a, b, c" of the first `named` values, "and k more" past them. O(named).
 template <class = void>
@@ -1193,7 +1188,7 @@ class basic_certifier {
 };
 
 /// certify on double positions (one copy for every point type). See certify().
-template <class = void>
+template <class>
 certificate_result run(const cell_topology& cc, std::span<const vec> pts, const input_wire* wire,
                        const certify_options& options) {
   const stopwatch clock;
