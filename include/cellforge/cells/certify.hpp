@@ -59,6 +59,10 @@ struct certify_options {
   static constexpr std::uint64_t automatic = ~std::uint64_t{0};
   bool check_input_edges = true;  ///< every input edge on a face (needs the wireframe)
   bool check_edges = true;        ///< every face edge genuine (no seams in a flat surface)
+  /// An edge on just two coplanar faces (a seam in a flat surface) fails as seam_edge; false:
+  /// only counted in seam_edges. wireframe_to_cells sets false: its reading rule keeps a seam
+  /// only where the wireframe draws one and no wall for it (a tessellated flat surface).
+  bool seams_fail = true;
   bool check_volumes = true;      ///< every volume closed, oriented, manifold, of positive volume
   bool check_crossings = true;    ///< no two faces cross, no edge off the faces pierces a face
   std::size_t max_named = 10;     ///< elements named in each failure's message (all are listed)

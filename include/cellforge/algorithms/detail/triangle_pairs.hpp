@@ -347,6 +347,10 @@ std::uint32_t cell_of(double x, double origin, double inv_side, std::uint32_t ce
 /// whose digit is the same in every key. O(n · passes).
 template <class = void>
 void radix_sort(std::vector<std::uint64_t>& keys) {
+  if (keys.size() < 4096) {  // the passes' 512 KB of counters cost more than a comparison sort
+    std::sort(keys.begin(), keys.end());
+    return;
+  }
   std::vector<std::uint64_t> tmp(keys.size());
   std::vector<std::size_t> count(1 << 16);
   std::uint64_t all_or = 0, all_and = ~std::uint64_t{0};

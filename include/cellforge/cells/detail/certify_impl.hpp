@@ -88,12 +88,22 @@ void clip_ring(std::span<const vec> pts, std::vector<uint32_t> ring, int u, int 
   std::size_t n = ring.size();
   std::vector<uint32_t> next(n), prev(n);
   for (std::size_t i = 0; i < n; ++i) next[i] = static_cast<uint32_t>((i + 1) % n), prev[i] = static_cast<uint32_t>((i + n - 1) % n);
-  std::vector<char> alive(n, 1);
+  // An ear whose area is at rounding level for its size (three vertices collinear up to the
+  // rounding of the input) waits until a lap finds no other: its diagonal would pass through
+  // the middle vertex's neighbourhood, off the face where the face is not exactly planar.
+  auto thin = [&](uint32_t a, uint32_t b, uint32_t c) {
+    const vec &p = pts[a], &q = pts[b], &r = pts[c];
+    const double ux = q[u] - p[u], uy = q[w] - p[w], vx = r[u] - p[u], vy = r[w] - p[w];
+    const double wx = r[u] - q[u], wy = r[w] - q[w];
+    const double longest = std::max({ux * ux + uy * uy, vx * vx + vy * vy, wx * wx + wy * wy});
+    return std::fabs(ux * vy - uy * vx) <= 1e-12 * longest;
+  };
   uint32_t i = 0;
   std::size_t stall = 0;
+  bool thin_ok = false;
   while (n > 3) {
     const uint32_t a = prev[i], c = next[i];
-    bool ear = turn(ring[a], ring[i], ring[c]) > 0;
+    bool ear = turn(ring[a], ring[i], ring[c]) > 0 && (thin_ok || !thin(ring[a], ring[i], ring[c]));
     if (ear) {
       for (uint32_t r = next[c]; r != a && ear; r = next[r]) {
         const uint32_t x = ring[r];
@@ -102,7 +112,13 @@ void clip_ring(std::span<const vec> pts, std::vector<uint32_t> ring, int u, int 
         ear = !(turn(ring[a], ring[i], x) >= 0 && turn(ring[i], ring[c], x) >= 0 && turn(ring[c], ring[a], x) >= 0);
       }
     }
-    if (!ear && ++stall > n) {  // a lap without an ear: clip the first convex corner anyway
+    if (!ear && ++stall > n) {
+      stall = 0;
+      if (!thin_ok) {  // a lap without a good ear: slivers may go now
+        thin_ok = true;
+        continue;
+      }
+      // A lap without any ear (a face crossing itself): clip the first convex corner anyway.
       for (std::size_t k = 0; k < n && turn(ring[prev[i]], ring[i], ring[next[i]]) <= 0; ++k) i = next[i];
       ear = true;
     }
@@ -113,10 +129,10 @@ void clip_ring(std::span<const vec> pts, std::vector<uint32_t> ring, int u, int 
     add(ring[prev[i]], ring[i], ring[next[i]]);
     next[prev[i]] = next[i];
     prev[next[i]] = prev[i];
-    alive[i] = 0;
     i = next[i];
     --n;
     stall = 0;
+    thin_ok = false;
   }
   add(ring[prev[i]], ring[i], ring[next[i]]);
 }
@@ -319,7 +335,10 @@ class basic_certifier {
       }
     }
     r_.seam_edges = seams.size();
-    if (!seams.empty())
+    if (!seams.empty() && !o_.seams_fail)
+      r_.diagnostics.push_back(std::to_string(seams.size()) + " edges lie on two coplanar faces only (seams): " +
+                               list(seams, o_.max_named));
+    if (!seams.empty() && o_.seams_fail)
       fail(K::seam_edge,
            (seams.size() == 1 ? "edge " : "edges ") + list(seams, o_.max_named) +
                (seams.size() == 1 ? " lies" : " lie") +
