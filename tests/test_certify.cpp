@@ -183,6 +183,40 @@ TEST_CASE("certify: a sample of the generated sweep passes where the pipeline is
   CHECK(certified == exact);
 }
 
+TEST_CASE("certify: faces with holes off the axes (rounding-level slivers) do not cross their walls") {
+  // Rotated frames and plates with holes in rows: hole corners collinear up to rounding across
+  // holes, so the holed faces are triangled with slivers last (their diagonals pass beside a
+  // corner). These 14 models failed as crossing before.
+  std::size_t n = 0;
+  for (const bool frame : {true, false})
+    for (const std::size_t holes : {4, 5, 6, 7, 8, 9})
+      for (const bool row : {false, true}) {
+        const sample_model base = wireframe_sweep::detail::holed_slab(frame, holes, row, false);
+        const std::string name = base.name + " rot#1";
+        const sample_model m = wireframe_sweep::shuffled(base, wireframe_sweep::name_seed(name), true);
+        CAPTURE(name);
+        const auto r = wireframe_to_cells(m.wire);
+        INFO(kinds(r.certificate));
+        CHECK(r.certificate.ok());
+        CHECK(r.status == solid_status::solid);
+        ++n;
+      }
+  CHECK(n == 24);
+}
+
+TEST_CASE("certify: a tessellated flat surface is made of seams: failures alone, counted in the pipeline") {
+  const sample_model m = sample_seed(4);  // a quad-meshed 31x4x4 box halved by a wall
+  const auto r = wireframe_to_cells(m.wire);
+  INFO(kinds(r.certificate));
+  CHECK(r.certificate.ok());
+  CHECK(r.certificate.seam_edges > 800);
+  CHECK(r.status == solid_status::solid);
+  CHECK(r.status_reason.find("are seams of a tessellated flat surface") != std::string::npos);
+  const auto strict = certify(r.cells, m.wire);
+  REQUIRE(strict.find(K::seam_edge) != nullptr);
+  CHECK(strict.find(K::seam_edge)->elements.size() == r.certificate.seam_edges);
+}
+
 TEST_CASE("certify: a face removed") {
   SUBCASE("from the complex: the edge between two removed faces lies on no face") {
     const input cube = fx::cube();
