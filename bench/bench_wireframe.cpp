@@ -292,21 +292,20 @@ benchmark::internal::Benchmark* register_pipeline(const std::string& name,
 /// Registers the certificate of one model's answer (the answer made once, outside the timing).
 benchmark::internal::Benchmark* register_certify(const std::string& name,
                                                  std::function<const cellforge::sample_model&()> get) {
-  return benchmark::RegisterBenchmark(
-             name.c_str(),
-             [get](benchmark::State& s) {
-               const auto& m = get();
-               try {
-                 const auto r = cellforge::wireframe_to_cells(m.wire);
-                 cb::timed_loop(
-                     s, [&] { return cellforge::certify(r.cells, m.wire); },
-                     [&](const cellforge::certificate_result& c) {
-                       if (!c.ok()) s.SkipWithError(c.reason().c_str());
-                     });
-               } catch (const cellforge::error& e) {
-                 s.SkipWithError(e.what());
-               }
-             })
+  return benchmark::RegisterBenchmark(name.c_str(),
+                                      [get](benchmark::State& s) {
+                                        const auto& m = get();
+                                        try {
+                                          const auto r = cellforge::wireframe_to_cells(m.wire);
+                                          cb::timed_loop(
+                                              s, [&] { return cellforge::certify(r.cells, m.wire); },
+                                              [&](const cellforge::certificate_result& c) {
+                                                if (!c.ok()) s.SkipWithError(c.reason().c_str());
+                                              });
+                                        } catch (const cellforge::error& e) {
+                                          s.SkipWithError(e.what());
+                                        }
+                                      })
       ->UseManualTime()
       ->Unit(benchmark::kMillisecond);
 }
@@ -314,8 +313,8 @@ benchmark::internal::Benchmark* register_certify(const std::string& name,
 
 /// The models of the certificate's table: the 20³ grid and the largest sphere.
 std::vector<std::pair<std::string, std::function<const cellforge::sample_model&()>>> certify_models() {
-  return {{"grid_20", [] () -> const cellforge::sample_model& { return grid(20); }},
-          {"sphere_256x96", [] () -> const cellforge::sample_model& { return sphere(256, 96); }}};
+  return {{"grid_20", []() -> const cellforge::sample_model& { return grid(20); }},
+          {"sphere_256x96", []() -> const cellforge::sample_model& { return sphere(256, 96); }}};
 }
 
 void register_all() {
@@ -481,7 +480,8 @@ void print_tables(const cb::collecting_reporter& reporter, std::ostream& os) {
     cert.add_row({name, cb::count(get().wire.edges.size()), cb::ms(p), cb::ms(c), cb::ratio(c, p),
                   p && c ? (*c <= 0.2 * *p ? "MET" : "NOT MET") : "—"});
   }
-  cert.add_note("Best CPU ms of 5 runs each; the certificate of the pipeline's answer against its wireframe.");
+  cert.add_note(
+      "Best CPU ms of 5 runs each; the certificate of the pipeline's answer against its wireframe.");
   cert.print(os);
 
   // Input order: the same models with their vertices and edges numbered at random.

@@ -271,8 +271,9 @@ int main(int argc, char** argv) {
       std::printf("%s %s", i == 0 ? "" : i + 1 == outputs.size() ? " and" : ",", outputs[i].string().c_str());
     std::printf("\n");
     if (solid) return exit_ok;
-    std::fprintf(stderr, "wire2cells: read, but not a closed solid: %s (the files are written so that you can look)\n",
-                 r.status_reason.c_str());
+    std::fprintf(
+        stderr, "wire2cells: read, but not a closed solid: %s (the files are written so that you can look)\n",
+        r.status_reason.c_str());
     return exit_not_solid;
   } catch (const std::bad_alloc&) {
     example::report_out_of_memory("wire2cells", stage);

@@ -293,8 +293,8 @@ TEST_CASE("certify: a crossing face added") {
   }
   SUBCASE("a diagonal quad through a cube, on its corners") {
     input in = fx::cube();
-    const std::uint32_t f = add_face(in, {point_at(in, {0, 0, 0}), point_at(in, {1, 1, 0}), point_at(in, {1, 1, 1}),
-                                          point_at(in, {0, 0, 1})});
+    const std::uint32_t f = add_face(in, {point_at(in, {0, 0, 0}), point_at(in, {1, 1, 0}),
+                                          point_at(in, {1, 1, 1}), point_at(in, {0, 0, 1})});
     const auto cc = make_cell_complex(in);
     const auto r = certify(cc);
     INFO(kinds(r));
@@ -480,7 +480,8 @@ TEST_CASE("certify: crossing is decided exactly") {
     CHECK(r.ok());
     input through = base();
     const double y = 1.0 - 1e-15;
-    add_face(through, {add_point(through, {y, -1, -1}), add_point(through, {y, 1, -1}), add_point(through, {y, 0, 1})});
+    add_face(through, {add_point(through, {y, -1, -1}), add_point(through, {y, 1, -1}),
+                       add_point(through, {y, 0, 1})});
     CHECK(certify(make_cell_complex(through)).find(K::faces_cross) != nullptr);
   }
   SUBCASE("faces touching at a shared vertex or along a shared edge do not cross") {
@@ -549,7 +550,8 @@ TEST_CASE("wireframe_to_cells: the status of every answer") {
     CHECK(open.certificate.ok());  // a valid 3DCL of faces without volumes, but no solid
     wire stray = sample_cube().wire;
     const auto b = static_cast<std::uint32_t>(stray.points.size());
-    for (const auto& p : {glm::dvec3(5, 0, 0), glm::dvec3(6, 0, 0), glm::dvec3(6, 1, 0)}) stray.points.push_back(p);
+    for (const auto& p : {glm::dvec3(5, 0, 0), glm::dvec3(6, 0, 0), glm::dvec3(6, 1, 0)})
+      stray.points.push_back(p);
     stray.edges.push_back({b, b + 1});
     stray.edges.push_back({b + 1, b + 2});
     stray.edges.push_back({b + 2, b});

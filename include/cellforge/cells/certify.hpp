@@ -63,9 +63,9 @@ struct certify_options {
   /// only counted in seam_edges. wireframe_to_cells sets false: its reading rule keeps a seam
   /// only where the wireframe draws one and no wall for it (a tessellated flat surface).
   bool seams_fail = true;
-  bool check_volumes = true;      ///< every volume closed, oriented, manifold, of positive volume
-  bool check_crossings = true;    ///< no two faces cross, no edge off the faces pierces a face
-  std::size_t max_named = 10;     ///< elements named in each failure's message (all are listed)
+  bool check_volumes = true;    ///< every volume closed, oriented, manifold, of positive volume
+  bool check_crossings = true;  ///< no two faces cross, no edge off the faces pierces a face
+  std::size_t max_named = 10;   ///< elements named in each failure's message (all are listed)
 };
 
 /// One way the certificate failed: its kind, a message naming the elements, and the elements.
@@ -139,10 +139,10 @@ struct certificate_result {
   std::size_t seam_edges = 0;            ///< edges on two coplanar faces
   // The input edges (wireframe numbering).
   std::size_t input_edges = 0;
-  std::size_t covered_input_edges = 0;  ///< on faces: one complex edge, or a collinear chain
-  std::size_t split_input_edges = 0;    ///< of those, covered by a chain of two or more edges
-  std::size_t zero_length_input_edges = 0;  ///< ends at one complex vertex (not a failure)
-  std::size_t duplicate_input_edges = 0;    ///< joining the same two vertices as an earlier one
+  std::size_t covered_input_edges = 0;            ///< on faces: one complex edge, or a collinear chain
+  std::size_t split_input_edges = 0;              ///< of those, covered by a chain of two or more edges
+  std::size_t zero_length_input_edges = 0;        ///< ends at one complex vertex (not a failure)
+  std::size_t duplicate_input_edges = 0;          ///< joining the same two vertices as an earlier one
   std::vector<std::uint32_t> unused_input_edges;  ///< on a cycle, on no face (each a failure)
   /// On no cycle of the wireframe (a dangling tree or a bridge between cycles): they cannot bound
   /// a face, so lying on none is no failure; they are still tested against the faces.

@@ -103,6 +103,9 @@ struct wireframe_result {
   std::string status_reason;  ///< one line: what the input is, or what failed
   /// The certificate (cells/certify.hpp); empty, with status not_a_solid, when not run.
   certificate_result certificate;
+  /// validate()'s verdict on `cells` (check_result; ok when not run), named in the output's
+  /// numbering when it failed; signed volumes per volume (the per-object lists left empty).
+  cells_validation_result validation;
 };
 
 namespace detail {
@@ -227,9 +230,10 @@ void judge(wireframe_result<P>& r, const std::string& invalid, bool certified) {
     r.status_reason = c.reason();
   } else if (c.faces_without_volume > 0) {
     r.status = solid_status::not_a_solid;
-    r.status_reason = c.free_edges > 0 ? "an open surface: " + plural(c.free_edges, "edge lies", "edges lie") +
-                                             " on one face only"
-                                       : plural(c.faces_without_volume, "face bounds", "faces bound") + " no volume";
+    r.status_reason =
+        c.free_edges > 0
+            ? "an open surface: " + plural(c.free_edges, "edge lies", "edges lie") + " on one face only"
+            : plural(c.faces_without_volume, "face bounds", "faces bound") + " no volume";
   } else if (!r.lost.empty()) {
     r.status = solid_status::not_a_solid;
     r.status_reason = plural(r.lost.size(), "face was", "faces were") + " removed (the first because " +
@@ -439,12 +443,16 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
       r.cells = make_cell_complex(r.input);  // the error in the output's numbering
       throw;
     }
-    const bool valid = !options.check_result || validate(inside, wireframe_check_options(options)).ok();
+    if (options.check_result) r.validation = validate(inside, wireframe_check_options(options));
     r.cells = renumber_cells(inside, vertex_label, edge_label);
-    std::string invalid;
-    if (!valid) invalid = validate(r.cells, wireframe_check_options(options)).message;  // the output's numbering
+    if (!r.validation.ok())
+      r.validation = validate(r.cells, wireframe_check_options(options));  // output numbering
+    r.validation.expected_euler.clear();  // per object, and objects were numbered otherwise inside
+    r.validation.euler_checked.clear();
+    const std::string invalid = r.validation.ok() ? std::string() : r.validation.message;
     r.assembly_milliseconds = clock.ms();
-    if (options.certify_result) r.certificate = certify(r.cells, wire, detail::pipeline_certify_options(options));
+    if (options.certify_result)
+      r.certificate = certify(r.cells, wire, detail::pipeline_certify_options(options));
     detail::judge(r, invalid, options.certify_result);
     return r;
   }

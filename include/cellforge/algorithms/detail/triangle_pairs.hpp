@@ -403,7 +403,8 @@ bool triangulate_polygon(std::span<const std::uint32_t> ids, std::span<const vec
     clip.allow_non_simple = true;
     ear_clip_report report;
     try {
-      for (const index_triangle& t : ears::clip_polygon(corners, clip, report)) add(ids[t[0]], ids[t[1]], ids[t[2]]);
+      for (const index_triangle& t : ears::clip_polygon(corners, clip, report))
+        add(ids[t[0]], ids[t[1]], ids[t[2]]);
     } catch (const error&) {
       fan = true;  // no area, or a non-finite corner: its fan triangles are degenerate
     }
@@ -432,7 +433,8 @@ box_pair_count for_each_box_pair(std::span<const std::array<double, 6>> boxes, s
   box_pair_count r;
   const std::size_t n = boxes.size();
   if (n < 2) return r;
-  if (n >= 0xFFFFFFFFu) throw error(error_category::invalid_input, "for_each_box_pair: more than 2^32 - 1 boxes");
+  if (n >= 0xFFFFFFFFu)
+    throw error(error_category::invalid_input, "for_each_box_pair: more than 2^32 - 1 boxes");
   std::array<double, 3> lo{}, hi{};
   for (std::size_t k = 0; k < 3; ++k) {
     lo[k] = std::numeric_limits<double>::infinity();
@@ -514,7 +516,8 @@ box_pair_count for_each_box_pair(std::span<const std::array<double, 6>> boxes, s
       for (std::size_t j = i + 1; j < end; ++j) {
         const auto b = static_cast<std::uint32_t>(keys[j]);
         const auto& bb = boxes[b];
-        if (ba[0] > bb[3] || bb[0] > ba[3] || ba[1] > bb[4] || bb[1] > ba[4] || ba[2] > bb[5] || bb[2] > ba[5])
+        if (ba[0] > bb[3] || bb[0] > ba[3] || ba[1] > bb[4] || bb[1] > ba[4] || ba[2] > bb[5] ||
+            bb[2] > ba[5])
           continue;
         // Visited only in the cell of the low corner of the boxes' intersection.
         if (std::max(low[a][0], low[b][0]) != here[0] || std::max(low[a][1], low[b][1]) != here[1] ||

@@ -36,7 +36,8 @@ inline constexpr uint32_t none = 0xFFFFFFFFu;
 
 /// "a, b, c" of the first `named` values, "and k more" past them. O(named).
 template <class = void>
-std::string list(std::span<const uint32_t> xs, std::size_t named, std::size_t stride = 1, std::size_t pick = 0) {
+std::string list(std::span<const uint32_t> xs, std::size_t named, std::size_t stride = 1,
+                 std::size_t pick = 0) {
   std::string s;
   const std::size_t n = xs.size() / stride;
   for (std::size_t i = 0; i < n && i < named; ++i) {
@@ -87,7 +88,8 @@ void clip_ring(std::span<const vec> pts, std::vector<uint32_t> ring, int u, int 
   auto same = [&](uint32_t a, uint32_t b) { return pts[a][u] == pts[b][u] && pts[a][w] == pts[b][w]; };
   std::size_t n = ring.size();
   std::vector<uint32_t> next(n), prev(n);
-  for (std::size_t i = 0; i < n; ++i) next[i] = static_cast<uint32_t>((i + 1) % n), prev[i] = static_cast<uint32_t>((i + n - 1) % n);
+  for (std::size_t i = 0; i < n; ++i)
+    next[i] = static_cast<uint32_t>((i + 1) % n), prev[i] = static_cast<uint32_t>((i + n - 1) % n);
   // An ear whose area is at rounding level for its size (three vertices collinear up to the
   // rounding of the input) waits until a lap finds no other: its diagonal would pass through
   // the middle vertex's neighbourhood, off the face where the face is not exactly planar.
@@ -109,7 +111,8 @@ void clip_ring(std::span<const vec> pts, std::vector<uint32_t> ring, int u, int 
         const uint32_t x = ring[r];
         if (same(x, ring[a]) || same(x, ring[i]) || same(x, ring[c])) continue;
         if (turn(ring[prev[r]], x, ring[next[r]]) > 0) continue;  // only reflex or flat vertices block
-        ear = !(turn(ring[a], ring[i], x) >= 0 && turn(ring[i], ring[c], x) >= 0 && turn(ring[c], ring[a], x) >= 0);
+        ear = !(turn(ring[a], ring[i], x) >= 0 && turn(ring[i], ring[c], x) >= 0 &&
+                turn(ring[c], ring[a], x) >= 0);
       }
     }
     if (!ear && ++stall > n) {
@@ -179,13 +182,13 @@ void triangulate_face(const cell_topology& cc, std::span<const vec> pts, cell_fa
   auto extreme = [&](const std::vector<uint32_t>& h) {
     std::size_t best = 0;
     for (std::size_t i = 1; i < h.size(); ++i)
-      if (pts[h[i]][u] > pts[h[best]][u] || (pts[h[i]][u] == pts[h[best]][u] && pts[h[i]][w] > pts[h[best]][w]))
+      if (pts[h[i]][u] > pts[h[best]][u] ||
+          (pts[h[i]][u] == pts[h[best]][u] && pts[h[i]][w] > pts[h[best]][w]))
         best = i;
     return best;
   };
-  std::sort(holes.begin(), holes.end(), [&](const auto& a, const auto& b) {
-    return pts[a[extreme(a)]][u] > pts[b[extreme(b)]][u];
-  });
+  std::sort(holes.begin(), holes.end(),
+            [&](const auto& a, const auto& b) { return pts[a[extreme(a)]][u] > pts[b[extreme(b)]][u]; });
   auto o2 = [&](uint32_t a, uint32_t b, uint32_t c) {
     return orient2d(pts[a][u], pts[a][w], pts[b][u], pts[b][w], pts[c][u], pts[c][w]);
   };
@@ -286,8 +289,8 @@ class basic_certifier {
     merge_ = o_.merge.absolute(box);
     flat_ = o_.planarity.absolute(box);
     const std::uint64_t size = cc_.num_faces() + cc_.num_edges() + (wire_ ? wire_->edges.size() : 0);
-    budget_.limit = o_.work_budget == certify_options::automatic ? 256 * size + (std::uint64_t{1} << 22)
-                                                                   : o_.work_budget;
+    budget_.limit =
+        o_.work_budget == certify_options::automatic ? 256 * size + (std::uint64_t{1} << 22) : o_.work_budget;
     count_faces();
     if (o_.check_edges) check_edges();
     if (o_.check_volumes) check_volumes();
@@ -336,8 +339,8 @@ class basic_certifier {
     }
     r_.seam_edges = seams.size();
     if (!seams.empty() && !o_.seams_fail)
-      r_.diagnostics.push_back(std::to_string(seams.size()) + " edges lie on two coplanar faces only (seams): " +
-                               list(seams, o_.max_named));
+      r_.diagnostics.push_back(std::to_string(seams.size()) +
+                               " edges lie on two coplanar faces only (seams): " + list(seams, o_.max_named));
     if (!seams.empty() && o_.seams_fail)
       fail(K::seam_edge,
            (seams.size() == 1 ? "edge " : "edges ") + list(seams, o_.max_named) +
@@ -348,7 +351,8 @@ class basic_certifier {
 
   /// Faces a and b at e lie in one plane, on opposite sides of e. O(1).
   bool seam(cell_edge e, const oriented<cell_face>& a, const oriented<cell_face>& b) const {
-    const vec &na = cells::access::unit_normal(cc_, a.handle), &nb = cells::access::unit_normal(cc_, b.handle);
+    const vec &na = cells::access::unit_normal(cc_, a.handle),
+              &nb = cells::access::unit_normal(cc_, b.handle);
     const double extent = std::max(info_[a.handle.idx()].extent, info_[b.handle.idx()].extent);
     if (!(glm::length(glm::cross(na, nb)) * extent <= flat_)) return false;
     const vec d = pts_[cc_.target(e).idx()] - pts_[cc_.source(e).idx()];
@@ -383,11 +387,13 @@ class basic_certifier {
             if (uses[e] == 0) {
               touched.push_back(e);
               // Corners at the edge's source and target, whichever way this use runs.
-              first_use[e] = es[k].sign > 0 ? std::array<uint32_t, 2>{from, to} : std::array<uint32_t, 2>{to, from};
+              first_use[e] =
+                  es[k].sign > 0 ? std::array<uint32_t, 2>{from, to} : std::array<uint32_t, 2>{to, from};
             } else if (uses[e] == 1) {
               const std::array<uint32_t, 2> here =
                   es[k].sign > 0 ? std::array<uint32_t, 2>{from, to} : std::array<uint32_t, 2>{to, from};
-              for (int s = 0; s < 2; ++s) unite(parent, first_use[e][static_cast<std::size_t>(s)], here[static_cast<std::size_t>(s)]);
+              for (int s = 0; s < 2; ++s)
+                unite(parent, first_use[e][static_cast<std::size_t>(s)], here[static_cast<std::size_t>(s)]);
             }
             ++uses[e];
             net[e] += dir;
@@ -412,7 +418,9 @@ class basic_certifier {
           const int n = bad_uses / 16;
           first_open = "volume " + std::to_string(c.idx()) + " is not closed: its faces use edge " +
                        std::to_string(bad_open) +
-                       (n == 1 ? " once" : n == 2 ? " twice in the same direction" : " " + std::to_string(n) + " times, unpaired");
+                       (n == 1   ? " once"
+                        : n == 2 ? " twice in the same direction"
+                                 : " " + std::to_string(n) + " times, unpaired");
         }
         continue;
       }
@@ -440,8 +448,8 @@ class basic_certifier {
       if (pinch != none) {
         pinched.push_back(c.idx()), pinched.push_back(pinch);
         if (first_pinch.empty())
-          first_pinch = "volume " + std::to_string(c.idx()) + " is pinched at vertex " + std::to_string(pinch) +
-                        " (its faces there make more than one fan)";
+          first_pinch = "volume " + std::to_string(c.idx()) + " is pinched at vertex " +
+                        std::to_string(pinch) + " (its faces there make more than one fan)";
         continue;
       }
       // Positive volume against the volume's own size (as validate judges it).
@@ -486,7 +494,9 @@ class basic_certifier {
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
   }
-  static void unite(std::vector<uint32_t>& parent, uint32_t a, uint32_t b) { parent[find(parent, a)] = find(parent, b); }
+  static void unite(std::vector<uint32_t>& parent, uint32_t a, uint32_t b) {
+    parent[find(parent, a)] = find(parent, b);
+  }
 
   void stop() { r_.complete = false; }
 
@@ -601,9 +611,9 @@ class basic_certifier {
     for (uint32_t e = 0; e < ne; ++e) {
       const auto [a, b] = edges[e];
       if (a >= ni || b >= ni)
-        throw error(error_category::invalid_input, "certify: input edge " + std::to_string(e) + " joins vertex " +
-                                                       std::to_string(std::max(a, b)) + " but there are " +
-                                                       std::to_string(ni) + " vertices");
+        throw error(error_category::invalid_input, "certify: input edge " + std::to_string(e) +
+                                                       " joins vertex " + std::to_string(std::max(a, b)) +
+                                                       " but there are " + std::to_string(ni) + " vertices");
       const uint32_t u = match_[a], w = match_[b];
       ends[e] = {u, w};
       if (u == w) {
@@ -653,7 +663,8 @@ class basic_certifier {
 
   /// Edges (those with first[e]) that lie on no cycle of the graph they make: iterative
   /// Tarjan, by edge so that nothing is confused. O(V + E).
-  std::vector<char> bridges(const std::vector<std::array<uint32_t, 2>>& ends, const std::vector<char>& first) const {
+  std::vector<char> bridges(const std::vector<std::array<uint32_t, 2>>& ends,
+                            const std::vector<char>& first) const {
     const std::size_t n = reps_, ne = ends.size();
     std::vector<uint32_t> start(n + 1, 0);
     for (uint32_t e = 0; e < ne; ++e)
@@ -735,7 +746,8 @@ class basic_certifier {
           const uint32_t x = v.idx();
           if (x == a || x == b || x == c) continue;
           double value = 0;
-          if (orient3d_filter(plane, pts_[x], value) != 0 || orient3d_exact(pts_[a], pts_[b], pts_[c], pts_[x]) != 0) {
+          if (orient3d_filter(plane, pts_[x], value) != 0 ||
+              orient3d_exact(pts_[a], pts_[b], pts_[c], pts_[x]) != 0) {
             flat = false;
             break;
           }
@@ -751,7 +763,8 @@ class basic_certifier {
     face_info& fi = info_[f.idx()];
     if (fi.planar == 0) return;
     int k = fi.axis;
-    if (fi.planar == 2) k = self_intersect::drop_axis(pts_[fi.plane[0]], pts_[fi.plane[1]], pts_[fi.plane[2]]);
+    if (fi.planar == 2)
+      k = self_intersect::drop_axis(pts_[fi.plane[0]], pts_[fi.plane[1]], pts_[fi.plane[2]]);
     if (k < 0) return;
     fi.u = (k + 1) % 3, fi.w = (k + 2) % 3;
     const auto loop = cc_.loop_vertices(f, 0);
@@ -798,10 +811,12 @@ class basic_certifier {
     if (s1 * s2 < 0 && s3 * s4 < 0) return true;
     auto on = [&](uint32_t p, uint32_t q, uint32_t r) {
       for (const int k : {fi.u, fi.w})
-        if (pts_[r][k] < std::min(pts_[p][k], pts_[q][k]) || pts_[r][k] > std::max(pts_[p][k], pts_[q][k])) return false;
+        if (pts_[r][k] < std::min(pts_[p][k], pts_[q][k]) || pts_[r][k] > std::max(pts_[p][k], pts_[q][k]))
+          return false;
       return true;
     };
-    return (s1 == 0 && on(a, b, c)) || (s2 == 0 && on(a, b, d)) || (s3 == 0 && on(c, d, a)) || (s4 == 0 && on(c, d, b));
+    return (s1 == 0 && on(a, b, c)) || (s2 == 0 && on(a, b, d)) || (s3 == 0 && on(c, d, a)) ||
+           (s4 == 0 && on(c, d, b));
   }
 
   /// Side of p against the plane of planar face fi (p not one of its vertices). O(1).
@@ -936,7 +951,8 @@ class basic_certifier {
   /// shared vertices or along a shared edge (two convex polygons with disjoint interiors have
   /// such a line; through their common vertex when they share one). O(|f|·|g|), O(1) for a
   /// shared edge.
-  int coplanar_meet(const role& f, const role& g, std::size_t shared, const std::array<uint32_t, 2>& two) const {
+  int coplanar_meet(const role& f, const role& g, std::size_t shared,
+                    const std::array<uint32_t, 2>& two) const {
     const face_info& fi = info_[f.face];
     const auto F = cc_.loop_vertices(cell_face(f.face), 0), G = cc_.loop_vertices(cell_face(g.face), 0);
     const int sg = o2(fi, G[0].idx(), G[1].idx(), G[2].idx());
@@ -1057,7 +1073,8 @@ class basic_certifier {
       for (const auto& tb : tg) {
         for (std::size_t k = 0; k < 3; ++k) q[k] = pts_[tb[k]];
         const std::array<double, 6> bb = tri_box(q);
-        if (ba[0] > bb[3] || bb[0] > ba[3] || ba[1] > bb[4] || bb[1] > ba[4] || ba[2] > bb[5] || bb[2] > ba[5])
+        if (ba[0] > bb[3] || bb[0] > ba[3] || ba[1] > bb[4] || bb[1] > ba[4] || ba[2] > bb[5] ||
+            bb[2] > ba[5])
           continue;
         if (self_intersect::pair_intersects(p, ta, q, tb)) return true;
       }
@@ -1151,7 +1168,8 @@ class basic_certifier {
       const std::size_t n = cross.size() / 2;
       fail(K::faces_cross,
            "faces " + std::to_string(cross[0]) + " and " + std::to_string(cross[1]) + " cross" +
-               (n > 1 ? " (and " + std::to_string(n - 1) + " more pairs: faces " + pair_list(cross) + ")" : std::string()),
+               (n > 1 ? " (and " + std::to_string(n - 1) + " more pairs: faces " + pair_list(cross) + ")"
+                      : std::string()),
            cross);
     }
     if (!pierce_input.empty())
@@ -1199,7 +1217,7 @@ class basic_certifier {
   std::vector<face_info> info_;
   std::vector<std::array<uint32_t, 3>> tris_;
   std::vector<uint32_t> in_f_, in_g_, place_f_, place_g_;  ///< vertex marks of the two faces of a pair
-  std::vector<char> on_;                      ///< per vertex of g: on f's plane
+  std::vector<char> on_;                                   ///< per vertex of g: on f's plane
   uint32_t stamp_ = 0;
   std::vector<uint32_t> match_;  ///< input vertex → complex vertex (or a representative past them)
   std::size_t reps_ = 0;
