@@ -289,7 +289,33 @@ benchmark::internal::Benchmark* register_pipeline(const std::string& name,
       ->Unit(benchmark::kMillisecond);
 }
 
+/// Registers the certificate of one model's answer (the answer made once, outside the timing).
+benchmark::internal::Benchmark* register_certify(const std::string& name,
+                                                 std::function<const cellforge::sample_model&()> get) {
+  return benchmark::RegisterBenchmark(name.c_str(),
+                                      [get](benchmark::State& s) {
+                                        const auto& m = get();
+                                        try {
+                                          const auto r = cellforge::wireframe_to_cells(m.wire);
+                                          cb::timed_loop(
+                                              s, [&] { return cellforge::certify(r.cells, m.wire); },
+                                              [&](const cellforge::certificate_result& c) {
+                                                if (!c.ok()) s.SkipWithError(c.reason().c_str());
+                                              });
+                                        } catch (const cellforge::error& e) {
+                                          s.SkipWithError(e.what());
+                                        }
+                                      })
+      ->UseManualTime()
+      ->Unit(benchmark::kMillisecond);
+}
 #endif
+
+/// The models of the certificate's table: the 20³ grid and the largest sphere.
+std::vector<std::pair<std::string, std::function<const cellforge::sample_model&()>>> certify_models() {
+  return {{"grid_20", []() -> const cellforge::sample_model& { return grid(20); }},
+          {"sphere_256x96", []() -> const cellforge::sample_model& { return sphere(256, 96); }}};
+}
 
 void register_all() {
   for (int i = 1; i <= 6; ++i) {
@@ -321,6 +347,13 @@ void register_all() {
     register_pipeline(sphere_name(sz),
                       [sz]() -> const cellforge::sample_model& { return sphere(sz[0], sz[1]); }, {})
         ->MinTime(0.5);
+  // The certificate alone on the pipeline's answer, beside the pipeline with it switched off.
+  for (const auto& [name, get] : certify_models()) {
+    cellforge::wireframe_options off;
+    off.certify_result = false;
+    register_pipeline("uncertified/" + name, get, off)->Iterations(5);
+    register_certify("certify/" + name, get)->Iterations(5);
+  }
   // Ordered and shuffled one after the other, so that both see the same load.
   for (const auto& o : order_models()) {
     const cellforge::wireframe_options options =
@@ -438,6 +471,18 @@ void print_tables(const cb::collecting_reporter& reporter, std::ostream& os) {
   }
   spheres.add_note("Time per edge flat within 2× from 1 000 to 50 000 edges is the target.");
   spheres.print(os);
+
+  cb::table cert("The certificate (cells/certify.hpp) beside the pipeline",
+                 {"model", "edges", "pipeline ms (uncertified)", "certify ms", "ratio", "≤ 20 %"});
+  for (const auto& [name, get] : certify_models()) {
+    const std::optional<double> p = reporter.ms("uncertified/" + name), c = reporter.ms("certify/" + name);
+    if (!p && !c) continue;
+    cert.add_row({name, cb::count(get().wire.edges.size()), cb::ms(p), cb::ms(c), cb::ratio(c, p),
+                  p && c ? (*c <= 0.2 * *p ? "MET" : "NOT MET") : "—"});
+  }
+  cert.add_note(
+      "Best CPU ms of 5 runs each; the certificate of the pipeline's answer against its wireframe.");
+  cert.print(os);
 
   // Input order: the same models with their vertices and edges numbered at random.
   cb::table order(

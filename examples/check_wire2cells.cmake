@@ -50,7 +50,7 @@ if(CASE STREQUAL "help")
                  --reading --merge-unforced --keep-dangling --budget)
     expect_in("${out}" " ${option}")
   endforeach()
-  foreach(word "usage: wire2cells" "exit status" ".3dcl" ".obj" ".ply" ".svg")
+  foreach(word "usage: wire2cells" "exit status" ".3dcl" ".obj" ".ply" ".svg" "  4  read, but not a closed solid")
     expect_in("${out}" "${word}")
   endforeach()
 
@@ -69,7 +69,7 @@ elseif(CASE STREQUAL "outputs")
   endforeach()
   file(READ "${dir}/out/wire.3dcl" cells LIMIT 7)
   expect_in("${cells}" "3dcl 1")
-  expect_in("${out}" "validate: ok")
+  expect_in("${out}" "status: solid (a closed solid: 4 volumes")
   expect_input_untouched()
   # A plain edge list (a unit cube) into a folder given with -o, without the picture.
   file(WRITE "${dir}/cube.edges" "vertices 8\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
@@ -98,6 +98,32 @@ elseif(CASE STREQUAL "outputs")
   run(--no-svg -o mesh_out mesh.OBJ)
   expect_exit(0)
   expect_in("${out}" "8 vertices, 12 edges, 6 faces, 1 volumes")
+
+elseif(CASE STREQUAL "not_solid")
+  # An open box (a floor and two walls): read, written, but not a closed solid: exit 4, the
+  # reason on stderr and the files there to look at. A cube next to it: a solid, exit 0.
+  file(WRITE "${dir}/open_box.edges" "vertices 8\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n0 1 1\n1 0 1\n1 1 1\n"
+                                     "edges 10\n0 1\n1 2\n2 3\n3 0\n0 4\n3 5\n4 5\n1 6\n2 7\n6 7\n")
+  run(--no-svg open_box.edges)
+  expect_exit(4)
+  expect_in("${out}" "status: not a solid (an open surface: 8 edges lie on one face only)")
+  expect_in("${err}" "read, but not a closed solid: an open surface")
+  expect_in("${err}" "the files are written")
+  if(NOT EXISTS "${dir}/out/open_box.3dcl")
+    message(FATAL_ERROR "out/open_box.3dcl was not written for a result that is not a solid")
+  endif()
+  # A cube with a stick through its top: the stick pierces the face it ends in.
+  file(WRITE "${dir}/stick.edges" "vertices 10\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+                                  "0.5 0.5 0.5\n0.5 0.5 2\n"
+                                  "edges 13\n0 1\n1 2\n2 3\n3 0\n4 5\n5 6\n6 7\n7 4\n0 4\n1 5\n2 6\n3 7\n8 9\n")
+  run(--no-svg stick.edges)
+  expect_exit(4)
+  expect_in("${out}" "input edge 12 pierces face")
+  file(WRITE "${dir}/cube.edges" "vertices 8\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+                                 "edges 12\n0 1\n1 2\n2 3\n3 0\n4 5\n5 6\n6 7\n7 4\n0 4\n1 5\n2 6\n3 7\n")
+  run(--no-svg cube.edges)
+  expect_exit(0)
+  expect_in("${out}" "status: solid (a closed solid: 1 volume, 6 faces")
 
 elseif(CASE STREQUAL "overwrite")
   # An output named like the input in the input's folder: refused before anything is written.

@@ -20,7 +20,6 @@
 #include <system_error>
 #include <vector>
 
-#include "cellforge/cells/validate.hpp"
 #include "cellforge/io/cells_io.hpp"
 #include "cellforge/io/edge_list.hpp"
 #include "cellforge/io/obj.hpp"
@@ -32,11 +31,12 @@ namespace fs = std::filesystem;
 namespace {
 
 // Exit statuses (listed by --help and in the README).
-constexpr int exit_ok = 0;     // the cell complex was built and every file written
-constexpr int exit_input = 1;  // the input cannot be read as a solid (parse error, no faces, ...)
+constexpr int exit_ok = 0;     // a certified solid (status solid or ambiguous), every file written
+constexpr int exit_input = 1;  // the input cannot be read (parse error, no faces, a spent budget, ...)
 constexpr int exit_usage = 2;  // unknown option, bad value, too many arguments
 constexpr int exit_output =
     3;  // the output folder cannot be made or written, or a file would replace the input
+constexpr int exit_not_solid = 4;  // read, but not a closed solid: the files are written to look at
 
 /// What the command line asks for.
 struct settings {
@@ -143,13 +143,18 @@ void print_help(const std::vector<example::option_spec>& table) {
       "  <name>.ply    the same faces coloured by volume (ASCII)\n"
       "  <name>.svg    the volumes exploded apart, shaded, hidden edges dashed\n"
       "No output is written over the input file: wire2cells refuses before writing anything.\n\n"
+      "Every answer is certified against the input (docs/cells.md, \"The certificate\") and printed\n"
+      "with its status: solid, ambiguous (a solid with walls the wireframe does not decide), not a\n"
+      "solid, or budget (the certificate's work budget ran out).\n\n"
       "exit status:\n"
-      "  %d  success\n"
-      "  %d  the input cannot be read as a solid (the message says why, e.g. file:line of a parse error)\n"
+      "  %d  success: a certified solid (status solid or ambiguous), every file written\n"
+      "  %d  the input cannot be read (the message says why, e.g. file:line of a parse error)\n"
       "  %d  usage error (unknown option, bad value)\n"
-      "  %d  output error: the folder cannot be created or written, or an output would replace the input\n",
+      "  %d  output error: the folder cannot be created or written, or an output would replace the input\n"
+      "  %d  read, but not a closed solid (status not a solid or budget; the reason is printed and\n"
+      "     the files are written so that you can look)\n",
       (fs::path(CELLFORGE_DATA_DIR) / "stepped_block.obj").string().c_str(),
-      example::options_help(table).c_str(), exit_ok, exit_input, exit_usage, exit_output);
+      example::options_help(table).c_str(), exit_ok, exit_input, exit_usage, exit_output, exit_not_solid);
 }
 
 void row(const char* stage, double ms, const char* what = nullptr, std::size_t count = 0) {
@@ -174,9 +179,11 @@ void print_stages(const cellforge::wireframe_result<glm::dvec3>& r) {
   row("volume processing", r.volume.milliseconds - r.volume.manifold_milliseconds, "volumes",
       r.volume.volumes.size());
   row("cell list assembly", r.relations.milliseconds + r.assembly_milliseconds);
+  row("certificate", r.certificate.milliseconds, "face pairs tested", r.certificate.face_pairs_tested);
   const double total = r.read.milliseconds + r.trace.milliseconds + r.unique.milliseconds +
                        r.reduction.milliseconds + r.arrangement.milliseconds + r.extra.milliseconds +
-                       r.volume.milliseconds + r.relations.milliseconds + r.assembly_milliseconds;
+                       r.volume.milliseconds + r.relations.milliseconds + r.assembly_milliseconds +
+                       r.certificate.milliseconds;
   row("total", total);
 }
 
@@ -224,8 +231,6 @@ int main(int argc, char** argv) {
     std::printf("wire2cells: %s\n\n", s.input.string().c_str());
     print_stages(r);
 
-    const cellforge::cells_validation_result valid =
-        cellforge::validate(cells, cellforge::wireframe_check_options(s.pipeline));
     std::printf("\ncell complex: %zu vertices, %zu edges, %zu faces, %zu volumes, %zu objects\n",
                 cells.num_vertices(), cells.num_edges(), cells.num_faces(), cells.num_volumes(),
                 cells.num_objects());
@@ -239,7 +244,13 @@ int main(int argc, char** argv) {
       std::printf("  lost: a %zu-gon at vertex %u (%s)\n", n.loops[0].size(), n.loops[0][0],
                   n.reason.c_str());
     for (const std::string& d : r.diagnostics) std::printf("  note: %s\n", d.c_str());
-    std::printf("  validate: %s\n", valid.ok() ? "ok" : valid.message.c_str());
+    const bool solid =
+        r.status == cellforge::solid_status::solid || r.status == cellforge::solid_status::ambiguous;
+    std::printf("  certificate: %zu of %zu input edges on faces%s\n", r.certificate.covered_input_edges,
+                r.certificate.input_edges, r.certificate.ok() ? ", every check passed" : "");
+    for (const cellforge::certificate_failure& f : r.certificate.failures)
+      std::printf("  certificate failed (%s): %s\n", cellforge::to_string(f.what), f.message.c_str());
+    std::printf("  status: %s (%s)\n", cellforge::to_string(r.status), r.status_reason.c_str());
 
     failure = exit_output;
     stage("writing a cell complex of " + std::to_string(cells.num_faces()) + " faces and " +
@@ -259,7 +270,11 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < outputs.size(); ++i)
       std::printf("%s %s", i == 0 ? "" : i + 1 == outputs.size() ? " and" : ",", outputs[i].string().c_str());
     std::printf("\n");
-    return valid.ok() ? exit_ok : exit_input;
+    if (solid) return exit_ok;
+    std::fprintf(
+        stderr, "wire2cells: read, but not a closed solid: %s (the files are written so that you can look)\n",
+        r.status_reason.c_str());
+    return exit_not_solid;
   } catch (const std::bad_alloc&) {
     example::report_out_of_memory("wire2cells", stage);
     return failure;

@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/wireframe/sample_models.hpp"
@@ -286,6 +288,10 @@ TEST_CASE("bad input: diagnostics, and the right complex anyway") {
     CHECK(k.input.points.size() == 10);
     // Kept dangling edges and their ends off the graph: still the complex of the input.
     CHECK(cells_fixtures::same_complex(k.cells, make_cell_complex(k.input)));
+    // A tree hanging off a solid lies on no cycle: dropped (or kept) with a note, still a solid.
+    CHECK(r.status == solid_status::solid);
+    CHECK(k.status == solid_status::solid);
+    CHECK(r.certificate.acyclic_input_edges.size() == 2);
   }
   SUBCASE("an isolated point and a stray polygon") {
     wire w = cube.wire;
@@ -306,6 +312,10 @@ TEST_CASE("bad input: diagnostics, and the right complex anyway") {
     CHECK(r.lost[0].loops[0].size() == 3);
     CHECK(*std::min_element(r.lost[0].loops[0].begin(), r.lost[0].loops[0].end()) == b);
     CHECK(r.lost[0].reason.find("bounds no volume") != std::string::npos);
+    // The triangle's edges lie on a cycle but on no face: the answer is flagged, not a solid.
+    CHECK(r.status == solid_status::not_a_solid);
+    CHECK(r.status_reason == "input edges 12, 13, 14 lie on a cycle of the wireframe but on no face");
+    CHECK(r.certificate.unused_input_edges == std::vector<std::uint32_t>{12, 13, 14});
   }
   SUBCASE("a skew quadrilateral next to a cube is not a face") {
     // (It is a separate object; its circuit is traced by the seed's search and rejected.)
@@ -349,6 +359,8 @@ TEST_CASE("bad input: diagnostics, and the right complex anyway") {
     CHECK(bad.cells.num_volumes() == 0);
     CHECK(bad.cells.num_faces() == 10);
     CHECK(has_note(bad, "10 planar faces that close no volume"));
+    CHECK(bad.status == solid_status::not_a_solid);
+    CHECK(r.status == solid_status::solid);
   }
   SUBCASE("close adjacent edges make no spurious faces or pyramids (seed ch. VIII)") {
     // A cube whose top face carries a vertex 1e-7 above its centre, joined to two corners:
@@ -367,6 +379,9 @@ TEST_CASE("bad input: diagnostics, and the right complex anyway") {
     CHECK(same_faces(cube.faces, r.input.faces));
     CHECK(r.diagnostics.size() == 2);  // the two near-flat edges bound no face and are reported
     CHECK(validate(r.cells).ok());
+    // They lie on cycles of the wireframe but on no face: not a solid's wireframe, flagged.
+    CHECK(r.status == solid_status::not_a_solid);
+    CHECK(r.status_reason == "input edges 12, 13 lie on a cycle of the wireframe but on no face");
   }
 }
 
@@ -386,6 +401,9 @@ TEST_CASE("circuits that close no volume come back as faces without volumes, wit
     INFO(v.message);
     CHECK(v.ok());
     CHECK(r.cells.object_euler(cell_object(0)) == 1);  // a disc: V - E + F = 4 - 4 + 1
+    CHECK(r.status == solid_status::not_a_solid);
+    CHECK(r.status_reason == "an open surface: 4 edges lie on one face only");
+    CHECK(r.certificate.ok());  // a valid 3DCL, but no solid
   }
   SUBCASE("a U channel (a bottom and two walls): three faces") {
     wire channel;
@@ -397,6 +415,8 @@ TEST_CASE("circuits that close no volume come back as faces without volumes, wit
     CHECK(r.cells.num_volumes() == 0);
     REQUIRE_VALID(r.cells);
     CHECK(r.cells.object_euler(cell_object(0)) == 1);  // a strip: 8 - 10 + 3
+    CHECK(r.status == solid_status::not_a_solid);
+    CHECK(r.status_reason == "an open surface: 8 edges lie on one face only");
   }
 }
 

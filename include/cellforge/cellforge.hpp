@@ -19,6 +19,7 @@
 #include "cellforge/algorithms/self_intersections.hpp"
 #include "cellforge/algorithms/simplification.hpp"
 #include "cellforge/cells/cell_complex.hpp"
+#include "cellforge/cells/certify.hpp"
 #include "cellforge/cells/conversion.hpp"
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/core/bounding_box.hpp"

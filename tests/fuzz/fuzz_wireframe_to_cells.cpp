@@ -34,7 +34,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.volume.work_budget = 2'000'000;
   try {
     const auto r = cellforge::wireframe_to_cells(wire, options);
-    if (!cellforge::validate(r.cells).ok()) __builtin_trap();  // check_result promised a valid complex
+    // An answer reported as a solid was validated and certified: both must hold.
+    const bool solid =
+        r.status == cellforge::solid_status::solid || r.status == cellforge::solid_status::ambiguous;
+    if (solid && (!cellforge::validate(r.cells).ok() || !cellforge::certify(r.cells, wire).ok()))
+      __builtin_trap();
   } catch (const cellforge::error&) {
     return 0;  // located, categorised refusals (and exhausted budgets) are expected outcomes
   }

@@ -65,6 +65,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "cellforge/algorithms/detail/triangle_pairs.hpp"
 #include "cellforge/algorithms/ear_clipping.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
@@ -111,360 +112,12 @@ struct self_intersection_result {
 
 namespace detail::self_intersect {
 
-using vec = glm::dvec3;
-
-/// orient2d of a, b, c projected on the coordinate axes (u, w). O(1).
-template <class = void>
-int orient_uw(const vec& a, const vec& b, const vec& c, int u, int w) noexcept {
-  return orient2d(a[u], a[w], b[u], b[w], c[u], c[w]);
-}
-
-/// The coordinate axes ordered by the size of triangle abc's rounded normal component,
-/// largest first: the projection that drops the first keeps the most of its area. O(1).
-template <class = void>
-std::array<int, 3> axes_by_normal(const vec& a, const vec& b, const vec& c) noexcept {
-  const vec e = b - a, f = c - a;
-  std::array<double, 3> n = {std::fabs(e.y * f.z - e.z * f.y), std::fabs(e.z * f.x - e.x * f.z),
-                             std::fabs(e.x * f.y - e.y * f.x)};
-  for (double& x : n)
-    if (std::isnan(x)) x = 0;            // overflow: any order, the exact checks decide
-  std::array<int, 3> order = {0, 1, 2};  // a stable three-element sort, largest first
-  auto at = [&](int i) { return n[static_cast<std::size_t>(i)]; };
-  if (at(order[1]) > at(order[0])) std::swap(order[0], order[1]);
-  if (at(order[2]) > at(order[1])) std::swap(order[1], order[2]);
-  if (at(order[1]) > at(order[0])) std::swap(order[0], order[1]);
-  return order;
-}
-
-/// The coordinate axis to drop so that triangle abc keeps a non-zero area in the other two
-/// (the dominant normal component first, then exactly checked); -1 when abc is degenerate.
-template <class = void>
-int drop_axis(const vec& a, const vec& b, const vec& c) noexcept {
-  for (const int k : axes_by_normal(a, b, c))
-    if (orient_uw(a, b, c, (k + 1) % 3, (k + 2) % 3) != 0) return k;
-  return -1;
-}
-
-/// orient3d's floating-point filter alone: ±1 when it decides, 0 when only the exact
-/// evaluation could (an exactly coplanar configuration always gets there). O(1).
-template <class = void>
-int orient3d_filtered(const vec& a, const vec& b, const vec& c, const vec& d) noexcept {
-  double value = 0;
-  return cellforge::detail::orient3d_filter(cellforge::detail::prepare_orient3d(a, b, c), d, value);
-}
-
-/// The same against a plane prepared once for several queries. O(1).
-template <class = void>
-int orient3d_filtered(const cellforge::detail::orient3d_plane& plane, const vec& d) noexcept {
-  double value = 0;
-  return cellforge::detail::orient3d_filter(plane, d, value);
-}
-
-/// orient3d(a, b, c, d) given its filtered sign: the exact evaluation only where the
-/// filter could not decide, so it equals orient3d. O(1).
-template <class = void>
-int orient3d_given(int filtered, const vec& a, const vec& b, const vec& c, const vec& d) noexcept {
-  return filtered != 0 ? filtered : cellforge::detail::orient3d_exact(a, b, c, d);
-}
-
-// Cheap exact rejections for the configurations whose orient3d is exactly zero (flat
-// regions of axis-aligned meshes), where the exact evaluation is dear. Each rests on
-// π(T1 ∩ T2) ⊆ π(T1) ∩ π(T2) for a coordinate projection π, decided by exact orient2d.
-
-/// True when the projections on (u, w) of the closed triangles a and b are disjoint: an
-/// edge line of one has the other strictly outside. Then a and b are disjoint. O(1).
-template <class = void>
-bool projections_apart(const std::array<vec, 3>& a, const std::array<vec, 3>& b, int u, int w) noexcept {
-  for (const auto* t : {&a, &b}) {
-    const auto& x = *t;
-    const auto& y = t == &a ? b : a;
-    const int s = orient_uw(x[0], x[1], x[2], u, w);
-    if (s == 0) continue;
-    for (std::size_t i = 0; i < 3; ++i) {
-      const vec &p = x[i], &q = x[(i + 1) % 3];
-      if (orient_uw(p, q, y[0], u, w) == -s && orient_uw(p, q, y[1], u, w) == -s &&
-          orient_uw(p, q, y[2], u, w) == -s)
-        return true;
-    }
-  }
-  return false;
-}
-
-/// True when x, collinear with v and a in the projection on (u, w), lies on the ray from v
-/// away from a (exact coordinate comparisons). O(1).
-template <class = void>
-bool opposite_ray(const vec& v, const vec& a, const vec& x, int u, int w) noexcept {
-  const int k = a[u] != v[u] ? u : w;
-  return a[k] > v[k] ? x[k] < v[k] : x[k] > v[k];
-}
-
-/// T1 = (v, a, b), T2 = (v, c, d) projected on (u, w), T1 not collapsing: true when the
-/// line through v and a (or v and b) has T1 on one closed side and T2 on the other, T2
-/// touching it only on the ray away from a (b). Then π(T1) ∩ π(T2) = {π(v)}, and as π is
-/// one-to-one on T1's plane, T1 ∩ T2 = {v}. O(1).
-template <class = void>
-bool apart_at_vertex(const vec& v, const vec& a, const vec& b, const vec& c, const vec& d, int u,
-                     int w) noexcept {
-  const int s = orient_uw(v, a, b, u, w);
-  if (s == 0) return false;
-  auto beyond = [&](const vec& e, int side) {
-    for (const vec* x : {&c, &d}) {
-      const int o = orient_uw(v, e, *x, u, w);
-      if (o == side || (o == 0 && !opposite_ray(v, e, *x, u, w))) return false;
-    }
-    return true;
-  };
-  return beyond(a, s) || beyond(b, -s);
-}
-
-/// A triangle's corners and the projection in which it is not degenerate.
-struct tri {
-  std::array<vec, 3> p;
-  int u = 0, w = 1;  ///< kept axes of the projection
-};
-
-/// True when x (in the triangle's plane) lies in the closed triangle. O(1).
-template <class = void>
-bool point_in(const tri& t, const vec& x) noexcept {
-  const int s0 = orient_uw(t.p[0], t.p[1], x, t.u, t.w), s1 = orient_uw(t.p[1], t.p[2], x, t.u, t.w),
-            s2 = orient_uw(t.p[2], t.p[0], x, t.u, t.w);
-  return !((s0 > 0 || s1 > 0 || s2 > 0) && (s0 < 0 || s1 < 0 || s2 < 0));
-}
-
-/// True when r, collinear with p and q, lies on the closed segment pq. O(1).
-template <class = void>
-bool on_segment(const vec& p, const vec& q, const vec& r, int u, int w) noexcept {
-  return std::min(p[u], q[u]) <= r[u] && r[u] <= std::max(p[u], q[u]) && std::min(p[w], q[w]) <= r[w] &&
-         r[w] <= std::max(p[w], q[w]);
-}
-
-/// True when the closed segments pq and rs (in one plane, projected on (u, w)) meet. O(1).
-template <class = void>
-bool segments_meet(const vec& p, const vec& q, const vec& r, const vec& s, int u, int w) noexcept {
-  const int a = orient_uw(p, q, r, u, w), b = orient_uw(p, q, s, u, w), c = orient_uw(r, s, p, u, w),
-            d = orient_uw(r, s, q, u, w);
-  if (a * b < 0 && c * d < 0) return true;
-  return (a == 0 && on_segment(p, q, r, u, w)) || (b == 0 && on_segment(p, q, s, u, w)) ||
-         (c == 0 && on_segment(r, s, p, u, w)) || (d == 0 && on_segment(r, s, q, u, w));
-}
-
-/// True when segment pq meets the closed triangle t; sp, sq are orient3d(t, p) and
-/// orient3d(t, q). O(1).
-template <class = void>
-bool segment_meets(const vec& p, const vec& q, int sp, int sq, const tri& t) noexcept {
-  if (sp * sq > 0) return false;
-  if (sp == 0 && sq == 0)  // in the plane: inside, or across an edge
-    return point_in(t, p) || point_in(t, q) || segments_meet(p, q, t.p[0], t.p[1], t.u, t.w) ||
-           segments_meet(p, q, t.p[1], t.p[2], t.u, t.w) || segments_meet(p, q, t.p[2], t.p[0], t.u, t.w);
-  // pq meets the plane in one point x; orient3d(p, q, a, b) has the sign of x against the
-  // line ab within the plane times a constant, so x is inside when no two signs differ.
-  const int s0 = orient3d(p, q, t.p[0], t.p[1]), s1 = orient3d(p, q, t.p[1], t.p[2]),
-            s2 = orient3d(p, q, t.p[2], t.p[0]);
-  return !((s0 > 0 || s1 > 0 || s2 > 0) && (s0 < 0 || s1 < 0 || s2 < 0));
-}
-
-/// True when x ≠ v, in the plane of t = (v, c, d), lies in t's closed corner at v: the ray
-/// from v through x enters t. O(1).
-template <class = void>
-bool in_corner(const tri& t, const vec& x) noexcept {
-  const int s = orient_uw(t.p[0], t.p[1], t.p[2], t.u, t.w);
-  return orient_uw(t.p[0], t.p[1], x, t.u, t.w) * s >= 0 && orient_uw(t.p[0], x, t.p[2], t.u, t.w) * s >= 0;
-}
-
-/// Builds the tri of corners a, b, c (not degenerate). O(1).
-template <class = void>
-tri make_tri(const vec& a, const vec& b, const vec& c) noexcept {
-  const int k = drop_axis(a, b, c);
-  tri t;
-  t.p = {a, b, c};
-  t.u = (k + 1) % 3;
-  t.w = (k + 2) % 3;
-  return t;
-}
-
-/// Closed triangles a and b (both non-degenerate) with no shared vertex: do they meet? O(1).
-template <class = void>
-bool disjoint_pair_meets(const std::array<vec, 3>& a, const std::array<vec, 3>& b) noexcept {
-  std::array<int, 3> sa{}, sb{};  // sides of a's corners against b's plane, and of b's against a's
-  const auto plane_b = cellforge::detail::prepare_orient3d(b[0], b[1], b[2]);
-  for (std::size_t i = 0; i < 3; ++i) sa[i] = orient3d_filtered(plane_b, a[i]);
-  if (sa[0] == sa[1] && sa[1] == sa[2] && sa[0] != 0) return false;
-  if (sa[0] == 0 || sa[1] == 0 || sa[2] == 0) {  // the exact evaluation is needed: try cheaper first
-    const int k = axes_by_normal(b[0], b[1], b[2])[0];
-    if (projections_apart(a, b, (k + 1) % 3, (k + 2) % 3)) return false;
-  }
-  for (std::size_t i = 0; i < 3; ++i) sa[i] = orient3d_given(sa[i], b[0], b[1], b[2], a[i]);
-  if (sa[0] == sa[1] && sa[1] == sa[2] && sa[0] != 0) return false;
-  const auto plane_a = cellforge::detail::prepare_orient3d(a[0], a[1], a[2]);
-  for (std::size_t i = 0; i < 3; ++i)
-    sb[i] = orient3d_given(orient3d_filtered(plane_a, b[i]), a[0], a[1], a[2], b[i]);
-  if (sb[0] == sb[1] && sb[1] == sb[2] && sb[0] != 0) return false;
-  const tri ta = make_tri(a[0], a[1], a[2]), tb = make_tri(b[0], b[1], b[2]);
-  for (std::size_t i = 0; i < 3; ++i) {
-    const std::size_t j = (i + 1) % 3;
-    if (segment_meets(a[i], a[j], sa[i], sa[j], tb)) return true;
-    if (segment_meets(b[i], b[j], sb[i], sb[j], ta)) return true;
-  }
-  return false;
-}
-
-/// T1 = (v, a, b) and T2 = (v, c, d) share exactly the vertex v: do they meet elsewhere? O(1).
-template <class = void>
-bool vertex_pair_meets(const vec& v, const vec& a, const vec& b, const vec& c, const vec& d) noexcept {
-  const auto plane2 = cellforge::detail::prepare_orient3d(v, c, d);
-  const int fa = orient3d_filtered(plane2, a), fb = orient3d_filtered(plane2, b);
-  if (fa * fb > 0) return false;
-  const auto plane1 = cellforge::detail::prepare_orient3d(v, a, b);
-  const int fc = orient3d_filtered(plane1, c), fd = orient3d_filtered(plane1, d);
-  if (fc * fd > 0) return false;  // T2 meets T1's plane only at v
-  const int k = axes_by_normal(v, a, b)[0];
-  if (apart_at_vertex(v, a, b, c, d, (k + 1) % 3, (k + 2) % 3)) return false;
-  const int sa = orient3d_given(fa, v, c, d, a), sb = orient3d_given(fb, v, c, d, b);
-  if (sa * sb > 0) return false;  // T1 meets T2's plane only at v
-  const int sc = orient3d_given(fc, v, a, b, c), sd = orient3d_given(fd, v, a, b, d);
-  if (sc * sd > 0) return false;
-  const tri t1 = make_tri(v, a, b), t2 = make_tri(v, c, d);
-  if (segment_meets(a, b, sa, sb, t2) || segment_meets(c, d, sc, sd, t1)) return true;
-  return (sa == 0 && in_corner(t2, a)) || (sb == 0 && in_corner(t2, b)) || (sc == 0 && in_corner(t1, c)) ||
-         (sd == 0 && in_corner(t1, d));
-}
-
-/// T1 = (u, v, a) and T2 = (u, v, b) share the edge uv: do they overlap beyond it? O(1).
-template <class = void>
-bool edge_pair_meets(const vec& u, const vec& v, const vec& a, const vec& b) noexcept {
-  if (orient3d_filtered(u, v, a, b) != 0) return false;
-  // Strictly opposite sides of uv in some projection: no overlap whether coplanar or not.
-  const int k = axes_by_normal(u, v, a)[0], ku = (k + 1) % 3, kw = (k + 2) % 3;
-  if (orient_uw(u, v, a, ku, kw) * orient_uw(u, v, b, ku, kw) < 0) return false;
-  if (orient3d(u, v, a, b) != 0) return false;
-  const tri t = make_tri(u, v, a);
-  return orient_uw(u, v, a, t.u, t.w) == orient_uw(u, v, b, t.u, t.w);
-}
-
-/// The exact pair test of self_intersections on two non-degenerate triangles: corners p, q
-/// and their vertex ids (equal ids are one shared vertex). O(1).
-template <class = void>
-bool pair_intersects(const std::array<vec, 3>& p, const std::array<std::uint32_t, 3>& ip,
-                     const std::array<vec, 3>& q, const std::array<std::uint32_t, 3>& iq) noexcept {
-  int shared = 0;
-  std::array<int, 3> match = {-1, -1, -1};  // match[i]: corner of q with p's id i
-  for (std::size_t i = 0; i < 3; ++i) {
-    const std::uint32_t id = ip[i];
-    const int j = id == iq[0] ? 0 : id == iq[1] ? 1 : id == iq[2] ? 2 : -1;
-    match[i] = j;
-    shared += j >= 0 ? 1 : 0;
-  }
-  if (shared == 0) return disjoint_pair_meets(p, q);
-  if (shared >= 3) return true;
-  if (shared == 1) {
-    std::size_t i = 0;
-    while (match[i] < 0) ++i;
-    const auto j = static_cast<std::size_t>(match[i]);
-    return vertex_pair_meets(p[i], p[(i + 1) % 3], p[(i + 2) % 3], q[(j + 1) % 3], q[(j + 2) % 3]);
-  }
-  std::size_t free_p = 0;  // the corner of p not shared, and of q
-  while (match[free_p] >= 0) ++free_p;
-  std::size_t free_q = 0;
-  while (free_q == static_cast<std::size_t>(match[(free_p + 1) % 3]) ||
-         free_q == static_cast<std::size_t>(match[(free_p + 2) % 3]))
-    ++free_q;
-  return edge_pair_meets(p[(free_p + 1) % 3], p[(free_p + 2) % 3], p[free_p], q[free_q]);
-}
-
-/// True when the triangle has zero area or a non-finite coordinate (exact). O(1).
-template <class = void>
-bool degenerate(const vec& a, const vec& b, const vec& c) noexcept {
-  for (int k = 0; k < 3; ++k)
-    if (!std::isfinite(a[k]) || !std::isfinite(b[k]) || !std::isfinite(c[k])) return true;
-  return collinear(a, b, c);
-}
-
-/// True when polygon p is exactly planar and strictly convex (every corner strictly on one
-/// side of every edge, in a projection where its first three corners do not collapse).
-/// O(|p|²); polygons of more than 16 corners are left to ear clipping.
-template <class = void>
-bool convex_planar(std::span<const vec> p) noexcept {
-  const std::size_t n = p.size();
-  if (n > 16) return false;
-  const int k = drop_axis(p[0], p[1], p[2]);
-  if (k < 0) return false;
-  const int u = (k + 1) % 3, w = (k + 2) % 3;
-  const int s = orient_uw(p[0], p[1], p[2], u, w);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < n; ++j)
-      if (j != i && j != (i + 1) % n && orient_uw(p[i], p[(i + 1) % n], p[j], u, w) != s) return false;
-  for (std::size_t j = 3; j < n; ++j)
-    if (orient3d(p[0], p[1], p[2], p[j]) != 0) return false;
-  return true;
-}
-
-/// For a quad that ear clipping would triangulate: true when its projection in ear
-/// clipping's plane (ears::newell_normal and ears::dominant_axis, as clip_polygon projects)
-/// is strictly convex. Ear clipping then cuts the ear at corner 0 first,
-/// giving (3, 0, 1) and (1, 2, 3); this answers that without its set-up. O(1).
-template <class = void>
-bool convex_projected_quad(std::span<const vec> p) noexcept {
-  vec centroid(0.0);
-  for (std::size_t i = 0; i < 4; ++i) {
-    if (!std::isfinite(p[i].x) || !std::isfinite(p[i].y) || !std::isfinite(p[i].z)) return false;
-    centroid += p[i];
-  }
-  centroid /= 4.0;
-  const vec newell = ears::newell_normal(p, centroid);
-  const int k = ears::dominant_axis(newell);
-  if (!(std::fabs(newell[k]) > 0)) return false;
-  const int u = (k + 1) % 3, w = (k + 2) % 3, sense = newell[k] > 0 ? 1 : -1;
-  for (std::size_t i = 0; i < 4; ++i)
-    if (orient_uw(p[i], p[(i + 1) % 4], p[(i + 2) % 4], u, w) != sense) return false;
-  return true;
-}
-
 /// One triangle of a face's triangulation.
 struct entry {
   std::array<std::uint32_t, 3> v;  ///< vertex indices
   std::uint32_t face;
-  std::array<double, 6> box;        ///< min x, y, z, max x, y, z
-  std::array<std::uint32_t, 3> lo;  ///< grid cell of the box's low corner
+  std::array<double, 6> box;  ///< min x, y, z, max x, y, z
 };
-
-/// The grid cell coordinate of x along one axis. O(1).
-template <class = void>
-std::uint32_t cell_of(double x, double origin, double inv_side, std::uint32_t cells) noexcept {
-  const double c = std::floor((x - origin) * inv_side);
-  if (!(c > 0)) return 0;
-  if (c >= static_cast<double>(cells - 1)) return cells - 1;
-  return static_cast<std::uint32_t>(c);
-}
-
-/// Sorts 64-bit keys: least-significant-digit radix sort, 16 bits a pass, skipping passes
-/// whose digit is the same in every key. O(n · passes).
-template <class = void>
-void radix_sort(std::vector<std::uint64_t>& keys) {
-  std::vector<std::uint64_t> tmp(keys.size());
-  std::vector<std::size_t> count(1 << 16);
-  std::uint64_t all_or = 0, all_and = ~std::uint64_t{0};
-  for (const std::uint64_t k : keys) all_or |= k, all_and &= k;
-  for (unsigned shift = 0; shift < 64; shift += 16) {
-    if ((((all_or ^ all_and) >> shift) & 0xFFFFu) == 0) continue;  // the digit never varies
-    std::fill(count.begin(), count.end(), std::size_t{0});
-    for (const std::uint64_t k : keys) ++count[(k >> shift) & 0xFFFFu];
-    std::size_t sum = 0;
-    for (std::size_t& c : count) {
-      const std::size_t here = c;
-      c = sum;
-      sum += here;
-    }
-    for (const std::uint64_t k : keys) tmp[count[(k >> shift) & 0xFFFFu]++] = k;
-    keys.swap(tmp);
-  }
-}
-
-/// Sorts and deduplicates the face-pair keys. O(n log n).
-template <class = void>
-void compact(std::vector<std::uint64_t>& keys) {
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-}
 
 /// Triangulates every live face of m into `out` as described in the file comment, with
 /// positions from `pos` (indexed by vertex). O(Σ face size) for convex faces.
@@ -473,15 +126,6 @@ void triangulate_for_test(const surface_mesh<P>& m, std::span<const vec> pos, st
                           self_intersection_result& r) {
   std::vector<std::uint32_t> ids;
   std::vector<vec> corners;
-  ear_clip_options clip;
-  clip.planarity_tolerance = std::numeric_limits<double>::infinity();
-  clip.allow_non_simple = true;
-  auto add = [&](std::uint32_t face, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    entry e;
-    e.v = {a, b, c};
-    e.face = face;
-    out.push_back(e);
-  };
   for (const face_handle f : m.faces()) {
     ++r.faces;
     ids.clear();
@@ -490,31 +134,14 @@ void triangulate_for_test(const surface_mesh<P>& m, std::span<const vec> pos, st
       ids.push_back(v.idx());
       corners.push_back(pos[v.idx()]);
     }
-    const std::size_t n = ids.size();
-    if (n < 3) continue;
-    const std::span<const vec> polygon(corners);
-    // A quad whose projection is strictly convex: off its plane (a rounding error is
-    // enough) ear clipping would cut it into these two triangles; in its plane they cover
-    // what the fan covers, which gives the same answers. No exact planarity test needed.
-    if (n == 4 && convex_projected_quad(polygon)) {
-      if (orient3d_filtered(corners[0], corners[1], corners[2], corners[3]) != 0) ++r.ear_clipped_faces;
-      add(f.idx(), ids[3], ids[0], ids[1]);
-      add(f.idx(), ids[1], ids[2], ids[3]);
-      continue;
-    }
-    bool fan = n == 3 || convex_planar(polygon);
-    if (!fan) {
-      ++r.ear_clipped_faces;
-      ear_clip_report report;
-      try {
-        for (const index_triangle& t : ears::clip_polygon(detail::span_of(corners), clip, report))
-          add(f.idx(), ids[t[0]], ids[t[1]], ids[t[2]]);
-      } catch (const error&) {
-        fan = true;  // no area, or a non-finite corner: its fan triangles are degenerate
-      }
-    }
-    if (fan)
-      for (std::size_t i = 1; i + 1 < n; ++i) add(f.idx(), ids[0], ids[i], ids[i + 1]);
+    const bool clipped = triangulate_polygon(detail::span_of(ids), detail::span_of(corners),
+                                             [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+                                               entry e;
+                                               e.v = {a, b, c};
+                                               e.face = f.idx();
+                                               out.push_back(e);
+                                             });
+    if (clipped) ++r.ear_clipped_faces;
   }
 }
 
@@ -579,101 +206,19 @@ self_intersection_result self_intersections(const surface_mesh<P>& m,
   };
   if (n < 2) return finish();
 
-  // The grid: cell side from the median of the largest box extents, grown until the cell
-  // keys fit 32 bits and the entries 8n + 2^16.
-  std::array<double, 3> lo{}, hi{};
-  for (int k = 0; k < 3; ++k) {
-    lo[static_cast<std::size_t>(k)] = std::numeric_limits<double>::infinity();
-    hi[static_cast<std::size_t>(k)] = -std::numeric_limits<double>::infinity();
-  }
-  std::vector<double> extent(n);
-  for (std::size_t t = 0; t < n; ++t) {
-    const auto& b = tris[t].box;
-    for (std::size_t k = 0; k < 3; ++k) lo[k] = std::min(lo[k], b[k]), hi[k] = std::max(hi[k], b[k + 3]);
-    extent[t] = std::max({b[3] - b[0], b[4] - b[1], b[5] - b[2]});
-  }
-  std::nth_element(extent.begin(), extent.begin() + static_cast<std::ptrdiff_t>(n / 2), extent.end());
-  const double span = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-  double side = extent[n / 2];
-  std::vector<double>().swap(extent);
-  if (!(side > 0) || !std::isfinite(side)) side = span / std::cbrt(static_cast<double>(n));
-  if (!(side > 0) || !std::isfinite(side)) side = 1;
-  const double max_entries = 8.0 * static_cast<double>(n) + 65536.0;
-  std::array<std::uint32_t, 3> cells{};
-  double inv = 0;
-  for (int attempt = 0;; ++attempt, side *= 1.5) {
-    inv = 1 / side;
-    double product = 1;
-    for (std::size_t k = 0; k < 3; ++k) {
-      const double c = std::floor((hi[k] - lo[k]) * inv) + 1;
-      cells[k] = static_cast<std::uint32_t>(std::min(c, 4294967295.0));
-      product *= static_cast<double>(cells[k]);
-    }
-    if (!(inv > 0) || attempt > 200) {  // the box is a point or beyond range: one cell
-      cells = {1, 1, 1};
-      break;
-    }
-    if (product >= 4294967295.0) continue;
-    double entries = 0;
-    for (si::entry& e : tris) {
-      double count = 1;
-      for (std::size_t k = 0; k < 3; ++k) {
-        e.lo[k] = si::cell_of(e.box[k], lo[k], inv, cells[k]);
-        count *= static_cast<double>(si::cell_of(e.box[k + 3], lo[k], inv, cells[k]) - e.lo[k] + 1);
-      }
-      entries += count;
-    }
-    if (entries <= max_entries) break;
-  }
-  for (si::entry& e : tris)  // again, for the one-cell fallback
-    for (std::size_t k = 0; k < 3; ++k) e.lo[k] = si::cell_of(e.box[k], lo[k], inv, cells[k]);
-
-  // Cell entries as (cell key << 32 | triangle), sorted: the triangles of a cell in a run.
-  std::vector<std::uint64_t> keys;
-  for (std::size_t t = 0; t < n; ++t) {
-    const si::entry& e = tris[t];
-    std::array<std::uint32_t, 3> top{};
-    for (std::size_t k = 0; k < 3; ++k) top[k] = si::cell_of(e.box[k + 3], lo[k], inv, cells[k]);
-    for (std::uint32_t x = e.lo[0]; x <= top[0]; ++x)
-      for (std::uint32_t y = e.lo[1]; y <= top[1]; ++y)
-        for (std::uint32_t z = e.lo[2]; z <= top[2]; ++z) {
-          const std::uint64_t cell = (static_cast<std::uint64_t>(x) * cells[1] + y) * cells[2] + z;
-          keys.push_back(cell << 32 | t);
-        }
-  }
-  si::radix_sort(keys);
-
+  std::vector<std::array<double, 6>> boxes(n);
+  for (std::size_t t = 0; t < n; ++t) boxes[t] = tris[t].box;
   std::vector<std::uint64_t> found;  // face-pair keys, compacted as they grow
   std::size_t compact_at = 1 << 16;
   std::array<glm::dvec3, 3> p{}, q{};
-  for (std::size_t begin = 0; begin < keys.size() && r.complete;) {
-    const std::uint64_t cell = keys[begin] >> 32;
-    std::size_t end = begin + 1;
-    while (end < keys.size() && keys[end] >> 32 == cell) ++end;
-    const std::array<std::uint32_t, 3> here = {
-        static_cast<std::uint32_t>(cell / (static_cast<std::uint64_t>(cells[1]) * cells[2])),
-        static_cast<std::uint32_t>(cell / cells[2] % cells[1]), static_cast<std::uint32_t>(cell % cells[2])};
-    const std::size_t m_here = end - begin;
-    if (m_here * (m_here - 1) / 2 > budget - r.candidate_pairs) {
-      r.complete = false;
-      break;
-    }
-    r.candidate_pairs += m_here * (m_here - 1) / 2;
-    for (std::size_t i = begin; i < end; ++i) {
-      const si::entry& a = tris[static_cast<std::uint32_t>(keys[i])];
-      for (std::size_t j = i + 1; j < end; ++j) {
-        const si::entry& b = tris[static_cast<std::uint32_t>(keys[j])];
-        if (a.face == b.face) continue;
-        if (a.box[0] > b.box[3] || b.box[0] > a.box[3] || a.box[1] > b.box[4] || b.box[1] > a.box[4] ||
-            a.box[2] > b.box[5] || b.box[2] > a.box[5])
-          continue;
-        // Examined only in the cell of the low corner of the boxes' intersection.
-        if (std::max(a.lo[0], b.lo[0]) != here[0] || std::max(a.lo[1], b.lo[1]) != here[1] ||
-            std::max(a.lo[2], b.lo[2]) != here[2])
-          continue;
+  const si::box_pair_count pairs =
+      si::for_each_box_pair(detail::span_of(boxes), budget, [&](std::uint32_t i, std::uint32_t j) {
+        const si::entry& a = tris[i];
+        const si::entry& b = tris[j];
+        if (a.face == b.face) return true;
         ++r.pairs_tested;
         for (std::size_t k = 0; k < 3; ++k) p[k] = pos[a.v[k]], q[k] = pos[b.v[k]];
-        if (!si::pair_intersects(p, a.v, q, b.v)) continue;
+        if (!si::pair_intersects(p, a.v, q, b.v)) return true;
         ++r.intersecting_triangle_pairs;
         const std::uint32_t f = std::min(a.face, b.face), g = std::max(a.face, b.face);
         found.push_back(static_cast<std::uint64_t>(f) << 32 | g);
@@ -681,10 +226,10 @@ self_intersection_result self_intersections(const surface_mesh<P>& m,
           si::compact(found);
           compact_at = std::max(compact_at, 2 * found.size());
         }
-      }
-    }
-    begin = end;
-  }
+        return true;
+      });
+  r.candidate_pairs = pairs.candidate_pairs;
+  r.complete = pairs.complete;
   if (!r.complete && options.throw_on_budget) {
     // Appended piece by piece: `"..." + std::to_string(n)` trips g++ 12's false -Wrestrict
     // (GCC PR 105329) in a user's -O2 -Werror build.

@@ -392,6 +392,9 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
       w.edges = used.edges;
       try {
         wireframe_result<glm::dvec3> cells = wireframe_to_cells(w, options.cells);
+        // Faces that make no valid complex: this reading is refused, as a throw would.
+        if (!cells.validation.ok())
+          throw error(error_category::topology, "wireframe_to_cells: " + cells.status_reason);
         std::vector<std::vector<std::uint32_t>> found;
         for (const auto& f : cells.input.faces)
           for (const auto& loop : f.loops) {

@@ -4,7 +4,8 @@
 /// The whole wireframe → cell complex (3DCL) pipeline of seed 000 ch. IV: read (§4.1), trace
 /// (§4.2), unique circuits (§4.3), face reduction (§4.4), face arrangement (§4.5), extra faces
 /// (§4.6), objects and volumes (§4.7), relations (§4.8) and the cell list (§4.9), on anything
-/// that models Wireframe. Every stage's result (counts, diagnostics, time) is returned too.
+/// that models Wireframe. Every stage's result (counts, diagnostics, time) is returned too, and
+/// the answer's certificate (cells/certify.hpp) with a status: solid, ambiguous, not a solid.
 
 #include <algorithm>
 #include <cstdint>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "cellforge/cells/cell_complex.hpp"
+#include "cellforge/cells/certify.hpp"
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/wireframe.hpp"
@@ -39,10 +41,14 @@ struct wireframe_options {
   relations_options relations{};
   bool keep_dangling = false;  ///< put edges that bound no face into the cell complex too
   bool build_complex = true;   ///< call make_cell_complex on the result
-  /// Validate the complex (cells/validate.hpp) and throw a topology error naming the broken
-  /// invariant rather than return a wrong complex (input this pipeline cannot read, such as
-  /// edges crossing inside a face plane). Needs build_complex.
+  /// Validate the complex (cells/validate.hpp): a broken invariant (input this pipeline cannot
+  /// read, such as edges crossing inside a face plane) makes the result not_a_solid, with the
+  /// invariant named in status_reason. Needs build_complex.
   bool check_result = true;
+  /// Certify the complex against the wireframe (cells/certify.hpp) and judge the status from
+  /// the certificate; its tolerances are never finer than the stages' own. Needs build_complex.
+  bool certify_result = true;
+  certify_options certify{};
 };
 
 /// The validate() options that judge a complex wireframe_to_cells made with `options`: its faces
@@ -89,6 +95,17 @@ struct wireframe_result {
   relations_result relations;
   double assembly_milliseconds = 0.0;    ///< the seed's "cell list assembly" row
   std::vector<std::string> diagnostics;  ///< assembly notes (edges left out because they bound no face)
+  /// What the answer is: solid (the certificate passes, every face decided by the wireframe),
+  /// ambiguous (it passes, but walls no edge needs were kept: `unforced`), not_a_solid (the
+  /// certificate or validate failed, input edges on cycles lie on no face, or faces close no
+  /// volume), budget (the certificate's work budget ran out). Never solid unless certified.
+  solid_status status = solid_status::not_a_solid;
+  std::string status_reason;  ///< one line: what the input is, or what failed
+  /// The certificate (cells/certify.hpp); empty, with status not_a_solid, when not run.
+  certificate_result certificate;
+  /// validate()'s verdict on `cells` (check_result; ok when not run), named in the output's
+  /// numbering when it failed; signed volumes per volume (the per-object lists left empty).
+  cells_validation_result validation;
 };
 
 namespace detail {
@@ -173,10 +190,75 @@ std::string no_face_message(const wire_graph& g, const arrangement_result& arran
 }
 }  // namespace detail
 
-/// Converts a wireframe to a cell complex whose positions are the wireframe's (its point type).
-/// Faces that close no volume (a lone planar loop, an open box) come back as faces without
-/// volumes, with a diagnostic. Throws cellforge::error on bad input (see read_vertices), on an
-/// exhausted work budget, or when no face is found (saying what the wireframe is instead).
+namespace detail {
+/// The certificate's options for a pipeline run: the caller's, with tolerances no finer than
+/// the stages' own. O(1).
+template <class = void>
+certify_options pipeline_certify_options(const wireframe_options& options) {
+  certify_options c = options.certify;
+  // The reading rule keeps a seam only where the wireframe draws it and no wall (a tessellated
+  // flat surface, seed sample 4): a drawn seam is no failure of the answer.
+  c.seams_fail = false;
+  c.merge.relative = std::max(c.merge.relative, options.read.merge.relative);
+  c.planarity.relative =
+      std::max({c.planarity.relative, options.trace.planarity.relative, options.reduction.planarity.relative,
+                options.arrangement.planarity.relative, options.extra.retrace.planarity.relative});
+  return c;
+}
+
+/// Sets r.status and its one-line reason from the validation (`invalid`: the broken invariant,
+/// or empty), the certificate and what the stages removed or left undecided. O(1).
+template <Point3 P>
+void judge(wireframe_result<P>& r, const std::string& invalid, bool certified) {
+  const certificate_result& c = r.certificate;
+  auto plural = [](std::size_t n, const char* one, const char* many) {
+    return std::to_string(n) + " " + (n == 1 ? one : many);
+  };
+  if (!invalid.empty()) {
+    r.status = solid_status::not_a_solid;
+    r.status_reason = "the faces found do not make a valid cell complex (" + invalid +
+                      "); edges crossing each other inside a plane or other input this pipeline cannot read "
+                      "may cause this";
+  } else if (!certified) {
+    r.status = solid_status::not_a_solid;
+    r.status_reason = "not certified (certify_result is off)";
+  } else if (!c.complete) {
+    r.status = solid_status::budget;
+    r.status_reason = c.reason();
+  } else if (!c.ok()) {
+    r.status = solid_status::not_a_solid;
+    r.status_reason = c.reason();
+  } else if (c.faces_without_volume > 0) {
+    r.status = solid_status::not_a_solid;
+    r.status_reason =
+        c.free_edges > 0
+            ? "an open surface: " + plural(c.free_edges, "edge lies", "edges lie") + " on one face only"
+            : plural(c.faces_without_volume, "face bounds", "faces bound") + " no volume";
+  } else if (!r.lost.empty()) {
+    r.status = solid_status::not_a_solid;
+    r.status_reason = plural(r.lost.size(), "face was", "faces were") + " removed (the first because " +
+                      r.lost.front().reason + ")";
+  } else if (!r.unforced.empty()) {
+    r.status = solid_status::ambiguous;
+    r.status_reason = "a closed solid, but the wireframe does not decide " +
+                      plural(r.unforced.size(), "face", "faces") +
+                      " no edge needs (walls kept, listed in unforced)";
+  } else {
+    r.status = solid_status::solid;
+    r.status_reason = "a closed solid: " + plural(r.cells.num_volumes(), "volume", "volumes") + ", " +
+                      plural(r.cells.num_faces(), "face", "faces") + ", every input edge on a face" +
+                      (c.seam_edges > 0 ? " (" + plural(c.seam_edges, "edge is a seam", "edges are seams") +
+                                              " of a tessellated flat surface)"
+                                        : std::string());
+  }
+}
+}  // namespace detail
+
+/// Converts a wireframe to a cell complex whose positions are the wireframe's (its point type),
+/// certifies it against the wireframe and says what it is (status, status_reason). Faces that
+/// close no volume (a lone planar loop, an open box) come back as faces without volumes,
+/// not_a_solid, with a diagnostic. Throws cellforge::error on bad input (see read_vertices), on
+/// an exhausted work budget of a stage, or when no face is found (saying what the wireframe is).
 /// Polynomial with the default planar tracer: O(Σ deg² + Σ planes k log k + F·L + grid pairs).
 template <Wireframe G>
 wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
@@ -361,17 +443,21 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
       r.cells = make_cell_complex(r.input);  // the error in the output's numbering
       throw;
     }
-    const bool valid = !options.check_result || validate(inside, wireframe_check_options(options)).ok();
+    if (options.check_result) r.validation = validate(inside, wireframe_check_options(options));
     r.cells = renumber_cells(inside, vertex_label, edge_label);
-    if (!valid) {
-      const auto v = validate(r.cells, wireframe_check_options(options));  // named in the output's numbering
-      throw error(error_category::topology,
-                  "wireframe_to_cells: the faces found do not make a valid cell complex (" + v.message +
-                      "); edges crossing each other inside a plane or other input this pipeline cannot "
-                      "read may cause this");
-    }
+    if (!r.validation.ok())
+      r.validation = validate(r.cells, wireframe_check_options(options));  // output numbering
+    r.validation.expected_euler.clear();  // per object, and objects were numbered otherwise inside
+    r.validation.euler_checked.clear();
+    const std::string invalid = r.validation.ok() ? std::string() : r.validation.message;
+    r.assembly_milliseconds = clock.ms();
+    if (options.certify_result)
+      r.certificate = certify(r.cells, wire, detail::pipeline_certify_options(options));
+    detail::judge(r, invalid, options.certify_result);
+    return r;
   }
   r.assembly_milliseconds = clock.ms();
+  r.status_reason = "no cell complex built (build_complex is off), so not certified";
   return r;
 }
 
