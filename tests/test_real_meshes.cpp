@@ -90,8 +90,7 @@ std::vector<fs::path> mesh_files() {
 /// result's status is solid_status::not_a_solid.)
 template <class Result>
 bool says_not_a_solid(const Result& r) {
-  return std::any_of(r.diagnostics.begin(), r.diagnostics.end(),
-                     [](const std::string& d) { return d.rfind("not a closed solid", 0) == 0; });
+  return r.status != cellforge::solid_status::solid && r.status != cellforge::solid_status::ambiguous;
 }
 
 /// How one mesh came out.
@@ -192,15 +191,14 @@ run judge(const fs::path& path) {
       std::to_string(r.input.faces.size()) + " faces (" + std::to_string(fx.faces.size()) +
       " expected: " + std::to_string(missing) + " missing, " + std::to_string(extra) + " extra), " +
       std::to_string(r.input.volumes.size()) + " volumes (" + std::to_string(fx.volumes) + " expected)";
+  // Exact only when also certified solid; anything not certified solid is flagged, never wrong.
   if (solid) {
-    if (missing == 0 && extra == 0 && r.input.volumes.size() == fx.volumes && !not_solid) {
+    if (missing == 0 && extra == 0 && r.input.volumes.size() == fx.volumes &&
+        r.status == cellforge::solid_status::solid) {
       out.result = outcome::exact;
-    } else if (!r.unforced.empty() || not_solid) {
+    } else if (r.status != cellforge::solid_status::solid) {
       out.result = outcome::flagged;
-      out.why = counts + "; " +
-                (not_solid ? "said not a closed solid"
-                           : std::to_string(r.unforced.size()) +
-                                 " faces reported unforced (walls the wireframe cannot decide)");
+      out.why = counts + "; status " + cellforge::to_string(r.status) + ": " + r.status_reason;
     } else {
       out.result = outcome::wrong;
       out.why = counts + ", passed as good";

@@ -492,8 +492,11 @@ TEST_CASE("open surfaces and faces that cross each other invent no volume") {
     w.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.2, 0.2, -0.5}, {0.2, 0.2, 0.3}, {2, 2, -0.2}};
     w.edges = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}, {4, 5}, {5, 6}, {6, 4}};
     const auto r = wireframe_to_cells(w);
-    CHECK(r.cells.num_volumes() == 0);
-    CHECK(has_note(r, "edges pierce faces: the surface intersects itself"));
+    CHECK(r.cells.num_volumes() == 0);  // the tetrahedron is pierced: no solid of this input
+    CHECK(r.cells.num_faces() == 4);    // its faces stay, without the volume
+    CHECK(r.status == solid_status::not_a_solid);
+    CHECK(r.status_reason.find("the input intersects itself: input edges 6, 7 pierce") == 0);
+    CHECK(has_note(r, "pierced by an input edge"));
     CHECK(!r.arrangement.crossed.empty());
   }
 }

@@ -227,17 +227,23 @@ void judge(wireframe_result<P>& r, const std::string& invalid, bool certified) {
     r.status_reason = c.reason();
   } else if (!c.ok()) {
     r.status = solid_status::not_a_solid;
-    r.status_reason = c.reason();
+    // Piercing says what the input is (it intersects itself); the edges it leaves faceless follow.
+    const certificate_failure* pierced = c.find(certificate_failure::kind::input_edge_pierces_face);
+    r.status_reason = pierced ? "the input intersects itself: " + pierced->message : c.reason();
   } else if (c.faces_without_volume > 0) {
     r.status = solid_status::not_a_solid;
     r.status_reason =
         c.free_edges > 0
             ? "an open surface: " + plural(c.free_edges, "edge lies", "edges lie") + " on one face only"
             : plural(c.faces_without_volume, "face bounds", "faces bound") + " no volume";
-  } else if (!r.lost.empty()) {
+  } else if (const auto open = std::find_if(r.extra.removed.begin(), r.extra.removed.end(),
+                                            [](const dropped_face& d) { return d.free_edge; });
+             open != r.extra.removed.end()) {
+    // Faces removed for a free edge: part of the input is an open surface (a face that lost an
+    // overlap to a smaller face in its plane is a spurious cycle, and says nothing of the kind).
     r.status = solid_status::not_a_solid;
-    r.status_reason = plural(r.lost.size(), "face was", "faces were") + " removed (the first because " +
-                      r.lost.front().reason + ")";
+    r.status_reason = plural(r.lost.size(), "face was", "faces were") + " removed (one because " +
+                      open->reason + "): part of the input is an open surface";
   } else if (!r.unforced.empty()) {
     r.status = solid_status::ambiguous;
     r.status_reason = "a closed solid, but the wireframe does not decide " +
@@ -449,11 +455,34 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
       r.validation = validate(r.cells, wireframe_check_options(options));  // output numbering
     r.validation.expected_euler.clear();  // per object, and objects were numbered otherwise inside
     r.validation.euler_checked.clear();
-    const std::string invalid = r.validation.ok() ? std::string() : r.validation.message;
     r.assembly_milliseconds = clock.ms();
-    if (options.certify_result)
-      r.certificate = certify(r.cells, wire, detail::pipeline_certify_options(options));
-    detail::judge(r, invalid, options.certify_result);
+    if (options.certify_result) {
+      const certify_options check = detail::pipeline_certify_options(options);
+      r.certificate = certify(r.cells, wire, check);
+      // A volume bounded by a face that an input edge pierces is no solid the input draws (the
+      // surface intersects itself, as a triangle through a tetrahedron): its faces stay, the
+      // volume goes, so that no volume is invented from a self-intersecting input.
+      using K = certificate_failure::kind;
+      if (const certificate_failure* pierced = r.certificate.find(K::input_edge_pierces_face);
+          pierced && !r.input.volumes.empty()) {
+        std::vector<char> hit(r.input.faces.size(), 0);
+        for (std::size_t k = 1; k < pierced->elements.size(); k += 2) hit[pierced->elements[k]] = 1;
+        const std::size_t before = r.input.volumes.size();
+        std::erase_if(r.input.volumes, [&](const cell_input_volume& v) {
+          return std::any_of(v.faces.begin(), v.faces.end(),
+                             [&](const auto& f) { return hit[f.first] != 0; });
+        });
+        if (r.input.volumes.size() != before) {
+          r.diagnostics.push_back(std::to_string(before - r.input.volumes.size()) +
+                                  " volumes dropped: a face of each is pierced by an input edge (" +
+                                  pierced->message + "), so the input intersects itself there");
+          r.cells = make_cell_complex(r.input);
+          if (options.check_result) r.validation = validate(r.cells, wireframe_check_options(options));
+          r.certificate = certify(r.cells, wire, check);
+        }
+      }
+    }
+    detail::judge(r, r.validation.ok() ? std::string() : r.validation.message, options.certify_result);
     return r;
   }
   r.assembly_milliseconds = clock.ms();
