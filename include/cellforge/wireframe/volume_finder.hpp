@@ -315,7 +315,7 @@ class basic_face_reader {
       if (!alive[i] || needed_faces_one(g_, faces_, at_, alive_, i, scratch)) continue;
       if (sides[i][0] == O_ || sides[i][1] == O_) {
         mouth[sides[i][0] == O_ ? sides[i][1] : sides[i][0]] = 1;
-      } else if (faces[i].depth % 2 == 0 && is_seam(i)) {  // a face filling a hole is no wall among walls
+      } else if (!faces[i].fills_hole && is_seam(i)) {  // a nested outline is no wall among walls
         seams.push_back(i);
         through.unite(sides[i][0], sides[i][1]);
       }
