@@ -738,7 +738,9 @@ TEST_CASE("reading: wireframes two solids share are reported ambiguous, the trut
     const std::string why = wireframe_sweep::ambiguous_miss(m.model, r);
     INFO(m.model.name << ": " << why);
     CHECK(why.empty());
-    wrong += !wireframe_sweep::miss_reason(m.model, r).empty();
+    const bool missed = !wireframe_sweep::miss_reason(m.model, r).empty();
+    wrong += missed;
+    if (missed) CHECK(r.status == solid_status::ambiguous);
     for (const auto& a : r.alternatives)
       if (a.undecided) {
         ++ambiguous;
@@ -772,6 +774,7 @@ TEST_CASE("budget: a reading out of its work budget is the best certified one fo
       tight.volume.work_budget = budget;
       const auto r = wireframe_to_cells(model(name).wire, tight);
       CHECK_FALSE(r.volume.complete);
+      CHECK(r.status == solid_status::budget);
       CHECK(validate(r.cells).ok());
       CHECK(!r.unforced.empty());
     }

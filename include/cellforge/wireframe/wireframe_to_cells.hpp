@@ -237,6 +237,10 @@ void judge(wireframe_result<P>& r, const std::string& invalid, bool certified) {
   } else if (!c.complete) {
     r.status = solid_status::budget;
     r.status_reason = c.reason();
+  } else if (!r.volume.complete) {
+    r.status = solid_status::budget;
+    r.status_reason = "the reading rule ran out of its work budget (volume_options::work_budget): the best "
+                      "certified reading found, not necessarily the best there is";
   } else if (!c.ok()) {
     r.status = solid_status::not_a_solid;
     // Piercing says what the input is (it intersects itself); the edges it leaves faceless follow.
@@ -261,6 +265,12 @@ void judge(wireframe_result<P>& r, const std::string& invalid, bool certified) {
     r.status_reason = "a closed solid, but the wireframe does not decide " +
                       plural(r.unforced.size(), "face", "faces") +
                       " no edge needs (walls kept, listed in unforced)";
+  } else if (const auto n = static_cast<std::size_t>(std::count_if(
+                 r.alternatives.begin(), r.alternatives.end(), [](const reading_note& a) { return a.undecided; }));
+             n > 0) {
+    r.status = solid_status::ambiguous;
+    r.status_reason = "a closed solid, but another solid has this wireframe too: " +
+                      plural(n, "undecided reading", "undecided readings") + " in alternatives";
   } else {
     r.status = solid_status::solid;
     r.status_reason = "a closed solid: " + plural(r.cells.num_volumes(), "volume", "volumes") + ", " +
