@@ -711,21 +711,6 @@ TEST_CASE("reading: a nested outline is no seam wall (a pocket down to the step 
   }
 }
 
-TEST_CASE("crossing: a polygon piercing a solid leaves no edge out of a certain answer") {
-  // CGAL's tetra_intersected_by_triangle.off: a triangle whose edges pierce a tetrahedron's
-  // face. The certified choice dropped the triangle, left its edges on no face and passed the
-  // tetrahedron as a solid; no choice may leave an edge with candidates on no face, so both go
-  // and the answer says it is not a closed solid.
-  sample_model m;
-  m.wire.points = {{0, 0, 0.707107}, {1, 1, 0.707107}, {0, 1, 0}, {1, 0, 0}, {0.5, 0.5, 0.3}, {0, 0, 0.3}, {0, 0, 0.4}};
-  m.wire.edges = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}, {4, 5}, {5, 6}, {4, 6}};
-  const auto r = wireframe_to_cells(m.wire);
-  CHECK(r.input.volumes.empty());
-  CHECK(std::any_of(r.diagnostics.begin(), r.diagnostics.end(), [](const std::string& d) {
-    return d.rfind("not a closed solid", 0) == 0 && d.find("edges pierce faces") != std::string::npos;
-  }));
-}
-
 TEST_CASE("reading: wireframes two solids share are reported ambiguous, the truth among the readings") {
   // Big polycubes: an empty lattice cell beside a filled one, every lattice line drawn either
   // way. The order takes one reading; the other is an undecided alternative, a whole reading

@@ -349,16 +349,7 @@ class basic_crossing_decision {
           auto normal = [&](std::uint32_t j) { return faces_[j].normal; };
           genuine0_[e] = !edge_needs_more(scratch_, normal);
         }
-        if (!genuine0_[e]) {
-          // An edge on no genuine pair of faces keeps at least one: an input edge left on no face
-          // would pass through the kept face's interior (a surface intersecting itself).
-          std::uint32_t last = no_index, present_faces = 0;
-          for (const auto j : at_[e])
-            if (present(j)) ++present_faces, last = j;
-          if (present_faces == 0) ok = false;
-          if (present_faces == 1 && local_[last] != no_index && st_[local_[last]] == 0) set(local_[last], 1);
-          return;
-        }
+        if (!genuine0_[e]) return;
         if (!genuine(e, no_index)) {
           ok = false;
           return;
