@@ -237,9 +237,12 @@ int main(int argc, char** argv) {
     for (auto o : cells.objects())
       std::printf("  object %u: V - E + F - C = %lld\n", o.idx(), cells.object_euler(o));
     std::printf("  faces no edge needs, kept (undecided): %zu\n", r.unforced.size());
-    for (const cellforge::face_note& n : r.alternatives)
-      std::printf("  not a face: a %zu-gon at vertex %u (it %s)\n", n.loops[0].size(), n.loops[0][0],
-                  n.reason.c_str());
+    for (const cellforge::reading_note& n : r.alternatives)
+      if (n.add.size() == 1 && n.remove.empty() && n.set_aside_by == cellforge::reading_key::unneeded_faces)
+        std::printf("  not a face: a %zu-gon at vertex %u (it %s)\n", n.add[0].loops[0].size(),
+                    n.add[0].loops[0][0], n.reason.c_str());
+      else
+        std::printf("  %s reading: %s\n", n.undecided ? "undecided" : "another", n.reason.c_str());
     for (const cellforge::face_note& n : r.lost)
       std::printf("  lost: a %zu-gon at vertex %u (%s)\n", n.loops[0].size(), n.loops[0][0],
                   n.reason.c_str());

@@ -142,7 +142,8 @@ TEST_CASE("certify: every sample model converted by the pipeline passes") {
     INFO(kinds(r.certificate));
     CHECK(r.certificate.ok());
     CHECK(r.certificate.covered_input_edges == m.wire.edges.size());
-    const bool undecided = !r.unforced.empty();
+    const bool undecided = !r.unforced.empty() || std::any_of(r.alternatives.begin(), r.alternatives.end(),
+                                                              [](const reading_note& a) { return a.undecided; });
     CHECK(r.status == (undecided ? solid_status::ambiguous : solid_status::solid));
     // The certificate alone, on the complex and on the complex with its wireframe.
     CHECK(certify(r.cells).ok());

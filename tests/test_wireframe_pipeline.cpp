@@ -103,7 +103,10 @@ TEST_CASE("pipeline: readings of the faces no edge needs, and merging") {
   CHECK(house.input.volumes.size() == 1);
   CHECK(house.input.faces.size() == 9);  // 4 sides, bottom, 4 roof triangles
   REQUIRE(house.alternatives.size() == 1);
-  CHECK(house.alternatives[0].loops[0].size() == 4);
+  REQUIRE(house.alternatives[0].add.size() == 1);
+  CHECK(house.alternatives[0].add[0].loops[0].size() == 4);
+  CHECK(house.alternatives[0].remove.empty());
+  CHECK_FALSE(house.alternatives[0].undecided);
   CHECK(house.alternatives[0].reason == "would split a volume in two");
   wireframe_options o;
   o.volume.reading = face_reading::keep_walls;

@@ -80,7 +80,7 @@ inline const std::vector<std::string>& sweep_families() {
       "frame",          "plate",         "box ring",       "torus",    "bipyramid", "house",  "dent",
       "notch",          "barrel",        "hourglass",      "geodesic", "polytope",  "cross",  "polycube",
       "polycube cells", "linked frames", "solid in frame", "touching", "grid",      "hole grid",
-      "double frame",   "linked tori",   "stepped bore",   "holed face", "library"};
+      "double frame",   "linked tori",   "stepped bore",   "holed face", "big polycube", "library"};
   return names;
 }
 
@@ -1033,6 +1033,59 @@ inline void random_cell_polycubes(sweep_set& s, std::size_t count) {
   s.draws.push_back(draws);
 }
 
+/// One draw of the bigger cell polycubes: a lattice of 4–9 × 3–7 × 1–3 cells of random widths,
+/// a face-connected piece of at least a third of it split into k = 6..25 cells (grown together
+/// up to 8, by box cuts beyond), from its own seed `draw` (k = 6 + draw % 20); nullopt when the
+/// draw is rejected (counted in `draws`). Such lattices have an empty cell beside a filled one
+/// with every lattice line drawn either way: wireframes two solids share. O(layout).
+inline std::optional<cellforge::sample_model> big_cell_polycube(std::uint64_t draw, family_draws& draws) {
+  random_source rng(0x6a09e667f3bcc909ull ^ (draw * 0x9e3779b97f4a7c15ull));
+  const std::size_t k = 6 + draw % 20;
+  const std::size_t nx = rng.in(4, 9), ny = rng.in(3, 7), nz = rng.in(1, 3), cells = nx * ny * nz;
+  if (cells < k) return ++draws.not_manifold, std::nullopt;
+  cellforge::voxel_layout l =
+      cellforge::empty_layout(random_coords(nx, rng), random_coords(ny, rng), random_coords(nz, rng));
+  const std::size_t grown = grow(l, rng.in(std::max(k, cells / 3), cells), 1, std::vector<char>(cells, 0), rng);
+  if (grown < k) return ++draws.not_manifold, std::nullopt;
+  if (k <= 8)
+    split_cells(l, k, rng);
+  else if (!split_boxes(l, k, rng) || !cells_connected(l, k))
+    return ++draws.not_manifold, std::nullopt;
+  return accept(l, static_cast<int>(k),
+                "big polycube draw " + std::to_string(draw) + " " + std::to_string(nx) + "x" + std::to_string(ny) +
+                    "x" + std::to_string(nz) + " n=" + std::to_string(grown) + " cells=" + std::to_string(k),
+                draws);
+}
+
+/// Draws of big_cell_polycube the sweep builds, so that it spends no time on rejected ones
+/// (each is judged again when built; a draw rejected then is a fault). Of draws 0..119 999,
+/// 2 455 are kept (most others touch themselves at an edge or a vertex); these are the 27 whose
+/// answer is ambiguous (22 of them not the truth, 5 exact) and every 60th of the others.
+inline const std::vector<std::uint64_t>& big_polycube_draws() {
+  static const std::vector<std::uint64_t> draws{
+      8, 2303, 3645, 5385, 7163, 10224, 13683, 13727, 16587, 16921, 19907, 21927, 22863, 23063, 25468,
+      26381, 28708, 31124, 31965, 33066, 33169, 33840, 36700, 38847, 39900, 41266, 43340, 43344,
+      46325, 48968, 51380, 51867, 54042, 56425, 57580, 60445, 62441, 63185, 65324, 68663, 71665,
+      74363, 77564, 79509, 80683, 80860, 84183, 84220, 86823, 87023, 88350, 89460, 92483, 94942,
+      97730, 98880, 100385, 100725, 103404, 105587, 105624, 105701, 106840, 109287, 109883, 112705,
+      115580, 118920};
+  return draws;
+}
+
+/// The bigger cell polycubes: the listed draws (the sample: every third).
+/// O(count · layout).
+inline void big_cell_polycubes(sweep_set& s, bool full) {
+  family_draws draws{"big polycube"};
+  const auto& list = big_polycube_draws();
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    if (!full && i % 3 != 0) continue;
+    if (auto m = big_cell_polycube(list[i], draws))
+      add_copies(s, "big polycube", *m, full, 0, i % 2 == 0);
+    else
+      s.faults.push_back("big polycube: draw " + std::to_string(list[i]) + " is rejected now");
+  }
+}
+
 // ---- families of the exact reading (issue 38): ambiguous groups decided face by face ---------
 
 /// A plate (wide bars, small holes) or frame (thin bars, big holes) with a rows × cols grid of
@@ -1568,6 +1621,7 @@ inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
   }
 
   detail::add_reading_families(s, full);
+  detail::big_cell_polycubes(s, full);
 
   {
     std::vector<sample_model> library = cellforge::all_small_samples();
@@ -1667,6 +1721,48 @@ inline std::string miss_reason(const cellforge::sample_model& m,
   std::string out;
   for (const auto& w : why) out += (out.empty() ? "" : "; ") + w;
   return out;
+}
+
+/// For a model whose wireframe two solids share: empty when the result is exact, or says it is
+/// ambiguous (faces in `unforced`, or an undecided alternative) and the truth is among the
+/// readings it reports — the answer without some of its unforced faces, or the answer with one
+/// undecided alternative taken (its cycles added, its faces removed); else why not.
+/// O(alternatives · F log F · face size).
+inline std::string ambiguous_miss(const cellforge::sample_model& m, const cellforge::wireframe_result<glm::dvec3>& r) {
+  std::string why = miss_reason(m, r);
+  if (why.empty()) return why;
+  const bool undecided = std::any_of(r.alternatives.begin(), r.alternatives.end(),
+                                     [](const cellforge::reading_note& a) { return a.undecided; });
+  if (r.unforced.empty() && !undecided) return why + "; reported as certain";
+  const faces_t faces = result_faces(r);
+  std::multiset<faces_t::value_type> truth;
+  for (const auto& f : m.faces) truth.insert(cellforge::detail::canonical_face(f));
+  // The answer without some of its unforced faces: every other face in the truth, and the truth
+  // no bigger than the answer.
+  {
+    std::vector<char> loose(faces.size(), 0);
+    for (const auto i : r.unforced) loose[i] = 1;
+    std::multiset<faces_t::value_type> rest = truth;
+    bool ok = true;
+    std::size_t found = 0;
+    for (std::size_t i = 0; i < faces.size() && ok; ++i) {
+      const auto it = rest.find(cellforge::detail::canonical_face(faces[i]));
+      if (it != rest.end()) rest.erase(it), ++found;
+      else ok = loose[i] != 0;
+    }
+    if (ok && rest.empty() && found == m.faces.size()) return {};
+  }
+  for (const auto& a : r.alternatives) {
+    if (!a.undecided) continue;
+    std::vector<char> gone(faces.size(), 0);
+    for (const auto i : a.remove) gone[i] = 1;
+    faces_t reading;
+    for (std::size_t i = 0; i < faces.size(); ++i)
+      if (!gone[i]) reading.push_back(faces[i]);
+    for (const auto& n : a.add) reading.push_back(n.loops);
+    if (cellforge::same_faces(m.faces, reading)) return {};
+  }
+  return why + "; ambiguous, but the truth is not among the readings reported";
 }
 
 }  // namespace wireframe_sweep

@@ -57,9 +57,29 @@ struct volume_options {
   /// coplanar ones; the walls merged are listed in volume_result::merged.
   bool merge_unforced = false;
   /// Abstract steps of the reading rule (faces looked at by its rounds and its group searches);
-  /// 0 = none. A group search that reaches it (or 2^15 nodes) takes its best certified reading
-  /// and says so in a diagnostic; the rounds themselves throw a budget error past it.
+  /// 0 = none. A group search that reaches it (or 2^15 nodes) takes its best certified reading,
+  /// says so in a diagnostic and clears volume_result::complete; the rounds then stop, so that
+  /// the answer is the best reading found, never a throw.
   std::uint64_t work_budget = 200'000'000;
+  /// Whole readings of each group searched that keep no more faces no edge needs than the one
+  /// taken, reported in volume_result::alternatives (at most this many per group).
+  std::size_t alternatives_per_group = 8;
+};
+
+/// The key of the reading rule's order that set a reading aside (docs/wireframe.md, "The
+/// order"): more kept faces no edge needs, more volumes, more faces, less area dropped, or none.
+enum class reading_key : std::uint8_t { unneeded_faces, volumes, faces, area, none };
+
+/// Another reading of faces no edge needs: the faces it keeps that the answer drops (`add`),
+/// the faces of the answer it drops (`remove`), what it stands for and what set it aside.
+struct volume_alternative {
+  std::vector<std::uint32_t> add, remove;  ///< indices into find_volumes' faces, increasing
+  std::string reading;                     ///< "would close a hole or dent", "would split a volume in two", ...
+  /// The first key of the order that ranks it below the answer; `none`: as good in every key.
+  reading_key set_aside_by = reading_key::unneeded_faces;
+  /// The wireframe does not decide between it and the answer: it keeps no more faces no edge
+  /// needs, and only the order's tie-breaks (volumes, faces, area) or nothing set it aside.
+  bool undecided = false;
 };
 
 /// One face around an edge: the face, and +1 when it walks the edge from start to end.
@@ -83,9 +103,14 @@ struct volume_result : stage_report {
   std::vector<std::uint32_t> unforced;  ///< kept faces no edge needs: the wireframe does not decide them
   std::vector<std::uint32_t> dropped;  ///< faces no edge needs that the reading removed (holes, roofs, rings)
   std::vector<std::uint32_t> merged;   ///< walls merge_unforced removed
-  /// Per dropped face (same order): the other reading it stands for, "would close a hole or
-  /// dent" or "would split a volume in two".
-  std::vector<std::string> alternatives;
+  /// Other readings: first one per dropped face (same order as `dropped`: keeping it "would
+  /// close a hole or dent" or "would split a volume in two", set aside for keeping a face no
+  /// edge needs), then the whole readings of groups that keep no more such faces than the one
+  /// taken (`undecided` ones make the answer ambiguous, as `unforced` faces do).
+  std::vector<volume_alternative> alternatives;
+  /// False when a group search ran out of the work budget (or its node limit): the answer is
+  /// the best certified reading found, not necessarily the best there is (status `budget`).
+  bool complete = true;
   double manifold_milliseconds = 0.0;  ///< the seed's "manifold analysis" row: rotation order and shells
   std::size_t groups = 0;    ///< groups of faces no edge needs that the reading searched
   std::size_t readings = 0;  ///< certified readings the searches met (the best of each group is taken)
@@ -278,6 +303,20 @@ class basic_face_reader {
   std::vector<char> undecided;               // per face: kept because equally good readings disagree
   std::size_t groups_searched = 0, readings_certified = 0;
   std::uint64_t group_nodes = 1u << 15;
+  /// A certified reading of a group that keeps no more faces no edge needs than the one taken:
+  /// its faces kept that the taken one drops and the reverse, its volumes minus the taken
+  /// one's (in the group's regions), and the first key of the order that set it aside.
+  struct group_reading {
+    std::vector<std::uint32_t> add, remove;
+    int volumes = 0;
+    reading_key key = reading_key::none;
+    /// Its solid is a 2-manifold wherever the taken one's is, at the vertices of the faces in
+    /// which they differ (not twelve caps of a geodesic sphere touching at their corners).
+    bool manifold = true;
+  };
+  std::vector<group_reading> other_readings;
+  std::size_t readings_per_group = 8;
+  bool complete = true;  // false once a search or the rounds ran out of the work budget
 
   basic_face_reader(const wire_graph& g, const std::vector<wire_face>& faces, const edge_face_lists& at,
                     const std::vector<std::array<std::uint32_t, 2>>& sides, const std::vector<char>& alive,
@@ -315,7 +354,7 @@ class basic_face_reader {
       if (!alive[i] || needed_faces_one(g_, faces_, at_, alive_, i, scratch)) continue;
       if (sides[i][0] == O_ || sides[i][1] == O_) {
         mouth[sides[i][0] == O_ ? sides[i][1] : sides[i][0]] = 1;
-      } else if (faces[i].depth % 2 == 0 && is_seam(i)) {  // a face filling a hole is no wall among walls
+      } else if (!faces[i].fills_hole && is_seam(i)) {  // a nested outline is no wall among walls
         seams.push_back(i);
         through.unite(sides[i][0], sides[i][1]);
       }
@@ -334,6 +373,13 @@ class basic_face_reader {
     if (reading_ == face_reading::keep_all) return mark_unforced();
     const auto nf = static_cast<std::uint32_t>(faces_.size());
     for (;;) {
+      // Out of budget: stop with the readings committed so far (each certified), flagged.
+      if (budget.limit != 0 && budget.used + nf > budget.limit) {
+        complete = false;
+        notes.push_back("the reading rule ran out of its work budget after " + std::to_string(groups_searched) +
+                        " group searches; the faces still undecided are kept");
+        break;
+      }
       budget.spend(nf);
       mark_unforced();
       // Groups: the free faces no edge needs, joined through shared edges and bounded regions.
@@ -387,6 +433,7 @@ class basic_face_reader {
   face_reading reading_;
   std::vector<std::vector<std::uint32_t>> root_faces_;  // per merged root, the faces bounding it
   std::vector<char> seam_wall_, ambiguous_;             // per face; per merged root
+  std::vector<std::uint32_t> vertex_first_, vertex_faces_;  // CSR vertex → alive faces, built when first needed
   std::vector<std::uint32_t> scratch_;
   std::vector<char> kept_cache_;
 
@@ -412,6 +459,9 @@ class basic_face_reader {
   score best_;
   bool have_best_ = false;
   std::vector<std::vector<char>> optima_;
+  // Certified readings with the fewest kept faces no edge needs met so far, best first by the
+  // order (at most readings_per_group + 1 of them).
+  std::vector<std::pair<score, std::vector<char>>> met_;
   std::uint64_t nodes_ = 0, limit_ = 0;
   bool stopped_ = false;
   std::size_t leaves_ = 0;
@@ -593,6 +643,13 @@ class basic_face_reader {
     if (std::abs(a.area - b.area) <= tol) return 0;
     return a.area > b.area ? -1 : 1;
   }
+  /// The first key in which a and b differ (`none`: equal in all).
+  static reading_key first_difference(const score& a, const score& b) {
+    if (a.c1 != b.c1) return reading_key::unneeded_faces;
+    if (a.volumes != b.volumes) return reading_key::volumes;
+    if (a.c2 != b.c2) return reading_key::faces;
+    return compare(a, b) != 0 ? reading_key::area : reading_key::none;
+  }
   void leaf() {
     ++leaves_;
     if (!certified()) return;
@@ -606,6 +663,13 @@ class basic_face_reader {
         ++s.c2;
         s.c1 += !needed_now(G_[l], false);
       }
+    }
+    if (readings_per_group > 0 && (!have_best_ || s.c1 <= best_.c1)) {
+      // Kept best first; a reading with fewer kept faces no edge needs clears the others.
+      if (have_best_ && s.c1 < best_.c1) met_.clear();
+      const auto at = std::find_if(met_.begin(), met_.end(), [&](const auto& m) { return compare(s, m.first) < 0; });
+      if (static_cast<std::size_t>(at - met_.begin()) <= readings_per_group) met_.insert(at, {s, st_});
+      if (met_.size() > readings_per_group + 1) met_.pop_back();
     }
     const int c = have_best_ ? compare(s, best_) : -1;
     if (c > 0) return;
@@ -633,7 +697,8 @@ class basic_face_reader {
           lb.c1 += !needed_now(G_[l], true);
         }
       if (lb.c1 > best_.c1) return;
-      if (best_.c2 == 0) return;  // every face dropped: nothing beats or ties it
+      // Every face dropped: nothing beats it; the search goes on only for other readings.
+      if (best_.c2 == 0 && readings_per_group == 0) return;
     }
     for (const char v : {char{2}, char{1}}) {
       const std::size_t mark = trail_.size();
@@ -641,6 +706,68 @@ class basic_face_reader {
       undo_to(mark);
       if (stopped_) return;
     }
+  }
+  /// Whether the solid's surface (faces between the outside and a volume, in the current
+  /// assignment) is one fan about vertex v, each edge there on at most two of its faces.
+  /// O(faces at v · their length).
+  bool manifold_at(std::uint32_t v) {
+    if (vertex_first_.empty()) {
+      vertex_first_.assign(g_.num_vertices() + 1, 0);
+      for (std::uint32_t i = 0; i < faces_.size(); ++i)
+        if (alive_[i])
+          for (const auto& loop : faces_[i].loops)
+            for (const auto u : loop) ++vertex_first_[u + 1];
+      for (std::size_t u = 0; u < g_.num_vertices(); ++u) vertex_first_[u + 1] += vertex_first_[u];
+      vertex_faces_.resize(vertex_first_.back());
+      std::vector<std::uint32_t> fill(vertex_first_.begin(), vertex_first_.end() - 1);
+      for (std::uint32_t i = 0; i < faces_.size(); ++i)
+        if (alive_[i])
+          for (const auto& loop : faces_[i].loops)
+            for (const auto u : loop) vertex_faces_[fill[u]++] = i;
+    }
+    const auto o = merged.find(O_);
+    auto outside = [&](std::uint32_t rg) {
+      const auto x = lroot(rg);
+      return x == no_index - 1 ? merged.find(rg) == o : out_[x] != 0;
+    };
+    std::vector<std::array<std::uint32_t, 2>> corners;  // (edge before v, edge after v)
+    for (std::uint32_t k = vertex_first_[v]; k < vertex_first_[v + 1]; ++k) {
+      const auto f = vertex_faces_[k];
+      if (!present(f) || outside(sides_[f][0]) == outside(sides_[f][1])) continue;
+      for (const auto& loop : faces_[f].loops)
+        for (std::size_t i = 0; i < loop.size(); ++i)
+          if (loop[i] == v)
+            corners.push_back({g_.find_edge(loop[(i + loop.size() - 1) % loop.size()], v),
+                               g_.find_edge(v, loop[(i + 1) % loop.size()])});
+    }
+    if (corners.empty()) return true;
+    std::vector<std::uint32_t> edges;
+    for (const auto& c : corners) edges.push_back(c[0]), edges.push_back(c[1]);
+    std::sort(edges.begin(), edges.end());
+    for (std::size_t k = 0; k + 2 < edges.size(); ++k)
+      if (edges[k] == edges[k + 2]) return false;
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    union_find fan(edges.size());
+    std::size_t fans = edges.size();
+    auto index = [&](std::uint32_t e) {
+      return static_cast<std::uint32_t>(std::lower_bound(edges.begin(), edges.end(), e) - edges.begin());
+    };
+    for (const auto& c : corners) {
+      const auto a = fan.find(index(c[0])), b = fan.find(index(c[1]));
+      if (a != b) fan.unite(a, b), --fans;
+    }
+    return fans == 1;
+  }
+  /// How many of the vertices `at` are not manifold_at under the assignment `st` (replayed).
+  std::size_t pinched(const std::vector<char>& st, const std::vector<std::uint32_t>& at) {
+    st_.assign(G_.size(), 0);
+    bool ok = true;
+    for (std::uint32_t l = 0; l < G_.size() && ok; ++l) ok = assign(l, st[l]);
+    std::size_t n = 0;
+    if (ok)
+      for (const auto v : at) n += !manifold_at(v);
+    undo_to(0);
+    return ok ? n : at.size() + 1;
   }
   /// The best certified reading of the group's faces `members`: the faces to drop.
   std::vector<std::uint32_t> search(std::vector<std::uint32_t> members, work_budget& budget) {
@@ -683,6 +810,7 @@ class basic_face_reader {
     trail_.clear();
     have_best_ = false;
     optima_.clear();
+    met_.clear();
     nodes_ = 0;
     leaves_ = 0;
     stopped_ = false;
@@ -692,6 +820,7 @@ class basic_face_reader {
     dfs(0);
     budget.spend(std::min<std::uint64_t>(nodes_ * (G_.size() + 1), left));
     std::vector<std::uint32_t> picked;
+    const std::size_t other_start = other_readings.size();
     if (have_best_) {
       // Readings alike in every key keep the faces they disagree on (the wireframe does not decide).
       std::vector<char> choice = optima_.front();
@@ -717,10 +846,37 @@ class basic_face_reader {
       }
       for (std::uint32_t l = 0; l < G_.size(); ++l)
         if (choice[l] == 2) picked.push_back(G_[l]);
+      // The other readings as good in the first key, against the one taken.
+      const auto volumes_of = [&](const score& x) { return static_cast<int>(x.volumes); };
+      for (const auto& [sc, st] : met_) {
+        if (st == choice || sc.c1 != best_.c1) continue;
+        if (other_readings.size() >= other_start + readings_per_group) break;
+        group_reading o;
+        for (std::uint32_t l = 0; l < G_.size(); ++l) {
+          if (st[l] != 2 && choice[l] == 2) o.add.push_back(G_[l]);
+          if (st[l] == 2 && choice[l] != 2) o.remove.push_back(G_[l]);
+        }
+        std::sort(o.add.begin(), o.add.end());
+        std::sort(o.remove.begin(), o.remove.end());
+        o.volumes = volumes_of(sc) - volumes_of(best_);
+        o.key = first_difference(sc, best_);
+        if (o.key != reading_key::unneeded_faces) {
+          std::vector<std::uint32_t> at;
+          for (const auto list : {&o.add, &o.remove})
+            for (const auto f : *list)
+              for (const auto& loop : faces_[f].loops) at.insert(at.end(), loop.begin(), loop.end());
+          std::sort(at.begin(), at.end());
+          at.erase(std::unique(at.begin(), at.end()), at.end());
+          o.manifold = pinched(st, at) <= pinched(choice, at);
+        }
+        other_readings.push_back(std::move(o));
+      }
     }
-    if (stopped_)
+    if (stopped_) {
+      complete = false;
       notes.push_back("the search of a group of " + std::to_string(G_.size()) + " faces no edge needs stopped after " +
                       std::to_string(nodes_) + " steps (work budget); the best reading found is taken");
+    }
     for (const auto f : G_) local_[f] = no_index;
     std::sort(picked.begin(), picked.end());
     return picked;
@@ -743,6 +899,20 @@ class basic_face_reader {
   }
 };
 
+}  // namespace detail
+
+namespace detail {
+/// What a group's other reading stands for, in words. O(1).
+template <class = void>
+std::string reading_words(std::size_t add, std::size_t remove, int volumes, reading_key key) {
+  static const char* const why[] = {"more faces no edge needs", "the fewest volumes", "the fewest faces",
+                                    "the largest area dropped", "nothing: as good in every key"};
+  const std::string v = volumes == 0  ? "as many volumes"
+                        : volumes > 0 ? std::to_string(volumes) + " more volume" + (volumes > 1 ? "s" : "")
+                                      : std::to_string(-volumes) + " fewer volume" + (volumes < -1 ? "s" : "");
+  return "keeps " + std::to_string(add) + " faces the answer drops and drops " + std::to_string(remove) +
+         " it keeps (" + v + "); set aside by " + why[static_cast<int>(key)];
+}
 }  // namespace detail
 
 /// Finds objects and volumes and applies the reading rule to the faces no edge needs (see the
@@ -871,24 +1041,37 @@ volume_result find_volumes(const wire_graph& g, const std::vector<wire_face>& fa
   }
   const auto at = detail::faces_at_edges(g, faces, &alive);
   detail::face_reader reader(g, faces, at, sides_of, alive, regions, options.reading);
+  reader.readings_per_group = options.alternatives_per_group;
   detail::work_budget budget{options.work_budget, 0, "find_volumes"};
   reader.run(budget);
   r.groups = reader.groups_searched;
   r.readings = reader.readings_certified;
+  r.complete = reader.complete;
   for (auto& note : reader.notes) r.diagnostics.push_back(std::move(note));
   std::vector<char>& drop = reader.drop;
   detail::union_find& merged = reader.merged;
   for (std::uint32_t i = 0; i < nf; ++i) {
     if (drop[i]) {
       r.dropped.push_back(i);
-      r.alternatives.push_back(reader.opened[i] ? "would close a hole or dent"
-                                                : "would split a volume in two");
+      volume_alternative a;
+      a.add = {i};
+      a.reading = reader.opened[i] ? "would close a hole or dent" : "would split a volume in two";
       r.diagnostics.push_back("face " + std::to_string(i) + " (" + std::to_string(faces[i].loops[0].size()) +
-                              "-gon): no edge needs it, so it is not a face (it " + r.alternatives.back() +
-                              ")");
+                              "-gon): no edge needs it, so it is not a face (it " + a.reading + ")");
+      r.alternatives.push_back(std::move(a));
     } else if (reader.unforced[i]) {
       r.unforced.push_back(i);
     }
+  }
+  for (auto& o : reader.other_readings) {
+    volume_alternative a;
+    a.add = std::move(o.add);
+    a.remove = std::move(o.remove);
+    a.set_aside_by = o.key;
+    a.undecided = o.key != reading_key::unneeded_faces && o.manifold;
+    a.reading = detail::reading_words(a.add.size(), a.remove.size(), o.volumes, o.key);
+    r.diagnostics.push_back("another reading " + a.reading);
+    r.alternatives.push_back(std::move(a));
   }
 
   // merge_unforced: one kept unforced wall at a time, with every other wall between the same

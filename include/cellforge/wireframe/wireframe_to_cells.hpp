@@ -71,6 +71,16 @@ struct face_note {
   std::string reason;
 };
 
+/// Another reading of the wireframe (volume_alternative in the caller's labels): the cycles it
+/// would make faces, the faces of the answer it would not have, what it stands for.
+struct reading_note {
+  std::vector<face_note> add;         ///< cycles it keeps as faces (each with `reason` below)
+  std::vector<std::uint32_t> remove;  ///< indices into wireframe_result::input.faces it drops
+  std::string reason;                 ///< what the reading stands for and what set it aside
+  reading_key set_aside_by = reading_key::unneeded_faces;
+  bool undecided = false;  ///< the wireframe does not decide between it and the answer (ambiguous)
+};
+
 /// The cell complex (positions in the wireframe's point type P), its input, and every stage's report.
 template <Point3 P>
 struct wireframe_result {
@@ -80,9 +90,11 @@ struct wireframe_result {
   /// input.points[i] is the caller's point input_vertex[i]; input.edges[k] the caller's edge input_edge[k].
   std::vector<std::uint32_t> input_vertex, input_edge;
   std::vector<std::uint32_t> unforced;  ///< indices into input.faces of faces no edge needs (kept: undecided)
-  /// Cycles the reading rule did not take (no edge needs them), each with the reading it stands
-  /// for ("would close a hole or dent", "would split a volume in two"); see volume_options::reading.
-  std::vector<face_note> alternatives;
+  /// Other readings (volume_result::alternatives): first each cycle the reading rule did not take
+  /// (no edge needs it: "would close a hole or dent", "would split a volume in two"), then whole
+  /// readings of groups as good in kept faces no edge needs; `undecided` ones make the answer
+  /// ambiguous. See volume_options::reading.
+  std::vector<reading_note> alternatives;
   /// Faces selected and then removed (a free edge, an overlap): never silent.
   std::vector<face_note> lost;
   read_result read;
@@ -225,6 +237,10 @@ void judge(wireframe_result<P>& r, const std::string& invalid, bool certified) {
   } else if (!c.complete) {
     r.status = solid_status::budget;
     r.status_reason = c.reason();
+  } else if (!r.volume.complete) {
+    r.status = solid_status::budget;
+    r.status_reason = "the reading rule ran out of its work budget (volume_options::work_budget): the best "
+                      "certified reading found, not necessarily the best there is";
   } else if (!c.ok()) {
     r.status = solid_status::not_a_solid;
     // Piercing says what the input is (it intersects itself); the edges it leaves faceless follow.
@@ -249,6 +265,12 @@ void judge(wireframe_result<P>& r, const std::string& invalid, bool certified) {
     r.status_reason = "a closed solid, but the wireframe does not decide " +
                       plural(r.unforced.size(), "face", "faces") +
                       " no edge needs (walls kept, listed in unforced)";
+  } else if (const auto n = static_cast<std::size_t>(std::count_if(
+                 r.alternatives.begin(), r.alternatives.end(), [](const reading_note& a) { return a.undecided; }));
+             n > 0) {
+    r.status = solid_status::ambiguous;
+    r.status_reason = "a closed solid, but another solid has this wireframe too: " +
+                      plural(n, "undecided reading", "undecided readings") + " in alternatives";
   } else {
     r.status = solid_status::solid;
     r.status_reason = "a closed solid: " + plural(r.cells.num_volumes(), "volume", "volumes") + ", " +
@@ -317,8 +339,6 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
     r.volume.face_volumes.assign(n, {no_index, no_index});
   } else {
     r.volume = find_volumes(g, r.extra.faces, options.volume);
-    for (std::size_t k = 0; k < r.volume.dropped.size(); ++k)
-      r.alternatives.push_back(note(r.extra.faces[r.volume.dropped[k]], r.volume.alternatives[k]));
     r.relations = find_relations(g, r.extra.faces, r.volume, options.relations);
   }
 
@@ -403,6 +423,13 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   }
   for (const auto i : r.volume.unforced)
     if (face_id[i] != no_index) r.unforced.push_back(face_id[i]);
+  for (const auto& a : r.volume.alternatives) {
+    reading_note n{{}, {}, a.reading, a.set_aside_by, a.undecided};
+    for (const auto i : a.add) n.add.push_back(note(faces[i], a.reading));
+    for (const auto i : a.remove)
+      if (face_id[i] != no_index) n.remove.push_back(face_id[i]);
+    r.alternatives.push_back(std::move(n));
+  }
   if (options.build_complex) {
     // Built and checked in the graph's numbering (spatial: read_options::spatial_order), where
     // the sorts and checks stay in cache, then renumbered to the output's: the same complex as
