@@ -499,6 +499,11 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
           r.diagnostics.push_back("tidied to the view of a solid: junctions moved by at most " +
                                   std::to_string(r.tidy.largest_move) + " of the drawing's size (rms " +
                                   std::to_string(r.tidy.rms_move) + ")");
+        } else {
+          r.diagnostics.push_back(
+              "tidied to the view of a solid, but its reading gives " +
+              std::string(tidied.cells ? "a complex whose faces disagree" : "no complex") +
+              (tidied.error.empty() ? std::string() : " (" + tidied.error + ")"));
         }
       }
     } catch (const error& e) {

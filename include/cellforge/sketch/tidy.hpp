@@ -114,14 +114,17 @@ std::pair<double, double> moves(const std::vector<glm::dvec2>& from, const std::
   return {largest, from.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(from.size()))};
 }
 
-/// Classes of lines parallel in 3D in a reading: longest line first, every unassigned line
-/// within `tolerance` (radians, up to sign) joins it unless it shares a junction with a member
-/// (two lines at one junction of a solid are never parallel). Classes of one line are dropped.
-/// O(E log E + E · W), W the lines within the tolerance in the drawing.
+/// Classes of lines parallel in 3D in a reading: longest line first, every unassigned line of
+/// the same part of the drawing (`part` per junction) within `tolerance` (radians, up to sign)
+/// joins it unless it shares a junction with a member (two lines at one junction of a solid
+/// are never parallel). Classes of one line are dropped. Then classes of different parts whose
+/// drawing directions are each other's only match within the tolerance are merged: the depth
+/// of a part drawn inside another is read on its own, so only its drawing directions compare.
+/// O(E log E + E · W + C²), W the lines within the tolerance in the drawing, C the classes.
 template <class = void>
 std::vector<std::vector<std::uint32_t>> parallel_classes(
     const std::vector<glm::dvec3>& q, const std::vector<std::array<std::uint32_t, 2>>& edges,
-    double tolerance) {
+    const std::vector<std::uint32_t>& part, double tolerance) {
   const std::size_t ne = edges.size();
   std::vector<glm::dvec3> dir(ne);
   std::vector<double> len(ne), ang(ne);
@@ -140,20 +143,21 @@ std::vector<std::vector<std::uint32_t>> parallel_classes(
   std::vector<char> taken(ne, 0);
   std::vector<std::uint32_t> mark(q.size(), std::numeric_limits<std::uint32_t>::max());
   std::vector<std::vector<std::uint32_t>> out;
-  // The 3D angle bounds the drawing's angle only when the line is not steep; the window is
-  // widened by the line's slope (a steep line's drawing direction turns faster).
+  std::uint32_t id = 0;
   for (const auto seed : by_length) {
     if (taken[seed] || !(len[seed] > 0)) continue;
     std::vector<std::uint32_t> cls{seed};
     taken[seed] = 1;
-    const auto id = static_cast<std::uint32_t>(out.size());
+    ++id;
     mark[edges[seed][0]] = mark[edges[seed][1]] = id;
+    // The 3D angle bounds the drawing's angle only when the line is not steep: the window in
+    // the drawing is widened by the line's slope.
     const double flat = std::hypot(dir[seed].x, dir[seed].y);
     const double window =
         flat > 1e-6 ? std::min(std::numbers::pi / 2, 2 * tolerance / flat) : std::numbers::pi / 2;
     const auto visit = [&](std::size_t k) {
       const std::uint32_t e = by_angle[k];
-      if (taken[e] || !(len[e] > 0)) return;
+      if (taken[e] || !(len[e] > 0) || part[edges[e][0]] != part[edges[seed][0]]) return;
       if (std::abs(glm::dot(dir[e], dir[seed])) < std::cos(tolerance)) return;
       if (mark[edges[e][0]] == id || mark[edges[e][1]] == id) return;
       taken[e] = 1, cls.push_back(e);
@@ -170,12 +174,46 @@ std::vector<std::vector<std::uint32_t>> parallel_classes(
     scan(std::max(lo, 0.0), std::min(hi, std::numbers::pi));
     if (lo < 0) scan(lo + std::numbers::pi, std::numbers::pi);
     if (hi > std::numbers::pi) scan(0.0, hi - std::numbers::pi);
-    if (cls.size() >= 2)
-      out.push_back(std::move(cls));
-    else
-      taken[seed] = 1;
+    if (cls.size() >= 2) out.push_back(std::move(cls));
   }
-  return out;
+  // Across parts: each class's drawing direction (length-weighted mean of doubled angles).
+  const std::size_t nc = out.size();
+  std::vector<double> mean(nc);
+  for (std::size_t c = 0; c < nc; ++c) {
+    double sx = 0, sy = 0;
+    for (const auto e : out[c]) sx += len[e] * std::cos(2 * ang[e]), sy += len[e] * std::sin(2 * ang[e]);
+    mean[c] = 0.5 * std::atan2(sy, sx);
+  }
+  const auto class_part = [&](std::size_t c) { return part[edges[out[c][0]][0]]; };
+  // The only class of part `other` within the tolerance of class c's direction, or nc.
+  const auto only_match = [&](std::size_t c, std::uint32_t other) {
+    std::size_t found = nc;
+    for (std::size_t k = 0; k < nc; ++k)
+      if (class_part(k) == other && angle_distance(mean[k], mean[c]) <= tolerance) {
+        if (found != nc) return nc;
+        found = k;
+      }
+    return found;
+  };
+  std::vector<std::size_t> into(nc);
+  for (std::size_t c = 0; c < nc; ++c) into[c] = c;
+  for (std::size_t c = 0; c < nc; ++c)
+    for (std::size_t k = c + 1; k < nc; ++k)
+      if (class_part(k) != class_part(c) && into[k] == k && only_match(c, class_part(k)) == k &&
+          only_match(k, class_part(c)) == c) {
+        std::size_t root = c;
+        while (into[root] != root) root = into[root];
+        into[k] = root;
+      }
+  std::vector<std::vector<std::uint32_t>> merged;
+  std::vector<std::size_t> slot(nc, nc);
+  for (std::size_t c = 0; c < nc; ++c) {
+    std::size_t root = c;
+    while (into[root] != root) root = into[root];
+    if (slot[root] == nc) slot[root] = merged.size(), merged.emplace_back();
+    for (const auto e : out[c]) merged[slot[root]].push_back(e);
+  }
+  return merged;
 }
 
 }  // namespace detail::tidy
@@ -325,8 +363,19 @@ tidy_result<drawing_point_t<D>> tidy_to_solid(
   // 2. Lines parallel in 3D in that reading.
   std::vector<glm::dvec3> q0(nv);
   for (std::size_t i = 0; i < nv; ++i) q0[i] = glm::dvec3(pr.p[i], z0[i]);
+  std::vector<std::uint32_t> part(nv, std::numeric_limits<std::uint32_t>::max());
+  for (std::uint32_t s = 0, parts = 0; s < nv; ++s) {
+    if (part[s] != std::numeric_limits<std::uint32_t>::max()) continue;
+    std::vector<std::uint32_t> queue{s};
+    part[s] = parts;
+    for (std::size_t k = 0; k < queue.size(); ++k)
+      for (const auto e : pr.incident[queue[k]])
+        for (const auto w : pr.edges[e])
+          if (part[w] == std::numeric_limits<std::uint32_t>::max()) part[w] = parts, queue.push_back(w);
+    ++parts;
+  }
   const auto found = detail::tidy::parallel_classes(
-      q0, pr.edges, options.direction_tolerance_degrees * std::numbers::pi / 180.0);
+      q0, pr.edges, part, options.direction_tolerance_degrees * std::numbers::pi / 180.0);
   // With those classes first; without them when that fails (a class the first reading got wrong).
   std::string why;
   for (const bool with_classes : {true, false}) {
