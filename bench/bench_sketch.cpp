@@ -26,10 +26,12 @@
 #include "cellforge/sketch/drawing_to_cells.hpp"
 #include "cellforge/sketch/face_finder.hpp"
 #include "cellforge/sketch/inflation.hpp"
+#include "cellforge/sketch/noisy_drawings.hpp"
 #include "cellforge/sketch/round_skeleton.hpp"
 #include "cellforge/sketch/rounds.hpp"
 #include "cellforge/sketch/sample_drawings.hpp"
 #include "cellforge/sketch/sample_round_drawings.hpp"
+#include "cellforge/sketch/tidy.hpp"
 
 namespace {
 
@@ -148,6 +150,36 @@ const cellforge::sample_drawing& comb() {
     return cellforge::generic_drawing(cellforge::make_voxel_model(l, "comb"), 1, "normalon");
   }();
   return s;
+}
+
+// Tidying at scale: a comb normalon of `teeth` teeth (about 11 lines a tooth: 1k and 10k
+// lines), every junction jittered by a tenth of its spacing (the drawing stays the same drawing).
+struct big_comb {
+  cellforge::sample_drawing s;
+  cellforge::line_drawing<glm::dvec2> jittered;
+};
+
+const big_comb& comb_of(std::size_t teeth) {
+  static std::map<std::size_t, big_comb> m;
+  auto it = m.find(teeth);
+  if (it != m.end()) return it->second;
+  const std::size_t width = 2 * teeth;
+  cellforge::voxel_layout l =
+      cellforge::empty_layout(cellforge::detail::iota_coords(width + 1), {0, 1, 2}, {0, 1});
+  for (std::size_t i = 0; i < width; ++i) l.at(i, 0, 0) = 1, l.at(i, 1, 0) = i % 2 == 0;
+  big_comb c;
+  c.s = cellforge::generic_drawing(cellforge::make_voxel_model(l, "comb"), 1, "normalon", 1e-9, 8);
+  glm::dvec2 lo = c.s.drawing.points[0], hi = lo;
+  for (const auto& q : c.s.drawing.points) lo = glm::min(lo, q), hi = glm::max(hi, q);
+  const double spacing =
+      cellforge::detail::junction_spacing(c.s.drawing.points, c.s.drawing.edges, glm::length(hi - lo));
+  c.jittered = cellforge::jitter_drawing(c.s.drawing, 0.1 * spacing, 1);
+  return m.emplace(teeth, std::move(c)).first->second;
+}
+
+std::map<std::string, std::string>& tidy_rows() {
+  static std::map<std::string, std::string> m;
+  return m;
 }
 
 // The generated round drawings, per family.
@@ -391,6 +423,46 @@ void register_all() {
         ->UseManualTime()
         ->Unit(benchmark::kMillisecond);
   }
+  for (const std::size_t teeth : {90u, 900u}) {
+    const std::string lines = std::to_string(comb_of(teeth).s.drawing.edges.size());
+    benchmark::RegisterBenchmark(("tidy/parallel/" + lines).c_str(),
+                                 [teeth, lines](benchmark::State& state) {
+                                   const big_comb& c = comb_of(teeth);
+                                   cellforge::tidy_options o;
+                                   o.parallel_tolerance_degrees = 2;
+                                   cb::median_loop(
+                                       state, [&] { return cellforge::tidy_drawing(c.jittered, o); },
+                                       [&](const auto& t) {
+                                         tidy_rows()["parallel " + lines] = std::to_string(t.classes) +
+                                                                            " classes, largest move " +
+                                                                            cb::fixed(t.largest_move, 7);
+                                       });
+                                 })
+        ->Iterations(3)
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond);
+    // tidy_to_solid at 10k lines does not finish in minutes yet (the first reading's O(E²)
+    // direction clustering and sparse-QR freedom): 1k only (docs/sketch.md, "Tidying").
+    if (teeth > 100) continue;
+    benchmark::RegisterBenchmark(("tidy/solid/" + lines).c_str(),
+                                 [teeth, lines](benchmark::State& state) {
+                                   const big_comb& c = comb_of(teeth);
+                                   std::vector<std::vector<std::vector<std::uint32_t>>> faces;
+                                   for (const auto& l : c.s.loops) faces.push_back({l});
+                                   cb::median_loop(
+                                       state, [&] { return cellforge::tidy_to_solid(c.jittered, faces); },
+                                       [&](const auto& t) {
+                                         tidy_rows()["solid " + lines] =
+                                             std::string(t.solid ? "solid" : "not solid") + ", " +
+                                             std::to_string(t.classes) + " classes, " +
+                                             std::to_string(t.steps) + " steps, largest move " +
+                                             cb::fixed(t.largest_move, 7);
+                                       });
+                                 })
+        ->Iterations(1)
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond);
+  }
   benchmark::RegisterBenchmark(
       "inflate/comb",
       [](benchmark::State& state) {
@@ -477,6 +549,12 @@ void print_tables(const cb::collecting_reporter& r, std::ostream& os) {
       "Depth error: of the better Necker reading, up to a depth offset, over the drawing's size; the median "
       "of the "
       "family's drawings (optimised readings are regular shapes, not the model's exact depths).");
+  for (const auto& [row, what] : tidy_rows())
+    in.add_note(
+        "Tidying a jittered comb, " + row + " lines: " +
+        cb::ms(r.counter_ms("tidy/" + row.substr(0, row.find(' ')) + "/" + row.substr(row.find(' ') + 1),
+                            "median_cpu_us")) +
+        " ms (" + what + ").");
   in.add_note("Direct inflation of a " + std::to_string(comb().drawing.edges.size()) +
               "-line comb normalon: " + cb::ms(r.counter_ms("inflate/comb", "median_cpu_us")) +
               " ms (issue target: 100 lines in <= 50 ms).");

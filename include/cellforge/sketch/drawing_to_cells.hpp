@@ -184,6 +184,7 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
   };
   std::vector<part_reading> pr(parts);
   double size = 0;
+  bool inexact = false;  // a part read by least squares: its planes match others' only roughly
   for (std::uint32_t c = 0; c < parts; ++c) {
     if (!has_loop[c]) continue;
     line_drawing<glm::dvec2> sub;
@@ -203,7 +204,20 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
     pr[c].span = (hi.x - lo.x) * (hi.y - lo.y);
     size = std::max(size, glm::length(hi - lo));
     try {
-      const auto res = inflate<glm::dvec3>(sub, sub_faces, inflation);
+      // An inexact (sketched) part has only flat exact readings: read it by least squares.
+      const auto res = [&] {
+        try {
+          return inflate<glm::dvec3>(sub, sub_faces, inflation);
+        } catch (const error& e) {
+          if (e.category() != error_category::topology) throw;
+          inflation_options ls = inflation;
+          ls.least_squares = true;
+          ls.direction_tolerance = std::max(ls.direction_tolerance, 4.0 * 3.141592653589793 / 180.0);
+          ls.closure_tolerance = std::max(ls.closure_tolerance, 0.05);
+          inexact = true;
+          return inflate<glm::dvec3>(sub, sub_faces, ls);
+        }
+      }();
       for (const auto& reading : res.readings) {
         std::vector<glm::dvec3> pts(nv, glm::dvec3(0.0));
         for (std::size_t k = 0; k < global.size(); ++k) pts[global[k]] = reading.points[k];
@@ -230,7 +244,8 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
   std::vector<glm::dvec3> placed(nv, glm::dvec3(0.0));
   std::vector<char> is_placed(parts, 0);
   std::vector<double> placed_outward(parts, 1.0);
-  const double parallel = std::sin(0.5 * 3.141592653589793 / 180.0), depth_tolerance = 1e-3 * size;
+  const double parallel = std::sin((inexact ? 5.0 : 0.5) * 3.141592653589793 / 180.0),
+               depth_tolerance = (inexact ? 3e-2 : 1e-3) * size;
   for (std::size_t k = 0; k < order.size(); ++k) {
     const std::uint32_t c = order[k];
     std::size_t best_votes = 0, best_reading = 0;
@@ -376,10 +391,11 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
     std::string error;
   };
   const auto wanted = detail::sketch::canonical_loops(r.faces.loops);
-  const auto run = [&](const line_drawing<drawing_point_t<D>>& used, std::vector<std::string>& notes) {
+  const auto run = [&](const line_drawing<drawing_point_t<D>>& used,
+                       const detail::sketch::face_set& face_loops, std::vector<std::string>& notes) {
     attempt a;
     try {
-      a.inflated = inflate<glm::dvec3>(used, r.face_loops, options.inflation);
+      a.inflated = inflate<glm::dvec3>(used, face_loops, options.inflation);
     } catch (const error& e) {
       if (e.category() != error_category::topology && e.category() != error_category::invalid_input) throw;
       a.error = e.what();
@@ -427,7 +443,7 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
   // drawing would change it); tidied when that gives no complex whose faces agree.
   std::vector<std::string> notes;
   r.tidy.drawing = to_line_drawing(drawing);
-  attempt best = options.tidy == tidy_mode::always ? attempt{} : run(r.tidy.drawing, notes);
+  attempt best = options.tidy == tidy_mode::always ? attempt{} : run(r.tidy.drawing, r.face_loops, notes);
   const auto direct = [](const attempt& a) {
     return a.cells && a.agree && a.inflated.method == inflation_method::direct;
   };
@@ -436,7 +452,7 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
     for (const auto& d : t.diagnostics) r.diagnostics.push_back(d);
     if (t.applied) {
       std::vector<std::string> tidy_notes;
-      attempt tidied = run(t.drawing, tidy_notes);
+      attempt tidied = run(t.drawing, r.face_loops, tidy_notes);
       // Tidied wins when it gives a complex where there was none, one whose faces agree where
       // they did not, or a direct (exact) reading where there was an optimised one.
       if ((tidied.cells && !best.cells) || (tidied.cells && tidied.agree && !best.agree) ||
@@ -445,6 +461,54 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
         notes = std::move(tidy_notes);
         r.tidy = std::move(t);
       }
+    }
+  }
+  // Still no complex whose faces agree: the drawing is inexact (sketched). Tidied to the nearest
+  // view of a solid with the faces found (planar faces, lines parallel in 3D parallel).
+  if (options.tidy != tidy_mode::never && !(best.cells && best.agree) && r.face_loops.size() >= 4) {
+    try {
+      tidy_result<drawing_point_t<D>> t = tidy_to_solid(drawing, r.face_loops, options.tidying);
+      for (const auto& d : t.diagnostics) r.diagnostics.push_back(d);
+      detail::sketch::face_set regrouped = r.face_loops;
+      if (t.applied) {
+        // Parts drawn inside others are placed by their planes, which an inexact drawing gives
+        // only roughly: grouped again on the tidied drawing (one view for every part), and
+        // tidied again from the drawing as drawn with holes the grouping found.
+        std::vector<std::string> group_notes;
+        std::size_t ambiguous = 0;
+        const detail::faces::drawing_graph g2 = detail::faces::make_graph(t.drawing, options.faces);
+        regrouped = detail::sketch::group_faces(g2, r.faces.loops, options.inflation, group_notes, ambiguous);
+        if (regrouped != r.face_loops) {
+          tidy_result<drawing_point_t<D>> t2 = tidy_to_solid(drawing, regrouped, options.tidying);
+          for (const auto& d : t2.diagnostics) r.diagnostics.push_back(d);
+          if (t2.applied)
+            t = std::move(t2), r.diagnostics.push_back("faces grouped again on the tidied drawing: " +
+                                                       std::to_string(regrouped.size()) + " faces");
+          else
+            regrouped = r.face_loops;
+        }
+      }
+      if (t.applied) {
+        std::vector<std::string> tidy_notes;
+        attempt tidied = run(t.drawing, regrouped, tidy_notes);
+        if ((tidied.cells && !best.cells) || (tidied.cells && tidied.agree)) {
+          best = std::move(tidied);
+          notes = std::move(tidy_notes);
+          r.face_loops = std::move(regrouped);
+          r.tidy = std::move(t);
+          r.diagnostics.push_back("tidied to the view of a solid: junctions moved by at most " +
+                                  std::to_string(r.tidy.largest_move) + " of the drawing's size (rms " +
+                                  std::to_string(r.tidy.rms_move) + ")");
+        } else {
+          r.diagnostics.push_back(
+              "tidied to the view of a solid, but its reading gives " +
+              std::string(tidied.cells ? "a complex whose faces disagree" : "no complex") +
+              (tidied.error.empty() ? std::string() : " (" + tidied.error + ")"));
+        }
+      }
+    } catch (const error& e) {
+      if (e.category() != error_category::topology && e.category() != error_category::invalid_input) throw;
+      r.diagnostics.push_back(std::string("tidy_to_solid: ") + e.what());
     }
   }
   for (auto& n : notes) r.diagnostics.push_back(std::move(n));

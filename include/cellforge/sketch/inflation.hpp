@@ -20,6 +20,7 @@
 #include <vector>
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -52,6 +53,9 @@ struct inflation_weights {
   /// Every line a convex fold (hinge on the far corners of the next face behind this face's
   /// plane); used only on drawings whose faces admit a strictly convex reading, see docs/sketch.md.
   double convexity = 1.0;
+  /// Least-squares readings only (inflation_options::least_squares): face planarity, the mean
+  /// squared residual of the planarity rows (exact readings keep it 0 by construction).
+  double planarity = 100.0;
 };
 
 /// Options of inflate, with documented defaults.
@@ -79,6 +83,12 @@ struct inflation_options {
   /// by `starts`); the convex start alone gave the true complex on every such sweep drawing.
   int convex_starts = 1;
   std::uint64_t seed = 1;  ///< seed of the random starts
+  /// The drawing is inexact (sketched, jittered): read it by least squares. The optimisation
+  /// then runs over the exact planar readings and the near ones (singular vectors of the
+  /// planarity rows below the widest gap of the spectrum), with face planarity a weighted term,
+  /// and after.planarity reports how far the reading is from planar faces. Raise
+  /// direction_tolerance and closure_tolerance with it for the direct method.
+  bool least_squares = false;
 };
 
 /// Value of each compliance function (unweighted, each normalised by its count) at a reading.
@@ -125,6 +135,10 @@ struct inflation_result {
   /// Model → view rotation of the preferred reading, row-major: column i is axis i in the view.
   std::array<double, 9> view_rotation{};
   double misclosure = 0.0;  ///< worst depth misclosure of an axis edge, relative to the drawing size
+  /// A least-squares reading (inflation_options::least_squares): its faces are planar only to
+  /// after.planarity; near_readings of the freedom were near the planar ones, not exactly.
+  bool least_squares = false;
+  std::size_t near_readings = 0;
 };
 
 namespace detail {
@@ -294,11 +308,12 @@ struct compliance_terms {
     double alpha, beta, gamma, scale;
   };
   std::vector<convex_row> convex;
-  double convex_margin = 0.0;  // the hinge is max(0, h + margin)
+  double convex_margin = 0.0;   // the hinge is max(0, h + margin)
+  std::size_t planar_rows = 0;  // least-squares readings: the planarity rows as a term
   std::size_t count() const {
     std::size_t n = 0;
     for (const auto& c : parallel) n += c.size();
-    return corners.size() + right.size() + n + convex.size() + 1;
+    return corners.size() + right.size() + n + convex.size() + planar_rows + 1;
   }
 };
 
@@ -600,6 +615,11 @@ void compliance_residuals(const inflation_problem<>& pr, const compliance_terms<
     }
     if (terms) terms->convexity = sum / static_cast<double>(t.convex.size());
   }
+  // Planarity, when it is not exact by construction (least-squares readings).
+  if (t.planar_rows > 0) {
+    const double planar_scale = std::sqrt(w.planarity / static_cast<double>(t.planar_rows));
+    for (const auto& r : pr.rows) out[k++] = planar_scale * plane_residual(r, z);
+  }
   while (k < out.size()) out[k++] = 0;
   if (terms) {
     double worst = 0;
@@ -881,6 +901,69 @@ Eigen::MatrixXd planar_readings(const inflation_problem<>& pr, double rank_toler
   return q.rightCols(nv - rank);
 }
 
+/// The planarity rows C (one per row of pr.rows) and a last row of ones / √V (the depth offset),
+/// sparse. O(R).
+template <class = void>
+Eigen::SparseMatrix<double> planarity_matrix(const inflation_problem<>& pr) {
+  const auto nv = static_cast<Eigen::Index>(pr.p.size());
+  const auto nr = static_cast<Eigen::Index>(pr.rows.size());
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(pr.rows.size() * 4 + pr.p.size());
+  for (Eigen::Index i = 0; i < nr; ++i) {
+    const auto& r = pr.rows[static_cast<std::size_t>(i)];
+    t.emplace_back(i, r.d, 1.0), t.emplace_back(i, r.a, -r.alpha), t.emplace_back(i, r.b, -r.beta),
+        t.emplace_back(i, r.c, -r.gamma);
+  }
+  for (Eigen::Index v = 0; v < nv; ++v) t.emplace_back(nr, v, 1.0 / std::sqrt(static_cast<double>(nv)));
+  Eigen::SparseMatrix<double> c(nr + 1, nv);
+  c.setFromTriplets(t.begin(), t.end());
+  return c;
+}
+
+/// Dimension of the planar-face readings (the null space of [C; 1ᵀ]) from a sparse QR, for
+/// drawings read directly (which need no basis). O(fill of the sparse QR), near-linear for sketches.
+template <class = void>
+std::size_t planar_freedom(const inflation_problem<>& pr, double rank_tolerance) {
+  // SparseQR factors a tall matrix: [C; 1ᵀ] when it has at least V rows, its transpose otherwise.
+  Eigen::SparseMatrix<double> c = planarity_matrix(pr);
+  if (c.rows() < c.cols()) c = Eigen::SparseMatrix<double>(c.transpose());
+  c.makeCompressed();
+  Eigen::SparseQR<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> qr;
+  qr.setPivotThreshold(rank_tolerance);
+  qr.compute(c);
+  const auto rank = qr.info() == Eigen::Success ? qr.rank() : std::min(c.rows(), c.cols());
+  return static_cast<std::size_t>(static_cast<Eigen::Index>(pr.p.size()) - rank);
+}
+
+/// Least-squares readings of an inexact drawing: the exact planar readings and the near ones, an
+/// orthonormal basis from the SVD of [C; 1ᵀ] with each planarity row scaled to unit length. The
+/// near ones are the singular vectors below the widest gap (a ratio of 2 or more) among the six
+/// smallest singular values above the exact ones; without such a gap, the smallest one when
+/// only the tilts are exact (a solid has more), else none. Sets `near`. O(V² R).
+template <class = void>
+Eigen::MatrixXd near_planar_readings(const inflation_problem<>& pr, double rank_tolerance,
+                                     std::size_t& near) {
+  const auto nv = static_cast<Eigen::Index>(pr.p.size());
+  Eigen::MatrixXd c = Eigen::MatrixXd(planarity_matrix(pr));
+  for (Eigen::Index i = 0; i + 1 < c.rows(); ++i) c.row(i).normalize();
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(c, Eigen::ComputeFullV);
+  std::vector<double> sigma(static_cast<std::size_t>(nv), 0.0);  // ascending, missing ones 0
+  const Eigen::VectorXd& s = svd.singularValues();
+  for (Eigen::Index i = 0; i < s.size(); ++i) sigma[static_cast<std::size_t>(nv - 1 - i)] = s[i];
+  const double top = s.size() > 0 ? s[0] : 0.0;
+  std::size_t exact = 0;
+  while (exact < sigma.size() && sigma[exact] <= rank_tolerance * top) ++exact;
+  near = 0;
+  double widest = 2.0;
+  for (std::size_t q = 1; q <= 6 && exact + q < sigma.size(); ++q) {
+    const double ratio = sigma[exact + q] / std::max(sigma[exact + q - 1], 1e-300);
+    if (ratio >= widest) widest = ratio, near = q;
+  }
+  if (near == 0 && exact <= 2 && exact < sigma.size()) near = 1;
+  const auto k = static_cast<Eigen::Index>(exact + near);
+  return svd.matrixV().rightCols(k);
+}
+
 /// Lines whose two face loops are coplanar at depths z (the sine of the angle between their
 /// normals below 1e-3): a reading in which faces merge. O(L log L).
 template <class Z>
@@ -971,8 +1054,8 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
     detail::compliance_residuals(pr, terms, inflation_weights{1, 1, 1, 1, 1}, z, scratch, &r);
     return r;
   };
-  const Eigen::MatrixXd basis = detail::planar_readings(pr, options.rank_tolerance);
-  res.freedom = static_cast<std::size_t>(basis.cols());
+  // The basis of the planar readings is dense (O(V² R)): built only when the optimisation needs it.
+  Eigen::MatrixXd basis;
 
   std::vector<double> z;
   detail::direct_solution<> direct;
@@ -996,6 +1079,16 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
     if (!options.allow_optimisation)
       throw error(error_category::invalid_input,
                   "inflate: the direct method does not apply (" + direct.why + ") and optimisation is off");
+    if (options.least_squares) {
+      basis = detail::near_planar_readings(pr, options.rank_tolerance, res.near_readings);
+      res.least_squares = true;
+      terms.planar_rows = pr.rows.size();
+      m = static_cast<Eigen::Index>(terms.count() + pr.edges.size() + nv);
+      scratch.resize(m);
+    } else {
+      basis = detail::planar_readings(pr, options.rank_tolerance);
+    }
+    res.freedom = static_cast<std::size_t>(basis.cols());
     // Only the flat and tilted readings z = a x + b y (2 after the offset): no solid.
     if (basis.cols() <= 2)
       throw error(
@@ -1082,6 +1175,8 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
                               std::to_string(res.starts) + " starts");
   } else {
     res.before = measure(z);
+    res.freedom = detail::planar_freedom(pr, options.rank_tolerance);
+    res.least_squares = options.least_squares;
   }
   // Mean depth 0, then the Necker pair ranked by the view-from-above prior.
   double mean = 0;
@@ -1096,6 +1191,10 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
   if (range < 1e-6)
     res.diagnostics.push_back(
         "inflate: the reading found is flat (depth range below 1e-6 of the drawing size)");
+  if (res.least_squares)
+    res.diagnostics.push_back("inflate: least-squares reading: faces planar to " +
+                              std::to_string(res.after.planarity) + " of the drawing size (" +
+                              std::to_string(res.near_readings) + " near-planar reading(s) added)");
   std::size_t upright = 0;
   const double score = detail::from_above_score(pr, terms, z, upright);
   const auto lift = [&](const std::vector<double>& depth) {

@@ -1,0 +1,193 @@
+// SPDX-License-Identifier: MIT
+// Inexact drawings (sketch/tidy.hpp, sketch/noisy_drawings.hpp): tidy_to_solid moves the
+// junctions of a jittered drawing as little as it can to the view of a solid with its faces
+// (planar to 1e-9, the moves reported), and drawing_to_cells then gives the exact drawing's
+// complex. The sweep at 0.2, 0.5, 1 and 2 % jitter prints its rate per level and family and
+// names every miss; bad input.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cellforge/sketch/drawing_to_cells.hpp"
+#include "cellforge/sketch/noisy_drawings.hpp"
+#include "cellforge/sketch/sample_drawings.hpp"
+#include "cellforge/sketch/tidy.hpp"
+
+namespace tidy_test {
+
+using faces_t = std::vector<std::vector<std::vector<std::uint32_t>>>;
+
+// The model's faces and volumes, read back from a drawing_to_cells result in junction numbers.
+bool is_model(const cellforge::sample_drawing& s, const cellforge::drawing_result<glm::dvec3>& r) {
+  faces_t found;
+  found.reserve(r.cells.input.faces.size());
+  for (const auto& face : r.cells.input.faces) {
+    faces_t::value_type loops = face.loops;
+    for (auto& loop : loops)
+      for (auto& v : loop) v = r.cells.input_vertex[v];
+    found.push_back(std::move(loops));
+  }
+  return cellforge::same_faces(s.model.faces, found) &&
+         cellforge::same_volumes(s.model.faces, s.model.volumes, found, r.cells.input.volumes);
+}
+
+faces_t one_loop_faces(const cellforge::sample_drawing& s) {
+  faces_t f;
+  for (const auto& l : s.loops) f.push_back({l});
+  return f;
+}
+
+}  // namespace tidy_test
+
+TEST_CASE("tidy_to_solid: jittered cube, L block and hexagonal prism become views of solids") {
+  using namespace tidy_test;
+  const std::vector<std::pair<cellforge::sample_model, std::string>> models{
+      {cellforge::sample_cube(), "cube"},
+      {cellforge::sample_L(), "L"},
+      {cellforge::sample_prism(6), "prism"}};
+  for (const double jitter : {0.002, 0.01}) {
+    for (const auto& [model, name] : models) {
+      CAPTURE(name);
+      CAPTURE(jitter);
+      const auto s = cellforge::generic_drawing(model, 2, name, 2.5 * jitter);
+      const auto d = cellforge::jitter_drawing(s.drawing, jitter, 11);
+      const auto t = cellforge::tidy_to_solid(d, one_loop_faces(s));
+      CHECK(t.solid == t.applied);
+      const std::string why = t.diagnostics.empty() ? std::string() : t.diagnostics.back();
+      INFO(why);
+      REQUIRE(t.applied);
+      CHECK(t.solid);
+      CHECK(t.planarity <= 1e-9);
+      // Moved about as far as the pen slipped, never much farther; and moved.
+      CHECK(t.largest_move <= 3 * jitter);
+      CHECK(t.rms_move > 0);
+      CHECK(t.rms_move <= t.largest_move);
+      CHECK(t.depth.size() == s.drawing.points.size());
+      CHECK(t.classes >= 3);  // the three axes (cube, L) or the sides and the lateral edges (prism)
+      // The tidied drawing reads as the model; normalons directly (their axis lines are exactly
+      // parallel again, and every cycle of them closes).
+      cellforge::line_drawing<glm::dvec2> tidied = t.drawing;
+      const auto r = cellforge::drawing_to_cells(tidied);
+      CHECK(is_model(s, r));
+      CHECK(r.faces_agree);
+      CHECK_FALSE(r.tidy.solid);  // exact now: nothing more to tidy
+      if (name != "prism") CHECK(r.inflation.method == cellforge::inflation_method::direct);
+      // And drawing_to_cells on the jittered drawing gives the model too (tidied when needed).
+      const auto j = cellforge::drawing_to_cells(d);
+      CHECK(is_model(s, j));
+      if (j.tidy.solid) CHECK(j.tidy.largest_move <= 3 * jitter);
+    }
+  }
+}
+
+TEST_CASE("tidy_to_solid: an exact drawing stays where it is; drawing_to_cells does not tidy it") {
+  using namespace tidy_test;
+  for (const auto& [model, name] : std::vector<std::pair<cellforge::sample_model, const char*>>{
+           {cellforge::sample_L(), "L"}, {cellforge::sample_prism(5), "prism"}}) {
+    CAPTURE(name);
+    const auto s = cellforge::generic_drawing(model, 3, name);
+    const auto t = cellforge::tidy_to_solid(s.drawing, one_loop_faces(s));
+    REQUIRE(t.applied);
+    CHECK(t.largest_move < 1e-9);
+    CHECK(t.planarity <= 1e-9);
+    const auto r = cellforge::drawing_to_cells(s.drawing);
+    CHECK_FALSE(r.tidy.solid);
+    CHECK(is_model(s, r));
+  }
+}
+
+TEST_CASE("tidy_to_solid: bad input is refused, a drawing too far from a solid is left as drawn") {
+  using namespace tidy_test;
+  const auto s = cellforge::generic_drawing(cellforge::sample_cube(), 1, "cube");
+  auto nan = s.drawing;
+  nan.points[2].y = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_AS(cellforge::tidy_to_solid(nan, one_loop_faces(s)), cellforge::error);
+  faces_t wrong = one_loop_faces(s);
+  wrong[0][0][1] = 99;
+  CHECK_THROWS_WITH_AS(cellforge::tidy_to_solid(s.drawing, wrong), doctest::Contains("junction 99"),
+                       cellforge::error);
+  // Jittered, with no room to move: left as drawn, and the diagnostic says how far it would move.
+  cellforge::tidy_options strict;
+  strict.solid_max_move = 1e-6;
+  const auto t =
+      cellforge::tidy_to_solid(cellforge::jitter_drawing(s.drawing, 0.01, 3), one_loop_faces(s), strict);
+  CHECK_FALSE(t.applied);
+  CHECK_FALSE(t.solid);
+  REQUIRE_FALSE(t.diagnostics.empty());
+  CHECK(t.diagnostics.front().find("solid_max_move") != std::string::npos);
+  // The parallel tidy of a jittered cube: lines of a class exactly parallel afterwards.
+  const auto p = cellforge::tidy_drawing(cellforge::jitter_drawing(s.drawing, 1e-4, 5));
+  REQUIRE(p.applied);
+  CHECK(p.classes == 3);
+  CHECK(p.rms_move > 0);
+}
+
+TEST_CASE(
+    "drawing_to_cells on jittered sample drawings: the exact drawing's complex, rate per level and family") {
+  using namespace tidy_test;
+  // Release: a deterministic sample of every family at each level (about 20 s); the sanitizer
+  // build: a few small drawings at two levels.
+#ifdef NDEBUG
+  const std::vector<std::pair<double, std::size_t>> levels{
+      {0.002, 130}, {0.005, 40}, {0.01, 130}, {0.02, 40}};
+  const std::size_t max_edges = 120;
+#else
+  const std::vector<std::pair<double, std::size_t>> levels{{0.002, 14}, {0.01, 14}};
+  const std::size_t max_edges = 30;
+#endif
+  for (const auto& [jitter, limit] : levels) {
+    cellforge::noisy_sweep_options o;
+    o.jitter = jitter;
+    o.sweep.limit = limit;
+    o.sweep.max_edges = max_edges;
+    cellforge::noisy_sweep_report report;
+    const auto set = cellforge::noisy_sweep(o, &report);
+    std::size_t exact_right = 0, right = 0;
+    double worst_move = 0;
+    std::map<std::string, std::pair<std::size_t, std::size_t>> family;
+    std::vector<std::string> misses;
+    for (const auto& n : set) {
+      // Measured over the drawings whose exact version gives the true complex.
+      try {
+        if (!is_model(n.exact, cellforge::drawing_to_cells(n.exact.drawing))) continue;
+      } catch (const cellforge::error&) {
+        continue;
+      }
+      ++exact_right;
+      auto& f = family[n.exact.family];
+      ++f.first;
+      try {
+        const auto r = cellforge::drawing_to_cells(n.drawing);
+        const bool ok = is_model(n.exact, r);
+        right += ok, f.second += ok;
+        if (r.tidy.solid) {
+          worst_move = std::max(worst_move, r.tidy.largest_move);
+          CHECK(r.tidy.planarity <= 1e-9);
+        }
+        if (!ok)
+          misses.push_back(n.exact.name + " [" + n.exact.family + "]: " +
+                           (r.diagnostics.empty() ? std::string("another complex") : r.diagnostics.back()));
+      } catch (const cellforge::error& e) {
+        misses.push_back(n.exact.name + " [" + n.exact.family + "]: " + e.what());
+      }
+    }
+    for (const auto& [name, f] : family)
+      MESSAGE("jitter " << 100 * jitter << " %, " << name << ": " << f.second << " of " << f.first);
+    for (const auto& m : misses) MESSAGE("miss at " << 100 * jitter << " %: " << m);
+    const double rate = exact_right ? static_cast<double>(right) / static_cast<double>(exact_right) : 0.0;
+    MESSAGE("jitter " << 100 * jitter << " %: the exact drawing's complex on " << right << " of "
+                      << exact_right << " (" << 100 * rate << " %); " << report.too_close
+                      << " drawings left out (a junction within twice the jitter of another or of a line), "
+                      << report.sweep.drawings << " in the sweep; largest tidying move " << worst_move);
+    CHECK(exact_right >= set.size() * 9 / 10);
+    // Floors under the measured rates (docs/sketch.md, "Tidying": 83 %, 88 %, 77 %, 72 %); the
+    // issue's goal is 98 % at 0.2 % and 95 % at 1 %, not met yet.
+    CHECK(rate >= (jitter <= 0.002 ? 0.8 : 0.7));
+  }
+}
