@@ -5,8 +5,8 @@
 /// tidying, inflation to 3D and the wireframe pipeline on the result, arcs, rounds and fillets.
 /// Needs Eigen 3.3+ on the include path (the tidy, inflation, arc-detection and rounds stages
 /// solve with it). Not included: the generated drawings of the tests and benchmarks
-/// (`sketch/sample_drawings.hpp`, `sketch/sample_round_drawings.hpp`) and the drawing readers
-/// and writers (`cellforge/io/drawing_text.hpp`, `io/svg_drawing.hpp`, `io/drawing_svg.hpp`).
+/// (`sketch/sample_drawings.hpp`, `sketch/sample_round_drawings.hpp`, `sketch/noisy_drawings.hpp`) and the
+/// drawing readers and writers (`cellforge/io/drawing_text.hpp`, `io/svg_drawing.hpp`, `io/drawing_svg.hpp`).
 /// The header hygiene test checks that this list is complete.
 
 #include "cellforge/core/point2_traits.hpp"

@@ -85,8 +85,8 @@ endfunction()
 # The 3D library: everything but io/, detail/, the line drawings and the generators.
 check_umbrella(cellforge/cellforge.hpp "^cellforge/"
                "^cellforge/(io/|.*/detail/|cellforge\\.hpp$|sketch\\.hpp$|sketch/|algorithms/shapes\\.hpp$|wireframe/sample_models\\.hpp$|tubes/sample_skeletons\\.hpp$|thin/sample_solids\\.hpp$|smooth/sample_solids\\.hpp$)")
-# The line drawings: every sketch/ header but the generators.
-check_umbrella(cellforge/sketch.hpp "^cellforge/sketch/" "/detail/|/sample_(round_)?drawings\\.hpp$")
+# The line drawings: every sketch/ header but the generators (sample and noisy drawings).
+check_umbrella(cellforge/sketch.hpp "^cellforge/sketch/" "/detail/|/sample_(round_)?drawings\\.hpp$|/noisy_drawings\\.hpp$")
 # Headers that need Eigen: those that include it, then those that include one of them, until
 # no more are found.
 set(needs_eigen "")
