@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// Ear-clipping triangulation of planar polygons in 3D (seed 001, §III, algorithm 2), with
+/// Ear-clipping triangulation of planar polygons in 3D (seed 001 §III, algorithm 2), with
 /// exact orientation tests, collinear vertices, repeated vertices and a grid that keeps a
 /// 10,000-vertex comb or star fast; plus helpers that triangulate every face of a soup or
 /// a half-edge mesh. See docs/convex_hull.md (ear clipping section).

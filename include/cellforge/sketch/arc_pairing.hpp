@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// Pairing the arcs of a drawing into rounds and fillets (seed 003_be08eec927fcc329.txt,
-/// "Rounds and fillets", step 2 of detection): arcs of one ellipse meeting end to end are one
+/// Pairing the arcs of a drawing into rounds and fillets (seed 003
+/// §"Rounds and fillets", step 2 of detection): arcs of one ellipse meeting end to end are one
 /// end curve; two end curves are the two ends of one blend when (rule 1) a contour line is
 /// tangent to both, or else (rule 2) they are translates of each other — in parallel faces, of
 /// the same size and orientation — with mutually parallel lines at their ends. Each end

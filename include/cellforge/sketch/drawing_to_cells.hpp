@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// A line drawing becomes a cell complex in one call (seed 003_be08eec927fcc329.txt, finding
-/// faces and inflation, on top of seed 000's wireframe pipeline): faces of the drawing
+/// A line drawing becomes a cell complex in one call (seed 003 §"Finding
+/// faces" and §"Inflation", on top of seed 000's wireframe pipeline): faces of the drawing
 /// (sketch/face_finder.hpp) → their loops grouped into faces with holes → inflation to 3D
 /// (sketch/inflation.hpp) → a 3D wireframe → wireframe_to_cells. Every stage's result comes
 /// back, and the faces found in 2D are checked against the faces the 3D pipeline recovers.

@@ -189,7 +189,7 @@ struct drawing_arc {
   elliptical_arc<P> curve{};
 };
 
-/// The seed's visibility categories of a round or fillet (003_be08eec927fcc329.txt, "Rounds and
+/// The seed's visibility categories of a round or fillet (seed 003 §"Rounds and
 /// fillets"), by how its two faces face the viewer: `a` both (both arcs seen whole, no line
 /// between them), `b` one (a round's contour line is tangent to both arcs), `c` neither (one arc
 /// seen, the other hidden). In a wireframe drawing a and c are the two Necker readings of one

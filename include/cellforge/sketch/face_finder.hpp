@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// Faces of a wireframe line drawing (seed 003_be08eec927fcc329.txt, "Finding faces"): the
+/// Faces of a wireframe line drawing (seed 003 §"Finding faces"): the
 /// Varley–Company string algorithm — strings of half-edges, concatenation and cyclisation
 /// under the two rules, a master list of what must be true and a working list for hypotheses,
 /// a start at a trihedral junction, forced concatenations, voluntary mergers and hypotheses by

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// The polyhedral skeleton of a drawing with rounds and fillets (seed 003_be08eec927fcc329.txt,
-/// "Rounds and fillets", stage 2): for every pair of arcs, suppress both arcs, extend the lines
+/// The polyhedral skeleton of a drawing with rounds and fillets (seed 003
+/// §"Rounds and fillets", stage 2): for every pair of arcs, suppress both arcs, extend the lines
 /// at their ends until they meet — the meeting point is a new vertex — and join the two new
 /// vertices by an edge. The result is an ordinary line drawing for drawing_to_cells; each
 /// blend keeps its 2D geometry (the two end ellipses, the new edge) and whether it is a convex

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// Reconstruction with rounds and fillets (seed 003_be08eec927fcc329.txt, "Rounds and fillets",
+/// Reconstruction with rounds and fillets (seed 003 §"Rounds and fillets",
 /// stages 3 and 4): the skeleton drawing of round_skeleton is read by drawing_to_cells, then
 /// every skeleton edge that carried a blend gets its 3D radius from its end curves and the
 /// reconstructed face planes, and becomes a circular-arc blend between its two faces (a convex

@@ -1373,7 +1373,7 @@ sample_model revolved_solid(int kind, std::uint64_t seed) {
                                 std::to_string(rings) + " rings" + tag);
 }
 
-/// Hand-made drawings of the kinds seed 003 (003_be08eec927fcc329.txt) shows as hard for face
+/// Hand-made drawings of the kinds seed 003 shows as hard for face
 /// finders, each with its genus: internal faces, several circuits in one plane, edge pairs in
 /// no face, through-slots, loops shorter than faces that are no faces. O(1).
 template <class = void>

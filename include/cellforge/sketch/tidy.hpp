@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// Tidying a line drawing (seed 003_be08eec927fcc329.txt, stage "2D beautification or tidying
+/// Tidying a line drawing (seed 003 §"Main stages", "2D beautification or tidying
 /// up"). tidy_drawing makes nearly parallel lines exactly parallel by the smallest movement of
 /// the junctions. tidy_to_solid, given the faces, moves the junctions as little as it can so
 /// that the drawing becomes the exact view of a solid with those faces: planar faces, and

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// The cubic edge fitter of seed 000 chapter VI: every edge of a closed solid becomes a cubic,
+/// The cubic edge fitter of seed 000 §6: every edge of a closed solid becomes a cubic,
 /// quadratic or straight curve from the normals of its continuous surface (§6.1–6.4), with the
 /// midpoints readjusted until they settle (§6.5). Beyond the seed: creases between surfaces are
 /// smoothed too, and curves that are not a function of one axis get a parametric (Bézier) form.
@@ -54,7 +54,7 @@ struct smooth_options {
   int stall_cycles = 5;        ///< equal moving counts that trigger the seed's averaging, 1..1000
 };
 
-/// The seed's exact rules (chapter VI): creases straight, normals at interior vertices only,
+/// The seed's exact rules (seed 000 §6): creases straight, normals at interior vertices only,
 /// no crease inside a surface, the axis form everywhere it exists. O(1).
 template <class = void>
 smooth_options seed_smooth_options() {
@@ -400,7 +400,7 @@ smooth_result<P> with_cell_ids(const cell_topology& cc, const halfedge_mesh& m, 
 }  // namespace detail::smooth
 
 /// Smooths every edge of the closed solid m into a curve (seed 000
-/// ch. VI with the beyond-seed options above); the curves, ends, midpoints and normals come back
+/// §6 with the beyond-seed options above); the curves, ends, midpoints and normals come back
 /// in m's point type P (computed in double precision, converted once). O(E · iterations) time,
 /// O(E) memory (plus stall_cycles copies of the midpoints). Throws error(topology) for an open or
 /// inconsistently oriented mesh, error(invalid_input) for degenerate faces, non-finite points or bad options.

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// find_thin_points: the thin-point finder of seed 000 chapter V on a closed half-edge mesh
+/// find_thin_points: the thin-point finder of seed 000 §5 on a closed half-edge mesh
 /// or a cell-complex volume: central axis (§5.1), selection growing (§5.2, §5.4) and loop
 /// detection (§5.3), returning the thin loops as ordered closed vertex chains.
 
@@ -543,7 +543,7 @@ thin_result<P> with_cell_ids(const cell_topology& cc, const halfedge_mesh& m, th
 
 }  // namespace detail::thin
 
-/// The thin loops of a closed, consistently oriented, connected mesh (seed 000 ch. V), with loop
+/// The thin loops of a closed, consistently oriented, connected mesh (seed 000 §5), with loop
 /// points and the axis in m's point type P (computed in double precision, converted once).
 /// O(faces · cap · (boundary + candidates · degree)) in fast mode; see docs/thin.md.
 template <Point3 P>

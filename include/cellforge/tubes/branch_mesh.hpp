@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// Branch meshes (001_2f93ddd1ce4b9f26.txt, §V.A.1, algorithm 9): the surface around a junction.
+/// Branch meshes (seed 001 §V.A.1, algorithm 9): the surface around a junction.
 /// One cross-section per incident edge is projected onto a sphere about the junction, the
 /// convex hull of all projected points is taken, each cross-section's cap is removed, and
 /// every vertex is moved back along its ray to its cross-section's true place. Because each

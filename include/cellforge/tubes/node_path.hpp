@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// Node paths (001_2f93ddd1ce4b9f26.txt, §V.A.2, algorithm 8): the tube between consecutive
+/// Node paths (seed 001 §V.A.2, algorithm 8): the tube between consecutive
 /// cross-sections along a path, with twist reduction (§V.C). Frames are carried along the path
 /// by rotation-minimising transport (double reflection), and the mismatch left where the path
 /// meets a junction's ring, or closes on itself, is spread evenly along its length (the

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// The tube construct (001_2f93ddd1ce4b9f26.txt, §V.A): a skeleton graph split into
+/// The tube construct (seed 001 §V.A): a skeleton graph split into
 /// junctions (branches: nodes of degree 3 or more, and any other node the caller marks) and
 /// the paths of nodes between them. No two junctions are adjacent: a node is inserted on
 /// every edge that joins two. Paths are traced by iteration, never recursion.

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// Tube networks (001_2f93ddd1ce4b9f26.txt, ch. V): a skeleton graph with radii becomes one
+/// Tube networks (seed 001 §V): a skeleton graph with radii becomes one
 /// closed, oriented 2-manifold per connected component, whose genus is the graph's cycle rank.
 /// `make_tubes(g, options)` runs the stages: the tube construct (tube_construct.hpp), the
 /// branch meshes (branch_mesh.hpp), the node paths (node_path.hpp), and the mesh.
