@@ -145,7 +145,7 @@ void visit_attribute(const attribute_job& job, F&& f, value_types<T...>) {
   (void)((job.kind == kind++ && (f(static_cast<property_array<T>*>(job.array)), true)) || ...);
 }
 
-/// Resolves the opted-in properties before anything changes. O(#properties²).
+/// Resolves the opted-in properties before anything changes. O(properties²).
 template <class = void>
 std::vector<attribute_job> resolve_attributes(halfedge_mesh& mesh, const std::vector<loop_property>& specs) {
   std::vector<attribute_job> jobs;

@@ -319,9 +319,12 @@ class element_range {
 }  // namespace detail
 }  // namespace cellforge
 
-// Circulator and element ranges only point into the mesh: iterators outlive the range object.
+// Circulator and element ranges only point into the mesh: iterators outlive the range object
+// (specialisations of std templates, kept out of the Doxygen reference by the cond block).
+/// @cond INTERNAL
 template <class It>
 inline constexpr bool std::ranges::enable_borrowed_range<cellforge::detail::circulator_range<It>> = true;
 template <class Mesh, class Handle>
 inline constexpr bool std::ranges::enable_borrowed_range<cellforge::detail::element_range<Mesh, Handle>> =
     true;
+/// @endcond

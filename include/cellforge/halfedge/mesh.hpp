@@ -2,7 +2,7 @@
 #pragma once
 /// \file
 /// The half-edge mesh: polygon faces, strong index handles, arrays of records, a hash
-/// table of unlinked half-edges (O(1) face insertion, O(#boundary) boundary queries),
+/// table of unlinked half-edges (O(1) face insertion, O(boundary edges) boundary queries),
 /// non-orientable surfaces and vertices with several open fans. See docs/halfedge.md.
 
 #include <algorithm>
@@ -228,14 +228,14 @@ class basic_halfedge_mesh {
     return static_cast<std::size_t>(std::ranges::distance(halfedges_around(f)));
   }
 
-  /// Boundary half-edges (one per boundary edge, the faceless side), unordered. O(#boundary).
+  /// Boundary half-edges (one per boundary edge, the faceless side), unordered. O(boundary edges).
   std::vector<halfedge_handle> boundary_halfedges() const {
     std::vector<halfedge_handle> out;
     out.reserve(unlinked_.size());
     unlinked_.for_each([&](std::uint32_t h) { out.push_back(twin(halfedge_handle(h))); });
     return out;
   }
-  /// The unlinked face half-edges (whose twin has no face), unordered. O(#boundary).
+  /// The unlinked face half-edges (whose twin has no face), unordered. O(boundary edges).
   std::vector<halfedge_handle> unlinked_halfedges() const {
     std::vector<halfedge_handle> out;
     out.reserve(unlinked_.size());
@@ -263,7 +263,7 @@ class basic_halfedge_mesh {
     }
     return loop;
   }
-  /// The boundary half-edge that continues the boundary from b at its end vertex v. O(#fans at v).
+  /// The boundary half-edge that continues the boundary from b at its end vertex v. O(fans at v).
   halfedge_handle boundary_successor(halfedge_handle b, vertex_handle v) const { return fan_partner(b, v); }
   /// All boundary loops. O(b log b) for b boundary edges.
   std::vector<std::vector<halfedge_handle>> boundary_loops() const {
@@ -357,7 +357,7 @@ class basic_halfedge_mesh {
   property<Handle, T> add_property(std::string_view name, T default_value = T()) {
     return property<Handle, T>(registry<Handle>().template add<T>(name, std::move(default_value)));
   }
-  /// The property named `name` (invalid if none); throws if it holds another type. O(#properties).
+  /// The property named `name` (invalid if none); throws if it holds another type. O(properties).
   template <class Handle, class T>
   property<Handle, T> get_property(std::string_view name) const {
     return property<Handle, T>(registry<Handle>().template get<T>(name));
@@ -372,7 +372,7 @@ class basic_halfedge_mesh {
   bool has_property(std::string_view name) const noexcept {
     return registry<Handle>().find(name) != nullptr;
   }
-  /// Removes a property; its handles become dangling. O(#properties).
+  /// Removes a property; its handles become dangling. O(properties).
   template <class Handle, class T>
   void remove_property(property<Handle, T>& p) {
     if (p) registry<Handle>().remove(p.array());

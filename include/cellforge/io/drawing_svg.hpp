@@ -45,7 +45,7 @@ struct drawing_svg_options {
   double font_px = 11;               ///< label size in output pixels
   double face_opacity = 0.35;        ///< fill opacity of the face polygons
   std::string background = "white";  ///< empty or "none": transparent
-  std::string title{};               ///< written as <title>
+  std::string title{};               ///< written as `<title>`
 };
 
 namespace detail {
@@ -58,7 +58,7 @@ void drawing_svg_number(std::string& out, double v) {
   out.append(buf, r.ptr);
 }
 
-/// The k-th colour of a sequence of distinct hues (golden angle apart), as #rrggbb. O(1).
+/// The k-th colour of a sequence of distinct hues (golden angle apart), as `#rrggbb`. O(1).
 template <class = void>
 std::string golden_colour(std::size_t k) {
   const double h = std::fmod(static_cast<double>(k) * 137.50776405003785, 360.0) / 60.0;

@@ -56,7 +56,7 @@ struct svg_view {
   svg_up_axis up = svg_up_axis::z;
 };
 
-/// How one layer looks. Colours are SVG colours; a fill given as #rgb or #rrggbb is shaded
+/// How one layer looks. Colours are SVG colours; a fill given as `#rgb` or `#rrggbb` is shaded
 /// per face, any other fill (e.g. "red") is used flat.
 struct svg_style {
   std::string fill = "#9fc5e8";    ///< faces; point markers
@@ -86,7 +86,7 @@ struct svg_options {
   glm::dvec3 light{-0.3, 0.8, 1.0};
   double ambient = 0.45;             ///< share of a face's colour it keeps when lit edge-on (0 .. 1)
   std::string background = "white";  ///< empty or "none": transparent
-  std::string title{};               ///< written as <title>
+  std::string title{};               ///< written as `<title>`
   int precision = 2;                 ///< decimals of coordinates (0 .. 9)
   /// A face hides a point only when nearer by more than this fraction of the scene's diagonal.
   double depth_epsilon = 1e-6;
@@ -169,7 +169,7 @@ void svg_number(std::string& out, double v, int precision) {
   out += s == "-0" ? std::string_view("0") : s;
 }
 
-/// #rgb or #rrggbb as 0..1 components; nothing for any other colour syntax.
+/// `#rgb` or `#rrggbb` as 0..1 components; nothing for any other colour syntax.
 template <class = void>
 std::optional<glm::dvec3> svg_parse_hex(std::string_view s) {
   const auto hex = [](char c) -> int {
