@@ -24,6 +24,7 @@
 #include "cellforge/wireframe/face_reduction.hpp"
 #include "cellforge/wireframe/read_vertices.hpp"
 #include "cellforge/wireframe/relations.hpp"
+#include "cellforge/wireframe/tolerance_estimate.hpp"
 #include "cellforge/wireframe/unique_circuits.hpp"
 #include "cellforge/wireframe/volume_finder.hpp"
 
@@ -32,6 +33,9 @@ namespace cellforge {
 /// Options of every stage, with the seed's defaults.
 struct wireframe_options {
   read_options read{};
+  /// The planarity tolerance of every stage chosen from the data (§4.1½, tolerance_estimate.hpp);
+  /// `automatic = false` keeps the stages' own planarity options below.
+  tolerance_options tolerance{};
   trace_options trace{};
   unique_options unique{};
   reduction_options reduction{};
@@ -51,9 +55,10 @@ struct wireframe_options {
   certify_options certify{};
 };
 
-/// The validate() options that judge a complex wireframe_to_cells made with `options`: its faces
-/// are flat to the pipeline's own tolerances (fractions of the model's diagonal), so they are
-/// judged no finer than ten times those, however small a face is. O(1).
+/// The validate() options that judge a complex wireframe_to_cells made with `options` as given
+/// (the stages' tolerances; with the automatic tolerance the result's `check` holds the options
+/// it was judged with): its faces are flat to the pipeline's own tolerances (fractions of the
+/// model's diagonal), so they are judged no finer than ten times those. O(1).
 template <class = void>
 cells_validation_options wireframe_check_options(const wireframe_options& options) {
   cells_validation_options check;
@@ -98,6 +103,12 @@ struct wireframe_result {
   /// Faces selected and then removed (a free edge, an overlap): never silent.
   std::vector<face_note> lost;
   read_result read;
+  /// The tolerance the stages used and how it was found; `tolerance.ambiguous` flags an answer
+  /// the coordinates' noise may have spoilt (no clear gap, and part of the wireframe unexplained).
+  tolerance_result tolerance;
+  /// The validate() options the result was checked with (wireframe_check_options of the
+  /// options as used, the automatic tolerance filled in).
+  cells_validation_options check;
   trace_result trace;
   unique_result unique;
   reduction_result reduction;
@@ -279,6 +290,12 @@ void judge(wireframe_result<P>& r, const std::string& invalid, bool certified) {
                                               " of a tessellated flat surface)"
                                         : std::string());
   }
+  // The coordinates' noise may have hidden faces (tolerance_estimate.hpp): never a solid, and
+  // the reason says why, whatever else the answer is.
+  if (r.tolerance.ambiguous) {
+    if (r.status == solid_status::solid) r.status = solid_status::ambiguous;
+    r.status_reason += "; the tolerance is doubtful: " + r.tolerance.reason;
+  }
 }
 }  // namespace detail
 
@@ -295,17 +312,29 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   wireframe_result<P> r;
   r.read = read_vertices(wire, options.read);
   const wire_graph& g = r.read.graph;
-  r.trace = trace_circuits(g, options.trace);
-  r.unique = unique_circuits(g, std::move(r.trace.faces), options.unique);
+  wireframe_options used = options;  // the options as used: the automatic tolerance filled in
+  if (options.tolerance.automatic) {
+    r.tolerance = estimate_tolerance(g, options.tolerance);
+    const double t = r.tolerance.planarity;
+    used.trace.planarity.relative = used.reduction.planarity.relative = t;
+    used.arrangement.planarity.relative = used.extra.retrace.planarity.relative = t;
+    if (!r.tolerance.clear_gap) r.diagnostics.push_back("tolerance: " + r.tolerance.reason);
+  } else {
+    r.tolerance.planarity = options.trace.planarity.relative;
+    r.tolerance.planarity_distance = options.trace.planarity.relative * g.size;
+  }
+  r.check = wireframe_check_options(used);
+  r.trace = trace_circuits(g, used.trace);
+  r.unique = unique_circuits(g, std::move(r.trace.faces), used.unique);
   r.trace.faces.clear();
-  reduction_options reduction = options.reduction;
+  reduction_options reduction = used.reduction;
   // Faces of a planar arrangement are never the sum of two others; only the seed's search needs the test.
-  if (options.trace.kind == tracer_kind::planar) reduction.remove_face_sums = false;
+  if (used.trace.kind == tracer_kind::planar) reduction.remove_face_sums = false;
   r.reduction = reduce_faces(g, r.unique.faces, reduction);
-  r.arrangement = arrange_faces(g, r.unique.faces, r.reduction, options.arrangement);
-  extra_face_options extra = options.extra;
+  r.arrangement = arrange_faces(g, r.unique.faces, r.reduction, used.arrangement);
+  extra_face_options extra = used.extra;
   // The planar tracer finds every planar face; only the seed's search can miss some.
-  if (options.trace.kind == tracer_kind::planar) extra.add_missed = false;
+  if (used.trace.kind == tracer_kind::planar) extra.add_missed = false;
   r.extra =
       extra_faces(g, r.unique.faces, r.arrangement.selected, extra, detail::span_of(r.arrangement.crossed));
   auto note = [&](const wire_face& f, std::string reason) {
@@ -325,7 +354,12 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   for (const auto& d : r.extra.removed)
     if (!(open_surface && d.free_edge)) r.lost.push_back(note(d.face, d.reason));
   if (r.extra.faces.empty())
-    throw error(error_category::topology, detail::no_face_message(g, r.arrangement, r.lost));
+    throw error(error_category::topology,
+                detail::no_face_message(g, r.arrangement, r.lost) +
+                    (r.tolerance.clear_gap ? std::string()
+                                           : "; " + r.tolerance.reason +
+                                                 " (set wireframe_options::tolerance.automatic = false and "
+                                                 "the stages' planarity, or wire2cells --planarity)"));
   if (!r.extra.open_edges.empty())
     r.diagnostics.push_back(
         detail::open_surface_message(g, r.unique.faces, r.arrangement, r.extra, open_surface));
@@ -338,8 +372,8 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
     r.volume.face_kept.assign(n, 1);
     r.volume.face_volumes.assign(n, {no_index, no_index});
   } else {
-    r.volume = find_volumes(g, r.extra.faces, options.volume);
-    r.relations = find_relations(g, r.extra.faces, r.volume, options.relations);
+    r.volume = find_volumes(g, r.extra.faces, used.volume);
+    r.relations = find_relations(g, r.extra.faces, r.volume, used.relations);
   }
 
   detail::stopwatch clock;
@@ -353,6 +387,22 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
     for (const auto& loop : faces[i].loops)
       for (std::size_t k = 0; k < loop.size(); ++k)
         edge_used[g.find_edge(loop[k], loop[(k + 1) % loop.size()])] = 1;
+  }
+  // No clear gap between noise and shape (or shape as shallow as noise can be): the reading
+  // stands when it explains the whole wireframe (every edge on a kept face, nothing lost,
+  // volumes closed); otherwise the noise may have hidden faces, and the answer is flagged.
+  if (options.tolerance.automatic &&
+      (!r.tolerance.clear_gap || (r.tolerance.geometry > 0.0 && r.tolerance.geometry < options.tolerance.shallow))) {
+    const bool explained = !open_surface && r.lost.empty() &&
+                           std::find(edge_used.begin(), edge_used.end(), char{0}) == edge_used.end();
+    r.tolerance.ambiguous = !explained;
+    if (r.tolerance.ambiguous && r.tolerance.reason.empty())
+      r.tolerance.reason = "the shape's shallowest edges stand " + std::to_string(r.tolerance.geometry) +
+                           " of their length off their corners' planes, no more than noise can";
+    if (r.tolerance.ambiguous)
+      r.diagnostics.push_back(
+          "tolerance: the reading leaves part of the wireframe unexplained and the noise may have hidden "
+          "faces; the answer is doubtful");
   }
   // Vertices and edges: those the faces use (and dangling edges when asked), caller's order.
   std::vector<std::array<std::uint32_t, 2>> edges;  // in the caller's vertex labels
@@ -476,15 +526,15 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
       r.cells = make_cell_complex(r.input);  // the error in the output's numbering
       throw;
     }
-    if (options.check_result) r.validation = validate(inside, wireframe_check_options(options));
+    if (options.check_result) r.validation = validate(inside, r.check);
     r.cells = renumber_cells(inside, vertex_label, edge_label);
     if (!r.validation.ok())
-      r.validation = validate(r.cells, wireframe_check_options(options));  // output numbering
+      r.validation = validate(r.cells, r.check);  // output numbering
     r.validation.expected_euler.clear();  // per object, and objects were numbered otherwise inside
     r.validation.euler_checked.clear();
     r.assembly_milliseconds = clock.ms();
     if (options.certify_result) {
-      const certify_options check = detail::pipeline_certify_options(options);
+      const certify_options check = detail::pipeline_certify_options(used);
       r.certificate = certify(r.cells, wire, check);
       // A volume bounded by a face that an input edge pierces is no solid the input draws (the
       // surface intersects itself, as a triangle through a tetrahedron): its faces stay, the
@@ -504,7 +554,7 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
                                   " volumes dropped: a face of each is pierced by an input edge (" +
                                   pierced->message + "), so the input intersects itself there");
           r.cells = make_cell_complex(r.input);
-          if (options.check_result) r.validation = validate(r.cells, wireframe_check_options(options));
+          if (options.check_result) r.validation = validate(r.cells, r.check);
           r.certificate = certify(r.cells, wire, check);
         }
       }
