@@ -1728,8 +1728,9 @@ inline std::string miss_reason(const cellforge::sample_model& m, const cellforge
 /// readings it reports — the answer without some of its unforced faces, or the answer with one
 /// undecided alternative taken (its cycles added, its faces removed); else why not.
 /// O(alternatives · F log F · face size).
-inline std::string ambiguous_miss(const cellforge::sample_model& m, const cellforge::wireframe_result<glm::dvec3>& r) {
-  std::string why = miss_reason(m, r);
+inline std::string ambiguous_miss(const cellforge::sample_model& m, const cellforge::wireframe_result<glm::dvec3>& r,
+                                  const cellforge::cells_validation_options& check = {}) {
+  std::string why = miss_reason(m, r, check);
   if (why.empty()) return why;
   const bool undecided = std::any_of(r.alternatives.begin(), r.alternatives.end(),
                                      [](const cellforge::reading_note& a) { return a.undecided; });
@@ -1788,13 +1789,14 @@ inline cellforge::sample_model noisy(const cellforge::sample_model& m, double ep
 /// answer passed as good (status `solid`).
 enum class noisy_outcome { exact, flagged, error, wrong };
 
-/// Converts a noisy copy with default options and judges it against the truth, its complex
-/// checked with the options the pipeline used (wireframe_result::check); `why` gets the reason
-/// of a miss. O(one conversion).
-inline noisy_outcome judge_noisy(const cellforge::sample_model& m, std::string& why) {
+/// Converts a noisy copy with default options and judges it against the truth as the sweep
+/// does (`ambiguous`: a model two solids share, judged by ambiguous_miss), its complex checked
+/// with the options the pipeline used (wireframe_result::check); `why` gets the reason of a
+/// miss. O(one conversion).
+inline noisy_outcome judge_noisy(const cellforge::sample_model& m, std::string& why, bool ambiguous = false) {
   try {
     const auto r = cellforge::wireframe_to_cells(m.wire);
-    why = miss_reason(m, r, r.check);
+    why = ambiguous ? ambiguous_miss(m, r, r.check) : miss_reason(m, r, r.check);
     if (why.empty()) return noisy_outcome::exact;
     return r.status != cellforge::solid_status::solid ? noisy_outcome::flagged : noisy_outcome::wrong;
   } catch (const cellforge::error& e) {

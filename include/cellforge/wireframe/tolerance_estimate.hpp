@@ -34,10 +34,6 @@ struct tolerance_options {
   bool automatic = true;
   /// Noise and geometry must lie this many decades apart (relative residuals) for a clear gap.
   double min_gap_decades = 1.25;
-  /// Shape residuals below this may be noise too (a file of four decimals puts a thin part's
-  /// edges this far off their planes): when the reading leaves part of the wireframe
-  /// unexplained, wireframe_to_cells flags it even with a clear gap.
-  double shallow = 1e-3;
   /// The tolerance stays this factor above the largest noise distance and below the smallest
   /// geometric one; closer than that in absolute terms, the gap is not clear either.
   double safety = 3.0;
@@ -58,9 +54,9 @@ struct tolerance_result : stage_report {
   /// input's noise reaches its geometry somewhere (the answer may be wrong; see `reason`).
   bool clear_gap = true;
   std::string reason;  ///< why the gap is not clear; empty when it is
-  /// Set by wireframe_to_cells: the gap is not clear (or the shape is shallower than
-  /// tolerance_options::shallow) and the reading leaves part of the wireframe unexplained (edges
-  /// on no face, faces lost, no volume): the noise may have hidden faces; the answer is doubtful.
+  /// Set by wireframe_to_cells: the gap is not clear and the reading leaves part of the
+  /// wireframe unexplained (edges on no face, faces lost, no volume): the noise may have hidden
+  /// faces; the answer is doubtful (status ambiguous at best, with this reason).
   bool ambiguous = false;
   double noise = 0.0;     ///< largest relative residual of the near-zero cluster (0: none seen)
   double geometry = 0.0;  ///< smallest relative residual of the geometric cluster (0: none seen)

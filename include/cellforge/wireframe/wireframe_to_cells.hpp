@@ -388,17 +388,13 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
       for (std::size_t k = 0; k < loop.size(); ++k)
         edge_used[g.find_edge(loop[k], loop[(k + 1) % loop.size()])] = 1;
   }
-  // No clear gap between noise and shape (or shape as shallow as noise can be): the reading
-  // stands when it explains the whole wireframe (every edge on a kept face, nothing lost,
-  // volumes closed); otherwise the noise may have hidden faces, and the answer is flagged.
-  if (options.tolerance.automatic &&
-      (!r.tolerance.clear_gap || (r.tolerance.geometry > 0.0 && r.tolerance.geometry < options.tolerance.shallow))) {
+  // No clear gap between noise and shape: the reading stands when it explains the whole
+  // wireframe (every edge on a kept face, nothing lost, volumes closed); otherwise the noise
+  // may have hidden faces, and the answer is flagged (the certificate also says what is left).
+  if (options.tolerance.automatic && !r.tolerance.clear_gap) {
     const bool explained = !open_surface && r.lost.empty() &&
                            std::find(edge_used.begin(), edge_used.end(), char{0}) == edge_used.end();
     r.tolerance.ambiguous = !explained;
-    if (r.tolerance.ambiguous && r.tolerance.reason.empty())
-      r.tolerance.reason = "the shape's shallowest edges stand " + std::to_string(r.tolerance.geometry) +
-                           " of their length off their corners' planes, no more than noise can";
     if (r.tolerance.ambiguous)
       r.diagnostics.push_back(
           "tolerance: the reading leaves part of the wireframe unexplained and the noise may have hidden "
