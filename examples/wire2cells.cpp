@@ -83,13 +83,14 @@ std::vector<example::option_spec> option_table(settings& s) {
       {{"--planarity"},
        "X",
        "a point lies in a plane when closer than X times the model's size, in tracing, face reduction "
-       "and arrangement (0 to 0.1; default: chosen from the data, in the gap between the coordinates' "
+       "and arrangement, planes fitted to their vertices (0 to 0.1; default: chosen from the data, in the gap between the coordinates' "
        "noise and the shape, printed as the 'tolerance' row)",
        [&](std::string_view v) {
          const double x = option_number("--planarity", v, 0.0, 0.1);
          p.tolerance.automatic = false;
          p.trace.planarity.relative = p.extra.retrace.planarity.relative = x;
          p.reduction.planarity.relative = p.arrangement.planarity.relative = x;
+         p.trace.fit_planes = true;  // a given tolerance is for noisy coordinates
        }},
       {{"--strict"},
        "",

@@ -44,6 +44,10 @@ struct trace_options {
   std::uint64_t work_budget =
       200'000'000;                    ///< abstract steps (path extensions, incidences visited); 0 = none
   std::size_t max_circuit_edges = 0;  ///< seed_bfs only: longest circuit searched; 0 = number of edges
+  /// planar only, for noisy coordinates: refit each plane to the vertices it holds and give its
+  /// faces the fitted normal (docs/wireframe.md, "Tolerances"). Off, the corner planes and each
+  /// face's own normal, as the seed: faces within the tolerance of one plane stay apart.
+  bool fit_planes = false;
 };
 
 /// Candidate faces and what it took to find them.
@@ -448,7 +452,7 @@ void trace_planar(const wire_graph& g, const trace_options& opt, trace_result& r
           // which a large face multiplies: fit the plane to the vertices found (least squares)
           // and search again while the fit takes in vertices the last plane left out. On exact
           // input the fit moves the plane by rounding only and the first search stands.
-          for (int refit = 0; refit < 4 && cverts.size() >= 4; ++refit) {
+          for (int refit = 0; opt.fit_planes && refit < 4 && cverts.size() >= 4; ++refit) {
             const auto [fn, fo] = fit_plane(g, detail::span_of(cverts), n);
             bool more = false;
             for (const auto y : off) more = more || std::abs(glm::dot(fn, g.points[y] - fo)) <= tol;
@@ -595,7 +599,7 @@ void trace_planar(const wire_graph& g, const trace_options& opt, trace_result& r
     for (auto& f : faces_of[c]) {
       update_normal(g, f);
       const glm::dvec3 n = comps[group[c]].normal;
-      if (f.area > 0.0) f.normal = glm::dot(f.normal, n) < 0.0 ? -n : n;
+      if (opt.fit_planes && f.area > 0.0) f.normal = glm::dot(f.normal, n) < 0.0 ? -n : n;
       r.faces.push_back(std::move(f));
     }
 }

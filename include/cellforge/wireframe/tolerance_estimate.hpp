@@ -65,6 +65,11 @@ struct tolerance_result : stage_report {
   double geometry_distance = 0.0;     ///< smallest distance of the geometric cluster (absolute)
   double planarity = 1e-9;            ///< the planarity tolerance chosen, relative to the diagonal
   double planarity_distance = 0.0;    ///< the same in model units
+  /// Set by wireframe_to_cells: the answer is that of the stages' fixed planarity options
+  /// (`planarity` is theirs), certified solid with them (the data's own precision was enough)
+  /// or better than the estimated tolerance's answer; the figures above are the estimate's.
+  bool fixed_pass = false;
+  double estimated_planarity = 0.0;  ///< the estimate's planarity (relative), used or not (0: none made)
   std::size_t corners = 0;            ///< corners a–v–b sampled
   std::size_t samples = 0, noise_samples = 0, geometry_samples = 0;
 };

@@ -9,8 +9,10 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cellforge/cells/cell_complex.hpp"
@@ -299,30 +301,24 @@ void judge(wireframe_result<P>& r, const std::string& invalid, bool certified) {
 }
 }  // namespace detail
 
-/// Converts a wireframe to a cell complex whose positions are the wireframe's (its point type),
-/// certifies it against the wireframe and says what it is (status, status_reason). Faces that
-/// close no volume (a lone planar loop, an open box) come back as faces without volumes,
-/// not_a_solid, with a diagnostic. Throws cellforge::error on bad input (see read_vertices), on
-/// an exhausted work budget of a stage, or when no face is found (saying what the wireframe is).
-/// Polynomial with the default planar tracer: O(Σ deg² + Σ planes k log k + F·L + grid pairs).
+namespace detail {
+/// One run of the pipeline (wireframe_to_cells' body) on the wireframe as read, with the
+/// stages' tolerances of `used` (the caller's options, the planarity filled in); `tolerance` is
+/// recorded in the result, and with `estimated` its doubts apply (no clear gap: a diagnostic,
+/// an answer that leaves part of the wireframe unexplained flagged ambiguous). Throws as
+/// wireframe_to_cells. The cost of wireframe_to_cells.
 template <Wireframe G>
-wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
-    const G& wire, const wireframe_options& options = {}) {
+wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const G& wire,
+                                                                          const wireframe_options& used,
+                                                                          read_result read,
+                                                                          tolerance_result tolerance,
+                                                                          bool estimated) {
   using P = typename wireframe_traits<G>::point_type;
   wireframe_result<P> r;
-  r.read = read_vertices(wire, options.read);
+  r.read = std::move(read);
+  r.tolerance = std::move(tolerance);
   const wire_graph& g = r.read.graph;
-  wireframe_options used = options;  // the options as used: the automatic tolerance filled in
-  if (options.tolerance.automatic) {
-    r.tolerance = estimate_tolerance(g, options.tolerance);
-    const double t = r.tolerance.planarity;
-    used.trace.planarity.relative = used.reduction.planarity.relative = t;
-    used.arrangement.planarity.relative = used.extra.retrace.planarity.relative = t;
-    if (!r.tolerance.clear_gap) r.diagnostics.push_back("tolerance: " + r.tolerance.reason);
-  } else {
-    r.tolerance.planarity = options.trace.planarity.relative;
-    r.tolerance.planarity_distance = options.trace.planarity.relative * g.size;
-  }
+  if (estimated && !r.tolerance.clear_gap) r.diagnostics.push_back("tolerance: " + r.tolerance.reason);
   r.check = wireframe_check_options(used);
   r.trace = trace_circuits(g, used.trace);
   r.unique = unique_circuits(g, std::move(r.trace.faces), used.unique);
@@ -336,7 +332,7 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   // The planar tracer finds every planar face; only the seed's search can miss some.
   if (used.trace.kind == tracer_kind::planar) extra.add_missed = false;
   r.extra =
-      extra_faces(g, r.unique.faces, r.arrangement.selected, extra, detail::span_of(r.arrangement.crossed));
+      extra_faces(g, r.unique.faces, r.arrangement.selected, extra, span_of(r.arrangement.crossed));
   auto note = [&](const wire_face& f, std::string reason) {
     face_note n{f.loops, std::move(reason)};
     for (auto& loop : n.loops)
@@ -355,14 +351,14 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
     if (!(open_surface && d.free_edge)) r.lost.push_back(note(d.face, d.reason));
   if (r.extra.faces.empty())
     throw error(error_category::topology,
-                detail::no_face_message(g, r.arrangement, r.lost) +
-                    (r.tolerance.clear_gap ? std::string()
+                no_face_message(g, r.arrangement, r.lost) +
+                    (!estimated || r.tolerance.clear_gap ? std::string()
                                            : "; " + r.tolerance.reason +
                                                  " (set wireframe_options::tolerance.automatic = false and "
                                                  "the stages' planarity, or wire2cells --planarity)"));
   if (!r.extra.open_edges.empty())
     r.diagnostics.push_back(
-        detail::open_surface_message(g, r.unique.faces, r.arrangement, r.extra, open_surface));
+        open_surface_message(g, r.unique.faces, r.arrangement, r.extra, open_surface));
   if (open_surface) {
     const std::size_t n = r.extra.faces.size();
     r.diagnostics.push_back(
@@ -376,7 +372,7 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
     r.relations = find_relations(g, r.extra.faces, r.volume, used.relations);
   }
 
-  detail::stopwatch clock;
+  stopwatch clock;
   const std::vector<wire_face>& faces = r.extra.faces;
   std::vector<char> edge_used(g.num_edges(), 0);
   std::vector<std::uint32_t> face_id(faces.size(), no_index);
@@ -391,7 +387,7 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   // No clear gap between noise and shape: the reading stands when it explains the whole
   // wireframe (every edge on a kept face, nothing lost, volumes closed); otherwise the noise
   // may have hidden faces, and the answer is flagged (the certificate also says what is left).
-  if (options.tolerance.automatic && !r.tolerance.clear_gap) {
+  if (estimated && !r.tolerance.clear_gap) {
     const bool explained = !open_surface && r.lost.empty() &&
                            std::find(edge_used.begin(), edge_used.end(), char{0}) == edge_used.end();
     r.tolerance.ambiguous = !explained;
@@ -415,21 +411,21 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   for (const std::uint32_t e : caller_order) {
     if (!edge_used[e]) {
       const std::uint32_t other =
-          test_crossings ? detail::crossing_edge(g, detail::span_of(caller_order), e) : no_index;
+          test_crossings ? crossing_edge(g, span_of(caller_order), e) : no_index;
       r.diagnostics.push_back(
           "edge " + std::to_string(g.input_edge[e]) + " bounds no face" +
           (other != no_index
                ? " (it crosses edge " + std::to_string(g.input_edge[other]) + " between their ends)"
                : std::string()) +
-          (options.keep_dangling ? "; kept as a dangling edge" : " and is left out"));
+          (used.keep_dangling ? "; kept as a dangling edge" : " and is left out"));
     }
-    if (edge_used[e] || options.keep_dangling) {
+    if (edge_used[e] || used.keep_dangling) {
       graph_edge_out[e] = static_cast<std::uint32_t>(edges.size());
       edges.push_back({g.input_vertex[g.edges[e][0]], g.input_vertex[g.edges[e][1]]});
       edge_origin.push_back(g.input_edge[e]);
     }
   }
-  if (options.keep_dangling) {
+  if (used.keep_dangling) {
     for (const auto e : r.read.dangling) {
       const auto ab = wireframe_traits<G>::endpoints(wire, e);
       edges.push_back({static_cast<std::uint32_t>(ab[0]), static_cast<std::uint32_t>(ab[1])});
@@ -476,7 +472,7 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
       if (face_id[i] != no_index) n.remove.push_back(face_id[i]);
     r.alternatives.push_back(std::move(n));
   }
-  if (options.build_complex) {
+  if (used.build_complex) {
     // Built and checked in the graph's numbering (spatial: read_options::spatial_order), where
     // the sorts and checks stay in cache, then renumbered to the output's: the same complex as
     // make_cell_complex(r.input), whatever order the caller numbered the wireframe in.
@@ -522,16 +518,16 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
       r.cells = make_cell_complex(r.input);  // the error in the output's numbering
       throw;
     }
-    if (options.check_result) r.validation = validate(inside, r.check);
+    if (used.check_result) r.validation = validate(inside, r.check);
     r.cells = renumber_cells(inside, vertex_label, edge_label);
     if (!r.validation.ok())
       r.validation = validate(r.cells, r.check);  // output numbering
     r.validation.expected_euler.clear();  // per object, and objects were numbered otherwise inside
     r.validation.euler_checked.clear();
     r.assembly_milliseconds = clock.ms();
-    if (options.certify_result) {
-      const certify_options check = detail::pipeline_certify_options(used);
-      r.certificate = certify(r.cells, wire, check);
+    if (used.certify_result) {
+      const certify_options check = pipeline_certify_options(used);
+      r.certificate = cellforge::certify(r.cells, wire, check);
       // A volume bounded by a face that an input edge pierces is no solid the input draws (the
       // surface intersects itself, as a triangle through a tetrahedron): its faces stay, the
       // volume goes, so that no volume is invented from a self-intersecting input.
@@ -550,12 +546,12 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
                                   " volumes dropped: a face of each is pierced by an input edge (" +
                                   pierced->message + "), so the input intersects itself there");
           r.cells = make_cell_complex(r.input);
-          if (options.check_result) r.validation = validate(r.cells, r.check);
-          r.certificate = certify(r.cells, wire, check);
+          if (used.check_result) r.validation = validate(r.cells, r.check);
+          r.certificate = cellforge::certify(r.cells, wire, check);
         }
       }
     }
-    detail::judge(r, r.validation.ok() ? std::string() : r.validation.message, options.certify_result);
+    judge(r, r.validation.ok() ? std::string() : r.validation.message, used.certify_result);
     return r;
   }
   r.assembly_milliseconds = clock.ms();
@@ -563,4 +559,82 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   return r;
 }
 
+/// Whether answer a is better than b: solid > ambiguous > not_a_solid > budget, and between
+/// two not_a_solid answers fewer input edges on no face; ties to b. O(1).
+template <Point3 P>
+bool better_answer(const wireframe_result<P>& a, const wireframe_result<P>& b) {
+  auto rank = [](solid_status s) {
+    return s == solid_status::solid ? 3 : s == solid_status::ambiguous ? 2 : s == solid_status::not_a_solid ? 1 : 0;
+  };
+  if (rank(a.status) != rank(b.status)) return rank(a.status) > rank(b.status);
+  return a.status == solid_status::not_a_solid &&
+         a.certificate.unused_input_edges.size() < b.certificate.unused_input_edges.size();
+}
+}  // namespace detail
+
+/// Converts a wireframe to a cell complex whose positions are the wireframe's (its point type),
+/// certifies it against the wireframe and says what it is (status, status_reason). Faces that
+/// close no volume (a lone planar loop, an open box) come back as faces without volumes,
+/// not_a_solid, with a diagnostic. Throws cellforge::error on bad input (see read_vertices), on
+/// an exhausted work budget of a stage, or when no face is found (saying what the wireframe is).
+/// With the automatic tolerance, exact input first: the stages' fixed tolerances, whose certified
+/// solid is the answer; otherwise the estimated tolerance too, and the better answer of the two
+/// (better_answer; a pass that throws is the worst, both: the estimated pass's error).
+/// Polynomial with the default planar tracer: O(Σ deg² + Σ planes k log k + F·L + grid pairs),
+/// twice only for input that is no certified solid at the fixed tolerance and whose estimate differs.
+template <Wireframe G>
+wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
+    const G& wire, const wireframe_options& options = {}) {
+  using P = typename wireframe_traits<G>::point_type;
+  read_result read = read_vertices(wire, options.read);
+  tolerance_result given;  // the stages' own planarity options
+  given.planarity = options.trace.planarity.relative;
+  given.planarity_distance = options.trace.planarity.relative * read.graph.size;
+  if (!options.tolerance.automatic) return detail::wireframe_pass(wire, options, std::move(read), given, false);
+
+  tolerance_result estimate = estimate_tolerance(read.graph, options.tolerance);
+  wireframe_options at_estimate = options;
+  at_estimate.trace.planarity.relative = at_estimate.reduction.planarity.relative = estimate.planarity;
+  at_estimate.arrangement.planarity.relative = at_estimate.extra.retrace.planarity.relative = estimate.planarity;
+  at_estimate.trace.fit_planes = true;  // planes fitted to their vertices: the coordinates may be noisy
+  estimate.estimated_planarity = estimate.planarity;
+  const bool same = options.trace.fit_planes && options.trace.planarity.relative == estimate.planarity &&
+                    options.reduction.planarity.relative == estimate.planarity &&
+                    options.arrangement.planarity.relative == estimate.planarity &&
+                    options.extra.retrace.planarity.relative == estimate.planarity;
+  // Exact input first: the stages' fixed tolerances, the estimate's figures kept beside them.
+  tolerance_result fixed_tolerance = estimate;
+  fixed_tolerance.planarity = given.planarity;
+  fixed_tolerance.planarity_distance = given.planarity_distance;
+  fixed_tolerance.fixed_pass = true;
+  fixed_tolerance.estimated_planarity = estimate.planarity;
+  std::optional<wireframe_result<P>> fixed;
+  try {
+    fixed = detail::wireframe_pass(wire, options, read, std::move(fixed_tolerance), false);
+  } catch (const error&) {  // the worst answer; the estimated pass's error is the one thrown
+  }
+  auto keep_fixed = [&](std::string why) {
+    if (!same) fixed->diagnostics.push_back("tolerance: the stages' fixed planarity (" + detail::number_text(given.planarity) +
+                                            " of the diagonal) was used, not the estimate (" +
+                                            detail::number_text(estimate.planarity) + "): " + std::move(why));
+    return std::move(*fixed);
+  };
+  if (fixed && fixed->status == solid_status::solid) return keep_fixed("certified solid with it, the data's own precision is enough");
+  if (fixed && same) return std::move(*fixed);  // the estimated pass would be this one
+
+  wireframe_result<P> r;
+  try {
+    r = detail::wireframe_pass(wire, at_estimate, std::move(read), std::move(estimate), true);
+  } catch (const error& e) {
+    if (!fixed) throw;
+    return keep_fixed(std::string("the estimated one failed (") + e.what() + ")");
+  }
+  if (fixed && !detail::better_answer(r, *fixed))
+    return keep_fixed(std::string("its answer (") + to_string(fixed->status) + ") is no worse than the estimate's (" +
+                      to_string(r.status) + ")");
+  if (fixed)
+    r.diagnostics.push_back(std::string("tolerance: the estimated planarity was used: the stages' fixed one gives ") +
+                            to_string(fixed->status) + " (" + fixed->status_reason + ")");
+  return r;
+}
 }  // namespace cellforge
