@@ -172,11 +172,16 @@ void print_stages(const cellforge::wireframe_result<glm::dvec3>& r) {
   std::printf("  %-26s %12s   %-18s %zu\n", "", "", "edges", r.read.input_edges);
   // §4.1½: the planarity tolerance, chosen from the data (or given), relative to the diagonal.
   const auto& t = r.tolerance;
+  // Which pass made the answer: the stages' fixed tolerance (exact input first) or the estimate.
   std::printf("  %-26s %9.3f ms   %-18s %.3g%s\n", "tolerance", t.milliseconds, "planarity", t.planarity,
-              !t.automatic ? " (given)" : t.ambiguous ? " (NO CLEAR GAP: doubtful)" : !t.clear_gap ? " (no clear gap)" : "");
+              !t.automatic   ? " (given)"
+              : t.fixed_pass ? " (the stages' fixed one, not the estimate)"
+              : t.ambiguous  ? " (estimated; NO CLEAR GAP: doubtful)"
+              : !t.clear_gap ? " (estimated; no clear gap)"
+                             : " (estimated)");
   if (t.automatic)
-    std::printf("  %-26s %12s   %-18s %.2g .. %.2g (%.1f decades)\n", "", "", "noise .. shape", t.noise, t.geometry,
-                t.gap_decades);
+    std::printf("  %-26s %12s   %-18s %.2g .. %.2g (%.1f decades), estimate %.3g\n", "", "", "noise .. shape", t.noise,
+                t.geometry, t.gap_decades, t.estimated_planarity);
   row("finding faces", r.trace.milliseconds, "circuits", r.trace.circuits);
   row("reducing to unique faces", r.unique.milliseconds, "faces found", r.unique.faces.size());
   row("area calculation", r.reduction.area_milliseconds);

@@ -15,6 +15,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <vector>
@@ -75,6 +76,14 @@ struct tolerance_result : stage_report {
 };
 
 namespace detail {
+
+/// A residual for a reason: three significant digits (std::to_string prints 1e-7 as 0.000000). O(1).
+template <class = void>
+std::string residual_text(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
 
 /// Residuals binned by their relative size: quarter-octave bins, each with its count and the
 /// extremes of its relative and absolute values, so that any split gives both clusters' bounds.
@@ -308,8 +317,8 @@ tolerance_result estimate_tolerance(const wire_graph& g, const tolerance_options
   if (r.gap_decades < options.min_gap_decades) {
     r.clear_gap = false;
     r.reason = "the residuals of the corners' planes run from noise to shape without a clear gap (edges " +
-               std::to_string(r.noise) + " and " + std::to_string(r.geometry) + " off their corners' planes, " +
-               std::to_string(r.gap_decades) + " decades apart): the coordinates' noise may hide faces";
+               detail::residual_text(r.noise) + " and " + detail::residual_text(r.geometry) + " off their corners' planes, " +
+               detail::residual_text(r.gap_decades) + " decades apart): the coordinates' noise may hide faces";
     // Never call shape noise: below the whole cluster, as if it were all geometry.
     const double lowest = std::min(r.geometry_distance, r.noise_samples > 0 ? [&] {
       double d = std::numeric_limits<double>::infinity();
@@ -320,8 +329,8 @@ tolerance_result estimate_tolerance(const wire_graph& g, const tolerance_options
     chosen = std::min(preferred, lowest / options.safety);
   } else if (!(low < high)) {
     r.clear_gap = false;
-    r.reason = "the noise reaches " + std::to_string(r.noise_distance) +
-               " (model units) where the smallest feature stands " + std::to_string(r.geometry_distance) +
+    r.reason = "the noise reaches " + detail::residual_text(r.noise_distance) +
+               " (model units) where the smallest feature stands " + detail::residual_text(r.geometry_distance) +
                " off its neighbours' plane: no single distance separates them";
     chosen = std::sqrt(r.noise_distance * r.geometry_distance);
   } else if (!(preferred >= low && preferred <= high)) {

@@ -319,20 +319,20 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
   r.tolerance = std::move(tolerance);
   const wire_graph& g = r.read.graph;
   if (estimated && !r.tolerance.clear_gap) r.diagnostics.push_back("tolerance: " + r.tolerance.reason);
-  r.check = wireframe_check_options(used);
-  r.trace = trace_circuits(g, used.trace);
-  r.unique = unique_circuits(g, std::move(r.trace.faces), used.unique);
+  r.check = cellforge::wireframe_check_options(used);
+  r.trace = cellforge::trace_circuits(g, used.trace);
+  r.unique = cellforge::unique_circuits(g, std::move(r.trace.faces), used.unique);
   r.trace.faces.clear();
   reduction_options reduction = used.reduction;
   // Faces of a planar arrangement are never the sum of two others; only the seed's search needs the test.
   if (used.trace.kind == tracer_kind::planar) reduction.remove_face_sums = false;
-  r.reduction = reduce_faces(g, r.unique.faces, reduction);
-  r.arrangement = arrange_faces(g, r.unique.faces, r.reduction, used.arrangement);
+  r.reduction = cellforge::reduce_faces(g, r.unique.faces, reduction);
+  r.arrangement = cellforge::arrange_faces(g, r.unique.faces, r.reduction, used.arrangement);
   extra_face_options extra = used.extra;
   // The planar tracer finds every planar face; only the seed's search can miss some.
   if (used.trace.kind == tracer_kind::planar) extra.add_missed = false;
   r.extra =
-      extra_faces(g, r.unique.faces, r.arrangement.selected, extra, span_of(r.arrangement.crossed));
+      cellforge::extra_faces(g, r.unique.faces, r.arrangement.selected, extra, span_of(r.arrangement.crossed));
   auto note = [&](const wire_face& f, std::string reason) {
     face_note n{f.loops, std::move(reason)};
     for (auto& loop : n.loops)
@@ -368,8 +368,8 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
     r.volume.face_kept.assign(n, 1);
     r.volume.face_volumes.assign(n, {no_index, no_index});
   } else {
-    r.volume = find_volumes(g, r.extra.faces, used.volume);
-    r.relations = find_relations(g, r.extra.faces, r.volume, used.relations);
+    r.volume = cellforge::find_volumes(g, r.extra.faces, used.volume);
+    r.relations = cellforge::find_relations(g, r.extra.faces, r.volume, used.relations);
   }
 
   stopwatch clock;
@@ -451,7 +451,7 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
     auto& loops = r.input.faces[i].loops;
     for (auto& loop : loops)
       for (auto& v : loop) v = label[g.input_vertex[v]];
-    reversed[i] = canonical_cycle(loops[0]);
+    reversed[i] = cellforge::canonical_cycle(loops[0]);
     for (std::size_t h = 1; h < loops.size(); ++h) {
       if (reversed[i]) std::reverse(loops[h].begin(), loops[h].end());
       std::rotate(loops[h].begin(), std::min_element(loops[h].begin(), loops[h].end()), loops[h].end());
@@ -513,15 +513,15 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
     in.volumes = r.input.volumes;
     cell_complex<P> inside;
     try {
-      inside = make_cell_complex(std::move(in));
+      inside = cellforge::make_cell_complex(std::move(in));
     } catch (const error&) {
-      r.cells = make_cell_complex(r.input);  // the error in the output's numbering
+      r.cells = cellforge::make_cell_complex(r.input);  // the error in the output's numbering
       throw;
     }
-    if (used.check_result) r.validation = validate(inside, r.check);
-    r.cells = renumber_cells(inside, vertex_label, edge_label);
+    if (used.check_result) r.validation = cellforge::validate(inside, r.check);
+    r.cells = cellforge::renumber_cells(inside, vertex_label, edge_label);
     if (!r.validation.ok())
-      r.validation = validate(r.cells, r.check);  // output numbering
+      r.validation = cellforge::validate(r.cells, r.check);  // output numbering
     r.validation.expected_euler.clear();  // per object, and objects were numbered otherwise inside
     r.validation.euler_checked.clear();
     r.assembly_milliseconds = clock.ms();
@@ -545,8 +545,8 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
           r.diagnostics.push_back(std::to_string(before - r.input.volumes.size()) +
                                   " volumes dropped: a face of each is pierced by an input edge (" +
                                   pierced->message + "), so the input intersects itself there");
-          r.cells = make_cell_complex(r.input);
-          if (used.check_result) r.validation = validate(r.cells, r.check);
+          r.cells = cellforge::make_cell_complex(r.input);
+          if (used.check_result) r.validation = cellforge::validate(r.cells, r.check);
           r.certificate = cellforge::certify(r.cells, wire, check);
         }
       }
@@ -579,9 +579,11 @@ bool better_answer(const wireframe_result<P>& a, const wireframe_result<P>& b) {
 /// an exhausted work budget of a stage, or when no face is found (saying what the wireframe is).
 /// With the automatic tolerance, exact input first: the stages' fixed tolerances, whose certified
 /// solid is the answer; otherwise the estimated tolerance too, and the better answer of the two
-/// (better_answer; a pass that throws is the worst, both: the estimated pass's error).
+/// (better_answer; a pass that throws is the worst, both: the estimated pass's error). A clear
+/// gap at or above the fixed tolerance: the estimated pass only.
 /// Polynomial with the default planar tracer: O(Σ deg² + Σ planes k log k + F·L + grid pairs),
-/// twice only for input that is no certified solid at the fixed tolerance and whose estimate differs.
+/// twice only for input without a clear gap (or one below the fixed tolerance) that is no
+/// certified solid at the fixed tolerance.
 template <Wireframe G>
 wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
     const G& wire, const wireframe_options& options = {}) {
@@ -607,19 +609,25 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   fixed_tolerance.planarity = given.planarity;
   fixed_tolerance.planarity_distance = given.planarity_distance;
   fixed_tolerance.fixed_pass = true;
-  fixed_tolerance.estimated_planarity = estimate.planarity;
+  // A clear gap at or above the fixed tolerance: the estimated pass reads the input. Without
+  // fitted planes, noise near the fixed tolerance bends a wall out of its plane, and the rest
+  // still certifies as a solid (a 12 × 2 × 1 grid written with 10 digits lost a wall).
+  const bool clear = estimate.clear_gap && estimate.planarity >= given.planarity;
   std::optional<wireframe_result<P>> fixed;
   try {
-    fixed = detail::wireframe_pass(wire, options, read, std::move(fixed_tolerance), false);
+    if (!clear) fixed = detail::wireframe_pass(wire, options, read, std::move(fixed_tolerance), false);
   } catch (const error&) {  // the worst answer; the estimated pass's error is the one thrown
   }
   auto keep_fixed = [&](std::string why) {
-    if (!same) fixed->diagnostics.push_back("tolerance: the stages' fixed planarity (" + detail::number_text(given.planarity) +
-                                            " of the diagonal) was used, not the estimate (" +
-                                            detail::number_text(estimate.planarity) + "): " + std::move(why));
+    fixed->diagnostics.push_back("tolerance: the stages' fixed planarity (" + detail::number_text(given.planarity) +
+                                 " of the diagonal) was used, not the estimate (" +
+                                 detail::number_text(estimate.planarity) + "): " + std::move(why));
     return std::move(*fixed);
   };
-  if (fixed && fixed->status == solid_status::solid) return keep_fixed("certified solid with it, the data's own precision is enough");
+  if (fixed && fixed->status == solid_status::solid)
+    return estimate.planarity == given.planarity
+               ? std::move(*fixed)
+               : keep_fixed("certified solid with it, the data's own precision is enough");
   if (fixed && same) return std::move(*fixed);  // the estimated pass would be this one
 
   wireframe_result<P> r;
