@@ -25,6 +25,7 @@
 #include "cellforge/core/predicates.hpp"
 #include "cellforge/core/wireframe.hpp"
 #include "cellforge/halfedge/conversion.hpp"
+#include "cellforge/wireframe/wire_graph.hpp"
 
 namespace real_mesh {
 

@@ -119,7 +119,10 @@ TEST_CASE("certify: good complexes pass, with and without their wireframe") {
       {"two cubes touching at an edge", fx::lattice({{0, 0, 0}, {1, 1, 0}})},
       {"two cubes sharing a face", fx::two_cubes()},
   };
-  for (const auto& [name, in] : good) {
+  for (const auto& entry : good) {
+    // Plain references: clang 14 cannot capture structured bindings in CAPTURE's lambda.
+    const auto& name = entry.first;
+    const auto& in = entry.second;
     CAPTURE(name);
     const auto c = make_cell_complex(in);
     const certificate_result r = certify(c, wire_of(in));
@@ -142,8 +145,9 @@ TEST_CASE("certify: every sample model converted by the pipeline passes") {
     INFO(kinds(r.certificate));
     CHECK(r.certificate.ok());
     CHECK(r.certificate.covered_input_edges == m.wire.edges.size());
-    const bool undecided = !r.unforced.empty() || std::any_of(r.alternatives.begin(), r.alternatives.end(),
-                                                              [](const reading_note& a) { return a.undecided; });
+    const bool undecided =
+        !r.unforced.empty() || std::any_of(r.alternatives.begin(), r.alternatives.end(),
+                                           [](const reading_note& a) { return a.undecided; });
     CHECK(r.status == (undecided ? solid_status::ambiguous : solid_status::solid));
     // The certificate alone, on the complex and on the complex with its wireframe.
     CHECK(certify(r.cells).ok());

@@ -74,7 +74,7 @@ enum class reading_key : std::uint8_t { unneeded_faces, volumes, faces, area, no
 /// the faces of the answer it drops (`remove`), what it stands for and what set it aside.
 struct volume_alternative {
   std::vector<std::uint32_t> add, remove;  ///< indices into find_volumes' faces, increasing
-  std::string reading;                     ///< "would close a hole or dent", "would split a volume in two", ...
+  std::string reading;  ///< "would close a hole or dent", "would split a volume in two", ...
   /// The first key of the order that ranks it below the answer; `none`: as good in every key.
   reading_key set_aside_by = reading_key::unneeded_faces;
   /// The wireframe does not decide between it and the answer: it keeps no more faces no edge
@@ -112,7 +112,7 @@ struct volume_result : stage_report {
   /// the best certified reading found, not necessarily the best there is (status `budget`).
   bool complete = true;
   double manifold_milliseconds = 0.0;  ///< the seed's "manifold analysis" row: rotation order and shells
-  std::size_t groups = 0;    ///< groups of faces no edge needs that the reading searched
+  std::size_t groups = 0;              ///< groups of faces no edge needs that the reading searched
   std::size_t readings = 0;  ///< certified readings the searches met (the best of each group is taken)
 };
 
@@ -376,7 +376,8 @@ class basic_face_reader {
       // Out of budget: stop with the readings committed so far (each certified), flagged.
       if (budget.limit != 0 && budget.used + nf > budget.limit) {
         complete = false;
-        notes.push_back("the reading rule ran out of its work budget after " + std::to_string(groups_searched) +
+        notes.push_back("the reading rule ran out of its work budget after " +
+                        std::to_string(groups_searched) +
                         " group searches; the faces still undecided are kept");
         break;
       }
@@ -412,6 +413,13 @@ class basic_face_reader {
                  needed_faces_one(g_, faces_, at_, kept_now(), i, scratch_);
         });
         if (members.empty()) continue;
+        // keep_walls: a group with no face on the outside cannot open, and its walls stay
+        // whatever the search would find (the vase's 12 rings: 2^12 leaves, all refused).
+        if (reading_ == face_reading::keep_walls &&
+            std::none_of(members.begin(), members.end(), [&](std::uint32_t i) {
+              return merged.find(sides_[i][0]) == outside || merged.find(sides_[i][1]) == outside;
+            }))
+          continue;
         const auto picked = search(members, budget);
         if (!picked.empty()) {
           commit(picked);
@@ -433,7 +441,8 @@ class basic_face_reader {
   face_reading reading_;
   std::vector<std::vector<std::uint32_t>> root_faces_;  // per merged root, the faces bounding it
   std::vector<char> seam_wall_, ambiguous_;             // per face; per merged root
-  std::vector<std::uint32_t> vertex_first_, vertex_faces_;  // CSR vertex → alive faces, built when first needed
+  std::vector<std::uint32_t> vertex_first_,
+      vertex_faces_;  // CSR vertex → alive faces, built when first needed
   std::vector<std::uint32_t> scratch_;
   std::vector<char> kept_cache_;
 
@@ -444,7 +453,7 @@ class basic_face_reader {
   std::vector<std::uint32_t> roots_;      // the merged roots the group touches (sorted)
   std::vector<std::uint32_t> up_, size_;  // rollback union-find over roots_
   std::vector<char> out_, amb_;           // per local root: holds the outside; holds an ambiguous region
-  std::vector<std::vector<std::uint32_t>> bound_;  // per local root: faces (kept, any) bounding it
+  std::vector<std::vector<std::uint32_t>> bound_;      // per local root: faces (kept, any) bounding it
   std::vector<std::array<std::uint32_t, 3>> corners_;  // scratch of manifold_boundary
   struct undo {
     int kind;  // 0: face state, 1: union (child), 2: bound_ growth
@@ -667,7 +676,8 @@ class basic_face_reader {
     if (readings_per_group > 0 && (!have_best_ || s.c1 <= best_.c1)) {
       // Kept best first; a reading with fewer kept faces no edge needs clears the others.
       if (have_best_ && s.c1 < best_.c1) met_.clear();
-      const auto at = std::find_if(met_.begin(), met_.end(), [&](const auto& m) { return compare(s, m.first) < 0; });
+      const auto at =
+          std::find_if(met_.begin(), met_.end(), [&](const auto& m) { return compare(s, m.first) < 0; });
       if (static_cast<std::size_t>(at - met_.begin()) <= readings_per_group) met_.insert(at, {s, st_});
       if (met_.size() > readings_per_group + 1) met_.pop_back();
     }
@@ -801,7 +811,8 @@ class basic_face_reader {
     }
     // Faces whose other side is the outside are listed with their bounded side only; list
     // them under the outside too, so that a merge with the outside finds them.
-    if (const auto xo = static_cast<std::uint32_t>(std::lower_bound(roots_.begin(), roots_.end(), o) - roots_.begin());
+    if (const auto xo =
+            static_cast<std::uint32_t>(std::lower_bound(roots_.begin(), roots_.end(), o) - roots_.begin());
         xo < nr)
       for (std::uint32_t x = 0; x < nr; ++x)
         if (x != xo)
@@ -814,7 +825,8 @@ class basic_face_reader {
     nodes_ = 0;
     leaves_ = 0;
     stopped_ = false;
-    const std::uint64_t left = budget.limit == 0 ? ~std::uint64_t{0} : (budget.limit > budget.used ? budget.limit - budget.used : 0);
+    const std::uint64_t left =
+        budget.limit == 0 ? ~std::uint64_t{0} : (budget.limit > budget.used ? budget.limit - budget.used : 0);
     // Each node looks at the group's faces: the search stops before the budget would throw.
     limit_ = std::min<std::uint64_t>(group_nodes, left / (G_.size() + 1) + 1);
     dfs(0);
@@ -842,7 +854,8 @@ class basic_face_reader {
         }
         notes.push_back(std::to_string(optima_.size()) + (optima_.size() == 8 ? " or more" : "") +
                         " equally good readings of a group of " + std::to_string(G_.size()) +
-                        " faces no edge needs" + (ok ? "; the faces they disagree on are kept" : "; the first is taken"));
+                        " faces no edge needs" +
+                        (ok ? "; the faces they disagree on are kept" : "; the first is taken"));
       }
       for (std::uint32_t l = 0; l < G_.size(); ++l)
         if (choice[l] == 2) picked.push_back(G_[l]);
@@ -874,8 +887,9 @@ class basic_face_reader {
     }
     if (stopped_) {
       complete = false;
-      notes.push_back("the search of a group of " + std::to_string(G_.size()) + " faces no edge needs stopped after " +
-                      std::to_string(nodes_) + " steps (work budget); the best reading found is taken");
+      notes.push_back("the search of a group of " + std::to_string(G_.size()) +
+                      " faces no edge needs stopped after " + std::to_string(nodes_) +
+                      " steps (work budget); the best reading found is taken");
     }
     for (const auto f : G_) local_[f] = no_index;
     std::sort(picked.begin(), picked.end());
@@ -890,7 +904,8 @@ class basic_face_reader {
       // The survivor takes the other's faces, the shorter list moved into the longer.
       const auto keep = merged.find(a), gone = keep == a ? b : a;
       ambiguous_[keep] = ambiguous_[keep] || ambiguous_[gone];
-      if (root_faces_[keep].size() < root_faces_[gone].size()) std::swap(root_faces_[keep], root_faces_[gone]);
+      if (root_faces_[keep].size() < root_faces_[gone].size())
+        std::swap(root_faces_[keep], root_faces_[gone]);
       root_faces_[keep].insert(root_faces_[keep].end(), root_faces_[gone].begin(), root_faces_[gone].end());
       std::vector<std::uint32_t>().swap(root_faces_[gone]);
     }
@@ -907,9 +922,10 @@ template <class = void>
 std::string reading_words(std::size_t add, std::size_t remove, int volumes, reading_key key) {
   static const char* const why[] = {"more faces no edge needs", "the fewest volumes", "the fewest faces",
                                     "the largest area dropped", "nothing: as good in every key"};
-  const std::string v = volumes == 0  ? "as many volumes"
-                        : volumes > 0 ? std::to_string(volumes) + " more volume" + (volumes > 1 ? "s" : "")
-                                      : std::to_string(-volumes) + " fewer volume" + (volumes < -1 ? "s" : "");
+  const std::string v = volumes == 0 ? "as many volumes"
+                        : volumes > 0
+                            ? std::to_string(volumes) + " more volume" + (volumes > 1 ? "s" : "")
+                            : std::to_string(-volumes) + " fewer volume" + (volumes < -1 ? "s" : "");
   return "keeps " + std::to_string(add) + " faces the answer drops and drops " + std::to_string(remove) +
          " it keeps (" + v + "); set aside by " + why[static_cast<int>(key)];
 }

@@ -507,12 +507,15 @@ class basic_certifier {
     const std::size_t nv = cc_.num_vertices(), ni = wire_->points.size();
     const double side = merge_ > 0 ? merge_ : 1.0;
     const double inv = 1.0 / side;
+    // Cell coordinates clamped into int64 before the cast (a far point at a tiny tolerance would
+    // overflow it) and hashed in unsigned arithmetic, which wraps; clamped points share cells,
+    // and every candidate's distance is measured anyway.
+    auto cell = [&](double c, int d) {
+      const double f = std::clamp(std::floor(c * inv), -9.0e18, 9.0e18);
+      return static_cast<std::uint64_t>(static_cast<std::int64_t>(f)) + static_cast<std::uint64_t>(std::int64_t{d});
+    };
     auto key_of = [&](const vec& p, int dx, int dy, int dz) {
-      const auto ix = static_cast<std::int64_t>(std::floor(p.x * inv)) + dx,
-                 iy = static_cast<std::int64_t>(std::floor(p.y * inv)) + dy,
-                 iz = static_cast<std::int64_t>(std::floor(p.z * inv)) + dz;
-      return static_cast<std::uint64_t>(ix * 73856093) ^ static_cast<std::uint64_t>(iy * 19349663) ^
-             static_cast<std::uint64_t>(iz * 83492791);
+      return cell(p.x, dx) * 73856093u ^ cell(p.y, dy) * 19349663u ^ cell(p.z, dz) * 83492791u;
     };
     std::unordered_map<std::uint64_t, std::vector<uint32_t>> grid;
     grid.reserve(nv + ni);
