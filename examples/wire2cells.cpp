@@ -76,18 +76,21 @@ std::vector<example::option_spec> option_table(settings& s) {
        }},
       {{"--merge-tolerance"},
        "X",
-       "points closer than X times the bounding-box diagonal are one vertex (0 to 0.1, default " +
+       "points closer than X times their local edge length (the median edge at each) are one vertex "
+       "(0 to 0.1, default " +
            number(d.read.merge.relative) + ")",
        [&](std::string_view v) { p.read.merge.relative = option_number("--merge-tolerance", v, 0.0, 0.1); }},
       {{"--planarity"},
        "X",
        "a point lies in a plane when closer than X times the model's size, in tracing, face reduction "
-       "and arrangement (0 to 0.1, default " +
-           number(d.trace.planarity.relative) + ")",
+       "and arrangement, planes fitted to their vertices (0 to 0.1; default: chosen from the data, in the gap between the coordinates' "
+       "noise and the shape, printed as the 'tolerance' row)",
        [&](std::string_view v) {
          const double x = option_number("--planarity", v, 0.0, 0.1);
+         p.tolerance.automatic = false;
          p.trace.planarity.relative = p.extra.retrace.planarity.relative = x;
          p.reduction.planarity.relative = p.arrangement.planarity.relative = x;
+         p.trace.fit_planes = true;  // a given tolerance is for noisy coordinates
        }},
       {{"--strict"},
        "",
@@ -167,6 +170,18 @@ void row(const char* stage, double ms, const char* what = nullptr, std::size_t c
 void print_stages(const cellforge::wireframe_result<glm::dvec3>& r) {
   row("initial read", r.read.milliseconds, "vertices", r.read.input_vertices);
   std::printf("  %-26s %12s   %-18s %zu\n", "", "", "edges", r.read.input_edges);
+  // §4.1½: the planarity tolerance, chosen from the data (or given), relative to the diagonal.
+  const auto& t = r.tolerance;
+  // Which pass made the answer: the stages' fixed tolerance (exact input first) or the estimate.
+  std::printf("  %-26s %9.3f ms   %-18s %.3g%s\n", "tolerance", t.milliseconds, "planarity", t.planarity,
+              !t.automatic   ? " (given)"
+              : t.fixed_pass ? " (the stages' fixed one, not the estimate)"
+              : t.ambiguous  ? " (estimated; NO CLEAR GAP: doubtful)"
+              : !t.clear_gap ? " (estimated; no clear gap)"
+                             : " (estimated)");
+  if (t.automatic)
+    std::printf("  %-26s %12s   %-18s %.2g .. %.2g (%.1f decades), estimate %.3g\n", "", "", "noise .. shape", t.noise,
+                t.geometry, t.gap_decades, t.estimated_planarity);
   row("finding faces", r.trace.milliseconds, "circuits", r.trace.circuits);
   row("reducing to unique faces", r.unique.milliseconds, "faces found", r.unique.faces.size());
   row("area calculation", r.reduction.area_milliseconds);
@@ -180,7 +195,7 @@ void print_stages(const cellforge::wireframe_result<glm::dvec3>& r) {
       r.volume.volumes.size());
   row("cell list assembly", r.relations.milliseconds + r.assembly_milliseconds);
   row("certificate", r.certificate.milliseconds, "face pairs tested", r.certificate.face_pairs_tested);
-  const double total = r.read.milliseconds + r.trace.milliseconds + r.unique.milliseconds +
+  const double total = r.read.milliseconds + r.tolerance.milliseconds + r.trace.milliseconds + r.unique.milliseconds +
                        r.reduction.milliseconds + r.arrangement.milliseconds + r.extra.milliseconds +
                        r.volume.milliseconds + r.relations.milliseconds + r.assembly_milliseconds +
                        r.certificate.milliseconds;

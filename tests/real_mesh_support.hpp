@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -30,7 +32,10 @@ namespace real_mesh {
 /// What a mesh is, worst first: the class a mesh is tabled under is the first that applies.
 /// `rimmed`: open, but every boundary loop is a planar rim and the lids close every component
 /// into a clean solid: its wireframe is that solid's (an open box's is a box's).
-enum class mesh_class { degenerate, non_manifold, self_intersecting, open, rimmed, closed };
+/// `nearly_planar`: closed and clean but for polygons off their planes beyond rounding, all
+/// far flatter than any bend between neighbouring faces (decimal noise on flat quads): the
+/// wireframe still draws a solid, whose faces are the polygons.
+enum class mesh_class { degenerate, non_manifold, self_intersecting, open, rimmed, nearly_planar, closed };
 
 inline const char* class_name(mesh_class c) {
   switch (c) {
@@ -44,6 +49,8 @@ inline const char* class_name(mesh_class c) {
       return "open";
     case mesh_class::rimmed:
       return "open, planar rims";
+    case mesh_class::nearly_planar:
+      return "closed, nearly planar";
     case mesh_class::closed:
       return "closed";
   }
@@ -68,6 +75,10 @@ struct fixture {
   std::size_t non_planar_faces =
       0;  ///< polygons with a corner off their plane by more than the rounding tolerance
   std::size_t nearly_planar_faces = 0;  ///< polygons planar within the rounding tolerance, not exactly
+  /// The largest departure of a non-planar polygon from its plane, over its longest edge (the
+  /// sine of its corners' tilt; 0: none), and the smallest bend between two faces across a
+  /// wireframe edge (the sine of their planes' angle; 1 when there is none).
+  double flatness = 0.0, smallest_bend = 1.0;
   std::size_t boundary_edges = 0, boundary_loops = 0;
   /// Boundary loops that are simple and exactly planar: the wireframe holds the cycle of a face
   /// across each (the lid), so it reads as the mesh with those lids (an open box is a box).
@@ -202,8 +213,13 @@ inline fixture analyse(const cellforge::polygon_soup<glm::dvec3>& soup,
     for (const auto v : l)
       if (distance(f, pts[v]) > tol) planar[f] = 0;
     if (planar[f] == 0) {
-      face_bad[f] = 1;
-      ++fx.non_planar_faces;
+      ++fx.non_planar_faces;  // bad unless the mesh is nearly planar (decided below)
+      double longest = 0.0, off = 0.0;
+      for (std::size_t k = 0; k < l.size(); ++k) {
+        longest = std::max(longest, glm::length(pts[l[(k + 1) % l.size()]] - pts[l[k]]));
+        off = std::max(off, distance(f, pts[l[k]]));
+      }
+      fx.flatness = std::max(fx.flatness, off / longest);
     } else {
       ++fx.nearly_planar_faces;
     }
@@ -302,6 +318,7 @@ inline fixture analyse(const cellforge::polygon_soup<glm::dvec3>& soup,
         face_bad[f] = face_bad[g] = 1;
       }
     }
+    fx.smallest_bend = std::min(fx.smallest_bend, glm::length(glm::cross(unit_normal[f], unit_normal[g])));
     wire_edges.push_back({u, v});
   }
   for (std::size_t b = 0, e = 0; b < corners.size(); b = e) {
@@ -373,6 +390,16 @@ inline fixture analyse(const cellforge::polygon_soup<glm::dvec3>& soup,
     fx.intersections_known = nf == 0;
   }
 
+  // Nearly planar: non-planar polygons (nothing else wrong with the faces), each flatter by two
+  // decades than the smallest bend between faces, so that their noise never reads as a bend.
+  // Only a mesh clean in every other way is tabled so.
+  const bool nearly_planar = fx.non_planar_faces > 0 && fx.repeated_corner_faces + fx.zero_area_faces == 0 &&
+                             100.0 * fx.flatness <= fx.smallest_bend &&
+                             fx.non_manifold_edges + fx.non_manifold_vertices == 0 && !fx.self_intersecting() &&
+                             fx.intersections_known && !fx.open();
+  if (!nearly_planar)
+    for (std::uint32_t f = 0; f < nf; ++f) face_bad[f] |= planar[f] == 0;
+
   // Components and their volumes.
   std::vector<char> comp_open(nf, 0), comp_bad(nf, 0);
   for (std::uint32_t f = 0; f < nf; ++f) {
@@ -416,7 +443,8 @@ inline fixture analyse(const cellforge::polygon_soup<glm::dvec3>& soup,
 
   // The class, worst first.
   const bool bad_faces = fx.repeated_corner_faces + fx.zero_area_faces + fx.non_planar_faces > 0;
-  fx.kind = bad_faces                                              ? mesh_class::degenerate
+  fx.kind = nearly_planar                                              ? mesh_class::nearly_planar
+            : bad_faces                                                  ? mesh_class::degenerate
             : fx.non_manifold_edges + fx.non_manifold_vertices > 0 ? mesh_class::non_manifold
             : fx.self_intersecting() || !fx.intersections_known    ? mesh_class::self_intersecting
             : fx.open()                                            ? mesh_class::open
@@ -430,6 +458,12 @@ inline fixture analyse(const cellforge::polygon_soup<glm::dvec3>& soup,
   add(fx.repeated_corner_faces, "faces repeating a vertex (dropped)");
   add(fx.zero_area_faces, "zero-area faces (dropped)");
   add(fx.non_planar_faces, "non-planar faces");
+  if (fx.non_planar_faces > 0) {
+    char figures[96];
+    std::snprintf(figures, sizeof figures, " (flat to %.2g of their edges; the smallest bend %.2g)", fx.flatness,
+                  fx.smallest_bend);
+    fx.notes += figures;
+  }
   add(fx.non_manifold_edges, "non-manifold edges");
   add(fx.non_manifold_vertices, "non-manifold vertices");
   add(fx.folded_edges, "folded edges");

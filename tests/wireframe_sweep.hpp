@@ -1697,8 +1697,8 @@ inline std::string unmatched(const faces_t& a, const faces_t& b) {
 
 /// Why a result is not the truth, in one line; empty when it is exact.
 /// O(F log F · face size).
-inline std::string miss_reason(const cellforge::sample_model& m,
-                               const cellforge::wireframe_result<glm::dvec3>& r) {
+inline std::string miss_reason(const cellforge::sample_model& m, const cellforge::wireframe_result<glm::dvec3>& r,
+                               const cellforge::cells_validation_options& check = {}) {
   std::vector<std::string> why;
   const faces_t faces = result_faces(r);
   const bool faces_ok = cellforge::same_faces(m.faces, faces);
@@ -1717,7 +1717,7 @@ inline std::string miss_reason(const cellforge::sample_model& m,
   if (r.unforced.size() != m.unforced_faces)
     why.push_back("unforced " + std::to_string(r.unforced.size()) + " vs " +
                   std::to_string(m.unforced_faces) + " expected");
-  if (const auto v = cellforge::validate(r.cells); !v.ok()) why.push_back("invalid complex: " + v.message);
+  if (const auto v = cellforge::validate(r.cells, check); !v.ok()) why.push_back("invalid complex: " + v.message);
   std::string out;
   for (const auto& w : why) out += (out.empty() ? "" : "; ") + w;
   return out;
@@ -1728,8 +1728,9 @@ inline std::string miss_reason(const cellforge::sample_model& m,
 /// readings it reports — the answer without some of its unforced faces, or the answer with one
 /// undecided alternative taken (its cycles added, its faces removed); else why not.
 /// O(alternatives · F log F · face size).
-inline std::string ambiguous_miss(const cellforge::sample_model& m, const cellforge::wireframe_result<glm::dvec3>& r) {
-  std::string why = miss_reason(m, r);
+inline std::string ambiguous_miss(const cellforge::sample_model& m, const cellforge::wireframe_result<glm::dvec3>& r,
+                                  const cellforge::cells_validation_options& check = {}) {
+  std::string why = miss_reason(m, r, check);
   if (why.empty()) return why;
   const bool undecided = std::any_of(r.alternatives.begin(), r.alternatives.end(),
                                      [](const cellforge::reading_note& a) { return a.undecided; });
@@ -1763,6 +1764,63 @@ inline std::string ambiguous_miss(const cellforge::sample_model& m, const cellfo
     if (cellforge::same_faces(m.faces, reading)) return {};
   }
   return why + "; ambiguous, but the truth is not among the readings reported";
+}
+
+// ---- Noisy copies (tests/test_wireframe_noise.cpp): the same models with every vertex moved.
+
+/// The model with every vertex moved in a random direction (uniform on the sphere) by a random
+/// distance up to `eps` of its bounding-box diagonal (uniform in [0, eps]; seeded); the truth is
+/// unchanged. O(V).
+inline cellforge::sample_model noisy(const cellforge::sample_model& m, double eps, std::uint64_t seed) {
+  random_source rng(seed);
+  cellforge::sample_model out = m;
+  const double reach = eps * detail::diagonal(m.wire.points);
+  for (auto& p : out.wire.points) {
+    glm::dvec3 u;
+    do u = {rng.between(-1, 1), rng.between(-1, 1), rng.between(-1, 1)};
+    while (glm::length(u) > 1.0 || glm::length(u) < 1e-3);
+    p += (reach * rng.unit() / glm::length(u)) * u;
+  }
+  return out;
+}
+
+/// How a noisy copy came out: exact, a miss the result flags (its status is not `solid`:
+/// tolerance.ambiguous, or the certificate's verdict) or an error (both honest), or a wrong
+/// answer passed as good (status `solid`).
+enum class noisy_outcome { exact, flagged, error, wrong };
+
+/// Converts a noisy copy with default options and judges it against the truth as the sweep
+/// does (`ambiguous`: a model two solids share, judged by ambiguous_miss), its complex checked
+/// with the options the pipeline used (wireframe_result::check); `why` gets the reason of a
+/// miss. O(one conversion).
+inline noisy_outcome judge_noisy(const cellforge::sample_model& m, std::string& why, bool ambiguous = false) {
+  try {
+    const auto r = cellforge::wireframe_to_cells(m.wire);
+    why = ambiguous ? ambiguous_miss(m, r, r.check) : miss_reason(m, r, r.check);
+    if (why.empty()) return noisy_outcome::exact;
+    return r.status != cellforge::solid_status::solid ? noisy_outcome::flagged : noisy_outcome::wrong;
+  } catch (const cellforge::error& e) {
+    why = std::string("error: ") + e.what();
+    return noisy_outcome::error;
+  }
+}
+
+/// Whether some fixed planarity tolerance (1e-8 … 3e-2 of the diagonal, all stages) reads the
+/// model exactly: a miss no tolerance mends is information-theoretic for this pipeline (the
+/// noise is as large as the shape), one some tolerance mends is the estimator's. O(14 conversions).
+inline bool some_tolerance_reads(const cellforge::sample_model& m) {
+  for (const double t : {1e-8, 3e-8, 1e-7, 3e-7, 1e-6, 3e-6, 1e-5, 3e-5, 1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2}) {
+    cellforge::wireframe_options o;
+    o.tolerance.automatic = false;
+    o.trace.planarity.relative = o.reduction.planarity.relative = t;
+    o.arrangement.planarity.relative = o.extra.retrace.planarity.relative = t;
+    try {
+      const auto r = cellforge::wireframe_to_cells(m.wire, o);
+      if (miss_reason(m, r, r.check).empty()) return true;
+    } catch (const cellforge::error&) {
+    }
+  }
+  return false;
 }
 
 }  // namespace wireframe_sweep

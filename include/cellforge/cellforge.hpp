@@ -61,6 +61,7 @@
 #include "cellforge/wireframe/face_reduction.hpp"
 #include "cellforge/wireframe/read_vertices.hpp"
 #include "cellforge/wireframe/relations.hpp"
+#include "cellforge/wireframe/tolerance_estimate.hpp"
 #include "cellforge/wireframe/unique_circuits.hpp"
 #include "cellforge/wireframe/volume_finder.hpp"
 #include "cellforge/wireframe/wire_graph.hpp"

@@ -189,7 +189,7 @@ cells_validation_result validate_cells(const cell_topology& cc, std::span<const 
   // Volume boundaries: each edge of the faces used exactly twice, in opposite directions.
   std::vector<int> uses(cc.num_edges(), 0), net(cc.num_edges(), 0);
   std::vector<std::uint32_t> touched;
-  std::vector<double> own_diag;
+  std::vector<double> own_diag, own_area;
   for (cell_volume c : cc.volumes()) {
     for (const auto& [f, sign] : cc.volume_faces(c))
       for (std::size_t l = 0; l < cc.num_loops(f); ++l)
@@ -211,13 +211,21 @@ cells_validation_result validate_cells(const cell_topology& cc, std::span<const 
     r.signed_volumes.push_back(detail::cells::signed_volume_of(cc, pts, c, centre));
     // Each volume against its own size (its bounding-box diagonal cubed), not the model's: a
     // small cell beside a large one is as valid as the same cell alone.
+    // ... and its surface area: diagonal³ would refuse a long thin bar (100 m by 1 cm) that
+    // diagonal × area, a length³ too, lets pass while still refusing a flat one.
     bounding_box vbox;
-    for (const auto& vf : cc.volume_faces(c))
-      for (cell_vertex v : cc.loop_vertices(vf.handle, 0)) vbox.add(pts[v.idx()]);
+    double area = 0.0;
+    for (const auto& vf : cc.volume_faces(c)) {
+      const auto vs = cc.loop_vertices(vf.handle, 0);
+      for (cell_vertex v : vs) vbox.add(pts[v.idx()]);
+      const glm::dvec3 o = pts[vs[0].idx()];
+      area += 0.5 * glm::length(detail::cells::newell(vs, [&](cell_vertex v) { return pts[v.idx()] - o; }));
+    }
     own_diag.push_back(vbox.diagonal());
+    own_area.push_back(area);
   }
   for (cell_volume c : cc.volumes()) {
-    const double vd = own_diag[c.idx()], min_volume = 1e-12 * vd * vd * vd;
+    const double vd = own_diag[c.idx()], min_volume = 1e-12 * vd * own_area[c.idx()];
     if (!(r.signed_volumes[c.idx()] > min_volume)) {
       char buf[96];
       std::snprintf(buf, sizeof buf, "%g (its own diagonal %g)", r.signed_volumes[c.idx()], vd);

@@ -16,6 +16,7 @@
 #include <span>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -43,6 +44,10 @@ struct trace_options {
   std::uint64_t work_budget =
       200'000'000;                    ///< abstract steps (path extensions, incidences visited); 0 = none
   std::size_t max_circuit_edges = 0;  ///< seed_bfs only: longest circuit searched; 0 = number of edges
+  /// planar only, for noisy coordinates: refit each plane to the vertices it holds and give its
+  /// faces the fitted normal (docs/wireframe.md, "Tolerances"). Off, the corner planes and each
+  /// face's own normal, as the seed: faces within the tolerance of one plane stay apart.
+  bool fit_planes = false;
 };
 
 /// Candidate faces and what it took to find them.
@@ -60,6 +65,7 @@ namespace detail {
 /// One connected set of edges lying in one plane, with its traced faces.
 struct plane_component {
   glm::dvec3 origin{0.0}, normal{0.0}, u{0.0}, w{0.0};  // plane frame: u × w = normal
+  double extent = 0.0;                                  // largest distance of a vertex from origin
   std::vector<std::vector<std::uint32_t>> bounded;      // counter-clockwise walks (candidate faces)
   std::vector<std::vector<std::uint32_t>> outer;        // clockwise walks (outer boundaries)
 };
@@ -201,10 +207,39 @@ void trace_plane_faces(const wire_graph& g, std::vector<std::uint32_t>& edges, p
   }
 }
 
+/// A plane's coordinates in units of the hash's quanta: normal / qn, offset / qo. O(1).
 template <class = void>
-std::array<double, 4> plane_coords(const glm::dvec3& n, const glm::dvec3& o, double size) {
-  constexpr double q = 1e-3;  // quantum of the plane hash (normal, offset / size)
-  return {n.x / q, n.y / q, n.z / q, glm::dot(n, o) / (q * size)};
+std::array<double, 4> plane_coords(const glm::dvec3& n, const glm::dvec3& o, double qn, double qo) {
+  return {n.x / qn, n.y / qn, n.z / qn, glm::dot(n, o) / qo};
+}
+
+/// The least-squares plane of some graph vertices (three or more, not all on a line): its unit
+/// normal, turned towards `hint`, and their centroid; `hint` itself when they are degenerate.
+/// The normal solves the 3 × 3 covariance along the axis its plane is least steep to. O(n).
+template <class = void>
+std::pair<glm::dvec3, glm::dvec3> fit_plane(const wire_graph& g, std::span<const std::uint32_t> verts,
+                                            const glm::dvec3& hint) {
+  glm::dvec3 c(0.0);
+  for (const auto v : verts) c += g.points[v];
+  c /= static_cast<double>(verts.size());
+  double xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
+  for (const auto v : verts) {
+    const glm::dvec3 d = g.points[v] - c;
+    xx += d.x * d.x, xy += d.x * d.y, xz += d.x * d.z;
+    yy += d.y * d.y, yz += d.y * d.z, zz += d.z * d.z;
+  }
+  const double dx = yy * zz - yz * yz, dy = xx * zz - xz * xz, dz = xx * yy - xy * xy;
+  glm::dvec3 n;
+  if (dx >= dy && dx >= dz)
+    n = {dx, xz * yz - xy * zz, xy * yz - xz * yy};
+  else if (dy >= dz)
+    n = {xz * yz - xy * zz, dy, xy * xz - yz * xx};
+  else
+    n = {xy * yz - xz * yy, xy * xz - yz * xx, dz};
+  const double l = glm::length(n);
+  if (!(l > 0.0) || !std::isfinite(l)) return {hint, c};
+  n /= l;
+  return {glm::dot(n, hint) < 0.0 ? -n : n, c};
 }
 
 template <class = void>
@@ -309,7 +344,7 @@ void trace_planar(const wire_graph& g, const trace_options& opt, trace_result& r
   std::vector<std::uint32_t> vstamp(nv, no_index), estamp(ne, no_index), vtest(nv, no_index);
   std::vector<char> vin(nv, 0);
   std::uint32_t stamp = 0;
-  std::vector<std::uint32_t> cverts, cedges, local;  // reused by every plane search
+  std::vector<std::uint32_t> cverts, cedges, local, off;  // reused by every plane search
   std::vector<glm::dvec3> dirs;
   fan_index fan;
   plane_scratch scratch(nv);
@@ -342,64 +377,89 @@ void trace_planar(const wire_graph& g, const trace_options& opt, trace_result& r
           // Collinear pair: the far end of one edge lies within tolerance of the other's line.
           if (ln <= tol * std::max(la, lb)) continue;
           n /= ln;
-          const std::uint32_t cid = stamp++;  // marks this search in the stamp arrays
-          const glm::dvec3 origin = g.points[v];
-          // Breadth-first over edges lying in the plane, starting at v; each vertex's in-plane
-          // incidences are noted as it is scanned.
-          cverts.assign(1, v);
-          cedges.clear();
-          vstamp[v] = cid;
-          for (std::size_t head = 0; head < cverts.size(); ++head) {
-            const std::uint32_t x = cverts[head];
-            const auto ix = g.around(x);
-            local.clear();
-            budget.spend(ix.size());
-            if (head == 0) {
-              // x == v, scanned first (no edge of it is found yet): its contiguous directions,
-              // at a vertex of high degree only those the fan index names.
-              auto take = [&](std::uint32_t a) {
-                if (std::abs(glm::dot(n, dirs[a])) > tol || estamp[ix[a].edge] == cid) return;
-                const std::uint32_t y = ix[a].other;
-                vtest[y] = cid;
-                vin[y] = 1;
-                estamp[ix[a].edge] = cid;
-                cedges.push_back(ix[a].edge);
+          // Breadth-first over edges lying in the plane (normal m through o), starting at v; each
+          // vertex's in-plane incidences are noted as it is scanned, the vertices found off the
+          // plane are kept in `off`. `fan_ok`: the plane is the corner's, which the fan index knows.
+          auto collect = [&](const glm::dvec3& m, const glm::dvec3& o, bool fan_ok) {
+            const std::uint32_t cid = stamp++;  // marks this search in the stamp arrays
+            cverts.assign(1, v);
+            cedges.clear();
+            off.clear();
+            vstamp[v] = cid;
+            for (std::size_t head = 0; head < cverts.size(); ++head) {
+              const std::uint32_t x = cverts[head];
+              const auto ix = g.around(x);
+              local.clear();
+              budget.spend(ix.size());
+              if (head == 0) {
+                // x == v, scanned first (no edge of it is found yet): its contiguous directions,
+                // at a vertex of high degree only those the fan index names.
+                auto take = [&](std::uint32_t a) {
+                  if (estamp[ix[a].edge] == cid) return;
+                  const std::uint32_t y = ix[a].other;
+                  if (std::abs(glm::dot(m, g.points[y] - o)) > tol) {
+                    off.push_back(y);
+                    return;
+                  }
+                  vtest[y] = cid;
+                  vin[y] = 1;
+                  estamp[ix[a].edge] = cid;
+                  cedges.push_back(ix[a].edge);
+                  local.push_back(a);
+                  if (vstamp[y] != cid) {
+                    vstamp[y] = cid;
+                    cverts.push_back(y);
+                  }
+                };
+                if (fan_ok && indexed && !fan.along(i, j))
+                  fan.candidates(i, j, take);
+                else
+                  for (std::uint32_t a = 0; a < ix.size(); ++a) take(a);
+              }
+              for (std::uint32_t a = 0; a < ix.size() && head != 0; ++a) {
+                const auto& in = ix[a];
+                if (estamp[in.edge] == cid) {  // found from its other end
+                  local.push_back(a);
+                  continue;
+                }
+                const std::uint32_t y = in.other;
+                if (vtest[y] != cid) {
+                  vtest[y] = cid;
+                  vin[y] = std::abs(glm::dot(m, g.points[y] - o)) <= tol;
+                  if (!vin[y]) off.push_back(y);
+                }
+                if (!vin[y]) continue;
+                estamp[in.edge] = cid;
+                cedges.push_back(in.edge);
                 local.push_back(a);
                 if (vstamp[y] != cid) {
                   vstamp[y] = cid;
                   cverts.push_back(y);
                 }
-              };
-              if (indexed && !fan.along(i, j))
-                fan.candidates(i, j, take);
-              else
-                for (std::uint32_t a = 0; a < ix.size(); ++a) take(a);
+              }
+              // Every pair of in-plane edges at x spans this plane: mark them. O(k²) for k
+              // in-plane edges, not O(deg²), which matters at the poles of a sphere.
+              for (std::size_t p = 0; p < local.size(); ++p)
+                for (std::size_t q = p + 1; q < local.size(); ++q)
+                  done[pair_base[x] + local[p] * ix.size() + local[q]] = 1;
             }
-            for (std::uint32_t a = 0; a < ix.size() && head != 0; ++a) {
-              const auto& in = ix[a];
-              if (estamp[in.edge] == cid) {  // found from its other end
-                local.push_back(a);
-                continue;
-              }
-              const std::uint32_t y = in.other;
-              if (vtest[y] != cid) {
-                vtest[y] = cid;
-                vin[y] = std::abs(glm::dot(n, g.points[y] - origin)) <= tol;
-              }
-              if (!vin[y]) continue;
-              estamp[in.edge] = cid;
-              cedges.push_back(in.edge);
-              local.push_back(a);
-              if (vstamp[y] != cid) {
-                vstamp[y] = cid;
-                cverts.push_back(y);
-              }
-            }
-            // Every pair of in-plane edges at x spans this plane: mark them. O(k²) for k
-            // in-plane edges, not O(deg²), which matters at the poles of a sphere.
-            for (std::size_t p = 0; p < local.size(); ++p)
-              for (std::size_t q = p + 1; q < local.size(); ++q)
-                done[pair_base[x] + local[p] * ix.size() + local[q]] = 1;
+          };
+          // The vertex's own direction test (dirs) and the plane test agree: both measure the
+          // far end's distance from the plane through v.
+          glm::dvec3 origin = g.points[v];
+          collect(n, origin, true);
+          // The plane of one corner tilts by the coordinates' noise over the corner's edges,
+          // which a large face multiplies: fit the plane to the vertices found (least squares)
+          // and search again while the fit takes in vertices the last plane left out. On exact
+          // input the fit moves the plane by rounding only and the first search stands.
+          for (int refit = 0; opt.fit_planes && refit < 4 && cverts.size() >= 4; ++refit) {
+            const auto [fn, fo] = fit_plane(g, detail::span_of(cverts), n);
+            bool more = false;
+            for (const auto y : off) more = more || std::abs(glm::dot(fn, g.points[y] - fo)) <= tol;
+            n = fn;
+            origin = fo;
+            if (!more) break;
+            collect(n, origin, false);
           }
           // A forest has no circuit: most planes spanned by two edges hold just those two.
           if (cedges.size() < cverts.size()) continue;
@@ -408,9 +468,9 @@ void trace_planar(const wire_graph& g, const trace_options& opt, trace_result& r
           c.normal = n;
           c.u = glm::normalize(da - glm::dot(da, n) * n);
           c.w = glm::cross(n, c.u);
+          for (const auto x : cverts) c.extent = std::max(c.extent, glm::length(g.points[x] - origin));
           trace_plane_faces(g, cedges, c, scratch, budget);
           // Filed for grouping with the other components of the same geometric plane (holes).
-          plane_keys.push_back(plane_coords(n, c.origin - g.center, g.size));  // offsets about the centre
           auto& sample = plane_samples.emplace_back();
           for (std::size_t q = 0; q < cverts.size(); q += std::max<std::size_t>(1, cverts.size() / 8))
             sample.push_back(cverts[q]);
@@ -425,6 +485,14 @@ void trace_planar(const wire_graph& g, const trace_options& opt, trace_result& r
   // side is tried too; both normal signs. Each component joins the group of the first earlier
   // component found in its plane. O(C log C).
   {
+    // Two estimates of one plane differ by the tolerance over the components' size in their
+    // normals and by the tolerance in their offsets: the quanta stay 20 times coarser than
+    // that, so that the neighbour keys tried near a half find them (on exact input 1e-3).
+    double smallest = g.size;
+    for (const auto& c : comps) smallest = std::min(smallest, std::max(c.extent, 1e-300));
+    const double qn = std::min(1.0, std::max(1e-3, 40.0 * tol / smallest));
+    const double qo = std::max(1e-3 * g.size, 40.0 * tol);
+    for (const auto& c : comps) plane_keys.push_back(plane_coords(c.normal, c.origin - g.center, qn, qo));
     using key4 = std::array<std::int64_t, 4>;
     std::vector<std::pair<key4, std::uint32_t>> filed(comps.size());
     for (std::uint32_t k = 0; k < comps.size(); ++k) {
@@ -460,7 +528,10 @@ void trace_planar(const wire_graph& g, const trace_options& opt, trace_result& r
           auto it = std::lower_bound(filed.begin(), filed.end(), std::pair<key4, std::uint32_t>{key, 0});
           for (; it != filed.end() && it->first == key && it->second < k && found == no_index; ++it) {
             const auto& oc = comps[it->second];
-            bool same = std::abs(std::abs(glm::dot(oc.normal, comps[k].normal)) - 1.0) < 1e-9;
+            // Parallel to within the tilt the tolerance allows over the smaller component (never
+            // finer than 1 - |cos| < 1e-9), and the samples within the tolerance of the plane.
+            const double tilt = std::max(4.5e-5, 4.0 * tol / std::max(std::min(oc.extent, comps[k].extent), 1e-300));
+            bool same = glm::length(glm::cross(oc.normal, comps[k].normal)) < tilt;
             for (const auto v : plane_samples[k])
               same = same && std::abs(glm::dot(oc.normal, g.points[v] - oc.origin)) <= tol;
             if (same) found = group[it->second];
@@ -520,9 +591,15 @@ void trace_planar(const wire_graph& g, const trace_options& opt, trace_result& r
         ++r.holes;
       }
   }
-  for (auto& list : faces_of)
-    for (auto& f : list) {
+  // A face's normal is its plane's fitted one (the first component's of its geometric plane,
+  // turned as its loop turns): faces of one plane then have parallel normals however noisy
+  // their corners, so a seam between two of them, or a hole's mouth beside the face around
+  // it, reads as flat (coplanar_normals).
+  for (std::uint32_t c = 0; c < comps.size(); ++c)
+    for (auto& f : faces_of[c]) {
       update_normal(g, f);
+      const glm::dvec3 n = comps[group[c]].normal;
+      if (opt.fit_planes && f.area > 0.0) f.normal = glm::dot(f.normal, n) < 0.0 ? -n : n;
       r.faces.push_back(std::move(f));
     }
 }

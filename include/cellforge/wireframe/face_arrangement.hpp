@@ -507,6 +507,8 @@ void candidate_pairs(const wire_graph& g, const std::vector<face_plane>& plane, 
   // Large faces: walk the cells their plane passes through, column by column along the
   // plane's steepest axis.
   std::vector<std::uint32_t> seen(plane.size(), no_index);
+  std::vector<char> is_big(plane.size(), 0);
+  for (const auto b : big) is_big[b] = 1;
   for (const auto b : big) {
     const glm::dvec3 n = plane[b].n, o = plane[b].o;
     const int k = std::abs(n.x) >= std::abs(n.y) && std::abs(n.x) >= std::abs(n.z) ? 0
@@ -514,6 +516,16 @@ void candidate_pairs(const wire_graph& g, const std::vector<face_plane>& plane, 
                                                                                    : 2;
     const int u = (k + 1) % 3, w = (k + 2) % 3;
     const auto lo = cell(plane[b].box.min - tol), hi = cell(plane[b].box.max + tol);
+    // A face far larger than the cells (a long part beside tiny ones) crosses more columns
+    // than there are faces: its boxes are then tested against every face's, which costs less.
+    const double columns = (static_cast<double>(hi[u] - lo[u]) + 1) * (static_cast<double>(hi[w] - lo[w]) + 1);
+    if (columns > 4.0 * static_cast<double>(plane.size())) {
+      for (std::uint32_t i = 0; i < plane.size(); ++i) {
+        budget.spend();
+        if (!is_big[i] && boxes_meet(b, i)) visit(b, i);
+      }
+      continue;
+    }
     for (auto cu = lo[u]; cu <= hi[u]; ++cu)
       for (auto cw = lo[w]; cw <= hi[w]; ++cw) {
         // The plane's k-range over this column (its four corners), widened by the tolerance.

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <span>
 #include <string>
@@ -29,7 +30,10 @@ namespace cellforge {
 
 /// Options of read_vertices.
 struct read_options {
-  tolerance merge{1e-9};  ///< points closer than this (relative to the bounding-box diagonal) are one vertex
+  /// Points closer than this fraction of their local edge length (the median length of the
+  /// edges at each, the smaller of the two) are one vertex: a far vertex or a long part does
+  /// not swallow a small one. A vertex lies inside an edge within this fraction of both.
+  tolerance merge{1e-9};
   bool prune_dangling = true;  ///< remove edges that cannot lie on any circuit (trees hanging off the graph)
   /// Throw on zero-length, duplicate and dangling edges instead of dropping them with a note.
   bool strict = false;
@@ -98,58 +102,118 @@ std::vector<std::uint32_t> edges_by_ends(const std::vector<std::array<std::uint3
   return out;
 }
 
-/// Merges the points listed in `order` within tol by hashing them to cells of side 64·tol;
-/// returns each point's representative (the smallest index of its cluster, whatever the
-/// order; a spatial order keeps the cell look-ups in cache). O(n) expected.
+/// Merges the points listed in `order`: two points are one when they are equal or closer than
+/// both their tolerances `tol[i]` (a point's own scale). Points are hashed to cells of 64
+/// tolerances in one grid per factor of 8 of tolerance; each point looks in the grids of its
+/// own and larger tolerances, where its ball covers a cell or a few. Returns each point's
+/// representative (the smallest index of its cluster, whatever the order; a spatial order keeps
+/// the cell look-ups in cache). O(n · levels) expected, levels = log8 of the tolerances' spread.
 template <class = void>
 std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p,
-                                              const std::vector<std::uint32_t>& order, double tol,
-                                              work_budget& budget) {
+                                              const std::vector<std::uint32_t>& order,
+                                              const std::vector<double>& tol, work_budget& budget) {
   const std::size_t n = p.size();
   union_find uf(n);
-  // Cell → first point, then a linked list through `next`: no allocation per cell.
-  std::unordered_map<std::array<std::int64_t, 3>, std::uint32_t, cell_hash> cells;
-  cells.reserve(n);
-  std::vector<std::uint32_t> next(n, no_index);
-  // Cells of 64 tolerances measured from the lowest corner: a point's tolerance ball seldom
-  // leaves its cell, and cell indices stay small however far the model is from the origin.
-  glm::dvec3 low(std::numeric_limits<double>::infinity()), high(-low);
-  for (const std::uint32_t i : order) low = glm::min(low, p[i]), high = glm::max(high, p[i]);
-  // (A zero tolerance merges equal points only; the cells then just have to be small.)
-  double h = 64.0 * std::max(tol, 1e-12 * glm::length(high - low));
-  if (!(h > 0.0) || !std::isfinite(h)) h = 1.0;  // one point, or all points equal
-  auto cell_of = [&](const glm::dvec3& q) {
-    const glm::dvec3 c = (q - low) / h;
-    return std::array<std::int64_t, 3>{grid_coordinate(c.x), grid_coordinate(c.y), grid_coordinate(c.z)};
+  glm::dvec3 low(std::numeric_limits<double>::infinity());
+  for (const std::uint32_t i : order) low = glm::min(low, p[i]);
+  // Equal points first (a zero tolerance merges only these).
+  {
+    std::unordered_map<std::array<std::int64_t, 3>, std::uint32_t, cell_hash> same;
+    same.reserve(order.size());
+    for (const std::uint32_t i : order) {
+      std::array<std::int64_t, 3> key{};
+      for (int k = 0; k < 3; ++k) {
+        const double c = p[i][k] == 0.0 ? 0.0 : p[i][k];  // -0 and +0 alike
+        std::memcpy(&key[static_cast<std::size_t>(k)], &c, sizeof c);
+      }
+      const auto [it, fresh] = same.emplace(key, i);
+      if (!fresh) uf.unite(it->second, i);
+    }
+  }
+  // Grid level of a tolerance: tolerances in [8^L, 8^(L+1)) share cells of 64 · 8^(L+1).
+  auto level_of = [](double t) {
+    int e = 0;
+    std::frexp(t, &e);  // t < 2^e
+    return static_cast<int>(std::floor((e - 1) / 3.0));
   };
+  auto cell_size = [](int level) { return std::ldexp(64.0, 3 * level + 3); };
+  auto cell_of = [&](const glm::dvec3& q, int level) {
+    const glm::dvec3 c = (q - low) / cell_size(level);
+    return std::array<std::int64_t, 4>{level, grid_coordinate(c.x), grid_coordinate(c.y), grid_coordinate(c.z)};
+  };
+  // Cell → first point, then a linked list through `next`: no allocation per cell.
+  std::unordered_map<std::array<std::int64_t, 4>, std::uint32_t, cell_hash> cells;
+  cells.reserve(order.size());
+  std::vector<std::uint32_t> next(n, no_index);
+  std::vector<int> levels;
   for (const std::uint32_t i : order) {
-    const auto [it, fresh] = cells.emplace(cell_of(p[i]), i);
+    if (!(tol[i] > 0.0) || !std::isfinite(tol[i])) continue;
+    const int level = level_of(tol[i]);
+    levels.push_back(level);
+    const auto [it, fresh] = cells.emplace(cell_of(p[i], level), i);
     if (!fresh) {
       next[i] = it->second;
       it->second = i;
     }
   }
+  std::sort(levels.begin(), levels.end());
+  levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
   for (const std::uint32_t i : order) {
-    // Only the cells the ball of radius tol about p[i] reaches: almost always its own.
-    const auto lo = cell_of(p[i] - tol), hi = cell_of(p[i] + tol);
-    for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
-      for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
-        for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
-          budget.spend();
-          const auto it = cells.find({x, y, z});
-          if (it == cells.end()) continue;
-          for (std::uint32_t j = it->second; j != no_index; j = next[j]) {
+    const double t = tol[i];
+    if (!(t > 0.0) || !std::isfinite(t)) continue;
+    for (auto l = std::lower_bound(levels.begin(), levels.end(), level_of(t)); l != levels.end(); ++l) {
+      // Only the cells the ball of radius t about p[i] reaches: almost always one.
+      const auto lo = cell_of(p[i] - t, *l), hi = cell_of(p[i] + t, *l);
+      for (std::int64_t x = lo[1]; x <= hi[1]; ++x)
+        for (std::int64_t y = lo[2]; y <= hi[2]; ++y)
+          for (std::int64_t z = lo[3]; z <= hi[3]; ++z) {
             budget.spend();
-            if (j > i && glm::length(p[i] - p[j]) <= tol) uf.unite(i, j);
+            const auto it = cells.find({*l, x, y, z});
+            if (it == cells.end()) continue;
+            for (std::uint32_t j = it->second; j != no_index; j = next[j]) {
+              budget.spend();
+              if (j != i && glm::length(p[i] - p[j]) <= std::min(t, tol[j])) uf.unite(i, j);
+            }
           }
-        }
+    }
   }
   std::vector<std::uint32_t> rep(n);
   for (std::uint32_t i = 0; i < n; ++i) rep[i] = uf.find(i);
   return rep;
 }
 
-/// Splits edges at vertices lying strictly inside them (within tol): a grid of cells about the
+/// Each point's local length: the median length of the non-zero edges at it (the longer middle
+/// one of an even count), 0 for a point on no such edge. O(E log deg).
+template <class = void>
+std::vector<double> local_lengths(const std::vector<glm::dvec3>& p,
+                                  const std::vector<std::array<std::uint32_t, 2>>& ends) {
+  std::vector<std::uint32_t> start(p.size() + 1, 0);
+  for (const auto& [a, b] : ends)
+    if (a != b) ++start[a + 1], ++start[b + 1];
+  for (std::size_t v = 0; v < p.size(); ++v) start[v + 1] += start[v];
+  std::vector<double> len(start.back());
+  {
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (const auto& [a, b] : ends)
+      if (a != b) {
+        const double l = glm::length(p[b] - p[a]);
+        len[fill[a]++] = l;
+        len[fill[b]++] = l;
+      }
+  }
+  std::vector<double> out(p.size(), 0.0);
+  for (std::size_t v = 0; v < p.size(); ++v) {
+    const auto begin = len.begin() + start[v], end = len.begin() + start[v + 1];
+    if (begin == end) continue;
+    const auto mid = begin + (end - begin) / 2;
+    std::nth_element(begin, mid, end);
+    out[v] = *mid;
+  }
+  return out;
+}
+
+/// Splits edges at vertices lying strictly inside them, within the smaller of the vertex's
+/// tolerance `tol[v]` and `relative` times the edge's length: a grid of cells about the
 /// median edge length holds the vertices; each edge visits the cells along it. Pieces are
 /// appended in order along the edge and keep their edge's origin. Returns the number of splits.
 /// Vertices are visited in `order` (a spatial order keeps the cell look-ups in cache; the
@@ -158,7 +222,8 @@ template <class = void>
 std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vector<char>& is_vertex,
                               const std::vector<std::uint32_t>& order,
                               std::vector<std::array<std::uint32_t, 2>>& ends,
-                              std::vector<std::uint32_t>& origin, double tol, work_budget& budget) {
+                              std::vector<std::uint32_t>& origin, const std::vector<double>& tol,
+                              double relative, work_budget& budget) {
   // The search runs on the points of `order` copied in that order and on edges relabelled by
   // rank (a point's place in it): near points near in memory whatever the caller's numbering.
   const std::size_t n = ends.size(), m = order.size();
@@ -191,7 +256,7 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
   // The median edge length, but never so small that walking all edges visits more than about
   // 4 cells per edge or vertex: a few long edges beside many tiny ones stay linear.
   const double work_cap = total_length / (4.0 * static_cast<double>(ends.size() + p.size()));
-  double h = std::max({lengths[lengths.size() / 2], 4.0 * tol, work_cap});
+  double h = std::max({lengths[lengths.size() / 2], 4.0 * relative * lengths[lengths.size() / 2], work_cap});
   if (!(h > 0.0) || !std::isfinite(h)) h = 1.0;
   // Cells centred on low + k·h: vertices of a lattice of that pitch (grids, CAD models) lie in
   // the middle of cells, not on their walls, and a short edge's box covers 2 cells, not 12.
@@ -217,7 +282,7 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
     const std::uint32_t a = by_rank[e][0], b = by_rank[e][1];
     if (a == b) continue;
     const glm::dvec3 pa = q[a], d = q[b] - pa;
-    const double len = glm::length(d);
+    const double len = glm::length(d), edge_tol = relative * len;
     inside.clear();
     auto visit = [&](const std::array<std::int64_t, 3>& c) {
       budget.spend();
@@ -228,11 +293,12 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
         if (v == a || v == b || seen_stamp[v] == e) continue;
         seen_stamp[v] = static_cast<std::uint32_t>(e);
         const double t = glm::dot(q[v] - pa, d) / (len * len);
-        if (t * len <= tol || (1.0 - t) * len <= tol) continue;
-        if (glm::length(pa + t * d - q[v]) <= tol) inside.emplace_back(t, order[v]);
+        const double within = std::min(edge_tol, tol[order[v]]);
+        if (t * len <= within || (1.0 - t) * len <= within) continue;
+        if (glm::length(pa + t * d - q[v]) <= within) inside.emplace_back(t, order[v]);
       }
     };
-    const auto lo = cell_of(glm::min(pa, q[b]) - tol), hi = cell_of(glm::max(pa, q[b]) + tol);
+    const auto lo = cell_of(glm::min(pa, q[b]) - edge_tol), hi = cell_of(glm::max(pa, q[b]) + edge_tol);
     // In double: clamped coordinates would overflow an integer product.
     const double box_cells = (static_cast<double>(hi[0] - lo[0]) + 1) *
                              (static_cast<double>(hi[1] - lo[1]) + 1) *
@@ -329,7 +395,7 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
                       " from the origin; lengths, areas and volumes are computed in double, which holds "
                       "this only between 1e-50 and 1e50 units: scale the model into that range");
   }
-  const double tol = options.merge.absolute(box);
+  options.merge.absolute(box);  // checks the option (finite, >= 0)
   detail::work_budget budget{options.work_budget, 0, "read_vertices"};
   if (box.diagonal() == 0.0)
     throw error(error_category::invalid_input, "read_vertices: all " + std::to_string(ne) +
@@ -343,12 +409,20 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
   if (options.spatial_order)  // keyed in the used points' box (`box` above)
     visit =
         detail::morton_order(std::span<const std::uint32_t>(visit), [&](std::uint32_t v) { return p[v]; });
+  // Each point's tolerance: a fraction of its local edge length, so that the bounding box (a far
+  // vertex, a long part) does not decide what is close for a small part.
+  std::vector<double> tol = detail::local_lengths(p, ends);
+  for (auto& t : tol) t *= options.merge.relative;
   const std::vector<std::uint32_t> rep = detail::merge_close_points(p, visit, tol, budget);
+  double merged_within = 0.0;  // the largest distance of a point from its representative
   for (std::size_t v = 0; v < nv; ++v)
     if (used[v] && rep[v] != v) {
       ++r.merged_points;
-      r.diagnostics.push_back("vertex " + std::to_string(v) + " lies within " + detail::number_text(tol) +
-                              " of vertex " + std::to_string(rep[v]) + " and was merged into it");
+      const double d = glm::length(p[v] - p[rep[v]]);
+      merged_within = std::max(merged_within, d);
+      r.diagnostics.push_back("vertex " + std::to_string(v) + " lies within " +
+                              detail::number_text(tol[v]) + " of vertex " +
+                              std::to_string(rep[v]) + " and was merged into it");
     }
 
   // Edges between representatives, split where another vertex lies inside them (a T-junction
@@ -362,7 +436,8 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
   if (options.split_at_vertices) {
     std::vector<char> is_rep(nv, 0);
     for (std::uint32_t v = 0; v < nv; ++v) is_rep[v] = used[v] && rep[v] == v;
-    const std::size_t splits = detail::split_at_vertices(p, is_rep, visit, ends, origin, tol, budget);
+    const std::size_t splits =
+        detail::split_at_vertices(p, is_rep, visit, ends, origin, tol, options.merge.relative, budget);
     if (splits > 0)
       r.diagnostics.push_back(std::to_string(splits) +
                               " vertices lie inside edges (T-junctions or overlapping edges); the edges were "
@@ -518,7 +593,7 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
                                               " edges form trees), so the wireframe bounds no face");
   g.size = kept_box.diagonal();
   g.center = kept_box.center();
-  g.merge_tolerance = tol;
+  g.merge_tolerance = merged_within;
   g.link();
   r.milliseconds = clock.ms();
   return r;

@@ -29,9 +29,11 @@ template <class = void>
 unique_result unique_circuits(const wire_graph& g, std::vector<wire_face> faces, const unique_options& = {}) {
   detail::stopwatch clock;
   unique_result r;
+  // canonicalize turns the normal with the loop: a tracer's normal (the planar tracer gives a
+  // face its plane's fitted normal) is kept; only a face without one gets its Newell normal.
   for (auto& f : faces) {
     canonicalize(f);
-    update_normal(g, f);
+    if (f.normal == glm::dvec3(0.0)) update_normal(g, f);
   }
   // Sorted by loops, stably: the first of each run of equal faces is the earliest, which is kept.
   std::vector<std::uint32_t> order(faces.size());

@@ -56,7 +56,7 @@ struct basic_wire_graph {
   std::vector<std::uint32_t> first;        ///< CSR offsets into `incidences`, size V + 1
   std::vector<wire_incidence> incidences;  ///< per vertex, its incident edges
   double size = 0.0;                       ///< bounding-box diagonal: the model's length scale
-  double merge_tolerance = 0.0;            ///< absolute distance under which points were merged
+  double merge_tolerance = 0.0;            ///< largest distance of a merged point from its vertex (0: none)
   glm::dvec3 center{0.0};                  ///< bounding-box centre (sums are taken about it)
 
   std::size_t num_vertices() const noexcept { return points.size(); }

@@ -9,8 +9,10 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cellforge/cells/cell_complex.hpp"
@@ -24,6 +26,7 @@
 #include "cellforge/wireframe/face_reduction.hpp"
 #include "cellforge/wireframe/read_vertices.hpp"
 #include "cellforge/wireframe/relations.hpp"
+#include "cellforge/wireframe/tolerance_estimate.hpp"
 #include "cellforge/wireframe/unique_circuits.hpp"
 #include "cellforge/wireframe/volume_finder.hpp"
 
@@ -32,6 +35,9 @@ namespace cellforge {
 /// Options of every stage, with the seed's defaults.
 struct wireframe_options {
   read_options read{};
+  /// The planarity tolerance of every stage chosen from the data (§4.1½, tolerance_estimate.hpp);
+  /// `automatic = false` keeps the stages' own planarity options below.
+  tolerance_options tolerance{};
   trace_options trace{};
   unique_options unique{};
   reduction_options reduction{};
@@ -51,9 +57,10 @@ struct wireframe_options {
   certify_options certify{};
 };
 
-/// The validate() options that judge a complex wireframe_to_cells made with `options`: its faces
-/// are flat to the pipeline's own tolerances (fractions of the model's diagonal), so they are
-/// judged no finer than ten times those, however small a face is. O(1).
+/// The validate() options that judge a complex wireframe_to_cells made with `options` as given
+/// (the stages' tolerances; with the automatic tolerance the result's `check` holds the options
+/// it was judged with): its faces are flat to the pipeline's own tolerances (fractions of the
+/// model's diagonal), so they are judged no finer than ten times those. O(1).
 template <class = void>
 cells_validation_options wireframe_check_options(const wireframe_options& options) {
   cells_validation_options check;
@@ -98,6 +105,12 @@ struct wireframe_result {
   /// Faces selected and then removed (a free edge, an overlap): never silent.
   std::vector<face_note> lost;
   read_result read;
+  /// The tolerance the stages used and how it was found; `tolerance.ambiguous` flags an answer
+  /// the coordinates' noise may have spoilt (no clear gap, and part of the wireframe unexplained).
+  tolerance_result tolerance;
+  /// The validate() options the result was checked with (wireframe_check_options of the
+  /// options as used, the automatic tolerance filled in).
+  cells_validation_options check;
   trace_result trace;
   unique_result unique;
   reduction_result reduction;
@@ -279,35 +292,47 @@ void judge(wireframe_result<P>& r, const std::string& invalid, bool certified) {
                                               " of a tessellated flat surface)"
                                         : std::string());
   }
+  // The coordinates' noise may have hidden faces (tolerance_estimate.hpp): never a solid, and
+  // the reason says why, whatever else the answer is.
+  if (r.tolerance.ambiguous) {
+    if (r.status == solid_status::solid) r.status = solid_status::ambiguous;
+    r.status_reason += "; the tolerance is doubtful: " + r.tolerance.reason;
+  }
 }
 }  // namespace detail
 
-/// Converts a wireframe to a cell complex whose positions are the wireframe's (its point type),
-/// certifies it against the wireframe and says what it is (status, status_reason). Faces that
-/// close no volume (a lone planar loop, an open box) come back as faces without volumes,
-/// not_a_solid, with a diagnostic. Throws cellforge::error on bad input (see read_vertices), on
-/// an exhausted work budget of a stage, or when no face is found (saying what the wireframe is).
-/// Polynomial with the default planar tracer: O(Σ deg² + Σ planes k log k + F·L + grid pairs).
+namespace detail {
+/// One run of the pipeline (wireframe_to_cells' body) on the wireframe as read, with the
+/// stages' tolerances of `used` (the caller's options, the planarity filled in); `tolerance` is
+/// recorded in the result, and with `estimated` its doubts apply (no clear gap: a diagnostic,
+/// an answer that leaves part of the wireframe unexplained flagged ambiguous). Throws as
+/// wireframe_to_cells. The cost of wireframe_to_cells.
 template <Wireframe G>
-wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
-    const G& wire, const wireframe_options& options = {}) {
+wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const G& wire,
+                                                                          const wireframe_options& used,
+                                                                          read_result read,
+                                                                          tolerance_result tolerance,
+                                                                          bool estimated) {
   using P = typename wireframe_traits<G>::point_type;
   wireframe_result<P> r;
-  r.read = read_vertices(wire, options.read);
+  r.read = std::move(read);
+  r.tolerance = std::move(tolerance);
   const wire_graph& g = r.read.graph;
-  r.trace = trace_circuits(g, options.trace);
-  r.unique = unique_circuits(g, std::move(r.trace.faces), options.unique);
+  if (estimated && !r.tolerance.clear_gap) r.diagnostics.push_back("tolerance: " + r.tolerance.reason);
+  r.check = cellforge::wireframe_check_options(used);
+  r.trace = cellforge::trace_circuits(g, used.trace);
+  r.unique = cellforge::unique_circuits(g, std::move(r.trace.faces), used.unique);
   r.trace.faces.clear();
-  reduction_options reduction = options.reduction;
+  reduction_options reduction = used.reduction;
   // Faces of a planar arrangement are never the sum of two others; only the seed's search needs the test.
-  if (options.trace.kind == tracer_kind::planar) reduction.remove_face_sums = false;
-  r.reduction = reduce_faces(g, r.unique.faces, reduction);
-  r.arrangement = arrange_faces(g, r.unique.faces, r.reduction, options.arrangement);
-  extra_face_options extra = options.extra;
+  if (used.trace.kind == tracer_kind::planar) reduction.remove_face_sums = false;
+  r.reduction = cellforge::reduce_faces(g, r.unique.faces, reduction);
+  r.arrangement = cellforge::arrange_faces(g, r.unique.faces, r.reduction, used.arrangement);
+  extra_face_options extra = used.extra;
   // The planar tracer finds every planar face; only the seed's search can miss some.
-  if (options.trace.kind == tracer_kind::planar) extra.add_missed = false;
+  if (used.trace.kind == tracer_kind::planar) extra.add_missed = false;
   r.extra =
-      extra_faces(g, r.unique.faces, r.arrangement.selected, extra, detail::span_of(r.arrangement.crossed));
+      cellforge::extra_faces(g, r.unique.faces, r.arrangement.selected, extra, span_of(r.arrangement.crossed));
   auto note = [&](const wire_face& f, std::string reason) {
     face_note n{f.loops, std::move(reason)};
     for (auto& loop : n.loops)
@@ -325,10 +350,15 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   for (const auto& d : r.extra.removed)
     if (!(open_surface && d.free_edge)) r.lost.push_back(note(d.face, d.reason));
   if (r.extra.faces.empty())
-    throw error(error_category::topology, detail::no_face_message(g, r.arrangement, r.lost));
+    throw error(error_category::topology,
+                no_face_message(g, r.arrangement, r.lost) +
+                    (!estimated || r.tolerance.clear_gap ? std::string()
+                                           : "; " + r.tolerance.reason +
+                                                 " (set wireframe_options::tolerance.automatic = false and "
+                                                 "the stages' planarity, or wire2cells --planarity)"));
   if (!r.extra.open_edges.empty())
     r.diagnostics.push_back(
-        detail::open_surface_message(g, r.unique.faces, r.arrangement, r.extra, open_surface));
+        open_surface_message(g, r.unique.faces, r.arrangement, r.extra, open_surface));
   if (open_surface) {
     const std::size_t n = r.extra.faces.size();
     r.diagnostics.push_back(
@@ -338,11 +368,11 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
     r.volume.face_kept.assign(n, 1);
     r.volume.face_volumes.assign(n, {no_index, no_index});
   } else {
-    r.volume = find_volumes(g, r.extra.faces, options.volume);
-    r.relations = find_relations(g, r.extra.faces, r.volume, options.relations);
+    r.volume = cellforge::find_volumes(g, r.extra.faces, used.volume);
+    r.relations = cellforge::find_relations(g, r.extra.faces, r.volume, used.relations);
   }
 
-  detail::stopwatch clock;
+  stopwatch clock;
   const std::vector<wire_face>& faces = r.extra.faces;
   std::vector<char> edge_used(g.num_edges(), 0);
   std::vector<std::uint32_t> face_id(faces.size(), no_index);
@@ -353,6 +383,18 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
     for (const auto& loop : faces[i].loops)
       for (std::size_t k = 0; k < loop.size(); ++k)
         edge_used[g.find_edge(loop[k], loop[(k + 1) % loop.size()])] = 1;
+  }
+  // No clear gap between noise and shape: the reading stands when it explains the whole
+  // wireframe (every edge on a kept face, nothing lost, volumes closed); otherwise the noise
+  // may have hidden faces, and the answer is flagged (the certificate also says what is left).
+  if (estimated && !r.tolerance.clear_gap) {
+    const bool explained = !open_surface && r.lost.empty() &&
+                           std::find(edge_used.begin(), edge_used.end(), char{0}) == edge_used.end();
+    r.tolerance.ambiguous = !explained;
+    if (r.tolerance.ambiguous)
+      r.diagnostics.push_back(
+          "tolerance: the reading leaves part of the wireframe unexplained and the noise may have hidden "
+          "faces; the answer is doubtful");
   }
   // Vertices and edges: those the faces use (and dangling edges when asked), caller's order.
   std::vector<std::array<std::uint32_t, 2>> edges;  // in the caller's vertex labels
@@ -369,21 +411,21 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   for (const std::uint32_t e : caller_order) {
     if (!edge_used[e]) {
       const std::uint32_t other =
-          test_crossings ? detail::crossing_edge(g, detail::span_of(caller_order), e) : no_index;
+          test_crossings ? crossing_edge(g, span_of(caller_order), e) : no_index;
       r.diagnostics.push_back(
           "edge " + std::to_string(g.input_edge[e]) + " bounds no face" +
           (other != no_index
                ? " (it crosses edge " + std::to_string(g.input_edge[other]) + " between their ends)"
                : std::string()) +
-          (options.keep_dangling ? "; kept as a dangling edge" : " and is left out"));
+          (used.keep_dangling ? "; kept as a dangling edge" : " and is left out"));
     }
-    if (edge_used[e] || options.keep_dangling) {
+    if (edge_used[e] || used.keep_dangling) {
       graph_edge_out[e] = static_cast<std::uint32_t>(edges.size());
       edges.push_back({g.input_vertex[g.edges[e][0]], g.input_vertex[g.edges[e][1]]});
       edge_origin.push_back(g.input_edge[e]);
     }
   }
-  if (options.keep_dangling) {
+  if (used.keep_dangling) {
     for (const auto e : r.read.dangling) {
       const auto ab = wireframe_traits<G>::endpoints(wire, e);
       edges.push_back({static_cast<std::uint32_t>(ab[0]), static_cast<std::uint32_t>(ab[1])});
@@ -409,7 +451,7 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
     auto& loops = r.input.faces[i].loops;
     for (auto& loop : loops)
       for (auto& v : loop) v = label[g.input_vertex[v]];
-    reversed[i] = canonical_cycle(loops[0]);
+    reversed[i] = cellforge::canonical_cycle(loops[0]);
     for (std::size_t h = 1; h < loops.size(); ++h) {
       if (reversed[i]) std::reverse(loops[h].begin(), loops[h].end());
       std::rotate(loops[h].begin(), std::min_element(loops[h].begin(), loops[h].end()), loops[h].end());
@@ -430,7 +472,7 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
       if (face_id[i] != no_index) n.remove.push_back(face_id[i]);
     r.alternatives.push_back(std::move(n));
   }
-  if (options.build_complex) {
+  if (used.build_complex) {
     // Built and checked in the graph's numbering (spatial: read_options::spatial_order), where
     // the sorts and checks stay in cache, then renumbered to the output's: the same complex as
     // make_cell_complex(r.input), whatever order the caller numbered the wireframe in.
@@ -471,21 +513,21 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
     in.volumes = r.input.volumes;
     cell_complex<P> inside;
     try {
-      inside = make_cell_complex(std::move(in));
+      inside = cellforge::make_cell_complex(std::move(in));
     } catch (const error&) {
-      r.cells = make_cell_complex(r.input);  // the error in the output's numbering
+      r.cells = cellforge::make_cell_complex(r.input);  // the error in the output's numbering
       throw;
     }
-    if (options.check_result) r.validation = validate(inside, wireframe_check_options(options));
-    r.cells = renumber_cells(inside, vertex_label, edge_label);
+    if (used.check_result) r.validation = cellforge::validate(inside, r.check);
+    r.cells = cellforge::renumber_cells(inside, vertex_label, edge_label);
     if (!r.validation.ok())
-      r.validation = validate(r.cells, wireframe_check_options(options));  // output numbering
+      r.validation = cellforge::validate(r.cells, r.check);  // output numbering
     r.validation.expected_euler.clear();  // per object, and objects were numbered otherwise inside
     r.validation.euler_checked.clear();
     r.assembly_milliseconds = clock.ms();
-    if (options.certify_result) {
-      const certify_options check = detail::pipeline_certify_options(options);
-      r.certificate = certify(r.cells, wire, check);
+    if (used.certify_result) {
+      const certify_options check = pipeline_certify_options(used);
+      r.certificate = cellforge::certify(r.cells, wire, check);
       // A volume bounded by a face that an input edge pierces is no solid the input draws (the
       // surface intersects itself, as a triangle through a tetrahedron): its faces stay, the
       // volume goes, so that no volume is invented from a self-intersecting input.
@@ -503,13 +545,13 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
           r.diagnostics.push_back(std::to_string(before - r.input.volumes.size()) +
                                   " volumes dropped: a face of each is pierced by an input edge (" +
                                   pierced->message + "), so the input intersects itself there");
-          r.cells = make_cell_complex(r.input);
-          if (options.check_result) r.validation = validate(r.cells, wireframe_check_options(options));
-          r.certificate = certify(r.cells, wire, check);
+          r.cells = cellforge::make_cell_complex(r.input);
+          if (used.check_result) r.validation = cellforge::validate(r.cells, r.check);
+          r.certificate = cellforge::certify(r.cells, wire, check);
         }
       }
     }
-    detail::judge(r, r.validation.ok() ? std::string() : r.validation.message, options.certify_result);
+    judge(r, r.validation.ok() ? std::string() : r.validation.message, used.certify_result);
     return r;
   }
   r.assembly_milliseconds = clock.ms();
@@ -517,4 +559,90 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   return r;
 }
 
+/// Whether answer a is better than b: solid > ambiguous > not_a_solid > budget, and between
+/// two not_a_solid answers fewer input edges on no face; ties to b. O(1).
+template <Point3 P>
+bool better_answer(const wireframe_result<P>& a, const wireframe_result<P>& b) {
+  auto rank = [](solid_status s) {
+    return s == solid_status::solid ? 3 : s == solid_status::ambiguous ? 2 : s == solid_status::not_a_solid ? 1 : 0;
+  };
+  if (rank(a.status) != rank(b.status)) return rank(a.status) > rank(b.status);
+  return a.status == solid_status::not_a_solid &&
+         a.certificate.unused_input_edges.size() < b.certificate.unused_input_edges.size();
+}
+}  // namespace detail
+
+/// Converts a wireframe to a cell complex whose positions are the wireframe's (its point type),
+/// certifies it against the wireframe and says what it is (status, status_reason). Faces that
+/// close no volume (a lone planar loop, an open box) come back as faces without volumes,
+/// not_a_solid, with a diagnostic. Throws cellforge::error on bad input (see read_vertices), on
+/// an exhausted work budget of a stage, or when no face is found (saying what the wireframe is).
+/// With the automatic tolerance, exact input first: the stages' fixed tolerances, whose certified
+/// solid is the answer; otherwise the estimated tolerance too, and the better answer of the two
+/// (better_answer; a pass that throws is the worst, both: the estimated pass's error). A clear
+/// gap at or above the fixed tolerance: the estimated pass only.
+/// Polynomial with the default planar tracer: O(Σ deg² + Σ planes k log k + F·L + grid pairs),
+/// twice only for input without a clear gap (or one below the fixed tolerance) that is no
+/// certified solid at the fixed tolerance.
+template <Wireframe G>
+wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
+    const G& wire, const wireframe_options& options = {}) {
+  using P = typename wireframe_traits<G>::point_type;
+  read_result read = read_vertices(wire, options.read);
+  tolerance_result given;  // the stages' own planarity options
+  given.planarity = options.trace.planarity.relative;
+  given.planarity_distance = options.trace.planarity.relative * read.graph.size;
+  if (!options.tolerance.automatic) return detail::wireframe_pass(wire, options, std::move(read), given, false);
+
+  tolerance_result estimate = estimate_tolerance(read.graph, options.tolerance);
+  wireframe_options at_estimate = options;
+  at_estimate.trace.planarity.relative = at_estimate.reduction.planarity.relative = estimate.planarity;
+  at_estimate.arrangement.planarity.relative = at_estimate.extra.retrace.planarity.relative = estimate.planarity;
+  at_estimate.trace.fit_planes = true;  // planes fitted to their vertices: the coordinates may be noisy
+  estimate.estimated_planarity = estimate.planarity;
+  const bool same = options.trace.fit_planes && options.trace.planarity.relative == estimate.planarity &&
+                    options.reduction.planarity.relative == estimate.planarity &&
+                    options.arrangement.planarity.relative == estimate.planarity &&
+                    options.extra.retrace.planarity.relative == estimate.planarity;
+  // Exact input first: the stages' fixed tolerances, the estimate's figures kept beside them.
+  tolerance_result fixed_tolerance = estimate;
+  fixed_tolerance.planarity = given.planarity;
+  fixed_tolerance.planarity_distance = given.planarity_distance;
+  fixed_tolerance.fixed_pass = true;
+  // A clear gap at or above the fixed tolerance: the estimated pass reads the input. Without
+  // fitted planes, noise near the fixed tolerance bends a wall out of its plane, and the rest
+  // still certifies as a solid (a 12 × 2 × 1 grid written with 10 digits lost a wall).
+  const bool clear = estimate.clear_gap && estimate.planarity >= given.planarity;
+  std::optional<wireframe_result<P>> fixed;
+  try {
+    if (!clear) fixed = detail::wireframe_pass(wire, options, read, std::move(fixed_tolerance), false);
+  } catch (const error&) {  // the worst answer; the estimated pass's error is the one thrown
+  }
+  auto keep_fixed = [&](std::string why) {
+    fixed->diagnostics.push_back("tolerance: the stages' fixed planarity (" + detail::number_text(given.planarity) +
+                                 " of the diagonal) was used, not the estimate (" +
+                                 detail::number_text(estimate.planarity) + "): " + std::move(why));
+    return std::move(*fixed);
+  };
+  if (fixed && fixed->status == solid_status::solid)
+    return estimate.planarity == given.planarity
+               ? std::move(*fixed)
+               : keep_fixed("certified solid with it, the data's own precision is enough");
+  if (fixed && same) return std::move(*fixed);  // the estimated pass would be this one
+
+  wireframe_result<P> r;
+  try {
+    r = detail::wireframe_pass(wire, at_estimate, std::move(read), std::move(estimate), true);
+  } catch (const error& e) {
+    if (!fixed) throw;
+    return keep_fixed(std::string("the estimated one failed (") + e.what() + ")");
+  }
+  if (fixed && !detail::better_answer(r, *fixed))
+    return keep_fixed(std::string("its answer (") + to_string(fixed->status) + ") is no worse than the estimate's (" +
+                      to_string(r.status) + ")");
+  if (fixed)
+    r.diagnostics.push_back(std::string("tolerance: the estimated planarity was used: the stages' fixed one gives ") +
+                            to_string(fixed->status) + " (" + fixed->status_reason + ")");
+  return r;
+}
 }  // namespace cellforge
