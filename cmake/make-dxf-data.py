@@ -4,7 +4,9 @@
 DXF with ezdxf, a third-party writer, for test_io_dxf_drawing: each drawing in R12, R2000 and
 R2018 (R12 only when it has no elliptical arcs: R12 has no ELLIPSE).
 
-    make-dxf-data.py OUT_DIR DRAWING.txt...
+    make-dxf-data.py OUT_DIR DRAWING.txt|DIR...   (a DIR: its *.txt)
+    make-dxf-data.py --plain OUT_DIR DRAWING.txt... (R2000 only, no decoys: <stem>.dxf, the
+                                                     examples' bundled DXF drawings)
 
 Writes OUT_DIR/<stem>.<version>.dxf. The strokes are spread over the entity kinds: chains of
 edges become LINEs, LWPOLYLINEs (POLYLINE in R12) or blocks placed by INSERT (rotated, scaled,
@@ -86,7 +88,7 @@ def param(p, centre, rx, ry, rot):
     return math.atan2((-s * dx + c * dy) / ry, (c * dx + s * dy) / rx)
 
 
-def write(pts, edges, arcs, version, path):
+def write(pts, edges, arcs, version, path, decoys=True):
     doc = ezdxf.new(version)
     msp = doc.modelspace()
     for name in ("Outline", "Detail", "Notes"):
@@ -140,6 +142,9 @@ def write(pts, edges, arcs, version, path):
             big, small = max(rx, ry), min(rx, ry)
             t0, t1 = param(a, centre, big, small, mrot), param(b, centre, big, small, mrot)
             msp.add_ellipse(centre, (*major, 0), small / big, t0, t1, dxfattribs=layer(k))
+    if not decoys:
+        doc.saveas(path)
+        return
     # Decoys: left out by choosing layers (Notes) or frozen (Frozen).
     msp.add_text("not a stroke", dxfattribs={"layer": "Notes"})
     msp.add_line((1e3, 1e3), (1e3 + 1, 1e3), dxfattribs={"layer": "Notes"})
@@ -149,21 +154,35 @@ def write(pts, edges, arcs, version, path):
 
 
 def main():
-    if len(sys.argv) < 3:
+    args = sys.argv[1:]
+    plain = bool(args) and args[0] == "--plain"
+    if plain:
+        args = args[1:]
+    if len(args) < 2:
         sys.exit(__doc__)
-    out = sys.argv[1]
+    out = args[0]
     os.makedirs(out, exist_ok=True)
     written = 0
-    for src in sys.argv[2:]:
+    sources = []
+    for arg in args[1:]:
+        if os.path.isdir(arg):
+            sources += sorted(os.path.join(arg, f) for f in os.listdir(arg) if f.endswith(".txt"))
+        else:
+            sources.append(arg)
+    for src in sources:
         pts, edges, arcs = read_drawing(src)
         stem = os.path.splitext(os.path.basename(src))[0]
+        if plain:
+            write(pts, edges, arcs, "R2000", os.path.join(out, f"{stem}.dxf"), decoys=False)
+            written += 1
+            continue
         elliptical = any(abs(rx - ry) > 1e-12 * max(rx, ry) for _, _, rx, ry, _, _, _ in arcs)
         for version in ("R12", "R2000", "R2018"):
             if version == "R12" and elliptical:
                 continue
             write(pts, edges, arcs, version, os.path.join(out, f"{stem}.{version}.dxf"))
             written += 1
-    print(f"make-dxf-data: {written} DXF files from {len(sys.argv) - 2} drawings in {out} (ezdxf {ezdxf.__version__})")
+    print(f"make-dxf-data: {written} DXF files from {len(sources)} drawings in {out} (ezdxf {ezdxf.__version__})")
 
 
 if __name__ == "__main__":
