@@ -19,7 +19,9 @@
 #include <utility>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
@@ -99,7 +101,8 @@ struct dxf_group {
 };
 
 /// ASCII case-insensitive equality of DXF names.
-inline bool dxf_same_name(std::string_view a, std::string_view b) noexcept {
+template <class = void>
+bool dxf_same_name(std::string_view a, std::string_view b) noexcept {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i) {
     const auto lower = [](char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c; };
@@ -135,6 +138,7 @@ struct basic_dxf_reader {
     std::uint64_t first_line = 0;
   };
   std::vector<skipped_kind> skipped;
+  std::map<std::string, bool> layer_decided;  // lower-case layer name -> read
   std::size_t work = 0;
   static constexpr std::size_t max_depth = 32;
 
@@ -339,17 +343,24 @@ struct basic_dxf_reader {
     skipped.push_back({std::string(type), 1, line});
   }
 
+  static std::string lower(std::string_view s) {
+    std::string out(s);
+    for (char& c : out)
+      if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    return out;
+  }
+
+  /// Whether entities on `layer` are read; each layer decided once. O(log L) after the first.
   bool layer_chosen(std::string_view layer) {
-    bool seen = false;
-    for (const std::string& l : counts.layers) seen = seen || dxf_same_name(l, layer);
-    if (!seen) counts.layers.emplace_back(layer);
+    std::string key = lower(layer);
+    if (const auto at = layer_decided.find(key); at != layer_decided.end()) return at->second;
+    counts.layers.emplace_back(layer);
+    bool chosen = options.layers.empty();
+    for (const std::string& l : options.layers) chosen = chosen || dxf_same_name(l, layer);
     if (options.skip_hidden_layers)
-      for (const std::string& h : hidden_layers)
-        if (dxf_same_name(h, layer)) return false;
-    if (options.layers.empty()) return true;
-    for (const std::string& l : options.layers)
-      if (dxf_same_name(l, layer)) return true;
-    return false;
+      for (const std::string& h : hidden_layers) chosen = chosen && !dxf_same_name(h, layer);
+    layer_decided.emplace(std::move(key), chosen);
+    return chosen;
   }
 
   /// Counts one stroke, entity or block placement against options.max_strokes.
@@ -434,7 +445,8 @@ struct basic_dxf_reader {
     for (std::size_t k = 0; k < (closed ? n : n - 1); ++k) {
       const glm::dvec2 a = v[k].first, b = v[(k + 1) % n].first;
       if (a == b) continue;
-      if (v[k].second != 0)
+      // A bulge below 1e-9 bows the segment by less than 1e-9 of its length: straight.
+      if (std::abs(v[k].second) > 1e-9)
         bulge_arc(m, a, b, v[k].second, lines[k], type);
       else
         segment(m, a, b, lines[k]);
@@ -720,7 +732,7 @@ dxf_arc_drawing_result<P2> parse_dxf_strokes(std::string_view text, std::string_
   if (!std::isfinite(options.snap_tolerance) || options.snap_tolerance < 0 || options.snap_tolerance >= 0.5)
     throw error(error_category::invalid_input,
                 "parse_dxf_drawing: snap_tolerance must be a finite number in [0, 0.5)");
-  dxf_reader r{name, options, arcs, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  dxf_reader r{name, options, arcs, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
   r.split_groups(text);
   const auto [first, last] = r.sections();
