@@ -26,6 +26,11 @@
 #include "cellforge/sketch/face_finder.hpp"
 #include "cellforge/sketch/rounds.hpp"
 
+// Where tests/CMakeLists.txt has the ctest fixtures write the DXF data; "" without ezdxf.
+#ifndef CELLFORGE_DXF_DATA_DIR
+#define CELLFORGE_DXF_DATA_DIR ""
+#endif
+
 // Own namespace: the test files of a group may be compiled as one translation unit.
 namespace io_dxf_drawing_tests {
 
