@@ -60,7 +60,8 @@ int main(int argc, char** argv) {
       const auto read = cellforge::io::read_dxf_drawing(cl.input);
       drawing = read.drawing;
       std::printf("input              %s: DXF %s, %zu entities, %zu strokes, %zu ends snapped\n",
-                  cl.input.string().c_str(), read.version.c_str(), read.entities, read.segments, read.snapped);
+                  cl.input.string().c_str(), read.version.c_str(), read.entities, read.segments,
+                  read.snapped);
       for (const std::string& d : read.diagnostics) std::printf("note               %s\n", d.c_str());
     } else {
       drawing = cellforge::io::read_drawing_text(cl.input);

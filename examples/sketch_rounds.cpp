@@ -107,9 +107,10 @@ int main(int argc, char** argv) {
     } else if (ext == ".dxf") {
       auto read = cellforge::io::read_dxf_arc_drawing(cl.input);
       drawing = std::move(read.drawing);
-      std::printf("input              %s: DXF %s, %zu entities, %zu straight segments, %zu arcs, %zu ends snapped\n",
-                  cl.input.string().c_str(), read.version.c_str(), read.entities, read.segments, read.arcs,
-                  read.snapped);
+      std::printf(
+          "input              %s: DXF %s, %zu entities, %zu straight segments, %zu arcs, %zu ends snapped\n",
+          cl.input.string().c_str(), read.version.c_str(), read.entities, read.segments, read.arcs,
+          read.snapped);
       for (const std::string& d : read.diagnostics) std::printf("note               %s\n", d.c_str());
     } else {
       drawing = cellforge::io::read_arc_drawing_text(cl.input);

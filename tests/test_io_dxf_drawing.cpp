@@ -51,16 +51,23 @@ std::string dxf_text(const std::vector<std::string>& lines) {
 
 /// A minimal file: an ENTITIES section holding `entities` (group/value lines), R2000 header.
 std::vector<std::string> dxf_file(const std::vector<std::string>& entities) {
-  std::vector<std::string> l = {"  0", "SECTION", "  2", "HEADER", "  9", "$ACADVER", "  1", "AC1015",
-                                "  0", "ENDSEC",  "  0", "SECTION", "  2", "ENTITIES"};
+  std::vector<std::string> l = {"  0",    "SECTION", "  2",    "HEADER", "  9",     "$ACADVER", "  1",
+                                "AC1015", "  0",     "ENDSEC", "  0",    "SECTION", "  2",      "ENTITIES"};
   l.insert(l.end(), entities.begin(), entities.end());
   l.insert(l.end(), {"  0", "ENDSEC", "  0", "EOF"});
   return l;
 }
 
-std::vector<std::string> line_entity(double x0, double y0, double x1, double y1, const std::string& layer = "0") {
-  return {"  0", "LINE", "  8", layer, " 10", std::to_string(x0), " 20", std::to_string(y0), " 30", "0.0",
-          " 11", std::to_string(x1), " 21", std::to_string(y1), " 31", "0.0"};
+std::vector<std::string> line_entity(double x0, double y0, double x1, double y1,
+                                     const std::string& layer = "0") {
+  return {"  0", "LINE",
+          "  8", layer,
+          " 10", std::to_string(x0),
+          " 20", std::to_string(y0),
+          " 30", "0.0",
+          " 11", std::to_string(x1),
+          " 21", std::to_string(y1),
+          " 31", "0.0"};
 }
 
 std::vector<std::string> joined(std::initializer_list<std::vector<std::string>> parts) {
@@ -78,7 +85,8 @@ long junction_at(const arc_drawing<glm::dvec2>& d, glm::dvec2 p, double tol = 1e
 
 /// Junction map from `read` to `truth` by position (nearest within 1e-9 of the diagonal),
 /// required to be one-to-one.
-std::vector<std::uint32_t> junction_map(const arc_drawing<glm::dvec2>& read, const arc_drawing<glm::dvec2>& truth) {
+std::vector<std::uint32_t> junction_map(const arc_drawing<glm::dvec2>& read,
+                                        const arc_drawing<glm::dvec2>& truth) {
   glm::dvec2 lo = truth.lines.points.front(), hi = lo;
   for (const auto& p : truth.lines.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
   const double tol = 1e-9 * glm::length(hi - lo);
@@ -113,8 +121,8 @@ std::array<std::size_t, 4> complex_counts(const Complex& c) {
 }
 
 /// Checks a DXF reading against its text version: junctions, edges, arcs, faces, complex.
-void compare(const arc_drawing<glm::dvec2>& read, const arc_drawing<glm::dvec2>& truth, std::size_t& faces_compared,
-             std::size_t& rounds_compared) {
+void compare(const arc_drawing<glm::dvec2>& read, const arc_drawing<glm::dvec2>& truth,
+             std::size_t& faces_compared, std::size_t& rounds_compared) {
   REQUIRE(read.lines.points.size() == truth.lines.points.size());
   REQUIRE(read.lines.edges.size() == truth.lines.edges.size());
   REQUIRE(read.arcs.size() == truth.arcs.size());
@@ -133,8 +141,8 @@ void compare(const arc_drawing<glm::dvec2>& read, const arc_drawing<glm::dvec2>&
     REQUIRE(same != truth.arcs.end());
     const bool reversed = same->ends != ends;
     for (const double u : {0.0, 0.3, 0.5, 0.8, 1.0})
-      CHECK(glm::length(cellforge::arc_point(arc.curve, u) - cellforge::arc_point(same->curve, reversed ? 1 - u : u)) <
-            1e-9);
+      CHECK(glm::length(cellforge::arc_point(arc.curve, u) -
+                        cellforge::arc_point(same->curve, reversed ? 1 - u : u)) < 1e-9);
   }
   if (truth.arcs.empty()) {
     const auto fr = cellforge::find_faces(read.lines), ft = cellforge::find_faces(truth.lines);
@@ -155,7 +163,8 @@ void compare(const arc_drawing<glm::dvec2>& read, const arc_drawing<glm::dvec2>&
     for (const auto& e : rt.rounds) radii_t.push_back(e.radius);
     std::sort(radii_r.begin(), radii_r.end());
     std::sort(radii_t.begin(), radii_t.end());
-    for (std::size_t k = 0; k < radii_r.size(); ++k) CHECK(radii_r[k] == doctest::Approx(radii_t[k]).epsilon(1e-9));
+    for (std::size_t k = 0; k < radii_r.size(); ++k)
+      CHECK(radii_r[k] == doctest::Approx(radii_t[k]).epsilon(1e-9));
     CHECK(complex_counts(rr.reading.cells.cells) == complex_counts(rt.reading.cells.cells));
     CHECK(rr.reading.faces.loops.size() == rt.reading.faces.loops.size());
     ++rounds_compared;
@@ -184,14 +193,16 @@ void expect_error(const std::string& dxf, std::uint64_t line, const std::string&
 TEST_CASE("dxf: drawings written by ezdxf read as their text versions, faces and complexes alike") {
   const std::string dir = CELLFORGE_DXF_DATA_DIR;
   if (dir.empty() || !fs::is_directory(dir)) {
-    const std::string what = "no DXF test data (python3 with ezdxf, Debian's python3-ezdxf, writes it: "
-                             "cmake/make-dxf-data.py): the comparison is skipped";
+    const std::string what =
+        "no DXF test data (python3 with ezdxf, Debian's python3-ezdxf, writes it: "
+        "cmake/make-dxf-data.py): the comparison is skipped";
     if (std::getenv("CI") != nullptr) FAIL(what);
     MESSAGE(what);
     return;
   }
   // The text versions: the bundled drawings and the generated ones beside the DXF files.
-  const fs::path examples = fs::path(CELLFORGE_TEST_DATA_DIR).parent_path().parent_path() / "examples" / "data";
+  const fs::path examples =
+      fs::path(CELLFORGE_TEST_DATA_DIR).parent_path().parent_path() / "examples" / "data";
   std::size_t files = 0, faces_compared = 0, rounds_compared = 0;
   std::map<std::string, std::size_t> versions;
   std::vector<fs::path> dxf_files;
@@ -231,18 +242,19 @@ TEST_CASE("dxf: drawings written by ezdxf read as their text versions, faces and
 
 TEST_CASE("dxf: entities read to their geometry") {
   SUBCASE("LINEs snapped into junctions, split where a junction lies on one, duplicates merged") {
-    const auto r = parse_dxf_drawing(dxf_text(dxf_file(joined({line_entity(0, 0, 2, 0), line_entity(1, 0, 1, 1),
-                                                               line_entity(2, 0, 0, 0), line_entity(1, 1, 1.0000001, 0)}))));
+    const auto r = parse_dxf_drawing(
+        dxf_text(dxf_file(joined({line_entity(0, 0, 2, 0), line_entity(1, 0, 1, 1), line_entity(2, 0, 0, 0),
+                                  line_entity(1, 1, 1.0000001, 0)}))));
     CHECK(r.version == "AC1015");
     CHECK(r.entities == 4);
     CHECK(r.drawing.points.size() == 4);
     CHECK(r.drawing.edges.size() == 3);  // (0,0)-(1,0), (1,0)-(2,0), (1,0)-(1,1)
-    CHECK(r.split_at_junctions == 2);  // the line (0,0)-(2,0) and its duplicate drawn backwards
+    CHECK(r.split_at_junctions == 2);    // the line (0,0)-(2,0) and its duplicate drawn backwards
     CHECK(r.merged_duplicates >= 1);
   }
   SUBCASE("LWPOLYLINE: closed, a bulge of 1 a half circle counter-clockwise, of -1 clockwise") {
-    const std::vector<std::string> poly = {"  0", "LWPOLYLINE", "  8", "0", " 90", "3",  " 70", "1",
-                                           " 10", "0",          " 20", "0", " 42", "1",  " 10", "2",
+    const std::vector<std::string> poly = {"  0", "LWPOLYLINE", "  8", "0", " 90", "3", " 70", "1",
+                                           " 10", "0",          " 20", "0", " 42", "1", " 10", "2",
                                            " 20", "0",          " 10", "1", " 20", "-1"};
     const auto r = parse_dxf_arc_drawing(dxf_text(dxf_file(poly)));
     REQUIRE(r.drawing.arcs.size() == 1);
@@ -268,10 +280,11 @@ TEST_CASE("dxf: entities read to their geometry") {
   }
   SUBCASE("POLYLINE with VERTEXes and SEQEND (R12); ARC; CIRCLE as two half arcs") {
     const std::vector<std::string> ents = {
-        "  0", "POLYLINE", "  8", "0", " 66", "1", " 70", "0",  "  0", "VERTEX", "  8", "0",   " 10", "0",
-        " 20", "0",        "  0", "VERTEX", "  8", "0", " 10", "1", " 20", "0",      "  0", "VERTEX", " 10", "1",
-        " 20", "1",        "  0", "SEQEND", "  0", "ARC", " 10", "0", " 20", "1", " 40", "1", " 50", "270", " 51",
-        "0",   "  0",      "CIRCLE", " 10", "5", " 20", "5", " 40", "2"};
+        "  0", "POLYLINE", "  8", "0",      " 66", "1",   " 70",    "0",   "  0", "VERTEX", "  8",
+        "0",   " 10",      "0",   " 20",    "0",   "  0", "VERTEX", "  8", "0",   " 10",    "1",
+        " 20", "0",        "  0", "VERTEX", " 10", "1",   " 20",    "1",   "  0", "SEQEND", "  0",
+        "ARC", " 10",      "0",   " 20",    "1",   " 40", "1",      " 50", "270", " 51",    "0",
+        "  0", "CIRCLE",   " 10", "5",      " 20", "5",   " 40",    "2"};
     const auto r = parse_dxf_arc_drawing(dxf_text(dxf_file(ents)));
     CHECK(r.entities == 3);
     CHECK(r.drawing.lines.edges.size() == 2);
@@ -288,31 +301,35 @@ TEST_CASE("dxf: entities read to their geometry") {
   }
   SUBCASE("ELLIPSE arcs; extrusion (0,0,-1) mirrors x") {
     const std::vector<std::string> ents = {
-        "  0", "ELLIPSE", " 10", "0", " 20", "0", " 11", "2", " 21", "0", " 40", "0.5", " 41", "0", " 42",
-        "1.5707963267948966", "  0", "ARC", " 10", "3", " 20", "0", " 40", "1", " 50", "0", " 51", "90",
-        "210", "0", "220", "0", "230", "-1"};
+        "  0", "ELLIPSE", " 10", "0",   " 20", "0", " 11", "2",
+        " 21", "0",       " 40", "0.5", " 41", "0", " 42", "1.5707963267948966",
+        "  0", "ARC",     " 10", "3",   " 20", "0", " 40", "1",
+        " 50", "0",       " 51", "90",  "210", "0", "220", "0",
+        "230", "-1"};
     const auto r = parse_dxf_arc_drawing(dxf_text(dxf_file(ents)));
     REQUIRE(r.drawing.arcs.size() == 2);
     const auto& e = r.drawing.arcs[0];
     CHECK(glm::length(r.drawing.lines.points[e.ends[0]] - glm::dvec2(2, 0)) < 1e-12);
     CHECK(glm::length(r.drawing.lines.points[e.ends[1]] - glm::dvec2(0, 1)) < 1e-12);
-    CHECK(glm::length(cellforge::arc_point(e.curve, 0.5) - glm::dvec2(2 * std::sqrt(0.5), std::sqrt(0.5))) < 1e-12);
+    CHECK(glm::length(cellforge::arc_point(e.curve, 0.5) - glm::dvec2(2 * std::sqrt(0.5), std::sqrt(0.5))) <
+          1e-12);
     // The mirrored ARC: centre (-3,0) in the world, from (-4,0)... its OCS (4,0) → world (-4,0).
     const auto& m = r.drawing.arcs[1];
     CHECK(glm::length(r.drawing.lines.points[m.ends[0]] - glm::dvec2(-4, 0)) < 1e-12);
     CHECK(glm::length(r.drawing.lines.points[m.ends[1]] - glm::dvec2(-3, 1)) < 1e-12);
-    CHECK(glm::length(cellforge::arc_point(m.curve, 0.5) - glm::dvec2(-3 - std::sqrt(0.5), std::sqrt(0.5))) < 1e-12);
+    CHECK(glm::length(cellforge::arc_point(m.curve, 0.5) - glm::dvec2(-3 - std::sqrt(0.5), std::sqrt(0.5))) <
+          1e-12);
   }
   SUBCASE("INSERT: base point, scales, rotation, MINSERT arrays, nested blocks, layer 0 inherited") {
     const std::vector<std::string> l = {
-        "  0", "SECTION", "  2", "BLOCKS",
-        "  0", "BLOCK", "  2", "Unit", " 10", "1", " 20", "1", "  0", "LINE", "  8", "0", " 10", "1", " 20", "1",
-        " 11", "2", " 21", "1", "  0", "ENDBLK",
-        "  0", "BLOCK", "  2", "Pair", " 10", "0", " 20", "0", "  0", "INSERT", "  2", "unit", " 10", "0", " 20",
-        "0", "  0", "INSERT", "  2", "Unit", " 10", "0", " 20", "5", "  0", "ENDBLK",
-        "  0", "ENDSEC", "  0", "SECTION", "  2", "ENTITIES",
+        "  0", "SECTION", "  2", "BLOCKS", "  0", "BLOCK", "  2", "Unit", " 10", "1", " 20", "1", "  0",
+        "LINE", "  8", "0", " 10", "1", " 20", "1", " 11", "2", " 21", "1", "  0", "ENDBLK", "  0", "BLOCK",
+        "  2", "Pair", " 10", "0", " 20", "0", "  0", "INSERT", "  2", "unit", " 10", "0", " 20", "0", "  0",
+        "INSERT", "  2", "Unit", " 10", "0", " 20", "5", "  0", "ENDBLK", "  0", "ENDSEC", "  0", "SECTION",
+        "  2", "ENTITIES",
         // Unit at (10,0), x scale 3, y scale 2, rotated 90°: its line (1,1)-(2,1) → (10,0)-(10,3).
-        "  0", "INSERT", "  8", "Parts", "  2", "Unit", " 10", "10", " 20", "0", " 41", "3", " 42", "2", " 50", "90",
+        "  0", "INSERT", "  8", "Parts", "  2", "Unit", " 10", "10", " 20", "0", " 41", "3", " 42", "2",
+        " 50", "90",
         // Pair as a 2 × 1 array, columns 20 apart: four lines.
         "  0", "INSERT", "  8", "Parts", "  2", "Pair", " 10", "0", " 20", "-10", " 70", "2", " 44", "20",
         "  0", "ENDSEC", "  0", "EOF"};
@@ -348,8 +365,10 @@ TEST_CASE("dxf: entities read to their geometry") {
     expect_error(dxf_text(l), 59, "block references are not read", refuse);
   }
   SUBCASE("unknown entities are noted with their line, not read") {
-    const auto r = parse_dxf_drawing(dxf_text(dxf_file(joined(
-        {{"  0", "TEXT", " 10", "0", " 20", "0", "  1", "hello"}, line_entity(0, 0, 1, 1), {"  0", "HATCH"}}))));
+    const auto r =
+        parse_dxf_drawing(dxf_text(dxf_file(joined({{"  0", "TEXT", " 10", "0", " 20", "0", "  1", "hello"},
+                                                    line_entity(0, 0, 1, 1),
+                                                    {"  0", "HATCH"}}))));
     CHECK(r.skipped_entities == 2);
     CHECK(r.drawing.edges.size() == 1);
     REQUIRE(r.diagnostics.size() == 2);
@@ -377,7 +396,8 @@ TEST_CASE("dxf: malformed files are refused with the file's line") {
   // 3. A value line missing (odd pairs from there on): the next value is read as a code.
   expect_error(edited([](auto& l) { l.erase(l.begin() + 19); }), 21, "found '0.000000'");
   // 4. A non-numeric coordinate, at the value's line.
-  expect_error(edited([](auto& l) { l[19] = "zero"; }), 20, "a start point x (group code 10) is not a finite number");
+  expect_error(edited([](auto& l) { l[19] = "zero"; }), 20,
+               "a start point x (group code 10) is not a finite number");
   // 5. A NaN coordinate.
   expect_error(edited([](auto& l) { l[19] = "nan"; }), 20, "is not a finite number");
   // 6. Truncated inside the ENTITIES section.
@@ -391,10 +411,11 @@ TEST_CASE("dxf: malformed files are refused with the file's line") {
   // 10. Content outside any section.
   expect_error(edited([](auto& l) { l.insert(l.begin(), {"  0", "LINE"}); }), 1, "0 SECTION expected");
   // 11. A LINE without its end point.
-  expect_error(edited([](auto& l) { l.erase(l.begin() + 26, l.begin() + 28); }), 15, "LINE without an end point y");
+  expect_error(edited([](auto& l) { l.erase(l.begin() + 26, l.begin() + 28); }), 15,
+               "LINE without an end point y");
   // 12. A POLYLINE without SEQEND.
-  expect_error(dxf_text(dxf_file({"  0", "POLYLINE", " 70", "0", "  0", "VERTEX", " 10", "0", " 20", "0"})), 15,
-               "no 0 SEQEND");
+  expect_error(dxf_text(dxf_file({"  0", "POLYLINE", " 70", "0", "  0", "VERTEX", " 10", "0", " 20", "0"})),
+               15, "no 0 SEQEND");
   ++kinds;
   // 13. A VERTEX outside a POLYLINE.
   expect_error(dxf_text(dxf_file({"  0", "VERTEX", " 10", "0", " 20", "0"})), 15, "outside a POLYLINE");
@@ -404,43 +425,50 @@ TEST_CASE("dxf: malformed files are refused with the file's line") {
                "which is not defined");
   ++kinds;
   // 15. A block that inserts itself (through another).
-  expect_error(dxf_text({"  0", "SECTION", "  2", "BLOCKS",  "  0", "BLOCK",   "  2", "A",      "  0", "INSERT",
-                         "  2", "B",       "  0", "ENDBLK",  "  0", "BLOCK",   "  2", "B",      "  0", "INSERT",
-                         "  2", "A",       "  0", "ENDBLK",  "  0", "ENDSEC",  "  0", "SECTION", "  2", "ENTITIES",
-                         "  0", "INSERT",  "  2", "A",       "  0", "ENDSEC",  "  0", "EOF"}),
-               19, "inserts itself");
+  expect_error(
+      dxf_text({"  0", "SECTION", "  2", "BLOCKS", "  0", "BLOCK",  "  2", "A",       "  0", "INSERT",
+                "  2", "B",       "  0", "ENDBLK", "  0", "BLOCK",  "  2", "B",       "  0", "INSERT",
+                "  2", "A",       "  0", "ENDBLK", "  0", "ENDSEC", "  0", "SECTION", "  2", "ENTITIES",
+                "  0", "INSERT",  "  2", "A",      "  0", "ENDSEC", "  0", "EOF"}),
+      19, "inserts itself");
   ++kinds;
   // 16. A LWPOLYLINE vertex without its y.
-  expect_error(dxf_text(dxf_file({"  0", "LWPOLYLINE", " 10", "0", " 20", "0", " 10", "1", " 10", "2", " 20", "0"})),
-               23, "vertex without its y");
+  expect_error(
+      dxf_text(dxf_file({"  0", "LWPOLYLINE", " 10", "0", " 20", "0", " 10", "1", " 10", "2", " 20", "0"})),
+      23, "vertex without its y");
   ++kinds;
   // 17. An ARC with a negative radius; 18. an ELLIPSE with an axis ratio above 1.
-  expect_error(dxf_text(dxf_file({"  0", "ARC", " 10", "0", " 20", "0", " 40", "-1", " 50", "0", " 51", "90"})), 15,
-               "not positive");
-  expect_error(dxf_text(dxf_file({"  0", "ELLIPSE", " 10", "0", " 20", "0", " 11", "1", " 21", "0", " 40", "2"})),
-               15, "axis ratio");
+  expect_error(
+      dxf_text(dxf_file({"  0", "ARC", " 10", "0", " 20", "0", " 40", "-1", " 50", "0", " 51", "90"})), 15,
+      "not positive");
+  expect_error(
+      dxf_text(dxf_file({"  0", "ELLIPSE", " 10", "0", " 20", "0", " 11", "1", " 21", "0", " 40", "2"})), 15,
+      "axis ratio");
   kinds += 2;
   // 19. An entity in a tilted plane.
-  expect_error(dxf_text(dxf_file({"  0", "CIRCLE", " 10", "0", " 20", "0", " 40", "1", "210", "1", "230", "1"})),
-               15, "tilted out of the drawing");
+  expect_error(
+      dxf_text(dxf_file({"  0", "CIRCLE", " 10", "0", " 20", "0", " 40", "1", "210", "1", "230", "1"})), 15,
+      "tilted out of the drawing");
   ++kinds;
   // 20. A binary DXF file.
   expect_error(std::string("AutoCAD Binary DXF\r\n\x1a") + std::string(1, '\0') + "xx", 1, "binary DXF");
   ++kinds;
   // 21. Curves refused by the line reader, at the curve's line.
-  CHECK_THROWS_WITH_AS(parse_dxf_drawing(dxf_text(dxf_file({"  0", "ARC", " 10", "0", " 20", "0", " 40", "1", " 50",
-                                                            "0", " 51", "90"})),
-                                         "c.dxf"),
-                       doctest::Contains("c.dxf:15: ARC: curves are read by parse_dxf_arc_drawing"), cellforge::error);
+  CHECK_THROWS_WITH_AS(
+      parse_dxf_drawing(
+          dxf_text(dxf_file({"  0", "ARC", " 10", "0", " 20", "0", " 40", "1", " 50", "0", " 51", "90"})),
+          "c.dxf"),
+      doctest::Contains("c.dxf:15: ARC: curves are read by parse_dxf_arc_drawing"), cellforge::error);
   ++kinds;
   // 22. The work budget: blocks inserted too often.
   dxf_drawing_options small;
   small.max_strokes = 100;
-  expect_error(dxf_text({"  0", "SECTION", "  2", "BLOCKS", "  0", "BLOCK", "  2", "A", "  0", "LINE", " 10", "0",
-                         " 20", "0", " 11", "1", " 21", "0", "  0", "ENDBLK", "  0", "ENDSEC", "  0", "SECTION", "  2",
-                         "ENTITIES", "  0", "INSERT", "  2", "A", " 70", "1000", " 71", "1000", "  0", "ENDSEC", "  0",
-                         "EOF"}),
-               27, "max_strokes", small);
+  expect_error(
+      dxf_text({"  0", "SECTION", "  2", "BLOCKS",  "  0", "BLOCK",    "  2", "A",      "  0", "LINE",
+                " 10", "0",       " 20", "0",       " 11", "1",        " 21", "0",      "  0", "ENDBLK",
+                "  0", "ENDSEC",  "  0", "SECTION", "  2", "ENTITIES", "  0", "INSERT", "  2", "A",
+                " 70", "1000",    " 71", "1000",    "  0", "ENDSEC",   "  0", "EOF"}),
+      27, "max_strokes", small);
   ++kinds;
   MESSAGE(kinds << " kinds of malformed DXF refused with their line");
   CHECK(kinds >= 20);
@@ -452,14 +480,16 @@ TEST_CASE("dxf: empty and odd but valid files") {
   CHECK(empty.diagnostics.back() == "<memory>: no straight line found");
   CHECK_THROWS_AS(parse_dxf_drawing(""), cellforge::error);
   // CRLF line ends, 999 comments, blank-padded codes and a byte-order mark.
-  std::string crlf = "\xEF\xBB\xBF" "999\r\ncomment\r\n";
+  std::string crlf =
+      "\xEF\xBB\xBF"
+      "999\r\ncomment\r\n";
   for (const std::string& l : dxf_file(line_entity(0, 0, 1, 0))) crlf += l + "\r\n";
   const auto r = parse_dxf_drawing(crlf);
   CHECK(r.drawing.edges.size() == 1);
   // Hidden layers: a layer off (negative colour) in the LAYER table is left out unless asked.
-  const std::vector<std::string> l = {"  0", "SECTION", "  2", "TABLES", "  0", "TABLE", "  2", "LAYER", "  0",
-                                      "LAYER", "  2", "Off", " 70", "0", " 62", "-7", "  0", "ENDTAB", "  0",
-                                      "ENDSEC"};
+  const std::vector<std::string> l = {"  0",   "SECTION", "  2",   "TABLES", "  0", "TABLE", "  2",
+                                      "LAYER", "  0",     "LAYER", "  2",    "Off", " 70",   "0",
+                                      " 62",   "-7",      "  0",   "ENDTAB", "  0", "ENDSEC"};
   std::vector<std::string> file = l;
   const auto rest = dxf_file(joined({line_entity(0, 0, 1, 0, "off"), line_entity(0, 0, 0, 1)}));
   file.insert(file.end(), rest.begin() + 10, rest.end());  // its ENTITIES section and EOF

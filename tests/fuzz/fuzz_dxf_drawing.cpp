@@ -33,7 +33,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const auto r = cellforge::io::parse_dxf_drawing(bytes, "fuzz.dxf", options);
     const auto v = cellforge::validate_drawing(r.drawing, {.tolerance = 0});
-    if (v.defect == cellforge::drawing_defect::bad_position || v.defect == cellforge::drawing_defect::self_loop ||
+    if (v.defect == cellforge::drawing_defect::bad_position ||
+        v.defect == cellforge::drawing_defect::self_loop ||
         v.defect == cellforge::drawing_defect::duplicate_edge ||
         v.defect == cellforge::drawing_defect::endpoint_out_of_range)
       __builtin_trap();  // the reader never makes these

@@ -63,18 +63,18 @@ struct dxf_drawing_options {
 
 /// What reading a DXF drawing did: counts and diagnostics.
 struct dxf_reading_counts {
-  std::string version;                  ///< $ACADVER of the HEADER (AC1009 = R12, AC1015 = R2000, ...), or empty
-  std::size_t entities = 0;             ///< drawing entities read (LINE, LWPOLYLINE, ..., each time a block places it)
-  std::size_t segments = 0;             ///< straight segments in them, before snapping
-  std::size_t inserts = 0;              ///< block references expanded (each MINSERT copy counts)
-  std::size_t snapped = 0;              ///< segment ends moved by snapping onto a junction
-  std::size_t dropped_zero_length = 0;  ///< strokes whose ends snapped to one junction
-  std::size_t merged_duplicates = 0;    ///< edges drawn twice (after splitting), kept once
-  std::size_t split_at_junctions = 0;   ///< junctions that split a line's interior
-  std::size_t skipped_curves = 0;       ///< curves left out (dxf_curves::skip)
-  std::size_t skipped_entities = 0;     ///< entities not read: TEXT, HATCH, DIMENSION, SPLINE, 3D ones, ...
-  std::size_t skipped_by_layer = 0;     ///< entities on layers not chosen, off or frozen
-  std::vector<std::string> layers;      ///< layers of the entities met, in order of first appearance
+  std::string version;       ///< $ACADVER of the HEADER (AC1009 = R12, AC1015 = R2000, ...), or empty
+  std::size_t entities = 0;  ///< drawing entities read (LINE, LWPOLYLINE, ..., each time a block places it)
+  std::size_t segments = 0;  ///< straight segments in them, before snapping
+  std::size_t inserts = 0;   ///< block references expanded (each MINSERT copy counts)
+  std::size_t snapped = 0;   ///< segment ends moved by snapping onto a junction
+  std::size_t dropped_zero_length = 0;   ///< strokes whose ends snapped to one junction
+  std::size_t merged_duplicates = 0;     ///< edges drawn twice (after splitting), kept once
+  std::size_t split_at_junctions = 0;    ///< junctions that split a line's interior
+  std::size_t skipped_curves = 0;        ///< curves left out (dxf_curves::skip)
+  std::size_t skipped_entities = 0;      ///< entities not read: TEXT, HATCH, DIMENSION, SPLINE, 3D ones, ...
+  std::size_t skipped_by_layer = 0;      ///< entities on layers not chosen, off or frozen
+  std::vector<std::string> layers;       ///< layers of the entities met, in order of first appearance
   std::vector<std::string> diagnostics;  ///< what was left out or looks doubtful, with lines
 };
 
@@ -184,13 +184,16 @@ struct basic_dxf_reader {
       const std::uint64_t at = line;
       const std::string_view c = trim(code_text);
       if (c.empty() && pos >= text.size()) break;  // a blank last line
-      if (c.empty()) fail(at, "a group code expected, found an empty line (group codes and values alternate line by line)");
+      if (c.empty())
+        fail(at,
+             "a group code expected, found an empty line (group codes and values alternate line by line)");
       int code = 0;
       const char* p = c.data();
-      if (parse_number(p, c.data() + c.size(), code) != parse_status::ok || p != c.data() + c.size() || code < 0 ||
-          code > 1071)
-        fail(at, "a group code (an integer 0 to 1071) expected, found " + shown(c) +
-                     " (group codes and values alternate line by line: a value line missing or doubled above?)");
+      if (parse_number(p, c.data() + c.size(), code) != parse_status::ok || p != c.data() + c.size() ||
+          code < 0 || code > 1071)
+        fail(at,
+             "a group code (an integer 0 to 1071) expected, found " + shown(c) +
+                 " (group codes and values alternate line by line: a value line missing or doubled above?)");
       if (!next_line(value))
         fail(at, "the file ends after group code " + std::to_string(code) +
                      " with no value line (truncated, or an odd number of lines)");
@@ -206,8 +209,8 @@ struct basic_dxf_reader {
     const char* p = g.value.data();
     const char* end = p + g.value.size();
     if (g.value.empty() || parse_number(p, end, v) != parse_status::ok || p != end || !std::isfinite(v))
-      fail(g.line + 1, std::string(what) + " (group code " + std::to_string(g.code) + ") is not a finite number: " +
-                           shown(g.value));
+      fail(g.line + 1, std::string(what) + " (group code " + std::to_string(g.code) +
+                           ") is not a finite number: " + shown(g.value));
     return v;
   }
 
@@ -216,8 +219,8 @@ struct basic_dxf_reader {
     const char* p = g.value.data();
     const char* end = p + g.value.size();
     if (g.value.empty() || parse_number(p, end, v) != parse_status::ok || p != end)
-      fail(g.line + 1, std::string(what) + " (group code " + std::to_string(g.code) + ") is not an integer: " +
-                           shown(g.value));
+      fail(g.line + 1, std::string(what) + " (group code " + std::to_string(g.code) +
+                           ") is not an integer: " + shown(g.value));
     return v;
   }
 
@@ -250,12 +253,14 @@ struct basic_dxf_reader {
       const std::string_view section = groups[i + 1].value;
       const std::uint64_t opened = g.line;
       std::size_t j = i + 2;
-      while (j < groups.size() && !(groups[j].code == 0 && (groups[j].value == "ENDSEC" ||
-                                                            groups[j].value == "SECTION" || groups[j].value == "EOF")))
+      while (j < groups.size() &&
+             !(groups[j].code == 0 &&
+               (groups[j].value == "ENDSEC" || groups[j].value == "SECTION" || groups[j].value == "EOF")))
         ++j;
       if (j >= groups.size())
-        fail(groups.back().line, "the file ends inside section " + std::string(section) + " (opened at line " +
-                                     std::to_string(opened) + "): no 0 ENDSEC (truncated?)");
+        fail(groups.back().line, "the file ends inside section " + std::string(section) +
+                                     " (opened at line " + std::to_string(opened) +
+                                     "): no 0 ENDSEC (truncated?)");
       if (groups[j].value != "ENDSEC")
         fail(groups[j].line, "0 " + std::string(groups[j].value) + " inside section " + std::string(section) +
                                  " (opened at line " + std::to_string(opened) + "): its 0 ENDSEC is missing");
@@ -304,7 +309,8 @@ struct basic_dxf_reader {
     std::size_t i = next_zero(first);
     while (i < last) {
       const dxf_group& g = groups[i];
-      if (g.value != "BLOCK") fail(g.line, "0 BLOCK expected in the BLOCKS section, found 0 " + shown(g.value));
+      if (g.value != "BLOCK")
+        fail(g.line, "0 BLOCK expected in the BLOCKS section, found 0 " + shown(g.value));
       block b;
       b.line = g.line;
       const std::size_t head_end = std::min(next_zero(i + 1), last);
@@ -366,9 +372,10 @@ struct basic_dxf_reader {
   /// Counts one stroke, entity or block placement against options.max_strokes.
   void budget(std::uint64_t line) {
     if (++work > options.max_strokes)
-      fail(line, "more than " + std::to_string(options.max_strokes) +
-                     " strokes, entities and block placements (dxf_drawing_options::max_strokes): blocks inserted "
-                     "too often?");
+      fail(line,
+           "more than " + std::to_string(options.max_strokes) +
+               " strokes, entities and block placements (dxf_drawing_options::max_strokes): blocks inserted "
+               "too often?");
   }
 
   void segment(const affine2& m, glm::dvec2 a, glm::dvec2 b, std::uint64_t line) {
@@ -384,20 +391,21 @@ struct basic_dxf_reader {
   bool curve_wanted(std::string_view what, std::uint64_t line) {
     if (read_arcs) return true;
     if (options.curves == dxf_curves::refuse)
-      fail(line, std::string(what) +
-                     ": curves are read by parse_dxf_arc_drawing / read_dxf_arc_drawing; draw straight lines, or "
-                     "read with dxf_drawing_options::curves = skip");
+      fail(line,
+           std::string(what) +
+               ": curves are read by parse_dxf_arc_drawing / read_dxf_arc_drawing; draw straight lines, or "
+               "read with dxf_drawing_options::curves = skip");
     ++counts.skipped_curves;
     return false;
   }
 
   /// An elliptical arc in the entity's frame (ends, radii, rotation, sense) placed by m.
-  void arc(const affine2& m, glm::dvec2 from, glm::dvec2 to, double rx, double ry, double rotation, bool large,
-           bool ccw, std::uint64_t line) {
+  void arc(const affine2& m, glm::dvec2 from, glm::dvec2 to, double rx, double ry, double rotation,
+           bool large, bool ccw, std::uint64_t line) {
     budget(line);
     stroke_arc a{m(from), m(to), rx, ry, rotation, large, ccw};
-    if (!std::isfinite(a.from.x) || !std::isfinite(a.from.y) || !std::isfinite(a.to.x) || !std::isfinite(a.to.y) ||
-        !map_ellipse(m, a.rx, a.ry, a.rotation, a.ccw))
+    if (!std::isfinite(a.from.x) || !std::isfinite(a.from.y) || !std::isfinite(a.to.x) ||
+        !std::isfinite(a.to.y) || !map_ellipse(m, a.rx, a.ry, a.rotation, a.ccw))
       fail(line, "an arc's placement flattens it or overflows");
     arcs.push_back(a);
     arc_lines.push_back(line);
@@ -415,12 +423,14 @@ struct basic_dxf_reader {
   /// (OCS x = -world x, a mirror); other directions are refused.
   double ocs_sign(glm::dvec3 n, std::uint64_t line, std::string_view type) const {
     const double len = glm::length(n);
-    if (!(len > 0) || !std::isfinite(len)) fail(line, std::string(type) + " has a zero extrusion direction (210/220/230)");
+    if (!(len > 0) || !std::isfinite(len))
+      fail(line, std::string(type) + " has a zero extrusion direction (210/220/230)");
     n /= len;
     if (std::abs(n.x) < 1e-12 && std::abs(n.y) < 1e-12) return n.z > 0 ? 1.0 : -1.0;
-    fail(line, std::string(type) +
-                     " lies in a plane tilted out of the drawing (extrusion direction not ±z): only 2D drawings "
-                     "are read");
+    fail(line,
+         std::string(type) +
+             " lies in a plane tilted out of the drawing (extrusion direction not ±z): only 2D drawings "
+             "are read");
   }
 
   /// A bulged polyline segment from a to b (bulge = tan(sweep / 4), > 0 counter-clockwise).
@@ -435,7 +445,8 @@ struct basic_dxf_reader {
 
   /// A polyline's vertices (with bulges) as segments and arcs.
   void polyline(const affine2& m, const std::vector<std::pair<glm::dvec2, double>>& v,
-                const std::vector<std::uint64_t>& lines, bool closed, std::uint64_t line, std::string_view type) {
+                const std::vector<std::uint64_t>& lines, bool closed, std::uint64_t line,
+                std::string_view type) {
     const std::size_t n = v.size();
     if (n < 2) {
       counts.diagnostics.push_back(std::string(name) + ":" + std::to_string(line) + ": " + std::string(type) +
@@ -456,8 +467,9 @@ struct basic_dxf_reader {
   /// Reads entities in [first, last) placed by p. O(groups in range).
   void entities(std::size_t first, std::size_t last, const placement& p) {
     std::size_t i = next_zero(first);
-    if (i != first) fail(groups[first].line, "an entity (0 TYPE) expected, found group code " +
-                                                  std::to_string(groups[first].code));
+    if (i != first)
+      fail(groups[first].line,
+           "an entity (0 TYPE) expected, found group code " + std::to_string(groups[first].code));
     while (i < last) {
       const dxf_group& g = groups[i];
       const std::size_t end = std::min(next_zero(i + 1), last);
@@ -468,7 +480,8 @@ struct basic_dxf_reader {
         bool attribs = type == "POLYLINE";
         if (type == "INSERT")
           for (std::size_t k = i + 1; k < end; ++k)
-            if (groups[k].code == 66 && integer(groups[k], "INSERT's attributes-follow flag") != 0) attribs = true;
+            if (groups[k].code == 66 && integer(groups[k], "INSERT's attributes-follow flag") != 0)
+              attribs = true;
         if (attribs) {
           std::size_t k = end;
           while (k < last && groups[k].value != "SEQEND") {
@@ -613,7 +626,8 @@ struct basic_dxf_reader {
       ++counts.entities;
       const glm::dvec2 c{required(10, "a centre x"), required(20, "a centre y")};
       const double r = required(40, "a radius");
-      if (!(r > 0)) fail(g.line, std::string(type) + " with radius " + shown(std::to_string(r)) + ": not positive");
+      if (!(r > 0))
+        fail(g.line, std::string(type) + " with radius " + shown(std::to_string(r)) + ": not positive");
       if (!curve_wanted(type, g.line)) return;
       if (type == "CIRCLE") {
         closed_ellipse(m, c, {r, 0}, 1.0, true, g.line);
@@ -636,12 +650,13 @@ struct basic_dxf_reader {
       const glm::dvec2 major{required(11, "a major axis end x"), required(21, "a major axis end y")};
       const double ratio = required(40, "an axis ratio");
       if (!(glm::length(major) > 0)) fail(g.line, "ELLIPSE with a zero major axis");
-      if (!(ratio > 0) || ratio > 1 + 1e-9) fail(g.line, "ELLIPSE with axis ratio " + std::to_string(ratio) +
-                                                             ": not in (0, 1]");
+      if (!(ratio > 0) || ratio > 1 + 1e-9)
+        fail(g.line, "ELLIPSE with axis ratio " + std::to_string(ratio) + ": not in (0, 1]");
       if (!curve_wanted(type, g.line)) return;
       // The minor axis is normal × major: with the normal -z the parameter runs clockwise.
       const bool ccw = sx > 0;
-      const double t0 = value(41, 0, "a start parameter"), t1 = value(42, 2 * std::numbers::pi, "an end parameter");
+      const double t0 = value(41, 0, "a start parameter"),
+                   t1 = value(42, 2 * std::numbers::pi, "an end parameter");
       double sweep = std::fmod(t1 - t0, 2 * std::numbers::pi);
       if (sweep <= 0) sweep += 2 * std::numbers::pi;
       const glm::dvec2 minor = ratio * glm::dvec2(-major.y, major.x) * sx;
@@ -661,25 +676,47 @@ struct basic_dxf_reader {
   void insert(std::size_t i, std::size_t end, const affine2& m, std::string_view layer) {
     const dxf_group& g = groups[i];
     if (!options.expand_inserts)
-      fail(g.line, "INSERT of a block: block references are not read (dxf_drawing_options::expand_inserts is "
-                   "false; explode the block in the CAD program, or read with expand_inserts = true)");
+      fail(g.line,
+           "INSERT of a block: block references are not read (dxf_drawing_options::expand_inserts is "
+           "false; explode the block in the CAD program, or read with expand_inserts = true)");
     std::string_view block_name;
     double x = 0, y = 0, scale_x = 1, scale_y = 1, degrees = 0, dx = 0, dy = 0;
     std::int64_t columns = 1, rows = 1;
     for (std::size_t k = i + 1; k < end; ++k) {
       const dxf_group& q = groups[k];
       switch (q.code) {
-        case 2: block_name = q.value; break;
-        case 10: x = number(q, "an insertion point x"); break;
-        case 20: y = number(q, "an insertion point y"); break;
-        case 41: scale_x = number(q, "a scale x"); break;
-        case 42: scale_y = number(q, "a scale y"); break;
-        case 50: degrees = number(q, "a rotation"); break;
-        case 44: dx = number(q, "a column spacing"); break;
-        case 45: dy = number(q, "a row spacing"); break;
-        case 70: columns = integer(q, "a column count"); break;
-        case 71: rows = integer(q, "a row count"); break;
-        default: break;
+        case 2:
+          block_name = q.value;
+          break;
+        case 10:
+          x = number(q, "an insertion point x");
+          break;
+        case 20:
+          y = number(q, "an insertion point y");
+          break;
+        case 41:
+          scale_x = number(q, "a scale x");
+          break;
+        case 42:
+          scale_y = number(q, "a scale y");
+          break;
+        case 50:
+          degrees = number(q, "a rotation");
+          break;
+        case 44:
+          dx = number(q, "a column spacing");
+          break;
+        case 45:
+          dy = number(q, "a row spacing");
+          break;
+        case 70:
+          columns = integer(q, "a column count");
+          break;
+        case 71:
+          rows = integer(q, "a row count");
+          break;
+        default:
+          break;
       }
     }
     if (columns < 1 || rows < 1 || columns > 100000 || rows > 100000)
@@ -691,7 +728,8 @@ struct basic_dxf_reader {
       if (dxf_same_name(blocks[k].name, block_name)) b = k;
     if (b == blocks.size()) fail(g.line, "INSERT of block " + shown(block_name) + ", which is not defined");
     for (const std::size_t open : insert_stack)
-      if (open == b) fail(g.line, "block " + shown(block_name) + " inserts itself (directly or through others)");
+      if (open == b)
+        fail(g.line, "block " + shown(block_name) + " inserts itself (directly or through others)");
     if (insert_stack.size() >= max_depth)
       fail(g.line, "blocks nested more than " + std::to_string(max_depth) + " deep");
     const double rad = degrees * std::numbers::pi / 180, cs = std::cos(rad), sn = std::sin(rad);
@@ -707,16 +745,17 @@ struct basic_dxf_reader {
                                   .then(affine2{scale_x, 0, 0, scale_y, 0, 0})
                                   .then(affine2{1, 0, 0, 1, -blocks[b].base.x, -blocks[b].base.y});
         ++counts.inserts;
-        if (blocks[b].first < blocks[b].last) entities(blocks[b].first, blocks[b].last, {m.then(place), layer});
+        if (blocks[b].first < blocks[b].last)
+          entities(blocks[b].first, blocks[b].last, {m.then(place), layer});
       }
     insert_stack.pop_back();
   }
 
   void finish_notes() {
     for (const skipped_kind& s : skipped)
-      counts.diagnostics.push_back(std::string(name) + ":" + std::to_string(s.first_line) + ": " +
-                                   std::to_string(s.count) + " " + s.type +
-                                   (s.count == 1 ? " entity" : " entities") + " left out (not a line, polyline or arc)");
+      counts.diagnostics.push_back(
+          std::string(name) + ":" + std::to_string(s.first_line) + ": " + std::to_string(s.count) + " " +
+          s.type + (s.count == 1 ? " entity" : " entities") + " left out (not a line, polyline or arc)");
     if (counts.skipped_curves > 0)
       counts.diagnostics.push_back(std::string(name) + ": " + std::to_string(counts.skipped_curves) +
                                    " curves left out (dxf_drawing_options::curves = skip)");
@@ -742,7 +781,8 @@ dxf_arc_drawing_result<P2> parse_dxf_strokes(std::string_view text, std::string_
   static_cast<dxf_reading_counts&>(out) = std::move(r.counts);
   out.arcs = r.arcs.size();
   if (r.segs.empty() && r.arcs.empty()) {
-    out.diagnostics.push_back(std::string(name) + (arcs ? ": no line or arc found" : ": no straight line found"));
+    out.diagnostics.push_back(std::string(name) +
+                              (arcs ? ": no line or arc found" : ": no straight line found"));
     return out;
   }
   stroke_snap_counts counts;
@@ -791,7 +831,8 @@ dxf_drawing_result<P2> read_dxf_drawing(const file_path& path, const dxf_drawing
 
 /// Reads an ASCII DXF drawing with arcs (see parse_dxf_arc_drawing). O(file size + S log S + K).
 template <Point2 P2 = glm::dvec2>
-dxf_arc_drawing_result<P2> read_dxf_arc_drawing(const file_path& path, const dxf_drawing_options& options = {}) {
+dxf_arc_drawing_result<P2> read_dxf_arc_drawing(const file_path& path,
+                                                const dxf_drawing_options& options = {}) {
   const std::string bytes = detail::read_file(path);
   return parse_dxf_arc_drawing<P2>(bytes, detail::display_name(path), options);
 }

@@ -148,8 +148,9 @@ arc_drawing<P2> snap_strokes(const std::vector<std::pair<glm::dvec2, glm::dvec2>
       hi = glm::max(hi, frame.points[i]);
     }
     if (glm::length(hi - lo) > eps && diagnostics.size() < 100)
-      diagnostics.push_back(std::string(name) + ": junction at " + cellforge::detail::drawing_point_text(at[j]) +
-                            " gathers a chain of " + std::to_string(members[j].size()) +
+      diagnostics.push_back(std::string(name) + ": junction at " +
+                            cellforge::detail::drawing_point_text(at[j]) + " gathers a chain of " +
+                            std::to_string(members[j].size()) +
                             " close stroke ends wider than the snap distance: check the drawing there");
   }
   // Edges between junctions; zero-length ones dropped.
@@ -169,8 +170,9 @@ arc_drawing<P2> snap_strokes(const std::vector<std::pair<glm::dvec2, glm::dvec2>
     const std::uint32_t a = junction_of[2 * (ns + k)], b = junction_of[2 * (ns + k) + 1];
     if (a == b) {
       ++counts.dropped_zero_length;
-      diagnostics.push_back(std::string(name) + ":" + std::to_string(arc_line(k)) +
-                            ": an arc whose ends snapped to one junction: left out (a closed curve is no round)");
+      diagnostics.push_back(
+          std::string(name) + ":" + std::to_string(arc_line(k)) +
+          ": an arc whose ends snapped to one junction: left out (a closed curve is no round)");
     } else {
       arc_ends.push_back({a, b});
       arc_piece.push_back(k);
@@ -216,7 +218,8 @@ arc_drawing<P2> snap_strokes(const std::vector<std::pair<glm::dvec2, glm::dvec2>
   std::sort(keys.begin(), keys.end());
   std::vector<std::uint8_t> keep(edges.size(), 1);
   for (std::size_t q = 1; q < keys.size(); ++q)
-    if (keys[q][0] == keys[q - 1][0] && keys[q][1] == keys[q - 1][1]) keep[keys[q][2]] = 0, ++counts.merged_duplicates;
+    if (keys[q][0] == keys[q - 1][0] && keys[q][1] == keys[q - 1][1])
+      keep[keys[q][2]] = 0, ++counts.merged_duplicates;
   std::vector<std::uint32_t> renumber(nj, none);
   auto& d = result.lines;
   for (std::size_t e = 0; e < edges.size(); ++e) {
@@ -240,8 +243,9 @@ arc_drawing<P2> snap_strokes(const std::vector<std::pair<glm::dvec2, glm::dvec2>
       result.arcs.push_back({je, arc_from_endpoints<P2>({d.points[je[0]], d.points[je[1]], piece.rx, piece.ry,
                                                          piece.rotation, piece.large, piece.ccw})});
     } catch (const error& e) {
-      fail(arc_piece[k], "an arc between the junctions at " + cellforge::detail::drawing_point_text(d.points[je[0]]) +
-                             " and " + cellforge::detail::drawing_point_text(d.points[je[1]]) + ": " + e.message());
+      fail(arc_piece[k], "an arc between the junctions at " +
+                             cellforge::detail::drawing_point_text(d.points[je[0]]) + " and " +
+                             cellforge::detail::drawing_point_text(d.points[je[1]]) + ": " + e.message());
     }
   }
   // With radii far beyond the distance of the ends, rounding can leave the curve off its
