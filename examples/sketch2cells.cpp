@@ -3,7 +3,7 @@
 // then seed 000's wireframe pipeline).
 //
 //   sketch2cells                       the bundled stepped normalon (examples/data/stepped_normalon.svg)
-//   sketch2cells drawing.svg|drawing.txt [--finder varley-company|shortest-loops] [--no-svg]
+//   sketch2cells drawing.svg|drawing.txt|drawing.dxf [--finder varley-company|shortest-loops] [--no-svg]
 //
 // Writes, in the current directory, <name>_faces.svg (the drawing with its faces shaded),
 // <name>_wire.obj (the 3D wireframe), and the cell complex as <name>.3dcl, <name>.obj and
@@ -25,6 +25,7 @@
 #include "cellforge/io/cells_io.hpp"
 #include "cellforge/io/drawing_svg.hpp"
 #include "cellforge/io/drawing_text.hpp"
+#include "cellforge/io/dxf_drawing.hpp"
 #include "cellforge/io/obj.hpp"
 #include "cellforge/io/svg_drawing.hpp"
 #include "cellforge/sketch/drawing_to_cells.hpp"
@@ -54,6 +55,14 @@ int main(int argc, char** argv) {
       drawing = read.drawing;
       std::printf("input              %s: %zu SVG elements, %zu strokes, %zu ends snapped\n",
                   cl.input.string().c_str(), read.elements, read.segments, read.snapped);
+    } else if (ext == ".dxf") {
+      // ASCII DXF: LINEs and polylines on every visible layer, blocks expanded (curves refused).
+      const auto read = cellforge::io::read_dxf_drawing(cl.input);
+      drawing = read.drawing;
+      std::printf("input              %s: DXF %s, %zu entities, %zu strokes, %zu ends snapped\n",
+                  cl.input.string().c_str(), read.version.c_str(), read.entities, read.segments,
+                  read.snapped);
+      for (const std::string& d : read.diagnostics) std::printf("note               %s\n", d.c_str());
     } else {
       drawing = cellforge::io::read_drawing_text(cl.input);
       std::printf("input              %s\n", cl.input.string().c_str());

@@ -4,10 +4,11 @@
 // 003_be08eec927fcc329.txt, "Rounds and fillets").
 //
 //   sketch_rounds                      the bundled L-bracket (examples/data/l_bracket_rounds.txt)
-//   sketch_rounds drawing.txt|drawing.svg
+//   sketch_rounds drawing.txt|drawing.svg|drawing.dxf
 //
 // A .txt drawing is the line-drawing text with arcs (`a i j rx ry rotation large ccw`), an .svg
-// one has its arcs as path commands A (docs/formats.md). Writes, in the current directory,
+// one has its arcs as path commands A, a .dxf (ASCII) one as ARC, ELLIPSE or bulged polyline
+// entities, every visible layer read (docs/formats.md). Writes, in the current directory,
 // <name>_arcs.svg (the drawing, each pair of arcs in its own colour), <name>_skeleton.txt and
 // <name>_skeleton.svg (the skeleton drawing, its faces shaded), the skeleton's cell complex as
 // <name>.3dcl and <name>.obj, the rounded solid as <name>_rounded.obj and the round attribute of
@@ -32,6 +33,7 @@
 #include "cellforge/io/cells_io.hpp"
 #include "cellforge/io/drawing_svg.hpp"
 #include "cellforge/io/drawing_text.hpp"
+#include "cellforge/io/dxf_drawing.hpp"
 #include "cellforge/io/obj.hpp"
 #include "cellforge/io/svg_drawing.hpp"
 #include "cellforge/sketch/rounds.hpp"
@@ -101,6 +103,14 @@ int main(int argc, char** argv) {
       std::printf(
           "input              %s: %zu SVG elements, %zu straight segments, %zu arcs, %zu ends snapped\n",
           cl.input.string().c_str(), read.elements, read.segments, read.arcs, read.snapped);
+      for (const std::string& d : read.diagnostics) std::printf("note               %s\n", d.c_str());
+    } else if (ext == ".dxf") {
+      auto read = cellforge::io::read_dxf_arc_drawing(cl.input);
+      drawing = std::move(read.drawing);
+      std::printf(
+          "input              %s: DXF %s, %zu entities, %zu straight segments, %zu arcs, %zu ends snapped\n",
+          cl.input.string().c_str(), read.version.c_str(), read.entities, read.segments, read.arcs,
+          read.snapped);
       for (const std::string& d : read.diagnostics) std::printf("note               %s\n", d.c_str());
     } else {
       drawing = cellforge::io::read_arc_drawing_text(cl.input);

@@ -26,11 +26,11 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
-#include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/io/detail/arc_io.hpp"
 #include "cellforge/io/detail/read_file.hpp"
+#include "cellforge/io/detail/stroke_snapping.hpp"
 #include "cellforge/io/detail/text_cursor.hpp"
 #include "cellforge/io/file_path.hpp"
 #include "cellforge/sketch/detail/drawing_grid.hpp"
@@ -93,16 +93,8 @@ struct svg_arc_drawing_result : svg_reading_counts {
 
 namespace detail {
 
-/// A 2D affine map (x, y) -> (a x + c y + e, b x + d y + f), SVG's matrix(a b c d e f).
-struct svg_affine {
-  double a = 1, b = 0, c = 0, d = 1, e = 0, f = 0;
-  glm::dvec2 operator()(glm::dvec2 p) const { return {a * p.x + c * p.y + e, b * p.x + d * p.y + f}; }
-  /// This map after `m` (this ∘ m).
-  svg_affine then(const svg_affine& m) const {
-    return {a * m.a + c * m.b, b * m.a + d * m.b,     a * m.c + c * m.d,
-            b * m.c + d * m.d, a * m.e + c * m.f + e, b * m.e + d * m.f + f};
-  }
-};
+/// SVG's matrix(a b c d e f).
+using svg_affine = affine2;
 
 template <class = void>
 struct basic_svg_reader;
@@ -353,22 +345,8 @@ struct basic_svg_reader {
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(q.x) || !std::isfinite(q.y))
       fail(at, "a point overflows to infinity under its transforms");
     arc_piece out{p, q, std::abs(v[0]), std::abs(v[1]), arc_radians(v[2]), v[3] != 0, v[4] != 0, at};
-    if (m.a != 1 || m.b != 0 || m.c != 0 || m.d != 1) {
-      // The ellipse's axes under the linear part A of m: the singular values and left singular
-      // vectors of L = A R(rotation) diag(rx, ry), from L Lᵀ; a reflection reverses the sweep.
-      const double cs = std::cos(out.rotation), sn = std::sin(out.rotation);
-      const double l00 = (m.a * cs + m.c * sn) * out.rx, l01 = (-m.a * sn + m.c * cs) * out.ry;
-      const double l10 = (m.b * cs + m.d * sn) * out.rx, l11 = (-m.b * sn + m.d * cs) * out.ry;
-      const double pp = l00 * l00 + l01 * l01, rr = l10 * l10 + l11 * l11, pq = l00 * l10 + l01 * l11;
-      const double det = l00 * l11 - l01 * l10;
-      const double s1 = std::sqrt((pp + rr) / 2 + std::hypot((pp - rr) / 2, pq));
-      if (!std::isfinite(s1) || !(std::abs(det) / s1 > 0) || !std::isfinite(det))
-        fail(at, "an arc command's transforms flatten its ellipse or overflow");
-      out.rx = s1;
-      out.ry = std::abs(det) / s1;
-      out.rotation = 0.5 * std::atan2(2 * pq, pp - rr);
-      if (m.a * m.d - m.b * m.c < 0) out.sweep = !out.sweep;
-    }
+    if (!map_ellipse(m, out.rx, out.ry, out.rotation, out.sweep))
+      fail(at, "an arc command's transforms flatten its ellipse or overflow");
     arcs.push_back(out);
   }
 
@@ -749,21 +727,6 @@ struct basic_svg_reader {
   }
 };
 
-/// Cluster mean of points by index list without rounding drift: exact for equal points. O(k).
-template <class = void>
-glm::dvec2 svg_cluster_mean(const std::vector<glm::dvec2>& pts, const std::vector<std::uint32_t>& members) {
-  // Offsets divided before they are summed, so that far-apart members cannot overflow.
-  const glm::dvec2 base = pts[members[0]];
-  const double k = static_cast<double>(members.size());
-  glm::dvec2 sum{0, 0};
-  for (const std::uint32_t i : members) sum += pts[i] / k - base / k;
-  return base + sum;
-}
-
-}  // namespace detail
-
-namespace detail {
-
 /// The SVG stroke reader of parse_svg_drawing (arcs = false: A commands as options.curves says)
 /// and parse_svg_arc_drawing (arcs = true). O(size + S log S + K).
 template <Point2 P2>
@@ -782,163 +745,28 @@ svg_arc_drawing_result<P2> parse_svg_strokes(std::string_view text, std::string_
   out.skipped_curves = r.skipped_curves;
   out.skipped_elements = r.skipped_elements;
   out.diagnostics = std::move(r.diagnostics);
-  const std::size_t ns = r.segs.size(), na = r.arcs.size();
-  if (2 * (ns + na) >= std::numeric_limits<std::uint32_t>::max())
-    throw error(error_category::io, "too many segments for 32-bit indices",
-                source_location{std::string(name), 0});
-  if (ns + na == 0) {
+  if (r.segs.empty() && r.arcs.empty()) {
     out.diagnostics.push_back(std::string(name) +
                               (arcs ? ": no straight stroke or arc found" : ": no straight stroke found"));
     return out;
   }
-  // Stroke ends in the drawing's frame, y up: the segments', then the arcs'.
-  std::vector<glm::dvec2> ends(2 * (ns + na));
-  for (std::size_t s = 0; s < ns; ++s) {
-    ends[2 * s] = {r.segs[s].first.x, -r.segs[s].first.y};
-    ends[2 * s + 1] = {r.segs[s].second.x, -r.segs[s].second.y};
+  // Strokes in the drawing's frame, y up: the rotation and the sweep's sense flip with y.
+  std::vector<std::pair<glm::dvec2, glm::dvec2>> segs(r.segs.size());
+  for (std::size_t s = 0; s < segs.size(); ++s)
+    segs[s] = {{r.segs[s].first.x, -r.segs[s].first.y}, {r.segs[s].second.x, -r.segs[s].second.y}};
+  std::vector<stroke_arc> arc_strokes(r.arcs.size());
+  for (std::size_t k = 0; k < arc_strokes.size(); ++k) {
+    const auto& a = r.arcs[k];
+    arc_strokes[k] = {{a.from.x, -a.from.y}, {a.to.x, -a.to.y}, a.rx, a.ry, -a.rotation, a.large, !a.sweep};
   }
-  for (std::size_t k = 0; k < na; ++k) {
-    ends[2 * (ns + k)] = {r.arcs[k].from.x, -r.arcs[k].from.y};
-    ends[2 * (ns + k) + 1] = {r.arcs[k].to.x, -r.arcs[k].to.y};
-  }
-  const cellforge::detail::drawing_frame frame = cellforge::detail::make_drawing_frame(ends);
-  const double eps = options.snap_tolerance * frame.diag;
-  cellforge::detail::union_find uf(2 * (ns + na));
-  cellforge::detail::for_close_points(frame.points, eps,
-                                      [&](std::uint32_t i, std::uint32_t j) { uf.unite(i, j); });
-  // Clusters numbered by first appearance (the union-find keeps the smallest index as root).
-  constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> cluster(2 * (ns + na), none), junction_of(2 * (ns + na));
-  std::vector<std::vector<std::uint32_t>> members;
-  for (std::uint32_t i = 0; i < 2 * (ns + na); ++i) {
-    const std::uint32_t root = uf.find(i);
-    if (cluster[root] == none) {
-      cluster[root] = static_cast<std::uint32_t>(members.size());
-      members.emplace_back();
-    }
-    junction_of[i] = cluster[root];
-    members[cluster[root]].push_back(i);
-  }
-  const std::size_t nj = members.size();
-  std::vector<glm::dvec2> at(nj), at_frame(nj);
-  for (std::size_t j = 0; j < nj; ++j) {
-    at[j] = svg_cluster_mean(ends, members[j]);
-    at_frame[j] = svg_cluster_mean(frame.points, members[j]);
-    glm::dvec2 lo = at_frame[j], hi = at_frame[j];
-    for (const std::uint32_t i : members[j]) {
-      if (ends[i] != at[j]) ++out.snapped;
-      lo = glm::min(lo, frame.points[i]);
-      hi = glm::max(hi, frame.points[i]);
-    }
-    if (glm::length(hi - lo) > eps && out.diagnostics.size() < 100)
-      out.diagnostics.push_back(std::string(name) + ": junction at " +
-                                cellforge::detail::drawing_point_text(at[j]) + " gathers a chain of " +
-                                std::to_string(members[j].size()) +
-                                " close stroke ends wider than the snap distance: check the drawing there");
-  }
-  // Edges between junctions; zero-length ones dropped.
-  std::vector<std::array<std::uint32_t, 2>> edges;
-  edges.reserve(ns);
-  for (std::size_t s = 0; s < ns; ++s) {
-    const std::uint32_t a = junction_of[2 * s], b = junction_of[2 * s + 1];
-    if (a == b)
-      ++out.dropped_zero_length;
-    else
-      edges.push_back({a, b});
-  }
-  // Arcs whose ends snapped together are dropped (a closed curve is no round or fillet).
-  std::vector<std::array<std::uint32_t, 2>> arc_ends;
-  std::vector<std::size_t> arc_piece;
-  for (std::size_t k = 0; k < na; ++k) {
-    const std::uint32_t a = junction_of[2 * (ns + k)], b = junction_of[2 * (ns + k) + 1];
-    if (a == b) {
-      ++out.dropped_zero_length;
-      out.diagnostics.push_back(
-          std::string(name) + ":" + std::to_string(r.line(r.arcs[k].at)) +
-          ": an arc whose ends snapped to one junction: left out (a closed curve is no round)");
-    } else {
-      arc_ends.push_back({a, b});
-      arc_piece.push_back(k);
-    }
-  }
-  // Splits: junctions on an edge's interior (within eps, projecting strictly inside it).
-  if (options.split_at_junctions && !edges.empty()) {
-    std::vector<std::pair<glm::dvec2, glm::dvec2>> segs(edges.size());
-    for (std::size_t e = 0; e < edges.size(); ++e) segs[e] = {at_frame[edges[e][0]], at_frame[edges[e][1]]};
-    std::vector<std::tuple<std::uint32_t, double, std::uint32_t>> cuts;  // (edge, t, junction)
-    cellforge::detail::for_grid_neighbours(
-        segs, at_frame, eps, [](std::size_t, std::size_t) {},
-        [&](std::size_t e, std::size_t j) {
-          if (j == edges[e][0] || j == edges[e][1]) return;
-          const glm::dvec2 a = segs[e].first, d = segs[e].second - a;
-          const double t = glm::dot(at_frame[j] - a, d) / glm::dot(d, d);
-          if (t > 0 && t < 1 && glm::length(at_frame[j] - (a + t * d)) <= eps)
-            cuts.emplace_back(static_cast<std::uint32_t>(e), t, static_cast<std::uint32_t>(j));
-        });
-    std::sort(cuts.begin(), cuts.end());
-    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
-    std::vector<std::array<std::uint32_t, 2>> split;
-    split.reserve(edges.size() + cuts.size());
-    std::size_t k = 0;
-    for (std::size_t e = 0; e < edges.size(); ++e) {
-      std::uint32_t from = edges[e][0];
-      for (; k < cuts.size() && std::get<0>(cuts[k]) == e; ++k) {
-        const std::uint32_t j = std::get<2>(cuts[k]);
-        if (j == from) continue;
-        split.push_back({from, j});
-        from = j;
-        ++out.split_at_junctions;
-      }
-      if (from != edges[e][1]) split.push_back({from, edges[e][1]});
-    }
-    edges = std::move(split);
-  }
-  // Duplicates merged (first kept), then unused junctions dropped, order kept.
-  {
-    std::vector<std::array<std::uint32_t, 3>> keys(edges.size());
-    for (std::size_t e = 0; e < edges.size(); ++e)
-      keys[e] = {std::min(edges[e][0], edges[e][1]), std::max(edges[e][0], edges[e][1]),
-                 static_cast<std::uint32_t>(e)};
-    std::sort(keys.begin(), keys.end());
-    std::vector<std::uint8_t> keep(edges.size(), 1);
-    for (std::size_t q = 1; q < keys.size(); ++q)
-      if (keys[q][0] == keys[q - 1][0] && keys[q][1] == keys[q - 1][1])
-        keep[keys[q][2]] = 0, ++out.merged_duplicates;
-    std::vector<std::uint32_t> renumber(nj, none);
-    auto& d = out.drawing.lines;
-    for (std::size_t e = 0; e < edges.size(); ++e) {
-      if (!keep[e]) continue;
-      for (const std::uint32_t j : edges[e])
-        if (renumber[j] == none) renumber[j] = 0;
-    }
-    for (const auto& [a, b] : arc_ends) renumber[a] = renumber[b] = 0;
-    for (std::size_t j = 0; j < nj; ++j)
-      if (renumber[j] != none) {
-        renumber[j] = static_cast<std::uint32_t>(d.points.size());
-        d.points.push_back(from_dvec2<P2>(at[j]));
-      }
-    for (std::size_t e = 0; e < edges.size(); ++e)
-      if (keep[e]) d.edges.push_back({renumber[edges[e][0]], renumber[edges[e][1]]});
-    // Arcs between their snapped junctions, in the y-up frame: the rotation and the sweep's
-    // sense flip with y.
-    for (std::size_t k = 0; k < arc_ends.size(); ++k) {
-      const auto& piece = r.arcs[arc_piece[k]];
-      const std::array<std::uint32_t, 2> je{renumber[arc_ends[k][0]], renumber[arc_ends[k][1]]};
-      try {
-        out.drawing.arcs.push_back(
-            {je, arc_from_endpoints<P2>({d.points[je[0]], d.points[je[1]], piece.rx, piece.ry,
-                                         -piece.rotation, piece.large, !piece.sweep})});
-      } catch (const error& e) {
-        r.fail(piece.at, "an arc command between the junctions at " +
-                             cellforge::detail::drawing_point_text(d.points[je[0]]) + " and " +
-                             cellforge::detail::drawing_point_text(d.points[je[1]]) + ": " + e.message());
-      }
-    }
-    // With radii far beyond the distance of the ends, rounding can leave the curve off its
-    // junctions: refused here rather than by every later stage.
-    if (const arc_validation v = validate_arcs(out.drawing); !v)
-      r.fail(r.arcs[arc_piece[v.arc]].at, "an arc command out of proportion to its ends: " + v.message);
-  }
+  stroke_snap_counts counts;
+  out.drawing = snap_strokes<P2>(
+      segs, arc_strokes, options.snap_tolerance, options.split_at_junctions, name,
+      [&](std::size_t k) { return r.line(r.arcs[k].at); }, counts, out.diagnostics);
+  out.snapped = counts.snapped;
+  out.dropped_zero_length = counts.dropped_zero_length;
+  out.merged_duplicates = counts.merged_duplicates;
+  out.split_at_junctions = counts.split_at_junctions;
   return out;
 }
 
