@@ -19,6 +19,8 @@
 #include "cellforge/core/bounding_box.hpp"
 #include "cellforge/cells/conversion.hpp"
 #include "cellforge/io/step.hpp"
+#include "cellforge/tubes/sample_skeletons.hpp"
+#include "cellforge/tubes/tube_mesh.hpp"
 #include "cellforge/wireframe/sample_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 #include "../wireframe_sweep.hpp"
@@ -264,6 +266,35 @@ TEST_CASE("step: meshes as faceted solids (a closed triangle mesh)") {
   REQUIRE(v.solid_volumes.size() == 1);
   CHECK(v.solid_volumes[0] == doctest::Approx(cellforge::signed_volume(r.cells, cell_volume(0))).epsilon(1e-9));
   CHECK(v.faces == mesh.num_faces());
+}
+
+TEST_CASE("step: tube meshes, plain and Loop-subdivided, as faceted solids") {
+  for (const int levels : {0, 1}) {
+    CAPTURE(levels);
+    cellforge::tube_options options;
+    options.subdivision_levels = levels;
+    const auto tubes = cellforge::make_tubes(cellforge::samples::ring(6), options);
+    const auto& mesh = tubes.mesh;
+    REQUIRE(mesh.is_closed());
+    // The mesh's own volume: fans from each face's first vertex (the writer's triangles too).
+    double six_volume = 0;
+    for (auto f : mesh.faces()) {
+      std::vector<glm::dvec3> ps;
+      for (auto v : mesh.vertices_around(f)) ps.push_back(mesh.position(v));
+      for (std::size_t i = 1; i + 1 < ps.size(); ++i) six_volume += glm::dot(ps[0], glm::cross(ps[i], ps[i + 1]));
+    }
+    std::ostringstream os;
+    const auto written = cellforge::io::write_step(os, mesh);
+    CHECK(written.solids == 1);
+    const occt_view v = read_with_occt(os.str());
+    CHECK(v.valid);
+    REQUIRE(v.solid_volumes.size() == 1);
+    for (const double theirs : {v.solid_volumes[0], v.volumes_about_far[0]})
+      CHECK(theirs == doctest::Approx(std::abs(six_volume) / 6).epsilon(1e-9));
+    CHECK(v.faces == written.faces);
+    std::printf("tube ring, %d subdivision levels: %zu mesh faces, %zu STEP faces, volume %.6g\n", levels,
+                mesh.num_faces(), written.faces, v.solid_volumes[0]);
+  }
 }
 
 TEST_CASE("step: the OpenCASCADE check catches a wrongly oriented face") {
