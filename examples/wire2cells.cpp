@@ -66,7 +66,9 @@ std::vector<example::option_spec> option_table(settings& s) {
          if (v.empty()) throw example::usage_error("-o/--output needs a folder name");
          s.output = fs::path(v);
        }},
-      {{"--no-svg"}, "", "do not write the picture (<name>.svg)",
+      {{"--no-svg"},
+       "",
+       "do not write the picture (<name>.svg)",
        [&](std::string_view) { std::erase(s.formats, std::string("svg")); }},
       {{"--format"},
        "LIST",
@@ -294,11 +296,11 @@ int main(int argc, char** argv) {
         stage("drawing " + std::to_string(cells.num_faces()) + " faces");
         const cellforge::io::svg_result picture = cellforge::io::write_cells_svg(outputs[i], cells);
         if (picture.approximate_edges + picture.untested_edges > 0)
-          std::printf("  picture: %zu of %zu edges past the hidden-line work budget (judged from one point)\n",
-                      picture.approximate_edges + picture.untested_edges, picture.edges);
+          std::printf(
+              "  picture: %zu of %zu edges past the hidden-line work budget (judged from one point)\n",
+              picture.approximate_edges + picture.untested_edges, picture.edges);
       } else if (f == "step") {
-        const cellforge::io::step_result step =
-            cellforge::io::write_step(outputs[i], cells, {.name = stem});
+        const cellforge::io::step_result step = cellforge::io::write_step(outputs[i], cells, {.name = stem});
         for (const std::string& d : step.diagnostics) std::printf("  step: %s\n", d.c_str());
       }
     }

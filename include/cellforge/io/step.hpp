@@ -23,8 +23,8 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/cells/cell_complex.hpp"
-#include "cellforge/core/detail/newell.hpp"
 #include "cellforge/core/bounding_box.hpp"
+#include "cellforge/core/detail/newell.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"
@@ -39,8 +39,8 @@ enum class step_length_unit : std::uint8_t { millimetre, centimetre, metre };
 
 /// How a STEP file is written.
 struct step_write_options {
-  std::string name = "cellforge";             ///< the product's name (any UTF-8 text)
-  std::string timestamp{};                    ///< FILE_NAME's time stamp (ISO 8601); empty: none
+  std::string name = "cellforge";                        ///< the product's name (any UTF-8 text)
+  std::string timestamp{};                               ///< FILE_NAME's time stamp (ISO 8601); empty: none
   step_length_unit unit = step_length_unit::millimetre;  ///< what one model unit means
   /// The distance_accuracy_value in the header context, in model units; 0: 1e-9 times the
   /// bounding-box diagonal (the pipeline's merge tolerance), or 1e-9 for an empty model.
@@ -60,7 +60,9 @@ struct step_result {
   std::size_t entities = 0;
   double uncertainty = 0;  ///< the distance accuracy written, in model units
   double milliseconds = 0;
-  std::vector<std::string> diagnostics;  ///< volumes whose boundary is not what a solid needs
+  /// What the file's reader may object to: faces not flat to the uncertainty, volumes whose
+  /// outer shell encloses no positive volume (written all the same).
+  std::vector<std::string> diagnostics;
 };
 
 namespace detail {
@@ -237,8 +239,8 @@ double shell_volume(const cell_topology& cc, std::span<const glm::dvec3> pts,
 
 /// The whole STEP file of cc. O(size of cc · log).
 template <class = void>
-std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts, const step_write_options& options,
-                      step_result& result) {
+std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts,
+                      const step_write_options& options, step_result& result) {
   using std::size_t;
   bounding_box box;
   for (size_t i = 0; i < pts.size(); ++i) {
@@ -306,9 +308,10 @@ std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts, 
   d.text += ')';
   d.end();
   const size_t length_unit = d.begin();
-  d.text += options.unit == step_length_unit::metre        ? "(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT($,.METRE.))"
-            : options.unit == step_length_unit::centimetre ? "(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.CENTI.,.METRE.))"
-                                                            : "(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.))";
+  d.text += options.unit == step_length_unit::metre ? "(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT($,.METRE.))"
+            : options.unit == step_length_unit::centimetre
+                ? "(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.CENTI.,.METRE.))"
+                : "(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.))";
   d.end();
   const size_t angle_unit = d.begin();
   d.text += "(NAMED_UNIT(*)PLANE_ANGLE_UNIT()SI_UNIT($,.RADIAN.))";
@@ -363,8 +366,8 @@ std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts, 
     const glm::dvec3 a = pts[cc.source(e).idx()], b = pts[cc.target(e).idx()];
     const double length = glm::length(b - a);
     if (!(length > 0))
-      throw error(error_category::invalid_input,
-                  "write_step: edge " + std::to_string(e.idx()) + " has length zero (a LINE needs a direction)");
+      throw error(error_category::invalid_input, "write_step: edge " + std::to_string(e.idx()) +
+                                                     " has length zero (a LINE needs a direction)");
     const size_t dir = d.direction((b - a) / length);
     const size_t vec = d.begin();
     d.text += "VECTOR('',";
@@ -395,13 +398,14 @@ std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts, 
 
   // Per face: its plane (normal = the face's normal) and one EDGE_LOOP per loop, shared by
   // both sides; the ADVANCED_FACEs are made per use, since a side flips the loops' sense.
+  std::size_t off_plane = 0;  // faces not flat to the uncertainty (the first 10 are named)
   std::vector<size_t> face_plane(nf);
   std::vector<std::vector<size_t>> face_loops(nf);
   for (cell_face f : cc.faces()) {
     const glm::dvec3 n = cellforge::detail::cells::access::unit_normal(cc, f);
     if (!(glm::length(n) > 0.5))
-      throw error(error_category::invalid_input,
-                  "write_step: face " + std::to_string(f.idx()) + " has no normal (its outer loop has no area)");
+      throw error(error_category::invalid_input, "write_step: face " + std::to_string(f.idx()) +
+                                                     " has no normal (its outer loop has no area)");
     const auto outer = cc.loop_vertices(f, 0);
     // The reference direction: the longest outer edge, made perpendicular to the normal.
     glm::dvec3 ref(0.0);
@@ -413,6 +417,17 @@ std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts, 
     if (!(glm::length(ref) > 0))
       throw error(error_category::invalid_input,
                   "write_step: face " + std::to_string(f.idx()) + " has no edge across its normal");
+    // The check of the answer: every vertex of the face on its PLANE to the uncertainty.
+    double off = 0;
+    for (size_t l = 0; l < cc.num_loops(f); ++l)
+      for (cell_vertex v : cc.loop_vertices(f, l))
+        off = std::max(off, std::abs(glm::dot(pts[v.idx()] - pts[outer[0].idx()], n)));
+    if (off > result.uncertainty) {
+      if (++off_plane <= 10)
+        result.diagnostics.push_back(
+            "face " + std::to_string(f.idx()) + ": a vertex is " + std::to_string(off) +
+            " from the face's plane, more than the uncertainty " + std::to_string(result.uncertainty));
+    }
     const size_t origin = vertex_point[outer[0].idx()];
     const size_t axis = d.direction(n), ref_dir = d.direction(glm::normalize(ref));
     const size_t place = d.begin();
@@ -446,13 +461,14 @@ std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts, 
       d.end();
     }
   }
+  if (off_plane > 10)
+    result.diagnostics.push_back(std::to_string(off_plane) + " faces in all are not flat to the uncertainty");
   // One use of face f with its topological normal along (sign +1) or against (-1) f's normal.
   const auto advanced_face = [&](cell_face f, int sign) {
     std::vector<size_t> bounds;
     for (size_t l = 0; l < face_loops[f.idx()].size(); ++l) {
       bounds.push_back(d.begin());
-      d.text += l == 0 ? "FACE_OUTER_BOUND('',"
-                       : "FACE_BOUND('',";
+      d.text += l == 0 ? "FACE_OUTER_BOUND(''," : "FACE_BOUND('',";
       d.ref(face_loops[f.idx()][l]);
       d.text += sign > 0 ? ",.T.)" : ",.F.)";
       d.end();
@@ -603,7 +619,8 @@ cell_complex<P> mesh_step_cells(const surface_mesh<P>& m) {
     pos.push_back(to_dvec3(m.position(v)));
     box.add(pos.back());
   }
-  for (edge_handle e : m.edges()) in.edges.push_back({index[m.vertex(e, 0).idx()], index[m.vertex(e, 1).idx()]});
+  for (edge_handle e : m.edges())
+    in.edges.push_back({index[m.vertex(e, 0).idx()], index[m.vertex(e, 1).idx()]});
   const double flat = 1e-9 * box.diagonal();
   for (face_handle f : m.faces()) {
     std::vector<std::uint32_t> loop;
@@ -656,14 +673,16 @@ step_result write_step(std::ostream& os, const cell_complex<P>& cc, const step_w
   const std::string text = detail::step_text(cc, pts.span(), options, result);
   os.write(text.data(), static_cast<std::streamsize>(text.size()));
   if (!os) throw error(error_category::io, "step: writing to the stream failed");
-  result.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  result.milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return result;
 }
 
 /// Writes cc to a STEP file (beside it, then renamed over it). O(size of cc · log). Throws
 /// as the stream version, and io naming the path.
 template <Point3 P>
-step_result write_step(const file_path& path, const cell_complex<P>& cc, const step_write_options& options = {}) {
+step_result write_step(const file_path& path, const cell_complex<P>& cc,
+                       const step_write_options& options = {}) {
   step_result result;
   detail::write_file(path, [&](std::ostream& os) { result = write_step(os, cc, options); });
   return result;
@@ -677,7 +696,8 @@ step_result write_step(std::ostream& os, const surface_mesh<P>& m, const step_wr
 }
 /// The mesh to a STEP file (beside it, then renamed over it). O(size of m).
 template <Point3 P>
-step_result write_step(const file_path& path, const surface_mesh<P>& m, const step_write_options& options = {}) {
+step_result write_step(const file_path& path, const surface_mesh<P>& m,
+                       const step_write_options& options = {}) {
   return write_step(path, detail::mesh_step_cells(m), options);
 }
 
