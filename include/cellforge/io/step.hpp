@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <ostream>
@@ -25,6 +24,7 @@
 #include "cellforge/cells/cell_complex.hpp"
 #include "cellforge/core/bounding_box.hpp"
 #include "cellforge/core/detail/newell.hpp"
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"
@@ -667,14 +667,13 @@ cell_complex<P> mesh_step_cells(const surface_mesh<P>& m) {
 /// without area; io when the stream fails.
 template <Point3 P>
 step_result write_step(std::ostream& os, const cell_complex<P>& cc, const step_write_options& options = {}) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const cellforge::detail::stopwatch clock;
   step_result result;
   const cellforge::detail::cells::dvec3_points<P> pts(cc.points());
   const std::string text = detail::step_text(cc, pts.span(), options, result);
   os.write(text.data(), static_cast<std::streamsize>(text.size()));
   if (!os) throw error(error_category::io, "step: writing to the stream failed");
-  result.milliseconds =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  result.milliseconds = clock.ms();
   return result;
 }
 
