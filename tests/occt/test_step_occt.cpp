@@ -143,8 +143,8 @@ std::string check_step(const cell_complex<P>& cc, std::size_t cavities = 0) {
 }
 
 // The sample of the sweep by default (every third model of it under the sanitizers): OCCT's
-// reading and checking costs about 0.1 s of CPU per model, so the full sweep, 1076 models, would
-// add ~2 CPU-minutes to CI; CELLFORGE_SWEEP=full runs every model. O(1).
+// reading and checking costs about 75 ms of CPU per model, so the full sweep, 1076 models, would
+// add ~80 CPU-seconds to CI; CELLFORGE_SWEEP=full runs every model. O(1).
 wireframe_sweep::sweep_size chosen_size() {
   const char* env = std::getenv("CELLFORGE_SWEEP");
   return env && std::string(env) == "full" ? wireframe_sweep::sweep_size::full
