@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 // The main job's output paths on k×k×k grids of unit cubes (sample_grid, every wall a face):
-// each writer of io/cells_io.hpp (.3dcl text, OBJ per volume, PLY by volume, exploded SVG) on
-// its own, reading and converting the OBJ wireframe (wireframe_to_cells), and the whole job as
-// wire2cells runs it (read, convert, validate, write the four files). Prints a growth table of
-// CPU and wall medians: near-linear growth keeps the ratio per 8x volumes near 8. The whole
-// job is also timed on UV spheres (rings and meridians that are not faces) and on stacks of
+// each writer of io/cells_io.hpp (.3dcl text, OBJ per volume, PLY by volume, exploded SVG) and
+// io/step.hpp (a STEP solid per volume) on its own, reading and converting the OBJ wireframe
+// (wireframe_to_cells), and the whole job as wire2cells runs it (read, convert, validate, write the four
+// files). Prints a growth table of CPU and wall medians: near-linear growth keeps the ratio per 8x volumes
+// near 8. The whole job is also timed on UV spheres (rings and meridians that are not faces) and on stacks of
 // n-gon cylinders (large planar walls) up to about 50 000 edges.
 
 #include "bench_support.hpp"
@@ -24,6 +24,7 @@
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/io/cells_io.hpp"
 #include "cellforge/io/obj.hpp"
+#include "cellforge/io/step.hpp"
 #include "cellforge/wireframe/sample_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 
@@ -184,6 +185,9 @@ void register_all() {
       cellforge::io::write_cells_ply(p, cc);
       return 0;
     });
+    register_writer("write_step", k, ".step", [](const fs::path& p, const cell_complex<glm::dvec3>& cc) {
+      return cellforge::io::write_step(p, cc).faces;
+    });
     register_path("write_svg", k, [k](benchmark::State& s) {
       const cell_complex<glm::dvec3>& cc = grid_cells(k);
       const fs::path file = scratch() / ("cells" + std::to_string(k) + ".svg");
@@ -222,8 +226,8 @@ void print_tables(const cb::collecting_reporter& reporter, std::ostream& os) {
         "wall ms of the end-to-end job in its own column.\n";
   cb::table t(
       "Growth: reading and converting, each writer, and the whole job (read, convert, validate, four files)",
-      {"grid", "volumes", "faces", "read + convert ms", "3dcl ms", "OBJ ms", "PLY ms", "SVG ms", "job ms",
-       "job wall ms", "job µs per volume", "job growth (8x volumes)"});
+      {"grid", "volumes", "faces", "read + convert ms", "3dcl ms", "OBJ ms", "PLY ms", "SVG ms", "STEP ms",
+       "job ms", "job wall ms", "job µs per volume", "job growth (8x volumes)"});
   std::optional<double> previous;
   for (const int k : grid_sizes) {
     const std::string g = "/grid_" + std::to_string(k);
@@ -235,8 +239,9 @@ void print_tables(const cb::collecting_reporter& reporter, std::ostream& os) {
          cb::ms(median("read_convert" + g, "median_cpu_us")),
          cb::ms(median("write_3dcl" + g, "median_cpu_us")), cb::ms(median("write_obj" + g, "median_cpu_us")),
          cb::ms(median("write_ply" + g, "median_cpu_us")), cb::ms(median("write_svg" + g, "median_cpu_us")),
-         cb::ms(job), cb::ms(median("end_to_end" + g, "median_wall_us")),
-         job ? cb::fixed(*job * 1e3 / volumes, 1) : "—", cb::ratio(job, previous)});
+         cb::ms(median("write_step" + g, "median_cpu_us")), cb::ms(job),
+         cb::ms(median("end_to_end" + g, "median_wall_us")), job ? cb::fixed(*job * 1e3 / volumes, 1) : "—",
+         cb::ratio(job, previous)});
     previous = job;
   }
   t.add_note("Target: the 20³ job under 3 s and near-linear growth (about 8x per row).");

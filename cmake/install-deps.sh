@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian/Ubuntu packages cellforge needs, and only those that are missing.
-#   bash cmake/install-deps.sh [--bench] [--compare] [--fuzz]
+#   bash cmake/install-deps.sh [--bench] [--compare] [--fuzz] [--occt]
 #     (none)     compiler, CMake, make, GLM, doctest, Eigen: enough to build the tests and examples;
 #                node and npm (only when the commands are missing) for cmake/fetch-bunny.sh;
 #                libcgal-demo (CGAL's demo meshes) for cmake/fetch-cgal-data.sh;
@@ -8,6 +8,7 @@
 #     --bench    Google Benchmark as well
 #     --compare  CGAL (with Eigen), OpenMesh and Qhull, the baselines the benchmarks compare against (implies --bench)
 #     --fuzz     clang and its compiler-rt (libFuzzer, ASan/UBSan runtimes for clang)
+#     --occt     OpenCASCADE's STEP reader and checks, for the STEP writer's test (tests/occt)
 # `apt-get update` runs once, and only when something must be installed; sudo is used only
 # when not running as root. Nothing is installed when everything is present already.
 set -euo pipefail
@@ -26,8 +27,10 @@ for arg in "$@"; do
     --compare) packages+=(libbenchmark-dev libcgal-dev libopenmesh-dev libeigen3-dev libqhull-dev) ;;
     # Debian 12's clang 14 needs libclang-rt-14-dev for -fsanitize=fuzzer (libclang_rt.fuzzer).
     --fuzz) packages+=(clang libclang-rt-14-dev) ;;
+    # A test dependency only: test_step_occt reads io/step.hpp's files back with OpenCASCADE.
+    --occt) packages+=(libocct-data-exchange-dev libocct-modeling-algorithms-dev) ;;
     -h | --help)
-      sed -n '2,11p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+      sed -n '2,12p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
       exit 0
       ;;
     *)

@@ -152,7 +152,7 @@ fi
 
 start=$SECONDS
 if [[ "${CELLFORGE_SKIP_DEPS:-0}" != 1 ]]; then
-  bash "$root/cmake/install-deps.sh" --bench --fuzz
+  bash "$root/cmake/install-deps.sh" --bench --fuzz --occt
 fi
 
 stages=(release asan clang bench)

@@ -7,7 +7,8 @@
 //   wire2cells --help                every option with its default, the outputs, the exit codes
 //
 // Writes <name>.3dcl, <name>.obj (one group per volume), <name>.ply (coloured by volume) and
-// <name>.svg (volumes exploded apart) into the output folder (-o, default ./out/), never over
+// <name>.svg (volumes exploded apart), and with --format step <name>.step (a solid per volume,
+// ISO 10303-21 AP214), into the output folder (-o, default ./out/), never over
 // the input, and prints a per-stage table like the seed's table 1 (seed
 // 000_6c43f981384fedb6.txt, §7.2).
 #include <algorithm>
@@ -23,6 +24,7 @@
 #include "cellforge/io/cells_io.hpp"
 #include "cellforge/io/edge_list.hpp"
 #include "cellforge/io/obj.hpp"
+#include "cellforge/io/step.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 #include "example_support.hpp"
 
@@ -42,7 +44,7 @@ constexpr int exit_not_solid = 4;  // read, but not a closed solid: the files ar
 struct settings {
   fs::path input = fs::path(CELLFORGE_DATA_DIR) / "stepped_block.obj";
   fs::path output = "out";
-  bool svg = true;
+  std::vector<std::string> formats{"3dcl", "obj", "ply", "svg"};  ///< outputs, in this order
   bool help = false;
   cellforge::wireframe_options pipeline{};
 };
@@ -64,7 +66,29 @@ std::vector<example::option_spec> option_table(settings& s) {
          if (v.empty()) throw example::usage_error("-o/--output needs a folder name");
          s.output = fs::path(v);
        }},
-      {{"--no-svg"}, "", "do not write the picture (<name>.svg)", [&](std::string_view) { s.svg = false; }},
+      {{"--no-svg"},
+       "",
+       "do not write the picture (<name>.svg)",
+       [&](std::string_view) { std::erase(s.formats, std::string("svg")); }},
+      {{"--format"},
+       "LIST",
+       "the outputs, comma-separated among 3dcl, obj, ply, svg, step, or all (default: 3dcl,obj,ply,svg)",
+       [&](std::string_view v) {
+         static const std::vector<std::string> known{"3dcl", "obj", "ply", "svg", "step"};
+         s.formats.clear();
+         for (std::size_t i = 0; i <= v.size();) {
+           const std::size_t comma = std::min(v.find(',', i), v.size());
+           const std::string f(v.substr(i, comma - i));
+           i = comma + 1;
+           if (f == "all") {
+             s.formats = known;
+           } else if (std::find(known.begin(), known.end(), f) == known.end()) {
+             throw example::usage_error("--format: '" + f + "' is none of 3dcl, obj, ply, svg, step, all");
+           } else if (std::find(s.formats.begin(), s.formats.end(), f) == s.formats.end()) {
+             s.formats.push_back(f);
+           }
+         }
+       }},
       {{"--tracer"},
        "planar|seed",
        "face tracer: each plane's planar arrangement, polynomial (default), or the seed's breadth-first "
@@ -145,6 +169,8 @@ void print_help(const std::vector<example::option_spec>& table) {
       "  <name>.obj    every volume's outward faces, one group per volume\n"
       "  <name>.ply    the same faces coloured by volume (ASCII)\n"
       "  <name>.svg    the volumes exploded apart, shaded, hidden edges dashed\n"
+      "  <name>.step   with --format step or all: a solid per volume (STEP AP214, millimetres,\n"
+      "                docs/formats.md \"STEP\"), for CAD programs\n"
       "No output is written over the input file: wire2cells refuses before writing anything.\n\n"
       "Every answer is certified against the input (docs/cells.md, \"The certificate\") and printed\n"
       "with its status: solid, ambiguous (a solid with walls the wireframe does not decide), not a\n"
@@ -233,8 +259,7 @@ int main(int argc, char** argv) {
 
     const std::string stem = s.input.stem().string();
     std::vector<fs::path> outputs;
-    for (const char* e : {".3dcl", ".obj", ".ply", ".svg"})
-      if (s.svg || std::string_view(e) != ".svg") outputs.push_back(s.output / (stem + e));
+    for (const std::string& f : s.formats) outputs.push_back(s.output / (stem + "." + f));
     failure = exit_output;
     for (const fs::path& out : outputs) example::refuse_to_overwrite(out, s.input);
     failure = exit_input;
@@ -274,15 +299,25 @@ int main(int argc, char** argv) {
     stage("writing a cell complex of " + std::to_string(cells.num_faces()) + " faces and " +
           std::to_string(cells.num_volumes()) + " volumes");
     example::output_dir(s.output);
-    cellforge::io::write_3dcl(outputs[0], cells);
-    cellforge::io::write_cells_obj(outputs[1], cells);
-    cellforge::io::write_cells_ply(outputs[2], cells);
-    if (s.svg) {
-      stage("drawing " + std::to_string(cells.num_faces()) + " faces");
-      const cellforge::io::svg_result picture = cellforge::io::write_cells_svg(outputs[3], cells);
-      if (picture.approximate_edges + picture.untested_edges > 0)
-        std::printf("  picture: %zu of %zu edges past the hidden-line work budget (judged from one point)\n",
-                    picture.approximate_edges + picture.untested_edges, picture.edges);
+    for (std::size_t i = 0; i < s.formats.size(); ++i) {
+      const std::string& f = s.formats[i];
+      if (f == "3dcl") {
+        cellforge::io::write_3dcl(outputs[i], cells);
+      } else if (f == "obj") {
+        cellforge::io::write_cells_obj(outputs[i], cells);
+      } else if (f == "ply") {
+        cellforge::io::write_cells_ply(outputs[i], cells);
+      } else if (f == "svg") {
+        stage("drawing " + std::to_string(cells.num_faces()) + " faces");
+        const cellforge::io::svg_result picture = cellforge::io::write_cells_svg(outputs[i], cells);
+        if (picture.approximate_edges + picture.untested_edges > 0)
+          std::printf(
+              "  picture: %zu of %zu edges past the hidden-line work budget (judged from one point)\n",
+              picture.approximate_edges + picture.untested_edges, picture.edges);
+      } else if (f == "step") {
+        const cellforge::io::step_result step = cellforge::io::write_step(outputs[i], cells, {.name = stem});
+        for (const std::string& d : step.diagnostics) std::printf("  step: %s\n", d.c_str());
+      }
     }
     std::printf("\nwrote");
     for (std::size_t i = 0; i < outputs.size(); ++i)
