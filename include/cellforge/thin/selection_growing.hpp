@@ -48,15 +48,23 @@ struct growing_options {
   std::uint64_t work_budget = 2'000'000'000;
 };
 
-/// Per cycle (selection size 1 .. faces−1) the least boundary length and that selection's
-/// boundary as sorted inner slots (slots whose face is selected and whose twin's is not).
+/// Per cycle (selection size 1 .. faces−1, fewer when the budget ran out) the least boundary
+/// length and a way to that selection's boundary (cycle_loop below).
 struct growing_result {
+  static constexpr std::uint32_t no_node = 0xFFFFFFFF;
   std::vector<double> cycle_lengths;
+  /// Faithful mode: each cycle's loop as sorted inner slots (slots whose face is selected and
+  /// whose twin's is not), from the seed's L1 lists. Fast mode leaves it empty (see cycle_node).
   std::vector<std::vector<std::uint32_t>> cycle_loops;
+  /// Fast mode: the lineage of every kept selection (the parent's node, or no_node, and the
+  /// face it added) and each cycle's least selection, so that loops are built only on demand.
+  std::vector<std::uint32_t> node_parent, node_face, cycle_node;
   std::uint64_t selections_examined = 0;  ///< candidate selections generated
   std::uint64_t duplicates_dropped = 0;
   std::uint64_t selections_kept = 0;  ///< survivors summed over the cycles
   std::size_t max_kept = 0;           ///< most survivors in one cycle
+  bool complete = true;               ///< false: work_budget ran out; cycles stop early
+  std::vector<std::string> diagnostics;
 };
 
 namespace detail::thin {
@@ -122,13 +130,6 @@ std::size_t first_least(const std::vector<Selection>& kept, Length&& length) {
   return best;
 }
 
-[[noreturn]] inline void over_budget(std::uint64_t budget) {
-  throw error(
-      error_category::budget,
-      "find_thin_points: the selection growing examined more than " + std::to_string(budget) +
-          " candidate selections (thin_options::work_budget); raise work_budget or lower selection_cap");
-}
-
 template <class = void>
 std::uint64_t splitmix64(std::uint64_t x) {
   x += 0x9E3779B97F4A7C15ull;
@@ -137,13 +138,88 @@ std::uint64_t splitmix64(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
-/// Fast mode: a survivor owns a face bitset, its inner boundary slots and a Zobrist hash.
+/// Fast mode's face sets: copy-on-write bitsets in chunks of 64 words (4096 faces) shared
+/// between selections through reference counts, so that a child costs one chunk copy and
+/// its chunk table, not faces/64 words.
+class chunked_sets {
+ public:
+  static constexpr std::uint32_t words = 64, faces_per_chunk = words * 64;
+  explicit chunked_sets(std::uint32_t num_faces) : chunks_((num_faces + faces_per_chunk - 1) / faces_per_chunk) {}
+  std::uint32_t chunks() const { return chunks_; }
+  /// A new set (chunk table written to `table`) holding only face f.
+  void make_single(std::uint32_t* table, std::uint32_t f) {
+    const std::uint32_t zero = allocate();
+    refs_[zero] += chunks_ - 1;  // every chunk but f's shares one zero chunk
+    for (std::uint32_t c = 0; c < chunks_; ++c) table[c] = zero;
+    const std::uint32_t own = allocate();
+    table[f / faces_per_chunk] = own;
+    --refs_[zero];
+    if (refs_[zero] == 0) free_.push_back(zero);
+    word(own, f) |= bit(f);
+  }
+  /// `table` := parent ∪ {f}. O(chunks + words).
+  void make_child(std::uint32_t* table, const std::uint32_t* parent, std::uint32_t f) {
+    for (std::uint32_t c = 0; c < chunks_; ++c) ++refs_[table[c] = parent[c]];
+    const std::uint32_t c = f / faces_per_chunk, own = allocate();
+    std::memcpy(&data_[std::size_t{own} * words], &data_[std::size_t{parent[c]} * words], words * 8);
+    release_chunk(parent[c]);
+    table[c] = own;
+    word(own, f) |= bit(f);
+  }
+  void release(const std::uint32_t* table) {
+    for (std::uint32_t c = 0; c < chunks_; ++c) release_chunk(table[c]);
+  }
+  bool has(const std::uint32_t* table, std::uint32_t f) const {
+    return (data_[std::size_t{table[f / faces_per_chunk]} * words + (f % faces_per_chunk) / 64] >> (f & 63)) & 1u;
+  }
+  /// Whether a ∪ {fa} equals b ∪ {fb}; shared chunks are equal without a look.
+  bool same(const std::uint32_t* a, std::uint32_t fa, const std::uint32_t* b, std::uint32_t fb) const {
+    for (std::uint32_t c = 0; c < chunks_; ++c) {
+      const bool ca = fa / faces_per_chunk == c, cb = fb / faces_per_chunk == c;
+      if (a[c] == b[c] && !ca && !cb) continue;
+      for (std::uint32_t w = 0; w < words; ++w) {
+        std::uint64_t x = data_[std::size_t{a[c]} * words + w], y = data_[std::size_t{b[c]} * words + w];
+        if (ca && (fa % faces_per_chunk) / 64 == w) x |= bit(fa);
+        if (cb && (fb % faces_per_chunk) / 64 == w) y |= bit(fb);
+        if (x != y) return false;
+      }
+    }
+    return true;
+  }
+
+ private:
+  static std::uint64_t bit(std::uint32_t f) { return std::uint64_t{1} << (f & 63); }
+  std::uint64_t& word(std::uint32_t chunk, std::uint32_t f) {
+    return data_[std::size_t{chunk} * words + (f % faces_per_chunk) / 64];
+  }
+  std::uint32_t allocate() {
+    if (free_.empty()) {
+      free_.push_back(static_cast<std::uint32_t>(refs_.size()));
+      refs_.push_back(0);
+      data_.resize(data_.size() + words, 0);
+    }
+    const std::uint32_t c = free_.back();
+    free_.pop_back();
+    refs_[c] = 1;
+    std::fill_n(&data_[std::size_t{c} * words], words, std::uint64_t{0});
+    return c;
+  }
+  void release_chunk(std::uint32_t c) {
+    if (--refs_[c] == 0) free_.push_back(c);
+  }
+  std::uint32_t chunks_;
+  std::vector<std::uint64_t> data_;
+  std::vector<std::uint32_t> refs_, free_;
+};
+
+/// Fast mode: a survivor owns a chunk table (its face set), its inner boundary slots, a
+/// Zobrist hash and its node in the lineage (growing_result::node_parent/node_face).
 struct fast_selection {
-  std::vector<std::uint64_t> bits;
+  std::uint32_t table = 0;              // offset of its chunk table in the cycle's table array
   std::vector<std::uint32_t> boundary;  // inner slots: face selected, twin face not
   double length = 0;
   std::uint64_t hash = 0;
-  bool has(std::uint32_t f) const { return (bits[f >> 6] >> (f & 63)) & 1u; }
+  std::uint32_t node = 0;
 };
 
 struct fast_child {
@@ -152,39 +228,56 @@ struct fast_child {
   double length;
 };
 
+/// Records a selection in the lineage: its parent node and the face it added.
+inline std::uint32_t add_node(growing_result& r, std::uint32_t parent, std::uint32_t face) {
+  r.node_parent.push_back(parent);
+  r.node_face.push_back(face);
+  return static_cast<std::uint32_t>(r.node_face.size() - 1);
+}
+
+/// Stops the growing at the work budget: flagged incomplete with a diagnostic, not thrown.
+inline void out_of_budget(growing_result& r, std::uint64_t budget, std::size_t faces) {
+  r.complete = false;
+  r.diagnostics.push_back("the selection growing examined more than " + std::to_string(budget) +
+                          " candidate selections (work_budget) and stopped after cycle " +
+                          std::to_string(r.cycle_lengths.size()) + " of " + std::to_string(faces - 1) +
+                          "; loops are looked for in the cycles grown");
+}
+
 template <class = void>
 growing_result grow_fast(const thin_face_graph& g, std::uint32_t start, const growing_options& o) {
   const std::uint32_t nf = g.num_faces;
-  const std::size_t words = (nf + 63) / 64;
   std::vector<std::uint64_t> key(nf);
   for (std::uint32_t f = 0; f < nf; ++f) key[f] = splitmix64(0x7468696E ^ (std::uint64_t{f} << 20) ^ f);
   growing_result r;
+  chunked_sets sets(nf);
+  const std::uint32_t nc = sets.chunks();
+  std::vector<std::uint32_t> tables(nc), next_tables;  // chunk tables of the survivors, nc each
   std::vector<fast_selection> current(1);
   {
     fast_selection& s = current[0];
-    s.bits.assign(words, 0);
-    s.bits[start >> 6] |= std::uint64_t{1} << (start & 63);
+    sets.make_single(tables.data(), start);
     for (std::uint32_t k = g.face_start[start]; k < g.face_start[start + 1]; ++k)
       if (g.slot_other[k] != start) s.boundary.push_back(k);
     s.length = child_length(g, 0.0, start, [](std::uint32_t) { return false; });
     s.hash = key[start];
+    s.node = add_node(r, growing_result::no_node, start);
   }
   const auto record = [&](const fast_selection& s) {
     r.cycle_lengths.push_back(s.length);
-    std::vector<std::uint32_t> loop = s.boundary;
-    std::sort(loop.begin(), loop.end());
-    r.cycle_loops.push_back(std::move(loop));
+    r.cycle_node.push_back(s.node);
   };
   record(current[0]);
-  std::vector<std::uint32_t> count(nf, 0), touched, candidates;
+  std::vector<std::uint32_t> count(nf, 0), touched, candidates, unique;
   std::vector<fast_child> children;
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> by_hash;
-  std::vector<char> duplicate;
+  std::vector<std::uint32_t> table_of;  // open-addressing hash table of child indices (+1; 0 empty)
   std::vector<double> lengths;
+  std::vector<fast_selection> next;
   for (std::uint32_t size = 2; size < nf; ++size) {
     children.clear();
     for (std::uint32_t p = 0; p < current.size(); ++p) {
       const fast_selection& s = current[p];
+      const std::uint32_t* t = &tables[s.table];
       // An edge is in L1 exactly when one of its two faces is selected (closed mesh), so
       // counting the outer faces of the boundary slots counts shared edges.
       std::uint32_t most = 0;
@@ -202,66 +295,66 @@ growing_result grow_fast(const thin_face_graph& g, std::uint32_t start, const gr
       std::sort(candidates.begin(), candidates.end());
       for (const std::uint32_t f : candidates)
         children.push_back(
-            {p, f, s.hash ^ key[f], child_length(g, s.length, f, [&](std::uint32_t x) { return s.has(x); })});
+            {p, f, s.hash ^ key[f], child_length(g, s.length, f, [&](std::uint32_t x) { return sets.has(t, x); })});
       r.selections_examined += candidates.size();
-      if (r.selections_examined > o.work_budget) over_budget(o.work_budget);
     }
-    // Duplicates: equal hashes, confirmed by comparing the face sets; the first one stays.
-    by_hash.clear();
-    for (std::uint32_t i = 0; i < children.size(); ++i) by_hash.emplace_back(children[i].hash, i);
-    std::sort(by_hash.begin(), by_hash.end());
-    duplicate.assign(children.size(), 0);
-    const auto same = [&](const fast_child& a, const fast_child& b) {
-      const fast_selection &pa = current[a.parent], &pb = current[b.parent];
-      for (std::size_t w = 0; w < words; ++w) {
-        std::uint64_t x = pa.bits[w], y = pb.bits[w];
-        if ((a.face >> 6) == w) x |= std::uint64_t{1} << (a.face & 63);
-        if ((b.face >> 6) == w) y |= std::uint64_t{1} << (b.face & 63);
-        if (x != y) return false;
-      }
-      return true;
-    };
-    for (std::size_t i = 0; i < by_hash.size();) {
-      std::size_t j = i;
-      while (j < by_hash.size() && by_hash[j].first == by_hash[i].first) ++j;
-      for (std::size_t a = i + 1; a < j; ++a)
-        for (std::size_t b = i; b < a; ++b)
-          if (!duplicate[by_hash[b].second] &&
-              same(children[by_hash[a].second], children[by_hash[b].second])) {
-            duplicate[by_hash[a].second] = 1;
-            break;
-          }
-      i = j;
+    if (r.selections_examined > o.work_budget) {
+      out_of_budget(r, o.work_budget, nf);
+      break;
     }
-    std::vector<std::uint32_t> unique;
+    // Duplicates: equal hashes, confirmed by comparing the face sets; the first one stays
+    // (children enter the table in generation order, duplicates never enter it).
+    std::size_t cap = 16;
+    while (cap < 2 * children.size()) cap *= 2;
+    table_of.assign(cap, 0);
+    unique.clear();
     lengths.clear();
-    for (std::uint32_t i = 0; i < children.size(); ++i)
-      if (!duplicate[i]) unique.push_back(i), lengths.push_back(children[i].length);
+    for (std::uint32_t i = 0; i < children.size(); ++i) {
+      const fast_child& c = children[i];
+      bool dup = false;
+      std::size_t h = static_cast<std::size_t>(c.hash) & (cap - 1);
+      for (; table_of[h] != 0; h = (h + 1) & (cap - 1)) {
+        const fast_child& d = children[table_of[h] - 1];
+        if (d.hash == c.hash &&
+            sets.same(&tables[current[c.parent].table], c.face, &tables[current[d.parent].table], d.face)) {
+          dup = true;
+          break;
+        }
+      }
+      if (dup) continue;
+      table_of[h] = i + 1;
+      unique.push_back(i);
+      lengths.push_back(c.length);
+    }
     r.duplicates_dropped += children.size() - unique.size();
     if (unique.empty())
       throw error(error_category::internal,
                   "find_thin_points: the selection stopped growing (disconnected faces)");
     const std::vector<std::uint32_t> kept =
         keep_selections(lengths, o.keep_ratio, static_cast<std::size_t>(o.selection_cap));
-    std::vector<fast_selection> next;
-    next.reserve(kept.size());
+    next.clear();
+    next_tables.resize(std::size_t{nc} * kept.size());
     for (const std::uint32_t k : kept) {
       const fast_child& c = children[unique[k]];
       const fast_selection& parent = current[c.parent];
+      const std::uint32_t* pt = &tables[parent.table];
       fast_selection s;
-      s.bits = parent.bits;
-      s.bits[c.face >> 6] |= std::uint64_t{1} << (c.face & 63);
+      s.table = static_cast<std::uint32_t>(next.size() * nc);
+      sets.make_child(&next_tables[s.table], pt, c.face);
       s.boundary.reserve(parent.boundary.size() + 4);
       for (const std::uint32_t k2 : parent.boundary)
         if (g.slot_other[k2] != c.face) s.boundary.push_back(k2);
       for (std::uint32_t k2 = g.face_start[c.face]; k2 < g.face_start[c.face + 1]; ++k2) {
         const std::uint32_t o2 = g.slot_other[k2];
-        if (o2 != c.face && !parent.has(o2)) s.boundary.push_back(k2);
+        if (o2 != c.face && !sets.has(pt, o2)) s.boundary.push_back(k2);
       }
       s.length = c.length, s.hash = c.hash;
+      s.node = add_node(r, parent.node, c.face);
       next.push_back(std::move(s));
     }
-    current = std::move(next);
+    for (const fast_selection& s : current) sets.release(&tables[s.table]);
+    std::swap(current, next);
+    std::swap(tables, next_tables);
     r.selections_kept += current.size();
     r.max_kept = std::max(r.max_kept, current.size());
     record(current[first_least(current, [](const fast_selection& x) { return x.length; })]);
@@ -333,7 +426,7 @@ growing_result grow_faithful(const thin_face_graph& g, std::uint32_t start, cons
       }
       for (std::uint32_t f = 0; f < nf && most > 0; ++f) {
         if (s.selected[f] || adjacent[f] != most) continue;
-        if (++r.selections_examined > o.work_budget) over_budget(o.work_budget);
+        ++r.selections_examined;
         std::vector<char> candidate = s.selected;
         candidate[f] = 1;
         const bool seen = std::any_of(stored.begin(), stored.end(),
@@ -346,6 +439,10 @@ growing_result grow_faithful(const thin_face_graph& g, std::uint32_t start, cons
         insert_face(g, child, f, added, removed);
         stored.push_back(std::move(child));
       }
+    }
+    if (r.selections_examined > o.work_budget) {
+      out_of_budget(r, o.work_budget, nf);
+      break;
     }
     if (stored.empty())
       throw error(error_category::internal,
@@ -366,9 +463,10 @@ growing_result grow_faithful(const thin_face_graph& g, std::uint32_t start, cons
 }  // namespace detail::thin
 
 /// Grows selections from face `start` until all but one face are selected (seed §5.2,
-/// §5.4); per cycle the least boundary length and its loop. Fast: O(faces · cap · (boundary
-/// + candidates · degree + faces/64)); faithful: O(faces² · cap · candidates) and more.
-/// Throws invalid_input for a graph that is not a closed surface, budget past work_budget.
+/// §5.4); per cycle the least boundary length and its loop (cycle_loop). Fast: O(faces · cap ·
+/// (boundary + candidates · degree + faces/4096 + 64)); faithful: O(faces² · cap · candidates)
+/// and more. Throws invalid_input for a graph that is not a closed surface; past work_budget
+/// it stops with growing_result::complete false and a diagnostic.
 template <class = void>
 growing_result grow_selections(const thin_face_graph& g, std::uint32_t start, const growing_options& o = {}) {
   const auto bad = [](const std::string& what) {
@@ -402,6 +500,23 @@ growing_result grow_selections(const thin_face_graph& g, std::uint32_t start, co
   }
   return o.mode == thin_mode::fast ? detail::thin::grow_fast(g, start, o)
                                    : detail::thin::grow_faithful(g, start, o);
+}
+
+/// The loop of cycle `cycle` (1-based): the least selection's boundary as sorted inner slots
+/// (face selected, twin face not). O(faces) per call in fast mode (the lineage is replayed).
+template <class = void>
+std::vector<std::uint32_t> cycle_loop(const thin_face_graph& g, const growing_result& r, std::size_t cycle) {
+  if (cycle < 1 || cycle > r.cycle_lengths.size())
+    throw error(error_category::invalid_input, "cycle_loop: cycle " + std::to_string(cycle) +
+                                                   " is not in 1.." + std::to_string(r.cycle_lengths.size()));
+  if (!r.cycle_loops.empty()) return r.cycle_loops[cycle - 1];
+  std::vector<char> selected(g.num_faces, 0);
+  for (std::uint32_t n = r.cycle_node[cycle - 1]; n != growing_result::no_node; n = r.node_parent[n])
+    selected[r.node_face[n]] = 1;
+  std::vector<std::uint32_t> loop;
+  for (std::uint32_t k = 0; k < g.slot_face.size(); ++k)
+    if (selected[g.slot_face[k]] && !selected[g.slot_other[k]]) loop.push_back(k);
+  return loop;
 }
 
 }  // namespace cellforge

@@ -47,7 +47,7 @@ struct thin_options {
   int averaging_window = 5;           ///< seed detector's ±window, 1..10000
   double envelope_rings =
       1.0;  ///< prominence: rim window in estimated rings of faces, 0..1000 (docs/thin.md)
-  std::uint64_t work_budget = 2'000'000'000;  ///< candidate selections examined, then error(budget)
+  std::uint64_t work_budget = 2'000'000'000;  ///< candidate selections examined; then complete = false
   /// Merge flat triangle fans and pairs of triangles into clusters before growing (seed §8.2;
   /// docs/thin.md "Clusters"). Off by default; on, cycles count clusters, not mesh faces.
   bool cluster_faces = false;
@@ -481,6 +481,7 @@ thin_result<glm::dvec3> find(thin_input prepared, const thin_options& options) {
   r.cycle_lengths = grown.cycle_lengths;
   r.selections_examined = grown.selections_examined, r.duplicates_dropped = grown.duplicates_dropped;
   r.selections_kept = grown.selections_kept, r.max_kept = grown.max_kept;
+  r.complete = grown.complete, r.diagnostics = grown.diagnostics;
 
   // Cycles per ring of faces: the summed axial extent of the edges over the axis extent is
   // the mean number of edges a plane across the axis cuts, which is about the number of faces
@@ -501,7 +502,7 @@ thin_result<glm::dvec3> find(thin_input prepared, const thin_options& options) {
        static_cast<std::size_t>(std::lround(options.envelope_rings * ring_cycles))});
   r.values_smoothed = found.smoothed;
   for (const detected_cycle& d : found.cycles) {
-    thin_loop<glm::dvec3> loop = make_loop(in, grown.cycle_loops[d.cycle - 1], dir, lo, hi);
+    thin_loop<glm::dvec3> loop = make_loop(in, cycle_loop(g, grown, d.cycle), dir, lo, hi);
     loop.cycle = d.cycle, loop.strength = d.strength;
     r.loops.push_back(std::move(loop));
   }

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -49,6 +50,10 @@ struct thin_result_base {
   std::uint32_t grown_faces = 0;  ///< faces the growing ran over: mesh faces, or clusters (cluster_faces)
   std::uint32_t clustered_faces = 0;  ///< cluster_faces: mesh faces merged into fans or pairs
   double axis_ms = 0, growing_ms = 0, detection_ms = 0;
+  /// False when thin_options::work_budget ran out: the growing stopped early (cycle_lengths is
+  /// shorter than faces − 1) and loops are only looked for in the cycles grown; see diagnostics.
+  bool complete = true;
+  std::vector<std::string> diagnostics;
 };
 
 /// Everything find_thin_points found and how much work it took; positions and the axis in P.
