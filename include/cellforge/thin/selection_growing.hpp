@@ -26,6 +26,7 @@ namespace cellforge {
 enum class thin_mode : std::uint8_t {
   fast,      ///< hashed (parent, face) children, bitsets, only survivors materialised
   faithful,  ///< the seed's data structures: Boolean arrays, L1/L2 lists, array comparison
+  scalable,  ///< per-selection frontier heaps, children merged in length order (docs/thin.md)
 };
 
 /// Faces and their edges as the growing sees them. A "slot" is one face's use of an edge
@@ -157,6 +158,12 @@ class chunked_sets {
     if (refs_[zero] == 0) free_.push_back(zero);
     word(own, f) |= bit(f);
   }
+  /// An empty set (chunk table written to `table`).
+  void make_empty(std::uint32_t* table) {
+    const std::uint32_t zero = allocate();
+    refs_[zero] = chunks_;
+    for (std::uint32_t c = 0; c < chunks_; ++c) table[c] = zero;
+  }
   /// `table` := parent ∪ {f}. O(chunks + words).
   void make_child(std::uint32_t* table, const std::uint32_t* parent, std::uint32_t f) {
     for (std::uint32_t c = 0; c < chunks_; ++c) ++refs_[table[c] = parent[c]];
@@ -165,6 +172,21 @@ class chunked_sets {
     release_chunk(parent[c]);
     table[c] = own;
     word(own, f) |= bit(f);
+  }
+  /// `table` := a copy of `source` (chunks shared). O(chunks).
+  void share(std::uint32_t* table, const std::uint32_t* source) {
+    for (std::uint32_t c = 0; c < chunks_; ++c) ++refs_[table[c] = source[c]];
+  }
+  /// Adds f to the set `table`, copying f's chunk first when another set shares it.
+  void insert(std::uint32_t* table, std::uint32_t f) {
+    std::uint32_t& c = table[f / faces_per_chunk];
+    if (refs_[c] > 1) {
+      const std::uint32_t own = allocate();
+      std::memcpy(&data_[std::size_t{own} * words], &data_[std::size_t{c} * words], words * 8);
+      release_chunk(c);
+      c = own;
+    }
+    word(c, f) |= bit(f);
   }
   void release(const std::uint32_t* table) {
     for (std::uint32_t c = 0; c < chunks_; ++c) release_chunk(table[c]);
@@ -362,6 +384,223 @@ growing_result grow_fast(const thin_face_graph& g, std::uint32_t start, const gr
   return r;
 }
 
+/// Scalable mode: a survivor keeps its frontier (the unselected faces next to it) in one
+/// min-heap per count of selected neighbours, keyed by (length change, face), with lazy
+/// deletion: an entry is live while its face is unselected and still has that count (counts
+/// only grow, so a dead entry never revives). A parent's children come out of its top heap in
+/// ascending order; the parents' streams are merged, so a cycle looks only at the children it
+/// keeps, the duplicates among them and one more.
+struct frontier_entry {
+  double delta;
+  std::uint32_t face;
+  friend bool operator>(const frontier_entry& a, const frontier_entry& b) {
+    return a.delta != b.delta ? a.delta > b.delta : a.face > b.face;
+  }
+};
+
+struct frontier_selection {
+  std::vector<std::uint32_t> table;                // chunk table of its face set
+  std::vector<std::vector<frontier_entry>> heaps;  // [count] → min-heap of (delta, face)
+  std::vector<std::uint32_t> live;                 // [count] → frontier faces with that count
+  double length = 0;
+  std::uint64_t hash = 0;
+  std::uint32_t node = 0;
+};
+
+struct frontier_cursor {
+  std::uint32_t level = 0;
+  std::vector<std::uint32_t> open;
+};
+
+struct frontier_child {
+  double length;
+  std::uint32_t parent, face;
+  friend bool operator>(const frontier_child& a, const frontier_child& b) {
+    if (a.length != b.length) return a.length > b.length;
+    return a.parent != b.parent ? a.parent > b.parent : a.face > b.face;
+  }
+};
+
+template <class = void>
+growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, const growing_options& o) {
+  const std::uint32_t nf = g.num_faces;
+  std::vector<std::uint64_t> key(nf);
+  for (std::uint32_t f = 0; f < nf; ++f) key[f] = splitmix64(0x7468696E ^ (std::uint64_t{f} << 20) ^ f);
+  std::uint32_t levels = 1;
+  for (std::uint32_t f = 0; f < nf; ++f) levels = std::max(levels, g.face_start[f + 1] - g.face_start[f] + 1);
+  growing_result r;
+  chunked_sets sets(nf);
+  const auto has = [&](const frontier_selection& s, std::uint32_t f) { return sets.has(s.table.data(), f); };
+  // Selected neighbours of an unselected face, counted by shared edges (as the L1 edges count them).
+  const auto count = [&](const frontier_selection& s, std::uint32_t f) {
+    std::uint32_t n = 0;
+    for (std::uint32_t k = g.face_start[f]; k < g.face_start[f + 1]; ++k)
+      n += g.slot_other[k] != f && has(s, g.slot_other[k]);
+    return n;
+  };
+  const auto delta = [&](const frontier_selection& s, std::uint32_t f) {
+    return child_length(g, 0.0, f, [&](std::uint32_t x) { return has(s, x); });
+  };
+  const auto alive = [&](const frontier_selection& s, std::uint32_t c, std::uint32_t f) {
+    return !has(s, f) && count(s, f) == c;
+  };
+  const auto push = [&](frontier_selection& s, std::uint32_t c, std::uint32_t f) {
+    std::vector<frontier_entry>& h = s.heaps[c];
+    if (h.size() > 2 * std::size_t{s.live[c]} + 32) {  // mostly dead: keep the live entries
+      std::erase_if(h, [&](const frontier_entry& e) { return !alive(s, c, e.face); });
+      std::make_heap(h.begin(), h.end(), std::greater<>{});
+    }
+    h.push_back({delta(s, f), f});
+    std::push_heap(h.begin(), h.end(), std::greater<>{});
+  };
+  // Adds f (child length and hash given): f leaves the frontier, its unselected neighbours
+  // move up a count (or enter it). O(degree² + degree · log frontier).
+  const auto add = [&](frontier_selection& s, std::uint32_t f) {
+    if (const std::uint32_t c = count(s, f); c > 0) --s.live[c];
+    sets.insert(s.table.data(), f);
+    for (std::uint32_t k = g.face_start[f]; k < g.face_start[f + 1]; ++k) {
+      const std::uint32_t x = g.slot_other[k];
+      bool seen = x == f || has(s, x);
+      for (std::uint32_t j = g.face_start[f]; j < k && !seen; ++j) seen = g.slot_other[j] == x;
+      if (seen) continue;
+      std::uint32_t shared = 0;
+      for (std::uint32_t j = g.face_start[x]; j < g.face_start[x + 1]; ++j) shared += g.slot_other[j] == f;
+      const std::uint32_t now = count(s, x), before = now - shared;
+      if (before > 0) --s.live[before];
+      ++s.live[now];
+      push(s, now, x);
+    }
+  };
+  std::vector<frontier_selection> current(1), next;
+  {
+    frontier_selection& s = current[0];
+    s.table.resize(sets.chunks());
+    sets.make_empty(s.table.data());
+    s.heaps.resize(levels);
+    s.live.assign(levels, 0);
+    add(s, start);
+    s.length = child_length(g, 0.0, start, [](std::uint32_t) { return false; });
+    s.hash = key[start];
+    s.node = add_node(r, growing_result::no_node, start);
+  }
+  r.cycle_lengths.push_back(current[0].length);
+  r.cycle_node.push_back(current[0].node);
+
+  // Per parent: its top count and a heap of indices into that count's heap (enumerates the
+  // heap in order without changing it).
+  using cursor = frontier_cursor;
+  using child = frontier_child;
+  std::vector<cursor> cursors;
+  std::vector<child> merge, accepted;
+  std::vector<std::uint64_t> accepted_hash;
+  std::vector<std::uint32_t> last_child;
+  const auto next_child = [&](std::uint32_t p) -> bool {
+    const frontier_selection& s = current[p];
+    cursor& cu = cursors[p];
+    const std::vector<frontier_entry>& h = s.heaps[cu.level];
+    const auto later = [&](std::uint32_t a, std::uint32_t b) { return h[a] > h[b]; };
+    while (!cu.open.empty()) {
+      std::pop_heap(cu.open.begin(), cu.open.end(), later);
+      const std::uint32_t i = cu.open.back();
+      cu.open.pop_back();
+      for (const std::uint32_t j : {2 * i + 1, 2 * i + 2})
+        if (j < h.size()) cu.open.push_back(j), std::push_heap(cu.open.begin(), cu.open.end(), later);
+      if (!alive(s, cu.level, h[i].face)) continue;
+      const std::uint32_t f = h[i].face;
+      merge.push_back({child_length(g, s.length, f, [&](std::uint32_t x) { return has(s, x); }), p, f});
+      std::push_heap(merge.begin(), merge.end(), std::greater<>{});
+      return true;
+    }
+    return false;
+  };
+  for (std::uint32_t size = 2; size < nf; ++size) {
+    cursors.resize(current.size());
+    merge.clear();
+    for (std::uint32_t p = 0; p < current.size(); ++p) {
+      cursor& cu = cursors[p];
+      cu.open.clear();
+      cu.level = 0;
+      for (std::uint32_t c = levels - 1; c > 0 && cu.level == 0; --c)
+        if (current[p].live[c] > 0) cu.level = c;
+      if (cu.level == 0) continue;
+      std::vector<frontier_entry>& h = current[p].heaps[cu.level];
+      if (h.size() > 2 * std::size_t{current[p].live[cu.level]} + 32) {
+        std::erase_if(h, [&](const frontier_entry& e) { return !alive(current[p], cu.level, e.face); });
+        std::make_heap(h.begin(), h.end(), std::greater<>{});
+      }
+      // Dead entries below the first live one go for good (the chosen faces sit there).
+      while (!h.empty() && !alive(current[p], cu.level, h.front().face)) {
+        std::pop_heap(h.begin(), h.end(), std::greater<>{});
+        h.pop_back();
+      }
+      if (!h.empty()) cu.open.push_back(0);
+      next_child(p);
+    }
+    // Children in ascending length (ties: parent, face); the first is the least; stop past
+    // keep_ratio × least or with selection_cap distinct selections.
+    accepted.clear();
+    accepted_hash.clear();
+    double least = 0;
+    while (!merge.empty() && accepted.size() < static_cast<std::size_t>(o.selection_cap)) {
+      std::pop_heap(merge.begin(), merge.end(), std::greater<>{});
+      const child c = merge.back();
+      merge.pop_back();
+      ++r.selections_examined;
+      if (accepted.empty()) least = c.length;
+      if (c.length > o.keep_ratio * least) break;
+      const std::uint64_t h = current[c.parent].hash ^ key[c.face];
+      bool dup = false;
+      for (std::size_t i = 0; i < accepted.size() && !dup; ++i)
+        dup = accepted_hash[i] == h && sets.same(current[c.parent].table.data(), c.face,
+                                                   current[accepted[i].parent].table.data(), accepted[i].face);
+      if (dup)
+        ++r.duplicates_dropped;
+      else
+        accepted.push_back(c), accepted_hash.push_back(h);
+      next_child(c.parent);
+    }
+    if (r.selections_examined > o.work_budget) {
+      out_of_budget(r, o.work_budget, nf);
+      break;
+    }
+    if (accepted.empty())
+      throw error(error_category::internal,
+                  "find_thin_points: the selection stopped growing (disconnected faces)");
+    // Survivors in accepted order; a parent's last child takes over its state, others copy it.
+    last_child.assign(current.size(), 0xFFFFFFFF);
+    for (std::uint32_t i = 0; i < accepted.size(); ++i) last_child[accepted[i].parent] = i;
+    next.clear();
+    next.resize(accepted.size());
+    for (std::uint32_t i = 0; i < accepted.size(); ++i) {
+      const child& c = accepted[i];
+      frontier_selection& parent = current[c.parent];
+      frontier_selection& s = next[i];
+      const std::uint32_t parent_node = parent.node;
+      const std::uint64_t parent_hash = parent.hash;
+      if (last_child[c.parent] == i) {
+        s = std::move(parent);
+      } else {
+        s.table.resize(sets.chunks());
+        sets.share(s.table.data(), parent.table.data());
+        s.heaps = parent.heaps, s.live = parent.live;
+      }
+      add(s, c.face);
+      s.length = c.length, s.hash = parent_hash ^ key[c.face];
+      s.node = add_node(r, parent_node, c.face);
+    }
+    for (std::uint32_t p = 0; p < current.size(); ++p)
+      if (last_child[p] == 0xFFFFFFFF) sets.release(current[p].table.data());
+    std::swap(current, next);
+    r.selections_kept += current.size();
+    r.max_kept = std::max(r.max_kept, current.size());
+    const frontier_selection& best = current[first_least(current, [](const frontier_selection& x) { return x.length; })];
+    r.cycle_lengths.push_back(best.length);
+    r.cycle_node.push_back(best.node);
+  }
+  for (const frontier_selection& s : current) sets.release(s.table.data());
+  return r;
+}
+
 /// Faithful mode: the seed's selection record.
 struct faithful_selection {
   std::vector<char> selected;     // Boolean array over the faces
@@ -498,8 +737,11 @@ growing_result grow_selections(const thin_face_graph& g, std::uint32_t start, co
       bad("slot " + std::to_string(k) +
           " is not paired with the other face of its edge (an open or broken graph)");
   }
-  return o.mode == thin_mode::fast ? detail::thin::grow_fast(g, start, o)
-                                   : detail::thin::grow_faithful(g, start, o);
+  switch (o.mode) {
+    case thin_mode::fast: return detail::thin::grow_fast(g, start, o);
+    case thin_mode::scalable: return detail::thin::grow_scalable(g, start, o);
+    default: return detail::thin::grow_faithful(g, start, o);
+  }
 }
 
 /// The loop of cycle `cycle` (1-based): the least selection's boundary as sorted inner slots

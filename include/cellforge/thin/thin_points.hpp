@@ -78,7 +78,8 @@ void check_options(const thin_options& o) {
   if (o.averaging_window < 1 || o.averaging_window > 10000)
     bad("averaging_window is " + std::to_string(o.averaging_window) + "; allowed 1 to 10000");
   if (o.work_budget < 1) bad("work_budget is 0; allowed at least 1");
-  if (o.mode != thin_mode::fast && o.mode != thin_mode::faithful) bad("mode is not fast or faithful");
+  if (o.mode != thin_mode::fast && o.mode != thin_mode::faithful && o.mode != thin_mode::scalable)
+    bad("mode is not fast, faithful or scalable");
   if (o.detection != thin_detection::prominence && o.detection != thin_detection::seed)
     bad("detection is not prominence or seed");
 }
