@@ -414,10 +414,11 @@ struct frontier_cursor {
 
 struct frontier_child {
   double length;
-  std::uint32_t parent, face;
+  std::uint64_t order;  // parent << 32 | face: ties broken by parent, then face
+  std::uint32_t parent() const { return static_cast<std::uint32_t>(order >> 32); }
+  std::uint32_t face() const { return static_cast<std::uint32_t>(order); }
   friend bool operator>(const frontier_child& a, const frontier_child& b) {
-    if (a.length != b.length) return a.length > b.length;
-    return a.parent != b.parent ? a.parent > b.parent : a.face > b.face;
+    return a.length != b.length ? a.length > b.length : a.order > b.order;
   }
 };
 
@@ -444,9 +445,12 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
   const auto alive = [&](const frontier_selection& s, std::uint32_t c, std::uint32_t f) {
     return !has(s, f) && count(s, f) == c;
   };
+  // A heap is rebuilt from its live entries when a fifth of it is dead: enumerating skips
+  // dead entries every cycle, rebuilding costs O(size) once per size/5 deaths.
+  const auto mostly_dead = [](std::uint32_t live) { return std::size_t{live} + live / 4 + 4; };
   const auto push = [&](frontier_selection& s, std::uint32_t c, std::uint32_t f) {
     std::vector<frontier_entry>& h = s.heaps[c];
-    if (h.size() > 2 * std::size_t{s.live[c]} + 32) {  // mostly dead: keep the live entries
+    if (h.size() > mostly_dead(s.live[c])) {
       std::erase_if(h, [&](const frontier_entry& e) { return !alive(s, c, e.face); });
       std::make_heap(h.begin(), h.end(), std::greater<>{});
     }
@@ -493,7 +497,9 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
   std::vector<cursor> cursors;
   std::vector<child> merge, accepted;
   std::vector<std::uint64_t> accepted_hash;
-  std::vector<std::uint32_t> last_child;
+  std::vector<std::uint32_t> last_child, seen_table;
+  std::size_t seen_size = 16;
+  while (seen_size < 4 * static_cast<std::size_t>(o.selection_cap)) seen_size *= 2;
   const auto next_child = [&](std::uint32_t p) -> bool {
     const frontier_selection& s = current[p];
     cursor& cu = cursors[p];
@@ -507,7 +513,8 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
         if (j < h.size()) cu.open.push_back(j), std::push_heap(cu.open.begin(), cu.open.end(), later);
       if (!alive(s, cu.level, h[i].face)) continue;
       const std::uint32_t f = h[i].face;
-      merge.push_back({child_length(g, s.length, f, [&](std::uint32_t x) { return has(s, x); }), p, f});
+      merge.push_back({child_length(g, s.length, f, [&](std::uint32_t x) { return has(s, x); }),
+                       std::uint64_t{p} << 32 | f});
       std::push_heap(merge.begin(), merge.end(), std::greater<>{});
       return true;
     }
@@ -524,7 +531,7 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
         if (current[p].live[c] > 0) cu.level = c;
       if (cu.level == 0) continue;
       std::vector<frontier_entry>& h = current[p].heaps[cu.level];
-      if (h.size() > 2 * std::size_t{current[p].live[cu.level]} + 32) {
+      if (h.size() > mostly_dead(current[p].live[cu.level])) {
         std::erase_if(h, [&](const frontier_entry& e) { return !alive(current[p], cu.level, e.face); });
         std::make_heap(h.begin(), h.end(), std::greater<>{});
       }
@@ -540,6 +547,7 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
     // keep_ratio × least or with selection_cap distinct selections.
     accepted.clear();
     accepted_hash.clear();
+    seen_table.assign(seen_size, 0);
     double least = 0;
     while (!merge.empty() && accepted.size() < static_cast<std::size_t>(o.selection_cap)) {
       std::pop_heap(merge.begin(), merge.end(), std::greater<>{});
@@ -548,16 +556,23 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
       ++r.selections_examined;
       if (accepted.empty()) least = c.length;
       if (c.length > o.keep_ratio * least) break;
-      const std::uint64_t h = current[c.parent].hash ^ key[c.face];
+      // Duplicates: equal hashes confirmed by comparing face sets (open addressing).
+      const std::uint32_t p = c.parent(), f = c.face();
+      const std::uint64_t h = current[p].hash ^ key[f];
+      std::size_t at = static_cast<std::size_t>(h) & (seen_size - 1);
       bool dup = false;
-      for (std::size_t i = 0; i < accepted.size() && !dup; ++i)
-        dup = accepted_hash[i] == h && sets.same(current[c.parent].table.data(), c.face,
-                                                   current[accepted[i].parent].table.data(), accepted[i].face);
-      if (dup)
+      for (; seen_table[at] != 0 && !dup; at = (at + 1) & (seen_size - 1)) {
+        const child& d = accepted[seen_table[at] - 1];
+        dup = accepted_hash[seen_table[at] - 1] == h &&
+              sets.same(current[p].table.data(), f, current[d.parent()].table.data(), d.face());
+      }
+      if (dup) {
         ++r.duplicates_dropped;
-      else
+      } else {
         accepted.push_back(c), accepted_hash.push_back(h);
-      next_child(c.parent);
+        seen_table[at] = static_cast<std::uint32_t>(accepted.size());
+      }
+      next_child(p);
     }
     if (r.selections_examined > o.work_budget) {
       out_of_budget(r, o.work_budget, nf);
@@ -568,25 +583,25 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
                   "find_thin_points: the selection stopped growing (disconnected faces)");
     // Survivors in accepted order; a parent's last child takes over its state, others copy it.
     last_child.assign(current.size(), 0xFFFFFFFF);
-    for (std::uint32_t i = 0; i < accepted.size(); ++i) last_child[accepted[i].parent] = i;
+    for (std::uint32_t i = 0; i < accepted.size(); ++i) last_child[accepted[i].parent()] = i;
     next.clear();
     next.resize(accepted.size());
     for (std::uint32_t i = 0; i < accepted.size(); ++i) {
       const child& c = accepted[i];
-      frontier_selection& parent = current[c.parent];
+      frontier_selection& parent = current[c.parent()];
       frontier_selection& s = next[i];
       const std::uint32_t parent_node = parent.node;
       const std::uint64_t parent_hash = parent.hash;
-      if (last_child[c.parent] == i) {
+      if (last_child[c.parent()] == i) {
         s = std::move(parent);
       } else {
         s.table.resize(sets.chunks());
         sets.share(s.table.data(), parent.table.data());
         s.heaps = parent.heaps, s.live = parent.live;
       }
-      add(s, c.face);
-      s.length = c.length, s.hash = parent_hash ^ key[c.face];
-      s.node = add_node(r, parent_node, c.face);
+      add(s, c.face());
+      s.length = c.length, s.hash = parent_hash ^ key[c.face()];
+      s.node = add_node(r, parent_node, c.face());
     }
     for (std::uint32_t p = 0; p < current.size(); ++p)
       if (last_child[p] == 0xFFFFFFFF) sets.release(current[p].table.data());
