@@ -29,6 +29,8 @@
 
 #include <glm/glm.hpp>
 
+#include "cellforge/algorithms/loop_subdivision.hpp"
+#include "cellforge/algorithms/shapes.hpp"
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 #include "cellforge/io/mesh_io.hpp"
@@ -174,6 +176,92 @@ void register_case(const std::string& name, const cellforge::surface_mesh<glm::d
     b->MinTime(0.2);
 }
 
+// ------------------------------------------------------------------------------ growth
+
+/// The growth rows: the 12-segment, 21-ring dumbbell (examples/data/dumbbell.off: 242 faces)
+/// split into triangles (500) and Loop-subdivided 3, 4, 5 times (8k, 32k, 128k triangles), and
+/// icospheres of 5k, 20k, 82k triangles (no neck: no loop expected).
+struct growth_case {
+  std::string name;
+  std::size_t faces = 0;
+  cellforge::surface_mesh<glm::dvec3> mesh;
+};
+std::vector<growth_case>& growth_cases() {
+  static std::vector<growth_case> cases = [] {
+    std::vector<growth_case> out;
+    const auto base = cellforge::make_mesh(
+        cellforge::triangulate_fan(cellforge::thin_dumbbell<glm::dvec3>(12, 21, false).soup));
+    for (const int levels : {3, 4, 5}) {
+      cellforge::loop_options lo;
+      lo.levels = levels;
+      auto m = cellforge::loop_subdivided(base, lo);
+      const std::size_t faces = m.num_faces();
+      out.push_back({"dumbbell", faces, std::move(m)});
+    }
+    for (const int level : {4, 5, 6}) {
+      auto m = cellforge::make_mesh(cellforge::icosphere<glm::dvec3>(level));
+      const std::size_t faces = m.num_faces();
+      out.push_back({"icosphere", faces, std::move(m)});
+    }
+    return out;
+  }();
+  return cases;
+}
+
+std::string growth_name(const growth_case& c, const char* mode) {
+  return std::string("growth/") + c.name + "/" + std::to_string(c.faces) + "/" + mode;
+}
+
+void register_growth() {
+  for (const growth_case& c : growth_cases())
+    for (const auto& [mode, label] : {std::pair{cellforge::thin_mode::automatic, "default"},
+                                      std::pair{cellforge::thin_mode::fast, "fast"}}) {
+      // The seed's exact rule only where it finishes in seconds (it is O(faces^1.5) here).
+      if (mode == cellforge::thin_mode::fast && c.faces > 10'000) continue;
+      const std::string name = growth_name(c, label);
+      const cellforge::surface_mesh<glm::dvec3>* mesh = &c.mesh;
+      auto* b = benchmark::RegisterBenchmark(name.c_str(), [name, mesh, mode](benchmark::State& s) {
+        cellforge::thin_options o;
+        o.mode = mode;
+        cb::median_loop(
+            s, [&] { return cellforge::find_thin_points(*mesh, o); },
+            [&](const cellforge::thin_result<glm::dvec3>& r) {
+              found f;
+              f.loops = r.loops.size();
+              f.cycles = r.cycle_lengths.size();
+              if (!r.loops.empty()) f.thinnest = r.loops.front().length, f.position = r.loops.front().axis_position;
+              findings()[name] = f;
+            });
+      });
+      b->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(3);
+    }
+}
+
+void print_growth(const cb::collecting_reporter& reporter, std::ostream& os) {
+  cb::table t("Growth: time to find thin points against faces (median of 3 runs, CPU ms)",
+              {"solid", "triangles", "mode", "median ms", "× per 4× faces", "loops", "strongest loop"});
+  std::map<std::string, double> previous;
+  for (const growth_case& c : growth_cases())
+    for (const char* label : {"default", "fast"}) {
+      const std::string name = growth_name(c, label);
+      if (reporter.find(name) == nullptr) continue;
+      const std::optional<double> ms = reporter.counter_ms(name, "median_cpu_us");
+      const std::string key = c.name + label;
+      const auto prev = previous.find(key);
+      const auto it = findings().find(name);
+      std::string loop = "—";
+      if (it != findings().end() && it->second.loops > 0)
+        loop = "length " + cb::fixed(it->second.thinnest, 4) + " at " + cb::fixed(it->second.position, 3);
+      t.add_row({c.name, cb::count(c.faces), label, cb::ms(ms),
+                 prev != previous.end() && ms ? cb::fixed(*ms / prev->second, 2) : "",
+                 it == findings().end() ? "not run" : std::to_string(it->second.loops), loop});
+      if (ms) previous[key] = *ms;
+    }
+  t.add_note("default: thin_mode::automatic (the seed's rule up to 4000 faces, the scalable rule above).");
+  t.add_note("Target (issue 35): the dumbbell at 128k triangles within 2 s; no loop on an icosphere.");
+  t.print(os);
+}
+
 struct flags {
   std::string faithful = "all";
   bool bunny_faithful = true;
@@ -197,6 +285,7 @@ flags parse_flags(int& argc, char** argv) {
 }
 
 void register_all(const flags& f) {
+  register_growth();
   for (const bool tri : {false, true})
     for (int i = 1; i <= 6; ++i)
       for (const int t : thresholds) {
@@ -371,5 +460,8 @@ int main(int argc, char** argv) {
   }
   return cb::table_main(
       argc, argv, [&] { register_all(f); },
-      [&](const cb::collecting_reporter& r, std::ostream& os) { print_tables(r, f, os); });
+      [&](const cb::collecting_reporter& r, std::ostream& os) {
+        print_tables(r, f, os);
+        print_growth(r, os);
+      });
 }

@@ -3,8 +3,10 @@
 // bad input.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <string>
 #include <type_traits>
@@ -275,6 +277,7 @@ TEST_CASE("thin points: without the ring-wide envelope, partly grown rings look 
   // cylinder shows its ring completions as dips.
   const auto m = mesh_of(cellforge::thin_cylinder(16, 9, false).soup);
   thin_options o;
+  o.girth_check = false;  // the detector alone (the girth rule would drop those dips too)
   const thin_result with = cellforge::find_thin_points(m, o);
   CHECK(with.ring_cycles == doctest::Approx(16).epsilon(1e-9));  // 16 quads per ring
   CHECK(with.loops.empty());
@@ -498,12 +501,138 @@ TEST_CASE("thin points: bad input gives a clear error") {
   require_error(error_category::invalid_input, "suppression_fraction", [&] {
     (void)cellforge::find_thin_points(good, with([](thin_options& o) { o.suppression_fraction = 0; }));
   });
-  // A tiny work budget ends with error(budget), in both modes.
-  for (const auto mode : {cellforge::thin_mode::fast, cellforge::thin_mode::faithful})
-    require_error(error_category::budget, "work_budget", [&] {
-      (void)cellforge::find_thin_points(good,
-                                        with([&](thin_options& o) { o.work_budget = 50, o.mode = mode; }));
-    });
+}
+
+TEST_CASE("thin points: a work budget that runs out stops the growing, flagged, in every mode") {
+  const auto s = cellforge::thin_dumbbell(8, 11, false);
+  const auto m = mesh_of(s.soup);
+  for (const auto mode : {cellforge::thin_mode::fast, cellforge::thin_mode::faithful,
+                          cellforge::thin_mode::scalable, cellforge::thin_mode::automatic}) {
+    CAPTURE(static_cast<int>(mode));
+    thin_options o;
+    o.mode = mode;
+    const thin_result full = cellforge::find_thin_points(m, o);
+    CHECK(full.complete);
+    CHECK(full.diagnostics.empty());
+    CHECK(full.cycle_lengths.size() == m.num_faces() - 1);
+    REQUIRE(full.selections_examined > 100);
+    o.work_budget = full.selections_examined / 2;  // runs out half-way through
+    const thin_result half = cellforge::find_thin_points(m, o);
+    CHECK(!half.complete);
+    REQUIRE(half.diagnostics.size() == 1);
+    CHECK(half.diagnostics[0].find("work_budget") != std::string::npos);
+    CHECK(half.cycle_lengths.size() < full.cycle_lengths.size());
+    CHECK(half.cycle_lengths.size() > 1);
+    CHECK(half.selections_examined > o.work_budget);
+    // The cycles grown before the budget ran out are the same cycles.
+    for (std::size_t i = 0; i < half.cycle_lengths.size(); ++i) CHECK(half.cycle_lengths[i] == full.cycle_lengths[i]);
+    o.work_budget = 1;
+    CHECK(cellforge::find_thin_points(m, o).cycle_lengths.size() == 1);
+  }
+}
+
+TEST_CASE("thin points: the scalable mode finds the fast mode's loops on dumbbells, hourglasses, table 5") {
+  std::vector<cellforge::thin_sample<>> samples;
+  for (const bool tri : {false, true}) {
+    for (const int seg : {8, 12})
+      for (const int rings : {9, 13}) {
+        samples.push_back(cellforge::thin_dumbbell(seg, rings, tri));
+        samples.push_back(cellforge::thin_hourglass(seg, rings, tri));
+      }
+    for (int k = 1; k <= 6; ++k) samples.push_back(cellforge::thin_table5_solid(k, tri));
+  }
+  for (const auto& s : samples) {
+    CAPTURE(s.name);
+    CAPTURE(s.triangles);
+    const auto m = mesh_of(s.soup);
+    thin_options o;
+    o.mode = cellforge::thin_mode::fast;
+    const thin_result fast = cellforge::find_thin_points(m, o);
+    o.mode = cellforge::thin_mode::scalable;
+    const thin_result scalable = cellforge::find_thin_points(m, o);
+    CHECK(scalable.max_kept <= 40);
+    CHECK(scalable.cycle_lengths.size() == m.num_faces() - 1);
+    // The same loops (cycle, length, vertices); equally strong ones may come in another order.
+    const auto by_cycle = [](const thin_result& r) {
+      std::vector<std::pair<std::size_t, std::vector<std::uint32_t>>> v;
+      for (const auto& l : r.loops) v.emplace_back(l.cycle, l.vertices);
+      std::sort(v.begin(), v.end());
+      return v;
+    };
+    CHECK(by_cycle(fast) == by_cycle(scalable));
+    REQUIRE(!scalable.loops.empty());
+    if (s.necks.size() == 1) check_at_neck(scalable.loops.front(), s, glm::dmat4(1.0));
+  }
+}
+
+TEST_CASE("selection growing (scalable): each cycle's loop bounds a selection of that size and length") {
+  const auto s = cellforge::thin_hourglass(8, 11, true);
+  const auto m = mesh_of(s.soup);
+  const cellforge::detail::thin::thin_input in = cellforge::detail::thin::prepare(m);
+  const cellforge::thin_face_graph& g = in.graph;
+  cellforge::growing_options o;
+  o.mode = cellforge::thin_mode::scalable;
+  const cellforge::growing_result r = cellforge::grow_selections(g, 0, o);
+  REQUIRE(r.cycle_lengths.size() == g.num_faces - 1);
+  CHECK(r.complete);
+  for (std::size_t cycle = 1; cycle <= r.cycle_lengths.size(); cycle += 7) {
+    CAPTURE(cycle);
+    const std::vector<std::uint32_t> loop = cellforge::cycle_loop(g, r, cycle);
+    double length = 0;
+    std::vector<char> inside(g.num_faces, 0);
+    for (const std::uint32_t k : loop) length += g.edge_length[g.slot_edge[k]], inside[g.slot_face[k]] = 1;
+    CHECK(length == doctest::Approx(r.cycle_lengths[cycle - 1]).epsilon(1e-12));
+    // The selection: the lineage's faces, as many as the cycle number.
+    std::vector<char> selected(g.num_faces, 0);
+    std::size_t faces = 0;
+    for (std::uint32_t n = r.cycle_node[cycle - 1]; n != cellforge::growing_result::no_node; n = r.node_parent[n])
+      faces += selected[r.node_face[n]] == 0, selected[r.node_face[n]] = 1;
+    CHECK(faces == cycle);
+    for (std::uint32_t f = 0; f < g.num_faces; ++f)
+      if (inside[f]) CHECK(selected[f]);
+  }
+  CHECK_THROWS_AS((void)cellforge::cycle_loop(g, r, 0), cellforge::error);
+}
+
+TEST_CASE("thin points: significance — no loop without a wider part on both sides (girth_check)") {
+  // The seed's detector reports the middle of a plain cylinder (its position weighting); the
+  // girth rule drops it, and keeps a dumbbell's neck.
+  const auto cyl = mesh_of(cellforge::thin_cylinder(12, 11, false).soup);
+  thin_options o;
+  o.detection = cellforge::thin_detection::seed;
+  o.girth_check = false;
+  CHECK(!cellforge::find_thin_points(cyl, o).loops.empty());
+  o.girth_check = true;
+  const thin_result r = cellforge::find_thin_points(cyl, o);
+  CHECK(r.loops.empty());
+  REQUIRE(!r.diagnostics.empty());
+  CHECK(r.diagnostics[0].find("girth_check") != std::string::npos);
+  const auto s = cellforge::thin_dumbbell(12, 13, false);
+  const thin_result d = cellforge::find_thin_points(mesh_of(s.soup), o);
+  REQUIRE(!d.loops.empty());
+  check_at_neck(d.loops.front(), s, glm::dmat4(1.0));
+  // An icosphere (5120 triangles: the automatic mode grows it scalably) and a cube (a square
+  // prism of 9 rings scaled to equal sides), quads and triangles: no loop.
+  const auto box = cellforge::scaled(cellforge::thin_cylinder(4, 9, false).soup, glm::dvec3(1, 1, std::sqrt(0.5) / 3));
+  for (const auto& soup : {cellforge::icosphere<glm::dvec3>(4), box, cellforge::triangulate_fan(box)}) {
+    const thin_result q = cellforge::find_thin_points(mesh_of(soup));
+    for (const auto& loop : q.loops) INFO("false loop at cycle " << loop.cycle << " strength " << loop.strength);
+    CHECK(q.loops.empty());
+  }
+}
+
+TEST_CASE("thin points: cross-section girths are the section polygons' perimeters") {
+  const auto s = cellforge::thin_cylinder(12, 5, false);
+  const auto m = mesh_of(s.soup);
+  const cellforge::detail::thin::thin_input in = cellforge::detail::thin::prepare(m);
+  const double r = s.profile[1].x, z0 = s.profile.front().y, z1 = s.profile.back().y;
+  const std::vector<double> levels{z0 - 1, z0 + 0.3 * (z1 - z0), z0 + 0.71 * (z1 - z0), z1 + 1};
+  const std::vector<double> girth = cellforge::detail::thin::cross_section_girths(in, {0, 0, 1}, levels);
+  const double polygon = 2 * 12 * r * std::sin(std::numbers::pi / 12);
+  CHECK(girth[0] == 0);
+  CHECK(girth[1] == doctest::Approx(polygon).epsilon(1e-12));
+  CHECK(girth[2] == doctest::Approx(polygon).epsilon(1e-12));
+  CHECK(girth[3] == 0);
 }
 
 TEST_CASE("thin points: the cell-complex overload gives the mesh call's loops in cell ids") {

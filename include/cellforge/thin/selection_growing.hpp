@@ -26,7 +26,8 @@ namespace cellforge {
 enum class thin_mode : std::uint8_t {
   fast,      ///< hashed (parent, face) children, bitsets, only survivors materialised
   faithful,  ///< the seed's data structures: Boolean arrays, L1/L2 lists, array comparison
-  scalable,  ///< per-selection frontier heaps, children merged in length order (docs/thin.md)
+  scalable,  ///< per-selection frontier heaps, the cap least children kept (docs/thin.md)
+  automatic,  ///< fast up to growing_options::scalable_above faces, scalable above (default)
 };
 
 /// Faces and their edges as the growing sees them. A "slot" is one face's use of an edge
@@ -45,8 +46,9 @@ struct thin_face_graph {
 struct growing_options {
   int selection_cap = 40;
   double keep_ratio = 1.1;
-  thin_mode mode = thin_mode::fast;
+  thin_mode mode = thin_mode::automatic;
   std::uint64_t work_budget = 2'000'000'000;
+  std::uint32_t scalable_above = 4000;  ///< automatic mode: more faces than this grow scalably
 };
 
 /// Per cycle (selection size 1 .. faces−1, fewer when the budget ran out) the least boundary
@@ -439,26 +441,15 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
       n += g.slot_other[k] != f && has(s, g.slot_other[k]);
     return n;
   };
-  const auto delta = [&](const frontier_selection& s, std::uint32_t f) {
-    return child_length(g, 0.0, f, [&](std::uint32_t x) { return has(s, x); });
-  };
   const auto alive = [&](const frontier_selection& s, std::uint32_t c, std::uint32_t f) {
     return !has(s, f) && count(s, f) == c;
   };
   // A heap is rebuilt from its live entries when a fifth of it is dead: enumerating skips
   // dead entries every cycle, rebuilding costs O(size) once per size/5 deaths.
   const auto mostly_dead = [](std::uint32_t live) { return std::size_t{live} + live / 4 + 4; };
-  const auto push = [&](frontier_selection& s, std::uint32_t c, std::uint32_t f) {
-    std::vector<frontier_entry>& h = s.heaps[c];
-    if (h.size() > mostly_dead(s.live[c])) {
-      std::erase_if(h, [&](const frontier_entry& e) { return !alive(s, c, e.face); });
-      std::make_heap(h.begin(), h.end(), std::greater<>{});
-    }
-    h.push_back({delta(s, f), f});
-    std::push_heap(h.begin(), h.end(), std::greater<>{});
-  };
-  // Adds f (child length and hash given): f leaves the frontier, its unselected neighbours
-  // move up a count (or enter it). O(degree² + degree · log frontier).
+  // Adds f: f leaves the frontier, its unselected neighbours move up a count (or enter it)
+  // with their new length change (edges they share with the selection leave L1, the others
+  // enter). O(degree² + degree · log frontier).
   const auto add = [&](frontier_selection& s, std::uint32_t f) {
     if (const std::uint32_t c = count(s, f); c > 0) --s.live[c];
     sets.insert(s.table.data(), f);
@@ -467,12 +458,27 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
       bool seen = x == f || has(s, x);
       for (std::uint32_t j = g.face_start[f]; j < k && !seen; ++j) seen = g.slot_other[j] == x;
       if (seen) continue;
-      std::uint32_t shared = 0;
-      for (std::uint32_t j = g.face_start[x]; j < g.face_start[x + 1]; ++j) shared += g.slot_other[j] == f;
-      const std::uint32_t now = count(s, x), before = now - shared;
+      std::uint32_t shared = 0, now = 0;
+      double leaving = 0, entering = 0;
+      for (std::uint32_t j = g.face_start[x]; j < g.face_start[x + 1]; ++j) {
+        const std::uint32_t y = g.slot_other[j];
+        shared += y == f;
+        bool leaves = y != x && has(s, y);
+        now += leaves;
+        for (std::uint32_t i = g.face_start[x]; y == x && i < j && !leaves; ++i)
+          leaves = g.slot_edge[i] == g.slot_edge[j];  // an edge x uses twice enters, then leaves
+        (leaves ? leaving : entering) += g.edge_length[g.slot_edge[j]];
+      }
+      const std::uint32_t before = now - shared;
       if (before > 0) --s.live[before];
       ++s.live[now];
-      push(s, now, x);
+      std::vector<frontier_entry>& h = s.heaps[now];
+      if (h.size() > mostly_dead(s.live[now])) {
+        std::erase_if(h, [&](const frontier_entry& e) { return !alive(s, now, e.face); });
+        std::make_heap(h.begin(), h.end(), std::greater<>{});
+      }
+      h.push_back({entering - leaving, x});
+      std::push_heap(h.begin(), h.end(), std::greater<>{});
     }
   };
   std::vector<frontier_selection> current(1), next;
@@ -513,8 +519,7 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
         if (j < h.size()) cu.open.push_back(j), std::push_heap(cu.open.begin(), cu.open.end(), later);
       if (!alive(s, cu.level, h[i].face)) continue;
       const std::uint32_t f = h[i].face;
-      merge.push_back({child_length(g, s.length, f, [&](std::uint32_t x) { return has(s, x); }),
-                       std::uint64_t{p} << 32 | f});
+      merge.push_back({s.length + h[i].delta, std::uint64_t{p} << 32 | f});
       std::push_heap(merge.begin(), merge.end(), std::greater<>{});
       return true;
     }
@@ -752,7 +757,10 @@ growing_result grow_selections(const thin_face_graph& g, std::uint32_t start, co
       bad("slot " + std::to_string(k) +
           " is not paired with the other face of its edge (an open or broken graph)");
   }
-  switch (o.mode) {
+  const thin_mode mode = o.mode != thin_mode::automatic ? o.mode
+                         : g.num_faces > o.scalable_above ? thin_mode::scalable
+                                                          : thin_mode::fast;
+  switch (mode) {
     case thin_mode::fast: return detail::thin::grow_fast(g, start, o);
     case thin_mode::scalable: return detail::thin::grow_scalable(g, start, o);
     default: return detail::thin::grow_faithful(g, start, o);

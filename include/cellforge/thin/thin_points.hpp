@@ -40,7 +40,9 @@ struct thin_options {
   int slabs = 20;                   ///< slabs per axis split (§5.1), 2..100000
   double axis_tolerance_deg = 0.1;  ///< axis converged when it moves less than this, 0..90
   int max_axis_iterations = 50;     ///< then the recent directions are averaged, 1..100000
-  thin_mode mode = thin_mode::fast;
+  /// automatic: the seed's rule (fast) up to scalable_above faces, the scalable rule above.
+  thin_mode mode = thin_mode::automatic;
+  std::uint32_t scalable_above = 4000;
   thin_detection detection = thin_detection::prominence;
   double min_strength = 1.0 / 50;     ///< 0..1
   double suppression_fraction = 0.1;  ///< (0, 1]
@@ -51,6 +53,10 @@ struct thin_options {
   /// Merge flat triangle fans and pairs of triangles into clusters before growing (seed §8.2;
   /// docs/thin.md "Clusters"). Off by default; on, cycles count clusters, not mesh faces.
   bool cluster_faces = false;
+  /// Significance (docs/thin.md "Significance"): a loop is reported only when the solid's
+  /// cross-section across the axis at its level is narrower, by min_strength, than the widest
+  /// cross-section on each side of it (a strict thickness minimum).
+  bool girth_check = true;
 };
 
 namespace detail::thin {
@@ -78,8 +84,9 @@ void check_options(const thin_options& o) {
   if (o.averaging_window < 1 || o.averaging_window > 10000)
     bad("averaging_window is " + std::to_string(o.averaging_window) + "; allowed 1 to 10000");
   if (o.work_budget < 1) bad("work_budget is 0; allowed at least 1");
-  if (o.mode != thin_mode::fast && o.mode != thin_mode::faithful && o.mode != thin_mode::scalable)
-    bad("mode is not fast, faithful or scalable");
+  if (o.mode != thin_mode::fast && o.mode != thin_mode::faithful && o.mode != thin_mode::scalable &&
+      o.mode != thin_mode::automatic)
+    bad("mode is not fast, faithful, scalable or automatic");
   if (o.detection != thin_detection::prominence && o.detection != thin_detection::seed)
     bad("detection is not prominence or seed");
 }
@@ -409,6 +416,45 @@ std::vector<std::vector<std::uint32_t>> boundary_chains(const thin_face_graph& g
   return chains;
 }
 
+/// Cross-sections the significance rule samples along the axis.
+inline constexpr int girth_samples = 64;
+
+/// The perimeter of the solid's section by each plane dot(dir, p) = levels[j] (levels
+/// ascending): each face adds the length of its intersection with the plane (crossings of its
+/// boundary, paired along the line). O(faces · log levels + crossings).
+template <class = void>
+std::vector<double> cross_section_girths(const thin_input& in, const glm::dvec3& dir,
+                                         const std::vector<double>& levels) {
+  const thin_face_graph& g = in.graph;
+  std::vector<double> girth(levels.size(), 0.0), height;
+  std::vector<glm::dvec3> cross;
+  for (std::uint32_t f = 0; f < g.num_faces; ++f) {
+    const std::uint32_t b = g.face_start[f], n = g.face_start[f + 1] - b;
+    height.resize(n);
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (std::uint32_t k = 0; k < n; ++k) {
+      height[k] = glm::dot(dir, in.position[in.slot_vertex[b + k]]);
+      low = std::min(low, height[k]), high = std::max(high, height[k]);
+    }
+    for (auto it = std::upper_bound(levels.begin(), levels.end(), low); it != levels.end() && *it < high; ++it) {
+      cross.clear();
+      for (std::uint32_t k = 0; k < n; ++k) {
+        const std::uint32_t k2 = (k + 1) % n;
+        if ((height[k] < *it) == (height[k2] < *it)) continue;
+        const glm::dvec3 &p = in.position[in.slot_vertex[b + k]], &q = in.position[in.slot_vertex[b + k2]];
+        cross.push_back(p + (q - p) * ((*it - height[k]) / (height[k2] - height[k])));
+      }
+      if (cross.size() < 2) continue;
+      const glm::dvec3 along = cross[1] - cross[0];
+      std::sort(cross.begin(), cross.end(),
+                [&](const glm::dvec3& x, const glm::dvec3& y) { return glm::dot(along, x) < glm::dot(along, y); });
+      for (std::size_t i = 0; i + 1 < cross.size(); i += 2)
+        girth[static_cast<std::size_t>(it - levels.begin())] += glm::length(cross[i + 1] - cross[i]);
+    }
+  }
+  return girth;
+}
+
 template <class = void>
 thin_loop<glm::dvec3> make_loop(const thin_input& in, const std::vector<std::uint32_t>& inner,
                                 const glm::dvec3& dir, double lo, double hi) {
@@ -477,7 +523,7 @@ thin_result<glm::dvec3> find(thin_input prepared, const thin_options& options) {
 
   clock.restart();
   const growing_result grown = grow_selections(
-      g, start, {options.selection_cap, options.keep_ratio, options.mode, options.work_budget});
+      g, start, {options.selection_cap, options.keep_ratio, options.mode, options.work_budget, options.scalable_above});
   r.growing_ms = clock.ms();
   r.cycle_lengths = grown.cycle_lengths;
   r.selections_examined = grown.selections_examined, r.duplicates_dropped = grown.duplicates_dropped;
@@ -502,9 +548,40 @@ thin_result<glm::dvec3> find(thin_input prepared, const thin_options& options) {
       {options.detection, options.min_strength, options.suppression_fraction, options.averaging_window,
        static_cast<std::size_t>(std::lround(options.envelope_rings * ring_cycles))});
   r.values_smoothed = found.smoothed;
+  std::vector<thin_loop<glm::dvec3>> loops;
   for (const detected_cycle& d : found.cycles) {
-    thin_loop<glm::dvec3> loop = make_loop(in, cycle_loop(g, grown, d.cycle), dir, lo, hi);
-    loop.cycle = d.cycle, loop.strength = d.strength;
+    loops.push_back(make_loop(in, cycle_loop(g, grown, d.cycle), dir, lo, hi));
+    loops.back().cycle = d.cycle, loops.back().strength = d.strength;
+  }
+  // Significance: the solid's cross-section across the axis at the loop's level must be
+  // narrower, by min_strength, than its widest cross-section on each side (a strict thickness
+  // minimum); sampled at girth_samples levels plus the loops' own.
+  std::vector<double> levels, girth;
+  if (options.girth_check && !loops.empty() && hi > lo) {
+    for (int j = 0; j < girth_samples; ++j) levels.push_back(lo + (hi - lo) * (j + 0.5) / girth_samples);
+    for (const auto& loop : loops) levels.push_back(lo + loop.axis_position * (hi - lo));
+    std::sort(levels.begin(), levels.end());
+    girth = cross_section_girths(in, dir, levels);
+  }
+  for (thin_loop<glm::dvec3>& loop : loops) {
+    if (!girth.empty()) {
+      const double at = lo + loop.axis_position * (hi - lo);
+      double wide[2] = {0, 0}, here = 0;
+      for (std::size_t j = 0; j < levels.size(); ++j)
+        if (levels[j] == at)
+          here = girth[j];
+        else
+          wide[levels[j] > at] = std::max(wide[levels[j] > at], girth[j]);
+      const double rim = std::min(wide[0], wide[1]);
+      if (!(here < (1 - options.min_strength) * rim)) {
+        r.diagnostics.push_back("loop at cycle " + std::to_string(loop.cycle) + " (length " +
+                                std::to_string(loop.length) + ") is not reported: the cross-section at its " +
+                                "level (" + std::to_string(here) + " around) is no narrower than the widest on its " +
+                                (wide[0] <= wide[1] ? "start" : "far") + " side (" + std::to_string(rim) +
+                                "; girth_check)");
+        continue;
+      }
+    }
     r.loops.push_back(std::move(loop));
   }
   r.detection_ms = clock.ms();
