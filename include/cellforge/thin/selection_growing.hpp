@@ -396,8 +396,9 @@ struct frontier_entry {
   double delta;
   std::uint32_t face;
   friend bool operator>(const frontier_entry& a, const frontier_entry& b) {
-    return a.delta != b.delta ? a.delta > b.delta : a.face > b.face;
+    return a.delta > b.delta || (a.delta == b.delta && a.face > b.face);
   }
+  friend bool operator<(const frontier_entry& a, const frontier_entry& b) { return b > a; }
 };
 
 struct frontier_selection {
@@ -545,8 +546,13 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
         std::pop_heap(h.begin(), h.end(), std::greater<>{});
         h.pop_back();
       }
-      if (!h.empty()) cu.open.push_back(0);
-      next_child(p);
+      if (h.empty()) continue;
+      // The top entry is live: the parent's first child, without the cursor's heap.
+      for (const std::uint32_t j : {1u, 2u})
+        if (j < h.size()) cu.open.push_back(j);
+      if (cu.open.size() == 2 && h[2] < h[1]) std::swap(cu.open[0], cu.open[1]);  // a 2-element heap
+      merge.push_back({current[p].length + h[0].delta, std::uint64_t{p} << 32 | h[0].face});
+      std::push_heap(merge.begin(), merge.end(), std::greater<>{});
     }
     // Children in ascending length (ties: parent, face); the first is the least; stop past
     // keep_ratio × least or with selection_cap distinct selections.
