@@ -482,9 +482,12 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
       std::push_heap(h.begin(), h.end(), std::greater<>{});
     }
   };
-  std::vector<frontier_selection> current(1), next;
+  // Survivors live in a pool; a parent's last kept child takes over its slot (no move), other
+  // children take free slots (their vectors' capacity reused).
+  std::vector<frontier_selection> pool(1);
+  std::vector<std::uint32_t> cur{0}, nxt, free_slots, slot_of;
   {
-    frontier_selection& s = current[0];
+    frontier_selection& s = pool[0];
     s.table.resize(sets.chunks());
     sets.make_empty(s.table.data());
     s.heaps.resize(levels);
@@ -494,8 +497,8 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
     s.hash = key[start];
     s.node = add_node(r, growing_result::no_node, start);
   }
-  r.cycle_lengths.push_back(current[0].length);
-  r.cycle_node.push_back(current[0].node);
+  r.cycle_lengths.push_back(pool[cur[0]].length);
+  r.cycle_node.push_back(pool[cur[0]].node);
 
   // Per parent: its top count and a heap of indices into that count's heap (enumerates the
   // heap in order without changing it).
@@ -508,7 +511,7 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
   std::size_t seen_size = 16;
   while (seen_size < 4 * static_cast<std::size_t>(o.selection_cap)) seen_size *= 2;
   const auto next_child = [&](std::uint32_t p) -> bool {
-    const frontier_selection& s = current[p];
+    const frontier_selection& s = pool[cur[p]];
     cursor& cu = cursors[p];
     const std::vector<frontier_entry>& h = s.heaps[cu.level];
     const auto later = [&](std::uint32_t a, std::uint32_t b) { return h[a] > h[b]; };
@@ -527,22 +530,22 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
     return false;
   };
   for (std::uint32_t size = 2; size < nf; ++size) {
-    cursors.resize(current.size());
+    cursors.resize(cur.size());
     merge.clear();
-    for (std::uint32_t p = 0; p < current.size(); ++p) {
+    for (std::uint32_t p = 0; p < cur.size(); ++p) {
       cursor& cu = cursors[p];
       cu.open.clear();
       cu.level = 0;
       for (std::uint32_t c = levels - 1; c > 0 && cu.level == 0; --c)
-        if (current[p].live[c] > 0) cu.level = c;
+        if (pool[cur[p]].live[c] > 0) cu.level = c;
       if (cu.level == 0) continue;
-      std::vector<frontier_entry>& h = current[p].heaps[cu.level];
-      if (h.size() > mostly_dead(current[p].live[cu.level])) {
-        std::erase_if(h, [&](const frontier_entry& e) { return !alive(current[p], cu.level, e.face); });
+      std::vector<frontier_entry>& h = pool[cur[p]].heaps[cu.level];
+      if (h.size() > mostly_dead(pool[cur[p]].live[cu.level])) {
+        std::erase_if(h, [&](const frontier_entry& e) { return !alive(pool[cur[p]], cu.level, e.face); });
         std::make_heap(h.begin(), h.end(), std::greater<>{});
       }
       // Dead entries below the first live one go for good (the chosen faces sit there).
-      while (!h.empty() && !alive(current[p], cu.level, h.front().face)) {
+      while (!h.empty() && !alive(pool[cur[p]], cu.level, h.front().face)) {
         std::pop_heap(h.begin(), h.end(), std::greater<>{});
         h.pop_back();
       }
@@ -551,9 +554,9 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
       for (const std::uint32_t j : {1u, 2u})
         if (j < h.size()) cu.open.push_back(j);
       if (cu.open.size() == 2 && h[2] < h[1]) std::swap(cu.open[0], cu.open[1]);  // a 2-element heap
-      merge.push_back({current[p].length + h[0].delta, std::uint64_t{p} << 32 | h[0].face});
-      std::push_heap(merge.begin(), merge.end(), std::greater<>{});
+      merge.push_back({pool[cur[p]].length + h[0].delta, std::uint64_t{p} << 32 | h[0].face});
     }
+    std::make_heap(merge.begin(), merge.end(), std::greater<>{});
     // Children in ascending length (ties: parent, face); the first is the least; stop past
     // keep_ratio × least or with selection_cap distinct selections.
     accepted.clear();
@@ -569,13 +572,13 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
       if (c.length > o.keep_ratio * least) break;
       // Duplicates: equal hashes confirmed by comparing face sets (open addressing).
       const std::uint32_t p = c.parent(), f = c.face();
-      const std::uint64_t h = current[p].hash ^ key[f];
+      const std::uint64_t h = pool[cur[p]].hash ^ key[f];
       std::size_t at = static_cast<std::size_t>(h) & (seen_size - 1);
       bool dup = false;
       for (; seen_table[at] != 0 && !dup; at = (at + 1) & (seen_size - 1)) {
         const child& d = accepted[seen_table[at] - 1];
         dup = accepted_hash[seen_table[at] - 1] == h &&
-              sets.same(current[p].table.data(), f, current[d.parent()].table.data(), d.face());
+              sets.same(pool[cur[p]].table.data(), f, pool[cur[d.parent()]].table.data(), d.face());
       }
       if (dup) {
         ++r.duplicates_dropped;
@@ -592,38 +595,53 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
     if (accepted.empty())
       throw error(error_category::internal,
                   "find_thin_points: the selection stopped growing (disconnected faces)");
-    // Survivors in accepted order; a parent's last child takes over its state, others copy it.
-    last_child.assign(current.size(), 0xFFFFFFFF);
+    // Survivors in accepted order; a parent's last child takes over its slot, others copy it.
+    last_child.assign(cur.size(), 0xFFFFFFFF);
     for (std::uint32_t i = 0; i < accepted.size(); ++i) last_child[accepted[i].parent()] = i;
-    next.clear();
-    next.resize(accepted.size());
+    slot_of.resize(accepted.size());
+    for (std::uint32_t i = 0; i < accepted.size(); ++i) {
+      const std::uint32_t p = accepted[i].parent();
+      if (last_child[p] == i) {
+        slot_of[i] = cur[p];
+      } else if (!free_slots.empty()) {
+        slot_of[i] = free_slots.back();
+        free_slots.pop_back();
+      } else {
+        slot_of[i] = static_cast<std::uint32_t>(pool.size());
+        pool.emplace_back();
+      }
+    }
+    nxt.clear();
     for (std::uint32_t i = 0; i < accepted.size(); ++i) {
       const child& c = accepted[i];
-      frontier_selection& parent = current[c.parent()];
-      frontier_selection& s = next[i];
+      const frontier_selection& parent = pool[cur[c.parent()]];
+      frontier_selection& s = pool[slot_of[i]];
       const std::uint32_t parent_node = parent.node;
       const std::uint64_t parent_hash = parent.hash;
-      if (last_child[c.parent()] == i) {
-        s = std::move(parent);
-      } else {
+      if (last_child[c.parent()] != i) {
         s.table.resize(sets.chunks());
         sets.share(s.table.data(), parent.table.data());
-        s.heaps = parent.heaps, s.live = parent.live;
+        s.heaps.resize(levels);
+        for (std::uint32_t l = 0; l < levels; ++l) s.heaps[l] = parent.heaps[l];
+        s.live = parent.live;
       }
       add(s, c.face());
       s.length = c.length, s.hash = parent_hash ^ key[c.face()];
       s.node = add_node(r, parent_node, c.face());
+      nxt.push_back(slot_of[i]);
     }
-    for (std::uint32_t p = 0; p < current.size(); ++p)
-      if (last_child[p] == 0xFFFFFFFF) sets.release(current[p].table.data());
-    std::swap(current, next);
-    r.selections_kept += current.size();
-    r.max_kept = std::max(r.max_kept, current.size());
-    const frontier_selection& best = current[first_least(current, [](const frontier_selection& x) { return x.length; })];
-    r.cycle_lengths.push_back(best.length);
-    r.cycle_node.push_back(best.node);
+    for (std::uint32_t p = 0; p < cur.size(); ++p)
+      if (last_child[p] == 0xFFFFFFFF) sets.release(pool[cur[p]].table.data()), free_slots.push_back(cur[p]);
+    std::swap(cur, nxt);
+    r.selections_kept += cur.size();
+    r.max_kept = std::max(r.max_kept, cur.size());
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < cur.size(); ++i)
+      if (pool[cur[i]].length < pool[cur[best]].length) best = i;  // the first least
+    r.cycle_lengths.push_back(pool[cur[best]].length);
+    r.cycle_node.push_back(pool[cur[best]].node);
   }
-  for (const frontier_selection& s : current) sets.release(s.table.data());
+  for (const std::uint32_t k : cur) sets.release(pool[k].table.data());
   return r;
 }
 
