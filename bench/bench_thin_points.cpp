@@ -179,7 +179,7 @@ void register_case(const std::string& name, const cellforge::surface_mesh<glm::d
 // ------------------------------------------------------------------------------ growth
 
 /// The growth rows: the 12-segment, 21-ring dumbbell (examples/data/dumbbell.off: 242 faces)
-/// split into triangles (500) and Loop-subdivided 3, 4, 5 times (8k, 32k, 128k triangles), and
+/// split into triangles (500) and Loop-subdivided 2 to 5 times (8k, 32k, 128k, 512k triangles), and
 /// icospheres of 5k, 20k, 82k triangles (no neck: no loop expected).
 struct growth_case {
   std::string name;
@@ -191,7 +191,7 @@ std::vector<growth_case>& growth_cases() {
     std::vector<growth_case> out;
     const auto base = cellforge::make_mesh(
         cellforge::triangulate_fan(cellforge::thin_dumbbell<glm::dvec3>(12, 21, false).soup));
-    for (const int levels : {3, 4, 5}) {
+    for (const int levels : {2, 3, 4, 5}) {
       cellforge::loop_options lo;
       lo.levels = levels;
       auto m = cellforge::loop_subdivided(base, lo);

@@ -7,6 +7,7 @@
 //   thin_points cells.3dcl [--volume N]  volume N (default 0) of a cell list; ids are cell ids
 //   options: --cap N (the selection cap n_s of seed 5.4, 1..1000, default 40)
 //            --faithful (the seed's data structures and its literal 5.3 detection)
+//            (default: the seed's rule up to 4000 faces, the scalable rule above; docs/thin.md)
 //            --cluster (seed 8.2: grow over flat triangle fans and triangle pairs; for triangle meshes)
 //            --out DIR (default out)
 //            --no-svg (leave the picture out)
@@ -58,6 +59,8 @@ int main(int argc, char** argv) {
       std::printf("    %2zu: %3zu edges, length %.5g, at %.3f of the axis, cycle %zu, strength %.4g\n", i + 1,
                   l.edges.size(), l.length, l.axis_position, l.cycle, l.strength);
     }
+    if (!r.complete) std::printf("  INCOMPLETE       the work budget ran out\n");
+    for (const std::string& d : r.diagnostics) std::printf("  note             %s\n", d.c_str());
     std::printf("  time             %.3f ms\n", ms);
 
     stage("writing " + std::to_string(r.loops.size()) + " loops");
