@@ -452,7 +452,14 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
   // with their new length change (edges they share with the selection leave L1, the others
   // enter). O(degree² + degree · log frontier).
   const auto add = [&](frontier_selection& s, std::uint32_t f) {
-    if (const std::uint32_t c = count(s, f); c > 0) --s.live[c];
+    if (const std::uint32_t c = count(s, f); c > 0) {
+      --s.live[c];
+      std::vector<frontier_entry>& top = s.heaps[c];
+      if (!top.empty() && top.front().face == f) {  // the usual case: f was its parent's first child
+        std::pop_heap(top.begin(), top.end(), std::greater<>{});
+        top.pop_back();
+      }
+    }
     sets.insert(s.table.data(), f);
     for (std::uint32_t k = g.face_start[f]; k < g.face_start[f + 1]; ++k) {
       const std::uint32_t x = g.slot_other[k];
