@@ -6,8 +6,10 @@
 /// duplicates, cuts selections longer than keep_ratio × the least boundary length, applies
 /// the §5.4 tolerance schedule down to the selection cap and records the least length and
 /// its boundary ("loop") per cycle. Two implementations give identical results: `fast`
-/// (hashed children, bitsets, only survivors materialised) and `faithful` (the seed's
-/// Boolean arrays and L1/L2 edge lists, duplicates found by comparing arrays).
+/// (hashed children, shared bitsets, only survivors materialised) and `faithful` (the seed's
+/// Boolean arrays and L1/L2 edge lists, duplicates found by comparing arrays). `scalable`
+/// keeps the cap least children instead of the §5.4 schedule, with per-selection frontier
+/// heaps, so that a cycle costs what it keeps (docs/thin.md); `automatic` picks by size.
 
 #include <algorithm>
 #include <array>
