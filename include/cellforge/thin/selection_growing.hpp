@@ -255,14 +255,16 @@ struct fast_child {
 };
 
 /// Records a selection in the lineage: its parent node and the face it added.
-inline std::uint32_t add_node(growing_result& r, std::uint32_t parent, std::uint32_t face) {
+template <class = void>
+std::uint32_t add_node(growing_result& r, std::uint32_t parent, std::uint32_t face) {
   r.node_parent.push_back(parent);
   r.node_face.push_back(face);
   return static_cast<std::uint32_t>(r.node_face.size() - 1);
 }
 
 /// Stops the growing at the work budget: flagged incomplete with a diagnostic, not thrown.
-inline void out_of_budget(growing_result& r, std::uint64_t budget, std::size_t faces) {
+template <class = void>
+void out_of_budget(growing_result& r, std::uint64_t budget, std::size_t faces) {
   r.complete = false;
   r.diagnostics.push_back("the selection growing examined more than " + std::to_string(budget) +
                           " candidate selections (work_budget) and stopped after cycle " +
