@@ -102,4 +102,31 @@ TEST_CASE("mesh geometry: degenerate faces and empty meshes") {
   CHECK(cellforge::face_centroid(m, f) == glm::dvec3(1, 0, 0));
 }
 
+TEST_CASE("folded_edges: faces at an edge whose normals point opposite ways") {
+  // Two triangles on edge ab: flat (normals agree), then the second turned back over the
+  // first until it nearly lies on it (normals 179.8 degrees apart) — a fold, which touches
+  // only along ab, so no self-intersection test sees it.
+  for (const double far : {1.0, 1e300}) {
+    cellforge::surface_mesh<glm::dvec3> m;
+    const auto a = m.add_vertex(far * glm::dvec3(0, 0, 0)), b = m.add_vertex(far * glm::dvec3(1, 0, 0));
+    const auto c = m.add_vertex(far * glm::dvec3(0, 1, 0)), d = m.add_vertex(far * glm::dvec3(0.5, -1, 0));
+    m.add_face({a, b, c});
+    m.add_face({b, a, d});
+    CHECK(cellforge::folded_edges(m).edges.empty());
+    m.set_position(d, far * glm::dvec3(0.5, 1, 0.004));
+    const cellforge::fold_result folds = cellforge::folded_edges(m);
+    REQUIRE(folds.edges.size() == 1);
+    CHECK(folds.edges[0] == m.find_edge(a, b));
+    CHECK(folds.within_deg == 20);
+    // A right-angle crease is no fold; at 175 degrees apart it is one only within 10 degrees.
+    m.set_position(d, far * glm::dvec3(0.5, 0, 1));
+    CHECK(cellforge::folded_edges(m).edges.empty());
+    m.set_position(d, far * glm::dvec3(0.5, std::cos(5 * 3.141592653589793 / 180), std::sin(5 * 3.141592653589793 / 180)));
+    CHECK(cellforge::folded_edges(m, 10).edges.size() == 1);
+    CHECK(cellforge::folded_edges(m, 4).edges.empty());
+  }
+  // A closed surface has none.
+  CHECK(cellforge::folded_edges(cellforge::make_mesh(fixtures::cube())).edges.empty());
+}
+
 }  // namespace mesh_geometry_tests

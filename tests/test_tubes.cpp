@@ -7,8 +7,10 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -70,6 +72,10 @@ std::string tube_mesh_problems(const tubes_result<P>& r) {
   }
   if (si.degenerate_triangles != 0)
     out += std::to_string(si.degenerate_triangles) + " degenerate triangles; ";
+  // A fold touches only along its edge, so the check above cannot see it.
+  const std::size_t folds = folded_edges(r.mesh).edges.size();
+  if (folds != 0) out += std::to_string(folds) + " folded edges; ";
+  if (folds != r.folded_edges) out += "make_tubes counted " + std::to_string(r.folded_edges) + " folded edges; ";
   // The tube never narrows below half its nominal cross-section (the issue's bound at bends).
   if (!(r.min_section_ratio >= 0.5))
     out += "a cross-section of " + std::to_string(r.min_section_ratio) + " of pi r^2; ";
@@ -869,6 +875,79 @@ TEST_CASE("tubes: the optional self-intersection check reports a skeleton withou
   const auto clear = make_tubes(samples::complete_graph(8), o);
   CHECK(clear.self_intersections_checked);
   CHECK(clear.self_intersecting_face_pairs == 0);
+}
+
+TEST_CASE("tubes: nodes closer than their turns allow are merged, never folded") {
+  // Issue 35: an edge of 0.01 r before a 20-degree turn. The turn's mitred ring reaches
+  // r tan(10 degrees) = 0.18 r back along the path, past the previous ring: the quads between
+  // them folded back onto the wall (six edges whose faces point opposite ways, which the
+  // exact intersection check sees as touching only).
+  const double a = 20 * std::numbers::pi / 180;
+  const auto turned = [&](glm::dvec3 from, double angle, double length) {
+    return from + length * glm::dvec3(std::cos(angle), std::sin(angle), 0);
+  };
+  S s;
+  s.points = {{0, 0, 0}, {5, 0, 0}, {5.01, 0, 0}, turned({5.01, 0, 0}, a, 5)};
+  s.radii = {1, 1, 1, 1};
+  s.edges = {{0, 1}, {1, 2}, {2, 3}};
+  const auto r = make_tubes(s);
+  CHECK(tube_mesh_problems(r) == "");
+  CHECK(r.merged_nodes == 1);
+  CHECK(r.folded_edges == 0);
+  CHECK(std::isnan(r.section_ratio[1]));  // the short edge has no ring of its own now
+  CHECK(std::find(r.diagnostics.begin(), r.diagnostics.end(),
+                  "1 path nodes merged with a neighbour closer than their turns allow (the tube would fold "
+                  "there)") != r.diagnostics.end());
+  // Far enough apart (0.2 r > 0.18 r): nothing to merge.
+  s.points = {{0, 0, 0}, {5, 0, 0}, {5.2, 0, 0}, turned({5.2, 0, 0}, a, 5)};
+  const auto apart = make_tubes(s);
+  CHECK(tube_mesh_problems(apart) == "");
+  CHECK(apart.merged_nodes == 0);
+  // Two turns on one short edge, in different planes; a run of short noisy edges; next to a
+  // junction's ring and to a free end; on a closed ring. Each merges and stays embedded.
+  S two;
+  two.points = {{0.5, -1.3, -0.4}, {5, 0, 0}, {5.05, 0, 0}, {9, 1.5, 1}};
+  two.radii = {1, 1, 1, 1};
+  two.edges = {{0, 1}, {1, 2}, {2, 3}};
+  S zigzag;  // 60 nodes 0.05 r apart along x, alternately 0.004 r off: turns of 18 degrees
+  for (int i = 0; i < 60; ++i) {
+    zigzag.points.push_back({0.05 * i, i % 2 == 0 ? 0.0 : 0.004, 0});
+    zigzag.radii.push_back(1);
+    if (i > 0) zigzag.edges.push_back({static_cast<std::uint32_t>(i - 1), static_cast<std::uint32_t>(i)});
+  }
+  S star;  // a junction at 0, its edge to 1 then 0.02 on to a node that turns by 30 degrees
+  star.points = {{0, 0, 0}, {4, 0, 0}, {4.02, 0, 0}, turned({4.02, 0, 0}, std::numbers::pi / 6, 4),
+                 {-3, 2, 0}, {-3, -2, 0}};
+  star.radii = {0.5, 0.5, 0.5, 0.5, 0.5, 0.5};
+  star.edges = {{0, 1}, {1, 2}, {2, 3}, {0, 4}, {0, 5}};
+  S tip;  // a free end 0.05 before a 30-degree turn
+  tip.points = {{0, 0, 0}, {0.05, 0, 0}, turned({0.05, 0, 0}, std::numbers::pi / 6, 5)};
+  tip.radii = {1, 1, 1};
+  tip.edges = {{0, 1}, {1, 2}};
+  S ring;  // a ring of 12 nodes with two of them 0.01 apart
+  for (int i = 0; i < 12; ++i) {
+    const double t = 2 * std::numbers::pi * (i + (i == 1 ? -0.999 : 0)) / 12;
+    ring.points.push_back({8 * std::cos(t), 8 * std::sin(t), 0});
+    ring.radii.push_back(1);
+    ring.edges.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>((i + 1) % 12)});
+  }
+  const std::pair<std::string, const S*> cases[] = {
+      {"two turns", &two}, {"zigzag", &zigzag}, {"junction", &star}, {"free end", &tip}, {"ring", &ring}};
+  for (const auto& [name, k] : cases) {
+    const auto m = make_tubes(*k);
+    CHECK_MESSAGE(tube_mesh_problems(m) == "", name);
+    CHECK_MESSAGE(m.merged_nodes > 0, name);
+    CHECK_MESSAGE(m.folded_edges == 0, name);
+  }
+  // A ring too small for its radius has nothing left to merge into: refused, named.
+  S tiny;  // 12 nodes 0.16 apart turning by 30 degrees each, tubes of radius 1
+  for (int i = 0; i < 12; ++i) {
+    const double t = 2 * std::numbers::pi * i / 12;
+    tiny.points.push_back({0.3 * std::cos(t), 0.3 * std::sin(t), 0});
+    tiny.radii.push_back(1);
+    tiny.edges.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>((i + 1) % 12)});
+  }
+  CHECK_THROWS_WITH_AS(make_tubes(tiny), doctest::Contains("too small for its radius"), error);
 }
 
 TEST_CASE("tubes: bad input is a located error") {

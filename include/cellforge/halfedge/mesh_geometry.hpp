@@ -6,6 +6,7 @@
 /// characteristic and connected components of any half-edge mesh. All computed in double
 /// precision; non-planar polygons use Newell's normal, so they need no triangulation.
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -111,6 +112,46 @@ std::pair<P, P> bounds(const surface_mesh<P>& m) {
   for (const vertex_handle v : m.vertices()) box.add(to_dvec3(m.position(v)));
   if (box.empty()) return {from_dvec3<P>(glm::dvec3(0.0)), from_dvec3<P>(glm::dvec3(0.0))};
   return {from_dvec3<P>(box.min), from_dvec3<P>(box.max)};
+}
+
+/// The edges where a surface folds back onto itself: the normals of the two faces at the edge
+/// point opposite ways, more than 180° − `within_deg` apart (a dihedral angle below within_deg).
+struct fold_result {
+  std::vector<edge_handle> edges;  ///< in edge order; empty for a surface without folds
+  double within_deg = 0;           ///< the angle the normals had to come within of 180°
+};
+
+/// Finds m's folds: edges with two faces whose unit normals make an angle above 180° −
+/// within_deg (faces without a normal, zero area, are skipped). O(V + E + F).
+template <Point3 P>
+fold_result folded_edges(const surface_mesh<P>& m, double within_deg = 20) {
+  fold_result r;
+  r.within_deg = within_deg;
+  std::vector<glm::dvec3> normal(m.faces_size(), glm::dvec3(0.0));
+  std::vector<glm::dvec3> loop;
+  for (const face_handle f : m.faces()) {
+    // Newell's vector of the face moved to its first corner and divided by its extent: it
+    // squares coordinates, which far out (1e300) would overflow where the normal is plain.
+    loop.clear();
+    for (const vertex_handle v : m.vertices_around(f)) loop.push_back(to_dvec3(m.position(v)));
+    double big = 0;
+    const glm::dvec3 o = loop.front();
+    for (glm::dvec3& p : loop) {
+      p -= o;
+      big = std::max({big, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    }
+    if (!(big > 0 && std::isfinite(big))) continue;
+    for (glm::dvec3& p : loop) p /= big;
+    const glm::dvec3 v = cellforge::detail::newell(loop, [&](const glm::dvec3& p) { return p; });
+    if (glm::length(v) > 0) normal[f.idx()] = glm::normalize(v);
+  }
+  const double limit = -std::cos(within_deg * 3.14159265358979323846 / 180);
+  for (const edge_handle e : m.edges()) {
+    if (m.is_boundary(e)) continue;
+    const glm::dvec3 a = normal[m.face(e, 0).idx()], b = normal[m.face(e, 1).idx()];
+    if (glm::dot(a, a) > 0 && glm::dot(b, b) > 0 && glm::dot(a, b) < limit) r.edges.push_back(e);
+  }
+  return r;
 }
 
 /// V − E + F of the live elements (2 − 2g − b for a connected orientable surface of genus g

@@ -7,6 +7,7 @@
 /// branch meshes (branch_mesh.hpp), the node paths (node_path.hpp), and the mesh.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -79,6 +80,9 @@ struct tubes_result {
   std::size_t bend_junctions = 0;  ///< of which sharp bends of degree-2 nodes
   std::size_t paths = 0, closed_paths = 0, end_caps = 0, spheres = 0;
   std::size_t virtual_sections = 0;  ///< junctions given a virtual cross-section (see tube_options)
+  /// Path nodes merged with a neighbour: closer to it than their turns' mitres reach
+  /// (r tan(β/2) each side), where the tube between them would fold back (docs/tubes.md).
+  std::size_t merged_nodes = 0;
   /// Junctions whose hull was that of an earlier junction of the same shape: the same points
   /// on its sphere, bit for bit or but for rounding and certified (docs/tubes.md, "Junction
   /// shapes seen before"); a regular lattice's junctions nearly all are.
@@ -101,6 +105,9 @@ struct tubes_result {
   /// With options.check_self_intersections: face pairs that intersect (0 for an embedded
   /// mesh), and whether the check finished within its budget.
   std::size_t self_intersecting_face_pairs = 0;
+  /// Edges where the surface folds back onto itself (folded_edges, halfedge/mesh_geometry.hpp:
+  /// the two faces' normals more than 160° apart), always checked: 0 for a good mesh.
+  std::size_t folded_edges = 0;
   bool self_intersections_checked = false;
   double check_ms = 0;
   /// What the mesher decided on its own, one sentence each (sharp bends, virtual sections,
@@ -311,15 +318,15 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   out.section_ratio.assign(ne, std::numeric_limits<double>::infinity());
   std::vector<dt::station> stations;
   dt::path_scratch path_buffers;
-  std::vector<glm::dvec3> at;  // the path's node positions, each looked up once
   std::vector<std::uint8_t> path_done(tc.paths.size(), 0), junction_done(tc.nodes.size(), 0);
+  std::vector<std::uint32_t> station_node, segment_edge;  // per station / segment, after merging
   const auto mesh_path = [&](std::uint32_t p) {
     path_done[p] = 1;
     const tube_path& path = tc.paths[p];
     const std::size_t m = path.nodes.size();
     stations.assign(m, {});
-    at.resize(m);
-    for (std::size_t i = 0; i < m; ++i) at[i] = node_pos(path.nodes[i]);
+    station_node.assign(path.nodes.begin(), path.nodes.end());
+    segment_edge.assign(path.edges.begin(), path.edges.end());
     for (std::size_t i = 0; i < m; ++i) {
       dt::station& s = stations[i];
       const std::uint32_t c = path.nodes[i];
@@ -338,20 +345,79 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
         s.fixed_first = e.ring.first;
         continue;
       }
-      s.centre = at[i];
+      s.centre = node_pos(c);
       s.radius = node_radius(c);
-      const bool has_prev = i > 0 || path.closed, has_next = i + 1 < m || path.closed;
-      const glm::dvec3 prev = has_prev ? at[i == 0 ? m - 1 : i - 1] : s.centre;
-      const glm::dvec3 next = has_next ? at[i + 1 == m ? 0 : i + 1] : s.centre;
-      const glm::dvec3 din = has_prev ? glm::normalize(s.centre - prev) : glm::dvec3(0.0);
-      const glm::dvec3 dout = has_next ? glm::normalize(next - s.centre) : glm::dvec3(0.0);
+    }
+    // The directions in and out of station i (zero at an open path's ends); a path that turns
+    // back on itself has no mitre.
+    const auto in_out = [&](std::size_t i) {
+      const std::size_t k = stations.size();
+      const bool has_prev = i > 0 || path.closed, has_next = i + 1 < k || path.closed;
+      const glm::dvec3 c = stations[i].centre;
+      const glm::dvec3 din = has_prev ? dt::safe_unit(c - stations[i == 0 ? k - 1 : i - 1].centre) : glm::dvec3(0.0);
+      const glm::dvec3 dout = has_next ? dt::safe_unit(stations[i + 1 == k ? 0 : i + 1].centre - c) : glm::dvec3(0.0);
       if (!(glm::length(din + dout) > 1e-9))
         throw error(error_category::invalid_input,
-                    skeleton_name(c) +
+                    skeleton_name(station_node[i]) +
                         ": the path turns back on itself there (raise bend_limit_degrees' "
                         "junction handling: it must stay below 180)");
+      return std::array<glm::dvec3, 2>{din, dout};
+    };
+    // A mitred ring reaches r tan(β/2) along the path on either side of its node (β the turn):
+    // two nodes closer than their reaches would fold the quads between them back onto the
+    // wall before, so such a pair is merged (an end keeps its place, two inner nodes meet
+    // at their midpoint), until none is left. Each merge removes a station.
+    const auto is_end = [&](std::size_t i) {
+      return stations[i].fixed || (!path.closed && (i == 0 || i + 1 == stations.size()));
+    };
+    const auto reach_of = [&](std::size_t i) {
+      if (is_end(i)) return 0.0;
+      const auto [din, dout] = in_out(i);
+      const double c = std::clamp(glm::dot(din, dout), -1.0, 1.0);
+      return stations[i].radius * std::sqrt((1 - c) / (1 + c));  // r tan(β/2)
+    };
+    // One scan, stepping back after a merge (it changes the turns of the two neighbours, and
+    // so the pairs they are in): O(stations); scanned again until a scan merges nothing.
+    for (bool again = true; again;) {
+      again = false;
+      for (std::size_t i = 0; i < (path.closed ? stations.size() : stations.size() - 1);) {
+        const std::size_t k = stations.size(), j = i + 1 == k ? 0 : i + 1;
+        if (!(reach_of(i) + reach_of(j) >= dt::safe_length(stations[j].centre - stations[i].centre))) {
+          ++i;
+          continue;
+        }
+        if (path.closed && k <= 3)
+          throw error(error_category::invalid_input,
+                      skeleton_name(station_node[i]) + ": the ring of nodes through it is too small for its "
+                                                       "radius (its nodes are closer than its turns allow)");
+        // An end keeps its place; two inner nodes meet at their midpoint (in station 0 of a
+        // ring, whose segment must stay first).
+        const bool i_end = is_end(i), j_end = is_end(j);
+        if (i_end && j_end) {  // two ends reach nothing: only coincident ones, refused before
+          ++i;
+          continue;
+        }
+        const std::size_t drop = i_end ? j : (j_end || j == 0) ? i : j;
+        if (!i_end && !j_end) {
+          dt::station& keep = stations[drop == i ? j : i];
+          keep.centre = 0.5 * (stations[i].centre + stations[j].centre);
+          keep.radius = 0.5 * (stations[i].radius + stations[j].radius);
+        }
+        // The segment between them goes; the other segments keep their edges.
+        stations.erase(stations.begin() + static_cast<std::ptrdiff_t>(drop));
+        station_node.erase(station_node.begin() + static_cast<std::ptrdiff_t>(drop));
+        segment_edge.erase(segment_edge.begin() + static_cast<std::ptrdiff_t>(i));
+        ++res.merged_nodes;
+        again = true;
+        i = i >= 2 ? i - 2 : 0;
+      }
+    }
+    for (std::size_t i = 0; i < stations.size(); ++i) {
+      dt::station& s = stations[i];
+      if (s.fixed) continue;
+      const auto [din, dout] = in_out(i);
       s.tangent = glm::normalize(din + dout);
-      if (has_prev && has_next) {
+      if (glm::dot(din, din) > 0 && glm::dot(dout, dout) > 0) {
         const double cos_turn = std::clamp(glm::dot(din, dout), -1.0, 1.0);
         const glm::dvec3 side = dout - din;
         if (glm::length(side) > 1e-12 && cos_turn < 1.0) {
@@ -364,7 +430,7 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     const bool cap_start = !path.closed && !is_junction(path.nodes.front());
     const bool cap_end = !path.closed && !is_junction(path.nodes.back());
     dt::build_path(out, detail::span_of(stations), path.closed, n, options.alignment,
-                   detail::span_of(path.edges), cap_start, tc.nodes[path.nodes.front()].skeleton_node,
+                   detail::span_of(segment_edge), cap_start, tc.nodes[path.nodes.front()].skeleton_node,
                    cap_end, tc.nodes[path.nodes.back()].skeleton_node, &path_buffers);
     ++res.paths;
     res.closed_paths += path.closed ? 1 : 0;
@@ -504,6 +570,9 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     else
       res.min_section_ratio = std::min(res.min_section_ratio, q);
   }
+  if (std::isinf(res.min_section_ratio)) res.min_section_ratio = std::numeric_limits<double>::quiet_NaN();
+  if (mesh.num_faces() == 0)  // no corner was measured
+    res.min_corner_deg = res.max_corner_deg = std::numeric_limits<double>::quiet_NaN();
   res.section_ratio = std::move(out.section_ratio);
   res.shells = shells;
   res.genus = (2 * static_cast<std::int64_t>(shells) - euler_characteristic(mesh)) / 2;
@@ -515,7 +584,14 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   say(res.virtual_sections,
       "junctions have all their edges on one side: a virtual cross-section closes the other");
   say(tc.inserted_nodes, "nodes inserted between adjacent junctions (at the middle of their edge)");
+  say(res.merged_nodes,
+      "path nodes merged with a neighbour closer than their turns allow (the tube would fold there)");
   say(res.spheres, "isolated nodes meshed as spheres");
+  // A fold is no intersection (the faces only touch), so it is looked for on its own: O(E).
+  res.folded_edges = folded_edges(res.mesh).edges.size();
+  if (res.folded_edges > 0)
+    res.diagnostics.push_back(std::to_string(res.folded_edges) +
+                              " edges fold: the faces on either side point opposite ways (the mesh is not good)");
   if (options.check_self_intersections) {
     const self_intersection_result si = self_intersections(res.mesh);
     res.self_intersecting_face_pairs = si.intersecting_face_pairs;

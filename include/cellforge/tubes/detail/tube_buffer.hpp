@@ -86,6 +86,21 @@ struct basic_buffer {
 };
 using buffer = basic_buffer<>;
 
+/// d's length, scaled by its largest component first so that coordinates far out (1e300)
+/// do not overflow when squared. O(1).
+template <class = void>
+double safe_length(const glm::dvec3& d) {
+  const double big = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+  return big > 0 && std::isfinite(big) ? big * glm::length(d / big) : big;
+}
+
+/// d / |d|, scaled first as safe_length is (NaN components for a zero or non-finite d). O(1).
+template <class = void>
+glm::dvec3 safe_unit(const glm::dvec3& d) {
+  const double big = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+  return glm::normalize(d / big);
+}
+
 /// A unit vector perpendicular to unit vector d, chosen by d alone. O(1).
 template <class = void>
 glm::dvec3 any_perpendicular(const glm::dvec3& d) {
