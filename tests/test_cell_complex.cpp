@@ -280,6 +280,14 @@ TEST_CASE("cell complex: inconsistent input is refused, naming the element") {
     in.edges.push_back({4, 4});
     CHECK(contains(build_error(in), "edge 20 joins vertex 4 to itself"));
   }
+  {  // edge 0 bad: no edge is linked, and the empty per-vertex lists are walked without
+     // stepping past their null start (clang's UBSan saw "add 8 to a null pointer")
+    auto in = good;
+    in.edges[0] = {4, 4};
+    CHECK(contains(build_error(in), "edge 0 joins vertex 4 to itself"));
+    in.edges[0] = {0, 99};
+    CHECK(contains(build_error(in), "edge 0 joins vertex 99"));
+  }
   {
     auto in = good;
     in.edges.push_back({in.edges[5][1], in.edges[5][0]});

@@ -429,7 +429,7 @@ void build_topology(cell_topology& cc, std::span<const glm::dvec3> points,
     const auto begin = links.begin() + cc.vertex_edge_start_[v],
                end = links.begin() + cc.vertex_edge_start_[v + 1];
     std::sort(begin, end, by_other);
-    for (auto it = begin; it + 1 < end; ++it)
+    for (auto it = begin; end - it > 1; ++it)  // not it + 1 < end: begin may be null
       if (it->other == (it + 1)->other && (it + 1)->edge < repeat) {
         auto group = it;  // the group's first edge is the one repeated
         while (group != begin && (group - 1)->other == it->other) --group;
