@@ -118,6 +118,10 @@ case_ tubes "$i/missing_parent.swc" error "missing_parent.swc:2: the parent 5 of
 case_ tubes "$i/parent_cycle.swc" error "parent_cycle.swc:1: the parents form a cycle"
 case_ tubes "$i/zero_radius.swc" error "zero_radius.swc:3: the radius of sample 3, '0', must be positive"
 case_ tubes /dev/zero error "give an .swc or .obj skeleton"
+case_ tubes "$i/empty.swc" error "empty.swc': the skeleton has no nodes"
+case_ tubes "$i/short_edge_turn.swc" 0 "1 path nodes merged with a neighbour" --sides 6 --no-svg
+case_ tubes "$i/short_edge_turn.swc" 0 "^folds +0 edges" --no-svg
+case_ tubes "$here/data/vessel_tree.swc" error "ran out of its budget" --check-pairs 1 --no-svg
 case_ sketch2cells "$i/empty.svg" error "the drawing has no edge"
 case_ sketch2cells "$i/not_xml.svg" error "not_xml.svg:2: no <svg> element"
 case_ sketch2cells "$i/unclosed.svg" error "unclosed.svg:2: the file ends inside <svg>"

@@ -73,6 +73,9 @@ printf '1 1 0 0 0 1 -1\n2 3 10 0 0 1 1\n3 3 20 0 0 0 2\n' > zero_radius.swc
 printf '1 1 0 0 0 1 -1\n2 3 10 0 0 1 5\n' > missing_parent.swc
 printf '1 1 0 0 0 1 -1\n2 3 0 0 0 1 1\n' > coincident_nodes.swc
 printf '1 1 0 0 0 1 2\n2 3 10 0 0 1 1\n' > parent_cycle.swc
+printf '' > empty.swc
+# An edge of 0.01 r before a 20-degree turn (issue 35): merged, not folded.
+printf '1 1 0 0 0 1 -1\n2 3 5 0 0 1 1\n3 3 5.01 0 0 1 2\n4 3 9.7085 1.7101 0 1 3\n' > short_edge_turn.swc
 # drawings
 printf '<svg xmlns="http://www.w3.org/2000/svg"></svg>\n' > empty.svg
 printf '<svg xmlns="http://www.w3.org/2000/svg"><line x1="0" y1="0" x2="1" y2="1"/>\n' > unclosed.svg
