@@ -92,6 +92,7 @@ for exe in mesh_info hull subdivide thin_points smooth_edges; do
   case_ $exe "$i/empty.off" error "empty.off:1: empty file"
   case_ $exe "$i/bad_header.ply" error "bad_header.ply:3: element 'vertex' has no property 'y'"
   case_ $exe "$i/truncated.stl" error "truncated.stl:4: facet 0: expected 'vertex', found end of file"
+  case_ $exe "$i/all_degenerate.stl" error "all_degenerate.stl: all 1 facets are degenerate"
   case_ $exe "$i/binary_garbage.obj" error "binary_garbage.obj:1: not an OBJ statement"
   case_ $exe /dev/zero error "/dev/zero"
 done
@@ -111,6 +112,7 @@ for exe in thin_points smooth_edges; do
   case_ $exe "$i/tetra.off" 0 "."
   case_ $exe "$i/cube_mesh.obj" 0 "."
   case_ $exe "$i/truncated.3dcl" error "truncated.3dcl:3: expected 'edges <count>'"
+  case_ $exe "$i/loop_edge.3dcl" error "loop_edge.3dcl:6: make_cell_complex: edge 0 joins vertex 0 to itself"
 done
 case_ thin_points "$i/prism_1000.off" 0 "."
 case_ tubes "$i/coincident_nodes.swc" error "nodes 0 and 1 coincide"

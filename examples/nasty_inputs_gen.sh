@@ -68,6 +68,9 @@ printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n' > degenerate_triangle.off
 printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n' > bad_header.ply
 printf 'solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n' > truncated.stl
 printf '3dcl 1\nvertices 1\nv 0 0 0 0 edges\n' > truncated.3dcl
+# Edge 0 a loop (issue 35: clang's UBSan saw a null pointer stepped past).
+printf '3dcl 1\nvertices 2\nv 0 0 0 0 edges +0 -0\nv 1 1 0 0 edges\nedges 1\ne 0 0 0 faces volumes\nfaces 0\nvolumes 0\nend\n' > loop_edge.3dcl
+printf 'solid x\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid x\n' > all_degenerate.stl
 # SWC
 printf '1 1 0 0 0 1 -1\n2 3 10 0 0 1 1\n3 3 20 0 0 0 2\n' > zero_radius.swc
 printf '1 1 0 0 0 1 -1\n2 3 10 0 0 1 5\n' > missing_parent.swc

@@ -391,6 +391,26 @@ TEST_CASE("STL: degenerate facets are dropped and counted, kept, or refused with
   CHECK(kept.degenerate_facets == 1);
   CHECK(kept.soup.face(1)[0] == kept.soup.face(1)[2]);
 
+  // Only degenerate facets: dropping them all would read as an empty mesh without a word.
+  const std::string all_degenerate =
+      "solid d\n"
+      "facet normal 0 0 0 outer loop vertex 5 5 5 vertex 1 0 0 vertex 5 5 5 endloop endfacet\n"
+      "facet normal 0 0 0 outer loop vertex 0 0 0 vertex 0 0 0 vertex 0 0 0 endloop endfacet\n"
+      "endsolid d\n";
+  for (const bool weld : {true, false}) {
+    try {
+      (void)io::parse_stl<glm::dvec3>(all_degenerate, "t.stl", {.weld = weld});
+      FAIL("read a file of degenerate facets as an empty mesh");
+    } catch (const cellforge::error& e) {
+      CHECK(e.file() == "t.stl");
+      CHECK(std::string(e.what()) == std::string("t.stl: all 2 facets are degenerate (two corners are one vertex") +
+                                         (weld ? ", after welding" : "") +
+                                         "): no triangle is left (stl_read_options::degenerate = keep reads them)");
+    }
+  }
+  CHECK(parse(all_degenerate, {.degenerate = io::stl_degenerate::keep}).soup.num_faces() == 2);
+  CHECK(parse("solid e\nendsolid e\n").soup.num_faces() == 0);  // no facets at all: empty, as it is
+
   const auto unwelded = parse(text, {.weld = false});  // without welding: equal coordinates count
   CHECK(unwelded.degenerate_facets == 1);
   CHECK(unwelded.soup.num_points() == 6);

@@ -555,7 +555,8 @@ class stl_ascii_reader {
 
 /// Parses STL bytes held in memory (ASCII or binary: binary when the size is 84 + 50 × the
 /// header's facet count, else ASCII when the text starts with `solid`); `name` is used in
-/// error messages. Throws an io error with file:line (ASCII) or byte offset (binary). O(size).
+/// error messages. Throws an io error with file:line (ASCII) or byte offset (binary), or naming
+/// the file when degenerate facets are dropped and they were all there was. O(size).
 template <Point3 P>
 stl_data<P> parse_stl(std::string_view bytes, std::string_view name = "<memory>",
                       const stl_read_options& options = {}) {
@@ -571,6 +572,13 @@ stl_data<P> parse_stl(std::string_view bytes, std::string_view name = "<memory>"
     detail::stl_read_binary(bytes, name, detail::stl_starts_with_solid(bytes), b);
   }
   b.finish();
+  // Dropping every facet would read as an empty mesh, which the file is not: say so.
+  if (options.degenerate == stl_degenerate::drop && d.facets_read > 0 && d.degenerate_facets == d.facets_read)
+    throw error(error_category::io,
+                "all " + std::to_string(d.facets_read) + " facets are degenerate (two corners are one vertex" +
+                    (options.weld ? ", after welding" : "") +
+                    "): no triangle is left (stl_read_options::degenerate = keep reads them)",
+                source_location{std::string(name), 0, source_location::no_offset});
   return d;
 }
 
