@@ -356,6 +356,23 @@ TEST_CASE("bad input is refused with a clear error") {
     CHECK(e.category() == error_category::invalid_input);
     CHECK(std::string(e.what()).find("face") != std::string::npos);
   }
+  // Far out (issue 35): at 1e300 areas overflowed and every face read "degenerate"; the
+  // message now says what is true, and names the range.
+  for (const double far : {1e300, 1e-300}) {
+    soup big = uv_sphere(8, 4);
+    for (auto& p : big.points) p *= far;
+    try {
+      smooth_edges(make_mesh(big));
+      FAIL("a sphere at scale ", far, " was accepted");
+    } catch (const error& e) {
+      CHECK(e.category() == error_category::invalid_input);
+      CHECK(std::string(e.what()).find("smooth_edges: the model spans") == 0);
+      CHECK(std::string(e.what()).find("scale the model into that range") != std::string::npos);
+    }
+  }
+  soup fine = uv_sphere(8, 4);  // 1e40 is inside the range: smoothed as at 1
+  for (auto& p : fine.points) p *= 1e40;
+  CHECK_NOTHROW(smooth_edges(make_mesh(fine)));
   // Non-finite coordinate.
   soup nan = uv_sphere(8, 4);
   nan.points[3].y = std::numeric_limits<double>::quiet_NaN();

@@ -441,6 +441,14 @@ TEST_CASE("thin points: bad input gives a clear error") {
   const auto degenerate = mesh_of(flat);
   require_error(error_category::invalid_input, "face 0 is degenerate",
                 [&] { (void)cellforge::find_thin_points(degenerate); });
+  // Far out (issue 35): at 1e300 the area test overflowed and face 0 read "degenerate".
+  for (const double far : {1e300, 1e-300}) {
+    auto big = s.soup;
+    for (auto& p : big.points) p *= far;
+    const auto m = mesh_of(big);
+    require_error(error_category::invalid_input, "find_thin_points: the model spans",
+                  [&] { (void)cellforge::find_thin_points(m); });
+  }
   // Closed, oriented, one part, and enclosing nothing: a square and its reverse back to back.
   cellforge::polygon_soup<glm::dvec3> sheet;
   sheet.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};

@@ -62,6 +62,7 @@ solid_geometry solid_geometry_of(const surface_mesh<P>& m, const char* who = "sm
     g.positions[v.idx()] = p;
     box.add(p);
   }
+  check_double_range(box, w);  // 1e300 would make every face "degenerate"
   g.model_size = box.diagonal();
   const double size = g.model_size;
   g.face_normals.resize(m.faces_size());

@@ -22,6 +22,7 @@
 #include "cellforge/cells/conversion.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
+#include "cellforge/core/bounding_box.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/conversion.hpp"
@@ -130,6 +131,11 @@ thin_input prepare(const surface_mesh<P>& m) {
       in.used_points.push_back(p);
       lo = glm::min(lo, p), hi = glm::max(hi, p);
     }
+  }
+  if (!in.used_points.empty()) {  // 1e300 would make every face "degenerate"
+    bounding_box box;
+    box.add(lo), box.add(hi);
+    check_double_range(box, "find_thin_points");
   }
   const double diag = glm::length(hi - lo);
   std::vector<std::uint32_t> compact_face(m.faces_size(), std::numeric_limits<std::uint32_t>::max());
