@@ -194,6 +194,17 @@ TEST_CASE("drawing_to_cells: bad drawings give a clear error, never a wrong soli
   auto s = cellforge::generic_drawing(cellforge::sample_cube(), 1, "cube").drawing;
   s.points[3].x = std::nan("");
   CHECK_THROWS_WITH_AS(cellforge::drawing_to_cells(s), doctest::Contains("NaN"), error);
+  // Far out (issue 35): 4e300 across read as "the drawing has no extent" (its length squared
+  // overflowed); now the message is the true one, the model's range.
+  auto far = cellforge::generic_drawing(cellforge::sample_cube(), 1, "cube").drawing;
+  for (auto& p : far.points) p *= 4e300;
+  try {
+    (void)cellforge::drawing_to_cells(far);
+    FAIL("a drawing 4e300 across gave a solid");
+  } catch (const error& e) {
+    CHECK(std::string(e.what()).find("no extent") == std::string::npos);
+    CHECK(std::string(e.what()).find("scale the model into that range") != std::string::npos);
+  }
   // A cube with a dangling stroke: the faces come back flagged and the result says so.
   auto t = cellforge::generic_drawing(cellforge::sample_cube(), 1, "cube").drawing;
   t.points.push_back(t.points[0] + glm::dvec2(0.31, -0.17));

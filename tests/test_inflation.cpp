@@ -462,6 +462,21 @@ TEST_CASE("inflate: a model's axes need not be the drawing's: a rotated normalon
   CHECK(r.after.planarity < 1e-12);
 }
 
+TEST_CASE("inflate: a drawing 4e300 across has an extent (its size is not squared out of range)") {
+  // Issue 35: the size was the length of the box's diagonal, whose square overflowed at 4e300,
+  // and inflate said "the drawing has no extent". Scaled first, it reads as at scale 1.
+  const sample_drawing s = cellforge::generic_drawing(cellforge::sample_L(), 11, "normalon");
+  auto far = s.drawing;
+  for (auto& p : far.points) p *= 4e300;
+  const auto r = cellforge::inflate(s.drawing, s.loops), f = cellforge::inflate(far, s.loops);
+  CHECK(f.method == r.method);
+  REQUIRE(f.points.size() == r.points.size());
+  double worst = 0;
+  for (std::size_t i = 0; i < r.points.size(); ++i)
+    worst = std::max(worst, glm::length(f.points[i] / 4e300 - r.points[i]));
+  CHECK(worst < 1e-9);
+}
+
 TEST_CASE("inflate: optimisation gives the true cell complex on the non-normalon drawings") {
   std::size_t drawings = 0, right = 0, read_directly = 0;
   std::vector<double> errors;

@@ -960,6 +960,13 @@ TEST_CASE("tubes: bad input is a located error") {
   s.radii[2] = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_WITH_AS(make_tubes(s), doctest::Contains("node 2: radius"), error);
   s.radii[2] = 0.1;
+  // Far out (issue 35): at 1e300 the directions overflowed and the path "turned back on itself".
+  S far;
+  far.points = {{-1e300, 0, 0}, {0, 1e299, 0}, {1e300, 0, 0}};
+  far.radii = {1e298, 1e298, 1e298};
+  far.edges = {{0, 1}, {1, 2}};
+  CHECK_THROWS_WITH_AS(make_tubes(far), doctest::Contains("make_tubes: the model spans 2.02e+300 and reaches 1.01e+300"), error);
+  s.radii[2] = 0.1;
   tube_options o;
   o.sides = 2;
   CHECK_THROWS_WITH_AS(make_tubes(s, o), doctest::Contains("sides"), error);

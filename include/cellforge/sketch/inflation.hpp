@@ -204,7 +204,11 @@ inflation_problem<> make_inflation_problem(
     lo = glm::min(lo, q);
     hi = glm::max(hi, q);
   }
-  pr.size = glm::length(hi - lo);
+  {  // scaled before it is squared: a drawing 4e300 across has an extent (8e300 overflowed)
+    const glm::dvec2 span = hi - lo;
+    const double big = std::max(span.x, span.y);
+    pr.size = big > 0 && std::isfinite(big) ? big * glm::length(span / big) : big;
+  }
   if (!(pr.size > 0) || !std::isfinite(pr.size))
     throw error(error_category::invalid_input, "inflate: the drawing has no extent");
   pr.centre = 0.5 * (lo + hi);

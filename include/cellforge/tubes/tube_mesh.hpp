@@ -22,6 +22,7 @@
 
 #include "cellforge/algorithms/loop_subdivision.hpp"
 #include "cellforge/algorithms/self_intersections.hpp"
+#include "cellforge/core/bounding_box.hpp"
 #include "cellforge/core/detail/large_array.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
@@ -227,6 +228,11 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   for (std::size_t i = 0; i < nv; ++i) {
     pos[i] = to_dvec3(P(T::position(g, i)));
     rad[i] = static_cast<double>(T::radius(g, i));
+  }
+  {  // rings, areas and the checks square coordinates: 1e300 would read as a path turning back
+    bounding_box box;
+    for (std::size_t i = 0; i < nv; ++i) box.add(pos[i] - rad[i]), box.add(pos[i] + rad[i]);
+    check_double_range(box, "make_tubes");
   }
   for (std::size_t j = 0; j < ne; ++j) {
     const auto ab = T::endpoints(g, j);
