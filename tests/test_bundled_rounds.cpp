@@ -88,6 +88,20 @@ TEST_CASE("bundled rounds: the L-bracket of sketch_rounds is the generated drawi
                        cellforge::error);
   CHECK_THROWS_WITH_AS(cellforge::reconstruct_rounds(lone), doctest::Contains("has no partner"),
                        cellforge::error);
+  // The cause leads, in the drawing's numbering; the skeleton's dangling junction (the skeleton
+  // renumbers them: its 6 is the drawing's 10 once arc 3 is gone) is mapped back (issue 35).
+  auto renumbered = d;
+  renumbered.arcs.erase(renumbered.arcs.begin() + 3);
+  try {
+    (void)cellforge::reconstruct_rounds(renumbered);
+    FAIL("an unpaired arc was read");
+  } catch (const cellforge::error& e) {
+    const std::string m = e.what();
+    CHECK(m.rfind("reconstruct_rounds: arc 2 (junctions 10 to 11) has no partner: ", 0) == 0);
+    CHECK(m.find("without a partner an arc cannot be a blend, so the skeleton is not a readable drawing: "
+                 "junction 6 is on one edge only") != std::string::npos);
+    CHECK(m.find("(skeleton junction 6 is junction 10 of the drawing)") != std::string::npos);
+  }
 }
 
 TEST_CASE("bundled rounds: the L-bracket drawn as sampled strokes, its arcs found by detect_arcs") {

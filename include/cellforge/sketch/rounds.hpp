@@ -440,11 +440,30 @@ rounds_result<Q, P> reconstruct_rounds(const arc_drawing<P>& d, const rounds_opt
   out.skeleton = round_skeleton(d, options.skeleton);
   out.diagnostics = out.skeleton.diagnostics;
   if (!out.skeleton.validation.ok()) {
-    // Loose ends in the skeleton usually come from arcs that found no partner: say which.
-    std::string why =
-        "reconstruct_rounds: the skeleton is not a readable drawing: " + out.skeleton.validation.message;
-    if (!out.skeleton.pairing.unpaired.empty())
-      for (const std::string& d : out.skeleton.pairing.diagnostics) why += "\n  " + d;
+    // Loose ends in the skeleton usually come from arcs that found no partner: that is the
+    // cause, in the input's numbering, so it comes first; the skeleton's defect follows, its
+    // junction named in the input's numbering too (the skeleton renumbers them).
+    const auto& sk = out.skeleton;
+    std::string why = "reconstruct_rounds: ";
+    for (const std::string& d : sk.pairing.diagnostics)
+      if (d.find("has no partner") != std::string::npos) why += d + "; ";
+    if (!sk.pairing.unpaired.empty()) why += "without a partner an arc cannot be a blend, so ";
+    why += "the skeleton is not a readable drawing: " + sk.validation.message;
+    if (const std::size_t j = sk.validation.junction; j != drawing_validation::npos) {
+      const std::size_t first_corner = sk.skeleton.points.size() - sk.new_junctions;
+      if (j < first_corner) {
+        const auto at = std::find(sk.junction_map.begin(), sk.junction_map.end(), static_cast<std::uint32_t>(j));
+        if (at != sk.junction_map.end())
+          why += " (skeleton junction " + std::to_string(j) + " is junction " +
+                 std::to_string(at - sk.junction_map.begin()) + " of the drawing)";
+      } else if (j - first_corner < 2 * sk.pairing.pairs.size()) {
+        const std::size_t pair = (j - first_corner) / 2, end = (j - first_corner) % 2;
+        why += " (skeleton junction " + std::to_string(j) + " is the corner of end " + std::to_string(end) +
+               " of arc pair " + std::to_string(pair) + ", arcs";
+        for (const std::uint32_t a : sk.pairing.pairs[pair].arcs[end]) why += " " + std::to_string(a);
+        why += ")";
+      }
+    }
     throw error(error_category::invalid_input, why);
   }
   out.reading = drawing_to_cells<Q>(out.skeleton.skeleton, options.reading);
