@@ -20,6 +20,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "cellforge/io/detail/stroke_snapping.hpp"
 #include "cellforge/io/drawing_text.hpp"
 #include "cellforge/io/dxf_drawing.hpp"
 #include "cellforge/sketch/drawing_to_cells.hpp"
@@ -472,6 +473,47 @@ TEST_CASE("dxf: malformed files are refused with the file's line") {
   ++kinds;
   MESSAGE(kinds << " kinds of malformed DXF refused with their line");
   CHECK(kinds >= 20);
+}
+
+TEST_CASE("stroke snapping, shared by the SVG and DXF readers: ends, splits, duplicates, ellipses") {
+  using cellforge::io::detail::stroke_arc;
+  using seg = std::pair<glm::dvec2, glm::dvec2>;
+  // A square's bottom drawn twice (once reversed), a right side whose foot misses the corner by
+  // 1e-12, a zero-length stroke, a stroke standing on the bottom's midpoint, and an arc whose
+  // first end misses the top right corner by 1e-12.
+  const std::vector<seg> segments{{{0, 0}, {1, 0}}, {{1, 1e-12}, {1, 1}}, {{0, 0}, {0, 0}},
+                                  {{1, 0}, {0, 0}}, {{0.5, 0}, {0.5, 1}}};
+  const std::vector<stroke_arc> arcs{{{1, 1 + 1e-12}, {0.5, 1}, 0.25, 0.25, 0.0, false, true}};
+  cellforge::io::detail::stroke_snap_counts counts;
+  std::vector<std::string> notes;
+  const auto d = cellforge::io::detail::snap_strokes<glm::dvec2>(
+      segments, arcs, 1e-9, true, "strokes", [](std::size_t) { return std::size_t{7}; }, counts, notes);
+  // Junctions (0,0), (1,0), (1,1), (0.5,0), (0.5,1); the bottom split at (0.5,0) into two
+  // edges, its reversed copy merged into them, the right side, the stroke on the midpoint.
+  CHECK(d.lines.points.size() == 5);
+  CHECK(d.lines.edges.size() == 4);
+  CHECK(counts.dropped_zero_length == 1);
+  CHECK(counts.merged_duplicates == 2);
+  CHECK(counts.split_at_junctions >= 1);
+  CHECK(counts.snapped >= 2);
+  REQUIRE(d.arcs.size() == 1);
+  const auto corner = d.lines.points[d.arcs[0].ends[0]];
+  CHECK(std::abs(corner.x - 1) < 1e-9);
+  CHECK(std::abs(corner.y - 1) < 1e-9);
+  for (const auto& e : d.lines.edges) CHECK(e[0] != e[1]);
+
+  // A reflection keeps the axes and turns the sweep; a flattening map is refused.
+  double rx = 2, ry = 1, rotation = 0;
+  bool sense = true;
+  CHECK(cellforge::io::detail::map_ellipse({1, 0, 0, -1, 0, 0}, rx, ry, rotation, sense));
+  CHECK(rx == doctest::Approx(2));
+  CHECK(ry == doctest::Approx(1));
+  CHECK(rotation == doctest::Approx(0));
+  CHECK_FALSE(sense);
+  CHECK(cellforge::io::detail::map_ellipse({3, 0, 0, 3, 5, 5}, rx, ry, rotation, sense));
+  CHECK(rx == doctest::Approx(6));
+  CHECK(ry == doctest::Approx(3));
+  CHECK_FALSE(cellforge::io::detail::map_ellipse({1, 0, 0, 0, 0, 0}, rx, ry, rotation, sense));
 }
 
 TEST_CASE("dxf: empty and odd but valid files") {
