@@ -646,6 +646,10 @@ TEST_CASE("thin points: significance — no loop without a wider part on both si
       const thin_result q = cellforge::find_thin_points(mesh_of(soup), q_options);
       for (const auto& loop : q.loops) INFO("false loop at cycle " << loop.cycle << " strength " << loop.strength);
       CHECK(q.loops.empty());
+      // The automatic mode says when it leaves the seed's rule.
+      const bool said = std::any_of(q.diagnostics.begin(), q.diagnostics.end(),
+                                    [](const std::string& d) { return d.find("scalable rule") != std::string::npos; });
+      CHECK(said == (mode == cellforge::thin_mode::automatic && soup.num_faces() > 4000));
     }
 }
 

@@ -797,7 +797,15 @@ growing_result grow_selections(const thin_face_graph& g, std::uint32_t start, co
                                                           : thin_mode::fast;
   switch (mode) {
     case thin_mode::fast: return detail::thin::grow_fast(g, start, o);
-    case thin_mode::scalable: return detail::thin::grow_scalable(g, start, o);
+    case thin_mode::scalable: {
+      growing_result r = detail::thin::grow_scalable(g, start, o);
+      // Said, since its loops may differ from the seed's rule on some solids (docs/thin.md).
+      if (o.mode == thin_mode::automatic)
+        r.diagnostics.push_back("the selection growing used the scalable rule (" + std::to_string(g.num_faces) +
+                                " faces, above scalable_above = " + std::to_string(o.scalable_above) +
+                                "); mode = fast keeps the seed's rule at any size");
+      return r;
+    }
     default: return detail::thin::grow_faithful(g, start, o);
   }
 }
