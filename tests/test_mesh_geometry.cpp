@@ -125,6 +125,18 @@ TEST_CASE("folded_edges: faces at an edge whose normals point opposite ways") {
     CHECK(cellforge::folded_edges(m, 10).edges.size() == 1);
     CHECK(cellforge::folded_edges(m, 4).edges.empty());
   }
+  // Faces that disagree in orientation are no fold when flat, and one when folded back.
+  {
+    cellforge::surface_mesh<glm::dvec3> m;
+    const auto a = m.add_vertex({0, 0, 0}), b = m.add_vertex({1, 0, 0});
+    const auto c = m.add_vertex({0, 1, 0}), d = m.add_vertex({0.5, -1, 0});
+    m.add_face({a, b, c});
+    m.add_face({a, b, d});  // ab runs the same way in both: a flipped edge
+    REQUIRE(m.is_flipped(m.find_edge(a, b)));
+    CHECK(cellforge::folded_edges(m).edges.empty());
+    m.set_position(d, {0.5, 1, 0.004});
+    CHECK(cellforge::folded_edges(m).edges.size() == 1);
+  }
   // A closed surface has none.
   CHECK(cellforge::folded_edges(cellforge::make_mesh(fixtures::cube())).edges.empty());
 }

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <numbers>
 #include <utility>
 #include <vector>
 
@@ -122,7 +123,8 @@ struct fold_result {
 };
 
 /// Finds m's folds: edges with two faces whose unit normals make an angle above 180° −
-/// within_deg (faces without a normal, zero area, are skipped). O(V + E + F).
+/// within_deg (faces without a normal, zero area, are skipped; on an edge whose faces disagree in
+/// orientation one normal is reversed first). O(V + E + F).
 template <Point3 P>
 fold_result folded_edges(const surface_mesh<P>& m, double within_deg = 20) {
   fold_result r;
@@ -145,10 +147,13 @@ fold_result folded_edges(const surface_mesh<P>& m, double within_deg = 20) {
     const glm::dvec3 v = cellforge::detail::newell(loop, [&](const glm::dvec3& p) { return p; });
     if (glm::length(v) > 0) normal[f.idx()] = glm::normalize(v);
   }
-  const double limit = -std::cos(within_deg * 3.14159265358979323846 / 180);
+  const double limit = -std::cos(within_deg * std::numbers::pi / 180);
   for (const edge_handle e : m.edges()) {
     if (m.is_boundary(e)) continue;
-    const glm::dvec3 a = normal[m.face(e, 0).idx()], b = normal[m.face(e, 1).idx()];
+    // On an edge whose faces disagree in orientation (a Möbius band's seam) one normal is
+    // reversed: compare the surface's sides, not the faces' windings.
+    const glm::dvec3 a = normal[m.face(e, 0).idx()];
+    const glm::dvec3 b = m.is_flipped(e) ? -normal[m.face(e, 1).idx()] : normal[m.face(e, 1).idx()];
     if (glm::dot(a, a) > 0 && glm::dot(b, b) > 0 && glm::dot(a, b) < limit) r.edges.push_back(e);
   }
   return r;
