@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -33,6 +34,7 @@
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
+#include "cellforge/core/rounded_solid.hpp"
 #include "cellforge/sketch/drawing_to_cells.hpp"
 #include "cellforge/sketch/elliptical_arc.hpp"
 #include "cellforge/sketch/round_skeleton.hpp"
@@ -529,6 +531,92 @@ rounds_result<Q, P> reconstruct_rounds(const arc_drawing<P>& d, const rounds_opt
   return out;
 }
 
+namespace detail::blends {
+
+/// The skeleton's face loops (outer loops only) turned outward: coherent senses, all flipped
+/// when the volume they bound is negative. Throws invalid_input naming `who` on a face with
+/// holes. O(F · L).
+template <class = void>
+std::vector<std::vector<std::uint32_t>> outward_loops(const std::vector<std::vector<std::vector<std::uint32_t>>>& faces,
+                                                      const std::vector<glm::dvec3>& X, const std::string& who) {
+  std::vector<std::vector<std::uint32_t>> outer;
+  for (const auto& f : faces) {
+    if (f.size() > 1) throw error(error_category::invalid_input, who + ": faces with holes are not rounded yet");
+    outer.push_back(f[0]);
+  }
+  std::vector<int> sense = detail::coherent_senses(outer);
+  double volume = 0;
+  for (std::size_t l = 0; l < outer.size(); ++l)
+    for (std::size_t k = 1; k + 1 < outer[l].size(); ++k)
+      volume += sense[l] * glm::dot(X[outer[l][0]], glm::cross(X[outer[l][k]], X[outer[l][k + 1]]));
+  for (std::size_t l = 0; l < outer.size(); ++l)
+    if (sense[l] * volume < 0) std::reverse(outer[l].begin(), outer[l].end());
+  return outer;
+}
+
+/// A blend's frame in 3D: its axis through `axis` along the edge d, its cross-section arc from
+/// the axis towards the tangent line in faces[0] (u), turning towards faces[1] (v) through
+/// sweep = π − wedge, and each end's plane (normal g, through corner c).
+struct blend_frame {
+  glm::dvec3 axis{0.0}, d{0.0}, u{0.0}, v{0.0};
+  double radius = 0, sweep = 0;
+  std::array<glm::dvec3, 2> g{}, c{};
+  /// The arc's point at angle phi moved along the edge onto end plane k. O(1).
+  glm::dvec3 at(double phi, std::size_t k) const {
+    const glm::dvec3 q = axis + radius * (std::cos(phi) * u + std::sin(phi) * v);
+    return q + d * (glm::dot(g[k], c[k] - q) / glm::dot(g[k], d));
+  }
+};
+
+/// The frame of blend e on the outward loops `outer`, positions X: the axis is the edge moved
+/// by radius / sin(wedge / 2) along the wedge's bisector. O(L).
+template <class = void>
+blend_frame frame_of(const edge_round& e, const std::vector<std::vector<std::uint32_t>>& outer,
+                     const std::vector<glm::dvec3>& X) {
+  blend_frame b;
+  const glm::dvec3 A = X[e.junctions[0]];
+  b.d = glm::normalize(X[e.junctions[1]] - A);
+  std::array<glm::dvec3, 2> t{};
+  for (std::size_t s = 0; s < 2; ++s) {
+    const auto& loop = outer[e.faces[s]];
+    const int sn = edge_sense(loop, e.junctions[0], e.junctions[1]);
+    const glm::dvec3 n = plane_of(X, loop).first;
+    t[s] = glm::normalize(glm::cross(n, b.d * static_cast<double>(sn)));
+  }
+  const double wedge = std::acos(std::clamp(glm::dot(t[0], t[1]), -1.0, 1.0));
+  b.radius = e.radius;
+  b.axis = A + e.radius / std::sin(0.5 * wedge) * glm::normalize(t[0] + t[1]);
+  b.u = glm::normalize(A + e.setback * t[0] - b.axis);
+  b.v = A + e.setback * t[1] - b.axis;
+  b.v = glm::normalize(b.v - glm::dot(b.v, b.u) * b.u);
+  b.sweep = std::numbers::pi - wedge;
+  for (std::size_t k = 0; k < 2; ++k) {
+    b.g[k] = plane_of(X, outer[e.end_faces[k]]).first;
+    b.c[k] = X[e.junctions[k]];
+  }
+  return b;
+}
+
+/// Marks blend i's two junctions in `at` as its ends (invalid_input naming `who` when one is
+/// already another blend's); false, counted in `skipped` with a note, when it has no radius. O(1).
+template <class = void>
+bool claim_ends(const edge_round& e, std::size_t i, std::vector<std::pair<std::uint32_t, std::uint32_t>>& at,
+                std::size_t& skipped, std::vector<std::string>& diagnostics, const std::string& who) {
+  if (!(e.radius > 0) || e.source == radius_source::none) {
+    ++skipped;
+    diagnostics.push_back("blend " + std::to_string(e.blend) + " has no radius; its edge stays sharp");
+    return false;
+  }
+  for (std::size_t k = 0; k < 2; ++k) {
+    if (at[e.junctions[k]].first != ~std::uint32_t{0})
+      throw error(error_category::invalid_input, who + ": two blends meet at junction " + std::to_string(e.junctions[k]));
+    at[e.junctions[k]] = {static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k)};
+  }
+  return true;
+}
+
+}  // namespace detail::blends
+
 /// Options of rounded_mesh.
 struct rounded_mesh_options {
   /// Largest distance of a blend strip's chords from its circle, relative to the skeleton
@@ -567,20 +655,7 @@ rounded_mesh_result<Q> rounded_mesh(const rounds_result<Q, P>& r, const rounded_
   glm::dvec3 lo = X[0], hi = X[0];
   for (const auto& x : X) lo = glm::min(lo, x), hi = glm::max(hi, x);
   const double tol = options.chord_tolerance * glm::length(glm::dvec2(hi - lo));
-  std::vector<std::vector<std::uint32_t>> outer;
-  for (const auto& f : faces) {
-    if (f.size() > 1)
-      throw error(error_category::invalid_input, "rounded_mesh: faces with holes are not meshed yet");
-    outer.push_back(f[0]);
-  }
-  // Outward loops: coherent senses, flipped when the volume they bound is negative.
-  std::vector<int> sense = detail::coherent_senses(outer);
-  double volume = 0;
-  for (std::size_t l = 0; l < outer.size(); ++l)
-    for (std::size_t k = 1; k + 1 < outer[l].size(); ++k)
-      volume += sense[l] * glm::dot(X[outer[l][0]], glm::cross(X[outer[l][k]], X[outer[l][k + 1]]));
-  for (std::size_t l = 0; l < outer.size(); ++l)
-    if (sense[l] * volume < 0) std::reverse(outer[l].begin(), outer[l].end());
+  const std::vector<std::vector<std::uint32_t>> outer = detail::blends::outward_loops(faces, X, "rounded_mesh");
   // Per junction: the blend end at it (blend, end), if any.
   constexpr std::uint32_t none = ~std::uint32_t{0};
   std::vector<std::pair<std::uint32_t, std::uint32_t>> at(nv, {none, none});
@@ -594,43 +669,12 @@ rounded_mesh_result<Q> rounded_mesh(const rounds_result<Q, P>& r, const rounded_
   std::vector<std::array<std::uint32_t, 2>> first_face(r.rounds.size());
   for (std::size_t i = 0; i < r.rounds.size(); ++i) {
     const edge_round& e = r.rounds[i];
-    if (!(e.radius > 0) || e.source == radius_source::none) {
-      ++out.skipped;
-      out.diagnostics.push_back("blend " + std::to_string(e.blend) + " has no radius; its edge stays sharp");
-      continue;
-    }
-    for (std::size_t k = 0; k < 2; ++k) {
-      if (at[e.junctions[k]].first != none)
-        throw error(error_category::invalid_input,
-                    "rounded_mesh: two blends meet at junction " + std::to_string(e.junctions[k]));
-      at[e.junctions[k]] = {static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k)};
-    }
-    const glm::dvec3 A = X[e.junctions[0]], d = glm::normalize(X[e.junctions[1]] - A);
-    std::array<glm::dvec3, 2> t{};
-    for (std::size_t s = 0; s < 2; ++s) {
-      const auto& loop = outer[e.faces[s]];
-      const int sn = detail::blends::edge_sense(loop, e.junctions[0], e.junctions[1]);
-      const glm::dvec3 n = detail::blends::plane_of(X, loop).first;
-      t[s] = glm::normalize(glm::cross(n, d * static_cast<double>(sn)));
-    }
-    const double wedge = std::acos(std::clamp(glm::dot(t[0], t[1]), -1.0, 1.0));
-    const glm::dvec3 axis = A + e.radius / std::sin(0.5 * wedge) * glm::normalize(t[0] + t[1]);
-    // From the axis: towards the tangent line in face 0, then turning towards face 1.
-    const glm::dvec3 u = glm::normalize(A + e.setback * t[0] - axis);
-    glm::dvec3 v = A + e.setback * t[1] - axis;
-    v = glm::normalize(v - glm::dot(v, u) * u);
-    const double sweep = std::numbers::pi - wedge;
-    const double step = tol < e.radius ? 2 * std::acos(1 - tol / e.radius) : sweep;
-    const int n = std::clamp(static_cast<int>(std::ceil(sweep / step)), 1, options.max_segments);
-    for (std::size_t k = 0; k < 2; ++k) {
-      const glm::dvec3 g = detail::blends::plane_of(X, outer[e.end_faces[k]]).first;
-      const glm::dvec3 c = X[e.junctions[k]];
-      for (int m = 0; m <= n; ++m) {
-        const double phi = sweep * m / n;
-        const glm::dvec3 q = axis + e.radius * (std::cos(phi) * u + std::sin(phi) * v);
-        arc[i][k].push_back(point(q + d * (glm::dot(g, c - q) / glm::dot(g, d))));
-      }
-    }
+    if (!detail::blends::claim_ends(e, i, at, out.skipped, out.diagnostics, "rounded_mesh")) continue;
+    const detail::blends::blend_frame b = detail::blends::frame_of(e, outer, X);
+    const double step = tol < e.radius ? 2 * std::acos(1 - tol / e.radius) : b.sweep;
+    const int n = std::clamp(static_cast<int>(std::ceil(b.sweep / step)), 1, options.max_segments);
+    for (std::size_t k = 0; k < 2; ++k)
+      for (int m = 0; m <= n; ++m) arc[i][k].push_back(point(b.at(b.sweep * m / n, k)));
     // The strip, oriented against faces[0]'s loop along its trimmed edge.
     const bool along = detail::blends::edge_sense(outer[e.faces[0]], e.junctions[0], e.junctions[1]) > 0;
     const auto& a0 = arc[i][along ? 1 : 0];
@@ -677,6 +721,194 @@ rounded_mesh_result<Q> rounded_mesh(const rounds_result<Q, P>& r, const rounded_
     out.mesh.add_face(face);
     out.face_source.push_back(static_cast<std::int64_t>(f));
   }
+  return out;
+}
+
+/// Options of rounded_brep.
+struct rounded_brep_options {
+  /// How far a vertex may lie from a surface or curve it is on and still pass the check of the
+  /// answer, relative to the skeleton's bounding-box diagonal.
+  double tolerance = 1e-9;
+};
+
+/// The rounded solid as an exact boundary (planar faces, one cylinder per blend, straight edges
+/// and end arcs), its volume from the skeleton's and the blends' cross-sections, counts, time;
+/// ok false, with the reason in diagnostics, when the shell fails its check (every edge used once
+/// each way, every vertex on its surfaces and curves, positive volume).
+struct rounded_brep_result {
+  rounded_solid solid;
+  double volume = 0;
+  std::size_t planar_faces = 0, blend_faces = 0, lines = 0, arcs = 0;
+  std::size_t skipped = 0;  ///< blends with no radius: their edges stay sharp
+  bool ok = false;
+  double milliseconds = 0;
+  std::vector<std::string> diagnostics;
+};
+
+/// The rounded solid of a reconstruction as a B-rep for CAD (io::write_step): the blends of
+/// rounded_mesh, each a cylinder face bounded by its two tangent lines and its two end arcs,
+/// the skeleton's faces trimmed by the same edges (an end face's corner replaced by the arc).
+/// The volume is the skeleton's less each round's cross-section (kite less sector) times its
+/// length along the edge between the end planes, plus each fillet's. Throws as rounded_mesh.
+/// O(V + F · L + blends).
+template <Point3 Q, Point2 P>
+rounded_brep_result rounded_brep(const rounds_result<Q, P>& r, const rounded_brep_options& options = {}) {
+  const detail::stopwatch clock;
+  rounded_brep_result out;
+  rounded_solid& S = out.solid;
+  constexpr std::uint32_t none = rounded_solid::npos;
+  const auto& faces = r.reading.face_loops;
+  const std::size_t nv = r.points.size();
+  std::vector<glm::dvec3> X(nv);
+  for (std::size_t j = 0; j < nv; ++j) X[j] = to_dvec3(r.points[j]);
+  if (nv == 0 || faces.empty()) {
+    out.diagnostics.push_back("rounded_brep: the reading has no faces");
+    return out;
+  }
+  glm::dvec3 lo = X[0], hi = X[0];
+  for (const auto& x : X) lo = glm::min(lo, x), hi = glm::max(hi, x);
+  const double tol = options.tolerance * glm::length(hi - lo);
+  const std::vector<std::vector<std::uint32_t>> outer = detail::blends::outward_loops(faces, X, "rounded_brep");
+  double six = 0;
+  for (const auto& l : outer)
+    for (std::size_t k = 1; k + 1 < l.size(); ++k) six += glm::dot(X[l[0]], glm::cross(X[l[k]], X[l[k + 1]]));
+  out.volume = six / 6;
+  const auto point = [&](const glm::dvec3& x) {
+    S.points.push_back(x);
+    return static_cast<std::uint32_t>(S.points.size() - 1);
+  };
+  // Per junction the blend end at it; per blend and end its tangent points in faces[0], faces[1].
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> at(nv, {none, none});
+  std::vector<std::array<std::array<std::uint32_t, 2>, 2>> tangent(r.rounds.size());
+  std::vector<std::array<std::uint32_t, 2>> arc(r.rounds.size(), {none, none});
+  std::vector<std::uint32_t> cylinder(r.rounds.size(), none);
+  for (std::size_t i = 0; i < r.rounds.size(); ++i) {
+    const edge_round& e = r.rounds[i];
+    if (!detail::blends::claim_ends(e, i, at, out.skipped, out.diagnostics, "rounded_brep")) continue;
+    const detail::blends::blend_frame b = detail::blends::frame_of(e, outer, X);
+    const double half = 0.5 * b.sweep;
+    const glm::dvec3 middle = std::cos(half) * b.u + std::sin(half) * b.v;
+    cylinder[i] = static_cast<std::uint32_t>(S.blends.size());
+    S.blends.push_back({b.axis, b.d, e.radius, e.convex, middle});
+    for (std::size_t k = 0; k < 2; ++k) {
+      tangent[i][k] = {point(b.at(0, k)), point(b.at(b.sweep, k))};
+      arc[i][k] = static_cast<std::uint32_t>(S.edges.size());
+      S.edges.push_back({tangent[i][k][0], tangent[i][k][1], cylinder[i], b.g[k]});
+      ++out.arcs;
+    }
+    // The blend's cross-section (in the plane through the edge's first corner, square to it):
+    // the kite edge, tangent point, axis, tangent point less the sector; its prism between
+    // the end planes has the area times the length along d through the section's centroid.
+    const glm::dvec3 A = X[e.junctions[0]];
+    const glm::dvec3 p0 = b.axis + e.radius * b.u, p1 = b.axis + e.radius * (std::cos(b.sweep) * b.u + std::sin(b.sweep) * b.v);
+    const double k0 = 0.5 * glm::length(glm::cross(p0 - b.axis, A - b.axis)),
+                 k1 = 0.5 * glm::length(glm::cross(A - b.axis, p1 - b.axis));
+    const double sector = 0.5 * e.radius * e.radius * b.sweep;
+    const glm::dvec3 kite_centroid = (k0 * (b.axis + p0 + A) + k1 * (b.axis + A + p1)) / (3 * (k0 + k1));
+    const glm::dvec3 sector_centroid =
+        b.axis + (half > 0 ? 2 * e.radius * std::sin(half) / (3 * half) : e.radius) * middle;
+    const double area = k0 + k1 - sector;
+    const glm::dvec3 c = ((k0 + k1) * kite_centroid - sector * sector_centroid) / area;
+    const auto along = [&](std::size_t k) { return glm::dot(b.g[k], b.c[k] - c) / glm::dot(b.g[k], b.d); };
+    out.volume += (e.convex ? -1 : 1) * area * std::abs(along(1) - along(0));
+  }
+  // Straight edges, one per pair of end points.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> lines;
+  const auto line = [&](std::uint32_t a, std::uint32_t b) -> std::pair<std::uint32_t, bool> {
+    if (a == b) throw error(error_category::invalid_input, "rounded_brep: a trimmed edge has length zero");
+    const auto key = std::minmax(a, b);
+    auto [it, fresh] = lines.try_emplace({key.first, key.second}, static_cast<std::uint32_t>(S.edges.size()));
+    if (fresh) S.edges.push_back({a, b, none, glm::dvec3(0.0)}), ++out.lines;
+    return {it->second, S.edges[it->second].a == a};
+  };
+  std::vector<std::uint32_t> corner(nv, none);
+  for (std::size_t f = 0; f < outer.size(); ++f) {
+    const auto& loop = outer[f];
+    // The face's boundary points, each with the arc to the next one (none: a straight edge).
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> items;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const std::uint32_t j = loop[k], prev = loop[(k + loop.size() - 1) % loop.size()],
+                          next = loop[(k + 1) % loop.size()];
+      const auto [bi, end] = at[j];
+      if (bi == none) {
+        if (corner[j] == none) corner[j] = point(X[j]);
+        items.push_back({corner[j], none});
+        continue;
+      }
+      const edge_round& e = r.rounds[bi];
+      if (f == e.faces[0] || f == e.faces[1]) {
+        const std::uint32_t other = e.junctions[1 - end];
+        if (prev != other && next != other)
+          throw error(error_category::invalid_input,
+                      "rounded_brep: face " + std::to_string(f) + " holds a blend's corner but not its edge");
+        items.push_back({tangent[bi][end][f == e.faces[0] ? 0 : 1], none});
+      } else if (f == e.end_faces[end]) {
+        const std::size_t first = detail::blends::edge_sense(outer[e.faces[0]], prev, j) != 0 ? 0 : 1;
+        items.push_back({tangent[bi][end][first], arc[bi][end]});
+        items.push_back({tangent[bi][end][1 - first], none});
+      } else {
+        throw error(error_category::invalid_input,
+                    "rounded_brep: junction " + std::to_string(j) + " of a blend is on a fourth face");
+      }
+    }
+    rounded_solid::face face;
+    face.normal = detail::blends::plane_of(X, loop).first;
+    for (std::size_t m = 0; m < items.size(); ++m) {
+      const std::uint32_t a = items[m].first, b = items[(m + 1) % items.size()].first;
+      if (items[m].second != none)
+        face.loop.push_back({items[m].second, S.edges[items[m].second].a == a});
+      else
+        face.loop.push_back(line(a, b));
+    }
+    S.faces.push_back(std::move(face));
+    ++out.planar_faces;
+  }
+  // Per blend its cylinder face, run against faces[0]'s use of the first tangent line.
+  for (std::size_t i = 0; i < r.rounds.size(); ++i) {
+    if (cylinder[i] == none) continue;
+    const auto& T = tangent[i];
+    rounded_solid::face face;
+    face.blend = cylinder[i];
+    face.loop = {line(T[0][0], T[1][0]), {arc[i][1], true}, line(T[1][1], T[0][1]), {arc[i][0], false}};
+    const auto& beside = S.faces[r.rounds[i].faces[0]].loop;
+    if (std::find(beside.begin(), beside.end(), face.loop[0]) != beside.end()) {
+      std::reverse(face.loop.begin(), face.loop.end());
+      for (auto& use : face.loop) use.second = !use.second;
+    }
+    S.faces.push_back(std::move(face));
+    ++out.blend_faces;
+  }
+  // The check of the answer: a closed, coherently oriented shell on its surfaces, of positive volume.
+  std::vector<std::array<int, 2>> uses(S.edges.size(), {0, 0});
+  for (const auto& f : S.faces)
+    for (const auto& [e, forward] : f.loop) ++uses[e][forward ? 0 : 1];
+  std::size_t open = 0;
+  for (std::size_t e = 0; e < uses.size(); ++e)
+    if (uses[e][0] != 1 || uses[e][1] != 1)
+      if (++open <= 5)
+        out.diagnostics.push_back("rounded_brep: edge " + std::to_string(e) + " is used " +
+                                  std::to_string(uses[e][0]) + " times forward and " + std::to_string(uses[e][1]) +
+                                  " backward (once each wanted)");
+  double off = 0;
+  for (const auto& f : S.faces)
+    for (const auto& [e, forward] : f.loop)
+      for (const std::uint32_t p : {S.edges[e].a, S.edges[e].b}) {
+        const glm::dvec3 x = S.points[p];
+        if (f.blend == none) {
+          const glm::dvec3 x0 = S.points[S.edges[f.loop[0].first].a];
+          off = std::max(off, std::abs(glm::dot(x - x0, f.normal)));
+        } else {
+          const rounded_solid::cylinder& c = S.blends[f.blend];
+          const glm::dvec3 q = x - c.point;
+          off = std::max(off, std::abs(glm::length(q - glm::dot(q, c.axis) * c.axis) - c.radius));
+        }
+      }
+  if (off > tol)
+    out.diagnostics.push_back("rounded_brep: a vertex is " + std::to_string(off) +
+                              " from a surface of its face, more than " + std::to_string(tol));
+  if (!(out.volume > 0)) out.diagnostics.push_back("rounded_brep: the solid's volume is not positive");
+  out.ok = open == 0 && off <= tol && out.volume > 0;
+  out.milliseconds = clock.ms();
   return out;
 }
 
