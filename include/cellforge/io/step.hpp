@@ -4,13 +4,15 @@
 /// STEP (ISO 10303-21 text, AP214 "automotive_design") of a cell complex: every volume a
 /// MANIFOLD_SOLID_BREP (BREP_WITH_VOIDS with cavities) of planar ADVANCED_FACEs, all solids
 /// sharing their vertices, edges, loops and planes; faces in no volume as an OPEN_SHELL of a
-/// SHELL_BASED_SURFACE_MODEL; half-edge meshes as faceted B-reps. See docs/formats.md "STEP".
+/// SHELL_BASED_SURFACE_MODEL; half-edge meshes as faceted B-reps; a rounded solid with its
+/// blends as CYLINDRICAL_SURFACE faces trimmed by CIRCLE or ELLIPSE end arcs. See docs/formats.md "STEP".
 
 #include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <ostream>
 #include <span>
 #include <string>
@@ -27,6 +29,7 @@
 #include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
+#include "cellforge/core/rounded_solid.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"
 #include "cellforge/io/detail/output_buffer.hpp"
 #include "cellforge/io/file_path.hpp"
@@ -57,6 +60,8 @@ struct step_result {
   std::size_t edges = 0;
   std::size_t vertices = 0;
   std::size_t planes = 0;
+  std::size_t cylinders = 0;  ///< CYLINDRICAL_SURFACEs (a rounded solid's blends)
+  std::size_t conics = 0;     ///< CIRCLEs and ELLIPSEs (a blend's end arcs)
   std::size_t entities = 0;
   double uncertainty = 0;  ///< the distance accuracy written, in model units
   double milliseconds = 0;
@@ -187,7 +192,80 @@ struct step_data {
     end();
     return n;
   }
+  /// "NAME('',#a,#b,...)" as entity #n; returns n.
+  std::size_t entity(std::string_view name, std::initializer_list<std::size_t> args, std::string_view tail = {}) {
+    const std::size_t n = begin();
+    text += name;
+    text += "(''";
+    for (const std::size_t a : args) {
+      text += ',';
+      ref(a);
+    }
+    text += tail;
+    text += ')';
+    end();
+    return n;
+  }
+  /// A VERTEX_POINT on point entity p.
+  std::size_t vertex(std::size_t p) { return entity("VERTEX_POINT", {p}); }
+  /// An AXIS2_PLACEMENT_3D at point entity `origin`, its z along axis, its x along ref (unit).
+  std::size_t placement(std::size_t origin, const glm::dvec3& axis, const glm::dvec3& ref) {
+    const std::size_t z = direction(axis), x = direction(ref);
+    return entity("AXIS2_PLACEMENT_3D", {origin, z, x});
+  }
+  /// A LINE from point entity p along the unit direction dir, its VECTOR `length` long.
+  std::size_t line(std::size_t p, const glm::dvec3& dir, double length) {
+    const std::size_t u = direction(dir);
+    const std::size_t vec = begin();
+    text += "VECTOR('',";
+    ref(u);
+    text += ',';
+    step_real(text, length);
+    text += ')';
+    end();
+    return entity("LINE", {p, vec});
+  }
+  /// An EDGE_CURVE from vertex va to vb on `curve`, running with it.
+  std::size_t edge_curve(std::size_t va, std::size_t vb, std::size_t curve) {
+    return entity("EDGE_CURVE", {va, vb, curve}, ",.T.");
+  }
+  /// An EDGE_LOOP of (EDGE_CURVE, forward) uses, each an ORIENTED_EDGE.
+  std::size_t edge_loop(std::span<const std::pair<std::size_t, bool>> uses) {
+    std::vector<std::size_t> oriented;
+    for (const auto& [e, forward] : uses) {
+      oriented.push_back(begin());
+      text += "ORIENTED_EDGE('',*,*,";
+      ref(e);
+      text += forward ? ",.T.)" : ",.F.)";
+      end();
+    }
+    const std::size_t n = begin();
+    text += "EDGE_LOOP('',";
+    refs(oriented);
+    text += ')';
+    end();
+    return n;
+  }
 };
+
+/// The check that every point is finite, and the distance accuracy written: options.uncertainty,
+/// or 1e-9 of the points' bounding-box diagonal (1e-9 with no points). O(points).
+template <class = void>
+bounding_box step_bounds(std::span<const glm::dvec3> pts, const step_write_options& options, step_result& result) {
+  bounding_box box;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    for (int k = 0; k < 3; ++k)
+      if (!std::isfinite(pts[i][k]))
+        throw error(error_category::invalid_input,
+                    "write_step: point " + std::to_string(i) + " has a non-finite coordinate");
+    box.add(pts[i]);
+  }
+  const double diagonal = pts.empty() ? 0.0 : box.diagonal();
+  if (!(options.uncertainty >= 0) || !std::isfinite(options.uncertainty))
+    throw error(error_category::invalid_input, "write_step: the uncertainty must be a finite number >= 0");
+  result.uncertainty = options.uncertainty > 0 ? options.uncertainty : diagonal > 0 ? 1e-9 * diagonal : 1e-9;
+  return box;
+}
 
 /// Signed faces split into sets connected through shared edges (a volume's shells, the open
 /// shells of faces in no volume). O(size · log).
@@ -237,26 +315,14 @@ double shell_volume(const cell_topology& cc, std::span<const glm::dvec3> pts,
   return sum / 6.0;
 }
 
-/// The whole STEP file of cc. O(size of cc · log).
+/// The entities every file starts with, numbered from #1: the product (an AP214 part), its
+/// units and geometric context (uncertainty in model units), the world placement. O(1).
+struct step_context {
+  std::size_t context = 0, shape = 0, placement = 0;
+};
 template <class = void>
-std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts,
-                      const step_write_options& options, step_result& result) {
+step_context step_preamble(step_data& d, const step_write_options& options, double uncertainty) {
   using std::size_t;
-  bounding_box box;
-  for (size_t i = 0; i < pts.size(); ++i) {
-    for (int k = 0; k < 3; ++k)
-      if (!std::isfinite(pts[i][k]))
-        throw error(error_category::invalid_input,
-                    "write_step: point " + std::to_string(i) + " has a non-finite coordinate");
-    box.add(pts[i]);
-  }
-  const double diagonal = pts.empty() ? 0.0 : box.diagonal();
-  if (!(options.uncertainty >= 0) || !std::isfinite(options.uncertainty))
-    throw error(error_category::invalid_input, "write_step: the uncertainty must be a finite number >= 0");
-  result.uncertainty = options.uncertainty > 0 ? options.uncertainty : diagonal > 0 ? 1e-9 * diagonal : 1e-9;
-  const glm::dvec3 centre = pts.empty() ? glm::dvec3(0.0) : box.center();
-
-  step_data d;
   // Product structure (AP214 part), units and the geometric context.
   const size_t app = d.begin();
   d.text += "APPLICATION_CONTEXT('automotive design')";
@@ -321,7 +387,7 @@ std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts,
   d.end();
   const size_t accuracy = d.begin();
   d.text += "UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE(";
-  step_real(d.text, result.uncertainty);
+  step_real(d.text, uncertainty);
   d.text += "),";
   d.ref(length_unit);
   d.text += ",'distance_accuracy_value','confusion accuracy')";
@@ -344,16 +410,69 @@ std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts,
   d.text += ",$,$)";
   d.end();
 
+  return {context, pds, placement};
+}
+
+/// The ADVANCED_BREP_SHAPE_REPRESENTATION of `solids` (with the world placement) as the
+/// product's shape; returns its number. O(solids).
+template <class = void>
+std::size_t step_brep_shape(step_data& d, const step_write_options& options, const step_context& ctx,
+                            std::span<const std::size_t> solids) {
+  std::vector<std::size_t> items{ctx.placement};
+  items.insert(items.end(), solids.begin(), solids.end());
+  const std::size_t brep = d.begin();
+  d.text += "ADVANCED_BREP_SHAPE_REPRESENTATION(";
+  step_string(d.text, options.name);
+  d.text += ',';
+  d.refs(items);
+  d.text += ',';
+  d.ref(ctx.context);
+  d.text += ')';
+  d.end();
+  d.begin();
+  d.text += "SHAPE_DEFINITION_REPRESENTATION(";
+  d.ref(ctx.shape);
+  d.text += ',';
+  d.ref(brep);
+  d.text += ')';
+  d.end();
+  return brep;
+}
+
+/// The whole file: header (description, name, time stamp, schema) and the DATA section d. O(size).
+template <class = void>
+std::string step_file(const step_data& d, const step_write_options& options, std::string_view description) {
+  std::string out = "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((";
+  step_string(out, description);
+  out += "),'2;1');\nFILE_NAME(";
+  step_string(out, options.name);
+  out += ',';
+  step_string(out, options.timestamp);
+  out += ",(''),(''),'cellforge " CELLFORGE_VERSION_STRING "','cellforge','');\n";
+  out += "FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n";
+  out += d.text;
+  out += "ENDSEC;\nEND-ISO-10303-21;\n";
+  return out;
+}
+
+/// The whole STEP file of cc. O(size of cc · log).
+template <class = void>
+std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts,
+                      const step_write_options& options, step_result& result) {
+  using std::size_t;
+  const bounding_box box = step_bounds(pts, options, result);
+  const glm::dvec3 centre = pts.empty() ? glm::dvec3(0.0) : box.center();
+
+  step_data d;
+  const step_context ctx = step_preamble(d, options, result.uncertainty);
+  const size_t placement = ctx.placement;
+
   // Vertices and edges, written once and shared by every face that uses them.
   const size_t nv = cc.num_vertices(), ne = cc.num_edges(), nf = cc.num_faces();
   std::vector<size_t> vertex_point(nv), vertex_entity(nv);
   for (cell_vertex v : cc.vertices()) {
     vertex_point[v.idx()] = d.point(pts[v.idx()]);
-    vertex_entity[v.idx()] = d.begin();
-    d.text += "VERTEX_POINT('',";
-    d.ref(vertex_point[v.idx()]);
-    d.text += ')';
-    d.end();
+    vertex_entity[v.idx()] = d.vertex(vertex_point[v.idx()]);
   }
   // Only edges on faces: dangling edges bound nothing a solid or shell can hold.
   std::vector<char> edge_used(ne, 0);
@@ -368,30 +487,9 @@ std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts,
     if (!(length > 0))
       throw error(error_category::invalid_input, "write_step: edge " + std::to_string(e.idx()) +
                                                      " has length zero (a LINE needs a direction)");
-    const size_t dir = d.direction((b - a) / length);
-    const size_t vec = d.begin();
-    d.text += "VECTOR('',";
-    d.ref(dir);
-    d.text += ',';
-    step_real(d.text, length);
-    d.text += ')';
-    d.end();
-    const size_t line = d.begin();
-    d.text += "LINE('',";
-    d.ref(vertex_point[cc.source(e).idx()]);
-    d.text += ',';
-    d.ref(vec);
-    d.text += ')';
-    d.end();
-    edge_entity[e.idx()] = d.begin();
-    d.text += "EDGE_CURVE('',";
-    d.ref(vertex_entity[cc.source(e).idx()]);
-    d.text += ',';
-    d.ref(vertex_entity[cc.target(e).idx()]);
-    d.text += ',';
-    d.ref(line);
-    d.text += ",.T.)";
-    d.end();
+    const size_t line = d.line(vertex_point[cc.source(e).idx()], (b - a) / length, length);
+    edge_entity[e.idx()] =
+        d.edge_curve(vertex_entity[cc.source(e).idx()], vertex_entity[cc.target(e).idx()], line);
     ++result.edges;
   }
   result.vertices = nv;
@@ -428,37 +526,13 @@ std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts,
             "face " + std::to_string(f.idx()) + ": a vertex is " + std::to_string(off) +
             " from the face's plane, more than the uncertainty " + std::to_string(result.uncertainty));
     }
-    const size_t origin = vertex_point[outer[0].idx()];
-    const size_t axis = d.direction(n), ref_dir = d.direction(glm::normalize(ref));
-    const size_t place = d.begin();
-    d.text += "AXIS2_PLACEMENT_3D('',";
-    d.ref(origin);
-    d.text += ',';
-    d.ref(axis);
-    d.text += ',';
-    d.ref(ref_dir);
-    d.text += ')';
-    d.end();
-    face_plane[f.idx()] = d.begin();
-    d.text += "PLANE('',";
-    d.ref(place);
-    d.text += ')';
-    d.end();
+    const size_t place = d.placement(vertex_point[outer[0].idx()], n, glm::normalize(ref));
+    face_plane[f.idx()] = d.entity("PLANE", {place});
     ++result.planes;
     for (size_t l = 0; l < cc.num_loops(f); ++l) {
-      std::vector<size_t> oriented_edges;
-      for (const auto& [e, s] : cc.loop_edges(f, l)) {
-        oriented_edges.push_back(d.begin());
-        d.text += "ORIENTED_EDGE('',*,*,";
-        d.ref(edge_entity[e.idx()]);
-        d.text += s > 0 ? ",.T.)" : ",.F.)";
-        d.end();
-      }
-      face_loops[f.idx()].push_back(d.begin());
-      d.text += "EDGE_LOOP('',";
-      d.refs(oriented_edges);
-      d.text += ')';
-      d.end();
+      std::vector<std::pair<size_t, bool>> uses;
+      for (const auto& [e, s] : cc.loop_edges(f, l)) uses.emplace_back(edge_entity[e.idx()], s > 0);
+      face_loops[f.idx()].push_back(d.edge_loop(uses));
     }
   }
   if (off_plane > 10)
@@ -548,24 +622,7 @@ std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts,
 
   // The representations: solids in an ADVANCED_BREP_SHAPE_REPRESENTATION (the product's
   // shape), open shells in a MANIFOLD_SURFACE_SHAPE_REPRESENTATION related to it.
-  std::vector<size_t> items{placement};
-  items.insert(items.end(), solids.begin(), solids.end());
-  const size_t brep = d.begin();
-  d.text += "ADVANCED_BREP_SHAPE_REPRESENTATION(";
-  step_string(d.text, options.name);
-  d.text += ',';
-  d.refs(items);
-  d.text += ',';
-  d.ref(context);
-  d.text += ')';
-  d.end();
-  d.begin();
-  d.text += "SHAPE_DEFINITION_REPRESENTATION(";
-  d.ref(pds);
-  d.text += ',';
-  d.ref(brep);
-  d.text += ')';
-  d.end();
+  const size_t brep = step_brep_shape(d, options, ctx, solids);
   if (!open_shells.empty()) {
     const size_t model = d.begin();
     d.text += "SHELL_BASED_SURFACE_MODEL('',";
@@ -580,7 +637,7 @@ std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts,
     d.text += ',';
     d.ref(model);
     d.text += "),";
-    d.ref(context);
+    d.ref(ctx.context);
     d.text += ')';
     d.end();
     d.begin();
@@ -592,16 +649,7 @@ std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts,
     d.end();
   }
   result.entities = d.next - 1;
-
-  std::string out = "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('cellforge cell complex'),'2;1');\nFILE_NAME(";
-  step_string(out, options.name);
-  out += ',';
-  step_string(out, options.timestamp);
-  out += ",(''),(''),'cellforge " CELLFORGE_VERSION_STRING "','cellforge','');\n";
-  out += "FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n";
-  out += d.text;
-  out += "ENDSEC;\nEND-ISO-10303-21;\n";
-  return out;
+  return step_file(d, options, "cellforge cell complex");
 }
 
 /// A half-edge mesh as a cell complex for STEP: its faces, those not flat to 1e-9 of the
@@ -659,6 +707,175 @@ cell_complex<P> mesh_step_cells(const surface_mesh<P>& m) {
   return make_cell_complex(std::move(in));
 }
 
+/// The STEP file of a rounded solid: one MANIFOLD_SOLID_BREP, planar faces and a
+/// CYLINDRICAL_SURFACE per blend, LINE edges and the blends' end arcs (CIRCLE when the end
+/// plane is square to the axis, else ELLIPSE), each with its sense. O(size of s).
+template <class = void>
+std::string step_rounded_text(const rounded_solid& s, const step_write_options& options, step_result& result) {
+  using std::size_t;
+  constexpr std::uint32_t none = rounded_solid::npos;
+  step_bounds(s.points, options, result);
+  if (s.faces.empty()) throw error(error_category::invalid_input, "write_step: the rounded solid has no faces");
+  for (const auto& e : s.edges)
+    if (e.a >= s.points.size() || e.b >= s.points.size() || (e.blend != none && e.blend >= s.blends.size()))
+      throw error(error_category::invalid_input, "write_step: a rounded solid's edge names a missing point or blend");
+  for (const auto& f : s.faces) {
+    if (f.loop.empty() || (f.blend != none && f.blend >= s.blends.size()))
+      throw error(error_category::invalid_input, "write_step: a rounded solid's face has no loop or a missing blend");
+    for (const auto& [e, forward] : f.loop)
+      if (e >= s.edges.size()) throw error(error_category::invalid_input, "write_step: a face names a missing edge");
+  }
+  double off = 0;  // the check: vertices on their curves and surfaces, within the uncertainty
+  const auto radial = [&](const rounded_solid::cylinder& c, const glm::dvec3& x) {
+    glm::dvec3 q = x - c.point;
+    q -= glm::dot(q, c.axis) * c.axis;
+    off = std::max(off, std::abs(glm::length(q) - c.radius));
+    return glm::normalize(q);
+  };
+
+  step_data d;
+  const step_context ctx = step_preamble(d, options, result.uncertainty);
+  std::vector<size_t> vertex_point(s.points.size()), vertex_entity(s.points.size());
+  for (size_t v = 0; v < s.points.size(); ++v) {
+    vertex_point[v] = d.point(s.points[v]);
+    vertex_entity[v] = d.vertex(vertex_point[v]);
+  }
+  result.vertices = s.points.size();
+  std::vector<size_t> edge_entity(s.edges.size());
+  for (size_t i = 0; i < s.edges.size(); ++i) {
+    const rounded_solid::edge& e = s.edges[i];
+    const glm::dvec3 a = s.points[e.a], b = s.points[e.b];
+    size_t curve = 0;
+    if (e.blend == none) {
+      const double length = glm::length(b - a);
+      if (!(length > 0))
+        throw error(error_category::invalid_input,
+                    "write_step: edge " + std::to_string(i) + " has length zero (a LINE needs a direction)");
+      curve = d.line(vertex_point[e.a], (b - a) / length, length);
+    } else {
+      // The cylinder cut by the end plane: centred where the axis meets it, oriented so that
+      // the curve runs from a to b the short way, through the blend's middle.
+      const rounded_solid::cylinder& c = s.blends[e.blend];
+      const double gl = glm::length(e.plane_normal);
+      const glm::dvec3 g = gl > 0 ? e.plane_normal / gl : e.plane_normal;
+      const double gd = glm::dot(g, c.axis);
+      if (!(std::abs(gd) > 1e-9))
+        throw error(error_category::invalid_input,
+                    "write_step: edge " + std::to_string(i) + ": its plane holds its cylinder's axis");
+      const glm::dvec3 centre = c.point + c.axis * (glm::dot(g, a - c.point) / gd);
+      const glm::dvec3 ra = radial(c, a);
+      radial(c, b);
+      off = std::max(off, std::abs(glm::dot(b - a, g)));
+      const double turn = glm::dot(glm::cross(ra, c.middle), c.axis);
+      const glm::dvec3 normal = g * ((gd > 0) == (turn > 0) ? 1.0 : -1.0);
+      const size_t centre_point = d.point(centre);
+      if (1 - std::abs(gd) <= 1e-12) {
+        glm::dvec3 ref = -c.middle - glm::dot(-c.middle, normal) * normal;  // the seam opposite the arc
+        const size_t place = d.placement(centre_point, normal, glm::normalize(ref));
+        curve = d.begin();
+        d.text += "CIRCLE('',";
+        d.ref(place);
+        d.text += ',';
+        step_real(d.text, c.radius);
+        d.text += ')';
+        d.end();
+      } else {
+        // The major axis (radius / |cos|) is the axis's direction in the plane; its sign puts
+        // parameter 0 opposite the arc.
+        glm::dvec3 x = glm::normalize(c.axis - gd * g);
+        if (glm::dot(x, c.middle) > 0) x = -x;
+        const size_t place = d.placement(centre_point, normal, x);
+        curve = d.begin();
+        d.text += "ELLIPSE('',";
+        d.ref(place);
+        d.text += ',';
+        step_real(d.text, c.radius / std::abs(gd));
+        d.text += ',';
+        step_real(d.text, c.radius);
+        d.text += ')';
+        d.end();
+      }
+      ++result.conics;
+    }
+    edge_entity[i] = d.edge_curve(vertex_entity[e.a], vertex_entity[e.b], curve);
+    ++result.edges;
+  }
+  std::vector<size_t> surface_of_blend(s.blends.size());
+  for (size_t i = 0; i < s.blends.size(); ++i) {
+    const rounded_solid::cylinder& c = s.blends[i];
+    if (!(c.radius > 0) || !(glm::length(c.axis) > 0.5))
+      throw error(error_category::invalid_input, "write_step: blend " + std::to_string(i) + " has no radius or axis");
+    const size_t origin = d.point(c.point);
+    const size_t place = d.placement(origin, c.axis, -c.middle);  // the seam opposite the blend
+    surface_of_blend[i] = d.begin();
+    d.text += "CYLINDRICAL_SURFACE('',";
+    d.ref(place);
+    d.text += ',';
+    step_real(d.text, c.radius);
+    d.text += ')';
+    d.end();
+    ++result.cylinders;
+  }
+  std::vector<size_t> faces;
+  for (size_t fi = 0; fi < s.faces.size(); ++fi) {
+    const rounded_solid::face& f = s.faces[fi];
+    size_t surface = 0;
+    bool same_sense = true;
+    if (f.blend == none) {
+      const glm::dvec3 n = glm::normalize(f.normal);
+      const glm::dvec3 x0 = s.points[s.edges[f.loop[0].first].a];
+      glm::dvec3 ref(0.0);  // the longest edge chord across the normal
+      for (const auto& [e, forward] : f.loop) {
+        const glm::dvec3 p = s.points[s.edges[e].a], q = s.points[s.edges[e].b];
+        off = std::max({off, std::abs(glm::dot(p - x0, n)), std::abs(glm::dot(q - x0, n))});
+        const glm::dvec3 t = (q - p) - glm::dot(q - p, n) * n;
+        if (glm::length(t) > glm::length(ref)) ref = t;
+      }
+      if (!(glm::length(ref) > 0))
+        throw error(error_category::invalid_input, "write_step: face " + std::to_string(fi) + " has no extent");
+      const size_t place = d.placement(vertex_point[s.edges[f.loop[0].first].a], n, glm::normalize(ref));
+      surface = d.entity("PLANE", {place});
+      ++result.planes;
+    } else {
+      surface = surface_of_blend[f.blend];
+      same_sense = s.blends[f.blend].convex;  // a fillet's solid lies outside its cylinder
+      for (const auto& [e, forward] : f.loop)
+        for (const std::uint32_t p : {s.edges[e].a, s.edges[e].b}) radial(s.blends[f.blend], s.points[p]);
+    }
+    std::vector<std::pair<size_t, bool>> uses;
+    for (const auto& [e, forward] : f.loop) uses.emplace_back(edge_entity[e], forward);
+    const size_t bound = d.entity("FACE_OUTER_BOUND", {d.edge_loop(uses)}, ",.T.");
+    faces.push_back(d.begin());
+    d.text += "ADVANCED_FACE('',(";
+    d.ref(bound);
+    d.text += "),";
+    d.ref(surface);
+    d.text += same_sense ? ",.T.)" : ",.F.)";
+    d.end();
+    ++result.faces;
+  }
+  if (off > result.uncertainty)
+    result.diagnostics.push_back("a vertex is " + std::to_string(off) +
+                                 " from a curve or surface it bounds, more than the uncertainty " +
+                                 std::to_string(result.uncertainty));
+  const size_t shell = d.begin();
+  d.text += "CLOSED_SHELL('',";
+  d.refs(faces);
+  d.text += ')';
+  d.end();
+  const size_t solid = d.begin();
+  d.text += "MANIFOLD_SOLID_BREP(";
+  step_string(d.text, options.name);
+  d.text += ',';
+  d.ref(shell);
+  d.text += ')';
+  d.end();
+  result.solids = 1;
+  step_brep_shape(d, options, ctx, std::span<const size_t>(&solid, 1));
+  result.entities = d.next - 1;
+  return step_file(d, options, "cellforge rounded solid");
+}
+
 }  // namespace detail
 
 /// Writes cc as STEP AP214: one MANIFOLD_SOLID_BREP per volume (BREP_WITH_VOIDS with cavities)
@@ -698,6 +915,28 @@ template <Point3 P>
 step_result write_step(const file_path& path, const surface_mesh<P>& m,
                        const step_write_options& options = {}) {
   return write_step(path, detail::mesh_step_cells(m), options);
+}
+
+/// Writes a rounded solid (rounded_brep in sketch/rounds.hpp) as STEP AP214: one
+/// MANIFOLD_SOLID_BREP of planar faces and a CYLINDRICAL_SURFACE face per blend, trimmed by
+/// LINE edges and CIRCLE or ELLIPSE end arcs. O(size of s). Throws invalid_input on a
+/// non-finite point, a zero-length line, an end plane holding its blend's axis; io on failure.
+template <class = void>
+step_result write_step(std::ostream& os, const rounded_solid& s, const step_write_options& options = {}) {
+  const cellforge::detail::stopwatch clock;
+  step_result result;
+  const std::string text = detail::step_rounded_text(s, options, result);
+  os.write(text.data(), static_cast<std::streamsize>(text.size()));
+  if (!os) throw error(error_category::io, "step: writing to the stream failed");
+  result.milliseconds = clock.ms();
+  return result;
+}
+/// The rounded solid to a STEP file (beside it, then renamed over it). O(size of s).
+template <class = void>
+step_result write_step(const file_path& path, const rounded_solid& s, const step_write_options& options = {}) {
+  step_result result;
+  detail::write_file(path, [&](std::ostream& os) { result = write_step(os, s, options); });
+  return result;
 }
 
 }  // namespace cellforge::io
