@@ -3,7 +3,8 @@
 // finds it). Every cell complex of the wireframe sweep (its sample; CELLFORGE_SWEEP=full: all of it)
 // is written as STEP and read back with STEPControl_Reader with OCCT's shape healing switched
 // off, so that what is judged is the file as written: BRepCheck_Analyzer valid, one solid per
-// volume, each solid's volume equal to ours to 1e-9 relative, and the face count.
+// volume, each solid's volume equal to ours to 1e-9 relative, and the face count. So is every
+// rounded solid of the rounds sweep (sketch/rounds.hpp, rounded_brep): its blends cylinders.
 #include <doctest/doctest.h>
 
 #include <chrono>
@@ -20,6 +21,8 @@
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/core/bounding_box.hpp"
 #include "cellforge/io/step.hpp"
+#include "cellforge/sketch/rounds.hpp"
+#include "cellforge/sketch/sample_round_drawings.hpp"
 #include "cellforge/tubes/sample_skeletons.hpp"
 #include "cellforge/tubes/tube_mesh.hpp"
 #include "cellforge/wireframe/sample_models.hpp"
@@ -27,14 +30,18 @@
 
 // OpenCASCADE after cellforge: its Handle(...) macro would rewrite cellforge's template
 // parameters of that name.
+#include <BRepAdaptor_Surface.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepGProp.hxx>
 #include <GProp_GProps.hxx>
+#include <GeomAbs_SurfaceType.hxx>
 #include <Message_ProgressRange.hxx>
 #include <STEPControl_Reader.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
 #include <TopoDS_Shape.hxx>
+#include <ShapeFix_Edge.hxx>
 #include <XSAlgo.hxx>
 #include <XSAlgo_AlgoContainer.hxx>
 #include <gp_Trsf.hxx>
@@ -59,22 +66,43 @@ class no_healing : public XSAlgo_AlgoContainer {
   }
 };
 
+// The same, except that an edge with no curve on a face's surface gets one computed (a STEP file
+// need not carry pcurves; planes need none, cylinders do): nothing is turned round or rejoined,
+// so a wrongly oriented face still shows. O(edges).
+class pcurves_only : public XSAlgo_AlgoContainer {
+ public:
+  TopoDS_Shape ProcessShape(const TopoDS_Shape& shape, const Standard_Real precision, const Standard_Real,
+                            const Standard_CString, const Standard_CString, Handle(Standard_Transient) &,
+                            const Message_ProgressRange&, const Standard_Boolean) const override {
+    for (TopExp_Explorer f(shape, TopAbs_FACE); f.More(); f.Next())
+      for (TopExp_Explorer e(f.Current(), TopAbs_EDGE); e.More(); e.Next()) {
+        ShapeFix_Edge fix;
+        if (fix.FixAddPCurve(TopoDS::Edge(e.Current()), TopoDS::Face(f.Current()), Standard_False, precision))
+          fix.FixSameParameter(TopoDS::Edge(e.Current()));
+      }
+    return shape;
+  }
+};
+
 struct occt_view {
   bool read = false, valid = false;
   std::vector<double> solid_volumes, volumes_about_far;  ///< about the origin and a far point
   std::vector<int> solid_shells;
-  std::size_t faces = 0, free_shells = 0;
+  std::size_t faces = 0, free_shells = 0, cylinders = 0;
 };
 
-// Reads STEP text with OCCT, healing off; volumes as read and moved by `far` (a face through
-// the origin adds nothing to the divergence sum, so one place could miss a face turned the
-// wrong way). O(file).
-occt_view read_with_occt(const std::string& text, const glm::dvec3& far = {1e3, 2e3, 3e3}) {
+// Reads STEP text with OCCT, healing off (pcurves: only missing pcurves added); volumes as read
+// and moved by `far` (a face through the origin adds nothing to the divergence sum, so one place
+// could miss a face turned the wrong way). O(file).
+occt_view read_with_occt(const std::string& text, const glm::dvec3& far = {1e3, 2e3, 3e3}, bool pcurves = false) {
   occt_view v;
   std::istringstream is(text);
   STEPControl_Reader reader;
   // After the reader: its first construction installs OCCT's default container (XSAlgo::Init).
-  XSAlgo::SetAlgoContainer(new no_healing);
+  if (pcurves)
+    XSAlgo::SetAlgoContainer(new pcurves_only);
+  else
+    XSAlgo::SetAlgoContainer(new no_healing);
   if (reader.ReadStream("cellforge.step", is) != IFSelect_RetDone) return v;
   v.read = true;
   reader.TransferRoots();
@@ -94,7 +122,10 @@ occt_view read_with_occt(const std::string& text, const glm::dvec3& far = {1e3, 
     for (TopExp_Explorer sh(ex.Current(), TopAbs_SHELL); sh.More(); sh.Next()) ++shells;
     v.solid_shells.push_back(shells);
   }
-  for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) ++v.faces;
+  for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
+    ++v.faces;
+    v.cylinders += BRepAdaptor_Surface(TopoDS::Face(ex.Current())).GetType() == GeomAbs_Cylinder;
+  }
   for (TopExp_Explorer ex(shape, TopAbs_SHELL, TopAbs_SOLID); ex.More(); ex.Next()) ++v.free_shells;
   return v;
 }
@@ -229,6 +260,115 @@ TEST_CASE("step: every cell complex of the wireframe sweep reads back in OpenCAS
   for (const std::string& m : misses) std::printf("  miss: %s\n", m.c_str());
   CHECK(complexes > 0);
   CHECK(misses.empty());
+}
+
+// Empty when OCCT reads the rounded solid of r as we wrote it: valid, one solid of one shell,
+// its volume ours (rounded_brep's: the skeleton's less each round's cross-section times its
+// length, plus each fillet's) to 1e-9 relative, the planar and cylindrical faces written; else
+// why. O(size of r).
+template <class R>
+std::string check_rounded_step(const R& r, std::size_t& faces_out, double& worst) {
+  const cellforge::rounded_brep_result b = cellforge::rounded_brep(r);
+  if (!b.ok) return "rounded_brep: " + (b.diagnostics.empty() ? std::string("not ok") : b.diagnostics.back());
+  std::ostringstream os;
+  const cellforge::io::step_result w = cellforge::io::write_step(os, b.solid);
+  if (!w.diagnostics.empty()) return "write_step: " + w.diagnostics.front();
+  if (w.faces != b.planar_faces + b.blend_faces || w.cylinders != b.blend_faces || w.conics != 2 * b.blend_faces)
+    return "write_step wrote " + std::to_string(w.faces) + " faces, " + std::to_string(w.cylinders) +
+           " cylinders, " + std::to_string(w.conics) + " conics";
+  cellforge::bounding_box box;
+  for (const auto& p : b.solid.points) box.add(p);
+  const glm::dvec3 far = box.max + glm::dvec3(0.37, 0.61, 0.83) * (box.diagonal() + 1.0);
+  const occt_view v = read_with_occt(os.str(), far, true);
+  if (!v.read) return "OCCT cannot read it";
+  if (!v.valid) return "BRepCheck_Analyzer: not valid";
+  if (v.solid_volumes.size() != 1 || v.solid_shells[0] != 1)
+    return std::to_string(v.solid_volumes.size()) + " solids for one";
+  for (const double theirs : {v.solid_volumes[0], v.volumes_about_far[0]})
+    worst = std::max(worst, std::abs(theirs - b.volume) / b.volume);
+  for (const double theirs : {v.solid_volumes[0], v.volumes_about_far[0]})
+    if (!(std::abs(theirs - b.volume) <= 1e-9 * b.volume))
+      return "volume: OCCT " + std::to_string(theirs) + ", ours " + std::to_string(b.volume) + " (relative " +
+             std::to_string(std::abs(theirs - b.volume) / b.volume) + ")";
+  if (v.faces != w.faces || v.cylinders != b.blend_faces)
+    return "OCCT has " + std::to_string(v.faces) + " faces, " + std::to_string(v.cylinders) +
+           " of them cylinders; we wrote " + std::to_string(w.faces) + ", " + std::to_string(b.blend_faces);
+  faces_out = w.faces;
+  return {};
+}
+
+TEST_CASE("step: every rounded solid of the rounds sweep reads back in OpenCASCADE with its blends as cylinders") {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto drawings = cellforge::round_drawing_sweep({});  // test_rounds' 240 drawings
+  std::size_t passed = 0, blends = 0, fillets = 0, faces = 0;
+  double worst = 0;
+  std::vector<std::string> misses;
+  for (const auto& s : drawings) {
+    std::string why;
+    std::size_t written = 0;
+    try {
+      const auto r = cellforge::reconstruct_rounds(s.drawing);
+      why = check_rounded_step(r, written, worst);
+      if (why.empty())
+        for (const auto& e : r.rounds) ++blends, fillets += !e.convex;
+    } catch (const std::exception& e) {
+      why = std::string("error: ") + e.what();
+    }
+    if (why.empty()) ++passed, faces += written;
+    else misses.push_back(s.name + ": " + why);
+  }
+  std::printf(
+      "\nrounded solids through OpenCASCADE: %zu of %zu valid, one solid each, volume and faces as written "
+      "(worst relative volume difference %.1e; %zu faces, %zu blends of which %zu fillets); %.0f ms\n",
+      passed, drawings.size(), worst, faces, blends, fillets, ms_since(t0));
+  for (const std::string& m : misses) std::printf("  miss: %s\n", m.c_str());
+  CHECK(drawings.size() == 240);
+  CHECK(misses.empty());
+}
+
+TEST_CASE("step: the OpenCASCADE check catches a rounded solid's blend turned inside out") {
+  cellforge::round_sweep_options o;
+  o.drawings = 2;  // block #0 (rounds only) and L #1 (a round and a fillet)
+  for (const auto& s : cellforge::round_drawing_sweep(o)) {
+    CAPTURE(s.name);
+    const auto b = cellforge::rounded_brep(cellforge::reconstruct_rounds(s.drawing));
+    REQUIRE(b.ok);
+    std::ostringstream os;
+    cellforge::io::write_step(os, b.solid);
+    const std::string good = os.str();
+    const occt_view v0 = read_with_occt(good, {1e3, 2e3, 3e3}, true);
+    REQUIRE(v0.valid);
+    REQUIRE(v0.solid_volumes.size() == 1);
+    CHECK(v0.solid_volumes[0] == doctest::Approx(b.volume).epsilon(1e-9));
+    // The first cylinder face turned: its same_sense flipped (its material on the wrong side of
+    // its loop), then its bound's orientation too (the face facing into the solid).
+    std::string bad = good;
+    const std::size_t cyl = bad.find("=CYLINDRICAL_SURFACE(");
+    REQUIRE(cyl != std::string::npos);
+    const std::size_t hash = bad.rfind('#', cyl);
+    const std::string id = bad.substr(hash + 1, cyl - hash - 1);
+    const std::size_t face = bad.find("),#" + id + ",.");
+    REQUIRE(face != std::string::npos);
+    const auto flip = [&](std::size_t at) {
+      REQUIRE((bad[at] == 'T' || bad[at] == 'F'));
+      bad[at] = bad[at] == 'T' ? 'F' : 'T';
+    };
+    flip(face + 5 + id.size());
+    const std::size_t open = bad.rfind("(#", face);
+    const std::string bound = bad.substr(open + 2, face - open - 2);
+    const std::size_t bound_line = bad.find("\n#" + bound + "=FACE_OUTER_BOUND(");
+    REQUIRE(bound_line != std::string::npos);
+    for (const bool with_bound : {false, true}) {
+      CAPTURE(with_bound);
+      if (with_bound) flip(bad.find(".);", bound_line) - 1);
+      const occt_view v = read_with_occt(bad, {1e3, 2e3, 3e3}, true);
+      REQUIRE(v.read);
+      const bool caught = !v.valid || v.solid_volumes.size() != 1 ||
+                          std::abs(v.solid_volumes[0] - b.volume) > 1e-9 * b.volume ||
+                          std::abs(v.volumes_about_far[0] - b.volume) > 1e-9 * b.volume;
+      CHECK(caught);
+    }
+  }
 }
 
 TEST_CASE("step: a cavity (BREP_WITH_VOIDS), a nested solid and an open face") {
