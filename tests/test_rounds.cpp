@@ -24,6 +24,7 @@
 #include "cellforge/core/error.hpp"
 #include "cellforge/io/obj.hpp"
 #include "cellforge/io/ply.hpp"
+#include "cellforge/io/step.hpp"
 #include "cellforge/sketch/rounds.hpp"
 #include "cellforge/sketch/sample_round_drawings.hpp"
 
@@ -197,6 +198,56 @@ TEST_CASE("rounds: the rounded mesh is closed, oriented outward, and has the rou
   for (std::string line; std::getline(lines, line);) faces += line.rfind("f ", 0) == 0;
   CHECK(faces == m.mesh.num_faces());
   CHECK(ply.str().find("element face " + std::to_string(m.mesh.num_faces())) != std::string::npos);
+}
+
+TEST_CASE("rounds: the rounded B-rep is closed, on its surfaces, and has the mesh's volume in the limit") {
+  cellforge::round_sweep_options o;
+  o.drawings = sweep_drawings;
+  const auto drawings = cellforge::round_drawing_sweep(o);
+  std::size_t ok = 0, volume_right = 0, written = 0, blends = 0;
+  double worst = 0;
+  std::vector<std::string> misses;
+  for (const auto& s : drawings) {
+    const auto r = cellforge::reconstruct_rounds(s.drawing);
+    const auto b = cellforge::rounded_brep(r);
+    blends += r.rounds.size();
+    const bool counts = b.planar_faces == r.reading.face_loops.size() && b.blend_faces == r.rounds.size() &&
+                        b.arcs == 2 * r.rounds.size() && b.solid.faces.size() == b.planar_faces + b.blend_faces;
+    ok += b.ok && counts;
+    // The mesh's volume plus, per blend, what its chords cut off the exact arc (sector less fan,
+    // times the edge's length: the end faces are parallel) is the exact solid's.
+    const auto m = cellforge::rounded_mesh(r);
+    double expected = soup_volume(m.mesh);
+    std::vector<std::size_t> segments(r.rounds.size(), 0);
+    for (const auto src : m.face_source)
+      if (src < 0) ++segments[static_cast<std::size_t>(-1 - src)];
+    for (const auto& e : r.rounds) {
+      const double n = static_cast<double>(segments[e.blend]), sweep = 3.141592653589793 - e.wedge_angle;
+      const double cut = 0.5 * e.radius * e.radius * (sweep - n * std::sin(sweep / n));
+      expected += (e.convex ? 1 : -1) * cut * glm::length(r.points[e.junctions[1]] - r.points[e.junctions[0]]);
+    }
+    const double err = std::abs(b.volume - expected) / expected;
+    worst = std::max(worst, err);
+    volume_right += err < 1e-9;
+    // And STEP takes it as it is: one solid, a cylinder per blend, two end arcs each.
+    std::ostringstream step;
+    const auto w = cellforge::io::write_step(step, b.solid);
+    const bool step_ok = w.solids == 1 && w.faces == b.solid.faces.size() && w.cylinders == r.rounds.size() &&
+                         w.conics == 2 * r.rounds.size() && w.diagnostics.empty();
+    written += step_ok;
+    if (!(b.ok && counts) || !(err < 1e-9) || !step_ok)
+      misses.push_back(s.name + (b.ok ? "" : ": " + (b.diagnostics.empty() ? std::string("not ok") : b.diagnostics[0])) +
+                       (counts ? "" : ": counts wrong") + ": volume " + std::to_string(b.volume) + ", the mesh's limit " +
+                       std::to_string(expected) + (step_ok ? "" : ": STEP counts wrong"));
+  }
+  std::printf(
+      "rounded B-rep: %zu drawings (%zu blends), checked ok %zu, volume the mesh's limit %zu (worst %.1e), "
+      "STEP as counted %zu\n",
+      drawings.size(), blends, ok, volume_right, worst, written);
+  for (const auto& mm : misses) std::printf("  miss: %s\n", mm.c_str());
+  CHECK(ok == drawings.size());
+  CHECK(volume_right == drawings.size());
+  CHECK(written == drawings.size());
 }
 
 TEST_CASE("rounds: a finer chord tolerance gives more segments, each chord within it") {
