@@ -11,9 +11,10 @@
 // entities, every visible layer read (docs/formats.md). Writes, in the current directory,
 // <name>_arcs.svg (the drawing, each pair of arcs in its own colour), <name>_skeleton.txt and
 // <name>_skeleton.svg (the skeleton drawing, its faces shaded), the skeleton's cell complex as
-// <name>.3dcl and <name>.obj, the rounded solid as <name>_rounded.obj and the round attribute of
-// each skeleton edge as <name>_rounds.txt; prints the arcs, the
-// pairs, and every blend's kind, category, radius and consistency. Never writes over its input.
+// <name>.3dcl and <name>.obj, the rounded solid as <name>_rounded.obj (a mesh) and as
+// <name>_rounded.step (STEP AP214, its blends cylinders: a real round in a CAD kernel) and the
+// round attribute of each skeleton edge as <name>_rounds.txt; prints the arcs, the pairs, and
+// every blend's kind, category, radius and consistency. Never writes over its input.
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -35,6 +36,7 @@
 #include "cellforge/io/drawing_text.hpp"
 #include "cellforge/io/dxf_drawing.hpp"
 #include "cellforge/io/obj.hpp"
+#include "cellforge/io/step.hpp"
 #include "cellforge/io/svg_drawing.hpp"
 #include "cellforge/sketch/rounds.hpp"
 #include "example_support.hpp"
@@ -90,9 +92,9 @@ int main(int argc, char** argv) {
     std::string ext = cl.input.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
     const std::string stem = cl.input.stem().string();
-    const fs::path outputs[] = {stem + "_arcs.svg",  stem + "_skeleton.txt", stem + "_skeleton.svg",
-                                stem + ".3dcl",      stem + ".obj",          stem + "_rounded.obj",
-                                stem + "_rounds.txt"};
+    const fs::path outputs[] = {stem + "_arcs.svg",   stem + "_skeleton.txt", stem + "_skeleton.svg",
+                                stem + ".3dcl",       stem + ".obj",          stem + "_rounded.obj",
+                                stem + "_rounds.txt", stem + "_rounded.step"};
     for (const fs::path& out : outputs) example::refuse_to_overwrite(out, cl.input);
 
     stage("reading " + example::file_and_size(cl.input));
@@ -172,9 +174,17 @@ int main(int argc, char** argv) {
     std::printf(
         "rounded mesh       %zu vertices, %zu faces (%zu blend strips of %zu quads, %zu blends skipped)\n",
         mesh.mesh.points.size(), mesh.mesh.num_faces(), mesh.strips, mesh.strip_quads, mesh.skipped);
+    const auto brep = cellforge::rounded_brep(r);
+    std::printf(
+        "rounded B-rep      %9.3f ms   %zu planar faces, %zu cylinders, %zu lines, %zu end arcs; volume "
+        "%.9g; "
+        "check %s\n",
+        brep.milliseconds, brep.planar_faces, brep.blend_faces, brep.lines, brep.arcs, brep.volume,
+        brep.ok ? "ok" : "FAILED");
     std::printf("total              %9.3f ms\n", r.milliseconds);
     for (const std::string& d : r.diagnostics) std::printf("note               %s\n", d.c_str());
     for (const std::string& d : mesh.diagnostics) std::printf("note               %s\n", d.c_str());
+    for (const std::string& d : brep.diagnostics) std::printf("note               %s\n", d.c_str());
 
     stage("writing " + std::to_string(mesh.mesh.num_faces()) + " faces");
     // Each pair's arcs in one hue; unpaired arcs all in the next.
@@ -196,10 +206,13 @@ int main(int argc, char** argv) {
     cellforge::io::write_cells_obj(outputs[4], cells);
     cellforge::io::write_obj(outputs[5], mesh.mesh);
     write_round_attributes(outputs[6], r, cl.input.filename().string());
+    const auto step = cellforge::io::write_step(outputs[7], brep.solid, {.name = stem});
+    for (const std::string& d : step.diagnostics) std::printf("note               STEP: %s\n", d.c_str());
     std::printf("wrote             ");
     for (const fs::path& out : outputs) std::printf(" %s", out.string().c_str());
     std::printf("\n");
-    const bool ok = valid.ok() && pairing.unpaired.empty() && r.inconsistent == 0 && mesh.skipped == 0;
+    const bool ok = valid.ok() && pairing.unpaired.empty() && r.inconsistent == 0 && mesh.skipped == 0 &&
+                    brep.ok && step.diagnostics.empty();
     return ok ? 0 : 1;
   } catch (const std::bad_alloc&) {
     example::report_out_of_memory("sketch_rounds", stage);
