@@ -212,7 +212,8 @@ TEST_CASE("rounds: the rounded B-rep is closed, on its surfaces, and has the mes
     const auto b = cellforge::rounded_brep(r);
     blends += r.rounds.size();
     const bool counts = b.planar_faces == r.reading.face_loops.size() && b.blend_faces == r.rounds.size() &&
-                        b.arcs == 2 * r.rounds.size() && b.solid.faces.size() == b.planar_faces + b.blend_faces;
+                        b.arcs == 2 * r.rounds.size() &&
+                        b.solid.faces.size() == b.planar_faces + b.blend_faces;
     ok += b.ok && counts;
     // The mesh's volume plus, per blend, what its chords cut off the exact arc (sector less fan,
     // times the edge's length: the end faces are parallel) is the exact solid's.
@@ -224,7 +225,8 @@ TEST_CASE("rounds: the rounded B-rep is closed, on its surfaces, and has the mes
     for (const auto& e : r.rounds) {
       const double n = static_cast<double>(segments[e.blend]), sweep = 3.141592653589793 - e.wedge_angle;
       const double cut = 0.5 * e.radius * e.radius * (sweep - n * std::sin(sweep / n));
-      expected += (e.convex ? 1 : -1) * cut * glm::length(r.points[e.junctions[1]] - r.points[e.junctions[0]]);
+      expected +=
+          (e.convex ? 1 : -1) * cut * glm::length(r.points[e.junctions[1]] - r.points[e.junctions[0]]);
     }
     const double err = std::abs(b.volume - expected) / expected;
     worst = std::max(worst, err);
@@ -236,9 +238,10 @@ TEST_CASE("rounds: the rounded B-rep is closed, on its surfaces, and has the mes
                          w.conics == 2 * r.rounds.size() && w.diagnostics.empty();
     written += step_ok;
     if (!(b.ok && counts) || !(err < 1e-9) || !step_ok)
-      misses.push_back(s.name + (b.ok ? "" : ": " + (b.diagnostics.empty() ? std::string("not ok") : b.diagnostics[0])) +
-                       (counts ? "" : ": counts wrong") + ": volume " + std::to_string(b.volume) + ", the mesh's limit " +
-                       std::to_string(expected) + (step_ok ? "" : ": STEP counts wrong"));
+      misses.push_back(
+          s.name + (b.ok ? "" : ": " + (b.diagnostics.empty() ? std::string("not ok") : b.diagnostics[0])) +
+          (counts ? "" : ": counts wrong") + ": volume " + std::to_string(b.volume) + ", the mesh's limit " +
+          std::to_string(expected) + (step_ok ? "" : ": STEP counts wrong"));
   }
   std::printf(
       "rounded B-rep: %zu drawings (%zu blends), checked ok %zu, volume the mesh's limit %zu (worst %.1e), "

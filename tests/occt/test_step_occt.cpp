@@ -38,10 +38,10 @@
 #include <GeomAbs_SurfaceType.hxx>
 #include <Message_ProgressRange.hxx>
 #include <STEPControl_Reader.hxx>
+#include <ShapeFix_Edge.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Shape.hxx>
-#include <ShapeFix_Edge.hxx>
 #include <XSAlgo.hxx>
 #include <XSAlgo_AlgoContainer.hxx>
 #include <gp_Trsf.hxx>
@@ -94,7 +94,8 @@ struct occt_view {
 // Reads STEP text with OCCT, healing off (pcurves: only missing pcurves added); volumes as read
 // and moved by `far` (a face through the origin adds nothing to the divergence sum, so one place
 // could miss a face turned the wrong way). O(file).
-occt_view read_with_occt(const std::string& text, const glm::dvec3& far = {1e3, 2e3, 3e3}, bool pcurves = false) {
+occt_view read_with_occt(const std::string& text, const glm::dvec3& far = {1e3, 2e3, 3e3},
+                         bool pcurves = false) {
   occt_view v;
   std::istringstream is(text);
   STEPControl_Reader reader;
@@ -273,7 +274,8 @@ std::string check_rounded_step(const R& r, std::size_t& faces_out, double& worst
   std::ostringstream os;
   const cellforge::io::step_result w = cellforge::io::write_step(os, b.solid);
   if (!w.diagnostics.empty()) return "write_step: " + w.diagnostics.front();
-  if (w.faces != b.planar_faces + b.blend_faces || w.cylinders != b.blend_faces || w.conics != 2 * b.blend_faces)
+  if (w.faces != b.planar_faces + b.blend_faces || w.cylinders != b.blend_faces ||
+      w.conics != 2 * b.blend_faces)
     return "write_step wrote " + std::to_string(w.faces) + " faces, " + std::to_string(w.cylinders) +
            " cylinders, " + std::to_string(w.conics) + " conics";
   cellforge::bounding_box box;
@@ -297,7 +299,8 @@ std::string check_rounded_step(const R& r, std::size_t& faces_out, double& worst
   return {};
 }
 
-TEST_CASE("step: every rounded solid of the rounds sweep reads back in OpenCASCADE with its blends as cylinders") {
+TEST_CASE(
+    "step: every rounded solid of the rounds sweep reads back in OpenCASCADE with its blends as cylinders") {
   const auto t0 = std::chrono::steady_clock::now();
   const auto drawings = cellforge::round_drawing_sweep({});  // test_rounds' 240 drawings
   std::size_t passed = 0, blends = 0, fillets = 0, faces = 0;
@@ -314,8 +317,10 @@ TEST_CASE("step: every rounded solid of the rounds sweep reads back in OpenCASCA
     } catch (const std::exception& e) {
       why = std::string("error: ") + e.what();
     }
-    if (why.empty()) ++passed, faces += written;
-    else misses.push_back(s.name + ": " + why);
+    if (why.empty())
+      ++passed, faces += written;
+    else
+      misses.push_back(s.name + ": " + why);
   }
   std::printf(
       "\nrounded solids through OpenCASCADE: %zu of %zu valid, one solid each, volume and faces as written "

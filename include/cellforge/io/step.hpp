@@ -193,7 +193,8 @@ struct step_data {
     return n;
   }
   /// "NAME('',#a,#b,...)" as entity #n; returns n.
-  std::size_t entity(std::string_view name, std::initializer_list<std::size_t> args, std::string_view tail = {}) {
+  std::size_t entity(std::string_view name, std::initializer_list<std::size_t> args,
+                     std::string_view tail = {}) {
     const std::size_t n = begin();
     text += name;
     text += "(''";
@@ -251,7 +252,8 @@ struct step_data {
 /// The check that every point is finite, and the distance accuracy written: options.uncertainty,
 /// or 1e-9 of the points' bounding-box diagonal (1e-9 with no points). O(points).
 template <class = void>
-bounding_box step_bounds(std::span<const glm::dvec3> pts, const step_write_options& options, step_result& result) {
+bounding_box step_bounds(std::span<const glm::dvec3> pts, const step_write_options& options,
+                         step_result& result) {
   bounding_box box;
   for (std::size_t i = 0; i < pts.size(); ++i) {
     for (int k = 0; k < 3; ++k)
@@ -711,19 +713,24 @@ cell_complex<P> mesh_step_cells(const surface_mesh<P>& m) {
 /// CYLINDRICAL_SURFACE per blend, LINE edges and the blends' end arcs (CIRCLE when the end
 /// plane is square to the axis, else ELLIPSE), each with its sense. O(size of s).
 template <class = void>
-std::string step_rounded_text(const rounded_solid& s, const step_write_options& options, step_result& result) {
+std::string step_rounded_text(const rounded_solid& s, const step_write_options& options,
+                              step_result& result) {
   using std::size_t;
   constexpr std::uint32_t none = rounded_solid::npos;
   step_bounds(s.points, options, result);
-  if (s.faces.empty()) throw error(error_category::invalid_input, "write_step: the rounded solid has no faces");
+  if (s.faces.empty())
+    throw error(error_category::invalid_input, "write_step: the rounded solid has no faces");
   for (const auto& e : s.edges)
     if (e.a >= s.points.size() || e.b >= s.points.size() || (e.blend != none && e.blend >= s.blends.size()))
-      throw error(error_category::invalid_input, "write_step: a rounded solid's edge names a missing point or blend");
+      throw error(error_category::invalid_input,
+                  "write_step: a rounded solid's edge names a missing point or blend");
   for (const auto& f : s.faces) {
     if (f.loop.empty() || (f.blend != none && f.blend >= s.blends.size()))
-      throw error(error_category::invalid_input, "write_step: a rounded solid's face has no loop or a missing blend");
+      throw error(error_category::invalid_input,
+                  "write_step: a rounded solid's face has no loop or a missing blend");
     for (const auto& [e, forward] : f.loop)
-      if (e >= s.edges.size()) throw error(error_category::invalid_input, "write_step: a face names a missing edge");
+      if (e >= s.edges.size())
+        throw error(error_category::invalid_input, "write_step: a face names a missing edge");
   }
   double off = 0;  // the check: vertices on their curves and surfaces, within the uncertainty
   const auto radial = [&](const rounded_solid::cylinder& c, const glm::dvec3& x) {
@@ -804,7 +811,8 @@ std::string step_rounded_text(const rounded_solid& s, const step_write_options& 
   for (size_t i = 0; i < s.blends.size(); ++i) {
     const rounded_solid::cylinder& c = s.blends[i];
     if (!(c.radius > 0) || !(glm::length(c.axis) > 0.5))
-      throw error(error_category::invalid_input, "write_step: blend " + std::to_string(i) + " has no radius or axis");
+      throw error(error_category::invalid_input,
+                  "write_step: blend " + std::to_string(i) + " has no radius or axis");
     const size_t origin = d.point(c.point);
     const size_t place = d.placement(origin, c.axis, -c.middle);  // the seam opposite the blend
     surface_of_blend[i] = d.begin();
@@ -832,7 +840,8 @@ std::string step_rounded_text(const rounded_solid& s, const step_write_options& 
         if (glm::length(t) > glm::length(ref)) ref = t;
       }
       if (!(glm::length(ref) > 0))
-        throw error(error_category::invalid_input, "write_step: face " + std::to_string(fi) + " has no extent");
+        throw error(error_category::invalid_input,
+                    "write_step: face " + std::to_string(fi) + " has no extent");
       const size_t place = d.placement(vertex_point[s.edges[f.loop[0].first].a], n, glm::normalize(ref));
       surface = d.entity("PLANE", {place});
       ++result.planes;
@@ -933,7 +942,8 @@ step_result write_step(std::ostream& os, const rounded_solid& s, const step_writ
 }
 /// The rounded solid to a STEP file (beside it, then renamed over it). O(size of s).
 template <class = void>
-step_result write_step(const file_path& path, const rounded_solid& s, const step_write_options& options = {}) {
+step_result write_step(const file_path& path, const rounded_solid& s,
+                       const step_write_options& options = {}) {
   step_result result;
   detail::write_file(path, [&](std::ostream& os) { result = write_step(os, s, options); });
   return result;

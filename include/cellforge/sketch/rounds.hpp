@@ -454,7 +454,8 @@ rounds_result<Q, P> reconstruct_rounds(const arc_drawing<P>& d, const rounds_opt
     if (const std::size_t j = sk.validation.junction; j != drawing_validation::npos) {
       const std::size_t first_corner = sk.skeleton.points.size() - sk.new_junctions;
       if (j < first_corner) {
-        const auto at = std::find(sk.junction_map.begin(), sk.junction_map.end(), static_cast<std::uint32_t>(j));
+        const auto at =
+            std::find(sk.junction_map.begin(), sk.junction_map.end(), static_cast<std::uint32_t>(j));
         if (at != sk.junction_map.end())
           why += " (skeleton junction " + std::to_string(j) + " is junction " +
                  std::to_string(at - sk.junction_map.begin()) + " of the drawing)";
@@ -537,11 +538,13 @@ namespace detail::blends {
 /// when the volume they bound is negative. Throws invalid_input naming `who` on a face with
 /// holes. O(F · L).
 template <class = void>
-std::vector<std::vector<std::uint32_t>> outward_loops(const std::vector<std::vector<std::vector<std::uint32_t>>>& faces,
-                                                      const std::vector<glm::dvec3>& X, const std::string& who) {
+std::vector<std::vector<std::uint32_t>> outward_loops(
+    const std::vector<std::vector<std::vector<std::uint32_t>>>& faces, const std::vector<glm::dvec3>& X,
+    const std::string& who) {
   std::vector<std::vector<std::uint32_t>> outer;
   for (const auto& f : faces) {
-    if (f.size() > 1) throw error(error_category::invalid_input, who + ": faces with holes are not rounded yet");
+    if (f.size() > 1)
+      throw error(error_category::invalid_input, who + ": faces with holes are not rounded yet");
     outer.push_back(f[0]);
   }
   std::vector<int> sense = detail::coherent_senses(outer);
@@ -609,7 +612,8 @@ bool claim_ends(const edge_round& e, std::size_t i, std::vector<std::pair<std::u
   }
   for (std::size_t k = 0; k < 2; ++k) {
     if (at[e.junctions[k]].first != ~std::uint32_t{0})
-      throw error(error_category::invalid_input, who + ": two blends meet at junction " + std::to_string(e.junctions[k]));
+      throw error(error_category::invalid_input,
+                  who + ": two blends meet at junction " + std::to_string(e.junctions[k]));
     at[e.junctions[k]] = {static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k)};
   }
   return true;
@@ -655,7 +659,8 @@ rounded_mesh_result<Q> rounded_mesh(const rounds_result<Q, P>& r, const rounded_
   glm::dvec3 lo = X[0], hi = X[0];
   for (const auto& x : X) lo = glm::min(lo, x), hi = glm::max(hi, x);
   const double tol = options.chord_tolerance * glm::length(glm::dvec2(hi - lo));
-  const std::vector<std::vector<std::uint32_t>> outer = detail::blends::outward_loops(faces, X, "rounded_mesh");
+  const std::vector<std::vector<std::uint32_t>> outer =
+      detail::blends::outward_loops(faces, X, "rounded_mesh");
   // Per junction: the blend end at it (blend, end), if any.
   constexpr std::uint32_t none = ~std::uint32_t{0};
   std::vector<std::pair<std::uint32_t, std::uint32_t>> at(nv, {none, none});
@@ -768,7 +773,8 @@ rounded_brep_result rounded_brep(const rounds_result<Q, P>& r, const rounded_bre
   glm::dvec3 lo = X[0], hi = X[0];
   for (const auto& x : X) lo = glm::min(lo, x), hi = glm::max(hi, x);
   const double tol = options.tolerance * glm::length(hi - lo);
-  const std::vector<std::vector<std::uint32_t>> outer = detail::blends::outward_loops(faces, X, "rounded_brep");
+  const std::vector<std::vector<std::uint32_t>> outer =
+      detail::blends::outward_loops(faces, X, "rounded_brep");
   double six = 0;
   for (const auto& l : outer)
     for (std::size_t k = 1; k + 1 < l.size(); ++k) six += glm::dot(X[l[0]], glm::cross(X[l[k]], X[l[k + 1]]));
@@ -800,7 +806,8 @@ rounded_brep_result rounded_brep(const rounds_result<Q, P>& r, const rounded_bre
     // the kite edge, tangent point, axis, tangent point less the sector; its prism between
     // the end planes has the area times the length along d through the section's centroid.
     const glm::dvec3 A = X[e.junctions[0]];
-    const glm::dvec3 p0 = b.axis + e.radius * b.u, p1 = b.axis + e.radius * (std::cos(b.sweep) * b.u + std::sin(b.sweep) * b.v);
+    const glm::dvec3 p0 = b.axis + e.radius * b.u,
+                     p1 = b.axis + e.radius * (std::cos(b.sweep) * b.u + std::sin(b.sweep) * b.v);
     const double k0 = 0.5 * glm::length(glm::cross(p0 - b.axis, A - b.axis)),
                  k1 = 0.5 * glm::length(glm::cross(A - b.axis, p1 - b.axis));
     const double sector = 0.5 * e.radius * e.radius * b.sweep;
@@ -887,8 +894,8 @@ rounded_brep_result rounded_brep(const rounds_result<Q, P>& r, const rounded_bre
     if (uses[e][0] != 1 || uses[e][1] != 1)
       if (++open <= 5)
         out.diagnostics.push_back("rounded_brep: edge " + std::to_string(e) + " is used " +
-                                  std::to_string(uses[e][0]) + " times forward and " + std::to_string(uses[e][1]) +
-                                  " backward (once each wanted)");
+                                  std::to_string(uses[e][0]) + " times forward and " +
+                                  std::to_string(uses[e][1]) + " backward (once each wanted)");
   double off = 0;
   for (const auto& f : S.faces)
     for (const auto& [e, forward] : f.loop)
