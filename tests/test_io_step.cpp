@@ -19,6 +19,7 @@
 #include "cells_fixtures.hpp"
 #include "io_test_support.hpp"
 #include "mesh_fixtures.hpp"
+#include "rounded_fixtures.hpp"
 
 // Own namespace: the test files of a group are compiled as one translation unit.
 namespace io_step_tests {
@@ -247,6 +248,87 @@ TEST_CASE("step: meshes as faceted solids or open shells") {
   CHECK(r.faces == 2);
   CHECK(r.planes == 2);
   CHECK(r.edges == 5);
+}
+
+TEST_CASE("step: a rounded solid, its blend a cylinder face trimmed by end circles") {
+  const auto box = rounded_fixtures::rounded_box(0.25);
+  std::ostringstream os;
+  const auto r = cellforge::io::write_step(os, box, {.name = "rounded box"});
+  CHECK(r.solids == 1);
+  CHECK(r.faces == 7);
+  CHECK(r.planes == 6);
+  CHECK(r.cylinders == 1);
+  CHECK(r.conics == 2);
+  CHECK(r.edges == 15);
+  CHECK(r.vertices == 10);
+  CHECK(r.diagnostics.empty());
+  const auto es = entities(os.str());
+  CHECK(es.size() == r.entities);
+  CHECK(count(es, "CYLINDRICAL_SURFACE(") == 1);
+  CHECK(count(es, "CIRCLE(") == 2);
+  CHECK(count(es, "ELLIPSE(") == 0);
+  CHECK(count(es, "ADVANCED_FACE(") == 7);
+  CHECK(count(es, "MANIFOLD_SOLID_BREP('rounded box'") == 1);
+  // Every reference names an entity.
+  for (const auto& [k, text] : es)
+    for (std::size_t at = text.find('#'); at != std::string::npos; at = text.find('#', at + 1))
+      CHECK_MESSAGE(es.count(std::stoul(text.substr(at + 1))) == 1, "#", k, " names ", text.substr(at));
+  // The cylinder face: same_sense .T. for a round, .F. for a fillet (the solid outside it).
+  const auto cylinder_face_sense = [&](const std::map<std::size_t, std::string>& m) {
+    std::size_t cyl = 0;
+    for (const auto& [k, text] : m)
+      if (text.starts_with("CYLINDRICAL_SURFACE(")) cyl = k;
+    for (const auto& [k, text] : m)
+      if (text.starts_with("ADVANCED_FACE(") &&
+          text.find("),#" + std::to_string(cyl) + ",") != std::string::npos)
+        return text.substr(text.size() - 4);
+    return std::string("none");
+  };
+  CHECK(cylinder_face_sense(es) == ".T.)");
+  std::ostringstream fillet;
+  cellforge::io::write_step(fillet, rounded_fixtures::rounded_box(0.25, false));
+  CHECK(cylinder_face_sense(entities(fillet.str())) == ".F.)");
+  // An end plane tilted about y: that end's curve becomes an ellipse of semi-axes r / cos and r.
+  std::ostringstream tilted;
+  const auto r2 = cellforge::io::write_step(tilted, rounded_fixtures::rounded_box(0.25, true, 0.3));
+  CHECK(r2.diagnostics.empty());
+  const auto es2 = entities(tilted.str());
+  CHECK(count(es2, "CIRCLE(") == 1);
+  REQUIRE(count(es2, "ELLIPSE(") == 1);
+  for (const auto& [k, text] : es2)
+    if (text.starts_with("ELLIPSE(")) {
+      const std::size_t comma = text.find(',', text.find('#'));
+      CHECK(std::stod(text.substr(comma + 1)) == doctest::Approx(0.25 / std::cos(0.3)).epsilon(1e-12));
+    }
+}
+
+TEST_CASE("step: a rounded solid's refused input and defects") {
+  std::ostringstream os;
+  auto nan = rounded_fixtures::rounded_box(0.25);
+  nan.points[2].y = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_WITH_AS(cellforge::io::write_step(os, nan), doctest::Contains("non-finite"), cellforge::error);
+  auto along = rounded_fixtures::rounded_box(0.25);
+  for (auto& e : along.edges)
+    if (e.blend == 0) e.plane_normal = {0, 0, 1};  // a plane holding the axis cuts no arc
+  CHECK_THROWS_WITH_AS(cellforge::io::write_step(os, along), doctest::Contains("holds its cylinder's axis"),
+                       cellforge::error);
+  auto missing = rounded_fixtures::rounded_box(0.25);
+  missing.faces[0].loop[0].first = 99;
+  CHECK_THROWS_WITH_AS(cellforge::io::write_step(os, missing), doctest::Contains("missing edge"),
+                       cellforge::error);
+  CHECK_THROWS_AS(cellforge::io::write_step(os, cellforge::rounded_solid{}), cellforge::error);
+  // A tangent point moved off the cylinder (and its plane) is named, the file written anyway.
+  auto off = rounded_fixtures::rounded_box(0.25);
+  off.points[6].z -= 1e-6;
+  const auto r = cellforge::io::write_step(os, off);
+  REQUIRE(r.diagnostics.size() == 1);
+  CHECK(r.diagnostics[0].find("from a curve or surface") != std::string::npos);
+  // To a file: the same bytes as to a stream.
+  const io_test::temp_path file("rounded.step");
+  cellforge::io::write_step(file.path, rounded_fixtures::rounded_box(0.25));
+  std::ostringstream same;
+  cellforge::io::write_step(same, rounded_fixtures::rounded_box(0.25));
+  CHECK(cellforge::io::detail::read_file(file.path) == same.str());
 }
 
 }  // namespace io_step_tests

@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "../rounded_fixtures.hpp"
 #include "../wireframe_sweep.hpp"
 #include "cellforge/cells/conversion.hpp"
 #include "cellforge/cells/validate.hpp"
@@ -329,6 +330,23 @@ TEST_CASE(
   for (const std::string& m : misses) std::printf("  miss: %s\n", m.c_str());
   CHECK(drawings.size() == 240);
   CHECK(misses.empty());
+}
+
+TEST_CASE("step: a rounded box, square and with a tilted end (an ellipse), has its volume in OpenCASCADE") {
+  for (const double tilt : {0.0, 0.3, -0.5}) {
+    CAPTURE(tilt);
+    std::ostringstream os;
+    const auto w = cellforge::io::write_step(os, rounded_fixtures::rounded_box(0.25, true, tilt));
+    CHECK(w.diagnostics.empty());
+    const occt_view v = read_with_occt(os.str(), {1e3, 2e3, 3e3}, true);
+    CHECK(v.valid);
+    REQUIRE(v.solid_volumes.size() == 1);
+    const double exact = rounded_fixtures::rounded_box_volume(0.25, tilt);
+    for (const double theirs : {v.solid_volumes[0], v.volumes_about_far[0]})
+      CHECK(theirs == doctest::Approx(exact).epsilon(1e-9));
+    CHECK(v.faces == 7);
+    CHECK(v.cylinders == 1);
+  }
 }
 
 TEST_CASE("step: the OpenCASCADE check catches a rounded solid's blend turned inside out") {
