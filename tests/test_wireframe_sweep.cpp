@@ -70,9 +70,10 @@ double ms_since(std::chrono::steady_clock::time_point t) {
 
 // What is wrong with a model's truth as such (independent of the pipeline); empty when sound:
 // distinct proper edges, each on a face; face loops of >= 3 distinct vertices along existing
-// edges, planar; each face in one or two volumes; each volume closed; no face twice.
+// edges, planar; each face in one or two volumes (or, with `fins`, in none when an edge of it
+// lies on no other face: a flap); each volume closed; no face twice.
 // O(L log L), L the total loop length.
-std::string unsound(const sample_model& m) {
+std::string unsound(const sample_model& m, bool fins = false) {
   const auto& pts = m.wire.points;
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> sides;  // wire edge → face sides on it
   for (const auto& e : m.wire.edges) {
@@ -117,8 +118,14 @@ std::string unsound(const sample_model& m) {
     for (const auto& [e, n] : uses)
       if (n % 2 != 0) return "volume " + std::to_string(c) + " is open";
   }
+  const auto flap = [&](std::size_t f) {
+    for (const auto& loop : m.faces[f])
+      for (std::size_t i = 0; i < loop.size(); ++i)
+        if (sides.at(std::minmax(loop[i], loop[(i + 1) % loop.size()])) == 1) return true;
+    return false;
+  };
   for (std::size_t f = 0; f < m.faces.size(); ++f)
-    if (volumes_of[f] < 1 || volumes_of[f] > 2)
+    if ((volumes_of[f] < 1 && !(fins && flap(f))) || volumes_of[f] > 2)
       return "face " + std::to_string(f) + " in " + std::to_string(volumes_of[f]) + " volumes";
   return {};
 }
@@ -477,6 +484,88 @@ std::size_t count_reason(const wireframe_result<glm::dvec3>& r, const std::strin
 }
 
 }  // namespace
+
+TEST_CASE("wireframe sweep: ordinary solids nobody tuned for, exact or flagged") {
+  // Height fields, boxes with fins (flaps in no volume), extrusions of random non-convex
+  // polygons with bores, boxes turned on boxes (wireframe_sweep::make_ordinary_sweep). Every
+  // truth sound and every face needed; each answer exact, or a miss flagged (status other than
+  // `solid`, or an error): never a wrong answer passed as good. Then the height fields the sweep
+  // leaves out, whose columns touch along an edge (no 2-manifold solid: a volume would use the
+  // edge four times): flagged, never `solid`.
+  const sweep_size size = chosen_size();
+  const auto t0 = std::chrono::steady_clock::now();
+  const wireframe_sweep::sweep_set set = wireframe_sweep::make_ordinary_sweep(size);
+  for (const auto& f : set.faults) FAIL_CHECK(f);
+  struct tally {
+    std::size_t models = 0, exact = 0, flagged = 0, wrong = 0;
+    double ms = 0;
+  };
+  std::map<std::string, tally> totals;
+  std::vector<std::string> misses;
+  for (const auto& s : set.models) {
+    const sample_model& m = s.model;
+    const std::string name = m.name, why = unsound(m, s.family == "box with fin");
+    CAPTURE(name);
+    CHECK_MESSAGE(why.empty(), why);
+    CHECK((wireframe_sweep::faces_no_edge_needs(m) == 0 && m.unforced_faces == 0));
+    tally& t = totals[s.family];
+    ++t.models;
+    const auto start = std::chrono::steady_clock::now();
+    std::string miss;
+    bool passed_as_good = false;
+    try {
+      const auto r = cellforge::wireframe_to_cells(m.wire);
+      miss = miss_reason(m, r);
+      passed_as_good = r.status == cellforge::solid_status::solid;
+      if (!miss.empty()) miss += std::string("; status ") + cellforge::to_string(r.status) + ": " + r.status_reason;
+    } catch (const cellforge::error& e) {
+      miss = std::string("error: ") + e.what();
+    }
+    t.ms += ms_since(start);
+    if (miss.empty()) {
+      ++t.exact;
+    } else {
+      ++(passed_as_good ? t.wrong : t.flagged);
+      misses.push_back("[" + s.family + "] " + name + (passed_as_good ? " (WRONG)" : " (flagged)") + ": " + miss);
+    }
+  }
+  std::printf("\nordinary solids (%s): %zu models in %.0f ms\n", size == sweep_size::full ? "full" : "sample",
+              set.models.size(), ms_since(t0));
+  std::printf("  %-14s %6s %6s %8s %6s %8s\n", "family", "models", "exact", "flagged", "WRONG", "ms");
+  for (const auto& family : wireframe_sweep::ordinary_families()) {
+    const tally& t = totals[family];
+    std::printf("  %-14s %6zu %6zu %8zu %6zu %8.1f\n", family.c_str(), t.models, t.exact, t.flagged, t.wrong, t.ms);
+    CAPTURE(family);
+    CHECK(t.models >= (size == sweep_size::full ? 40u : 4u));
+    CHECK(t.wrong == 0);
+    CHECK(t.exact == t.models);
+  }
+  for (const auto& d : set.draws)
+    std::printf("  random family '%s': %zu draws kept, %zu rejected (%zu touching along an edge)\n",
+                d.family.c_str(), d.kept, d.rejected(), d.not_manifold);
+  std::printf("misses (%zu):\n", misses.size());
+  for (const auto& line : misses) std::printf("  %s\n", line.c_str());
+
+  // Terrains whose columns touch along an edge: the reason says so.
+  std::size_t touching = 0, flagged = 0;
+  for (std::uint64_t draw = 0; touching < (size == sweep_size::full ? 40u : 4u) && draw < 1000; ++draw) {
+    const auto m = wireframe_sweep::detail::touching_height_field(draw);
+    if (!m) continue;
+    ++touching;
+    CAPTURE(m->name);
+    try {
+      const auto r = cellforge::wireframe_to_cells(m->wire);
+      CHECK(r.status != cellforge::solid_status::solid);
+      CHECK(r.status_reason.find("touches itself along an edge") != std::string::npos);
+      flagged += r.status != cellforge::solid_status::solid;
+    } catch (const cellforge::error& e) {
+      ++flagged;  // an error is honest too
+    }
+  }
+  std::printf("  height fields touching along an edge: %zu, %zu flagged\n", touching, flagged);
+  std::fflush(stdout);
+  CHECK(touching > 0);
+}
 
 TEST_CASE("reading: holes and dents stay open whatever bounds their mouth") {
   // Mouths bounded by a ring of several faces (cells, bars, boxes, quads of a torus), and
