@@ -541,7 +541,7 @@ TEST_CASE("wireframe sweep: ordinary solids nobody tuned for, exact or flagged")
     CHECK(t.exact == t.models);
   }
   for (const auto& d : set.draws)
-    std::printf("  random family '%s': %zu draws kept, %zu rejected (%zu touching along an edge)\n",
+    std::printf("  random family '%s': %zu draws kept, %zu rejected (%zu touching along an edge or in pieces)\n",
                 d.family.c_str(), d.kept, d.rejected(), d.not_manifold);
   std::printf("misses (%zu):\n", misses.size());
   for (const auto& line : misses) std::printf("  %s\n", line.c_str());

@@ -1667,22 +1667,35 @@ inline const std::vector<std::string>& ordinary_families() {
 
 namespace detail {
 
-/// A height field: a k × m grid of square-ish columns (random widths) with random integer heights
-/// 1..4 on random layer heights, one volume, coplanar faces merged; nullopt when `accept` refuses
-/// it (two columns touching along an edge only, a face no edge needs). O(k · m · 4).
+/// A height field: a k × m grid of columns with random integer heights 1..4, one volume, coplanar
+/// faces merged. Draws alternate between random widths and layer heights (k, m up to 5) and unit
+/// cubes (square columns, k, m up to 6); every other pair lets heights be 0 (courtyards and
+/// notches: the top faces get holes, the outline turns in), kept face-connected. nullopt when
+/// `accept` refuses it (columns touching along an edge only, a face no edge needs) or it falls
+/// apart (counted as not manifold). O(k · m · 4).
 inline std::optional<cellforge::sample_model> height_field(std::uint64_t draw, family_draws& draws) {
   random_source rng(0x3c6ef372fe94f82bull ^ (draw * 0x9e3779b97f4a7c15ull));
-  const std::size_t k = rng.in(2, 5), m = rng.in(2, 5);
-  cellforge::voxel_layout l = cellforge::empty_layout(random_coords(k, rng), random_coords(m, rng), random_coords(4, rng));
+  const bool unit = draw % 2 == 1, pits = draw % 4 >= 2;
+  const std::size_t k = rng.in(2, unit ? 6 : 5), m = rng.in(2, unit ? 6 : 5);
+  const auto coords = [&](std::size_t n) {
+    std::vector<double> c;
+    for (std::size_t i = 0; i <= n; ++i) c.push_back(double(i));
+    return unit ? c : random_coords(n, rng);
+  };
+  cellforge::voxel_layout l = cellforge::empty_layout(coords(k), coords(m), coords(4));
   std::string heights;
   for (std::size_t j = 0; j < m; ++j)
     for (std::size_t i = 0; i < k; ++i) {
-      const std::size_t h = rng.in(1, 4);
+      const std::size_t h = rng.in(pits ? 0 : 1, 4);
       heights += static_cast<char>('0' + h);
       for (std::size_t z = 0; z < h; ++z) l.at(i, j, z) = 1;
     }
-  return accept(l, 1, "height field draw " + std::to_string(draw) + " " + std::to_string(k) + "x" + std::to_string(m) +
-                          " " + heights, draws);
+  if (heights.find_first_not_of('0') == std::string::npos || !cells_connected(l, 1))
+    return ++draws.not_manifold, std::nullopt;
+  return accept(l, 1,
+                "height field draw " + std::to_string(draw) + (unit ? " unit " : " ") + std::to_string(k) + "x" +
+                    std::to_string(m) + " " + heights,
+                draws);
 }
 
 /// A height field as height_field draws it whose columns touch along an edge (two diagonal
@@ -1997,7 +2010,7 @@ inline std::optional<cellforge::sample_model> turned_boxes(glm::dvec2 lower, dou
     }
   }
   b.volume(faces);
-  return b.done(std::move(name));
+  return b.done(name + (crossings == 0 ? " nested" : " crossings=" + std::to_string(crossings)));
 }
 
 /// Random turned boxes of their own seed `draw`: sizes, heights, where the upper box stands (over
@@ -2006,8 +2019,14 @@ inline std::optional<cellforge::sample_model> random_turned_boxes(std::uint64_t 
   random_source rng(0xa54ff53a5f1d36f1ull ^ (draw * 0x9e3779b97f4a7c15ull));
   const glm::dvec2 lower(rng.between(1.5, 3), rng.between(1.5, 3));
   const double h1 = rng.between(0.3, 1.5), h2 = rng.between(0.3, 1.5);
-  const glm::dvec2 upper(rng.between(0.5, 1.5), rng.between(0.5, 1.5));
-  const glm::dvec2 centre(rng.between(-0.3, lower.x + 0.3), rng.between(-0.3, lower.y + 0.3));
+  // Every third draw a box of about the lower one's size on its middle (up to 8 crossings, four
+  // pieces each way touching at corners), every third one over a corner, the others anywhere.
+  const std::uint64_t where = draw % 3;
+  const glm::dvec2 upper = where == 1 ? lower * glm::dvec2(rng.between(0.75, 1.1), rng.between(0.75, 1.1))
+                                      : glm::dvec2(rng.between(0.5, 1.5), rng.between(0.5, 1.5));
+  const glm::dvec2 centre = where == 1   ? lower / 2.0 + glm::dvec2(rng.between(-0.1, 0.1), rng.between(-0.1, 0.1))
+                            : where == 2 ? lower * glm::dvec2(double(draw / 3 % 2), double(draw / 6 % 2))
+                                         : glm::dvec2(rng.between(-0.3, lower.x + 0.3), rng.between(-0.3, lower.y + 0.3));
   const double turn = rng.between(0.05, std::numbers::pi / 2 - 0.05);
   return turned_boxes(lower, h1, upper, centre, turn, h2,
                       "turned boxes draw " + std::to_string(draw) + " turn=" +

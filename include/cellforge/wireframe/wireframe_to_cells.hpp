@@ -289,7 +289,7 @@ void judge(wireframe_result<P>& r, const std::string& invalid, bool certified) {
     r.status_reason =
         !r.extra.fins.empty() && r.cells.num_volumes() > 0
             ? "a solid with fins: " + plural(c.faces_without_volume, "flat face stands", "flat faces stand") +
-                  " on its closed parts and bounds no volume (" +
+                  " on its closed parts, in no volume (" +
                   plural(c.free_edges, "edge lies", "edges lie") + " on one face only)"
         : c.free_edges > 0
             ? "an open surface: " + plural(c.free_edges, "edge lies", "edges lie") + " on one face only"
