@@ -721,6 +721,50 @@ TEST_CASE("crossing: pairs no round decides are decided by the certified choice"
   }
 }
 
+TEST_CASE("fins: a flat flap on a closed part is a face in no volume, the part keeps its volume") {
+  // A unit cube with a flap along its top edge y = 0: one quad, two coplanar triangles, or (the
+  // limit) a strip bent along its middle. Flat flaps keep the cube's volume; a bent one reads as
+  // an open surface (as an open mesh's rim would), flagged, never a solid. The open-surface rule
+  // removed the cube with any flap before.
+  for (int kind = 0; kind < 3; ++kind) {
+    wireframe_sweep::detail::model_builder b;
+    std::array<std::uint32_t, 8> c{};
+    for (int i = 0; i < 8; ++i) c[i] = b.point({double(i & 1), double(i >> 1 & 1), double(i >> 2 & 1)});
+    const auto quad = [&](int p, int q, int r, int s) { return b.face({{c[p], c[q], c[r], c[s]}}); };
+    b.volume({quad(0, 1, 3, 2), quad(2, 3, 7, 6), quad(0, 2, 6, 4), quad(1, 3, 7, 5), quad(0, 1, 5, 4),
+              quad(4, 5, 7, 6)});
+    const std::uint32_t p = b.point({0, -0.5, 1.2}), q = b.point({1, -0.5, 1.2});
+    if (kind == 0) b.face({{c[4], c[5], q, p}});
+    if (kind == 1) b.face({{c[4], c[5], q}}), b.face({{c[4], q, p}});
+    if (kind == 2) b.face({{c[4], c[5], q, p}}), b.face({{p, q, b.point({1, -0.9, 1.0}), b.point({0, -0.9, 1.0})}});
+    const sample_model m = b.done("cube with flap " + std::to_string(kind));
+    CAPTURE(kind);
+    const auto r = wireframe_to_cells(m.wire);
+    CHECK(r.status == cellforge::solid_status::not_a_solid);
+    if (kind < 2) {
+      CHECK(miss_reason(m, r).empty());
+      CHECK(r.input.volumes.size() == 1);
+      CHECK(r.extra.fins.size() == (kind == 0 ? 1u : 2u));
+      CHECK(r.lost.empty());
+      CHECK(r.status_reason.rfind("a solid with fins", 0) == 0);
+    } else {
+      CHECK(r.input.volumes.empty());
+      CHECK(r.extra.fins.empty());
+    }
+  }
+  // Without keep_fins, the flat flap takes the cube's volume with it, as before.
+  wireframe_sweep::detail::model_builder b;
+  std::array<std::uint32_t, 8> c{};
+  for (int i = 0; i < 8; ++i) c[i] = b.point({double(i & 1), double(i >> 1 & 1), double(i >> 2 & 1)});
+  for (const auto& f : std::array<std::array<int, 4>, 6>{
+           {{0, 1, 3, 2}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {4, 5, 7, 6}}})
+    b.face({{c[f[0]], c[f[1]], c[f[2]], c[f[3]]}});
+  b.face({{c[4], c[5], b.point({1, -0.5, 1.2}), b.point({0, -0.5, 1.2})}});
+  wireframe_options off;
+  off.extra.keep_fins = false;
+  CHECK(wireframe_to_cells(b.done("cube with flap").wire, off).input.volumes.empty());
+}
+
 TEST_CASE("merge_unforced: a merge never leaves a volume pinched at an edge or a vertex") {
   // Grids turned at random: merging across every wall two volumes share made volumes that use
   // an edge four times or touch themselves at a vertex, and validation refused the complex.
