@@ -63,12 +63,13 @@ namespace detail {
 /// keep_fins of extra_faces: finds the surfaces (faces joined through edges, `at`) whose removed
 /// faces (`how`: 1 for a free edge, 2 newly needed) are all flat flaps on what is left, moves
 /// those flaps from r.removed to r.fins and clears `open_surface` on the rest of the surface.
-/// A flap: removed for a free edge, its piece (removed faces joined through edges) in one plane
+/// Their removal diagnostics (`note_of`) go too. A flap: removed for a free edge, its piece (removed faces joined through edges) in one plane
 /// (within `tol`), and every open edge of the surface on one. O(Σ L + removed · log).
 template <class = void>
 void keep_flat_fins(const wire_graph& g, const std::vector<wire_face>& faces,
                     const edge_face_lists& at, const std::vector<char>& alive,
-                    const std::vector<char>& how, extra_faces_result& r, double tol,
+                    const std::vector<char>& how, const std::vector<std::size_t>& note_of,
+                    extra_faces_result& r, double tol,
                     std::vector<char>& open_surface) {
   const auto nf = static_cast<std::uint32_t>(faces.size());
   union_find surface(nf), piece(nf);
@@ -115,6 +116,13 @@ void keep_flat_fins(const wire_graph& g, const std::vector<wire_face>& faces,
     return d.free_edge && std::binary_search(fin_loops.begin(), fin_loops.end(), d.face.loops);
   });
   r.free -= kept;
+  std::vector<char> drop_note(r.diagnostics.size(), 0);
+  for (std::uint32_t i = 0; i < nf; ++i)
+    if (fin[i] && note_of[i] < drop_note.size()) drop_note[note_of[i]] = 1;
+  std::vector<std::string> notes;
+  for (std::size_t k = 0; k < r.diagnostics.size(); ++k)
+    if (!drop_note[k]) notes.push_back(std::move(r.diagnostics[k]));
+  r.diagnostics = std::move(notes);
   r.diagnostics.push_back(std::to_string(kept) +
                           " flat faces with a free edge stand on closed parts (fins): kept as faces in no "
                           "volume, the closed parts keep their volumes");
@@ -247,6 +255,7 @@ extra_faces_result extra_faces(const wire_graph& g, const std::vector<wire_face>
     }
     std::vector<std::uint32_t> beside;  // unneeded faces next to a removed one, to drop
     std::vector<char> how(faces.size(), 0);  // 1: removed for a free edge, 2: newly needed
+    std::vector<std::size_t> note_of(faces.size(), static_cast<std::size_t>(-1));  // its diagnostic, for a free edge
     auto remove = [&](std::uint32_t i, std::string reason, bool free_edge) {
       alive[i] = 0;
       how[i] = free_edge ? 1 : 2;
@@ -268,6 +277,7 @@ extra_faces_result extra_faces(const wire_graph& g, const std::vector<wire_face>
         for (const auto i : at[e]) {
           if (!alive[i]) continue;
           ++r.free;
+          note_of[i] = r.diagnostics.size();
           r.diagnostics.push_back("a face with free edge " + std::to_string(e) +
                                   " (no other face uses it) bounds no volume and was removed");
           remove(i, "its edge " + std::to_string(e) + " has no other face, so it bounds no volume", true);
@@ -291,7 +301,7 @@ extra_faces_result extra_faces(const wire_graph& g, const std::vector<wire_face>
     // with a fin) and the flaps are faces in no volume. An open mesh's rim unravels into curved
     // pieces, and pockets it leaves are closed only by the spurious cycles it padded.
     if (options.keep_fins && options.drop_open_surfaces && !r.open_edges.empty())
-      detail::keep_flat_fins(g, faces, at, alive, how, r, tol, open_surface);
+      detail::keep_flat_fins(g, faces, at, alive, how, note_of, r, tol, open_surface);
     // What is left of an open surface is closed pockets of it (a valence-3 vertex's tetrahedron
     // whose base closes a notch of the rim): the input does not draw them as solids either.
     for (std::uint32_t i = 0; i < faces.size(); ++i) {

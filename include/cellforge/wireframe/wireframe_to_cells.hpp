@@ -192,9 +192,13 @@ std::string open_surface_message(const wire_graph& g, const std::vector<wire_fac
   const std::size_t gone = extra.free + extra.newly_needed + extra.open_surface;
   if (faces_are_the_answer)
     what += "; no volume: the faces are the answer";
-  else
+  else if (gone > 0)
     what += "; " + std::to_string(gone) + " faces there close no volume (see lost), " +
             "volumes come only from the closed parts";
+  if (!extra.fins.empty())
+    what += "; " + std::to_string(extra.fins.size()) +
+            " flat faces with an edge on one face only stand on closed parts (fins): faces in no volume, "
+            "the parts keep their volumes";
   return what;
 }
 
