@@ -143,6 +143,43 @@ TEST_CASE("wireframe noise: the sweep turned and written with 10 and 6 significa
   }
 }
 
+TEST_CASE("wireframe noise: the ordinary solids with every vertex moved by 1e-9, 1e-6 and 1e-4") {
+  // wireframe_sweep::make_ordinary_sweep (height fields, boxes with fins, extrusions, turned
+  // boxes): exact at 1e-9 and 1e-6, and never a wrong answer passed as good at any level. The
+  // sample under the sanitizers.
+  bool full = true;
+#ifndef NDEBUG
+  full = false;
+#endif
+  const auto set = wireframe_sweep::make_ordinary_sweep(full ? wireframe_sweep::sweep_size::full
+                                                             : wireframe_sweep::sweep_size::sample);
+  const char* names[] = {"exact", "flagged", "error", "WRONG"};
+  for (const double eps : {1e-9, 1e-6, 1e-4}) {
+    std::map<noisy_outcome, std::size_t> count;
+    std::vector<std::string> misses;
+    for (const auto& s : set.models) {
+      const sample_model m = wireframe_sweep::noisy(
+          s.model, eps, wireframe_sweep::name_seed(s.model.name) ^ static_cast<std::uint64_t>(-std::log10(eps)));
+      std::string why;
+      const noisy_outcome o = wireframe_sweep::judge_noisy(m, why);
+      ++count[o];
+      if (o != noisy_outcome::exact)
+        misses.push_back("[" + s.family + "] " + s.model.name + " (" + names[static_cast<int>(o)] +
+                         "): " + why.substr(0, 200));
+      const std::string name = s.model.name;
+      CAPTURE(eps);
+      CAPTURE(name);
+      CHECK(o != noisy_outcome::wrong);
+      if (eps <= 1e-6) CHECK_MESSAGE(o == noisy_outcome::exact, why);
+    }
+    std::printf("\nordinary solids, noise %g: %zu of %zu exact, %zu flagged, %zu errors, %zu wrong\n", eps,
+                count[noisy_outcome::exact], set.models.size(), count[noisy_outcome::flagged],
+                count[noisy_outcome::error], count[noisy_outcome::wrong]);
+    for (const auto& line : misses) std::printf("  %s\n", line.c_str());
+  }
+  std::fflush(stdout);
+}
+
 TEST_CASE("wireframe noise: parts of very different sizes side by side") {
   SUBCASE("a 1e-4 L, T, U, frame or house beside a bar of 100 or 10^4: exact and quick") {
     // The arrangement's grid has cells of the small part's size: the bar's faces crossed

@@ -31,6 +31,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "cellforge/algorithms/convex_hull.hpp"
@@ -281,6 +282,9 @@ class model_builder {
     m_.faces.push_back(std::move(loops));
     return static_cast<std::uint32_t>(m_.faces.size() - 1);
   }
+  /// Where point v is.
+  /// O(1).
+  glm::dvec3 point_at(std::uint32_t v) const { return m_.wire.points[v]; }
   /// Adds a volume bounded by the given faces.
   /// O(size).
   void volume(std::vector<std::uint32_t> faces) { m_.volumes.push_back(std::move(faces)); }
@@ -1648,6 +1652,438 @@ inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
       }
     }
     detail::add_family(s, "library", std::move(bases), full);
+  }
+  return s;
+}
+
+// ---- ordinary solids nobody tuned for (issue 38): terrains, fins, extrusions, turned boxes ----
+
+/// The families of ordinary solids (make_ordinary_sweep), in the order it builds them.
+/// O(1).
+inline const std::vector<std::string>& ordinary_families() {
+  static const std::vector<std::string> names{"height field", "box with fin", "extrusion", "turned boxes"};
+  return names;
+}
+
+namespace detail {
+
+/// A height field: a k × m grid of columns with random integer heights 1..4, one volume, coplanar
+/// faces merged. Draws alternate between random widths and layer heights (k, m up to 5) and unit
+/// cubes (square columns, k, m up to 6); every other pair lets heights be 0 (courtyards and
+/// notches: the top faces get holes, the outline turns in), kept face-connected. nullopt when
+/// `accept` refuses it (columns touching along an edge only, a face no edge needs) or it falls
+/// apart (counted as not manifold). O(k · m · 4).
+inline std::optional<cellforge::sample_model> height_field(std::uint64_t draw, family_draws& draws) {
+  random_source rng(0x3c6ef372fe94f82bull ^ (draw * 0x9e3779b97f4a7c15ull));
+  const bool unit = draw % 2 == 1, pits = draw % 4 >= 2;
+  const std::size_t k = rng.in(2, unit ? 6 : 5), m = rng.in(2, unit ? 6 : 5);
+  const auto coords = [&](std::size_t n) {
+    std::vector<double> c;
+    for (std::size_t i = 0; i <= n; ++i) c.push_back(double(i));
+    return unit ? c : random_coords(n, rng);
+  };
+  cellforge::voxel_layout l = cellforge::empty_layout(coords(k), coords(m), coords(4));
+  std::string heights;
+  for (std::size_t j = 0; j < m; ++j)
+    for (std::size_t i = 0; i < k; ++i) {
+      const std::size_t h = rng.in(pits ? 0 : 1, 4);
+      heights += static_cast<char>('0' + h);
+      for (std::size_t z = 0; z < h; ++z) l.at(i, j, z) = 1;
+    }
+  if (heights.find_first_not_of('0') == std::string::npos || !cells_connected(l, 1))
+    return ++draws.not_manifold, std::nullopt;
+  return accept(l, 1,
+                "height field draw " + std::to_string(draw) + (unit ? " unit " : " ") + std::to_string(k) + "x" +
+                    std::to_string(m) + " " + heights,
+                draws);
+}
+
+/// A height field as height_field draws it whose columns touch along an edge (two diagonal
+/// columns above both others: no 2-manifold solid), of its own seed; nullopt when the draw is
+/// manifold or make_voxel_model refuses its outlines. Its answer must be flagged. O(k · m · 4).
+inline std::optional<cellforge::sample_model> touching_height_field(std::uint64_t draw) {
+  random_source rng(0x510e527fade682d1ull ^ (draw * 0x9e3779b97f4a7c15ull));
+  const std::size_t k = rng.in(2, 4), m = rng.in(2, 4);
+  cellforge::voxel_layout l = cellforge::empty_layout(random_coords(k, rng), random_coords(m, rng), random_coords(4, rng));
+  for (std::size_t j = 0; j < m; ++j)
+    for (std::size_t i = 0; i < k; ++i)
+      for (std::size_t z = 0, h = rng.in(1, 4); z < h; ++z) l.at(i, j, z) = 1;
+  if (manifold(l, [](int x) { return x != 0; })) return std::nullopt;
+  try {
+    return cellforge::make_voxel_model(l, "height field touching draw " + std::to_string(draw));
+  } catch (const cellforge::error&) {
+    return std::nullopt;
+  }
+}
+
+/// A box L × W × H with planar flaps: `kind` 0 a rectangle along a whole edge of the top, at
+/// `angle` (radians) above the top's plane (0: the top continued; pi/2: the side continued up); 1
+/// a triangle there; 2 a rectangle or (odd `variant`) triangle standing on the top across it,
+/// from one side to the other (the top then two faces); 3 a rectangle along the middle half of a
+/// top edge (the edge in three); 4 two rectangles on opposite top edges. Truth: the box's
+/// volume, each flap a face in no volume. O(1).
+inline cellforge::sample_model box_with_fin(int kind, double angle, int variant, glm::dvec3 size) {
+  model_builder b;
+  const double L = size.x, W = size.y, H = size.z;
+  std::array<std::uint32_t, 8> c{};
+  for (int i = 0; i < 8; ++i) c[i] = b.point({L * (i & 1), W * (i >> 1 & 1), H * (i >> 2 & 1)});
+  // Top corners 4 (0,0) 5 (L,0) 7 (L,W) 6 (0,W); the flaps hang on the top edge y = 0 (4-5).
+  const glm::dvec3 out(0, -std::cos(angle), std::sin(angle));  // away from the box, tilted up
+  const double reach = 0.6 * W;
+  std::vector<std::uint32_t> box;
+  const auto quad = [&](int p, int q, int r, int s) { return b.face({{c[p], c[q], c[r], c[s]}}); };
+  box.push_back(quad(0, 1, 3, 2));  // bottom
+  box.push_back(quad(0, 2, 6, 4));  // x = 0
+  box.push_back(quad(1, 3, 7, 5));  // x = L
+  std::string name = "box with fin ";
+  if (kind == 0 || kind == 1 || kind == 4) {
+    box.push_back(quad(2, 3, 7, 6));  // y = W
+    box.push_back(quad(0, 1, 5, 4));  // y = 0
+    box.push_back(quad(4, 5, 7, 6));  // top
+    const glm::dvec3 p4 = b.point_at(c[4]), p5 = b.point_at(c[5]);
+    if (kind == 1) {
+      b.face({{c[4], c[5], b.point(p4 + glm::dvec3(0.3 * L, 0, 0) + reach * out)}});
+      name += "triangle";
+    } else {
+      b.face({{c[4], c[5], b.point(p5 + reach * out), b.point(p4 + reach * out)}});
+      name += kind == 0 ? "rectangle" : "two rectangles";
+    }
+    if (kind == 4) {
+      const glm::dvec3 back(0, std::cos(angle), std::sin(angle));
+      const glm::dvec3 p6 = b.point_at(c[6]), p7 = b.point_at(c[7]);
+      b.face({{c[6], c[7], b.point(p7 + reach * back), b.point(p6 + reach * back)}});
+    }
+  } else if (kind == 2) {
+    // A fin across the top from (x0, 0, H) to (x1, W, H), standing up.
+    const double x0 = L * (0.3 + 0.1 * variant), x1 = L * (0.6 - 0.05 * variant);
+    const std::uint32_t a = b.point({x0, 0, H}), d = b.point({x1, W, H});
+    box.push_back(b.face({{c[0], c[1], c[5], a, c[4]}}));  // y = 0, split at a
+    box.push_back(b.face({{c[2], c[3], c[7], d, c[6]}}));  // y = W, split at d
+    box.push_back(b.face({{c[4], a, d, c[6]}}));           // top, left of the fin
+    box.push_back(b.face({{a, c[5], c[7], d}}));           // top, right of the fin
+    const double up = 0.5 * H + 0.2;
+    if (variant % 2 == 1)
+      b.face({{a, d, b.point({0.5 * (x0 + x1), 0.5 * W, H + up})}});
+    else
+      b.face({{a, d, b.point({x1, W, H + up}), b.point({x0, 0, H + up})}});
+    name += variant % 2 == 1 ? "standing triangle" : "standing rectangle";
+  } else {  // kind 3: along the middle half of the edge 4-5
+    const std::uint32_t a = b.point({0.25 * L, 0, H}), d = b.point({0.75 * L, 0, H});
+    box.push_back(quad(2, 3, 7, 6));                          // y = W
+    box.push_back(b.face({{c[0], c[1], c[5], d, a, c[4]}}));  // y = 0
+    box.push_back(b.face({{c[4], a, d, c[5], c[7], c[6]}}));  // top
+    b.face({{a, d, b.point(b.point_at(d) + reach * out), b.point(b.point_at(a) + reach * out)}});
+    name += "on part of an edge";
+  }
+  b.volume(box);
+  name += " angle=" + std::to_string(static_cast<int>(std::lround(angle * 180 / std::numbers::pi))) + " " +
+          std::to_string(static_cast<int>(L * 10)) + "x" + std::to_string(static_cast<int>(W * 10)) + "x" +
+          std::to_string(static_cast<int>(H * 10)) + (variant > 1 ? " v" + std::to_string(variant) : "");
+  return b.done(std::move(name));
+}
+
+/// A random simple polygon with `n` corners: star-shaped about the origin (sorted random angles,
+/// no gap below a third of the mean, radii in [0.45, 1]), so non-convex in general. O(n log n).
+inline std::vector<glm::dvec2> star_polygon(std::size_t n, random_source& rng) {
+  const double mean = 2 * std::numbers::pi / double(n);
+  std::vector<double> t(n);
+  for (;;) {
+    for (auto& x : t) x = rng.between(0, 2 * std::numbers::pi);
+    std::sort(t.begin(), t.end());
+    bool ok = true;
+    for (std::size_t i = 0; i < n; ++i)
+      ok = ok && (i + 1 < n ? t[i + 1] - t[i] : t[0] + 2 * std::numbers::pi - t[i]) > mean / 3;
+    if (ok) break;
+  }
+  std::vector<glm::dvec2> p;
+  for (const double a : t) {
+    const double r = rng.between(0.45, 1.0);
+    p.push_back({r * std::cos(a), r * std::sin(a)});
+  }
+  return p;
+}
+
+/// Distance from q to the segment a-b. O(1).
+inline double segment_distance(glm::dvec2 q, glm::dvec2 a, glm::dvec2 b) {
+  const glm::dvec2 d = b - a;
+  const double t = std::clamp(glm::dot(q - a, d) / glm::dot(d, d), 0.0, 1.0);
+  return glm::length(q - (a + t * d));
+}
+
+/// Whether q lies inside the polygon (crossing number). O(n).
+inline bool inside_polygon(glm::dvec2 q, const std::vector<glm::dvec2>& p) {
+  bool in = false;
+  for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++)
+    if ((p[i].y > q.y) != (p[j].y > q.y) && q.x < p[j].x + (q.y - p[j].y) * (p[i].x - p[j].x) / (p[i].y - p[j].y))
+      in = !in;
+  return in;
+}
+
+/// The prism over a simple polygon (any orientation) with polygonal bores through it, each a
+/// convex polygon given by its corners: bottom and top faces with the bores as holes, a quad per
+/// side; one volume. O(total corners).
+inline cellforge::sample_model extrude(const std::vector<glm::dvec2>& outline,
+                                       const std::vector<std::vector<glm::dvec2>>& bores, double height,
+                                       std::string name) {
+  model_builder b;
+  std::vector<std::vector<std::uint32_t>> bottom, top;
+  std::vector<std::uint32_t> faces;
+  const auto ring = [&](const std::vector<glm::dvec2>& poly) {
+    std::vector<std::uint32_t> lo, hi;
+    for (const auto& q : poly) lo.push_back(b.point({q.x, q.y, 0.0})), hi.push_back(b.point({q.x, q.y, height}));
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      const std::size_t j = (i + 1) % poly.size();
+      faces.push_back(b.face({{lo[i], lo[j], hi[j], hi[i]}}));
+    }
+    bottom.push_back(lo);
+    top.push_back(hi);
+  };
+  ring(outline);
+  for (const auto& bore : bores) ring(bore);
+  faces.push_back(b.face(bottom));
+  faces.push_back(b.face(top));
+  b.volume(faces);
+  return b.done(std::move(name));
+}
+
+/// An extrusion of a random simple polygon of 5..20 sides with 0..3 bores (3..6-gons, kept clear
+/// of the outline and of each other), of its own seed `draw`. O(sides · bores · tries).
+inline cellforge::sample_model random_extrusion(std::uint64_t draw) {
+  random_source rng(0xbb67ae8584caa73bull ^ (draw * 0x9e3779b97f4a7c15ull));
+  const std::size_t n = rng.in(5, 20), want = rng.in(0, 3);
+  const std::vector<glm::dvec2> outline = star_polygon(n, rng);
+  std::vector<std::vector<glm::dvec2>> bores;
+  std::vector<std::pair<glm::dvec2, double>> placed;  // centre, radius
+  for (std::size_t tries = 0; bores.size() < want && tries < 400; ++tries) {
+    const glm::dvec2 c(rng.between(-1, 1), rng.between(-1, 1));
+    const double r = rng.between(0.06, 0.2);
+    if (!inside_polygon(c, outline)) continue;
+    bool clear = true;
+    for (std::size_t i = 0; i < n && clear; ++i)
+      clear = segment_distance(c, outline[i], outline[(i + 1) % n]) > r * 1.3;
+    for (const auto& [d, s] : placed) clear = clear && glm::length(c - d) > (r + s) * 1.3;
+    if (!clear) continue;
+    placed.push_back({c, r});
+    const std::size_t k = rng.in(3, 6);
+    const double turn = rng.between(0, 1);
+    std::vector<glm::dvec2> bore;
+    for (std::size_t j = 0; j < k; ++j) {
+      const double t = 2 * std::numbers::pi * double(j) / double(k) + turn;
+      bore.push_back(c + r * glm::dvec2(std::cos(t), std::sin(t)));
+    }
+    bores.push_back(std::move(bore));
+  }
+  const double height = rng.between(0.2, 1.5);
+  return extrude(outline, bores, height,
+                 "extrusion draw " + std::to_string(draw) + " sides=" + std::to_string(n) +
+                     " bores=" + std::to_string(bores.size()));
+}
+
+/// Crossing of segments a-b and c-d at a-b's parameter s and c-d's t, both strictly inside.
+/// O(1).
+inline bool segments_cross(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, glm::dvec2 d, double& s, double& t) {
+  const glm::dvec2 r = b - a, q = d - c;
+  const double den = r.x * q.y - r.y * q.x;
+  if (std::abs(den) < 1e-12) return false;
+  const glm::dvec2 w = c - a;
+  s = (w.x * q.y - w.y * q.x) / den;
+  t = (w.x * r.y - w.y * r.x) / den;
+  return s > 0 && s < 1 && t > 0 && t < 1;
+}
+
+/// A box on top of a bigger box, turned about the vertical: the lower box's top rectangle T
+/// (0..L × 0..W at z = h1) and the upper box's footprint R (a rectangle turned by `turn` about
+/// `centre`) cross or nest; faces in the plane z = h1: the pieces of T outside R (facing up) and
+/// of R outside T (facing down, an overhang), found by walking the two boundaries split at their
+/// crossings; the side faces carry the crossings on their edges in that plane. One volume;
+/// nullopt when R is not inside T and does not cross it (apart). O(1).
+inline std::optional<cellforge::sample_model> turned_boxes(glm::dvec2 lower, double h1, glm::dvec2 upper,
+                                                           glm::dvec2 centre, double turn, double h2,
+                                                           std::string name) {
+  const std::vector<glm::dvec2> T{{0, 0}, {lower.x, 0}, lower, {0, lower.y}};  // counter-clockwise
+  std::vector<glm::dvec2> R;
+  for (const auto& [u, v] : std::array<std::array<double, 2>, 4>{{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}}) {
+    const glm::dvec2 p(u * upper.x / 2, v * upper.y / 2);
+    R.push_back(centre + glm::dvec2(std::cos(turn) * p.x - std::sin(turn) * p.y,
+                                    std::sin(turn) * p.x + std::cos(turn) * p.y));
+  }
+  model_builder b;
+  // Boundary points of each polygon in order: corners and crossings, each with its vertex label.
+  struct at {
+    double s;  // corner index + parameter along the side
+    std::uint32_t v;
+    int cross;  // index of the crossing, -1 at a corner
+  };
+  std::array<std::vector<at>, 2> walk;
+  std::array<std::vector<std::uint32_t>, 2> corner;
+  for (std::size_t i = 0; i < 4; ++i) {
+    corner[0].push_back(b.point({T[i].x, T[i].y, h1}));
+    walk[0].push_back({double(i), corner[0].back(), -1});
+    corner[1].push_back(b.point({R[i].x, R[i].y, h1}));
+    walk[1].push_back({double(i), corner[1].back(), -1});
+  }
+  int crossings = 0;
+  for (std::size_t i = 0; i < 4; ++i)
+    for (std::size_t j = 0; j < 4; ++j) {
+      double s = 0, t = 0;
+      if (!segments_cross(T[i], T[(i + 1) % 4], R[j], R[(j + 1) % 4], s, t)) continue;
+      if (s < 1e-3 || s > 1 - 1e-3 || t < 1e-3 || t > 1 - 1e-3) return std::nullopt;  // too near a corner
+      const glm::dvec2 p = T[i] + s * (T[(i + 1) % 4] - T[i]);
+      const std::uint32_t v = b.point({p.x, p.y, h1});
+      walk[0].push_back({double(i) + s, v, crossings});
+      walk[1].push_back({double(j) + t, v, crossings});
+      ++crossings;
+    }
+  for (auto& w : walk) std::sort(w.begin(), w.end(), [](const at& x, const at& y) { return x.s < y.s; });
+  const auto inside_T = [&](glm::dvec2 q) { return q.x > 0 && q.x < lower.x && q.y > 0 && q.y < lower.y; };
+  const auto inside_R = [&](glm::dvec2 q) { return inside_polygon(q, R); };
+  std::vector<std::uint32_t> faces;
+  // Side faces: the lower box's go up to z = h1 (its top edge through T's boundary points), the
+  // upper box's down to it.
+  std::array<std::uint32_t, 4> base{}, roof{};
+  for (std::size_t i = 0; i < 4; ++i) base[i] = b.point({T[i].x, T[i].y, 0.0}), roof[i] = b.point({R[i].x, R[i].y, h1 + h2});
+  for (int p = 0; p < 2; ++p)
+    for (std::size_t i = 0; i < 4; ++i) {
+      std::vector<std::uint32_t> loop;  // along the side at z = h1 from corner i to i + 1, then back
+      for (const at& x : walk[p])
+        if (x.s >= double(i) && x.s < double(i + 1)) loop.push_back(x.v);
+      loop.push_back(corner[p][(i + 1) % 4]);
+      const auto& far = p == 0 ? base : roof;
+      loop.push_back(far[(i + 1) % 4]);
+      loop.push_back(far[i]);
+      faces.push_back(b.face({loop}));
+    }
+  faces.push_back(b.face({{base[0], base[1], base[2], base[3]}}));
+  faces.push_back(b.face({{roof[0], roof[1], roof[2], roof[3]}}));
+  if (crossings == 0) {
+    if (std::all_of(R.begin(), R.end(), inside_T))
+      faces.push_back(b.face({corner[0], corner[1]}));  // T with R as a hole
+    else if (std::all_of(T.begin(), T.end(), inside_R))
+      faces.push_back(b.face({corner[1], corner[0]}));  // an overhang all round
+    else
+      return std::nullopt;
+  } else {
+    // A piece of P outside Q: P's boundary outside Q forwards, Q's inside P backwards, switching at
+    // the crossings; one piece from each crossing where P's boundary leaves Q.
+    for (int p = 0; p < 2; ++p) {
+      const auto& P = walk[p];
+      const auto& Q = walk[1 - p];
+      const auto in_other = [&](glm::dvec2 q) { return p == 0 ? inside_R(q) : inside_T(q); };
+      const auto& poly = p == 0 ? T : R;
+      const auto where = [&](const std::vector<at>& w, int cross) {
+        for (std::size_t k = 0; k < w.size(); ++k)
+          if (w[k].cross == cross) return k;
+        return w.size();
+      };
+      std::vector<char> used(static_cast<std::size_t>(crossings), 0);
+      for (std::size_t k0 = 0; k0 < P.size(); ++k0) {
+        if (P[k0].cross < 0 || used[static_cast<std::size_t>(P[k0].cross)]) continue;
+        // Leaving Q here: the point just after along P is outside Q.
+        const double s = P[k0].s, next = k0 + 1 < P.size() ? P[k0 + 1].s : 4.0;
+        const double mid = 0.5 * (s + next);
+        const auto side = static_cast<std::size_t>(mid);
+        const glm::dvec2 q = poly[side % 4] + (mid - double(side)) * (poly[(side + 1) % 4] - poly[side % 4]);
+        if (in_other(q)) continue;
+        std::vector<std::uint32_t> loop;
+        std::size_t k = k0;
+        bool on_p = true;
+        for (std::size_t guard = 0; guard < 64; ++guard) {
+          const auto& w = on_p ? P : Q;
+          loop.push_back(w[k].v);
+          if (w[k].cross >= 0 && guard > 0) {
+            // Switch polygons at a crossing.
+            if (on_p) used[static_cast<std::size_t>(w[k].cross)] = 1;
+            const std::size_t other = where(on_p ? Q : P, w[k].cross);
+            loop.pop_back();
+            on_p = !on_p;
+            k = other;
+            loop.push_back((on_p ? P : Q)[k].v);
+            if (on_p && k == k0) break;
+          } else if (guard == 0) {
+            used[static_cast<std::size_t>(w[k].cross)] = 1;
+          }
+          k = on_p ? (k + 1) % P.size() : (k + Q.size() - 1) % Q.size();
+        }
+        if (!loop.empty() && loop.front() == loop.back()) loop.pop_back();
+        faces.push_back(b.face({loop}));
+      }
+    }
+  }
+  b.volume(faces);
+  return b.done(name + (crossings == 0 ? " nested" : " crossings=" + std::to_string(crossings)));
+}
+
+/// Random turned boxes of their own seed `draw`: sizes, heights, where the upper box stands (over
+/// a corner, a side, or inside) and its turn. nullopt when the two are apart. O(1).
+inline std::optional<cellforge::sample_model> random_turned_boxes(std::uint64_t draw) {
+  random_source rng(0xa54ff53a5f1d36f1ull ^ (draw * 0x9e3779b97f4a7c15ull));
+  const glm::dvec2 lower(rng.between(1.5, 3), rng.between(1.5, 3));
+  const double h1 = rng.between(0.3, 1.5), h2 = rng.between(0.3, 1.5);
+  // Every third draw a box of about the lower one's size on its middle (up to 8 crossings, four
+  // pieces each way touching at corners), every third one over a corner, the others anywhere.
+  const std::uint64_t where = draw % 3;
+  const glm::dvec2 upper = where == 1 ? lower * glm::dvec2(rng.between(0.75, 1.1), rng.between(0.75, 1.1))
+                                      : glm::dvec2(rng.between(0.5, 1.5), rng.between(0.5, 1.5));
+  const glm::dvec2 centre = where == 1   ? lower / 2.0 + glm::dvec2(rng.between(-0.1, 0.1), rng.between(-0.1, 0.1))
+                            : where == 2 ? lower * glm::dvec2(double(draw / 3 % 2), double(draw / 6 % 2))
+                                         : glm::dvec2(rng.between(-0.3, lower.x + 0.3), rng.between(-0.3, lower.y + 0.3));
+  const double turn = rng.between(0.05, std::numbers::pi / 2 - 0.05);
+  return turned_boxes(lower, h1, upper, centre, turn, h2,
+                      "turned boxes draw " + std::to_string(draw) + " turn=" +
+                          std::to_string(static_cast<int>(std::lround(turn * 180 / std::numbers::pi))));
+}
+
+/// Adds models whose truth may have faces in no volume (a fin): each needed by an edge, or a
+/// fault. O(total size).
+inline void add_ordinary(sweep_set& s, const std::string& family, cellforge::sample_model m, bool full, bool odd) {
+  if (const std::size_t n = faces_no_edge_needs(m); n != 0) {
+    s.faults.push_back(family + ": '" + m.name + "' has " + std::to_string(n) + " faces no edge needs");
+    return;
+  }
+  m.unforced_faces = 0;
+  add_copies(s, family, m, full, full ? 1 : 0, odd);
+}
+
+}  // namespace detail
+
+/// The sweep of ordinary solids nobody tuned the reading for (ordinary_families): height fields
+/// (k × m columns of heights 1..4), boxes with fins (flaps in no volume), extrusions of random
+/// non-convex polygons with 0..3 bores, boxes turned on boxes. Shuffled as make_sweep's models;
+/// full: about 400 models, sample: about 30. O(total size).
+inline sweep_set make_ordinary_sweep(sweep_size size, bool shuffle = true) {
+  const bool full = size == sweep_size::full;
+  sweep_set s;
+  s.shuffle = shuffle;
+  {
+    family_draws draws{"height field"};
+    const std::size_t want = full ? 80 : 6;
+    for (std::uint64_t d = 0; draws.kept < want && d < 40 * want; ++d)
+      if (auto m = detail::height_field(d, draws)) detail::add_copies(s, "height field", *m, false, 0, d % 2 == 0);
+    if (draws.kept < want) s.faults.push_back("height field: only " + std::to_string(draws.kept) + " draws kept");
+    s.draws.push_back(draws);
+  }
+  {
+    std::size_t i = 0;
+    const double pi = std::numbers::pi;
+    for (const int kind : {0, 1, 2, 3, 4})
+      for (const double angle : {0.0, pi / 6, pi / 4, pi / 2, 2 * pi / 3})
+        for (int variant = 0; variant < 2; ++variant, ++i) {
+          if (kind == 2 && angle != 0.0) continue;  // a standing fin has no angle; variants instead
+          const glm::dvec3 size = variant == 0 ? glm::dvec3(1, 1, 1) : glm::dvec3(2, 1.25, 0.5);
+          if (!full && i % 5 != 0) continue;
+          detail::add_ordinary(s, "box with fin", detail::box_with_fin(kind, angle, kind == 2 ? variant : 0, size),
+                               full, i % 2 == 1);
+        }
+    if (full)
+      for (int variant = 2; variant < 4; ++variant)
+        detail::add_ordinary(s, "box with fin", detail::box_with_fin(2, 0.0, variant, {1.5, 1, 0.75}), full, false);
+  }
+  for (std::uint64_t d = 0; d < (full ? 80u : 6u); ++d)
+    detail::add_ordinary(s, "extrusion", detail::random_extrusion(d), false, d % 2 == 0);
+  {
+    std::size_t kept = 0;
+    for (std::uint64_t d = 0; kept < (full ? 60u : 6u) && d < 1000; ++d)
+      if (auto m = detail::random_turned_boxes(d)) detail::add_ordinary(s, "turned boxes", *m, false, kept++ % 2 == 0);
   }
   return s;
 }

@@ -36,6 +36,10 @@ struct extra_face_options {
   /// With remove_free: a surface (faces joined through edges) with an edge on one face only is
   /// open and bounds no volume; what the free-face removal leaves of it (closed pockets) goes too.
   bool drop_open_surfaces = true;
+  /// With remove_free: a flat flap on a closed part (faces removed for free edges that lie in
+  /// one plane, on a surface whose only removals they are and whose rest closes: a box with a
+  /// fin) leaves that part's volumes alone and is kept as faces in no volume (`fins`).
+  bool keep_fins = true;
   trace_options retrace{};  ///< tracer used for missed faces (kind is forced to planar)
 };
 
@@ -46,10 +50,84 @@ struct extra_faces_result : stage_report {
   std::size_t newly_needed = 0;       ///< faces removed by drop_newly_needed
   std::size_t open_surface = 0;       ///< faces removed by drop_open_surfaces
   std::vector<dropped_face> removed;  ///< every selected face this stage removed, and why
+  /// Flat flaps standing on closed parts (keep_fins): faces with a free edge that bound no
+  /// volume but belong to the answer, as faces in no volume; not in `faces` (wireframe_to_cells
+  /// appends them there after finding the volumes) nor in `removed`.
+  std::vector<wire_face> fins;
   /// Edges on exactly one selected face before any free face was removed: the rim of an open
   /// surface, or the edge of a hole the crossing rule cut (graph labels, increasing).
   std::vector<std::uint32_t> open_edges;
 };
+
+namespace detail {
+/// keep_fins of extra_faces: finds the surfaces (faces joined through edges, `at`) whose removed
+/// faces (`how`: 1 for a free edge, 2 newly needed) are all flat flaps on what is left, moves
+/// those flaps from r.removed to r.fins and clears `open_surface` on the rest of the surface.
+/// Their removal diagnostics (`note_of`) go too. A flap: removed for a free edge, its piece (removed faces joined through edges) in one plane
+/// (within `tol`), and every open edge of the surface on one. O(Σ L + removed · log).
+template <class = void>
+void keep_flat_fins(const wire_graph& g, const std::vector<wire_face>& faces,
+                    const edge_face_lists& at, const std::vector<char>& alive,
+                    const std::vector<char>& how, const std::vector<std::size_t>& note_of,
+                    extra_faces_result& r, double tol,
+                    std::vector<char>& open_surface) {
+  const auto nf = static_cast<std::uint32_t>(faces.size());
+  union_find surface(nf), piece(nf);
+  for (std::uint32_t e = 0; e < g.num_edges(); ++e)
+    for (const auto i : at[e]) {
+      surface.unite(at[e][0], i);
+      for (const auto j : at[e])
+        if (how[i] != 0 && how[j] != 0) piece.unite(i, j);
+    }
+  // Per surface root: 1 while it may keep its rest, 0 once it cannot; has a face left.
+  std::vector<char> ok(nf, 1), rest(nf, 0);
+  for (std::uint32_t i = 0; i < nf; ++i) {
+    const auto s = surface.find(i);
+    if (alive[i]) rest[s] = 1;
+    if (how[i] == 2) ok[s] = 0;
+    if (how[i] != 1) continue;
+    const auto p = piece.find(i);  // flat: in the plane of its piece's root face
+    const glm::dvec3 n = faces[p].normal, o = g.points[faces[p].loops[0][0]];
+    bool flat = coplanar_normals(n, faces[i].normal);
+    for (const auto& loop : faces[i].loops)
+      for (const auto v : loop) flat = flat && std::abs(glm::dot(g.points[v] - o, n)) <= tol;
+    if (!flat) ok[s] = 0;
+  }
+  for (const auto e : r.open_edges) {
+    bool on_flap = false;
+    for (const auto i : at[e]) on_flap = on_flap || how[i] == 1;
+    if (!on_flap) ok[surface.find(at[e][0])] = 0;
+  }
+  std::vector<char> fin(nf, 0);
+  std::size_t kept = 0;
+  for (std::uint32_t i = 0; i < nf; ++i) {
+    const auto s = surface.find(i);
+    if (!ok[s] || !rest[s]) continue;
+    open_surface[i] = 0;
+    if (how[i] == 1) fin[i] = 1, ++kept;
+  }
+  if (kept == 0) return;
+  // r.removed holds this stage's removals in order; the fins among them are found by their loops.
+  std::vector<std::vector<std::vector<std::uint32_t>>> fin_loops;
+  for (std::uint32_t i = 0; i < nf; ++i)
+    if (fin[i]) fin_loops.push_back(faces[i].loops), r.fins.push_back(faces[i]);
+  std::sort(fin_loops.begin(), fin_loops.end());
+  std::erase_if(r.removed, [&](const dropped_face& d) {
+    return d.free_edge && std::binary_search(fin_loops.begin(), fin_loops.end(), d.face.loops);
+  });
+  r.free -= kept;
+  std::vector<char> drop_note(r.diagnostics.size(), 0);
+  for (std::uint32_t i = 0; i < nf; ++i)
+    if (fin[i] && note_of[i] < drop_note.size()) drop_note[note_of[i]] = 1;
+  std::vector<std::string> notes;
+  for (std::size_t k = 0; k < r.diagnostics.size(); ++k)
+    if (!drop_note[k]) notes.push_back(std::move(r.diagnostics[k]));
+  r.diagnostics = std::move(notes);
+  r.diagnostics.push_back(std::to_string(kept) +
+                          " flat faces with a free edge stand on closed parts (fins): kept as faces in no "
+                          "volume, the closed parts keep their volumes");
+}
+}  // namespace detail
 
 /// Adds missed faces, removes overlapping and free faces, and with them the faces that only an
 /// open surface's removal would make needed. `crossed`: the candidates the crossing rule
@@ -176,8 +254,11 @@ extra_faces_result extra_faces(const wire_graph& g, const std::vector<wire_face>
         open_surface[i] = alive[i] && open_surface[surface.find(i)];
     }
     std::vector<std::uint32_t> beside;  // unneeded faces next to a removed one, to drop
+    std::vector<char> how(faces.size(), 0);  // 1: removed for a free edge, 2: newly needed
+    std::vector<std::size_t> note_of(faces.size(), static_cast<std::size_t>(-1));  // its diagnostic, for a free edge
     auto remove = [&](std::uint32_t i, std::string reason, bool free_edge) {
       alive[i] = 0;
+      how[i] = free_edge ? 1 : 2;
       r.removed.push_back({faces[i], std::move(reason), free_edge});
       for (const auto& loop : faces[i].loops)
         for (std::size_t k = 0; k < loop.size(); ++k) {
@@ -196,6 +277,7 @@ extra_faces_result extra_faces(const wire_graph& g, const std::vector<wire_face>
         for (const auto i : at[e]) {
           if (!alive[i]) continue;
           ++r.free;
+          note_of[i] = r.diagnostics.size();
           r.diagnostics.push_back("a face with free edge " + std::to_string(e) +
                                   " (no other face uses it) bounds no volume and was removed");
           remove(i, "its edge " + std::to_string(e) + " has no other face, so it bounds no volume", true);
@@ -213,6 +295,13 @@ extra_faces_result extra_faces(const wire_graph& g, const std::vector<wire_face>
                false);
       }
     }
+    // Flat flaps on closed parts: per surface whose removals were all for a free edge, each
+    // piece of removed faces (joined through edges) flat, every open edge on one of them, and
+    // something left: that rest is closed whatever the flaps were, so it keeps its volumes (a box
+    // with a fin) and the flaps are faces in no volume. An open mesh's rim unravels into curved
+    // pieces, and pockets it leaves are closed only by the spurious cycles it padded.
+    if (options.keep_fins && options.drop_open_surfaces && !r.open_edges.empty())
+      detail::keep_flat_fins(g, faces, at, alive, how, note_of, r, tol, open_surface);
     // What is left of an open surface is closed pockets of it (a valence-3 vertex's tetrahedron
     // whose base closes a notch of the rim): the input does not draw them as solids either.
     for (std::uint32_t i = 0; i < faces.size(); ++i) {

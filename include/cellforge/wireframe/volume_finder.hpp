@@ -478,13 +478,10 @@ class basic_face_reader {
   bool kept(std::uint32_t i) const { return alive_[i] && !drop[i]; }
   /// Per face: kept (alive, not dropped); updated by commit.
   const std::vector<char>& kept_now() const { return kept_cache_; }
-  /// Seam walls never go; a face between the outside and a region next to a seam wall never goes
-  /// (it would turn the wall to the outside); keep_walls keeps every wall between two volumes.
-  bool frozen(std::uint32_t i) {
-    if (seam_wall_[i]) return true;
-    const auto a = merged.find(sides_[i][0]), b = merged.find(sides_[i][1]), o = merged.find(O_);
-    return (a == o && ambiguous_[b]) || (b == o && ambiguous_[a]);
-  }
+  /// Seam walls never go. Every other face no edge needs is searched, face by face: one between
+  /// the outside and a region next to a seam wall stays only because each reading dropping it
+  /// turns the wall to the outside (`amb_` in assign), not because its region is frozen whole.
+  bool frozen(std::uint32_t i) const { return seam_wall_[i] != 0; }
   /// unforced[i]: kept, and needed by no edge among the kept faces.
   void mark_unforced() {
     const auto& k = kept_now();

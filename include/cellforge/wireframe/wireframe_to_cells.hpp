@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -191,9 +192,13 @@ std::string open_surface_message(const wire_graph& g, const std::vector<wire_fac
   const std::size_t gone = extra.free + extra.newly_needed + extra.open_surface;
   if (faces_are_the_answer)
     what += "; no volume: the faces are the answer";
-  else
+  else if (gone > 0)
     what += "; " + std::to_string(gone) + " faces there close no volume (see lost), " +
             "volumes come only from the closed parts";
+  if (!extra.fins.empty())
+    what += "; " + std::to_string(extra.fins.size()) +
+            " flat faces with an edge on one face only stand on closed parts (fins): faces in no volume, "
+            "the parts keep their volumes";
   return what;
 }
 
@@ -231,6 +236,24 @@ certify_options pipeline_certify_options(const wireframe_options& options) {
   return c;
 }
 
+/// "volume v uses the edge between vertices a and b k times" for the first volume of `in` using an
+/// edge more than twice (an even number of times), or empty. O(L log L) over the volumes' faces.
+template <Point3 P>
+std::string pinched_edge(const cell_complex_input<P>& in) {
+  for (std::size_t v = 0; v < in.volumes.size(); ++v) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> uses;
+    for (const auto& [f, sign] : in.volumes[v].faces)
+      for (const auto& loop : in.faces[f].loops)
+        for (std::size_t k = 0; k < loop.size(); ++k)
+          ++uses[std::minmax(loop[k], loop[(k + 1) % loop.size()])];
+    for (const auto& [e, n] : uses)
+      if (n > 2 && n % 2 == 0)
+        return "volume " + std::to_string(v) + " uses the edge between vertices " + std::to_string(e.first) +
+               " and " + std::to_string(e.second) + " " + std::to_string(n) + " times";
+  }
+  return {};
+}
+
 /// Sets r.status and its one-line reason from the validation (`invalid`: the broken invariant,
 /// or empty), the certificate and what the stages removed or left undecided. O(1).
 template <Point3 P>
@@ -241,9 +264,15 @@ void judge(wireframe_result<P>& r, const std::string& invalid, bool certified) {
   };
   if (!invalid.empty()) {
     r.status = solid_status::not_a_solid;
-    r.status_reason = "the faces found do not make a valid cell complex (" + invalid +
-                      "); edges crossing each other inside a plane or other input this pipeline cannot read "
-                      "may cause this";
+    // A volume using an edge four times or more: the solid the faces bound touches itself along
+    // that edge (two columns of a terrain meeting at a corner line), which no 2-manifold volume can.
+    const std::string pinched = pinched_edge(r.input);
+    r.status_reason = !pinched.empty()
+                          ? "not a 2-manifold solid: it touches itself along an edge (" + pinched +
+                                "), which no volume of a cell complex may use more than twice"
+                          : "the faces found do not make a valid cell complex (" + invalid +
+                                    "); edges crossing each other inside a plane or other input this pipeline "
+                                    "cannot read may cause this";
   } else if (!certified) {
     r.status = solid_status::not_a_solid;
     r.status_reason = "not certified (certify_result is off)";
@@ -262,7 +291,11 @@ void judge(wireframe_result<P>& r, const std::string& invalid, bool certified) {
   } else if (c.faces_without_volume > 0) {
     r.status = solid_status::not_a_solid;
     r.status_reason =
-        c.free_edges > 0
+        !r.extra.fins.empty() && r.cells.num_volumes() > 0
+            ? "a solid with fins: " + plural(c.faces_without_volume, "flat face stands", "flat faces stand") +
+                  " on its closed parts, in no volume (" +
+                  plural(c.free_edges, "edge lies", "edges lie") + " on one face only)"
+        : c.free_edges > 0
             ? "an open surface: " + plural(c.free_edges, "edge lies", "edges lie") + " on one face only"
             : plural(c.faces_without_volume, "face bounds", "faces bound") + " no volume";
   } else if (const auto open = std::find_if(r.extra.removed.begin(), r.extra.removed.end(),
@@ -370,6 +403,23 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
   } else {
     r.volume = cellforge::find_volumes(g, r.extra.faces, used.volume);
     r.relations = cellforge::find_relations(g, r.extra.faces, r.volume, used.relations);
+    // Fins (flat flaps on closed parts) join the answer after the volumes, as faces in no volume
+    // (not in the relations, which are the volumes'), in the object of a face they touch.
+    if (!r.extra.fins.empty()) {
+      std::vector<std::uint32_t> object_at(g.num_vertices(), no_index);
+      for (std::uint32_t i = 0; i < r.extra.faces.size(); ++i)
+        if (i < r.volume.object_of_face.size())
+          for (const auto& loop : r.extra.faces[i].loops)
+            for (const auto v : loop) object_at[v] = r.volume.object_of_face[i];
+      for (auto& f : r.extra.fins) {
+        std::uint32_t object = no_index;
+        for (const auto v : f.loops[0]) object = std::min(object, object_at[v]);
+        r.volume.object_of_face.push_back(object);
+        r.volume.face_kept.push_back(1);
+        r.volume.face_volumes.push_back({no_index, no_index});
+        r.extra.faces.push_back(f);
+      }
+    }
   }
 
   stopwatch clock;
