@@ -65,7 +65,7 @@ struct tube_options {
   /// none, the default by measurement — docs/tubes.md).
   std::uint32_t junction_extra_points = 0;
   /// Run the exact self-intersection check on the result (algorithms/self_intersections.hpp;
-  /// about twice the meshing time) and report it in tubes_result. make_tubes does not check
+  /// 7–9 times the meshing time on trees and lattices) and report it in tubes_result. make_tubes does not check
   /// the skeleton's clearance: tubes whose edges pass closer than their radii intersect.
   bool check_self_intersections = false;
   /// Levels of Loop subdivision applied at the end (the seed smooths its tubes so); with
@@ -469,13 +469,28 @@ tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& 
           ++i;
           continue;
         }
-        const std::size_t drop = i_end ? j : (j_end || j == 0) ? i : j;
-        if (!i_end && !j_end) {
+        std::size_t drop = i_end ? j : (j_end || j == 0) ? i : j;
+        // The station next to a junction's ring stays on the ring's axis (the junction chose
+        // it so): moved off it, the tube would leave the ring askew and fold against the
+        // junction's surface. Its partner goes instead, or, when the ring would take it, the
+        // station beyond it (which straightens its turn), while there is one.
+        const bool start_pin = !path.closed && stations[0].fixed, end_pin = !path.closed && stations[k - 1].fixed;
+        const bool pin_i = start_pin && i == 1, pin_j = end_pin && j + 2 == k;
+        bool moved = !i_end && !j_end;
+        if (moved && (pin_i || pin_j)) {
+          drop = pin_i ? j : i;
+          moved = false;
+        } else if (i_end && start_pin && i == 0 && k > 3 && !is_end(2)) {
+          drop = 2, i = 1;
+        } else if (j_end && end_pin && j + 1 == k && k > 3 && !is_end(k - 3)) {
+          drop = k - 3, i = k - 3;
+        }
+        if (moved) {
           dt::station& keep = stations[drop == i ? j : i];
           keep.centre = 0.5 * (stations[i].centre + stations[j].centre);
           keep.radius = 0.5 * (stations[i].radius + stations[j].radius);
         }
-        // The segment between them goes; the other segments keep their edges.
+        // The segment between the two goes; the other segments keep their edges.
         stations.erase(stations.begin() + static_cast<std::ptrdiff_t>(drop));
         station_node.erase(station_node.begin() + static_cast<std::ptrdiff_t>(drop));
         segment_edge.erase(segment_edge.begin() + static_cast<std::ptrdiff_t>(i));
@@ -525,6 +540,7 @@ tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& 
   std::uint32_t building = 0;  // the junction being built, for its messages
   const std::function<std::string()> junction_name = [&] { return skeleton_name(building); };
   std::vector<std::uint32_t> merge_paths;  // paths between junctions too short for their rings
+  constexpr int merge_rounds = 8;           // then what still lacks room is shrunk
   for (const std::uint32_t b : junction_order) {
     building = b;
     const glm::dvec3 c = node_pos(b);
@@ -549,7 +565,7 @@ tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& 
       const tube_path& path = tc.paths[slots[i] / 2];
       const auto m = static_cast<std::uint32_t>(path.nodes.size());
       const std::uint32_t other = path_node(slots[i] ^ 1u, 0);
-      last[i] = !is_junction(other) ? m - 2
+      last[i] = !is_junction(other) ? m - 1
                 : junction_done[other] != 0 ? m - 2 - taken_of_slot[slots[i] ^ 1u]
                                             : (m - 1) / 2;
       last[i] = std::max<std::uint32_t>(last[i], 1);
@@ -587,36 +603,75 @@ tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& 
         ring_edges.push_back(tube_node::none);
       }
       dt::place_rings(detail::span_of(rings), rb, options.cap_separation);
+      // A ring behind a neighbour's within 60° (whose centre lies ahead of its plane) would leave
+      // a narrow crevice between its tube and the hull's flank towards the neighbour, faces
+      // nearly back to back: it moves out along its axis to the neighbour's (its cap narrows).
+      for (int pass = 0; pass < 2; ++pass)
+        for (std::size_t i = 0; i < real; ++i)
+          for (std::size_t j = 0; j < real; ++j) {
+            if (j == i) continue;
+            const double cosine = glm::dot(rings[i].direction, rings[j].direction);
+            if (cosine > 0.5) rings[i].distance = std::max(rings[i].distance, rings[j].distance * cosine);
+          }
     };
     const auto reach = [&](std::size_t i) { return glm::length(node_pos(path_node(slots[i], target[i])) - c); };
+    // How far the mitred ring of ring i's node reaches back towards the junction (r tan(β/2),
+    // β its turn; 0 at the path's end): the ring must clear it, or the path would merge the
+    // node into the ring and leave it at an angle, folding against the junction.
+    const auto mitre = [&](std::size_t i) {
+      const tube_path& path = tc.paths[slots[i] / 2];
+      if (target[i] + 1 >= path.nodes.size()) return 0.0;
+      const std::uint32_t q = path_node(slots[i], target[i]), next = path_node(slots[i], target[i] + 1);
+      const glm::dvec3 din = dt::safe_unit(node_pos(q) - c), dout = dt::safe_unit(node_pos(next) - node_pos(q));
+      const double cosine = std::clamp(glm::dot(din, dout), -1.0, 1.0);
+      return cosine > -0.9 ? node_radius(q) * std::sqrt((1 - cosine) / (1 + cosine)) : reach(i);
+    };
+    const auto lacks_room = [&](std::size_t i) { return !(rings[i].distance + mitre(i) < 0.95 * reach(i)); };
     // Each round moves at least one ring on by a node: at most the paths' inner nodes in all.
     for (bool moved = true; moved;) {
       set_up_rings();
       moved = false;
       for (std::size_t i = 0; i < real; ++i)
-        while (!(rings[i].distance < 0.95 * reach(i)) && target[i] < last[i]) ++target[i], moved = true;
+        while (lacks_room(i) && target[i] < last[i]) ++target[i], moved = true;
     }
     res.virtual_sections += rings.size() > real ? 1 : 0;
     for (std::size_t i = 0; i < real; ++i) {
       taken_of_slot[slots[i]] = target[i] - 1;
       res.absorbed_nodes += target[i] - 1;
       const double length = reach(i);
-      if (rings[i].distance < 0.95 * length) continue;
+      if (!lacks_room(i)) continue;
       if (!(length > 0 && std::isfinite(rings[i].distance)))
         throw error(error_category::invalid_input,
                     skeleton_name(b) + ": the cross-section of edge " + std::to_string(ring_edges[i]) +
                         " cannot be placed (radius " + std::to_string(rings[i].radius) + ", distance " +
                         std::to_string(rings[i].distance) + ")");
-      // Between two junctions (not one path from a junction back to itself): merge them.
       const std::uint32_t other = path_node(slots[i] ^ 1u, 0);
-      if (is_junction(other) && other != b && (from == nullptr || from->round < 3))
-        merge_paths.push_back(slots[i] / 2);
-      const double scale = 0.9 * length / rings[i].distance;
+      const bool free_end = !is_junction(other);
+      if (free_end) {
+        // The free end itself is too near: the ring moves in to it, narrower, and its cap
+        // closes the branch there (a stub; the cap's disc is star-shaped about the centre too).
+        ++taken_of_slot[slots[i]];
+        ++res.absorbed_nodes;
+        const double scale = std::min(1.0, length / rings[i].distance);
+        rings[i].distance *= scale;
+        rings[i].radius *= scale;
+        if (scale < 1 && res.shrunk_sections++ == 0)
+          first_shrunk = skeleton_name(b) + ", edge " + std::to_string(ring_edges[i]) + ", to " +
+                         std::to_string(static_cast<int>(std::lround(100 * scale))) + " % of its radius";
+        continue;
+      }
+      // Between two junctions (not one path from a junction back to itself): merge them.
+      if (other != b && (from == nullptr || from->round < merge_rounds)) merge_paths.push_back(slots[i] / 2);
+      const double scale = std::max(0.9 * (length - mitre(i)), 0.5 * length) / rings[i].distance;
       rings[i].distance *= scale;
       rings[i].radius *= scale;
       if (res.shrunk_sections++ == 0)
         first_shrunk = skeleton_name(b) + ", edge " + std::to_string(ring_edges[i]) + ", to " +
                        std::to_string(static_cast<int>(std::lround(100 * scale))) + " % of its radius";
+    }
+    if (!merge_paths.empty()) {  // the skeleton is meshed again after merging: plan, do not build
+      junction_done[b] = 1;
+      continue;
     }
     extra.clear();
     for (const glm::dvec3& d : extra_candidates) {  // method 3: clear of every cap, with a margin
@@ -645,6 +700,9 @@ tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& 
     // the larger radius, and the skeleton is meshed again (at most three rounds; what is left
     // then is shrunk). A path that closes a cycle is not merged (the genus would drop), nor
     // is anything when merging would join two nodes twice.
+    // Junctions after the first path to merge were planned, not built: when no merge can be
+    // made, the skeleton is meshed again as it is, with merging off.
+    for (int attempt = 0; attempt < 2; ++attempt) {
     std::vector<std::uint32_t> set(nv);
     for (std::uint32_t v = 0; v < nv; ++v) set[v] = v;
     const auto find = [&](std::uint32_t v) {
@@ -652,7 +710,7 @@ tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& 
       return v;
     };
     std::size_t merged = 0;
-    for (const std::uint32_t p : merge_paths) {
+    for (const std::uint32_t p : attempt == 0 ? detail::span_of(merge_paths) : std::span<const std::uint32_t>{}) {
       const tube_path& path = tc.paths[p];
       const std::uint32_t a = find(tc.nodes[path.nodes.front()].skeleton_node);
       if (a == find(tc.nodes[path.nodes.back()].skeleton_node)) continue;
@@ -667,14 +725,20 @@ tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& 
     next.nodes = from != nullptr ? from->nodes : nv;
     next.edges = from != nullptr ? from->edges : ne;
     next.merged = merged + (from != nullptr ? from->merged : 0);
-    next.round = from != nullptr ? from->round + 1 : 1;
+    next.round = attempt == 1 ? merge_rounds : from != nullptr ? from->round + 1 : 1;
     std::vector<std::uint32_t> new_id(nv, tube_node::none), junctions_in(nv, 0);
     std::vector<glm::dvec3> centre(nv, glm::dvec3(0.0));
     std::vector<double> radius(nv, 0.0);
-    for (std::uint32_t v = 0; v < nv; ++v) {  // a set's centre: the mean of its junctions
+    // A set's centre: the mean of its junctions weighted by r³ (a soma keeps its place when a
+    // thin branch point beside it joins it; like branch points meet in the middle, where their
+    // paths' directions stay apart); its radius the largest.
+    std::vector<double> weight(nv, 0.0);
+    for (std::uint32_t v = 0; v < nv; ++v) {
       const std::uint32_t root = find(v);
       radius[root] = std::max(radius[root], rad[v]);
-      if (tc.nodes[v].kind == tube_node_kind::junction) centre[root] += pos[v], ++junctions_in[root];
+      if (tc.nodes[v].kind != tube_node_kind::junction) continue;
+      const double w = rad[v] / rad[root];  // relative, so that r³ cannot overflow
+      centre[root] += (w * w * w) * pos[v], weight[root] += w * w * w, ++junctions_in[root];
     }
     skeleton<P> g2;
     for (std::uint32_t v = 0; v < nv; ++v) {
@@ -682,7 +746,7 @@ tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& 
       if (new_id[root] != tube_node::none) continue;
       new_id[root] = static_cast<std::uint32_t>(g2.points.size());
       g2.points.push_back(
-          from_dvec3<P>(junctions_in[root] > 0 ? centre[root] / static_cast<double>(junctions_in[root]) : pos[root]));
+          from_dvec3<P>(junctions_in[root] > 0 ? centre[root] / weight[root] : pos[root]));
       g2.radii.push_back(radius[root]);
       next.node_of.push_back(from != nullptr ? from->node_of[root] : root);
     }
@@ -695,11 +759,12 @@ tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& 
       pairs.push_back({std::min(a, b), std::max(a, b)});
     }
     std::sort(pairs.begin(), pairs.end());
-    if (merged > 0 && std::adjacent_find(pairs.begin(), pairs.end()) == pairs.end() &&
-        validate_skeleton(g2).ok()) {
+    if (attempt == 1 || (merged > 0 && std::adjacent_find(pairs.begin(), pairs.end()) == pairs.end() &&
+                         validate_skeleton(g2).ok())) {
       tubes_result<P> again = make_tubes_of(g2, options, &next);
       again.total_ms = t_start.ms();
       return again;
+    }
     }
   }
 
