@@ -226,7 +226,7 @@ namespace detail::tubes {
 struct merged_skeleton {
   std::vector<std::uint32_t> node_of, edge_of;
   std::size_t nodes = 0, edges = 0;  ///< the caller's counts
-  std::size_t merged = 0;            ///< junctions merged into another, over all rounds
+  std::size_t merged = 0;            ///< junctions merged into another's set, over all rounds
   int round = 0;
 };
 
@@ -709,7 +709,7 @@ tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& 
       while (set[v] != v) v = set[v] = set[set[v]];
       return v;
     };
-    std::size_t merged = 0;
+    std::size_t merged = 0, junctions_merged = 0;  // nodes joined to another's set; of them junctions
     for (const std::uint32_t p : attempt == 0 ? detail::span_of(merge_paths) : std::span<const std::uint32_t>{}) {
       const tube_path& path = tc.paths[p];
       const std::uint32_t a = find(tc.nodes[path.nodes.front()].skeleton_node);
@@ -719,12 +719,13 @@ tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& 
         if (v == tube_node::none || find(v) == a) continue;
         set[find(v)] = a;
         ++merged;
+        junctions_merged += is_junction(c) ? 1 : 0;
       }
     }
     merged_skeleton next;
     next.nodes = from != nullptr ? from->nodes : nv;
     next.edges = from != nullptr ? from->edges : ne;
-    next.merged = merged + (from != nullptr ? from->merged : 0);
+    next.merged = junctions_merged + (from != nullptr ? from->merged : 0);
     next.round = attempt == 1 ? merge_rounds : from != nullptr ? from->round + 1 : 1;
     std::vector<std::uint32_t> new_id(nv, tube_node::none), junctions_in(nv, 0);
     std::vector<glm::dvec3> centre(nv, glm::dvec3(0.0));
