@@ -968,6 +968,13 @@ TEST_CASE("tubes: junctions short of room move their rings on, merge, or end in 
   CHECK(stubs.end_caps == 3);
   CHECK(std::any_of(stubs.diagnostics.begin(), stubs.diagnostics.end(),
                     [](const std::string& d) { return d.find("first: sample 10, edge") != std::string::npos; }));
+  S twin = tight;  // a skeleton defect names the samples too
+  twin.points[3] = twin.points[1];
+  named.node_ids = ids;
+  CHECK_THROWS_WITH_AS(make_tubes(twin, named),
+                       doctest::Contains("nodes 1 and 3 coincide (both at (1, 0, 0)) (node 1 is sample 11, node 3 "
+                                         "is sample 13)"),
+                       error);
   const std::vector<std::int64_t> too_few = {1, 2};
   named.node_ids = too_few;
   CHECK_THROWS_WITH_AS(make_tubes(tight, named), doctest::Contains("node_ids has 2 names for 4 nodes"), error);

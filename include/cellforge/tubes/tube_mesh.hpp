@@ -261,7 +261,28 @@ tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& 
   if (!(options.cap_separation > 0 && options.cap_separation < 1))
     throw error(error_category::invalid_input,
                 "make_tubes: cap_separation must lie strictly between 0 and 1");
-  check_skeleton(g);
+  if (from == nullptr && !options.node_ids.empty() && options.node_ids.size() != T::num_nodes(g))
+    throw error(error_category::invalid_input, "make_tubes: node_ids has " + std::to_string(options.node_ids.size()) +
+                                                   " names for " + std::to_string(T::num_nodes(g)) + " nodes");
+  if (const skeleton_validation v = validate_skeleton(g); !v.ok()) {
+    // check_skeleton's sentence, and the sample ids of the nodes it names when the caller has them.
+    std::string message = "check_skeleton: " + v.message, named;
+    std::vector<std::size_t> nodes;
+    if (v.defect == skeleton_defect::coincident_nodes) nodes = {v.other, v.node};
+    if (v.defect == skeleton_defect::duplicate_edge) {
+      const auto ab = T::endpoints(g, v.edge);
+      nodes = {ab[0], ab[1]};
+    }
+    if (v.defect == skeleton_defect::bad_radius || v.defect == skeleton_defect::bad_position ||
+        v.defect == skeleton_defect::self_loop)
+      nodes = {v.node};
+    for (const std::size_t i : nodes)
+      if (from == nullptr && i < options.node_ids.size())
+        named += (named.empty() ? "" : ", ") + ("node " + std::to_string(i)) + " is sample " +
+                 std::to_string(options.node_ids[i]);
+    if (!named.empty()) message += " (" + named + ")";
+    throw error(error_category::invalid_input, message);
+  }
   const std::uint32_t n = options.sides;
   const std::size_t nv = T::num_nodes(g), ne = T::num_edges(g);
   std::vector<glm::dvec3> pos(nv);
@@ -315,10 +336,6 @@ tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& 
     return 0.5 * (rad[edges[t.split_edge][0]] + rad[edges[t.split_edge][1]]);
   };
   const auto is_junction = [&](std::uint32_t c) { return tc.nodes[c].kind == tube_node_kind::junction; };
-  const std::size_t caller_nodes = from != nullptr ? from->nodes : nv;
-  if (!options.node_ids.empty() && options.node_ids.size() != caller_nodes)
-    throw error(error_category::invalid_input, "make_tubes: node_ids has " + std::to_string(options.node_ids.size()) +
-                                                   " names for " + std::to_string(caller_nodes) + " nodes");
   const auto node_name = [&](std::uint32_t v) {  // in the caller's numbering
     if (from != nullptr) v = from->node_of[v];
     return options.node_ids.empty() ? "node " + std::to_string(v) : "sample " + std::to_string(options.node_ids[v]);
