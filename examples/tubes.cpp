@@ -13,10 +13,13 @@
 // must be none). Exits 1, saying why on stderr, when any of these checks fails or did not finish.
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <new>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -57,9 +60,13 @@ int main(int argc, char** argv) {
     std::string ext = cl.input.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
     cellforge::skeleton<point> skeleton;
+    std::vector<std::int64_t> sample_ids;  // messages name an SWC file's samples by their ids
     stage("reading " + example::file_and_size(cl.input));
     if (ext == ".swc") {
-      skeleton = cellforge::io::read_swc<point>(cl.input).skeleton;
+      auto swc = cellforge::io::read_swc<point>(cl.input);
+      skeleton = std::move(swc.skeleton);
+      sample_ids = std::move(swc.ids);
+      options.node_ids = sample_ids;
     } else if (ext == ".obj") {
       cellforge::io::skeleton_obj_read_options read;
       read.uniform_radius = cl.number("radius", 0, 0, 1e300);

@@ -13,6 +13,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <numbers>
 #include <span>
 #include <string>
@@ -106,15 +107,17 @@ std::uint64_t shape_key(std::span<const glm::dvec3> points, std::uint32_t sides,
 /// Appends the junction surface of `rings` about `centre` to `out`: each ring's `sides`
 /// vertices (ring i's first vertex is `first_vertex[i]`, counter-clockwise about its
 /// direction), and the hull triangles that are not in a real ring's cap, tagged with
-/// `source`. Throws cellforge::error naming the node and `ring_edges[i]` (the skeleton edge
-/// of ring i) when a cap is not intact in the hull (two cross-sections overlap on the
-/// sphere). The hull is sphere_hull (tubes/detail/sphere_hull.hpp), or the general one when
-/// that gives up. O(m) typical, O(m²) worst, m = sides × rings.
+/// `source`. Throws cellforge::error naming the node (as `name()` says, when given) and
+/// `ring_edges[i]` (the skeleton edge of ring i) when a cap is not intact in the
+/// hull (two cross-sections overlap on the sphere). The hull is sphere_hull
+/// (tubes/detail/sphere_hull.hpp), or the general one when that gives up. O(m) typical,
+/// O(m²) worst, m = sides × rings.
 template <class = void>
 void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junction_ring> rings,
                     std::uint32_t sides, tube_face_source source, std::span<const std::uint32_t> ring_edges,
                     std::vector<std::uint32_t>& first_vertex, junction_scratch& scratch,
-                    std::span<const glm::dvec3> extra = {}, double extra_distance = 0) {
+                    std::span<const glm::dvec3> extra = {}, double extra_distance = 0,
+                    const std::function<std::string()>* name = nullptr) {
   const std::size_t m = rings.size() * sides;
   std::vector<glm::dvec3>& on_sphere = scratch.on_sphere;
   on_sphere.resize(m + extra.size());
@@ -154,7 +157,7 @@ void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junct
     on_sphere[m + k] = extra[k];
     out.add_point(centre + extra_distance * extra[k]);
   }
-  const auto where = [&] { return "node " + std::to_string(source.index); };
+  const auto where = [&] { return name != nullptr ? (*name)() : "node " + std::to_string(source.index); };
   // A remembered shape: the same points, or the same but for rounding (then certified).
   const auto same_kind = [&](const remembered_hull& h) {
     return h.sides == sides && h.rings == rings.size() && h.points.size() == on_sphere.size();

@@ -3,8 +3,9 @@
 /// \file
 /// Sample skeletons for tests, examples and benchmarks (not included by cellforge.hpp): node
 /// lattices, complete graphs on a sphere, the Petersen graph, Möbius ladders, rings, a
-/// figure-eight, and random trees with branch angles and clearance that a tube mesh can
-/// honour. Every generator is deterministic for its arguments.
+/// figure-eight, random trees with branch angles and clearance that a tube mesh can honour,
+/// and neuron-like trees (a soma, dense thin dendrites, close branch points). Every generator
+/// is deterministic for its arguments.
 
 #include <algorithm>
 #include <array>
@@ -57,6 +58,44 @@ void require_skeleton(const char* what, std::initializer_list<std::pair<const ch
                     " nodes and " + std::to_string(edges) +
                     " edges, more than the 10^8 a sample may have; make it smaller");
 }
+/// The distance between segments p1q1 and p2q2: their closest points with clamped parameters
+/// (as in Ericson's Real-Time Collision Detection). O(1).
+template <class = void>
+double segment_distance(glm::dvec3 p1, glm::dvec3 q1, glm::dvec3 p2, glm::dvec3 q2) {
+  const glm::dvec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const double a = glm::dot(d1, d1), e = glm::dot(d2, d2), f = glm::dot(d2, r), c = glm::dot(d1, r),
+               b = glm::dot(d1, d2), den = a * e - b * b;
+  double sp = den > 1e-300 ? std::clamp((b * f - c * e) / den, 0.0, 1.0) : 0.0;
+  double tp = (b * sp + f) / e;
+  if (tp < 0)
+    tp = 0, sp = std::clamp(-c / a, 0.0, 1.0);
+  else if (tp > 1)
+    tp = 1, sp = std::clamp((b - c) / a, 0.0, 1.0);
+  return glm::length(p1 + sp * d1 - (p2 + tp * d2));
+}
+
+/// A hash grid of cubic cells of side `cell` listing segment numbers, for the generators'
+/// clearance tests. O(1) per cell visited.
+struct segment_grid {
+  double cell = 1;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
+  std::int64_t index(double x) const { return static_cast<std::int64_t>(std::floor(x / cell)); }
+  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
+    const auto q = [](std::int64_t v) { return static_cast<std::uint64_t>(v) & 0x1FFFFF; };
+    return q(x) | q(y) << 21 | q(z) << 42;
+  }
+  /// Calls visit(key) for every cell the box of a and b widened by `widen` meets, until it
+  /// returns false (then returns false).
+  template <class Visit>
+  bool for_cells(const glm::dvec3& a, const glm::dvec3& b, double widen, Visit&& visit) const {
+    const glm::dvec3 lo = glm::min(a, b) - widen, hi = glm::max(a, b) + widen;
+    for (std::int64_t x = index(lo.x); x <= index(hi.x); ++x)
+      for (std::int64_t y = index(lo.y); y <= index(hi.y); ++y)
+        for (std::int64_t z = index(lo.z); z <= index(hi.z); ++z)
+          if (!visit(key(x, y, z))) return false;
+    return true;
+  }
+};
 }  // namespace detail
 
 /// The a × b × c node lattice with edges between axis neighbours (the seed's
@@ -267,37 +306,15 @@ skeleton<P> random_tree(std::uint64_t seed, const random_tree_options& o = {}) {
     std::uint32_t a, b;
   };
   std::vector<segment> segments;
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid;
-  const auto index = [&](double x) { return static_cast<std::int64_t>(std::floor(x / cell)); };
-  const auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
-    const auto q = [](std::int64_t v) { return static_cast<std::uint64_t>(v) & 0x1FFFFF; };
-    return q(x) | q(y) << 21 | q(z) << 42;
-  };
+  detail::segment_grid grid{cell, {}};
   const auto for_cells = [&](const glm::dvec3& a, const glm::dvec3& b, double widen, auto&& visit) {
-    const glm::dvec3 lo = glm::min(a, b) - widen, hi = glm::max(a, b) + widen;
-    for (std::int64_t x = index(lo.x); x <= index(hi.x); ++x)
-      for (std::int64_t y = index(lo.y); y <= index(hi.y); ++y)
-        for (std::int64_t z = index(lo.z); z <= index(hi.z); ++z)
-          if (!visit(key(x, y, z))) return false;
-    return true;
+    return grid.for_cells(a, b, widen, visit);
   };
-  const auto segment_distance = [](glm::dvec3 p1, glm::dvec3 q1, glm::dvec3 p2, glm::dvec3 q2) {
-    // Closest points of two segments (clamped parameters, as in Ericson's Real-Time Collision Detection).
-    const glm::dvec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
-    const double a = glm::dot(d1, d1), e = glm::dot(d2, d2), f = glm::dot(d2, r), c = glm::dot(d1, r),
-                 b = glm::dot(d1, d2), den = a * e - b * b;
-    double sp = den > 1e-300 ? std::clamp((b * f - c * e) / den, 0.0, 1.0) : 0.0;
-    double tp = (b * sp + f) / e;
-    if (tp < 0)
-      tp = 0, sp = std::clamp(-c / a, 0.0, 1.0);
-    else if (tp > 1)
-      tp = 1, sp = std::clamp((b - c) / a, 0.0, 1.0);
-    return glm::length(p1 + sp * d1 - (p2 + tp * d2));
-  };
+  const auto segment_distance = detail::segment_distance<>;
   const auto clear = [&](std::uint32_t from, const glm::dvec3& to, double r) {
     return for_cells(pos[from], to, 0.0, [&](std::uint64_t k) {
-      const auto it = grid.find(k);
-      if (it == grid.end()) return true;
+      const auto it = grid.cells.find(k);
+      if (it == grid.cells.end()) return true;
       for (const std::uint32_t g : it->second) {
         const segment& other = segments[g];
         if (other.a == from || other.b == from) continue;  // adjacent: the angle rule covers it
@@ -336,7 +353,7 @@ skeleton<P> random_tree(std::uint64_t seed, const random_tree_options& o = {}) {
         pos.push_back(p), rad.push_back(r), parent.push_back(v);
         segments.push_back({v, c});
         for_cells(pos[v], p, widest, [&](std::uint64_t k) {
-          grid[k].push_back(static_cast<std::uint32_t>(segments.size() - 1));
+          grid.cells[k].push_back(static_cast<std::uint32_t>(segments.size() - 1));
           return true;
         });
         used.push_back(d);
@@ -344,6 +361,205 @@ skeleton<P> random_tree(std::uint64_t seed, const random_tree_options& o = {}) {
         break;
       }
   }
+  for (std::size_t i = 0; i < pos.size(); ++i) detail::add_node(s, pos[i], rad[i]);
+  for (const segment& g : segments) detail::add_edge(s, g.a, g.b);
+  return s;
+}
+
+/// What a neuron-like skeleton looks like (lengths in µm, as SWC's).
+struct neuron_options {
+  std::size_t samples = 1000;     ///< nodes, soma included (the growth stops there, or when crowded)
+  double soma_radius = 8;         ///< of the soma's middle sample; the soma is a chain of `soma_samples`
+  int soma_samples = 5;           ///< along x, radii falling off as a sphere's (at least 1)
+  int primary_dendrites = 6;      ///< leaving the soma's middle sample
+  double primary_radius = 1.6;    ///< largest radius of a primary dendrite (each takes 0.6–1 of it)
+  double min_radius = 0.1;        ///< thinnest dendrite
+  double close_branching = 0.5;   ///< share of branch points 2–6 r after the previous one (else 10–40 r)
+  double tortuosity = 0.25;       ///< random turn per sample (about this many radians at most)
+};
+
+/// A neuron-like tree, as reconstructions (SWC) have them: a soma of several samples, dendrites
+/// sampled every 1–3 radii (every 0.25 µm at least), tapering from primary_radius to min_radius
+/// over their branchings, branch points often 2–6 radii apart, siblings 30°–80° apart, tortuous
+/// paths. Non-adjacent dendrites keep 1.5 times the sum of their radii apart (a hash grid tests
+/// it; segments within 8 radii along the tree are adjacent). Deterministic for its seed.
+/// About O(n) (a bounded search of the tree near each new sample).
+template <Point3 P = glm::dvec3>
+skeleton<P> neuron(std::uint64_t seed, const neuron_options& o = {}) {
+  detail::require_skeleton("neuron",
+                           {{"samples", static_cast<double>(o.samples)},
+                            {"soma_samples", static_cast<double>(o.soma_samples)}},
+                           1, static_cast<double>(o.samples), static_cast<double>(o.samples));
+  if (!(o.soma_radius > 0 && o.primary_radius > 0 && o.min_radius > 0 && o.min_radius <= o.primary_radius &&
+        o.primary_radius < o.soma_radius && std::isfinite(o.soma_radius)))
+    throw error(error_category::invalid_input,
+                "neuron: radii must be positive and finite, min_radius <= primary_radius < soma_radius");
+  cellforge::detail::splitmix rng{seed};
+  std::vector<glm::dvec3> pos;
+  std::vector<double> rad;
+  std::vector<std::vector<std::uint32_t>> adjacent;  // for the search of nodes near along the tree
+  struct segment {
+    std::uint32_t a, b;
+  };
+  std::vector<segment> segments;
+  detail::segment_grid grid{3, {}};
+  const auto for_cells = [&](const glm::dvec3& a, const glm::dvec3& b, double widen, auto&& visit) {
+    return grid.for_cells(a, b, widen, visit);
+  };
+  const auto add = [&](const glm::dvec3& p, double r) {
+    pos.push_back(p), rad.push_back(r), adjacent.emplace_back();
+    return static_cast<std::uint32_t>(pos.size() - 1);
+  };
+  const auto join = [&](std::uint32_t a, std::uint32_t b, bool listed = true) {
+    adjacent[a].push_back(b), adjacent[b].push_back(a);
+    segments.push_back({a, b});
+    if (!listed) return;
+    // Listed with its own clearance: a query widened by the other's finds every pair closer
+    // than 1.5 (r + r') (boxes are never farther apart than their segments).
+    for_cells(pos[a], pos[b], 1.5 * std::max(rad[a], rad[b]), [&](std::uint64_t k) {
+      grid.cells[k].push_back(static_cast<std::uint32_t>(segments.size() - 1));
+      return true;
+    });
+  };
+  const auto segment_distance = detail::segment_distance<>;
+  // Nodes within `reach` of v along the tree (a bounded search): their segments are adjacent.
+  std::vector<std::uint32_t> near, stack;
+  std::vector<double> along;
+  std::vector<std::uint32_t> seen_at;  // per node: the stamp of the last search that saw it
+  std::uint32_t stamp = 0;
+  const auto near_along_tree = [&](std::uint32_t v, double reach) {
+    ++stamp;
+    seen_at.resize(pos.size(), 0);
+    near.clear(), stack.assign(1, v), along.assign(1, 0.0);
+    seen_at[v] = stamp;
+    while (!stack.empty()) {
+      const std::uint32_t u = stack.back();
+      const double d = along.back();
+      stack.pop_back(), along.pop_back();
+      near.push_back(u);
+      for (const std::uint32_t w : adjacent[u]) {
+        const double dw = d + glm::length(pos[w] - pos[u]);
+        if (seen_at[w] == stamp || dw > reach) continue;
+        seen_at[w] = stamp;
+        stack.push_back(w), along.push_back(dw);
+      }
+    }
+    std::sort(near.begin(), near.end());
+  };
+  // The soma (its samples' segments are not in the grid): a dendrite never comes nearer its
+  // axis than it was, once within its radius and the clearance.
+  const glm::dvec3 soma_ends[2] = {{-0.7 * o.soma_radius, 0, 0}, {0.7 * o.soma_radius, 0, 0}};
+  const auto clear = [&](std::uint32_t from, const glm::dvec3& to, double r) {
+    const double now = segment_distance(pos[from], pos[from], soma_ends[0], soma_ends[1]);
+    if (segment_distance(pos[from], to, soma_ends[0], soma_ends[1]) < std::min(now, o.soma_radius + 1.5 * r))
+      return false;
+    near_along_tree(from, 8 * std::max(r, rad[from]) + 2);
+    return for_cells(pos[from], to, 1.5 * r, [&](std::uint64_t k) {
+      const auto it = grid.cells.find(k);
+      if (it == grid.cells.end()) return true;
+      for (const std::uint32_t g : it->second) {
+        const segment& other = segments[g];
+        if (std::binary_search(near.begin(), near.end(), other.a) ||
+            std::binary_search(near.begin(), near.end(), other.b))
+          continue;
+        if (segment_distance(pos[from], to, pos[other.a], pos[other.b]) <
+            1.5 * (r + std::max(rad[other.a], rad[other.b])))
+          return false;
+      }
+      return true;
+    });
+  };
+  const auto random_unit = [&] {
+    while (true) {
+      const glm::dvec3 d(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+      const double l = glm::length(d);
+      if (l > 0.1 && l <= 1) return d / l;
+    }
+  };
+  // The soma: samples along x, the middle one the largest, as a sphere's cross-sections.
+  const double rs = o.soma_radius;
+  const int half = (o.soma_samples - 1) / 2;
+  const std::uint32_t soma = add(glm::dvec3(0.0), rs);
+  for (int side = -1; side <= 1; side += 2) {
+    std::uint32_t prev = soma;
+    for (int k = 1; k <= half && pos.size() < o.samples; ++k) {
+      const double x = 0.7 * rs * k / half;
+      const std::uint32_t v = add(glm::dvec3(side * x, 0, 0), 0.9 * std::sqrt(rs * rs - x * x));
+      join(prev, v, false);
+      prev = v;
+    }
+  }
+  // Growing tips: the node, its heading, the direction it set out in, and the arc length
+  // left before it branches.
+  struct tip {
+    std::uint32_t node;
+    glm::dvec3 heading, base;
+    double until_branch;
+    glm::dvec3 sibling{0.0};  ///< the direction the sibling of the last branch point set out in
+    double since_branch = 1e300;
+  };
+  std::vector<tip> open;
+  // Close branch points come in pairs, not chains: after one, the next is far.
+  const auto next_gap = [&](double r, bool close_allowed) {
+    return r * (close_allowed && rng.uniform(0, 1) < o.close_branching ? rng.uniform(2, 6) : rng.uniform(10, 40));
+  };
+  std::vector<glm::dvec3> primaries;
+  for (int k = 0; k < o.primary_dendrites && pos.size() < o.samples; ++k)
+    for (int attempt = 0; attempt < 50; ++attempt) {
+      const glm::dvec3 d = random_unit();
+      // Clear of the soma's axis (its end caps) and of the other primaries.
+      if (std::fabs(d.x) > 0.5) continue;
+      if (!std::all_of(primaries.begin(), primaries.end(),
+                       [&](const glm::dvec3& e) { return glm::dot(d, e) < std::cos(0.7); }))
+        continue;
+      const double r = o.primary_radius * rng.uniform(0.6, 1.0);
+      const glm::dvec3 p = 1.05 * rs * d;
+      primaries.push_back(d);
+      const std::uint32_t v = add(p, r);
+      join(soma, v, false);
+      open.push_back({v, d, d, r * rng.uniform(10, 40)});  // no branch point beside the soma
+      break;
+    }
+  while (!open.empty() && pos.size() < o.samples) {
+    const std::size_t pick = rng.next() % open.size();
+    tip t = open[pick];
+    open[pick] = open.back();
+    open.pop_back();
+    const std::uint32_t v = t.node;
+    const double r = rad[v];
+    const bool branch = t.until_branch <= 0;
+    const int children = branch ? 2 : 1;
+    const double spread = rng.uniform(40, 90) * std::numbers::pi / 180;  // siblings' angle
+    // A branch point soon after another branches across the first one's plane, as the
+    // tubes there must (siblings of the two that ran side by side would overlap).
+    const glm::dvec3 across = glm::cross(t.heading, t.sibling);
+    const glm::dvec3 side = t.since_branch < 10 * r && glm::length(across) > 0.1
+                                ? glm::normalize(across)
+                                : glm::normalize(glm::cross(t.heading, random_unit()));
+    std::vector<tip> grown;
+    for (int k = 0; k < children && pos.size() < o.samples; ++k)
+      for (int attempt = 0; attempt < 10; ++attempt) {
+        glm::dvec3 d = t.heading;
+        if (branch) {  // the siblings part by `spread` about the heading
+          const double a = (k == 0 ? 0.5 : -0.5) * spread;
+          d = std::cos(a) * t.heading + std::sin(a) * side;
+        } else {  // a tortuous walk that keeps to its general direction
+          d = glm::normalize(t.heading + o.tortuosity * random_unit() + 0.1 * (t.base - t.heading));
+        }
+        const double rc = std::max(o.min_radius, branch ? r * rng.uniform(0.7, 0.9) : r * 0.995);
+        const double step = std::max(0.25, rc * rng.uniform(1, 3));
+        const glm::dvec3 p = pos[v] + step * d;
+        if (!clear(v, p, rc)) continue;
+        const std::uint32_t c = add(p, rc);
+        join(v, c);
+        grown.push_back({c, d, branch ? d : t.base, branch ? next_gap(rc, t.since_branch > 8 * r) : t.until_branch - step, t.sibling,
+                         branch ? step : t.since_branch + step});
+        break;
+      }
+    if (grown.size() == 2) grown[0].sibling = grown[1].heading, grown[1].sibling = grown[0].heading;
+    for (const tip& g : grown) open.push_back(g);
+  }
+  skeleton<P> s;
   for (std::size_t i = 0; i < pos.size(); ++i) detail::add_node(s, pos[i], rad[i]);
   for (const segment& g : segments) detail::add_edge(s, g.a, g.b);
   return s;

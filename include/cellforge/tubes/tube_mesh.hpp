@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <span>
@@ -64,12 +65,15 @@ struct tube_options {
   /// none, the default by measurement — docs/tubes.md).
   std::uint32_t junction_extra_points = 0;
   /// Run the exact self-intersection check on the result (algorithms/self_intersections.hpp;
-  /// about twice the meshing time) and report it in tubes_result. make_tubes does not check
+  /// 7–9 times the meshing time on trees and lattices) and report it in tubes_result. make_tubes does not check
   /// the skeleton's clearance: tubes whose edges pass closer than their radii intersect.
   bool check_self_intersections = false;
   /// Levels of Loop subdivision applied at the end (the seed smooths its tubes so); with
   /// any, the faces are triangulated first (fans) and the result is all triangles.
   int subdivision_levels = 0;
+  /// Names of the nodes for messages and diagnostics, one per node (an SWC file's sample ids,
+  /// io::swc_result::ids): "sample 17" instead of "node 3". Empty: node indices. Not copied.
+  std::span<const std::int64_t> node_ids = {};
 };
 
 /// What make_tubes built, and how long each stage took.
@@ -84,6 +88,17 @@ struct tubes_result {
   /// Path nodes merged with a neighbour: closer to it than their turns' mitres reach
   /// (r tan(β/2) each side), where the tube between them would fold back (docs/tubes.md).
   std::size_t merged_nodes = 0;
+  /// Path nodes taken into a junction's surface: nearer the junction than its cross-section
+  /// must sit to clear the junction's other edges, so the cross-section moves past them.
+  std::size_t absorbed_nodes = 0;
+  /// Junction cross-sections shrunk to fit: no node left to move past (the path's other end),
+  /// so the cross-section keeps its cap on the junction's sphere and moves in, narrower
+  /// (docs/tubes.md, "Junctions that lack room").
+  std::size_t shrunk_sections = 0;
+  /// Junctions merged into a neighbouring one: the path between them too short for their
+  /// cross-sections. `construct` is then that of the merged skeleton; sources, section ratios
+  /// and messages keep the caller's numbering.
+  std::size_t merged_junctions = 0;
   /// Junctions whose hull was that of an earlier junction of the same shape: the same points
   /// on its sphere, bit for bit or but for rounding and certified (docs/tubes.md, "Junction
   /// shapes seen before"); a regular lattice's junctions nearly all are.
@@ -203,13 +218,40 @@ std::size_t take_mesh(buffer& out, surface_mesh<P>& mesh, bool sources_as_proper
 
 }  // namespace detail::tubes
 
+namespace detail::tubes {
+
+/// A skeleton whose too-close junction pairs were merged: for each of its nodes and edges the
+/// caller's (the mesh's sources and messages are given in the caller's numbering), and how many
+/// rounds of merging made it.
+struct merged_skeleton {
+  std::vector<std::uint32_t> node_of, edge_of;
+  std::size_t nodes = 0, edges = 0;  ///< the caller's counts
+  std::size_t merged = 0;            ///< junctions merged into another's set, over all rounds
+  int round = 0;
+};
+
+/// make_tubes on g, which is `from`'s merged skeleton when `from` is given. O(V + E).
+template <Skeleton G>
+tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& options,
+                                                const merged_skeleton* from);
+
+}  // namespace detail::tubes
+
 /// Meshes the skeleton g as tubes: a closed, oriented 2-manifold per connected component
 /// (genus = cycle rank), quads along edges and triangles at junctions, positions in g's point
 /// type. Throws cellforge::error naming the node or edge for input it cannot mesh (see
-/// validate_skeleton; edges too short for the cross-sections at their ends; edges too close in
-/// angle at a junction). O(V + E) for bounded degree, O(k log k) per junction of degree k.
+/// validate_skeleton; edges too close in angle at a junction). O(V + E) for bounded degree,
+/// O(k log k) per junction of degree k.
 template <Skeleton G>
 tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& options = {}) {
+  return detail::tubes::make_tubes_of(g, options, nullptr);
+}
+
+namespace detail::tubes {
+
+template <Skeleton G>
+tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& options,
+                                                const merged_skeleton* from) {
   namespace dt = detail::tubes;
   using P = skeleton_point_t<G>;
   using T = skeleton_traits<G>;
@@ -219,7 +261,28 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   if (!(options.cap_separation > 0 && options.cap_separation < 1))
     throw error(error_category::invalid_input,
                 "make_tubes: cap_separation must lie strictly between 0 and 1");
-  check_skeleton(g);
+  if (from == nullptr && !options.node_ids.empty() && options.node_ids.size() != T::num_nodes(g))
+    throw error(error_category::invalid_input, "make_tubes: node_ids has " + std::to_string(options.node_ids.size()) +
+                                                   " names for " + std::to_string(T::num_nodes(g)) + " nodes");
+  if (const skeleton_validation v = validate_skeleton(g); !v.ok()) {
+    // check_skeleton's sentence, and the sample ids of the nodes it names when the caller has them.
+    std::string message = "check_skeleton: " + v.message, named;
+    std::vector<std::size_t> nodes;
+    if (v.defect == skeleton_defect::coincident_nodes) nodes = {v.other, v.node};
+    if (v.defect == skeleton_defect::duplicate_edge) {
+      const auto ab = T::endpoints(g, v.edge);
+      nodes = {ab[0], ab[1]};
+    }
+    if (v.defect == skeleton_defect::bad_radius || v.defect == skeleton_defect::bad_position ||
+        v.defect == skeleton_defect::self_loop)
+      nodes = {v.node};
+    for (const std::size_t i : nodes)
+      if (from == nullptr && i < options.node_ids.size())
+        named += (named.empty() ? "" : ", ") + ("node " + std::to_string(i)) + " is sample " +
+                 std::to_string(options.node_ids[i]);
+    if (!named.empty()) message += " (" + named + ")";
+    throw error(error_category::invalid_input, message);
+  }
   const std::uint32_t n = options.sides;
   const std::size_t nv = T::num_nodes(g), ne = T::num_edges(g);
   std::vector<glm::dvec3> pos(nv);
@@ -273,9 +336,13 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     return 0.5 * (rad[edges[t.split_edge][0]] + rad[edges[t.split_edge][1]]);
   };
   const auto is_junction = [&](std::uint32_t c) { return tc.nodes[c].kind == tube_node_kind::junction; };
+  const auto node_name = [&](std::uint32_t v) {  // in the caller's numbering
+    if (from != nullptr) v = from->node_of[v];
+    return options.node_ids.empty() ? "node " + std::to_string(v) : "sample " + std::to_string(options.node_ids[v]);
+  };
   const auto skeleton_name = [&](std::uint32_t c) {
     const tube_node& t = tc.nodes[c];
-    return t.skeleton_node != tube_node::none ? "node " + std::to_string(t.skeleton_node)
+    return t.skeleton_node != tube_node::none ? node_name(t.skeleton_node)
                                               : "the midpoint of edge " + std::to_string(t.split_edge);
   };
 
@@ -326,6 +393,8 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   dt::path_scratch path_buffers;
   std::vector<std::uint8_t> path_done(tc.paths.size(), 0), junction_done(tc.nodes.size(), 0);
   std::vector<std::uint32_t> station_node, segment_edge;  // per station / segment, after merging
+  // Per path end at a junction (slot 2p / 2p + 1): the path nodes its ring moved past.
+  std::vector<std::uint32_t> taken_of_slot(2 * tc.paths.size(), 0);
   const auto mesh_path = [&](std::uint32_t p) {
     path_done[p] = 1;
     const tube_path& path = tc.paths[p];
@@ -353,6 +422,20 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
       }
       s.centre = node_pos(c);
       s.radius = node_radius(c);
+    }
+    // Nodes a junction's ring moved past are inside its surface: no station (the end's first,
+    // at the higher indices, so that the start's indices hold).
+    for (std::uint32_t end = 2; end-- > 0;) {
+      const std::uint32_t taken = path.closed ? 0 : taken_of_slot[2 * p + end];
+      if (taken == 0) continue;
+      const std::size_t k = stations.size(), from = end == 0 ? 1 : k - 1 - taken;
+      const std::size_t segment_from = end == 0 ? 0 : k - 1 - taken;
+      stations.erase(stations.begin() + static_cast<std::ptrdiff_t>(from),
+                     stations.begin() + static_cast<std::ptrdiff_t>(from + taken));
+      station_node.erase(station_node.begin() + static_cast<std::ptrdiff_t>(from),
+                         station_node.begin() + static_cast<std::ptrdiff_t>(from + taken));
+      segment_edge.erase(segment_edge.begin() + static_cast<std::ptrdiff_t>(segment_from),
+                         segment_edge.begin() + static_cast<std::ptrdiff_t>(segment_from + taken));
     }
     // The directions in and out of station i (zero at an open path's ends); a path that turns
     // back on itself has no mitre.
@@ -403,13 +486,28 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
           ++i;
           continue;
         }
-        const std::size_t drop = i_end ? j : (j_end || j == 0) ? i : j;
-        if (!i_end && !j_end) {
+        std::size_t drop = i_end ? j : (j_end || j == 0) ? i : j;
+        // The station next to a junction's ring stays on the ring's axis (the junction chose
+        // it so): moved off it, the tube would leave the ring askew and fold against the
+        // junction's surface. Its partner goes instead, or, when the ring would take it, the
+        // station beyond it (which straightens its turn), while there is one.
+        const bool start_pin = !path.closed && stations[0].fixed, end_pin = !path.closed && stations[k - 1].fixed;
+        const bool pin_i = start_pin && i == 1, pin_j = end_pin && j + 2 == k;
+        bool moved = !i_end && !j_end;
+        if (moved && (pin_i || pin_j)) {
+          drop = pin_i ? j : i;
+          moved = false;
+        } else if (i_end && start_pin && i == 0 && k > 3 && !is_end(2)) {
+          drop = 2, i = 1;
+        } else if (j_end && end_pin && j + 1 == k && k > 3 && !is_end(k - 3)) {
+          drop = k - 3, i = k - 3;
+        }
+        if (moved) {
           dt::station& keep = stations[drop == i ? j : i];
           keep.centre = 0.5 * (stations[i].centre + stations[j].centre);
           keep.radius = 0.5 * (stations[i].radius + stations[j].radius);
         }
-        // The segment between them goes; the other segments keep their edges.
+        // The segment between the two goes; the other segments keep their edges.
         stations.erase(stations.begin() + static_cast<std::ptrdiff_t>(drop));
         station_node.erase(station_node.begin() + static_cast<std::ptrdiff_t>(drop));
         segment_edge.erase(segment_edge.begin() + static_cast<std::ptrdiff_t>(i));
@@ -445,7 +543,8 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   const auto ready = [&](std::uint32_t c) { return !is_junction(c) || junction_done[c] != 0; };
   double paths_seconds = 0;  // of the paths meshed between junctions
   std::vector<dt::junction_ring> rings;
-  std::vector<std::uint32_t> ring_edges, first_vertex;
+  std::vector<std::uint32_t> ring_edges, first_vertex, target, last;
+  std::string first_shrunk;  // for the diagnostic
   const std::vector<glm::dvec3> extra_candidates = dt::sphere_directions(options.junction_extra_points);
   std::vector<glm::dvec3> extra;
   dt::junction_scratch scratch;
@@ -455,54 +554,141 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   // curve it is nearly always a few junctions before.
   const std::vector<std::uint32_t> junction_order =
       detail::morton_order(detail::span_of(tc.junctions), node_pos);
+  std::uint32_t building = 0;  // the junction being built, for its messages
+  const std::function<std::string()> junction_name = [&] { return skeleton_name(building); };
+  std::vector<std::uint32_t> merge_paths;  // paths between junctions too short for their rings
+  constexpr int merge_rounds = 8;           // then what still lacks room is shrunk
   for (const std::uint32_t b : junction_order) {
+    building = b;
     const glm::dvec3 c = node_pos(b);
     const double rb = node_radius(b);
-    rings.clear();
-    ring_edges.clear();
-    for (const std::uint32_t slot : at_junction(b)) {
+    // Ring i points at node `target[i]` along its path (1: the path's first node). A ring
+    // that must sit farther out than 0.95 of that node's distance to clear the other edges
+    // moves past it to the next one (the nodes it passes are inside the junction's surface),
+    // as far as `last[i]`: a free end stays, and a path between two junctions keeps a node
+    // for each (the second built takes what the first left). A ring that still lacks room
+    // keeps its cap on the sphere and moves in to 0.9 of its node's distance, narrower in
+    // proportion: the hull is the same (it sees directions only), so the junction is as
+    // embedded as before, and the tube widens to the node's ring over the last tenth.
+    const std::span<const std::uint32_t> slots = at_junction(b);
+    const std::size_t real = slots.size();
+    target.assign(real, 1);
+    last.assign(real, 1);
+    const auto path_node = [&](std::uint32_t slot, std::uint32_t k) {
       const tube_path& path = tc.paths[slot / 2];
-      const bool at_start = slot % 2 == 0;
-      const std::uint32_t q = at_start ? path.nodes[1] : path.nodes[path.nodes.size() - 2];
-      dt::junction_ring r;
-      r.direction = glm::normalize(node_pos(q) - c);
-      r.radius = node_radius(q);
-      r.first = dt::any_perpendicular(r.direction);
-      rings.push_back(r);
-      ring_edges.push_back(at_start ? path.edges.front() : path.edges.back());
-    }
-    const std::size_t real = rings.size();
-    // The junction is star-shaped about its centre only if the centre lies inside the hull of
-    // its directions: a junction whose edges all leave into one half-space (a bend; a root whose
-    // branches all go one way) gets a virtual section on the empty side (§V.D method 1).
-    glm::dvec3 sum(0.0);
-    for (std::size_t i = 0; i < real; ++i) sum += rings[i].direction;
-    bool one_side = glm::length(sum) > 1e-9;
-    for (std::size_t i = 0; one_side && i < real; ++i)
-      one_side = glm::dot(rings[i].direction, glm::normalize(sum)) > 1e-9;
-    if (one_side && (real >= 3 || options.bend_virtual_section)) {
-      dt::junction_ring r;
-      r.direction = -glm::normalize(sum);
-      r.radius = rb;
-      r.first = dt::any_perpendicular(r.direction);
-      r.is_virtual = true;
-      rings.push_back(r);
-      ring_edges.push_back(tube_node::none);
-      ++res.virtual_sections;
-    }
-    dt::place_rings(detail::span_of(rings), rb, options.cap_separation);
+      return slot % 2 == 0 ? path.nodes[k] : path.nodes[path.nodes.size() - 1 - k];
+    };
     for (std::size_t i = 0; i < real; ++i) {
-      const std::uint32_t slot = at_junction(b)[i];
-      const tube_path& path = tc.paths[slot / 2];
-      const std::uint32_t q = slot % 2 == 0 ? path.nodes[1] : path.nodes[path.nodes.size() - 2];
-      const double length = glm::length(node_pos(q) - c);
-      if (!(rings[i].distance < 0.95 * length))
+      const tube_path& path = tc.paths[slots[i] / 2];
+      const auto m = static_cast<std::uint32_t>(path.nodes.size());
+      const std::uint32_t other = path_node(slots[i] ^ 1u, 0);
+      last[i] = !is_junction(other) ? m - 1
+                : junction_done[other] != 0 ? m - 2 - taken_of_slot[slots[i] ^ 1u]
+                                            : (m - 1) / 2;
+      last[i] = std::max<std::uint32_t>(last[i], 1);
+    }
+    const auto set_up_rings = [&] {
+      rings.clear();
+      ring_edges.clear();
+      for (std::size_t i = 0; i < real; ++i) {
+        const tube_path& path = tc.paths[slots[i] / 2];
+        const std::uint32_t q = path_node(slots[i], target[i]);
+        dt::junction_ring r;
+        r.direction = glm::normalize(node_pos(q) - c);
+        r.radius = node_radius(q);
+        r.first = dt::any_perpendicular(r.direction);
+        rings.push_back(r);
+        // The edge into the target node: its faces are the tube from the ring on.
+        const std::size_t segment = slots[i] % 2 == 0 ? target[i] - 1 : path.edges.size() - target[i];
+        ring_edges.push_back(path.edges[segment]);
+      }
+      // The junction is star-shaped about its centre only if the centre lies inside the hull of
+      // its directions: a junction whose edges all leave into one half-space (a bend; a root whose
+      // branches all go one way) gets a virtual section on the empty side (§V.D method 1).
+      glm::dvec3 sum(0.0);
+      for (std::size_t i = 0; i < real; ++i) sum += rings[i].direction;
+      bool one_side = glm::length(sum) > 1e-9;
+      for (std::size_t i = 0; one_side && i < real; ++i)
+        one_side = glm::dot(rings[i].direction, glm::normalize(sum)) > 1e-9;
+      if (one_side && (real >= 3 || options.bend_virtual_section)) {
+        dt::junction_ring r;
+        r.direction = -glm::normalize(sum);
+        r.radius = rb;
+        r.first = dt::any_perpendicular(r.direction);
+        r.is_virtual = true;
+        rings.push_back(r);
+        ring_edges.push_back(tube_node::none);
+      }
+      dt::place_rings(detail::span_of(rings), rb, options.cap_separation);
+      // A ring behind a neighbour's within 60° (whose centre lies ahead of its plane) would leave
+      // a narrow crevice between its tube and the hull's flank towards the neighbour, faces
+      // nearly back to back: it moves out along its axis to the neighbour's (its cap narrows).
+      for (int pass = 0; pass < 2; ++pass)
+        for (std::size_t i = 0; i < real; ++i)
+          for (std::size_t j = 0; j < real; ++j) {
+            if (j == i) continue;
+            const double cosine = glm::dot(rings[i].direction, rings[j].direction);
+            if (cosine > 0.5) rings[i].distance = std::max(rings[i].distance, rings[j].distance * cosine);
+          }
+    };
+    const auto reach = [&](std::size_t i) { return glm::length(node_pos(path_node(slots[i], target[i])) - c); };
+    // How far the mitred ring of ring i's node reaches back towards the junction (r tan(β/2),
+    // β its turn; 0 at the path's end): the ring must clear it, or the path would merge the
+    // node into the ring and leave it at an angle, folding against the junction.
+    const auto mitre = [&](std::size_t i) {
+      const tube_path& path = tc.paths[slots[i] / 2];
+      if (target[i] + 1 >= path.nodes.size()) return 0.0;
+      const std::uint32_t q = path_node(slots[i], target[i]), next = path_node(slots[i], target[i] + 1);
+      const glm::dvec3 din = dt::safe_unit(node_pos(q) - c), dout = dt::safe_unit(node_pos(next) - node_pos(q));
+      const double cosine = std::clamp(glm::dot(din, dout), -1.0, 1.0);
+      return cosine > -0.9 ? node_radius(q) * std::sqrt((1 - cosine) / (1 + cosine)) : reach(i);
+    };
+    const auto lacks_room = [&](std::size_t i) { return !(rings[i].distance + mitre(i) < 0.95 * reach(i)); };
+    // Each round moves at least one ring on by a node: at most the paths' inner nodes in all.
+    for (bool moved = true; moved;) {
+      set_up_rings();
+      moved = false;
+      for (std::size_t i = 0; i < real; ++i)
+        while (lacks_room(i) && target[i] < last[i]) ++target[i], moved = true;
+    }
+    res.virtual_sections += rings.size() > real ? 1 : 0;
+    for (std::size_t i = 0; i < real; ++i) {
+      taken_of_slot[slots[i]] = target[i] - 1;
+      res.absorbed_nodes += target[i] - 1;
+      const double length = reach(i);
+      if (!lacks_room(i)) continue;
+      if (!(length > 0 && std::isfinite(rings[i].distance)))
         throw error(error_category::invalid_input,
-                    skeleton_name(b) + ": edge " + std::to_string(ring_edges[i]) + " (to " +
-                        skeleton_name(q) + ") is " + std::to_string(length) +
-                        " long, but its cross-section must sit " + std::to_string(rings[i].distance) +
-                        " from the junction to clear the other edges there (an edge too short for the radii, "
-                        "or edges too close in angle)");
+                    skeleton_name(b) + ": the cross-section of edge " + std::to_string(ring_edges[i]) +
+                        " cannot be placed (radius " + std::to_string(rings[i].radius) + ", distance " +
+                        std::to_string(rings[i].distance) + ")");
+      const std::uint32_t other = path_node(slots[i] ^ 1u, 0);
+      const bool free_end = !is_junction(other);
+      if (free_end) {
+        // The free end itself is too near: the ring moves in to it, narrower, and its cap
+        // closes the branch there (a stub; the cap's disc is star-shaped about the centre too).
+        ++taken_of_slot[slots[i]];
+        ++res.absorbed_nodes;
+        const double scale = std::min(1.0, length / rings[i].distance);
+        rings[i].distance *= scale;
+        rings[i].radius *= scale;
+        if (scale < 1 && res.shrunk_sections++ == 0)
+          first_shrunk = skeleton_name(b) + ", edge " + std::to_string(ring_edges[i]) + ", to " +
+                         std::to_string(static_cast<int>(std::lround(100 * scale))) + " % of its radius";
+        continue;
+      }
+      // Between two junctions (not one path from a junction back to itself): merge them.
+      if (other != b && (from == nullptr || from->round < merge_rounds)) merge_paths.push_back(slots[i] / 2);
+      const double scale = std::max(0.9 * (length - mitre(i)), 0.5 * length) / rings[i].distance;
+      rings[i].distance *= scale;
+      rings[i].radius *= scale;
+      if (res.shrunk_sections++ == 0)
+        first_shrunk = skeleton_name(b) + ", edge " + std::to_string(ring_edges[i]) + ", to " +
+                       std::to_string(static_cast<int>(std::lround(100 * scale))) + " % of its radius";
+    }
+    if (!merge_paths.empty()) {  // the skeleton is meshed again after merging: plan, do not build
+      junction_done[b] = 1;
+      continue;
     }
     extra.clear();
     for (const glm::dvec3& d : extra_candidates) {  // method 3: clear of every cap, with a margin
@@ -513,8 +699,8 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
     }
     dt::build_junction(out, c, detail::span_of(rings), n,
                        {tube_face_kind::junction, tc.nodes[b].skeleton_node}, detail::span_of(ring_edges),
-                       first_vertex, scratch, detail::span_of(extra), rb);
-    for (std::size_t i = 0; i < real; ++i) keep_end(at_junction(b)[i], {rings[i], c, first_vertex[i]});
+                       first_vertex, scratch, detail::span_of(extra), rb, &junction_name);
+    for (std::size_t i = 0; i < real; ++i) keep_end(slots[i], {rings[i], c, first_vertex[i]});
     ++res.junctions;
     junction_done[b] = 1;
     const detail::stopwatch t_these_paths;
@@ -526,6 +712,79 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   }
   res.reused_junction_hulls = scratch.reused;
   res.junctions_ms = t_junctions.ms() - 1e3 * paths_seconds;
+  if (!merge_paths.empty()) {
+    // Two junctions too close for their rings become one, at the mean of their centres with
+    // the larger radius, and the skeleton is meshed again (at most three rounds; what is left
+    // then is shrunk). A path that closes a cycle is not merged (the genus would drop), nor
+    // is anything when merging would join two nodes twice.
+    // Junctions after the first path to merge were planned, not built: when no merge can be
+    // made, the skeleton is meshed again as it is, with merging off.
+    for (int attempt = 0; attempt < 2; ++attempt) {
+    std::vector<std::uint32_t> set(nv);
+    for (std::uint32_t v = 0; v < nv; ++v) set[v] = v;
+    const auto find = [&](std::uint32_t v) {
+      while (set[v] != v) v = set[v] = set[set[v]];
+      return v;
+    };
+    std::size_t merged = 0, junctions_merged = 0;  // nodes joined to another's set; of them junctions
+    for (const std::uint32_t p : attempt == 0 ? detail::span_of(merge_paths) : std::span<const std::uint32_t>{}) {
+      const tube_path& path = tc.paths[p];
+      const std::uint32_t a = find(tc.nodes[path.nodes.front()].skeleton_node);
+      if (a == find(tc.nodes[path.nodes.back()].skeleton_node)) continue;
+      for (const std::uint32_t c : path.nodes) {
+        const std::uint32_t v = tc.nodes[c].skeleton_node;
+        if (v == tube_node::none || find(v) == a) continue;
+        set[find(v)] = a;
+        ++merged;
+        junctions_merged += is_junction(c) ? 1 : 0;
+      }
+    }
+    merged_skeleton next;
+    next.nodes = from != nullptr ? from->nodes : nv;
+    next.edges = from != nullptr ? from->edges : ne;
+    next.merged = junctions_merged + (from != nullptr ? from->merged : 0);
+    next.round = attempt == 1 ? merge_rounds : from != nullptr ? from->round + 1 : 1;
+    std::vector<std::uint32_t> new_id(nv, tube_node::none), junctions_in(nv, 0);
+    std::vector<glm::dvec3> centre(nv, glm::dvec3(0.0));
+    std::vector<double> radius(nv, 0.0);
+    // A set's centre: the mean of its junctions weighted by r³ (a soma keeps its place when a
+    // thin branch point beside it joins it; like branch points meet in the middle, where their
+    // paths' directions stay apart); its radius the largest.
+    std::vector<double> weight(nv, 0.0);
+    for (std::uint32_t v = 0; v < nv; ++v) {
+      const std::uint32_t root = find(v);
+      radius[root] = std::max(radius[root], rad[v]);
+      if (tc.nodes[v].kind != tube_node_kind::junction) continue;
+      const double w = rad[v] / rad[root];  // relative, so that r³ cannot overflow
+      centre[root] += (w * w * w) * pos[v], weight[root] += w * w * w, ++junctions_in[root];
+    }
+    skeleton<P> g2;
+    for (std::uint32_t v = 0; v < nv; ++v) {
+      const std::uint32_t root = find(v);
+      if (new_id[root] != tube_node::none) continue;
+      new_id[root] = static_cast<std::uint32_t>(g2.points.size());
+      g2.points.push_back(
+          from_dvec3<P>(junctions_in[root] > 0 ? centre[root] / weight[root] : pos[root]));
+      g2.radii.push_back(radius[root]);
+      next.node_of.push_back(from != nullptr ? from->node_of[root] : root);
+    }
+    std::vector<std::array<std::uint32_t, 2>> pairs;
+    for (std::uint32_t j = 0; j < ne; ++j) {
+      const std::uint32_t a = new_id[find(edges[j][0])], b = new_id[find(edges[j][1])];
+      if (a == b) continue;
+      g2.edges.push_back({a, b});
+      next.edge_of.push_back(from != nullptr ? from->edge_of[j] : j);
+      pairs.push_back({std::min(a, b), std::max(a, b)});
+    }
+    std::sort(pairs.begin(), pairs.end());
+    if (attempt == 1 || (merged > 0 && std::adjacent_find(pairs.begin(), pairs.end()) == pairs.end() &&
+                         validate_skeleton(g2).ok())) {
+      tubes_result<P> again = make_tubes_of(g2, options, &next);
+      again.total_ms = t_start.ms();
+      return again;
+    }
+    }
+  }
 
   // Paths not yet meshed: those with no junction at either end (free paths, rings).
   const detail::stopwatch t_paths;
@@ -551,6 +810,14 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   }
   res.paths_ms = t_paths.ms() + 1e3 * paths_seconds;
 
+  if (from != nullptr) {  // sources and sections in the caller's numbering
+    for (tube_face_source& f : out.sources)
+      f.index = f.kind == tube_face_kind::extrusion ? from->edge_of[f.index] : from->node_of[f.index];
+    std::vector<double> ratio(from->edges, std::numeric_limits<double>::infinity());
+    for (std::size_t j = 0; j < ne; ++j) ratio[from->edge_of[j]] = out.section_ratio[j];
+    out.section_ratio.swap(ratio);
+    res.merged_junctions = from->merged;
+  }
   // Corner angles of the faces as built (before any subdivision), taken by add_face.
   const double cos_lo = out.cos_lo, cos_hi = out.cos_hi;
   res.min_corner_deg = std::acos(std::clamp(cos_hi, -1.0, 1.0)) * 180 / std::numbers::pi;
@@ -592,6 +859,14 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   say(tc.inserted_nodes, "nodes inserted between adjacent junctions (at the middle of their edge)");
   say(res.merged_nodes,
       "path nodes merged with a neighbour closer than their turns allow (the tube would fold there)");
+  say(res.merged_junctions,
+      "junctions merged into a neighbouring one (the path between them too short for their cross-sections)");
+  say(res.absorbed_nodes,
+      "path nodes lie inside a junction's surface (nearer it than its cross-section must sit): no ring of their own");
+  if (res.shrunk_sections > 0)
+    res.diagnostics.push_back(std::to_string(res.shrunk_sections) +
+                              " junction cross-sections shrunk to fit an edge too short for them (first: " +
+                              first_shrunk + ")");
   say(res.spheres, "isolated nodes meshed as spheres");
   // A fold is no intersection (the faces only touch), so it is looked for on its own: O(E).
   res.folded_edges = folded_edges(res.mesh).edges.size();
@@ -616,4 +891,5 @@ tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& opt
   return res;
 }
 
+}  // namespace detail::tubes
 }  // namespace cellforge
