@@ -1037,8 +1037,9 @@ TEST_CASE("tubes: junctions short of room move their rings on, merge, or end in 
 
 // Known miss (issue 35, open): neuron 42 (1,941 samples) has a junction (node 1113) whose
 // surface folds against the tube of its edge 1610 (2 folded edges, 6 intersecting face pairs).
-// may_fail keeps CI green while it is open; the miss is printed and the check still counts it.
-TEST_CASE("neuron-like skeletons: a soma, dense thin dendrites, close branch points" * doctest::may_fail()) {
+// make_tubes reports the folds (tubes_result::folded_edges, and the tubes program exits 1), so
+// the miss is not silent: the test requires every miss to be flagged so, and 99 of 100 clean.
+TEST_CASE("neuron-like skeletons: a soma, dense thin dendrites, close branch points") {
   // 100 neuron-like trees (samples::neuron): most of 1,000-2,000 samples, every tenth of up to
   // 10,000; the sanitizer build runs four of 1,000.
 #ifdef NDEBUG
@@ -1046,7 +1047,7 @@ TEST_CASE("neuron-like skeletons: a soma, dense thin dendrites, close branch poi
 #else
   const int count = 4;
 #endif
-  std::size_t misses = 0, samples_in_all = 0, merged = 0, moved = 0, stubs = 0;
+  std::size_t misses = 0, silent = 0, samples_in_all = 0, merged = 0, moved = 0, stubs = 0;
   for (int t = 0; t < count; ++t) {
     samples::neuron_options o;
     const double u = t * 0.6180339887498949 - std::floor(t * 0.6180339887498949);
@@ -1060,17 +1061,22 @@ TEST_CASE("neuron-like skeletons: a soma, dense thin dendrites, close branch poi
       merged += r.merged_junctions, moved += r.absorbed_nodes, stubs += r.shrunk_sections;
       if (!problems.empty()) {
         ++misses;
-        MESSAGE("miss: neuron " << t << " (" << s.points.size() << " samples): " << problems);
+        // Flagged: the result itself says the surface folds (what the tubes program checks).
+        const bool flagged = r.folded_edges > 0;
+        if (!flagged) ++silent;
+        MESSAGE("miss: neuron " << t << " (" << s.points.size() << " samples)" << (flagged ? ", flagged" : ", SILENT")
+                                << ": " << problems);
       }
     } catch (const error& e) {
       ++misses;
       MESSAGE("miss: neuron " << t << " (" << s.points.size() << " samples) refused: " << e.what());
     }
   }
-  std::printf("tube neurons: %d skeletons, %zu samples, %zu misses; %zu junctions merged, %zu nodes moved past, "
-              "%zu sections shrunk\n",
-              count, samples_in_all, misses, merged, moved, stubs);
-  CHECK(misses == 0);
+  std::printf("tube neurons: %d skeletons, %zu samples, %zu misses (%zu silent); %zu junctions merged, %zu nodes "
+              "moved past, %zu sections shrunk\n",
+              count, samples_in_all, misses, silent, merged, moved, stubs);
+  CHECK(silent == 0);
+  CHECK(misses * 100 <= static_cast<std::size_t>(count));  // the goal is 0 (issue 35); today 1 of 100
 }
 
 TEST_CASE("tubes: bad input is a located error") {
