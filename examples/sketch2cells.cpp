@@ -82,21 +82,29 @@ int main(int argc, char** argv) {
     }
     cellforge::line_drawing<glm::dvec2> drawing;
     stage("reading " + example::file_and_size(input));
-    if (ext == ".svg") {
-      const auto read = cellforge::io::read_svg_drawing(input);
-      drawing = read.drawing;
-      std::printf("input              %s: %zu SVG elements, %zu strokes, %zu ends snapped\n",
-                  input.string().c_str(), read.elements, read.segments, read.snapped);
-    } else if (ext == ".dxf") {
-      // ASCII DXF: LINEs and polylines on every visible layer, blocks expanded (curves refused).
-      const auto read = cellforge::io::read_dxf_drawing(input);
-      drawing = read.drawing;
-      std::printf("input              %s: DXF %s, %zu entities, %zu strokes, %zu ends snapped\n",
-                  input.string().c_str(), read.version.c_str(), read.entities, read.segments, read.snapped);
-      for (const std::string& d : read.diagnostics) std::printf("note               %s\n", d.c_str());
-    } else {
-      drawing = cellforge::io::read_drawing_text(input);
-      std::printf("input              %s\n", input.string().c_str());
+    try {
+      if (ext == ".svg") {
+        const auto read = cellforge::io::read_svg_drawing(input);
+        drawing = read.drawing;
+        std::printf("input              %s: %zu SVG elements, %zu strokes, %zu ends snapped\n",
+                    input.string().c_str(), read.elements, read.segments, read.snapped);
+      } else if (ext == ".dxf") {
+        // ASCII DXF: LINEs and polylines on every visible layer, blocks expanded (curves refused).
+        const auto read = cellforge::io::read_dxf_drawing(input);
+        drawing = read.drawing;
+        std::printf("input              %s: DXF %s, %zu entities, %zu strokes, %zu ends snapped\n",
+                    input.string().c_str(), read.version.c_str(), read.entities, read.segments, read.snapped);
+        for (const std::string& d : read.diagnostics) std::printf("note               %s\n", d.c_str());
+      } else {
+        drawing = cellforge::io::read_drawing_text(input);
+        std::printf("input              %s\n", input.string().c_str());
+      }
+    } catch (const cellforge::error& e) {
+      // A drawing with arcs or curves: the reader names the library's arc readers; name the program.
+      if (e.message().find("arc_drawing") == std::string::npos) throw;
+      std::string what = "a drawing with arcs or curves";
+      if (e.line() > 0) what += ", the first at line " + std::to_string(e.line());
+      example::not_for_this(p.name, input, what, "a drawing of straight lines", example::input_kind::drawing);
     }
     stage("reading the solid of a drawing of " + std::to_string(drawing.points.size()) + " junctions and " +
           std::to_string(drawing.edges.size()) + " lines");
