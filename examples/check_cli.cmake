@@ -6,7 +6,8 @@
 # garbled one (exit 1), an input of the wrong kind (exit 4, the message naming a program that
 # takes it), an output that would replace the input (exit 3, by name and through a link), an
 # output folder that cannot be made (exit 3), a write that fails half way (exit 3, nothing left;
-# --keep-partial keeps what was written), and that the input is never changed. No shell.
+# --keep-partial keeps what was written), a result that fails its check (exit 4, nothing
+# written but with --keep-partial), and that the input is never changed. No shell.
 foreach(var EXE PROGRAM DATA_DIR WORK_DIR)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "check_cli: -D${var}=... is required")
@@ -25,6 +26,7 @@ set(WRONG_WRITES FALSE)
 set(OVERWRITE_NAME "")
 set(MESH_STEM "")
 set(DEPRECATED "")
+set(RESULT_FAIL "")
 if(PROGRAM STREQUAL "hull")
   set(SOURCE cup.off)
   set(INPUT_NAME points.off)
@@ -70,6 +72,7 @@ elseif(PROGRAM STREQUAL "tubes")
   set(GARBLED "1 1 0 0 zero 1 -1\n")
   set(OVERWRITE_NAME tubes.obj)
   set(MESH_STEM tubes)
+  set(RESULT_FAIL --check-pairs 1)  # a check that cannot finish: no pass
 elseif(PROGRAM STREQUAL "smooth_edges")
   set(SOURCE cylinder16.off)
   set(INPUT_NAME cyl.off)
@@ -379,3 +382,15 @@ if(n GREATER 1)
   endif()
 endif()
 expect_input_untouched()
+
+# A result that fails its check: exit 4 and nothing written; --keep-partial writes it to look at.
+if(RESULT_FAIL)
+  fresh(result_fails)
+  run(${RESULT_FAIL} ${INPUT_NAME})
+  expect_exit(4)
+  expect_files("${dir}")
+  run(--keep-partial ${RESULT_FAIL} ${INPUT_NAME})
+  expect_exit(4)
+  list(TRANSFORM OUTPUTS PREPEND "out/" OUTPUT_VARIABLE in_out)
+  expect_files("${dir}" ${in_out})
+endif()

@@ -508,8 +508,8 @@ struct program {
                        [this](std::string_view) { quiet = true; }});
     options.push_back({{"--keep-partial"},
                        "",
-                       "keep the outputs written before a failure (default: a run that exits non-zero leaves "
-                       "no output)",
+                       "keep the outputs of a failed run: those written before an error, and all of a result "
+                       "that fails its check (default: a run that exits non-zero leaves no output)",
                        [this](std::string_view) { keep_partial = true; }});
   }
 

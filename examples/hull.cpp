@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
     const fs::path input = p.one_input(args, {});
     example::stage_note& stage = p.stage;
     example::output_files out(p, from_file ? std::vector<fs::path>{input} : std::vector<fs::path>{});
+    bool failed = false;  // a result that fails its check: written only with --keep-partial
     std::vector<fs::path> mesh_paths;
     for (const std::string& f : p.formats) mesh_paths.push_back(out.add("hull." + f));
     const fs::path picture_path = out.add("hull.svg");
@@ -110,7 +111,8 @@ int main(int argc, char** argv) {
                 hull.is_closed() ? "closed" : "not closed");
     if (!valid.ok()) {
       std::fprintf(stderr, "hull: the hull fails validation: %s\n", valid.message.c_str());
-      return example::exit_not_for_this;
+      if (!p.keep_partial) return example::exit_not_for_this;
+      failed = true;
     }
 
     stage("writing the hull of " + std::to_string(hull.num_faces()) + " faces");
@@ -134,6 +136,7 @@ int main(int argc, char** argv) {
       scene.add_points(corners, {.fill = "#d0312d", .stroke = "#5a0f0d"}, 2.5);
       out.write(picture_path, [&](const fs::path& to) { scene.write(to, {.title = "convex hull"}); });
     }
+    if (failed) return example::exit_not_for_this;  // the outputs kept as partial
     out.commit();
     std::printf("wrote            %s\n", out.list().c_str());
     return example::exit_ok;

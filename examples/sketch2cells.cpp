@@ -71,6 +71,7 @@ int main(int argc, char** argv) {
     example::stage_note& stage = p.stage;
     const std::string stem = input.stem().string();
     example::output_files out(p, {input});
+    bool failed = false;  // a result that fails its check: written only with --keep-partial
     const fs::path faces_path = out.add(stem + "_faces.svg"), wire_path = out.add(stem + "_wire.obj"),
                    cells_path = out.add(stem + ".3dcl"), obj_path = out.add(stem + ".obj"),
                    picture_path = out.add(stem + ".svg");
@@ -142,7 +143,8 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "sketch2cells: read, but no good solid: %s\n",
                    !valid.ok() ? ("the cell complex fails validation: " + valid.message).c_str()
                                : "the solid's faces differ from the drawing's");
-      return example::exit_not_for_this;
+      if (!p.keep_partial) return example::exit_not_for_this;
+      failed = true;
     }
     if (p.svg) {
       cellforge::io::drawing_svg_options picture;
@@ -157,6 +159,7 @@ int main(int argc, char** argv) {
     out.write(obj_path, [&](const fs::path& to) { cellforge::io::write_cells_obj(to, cells); });
     if (p.svg)
       out.write(picture_path, [&](const fs::path& to) { cellforge::io::write_cells_svg(to, cells); });
+    if (failed) return example::exit_not_for_this;  // the outputs kept as partial
     out.commit();
     std::printf("wrote              %s\n", out.list().c_str());
     return example::exit_ok;

@@ -120,6 +120,7 @@ int main(int argc, char** argv) {
     const std::string stem = input.stem().string();
     const std::string ext = example::lower_extension(input);
     example::output_files out(p, {input});
+    bool failed = false;  // a result that fails its check: written only with --keep-partial
     const fs::path arcs_path = out.add(stem + "_arcs.svg"),
                    skeleton_text_path = out.add(stem + "_skeleton.txt"),
                    skeleton_picture_path = out.add(stem + "_skeleton.svg"),
@@ -234,7 +235,8 @@ int main(int argc, char** argv) {
       add(mesh.skipped > 0, std::to_string(mesh.skipped) + " blends skipped by the rounded mesh");
       add(!brep.ok, "the rounded B-rep fails its check");
       std::fprintf(stderr, "sketch_rounds: read, but no consistent reading: %s\n", why.c_str());
-      return example::exit_not_for_this;
+      if (!p.keep_partial) return example::exit_not_for_this;
+      failed = true;
     }
     stage("writing " + std::to_string(mesh.mesh.num_faces()) + " faces");
     // Each pair's arcs in one hue; unpaired arcs all in the next.
@@ -274,8 +276,9 @@ int main(int argc, char** argv) {
       std::fprintf(stderr,
                    "sketch_rounds: read, but the STEP writer reports %zu problems (printed as notes)\n",
                    step.diagnostics.size());
-      return example::exit_not_for_this;
+      failed = true;
     }
+    if (failed) return example::exit_not_for_this;  // the outputs kept as partial with --keep-partial
     out.commit();
     std::printf("wrote              %s\n", out.list().c_str());
     return example::exit_ok;

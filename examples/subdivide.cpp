@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
     if (!p.format_given)
       p.formats = {ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl" ? ext.substr(1) : "obj"};
     example::output_files out(p, {input});
+    bool failed = false;  // a result that fails its check: written only with --keep-partial
     std::vector<fs::path> mesh_paths;
     for (const std::string& f : p.formats) mesh_paths.push_back(out.add("subdivided." + f));
     const fs::path picture_path = out.add("subdivide.svg");
@@ -105,13 +106,15 @@ int main(int argc, char** argv) {
     std::printf("valid              %s\n", valid.ok() ? "yes" : valid.message.c_str());
     if (!valid.ok()) {
       std::fprintf(stderr, "subdivide: the result fails validation: %s\n", valid.message.c_str());
-      return example::exit_not_for_this;
+      if (!p.keep_partial) return example::exit_not_for_this;
+      failed = true;
     }
 
     stage("writing " + std::to_string(mesh.num_faces()) + " faces");
     for (const fs::path& path : mesh_paths)
       out.write(path, [&](const fs::path& to) { example::write_mesh_file(to, mesh); });
     if (!p.svg) {
+      if (failed) return example::exit_not_for_this;  // the outputs kept as partial
       out.commit();
       std::printf("wrote              %s\n", out.list().c_str());
       return example::exit_ok;
@@ -146,6 +149,7 @@ int main(int argc, char** argv) {
     picture.view.azimuth_deg = -45;
     picture.view.elevation_deg = 20;
     out.write(picture_path, [&](const fs::path& to) { scene.write(to, picture); });
+    if (failed) return example::exit_not_for_this;  // the outputs kept as partial
     out.commit();
     std::printf("wrote              %s\n", out.list().c_str());
     return example::exit_ok;

@@ -233,7 +233,7 @@ int main(int argc, char** argv) {
     for (const std::string& d : r.diagnostics) std::printf("note               %s\n", d.c_str());
     if (!failed.empty()) {
       std::fprintf(stderr, "tubes: read, but the mesh is not good: %s\n", failed.c_str());
-      return example::exit_not_for_this;
+      if (!p.keep_partial) return example::exit_not_for_this;
     }
 
     stage("writing " + std::to_string(r.mesh.num_faces()) + " faces", 85);
@@ -255,6 +255,7 @@ int main(int argc, char** argv) {
       picture.title = "tubes: " + input.filename().string();
       out.write(picture_path, [&](const fs::path& to) { scene.write(to, picture); });
     }
+    if (!failed.empty()) return example::exit_not_for_this;  // the outputs kept as partial
     out.commit();
     std::printf("wrote              %s\n", out.list().c_str());
     return example::exit_ok;
