@@ -322,7 +322,9 @@ inline void report_out_of_memory(const char* program, const stage_note& stage) {
 inline std::string file_and_size(const std::filesystem::path& path) {
   std::error_code ec;
   const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
-  std::string s = "'" + path.string() + "'";
+  std::string s = "'";  // appended, not "'" + string: GCC 12 -O3 misreads that as overlapping (-Wrestrict)
+  s += path.string();
+  s += '\'';
   if (ec) return s;
   char buf[48];
   std::snprintf(buf, sizeof buf, " (%.1f MB)", static_cast<double>(bytes) / 1e6);
