@@ -619,7 +619,7 @@ class output_files {
     if (program_.keep_partial) {
       for (const auto& [temp, final] : written_) std::filesystem::rename(temp, final, ec);
       if (!written_.empty())
-        std::fprintf(stderr, "%s: --keep-partial: kept the %zu outputs written before the failure\n",
+        std::fprintf(stderr, "%s: --keep-partial: kept the %zu outputs the failed run wrote\n",
                      program_.name.c_str(), written_.size());
       return;
     }
@@ -638,14 +638,13 @@ class output_files {
     std::error_code ec;
     if (std::filesystem::is_directory(p, ec))
       throw output_error("cannot write '" + p.string() + "': it is a folder");
-    planned_.push_back(p);
     return p;
   }
 
-  /// Writes output `path` (from add()) by calling write(temporary path); a failure is an
+  /// Writes output `path` (from add()) by calling writer(temporary path); a failure is an
   /// output_error naming the file.
   template <class F>
-  void write(const std::filesystem::path& path, F&& write) {
+  void write(const std::filesystem::path& path, F&& writer) {
     make_folder();
     std::filesystem::path temp = path;
     temp.replace_filename("." + path.stem().string() + ".partial" + path.extension().string());
@@ -654,7 +653,7 @@ class output_files {
       if (std::filesystem::is_regular_file(temp, ec)) std::filesystem::remove(temp, ec);
     };
     try {
-      write(temp);
+      writer(temp);
     } catch (const std::bad_alloc&) {
       discard();
       throw;
@@ -704,7 +703,7 @@ class output_files {
   }
 
   const program& program_;
-  std::vector<std::filesystem::path> inputs_, planned_, made_;
+  std::vector<std::filesystem::path> inputs_, made_;
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> written_;  // temporary, name
   bool folder_made_ = false, committed_ = false;
 };
