@@ -282,7 +282,7 @@ if(MESH_STEM)
   expect_exit(0)
   set(want ${no_pictures})
   list(TRANSFORM want REPLACE "^a/b/" "out/")
-  list(FILTER want EXCLUDE REGEX "^out/${MESH_STEM}\\.")
+  list(FILTER want EXCLUDE REGEX "^out/${MESH_STEM}\\.(obj|off|ply|stl)$")
   expect_files("${dir}" ${want} "out/${MESH_STEM}.stl" "out/${MESH_STEM}.ply")
 endif()
 
