@@ -1,12 +1,11 @@
 // hull: the 3D convex hull of a point set, written as a mesh and drawn as a picture.
 //
-//   hull                    2000 random points in a ball (fixed seed)
-//   hull points.off         the vertices of any OFF, OBJ or PLY file (its faces are ignored)
-//   hull points.off merge   the same, one polygon per planar facet instead of triangles
-//   hull ... --no-svg       without the picture
+//   hull [options]            2000 random points in a ball (fixed seed)
+//   hull [options] points.off the vertices of any OFF, OBJ, PLY or STL file (faces and lines ignored)
+//   hull --help               every option with its default, the outputs, the exit statuses
 //
-// Writes, in the current directory, hull.off (the hull) and hull.svg (the hull over the
-// points: red points are hull vertices, grey ones lie inside), and prints what it found.
+// Writes into the output folder (-o, default ./out/) hull.off (or --format) and hull.svg (the
+// hull over the points: red points are hull vertices, grey ones lie inside).
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -46,19 +45,47 @@ std::vector<point> random_ball(std::size_t n, std::uint64_t seed) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bool picture = !example::take_flag(argc, argv, "--no-svg");
-  const bool from_file = argc > 1;
-  const bool merge = argc > 2 && std::string(argv[2]) == "merge";
-  if (argc > 3 || (argc > 2 && !merge)) {
-    std::fprintf(stderr, "usage: hull [points.off|.obj|.ply [merge]] [--no-svg]\n");
-    return 2;
-  }
-  example::stage_note stage;
-  try {
-    if (from_file) example::refuse_to_overwrite({"hull.off", "hull.svg"}, argv[1]);
-    if (from_file) stage("reading " + example::file_and_size(argv[1]));
-    const std::vector<point> points =
-        from_file ? cellforge::io::read_soup<point>(argv[1]).points : random_ball(2000, 2024);
+  example::program p;
+  p.name = "hull";
+  p.usage = "[options] [input]";
+  p.about =
+      "The 3D convex hull of a point set: the vertices of a mesh or wireframe file (its faces and\n"
+      "lines are ignored), or 2000 random points in a ball; prints what it found and draws it.";
+  p.input_help =
+      "points: the vertices of an .off, .obj, .ply or .stl file; default: 2000 random points in a\n"
+      "       unit ball (seed 2024)";
+  p.outputs_help =
+      "  hull.<format>   the hull (--format, default off)\n"
+      "  hull.svg        the hull see-through over the points: hull vertices red, inner points grey\n";
+  p.exit4_help =
+      "read, but not points (a skeleton, a drawing, a cell list: the message names the program\n"
+      "     that takes it), or a hull that fails validation";
+  bool merge = false;
+  p.add_common_options("off");
+  p.options.push_back({{"--merge"},
+                       "",
+                       "one polygon per planar facet instead of triangles (default: triangles)",
+                       [&](std::string_view) { merge = true; }});
+  return example::run(p, argc, argv, [&](std::vector<std::string> args) -> int {
+    if (args.size() == 2 && args[1] == "merge") {  // the old spelling: hull points.off merge
+      std::fprintf(stderr, "hull: the argument 'merge' is deprecated; use --merge\n");
+      merge = true;
+      args.pop_back();
+    }
+    const bool from_file = !args.empty();
+    const fs::path input = p.one_input(args, {});
+    example::stage_note& stage = p.stage;
+    example::output_files out(p, from_file ? std::vector<fs::path>{input} : std::vector<fs::path>{});
+    bool failed = false;  // a result that fails its check: written only with --keep-partial
+    std::vector<fs::path> mesh_paths;
+    for (const std::string& f : p.formats) mesh_paths.push_back(out.add("hull." + f));
+    const fs::path picture_path = out.add("hull.svg");
+    if (from_file) {
+      example::expect_extension(p.name, input, {example::input_kind::mesh}, "a file of points");
+      stage("reading " + example::file_and_size(input));
+    }
+    const std::vector<point> points =  // an OBJ wireframe's vertices too
+        from_file ? cellforge::io::read_soup<point>(input).points : random_ball(2000, 2024);
     stage("building the hull of " + std::to_string(points.size()) + " points");
 
     cellforge::convex_hull_report report;
@@ -69,7 +96,8 @@ int main(int argc, char** argv) {
 
     const char* kind[] = {"empty", "one point", "a segment", "flat (a polygon, two faces back to back)",
                           "solid"};
-    std::printf("input            %s\n", from_file ? argv[1] : "2000 random points in a ball (seed 2024)");
+    std::printf("input            %s\n",
+                from_file ? input.string().c_str() : "2000 random points in a ball (seed 2024)");
     std::printf("points           %zu\n", report.input_points);
     std::printf("hull             %s\n", kind[report.dimension + 1]);
     std::printf("hull vertices    %zu\n", report.vertices);
@@ -81,36 +109,36 @@ int main(int argc, char** argv) {
     const cellforge::validation_result valid = cellforge::validate(hull);
     std::printf("valid            %s, %s\n", valid.ok() ? "yes" : valid.message.c_str(),
                 hull.is_closed() ? "closed" : "not closed");
-
-    const fs::path out = "hull.off";
-    stage("writing the hull of " + std::to_string(hull.num_faces()) + " faces");
-    if (hull.num_faces() > 0) {
-      cellforge::io::write_mesh(out, hull);
-      std::printf("wrote            %s\n", out.string().c_str());
+    if (!valid.ok()) {
+      std::fprintf(stderr, "hull: the hull fails validation: %s\n", valid.message.c_str());
+      if (!p.keep_partial) return example::exit_not_for_this;
+      failed = true;
     }
 
-    if (!picture) return valid.ok() ? 0 : 1;
-    // The picture: the hull see-through over every point, vertices in red.
-    stage("drawing " + std::to_string(hull.num_faces()) + " faces and " + std::to_string(points.size()) +
-          " points");
-    cellforge::io::svg_scene scene;
-    std::vector<point> inside, corners;
-    std::vector<char> is_corner(points.size(), 0);
-    const auto index = hull.get_vertex_property<std::uint32_t>(cellforge::input_index_property_name);
-    for (cellforge::vertex_handle v : hull.vertices()) is_corner[index[v]] = 1;
-    for (std::size_t i = 0; i < points.size(); ++i) (is_corner[i] ? corners : inside).push_back(points[i]);
+    stage("writing the hull of " + std::to_string(hull.num_faces()) + " faces");
     if (hull.num_faces() > 0)
-      scene.add_mesh(cellforge::to_soup(hull), {.opacity = 0.5, .hidden_opacity = 0.25});
-    scene.add_points(inside, {.fill = "#7a7a7a", .stroke = "none", .hidden_opacity = 0.6}, 1.2);
-    scene.add_points(corners, {.fill = "#d0312d", .stroke = "#5a0f0d"}, 2.5);
-    scene.write(fs::path("hull.svg"), {.title = "convex hull"});
-    std::printf("wrote            hull.svg\n");
-    return valid.ok() ? 0 : 1;
-  } catch (const std::bad_alloc&) {  // a model too big for this machine: say so, do not abort
-    example::report_out_of_memory("hull", stage);
-    return 1;
-  } catch (const std::exception& e) {  // cellforge::error among them: its message says what to fix
-    std::fprintf(stderr, "hull: %s\n", e.what());
-    return 1;
-  }
+      for (const fs::path& path : mesh_paths)
+        out.write(path, [&](const fs::path& to) { example::write_mesh_file(to, hull); });
+
+    if (p.svg) {
+      // The picture: the hull see-through over every point, vertices in red.
+      stage("drawing " + std::to_string(hull.num_faces()) + " faces and " + std::to_string(points.size()) +
+            " points");
+      cellforge::io::svg_scene scene;
+      std::vector<point> inside, corners;
+      std::vector<char> is_corner(points.size(), 0);
+      const auto index = hull.get_vertex_property<std::uint32_t>(cellforge::input_index_property_name);
+      for (cellforge::vertex_handle v : hull.vertices()) is_corner[index[v]] = 1;
+      for (std::size_t i = 0; i < points.size(); ++i) (is_corner[i] ? corners : inside).push_back(points[i]);
+      if (hull.num_faces() > 0)
+        scene.add_mesh(cellforge::to_soup(hull), {.opacity = 0.5, .hidden_opacity = 0.25});
+      scene.add_points(inside, {.fill = "#7a7a7a", .stroke = "none", .hidden_opacity = 0.6}, 1.2);
+      scene.add_points(corners, {.fill = "#d0312d", .stroke = "#5a0f0d"}, 2.5);
+      out.write(picture_path, [&](const fs::path& to) { scene.write(to, {.title = "convex hull"}); });
+    }
+    if (failed) return example::exit_not_for_this;  // the outputs kept as partial
+    out.commit();
+    std::printf("wrote            %s\n", out.list().c_str());
+    return example::exit_ok;
+  });
 }

@@ -1,9 +1,10 @@
-// mesh_info: reads a mesh (OFF, OBJ or PLY), builds the half-edge mesh, validates it,
+// mesh_info: reads a mesh (OFF, OBJ, PLY or STL), builds the half-edge mesh, validates it,
 // prints its statistics and draws it as an SVG picture with its boundary highlighted.
 //
-//   mesh_info                 the bundled Möbius band (a non-orientable mesh)
-//   mesh_info model.off       any mesh file; writes mesh_info.svg in the current directory
-//   mesh_info ... --no-svg    without the picture
+//   mesh_info [options] [input]   input: any mesh file; none: the bundled Möbius band
+//   mesh_info --help              every option with its default, the outputs, the exit statuses
+//
+// Writes mesh_info.svg into the output folder (-o, default ./out/; --no-svg: nothing).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -17,21 +18,31 @@
 #include "example_support.hpp"
 
 int main(int argc, char** argv) {
-  const bool picture = !example::take_flag(argc, argv, "--no-svg");
-  if (argc > 2) {
-    std::fprintf(stderr, "usage: mesh_info [model.off|.obj|.ply|.stl] [--no-svg]\n");
-    return 2;
-  }
-  const std::filesystem::path input = argc > 1
-                                          ? std::filesystem::path(argv[1])
-                                          : std::filesystem::path(CELLFORGE_DATA_DIR) / "mobius_band.obj";
-  example::stage_note stage;
-  try {
-    example::refuse_to_overwrite("mesh_info.svg", input);
+  example::program p;
+  p.name = "mesh_info";
+  p.usage = "[options] [input]";
+  p.about =
+      "Reads a mesh, builds its half-edge mesh (non-manifold vertices split), validates it, prints its\n"
+      "statistics (faces by size, valence, boundary loops, Euler characteristic, orientability) and\n"
+      "draws it with its boundary loops in red.";
+  p.input_help = "a mesh: .off, .obj (with 'f' faces), .ply or .stl; default: the bundled mobius_band.obj";
+  p.outputs_help = "  mesh_info.svg   the mesh shaded, hidden edges dashed, boundary loops in red\n";
+  p.exit4_help =
+      "read, but not a mesh (a wireframe, a skeleton, a point set, a drawing, a cell list: the\n"
+      "     message names the program that takes it), or a mesh that fails validation";
+  p.add_common_options();
+  return example::run(p, argc, argv, [&](const std::vector<std::string>& args) -> int {
+    const std::filesystem::path input =
+        p.one_input(args, std::filesystem::path(CELLFORGE_DATA_DIR) / "mobius_band.obj");
+    example::stage_note& stage = p.stage;
+    example::output_files out(p, {input});
+    const std::filesystem::path picture_path = out.add("mesh_info.svg");
+    example::expect_extension(p.name, input, {example::input_kind::mesh}, "a mesh");
     stage("reading " + example::file_and_size(input));
     using clock = std::chrono::steady_clock;
     const auto t0 = clock::now();
     const auto soup = cellforge::io::read_soup<glm::dvec3>(input);
+    if (soup.num_faces() == 0) example::refuse_faceless(p, input, soup.points.size(), "a mesh");
     const auto t1 = clock::now();
     cellforge::build_report report;
     stage("building the mesh of " + std::to_string(soup.num_faces()) + " faces");
@@ -74,7 +85,10 @@ int main(int argc, char** argv) {
     std::printf("read / build       %.3f ms / %.3f ms\n", ms(t0, t1), ms(t1, t2));
     std::printf("validate           %s\n", valid.ok() ? "ok" : valid.message.c_str());
 
-    if (!picture) return valid.ok() ? 0 : 1;
+    const int status = valid.ok() ? example::exit_ok : example::exit_not_for_this;
+    if (!valid.ok())
+      std::fprintf(stderr, "mesh_info: read, but the mesh is not valid: %s\n", valid.message.c_str());
+    if (!p.svg) return status;
     // The picture: shaded faces, hidden edges dashed, boundary loops in red on top.
     stage("drawing " + std::to_string(mesh.num_faces()) + " faces");
     cellforge::io::svg_scene scene;
@@ -91,15 +105,13 @@ int main(int argc, char** argv) {
     cellforge::io::svg_options options;
     options.title = "mesh_info: " + input.filename().string();
     options.view.elevation_deg = 35;
-    const auto drawn = scene.write(std::filesystem::path("mesh_info.svg"), options);
-    std::printf("picture            mesh_info.svg (%zu faces, %zu visible and %zu partly hidden edges)\n",
-                drawn.faces_drawn, drawn.visible_edges, drawn.partly_hidden_edges);
-    return valid.ok() ? 0 : 1;
-  } catch (const std::bad_alloc&) {  // a model too big for this machine: say so, do not abort
-    example::report_out_of_memory("mesh_info", stage);
-    return 1;
-  } catch (const std::exception& e) {  // cellforge::error among them: its message says what to fix
-    std::fprintf(stderr, "mesh_info: %s\n", e.what());
-    return 1;
-  }
+    cellforge::io::svg_result drawn;
+    out.write(picture_path, [&](const std::filesystem::path& to) { drawn = scene.write(to, options); });
+    if (status != example::exit_ok) return status;
+    out.commit();
+    std::printf("picture            %s (%zu faces, %zu visible and %zu partly hidden edges)\n",
+                picture_path.string().c_str(), drawn.faces_drawn, drawn.visible_edges,
+                drawn.partly_hidden_edges);
+    return status;
+  });
 }

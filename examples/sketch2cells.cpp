@@ -2,10 +2,11 @@
 // hidden ones too) becomes a solid (seed 003_be08eec927fcc329.txt: finding faces, inflation;
 // then seed 000's wireframe pipeline).
 //
-//   sketch2cells                       the bundled stepped normalon (examples/data/stepped_normalon.svg)
-//   sketch2cells drawing.svg|drawing.txt|drawing.dxf [--finder varley-company|shortest-loops] [--no-svg]
+//   sketch2cells [options] [input]   input: drawing.svg|drawing.txt|drawing.dxf; none: the bundled
+//                                    stepped normalon (examples/data/stepped_normalon.svg)
+//   sketch2cells --help              every option with its default, the outputs, the exit statuses
 //
-// Writes, in the current directory, <name>_faces.svg (the drawing with its faces shaded),
+// Writes, into the output folder (-o, default ./out/), <name>_faces.svg (the drawing with its faces shaded),
 // <name>_wire.obj (the 3D wireframe), and the cell complex as <name>.3dcl, <name>.obj and
 // <name>.svg (--no-svg leaves out both pictures); prints every stage's counts and times. Never writes over
 // its input.
@@ -34,44 +35,78 @@
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
-  example::stage_note stage;
-  try {
-    const example::command_line cl = example::parse_command_line(
-        argc, argv, fs::path(CELLFORGE_DATA_DIR) / "stepped_normalon.svg", {"finder"}, {"no-svg"});
-    const bool pictures = !cl.has("no-svg");
-    cellforge::drawing_options options;
-    const std::string finder = cl.text("finder", "varley-company");
-    if (finder == "shortest-loops")
-      options.faces.kind = cellforge::face_finder_kind::shortest_loops;
-    else if (finder != "varley-company")
-      throw cellforge::error(cellforge::error_category::invalid_input,
-                             "--finder must be varley-company or shortest-loops, got '" + finder + "'");
-    std::string ext = cl.input.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    cellforge::line_drawing<glm::dvec2> drawing;
-    stage("reading " + example::file_and_size(cl.input));
-    if (ext == ".svg") {
-      const auto read = cellforge::io::read_svg_drawing(cl.input);
-      drawing = read.drawing;
-      std::printf("input              %s: %zu SVG elements, %zu strokes, %zu ends snapped\n",
-                  cl.input.string().c_str(), read.elements, read.segments, read.snapped);
-    } else if (ext == ".dxf") {
-      // ASCII DXF: LINEs and polylines on every visible layer, blocks expanded (curves refused).
-      const auto read = cellforge::io::read_dxf_drawing(cl.input);
-      drawing = read.drawing;
-      std::printf("input              %s: DXF %s, %zu entities, %zu strokes, %zu ends snapped\n",
-                  cl.input.string().c_str(), read.version.c_str(), read.entities, read.segments,
-                  read.snapped);
-      for (const std::string& d : read.diagnostics) std::printf("note               %s\n", d.c_str());
-    } else {
-      drawing = cellforge::io::read_drawing_text(cl.input);
-      std::printf("input              %s\n", cl.input.string().c_str());
+  example::program p;
+  p.name = "sketch2cells";
+  p.usage = "[options] [input]";
+  p.about =
+      "A wireframe line drawing (a parallel view of a polyhedron, every edge drawn, hidden ones too)\n"
+      "becomes a solid (seed 003: finding faces, inflation; then seed 000's wireframe pipeline).";
+  p.input_help =
+      "a line drawing: .svg (strokes), .dxf (ASCII: LINEs and polylines) or the text format (any other\n"
+      "       name; docs/formats.md); default: the bundled stepped_normalon.svg";
+  p.outputs_help =
+      "  <name>_faces.svg   the drawing with its faces shaded\n"
+      "  <name>_wire.obj    the 3D wireframe\n"
+      "  <name>.3dcl        the cell complex (docs/formats.md)\n"
+      "  <name>.obj         the cell complex's faces, one group per volume\n"
+      "  <name>.svg         the solid, volumes exploded apart\n"
+      "<name> is the input's file name without its extension; --no-svg leaves out both pictures.\n";
+  p.exit4_help =
+      "read, but not a line drawing (a mesh, a wireframe, a skeleton, a drawing with arcs: the message\n"
+      "     names the program that takes it), or no good solid: the cell complex fails validation or its\n"
+      "     faces differ from the drawing's";
+  cellforge::drawing_options options;
+  p.add_common_options();
+  p.options.push_back({{"--finder"},
+                       "varley-company|shortest-loops",
+                       "how faces are found in the drawing (default: varley-company)",
+                       [&](std::string_view v) {
+                         options.faces.kind = example::option_choice<cellforge::face_finder_kind>(
+                             "--finder", v,
+                             {{"varley-company", cellforge::face_finder_kind::varley_company},
+                              {"shortest-loops", cellforge::face_finder_kind::shortest_loops}});
+                       }});
+  return example::run(p, argc, argv, [&](const std::vector<std::string>& args) -> int {
+    const fs::path input = p.one_input(args, fs::path(CELLFORGE_DATA_DIR) / "stepped_normalon.svg");
+    example::stage_note& stage = p.stage;
+    const std::string stem = input.stem().string();
+    example::output_files out(p, {input});
+    bool failed = false;  // a result that fails its check: written only with --keep-partial
+    const fs::path faces_path = out.add(stem + "_faces.svg"), wire_path = out.add(stem + "_wire.obj"),
+                   cells_path = out.add(stem + ".3dcl"), obj_path = out.add(stem + ".obj"),
+                   picture_path = out.add(stem + ".svg");
+    example::expect_extension(p.name, input, {example::input_kind::drawing}, "a line drawing");
+    const std::string ext = example::lower_extension(input);
+    if (ext == ".obj") {
+      const example::obj_contents c = example::read_obj_contents(input);
+      example::not_for_this(p.name, input, c.describe(), "a line drawing", c.kind());
     }
-    const std::string stem = cl.input.stem().string();
-    const fs::path outputs[] = {stem + "_faces.svg", stem + "_wire.obj", stem + ".3dcl", stem + ".obj",
-                                stem + ".svg"};
-    for (const fs::path& out : outputs) example::refuse_to_overwrite(out, cl.input);
-
+    cellforge::line_drawing<glm::dvec2> drawing;
+    stage("reading " + example::file_and_size(input));
+    try {
+      if (ext == ".svg") {
+        const auto read = cellforge::io::read_svg_drawing(input);
+        drawing = read.drawing;
+        std::printf("input              %s: %zu SVG elements, %zu strokes, %zu ends snapped\n",
+                    input.string().c_str(), read.elements, read.segments, read.snapped);
+      } else if (ext == ".dxf") {
+        // ASCII DXF: LINEs and polylines on every visible layer, blocks expanded (curves refused).
+        const auto read = cellforge::io::read_dxf_drawing(input);
+        drawing = read.drawing;
+        std::printf("input              %s: DXF %s, %zu entities, %zu strokes, %zu ends snapped\n",
+                    input.string().c_str(), read.version.c_str(), read.entities, read.segments, read.snapped);
+        for (const std::string& d : read.diagnostics) std::printf("note               %s\n", d.c_str());
+      } else {
+        drawing = cellforge::io::read_drawing_text(input);
+        std::printf("input              %s\n", input.string().c_str());
+      }
+    } catch (const cellforge::error& e) {
+      // A drawing with arcs or curves: the reader names the library's arc readers; name the program.
+      if (e.message().find("arc_drawing") == std::string::npos) throw;
+      std::string what = "a drawing with arcs or curves";
+      if (e.line() > 0) what += ", the first at line " + std::to_string(e.line());
+      example::not_for_this(p.name, input, what, "a drawing of straight lines", example::input_kind::drawing);
+    }
     stage("reading the solid of a drawing of " + std::to_string(drawing.points.size()) + " junctions and " +
           std::to_string(drawing.edges.size()) + " lines");
     const auto r = cellforge::drawing_to_cells(drawing, options);
@@ -104,26 +139,29 @@ int main(int argc, char** argv) {
     for (const std::string& d : r.diagnostics) std::printf("note               %s\n", d.c_str());
 
     stage("writing " + std::to_string(cells.num_faces()) + " faces");
-    if (pictures) {
-      cellforge::io::drawing_svg_options picture;
-      picture.title = "sketch2cells: faces of " + cl.input.filename().string();
-      picture.labels = drawing.points.size() <= 60;
-      cellforge::io::write_drawing_svg(outputs[0], drawing, r.faces.loops, picture);
+    if (!valid.ok() || !r.faces_agree) {
+      std::fprintf(stderr, "sketch2cells: read, but no good solid: %s\n",
+                   !valid.ok() ? ("the cell complex fails validation: " + valid.message).c_str()
+                               : "the solid's faces differ from the drawing's");
+      if (!p.keep_partial) return example::exit_not_for_this;
+      failed = true;
     }
-    cellforge::io::write_obj(outputs[1], r.wire);
-    cellforge::io::write_3dcl(outputs[2], cells);
-    cellforge::io::write_cells_obj(outputs[3], cells);
-    if (pictures) cellforge::io::write_cells_svg(outputs[4], cells);
-    std::printf("wrote             ");
-    for (const fs::path& out : outputs)
-      if (pictures || out.extension() != ".svg") std::printf(" %s", out.string().c_str());
-    std::printf("\n");
-    return valid.ok() && r.faces_agree ? 0 : 1;
-  } catch (const std::bad_alloc&) {
-    example::report_out_of_memory("sketch2cells", stage);
-    return 1;
-  } catch (const std::exception& e) {  // cellforge::error among them: parse errors name file:line
-    std::fprintf(stderr, "sketch2cells: %s\n", e.what());
-    return 1;
-  }
+    if (p.svg) {
+      cellforge::io::drawing_svg_options picture;
+      picture.title = "sketch2cells: faces of " + input.filename().string();
+      picture.labels = drawing.points.size() <= 60;
+      out.write(faces_path, [&](const fs::path& to) {
+        cellforge::io::write_drawing_svg(to, drawing, r.faces.loops, picture);
+      });
+    }
+    out.write(wire_path, [&](const fs::path& to) { cellforge::io::write_obj(to, r.wire); });
+    out.write(cells_path, [&](const fs::path& to) { cellforge::io::write_3dcl(to, cells); });
+    out.write(obj_path, [&](const fs::path& to) { cellforge::io::write_cells_obj(to, cells); });
+    if (p.svg)
+      out.write(picture_path, [&](const fs::path& to) { cellforge::io::write_cells_svg(to, cells); });
+    if (failed) return example::exit_not_for_this;  // the outputs kept as partial
+    out.commit();
+    std::printf("wrote              %s\n", out.list().c_str());
+    return example::exit_ok;
+  });
 }

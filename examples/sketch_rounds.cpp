@@ -3,15 +3,17 @@
 // arcs) becomes its polyhedral skeleton, the skeleton's solid and the rounded solid (seed
 // 003_be08eec927fcc329.txt, "Rounds and fillets").
 //
-//   sketch_rounds                      the bundled L-bracket (examples/data/l_bracket_rounds.txt)
-//   sketch_rounds drawing.txt|drawing.svg|drawing.dxf
+//   sketch_rounds [options] [input]   input: drawing.txt|drawing.svg|drawing.dxf; none: the bundled
+//                                     L-bracket (examples/data/l_bracket_rounds.txt)
+//   sketch_rounds --help              every option with its default, the outputs, the exit statuses
 //
 // A .txt drawing is the line-drawing text with arcs (`a i j rx ry rotation large ccw`), an .svg
 // one has its arcs as path commands A, a .dxf (ASCII) one as ARC, ELLIPSE or bulged polyline
-// entities, every visible layer read (docs/formats.md). Writes, in the current directory,
+// entities, every visible layer read (docs/formats.md). Writes, into the output folder (-o,
+// default ./out/; --no-svg leaves out the two pictures),
 // <name>_arcs.svg (the drawing, each pair of arcs in its own colour), <name>_skeleton.txt and
 // <name>_skeleton.svg (the skeleton drawing, its faces shaded), the skeleton's cell complex as
-// <name>.3dcl and <name>.obj, the rounded solid as <name>_rounded.obj (a mesh) and as
+// <name>.3dcl and <name>.obj, the rounded solid as <name>_rounded.obj (a mesh, --format) and as
 // <name>_rounded.step (STEP AP214, its blends cylinders: a real round in a CAD kernel) and the
 // round attribute of each skeleton edge as <name>_rounds.txt; prints the arcs, the pairs, and
 // every blend's kind, category, radius and consistency. Never writes over its input.
@@ -35,6 +37,7 @@
 #include "cellforge/io/drawing_svg.hpp"
 #include "cellforge/io/drawing_text.hpp"
 #include "cellforge/io/dxf_drawing.hpp"
+#include "cellforge/io/mesh_io.hpp"
 #include "cellforge/io/obj.hpp"
 #include "cellforge/io/step.hpp"
 #include "cellforge/io/svg_drawing.hpp"
@@ -85,38 +88,72 @@ void write_round_attributes(const fs::path& path, const cellforge::rounds_result
 }  // namespace
 
 int main(int argc, char** argv) {
-  example::stage_note stage;
-  try {
-    const example::command_line cl = example::parse_command_line(
-        argc, argv, fs::path(CELLFORGE_DATA_DIR) / "l_bracket_rounds.txt", {}, {});
-    std::string ext = cl.input.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    const std::string stem = cl.input.stem().string();
-    const fs::path outputs[] = {stem + "_arcs.svg",   stem + "_skeleton.txt", stem + "_skeleton.svg",
-                                stem + ".3dcl",       stem + ".obj",          stem + "_rounded.obj",
-                                stem + "_rounds.txt", stem + "_rounded.step"};
-    for (const fs::path& out : outputs) example::refuse_to_overwrite(out, cl.input);
-
-    stage("reading " + example::file_and_size(cl.input));
+  example::program p;
+  p.name = "sketch_rounds";
+  p.usage = "[options] [input]";
+  p.about =
+      "A line drawing with rounds and fillets (a parallel view of a polyhedron whose edges are blended by\n"
+      "circular arcs, every edge drawn) becomes its polyhedral skeleton, the skeleton's solid and the\n"
+      "rounded solid (seed 003, \"Rounds and fillets\"); prints the arcs, the pairs, and every blend's\n"
+      "kind, category, radius and consistency.";
+  p.input_help =
+      "a drawing with arcs: the text format with 'a' lines (.txt or any other name), .svg (arcs as path\n"
+      "       commands A) or .dxf (ASCII: ARC, ELLIPSE, bulged polylines); docs/formats.md; default: the\n"
+      "       bundled l_bracket_rounds.txt";
+  p.outputs_help =
+      "  <name>_arcs.svg          the drawing, each pair of arcs in its own colour\n"
+      "  <name>_skeleton.txt      the skeleton drawing (blends replaced by sharp edges)\n"
+      "  <name>_skeleton.svg      the skeleton drawing, its faces shaded\n"
+      "  <name>.3dcl, <name>.obj  the skeleton's cell complex\n"
+      "  <name>_rounded.<format>  the rounded solid (--format, default obj)\n"
+      "  <name>_rounds.txt        the round attribute of each skeleton edge\n"
+      "  <name>_rounded.step      the rounded solid as STEP AP214, its blends cylinders\n"
+      "<name> is the input's file name without its extension; --no-svg leaves out both pictures.\n";
+  p.exit4_help =
+      "read, but not a drawing (a mesh, a wireframe, a skeleton: the message names the program that\n"
+      "     takes it), or no consistent reading: unpaired arcs, inconsistent blends, blends the rounded\n"
+      "     mesh skips, a skeleton solid that fails validation, or a rounded B-rep that fails its check";
+  p.add_common_options("obj");
+  return example::run(p, argc, argv, [&](const std::vector<std::string>& args) -> int {
+    const fs::path input = p.one_input(args, fs::path(CELLFORGE_DATA_DIR) / "l_bracket_rounds.txt");
+    example::stage_note& stage = p.stage;
+    const std::string stem = input.stem().string();
+    const std::string ext = example::lower_extension(input);
+    example::output_files out(p, {input});
+    bool failed = false;  // a result that fails its check: written only with --keep-partial
+    const fs::path arcs_path = out.add(stem + "_arcs.svg"),
+                   skeleton_text_path = out.add(stem + "_skeleton.txt"),
+                   skeleton_picture_path = out.add(stem + "_skeleton.svg"),
+                   cells_path = out.add(stem + ".3dcl"), obj_path = out.add(stem + ".obj"),
+                   attributes_path = out.add(stem + "_rounds.txt");
+    std::vector<fs::path> mesh_paths;
+    for (const std::string& f : p.formats) mesh_paths.push_back(out.add(stem + "_rounded." + f));
+    const fs::path step_path = out.add(stem + "_rounded.step");
+    example::expect_extension(p.name, input, {example::input_kind::drawing}, "a drawing");
+    if (ext == ".obj") {
+      const example::obj_contents c = example::read_obj_contents(input);
+      example::not_for_this(p.name, input, c.describe(), "a drawing", c.kind());
+    }
+    stage("reading " + example::file_and_size(input));
     cellforge::arc_drawing<glm::dvec2> drawing;
     if (ext == ".svg") {
-      auto read = cellforge::io::read_svg_arc_drawing(cl.input);
+      auto read = cellforge::io::read_svg_arc_drawing(input);
       drawing = std::move(read.drawing);
       std::printf(
           "input              %s: %zu SVG elements, %zu straight segments, %zu arcs, %zu ends snapped\n",
-          cl.input.string().c_str(), read.elements, read.segments, read.arcs, read.snapped);
+          input.string().c_str(), read.elements, read.segments, read.arcs, read.snapped);
       for (const std::string& d : read.diagnostics) std::printf("note               %s\n", d.c_str());
     } else if (ext == ".dxf") {
-      auto read = cellforge::io::read_dxf_arc_drawing(cl.input);
+      auto read = cellforge::io::read_dxf_arc_drawing(input);
       drawing = std::move(read.drawing);
       std::printf(
           "input              %s: DXF %s, %zu entities, %zu straight segments, %zu arcs, %zu ends snapped\n",
-          cl.input.string().c_str(), read.version.c_str(), read.entities, read.segments, read.arcs,
+          input.string().c_str(), read.version.c_str(), read.entities, read.segments, read.arcs,
           read.snapped);
       for (const std::string& d : read.diagnostics) std::printf("note               %s\n", d.c_str());
     } else {
-      drawing = cellforge::io::read_arc_drawing_text(cl.input);
-      std::printf("input              %s\n", cl.input.string().c_str());
+      drawing = cellforge::io::read_arc_drawing_text(input);
+      std::printf("input              %s\n", input.string().c_str());
     }
     std::printf("drawing            %zu junctions, %zu lines, %zu arcs\n", drawing.lines.points.size(),
                 drawing.lines.edges.size(), drawing.arcs.size());
@@ -177,8 +214,7 @@ int main(int argc, char** argv) {
     const auto brep = cellforge::rounded_brep(r);
     std::printf(
         "rounded B-rep      %9.3f ms   %zu planar faces, %zu cylinders, %zu lines, %zu end arcs; volume "
-        "%.9g; "
-        "check %s\n",
+        "%.9g; check %s\n",
         brep.milliseconds, brep.planar_faces, brep.blend_faces, brep.lines, brep.arcs, brep.volume,
         brep.ok ? "ok" : "FAILED");
     std::printf("total              %9.3f ms\n", r.milliseconds);
@@ -186,6 +222,22 @@ int main(int argc, char** argv) {
     for (const std::string& d : mesh.diagnostics) std::printf("note               %s\n", d.c_str());
     for (const std::string& d : brep.diagnostics) std::printf("note               %s\n", d.c_str());
 
+    const bool ok =
+        valid.ok() && pairing.unpaired.empty() && r.inconsistent == 0 && mesh.skipped == 0 && brep.ok;
+    if (!ok) {
+      std::string why;
+      const auto add = [&](bool bad, const std::string& what) {
+        if (bad) why += (why.empty() ? "" : "; ") + what;
+      };
+      add(!valid.ok(), "the skeleton solid fails validation: " + valid.message);
+      add(!pairing.unpaired.empty(), std::to_string(pairing.unpaired.size()) + " arcs unpaired");
+      add(r.inconsistent > 0, std::to_string(r.inconsistent) + " blends inconsistent");
+      add(mesh.skipped > 0, std::to_string(mesh.skipped) + " blends skipped by the rounded mesh");
+      add(!brep.ok, "the rounded B-rep fails its check");
+      std::fprintf(stderr, "sketch_rounds: read, but no consistent reading: %s\n", why.c_str());
+      if (!p.keep_partial) return example::exit_not_for_this;
+      failed = true;
+    }
     stage("writing " + std::to_string(mesh.mesh.num_faces()) + " faces");
     // Each pair's arcs in one hue; unpaired arcs all in the next.
     std::vector<std::size_t> colour(drawing.arcs.size(), pairing.pairs.size());
@@ -194,31 +246,41 @@ int main(int argc, char** argv) {
         for (const std::uint32_t a : curve) colour[a] = k;
     cellforge::io::drawing_svg_options picture;
     picture.labels = drawing.lines.points.size() <= 60;
-    picture.title = "sketch_rounds: the arcs of " + cl.input.filename().string() + ", a colour per pair";
-    cellforge::io::write_arc_drawing_svg(outputs[0], drawing, {}, picture, colour);
-    cellforge::io::write_drawing_text(outputs[1], sk.skeleton,
-                                      {.comment = "the skeleton of " + cl.input.filename().string() +
-                                                  " (sketch_rounds): its blends replaced by sharp edges"});
+    picture.title = "sketch_rounds: the arcs of " + input.filename().string() + ", a colour per pair";
+    if (p.svg)
+      out.write(arcs_path, [&](const fs::path& to) {
+        cellforge::io::write_arc_drawing_svg(to, drawing, {}, picture, colour);
+      });
+    out.write(skeleton_text_path, [&](const fs::path& to) {
+      cellforge::io::write_drawing_text(to, sk.skeleton,
+                                        {.comment = "the skeleton of " + input.filename().string() +
+                                                    " (sketch_rounds): its blends replaced by sharp edges"});
+    });
     picture.labels = sk.skeleton.points.size() <= 60;
-    picture.title = "sketch_rounds: the skeleton of " + cl.input.filename().string() + " and its faces";
-    cellforge::io::write_drawing_svg(outputs[2], sk.skeleton, r.reading.faces.loops, picture);
-    cellforge::io::write_3dcl(outputs[3], cells);
-    cellforge::io::write_cells_obj(outputs[4], cells);
-    cellforge::io::write_obj(outputs[5], mesh.mesh);
-    write_round_attributes(outputs[6], r, cl.input.filename().string());
-    const auto step = cellforge::io::write_step(outputs[7], brep.solid, {.name = stem});
+    picture.title = "sketch_rounds: the skeleton of " + input.filename().string() + " and its faces";
+    if (p.svg)
+      out.write(skeleton_picture_path, [&](const fs::path& to) {
+        cellforge::io::write_drawing_svg(to, sk.skeleton, r.reading.faces.loops, picture);
+      });
+    out.write(cells_path, [&](const fs::path& to) { cellforge::io::write_3dcl(to, cells); });
+    out.write(obj_path, [&](const fs::path& to) { cellforge::io::write_cells_obj(to, cells); });
+    for (const fs::path& path : mesh_paths)
+      out.write(path, [&](const fs::path& to) { example::write_mesh_file(to, mesh.mesh); });
+    out.write(attributes_path,
+              [&](const fs::path& to) { write_round_attributes(to, r, input.filename().string()); });
+    cellforge::io::step_result step;
+    out.write(step_path,
+              [&](const fs::path& to) { step = cellforge::io::write_step(to, brep.solid, {.name = stem}); });
     for (const std::string& d : step.diagnostics) std::printf("note               STEP: %s\n", d.c_str());
-    std::printf("wrote             ");
-    for (const fs::path& out : outputs) std::printf(" %s", out.string().c_str());
-    std::printf("\n");
-    const bool ok = valid.ok() && pairing.unpaired.empty() && r.inconsistent == 0 && mesh.skipped == 0 &&
-                    brep.ok && step.diagnostics.empty();
-    return ok ? 0 : 1;
-  } catch (const std::bad_alloc&) {
-    example::report_out_of_memory("sketch_rounds", stage);
-    return 1;
-  } catch (const std::exception& e) {  // cellforge::error among them: parse errors name file:line
-    std::fprintf(stderr, "sketch_rounds: %s\n", e.what());
-    return 1;
-  }
+    if (!step.diagnostics.empty()) {
+      std::fprintf(stderr,
+                   "sketch_rounds: read, but the STEP writer reports %zu problems (printed as notes)\n",
+                   step.diagnostics.size());
+      failed = true;
+    }
+    if (failed) return example::exit_not_for_this;  // the outputs kept as partial with --keep-partial
+    out.commit();
+    std::printf("wrote              %s\n", out.list().c_str());
+    return example::exit_ok;
+  });
 }

@@ -1,11 +1,11 @@
 // subdivide: Loop subdivision of a triangle mesh, with a before/after picture.
 //
-//   subdivide                       the bundled open cup (examples/data/cup.off), 2 levels
-//   subdivide model.obj [levels]    any OFF, OBJ or PLY file (polygons are fan-triangulated)
-//   subdivide ... --no-svg          without the picture
+//   subdivide [options] [input]   input: any OFF, OBJ, PLY or STL mesh (polygons are fan-triangulated);
+//                                 none: the bundled open cup (examples/data/cup.off); --levels N (2)
+//   subdivide --help              every option with its default, the outputs, the exit statuses
 //
-// Writes, in the current directory, subdivided.<ext> (the input's format) and
-// subdivide.svg (input on the left, result on the right), and prints counts and times.
+// Writes into the output folder (-o, default ./out/) subdivided.<format> (the input's, or
+// --format) and subdivide.svg (input on the left, result on the right); prints counts and times.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -30,30 +30,49 @@ namespace fs = std::filesystem;
 using point = glm::dvec3;
 
 int main(int argc, char** argv) {
-  const bool picture_wanted = !example::take_flag(argc, argv, "--no-svg");
-  if (argc > 3) {
-    std::fprintf(stderr, "usage: subdivide [model.off|.obj|.ply [levels]] [--no-svg]\n");
-    return 2;
-  }
-  const fs::path input = argc > 1 ? fs::path(argv[1]) : fs::path(CELLFORGE_DATA_DIR) / "cup.off";
+  example::program p;
+  p.name = "subdivide";
+  p.usage = "[options] [input]";
+  p.about =
+      "Loop subdivision of a triangle mesh (polygons are fan-triangulated first), with a before/after "
+      "picture.";
+  p.input_help = "a mesh: .off, .obj (with 'f' faces), .ply or .stl; default: the bundled open cup (cup.off)";
+  p.outputs_help =
+      "  subdivided.<format>   the subdivided mesh (--format; default: the input's format, .off for\n"
+      "                        the bundled cup)\n"
+      "  subdivide.svg         the input on the left, the result on the right\n";
+  p.exit4_help =
+      "read, but not a mesh (a wireframe, a skeleton, a point set, a drawing, a cell list: the\n"
+      "     message names the program that takes it), or a result that fails validation";
   int levels = 2;
-  if (argc > 2) {
-    char* end = nullptr;
-    const long n = std::strtol(argv[2], &end, 10);
-    if (*end != '\0' || n < 0 || n > 12) {
-      std::fprintf(stderr, "subdivide: levels must be a whole number from 0 to 12, got '%s'\n", argv[2]);
-      return 2;
+  p.add_common_options("obj", "the input's format");
+  const auto set_levels = [&](std::string_view v) {
+    levels = static_cast<int>(example::option_number("--levels", v, 0, 12));
+    if (levels != example::option_number("--levels", v, 0, 12))
+      throw example::usage_error("--levels must be a whole number from 0 to 12, got '" + std::string(v) +
+                                 "'");
+  };
+  p.options.push_back({{"--levels"}, "N", "levels of subdivision, 0 to 12 (default: 2)", set_levels});
+  return example::run(p, argc, argv, [&](std::vector<std::string> args) -> int {
+    if (args.size() == 2) {  // the old spelling: subdivide model.off 3
+      std::fprintf(stderr, "subdivide: a second argument as the levels is deprecated; use --levels N\n");
+      set_levels(args[1]);
+      args.pop_back();
     }
-    levels = static_cast<int>(n);
-  }
-  example::stage_note stage;
-  try {
-    std::string ext = input.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    const fs::path out = fs::path("subdivided" + ext);
-    example::refuse_to_overwrite({out, "subdivide.svg"}, input);
+    const fs::path input = p.one_input(args, fs::path(CELLFORGE_DATA_DIR) / "cup.off");
+    example::stage_note& stage = p.stage;
+    std::string ext = example::lower_extension(input);
+    if (!p.format_given)
+      p.formats = {ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl" ? ext.substr(1) : "obj"};
+    example::output_files out(p, {input});
+    bool failed = false;  // a result that fails its check: written only with --keep-partial
+    std::vector<fs::path> mesh_paths;
+    for (const std::string& f : p.formats) mesh_paths.push_back(out.add("subdivided." + f));
+    const fs::path picture_path = out.add("subdivide.svg");
+    example::expect_extension(p.name, input, {example::input_kind::mesh}, "a mesh");
     stage("reading " + example::file_and_size(input));
     cellforge::polygon_soup<point> soup = cellforge::io::read_soup<point>(input);
+    if (soup.num_faces() == 0) example::refuse_faceless(p, input, soup.points.size(), "a mesh");
     stage("building the mesh of " + std::to_string(soup.num_faces()) + " faces");
     const bool polygons = std::any_of(soup.face_offsets.begin() + 1, soup.face_offsets.end(),
                                       [&, prev = std::uint32_t{0}](std::uint32_t o) mutable {
@@ -85,12 +104,20 @@ int main(int argc, char** argv) {
       std::printf("level %zu            %.3f ms\n", i + 1, r.level_ms[i]);
     std::printf("total              %.3f ms\n", r.total_ms());
     std::printf("valid              %s\n", valid.ok() ? "yes" : valid.message.c_str());
+    if (!valid.ok()) {
+      std::fprintf(stderr, "subdivide: the result fails validation: %s\n", valid.message.c_str());
+      if (!p.keep_partial) return example::exit_not_for_this;
+      failed = true;
+    }
 
     stage("writing " + std::to_string(mesh.num_faces()) + " faces");
-    cellforge::io::write_mesh(out, mesh);
-    if (!picture_wanted) {
-      std::printf("wrote              %s\n", out.string().c_str());
-      return valid.ok() ? 0 : 1;
+    for (const fs::path& path : mesh_paths)
+      out.write(path, [&](const fs::path& to) { example::write_mesh_file(to, mesh); });
+    if (!p.svg) {
+      if (failed) return example::exit_not_for_this;  // the outputs kept as partial
+      out.commit();
+      std::printf("wrote              %s\n", out.list().c_str());
+      return example::exit_ok;
     }
 
     // Input and result side by side: shift the result 1.3 widths to the right of the screen.
@@ -121,14 +148,10 @@ int main(int argc, char** argv) {
     picture.title = "Loop subdivision, " + std::to_string(levels) + " levels: " + input.filename().string();
     picture.view.azimuth_deg = -45;
     picture.view.elevation_deg = 20;
-    scene.write(fs::path("subdivide.svg"), picture);
-    std::printf("wrote              %s, subdivide.svg\n", out.string().c_str());
-    return valid.ok() ? 0 : 1;
-  } catch (const std::bad_alloc&) {  // a model too big for this machine: say so, do not abort
-    example::report_out_of_memory("subdivide", stage);
-    return 1;
-  } catch (const std::exception& e) {  // cellforge::error among them: its message says what to fix
-    std::fprintf(stderr, "subdivide: %s\n", e.what());
-    return 1;
-  }
+    out.write(picture_path, [&](const fs::path& to) { scene.write(to, picture); });
+    if (failed) return example::exit_not_for_this;  // the outputs kept as partial
+    out.commit();
+    std::printf("wrote              %s\n", out.list().c_str());
+    return example::exit_ok;
+  });
 }

@@ -45,11 +45,11 @@ struct settings {
   fs::path input = fs::path(CELLFORGE_DATA_DIR) / "stepped_block.obj";
   fs::path output = "out";
   std::vector<std::string> formats{"3dcl", "obj", "ply", "svg"};  ///< outputs, in this order
-  bool help = false;
+  bool help = false, quiet = false, keep_partial = false;
   cellforge::wireframe_options pipeline{};
 };
 
-std::string number(double v) { return example::command_line::fmt(v); }
+std::string number(double v) { return example::fmt(v); }
 
 /// The options, each bound to the field it sets. To add one, add an entry here.
 std::vector<example::option_spec> option_table(settings& s) {
@@ -89,6 +89,15 @@ std::vector<example::option_spec> option_table(settings& s) {
            }
          }
        }},
+      {{"--quiet"},
+       "",
+       "print nothing on stdout and no progress on stderr (errors still go to stderr)",
+       [&](std::string_view) { s.quiet = true; }},
+      {{"--keep-partial"},
+       "",
+       "keep the outputs written before an output error (default: none are left; a result that is not "
+       "a solid is written in any case, exit status 4)",
+       [&](std::string_view) { s.keep_partial = true; }},
       {{"--tracer"},
        "planar|seed",
        "face tracer: each plane's planar arrangement, polynomial (default), or the seed's breadth-first "
@@ -107,7 +116,8 @@ std::vector<example::option_spec> option_table(settings& s) {
       {{"--planarity"},
        "X",
        "a point lies in a plane when closer than X times the model's size, in tracing, face reduction "
-       "and arrangement, planes fitted to their vertices (0 to 0.1; default: chosen from the data, in the gap between the coordinates' "
+       "and arrangement, planes fitted to their vertices (0 to 0.1; default: chosen from the data, in the "
+       "gap between the coordinates' "
        "noise and the shape, printed as the 'tolerance' row)",
        [&](std::string_view v) {
          const double x = option_number("--planarity", v, 0.0, 0.1);
@@ -171,7 +181,8 @@ void print_help(const std::vector<example::option_spec>& table) {
       "  <name>.svg    the volumes exploded apart, shaded, hidden edges dashed\n"
       "  <name>.step   with --format step or all: a solid per volume (STEP AP214, millimetres,\n"
       "                docs/formats.md \"STEP\"), for CAD programs\n"
-      "No output is written over the input file: wire2cells refuses before writing anything.\n\n"
+      "No output is written over the input file: wire2cells refuses before writing anything. Each\n"
+      "output is written to a temporary file and renamed once all are written.\n\n"
       "Every answer is certified against the input (docs/cells.md, \"The certificate\") and printed\n"
       "with its status: solid, ambiguous (a solid with walls the wireframe does not decide), not a\n"
       "solid, or budget (the certificate's work budget ran out).\n\n"
@@ -206,8 +217,8 @@ void print_stages(const cellforge::wireframe_result<glm::dvec3>& r) {
               : !t.clear_gap ? " (estimated; no clear gap)"
                              : " (estimated)");
   if (t.automatic)
-    std::printf("  %-26s %12s   %-18s %.2g .. %.2g (%.1f decades), estimate %.3g\n", "", "", "noise .. shape", t.noise,
-                t.geometry, t.gap_decades, t.estimated_planarity);
+    std::printf("  %-26s %12s   %-18s %.2g .. %.2g (%.1f decades), estimate %.3g\n", "", "", "noise .. shape",
+                t.noise, t.geometry, t.gap_decades, t.estimated_planarity);
   row("finding faces", r.trace.milliseconds, "circuits", r.trace.circuits);
   row("reducing to unique faces", r.unique.milliseconds, "faces found", r.unique.faces.size());
   row("area calculation", r.reduction.area_milliseconds);
@@ -221,10 +232,10 @@ void print_stages(const cellforge::wireframe_result<glm::dvec3>& r) {
       r.volume.volumes.size());
   row("cell list assembly", r.relations.milliseconds + r.assembly_milliseconds);
   row("certificate", r.certificate.milliseconds, "face pairs tested", r.certificate.face_pairs_tested);
-  const double total = r.read.milliseconds + r.tolerance.milliseconds + r.trace.milliseconds + r.unique.milliseconds +
-                       r.reduction.milliseconds + r.arrangement.milliseconds + r.extra.milliseconds +
-                       r.volume.milliseconds + r.relations.milliseconds + r.assembly_milliseconds +
-                       r.certificate.milliseconds;
+  const double total = r.read.milliseconds + r.tolerance.milliseconds + r.trace.milliseconds +
+                       r.unique.milliseconds + r.reduction.milliseconds + r.arrangement.milliseconds +
+                       r.extra.milliseconds + r.volume.milliseconds + r.relations.milliseconds +
+                       r.assembly_milliseconds + r.certificate.milliseconds;
   row("total", total);
 }
 
@@ -247,7 +258,13 @@ int main(int argc, char** argv) {
   }
 
   int failure = exit_input;  // the exit status of an exception thrown from here on
-  example::stage_note stage;
+  example::program p;        // the shared output handling: its name, folder and --keep-partial
+  p.name = "wire2cells";
+  p.output = s.output;
+  p.keep_partial = s.keep_partial;
+  if (s.quiet) example::silence_stdout();
+  example::stage_note& stage = p.stage;
+  stage.start(p.name, !s.quiet);
   try {
     std::string ext = s.input.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -258,10 +275,10 @@ int main(int argc, char** argv) {
                                     : cellforge::io::read_edge_list<glm::dvec3>(s.input);
 
     const std::string stem = s.input.stem().string();
-    std::vector<fs::path> outputs;
-    for (const std::string& f : s.formats) outputs.push_back(s.output / (stem + "." + f));
     failure = exit_output;
-    for (const fs::path& out : outputs) example::refuse_to_overwrite(out, s.input);
+    example::output_files files(p, {s.input});
+    std::vector<fs::path> outputs;
+    for (const std::string& f : s.formats) outputs.push_back(files.add(stem + "." + f));
     failure = exit_input;
 
     stage("converting a wireframe of " + std::to_string(wire.points.size()) + " points and " +
@@ -298,27 +315,29 @@ int main(int argc, char** argv) {
     failure = exit_output;
     stage("writing a cell complex of " + std::to_string(cells.num_faces()) + " faces and " +
           std::to_string(cells.num_volumes()) + " volumes");
-    example::output_dir(s.output);
     for (std::size_t i = 0; i < s.formats.size(); ++i) {
       const std::string& f = s.formats[i];
-      if (f == "3dcl") {
-        cellforge::io::write_3dcl(outputs[i], cells);
-      } else if (f == "obj") {
-        cellforge::io::write_cells_obj(outputs[i], cells);
-      } else if (f == "ply") {
-        cellforge::io::write_cells_ply(outputs[i], cells);
-      } else if (f == "svg") {
-        stage("drawing " + std::to_string(cells.num_faces()) + " faces");
-        const cellforge::io::svg_result picture = cellforge::io::write_cells_svg(outputs[i], cells);
-        if (picture.approximate_edges + picture.untested_edges > 0)
-          std::printf(
-              "  picture: %zu of %zu edges past the hidden-line work budget (judged from one point)\n",
-              picture.approximate_edges + picture.untested_edges, picture.edges);
-      } else if (f == "step") {
-        const cellforge::io::step_result step = cellforge::io::write_step(outputs[i], cells, {.name = stem});
-        for (const std::string& d : step.diagnostics) std::printf("  step: %s\n", d.c_str());
-      }
+      files.write(outputs[i], [&](const fs::path& to) {
+        if (f == "3dcl") {
+          cellforge::io::write_3dcl(to, cells);
+        } else if (f == "obj") {
+          cellforge::io::write_cells_obj(to, cells);
+        } else if (f == "ply") {
+          cellforge::io::write_cells_ply(to, cells);
+        } else if (f == "svg") {
+          stage("drawing " + std::to_string(cells.num_faces()) + " faces");
+          const cellforge::io::svg_result picture = cellforge::io::write_cells_svg(to, cells);
+          if (picture.approximate_edges + picture.untested_edges > 0)
+            std::printf(
+                "  picture: %zu of %zu edges past the hidden-line work budget (judged from one point)\n",
+                picture.approximate_edges + picture.untested_edges, picture.edges);
+        } else if (f == "step") {
+          const cellforge::io::step_result step = cellforge::io::write_step(to, cells, {.name = stem});
+          for (const std::string& d : step.diagnostics) std::printf("  step: %s\n", d.c_str());
+        }
+      });
     }
+    files.commit();  // a result that is not a solid too: its files are there to look at
     std::printf("\nwrote");
     for (std::size_t i = 0; i < outputs.size(); ++i)
       std::printf("%s %s", i == 0 ? "" : i + 1 == outputs.size() ? " and" : ",", outputs[i].string().c_str());
@@ -327,6 +346,12 @@ int main(int argc, char** argv) {
     std::fprintf(
         stderr, "wire2cells: read, but not a closed solid: %s (the files are written so that you can look)\n",
         r.status_reason.c_str());
+    if (ext == ".obj") {  // a mesh given for a wireframe: say which programs take it
+      const example::obj_contents c = example::read_obj_contents(s.input);
+      if (c.kind() == example::input_kind::mesh && c.lines == 0)
+        std::fprintf(stderr, "wire2cells: '%s' is %s with no closed solid in its edges; %s\n",
+                     s.input.string().c_str(), c.describe().c_str(), example::takers(c.kind()).c_str());
+    }
     return exit_not_solid;
   } catch (const std::bad_alloc&) {
     example::report_out_of_memory("wire2cells", stage);
