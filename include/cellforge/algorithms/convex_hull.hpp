@@ -24,6 +24,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/detail/span_of.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/morton.hpp"
 #include "cellforge/core/point_traits.hpp"
@@ -914,7 +915,8 @@ requires std::ranges::sized_range<R> && Point3<std::ranges::range_value_t<R>>
     const glm::dvec3 p = to_dvec3(points[i]);
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       throw error(error_category::invalid_input,
-                  "convex_hull: point " + std::to_string(i) + " has a NaN or infinite coordinate");
+                  cellforge::detail::cat("convex_hull: point ", std::to_string(i),
+                                         " has a NaN or infinite coordinate"));
   }
   const auto point_at = [&](std::size_t i) { return to_dvec3(points[i]); };
   convex_hull_options run = options;
@@ -936,14 +938,14 @@ requires std::ranges::sized_range<R> && Point3<std::ranges::range_value_t<R>>
     for (std::uint32_t& v : r.vertices) v = kept_index[v];
   r.exact_evaluations += filter_exact;
   if (r.dimension < 3 && !options.allow_degenerate)
-    throw error(error_category::invalid_input, r.dimension < 0
-                                                   ? std::string("convex_hull: no points given")
-                                                   : "convex_hull: the points span only " +
-                                                         std::to_string(r.dimension) + " dimension(s) (all " +
+    throw error(error_category::invalid_input,
+                r.dimension < 0 ? std::string("convex_hull: no points given")
+                                : cellforge::detail::cat("convex_hull: the points span only ",
+                                                         std::to_string(r.dimension), " dimension(s) (all ",
                                                          (r.dimension == 2   ? "coplanar"
                                                           : r.dimension == 1 ? "collinear"
-                                                                             : "equal") +
-                                                         "); set allow_degenerate to accept a flat hull");
+                                                                             : "equal"),
+                                                         "); set allow_degenerate to accept a flat hull"));
   surface_mesh<P> m;
   auto pos = m.positions();
   auto index = m.template add_vertex_property<std::uint32_t>(input_index_property_name, detail::hull::none);

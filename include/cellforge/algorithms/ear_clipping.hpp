@@ -21,6 +21,7 @@
 
 #include "cellforge/core/detail/edge_table.hpp"
 #include "cellforge/core/detail/span_of.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
@@ -295,10 +296,11 @@ class basic_clipper {
       }
       // A whole lap without an ear: the polygon crosses or touches itself.
       if (!allow_non_simple)
-        throw error(error_category::invalid_input, "ear_clip: the polygon is not simple (no ear left among " +
-                                                       std::to_string(remaining) +
-                                                       " vertices around vertex " + std::to_string(i) +
-                                                       "); set allow_non_simple to triangulate it anyway");
+        throw error(
+            error_category::invalid_input,
+            cellforge::detail::cat("ear_clip: the polygon is not simple (no ear left among ",
+                                   std::to_string(remaining), " vertices around vertex ", std::to_string(i),
+                                   "); set allow_non_simple to triangulate it anyway"));
       std::uint32_t pick = i;
       for (std::size_t k = 0; k < remaining && !convex_[pick]; ++k) pick = next_[pick];
       ++report.forced_ears;
@@ -444,8 +446,9 @@ std::vector<index_triangle> clip_polygon(std::span<const glm::dvec3> p, const ea
                                          ear_clip_report& report) {
   const std::size_t n = p.size();
   if (n < 3)
-    throw error(error_category::invalid_input,
-                "ear_clip: a polygon needs at least 3 vertices, got " + std::to_string(n));
+    throw error(
+        error_category::invalid_input,
+        cellforge::detail::cat("ear_clip: a polygon needs at least 3 vertices, got ", std::to_string(n)));
   if (n >= none) throw error(error_category::invalid_input, "ear_clip: too many vertices for 32-bit indices");
   if (!(options.planarity_tolerance >= 0))
     throw error(error_category::invalid_input, "ear_clip: planarity_tolerance must be >= 0");
@@ -453,7 +456,8 @@ std::vector<index_triangle> clip_polygon(std::span<const glm::dvec3> p, const ea
   for (std::size_t i = 0; i < n; ++i) {
     if (!std::isfinite(p[i].x) || !std::isfinite(p[i].y) || !std::isfinite(p[i].z))
       throw error(error_category::invalid_input,
-                  "ear_clip: vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
+                  cellforge::detail::cat("ear_clip: vertex ", std::to_string(i),
+                                         " has a NaN or infinite coordinate"));
     lo = glm::min(lo, p[i]);
     hi = glm::max(hi, p[i]);
     centroid += p[i];
@@ -462,19 +466,21 @@ std::vector<index_triangle> clip_polygon(std::span<const glm::dvec3> p, const ea
   const glm::dvec3 newell = newell_normal(p, centroid);
   const double diagonal = glm::length(hi - lo), length = glm::length(newell);
   if (!(length > 1e-14 * diagonal * diagonal))
-    throw error(error_category::invalid_input, "ear_clip: the polygon has no area (all " + std::to_string(n) +
-                                                   " vertices on one line or point)");
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat("ear_clip: the polygon has no area (all ", std::to_string(n),
+                                       " vertices on one line or point)"));
   report.normal = newell / length;
   report.area = 0.5 * length;
   for (std::size_t i = 0; i < n; ++i)
     report.max_deviation =
         std::max(report.max_deviation, std::fabs(glm::dot(p[i] - centroid, report.normal)));
   if (report.max_deviation > options.planarity_tolerance * diagonal)
-    throw error(error_category::invalid_input, "ear_clip: the polygon is not planar: a vertex lies " +
-                                                   std::to_string(report.max_deviation) +
-                                                   " from its plane, more than planarity_tolerance (" +
-                                                   std::to_string(options.planarity_tolerance) +
-                                                   ") times its size " + std::to_string(diagonal));
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat("ear_clip: the polygon is not planar: a vertex lies ",
+                                       std::to_string(report.max_deviation),
+                                       " from its plane, more than planarity_tolerance (",
+                                       std::to_string(options.planarity_tolerance), ") times its size ",
+                                       std::to_string(diagonal)));
 
   // Project by dropping the dominant axis of the normal: exact (no rounding), so the
   // orientation tests are exact on the input coordinates. The kept axes (k+1, k+2) in
@@ -501,10 +507,11 @@ std::vector<index_triangle> clip_polygon(std::span<const glm::dvec3> p, const ea
   if (!options.allow_non_simple) {
     const auto [e, f] = first_crossing(x, y, ring);
     if (e != none)
-      throw error(error_category::invalid_input,
-                  "ear_clip: the polygon is not simple: its edges from vertex " + std::to_string(ring[e]) +
-                      " and from vertex " + std::to_string(ring[f]) +
-                      " cross or touch; set allow_non_simple to triangulate it anyway");
+      throw error(
+          error_category::invalid_input,
+          cellforge::detail::cat("ear_clip: the polygon is not simple: its edges from vertex ",
+                                 std::to_string(ring[e]), " and from vertex ", std::to_string(ring[f]),
+                                 " cross or touch; set allow_non_simple to triangulate it anyway"));
   }
   std::vector<index_triangle> tris;
   tris.reserve(n - 2);
@@ -567,9 +574,9 @@ polygon_soup<P> triangulate(const polygon_soup<P>& soup, const ear_clip_options&
     const auto face = soup.face(f);
     for (std::uint32_t v : face)
       if (v >= soup.points.size())
-        throw error(error_category::invalid_input, "triangulate: face " + std::to_string(f) +
-                                                       " uses vertex " + std::to_string(v) + " of " +
-                                                       std::to_string(soup.points.size()));
+        throw error(error_category::invalid_input,
+                    cellforge::detail::cat("triangulate: face ", std::to_string(f), " uses vertex ",
+                                           std::to_string(v), " of ", std::to_string(soup.points.size())));
     if (face.size() == 3) {
       out.add_face(face);
       r.source_face.push_back(static_cast<std::uint32_t>(f));
@@ -582,7 +589,8 @@ polygon_soup<P> triangulate(const polygon_soup<P>& soup, const ear_clip_options&
     try {
       tris = detail::ears::clip_polygon(detail::span_of(corners), options, er);
     } catch (const error& e) {
-      throw error(e.category(), "triangulate: face " + std::to_string(f) + ": " + e.message());
+      throw error(e.category(),
+                  cellforge::detail::cat("triangulate: face ", std::to_string(f), ": ", e.message()));
     }
     ++r.polygons;
     r.degenerate_triangles += er.degenerate_triangles;
@@ -630,7 +638,8 @@ triangulate_report triangulate_faces(surface_mesh<P>& m, const ear_clip_options&
     try {
       j.tris = detail::ears::clip_polygon(detail::span_of(corners), options, er);
     } catch (const error& e) {
-      throw error(e.category(), "triangulate_faces: face " + std::to_string(f.idx()) + ": " + e.message());
+      throw error(e.category(), cellforge::detail::cat("triangulate_faces: face ", std::to_string(f.idx()),
+                                                       ": ", e.message()));
     }
     // A diagonal that is already an edge (or another face's diagonal) would give an edge
     // more than two faces: refuse before changing anything.
@@ -642,9 +651,10 @@ triangulate_report triangulate_faces(surface_mesh<P>& m, const ear_clip_options&
         const vertex_handle va = j.vs[a], vb = j.vs[b];
         if (a < b && (m.find_edge(va, vb).is_valid() || !diagonals.try_insert(key(va, vb), 0)))
           throw error(error_category::topology,
-                      "triangulate_faces: face " + std::to_string(f.idx()) + " needs the diagonal " +
-                          std::to_string(va.idx()) + "-" + std::to_string(vb.idx()) +
-                          ", which already is an edge: the result would not be manifold");
+                      cellforge::detail::cat("triangulate_faces: face ", std::to_string(f.idx()),
+                                             " needs the diagonal ", std::to_string(va.idx()), "-",
+                                             std::to_string(vb.idx()),
+                                             ", which already is an edge: the result would not be manifold"));
       }
     r.degenerate_triangles += er.degenerate_triangles;
     r.forced_ears += er.forced_ears;

@@ -30,6 +30,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/detail/span_of.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/conversion.hpp"
@@ -421,9 +422,10 @@ std::vector<face_handle> replace_faces(halfedge_mesh& m, std::span<const face_ha
     for (const face_spec& s : originals) restored.push_back(m.add_face(detail::span_of(s.vertices)));
     carry_properties(m, detail::span_of(originals), detail::span_of(restored), old_edges);
     throw error(error_category::internal,
-                std::string("a checked mesh edit was refused by add_face (the mesh is restored; please "
-                            "report): ") +
-                    ex.what());
+                cellforge::detail::cat(
+                    std::string("a checked mesh edit was refused by add_face (the mesh is restored; please "
+                                "report): "),
+                    ex.what()));
   }
   carry_properties(m, specs, detail::span_of(added), old_edges);
   return added;
@@ -439,13 +441,15 @@ edit_result refused(edit_refusal why) {
 template <class = void>
 void check_handle(bool ok, const char* what, const char* kind, std::uint32_t idx) {
   if (!ok)
-    throw error(error_category::invalid_input, std::string(what) + ": " + kind + " " + std::to_string(idx) +
-                                                   " does not exist or was removed");
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat(std::string(what), ": ", kind, " ", std::to_string(idx),
+                                       " does not exist or was removed"));
 }
 template <class = void>
 void check_finite(const glm::dvec3& p, const char* what) {
   if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-    throw error(error_category::invalid_input, std::string(what) + ": the position is not finite");
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat(std::string(what), ": the position is not finite"));
 }
 
 // Collapse u -> v over edge e after the check passed.
@@ -472,8 +476,9 @@ template <class = void>
 void check_edge_endpoint(const halfedge_mesh& m, edge_handle e, vertex_handle keep, const char* what) {
   check_handle(m.is_valid(e), what, "edge", e.idx());
   if (keep != m.vertex(e, 0) && keep != m.vertex(e, 1))
-    throw error(error_category::invalid_input, std::string(what) + ": vertex " + std::to_string(keep.idx()) +
-                                                   " is not an end of edge " + std::to_string(e.idx()));
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat(std::string(what), ": vertex ", std::to_string(keep.idx()),
+                                       " is not an end of edge ", std::to_string(e.idx())));
 }
 
 template <Point3 P>

@@ -24,6 +24,7 @@
 #include "cellforge/algorithms/detail/loop_topology.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/conversion.hpp"
@@ -134,8 +135,9 @@ std::uint8_t attribute_kind(property_array_base& a, value_types<T...>) {
   std::uint8_t kind = 0;
   if (((a.type() == typeid(T) || (++kind, false)) || ...)) return kind;
   throw error(error_category::invalid_input,
-              "loop_subdivide: vertex property '" + a.name() + "' has type " + a.type().name() +
-                  "; only float, double and glm vectors of them (2 to 4 components) can be interpolated");
+              cellforge::detail::cat(
+                  "loop_subdivide: vertex property '", a.name(), "' has type ", a.type().name(),
+                  "; only float, double and glm vectors of them (2 to 4 components) can be interpolated"));
 }
 
 /// Calls f with the job's array cast to its own type. O(1) besides f.
@@ -157,15 +159,16 @@ std::vector<attribute_job> resolve_attributes(halfedge_mesh& mesh, const std::ve
           "loop_subdivide: \"v:point\" is subdivided anyway; do not list it in loop_options::interpolate");
     for (std::size_t j = 0; j < i; ++j)
       if (specs[j].name == name)
-        throw error(error_category::invalid_input, "loop_subdivide: vertex property '" + name +
-                                                       "' is listed twice in loop_options::interpolate");
+        throw error(error_category::invalid_input,
+                    cellforge::detail::cat("loop_subdivide: vertex property '", name,
+                                           "' is listed twice in loop_options::interpolate"));
     property_array_base* a = mesh_access::vertex_properties(mesh).find(name);
     if (a == nullptr)
       throw error(error_category::invalid_input,
-                  "loop_subdivide: there is no vertex property named '" + name + "'");
+                  cellforge::detail::cat("loop_subdivide: there is no vertex property named '", name, "'"));
     if (specs[i].rule != loop_property_rule::linear && specs[i].rule != loop_property_rule::loop)
       throw error(error_category::invalid_input,
-                  "loop_subdivide: unknown rule for vertex property '" + name + "'");
+                  cellforge::detail::cat("loop_subdivide: unknown rule for vertex property '", name, "'"));
     jobs.push_back({a, attribute_kind(*a, attribute_types{}), specs[i].rule});
   }
   return jobs;
@@ -227,7 +230,8 @@ loop_result loop_subdivide(surface_mesh<P>& mesh, const loop_options& options = 
 
   if (options.levels < 0)
     throw error(error_category::invalid_input,
-                "loop_subdivide: levels must be at least 0, got " + std::to_string(options.levels));
+                cellforge::detail::cat("loop_subdivide: levels must be at least 0, got ",
+                                       std::to_string(options.levels)));
   const dl::mask_params params = dl::to_params(options);
   auto pts = mesh.positions();
 
@@ -245,17 +249,19 @@ loop_result loop_subdivide(surface_mesh<P>& mesh, const loop_options& options = 
     c = c.next();
     if (!c.fits())
       throw error(error_category::invalid_input,
-                  "loop_subdivide: level " + std::to_string(level) + " of " + std::to_string(options.levels) +
-                      " would need " + std::to_string(c.faces) + " faces and " + std::to_string(2 * c.edges) +
-                      " half-edges, more than 32-bit indices allow");
+                  cellforge::detail::cat("loop_subdivide: level ", std::to_string(level), " of ",
+                                         std::to_string(options.levels), " would need ",
+                                         std::to_string(c.faces), " faces and ", std::to_string(2 * c.edges),
+                                         " half-edges, more than 32-bit indices allow"));
   }
   // Then memory: the result's size against the caller's limit.
   if (options.max_faces != 0 && c.faces > options.max_faces)
     throw error(error_category::invalid_input,
-                "loop_subdivide: " + std::to_string(options.levels) + " levels would make " +
-                    std::to_string(c.faces) + " faces (about " + std::to_string(c.faces * 80 / 1'000'000) +
-                    " MB), more than loop_options::max_faces (" + std::to_string(options.max_faces) +
-                    "); ask for fewer levels or raise the limit");
+                cellforge::detail::cat(
+                    "loop_subdivide: ", std::to_string(options.levels), " levels would make ",
+                    std::to_string(c.faces), " faces (about ", std::to_string(c.faces * 80 / 1'000'000),
+                    " MB), more than loop_options::max_faces (", std::to_string(options.max_faces),
+                    "); ask for fewer levels or raise the limit"));
   const std::vector<dl::attribute_job> jobs = dl::resolve_attributes(mesh, options.interpolate);
 
   // Loop's masks are convex combinations, so checking the input once covers every level;
@@ -267,8 +273,9 @@ loop_result loop_subdivide(surface_mesh<P>& mesh, const loop_options& options = 
       const double x = static_cast<double>(coord(p, i));
       if (!(std::abs(x) <= 1e290))
         throw error(error_category::invalid_input,
-                    "loop_subdivide: vertex " + std::to_string(v) + " has coordinate " + std::to_string(x) +
-                        (std::isfinite(x) ? " (beyond ±1e290, too large to subdivide)" : " (not finite)"));
+                    cellforge::detail::cat(
+                        "loop_subdivide: vertex ", std::to_string(v), " has coordinate ", std::to_string(x),
+                        (std::isfinite(x) ? " (beyond ±1e290, too large to subdivide)" : " (not finite)")));
     }
   }
 

@@ -34,6 +34,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
@@ -51,9 +52,11 @@ void require(bool ok, const char* what, Message&& message) {
   if (ok) [[likely]]
     return;
   if constexpr (std::is_invocable_v<Message>)
-    throw error(error_category::invalid_input, std::string(what) + ": " + std::string(message()));
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat(std::string(what), ": ", std::string(message())));
   else
-    throw error(error_category::invalid_input, std::string(what) + ": " + std::string(message));
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat(std::string(what), ": ", std::string(message)));
 }
 
 /// Refuses outputs whose indices would not fit the soup's 32-bit indices (or would not fit
@@ -62,15 +65,16 @@ template <class = void>
 void require_size(double vertices, double indices, const char* what) {
   constexpr double limit = static_cast<double>(std::numeric_limits<std::uint32_t>::max() / 2);
   require(vertices <= limit && indices <= limit, what,
-          "the requested shape is too large (about " + std::to_string(vertices) + " vertices, " +
-              std::to_string(indices) + " face indices); reduce its resolution");
+          cellforge::detail::cat("the requested shape is too large (about ", std::to_string(vertices),
+                                 " vertices, ", std::to_string(indices),
+                                 " face indices); reduce its resolution"));
 }
 
 template <class = void>
 void require_at_least(int value, int minimum, const char* what, const char* name) {
   require(value >= minimum, what, [&] {
-    return std::string(name) + " must be at least " + std::to_string(minimum) + ", got " +
-           std::to_string(value);
+    return cellforge::detail::cat(std::string(name), " must be at least ", std::to_string(minimum), ", got ",
+                                  std::to_string(value));
   });
 }
 
@@ -237,12 +241,13 @@ half_edge_pairing pair_half_edges(const polygon_soup<P>& soup, const char* what)
   std::vector<std::uint32_t> head(hcount);  // vertex each half-edge runs to
   for (std::size_t f = 0; f < faces; ++f) {
     const std::uint32_t begin = soup.face_offsets[f], end = soup.face_offsets[f + 1];
-    require(begin <= end && end <= hcount, what,
-            [&] { return "face_offsets must not decrease (face " + std::to_string(f) + ")"; });
+    require(begin <= end && end <= hcount, what, [&] {
+      return cellforge::detail::cat("face_offsets must not decrease (face ", std::to_string(f), ")");
+    });
     for (std::uint32_t h = begin; h < end; ++h) {
       require(fv[h] < n, what, [&] {
-        return "face " + std::to_string(f) + " refers to vertex " + std::to_string(fv[h]) +
-               " but the soup has only " + std::to_string(n) + " points";
+        return cellforge::detail::cat("face ", std::to_string(f), " refers to vertex ", std::to_string(fv[h]),
+                                      " but the soup has only ", std::to_string(n), " points");
       });
       out.face_of[h] = static_cast<std::uint32_t>(f);
       head[h] = fv[h + 1 < end ? h + 1 : begin];
@@ -422,7 +427,7 @@ template <Point3 P = glm::dvec3>
 polygon_soup<P> icosphere(int subdivisions) {
   namespace s = detail::shapes;
   s::require(subdivisions >= 0 && subdivisions <= 13, "icosphere",
-             "subdivisions must be in 0..13, got " + std::to_string(subdivisions));
+             cellforge::detail::cat("subdivisions must be in 0..13, got ", std::to_string(subdivisions)));
   const double faces_out = 20.0 * std::pow(4.0, subdivisions);
   s::require_size(faces_out / 2 + 2, 3 * faces_out, "icosphere");
   std::vector<glm::dvec3> pts;
@@ -573,8 +578,8 @@ polygon_soup<P> torus(int major_segments, int minor_segments, double R = 1, doub
                       bool triangles = true) {
   namespace s = detail::shapes;
   s::require(std::isfinite(R) && std::isfinite(r) && r > 0 && r < R, "torus",
-             "radii must satisfy 0 < r < R (an embedded ring torus), got R = " + std::to_string(R) +
-                 ", r = " + std::to_string(r));
+             cellforge::detail::cat("radii must satisfy 0 < r < R (an embedded ring torus), got R = ",
+                                    std::to_string(R), ", r = ", std::to_string(r)));
   s::require_counts("torus", {{"major_segments", major_segments, 3}, {"minor_segments", minor_segments, 3}},
                     static_cast<double>(major_segments) * minor_segments,
                     6.0 * major_segments * minor_segments);
@@ -788,8 +793,8 @@ polygon_soup<P> lattice_graph_tube_mesh(std::span<const std::array<int, 3>> node
   s::require(std::isfinite(options.spacing) && std::isfinite(options.width) && options.width > 0 &&
                  options.width < options.spacing,
              what,
-             "need 0 < width < spacing, got width " + std::to_string(options.width) + ", spacing " +
-                 std::to_string(options.spacing));
+             cellforge::detail::cat("need 0 < width < spacing, got width ", std::to_string(options.width),
+                                    ", spacing ", std::to_string(options.spacing)));
   s::require_size(8.0 * static_cast<double>(nodes.size() + edges.size()),
                   48.0 * static_cast<double>(nodes.size() + edges.size()), what);
   // Voxels on a doubled grid: node (i,j,k) is voxel (2i,2j,2k), the edge to (i+1,j,k) is
@@ -806,18 +811,21 @@ polygon_soup<P> lattice_graph_tube_mesh(std::span<const std::array<int, 3>> node
     s::require(std::abs(c[0]) < coordinate_limit && std::abs(c[1]) < coordinate_limit &&
                    std::abs(c[2]) < coordinate_limit,
                what, [&] {
-                 return "node " + std::to_string(n) + " lies outside the supported range |coordinate| < 2^18";
+                 return cellforge::detail::cat("node ", std::to_string(n),
+                                               " lies outside the supported range |coordinate| < 2^18");
                });
     const std::array<std::int64_t, 3> v{2 * std::int64_t{c[0]}, 2 * std::int64_t{c[1]},
                                         2 * std::int64_t{c[2]}};
-    s::require(occupied.insert(s::voxel_key(v[0], v[1], v[2])).second, what,
-               [&] { return "node " + std::to_string(n) + " repeats the position of an earlier node"; });
+    s::require(occupied.insert(s::voxel_key(v[0], v[1], v[2])).second, what, [&] {
+      return cellforge::detail::cat("node ", std::to_string(n), " repeats the position of an earlier node");
+    });
     voxels.push_back(v);
   }
   for (std::size_t e = 0; e < edges.size(); ++e) {
     const auto [a, b] = edges[e];
-    s::require(a < nodes.size() && b < nodes.size(), what,
-               [&] { return "edge " + std::to_string(e) + " refers to a node that does not exist"; });
+    s::require(a < nodes.size() && b < nodes.size(), what, [&] {
+      return cellforge::detail::cat("edge ", std::to_string(e), " refers to a node that does not exist");
+    });
     std::array<std::int64_t, 3> v{};
     int differing = 0, distance = 0;
     for (std::size_t d = 0; d < 3; ++d) {
@@ -827,10 +835,12 @@ polygon_soup<P> lattice_graph_tube_mesh(std::span<const std::array<int, 3>> node
       distance += step;
     }
     s::require(differing == 1 && distance == 1, what, [&] {
-      return "edge " + std::to_string(e) + " does not join two lattice neighbours (unit, axis-aligned)";
+      return cellforge::detail::cat("edge ", std::to_string(e),
+                                    " does not join two lattice neighbours (unit, axis-aligned)");
     });
-    s::require(occupied.insert(s::voxel_key(v[0], v[1], v[2])).second, what,
-               [&] { return "edge " + std::to_string(e) + " repeats an earlier edge"; });
+    s::require(occupied.insert(s::voxel_key(v[0], v[1], v[2])).second, what, [&] {
+      return cellforge::detail::cat("edge ", std::to_string(e), " repeats an earlier edge");
+    });
     voxels.push_back(v);
   }
   const double half = options.width / 2;
@@ -899,7 +909,7 @@ template <Point3 P = glm::dvec3>
 polygon_soup<P> tree_tube_mesh(int depth, const lattice_tube_options& options = {}) {
   namespace s = detail::shapes;
   s::require(depth >= 0 && depth <= 20, "tree_tube_mesh",
-             "depth must be in 0..20, got " + std::to_string(depth));
+             cellforge::detail::cat("depth must be in 0..20, got ", std::to_string(depth)));
   const int top = depth > 0 ? (depth - 1) / 3 : 0;  // length exponent of the first level
   std::vector<std::array<int, 3>> nodes{{0, 0, 0}};
   std::vector<std::array<std::uint32_t, 2>> edges;
@@ -956,19 +966,22 @@ requires Point3<std::ranges::range_value_t<R>> polygon_soup<P> spline_tube(
       {{"segments_around", options.segments_around, 3}, {"samples_per_span", options.samples_per_span, 1}}, 0,
       0);
   s::require(std::isfinite(options.radius) && options.radius > 0, what,
-             "radius must be finite and > 0, got " + std::to_string(options.radius));
+             cellforge::detail::cat("radius must be finite and > 0, got ", std::to_string(options.radius)));
   std::vector<glm::dvec3> cp;
   for (const auto& p : control_points) {
     const glm::dvec3 d = to_dvec3(p);
-    s::require(std::isfinite(d.x) && std::isfinite(d.y) && std::isfinite(d.z), what,
-               [&] { return "control point " + std::to_string(cp.size()) + " is not finite"; });
+    s::require(std::isfinite(d.x) && std::isfinite(d.y) && std::isfinite(d.z), what, [&] {
+      return cellforge::detail::cat("control point ", std::to_string(cp.size()), " is not finite");
+    });
     s::require(cp.empty() || glm::length(d - cp.back()) > 0, what, [&] {
-      return "control points " + std::to_string(cp.size() - 1) + " and " + std::to_string(cp.size()) +
-             " coincide; the curve direction there is undefined";
+      return cellforge::detail::cat("control points ", std::to_string(cp.size() - 1), " and ",
+                                    std::to_string(cp.size()),
+                                    " coincide; the curve direction there is undefined");
     });
     cp.push_back(d);
   }
-  s::require(cp.size() >= 2, what, "need at least 2 control points, got " + std::to_string(cp.size()));
+  s::require(cp.size() >= 2, what,
+             cellforge::detail::cat("need at least 2 control points, got ", std::to_string(cp.size())));
   const std::size_t spans = cp.size() - 1;
   s::require_size(static_cast<double>(spans) * options.samples_per_span * options.segments_around,
                   6.0 * static_cast<double>(spans) * options.samples_per_span * options.segments_around,
@@ -1138,7 +1151,8 @@ double signed_volume(const polygon_soup<P>& soup) {
     if (face.size() < 3) continue;
     for (const std::uint32_t v : face)
       detail::shapes::require(v < soup.points.size(), "signed_volume", [&] {
-        return "face " + std::to_string(f) + " refers to missing vertex " + std::to_string(v);
+        return cellforge::detail::cat("face ", std::to_string(f), " refers to missing vertex ",
+                                      std::to_string(v));
       });
     const glm::dvec3 a = to_dvec3(soup.points[face[0]]);
     for (std::size_t i = 1; i + 1 < face.size(); ++i)
@@ -1221,13 +1235,16 @@ polygon_soup<P> solid_of_revolution(std::span<const glm::dvec2> profile, int seg
   for (std::int64_t k = 0; k < m; ++k) {
     const glm::dvec2 q = profile[static_cast<std::size_t>(k)];
     s::require(std::isfinite(q.x) && std::isfinite(q.y) && q.x >= 0, what, [&] {
-      return "profile point " + std::to_string(k) + " must have a finite radius >= 0 and a finite z";
+      return cellforge::detail::cat("profile point ", std::to_string(k),
+                                    " must have a finite radius >= 0 and a finite z");
     });
     s::require(q.x > 0 || k == 0 || k == m - 1, what, [&] {
-      return "profile point " + std::to_string(k) + " has radius 0; only the two ends may lie on the axis";
+      return cellforge::detail::cat("profile point ", std::to_string(k),
+                                    " has radius 0; only the two ends may lie on the axis");
     });
     s::require(k == 0 || q != profile[static_cast<std::size_t>(k - 1)], what, [&] {
-      return "profile points " + std::to_string(k - 1) + " and " + std::to_string(k) + " coincide";
+      return cellforge::detail::cat("profile points ", std::to_string(k - 1), " and ", std::to_string(k),
+                                    " coincide");
     });
   }
   s::require(m > 2 || profile[0].x > 0 || profile[1].x > 0, what,

@@ -19,6 +19,7 @@
 
 #include "cellforge/algorithms/edits.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/conversion.hpp"
@@ -248,7 +249,7 @@ class basic_simplifier {
 template <class = void>
 void check_options(const simplify_options& o) {
   auto fail = [](const std::string& what) {
-    throw error(error_category::invalid_input, "simplify: " + what);
+    throw error(error_category::invalid_input, cellforge::detail::cat("simplify: ", what));
   };
   if (o.cost != simplify_cost::edge_length && o.cost != simplify_cost::quadric) fail("unknown cost");
   if (!(o.target_edge_length >= 0) || !std::isfinite(o.target_edge_length))
@@ -281,14 +282,16 @@ simplify_result simplify(surface_mesh<P>& m, const simplify_options& options = {
   auto pts = m.positions();
   for (face_handle f : m.faces())
     if (!detail::edits::is_triangle(m, f))
-      throw error(error_category::invalid_input, "simplify: face " + std::to_string(f.idx()) +
-                                                     " is not a triangle; triangulate the mesh first");
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat("simplify: face ", std::to_string(f.idx()),
+                                         " is not a triangle; triangulate the mesh first"));
   std::vector<glm::dvec3> pos(m.vertices_size(), glm::dvec3(0.0));
   for (vertex_handle v : m.vertices()) {
     pos[v.idx()] = to_dvec3(pts[v]);
     if (!std::isfinite(pos[v.idx()].x) || !std::isfinite(pos[v.idx()].y) || !std::isfinite(pos[v.idx()].z))
-      throw error(error_category::invalid_input,
-                  "simplify: vertex " + std::to_string(v.idx()) + " has a non-finite position");
+      throw error(
+          error_category::invalid_input,
+          cellforge::detail::cat("simplify: vertex ", std::to_string(v.idx()), " has a non-finite position"));
   }
 
   simplify_result result;

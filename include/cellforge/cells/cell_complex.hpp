@@ -24,6 +24,7 @@
 
 #include "cellforge/core/detail/newell.hpp"
 #include "cellforge/core/detail/span_of.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/handles.hpp"
@@ -352,7 +353,7 @@ std::string S(std::uint64_t x) {
 }
 
 [[noreturn]] inline void fail(error_category c, const std::string& msg) {
-  throw error(c, "make_cell_complex: " + msg);
+  throw error(c, cellforge::detail::cat("make_cell_complex: ", msg));
 }
 
 using cellforge::detail::newell;  // Newell normal of a vertex loop (core/detail/newell.hpp)
@@ -395,7 +396,7 @@ void build_topology(cell_topology& cc, std::span<const glm::dvec3> points,
   for (std::size_t v = 0; v < nv; ++v) {
     const glm::dvec3& p = points[v];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-      fail(bad, "vertex " + S(v) + " has a non-finite coordinate (NaN or Inf)");
+      fail(bad, cellforge::detail::cat("vertex ", S(v), " has a non-finite coordinate (NaN or Inf)"));
   }
 
   // Edges: endpoints, no loops, no duplicates; vertex → edges with direction. The first bad
@@ -439,15 +440,15 @@ void build_topology(cell_topology& cc, std::span<const glm::dvec3> points,
   }
   if (repeat < first_bad) {
     const auto [a, b] = edges[repeat];
-    fail(bad, "edge " + S(repeat) + " repeats edge " + S(repeated) + " (both join vertices " + S(a) +
-                  " and " + S(b) + ")");
+    fail(bad, cellforge::detail::cat("edge ", S(repeat), " repeats edge ", S(repeated),
+                                     " (both join vertices ", S(a), " and ", S(b), ")"));
   }
   if (first_bad < ne) {
     const auto [a, b] = edges[first_bad];
     if (a >= nv || b >= nv)
-      fail(bad, "edge " + S(first_bad) + " joins vertex " + S(std::max(a, b)) + " but there are " + S(nv) +
-                    " vertices");
-    fail(bad, "edge " + S(first_bad) + " joins vertex " + S(a) + " to itself");
+      fail(bad, cellforge::detail::cat("edge ", S(first_bad), " joins vertex ", S(std::max(a, b)),
+                                       " but there are ", S(nv), " vertices"));
+    fail(bad, cellforge::detail::cat("edge ", S(first_bad), " joins vertex ", S(a), " to itself"));
   }
   const auto edge_of = [&](uint32_t a, uint32_t b) {
     const edge_link* lo = links.data() + cc.vertex_edge_start_[a];
@@ -464,10 +465,12 @@ void build_topology(cell_topology& cc, std::span<const glm::dvec3> points,
   std::vector<uint32_t> used_by(ne, 0xFFFFFFFFu);
   for (std::size_t f = 0; f < nf; ++f) {
     const auto& loops = faces[f].loops;
-    if (loops.empty()) fail(bad, "face " + S(f) + " has no loop");
+    if (loops.empty()) fail(bad, cellforge::detail::cat("face ", S(f), " has no loop"));
     for (std::size_t l = 0; l < loops.size(); ++l) {
       const auto& loop = loops[l];
-      const auto where = [&] { return "face " + S(f) + " loop " + S(l); };  // built only on failure
+      const auto where = [&] {
+        return cellforge::detail::cat("face ", S(f), " loop ", S(l));
+      };  // built only on failure
       if (loop.size() < 3) fail(bad, where() + " has " + S(loop.size()) + " vertices; a loop needs 3");
       for (const uint32_t a : loop)
         if (a >= nv) fail(bad, where() + " uses vertex " + S(a) + " but there are " + S(nv) + " vertices");
@@ -501,21 +504,27 @@ void build_topology(cell_topology& cc, std::span<const glm::dvec3> points,
   std::vector<uint32_t> touched;
   for (std::size_t c = 0; c < nc; ++c) {
     const auto& signed_faces = volumes[c].faces;
-    if (signed_faces.empty()) fail(bad, "volume " + S(c) + " has no face");
+    if (signed_faces.empty()) fail(bad, cellforge::detail::cat("volume ", S(c), " has no face"));
     for (const auto& [f, sign] : signed_faces) {
-      if (f >= nf) fail(bad, "volume " + S(c) + " uses face " + S(f) + " but there are " + S(nf) + " faces");
+      if (f >= nf)
+        fail(bad, cellforge::detail::cat("volume ", S(c), " uses face ", S(f), " but there are ", S(nf),
+                                         " faces"));
       if (sign != 1 && sign != -1)
-        fail(bad, "volume " + S(c) + " uses face " + S(f) + " with sign " + std::to_string(sign) +
-                      "; the sign must be +1 (normal out of the volume) or -1");
+        fail(bad,
+             cellforge::detail::cat("volume ", S(c), " uses face ", S(f), " with sign ", std::to_string(sign),
+                                    "; the sign must be +1 (normal out of the volume) or -1"));
       for (std::uint8_t k = 0; k < nfv[f]; ++k)
-        if (fv[f][k].handle.idx() == c) fail(topo, "volume " + S(c) + " uses face " + S(f) + " twice");
+        if (fv[f][k].handle.idx() == c)
+          fail(topo, cellforge::detail::cat("volume ", S(c), " uses face ", S(f), " twice"));
       if (nfv[f] == 2)
-        fail(topo, "face " + S(f) + " is in more than two volumes (" + S(fv[f][0].handle.idx()) + ", " +
-                       S(fv[f][1].handle.idx()) + ", " + S(c) + ")");
+        fail(topo,
+             cellforge::detail::cat("face ", S(f), " is in more than two volumes (", S(fv[f][0].handle.idx()),
+                                    ", ", S(fv[f][1].handle.idx()), ", ", S(c), ")"));
       for (std::uint8_t k = 0; k < nfv[f]; ++k)
         if (fv[f][k].sign == sign)
-          fail(topo, "face " + S(f) + " has volumes " + S(fv[f][k].handle.idx()) + " and " + S(c) +
-                         " on the same side (both with sign " + std::to_string(sign) + ")");
+          fail(topo,
+               cellforge::detail::cat("face ", S(f), " has volumes ", S(fv[f][k].handle.idx()), " and ", S(c),
+                                      " on the same side (both with sign ", std::to_string(sign), ")"));
       fv[f][nfv[f]++] = {cell_volume(c), sign};
       cc.volume_faces_.push_back({cell_face(f), sign});
       // Closedness: the signed face boundaries must cancel on every edge.
@@ -530,9 +539,10 @@ void build_topology(cell_topology& cc, std::span<const glm::dvec3> points,
       if (net[e] != 0) {
         const uint32_t bad_edge = e;
         for (uint32_t t : touched) net[t] = 0;
-        fail(topo, "the boundary of volume " + S(c) + " is not closed: edge " + S(bad_edge) + " (" +
-                       S(edges[bad_edge][0]) + "-" + S(edges[bad_edge][1]) +
-                       ") is not used equally often in both directions by its faces");
+        fail(topo,
+             cellforge::detail::cat("the boundary of volume ", S(c), " is not closed: edge ", S(bad_edge),
+                                    " (", S(edges[bad_edge][0]), "-", S(edges[bad_edge][1]),
+                                    ") is not used equally often in both directions by its faces"));
       }
     touched.clear();
     cc.volume_face_start_.push_back(static_cast<uint32_t>(cc.volume_faces_.size()));
@@ -682,13 +692,15 @@ void renumber_topology(const cell_topology& from, cell_topology& to,
   const std::size_t nv = from.num_vertices(), ne = from.num_edges();
   const auto check = [](std::span<const uint32_t> label, std::size_t n, const char* what) {
     if (label.size() != n)
-      throw error(error_category::invalid_input, std::string("renumber_cells: ") + S(label.size()) + " " +
-                                                     what + " labels for " + S(n) + " " + what + "s");
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat(std::string("renumber_cells: "), S(label.size()), " ", what,
+                                         " labels for ", S(n), " ", what, "s"));
     std::vector<char> seen(n, 0);
     for (const uint32_t x : label) {
       if (x >= n || seen[x])
-        throw error(error_category::invalid_input, std::string("renumber_cells: the ") + what +
-                                                       " labels are not a permutation of 0.." + S(n - 1));
+        throw error(error_category::invalid_input,
+                    cellforge::detail::cat(std::string("renumber_cells: the "), what,
+                                           " labels are not a permutation of 0..", S(n - 1)));
       seen[x] = 1;
     }
   };

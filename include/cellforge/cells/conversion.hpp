@@ -20,6 +20,7 @@
 
 #include "cellforge/cells/cell_complex.hpp"
 #include "cellforge/core/bounding_box.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
@@ -82,7 +83,8 @@ std::vector<std::array<std::uint32_t, 3>> triangulate_face(const std::vector<std
     }
     if (l == 0 ? !(twice > 0) : !(twice < 0))
       fail(l == 0 ? std::string("the outer loop does not turn counter-clockwise about the normal")
-                  : "hole " + std::to_string(l) + " does not turn clockwise about the normal");
+                  : cellforge::detail::cat("hole ", std::to_string(l),
+                                           " does not turn clockwise about the normal"));
   }
   std::vector<std::uint32_t> ring;
   for (std::uint32_t i = start[0]; i < start[1]; ++i) ring.push_back(i);
@@ -123,7 +125,8 @@ std::vector<std::array<std::uint32_t, 3>> triangulate_face(const std::vector<std
       if (x >= M.x && (x < best || (x == best && faces_m && !hit_faces_m)))
         best = x, hit = i, hit_faces_m = faces_m;
     }
-    if (hit == ring.size()) fail("hole " + std::to_string(h) + " is not inside the outer loop");
+    if (hit == ring.size())
+      fail(cellforge::detail::cat("hole ", std::to_string(h), " is not inside the outer loop"));
     // Candidate: the hit edge's end with the larger x; then any ring vertex inside the
     // triangle (M, hit point, candidate) that makes a smaller angle with the ray.
     const std::size_t i1 = (hit + 1) % ring.size();
@@ -231,7 +234,7 @@ surface_mesh<P> volume_boundary_mesh(const cell_complex<P>& cc, cell_volume c,
                                      const boundary_mesh_options& options = {}) {
   if (!(c.idx() < cc.num_volumes()))
     throw error(error_category::invalid_input,
-                "volume_boundary_mesh: there is no volume " + std::to_string(c.idx()));
+                cellforge::detail::cat("volume_boundary_mesh: there is no volume ", std::to_string(c.idx())));
   polygon_soup<P> soup;
   std::vector<std::uint32_t> cell_vertex_of, cell_face_of;
   std::unordered_map<std::uint32_t, std::uint32_t> index;
@@ -258,9 +261,9 @@ surface_mesh<P> volume_boundary_mesh(const cell_complex<P>& cc, cell_volume c,
     for (std::size_t l = 0; l < loops.size(); ++l)
       for (cell_vertex v : cc.loop_vertices(f, l))
         loops[l].push_back(to_dvec3(cc.point(v))), flat.push_back(v);
-    const auto tris =
-        detail::cells::triangulate_face(loops, detail::cells::access::unit_normal(cc, f),
-                                        "volume_boundary_mesh: face " + std::to_string(f.idx()));
+    const auto tris = detail::cells::triangulate_face(
+        loops, detail::cells::access::unit_normal(cc, f),
+        cellforge::detail::cat("volume_boundary_mesh: face ", std::to_string(f.idx())));
     for (const auto& t : tris) {
       face = {id(flat[t[0]]), id(flat[t[1]]), id(flat[t[2]])};
       if (sign < 0) std::swap(face[1], face[2]);
@@ -287,9 +290,10 @@ cell_complex<P> mesh_to_cell_complex(const surface_mesh<P>& m, const mesh_to_cel
   using std::uint32_t;
   constexpr uint32_t none = 0xFFFFFFFFu;
   if (!m.is_closed())
-    throw error(error_category::topology, "mesh_to_cell_complex: the mesh has " +
-                                              std::to_string(m.num_boundary_edges()) +
-                                              " boundary edges; a volume needs a closed surface");
+    throw error(
+        error_category::topology,
+        cellforge::detail::cat("mesh_to_cell_complex: the mesh has ", std::to_string(m.num_boundary_edges()),
+                               " boundary edges; a volume needs a closed surface"));
   if (!m.is_consistently_oriented())
     throw error(error_category::topology,
                 "mesh_to_cell_complex: the mesh is not consistently oriented (orient it first)");

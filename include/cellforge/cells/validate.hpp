@@ -17,6 +17,7 @@
 
 #include "cellforge/cells/cell_complex.hpp"
 #include "cellforge/core/bounding_box.hpp"
+#include "cellforge/core/detail/text.hpp"
 
 namespace cellforge {
 
@@ -156,13 +157,14 @@ cells_validation_result validate_cells(const cell_topology& cc, std::span<const 
   for (cell_edge e : cc.edges())
     if (!(glm::length(pts[cc.target(e).idx()] - pts[cc.source(e).idx()]) > min_len))
       return broke(r, inv::degenerate_edge, e.idx(),
-                   "edge " + S(e.idx()) + " (" + S(cc.source(e).idx()) + "-" + S(cc.target(e).idx()) +
-                       ") has (nearly) zero length");
+                   cellforge::detail::cat("edge ", S(e.idx()), " (", S(cc.source(e).idx()), "-",
+                                          S(cc.target(e).idx()), ") has (nearly) zero length"));
 
   for (cell_face f : cc.faces()) {
     const glm::dvec3 n = access::unit_normal(cc, f);
     if (glm::length(n) == 0.0)
-      return broke(r, inv::degenerate_face, f.idx(), "face " + S(f.idx()) + ": its outer loop has no area");
+      return broke(r, inv::degenerate_face, f.idx(),
+                   cellforge::detail::cat("face ", S(f.idx()), ": its outer loop has no area"));
     const glm::dvec3 o = pts[cc.loop_vertices(f, 0)[0].idx()];
     bounding_box fbox;
     for (cell_vertex v : cc.loop_vertices(f, 0)) fbox.add(pts[v.idx()]);
@@ -172,16 +174,17 @@ cells_validation_result validate_cells(const cell_topology& cc, std::span<const 
         const double dist = std::abs(glm::dot(pts[v.idx()] - o, n));
         if (dist > flat_tol)
           return broke(r, inv::non_planar, f.idx(),
-                       "face " + S(f.idx()) + ": vertex " + S(v.idx()) + " is " + std::to_string(dist) +
-                           " from the face's plane (tolerance " + std::to_string(flat_tol) + ")");
+                       cellforge::detail::cat("face ", S(f.idx()), ": vertex ", S(v.idx()), " is ",
+                                              std::to_string(dist), " from the face's plane (tolerance ",
+                                              std::to_string(flat_tol), ")"));
       }
       if (l > 0) {
         const auto vs = cc.loop_vertices(f, l);
         const glm::dvec3 hn = detail::cells::newell(vs, [&](cell_vertex v) { return pts[v.idx()] - o; });
         if (!(glm::dot(hn, n) < 0.0))
           return broke(r, inv::hole_orientation, f.idx(),
-                       "face " + S(f.idx()) + ": hole loop " + S(l) +
-                           " does not turn clockwise about the face's normal");
+                       cellforge::detail::cat("face ", S(f.idx()), ": hole loop ", S(l),
+                                              " does not turn clockwise about the face's normal"));
       }
     }
   }
@@ -206,8 +209,9 @@ cells_validation_result validate_cells(const cell_topology& cc, std::span<const 
     touched.clear();
     if (bad != 0xFFFFFFFFu)
       return broke(r, inv::open_boundary, c.idx(),
-                   "volume " + S(c.idx()) + ": edge " + S(bad) +
-                       " is not used exactly twice, in opposite directions, by the volume's faces");
+                   cellforge::detail::cat(
+                       "volume ", S(c.idx()), ": edge ", S(bad),
+                       " is not used exactly twice, in opposite directions, by the volume's faces"));
     r.signed_volumes.push_back(detail::cells::signed_volume_of(cc, pts, c, centre));
     // Each volume against its own size (its bounding-box diagonal cubed), not the model's: a
     // small cell beside a large one is as valid as the same cell alone.
@@ -230,8 +234,8 @@ cells_validation_result validate_cells(const cell_topology& cc, std::span<const 
       char buf[96];
       std::snprintf(buf, sizeof buf, "%g (its own diagonal %g)", r.signed_volumes[c.idx()], vd);
       return broke(r, inv::orientation, c.idx(),
-                   "volume " + S(c.idx()) + " has signed volume " + buf +
-                       "; its faces' normals (with their signs) must point out of it");
+                   cellforge::detail::cat("volume ", S(c.idx()), " has signed volume ", buf,
+                                          "; its faces' normals (with their signs) must point out of it"));
     }
   }
 
@@ -249,18 +253,21 @@ cells_validation_result validate_cells(const cell_topology& cc, std::span<const 
       while (step <= 0.0) step += 2 * std::numbers::pi;
       if (step < options.min_angle || 2 * std::numbers::pi - step < options.min_angle)
         return broke(r, inv::rotation_order, e.idx(),
-                     "edge " + S(e.idx()) + ": faces " + S(ef[k].handle.idx()) + " and " +
-                         S(next.handle.idx()) + " lie on the same side of the edge (they coincide near it)");
+                     cellforge::detail::cat("edge ", S(e.idx()), ": faces ", S(ef[k].handle.idx()), " and ",
+                                            S(next.handle.idx()),
+                                            " lie on the same side of the edge (they coincide near it)"));
       turn += step;
       if (detail::cells::wedge_before(cc, next) != wedges[k])
-        return broke(r, inv::wedge_mismatch, e.idx(),
-                     "edge " + S(e.idx()) + ": between faces " + S(ef[k].handle.idx()) + " and " +
-                         S(next.handle.idx()) + " the two faces' volumes disagree");
+        return broke(
+            r, inv::wedge_mismatch, e.idx(),
+            cellforge::detail::cat("edge ", S(e.idx()), ": between faces ", S(ef[k].handle.idx()), " and ",
+                                   S(next.handle.idx()), " the two faces' volumes disagree"));
     }
     if (std::abs(turn - 2 * std::numbers::pi) > 1e-6)
       return broke(r, inv::rotation_order, e.idx(),
-                   "edge " + S(e.idx()) + ": its faces are not in right-hand rotation order (they turn " +
-                       std::to_string(turn / std::numbers::pi) + " pi in all)");
+                   cellforge::detail::cat("edge ", S(e.idx()),
+                                          ": its faces are not in right-hand rotation order (they turn ",
+                                          std::to_string(turn / std::numbers::pi), " pi in all)"));
   }
 
   if (!options.check_euler) return r;
@@ -292,9 +299,9 @@ cells_validation_result validate_cells(const cell_topology& cc, std::span<const 
     if (chi % 2 != 0) {
       r.euler_checked[o] = 0;
       return broke(r, inv::euler, o,
-                   "object " + S(o) + ": the boundary of volume " + S(c.idx()) +
-                       " has odd Euler characteristic " + std::to_string(chi) +
-                       " (it is pinched at a vertex, not a closed surface)");
+                   cellforge::detail::cat("object ", S(o), ": the boundary of volume ", S(c.idx()),
+                                          " has odd Euler characteristic ", std::to_string(chi),
+                                          " (it is pinched at a vertex, not a closed surface)"));
     }
     volume_terms[o] += chi / 2 - 1;
   }
@@ -336,8 +343,9 @@ cells_validation_result validate_cells(const cell_topology& cc, std::span<const 
     r.expected_euler[o.idx()] = chi / 2 + holes[o.idx()] + volume_terms[o.idx()];
     if (r.euler_checked[o.idx()] && r.expected_euler[o.idx()] != cc.object_euler(o))
       return broke(r, inv::euler, o.idx(),
-                   "object " + S(o.idx()) + ": V - E + F - C is " + std::to_string(cc.object_euler(o)) +
-                       " but its surfaces imply " + std::to_string(r.expected_euler[o.idx()]));
+                   cellforge::detail::cat("object ", S(o.idx()), ": V - E + F - C is ",
+                                          std::to_string(cc.object_euler(o)), " but its surfaces imply ",
+                                          std::to_string(r.expected_euler[o.idx()])));
   }
   return r;
 }

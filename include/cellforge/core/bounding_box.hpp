@@ -14,6 +14,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 
@@ -56,9 +57,10 @@ void check_double_range(const bounding_box& box, std::string_view who) {
     char text[96];
     std::snprintf(text, sizeof text, "the model spans %.6g and reaches %.6g from the origin", extent, reach);
     throw error(error_category::invalid_input,
-                std::string(who) + ": " + text +
+                cellforge::detail::cat(
+                    std::string(who), ": ", text,
                     "; its lengths, areas and volumes are squares and cubes of that, which double holds only "
-                    "between 1e-50 and 1e50 units: scale the model into that range");
+                    "between 1e-50 and 1e50 units: scale the model into that range"));
   }
 }
 

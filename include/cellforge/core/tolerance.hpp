@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "cellforge/core/bounding_box.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 
 namespace cellforge {
@@ -21,7 +22,8 @@ struct tolerance {
   double absolute(const bounding_box& box) const {
     if (!(relative >= 0.0) || !std::isfinite(relative))
       throw error(error_category::invalid_input,
-                  "tolerance: relative tolerance must be finite and >= 0, got " + std::to_string(relative));
+                  cellforge::detail::cat("tolerance: relative tolerance must be finite and >= 0, got ",
+                                         std::to_string(relative)));
     const double d = box.diagonal();
     if (!std::isfinite(d))
       throw error(error_category::invalid_input,

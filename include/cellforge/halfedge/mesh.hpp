@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cellforge/core/detail/edge_table.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/halfedge/circulators.hpp"
 #include "cellforge/halfedge/handles.hpp"
@@ -584,8 +585,9 @@ class basic_halfedge_mesh {
 
   void check_vertex(vertex_handle v, const char* what) const {
     if (!is_valid(v))
-      throw error(error_category::invalid_input, std::string(what) + ": vertex " + std::to_string(v.idx()) +
-                                                     " does not exist or was removed");
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat(std::string(what), ": vertex ", std::to_string(v.idx()),
+                                         " does not exist or was removed"));
   }
   std::uint32_t new_edge() {
     he_.emplace_back();

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cellforge/core/detail/large_array.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 
 namespace cellforge {
@@ -138,7 +139,7 @@ class basic_property_registry {
   property_array<T>* add(std::string_view name, T default_value) {
     if (find(name) != nullptr)
       throw error(error_category::invalid_input,
-                  "a property named '" + std::string(name) + "' already exists");
+                  cellforge::detail::cat("a property named '", std::string(name), "' already exists"));
     auto* raw = new property_array<T>(std::string(name), std::move(default_value));
     owned_array a(raw);
     raw->resize(size_);
@@ -152,9 +153,9 @@ class basic_property_registry {
     property_array_base* a = find(name);
     if (a == nullptr) return nullptr;
     if (a->type() != typeid(T))
-      throw error(error_category::invalid_input, "property '" + std::string(name) +
-                                                     "' exists with another type (" + a->type().name() +
-                                                     "), not " + typeid(T).name());
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat("property '", std::string(name), "' exists with another type (",
+                                         a->type().name(), "), not ", typeid(T).name()));
     return static_cast<property_array<T>*>(a);
   }
 
@@ -169,9 +170,9 @@ class basic_property_registry {
     auto it = std::find_if(arrays_.begin(), arrays_.end(), [&](const auto& p) { return p.get() == a; });
     if (it == arrays_.end()) return false;
     if ((*it)->pinned())
-      throw error(
-          error_category::invalid_input,
-          "property '" + (*it)->name() + "' holds the positions of a surface_mesh and cannot be removed");
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat("property '", (*it)->name(),
+                                         "' holds the positions of a surface_mesh and cannot be removed"));
     arrays_.erase(it);
     return true;
   }

@@ -25,6 +25,7 @@
 #include "cellforge/cells/conversion.hpp"
 #include "cellforge/core/bounding_box.hpp"
 #include "cellforge/core/detail/span_of.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/polygon_soup.hpp"
 #include "cellforge/io/detail/output_buffer.hpp"
@@ -195,10 +196,13 @@ class basic_cells_line {
   [[noreturn]] void fail(const std::string& msg) const {
     throw error(error_category::io, msg, source_location{std::string(file_), line_});
   }
-  std::string found() const { return done() ? "end of line" : "'" + std::string(tokens_[next_]) + "'"; }
+  std::string found() const {
+    return done() ? "end of line" : cellforge::detail::cat("'", std::string(tokens_[next_]), "'");
+  }
 
   void keyword(std::string_view k, const cells_label& context) {
-    if (peek() != k) fail("expected '" + std::string(k) + "' " + context.str() + ", found " + found());
+    if (peek() != k)
+      fail(cellforge::detail::cat("expected '", std::string(k), "' ", context.str(), ", found ", found()));
     ++next_;
   }
   std::uint64_t index(const cells_label& what, std::uint64_t limit) {
@@ -206,7 +210,7 @@ class basic_cells_line {
     std::uint64_t v = 0;
     const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
     if (t.empty() || r.ec != std::errc() || r.ptr != t.data() + t.size())
-      fail("expected " + what.str() + " (a non-negative integer), found " + found());
+      fail(cellforge::detail::cat("expected ", what.str(), " (a non-negative integer), found ", found()));
     if (v >= limit) fail(what.str() + " " + std::string(t) + " " + range(limit));
     ++next_;
     return v;
@@ -217,7 +221,7 @@ class basic_cells_line {
     double v = 0;
     const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
     if (t.empty() || r.ec != std::errc() || r.ptr != t.data() + t.size())
-      fail("expected " + what.str() + " (a number), found " + found());
+      fail(cellforge::detail::cat("expected ", what.str(), " (a number), found ", found()));
     if (!std::isfinite(v)) fail(what.str() + " '" + std::string(t) + "' is not finite");
     ++next_;
     return v;
@@ -226,12 +230,14 @@ class basic_cells_line {
   std::pair<std::uint32_t, int> signed_index(const cells_label& what, std::uint64_t limit) {
     const std::string_view t = peek();
     if (t.size() < 2 || (t[0] != '+' && t[0] != '-'))
-      fail("expected " + what.str() + " with its sign (like +3 or -3), found " + found());
+      fail(
+          cellforge::detail::cat("expected ", what.str(), " with its sign (like +3 or -3), found ", found()));
     const int sign = t[0] == '+' ? 1 : -1;
     std::uint64_t v = 0;
     const auto r = std::from_chars(t.data() + 1, t.data() + t.size(), v);
     if (r.ec != std::errc() || r.ptr != t.data() + t.size())
-      fail("expected " + what.str() + " with its sign (like +3 or -3), found " + found());
+      fail(
+          cellforge::detail::cat("expected ", what.str(), " with its sign (like +3 or -3), found ", found()));
     if (v >= limit) fail(what.str() + " " + std::string(t) + " " + range(limit));
     ++next_;
     return {static_cast<std::uint32_t>(v), sign};
@@ -248,13 +254,13 @@ class basic_cells_line {
     return out;
   }
   void finish(const cells_label& element) const {
-    if (!done()) fail("unexpected " + found() + " at the end of " + element.str());
+    if (!done()) fail(cellforge::detail::cat("unexpected ", found(), " at the end of ", element.str()));
   }
 
  private:
   static std::string range(std::uint64_t limit) {
     return limit == 0 ? "out of range (there are none)"
-                      : "out of range (0.." + std::to_string(limit - 1) + ")";
+                      : cellforge::detail::cat("out of range (0..", std::to_string(limit - 1), ")");
   }
   static bool is_word(std::string_view t) {
     return !t.empty() && ((t[0] >= 'a' && t[0] <= 'z') || (t[0] >= 'A' && t[0] <= 'Z'));
@@ -287,7 +293,8 @@ class basic_cells_lines {
       if (pos_ < text_.size() && text_[pos_] == '\n') ++pos_;  // "\n" alone or after "\r"
       if (!l.empty()) return l;
     }
-    throw error(error_category::io, "expected " + expected.str() + ", found end of file",
+    throw error(error_category::io,
+                cellforge::detail::cat("expected ", expected.str(), ", found end of file"),
                 source_location{std::string(file_), std::max<std::uint64_t>(line_, 1)});
   }
   bool at_end() {
@@ -358,7 +365,8 @@ cell_complex<glm::dvec3> parse_3dcl_dvec3(std::string_view text, std::string_vie
   {
     auto l = lines.next("the header '3dcl 1'");
     l.keyword("3dcl", "at the start of the file (the header '3dcl 1')");
-    if (l.peek() != "1") l.fail("unsupported 3dcl version " + l.found() + "; this reader knows version 1");
+    if (l.peek() != "1")
+      l.fail(cellforge::detail::cat("unsupported 3dcl version ", l.found(), "; this reader knows version 1"));
     (void)l.index("the version", 2);
     l.finish("the header");
   }
@@ -370,21 +378,24 @@ cell_complex<glm::dvec3> parse_3dcl_dvec3(std::string_view text, std::string_vie
 
   auto section = [&](std::string_view keyword) {
     const std::string k(keyword);
-    auto l = lines.next(detail::cells_label("'" + k + " <count>'"));
-    l.keyword(keyword, detail::cells_label("(the section '" + k + " <count>')"));
-    const std::uint64_t n = l.index(detail::cells_label("the number of " + k), max + 1);
+    auto l = lines.next(detail::cells_label(cellforge::detail::cat("'", k, " <count>'")));
+    l.keyword(keyword, detail::cells_label(cellforge::detail::cat("(the section '", k, " <count>')")));
+    const std::uint64_t n =
+        l.index(detail::cells_label(cellforge::detail::cat("the number of ", k)), max + 1);
     l.finish("the section header");
     return static_cast<std::size_t>(n);
   };
   // `what` ends in a space: "vertex ", "edge ", ...
   auto element = [&](std::string_view tag, std::string_view what, std::size_t i, std::size_t n) {
     auto l = lines.next({what, i, " of ", n});
-    l.keyword(tag, {"at the start of " + std::string(what), i, " (there are ", n, ")"});
+    l.keyword(tag,
+              {cellforge::detail::cat("at the start of ", std::string(what)), i, " (there are ", n, ")"});
     const std::string_view t = l.peek();
     std::uint64_t got = 0;
     const auto r = std::from_chars(t.data(), t.data() + t.size(), got);
     if (t.empty() || r.ec != std::errc() || r.ptr != t.data() + t.size() || got != i)
-      l.fail("expected " + std::string(what) + "number " + std::to_string(i) + ", found " + l.found());
+      l.fail(cellforge::detail::cat("expected ", std::string(what), "number ", std::to_string(i), ", found ",
+                                    l.found()));
     (void)l.index(what, max + 1);
     return l;
   };
@@ -435,7 +446,7 @@ cell_complex<glm::dvec3> parse_3dcl_dvec3(std::string_view text, std::string_vie
       l.keyword("edges", {"after the vertices of a loop of face ", i});
       loop_edges.back().push_back(l.signed_list({"an edge of face ", i}, ne));
     }
-    if (face.loops.empty()) l.fail("face " + std::to_string(i) + " has no 'loop'");
+    if (face.loops.empty()) l.fail(cellforge::detail::cat("face ", std::to_string(i), " has no 'loop'"));
     in.faces.push_back(std::move(face));
     at[2].push_back(l.line());
   }
@@ -476,26 +487,31 @@ cell_complex<glm::dvec3> parse_3dcl_dvec3(std::string_view text, std::string_vie
   };
   for (cell_vertex v : cc.vertices())
     if (!same(cc.vertex_edges(v), vertex_edges[v.idx()]))
-      mismatch(at[0][v.idx()], "vertex " + std::to_string(v.idx()) +
-                                   ": the listed edges are not those at it, with their directions");
+      mismatch(at[0][v.idx()],
+               cellforge::detail::cat("vertex ", std::to_string(v.idx()),
+                                      ": the listed edges are not those at it, with their directions"));
   for (cell_edge e : cc.edges()) {
     if (!same(cc.edge_faces(e), edge_faces[e.idx()]))
-      mismatch(at[1][e.idx()], "edge " + std::to_string(e.idx()) +
-                                   ": the listed faces are not those at it in right-hand rotation order");
+      mismatch(at[1][e.idx()],
+               cellforge::detail::cat("edge ", std::to_string(e.idx()),
+                                      ": the listed faces are not those at it in right-hand rotation order"));
     const auto w = cc.edge_wedges(e);
     if (!std::equal(w.begin(), w.end(), edge_wedges[e.idx()].begin(), edge_wedges[e.idx()].end(),
                     [](cell_volume c, std::uint32_t i) { return c.idx() == i; }))
       mismatch(at[1][e.idx()],
-               "edge " + std::to_string(e.idx()) + ": the listed volumes are not those between its faces");
+               cellforge::detail::cat("edge ", std::to_string(e.idx()),
+                                      ": the listed volumes are not those between its faces"));
   }
   for (cell_face f : cc.faces()) {
     if (!same(cc.face_volumes(f), face_volumes[f.idx()]))
-      mismatch(at[2][f.idx()], "face " + std::to_string(f.idx()) +
-                                   ": the listed volumes are not the face's, with their signs");
+      mismatch(at[2][f.idx()],
+               cellforge::detail::cat("face ", std::to_string(f.idx()),
+                                      ": the listed volumes are not the face's, with their signs"));
     for (std::size_t k = 0; k < cc.num_loops(f); ++k)
       if (!same(cc.loop_edges(f, k), loop_edges[f.idx()][k]))
-        mismatch(at[2][f.idx()], "face " + std::to_string(f.idx()) + ": loop " + std::to_string(k) +
-                                     " lists edges that do not join its vertices in order");
+        mismatch(at[2][f.idx()],
+                 cellforge::detail::cat("face ", std::to_string(f.idx()), ": loop ", std::to_string(k),
+                                        " lists edges that do not join its vertices in order"));
   }
   return cc;
 }
@@ -541,13 +557,13 @@ obj_data<glm::dvec3> cells_obj_faces(const cell_topology& cc, std::span<const gl
       for (cell_vertex v : cc.loop_vertices(f, l)) loops[l].push_back(pts[v.idx()]), flat.push_back(v.idx());
     for (const auto& t : cellforge::detail::cells::triangulate_face(
              loops, cellforge::detail::cells::access::unit_normal(cc, f),
-             "cells obj: face " + std::to_string(f.idx())))
+             cellforge::detail::cat("cells obj: face ", std::to_string(f.idx()))))
       data.soup.add_face(sign < 0 ? std::initializer_list<std::uint32_t>{flat[t[0]], flat[t[2]], flat[t[1]]}
                                   : std::initializer_list<std::uint32_t>{flat[t[0]], flat[t[1]], flat[t[2]]});
   };
   for (cell_volume c : cc.volumes()) {
-    data.groups.push_back(
-        {"volume_" + std::to_string(c.idx()), static_cast<std::uint32_t>(data.soup.num_faces())});
+    data.groups.push_back({cellforge::detail::cat("volume_", std::to_string(c.idx())),
+                           static_cast<std::uint32_t>(data.soup.num_faces())});
     for (const auto& [f, sign] : cc.volume_faces(c)) add(f, sign);
   }
   // Faces of no volume (an open surface), as they are oriented, in a group of their own.
@@ -628,12 +644,12 @@ void write_cells_ply(std::ostream& os, const obj_data<glm::dvec3>& data) {
   for (std::size_t f = 0; f < data.soup.num_faces(); ++f)
     largest = std::max(largest, data.soup.face(f).size());
   const char* count_type = largest <= 0xFF ? "uchar" : largest <= 0xFFFF ? "ushort" : "uint";
-  std::string out =
-      "ply\nformat ascii 1.0\ncomment 3DCL faces coloured by volume (cellforge)\nelement vertex " +
-      std::to_string(data.soup.points.size()) +
-      "\nproperty double x\nproperty double y\nproperty double z\nelement face " +
-      std::to_string(data.soup.num_faces()) + "\nproperty list " + count_type +
-      " int vertex_indices\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
+  std::string out = cellforge::detail::cat(
+      "ply\nformat ascii 1.0\ncomment 3DCL faces coloured by volume (cellforge)\nelement vertex ",
+      std::to_string(data.soup.points.size()),
+      "\nproperty double x\nproperty double y\nproperty double z\nelement face ",
+      std::to_string(data.soup.num_faces()), "\nproperty list ", count_type,
+      " int vertex_indices\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n");
   for (const glm::dvec3& p : data.soup.points) {
     for (int k = 0; k < 3; ++k) detail::put_double(out, p[k]), out += k < 2 ? ' ' : '\n';
   }

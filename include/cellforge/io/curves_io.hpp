@@ -25,6 +25,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
@@ -79,7 +80,8 @@ template <class = void>
 void check_segments(int segments, const char* who) {
   if (segments < 1 || segments > 10000)
     throw error(error_category::invalid_input,
-                std::string(who) + ": segments must be within 1 .. 10000, got " + std::to_string(segments));
+                cellforge::detail::cat(std::string(who), ": segments must be within 1 .. 10000, got ",
+                                       std::to_string(segments)));
 }
 
 /// Throws invalid_input unless curve i can be written so that its reader accepts it. O(1).
@@ -87,10 +89,11 @@ template <Point3 P>
 void check_curve(const edge_curve<P>& c, std::size_t i, const char* who) {
   const auto bad = [&](const std::string& what) {
     throw error(error_category::invalid_input,
-                std::string(who) + ": curve " + std::to_string(i) + " " + what);
+                cellforge::detail::cat(std::string(who), ": curve ", std::to_string(i), " ", what));
   };
   if (c.has_axis_form) {
-    if (c.axis < 0 || c.axis > 2) bad("has axis " + std::to_string(c.axis) + " (expected 0, 1 or 2)");
+    if (c.axis < 0 || c.axis > 2)
+      bad(cellforge::detail::cat("has axis ", std::to_string(c.axis), " (expected 0, 1 or 2)"));
     if (!std::isfinite(c.limits[0]) || !std::isfinite(c.limits[1])) bad("has a non-finite limit");
     if (c.limits[0] == c.limits[1]) bad("has equal limits (a curve must run along its axis)");
     for (const auto& row : c.coefficients)
@@ -134,16 +137,17 @@ void read_number_list(text_cursor& c, std::vector<double>& values, std::size_t m
     if (c.at_line_end()) return c.pos == c.end ? "end of file" : "end of line";
     const char* q = c.pos;
     while (q != c.end && *q != ',' && !is_blank(*q) && !is_eol(*q) && q - c.pos < 32) ++q;
-    return "'" + std::string(c.pos, q) + "'";
+    return cellforge::detail::cat("'", std::string(c.pos, q), "'");
   };
   for (;;) {
     c.skip_blanks();
     if (values.size() == max_values)
-      c.fail("too many values: expected at most " + std::to_string(max_values));
+      c.fail(cellforge::detail::cat("too many values: expected at most ", std::to_string(max_values)));
     const char* start = c.pos;
     double v = 0;
     const parse_status s = c.at_line_end() ? parse_status::bad : parse_number(c.pos, c.end, v);
-    if (s == parse_status::bad) c.fail("expected " + what(values.size()) + ", found " + token());
+    if (s == parse_status::bad)
+      c.fail(cellforge::detail::cat("expected ", what(values.size()), ", found ", token()));
     if (s == parse_status::out_of_range) {
       c.pos = start;
       c.fail(what(values.size()) + " " + token() + " is out of range");
@@ -157,7 +161,8 @@ void read_number_list(text_cursor& c, std::vector<double>& values, std::size_t m
     c.skip_blanks();
     if (c.at_line_end()) return;
     if (*c.pos != ',')
-      c.fail("expected ',' or the end of the line after " + what(values.size() - 1) + ", found " + token());
+      c.fail(cellforge::detail::cat("expected ',' or the end of the line after ", what(values.size() - 1),
+                                    ", found ", token()));
     ++c.pos;
   }
 }
@@ -167,8 +172,10 @@ template <class = void>
 std::string curve_value_name(std::size_t i, int axis) {
   static constexpr const char* axis_names[] = {"the axis", "the limit at the start", "the limit at the end"};
   if (i < 3 && (i == 0 || axis < 3)) return axis_names[i];
-  if (axis < 3) return "coefficient " + std::string(1, static_cast<char>('a' + (i - 3)));
-  return "Bezier coordinate " + std::string(1, "xyz"[(i - 1) % 3]) + std::to_string((i - 1) / 3);
+  if (axis < 3)
+    return cellforge::detail::cat("coefficient ", std::string(1, static_cast<char>('a' + (i - 3))));
+  return cellforge::detail::cat("Bezier coordinate ", std::string(1, "xyz"[(i - 1) % 3]),
+                                std::to_string((i - 1) / 3));
 }
 
 }  // namespace detail
@@ -222,24 +229,28 @@ std::vector<edge_curve<glm::dvec3>> parse_curves(std::string_view text, std::str
           if (!(a == 0.0 || a == 1.0 || a == 2.0 || a == 3.0)) {
             std::string found;
             put_curve_number(found, a);
-            c.fail_at(at, "the axis must be 0, 1 or 2 (x, y, z) or 3 (Bezier points), found " + found);
+            c.fail_at(at, cellforge::detail::cat(
+                              "the axis must be 0, 1 or 2 (x, y, z) or 3 (Bezier points), found ", found));
           }
           axis = static_cast<int>(a);
         });
     const std::size_t expected = axis == 3 ? 13 : 11;
     if (v.size() != expected)
-      c.fail_at(line, axis == 3
-                          ? "a Bezier curve (axis 3) needs 13 values (3, then x y z of 4 points), found " +
-                                std::to_string(v.size())
-                          : "a curve on axis " + std::to_string(axis) +
-                                " needs 11 values (axis, two limits, 8 coefficients), found " +
-                                std::to_string(v.size()));
+      c.fail_at(line,
+                axis == 3
+                    ? cellforge::detail::cat(
+                          "a Bezier curve (axis 3) needs 13 values (3, then x y z of 4 points), found ",
+                          std::to_string(v.size()))
+                    : cellforge::detail::cat("a curve on axis ", std::to_string(axis),
+                                             " needs 11 values (axis, two limits, 8 coefficients), found ",
+                                             std::to_string(v.size())));
     edge_curve<glm::dvec3> curve;
     if (axis < 3) {
       if (v[1] == v[2]) {
         std::string lim;
         put_curve_number(lim, v[1]);
-        c.fail_at(line, "the limits are equal (both " + lim + "): a curve must run along its axis");
+        c.fail_at(line, cellforge::detail::cat("the limits are equal (both ", lim,
+                                               "): a curve must run along its axis"));
       }
       std::array<std::array<double, 4>, 2> k{};
       for (int i = 0; i < 8; ++i) k[i / 4][i % 4] = v[3 + i];
@@ -318,7 +329,8 @@ std::string polyline_file_text(const R& polylines, const curve_write_options& op
     const auto& pl = polylines[i];
     if (std::ranges::size(pl) < 2)
       throw error(error_category::invalid_input,
-                  "write_polyline_file: polyline " + std::to_string(i) + " has fewer than 2 points");
+                  cellforge::detail::cat("write_polyline_file: polyline ", std::to_string(i),
+                                         " has fewer than 2 points"));
     bool first = true;
     for (const auto& p : pl) {
       detail::check_point_finite(p, i, "polyline_file");
@@ -359,12 +371,14 @@ std::vector<std::vector<glm::dvec3>> parse_polylines(std::string_view text, std:
     read_number_list(
         c, v, std::size_t{3} << 24,
         [](std::size_t i) {
-          return "coordinate " + std::string(1, "xyz"[i % 3]) + " of point " + std::to_string(i / 3);
+          return cellforge::detail::cat("coordinate ", std::string(1, "xyz"[i % 3]), " of point ",
+                                        std::to_string(i / 3));
         },
         [](std::size_t, double, const char*) {});
     if (v.size() % 3 != 0 || v.size() < 6)
-      c.fail_at(line, "a polyline needs x, y, z of at least 2 points (a multiple of 3 values), found " +
-                          std::to_string(v.size()) + " values");
+      c.fail_at(line, cellforge::detail::cat(
+                          "a polyline needs x, y, z of at least 2 points (a multiple of 3 values), found ",
+                          std::to_string(v.size()), " values"));
     std::vector<glm::dvec3>& pl = out.emplace_back();
     for (std::size_t i = 0; i < v.size(); i += 3) pl.emplace_back(v[i], v[i + 1], v[i + 2]);
     c.next_line();
@@ -412,7 +426,8 @@ void write_polylines_obj(std::ostream& os, const R& polylines, bool closed = fal
   for (std::size_t i = 0; i < std::ranges::size(polylines); ++i) {
     if (std::ranges::size(polylines[i]) < 2)
       throw error(error_category::invalid_input,
-                  "write_polylines_obj: polyline " + std::to_string(i) + " has fewer than 2 points");
+                  cellforge::detail::cat("write_polylines_obj: polyline ", std::to_string(i),
+                                         " has fewer than 2 points"));
     for (const auto& p : polylines[i]) detail::check_point_finite(p, i, "polylines_obj");
   }
   detail::output_buffer out(os);
@@ -518,7 +533,7 @@ template <class = void>
 void check_curves_svg(const svg_options& o, const char* who) {
   if (!(o.width > 0 && o.height > 0))
     throw error(error_category::invalid_input,
-                std::string(who) + ": picture width and height must be positive");
+                cellforge::detail::cat(std::string(who), ": picture width and height must be positive"));
 }
 
 }  // namespace detail
@@ -644,7 +659,9 @@ svg_result write_smoothing_svg(const file_path& path, const polygon_soup<P>& sol
     const glm::dvec3 at = top_point - right * (glm::dot(top_point, right) - lo) + up * (0.08 * width);
     scene.add_label(at, "straight edges", text);
     text.offset = shift;
-    scene.add_label(at, "smoothed edges (" + std::to_string(std::ranges::size(curves)) + " curves)", text);
+    scene.add_label(
+        at, cellforge::detail::cat("smoothed edges (", std::to_string(std::ranges::size(curves)), " curves)"),
+        text);
   }
   return scene.write(path, options.picture);
 }

@@ -22,6 +22,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/io/detail/arc_io.hpp"
@@ -96,13 +97,14 @@ std::string drawing_svg_picture(const D& d, const std::vector<std::vector<std::u
     const glm::dvec2 p = to_dvec2(P(T::position(d, i)));
     if (!std::isfinite(p.x) || !std::isfinite(p.y))
       throw error(error_category::invalid_input,
-                  "drawing_svg: junction " + std::to_string(i) + " is not finite");
+                  cellforge::detail::cat("drawing_svg: junction ", std::to_string(i), " is not finite"));
     pts[i] = {p.x, -p.y};  // SVG's y points down
   }
   const auto check = [&](std::size_t v, const std::string& where) {
     if (v >= nv)
-      throw error(error_category::invalid_input, "drawing_svg: " + where + " names junction " +
-                                                     std::to_string(v) + " of " + std::to_string(nv));
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat("drawing_svg: ", where, " names junction ", std::to_string(v),
+                                         " of ", std::to_string(nv)));
   };
   glm::dvec2 lo{0, 0}, hi{1, 1};
   if (nv > 0) {
@@ -158,15 +160,15 @@ std::string drawing_svg_picture(const D& d, const std::vector<std::vector<std::u
     out += ">\n";
     for (std::size_t f = 0; f < faces.size(); ++f) {
       if (faces[f].size() < 3) continue;
-      out += "<path fill=\"" + detail::golden_colour(f) + "\" d=\"";
+      out += cellforge::detail::cat("<path fill=\"", detail::golden_colour(f), "\" d=\"");
       for (std::size_t k = 0; k < faces[f].size(); ++k) {
-        check(faces[f][k], "face loop " + std::to_string(f));
+        check(faces[f][k], cellforge::detail::cat("face loop ", std::to_string(f)));
         out += k == 0 ? "M" : " L";
         num(pts[faces[f][k]].x);
         out += ' ';
         num(pts[faces[f][k]].y);
       }
-      out += " Z\"><title>face loop " + std::to_string(f) + "</title></path>\n";
+      out += cellforge::detail::cat(" Z\"><title>face loop ", std::to_string(f), "</title></path>\n");
     }
     out += "</g>\n";
   }
@@ -177,8 +179,8 @@ std::string drawing_svg_picture(const D& d, const std::vector<std::vector<std::u
   out += ">\n";
   for (std::size_t e = 0; e < ne; ++e) {
     const std::array<std::size_t, 2> ab = T::endpoints(d, e);
-    check(ab[0], "edge " + std::to_string(e));
-    check(ab[1], "edge " + std::to_string(e));
+    check(ab[0], cellforge::detail::cat("edge ", std::to_string(e)));
+    check(ab[1], cellforge::detail::cat("edge ", std::to_string(e)));
     out += "<line";
     attr("x1", pts[ab[0]].x);
     attr("y1", pts[ab[0]].y);
@@ -211,7 +213,7 @@ std::string drawing_svg_picture(const D& d, const std::vector<std::vector<std::u
       out += "<text";
       attr("x", pts[i].x + 1.5 * options.dot_px * px);
       attr("y", pts[i].y - 1.5 * options.dot_px * px);
-      out += ">" + std::to_string(i) + "</text>\n";
+      out += cellforge::detail::cat(">", std::to_string(i), "</text>\n");
     }
     out += "</g>\n";
   }
@@ -243,11 +245,11 @@ std::string arc_drawing_svg_string(const arc_drawing<P>& d,
                                    const drawing_svg_options& options = {},
                                    const std::vector<std::size_t>& arc_colour = {}) {
   if (const arc_validation v = validate_arcs(d); !v)
-    throw error(error_category::invalid_input, "arc_drawing_svg: " + v.message);
+    throw error(error_category::invalid_input, cellforge::detail::cat("arc_drawing_svg: ", v.message));
   if (!arc_colour.empty() && arc_colour.size() != d.arcs.size())
-    throw error(error_category::invalid_input, "arc_drawing_svg: " + std::to_string(arc_colour.size()) +
-                                                   " arc colours for " + std::to_string(d.arcs.size()) +
-                                                   " arcs");
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat("arc_drawing_svg: ", std::to_string(arc_colour.size()),
+                                       " arc colours for ", std::to_string(d.arcs.size()), " arcs"));
   std::vector<glm::dvec2> extent;
   for (const drawing_arc<P>& a : d.arcs)
     for (int k = 0; k <= 16; ++k) {
@@ -261,7 +263,8 @@ std::string arc_drawing_svg_string(const arc_drawing<P>& d,
           const drawing_arc<P>& a = d.arcs[k];
           const elliptical_arc<P>& c = a.curve;
           out += "<path";
-          if (!arc_colour.empty()) out += " stroke=\"" + detail::golden_colour(arc_colour[k]) + "\"";
+          if (!arc_colour.empty())
+            out += cellforge::detail::cat(" stroke=\"", detail::golden_colour(arc_colour[k]), "\"");
           out += " d=\"M";
           num(pts[a.ends[0]].x);
           out += ' ';
@@ -278,7 +281,7 @@ std::string arc_drawing_svg_string(const arc_drawing<P>& d,
           num(pts[a.ends[1]].x);
           out += ' ';
           num(pts[a.ends[1]].y);
-          out += "\"><title>arc " + std::to_string(k) + "</title></path>\n";
+          out += cellforge::detail::cat("\"><title>arc ", std::to_string(k), "</title></path>\n");
         }
       });
 }

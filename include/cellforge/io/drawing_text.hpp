@@ -19,6 +19,7 @@
 
 #include <glm/vec2.hpp>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/io/detail/arc_io.hpp"
@@ -67,14 +68,14 @@ arc_drawing<P2> parse_drawing_text_statements(std::string_view text, std::string
     if (key == "j") {
       const std::size_t i = d.points.size();
       if (i >= limit - 1) c.fail_at(line, "too many junctions for 32-bit indices");
-      const S x =
-          c.coordinate<S>([&] { return "coordinate x of junction " + std::to_string(i) + " (j x y)"; });
-      const S y =
-          c.coordinate<S>([&] { return "coordinate y of junction " + std::to_string(i) + " (j x y)"; });
+      const S x = c.coordinate<S>(
+          [&] { return cellforge::detail::cat("coordinate x of junction ", std::to_string(i), " (j x y)"); });
+      const S y = c.coordinate<S>(
+          [&] { return cellforge::detail::cat("coordinate y of junction ", std::to_string(i), " (j x y)"); });
       c.skip_blanks();
       if (!c.at_line_end())
-        c.fail("unexpected " + c.token() + " after the 2 coordinates of junction " + std::to_string(i) +
-               " (j x y)");
+        c.fail(cellforge::detail::cat("unexpected ", c.token(), " after the 2 coordinates of junction ",
+                                      std::to_string(i), " (j x y)"));
       d.points.push_back(point2_traits<P2>::make(x, y));
     } else if (key == "e") {
       const std::size_t e = raw.size();
@@ -84,20 +85,20 @@ arc_drawing<P2> parse_drawing_text_statements(std::string_view text, std::string
         c.skip_blanks();
         const char* at = c.pos;
         ab[k] = c.integer([&] {
-          return std::string(k == 0 ? "the first" : "the second") + " junction index of edge " +
-                 std::to_string(e) + " (e a b)";
+          return cellforge::detail::cat(std::string(k == 0 ? "the first" : "the second"),
+                                        " junction index of edge ", std::to_string(e), " (e a b)");
         });
         if (ab[k] < 0)
-          c.fail_at(at, "junction index " + std::to_string(ab[k]) + " of edge " + std::to_string(e) +
-                            " is negative (indices are 0-based)");
+          c.fail_at(at, cellforge::detail::cat("junction index ", std::to_string(ab[k]), " of edge ",
+                                               std::to_string(e), " is negative (indices are 0-based)"));
       }
       c.skip_blanks();
       if (!c.at_line_end())
-        c.fail("unexpected " + c.token() + " after the 2 junction indices of edge " + std::to_string(e) +
-               " (e a b)");
+        c.fail(cellforge::detail::cat("unexpected ", c.token(), " after the 2 junction indices of edge ",
+                                      std::to_string(e), " (e a b)"));
       if (ab[0] == ab[1])
-        c.fail_at(line,
-                  "edge " + std::to_string(e) + " joins junction " + std::to_string(ab[0]) + " to itself");
+        c.fail_at(line, cellforge::detail::cat("edge ", std::to_string(e), " joins junction ",
+                                               std::to_string(ab[0]), " to itself"));
       raw.push_back(ab);
       edge_lines.push_back(line);
     } else if (key == "a" && !arcs) {
@@ -107,51 +108,61 @@ arc_drawing<P2> parse_drawing_text_statements(std::string_view text, std::string
     } else if (key == "a") {
       const std::size_t k = raw_arcs.size();
       if (k >= limit - 1) c.fail_at(line, "too many arcs");
-      const std::string form = " of arc " + std::to_string(k) + " (a i j rx ry rotation large ccw)";
+      const std::string form =
+          cellforge::detail::cat(" of arc ", std::to_string(k), " (a i j rx ry rotation large ccw)");
       text_arc t;
       t.line = line;
       for (int m = 0; m < 2; ++m) {
         c.skip_blanks();
         const char* at = c.pos;
-        t.ends[m] = c.integer(
-            [&] { return std::string(m == 0 ? "the first" : "the second") + " junction index" + form; });
+        t.ends[m] = c.integer([&] {
+          return cellforge::detail::cat(std::string(m == 0 ? "the first" : "the second"), " junction index",
+                                        form);
+        });
         if (t.ends[m] < 0)
-          c.fail_at(at, "junction index " + std::to_string(t.ends[m]) + form +
-                            " is negative (indices are 0-based)");
+          c.fail_at(at, cellforge::detail::cat("junction index ", std::to_string(t.ends[m]), form,
+                                               " is negative (indices are 0-based)"));
       }
       for (int m = 0; m < 2; ++m) {
         c.skip_blanks();
         const char* at = c.pos;
         const char* axis = m == 0 ? "rx" : "ry";
-        const double r = c.coordinate<double>([&] { return std::string("the radius ") + axis + form; });
+        const double r = c.coordinate<double>(
+            [&] { return cellforge::detail::cat(std::string("the radius "), axis, form); });
         if (!(r > 0))
           c.fail_at(at,
-                    std::string("the radius ") + axis + form + " is " + cellforge::detail::drawing_number(r) +
-                        ": radii must be > 0 (a zero radius is a corner: draw the two lines meeting there)");
+                    cellforge::detail::cat(
+                        std::string("the radius "), axis, form, " is ", cellforge::detail::drawing_number(r),
+                        ": radii must be > 0 (a zero radius is a corner: draw the two lines meeting there)"));
         (m == 0 ? t.rx : t.ry) = r;
       }
-      t.degrees = c.coordinate<double>([&] { return "the rotation in degrees" + form; });
+      t.degrees =
+          c.coordinate<double>([&] { return cellforge::detail::cat("the rotation in degrees", form); });
       for (int m = 0; m < 2; ++m) {
         c.skip_blanks();
         const char* at = c.pos;
         const char* flag = m == 0 ? "the large-arc flag" : "the ccw flag";
         const std::int64_t f = c.integer([&] { return flag + std::string(" (0 or 1)") + form; });
         if (f != 0 && f != 1)
-          c.fail_at(at, std::string(flag) + form + " is " + std::to_string(f) + ": expected 0 or 1");
+          c.fail_at(at, cellforge::detail::cat(std::string(flag), form, " is ", std::to_string(f),
+                                               ": expected 0 or 1"));
         (m == 0 ? t.large : t.ccw) = f == 1;
       }
       c.skip_blanks();
-      if (!c.at_line_end()) c.fail("unexpected " + c.token() + " after the 7 values" + form);
+      if (!c.at_line_end())
+        c.fail(cellforge::detail::cat("unexpected ", c.token(), " after the 7 values", form));
       if (t.ends[0] == t.ends[1])
-        c.fail_at(line,
-                  "arc " + std::to_string(k) + " starts and ends at junction " + std::to_string(t.ends[0]) +
-                      ": a closed curve is no round or fillet (draw it as two arcs with a junction between)");
+        c.fail_at(
+            line,
+            cellforge::detail::cat(
+                "arc ", std::to_string(k), " starts and ends at junction ", std::to_string(t.ends[0]),
+                ": a closed curve is no round or fillet (draw it as two arcs with a junction between)"));
       raw_arcs.push_back(t);
     } else {
       c.pos = q;
-      c.fail(std::string("expected 'j x y' (a junction), 'e a b' (an edge)") +
-             (arcs ? ", 'a i j rx ry rotation large ccw' (an arc)" : "") + " or a '#' comment, found " +
-             c.token());
+      c.fail(cellforge::detail::cat(std::string("expected 'j x y' (a junction), 'e a b' (an edge)"),
+                                    (arcs ? ", 'a i j rx ry rotation large ccw' (an arc)" : ""),
+                                    " or a '#' comment, found ", c.token()));
     }
     c.next_line();
   }
@@ -160,9 +171,10 @@ arc_drawing<P2> parse_drawing_text_statements(std::string_view text, std::string
   for (std::size_t e = 0; e < raw.size(); ++e) {
     for (const std::int64_t v : raw[e])
       if (static_cast<std::uint64_t>(v) >= nv)
-        c.fail_at(edge_lines[e], "junction index " + std::to_string(v) + " of edge " + std::to_string(e) +
-                                     " out of range (" + std::to_string(nv) +
-                                     " junctions; indices are 0-based)");
+        c.fail_at(edge_lines[e],
+                  cellforge::detail::cat("junction index ", std::to_string(v), " of edge ", std::to_string(e),
+                                         " out of range (", std::to_string(nv),
+                                         " junctions; indices are 0-based)"));
     d.edges.push_back({static_cast<std::uint32_t>(raw[e][0]), static_cast<std::uint32_t>(raw[e][1])});
   }
   std::vector<std::array<std::uint32_t, 3>> keys(d.edges.size());
@@ -176,25 +188,27 @@ arc_drawing<P2> parse_drawing_text_statements(std::string_view text, std::string
       later = keys[k][2], earlier = keys[k - 1][2];
   if (later != limit)
     c.fail_at(edge_lines[later],
-              "edge " + std::to_string(later) + " repeats edge " + std::to_string(earlier) + " (line " +
-                  std::to_string(line_of(text, static_cast<std::size_t>(edge_lines[earlier] - text.data()))) +
-                  "; junctions " + std::to_string(d.edges[later][0]) + " and " +
-                  std::to_string(d.edges[later][1]) + ")");
+              cellforge::detail::cat(
+                  "edge ", std::to_string(later), " repeats edge ", std::to_string(earlier), " (line ",
+                  std::to_string(line_of(text, static_cast<std::size_t>(edge_lines[earlier] - text.data()))),
+                  "; junctions ", std::to_string(d.edges[later][0]), " and ",
+                  std::to_string(d.edges[later][1]), ")"));
   result.arcs.reserve(raw_arcs.size());
   for (std::size_t k = 0; k < raw_arcs.size(); ++k) {
     const text_arc& t = raw_arcs[k];
     for (const std::int64_t v : t.ends)
       if (static_cast<std::uint64_t>(v) >= nv)
-        c.fail_at(t.line, "junction index " + std::to_string(v) + " of arc " + std::to_string(k) +
-                              " out of range (" + std::to_string(nv) + " junctions; indices are 0-based)");
+        c.fail_at(t.line, cellforge::detail::cat("junction index ", std::to_string(v), " of arc ",
+                                                 std::to_string(k), " out of range (", std::to_string(nv),
+                                                 " junctions; indices are 0-based)"));
     const std::array<std::uint32_t, 2> ends{static_cast<std::uint32_t>(t.ends[0]),
                                             static_cast<std::uint32_t>(t.ends[1])};
     const P2 from = d.points[ends[0]], to = d.points[ends[1]];
     if (to_dvec2(from) == to_dvec2(to))
-      c.fail_at(t.line, "arc " + std::to_string(k) + " joins junctions " + std::to_string(ends[0]) + " and " +
-                            std::to_string(ends[1]) + ", both at " +
-                            cellforge::detail::drawing_point_text(from) +
-                            ": an arc needs distinct end points");
+      c.fail_at(t.line, cellforge::detail::cat("arc ", std::to_string(k), " joins junctions ",
+                                               std::to_string(ends[0]), " and ", std::to_string(ends[1]),
+                                               ", both at ", cellforge::detail::drawing_point_text(from),
+                                               ": an arc needs distinct end points"));
     result.arcs.push_back(
         {ends, arc_from_endpoints<P2>({from, to, t.rx, t.ry, arc_radians(t.degrees), t.large, t.ccw})});
   }
@@ -248,14 +262,16 @@ namespace detail {
 template <LineDrawing D>
 void check_drawing_writable(const D& d, std::string_view writer) {
   if (line_drawing_traits<D>::num_junctions(d) >= std::numeric_limits<std::uint32_t>::max() - 1)
-    throw error(error_category::invalid_input, std::string(writer) + ": more than 2^32 - 2 junctions");
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat(std::string(writer), ": more than 2^32 - 2 junctions"));
   const drawing_validation v = validate_drawing(d, {.tolerance = 0});
   switch (v.defect) {
     case drawing_defect::bad_position:
     case drawing_defect::endpoint_out_of_range:
     case drawing_defect::self_loop:
     case drawing_defect::duplicate_edge:
-      throw error(error_category::invalid_input, std::string(writer) + ": " + v.message);
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat(std::string(writer), ": ", v.message));
     default:
       return;
   }
@@ -320,9 +336,11 @@ template <Point2 P>
 void check_arc_drawing_writable(const arc_drawing<P>& d, std::string_view writer) {
   check_drawing_writable(d.lines, writer);
   if (d.arcs.size() >= std::numeric_limits<std::uint32_t>::max() - 1)
-    throw error(error_category::invalid_input, std::string(writer) + ": more than 2^32 - 2 arcs");
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat(std::string(writer), ": more than 2^32 - 2 arcs"));
   const arc_validation v = validate_arcs(d);
-  if (!v) throw error(error_category::invalid_input, std::string(writer) + ": " + v.message);
+  if (!v)
+    throw error(error_category::invalid_input, cellforge::detail::cat(std::string(writer), ": ", v.message));
 }
 
 }  // namespace detail

@@ -23,6 +23,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/io/detail/numbers.hpp"
@@ -192,11 +193,12 @@ struct basic_dxf_reader {
       if (parse_number(p, c.data() + c.size(), code) != parse_status::ok || p != c.data() + c.size() ||
           code < 0 || code > 1071)
         fail(at,
-             "a group code (an integer 0 to 1071) expected, found " + shown(c) +
-                 " (group codes and values alternate line by line: a value line missing or doubled above?)");
+             cellforge::detail::cat(
+                 "a group code (an integer 0 to 1071) expected, found ", shown(c),
+                 " (group codes and values alternate line by line: a value line missing or doubled above?)"));
       if (!next_line(value))
-        fail(at, "the file ends after group code " + std::to_string(code) +
-                     " with no value line (truncated, or an odd number of lines)");
+        fail(at, cellforge::detail::cat("the file ends after group code ", std::to_string(code),
+                                        " with no value line (truncated, or an odd number of lines)"));
       if (code == 999) continue;
       groups.push_back({code, trim(value), at});
     }
@@ -209,8 +211,8 @@ struct basic_dxf_reader {
     const char* p = g.value.data();
     const char* end = p + g.value.size();
     if (g.value.empty() || parse_number(p, end, v) != parse_status::ok || p != end || !std::isfinite(v))
-      fail(g.line + 1, std::string(what) + " (group code " + std::to_string(g.code) +
-                           ") is not a finite number: " + shown(g.value));
+      fail(g.line + 1, cellforge::detail::cat(std::string(what), " (group code ", std::to_string(g.code),
+                                              ") is not a finite number: ", shown(g.value)));
     return v;
   }
 
@@ -219,8 +221,8 @@ struct basic_dxf_reader {
     const char* p = g.value.data();
     const char* end = p + g.value.size();
     if (g.value.empty() || parse_number(p, end, v) != parse_status::ok || p != end)
-      fail(g.line + 1, std::string(what) + " (group code " + std::to_string(g.code) +
-                           ") is not an integer: " + shown(g.value));
+      fail(g.line + 1, cellforge::detail::cat(std::string(what), " (group code ", std::to_string(g.code),
+                                              ") is not an integer: ", shown(g.value)));
     return v;
   }
 
@@ -245,9 +247,10 @@ struct basic_dxf_reader {
         break;
       }
       if (g.code != 0 || g.value != "SECTION")
-        fail(g.line, "0 SECTION expected, found " + std::to_string(g.code) + " " + shown(g.value) +
-                         (g.code == 0 && g.value == "ENDSEC" ? " (an ENDSEC with no SECTION open)"
-                                                             : " (outside any section)"));
+        fail(g.line,
+             cellforge::detail::cat("0 SECTION expected, found ", std::to_string(g.code), " ", shown(g.value),
+                                    (g.code == 0 && g.value == "ENDSEC" ? " (an ENDSEC with no SECTION open)"
+                                                                        : " (outside any section)")));
       if (i + 1 >= groups.size() || groups[i + 1].code != 2)
         fail(g.line, "a SECTION with no name (2 HEADER, TABLES, BLOCKS, ENTITIES, ...) after it");
       const std::string_view section = groups[i + 1].value;
@@ -258,12 +261,13 @@ struct basic_dxf_reader {
                (groups[j].value == "ENDSEC" || groups[j].value == "SECTION" || groups[j].value == "EOF")))
         ++j;
       if (j >= groups.size())
-        fail(groups.back().line, "the file ends inside section " + std::string(section) +
-                                     " (opened at line " + std::to_string(opened) +
-                                     "): no 0 ENDSEC (truncated?)");
+        fail(groups.back().line, cellforge::detail::cat("the file ends inside section ", std::string(section),
+                                                        " (opened at line ", std::to_string(opened),
+                                                        "): no 0 ENDSEC (truncated?)"));
       if (groups[j].value != "ENDSEC")
-        fail(groups[j].line, "0 " + std::string(groups[j].value) + " inside section " + std::string(section) +
-                                 " (opened at line " + std::to_string(opened) + "): its 0 ENDSEC is missing");
+        fail(groups[j].line, cellforge::detail::cat("0 ", std::string(groups[j].value), " inside section ",
+                                                    std::string(section), " (opened at line ",
+                                                    std::to_string(opened), "): its 0 ENDSEC is missing"));
       if (section == "HEADER") header(i + 2, j);
       if (section == "TABLES") tables(i + 2, j);
       if (section == "BLOCKS") block_section(i + 2, j);
@@ -276,7 +280,8 @@ struct basic_dxf_reader {
     }
     if (!seen_eof)
       fail(groups.back().line + 1, "the file ends without 0 EOF after its last section (truncated?)");
-    if (!seen_entities) counts.diagnostics.push_back(std::string(name) + ": no ENTITIES section");
+    if (!seen_entities)
+      counts.diagnostics.push_back(cellforge::detail::cat(std::string(name), ": no ENTITIES section"));
     return entities;
   }
 
@@ -310,7 +315,8 @@ struct basic_dxf_reader {
     while (i < last) {
       const dxf_group& g = groups[i];
       if (g.value != "BLOCK")
-        fail(g.line, "0 BLOCK expected in the BLOCKS section, found 0 " + shown(g.value));
+        fail(g.line,
+             cellforge::detail::cat("0 BLOCK expected in the BLOCKS section, found 0 ", shown(g.value)));
       block b;
       b.line = g.line;
       const std::size_t head_end = std::min(next_zero(i + 1), last);
@@ -324,7 +330,8 @@ struct basic_dxf_reader {
       std::size_t k = head_end;
       while (k < last && groups[k].value != "ENDBLK") k = std::min(next_zero(k + 1), last);
       if (k >= last)
-        fail(g.line, "block " + shown(b.name) + " has no 0 ENDBLK before the end of the BLOCKS section");
+        fail(g.line, cellforge::detail::cat("block ", shown(b.name),
+                                            " has no 0 ENDBLK before the end of the BLOCKS section"));
       b.first = head_end;
       b.last = k;
       blocks.push_back(std::move(b));
@@ -373,9 +380,10 @@ struct basic_dxf_reader {
   void budget(std::uint64_t line) {
     if (++work > options.max_strokes)
       fail(line,
-           "more than " + std::to_string(options.max_strokes) +
+           cellforge::detail::cat(
+               "more than ", std::to_string(options.max_strokes),
                " strokes, entities and block placements (dxf_drawing_options::max_strokes): blocks inserted "
-               "too often?");
+               "too often?"));
   }
 
   void segment(const affine2& m, glm::dvec2 a, glm::dvec2 b, std::uint64_t line) {
@@ -392,9 +400,10 @@ struct basic_dxf_reader {
     if (read_arcs) return true;
     if (options.curves == dxf_curves::refuse)
       fail(line,
-           std::string(what) +
+           cellforge::detail::cat(
+               std::string(what),
                ": curves are read by parse_dxf_arc_drawing / read_dxf_arc_drawing; draw straight lines, or "
-               "read with dxf_drawing_options::curves = skip");
+               "read with dxf_drawing_options::curves = skip"));
     ++counts.skipped_curves;
     return false;
   }
@@ -424,22 +433,25 @@ struct basic_dxf_reader {
   double ocs_sign(glm::dvec3 n, std::uint64_t line, std::string_view type) const {
     const double len = glm::length(n);
     if (!(len > 0) || !std::isfinite(len))
-      fail(line, std::string(type) + " has a zero extrusion direction (210/220/230)");
+      fail(line, cellforge::detail::cat(std::string(type), " has a zero extrusion direction (210/220/230)"));
     n /= len;
     if (std::abs(n.x) < 1e-12 && std::abs(n.y) < 1e-12) return n.z > 0 ? 1.0 : -1.0;
     fail(line,
-         std::string(type) +
+         cellforge::detail::cat(
+             std::string(type),
              " lies in a plane tilted out of the drawing (extrusion direction not ±z): only 2D drawings "
-             "are read");
+             "are read"));
   }
 
   /// A bulged polyline segment from a to b (bulge = tan(sweep / 4), > 0 counter-clockwise).
   void bulge_arc(const affine2& m, glm::dvec2 a, glm::dvec2 b, double bulge, std::uint64_t line,
                  std::string_view type) {
-    if (!curve_wanted(std::string(type) + " with a bulged (arc) segment", line)) return;
+    if (!curve_wanted(cellforge::detail::cat(std::string(type), " with a bulged (arc) segment"), line))
+      return;
     const double chord = glm::length(b - a);
     const double r = chord * (1 + bulge * bulge) / (4 * std::abs(bulge));
-    if (!std::isfinite(r)) fail(line, std::string(type) + ": a bulge too large for its segment");
+    if (!std::isfinite(r))
+      fail(line, cellforge::detail::cat(std::string(type), ": a bulge too large for its segment"));
     arc(m, a, b, r, r, 0, std::abs(bulge) > 1, bulge > 0, line);
   }
 
@@ -449,8 +461,9 @@ struct basic_dxf_reader {
                 std::string_view type) {
     const std::size_t n = v.size();
     if (n < 2) {
-      counts.diagnostics.push_back(std::string(name) + ":" + std::to_string(line) + ": " + std::string(type) +
-                                   " with " + std::to_string(n) + " vertex: nothing drawn");
+      counts.diagnostics.push_back(cellforge::detail::cat(std::string(name), ":", std::to_string(line), ": ",
+                                                          std::string(type), " with ", std::to_string(n),
+                                                          " vertex: nothing drawn"));
       return;
     }
     for (std::size_t k = 0; k < (closed ? n : n - 1); ++k) {
@@ -468,8 +481,8 @@ struct basic_dxf_reader {
   void entities(std::size_t first, std::size_t last, const placement& p) {
     std::size_t i = next_zero(first);
     if (i != first)
-      fail(groups[first].line,
-           "an entity (0 TYPE) expected, found group code " + std::to_string(groups[first].code));
+      fail(groups[first].line, cellforge::detail::cat("an entity (0 TYPE) expected, found group code ",
+                                                      std::to_string(groups[first].code)));
     while (i < last) {
       const dxf_group& g = groups[i];
       const std::size_t end = std::min(next_zero(i + 1), last);
@@ -487,14 +500,16 @@ struct basic_dxf_reader {
           while (k < last && groups[k].value != "SEQEND") {
             const std::string_view t = groups[k].value;
             if (t != (type == "POLYLINE" ? "VERTEX" : "ATTRIB"))
-              fail(groups[k].line, "0 " + shown(t) + " inside the " + std::string(type) + " of line " +
-                                       std::to_string(g.line) + ": " +
-                                       (type == "POLYLINE" ? "VERTEX" : "ATTRIB") + " or SEQEND expected");
+              fail(groups[k].line,
+                   cellforge::detail::cat("0 ", shown(t), " inside the ", std::string(type), " of line ",
+                                          std::to_string(g.line), ": ",
+                                          (type == "POLYLINE" ? "VERTEX" : "ATTRIB"), " or SEQEND expected"));
             k = std::min(next_zero(k + 1), last);
           }
           if (k >= last)
-            fail(g.line, std::string(type) + " with no 0 SEQEND after its " +
-                             (type == "POLYLINE" ? "vertices" : "attributes") + " (truncated?)");
+            fail(g.line,
+                 cellforge::detail::cat(std::string(type), " with no 0 SEQEND after its ",
+                                        (type == "POLYLINE" ? "vertices" : "attributes"), " (truncated?)"));
           after = std::min(next_zero(k + 1), last);
         }
       }
@@ -511,7 +526,8 @@ struct basic_dxf_reader {
                        type == "CIRCLE" || type == "ELLIPSE" || type == "INSERT";
     if (!known) {
       if (type == "VERTEX" || type == "SEQEND" || type == "ATTRIB")
-        fail(g.line, "0 " + std::string(type) + " outside a POLYLINE or INSERT sequence");
+        fail(g.line,
+             cellforge::detail::cat("0 ", std::string(type), " outside a POLYLINE or INSERT sequence"));
       skip_note(type, g.line);
       return;
     }
@@ -543,7 +559,8 @@ struct basic_dxf_reader {
     const auto required = [&](int code, const char* what) {
       for (std::size_t k = i + 1; k < end; ++k)
         if (groups[k].code == code) return number(groups[k], what);
-      fail(g.line, std::string(type) + " without " + what + " (group code " + std::to_string(code) + ")");
+      fail(g.line, cellforge::detail::cat(std::string(type), " without ", what, " (group code ",
+                                          std::to_string(code), ")"));
     };
     // The OCS of 2D entities: (0,0,-1) mirrors x; LINE, ELLIPSE are in world coordinates but
     // their z is ignored (a view of the x-y plane).
@@ -586,9 +603,10 @@ struct basic_dxf_reader {
       }
       if (!has_y) fail(lines.back(), "LWPOLYLINE vertex without its y (group code 20)");
       if (declared >= 0 && static_cast<std::size_t>(declared) != v.size())
-        counts.diagnostics.push_back(std::string(name) + ":" + std::to_string(g.line) + ": LWPOLYLINE says " +
-                                     std::to_string(declared) + " vertices (group code 90) but has " +
-                                     std::to_string(v.size()) + ": the vertices present are read");
+        counts.diagnostics.push_back(
+            cellforge::detail::cat(std::string(name), ":", std::to_string(g.line), ": LWPOLYLINE says ",
+                                   std::to_string(declared), " vertices (group code 90) but has ",
+                                   std::to_string(v.size()), ": the vertices present are read"));
       polyline(m, v, lines, closed, g.line, type);
     } else if (type == "POLYLINE") {
       const std::int64_t flags = flags_of();
@@ -627,7 +645,8 @@ struct basic_dxf_reader {
       const glm::dvec2 c{required(10, "a centre x"), required(20, "a centre y")};
       const double r = required(40, "a radius");
       if (!(r > 0))
-        fail(g.line, std::string(type) + " with radius " + shown(std::to_string(r)) + ": not positive");
+        fail(g.line, cellforge::detail::cat(std::string(type), " with radius ", shown(std::to_string(r)),
+                                            ": not positive"));
       if (!curve_wanted(type, g.line)) return;
       if (type == "CIRCLE") {
         closed_ellipse(m, c, {r, 0}, 1.0, true, g.line);
@@ -651,7 +670,8 @@ struct basic_dxf_reader {
       const double ratio = required(40, "an axis ratio");
       if (!(glm::length(major) > 0)) fail(g.line, "ELLIPSE with a zero major axis");
       if (!(ratio > 0) || ratio > 1 + 1e-9)
-        fail(g.line, "ELLIPSE with axis ratio " + std::to_string(ratio) + ": not in (0, 1]");
+        fail(g.line,
+             cellforge::detail::cat("ELLIPSE with axis ratio ", std::to_string(ratio), ": not in (0, 1]"));
       if (!curve_wanted(type, g.line)) return;
       // The minor axis is normal × major: with the normal -z the parameter runs clockwise.
       const bool ccw = sx > 0;
@@ -720,18 +740,20 @@ struct basic_dxf_reader {
       }
     }
     if (columns < 1 || rows < 1 || columns > 100000 || rows > 100000)
-      fail(g.line, "INSERT with " + std::to_string(columns) + " columns and " + std::to_string(rows) +
-                       " rows: each must be 1 to 100000");
+      fail(g.line, cellforge::detail::cat("INSERT with ", std::to_string(columns), " columns and ",
+                                          std::to_string(rows), " rows: each must be 1 to 100000"));
     if (scale_x == 0 || scale_y == 0) fail(g.line, "INSERT with a zero scale: the block is flattened");
     std::size_t b = blocks.size();
     for (std::size_t k = 0; k < blocks.size() && b == blocks.size(); ++k)
       if (dxf_same_name(blocks[k].name, block_name)) b = k;
-    if (b == blocks.size()) fail(g.line, "INSERT of block " + shown(block_name) + ", which is not defined");
+    if (b == blocks.size())
+      fail(g.line, cellforge::detail::cat("INSERT of block ", shown(block_name), ", which is not defined"));
     for (const std::size_t open : insert_stack)
       if (open == b)
-        fail(g.line, "block " + shown(block_name) + " inserts itself (directly or through others)");
+        fail(g.line, cellforge::detail::cat("block ", shown(block_name),
+                                            " inserts itself (directly or through others)"));
     if (insert_stack.size() >= max_depth)
-      fail(g.line, "blocks nested more than " + std::to_string(max_depth) + " deep");
+      fail(g.line, cellforge::detail::cat("blocks nested more than ", std::to_string(max_depth), " deep"));
     const double rad = degrees * std::numbers::pi / 180, cs = std::cos(rad), sn = std::sin(rad);
     insert_stack.push_back(b);
     for (std::int64_t r = 0; r < rows; ++r)
@@ -753,12 +775,13 @@ struct basic_dxf_reader {
 
   void finish_notes() {
     for (const skipped_kind& s : skipped)
-      counts.diagnostics.push_back(
-          std::string(name) + ":" + std::to_string(s.first_line) + ": " + std::to_string(s.count) + " " +
-          s.type + (s.count == 1 ? " entity" : " entities") + " left out (not a line, polyline or arc)");
+      counts.diagnostics.push_back(cellforge::detail::cat(
+          std::string(name), ":", std::to_string(s.first_line), ": ", std::to_string(s.count), " ", s.type,
+          (s.count == 1 ? " entity" : " entities"), " left out (not a line, polyline or arc)"));
     if (counts.skipped_curves > 0)
-      counts.diagnostics.push_back(std::string(name) + ": " + std::to_string(counts.skipped_curves) +
-                                   " curves left out (dxf_drawing_options::curves = skip)");
+      counts.diagnostics.push_back(
+          cellforge::detail::cat(std::string(name), ": ", std::to_string(counts.skipped_curves),
+                                 " curves left out (dxf_drawing_options::curves = skip)"));
   }
 };
 
@@ -781,8 +804,8 @@ dxf_arc_drawing_result<P2> parse_dxf_strokes(std::string_view text, std::string_
   static_cast<dxf_reading_counts&>(out) = std::move(r.counts);
   out.arcs = r.arcs.size();
   if (r.segs.empty() && r.arcs.empty()) {
-    out.diagnostics.push_back(std::string(name) +
-                              (arcs ? ": no line or arc found" : ": no straight line found"));
+    out.diagnostics.push_back(cellforge::detail::cat(
+        std::string(name), (arcs ? ": no line or arc found" : ": no straight line found")));
     return out;
   }
   stroke_snap_counts counts;

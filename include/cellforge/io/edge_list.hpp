@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/wireframe.hpp"
@@ -48,7 +49,7 @@ std::uint32_t read_section_header(text_cursor& c, std::string_view expected, Wha
   while (!c.at_token_end()) ++c.pos;
   if (std::string_view(start, static_cast<std::size_t>(c.pos - start)) != expected) {
     c.pos = start;
-    c.fail("expected '" + std::string(expected) + " <count>', found " + c.token());
+    c.fail(cellforge::detail::cat("expected '", std::string(expected), " <count>', found ", c.token()));
   }
   c.skip_blanks();
   const char* at = c.pos;
@@ -57,7 +58,7 @@ std::uint32_t read_section_header(text_cursor& c, std::string_view expected, Wha
   if (n >= std::int64_t{std::numeric_limits<std::uint32_t>::max()})
     c.fail_at(at, what() + " " + std::to_string(n) + " exceeds the 32-bit limit");
   c.skip_blanks();
-  if (!c.at_line_end()) c.fail("unexpected " + c.token() + " after " + what());
+  if (!c.at_line_end()) c.fail(cellforge::detail::cat("unexpected ", c.token(), " after ", what()));
   c.next_line();
   return static_cast<std::uint32_t>(n);
 }
@@ -65,7 +66,8 @@ std::uint32_t read_section_header(text_cursor& c, std::string_view expected, Wha
 /// Moves to the next content line or fails naming what was expected there.
 template <class = void>
 void expect_line(text_cursor& c, const std::string& expected) {
-  if (!c.next_content()) c.fail_at(c.content_end(), "expected " + expected + ", found end of file");
+  if (!c.next_content())
+    c.fail_at(c.content_end(), cellforge::detail::cat("expected ", expected, ", found end of file"));
 }
 
 }  // namespace detail
@@ -89,59 +91,68 @@ wireframe<P> parse_edge_list(std::string_view bytes, std::string_view name = "<m
   // Reserve no more than the rest of the file can hold ("0 0 0\n" and "0 1\n" are the shortest lines).
   w.points.reserve(detail::plausible_count(nv, left(), 6));
   for (std::uint32_t v = 0; v < nv; ++v) {
-    detail::expect_line(c, "vertex " + std::to_string(v) + " of " + std::to_string(nv));
+    detail::expect_line(c, cellforge::detail::cat("vertex ", std::to_string(v), " of ", std::to_string(nv)));
     // The edges section arriving early is the likeliest mistake: say so rather than "expected a number".
     const bool edges_keyword = static_cast<std::size_t>(c.end - c.pos) >= 5 &&
                                std::string_view(c.pos, 5) == "edges" &&
                                (c.end - c.pos == 5 || detail::is_blank(c.pos[5]) || detail::is_eol(c.pos[5]));
     if (edges_keyword)
-      c.fail("found 'edges' after " + std::to_string(v) + " vertices; the 'vertices' count says " +
-             std::to_string(nv));
-    const S x = c.coordinate<S>([&] { return "coordinate x of vertex " + std::to_string(v); });
-    const S y = c.coordinate<S>([&] { return "coordinate y of vertex " + std::to_string(v); });
-    const S z = c.coordinate<S>([&] { return "coordinate z of vertex " + std::to_string(v); });
+      c.fail(cellforge::detail::cat("found 'edges' after ", std::to_string(v),
+                                    " vertices; the 'vertices' count says ", std::to_string(nv)));
+    const S x =
+        c.coordinate<S>([&] { return cellforge::detail::cat("coordinate x of vertex ", std::to_string(v)); });
+    const S y =
+        c.coordinate<S>([&] { return cellforge::detail::cat("coordinate y of vertex ", std::to_string(v)); });
+    const S z =
+        c.coordinate<S>([&] { return cellforge::detail::cat("coordinate z of vertex ", std::to_string(v)); });
     c.skip_blanks();
     if (!c.at_line_end())
-      c.fail("vertex " + std::to_string(v) + " has more than 3 coordinates: unexpected " + c.token());
+      c.fail(cellforge::detail::cat("vertex ", std::to_string(v), " has more than 3 coordinates: unexpected ",
+                                    c.token()));
     w.points.push_back(point_traits<P>::make(x, y, z));
     c.next_line();
   }
-  detail::expect_line(c, "'edges <count>' after the " + std::to_string(nv) + " vertices");
+  detail::expect_line(c,
+                      cellforge::detail::cat("'edges <count>' after the ", std::to_string(nv), " vertices"));
   const std::uint32_t ne =
       detail::read_section_header(c, "edges", [] { return std::string("the edge count"); });
   w.edges.reserve(detail::plausible_count(ne, left(), 4));
   std::vector<const char*> line_of_edge;  // for naming the line of a duplicate after sorting
   if (!options.allow_duplicate_edges) line_of_edge.reserve(w.edges.capacity());
   for (std::uint32_t e = 0; e < ne; ++e) {
-    detail::expect_line(c, "edge " + std::to_string(e) + " of " + std::to_string(ne));
+    detail::expect_line(c, cellforge::detail::cat("edge ", std::to_string(e), " of ", std::to_string(ne)));
     const char* line = c.pos;
     std::array<std::uint32_t, 2> ends{};
     for (int k = 0; k < 2; ++k) {
       c.skip_blanks();
       const char* at = c.pos;
       const std::int64_t i = c.integer([&] {
-        return std::string(k == 0 ? "the first" : "the second") + " vertex index of edge " +
-               std::to_string(e);
+        return cellforge::detail::cat(std::string(k == 0 ? "the first" : "the second"),
+                                      " vertex index of edge ", std::to_string(e));
       });
       if (i < 0 || i >= std::int64_t{nv})
-        c.fail_at(at, "edge " + std::to_string(e) + ": vertex index " + std::to_string(i) + " out of range " +
-                          (nv == 0 ? std::string("(the file has no vertices)")
-                                   : "(0.." + std::to_string(nv - 1) + "; indices are 0-based)"));
+        c.fail_at(at, cellforge::detail::cat("edge ", std::to_string(e), ": vertex index ", std::to_string(i),
+                                             " out of range ",
+                                             (nv == 0 ? std::string("(the file has no vertices)")
+                                                      : cellforge::detail::cat("(0..", std::to_string(nv - 1),
+                                                                               "; indices are 0-based)"))));
       ends[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(i);
     }
     c.skip_blanks();
     if (!c.at_line_end())
-      c.fail("edge " + std::to_string(e) + " has more than 2 vertex indices: unexpected " + c.token());
+      c.fail(cellforge::detail::cat("edge ", std::to_string(e),
+                                    " has more than 2 vertex indices: unexpected ", c.token()));
     if (ends[0] == ends[1] && !options.allow_self_loops)
-      c.fail_at(line, "edge " + std::to_string(e) + " joins vertex " + std::to_string(ends[0]) +
-                          " to itself (edge_list_read_options::allow_self_loops accepts it)");
+      c.fail_at(line,
+                cellforge::detail::cat("edge ", std::to_string(e), " joins vertex ", std::to_string(ends[0]),
+                                       " to itself (edge_list_read_options::allow_self_loops accepts it)"));
     w.edges.push_back(ends);
     if (!options.allow_duplicate_edges) line_of_edge.push_back(line);
     c.next_line();
   }
   if (c.next_content())
-    c.fail("unexpected " + c.token() + " after the last of " + std::to_string(ne) +
-           " edges (the 'edges' count)");
+    c.fail(cellforge::detail::cat("unexpected ", c.token(), " after the last of ", std::to_string(ne),
+                                  " edges (the 'edges' count)"));
   if (!options.allow_duplicate_edges && ne > 1) {
     // Sort (min, max, index) and name the later of the first duplicate pair found.
     std::vector<std::array<std::uint32_t, 3>> keys(ne);
@@ -156,9 +167,10 @@ wireframe<P> parse_edge_list(std::string_view bytes, std::string_view name = "<m
       }
     if (worst != ne)
       c.fail_at(line_of_edge[worst],
-                "edge " + std::to_string(worst) + " repeats edge " + std::to_string(first) + " (vertices " +
-                    std::to_string(w.edges[worst][0]) + " and " + std::to_string(w.edges[worst][1]) +
-                    "; edge_list_read_options::allow_duplicate_edges accepts it)");
+                cellforge::detail::cat(
+                    "edge ", std::to_string(worst), " repeats edge ", std::to_string(first), " (vertices ",
+                    std::to_string(w.edges[worst][0]), " and ", std::to_string(w.edges[worst][1]),
+                    "; edge_list_read_options::allow_duplicate_edges accepts it)"));
   }
   return w;
 }
@@ -200,9 +212,10 @@ void write_edge_list(std::ostream& os, const G& g, const edge_list_write_options
   for (std::size_t e = 0; e < ne; ++e) {
     const auto ab = T::endpoints(g, e);
     if (ab[0] >= nv || ab[1] >= nv)
-      throw error(error_category::invalid_input, "write_edge_list: edge " + std::to_string(e) +
-                                                     " has a vertex index out of range (" +
-                                                     std::to_string(nv) + " vertices)");
+      throw error(
+          error_category::invalid_input,
+          cellforge::detail::cat("write_edge_list: edge ", std::to_string(e),
+                                 " has a vertex index out of range (", std::to_string(nv), " vertices)"));
     out.number(ab[0]);
     out.put(' ');
     out.number(ab[1]);

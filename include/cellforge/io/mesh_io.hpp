@@ -8,6 +8,7 @@
 #include <cctype>
 #include <string>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/polygon_soup.hpp"
 #include "cellforge/halfedge/conversion.hpp"
@@ -33,9 +34,10 @@ mesh_format format_of(const file_path& path) {
   if (ext == ".obj") return mesh_format::obj;
   if (ext == ".ply") return mesh_format::ply;
   if (ext == ".stl") return mesh_format::stl;
-  throw error(error_category::io,
-              "unknown mesh file extension '" + ext + "' (expected .off, .obj, .ply or .stl)",
-              {path.string(), 0});
+  throw error(
+      error_category::io,
+      cellforge::detail::cat("unknown mesh file extension '", ext, "' (expected .off, .obj, .ply or .stl)"),
+      {path.string(), 0});
 }
 
 /// Reads the faces of an OFF, OBJ, PLY or STL file into a soup (STL: corners welded where

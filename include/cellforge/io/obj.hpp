@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
@@ -78,7 +79,8 @@ std::uint32_t read_obj_index(text_cursor& c, std::uint64_t nv, bool allow_normal
   const char* start = c.pos;
   const auto bad = [&] {
     c.pos = start;
-    c.fail("expected a vertex reference (v, v/vt, v//vn or v/vt/vn), found " + c.token());
+    c.fail(
+        cellforge::detail::cat("expected a vertex reference (v, v/vt, v//vn or v/vt/vn), found ", c.token()));
   };
   std::int64_t v = 0;
   if (parse_number(c.pos, c.end, v) != parse_status::ok) bad();
@@ -97,13 +99,15 @@ std::uint32_t read_obj_index(text_cursor& c, std::uint64_t nv, bool allow_normal
   const std::int64_t resolved = v > 0 ? v - 1 : n + v;
   if (resolved < 0 || resolved >= n) {
     const std::string range = n == 0  ? std::string("no vertices are defined yet")
-                              : v > 0 ? "1.." + std::to_string(n)
-                                      : "-1..-" + std::to_string(n);
+                              : v > 0 ? cellforge::detail::cat("1..", std::to_string(n))
+                                      : cellforge::detail::cat("-1..-", std::to_string(n));
     // allow_normals is false exactly for `l` statements.
     const std::string what = allow_normals ? "face" : "line";
-    c.fail_at(start, (v > 0 ? what : "relative " + what) + " index " + std::to_string(v) + " out of range (" +
-                         range + ")" +
-                         (v > 0 ? "; vertices must be defined before the " + what + "s that use them" : ""));
+    c.fail_at(start, (v > 0 ? what : cellforge::detail::cat("relative ", what)) + " index " +
+                         std::to_string(v) + " out of range (" + range + ")" +
+                         (v > 0 ? cellforge::detail::cat("; vertices must be defined before the ", what,
+                                                         "s that use them")
+                                : ""));
   }
   return static_cast<std::uint32_t>(resolved);
 }
@@ -121,13 +125,17 @@ void read_obj_polyline(text_cursor& c, const char* line, std::uint64_t nv, bool 
     const std::uint32_t v = read_obj_index(c, nv, false);
     if (k > 0) {
       if (v == prev && !allow_repeated)
-        c.fail_at(at, "line segment from vertex " + std::to_string(v + 1) + " to itself (zero length" +
-                          (option.empty() ? std::string(")") : "; " + std::string(option) + " accepts it)"));
+        c.fail_at(at,
+                  cellforge::detail::cat(
+                      "line segment from vertex ", std::to_string(v + 1), " to itself (zero length",
+                      (option.empty() ? std::string(")")
+                                      : cellforge::detail::cat("; ", std::string(option), " accepts it)"))));
       segment(prev, v, at);
     }
     prev = v;
   }
-  if (k < 2) c.fail_at(line, "'l' needs at least 2 vertices, found " + std::to_string(k));
+  if (k < 2)
+    c.fail_at(line, cellforge::detail::cat("'l' needs at least 2 vertices, found ", std::to_string(k)));
 }
 
 /// A statement the reader does not keep, at `line`: skipped when the OBJ specification knows it;
@@ -143,8 +151,8 @@ void skip_obj_statement(text_cursor& c, const char* line, std::string_view keywo
   const bool word = !keyword.empty() && letter(keyword.front()) &&
                     std::all_of(keyword.begin(), keyword.end(),
                                 [&](char ch) { return letter(ch) || (ch >= '0' && ch <= '9'); });
-  if (!word) c.fail_at(line, "not an OBJ statement: " + quote_token(line, c.end));
-  if (strict) c.fail_at(line, "unknown statement " + quote_token(line, c.end));
+  if (!word) c.fail_at(line, cellforge::detail::cat("not an OBJ statement: ", quote_token(line, c.end)));
+  if (strict) c.fail_at(line, cellforge::detail::cat("unknown statement ", quote_token(line, c.end)));
   if (skipped++ == 0)
     first_line = line_of({c.begin, static_cast<std::size_t>(c.end - c.begin)},
                          static_cast<std::size_t>(line - c.begin));
@@ -199,7 +207,9 @@ obj_data<P> parse_obj(std::string_view bytes, std::string_view name = "<memory>"
       // Accepted: x y z, x y z w (rational weight), x y z r g b [a] (a common colour extension).
       int values = 3;
       for (; !c.at_line_end(); c.skip_blanks(), ++values) {
-        if (values == 7) c.fail("too many values for 'v' (at most x y z r g b a): unexpected " + c.token());
+        if (values == 7)
+          c.fail(cellforge::detail::cat("too many values for 'v' (at most x y z r g b a): unexpected ",
+                                        c.token()));
         (void)c.number<double>([] { return std::string("a number"); });
       }
       if (values == 5) c.fail_at(line, "'v' takes x y z [w] or x y z r g b [a]; found 5 values");
@@ -212,11 +222,12 @@ obj_data<P> parse_obj(std::string_view bytes, std::string_view name = "<memory>"
         soup.face_vertices.push_back(detail::read_obj_index(c, soup.points.size(), true));
       const std::size_t k = soup.face_vertices.size() - first;
       if (k < 3)
-        c.fail_at(line, "face has " + std::to_string(k) + (k == 1 ? " vertex" : " vertices") +
-                            "; a face needs at least 3");
+        c.fail_at(line,
+                  cellforge::detail::cat("face has ", std::to_string(k), (k == 1 ? " vertex" : " vertices"),
+                                         "; a face needs at least 3"));
       if (const auto problem = detail::close_face(soup, first, options.allow_repeated_vertices, scratch, 1,
                                                   "obj_read_options"))
-        c.fail_at(line, "face " + *problem);
+        c.fail_at(line, cellforge::detail::cat("face ", *problem));
     } else if (keyword == "l") {
       detail::read_obj_polyline(c, line, soup.points.size(), options.allow_repeated_vertices,
                                 "obj_read_options::allow_repeated_vertices",
@@ -308,7 +319,8 @@ void put_obj_lines(output_buffer& out, const std::vector<std::array<std::uint32_
   for (const auto& e : lines) {
     if (e[0] >= n_points || e[1] >= n_points)
       throw error(error_category::invalid_input,
-                  "write_obj: line vertex index out of range (" + std::to_string(n_points) + " points)");
+                  cellforge::detail::cat("write_obj: line vertex index out of range (",
+                                         std::to_string(n_points), " points)"));
     out.put("l ");
     out.number(e[0] + std::uint64_t{1});
     out.put(' ');
@@ -355,18 +367,20 @@ void write_obj(std::ostream& os, const obj_data<P>& data, const obj_write_option
   for (std::size_t g = 0; g < data.groups.size(); ++g) {
     if (data.groups[g].first_face > soup.num_faces() ||
         (g > 0 && data.groups[g].first_face < data.groups[g - 1].first_face))
-      throw error(error_category::invalid_input, "write_obj: group " + std::to_string(g) +
-                                                     " starts at a face out of order or past the last face");
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat("write_obj: group ", std::to_string(g),
+                                         " starts at a face out of order or past the last face"));
     // A line break or '#' would end the name early and turn the rest into statements or a comment;
     // blanks at either end are not kept by a reader.
     const std::string& name = data.groups[g].name;
     if (name.find_first_of("\r\n#") != std::string::npos)
       throw error(error_category::invalid_input,
-                  "write_obj: group name " + std::to_string(g) + " contains a line break or '#'");
+                  cellforge::detail::cat("write_obj: group name ", std::to_string(g),
+                                         " contains a line break or '#'"));
     if (!name.empty() && (detail::is_blank(name.front()) || detail::is_blank(name.back())))
       throw error(error_category::invalid_input,
-                  "write_obj: group name " + std::to_string(g) + " ('" + name +
-                      "') starts or ends with a blank, which OBJ does not keep");
+                  cellforge::detail::cat("write_obj: group name ", std::to_string(g), " ('", name,
+                                         "') starts or ends with a blank, which OBJ does not keep"));
   }
   detail::output_buffer out(os);
   detail::put_comment_lines(out, options.comment, "# ");

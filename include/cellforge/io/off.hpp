@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
@@ -67,8 +68,11 @@ off_header parse_off_keyword(text_cursor& c) {
   const bool four = take("4");
   const bool n_dim = take("n");
   if (!take("OFF") || (q != c.end && !is_blank(*q) && !is_eol(*q) && *q != '#'))
-    c.fail("expected an OFF header ('OFF', 'COFF', 'NOFF', 'CNOFF', 'STOFF', ...), found " + c.token());
-  if (four || n_dim) c.fail("4D and n-dimensional OFF (" + quote_token(start, c.end) + ") are not supported");
+    c.fail(cellforge::detail::cat(
+        "expected an OFF header ('OFF', 'COFF', 'NOFF', 'CNOFF', 'STOFF', ...), found ", c.token()));
+  if (four || n_dim)
+    c.fail(cellforge::detail::cat("4D and n-dimensional OFF (", quote_token(start, c.end),
+                                  ") are not supported"));
   c.pos = q;
   c.skip_blanks();
   if (!c.at_line_end() && static_cast<std::size_t>(c.end - c.pos) >= 6 &&
@@ -119,7 +123,8 @@ polygon_soup<P> parse_off(std::string_view bytes, std::string_view name = "<memo
   c.skip_blanks();
   if (!c.at_line_end()) (void)detail::read_count(c, [] { return std::string("the edge count"); });
   c.skip_blanks();
-  if (!c.at_line_end()) c.fail("unexpected " + c.token() + " after the vertex, face and edge counts");
+  if (!c.at_line_end())
+    c.fail(cellforge::detail::cat("unexpected ", c.token(), " after the vertex, face and edge counts"));
 
   polygon_soup<P> soup;
   const auto left = static_cast<std::size_t>(c.end - c.pos);
@@ -130,27 +135,35 @@ polygon_soup<P> parse_off(std::string_view bytes, std::string_view name = "<memo
   const std::size_t min_values = header.min_values(), max_values = header.max_values();
   for (std::uint32_t v = 0; v < nv; ++v) {
     if (!c.next_content())
-      c.fail_at(c.content_end(), "expected " + std::to_string(nv) + " vertices, found " + std::to_string(v) +
-                                     " before end of file");
+      c.fail_at(c.content_end(), cellforge::detail::cat("expected ", std::to_string(nv), " vertices, found ",
+                                                        std::to_string(v), " before end of file"));
     const char* line = c.pos;
-    const S x = c.coordinate<S>([&] { return "coordinate x of vertex " + std::to_string(v); });
-    const S y = c.coordinate<S>([&] { return "coordinate y of vertex " + std::to_string(v); });
-    const S z = c.coordinate<S>([&] { return "coordinate z of vertex " + std::to_string(v); });
+    const S x =
+        c.coordinate<S>([&] { return cellforge::detail::cat("coordinate x of vertex ", std::to_string(v)); });
+    const S y =
+        c.coordinate<S>([&] { return cellforge::detail::cat("coordinate y of vertex ", std::to_string(v)); });
+    const S z =
+        c.coordinate<S>([&] { return cellforge::detail::cat("coordinate z of vertex ", std::to_string(v)); });
     c.skip_blanks();
     if (!c.at_line_end() || min_values != 3) {
       std::size_t values = 3;
       for (; !c.at_line_end(); c.skip_blanks(), ++values) {
         if (values == max_values) {
-          c.fail("vertex " + std::to_string(v) + " has more than " + std::to_string(max_values) +
-                 " values: unexpected " + c.token() +
-                 (max_values == 3 ? " (colours or normals need a COFF or NOFF header)" : ""));
+          c.fail(cellforge::detail::cat(
+              "vertex ", std::to_string(v), " has more than ", std::to_string(max_values),
+              " values: unexpected ", c.token(),
+              (max_values == 3 ? " (colours or normals need a COFF or NOFF header)" : "")));
         }
-        (void)c.number<double>([&] { return "a number after vertex " + std::to_string(v); });
+        (void)c.number<double>(
+            [&] { return cellforge::detail::cat("a number after vertex ", std::to_string(v)); });
       }
       if (values < min_values)
-        c.fail_at(line, "vertex " + std::to_string(v) + " has " + std::to_string(values) +
-                            " values; this OFF variant needs " + std::to_string(min_values) +
-                            (max_values > min_values ? " or " + std::to_string(max_values) : ""));
+        c.fail_at(
+            line,
+            cellforge::detail::cat(
+                "vertex ", std::to_string(v), " has ", std::to_string(values),
+                " values; this OFF variant needs ", std::to_string(min_values),
+                (max_values > min_values ? cellforge::detail::cat(" or ", std::to_string(max_values)) : "")));
     }
     soup.points.push_back(point_traits<P>::make(x, y, z));
     c.next_line();
@@ -159,24 +172,27 @@ polygon_soup<P> parse_off(std::string_view bytes, std::string_view name = "<memo
   std::vector<std::uint32_t> scratch;
   for (std::uint32_t f = 0; f < nf; ++f) {
     if (!c.next_content())
-      c.fail_at(c.content_end(), "expected " + std::to_string(nf) + " faces, found " + std::to_string(f) +
-                                     " before end of file");
+      c.fail_at(c.content_end(), cellforge::detail::cat("expected ", std::to_string(nf), " faces, found ",
+                                                        std::to_string(f), " before end of file"));
     const char* line = c.pos;
-    const std::int64_t k = c.integer([&] { return "the vertex count of face " + std::to_string(f); });
+    const std::int64_t k =
+        c.integer([&] { return cellforge::detail::cat("the vertex count of face ", std::to_string(f)); });
     if (k < 3)
-      c.fail_at(line, "face " + std::to_string(f) + " has " + std::to_string(k) +
-                          " vertices; a face needs at least 3");
+      c.fail_at(line, cellforge::detail::cat("face ", std::to_string(f), " has ", std::to_string(k),
+                                             " vertices; a face needs at least 3"));
     const std::size_t first = soup.face_vertices.size();
     for (std::int64_t i = 0; i < k; ++i) {
       c.skip_blanks();
       const char* at = c.pos;
-      const std::int64_t idx =
-          c.integer([&] { return "vertex " + std::to_string(i) + " of face " + std::to_string(f); });
+      const std::int64_t idx = c.integer([&] {
+        return cellforge::detail::cat("vertex ", std::to_string(i), " of face ", std::to_string(f));
+      });
       if (idx < 0 || idx >= std::int64_t{nv}) {
-        c.fail_at(at, "face " + std::to_string(f) + ": vertex index " + std::to_string(idx) +
-                          " out of range " +
-                          (nv == 0 ? std::string("(the file has no vertices)")
-                                   : "(0.." + std::to_string(nv - 1) + ")"));
+        c.fail_at(at,
+                  cellforge::detail::cat(
+                      "face ", std::to_string(f), ": vertex index ", std::to_string(idx), " out of range ",
+                      (nv == 0 ? std::string("(the file has no vertices)")
+                               : cellforge::detail::cat("(0..", std::to_string(nv - 1), ")"))));
       }
       soup.face_vertices.push_back(static_cast<std::uint32_t>(idx));
     }
@@ -184,18 +200,20 @@ polygon_soup<P> parse_off(std::string_view bytes, std::string_view name = "<memo
     c.skip_blanks();
     for (int values = 0; !c.at_line_end(); c.skip_blanks(), ++values) {
       if (values == 4)
-        c.fail("face " + std::to_string(f) + " has more values after its " + std::to_string(k) +
-               " vertex indices than a colour (at most 4): unexpected " + c.token());
-      (void)c.number<double>([&] { return "a colour value after face " + std::to_string(f); });
+        c.fail(cellforge::detail::cat("face ", std::to_string(f), " has more values after its ",
+                                      std::to_string(k),
+                                      " vertex indices than a colour (at most 4): unexpected ", c.token()));
+      (void)c.number<double>(
+          [&] { return cellforge::detail::cat("a colour value after face ", std::to_string(f)); });
     }
     if (const auto problem =
             detail::close_face(soup, first, options.allow_repeated_vertices, scratch, 0, "off_read_options"))
-      c.fail_at(line, "face " + std::to_string(f) + " " + *problem);
+      c.fail_at(line, cellforge::detail::cat("face ", std::to_string(f), " ", *problem));
     c.next_line();
   }
   if (c.next_content())
-    c.fail("unexpected " + c.token() + " after the last of " + std::to_string(nf) +
-           " faces (the header's face count)");
+    c.fail(cellforge::detail::cat("unexpected ", c.token(), " after the last of ", std::to_string(nf),
+                                  " faces (the header's face count)"));
   return soup;
 }
 

@@ -18,6 +18,7 @@
 #include <string_view>
 #include <vector>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
@@ -65,14 +66,16 @@ class basic_ply_ascii_reader {
 
   void begin_instance(const ply_element& e, std::uint64_t i) {
     if (!c_.next_content()) {
-      c_.fail_at(c_.content_end(), "expected " + std::to_string(e.count) + " '" + e.name +
-                                       "' elements, found " + std::to_string(i) + " before end of file");
+      c_.fail_at(c_.content_end(),
+                 cellforge::detail::cat("expected ", std::to_string(e.count), " '", e.name,
+                                        "' elements, found ", std::to_string(i), " before end of file"));
     }
   }
   void end_instance(const ply_element& e, std::uint64_t i) {
     c_.skip_blanks();
     if (!c_.at_line_end())
-      c_.fail("unexpected " + c_.token() + " after the last property of " + e.name + " " + std::to_string(i));
+      c_.fail(cellforge::detail::cat("unexpected ", c_.token(), " after the last property of ", e.name, " ",
+                                     std::to_string(i)));
     c_.next_line();
   }
   /// Skips whole instances of an element nobody reads; in ASCII that is one line each.
@@ -110,7 +113,8 @@ class basic_ply_ascii_reader {
     with_ply_type(t, [&]<class T>(std::type_identity<T>) { (void)c_.number<T>(what); });
   }
   void finish() {
-    if (c_.next_content()) c_.fail("unexpected " + c_.token() + " after the last element");
+    if (c_.next_content())
+      c_.fail(cellforge::detail::cat("unexpected ", c_.token(), " after the last element"));
   }
 
   template <class T>
@@ -176,7 +180,8 @@ class basic_ply_binary_reader {
         }
         const std::int64_t n = integer(p.count_type, [] { return std::string(); });
         if (n < 0)
-          fail("negative list length " + std::to_string(n) + " in " + e.name + " " + std::to_string(i));
+          fail(cellforge::detail::cat("negative list length ", std::to_string(n), " in ", e.name, " ",
+                                      std::to_string(i)));
         const std::uint64_t bytes = static_cast<std::uint64_t>(n) * size_of(p.type);
         if (bytes > static_cast<std::uint64_t>(end_ - pos_)) {
           pos_ = end_;
@@ -203,7 +208,8 @@ class basic_ply_binary_reader {
       const T v = load<T>();
       S out{};
       if (!convert_coordinate(v, out))
-        fail_at(at, ply_ascii_reader::not_a_coordinate(what(), "(" + std::to_string(v) + ")", v));
+        fail_at(at, ply_ascii_reader::not_a_coordinate(
+                        what(), cellforge::detail::cat("(", std::to_string(v), ")"), v));
       return out;
     });
   }
@@ -231,8 +237,9 @@ class basic_ply_binary_reader {
   }
   [[noreturn]] void fail_truncated() const {
     fail_at(static_cast<std::size_t>(end_ - begin_),
-            "file ends inside " +
-                (element_ ? element_->name + " " + std::to_string(index_) : std::string("the data")));
+            cellforge::detail::cat(
+                "file ends inside ",
+                (element_ ? element_->name + " " + std::to_string(index_) : std::string("the data"))));
   }
 
   const char* begin_;
@@ -261,17 +268,20 @@ ply_layout ply_check_layout(const ply_header& h, const text_cursor& c) {
   }
   if (l.vertex) {
     if (l.vertex->count >= std::numeric_limits<std::uint32_t>::max())
-      c.fail_at(l.vertex->declared_at, "element 'vertex' has " + std::to_string(l.vertex->count) +
-                                           " instances, more than 32-bit indices can address");
+      c.fail_at(l.vertex->declared_at,
+                cellforge::detail::cat("element 'vertex' has ", std::to_string(l.vertex->count),
+                                       " instances, more than 32-bit indices can address"));
     for (int axis = 0; axis < 3; ++axis) {
       const std::string name(1, "xyz"[axis]);
       for (std::size_t i = 0; i < l.vertex->properties.size(); ++i)
         if (l.vertex->properties[i].name == name) l.xyz[axis] = static_cast<int>(i);
       if (l.xyz[axis] < 0)
-        c.fail_at(l.vertex->declared_at, "element 'vertex' has no property '" + name + "'");
-      if (l.vertex->properties[l.xyz[axis]].is_list)
         c.fail_at(l.vertex->declared_at,
-                  "property '" + name + "' of element 'vertex' is a list, not a scalar");
+                  cellforge::detail::cat("element 'vertex' has no property '", name, "'"));
+      if (l.vertex->properties[l.xyz[axis]].is_list)
+        c.fail_at(
+            l.vertex->declared_at,
+            cellforge::detail::cat("property '", name, "' of element 'vertex' is a list, not a scalar"));
     }
   }
   if (l.face) {
@@ -284,10 +294,12 @@ ply_layout ply_check_layout(const ply_header& h, const text_cursor& c) {
       c.fail_at(l.face->declared_at, "element 'face' has no 'vertex_indices' (or 'vertex_index') list");
     const auto& p = l.face->properties[l.indices];
     if (!p.is_list)
-      c.fail_at(l.face->declared_at, "property '" + p.name + "' of element 'face' must be a list");
+      c.fail_at(l.face->declared_at,
+                cellforge::detail::cat("property '", p.name, "' of element 'face' must be a list"));
     if (!is_integral(p.type))
-      c.fail_at(l.face->declared_at, "the indices of '" + p.name + "' must have an integer type, not '" +
-                                         std::string(ply_type_name(p.type)) + "'");
+      c.fail_at(l.face->declared_at,
+                cellforge::detail::cat("the indices of '", p.name, "' must have an integer type, not '",
+                                       std::string(ply_type_name(p.type)), "'"));
     if (l.face->count >= std::numeric_limits<std::uint32_t>::max())
       c.fail_at(l.face->declared_at, "element 'face' has too many instances for 32-bit offsets");
   }
@@ -306,9 +318,10 @@ void ply_read_body(R& r, const ply_header& h, const ply_layout& l, std::size_t b
   std::vector<std::uint32_t> scratch;
   const auto check_index = [&](std::int64_t idx, std::uint64_t f, std::size_t at) {
     if (idx < 0 || static_cast<std::uint64_t>(idx) >= nv)
-      r.fail_at(at, "face " + std::to_string(f) + ": vertex index " + std::to_string(idx) + " out of range " +
+      r.fail_at(at, cellforge::detail::cat(
+                        "face ", std::to_string(f), ": vertex index ", std::to_string(idx), " out of range ",
                         (nv == 0 ? std::string("(the file has no vertices)")
-                                 : "(0.." + std::to_string(nv - 1) + ")"));
+                                 : cellforge::detail::cat("(0..", std::to_string(nv - 1), ")"))));
   };
   for (const auto& e : h.elements) {
     if (&e == l.vertex) {
@@ -319,7 +332,9 @@ void ply_read_body(R& r, const ply_header& h, const ply_layout& l, std::size_t b
         std::array<S, 3> xyz{};
         for (std::size_t i = 0; i < props.size(); ++i) {
           const auto& p = props[i];
-          const auto what = [&] { return "property '" + p.name + "' of vertex " + std::to_string(v); };
+          const auto what = [&] {
+            return cellforge::detail::cat("property '", p.name, "' of vertex ", std::to_string(v));
+          };
           const int axis = static_cast<int>(i) == l.xyz[0]   ? 0
                            : static_cast<int>(i) == l.xyz[1] ? 1
                            : static_cast<int>(i) == l.xyz[2] ? 2
@@ -331,7 +346,9 @@ void ply_read_body(R& r, const ply_header& h, const ply_layout& l, std::size_t b
           } else {
             const std::size_t at = r.mark();
             const std::int64_t n = r.integer(p.count_type, what);
-            if (n < 0) r.fail_at(at, "negative list length " + std::to_string(n) + " in " + what());
+            if (n < 0)
+              r.fail_at(at,
+                        cellforge::detail::cat("negative list length ", std::to_string(n), " in ", what()));
             for (std::int64_t k = 0; k < n; ++k) r.skip(p.type, what);
           }
         }
@@ -347,7 +364,9 @@ void ply_read_body(R& r, const ply_header& h, const ply_layout& l, std::size_t b
         if (!vertices_read) deferred_face_at.push_back(r.mark());
         for (std::size_t i = 0; i < e.properties.size(); ++i) {
           const auto& p = e.properties[i];
-          const auto what = [&] { return "property '" + p.name + "' of face " + std::to_string(f); };
+          const auto what = [&] {
+            return cellforge::detail::cat("property '", p.name, "' of face ", std::to_string(f));
+          };
           if (!p.is_list) {
             r.skip(p.type, what);
             continue;
@@ -355,20 +374,21 @@ void ply_read_body(R& r, const ply_header& h, const ply_layout& l, std::size_t b
           const std::size_t at = r.mark();
           const std::int64_t n = r.integer(p.count_type, what);
           if (n < 0)
-            r.fail_at(
-                at, "face " + std::to_string(f) + " has a negative list length (" + std::to_string(n) + ")");
+            r.fail_at(at, cellforge::detail::cat("face ", std::to_string(f), " has a negative list length (",
+                                                 std::to_string(n), ")"));
           if (static_cast<int>(i) != l.indices) {
             for (std::int64_t k = 0; k < n; ++k) r.skip(p.type, what);
             continue;
           }
           if (n < 3)
-            r.fail_at(at, "face " + std::to_string(f) + " has " + std::to_string(n) +
-                              " vertices; a face needs at least 3");
+            r.fail_at(at, cellforge::detail::cat("face ", std::to_string(f), " has ", std::to_string(n),
+                                                 " vertices; a face needs at least 3"));
           const std::size_t first = soup.face_vertices.size();
           for (std::int64_t k = 0; k < n; ++k) {
             const std::size_t iat = r.mark();
-            const std::int64_t idx = r.integer(
-                p.type, [&] { return "vertex " + std::to_string(k) + " of face " + std::to_string(f); });
+            const std::int64_t idx = r.integer(p.type, [&] {
+              return cellforge::detail::cat("vertex ", std::to_string(k), " of face ", std::to_string(f));
+            });
             if (vertices_read)
               check_index(idx, f, iat);
             else if (idx < 0 || idx >= std::int64_t{std::numeric_limits<std::uint32_t>::max()})
@@ -377,7 +397,7 @@ void ply_read_body(R& r, const ply_header& h, const ply_layout& l, std::size_t b
           }
           if (const auto problem =
                   close_face(soup, first, options.allow_repeated_vertices, scratch, 0, "ply_read_options"))
-            r.fail_at(at, "face " + std::to_string(f) + " " + *problem);
+            r.fail_at(at, cellforge::detail::cat("face ", std::to_string(f), " ", *problem));
         }
         r.end_instance(e, f);
       }

@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/io/detail/output_buffer.hpp"
@@ -59,8 +60,9 @@ skeleton_obj_data<P> parse_skeleton_obj(std::string_view bytes, std::string_view
   const double uniform = options.uniform_radius;
   if (!(uniform >= 0) || !std::isfinite(uniform))
     throw error(error_category::invalid_input,
-                "skeleton_obj_read_options::uniform_radius must be positive (or 0 for none), found " +
-                    cellforge::detail::skeleton_number(uniform));
+                cellforge::detail::cat(
+                    "skeleton_obj_read_options::uniform_radius must be positive (or 0 for none), found ",
+                    cellforge::detail::skeleton_number(uniform)));
   detail::text_cursor c(bytes, name, '#', /*line_continuation=*/true);
   if (bytes.starts_with("\xEF\xBB\xBF")) c.pos += 3;
   skeleton_obj_data<P> data;
@@ -72,9 +74,12 @@ skeleton_obj_data<P> parse_skeleton_obj(std::string_view bytes, std::string_view
     const std::string_view keyword(line, static_cast<std::size_t>(c.pos - line));
     if (keyword == "v") {
       const std::size_t v = s.points.size() + 1;  // 1-based, as the file counts
-      const S x = c.coordinate<S>([&] { return "coordinate x of vertex " + std::to_string(v); });
-      const S y = c.coordinate<S>([&] { return "coordinate y of vertex " + std::to_string(v); });
-      const S z = c.coordinate<S>([&] { return "coordinate z of vertex " + std::to_string(v); });
+      const S x = c.coordinate<S>(
+          [&] { return cellforge::detail::cat("coordinate x of vertex ", std::to_string(v)); });
+      const S y = c.coordinate<S>(
+          [&] { return cellforge::detail::cat("coordinate y of vertex ", std::to_string(v)); });
+      const S z = c.coordinate<S>(
+          [&] { return cellforge::detail::cat("coordinate z of vertex ", std::to_string(v)); });
       c.skip_blanks();
       // x y z r, or x y z / x y z r g b [a] (colours) taking the uniform radius.
       const char* fourth = c.pos;
@@ -82,26 +87,29 @@ skeleton_obj_data<P> parse_skeleton_obj(std::string_view bytes, std::string_view
       int extra = 0;
       for (; !c.at_line_end(); c.skip_blanks(), ++extra) {
         if (extra == 4)
-          c.fail(
-              "too many values for 'v' (x y z r, or x y z r g b [a] with the uniform radius): unexpected " +
-              c.token());
-        values[extra] = c.number<double>(
-            [&] { return "value " + std::to_string(extra + 4) + " of vertex " + std::to_string(v); });
+          c.fail(cellforge::detail::cat(
+              "too many values for 'v' (x y z r, or x y z r g b [a] with the uniform radius): unexpected ",
+              c.token()));
+        values[extra] = c.number<double>([&] {
+          return cellforge::detail::cat("value ", std::to_string(extra + 4), " of vertex ",
+                                        std::to_string(v));
+        });
       }
       double r = uniform;
       if (extra == 1) {
         r = values[0];
         if (!std::isfinite(r) || !(r > 0))
-          c.fail_at(fourth, "the radius of vertex " + std::to_string(v) + " (the 4th value), " +
-                                detail::quote_token(fourth, c.end) +
-                                (std::isfinite(r) ? ", must be positive" : ", is not finite"));
+          c.fail_at(fourth,
+                    cellforge::detail::cat("the radius of vertex ", std::to_string(v), " (the 4th value), ",
+                                           detail::quote_token(fourth, c.end),
+                                           (std::isfinite(r) ? ", must be positive" : ", is not finite")));
       } else if (extra == 2) {
         c.fail_at(line, "'v' takes x y z r (or x y z [r g b [a]] with a uniform radius); found 5 values");
       } else {
         if (uniform == 0)
-          c.fail_at(line, "vertex " + std::to_string(v) +
-                              " has no radius: give it as a 4th value or set "
-                              "skeleton_obj_read_options::uniform_radius");
+          c.fail_at(line, cellforge::detail::cat("vertex ", std::to_string(v),
+                                                 " has no radius: give it as a 4th value or set "
+                                                 "skeleton_obj_read_options::uniform_radius"));
         ++data.uniform_radius_nodes;
       }
       if (s.points.size() >= std::numeric_limits<std::uint32_t>::max() - 1)
@@ -128,10 +136,12 @@ skeleton_obj_data<P> parse_skeleton_obj(std::string_view bytes, std::string_view
         return {s.edges[j][0], s.edges[j][1]};
       });
   if (worst != ~std::size_t{0})
-    c.fail_at(segment_at[worst], "the segment from vertex " + std::to_string(s.edges[worst][0] + 1) + " to " +
-                                     std::to_string(s.edges[worst][1] + 1) + " repeats the one on line " +
-                                     std::to_string(detail::line_of(
-                                         bytes, static_cast<std::size_t>(segment_at[first] - bytes.data()))));
+    c.fail_at(
+        segment_at[worst],
+        cellforge::detail::cat("the segment from vertex ", std::to_string(s.edges[worst][0] + 1), " to ",
+                               std::to_string(s.edges[worst][1] + 1), " repeats the one on line ",
+                               std::to_string(detail::line_of(
+                                   bytes, static_cast<std::size_t>(segment_at[first] - bytes.data())))));
   return data;
 }
 

@@ -27,6 +27,7 @@
 #include "cellforge/core/bounding_box.hpp"
 #include "cellforge/core/detail/newell.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/rounded_solid.hpp"
@@ -258,8 +259,9 @@ bounding_box step_bounds(std::span<const glm::dvec3> pts, const step_write_optio
   for (std::size_t i = 0; i < pts.size(); ++i) {
     for (int k = 0; k < 3; ++k)
       if (!std::isfinite(pts[i][k]))
-        throw error(error_category::invalid_input,
-                    "write_step: point " + std::to_string(i) + " has a non-finite coordinate");
+        throw error(
+            error_category::invalid_input,
+            cellforge::detail::cat("write_step: point ", std::to_string(i), " has a non-finite coordinate"));
     box.add(pts[i]);
   }
   const double diagonal = pts.empty() ? 0.0 : box.diagonal();
@@ -487,8 +489,9 @@ std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts,
     const glm::dvec3 a = pts[cc.source(e).idx()], b = pts[cc.target(e).idx()];
     const double length = glm::length(b - a);
     if (!(length > 0))
-      throw error(error_category::invalid_input, "write_step: edge " + std::to_string(e.idx()) +
-                                                     " has length zero (a LINE needs a direction)");
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat("write_step: edge ", std::to_string(e.idx()),
+                                         " has length zero (a LINE needs a direction)"));
     const size_t line = d.line(vertex_point[cc.source(e).idx()], (b - a) / length, length);
     edge_entity[e.idx()] =
         d.edge_curve(vertex_entity[cc.source(e).idx()], vertex_entity[cc.target(e).idx()], line);
@@ -504,8 +507,9 @@ std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts,
   for (cell_face f : cc.faces()) {
     const glm::dvec3 n = cellforge::detail::cells::access::unit_normal(cc, f);
     if (!(glm::length(n) > 0.5))
-      throw error(error_category::invalid_input, "write_step: face " + std::to_string(f.idx()) +
-                                                     " has no normal (its outer loop has no area)");
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat("write_step: face ", std::to_string(f.idx()),
+                                         " has no normal (its outer loop has no area)"));
     const auto outer = cc.loop_vertices(f, 0);
     // The reference direction: the longest outer edge, made perpendicular to the normal.
     glm::dvec3 ref(0.0);
@@ -516,7 +520,8 @@ std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts,
     }
     if (!(glm::length(ref) > 0))
       throw error(error_category::invalid_input,
-                  "write_step: face " + std::to_string(f.idx()) + " has no edge across its normal");
+                  cellforge::detail::cat("write_step: face ", std::to_string(f.idx()),
+                                         " has no edge across its normal"));
     // The check of the answer: every vertex of the face on its PLANE to the uncertainty.
     double off = 0;
     for (size_t l = 0; l < cc.num_loops(f); ++l)
@@ -524,9 +529,9 @@ std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts,
         off = std::max(off, std::abs(glm::dot(pts[v.idx()] - pts[outer[0].idx()], n)));
     if (off > result.uncertainty) {
       if (++off_plane <= 10)
-        result.diagnostics.push_back(
-            "face " + std::to_string(f.idx()) + ": a vertex is " + std::to_string(off) +
-            " from the face's plane, more than the uncertainty " + std::to_string(result.uncertainty));
+        result.diagnostics.push_back(cellforge::detail::cat(
+            "face ", std::to_string(f.idx()), ": a vertex is ", std::to_string(off),
+            " from the face's plane, more than the uncertainty ", std::to_string(result.uncertainty)));
     }
     const size_t place = d.placement(vertex_point[outer[0].idx()], n, glm::normalize(ref));
     face_plane[f.idx()] = d.entity("PLANE", {place});
@@ -579,12 +584,14 @@ std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts,
     for (const auto& s : shells) vol.push_back(shell_volume(cc, pts, s, centre));
     const size_t outer = static_cast<size_t>(std::max_element(vol.begin(), vol.end()) - vol.begin());
     if (!(vol[outer] > 0))
-      result.diagnostics.push_back("volume " + std::to_string(c.idx()) +
-                                   ": its outer shell encloses no positive volume (written as given)");
+      result.diagnostics.push_back(
+          cellforge::detail::cat("volume ", std::to_string(c.idx()),
+                                 ": its outer shell encloses no positive volume (written as given)"));
     for (size_t i = 0; i < shells.size(); ++i)
       if (i != outer && !(vol[i] < 0))
-        result.diagnostics.push_back("volume " + std::to_string(c.idx()) + ": shell " + std::to_string(i) +
-                                     " is neither its outside nor a cavity (written as a cavity)");
+        result.diagnostics.push_back(
+            cellforge::detail::cat("volume ", std::to_string(c.idx()), ": shell ", std::to_string(i),
+                                   " is neither its outside nor a cavity (written as a cavity)"));
     const size_t outer_shell = shell("CLOSED_SHELL", shells[outer], +1);
     std::vector<size_t> voids;
     for (size_t i = 0; i < shells.size(); ++i) {
@@ -599,7 +606,7 @@ std::string step_text(const cell_topology& cc, std::span<const glm::dvec3> pts,
     }
     solids.push_back(d.begin());
     d.text += voids.empty() ? "MANIFOLD_SOLID_BREP(" : "BREP_WITH_VOIDS(";
-    step_string(d.text, "volume " + std::to_string(c.idx()));
+    step_string(d.text, cellforge::detail::cat("volume ", std::to_string(c.idx())));
     d.text += ',';
     d.ref(outer_shell);
     if (!voids.empty()) {
@@ -757,7 +764,8 @@ std::string step_rounded_text(const rounded_solid& s, const step_write_options& 
       const double length = glm::length(b - a);
       if (!(length > 0))
         throw error(error_category::invalid_input,
-                    "write_step: edge " + std::to_string(i) + " has length zero (a LINE needs a direction)");
+                    cellforge::detail::cat("write_step: edge ", std::to_string(i),
+                                           " has length zero (a LINE needs a direction)"));
       curve = d.line(vertex_point[e.a], (b - a) / length, length);
     } else {
       // The cylinder cut by the end plane: centred where the axis meets it, oriented so that
@@ -768,7 +776,8 @@ std::string step_rounded_text(const rounded_solid& s, const step_write_options& 
       const double gd = glm::dot(g, c.axis);
       if (!(std::abs(gd) > 1e-9))
         throw error(error_category::invalid_input,
-                    "write_step: edge " + std::to_string(i) + ": its plane holds its cylinder's axis");
+                    cellforge::detail::cat("write_step: edge ", std::to_string(i),
+                                           ": its plane holds its cylinder's axis"));
       const glm::dvec3 centre = c.point + c.axis * (glm::dot(g, a - c.point) / gd);
       const glm::dvec3 ra = radial(c, a);
       radial(c, b);
@@ -812,7 +821,7 @@ std::string step_rounded_text(const rounded_solid& s, const step_write_options& 
     const rounded_solid::cylinder& c = s.blends[i];
     if (!(c.radius > 0) || !(glm::length(c.axis) > 0.5))
       throw error(error_category::invalid_input,
-                  "write_step: blend " + std::to_string(i) + " has no radius or axis");
+                  cellforge::detail::cat("write_step: blend ", std::to_string(i), " has no radius or axis"));
     const size_t origin = d.point(c.point);
     const size_t place = d.placement(origin, c.axis, -c.middle);  // the seam opposite the blend
     surface_of_blend[i] = d.begin();
@@ -841,7 +850,7 @@ std::string step_rounded_text(const rounded_solid& s, const step_write_options& 
       }
       if (!(glm::length(ref) > 0))
         throw error(error_category::invalid_input,
-                    "write_step: face " + std::to_string(fi) + " has no extent");
+                    cellforge::detail::cat("write_step: face ", std::to_string(fi), " has no extent"));
       const size_t place = d.placement(vertex_point[s.edges[f.loop[0].first].a], n, glm::normalize(ref));
       surface = d.entity("PLANE", {place});
       ++result.planes;
@@ -864,9 +873,9 @@ std::string step_rounded_text(const rounded_solid& s, const step_write_options& 
     ++result.faces;
   }
   if (off > result.uncertainty)
-    result.diagnostics.push_back("a vertex is " + std::to_string(off) +
-                                 " from a curve or surface it bounds, more than the uncertainty " +
-                                 std::to_string(result.uncertainty));
+    result.diagnostics.push_back(cellforge::detail::cat(
+        "a vertex is ", std::to_string(off), " from a curve or surface it bounds, more than the uncertainty ",
+        std::to_string(result.uncertainty)));
   const size_t shell = d.begin();
   d.text += "CLOSED_SHELL('',";
   d.refs(faces);

@@ -25,6 +25,7 @@
 
 #include "cellforge/algorithms/ear_clipping.hpp"
 #include "cellforge/core/detail/edge_table.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
@@ -121,10 +122,11 @@ float stl_load_f32(const char* p) noexcept {
 template <class = void>
 void stl_check_facet_limit(std::uint32_t n, std::string_view name) {
   if (n > stl_max_facets)
-    stl_fail_at_byte(name, 80,
-                     "the header's facet count " + std::to_string(n) +
-                         " exceeds the 32-bit index limit (at most " + std::to_string(stl_max_facets) +
-                         " facets, 3 corner indices each)");
+    stl_fail_at_byte(
+        name, 80,
+        cellforge::detail::cat("the header's facet count ", std::to_string(n),
+                               " exceeds the 32-bit index limit (at most ", std::to_string(stl_max_facets),
+                               " facets, 3 corner indices each)"));
 }
 
 /// True when the token at the cursor is `word` (lower case here, any case in the file). O(|word|).
@@ -176,8 +178,8 @@ class stl_welder {
       : points_(points), weld_(o.weld), tol_(o.weld_tolerance), side_(4.0 * o.weld_tolerance) {
     if (!(o.weld_tolerance >= 0.0) || !std::isfinite(o.weld_tolerance))
       throw error(error_category::invalid_input,
-                  "stl_read_options::weld_tolerance must be finite and >= 0, got " +
-                      std::to_string(o.weld_tolerance));
+                  cellforge::detail::cat("stl_read_options::weld_tolerance must be finite and >= 0, got ",
+                                         std::to_string(o.weld_tolerance)));
   }
 
   void reserve(std::size_t n) {
@@ -336,7 +338,8 @@ class stl_builder {
     auto& soup = d_.soup;
     if (soup.points.size() > std::numeric_limits<std::uint32_t>::max() - 3 ||
         soup.face_vertices.size() > std::numeric_limits<std::uint32_t>::max() - 3)
-      fail("facet " + std::to_string(f) + " exceeds the 32-bit index limit of the soup");
+      fail(
+          cellforge::detail::cat("facet ", std::to_string(f), " exceeds the 32-bit index limit of the soup"));
     const std::size_t before = soup.points.size();
     std::array<std::uint32_t, 3> v{};
     for (std::size_t k = 0; k < 3; ++k) v[k] = welder_.add(corners[k]);
@@ -345,9 +348,10 @@ class stl_builder {
       if (!welder_.same(v[a], v[b])) continue;
       ++d_.degenerate_facets;
       if (o_.degenerate == stl_degenerate::refuse)
-        fail("facet " + std::to_string(f) + " is degenerate: its corners " + std::to_string(std::min(a, b)) +
-             " and " + std::to_string(std::max(a, b)) +
-             " are one vertex (stl_read_options::degenerate = drop or keep accepts it)");
+        fail(cellforge::detail::cat(
+            "facet ", std::to_string(f), " is degenerate: its corners ", std::to_string(std::min(a, b)),
+            " and ", std::to_string(std::max(a, b)),
+            " are one vertex (stl_read_options::degenerate = drop or keep accepts it)"));
       if (o_.degenerate == stl_degenerate::drop) {
         welder_.undo_to(before);
         return;
@@ -373,19 +377,21 @@ void stl_read_binary(std::string_view bytes, std::string_view name, bool starts_
                      stl_builder<P>& b) {
   if (bytes.size() < 84)
     stl_fail_at_byte(name, 0,
-                     "not an STL file: " + std::to_string(bytes.size()) +
+                     cellforge::detail::cat(
+                         "not an STL file: ", std::to_string(bytes.size()),
                          " bytes are too few for binary STL (an 84-byte header and facet count) and the "
-                         "file does not start with 'solid' (ASCII STL)");
+                         "file does not start with 'solid' (ASCII STL)"));
   const std::uint32_t n = stl_load_u32(bytes.data() + 80);
   const std::uint64_t needed = 84 + 50 * std::uint64_t{n};
   const std::string hint =
       starts_with_solid ? " (the file starts with 'solid' but holds binary data, so it is read as binary)"
                         : "";
   if (needed > bytes.size())
-    stl_fail_at_byte(name, 80,
-                     "the header's facet count " + std::to_string(n) + " needs " + std::to_string(needed) +
-                         " bytes (84 + 50 per facet) but the file has " + std::to_string(bytes.size()) +
-                         ": truncated, or not an STL file" + hint);
+    stl_fail_at_byte(
+        name, 80,
+        cellforge::detail::cat("the header's facet count ", std::to_string(n), " needs ",
+                               std::to_string(needed), " bytes (84 + 50 per facet) but the file has ",
+                               std::to_string(bytes.size()), ": truncated, or not an STL file", hint));
   if (needed < bytes.size())
     stl_fail_at_byte(name, needed,
                      std::to_string(bytes.size() - needed) + " bytes of unexpected data after the last of " +
@@ -407,10 +413,11 @@ void stl_read_binary(std::string_view bytes, std::string_view name, bool starts_
         if (!convert_coordinate(value, xyz[a]))
           stl_fail_at_byte(
               name, vat,
-              "coordinate " + std::string(1, "xyz"[a]) + " of vertex " + std::to_string(k) + " of facet " +
-                  std::to_string(f) + " (" + std::to_string(value) + ") " +
+              cellforge::detail::cat(
+                  "coordinate ", std::string(1, "xyz"[a]), " of vertex ", std::to_string(k), " of facet ",
+                  std::to_string(f), " (", std::to_string(value), ") ",
                   (std::isfinite(value) ? "does not fit the point's scalar type"
-                                        : "is not finite (NaN and Inf coordinates are rejected)"));
+                                        : "is not finite (NaN and Inf coordinates are rejected)")));
       }
       return point_traits<P>::make(xyz[0], xyz[1], xyz[2]);
     };
@@ -439,20 +446,23 @@ class stl_ascii_reader {
       if (!stl_at_keyword(c_, "solid")) expected("'solid'");
       c_.pos += 5;
       std::string name = rest_of_line();
-      const std::string solid = "solid '" + name + "'";
+      const std::string solid = cellforge::detail::cat("solid '", name, "'");
       b_.begin_solid(std::move(name));
       for (;;) {
         if (!c_.next_content())
-          c_.fail_at(c_.content_end(), "file ends inside " + solid + ": expected 'facet' or 'endsolid'");
+          c_.fail_at(c_.content_end(),
+                     cellforge::detail::cat("file ends inside ", solid, ": expected 'facet' or 'endsolid'"));
         if (stl_at_keyword(c_, "endsolid")) break;
-        if (!stl_at_keyword(c_, "facet")) expected("'facet' or 'endsolid' in " + solid);
+        if (!stl_at_keyword(c_, "facet"))
+          expected(cellforge::detail::cat("'facet' or 'endsolid' in ", solid));
         facet();
       }
       c_.pos += 8;
       b_.end_solid(rest_of_line());
       if (!c_.next_content()) return;
       if (!stl_at_keyword(c_, "solid"))
-        c_.fail("unexpected " + c_.token() + " after 'endsolid' (only another 'solid' may follow)");
+        c_.fail(cellforge::detail::cat("unexpected ", c_.token(),
+                                       " after 'endsolid' (only another 'solid' may follow)"));
     }
   }
 
@@ -491,28 +501,32 @@ class stl_ascii_reader {
   /// A normal component: any number, NaN included (some exporters write NaN for degenerate facets).
   template <class What>
   void normal_component(What&& what) {
-    if (!c_.next_content()) c_.fail_at(c_.content_end(), "expected " + what() + ", found end of file");
+    if (!c_.next_content())
+      c_.fail_at(c_.content_end(), cellforge::detail::cat("expected ", what(), ", found end of file"));
     (void)c_.number<double>(what);
   }
 
   /// A corner coordinate: finite and representable in the point's scalar type.
   template <class What>
   S coordinate(What&& what) {
-    if (!c_.next_content()) c_.fail_at(c_.content_end(), "expected " + what() + ", found end of file");
+    if (!c_.next_content())
+      c_.fail_at(c_.content_end(), cellforge::detail::cat("expected ", what(), ", found end of file"));
     return c_.coordinate<S>(what);
   }
 
   void facet() {
     const char* at = c_.pos;
     const std::uint64_t f = b_.facet_index();
-    const std::string facet_name = "facet " + std::to_string(f);
+    const std::string facet_name = cellforge::detail::cat("facet ", std::to_string(f));
     where_ = facet_name + ": ";
     c_.pos += 5;
     keyword("normal", "'normal' after 'facet'");
     // The normal is checked to be three numbers (NaN allowed: some exporters write it for
     // degenerate facets) and not kept: writers recompute it from the corners.
     for (int a = 0; a < 3; ++a)
-      normal_component([&] { return "normal component " + std::string(1, "xyz"[a]) + " of " + facet_name; });
+      normal_component([&] {
+        return cellforge::detail::cat("normal component ", std::string(1, "xyz"[a]), " of ", facet_name);
+      });
     if (number_follows()) c_.fail(where_ + "the normal has more than 3 components: unexpected " + c_.token());
     keyword("outer", "'outer loop' after the normal");
     keyword("loop", "'loop' after 'outer'");
@@ -526,14 +540,14 @@ class stl_ascii_reader {
       c_.pos += 6;
       const auto what = [&](int a) {
         return [&, a] {
-          return "coordinate " + std::string(1, "xyz"[a]) + " of vertex " + std::to_string(k) + " of " +
-                 facet_name;
+          return cellforge::detail::cat("coordinate ", std::string(1, "xyz"[a]), " of vertex ",
+                                        std::to_string(k), " of ", facet_name);
         };
       };
       const S x = coordinate(what(0)), y = coordinate(what(1)), z = coordinate(what(2));
       if (number_follows())
-        c_.fail("vertex " + std::to_string(k) + " of " + facet_name +
-                " has more than 3 coordinates: unexpected " + c_.token());
+        c_.fail(cellforge::detail::cat("vertex ", std::to_string(k), " of ", facet_name,
+                                       " has more than 3 coordinates: unexpected ", c_.token()));
       xyz[k++] = {x, y, z};
     }
     if (k < 3)
@@ -574,11 +588,13 @@ stl_data<P> parse_stl(std::string_view bytes, std::string_view name = "<memory>"
   b.finish();
   // Dropping every facet would read as an empty mesh, which the file is not: say so.
   if (options.degenerate == stl_degenerate::drop && d.facets_read > 0 && d.degenerate_facets == d.facets_read)
-    throw error(error_category::io,
-                "all " + std::to_string(d.facets_read) + " facets are degenerate (two corners are one vertex" +
-                    (options.weld ? ", after welding" : "") +
-                    "): no triangle is left (stl_read_options::degenerate = keep reads them)",
-                source_location{std::string(name), 0, source_location::no_offset});
+    throw error(
+        error_category::io,
+        cellforge::detail::cat("all ", std::to_string(d.facets_read),
+                               " facets are degenerate (two corners are one vertex",
+                               (options.weld ? ", after welding" : ""),
+                               "): no triangle is left (stl_read_options::degenerate = keep reads them)"),
+        source_location{std::string(name), 0, source_location::no_offset});
   return d;
 }
 
@@ -629,7 +645,8 @@ glm::dvec3 stl_facet_normal(const glm::dvec3& a, const glm::dvec3& b, const glm:
 template <class = void>
 void stl_check_name(std::string_view name, bool binary) {
   const auto refuse = [&](const std::string& why) {
-    throw error(error_category::invalid_input, "write_stl: stl_write_options::solid_name " + why);
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat("write_stl: stl_write_options::solid_name ", why));
   };
   if (binary) {
     if (name.size() > 80) refuse("is longer than the 80-byte binary header");
@@ -661,8 +678,8 @@ void write_stl(std::ostream& os, const polygon_soup<P>& soup, const stl_write_op
       if (!(std::fabs(static_cast<double>(coord(p, k))) <=
             static_cast<double>(std::numeric_limits<float>::max())))
         throw error(error_category::invalid_input,
-                    "write_stl: point " + std::to_string(v) +
-                        " has a coordinate beyond the float32 range of binary STL");
+                    cellforge::detail::cat("write_stl: point ", std::to_string(v),
+                                           " has a coordinate beyond the float32 range of binary STL"));
   }
   // Only a soup with polygons is copied: triangles are written as they stand.
   bool polygons = false;
@@ -672,7 +689,7 @@ void write_stl(std::ostream& os, const polygon_soup<P>& soup, const stl_write_op
     try {
       clipped = triangulate(soup, options.triangulation);
     } catch (const error& e) {
-      throw error(e.category(), "write_stl: " + e.message());
+      throw error(e.category(), cellforge::detail::cat("write_stl: ", e.message()));
     }
   }
   const polygon_soup<P>* tris = polygons ? &clipped : &soup;
@@ -684,7 +701,8 @@ void write_stl(std::ostream& os, const polygon_soup<P>& soup, const stl_write_op
   if (options.binary) {
     if (n > std::numeric_limits<std::uint32_t>::max())
       throw error(error_category::invalid_input,
-                  "write_stl: " + std::to_string(n) + " triangles are more than binary STL can count");
+                  cellforge::detail::cat("write_stl: ", std::to_string(n),
+                                         " triangles are more than binary STL can count"));
     std::array<char, 80> header{};
     std::memcpy(header.data(), options.solid_name.data(), options.solid_name.size());
     out.put(std::string_view(header.data(), header.size()));

@@ -30,6 +30,7 @@
 
 #include "cellforge/core/bounding_box.hpp"
 #include "cellforge/core/detail/edge_table.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
@@ -247,11 +248,13 @@ class basic_svg_scene {
     for (std::size_t f = 0; f < nf; ++f) {
       if (soup.face_offsets[f] > soup.face_offsets[f + 1] ||
           soup.face_offsets[f + 1] > soup.face_vertices.size())
-        fail("add_mesh: face " + std::to_string(f) + " has inconsistent offsets in the soup");
+        fail(cellforge::detail::cat("add_mesh: face ", std::to_string(f),
+                                    " has inconsistent offsets in the soup"));
       for (const auto v : soup.face(f))
         if (v >= soup.points.size())
-          fail("add_mesh: face " + std::to_string(f) + " refers to point " + std::to_string(v) +
-               " but the soup has " + std::to_string(soup.points.size()) + " points");
+          fail(cellforge::detail::cat("add_mesh: face ", std::to_string(f), " refers to point ",
+                                      std::to_string(v), " but the soup has ",
+                                      std::to_string(soup.points.size()), " points"));
     }
     if (soup.face_vertices.size() >= 0xffffffffu - face_vertices_.size())
       fail("add_mesh: more than 2^32 - 2 face corners in one scene");
@@ -277,9 +280,9 @@ class basic_svg_scene {
     for (std::size_t e = 0; e < ne; ++e) {
       const std::array<std::size_t, 2> ab = T::endpoints(g, e);
       if (ab[0] >= nv || ab[1] >= nv)
-        fail("add_wireframe: edge " + std::to_string(e) + " refers to vertex " +
-             std::to_string(std::max(ab[0], ab[1])) + " but the wireframe has " + std::to_string(nv) +
-             " vertices");
+        fail(cellforge::detail::cat("add_wireframe: edge ", std::to_string(e), " refers to vertex ",
+                                    std::to_string(std::max(ab[0], ab[1])), " but the wireframe has ",
+                                    std::to_string(nv), " vertices"));
     }
     std::vector<glm::dvec3> pts;
     pts.reserve(nv);
@@ -315,7 +318,8 @@ class basic_svg_scene {
   std::size_t add_points(R&& points, const svg_style& style = {}, double radius = 3) {
     check_style(style, "add_points");
     if (!(radius >= 0.0) || !std::isfinite(radius))
-      fail("add_points: the radius must be finite and >= 0, got " + std::to_string(radius));
+      fail(cellforge::detail::cat("add_points: the radius must be finite and >= 0, got ",
+                                  std::to_string(radius)));
     const auto pts = convert_points(points, style, "add_points");
     layer l = begin_layer(layer_kind::points, style);
     l.radius = radius;
@@ -407,12 +411,13 @@ class basic_svg_scene {
   };
 
   [[noreturn]] static void fail(const std::string& what) {
-    throw error(error_category::invalid_input, "basic_svg_scene::" + what);
+    throw error(error_category::invalid_input, cellforge::detail::cat("basic_svg_scene::", what));
   }
 
   static void check_style(const svg_style& s, const char* who) {
     const auto bad = [&](const char* field, double v) {
-      fail(std::string(who) + ": style." + field + " is out of range (" + std::to_string(v) + ")");
+      fail(cellforge::detail::cat(std::string(who), ": style.", field, " is out of range (",
+                                  std::to_string(v), ")"));
     };
     if (!(s.stroke_width >= 0.0) || !std::isfinite(s.stroke_width)) bad("stroke_width", s.stroke_width);
     if (!(s.opacity >= 0.0 && s.opacity <= 1.0)) bad("opacity", s.opacity);
@@ -455,16 +460,17 @@ class basic_svg_scene {
                                   const char* who) {
     const glm::dvec3 r = q + style.offset;
     if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
-      fail(std::string(who) + ": point " + std::to_string(index) +
-           " has a non-finite coordinate (NaN or Inf)");
+      fail(cellforge::detail::cat(std::string(who), ": point ", std::to_string(index),
+                                  " has a non-finite coordinate (NaN or Inf)"));
     if (!std::isfinite(r.x) || !std::isfinite(r.y) || !std::isfinite(r.z))
-      fail(std::string(who) + ": point " + std::to_string(index) + " overflows when offset");
+      fail(cellforge::detail::cat(std::string(who), ": point ", std::to_string(index),
+                                  " overflows when offset"));
     return r;
   }
 
   void append_points(const std::vector<glm::dvec3>& pts, const char* who) {
     if (pts.size() >= 0xffffffffu - points_.size())
-      fail(std::string(who) + ": more than 2^32 - 2 points in one scene");
+      fail(cellforge::detail::cat(std::string(who), ": more than 2^32 - 2 points in one scene"));
     points_.insert(points_.end(), pts.begin(), pts.end());
   }
 
@@ -486,12 +492,13 @@ class basic_svg_scene {
   }
 
   static void check_options(const svg_options& o) {
-    const auto bad = [](const std::string& what) { fail("write: options." + what); };
+    const auto bad = [](const std::string& what) { fail(cellforge::detail::cat("write: options.", what)); };
     if (o.width <= 0 || o.height <= 0)
-      bad("width and height must be positive, got " + std::to_string(o.width) + " x " +
-          std::to_string(o.height));
+      bad(cellforge::detail::cat("width and height must be positive, got ", std::to_string(o.width), " x ",
+                                 std::to_string(o.height)));
     if (!(o.margin >= 0.0) || 2.0 * o.margin >= std::min(o.width, o.height))
-      bad("margin must be >= 0 and leave room to draw, got " + std::to_string(o.margin));
+      bad(cellforge::detail::cat("margin must be >= 0 and leave room to draw, got ",
+                                 std::to_string(o.margin)));
     if (!std::isfinite(o.view.azimuth_deg) ||
         !(o.view.elevation_deg >= -90.0 && o.view.elevation_deg <= 90.0))
       bad("view: azimuth must be finite and elevation within -90 .. 90 degrees");
@@ -813,19 +820,21 @@ class basic_svg_scene {
 
     out += "<?xml version=\"1.0\" encoding=\"UTF-8\" standalone=\"no\"?>\n";
     out += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\"";
-    out += " width=\"" + std::to_string(o.width) + "\" height=\"" + std::to_string(o.height) + "\"";
-    out += " viewBox=\"0 0 " + std::to_string(o.width) + " " + std::to_string(o.height) + "\">\n";
+    out += cellforge::detail::cat(" width=\"", std::to_string(o.width), "\" height=\"",
+                                  std::to_string(o.height), "\"");
+    out += cellforge::detail::cat(" viewBox=\"0 0 ", std::to_string(o.width), " ", std::to_string(o.height),
+                                  "\">\n");
     if (!o.title.empty()) {
       out += "<title>";
       detail::svg_escape(out, o.title);
       out += "</title>\n";
     }
     if (r.approximate_edges + r.untested_edges + r.approximate_points + r.untested_points > 0)
-      out += "<!-- cellforge: the hidden-line work budget ran out: " +
-             std::to_string(r.approximate_edges + r.approximate_points) +
-             " edges and points judged from one point, " +
-             std::to_string(r.untested_edges + r.untested_points) +
-             " not tested (drawn visible); raise svg_options::work_budget for exact hidden lines -->\n";
+      out += cellforge::detail::cat(
+          "<!-- cellforge: the hidden-line work budget ran out: ",
+          std::to_string(r.approximate_edges + r.approximate_points),
+          " edges and points judged from one point, ", std::to_string(r.untested_edges + r.untested_points),
+          " not tested (drawn visible); raise svg_options::work_budget for exact hidden lines -->\n");
     if (!o.background.empty() && o.background != "none") {
       out += "<rect width=\"100%\" height=\"100%\"";
       attr("fill", o.background);

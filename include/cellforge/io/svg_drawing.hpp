@@ -26,6 +26,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/io/detail/arc_io.hpp"
@@ -141,7 +142,8 @@ struct basic_svg_reader {
   void note(const char* at, const std::string& message) {
     constexpr std::size_t shown = 50;
     if (diagnostics.size() < shown)
-      diagnostics.push_back(std::string(name) + ":" + std::to_string(line(at)) + ": " + message);
+      diagnostics.push_back(
+          cellforge::detail::cat(std::string(name), ":", std::to_string(line(at)), ": ", message));
     else if (diagnostics.size() == shown)
       diagnostics.push_back("(further diagnostics left out)");
   }
@@ -198,10 +200,10 @@ struct basic_svg_reader {
       const auto w = std::from_chars(start, q, wide, std::chars_format::general);
       if (w.ec != std::errc{} ||
           std::fabs(wide) > static_cast<long double>(std::numeric_limits<double>::max()))
-        fail(p, "the number " + quote_token(p, end) + " is out of range");
+        fail(p, cellforge::detail::cat("the number ", quote_token(p, end), " is out of range"));
       out = static_cast<double>(wide);
     } else if (r.ec != std::errc{} || r.ptr != q) {
-      fail(p, "expected a number, found " + quote_token(p, end));
+      fail(p, cellforge::detail::cat("expected a number, found ", quote_token(p, end)));
     }
     p = q;
     return true;
@@ -227,12 +229,13 @@ struct basic_svg_reader {
     double v = 0;
     const char* at = p;
     if (!number(p, end, v))
-      fail(at, "attribute " + std::string(attr) + ": expected a number, found " + quote_token(at, end));
+      fail(at, cellforge::detail::cat("attribute ", std::string(attr), ": expected a number, found ",
+                                      quote_token(at, end)));
     if (end - p >= 2 && p[0] == 'p' && p[1] == 'x') p += 2;
     while (p != end && space(*p)) ++p;
     if (p != end)
-      fail(p, "attribute " + std::string(attr) + ": unexpected " + quote_token(p, end) +
-                  " after the number (only user units and px are read)");
+      fail(p, cellforge::detail::cat("attribute ", std::string(attr), ": unexpected ", quote_token(p, end),
+                                     " after the number (only user units and px are read)"));
     return v;
   }
 
@@ -253,9 +256,10 @@ struct basic_svg_reader {
       while (p != end && space(*p)) ++p;
       if (fn.empty() || p == end || *p != '(')
         fail(at,
-             "transform: expected translate(...), scale(...), rotate(...), matrix(...), skewX(...) or "
-             "skewY(...), found " +
-                 quote_token(at, end));
+             cellforge::detail::cat(
+                 "transform: expected translate(...), scale(...), rotate(...), matrix(...), skewX(...) or "
+                 "skewY(...), found ",
+                 quote_token(at, end)));
       ++p;
       double v[6] = {0, 0, 0, 0, 0, 0};
       int n = 0;
@@ -263,8 +267,9 @@ struct basic_svg_reader {
         p = skip_separators(p, end);
         if (p != end && *p == ')') break;
         if (n == 6 || !number(p, end, v[n]))
-          fail(p, "transform " + std::string(fn) + ": expected a number or ')', found " +
-                      (p == end ? std::string("the end of the value") : quote_token(p, end)));
+          fail(p, cellforge::detail::cat(
+                      "transform ", std::string(fn), ": expected a number or ')', found ",
+                      (p == end ? std::string("the end of the value") : quote_token(p, end))));
         ++n;
       }
       ++p;
@@ -272,8 +277,8 @@ struct basic_svg_reader {
         if (std::find(ok.begin(), ok.end(), n) == ok.end()) {
           std::string counts;
           for (const int k : ok) counts += (counts.empty() ? "" : " or ") + std::to_string(k);
-          fail(at,
-               "transform " + std::string(fn) + " takes " + counts + " numbers, found " + std::to_string(n));
+          fail(at, cellforge::detail::cat("transform ", std::string(fn), " takes ", counts,
+                                          " numbers, found ", std::to_string(n)));
         }
       };
       const double rad = v[0] * std::numbers::pi / 180;
@@ -301,8 +306,8 @@ struct basic_svg_reader {
         args({1});
         t.b = std::tan(rad);
       } else {
-        fail(at, "transform: unknown function " + quote_token(at, end) +
-                     " (translate, scale, rotate, matrix, skewX and skewY are read)");
+        fail(at, cellforge::detail::cat("transform: unknown function ", quote_token(at, end),
+                                        " (translate, scale, rotate, matrix, skewX and skewY are read)"));
       }
       m = m.then(t);
     }
@@ -319,14 +324,16 @@ struct basic_svg_reader {
 
   [[noreturn]] void refuse_curve(const char* at, const std::string& what) const {
     if (read_arcs)
-      fail(at, "only straight strokes and elliptical arcs (path command A) are read: " + what +
+      fail(at, cellforge::detail::cat(
+                   "only straight strokes and elliptical arcs (path command A) are read: ", what,
                    (what.starts_with("<circle") || what.starts_with("<ellipse")
                         ? " is a closed curve, no round or fillet (draw it as arcs between junctions)"
                         : " (draw it as arcs or straight segments, or read with svg_drawing_options::curves "
-                          "= skip)"));
-    fail(at, "curves are not read yet: " + what +
+                          "= skip)")));
+    fail(at, cellforge::detail::cat(
+                 "curves are not read yet: ", what,
                  " (elliptical arcs are read by parse_svg_arc_drawing / read_svg_arc_drawing; draw straight "
-                 "segments, or read with svg_drawing_options::curves = skip)");
+                 "segments, or read with svg_drawing_options::curves = skip)"));
   }
 
   /// An A command from `a` to `b` in the element's frame: transformed by m into an arc_piece,
@@ -361,11 +368,13 @@ struct basic_svg_reader {
       if (p == end) break;
       double xy[2];
       const char* at = p;
-      if (!number(p, end, xy[0])) fail(at, "points: expected a number, found " + quote_token(at, end));
+      if (!number(p, end, xy[0]))
+        fail(at, cellforge::detail::cat("points: expected a number, found ", quote_token(at, end)));
       p = skip_separators(p, end);
       if (!number(p, end, xy[1]))
-        fail(p == end ? at : p, "points: an odd number of coordinates (x without y) at " +
-                                    (p == end ? std::string("the end of the value") : quote_token(p, end)));
+        fail(p == end ? at : p,
+             cellforge::detail::cat("points: an odd number of coordinates (x without y) at ",
+                                    (p == end ? std::string("the end of the value") : quote_token(p, end))));
       pts.push_back({xy[0], xy[1]});
     }
     if (pts.size() < 2) {
@@ -393,18 +402,21 @@ struct basic_svg_reader {
         if (cmd == 'M') cmd = 'L';
         if (cmd == 'm') cmd = 'l';
       } else {
-        fail(at, after_close ? "path: expected a command after 'z', found " + quote_token(at, end)
-                             : "path: expected a command letter, found " + quote_token(at, end));
+        fail(at,
+             after_close
+                 ? cellforge::detail::cat("path: expected a command after 'z', found ", quote_token(at, end))
+                 : cellforge::detail::cat("path: expected a command letter, found ", quote_token(at, end)));
       }
       static constexpr std::string_view known = "MmLlHhVvZzCcSsQqTtAa";
       if (known.find(cmd) == std::string_view::npos)
-        fail(at, "path: unknown command " + quote_token(at, end) +
-                     " (M L H V Z and their relative forms are read)");
+        fail(at, cellforge::detail::cat("path: unknown command ", quote_token(at, end),
+                                        " (M L H V Z and their relative forms are read)"));
       const bool first = segs_in_path == 0 && moves_in_path == 0;
       if (first && cmd != 'M' && cmd != 'm')
-        fail(at, "path: the data must start with M or m, found " + quote_token(at, end));
+        fail(at,
+             cellforge::detail::cat("path: the data must start with M or m, found ", quote_token(at, end)));
       const bool rel = cmd >= 'a';
-      const std::string what = std::string("path command '") + cmd + "'";
+      const std::string what = cellforge::detail::cat(std::string("path command '"), cmd, "'");
       double v[7];
       after_close = false;
       switch (cmd) {
@@ -539,7 +551,8 @@ struct basic_svg_reader {
   const char* skip_past(const char* p, std::string_view close, const char* at, const char* what) const {
     const std::size_t from = static_cast<std::size_t>(p - text.data());
     const std::size_t k = text.find(close, from);
-    if (k == std::string_view::npos) fail(at, std::string("the file ends inside ") + what);
+    if (k == std::string_view::npos)
+      fail(at, cellforge::detail::cat(std::string("the file ends inside "), what));
     return text.data() + k + close.size();
   }
 
@@ -575,9 +588,10 @@ struct basic_svg_reader {
       segs_in_path = moves_in_path = 0;
       path(find(attrs, "d"), m);
     } else {  // circle, ellipse
-      if (options.curves == svg_curves::refuse) refuse_curve(at, "<" + std::string(tag) + ">");
+      if (options.curves == svg_curves::refuse)
+        refuse_curve(at, cellforge::detail::cat("<", std::string(tag), ">"));
       ++skipped_curves;
-      note(at, "<" + std::string(tag) + "> left out (curves)");
+      note(at, cellforge::detail::cat("<", std::string(tag), "> left out (curves)"));
     }
   }
 
@@ -619,15 +633,16 @@ struct basic_svg_reader {
         const std::string_view tag(n0, static_cast<std::size_t>(p - n0));
         while (p != end && space(*p)) ++p;
         if (p == end || *p != '>')
-          fail(at, "expected '>' to end the closing tag </" + std::string(tag) + ">");
+          fail(at, cellforge::detail::cat("expected '>' to end the closing tag </", std::string(tag), ">"));
         ++p;
-        if (stack.empty()) fail(at, "closing tag </" + std::string(tag) + "> without an open element");
+        if (stack.empty())
+          fail(at, cellforge::detail::cat("closing tag </", std::string(tag), "> without an open element"));
         if (stack.back().name != tag)
-          fail(at,
-               "expected </" + std::string(stack.back().name) + "> closing <" +
-                   std::string(stack.back().name) + "> of line " +
-                   std::to_string(line_of(text, static_cast<std::size_t>(stack.back().at - text.data()))) +
-                   ", found </" + std::string(tag) + ">");
+          fail(at, cellforge::detail::cat(
+                       "expected </", std::string(stack.back().name), "> closing <",
+                       std::string(stack.back().name), "> of line ",
+                       std::to_string(line_of(text, static_cast<std::size_t>(stack.back().at - text.data()))),
+                       ", found </", std::string(tag), ">"));
         stack.pop_back();
         continue;
       }
@@ -636,18 +651,21 @@ struct basic_svg_reader {
       const char* n0 = p;
       while (p != end && name_char(*p)) ++p;
       const std::string_view tag(n0, static_cast<std::size_t>(p - n0));
-      if (tag.empty()) fail(at, "expected an element name after '<', found " + quote_token(p, end));
+      if (tag.empty())
+        fail(at, cellforge::detail::cat("expected an element name after '<', found ", quote_token(p, end)));
       attrs.clear();
       bool self_closing = false;
       for (;;) {
         while (p != end && space(*p)) ++p;
-        if (p == end) fail(at, "the file ends inside the tag <" + std::string(tag) + ">");
+        if (p == end)
+          fail(at, cellforge::detail::cat("the file ends inside the tag <", std::string(tag), ">"));
         if (*p == '>') {
           ++p;
           break;
         }
         if (*p == '/') {
-          if (p + 1 == end || p[1] != '>') fail(p, "expected '/>' in the tag <" + std::string(tag) + ">");
+          if (p + 1 == end || p[1] != '>')
+            fail(p, cellforge::detail::cat("expected '/>' in the tag <", std::string(tag), ">"));
           p += 2;
           self_closing = true;
           break;
@@ -656,27 +674,31 @@ struct basic_svg_reader {
         while (p != end && name_char(*p)) ++p;
         const std::string_view key(a0, static_cast<std::size_t>(p - a0));
         if (key.empty())
-          fail(p,
-               "expected an attribute in the tag <" + std::string(tag) + ">, found " + quote_token(p, end));
+          fail(p, cellforge::detail::cat("expected an attribute in the tag <", std::string(tag), ">, found ",
+                                         quote_token(p, end)));
         while (p != end && space(*p)) ++p;
         if (p == end || *p != '=')
-          fail(p == end ? a0 : p, "expected '=' after the attribute " + std::string(key));
+          fail(p == end ? a0 : p,
+               cellforge::detail::cat("expected '=' after the attribute ", std::string(key)));
         ++p;
         while (p != end && space(*p)) ++p;
         if (p == end || (*p != '"' && *p != '\''))
-          fail(p == end ? a0 : p, "expected the value of " + std::string(key) + " in quotes");
+          fail(p == end ? a0 : p,
+               cellforge::detail::cat("expected the value of ", std::string(key), " in quotes"));
         const char quote = *p++;
         const char* v0 = p;
         while (p != end && *p != quote) ++p;
-        if (p == end) fail(v0, "the file ends inside the value of " + std::string(key));
+        if (p == end)
+          fail(v0, cellforge::detail::cat("the file ends inside the value of ", std::string(key)));
         if (!has(attrs, key)) attrs.push_back({key, std::string_view(v0, static_cast<std::size_t>(p - v0))});
         ++p;
       }
       if (!seen_root) {
-        if (tag != "svg") fail(at, "expected the root element <svg>, found <" + std::string(tag) + ">");
+        if (tag != "svg")
+          fail(at, cellforge::detail::cat("expected the root element <svg>, found <", std::string(tag), ">"));
         seen_root = true;
       } else if (stack.empty()) {
-        fail(at, "content after the root element ends: <" + std::string(tag) + ">");
+        fail(at, cellforge::detail::cat("content after the root element ends: <", std::string(tag), ">"));
       }
       const bool parent_skip = !stack.empty() && stack.back().skip;
       bool skip = parent_skip;
@@ -697,7 +719,7 @@ struct basic_svg_reader {
           skip = true;
         } else if (options.skip_hidden && hidden(attrs)) {
           skip = true;
-          note(at, "<" + std::string(tag) + "> is hidden (display none): left out");
+          note(at, cellforge::detail::cat("<", std::string(tag), "> is hidden (display none): left out"));
         } else if (in(containers) || in(strokes)) {
           ctm = ctm.then(transform(find(attrs, "transform")));
           if (tag == "svg" && !stack.empty())
@@ -706,15 +728,16 @@ struct basic_svg_reader {
           if (in(strokes)) shape(tag, attrs, ctm, at);
         } else {
           skip = true;
-          note(at, "<" + std::string(tag) + "> is not a stroke or a group: left out");
+          note(at, cellforge::detail::cat("<", std::string(tag), "> is not a stroke or a group: left out"));
         }
         if (skip) ++skipped_elements;
       }
       if (!self_closing) {
         if (tag == "style" || tag == "script") {
           // Raw text that may hold '<': skip to the closing tag.
-          const std::string close = "</" + std::string(tag);
-          p = skip_past(p, close, at, ("<" + std::string(tag) + ">").c_str()) - close.size();
+          const std::string close = cellforge::detail::cat("</", std::string(tag));
+          p = skip_past(p, close, at, (cellforge::detail::cat("<", std::string(tag), ">")).c_str()) -
+              close.size();
         }
         stack.push_back({tag, at, ctm, skip});
       }
@@ -722,8 +745,9 @@ struct basic_svg_reader {
     if (!seen_root) fail(text.data() + text.size(), "no <svg> element: not an SVG file");
     if (!stack.empty())
       fail(text.data() + text.size(),
-           "the file ends inside <" + std::string(stack.back().name) + "> of line " +
-               std::to_string(line_of(text, static_cast<std::size_t>(stack.back().at - text.data()))));
+           cellforge::detail::cat(
+               "the file ends inside <", std::string(stack.back().name), "> of line ",
+               std::to_string(line_of(text, static_cast<std::size_t>(stack.back().at - text.data())))));
   }
 };
 
@@ -746,8 +770,8 @@ svg_arc_drawing_result<P2> parse_svg_strokes(std::string_view text, std::string_
   out.skipped_elements = r.skipped_elements;
   out.diagnostics = std::move(r.diagnostics);
   if (r.segs.empty() && r.arcs.empty()) {
-    out.diagnostics.push_back(std::string(name) +
-                              (arcs ? ": no straight stroke or arc found" : ": no straight stroke found"));
+    out.diagnostics.push_back(cellforge::detail::cat(
+        std::string(name), (arcs ? ": no straight stroke or arc found" : ": no straight stroke found")));
     return out;
   }
   // Strokes in the drawing's frame, y up: the rotation and the sweep's sense flip with y.

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
@@ -62,8 +63,8 @@ template <class = void>
 std::string swc_field(std::int64_t id, int k) {
   constexpr const char* names[] = {"id",           "type",   "x coordinate", "y coordinate",
                                    "z coordinate", "radius", "parent"};
-  return std::string("the ") + names[k] + " of sample " + std::to_string(id) + " (field " +
-         std::to_string(k + 1) + " of 7: id type x y z radius parent)";
+  return cellforge::detail::cat(std::string("the "), names[k], " of sample ", std::to_string(id), " (field ",
+                                std::to_string(k + 1), " of 7: id type x y z radius parent)");
 }
 
 /// Each sample's index in the file (of `n`) by id; fails on the first id used twice. O(n log n).
@@ -81,10 +82,11 @@ std::vector<std::pair<std::int64_t, std::uint32_t>> swc_index_by_id(text_cursor&
       earlier = by_id[k - 1].second;
     }
   if (later != std::numeric_limits<std::uint32_t>::max())
-    c.fail_at(lines[later], "sample id " + std::to_string(ids[later]) + " is used twice (first on line " +
+    c.fail_at(lines[later], cellforge::detail::cat(
+                                "sample id ", std::to_string(ids[later]), " is used twice (first on line ",
                                 std::to_string(line_of({c.begin, static_cast<std::size_t>(c.end - c.begin)},
-                                                       static_cast<std::size_t>(lines[earlier] - c.begin))) +
-                                ")");
+                                                       static_cast<std::size_t>(lines[earlier] - c.begin))),
+                                ")"));
   return by_id;
 }
 
@@ -110,10 +112,11 @@ void swc_check_cycles(text_cursor& c, const std::vector<std::uint32_t>& parent,
       std::string text = std::to_string(ids[*first]);
       std::uint32_t u = parent[*first];
       for (int shown = 0; u != *first && shown < 8; ++shown, u = parent[u])
-        text += " -> " + std::to_string(ids[u]);
-      text += u == *first ? " -> " + std::to_string(ids[u]) : std::string(" -> ...");
-      c.fail_at(lines[*first], "the parents form a cycle with no root: " + text +
-                                   " (each arrow leads to the parent; a tree starts at a parent -1)");
+        text += cellforge::detail::cat(" -> ", std::to_string(ids[u]));
+      text += u == *first ? cellforge::detail::cat(" -> ", std::to_string(ids[u])) : std::string(" -> ...");
+      c.fail_at(lines[*first],
+                cellforge::detail::cat("the parents form a cycle with no root: ", text,
+                                       " (each arrow leads to the parent; a tree starts at a parent -1)"));
     }
     for (const std::uint32_t w : walk) state[w] = 2;
   }
@@ -181,13 +184,14 @@ void swc_link_line(text_cursor& c, std::vector<std::array<std::int64_t, 2>>& ids
   c.comment = '\0';  // the rest of the line is the LINK's
   c.pos = q;
   const auto field = [](const char* which) {
-    return std::string("the ") + which + " sample of a LINK line (# LINK from to)";
+    return cellforge::detail::cat(std::string("the "), which, " sample of a LINK line (# LINK from to)");
   };
   const std::int64_t from = c.integer([&] { return field("first"); });
   const std::int64_t to = c.integer([&] { return field("second"); });
   c.skip_blanks();
   if (!c.at_line_end())
-    c.fail("unexpected " + c.token() + " after the two samples of a LINK line (# LINK from to)");
+    c.fail(cellforge::detail::cat("unexpected ", c.token(),
+                                  " after the two samples of a LINK line (# LINK from to)"));
   c.comment = comment;
   c.pos = saved;
   ids.push_back({from, to});
@@ -212,15 +216,16 @@ void swc_add_links(text_cursor& c, const std::vector<std::pair<std::int64_t, std
       const std::int64_t id = link_ids[k][end];
       const auto it = std::lower_bound(by_id.begin(), by_id.end(), std::pair{id, std::uint32_t{0}});
       if (it == by_id.end() || it->first != id)
-        c.fail_at(link_lines[k], "the LINK's sample " + std::to_string(id) + " is not in the file");
+        c.fail_at(link_lines[k],
+                  cellforge::detail::cat("the LINK's sample ", std::to_string(id), " is not in the file"));
       e[end] = node[into[it->second]];
     }
     const std::string text = std::to_string(link_ids[k][0]) + " " + std::to_string(link_ids[k][1]);
     if (e[0] == e[1])
-      c.fail_at(link_lines[k],
-                "the LINK " + text +
-                    (link_ids[k][0] == link_ids[k][1] ? " joins a sample to itself"
-                                                      : " joins two samples read as one soma node"));
+      c.fail_at(link_lines[k], cellforge::detail::cat("the LINK ", text,
+                                                      (link_ids[k][0] == link_ids[k][1]
+                                                           ? " joins a sample to itself"
+                                                           : " joins two samples read as one soma node")));
     edges.push_back(e);
   }
   // A LINK may not repeat an edge (the tree's or another LINK's), either way round; the tree
@@ -230,9 +235,9 @@ void swc_add_links(text_cursor& c, const std::vector<std::pair<std::int64_t, std
   })[0];
   if (repeat < edges.size()) {
     const std::size_t k = repeat - tree_edges;
-    c.fail_at(link_lines[k], "the LINK " + std::to_string(link_ids[k][0]) + " " +
-                                 std::to_string(link_ids[k][1]) +
-                                 " repeats an edge between the same two samples");
+    c.fail_at(link_lines[k], cellforge::detail::cat("the LINK ", std::to_string(link_ids[k][0]), " ",
+                                                    std::to_string(link_ids[k][1]),
+                                                    " repeats an edge between the same two samples"));
   }
 }
 
@@ -267,14 +272,16 @@ swc_result<P> parse_swc(std::string_view bytes, std::string_view name = "<memory
     const std::int64_t id =
         c.integer([] { return std::string("the sample id (field 1 of 7: id type x y z radius parent)"); });
     if (id <= 0)
-      c.fail_at(line, "sample id " + std::to_string(id) + " must be positive (SWC ids start at 1)");
+      c.fail_at(line, cellforge::detail::cat("sample id ", std::to_string(id),
+                                             " must be positive (SWC ids start at 1)"));
     if (ids.size() >= root - 1) c.fail_at(line, "too many samples for 32-bit indices");
     c.skip_blanks();
     const char* at = c.pos;
     const std::int64_t type = c.integer([&] { return detail::swc_field(id, 1); });
     if (type < 0 || type > std::numeric_limits<std::int32_t>::max())
-      c.fail_at(at, "the type " + std::to_string(type) + " of sample " + std::to_string(id) +
-                        (type < 0 ? " must not be negative" : " is too large"));
+      c.fail_at(at,
+                cellforge::detail::cat("the type ", std::to_string(type), " of sample ", std::to_string(id),
+                                       (type < 0 ? " must not be negative" : " is too large")));
     const S x = c.coordinate<S>([&] { return detail::swc_field(id, 2); });
     const S y = c.coordinate<S>([&] { return detail::swc_field(id, 3); });
     const S z = c.coordinate<S>([&] { return detail::swc_field(id, 4); });
@@ -282,19 +289,22 @@ swc_result<P> parse_swc(std::string_view bytes, std::string_view name = "<memory
     at = c.pos;
     const double radius = c.number<double>([&] { return detail::swc_field(id, 5); });
     if (!std::isfinite(radius) || !(radius > 0))
-      c.fail_at(at, "the radius of sample " + std::to_string(id) + ", " + detail::quote_token(at, c.end) +
-                        (std::isfinite(radius) ? ", must be positive" : ", is not finite"));
+      c.fail_at(at, cellforge::detail::cat(
+                        "the radius of sample ", std::to_string(id), ", ", detail::quote_token(at, c.end),
+                        (std::isfinite(radius) ? ", must be positive" : ", is not finite")));
     c.skip_blanks();
     at = c.pos;
     const std::int64_t parent = c.integer([&] { return detail::swc_field(id, 6); });
-    if (parent == id) c.fail_at(at, "sample " + std::to_string(id) + " is its own parent");
+    if (parent == id)
+      c.fail_at(at, cellforge::detail::cat("sample ", std::to_string(id), " is its own parent"));
     if (parent < -1 || parent == 0)
-      c.fail_at(at, "the parent " + std::to_string(parent) + " of sample " + std::to_string(id) +
-                        " is neither -1 (a root) nor a sample id (ids are positive)");
+      c.fail_at(
+          at, cellforge::detail::cat("the parent ", std::to_string(parent), " of sample ", std::to_string(id),
+                                     " is neither -1 (a root) nor a sample id (ids are positive)"));
     c.skip_blanks();
     if (!c.at_line_end())
-      c.fail("unexpected " + c.token() + " after the 7 fields of sample " + std::to_string(id) +
-             " (id type x y z radius parent)");
+      c.fail(cellforge::detail::cat("unexpected ", c.token(), " after the 7 fields of sample ",
+                                    std::to_string(id), " (id type x y z radius parent)"));
     ids.push_back(id);
     parent_ids.push_back(parent);
     types.push_back(static_cast<std::int32_t>(type));
@@ -310,8 +320,8 @@ swc_result<P> parse_swc(std::string_view bytes, std::string_view name = "<memory
     if (parent_ids[i] == -1) continue;
     const auto it = std::lower_bound(by_id.begin(), by_id.end(), std::pair{parent_ids[i], std::uint32_t{0}});
     if (it == by_id.end() || it->first != parent_ids[i])
-      c.fail_at(lines[i], "the parent " + std::to_string(parent_ids[i]) + " of sample " +
-                              std::to_string(ids[i]) + " is not in the file");
+      c.fail_at(lines[i], cellforge::detail::cat("the parent ", std::to_string(parent_ids[i]), " of sample ",
+                                                 std::to_string(ids[i]), " is not in the file"));
     parent[i] = it->second;
   }
   detail::swc_check_cycles(c, parent, ids, lines);
@@ -375,12 +385,12 @@ swc_plan make_swc_plan(const G& g, std::vector<std::int64_t> ids, std::vector<st
   using T = skeleton_traits<G>;
   constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
   const auto fail = [](const std::string& m) {
-    throw error(error_category::invalid_input, "write_swc: " + m);
+    throw error(error_category::invalid_input, cellforge::detail::cat("write_swc: ", m));
   };
   const std::size_t nv = T::num_nodes(g), ne = T::num_edges(g);
   if (nv >= none) fail("more than 2^32 - 2 nodes");
   if ((!ids.empty() && ids.size() != nv) || (!types.empty() && types.size() != nv))
-    fail("the ids and types must have one entry per node (" + std::to_string(nv) + ")");
+    fail(cellforge::detail::cat("the ids and types must have one entry per node (", std::to_string(nv), ")"));
   swc_plan plan;
   plan.parent.assign(nv, none);
   // Positions, radii, endpoints, self loops and duplicates as the tube mesher checks them;
@@ -427,15 +437,17 @@ swc_plan make_swc_plan(const G& g, std::vector<std::int64_t> ids, std::vector<st
   } else {
     std::vector<std::int64_t> sorted = ids;
     std::sort(sorted.begin(), sorted.end());
-    if (sorted.front() <= 0) fail("sample id " + std::to_string(sorted.front()) + " is not positive");
+    if (sorted.front() <= 0)
+      fail(cellforge::detail::cat("sample id ", std::to_string(sorted.front()), " is not positive"));
     if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
-      fail("sample id " + std::to_string(*std::adjacent_find(sorted.begin(), sorted.end())) +
-           " is used twice");
+      fail(cellforge::detail::cat(
+          "sample id ", std::to_string(*std::adjacent_find(sorted.begin(), sorted.end())), " is used twice"));
   }
   if (types.empty()) types.assign(nv, type);
   for (std::size_t i = 0; i < nv; ++i)
     if (types[i] < 0)
-      fail("node " + std::to_string(i) + " has the negative type " + std::to_string(types[i]));
+      fail(cellforge::detail::cat("node ", std::to_string(i), " has the negative type ",
+                                  std::to_string(types[i])));
   plan.ids = std::move(ids);
   plan.types = std::move(types);
   return plan;

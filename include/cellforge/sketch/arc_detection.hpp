@@ -30,6 +30,7 @@
 #include <unsupported/Eigen/NonLinearOptimization>
 
 #include "cellforge/core/detail/stopwatch.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/core/predicates.hpp"
@@ -756,13 +757,14 @@ auto detect_arcs(const Strokes& strokes, const arc_detection_options& options = 
   const detail::stopwatch started;
   const arc_detection_options& o = options;
   if (!std::isfinite(o.tolerance) || !(o.tolerance > 0) || o.tolerance >= 0.5)
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat("detect_arcs: the tolerance ", detail::drawing_number(o.tolerance),
+                                       " is not a number in (0, 0.5)"));
+  if (!std::isfinite(o.drawing_size) || o.drawing_size < 0)
     throw error(
         error_category::invalid_input,
-        "detect_arcs: the tolerance " + detail::drawing_number(o.tolerance) + " is not a number in (0, 0.5)");
-  if (!std::isfinite(o.drawing_size) || o.drawing_size < 0)
-    throw error(error_category::invalid_input,
-                "detect_arcs: drawing_size " + detail::drawing_number(o.drawing_size) +
-                    " is not a finite size >= 0 (0: take the strokes' bounding-box diagonal)");
+        cellforge::detail::cat("detect_arcs: drawing_size ", detail::drawing_number(o.drawing_size),
+                               " is not a finite size >= 0 (0: take the strokes' bounding-box diagonal)"));
   if (!(o.min_sweep >= 0) || !(o.max_semi_axis > 0) || !std::isfinite(o.max_semi_axis))
     throw error(error_category::invalid_input, "detect_arcs: min_sweep must be >= 0 and max_semi_axis > 0");
   arc_detection_result<P> res;
@@ -774,9 +776,9 @@ auto detect_arcs(const Strokes& strokes, const arc_detection_options& options = 
     for (const auto& raw : stroke) {
       const glm::dvec2 p = to_dvec2(P(raw));
       if (!std::isfinite(p.x) || !std::isfinite(p.y))
-        throw error(error_category::invalid_input, "detect_arcs: sample " + std::to_string(q.size()) +
-                                                       " of stroke " + std::to_string(all.size()) +
-                                                       " is not finite");
+        throw error(error_category::invalid_input,
+                    cellforge::detail::cat("detect_arcs: sample ", std::to_string(q.size()), " of stroke ",
+                                           std::to_string(all.size()), " is not finite"));
       if (q.empty() || p != q.back()) q.push_back(p);
       lo = glm::min(lo, p);
       hi = glm::max(hi, p);
@@ -801,8 +803,8 @@ auto detect_arcs(const Strokes& strokes, const arc_detection_options& options = 
     if (q.size() < 2) {
       ++res.dropped_strokes;
       sum.whole = arc_rejection::too_few_samples;
-      res.diagnostics.push_back("stroke " + std::to_string(si) +
-                                ": fewer than two distinct samples; dropped");
+      res.diagnostics.push_back(cellforge::detail::cat("stroke ", std::to_string(si),
+                                                       ": fewer than two distinct samples; dropped"));
       res.strokes.push_back(sum);
       continue;
     }
@@ -898,18 +900,19 @@ auto detect_arcs(const Strokes& strokes, const arc_detection_options& options = 
     for (const stroke_piece<P>& p : pieces) (p.kind == stroke_piece_kind::arc ? arcs : lines)++;
     res.num_lines += lines, res.num_arcs += arcs;
     if (pieces.size() > 1)
-      res.diagnostics.push_back("stroke " + std::to_string(si) + ": not one line or one arc (as one arc: " +
-                                std::string(to_string(sum.whole)) + "); read as " + std::to_string(lines) +
-                                " lines and " + std::to_string(arcs) + " arcs");
+      res.diagnostics.push_back(cellforge::detail::cat(
+          "stroke ", std::to_string(si),
+          ": not one line or one arc (as one arc: ", std::string(to_string(sum.whole)), "); read as ",
+          std::to_string(lines), " lines and ", std::to_string(arcs), " arcs"));
     if (const auto [crossings, at] = detail::self_crossings(q, 4 * eps); crossings > 0) {
       sum.self_crossings = crossings;
       ++res.self_crossing_strokes;
-      res.diagnostics.push_back(
-          "stroke " + std::to_string(si) + ": crosses itself " +
-          (crossings == 1 ? std::string("once") : std::to_string(crossings) + " times") + ", first at (" +
-          detail::drawing_number(at.x) + ", " + detail::drawing_number(at.y) +
+      res.diagnostics.push_back(cellforge::detail::cat(
+          "stroke ", std::to_string(si), ": crosses itself ",
+          (crossings == 1 ? std::string("once") : std::to_string(crossings) + " times"), ", first at (",
+          detail::drawing_number(at.x), ", ", detail::drawing_number(at.y),
           "); read as its pieces, a crossing is no junction (draw a closed curve "
-          "as strokes that meet at junctions)");
+          "as strokes that meet at junctions)"));
     }
     sum.num_pieces = pieces.size();
     res.pieces.insert(res.pieces.end(), pieces.begin(), pieces.end());

@@ -25,6 +25,7 @@
 #include <glm/vec2.hpp>
 
 #include "cellforge/core/detail/stopwatch.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
@@ -148,14 +149,14 @@ arc_pairing_result<P> pair_arcs(const arc_drawing<P>& d, const arc_pairing_optio
   arc_pairing_result<P> out;
   // Arc ends on their junctions to end_tolerance of the size (or the point type's own precision).
   if (const arc_validation v = validate_arcs(d, {options.end_tolerance}); !v.ok())
-    throw error(error_category::invalid_input, "pair_arcs: " + v.message);
+    throw error(error_category::invalid_input, cellforge::detail::cat("pair_arcs: ", v.message));
   const std::size_t nv = d.lines.points.size(), na = d.arcs.size();
   for (std::size_t e = 0; e < d.lines.edges.size(); ++e)
     for (const std::uint32_t j : d.lines.edges[e])
       if (j >= nv)
-        throw error(error_category::invalid_input, "pair_arcs: line " + std::to_string(e) +
-                                                       " names junction " + std::to_string(j) + ", of " +
-                                                       std::to_string(nv));
+        throw error(error_category::invalid_input,
+                    cellforge::detail::cat("pair_arcs: line ", std::to_string(e), " names junction ",
+                                           std::to_string(j), ", of ", std::to_string(nv)));
   out.arcs = na;
   std::vector<glm::dvec2> q(nv);
   glm::dvec2 lo(0), hi(0);
@@ -347,8 +348,9 @@ arc_pairing_result<P> pair_arcs(const arc_drawing<P>& d, const arc_pairing_optio
     const auto& ln = d.lines.edges[e];
     const std::uint32_t ca = inner_of[ln[0]], cb = inner_of[ln[1]];
     if (ca == ~std::uint32_t{0} && cb == ~std::uint32_t{0}) continue;
-    const std::string what = "line " + std::to_string(e) + " (junctions " + std::to_string(ln[0]) + " and " +
-                             std::to_string(ln[1]) + ")";
+    const std::string what =
+        cellforge::detail::cat("line ", std::to_string(e), " (junctions ", std::to_string(ln[0]), " and ",
+                               std::to_string(ln[1]), ")");
     if (ca == ~std::uint32_t{0} || cb == ~std::uint32_t{0} || ca == cb) {
       out.diagnostics.push_back(what +
                                 " leaves an arc's interior but does not join two end curves: not a contour "

@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/detail/work_budget.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
@@ -157,8 +158,8 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
           (best == n || std::abs(area[c]) < std::abs(area[best])))
         best = c;
     if (best == n)
-      diagnostics.push_back("loop " + std::to_string(h) +
-                            " splits the drawing but lies in no face loop running the other way");
+      diagnostics.push_back(cellforge::detail::cat(
+          "loop ", std::to_string(h), " splits the drawing but lies in no face loop running the other way"));
     owner[h] = best;
   }
   const auto faces_of = [&](const std::vector<std::size_t>& own, auto&& keep) {
@@ -231,8 +232,8 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
         pr[c].readings.push_back(std::move(pts));
       }
     } catch (const error& e) {
-      diagnostics.push_back("part " + std::to_string(c) +
-                            " of the drawing cannot be inflated alone: " + e.what());
+      diagnostics.push_back(cellforge::detail::cat("part ", std::to_string(c),
+                                                   " of the drawing cannot be inflated alone: ", e.what()));
     }
   }
   // Place the parts, largest first: the first as read, each next one by the reading and depth
@@ -302,16 +303,18 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
       tie = tie || (votes == best_votes && std::abs(dz - best_dz) > depth_tolerance);
     if (k > 0 && best_votes > 0 && tie) {
       ++ambiguous;
-      diagnostics.push_back("part " + std::to_string(c) +
-                            " of the drawing fits its face as a boss or as a pocket alike: read as " +
-                            (best_outside == 1 ? "a boss" : "a pocket"));
+      diagnostics.push_back(
+          cellforge::detail::cat("part ", std::to_string(c),
+                                 " of the drawing fits its face as a boss or as a pocket alike: read as ",
+                                 (best_outside == 1 ? "a boss" : "a pocket")));
     }
     is_placed[c] = 1;
     placed_outward[c] = pr[c].outward[best_reading];
     for (const auto& [h, q] : best_pairs) owner[h] = owner[q] == n ? q : owner[q];
     if (k > 0 && best_votes == 0)
-      diagnostics.push_back("part " + std::to_string(c) +
-                            " of the drawing lies in no face of the others: its depth against them is free");
+      diagnostics.push_back(cellforge::detail::cat(
+          "part ", std::to_string(c),
+          " of the drawing lies in no face of the others: its depth against them is free"));
   }
   return faces_of(owner, [](std::size_t) { return true; });
 }
@@ -372,10 +375,10 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
   drawing_result<R, drawing_point_t<D>> r;
   r.faces = find_faces(drawing, options.faces);
   if (r.faces.flagged)
-    r.diagnostics.push_back(
-        "the faces found fail their check (" +
-        (r.faces.diagnostics.empty() ? std::string("see faces.check") : r.faces.diagnostics.front()) +
-        "); inflating them anyway");
+    r.diagnostics.push_back(cellforge::detail::cat(
+        "the faces found fail their check (",
+        (r.faces.diagnostics.empty() ? std::string("see faces.check") : r.faces.diagnostics.front()),
+        "); inflating them anyway"));
   const detail::faces::drawing_graph g = detail::faces::make_graph(drawing, options.faces);
   r.face_loops =
       detail::sketch::group_faces(g, r.faces.loops, options.inflation, r.diagnostics, r.ambiguous_parts);
@@ -410,7 +413,8 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
         wireframe_result<glm::dvec3> cells = wireframe_to_cells(w, options.cells);
         // Faces that make no valid complex: this reading is refused, as a throw would.
         if (!cells.validation.ok())
-          throw error(error_category::topology, "wireframe_to_cells: " + cells.status_reason);
+          throw error(error_category::topology,
+                      cellforge::detail::cat("wireframe_to_cells: ", cells.status_reason));
         std::vector<std::vector<std::uint32_t>> found;
         for (const auto& f : cells.input.faces)
           for (const auto& loop : f.loops) {
@@ -434,7 +438,8 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
       } catch (const error& e) {
         if (e.category() != error_category::topology && e.category() != error_category::invalid_input) throw;
         a.error = e.what();
-        notes.push_back("reading " + std::to_string(k) + ": the 3D pipeline refused it: " + a.error);
+        notes.push_back(
+            cellforge::detail::cat("reading ", std::to_string(k), ": the 3D pipeline refused it: ", a.error));
       }
     }
     return a;
@@ -482,8 +487,9 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
           tidy_result<drawing_point_t<D>> t2 = tidy_to_solid(drawing, regrouped, options.tidying);
           for (const auto& d : t2.diagnostics) r.diagnostics.push_back(d);
           if (t2.applied)
-            t = std::move(t2), r.diagnostics.push_back("faces grouped again on the tidied drawing: " +
-                                                       std::to_string(regrouped.size()) + " faces");
+            t = std::move(t2),
+            r.diagnostics.push_back(cellforge::detail::cat(
+                "faces grouped again on the tidied drawing: ", std::to_string(regrouped.size()), " faces"));
           else
             regrouped = r.face_loops;
         }
@@ -496,19 +502,20 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
           notes = std::move(tidy_notes);
           r.face_loops = std::move(regrouped);
           r.tidy = std::move(t);
-          r.diagnostics.push_back("tidied to the view of a solid: junctions moved by at most " +
-                                  std::to_string(r.tidy.largest_move) + " of the drawing's size (rms " +
-                                  std::to_string(r.tidy.rms_move) + ")");
-        } else {
           r.diagnostics.push_back(
-              "tidied to the view of a solid, but its reading gives " +
-              std::string(tidied.cells ? "a complex whose faces disagree" : "no complex") +
-              (tidied.error.empty() ? std::string() : " (" + tidied.error + ")"));
+              cellforge::detail::cat("tidied to the view of a solid: junctions moved by at most ",
+                                     std::to_string(r.tidy.largest_move), " of the drawing's size (rms ",
+                                     std::to_string(r.tidy.rms_move), ")"));
+        } else {
+          r.diagnostics.push_back(cellforge::detail::cat(
+              "tidied to the view of a solid, but its reading gives ",
+              std::string(tidied.cells ? "a complex whose faces disagree" : "no complex"),
+              (tidied.error.empty() ? std::string() : cellforge::detail::cat(" (", tidied.error, ")"))));
         }
       }
     } catch (const error& e) {
       if (e.category() != error_category::topology && e.category() != error_category::invalid_input) throw;
-      r.diagnostics.push_back(std::string("tidy_to_solid: ") + e.what());
+      r.diagnostics.push_back(cellforge::detail::cat(std::string("tidy_to_solid: "), e.what()));
     }
   }
   for (auto& n : notes) r.diagnostics.push_back(std::move(n));
@@ -548,11 +555,12 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
   }
   if (!built)
     throw error(error_category::topology,
-                "drawing_to_cells: no reading of the drawing gives a cell complex (" + last_error + ")");
+                cellforge::detail::cat("drawing_to_cells: no reading of the drawing gives a cell complex (",
+                                       last_error, ")"));
   if (!r.faces_agree)
-    r.diagnostics.push_back(
-        "the 3D pipeline's faces differ from the drawing's: " + std::to_string(r.only_in_drawing.size()) +
-        " loops only in the drawing, " + std::to_string(r.only_in_3d.size()) + " only in 3D");
+    r.diagnostics.push_back(cellforge::detail::cat(
+        "the 3D pipeline's faces differ from the drawing's: ", std::to_string(r.only_in_drawing.size()),
+        " loops only in the drawing, ", std::to_string(r.only_in_3d.size()), " only in 3D"));
   if (r.reading != 0)
     r.diagnostics.push_back(
         "built from the other (Necker) reading: the preferred one did not give the drawing's faces");

@@ -24,6 +24,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
@@ -135,12 +136,14 @@ elliptical_arc<P> arc_from_endpoints(const arc_endpoints<P>& e) {
   double rx = std::abs(e.rx), ry = std::abs(e.ry);
   if (rx == 0 || ry == 0)
     throw error(error_category::invalid_input,
-                "arc_from_endpoints: radius " + detail::drawing_number(rx == 0 ? e.rx : e.ry) +
-                    " is zero: a zero-radius arc is a corner; draw the two lines meeting there instead");
+                cellforge::detail::cat(
+                    "arc_from_endpoints: radius ", detail::drawing_number(rx == 0 ? e.rx : e.ry),
+                    " is zero: a zero-radius arc is a corner; draw the two lines meeting there instead"));
   if (p0 == p1)
-    throw error(error_category::invalid_input, "arc_from_endpoints: the arc starts and ends at " +
-                                                   detail::drawing_point_text(e.from) +
-                                                   ", so it has no sweep; give distinct ends");
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat("arc_from_endpoints: the arc starts and ends at ",
+                                       detail::drawing_point_text(e.from),
+                                       ", so it has no sweep; give distinct ends"));
   const double c = std::cos(e.rotation), s = std::sin(e.rotation);
   const glm::dvec2 h = (p0 - p1) * 0.5;
   const glm::dvec2 q(c * h.x + s * h.y, -s * h.x + c * h.y);  // the half chord in the ellipse's frame
@@ -231,8 +234,9 @@ template <Point2 P>
 arc_validation validate_arcs(const arc_drawing<P>& d, const drawing_check_options& options = {}) {
   double tol = options.tolerance;
   if (!std::isfinite(tol) || tol < 0 || tol >= 0.5)
-    throw error(error_category::invalid_input, "validate_arcs: the tolerance " + detail::drawing_number(tol) +
-                                                   " is not a finite number in [0, 0.5)");
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat("validate_arcs: the tolerance ", detail::drawing_number(tol),
+                                       " is not a finite number in [0, 0.5)"));
   if constexpr (std::is_floating_point_v<scalar2_t<P>>)
     tol = std::max(tol, 64 * static_cast<double>(std::numeric_limits<scalar2_t<P>>::epsilon()));
   const std::size_t nv = d.lines.points.size();
@@ -247,7 +251,7 @@ arc_validation validate_arcs(const arc_drawing<P>& d, const drawing_check_option
     const drawing_arc<P>& a = d.arcs[k];
     arc_validation v;
     v.arc = k;
-    const std::string name = "arc " + std::to_string(k);
+    const std::string name = cellforge::detail::cat("arc ", std::to_string(k));
     v.defect = validate_arc(a.curve, eps);
     if (v.defect != arc_defect::none) {
       v.message =

@@ -27,6 +27,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/detail/work_budget.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
@@ -164,7 +165,8 @@ drawing_graph make_graph(const D& d, const face_finder_options& o) {
     const glm::dvec2 q = to_dvec2(drawing_point_t<D>(T::position(d, i)));
     if (!std::isfinite(q.x) || !std::isfinite(q.y))
       throw error(error_category::invalid_input,
-                  "find_faces: junction " + std::to_string(i) + " has a NaN or infinite coordinate");
+                  cellforge::detail::cat("find_faces: junction ", std::to_string(i),
+                                         " has a NaN or infinite coordinate"));
     g.p.push_back(q);
   }
   if (nv > 0) {
@@ -178,11 +180,12 @@ drawing_graph make_graph(const D& d, const face_finder_options& o) {
     const auto ab = T::endpoints(d, e);
     if (ab[0] >= nv || ab[1] >= nv)
       throw error(error_category::invalid_input,
-                  "find_faces: edge " + std::to_string(e) + " names a junction that does not exist");
+                  cellforge::detail::cat("find_faces: edge ", std::to_string(e),
+                                         " names a junction that does not exist"));
     if (ab[0] == ab[1])
-      throw error(error_category::invalid_input, "find_faces: edge " + std::to_string(e) +
-                                                     " joins junction " + std::to_string(ab[0]) +
-                                                     " to itself");
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat("find_faces: edge ", std::to_string(e), " joins junction ",
+                                         std::to_string(ab[0]), " to itself"));
     g.head[2 * e] = static_cast<std::uint32_t>(ab[1]);
     g.head[2 * e + 1] = static_cast<std::uint32_t>(ab[0]);
     ++deg[ab[0]], ++deg[ab[1]];
@@ -1265,8 +1268,9 @@ std::vector<std::vector<std::uint32_t>> varley_company(const drawing_graph& g, c
       if (!loop.empty()) ++f.hypotheses;
     }
     if (loop.empty()) {
-      r.diagnostics.push_back("varley_company: " + std::to_string(open_ends.size()) +
-                              " half-edges left that no face loop can take (no hypothesis passes)");
+      r.diagnostics.push_back(
+          cellforge::detail::cat("varley_company: ", std::to_string(open_ends.size()),
+                                 " half-edges left that no face loop can take (no hypothesis passes)"));
       break;
     }
     finder::close_loop(s, loop);
@@ -1405,7 +1409,8 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
   } catch (const error& e) {
     if (e.category() != error_category::budget || options.kind != face_finder_kind::varley_company) throw;
     // Out of budget: the baseline's answer (fast at any size), flagged whatever its check says.
-    r.diagnostics.push_back(std::string(e.what()) + "; the shortest-loops baseline answers instead");
+    r.diagnostics.push_back(
+        cellforge::detail::cat(std::string(e.what()), "; the shortest-loops baseline answers instead"));
     r.budget_fallback = true;
     budget.used = 0;
     r.loops = df::shortest_loops(g, budget);
@@ -1421,7 +1426,7 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
       r.walls = added, r.unneeded = dropped;
     } catch (const error& e) {
       if (e.category() != error_category::budget) throw;
-      r.diagnostics.push_back(std::string(e.what()) + " while searching walls");
+      r.diagnostics.push_back(cellforge::detail::cat(std::string(e.what()), " while searching walls"));
       r.budget_fallback = true;
     }
     // Where the string algorithm alone did not answer (loops added, taken out or dropped), the
@@ -1442,15 +1447,17 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
         (void)df::complete_walls(f, fresh, options.wall_expansions);
         if (df::canonical_set(fresh.loops) != df::canonical_set(r.loops)) {
           r.ambiguous = true;
-          r.diagnostics.push_back("the wall search from no loops finds other faces (" +
-                                  std::to_string(fresh.loops.size()) + " loops): ambiguous");
+          r.diagnostics.push_back(cellforge::detail::cat("the wall search from no loops finds other faces (",
+                                                         std::to_string(fresh.loops.size()),
+                                                         " loops): ambiguous"));
           r.alternatives.push_back({fresh.loops, df::check_loops(g, fresh.loops, coplanar_tolerance),
                                     "the wall search from no loops"});
         }
       } catch (const error& e) {
         if (e.category() != error_category::budget) throw;
         r.ambiguous = true;
-        r.diagnostics.push_back(std::string(e.what()) + " while cross-checking the walls");
+        r.diagnostics.push_back(
+            cellforge::detail::cat(std::string(e.what()), " while cross-checking the walls"));
       }
     }
   }
@@ -1473,9 +1480,9 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
     r.diagnostics.push_back(std::to_string(r.check.bad_loops.size()) +
                             " loops are not simple polygons of the drawing");
   if (r.check.ok() && r.check.euler != r.check.euler_sphere)
-    r.diagnostics.push_back("V - E + L = " + std::to_string(r.check.euler) +
-                            " (a sphere per component: " + std::to_string(r.check.euler_sphere) +
-                            "): a solid of higher genus, or a loop too few");
+    r.diagnostics.push_back(cellforge::detail::cat(
+        "V - E + L = ", std::to_string(r.check.euler), " (a sphere per component: ",
+        std::to_string(r.check.euler_sphere), "): a solid of higher genus, or a loop too few"));
   if (r.flagged && options.alternatives_when_flagged) {
     // Alternatives: the other finder, and Varley–Company from other starts; best check first.
     std::vector<face_alternative> alt = std::move(r.alternatives);  // the wall search's, if any
@@ -1487,7 +1494,7 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
         face_finder_result scratch;
         alt.push_back({df::varley_company(g, options, budget, k, scratch),
                        {},
-                       "Varley-Company from trihedral junction " + std::to_string(k)});
+                       cellforge::detail::cat("Varley-Company from trihedral junction ", std::to_string(k))});
       }
     } else {
       face_finder_result scratch;

@@ -29,6 +29,7 @@
 
 #include "cellforge/core/detail/splitmix.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/core/point_traits.hpp"
@@ -188,9 +189,10 @@ inflation_problem<> make_inflation_problem(
   inflation_problem<> pr;
   const std::size_t nv = T::num_junctions(drawing), ne = T::num_edges(drawing);
   if (nv < 4 || ne < 6)
-    throw error(error_category::invalid_input,
-                "inflate: a drawing of a solid has at least 4 junctions and 6 edges (got " +
-                    std::to_string(nv) + " and " + std::to_string(ne) + ")");
+    throw error(
+        error_category::invalid_input,
+        cellforge::detail::cat("inflate: a drawing of a solid has at least 4 junctions and 6 edges (got ",
+                               std::to_string(nv), " and ", std::to_string(ne), ")"));
   if (nv >= std::numeric_limits<std::uint32_t>::max())
     throw error(error_category::invalid_input, "inflate: more than 2^32 - 2 junctions");
   pr.p.reserve(nv);
@@ -198,8 +200,9 @@ inflation_problem<> make_inflation_problem(
   for (std::size_t i = 0; i < nv; ++i) {
     const glm::dvec2 q = to_dvec2(drawing_point_t<D>(T::position(drawing, i)));
     if (!std::isfinite(q.x) || !std::isfinite(q.y))
-      throw error(error_category::invalid_input,
-                  "inflate: junction " + std::to_string(i) + " has a non-finite coordinate");
+      throw error(
+          error_category::invalid_input,
+          cellforge::detail::cat("inflate: junction ", std::to_string(i), " has a non-finite coordinate"));
     pr.p.push_back(q);
     lo = glm::min(lo, q);
     hi = glm::max(hi, q);
@@ -220,12 +223,13 @@ inflation_problem<> make_inflation_problem(
     const std::array<std::size_t, 2> ab = T::endpoints(drawing, e);
     if (ab[0] >= nv || ab[1] >= nv || ab[0] == ab[1])
       throw error(error_category::invalid_input,
-                  "inflate: edge " + std::to_string(e) + " joins no two distinct junctions of the drawing");
+                  cellforge::detail::cat("inflate: edge ", std::to_string(e),
+                                         " joins no two distinct junctions of the drawing"));
     const std::array<std::uint32_t, 2> ed{static_cast<std::uint32_t>(ab[0]),
                                           static_cast<std::uint32_t>(ab[1])};
     if (glm::length(pr.p[ed[1]] - pr.p[ed[0]]) < 1e-12)
-      throw error(error_category::invalid_input,
-                  "inflate: edge " + std::to_string(e) + " has zero length in the drawing");
+      throw error(error_category::invalid_input, cellforge::detail::cat("inflate: edge ", std::to_string(e),
+                                                                        " has zero length in the drawing"));
     pr.edges.push_back(ed);
     pr.incident[ed[0]].push_back(static_cast<std::uint32_t>(e));
     pr.incident[ed[1]].push_back(static_cast<std::uint32_t>(e));
@@ -233,15 +237,18 @@ inflation_problem<> make_inflation_problem(
   }
   std::sort(sorted.begin(), sorted.end());
   if (faces.size() < 4)
-    throw error(error_category::invalid_input, "inflate: a solid needs at least 4 faces (got " +
-                                                   std::to_string(faces.size()) + "); find the faces first");
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat("inflate: a solid needs at least 4 faces (got ",
+                                       std::to_string(faces.size()), "); find the faces first"));
   for (std::size_t f = 0; f < faces.size(); ++f) {
     if (faces[f].empty())
-      throw error(error_category::invalid_input, "inflate: face " + std::to_string(f) + " has no loop");
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat("inflate: face ", std::to_string(f), " has no loop"));
     for (std::size_t l = 0; l < faces[f].size(); ++l) {
       const auto& loop = faces[f][l];
-      const std::string where = "inflate: face " + std::to_string(f) +
-                                (faces[f].size() > 1 ? ", loop " + std::to_string(l) : std::string());
+      const std::string where = cellforge::detail::cat(
+          "inflate: face ", std::to_string(f),
+          (faces[f].size() > 1 ? cellforge::detail::cat(", loop ", std::to_string(l)) : std::string()));
       if (loop.size() < 3) throw error(error_category::invalid_input, where + " has fewer than 3 junctions");
       for (std::size_t k = 0; k < loop.size(); ++k) {
         const std::uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
@@ -278,9 +285,9 @@ inflation_problem<> make_inflation_problem(
       if (area > best) best = area, c = v;
     }
     if (!(best > 1e-12))
-      throw error(
-          error_category::invalid_input,
-          "inflate: face " + std::to_string(f) + " is a straight line in the drawing (a face seen edge-on)");
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat("inflate: face ", std::to_string(f),
+                                         " is a straight line in the drawing (a face seen edge-on)"));
     const glm::dvec2 v = pr.p[c] - pr.p[a];
     const double det = u.x * v.y - u.y * v.x;
     for (const auto d : js) {
@@ -792,8 +799,9 @@ direct_solution<> direct_inflation(const inflation_problem<>& pr, const inflatio
             cand.misclosure =
                 std::max(cand.misclosure, std::abs(z[pr.edges[e][1]] - z[pr.edges[e][0]] - dz(e)));
         if (cand.misclosure > o.closure_tolerance) {
-          cand.why = "a cycle of axis edges does not close in depth (misclosure " +
-                     std::to_string(cand.misclosure) + " of the drawing size): not a normalon drawing";
+          cand.why = cellforge::detail::cat("a cycle of axis edges does not close in depth (misclosure ",
+                                            std::to_string(cand.misclosure),
+                                            " of the drawing size): not a normalon drawing");
           if (best.reached == 0) best.why = cand.why;
           continue;
         }
@@ -858,7 +866,8 @@ direct_solution<> direct_inflation(const inflation_problem<>& pr, const inflatio
             if (axis[e] >= 0)
               worst = std::max(worst, std::abs(z[pr.edges[e][1]] - z[pr.edges[e][0]] - dz(e)));
           if (worst > o.closure_tolerance) {
-            cand.why = "the oblique junctions fit no planar faces (residual " + std::to_string(worst) + ")";
+            cand.why = cellforge::detail::cat("the oblique junctions fit no planar faces (residual ",
+                                              std::to_string(worst), ")");
             continue;
           }
         }
@@ -1076,13 +1085,15 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
       res.view_rotation = direct.rotation;
       res.misclosure = direct.misclosure;
     } else {
-      res.diagnostics.push_back("inflate: direct method not applicable: " + direct.why);
+      res.diagnostics.push_back(
+          cellforge::detail::cat("inflate: direct method not applicable: ", direct.why));
     }
   }
   if (z.empty()) {
     if (!options.allow_optimisation)
       throw error(error_category::invalid_input,
-                  "inflate: the direct method does not apply (" + direct.why + ") and optimisation is off");
+                  cellforge::detail::cat("inflate: the direct method does not apply (", direct.why,
+                                         ") and optimisation is off"));
     if (options.least_squares) {
       basis = detail::near_planar_readings(pr, options.rank_tolerance, res.near_readings);
       res.least_squares = true;
@@ -1097,10 +1108,11 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
     if (basis.cols() <= 2)
       throw error(
           error_category::topology,
-          "inflate: the face loops admit only flat readings (planar-face freedom " +
-              std::to_string(basis.cols() + 1) +
+          cellforge::detail::cat(
+              "inflate: the face loops admit only flat readings (planar-face freedom ",
+              std::to_string(basis.cols() + 1),
               " = the tilts and the offset): the drawing is not the view of a solid with these faces, "
-              "or it is too inexact; tidy it or raise rank_tolerance");
+              "or it is too inexact; tidy it or raise rank_tolerance"));
     res.method = inflation_method::optimisation;
     std::vector<Eigen::VectorXd> starts;
     // Convexity prior: when the faces admit a strictly convex reading, it is a start and the
@@ -1118,8 +1130,9 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
           terms.convex_margin = options.convexity_margin;
           m = static_cast<Eigen::Index>(terms.count() + pr.edges.size() + nv);
           scratch.resize(m);
-          res.diagnostics.push_back("inflate: the faces admit a convex reading: convexity term on (" +
-                                    std::to_string(terms.convex.size()) + " hinges) and a convex start");
+          res.diagnostics.push_back(
+              cellforge::detail::cat("inflate: the faces admit a convex reading: convexity term on (",
+                                     std::to_string(terms.convex.size()), " hinges) and a convex start"));
         }
       }
     }
@@ -1172,11 +1185,12 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
     const Eigen::VectorXd zb = basis * best_t;
     z.assign(zb.data(), zb.data() + zb.size());
     if (best_flat > 0)
-      res.diagnostics.push_back("inflate: in the best reading found, " + std::to_string(best_flat) +
-                                " line(s) join two coplanar faces (those faces would merge)");
-    res.diagnostics.push_back("inflate: optimisation objective " + std::to_string(best) + " after " +
-                              std::to_string(res.iterations) + " iterations over " +
-                              std::to_string(res.starts) + " starts");
+      res.diagnostics.push_back(
+          cellforge::detail::cat("inflate: in the best reading found, ", std::to_string(best_flat),
+                                 " line(s) join two coplanar faces (those faces would merge)"));
+    res.diagnostics.push_back(cellforge::detail::cat(
+        "inflate: optimisation objective ", std::to_string(best), " after ", std::to_string(res.iterations),
+        " iterations over ", std::to_string(res.starts), " starts"));
   } else {
     res.before = measure(z);
     res.freedom = detail::planar_freedom(pr, options.rank_tolerance);
@@ -1196,9 +1210,9 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
     res.diagnostics.push_back(
         "inflate: the reading found is flat (depth range below 1e-6 of the drawing size)");
   if (res.least_squares)
-    res.diagnostics.push_back("inflate: least-squares reading: faces planar to " +
-                              std::to_string(res.after.planarity) + " of the drawing size (" +
-                              std::to_string(res.near_readings) + " near-planar reading(s) added)");
+    res.diagnostics.push_back(cellforge::detail::cat(
+        "inflate: least-squares reading: faces planar to ", std::to_string(res.after.planarity),
+        " of the drawing size (", std::to_string(res.near_readings), " near-planar reading(s) added)"));
   std::size_t upright = 0;
   const double score = detail::from_above_score(pr, terms, z, upright);
   const auto lift = [&](const std::vector<double>& depth) {
@@ -1209,8 +1223,9 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
     }
     return out;
   };
-  const std::string rule = "view from above: the " + std::to_string(upright) +
-                           " most upright line(s) of the drawing, going up, come towards the viewer by ";
+  const std::string rule =
+      cellforge::detail::cat("view from above: the ", std::to_string(upright),
+                             " most upright line(s) of the drawing, going up, come towards the viewer by ");
   inflation_reading<R> a{lift(z), score, rule + std::to_string(score)};
   inflation_reading<R> b{lift(mirror), -score, rule + std::to_string(-score) + " (the Necker reversal)"};
   if (score < 0) std::swap(a, b);

@@ -23,6 +23,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/sketch/detail/drawing_grid.hpp"
@@ -152,8 +153,8 @@ std::string drawing_number(T v) {
 /// "(x, y)" of a 2D point, for messages. O(1).
 template <class T>
 std::string drawing_point_text(const T& p) {
-  return "(" + drawing_number(point2_traits<T>::get(p, 0)) + ", " +
-         drawing_number(point2_traits<T>::get(p, 1)) + ")";
+  return cellforge::detail::cat("(", drawing_number(point2_traits<T>::get(p, 0)), ", ",
+                                drawing_number(point2_traits<T>::get(p, 1)), ")");
 }
 
 }  // namespace detail
@@ -171,12 +172,12 @@ drawing_validation validate_drawing(const D& d, const drawing_check_options& opt
   using R = drawing_validation;
   const double tol = options.tolerance;
   if (!std::isfinite(tol) || tol < 0 || tol >= 0.5)
-    throw error(error_category::invalid_input, "validate_drawing: the tolerance " +
-                                                   detail::drawing_number(tol) +
-                                                   " is not a finite number in [0, 0.5)");
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat("validate_drawing: the tolerance ", detail::drawing_number(tol),
+                                       " is not a finite number in [0, 0.5)"));
   const std::size_t nv = T::num_junctions(d), ne = T::num_edges(d);
-  const auto jn = [](std::size_t i) { return "junction " + std::to_string(i); };
-  const auto en = [](std::size_t e) { return "edge " + std::to_string(e); };
+  const auto jn = [](std::size_t i) { return cellforge::detail::cat("junction ", std::to_string(i)); };
+  const auto en = [](std::size_t e) { return cellforge::detail::cat("edge ", std::to_string(e)); };
   std::vector<glm::dvec2> pts;
   pts.reserve(nv);
   for (std::size_t i = 0; i < nv; ++i) {
@@ -237,12 +238,13 @@ drawing_validation validate_drawing(const D& d, const drawing_check_options& opt
             R::npos,
             R::npos,
             R::npos,
-            "the drawing has no edge (" + std::to_string(nv) + " junctions)"};
+            cellforge::detail::cat("the drawing has no edge (", std::to_string(nv), " junctions)")};
 
   const detail::drawing_frame frame = detail::make_drawing_frame(std::move(pts));
   const auto& q = frame.points;
   const double eps = tol * frame.diag;
-  const std::string tol_text = " (tolerance " + detail::drawing_number(tol) + " of the drawing's diagonal)";
+  const std::string tol_text =
+      cellforge::detail::cat(" (tolerance ", detail::drawing_number(tol), " of the drawing's diagonal)");
   {
     std::size_t later = R::npos, earlier = R::npos;
     detail::for_close_points(q, eps, [&](std::size_t i, std::size_t j) {
@@ -255,8 +257,9 @@ drawing_validation validate_drawing(const D& d, const drawing_check_options& opt
               earlier,
               R::npos,
               R::npos,
-              "junctions " + std::to_string(earlier) + " " + detail::drawing_point_text(a) + " and " +
-                  std::to_string(later) + " " + detail::drawing_point_text(b) + " are one point" + tol_text};
+              cellforge::detail::cat("junctions ", std::to_string(earlier), " ",
+                                     detail::drawing_point_text(a), " and ", std::to_string(later), " ",
+                                     detail::drawing_point_text(b), " are one point", tol_text)};
     }
   }
   std::vector<std::pair<glm::dvec2, glm::dvec2>> segs(ne);
@@ -332,7 +335,8 @@ drawing_validation validate_drawing(const D& d, const drawing_check_options& opt
 template <LineDrawing D>
 void check_drawing(const D& d, const drawing_check_options& options = {}) {
   drawing_validation v = validate_drawing(d, options);
-  if (!v.ok()) throw error(error_category::invalid_input, "check_drawing: " + v.message);
+  if (!v.ok())
+    throw error(error_category::invalid_input, cellforge::detail::cat("check_drawing: ", v.message));
 }
 
 }  // namespace cellforge

@@ -22,6 +22,7 @@
 #include <glm/vec2.hpp>
 
 #include "cellforge/core/detail/stopwatch.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/sketch/arc_pairing.hpp"
@@ -107,7 +108,8 @@ round_skeleton_result<P> round_skeleton(const arc_drawing<P>& d, const round_ske
     if (p.contour != arc_pair<P>::npos) line_gone[p.contour] = true;
   }
   for (const std::uint32_t a : out.pairing.unpaired)
-    out.diagnostics.push_back("arc " + std::to_string(a) + " has no partner and is left out of the skeleton");
+    out.diagnostics.push_back(
+        cellforge::detail::cat("arc ", std::to_string(a), " has no partner and is left out of the skeleton"));
   out.junction_map.assign(nv, npos);
   for (std::uint32_t j = 0; j < nv; ++j)
     if (!gone[j]) {
@@ -146,7 +148,8 @@ round_skeleton_result<P> round_skeleton(const arc_drawing<P>& d, const round_ske
   }
   out.validation = validate_drawing(out.skeleton);
   if (!out.validation.ok())
-    out.diagnostics.push_back("the skeleton is not a readable drawing: " + out.validation.message);
+    out.diagnostics.push_back(
+        cellforge::detail::cat("the skeleton is not a readable drawing: ", out.validation.message));
 
   // Round or fillet: the corner's turn in the face loop through its two end lines.
   if (options.classify && out.validation.ok() && !out.blends.empty()) {
@@ -186,12 +189,12 @@ round_skeleton_result<P> round_skeleton(const arc_drawing<P>& d, const round_ske
       if (votes[0] != 0 && votes[0] == votes[1]) {
         b.kind = votes[0] > 0 ? blend_kind::round : blend_kind::fillet;
       } else {
-        out.diagnostics.push_back(
-            "blend " + std::to_string(b.pair) +
+        out.diagnostics.push_back(cellforge::detail::cat(
+            "blend ", std::to_string(b.pair),
             (votes[0] == 0 || votes[1] == 0
                  ? ": no face of the skeleton holds an end curve's corner; round or fillet "
                    "unknown"
-                 : ": one end reads as a round, the other as a fillet; left unknown"));
+                 : ": one end reads as a round, the other as a fillet; left unknown")));
       }
     }
   }
@@ -250,9 +253,9 @@ template <Point2 P>
 void resolve_blend_categories(round_skeleton_result<P>& r, const std::vector<double>& depth) {
   const std::size_t nv = r.skeleton.points.size();
   if (depth.size() != nv)
-    throw error(error_category::invalid_input, "resolve_blend_categories: " + std::to_string(depth.size()) +
-                                                   " depths for " + std::to_string(nv) +
-                                                   " skeleton junctions");
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat("resolve_blend_categories: ", std::to_string(depth.size()),
+                                       " depths for ", std::to_string(nv), " skeleton junctions"));
   const auto& loops = r.faces.loops;
   if (loops.empty())
     throw error(
@@ -286,16 +289,18 @@ void resolve_blend_categories(round_skeleton_result<P>& r, const std::vector<dou
       front += outward * area[l] > 0;
     }
     if (faces != 2) {
-      r.diagnostics.push_back("blend " + std::to_string(b.pair) + ": its edge is on " +
-                              std::to_string(faces) + " faces, not two; category left as it was");
+      r.diagnostics.push_back(cellforge::detail::cat("blend ", std::to_string(b.pair), ": its edge is on ",
+                                                     std::to_string(faces),
+                                                     " faces, not two; category left as it was"));
       continue;
     }
     const blend_category c = front == 2   ? blend_category::a
                              : front == 1 ? blend_category::b
                                           : blend_category::c;
     if (b.category == blend_category::b && c != blend_category::b)
-      r.diagnostics.push_back("blend " + std::to_string(b.pair) +
-                              " has a contour line but the reading does not put it on the contour");
+      r.diagnostics.push_back(
+          cellforge::detail::cat("blend ", std::to_string(b.pair),
+                                 " has a contour line but the reading does not put it on the contour"));
     else
       b.category = c;
   }

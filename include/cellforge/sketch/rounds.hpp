@@ -30,6 +30,7 @@
 #include <unsupported/Eigen/NumericalDiff>
 
 #include "cellforge/core/detail/stopwatch.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/core/point_traits.hpp"
@@ -165,7 +166,7 @@ std::vector<edge_round> attributes(const round_skeleton_result<P>& sk,
     r.junctions = b.junctions;
     r.kind = b.kind;
     r.convex = b.kind != blend_kind::fillet;
-    const std::string who = "blend " + std::to_string(b.pair);
+    const std::string who = cellforge::detail::cat("blend ", std::to_string(b.pair));
     for (std::size_t k = 0; k < input_edge.size(); ++k)
       if (input_edge[k] == b.edge) r.cell_edge = static_cast<std::uint32_t>(k);
     // Its two faces: the loops through the edge; its end faces: through a corner, not the edge.
@@ -281,8 +282,9 @@ std::vector<edge_round> attributes(const round_skeleton_result<P>& sk,
                                    r.centre_offset[0], r.centre_offset[1]});
     r.consistent = r.radius > 0 && worst <= options.consistency;
     if (!r.consistent)
-      by_circles("its end curves lifted onto the reading disagree with a circular blend by " +
-                 std::to_string(worst) + " (the reading is not metric?)");
+      by_circles(
+          cellforge::detail::cat("its end curves lifted onto the reading disagree with a circular blend by ",
+                                 std::to_string(worst), " (the reading is not metric?)"));
     out.push_back(r);
   }
   return out;
@@ -421,9 +423,10 @@ std::vector<edge_round> round_attributes(const round_skeleton_result<P>& sk,
                                          const rounds_options& options = {}) {
   const std::size_t nv = sk.skeleton.points.size();
   if (reading.wire.points.size() != nv)
-    throw error(error_category::invalid_input, "round_attributes: the reading has " +
-                                                   std::to_string(reading.wire.points.size()) +
-                                                   " junctions, the skeleton " + std::to_string(nv));
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat("round_attributes: the reading has ",
+                                       std::to_string(reading.wire.points.size()),
+                                       " junctions, the skeleton ", std::to_string(nv)));
   std::vector<glm::dvec3> X(nv);
   for (std::size_t j = 0; j < nv; ++j) X[j] = to_dvec3(reading.wire.points[j]);
   return detail::blends::attributes(sk, reading.face_loops, X, reading.cells.input_edge, diagnostics,
@@ -450,20 +453,21 @@ rounds_result<Q, P> reconstruct_rounds(const arc_drawing<P>& d, const rounds_opt
     for (const std::string& d : sk.pairing.diagnostics)
       if (d.find("has no partner") != std::string::npos) why += d + "; ";
     if (!sk.pairing.unpaired.empty()) why += "without a partner an arc cannot be a blend, so ";
-    why += "the skeleton is not a readable drawing: " + sk.validation.message;
+    why += cellforge::detail::cat("the skeleton is not a readable drawing: ", sk.validation.message);
     if (const std::size_t j = sk.validation.junction; j != drawing_validation::npos) {
       const std::size_t first_corner = sk.skeleton.points.size() - sk.new_junctions;
       if (j < first_corner) {
         const auto at =
             std::find(sk.junction_map.begin(), sk.junction_map.end(), static_cast<std::uint32_t>(j));
         if (at != sk.junction_map.end())
-          why += " (skeleton junction " + std::to_string(j) + " is junction " +
-                 std::to_string(at - sk.junction_map.begin()) + " of the drawing)";
+          why += cellforge::detail::cat(" (skeleton junction ", std::to_string(j), " is junction ",
+                                        std::to_string(at - sk.junction_map.begin()), " of the drawing)");
       } else if (j - first_corner < 2 * sk.pairing.pairs.size()) {
         const std::size_t pair = (j - first_corner) / 2, end = (j - first_corner) % 2;
-        why += " (skeleton junction " + std::to_string(j) + " is the corner of end " + std::to_string(end) +
-               " of arc pair " + std::to_string(pair) + ", arcs";
-        for (const std::uint32_t a : sk.pairing.pairs[pair].arcs[end]) why += " " + std::to_string(a);
+        why += cellforge::detail::cat(" (skeleton junction ", std::to_string(j), " is the corner of end ",
+                                      std::to_string(end), " of arc pair ", std::to_string(pair), ", arcs");
+        for (const std::uint32_t a : sk.pairing.pairs[pair].arcs[end])
+          why += cellforge::detail::cat(" ", std::to_string(a));
         why += ")";
       }
     }
@@ -506,9 +510,10 @@ rounds_result<Q, P> reconstruct_rounds(const arc_drawing<P>& d, const rounds_opt
       out.rounds = std::move(rounds), notes = std::move(again), X = std::move(Y);
       out.depth_corrected = true;
       out.depth_map = kab;
-      out.diagnostics.push_back("the reading's blends are not circular; its depths are mapped by z -> " +
-                                std::to_string(kab[0]) + " z + " + std::to_string(kab[1]) + " x + " +
-                                std::to_string(kab[2]) + " y, fitted so that its blends are circular");
+      out.diagnostics.push_back(
+          cellforge::detail::cat("the reading's blends are not circular; its depths are mapped by z -> ",
+                                 std::to_string(kab[0]), " z + ", std::to_string(kab[1]), " x + ",
+                                 std::to_string(kab[2]), " y, fitted so that its blends are circular"));
     }
   }
   out.diagnostics.insert(out.diagnostics.end(), notes.begin(), notes.end());
@@ -523,7 +528,8 @@ rounds_result<Q, P> reconstruct_rounds(const arc_drawing<P>& d, const rounds_opt
                            out.skeleton.diagnostics.begin() + static_cast<std::ptrdiff_t>(said),
                            out.skeleton.diagnostics.end());
   } catch (const error& e) {
-    out.diagnostics.push_back(std::string("categories a and c left undecided: ") + e.what());
+    out.diagnostics.push_back(
+        cellforge::detail::cat(std::string("categories a and c left undecided: "), e.what()));
   }
   for (auto& r : out.rounds) r.category = out.skeleton.blends[r.blend].category;
   for (const auto& x : X) out.points.push_back(from_dvec3<Q>(x));
@@ -607,7 +613,8 @@ bool claim_ends(const edge_round& e, std::size_t i, std::vector<std::pair<std::u
                 std::size_t& skipped, std::vector<std::string>& diagnostics, const std::string& who) {
   if (!(e.radius > 0) || e.source == radius_source::none) {
     ++skipped;
-    diagnostics.push_back("blend " + std::to_string(e.blend) + " has no radius; its edge stays sharp");
+    diagnostics.push_back(
+        cellforge::detail::cat("blend ", std::to_string(e.blend), " has no radius; its edge stays sharp"));
     return false;
   }
   for (std::size_t k = 0; k < 2; ++k) {
@@ -710,7 +717,8 @@ rounded_mesh_result<Q> rounded_mesh(const rounds_result<Q, P>& r, const rounded_
       if (f == e.faces[0] || f == e.faces[1]) {  // the tangent point in this face
         if (prev != other && next != other)
           throw error(error_category::invalid_input,
-                      "rounded_mesh: face " + std::to_string(f) + " holds a blend's corner but not its edge");
+                      cellforge::detail::cat("rounded_mesh: face ", std::to_string(f),
+                                             " holds a blend's corner but not its edge"));
         face.push_back(f == e.faces[0] ? curve.front() : curve.back());
       } else if (f == e.end_faces[end]) {  // the end curve, from prev's side to next's
         const bool prev_in_first = detail::blends::edge_sense(outer[e.faces[0]], prev, j) != 0;
@@ -720,7 +728,8 @@ rounded_mesh_result<Q> rounded_mesh(const rounds_result<Q, P>& r, const rounded_
           face.insert(face.end(), curve.rbegin(), curve.rend());
       } else {
         throw error(error_category::invalid_input,
-                    "rounded_mesh: junction " + std::to_string(j) + " of a blend is on a fourth face");
+                    cellforge::detail::cat("rounded_mesh: junction ", std::to_string(j),
+                                           " of a blend is on a fourth face"));
       }
     }
     out.mesh.add_face(face);
@@ -847,7 +856,8 @@ rounded_brep_result rounded_brep(const rounds_result<Q, P>& r, const rounded_bre
         const std::uint32_t other = e.junctions[1 - end];
         if (prev != other && next != other)
           throw error(error_category::invalid_input,
-                      "rounded_brep: face " + std::to_string(f) + " holds a blend's corner but not its edge");
+                      cellforge::detail::cat("rounded_brep: face ", std::to_string(f),
+                                             " holds a blend's corner but not its edge"));
         items.push_back({tangent[bi][end][f == e.faces[0] ? 0 : 1], none});
       } else if (f == e.end_faces[end]) {
         const std::size_t first = detail::blends::edge_sense(outer[e.faces[0]], prev, j) != 0 ? 0 : 1;
@@ -855,7 +865,8 @@ rounded_brep_result rounded_brep(const rounds_result<Q, P>& r, const rounded_bre
         items.push_back({tangent[bi][end][1 - first], none});
       } else {
         throw error(error_category::invalid_input,
-                    "rounded_brep: junction " + std::to_string(j) + " of a blend is on a fourth face");
+                    cellforge::detail::cat("rounded_brep: junction ", std::to_string(j),
+                                           " of a blend is on a fourth face"));
       }
     }
     rounded_solid::face face;
@@ -893,9 +904,9 @@ rounded_brep_result rounded_brep(const rounds_result<Q, P>& r, const rounded_bre
   for (std::size_t e = 0; e < uses.size(); ++e)
     if (uses[e][0] != 1 || uses[e][1] != 1)
       if (++open <= 5)
-        out.diagnostics.push_back("rounded_brep: edge " + std::to_string(e) + " is used " +
-                                  std::to_string(uses[e][0]) + " times forward and " +
-                                  std::to_string(uses[e][1]) + " backward (once each wanted)");
+        out.diagnostics.push_back(cellforge::detail::cat(
+            "rounded_brep: edge ", std::to_string(e), " is used ", std::to_string(uses[e][0]),
+            " times forward and ", std::to_string(uses[e][1]), " backward (once each wanted)"));
   double off = 0;
   for (const auto& f : S.faces)
     for (const auto& [e, forward] : f.loop)
@@ -911,8 +922,9 @@ rounded_brep_result rounded_brep(const rounds_result<Q, P>& r, const rounded_bre
         }
       }
   if (off > tol)
-    out.diagnostics.push_back("rounded_brep: a vertex is " + std::to_string(off) +
-                              " from a surface of its face, more than " + std::to_string(tol));
+    out.diagnostics.push_back(cellforge::detail::cat("rounded_brep: a vertex is ", std::to_string(off),
+                                                     " from a surface of its face, more than ",
+                                                     std::to_string(tol)));
   if (!(out.volume > 0)) out.diagnostics.push_back("rounded_brep: the solid's volume is not positive");
   out.ok = open == 0 && off <= tol && out.volume > 0;
   out.milliseconds = clock.ms();

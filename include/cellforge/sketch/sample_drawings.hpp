@@ -33,6 +33,7 @@
 #include "cellforge/algorithms/convex_hull.hpp"
 #include "cellforge/core/detail/splitmix.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
@@ -170,8 +171,9 @@ sample_drawing generic_drawing(const sample_model& model, std::uint64_t seed, st
                                      model.name + ", view " + std::to_string(seed), family);
     if (generic_margin(s) >= min_margin) return s;
   }
-  throw error(error_category::invalid_input, "generic_drawing: no generic view of '" + model.name + "' in " +
-                                                 std::to_string(attempts) + " tries");
+  throw error(error_category::invalid_input,
+              cellforge::detail::cat("generic_drawing: no generic view of '", model.name, "' in ",
+                                     std::to_string(attempts), " tries"));
 }
 
 // ---- solids for the sketch sweep -------------------------------------------------------------
@@ -293,7 +295,8 @@ sample_model convex_polytope_model(const std::vector<glm::dvec3>& points, std::s
   const detail::hull::result r = detail::hull::compute(std::span<const glm::dvec3>(points), {});
   if (r.dimension < 3)
     throw error(error_category::invalid_input,
-                "convex_polytope_model: the points of '" + name + "' span less than 3D; give a solid");
+                cellforge::detail::cat("convex_polytope_model: the points of '", name,
+                                       "' span less than 3D; give a solid"));
   const double tol = tolerance * detail::diagonal_of(points);
   const std::size_t nf = r.face_offsets.size() - 1;
   const auto corner = [&](std::size_t f, std::size_t k) {
@@ -340,8 +343,9 @@ sample_model convex_polytope_model(const std::vector<glm::dvec3>& points, std::s
       if (at == loop.front()) break;
     }
     if (loop.size() != next.size())
-      throw error(error_category::invalid_input, "convex_polytope_model: a merged face of '" + name +
-                                                     "' is not one polygon; lower the tolerance");
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat("convex_polytope_model: a merged face of '", name,
+                                         "' is not one polygon; lower the tolerance"));
     // Drop corners where the outline goes straight on (a point on a side, within tolerance).
     std::vector<std::uint32_t> corners;
     for (std::size_t i = 0; i < loop.size(); ++i) {
@@ -365,7 +369,7 @@ sample_model sample_antiprism(std::size_t n, double height = 1.0) {
   s.height = {0.0, height};
   s.twist = {0.0, std::numbers::pi / static_cast<double>(n)};
   s.triangles = true;
-  return make_ring_stack(s, "antiprism " + std::to_string(n));
+  return make_ring_stack(s, cellforge::detail::cat("antiprism ", std::to_string(n)));
 }
 
 /// A frustum of a regular n-gon pyramid (3 <= n <= 1024), top radius `top` (0 < top, top != 1):
@@ -376,7 +380,7 @@ sample_model sample_frustum(std::size_t n, double top = 0.5, double height = 1.0
     throw error(error_category::invalid_input, "sample_frustum: n must be in 3..1024 and top > 0");
   ring_stack s = detail::regular_stack(n, {0.0, height});
   s.radius = {1.0, top};
-  return make_ring_stack(s, "frustum " + std::to_string(n));
+  return make_ring_stack(s, cellforge::detail::cat("frustum ", std::to_string(n)));
 }
 
 /// A bipyramid over a regular n-gon (3 <= n <= 1024), apexes at heights -below and +above:
@@ -388,7 +392,7 @@ sample_model sample_bipyramid(std::size_t n, double below = 1.0, double above = 
   ring_stack s = detail::regular_stack(n, {0.0});
   s.bottom = -below;
   s.top = above;
-  return make_ring_stack(s, "bipyramid " + std::to_string(n));
+  return make_ring_stack(s, cellforge::detail::cat("bipyramid ", std::to_string(n)));
 }
 
 /// The five Platonic solids from their vertex coordinates (convex_polytope_model): tetrahedron,
@@ -503,9 +507,9 @@ sample_model random_convex_polytope(std::size_t n, bool on_sphere, std::uint64_t
     for (const auto& q : pts) far = far && glm::length(p - q) >= gap;
     if (far) pts.push_back(p);
   }
-  return convex_polytope_model(
-      pts, std::string(on_sphere ? "random sphere polytope " : "random ball polytope ") + std::to_string(n) +
-               " #" + std::to_string(seed));
+  return convex_polytope_model(pts, cellforge::detail::cat(std::string(on_sphere ? "random sphere polytope "
+                                                                                 : "random ball polytope "),
+                                                           std::to_string(n), " #", std::to_string(seed)));
 }
 
 /// A cube (base = 0) or a regular base-gon prism (base >= 3) cut by `cuts` random planes, each
@@ -562,9 +566,10 @@ sample_model cut_polytope(std::size_t base, std::size_t cuts, std::uint64_t seed
         for (const auto& q : pts) seen = seen || glm::length(q - x) < 1e-7;
         if (inside && !seen) pts.push_back(x);
       }
-  return convex_polytope_model(
-      pts, (base == 0 ? std::string("cut cube ") : "cut prism " + std::to_string(base) + " ") +
-               std::to_string(cuts) + " #" + std::to_string(seed));
+  return convex_polytope_model(pts,
+                               (base == 0 ? std::string("cut cube ")
+                                          : cellforge::detail::cat("cut prism ", std::to_string(base), " ")) +
+                                   std::to_string(cuts) + " #" + std::to_string(seed));
 }
 
 /// The prism over a simple polygon (counter-clockwise or not) in the xy plane, from z = 0 to
@@ -575,7 +580,7 @@ sample_model extruded_polygon(const std::vector<glm::dvec2>& polygon, double hei
   const std::size_t n = polygon.size();
   if (!detail::simple_polygon(polygon))
     throw error(error_category::invalid_input,
-                "extruded_polygon: the footprint of '" + name + "' is not simple");
+                cellforge::detail::cat("extruded_polygon: the footprint of '", name, "' is not simple"));
   std::vector<glm::dvec3> pts;
   for (const double z : {0.0, height})
     for (const auto& p : polygon) pts.push_back({p.x, p.y, z});
@@ -584,8 +589,9 @@ sample_model extruded_polygon(const std::vector<glm::dvec2>& polygon, double hei
     const std::uint32_t j = static_cast<std::uint32_t>((i + 1) % n), k = static_cast<std::uint32_t>(n);
     const glm::dvec2 a = polygon[(i + n - 1) % n], b = polygon[i], c = polygon[j];
     if (std::abs((b - a).x * (c - b).y - (b - a).y * (c - b).x) < 1e-12 * glm::dot(c - a, c - a))
-      throw error(error_category::invalid_input, "extruded_polygon: three consecutive corners of '" + name +
-                                                     "' are collinear; drop the middle one");
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat("extruded_polygon: three consecutive corners of '", name,
+                                         "' are collinear; drop the middle one"));
     faces.push_back({{i, j, j + k, i + k}});
   }
   faces[0].push_back({});
@@ -801,8 +807,9 @@ std::optional<voxel_solid> random_normalon(std::size_t nx, std::size_t ny, std::
     l.labels[d] = 1;
     set.push_back(d);
   }
-  return voxel_solid_model(std::move(l), "random normalon " + std::to_string(nx) + "x" + std::to_string(ny) +
-                                             "x" + std::to_string(nz) + " #" + std::to_string(seed));
+  return voxel_solid_model(
+      std::move(l), cellforge::detail::cat("random normalon ", std::to_string(nx), "x", std::to_string(ny),
+                                           "x", std::to_string(nz), " #", std::to_string(seed)));
 }
 
 /// A skyline: an nx × ny grid of columns of random widths, each 1..max_height cells of random
@@ -840,7 +847,8 @@ std::optional<voxel_solid> random_skyline(std::size_t nx, std::size_t ny, std::s
     for (std::size_t i = 0; i < nx; ++i)
       for (std::size_t k = 0; k < h[i + nx * j]; ++k) l.at(i, j, k) = 1;
   return voxel_solid_model(
-      std::move(l), "skyline " + std::to_string(nx) + "x" + std::to_string(ny) + " #" + std::to_string(seed));
+      std::move(l), cellforge::detail::cat("skyline ", std::to_string(nx), "x", std::to_string(ny), " #",
+                                           std::to_string(seed)));
 }
 
 /// A 3 × 3 × 3 block of random widths with `notches` random edge or corner cells cut away
@@ -864,8 +872,8 @@ std::optional<voxel_solid> notched_block(std::size_t notches, std::uint64_t seed
     l.labels[candidates[pick]] = 0;
     candidates.erase(candidates.begin() + static_cast<std::ptrdiff_t>(pick));
   }
-  return voxel_solid_model(std::move(l),
-                           "notched block " + std::to_string(notches) + " #" + std::to_string(seed));
+  return voxel_solid_model(std::move(l), cellforge::detail::cat("notched block ", std::to_string(notches),
+                                                                " #", std::to_string(seed)));
 }
 
 /// A staircase of `steps` steps (1..1000) of random treads and risers, extruded across:
@@ -886,8 +894,9 @@ sample_model sample_stairs(std::size_t steps, std::uint64_t seed) {
     p.push_back({x[i], h[i + 1]});
     if (i > 0) p.push_back({x[i], h[i]});
   }
-  return extruded_polygon(p, rng.uniform(1.0, 3.0),
-                          "stairs " + std::to_string(steps) + " #" + std::to_string(seed));
+  return extruded_polygon(
+      p, rng.uniform(1.0, 3.0),
+      cellforge::detail::cat("stairs ", std::to_string(steps), " #", std::to_string(seed)));
 }
 
 /// A block of random widths with `holes` (1..4) rectangular through-slots along y (genus
@@ -905,8 +914,8 @@ voxel_solid through_slot(std::size_t holes, std::uint64_t seed) {
   const std::array<std::array<std::size_t, 2>, 4> at{{{1, 1}, {3, 1}, {1, 3}, {3, 3}}};
   for (std::size_t h = 0; h < holes; ++h)
     for (std::size_t j = 0; j < ny; ++j) l.at(at[h][0], j, at[h][1]) = 0;
-  auto s =
-      voxel_solid_model(std::move(l), "through slot " + std::to_string(holes) + " #" + std::to_string(seed));
+  auto s = voxel_solid_model(std::move(l), cellforge::detail::cat("through slot ", std::to_string(holes),
+                                                                  " #", std::to_string(seed)));
   if (!s)
     throw error(error_category::invalid_input, "through_slot: not a manifold solid (a generator fault)");
   return *s;
@@ -940,7 +949,7 @@ template <class = void>
 sample_model random_quasi_normalon(int kind, std::uint64_t seed) {
   detail::splitmix rng{seed ^ 0x7175617369000000u};
   const double a = rng.uniform(1, 3), b = rng.uniform(1, 3), c = rng.uniform(1, 3);
-  const std::string tag = " #" + std::to_string(seed);
+  const std::string tag = cellforge::detail::cat(" #", std::to_string(seed));
   const auto pick_corners = [&](std::size_t n, std::size_t lo, std::size_t hi,
                                 const std::vector<bool>& allowed) {
     std::vector<bool> which(n, false);
@@ -963,7 +972,8 @@ sample_model random_quasi_normalon(int kind, std::uint64_t seed) {
       const std::vector<glm::dvec2> rect{{0, 0}, {a, 0}, {a, b}, {0, b}};
       const std::vector<bool> which = pick_corners(4, 1, 4, std::vector<bool>(4, true));
       const double size = rng.uniform(0.15, 0.45);
-      return extruded_polygon(chamfered_corners(rect, which, size), c, "chamfered block" + tag);
+      return extruded_polygon(chamfered_corners(rect, which, size), c,
+                              cellforge::detail::cat("chamfered block", tag));
     }
     case 1: {
       std::vector<glm::dvec3> pts;
@@ -979,13 +989,13 @@ sample_model random_quasi_normalon(int kind, std::uint64_t seed) {
           pts.push_back(q);
         }
       }
-      return convex_polytope_model(pts, "corner-cut block" + tag);
+      return convex_polytope_model(pts, cellforge::detail::cat("corner-cut block", tag));
     }
     case 2:
-      return extruded_polygon({{0, 0}, {a, 0}, {0, b}}, c, "wedge" + tag);
+      return extruded_polygon({{0, 0}, {a, 0}, {0, b}}, c, cellforge::detail::cat("wedge", tag));
     case 3:
       return extruded_polygon({{0, 0}, {a + 1, 0}, {a + 1, b}, {rng.uniform(0.3, 0.8) * (a + 1), b}}, c,
-                              "ramp" + tag);
+                              cellforge::detail::cat("ramp", tag));
     case 4: {
       const int letter = static_cast<int>(detail::below(2, rng));
       const std::vector<glm::dvec2> p = letter_footprint(letter, 0.0, rng);
@@ -997,12 +1007,13 @@ sample_model random_quasi_normalon(int kind, std::uint64_t seed) {
       }
       const std::vector<bool> which = pick_corners(p.size(), 1, 3, convex);
       const double size = rng.uniform(0.2, 0.45);
-      return extruded_polygon(chamfered_corners(p, which, size), c,
-                              std::string(letter == 0 ? "chamfered L" : "chamfered T") + tag);
+      return extruded_polygon(
+          chamfered_corners(p, which, size), c,
+          cellforge::detail::cat(std::string(letter == 0 ? "chamfered L" : "chamfered T"), tag));
     }
     default:
       return extruded_polygon({{0, 0}, {a, 0}, {a, b}, {a / 2, b + rng.uniform(0.3, 1.2)}, {0, b}}, c,
-                              "gable house" + tag);
+                              cellforge::detail::cat("gable house", tag));
   }
 }
 
@@ -1127,7 +1138,8 @@ std::optional<sample_model> sliced_polytope(std::size_t base, std::size_t cuts, 
     }
     cells = std::move(next);
   }
-  std::string name = (base == 0 ? std::string("sliced box") : "sliced prism " + std::to_string(base)) +
+  std::string name = (base == 0 ? std::string("sliced box")
+                                : cellforge::detail::cat("sliced prism ", std::to_string(base))) +
                      (diagonal ? " (diagonal wall)" : "") + ", " + std::to_string(cuts) + " cuts #" +
                      std::to_string(seed);
   sample_model m = convex_cells_model(cells, std::move(name));
@@ -1165,7 +1177,8 @@ sample_model roof_on_box(int kind, std::uint64_t seed) {
   }
   for (const auto& q : section)
     for (const double y : {0.0, b}) roof.push_back({q.x, y, q.y});
-  return convex_cells_model({box, roof}, "box with a " + what + " #" + std::to_string(seed));
+  return convex_cells_model({box, roof},
+                            cellforge::detail::cat("box with a ", what, " #", std::to_string(seed)));
 }
 
 /// A rectangular frame of bars (genus `holes`, 1 or 2): an nx × ny ring of lattice cells (a
@@ -1208,8 +1221,8 @@ sample_model bar_frame(std::size_t holes, std::uint64_t seed) {
   std::map<int, int> compact;  // labels 1..bars, as make_voxel_model wants them
   for (auto& x : l.labels)
     if (x != 0) x = compact.insert({x, static_cast<int>(compact.size()) + 1}).first->second;
-  return make_voxel_model(l, "frame of bars, " + std::to_string(holes) + " hole" + (holes == 2 ? "s" : "") +
-                                 " #" + std::to_string(seed));
+  return make_voxel_model(l, cellforge::detail::cat("frame of bars, ", std::to_string(holes), " hole",
+                                                    (holes == 2 ? "s" : ""), " #", std::to_string(seed)));
 }
 
 /// A block split into boxes by random guillotine cuts along lattice planes (each box its own
@@ -1271,9 +1284,9 @@ std::optional<sample_model> cell_block(std::size_t nx, std::size_t ny, std::size
       ++next;
     }
   }
-  return make_voxel_model(l, std::string(every_cell ? "cells" : "guillotine block") + " " +
-                                 std::to_string(nx) + "x" + std::to_string(ny) + "x" + std::to_string(nz) +
-                                 " #" + std::to_string(seed));
+  return make_voxel_model(l, cellforge::detail::cat(std::string(every_cell ? "cells" : "guillotine block"),
+                                                    " ", std::to_string(nx), "x", std::to_string(ny), "x",
+                                                    std::to_string(nz), " #", std::to_string(seed)));
 }
 
 /// Boxes that touch along edges or at vertices only (kind 0: two along an edge; 1: a box on
@@ -1284,7 +1297,7 @@ template <class = void>
 sample_model touching_solids(int kind, std::uint64_t seed) {
   detail::splitmix rng{seed ^ 0x746f756368000000u};
   const auto coords = [&](std::size_t n) { return detail::random_coords(n, 0.5, 1.5, rng); };
-  const std::string tag = " #" + std::to_string(seed);
+  const std::string tag = cellforge::detail::cat(" #", std::to_string(seed));
   if (kind == 6) {
     const double a = rng.uniform(0.6, 1.5), b = rng.uniform(0.6, 1.5), c = rng.uniform(0.6, 1.5);
     std::vector<glm::dvec3> box, prism;
@@ -1296,7 +1309,7 @@ sample_model touching_solids(int kind, std::uint64_t seed) {
                                       {a + rng.uniform(0.1, 0.5), b + rng.uniform(0.6, 1.4)}};
     for (const auto& q : tri)
       for (const double z : {0.0, c}) prism.push_back({q.x, q.y, z});
-    return convex_cells_model({box, prism}, "box and prism along an edge" + tag);
+    return convex_cells_model({box, prism}, cellforge::detail::cat("box and prism along an edge", tag));
   }
   const std::array<std::array<std::size_t, 3>, 7> lattice{
       {{2, 2, 1}, {2, 1, 2}, {3, 3, 1}, {2, 2, 2}, {2, 2, 2}, {3, 2, 1}, {1, 1, 1}}};
@@ -1336,11 +1349,11 @@ sample_model touching_solids(int kind, std::uint64_t seed) {
 template <class = void>
 sample_model revolved_solid(int kind, std::uint64_t seed) {
   detail::splitmix rng{seed ^ 0x7265766f6c000000u};
-  const std::string tag = " #" + std::to_string(seed);
+  const std::string tag = cellforge::detail::cat(" #", std::to_string(seed));
   if (kind == 4) {
     const std::size_t slices = 5 + detail::below(8, rng), stacks = 3 + detail::below(5, rng);
     sample_model m = sample_uv_sphere(slices, stacks);
-    m.name = "uv sphere " + std::to_string(slices) + "x" + std::to_string(stacks) + tag;
+    m.name = cellforge::detail::cat("uv sphere ", std::to_string(slices), "x", std::to_string(stacks), tag);
     return m;
   }
   ring_stack s;
@@ -1369,8 +1382,8 @@ sample_model revolved_solid(int kind, std::uint64_t seed) {
       s.twist.push_back(std::numbers::pi / static_cast<double>(s.n) * static_cast<double>(r));
   }
   static const char* what[] = {"barrel", "spindle", "walled cylinder", "twisted stack"};
-  return make_ring_stack(s, std::string(what[kind]) + " " + std::to_string(s.n) + "-gon, " +
-                                std::to_string(rings) + " rings" + tag);
+  return make_ring_stack(s, cellforge::detail::cat(std::string(what[kind]), " ", std::to_string(s.n),
+                                                   "-gon, ", std::to_string(rings), " rings", tag));
 }
 
 /// Hand-made drawings of the kinds seed 003 shows as hard for face
@@ -1561,8 +1574,9 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
   const std::vector<std::string> names = sketch_sweep_families();
   for (const auto& f : options.families)
     if (std::find(names.begin(), names.end(), f) == names.end())
-      throw error(error_category::invalid_input,
-                  "sketch_sweep: no family '" + f + "'; sketch_sweep_families() lists them");
+      throw error(
+          error_category::invalid_input,
+          cellforge::detail::cat("sketch_sweep: no family '", f, "'; sketch_sweep_families() lists them"));
   sketch_sweep_report rep;
   for (const auto& f : names) rep.families.push_back({f});
   const auto fam = [&](const std::string& f) -> sketch_sweep_family& {
@@ -1700,16 +1714,17 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
           const double jitter = rng.uniform(0.05, 0.3);
           const std::vector<glm::dvec2> footprint = letter_footprint(kind, jitter, rng);
           kept += add(extruded_polygon(footprint, rng.uniform(0.5, 2),
-                                       std::string(kind == 0   ? "oblique L"
-                                                   : kind == 1 ? "oblique T"
-                                                               : "oblique cross") +
-                                           " prism #" + std::to_string(k)),
+                                       cellforge::detail::cat(std::string(kind == 0   ? "oblique L"
+                                                                          : kind == 1 ? "oblique T"
+                                                                                      : "oblique cross"),
+                                                              " prism #", std::to_string(k))),
                       "non-convex prism", 0, v);
         } else {
           const std::size_t n = 5 + detail::below(std::min<std::size_t>(emax / 3, 100) - 4, rng);
           const std::vector<glm::dvec2> footprint = random_star_polygon(n, rng);
-          kept += add(extruded_polygon(footprint, rng.uniform(0.3, 1.5),
-                                       "star prism " + std::to_string(n) + " #" + std::to_string(k)),
+          kept += add(extruded_polygon(
+                          footprint, rng.uniform(0.3, 1.5),
+                          cellforge::detail::cat("star prism ", std::to_string(n), " #", std::to_string(k))),
                       "non-convex prism", 0, v);
         }
       } catch (const error&) {
@@ -1723,7 +1738,8 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
     for (std::size_t k = 2; k <= 6; ++k) {  // rows of k boxes, every box a volume
       voxel_layout l = empty_layout(detail::iota_coords(k), {0, 1}, {0, 1});
       for (std::size_t i = 0; i < k; ++i) l.labels[i] = static_cast<int>(i + 1);
-      add(make_voxel_model(l, "row of " + std::to_string(k) + " boxes"), "cell block", 0, v);
+      add(make_voxel_model(l, cellforge::detail::cat("row of ", std::to_string(k), " boxes")), "cell block",
+          0, v);
     }
     for (const auto& n :
          std::vector<std::array<std::size_t, 3>>{{2, 2, 1}, {3, 2, 1}, {2, 2, 2}, {4, 2, 1}, {3, 2, 2}})

@@ -29,6 +29,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/detail/splitmix.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/sketch/elliptical_arc.hpp"
 #include "cellforge/sketch/sample_drawings.hpp"
@@ -252,7 +253,8 @@ sample_round_drawing round_prism_drawing(const std::vector<glm::dvec2>& p, doubl
     throw error(error_category::invalid_input, "round_prism_drawing: give the footprint counter-clockwise");
   sample_model model = extruded_polygon(p, h, name);
   const auto fail = [&](const std::string& why) {
-    throw error(error_category::invalid_input, "round_prism_drawing: " + name + ": " + why);
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat("round_prism_drawing: ", name, ": ", why));
   };
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> edge_id;
   for (std::uint32_t e = 0; e < model.wire.edges.size(); ++e)
@@ -274,8 +276,8 @@ sample_round_drawing round_prism_drawing(const std::vector<glm::dvec2>& p, doubl
     const auto i = static_cast<std::size_t>(spec[1]);
     if (kind < 0 || kind > 2 || i >= n || !(spec[2] > 0)) fail("an edge spec is out of range");
     if (!detail::rounds::prism_edge_blend(p, h, kind, i, spec[2], b))
-      fail("side edge " + std::to_string(i) +
-           " has neighbouring sides that are not parallel or a reflex corner");
+      fail(cellforge::detail::cat("side edge ", std::to_string(i),
+                                  " has neighbouring sides that are not parallel or a reflex corner"));
     if (used[b.a] || used[b.b]) fail("two blends share a vertex");
     used[b.a] = used[b.b] = true;
     // The edges the blend shortens: at each end, the other two edges, matched to the tangent points.

@@ -26,6 +26,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/detail/work_budget.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/sketch/inflation.hpp"
@@ -233,7 +234,8 @@ tidy_result<drawing_point_t<D>> tidy_drawing(const D& d, const tidy_options& opt
     p[i] = to_dvec2(r.drawing.points[i]);
     if (!std::isfinite(p[i].x) || !std::isfinite(p[i].y))
       throw error(error_category::invalid_input,
-                  "tidy_drawing: junction " + std::to_string(i) + " has a NaN or infinite coordinate");
+                  cellforge::detail::cat("tidy_drawing: junction ", std::to_string(i),
+                                         " has a NaN or infinite coordinate"));
   }
   if (nv < 2 || ne < 2) return r;
   glm::dvec2 lo = p[0], hi = p[0];
@@ -310,8 +312,9 @@ tidy_result<drawing_point_t<D>> tidy_drawing(const D& d, const tidy_options& opt
   }
   r.rms_move = std::sqrt(sum / static_cast<double>(nv));
   if (!ok || !(r.largest_move <= options.max_move)) {
-    r.diagnostics.push_back("tidy_drawing: making the lines parallel would move a junction by " +
-                            std::to_string(r.largest_move) + " of the drawing's size: left as drawn");
+    r.diagnostics.push_back(
+        cellforge::detail::cat("tidy_drawing: making the lines parallel would move a junction by ",
+                               std::to_string(r.largest_move), " of the drawing's size: left as drawn"));
     r.milliseconds = clock.ms();
     return r;
   }
@@ -344,7 +347,8 @@ tidy_result<drawing_point_t<D>> tidy_to_solid(
   const detail::inflation_problem<> pr = detail::make_inflation_problem(d, faces);
   const std::size_t nv = pr.p.size(), ne = pr.edges.size();
   const auto finish = [&](std::string why) {
-    if (!why.empty()) r.diagnostics.push_back("tidy_to_solid: " + why + ": left as drawn");
+    if (!why.empty())
+      r.diagnostics.push_back(cellforge::detail::cat("tidy_to_solid: ", why, ": left as drawn"));
     r.milliseconds = clock.ms();
     return r;
   };
@@ -359,7 +363,7 @@ tidy_result<drawing_point_t<D>> tidy_to_solid(
     for (std::size_t i = 0; i < nv; ++i) z0[i] = first.points[i].z / pr.size;
   } catch (const error& e) {
     if (e.category() != error_category::topology && e.category() != error_category::invalid_input) throw;
-    return finish(std::string("no least-squares reading (") + e.what() + ")");
+    return finish(cellforge::detail::cat(std::string("no least-squares reading ("), e.what(), ")"));
   }
   // 2. Lines parallel in 3D in that reading.
   std::vector<glm::dvec3> q0(nv);
@@ -605,7 +609,7 @@ tidy_result<drawing_point_t<D>> tidy_to_solid(
           planar = std::max(planar, std::abs(detail::plane_residual(row, zc)));
       } catch (const error& e) {
         if (e.category() != error_category::invalid_input) throw;
-        return std::string("the tidied drawing is malformed (") + e.what() + ")";
+        return cellforge::detail::cat(std::string("the tidied drawing is malformed ("), e.what(), ")");
       }
       r.planarity = planar;
       // No tilt: the depths' residual from their best plane z = a x + b y + c.
@@ -621,17 +625,18 @@ tidy_result<drawing_point_t<D>> tidy_to_solid(
         relief =
             std::max(relief, std::abs(depth[i] - plane.dot(Eigen::Vector3d(moved[i].x, moved[i].y, 1.0))));
       if (!(r.largest_move <= options.solid_max_move))
-        return "the nearest view of a solid moves a junction by " + std::to_string(r.largest_move) +
-               " of the drawing's size (more than solid_max_move)";
+        return cellforge::detail::cat("the nearest view of a solid moves a junction by ",
+                                      std::to_string(r.largest_move),
+                                      " of the drawing's size (more than solid_max_move)");
       // A line shrunk to under half its drawn length: the junctions collapsed onto the constraints.
       for (const auto& [a, b] : pr.edges)
         if (glm::length(moved[b] - moved[a]) < 0.5 * glm::length(pr.p[b] - pr.p[a]))
-          return "the nearest view of a solid shrinks line " + std::to_string(a) + "-" + std::to_string(b) +
-                 " to under half its length";
+          return cellforge::detail::cat("the nearest view of a solid shrinks line ", std::to_string(a), "-",
+                                        std::to_string(b), " to under half its length");
       if (!(planar <= 1e-9))
-        return "the faces of the tidied drawing are planar only to " + std::to_string(planar) +
-               " of its size after " + std::to_string(r.steps) + " steps (worst constraint " +
-               std::to_string(worst) + ")";
+        return cellforge::detail::cat("the faces of the tidied drawing are planar only to ",
+                                      std::to_string(planar), " of its size after ", std::to_string(r.steps),
+                                      " steps (worst constraint ", std::to_string(worst), ")");
       if (!(relief > 1e-6)) return "the reading found is flat";
       r.drawing = std::move(tidied);
       r.depth.resize(nv);
@@ -641,8 +646,8 @@ tidy_result<drawing_point_t<D>> tidy_to_solid(
       return "";
     }();
     if (why.empty()) return finish("");
-    r.diagnostics.push_back("tidy_to_solid: " + std::string(with_classes ? "with" : "without") +
-                            " the parallel classes: " + why);
+    r.diagnostics.push_back(cellforge::detail::cat(
+        "tidy_to_solid: ", std::string(with_classes ? "with" : "without"), " the parallel classes: ", why));
   }
   r.largest_move = r.rms_move = 0;
   return finish("no view of a solid found near the drawing");

@@ -17,6 +17,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/bounding_box.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/conversion.hpp"
@@ -124,9 +125,9 @@ double normal_angle_deg(const glm::dvec3& a, const glm::dvec3& b) {
 template <class = void>
 void check_surface_angle(double angle_deg, const char* who) {
   if (!(angle_deg >= 0.0 && angle_deg <= 90.0))
-    throw error(
-        error_category::invalid_input,
-        std::string(who) + ": angle_deg = " + std::to_string(angle_deg) + ", must be within 0..90 degrees");
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat(std::string(who), ": angle_deg = ", std::to_string(angle_deg),
+                                       ", must be within 0..90 degrees"));
 }
 
 /// §6.1–6.2: grows surfaces from the lowest unused face across edges whose outward normals differ

@@ -16,6 +16,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 
@@ -79,7 +80,8 @@ template <class = void>
 void check_polyline_segments(int segments) {
   if (segments < 1)
     throw error(error_category::invalid_input,
-                "edge_curve::polyline: segments = " + std::to_string(segments) + ", must be >= 1");
+                cellforge::detail::cat("edge_curve::polyline: segments = ", std::to_string(segments),
+                                       ", must be >= 1"));
 }
 
 }  // namespace detail
@@ -243,7 +245,7 @@ dcurve axis_curve(int axis, std::array<double, 2> limits,
                   const std::array<std::array<double, 4>, 2>& coefficients) {
   if (axis < 0 || axis > 2)
     throw error(error_category::invalid_input,
-                "axis_curve: axis = " + std::to_string(axis) + ", must be 0, 1 or 2");
+                cellforge::detail::cat("axis_curve: axis = ", std::to_string(axis), ", must be 0, 1 or 2"));
   for (double v : {limits[0], limits[1]})
     if (!std::isfinite(v)) throw error(error_category::invalid_input, "axis_curve: non-finite limit");
   for (const auto& row : coefficients)

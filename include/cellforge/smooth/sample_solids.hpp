@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cellforge/algorithms/shapes.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
@@ -56,8 +57,9 @@ struct smooth_table7_case {
 template <Point3 P = glm::dvec3>
 smooth_table7_case<P> smooth_table7_solid(int figure) {
   if (figure < 1 || figure > 4)
-    throw error(error_category::invalid_input,
-                "smooth_table7_solid: figure = " + std::to_string(figure) + ", must be 1..4");
+    throw error(
+        error_category::invalid_input,
+        cellforge::detail::cat("smooth_table7_solid: figure = ", std::to_string(figure), ", must be 1..4"));
   auto s = table7_solids<P>()[static_cast<std::size_t>(figure - 1)];
   return {s.name, s.description, make_mesh(s.soup), s.seed_edges, s.seed_ms};
 }

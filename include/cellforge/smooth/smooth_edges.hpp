@@ -23,6 +23,7 @@
 #include "cellforge/cells/cell_complex.hpp"
 #include "cellforge/cells/conversion.hpp"
 #include "cellforge/core/detail/span_of.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/mesh.hpp"
@@ -113,7 +114,8 @@ void check_options(const smooth_options& o) {
   check_surface_angle(o.angle_deg, "smooth_edges");
   auto bad = [](const char* name, const std::string& value, const char* range) {
     throw error(error_category::invalid_input,
-                std::string("smooth_edges: ") + name + " = " + value + ", must be within " + range);
+                cellforge::detail::cat(std::string("smooth_edges: "), name, " = ", value, ", must be within ",
+                                       range));
   };
   if (!(o.convergence > 0 && o.convergence <= 1)) bad("convergence", std::to_string(o.convergence), "(0, 1]");
   if (!(o.axis_handle_ratio >= 1 && o.axis_handle_ratio <= 1e6))

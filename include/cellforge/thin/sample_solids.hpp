@@ -15,6 +15,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/algorithms/shapes.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
@@ -45,7 +46,8 @@ thin_sample<P> revolve(std::string name, int segments, int rings, bool triangles
                        const std::function<double(double)>& radius) {
   if (rings < 3)
     throw error(error_category::invalid_input,
-                "thin sample '" + name + "': rings must be at least 3, got " + std::to_string(rings));
+                cellforge::detail::cat("thin sample '", name, "': rings must be at least 3, got ",
+                                       std::to_string(rings)));
   // The profile is allocated before solid_of_revolution checks the mesh's size: check it here.
   detail::shapes::require_counts("thin sample", {{"segments", segments, 3}}, double(segments) * rings,
                                  4.0 * segments * rings);
@@ -174,8 +176,9 @@ thin_sample<P> thin_table5_solid(int example, bool triangles) {
     case 6:
       return thin_chain<P>(4, seg, rings(61, 29), triangles);
     default:
-      throw error(error_category::invalid_input, "thin_table5_solid: example " + std::to_string(example) +
-                                                     " does not exist; allowed 1 to 6");
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat("thin_table5_solid: example ", std::to_string(example),
+                                         " does not exist; allowed 1 to 6"));
   }
 }
 

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 
 namespace cellforge {
@@ -266,10 +267,10 @@ std::uint32_t add_node(growing_result& r, std::uint32_t parent, std::uint32_t fa
 template <class = void>
 void out_of_budget(growing_result& r, std::uint64_t budget, std::size_t faces) {
   r.complete = false;
-  r.diagnostics.push_back("the selection growing examined more than " + std::to_string(budget) +
-                          " candidate selections (work_budget) and stopped after cycle " +
-                          std::to_string(r.cycle_lengths.size()) + " of " + std::to_string(faces - 1) +
-                          "; loops are looked for in the cycles grown");
+  r.diagnostics.push_back(cellforge::detail::cat(
+      "the selection growing examined more than ", std::to_string(budget),
+      " candidate selections (work_budget) and stopped after cycle ", std::to_string(r.cycle_lengths.size()),
+      " of ", std::to_string(faces - 1), "; loops are looked for in the cycles grown"));
 }
 
 template <class = void>
@@ -764,11 +765,11 @@ growing_result grow_faithful(const thin_face_graph& g, std::uint32_t start, cons
 template <class = void>
 growing_result grow_selections(const thin_face_graph& g, std::uint32_t start, const growing_options& o = {}) {
   const auto bad = [](const std::string& what) {
-    throw error(error_category::invalid_input, "grow_selections: " + what);
+    throw error(error_category::invalid_input, cellforge::detail::cat("grow_selections: ", what));
   };
   if (start >= g.num_faces)
-    bad("start face " + std::to_string(start) + " is not below the face count " +
-        std::to_string(g.num_faces));
+    bad(cellforge::detail::cat("start face ", std::to_string(start), " is not below the face count ",
+                               std::to_string(g.num_faces)));
   // The graph must describe a closed surface: slots paired by edge, each seeing the other's face.
   const std::size_t slots = g.slot_edge.size();
   if (g.face_start.size() != std::size_t{g.num_faces} + 1 || g.face_start.front() != 0 ||
@@ -780,17 +781,18 @@ growing_result grow_selections(const thin_face_graph& g, std::uint32_t start, co
   for (std::uint32_t f = 0; f < g.num_faces; ++f)
     for (std::uint32_t k = g.face_start[f]; k < g.face_start[f + 1]; ++k)
       if (g.slot_face[k] != f)
-        bad("slot " + std::to_string(k) + " does not belong to face " + std::to_string(f));
+        bad(cellforge::detail::cat("slot ", std::to_string(k), " does not belong to face ",
+                                   std::to_string(f)));
   for (std::uint32_t k = 0; k < slots; ++k) {
     const std::uint32_t e = g.slot_edge[k];
     if (e >= g.edge_slots.size() || !(g.edge_length[e] >= 0) || !std::isfinite(g.edge_length[e]))
-      bad("slot " + std::to_string(k) + " has an invalid edge or edge length");
+      bad(cellforge::detail::cat("slot ", std::to_string(k), " has an invalid edge or edge length"));
     const auto& two = g.edge_slots[e];
     const std::uint32_t twin = two[0] == k ? two[1] : two[0];
     if ((two[0] != k && two[1] != k) || twin == k || twin >= slots || g.slot_edge[twin] != e ||
         g.slot_other[k] != g.slot_face[twin])
-      bad("slot " + std::to_string(k) +
-          " is not paired with the other face of its edge (an open or broken graph)");
+      bad(cellforge::detail::cat("slot ", std::to_string(k),
+                                 " is not paired with the other face of its edge (an open or broken graph)"));
   }
   const thin_mode mode = o.mode != thin_mode::automatic ? o.mode
                          : g.num_faces > o.scalable_above ? thin_mode::scalable
@@ -801,9 +803,10 @@ growing_result grow_selections(const thin_face_graph& g, std::uint32_t start, co
       growing_result r = detail::thin::grow_scalable(g, start, o);
       // Said, since its loops may differ from the seed's rule on some solids (docs/thin.md).
       if (o.mode == thin_mode::automatic)
-        r.diagnostics.push_back("the selection growing used the scalable rule (" + std::to_string(g.num_faces) +
-                                " faces, above scalable_above = " + std::to_string(o.scalable_above) +
-                                "); mode = fast keeps the seed's rule at any size");
+        r.diagnostics.push_back(cellforge::detail::cat(
+            "the selection growing used the scalable rule (", std::to_string(g.num_faces),
+            " faces, above scalable_above = ", std::to_string(o.scalable_above),
+            "); mode = fast keeps the seed's rule at any size"));
       return r;
     }
     default: return detail::thin::grow_faithful(g, start, o);
@@ -815,8 +818,9 @@ growing_result grow_selections(const thin_face_graph& g, std::uint32_t start, co
 template <class = void>
 std::vector<std::uint32_t> cycle_loop(const thin_face_graph& g, const growing_result& r, std::size_t cycle) {
   if (cycle < 1 || cycle > r.cycle_lengths.size())
-    throw error(error_category::invalid_input, "cycle_loop: cycle " + std::to_string(cycle) +
-                                                   " is not in 1.." + std::to_string(r.cycle_lengths.size()));
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat("cycle_loop: cycle ", std::to_string(cycle), " is not in 1..",
+                                       std::to_string(r.cycle_lengths.size())));
   if (!r.cycle_loops.empty()) return r.cycle_loops[cycle - 1];
   std::vector<char> selected(g.num_faces, 0);
   for (std::uint32_t n = r.cycle_node[cycle - 1]; n != growing_result::no_node; n = r.node_parent[n])

@@ -20,9 +20,10 @@
 
 #include "cellforge/cells/cell_complex.hpp"
 #include "cellforge/cells/conversion.hpp"
+#include "cellforge/core/bounding_box.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
-#include "cellforge/core/bounding_box.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/conversion.hpp"
@@ -65,25 +66,32 @@ namespace detail::thin {
 template <class = void>
 void check_options(const thin_options& o) {
   const auto bad = [](const std::string& what) {
-    throw error(error_category::invalid_input, "find_thin_points: " + what);
+    throw error(error_category::invalid_input, cellforge::detail::cat("find_thin_points: ", what));
   };
   if (o.selection_cap < 1 || o.selection_cap > 1000)
-    bad("selection_cap is " + std::to_string(o.selection_cap) + "; allowed 1 to 1000");
+    bad(cellforge::detail::cat("selection_cap is ", std::to_string(o.selection_cap), "; allowed 1 to 1000"));
   if (!(o.keep_ratio >= 1) || !std::isfinite(o.keep_ratio))
-    bad("keep_ratio is " + std::to_string(o.keep_ratio) + "; allowed a finite value >= 1");
-  if (o.slabs < 2 || o.slabs > 100000) bad("slabs is " + std::to_string(o.slabs) + "; allowed 2 to 100000");
+    bad(cellforge::detail::cat("keep_ratio is ", std::to_string(o.keep_ratio),
+                               "; allowed a finite value >= 1"));
+  if (o.slabs < 2 || o.slabs > 100000)
+    bad(cellforge::detail::cat("slabs is ", std::to_string(o.slabs), "; allowed 2 to 100000"));
   if (!(o.axis_tolerance_deg >= 0 && o.axis_tolerance_deg <= 90))
-    bad("axis_tolerance_deg is " + std::to_string(o.axis_tolerance_deg) + "; allowed 0 to 90");
+    bad(cellforge::detail::cat("axis_tolerance_deg is ", std::to_string(o.axis_tolerance_deg),
+                               "; allowed 0 to 90"));
   if (o.max_axis_iterations < 1 || o.max_axis_iterations > 100000)
-    bad("max_axis_iterations is " + std::to_string(o.max_axis_iterations) + "; allowed 1 to 100000");
+    bad(cellforge::detail::cat("max_axis_iterations is ", std::to_string(o.max_axis_iterations),
+                               "; allowed 1 to 100000"));
   if (!(o.min_strength >= 0 && o.min_strength <= 1))
-    bad("min_strength is " + std::to_string(o.min_strength) + "; allowed 0 to 1");
+    bad(cellforge::detail::cat("min_strength is ", std::to_string(o.min_strength), "; allowed 0 to 1"));
   if (!(o.suppression_fraction > 0 && o.suppression_fraction <= 1))
-    bad("suppression_fraction is " + std::to_string(o.suppression_fraction) + "; allowed above 0 up to 1");
+    bad(cellforge::detail::cat("suppression_fraction is ", std::to_string(o.suppression_fraction),
+                               "; allowed above 0 up to 1"));
   if (!(o.envelope_rings >= 0 && o.envelope_rings <= 1000))
-    bad("envelope_rings is " + std::to_string(o.envelope_rings) + "; allowed 0 to 1000");
+    bad(cellforge::detail::cat("envelope_rings is ", std::to_string(o.envelope_rings),
+                               "; allowed 0 to 1000"));
   if (o.averaging_window < 1 || o.averaging_window > 10000)
-    bad("averaging_window is " + std::to_string(o.averaging_window) + "; allowed 1 to 10000");
+    bad(cellforge::detail::cat("averaging_window is ", std::to_string(o.averaging_window),
+                               "; allowed 1 to 10000"));
   if (o.work_budget < 1) bad("work_budget is 0; allowed at least 1");
   if (o.mode != thin_mode::fast && o.mode != thin_mode::faithful && o.mode != thin_mode::scalable &&
       o.mode != thin_mode::automatic)
@@ -105,18 +113,19 @@ struct thin_input {
 template <Point3 P>
 thin_input prepare(const surface_mesh<P>& m) {
   const auto fail = [](error_category c, const std::string& what) {
-    throw error(c, "find_thin_points: " + what);
+    throw error(c, cellforge::detail::cat("find_thin_points: ", what));
   };
   if (m.num_faces() == 0) fail(error_category::invalid_input, "the mesh has no faces");
   if (!m.is_closed())
     fail(error_category::topology,
-         "the mesh is open (" + std::to_string(m.num_boundary_edges()) +
-             " boundary edges); thin points need a closed solid: fill the holes first");
+         cellforge::detail::cat("the mesh is open (", std::to_string(m.num_boundary_edges()),
+                                " boundary edges); thin points need a closed solid: fill the holes first"));
   if (!m.is_consistently_oriented())
-    fail(error_category::topology, "the faces are not consistently oriented (" +
-                                       std::to_string(m.num_flipped_edges()) +
-                                       " edges are traversed the same way "
-                                       "by both faces); orient the mesh first (halfedge/orientation.hpp)");
+    fail(error_category::topology,
+         cellforge::detail::cat("the faces are not consistently oriented (",
+                                std::to_string(m.num_flipped_edges()),
+                                " edges are traversed the same way "
+                                "by both faces); orient the mesh first (halfedge/orientation.hpp)"));
   const std::span<const P> pts = m.points();
   thin_input in;
   in.position.assign(m.vertices_size(), glm::dvec3(0.0));
@@ -125,7 +134,7 @@ thin_input prepare(const surface_mesh<P>& m) {
     const glm::dvec3 p = to_dvec3(pts[v.idx()]);
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       fail(error_category::invalid_input,
-           "vertex " + std::to_string(v.idx()) + " has a NaN or infinite coordinate");
+           cellforge::detail::cat("vertex ", std::to_string(v.idx()), " has a NaN or infinite coordinate"));
     in.position[v.idx()] = p;
     if (!m.is_isolated(v)) {
       in.used_points.push_back(p);
@@ -176,9 +185,11 @@ thin_input prepare(const surface_mesh<P>& m) {
     std::vector<std::uint32_t> sorted = face_vertices;
     std::sort(sorted.begin(), sorted.end());
     if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
-      fail(error_category::invalid_input, "face " + std::to_string(f.idx()) + " repeats a vertex");
+      fail(error_category::invalid_input,
+           cellforge::detail::cat("face ", std::to_string(f.idx()), " repeats a vertex"));
     if (!(0.5 * glm::length(area) > 1e-14 * diag * diag))
-      fail(error_category::invalid_input, "face " + std::to_string(f.idx()) + " is degenerate (zero area)");
+      fail(error_category::invalid_input,
+           cellforge::detail::cat("face ", std::to_string(f.idx()), " is degenerate (zero area)"));
     volume6 += glm::dot(in.position[face_vertices[0]] - lo, area);  // (area is twice the vector area)
   }
   // A closed surface can enclose nothing (a sheet folded onto itself): no solid, no thin points.
@@ -198,9 +209,10 @@ thin_input prepare(const surface_mesh<P>& m) {
       if (!seen[g.slot_other[k]]) seen[g.slot_other[k]] = 1, ++reached, stack.push_back(g.slot_other[k]);
   }
   if (reached != g.num_faces)
-    fail(error_category::topology, "the mesh has more than one connected part (" + std::to_string(reached) +
-                                       " of " + std::to_string(g.num_faces) +
-                                       " faces reachable); run it on each part");
+    fail(
+        error_category::topology,
+        cellforge::detail::cat("the mesh has more than one connected part (", std::to_string(reached), " of ",
+                               std::to_string(g.num_faces), " faces reachable); run it on each part"));
   return in;
 }
 
@@ -372,8 +384,9 @@ thin_input cluster_triangles(thin_input in, std::uint32_t& clustered) {
         s = t;
       } while (++walked <= outer && s != start);
       if (walked != outer)
-        throw error(error_category::internal, "find_thin_points: face cluster " + std::to_string(cl) +
-                                                  " is not a disk; rerun without cluster_faces");
+        throw error(error_category::internal,
+                    cellforge::detail::cat("find_thin_points: face cluster ", std::to_string(cl),
+                                           " is not a disk; rerun without cluster_faces"));
     }
     c.face_start.push_back(static_cast<std::uint32_t>(c.slot_edge.size()));
   }
@@ -580,11 +593,11 @@ thin_result<glm::dvec3> find(thin_input prepared, const thin_options& options) {
           wide[levels[j] > at] = std::max(wide[levels[j] > at], girth[j]);
       const double rim = std::min(wide[0], wide[1]);
       if (!(here < (1 - options.min_strength) * rim)) {
-        r.diagnostics.push_back("loop at cycle " + std::to_string(loop.cycle) + " (length " +
-                                std::to_string(loop.length) + ") is not reported: the cross-section at its " +
-                                "level (" + std::to_string(here) + " around) is no narrower than the widest on its " +
-                                (wide[0] <= wide[1] ? "start" : "far") + " side (" + std::to_string(rim) +
-                                "; girth_check)");
+        r.diagnostics.push_back(cellforge::detail::cat(
+            "loop at cycle ", std::to_string(loop.cycle), " (length ", std::to_string(loop.length),
+            ") is not reported: the cross-section at its ", "level (", std::to_string(here),
+            " around) is no narrower than the widest on its ", (wide[0] <= wide[1] ? "start" : "far"),
+            " side (", std::to_string(rim), "; girth_check)"));
         continue;
       }
     }

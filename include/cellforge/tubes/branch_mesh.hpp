@@ -24,6 +24,7 @@
 
 #include "cellforge/algorithms/convex_hull.hpp"
 #include "cellforge/core/detail/span_of.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/tubes/detail/sphere_hull.hpp"
 #include "cellforge/tubes/detail/tube_buffer.hpp"
@@ -157,7 +158,9 @@ void build_junction(buffer& out, const glm::dvec3& centre, std::span<const junct
     on_sphere[m + k] = extra[k];
     out.add_point(centre + extra_distance * extra[k]);
   }
-  const auto where = [&] { return name != nullptr ? (*name)() : "node " + std::to_string(source.index); };
+  const auto where = [&] {
+    return name != nullptr ? (*name)() : cellforge::detail::cat("node ", std::to_string(source.index));
+  };
   // A remembered shape: the same points, or the same but for rounding (then certified).
   const auto same_kind = [&](const remembered_hull& h) {
     return h.sides == sides && h.rings == rings.size() && h.points.size() == on_sphere.size();

@@ -22,6 +22,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/detail/splitmix.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/tubes/skeleton.hpp"
@@ -47,16 +48,16 @@ void require_skeleton(const char* what, std::initializer_list<std::pair<const ch
                       double smallest, double nodes, double edges) {
   for (const auto& [name, value] : counts)
     if (!(value >= smallest))
-      throw error(error_category::invalid_input, std::string(what) + ": " + name + " must be at least " +
-                                                     std::to_string(static_cast<long long>(smallest)) +
-                                                     ", got " +
-                                                     std::to_string(static_cast<long long>(value)));
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat(std::string(what), ": ", name, " must be at least ",
+                                         std::to_string(static_cast<long long>(smallest)), ", got ",
+                                         std::to_string(static_cast<long long>(value))));
   constexpr double limit = 1e8;
   if (nodes > limit || edges > limit)
     throw error(error_category::invalid_input,
-                std::string(what) + ": the skeleton would have about " + std::to_string(nodes) +
-                    " nodes and " + std::to_string(edges) +
-                    " edges, more than the 10^8 a sample may have; make it smaller");
+                cellforge::detail::cat(std::string(what), ": the skeleton would have about ",
+                                       std::to_string(nodes), " nodes and ", std::to_string(edges),
+                                       " edges, more than the 10^8 a sample may have; make it smaller"));
 }
 /// The distance between segments p1q1 and p2q2: their closest points with clamped parameters
 /// (as in Ericson's Real-Time Collision Detection). O(1).
@@ -176,7 +177,8 @@ template <Point3 P = glm::dvec3>
 skeleton<P> mobius_ladder(int n, double circle = 10, double radius = 0.4) {
   detail::require_skeleton("mobius_ladder", {{"n", double(n)}}, 4, 1.5 * n, 2.0 * n);
   if (n % 2 != 0)
-    throw error(error_category::invalid_input, "mobius_ladder: n must be even, got " + std::to_string(n));
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat("mobius_ladder: n must be even, got ", std::to_string(n)));
   skeleton<P> s = ring<P>(n, circle, radius);
   // Chords cross at the centre: lift alternate ones so that they clear each other.
   for (int i = 0; i < n / 2; ++i) {

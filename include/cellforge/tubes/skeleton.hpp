@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 
@@ -201,13 +202,13 @@ skeleton_validation validate_skeleton(const G& g) {
   using T = skeleton_traits<G>;
   using R = skeleton_validation;
   const std::size_t nv = T::num_nodes(g), ne = T::num_edges(g);
-  const auto node_name = [](std::size_t i) { return "node " + std::to_string(i); };
-  const auto edge_name = [](std::size_t j) { return "edge " + std::to_string(j); };
+  const auto node_name = [](std::size_t i) { return cellforge::detail::cat("node ", std::to_string(i)); };
+  const auto edge_name = [](std::size_t j) { return cellforge::detail::cat("edge ", std::to_string(j)); };
   if constexpr (std::is_same_v<G, skeleton<skeleton_point_t<G>>>) {
     if (g.radii.size() != g.points.size())
       return {skeleton_defect::bad_radius, R::npos, R::npos, R::npos,
-              "the skeleton has " + std::to_string(g.points.size()) + " points but " +
-                  std::to_string(g.radii.size()) + " radii"};
+              cellforge::detail::cat("the skeleton has ", std::to_string(g.points.size()), " points but ",
+                                     std::to_string(g.radii.size()), " radii")};
   }
   for (std::size_t i = 0; i < nv; ++i) {
     const double r = static_cast<double>(T::radius(g, i));
@@ -258,8 +259,8 @@ skeleton_validation validate_skeleton(const G& g) {
   if (later != R::npos) {
     const auto p = skeleton_point_t<G>(T::position(g, later));
     return {skeleton_defect::coincident_nodes, later, earlier, R::npos,
-            "nodes " + std::to_string(earlier) + " and " + std::to_string(later) + " coincide (both at " +
-                detail::skeleton_point_text(p) + ")"};
+            cellforge::detail::cat("nodes ", std::to_string(earlier), " and ", std::to_string(later),
+                                   " coincide (both at ", detail::skeleton_point_text(p), ")")};
   }
   return {};
 }
@@ -269,7 +270,8 @@ skeleton_validation validate_skeleton(const G& g) {
 template <Skeleton G>
 void check_skeleton(const G& g) {
   skeleton_validation v = validate_skeleton(g);
-  if (!v.ok()) throw error(error_category::invalid_input, "check_skeleton: " + v.message);
+  if (!v.ok())
+    throw error(error_category::invalid_input, cellforge::detail::cat("check_skeleton: ", v.message));
 }
 
 namespace detail {
@@ -281,7 +283,7 @@ template <Skeleton G>
 void check_skeleton_writable(const G& g, std::string_view writer) {
   if (const skeleton_validation v = validate_skeleton(g);
       !v.ok() && v.defect != skeleton_defect::coincident_nodes)
-    throw error(error_category::invalid_input, std::string(writer) + ": " + v.message);
+    throw error(error_category::invalid_input, cellforge::detail::cat(std::string(writer), ": ", v.message));
 }
 
 }  // namespace detail

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cellforge/core/detail/large_array.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/tubes/skeleton.hpp"
@@ -183,8 +184,9 @@ tube_construct make_tube_construct(std::size_t num_nodes,
       if (!used[inc.items[k].first]) {
         walk(v, inc.items[k].first, start());
         if (!p.closed)
-          throw error(error_category::internal, "make_tube_construct: an unused edge at node " +
-                                                    std::to_string(v) + " is not on a ring");
+          throw error(error_category::internal,
+                      cellforge::detail::cat("make_tube_construct: an unused edge at node ",
+                                             std::to_string(v), " is not on a ring"));
         tc.paths.push_back(p);
       }
 

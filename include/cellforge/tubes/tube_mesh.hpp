@@ -27,6 +27,7 @@
 #include "cellforge/core/detail/large_array.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/morton.hpp"
 #include "cellforge/core/point_traits.hpp"
@@ -262,11 +263,12 @@ tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& 
     throw error(error_category::invalid_input,
                 "make_tubes: cap_separation must lie strictly between 0 and 1");
   if (from == nullptr && !options.node_ids.empty() && options.node_ids.size() != T::num_nodes(g))
-    throw error(error_category::invalid_input, "make_tubes: node_ids has " + std::to_string(options.node_ids.size()) +
-                                                   " names for " + std::to_string(T::num_nodes(g)) + " nodes");
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat("make_tubes: node_ids has ", std::to_string(options.node_ids.size()),
+                                       " names for ", std::to_string(T::num_nodes(g)), " nodes"));
   if (const skeleton_validation v = validate_skeleton(g); !v.ok()) {
     // check_skeleton's sentence, and the sample ids of the nodes it names when the caller has them.
-    std::string message = "check_skeleton: " + v.message, named;
+    std::string message = cellforge::detail::cat("check_skeleton: ", v.message), named;
     std::vector<std::size_t> nodes;
     if (v.defect == skeleton_defect::coincident_nodes) nodes = {v.other, v.node};
     if (v.defect == skeleton_defect::duplicate_edge) {
@@ -278,9 +280,9 @@ tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& 
       nodes = {v.node};
     for (const std::size_t i : nodes)
       if (from == nullptr && i < options.node_ids.size())
-        named += (named.empty() ? "" : ", ") + ("node " + std::to_string(i)) + " is sample " +
-                 std::to_string(options.node_ids[i]);
-    if (!named.empty()) message += " (" + named + ")";
+        named += (named.empty() ? "" : ", ") + (cellforge::detail::cat("node ", std::to_string(i))) +
+                 " is sample " + std::to_string(options.node_ids[i]);
+    if (!named.empty()) message += cellforge::detail::cat(" (", named, ")");
     throw error(error_category::invalid_input, message);
   }
   const std::uint32_t n = options.sides;
@@ -338,12 +340,14 @@ tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& 
   const auto is_junction = [&](std::uint32_t c) { return tc.nodes[c].kind == tube_node_kind::junction; };
   const auto node_name = [&](std::uint32_t v) {  // in the caller's numbering
     if (from != nullptr) v = from->node_of[v];
-    return options.node_ids.empty() ? "node " + std::to_string(v) : "sample " + std::to_string(options.node_ids[v]);
+    return options.node_ids.empty() ? cellforge::detail::cat("node ", std::to_string(v))
+                                    : cellforge::detail::cat("sample ", std::to_string(options.node_ids[v]));
   };
   const auto skeleton_name = [&](std::uint32_t c) {
     const tube_node& t = tc.nodes[c];
-    return t.skeleton_node != tube_node::none ? node_name(t.skeleton_node)
-                                              : "the midpoint of edge " + std::to_string(t.split_edge);
+    return t.skeleton_node != tube_node::none
+               ? node_name(t.skeleton_node)
+               : cellforge::detail::cat("the midpoint of edge ", std::to_string(t.split_edge));
   };
 
   // Branch meshes: one ring per path end at a junction.
@@ -885,8 +889,9 @@ tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& 
     if (!si.complete) res.diagnostics.push_back("the self-intersection check stopped at its work budget");
   }
   if (res.genus != res.cycle_rank)
-    res.diagnostics.push_back("the mesh's genus " + std::to_string(res.genus) +
-                              " differs from the skeleton's cycle rank " + std::to_string(res.cycle_rank));
+    res.diagnostics.push_back(cellforge::detail::cat("the mesh's genus ", std::to_string(res.genus),
+                                                     " differs from the skeleton's cycle rank ",
+                                                     std::to_string(res.cycle_rank)));
   res.total_ms = t_start.ms();
   return res;
 }

@@ -16,6 +16,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/wireframe/circuit_tracer.hpp"
 #include "cellforge/wireframe/face_arrangement.hpp"
@@ -172,8 +173,9 @@ extra_faces_result extra_faces(const wire_graph& g, const std::vector<wire_face>
         for (std::size_t i = 0; i < faces.size() && !crosses; ++i)
           crosses = cross(f, pf, faces[i], planes[i], tol);
         if (crosses) continue;
-        r.diagnostics.push_back("added face " + std::to_string(f.loops[0].size()) + "-gon at vertex " +
-                                std::to_string(f.loops[0][0]) + " missed by the first trace");
+        r.diagnostics.push_back(cellforge::detail::cat("added face ", std::to_string(f.loops[0].size()),
+                                                       "-gon at vertex ", std::to_string(f.loops[0][0]),
+                                                       " missed by the first trace"));
         planes.push_back(pf);
         faces.push_back(std::move(f));
         alive.push_back(1);
@@ -202,9 +204,10 @@ extra_faces_result extra_faces(const wire_graph& g, const std::vector<wire_face>
           alive[larger] = 0;
           ++r.overlapping;
           r.removed.push_back(
-              {faces[larger], "it overlaps a smaller face in its plane at edge " + std::to_string(e)});
-          r.diagnostics.push_back("a face overlapping a smaller face in its plane at edge " +
-                                  std::to_string(e) + " was removed");
+              {faces[larger], cellforge::detail::cat("it overlaps a smaller face in its plane at edge ",
+                                                     std::to_string(e))});
+          r.diagnostics.push_back(cellforge::detail::cat(
+              "a face overlapping a smaller face in its plane at edge ", std::to_string(e), " was removed"));
         }
     }
   }
@@ -278,9 +281,13 @@ extra_faces_result extra_faces(const wire_graph& g, const std::vector<wire_face>
           if (!alive[i]) continue;
           ++r.free;
           note_of[i] = r.diagnostics.size();
-          r.diagnostics.push_back("a face with free edge " + std::to_string(e) +
-                                  " (no other face uses it) bounds no volume and was removed");
-          remove(i, "its edge " + std::to_string(e) + " has no other face, so it bounds no volume", true);
+          r.diagnostics.push_back(
+              cellforge::detail::cat("a face with free edge ", std::to_string(e),
+                                     " (no other face uses it) bounds no volume and was removed"));
+          remove(i,
+                 cellforge::detail::cat("its edge ", std::to_string(e),
+                                        " has no other face, so it bounds no volume"),
+                 true);
         }
       }
       while (!beside.empty()) {

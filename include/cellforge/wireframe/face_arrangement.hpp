@@ -24,6 +24,7 @@
 
 #include "cellforge/core/bounding_box.hpp"
 #include "cellforge/core/detail/span_of.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/morton.hpp"
 #include "cellforge/core/polygon_intersection.hpp"
 #include "cellforge/core/tolerance.hpp"
@@ -429,11 +430,12 @@ class basic_crossing_decision {
     if (!have_best_) {
       // Nothing certified within the budget or at all: the old rule, both faces of each pair go.
       choice.assign(G_.size(), 2);
-      notes.push_back("no certified choice among " + std::to_string(G_.size()) +
-                      " crossing candidates; all of them dropped");
+      notes.push_back(cellforge::detail::cat("no certified choice among ", std::to_string(G_.size()),
+                                             " crossing candidates; all of them dropped"));
     } else if (stopped_) {
-      notes.push_back("the choice among " + std::to_string(G_.size()) +
-                      " crossing candidates stopped at its work budget; the best found is taken");
+      notes.push_back(
+          cellforge::detail::cat("the choice among ", std::to_string(G_.size()),
+                                 " crossing candidates stopped at its work budget; the best found is taken"));
     }
     for (std::uint32_t l = 0; l < G_.size(); ++l)
       if (choice[l] == 2) losers.push_back(G_[l]);
@@ -704,8 +706,9 @@ arrangement_result arrange_faces(const wire_graph& g, const std::vector<wire_fac
         if (wins < 0) continue;
         const std::uint32_t winner = wins == 0 ? a : b, loser = wins == 0 ? b : a;
         losers.push_back(loser);
-        r.diagnostics.push_back("candidate " + std::to_string(loser) + " crosses candidate " +
-                                std::to_string(winner) + ", which an edge needs; dropped");
+        r.diagnostics.push_back(cellforge::detail::cat("candidate ", std::to_string(loser),
+                                                       " crosses candidate ", std::to_string(winner),
+                                                       ", which an edge needs; dropped"));
       }
       for (const auto i : losers) changed = std::exchange(alive[i], 0) || changed;
     }
@@ -715,8 +718,9 @@ arrangement_result arrange_faces(const wire_graph& g, const std::vector<wire_fac
       if (alive[a] && alive[b]) open.push_back({a, b});
     detail::crossing_decision decision(g, faces, at, alive);
     for (const auto i : decision.run(open, budget))
-      r.diagnostics.push_back("candidate " + std::to_string(i) +
-                              " crosses a candidate no round decided against; the certified choice drops it");
+      r.diagnostics.push_back(cellforge::detail::cat(
+          "candidate ", std::to_string(i),
+          " crosses a candidate no round decided against; the certified choice drops it"));
     for (auto& n : decision.notes) r.diagnostics.push_back(std::move(n));
     for (std::uint32_t i = 0; i < faces.size(); ++i)
       if (reduction.quality[i].usable && alive[i] != 1) {
@@ -737,8 +741,9 @@ arrangement_result arrange_faces(const wire_graph& g, const std::vector<wire_fac
   for (std::uint32_t e = 0; e < ne; ++e) {
     if (at_edge[e].size() <= r.edge_rank[e]) continue;
     ++r.rank_violations;
-    r.diagnostics.push_back("edge " + std::to_string(e) + " has " + std::to_string(at_edge[e].size()) +
-                            " faces, more than its maximum rank " + std::to_string(r.edge_rank[e]));
+    r.diagnostics.push_back(
+        cellforge::detail::cat("edge ", std::to_string(e), " has ", std::to_string(at_edge[e].size()),
+                               " faces, more than its maximum rank ", std::to_string(r.edge_rank[e])));
     if (options.enforce_ranks) {
       std::uint32_t largest = at_edge[e][0];
       for (const auto i : at_edge[e])

@@ -15,6 +15,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/tolerance.hpp"
 #include "cellforge/wireframe/wire_graph.hpp"
 
@@ -88,8 +89,9 @@ reduction_result reduce_faces(const wire_graph& g, const std::vector<wire_face>&
     } else if (options.require_planar && q.max_deviation > tol) {
       q.usable = false;
       ++r.not_planar;
-      r.diagnostics.push_back("candidate " + std::to_string(i) + " is not planar (a vertex lies " +
-                              std::to_string(q.max_deviation) + " off its plane) and was rejected");
+      r.diagnostics.push_back(
+          cellforge::detail::cat("candidate ", std::to_string(i), " is not planar (a vertex lies ",
+                                 std::to_string(q.max_deviation), " off its plane) and was rejected"));
     }
   }
   r.area_milliseconds = clock.ms();
@@ -136,8 +138,9 @@ reduction_result reduce_faces(const wire_graph& g, const std::vector<wire_face>&
         if (h.usable && h.area > r.quality[i].area && h.area > r.quality[j].area) {
           h.usable = false;
           ++r.face_sums;
-          r.diagnostics.push_back("candidate " + std::to_string(h_index) + " is the sum of candidates " +
-                                  std::to_string(i) + " and " + std::to_string(j) + " and was rejected");
+          r.diagnostics.push_back(cellforge::detail::cat("candidate ", std::to_string(h_index),
+                                                         " is the sum of candidates ", std::to_string(i),
+                                                         " and ", std::to_string(j), " and was rejected"));
         }
       }
     }

@@ -20,6 +20,7 @@
 #include <glm/common.hpp>
 
 #include "cellforge/core/bounding_box.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/morton.hpp"
 #include "cellforge/core/tolerance.hpp"
@@ -78,7 +79,7 @@ std::string number_text(double x) {
 
 template <class = void>
 std::string point_text(const glm::dvec3& p) {
-  return "(" + number_text(p.x) + ", " + number_text(p.y) + ", " + number_text(p.z) + ")";
+  return cellforge::detail::cat("(", number_text(p.x), ", ", number_text(p.y), ", ", number_text(p.z), ")");
 }
 
 /// The edges that are no loops listed by their ends (smaller end, then larger, then index):
@@ -361,9 +362,9 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
   for (std::size_t v = 0; v < nv; ++v) {
     p[v] = to_dvec3(T::position(wire, v));
     if (!std::isfinite(p[v].x) || !std::isfinite(p[v].y) || !std::isfinite(p[v].z))
-      throw error(error_category::invalid_input, "read_vertices: vertex " + std::to_string(v) +
-                                                     " has a NaN or infinite coordinate " +
-                                                     detail::point_text(p[v]));
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat("read_vertices: vertex ", std::to_string(v),
+                                         " has a NaN or infinite coordinate ", detail::point_text(p[v])));
   }
   std::vector<std::array<std::uint32_t, 2>> ends(ne);
   std::vector<char> used(nv, 0);
@@ -372,9 +373,9 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
     const auto ab = T::endpoints(wire, e);
     if (ab[0] >= nv || ab[1] >= nv)
       throw error(error_category::invalid_input,
-                  "read_vertices: edge " + std::to_string(e) + " refers to vertex " +
-                      std::to_string(std::max(ab[0], ab[1])) + " but there are only " + std::to_string(nv) +
-                      " vertices");
+                  cellforge::detail::cat("read_vertices: edge ", std::to_string(e), " refers to vertex ",
+                                         std::to_string(std::max(ab[0], ab[1])), " but there are only ",
+                                         std::to_string(nv), " vertices"));
     ends[e] = {static_cast<std::uint32_t>(ab[0]), static_cast<std::uint32_t>(ab[1])};
     for (const auto v : ends[e]) {
       used[v] = 1;
@@ -390,17 +391,19 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
                                    std::abs(box.max.x), std::abs(box.max.y), std::abs(box.max.z)});
     if (!box.empty() && extent > 0.0 && (extent < 1e-50 || reach > 1e50))
       throw error(error_category::invalid_input,
-                  "read_vertices: the model spans " + detail::number_text(extent) + " and reaches " +
-                      detail::number_text(reach) +
+                  cellforge::detail::cat(
+                      "read_vertices: the model spans ", detail::number_text(extent), " and reaches ",
+                      detail::number_text(reach),
                       " from the origin; lengths, areas and volumes are computed in double, which holds "
-                      "this only between 1e-50 and 1e50 units: scale the model into that range");
+                      "this only between 1e-50 and 1e50 units: scale the model into that range"));
   }
   options.merge.absolute(box);  // checks the option (finite, >= 0)
   detail::work_budget budget{options.work_budget, 0, "read_vertices"};
   if (box.diagonal() == 0.0)
-    throw error(error_category::invalid_input, "read_vertices: all " + std::to_string(ne) +
-                                                   " edges have zero length (every point is " +
-                                                   detail::point_text(box.min) + ")");
+    throw error(
+        error_category::invalid_input,
+        cellforge::detail::cat("read_vertices: all ", std::to_string(ne),
+                               " edges have zero length (every point is ", detail::point_text(box.min), ")"));
   // The used points in Morton order (or the caller's): the merge and split searches visit
   // them so, and their hash-grid cells stay in cache whatever the caller's numbering.
   std::vector<std::uint32_t> visit;
@@ -420,9 +423,9 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
       ++r.merged_points;
       const double d = glm::length(p[v] - p[rep[v]]);
       merged_within = std::max(merged_within, d);
-      r.diagnostics.push_back("vertex " + std::to_string(v) + " lies within " +
-                              detail::number_text(tol[v]) + " of vertex " +
-                              std::to_string(rep[v]) + " and was merged into it");
+      r.diagnostics.push_back(cellforge::detail::cat("vertex ", std::to_string(v), " lies within ",
+                                                     detail::number_text(tol[v]), " of vertex ",
+                                                     std::to_string(rep[v]), " and was merged into it"));
     }
 
   // Edges between representatives, split where another vertex lies inside them (a T-junction
@@ -467,37 +470,39 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
   // The first few of each kind are named; the rest are counted (10^5 duplicates are one line).
   constexpr std::size_t named_per_kind = 8;
   auto complain = [&](std::size_t count_so_far, auto&& what) {
-    if (options.strict) throw error(error_category::invalid_input, "read_vertices: " + what());
+    if (options.strict)
+      throw error(error_category::invalid_input, cellforge::detail::cat("read_vertices: ", what()));
     if (count_so_far <= named_per_kind) r.diagnostics.push_back(what());
   };
   for (std::uint32_t e = 0; e < np; ++e) {
     const std::uint32_t a = ends[e][0], b = ends[e][1], o = origin[e];
     if (a == b) {
       complain(++r.zero_length_edges, [&] {
-        return "edge " + std::to_string(o) + " has zero length (its ends " +
-               std::to_string(input_ends[o][0]) + " and " + std::to_string(input_ends[o][1]) +
-               " are the same point) and was dropped";
+        return cellforge::detail::cat(
+            "edge ", std::to_string(o), " has zero length (its ends ", std::to_string(input_ends[o][0]),
+            " and ", std::to_string(input_ends[o][1]), " are the same point) and was dropped");
       });
       continue;
     }
     if (same_as[e] != e) {
       const std::uint32_t first = origin[same_as[e]];
       complain(++r.duplicate_edges, [&] {
-        return "edge " + std::to_string(o) + " duplicates edge " + std::to_string(first) + " (vertices " +
-               std::to_string(a) + "-" + std::to_string(b) + ") and was dropped";
+        return cellforge::detail::cat("edge ", std::to_string(o), " duplicates edge ", std::to_string(first),
+                                      " (vertices ", std::to_string(a), "-", std::to_string(b),
+                                      ") and was dropped");
       });
       continue;
     }
     kept.push_back(e);
   }
   if (r.zero_length_edges > named_per_kind)
-    r.diagnostics.push_back("... " + std::to_string(r.zero_length_edges - named_per_kind) +
-                            " more zero-length edges dropped (" + std::to_string(r.zero_length_edges) +
-                            " in all)");
+    r.diagnostics.push_back(cellforge::detail::cat(
+        "... ", std::to_string(r.zero_length_edges - named_per_kind), " more zero-length edges dropped (",
+        std::to_string(r.zero_length_edges), " in all)"));
   if (r.duplicate_edges > named_per_kind)
-    r.diagnostics.push_back("... " + std::to_string(r.duplicate_edges - named_per_kind) +
-                            " more duplicate edges dropped (" + std::to_string(r.duplicate_edges) +
-                            " in all)");
+    r.diagnostics.push_back(cellforge::detail::cat("... ", std::to_string(r.duplicate_edges - named_per_kind),
+                                                   " more duplicate edges dropped (",
+                                                   std::to_string(r.duplicate_edges), " in all)"));
 
   // Dangling edges: repeatedly strip vertices of degree 1, since no circuit passes through them.
   std::vector<char> alive(np, 0);
@@ -537,11 +542,13 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
     std::size_t named = 0;
     for (const auto e : r.dangling)
       complain(++named, [&] {
-        return "edge " + std::to_string(e) + " is dangling (it lies on no circuit) and was removed";
+        return cellforge::detail::cat("edge ", std::to_string(e),
+                                      " is dangling (it lies on no circuit) and was removed");
       });
     if (named > named_per_kind)
-      r.diagnostics.push_back("... " + std::to_string(named - named_per_kind) +
-                              " more dangling edges removed (" + std::to_string(named) + " in all)");
+      r.diagnostics.push_back(cellforge::detail::cat("... ", std::to_string(named - named_per_kind),
+                                                     " more dangling edges removed (", std::to_string(named),
+                                                     " in all)"));
   }
 
   // Label the remaining vertices: in space-filling-curve order (spatial_order), so that the
@@ -588,9 +595,9 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
     g.input_edge = std::move(input_edge);
   }
   if (g.edges.empty())
-    throw error(error_category::topology, "read_vertices: no edge lies on a circuit (the " +
-                                              std::to_string(ne) +
-                                              " edges form trees), so the wireframe bounds no face");
+    throw error(error_category::topology,
+                cellforge::detail::cat("read_vertices: no edge lies on a circuit (the ", std::to_string(ne),
+                                       " edges form trees), so the wireframe bounds no face"));
   g.size = kept_box.diagonal();
   g.center = kept_box.center();
   g.merge_tolerance = merged_within;

@@ -24,6 +24,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/detail/newell.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/wireframe.hpp"
 
@@ -349,7 +350,8 @@ sample_model make_voxel_model(const voxel_layout& layout, std::string name) {
     const auto add = [&](std::size_t u0, std::size_t v0, std::size_t u1, std::size_t v1) {
       if (!next.emplace(std::pair{u0, v0}, std::pair{u1, v1}).second)
         throw error(error_category::invalid_input,
-                    "make_voxel_model: a face outline touches itself at a vertex in '" + name + "'");
+                    cellforge::detail::cat("make_voxel_model: a face outline touches itself at a vertex in '",
+                                           name, "'"));
       const ivec q0 = lattice(a, p, u0, v0), q1 = lattice(a, p, u1, v1);
       const ivec& lo = point_id(q0) < point_id(q1) ? q0 : q1;
       const ivec& hi = point_id(q0) < point_id(q1) ? q1 : q0;
@@ -589,9 +591,9 @@ void require_lattice(const char* what, std::size_t nx, std::size_t ny, std::size
   const double cells = static_cast<double>(nx) * static_cast<double>(ny) * static_cast<double>(nz);
   if (nx == 0 || ny == 0 || nz == 0 || cells > 1e8)
     throw error(error_category::invalid_input,
-                std::string(what) + ": a lattice of " + std::to_string(nx) + " x " + std::to_string(ny) +
-                    " x " + std::to_string(nz) +
-                    " cells; each side needs 1 or more and all of them at most 10^8");
+                cellforge::detail::cat(std::string(what), ": a lattice of ", std::to_string(nx), " x ",
+                                       std::to_string(ny), " x ", std::to_string(nz),
+                                       " cells; each side needs 1 or more and all of them at most 10^8"));
 }
 }  // namespace detail
 
@@ -662,7 +664,8 @@ sample_model sample_octahedron() {
 template <class = void>
 sample_model sample_prism(std::size_t n) {
   if (n < 3 || n > 1024) throw error(error_category::invalid_input, "sample_prism: n must be in 3..1024");
-  return make_ring_stack(detail::regular_stack(n, {0.0, 1.0}), "prism " + std::to_string(n));
+  return make_ring_stack(detail::regular_stack(n, {0.0, 1.0}),
+                         cellforge::detail::cat("prism ", std::to_string(n)));
 }
 
 /// A pyramid over a regular n-gon (3 <= n <= 1024): n + 1 vertices, 2n edges, n + 1 faces. O(n).
@@ -671,7 +674,7 @@ sample_model sample_pyramid(std::size_t n) {
   if (n < 3 || n > 1024) throw error(error_category::invalid_input, "sample_pyramid: n must be in 3..1024");
   ring_stack s = detail::regular_stack(n, {0.0});
   s.top = 1.0;
-  return make_ring_stack(s, "pyramid " + std::to_string(n));
+  return make_ring_stack(s, cellforge::detail::cat("pyramid ", std::to_string(n)));
 }
 
 /// A UV sphere of radius 1: `slices` meridians, `stacks` bands (quads, triangle fans at the
@@ -691,7 +694,8 @@ sample_model sample_uv_sphere(std::size_t slices, std::size_t stacks) {
   }
   s.bottom = -1.0;
   s.top = 1.0;
-  return make_ring_stack(s, "uv sphere " + std::to_string(slices) + "x" + std::to_string(stacks));
+  return make_ring_stack(
+      s, cellforge::detail::cat("uv sphere ", std::to_string(slices), "x", std::to_string(stacks)));
 }
 
 /// Two unit cubes sharing a face: 12 vertices, 20 edges, 11 faces, 2 volumes. O(1).
@@ -710,7 +714,8 @@ sample_model sample_grid(std::size_t k, std::size_t m, std::size_t n) {
     throw error(error_category::invalid_input, "sample_grid: need 1 to 10^6 cubes");
   voxel_layout l = empty_layout(detail::iota_coords(k), detail::iota_coords(m), detail::iota_coords(n));
   for (std::size_t c = 0; c < l.labels.size(); ++c) l.labels[c] = static_cast<int>(c + 1);
-  return make_voxel_model(l, "grid " + std::to_string(k) + "x" + std::to_string(m) + "x" + std::to_string(n));
+  return make_voxel_model(
+      l, cellforge::detail::cat("grid ", std::to_string(k), "x", std::to_string(m), "x", std::to_string(n)));
 }
 
 namespace detail {

@@ -23,6 +23,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/wireframe/wire_graph.hpp"
 
@@ -316,9 +317,11 @@ tolerance_result estimate_tolerance(const wire_graph& g, const tolerance_options
   double chosen = preferred;
   if (r.gap_decades < options.min_gap_decades) {
     r.clear_gap = false;
-    r.reason = "the residuals of the corners' planes run from noise to shape without a clear gap (edges " +
-               detail::residual_text(r.noise) + " and " + detail::residual_text(r.geometry) + " off their corners' planes, " +
-               detail::residual_text(r.gap_decades) + " decades apart): the coordinates' noise may hide faces";
+    r.reason = cellforge::detail::cat(
+        "the residuals of the corners' planes run from noise to shape without a clear gap (edges ",
+        detail::residual_text(r.noise), " and ", detail::residual_text(r.geometry),
+        " off their corners' planes, ", detail::residual_text(r.gap_decades),
+        " decades apart): the coordinates' noise may hide faces");
     // Never call shape noise: below the whole cluster, as if it were all geometry.
     const double lowest = std::min(r.geometry_distance, r.noise_samples > 0 ? [&] {
       double d = std::numeric_limits<double>::infinity();
@@ -329,9 +332,10 @@ tolerance_result estimate_tolerance(const wire_graph& g, const tolerance_options
     chosen = std::min(preferred, lowest / options.safety);
   } else if (!(low < high)) {
     r.clear_gap = false;
-    r.reason = "the noise reaches " + detail::residual_text(r.noise_distance) +
-               " (model units) where the smallest feature stands " + detail::residual_text(r.geometry_distance) +
-               " off its neighbours' plane: no single distance separates them";
+    r.reason = cellforge::detail::cat("the noise reaches ", detail::residual_text(r.noise_distance),
+                                      " (model units) where the smallest feature stands ",
+                                      detail::residual_text(r.geometry_distance),
+                                      " off its neighbours' plane: no single distance separates them");
     chosen = std::sqrt(r.noise_distance * r.geometry_distance);
   } else if (!(preferred >= low && preferred <= high)) {
     // Inside the gap, in the middle of it in log space (the noise at 0: well below the geometry).

@@ -29,6 +29,7 @@
 #include <glm/vec2.hpp>
 
 #include "cellforge/core/bounding_box.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/polygon_intersection.hpp"
 #include "cellforge/wireframe/circuit_tracer.hpp"
 #include "cellforge/wireframe/wire_graph.hpp"
@@ -376,9 +377,9 @@ class basic_face_reader {
       // Out of budget: stop with the readings committed so far (each certified), flagged.
       if (budget.limit != 0 && budget.used + nf > budget.limit) {
         complete = false;
-        notes.push_back("the reading rule ran out of its work budget after " +
-                        std::to_string(groups_searched) +
-                        " group searches; the faces still undecided are kept");
+        notes.push_back(cellforge::detail::cat("the reading rule ran out of its work budget after ",
+                                               std::to_string(groups_searched),
+                                               " group searches; the faces still undecided are kept"));
         break;
       }
       budget.spend(nf);
@@ -884,9 +885,9 @@ class basic_face_reader {
     }
     if (stopped_) {
       complete = false;
-      notes.push_back("the search of a group of " + std::to_string(G_.size()) +
-                      " faces no edge needs stopped after " + std::to_string(nodes_) +
-                      " steps (work budget); the best reading found is taken");
+      notes.push_back(cellforge::detail::cat("the search of a group of ", std::to_string(G_.size()),
+                                             " faces no edge needs stopped after ", std::to_string(nodes_),
+                                             " steps (work budget); the best reading found is taken"));
     }
     for (const auto f : G_) local_[f] = no_index;
     std::sort(picked.begin(), picked.end());
@@ -923,8 +924,9 @@ std::string reading_words(std::size_t add, std::size_t remove, int volumes, read
                         : volumes > 0
                             ? std::to_string(volumes) + " more volume" + (volumes > 1 ? "s" : "")
                             : std::to_string(-volumes) + " fewer volume" + (volumes < -1 ? "s" : "");
-  return "keeps " + std::to_string(add) + " faces the answer drops and drops " + std::to_string(remove) +
-         " it keeps (" + v + "); set aside by " + why[static_cast<int>(key)];
+  return cellforge::detail::cat("keeps ", std::to_string(add), " faces the answer drops and drops ",
+                                std::to_string(remove), " it keeps (", v, "); set aside by ",
+                                why[static_cast<int>(key)]);
 }
 }  // namespace detail
 
@@ -977,8 +979,9 @@ volume_result find_volumes(const wire_graph& g, const std::vector<wire_face>& fa
       const auto& a = f[k];
       const auto& b = f[(k + 1) % f.size()];
       if (k + 1 < f.size() && a.angle == b.angle)
-        r.diagnostics.push_back("faces " + std::to_string(a.face) + " and " + std::to_string(b.face) +
-                                " leave edge " + std::to_string(e) + " at the same angle");
+        r.diagnostics.push_back(cellforge::detail::cat("faces ", std::to_string(a.face), " and ",
+                                                       std::to_string(b.face), " leave edge ",
+                                                       std::to_string(e), " at the same angle"));
       side.unite(side_id(a.face, a.walk), side_id(b.face, -b.walk));
     }
   }
@@ -1069,8 +1072,9 @@ volume_result find_volumes(const wire_graph& g, const std::vector<wire_face>& fa
       volume_alternative a;
       a.add = {i};
       a.reading = reader.opened[i] ? "would close a hole or dent" : "would split a volume in two";
-      r.diagnostics.push_back("face " + std::to_string(i) + " (" + std::to_string(faces[i].loops[0].size()) +
-                              "-gon): no edge needs it, so it is not a face (it " + a.reading + ")");
+      r.diagnostics.push_back(
+          cellforge::detail::cat("face ", std::to_string(i), " (", std::to_string(faces[i].loops[0].size()),
+                                 "-gon): no edge needs it, so it is not a face (it ", a.reading, ")"));
       r.alternatives.push_back(std::move(a));
     } else if (reader.unforced[i]) {
       r.unforced.push_back(i);
@@ -1083,7 +1087,7 @@ volume_result find_volumes(const wire_graph& g, const std::vector<wire_face>& fa
     a.set_aside_by = o.key;
     a.undecided = o.key != reading_key::unneeded_faces && o.manifold;
     a.reading = detail::reading_words(a.add.size(), a.remove.size(), o.volumes, o.key);
-    r.diagnostics.push_back("another reading " + a.reading);
+    r.diagnostics.push_back(cellforge::detail::cat("another reading ", a.reading));
     r.alternatives.push_back(std::move(a));
   }
 
@@ -1139,7 +1143,8 @@ volume_result find_volumes(const wire_graph& g, const std::vector<wire_face>& fa
       }
       for (const auto w : walls) {
         r.merged.push_back(w);
-        r.diagnostics.push_back("wall " + std::to_string(w) + " merged away (merge_unforced)");
+        r.diagnostics.push_back(
+            cellforge::detail::cat("wall ", std::to_string(w), " merged away (merge_unforced)"));
       }
       links.unite(a, b, merged);
       const auto keep = merged.find(a), gone = keep == a ? b : a;
@@ -1151,9 +1156,9 @@ volume_result find_volumes(const wire_graph& g, const std::vector<wire_face>& fa
     std::sort(r.merged.begin(), r.merged.end());
   }
   for (const auto i : r.unforced)
-    r.diagnostics.push_back(
-        "face " + std::to_string(i) +
-        ": no edge needs it; kept, since the wireframe does not decide which such walls go");
+    r.diagnostics.push_back(cellforge::detail::cat(
+        "face ", std::to_string(i),
+        ": no edge needs it; kept, since the wireframe does not decide which such walls go"));
 
   const std::uint32_t outside = merged.find(O);
   std::vector<std::uint32_t> volume_id(regions + 1, no_index);
@@ -1164,7 +1169,8 @@ volume_result find_volumes(const wire_graph& g, const std::vector<wire_face>& fa
     if (a == b || drop[i]) {
       r.face_kept[i] = 0;
       if (!alive[i])
-        r.diagnostics.push_back("face " + std::to_string(i) + " has the same region on both sides");
+        r.diagnostics.push_back(
+            cellforge::detail::cat("face ", std::to_string(i), " has the same region on both sides"));
       r.face_volumes[i] = {no_index, no_index};
       continue;
     }

@@ -20,6 +20,7 @@
 #include "cellforge/cells/certify.hpp"
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/core/detail/span_of.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/wireframe.hpp"
 #include "cellforge/wireframe/circuit_tracer.hpp"
 #include "cellforge/wireframe/extra_faces.hpp"
@@ -185,20 +186,22 @@ std::string open_surface_message(const wire_graph& g, const std::vector<wire_fac
     what += std::to_string(rim) + " edges lie on one face only (an open surface; edge " +
             std::to_string(first_rim) + " is one)";
   if (pierced > 0)
-    what += std::string(rim > 0 ? "; " : "") + std::to_string(pierced) +
-            " edges lost a face to faces that cross each other, neither needed more (edges pierce faces: "
-            "the surface intersects itself; edge " +
-            std::to_string(first_cut) + " is one)";
+    what += cellforge::detail::cat(
+        std::string(rim > 0 ? "; " : ""), std::to_string(pierced),
+        " edges lost a face to faces that cross each other, neither needed more (edges pierce faces: "
+        "the surface intersects itself; edge ",
+        std::to_string(first_cut), " is one)");
   const std::size_t gone = extra.free + extra.newly_needed + extra.open_surface;
   if (faces_are_the_answer)
     what += "; no volume: the faces are the answer";
   else if (gone > 0)
-    what += "; " + std::to_string(gone) + " faces there close no volume (see lost), " +
-            "volumes come only from the closed parts";
+    what += cellforge::detail::cat("; ", std::to_string(gone), " faces there close no volume (see lost), ",
+                                   "volumes come only from the closed parts");
   if (!extra.fins.empty())
-    what += "; " + std::to_string(extra.fins.size()) +
-            " flat faces with an edge on one face only stand on closed parts (fins): faces in no volume, "
-            "the parts keep their volumes";
+    what += cellforge::detail::cat(
+        "; ", std::to_string(extra.fins.size()),
+        " flat faces with an edge on one face only stand on closed parts (fins): faces in no volume, "
+        "the parts keep their volumes");
   return what;
 }
 
@@ -209,14 +212,16 @@ std::string no_face_message(const wire_graph& g, const arrangement_result& arran
   const std::string edges = std::to_string(g.num_edges()) + " edges on cycles";
   std::string what;
   if (!lost.empty())
-    what = "every planar cycle of the " + edges + " was removed (" + std::to_string(lost.size()) +
-           " faces; the first because " + lost.front().reason + ")";
+    what = cellforge::detail::cat("every planar cycle of the ", edges, " was removed (",
+                                  std::to_string(lost.size()), " faces; the first because ",
+                                  lost.front().reason, ")");
   else if (!arrangement.crossed.empty())
-    what = "the planar cycles of the " + edges + " cross each other inside their planes (" +
-           std::to_string(arrangement.crossed.size()) + " dropped by the crossing rule)";
+    what =
+        cellforge::detail::cat("the planar cycles of the ", edges, " cross each other inside their planes (",
+                               std::to_string(arrangement.crossed.size()), " dropped by the crossing rule)");
   else
-    what = "none of the cycles of the " + edges + " lies in a plane (skew cycles only)";
-  return "wireframe_to_cells: no face: " + what;
+    what = cellforge::detail::cat("none of the cycles of the ", edges, " lies in a plane (skew cycles only)");
+  return cellforge::detail::cat("wireframe_to_cells: no face: ", what);
 }
 }  // namespace detail
 
@@ -248,8 +253,9 @@ std::string pinched_edge(const cell_complex_input<P>& in) {
           ++uses[std::minmax(loop[k], loop[(k + 1) % loop.size()])];
     for (const auto& [e, n] : uses)
       if (n > 2 && n % 2 == 0)
-        return "volume " + std::to_string(v) + " uses the edge between vertices " + std::to_string(e.first) +
-               " and " + std::to_string(e.second) + " " + std::to_string(n) + " times";
+        return cellforge::detail::cat("volume ", std::to_string(v), " uses the edge between vertices ",
+                                      std::to_string(e.first), " and ", std::to_string(e.second), " ",
+                                      std::to_string(n), " times");
   }
   return {};
 }
@@ -267,12 +273,14 @@ void judge(wireframe_result<P>& r, const std::string& invalid, bool certified) {
     // A volume using an edge four times or more: the solid the faces bound touches itself along
     // that edge (two columns of a terrain meeting at a corner line), which no 2-manifold volume can.
     const std::string pinched = pinched_edge(r.input);
-    r.status_reason = !pinched.empty()
-                          ? "not a 2-manifold solid: it touches itself along an edge (" + pinched +
-                                "), which no volume of a cell complex may use more than twice"
-                          : "the faces found do not make a valid cell complex (" + invalid +
-                                    "); edges crossing each other inside a plane or other input this pipeline "
-                                    "cannot read may cause this";
+    r.status_reason =
+        !pinched.empty()
+            ? cellforge::detail::cat("not a 2-manifold solid: it touches itself along an edge (", pinched,
+                                     "), which no volume of a cell complex may use more than twice")
+            : cellforge::detail::cat(
+                  "the faces found do not make a valid cell complex (", invalid,
+                  "); edges crossing each other inside a plane or other input this pipeline "
+                  "cannot read may cause this");
   } else if (!certified) {
     r.status = solid_status::not_a_solid;
     r.status_reason = "not certified (certify_result is off)";
@@ -287,16 +295,19 @@ void judge(wireframe_result<P>& r, const std::string& invalid, bool certified) {
     r.status = solid_status::not_a_solid;
     // Piercing says what the input is (it intersects itself); the edges it leaves faceless follow.
     const certificate_failure* pierced = c.find(certificate_failure::kind::input_edge_pierces_face);
-    r.status_reason = pierced ? "the input intersects itself: " + pierced->message : c.reason();
+    r.status_reason =
+        pierced ? cellforge::detail::cat("the input intersects itself: ", pierced->message) : c.reason();
   } else if (c.faces_without_volume > 0) {
     r.status = solid_status::not_a_solid;
     r.status_reason =
         !r.extra.fins.empty() && r.cells.num_volumes() > 0
-            ? "a solid with fins: " + plural(c.faces_without_volume, "flat face stands", "flat faces stand") +
-                  " on its closed parts, in no volume (" +
-                  plural(c.free_edges, "edge lies", "edges lie") + " on one face only)"
+            ? cellforge::detail::cat("a solid with fins: ",
+                                     plural(c.faces_without_volume, "flat face stands", "flat faces stand"),
+                                     " on its closed parts, in no volume (",
+                                     plural(c.free_edges, "edge lies", "edges lie"), " on one face only)")
         : c.free_edges > 0
-            ? "an open surface: " + plural(c.free_edges, "edge lies", "edges lie") + " on one face only"
+            ? cellforge::detail::cat("an open surface: ", plural(c.free_edges, "edge lies", "edges lie"),
+                                     " on one face only")
             : plural(c.faces_without_volume, "face bounds", "faces bound") + " no volume";
   } else if (const auto open = std::find_if(r.extra.removed.begin(), r.extra.removed.end(),
                                             [](const dropped_face& d) { return d.free_edge; });
@@ -308,28 +319,31 @@ void judge(wireframe_result<P>& r, const std::string& invalid, bool certified) {
                       open->reason + "): part of the input is an open surface";
   } else if (!r.unforced.empty()) {
     r.status = solid_status::ambiguous;
-    r.status_reason = "a closed solid, but the wireframe does not decide " +
-                      plural(r.unforced.size(), "face", "faces") +
-                      " no edge needs (walls kept, listed in unforced)";
+    r.status_reason = cellforge::detail::cat("a closed solid, but the wireframe does not decide ",
+                                             plural(r.unforced.size(), "face", "faces"),
+                                             " no edge needs (walls kept, listed in unforced)");
   } else if (const auto n = static_cast<std::size_t>(std::count_if(
                  r.alternatives.begin(), r.alternatives.end(), [](const reading_note& a) { return a.undecided; }));
              n > 0) {
     r.status = solid_status::ambiguous;
-    r.status_reason = "a closed solid, but another solid has this wireframe too: " +
-                      plural(n, "undecided reading", "undecided readings") + " in alternatives";
+    r.status_reason =
+        cellforge::detail::cat("a closed solid, but another solid has this wireframe too: ",
+                               plural(n, "undecided reading", "undecided readings"), " in alternatives");
   } else {
     r.status = solid_status::solid;
-    r.status_reason = "a closed solid: " + plural(r.cells.num_volumes(), "volume", "volumes") + ", " +
-                      plural(r.cells.num_faces(), "face", "faces") + ", every input edge on a face" +
-                      (c.seam_edges > 0 ? " (" + plural(c.seam_edges, "edge is a seam", "edges are seams") +
-                                              " of a tessellated flat surface)"
-                                        : std::string());
+    r.status_reason = cellforge::detail::cat(
+        "a closed solid: ", plural(r.cells.num_volumes(), "volume", "volumes"), ", ",
+        plural(r.cells.num_faces(), "face", "faces"), ", every input edge on a face",
+        (c.seam_edges > 0
+             ? cellforge::detail::cat(" (", plural(c.seam_edges, "edge is a seam", "edges are seams"),
+                                      " of a tessellated flat surface)")
+             : std::string()));
   }
   // The coordinates' noise may have hidden faces (tolerance_estimate.hpp): never a solid, and
   // the reason says why, whatever else the answer is.
   if (r.tolerance.ambiguous) {
     if (r.status == solid_status::solid) r.status = solid_status::ambiguous;
-    r.status_reason += "; the tolerance is doubtful: " + r.tolerance.reason;
+    r.status_reason += cellforge::detail::cat("; the tolerance is doubtful: ", r.tolerance.reason);
   }
 }
 }  // namespace detail
@@ -351,7 +365,8 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
   r.read = std::move(read);
   r.tolerance = std::move(tolerance);
   const wire_graph& g = r.read.graph;
-  if (estimated && !r.tolerance.clear_gap) r.diagnostics.push_back("tolerance: " + r.tolerance.reason);
+  if (estimated && !r.tolerance.clear_gap)
+    r.diagnostics.push_back(cellforge::detail::cat("tolerance: ", r.tolerance.reason));
   r.check = cellforge::wireframe_check_options(used);
   r.trace = cellforge::trace_circuits(g, used.trace);
   r.unique = cellforge::unique_circuits(g, std::move(r.trace.faces), used.unique);
@@ -385,10 +400,11 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
   if (r.extra.faces.empty())
     throw error(error_category::topology,
                 no_face_message(g, r.arrangement, r.lost) +
-                    (!estimated || r.tolerance.clear_gap ? std::string()
-                                           : "; " + r.tolerance.reason +
-                                                 " (set wireframe_options::tolerance.automatic = false and "
-                                                 "the stages' planarity, or wire2cells --planarity)"));
+                    (!estimated || r.tolerance.clear_gap
+                         ? std::string()
+                         : cellforge::detail::cat("; ", r.tolerance.reason,
+                                                  " (set wireframe_options::tolerance.automatic = false and "
+                                                  "the stages' planarity, or wire2cells --planarity)")));
   if (!r.extra.open_edges.empty())
     r.diagnostics.push_back(
         open_surface_message(g, r.unique.faces, r.arrangement, r.extra, open_surface));
@@ -462,12 +478,13 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
     if (!edge_used[e]) {
       const std::uint32_t other =
           test_crossings ? crossing_edge(g, span_of(caller_order), e) : no_index;
-      r.diagnostics.push_back(
-          "edge " + std::to_string(g.input_edge[e]) + " bounds no face" +
+      r.diagnostics.push_back(cellforge::detail::cat(
+          "edge ", std::to_string(g.input_edge[e]), " bounds no face",
           (other != no_index
-               ? " (it crosses edge " + std::to_string(g.input_edge[other]) + " between their ends)"
-               : std::string()) +
-          (used.keep_dangling ? "; kept as a dangling edge" : " and is left out"));
+               ? cellforge::detail::cat(" (it crosses edge ", std::to_string(g.input_edge[other]),
+                                        " between their ends)")
+               : std::string()),
+          (used.keep_dangling ? "; kept as a dangling edge" : " and is left out")));
     }
     if (edge_used[e] || used.keep_dangling) {
       graph_edge_out[e] = static_cast<std::uint32_t>(edges.size());
@@ -669,9 +686,10 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
   } catch (const error&) {  // the worst answer; the estimated pass's error is the one thrown
   }
   auto keep_fixed = [&](std::string why) {
-    fixed->diagnostics.push_back("tolerance: the stages' fixed planarity (" + detail::number_text(given.planarity) +
-                                 " of the diagonal) was used, not the estimate (" +
-                                 detail::number_text(estimate.planarity) + "): " + std::move(why));
+    fixed->diagnostics.push_back(cellforge::detail::cat(
+        "tolerance: the stages' fixed planarity (", detail::number_text(given.planarity),
+        " of the diagonal) was used, not the estimate (", detail::number_text(estimate.planarity),
+        "): ", std::move(why)));
     return std::move(*fixed);
   };
   if (fixed && fixed->status == solid_status::solid)
@@ -685,14 +703,16 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
     r = detail::wireframe_pass(wire, at_estimate, std::move(read), std::move(estimate), true);
   } catch (const error& e) {
     if (!fixed) throw;
-    return keep_fixed(std::string("the estimated one failed (") + e.what() + ")");
+    return keep_fixed(cellforge::detail::cat(std::string("the estimated one failed ("), e.what(), ")"));
   }
   if (fixed && !detail::better_answer(r, *fixed))
-    return keep_fixed(std::string("its answer (") + to_string(fixed->status) + ") is no worse than the estimate's (" +
-                      to_string(r.status) + ")");
+    return keep_fixed(cellforge::detail::cat(std::string("its answer ("), to_string(fixed->status),
+                                             ") is no worse than the estimate's (", to_string(r.status),
+                                             ")"));
   if (fixed)
-    r.diagnostics.push_back(std::string("tolerance: the estimated planarity was used: the stages' fixed one gives ") +
-                            to_string(fixed->status) + " (" + fixed->status_reason + ")");
+    r.diagnostics.push_back(cellforge::detail::cat(
+        std::string("tolerance: the estimated planarity was used: the stages' fixed one gives "),
+        to_string(fixed->status), " (", fixed->status_reason, ")"));
   return r;
 }
 }  // namespace cellforge

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "cellforge/algorithms/detail/loop_topology.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 
 namespace cellforge::detail::loop {
@@ -50,9 +51,10 @@ struct vertex_node {
 };
 
 [[noreturn]] inline void bad_edge(std::uint32_t e) {
-  throw error(error_category::invalid_input, "loop_subdivide: edge " + std::to_string(e) +
-                                                 " has an end vertex or face link that does not exist; the "
-                                                 "mesh is corrupted (validate() says where)");
+  throw error(error_category::invalid_input,
+              cellforge::detail::cat("loop_subdivide: edge ", std::to_string(e),
+                                     " has an end vertex or face link that does not exist; the "
+                                     "mesh is corrupted (validate() says where)"));
 }
 
 /// The end vertices (a, b) of edge e, b the head of its half-edge 2e; throws when either

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "cellforge/core/detail/large_array.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 
@@ -44,8 +45,8 @@ struct counts {
 
 template <class = void>
 std::string corrupted(std::uint32_t f, const char* what) {
-  return "loop_subdivide: face " + std::to_string(f) + " " + what +
-         "; the mesh is corrupted (validate() says where)";
+  return cellforge::detail::cat("loop_subdivide: face ", std::to_string(f), " ", what,
+                                "; the mesh is corrupted (validate() says where)");
 }
 
 /// Number of half-edges around face f, stopping past `limit` (for the error message only).
@@ -62,10 +63,11 @@ std::size_t face_size(std::span<const record> he, std::uint32_t h0, std::size_t 
 
 /// Throws the error for face f with n vertices (n > limit: the loop did not close). O(1).
 [[noreturn]] inline void not_a_triangle(std::uint32_t f, std::size_t n, std::size_t limit) {
-  throw error(error_category::invalid_input,
-              "loop_subdivide: face " + std::to_string(f) + " has " +
-                  (n > limit ? std::string("more than 3") : std::to_string(n)) +
-                  " vertices; Loop subdivision needs triangles (triangulate the mesh first)");
+  throw error(
+      error_category::invalid_input,
+      cellforge::detail::cat("loop_subdivide: face ", std::to_string(f), " has ",
+                             (n > limit ? std::string("more than 3") : std::to_string(n)),
+                             " vertices; Loop subdivision needs triangles (triangulate the mesh first)"));
 }
 
 /// Splits every triangle of the parent (records `he`, face anchors `anchors`, `nv`

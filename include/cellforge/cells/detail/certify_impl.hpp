@@ -25,6 +25,7 @@
 #include "cellforge/core/bounding_box.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/predicates.hpp"
 
@@ -44,7 +45,7 @@ std::string list(std::span<const uint32_t> xs, std::size_t named, std::size_t st
     if (i) s += ", ";
     s += std::to_string(xs[i * stride + pick]);
   }
-  if (n > named) s += " and " + std::to_string(n - named) + " more";
+  if (n > named) s += cellforge::detail::cat(" and ", std::to_string(n - named), " more");
   return s;
 }
 
@@ -298,8 +299,8 @@ class basic_certifier {
     if (o_.check_crossings && r_.complete) check_crossings();
     r_.work = budget_.used;
     if (!r_.complete)
-      r_.diagnostics.push_back("the work budget of " + std::to_string(budget_.limit) +
-                               " steps ran out; raise certify_options::work_budget");
+      r_.diagnostics.push_back(cellforge::detail::cat("the work budget of ", std::to_string(budget_.limit),
+                                                      " steps ran out; raise certify_options::work_budget"));
   }
 
  private:
@@ -416,19 +417,21 @@ class basic_certifier {
         open.push_back(c.idx()), open.push_back(bad_open);
         if (first_open.empty()) {
           const int n = bad_uses / 16;
-          first_open = "volume " + std::to_string(c.idx()) + " is not closed: its faces use edge " +
-                       std::to_string(bad_open) +
-                       (n == 1   ? " once"
-                        : n == 2 ? " twice in the same direction"
-                                 : " " + std::to_string(n) + " times, unpaired");
+          first_open = cellforge::detail::cat(
+              "volume ", std::to_string(c.idx()), " is not closed: its faces use edge ",
+              std::to_string(bad_open),
+              (n == 1   ? " once"
+               : n == 2 ? " twice in the same direction"
+                        : cellforge::detail::cat(" ", std::to_string(n), " times, unpaired")));
         }
         continue;
       }
       if (bad_four != none) {
         four.push_back(c.idx()), four.push_back(bad_four);
         if (first_four.empty())
-          first_four = "volume " + std::to_string(c.idx()) + " uses edge " + std::to_string(bad_four) + " " +
-                       (bad_uses == 4 ? std::string("four") : std::to_string(bad_uses)) + " times";
+          first_four = cellforge::detail::cat(
+              "volume ", std::to_string(c.idx()), " uses edge ", std::to_string(bad_four), " ",
+              (bad_uses == 4 ? std::string("four") : std::to_string(bad_uses)), " times");
         continue;
       }
       // Manifold at the vertices: each vertex's corners form one fan.
@@ -448,8 +451,9 @@ class basic_certifier {
       if (pinch != none) {
         pinched.push_back(c.idx()), pinched.push_back(pinch);
         if (first_pinch.empty())
-          first_pinch = "volume " + std::to_string(c.idx()) + " is pinched at vertex " +
-                        std::to_string(pinch) + " (its faces there make more than one fan)";
+          first_pinch =
+              cellforge::detail::cat("volume ", std::to_string(c.idx()), " is pinched at vertex ",
+                                     std::to_string(pinch), " (its faces there make more than one fan)");
         continue;
       }
       // Positive volume against the volume's own size (as validate judges it).
@@ -463,14 +467,16 @@ class basic_certifier {
         if (first_inverted.empty()) {
           char buf[64];
           std::snprintf(buf, sizeof buf, "%g", vol);
-          first_inverted = "volume " + std::to_string(c.idx()) + " has signed volume " + buf +
-                           (vol < 0 ? " (its faces' normals point into it)" : " (it encloses nothing)");
+          first_inverted = cellforge::detail::cat(
+              "volume ", std::to_string(c.idx()), " has signed volume ", buf,
+              (vol < 0 ? " (its faces' normals point into it)" : " (it encloses nothing)"));
         }
       }
     }
     auto more = [&](const std::vector<uint32_t>& xs, std::size_t stride) {
       const std::size_t n = xs.size() / stride;
-      return n > 1 ? " (and " + std::to_string(n - 1) + " more volumes)" : std::string();
+      return n > 1 ? cellforge::detail::cat(" (and ", std::to_string(n - 1), " more volumes)")
+                   : std::string();
     };
     if (!open.empty()) fail(K::open_volume, first_open + more(open, 2), open);
     if (!four.empty()) fail(K::non_manifold_volume, first_four + more(four, 2), four);
@@ -526,7 +532,8 @@ class basic_certifier {
       const vec& p = wire_->points[i];
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
         throw error(error_category::invalid_input,
-                    "certify: input vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
+                    cellforge::detail::cat("certify: input vertex ", std::to_string(i),
+                                           " has a NaN or infinite coordinate"));
       uint32_t best = none;
       double best_d = merge_;
       auto look = [&](std::uint64_t key) {
@@ -614,9 +621,10 @@ class basic_certifier {
     for (uint32_t e = 0; e < ne; ++e) {
       const auto [a, b] = edges[e];
       if (a >= ni || b >= ni)
-        throw error(error_category::invalid_input, "certify: input edge " + std::to_string(e) +
-                                                       " joins vertex " + std::to_string(std::max(a, b)) +
-                                                       " but there are " + std::to_string(ni) + " vertices");
+        throw error(error_category::invalid_input,
+                    cellforge::detail::cat("certify: input edge ", std::to_string(e), " joins vertex ",
+                                           std::to_string(std::max(a, b)), " but there are ",
+                                           std::to_string(ni), " vertices"));
       const uint32_t u = match_[a], w = match_[b];
       ends[e] = {u, w};
       if (u == w) {
@@ -1170,9 +1178,11 @@ class basic_certifier {
     if (!cross.empty()) {
       const std::size_t n = cross.size() / 2;
       fail(K::faces_cross,
-           "faces " + std::to_string(cross[0]) + " and " + std::to_string(cross[1]) + " cross" +
-               (n > 1 ? " (and " + std::to_string(n - 1) + " more pairs: faces " + pair_list(cross) + ")"
-                      : std::string()),
+           cellforge::detail::cat(
+               "faces ", std::to_string(cross[0]), " and ", std::to_string(cross[1]), " cross",
+               (n > 1 ? cellforge::detail::cat(" (and ", std::to_string(n - 1), " more pairs: faces ",
+                                               pair_list(cross), ")")
+                      : std::string())),
            cross);
     }
     if (!pierce_input.empty())
@@ -1205,9 +1215,9 @@ class basic_certifier {
       std::sort(v->begin(), v->end());
       v->erase(std::unique(v->begin(), v->end()), v->end());
     }
-    return std::string(what) + (edges.size() == 1 ? " " : "s ") + list(edges, o_.max_named) +
-           (edges.size() == 1 ? " pierces " : " pierce ") + (faces.size() == 1 ? "face " : "faces ") +
-           list(faces, o_.max_named);
+    return cellforge::detail::cat(std::string(what), (edges.size() == 1 ? " " : "s "),
+                                  list(edges, o_.max_named), (edges.size() == 1 ? " pierces " : " pierce "),
+                                  (faces.size() == 1 ? "face " : "faces "), list(faces, o_.max_named));
   }
 
   const cell_topology& cc_;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cellforge/core/detail/stopwatch.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 
 namespace cellforge::detail {
@@ -20,9 +21,10 @@ struct basic_work_budget {
   void spend(std::uint64_t n = 1) {
     used += n;
     if (limit != 0 && used > limit)
-      throw error(error_category::budget, std::string(stage) + ": work budget of " + std::to_string(limit) +
-                                              " steps exhausted; raise the stage's `work_budget` option "
-                                              "or simplify the input");
+      throw error(error_category::budget,
+                  cellforge::detail::cat(std::string(stage), ": work budget of ", std::to_string(limit),
+                                         " steps exhausted; raise the stage's `work_budget` option "
+                                         "or simplify the input"));
   }
 };
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cellforge/core/detail/large_array.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 
 namespace cellforge {
@@ -16,11 +17,11 @@ namespace cellforge {
 namespace detail {
 template <class = void>
 std::string vtx(std::uint32_t v) {
-  return "vertex " + std::to_string(v);
+  return cellforge::detail::cat("vertex ", std::to_string(v));
 }
 template <class = void>
 std::string edge_name(std::uint32_t a, std::uint32_t b) {
-  return "edge (" + std::to_string(a) + ", " + std::to_string(b) + ")";
+  return cellforge::detail::cat("edge (", std::to_string(a), ", ", std::to_string(b), ")");
 }
 // True when the indices are pairwise distinct; O(n^2) for small n, O(n log n) otherwise.
 template <class T>
@@ -46,9 +47,10 @@ template <class = void>
   const auto face_of = [&](std::uint32_t x) {
     return std::to_string(std::upper_bound(offsets.begin(), offsets.end(), x) - offsets.begin() - 1);
   };
-  throw error(error_category::topology, "build: " + edge_name(lo, hi) + " is used by faces " + face_of(a) +
-                                            ", " + face_of(b) + " and " + face_of(c) +
-                                            "; a half-edge mesh allows at most two faces per edge");
+  throw error(
+      error_category::topology,
+      cellforge::detail::cat("build: ", edge_name(lo, hi), " is used by faces ", face_of(a), ", ", face_of(b),
+                             " and ", face_of(c), "; a half-edge mesh allows at most two faces per edge"));
 }
 // The error for face f (its vertices `face`, nv vertices in all) that uses a vertex out of
 // range or repeats one. Out of line so that build's counting loop stays small.
@@ -56,10 +58,12 @@ template <class = void>
 [[noreturn]] void throw_bad_face(std::size_t f, std::span<const std::uint32_t> face, std::size_t nv) {
   for (std::uint32_t v : face)
     if (v >= nv)
-      throw error(error_category::invalid_input, "build: face " + std::to_string(f) + " uses vertex " +
-                                                     std::to_string(v) + ", but there are only " +
-                                                     std::to_string(nv) + " vertices");
-  throw error(error_category::invalid_input, "build: face " + std::to_string(f) + " repeats a vertex");
+      throw error(
+          error_category::invalid_input,
+          cellforge::detail::cat("build: face ", std::to_string(f), " uses vertex ", std::to_string(v),
+                                 ", but there are only ", std::to_string(nv), " vertices"));
+  throw error(error_category::invalid_input,
+              cellforge::detail::cat("build: face ", std::to_string(f), " repeats a vertex"));
 }
 }  // namespace detail
 
@@ -85,8 +89,9 @@ template <class Unused>
 face_handle basic_halfedge_mesh<Unused>::add_face(std::span<const vertex_handle> vs) {
   const std::size_t n = vs.size();
   if (n < 3)
-    throw error(error_category::invalid_input,
-                "add_face: a face needs at least 3 vertices, got " + std::to_string(n));
+    throw error(
+        error_category::invalid_input,
+        cellforge::detail::cat("add_face: a face needs at least 3 vertices, got ", std::to_string(n)));
   for (vertex_handle v : vs) check_vertex(v, "add_face");
   if (!detail::all_distinct(vs))
     throw error(error_category::invalid_input, "add_face: a face must not repeat a vertex");
@@ -108,8 +113,9 @@ face_handle basic_halfedge_mesh<Unused>::add_face(std::span<const vertex_handle>
     if (m != detail::derived_key_table::not_found) {
       match[i] = m;
     } else if (is_boundary(vertex_handle(a)) && find_edge(vertex_handle(a), vertex_handle(b)).is_valid()) {
-      throw error(error_category::topology, "add_face: " + detail::edge_name(a, b) +
-                                                " already has two faces; a third would make it non-manifold");
+      throw error(error_category::topology,
+                  cellforge::detail::cat("add_face: ", detail::edge_name(a, b),
+                                         " already has two faces; a third would make it non-manifold"));
     }
   }
   std::vector<std::vector<fan>>& fans = sb.fan_lists(n);
@@ -117,17 +123,19 @@ face_handle basic_halfedge_mesh<Unused>::add_face(std::span<const vertex_handle>
     const std::uint32_t v = at(i);
     if (is_isolated(vertex_handle(v))) continue;
     if (!is_boundary(vertex_handle(v)))
-      throw error(error_category::topology, "add_face: " + detail::vtx(v) +
-                                                " is already surrounded by a closed fan of faces; another "
-                                                "face there would make it non-manifold");
+      throw error(error_category::topology,
+                  cellforge::detail::cat("add_face: ", detail::vtx(v),
+                                         " is already surrounded by a closed fan of faces; another "
+                                         "face there would make it non-manifold"));
     read_fans(v, fans[i]);
     const std::uint32_t m_in = match[(i + n - 1) % n], m_out = match[i];
     if (m_in == npos || m_out == npos) continue;
     const std::uint32_t x_in = m_in ^ 1u, x_out = m_out ^ 1u;
     if (fan_ending_at(fans[i], x_in) == fan_ending_at(fans[i], x_out) && fans[i].size() > 1)
-      throw error(error_category::topology, "add_face: the face would close one fan of faces around " +
-                                                detail::vtx(v) +
-                                                " while other fans remain there (non-manifold vertex)");
+      throw error(
+          error_category::topology,
+          cellforge::detail::cat("add_face: the face would close one fan of faces around ", detail::vtx(v),
+                                 " while other fans remain there (non-manifold vertex)"));
   }
 
   // Phase 2: link. Nothing below throws except on allocation failure.
@@ -193,7 +201,8 @@ template <class Unused>
 void basic_halfedge_mesh<Unused>::remove_face(face_handle fh) {
   if (!is_valid(fh))
     throw error(error_category::invalid_input,
-                "remove_face: face " + std::to_string(fh.idx()) + " does not exist or was removed");
+                cellforge::detail::cat("remove_face: face ", std::to_string(fh.idx()),
+                                       " does not exist or was removed"));
   const std::uint32_t f = fh.idx();
   scratch_buffers& sb = scratch_;
   std::vector<std::uint32_t>& hs = sb.assign_u32(0, 0, npos);
@@ -282,7 +291,8 @@ template <class Unused>
 void basic_halfedge_mesh<Unused>::reverse_face(face_handle fh) {
   if (!is_valid(fh))
     throw error(error_category::invalid_input,
-                "reverse_face: face " + std::to_string(fh.idx()) + " does not exist or was removed");
+                cellforge::detail::cat("reverse_face: face ", std::to_string(fh.idx()),
+                                       " does not exist or was removed"));
   std::vector<std::uint32_t> hs, vs;
   for (halfedge_handle h : halfedges_around(fh)) {
     hs.push_back(h.idx());
@@ -373,11 +383,12 @@ build_report basic_halfedge_mesh<Unused>::build_faces(std::size_t nv, std::span<
   for (std::size_t f = 0; !Triangles && f < nf; ++f) {
     const std::uint32_t o = first(f), e = last(f);
     if (e < o || e > nh)
-      throw error(error_category::invalid_input,
-                  "build: face offsets must not decrease (face " + std::to_string(f) + ")");
+      throw error(
+          error_category::invalid_input,
+          cellforge::detail::cat("build: face offsets must not decrease (face ", std::to_string(f), ")"));
     if (e - o < 3)
       throw error(error_category::invalid_input,
-                  "build: face " + std::to_string(f) + " has fewer than 3 vertices");
+                  cellforge::detail::cat("build: face ", std::to_string(f), " has fewer than 3 vertices"));
     const std::span<const std::uint32_t> face = fv.subspan(o, e - o);
     const bool in_range = std::all_of(face.begin(), face.end(), [nv](std::uint32_t v) { return v < nv; });
     if (!in_range || !detail::all_distinct(face)) detail::throw_bad_face(f, face, nv);
@@ -624,10 +635,11 @@ void basic_halfedge_mesh<Unused>::link_fans(const build_options& options, build_
       clear_connectivity();
       vprops_.resize(nv);
       throw error(error_category::topology,
-                  "build: the " + std::to_string(total) + " faces around " + detail::vtx(v) +
-                      (open ? " form a closed fan plus open ones" : " form several closed fans") +
+                  cellforge::detail::cat(
+                      "build: the ", std::to_string(total), " faces around ", detail::vtx(v),
+                      (open ? " form a closed fan plus open ones" : " form several closed fans"),
                       " (a non-manifold vertex, e.g. two cones touching at their tips); set "
-                      "build_options::split_nonmanifold_vertices to give each fan its own vertex");
+                      "build_options::split_nonmanifold_vertices to give each fan its own vertex"));
     }
     nonmanifold.push_back(v);
   }

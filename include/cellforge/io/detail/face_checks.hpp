@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "cellforge/core/detail/text.hpp"
+
 namespace cellforge::io::detail {
 
 /// A vertex index that occurs twice in `face`, if any. O(k^2) for small faces, O(k log k)
@@ -46,8 +48,9 @@ std::optional<std::string> close_face(Soup& soup, std::size_t first, bool allow_
                                             soup.face_vertices.size() - first);
   if (!allow_repeated) {
     if (const auto dup = repeated_vertex(face, scratch)) {
-      return "uses vertex " + std::to_string(std::uint64_t{*dup} + index_base) + " twice (degenerate face; " +
-             std::string(options_name) + "::allow_repeated_vertices accepts it)";
+      return cellforge::detail::cat("uses vertex ", std::to_string(std::uint64_t{*dup} + index_base),
+                                    " twice (degenerate face; ", std::string(options_name),
+                                    "::allow_repeated_vertices accepts it)");
     }
   }
   soup.face_offsets.push_back(static_cast<std::uint32_t>(soup.face_vertices.size()));

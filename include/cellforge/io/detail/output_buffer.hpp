@@ -18,6 +18,7 @@
 #include <string_view>
 #include <type_traits>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/io/detail/read_file.hpp"
@@ -87,7 +88,9 @@ class basic_output_buffer {
   void finish(std::string_view what) {
     flush();
     os_.flush();
-    if (!os_) throw error(error_category::io, "writing " + std::string(what) + " failed (stream error)");
+    if (!os_)
+      throw error(error_category::io,
+                  cellforge::detail::cat("writing ", std::string(what), " failed (stream error)"));
   }
 
  private:
@@ -159,7 +162,8 @@ template <class Write>
 void write_file(const file_path& path, Write&& write) {
   const file_kind kind = status_of(path).kind;
   if (kind == file_kind::directory)
-    throw error(error_category::io, "cannot open '" + display_name(path) + "' for writing: it is a folder");
+    throw error(error_category::io,
+                cellforge::detail::cat("cannot open '", display_name(path), "' for writing: it is a folder"));
   const bool in_place = kind == file_kind::other;
   const file_path target = in_place ? path : path.with_suffix(".partial");
   const auto discard = [&] {
@@ -168,7 +172,8 @@ void write_file(const file_path& path, Write&& write) {
   {
     file_sink sink(target);
     if (!sink.is_open())
-      throw error(error_category::io, "cannot open '" + display_name(path) + "' for writing");
+      throw error(error_category::io,
+                  cellforge::detail::cat("cannot open '", display_name(path), "' for writing"));
     std::ostream os(&sink);
     try {
       write(os);
@@ -176,7 +181,8 @@ void write_file(const file_path& path, Write&& write) {
       sink.close();
       discard();
       if (e.category() != error_category::io) throw;
-      throw error(error_category::io, "cannot write '" + display_name(path) + "': " + e.message());
+      throw error(error_category::io,
+                  cellforge::detail::cat("cannot write '", display_name(path), "': ", e.message()));
     } catch (...) {
       sink.close();
       discard();
@@ -184,15 +190,17 @@ void write_file(const file_path& path, Write&& write) {
     }
     if (!os.flush() || !sink.close()) {
       discard();
-      throw error(error_category::io, "cannot write '" + display_name(path) + "': closing the file failed");
+      throw error(error_category::io,
+                  cellforge::detail::cat("cannot write '", display_name(path), "': closing the file failed"));
     }
   }
   if (in_place) return;
   const std::string why = rename_file(target, path);
   if (!why.empty()) {
     discard();
-    throw error(error_category::io, "cannot write '" + display_name(path) +
-                                        "': moving the finished file into place failed (" + why + ")");
+    throw error(error_category::io,
+                cellforge::detail::cat("cannot write '", display_name(path),
+                                       "': moving the finished file into place failed (", why, ")"));
   }
 }
 
@@ -203,8 +211,9 @@ void check_point_finite(const P& p, std::size_t i, std::string_view format) {
   if constexpr (std::is_floating_point_v<scalar_t<P>>) {
     for (std::size_t k = 0; k < 3; ++k) {
       if (!std::isfinite(coord(p, k)))
-        throw error(error_category::invalid_input, "write_" + std::string(format) + ": point " +
-                                                       std::to_string(i) + " has a non-finite coordinate");
+        throw error(error_category::invalid_input,
+                    cellforge::detail::cat("write_", std::string(format), ": point ", std::to_string(i),
+                                           " has a non-finite coordinate"));
     }
   }
 }
@@ -216,19 +225,23 @@ void check_face_indices(const Soup& soup, std::string_view format) {
   const std::size_t n = soup.points.size();
   if (soup.face_offsets.empty() || soup.face_offsets.front() != 0 ||
       soup.face_offsets.back() != soup.face_vertices.size())
-    throw error(error_category::invalid_input, "write_" + std::string(format) + ": malformed face offsets");
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat("write_", std::string(format), ": malformed face offsets"));
   for (std::size_t f = 0; f + 1 < soup.face_offsets.size(); ++f) {
     if (soup.face_offsets[f] > soup.face_offsets[f + 1])
-      throw error(error_category::invalid_input, "write_" + std::string(format) + ": malformed face offsets");
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat("write_", std::string(format), ": malformed face offsets"));
     if (soup.face_offsets[f + 1] - soup.face_offsets[f] < 3)
-      throw error(error_category::invalid_input, "write_" + std::string(format) + ": face " +
-                                                     std::to_string(f) + " has fewer than 3 vertices");
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat("write_", std::string(format), ": face ", std::to_string(f),
+                                         " has fewer than 3 vertices"));
   }
   for (std::size_t i = 0; i < soup.face_vertices.size(); ++i) {
     if (soup.face_vertices[i] >= n)
-      throw error(error_category::invalid_input, "write_" + std::string(format) + ": face vertex index " +
-                                                     std::to_string(soup.face_vertices[i]) +
-                                                     " out of range (" + std::to_string(n) + " points)");
+      throw error(error_category::invalid_input,
+                  cellforge::detail::cat("write_", std::string(format), ": face vertex index ",
+                                         std::to_string(soup.face_vertices[i]), " out of range (",
+                                         std::to_string(n), " points)"));
   }
 }
 

@@ -12,6 +12,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/io/detail/text_cursor.hpp"
 
 namespace cellforge::io {
@@ -161,7 +162,8 @@ struct ply_header {
 template <class = void>
 std::string_view header_token(text_cursor& c, std::string_view expected) {
   c.skip_blanks();
-  if (c.at_line_end()) c.fail("expected " + std::string(expected) + ", found " + c.token());
+  if (c.at_line_end())
+    c.fail(cellforge::detail::cat("expected ", std::string(expected), ", found ", c.token()));
   const char* start = c.pos;
   while (!c.at_token_end()) ++c.pos;
   return {start, static_cast<std::size_t>(c.pos - start)};
@@ -172,9 +174,10 @@ ply_type header_type(text_cursor& c, std::string_view expected) {
   const std::string_view name = header_token(c, expected);
   const auto t = parse_ply_type(name);
   if (!t) {
-    c.fail_at(name.data(), "unknown property type " + quote_token(name.data(), c.end) +
-                               " (expected char, uchar, short, ushort, int, uint, float, double or "
-                               "int8, uint8, int16, uint16, int32, uint32, float32, float64)");
+    c.fail_at(name.data(),
+              cellforge::detail::cat("unknown property type ", quote_token(name.data(), c.end),
+                                     " (expected char, uchar, short, ushort, int, uint, float, double or "
+                                     "int8, uint8, int16, uint16, int32, uint32, float32, float64)"));
   }
   return *t;
 }
@@ -182,7 +185,8 @@ ply_type header_type(text_cursor& c, std::string_view expected) {
 template <class = void>
 void header_line_end(text_cursor& c, std::string_view after) {
   c.skip_blanks();
-  if (!c.at_line_end()) c.fail("unexpected " + c.token() + " after " + std::string(after));
+  if (!c.at_line_end())
+    c.fail(cellforge::detail::cat("unexpected ", c.token(), " after ", std::string(after)));
   c.next_line();
 }
 
@@ -196,7 +200,7 @@ ply_header parse_ply_header(text_cursor& c) {
     while (!c.at_token_end()) ++c.pos;
     if (std::string_view(start, static_cast<std::size_t>(c.pos - start)) != "ply") {
       c.pos = start;
-      c.fail("not a PLY file: expected 'ply' on the first line, found " + c.token());
+      c.fail(cellforge::detail::cat("not a PLY file: expected 'ply' on the first line, found ", c.token()));
     }
     header_line_end(c, "'ply'");
   }
@@ -212,7 +216,7 @@ ply_header parse_ply_header(text_cursor& c) {
     const std::string_view key = header_token(c, "a header keyword");
     if (key == "end_header") {
       c.skip_blanks();
-      if (!c.at_line_end()) c.fail("unexpected " + c.token() + " after 'end_header'");
+      if (!c.at_line_end()) c.fail(cellforge::detail::cat("unexpected ", c.token(), " after 'end_header'"));
       // Exactly one line end: in binary files the next byte is already data.
       if (!c.at_end() && *c.pos == '\r') ++c.pos;
       if (!c.at_end() && *c.pos == '\n') ++c.pos;
@@ -235,14 +239,15 @@ ply_header parse_ply_header(text_cursor& c) {
       else {
         c.pos = at;
         c.skip_blanks();
-        c.fail("unknown PLY format " + c.token() +
-               " (expected ascii, binary_little_endian or binary_big_endian)");
+        c.fail(cellforge::detail::cat("unknown PLY format ", c.token(),
+                                      " (expected ascii, binary_little_endian or binary_big_endian)"));
       }
       c.skip_blanks();
       const char* vat = c.pos;
       const double version = c.number<double>([] { return std::string("the format version (1.0)"); });
       if (version != 1.0)
-        c.fail_at(vat, "unsupported PLY version " + quote_token(vat, c.end) + " (only 1.0 is defined)");
+        c.fail_at(vat, cellforge::detail::cat("unsupported PLY version ", quote_token(vat, c.end),
+                                              " (only 1.0 is defined)"));
       header_line_end(c, "the format version");
     } else if (key == "element") {
       ply_element e;
@@ -250,13 +255,15 @@ ply_header parse_ply_header(text_cursor& c) {
       e.name = std::string(header_token(c, "an element name"));
       c.skip_blanks();
       const char* at = c.pos;
-      const std::int64_t n = c.integer([&] { return "the count of element '" + e.name + "'"; });
+      const std::int64_t n =
+          c.integer([&] { return cellforge::detail::cat("the count of element '", e.name, "'"); });
       if (n < 0)
-        c.fail_at(at,
-                  "the count of element '" + e.name + "' must not be negative, found " + std::to_string(n));
+        c.fail_at(at, cellforge::detail::cat("the count of element '", e.name,
+                                             "' must not be negative, found ", std::to_string(n)));
       e.count = static_cast<std::uint64_t>(n);
       for (const auto& other : h.elements)
-        if (other.name == e.name) c.fail_at(line, "element '" + e.name + "' is declared twice");
+        if (other.name == e.name)
+          c.fail_at(line, cellforge::detail::cat("element '", e.name, "' is declared twice"));
       h.elements.push_back(std::move(e));
       header_line_end(c, "the element count");
     } else if (key == "property") {
@@ -271,25 +278,28 @@ ply_header parse_ply_header(text_cursor& c) {
         const char* at = c.pos;
         p.count_type = header_type(c, "the list count type");
         if (!is_integral(p.count_type))
-          c.fail_at(at, "a list count type must be an integer type, found " + quote_token(at, c.end));
+          c.fail_at(at, cellforge::detail::cat("a list count type must be an integer type, found ",
+                                               quote_token(at, c.end)));
       }
       p.type = header_type(c, "a property type");
       p.name = std::string(header_token(c, "a property name"));
       auto& e = h.elements.back();
       if (e.find(p.name))
-        c.fail_at(line, "property '" + p.name + "' of element '" + e.name + "' is declared twice");
+        c.fail_at(line, cellforge::detail::cat("property '", p.name, "' of element '", e.name,
+                                               "' is declared twice"));
       e.properties.push_back(std::move(p));
       header_line_end(c, "the property name");
     } else {
-      c.fail_at(line, "unknown header line starting with " + quote_token(line, c.end) +
-                          " (expected format, element, property, comment, obj_info or end_header)");
+      c.fail_at(line, cellforge::detail::cat(
+                          "unknown header line starting with ", quote_token(line, c.end),
+                          " (expected format, element, property, comment, obj_info or end_header)"));
     }
   }
   if (!have_format) c.fail_at(c.begin, "the header has no 'format' line");
   for (const auto& e : h.elements) {
     if (e.count > 0 && e.properties.empty())
-      c.fail_at(e.declared_at,
-                "element '" + e.name + "' has " + std::to_string(e.count) + " instances but no properties");
+      c.fail_at(e.declared_at, cellforge::detail::cat("element '", e.name, "' has ", std::to_string(e.count),
+                                                      " instances but no properties"));
   }
   h.data_offset = static_cast<std::size_t>(c.pos - c.begin);
   return h;

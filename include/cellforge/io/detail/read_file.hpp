@@ -9,6 +9,7 @@
 #include <cstring>
 #include <string>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/io/file_path.hpp"
 
@@ -25,17 +26,19 @@ std::string display_name(const file_path& path) {
 template <class = void>
 std::string read_file(const file_path& path) {
   const auto fail = [&](const char* what, int err) -> error {
-    return error(error_category::io, std::string("cannot ") + what + " '" + display_name(path) +
-                                         "': " + (err != 0 ? std::strerror(err) : "read error"));
+    return error(error_category::io,
+                 cellforge::detail::cat(std::string("cannot "), what, " '", display_name(path),
+                                        "': ", (err != 0 ? std::strerror(err) : "read error")));
   };
   const file_status status = status_of(path);
   if (status.kind == file_kind::directory) throw fail("read", EISDIR);
   // A pipe or device (/dev/zero, a FIFO) has no end we can trust: it could block forever or
   // never stop. Readers take regular files; copy the data to one first.
   if (status.kind == file_kind::other)
-    throw error(error_category::io,
-                "cannot read '" + display_name(path) +
-                    "': not a regular file (a pipe or device); save the data to a file first");
+    throw error(
+        error_category::io,
+        cellforge::detail::cat("cannot read '", display_name(path),
+                               "': not a regular file (a pipe or device); save the data to a file first"));
   errno = 0;
   const file_handle file(open_file(path, "rb"));
   if (!file) throw fail("open", errno);

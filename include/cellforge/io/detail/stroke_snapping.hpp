@@ -21,6 +21,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
@@ -148,10 +149,10 @@ arc_drawing<P2> snap_strokes(const std::vector<std::pair<glm::dvec2, glm::dvec2>
       hi = glm::max(hi, frame.points[i]);
     }
     if (glm::length(hi - lo) > eps && diagnostics.size() < 100)
-      diagnostics.push_back(std::string(name) + ": junction at " +
-                            cellforge::detail::drawing_point_text(at[j]) + " gathers a chain of " +
-                            std::to_string(members[j].size()) +
-                            " close stroke ends wider than the snap distance: check the drawing there");
+      diagnostics.push_back(cellforge::detail::cat(
+          std::string(name), ": junction at ", cellforge::detail::drawing_point_text(at[j]),
+          " gathers a chain of ", std::to_string(members[j].size()),
+          " close stroke ends wider than the snap distance: check the drawing there"));
   }
   // Edges between junctions; zero-length ones dropped.
   std::vector<std::array<std::uint32_t, 2>> edges;
@@ -170,9 +171,9 @@ arc_drawing<P2> snap_strokes(const std::vector<std::pair<glm::dvec2, glm::dvec2>
     const std::uint32_t a = junction_of[2 * (ns + k)], b = junction_of[2 * (ns + k) + 1];
     if (a == b) {
       ++counts.dropped_zero_length;
-      diagnostics.push_back(
-          std::string(name) + ":" + std::to_string(arc_line(k)) +
-          ": an arc whose ends snapped to one junction: left out (a closed curve is no round)");
+      diagnostics.push_back(cellforge::detail::cat(
+          std::string(name), ":", std::to_string(arc_line(k)),
+          ": an arc whose ends snapped to one junction: left out (a closed curve is no round)"));
     } else {
       arc_ends.push_back({a, b});
       arc_piece.push_back(k);
@@ -243,15 +244,16 @@ arc_drawing<P2> snap_strokes(const std::vector<std::pair<glm::dvec2, glm::dvec2>
       result.arcs.push_back({je, arc_from_endpoints<P2>({d.points[je[0]], d.points[je[1]], piece.rx, piece.ry,
                                                          piece.rotation, piece.large, piece.ccw})});
     } catch (const error& e) {
-      fail(arc_piece[k], "an arc between the junctions at " +
-                             cellforge::detail::drawing_point_text(d.points[je[0]]) + " and " +
-                             cellforge::detail::drawing_point_text(d.points[je[1]]) + ": " + e.message());
+      fail(arc_piece[k],
+           cellforge::detail::cat("an arc between the junctions at ",
+                                  cellforge::detail::drawing_point_text(d.points[je[0]]), " and ",
+                                  cellforge::detail::drawing_point_text(d.points[je[1]]), ": ", e.message()));
     }
   }
   // With radii far beyond the distance of the ends, rounding can leave the curve off its
   // junctions: refused here rather than by every later stage.
   if (const arc_validation v = validate_arcs(result); !v)
-    fail(arc_piece[v.arc], "an arc out of proportion to its ends: " + v.message);
+    fail(arc_piece[v.arc], cellforge::detail::cat("an arc out of proportion to its ends: ", v.message));
   return result;
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <string_view>
 
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/io/detail/numbers.hpp"
 
@@ -140,13 +141,13 @@ struct basic_text_cursor {
   template <class T, class What>
   T number(What&& what) {
     skip_blanks();
-    if (at_line_end()) fail("expected " + what() + ", found " + token());
+    if (at_line_end()) fail(cellforge::detail::cat("expected ", what(), ", found ", token()));
     const char* start = pos;
     T value{};
     const parse_status s = parse_number(pos, end, value);
     if (s == parse_status::bad || !at_token_end()) {
       pos = start;
-      fail("expected " + what() + ", found " + token());
+      fail(cellforge::detail::cat("expected ", what(), ", found ", token()));
     }
     if (s == parse_status::out_of_range) {
       pos = start;
