@@ -307,6 +307,8 @@ void run(const char* T, const fs::path& dir) {
 
 }  // namespace
 
+void run_sketch(void (*expect)(bool, const char*, const char*));  // sketch.cpp
+
 int main(int argc, char** argv) {
   const fs::path dir = argc > 1 ? fs::path(argv[1]) : fs::temp_directory_path() / "cellforge-consumer";
   fs::remove_all(dir);
@@ -314,11 +316,12 @@ int main(int argc, char** argv) {
   try {
     run<cad::Vector3>("Vector3", dir);
     run<cad::Vec3f>("Vec3f", dir);
+    run_sketch(&expect);
   } catch (const cf::error& e) {
     std::fprintf(stderr, "consumer: cellforge::error: %s\n", e.what());
     return 1;
   }
   if (failures != 0) return 1;
-  std::printf("consumer ok: cad::Vector3 and cad::Vec3f through every job and file format\n");
+  std::printf("consumer ok: cad::Vector3 and cad::Vec3f through every job and file format, cad::Sketch through the sketch part\n");
   return 0;
 }
