@@ -1,5 +1,6 @@
 # Install rules and the relocatable CMake package for the header-only cellforge target.
-# Consumers write `find_package(cellforge CONFIG REQUIRED)` and link `cellforge::cellforge`.
+# Consumers write `find_package(cellforge CONFIG REQUIRED)` and link `cellforge::cellforge`, or
+# `find_package(cellforge CONFIG REQUIRED COMPONENTS sketch)` and link `cellforge::sketch` (+ Eigen).
 include(CMakePackageConfigHelpers)
 
 # Arch-independent: the package holds only headers and CMake files, so it goes under share/.
@@ -11,6 +12,12 @@ install(TARGETS cellforge EXPORT cellforge-targets)
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/include/" DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}"
         FILES_MATCHING PATTERN "*.hpp")
 install(EXPORT cellforge-targets NAMESPACE cellforge:: DESTINATION "${CELLFORGE_INSTALL_CMAKEDIR}")
+# The sketch target in a file of its own, read only when the consumer asks for the component: its
+# link to Eigen3::Eigen must not make every consumer look for Eigen.
+if(TARGET cellforge_sketch)
+  install(TARGETS cellforge_sketch EXPORT cellforge-sketch-targets)
+  install(EXPORT cellforge-sketch-targets NAMESPACE cellforge:: DESTINATION "${CELLFORGE_INSTALL_CMAKEDIR}")
+endif()
 
 configure_package_config_file("${CMAKE_CURRENT_LIST_DIR}/cellforge-config.cmake.in"
   "${PROJECT_BINARY_DIR}/cellforge-config.cmake" INSTALL_DESTINATION "${CELLFORGE_INSTALL_CMAKEDIR}")

@@ -47,7 +47,8 @@ if(MODE STREQUAL "install")
   foreach(installed IN ITEMS include/cellforge/cellforge.hpp include/cellforge/core/point_traits.hpp
                              share/cmake/cellforge/cellforge-config.cmake
                              share/cmake/cellforge/cellforge-config-version.cmake
-                             share/cmake/cellforge/cellforge-targets.cmake)
+                             share/cmake/cellforge/cellforge-targets.cmake
+                             share/cmake/cellforge/cellforge-sketch-targets.cmake)
     if(NOT EXISTS "${PREFIX}/${installed}")
       message(FATAL_ERROR "consumer (install): ${PREFIX}/${installed} was not installed")
     endif()
