@@ -29,7 +29,7 @@
 #include "cellforge/sketch/inflation.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 #include "cellforge/sketch/tidy.hpp"
-#include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/wireframe/wire_graph.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 
 namespace cellforge {

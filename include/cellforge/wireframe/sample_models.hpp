@@ -27,6 +27,7 @@
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/wireframe.hpp"
+#include "cellforge/wireframe/wire_graph.hpp"
 
 namespace cellforge {
 
@@ -73,19 +74,6 @@ struct ring_stack {
 };
 
 namespace detail {
-
-/// Canonical form of a vertex cycle up to rotation and reversal: starts at its smallest
-/// vertex and goes towards the smaller neighbour. O(length).
-template <class = void>
-std::vector<std::uint32_t> canonical_cycle(const std::vector<std::uint32_t>& loop) {
-  const std::size_t n = loop.size();
-  if (n == 0) return {};
-  const std::size_t s = static_cast<std::size_t>(std::min_element(loop.begin(), loop.end()) - loop.begin());
-  const bool forward = loop[(s + 1) % n] <= loop[(s + n - 1) % n];
-  std::vector<std::uint32_t> out(n);
-  for (std::size_t i = 0; i < n; ++i) out[i] = loop[forward ? (s + i) % n : (s + n - i) % n];
-  return out;
-}
 
 /// The loops of a face given as a vector of loops or as anything with a `.loops` member.
 template <class Face>

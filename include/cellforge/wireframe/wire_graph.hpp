@@ -175,6 +175,17 @@ bool canonical_cycle(std::vector<std::uint32_t>& c) {
   return false;
 }
 
+namespace detail {
+
+/// A copy of a vertex cycle in canonical_cycle's order: its form up to rotation and reversal. O(n).
+template <class = void>
+std::vector<std::uint32_t> canonical_cycle(std::vector<std::uint32_t> loop) {
+  cellforge::canonical_cycle(loop);
+  return loop;
+}
+
+}  // namespace detail
+
 /// Canonical orientation of a face: its outer loop in canonical order (the normal follows
 /// it), holes rotated to their smallest label and kept clockwise about that normal. O(size).
 template <class = void>
