@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -301,6 +302,15 @@ double depth_error(const sample_drawing& s, const std::vector<glm::dvec3>& pts) 
   return worst / glm::length(hi - lo);
 }
 
+// Regularities (right face corners, equal consecutive corners and sides) the true reading holds,
+// counted as inflate counts them for its own readings (default tolerances). O(L).
+std::size_t truth_regularities(const sample_drawing& s) {
+  const auto pr = cellforge::detail::make_inflation_problem(s.drawing, s.model.faces);
+  std::vector<double> z;
+  for (const auto& p : s.points) z.push_back(p.z / pr.size);
+  return cellforge::detail::held_relations(pr, cellforge::detail::make_regularity_terms(pr), z, 100 * 1e-8);
+}
+
 // Whether the wireframe pipeline finds the model's faces and volumes in these points. O(pipeline).
 bool true_cells(const sample_drawing& s, const std::vector<glm::dvec3>& pts, std::string& why) {
   cellforge::wireframe<glm::dvec3> w;
@@ -360,13 +370,15 @@ TEST_CASE("inflate: direct recovers normalon and quasi-normalon drawings exactly
       const auto r = cellforge::inflate(s.drawing, s.model.faces);
       static_assert(std::is_same_v<decltype(r.points)::value_type, glm::dvec3>);
       if (r.method != cellforge::inflation_method::direct) {
-        // A wedge or a ramp has as many oblique lines as one axis has: in some views a second
-        // choice of axes reads as well, and the drawing is left to optimisation, saying so.
+        // A wedge or a ramp has as many oblique lines as one axis has: a second choice of axes
+        // reads as well, or a reading of the planar family holds more regularities than the
+        // right-angled one (a wedge read as a prism on an equilateral triangle). Either way the
+        // cells are the model's, and a reading that is not the truth is at least as regular.
         REQUIRE((m.name == "wedge" || m.name == "ramp"));
-        REQUIRE(!r.diagnostics.empty());
-        CHECK(r.diagnostics[0].find("read alike as the axes") != std::string::npos);
         std::string why;
         CHECK_MESSAGE(true_cells(s, r.points, why), why);
+        if (std::min(depth_error(s, r.readings[0].points), depth_error(s, r.readings[1].points)) >= 1e-9)
+          CHECK(r.regular_relations >= truth_regularities(s));
         ++ambiguous;
         continue;
       }
@@ -401,7 +413,8 @@ TEST_CASE("inflate: direct recovers normalon and quasi-normalon drawings exactly
           << " of the model size; first reading right on " << first_right << " ("
           << 100.0 * static_cast<double>(first_right) / static_cast<double>(drawings)
           << " %; the views are random rotations, so the view-from-above prior can only be a coin toss)");
-  MESSAGE("direct: " << ambiguous << " wedge or ramp drawings left to optimisation (axes ambiguous)");
+  MESSAGE("direct: " << ambiguous
+                     << " wedge or ramp drawings read otherwise (axes ambiguous, or a more regular reading)");
   MESSAGE("direct: " << largest_edges << " edges in " << largest_ms << " ms (this build)");
 }
 
@@ -625,4 +638,51 @@ TEST_CASE("inflate: a hole's ring tied to its face only when the face is given w
   REQUIRE(!loose.diagnostics.empty());
   CHECK(loose.diagnostics[0].find("fixed neither by axis edges nor by face planes") != std::string::npos);
   CHECK(loose.after.planarity < 1e-12);
+}
+
+TEST_CASE("inflate: the solid a person sees: metric readings of regular solids, per family") {
+  // A parallel view fixes depth up to the mirror, an offset and, beyond those, the planar
+  // family's freedom (at least z → kz + ax + by); only regularity (right corners, equal sides
+  // and corners) picks the metric one. Families whose solids have it: regular prisms, pyramids,
+  // frusta and bipyramids, antiprisms, Platonic and Archimedean solids, cut cubes and prisms,
+  // quasi-normalons, classics. Random convex polytopes and jittered non-convex prisms have none
+  // (not metric in principle) and are not swept here (their cells: the tests above).
+  cellforge::sketch_sweep_options options;
+  options.families = {"prism",    "pyramid",        "antiprism", "platonic", "archimedean",
+                      "cut cube", "quasi-normalon", "classic"};
+#ifdef NDEBUG
+  options.limit = 100;
+  options.max_edges = 150;
+#else
+  options.limit = 12;
+  options.max_edges = 40;
+#endif
+  const auto sweep = cellforge::sketch_sweep(options);
+  struct tally {
+    std::size_t drawings = 0, metric = 0;
+  };
+  std::map<std::string, tally> by;
+  std::size_t drawings = 0, metric = 0;
+  std::string misses;
+  for (const auto& s : sweep) {
+    if (s.normalon) continue;
+    INFO(s.name);
+    const auto r = cellforge::inflate(s.drawing, s.model.faces);
+    const double e = std::min(depth_error(s, r.readings[0].points), depth_error(s, r.readings[1].points));
+    auto& t = by[s.family];
+    ++t.drawings, ++drawings;
+    if (e < 1e-6)
+      ++t.metric, ++metric;
+    else
+      misses += "\n  " + s.name + ": depth error " + std::to_string(e) + " of the size, " +
+                std::to_string(r.regular_relations) + " of " + std::to_string(r.relations) + " regularities held";
+  }
+  std::string table;
+  for (const auto& [family, t] : by)
+    table += "\n  " + family + ": " + std::to_string(t.metric) + " of " + std::to_string(t.drawings);
+  MESSAGE("metric readings (depth within 1e-6 of the size after mirror and offset): "
+          << metric << " of " << drawings << table << misses);
+  REQUIRE(drawings >= 10);
+  // Measured (Release, this sample): 0 before the regular reading; the floor is under it.
+  CHECK(2 * metric >= drawings);
 }

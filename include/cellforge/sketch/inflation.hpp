@@ -89,6 +89,14 @@ struct inflation_options {
   /// and after.planarity reports how far the reading is from planar faces. Raise
   /// direction_tolerance and closure_tolerance with it for the direct method.
   bool least_squares = false;
+  /// Choose among the planar readings by the regularities a person sees (right corners, equal
+  /// corners and sides of a face, parallel lines): the optimised reading, and a direct one with
+  /// lines off its axes, are moved to the most regular reading near them (docs/sketch.md,
+  /// "The regular reading"). Off: the compliance optimum as it is.
+  bool regularity = true;
+  /// Work budget of the regular reading: sought only when the planar freedom is at most this
+  /// (a convex polytope of random points has one depth per junction and no regularity to find).
+  std::size_t regularity_max_freedom = 24;
 };
 
 /// Value of each compliance function (unweighted, each normalised by its count) at a reading.
@@ -139,6 +147,10 @@ struct inflation_result {
   /// after.planarity; near_readings of the freedom were near the planar ones, not exactly.
   bool least_squares = false;
   std::size_t near_readings = 0;
+  /// Regularities (right face corners, equal consecutive corners, equal consecutive sides) the
+  /// reading holds to 1e-7, of `relations` (0 when the reading was not judged: direct normalons).
+  std::size_t regular_relations = 0;
+  std::size_t relations = 0;
 };
 
 namespace detail {
@@ -654,6 +666,193 @@ struct inflation_functor {
   }
 };
 
+/// The regularities a person sees in a solid (Lipson and Shpitalni), as relations on the face
+/// loops that are exact at a regular solid's true reading: a right face corner (cos θ = 0),
+/// two consecutive corners of a face equal (θ_k = θ_{k+1}), two consecutive sides of a face
+/// equal in length. Parallelism (lines parallel in the drawing are parallel in 3D) and the
+/// convexity hinge are kept as plain terms. Built from the loops alone. O(L).
+template <class = void>
+struct regularity_terms {
+  std::vector<std::array<std::uint32_t, 3>> corners;  // (prev, j, next) of every face loop
+  std::vector<std::array<std::uint32_t, 2>> angle_pairs;  // consecutive corners of one loop
+  std::vector<std::array<std::uint32_t, 4>> side_pairs;   // (a, b) and (c, d): consecutive sides
+  std::size_t relations() const { return corners.size() + angle_pairs.size() + side_pairs.size(); }
+};
+
+template <class = void>
+regularity_terms<> make_regularity_terms(const inflation_problem<>& pr) {
+  regularity_terms<> t;
+  for (const auto& loop : pr.loops) {
+    const auto n = static_cast<std::uint32_t>(loop.size());
+    const auto first = static_cast<std::uint32_t>(t.corners.size());
+    for (std::uint32_t k = 0; k < n; ++k) {
+      t.corners.push_back({loop[(k + n - 1) % n], loop[k], loop[(k + 1) % n]});
+      t.angle_pairs.push_back({first + k, first + (k + 1) % n});
+      t.side_pairs.push_back({loop[k], loop[(k + 1) % n], loop[(k + 1) % n], loop[(k + 2) % n]});
+    }
+  }
+  return t;
+}
+
+/// The relation residuals at depths z (normalised coordinates), in the order corners (cos θ),
+/// angle pairs (θ_k − θ_{k+1}, radians), side pairs ((L₁ − L₂) / (L₁ + L₂)). O(L).
+template <class Z>
+void regularity_residuals(const inflation_problem<>& pr, const regularity_terms<>& t, const Z& z,
+                          Eigen::VectorXd& r) {
+  const auto at = [&](std::uint32_t v) { return glm::dvec3(pr.p[v], z[v]); };
+  Eigen::Index k = 0;
+  const auto nc = static_cast<Eigen::Index>(t.corners.size());
+  for (const auto& q : t.corners) r[k++] = corner_cos(at(q[0]), at(q[1]), at(q[2]));
+  for (const auto& p : t.angle_pairs) r[k++] = std::acos(r[p[0]]) - std::acos(r[p[1]]);
+  for (const auto& s : t.side_pairs) {
+    const double a = glm::length(at(s[1]) - at(s[0])), b = glm::length(at(s[3]) - at(s[2]));
+    r[k++] = (a - b) / (a + b);
+  }
+  (void)nc;
+}
+
+/// Residuals of the regularity reading over t (z = N t): every relation under a saturating
+/// loss r / √(1 + (r/σ)²) (a relation that does not hold costs about σ², whatever how far off),
+/// or only the relations in `held`, plainly; then the parallel classes' depth slopes and the
+/// convexity hinge, plainly. O(L + E) per call.
+template <class = void>
+struct regularity_functor {
+  using Scalar = double;
+  using InputType = Eigen::VectorXd;
+  using ValueType = Eigen::VectorXd;
+  using JacobianType = Eigen::MatrixXd;
+  enum { InputsAtCompileTime = Eigen::Dynamic, ValuesAtCompileTime = Eigen::Dynamic };
+  const inflation_problem<>* pr;
+  const compliance_terms<>* terms;
+  const regularity_terms<>* reg;
+  const Eigen::MatrixXd* basis;
+  const std::vector<std::uint32_t>* held;  // null: every relation, robustly
+  double sigma = 0.1;
+  double convex_margin = 0.0;
+  Eigen::Index m = 0;
+  Eigen::Index inputs() const { return basis->cols(); }
+  Eigen::Index values() const { return m; }
+  int operator()(const Eigen::VectorXd& t, Eigen::VectorXd& f) const {
+    const Eigen::VectorXd z = *basis * t;
+    Eigen::VectorXd r(static_cast<Eigen::Index>(reg->relations()));
+    regularity_residuals(*pr, *reg, z, r);
+    Eigen::Index k = 0;
+    if (held) {
+      for (const auto i : *held) f[k++] = r[i];
+    } else {
+      for (Eigen::Index i = 0; i < r.size(); ++i) f[k++] = r[i] / std::sqrt(1 + (r[i] / sigma) * (r[i] / sigma));
+    }
+    for (std::size_t c = 0; c < terms->parallel.size(); ++c) {
+      double mean = 0;
+      const Eigen::Index start = k;
+      for (const auto e : terms->parallel[c]) {
+        const auto& ed = pr->edges[e];
+        const glm::dvec2 d = pr->p[ed[1]] - pr->p[ed[0]];
+        const double sign = glm::dot(d, terms->parallel_direction[c]) >= 0 ? 1.0 : -1.0;
+        f[k] = sign * (z[ed[1]] - z[ed[0]]) / glm::length(d);
+        mean += f[k++];
+      }
+      mean /= static_cast<double>(terms->parallel[c].size());
+      for (Eigen::Index i = start; i < k; ++i) f[i] -= mean;
+    }
+    for (const auto& c : terms->convex)
+      f[k++] = std::max(0.0, c.scale * (z[c.d] - (c.alpha * z[c.a] + c.beta * z[c.b] + c.gamma * z[c.c])) +
+                                 convex_margin);
+    for (Eigen::Index v = 0; v < z.size(); ++v) f[k++] = std::max(0.0, std::abs(z[v]) - 4.0);
+    while (k < f.size()) f[k++] = 0;
+    return 0;
+  }
+};
+
+/// Relations of `reg` within `tolerance` at depths z. O(L).
+template <class Z>
+std::size_t held_relations(const inflation_problem<>& pr, const regularity_terms<>& reg, const Z& z,
+                           double tolerance) {
+  Eigen::VectorXd r(static_cast<Eigen::Index>(reg.relations()));
+  regularity_residuals(pr, reg, z, r);
+  return static_cast<std::size_t>((r.array().abs() < tolerance).count());
+}
+
+template <class = void>
+Eigen::VectorXd snap_regular(const inflation_problem<>& pr, const compliance_terms<>& terms,
+                             const regularity_terms<>& reg, const Eigen::MatrixXd& basis, Eigen::VectorXd t,
+                             int max_iterations, std::size_t& iterations, double exact);
+
+/// A regular reading near t0: Levenberg–Marquardt on every relation under the saturating loss,
+/// σ lowered 0.1 → 0.03 → 0.01 (a relation that does not hold stops pulling), then the relations
+/// within `snap` of holding solved exactly (plain residuals); relations the exact solve cannot
+/// meet to 1e-9 are dropped and the solve repeated (3 rounds at most). Returns t; `held` the
+/// relations within 1e-7 there. O(iterations · K · (L + E) + iterations · m K²).
+template <class = void>
+Eigen::VectorXd regular_reading(const inflation_problem<>& pr, const compliance_terms<>& terms,
+                                const regularity_terms<>& reg, const Eigen::MatrixXd& basis,
+                                const Eigen::VectorXd& t0, int max_iterations, std::size_t& iterations,
+                                double exact, bool robust = true) {
+  std::size_t np = 0;
+  for (const auto& c : terms.parallel) np += c.size();
+  const auto k = basis.cols();
+  const auto run = [&](regularity_functor<>& f, Eigen::VectorXd& t, int budget) {
+    Eigen::NumericalDiff<regularity_functor<>> nd(f);
+    Eigen::LevenbergMarquardt<Eigen::NumericalDiff<regularity_functor<>>> lm(nd);
+    lm.parameters.maxfev = budget * static_cast<int>(k + 1);
+    lm.parameters.xtol = 1e-14;
+    lm.parameters.ftol = 1e-16;
+    lm.minimize(t);
+    iterations += static_cast<std::size_t>(lm.iter);
+  };
+  Eigen::VectorXd t = t0;
+  if (!robust) return snap_regular(pr, terms, reg, basis, t, max_iterations, iterations, exact);
+  regularity_functor<> f{&pr, &terms, &reg, &basis, nullptr, 0.1, terms.convex_margin, 0};
+  f.m = std::max<Eigen::Index>(k, static_cast<Eigen::Index>(reg.relations() + np + terms.convex.size()) + basis.rows());
+  for (const double sigma : {0.1, 0.03, 0.01}) {
+    f.sigma = sigma;
+    run(f, t, std::min(max_iterations, 100));
+  }
+  return snap_regular(pr, terms, reg, basis, t, max_iterations, iterations, exact);
+}
+
+/// The relations within 1e-3 of holding at t solved exactly (plain residuals, with the parallel
+/// classes and the convexity hinge); relations the solve cannot meet to 1e-9 are dropped and the
+/// solve repeated (3 rounds at most); t itself when no round meets its relations.
+/// O(rounds · iterations · (K (L + E) + m K²)).
+template <class>
+Eigen::VectorXd snap_regular(const inflation_problem<>& pr, const compliance_terms<>& terms,
+                             const regularity_terms<>& reg, const Eigen::MatrixXd& basis, Eigen::VectorXd t,
+                             int max_iterations, std::size_t& iterations, double exact) {
+  std::size_t np = 0;
+  for (const auto& c : terms.parallel) np += c.size();
+  const auto k = basis.cols();
+  const auto run = [&](regularity_functor<>& f, Eigen::VectorXd& u) {
+    Eigen::NumericalDiff<regularity_functor<>> nd(f);
+    Eigen::LevenbergMarquardt<Eigen::NumericalDiff<regularity_functor<>>> lm(nd);
+    lm.parameters.maxfev = max_iterations * static_cast<int>(k + 1);
+    lm.parameters.xtol = 1e-14;
+    lm.parameters.ftol = 1e-16;
+    lm.minimize(u);
+    iterations += static_cast<std::size_t>(lm.iter);
+  };
+  Eigen::VectorXd r(static_cast<Eigen::Index>(reg.relations()));
+  std::vector<std::uint32_t> held;
+  Eigen::VectorXd z = basis * t;
+  regularity_residuals(pr, reg, z, r);
+  for (Eigen::Index i = 0; i < r.size(); ++i)
+    if (std::abs(r[i]) < 1e-3) held.push_back(static_cast<std::uint32_t>(i));
+  for (int round = 0; round < 3 && !held.empty(); ++round) {
+    regularity_functor<> g{&pr, &terms, &reg, &basis, &held, 0.0, 0.0, 0};
+    g.m = std::max<Eigen::Index>(k, static_cast<Eigen::Index>(held.size() + np + terms.convex.size()) + basis.rows());
+    Eigen::VectorXd u = t;
+    run(g, u);
+    z = basis * u;
+    regularity_residuals(pr, reg, z, r);
+    std::vector<std::uint32_t> kept;
+    for (const auto i : held)
+      if (std::abs(r[i]) < exact) kept.push_back(i);
+    if (kept.size() == held.size()) return u;
+    held = std::move(kept);
+  }
+  return t;
+}
+
 /// Result of the direct method in normalised coordinates.
 template <class = void>
 struct direct_solution {
@@ -666,6 +865,7 @@ struct direct_solution {
   std::size_t reached = 0;   // junctions whose depth the hypothesis fixes
   std::size_t coverage = 0;  // lines along the three axes
   std::size_t corners = 0;   // junctions where lines along all three axes meet
+  std::vector<std::vector<double>> tied;  // the readings of hypotheses tied at the top
   std::string why;
 };
 
@@ -872,10 +1072,13 @@ direct_solution<> direct_inflation(const inflation_problem<>& pr, const inflatio
   std::pair<std::size_t, std::size_t> top{0, 0};
   std::size_t ties = 0;
   for (const auto& c : consistent) top = std::max(top, std::pair{c.coverage, c.corners});
+  std::vector<std::vector<double>> tied;
   for (auto& c : consistent)
     if (std::pair{c.coverage, c.corners} == top) {
+      if (c.ok) tied.push_back(c.z);
       if (ties++ == 0) best = c;
     }
+  if (ties > 1) best.tied = std::move(tied);
   if (ties > 1) {
     best.ok = false;
     best.why = std::to_string(ties) + " choices of three line directions read alike as the axes (" +
@@ -1079,7 +1282,11 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
       res.diagnostics.push_back("inflate: direct method not applicable: " + direct.why);
     }
   }
-  if (z.empty()) {
+  // A direct reading with lines off the three axes assumes those axes; it stands only if no
+  // reading of the planar family is more regular (a regular prism's caps are not two axes).
+  const bool oblique = direct.ok && direct.coverage < pr.edges.size() && !options.least_squares &&
+                       options.allow_optimisation && options.regularity && options.regularity_max_freedom >= 3;
+  if (z.empty() || oblique) {
     if (!options.allow_optimisation)
       throw error(error_category::invalid_input,
                   "inflate: the direct method does not apply (" + direct.why + ") and optimisation is off");
@@ -1101,7 +1308,6 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
               std::to_string(basis.cols() + 1) +
               " = the tilts and the offset): the drawing is not the view of a solid with these faces, "
               "or it is too inexact; tidy it or raise rank_tolerance");
-    res.method = inflation_method::optimisation;
     std::vector<Eigen::VectorXd> starts;
     // Convexity prior: when the faces admit a strictly convex reading, it is a start and the
     // hinge term joins the objective (every start is then ranked with it).
@@ -1125,7 +1331,7 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
     }
     detail::inflation_functor<> f{&pr, &terms, &basis, options.weights, m};
     detail::splitmix rng{options.seed};
-    if (direct.reached > 0 && !direct.z.empty()) {
+    if (!direct.ok && direct.reached > 0 && !direct.z.empty()) {
       Eigen::VectorXd zd(static_cast<Eigen::Index>(nv));
       for (std::size_t i = 0; i < nv; ++i) zd[static_cast<Eigen::Index>(i)] = direct.z[i];
       starts.push_back(basis.transpose() * zd);
@@ -1162,21 +1368,111 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
       // has lost a face), then the lowest objective.
       if (std::isfinite(value) && (flat < best_flat || (flat == best_flat && value < best)))
         best = value, best_t = t, best_flat = flat;
-      if (res.starts == 1) {
+      if (res.starts == 1 && !direct.ok) {
         const Eigen::VectorXd z0 = basis * s;
         res.before = measure(std::vector<double>(z0.data(), z0.data() + z0.size()));
       }
     }
     if (best_t.size() == 0)
       throw error(error_category::internal, "inflate: the optimisation produced no finite reading");
-    const Eigen::VectorXd zb = basis * best_t;
-    z.assign(zb.data(), zb.data() + zb.size());
-    if (best_flat > 0)
-      res.diagnostics.push_back("inflate: in the best reading found, " + std::to_string(best_flat) +
-                                " line(s) join two coplanar faces (those faces would merge)");
     res.diagnostics.push_back("inflate: optimisation objective " + std::to_string(best) + " after " +
                               std::to_string(res.iterations) + " iterations over " +
                               std::to_string(res.starts) + " starts");
+    // The regular reading: the planar reading a person sees holds more exact regularities
+    // (right corners, equal corners, equal sides) than its affine relatives z → kz + ax + by.
+    struct candidate {
+      Eigen::VectorXd t;
+      std::size_t flat, held;
+      bool from_direct;
+      const char* what;
+    };
+    std::vector<candidate> cands;
+    const detail::regularity_terms<> reg = detail::make_regularity_terms(pr);
+    // A relation holds to `exact` (1e-9, or the drawing's own precision); it is counted held
+    // to a hundred times that.
+    const double exact = std::max(1e-9, options.closure_tolerance);
+    const bool regular =
+        options.regularity && !res.least_squares && res.freedom <= options.regularity_max_freedom;
+    if (options.regularity && !res.least_squares && !regular)
+      res.diagnostics.push_back("inflate: regularities not sought: planar freedom " + std::to_string(res.freedom) +
+                                " above regularity_max_freedom (" +
+                                std::to_string(options.regularity_max_freedom) + ")");
+    const auto judge = [&](Eigen::VectorXd t, bool from_direct, const char* what) {
+      const Eigen::VectorXd zt = basis * t;
+      if (!zt.allFinite()) return;
+      std::size_t flat = detail::coplanar_neighbours(pr, zt);
+      // A reading deeper than 8 drawing diagonals is a limit, not a solid: there every corner
+      // between a line along the depth and one across it tends to a right angle.
+      if (zt.cwiseAbs().maxCoeff() > 8) flat += nv;
+      if (!terms.convex.empty()) {  // folds not convex, in whichever Necker reading has fewer
+        std::size_t up = 0, down = 0;
+        for (const auto& c : terms.convex) {
+          const double h = c.scale * (zt[c.d] - (c.alpha * zt[c.a] + c.beta * zt[c.b] + c.gamma * zt[c.c]));
+          up += h > -1e-9, down += h < 1e-9;
+        }
+        flat += std::min(up, down);
+      }
+      cands.push_back({std::move(t), flat, detail::held_relations(pr, reg, zt, 100 * exact), from_direct, what});
+    };
+    if (direct.ok) {
+      Eigen::VectorXd zd(static_cast<Eigen::Index>(nv));
+      for (std::size_t i = 0; i < nv; ++i) zd[static_cast<Eigen::Index>(i)] = direct.z[i];
+      const Eigen::VectorXd td = basis.transpose() * zd;
+      judge(td, true, "the direct reading");
+      if (regular)
+        judge(detail::regular_reading(pr, terms, reg, basis, td, options.max_iterations, res.iterations, exact, false),
+              false, "the direct reading, its regularities made exact");
+      if (regular)
+        judge(detail::regular_reading(pr, terms, reg, basis, td, options.max_iterations, res.iterations, exact), false,
+              "the regular reading near the direct one");
+    }
+    // Right-angled readings of axis hypotheses the drawing does not choose between.
+    for (const auto& zt : regular ? direct.tied : std::vector<std::vector<double>>{}) {
+      Eigen::VectorXd zd(static_cast<Eigen::Index>(nv));
+      for (std::size_t i = 0; i < nv; ++i) zd[static_cast<Eigen::Index>(i)] = zt[i];
+      const Eigen::VectorXd td = basis.transpose() * zd;
+      judge(detail::regular_reading(pr, terms, reg, basis, td, options.max_iterations, res.iterations, exact, false),
+            false, "a tied direct reading, its regularities made exact");
+    }
+    judge(best_t, false, "the optimised reading");
+    if (regular)
+      judge(detail::regular_reading(pr, terms, reg, basis, best_t, options.max_iterations, res.iterations, exact),
+            false, "the regular reading near the optimised one");
+    // Fewest merged neighbours (and convex folds lost), then most relations held; ties keep
+    // the earlier candidate (the direct reading first).
+    std::size_t pick = 0;
+    for (std::size_t c = 1; c < cands.size(); ++c)
+      if (cands[c].flat < cands[pick].flat || (cands[c].flat == cands[pick].flat && cands[c].held > cands[pick].held))
+        pick = c;
+    if (cands.empty())
+      throw error(error_category::internal, "inflate: the optimisation produced no finite reading");
+    for (const auto& c : cands)
+      res.diagnostics.push_back("inflate: candidate " + std::string(c.what) + ": " + std::to_string(c.held) +
+                                " regularities held, " + std::to_string(c.flat) + " faults");
+    res.regular_relations = cands[pick].held;
+    res.relations = reg.relations();
+    res.diagnostics.push_back("inflate: " + std::string(cands[pick].what) + " holds " +
+                              std::to_string(cands[pick].held) + " of " + std::to_string(reg.relations()) +
+                              " regularities (right, equal corners, equal sides)");
+    if (direct.ok && !cands[pick].from_direct) {
+      res.diagnostics.push_back(
+          "inflate: the direct reading's axes are not the drawing's: a reading of the planar family holds "
+          "more regularities, and is taken");
+      res.method = inflation_method::optimisation;
+      res.view_found = false;
+      res.view_rotation = {};
+      res.axis_directions = {};
+      res.foreshortening = {};
+    } else if (!direct.ok) {
+      res.method = inflation_method::optimisation;
+    }
+    if (direct.ok) res.before = measure(z);
+    const Eigen::VectorXd zb = basis * cands[pick].t;
+    z.assign(zb.data(), zb.data() + zb.size());
+    const std::size_t flat = detail::coplanar_neighbours(pr, zb);
+    if (flat > 0)
+      res.diagnostics.push_back("inflate: in the best reading found, " + std::to_string(flat) +
+                                " line(s) join two coplanar faces (those faces would merge)");
   } else {
     res.before = measure(z);
     res.freedom = detail::planar_freedom(pr, options.rank_tolerance);
