@@ -686,3 +686,25 @@ TEST_CASE("inflate: the solid a person sees: metric readings of regular solids, 
   // Measured (Release, this sample): 0 before the regular reading; the floor is under it.
   CHECK(2 * metric >= drawings);
 }
+
+TEST_CASE("inflate: a reading whose faces cross is caught by the exact check") {
+  // The check inflate runs on every judged reading: the true reading of a prism does not
+  // self-intersect; pushing one junction far through the solid makes faces cross.
+  const sample_drawing s = cellforge::generic_drawing(cellforge::sample_prism(5), 2, "prism");
+  const auto pr = cellforge::detail::make_inflation_problem(s.drawing, s.model.faces);
+  std::vector<double> z;
+  for (const auto& p : s.points) z.push_back(p.z / pr.size);
+  CHECK(cellforge::detail::reading_crosses(pr, z) == 0);
+  // Junction 0 moved through the solid, far out beyond its other side: its faces cross others.
+  glm::dvec3 centroid{0.0};
+  for (std::size_t i = 0; i < z.size(); ++i) centroid += glm::dvec3(pr.p[i], z[i]);
+  centroid /= static_cast<double>(z.size());
+  const glm::dvec3 moved = centroid + 2.5 * (centroid - glm::dvec3(pr.p[0], z[0]));
+  auto bent = pr;
+  bent.p[0] = glm::dvec2(moved);
+  std::vector<double> zb = z;
+  zb[0] = moved.z;
+  CHECK(cellforge::detail::reading_crosses(bent, zb) == 1);
+  const auto r = cellforge::inflate(s.drawing, s.model.faces);
+  CHECK(!r.self_intersecting);
+}

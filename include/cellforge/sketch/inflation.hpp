@@ -27,6 +27,8 @@
 #include <unsupported/Eigen/NonLinearOptimization>
 #include <unsupported/Eigen/NumericalDiff>
 
+#include "cellforge/cells/cell_complex.hpp"
+#include "cellforge/cells/certify.hpp"
 #include "cellforge/core/detail/splitmix.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/error.hpp"
@@ -151,6 +153,10 @@ struct inflation_result {
   /// reading holds to 1e-7, of `relations` (0 when the reading was not judged: direct normalons).
   std::size_t regular_relations = 0;
   std::size_t relations = 0;
+  /// Judged readings passed over because their faces cross or an edge pierces a face (exact:
+  /// cells/certify.hpp); self_intersecting when the reading returned does too (none better).
+  std::size_t crossing_readings = 0;
+  bool self_intersecting = false;
 };
 
 namespace detail {
@@ -808,7 +814,12 @@ Eigen::VectorXd regular_reading(const inflation_problem<>& pr, const compliance_
     f.sigma = sigma;
     run(f, t, std::min(max_iterations, 100));
   }
-  return snap_regular(pr, terms, reg, basis, t, max_iterations, iterations, exact);
+  const Eigen::VectorXd a = snap_regular(pr, terms, reg, basis, t0, max_iterations, iterations, exact);
+  const Eigen::VectorXd b = snap_regular(pr, terms, reg, basis, t, max_iterations, iterations, exact);
+  return held_relations(pr, reg, Eigen::VectorXd(basis * b), 100 * exact) >
+                 held_relations(pr, reg, Eigen::VectorXd(basis * a), 100 * exact)
+             ? b
+             : a;
 }
 
 /// The relations within 1e-3 of holding at t solved exactly (plain residuals, with the parallel
@@ -832,25 +843,75 @@ Eigen::VectorXd snap_regular(const inflation_problem<>& pr, const compliance_ter
     iterations += static_cast<std::size_t>(lm.iter);
   };
   Eigen::VectorXd r(static_cast<Eigen::Index>(reg.relations()));
-  std::vector<std::uint32_t> held;
-  Eigen::VectorXd z = basis * t;
-  regularity_residuals(pr, reg, z, r);
-  for (Eigen::Index i = 0; i < r.size(); ++i)
-    if (std::abs(r[i]) < 1e-3) held.push_back(static_cast<std::uint32_t>(i));
-  for (int round = 0; round < 3 && !held.empty(); ++round) {
-    regularity_functor<> g{&pr, &terms, &reg, &basis, &held, 0.0, 0.0, 0};
-    g.m = std::max<Eigen::Index>(k, static_cast<Eigen::Index>(held.size() + np + terms.convex.size()) + basis.rows());
-    Eigen::VectorXd u = t;
-    run(g, u);
-    z = basis * u;
-    regularity_residuals(pr, reg, z, r);
-    std::vector<std::uint32_t> kept;
-    for (const auto i : held)
-      if (std::abs(r[i]) < exact) kept.push_back(i);
-    if (kept.size() == held.size()) return u;
-    held = std::move(kept);
+  const Eigen::VectorXd z0 = basis * t;
+  regularity_residuals(pr, reg, z0, r);
+  const Eigen::VectorXd r0 = r;
+  Eigen::VectorXd best = t;
+  std::size_t best_held = held_relations(pr, reg, z0, 100 * exact);
+  // Snapped from the relations within 1e-3, 1e-2 and 3e-2 of holding: the most held wins.
+  for (const double near : {1e-3, 1e-2, 3e-2}) {
+    std::vector<std::uint32_t> held;
+    for (Eigen::Index i = 0; i < r0.size(); ++i)
+      if (std::abs(r0[i]) < near) held.push_back(static_cast<std::uint32_t>(i));
+    for (int round = 0; round < 3 && !held.empty(); ++round) {
+      regularity_functor<> g{&pr, &terms, &reg, &basis, &held, 0.0, 0.0, 0};
+      g.m = std::max<Eigen::Index>(k, static_cast<Eigen::Index>(held.size() + np + terms.convex.size()) +
+                                          basis.rows());
+      Eigen::VectorXd u = t;
+      run(g, u);
+      const Eigen::VectorXd z = basis * u;
+      regularity_residuals(pr, reg, z, r);
+      std::vector<std::uint32_t> kept;
+      for (const auto i : held)
+        if (std::abs(r[i]) < exact) kept.push_back(i);
+      if (kept.size() == held.size()) {
+        const std::size_t h = held_relations(pr, reg, z, 100 * exact);
+        if (u.allFinite() && z.cwiseAbs().maxCoeff() <= 8 && h > best_held) best_held = h, best = u;
+        break;
+      }
+      held = std::move(kept);
+    }
   }
-  return t;
+  return best;
+}
+
+/// Whether the faces at depths z cross each other or an edge pierces a face, by the main job's
+/// exact certificate (cells/certify.hpp, crossings only) on the faces as given (holes turned
+/// against their outer loop). 1 crossing, 0 not, −1 not decided (the faces build no complex, or
+/// the budget ran out). O(n log n + pairs of faces with overlapping boxes · their sizes).
+template <class Z>
+int reading_crosses(const inflation_problem<>& pr, const Z& z) {
+  cell_complex_input<glm::dvec3> in;
+  for (std::size_t v = 0; v < pr.p.size(); ++v) in.points.push_back(glm::dvec3(pr.p[v], z[v]));
+  in.edges = pr.edges;
+  const auto area = [&](const std::vector<std::uint32_t>& loop) {
+    double a = 0;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const glm::dvec2 p = pr.p[loop[k]], q = pr.p[loop[(k + 1) % loop.size()]];
+      a += p.x * q.y - p.y * q.x;
+    }
+    return a;
+  };
+  for (std::size_t l = 0; l < pr.loops.size(); ++l) {
+    if (l == 0 || pr.loop_face[l] != pr.loop_face[l - 1]) {
+      in.faces.push_back({{pr.loops[l]}});
+      continue;
+    }
+    auto hole = pr.loops[l];
+    if ((area(hole) > 0) == (area(in.faces.back().loops[0]) > 0)) std::reverse(hole.begin(), hole.end());
+    in.faces.back().loops.push_back(std::move(hole));
+  }
+  try {
+    const cell_complex<glm::dvec3> c = make_cell_complex(std::move(in));
+    certify_options o;
+    o.check_input_edges = o.check_edges = o.check_volumes = false;
+    const certificate_result r = cellforge::certify(c, o);
+    if (r.find(certificate_failure::kind::faces_cross) || r.find(certificate_failure::kind::edge_pierces_face))
+      return 1;
+    return r.complete ? 0 : -1;
+  } catch (const error&) {
+    return -1;
+  }
 }
 
 /// Result of the direct method in normalised coordinates.
@@ -1440,12 +1501,34 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
             false, "the regular reading near the optimised one");
     // Fewest merged neighbours (and convex folds lost), then most relations held; ties keep
     // the earlier candidate (the direct reading first).
-    std::size_t pick = 0;
-    for (std::size_t c = 1; c < cands.size(); ++c)
-      if (cands[c].flat < cands[pick].flat || (cands[c].flat == cands[pick].flat && cands[c].held > cands[pick].held))
-        pick = c;
     if (cands.empty())
       throw error(error_category::internal, "inflate: the optimisation produced no finite reading");
+    std::vector<std::size_t> order(cands.size());
+    for (std::size_t c = 0; c < cands.size(); ++c) order[c] = c;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+      return cands[x].flat < cands[y].flat || (cands[x].flat == cands[y].flat && cands[x].held > cands[y].held);
+    });
+    // No self-intersecting reading: the best candidate whose faces neither cross nor are
+    // pierced by an edge (exactly, by certify); if every candidate crosses, the best, flagged.
+    std::size_t pick = order[0];
+    for (const std::size_t c : order) {
+      const int crosses = detail::reading_crosses(pr, Eigen::VectorXd(basis * cands[c].t));
+      if (crosses == 1) {
+        ++res.crossing_readings;
+        continue;
+      }
+      pick = c;
+      res.self_intersecting = false;
+      break;
+    }
+    if (res.crossing_readings == cands.size()) {
+      res.self_intersecting = true;
+      res.diagnostics.push_back("inflate: every reading found has faces that cross or an edge through a face "
+                                "(exact check): the reading returned self-intersects");
+    } else if (res.crossing_readings > 0) {
+      res.diagnostics.push_back("inflate: " + std::to_string(res.crossing_readings) +
+                                " more regular reading(s) self-intersect and were passed over");
+    }
     for (const auto& c : cands)
       res.diagnostics.push_back("inflate: candidate " + std::string(c.what) + ": " + std::to_string(c.held) +
                                 " regularities held, " + std::to_string(c.flat) + " faults");
