@@ -812,7 +812,7 @@ Eigen::VectorXd regular_reading(const inflation_problem<>& pr, const compliance_
   f.m = std::max<Eigen::Index>(k, static_cast<Eigen::Index>(reg.relations() + np + terms.convex.size()) + basis.rows());
   for (const double sigma : {0.1, 0.03, 0.01}) {
     f.sigma = sigma;
-    run(f, t, std::min(max_iterations, 100));
+    run(f, t, std::min(max_iterations, 50));
   }
   const Eigen::VectorXd a = snap_regular(pr, terms, reg, basis, t0, max_iterations, iterations, exact);
   const Eigen::VectorXd b = snap_regular(pr, terms, reg, basis, t, max_iterations, iterations, exact);
@@ -836,7 +836,8 @@ Eigen::VectorXd snap_regular(const inflation_problem<>& pr, const compliance_ter
   const auto run = [&](regularity_functor<>& f, Eigen::VectorXd& u) {
     Eigen::NumericalDiff<regularity_functor<>> nd(f);
     Eigen::LevenbergMarquardt<Eigen::NumericalDiff<regularity_functor<>>> lm(nd);
-    lm.parameters.maxfev = max_iterations * static_cast<int>(k + 1);
+    // Consistent relations converge in a few Gauss–Newton steps; 50 iterations at most.
+    lm.parameters.maxfev = std::min(max_iterations, 50) * static_cast<int>(k + 1);
     lm.parameters.xtol = 1e-14;
     lm.parameters.ftol = 1e-16;
     lm.minimize(u);
@@ -849,10 +850,13 @@ Eigen::VectorXd snap_regular(const inflation_problem<>& pr, const compliance_ter
   Eigen::VectorXd best = t;
   std::size_t best_held = held_relations(pr, reg, z0, 100 * exact);
   // Snapped from the relations within 1e-3, 1e-2 and 3e-2 of holding: the most held wins.
+  std::size_t tried = 0;
   for (const double near : {1e-3, 1e-2, 3e-2}) {
     std::vector<std::uint32_t> held;
     for (Eigen::Index i = 0; i < r0.size(); ++i)
       if (std::abs(r0[i]) < near) held.push_back(static_cast<std::uint32_t>(i));
+    if (held.size() == tried) continue;  // the same relations as the last threshold
+    tried = held.size();
     for (int round = 0; round < 3 && !held.empty(); ++round) {
       regularity_functor<> g{&pr, &terms, &reg, &basis, &held, 0.0, 0.0, 0};
       g.m = std::max<Eigen::Index>(k, static_cast<Eigen::Index>(held.size() + np + terms.convex.size()) +
