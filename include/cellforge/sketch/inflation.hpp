@@ -35,6 +35,8 @@
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
+#include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/wireframe/wireframe_to_cells.hpp"
 
 namespace cellforge {
 
@@ -157,6 +159,9 @@ struct inflation_result {
   /// cells/certify.hpp); self_intersecting when the reading returned does too (none better).
   std::size_t crossing_readings = 0;
   bool self_intersecting = false;
+  /// Judged regular readings passed over because the main job (wireframe_to_cells) finds other
+  /// faces in them than the drawing's (snapping made faces coplanar, or a new planar cycle).
+  std::size_t face_changing_readings = 0;
 };
 
 namespace detail {
@@ -918,6 +923,34 @@ int reading_crosses(const inflation_problem<>& pr, const Z& z) {
   }
 }
 
+/// Whether the main job's face stages (wireframe_to_cells, no complex built) find exactly the
+/// drawing's face loops at depths z: a reading that makes two faces coplanar, loses a face or
+/// gains a planar cycle that becomes a face does not. O(the pipeline's face stages).
+template <class Z>
+bool reading_keeps_faces(const inflation_problem<>& pr, const Z& z) {
+  wireframe<glm::dvec3> w;
+  for (std::size_t v = 0; v < pr.p.size(); ++v) w.points.push_back(glm::dvec3(pr.p[v], z[v]));
+  w.edges = pr.edges;
+  wireframe_options o;
+  o.build_complex = false;
+  try {
+    const wireframe_result<glm::dvec3> r = wireframe_to_cells(w, o);
+    std::vector<std::vector<std::uint32_t>> got, want;
+    for (const auto& f : r.input.faces)
+      for (const auto& loop : f.loops) {
+        std::vector<std::uint32_t> l;
+        for (const auto v : loop) l.push_back(r.input_vertex[v]);
+        got.push_back(cellforge::detail::canonical_cycle(l));
+      }
+    for (const auto& loop : pr.loops) want.push_back(cellforge::detail::canonical_cycle(loop));
+    std::sort(got.begin(), got.end());
+    std::sort(want.begin(), want.end());
+    return got == want;
+  } catch (const error&) {
+    return false;
+  }
+}
+
 /// Result of the direct method in normalised coordinates.
 template <class = void>
 struct direct_solution {
@@ -1450,6 +1483,7 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
       std::size_t flat, held;
       bool from_direct;
       const char* what;
+      bool regular;  // moved to a regular reading (else the direct reading or the compliance optimum)
     };
     std::vector<candidate> cands;
     const detail::regularity_terms<> reg = detail::make_regularity_terms(pr);
@@ -1462,7 +1496,7 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
       res.diagnostics.push_back("inflate: regularities not sought: planar freedom " + std::to_string(res.freedom) +
                                 " above regularity_max_freedom (" +
                                 std::to_string(options.regularity_max_freedom) + ")");
-    const auto judge = [&](Eigen::VectorXd t, bool from_direct, const char* what) {
+    const auto judge = [&](Eigen::VectorXd t, bool from_direct, const char* what, bool moved = true) {
       const Eigen::VectorXd zt = basis * t;
       if (!zt.allFinite()) return;
       std::size_t flat = detail::coplanar_neighbours(pr, zt);
@@ -1477,13 +1511,14 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
         }
         flat += std::min(up, down);
       }
-      cands.push_back({std::move(t), flat, detail::held_relations(pr, reg, zt, 100 * exact), from_direct, what});
+      cands.push_back(
+          {std::move(t), flat, detail::held_relations(pr, reg, zt, 100 * exact), from_direct, what, moved});
     };
     if (direct.ok) {
       Eigen::VectorXd zd(static_cast<Eigen::Index>(nv));
       for (std::size_t i = 0; i < nv; ++i) zd[static_cast<Eigen::Index>(i)] = direct.z[i];
       const Eigen::VectorXd td = basis.transpose() * zd;
-      judge(td, true, "the direct reading");
+      judge(td, true, "the direct reading", false);
       if (regular)
         judge(detail::regular_reading(pr, terms, reg, basis, td, options.max_iterations, res.iterations, exact, false),
               false, "the direct reading, its regularities made exact");
@@ -1499,7 +1534,7 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
       judge(detail::regular_reading(pr, terms, reg, basis, td, options.max_iterations, res.iterations, exact, false),
             false, "a tied direct reading, its regularities made exact");
     }
-    judge(best_t, false, "the optimised reading");
+    judge(best_t, false, "the optimised reading", false);
     if (regular)
       judge(detail::regular_reading(pr, terms, reg, basis, best_t, options.max_iterations, res.iterations, exact),
             false, "the regular reading near the optimised one");
@@ -1513,26 +1548,48 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
       return cands[x].flat < cands[y].flat || (cands[x].flat == cands[y].flat && cands[x].held > cands[y].held);
     });
     // No self-intersecting reading: the best candidate whose faces neither cross nor are
-    // pierced by an edge (exactly, by certify); if every candidate crosses, the best, flagged.
-    std::size_t pick = order[0];
+    // pierced by an edge (exactly, by certify). A regular candidate must also keep the drawing's
+    // faces, as the main job finds them (snapping can make faces coplanar or a cycle planar);
+    // else the direct reading or the compliance optimum. If every candidate fails, the best
+    // unmoved one, flagged.
+    std::vector<int> crossing(cands.size(), 2);  // 1 crosses, 0 not, −1 undecided, 2 not yet checked
+    const auto crosses = [&](std::size_t c) {
+      if (crossing[c] == 2) {
+        crossing[c] = detail::reading_crosses(pr, Eigen::VectorXd(basis * cands[c].t));
+        res.crossing_readings += crossing[c] == 1;
+      }
+      return crossing[c] == 1;
+    };
+    std::size_t pick = cands.size();
     for (const std::size_t c : order) {
-      const int crosses = detail::reading_crosses(pr, Eigen::VectorXd(basis * cands[c].t));
-      if (crosses == 1) {
-        ++res.crossing_readings;
+      if (crosses(c)) continue;
+      if (cands[c].regular && !detail::reading_keeps_faces(pr, Eigen::VectorXd(basis * cands[c].t))) {
+        ++res.face_changing_readings;
         continue;
       }
       pick = c;
-      res.self_intersecting = false;
       break;
     }
-    if (res.crossing_readings == cands.size()) {
-      res.self_intersecting = true;
+    if (pick == cands.size()) {
+      for (const std::size_t c : order)
+        if (!cands[c].regular) {
+          pick = c;
+          break;
+        }
+      if (pick == cands.size()) pick = order[0];
+      res.self_intersecting = crosses(pick);
+    }
+    if (res.self_intersecting) {
       res.diagnostics.push_back("inflate: every reading found has faces that cross or an edge through a face "
                                 "(exact check): the reading returned self-intersects");
     } else if (res.crossing_readings > 0) {
       res.diagnostics.push_back("inflate: " + std::to_string(res.crossing_readings) +
                                 " more regular reading(s) self-intersect and were passed over");
     }
+    if (res.face_changing_readings > 0)
+      res.diagnostics.push_back("inflate: " + std::to_string(res.face_changing_readings) +
+                                " more regular reading(s) change the faces (the main job finds others in them) "
+                                "and were passed over");
     for (const auto& c : cands)
       res.diagnostics.push_back("inflate: candidate " + std::string(c.what) + ": " + std::to_string(c.held) +
                                 " regularities held, " + std::to_string(c.flat) + " faults");
