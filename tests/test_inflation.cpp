@@ -560,6 +560,27 @@ TEST_CASE("inflate: random convex polytopes (all faces triangles) are read conve
   CHECK(10 * right >= 9 * sweep.size());  // measured: every one in both samples
 }
 
+#ifdef NDEBUG  // the sanitizer build reads this very sample in the test above
+TEST_CASE("inflate: a regular reading that changes the faces is passed over") {
+  // Snapping a random polytope's near relations made faces coplanar: the regular reading of
+  // polytope 22 of this sample (the sanitizer build's) had 41 faces of 40. Every reading returned
+  // must keep the drawing's faces; inflate says how many regular readings it passed over.
+  cellforge::sketch_sweep_options options;
+  options.families = {"random convex"};
+  options.limit = 4;
+  options.max_edges = 60;
+  std::size_t passed_over = 0;
+  for (const auto& s : cellforge::sketch_sweep(options)) {
+    INFO(s.name);
+    const auto r = cellforge::inflate(s.drawing, s.loops);
+    passed_over += r.face_changing_readings;
+    std::string why;
+    CHECK_MESSAGE(true_cells(s, r.points, why), why);
+  }
+  MESSAGE("regular readings passed over because they change the faces: " << passed_over);
+}
+#endif
+
 TEST_CASE("inflate: the caller's point types come back") {
   const sample_drawing s = cellforge::generic_drawing(cellforge::sample_prism(5), 3, "prism");
   // A user's 2D type, lifted through its lifted_point specialisation.
@@ -707,4 +728,54 @@ TEST_CASE("inflate: a reading whose faces cross is caught by the exact check") {
   CHECK(cellforge::detail::reading_crosses(bent, zb) == 1);
   const auto r = cellforge::inflate(s.drawing, s.model.faces);
   CHECK(!r.self_intersecting);
+}
+
+TEST_CASE("inflate: the exact Jacobians of the compliance and regularity residuals match differences") {
+  // Levenberg–Marquardt runs on hand-derived Jacobians; each is checked against central
+  // differences of its own residuals at random planar readings of a prism and an octahedron.
+  for (const auto& s : {cellforge::generic_drawing(cellforge::sample_prism(5), 3, "prism"),
+                        cellforge::generic_drawing(cellforge::sample_octahedron(), 2, "platonic")}) {
+    INFO(s.name);
+    auto pr = cellforge::detail::make_inflation_problem(s.drawing, s.model.faces);
+    auto terms = cellforge::detail::make_compliance_terms(pr, 1e-6);
+    terms.convex = cellforge::detail::make_convexity_rows(pr);
+    terms.convex_margin = 0.01;
+    const auto reg = cellforge::detail::make_regularity_terms(pr);
+    const Eigen::MatrixXd basis = cellforge::detail::planar_readings(pr, 1e-9);
+    const cellforge::detail::basis_rows rows = basis;
+    REQUIRE(basis.cols() >= 3);
+    std::size_t np = 0;
+    for (const auto& c : terms.parallel) np += c.size();
+    const auto m = static_cast<Eigen::Index>(terms.count() + pr.edges.size() + pr.p.size());
+    cellforge::detail::inflation_functor<> f{&pr, &terms, &basis, &rows, cellforge::inflation_weights{}, m};
+    std::vector<std::uint32_t> held;
+    for (std::uint32_t i = 0; i < reg.relations(); i += 2) held.push_back(i);
+    cellforge::detail::regularity_functor<> robust{&pr, &terms, &reg, &basis, &rows, nullptr, 0.1, 0.01, 0};
+    robust.m = static_cast<Eigen::Index>(reg.relations() + np + terms.convex.size()) + basis.rows();
+    cellforge::detail::regularity_functor<> plain{&pr, &terms, &reg, &basis, &rows, &held, 0.0, 0.0, 0};
+    plain.m = static_cast<Eigen::Index>(held.size() + np + terms.convex.size()) + basis.rows();
+    cellforge::detail::splitmix rng{7};
+    double worst = 0;
+    const auto check = [&](const auto& functor) {
+      for (int trial = 0; trial < 3; ++trial) {
+        Eigen::VectorXd t(basis.cols());
+        for (Eigen::Index i = 0; i < t.size(); ++i) t[i] = rng.uniform(-0.5, 0.5);
+        Eigen::MatrixXd jac(functor.values(), t.size());
+        functor.df(t, jac);
+        Eigen::VectorXd up(functor.values()), down(functor.values());
+        for (Eigen::Index j = 0; j < t.size(); ++j) {
+          const double h = 1e-6;
+          Eigen::VectorXd a = t, b = t;
+          a[j] += h, b[j] -= h;
+          functor(a, up), functor(b, down);
+          const Eigen::VectorXd diff = (up - down) / (2 * h);
+          worst = std::max(worst, (diff - jac.col(j)).cwiseAbs().maxCoeff() / std::max(1.0, diff.cwiseAbs().maxCoeff()));
+        }
+      }
+    };
+    check(f);
+    check(robust);
+    check(plain);
+    CHECK(worst < 1e-5);
+  }
 }

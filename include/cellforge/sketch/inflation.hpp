@@ -25,7 +25,6 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <unsupported/Eigen/NonLinearOptimization>
-#include <unsupported/Eigen/NumericalDiff>
 
 #include "cellforge/cells/cell_complex.hpp"
 #include "cellforge/cells/certify.hpp"
@@ -316,9 +315,9 @@ inflation_problem<> make_inflation_problem(
   return pr;
 }
 
-/// z_d − (α z_a + β z_b + γ z_c) for a planarity row. O(1).
-template <class Z>
-double plane_residual(const typename inflation_problem<>::plane_row& r, const Z& z) {
+/// z_d − (α z_a + β z_b + γ z_c) for a planarity (or convexity) row. O(1).
+template <class Row, class Z>
+double plane_residual(const Row& r, const Z& z) {
   return z[r.d] - (r.alpha * z[r.a] + r.beta * z[r.b] + r.gamma * z[r.c]);
 }
 
@@ -565,6 +564,65 @@ double corner_cos(glm::dvec3 a, glm::dvec3 q, glm::dvec3 b) {
   return l > 0 ? std::clamp(glm::dot(u, v) / l, -1.0, 1.0) : 1.0;
 }
 
+/// corner_cos, and in g its derivatives with respect to the depths of a, q and b (0 where the
+/// cosine is clamped or a segment has no length). O(1).
+template <class = void>
+double corner_cos_dz(glm::dvec3 a, glm::dvec3 q, glm::dvec3 b, std::array<double, 3>& g) {
+  const glm::dvec3 u = a - q, v = b - q;
+  const double lu = glm::length(u), lv = glm::length(v);
+  g = {0.0, 0.0, 0.0};
+  if (!(lu * lv > 0)) return 1.0;
+  const double c = glm::dot(u, v) / (lu * lv);
+  if (!(std::abs(c) < 1)) return std::clamp(c, -1.0, 1.0);
+  const double du = v.z / (lu * lv) - c * u.z / (lu * lu), dv = u.z / (lu * lv) - c * v.z / (lv * lv);
+  g = {du, -(du + dv), dv};
+  return c;
+}
+
+/// d acos(c) / dc, 0 where acos is not differentiable (c = ±1: a degenerate corner). O(1).
+template <class = void>
+double acos_slope(double c) {
+  const double s = 1 - c * c;
+  return s > 0 ? -1 / std::sqrt(s) : 0.0;
+}
+
+/// The planar readings' basis N copied row-major: a residual's Jacobian row over t is
+/// Σ_v ∂r/∂z_v · N_v, a few rows of N each (z = N t).
+using basis_rows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// The depth slope of each line of a 2D-parallel class against its class mean, times `scale`,
+/// into out from row k on (k advanced); with jac, their Jacobian rows over t (N row-major in n).
+/// Returns the sum of the unscaled squares. O(E), O(E K) with the Jacobian.
+template <class Z>
+double parallel_slopes(const inflation_problem<>& pr, const compliance_terms<>& t, const Z& z, double scale,
+                       Eigen::VectorXd& out, Eigen::Index& k, Eigen::MatrixXd* jac = nullptr,
+                       const basis_rows* n = nullptr) {
+  double sum = 0;
+  for (std::size_t c = 0; c < t.parallel.size(); ++c) {
+    const Eigen::Index start = k;
+    double mean = 0;
+    for (const auto e : t.parallel[c]) {
+      const auto& ed = pr.edges[e];
+      const glm::dvec2 d = pr.p[ed[1]] - pr.p[ed[0]];
+      const double s = (glm::dot(d, t.parallel_direction[c]) >= 0 ? 1.0 : -1.0) / glm::length(d);
+      out[k] = s * (z[ed[1]] - z[ed[0]]);
+      mean += out[k];
+      if (jac) jac->row(k) = scale * s * (n->row(ed[1]) - n->row(ed[0]));
+      ++k;
+    }
+    mean /= static_cast<double>(k - start);
+    for (Eigen::Index i = start; i < k; ++i) {
+      sum += (out[i] - mean) * (out[i] - mean);
+      out[i] = scale * (out[i] - mean);
+    }
+    if (jac) {
+      const Eigen::RowVectorXd m = jac->middleRows(start, k - start).colwise().mean();
+      for (Eigen::Index i = start; i < k; ++i) jac->row(i) -= m;
+    }
+  }
+  return sum;
+}
+
 /// The compliance residual vector at depths z (normalised coordinates), with weights applied
 /// (w = 1 for the unweighted values). Its squared norm is Σ αⱼ Rⱼ(z). Fills per-term sums when
 /// asked. O(L + E).
@@ -601,20 +659,7 @@ void compliance_residuals(const inflation_problem<>& pr, const compliance_terms<
   std::size_t np = 0;
   for (const auto& cls : t.parallel) np += cls.size();
   const double par_scale = std::sqrt(w.parallelism / static_cast<double>(std::max<std::size_t>(1, np)));
-  sum = 0;
-  for (std::size_t c = 0; c < t.parallel.size(); ++c) {
-    std::vector<double> slope;
-    double m = 0;
-    for (const auto e : t.parallel[c]) {
-      const auto& ed = pr.edges[e];
-      const glm::dvec2 d = pr.p[ed[1]] - pr.p[ed[0]];
-      const double sign = glm::dot(d, t.parallel_direction[c]) >= 0 ? 1.0 : -1.0;
-      slope.push_back(sign * (z[ed[1]] - z[ed[0]]) / glm::length(d));
-      m += slope.back();
-    }
-    m /= static_cast<double>(slope.size());
-    for (const double s : slope) out[k++] = par_scale * (s - m), sum += (s - m) * (s - m);
-  }
+  sum = parallel_slopes(pr, t, z, par_scale, out, k);
   if (terms) terms->parallelism = sum / static_cast<double>(std::max<std::size_t>(1, np));
   // Isometry: log of each line's 3D/2D length ratio against their mean.
   std::vector<double> ratio;
@@ -655,7 +700,86 @@ void compliance_residuals(const inflation_problem<>& pr, const compliance_terms<
   }
 }
 
-/// The residual functor of Eigen's Levenberg–Marquardt over t, with z = N t.
+/// Row i of jac += c · (N_d − α N_a − β N_b − γ N_c): a planarity or convexity row. O(K).
+template <class Row>
+void add_plane_row(Eigen::MatrixXd& jac, Eigen::Index i, const basis_rows& n, const Row& r, double c) {
+  jac.row(i) += c * (n.row(r.d) - r.alpha * n.row(r.a) - r.beta * n.row(r.b) - r.gamma * n.row(r.c));
+}
+
+/// Rows from..k of jac minus their mean row (a term measured against its own mean). O((k − from) K).
+template <class = void>
+void centre_rows(Eigen::MatrixXd& jac, Eigen::Index from, Eigen::Index k) {
+  if (k <= from) return;
+  const Eigen::RowVectorXd m = jac.middleRows(from, k - from).colwise().mean();
+  for (Eigen::Index i = from; i < k; ++i) jac.row(i) -= m;
+}
+
+/// The exact Jacobian over t of compliance_residuals (z = N t, n = N row-major), term by term
+/// in the same order. O((L + E) K).
+template <class Z>
+void compliance_jacobian(const inflation_problem<>& pr, const compliance_terms<>& t, const inflation_weights& w,
+                         const Z& z, const basis_rows& n, Eigen::MatrixXd& jac) {
+  const auto at = [&](std::uint32_t v) { return glm::dvec3(pr.p[v], z[v]); };
+  const auto share = [](double weight, std::size_t count) {
+    return std::sqrt(weight / static_cast<double>(std::max<std::size_t>(1, count)));
+  };
+  jac.setZero();
+  Eigen::Index k = 0;
+  std::array<double, 3> g{};
+  // MSDA: d acos(cos θ) per corner, against the mean.
+  const double msda_scale = share(w.msda, t.corners.size());
+  for (const auto& q : t.corners) {
+    const double s = msda_scale * acos_slope(corner_cos_dz(at(q[0]), at(q[1]), at(q[2]), g));
+    for (std::size_t j = 0; j < 3; ++j) jac.row(k) += s * g[j] * n.row(q[j]);
+    ++k;
+  }
+  centre_rows(jac, 0, k);
+  const double ortho_scale = share(w.orthogonality, t.right.size());
+  for (const auto& q : t.right) {
+    corner_cos_dz(at(q[0]), at(q[1]), at(q[2]), g);
+    for (std::size_t j = 0; j < 3; ++j) jac.row(k) += ortho_scale * g[j] * n.row(q[j]);
+    ++k;
+  }
+  std::size_t np = 0;
+  for (const auto& cls : t.parallel) np += cls.size();
+  Eigen::VectorXd scratch(jac.rows());
+  parallel_slopes(pr, t, z, share(w.parallelism, np), scratch, k, &jac, &n);
+  // Isometry: d/dΔz of ½ log(1 + Δz²/d²) is Δz / (d² + Δz²), against the mean.
+  const Eigen::Index iso = k;
+  const double iso_scale = share(w.isometry, pr.edges.size());
+  for (const auto& ed : pr.edges) {
+    const glm::dvec2 d = pr.p[ed[1]] - pr.p[ed[0]];
+    const double dz = z[ed[1]] - z[ed[0]];
+    jac.row(k++) = iso_scale * dz / (glm::dot(d, d) + dz * dz) * (n.row(ed[1]) - n.row(ed[0]));
+  }
+  centre_rows(jac, iso, k);
+  if (!t.convex.empty()) {
+    const double convex_scale = share(w.convexity, t.convex.size());
+    for (const auto& r : t.convex) {
+      if (r.scale * plane_residual(r, z) + t.convex_margin > 0) add_plane_row(jac, k, n, r, convex_scale * r.scale);
+      ++k;
+    }
+  }
+  if (t.planar_rows > 0) {
+    const double planar_scale = share(w.planarity, t.planar_rows);
+    for (const auto& r : pr.rows) add_plane_row(jac, k++, n, r, planar_scale);
+  }
+}
+
+/// Eigen's Levenberg–Marquardt on a functor with an exact Jacobian (df), from t: at most
+/// `budget` evaluations (about one per iteration); adds its iterations. O(budget · (m K² + f)).
+template <class F>
+void solve_lm(F& f, Eigen::VectorXd& t, int budget, double xtol, double ftol, std::size_t& iterations) {
+  Eigen::LevenbergMarquardt<F> lm(f);
+  lm.parameters.maxfev = std::max(1, budget);
+  lm.parameters.xtol = xtol;
+  lm.parameters.ftol = ftol;
+  lm.minimize(t);
+  iterations += static_cast<std::size_t>(lm.iter);
+}
+
+/// The residual functor of Eigen's Levenberg–Marquardt over t, with z = N t, and its exact
+/// Jacobian. O((L + E) K) per call.
 template <class = void>
 struct inflation_functor {
   using Scalar = double;
@@ -666,6 +790,7 @@ struct inflation_functor {
   const inflation_problem<>* pr;
   const compliance_terms<>* terms;
   const Eigen::MatrixXd* basis;
+  const basis_rows* rows;
   inflation_weights weights;
   Eigen::Index m;
   Eigen::Index inputs() const { return basis->cols(); }
@@ -673,6 +798,11 @@ struct inflation_functor {
   int operator()(const Eigen::VectorXd& t, Eigen::VectorXd& f) const {
     const Eigen::VectorXd z = *basis * t;
     compliance_residuals(*pr, *terms, weights, z, f);
+    return 0;
+  }
+  int df(const Eigen::VectorXd& t, Eigen::MatrixXd& jac) const {
+    const Eigen::VectorXd z = *basis * t;
+    compliance_jacobian(*pr, *terms, weights, z, *rows, jac);
     return 0;
   }
 };
@@ -706,26 +836,47 @@ regularity_terms<> make_regularity_terms(const inflation_problem<>& pr) {
 }
 
 /// The relation residuals at depths z (normalised coordinates), in the order corners (cos θ),
-/// angle pairs (θ_k − θ_{k+1}, radians), side pairs ((L₁ − L₂) / (L₁ + L₂)). O(L).
+/// angle pairs (θ_k − θ_{k+1}, radians), side pairs ((L₁ − L₂) / (L₁ + L₂)); with jr (relations
+/// × K), their exact Jacobian rows over t (N row-major in n). O(L), O(L K) with the Jacobian.
 template <class Z>
 void regularity_residuals(const inflation_problem<>& pr, const regularity_terms<>& t, const Z& z,
-                          Eigen::VectorXd& r) {
+                          Eigen::VectorXd& r, Eigen::MatrixXd* jr = nullptr, const basis_rows* n = nullptr) {
   const auto at = [&](std::uint32_t v) { return glm::dvec3(pr.p[v], z[v]); };
+  if (jr) jr->setZero();
   Eigen::Index k = 0;
-  const auto nc = static_cast<Eigen::Index>(t.corners.size());
-  for (const auto& q : t.corners) r[k++] = corner_cos(at(q[0]), at(q[1]), at(q[2]));
-  for (const auto& p : t.angle_pairs) r[k++] = std::acos(r[p[0]]) - std::acos(r[p[1]]);
-  for (const auto& s : t.side_pairs) {
-    const double a = glm::length(at(s[1]) - at(s[0])), b = glm::length(at(s[3]) - at(s[2]));
-    r[k++] = (a - b) / (a + b);
+  std::array<double, 3> g{};
+  for (const auto& q : t.corners) {
+    if (!jr) {
+      r[k++] = corner_cos(at(q[0]), at(q[1]), at(q[2]));
+      continue;
+    }
+    r[k] = corner_cos_dz(at(q[0]), at(q[1]), at(q[2]), g);
+    for (std::size_t j = 0; j < 3; ++j) jr->row(k) += g[j] * n->row(q[j]);
+    ++k;
   }
-  (void)nc;
+  for (const auto& p : t.angle_pairs) {
+    r[k] = std::acos(r[p[0]]) - std::acos(r[p[1]]);
+    if (jr) jr->row(k) = acos_slope(r[p[0]]) * jr->row(p[0]) - acos_slope(r[p[1]]) * jr->row(p[1]);
+    ++k;
+  }
+  for (const auto& s : t.side_pairs) {
+    const glm::dvec3 u = at(s[1]) - at(s[0]), v = at(s[3]) - at(s[2]);
+    const double a = glm::length(u), b = glm::length(v);
+    r[k] = (a - b) / (a + b);
+    // d/da = 2b / (a + b)², d/db = −2a / (a + b)²; da/dz = Δz / a along each side.
+    if (jr) {
+      const double q = 2 / ((a + b) * (a + b));
+      jr->row(k) = q * b * u.z / a * (n->row(s[1]) - n->row(s[0])) - q * a * v.z / b * (n->row(s[3]) - n->row(s[2]));
+    }
+    ++k;
+  }
 }
 
 /// Residuals of the regularity reading over t (z = N t): every relation under a saturating
 /// loss r / √(1 + (r/σ)²) (a relation that does not hold costs about σ², whatever how far off),
-/// or only the relations in `held`, plainly; then the parallel classes' depth slopes and the
-/// convexity hinge, plainly. O(L + E) per call.
+/// or only the relations in `held`, plainly; then the parallel classes' depth slopes, the
+/// convexity hinge and a bound on |z| (4 drawing diagonals), plainly; and the exact Jacobian.
+/// O(L + E) per call, O((L + E) K) per Jacobian.
 template <class = void>
 struct regularity_functor {
   using Scalar = double;
@@ -737,39 +888,48 @@ struct regularity_functor {
   const compliance_terms<>* terms;
   const regularity_terms<>* reg;
   const Eigen::MatrixXd* basis;
+  const basis_rows* rows;
   const std::vector<std::uint32_t>* held;  // null: every relation, robustly
   double sigma = 0.1;
   double convex_margin = 0.0;
   Eigen::Index m = 0;
   Eigen::Index inputs() const { return basis->cols(); }
   Eigen::Index values() const { return m; }
-  int operator()(const Eigen::VectorXd& t, Eigen::VectorXd& f) const {
+  int operator()(const Eigen::VectorXd& t, Eigen::VectorXd& f) const { return evaluate(t, f, nullptr); }
+  int df(const Eigen::VectorXd& t, Eigen::MatrixXd& jac) const {
+    Eigen::VectorXd f(m);
+    return evaluate(t, f, &jac);
+  }
+  int evaluate(const Eigen::VectorXd& t, Eigen::VectorXd& f, Eigen::MatrixXd* jac) const {
     const Eigen::VectorXd z = *basis * t;
     Eigen::VectorXd r(static_cast<Eigen::Index>(reg->relations()));
-    regularity_residuals(*pr, *reg, z, r);
+    Eigen::MatrixXd jr;
+    if (jac) jr.resize(r.size(), basis->cols()), jac->setZero();
+    regularity_residuals(*pr, *reg, z, r, jac ? &jr : nullptr, rows);
     Eigen::Index k = 0;
     if (held) {
-      for (const auto i : *held) f[k++] = r[i];
-    } else {
-      for (Eigen::Index i = 0; i < r.size(); ++i) f[k++] = r[i] / std::sqrt(1 + (r[i] / sigma) * (r[i] / sigma));
-    }
-    for (std::size_t c = 0; c < terms->parallel.size(); ++c) {
-      double mean = 0;
-      const Eigen::Index start = k;
-      for (const auto e : terms->parallel[c]) {
-        const auto& ed = pr->edges[e];
-        const glm::dvec2 d = pr->p[ed[1]] - pr->p[ed[0]];
-        const double sign = glm::dot(d, terms->parallel_direction[c]) >= 0 ? 1.0 : -1.0;
-        f[k] = sign * (z[ed[1]] - z[ed[0]]) / glm::length(d);
-        mean += f[k++];
+      for (const auto i : *held) {
+        if (jac) jac->row(k) = jr.row(i);
+        f[k++] = r[i];
       }
-      mean /= static_cast<double>(terms->parallel[c].size());
-      for (Eigen::Index i = start; i < k; ++i) f[i] -= mean;
+    } else {
+      for (Eigen::Index i = 0; i < r.size(); ++i) {
+        const double q = 1 + (r[i] / sigma) * (r[i] / sigma);
+        if (jac) jac->row(k) = jr.row(i) / (q * std::sqrt(q));
+        f[k++] = r[i] / std::sqrt(q);
+      }
     }
-    for (const auto& c : terms->convex)
-      f[k++] = std::max(0.0, c.scale * (z[c.d] - (c.alpha * z[c.a] + c.beta * z[c.b] + c.gamma * z[c.c])) +
-                                 convex_margin);
-    for (Eigen::Index v = 0; v < z.size(); ++v) f[k++] = std::max(0.0, std::abs(z[v]) - 4.0);
+    parallel_slopes(*pr, *terms, z, 1.0, f, k, jac, rows);
+    for (const auto& c : terms->convex) {
+      f[k] = std::max(0.0, c.scale * plane_residual(c, z) + convex_margin);
+      if (jac && f[k] > 0) add_plane_row(*jac, k, *rows, c, c.scale);
+      ++k;
+    }
+    for (Eigen::Index v = 0; v < z.size(); ++v) {
+      f[k] = std::max(0.0, std::abs(z[v]) - 4.0);
+      if (jac && f[k] > 0) jac->row(k) = (z[v] > 0 ? 1.0 : -1.0) * rows->row(v);
+      ++k;
+    }
     while (k < f.size()) f[k++] = 0;
     return 0;
   }
@@ -786,14 +946,14 @@ std::size_t held_relations(const inflation_problem<>& pr, const regularity_terms
 
 template <class = void>
 Eigen::VectorXd snap_regular(const inflation_problem<>& pr, const compliance_terms<>& terms,
-                             const regularity_terms<>& reg, const Eigen::MatrixXd& basis, Eigen::VectorXd t,
-                             int max_iterations, std::size_t& iterations, double exact);
+                             const regularity_terms<>& reg, const Eigen::MatrixXd& basis, const basis_rows& rows,
+                             Eigen::VectorXd t, int max_iterations, std::size_t& iterations, double exact);
 
 /// A regular reading near t0: Levenberg–Marquardt on every relation under the saturating loss,
 /// σ lowered 0.1 → 0.03 → 0.01 (a relation that does not hold stops pulling), then the relations
 /// within `snap` of holding solved exactly (plain residuals); relations the exact solve cannot
 /// meet to 1e-9 are dropped and the solve repeated (3 rounds at most). Returns t; `held` the
-/// relations within 1e-7 there. O(iterations · K · (L + E) + iterations · m K²).
+/// relations within 1e-7 there. O(iterations · (L + E) K + iterations · m K²).
 template <class = void>
 Eigen::VectorXd regular_reading(const inflation_problem<>& pr, const compliance_terms<>& terms,
                                 const regularity_terms<>& reg, const Eigen::MatrixXd& basis,
@@ -802,25 +962,17 @@ Eigen::VectorXd regular_reading(const inflation_problem<>& pr, const compliance_
   std::size_t np = 0;
   for (const auto& c : terms.parallel) np += c.size();
   const auto k = basis.cols();
-  const auto run = [&](regularity_functor<>& f, Eigen::VectorXd& t, int budget) {
-    Eigen::NumericalDiff<regularity_functor<>> nd(f);
-    Eigen::LevenbergMarquardt<Eigen::NumericalDiff<regularity_functor<>>> lm(nd);
-    lm.parameters.maxfev = budget * static_cast<int>(k + 1);
-    lm.parameters.xtol = 1e-14;
-    lm.parameters.ftol = 1e-16;
-    lm.minimize(t);
-    iterations += static_cast<std::size_t>(lm.iter);
-  };
+  const basis_rows rows = basis;
   Eigen::VectorXd t = t0;
-  if (!robust) return snap_regular(pr, terms, reg, basis, t, max_iterations, iterations, exact);
-  regularity_functor<> f{&pr, &terms, &reg, &basis, nullptr, 0.1, terms.convex_margin, 0};
+  if (!robust) return snap_regular(pr, terms, reg, basis, rows, t, max_iterations, iterations, exact);
+  regularity_functor<> f{&pr, &terms, &reg, &basis, &rows, nullptr, 0.1, terms.convex_margin, 0};
   f.m = std::max<Eigen::Index>(k, static_cast<Eigen::Index>(reg.relations() + np + terms.convex.size()) + basis.rows());
   for (const double sigma : {0.1, 0.03, 0.01}) {
     f.sigma = sigma;
-    run(f, t, std::min(max_iterations, 50));
+    solve_lm(f, t, std::min(max_iterations, 50), 1e-14, 1e-16, iterations);
   }
-  const Eigen::VectorXd a = snap_regular(pr, terms, reg, basis, t0, max_iterations, iterations, exact);
-  const Eigen::VectorXd b = snap_regular(pr, terms, reg, basis, t, max_iterations, iterations, exact);
+  const Eigen::VectorXd a = snap_regular(pr, terms, reg, basis, rows, t0, max_iterations, iterations, exact);
+  const Eigen::VectorXd b = snap_regular(pr, terms, reg, basis, rows, t, max_iterations, iterations, exact);
   return held_relations(pr, reg, Eigen::VectorXd(basis * b), 100 * exact) >
                  held_relations(pr, reg, Eigen::VectorXd(basis * a), 100 * exact)
              ? b
@@ -830,24 +982,14 @@ Eigen::VectorXd regular_reading(const inflation_problem<>& pr, const compliance_
 /// The relations within 1e-3 of holding at t solved exactly (plain residuals, with the parallel
 /// classes and the convexity hinge); relations the solve cannot meet to 1e-9 are dropped and the
 /// solve repeated (3 rounds at most); t itself when no round meets its relations.
-/// O(rounds · iterations · (K (L + E) + m K²)).
+/// O(rounds · iterations · ((L + E) K + m K²)).
 template <class>
 Eigen::VectorXd snap_regular(const inflation_problem<>& pr, const compliance_terms<>& terms,
-                             const regularity_terms<>& reg, const Eigen::MatrixXd& basis, Eigen::VectorXd t,
-                             int max_iterations, std::size_t& iterations, double exact) {
+                             const regularity_terms<>& reg, const Eigen::MatrixXd& basis, const basis_rows& rows,
+                             Eigen::VectorXd t, int max_iterations, std::size_t& iterations, double exact) {
   std::size_t np = 0;
   for (const auto& c : terms.parallel) np += c.size();
   const auto k = basis.cols();
-  const auto run = [&](regularity_functor<>& f, Eigen::VectorXd& u) {
-    Eigen::NumericalDiff<regularity_functor<>> nd(f);
-    Eigen::LevenbergMarquardt<Eigen::NumericalDiff<regularity_functor<>>> lm(nd);
-    // Consistent relations converge in a few Gauss–Newton steps; 50 iterations at most.
-    lm.parameters.maxfev = std::min(max_iterations, 50) * static_cast<int>(k + 1);
-    lm.parameters.xtol = 1e-14;
-    lm.parameters.ftol = 1e-16;
-    lm.minimize(u);
-    iterations += static_cast<std::size_t>(lm.iter);
-  };
   Eigen::VectorXd r(static_cast<Eigen::Index>(reg.relations()));
   const Eigen::VectorXd z0 = basis * t;
   regularity_residuals(pr, reg, z0, r);
@@ -863,11 +1005,12 @@ Eigen::VectorXd snap_regular(const inflation_problem<>& pr, const compliance_ter
     if (held.size() == tried) continue;  // the same relations as the last threshold
     tried = held.size();
     for (int round = 0; round < 3 && !held.empty(); ++round) {
-      regularity_functor<> g{&pr, &terms, &reg, &basis, &held, 0.0, 0.0, 0};
+      regularity_functor<> g{&pr, &terms, &reg, &basis, &rows, &held, 0.0, 0.0, 0};
       g.m = std::max<Eigen::Index>(k, static_cast<Eigen::Index>(held.size() + np + terms.convex.size()) +
                                           basis.rows());
       Eigen::VectorXd u = t;
-      run(g, u);
+      // Consistent relations converge in a few Gauss–Newton steps; 50 iterations at most.
+      solve_lm(g, u, std::min(max_iterations, 50), 1e-14, 1e-16, iterations);
       const Eigen::VectorXd z = basis * u;
       regularity_residuals(pr, reg, z, r);
       std::vector<std::uint32_t> kept;
@@ -1427,7 +1570,8 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
         }
       }
     }
-    detail::inflation_functor<> f{&pr, &terms, &basis, options.weights, m};
+    const detail::basis_rows rows = basis;
+    detail::inflation_functor<> f{&pr, &terms, &basis, &rows, options.weights, m};
     detail::splitmix rng{options.seed};
     if (!direct.ok && direct.reached > 0 && !direct.z.empty()) {
       Eigen::VectorXd zd(static_cast<Eigen::Index>(nv));
@@ -1450,13 +1594,7 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
     Eigen::VectorXd fv(m);
     for (const auto& s : starts) {
       Eigen::VectorXd t = s;
-      Eigen::NumericalDiff<detail::inflation_functor<>> nd(f);
-      Eigen::LevenbergMarquardt<Eigen::NumericalDiff<detail::inflation_functor<>>> lm(nd);
-      lm.parameters.maxfev = options.max_iterations * static_cast<int>(basis.cols() + 1);
-      lm.parameters.xtol = 1e-12;
-      lm.parameters.ftol = 1e-14;
-      lm.minimize(t);
-      res.iterations += static_cast<std::size_t>(lm.iter);
+      detail::solve_lm(f, t, options.max_iterations, 1e-12, 1e-14, res.iterations);
       ++res.starts;
       f(t, fv);
       const double value = fv.squaredNorm();
