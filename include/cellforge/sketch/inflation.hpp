@@ -100,6 +100,9 @@ struct inflation_options {
   /// Work budget of the regular reading: sought only when the planar freedom is at most this
   /// (a convex polytope of random points has one depth per junction and no regularity to find).
   std::size_t regularity_max_freedom = 24;
+  /// More starts of the regular reading, from random planar readings, while the best reading
+  /// found holds under a quarter of the relations (a local minimum: antiprisms, pyramids).
+  int regularity_starts = 6;
 };
 
 /// Value of each compliance function (unweighted, each normalised by its count) at a reading.
@@ -329,13 +332,21 @@ struct compliance_terms {
   std::vector<std::vector<std::uint32_t>> parallel;   // classes of 2D-parallel edges (≥ 2)
   std::vector<glm::dvec2> parallel_direction;         // per class
   // Convexity: h = scale · (z_d − α z_a − β z_b − γ z_c) ≤ 0 for a convex fold (empty: unused).
+  // One row per (line, face F): at planar faces every corner of the next face off the line
+  // gives the same h (its depth gap to F's plane is linear, 0 on the line, and scale is 1 over
+  // the distance), so one stands for all `weight` of them.
   struct convex_row {
     std::uint32_t d, a, b, c;
-    double alpha, beta, gamma, scale;
+    double alpha, beta, gamma, scale, weight;
   };
   std::vector<convex_row> convex;
   double convex_margin = 0.0;   // the hinge is max(0, h + margin)
   std::size_t planar_rows = 0;  // least-squares readings: the planarity rows as a term
+  double convex_weight() const {
+    double w = 0;
+    for (const auto& r : convex) w += r.weight;
+    return w;
+  }
   std::size_t count() const {
     std::size_t n = 0;
     for (const auto& c : parallel) n += c.size();
@@ -345,10 +356,11 @@ struct compliance_terms {
 
 /// Convexity rows, when every face is one loop and every line lies on exactly two loops (the
 /// loops are oriented coherently here, whatever their given senses): for each line and each of
-/// its two faces F, every junction d of the other face G off F, against F's plane through F's
-/// reference triangle, signed by F's facing (its signed area in the drawing) and scaled by
-/// 1 / (d's distance from the line). All h ≤ 0 is a convex fold at every line for one of the two
-/// Necker readings. O(E log E + Σ |F| |G|).
+/// its two faces F, the junction d of the other face G off F farthest from the line, against
+/// F's plane through F's reference triangle, signed by F's facing (its signed area in the
+/// drawing), scaled by 1 / (d's distance from the line) and weighted by the number of G's
+/// junctions off F (at planar faces each gives the same h). All h ≤ 0 is a convex fold at every
+/// line for one of the two Necker readings. O(E log E + Σ |F| |G|).
 template <class = void>
 std::vector<compliance_terms<>::convex_row> make_convexity_rows(const inflation_problem<>& pr) {
   std::vector<compliance_terms<>::convex_row> out;
@@ -429,14 +441,24 @@ std::vector<compliance_terms<>::convex_row> make_convexity_rows(const inflation_
     const glm::dvec2 u = pr.p[b] - pr.p[a], v = pr.p[c] - pr.p[a];
     const double det = u.x * v.y - u.y * v.x;
     const glm::dvec2 line = pr.p[h[1]] - pr.p[h[0]];
+    std::uint32_t far = 0;
+    double far_dist = 0, count = 0;
+    int sides = 0;  // bit 0: a junction left of the line, bit 1: right
     for (const auto d : loops[g]) {
       if (std::find(loops[f].begin(), loops[f].end(), d) != loops[f].end()) continue;
-      const glm::dvec2 w = pr.p[d] - pr.p[a], x = pr.p[d] - pr.p[h[0]];
-      const double dist = std::abs(line.x * x.y - line.y * x.x) / glm::length(line);
+      const glm::dvec2 x = pr.p[d] - pr.p[h[0]];
+      const double cross = line.x * x.y - line.y * x.x, dist = std::abs(cross) / glm::length(line);
       if (!(dist > 1e-12)) continue;
-      const double beta = (w.x * v.y - w.y * v.x) / det, gamma = (u.x * w.y - u.y * w.x) / det;
-      out.push_back({d, a, b, c, 1 - beta - gamma, beta, gamma, facing[f] / dist});
+      ++count;
+      sides |= cross > 0 ? 1 : 2;
+      if (dist > far_dist) far_dist = dist, far = d;
     }
+    // G on both sides of the line: its hinges have opposite signs at every planar reading.
+    if (sides == 3) return {};
+    if (count == 0) continue;
+    const glm::dvec2 w = pr.p[far] - pr.p[a];
+    const double beta = (w.x * v.y - w.y * v.x) / det, gamma = (u.x * w.y - u.y * w.x) / det;
+    out.push_back({far, a, b, c, 1 - beta - gamma, beta, gamma, facing[f] / far_dist, count});
   }
   return out;
 }
@@ -448,18 +470,18 @@ std::vector<compliance_terms<>::convex_row> make_convexity_rows(const inflation_
 template <class = void>
 struct convex_hinge_functor {
   const Eigen::MatrixXd* a;
-  double margin;
+  const Eigen::VectorXd* margin;  // per row (rows and margins weighted)
   double root_lambda;
   Eigen::Index values() const { return a->rows() + a->cols(); }
   int operator()(const Eigen::VectorXd& t, Eigen::VectorXd& f) const {
-    f.head(a->rows()) = ((*a * t).array() + margin).cwiseMax(0.0).matrix();
+    f.head(a->rows()) = (*a * t + *margin).cwiseMax(0.0);
     f.tail(a->cols()) = root_lambda * t;
     return 0;
   }
   int df(const Eigen::VectorXd& t, Eigen::MatrixXd& jac) const {
-    const Eigen::VectorXd v = *a * t;
+    const Eigen::VectorXd v = *a * t + *margin;
     for (Eigen::Index i = 0; i < a->rows(); ++i)
-      if (v[i] + margin > 0)
+      if (v[i] > 0)
         jac.row(i) = a->row(i);
       else
         jac.row(i).setZero();
@@ -477,22 +499,27 @@ template <class = void>
 Eigen::VectorXd convex_reading(const std::vector<compliance_terms<>::convex_row>& rows,
                                const Eigen::MatrixXd& basis, double margin) {
   const auto k = basis.cols();
+  // Each row weighted as the hinges it stands for: √w (a t + margin).
   Eigen::MatrixXd a(static_cast<Eigen::Index>(rows.size()), k);
+  Eigen::VectorXd root(static_cast<Eigen::Index>(rows.size()));
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto& r = rows[i];
-    a.row(static_cast<Eigen::Index>(i)) = r.scale * (basis.row(r.d) - r.alpha * basis.row(r.a) -
-                                                     r.beta * basis.row(r.b) - r.gamma * basis.row(r.c));
+    root[static_cast<Eigen::Index>(i)] = std::sqrt(r.weight);
+    a.row(static_cast<Eigen::Index>(i)) = r.scale * std::sqrt(r.weight) *
+                                          (basis.row(r.d) - r.alpha * basis.row(r.a) - r.beta * basis.row(r.b) -
+                                           r.gamma * basis.row(r.c));
   }
   Eigen::VectorXd t = Eigen::VectorXd::Zero(k);
   if (a.rows() == 0 || k == 0) return {};
-  convex_hinge_functor<> f{&a, margin, std::sqrt(1e-6)};
+  const Eigen::VectorXd margins = margin * root;
+  convex_hinge_functor<> f{&a, &margins, std::sqrt(1e-6)};
   Eigen::LevenbergMarquardt<convex_hinge_functor<>> lm(f);
   // Eigen's own loop, one step at a time, so that it stops once the reading is convex with
   // room (enough for a start); 100 iterations at most.
   auto status = lm.minimizeInit(t);
   while ((status == Eigen::LevenbergMarquardtSpace::NotStarted ||
           status == Eigen::LevenbergMarquardtSpace::Running) &&
-         lm.iter <= 100 && !((a * t).maxCoeff() <= -0.5 * margin))
+         lm.iter <= 100 && !((a * t + 0.5 * margins).maxCoeff() <= 0))
     status = lm.minimizeOneStep(t);
   const Eigen::VectorXd v = a * t;
   if (!t.allFinite() || !(v.maxCoeff() < 0)) return {};
@@ -623,6 +650,29 @@ double parallel_slopes(const inflation_problem<>& pr, const compliance_terms<>& 
   return sum;
 }
 
+/// Row i of jac += c · (N_d − α N_a − β N_b − γ N_c): a planarity or convexity row. O(K).
+template <class Row>
+void add_plane_row(Eigen::MatrixXd& jac, Eigen::Index i, const basis_rows& n, const Row& r, double c) {
+  jac.row(i) += c * (n.row(r.d) - r.alpha * n.row(r.a) - r.beta * n.row(r.b) - r.gamma * n.row(r.c));
+}
+
+/// The convexity hinge √w max(0, h + margin) of each row, times `scale`, into out from row k
+/// on (k advanced); with jac, the Jacobian rows over t. Returns Σ w max(0, h + margin)². O(R),
+/// O(R K) with the Jacobian.
+template <class Z>
+double convexity_hinges(const compliance_terms<>& t, const Z& z, double margin, double scale, Eigen::VectorXd& out,
+                        Eigen::Index& k, Eigen::MatrixXd* jac = nullptr, const basis_rows* n = nullptr) {
+  double total = 0;
+  for (const auto& r : t.convex) {
+    const double h = r.scale * plane_residual(r, z) + margin, root = std::sqrt(r.weight);
+    out[k] = scale * root * std::max(0.0, h);
+    total += r.weight * std::max(0.0, h) * std::max(0.0, h);
+    if (jac && h > 0) add_plane_row(*jac, k, *n, r, scale * root * r.scale);
+    ++k;
+  }
+  return total;
+}
+
 /// The compliance residual vector at depths z (normalised coordinates), with weights applied
 /// (w = 1 for the unweighted values). Its squared norm is Σ αⱼ Rⱼ(z). Fills per-term sums when
 /// asked. O(L + E).
@@ -677,15 +727,9 @@ void compliance_residuals(const inflation_problem<>& pr, const compliance_terms<
   if (terms) terms->isometry = sum / static_cast<double>(ratio.size());
   // Convexity: hinge on each row.
   if (!t.convex.empty()) {
-    const double convex_scale = std::sqrt(w.convexity / static_cast<double>(t.convex.size()));
-    sum = 0;
-    for (const auto& r : t.convex) {
-      const double h =
-          std::max(0.0, r.scale * (z[r.d] - (r.alpha * z[r.a] + r.beta * z[r.b] + r.gamma * z[r.c])) +
-                            t.convex_margin);
-      out[k++] = convex_scale * h, sum += h * h;
-    }
-    if (terms) terms->convexity = sum / static_cast<double>(t.convex.size());
+    const double convex_scale = std::sqrt(w.convexity / t.convex_weight());
+    sum = convexity_hinges(t, z, t.convex_margin, convex_scale, out, k);
+    if (terms) terms->convexity = sum / t.convex_weight();
   }
   // Planarity, when it is not exact by construction (least-squares readings).
   if (t.planar_rows > 0) {
@@ -698,12 +742,6 @@ void compliance_residuals(const inflation_problem<>& pr, const compliance_terms<
     for (const auto& r : pr.rows) worst = std::max(worst, std::abs(plane_residual(r, z)));
     terms->planarity = worst;
   }
-}
-
-/// Row i of jac += c · (N_d − α N_a − β N_b − γ N_c): a planarity or convexity row. O(K).
-template <class Row>
-void add_plane_row(Eigen::MatrixXd& jac, Eigen::Index i, const basis_rows& n, const Row& r, double c) {
-  jac.row(i) += c * (n.row(r.d) - r.alpha * n.row(r.a) - r.beta * n.row(r.b) - r.gamma * n.row(r.c));
 }
 
 /// Rows from..k of jac minus their mean row (a term measured against its own mean). O((k − from) K).
@@ -753,13 +791,8 @@ void compliance_jacobian(const inflation_problem<>& pr, const compliance_terms<>
     jac.row(k++) = iso_scale * dz / (glm::dot(d, d) + dz * dz) * (n.row(ed[1]) - n.row(ed[0]));
   }
   centre_rows(jac, iso, k);
-  if (!t.convex.empty()) {
-    const double convex_scale = share(w.convexity, t.convex.size());
-    for (const auto& r : t.convex) {
-      if (r.scale * plane_residual(r, z) + t.convex_margin > 0) add_plane_row(jac, k, n, r, convex_scale * r.scale);
-      ++k;
-    }
-  }
+  if (!t.convex.empty())
+    convexity_hinges(t, z, t.convex_margin, std::sqrt(w.convexity / t.convex_weight()), scratch, k, &jac, &n);
   if (t.planar_rows > 0) {
     const double planar_scale = share(w.planarity, t.planar_rows);
     for (const auto& r : pr.rows) add_plane_row(jac, k++, n, r, planar_scale);
@@ -920,11 +953,7 @@ struct regularity_functor {
       }
     }
     parallel_slopes(*pr, *terms, z, 1.0, f, k, jac, rows);
-    for (const auto& c : terms->convex) {
-      f[k] = std::max(0.0, c.scale * plane_residual(c, z) + convex_margin);
-      if (jac && f[k] > 0) add_plane_row(*jac, k, *rows, c, c.scale);
-      ++k;
-    }
+    convexity_hinges(*terms, z, convex_margin, 1.0, f, k, jac, rows);
     for (Eigen::Index v = 0; v < z.size(); ++v) {
       f[k] = std::max(0.0, std::abs(z[v]) - 4.0);
       if (jac && f[k] > 0) jac->row(k) = (z[v] > 0 ? 1.0 : -1.0) * rows->row(v);
@@ -1566,7 +1595,7 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
           m = static_cast<Eigen::Index>(terms.count() + pr.edges.size() + nv);
           scratch.resize(m);
           res.diagnostics.push_back("inflate: the faces admit a convex reading: convexity term on (" +
-                                    std::to_string(terms.convex.size()) + " hinges) and a convex start");
+                                    std::to_string(terms.convex.size()) + " folds) and a convex start");
         }
       }
     }
@@ -1580,14 +1609,15 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
     }
     const int wanted = terms.convex.empty() ? std::max(1, options.starts)
                                             : std::max(1, std::min(options.starts, options.convex_starts));
-    while (static_cast<int>(starts.size()) < wanted) {
+    // A random planar reading, its depth range half the drawing's (unit) diagonal.
+    const auto random_start = [&] {
       Eigen::VectorXd t(basis.cols());
       for (Eigen::Index i = 0; i < t.size(); ++i) t[i] = rng.uniform(-1, 1);
-      // Depth range comparable to the drawing's (unit diagonal).
       const Eigen::VectorXd zt = basis * t;
       const double range = zt.maxCoeff() - zt.minCoeff();
-      starts.push_back(range > 0 ? Eigen::VectorXd(t * (0.5 / range)) : t);
-    }
+      return range > 0 ? Eigen::VectorXd(t * (0.5 / range)) : t;
+    };
+    while (static_cast<int>(starts.size()) < wanted) starts.push_back(random_start());
     double best = std::numeric_limits<double>::infinity();
     std::size_t best_flat = std::numeric_limits<std::size_t>::max();
     Eigen::VectorXd best_t;
@@ -1642,12 +1672,12 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
       // between a line along the depth and one across it tends to a right angle.
       if (zt.cwiseAbs().maxCoeff() > 8) flat += nv;
       if (!terms.convex.empty()) {  // folds not convex, in whichever Necker reading has fewer
-        std::size_t up = 0, down = 0;
+        double up = 0, down = 0;  // hinges, each row standing for `weight` of them
         for (const auto& c : terms.convex) {
-          const double h = c.scale * (zt[c.d] - (c.alpha * zt[c.a] + c.beta * zt[c.b] + c.gamma * zt[c.c]));
-          up += h > -1e-9, down += h < 1e-9;
+          const double h = c.scale * detail::plane_residual(c, zt);
+          up += h > -1e-9 ? c.weight : 0.0, down += h < 1e-9 ? c.weight : 0.0;
         }
-        flat += std::min(up, down);
+        flat += static_cast<std::size_t>(std::min(up, down));
       }
       cands.push_back(
           {std::move(t), flat, detail::held_relations(pr, reg, zt, 100 * exact), from_direct, what, moved});
@@ -1676,6 +1706,19 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
     if (regular)
       judge(detail::regular_reading(pr, terms, reg, basis, best_t, options.max_iterations, res.iterations, exact),
             false, "the regular reading near the optimised one");
+    // The search can end in a local minimum holding few relations (antiprisms, pyramids): then
+    // more starts, random planar readings as for the optimisation, while the best holds under
+    // a quarter of the relations (a true antiprism holds two thirds, a pyramid a third).
+    if (regular) {
+      std::size_t most = 0;
+      for (const auto& c : cands) most = std::max(most, c.held);
+      for (int k = 0; k < options.regularity_starts && 4 * most < reg.relations(); ++k) {
+        judge(detail::regular_reading(pr, terms, reg, basis, random_start(), options.max_iterations,
+                                      res.iterations, exact),
+              false, "the regular reading from a random start");
+        if (!cands.empty()) most = std::max(most, cands.back().held);
+      }
+    }
     // Fewest merged neighbours (and convex folds lost), then most relations held; ties keep
     // the earlier candidate (the direct reading first).
     if (cands.empty())
