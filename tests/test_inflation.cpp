@@ -560,6 +560,43 @@ TEST_CASE("inflate: random convex polytopes (all faces triangles) are read conve
   CHECK(10 * right >= 9 * sweep.size());  // measured: every one in both samples
 }
 
+TEST_CASE("inflate: the face check: the main job must find the drawing's faces in a reading") {
+  // The check a regular reading must pass: the true reading of a random polytope keeps its
+  // triangles; so does one where two neighbouring triangles are coplanar (their line still
+  // parts them); a flat reading does not.
+  cellforge::sketch_sweep_options options;
+  options.families = {"random convex"};
+  options.limit = 4;
+  options.max_edges = 40;
+  const auto sweep = cellforge::sketch_sweep(options);
+  REQUIRE(!sweep.empty());
+  const sample_drawing& s = sweep.front();
+  INFO(s.name);
+  const auto pr = cellforge::detail::make_inflation_problem(s.drawing, s.model.faces);
+  std::vector<double> z;
+  for (const auto& p : s.points) z.push_back(p.z / pr.size);
+  CHECK(cellforge::detail::reading_keeps_faces(pr, z));
+  // Faces (a, b, c) and (b, a, d) share the line a b: d moved onto the plane of a, b, c.
+  const auto& f = pr.loops[0];
+  const std::uint32_t a = f[0], b = f[1], c = f[2];
+  std::uint32_t d = a;  // the other triangle on a b (loops in either sense)
+  for (std::size_t l = 1; l < pr.loops.size(); ++l) {
+    const auto& g = pr.loops[l];
+    if (g.size() == 3 && std::count(g.begin(), g.end(), a) == 1 && std::count(g.begin(), g.end(), b) == 1)
+      for (const auto v : g)
+        if (v != a && v != b) d = v;
+  }
+  REQUIRE(d != a);
+  REQUIRE(f.size() == 3);
+  const glm::dvec3 pa(pr.p[a], z[a]), pb(pr.p[b], z[b]), pc(pr.p[c], z[c]);
+  const glm::dvec3 n = glm::cross(pb - pa, pc - pa);
+  REQUIRE(std::abs(n.z) > 1e-9);
+  std::vector<double> moved = z;
+  moved[d] = pa.z - (n.x * (pr.p[d].x - pa.x) + n.y * (pr.p[d].y - pa.y)) / n.z;
+  CHECK(cellforge::detail::reading_keeps_faces(pr, moved));
+  CHECK(!cellforge::detail::reading_keeps_faces(pr, std::vector<double>(z.size(), 0.0)));
+}
+
 #ifdef NDEBUG  // the sanitizer build reads this very sample in the test above
 TEST_CASE("inflate: a regular reading that changes the faces is passed over") {
   // Snapping a random polytope's near relations made faces coplanar: the regular reading of
