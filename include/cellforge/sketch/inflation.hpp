@@ -815,11 +815,6 @@ void solve_lm(F& f, Eigen::VectorXd& t, int budget, double xtol, double ftol, st
 /// Jacobian. O((L + E) K) per call.
 template <class = void>
 struct inflation_functor {
-  using Scalar = double;
-  using InputType = Eigen::VectorXd;
-  using ValueType = Eigen::VectorXd;
-  using JacobianType = Eigen::MatrixXd;
-  enum { InputsAtCompileTime = Eigen::Dynamic, ValuesAtCompileTime = Eigen::Dynamic };
   const inflation_problem<>* pr;
   const compliance_terms<>* terms;
   const Eigen::MatrixXd* basis;
@@ -912,11 +907,6 @@ void regularity_residuals(const inflation_problem<>& pr, const regularity_terms<
 /// O(L + E) per call, O((L + E) K) per Jacobian.
 template <class = void>
 struct regularity_functor {
-  using Scalar = double;
-  using InputType = Eigen::VectorXd;
-  using ValueType = Eigen::VectorXd;
-  using JacobianType = Eigen::MatrixXd;
-  enum { InputsAtCompileTime = Eigen::Dynamic, ValuesAtCompileTime = Eigen::Dynamic };
   const inflation_problem<>* pr;
   const compliance_terms<>* terms;
   const regularity_terms<>* reg;
