@@ -101,8 +101,11 @@ struct inflation_options {
   /// (a convex polytope of random points has one depth per junction and no regularity to find).
   std::size_t regularity_max_freedom = 24;
   /// More starts of the regular reading, from random planar readings, while the best reading
-  /// found holds under a quarter of the relations (a local minimum: antiprisms, pyramids).
+  /// found holds under a quarter of the relations (a local minimum: antiprisms, pyramids), when
+  /// the planar freedom is at most regularity_starts_max_freedom (a random polytope has no
+  /// regularity to find, and one search costs O(K) per relation).
   int regularity_starts = 6;
+  std::size_t regularity_starts_max_freedom = 8;
 };
 
 /// Value of each compliance function (unweighted, each normalised by its count) at a reading.
@@ -1702,7 +1705,8 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
     if (regular) {
       std::size_t most = 0;
       for (const auto& c : cands) most = std::max(most, c.held);
-      for (int k = 0; k < options.regularity_starts && 4 * most < reg.relations(); ++k) {
+      const int more = res.freedom <= options.regularity_starts_max_freedom ? options.regularity_starts : 0;
+      for (int k = 0; k < more && 4 * most < reg.relations(); ++k) {
         judge(detail::regular_reading(pr, terms, reg, basis, random_start(), options.max_iterations,
                                       res.iterations, exact),
               false, "the regular reading from a random start");
