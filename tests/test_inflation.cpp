@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -301,6 +302,15 @@ double depth_error(const sample_drawing& s, const std::vector<glm::dvec3>& pts) 
   return worst / glm::length(hi - lo);
 }
 
+// Regularities (right face corners, equal consecutive corners and sides) the true reading holds,
+// counted as inflate counts them for its own readings (default tolerances). O(L).
+std::size_t truth_regularities(const sample_drawing& s) {
+  const auto pr = cellforge::detail::make_inflation_problem(s.drawing, s.model.faces);
+  std::vector<double> z;
+  for (const auto& p : s.points) z.push_back(p.z / pr.size);
+  return cellforge::detail::held_relations(pr, cellforge::detail::make_regularity_terms(pr), z, 100 * 1e-8);
+}
+
 // Whether the wireframe pipeline finds the model's faces and volumes in these points. O(pipeline).
 bool true_cells(const sample_drawing& s, const std::vector<glm::dvec3>& pts, std::string& why) {
   cellforge::wireframe<glm::dvec3> w;
@@ -360,13 +370,15 @@ TEST_CASE("inflate: direct recovers normalon and quasi-normalon drawings exactly
       const auto r = cellforge::inflate(s.drawing, s.model.faces);
       static_assert(std::is_same_v<decltype(r.points)::value_type, glm::dvec3>);
       if (r.method != cellforge::inflation_method::direct) {
-        // A wedge or a ramp has as many oblique lines as one axis has: in some views a second
-        // choice of axes reads as well, and the drawing is left to optimisation, saying so.
+        // A wedge or a ramp has as many oblique lines as one axis has: a second choice of axes
+        // reads as well, or a reading of the planar family holds more regularities than the
+        // right-angled one (a wedge read as a prism on an equilateral triangle). Either way the
+        // cells are the model's, and a reading that is not the truth is at least as regular.
         REQUIRE((m.name == "wedge" || m.name == "ramp"));
-        REQUIRE(!r.diagnostics.empty());
-        CHECK(r.diagnostics[0].find("read alike as the axes") != std::string::npos);
         std::string why;
         CHECK_MESSAGE(true_cells(s, r.points, why), why);
+        if (std::min(depth_error(s, r.readings[0].points), depth_error(s, r.readings[1].points)) >= 1e-9)
+          CHECK(r.regular_relations >= truth_regularities(s));
         ++ambiguous;
         continue;
       }
@@ -401,7 +413,8 @@ TEST_CASE("inflate: direct recovers normalon and quasi-normalon drawings exactly
           << " of the model size; first reading right on " << first_right << " ("
           << 100.0 * static_cast<double>(first_right) / static_cast<double>(drawings)
           << " %; the views are random rotations, so the view-from-above prior can only be a coin toss)");
-  MESSAGE("direct: " << ambiguous << " wedge or ramp drawings left to optimisation (axes ambiguous)");
+  MESSAGE("direct: " << ambiguous
+                     << " wedge or ramp drawings read otherwise (axes ambiguous, or a more regular reading)");
   MESSAGE("direct: " << largest_edges << " edges in " << largest_ms << " ms (this build)");
 }
 
@@ -547,6 +560,64 @@ TEST_CASE("inflate: random convex polytopes (all faces triangles) are read conve
   CHECK(10 * right >= 9 * sweep.size());  // measured: every one in both samples
 }
 
+TEST_CASE("inflate: the face check: the main job must find the drawing's faces in a reading") {
+  // The check a regular reading must pass: the true reading of a random polytope keeps its
+  // triangles; so does one where two neighbouring triangles are coplanar (their line still
+  // parts them); a flat reading does not.
+  cellforge::sketch_sweep_options options;
+  options.families = {"random convex"};
+  options.limit = 4;
+  options.max_edges = 40;
+  const auto sweep = cellforge::sketch_sweep(options);
+  REQUIRE(!sweep.empty());
+  const sample_drawing& s = sweep.front();
+  INFO(s.name);
+  const auto pr = cellforge::detail::make_inflation_problem(s.drawing, s.model.faces);
+  std::vector<double> z;
+  for (const auto& p : s.points) z.push_back(p.z / pr.size);
+  CHECK(cellforge::detail::reading_keeps_faces(pr, z));
+  // Faces (a, b, c) and (b, a, d) share the line a b: d moved onto the plane of a, b, c.
+  const auto& f = pr.loops[0];
+  const std::uint32_t a = f[0], b = f[1], c = f[2];
+  std::uint32_t d = a;  // the other triangle on a b (loops in either sense)
+  for (std::size_t l = 1; l < pr.loops.size(); ++l) {
+    const auto& g = pr.loops[l];
+    if (g.size() == 3 && std::count(g.begin(), g.end(), a) == 1 && std::count(g.begin(), g.end(), b) == 1)
+      for (const auto v : g)
+        if (v != a && v != b) d = v;
+  }
+  REQUIRE(d != a);
+  REQUIRE(f.size() == 3);
+  const glm::dvec3 pa(pr.p[a], z[a]), pb(pr.p[b], z[b]), pc(pr.p[c], z[c]);
+  const glm::dvec3 n = glm::cross(pb - pa, pc - pa);
+  REQUIRE(std::abs(n.z) > 1e-9);
+  std::vector<double> moved = z;
+  moved[d] = pa.z - (n.x * (pr.p[d].x - pa.x) + n.y * (pr.p[d].y - pa.y)) / n.z;
+  CHECK(cellforge::detail::reading_keeps_faces(pr, moved));
+  CHECK(!cellforge::detail::reading_keeps_faces(pr, std::vector<double>(z.size(), 0.0)));
+}
+
+#ifdef NDEBUG  // the sanitizer build reads this very sample in the test above
+TEST_CASE("inflate: a regular reading that changes the faces is passed over") {
+  // Snapping a random polytope's near relations made faces coplanar: the regular reading of
+  // polytope 22 of this sample (the sanitizer build's) had 41 faces of 40. Every reading returned
+  // must keep the drawing's faces; inflate says how many regular readings it passed over.
+  cellforge::sketch_sweep_options options;
+  options.families = {"random convex"};
+  options.limit = 4;
+  options.max_edges = 60;
+  std::size_t passed_over = 0;
+  for (const auto& s : cellforge::sketch_sweep(options)) {
+    INFO(s.name);
+    const auto r = cellforge::inflate(s.drawing, s.loops);
+    passed_over += r.face_changing_readings;
+    std::string why;
+    CHECK_MESSAGE(true_cells(s, r.points, why), why);
+  }
+  MESSAGE("regular readings passed over because they change the faces: " << passed_over);
+}
+#endif
+
 TEST_CASE("inflate: the caller's point types come back") {
   const sample_drawing s = cellforge::generic_drawing(cellforge::sample_prism(5), 3, "prism");
   // A user's 2D type, lifted through its lifted_point specialisation.
@@ -625,4 +696,123 @@ TEST_CASE("inflate: a hole's ring tied to its face only when the face is given w
   REQUIRE(!loose.diagnostics.empty());
   CHECK(loose.diagnostics[0].find("fixed neither by axis edges nor by face planes") != std::string::npos);
   CHECK(loose.after.planarity < 1e-12);
+}
+
+TEST_CASE("inflate: the solid a person sees: metric readings of regular solids, per family") {
+  // A parallel view fixes depth up to the mirror, an offset and, beyond those, the planar
+  // family's freedom (at least z → kz + ax + by); only regularity (right corners, equal sides
+  // and corners) picks the metric one. Families whose solids have it: regular prisms, pyramids,
+  // frusta and bipyramids, antiprisms, Platonic and Archimedean solids, cut cubes and prisms,
+  // quasi-normalons, classics. Random convex polytopes and jittered non-convex prisms have none
+  // (not metric in principle) and are not swept here (their cells: the tests above).
+  cellforge::sketch_sweep_options options;
+  options.families = {"prism",    "pyramid",        "antiprism", "platonic", "archimedean",
+                      "cut cube", "quasi-normalon", "classic"};
+#ifdef NDEBUG
+  options.limit = 100;
+  options.max_edges = 150;
+#else
+  options.limit = 12;
+  options.max_edges = 40;
+#endif
+  const auto sweep = cellforge::sketch_sweep(options);
+  struct tally {
+    std::size_t drawings = 0, metric = 0;
+  };
+  std::map<std::string, tally> by;
+  std::size_t drawings = 0, metric = 0;
+  std::string misses;
+  for (const auto& s : sweep) {
+    if (s.normalon) continue;
+    INFO(s.name);
+    const auto r = cellforge::inflate(s.drawing, s.model.faces);
+    const double e = std::min(depth_error(s, r.readings[0].points), depth_error(s, r.readings[1].points));
+    auto& t = by[s.family];
+    ++t.drawings, ++drawings;
+    if (e < 1e-6)
+      ++t.metric, ++metric;
+    else
+      misses += "\n  " + s.name + ": depth error " + std::to_string(e) + " of the size, " +
+                std::to_string(r.regular_relations) + " of " + std::to_string(r.relations) + " regularities held";
+  }
+  std::string table;
+  for (const auto& [family, t] : by)
+    table += "\n  " + family + ": " + std::to_string(t.metric) + " of " + std::to_string(t.drawings);
+  MESSAGE("metric readings (depth within 1e-6 of the size after mirror and offset): "
+          << metric << " of " << drawings << table << misses);
+  REQUIRE(drawings >= 10);
+  // Measured (Release, this sample): 0 before the regular reading; the floor is under it.
+  CHECK(2 * metric >= drawings);
+}
+
+TEST_CASE("inflate: a reading whose faces cross is caught by the exact check") {
+  // The check inflate runs on every judged reading: the true reading of a prism does not
+  // self-intersect; pushing one junction far through the solid makes faces cross.
+  const sample_drawing s = cellforge::generic_drawing(cellforge::sample_prism(5), 2, "prism");
+  const auto pr = cellforge::detail::make_inflation_problem(s.drawing, s.model.faces);
+  std::vector<double> z;
+  for (const auto& p : s.points) z.push_back(p.z / pr.size);
+  CHECK(cellforge::detail::reading_crosses(pr, z) == 0);
+  // Junction 0 moved through the solid, far out beyond its other side: its faces cross others.
+  glm::dvec3 centroid{0.0};
+  for (std::size_t i = 0; i < z.size(); ++i) centroid += glm::dvec3(pr.p[i], z[i]);
+  centroid /= static_cast<double>(z.size());
+  const glm::dvec3 moved = centroid + 2.5 * (centroid - glm::dvec3(pr.p[0], z[0]));
+  auto bent = pr;
+  bent.p[0] = glm::dvec2(moved);
+  std::vector<double> zb = z;
+  zb[0] = moved.z;
+  CHECK(cellforge::detail::reading_crosses(bent, zb) == 1);
+  const auto r = cellforge::inflate(s.drawing, s.model.faces);
+  CHECK(!r.self_intersecting);
+}
+
+TEST_CASE("inflate: the exact Jacobians of the compliance and regularity residuals match differences") {
+  // Levenberg–Marquardt runs on hand-derived Jacobians; each is checked against central
+  // differences of its own residuals at random planar readings of a prism and an octahedron.
+  for (const auto& s : {cellforge::generic_drawing(cellforge::sample_prism(5), 3, "prism"),
+                        cellforge::generic_drawing(cellforge::sample_octahedron(), 2, "platonic")}) {
+    INFO(s.name);
+    auto pr = cellforge::detail::make_inflation_problem(s.drawing, s.model.faces);
+    auto terms = cellforge::detail::make_compliance_terms(pr, 1e-6);
+    terms.convex = cellforge::detail::make_convexity_rows(pr);
+    terms.convex_margin = 0.01;
+    const auto reg = cellforge::detail::make_regularity_terms(pr);
+    const Eigen::MatrixXd basis = cellforge::detail::planar_readings(pr, 1e-9);
+    const cellforge::detail::basis_rows rows = basis;
+    REQUIRE(basis.cols() >= 3);
+    std::size_t np = 0;
+    for (const auto& c : terms.parallel) np += c.size();
+    const auto m = static_cast<Eigen::Index>(terms.count() + pr.edges.size() + pr.p.size());
+    cellforge::detail::inflation_functor<> f{&pr, &terms, &basis, &rows, cellforge::inflation_weights{}, m};
+    std::vector<std::uint32_t> held;
+    for (std::uint32_t i = 0; i < reg.relations(); i += 2) held.push_back(i);
+    cellforge::detail::regularity_functor<> robust{&pr, &terms, &reg, &basis, &rows, nullptr, 0.1, 0.01, 0};
+    robust.m = static_cast<Eigen::Index>(reg.relations() + np + terms.convex.size()) + basis.rows();
+    cellforge::detail::regularity_functor<> plain{&pr, &terms, &reg, &basis, &rows, &held, 0.0, 0.0, 0};
+    plain.m = static_cast<Eigen::Index>(held.size() + np + terms.convex.size()) + basis.rows();
+    cellforge::detail::splitmix rng{7};
+    double worst = 0;
+    const auto check = [&](const auto& functor) {
+      for (int trial = 0; trial < 3; ++trial) {
+        Eigen::VectorXd t(basis.cols());
+        for (Eigen::Index i = 0; i < t.size(); ++i) t[i] = rng.uniform(-0.5, 0.5);
+        Eigen::MatrixXd jac(functor.values(), t.size());
+        functor.df(t, jac);
+        Eigen::VectorXd up(functor.values()), down(functor.values());
+        for (Eigen::Index j = 0; j < t.size(); ++j) {
+          const double h = 1e-6;
+          Eigen::VectorXd a = t, b = t;
+          a[j] += h, b[j] -= h;
+          functor(a, up), functor(b, down);
+          const Eigen::VectorXd diff = (up - down) / (2 * h);
+          worst = std::max(worst, (diff - jac.col(j)).cwiseAbs().maxCoeff() / std::max(1.0, diff.cwiseAbs().maxCoeff()));
+        }
+      }
+    };
+    check(f);
+    check(robust);
+    check(plain);
+    CHECK(worst < 1e-5);
+  }
 }

@@ -25,8 +25,9 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <unsupported/Eigen/NonLinearOptimization>
-#include <unsupported/Eigen/NumericalDiff>
 
+#include "cellforge/cells/cell_complex.hpp"
+#include "cellforge/cells/certify.hpp"
 #include "cellforge/core/detail/splitmix.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/text.hpp"
@@ -34,6 +35,8 @@
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
+#include "cellforge/wireframe/wire_graph.hpp"
+#include "cellforge/wireframe/wireframe_to_cells.hpp"
 
 namespace cellforge {
 
@@ -90,6 +93,20 @@ struct inflation_options {
   /// and after.planarity reports how far the reading is from planar faces. Raise
   /// direction_tolerance and closure_tolerance with it for the direct method.
   bool least_squares = false;
+  /// Choose among the planar readings by the regularities a person sees (right corners, equal
+  /// corners and sides of a face, parallel lines): the optimised reading, and a direct one with
+  /// lines off its axes, are moved to the most regular reading near them (docs/sketch.md,
+  /// "The regular reading"). Off: the compliance optimum as it is.
+  bool regularity = true;
+  /// Work budget of the regular reading: sought only when the planar freedom is at most this
+  /// (a convex polytope of random points has one depth per junction and no regularity to find).
+  std::size_t regularity_max_freedom = 24;
+  /// More starts of the regular reading, from random planar readings, while the best reading
+  /// found holds under a quarter of the relations (a local minimum: antiprisms, pyramids), when
+  /// the planar freedom is at most regularity_starts_max_freedom (a random polytope has no
+  /// regularity to find, and one search costs O(K) per relation).
+  int regularity_starts = 6;
+  std::size_t regularity_starts_max_freedom = 8;
 };
 
 /// Value of each compliance function (unweighted, each normalised by its count) at a reading.
@@ -140,6 +157,17 @@ struct inflation_result {
   /// after.planarity; near_readings of the freedom were near the planar ones, not exactly.
   bool least_squares = false;
   std::size_t near_readings = 0;
+  /// Regularities (right face corners, equal consecutive corners, equal consecutive sides) the
+  /// reading holds to 1e-7, of `relations` (0 when the reading was not judged: direct normalons).
+  std::size_t regular_relations = 0;
+  std::size_t relations = 0;
+  /// Judged readings passed over because their faces cross or an edge pierces a face (exact:
+  /// cells/certify.hpp); self_intersecting when the reading returned does too (none better).
+  std::size_t crossing_readings = 0;
+  bool self_intersecting = false;
+  /// Judged regular readings passed over because the main job (wireframe_to_cells) finds other
+  /// faces in them than the drawing's (snapping made faces coplanar, or a new planar cycle).
+  std::size_t face_changing_readings = 0;
 };
 
 namespace detail {
@@ -300,9 +328,9 @@ inflation_problem<> make_inflation_problem(
   return pr;
 }
 
-/// z_d − (α z_a + β z_b + γ z_c) for a planarity row. O(1).
-template <class Z>
-double plane_residual(const typename inflation_problem<>::plane_row& r, const Z& z) {
+/// z_d − (α z_a + β z_b + γ z_c) for a planarity (or convexity) row. O(1).
+template <class Row, class Z>
+double plane_residual(const Row& r, const Z& z) {
   return z[r.d] - (r.alpha * z[r.a] + r.beta * z[r.b] + r.gamma * z[r.c]);
 }
 
@@ -314,13 +342,21 @@ struct compliance_terms {
   std::vector<std::vector<std::uint32_t>> parallel;   // classes of 2D-parallel edges (≥ 2)
   std::vector<glm::dvec2> parallel_direction;         // per class
   // Convexity: h = scale · (z_d − α z_a − β z_b − γ z_c) ≤ 0 for a convex fold (empty: unused).
+  // One row per (line, face F): at planar faces every corner of the next face off the line
+  // gives the same h (its depth gap to F's plane is linear, 0 on the line, and scale is 1 over
+  // the distance), so one stands for all `weight` of them.
   struct convex_row {
     std::uint32_t d, a, b, c;
-    double alpha, beta, gamma, scale;
+    double alpha, beta, gamma, scale, weight;
   };
   std::vector<convex_row> convex;
   double convex_margin = 0.0;   // the hinge is max(0, h + margin)
   std::size_t planar_rows = 0;  // least-squares readings: the planarity rows as a term
+  double convex_weight() const {
+    double w = 0;
+    for (const auto& r : convex) w += r.weight;
+    return w;
+  }
   std::size_t count() const {
     std::size_t n = 0;
     for (const auto& c : parallel) n += c.size();
@@ -330,10 +366,11 @@ struct compliance_terms {
 
 /// Convexity rows, when every face is one loop and every line lies on exactly two loops (the
 /// loops are oriented coherently here, whatever their given senses): for each line and each of
-/// its two faces F, every junction d of the other face G off F, against F's plane through F's
-/// reference triangle, signed by F's facing (its signed area in the drawing) and scaled by
-/// 1 / (d's distance from the line). All h ≤ 0 is a convex fold at every line for one of the two
-/// Necker readings. O(E log E + Σ |F| |G|).
+/// its two faces F, the junction d of the other face G off F farthest from the line, against
+/// F's plane through F's reference triangle, signed by F's facing (its signed area in the
+/// drawing), scaled by 1 / (d's distance from the line) and weighted by the number of G's
+/// junctions off F (at planar faces each gives the same h). All h ≤ 0 is a convex fold at every
+/// line for one of the two Necker readings. O(E log E + Σ |F| |G|).
 template <class = void>
 std::vector<compliance_terms<>::convex_row> make_convexity_rows(const inflation_problem<>& pr) {
   std::vector<compliance_terms<>::convex_row> out;
@@ -414,14 +451,24 @@ std::vector<compliance_terms<>::convex_row> make_convexity_rows(const inflation_
     const glm::dvec2 u = pr.p[b] - pr.p[a], v = pr.p[c] - pr.p[a];
     const double det = u.x * v.y - u.y * v.x;
     const glm::dvec2 line = pr.p[h[1]] - pr.p[h[0]];
+    std::uint32_t far = 0;
+    double far_dist = 0, count = 0;
+    int sides = 0;  // bit 0: a junction left of the line, bit 1: right
     for (const auto d : loops[g]) {
       if (std::find(loops[f].begin(), loops[f].end(), d) != loops[f].end()) continue;
-      const glm::dvec2 w = pr.p[d] - pr.p[a], x = pr.p[d] - pr.p[h[0]];
-      const double dist = std::abs(line.x * x.y - line.y * x.x) / glm::length(line);
+      const glm::dvec2 x = pr.p[d] - pr.p[h[0]];
+      const double cross = line.x * x.y - line.y * x.x, dist = std::abs(cross) / glm::length(line);
       if (!(dist > 1e-12)) continue;
-      const double beta = (w.x * v.y - w.y * v.x) / det, gamma = (u.x * w.y - u.y * w.x) / det;
-      out.push_back({d, a, b, c, 1 - beta - gamma, beta, gamma, facing[f] / dist});
+      ++count;
+      sides |= cross > 0 ? 1 : 2;
+      if (dist > far_dist) far_dist = dist, far = d;
     }
+    // G on both sides of the line: its hinges have opposite signs at every planar reading.
+    if (sides == 3) return {};
+    if (count == 0) continue;
+    const glm::dvec2 w = pr.p[far] - pr.p[a];
+    const double beta = (w.x * v.y - w.y * v.x) / det, gamma = (u.x * w.y - u.y * w.x) / det;
+    out.push_back({far, a, b, c, 1 - beta - gamma, beta, gamma, facing[f] / far_dist, count});
   }
   return out;
 }
@@ -433,18 +480,18 @@ std::vector<compliance_terms<>::convex_row> make_convexity_rows(const inflation_
 template <class = void>
 struct convex_hinge_functor {
   const Eigen::MatrixXd* a;
-  double margin;
+  const Eigen::VectorXd* margin;  // per row (rows and margins weighted)
   double root_lambda;
   Eigen::Index values() const { return a->rows() + a->cols(); }
   int operator()(const Eigen::VectorXd& t, Eigen::VectorXd& f) const {
-    f.head(a->rows()) = ((*a * t).array() + margin).cwiseMax(0.0).matrix();
+    f.head(a->rows()) = (*a * t + *margin).cwiseMax(0.0);
     f.tail(a->cols()) = root_lambda * t;
     return 0;
   }
   int df(const Eigen::VectorXd& t, Eigen::MatrixXd& jac) const {
-    const Eigen::VectorXd v = *a * t;
+    const Eigen::VectorXd v = *a * t + *margin;
     for (Eigen::Index i = 0; i < a->rows(); ++i)
-      if (v[i] + margin > 0)
+      if (v[i] > 0)
         jac.row(i) = a->row(i);
       else
         jac.row(i).setZero();
@@ -462,22 +509,27 @@ template <class = void>
 Eigen::VectorXd convex_reading(const std::vector<compliance_terms<>::convex_row>& rows,
                                const Eigen::MatrixXd& basis, double margin) {
   const auto k = basis.cols();
+  // Each row weighted as the hinges it stands for: √w (a t + margin).
   Eigen::MatrixXd a(static_cast<Eigen::Index>(rows.size()), k);
+  Eigen::VectorXd root(static_cast<Eigen::Index>(rows.size()));
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto& r = rows[i];
-    a.row(static_cast<Eigen::Index>(i)) = r.scale * (basis.row(r.d) - r.alpha * basis.row(r.a) -
-                                                     r.beta * basis.row(r.b) - r.gamma * basis.row(r.c));
+    root[static_cast<Eigen::Index>(i)] = std::sqrt(r.weight);
+    a.row(static_cast<Eigen::Index>(i)) =
+        r.scale * std::sqrt(r.weight) *
+        (basis.row(r.d) - r.alpha * basis.row(r.a) - r.beta * basis.row(r.b) - r.gamma * basis.row(r.c));
   }
   Eigen::VectorXd t = Eigen::VectorXd::Zero(k);
   if (a.rows() == 0 || k == 0) return {};
-  convex_hinge_functor<> f{&a, margin, std::sqrt(1e-6)};
+  const Eigen::VectorXd margins = margin * root;
+  convex_hinge_functor<> f{&a, &margins, std::sqrt(1e-6)};
   Eigen::LevenbergMarquardt<convex_hinge_functor<>> lm(f);
   // Eigen's own loop, one step at a time, so that it stops once the reading is convex with
   // room (enough for a start); 100 iterations at most.
   auto status = lm.minimizeInit(t);
   while ((status == Eigen::LevenbergMarquardtSpace::NotStarted ||
           status == Eigen::LevenbergMarquardtSpace::Running) &&
-         lm.iter <= 100 && !((a * t).maxCoeff() <= -0.5 * margin))
+         lm.iter <= 100 && !((a * t + 0.5 * margins).maxCoeff() <= 0))
     status = lm.minimizeOneStep(t);
   const Eigen::VectorXd v = a * t;
   if (!t.allFinite() || !(v.maxCoeff() < 0)) return {};
@@ -549,6 +601,89 @@ double corner_cos(glm::dvec3 a, glm::dvec3 q, glm::dvec3 b) {
   return l > 0 ? std::clamp(glm::dot(u, v) / l, -1.0, 1.0) : 1.0;
 }
 
+/// corner_cos, and in g its derivatives with respect to the depths of a, q and b (0 where the
+/// cosine is clamped or a segment has no length). O(1).
+template <class = void>
+double corner_cos_dz(glm::dvec3 a, glm::dvec3 q, glm::dvec3 b, std::array<double, 3>& g) {
+  const glm::dvec3 u = a - q, v = b - q;
+  const double lu = glm::length(u), lv = glm::length(v);
+  g = {0.0, 0.0, 0.0};
+  if (!(lu * lv > 0)) return 1.0;
+  const double c = glm::dot(u, v) / (lu * lv);
+  if (!(std::abs(c) < 1)) return std::clamp(c, -1.0, 1.0);
+  const double du = v.z / (lu * lv) - c * u.z / (lu * lu), dv = u.z / (lu * lv) - c * v.z / (lv * lv);
+  g = {du, -(du + dv), dv};
+  return c;
+}
+
+/// d acos(c) / dc, 0 where acos is not differentiable (c = ±1: a degenerate corner). O(1).
+template <class = void>
+double acos_slope(double c) {
+  const double s = 1 - c * c;
+  return s > 0 ? -1 / std::sqrt(s) : 0.0;
+}
+
+/// The planar readings' basis N copied row-major: a residual's Jacobian row over t is
+/// Σ_v ∂r/∂z_v · N_v, a few rows of N each (z = N t).
+using basis_rows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// The depth slope of each line of a 2D-parallel class against its class mean, times `scale`,
+/// into out from row k on (k advanced); with jac, their Jacobian rows over t (N row-major in n).
+/// Returns the sum of the unscaled squares. O(E), O(E K) with the Jacobian.
+template <class Z>
+double parallel_slopes(const inflation_problem<>& pr, const compliance_terms<>& t, const Z& z, double scale,
+                       Eigen::VectorXd& out, Eigen::Index& k, Eigen::MatrixXd* jac = nullptr,
+                       const basis_rows* n = nullptr) {
+  double sum = 0;
+  for (std::size_t c = 0; c < t.parallel.size(); ++c) {
+    const Eigen::Index start = k;
+    double mean = 0;
+    for (const auto e : t.parallel[c]) {
+      const auto& ed = pr.edges[e];
+      const glm::dvec2 d = pr.p[ed[1]] - pr.p[ed[0]];
+      const double s = (glm::dot(d, t.parallel_direction[c]) >= 0 ? 1.0 : -1.0) / glm::length(d);
+      out[k] = s * (z[ed[1]] - z[ed[0]]);
+      mean += out[k];
+      if (jac) jac->row(k) = scale * s * (n->row(ed[1]) - n->row(ed[0]));
+      ++k;
+    }
+    mean /= static_cast<double>(k - start);
+    for (Eigen::Index i = start; i < k; ++i) {
+      sum += (out[i] - mean) * (out[i] - mean);
+      out[i] = scale * (out[i] - mean);
+    }
+    if (jac) {
+      const Eigen::RowVectorXd m = jac->middleRows(start, k - start).colwise().mean();
+      for (Eigen::Index i = start; i < k; ++i) jac->row(i) -= m;
+    }
+  }
+  return sum;
+}
+
+/// Row i of jac += c · (N_d − α N_a − β N_b − γ N_c): a planarity or convexity row. O(K).
+template <class Row>
+void add_plane_row(Eigen::MatrixXd& jac, Eigen::Index i, const basis_rows& n, const Row& r, double c) {
+  jac.row(i) += c * (n.row(r.d) - r.alpha * n.row(r.a) - r.beta * n.row(r.b) - r.gamma * n.row(r.c));
+}
+
+/// The convexity hinge √w max(0, h + margin) of each row, times `scale`, into out from row k
+/// on (k advanced); with jac, the Jacobian rows over t. Returns Σ w max(0, h + margin)². O(R),
+/// O(R K) with the Jacobian.
+template <class Z>
+double convexity_hinges(const compliance_terms<>& t, const Z& z, double margin, double scale,
+                        Eigen::VectorXd& out, Eigen::Index& k, Eigen::MatrixXd* jac = nullptr,
+                        const basis_rows* n = nullptr) {
+  double total = 0;
+  for (const auto& r : t.convex) {
+    const double h = r.scale * plane_residual(r, z) + margin, root = std::sqrt(r.weight);
+    out[k] = scale * root * std::max(0.0, h);
+    total += r.weight * std::max(0.0, h) * std::max(0.0, h);
+    if (jac && h > 0) add_plane_row(*jac, k, *n, r, scale * root * r.scale);
+    ++k;
+  }
+  return total;
+}
+
 /// The compliance residual vector at depths z (normalised coordinates), with weights applied
 /// (w = 1 for the unweighted values). Its squared norm is Σ αⱼ Rⱼ(z). Fills per-term sums when
 /// asked. O(L + E).
@@ -585,20 +720,7 @@ void compliance_residuals(const inflation_problem<>& pr, const compliance_terms<
   std::size_t np = 0;
   for (const auto& cls : t.parallel) np += cls.size();
   const double par_scale = std::sqrt(w.parallelism / static_cast<double>(std::max<std::size_t>(1, np)));
-  sum = 0;
-  for (std::size_t c = 0; c < t.parallel.size(); ++c) {
-    std::vector<double> slope;
-    double m = 0;
-    for (const auto e : t.parallel[c]) {
-      const auto& ed = pr.edges[e];
-      const glm::dvec2 d = pr.p[ed[1]] - pr.p[ed[0]];
-      const double sign = glm::dot(d, t.parallel_direction[c]) >= 0 ? 1.0 : -1.0;
-      slope.push_back(sign * (z[ed[1]] - z[ed[0]]) / glm::length(d));
-      m += slope.back();
-    }
-    m /= static_cast<double>(slope.size());
-    for (const double s : slope) out[k++] = par_scale * (s - m), sum += (s - m) * (s - m);
-  }
+  sum = parallel_slopes(pr, t, z, par_scale, out, k);
   if (terms) terms->parallelism = sum / static_cast<double>(std::max<std::size_t>(1, np));
   // Isometry: log of each line's 3D/2D length ratio against their mean.
   std::vector<double> ratio;
@@ -616,15 +738,9 @@ void compliance_residuals(const inflation_problem<>& pr, const compliance_terms<
   if (terms) terms->isometry = sum / static_cast<double>(ratio.size());
   // Convexity: hinge on each row.
   if (!t.convex.empty()) {
-    const double convex_scale = std::sqrt(w.convexity / static_cast<double>(t.convex.size()));
-    sum = 0;
-    for (const auto& r : t.convex) {
-      const double h =
-          std::max(0.0, r.scale * (z[r.d] - (r.alpha * z[r.a] + r.beta * z[r.b] + r.gamma * z[r.c])) +
-                            t.convex_margin);
-      out[k++] = convex_scale * h, sum += h * h;
-    }
-    if (terms) terms->convexity = sum / static_cast<double>(t.convex.size());
+    const double convex_scale = std::sqrt(w.convexity / t.convex_weight());
+    sum = convexity_hinges(t, z, t.convex_margin, convex_scale, out, k);
+    if (terms) terms->convexity = sum / t.convex_weight();
   }
   // Planarity, when it is not exact by construction (least-squares readings).
   if (t.planar_rows > 0) {
@@ -639,17 +755,81 @@ void compliance_residuals(const inflation_problem<>& pr, const compliance_terms<
   }
 }
 
-/// The residual functor of Eigen's Levenberg–Marquardt over t, with z = N t.
+/// Rows from..k of jac minus their mean row (a term measured against its own mean). O((k − from) K).
+template <class = void>
+void centre_rows(Eigen::MatrixXd& jac, Eigen::Index from, Eigen::Index k) {
+  if (k <= from) return;
+  const Eigen::RowVectorXd m = jac.middleRows(from, k - from).colwise().mean();
+  for (Eigen::Index i = from; i < k; ++i) jac.row(i) -= m;
+}
+
+/// The exact Jacobian over t of compliance_residuals (z = N t, n = N row-major), term by term
+/// in the same order. O((L + E) K).
+template <class Z>
+void compliance_jacobian(const inflation_problem<>& pr, const compliance_terms<>& t,
+                         const inflation_weights& w, const Z& z, const basis_rows& n, Eigen::MatrixXd& jac) {
+  const auto at = [&](std::uint32_t v) { return glm::dvec3(pr.p[v], z[v]); };
+  const auto share = [](double weight, std::size_t count) {
+    return std::sqrt(weight / static_cast<double>(std::max<std::size_t>(1, count)));
+  };
+  jac.setZero();
+  Eigen::Index k = 0;
+  std::array<double, 3> g{};
+  // MSDA: d acos(cos θ) per corner, against the mean.
+  const double msda_scale = share(w.msda, t.corners.size());
+  for (const auto& q : t.corners) {
+    const double s = msda_scale * acos_slope(corner_cos_dz(at(q[0]), at(q[1]), at(q[2]), g));
+    for (std::size_t j = 0; j < 3; ++j) jac.row(k) += s * g[j] * n.row(q[j]);
+    ++k;
+  }
+  centre_rows(jac, 0, k);
+  const double ortho_scale = share(w.orthogonality, t.right.size());
+  for (const auto& q : t.right) {
+    corner_cos_dz(at(q[0]), at(q[1]), at(q[2]), g);
+    for (std::size_t j = 0; j < 3; ++j) jac.row(k) += ortho_scale * g[j] * n.row(q[j]);
+    ++k;
+  }
+  std::size_t np = 0;
+  for (const auto& cls : t.parallel) np += cls.size();
+  Eigen::VectorXd scratch(jac.rows());
+  parallel_slopes(pr, t, z, share(w.parallelism, np), scratch, k, &jac, &n);
+  // Isometry: d/dΔz of ½ log(1 + Δz²/d²) is Δz / (d² + Δz²), against the mean.
+  const Eigen::Index iso = k;
+  const double iso_scale = share(w.isometry, pr.edges.size());
+  for (const auto& ed : pr.edges) {
+    const glm::dvec2 d = pr.p[ed[1]] - pr.p[ed[0]];
+    const double dz = z[ed[1]] - z[ed[0]];
+    jac.row(k++) = iso_scale * dz / (glm::dot(d, d) + dz * dz) * (n.row(ed[1]) - n.row(ed[0]));
+  }
+  centre_rows(jac, iso, k);
+  if (!t.convex.empty())
+    convexity_hinges(t, z, t.convex_margin, std::sqrt(w.convexity / t.convex_weight()), scratch, k, &jac, &n);
+  if (t.planar_rows > 0) {
+    const double planar_scale = share(w.planarity, t.planar_rows);
+    for (const auto& r : pr.rows) add_plane_row(jac, k++, n, r, planar_scale);
+  }
+}
+
+/// Eigen's Levenberg–Marquardt on a functor with an exact Jacobian (df), from t: at most
+/// `budget` evaluations (about one per iteration); adds its iterations. O(budget · (m K² + f)).
+template <class F>
+void solve_lm(F& f, Eigen::VectorXd& t, int budget, double xtol, double ftol, std::size_t& iterations) {
+  Eigen::LevenbergMarquardt<F> lm(f);
+  lm.parameters.maxfev = std::max(1, budget);
+  lm.parameters.xtol = xtol;
+  lm.parameters.ftol = ftol;
+  lm.minimize(t);
+  iterations += static_cast<std::size_t>(lm.iter);
+}
+
+/// The residual functor of Eigen's Levenberg–Marquardt over t, with z = N t, and its exact
+/// Jacobian. O((L + E) K) per call.
 template <class = void>
 struct inflation_functor {
-  using Scalar = double;
-  using InputType = Eigen::VectorXd;
-  using ValueType = Eigen::VectorXd;
-  using JacobianType = Eigen::MatrixXd;
-  enum { InputsAtCompileTime = Eigen::Dynamic, ValuesAtCompileTime = Eigen::Dynamic };
   const inflation_problem<>* pr;
   const compliance_terms<>* terms;
   const Eigen::MatrixXd* basis;
+  const basis_rows* rows;
   inflation_weights weights;
   Eigen::Index m;
   Eigen::Index inputs() const { return basis->cols(); }
@@ -659,7 +839,295 @@ struct inflation_functor {
     compliance_residuals(*pr, *terms, weights, z, f);
     return 0;
   }
+  int df(const Eigen::VectorXd& t, Eigen::MatrixXd& jac) const {
+    const Eigen::VectorXd z = *basis * t;
+    compliance_jacobian(*pr, *terms, weights, z, *rows, jac);
+    return 0;
+  }
 };
+
+/// The regularities a person sees in a solid (Lipson and Shpitalni), as relations on the face
+/// loops that are exact at a regular solid's true reading: a right face corner (cos θ = 0),
+/// two consecutive corners of a face equal (θ_k = θ_{k+1}), two consecutive sides of a face
+/// equal in length. Parallelism (lines parallel in the drawing are parallel in 3D) and the
+/// convexity hinge are kept as plain terms. Built from the loops alone. O(L).
+template <class = void>
+struct regularity_terms {
+  std::vector<std::array<std::uint32_t, 3>> corners;      // (prev, j, next) of every face loop
+  std::vector<std::array<std::uint32_t, 2>> angle_pairs;  // consecutive corners of one loop
+  std::vector<std::array<std::uint32_t, 4>> side_pairs;   // (a, b) and (c, d): consecutive sides
+  std::size_t relations() const { return corners.size() + angle_pairs.size() + side_pairs.size(); }
+};
+
+template <class = void>
+regularity_terms<> make_regularity_terms(const inflation_problem<>& pr) {
+  regularity_terms<> t;
+  for (const auto& loop : pr.loops) {
+    const auto n = static_cast<std::uint32_t>(loop.size());
+    const auto first = static_cast<std::uint32_t>(t.corners.size());
+    for (std::uint32_t k = 0; k < n; ++k) {
+      t.corners.push_back({loop[(k + n - 1) % n], loop[k], loop[(k + 1) % n]});
+      t.angle_pairs.push_back({first + k, first + (k + 1) % n});
+      t.side_pairs.push_back({loop[k], loop[(k + 1) % n], loop[(k + 1) % n], loop[(k + 2) % n]});
+    }
+  }
+  return t;
+}
+
+/// The relation residuals at depths z (normalised coordinates), in the order corners (cos θ),
+/// angle pairs (θ_k − θ_{k+1}, radians), side pairs ((L₁ − L₂) / (L₁ + L₂)); with jr (relations
+/// × K), their exact Jacobian rows over t (N row-major in n). O(L), O(L K) with the Jacobian.
+template <class Z>
+void regularity_residuals(const inflation_problem<>& pr, const regularity_terms<>& t, const Z& z,
+                          Eigen::VectorXd& r, Eigen::MatrixXd* jr = nullptr, const basis_rows* n = nullptr) {
+  const auto at = [&](std::uint32_t v) { return glm::dvec3(pr.p[v], z[v]); };
+  if (jr) jr->setZero();
+  Eigen::Index k = 0;
+  std::array<double, 3> g{};
+  for (const auto& q : t.corners) {
+    if (!jr) {
+      r[k++] = corner_cos(at(q[0]), at(q[1]), at(q[2]));
+      continue;
+    }
+    r[k] = corner_cos_dz(at(q[0]), at(q[1]), at(q[2]), g);
+    for (std::size_t j = 0; j < 3; ++j) jr->row(k) += g[j] * n->row(q[j]);
+    ++k;
+  }
+  for (const auto& p : t.angle_pairs) {
+    r[k] = std::acos(r[p[0]]) - std::acos(r[p[1]]);
+    if (jr) jr->row(k) = acos_slope(r[p[0]]) * jr->row(p[0]) - acos_slope(r[p[1]]) * jr->row(p[1]);
+    ++k;
+  }
+  for (const auto& s : t.side_pairs) {
+    const glm::dvec3 u = at(s[1]) - at(s[0]), v = at(s[3]) - at(s[2]);
+    const double a = glm::length(u), b = glm::length(v);
+    r[k] = (a - b) / (a + b);
+    // d/da = 2b / (a + b)², d/db = −2a / (a + b)²; da/dz = Δz / a along each side.
+    if (jr) {
+      const double q = 2 / ((a + b) * (a + b));
+      jr->row(k) =
+          q * b * u.z / a * (n->row(s[1]) - n->row(s[0])) - q * a * v.z / b * (n->row(s[3]) - n->row(s[2]));
+    }
+    ++k;
+  }
+}
+
+/// Residuals of the regularity reading over t (z = N t): every relation under a saturating
+/// loss r / √(1 + (r/σ)²) (a relation that does not hold costs about σ², whatever how far off),
+/// or only the relations in `held`, plainly; then the parallel classes' depth slopes, the
+/// convexity hinge and a bound on |z| (4 drawing diagonals), plainly; and the exact Jacobian.
+/// O(L + E) per call, O((L + E) K) per Jacobian.
+template <class = void>
+struct regularity_functor {
+  const inflation_problem<>* pr;
+  const compliance_terms<>* terms;
+  const regularity_terms<>* reg;
+  const Eigen::MatrixXd* basis;
+  const basis_rows* rows;
+  const std::vector<std::uint32_t>* held;  // null: every relation, robustly
+  double sigma = 0.1;
+  double convex_margin = 0.0;
+  Eigen::Index m = 0;
+  Eigen::Index inputs() const { return basis->cols(); }
+  Eigen::Index values() const { return m; }
+  int operator()(const Eigen::VectorXd& t, Eigen::VectorXd& f) const { return evaluate(t, f, nullptr); }
+  int df(const Eigen::VectorXd& t, Eigen::MatrixXd& jac) const {
+    Eigen::VectorXd f(m);
+    return evaluate(t, f, &jac);
+  }
+  int evaluate(const Eigen::VectorXd& t, Eigen::VectorXd& f, Eigen::MatrixXd* jac) const {
+    const Eigen::VectorXd z = *basis * t;
+    Eigen::VectorXd r(static_cast<Eigen::Index>(reg->relations()));
+    Eigen::MatrixXd jr;
+    if (jac) jr.resize(r.size(), basis->cols()), jac->setZero();
+    regularity_residuals(*pr, *reg, z, r, jac ? &jr : nullptr, rows);
+    Eigen::Index k = 0;
+    if (held) {
+      for (const auto i : *held) {
+        if (jac) jac->row(k) = jr.row(i);
+        f[k++] = r[i];
+      }
+    } else {
+      for (Eigen::Index i = 0; i < r.size(); ++i) {
+        const double q = 1 + (r[i] / sigma) * (r[i] / sigma);
+        if (jac) jac->row(k) = jr.row(i) / (q * std::sqrt(q));
+        f[k++] = r[i] / std::sqrt(q);
+      }
+    }
+    parallel_slopes(*pr, *terms, z, 1.0, f, k, jac, rows);
+    convexity_hinges(*terms, z, convex_margin, 1.0, f, k, jac, rows);
+    for (Eigen::Index v = 0; v < z.size(); ++v) {
+      f[k] = std::max(0.0, std::abs(z[v]) - 4.0);
+      if (jac && f[k] > 0) jac->row(k) = (z[v] > 0 ? 1.0 : -1.0) * rows->row(v);
+      ++k;
+    }
+    while (k < f.size()) f[k++] = 0;
+    return 0;
+  }
+};
+
+/// Relations of `reg` within `tolerance` at depths z. O(L).
+template <class Z>
+std::size_t held_relations(const inflation_problem<>& pr, const regularity_terms<>& reg, const Z& z,
+                           double tolerance) {
+  Eigen::VectorXd r(static_cast<Eigen::Index>(reg.relations()));
+  regularity_residuals(pr, reg, z, r);
+  return static_cast<std::size_t>((r.array().abs() < tolerance).count());
+}
+
+template <class = void>
+Eigen::VectorXd snap_regular(const inflation_problem<>& pr, const compliance_terms<>& terms,
+                             const regularity_terms<>& reg, const Eigen::MatrixXd& basis,
+                             const basis_rows& rows, Eigen::VectorXd t, int max_iterations,
+                             std::size_t& iterations, double exact);
+
+/// A regular reading near t0: Levenberg–Marquardt on every relation under the saturating loss,
+/// σ lowered 0.1 → 0.03 → 0.01 (a relation that does not hold stops pulling), then the relations
+/// within `snap` of holding solved exactly (plain residuals); relations the exact solve cannot
+/// meet to 1e-9 are dropped and the solve repeated (3 rounds at most). Returns t; `held` the
+/// relations within 1e-7 there. O(iterations · (L + E) K + iterations · m K²).
+template <class = void>
+Eigen::VectorXd regular_reading(const inflation_problem<>& pr, const compliance_terms<>& terms,
+                                const regularity_terms<>& reg, const Eigen::MatrixXd& basis,
+                                const Eigen::VectorXd& t0, int max_iterations, std::size_t& iterations,
+                                double exact, bool robust = true) {
+  std::size_t np = 0;
+  for (const auto& c : terms.parallel) np += c.size();
+  const auto k = basis.cols();
+  const basis_rows rows = basis;
+  Eigen::VectorXd t = t0;
+  if (!robust) return snap_regular(pr, terms, reg, basis, rows, t, max_iterations, iterations, exact);
+  regularity_functor<> f{&pr, &terms, &reg, &basis, &rows, nullptr, 0.1, terms.convex_margin, 0};
+  f.m = std::max<Eigen::Index>(
+      k, static_cast<Eigen::Index>(reg.relations() + np + terms.convex.size()) + basis.rows());
+  for (const double sigma : {0.1, 0.03, 0.01}) {
+    f.sigma = sigma;
+    solve_lm(f, t, std::min(max_iterations, 50), 1e-14, 1e-16, iterations);
+  }
+  const Eigen::VectorXd a = snap_regular(pr, terms, reg, basis, rows, t0, max_iterations, iterations, exact);
+  const Eigen::VectorXd b = snap_regular(pr, terms, reg, basis, rows, t, max_iterations, iterations, exact);
+  return held_relations(pr, reg, Eigen::VectorXd(basis * b), 100 * exact) >
+                 held_relations(pr, reg, Eigen::VectorXd(basis * a), 100 * exact)
+             ? b
+             : a;
+}
+
+/// The relations within 1e-3 of holding at t solved exactly (plain residuals, with the parallel
+/// classes and the convexity hinge); relations the solve cannot meet to 1e-9 are dropped and the
+/// solve repeated (3 rounds at most); t itself when no round meets its relations.
+/// O(rounds · iterations · ((L + E) K + m K²)).
+template <class>
+Eigen::VectorXd snap_regular(const inflation_problem<>& pr, const compliance_terms<>& terms,
+                             const regularity_terms<>& reg, const Eigen::MatrixXd& basis,
+                             const basis_rows& rows, Eigen::VectorXd t, int max_iterations,
+                             std::size_t& iterations, double exact) {
+  std::size_t np = 0;
+  for (const auto& c : terms.parallel) np += c.size();
+  const auto k = basis.cols();
+  Eigen::VectorXd r(static_cast<Eigen::Index>(reg.relations()));
+  const Eigen::VectorXd z0 = basis * t;
+  regularity_residuals(pr, reg, z0, r);
+  const Eigen::VectorXd r0 = r;
+  Eigen::VectorXd best = t;
+  std::size_t best_held = held_relations(pr, reg, z0, 100 * exact);
+  // Snapped from the relations within 1e-3, 1e-2 and 3e-2 of holding: the most held wins.
+  std::size_t tried = 0;
+  for (const double near : {1e-3, 1e-2, 3e-2}) {
+    std::vector<std::uint32_t> held;
+    for (Eigen::Index i = 0; i < r0.size(); ++i)
+      if (std::abs(r0[i]) < near) held.push_back(static_cast<std::uint32_t>(i));
+    if (held.size() == tried) continue;  // the same relations as the last threshold
+    tried = held.size();
+    for (int round = 0; round < 3 && !held.empty(); ++round) {
+      regularity_functor<> g{&pr, &terms, &reg, &basis, &rows, &held, 0.0, 0.0, 0};
+      g.m = std::max<Eigen::Index>(
+          k, static_cast<Eigen::Index>(held.size() + np + terms.convex.size()) + basis.rows());
+      Eigen::VectorXd u = t;
+      // Consistent relations converge in a few Gauss–Newton steps; 50 iterations at most.
+      solve_lm(g, u, std::min(max_iterations, 50), 1e-14, 1e-16, iterations);
+      const Eigen::VectorXd z = basis * u;
+      regularity_residuals(pr, reg, z, r);
+      std::vector<std::uint32_t> kept;
+      for (const auto i : held)
+        if (std::abs(r[i]) < exact) kept.push_back(i);
+      if (kept.size() == held.size()) {
+        const std::size_t h = held_relations(pr, reg, z, 100 * exact);
+        if (u.allFinite() && z.cwiseAbs().maxCoeff() <= 8 && h > best_held) best_held = h, best = u;
+        break;
+      }
+      held = std::move(kept);
+    }
+  }
+  return best;
+}
+
+/// Whether the faces at depths z cross each other or an edge pierces a face, by the main job's
+/// exact certificate (cells/certify.hpp, crossings only) on the faces as given (holes turned
+/// against their outer loop). 1 crossing, 0 not, −1 not decided (the faces build no complex, or
+/// the budget ran out). O(n log n + pairs of faces with overlapping boxes · their sizes).
+template <class Z>
+int reading_crosses(const inflation_problem<>& pr, const Z& z) {
+  cell_complex_input<glm::dvec3> in;
+  for (std::size_t v = 0; v < pr.p.size(); ++v) in.points.push_back(glm::dvec3(pr.p[v], z[v]));
+  in.edges = pr.edges;
+  const auto area = [&](const std::vector<std::uint32_t>& loop) {
+    double a = 0;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const glm::dvec2 p = pr.p[loop[k]], q = pr.p[loop[(k + 1) % loop.size()]];
+      a += p.x * q.y - p.y * q.x;
+    }
+    return a;
+  };
+  for (std::size_t l = 0; l < pr.loops.size(); ++l) {
+    if (l == 0 || pr.loop_face[l] != pr.loop_face[l - 1]) {
+      in.faces.push_back({{pr.loops[l]}});
+      continue;
+    }
+    auto hole = pr.loops[l];
+    if ((area(hole) > 0) == (area(in.faces.back().loops[0]) > 0)) std::reverse(hole.begin(), hole.end());
+    in.faces.back().loops.push_back(std::move(hole));
+  }
+  try {
+    const cell_complex<glm::dvec3> c = make_cell_complex(std::move(in));
+    certify_options o;
+    o.check_input_edges = o.check_edges = o.check_volumes = false;
+    const certificate_result r = cellforge::certify(c, o);
+    if (r.find(certificate_failure::kind::faces_cross) ||
+        r.find(certificate_failure::kind::edge_pierces_face))
+      return 1;
+    return r.complete ? 0 : -1;
+  } catch (const error&) {
+    return -1;
+  }
+}
+
+/// Whether the main job's face stages (wireframe_to_cells, no complex built) find exactly the
+/// drawing's face loops at depths z: a reading that makes two faces coplanar, loses a face or
+/// gains a planar cycle that becomes a face does not. O(the pipeline's face stages).
+template <class Z>
+bool reading_keeps_faces(const inflation_problem<>& pr, const Z& z) {
+  wireframe<glm::dvec3> w;
+  for (std::size_t v = 0; v < pr.p.size(); ++v) w.points.push_back(glm::dvec3(pr.p[v], z[v]));
+  w.edges = pr.edges;
+  wireframe_options o;
+  o.build_complex = false;
+  try {
+    const wireframe_result<glm::dvec3> r = wireframe_to_cells(w, o);
+    std::vector<std::vector<std::uint32_t>> got, want;
+    for (const auto& f : r.input.faces)
+      for (const auto& loop : f.loops) {
+        std::vector<std::uint32_t> l;
+        for (const auto v : loop) l.push_back(r.input_vertex[v]);
+        got.push_back(cellforge::detail::canonical_cycle(l));
+      }
+    for (const auto& loop : pr.loops) want.push_back(cellforge::detail::canonical_cycle(loop));
+    std::sort(got.begin(), got.end());
+    std::sort(want.begin(), want.end());
+    return got == want;
+  } catch (const error&) {
+    return false;
+  }
+}
 
 /// Result of the direct method in normalised coordinates.
 template <class = void>
@@ -673,6 +1141,7 @@ struct direct_solution {
   std::size_t reached = 0;   // junctions whose depth the hypothesis fixes
   std::size_t coverage = 0;  // lines along the three axes
   std::size_t corners = 0;   // junctions where lines along all three axes meet
+  std::vector<std::vector<double>> tied;  // the readings of hypotheses tied at the top
   std::string why;
 };
 
@@ -881,10 +1350,13 @@ direct_solution<> direct_inflation(const inflation_problem<>& pr, const inflatio
   std::pair<std::size_t, std::size_t> top{0, 0};
   std::size_t ties = 0;
   for (const auto& c : consistent) top = std::max(top, std::pair{c.coverage, c.corners});
+  std::vector<std::vector<double>> tied;
   for (auto& c : consistent)
     if (std::pair{c.coverage, c.corners} == top) {
+      if (c.ok) tied.push_back(c.z);
       if (ties++ == 0) best = c;
     }
+  if (ties > 1) best.tied = std::move(tied);
   if (ties > 1) {
     best.ok = false;
     best.why = std::to_string(ties) + " choices of three line directions read alike as the axes (" +
@@ -1089,7 +1561,12 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
           cellforge::detail::cat("inflate: direct method not applicable: ", direct.why));
     }
   }
-  if (z.empty()) {
+  // A direct reading with lines off the three axes assumes those axes; it stands only if no
+  // reading of the planar family is more regular (a regular prism's caps are not two axes).
+  const bool oblique = direct.ok && direct.coverage < pr.edges.size() && !options.least_squares &&
+                       options.allow_optimisation && options.regularity &&
+                       options.regularity_max_freedom >= 3;
+  if (z.empty() || oblique) {
     if (!options.allow_optimisation)
       throw error(error_category::invalid_input,
                   cellforge::detail::cat("inflate: the direct method does not apply (", direct.why,
@@ -1113,7 +1590,6 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
               std::to_string(basis.cols() + 1),
               " = the tilts and the offset): the drawing is not the view of a solid with these faces, "
               "or it is too inexact; tidy it or raise rank_tolerance"));
-    res.method = inflation_method::optimisation;
     std::vector<Eigen::VectorXd> starts;
     // Convexity prior: when the faces admit a strictly convex reading, it is a start and the
     // hinge term joins the objective (every start is then ranked with it).
@@ -1132,40 +1608,36 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
           scratch.resize(m);
           res.diagnostics.push_back(
               cellforge::detail::cat("inflate: the faces admit a convex reading: convexity term on (",
-                                     std::to_string(terms.convex.size()), " hinges) and a convex start"));
+                                     std::to_string(terms.convex.size()), " folds) and a convex start"));
         }
       }
     }
-    detail::inflation_functor<> f{&pr, &terms, &basis, options.weights, m};
+    const detail::basis_rows rows = basis;
+    detail::inflation_functor<> f{&pr, &terms, &basis, &rows, options.weights, m};
     detail::splitmix rng{options.seed};
-    if (direct.reached > 0 && !direct.z.empty()) {
+    if (!direct.ok && direct.reached > 0 && !direct.z.empty()) {
       Eigen::VectorXd zd(static_cast<Eigen::Index>(nv));
       for (std::size_t i = 0; i < nv; ++i) zd[static_cast<Eigen::Index>(i)] = direct.z[i];
       starts.push_back(basis.transpose() * zd);
     }
     const int wanted = terms.convex.empty() ? std::max(1, options.starts)
                                             : std::max(1, std::min(options.starts, options.convex_starts));
-    while (static_cast<int>(starts.size()) < wanted) {
+    // A random planar reading, its depth range half the drawing's (unit) diagonal.
+    const auto random_start = [&] {
       Eigen::VectorXd t(basis.cols());
       for (Eigen::Index i = 0; i < t.size(); ++i) t[i] = rng.uniform(-1, 1);
-      // Depth range comparable to the drawing's (unit diagonal).
       const Eigen::VectorXd zt = basis * t;
       const double range = zt.maxCoeff() - zt.minCoeff();
-      starts.push_back(range > 0 ? Eigen::VectorXd(t * (0.5 / range)) : t);
-    }
+      return range > 0 ? Eigen::VectorXd(t * (0.5 / range)) : t;
+    };
+    while (static_cast<int>(starts.size()) < wanted) starts.push_back(random_start());
     double best = std::numeric_limits<double>::infinity();
     std::size_t best_flat = std::numeric_limits<std::size_t>::max();
     Eigen::VectorXd best_t;
     Eigen::VectorXd fv(m);
     for (const auto& s : starts) {
       Eigen::VectorXd t = s;
-      Eigen::NumericalDiff<detail::inflation_functor<>> nd(f);
-      Eigen::LevenbergMarquardt<Eigen::NumericalDiff<detail::inflation_functor<>>> lm(nd);
-      lm.parameters.maxfev = options.max_iterations * static_cast<int>(basis.cols() + 1);
-      lm.parameters.xtol = 1e-12;
-      lm.parameters.ftol = 1e-14;
-      lm.minimize(t);
-      res.iterations += static_cast<std::size_t>(lm.iter);
+      detail::solve_lm(f, t, options.max_iterations, 1e-12, 1e-14, res.iterations);
       ++res.starts;
       f(t, fv);
       const double value = fv.squaredNorm();
@@ -1175,22 +1647,181 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
       // has lost a face), then the lowest objective.
       if (std::isfinite(value) && (flat < best_flat || (flat == best_flat && value < best)))
         best = value, best_t = t, best_flat = flat;
-      if (res.starts == 1) {
+      if (res.starts == 1 && !direct.ok) {
         const Eigen::VectorXd z0 = basis * s;
         res.before = measure(std::vector<double>(z0.data(), z0.data() + z0.size()));
       }
     }
     if (best_t.size() == 0)
       throw error(error_category::internal, "inflate: the optimisation produced no finite reading");
-    const Eigen::VectorXd zb = basis * best_t;
-    z.assign(zb.data(), zb.data() + zb.size());
-    if (best_flat > 0)
-      res.diagnostics.push_back(
-          cellforge::detail::cat("inflate: in the best reading found, ", std::to_string(best_flat),
-                                 " line(s) join two coplanar faces (those faces would merge)"));
     res.diagnostics.push_back(cellforge::detail::cat(
         "inflate: optimisation objective ", std::to_string(best), " after ", std::to_string(res.iterations),
         " iterations over ", std::to_string(res.starts), " starts"));
+    // The regular reading: the planar reading a person sees holds more exact regularities
+    // (right corners, equal corners, equal sides) than its affine relatives z → kz + ax + by.
+    struct candidate {
+      Eigen::VectorXd t;
+      std::size_t flat, held;
+      bool from_direct;
+      const char* what;
+      bool regular;  // moved to a regular reading (else the direct reading or the compliance optimum)
+    };
+    std::vector<candidate> cands;
+    const detail::regularity_terms<> reg = detail::make_regularity_terms(pr);
+    // A relation holds to `exact` (1e-9, or the drawing's own precision); it is counted held
+    // to a hundred times that.
+    const double exact = std::max(1e-9, options.closure_tolerance);
+    const bool regular =
+        options.regularity && !res.least_squares && res.freedom <= options.regularity_max_freedom;
+    if (options.regularity && !res.least_squares && !regular)
+      res.diagnostics.push_back(cellforge::detail::cat(
+          "inflate: regularities not sought: planar freedom ", std::to_string(res.freedom),
+          " above regularity_max_freedom (", std::to_string(options.regularity_max_freedom), ")"));
+    const auto judge = [&](Eigen::VectorXd t, bool from_direct, const char* what, bool moved = true) {
+      const Eigen::VectorXd zt = basis * t;
+      if (!zt.allFinite()) return;
+      std::size_t flat = detail::coplanar_neighbours(pr, zt);
+      // A reading deeper than 8 drawing diagonals is a limit, not a solid: there every corner
+      // between a line along the depth and one across it tends to a right angle.
+      if (zt.cwiseAbs().maxCoeff() > 8) flat += nv;
+      if (!terms.convex.empty()) {  // folds not convex, in whichever Necker reading has fewer
+        double up = 0, down = 0;    // hinges, each row standing for `weight` of them
+        for (const auto& c : terms.convex) {
+          const double h = c.scale * detail::plane_residual(c, zt);
+          up += h > -1e-9 ? c.weight : 0.0, down += h < 1e-9 ? c.weight : 0.0;
+        }
+        flat += static_cast<std::size_t>(std::min(up, down));
+      }
+      cands.push_back(
+          {std::move(t), flat, detail::held_relations(pr, reg, zt, 100 * exact), from_direct, what, moved});
+    };
+    if (direct.ok) {
+      Eigen::VectorXd zd(static_cast<Eigen::Index>(nv));
+      for (std::size_t i = 0; i < nv; ++i) zd[static_cast<Eigen::Index>(i)] = direct.z[i];
+      const Eigen::VectorXd td = basis.transpose() * zd;
+      judge(td, true, "the direct reading", false);
+      if (regular)
+        judge(detail::regular_reading(pr, terms, reg, basis, td, options.max_iterations, res.iterations,
+                                      exact, false),
+              false, "the direct reading, its regularities made exact");
+      if (regular)
+        judge(
+            detail::regular_reading(pr, terms, reg, basis, td, options.max_iterations, res.iterations, exact),
+            false, "the regular reading near the direct one");
+    }
+    // Right-angled readings of axis hypotheses the drawing does not choose between.
+    for (const auto& zt : regular ? direct.tied : std::vector<std::vector<double>>{}) {
+      Eigen::VectorXd zd(static_cast<Eigen::Index>(nv));
+      for (std::size_t i = 0; i < nv; ++i) zd[static_cast<Eigen::Index>(i)] = zt[i];
+      const Eigen::VectorXd td = basis.transpose() * zd;
+      judge(detail::regular_reading(pr, terms, reg, basis, td, options.max_iterations, res.iterations, exact,
+                                    false),
+            false, "a tied direct reading, its regularities made exact");
+    }
+    judge(best_t, false, "the optimised reading", false);
+    if (regular)
+      judge(detail::regular_reading(pr, terms, reg, basis, best_t, options.max_iterations, res.iterations,
+                                    exact),
+            false, "the regular reading near the optimised one");
+    // The search can end in a local minimum holding few relations (antiprisms, pyramids): then
+    // more starts, random planar readings as for the optimisation, while the best holds under
+    // a quarter of the relations (a true antiprism holds two thirds, a pyramid a third).
+    if (regular) {
+      std::size_t most = 0;
+      for (const auto& c : cands) most = std::max(most, c.held);
+      const int more = res.freedom <= options.regularity_starts_max_freedom ? options.regularity_starts : 0;
+      for (int k = 0; k < more && 4 * most < reg.relations(); ++k) {
+        judge(detail::regular_reading(pr, terms, reg, basis, random_start(), options.max_iterations,
+                                      res.iterations, exact),
+              false, "the regular reading from a random start");
+        if (!cands.empty()) most = std::max(most, cands.back().held);
+      }
+    }
+    // Fewest merged neighbours (and convex folds lost), then most relations held; ties keep
+    // the earlier candidate (the direct reading first).
+    if (cands.empty())
+      throw error(error_category::internal, "inflate: the optimisation produced no finite reading");
+    std::vector<std::size_t> order(cands.size());
+    for (std::size_t c = 0; c < cands.size(); ++c) order[c] = c;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+      return cands[x].flat < cands[y].flat ||
+             (cands[x].flat == cands[y].flat && cands[x].held > cands[y].held);
+    });
+    // No self-intersecting reading: the best candidate whose faces neither cross nor are
+    // pierced by an edge (exactly, by certify). A regular candidate must also keep the drawing's
+    // faces, as the main job finds them (snapping can make faces coplanar or a cycle planar);
+    // else the direct reading or the compliance optimum. If every candidate fails, the best
+    // unmoved one, flagged.
+    std::vector<int> crossing(cands.size(), 2);  // 1 crosses, 0 not, −1 undecided, 2 not yet checked
+    const auto crosses = [&](std::size_t c) {
+      if (crossing[c] == 2) {
+        crossing[c] = detail::reading_crosses(pr, Eigen::VectorXd(basis * cands[c].t));
+        res.crossing_readings += crossing[c] == 1;
+      }
+      return crossing[c] == 1;
+    };
+    std::size_t pick = cands.size();
+    for (const std::size_t c : order) {
+      if (crosses(c)) continue;
+      if (cands[c].regular && !detail::reading_keeps_faces(pr, Eigen::VectorXd(basis * cands[c].t))) {
+        ++res.face_changing_readings;
+        continue;
+      }
+      pick = c;
+      break;
+    }
+    if (pick == cands.size()) {
+      for (const std::size_t c : order)
+        if (!cands[c].regular) {
+          pick = c;
+          break;
+        }
+      if (pick == cands.size()) pick = order[0];
+      res.self_intersecting = crosses(pick);
+    }
+    if (res.self_intersecting) {
+      res.diagnostics.push_back(
+          "inflate: every reading found has faces that cross or an edge through a face "
+          "(exact check): the reading returned self-intersects");
+    } else if (res.crossing_readings > 0) {
+      res.diagnostics.push_back(
+          cellforge::detail::cat("inflate: ", std::to_string(res.crossing_readings),
+                                 " more regular reading(s) self-intersect and were passed over"));
+    }
+    if (res.face_changing_readings > 0)
+      res.diagnostics.push_back(cellforge::detail::cat(
+          "inflate: ", std::to_string(res.face_changing_readings),
+          " more regular reading(s) change the faces (the main job finds others in them) "
+          "and were passed over"));
+    for (const auto& c : cands)
+      res.diagnostics.push_back(cellforge::detail::cat("inflate: candidate ", std::string(c.what), ": ",
+                                                       std::to_string(c.held), " regularities held, ",
+                                                       std::to_string(c.flat), " faults"));
+    res.regular_relations = cands[pick].held;
+    res.relations = reg.relations();
+    res.diagnostics.push_back(cellforge::detail::cat(
+        "inflate: ", std::string(cands[pick].what), " holds ", std::to_string(cands[pick].held), " of ",
+        std::to_string(reg.relations()), " regularities (right, equal corners, equal sides)"));
+    if (direct.ok && !cands[pick].from_direct) {
+      res.diagnostics.push_back(
+          "inflate: the direct reading's axes are not the drawing's: a reading of the planar family holds "
+          "more regularities, and is taken");
+      res.method = inflation_method::optimisation;
+      res.view_found = false;
+      res.view_rotation = {};
+      res.axis_directions = {};
+      res.foreshortening = {};
+    } else if (!direct.ok) {
+      res.method = inflation_method::optimisation;
+    }
+    if (direct.ok) res.before = measure(z);
+    const Eigen::VectorXd zb = basis * cands[pick].t;
+    z.assign(zb.data(), zb.data() + zb.size());
+    const std::size_t flat = detail::coplanar_neighbours(pr, zb);
+    if (flat > 0)
+      res.diagnostics.push_back(
+          cellforge::detail::cat("inflate: in the best reading found, ", std::to_string(flat),
+                                 " line(s) join two coplanar faces (those faces would merge)"));
   } else {
     res.before = measure(z);
     res.freedom = detail::planar_freedom(pr, options.rank_tolerance);
