@@ -30,6 +30,7 @@
 #include "cellforge/core/polygon_intersection.hpp"
 #include "cellforge/core/polygon_soup.hpp"
 #include "cellforge/core/predicates.hpp"
+#include "cellforge/core/rounded_solid.hpp"
 #include "cellforge/core/tolerance.hpp"
 #include "cellforge/core/wireframe.hpp"
 #include "cellforge/halfedge/circulators.hpp"
