@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cellforge/cellforge.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/io/cells_io.hpp"
 #include "cellforge/io/curves_io.hpp"
 #include "cellforge/io/edge_list.hpp"
@@ -19,6 +20,15 @@
 
 // Own namespace: the test files of a group are compiled as one translation unit.
 namespace umbrella_tests {
+
+TEST_CASE("detail::cat joins text, views, C strings and chars in order") {
+  const std::string mid = "mid";
+  const std::string_view view = "view";
+  const char bang = '!';
+  CHECK(cellforge::detail::cat("a", mid, 'x', bang, view, std::string("tmp"), "") == "amidx!viewtmp");
+  CHECK(cellforge::detail::cat().empty());
+  CHECK(cellforge::detail::cat(std::string(1000, 'q'), "z").size() == 1001);
+}
 
 TEST_CASE("umbrella: the version header agrees with itself and with the CMake project") {
   const std::string composed = std::to_string(CELLFORGE_VERSION_MAJOR) + "." +

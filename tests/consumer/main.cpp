@@ -316,7 +316,9 @@ int main(int argc, char** argv) {
   try {
     run<cad::Vector3>("Vector3", dir);
     run<cad::Vec3f>("Vec3f", dir);
+#ifndef CONSUMER_NO_SKETCH
     run_sketch(&expect);
+#endif
   } catch (const cf::error& e) {
     std::fprintf(stderr, "consumer: cellforge::error: %s\n", e.what());
     return 1;
