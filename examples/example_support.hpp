@@ -26,6 +26,19 @@
 #include <utility>
 #include <vector>
 
+#if __has_include(<spawn.h>) && __has_include(<sys/wait.h>)
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <cerrno>
+#include <cstring>
+extern char** environ;  // the environment a batch's runs inherit (POSIX)
+#define EXAMPLE_HAS_SPAWN 1
+#else
+#include <cstdlib>
+#endif
+
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
@@ -61,19 +74,23 @@ struct option_spec {
 };
 
 /// Applies the options in argv[1..] (`--name value`, `--name=value`, `-o value`) and returns the
-/// other arguments in order; "--" ends the options. Throws usage_error naming an unknown option
-/// or one without its value. O(arguments x options).
-inline std::vector<std::string> apply_options(int argc, char** argv, const std::vector<option_spec>& specs) {
+/// other arguments in order; "--" ends the options. `positions`, when given, receives the argv
+/// indices of those arguments and of "--" (what a batch leaves out when it runs one input).
+/// Throws usage_error naming an unknown option or one without its value. O(arguments x options).
+inline std::vector<std::string> apply_options(int argc, char** argv, const std::vector<option_spec>& specs,
+                                              std::vector<int>* positions = nullptr) {
   std::vector<std::string> rest;
   bool only_arguments = false;
   for (int i = 1; i < argc; ++i) {
     std::string_view arg = argv[i];
     if (only_arguments || arg.size() < 2 || arg[0] != '-') {
       rest.emplace_back(arg);
+      if (positions) positions->push_back(i);
       continue;
     }
     if (arg == "--") {
       only_arguments = true;
+      if (positions) positions->push_back(i);
       continue;
     }
     std::optional<std::string_view> value;
@@ -370,6 +387,17 @@ inline std::string takers(input_kind k) {
   return "no program here knows it";
 }
 
+/// What --help says about batches: several inputs or a folder, --jobs, the output folders and
+/// the exit status. O(1).
+inline std::string batch_help(const std::string& program) {
+  return "several inputs (files, or folders: their files that " + program +
+         " reads, in name order) run as a batch:\n"
+         "each input runs as its own " + program +
+         " with the same options, --jobs N at a time, its outputs in a folder\n"
+         "named after the input (-o DIR/<name>/); one line per input and a summary are printed, and the\n"
+         "batch exits with the worst status of its runs (1, then 3, then 4; 2 for a usage error).\n";
+}
+
 /// What the file's extension says it is (unknown for .obj, which holds several kinds, and for
 /// names no program reads). O(1).
 inline input_kind kind_by_extension(const std::filesystem::path& path) {
@@ -476,6 +504,12 @@ struct program {
   bool format_given = false;         ///< --format was on the command line
   std::vector<option_spec> options;
   stage_note stage;
+  unsigned jobs = 1;                ///< --jobs: runs of a batch at a time
+  std::vector<input_kind> takes;    ///< the kinds a folder's files are taken by (.obj always)
+  bool batch = true;                ///< several inputs or a folder run as a batch (run_batch)
+  /// Arguments that are one run although there are several (a deprecated spelling such as
+  /// `hull points.off merge`); none when empty.
+  std::function<bool(const std::vector<std::string>&)> one_run;
 
   /// Adds the shared options: -h, -o, --no-svg, --format (when `mesh_formats` names the
   /// default format(s): the program writes meshes; --help shows `shown_default` instead when
@@ -508,6 +542,10 @@ struct program {
                        "",
                        "print nothing on stdout and no progress on stderr (errors still go to stderr)",
                        [this](std::string_view) { quiet = true; }});
+    options.push_back({{"--jobs"},
+                       "N",
+                       "with several inputs or a folder: runs at a time, 1 to 256 (default: 1)",
+                       [this](std::string_view v) { jobs = parse_jobs(v); }});
     options.push_back({{"--keep-partial"},
                        "",
                        "keep the outputs of a failed run: those written before an error, and all of a result "
@@ -541,6 +579,13 @@ struct program {
                                       static_cast<int>(old_name.size()), old_name.data(), new_names.c_str());
                          apply(v);
                        }});
+  }
+
+  /// The value of --jobs, 1 to 256; throws usage_error. O(1).
+  static unsigned parse_jobs(std::string_view v) {
+    const double n = option_number("--jobs", v, 1, 256);
+    if (n != static_cast<unsigned>(n)) throw usage_error("--jobs must be a whole number, got '" + std::string(v) + "'");
+    return static_cast<unsigned>(n);
   }
 
   /// "obj,ply" as formats, each one of obj, off, ply, stl; throws usage_error. O(length).
@@ -577,6 +622,7 @@ struct program {
           "leaves no output unless --keep-partial is given.\n\n",
           outputs_help.c_str(), name.c_str());
     if (!notes.empty()) std::printf("%s\n\n", notes.c_str());
+    if (batch) std::printf("%s\n", batch_help(name).c_str());
     std::printf(
         "exit status:\n"
         "  0  success%s\n"
@@ -757,14 +803,183 @@ inline void silence_stdout() {
 #endif
 }
 
+/// The inputs of a batch: each file argument, and each folder's regular files whose extension
+/// names a kind in `takes` (every file when empty; .obj always), in name order. Throws
+/// usage_error for a folder with no such file. O(files log files).
+inline std::vector<std::filesystem::path> batch_inputs(const std::vector<std::string>& args,
+                                                        const std::vector<input_kind>& takes) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> inputs;
+  for (const std::string& a : args) {
+    std::error_code ec;
+    if (!fs::is_directory(a, ec)) {
+      inputs.emplace_back(a);
+      continue;
+    }
+    std::vector<fs::path> found;
+    for (const fs::directory_entry& e : fs::directory_iterator(a, ec)) {
+      if (!e.is_regular_file(ec)) continue;
+      const input_kind k = kind_by_extension(e.path());
+      if (takes.empty() || lower_extension(e.path()) == ".obj" ||
+          std::find(takes.begin(), takes.end(), k) != takes.end())
+        found.push_back(e.path());
+    }
+    if (found.empty()) throw usage_error("the folder '" + a + "' holds no file this program reads");
+    std::sort(found.begin(), found.end());
+    inputs.insert(inputs.end(), found.begin(), found.end());
+  }
+  std::vector<fs::path> seen;  // a file named twice runs once (both runs would write one folder)
+  std::erase_if(inputs, [&](const fs::path& in) {
+    std::error_code ec;
+    fs::path canonical = fs::weakly_canonical(in, ec);
+    if (ec) canonical = in;
+    if (std::find(seen.begin(), seen.end(), canonical) != seen.end()) return true;
+    seen.push_back(std::move(canonical));
+    return false;
+  });
+  return inputs;
+}
+
+/// How one run of a batch ended: its exit status (-1 when it could not start; 128 + the signal
+/// when killed) and the first line it wrote on stderr.
+struct batch_run {
+  int status = -1;
+  std::string first_error;
+};
+
+/// Runs `args` (args[0] the program) with stdout discarded and stderr kept; waits. Processes
+/// rather than threads: a run that fails, exhausts memory or crashes takes no other with it.
+inline batch_run run_child(const std::vector<std::string>& args, const std::filesystem::path& err_log) {
+  batch_run r;
+#if defined(EXAMPLE_HAS_SPAWN)
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&files, 2, err_log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  pid_t pid = 0;
+  const int started = posix_spawnp(&pid, argv[0], &files, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&files);
+  if (started != 0) {
+    r.first_error = std::string("cannot start '") + args[0] + "': " + std::strerror(started);
+    return r;
+  }
+  int wait_status = 0;
+  while (waitpid(pid, &wait_status, 0) < 0)
+    if (errno != EINTR) return r;
+  r.status = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : 128 + WTERMSIG(wait_status);
+#else  // no posix_spawn: the shell, one run at a time
+  std::string command;
+  for (const std::string& a : args) command += "\"" + a + "\" ";
+  command += "> NUL 2> \"" + err_log.string() + "\"";
+  r.status = std::system(command.c_str());
+#endif
+  if (std::FILE* f = std::fopen(err_log.string().c_str(), "rb")) {
+    for (int ch; (ch = std::fgetc(f)) != EOF && ch != '\n';) r.first_error.push_back(static_cast<char>(ch));
+    std::fclose(f);
+  }
+  if (const std::string own = std::filesystem::path(args[0]).filename().string() + ": ";
+      r.first_error.starts_with(own))  // the batch's line names the program already
+    r.first_error.erase(0, own.size());
+  return r;
+}
+
+/// A batch: runs the program once per input (argv without its inputs and "--", then
+/// `-o <output>/<input name> --quiet -- <input>`), p.jobs at a time, prints one line per input
+/// as it ends and a summary, and returns the worst status (1, then 3, then 4). O(inputs) runs.
+inline int run_batch(const program& p, char** argv, int argc, const std::vector<int>& positions,
+                     const std::vector<std::filesystem::path>& inputs) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> common{argv[0]};
+  for (int i = 1; i < argc; ++i)
+    if (std::find(positions.begin(), positions.end(), i) == positions.end()) common.emplace_back(argv[i]);
+  // Each input's output folder: its name without extension, or with it where two names meet.
+  std::vector<std::string> folders;
+  for (const fs::path& in : inputs) {
+    const auto same_stem = [&](const fs::path& o) { return &o != &in && o.stem() == in.stem(); };
+    std::string f = std::any_of(inputs.begin(), inputs.end(), same_stem) ? in.filename().string()
+                                                                        : in.stem().string();
+    std::replace(f.begin(), f.end(), '.', '_');
+    folders.push_back(f);
+  }
+  std::vector<batch_run> runs(inputs.size());
+  std::mutex print;
+  std::size_t next = 0, ended = 0;
+  const fs::path temp = fs::temp_directory_path();
+  const auto worker = [&](unsigned w) {
+    for (;;) {
+      std::size_t k = 0;
+      {
+        const std::lock_guard lock(print);
+        if (next == inputs.size()) return;
+        k = next++;
+      }
+      std::vector<std::string> args = common;
+      args.insert(args.end(), {"-o", (p.output / folders[k]).string(), "--quiet", "--", inputs[k].string()});
+      const fs::path log = temp / (p.name + "-batch-" + std::to_string(std::chrono::steady_clock::now()
+                                                                              .time_since_epoch()
+                                                                              .count()) +
+                                   "-" + std::to_string(w) + ".err");
+      runs[k] = run_child(args, log);
+      std::error_code ec;
+      fs::remove(log, ec);
+      const std::lock_guard lock(print);
+      ++ended;
+      const batch_run& r = runs[k];
+      const std::string what = r.status == exit_ok ? "ok -> " + (p.output / folders[k]).string() + "/"
+                               : r.status < 0      ? "not run: " + r.first_error
+                               : r.status >= 128   ? "crashed (signal " + std::to_string(r.status - 128) + ")"
+                                                   : "exit " + std::to_string(r.status) + ": " + r.first_error;
+      std::printf("[%zu/%zu] %s: %s\n", ended, inputs.size(), inputs[k].string().c_str(), what.c_str());
+      if (r.status != exit_ok && p.quiet)
+        std::fprintf(stderr, "%s: %s: %s\n", p.name.c_str(), inputs[k].string().c_str(), what.c_str());
+      std::fflush(stdout);
+    }
+  };
+  {
+    std::vector<std::jthread> pool;
+    for (unsigned w = 0; w < std::min<std::size_t>(p.jobs, inputs.size()); ++w) pool.emplace_back(worker, w);
+  }
+  std::size_t count[5] = {};
+  std::size_t other = 0;
+  for (const batch_run& r : runs) (r.status >= 0 && r.status <= 4 ? count[r.status] : other) += 1;
+  std::printf("%s: %zu inputs: %zu ok, %zu unreadable (1), %zu output errors (3), %zu not for %s (4)",
+              p.name.c_str(), inputs.size(), count[0], count[1], count[3], count[4], p.name.c_str());
+  if (count[2] + other) std::printf(", %zu usage errors or crashes", count[2] + other);
+  std::printf("\n");
+  if (other || count[1]) return exit_input;
+  if (count[2]) return exit_usage;
+  if (count[3]) return exit_output;
+  return count[4] ? exit_not_for_this : exit_ok;
+}
+
+/// Whether the arguments make a batch (several inputs, or one folder), and then its status: the
+/// batch's when they do. O(arguments) plus the batch.
+inline std::optional<int> maybe_batch(const program& p, int argc, char** argv, const std::vector<std::string>& args,
+                                      const std::vector<int>& positions) {
+  std::error_code ec;
+  if (!p.batch || args.empty() || (args.size() == 1 && !std::filesystem::is_directory(args[0], ec)) ||
+      (p.one_run && p.one_run(args)))
+    return std::nullopt;
+  try {
+    return run_batch(p, argv, argc, positions, batch_inputs(args, p.takes));
+  } catch (const usage_error& e) {
+    std::fprintf(stderr, "%s: %s\nTry '%s --help'.\n", p.name.c_str(), e.what(), p.name.c_str());
+    return exit_usage;
+  }
+}
+
 /// A program's main: parses the options (exit 2 on a usage error, 0 after --help), then runs
 /// body(arguments) and maps what it throws to the exit statuses: usage_error 2, wrong_input 4,
 /// output_error 3, anything else (a cellforge::error from a reader, std::bad_alloc) 1.
 template <class Body>
 int run(program& p, int argc, char** argv, Body&& body) {
   std::vector<std::string> args;
+  std::vector<int> positions;
   try {
-    args = apply_options(argc, argv, p.options);
+    args = apply_options(argc, argv, p.options, &positions);
     if (p.help) {
       p.print_help();
       return exit_ok;
@@ -774,6 +989,7 @@ int run(program& p, int argc, char** argv, Body&& body) {
     return exit_usage;
   }
   if (p.quiet) silence_stdout();
+  if (const std::optional<int> batch = maybe_batch(p, argc, argv, args, positions)) return *batch;
   p.stage.start(p.name, !p.quiet);
   int status = exit_input;
   try {

@@ -47,7 +47,9 @@ std::vector<point> random_ball(std::size_t n, std::uint64_t seed) {
 int main(int argc, char** argv) {
   example::program p;
   p.name = "hull";
-  p.usage = "[options] [input]";
+  p.usage = "[options] [input ...]";
+  p.takes = {example::input_kind::mesh};
+  p.one_run = [](const std::vector<std::string>& a) { return a.size() == 2 && a[1] == "merge"; };
   p.about =
       "The 3D convex hull of a point set: the vertices of a mesh or wireframe file (its faces and\n"
       "lines are ignored), or 2000 random points in a ball; prints what it found and draws it.";

@@ -20,7 +20,8 @@
 int main(int argc, char** argv) {
   example::program p;
   p.name = "mesh_info";
-  p.usage = "[options] [input]";
+  p.usage = "[options] [input ...]";
+  p.takes = {example::input_kind::mesh};
   p.about =
       "Reads a mesh, builds its half-edge mesh (non-manifold vertices split), validates it, prints its\n"
       "statistics (faces by size, valence, boundary loops, Euler characteristic, orientability) and\n"

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   example::program p;
   p.name = "quickstart";
   p.usage = "[options]";
+  p.batch = false;  // no input
   p.about =
       "The README's usage example: a Moebius strip of 3 quads in a user's own point type, built into a\n"
       "half-edge mesh; prints the faces around vertex 0, validity, orientability and boundary loops.";

@@ -37,7 +37,8 @@ namespace fs = std::filesystem;
 int main(int argc, char** argv) {
   example::program p;
   p.name = "sketch2cells";
-  p.usage = "[options] [input]";
+  p.usage = "[options] [input ...]";
+  p.takes = {example::input_kind::drawing};
   p.about =
       "A wireframe line drawing (a parallel view of a polyhedron, every edge drawn, hidden ones too)\n"
       "becomes a solid (seed 003: finding faces, inflation; then seed 000's wireframe pipeline).";

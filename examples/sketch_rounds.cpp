@@ -90,7 +90,8 @@ void write_round_attributes(const fs::path& path, const cellforge::rounds_result
 int main(int argc, char** argv) {
   example::program p;
   p.name = "sketch_rounds";
-  p.usage = "[options] [input]";
+  p.usage = "[options] [input ...]";
+  p.takes = {example::input_kind::drawing};
   p.about =
       "A line drawing with rounds and fillets (a parallel view of a polyhedron whose edges are blended by\n"
       "circular arcs, every edge drawn) becomes its polyhedral skeleton, the skeleton's solid and the\n"

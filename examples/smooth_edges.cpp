@@ -22,7 +22,8 @@ namespace fs = std::filesystem;
 int main(int argc, char** argv) {
   example::program p;
   p.name = "smooth_edges";
-  p.usage = "[options] [input]";
+  p.usage = "[options] [input ...]";
+  p.takes = {example::input_kind::mesh, example::input_kind::cells};
   p.about =
       "The cubic edge fitter (seed 000 ch. VI): every edge of a closed solid becomes a cubic, quadratic or\n"
       "straight curve through its end vertices.";

@@ -7,6 +7,7 @@
 // Writes into the output folder (-o, default ./out/) subdivided.<format> (the input's, or
 // --format) and subdivide.svg (input on the left, result on the right); prints counts and times.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -32,7 +33,13 @@ using point = glm::dvec3;
 int main(int argc, char** argv) {
   example::program p;
   p.name = "subdivide";
-  p.usage = "[options] [input]";
+  p.usage = "[options] [input ...]";
+  p.takes = {example::input_kind::mesh};
+  p.one_run = [](const std::vector<std::string>& a) {  // the old spelling: subdivide model.off 3
+    std::error_code ec;
+    return a.size() == 2 && !a[1].empty() && std::isdigit(static_cast<unsigned char>(a[1][0])) &&
+           !std::filesystem::exists(a[1], ec);
+  };
   p.about =
       "Loop subdivision of a triangle mesh (polygons are fan-triangulated first), with a before/after "
       "picture.";

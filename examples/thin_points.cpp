@@ -23,7 +23,8 @@ namespace fs = std::filesystem;
 int main(int argc, char** argv) {
   example::program p;
   p.name = "thin_points";
-  p.usage = "[options] [input]";
+  p.usage = "[options] [input ...]";
+  p.takes = {example::input_kind::mesh, example::input_kind::cells};
   p.about =
       "The selection-growing thin-point finder (seed 000 ch. V): grows face selections from the end of a\n"
       "closed solid's central axis and reports the loops around it that are markedly shorter than their\n"

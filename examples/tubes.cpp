@@ -48,7 +48,8 @@ enum class check_level { automatic, none, fast, exact };
 int main(int argc, char** argv) {
   example::program p;
   p.name = "tubes";
-  p.usage = "[options] [input]";
+  p.usage = "[options] [input ...]";
+  p.takes = {example::input_kind::skeleton};
   p.about =
       "Meshes a skeleton graph with radii as closed tubes (seed 001 ch. V) and checks the mesh: valid,\n"
       "closed, its genus the skeleton's cycle rank, no folds and (--check exact) no self-intersections.";

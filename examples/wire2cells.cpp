@@ -46,6 +46,7 @@ struct settings {
   fs::path output = "out";
   std::vector<std::string> formats{"3dcl", "obj", "ply", "svg"};  ///< outputs, in this order
   bool help = false, quiet = false, keep_partial = false;
+  unsigned jobs = 1;  ///< --jobs: runs of a batch at a time
   cellforge::wireframe_options pipeline{};
 };
 
@@ -93,6 +94,10 @@ std::vector<example::option_spec> option_table(settings& s) {
        "",
        "print nothing on stdout and no progress on stderr (errors still go to stderr)",
        [&](std::string_view) { s.quiet = true; }},
+      {{"--jobs"},
+       "N",
+       "with several inputs or a folder: runs at a time, 1 to 256 (default: 1)",
+       [&](std::string_view v) { s.jobs = example::program::parse_jobs(v); }},
       {{"--keep-partial"},
        "",
        "keep the outputs written before an output error (default: none are left; a result that is not "
@@ -167,7 +172,7 @@ std::vector<example::option_spec> option_table(settings& s) {
 
 void print_help(const std::vector<example::option_spec>& table) {
   std::printf(
-      "usage: wire2cells [options] [input]\n\n"
+      "usage: wire2cells [options] [input ...]\n\n"
       "Converts a wireframe into a three-dimensional cell list (vertices, edges, faces, volumes and\n"
       "their relations) and prints a per-stage table like the seed's table 1.\n\n"
       "input: an OBJ wireframe (.obj: 'v' and 'l' lines; the edges of 'f' faces count as lines too)\n"
@@ -185,7 +190,7 @@ void print_help(const std::vector<example::option_spec>& table) {
       "output is written to a temporary file and renamed once all are written.\n\n"
       "Every answer is certified against the input (docs/cells.md, \"The certificate\") and printed\n"
       "with its status: solid, ambiguous (a solid with walls the wireframe does not decide), not a\n"
-      "solid, or budget (the certificate's work budget ran out).\n\n"
+      "solid, or budget (the certificate's work budget ran out).\n\n%s\n"
       "exit status:\n"
       "  %d  success: a certified solid (status solid or ambiguous), every file written\n"
       "  %d  the input cannot be read (the message says why, e.g. file:line of a parse error)\n"
@@ -194,7 +199,7 @@ void print_help(const std::vector<example::option_spec>& table) {
       "  %d  read, but not a closed solid (status not a solid or budget; the reason is printed and\n"
       "     the files are written so that you can look)\n",
       (fs::path(CELLFORGE_DATA_DIR) / "stepped_block.obj").string().c_str(),
-      example::options_help(table).c_str(), exit_ok, exit_input, exit_usage, exit_output, exit_not_solid);
+      example::options_help(table).c_str(), example::batch_help("wire2cells").c_str(), exit_ok, exit_input, exit_usage, exit_output, exit_not_solid);
 }
 
 void row(const char* stage, double ms, const char* what = nullptr, std::size_t count = 0) {
@@ -243,26 +248,31 @@ void print_stages(const cellforge::wireframe_result<glm::dvec3>& r) {
 
 int main(int argc, char** argv) {
   settings s;
+  example::program p;  // the shared output handling: its name, folder, --keep-partial, batches
+  p.name = "wire2cells";
+  p.takes = {example::input_kind::wireframe};
+  std::vector<std::string> inputs;
+  std::vector<int> positions;
   try {
     const std::vector<example::option_spec> table = option_table(s);
-    const std::vector<std::string> inputs = example::apply_options(argc, argv, table);
+    inputs = example::apply_options(argc, argv, table, &positions);
     if (s.help) {
       print_help(table);
       return exit_ok;
     }
-    if (inputs.size() > 1) throw example::usage_error("more than one input ('" + inputs[1] + "')");
-    if (!inputs.empty()) s.input = inputs[0];
+    if (inputs.size() == 1) s.input = inputs[0];
   } catch (const example::usage_error& e) {
     std::fprintf(stderr, "wire2cells: %s\nTry 'wire2cells --help'.\n", e.what());
     return exit_usage;
   }
-
-  int failure = exit_input;  // the exit status of an exception thrown from here on
-  example::program p;        // the shared output handling: its name, folder and --keep-partial
-  p.name = "wire2cells";
   p.output = s.output;
   p.keep_partial = s.keep_partial;
+  p.quiet = s.quiet;
+  p.jobs = s.jobs;
   if (s.quiet) example::silence_stdout();
+  if (const std::optional<int> batch = example::maybe_batch(p, argc, argv, inputs, positions)) return *batch;
+
+  int failure = exit_input;  // the exit status of an exception thrown from here on
   example::stage_note& stage = p.stage;
   stage.start(p.name, !s.quiet);
   try {
