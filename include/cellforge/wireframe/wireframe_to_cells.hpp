@@ -333,7 +333,13 @@ void judge(wireframe_result<P>& r, const std::string& invalid, bool certified) {
     r.status = solid_status::solid;
     r.status_reason = cellforge::detail::cat(
         "a closed solid: ", plural(r.cells.num_volumes(), "volume", "volumes"), ", ",
-        plural(r.cells.num_faces(), "face", "faces"), ", every input edge on a face",
+        plural(r.cells.num_faces(), "face", "faces"),
+        c.acyclic_input_edges.empty()
+            ? std::string(", every input edge on a face")
+            : cellforge::detail::cat(", every input edge on a cycle on a face (",
+                                     plural(c.acyclic_input_edges.size(), "edge", "edges"),
+                                     " on no cycle, a dangling tree, left out; the first is input edge ",
+                                     std::to_string(c.acyclic_input_edges.front()), ", 0-based)"),
         (c.seam_edges > 0
              ? cellforge::detail::cat(" (", plural(c.seam_edges, "edge is a seam", "edges are seams"),
                                       " of a tessellated flat surface)")
