@@ -1,7 +1,9 @@
 // Tube networks, seed 001 §VI.B table 5: the seed's C++ and C# milliseconds for its five
 // skeletons beside ours on stand-ins built by tubes/sample_skeletons.hpp (the seed's files
 // are not published), then growth: random trees and lattices of 1k to 100k nodes (time per
-// node should stay flat) and edges per second. Every row is the median of its iterations.
+// node should stay flat) and edges per second; then the meshing beside the exact
+// self-intersection check of its mesh (issue 35: the check at most the meshing). Every row is
+// the median of its iterations.
 #include <benchmark/benchmark.h>
 
 #include <malloc.h>
@@ -19,6 +21,7 @@
 #include <glm/vec3.hpp>
 
 #include "bench_support.hpp"
+#include "cellforge/algorithms/self_intersections.hpp"
 #include "cellforge/tubes/sample_skeletons.hpp"
 #include "cellforge/tubes/tube_mesh.hpp"
 
@@ -136,6 +139,48 @@ void register_case(const std::string& name, const skeleton& s, int iterations, h
       ->Unit(benchmark::kMillisecond);
 }
 
+/// Registers the meshing beside the exact check: each iteration times make_tubes(s) and then
+/// self_intersections of its mesh (CPU ms, one thread); the counters are the two medians.
+void register_check(const std::string& name, const skeleton& s, int iterations) {
+  benchmark::RegisterBenchmark(
+      name.c_str(),
+      [&s](benchmark::State& state) {
+        std::vector<double> mesh, check;
+        try {
+          for (auto _ : state) {
+            const double c0 = cb::thread_cpu_ms();
+            auto r = cellforge::make_tubes(s);
+            const double c1 = cb::thread_cpu_ms();
+            const cellforge::self_intersection_result si = cellforge::self_intersections(r.mesh);
+            const double c2 = cb::thread_cpu_ms();
+            mesh.push_back(c1 - c0);
+            check.push_back(c2 - c1);
+            state.SetIterationTime((c2 - c0) * 1e-3);
+            benchmark::DoNotOptimize(r);
+            if (!si.complete || si.intersecting_face_pairs != 0)
+              state.SkipWithError("the check did not finish, or found an intersection");
+            state.counters["triangles"] = static_cast<double>(si.triangles);
+            state.counters["tested_pairs"] = static_cast<double>(si.pairs_tested);
+          }
+        } catch (const std::exception& e) {
+          state.SkipWithError(e.what());
+          return;
+        }
+        if (mesh.empty()) return;
+        state.counters["mesh_us"] = cb::median(mesh) * 1e3;
+        state.counters["check_us"] = cb::median(check) * 1e3;
+      })
+      ->Iterations(iterations)
+      ->UseManualTime()
+      ->Unit(benchmark::kMillisecond);
+}
+
+/// The rows of the check table: the issue's sizes (1k, 10k, 100k nodes) of trees and lattices.
+bool in_check(const std::string& name) {
+  return name.rfind("tree ", 0) == 0 || name == "lattice 10^3" || name == "lattice 22^3" ||
+         name == "lattice 46^3";
+}
+
 /// The growth rows of the issue's sizes (1k, 10k, 100k nodes), run again cold and warm.
 bool in_series(const std::string& name) {
   return name.rfind("tree ", 0) == 0 || name == "lattice 10^3" || name == "lattice 22^3" ||
@@ -154,6 +199,8 @@ void register_all() {
     for (const growth_case& g : growth())
       if (h == heap::default_glibc || in_series(g.name))
         register_case(series_name(h) + "/" + g.name, g.s, g.s.points.size() > 50000 ? 5 : 9, h);
+  for (const growth_case& g : growth())
+    if (in_check(g.name)) register_check("check/" + g.name, g.s, g.s.points.size() > 50000 ? 3 : 7);
 }
 
 void print_tables(const cb::collecting_reporter& r, std::ostream& os) {
@@ -240,6 +287,23 @@ void print_tables(const cb::collecting_reporter& r, std::ostream& os) {
     }
     g.print(os);
   }
+  cb::table c("The exact self-intersection check beside the meshing (issue 35)",
+              {"skeleton", "triangles", "pairs tested", "meshing ms", "check ms", "check / meshing",
+               "meshing + check / meshing"});
+  for (const growth_case& g : growth()) {
+    if (!in_check(g.name)) continue;
+    const std::string name = "check/" + g.name;
+    const std::optional<double> m = r.counter_ms(name, "mesh_us"), k = r.counter_ms(name, "check_us");
+    const std::optional<double> tris = r.counter_ms(name, "triangles"), tested = r.counter_ms(name, "tested_pairs");
+    c.add_row({g.name, tris ? cb::count(static_cast<std::size_t>(*tris * 1e3 + 0.5)) : "—",
+               tested ? cb::count(static_cast<std::size_t>(*tested * 1e3 + 0.5)) : "—", cb::ms(m), cb::ms(k),
+               cb::ratio(k, m), m && k ? cb::fixed((*m + *k) / *m, 2) + "x" : "—"});
+  }
+  c.add_note(
+      "Each iteration: make_tubes(s) with default options, then self_intersections(mesh) (default options, "
+      "exact); medians of the iterations' CPU ms (7, or 3 at 100k nodes). Target (issue 35): meshing + "
+      "check <= 2x the meshing.");
+  c.print(os);
 }
 
 }  // namespace

@@ -1,10 +1,12 @@
 // self_intersections: closed meshes with none, two interpenetrating cubes counted by hand,
 // the shared-vertex, shared-edge, coplanar, piercing and fold cases, nearly coplanar
 // configurations at scales where an epsilon would decide wrongly, float points, the budget,
-// zero-area triangles, and random soups against a brute-force all-pairs run of the same
-// exact pair test.
+// zero-area triangles, random soups against a brute-force all-pairs run of the same exact
+// pair test, and jittered or lattice-snapped closed meshes (shared vertices) against the
+// old all-pairs answer.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -15,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
@@ -472,6 +475,82 @@ TEST_CASE("self_intersections: random soups against brute force") {
     CHECK(!expected.empty());
     if (lattice) CHECK(r.degenerate_triangles > 0);
   }
+}
+
+namespace {
+
+// The old answer: every pair of triangles (of the triangulation the check uses) of different
+// faces, decided by the exact pair test alone: no grid, no spatial order, no shared-vertex
+// shortcut. Returns the sorted distinct face-pair keys; `triangle_pairs` counts the pairs.
+std::vector<std::uint64_t> all_pairs_exact(const surface_mesh<dvec3>& m, std::size_t& triangle_pairs) {
+  namespace si = cellforge::detail::self_intersect;
+  std::vector<dvec3> pos(m.vertices_size());
+  for (std::size_t i = 0; i < pos.size(); ++i) pos[i] = m.points()[i];
+  std::vector<si::entry> all, tris;
+  self_intersection_result unused;
+  si::triangulate_for_test(m, std::span<const dvec3>(pos), all, unused);
+  for (const si::entry& e : all)
+    if (!si::degenerate(pos[e.v[0]], pos[e.v[1]], pos[e.v[2]])) tris.push_back(e);
+  std::vector<std::uint64_t> out;
+  triangle_pairs = 0;
+  for (std::size_t i = 0; i < tris.size(); ++i)
+    for (std::size_t j = i + 1; j < tris.size(); ++j) {
+      const si::entry &a = tris[i], &b = tris[j];
+      if (a.face == b.face) continue;
+      const std::array<dvec3, 3> p = {pos[a.v[0]], pos[a.v[1]], pos[a.v[2]]},
+                                 q = {pos[b.v[0]], pos[b.v[1]], pos[b.v[2]]};
+      if (!si::pair_intersects(p, a.v, q, b.v)) continue;
+      ++triangle_pairs;
+      out.push_back(static_cast<std::uint64_t>(std::min(a.face, b.face)) << 32 | std::max(a.face, b.face));
+    }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("self_intersections: meshes with shared vertices against the old all-pairs answer") {
+  // Closed meshes (shared vertices, so the shared-vertex shortcut and the spatial order are
+  // used) moved by noise from none to wild, or snapped to a coarse lattice where coplanar,
+  // touching and zero-area triangles are common; triangles and (non-planar) quads.
+  std::mt19937_64 rng(35);
+  std::size_t by_topology = 0, rounds_hit = 0, degenerate = 0;
+  for (int round = 0; round < 16; ++round) {
+    CAPTURE(round);
+    polygon_soup<dvec3> s = round % 4 == 3 ? cellforge::uv_sphere(12, 8, false)
+                            : round % 4 == 2 ? cellforge::torus(14, 6, 1, 0.3, false)
+                                             : cellforge::icosphere(2);
+    const double noise = std::array<double, 4>{0.0, 0.02, 0.15, 0.6}[static_cast<std::size_t>(round / 4)];
+    const bool snap = round % 2 == 1;
+    std::normal_distribution<double> jitter(0, noise > 0 ? noise : 1);
+    for (dvec3& p : s.points) {
+      if (noise > 0) p += dvec3(jitter(rng), jitter(rng), jitter(rng));
+      if (snap) p = glm::round(p * 4.0) / 4.0;  // a lattice of 1/4: exact coplanar contacts
+    }
+    const surface_mesh<dvec3> m = cellforge::make_mesh(s);
+    self_intersection_options o;
+    o.max_reported = 1 << 20;
+    const self_intersection_result r = self_intersections(m, o);
+    std::size_t triangle_pairs = 0;
+    const std::vector<std::uint64_t> expected = all_pairs_exact(m, triangle_pairs);
+    REQUIRE(r.complete);
+    CHECK(r.intersecting_triangle_pairs == triangle_pairs);
+    CHECK(r.intersecting_face_pairs == expected.size());
+    REQUIRE(r.face_pairs.size() == expected.size());
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      CHECK(r.face_pairs[i].first.idx() == expected[i] >> 32);
+      CHECK(r.face_pairs[i].second.idx() == static_cast<std::uint32_t>(expected[i]));
+    }
+    by_topology += r.pairs_by_topology;
+    rounds_hit += expected.empty() ? 0 : 1;
+    degenerate += r.degenerate_triangles;
+  }
+  MESSAGE("16 meshes: " << rounds_hit << " with intersections, " << by_topology
+                        << " pairs decided by a shared vertex's star, " << degenerate << " zero-area triangles");
+  CHECK(by_topology > 0);  // the shortcut was taken ...
+  CHECK(rounds_hit >= 4);  // ... and the meshes do intersect, touch and degenerate
+  CHECK(degenerate > 0);
 }
 
 TEST_CASE("self_intersections: a sphere of 110,000 triangles") {

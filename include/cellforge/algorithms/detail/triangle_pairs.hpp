@@ -343,29 +343,31 @@ std::uint32_t cell_of(double x, double origin, double inv_side, std::uint32_t ce
   return static_cast<std::uint32_t>(c);
 }
 
-/// Sorts 64-bit keys: least-significant-digit radix sort, 16 bits a pass, skipping passes
-/// whose digit is the same in every key. O(n · passes).
+/// Sorts 64-bit keys by their high 32 bits, stably (keys equal there keep their order):
+/// least-significant-digit radix sort, 11 bits a pass, skipping digits that never vary.
+/// O(n · passes).
 template <class = void>
-void radix_sort(std::vector<std::uint64_t>& keys) {
-  if (keys.size() < 4096) {  // the passes' 512 KB of counters cost more than a comparison sort
-    std::sort(keys.begin(), keys.end());
+void radix_sort_high(std::vector<std::uint64_t>& keys) {
+  if (keys.size() < 1024) {  // the passes' set-up costs more than a comparison sort
+    std::stable_sort(keys.begin(), keys.end(),
+                     [](std::uint64_t a, std::uint64_t b) { return a >> 32 < b >> 32; });
     return;
   }
   std::vector<std::uint64_t> tmp(keys.size());
-  std::vector<std::size_t> count(1 << 16);
+  std::array<std::size_t, 2048> count{};
   std::uint64_t all_or = 0, all_and = ~std::uint64_t{0};
   for (const std::uint64_t k : keys) all_or |= k, all_and &= k;
-  for (unsigned shift = 0; shift < 64; shift += 16) {
-    if ((((all_or ^ all_and) >> shift) & 0xFFFFu) == 0) continue;  // the digit never varies
-    std::fill(count.begin(), count.end(), std::size_t{0});
-    for (const std::uint64_t k : keys) ++count[(k >> shift) & 0xFFFFu];
+  for (unsigned shift = 32; shift < 64; shift += 11) {
+    if ((((all_or ^ all_and) >> shift) & 0x7FFu) == 0) continue;  // the digit never varies
+    count.fill(0);
+    for (const std::uint64_t k : keys) ++count[(k >> shift) & 0x7FFu];
     std::size_t sum = 0;
     for (std::size_t& c : count) {
       const std::size_t here = c;
       c = sum;
       sum += here;
     }
-    for (const std::uint64_t k : keys) tmp[count[(k >> shift) & 0xFFFFu]++] = k;
+    for (const std::uint64_t k : keys) tmp[count[(k >> shift) & 0x7FFu]++] = k;
     keys.swap(tmp);
   }
 }
@@ -414,6 +416,89 @@ bool triangulate_polygon(std::span<const std::uint32_t> ids, std::span<const vec
   return clipped;
 }
 
+/// True when the fan of triangles (v, ring[i], ring[i + 1]) (indices mod k) projects one-to-one
+/// on some coordinate plane: every projected triangle turns the same strict way (exact orient2d)
+/// and the ring winds exactly once around v (it crosses the ray from v along +u once, counted
+/// exactly by coordinate comparisons). Then two triangles of the fan meet only in v or, when
+/// neighbours, in their shared edge. O(k).
+template <class = void>
+bool fan_projects_injectively(const vec& v, std::span<const vec> ring) noexcept {
+  const std::size_t k = ring.size();
+  if (k < 3) return false;
+  vec normal(0.0);  // which axis to drop first: the largest component of the fan's normal
+  for (std::size_t i = 0; i < k; ++i) {
+    const vec e = ring[i] - v, f = ring[(i + 1) % k] - v;
+    normal += vec(e.y * f.z - e.z * f.y, e.z * f.x - e.x * f.z, e.x * f.y - e.y * f.x);
+  }
+  std::array<int, 3> order = {0, 1, 2};
+  std::array<double, 3> size = {std::fabs(normal.x), std::fabs(normal.y), std::fabs(normal.z)};
+  for (double& x : size)
+    if (std::isnan(x)) x = 0;
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return size[static_cast<std::size_t>(a)] > size[static_cast<std::size_t>(b)];
+  });
+  for (const int drop : order) {
+    const int u = (drop + 1) % 3, w = (drop + 2) % 3;
+    const int s = orient_uw(v, ring[0], ring[1], u, w);
+    if (s == 0) continue;
+    bool same = true;
+    for (std::size_t i = 1; i < k && same; ++i) same = orient_uw(v, ring[i], ring[(i + 1) % k], u, w) == s;
+    if (!same) continue;
+    // Upper half: angle in [0, π) from +u; each step turns by less than π the way s says, so the
+    // ring passes angle 0 exactly at the steps from the lower half to the upper (s > 0), or back.
+    auto upper = [&](const vec& x) { return x[w] > v[w] || (x[w] == v[w] && x[u] > v[u]); };
+    std::size_t crossings = 0;
+    for (std::size_t i = 0; i < k; ++i) {
+      const bool from = upper(ring[i]), to = upper(ring[(i + 1) % k]);
+      if (s > 0 ? (!from && to) : (from && !to)) ++crossings;
+    }
+    if (crossings == 1) return true;
+  }
+  return false;
+}
+
+/// For each vertex (ids below `vertices`), whether its star in the triangle list `tris`
+/// (vertex ids of non-degenerate triangles) is one closed, consistently oriented fan that
+/// projects one-to-one on a coordinate plane (fan_projects_injectively). Two triangles that
+/// share such a vertex meet only in what they share, so their pair needs no geometric test.
+/// Stars of more than 64 triangles are not examined. O(Σ star size²) ≤ O(64 · triangles).
+template <class Tri>
+std::vector<std::uint8_t> injective_stars(std::span<const Tri> tris, std::span<const vec> pos, std::size_t vertices) {
+  std::vector<std::uint32_t> offset(vertices + 1, 0);
+  for (const Tri& t : tris)
+    for (const std::uint32_t x : t.v) ++offset[x + 1];
+  for (std::size_t i = 0; i < vertices; ++i) offset[i + 1] += offset[i];
+  // For each vertex: (next, previous) corners of each triangle around it, in the triangle's order.
+  std::vector<std::array<std::uint32_t, 2>> around(offset[vertices]);
+  {
+    std::vector<std::uint32_t> fill(offset.begin(), offset.end() - 1);
+    for (const Tri& t : tris)
+      for (std::size_t i = 0; i < 3; ++i) around[fill[t.v[i]]++] = {t.v[(i + 1) % 3], t.v[(i + 2) % 3]};
+  }
+  std::vector<std::uint8_t> good(vertices, 0);
+  std::vector<vec> ring;
+  for (std::size_t x = 0; x < vertices; ++x) {
+    const std::span<const std::array<std::uint32_t, 2>> star(around.data() + offset[x], offset[x + 1] - offset[x]);
+    const std::size_t k = star.size();
+    if (k < 3 || k > 64) continue;
+    // One cycle: from triangle 0, the triangle whose first corner is this one's second, k times.
+    ring.clear();
+    std::size_t at = 0;
+    bool cycle = true;
+    for (std::size_t step = 0; step < k && cycle; ++step) {
+      ring.push_back(pos[star[at][0]]);
+      std::size_t next = k, matches = 0;
+      for (std::size_t j = 0; j < k; ++j)
+        if (star[j][0] == star[at][1]) next = j, ++matches;
+      cycle = matches == 1 && (next == 0) == (step + 1 == k);
+      at = next;
+    }
+    if (!cycle) continue;
+    good[x] = fan_projects_injectively(pos[x], std::span<const vec>(ring)) ? 1 : 0;
+  }
+  return good;
+}
+
 /// What for_each_box_pair did.
 struct box_pair_count {
   std::size_t candidate_pairs = 0;  ///< pairs of boxes in one grid cell (the budget counts these)
@@ -454,8 +539,21 @@ box_pair_count for_each_box_pair(std::span<const std::array<double, 6>> boxes, s
   if (!(side > 0) || !std::isfinite(side)) side = 1;
   const double max_entries = 8.0 * static_cast<double>(n) + 65536.0;
   std::array<std::uint32_t, 3> cells{};
-  std::vector<std::array<std::uint32_t, 3>> low(n);  // grid cell of each box's low corner
+  std::vector<std::array<std::uint32_t, 3>> low(n), top(n);  // grid cells of each box's corners
   double inv = 0;
+  auto place = [&] {  // low and top for this grid; the number of cell entries they need
+    double entries = 0;
+    for (std::size_t t = 0; t < n; ++t) {
+      double count = 1;
+      for (std::size_t k = 0; k < 3; ++k) {
+        low[t][k] = cell_of(boxes[t][k], lo[k], inv, cells[k]);
+        top[t][k] = cell_of(boxes[t][k + 3], lo[k], inv, cells[k]);
+        count *= static_cast<double>(top[t][k] - low[t][k] + 1);
+      }
+      entries += count;
+    }
+    return entries;
+  };
   for (int attempt = 0;; ++attempt, side *= 1.5) {
     inv = 1 / side;
     double product = 1;
@@ -466,70 +564,94 @@ box_pair_count for_each_box_pair(std::span<const std::array<double, 6>> boxes, s
     }
     if (!(inv > 0) || attempt > 200) {  // the box is a point or beyond range: one cell
       cells = {1, 1, 1};
+      place();
       break;
     }
     if (product >= 4294967295.0) continue;
-    double entries = 0;
-    for (std::size_t t = 0; t < n; ++t) {
-      double count = 1;
-      for (std::size_t k = 0; k < 3; ++k) {
-        low[t][k] = cell_of(boxes[t][k], lo[k], inv, cells[k]);
-        count *= static_cast<double>(cell_of(boxes[t][k + 3], lo[k], inv, cells[k]) - low[t][k] + 1);
-      }
-      entries += count;
-    }
-    if (entries <= max_entries) break;
+    if (place() <= max_entries) break;
   }
-  for (std::size_t t = 0; t < n; ++t)  // again, for the one-cell fallback
-    for (std::size_t k = 0; k < 3; ++k) low[t][k] = cell_of(boxes[t][k], lo[k], inv, cells[k]);
 
-  // Cell entries as (cell key << 32 | box), sorted: the boxes of a cell in a run.
+  // Cell entries as (cell key << 32 | box), made in box order and sorted stably by cell: the
+  // boxes of a cell in a run, in increasing order.
   std::vector<std::uint64_t> keys;
   for (std::size_t t = 0; t < n; ++t) {
-    std::array<std::uint32_t, 3> top{};
-    for (std::size_t k = 0; k < 3; ++k) top[k] = cell_of(boxes[t][k + 3], lo[k], inv, cells[k]);
-    for (std::uint32_t x = low[t][0]; x <= top[0]; ++x)
-      for (std::uint32_t y = low[t][1]; y <= top[1]; ++y)
-        for (std::uint32_t z = low[t][2]; z <= top[2]; ++z) {
+    for (std::uint32_t x = low[t][0]; x <= top[t][0]; ++x)
+      for (std::uint32_t y = low[t][1]; y <= top[t][1]; ++y)
+        for (std::uint32_t z = low[t][2]; z <= top[t][2]; ++z) {
           const std::uint64_t cell = (static_cast<std::uint64_t>(x) * cells[1] + y) * cells[2] + z;
           keys.push_back(cell << 32 | t);
         }
   }
-  radix_sort(keys);
+  std::vector<std::array<std::uint32_t, 3>>().swap(top);
+  radix_sort_high(keys);
   const std::size_t limit = budget != 0 ? budget : std::numeric_limits<std::size_t>::max();
+  // A pair is visited in cell c only when max(low[a], low[b]) = c, i.e. for each axis one of
+  // the two boxes starts in c's slab. With mask bit k set when a box starts in c along axis k,
+  // that is mask[a] | mask[b] = 7: the boxes of a cell are bucketed by mask, and only buckets
+  // that complete each other are paired (the candidate pairs), from contiguous copies.
+  struct local {
+    std::array<double, 6> box;
+    std::uint32_t id;
+  };
+  std::vector<local> bucket;
   for (std::size_t begin = 0; begin < keys.size();) {
     const std::uint64_t cell = keys[begin] >> 32;
     std::size_t end = begin + 1;
     while (end < keys.size() && keys[end] >> 32 == cell) ++end;
+    if (end - begin < 2) {
+      begin = end;
+      continue;
+    }
     const std::array<std::uint32_t, 3> here = {
         static_cast<std::uint32_t>(cell / (static_cast<std::uint64_t>(cells[1]) * cells[2])),
         static_cast<std::uint32_t>(cell / cells[2] % cells[1]), static_cast<std::uint32_t>(cell % cells[2])};
-    const std::size_t m_here = end - begin;
-    if (m_here * (m_here - 1) / 2 > limit - r.candidate_pairs) {
+    std::array<std::size_t, 9> start{};  // bucket m holds [start[m], start[m + 1])
+    auto mask_of = [&](std::uint32_t t) {
+      return static_cast<std::size_t>((low[t][0] == here[0] ? 1 : 0) | (low[t][1] == here[1] ? 2 : 0) |
+                                      (low[t][2] == here[2] ? 4 : 0));
+    };
+    for (std::size_t i = begin; i < end; ++i) ++start[mask_of(static_cast<std::uint32_t>(keys[i])) + 1];
+    std::size_t pairs = start[8] * (start[8] - 1) / 2;  // within bucket 7 (its size, before the sums)
+    for (std::size_t a = 0; a < 7; ++a)
+      for (std::size_t b = a + 1; b < 8; ++b)
+        if ((a | b) == 7) pairs += start[a + 1] * start[b + 1];
+    for (std::size_t m = 1; m < 9; ++m) start[m] += start[m - 1];
+    if (pairs == 0) {
+      begin = end;
+      continue;
+    }
+    if (pairs > limit - r.candidate_pairs) {
       r.complete = false;
       return r;
     }
-    r.candidate_pairs += m_here * (m_here - 1) / 2;
+    r.candidate_pairs += pairs;
+    bucket.resize(end - begin);
+    std::array<std::size_t, 8> fill{};
+    for (std::size_t m = 0; m < 8; ++m) fill[m] = start[m];
     for (std::size_t i = begin; i < end; ++i) {
-      const auto a = static_cast<std::uint32_t>(keys[i]);
-      const auto& ba = boxes[a];
-      for (std::size_t j = i + 1; j < end; ++j) {
-        const auto b = static_cast<std::uint32_t>(keys[j]);
-        const auto& bb = boxes[b];
-        if (ba[0] > bb[3] || bb[0] > ba[3] || ba[1] > bb[4] || bb[1] > ba[4] || ba[2] > bb[5] ||
-            bb[2] > ba[5])
-          continue;
-        // Visited only in the cell of the low corner of the boxes' intersection.
-        if (std::max(low[a][0], low[b][0]) != here[0] || std::max(low[a][1], low[b][1]) != here[1] ||
-            std::max(low[a][2], low[b][2]) != here[2])
-          continue;
-        ++r.visited;
-        if (!visit(a, b)) {
-          r.complete = false;
-          return r;
+      const auto t = static_cast<std::uint32_t>(keys[i]);
+      bucket[fill[mask_of(t)]++] = {boxes[t], t};
+    }
+    auto overlap = [](const std::array<double, 6>& p, const std::array<double, 6>& q) {
+      // One branch instead of six: the outcome is hard to predict.
+      return (static_cast<int>(p[0] <= q[3]) & static_cast<int>(q[0] <= p[3]) & static_cast<int>(p[1] <= q[4]) &
+              static_cast<int>(q[1] <= p[4]) & static_cast<int>(p[2] <= q[5]) & static_cast<int>(q[2] <= p[5])) != 0;
+    };
+    for (std::size_t a = 0; a < 8; ++a)
+      for (std::size_t b = a; b < 8; ++b) {
+        if ((a | b) != 7) continue;
+        for (std::size_t i = start[a]; i < start[a + 1]; ++i) {
+          const local& x = bucket[i];
+          for (std::size_t j = a == b ? i + 1 : start[b]; j < start[b + 1]; ++j) {
+            if (!overlap(x.box, bucket[j].box)) continue;
+            ++r.visited;
+            if (!visit(x.id, bucket[j].id)) {
+              r.complete = false;
+              return r;
+            }
+          }
         }
       }
-    }
     begin = end;
   }
   return r;
