@@ -38,18 +38,27 @@
 ///     union is the flat quad u-a-v-b and they meet only in the edge;
 ///   - three shared vertices (two faces with the same corners): they coincide, so they
 ///     intersect.
+/// A pair sharing a vertex v whose star is one closed fan (v, x_i, x_i+1) that projects one-to-one
+/// on a coordinate plane — every projected triangle turning the same strict way (exact orient2d)
+/// and the ring x_i winding once around v (its crossings of a ray from v counted by coordinate
+/// comparisons) — is decided without geometry: the projected triangles lie in disjoint angular
+/// sectors at v, neighbours sharing one ray, so the triangles meet only in v or in their shared
+/// edge, which by the rules above is no intersection. Smooth closed meshes have such stars almost
+/// everywhere; any other star (a fold, a boundary, a pinch, over 64 triangles) goes to the tests.
 /// Without a shared vertex, the test is that some edge of one triangle meets the other
 /// closed triangle (a common point extreme in T1 ∩ T2 lies on an edge of one of them): a
 /// segment crossing a plane meets the triangle where the signs of orient3d of the segment
 /// with the three edges agree; a segment in the plane is tested in a coordinate projection
 /// where the triangle does not collapse, which keeps incidence and order exact.
 ///
-/// Cost. O(n log n + T) for n triangles, where T is the number of candidate pairs (triangles
-/// sharing a grid cell): the grid's cell side is the median of the triangles' largest box
-/// extents, grown until no more than 8n + 2^16 cell entries are needed, so a few huge
-/// triangles cannot blow it up; each pair is examined in exactly one cell (the one holding
-/// the low corner of the intersection of their boxes), so it is tested once. T is bounded
-/// by the option max_candidate_pairs (a work budget): past it the search stops with
+/// Cost. O(n + T) for n triangles (radix sorts), where T is the number of candidate pairs
+/// (triangles sharing a grid cell that may meet there): the triangles are put in Morton order
+/// (and their vertices renumbered) so that neighbours in space are neighbours in memory; the
+/// grid's cell side is the median of the triangles' largest box extents, grown until no more
+/// than 8n + 2^16 cell entries are needed, so a few huge triangles cannot blow it up; each pair
+/// is examined only in the cell holding the low corner of the intersection of their boxes, so
+/// it is tested once, and a cell pairs only boxes of which, on each axis, one starts in it. T is
+/// bounded by the option max_candidate_pairs (a work budget): past it the search stops with
 /// complete = false, or throws error(budget) if asked.
 
 #include <algorithm>
@@ -103,7 +112,9 @@ struct self_intersection_result {
   /// Polygons not both planar and strictly convex (a quad convex in projection counts as
   /// planar when orient3d's floating-point filter cannot tell it from planar).
   std::size_t ear_clipped_faces = 0;
-  std::size_t candidate_pairs = 0;       ///< triangle pairs examined in grid cells (the budget counts these)
+  /// Triangle pairs examined in grid cells (the budget counts these): in each cell, the pairs
+  /// that could have the low corner of their boxes' intersection there.
+  std::size_t candidate_pairs = 0;
   std::size_t pairs_tested = 0;          ///< pairs of different faces with overlapping boxes, tested exactly
   /// Of pairs_tested, those sharing a vertex whose star projects one-to-one on a coordinate
   /// plane: decided without geometry (they meet only in what they share).

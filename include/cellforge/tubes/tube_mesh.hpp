@@ -66,7 +66,7 @@ struct tube_options {
   /// none, the default by measurement — docs/tubes.md).
   std::uint32_t junction_extra_points = 0;
   /// Run the exact self-intersection check on the result (algorithms/self_intersections.hpp;
-  /// 7–9 times the meshing time on trees and lattices) and report it in tubes_result. make_tubes does not check
+  /// 4–9 times the meshing time on trees and lattices) and report it in tubes_result. make_tubes does not check
   /// the skeleton's clearance: tubes whose edges pass closer than their radii intersect.
   bool check_self_intersections = false;
   /// Levels of Loop subdivision applied at the end (the seed smooths its tubes so); with

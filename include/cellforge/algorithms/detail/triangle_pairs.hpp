@@ -501,7 +501,7 @@ std::vector<std::uint8_t> injective_stars(std::span<const Tri> tris, std::span<c
 
 /// What for_each_box_pair did.
 struct box_pair_count {
-  std::size_t candidate_pairs = 0;  ///< pairs of boxes in one grid cell (the budget counts these)
+  std::size_t candidate_pairs = 0;  ///< pairs of boxes a grid cell examines (the budget counts these)
   std::size_t visited = 0;          ///< overlapping pairs handed to the visitor
   bool complete = true;             ///< false when the budget stopped the search
 };
@@ -509,7 +509,8 @@ struct box_pair_count {
 /// Calls visit(i, j) exactly once for every pair of closed boxes (min x, y, z, max x, y, z) that
 /// overlap, i and j in one uniform grid cell: the cell side is the median of the boxes' largest
 /// extents, grown until no more than 8n + 2^16 cell entries are needed, and each pair is visited
-/// in the cell holding the low corner of the boxes' intersection. Stops, complete = false, before
+/// in the cell holding the low corner of the boxes' intersection (the only pairs a cell counts as
+/// candidates; the order of i and j is not fixed). Stops, complete = false, before
 /// a cell that would take the candidate pairs past `budget` (0: no limit). visit may return
 /// false to stop too. O(n log n + candidate pairs).
 template <class Visit>
