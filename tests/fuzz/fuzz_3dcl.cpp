@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// libFuzzer target for the 3DCL cell-list reader (io/cells_io.hpp). Any input must parse or
+// libFuzzer target for the 3DCL cell-list reader (io/cells_3dcl.hpp). Any input must parse or
 // throw cellforge::error; whatever parses is a complex that validate() accepts, and it must
 // survive a write and a re-read unchanged.
 
