@@ -56,6 +56,7 @@
 #include "cellforge/tubes/skeleton.hpp"
 #include "cellforge/tubes/tube_construct.hpp"
 #include "cellforge/tubes/tube_mesh.hpp"
+#include "cellforge/wireframe/cell_list.hpp"
 #include "cellforge/wireframe/circuit_tracer.hpp"
 #include "cellforge/wireframe/extra_faces.hpp"
 #include "cellforge/wireframe/face_arrangement.hpp"

@@ -3,12 +3,13 @@
 /// \file
 /// The whole wireframe → cell complex (3DCL) pipeline of seed 000 §4: read (§4.1), trace
 /// (§4.2), unique circuits (§4.3), face reduction (§4.4), face arrangement (§4.5), extra faces
-/// (§4.6), objects and volumes (§4.7), relations (§4.8) and the cell list (§4.9), on anything
-/// that models Wireframe. Every stage's result (counts, diagnostics, time) is returned too, and
+/// (§4.6), objects and volumes (§4.7), relations (§4.8) and the cell list (§4.9,
+/// cell_list.hpp), on anything that models Wireframe. Every stage's result (counts, diagnostics, time) is returned too, and
 /// the answer's certificate (cells/certify.hpp) with a status: solid, ambiguous, not a solid.
 
 #include <algorithm>
 #include <cstdint>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <span>
@@ -22,6 +23,7 @@
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/wireframe.hpp"
+#include "cellforge/wireframe/cell_list.hpp"
 #include "cellforge/wireframe/circuit_tracer.hpp"
 #include "cellforge/wireframe/extra_faces.hpp"
 #include "cellforge/wireframe/face_arrangement.hpp"
@@ -73,23 +75,6 @@ cells_validation_options wireframe_check_options(const wireframe_options& option
   return check;
 }
 
-/// A planar cycle of the wireframe that is not a face of the result, in the caller's vertex
-/// labels (loops[0] outer, then holes), and why.
-struct face_note {
-  std::vector<std::vector<std::uint32_t>> loops;
-  std::string reason;
-};
-
-/// Another reading of the wireframe (volume_alternative in the caller's labels): the cycles it
-/// would make faces, the faces of the answer it would not have, what it stands for.
-struct reading_note {
-  std::vector<face_note> add;         ///< cycles it keeps as faces (each with `reason` below)
-  std::vector<std::uint32_t> remove;  ///< indices into wireframe_result::input.faces it drops
-  std::string reason;                 ///< what the reading stands for and what set it aside
-  reading_key set_aside_by = reading_key::unneeded_faces;
-  bool undecided = false;  ///< the wireframe does not decide between it and the answer (ambiguous)
-};
-
 /// The cell complex (positions in the wireframe's point type P), its input, and every stage's report.
 template <Point3 P>
 struct wireframe_result {
@@ -137,26 +122,6 @@ struct wireframe_result {
 
 namespace detail {
 
-/// The first edge of g in `order` that edge e crosses at a point inside both (not at a
-/// vertex), within g's merge tolerance; no_index if none. O(E).
-template <class = void>
-std::uint32_t crossing_edge(const wire_graph& g, std::span<const std::uint32_t> order, std::uint32_t e) {
-  const glm::dvec3 p = g.points[g.edges[e][0]], d1 = g.points[g.edges[e][1]] - p;
-  for (const std::uint32_t f : order) {
-    const auto [a, b] = g.edges[f];
-    if (f == e || a == g.edges[e][0] || a == g.edges[e][1] || b == g.edges[e][0] || b == g.edges[e][1])
-      continue;
-    const glm::dvec3 q = g.points[a], d2 = g.points[b] - q, w = p - q;
-    const double aa = glm::dot(d1, d1), bb = glm::dot(d1, d2), cc = glm::dot(d2, d2);
-    const double dd = glm::dot(d1, w), ee = glm::dot(d2, w), den = aa * cc - bb * bb;
-    if (!(den > 1e-12 * aa * cc)) continue;  // parallel
-    const double s = (bb * ee - cc * dd) / den, t = (aa * ee - bb * dd) / den;
-    if (!(s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0)) continue;
-    const double tol = std::max(g.merge_tolerance, 1e-9 * std::sqrt(std::max(aa, cc)));
-    if (glm::length((p + s * d1) - (q + t * d2)) <= tol) return f;
-  }
-  return no_index;
-}
 /// What a wireframe with edges on one face only is (docs/wireframe.md, "Open surfaces and
 /// faces that cross"): the start of wireframe_result's diagnostic "not a closed solid: ...".
 /// O(Σ L of the crossed candidates + open edges).
@@ -387,12 +352,6 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
   if (used.trace.kind == tracer_kind::planar) extra.add_missed = false;
   r.extra =
       cellforge::extra_faces(g, r.unique.faces, r.arrangement.selected, extra, span_of(r.arrangement.crossed));
-  auto note = [&](const wire_face& f, std::string reason) {
-    face_note n{f.loops, std::move(reason)};
-    for (auto& loop : n.loops)
-      for (auto& v : loop) v = g.input_vertex[v];
-    return n;
-  };
   // Circuits that close no volume: when every face went for a free edge only, the faces are
   // the answer (a 3DCL holds faces without volumes), with a diagnostic saying so.
   bool open_surface = false;
@@ -402,7 +361,7 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
     open_surface = !r.extra.faces.empty();
   }
   for (const auto& d : r.extra.removed)
-    if (!(open_surface && d.free_edge)) r.lost.push_back(note(d.face, d.reason));
+    if (!(open_surface && d.free_edge)) r.lost.push_back(caller_face_note(g, d.face, d.reason));
   if (r.extra.faces.empty())
     throw error(error_category::topology,
                 no_face_message(g, r.arrangement, r.lost) +
@@ -445,106 +404,31 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
   }
 
   stopwatch clock;
-  const std::vector<wire_face>& faces = r.extra.faces;
-  std::vector<char> edge_used(g.num_edges(), 0);
-  std::vector<std::uint32_t> face_id(faces.size(), no_index);
-  for (std::uint32_t i = 0; i < faces.size(); ++i) {
-    if (!r.volume.face_kept[i]) continue;
-    face_id[i] = static_cast<std::uint32_t>(r.input.faces.size());
-    r.input.faces.push_back({faces[i].loops});
-    for (const auto& loop : faces[i].loops)
-      for (std::size_t k = 0; k < loop.size(); ++k)
-        edge_used[g.find_edge(loop[k], loop[(k + 1) % loop.size()])] = 1;
-  }
+  cell_list_options list_options;
+  list_options.keep_dangling = used.keep_dangling;
+  cell_list_result<P> list = cellforge::assemble_cell_list(wire, g, r.extra.faces, r.volume,
+                                                           span_of(r.read.dangling), list_options);
   // No clear gap between noise and shape: the reading stands when it explains the whole
   // wireframe (every edge on a kept face, nothing lost, volumes closed); otherwise the noise
   // may have hidden faces, and the answer is flagged (the certificate also says what is left).
   if (estimated && !r.tolerance.clear_gap) {
-    const bool explained = !open_surface && r.lost.empty() &&
-                           std::find(edge_used.begin(), edge_used.end(), char{0}) == edge_used.end();
+    const bool explained = !open_surface && r.lost.empty() && list.faceless_edges == 0;
     r.tolerance.ambiguous = !explained;
     if (r.tolerance.ambiguous)
       r.diagnostics.push_back(
           "tolerance: the reading leaves part of the wireframe unexplained and the noise may have hidden "
           "faces; the answer is doubtful");
   }
-  // Vertices and edges: those the faces use (and dangling edges when asked), caller's order.
-  std::vector<std::array<std::uint32_t, 2>> edges;  // in the caller's vertex labels
-  std::vector<std::uint32_t> edge_origin;
-  std::vector<std::uint32_t> graph_edge_out(g.num_edges(), no_index);  // graph edge → output edge
-  // An edge left out because it crosses another edge (a diagonal through a face): say so, or
-  // "bounds no face" hides why. Tested against every edge while that stays cheap.
-  const auto left_out = static_cast<std::size_t>(std::count(edge_used.begin(), edge_used.end(), char{0}));
-  const bool test_crossings = left_out * g.num_edges() <= 20'000'000;
-  // The graph's edges in the caller's order (read_vertices may number them spatially).
-  std::vector<std::uint32_t> caller_order(g.num_edges());
-  for (std::uint32_t e = 0; e < g.num_edges(); ++e)
-    caller_order[g.read_order.empty() ? e : g.read_order[e]] = e;
-  for (const std::uint32_t e : caller_order) {
-    if (!edge_used[e]) {
-      const std::uint32_t other =
-          test_crossings ? crossing_edge(g, span_of(caller_order), e) : no_index;
-      r.diagnostics.push_back(cellforge::detail::cat(
-          "edge ", std::to_string(g.input_edge[e]), " bounds no face",
-          (other != no_index
-               ? cellforge::detail::cat(" (it crosses edge ", std::to_string(g.input_edge[other]),
-                                        " between their ends)")
-               : std::string()),
-          (used.keep_dangling ? "; kept as a dangling edge" : " and is left out")));
-    }
-    if (edge_used[e] || used.keep_dangling) {
-      graph_edge_out[e] = static_cast<std::uint32_t>(edges.size());
-      edges.push_back({g.input_vertex[g.edges[e][0]], g.input_vertex[g.edges[e][1]]});
-      edge_origin.push_back(g.input_edge[e]);
-    }
-  }
-  if (used.keep_dangling) {
-    for (const auto e : r.read.dangling) {
-      const auto ab = wireframe_traits<G>::endpoints(wire, e);
-      edges.push_back({static_cast<std::uint32_t>(ab[0]), static_cast<std::uint32_t>(ab[1])});
-      edge_origin.push_back(e);
-    }
-  }
-  std::vector<std::uint32_t> label(wireframe_traits<G>::num_vertices(wire), no_index);
-  for (const auto& e : edges)
-    for (const auto v : e) label[v] = 0;
-  for (std::uint32_t v = 0; v < label.size(); ++v) {
-    if (label[v] == no_index) continue;
-    label[v] = static_cast<std::uint32_t>(r.input.points.size());
-    r.input.points.push_back(static_cast<P>(wireframe_traits<G>::position(wire, v)));
-    r.input_vertex.push_back(v);
-  }
-  // Graph vertex → output label (graph vertices are the caller's representatives).
-  for (const auto& e : edges) r.input.edges.push_back({label[e[0]], label[e[1]]});
-  r.input_edge = std::move(edge_origin);
-  // Faces in the canonical order of the output labels (smallest first, towards its smaller
-  // neighbour; holes from their smallest): the same loops whatever the graph's numbering.
-  std::vector<char> reversed(r.input.faces.size(), 0);
-  for (std::size_t i = 0; i < r.input.faces.size(); ++i) {
-    auto& loops = r.input.faces[i].loops;
-    for (auto& loop : loops)
-      for (auto& v : loop) v = label[g.input_vertex[v]];
-    reversed[i] = cellforge::canonical_cycle(loops[0]);
-    for (std::size_t h = 1; h < loops.size(); ++h) {
-      if (reversed[i]) std::reverse(loops[h].begin(), loops[h].end());
-      std::rotate(loops[h].begin(), std::min_element(loops[h].begin(), loops[h].end()), loops[h].end());
-    }
-    std::sort(loops.begin() + 1, loops.end());
-  }
-  for (const auto& vol : r.volume.volumes) {
-    cell_input_volume out;
-    for (const auto& [f, s] : vol) out.faces.emplace_back(face_id[f], reversed[face_id[f]] ? -s : s);
-    r.input.volumes.push_back(std::move(out));
-  }
-  for (const auto i : r.volume.unforced)
-    if (face_id[i] != no_index) r.unforced.push_back(face_id[i]);
-  for (const auto& a : r.volume.alternatives) {
-    reading_note n{{}, {}, a.reading, a.set_aside_by, a.undecided};
-    for (const auto i : a.add) n.add.push_back(note(faces[i], a.reading));
-    for (const auto i : a.remove)
-      if (face_id[i] != no_index) n.remove.push_back(face_id[i]);
-    r.alternatives.push_back(std::move(n));
-  }
+  r.diagnostics.insert(r.diagnostics.end(), std::make_move_iterator(list.diagnostics.begin()),
+                       std::make_move_iterator(list.diagnostics.end()));
+  r.input = std::move(list.input);
+  r.input_vertex = std::move(list.input_vertex);
+  r.input_edge = std::move(list.input_edge);
+  r.unforced = std::move(list.unforced);
+  r.alternatives = std::move(list.alternatives);
+  const std::vector<std::uint32_t>& label = list.output_vertex;          // caller's vertex → output
+  const std::vector<std::uint32_t>& graph_edge_out = list.output_edge;  // graph edge → output edge
+
   if (used.build_complex) {
     // Built and checked in the graph's numbering (spatial: read_options::spatial_order), where
     // the sorts and checks stay in cache, then renumbered to the output's: the same complex as
