@@ -4,62 +4,8 @@
 /// An exact self-intersection check for polygon meshes: every face is triangulated, pairs of
 /// triangles whose boxes meet are found with a uniform grid, and each pair is decided by the
 /// signs of orient3d / orient2d alone (core/predicates.hpp), with no epsilon anywhere.
-///
-/// What is tested. A face is tested as the triangles of its triangulation: a triangle as
-/// itself; a quad whose projection (as ear clipping projects it) is strictly convex as the
-/// triangles (3, 0, 1) and (1, 2, 3) — what ear clipping makes of it off its plane, the
-/// same region as any fan in its plane; a polygon that is exactly planar and strictly convex
-/// as the fan from its first vertex; any other polygon (non-planar — a quad whose corners are off one plane
-/// by a rounding error is one —, concave, with a straight corner) as the triangles ear clipping
-/// (algorithms/ear_clipping.hpp) makes of its projection, with no planarity limit and
-/// non-simple faces allowed; a polygon ear clipping refuses (no area) falls back to the fan.
-/// So a non-planar quad is tested as its two triangles. Triangles of one face are never
-/// tested against each other. Zero-area triangles (three collinear corners, or a NaN or
-/// infinite coordinate) are not tested at all: they are counted and their faces listed as
-/// a diagnostic.
-///
-/// When two triangles intersect. Triangles are closed sets (interior, edges and corners),
-/// and sharing is by vertex handle, not by position: two corners at one position but of
-/// different vertices touch, and touching is intersecting. For triangles T1, T2 of
-/// different faces:
-///   - no shared vertex: they intersect when the closed triangles have a common point
-///     (crossing, touching at a point or along a segment, coplanar overlap);
-///   - one shared vertex v, T1 = (v, a, b), T2 = (v, c, d): they intersect when they meet
-///     anywhere but v — when segment ab meets T2, or segment cd meets T1, or a corner a, b
-///     lies in T2's plane with the ray from v through it inside T2's closed corner at v (or
-///     c, d likewise for T1). These cases are complete: T1 ∩ T2 is convex and contains v;
-///     any other point w of it makes an end of T1 ∩ T2 other than v, which lies on an edge
-///     of one triangle inside the other — on ab or cd, or on an edge va (vb, vc, vd), which
-///     then lies in the other's plane with its direction inside the other's corner at v;
-///   - one shared edge uv, T1 = (u, v, a), T2 = (u, v, b): they intersect only when a, b
-///     and the edge are coplanar and a, b lie on the same side of the line uv — a fold, the
-///     two faces overlapping beyond the edge. Not coplanar: the planes meet in the line uv,
-///     and each triangle meets that line only in the edge. Coplanar on opposite sides: the
-///     union is the flat quad u-a-v-b and they meet only in the edge;
-///   - three shared vertices (two faces with the same corners): they coincide, so they
-///     intersect.
-/// A pair sharing a vertex v whose star is one closed fan (v, x_i, x_i+1) that projects one-to-one
-/// on a coordinate plane — every projected triangle turning the same strict way (exact orient2d)
-/// and the ring x_i winding once around v (its crossings of a ray from v counted by coordinate
-/// comparisons) — is decided without geometry: the projected triangles lie in disjoint angular
-/// sectors at v, neighbours sharing one ray, so the triangles meet only in v or in their shared
-/// edge, which by the rules above is no intersection. Smooth closed meshes have such stars almost
-/// everywhere; any other star (a fold, a boundary, a pinch, over 64 triangles) goes to the tests.
-/// Without a shared vertex, the test is that some edge of one triangle meets the other
-/// closed triangle (a common point extreme in T1 ∩ T2 lies on an edge of one of them): a
-/// segment crossing a plane meets the triangle where the signs of orient3d of the segment
-/// with the three edges agree; a segment in the plane is tested in a coordinate projection
-/// where the triangle does not collapse, which keeps incidence and order exact.
-///
-/// Cost. O(n + T) for n triangles (radix sorts), where T is the number of candidate pairs
-/// (triangles sharing a grid cell that may meet there): the triangles are put in Morton order
-/// (and their vertices renumbered) so that neighbours in space are neighbours in memory; the
-/// grid's cell side is the median of the triangles' largest box extents, grown until no more
-/// than 8n + 2^16 cell entries are needed, so a few huge triangles cannot blow it up; each pair
-/// is examined only in the cell holding the low corner of the intersection of their boxes, so
-/// it is tested once, and a cell pairs only boxes of which, on each axis, one starts in it. T is
-/// bounded by the option max_candidate_pairs (a work budget): past it the search stops with
-/// complete = false, or throws error(budget) if asked.
+/// O(n + candidate pairs) for n triangles (radix sorts), the pairs bounded by a work budget. What
+/// is tested, when two triangles intersect and the proof that the test is complete: docs/predicates.md.
 
 #include <algorithm>
 #include <array>
