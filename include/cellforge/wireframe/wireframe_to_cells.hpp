@@ -4,8 +4,9 @@
 /// The whole wireframe → cell complex (3DCL) pipeline of seed 000 §4: read (§4.1), trace
 /// (§4.2), unique circuits (§4.3), face reduction (§4.4), face arrangement (§4.5), extra faces
 /// (§4.6), objects and volumes (§4.7), relations (§4.8) and the cell list (§4.9,
-/// cell_list.hpp), on anything that models Wireframe. Every stage's result (counts, diagnostics, time) is returned too, and
-/// the answer's certificate (cells/certify.hpp) with a status: solid, ambiguous, not a solid.
+/// cell_list.hpp), on anything that models Wireframe. Every stage's result (counts,
+/// diagnostics, time) is returned too, and the answer's certificate (cells/certify.hpp) with a
+/// status: solid, ambiguous, not a solid.
 
 #include <algorithm>
 #include <cstdint>

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// make_cell_complex and renumber_cells: building and renumbering the relations (included by cells/cell_complex.hpp).
+// make_cell_complex and renumber_cells: building and renumbering the relations (included by
+// cells/cell_complex.hpp).
 
 #include <algorithm>
 #include <array>
