@@ -351,6 +351,44 @@ wireframe_result<R> converted(wireframe_result<glm::dvec3>&& d) {
   }
 }
 
+/// Whether two lines of the drawing that share no junction are nearly parallel (within
+/// `degrees`) but not parallel to rounding: the drawing is inexact (sketched, jittered, typed
+/// with few digits), since a parallel view keeps lines parallel in space exactly parallel.
+/// O(E log E + pairs within the angle).
+template <class = void>
+bool nearly_parallel(const faces::drawing_graph& g, double degrees) {
+  const std::size_t ne = g.num_half_edges() / 2;
+  std::vector<std::pair<double, std::uint32_t>> angle;
+  angle.reserve(ne);
+  for (std::uint32_t e = 0; e < ne; ++e) {
+    const glm::dvec2 v = g.p[g.head[2 * e]] - g.p[g.head[2 * e + 1]];
+    if (!(glm::length(v) > 0)) continue;
+    double a = std::atan2(v.y, v.x);
+    if (a < 0) a += 3.141592653589793;
+    if (a >= 3.141592653589793) a -= 3.141592653589793;
+    angle.push_back({a, e});
+  }
+  std::sort(angle.begin(), angle.end());
+  const double window = degrees * 3.141592653589793 / 180.0;
+  const auto near = [&](std::uint32_t e, std::uint32_t f) {
+    if (g.head[2 * e] == g.head[2 * f] || g.head[2 * e] == g.head[2 * f + 1] ||
+        g.head[2 * e + 1] == g.head[2 * f] || g.head[2 * e + 1] == g.head[2 * f + 1])
+      return false;
+    const glm::dvec2 u = glm::normalize(g.p[g.head[2 * e]] - g.p[g.head[2 * e + 1]]),
+                     v = glm::normalize(g.p[g.head[2 * f]] - g.p[g.head[2 * f + 1]]);
+    return std::abs(u.x * v.y - u.y * v.x) > 1e-9;
+  };
+  const std::size_t n = angle.size();
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t k = 1; k < n; ++k) {  // forward around the circle of directions
+      const std::size_t j = (i + k) % n;
+      const double gap = j > i ? angle[j].first - angle[i].first : angle[j].first + 3.141592653589793 - angle[i].first;
+      if (gap > window) break;
+      if (near(angle[i].second, angle[j].second)) return true;
+    }
+  return false;
+}
+
 /// Canonical cycles of a set of loops, for comparison. O(Σ L log L).
 template <class = void>
 std::multiset<std::vector<std::uint32_t>> canonical_loops(
@@ -393,7 +431,7 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
     std::vector<std::vector<std::uint32_t>> only_in_drawing, only_in_3d;
     std::string error;
   };
-  const auto wanted = detail::sketch::canonical_loops(r.faces.loops);
+  auto wanted = detail::sketch::canonical_loops(r.faces.loops);
   const auto run_with = [&](const line_drawing<drawing_point_t<D>>& used,
                             const detail::sketch::face_set& face_loops, std::vector<std::string>& notes,
                             const inflation_options& inflation) {
@@ -495,9 +533,12 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
       }
     }
   }
-  // Still no complex whose faces agree: the drawing is inexact (sketched). Tidied to the nearest
-  // view of a solid with the faces found (planar faces, lines parallel in 3D parallel).
-  if (options.tidy != tidy_mode::never && !(best.cells && best.agree) && r.face_loops.size() >= 4) {
+  // Still no complex whose faces agree, or an inexact drawing (sketched: lines nearly parallel,
+  // never exactly) read only by optimisation: tidied to the nearest view of a solid with the
+  // faces found (planar faces, lines parallel in 3D parallel).
+  const bool inexact = detail::sketch::nearly_parallel(g, 5.0);
+  if (options.tidy != tidy_mode::never && r.face_loops.size() >= 4 &&
+      (!(best.cells && best.agree) || (inexact && !direct(best)))) {
     try {
       tidy_result<drawing_point_t<D>> t = tidy_to_solid(drawing, r.face_loops, options.tidying);
       for (const auto& d : t.diagnostics) r.diagnostics.push_back(d);
@@ -521,7 +562,51 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
             regrouped = r.face_loops;
         }
       }
-      if (t.applied) {
+      // The faces found again on the tidied drawing, whose lines parallel in space are exactly
+      // parallel: a face finder tells coplanar faces (seams that need a wall) only there. They
+      // replace the faces as found when those fail their check on the tidied drawing and the
+      // new ones pass it and give a complex that agrees with them.
+      bool refound = false;
+      if (t.applied && inexact) {
+        face_finder_result f2 = find_faces(t.drawing, options.faces);
+        const auto found2 = detail::sketch::canonical_loops(f2.loops);
+        const detail::faces::drawing_graph g2 = detail::faces::make_graph(t.drawing, options.faces);
+        const double coplanar = std::max(options.faces.coplanar_tolerance_degrees, 1e-6);
+        if (!f2.flagged && found2 != wanted &&
+            (r.faces.flagged || !detail::faces::check_loops(g2, r.faces.loops, coplanar).ok())) {
+          std::vector<std::string> group_notes;
+          std::size_t ambiguous = 0;
+          detail::sketch::face_set grouped2 =
+              detail::sketch::group_faces(g2, f2.loops, options.inflation, group_notes, ambiguous);
+          tidy_result<drawing_point_t<D>> t2 = tidy_to_solid(drawing, grouped2, options.tidying);
+          if (t2.applied) {
+            const auto before = std::move(wanted);
+            wanted = found2;
+            std::vector<std::string> tidy_notes;
+            attempt again = run(t2.drawing, grouped2, tidy_notes, true);
+            if (again.cells && again.agree) {
+              refound = true;
+              best = std::move(again);
+              notes = std::move(tidy_notes);
+              r.diagnostics.push_back(cellforge::detail::cat(
+                  "faces found again on the drawing tidied to a solid: ", std::to_string(f2.loops.size()),
+                  " loops where the drawing as drawn gave ", std::to_string(r.faces.loops.size()),
+                  " (those fail their check there)"));
+              r.faces = std::move(f2);
+              r.face_loops = std::move(grouped2);
+              r.ambiguous_parts = ambiguous;
+              r.tidy = std::move(t2);
+              r.diagnostics.push_back(
+                  cellforge::detail::cat("tidied to the view of a solid: junctions moved by at most ",
+                                         std::to_string(r.tidy.largest_move), " of the drawing's size (rms ",
+                                         std::to_string(r.tidy.rms_move), ")"));
+            } else {
+              wanted = before;
+            }
+          }
+        }
+      }
+      if (t.applied && !refound && !(best.cells && best.agree)) {
         std::vector<std::string> tidy_notes;
         attempt tidied = run(t.drawing, regrouped, tidy_notes, true);
         if ((tidied.cells && !best.cells) || (tidied.cells && tidied.agree)) {
