@@ -389,6 +389,31 @@ bool nearly_parallel(const faces::drawing_graph& g, double degrees) {
   return false;
 }
 
+/// Whether loops fail their check on a drawing at an edge on just two of them that are
+/// coplanar in the drawing's reading `depth` (normals within 1e-6 rad): a seam in space, that
+/// a wall must meet, not only two faces alike in the view. O(Σ L² + E).
+template <class = void>
+bool flat_seam(const faces::drawing_graph& g, const std::vector<double>& depth,
+               const std::vector<std::vector<std::uint32_t>>& loops, double coplanar_degrees) {
+  const face_check c = faces::check_loops(g, loops, coplanar_degrees);
+  if (c.seam_edges.empty() || depth.size() != g.num_junctions()) return false;
+  std::vector<glm::dvec3> q(g.num_junctions());
+  for (std::size_t i = 0; i < q.size(); ++i) q[i] = glm::dvec3(g.p[i], depth[i]);
+  for (const auto e : c.seam_edges) {
+    const std::uint32_t a = g.head[2 * e + 1], b = g.head[2 * e];
+    std::vector<glm::dvec3> normals;
+    for (const auto& loop : loops)
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        const std::uint32_t u = loop[k], v = loop[(k + 1) % loop.size()];
+        if ((u == a && v == b) || (u == b && v == a)) normals.push_back(loop_plane(q, loop).first);
+      }
+    if (normals.size() == 2 && glm::length(normals[0]) > 0 && glm::length(normals[1]) > 0 &&
+        glm::length(glm::cross(glm::normalize(normals[0]), glm::normalize(normals[1]))) <= 1e-6)
+      return true;
+  }
+  return false;
+}
+
 /// Canonical cycles of a set of loops, for comparison. O(Σ L log L).
 template <class = void>
 std::multiset<std::vector<std::uint32_t>> canonical_loops(
@@ -534,11 +559,11 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
     }
   }
   // Still no complex whose faces agree, or an inexact drawing (sketched: lines nearly parallel,
-  // never exactly) read only by optimisation: tidied to the nearest view of a solid with the
-  // faces found (planar faces, lines parallel in 3D parallel).
+  // never exactly): tidied to the nearest view of a solid with the faces found (planar faces,
+  // lines parallel in 3D parallel).
   const bool inexact = detail::sketch::nearly_parallel(g, 5.0);
   if (options.tidy != tidy_mode::never && r.face_loops.size() >= 4 &&
-      (!(best.cells && best.agree) || (inexact && !direct(best)))) {
+      (!(best.cells && best.agree) || inexact)) {
     try {
       tidy_result<drawing_point_t<D>> t = tidy_to_solid(drawing, r.face_loops, options.tidying);
       for (const auto& d : t.diagnostics) r.diagnostics.push_back(d);
@@ -564,16 +589,17 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
       }
       // The faces found again on the tidied drawing, whose lines parallel in space are exactly
       // parallel: a face finder tells coplanar faces (seams that need a wall) only there. They
-      // replace the faces as found when those fail their check on the tidied drawing and the
-      // new ones pass it and give a complex that agrees with them.
+      // replace the faces as found when those failed their check, or have a seam on the tidied
+      // drawing whose two faces are coplanar in its reading (not just alike in the view), and
+      // the new ones pass their check and give a complex that agrees with them.
       bool refound = false;
-      if (t.applied && inexact) {
+      if (t.applied && inexact && t.largest_move > 1e-7) {
         face_finder_result f2 = find_faces(t.drawing, options.faces);
         const auto found2 = detail::sketch::canonical_loops(f2.loops);
         const detail::faces::drawing_graph g2 = detail::faces::make_graph(t.drawing, options.faces);
         const double coplanar = std::max(options.faces.coplanar_tolerance_degrees, 1e-6);
         if (!f2.flagged && found2 != wanted &&
-            (r.faces.flagged || !detail::faces::check_loops(g2, r.faces.loops, coplanar).ok())) {
+            (r.faces.flagged || detail::sketch::flat_seam(g2, t.depth, r.faces.loops, coplanar))) {
           std::vector<std::string> group_notes;
           std::size_t ambiguous = 0;
           detail::sketch::face_set grouped2 =

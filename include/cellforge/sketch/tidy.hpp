@@ -118,7 +118,9 @@ std::pair<double, double> moves(const std::vector<glm::dvec2>& from, const std::
 /// Classes of lines parallel in 3D in a reading: longest line first, every unassigned line of
 /// the same part of the drawing (`part` per junction) within `tolerance` (radians, up to sign)
 /// joins it unless it shares a junction with a member (two lines at one junction of a solid
-/// are never parallel). Classes of one line are dropped. Then classes of different parts whose
+/// are never parallel). A class whose drawing directions form two tight groups far apart
+/// (gap over four times either group's spread) is split. Classes of one line are dropped.
+/// Then classes of different parts whose
 /// drawing directions are each other's only match within the tolerance are merged: the depth
 /// of a part drawn inside another is read on its own, so only its drawing directions compare.
 /// O(E log E + E · W + C²), W the lines within the tolerance in the drawing, C the classes.
@@ -175,6 +177,31 @@ std::vector<std::vector<std::uint32_t>> parallel_classes(
     scan(std::max(lo, 0.0), std::min(hi, std::numbers::pi));
     if (lo < 0) scan(lo + std::numbers::pi, std::numbers::pi);
     if (hi > std::numbers::pi) scan(0.0, hi - std::numbers::pi);
+    // Lines parallel in 3D are parallel in the drawing up to the pen's slips: a class whose
+    // drawing directions fall into two tight groups far apart (an affine reading can bring two
+    // directions of space within the tolerance) is two classes.
+    if (cls.size() >= 4) {
+      std::vector<std::pair<double, std::uint32_t>> by;
+      for (const auto e : cls) {
+        double t = ang[e] - ang[seed];
+        t -= std::numbers::pi * std::round(t / std::numbers::pi);
+        by.push_back({t, e});
+      }
+      std::sort(by.begin(), by.end());
+      std::size_t cut = 0;
+      double widest = 0;
+      for (std::size_t k = 2; k + 2 <= by.size(); ++k) {
+        const double gap = by[k].first - by[k - 1].first,
+                     spread = std::max(by[k - 1].first - by.front().first, by.back().first - by[k].first);
+        if (gap > 4 * spread && gap > widest) widest = gap, cut = k;
+      }
+      if (cut > 0) {
+        std::vector<std::uint32_t> low, high;
+        for (std::size_t k = 0; k < by.size(); ++k) (k < cut ? low : high).push_back(by[k].second);
+        out.push_back(std::move(low));
+        cls = std::move(high);
+      }
+    }
     if (cls.size() >= 2) out.push_back(std::move(cls));
   }
   // Across parts: each class's drawing direction (length-weighted mean of doubled angles).
