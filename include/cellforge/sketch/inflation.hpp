@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -107,6 +108,12 @@ struct inflation_options {
   /// regularity to find, and one search costs O(K) per relation).
   int regularity_starts = 6;
   std::size_t regularity_starts_max_freedom = 8;
+  /// Hypotheses of the regular reading solved linearly before the random starts: polygons
+  /// drawn as affine images of regular ones made regular (prism and antiprism caps, pyramid
+  /// bases, a bipyramid's equator), three classes of parallel lines made orthogonal axes (cut
+  /// cubes). Up to this many are searched, each only in the planar readings that meet it, and
+  /// only when those are at most regularity_max_freedom (so also at higher planar freedom).
+  std::size_t regularity_hypotheses = 4;
 };
 
 /// Value of each compliance function (unweighted, each normalised by its count) at a reading.
@@ -849,18 +856,23 @@ struct inflation_functor {
 /// The regularities a person sees in a solid (Lipson and Shpitalni), as relations on the face
 /// loops that are exact at a regular solid's true reading: a right face corner (cos θ = 0),
 /// two consecutive corners of a face equal (θ_k = θ_{k+1}), two consecutive sides of a face
-/// equal in length. Parallelism (lines parallel in the drawing are parallel in 3D) and the
-/// convexity hinge are kept as plain terms. Built from the loops alone. O(L).
+/// equal in length, two classes of 2D-parallel lines square to each other (a cut cube's axes,
+/// a prism's sides to its caps). Parallelism (lines parallel in the drawing are parallel in
+/// 3D) and the convexity hinge are kept as plain terms. Built from the drawing alone. O(L + C²).
 template <class = void>
 struct regularity_terms {
   std::vector<std::array<std::uint32_t, 3>> corners;      // (prev, j, next) of every face loop
   std::vector<std::array<std::uint32_t, 2>> angle_pairs;  // consecutive corners of one loop
   std::vector<std::array<std::uint32_t, 4>> side_pairs;   // (a, b) and (c, d): consecutive sides
-  std::size_t relations() const { return corners.size() + angle_pairs.size() + side_pairs.size(); }
+  std::vector<std::array<std::uint32_t, 4>> class_pairs;  // longest lines (a, b), (c, d) of two classes
+  std::size_t relations() const {
+    return corners.size() + angle_pairs.size() + side_pairs.size() + class_pairs.size();
+  }
 };
 
+/// `direction_tolerance` groups lines into 2D-parallel classes (as the compliance terms do).
 template <class = void>
-regularity_terms<> make_regularity_terms(const inflation_problem<>& pr) {
+regularity_terms<> make_regularity_terms(const inflation_problem<>& pr, double direction_tolerance = 1e-6) {
   regularity_terms<> t;
   for (const auto& loop : pr.loops) {
     const auto n = static_cast<std::uint32_t>(loop.size());
@@ -871,11 +883,27 @@ regularity_terms<> make_regularity_terms(const inflation_problem<>& pr) {
       t.side_pairs.push_back({loop[k], loop[(k + 1) % n], loop[(k + 1) % n], loop[(k + 2) % n]});
     }
   }
+  // One line stands for its class (the longest: parallel in 3D is a plain term); the six
+  // classes of most total length (a cut cube's axes), so that the pairs stay few.
+  const auto len = [&](std::uint32_t e) { return glm::length(pr.p[pr.edges[e][1]] - pr.p[pr.edges[e][0]]); };
+  std::vector<std::pair<double, std::uint32_t>> classes;
+  for (const auto& c : make_compliance_terms(pr, direction_tolerance).parallel) {
+    double total = 0;
+    for (const auto e : c) total += len(e);
+    classes.push_back({-total, *std::max_element(c.begin(), c.end(), [&](auto x, auto y) { return len(x) < len(y); })});
+  }
+  std::sort(classes.begin(), classes.end());
+  std::vector<std::uint32_t> rep;
+  for (std::size_t i = 0; i < classes.size() && i < 6; ++i) rep.push_back(classes[i].second);
+  for (std::size_t i = 0; i < rep.size(); ++i)
+    for (std::size_t j = i + 1; j < rep.size(); ++j)
+      t.class_pairs.push_back({pr.edges[rep[i]][0], pr.edges[rep[i]][1], pr.edges[rep[j]][0], pr.edges[rep[j]][1]});
   return t;
 }
 
 /// The relation residuals at depths z (normalised coordinates), in the order corners (cos θ),
-/// angle pairs (θ_k − θ_{k+1}, radians), side pairs ((L₁ − L₂) / (L₁ + L₂)); with jr (relations
+/// angle pairs (θ_k − θ_{k+1}, radians), side pairs ((L₁ − L₂) / (L₁ + L₂)), class pairs (the
+/// cosine between their lines); with jr (relations
 /// × K), their exact Jacobian rows over t (N row-major in n). O(L), O(L K) with the Jacobian.
 template <class Z>
 void regularity_residuals(const inflation_problem<>& pr, const regularity_terms<>& t, const Z& z,
@@ -908,6 +936,16 @@ void regularity_residuals(const inflation_problem<>& pr, const regularity_terms<
       jr->row(k) =
           q * b * u.z / a * (n->row(s[1]) - n->row(s[0])) - q * a * v.z / b * (n->row(s[3]) - n->row(s[2]));
     }
+    ++k;
+  }
+  for (const auto& s : t.class_pairs) {
+    const glm::dvec3 u = at(s[1]) - at(s[0]), v = at(s[3]) - at(s[2]);
+    const double a = glm::length(u), b = glm::length(v), c = glm::dot(u, v) / (a * b);
+    r[k] = c;
+    // dc/du_z = v_z / (a b) − c u_z / a², and alike for v.
+    if (jr)
+      jr->row(k) = (v.z / (a * b) - c * u.z / (a * a)) * (n->row(s[1]) - n->row(s[0])) +
+                   (u.z / (a * b) - c * v.z / (b * b)) * (n->row(s[3]) - n->row(s[2]));
     ++k;
   }
 }
@@ -1057,6 +1095,241 @@ Eigen::VectorXd snap_regular(const inflation_problem<>& pr, const compliance_ter
       }
       held = std::move(kept);
     }
+  }
+  return best;
+}
+
+/// A hypothesis of the regular reading: depth differences z_i − z_j = value (normalised units)
+/// that the reading meets, up to the mirror (every value negated).
+struct depth_hypothesis {
+  std::vector<std::array<std::uint32_t, 2>> pairs;
+  std::vector<double> value;
+};
+
+/// When a polygon's drawing is the affine image c + A (cos 2πk/n, sin 2πk/n) of a regular
+/// n-gon (to `tolerance`), the depth gradient g (z = g · xy + c) of the plane in which it is
+/// regular, one of the mirror pair ±g; false otherwise or seen edge-on. O(n).
+template <class = void>
+bool regular_polygon_gradient(const inflation_problem<>& pr, const std::vector<std::uint32_t>& loop,
+                              double tolerance, glm::dvec2& g) {
+  const auto n = static_cast<Eigen::Index>(loop.size());
+  if (n < 3) return false;
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(2 * n, 6);
+  Eigen::VectorXd b(2 * n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double a = 2 * std::numbers::pi * static_cast<double>(k) / static_cast<double>(n);
+    const glm::dvec2 p = pr.p[loop[static_cast<std::size_t>(k)]];
+    m(2 * k, 0) = 1, m(2 * k, 2) = std::cos(a), m(2 * k, 3) = std::sin(a), b[2 * k] = p.x;
+    m(2 * k + 1, 1) = 1, m(2 * k + 1, 4) = std::cos(a), m(2 * k + 1, 5) = std::sin(a), b[2 * k + 1] = p.y;
+  }
+  const Eigen::VectorXd x = m.colPivHouseholderQr().solve(b);
+  if (!x.allFinite() || (m * x - b).cwiseAbs().maxCoeff() > tolerance) return false;
+  const glm::dvec2 a1(x[2], x[4]), a2(x[3], x[5]);
+  const double det = a1.x * a2.y - a1.y * a2.x;
+  if (!(std::abs(det) > 1e-6 * glm::length(a1) * glm::length(a2))) return false;
+  // The circle's axes in 3D, (a₁, w₁) and (a₂, w₂), are square and equally long:
+  // w₁ w₂ = −a₁·a₂ and w₁² − w₂² = |a₂|² − |a₁|², i.e. (w₁ + i w₂)² = q − 2ip.
+  const std::complex<double> w =
+      std::sqrt(std::complex<double>(glm::dot(a2, a2) - glm::dot(a1, a1), -2 * glm::dot(a1, a2)));
+  // The plane's gradient meets g · a₁ = w₁, g · a₂ = w₂.
+  g = {(w.real() * a2.y - w.imag() * a1.y) / det, (w.imag() * a1.x - w.real() * a2.x) / det};
+  return true;
+}
+
+/// Hypotheses of the regular reading, most telling first: (1) polygons drawn as affine images
+/// of regular ones — face loops, and the links of junctions whose faces are all triangles (a
+/// bipyramid's equator) — grouped by their plane's gradient (parallel caps share one), a group
+/// kept when it has two polygons or one of five corners or more, at most `most` groups, most
+/// polygons first; (2) every three of the five longest classes of 2D-parallel lines read as
+/// orthogonal axes (a cut cube's), the depth slope of each class from Σ s_i² d_i d_iᵀ = I₂ as
+/// in the direct method. O(L + polygons · groups).
+template <class = void>
+std::vector<depth_hypothesis> regular_hypotheses(const inflation_problem<>& pr, const compliance_terms<>& terms,
+                                                 double tolerance, std::size_t most) {
+  std::vector<std::vector<std::uint32_t>> polygons = pr.loops;
+  std::vector<std::vector<std::uint32_t>> at(pr.p.size());
+  for (std::uint32_t l = 0; l < pr.loops.size(); ++l)
+    for (const auto v : pr.loops[l]) at[v].push_back(l);
+  for (std::uint32_t v = 0; v < pr.p.size(); ++v) {
+    const std::size_t deg = pr.incident[v].size();
+    if (deg < 3 || at[v].size() != deg) continue;
+    std::vector<std::array<std::uint32_t, 2>> link;
+    for (const auto l : at[v]) {
+      if (pr.loops[l].size() != 3) break;
+      std::array<std::uint32_t, 2> o{};
+      std::size_t c = 0;
+      for (const auto u : pr.loops[l])
+        if (u != v && c < 2) o[c++] = u;
+      link.push_back(o);
+    }
+    if (link.size() != deg) continue;
+    std::vector<bool> used(deg, false);
+    used[0] = true;
+    std::vector<std::uint32_t> cycle{link[0][0]};
+    std::uint32_t cur = link[0][1];
+    while (cycle.size() < deg) {
+      cycle.push_back(cur);
+      std::size_t i = 0;
+      while (i < deg && (used[i] || (link[i][0] != cur && link[i][1] != cur))) ++i;
+      if (i == deg) break;
+      used[i] = true;
+      cur = link[i][0] == cur ? link[i][1] : link[i][0];
+    }
+    if (cycle.size() == deg && cur == cycle[0]) polygons.push_back(std::move(cycle));
+  }
+  struct group {
+    glm::dvec2 g;
+    std::vector<std::pair<std::size_t, double>> members;  // polygon, sign of g
+    std::size_t corners;
+  };
+  std::vector<group> groups;
+  for (std::size_t i = 0; i < polygons.size(); ++i) {
+    glm::dvec2 g;
+    if (!regular_polygon_gradient(pr, polygons[i], tolerance, g)) continue;
+    const double tol = 1e-6 * (1 + glm::length(g));
+    bool placed = false;
+    for (auto& gr : groups) {
+      const double sign = glm::length(gr.g - g) <= tol ? 1.0 : glm::length(gr.g + g) <= tol ? -1.0 : 0.0;
+      if (sign == 0) continue;
+      gr.members.push_back({i, sign}), gr.corners += polygons[i].size(), placed = true;
+      break;
+    }
+    if (!placed) groups.push_back({g, {{i, 1.0}}, polygons[i].size()});
+  }
+  std::stable_sort(groups.begin(), groups.end(), [](const group& x, const group& y) {
+    return x.members.size() > y.members.size() || (x.members.size() == y.members.size() && x.corners > y.corners);
+  });
+  std::vector<depth_hypothesis> out;
+  for (const auto& gr : groups) {
+    if (out.size() >= most) break;
+    if (gr.members.size() < 2 && gr.corners < 5) continue;
+    depth_hypothesis h;
+    for (const auto& member : gr.members) {  // parallel planes: one gradient (±g are one pair of roots)
+      const auto& poly = polygons[member.first];
+      for (std::size_t k = 0; k < poly.size(); ++k) {
+        const std::uint32_t a = poly[k], b = poly[(k + 1) % poly.size()];
+        h.pairs.push_back({a, b});
+        h.value.push_back(glm::dot(gr.g, pr.p[a] - pr.p[b]));
+      }
+    }
+    out.push_back(std::move(h));
+  }
+  // Orthogonal axes: the five longest classes.
+  std::vector<std::pair<double, std::size_t>> classes;
+  for (std::size_t c = 0; c < terms.parallel.size(); ++c) {
+    double len = 0;
+    for (const auto e : terms.parallel[c]) len += glm::length(pr.p[pr.edges[e][1]] - pr.p[pr.edges[e][0]]);
+    classes.push_back({-len, c});
+  }
+  std::sort(classes.begin(), classes.end());
+  if (classes.size() > 5) classes.resize(5);
+  for (std::size_t i = 0; i < classes.size(); ++i)
+    for (std::size_t j = i + 1; j < classes.size(); ++j)
+      for (std::size_t k = j + 1; k < classes.size(); ++k) {
+        const std::array<std::size_t, 3> cs{classes[i].second, classes[j].second, classes[k].second};
+        Eigen::Matrix3d m;
+        for (int a = 0; a < 3; ++a) {
+          const glm::dvec2 d = terms.parallel_direction[cs[static_cast<std::size_t>(a)]];
+          m(0, a) = d.x * d.x, m(1, a) = d.x * d.y, m(2, a) = d.y * d.y;
+        }
+        const Eigen::ColPivHouseholderQR<Eigen::Matrix3d> qr(m);
+        if (qr.rank() < 3) continue;
+        const Eigen::Vector3d u = qr.solve(Eigen::Vector3d(1, 0, 1));
+        if (!(u.minCoeff() > 1e-12 && u.maxCoeff() < 1 - 1e-12)) continue;
+        std::array<double, 3> s{};
+        glm::dvec3 r1, r2;
+        for (std::size_t a = 0; a < 3; ++a) {
+          s[a] = std::sqrt(u[static_cast<Eigen::Index>(a)]);
+          const glm::dvec2 d = terms.parallel_direction[cs[a]];
+          r1[static_cast<glm::length_t>(a)] = s[a] * d.x, r2[static_cast<glm::length_t>(a)] = s[a] * d.y;
+        }
+        const glm::dvec3 r3 = glm::cross(r1, r2);
+        depth_hypothesis h;
+        for (std::size_t a = 0; a < 3; ++a)
+          for (const auto e : terms.parallel[cs[a]]) {
+            const glm::dvec2 d = pr.p[pr.edges[e][1]] - pr.p[pr.edges[e][0]];
+            h.pairs.push_back({pr.edges[e][1], pr.edges[e][0]});
+            h.value.push_back(glm::dot(d, terms.parallel_direction[cs[a]]) / s[a] * r3[static_cast<glm::length_t>(a)]);
+          }
+        out.push_back(std::move(h));
+      }
+  return out;
+}
+
+/// The regular reading under a hypothesis: the planar readings that meet its rows (its mirror
+/// chosen as t_ref's) are p + Z w, p the least-norm one; the regular reading (search and snap)
+/// is sought over the span of p and Z, from p plus t_ref's part in Z. Empty when no planar
+/// reading meets the rows to `tolerance` or more than `max_free` readings stay free.
+/// O(R K² + the regular reading over 1 + dim Z unknowns).
+template <class = void>
+Eigen::VectorXd hypothesis_reading(const inflation_problem<>& pr, const compliance_terms<>& terms,
+                                   const regularity_terms<>& reg, const Eigen::MatrixXd& basis,
+                                   const depth_hypothesis& h, const Eigen::VectorXd& t_ref, double tolerance,
+                                   std::size_t max_free, int max_iterations, std::size_t& iterations,
+                                   double exact) {
+  const auto k = basis.cols();
+  const auto rn = static_cast<Eigen::Index>(h.pairs.size());
+  Eigen::MatrixXd m(rn, k);
+  Eigen::VectorXd b(rn);
+  for (Eigen::Index r = 0; r < rn; ++r) {
+    const auto& q = h.pairs[static_cast<std::size_t>(r)];
+    m.row(r) = basis.row(q[0]) - basis.row(q[1]);
+    b[r] = h.value[static_cast<std::size_t>(r)];
+  }
+  // The threshold must be set before the decomposition: it fixes the rank the solve uses.
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(m.rows(), m.cols());
+  cod.setThreshold(1e-9);
+  cod.compute(m);
+  const Eigen::VectorXd p = cod.solve(b);
+  if (!p.allFinite() || p.norm() < 1e-9 || (m * p - b).cwiseAbs().maxCoeff() > tolerance) return {};
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(m.cols(), m.rows());
+  qr.setThreshold(1e-9);
+  qr.compute(m.transpose());
+  const Eigen::Index free = k - qr.rank();
+  if (static_cast<std::size_t>(free) > max_free) return {};
+  Eigen::MatrixXd span(k, 1 + free);
+  span.col(0) = p;
+  Eigen::VectorXd s = Eigen::VectorXd::Zero(1 + free);
+  if (free > 0) {
+    span.rightCols(free) = Eigen::MatrixXd(qr.householderQ()).rightCols(free);
+    s.tail(free) = span.rightCols(free).transpose() * t_ref;
+  }
+  const Eigen::MatrixXd reduced = basis * span;
+  // The mirror: the convexity hinge (one-sided) and the readings near t_ref decide; with a
+  // hinge both are searched, else the one nearer t_ref.
+  const Eigen::VectorXd mt = m * t_ref;
+  const double nearer = (mt - b).squaredNorm() <= (mt + b).squaredNorm() ? 1.0 : -1.0;
+  Eigen::VectorXd best;
+  std::size_t best_held = 0;
+  for (const double sign : {nearer, -nearer}) {
+    if (sign != nearer && terms.convex.empty()) break;
+    s[0] = sign;
+    // One reading left free (a prism's or an antiprism's height, a pyramid's apex): scanned
+    // over ±2 drawing sizes of depth for the step where most relations change sign (come to
+    // hold), which starts the search; the search alone stops at the nearest local minimum.
+    if (free == 1) {
+      const Eigen::VectorXd dz = reduced.col(1);
+      const double reach = 2.0 / std::max(dz.cwiseAbs().maxCoeff(), 1e-12);
+      const int steps = 128;
+      Eigen::VectorXd r(static_cast<Eigen::Index>(reg.relations())), before;
+      std::size_t most = 0;
+      for (int i = 0; i <= steps; ++i) {
+        const double c = reach * (2.0 * i / steps - 1);
+        regularity_residuals(pr, reg, Eigen::VectorXd(reduced.col(0) * sign + dz * c), r);
+        if (i > 0) {
+          const auto crossing = static_cast<std::size_t>((r.array() * before.array() < 0).count());
+          if (crossing > most) most = crossing, s[1] = c - reach / steps;
+        }
+        before = r;
+      }
+    }
+    const Eigen::VectorXd t = span * regular_reading(pr, terms, reg, reduced, s, max_iterations, iterations, exact);
+    const Eigen::VectorXd z = basis * t;
+    // Convex folds lost count against a reading (as inflate judges it).
+    std::size_t held = held_relations(pr, reg, z, 100 * exact), lost = 0;
+    for (const auto& c : terms.convex) lost += c.scale * plane_residual(c, z) > -1e-9;
+    held = lost > 0 ? 0 : held;
+    if (best.size() == 0 || held > best_held) best = t, best_held = held;
   }
   return best;
 }
@@ -1667,7 +1940,7 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
       bool regular;  // moved to a regular reading (else the direct reading or the compliance optimum)
     };
     std::vector<candidate> cands;
-    const detail::regularity_terms<> reg = detail::make_regularity_terms(pr);
+    const detail::regularity_terms<> reg = detail::make_regularity_terms(pr, options.direction_tolerance);
     // A relation holds to `exact` (1e-9, or the drawing's own precision); it is counted held
     // to a hundred times that.
     const double exact = std::max(1e-9, options.closure_tolerance);
@@ -1723,6 +1996,20 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
       judge(detail::regular_reading(pr, terms, reg, basis, best_t, options.max_iterations, res.iterations,
                                     exact),
             false, "the regular reading near the optimised one");
+    // Hypotheses solved linearly (regular polygons' planes, orthogonal axes), each searched over
+    // the planar readings that meet it: the symmetric starts random ones seldom find.
+    if (options.regularity && !res.least_squares) {
+      std::size_t tried = 0;
+      for (const auto& h : detail::regular_hypotheses(pr, terms, 100 * exact, options.regularity_hypotheses)) {
+        if (tried >= options.regularity_hypotheses) break;
+        Eigen::VectorXd t =
+            detail::hypothesis_reading(pr, terms, reg, basis, h, best_t, 100 * exact, options.regularity_max_freedom,
+                                       options.max_iterations, res.iterations, exact);
+        if (t.size() == 0) continue;
+        ++tried;
+        judge(std::move(t), false, "the regular reading of a hypothesis (regular polygons, orthogonal axes)");
+      }
+    }
     // The search can end in a local minimum holding few relations (antiprisms, pyramids): then
     // more starts, random planar readings as for the optimisation, while the best holds under
     // a quarter of the relations (a true antiprism holds two thirds, a pyramid a third).
