@@ -741,8 +741,13 @@ TEST_CASE("inflate: the solid a person sees: metric readings of regular solids, 
   MESSAGE("metric readings (depth within 1e-6 of the size after mirror and offset): "
           << metric << " of " << drawings << table << misses);
   REQUIRE(drawings >= 10);
-  // Measured (Release, this sample): 0 before the regular reading; the floor is under it.
-  CHECK(2 * metric >= drawings);
+  // Measured: 87 of 97 in Release (0 before the regular reading, 77 before its hypotheses),
+  // 12 of 15 in the sanitizer sample; the floors are under them.
+#ifdef NDEBUG
+  CHECK(5 * metric >= 4 * drawings);
+#else
+  CHECK(3 * metric >= 2 * drawings);
+#endif
 }
 
 TEST_CASE("inflate: a reading whose faces cross is caught by the exact check") {

@@ -1295,40 +1295,62 @@ Eigen::VectorXd hypothesis_reading(const inflation_problem<>& pr, const complian
     s.tail(free) = span.rightCols(free).transpose() * t_ref;
   }
   const Eigen::MatrixXd reduced = basis * span;
-  // The mirror: the convexity hinge (one-sided) and the readings near t_ref decide; with a
-  // hinge both are searched, else the one nearer t_ref.
+  // Starts: each mirror (the convexity hinge is one-sided) and, with one reading left free (a
+  // prism's or an antiprism's height, a pyramid's apex), the steps of a scan over ±2 drawing
+  // sizes of depth where most relations change sign (come to hold): a symmetric solid has
+  // other steps where many corners turn right at once, and the search alone stops at the
+  // nearest local minimum. The two starts with fewest convex folds lost, then most crossings,
+  // are searched. O(128 relations) per scan.
+  struct start {
+    std::size_t lost, crossing;
+    Eigen::VectorXd s;
+  };
+  std::vector<start> starts;
+  const auto folds_lost = [&](const Eigen::VectorXd& z) {
+    std::size_t lost = 0;
+    for (const auto& c : terms.convex) lost += c.scale * plane_residual(c, z) > -1e-9;
+    return lost;
+  };
   const Eigen::VectorXd mt = m * t_ref;
   const double nearer = (mt - b).squaredNorm() <= (mt + b).squaredNorm() ? 1.0 : -1.0;
-  Eigen::VectorXd best;
-  std::size_t best_held = 0;
   for (const double sign : {nearer, -nearer}) {
     if (sign != nearer && terms.convex.empty()) break;
     s[0] = sign;
-    // One reading left free (a prism's or an antiprism's height, a pyramid's apex): scanned
-    // over ±2 drawing sizes of depth for the step where most relations change sign (come to
-    // hold), which starts the search; the search alone stops at the nearest local minimum.
+    std::vector<std::pair<std::size_t, double>> found;
     if (free == 1) {
       const Eigen::VectorXd dz = reduced.col(1);
       const double reach = 2.0 / std::max(dz.cwiseAbs().maxCoeff(), 1e-12);
       const int steps = 128;
       Eigen::VectorXd r(static_cast<Eigen::Index>(reg.relations())), before;
-      std::size_t most = 0;
       for (int i = 0; i <= steps; ++i) {
         const double c = reach * (2.0 * i / steps - 1);
         regularity_residuals(pr, reg, Eigen::VectorXd(reduced.col(0) * sign + dz * c), r);
         if (i > 0) {
-          const auto crossing = static_cast<std::size_t>((r.array() * before.array() < 0).count());
-          if (crossing > most) most = crossing, s[1] = c - reach / steps;
+          // Relations that hold all along (a regular cap's) are rounding noise, not crossings.
+          const auto crossing = static_cast<std::size_t>(
+              (r.array() * before.array() < 0 && r.array().abs() > 1e-9 && before.array().abs() > 1e-9).count());
+          if (crossing > 0) found.push_back({crossing, c - reach / steps});
         }
         before = r;
       }
     }
-    const Eigen::VectorXd t = span * regular_reading(pr, terms, reg, reduced, s, max_iterations, iterations, exact);
+    if (found.empty()) found.push_back({0, free > 0 ? s[1] : 0.0});
+    for (const auto& [crossing, c] : found) {
+      if (free == 1) s[1] = c;
+      starts.push_back({folds_lost(reduced * s), crossing, s});
+    }
+  }
+  std::stable_sort(starts.begin(), starts.end(), [](const start& x, const start& y) {
+    return x.lost < y.lost || (x.lost == y.lost && x.crossing > y.crossing);
+  });
+  Eigen::VectorXd best;
+  std::size_t best_held = 0;
+  for (std::size_t i = 0; i < starts.size() && i < 2; ++i) {
+    const Eigen::VectorXd t =
+        span * regular_reading(pr, terms, reg, reduced, starts[i].s, max_iterations, iterations, exact);
     const Eigen::VectorXd z = basis * t;
-    // Convex folds lost count against a reading (as inflate judges it).
-    std::size_t held = held_relations(pr, reg, z, 100 * exact), lost = 0;
-    for (const auto& c : terms.convex) lost += c.scale * plane_residual(c, z) > -1e-9;
-    held = lost > 0 ? 0 : held;
+    // A reading losing convex folds counts as holding nothing (inflate ranks it as a fault).
+    const std::size_t held = folds_lost(z) > 0 ? 0 : held_relations(pr, reg, z, 100 * exact);
     if (best.size() == 0 || held > best_held) best = t, best_held = held;
   }
   return best;
