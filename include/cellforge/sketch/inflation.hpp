@@ -1809,8 +1809,9 @@ double from_above_score(const inflation_problem<>& pr, const compliance_terms<>&
 /// Throws invalid_input on a malformed drawing or loops, topology when no solid reading with
 /// planar faces exists. O(E² + V³ + starts · iterations · K · (L + E)), K the planar freedom.
 template <class Q = void, LineDrawing D>
-auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::uint32_t>>>& faces,
-             const inflation_options& user_options = {}) {
+inflation_result<detail::result_point_t<Q, drawing_point_t<D>>> inflate(
+    const D& drawing, const std::vector<std::vector<std::vector<std::uint32_t>>>& faces,
+    const inflation_options& user_options = {}) {
   using R = detail::result_point_t<Q, drawing_point_t<D>>;
   static_assert(Point3<R>, "inflate: the result point type must be a registered Point3");
   const detail::stopwatch t0;
@@ -2187,8 +2188,9 @@ auto inflate(const D& drawing, const std::vector<std::vector<std::vector<std::ui
 /// inflate with every loop its own face (the hole loops of a face are then not tied to its
 /// outer loop: a hole ringed by edges of its own may float in depth, with a diagnostic). O(as above).
 template <class Q = void, LineDrawing D>
-auto inflate(const D& drawing, const std::vector<std::vector<std::uint32_t>>& loops,
-             const inflation_options& options = {}) {
+inflation_result<detail::result_point_t<Q, drawing_point_t<D>>> inflate(
+    const D& drawing, const std::vector<std::vector<std::uint32_t>>& loops,
+    const inflation_options& options = {}) {
   std::vector<std::vector<std::vector<std::uint32_t>>> faces;
   faces.reserve(loops.size());
   for (const auto& l : loops) faces.push_back({l});
