@@ -1,8 +1,16 @@
 # Runs one compile-fail test (see CMakeLists.txt next to this file):
 # the control target must build, the test target must not, and its diagnostic must match
 # every `// expect: <regex>` line of SOURCE.
+# With COMPILER set (the other compiler's run), the two builds are `COMPILER -std=c++20
+# -fsyntax-only @FLAGS_FILE [-DCELLFORGE_COMPILE_FAIL_CONTROL] SOURCE` instead of the targets.
+# `// expect-count: N <regex>` lines need at least N matches (one per call that must name a concept).
 cmake_minimum_required(VERSION 3.21)
-foreach(var IN ITEMS BUILD_DIR SOURCE TARGET CONTROL_TARGET)
+if(COMPILER)
+  set(required SOURCE FLAGS_FILE)
+else()
+  set(required BUILD_DIR SOURCE TARGET CONTROL_TARGET)
+endif()
+foreach(var IN LISTS required)
   if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
     message(FATAL_ERROR "check.cmake: ${var} is not set")
   endif()
@@ -12,16 +20,24 @@ if(CONFIG)
   set(config_args --config "${CONFIG}")
 endif()
 get_filename_component(name "${SOURCE}" NAME)
+if(COMPILER)
+  get_filename_component(compiler_name "${COMPILER}" NAME)
+  set(name "${name} (${compiler_name})")
+  set(control_command "${COMPILER}" -std=c++20 -fsyntax-only "@${FLAGS_FILE}" -DCELLFORGE_COMPILE_FAIL_CONTROL
+                      "${SOURCE}")
+  set(fail_command "${COMPILER}" -std=c++20 -fsyntax-only "@${FLAGS_FILE}" "${SOURCE}")
+else()
+  set(control_command "${CMAKE_COMMAND}" --build "${BUILD_DIR}" --target "${CONTROL_TARGET}" ${config_args})
+  set(fail_command "${CMAKE_COMMAND}" --build "${BUILD_DIR}" --target "${TARGET}" ${config_args})
+endif()
 
-execute_process(COMMAND "${CMAKE_COMMAND}" --build "${BUILD_DIR}" --target "${CONTROL_TARGET}" ${config_args}
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+execute_process(COMMAND ${control_command} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "${name}: the control build (CELLFORGE_COMPILE_FAIL_CONTROL defined) failed, so the test "
                       "source itself is broken:\n${out}")
 endif()
 
-execute_process(COMMAND "${CMAKE_COMMAND}" --build "${BUILD_DIR}" --target "${TARGET}" ${config_args}
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+execute_process(COMMAND ${fail_command} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
 if(rc EQUAL 0)
   message(FATAL_ERROR "${name}: compiled, but it must be rejected")
 endif()
@@ -32,4 +48,16 @@ foreach(line IN LISTS expect_lines)
     message(FATAL_ERROR "${name}: failed to compile, but the diagnostic does not match '${regex}':\n${out}")
   endif()
   message(STATUS "${name}: rejected as expected (matched '${regex}')")
+endforeach()
+file(STRINGS "${SOURCE}" count_lines REGEX "^// expect-count: ")
+foreach(line IN LISTS count_lines)
+  string(REGEX REPLACE "^// expect-count: *([0-9]+) +(.*)$" "\\1" wanted "${line}")
+  string(REGEX REPLACE "^// expect-count: *([0-9]+) +(.*)$" "\\2" regex "${line}")
+  string(REGEX MATCHALL "${regex}" matches "${out}")
+  list(LENGTH matches found)
+  if(found LESS wanted)
+    message(FATAL_ERROR "${name}: '${regex}' matched ${found} times, at least ${wanted} expected (a call whose "
+                        "error does not name its concept):\n${out}")
+  endif()
+  message(STATUS "${name}: '${regex}' matched ${found} times (at least ${wanted})")
 endforeach()

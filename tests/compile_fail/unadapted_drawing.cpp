@@ -1,13 +1,21 @@
 // expect: satisf.*LineDrawing
 // expect: stroke_sketch
+// expect: drawing_to_cells
+// expect: inflate
+// expect: tidy_drawing
+// expect-count: 4 (does not satisfy|satisfaction of) [^ ]*LineDrawing
 // A drawing type without a line_drawing_traits specialisation must be rejected at the call by
-// the LineDrawing concept.
+// the LineDrawing concept: validate_drawing, and drawing_to_cells, inflate and tidy_drawing,
+// whose return types name the drawing's point type (clang 14 substitutes them first), so the
+// concept is named at least four times. decltype: nothing is compiled. Needs Eigen.
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <glm/vec2.hpp>
 
+#include "cellforge/sketch/drawing_to_cells.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 
 struct stroke_sketch {
@@ -27,5 +35,9 @@ struct cellforge::line_drawing_traits<stroke_sketch> {
 
 int main() {
   const stroke_sketch s{{{0, 0}, {1, 0}, {0, 1}}, {{0, 1}, {1, 2}, {2, 0}}};
-  return cellforge::validate_drawing(s).ok() ? 0 : 1;
+  const std::vector<std::vector<std::uint32_t>> loops{{0, 1, 2}};
+  using cells = decltype(cellforge::drawing_to_cells(s));
+  using inflated = decltype(cellforge::inflate(s, loops));
+  using tidied = decltype(cellforge::tidy_drawing(s));
+  return cellforge::validate_drawing(s).ok() && sizeof(cells) + sizeof(inflated) + sizeof(tidied) > 0 ? 0 : 1;
 }

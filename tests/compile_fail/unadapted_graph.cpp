@@ -1,7 +1,9 @@
 // expect: satisf.*Wireframe
 // expect: cad_graph
+// expect-count: 2 (does not satisfy|satisfaction of) [^ ]*Wireframe
 // A graph type without a wireframe_traits specialisation must be rejected at the call by
-// the Wireframe concept.
+// the Wireframe concept: to_wireframe, and wireframe_to_cells, whose return type names the
+// graph's point type (clang 14 substitutes it first). decltype: nothing is compiled.
 #include <array>
 #include <cstddef>
 #include <vector>
@@ -9,6 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/wireframe.hpp"
+#include "cellforge/wireframe/wireframe_to_cells.hpp"
 
 struct cad_graph {
   std::vector<glm::dvec3> nodes;
@@ -27,5 +30,6 @@ struct cellforge::wireframe_traits<cad_graph> {
 
 int main() {
   const cad_graph g{{{0, 0, 0}, {1, 0, 0}}, {{0, 1}}};
-  return cellforge::to_wireframe(g).edges.size() == 1 ? 0 : 1;
+  using cells = decltype(cellforge::wireframe_to_cells(g));
+  return cellforge::to_wireframe(g).edges.size() == 1 && sizeof(cells) > 0 ? 0 : 1;
 }

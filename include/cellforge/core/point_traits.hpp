@@ -12,6 +12,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/if_satisfied.hpp"
+
 namespace cellforge {
 
 /// Specialise for a point type P with: `using scalar = ...;`,
@@ -64,9 +66,16 @@ struct point_traits<std::array<T, 3>> {
 template <Point3 P>
 using scalar_t = typename point_traits<P>::scalar;
 
+namespace detail {
+/// The scalar type of P (unconstrained, for if_satisfied_t).
+template <class P>
+using scalar_for = typename point_traits<P>::scalar;
+}  // namespace detail
+
 /// Coordinate i (0, 1, 2) of p. O(1).
 template <Point3 P>
-constexpr scalar_t<P> coord(const P& p, std::size_t i) noexcept(noexcept(point_traits<P>::get(p, i))) {
+constexpr detail::if_satisfied_t<Point3<P>, detail::scalar_for, P> coord(const P& p, std::size_t i) noexcept(
+    noexcept(point_traits<P>::get(p, i))) {
   return point_traits<P>::get(p, i);
 }
 

@@ -25,6 +25,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/if_satisfied.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
@@ -308,9 +309,17 @@ concept polyline_range = std::ranges::random_access_range<R> && std::ranges::siz
     std::ranges::sized_range<std::ranges::range_value_t<R>> &&
     Point3<std::ranges::range_value_t<std::ranges::range_value_t<R>>>;
 
+namespace detail {
+/// curve_polylines' result type for curve range type R (unconstrained, for if_satisfied_t).
+template <class R>
+using curve_polylines_for =
+    std::vector<std::vector<typename edge_curve_point<std::ranges::range_value_t<R>>::type>>;
+}  // namespace detail
+
 /// Every curve as `segments` straight pieces (segments + 1 points of the curves' type). O(n × segments).
 template <edge_curve_range R>
-std::vector<std::vector<edge_curve_range_point_t<R>>> curve_polylines(const R& curves, int segments = 15) {
+detail::if_satisfied_t<edge_curve_range<R>, detail::curve_polylines_for, R> curve_polylines(
+    const R& curves, int segments = 15) {
   detail::check_segments(segments, "curve_polylines");
   std::vector<std::vector<edge_curve_range_point_t<R>>> out;
   out.reserve(std::ranges::size(curves));

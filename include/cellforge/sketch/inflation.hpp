@@ -178,6 +178,10 @@ struct inflation_result {
 };
 
 namespace detail {
+/// inflate's result type for result point type Q and drawing type D (unconstrained, for
+/// if_satisfied_t).
+template <class Q, class D>
+using inflation_result_for = inflation_result<result_point_t<Q, typename line_drawing_traits<D>::point_type>>;
 
 /// A drawing copied into normalised coordinates (centred on its bounding box, unit diagonal),
 /// its loops checked, and the relations the stages share.
@@ -1809,7 +1813,7 @@ double from_above_score(const inflation_problem<>& pr, const compliance_terms<>&
 /// Throws invalid_input on a malformed drawing or loops, topology when no solid reading with
 /// planar faces exists. O(E² + V³ + starts · iterations · K · (L + E)), K the planar freedom.
 template <class Q = void, LineDrawing D>
-inflation_result<detail::result_point_t<Q, drawing_point_t<D>>> inflate(
+detail::if_satisfied_t<LineDrawing<D>, detail::inflation_result_for, Q, D> inflate(
     const D& drawing, const std::vector<std::vector<std::vector<std::uint32_t>>>& faces,
     const inflation_options& user_options = {}) {
   using R = detail::result_point_t<Q, drawing_point_t<D>>;
@@ -2188,7 +2192,7 @@ inflation_result<detail::result_point_t<Q, drawing_point_t<D>>> inflate(
 /// inflate with every loop its own face (the hole loops of a face are then not tied to its
 /// outer loop: a hole ringed by edges of its own may float in depth, with a diagnostic). O(as above).
 template <class Q = void, LineDrawing D>
-inflation_result<detail::result_point_t<Q, drawing_point_t<D>>> inflate(
+detail::if_satisfied_t<LineDrawing<D>, detail::inflation_result_for, Q, D> inflate(
     const D& drawing, const std::vector<std::vector<std::uint32_t>>& loops,
     const inflation_options& options = {}) {
   std::vector<std::vector<std::vector<std::uint32_t>>> faces;

@@ -79,6 +79,12 @@ struct tidy_result {
   std::vector<std::string> diagnostics;
 };
 
+namespace detail {
+/// tidy_drawing's result type for drawing type D (unconstrained, for if_satisfied_t).
+template <class D>
+using tidy_result_for = tidy_result<typename line_drawing_traits<D>::point_type>;
+}  // namespace detail
+
 namespace detail::tidy {
 
 /// Minimum-norm δ with A δ = rhs (A sparse, consistent), by δ = Aᵀ y with (A Aᵀ + εI) y = rhs
@@ -250,7 +256,8 @@ std::vector<std::vector<std::uint32_t>> parallel_classes(
 /// junctions (minimum-norm correction of the linear parallelism constraints, Eigen's sparse
 /// LDLᵀ of A Aᵀ). Throws invalid_input on a NaN junction. O(E log E + fill of the factor).
 template <LineDrawing D>
-tidy_result<drawing_point_t<D>> tidy_drawing(const D& d, const tidy_options& options = {}) {
+detail::if_satisfied_t<LineDrawing<D>, detail::tidy_result_for, D> tidy_drawing(
+    const D& d, const tidy_options& options = {}) {
   using P = drawing_point_t<D>;
   detail::stopwatch clock;
   tidy_result<P> r;
@@ -364,7 +371,7 @@ tidy_result<drawing_point_t<D>> tidy_drawing(const D& d, const tidy_options& opt
 /// solid_max_move, or the result is not planar to 1e-9. Throws invalid_input on malformed
 /// input. O(inflation + steps · sparse LDLᵀ).
 template <LineDrawing D>
-tidy_result<drawing_point_t<D>> tidy_to_solid(
+detail::if_satisfied_t<LineDrawing<D>, detail::tidy_result_for, D> tidy_to_solid(
     const D& d, const std::vector<std::vector<std::vector<std::uint32_t>>>& faces,
     const tidy_options& options = {}) {
   using P = drawing_point_t<D>;

@@ -24,6 +24,7 @@
 #include "cellforge/algorithms/loop_subdivision.hpp"
 #include "cellforge/algorithms/self_intersections.hpp"
 #include "cellforge/core/bounding_box.hpp"
+#include "cellforge/core/detail/if_satisfied.hpp"
 #include "cellforge/core/detail/large_array.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
@@ -231,10 +232,14 @@ struct merged_skeleton {
   int round = 0;
 };
 
+/// make_tubes' result type for skeleton type G (unconstrained, for detail::if_satisfied_t).
+template <class G>
+using tubes_result_for = tubes_result<typename skeleton_traits<G>::point_type>;
+
 /// make_tubes on g, which is `from`'s merged skeleton when `from` is given. O(V + E).
 template <Skeleton G>
-tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& options,
-                                                const merged_skeleton* from);
+if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const tube_options& options,
+                                                               const merged_skeleton* from);
 
 }  // namespace detail::tubes
 
@@ -244,15 +249,16 @@ tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& 
 /// validate_skeleton; edges too close in angle at a junction). O(V + E) for bounded degree,
 /// O(k log k) per junction of degree k.
 template <Skeleton G>
-tubes_result<skeleton_point_t<G>> make_tubes(const G& g, const tube_options& options = {}) {
+detail::if_satisfied_t<Skeleton<G>, detail::tubes::tubes_result_for, G> make_tubes(
+    const G& g, const tube_options& options = {}) {
   return detail::tubes::make_tubes_of(g, options, nullptr);
 }
 
 namespace detail::tubes {
 
 template <Skeleton G>
-tubes_result<skeleton_point_t<G>> make_tubes_of(const G& g, const tube_options& options,
-                                                const merged_skeleton* from) {
+if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const tube_options& options,
+                                                               const merged_skeleton* from) {
   namespace dt = detail::tubes;
   using P = skeleton_point_t<G>;
   using T = skeleton_traits<G>;

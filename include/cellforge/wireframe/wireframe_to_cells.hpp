@@ -21,6 +21,7 @@
 #include "cellforge/cells/cell_complex.hpp"
 #include "cellforge/cells/certify.hpp"
 #include "cellforge/cells/validate.hpp"
+#include "cellforge/core/detail/if_satisfied.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/wireframe.hpp"
@@ -121,6 +122,12 @@ struct wireframe_result {
   cells_validation_result validation;
 };
 
+namespace detail {
+/// wireframe_to_cells' result type for wireframe type G (unconstrained, for if_satisfied_t).
+template <class G>
+using wireframe_result_for = wireframe_result<typename wireframe_traits<G>::point_type>;
+}  // namespace detail
+
 /// Converts a wireframe to a cell complex whose positions are the wireframe's (its point type),
 /// certifies it against the wireframe and says what it is (status, status_reason). Faces that
 /// close no volume (a lone planar loop, an open box) come back as faces without volumes,
@@ -134,7 +141,7 @@ struct wireframe_result {
 /// twice only for input without a clear gap (or one below the fixed tolerance) that is no
 /// certified solid at the fixed tolerance.
 template <Wireframe G>
-wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
+detail::if_satisfied_t<Wireframe<G>, detail::wireframe_result_for, G> wireframe_to_cells(
     const G& wire, const wireframe_options& options = {});
 
 }  // namespace cellforge

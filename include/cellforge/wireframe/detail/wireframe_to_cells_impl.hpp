@@ -442,7 +442,7 @@ bool better_answer(const wireframe_result<P>& a, const wireframe_result<P>& b) {
 }  // namespace detail
 
 template <Wireframe G>
-wireframe_result<typename wireframe_traits<G>::point_type> wireframe_to_cells(
+detail::if_satisfied_t<Wireframe<G>, detail::wireframe_result_for, G> wireframe_to_cells(
     const G& wire, const wireframe_options& options) {
   using P = typename wireframe_traits<G>::point_type;
   read_result read = read_vertices(wire, options.read);
