@@ -425,15 +425,11 @@ std::multiset<std::vector<std::uint32_t>> canonical_loops(
 
 }  // namespace detail::sketch
 
-/// Turns a wireframe line drawing (a parallel view of a polyhedron, hidden lines drawn) into a
-/// cell complex in point type Q (void: lifted_point_t of the drawing's point type): faces,
-/// inflation, the 3D pipeline; every stage's result and a 2D/3D face agreement check. Throws
-/// invalid_input on a malformed drawing, topology when no solid reading exists or the 3D
-/// pipeline refuses both readings, budget when a stage's budget runs out. O(the stages).
-template <class Q = void, LineDrawing D>
-auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
-  using R = detail::result_point_t<Q, drawing_point_t<D>>;
-  static_assert(Point3<R>, "drawing_to_cells: the result point type must be a registered Point3");
+namespace detail::sketch {
+
+/// drawing_to_cells on the drawing's own point types, into R. O(the stages).
+template <class R, LineDrawing D>
+drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, const drawing_options& options) {
   detail::stopwatch clock;
   drawing_result<R, drawing_point_t<D>> r;
   r.faces = find_faces(drawing, options.faces);
@@ -728,5 +724,106 @@ auto drawing_to_cells(const D& drawing, const drawing_options& options = {}) {
   r.milliseconds = clock.ms();
   return r;
 }
+
+/// A result computed on a line_drawing<glm::dvec2> into glm::dvec3, in the caller's types
+/// (R, P2: P2's scalar is double, so the drawings convert exactly). O(size).
+template <class R, class P2>
+drawing_result<R, P2> result_in(drawing_result<glm::dvec3, glm::dvec2>&& d) {
+  const auto points_in = [](const std::vector<glm::dvec3>& pts) {
+    std::vector<R> out;
+    out.reserve(pts.size());
+    for (const auto& p : pts) out.push_back(from_dvec3<R>(p));
+    return out;
+  };
+  drawing_result<R, P2> r;
+  r.faces = std::move(d.faces);
+  r.tidy.drawing = to_line_drawing<P2>(d.tidy.drawing);
+  r.tidy.classes = d.tidy.classes;
+  r.tidy.parallel_lines = d.tidy.parallel_lines;
+  r.tidy.changed_lines = d.tidy.changed_lines;
+  r.tidy.largest_move = d.tidy.largest_move;
+  r.tidy.rms_move = d.tidy.rms_move;
+  r.tidy.applied = d.tidy.applied;
+  r.tidy.solid = d.tidy.solid;
+  r.tidy.planarity = d.tidy.planarity;
+  r.tidy.depth = std::move(d.tidy.depth);
+  r.tidy.steps = d.tidy.steps;
+  r.tidy.milliseconds = d.tidy.milliseconds;
+  r.tidy.diagnostics = std::move(d.tidy.diagnostics);
+  r.face_loops = std::move(d.face_loops);
+  auto& in = d.inflation;
+  auto& out = r.inflation;
+  out.points = points_in(in.points);
+  out.method = in.method;
+  for (auto& reading : in.readings)
+    out.readings.push_back({points_in(reading.points), reading.score, std::move(reading.reason)});
+  out.before = in.before;
+  out.after = in.after;
+  out.freedom = in.freedom;
+  out.iterations = in.iterations;
+  out.starts = in.starts;
+  out.milliseconds = in.milliseconds;
+  out.diagnostics = std::move(in.diagnostics);
+  out.view_found = in.view_found;
+  out.axis_directions = in.axis_directions;
+  out.foreshortening = in.foreshortening;
+  out.view_rotation = in.view_rotation;
+  out.misclosure = in.misclosure;
+  out.least_squares = in.least_squares;
+  out.near_readings = in.near_readings;
+  out.regular_relations = in.regular_relations;
+  out.relations = in.relations;
+  out.crossing_readings = in.crossing_readings;
+  out.self_intersecting = in.self_intersecting;
+  out.face_changing_readings = in.face_changing_readings;
+  r.reading = d.reading;
+  r.wire.points = points_in(d.wire.points);
+  r.wire.edges = std::move(d.wire.edges);
+  r.cells = converted<R>(std::move(d.cells));
+  r.ambiguous_parts = d.ambiguous_parts;
+  r.faces_agree = d.faces_agree;
+  r.only_in_drawing = std::move(d.only_in_drawing);
+  r.only_in_3d = std::move(d.only_in_3d);
+  r.unused_edges = std::move(d.unused_edges);
+  r.flagged = d.flagged;
+  r.milliseconds = d.milliseconds;
+  r.diagnostics = std::move(d.diagnostics);
+  return r;
+}
+
+/// drawing_to_cells' result type (unconstrained, for if_satisfied_t).
+template <class Q, class D>
+using drawing_result_for = drawing_result<result_point_t<Q, typename line_drawing_traits<D>::point_type>,
+                                          typename line_drawing_traits<D>::point_type>;
+
+}  // namespace detail::sketch
+
+/// Turns a wireframe line drawing (a parallel view of a polyhedron, hidden lines drawn) into a
+/// cell complex in point type Q (void: lifted_point_t of the drawing's point type): faces,
+/// inflation, the 3D pipeline; every stage's result and a 2D/3D face agreement check. Throws
+/// invalid_input on a malformed drawing, topology when no solid reading exists or the 3D
+/// pipeline refuses both readings, budget when a stage's budget runs out. O(the stages).
+/// A drawing whose scalar is double runs as a line_drawing<glm::dvec2> into glm::dvec3 (the same
+/// numbers: every stage computes in double), so one instantiation serves every such caller.
+template <class Q = void, LineDrawing D>
+detail::if_satisfied_t<LineDrawing<D>, detail::sketch::drawing_result_for, Q, D> drawing_to_cells(
+    const D& drawing, const drawing_options& options = {}) {
+  using R = detail::result_point_t<Q, drawing_point_t<D>>;
+  static_assert(Point3<R>, "drawing_to_cells: the result point type must be a registered Point3");
+  using P2 = drawing_point_t<D>;
+  if constexpr (std::is_same_v<D, line_drawing<glm::dvec2>> && std::is_same_v<R, glm::dvec3>)
+    return detail::sketch::drawing_to_cells_on<glm::dvec3>(drawing, options);
+  else if constexpr (std::is_same_v<detail::point2_scalar_t<P2>, double>)
+    return detail::sketch::result_in<R, P2>(
+        detail::sketch::drawing_to_cells_on<glm::dvec3>(to_line_drawing<glm::dvec2>(drawing), options));
+  else  // float drawings: tolerances follow the drawing's own rounding (inflate, find_faces)
+    return detail::sketch::drawing_to_cells_on<R>(drawing, options);
+}
+
+#if defined(CELLFORGE_EXTERN_SKETCH)
+// Compiled once in the file that includes cellforge/sketch/instantiate.hpp (docs/sketch.md).
+extern template drawing_result<glm::dvec3, glm::dvec2> detail::sketch::drawing_to_cells_on<
+    glm::dvec3, line_drawing<glm::dvec2>>(const line_drawing<glm::dvec2>&, const drawing_options&);
+#endif
 
 }  // namespace cellforge

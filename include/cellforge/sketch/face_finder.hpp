@@ -1376,6 +1376,10 @@ std::vector<std::vector<std::uint32_t>> shortest_loops(const drawing_graph& g, w
   return loops;
 }
 
+/// find_faces on the drawing's graph (defined below).
+template <class = void>
+face_finder_result find_faces_in(const drawing_graph& g, const face_finder_options& options, double epsilon,
+                                 const detail::stopwatch& clock);
 }  // namespace detail::faces
 
 /// Finds the faces of a wireframe line drawing (every edge drawn, hidden ones too, a parallel
@@ -1385,21 +1389,30 @@ std::vector<std::vector<std::uint32_t>> shortest_loops(const drawing_graph& g, w
 /// baseline.
 template <LineDrawing D>
 face_finder_result find_faces(const D& drawing, const face_finder_options& options = {}) {
+  const detail::stopwatch clock;
+  return detail::faces::find_faces_in(
+      detail::faces::make_graph(drawing, options), options,
+      static_cast<double>(std::numeric_limits<detail::point2_scalar_t<drawing_point_t<D>>>::epsilon()), clock);
+}
+
+namespace detail::faces {
+
+/// find_faces on the drawing's graph (in double whatever the drawing's point type, so that one
+/// instantiation serves every caller: see CELLFORGE_EXTERN_SKETCH); `epsilon` is the machine
+/// epsilon of the drawing's scalar type, `clock` started with the call. O(as find_faces).
+template <class>
+face_finder_result find_faces_in(const drawing_graph& g, const face_finder_options& options, double epsilon,
+                                 const detail::stopwatch& clock) {
   namespace df = detail::faces;
-  detail::stopwatch clock;
   face_finder_result r;
   r.kind = options.kind;
-  const df::drawing_graph g = df::make_graph(drawing, options);
   r.junctions = g.num_junctions();
   r.edges = g.num_half_edges() / 2;
   r.direction_classes = g.classes;
   detail::work_budget budget{options.work_budget, 0, "find_faces"};
   // Parallel in space shows as parallel to the point type's rounding: float drawings need more.
-  const double coplanar_tolerance = std::max(
-      options.coplanar_tolerance_degrees,
-      100.0 *
-          static_cast<double>(std::numeric_limits<detail::point2_scalar_t<drawing_point_t<D>>>::epsilon()) *
-          180.0 / std::numbers::pi);
+  const double coplanar_tolerance =
+      std::max(options.coplanar_tolerance_degrees, 100.0 * epsilon * 180.0 / std::numbers::pi);
   if (r.edges == 0) throw error(error_category::invalid_input, "find_faces: the drawing has no edge");
   try {
     if (options.kind == face_finder_kind::varley_company)
@@ -1516,5 +1529,14 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
   r.milliseconds = clock.ms();
   return r;
 }
+
+}  // namespace detail::faces
+
+#if defined(CELLFORGE_EXTERN_SKETCH)
+// Compiled once in the file that includes cellforge/sketch/instantiate.hpp (docs/sketch.md).
+extern template face_finder_result detail::faces::find_faces_in<void>(const detail::faces::drawing_graph&,
+                                                                     const face_finder_options&, double,
+                                                                     const detail::stopwatch&);
+#endif
 
 }  // namespace cellforge

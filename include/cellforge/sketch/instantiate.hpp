@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// Include in exactly one .cpp file of a program built with CELLFORGE_EXTERN_SKETCH defined in
+/// every file: it compiles, once, the line-drawing engines that the other files then only
+/// declare (`extern template`), so that a file calling find_faces, drawing_to_cells or
+/// io::read_drawing_text compiles in a fraction of the time. Without the macro nothing changes:
+/// every file compiles what it calls, as any header-only library (docs/sketch.md, "Compile time").
+/// The engines run in double: they serve every drawing type whose scalar is double.
+
+#include <string_view>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "cellforge/io/drawing_text.hpp"
+#include "cellforge/sketch/drawing_to_cells.hpp"
+#include "cellforge/sketch/face_finder.hpp"
+
+namespace cellforge {
+template face_finder_result detail::faces::find_faces_in<void>(const detail::faces::drawing_graph&,
+                                                              const face_finder_options&, double,
+                                                              const detail::stopwatch&);
+template drawing_result<glm::dvec3, glm::dvec2> detail::sketch::drawing_to_cells_on<
+    glm::dvec3, line_drawing<glm::dvec2>>(const line_drawing<glm::dvec2>&, const drawing_options&);
+template arc_drawing<glm::dvec2> io::detail::parse_drawing_text_statements<glm::dvec2>(std::string_view,
+                                                                                     std::string_view, bool);
+template line_drawing<glm::dvec2> io::read_drawing_text<glm::dvec2>(const io::file_path&);
+template line_drawing<glm::dvec2> io::parse_drawing_text<glm::dvec2>(std::string_view, std::string_view);
+}  // namespace cellforge
