@@ -10,7 +10,7 @@
 #   - cellforge/cellforge.hpp includes every public header except io/, detail/, sketch/ and the
 #     generators and sample data its comment names (so it says what it includes), and none that
 #     needs Eigen, directly or through another header (so a user without Eigen can include it);
-#     cellforge/sketch.hpp includes every sketch/ header except the generators.
+#     cellforge/sketch.hpp includes every sketch/ header except the generators and instantiate.hpp.
 # Prints every violation with file and line, then fails if there was any.
 cmake_minimum_required(VERSION 3.21)
 if(NOT INCLUDE_DIR)
@@ -85,8 +85,10 @@ endfunction()
 # The 3D library: everything but io/, detail/, the line drawings and the generators.
 check_umbrella(cellforge/cellforge.hpp "^cellforge/"
                "^cellforge/(io/|.*/detail/|cellforge\\.hpp$|sketch\\.hpp$|sketch/|algorithms/shapes\\.hpp$|wireframe/sample_models\\.hpp$|tubes/sample_skeletons\\.hpp$|thin/sample_solids\\.hpp$|smooth/sample_solids\\.hpp$)")
-# The line drawings: every sketch/ header but the generators (sample and noisy drawings).
-check_umbrella(cellforge/sketch.hpp "^cellforge/sketch/" "/detail/|/sample_(round_)?drawings\\.hpp$|/noisy_drawings\\.hpp$")
+# The line drawings: every sketch/ header but the generators (sample and noisy drawings) and
+# instantiate.hpp (explicit instantiations, for one file of a program: docs/sketch.md).
+check_umbrella(cellforge/sketch.hpp "^cellforge/sketch/"
+               "/detail/|/sample_(round_)?drawings\\.hpp$|/noisy_drawings\\.hpp$|/instantiate\\.hpp$")
 # Headers that need Eigen: those that include it, then those that include one of them, until
 # no more are found.
 set(needs_eigen "")
