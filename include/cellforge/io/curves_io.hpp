@@ -318,7 +318,7 @@ using curve_polylines_for =
 
 /// Every curve as `segments` straight pieces (segments + 1 points of the curves' type). O(n × segments).
 template <edge_curve_range R>
-detail::if_satisfied_t<edge_curve_range<R>, detail::curve_polylines_for, R> curve_polylines(
+cellforge::detail::if_satisfied_t<edge_curve_range<R>, detail::curve_polylines_for, R> curve_polylines(
     const R& curves, int segments = 15) {
   detail::check_segments(segments, "curve_polylines");
   std::vector<std::vector<edge_curve_range_point_t<R>>> out;
