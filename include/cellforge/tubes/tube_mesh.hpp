@@ -291,6 +291,7 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
     if (!named.empty()) message += cellforge::detail::cat(" (", named, ")");
     throw error(error_category::invalid_input, message);
   }
+  constexpr int merge_rounds = 8;  // junction merging rounds; then what still lacks room is shrunk
   const std::uint32_t n = options.sides;
   const std::size_t nv = T::num_nodes(g), ne = T::num_edges(g);
   std::vector<glm::dvec3> pos(nv);
@@ -322,11 +323,16 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
     }
   std::vector<std::uint8_t> bend(nv, 0);
   const double bend_cos = std::cos(options.bend_limit_degrees * std::numbers::pi / 180);
+  // Once merging is over, a bend beside a branch point stays a mitre (below 90°): as a junction
+  // it could no longer merge with it, and the shrunk ring between them flared into a fold.
+  const bool merging_over = from != nullptr && from->round >= merge_rounds;
   for (std::size_t v = 0; v < nv; ++v)
     if (degree[v] == 2) {
       const glm::dvec3 a = glm::normalize(pos[v] - pos[nbr[v][0]]),
                        b = glm::normalize(pos[nbr[v][1]] - pos[v]);
-      if (glm::dot(a, b) < bend_cos) bend[v] = 1, ++res.bend_junctions;
+      const bool beside_branch = degree[nbr[v][0]] > 2 || degree[nbr[v][1]] > 2;
+      if (glm::dot(a, b) < bend_cos && !(merging_over && beside_branch && glm::dot(a, b) > 0))
+        bend[v] = 1, ++res.bend_junctions;
     }
   res.construct = make_tube_construct(nv, edges, bend);
   const tube_construct& tc = res.construct;
@@ -567,7 +573,6 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
   std::uint32_t building = 0;  // the junction being built, for its messages
   const std::function<std::string()> junction_name = [&] { return skeleton_name(building); };
   std::vector<std::uint32_t> merge_paths;  // paths between junctions too short for their rings
-  constexpr int merge_rounds = 8;           // then what still lacks room is shrunk
   for (const std::uint32_t b : junction_order) {
     building = b;
     const glm::dvec3 c = node_pos(b);
