@@ -25,7 +25,7 @@
 #include "cellforge/io/cells_io.hpp"
 #include "cellforge/io/obj.hpp"
 #include "cellforge/io/step.hpp"
-#include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/samples/wireframe_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 
 namespace {

@@ -22,15 +22,15 @@
 #include <vector>
 
 #include "bench_support.hpp"
+#include "cellforge/samples/drawings.hpp"
+#include "cellforge/samples/noisy_drawings.hpp"
+#include "cellforge/samples/round_drawings.hpp"
 #include "cellforge/sketch/arc_detection.hpp"
 #include "cellforge/sketch/drawing_to_cells.hpp"
 #include "cellforge/sketch/face_finder.hpp"
 #include "cellforge/sketch/inflation.hpp"
-#include "cellforge/sketch/noisy_drawings.hpp"
 #include "cellforge/sketch/round_skeleton.hpp"
 #include "cellforge/sketch/rounds.hpp"
-#include "cellforge/sketch/sample_drawings.hpp"
-#include "cellforge/sketch/sample_round_drawings.hpp"
 #include "cellforge/sketch/tidy.hpp"
 
 namespace {

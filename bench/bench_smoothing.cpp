@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Edge smoothing, seed 000 §7.4 table 7: the seed's ms for its four solids (about 120, 468,
 // 336 and 944 edges, 45° surface threshold, 996 MHz Pentium) beside ours on the stand-ins of
-// smooth/sample_solids.hpp, with our defaults (creases smoothed too) and with the seed's
+// samples/smooth_solids.hpp, with our defaults (creases smoothed too) and with the seed's
 // rules. Neither OpenMesh nor CGAL fits curves to mesh edges (their smoothers move vertices),
 // so there is no baseline column: a vertex smoother would be a different operation.
 
@@ -20,7 +20,7 @@
 
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/mesh.hpp"
-#include "cellforge/smooth/sample_solids.hpp"
+#include "cellforge/samples/smooth_solids.hpp"
 #include "cellforge/smooth/smooth_edges.hpp"
 
 namespace {
@@ -29,7 +29,7 @@ namespace cb = cellforge::bench;
 
 constexpr double target_ms = 50;
 
-/// The four stand-ins (smooth/sample_solids.hpp, which also carries the seed's edges and ms of
+/// The four stand-ins (samples/smooth_solids.hpp, which also carries the seed's edges and ms of
 /// §7.4 table 7) and their meshes.
 struct solid_case {
   cellforge::smooth_sample_solid<glm::dvec3> sample;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Thin points, seed 000 §7.3 table 5 and the Stanford bunny: the seed's seconds for its six
 // solids (quadrilateral and triangle versions, thresholds 40 and 100) beside ours on the
-// stand-ins of thin/sample_solids.hpp (thin_table5_solid), in the fast mode and in the
+// stand-ins of samples/thin_solids.hpp (thin_table5_solid), in the fast mode and in the
 // faithful mode (the seed's data structures), then the bunny at threshold 1 (and, beyond
 // the seed, at 40 and 100).
 //
@@ -34,7 +34,7 @@
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 #include "cellforge/io/mesh_io.hpp"
-#include "cellforge/thin/sample_solids.hpp"
+#include "cellforge/samples/thin_solids.hpp"
 #include "cellforge/thin/thin_points.hpp"
 
 #ifndef CELLFORGE_BUNNY_FILE
@@ -75,7 +75,7 @@ constexpr double target_case_ms = 50, target_bunny_ms = 1000;
 
 // ------------------------------------------------------------------------------ inputs
 
-/// A table-5 stand-in (thin/sample_solids.hpp: its soup and ground truth) and its mesh.
+/// A table-5 stand-in (samples/thin_solids.hpp: its soup and ground truth) and its mesh.
 struct solid_case {
   cellforge::thin_sample<glm::dvec3> sample;
   cellforge::surface_mesh<glm::dvec3> mesh;

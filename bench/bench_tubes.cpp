@@ -1,5 +1,5 @@
 // Tube networks, seed 001 §VI.B table 5: the seed's C++ and C# milliseconds for its five
-// skeletons beside ours on stand-ins built by tubes/sample_skeletons.hpp (the seed's files
+// skeletons beside ours on stand-ins built by samples/skeletons.hpp (the seed's files
 // are not published), then growth: random trees and lattices of 1k to 100k nodes (time per
 // node should stay flat) and edges per second; then the meshing beside the exact
 // self-intersection check of its mesh (issue 35: the check at most the meshing). Every row is
@@ -22,7 +22,7 @@
 
 #include "bench_support.hpp"
 #include "cellforge/algorithms/self_intersections.hpp"
-#include "cellforge/tubes/sample_skeletons.hpp"
+#include "cellforge/samples/skeletons.hpp"
 #include "cellforge/tubes/tube_mesh.hpp"
 
 namespace {

@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/samples/wireframe_models.hpp"
 
 #if __has_include("cellforge/wireframe/wireframe_to_cells.hpp")
 #include "cellforge/wireframe/wireframe_to_cells.hpp"

@@ -21,8 +21,8 @@
 
 #include "cellforge/core/detail/splitmix.hpp"
 #include "cellforge/core/error.hpp"
+#include "cellforge/samples/round_drawings.hpp"
 #include "cellforge/sketch/arc_detection.hpp"
-#include "cellforge/sketch/sample_round_drawings.hpp"
 
 // Own namespace: the test files of a group may be compiled as one translation unit.
 namespace arc_detection_tests {
@@ -376,7 +376,7 @@ TEST_CASE("arc detection: circles in the faces of a quasi-normalon, fitted with 
                   cellforge::error);
 }
 
-// The generated round drawings (sketch/sample_round_drawings.hpp) drawn by a pen: every edge
+// The generated round drawings (samples/round_drawings.hpp) drawn by a pen: every edge
 // and every arc one stroke, samples 0.5 % of the size apart, each moved by up to 0.2 % of the
 // size. No line may become an arc and every arc whose bulge (largest distance from its chord)
 // is at least 5 noise widths must be found as one arc, as in the set above; smaller arcs are

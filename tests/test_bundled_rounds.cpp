@@ -18,9 +18,9 @@
 #include "cellforge/io/drawing_svg.hpp"
 #include "cellforge/io/drawing_text.hpp"
 #include "cellforge/io/svg_drawing.hpp"
+#include "cellforge/samples/round_drawings.hpp"
 #include "cellforge/sketch/arc_detection.hpp"
 #include "cellforge/sketch/rounds.hpp"
-#include "cellforge/sketch/sample_round_drawings.hpp"
 
 // Own namespace: the test files of a group may be compiled as one translation unit.
 namespace bundled_rounds_tests {

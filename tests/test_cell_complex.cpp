@@ -14,7 +14,7 @@
 #include "cellforge/cells/conversion.hpp"
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/halfedge/validate.hpp"
-#include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/samples/wireframe_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 #include "cells_fixtures.hpp"
 

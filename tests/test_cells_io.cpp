@@ -15,7 +15,7 @@
 #include "cellforge/io/cells_io.hpp"
 #include "cellforge/io/obj.hpp"
 #include "cellforge/io/ply.hpp"
-#include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/samples/wireframe_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 #include "cells_fixtures.hpp"
 #include "test_support.hpp"

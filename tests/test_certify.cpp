@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "cellforge/cells/certify.hpp"
-#include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/samples/wireframe_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 #include "cells_fixtures.hpp"
 #include "wireframe_sweep.hpp"

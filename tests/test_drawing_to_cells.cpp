@@ -15,8 +15,8 @@
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/io/drawing_text.hpp"
 #include "cellforge/io/svg_drawing.hpp"
+#include "cellforge/samples/drawings.hpp"
 #include "cellforge/sketch/drawing_to_cells.hpp"
-#include "cellforge/sketch/sample_drawings.hpp"
 
 namespace {
 

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "cellforge/samples/drawings.hpp"
 #include "cellforge/sketch/face_finder.hpp"
-#include "cellforge/sketch/sample_drawings.hpp"
 
 namespace {
 

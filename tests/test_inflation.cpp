@@ -19,9 +19,9 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/samples/drawings.hpp"
+#include "cellforge/samples/wireframe_models.hpp"
 #include "cellforge/sketch/inflation.hpp"
-#include "cellforge/sketch/sample_drawings.hpp"
-#include "cellforge/wireframe/sample_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 
 namespace inflation_test {

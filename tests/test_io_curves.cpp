@@ -20,8 +20,8 @@
 #include "cellforge/algorithms/shapes.hpp"
 #include "cellforge/io/curves_io.hpp"
 #include "cellforge/io/obj.hpp"
+#include "cellforge/samples/thin_solids.hpp"
 #include "cellforge/smooth/smooth_edges.hpp"
-#include "cellforge/thin/sample_solids.hpp"
 #include "cellforge/thin/thin_points.hpp"
 #include "test_support.hpp"
 

@@ -14,7 +14,7 @@
 
 #include "cellforge/io/edge_list.hpp"
 #include "cellforge/io/obj.hpp"
-#include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/samples/wireframe_models.hpp"
 #include "io_test_support.hpp"
 
 // Own namespace: the test files of a group are compiled as one translation unit.

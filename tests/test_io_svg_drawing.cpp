@@ -22,8 +22,8 @@
 #include "cellforge/io/drawing_svg.hpp"
 #include "cellforge/io/drawing_text.hpp"
 #include "cellforge/io/svg_drawing.hpp"
-#include "cellforge/sketch/sample_drawings.hpp"
-#include "cellforge/sketch/sample_round_drawings.hpp"
+#include "cellforge/samples/drawings.hpp"
+#include "cellforge/samples/round_drawings.hpp"
 
 // Own namespace: the test files of a group may be compiled as one translation unit.
 namespace io_svg_drawing_tests {

@@ -14,7 +14,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/io/swc.hpp"
-#include "cellforge/tubes/sample_skeletons.hpp"
+#include "cellforge/samples/skeletons.hpp"
 #include "io_test_support.hpp"
 #include "skeleton_test_support.hpp"
 

@@ -16,9 +16,9 @@
 #include "cellforge/core/detail/splitmix.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
+#include "cellforge/samples/drawings.hpp"
 #include "cellforge/sketch/detail/drawing_grid.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
-#include "cellforge/sketch/sample_drawings.hpp"
 
 // A user's 2D point type, registered in one line.
 namespace drawing_user {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Rounds and fillets (seed 003_be08eec927fcc329.txt): the generated round drawings
-// (sketch/sample_round_drawings.hpp) are checked against their own geometry, then paired
+// (samples/round_drawings.hpp) are checked against their own geometry, then paired
 // (sketch/arc_pairing.hpp) and reduced to their polyhedral skeleton (sketch/round_skeleton.hpp),
 // which must be the true skeleton drawing — same junctions to 1e-6 of the drawing's size, same
 // edges — with every blend read as a round or a fillet rightly, on random radii and on one radius
@@ -25,10 +25,10 @@
 #include <glm/vec2.hpp>
 
 #include "cellforge/core/error.hpp"
+#include "cellforge/samples/round_drawings.hpp"
 #include "cellforge/sketch/arc_pairing.hpp"
 #include "cellforge/sketch/drawing_to_cells.hpp"
 #include "cellforge/sketch/round_skeleton.hpp"
-#include "cellforge/sketch/sample_round_drawings.hpp"
 
 // Own namespace: the test files of a group may be compiled as one translation unit.
 namespace round_skeleton_tests {

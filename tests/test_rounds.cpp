@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Reconstruction with rounds (sketch/rounds.hpp, seed 003_be08eec927fcc329.txt, "Rounds and
-// fillets", stage 4): on the generated round drawings (sketch/sample_round_drawings.hpp) every
+// fillets", stage 4): on the generated round drawings (samples/round_drawings.hpp) every
 // blend's radius, recovered from its end curves and the reconstructed face planes, must be within
 // 1 % of the truth, its kind right and its end curves consistent with a circular blend. The
 // reading keeps the drawing's x, y (a parallel view's scale) and only the Necker mirror is free,
@@ -25,8 +25,8 @@
 #include "cellforge/io/obj.hpp"
 #include "cellforge/io/ply.hpp"
 #include "cellforge/io/step.hpp"
+#include "cellforge/samples/round_drawings.hpp"
 #include "cellforge/sketch/rounds.hpp"
-#include "cellforge/sketch/sample_round_drawings.hpp"
 
 // Own namespace: the test files of a group may be compiled as one translation unit.
 namespace rounds_tests {

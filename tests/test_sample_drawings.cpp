@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The test drawings of the sketch stages (sketch/sample_drawings.hpp): the sweep's size and
+// The test drawings of the sketch stages (samples/drawings.hpp): the sweep's size and
 // families, and for every drawing its genericity and its ground truth (each edge on two face
 // loops, simple planar loops, outer loops simple in 2D, Euler–Poincaré with the model's genus,
 // the 3D model read back by wireframe_to_cells). Release checks every drawing; the sanitizer
@@ -22,8 +22,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "cellforge/sketch/sample_drawings.hpp"
-#include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/samples/drawings.hpp"
+#include "cellforge/samples/wireframe_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 
 // Own namespace: the test files of a group may be compiled as one translation unit.

@@ -18,7 +18,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
-#include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/samples/wireframe_models.hpp"
 
 // Own namespace: the test files of a group are compiled as one translation unit.
 namespace sample_models_tests {

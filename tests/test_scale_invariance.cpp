@@ -22,7 +22,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/cells/validate.hpp"
-#include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/samples/wireframe_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 
 // Own namespace: the test files of a group are compiled as one translation unit.

@@ -23,7 +23,7 @@
 #include "cellforge/algorithms/shapes.hpp"
 #include "cellforge/cells/conversion.hpp"
 #include "cellforge/halfedge/conversion.hpp"
-#include "cellforge/smooth/sample_solids.hpp"
+#include "cellforge/samples/smooth_solids.hpp"
 #include "cellforge/smooth/smooth_edges.hpp"
 #include "test_support.hpp"
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Inexact drawings (sketch/tidy.hpp, sketch/noisy_drawings.hpp): tidy_to_solid moves the
+// Inexact drawings (sketch/tidy.hpp, samples/noisy_drawings.hpp): tidy_to_solid moves the
 // junctions of a jittered drawing as little as it can to the view of a solid with its faces
 // (planar to 1e-9, the moves reported), and drawing_to_cells then gives the exact drawing's
 // complex. The sweep at 0.2, 0.5, 1 and 2 % jitter prints its rate per level and family and
@@ -14,9 +14,9 @@
 #include <utility>
 #include <vector>
 
+#include "cellforge/samples/drawings.hpp"
+#include "cellforge/samples/noisy_drawings.hpp"
 #include "cellforge/sketch/drawing_to_cells.hpp"
-#include "cellforge/sketch/noisy_drawings.hpp"
-#include "cellforge/sketch/sample_drawings.hpp"
 #include "cellforge/sketch/tidy.hpp"
 
 namespace tidy_test {

@@ -10,8 +10,8 @@
 
 #include "cellforge/halfedge/surface_mesh.hpp"
 #include "cellforge/halfedge/validate.hpp"
+#include "cellforge/samples/skeletons.hpp"
 #include "cellforge/tubes/detail/closed_build.hpp"
-#include "cellforge/tubes/sample_skeletons.hpp"
 #include "cellforge/tubes/tube_mesh.hpp"
 
 // Own namespace: the test files of a group may be compiled as one translation unit.

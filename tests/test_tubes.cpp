@@ -18,11 +18,11 @@
 
 #include "cellforge/algorithms/self_intersections.hpp"
 #include "cellforge/halfedge/validate.hpp"
+#include "cellforge/samples/skeletons.hpp"
 #include "cellforge/tubes/branch_mesh.hpp"
 #include "cellforge/tubes/detail/sphere_hull.hpp"
 #include "cellforge/tubes/detail/tube_buffer.hpp"
 #include "cellforge/tubes/node_path.hpp"
-#include "cellforge/tubes/sample_skeletons.hpp"
 #include "cellforge/tubes/tube_construct.hpp"
 #include "cellforge/tubes/tube_mesh.hpp"
 #include "test_support.hpp"

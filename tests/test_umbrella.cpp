@@ -16,7 +16,7 @@
 #include "cellforge/io/off.hpp"
 #include "cellforge/io/ply.hpp"
 #include "cellforge/io/svg.hpp"
-#include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/samples/wireframe_models.hpp"
 
 // Own namespace: the test files of a group are compiled as one translation unit.
 namespace umbrella_tests {

@@ -19,7 +19,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
-#include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/samples/wireframe_models.hpp"
 #include "cellforge/wireframe/tolerance_estimate.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 #include "wireframe_sweep.hpp"

@@ -5,12 +5,12 @@
 
 #include <algorithm>
 
+#include "cellforge/samples/wireframe_models.hpp"
 #include "cellforge/wireframe/circuit_tracer.hpp"
 #include "cellforge/wireframe/extra_faces.hpp"
 #include "cellforge/wireframe/face_arrangement.hpp"
 #include "cellforge/wireframe/face_reduction.hpp"
 #include "cellforge/wireframe/read_vertices.hpp"
-#include "cellforge/wireframe/sample_models.hpp"
 #include "cellforge/wireframe/unique_circuits.hpp"
 #include "cellforge/wireframe/volume_finder.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"

@@ -30,8 +30,8 @@
 
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/core/error.hpp"
+#include "cellforge/samples/wireframe_models.hpp"
 #include "cellforge/wireframe/face_arrangement.hpp"
-#include "cellforge/wireframe/sample_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 #include "wireframe_sweep.hpp"
 

@@ -38,8 +38,8 @@
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/halfedge/conversion.hpp"
-#include "cellforge/sketch/sample_drawings.hpp"
-#include "cellforge/wireframe/sample_models.hpp"
+#include "cellforge/samples/drawings.hpp"
+#include "cellforge/samples/wireframe_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 
 namespace wireframe_sweep {

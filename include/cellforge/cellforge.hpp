@@ -5,9 +5,9 @@
 /// algorithms, cell complexes, the wireframe pipeline, thin points, edge smoothing, tube
 /// networks) except three kinds, which you include by name when you want them: file I/O
 /// (`cellforge/io/...`), the generators of test and benchmark inputs (`algorithms/shapes.hpp`,
-/// `wireframe/sample_models.hpp`, `tubes/sample_skeletons.hpp`, `sketch/sample_drawings.hpp`,
-/// `sketch/sample_round_drawings.hpp`) and the seed's sample solids (`thin/sample_solids.hpp`,
-/// `smooth/sample_solids.hpp`), which are large and which an application rarely needs. Line
+/// `samples/wireframe_models.hpp`, `samples/skeletons.hpp`, `samples/drawings.hpp`,
+/// `samples/round_drawings.hpp`) and the seed's sample solids (`samples/thin_solids.hpp`,
+/// `samples/smooth_solids.hpp`), which are large and which an application rarely needs. Line
 /// drawings (`sketch/...`, seed 003) have their own umbrella, `cellforge/sketch.hpp`, since
 /// half of that part solves with Eigen: nothing here needs Eigen or pays for parsing it. The
 /// header hygiene test checks that these lists are complete.
@@ -56,6 +56,7 @@
 #include "cellforge/tubes/skeleton.hpp"
 #include "cellforge/tubes/tube_construct.hpp"
 #include "cellforge/tubes/tube_mesh.hpp"
+#include "cellforge/version.hpp"
 #include "cellforge/wireframe/cell_list.hpp"
 #include "cellforge/wireframe/circuit_tracer.hpp"
 #include "cellforge/wireframe/extra_faces.hpp"
@@ -67,5 +68,4 @@
 #include "cellforge/wireframe/unique_circuits.hpp"
 #include "cellforge/wireframe/volume_finder.hpp"
 #include "cellforge/wireframe/wire_graph.hpp"
-#include "cellforge/version.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"

@@ -5,7 +5,7 @@
 /// tidying, inflation to 3D and the wireframe pipeline on the result, arcs, rounds and fillets.
 /// Needs Eigen 3.3+ on the include path (the tidy, inflation, arc-detection and rounds stages
 /// solve with it). Not included: the generated drawings of the tests and benchmarks
-/// (`sketch/sample_drawings.hpp`, `sketch/sample_round_drawings.hpp`, `sketch/noisy_drawings.hpp`) and the
+/// (`samples/drawings.hpp`, `samples/round_drawings.hpp`, `samples/noisy_drawings.hpp`) and the
 /// drawing readers and writers (`cellforge/io/drawing_text.hpp`, `io/svg_drawing.hpp`, `io/drawing_svg.hpp`),
 /// and `sketch/instantiate.hpp` (the engines' explicit instantiations, for one file of a program
 /// that defines CELLFORGE_EXTERN_SKETCH: docs/sketch.md, "Compile time").

@@ -7,8 +7,8 @@
 
 #include "cellforge/core/error.hpp"
 #include "cellforge/io/drawing_text.hpp"
-#include "cellforge/sketch/sample_drawings.hpp"
-#include "cellforge/sketch/sample_round_drawings.hpp"
+#include "cellforge/samples/drawings.hpp"
+#include "cellforge/samples/round_drawings.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 2) {

@@ -82,13 +82,12 @@ function(check_umbrella umbrella scope exempt)
   endforeach()
   set(problems ${problems} PARENT_SCOPE)
 endfunction()
-# The 3D library: everything but io/, detail/, the line drawings and the generators.
+# The 3D library: everything but io/, samples/, detail/ and the line drawings.
 check_umbrella(cellforge/cellforge.hpp "^cellforge/"
-               "^cellforge/(io/|.*/detail/|cellforge\\.hpp$|sketch\\.hpp$|sketch/|algorithms/shapes\\.hpp$|wireframe/sample_models\\.hpp$|tubes/sample_skeletons\\.hpp$|thin/sample_solids\\.hpp$|smooth/sample_solids\\.hpp$)")
-# The line drawings: every sketch/ header but the generators (sample and noisy drawings) and
-# instantiate.hpp (explicit instantiations, for one file of a program: docs/sketch.md).
-check_umbrella(cellforge/sketch.hpp "^cellforge/sketch/"
-               "/detail/|/sample_(round_)?drawings\\.hpp$|/noisy_drawings\\.hpp$|/instantiate\\.hpp$")
+               "^cellforge/(io/|samples/|.*/detail/|cellforge\\.hpp$|sketch\\.hpp$|sketch/|algorithms/shapes\\.hpp$)")
+# The line drawings: every sketch/ header but instantiate.hpp (explicit instantiations, for one
+# file of a program: docs/sketch.md).
+check_umbrella(cellforge/sketch.hpp "^cellforge/sketch/" "/detail/|/instantiate\\.hpp$")
 # Headers that need Eigen: those that include it, then those that include one of them, until
 # no more are found.
 set(needs_eigen "")

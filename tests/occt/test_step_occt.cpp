@@ -22,11 +22,11 @@
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/core/bounding_box.hpp"
 #include "cellforge/io/step.hpp"
+#include "cellforge/samples/round_drawings.hpp"
+#include "cellforge/samples/skeletons.hpp"
+#include "cellforge/samples/wireframe_models.hpp"
 #include "cellforge/sketch/rounds.hpp"
-#include "cellforge/sketch/sample_round_drawings.hpp"
-#include "cellforge/tubes/sample_skeletons.hpp"
 #include "cellforge/tubes/tube_mesh.hpp"
-#include "cellforge/wireframe/sample_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 
 // OpenCASCADE after cellforge: its Handle(...) macro would rewrite cellforge's template

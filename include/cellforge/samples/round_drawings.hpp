@@ -31,8 +31,8 @@
 #include "cellforge/core/detail/splitmix.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
+#include "cellforge/samples/drawings.hpp"
 #include "cellforge/sketch/elliptical_arc.hpp"
-#include "cellforge/sketch/sample_drawings.hpp"
 
 namespace cellforge {
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// Inexact test drawings: the sample drawings (sketch/sample_drawings.hpp) with every junction
+/// Inexact test drawings: the sample drawings (samples/drawings.hpp) with every junction
 /// moved at random by up to a fraction of the drawing's diagonal, as a hand or a pen would
 /// place it. The measure of tidy_to_solid and of drawing_to_cells on sketches; see
 /// docs/sketch.md, "Tidying".
@@ -18,8 +18,8 @@
 #include <glm/vec2.hpp>
 
 #include "cellforge/core/detail/splitmix.hpp"
+#include "cellforge/samples/drawings.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
-#include "cellforge/sketch/sample_drawings.hpp"
 
 namespace cellforge {
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// Sample line drawings with their ground truth: sample wireframes (wireframe/sample_models.hpp)
+/// Sample line drawings with their ground truth: sample wireframes (samples/wireframe_models.hpp)
 /// seen in generic parallel views (no two junctions on one point, no junction on another
 /// edge's line, no face seen edge-on), with the true face loops, the true 3D positions in view
 /// coordinates and the model (faces, volumes) the drawing shows. The fixtures and benchmark
@@ -36,8 +36,8 @@
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
+#include "cellforge/samples/wireframe_models.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
-#include "cellforge/wireframe/sample_models.hpp"
 
 namespace cellforge {
 
@@ -1341,7 +1341,7 @@ sample_model touching_solids(int kind, std::uint64_t seed) {
   return make_voxel_model(l, what + tag);
 }
 
-/// A faceted solid of revolution (a ring stack, wireframe/sample_models.hpp) of n-gon rings:
+/// A faceted solid of revolution (a ring stack, samples/wireframe_models.hpp) of n-gon rings:
 /// kind 0 a barrel or vase (random radii, planar caps), 1 a spindle (cone apexes), 2 a cylinder
 /// cut into 2..4 volumes by walls, 3 a twisted stack of triangle bands, 4 a UV sphere. Its rings
 /// are planar cycles that are no faces (but the walls of kind 2); every ring bends the profile,
