@@ -39,7 +39,7 @@ namespace cb = cellforge::bench;
 
 struct drawing_case {
   std::string family, name;
-  cellforge::sample_drawing s;
+  cellforge::samples::sample_drawing s;
 };
 
 std::vector<drawing_case>& cases() {
@@ -48,11 +48,11 @@ std::vector<drawing_case>& cases() {
     // Edge counts 12 … 999 in each family; tiny margins are fine for timing large n-gons.
     for (std::size_t n : {4u, 10u, 20u, 40u, 84u, 160u, 333u})
       out.push_back({"prism", "prism " + std::to_string(n),
-                     cellforge::generic_drawing(cellforge::sample_prism(n), 1, "prism", 1e-7)});
+                     cellforge::samples::generic_drawing(cellforge::samples::sample_prism(n), 1, "prism", 1e-7)});
     for (auto [a, b] : std::vector<std::pair<std::size_t, std::size_t>>{
              {4, 3}, {6, 4}, {8, 6}, {12, 8}, {16, 10}, {24, 14}, {28, 18}})
       out.push_back({"uv sphere", "uv sphere " + std::to_string(a) + "x" + std::to_string(b),
-                     cellforge::generic_drawing(cellforge::sample_uv_sphere(a, b), 1, "sphere", 1e-7)});
+                     cellforge::samples::generic_drawing(cellforge::samples::sample_uv_sphere(a, b), 1, "sphere", 1e-7)});
     return out;
   }();
   return c;
@@ -78,16 +78,16 @@ const char* kind_name(cellforge::face_finder_kind k) {
 // A few drawings of each sweep family, for the inflation and end-to-end rows.
 struct family_case {
   std::string family;
-  std::vector<cellforge::sample_drawing> drawings;
+  std::vector<cellforge::samples::sample_drawing> drawings;
   std::vector<std::vector<std::vector<std::uint32_t>>> loops;
 };
 
 std::vector<family_case>& families() {
   static std::vector<family_case> f = [] {
-    cellforge::sketch_sweep_options o;
+    cellforge::samples::sketch_sweep_options o;
     o.limit = 130;  // about ten per family
     std::vector<family_case> out;
-    for (auto& s : cellforge::sketch_sweep(o)) {
+    for (auto& s : cellforge::samples::sketch_sweep(o)) {
       auto it =
           std::find_if(out.begin(), out.end(), [&](const family_case& c) { return c.family == s.family; });
       if (it == out.end()) out.push_back({s.family, {}, {}}), it = out.end() - 1;
@@ -112,7 +112,7 @@ std::map<std::string, double>& depth_error() {
 }
 
 template <class R>
-double reading_error(const cellforge::sample_drawing& s, const R& r) {
+double reading_error(const cellforge::samples::sample_drawing& s, const R& r) {
   double best = std::numeric_limits<double>::infinity();
   glm::dvec3 lo = s.points[0], hi = s.points[0];
   for (const auto& p : s.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
@@ -129,7 +129,7 @@ double reading_error(const cellforge::sample_drawing& s, const R& r) {
   return best;
 }
 
-bool true_complex(const cellforge::sample_drawing& s, const cellforge::drawing_result<glm::dvec3>& r) {
+bool true_complex(const cellforge::samples::sample_drawing& s, const cellforge::drawing_result<glm::dvec3>& r) {
   std::vector<std::vector<std::vector<std::uint32_t>>> faces;
   for (const auto& f : r.cells.input.faces) {
     auto loops = f.loops;
@@ -137,17 +137,17 @@ bool true_complex(const cellforge::sample_drawing& s, const cellforge::drawing_r
       for (auto& v : l) v = r.cells.input_vertex[v];
     faces.push_back(std::move(loops));
   }
-  return cellforge::same_faces(s.model.faces, faces) &&
-         cellforge::same_volumes(s.model.faces, s.model.volumes, faces, r.cells.input.volumes);
+  return cellforge::samples::same_faces(s.model.faces, faces) &&
+         cellforge::samples::same_volumes(s.model.faces, s.model.volumes, faces, r.cells.input.volumes);
 }
 
 // The direct-inflation case: a comb normalon of about 100 lines.
-const cellforge::sample_drawing& comb() {
-  static const cellforge::sample_drawing s = [] {
-    cellforge::voxel_layout l =
-        cellforge::empty_layout(cellforge::detail::iota_coords(18), {0, 1, 2}, {0, 1});
+const cellforge::samples::sample_drawing& comb() {
+  static const cellforge::samples::sample_drawing s = [] {
+    cellforge::samples::voxel_layout l =
+        cellforge::samples::empty_layout(cellforge::samples::detail::iota_coords(18), {0, 1, 2}, {0, 1});
     for (std::size_t i = 0; i + 1 < 18; ++i) l.at(i, 0, 0) = 1, l.at(i, 1, 0) = i % 2 == 0;
-    return cellforge::generic_drawing(cellforge::make_voxel_model(l, "comb"), 1, "normalon");
+    return cellforge::samples::generic_drawing(cellforge::samples::make_voxel_model(l, "comb"), 1, "normalon");
   }();
   return s;
 }
@@ -155,7 +155,7 @@ const cellforge::sample_drawing& comb() {
 // Tidying at scale: a comb normalon of `teeth` teeth (about 11 lines a tooth: 1k and 10k
 // lines), every junction jittered by a tenth of its spacing (the drawing stays the same drawing).
 struct big_comb {
-  cellforge::sample_drawing s;
+  cellforge::samples::sample_drawing s;
   cellforge::line_drawing<glm::dvec2> jittered;
 };
 
@@ -164,16 +164,16 @@ const big_comb& comb_of(std::size_t teeth) {
   auto it = m.find(teeth);
   if (it != m.end()) return it->second;
   const std::size_t width = 2 * teeth;
-  cellforge::voxel_layout l =
-      cellforge::empty_layout(cellforge::detail::iota_coords(width + 1), {0, 1, 2}, {0, 1});
+  cellforge::samples::voxel_layout l =
+      cellforge::samples::empty_layout(cellforge::samples::detail::iota_coords(width + 1), {0, 1, 2}, {0, 1});
   for (std::size_t i = 0; i < width; ++i) l.at(i, 0, 0) = 1, l.at(i, 1, 0) = i % 2 == 0;
   big_comb c;
-  c.s = cellforge::generic_drawing(cellforge::make_voxel_model(l, "comb"), 1, "normalon", 1e-9, 8);
+  c.s = cellforge::samples::generic_drawing(cellforge::samples::make_voxel_model(l, "comb"), 1, "normalon", 1e-9, 8);
   glm::dvec2 lo = c.s.drawing.points[0], hi = lo;
   for (const auto& q : c.s.drawing.points) lo = glm::min(lo, q), hi = glm::max(hi, q);
   const double spacing =
-      cellforge::detail::junction_spacing(c.s.drawing.points, c.s.drawing.edges, glm::length(hi - lo));
-  c.jittered = cellforge::jitter_drawing(c.s.drawing, 0.1 * spacing, 1);
+      cellforge::samples::detail::junction_spacing(c.s.drawing.points, c.s.drawing.edges, glm::length(hi - lo));
+  c.jittered = cellforge::samples::jitter_drawing(c.s.drawing, 0.1 * spacing, 1);
   return m.emplace(teeth, std::move(c)).first->second;
 }
 
@@ -185,14 +185,14 @@ std::map<std::string, std::string>& tidy_rows() {
 // The generated round drawings, per family.
 struct round_family {
   std::string family;
-  std::vector<cellforge::sample_round_drawing> drawings;
+  std::vector<cellforge::samples::sample_round_drawing> drawings;
   std::size_t blends = 0;
 };
 
 std::vector<round_family>& round_families() {
   static std::vector<round_family> f = [] {
     std::vector<round_family> out;
-    for (auto& s : cellforge::round_drawing_sweep()) {
+    for (auto& s : cellforge::samples::round_drawing_sweep()) {
       auto it =
           std::find_if(out.begin(), out.end(), [&](const round_family& c) { return c.family == s.family; });
       if (it == out.end()) out.push_back({s.family, {}, 0}), it = out.end() - 1;
@@ -218,7 +218,7 @@ std::map<std::string, std::size_t>& radii_right() {
 
 // Blends of one reconstruction within 1 % of their true radius: a blend is matched to its true
 // edge by the skeleton junctions' positions.
-std::size_t radii_within(const cellforge::sample_round_drawing& s,
+std::size_t radii_within(const cellforge::samples::sample_round_drawing& s,
                          const cellforge::rounds_result<glm::dvec3, glm::dvec2>& r) {
   const auto& truth = s.skeleton.drawing.points;
   const auto& got = r.skeleton.skeleton.points;

@@ -32,14 +32,14 @@ constexpr double target_ms = 50;
 /// The four stand-ins (samples/smooth_solids.hpp, which also carries the seed's edges and ms of
 /// §7.4 table 7) and their meshes.
 struct solid_case {
-  cellforge::smooth_sample_solid<glm::dvec3> sample;
+  cellforge::samples::smooth_sample_solid<glm::dvec3> sample;
   cellforge::surface_mesh<glm::dvec3> mesh;
 };
 
 const std::vector<solid_case>& solids() {
   static const std::vector<solid_case> all = [] {
     std::vector<solid_case> out;
-    for (auto& s : cellforge::table7_solids<glm::dvec3>()) {
+    for (auto& s : cellforge::samples::table7_solids<glm::dvec3>()) {
       auto m = cellforge::make_mesh(s.soup);
       out.push_back({std::move(s), std::move(m)});
     }

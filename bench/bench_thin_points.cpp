@@ -77,7 +77,7 @@ constexpr double target_case_ms = 50, target_bunny_ms = 1000;
 
 /// A table-5 stand-in (samples/thin_solids.hpp: its soup and ground truth) and its mesh.
 struct solid_case {
-  cellforge::thin_sample<glm::dvec3> sample;
+  cellforge::samples::thin_sample<glm::dvec3> sample;
   cellforge::surface_mesh<glm::dvec3> mesh;
 };
 
@@ -85,7 +85,7 @@ const solid_case& solid(int example, bool triangles) {
   static std::map<std::pair<int, bool>, solid_case> cache;
   auto it = cache.find({example, triangles});
   if (it == cache.end()) {
-    solid_case c{cellforge::thin_table5_solid<glm::dvec3>(example, triangles), {}};
+    solid_case c{cellforge::samples::thin_table5_solid<glm::dvec3>(example, triangles), {}};
     c.mesh = cellforge::make_mesh(c.sample.soup);
     it = cache.emplace(std::pair{example, triangles}, std::move(c)).first;
   }
@@ -190,7 +190,7 @@ std::vector<growth_case>& growth_cases() {
   static std::vector<growth_case> cases = [] {
     std::vector<growth_case> out;
     const auto base = cellforge::make_mesh(
-        cellforge::triangulate_fan(cellforge::thin_dumbbell<glm::dvec3>(12, 21, false).soup));
+        cellforge::triangulate_fan(cellforge::samples::thin_dumbbell<glm::dvec3>(12, 21, false).soup));
     for (const int levels : {2, 3, 4, 5}) {
       cellforge::loop_options lo;
       lo.levels = levels;
@@ -320,7 +320,7 @@ std::string met(std::optional<double> ms, double target) {
 /// ring (within one ring spacing of it, the test) and its length against that ring's
 /// polygon perimeter.
 std::string outcome(const cb::collecting_reporter& reporter, const std::string& name,
-                    const cellforge::thin_sample<glm::dvec3>* truth = nullptr) {
+                    const cellforge::samples::thin_sample<glm::dvec3>* truth = nullptr) {
   if (const cb::run_result* r = reporter.find(name); r != nullptr && !r->error.empty())
     return "error: " + r->error;
   const auto it = findings().find(name);

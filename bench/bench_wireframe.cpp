@@ -81,19 +81,19 @@ double total(const std::array<double, stage_rows.size()>& ms) {
 
 // ------------------------------------------------------------------------------ inputs
 
-const cellforge::sample_model& sample(int i) {
-  static std::map<int, cellforge::sample_model> cache;
+const cellforge::samples::sample_model& sample(int i) {
+  static std::map<int, cellforge::samples::sample_model> cache;
   auto it = cache.find(i);
-  if (it == cache.end()) it = cache.emplace(i, cellforge::sample_seed(i)).first;
+  if (it == cache.end()) it = cache.emplace(i, cellforge::samples::sample_seed(i)).first;
   return it->second;
 }
 
-const cellforge::sample_model& grid(int k) {
-  static std::map<int, cellforge::sample_model> cache;
+const cellforge::samples::sample_model& grid(int k) {
+  static std::map<int, cellforge::samples::sample_model> cache;
   auto it = cache.find(k);
   if (it == cache.end()) {
     const auto n = static_cast<std::size_t>(k);
-    it = cache.emplace(k, cellforge::sample_grid(n, n, n)).first;
+    it = cache.emplace(k, cellforge::samples::sample_grid(n, n, n)).first;
   }
   return it->second;
 }
@@ -105,13 +105,13 @@ constexpr std::array<int, 4> grid_sizes{5, 10, 20, 40};
 constexpr std::array<std::array<int, 2>, 5> sphere_sizes{
     {{32, 16}, {64, 32}, {128, 48}, {180, 70}, {256, 96}}};
 
-const cellforge::sample_model& sphere(int slices, int stacks) {
-  static std::map<std::pair<int, int>, cellforge::sample_model> cache;
+const cellforge::samples::sample_model& sphere(int slices, int stacks) {
+  static std::map<std::pair<int, int>, cellforge::samples::sample_model> cache;
   auto it = cache.find({slices, stacks});
   if (it == cache.end())
     it =
         cache
-            .emplace(std::pair{slices, stacks}, cellforge::sample_uv_sphere(static_cast<std::size_t>(slices),
+            .emplace(std::pair{slices, stacks}, cellforge::samples::sample_uv_sphere(static_cast<std::size_t>(slices),
                                                                             static_cast<std::size_t>(stacks)))
             .first;
   return it->second;
@@ -120,7 +120,7 @@ const cellforge::sample_model& sphere(int slices, int stacks) {
 /// m with its vertices and its edges in a random order (Fisher–Yates on std::mt19937_64's
 /// raw output, so every library shuffles alike) and every other edge turned round; the truth
 /// relabelled to match. O(model).
-cellforge::sample_model shuffled(const cellforge::sample_model& m) {
+cellforge::samples::sample_model shuffled(const cellforge::samples::sample_model& m) {
   std::mt19937_64 rng(0x5eed);
   const auto permutation = [&](std::size_t n) {
     std::vector<std::uint32_t> p(n);
@@ -130,7 +130,7 @@ cellforge::sample_model shuffled(const cellforge::sample_model& m) {
   };
   const std::vector<std::uint32_t> vertex = permutation(m.wire.points.size()),
                                    edge = permutation(m.wire.edges.size());
-  cellforge::sample_model out = m;
+  cellforge::samples::sample_model out = m;
   for (std::size_t v = 0; v < vertex.size(); ++v) out.wire.points[vertex[v]] = m.wire.points[v];
   for (std::size_t e = 0; e < edge.size(); ++e) {
     const auto [a, b] = m.wire.edges[e];
@@ -146,25 +146,25 @@ cellforge::sample_model shuffled(const cellforge::sample_model& m) {
 /// The models of the input-order table: name, and the model in the generator's numbering.
 struct order_model {
   std::string name;
-  std::function<const cellforge::sample_model&()> get;
+  std::function<const cellforge::samples::sample_model&()> get;
 };
 
 std::vector<order_model> order_models() {
   std::vector<order_model> out;
   for (int i = 1; i <= 6; ++i)
     out.push_back(
-        {"seed_sample_" + std::to_string(i), [i]() -> const cellforge::sample_model& { return sample(i); }});
+        {"seed_sample_" + std::to_string(i), [i]() -> const cellforge::samples::sample_model& { return sample(i); }});
   for (const int k : grid_sizes)
-    out.push_back({"grid_" + std::to_string(k), [k]() -> const cellforge::sample_model& { return grid(k); }});
+    out.push_back({"grid_" + std::to_string(k), [k]() -> const cellforge::samples::sample_model& { return grid(k); }});
   for (const auto& sz : sphere_sizes)
     out.push_back({"sphere_" + std::to_string(sz[0]) + "x" + std::to_string(sz[1]),
-                   [sz]() -> const cellforge::sample_model& { return sphere(sz[0], sz[1]); }});
+                   [sz]() -> const cellforge::samples::sample_model& { return sphere(sz[0], sz[1]); }});
   return out;
 }
 
 /// The shuffled copy of an order model (cached). O(model) the first time.
-const cellforge::sample_model& shuffled_model(const order_model& o) {
-  static std::map<std::string, cellforge::sample_model> cache;
+const cellforge::samples::sample_model& shuffled_model(const order_model& o) {
+  static std::map<std::string, cellforge::samples::sample_model> cache;
   auto it = cache.find(o.name);
   if (it == cache.end()) it = cache.emplace(o.name, shuffled(o.get())).first;
   return it->second;
@@ -211,11 +211,11 @@ std::array<double, stage_rows.size()> stage_ms(const cellforge::wireframe_result
           r.assembly_milliseconds};
 }
 
-std::string truth_status(const cellforge::sample_model& m, const cellforge::wireframe_result<glm::dvec3>& r) {
-  if (!cellforge::same_faces(m.faces, r.input.faces))
+std::string truth_status(const cellforge::samples::sample_model& m, const cellforge::wireframe_result<glm::dvec3>& r) {
+  if (!cellforge::samples::same_faces(m.faces, r.input.faces))
     return "faces differ from the ground truth (" + std::to_string(r.input.faces.size()) + " vs " +
            std::to_string(m.faces.size()) + ")";
-  if (!cellforge::same_volumes(m.faces, m.volumes, r.input.faces, r.input.volumes))
+  if (!cellforge::samples::same_volumes(m.faces, m.volumes, r.input.faces, r.input.volumes))
     return "volumes differ from the ground truth (" + std::to_string(r.input.volumes.size()) + " vs " +
            std::to_string(m.volumes.size()) + ")";
   return "matches the ground truth";
@@ -224,7 +224,7 @@ std::string truth_status(const cellforge::sample_model& m, const cellforge::wire
 
 /// Runs the pipeline `repeats` times on m with the given reading and keeps each stage's best
 /// time. O(repeats × pipeline).
-our_run measure(const cellforge::sample_model& m, int repeats, int sample_index) {
+our_run measure(const cellforge::samples::sample_model& m, int repeats, int sample_index) {
   our_run out;
 #if CELLFORGE_BENCH_HAVE_PIPELINE
   try {
@@ -265,7 +265,7 @@ our_run measure(const cellforge::sample_model& m, int repeats, int sample_index)
 /// ? median_loop : timed_loop; the first result is checked against the ground truth, and a
 /// mismatch or an error (a spent work budget) skips it.
 benchmark::internal::Benchmark* register_pipeline(const std::string& name,
-                                                  std::function<const cellforge::sample_model&()> get,
+                                                  std::function<const cellforge::samples::sample_model&()> get,
                                                   cellforge::wireframe_options options, bool median = false) {
   return benchmark::RegisterBenchmark(
              name.c_str(),
@@ -291,7 +291,7 @@ benchmark::internal::Benchmark* register_pipeline(const std::string& name,
 
 /// Registers the certificate of one model's answer (the answer made once, outside the timing).
 benchmark::internal::Benchmark* register_certify(const std::string& name,
-                                                 std::function<const cellforge::sample_model&()> get) {
+                                                 std::function<const cellforge::samples::sample_model&()> get) {
   return benchmark::RegisterBenchmark(name.c_str(),
                                       [get](benchmark::State& s) {
                                         const auto& m = get();
@@ -312,9 +312,9 @@ benchmark::internal::Benchmark* register_certify(const std::string& name,
 #endif
 
 /// The models of the certificate's table: the 20³ grid and the largest sphere.
-std::vector<std::pair<std::string, std::function<const cellforge::sample_model&()>>> certify_models() {
-  return {{"grid_20", []() -> const cellforge::sample_model& { return grid(20); }},
-          {"sphere_256x96", []() -> const cellforge::sample_model& { return sphere(256, 96); }}};
+std::vector<std::pair<std::string, std::function<const cellforge::samples::sample_model&()>>> certify_models() {
+  return {{"grid_20", []() -> const cellforge::samples::sample_model& { return grid(20); }},
+          {"sphere_256x96", []() -> const cellforge::samples::sample_model& { return sphere(256, 96); }}};
 }
 
 void register_all() {
@@ -322,14 +322,14 @@ void register_all() {
     benchmark::RegisterBenchmark(("generate/seed_sample_" + std::to_string(i)).c_str(),
                                  [i](benchmark::State& s) {
                                    cb::timed_loop(
-                                       s, [i] { return cellforge::sample_seed(i); },
-                                       [](const cellforge::sample_model&) {});
+                                       s, [i] { return cellforge::samples::sample_seed(i); },
+                                       [](const cellforge::samples::sample_model&) {});
                                  })
         ->UseManualTime()
         ->Unit(benchmark::kMillisecond)
         ->MinTime(0.1);
 #if CELLFORGE_BENCH_HAVE_PIPELINE
-    const auto get = [i]() -> const cellforge::sample_model& { return sample(i); };
+    const auto get = [i]() -> const cellforge::samples::sample_model& { return sample(i); };
     register_pipeline("pipeline/seed_sample_" + std::to_string(i), get, seed_reading(i))->MinTime(0.2);
     // The seed's exponential search, kept as an option: once per sample, it may spend its budget.
     cellforge::wireframe_options bfs = seed_reading(i);
@@ -340,12 +340,12 @@ void register_all() {
 #if CELLFORGE_BENCH_HAVE_PIPELINE
   for (const int k : grid_sizes) {
     register_pipeline("pipeline/grid_" + std::to_string(k),
-                      [k]() -> const cellforge::sample_model& { return grid(k); }, {})
+                      [k]() -> const cellforge::samples::sample_model& { return grid(k); }, {})
         ->Iterations(k >= 20 ? 1 : 3);
   }
   for (const auto& sz : sphere_sizes)
     register_pipeline(sphere_name(sz),
-                      [sz]() -> const cellforge::sample_model& { return sphere(sz[0], sz[1]); }, {})
+                      [sz]() -> const cellforge::samples::sample_model& { return sphere(sz[0], sz[1]); }, {})
         ->MinTime(0.5);
   // The certificate alone on the pipeline's answer, beside the pipeline with it switched off.
   for (const auto& [name, get] : certify_models()) {
@@ -361,7 +361,7 @@ void register_all() {
     const int repeats = order_repeats(o.name);
     register_pipeline("order/ordered/" + o.name, o.get, options, true)->Iterations(repeats);
     register_pipeline(
-        "order/shuffled/" + o.name, [o]() -> const cellforge::sample_model& { return shuffled_model(o); },
+        "order/shuffled/" + o.name, [o]() -> const cellforge::samples::sample_model& { return shuffled_model(o); },
         options, true)
         ->Iterations(repeats);
   }

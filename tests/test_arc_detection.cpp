@@ -383,13 +383,13 @@ TEST_CASE("arc detection: circles in the faces of a quasi-normalon, fitted with 
 // lines at this noise (a round seen nearly edge-on, or an arc split at its contour point):
 // those found are counted, not required.
 TEST_CASE("arc detection: the round drawings sampled like a pen, 0.2 % noise") {
-  cellforge::round_sweep_options o;
+  cellforge::samples::round_sweep_options o;
   o.drawings = full ? 240 : 24;
   generator g{{20261204}};
   std::size_t lines = 0, lines_right = 0, arcs = 0, bulging = 0, bulging_found = 0, shallow_found = 0,
               self_crossing = 0;
   std::vector<std::string> misses;
-  for (const auto& s : cellforge::round_drawing_sweep(o)) {
+  for (const auto& s : cellforge::samples::round_drawing_sweep(o)) {
     const auto& p = s.drawing.lines.points;
     glm::dvec2 lo = p[0], hi = p[0];
     for (const auto& q : p) lo = glm::min(lo, q), hi = glm::max(hi, q);

@@ -28,13 +28,13 @@ namespace bundled_rounds_tests {
 namespace {
 
 /// The L-bracket as the data file's comment describes it.
-cellforge::sample_round_drawing l_bracket() {
+cellforge::samples::sample_round_drawing l_bracket() {
   const std::vector<glm::dvec2> footprint = {{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 3}, {0, 3}};
   // Vertical edges (kind 0) at corners 1 and 5 rounded, at the inner corner 3 filleted.
   const std::vector<std::array<double, 3>> blends = {{0, 1, 0.5}, {0, 5, 0.4}, {0, 3, 0.3}};
   const glm::dmat3 view(glm::rotate(glm::dmat4(1.0), glm::radians(55.0), glm::dvec3(1, 0, 0)) *
                         glm::rotate(glm::dmat4(1.0), glm::radians(-70.0), glm::dvec3(0, 0, 1)));
-  return cellforge::round_prism_drawing(footprint, 1.5, blends, view, "L-bracket", "L");
+  return cellforge::samples::round_prism_drawing(footprint, 1.5, blends, view, "L-bracket", "L");
 }
 
 }  // namespace

@@ -22,6 +22,7 @@
 namespace cell_complex_tests {
 
 using namespace cellforge;
+using namespace cellforge::samples;
 namespace fx = cells_fixtures;
 
 namespace {
@@ -653,7 +654,7 @@ TEST_CASE("conversion: triangulating a face with holes") {
     auto ls = loops;
     if (sz < 0)  // the same face seen from below: reverse every loop, normal -z
       for (auto& l : ls) std::reverse(l.begin(), l.end());
-    const auto tris = detail::cells::triangulate_face(ls, {0, 0, sz}, "test");
+    const auto tris = cellforge::detail::cells::triangulate_face(ls, {0, 0, sz}, "test");
     CHECK(tris.size() == 14 + 2 * 2 - 2);
     std::vector<glm::dvec3> flat;
     for (const auto& l : ls) flat.insert(flat.end(), l.begin(), l.end());
@@ -681,7 +682,7 @@ TEST_CASE("conversion: triangulating a face with holes") {
     }
   std::size_t corners = 0;
   for (const auto& l : many) corners += l.size();
-  const auto tris = detail::cells::triangulate_face(many, {0, 0, 1}, "test");
+  const auto tris = cellforge::detail::cells::triangulate_face(many, {0, 0, 1}, "test");
   CHECK(tris.size() == corners + 2 * 9 - 2);
 
   // The second hole's ray hits the first hole's bridge, which is on the ring twice (there and
@@ -689,7 +690,7 @@ TEST_CASE("conversion: triangulating a face with holes") {
   const std::vector<std::vector<glm::dvec3>> bridge_hit{{{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}},
                                                         {{6, 6, 0}, {6, 7, 0}, {7, 7, 0}, {7, 6, 0}},
                                                         {{1, 7.5, 0}, {1, 8.5, 0}, {2, 8.5, 0}, {2, 7.5, 0}}};
-  CHECK(detail::cells::triangulate_face(bridge_hit, {0, 0, 1}, "test").size() == 12 + 2 * 2 - 2);
+  CHECK(cellforge::detail::cells::triangulate_face(bridge_hit, {0, 0, 1}, "test").size() == 12 + 2 * 2 - 2);
   // Grids of 1..6 × 1..6 aligned square holes (rays along rows and columns through every
   // bridge), straight, sheared and staggered: 2 to 37 loops.
   for (int n = 1; n <= 6; ++n)
@@ -707,16 +708,16 @@ TEST_CASE("conversion: triangulating a face with holes") {
       CAPTURE(n);
       CAPTURE(shift);
       const std::size_t holes = grid.size() - 1;
-      CHECK(detail::cells::triangulate_face(grid, {0, 0, 1}, "test").size() == 4 + 4 * holes + 2 * holes - 2);
+      CHECK(cellforge::detail::cells::triangulate_face(grid, {0, 0, 1}, "test").size() == 4 + 4 * holes + 2 * holes - 2);
     }
 
   // A hole outside the outer loop, or turning the wrong way, is refused.
   auto outside = loops;
   for (auto& p : outside[1]) p.x += 10;
-  CHECK_THROWS_AS((void)detail::cells::triangulate_face(outside, {0, 0, 1}, "test"), error);
+  CHECK_THROWS_AS((void)cellforge::detail::cells::triangulate_face(outside, {0, 0, 1}, "test"), error);
   auto wrong = loops;
   std::reverse(wrong[2].begin(), wrong[2].end());
-  CHECK_THROWS_AS((void)detail::cells::triangulate_face(wrong, {0, 0, 1}, "test"), error);
+  CHECK_THROWS_AS((void)cellforge::detail::cells::triangulate_face(wrong, {0, 0, 1}, "test"), error);
 }
 
 TEST_CASE("conversion: volume boundaries to meshes and back") {

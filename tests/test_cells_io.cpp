@@ -24,6 +24,7 @@
 namespace cells_io_tests {
 
 using namespace cellforge;
+using namespace cellforge::samples;
 namespace fx = cells_fixtures;
 
 namespace {

@@ -18,6 +18,7 @@
 namespace certify_tests {
 
 using namespace cellforge;
+using namespace cellforge::samples;
 namespace fx = cells_fixtures;
 using K = certificate_failure::kind;
 using input = cell_complex_input<glm::dvec3>;

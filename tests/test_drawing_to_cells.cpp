@@ -37,10 +37,10 @@ faces_t faces_in_junctions(const R& r) {
 
 // Whether a result is the model's cell complex: the same faces and volumes. O(size).
 template <class R>
-bool true_complex(const cellforge::sample_drawing& s, const R& r) {
+bool true_complex(const cellforge::samples::sample_drawing& s, const R& r) {
   const faces_t faces = faces_in_junctions(r);
-  return cellforge::same_faces(s.model.faces, faces) &&
-         cellforge::same_volumes(s.model.faces, s.model.volumes, faces, r.cells.input.volumes);
+  return cellforge::samples::same_faces(s.model.faces, faces) &&
+         cellforge::samples::same_volumes(s.model.faces, s.model.volumes, faces, r.cells.input.volumes);
 }
 
 std::filesystem::path example_data() {
@@ -77,14 +77,14 @@ TEST_CASE("drawing_to_cells: the bundled stepped normalon, as SVG and as text, i
 
 TEST_CASE(
     "drawing_to_cells: the generated sweep — direct readings give the true complex; optimised ones counted") {
-  cellforge::sketch_sweep_options options;
+  cellforge::samples::sketch_sweep_options options;
 #ifdef NDEBUG
   options.limit = 200;
 #else
   options.limit = 25;  // Eigen unoptimised under the sanitizers: small drawings only
   options.max_edges = 60;
 #endif
-  const auto sweep = cellforge::sketch_sweep(options);
+  const auto sweep = cellforge::samples::sketch_sweep(options);
   std::size_t direct = 0, direct_true = 0, optimised = 0, optimised_true = 0, agree = 0, normalons = 0,
               ambiguous = 0, several = 0, several_true = 0, silent = 0;
   std::map<std::string, std::array<std::size_t, 2>> family;
@@ -136,9 +136,9 @@ TEST_CASE(
 }
 
 TEST_CASE("drawing_to_cells: a hole through a block (two parts of the drawing) and a boss on a block") {
-  const cellforge::sample_model slot = cellforge::sample_block_with_hole();
+  const cellforge::samples::sample_model slot = cellforge::samples::sample_block_with_hole();
   for (std::uint64_t view = 1; view <= 3; ++view) {
-    const auto s = cellforge::generic_drawing(slot, view, "through slot");
+    const auto s = cellforge::samples::generic_drawing(slot, view, "through slot");
     const auto r = cellforge::drawing_to_cells(s.drawing);
     std::size_t with_holes = 0;
     for (const auto& f : r.face_loops) with_holes += f.size() == 2;
@@ -164,7 +164,7 @@ struct cellforge::lifted_point<user::p2> {
 };
 
 TEST_CASE("drawing_to_cells: the user's 2D point type gives back the user's 3D type") {
-  const auto s = cellforge::generic_drawing(cellforge::sample_cube(), 2, "cube");
+  const auto s = cellforge::samples::generic_drawing(cellforge::samples::sample_cube(), 2, "cube");
   cellforge::line_drawing<user::p2> d;
   for (const auto& p : s.drawing.points) d.points.push_back({p.x, p.y});
   d.edges = s.drawing.edges;
@@ -191,12 +191,12 @@ TEST_CASE("drawing_to_cells: bad drawings give a clear error, never a wrong soli
   d.edges = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
   CHECK_THROWS_AS(cellforge::drawing_to_cells(d), error);
   // NaN.
-  auto s = cellforge::generic_drawing(cellforge::sample_cube(), 1, "cube").drawing;
+  auto s = cellforge::samples::generic_drawing(cellforge::samples::sample_cube(), 1, "cube").drawing;
   s.points[3].x = std::nan("");
   CHECK_THROWS_WITH_AS(cellforge::drawing_to_cells(s), doctest::Contains("NaN"), error);
   // Far out (issue 35): 4e300 across read as "the drawing has no extent" (its length squared
   // overflowed); now the message is the true one, the model's range.
-  auto far = cellforge::generic_drawing(cellforge::sample_cube(), 1, "cube").drawing;
+  auto far = cellforge::samples::generic_drawing(cellforge::samples::sample_cube(), 1, "cube").drawing;
   for (auto& p : far.points) p *= 4e300;
   try {
     (void)cellforge::drawing_to_cells(far);
@@ -206,7 +206,7 @@ TEST_CASE("drawing_to_cells: bad drawings give a clear error, never a wrong soli
     CHECK(std::string(e.what()).find("scale the model into that range") != std::string::npos);
   }
   // A cube with a dangling stroke: the faces come back flagged and the result says so.
-  auto t = cellforge::generic_drawing(cellforge::sample_cube(), 1, "cube").drawing;
+  auto t = cellforge::samples::generic_drawing(cellforge::samples::sample_cube(), 1, "cube").drawing;
   t.points.push_back(t.points[0] + glm::dvec2(0.31, -0.17));
   t.edges.push_back({0, static_cast<std::uint32_t>(t.points.size() - 1)});
   try {
@@ -219,7 +219,7 @@ TEST_CASE("drawing_to_cells: bad drawings give a clear error, never a wrong soli
 }
 
 TEST_CASE("tidy_drawing: a normalon drawn with three decimals reads directly once its lines are parallel") {
-  const auto s = cellforge::generic_drawing(cellforge::sample_L(), 4, "normalon");
+  const auto s = cellforge::samples::generic_drawing(cellforge::samples::sample_L(), 4, "normalon");
   cellforge::line_drawing<glm::dvec2> rough = s.drawing;
   for (auto& p : rough.points) p = glm::round(p * 1000.0) / 1000.0;  // as typed in
   const auto t = cellforge::tidy_drawing(rough);
@@ -260,15 +260,15 @@ TEST_CASE("tidy_drawing: a normalon drawn with three decimals reads directly onc
 TEST_CASE("drawing_to_cells: drawings of several volumes are the true complex or flagged, never silent") {
   // Walls, solids along an edge, a roof on a box: the finder's faces beyond two per edge carry
   // into the 3D reading; an answer whose complex is not the truth must come back flagged.
-  cellforge::voxel_layout row = cellforge::empty_layout({0, 1.3, 2.1}, {0, 1}, {0, 0.8});
+  cellforge::samples::voxel_layout row = cellforge::samples::empty_layout({0, 1.3, 2.1}, {0, 1}, {0, 0.8});
   row.labels = {1, 2};
-  const std::vector<cellforge::sample_model> models{
-      cellforge::make_voxel_model(row, "row of two boxes"), cellforge::touching_solids(0, 2),
-      cellforge::roof_on_box(0, 5), cellforge::sample_grid(2, 2, 1)};
+  const std::vector<cellforge::samples::sample_model> models{
+      cellforge::samples::make_voxel_model(row, "row of two boxes"), cellforge::samples::touching_solids(0, 2),
+      cellforge::samples::roof_on_box(0, 5), cellforge::samples::sample_grid(2, 2, 1)};
   std::size_t right = 0, flagged = 0;
   for (const auto& m : models)
     for (std::uint64_t view = 1; view <= 2; ++view) {
-      const auto s = cellforge::generic_drawing(m, view, "cells");
+      const auto s = cellforge::samples::generic_drawing(m, view, "cells");
       CAPTURE(s.name);
       const auto r = cellforge::drawing_to_cells<glm::dvec3>(s.drawing);
       std::vector<std::vector<std::vector<std::uint32_t>>> faces;
@@ -277,7 +277,7 @@ TEST_CASE("drawing_to_cells: drawings of several volumes are the true complex or
         for (auto& loop : faces.back())
           for (auto& v : loop) v = r.cells.input_vertex[v];
       }
-      const bool ok = cellforge::same_volumes(s.model.faces, s.model.volumes, faces, r.cells.input.volumes);
+      const bool ok = cellforge::samples::same_volumes(s.model.faces, s.model.volumes, faces, r.cells.input.volumes);
       CHECK((ok || r.flagged));
       if (ok) CHECK(r.unused_edges.empty());
       right += ok, flagged += r.flagged;

@@ -38,8 +38,9 @@ bool half_edges_once(const loops_t& loops) {
   return true;
 }
 
-std::vector<cellforge::sample_model> classic_models() {
+std::vector<cellforge::samples::sample_model> classic_models() {
   using namespace cellforge;
+  using namespace cellforge::samples;
   return {sample_tetrahedron(),
           sample_cube(),
           sample_octahedron(),
@@ -65,7 +66,7 @@ TEST_CASE("find_faces: Varley-Company returns exactly the true loops on drawings
   std::vector<std::string> misses;
   for (const auto& m : classic_models())
     for (std::uint64_t view = 1; view <= 4; ++view) {
-      const cellforge::sample_drawing s = cellforge::generic_drawing(m, view, "classic");
+      const cellforge::samples::sample_drawing s = cellforge::samples::generic_drawing(m, view, "classic");
       ++drawings;
       const auto r = cellforge::find_faces(s.drawing);
       CHECK(half_edges_once(r.loops));
@@ -90,7 +91,7 @@ TEST_CASE("find_faces: Varley-Company returns exactly the true loops on drawings
 }
 
 TEST_CASE("find_faces: counts, the Euler check, and the stages it used") {
-  const auto s = cellforge::generic_drawing(cellforge::sample_prism(6), 3, "prism");
+  const auto s = cellforge::samples::generic_drawing(cellforge::samples::sample_prism(6), 3, "prism");
   const auto r = cellforge::find_faces(s.drawing);
   CHECK(r.junctions == 12);
   CHECK(r.edges == 18);
@@ -103,14 +104,14 @@ TEST_CASE("find_faces: counts, the Euler check, and the stages it used") {
   CHECK(r.diagnostics.empty());
   // A genus-1 block with a through hole: V - E + L is still 2 (the hole's two loops).
   const auto h = cellforge::find_faces(
-      cellforge::generic_drawing(cellforge::sample_block_with_hole(), 2, "slot").drawing);
+      cellforge::samples::generic_drawing(cellforge::samples::sample_block_with_hole(), 2, "slot").drawing);
   CHECK(h.check.ok());
   CHECK(h.check.euler == h.check.euler_sphere);
 }
 
 TEST_CASE("find_faces: an answer that fails its check comes back flagged with ranked alternatives") {
   // A cube with one extra edge hanging off a corner: that edge can be on no loop.
-  auto s = cellforge::generic_drawing(cellforge::sample_cube(), 1, "cube");
+  auto s = cellforge::samples::generic_drawing(cellforge::samples::sample_cube(), 1, "cube");
   const glm::dvec2 far = s.drawing.points[0] + glm::dvec2(0.37, -0.21);
   s.drawing.points.push_back(far);
   s.drawing.edges.push_back({0, static_cast<std::uint32_t>(s.drawing.points.size() - 1)});
@@ -155,7 +156,7 @@ TEST_CASE("find_faces: malformed drawings are refused with a clear error") {
 }
 
 TEST_CASE("find_faces: a work budget stops the search with a budget error") {
-  const auto s = cellforge::generic_drawing(cellforge::sample_uv_sphere(8, 5), 1, "sphere");
+  const auto s = cellforge::samples::generic_drawing(cellforge::samples::sample_uv_sphere(8, 5), 1, "sphere");
   for (const auto kind :
        {cellforge::face_finder_kind::varley_company, cellforge::face_finder_kind::shortest_loops}) {
     cellforge::face_finder_options o;
@@ -195,7 +196,7 @@ struct cellforge::line_drawing_traits<user::sketch> {
 
 TEST_CASE("find_faces: a user's own drawing type and float points") {
   static_assert(cellforge::LineDrawing<user::sketch>);
-  const auto s = cellforge::generic_drawing(cellforge::sample_prism(4), 5, "prism");
+  const auto s = cellforge::samples::generic_drawing(cellforge::samples::sample_prism(4), 5, "prism");
   user::sketch u;
   for (const auto& p : s.drawing.points)
     u.where.push_back({static_cast<float>(p.x), static_cast<float>(p.y)});
@@ -206,7 +207,7 @@ TEST_CASE("find_faces: a user's own drawing type and float points") {
 }
 
 // Whether every edge of a drawing's truth lies on exactly two loops (one solid, no walls).
-bool two_per_edge(const cellforge::sample_drawing& s) {
+bool two_per_edge(const cellforge::samples::sample_drawing& s) {
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
   for (const auto& l : s.loops)
     for (std::size_t k = 0; k < l.size(); ++k)
@@ -217,11 +218,11 @@ bool two_per_edge(const cellforge::sample_drawing& s) {
 TEST_CASE("find_faces: the generated sweep — exact or flagged, none silently wrong") {
   // Release: the whole sweep (>= 2,000 drawings up to 300 edges, 19 families, one solid or
   // several volumes); the sanitizer build a sample of every family (the same drawings).
-  cellforge::sketch_sweep_options options;
+  cellforge::samples::sketch_sweep_options options;
 #ifndef NDEBUG
   options.limit = 120;
 #endif
-  const auto sweep = cellforge::sketch_sweep(options);
+  const auto sweep = cellforge::samples::sketch_sweep(options);
 #ifdef NDEBUG
   CHECK(sweep.size() >= 2000);
 #endif
@@ -269,28 +270,28 @@ TEST_CASE("find_faces: the generated sweep — exact or flagged, none silently w
   CHECK(100 * two.vc >= 99 * two.drawings);
   CHECK(100 * more.vc >= 95 * more.drawings);
   CHECK(more.drawings * 5 >= sweep.size());  // the families of several volumes are a fifth at least
-  CHECK(family.size() == cellforge::sketch_sweep_families().size());
+  CHECK(family.size() == cellforge::samples::sketch_sweep_families().size());
 }
 
 TEST_CASE("find_faces: internal walls, solids along an edge and a roof's square are found in 2D") {
   using cellforge::find_faces;
   struct expect {
-    cellforge::sample_model model;
+    cellforge::samples::sample_model model;
     std::size_t most_loops_on_an_edge;
   };
-  cellforge::voxel_layout row = cellforge::empty_layout({0, 1.3, 2.1}, {0, 1}, {0, 0.8});
+  cellforge::samples::voxel_layout row = cellforge::samples::empty_layout({0, 1.3, 2.1}, {0, 1}, {0, 0.8});
   row.labels = {1, 2};
   const std::vector<expect> cases{
-      {cellforge::make_voxel_model(row, "row of two boxes"), 3},
-      {cellforge::sample_grid(2, 2, 1), 4},
-      {*cellforge::sliced_polytope(0, 0, true, 3), 3},
-      {cellforge::roof_on_box(0, 5), 3},
-      {cellforge::touching_solids(0, 2), 4},
-      {cellforge::touching_solids(3, 2), 2},
-      {cellforge::bar_frame(1, 4), 4}};  // a corner block of its own: four bars meet at its edges
+      {cellforge::samples::make_voxel_model(row, "row of two boxes"), 3},
+      {cellforge::samples::sample_grid(2, 2, 1), 4},
+      {*cellforge::samples::sliced_polytope(0, 0, true, 3), 3},
+      {cellforge::samples::roof_on_box(0, 5), 3},
+      {cellforge::samples::touching_solids(0, 2), 4},
+      {cellforge::samples::touching_solids(3, 2), 2},
+      {cellforge::samples::bar_frame(1, 4), 4}};  // a corner block of its own: four bars meet at its edges
   for (const auto& c : cases)
     for (std::uint64_t view = 1; view <= 3; ++view) {
-      const auto s = cellforge::generic_drawing(c.model, view, "walls");
+      const auto s = cellforge::samples::generic_drawing(c.model, view, "walls");
       CAPTURE(s.name);
       const auto r = find_faces(s.drawing);
       CHECK(same_loops(r.loops, s.loops));
@@ -314,9 +315,9 @@ TEST_CASE("find_faces: internal walls, solids along an edge and a roof's square 
 
 TEST_CASE("find_faces: the check names seams, shared corners and loops a line in their plane enters") {
   // A row of two boxes without its wall: four edges on two coplanar loops each.
-  cellforge::voxel_layout row = cellforge::empty_layout({0, 1.3, 2.1}, {0, 1}, {0, 0.8});
+  cellforge::samples::voxel_layout row = cellforge::samples::empty_layout({0, 1.3, 2.1}, {0, 1}, {0, 0.8});
   row.labels = {1, 2};
-  const auto s = cellforge::generic_drawing(cellforge::make_voxel_model(row, "row"), 2, "walls");
+  const auto s = cellforge::samples::generic_drawing(cellforge::samples::make_voxel_model(row, "row"), 2, "walls");
   loops_t outer;
   for (const auto& l : s.loops) {
     std::size_t inner = 0;  // the wall's junctions lie at x = 1.3
@@ -338,7 +339,7 @@ TEST_CASE("find_faces: the check names seams, shared corners and loops a line in
 }
 
 TEST_CASE("find_faces: out of budget, the baseline answers, flagged") {
-  const auto s = cellforge::generic_drawing(cellforge::sample_uv_sphere(8, 5), 1, "sphere");
+  const auto s = cellforge::samples::generic_drawing(cellforge::samples::sample_uv_sphere(8, 5), 1, "sphere");
   cellforge::face_finder_options full;
   full.walls = false;
   const auto vc = cellforge::find_faces(s.drawing, full);

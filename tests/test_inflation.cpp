@@ -41,8 +41,8 @@ struct cellforge::lifted_point<inflation_test::pen_point> {
 
 namespace {
 
-using cellforge::sample_drawing;
-using cellforge::sample_model;
+using cellforge::samples::sample_drawing;
+using cellforge::samples::sample_model;
 
 // Views per model: more in Release, fewer under the sanitizers (10-50x slower).
 #ifdef NDEBUG
@@ -204,39 +204,39 @@ sample_model hip_roof() {
 // touches itself, which make_voxel_model refuses, or when the wireframe pipeline does not certify
 // even the true wireframe as a solid: two cells touching along an edge only). O(models).
 std::vector<sample_model> normalons() {
-  std::vector<sample_model> out{cellforge::sample_cube(),
-                                cellforge::sample_cube({3, 1, 0.4}),
-                                cellforge::sample_L(),
-                                cellforge::sample_T(),
-                                cellforge::sample_U(),
-                                cellforge::sample_frame(),
-                                cellforge::sample_block_with_hole(),
-                                cellforge::sample_two_cubes(),
-                                cellforge::sample_stepped_block()};
+  std::vector<sample_model> out{cellforge::samples::sample_cube(),
+                                cellforge::samples::sample_cube({3, 1, 0.4}),
+                                cellforge::samples::sample_L(),
+                                cellforge::samples::sample_T(),
+                                cellforge::samples::sample_U(),
+                                cellforge::samples::sample_frame(),
+                                cellforge::samples::sample_block_with_hole(),
+                                cellforge::samples::sample_two_cubes(),
+                                cellforge::samples::sample_stepped_block()};
   {  // a comb of 8 teeth: 102 lines, the size of the 50 ms goal
     std::vector<double> xs;
     for (int i = 0; i <= 16; ++i) xs.push_back(0.5 * i);
     std::vector<std::array<std::size_t, 2>> cells;
     for (std::size_t i = 0; i < 16; ++i) cells.push_back({i, 0});
     for (std::size_t t = 0; t < 8; ++t) cells.push_back({2 * t, 1});
-    out.push_back(cellforge::detail::extruded_footprint(xs, {0, 1, 2.2}, cells, "comb"));
+    out.push_back(cellforge::samples::detail::extruded_footprint(xs, {0, 1, 2.2}, cells, "comb"));
   }
   {
-    cellforge::voxel_layout l = cellforge::empty_layout({0, 1, 2, 3}, {0, 1.5}, {0, 1, 2, 3});
+    cellforge::samples::voxel_layout l = cellforge::samples::empty_layout({0, 1, 2, 3}, {0, 1.5}, {0, 1, 2, 3});
     for (std::size_t i = 0; i < 3; ++i)
       for (std::size_t k = 0; k <= i; ++k) l.at(i, 0, k) = 1;
-    out.push_back(cellforge::make_voxel_model(l, "stairs"));
+    out.push_back(cellforge::samples::make_voxel_model(l, "stairs"));
   }
   cellforge::detail::splitmix rng{7};
   for (int attempt = 0, made = 0; attempt < 40 && made < 4; ++attempt) {
-    cellforge::voxel_layout l = cellforge::empty_layout({0, 1, 2.5, 3, 4}, {0, 1, 2, 3.5, 4}, {0, 1, 2, 3});
+    cellforge::samples::voxel_layout l = cellforge::samples::empty_layout({0, 1, 2.5, 3, 4}, {0, 1, 2, 3.5, 4}, {0, 1, 2, 3});
     for (std::size_t i = 0; i < 4; ++i)
       for (std::size_t j = 0; j < 4; ++j) {
         const auto h = static_cast<std::size_t>(rng.uniform(1, 3.999));
         for (std::size_t k = 0; k < h; ++k) l.at(i, j, k) = 1;
       }
     try {
-      sample_model m = cellforge::make_voxel_model(l, "height field " + std::to_string(attempt));
+      sample_model m = cellforge::samples::make_voxel_model(l, "height field " + std::to_string(attempt));
       // Only fields whose true wireframe the 3D pipeline certifies as a solid: columns touching
       // along an edge only make a volume that uses the edge four times (not a 2-manifold).
       if (cellforge::wireframe_to_cells(m.wire).status != cellforge::solid_status::solid) continue;
@@ -251,36 +251,36 @@ std::vector<sample_model> normalons() {
 std::vector<sample_model> quasi_normalons() { return {wedge(), ramp(), chamfered_block(), gable_house()}; }
 
 std::vector<sample_model> non_normalons() {
-  cellforge::ring_stack frustum;
+  cellforge::samples::ring_stack frustum;
   frustum.n = 5;
   frustum.radius = {1.0, 0.55};
   frustum.height = {0.0, 0.8};
-  cellforge::ring_stack antiprism;  // a pentagonal antiprism: triangles between two turned caps
+  cellforge::samples::ring_stack antiprism;  // a pentagonal antiprism: triangles between two turned caps
   antiprism.n = 5;
   antiprism.radius = {1.0, 1.0};
   antiprism.height = {0.0, 0.9};
   antiprism.twist = {0.0, std::numbers::pi / 5};
   antiprism.triangles = true;
-  cellforge::ring_stack bipyramid;  // a hexagonal bipyramid: apexes of degree 6, no planar quad
+  cellforge::samples::ring_stack bipyramid;  // a hexagonal bipyramid: apexes of degree 6, no planar quad
   bipyramid.n = 6;
   bipyramid.radius = {1.0};
   bipyramid.height = {0.0};
   bipyramid.bottom = -1.2;
   bipyramid.top = 0.9;
-  return {cellforge::make_ring_stack(antiprism, "antiprism 5"),
-          cellforge::make_ring_stack(bipyramid, "bipyramid 6"),
-          cellforge::sample_tetrahedron(),
-          cellforge::sample_octahedron(),
-          cellforge::sample_prism(3),
-          cellforge::sample_prism(5),
-          cellforge::sample_prism(6),
-          cellforge::sample_prism(8),
-          cellforge::sample_pyramid(3),
-          cellforge::sample_pyramid(4),
-          cellforge::sample_pyramid(5),
-          cellforge::sample_pyramid(6),
-          cellforge::sample_house(),
-          cellforge::make_ring_stack(frustum, "frustum 5"),
+  return {cellforge::samples::make_ring_stack(antiprism, "antiprism 5"),
+          cellforge::samples::make_ring_stack(bipyramid, "bipyramid 6"),
+          cellforge::samples::sample_tetrahedron(),
+          cellforge::samples::sample_octahedron(),
+          cellforge::samples::sample_prism(3),
+          cellforge::samples::sample_prism(5),
+          cellforge::samples::sample_prism(6),
+          cellforge::samples::sample_prism(8),
+          cellforge::samples::sample_pyramid(3),
+          cellforge::samples::sample_pyramid(4),
+          cellforge::samples::sample_pyramid(5),
+          cellforge::samples::sample_pyramid(6),
+          cellforge::samples::sample_house(),
+          cellforge::samples::make_ring_stack(frustum, "frustum 5"),
           hip_roof()};
 }
 
@@ -325,11 +325,11 @@ bool true_cells(const sample_drawing& s, const std::vector<glm::dvec3>& pts, std
         for (auto& v : l) v = r.input_vertex[v];
       faces.push_back(std::move(loops));
     }
-    if (!cellforge::same_faces(s.model.faces, faces)) {
+    if (!cellforge::samples::same_faces(s.model.faces, faces)) {
       why = std::to_string(faces.size()) + " faces instead of " + std::to_string(s.model.faces.size());
       return false;
     }
-    if (!cellforge::same_volumes(s.model.faces, s.model.volumes, faces, r.input.volumes)) {
+    if (!cellforge::samples::same_volumes(s.model.faces, s.model.volumes, faces, r.input.volumes)) {
       why = std::to_string(r.input.volumes.size()) + " volumes instead of " +
             std::to_string(s.model.volumes.size());
       return false;
@@ -363,7 +363,7 @@ TEST_CASE("inflate: direct recovers normalon and quasi-normalon drawings exactly
   for (auto& m : quasi_normalons()) models.push_back(std::move(m));
   for (const auto& m : models)
     for (std::uint64_t view = 1; view <= views; ++view) {
-      const sample_drawing s = cellforge::generic_drawing(m, view, "direct");
+      const sample_drawing s = cellforge::samples::generic_drawing(m, view, "direct");
       const std::string name = s.name;
       INFO(name);
       // The faces with their holes: a hole's own ring of edges is tied to its face's plane.
@@ -439,9 +439,9 @@ TEST_CASE("inflate: in views from above, the first reading is the true one") {
   for (std::size_t index = 0; index < models.size(); ++index)
     for (std::uint64_t view = 1; view <= views; ++view) {
       const sample_model& m = models[index];
-      const sample_drawing s = cellforge::project_model(
+      const sample_drawing s = cellforge::samples::project_model(
           m, view_from_above(rng.uniform(0.2, 1.4), rng.uniform(0.3, 1.1)), m.name + ", from above", "above");
-      if (cellforge::generic_margin(s) < 2e-3) continue;
+      if (cellforge::samples::generic_margin(s) < 2e-3) continue;
       const std::string name = s.name;
       INFO(name);
       const auto r = cellforge::inflate(s.drawing, s.model.faces);
@@ -467,7 +467,7 @@ TEST_CASE("inflate: in views from above, the first reading is the true one") {
 
 TEST_CASE("inflate: a model's axes need not be the drawing's: a rotated normalon is still read directly") {
   // A cube turned about the view axis after projection is a normalon drawing in other directions.
-  const sample_drawing s = cellforge::generic_drawing(cellforge::sample_L(), 11, "normalon");
+  const sample_drawing s = cellforge::samples::generic_drawing(cellforge::samples::sample_L(), 11, "normalon");
   auto d = s.drawing;
   for (auto& p : d.points) p = {0.6 * p.x - 0.8 * p.y, 0.8 * p.x + 0.6 * p.y};
   const auto r = cellforge::inflate(d, s.loops);
@@ -478,7 +478,7 @@ TEST_CASE("inflate: a model's axes need not be the drawing's: a rotated normalon
 TEST_CASE("inflate: a drawing 4e300 across has an extent (its size is not squared out of range)") {
   // Issue 35: the size was the length of the box's diagonal, whose square overflowed at 4e300,
   // and inflate said "the drawing has no extent". Scaled first, it reads as at scale 1.
-  const sample_drawing s = cellforge::generic_drawing(cellforge::sample_L(), 11, "normalon");
+  const sample_drawing s = cellforge::samples::generic_drawing(cellforge::samples::sample_L(), 11, "normalon");
   auto far = s.drawing;
   for (auto& p : far.points) p *= 4e300;
   const auto r = cellforge::inflate(s.drawing, s.loops), f = cellforge::inflate(far, s.loops);
@@ -496,7 +496,7 @@ TEST_CASE("inflate: optimisation gives the true cell complex on the non-normalon
   std::string misses;
   for (const auto& m : non_normalons())
     for (std::uint64_t view = 1; view <= views; ++view) {
-      const sample_drawing s = cellforge::generic_drawing(m, view, "non-normalon");
+      const sample_drawing s = cellforge::samples::generic_drawing(m, view, "non-normalon");
       const std::string name = s.name;
       INFO(name);
       const auto r = cellforge::inflate(s.drawing, s.loops);
@@ -526,7 +526,7 @@ TEST_CASE("inflate: optimisation gives the true cell complex on the non-normalon
 TEST_CASE("inflate: random convex polytopes (all faces triangles) are read convex, the true cell complex") {
   // Every triangle is planar at any depths: planarity fixes nothing, and without the convexity
   // prior 3 of 120 such drawings came out right (docs/sketch.md, Inflation).
-  cellforge::sketch_sweep_options options;
+  cellforge::samples::sketch_sweep_options options;
   options.families = {"random convex"};
 #ifdef NDEBUG
   options.limit = 12;
@@ -534,7 +534,7 @@ TEST_CASE("inflate: random convex polytopes (all faces triangles) are read conve
   options.limit = 4;  // Eigen unoptimised under the sanitizers
   options.max_edges = 60;
 #endif
-  const auto sweep = cellforge::sketch_sweep(options);
+  const auto sweep = cellforge::samples::sketch_sweep(options);
   REQUIRE(sweep.size() >= 3);
   std::size_t right = 0, convex = 0;
   std::string misses;
@@ -564,11 +564,11 @@ TEST_CASE("inflate: the face check: the main job must find the drawing's faces i
   // The check a regular reading must pass: the true reading of a random polytope keeps its
   // triangles; so does one where two neighbouring triangles are coplanar (their line still
   // parts them); a flat reading does not.
-  cellforge::sketch_sweep_options options;
+  cellforge::samples::sketch_sweep_options options;
   options.families = {"random convex"};
   options.limit = 4;
   options.max_edges = 40;
-  const auto sweep = cellforge::sketch_sweep(options);
+  const auto sweep = cellforge::samples::sketch_sweep(options);
   REQUIRE(!sweep.empty());
   const sample_drawing& s = sweep.front();
   INFO(s.name);
@@ -602,12 +602,12 @@ TEST_CASE("inflate: a regular reading that changes the faces is passed over") {
   // Snapping a random polytope's near relations made faces coplanar: the regular reading of
   // polytope 22 of this sample (the sanitizer build's) had 41 faces of 40. Every reading returned
   // must keep the drawing's faces; inflate says how many regular readings it passed over.
-  cellforge::sketch_sweep_options options;
+  cellforge::samples::sketch_sweep_options options;
   options.families = {"random convex"};
   options.limit = 4;
   options.max_edges = 60;
   std::size_t passed_over = 0;
-  for (const auto& s : cellforge::sketch_sweep(options)) {
+  for (const auto& s : cellforge::samples::sketch_sweep(options)) {
     INFO(s.name);
     const auto r = cellforge::inflate(s.drawing, s.loops);
     passed_over += r.face_changing_readings;
@@ -619,7 +619,7 @@ TEST_CASE("inflate: a regular reading that changes the faces is passed over") {
 #endif
 
 TEST_CASE("inflate: the caller's point types come back") {
-  const sample_drawing s = cellforge::generic_drawing(cellforge::sample_prism(5), 3, "prism");
+  const sample_drawing s = cellforge::samples::generic_drawing(cellforge::samples::sample_prism(5), 3, "prism");
   // A user's 2D type, lifted through its lifted_point specialisation.
   cellforge::line_drawing<inflation_test::pen_point> pen;
   for (const auto& p : s.drawing.points) pen.points.push_back({p.x, p.y});
@@ -647,7 +647,7 @@ TEST_CASE("inflate: the caller's point types come back") {
 }
 
 TEST_CASE("inflate: bad drawings and loops are refused with a reason") {
-  const sample_drawing s = cellforge::generic_drawing(cellforge::sample_cube(), 2, "normalon");
+  const sample_drawing s = cellforge::samples::generic_drawing(cellforge::samples::sample_cube(), 2, "normalon");
   const auto category = [&](const cellforge::line_drawing<glm::dvec2>& d,
                             const std::vector<std::vector<std::uint32_t>>& loops,
                             cellforge::inflation_options o = {}) {
@@ -679,14 +679,14 @@ TEST_CASE("inflate: bad drawings and loops are refused with a reason") {
   d.points[5] += glm::dvec2(0.05, -0.03);
   CHECK(category(d, s.loops) == static_cast<int>(cellforge::error_category::topology));
   // Direct only, on a non-normalon: refused, saying why.
-  const sample_drawing p = cellforge::generic_drawing(cellforge::sample_pyramid(5), 2, "pyramid");
+  const sample_drawing p = cellforge::samples::generic_drawing(cellforge::samples::sample_pyramid(5), 2, "pyramid");
   cellforge::inflation_options o;
   o.allow_optimisation = false;
   CHECK(category(p.drawing, p.loops, o) == invalid);
 }
 
 TEST_CASE("inflate: a hole's ring tied to its face only when the face is given with its holes") {
-  const sample_drawing s = cellforge::generic_drawing(cellforge::sample_frame(), 4, "normalon");
+  const sample_drawing s = cellforge::samples::generic_drawing(cellforge::samples::sample_frame(), 4, "normalon");
   const auto whole = cellforge::inflate(s.drawing, s.model.faces);
   CHECK(whole.method == cellforge::inflation_method::direct);
   CHECK(std::min(depth_error(s, whole.readings[0].points), depth_error(s, whole.readings[1].points)) < 1e-9);
@@ -705,7 +705,7 @@ TEST_CASE("inflate: the solid a person sees: metric readings of regular solids, 
   // frusta and bipyramids, antiprisms, Platonic and Archimedean solids, cut cubes and prisms,
   // quasi-normalons, classics. Random convex polytopes and jittered non-convex prisms have none
   // (not metric in principle) and are not swept here (their cells: the tests above).
-  cellforge::sketch_sweep_options options;
+  cellforge::samples::sketch_sweep_options options;
   options.families = {"prism",    "pyramid",        "antiprism", "platonic", "archimedean",
                       "cut cube", "quasi-normalon", "classic"};
 #ifdef NDEBUG
@@ -715,7 +715,7 @@ TEST_CASE("inflate: the solid a person sees: metric readings of regular solids, 
   options.limit = 12;
   options.max_edges = 40;
 #endif
-  const auto sweep = cellforge::sketch_sweep(options);
+  const auto sweep = cellforge::samples::sketch_sweep(options);
   struct tally {
     std::size_t drawings = 0, metric = 0;
   };
@@ -753,7 +753,7 @@ TEST_CASE("inflate: the solid a person sees: metric readings of regular solids, 
 TEST_CASE("inflate: a reading whose faces cross is caught by the exact check") {
   // The check inflate runs on every judged reading: the true reading of a prism does not
   // self-intersect; pushing one junction far through the solid makes faces cross.
-  const sample_drawing s = cellforge::generic_drawing(cellforge::sample_prism(5), 2, "prism");
+  const sample_drawing s = cellforge::samples::generic_drawing(cellforge::samples::sample_prism(5), 2, "prism");
   const auto pr = cellforge::detail::make_inflation_problem(s.drawing, s.model.faces);
   std::vector<double> z;
   for (const auto& p : s.points) z.push_back(p.z / pr.size);
@@ -775,8 +775,8 @@ TEST_CASE("inflate: a reading whose faces cross is caught by the exact check") {
 TEST_CASE("inflate: the exact Jacobians of the compliance and regularity residuals match differences") {
   // Levenberg–Marquardt runs on hand-derived Jacobians; each is checked against central
   // differences of its own residuals at random planar readings of a prism and an octahedron.
-  for (const auto& s : {cellforge::generic_drawing(cellforge::sample_prism(5), 3, "prism"),
-                        cellforge::generic_drawing(cellforge::sample_octahedron(), 2, "platonic")}) {
+  for (const auto& s : {cellforge::samples::generic_drawing(cellforge::samples::sample_prism(5), 3, "prism"),
+                        cellforge::samples::generic_drawing(cellforge::samples::sample_octahedron(), 2, "platonic")}) {
     INFO(s.name);
     auto pr = cellforge::detail::make_inflation_problem(s.drawing, s.model.faces);
     auto terms = cellforge::detail::make_compliance_terms(pr, 1e-6);

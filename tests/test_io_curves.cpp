@@ -448,7 +448,7 @@ TEST_CASE_TEMPLATE("curves, polylines and pictures in other point types", P, std
   // Pictures take the typed results: the smoothing and the thin loops of a P mesh.
   const auto path = temp_path("typed.svg");
   CHECK(io::write_smoothing_svg(path, mesh, r.curves).faces_drawn > 0);
-  const auto dumbbell = cellforge::make_mesh(cellforge::thin_dumbbell<P>(12, 21, false).soup);
+  const auto dumbbell = cellforge::make_mesh(cellforge::samples::thin_dumbbell<P>(12, 21, false).soup);
   const auto thin = cellforge::find_thin_points(dumbbell);
   REQUIRE(!thin.loops.empty());
   CHECK(io::write_thin_loops_svg(path, dumbbell, thin).labels == std::min<std::size_t>(thin.loops.size(), 5));

@@ -127,7 +127,7 @@ TEST_CASE("drawing text: write then read gives the same drawing, bit for bit") {
   CHECK(back.edges == d.edges);
 
   // A sample drawing through a file; and float points.
-  const auto s = cellforge::generic_drawing(cellforge::sample_L(), 2, "normalon");
+  const auto s = cellforge::samples::generic_drawing(cellforge::samples::sample_L(), 2, "normalon");
   const auto path =
       std::filesystem::temp_directory_path() / ("cellforge_drawing_" + std::to_string(getpid()) + ".txt");
   io::write_drawing_text(path, s.drawing);
@@ -275,7 +275,7 @@ TEST_CASE("arc drawing text: text -> drawing -> text is exact, and so is drawing
 }
 
 TEST_CASE("arc drawing text: generated drawings with rounds come back to rounding, then exactly") {
-  const auto samples = cellforge::round_drawing_sweep({.seed = 5, .drawings = 24});
+  const auto samples = cellforge::samples::round_drawing_sweep({.seed = 5, .drawings = 24});
   REQUIRE(samples.size() == 24);
   std::size_t arcs = 0;
   for (const auto& s : samples) {

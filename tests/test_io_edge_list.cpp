@@ -172,7 +172,7 @@ TEST_CASE("edge list: file errors name the path, malformed files their line") {
 }
 
 TEST_CASE("edge list and OBJ: every sample model's wireframe round-trips") {
-  for (const auto& m : cellforge::all_small_samples()) {
+  for (const auto& m : cellforge::samples::all_small_samples()) {
     const std::string name = m.name;
     CAPTURE(name);
     std::ostringstream os;
@@ -184,7 +184,7 @@ TEST_CASE("edge list and OBJ: every sample model's wireframe round-trips") {
 }
 
 TEST_CASE("the bundled stepped block is the generator's model and round-trips through OBJ") {
-  const auto m = cellforge::sample_stepped_block();
+  const auto m = cellforge::samples::sample_stepped_block();
   const std::filesystem::path bundled =  // lexically: tests/data need not exist in a fresh checkout
       std::filesystem::path(CELLFORGE_TEST_DATA_DIR).parent_path().parent_path() / "examples" / "data" /
       "stepped_block.obj";
@@ -202,7 +202,7 @@ TEST_CASE("the bundled stepped block is the generator's model and round-trips th
 TEST_CASE("edge list: mutated files parse or throw an io error, never anything else") {
   // Byte edits of a valid file (ASan/UBSan builds check memory safety along the way).
   std::ostringstream os;
-  io::write_edge_list(os, cellforge::sample_house().wire, {.comment = "house"});
+  io::write_edge_list(os, cellforge::samples::sample_house().wire, {.comment = "house"});
   const std::string valid = os.str();
   const std::string alphabet = "0123456789 -+.eE#\n\r\tvertices edgesnaif";
   std::mt19937 rng(2024);

@@ -340,8 +340,8 @@ TEST_CASE("svg drawing: an Inkscape file (namespaces, metadata, a layer with a t
 }
 
 TEST_CASE("drawing svg: the picture reads back to the same junctions and edges") {
-  for (const auto& model : {cellforge::sample_L(), cellforge::sample_house(), cellforge::sample_frame()}) {
-    const auto s = cellforge::generic_drawing(model, 11, "any", 0.01);
+  for (const auto& model : {cellforge::samples::sample_L(), cellforge::samples::sample_house(), cellforge::samples::sample_frame()}) {
+    const auto s = cellforge::samples::generic_drawing(model, 11, "any", 0.01);
     const std::string text =
         io::drawing_svg_string(s.drawing, s.loops, {.labels = true, .title = s.name + " <faces & all>"});
     CHECK(text.find("data-cellforge=\"faces\"") != std::string::npos);
@@ -358,7 +358,7 @@ TEST_CASE("drawing svg: the picture reads back to the same junctions and edges")
     CHECK_THROWS_AS(read(text, {.skip_annotations = false}), cellforge::error);
   }
   // Distinct hues for the faces.
-  const auto s = cellforge::generic_drawing(cellforge::sample_L(), 11, "any", 0.01);
+  const auto s = cellforge::samples::generic_drawing(cellforge::samples::sample_L(), 11, "any", 0.01);
   const std::string text = io::drawing_svg_string(s.drawing, s.loops);
   std::set<std::string> fills;
   for (std::size_t at = text.find("<path fill=\""); at != std::string::npos;
@@ -593,7 +593,7 @@ TEST_CASE("svg arc drawing: closed curves and Beziers refused or skipped, SVG's 
 }
 
 TEST_CASE("arc drawing svg: generated drawings with rounds through the picture and back") {
-  const auto samples = cellforge::round_drawing_sweep({.seed = 9, .drawings = 16});
+  const auto samples = cellforge::samples::round_drawing_sweep({.seed = 9, .drawings = 16});
   REQUIRE(samples.size() == 16);
   for (const auto& s : samples) {
     CAPTURE(s.name);

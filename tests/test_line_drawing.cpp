@@ -209,9 +209,9 @@ TEST_CASE("validate_drawing: edges crossing in their interiors are hidden lines,
   d.edges.push_back({1, 3});
   CHECK(cellforge::validate_drawing(d).ok());
   // A wireframe cube in a generic view: hidden edges cross visible ones.
-  const auto s = cellforge::generic_drawing(cellforge::sample_cube(), 3, "prism");
+  const auto s = cellforge::samples::generic_drawing(cellforge::samples::sample_cube(), 3, "prism");
   CHECK(cellforge::validate_drawing(s.drawing).ok());
-  const auto l = cellforge::generic_drawing(cellforge::sample_L(), 5, "normalon");
+  const auto l = cellforge::samples::generic_drawing(cellforge::samples::sample_L(), 5, "normalon");
   CHECK(cellforge::validate_drawing(l.drawing).ok());
 }
 

@@ -35,7 +35,7 @@ namespace round_skeleton_tests {
 
 using cellforge::blend_category;
 using cellforge::blend_kind;
-using cellforge::sample_round_drawing;
+using cellforge::samples::sample_round_drawing;
 
 #ifdef NDEBUG
 constexpr std::size_t sweep_drawings = 240;
@@ -43,12 +43,12 @@ constexpr std::size_t sweep_drawings = 240;
 constexpr std::size_t sweep_drawings = 60;  // the sanitizer build: 10-50x slower
 #endif
 
-std::vector<sample_round_drawing> sweep(cellforge::round_sweep_report* report = nullptr,
+std::vector<sample_round_drawing> sweep(cellforge::samples::round_sweep_report* report = nullptr,
                                         bool equal_radii = false) {
-  cellforge::round_sweep_options o;
+  cellforge::samples::round_sweep_options o;
   o.drawings = sweep_drawings;
   o.equal_radii = equal_radii;
-  return cellforge::round_drawing_sweep(o, report);
+  return cellforge::samples::round_drawing_sweep(o, report);
 }
 
 double diagonal(const std::vector<glm::dvec2>& p) {
@@ -97,7 +97,7 @@ const char* category_name(blend_category c) {
 }
 
 TEST_CASE("round drawings: the generator's arcs meet their lines tangentially, the truth is consistent") {
-  cellforge::round_sweep_report rep;
+  cellforge::samples::round_sweep_report rep;
   const auto drawings = sweep(&rep);
   std::printf(
       "round drawings: %zu (%zu models dropped), %zu blends: %zu rounds, %zu fillets, %zu oblique "
@@ -126,8 +126,8 @@ TEST_CASE("round drawings: the generator's arcs meet their lines tangentially, t
       for (const auto j : s.drawing.lines.edges[e]) lines_at[j].push_back(e);
     for (const auto& t : s.rounds) {
       CHECK(t.radius > 0);
-      CHECK(t.arcs.size() == (t.contour == cellforge::round_truth::npos ? 2u : 4u));
-      CHECK((t.contour != cellforge::round_truth::npos) == (t.convex && t.category == blend_category::b));
+      CHECK(t.arcs.size() == (t.contour == cellforge::samples::round_truth::npos ? 2u : 4u));
+      CHECK((t.contour != cellforge::samples::round_truth::npos) == (t.convex && t.category == blend_category::b));
       for (const auto a : t.arcs) {
         const auto& arc = s.drawing.arcs[a];
         for (int side = 0; side < 2; ++side) {
@@ -148,7 +148,7 @@ TEST_CASE("round drawings: the generator's arcs meet their lines tangentially, t
       CHECK(std::minmax(e[0], e[1]) == std::minmax(t.vertices[0], t.vertices[1]));
     }
   }
-  for (const auto& f : cellforge::round_sweep_families()) CHECK(families[f] > 0);
+  for (const auto& f : cellforge::samples::round_sweep_families()) CHECK(families[f] > 0);
   CHECK(bad == 0);
 }
 
@@ -246,12 +246,12 @@ TEST_CASE("round skeleton: the sweep recovers the skeleton drawing and tells rou
 // A pair of end curves of a blend on the vertical edge of a unit box's corner, the second end
 // plane tilted by `tilt` (0: parallel end faces), each with its two lines, in a fixed view.
 cellforge::arc_drawing<glm::dvec2> box_corner_blend(double tilt) {
-  namespace r = cellforge::detail::rounds;
+  namespace r = cellforge::samples::detail::rounds;
   const glm::dvec3 A(0, 0, 0), B(0, 0, 1), n1(0, -1, 0), n2(-1, 0, 0);
   const glm::dvec3 gB = glm::normalize(glm::dvec3(tilt, 0.3 * tilt, 1));
   const r::blend g = r::make_blend(A, B, n1, n2, true, 0.2, glm::dvec3(0, 0, -1), gB);
   cellforge::detail::splitmix rng{7};
-  const glm::dmat3 view = cellforge::detail::random_rotation(rng);
+  const glm::dmat3 view = cellforge::samples::detail::random_rotation(rng);
   const auto proj = [&](glm::dvec3 v) { return glm::dvec2((view * v).x, (view * v).y); };
   cellforge::arc_drawing<glm::dvec2> d;
   for (std::size_t k = 0; k < 2; ++k) {
@@ -287,7 +287,7 @@ TEST_CASE("round skeleton: the skeleton reads as the solid; its reading decides 
     for (auto& f : faces)
       for (auto& loop : f)
         for (auto& j : loop) j = map[j];
-    const bool solid = cells.faces_agree && cellforge::same_faces(s.skeleton.model.faces, faces);
+    const bool solid = cells.faces_agree && cellforge::samples::same_faces(s.skeleton.model.faces, faces);
     solids += solid;
     if (!solid) {
       misses.push_back(s.name + ": the skeleton's cell complex is not the prism");
@@ -424,7 +424,7 @@ TEST_CASE("arc pairing: bad input is refused or reported") {
     bool tried = false;
     for (const auto& s : drawings)
       for (const auto& t : s.rounds) {
-        if (t.contour == cellforge::round_truth::npos || tried) continue;
+        if (t.contour == cellforge::samples::round_truth::npos || tried) continue;
         tried = true;
         auto d = s.drawing;
         const auto ln = d.lines.edges[t.contour];

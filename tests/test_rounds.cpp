@@ -44,9 +44,9 @@ double drawing_size(const std::vector<glm::dvec2>& p) {
 }
 
 TEST_CASE("rounds: every blend's radius within 1 % after reconstruction, its kind right") {
-  cellforge::round_sweep_options o;
+  cellforge::samples::round_sweep_options o;
   o.drawings = sweep_drawings;
-  const auto drawings = cellforge::round_drawing_sweep(o);
+  const auto drawings = cellforge::samples::round_drawing_sweep(o);
   REQUIRE(drawings.size() == sweep_drawings);
   std::size_t blends = 0, right = 0, kinds = 0, consistent = 0, oblique = 0, oblique_right = 0, slanted = 0,
               slanted_right = 0, fillets = 0, fillets_right = 0, flagged_wrong = 0, corrected = 0,
@@ -137,9 +137,9 @@ double soup_volume(const cellforge::polygon_soup<glm::dvec3>& m) {
 }
 
 TEST_CASE("rounds: the rounded mesh is closed, oriented outward, and has the rounded solid's volume") {
-  cellforge::round_sweep_options o;
+  cellforge::samples::round_sweep_options o;
   o.drawings = sweep_drawings;
-  const auto drawings = cellforge::round_drawing_sweep(o);
+  const auto drawings = cellforge::samples::round_drawing_sweep(o);
   std::size_t meshed = 0, closed = 0, volume_right = 0, quads = 0;
   double worst = 0;
   std::vector<std::string> misses;
@@ -201,9 +201,9 @@ TEST_CASE("rounds: the rounded mesh is closed, oriented outward, and has the rou
 }
 
 TEST_CASE("rounds: the rounded B-rep is closed, on its surfaces, and has the mesh's volume in the limit") {
-  cellforge::round_sweep_options o;
+  cellforge::samples::round_sweep_options o;
   o.drawings = sweep_drawings;
-  const auto drawings = cellforge::round_drawing_sweep(o);
+  const auto drawings = cellforge::samples::round_drawing_sweep(o);
   std::size_t ok = 0, volume_right = 0, written = 0, blends = 0;
   double worst = 0;
   std::vector<std::string> misses;
@@ -254,9 +254,9 @@ TEST_CASE("rounds: the rounded B-rep is closed, on its surfaces, and has the mes
 }
 
 TEST_CASE("rounds: a finer chord tolerance gives more segments, each chord within it") {
-  cellforge::round_sweep_options o;
+  cellforge::samples::round_sweep_options o;
   o.drawings = 12;
-  const auto drawings = cellforge::round_drawing_sweep(o);
+  const auto drawings = cellforge::samples::round_drawing_sweep(o);
   for (const auto& s : drawings) {
     const auto r = cellforge::reconstruct_rounds(s.drawing);
     const double size = drawing_size(r.skeleton.skeleton.points);

@@ -30,8 +30,8 @@
 namespace sample_drawings_tests {
 namespace {
 
-using cellforge::sample_drawing;
-using cellforge::sample_model;
+using cellforge::samples::sample_drawing;
+using cellforge::samples::sample_model;
 
 // Drawings whose truth the per-drawing cases check: all in Release, a sample under the
 // sanitizers (10-50x slower). O(1).
@@ -46,14 +46,14 @@ std::size_t checked_limit() {
 // The sweep the cases check (full or sample), built once, with its report.
 struct sweep_run {
   std::vector<sample_drawing> drawings;
-  cellforge::sketch_sweep_report report;
+  cellforge::samples::sketch_sweep_report report;
 };
 const sweep_run& run() {
   static const sweep_run r = [] {
     sweep_run x;
-    cellforge::sketch_sweep_options o;
+    cellforge::samples::sketch_sweep_options o;
     o.limit = checked_limit();
-    x.drawings = cellforge::sketch_sweep(o, &x.report);
+    x.drawings = cellforge::samples::sketch_sweep(o, &x.report);
     return x;
   }();
   return r;
@@ -90,7 +90,7 @@ std::string truth_faults(const sample_drawing& s) {
   for (std::size_t f = 0; f < model.faces.size(); ++f) {
     const auto& face = model.faces[f];
     holes += face.size() - 1;
-    const glm::dvec3 n = cellforge::detail::newell_normal(s.points, face[0]);
+    const glm::dvec3 n = cellforge::samples::detail::newell_normal(s.points, face[0]);
     normals.push_back(glm::normalize(n));
     for (std::size_t l = 0; l < face.size(); ++l) {
       const auto& loop = face[l];
@@ -106,7 +106,7 @@ std::string truth_faults(const sample_drawing& s) {
         if (off > 1e-9 * diag) out << "face " << f << " is not planar (" << off / diag << "); ";
         poly.push_back(pts[a]);
       }
-      if (!cellforge::detail::simple_polygon(poly))
+      if (!cellforge::samples::detail::simple_polygon(poly))
         out << "face " << f << " loop " << l << " is not simple in 2D; ";
     }
   }
@@ -192,18 +192,18 @@ TEST_CASE("sketch_sweep: at least 2000 drawings of every family, none over 300 e
     CHECK(s.drawing.edges.size() <= 300);
     CHECK_MESSAGE(names.insert(s.name).second, s.name);
   }
-  for (const auto& f : cellforge::sketch_sweep_families()) CHECK_MESSAGE(per_family[f] > 0, f);
-  CHECK(per_family.size() == cellforge::sketch_sweep_families().size());
+  for (const auto& f : cellforge::samples::sketch_sweep_families()) CHECK_MESSAGE(per_family[f] > 0, f);
+  CHECK(per_family.size() == cellforge::samples::sketch_sweep_families().size());
   // A smaller sample is a subset of the full sweep, drawing for drawing (compared on a few
   // families: the full sweep of just those).
-  cellforge::sketch_sweep_options o;
+  cellforge::samples::sketch_sweep_options o;
   o.limit = 100;
-  const auto sample = cellforge::sketch_sweep(o);
+  const auto sample = cellforge::samples::sketch_sweep(o);
   CHECK(sample.size() >= 90);
   CHECK(sample.size() <= 130);
-  cellforge::sketch_sweep_options some;
+  cellforge::samples::sketch_sweep_options some;
   some.families = {"platonic", "cut cube", "stairs", "classic"};
-  const auto reference = full ? all : cellforge::sketch_sweep(some);
+  const auto reference = full ? all : cellforge::samples::sketch_sweep(some);
   std::map<std::string, const sample_drawing*> by_name;
   for (const auto& s : reference) by_name[s.name] = &s;
   std::set<std::string> sample_families;
@@ -219,7 +219,7 @@ TEST_CASE("sketch_sweep: at least 2000 drawings of every family, none over 300 e
     ++compared;
   }
   CHECK(compared >= 10);
-  CHECK(sample_families.size() == cellforge::sketch_sweep_families().size());
+  CHECK(sample_families.size() == cellforge::samples::sketch_sweep_families().size());
   for (const auto& s : reference)
     if (!full) CHECK(std::find(some.families.begin(), some.families.end(), s.family) != some.families.end());
   // Another seed: other random models and views, the same fixed families.
@@ -227,24 +227,24 @@ TEST_CASE("sketch_sweep: at least 2000 drawings of every family, none over 300 e
   o.seed = 2;
   o.random_models = 3;
   o.max_edges = 60;
-  const auto other = cellforge::sketch_sweep(o);
+  const auto other = cellforge::samples::sketch_sweep(o);
   for (const auto& s : other) CHECK(s.drawing.edges.size() <= 60);
   CHECK(other.front().name == all.front().name);
   CHECK(other.front().drawing.points != all.front().drawing.points);
   some.families = {"no such family"};
-  CHECK_THROWS_AS(cellforge::sketch_sweep(some), cellforge::error);
+  CHECK_THROWS_AS(cellforge::samples::sketch_sweep(some), cellforge::error);
 }
 
 TEST_CASE("sketch_sweep: every drawing generic, its truth solids or cells of the stated genus") {
-  const cellforge::sketch_sweep_options o;
+  const cellforge::samples::sketch_sweep_options o;
   std::map<std::string, std::array<std::size_t, 3>> tally;  // drawings, faults, genus > 0
   std::size_t faults = 0;
   for (const auto& s : checked()) {
     auto& t = tally[s.family];
     ++t[0];
     t[2] += s.genus > 0;
-    const double margin = cellforge::generic_margin(s);
-    CHECK_MESSAGE(margin >= cellforge::sketch_margin_threshold(o, s.drawing.edges.size()), s.name);
+    const double margin = cellforge::samples::generic_margin(s);
+    CHECK_MESSAGE(margin >= cellforge::samples::sketch_margin_threshold(o, s.drawing.edges.size()), s.name);
     const std::string why = truth_faults(s);
     if (!why.empty()) {
       ++t[1];
@@ -257,7 +257,7 @@ TEST_CASE("sketch_sweep: every drawing generic, its truth solids or cells of the
           << " of genus > 0\n";
   MESSAGE("truth checked on " << checked().size() << " drawings:\n" << table.str());
   CHECK(faults == 0);
-  CHECK(tally.size() == cellforge::sketch_sweep_families().size());
+  CHECK(tally.size() == cellforge::samples::sketch_sweep_families().size());
 }
 
 TEST_CASE("sketch_sweep: wireframe_to_cells reads every model back to its truth") {
@@ -276,7 +276,7 @@ TEST_CASE("sketch_sweep: wireframe_to_cells reads every model back to its truth"
         for (auto& loop : faces.back())
           for (auto& v : loop) v = r.input_vertex[v];
       }
-      ok = cellforge::same_volumes(s.model.faces, s.model.volumes, faces, r.input.volumes);
+      ok = cellforge::samples::same_volumes(s.model.faces, s.model.volumes, faces, r.input.volumes);
     } catch (const cellforge::error& e) {
       MESSAGE(s.model.name << ": " << e.what());
     }
@@ -312,10 +312,10 @@ std::set<std::uint32_t> outline_corners(const sample_drawing& s) {
 
 TEST_CASE("sketch_classics: each shows the difficulty its name says, in every view") {
   std::set<std::string> seen;
-  cellforge::sketch_sweep_options o;
+  cellforge::samples::sketch_sweep_options o;
   o.families = {"classic"};
-  const auto classics = cellforge::sketch_sweep(o);
-  CHECK(classics.size() == 3 * cellforge::sketch_classics().size());
+  const auto classics = cellforge::samples::sketch_sweep(o);
+  CHECK(classics.size() == 3 * cellforge::samples::sketch_classics().size());
   for (const auto& s : classics) {
     CHECK(s.family == "classic");
     CAPTURE(s.name);
@@ -324,7 +324,7 @@ TEST_CASE("sketch_classics: each shows the difficulty its name says, in every vi
     seen.insert(n);
     std::vector<glm::dvec3> normal;
     for (const auto& f : m.faces)
-      normal.push_back(glm::normalize(cellforge::detail::newell_normal(m.wire.points, f[0])));
+      normal.push_back(glm::normalize(cellforge::samples::detail::newell_normal(m.wire.points, f[0])));
     const auto plane_of = [&](std::size_t f) { return glm::dot(normal[f], m.wire.points[m.faces[f][0][0]]); };
     std::size_t holed = 0, holes = 0, coplanar_pairs = 0, hexagons = 0, internal = 0;
     const auto outline = outline_corners(s);
@@ -373,7 +373,7 @@ TEST_CASE("sketch_classics: each shows the difficulty its name says, in every vi
       CHECK(holes == 2 * static_cast<std::size_t>(s.genus));
     }
   }
-  CHECK(seen.size() == cellforge::sketch_classics().size());
+  CHECK(seen.size() == cellforge::samples::sketch_classics().size());
 }
 
 TEST_CASE("convex_polytope_model: Platonic and Archimedean solids have their known counts") {
@@ -398,8 +398,8 @@ TEST_CASE("convex_polytope_model: Platonic and Archimedean solids have their kno
                                     {"truncated icosahedron", 60, 90, 32},
                                     {"rhombicosidodecahedron", 60, 120, 62},
                                     {"truncated icosidodecahedron", 120, 180, 62}};
-  auto solids = cellforge::platonic_solids();
-  for (auto& m : cellforge::archimedean_solids()) solids.push_back(std::move(m));
+  auto solids = cellforge::samples::platonic_solids();
+  for (auto& m : cellforge::samples::archimedean_solids()) solids.push_back(std::move(m));
   REQUIRE(solids.size() == table.size());
   for (std::size_t i = 0; i < table.size(); ++i) {
     CAPTURE(table[i].name);
@@ -414,15 +414,15 @@ TEST_CASE("convex_polytope_model: Platonic and Archimedean solids have their kno
   }
   // Points on facets and edges are no corners; a flat set is refused.
   std::vector<glm::dvec3> pts;
-  cellforge::detail::signed_permutations(pts, {1, 1, 1}, true);
+  cellforge::samples::detail::signed_permutations(pts, {1, 1, 1}, true);
   pts.push_back({0, 0, 1});
   pts.push_back({1, 0, 1});
   pts.push_back({0, 0, 0});
-  const sample_model cube = cellforge::convex_polytope_model(pts, "cube with extras");
+  const sample_model cube = cellforge::samples::convex_polytope_model(pts, "cube with extras");
   CHECK(cube.wire.points.size() == 8);
   CHECK(cube.faces.size() == 6);
   for (const auto& f : cube.faces) CHECK(f[0].size() == 4);
-  CHECK_THROWS_AS(cellforge::convex_polytope_model({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, "flat"),
+  CHECK_THROWS_AS(cellforge::samples::convex_polytope_model({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, "flat"),
                   cellforge::error);
 }
 
@@ -430,101 +430,101 @@ TEST_CASE("sample solids: sizes by construction; bad sizes refused") {
   const auto count = [](const sample_model& m) {
     return std::array<std::size_t, 3>{m.wire.points.size(), m.wire.edges.size(), m.faces.size()};
   };
-  CHECK(count(cellforge::sample_antiprism(7)) == std::array<std::size_t, 3>{14, 28, 16});
-  CHECK(count(cellforge::sample_frustum(5)) == std::array<std::size_t, 3>{10, 15, 7});
-  CHECK(count(cellforge::sample_bipyramid(9)) == std::array<std::size_t, 3>{11, 27, 18});
+  CHECK(count(cellforge::samples::sample_antiprism(7)) == std::array<std::size_t, 3>{14, 28, 16});
+  CHECK(count(cellforge::samples::sample_frustum(5)) == std::array<std::size_t, 3>{10, 15, 7});
+  CHECK(count(cellforge::samples::sample_bipyramid(9)) == std::array<std::size_t, 3>{11, 27, 18});
   for (const std::size_t k : {1u, 4u, 17u})
-    CHECK(count(cellforge::sample_stairs(k, 3)) ==
+    CHECK(count(cellforge::samples::sample_stairs(k, 3)) ==
           std::array<std::size_t, 3>{4 * k + 4, 6 * k + 6, 2 * k + 4});
   for (const std::size_t n : {4u, 20u, 100u}) {
-    const sample_model m = cellforge::random_convex_polytope(n, true, 9);
+    const sample_model m = cellforge::samples::random_convex_polytope(n, true, 9);
     CHECK(count(m) == std::array<std::size_t, 3>{n, 3 * n - 6, 2 * n - 4});  // points in general position
   }
   for (std::size_t holes = 1; holes <= 4; ++holes) {
-    const auto s = cellforge::through_slot(holes, 11);
+    const auto s = cellforge::samples::through_slot(holes, 11);
     CHECK(s.genus == static_cast<int>(holes));
   }
   // A cut cube: polygon faces, every vertex of degree 3.
-  const sample_model cut = cellforge::cut_polytope(0, 4, 5);
+  const sample_model cut = cellforge::samples::cut_polytope(0, 4, 5);
   std::vector<int> degree(cut.wire.points.size(), 0);
   for (const auto& e : cut.wire.edges) ++degree[e[0]], ++degree[e[1]];
   CHECK(std::all_of(degree.begin(), degree.end(), [](int d) { return d == 3; }));
   CHECK(cut.faces.size() >= 7);
   // Non-manifold voxel sets are refused: two cells touching along an edge, or at a vertex.
-  cellforge::voxel_layout l = cellforge::empty_layout({0, 1, 2}, {0, 1, 2}, {0, 1});
+  cellforge::samples::voxel_layout l = cellforge::samples::empty_layout({0, 1, 2}, {0, 1, 2}, {0, 1});
   l.at(0, 0, 0) = l.at(1, 1, 0) = 1;
-  CHECK_FALSE(cellforge::voxel_solid_model(l, "edge contact").has_value());
-  cellforge::voxel_layout w = cellforge::empty_layout({0, 1, 2}, {0, 1, 2}, {0, 1, 2});
+  CHECK_FALSE(cellforge::samples::voxel_solid_model(l, "edge contact").has_value());
+  cellforge::samples::voxel_layout w = cellforge::samples::empty_layout({0, 1, 2}, {0, 1, 2}, {0, 1, 2});
   w.at(0, 0, 0) = w.at(1, 1, 1) = 1;
-  CHECK_FALSE(cellforge::voxel_solid_model(w, "vertex contact").has_value());
+  CHECK_FALSE(cellforge::samples::voxel_solid_model(w, "vertex contact").has_value());
   // Skylines: the height repair leaves no edge-only contact between columns.
   std::size_t skylines = 0;
   for (std::uint64_t seed = 0; seed < 20; ++seed) {
-    const auto sky = cellforge::random_skyline(7, 6, 4, seed);
+    const auto sky = cellforge::samples::random_skyline(7, 6, 4, seed);
     skylines += sky.has_value();
     if (sky) CHECK(sky->genus == 0);
   }
   CHECK(skylines >= 16);
   // A hollow box (a cavity) is refused; a ring is genus 1.
-  cellforge::voxel_layout hollow = cellforge::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1, 2, 3});
+  cellforge::samples::voxel_layout hollow = cellforge::samples::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1, 2, 3});
   std::fill(hollow.labels.begin(), hollow.labels.end(), 1);
   hollow.at(1, 1, 1) = 0;
-  CHECK_FALSE(cellforge::voxel_solid_model(hollow, "hollow").has_value());
-  cellforge::voxel_layout ring = cellforge::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1});
+  CHECK_FALSE(cellforge::samples::voxel_solid_model(hollow, "hollow").has_value());
+  cellforge::samples::voxel_layout ring = cellforge::samples::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1});
   std::fill(ring.labels.begin(), ring.labels.end(), 1);
   ring.at(1, 1, 0) = 0;
-  const auto r = cellforge::voxel_solid_model(ring, "ring");
+  const auto r = cellforge::samples::voxel_solid_model(ring, "ring");
   REQUIRE(r.has_value());
   CHECK(r->genus == 1);
-  CHECK_THROWS_AS(cellforge::sample_antiprism(2), cellforge::error);
-  CHECK_THROWS_AS(cellforge::sample_stairs(0, 1), cellforge::error);
+  CHECK_THROWS_AS(cellforge::samples::sample_antiprism(2), cellforge::error);
+  CHECK_THROWS_AS(cellforge::samples::sample_stairs(0, 1), cellforge::error);
   // Lattices too big to hold are refused before their coordinates are drawn (10^15 cells would
   // be a bad_alloc, 10^7 per side an overflow of nx * ny * nz).
-  CHECK_THROWS_WITH_AS(cellforge::random_normalon(100000, 100000, 100000, 10, 1),
+  CHECK_THROWS_WITH_AS(cellforge::samples::random_normalon(100000, 100000, 100000, 10, 1),
                        doctest::Contains("random_normalon: a lattice of 100000 x 100000 x 100000"),
                        cellforge::error);
-  CHECK_THROWS_WITH_AS(cellforge::random_skyline(10000000, 10000000, 3, 1), doctest::Contains("at most 10^8"),
+  CHECK_THROWS_WITH_AS(cellforge::samples::random_skyline(10000000, 10000000, 3, 1), doctest::Contains("at most 10^8"),
                        cellforge::error);
-  CHECK_THROWS_WITH_AS(cellforge::random_normalon(0, 3, 3, 4, 1), doctest::Contains("1 or more"),
+  CHECK_THROWS_WITH_AS(cellforge::samples::random_normalon(0, 3, 3, 4, 1), doctest::Contains("1 or more"),
                        cellforge::error);
-  CHECK_THROWS_WITH_AS(cellforge::empty_layout({0}, {0, 1}, {0, 1}),
+  CHECK_THROWS_WITH_AS(cellforge::samples::empty_layout({0}, {0, 1}, {0, 1}),
                        doctest::Contains("a lattice of 0 x 1 x 1"), cellforge::error);
-  CHECK_THROWS_WITH_AS(cellforge::empty_layout({}, {0, 1}, {0, 1}), doctest::Contains("two coordinates"),
+  CHECK_THROWS_WITH_AS(cellforge::samples::empty_layout({}, {0, 1}, {0, 1}), doctest::Contains("two coordinates"),
                        cellforge::error);
-  CHECK_THROWS_AS(cellforge::extruded_polygon({{0, 0}, {1, 1}, {1, 0}, {0, 1}}, 1.0, "bow tie"),
+  CHECK_THROWS_AS(cellforge::samples::extruded_polygon({{0, 0}, {1, 1}, {1, 0}, {0, 1}}, 1.0, "bow tie"),
                   cellforge::error);
-  CHECK_THROWS_AS(cellforge::extruded_polygon({{0, 0}, {1, 0}, {2, 0}, {0, 1}}, 1.0, "collinear"),
+  CHECK_THROWS_AS(cellforge::samples::extruded_polygon({{0, 0}, {1, 0}, {2, 0}, {0, 1}}, 1.0, "collinear"),
                   cellforge::error);
-  cellforge::sketch_sweep_options bad;
+  cellforge::samples::sketch_sweep_options bad;
   bad.views_per_model = 0;
-  CHECK_THROWS_AS(cellforge::sketch_sweep(bad), cellforge::error);
+  CHECK_THROWS_AS(cellforge::samples::sketch_sweep(bad), cellforge::error);
 }
 
 TEST_CASE("project_model: normalon and quasi-normalon flags on known models") {
   cellforge::detail::splitmix rng{3};
-  const glm::dmat3 view = cellforge::detail::random_rotation(rng);
+  const glm::dmat3 view = cellforge::samples::detail::random_rotation(rng);
   const auto flags = [&](const sample_model& m) {
-    const auto s = cellforge::project_model(m, view, m.name, "test");
+    const auto s = cellforge::samples::project_model(m, view, m.name, "test");
     return std::pair<bool, bool>{s.normalon, s.quasi_normalon};
   };
   using flag = std::pair<bool, bool>;
-  CHECK(flags(cellforge::sample_cube()) == flag{true, false});
-  CHECK(flags(cellforge::sample_L()) == flag{true, false});
-  CHECK(flags(cellforge::sample_stairs(3, 1)) == flag{true, false});
-  CHECK(flags(cellforge::through_slot(2, 1).model) == flag{true, false});
-  CHECK(flags(cellforge::sample_prism(4)) == flag{true, false});  // a square prism, axis-aligned
+  CHECK(flags(cellforge::samples::sample_cube()) == flag{true, false});
+  CHECK(flags(cellforge::samples::sample_L()) == flag{true, false});
+  CHECK(flags(cellforge::samples::sample_stairs(3, 1)) == flag{true, false});
+  CHECK(flags(cellforge::samples::through_slot(2, 1).model) == flag{true, false});
+  CHECK(flags(cellforge::samples::sample_prism(4)) == flag{true, false});  // a square prism, axis-aligned
   // Quasi-normalons by the flag's rule: the axis-parallel edges alone connect every vertex (what
   // direct inflation propagates depth along). One chamfer keeps them connected; two cut the
   // axis edges between them off (a looser reading would call those quasi-normalons too).
   const std::vector<glm::dvec2> rect{{0, 0}, {2, 0}, {2, 1}, {0, 1}};
   const auto chamfered = [&](std::vector<bool> which) {
-    return cellforge::extruded_polygon(cellforge::chamfered_corners(rect, which, 0.3), 1.5, "chamfered");
+    return cellforge::samples::extruded_polygon(cellforge::samples::chamfered_corners(rect, which, 0.3), 1.5, "chamfered");
   };
   CHECK(flags(chamfered({true, false, false, false})) == flag{false, true});
   CHECK(flags(chamfered({true, false, true, false})) == flag{false, false});
   CHECK(flags(chamfered({true, true, false, false})) == flag{false, false});
-  CHECK(flags(cellforge::extruded_polygon({{0, 0}, {2, 0}, {0, 1}}, 1.0, "wedge")) == flag{false, true});
-  CHECK(flags(cellforge::extruded_polygon({{0, 0}, {3, 0}, {3, 1}, {1, 1}}, 1.0, "ramp")) ==
+  CHECK(flags(cellforge::samples::extruded_polygon({{0, 0}, {2, 0}, {0, 1}}, 1.0, "wedge")) == flag{false, true});
+  CHECK(flags(cellforge::samples::extruded_polygon({{0, 0}, {3, 0}, {3, 1}, {1, 1}}, 1.0, "ramp")) ==
         flag{false, true});
   // A box with corner (1,1,1) cut off: quasi; with (1,1,0) cut off too the x = 1, y = 1 edge
   // between the two cuts hangs on oblique edges only.
@@ -540,13 +540,13 @@ TEST_CASE("project_model: normalon and quasi-normalon flags on known models") {
     }
     return pts;
   };
-  CHECK(flags(cellforge::convex_polytope_model(cut(box, 7), "corner cut")) == flag{false, true});
-  CHECK(flags(cellforge::convex_polytope_model(cut(cut(box, 7), 3), "two corners cut")) ==
+  CHECK(flags(cellforge::samples::convex_polytope_model(cut(box, 7), "corner cut")) == flag{false, true});
+  CHECK(flags(cellforge::samples::convex_polytope_model(cut(cut(box, 7), 3), "two corners cut")) ==
         flag{false, false});
   // The gable house's ridge joins the walls by oblique edges only: neither.
-  CHECK(flags(cellforge::random_quasi_normalon(5, 4)) == flag{false, false});
-  CHECK(flags(cellforge::platonic_solids()[2]) == flag{false, false});
-  CHECK(flags(cellforge::sample_prism(6)) == flag{false, false});
+  CHECK(flags(cellforge::samples::random_quasi_normalon(5, 4)) == flag{false, false});
+  CHECK(flags(cellforge::samples::platonic_solids()[2]) == flag{false, false});
+  CHECK(flags(cellforge::samples::sample_prism(6)) == flag{false, false});
   // On the sweep: every normalon-family drawing is a normalon, no quasi-normalon-family one
   // is, and about half of those are quasi-normalons by the rule.
   std::size_t quasi = 0, family = 0;

@@ -23,7 +23,7 @@
 // Own namespace: the test files of a group are compiled as one translation unit.
 namespace sample_models_tests {
 
-using cellforge::sample_model;
+using cellforge::samples::sample_model;
 
 namespace {
 
@@ -175,79 +175,79 @@ std::size_t non_convex_faces(const sample_model& m) {
 }  // namespace
 
 TEST_CASE("sample models: every ground truth is self-consistent") {
-  for (const auto& m : cellforge::all_small_samples()) check_consistent(m);
+  for (const auto& m : cellforge::samples::all_small_samples()) check_consistent(m);
   for (std::size_t n = 3; n <= 32; ++n) {
-    check_consistent(cellforge::sample_prism(n));
-    check_consistent(cellforge::sample_pyramid(n));
+    check_consistent(cellforge::samples::sample_prism(n));
+    check_consistent(cellforge::samples::sample_pyramid(n));
   }
-  for (int i = 1; i <= 6; ++i) check_consistent(cellforge::sample_seed(i));
-  check_consistent(cellforge::sample_close_edges());
-  check_consistent(cellforge::sample_uv_sphere(5, 4));
-  check_consistent(cellforge::sample_grid(4, 1, 2));
+  for (int i = 1; i <= 6; ++i) check_consistent(cellforge::samples::sample_seed(i));
+  check_consistent(cellforge::samples::sample_close_edges());
+  check_consistent(cellforge::samples::sample_uv_sphere(5, 4));
+  check_consistent(cellforge::samples::sample_grid(4, 1, 2));
 }
 
 TEST_CASE("sample models: sizes, objects and unforced faces") {
-  check_sizes(cellforge::sample_tetrahedron(), {4, 6, 4, 1, 1, 0});
-  check_sizes(cellforge::sample_cube(), {8, 12, 6, 1, 1, 0});
-  check_sizes(cellforge::sample_octahedron(), {6, 12, 8, 1, 1, 0});
-  check_sizes(cellforge::sample_prism(7), {14, 21, 9, 1, 1, 0});
-  check_sizes(cellforge::sample_pyramid(32), {33, 64, 33, 1, 1, 0});
-  check_sizes(cellforge::sample_uv_sphere(8, 6), {42, 88, 48, 1, 1, 0});
+  check_sizes(cellforge::samples::sample_tetrahedron(), {4, 6, 4, 1, 1, 0});
+  check_sizes(cellforge::samples::sample_cube(), {8, 12, 6, 1, 1, 0});
+  check_sizes(cellforge::samples::sample_octahedron(), {6, 12, 8, 1, 1, 0});
+  check_sizes(cellforge::samples::sample_prism(7), {14, 21, 9, 1, 1, 0});
+  check_sizes(cellforge::samples::sample_pyramid(32), {33, 64, 33, 1, 1, 0});
+  check_sizes(cellforge::samples::sample_uv_sphere(8, 6), {42, 88, 48, 1, 1, 0});
   // Odd slices too: the rings are cycles no edge needs, so the sphere is one volume.
-  check_sizes(cellforge::sample_uv_sphere(7, 6), {37, 77, 42, 1, 1, 0});
-  check_sizes(cellforge::sample_two_cubes(), {12, 20, 11, 2, 1, 0});
-  check_sizes(cellforge::sample_grid(2, 2, 2), {27, 54, 36, 8, 1, 0});
+  check_sizes(cellforge::samples::sample_uv_sphere(7, 6), {37, 77, 42, 1, 1, 0});
+  check_sizes(cellforge::samples::sample_two_cubes(), {12, 20, 11, 2, 1, 0});
+  check_sizes(cellforge::samples::sample_grid(2, 2, 2), {27, 54, 36, 8, 1, 0});
   // 3×3×3: 64 vertices, 144 edges, 108 faces; no edge needs the 6 walls around the middle cube
   // nor the middle squares of the 6 sides; 4×4×4: the 36 walls inside and 24 squares.
-  check_sizes(cellforge::sample_grid(3, 3, 3), {64, 144, 108, 27, 1, 12});
-  check_sizes(cellforge::sample_grid(4, 4, 4), {125, 300, 240, 64, 1, 60});
-  check_sizes(cellforge::sample_L(), {12, 18, 8, 1, 1, 0});
-  check_sizes(cellforge::sample_T(), {16, 24, 10, 1, 1, 0});
-  check_sizes(cellforge::sample_U(), {16, 24, 10, 1, 1, 0});
-  check_sizes(cellforge::sample_house(), {9, 16, 9, 1, 1, 0});
-  check_sizes(cellforge::sample_disjoint_solids(), {20, 30, 14, 2, 2, 0});
-  check_sizes(cellforge::sample_split_edges(), {19, 23, 6, 1, 1, 0});
-  check_sizes(cellforge::sample_frame(), {16, 24, 10, 1, 1, 0});
-  check_sizes(cellforge::sample_block_with_hole(), {16, 24, 10, 1, 1, 0});
-  check_sizes(cellforge::sample_thin_slab(), {12, 20, 11, 2, 1, 0});
-  check_sizes(cellforge::sample_close_edges(), {770, 2304, 1536, 1, 1, 0});
+  check_sizes(cellforge::samples::sample_grid(3, 3, 3), {64, 144, 108, 27, 1, 12});
+  check_sizes(cellforge::samples::sample_grid(4, 4, 4), {125, 300, 240, 64, 1, 60});
+  check_sizes(cellforge::samples::sample_L(), {12, 18, 8, 1, 1, 0});
+  check_sizes(cellforge::samples::sample_T(), {16, 24, 10, 1, 1, 0});
+  check_sizes(cellforge::samples::sample_U(), {16, 24, 10, 1, 1, 0});
+  check_sizes(cellforge::samples::sample_house(), {9, 16, 9, 1, 1, 0});
+  check_sizes(cellforge::samples::sample_disjoint_solids(), {20, 30, 14, 2, 2, 0});
+  check_sizes(cellforge::samples::sample_split_edges(), {19, 23, 6, 1, 1, 0});
+  check_sizes(cellforge::samples::sample_frame(), {16, 24, 10, 1, 1, 0});
+  check_sizes(cellforge::samples::sample_block_with_hole(), {16, 24, 10, 1, 1, 0});
+  check_sizes(cellforge::samples::sample_thin_slab(), {12, 20, 11, 2, 1, 0});
+  check_sizes(cellforge::samples::sample_close_edges(), {770, 2304, 1536, 1, 1, 0});
   // The seed's samples exactly, except sample 4 (near; docs/sample_models.md).
-  check_sizes(cellforge::sample_seed(1), {66, 128, 66, 2, 2, 0});
-  check_sizes(cellforge::sample_seed(2), {16, 28, 16, 3, 1, 0});
-  check_sizes(cellforge::sample_seed(3), {24, 40, 19, 2, 1, 0});
-  check_sizes(cellforge::sample_seed(4), {539, 1080, 544, 2, 1, 0});
-  check_sizes(cellforge::sample_seed(5), {466, 944, 480, 1, 1, 0});
-  check_sizes(cellforge::sample_seed(6), {710, 2124, 1428, 13, 1, 12});
+  check_sizes(cellforge::samples::sample_seed(1), {66, 128, 66, 2, 2, 0});
+  check_sizes(cellforge::samples::sample_seed(2), {16, 28, 16, 3, 1, 0});
+  check_sizes(cellforge::samples::sample_seed(3), {24, 40, 19, 2, 1, 0});
+  check_sizes(cellforge::samples::sample_seed(4), {539, 1080, 544, 2, 1, 0});
+  check_sizes(cellforge::samples::sample_seed(5), {466, 944, 480, 1, 1, 0});
+  check_sizes(cellforge::samples::sample_seed(6), {710, 2124, 1428, 13, 1, 12});
 }
 
 TEST_CASE("sample models: merged and holed faces") {
   // L, T, U: top and bottom are single non-convex faces with no edge inside them.
-  CHECK(non_convex_faces(cellforge::sample_L()) == 2);
-  CHECK(non_convex_faces(cellforge::sample_T()) == 2);
-  CHECK(non_convex_faces(cellforge::sample_U()) == 2);
+  CHECK(non_convex_faces(cellforge::samples::sample_L()) == 2);
+  CHECK(non_convex_faces(cellforge::samples::sample_T()) == 2);
+  CHECK(non_convex_faces(cellforge::samples::sample_U()) == 2);
   const auto longest = [](const sample_model& m) {
     std::size_t n = 0;
     for (const auto& f : m.faces) n = std::max(n, f[0].size());
     return n;
   };
-  CHECK(longest(cellforge::sample_L()) == 6);
-  CHECK(longest(cellforge::sample_T()) == 8);
-  CHECK(longest(cellforge::sample_U()) == 8);
-  for (const auto& m : {cellforge::sample_frame(), cellforge::sample_block_with_hole()}) {
+  CHECK(longest(cellforge::samples::sample_L()) == 6);
+  CHECK(longest(cellforge::samples::sample_T()) == 8);
+  CHECK(longest(cellforge::samples::sample_U()) == 8);
+  for (const auto& m : {cellforge::samples::sample_frame(), cellforge::samples::sample_block_with_hole()}) {
     std::size_t holed = 0;
     for (const auto& f : m.faces) holed += f.size() == 2 ? 1 : 0;
     CHECK(holed == 2);
   }
-  const auto stepped = cellforge::sample_stepped_block();
+  const auto stepped = cellforge::samples::sample_stepped_block();
   CHECK(stepped.volumes.size() == 4);
   CHECK(non_convex_faces(stepped) >= 3);  // two staircase sides and the staircase wall
   // The octahedron's equator squares are cycles of edges but not faces.
-  const auto octa = cellforge::sample_octahedron();
+  const auto octa = cellforge::samples::sample_octahedron();
   for (const auto& f : octa.faces) CHECK(f[0].size() == 3);
 }
 
 TEST_CASE("sample models: split edges are collinear chains") {
-  const auto m = cellforge::sample_split_edges();
+  const auto m = cellforge::samples::sample_split_edges();
   std::vector<int> degree(m.wire.points.size(), 0);
   for (const auto& e : m.wire.edges) ++degree[e[0]], ++degree[e[1]];
   std::size_t middles = 0;
@@ -267,7 +267,7 @@ TEST_CASE("sample models: split edges are collinear chains") {
 TEST_CASE("same_faces and same_volumes: rotation, reversal and order do not matter; changes do") {
   std::mt19937 rng(7);
   for (const auto& m :
-       {cellforge::sample_stepped_block(), cellforge::sample_frame(), cellforge::sample_grid(2, 1, 2)}) {
+       {cellforge::samples::sample_stepped_block(), cellforge::samples::sample_frame(), cellforge::samples::sample_grid(2, 1, 2)}) {
     const std::string name = m.name;
     CAPTURE(name);
     // Shuffle faces, rotate and reverse loops, reorder holes; renumber volumes through the permutation.
@@ -291,67 +291,67 @@ TEST_CASE("same_faces and same_volumes: rotation, reversal and order do not matt
       for (const auto f : vol) volumes.back().push_back({perm[f], rng() % 2 ? 1 : -1});
     }
     std::reverse(volumes.begin(), volumes.end());
-    CHECK(cellforge::same_faces(m.faces, faces));
-    CHECK(cellforge::same_volumes(m.faces, m.volumes, faces, volumes));
+    CHECK(cellforge::samples::same_faces(m.faces, faces));
+    CHECK(cellforge::samples::same_volumes(m.faces, m.volumes, faces, volumes));
 
     // A face with two vertices swapped is a different cycle.
     auto changed = faces;
     std::swap(changed[0][0][0], changed[0][0][1]);
-    CHECK_FALSE(cellforge::same_faces(m.faces, changed));
+    CHECK_FALSE(cellforge::samples::same_faces(m.faces, changed));
     // A missing or a doubled face.
     auto fewer = faces;
     fewer.pop_back();
-    CHECK_FALSE(cellforge::same_faces(m.faces, fewer));
+    CHECK_FALSE(cellforge::samples::same_faces(m.faces, fewer));
     auto doubled = faces;
     doubled.back() = doubled.front();
-    CHECK_FALSE(cellforge::same_faces(m.faces, doubled));
+    CHECK_FALSE(cellforge::samples::same_faces(m.faces, doubled));
     // A volume that loses a face, or two volumes merged.
     auto vols = volumes;
     vols[0].pop_back();
-    CHECK_FALSE(cellforge::same_volumes(m.faces, m.volumes, faces, vols));
+    CHECK_FALSE(cellforge::samples::same_volumes(m.faces, m.volumes, faces, vols));
     if (volumes.size() > 1) {
       auto merged = volumes;
       merged[0].insert(merged[0].end(), merged[1].begin(), merged[1].end());
       merged.erase(merged.begin() + 1);
-      CHECK_FALSE(cellforge::same_volumes(m.faces, m.volumes, faces, merged));
+      CHECK_FALSE(cellforge::samples::same_volumes(m.faces, m.volumes, faces, merged));
     }
   }
 }
 
 TEST_CASE("sample models: transformed keeps the truth and moves the points") {
-  const auto m = cellforge::sample_house();
-  const auto t = cellforge::transformed(m, glm::dmat3(1e6), glm::dvec3(1, 2, 3));
+  const auto m = cellforge::samples::sample_house();
+  const auto t = cellforge::samples::transformed(m, glm::dmat3(1e6), glm::dvec3(1, 2, 3));
   CHECK(t.faces == m.faces);
   CHECK(t.volumes == m.volumes);
   CHECK(t.wire.points[3] == m.wire.points[3] * 1e6 + glm::dvec3(1, 2, 3));
   check_consistent(
-      cellforge::transformed(cellforge::sample_stepped_block(), glm::dmat3(1e-6), glm::dvec3(0)));
+      cellforge::samples::transformed(cellforge::samples::sample_stepped_block(), glm::dmat3(1e-6), glm::dvec3(0)));
 }
 
 TEST_CASE("sample models: bad parameters throw") {
   using cellforge::error;
-  CHECK_THROWS_AS(cellforge::sample_prism(2), error);
-  CHECK_THROWS_AS(cellforge::sample_pyramid(0), error);
-  CHECK_THROWS_AS(cellforge::sample_uv_sphere(8, 1), error);
-  CHECK_THROWS_AS(cellforge::sample_grid(0, 1, 1), error);
-  CHECK_THROWS_AS(cellforge::sample_seed(7), error);
-  auto l = cellforge::empty_layout({0, 1, 2}, {0, 1, 2}, {0, 1});
+  CHECK_THROWS_AS(cellforge::samples::sample_prism(2), error);
+  CHECK_THROWS_AS(cellforge::samples::sample_pyramid(0), error);
+  CHECK_THROWS_AS(cellforge::samples::sample_uv_sphere(8, 1), error);
+  CHECK_THROWS_AS(cellforge::samples::sample_grid(0, 1, 1), error);
+  CHECK_THROWS_AS(cellforge::samples::sample_seed(7), error);
+  auto l = cellforge::samples::empty_layout({0, 1, 2}, {0, 1, 2}, {0, 1});
   l.at(0, 0, 0) = 2;  // label 1 unused
-  CHECK_THROWS_AS(cellforge::make_voxel_model(l, "gap"), error);
+  CHECK_THROWS_AS(cellforge::samples::make_voxel_model(l, "gap"), error);
   l.at(0, 0, 0) = -1;
-  CHECK_THROWS_AS(cellforge::make_voxel_model(l, "negative"), error);
+  CHECK_THROWS_AS(cellforge::samples::make_voxel_model(l, "negative"), error);
   l.labels.pop_back();
-  CHECK_THROWS_AS(cellforge::make_voxel_model(l, "short"), error);
+  CHECK_THROWS_AS(cellforge::samples::make_voxel_model(l, "short"), error);
   // A face outline touching itself: the top of a hook of cells whose ends (1,1) and (2,2)
   // meet only at the corner (2,2).
-  auto p = cellforge::empty_layout({0, 1, 2, 3, 4}, {0, 1, 2, 3}, {0, 1});
+  auto p = cellforge::samples::empty_layout({0, 1, 2, 3, 4}, {0, 1, 2, 3}, {0, 1});
   for (const auto& c : {std::array<std::size_t, 2>{1, 1}, {1, 0}, {2, 0}, {3, 0}, {3, 1}, {3, 2}, {2, 2}})
     p.at(c[0], c[1], 0) = 1;
-  CHECK_THROWS_AS(cellforge::make_voxel_model(p, "pinched"), error);
+  CHECK_THROWS_AS(cellforge::samples::make_voxel_model(p, "pinched"), error);
 }
 
 TEST_CASE("sample models: the close-edges tube has no planar ring") {
-  const auto m = cellforge::sample_close_edges();
+  const auto m = cellforge::samples::sample_close_edges();
   for (std::size_t r = 0; r < 16; ++r) {
     // Best-fit plane by Newell's normal through the centroid; some point must be well off it.
     glm::dvec3 n(0), c(0);

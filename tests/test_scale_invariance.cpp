@@ -30,7 +30,7 @@ namespace scale_invariance_tests {
 
 namespace {
 
-using cellforge::sample_model;
+using cellforge::samples::sample_model;
 
 #ifdef NDEBUG
 constexpr int rotations = 40;
@@ -96,13 +96,13 @@ std::string differs(const outcome& ref, const outcome& got) {
     return std::to_string(got.faces.size()) + " faces, not " + std::to_string(ref.faces.size());
   if (got.volumes != ref.volumes)
     return std::to_string(got.volumes) + " volumes, not " + std::to_string(ref.volumes);
-  if (!cellforge::same_faces(ref.faces, got.faces)) return "other face vertex sets";
+  if (!cellforge::samples::same_faces(ref.faces, got.faces)) return "other face vertex sets";
   return {};
 }
 
 // The model scaled by s and turned by rot, with an offset of the same scale. O(V).
 sample_model placed(const sample_model& m, double s, const glm::dmat3& rot) {
-  return cellforge::transformed(m, s * rot, s * glm::dvec3(0.25, -0.5, 0.75));
+  return cellforge::samples::transformed(m, s * rot, s * glm::dvec3(0.25, -0.5, 0.75));
 }
 
 // A wedge: a triangle with a 1e-3-radian corner, extruded by 1 (5 faces, 1 volume). O(1).
@@ -162,12 +162,12 @@ std::size_t sweep(const sample_model& m, std::span<const double> ss, int n, std:
 TEST_CASE("scale invariance: every small sample model at scales 1e-9 .. 1e9, random rotations") {
   std::mt19937_64 rng(20261202);
   std::size_t runs = 0, misses = 0, models = 0;
-  for (const auto& m : cellforge::all_small_samples()) {
+  for (const auto& m : cellforge::samples::all_small_samples()) {
     const outcome ref = convert(m);
     INFO(m.name);
     // The reference itself is the truth (test_wireframe_pipeline checks it in detail).
     CHECK(ref.error.empty());
-    CHECK(cellforge::same_faces(m.faces, ref.faces));
+    CHECK(cellforge::samples::same_faces(m.faces, ref.faces));
     CHECK(ref.volumes == m.volumes.size());
     misses += sweep(m, scales, rotations, rng, runs, &ref);
     ++models;
@@ -199,14 +199,14 @@ TEST_CASE("scale invariance: a thin wedge at 1e-7 and a dodecahedron at 1e10") {
 
 TEST_CASE("scale invariance: a 1e-4 cube beside a unit cube is two volumes") {
   const sample_model m =
-      cellforge::disjoint_union(cellforge::sample_cube(), cellforge::sample_cube({1e-4, 1e-4, 1e-4}),
+      cellforge::samples::disjoint_union(cellforge::samples::sample_cube(), cellforge::samples::sample_cube({1e-4, 1e-4, 1e-4}),
                                 {2, 0, 0}, "unit cube and 1e-4 cube");
   const outcome o = convert(m);
   INFO(o.error);
   CHECK(o.error.empty());
   CHECK(o.volumes == 2);
   CHECK(o.faces.size() == 12);
-  CHECK(cellforge::same_faces(m.faces, o.faces));
+  CHECK(cellforge::samples::same_faces(m.faces, o.faces));
 }
 
 }  // namespace scale_invariance_tests

@@ -33,6 +33,7 @@ namespace smooth_edges_tests {
 namespace {
 
 using namespace cellforge;  // test file only
+using namespace cellforge::samples;
 using soup = polygon_soup<glm::dvec3>;
 using smooth_result = cellforge::smooth_result<glm::dvec3>;
 using edge_curve = cellforge::edge_curve<glm::dvec3>;
@@ -171,7 +172,7 @@ TEST_CASE("edge_curve: builders are exact and agree with each other") {
   REQUIRE(q.has_value());
   CHECK(q->coefficients[0][0] == doctest::Approx(0.0).epsilon(1e-12));
   CHECK(q->coefficients[1][0] == doctest::Approx(0.0).epsilon(1e-12));
-  CHECK(detail::kind_of_bezier(q->bezier) == curve_kind::quadratic);
+  CHECK(cellforge::detail::kind_of_bezier(q->bezier) == curve_kind::quadratic);
   // A direction with no component on the axis cannot be a function of it.
   CHECK_FALSE(fit_axis_curve(a, b, 0, glm::dvec3(0, 1, 0), std::nullopt).has_value());
   const edge_curve s = straight_curve(a, b);

@@ -54,9 +54,9 @@ struct neck_shape {
 const std::vector<neck_shape> neck_shapes{{false, 8, 21}, {false, 12, 21}, {false, 16, 31}, {false, 12, 9},
                                           {true, 8, 15},  {true, 12, 21},  {true, 16, 25},  {true, 12, 9}};
 
-cellforge::thin_sample<> sample_of(const neck_shape& sh, bool triangles) {
-  return sh.hourglass ? cellforge::thin_hourglass(sh.segments, sh.rings, triangles)
-                      : cellforge::thin_dumbbell(sh.segments, sh.rings, triangles);
+cellforge::samples::thin_sample<> sample_of(const neck_shape& sh, bool triangles) {
+  return sh.hourglass ? cellforge::samples::thin_hourglass(sh.segments, sh.rings, triangles)
+                      : cellforge::samples::thin_dumbbell(sh.segments, sh.rings, triangles);
 }
 
 template <cellforge::Point3 P>
@@ -68,7 +68,7 @@ glm::dvec3 centroid(const cellforge::thin_loop<P>& loop) {
 
 /// The loop lies at the known neck (within one ring spacing along the true axis) and its
 /// length is within 5 % of the neck polygon's perimeter.
-void check_at_neck(const thin_loop& loop, const cellforge::thin_sample<>& s, const glm::dmat4& motion) {
+void check_at_neck(const thin_loop& loop, const cellforge::samples::thin_sample<>& s, const glm::dmat4& motion) {
   const glm::dvec3 neck = glm::dvec3(motion * glm::dvec4(0, 0, s.neck_z, 1));
   const glm::dvec3 axis = glm::normalize(glm::dvec3(motion * glm::dvec4(0, 0, 1, 0)));
   INFO("cycle " << loop.cycle << ", strength " << loop.strength << ", length " << loop.length << " vs neck "
@@ -162,7 +162,7 @@ TEST_CASE("thin samples: table 5 solids have about the seed's face counts and on
   const std::array<int, 6> quads{242, 242, 470, 482, 242, 722}, tris{216, 216, 456, 456, 216, 696};
   for (int ex = 1; ex <= 6; ++ex)
     for (const bool tri : {false, true}) {
-      const auto s = cellforge::thin_table5_solid(ex, tri);
+      const auto s = cellforge::samples::thin_table5_solid(ex, tri);
       CHECK(!s.name.empty());
       CHECK(s.soup.num_faces() ==
             static_cast<std::size_t>((tri ? tris : quads)[static_cast<std::size_t>(ex - 1)]));
@@ -174,9 +174,9 @@ TEST_CASE("thin samples: table 5 solids have about the seed's face counts and on
       CHECK(cellforge::signed_volume(s.soup) > 0);
     }
   require_error(error_category::invalid_input, "allowed 1 to 6",
-                [] { (void)cellforge::thin_table5_solid(7, false); });
-  CHECK(cellforge::thin_cylinder(12, 10, false).necks.empty());
-  CHECK(cellforge::thin_sphere(12, 10, true).necks.empty());
+                [] { (void)cellforge::samples::thin_table5_solid(7, false); });
+  CHECK(cellforge::samples::thin_cylinder(12, 10, false).necks.empty());
+  CHECK(cellforge::samples::thin_sphere(12, 10, true).necks.empty());
 }
 
 TEST_CASE("thin points: the strongest and the thinnest loop lie at the neck of dumbbells and hourglasses") {
@@ -216,7 +216,7 @@ TEST_CASE("thin points: every table-5 solid reports exactly its necks (prominenc
   for (int ex = 1; ex <= 6; ++ex)
     for (const bool tri : {false, true})
       for (const int cap : {40, 100}) {
-        const auto s = cellforge::thin_table5_solid(ex, tri);
+        const auto s = cellforge::samples::thin_table5_solid(ex, tri);
         CAPTURE(s.name);
         CAPTURE(tri);
         CAPTURE(cap);
@@ -250,7 +250,7 @@ TEST_CASE(
     for (const int rings : all_rings)
       for (const bool tri : {false, true})
         for (const auto& s :
-             {cellforge::thin_cylinder(segments, rings, tri), cellforge::thin_sphere(segments, rings, tri)}) {
+             {cellforge::samples::thin_cylinder(segments, rings, tri), cellforge::samples::thin_sphere(segments, rings, tri)}) {
           CAPTURE(s.name);
           CAPTURE(segments);
           CAPTURE(rings);
@@ -275,7 +275,7 @@ TEST_CASE(
 TEST_CASE("thin points: without the ring-wide envelope, partly grown rings look like weak necks") {
   // Why the rims are read from an envelope one ring wide: with envelope_rings = 0 a coarse
   // cylinder shows its ring completions as dips.
-  const auto m = mesh_of(cellforge::thin_cylinder(16, 9, false).soup);
+  const auto m = mesh_of(cellforge::samples::thin_cylinder(16, 9, false).soup);
   thin_options o;
   o.girth_check = false;  // the detector alone (the girth rule would drop those dips too)
   const thin_result with = cellforge::find_thin_points(m, o);
@@ -287,8 +287,8 @@ TEST_CASE("thin points: without the ring-wide envelope, partly grown rings look 
 
 TEST_CASE("thin points: fast and faithful modes give identical cycle lengths and loops, with clusters too") {
   for (const bool tri : {false, true})
-    for (const auto& s : {cellforge::thin_dumbbell(8, 13, tri), cellforge::thin_hourglass(8, 11, tri),
-                          cellforge::thin_table5_solid(1, tri)})
+    for (const auto& s : {cellforge::samples::thin_dumbbell(8, 13, tri), cellforge::samples::thin_hourglass(8, 11, tri),
+                          cellforge::samples::thin_table5_solid(1, tri)})
       for (const int cap : {1, 10, 40})
         for (const bool clusters : {false, true}) {  // with clusters (8.2) too
           CAPTURE(s.name);
@@ -308,7 +308,7 @@ TEST_CASE("thin points: fast and faithful modes give identical cycle lengths and
 }
 
 TEST_CASE("selection growing: every cycle's loop is the boundary of a selection of that size") {
-  const auto s = cellforge::thin_dumbbell(8, 11, true);
+  const auto s = cellforge::samples::thin_dumbbell(8, 11, true);
   const auto m = mesh_of(s.soup);
   const thin_result r = cellforge::find_thin_points(m);
   // Cycle 1 is the start face alone: its perimeter.
@@ -324,7 +324,7 @@ TEST_CASE("selection growing: every cycle's loop is the boundary of a selection 
 
 TEST_CASE(
     "thin points: caps 1 and 1000 both finish; a larger cap never finds a longer least loop at the neck") {
-  const auto s = cellforge::thin_table5_solid(1, true);  // 216 triangles
+  const auto s = cellforge::samples::thin_table5_solid(1, true);  // 216 triangles
   const auto m = mesh_of(s.soup);
   thin_options o;
   o.selection_cap = 1;
@@ -344,7 +344,7 @@ TEST_CASE(
 TEST_CASE("thin points: the seed's detector runs, smooths alternating triangle values and finds the neck") {
   for (const bool tri : {false, true}) {
     CAPTURE(tri);
-    const auto s = cellforge::thin_dumbbell(12, 21, tri);
+    const auto s = cellforge::samples::thin_dumbbell(12, 21, tri);
     const auto m = mesh_of(s.soup);
     thin_options o;
     o.detection = cellforge::thin_detection::seed;
@@ -394,7 +394,7 @@ TEST_CASE("central axis: a rotated elongated solid's axis within 1 degree; the f
   for (int trial = 0; trial < 8; ++trial)
     for (const bool tri : {false, true}) {
       const auto s =
-          trial % 2 == 0 ? cellforge::thin_dumbbell(12, 22, tri) : cellforge::thin_hourglass(12, 24, tri);
+          trial % 2 == 0 ? cellforge::samples::thin_dumbbell(12, 22, tri) : cellforge::samples::thin_hourglass(12, 24, tri);
       const glm::dmat4 motion = random_motion(rng);
       const auto m = mesh_of(cellforge::transformed(s.soup, motion));
       const glm::dvec3 truth = glm::normalize(glm::dvec3(motion * glm::dvec4(0, 0, 1, 0)));
@@ -412,7 +412,7 @@ TEST_CASE("central axis: a rotated elongated solid's axis within 1 degree; the f
     }
   // The axis-aligned solid: symmetric splits fit every line exactly; the long one must win.
   for (const bool tri : {false, true}) {
-    const auto m = mesh_of(cellforge::thin_cylinder(12, 31, tri).soup);
+    const auto m = mesh_of(cellforge::samples::thin_cylinder(12, 31, tri).soup);
     std::vector<glm::dvec3> pts;
     for (const auto v : m.vertices()) pts.push_back(m.positions()[v]);
     const auto axis = cellforge::central_axis(pts);
@@ -423,9 +423,9 @@ TEST_CASE("central axis: a rotated elongated solid's axis within 1 degree; the f
 
 TEST_CASE("thin points: bad input gives a clear error") {
   // A sample too big to build is refused before its profile is allocated (2^31 rings: 32 GB).
-  CHECK_THROWS_WITH_AS(cellforge::thin_dumbbell(16, 2000000000, false), doctest::Contains("too large"),
+  CHECK_THROWS_WITH_AS(cellforge::samples::thin_dumbbell(16, 2000000000, false), doctest::Contains("too large"),
                        cellforge::error);
-  const auto s = cellforge::thin_dumbbell(8, 11, false);
+  const auto s = cellforge::samples::thin_dumbbell(8, 11, false);
   const auto good = mesh_of(s.soup);
   // Open: an uncapped cylinder.
   const auto open = mesh_of(cellforge::cylinder<glm::dvec3>(8, 4, false, false));
@@ -512,7 +512,7 @@ TEST_CASE("thin points: bad input gives a clear error") {
 }
 
 TEST_CASE("thin points: a work budget that runs out stops the growing, flagged, in every mode") {
-  const auto s = cellforge::thin_dumbbell(8, 11, false);
+  const auto s = cellforge::samples::thin_dumbbell(8, 11, false);
   const auto m = mesh_of(s.soup);
   for (const auto mode : {cellforge::thin_mode::fast, cellforge::thin_mode::faithful,
                           cellforge::thin_mode::scalable, cellforge::thin_mode::automatic}) {
@@ -549,14 +549,14 @@ TEST_CASE("thin points: the scalable mode finds the fast mode's loops on dumbbel
   const std::vector<int> all_segments{8}, all_rings{9};
   const int table5 = 2;
 #endif
-  std::vector<cellforge::thin_sample<>> samples;
+  std::vector<cellforge::samples::thin_sample<>> samples;
   for (const bool tri : {false, true}) {
     for (const int seg : all_segments)
       for (const int rings : all_rings) {
-        samples.push_back(cellforge::thin_dumbbell(seg, rings, tri));
-        samples.push_back(cellforge::thin_hourglass(seg, rings, tri));
+        samples.push_back(cellforge::samples::thin_dumbbell(seg, rings, tri));
+        samples.push_back(cellforge::samples::thin_hourglass(seg, rings, tri));
       }
-    for (int k = 1; k <= table5; ++k) samples.push_back(cellforge::thin_table5_solid(k, tri));
+    for (int k = 1; k <= table5; ++k) samples.push_back(cellforge::samples::thin_table5_solid(k, tri));
   }
   for (const auto& s : samples) {
     CAPTURE(s.name);
@@ -583,7 +583,7 @@ TEST_CASE("thin points: the scalable mode finds the fast mode's loops on dumbbel
 }
 
 TEST_CASE("selection growing (scalable): each cycle's loop bounds a selection of that size and length") {
-  const auto s = cellforge::thin_hourglass(8, 11, true);
+  const auto s = cellforge::samples::thin_hourglass(8, 11, true);
   const auto m = mesh_of(s.soup);
   const cellforge::detail::thin::thin_input in = cellforge::detail::thin::prepare(m);
   const cellforge::thin_face_graph& g = in.graph;
@@ -614,7 +614,7 @@ TEST_CASE("selection growing (scalable): each cycle's loop bounds a selection of
 TEST_CASE("thin points: significance — no loop without a wider part on both sides (girth_check)") {
   // The seed's detector reports the middle of a plain cylinder (its position weighting); the
   // girth rule drops it, and keeps a dumbbell's neck.
-  const auto cyl = mesh_of(cellforge::thin_cylinder(12, 11, false).soup);
+  const auto cyl = mesh_of(cellforge::samples::thin_cylinder(12, 11, false).soup);
   thin_options o;
   o.detection = cellforge::thin_detection::seed;
   o.girth_check = false;
@@ -624,7 +624,7 @@ TEST_CASE("thin points: significance — no loop without a wider part on both si
   CHECK(r.loops.empty());
   REQUIRE(!r.diagnostics.empty());
   CHECK(r.diagnostics[0].find("girth_check") != std::string::npos);
-  const auto s = cellforge::thin_dumbbell(12, 13, false);
+  const auto s = cellforge::samples::thin_dumbbell(12, 13, false);
   const thin_result d = cellforge::find_thin_points(mesh_of(s.soup), o);
   REQUIRE(!d.loops.empty());
   check_at_neck(d.loops.front(), s, glm::dmat4(1.0));
@@ -637,7 +637,7 @@ TEST_CASE("thin points: significance — no loop without a wider part on both si
   const int ico = 3;
 #endif
   const auto box =
-      cellforge::scaled(cellforge::thin_cylinder(4, 9, false).soup, glm::dvec3(1, 1, std::sqrt(0.5) / 3));
+      cellforge::scaled(cellforge::samples::thin_cylinder(4, 9, false).soup, glm::dvec3(1, 1, std::sqrt(0.5) / 3));
   for (const auto& soup : {cellforge::icosphere<glm::dvec3>(ico), box, cellforge::triangulate_fan(box)})
     for (const auto mode : {cellforge::thin_mode::automatic, cellforge::thin_mode::scalable}) {
       if (soup.num_faces() > 4000 && mode == cellforge::thin_mode::scalable) continue;  // the same run
@@ -654,7 +654,7 @@ TEST_CASE("thin points: significance — no loop without a wider part on both si
 }
 
 TEST_CASE("thin points: cross-section girths are the section polygons' perimeters") {
-  const auto s = cellforge::thin_cylinder(12, 5, false);
+  const auto s = cellforge::samples::thin_cylinder(12, 5, false);
   const auto m = mesh_of(s.soup);
   const cellforge::detail::thin::thin_input in = cellforge::detail::thin::prepare(m);
   const double r = s.profile[1].x, z0 = s.profile.front().y, z1 = s.profile.back().y;
@@ -669,7 +669,7 @@ TEST_CASE("thin points: cross-section girths are the section polygons' perimeter
 
 TEST_CASE("thin points: the cell-complex overload gives the mesh call's loops in cell ids") {
   for (const bool tri : {false, true}) {
-    const auto s = cellforge::thin_dumbbell(10, 15, tri);
+    const auto s = cellforge::samples::thin_dumbbell(10, 15, tri);
     const auto m = mesh_of(s.soup);
     const cellforge::cell_complex<glm::dvec3> cc = cellforge::mesh_to_cell_complex(m);
     const thin_result a = cellforge::find_thin_points(m);
@@ -697,7 +697,7 @@ TEST_CASE("thin points: the cell-complex overload gives the mesh call's loops in
 
 TEST_CASE_TEMPLATE("thin points: other point types get loops and axis in their own type", P, glm::dvec3,
                    std::array<float, 3>, test_support::user_point, test_support::sealed_point) {
-  const auto s = cellforge::thin_dumbbell<P>(12, 21, false);
+  const auto s = cellforge::samples::thin_dumbbell<P>(12, 21, false);
   const auto m = cellforge::make_mesh(s.soup);
   const auto r = cellforge::find_thin_points(m);
   static_assert(std::is_same_v<decltype(r), const cellforge::thin_result<P>>);
@@ -723,7 +723,7 @@ TEST_CASE_TEMPLATE("thin points: other point types get loops and axis in their o
   }
   // And the glm::dvec3 dumbbell itself (not rounded to P) gives the same loops within P's precision.
   const thin_result g =
-      cellforge::find_thin_points(mesh_of(cellforge::thin_dumbbell<glm::dvec3>(12, 21, false).soup));
+      cellforge::find_thin_points(mesh_of(cellforge::samples::thin_dumbbell<glm::dvec3>(12, 21, false).soup));
   REQUIRE(g.loops.size() == r.loops.size());
   for (std::size_t i = 0; i < g.loops.size(); ++i) {
     CHECK(r.loops[i].vertices == g.loops[i].vertices);
@@ -770,7 +770,7 @@ TEST_CASE(
 }
 
 TEST_CASE("thin points: inward-facing faces give the same lengths and loops") {
-  const auto s = cellforge::thin_dumbbell(12, 21, true);
+  const auto s = cellforge::samples::thin_dumbbell(12, 21, true);
   auto inward = s.soup;
   for (std::size_t f = 0; f < inward.num_faces(); ++f)
     std::reverse(inward.face_vertices.begin() + inward.face_offsets[f],
@@ -847,7 +847,7 @@ TEST_CASE("thin clusters (8.2): clustered triangles find the neck at caps 1 and 
 TEST_CASE("thin clusters: quad meshes are unchanged by the option (nothing to pair)") {
   for (int ex = 1; ex <= 6; ++ex) {
     CAPTURE(ex);
-    const auto m = mesh_of(cellforge::thin_table5_solid(ex, false).soup);
+    const auto m = mesh_of(cellforge::samples::thin_table5_solid(ex, false).soup);
     thin_options o;
     const thin_result plain = cellforge::find_thin_points(m, o);
     o.cluster_faces = true;

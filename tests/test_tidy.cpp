@@ -24,7 +24,7 @@ namespace tidy_test {
 using faces_t = std::vector<std::vector<std::vector<std::uint32_t>>>;
 
 // The model's faces and volumes, read back from a drawing_to_cells result in junction numbers.
-bool is_model(const cellforge::sample_drawing& s, const cellforge::drawing_result<glm::dvec3>& r) {
+bool is_model(const cellforge::samples::sample_drawing& s, const cellforge::drawing_result<glm::dvec3>& r) {
   faces_t found;
   found.reserve(r.cells.input.faces.size());
   for (const auto& face : r.cells.input.faces) {
@@ -33,11 +33,11 @@ bool is_model(const cellforge::sample_drawing& s, const cellforge::drawing_resul
       for (auto& v : loop) v = r.cells.input_vertex[v];
     found.push_back(std::move(loops));
   }
-  return cellforge::same_faces(s.model.faces, found) &&
-         cellforge::same_volumes(s.model.faces, s.model.volumes, found, r.cells.input.volumes);
+  return cellforge::samples::same_faces(s.model.faces, found) &&
+         cellforge::samples::same_volumes(s.model.faces, s.model.volumes, found, r.cells.input.volumes);
 }
 
-faces_t one_loop_faces(const cellforge::sample_drawing& s) {
+faces_t one_loop_faces(const cellforge::samples::sample_drawing& s) {
   faces_t f;
   for (const auto& l : s.loops) f.push_back({l});
   return f;
@@ -47,19 +47,19 @@ faces_t one_loop_faces(const cellforge::sample_drawing& s) {
 
 TEST_CASE("tidy_to_solid: jittered cube, L block and hexagonal prism become views of solids") {
   using namespace tidy_test;
-  const std::vector<std::pair<cellforge::sample_model, std::string>> models{
-      {cellforge::sample_cube(), "cube"},
-      {cellforge::sample_L(), "L"},
-      {cellforge::sample_prism(6), "prism"}};
+  const std::vector<std::pair<cellforge::samples::sample_model, std::string>> models{
+      {cellforge::samples::sample_cube(), "cube"},
+      {cellforge::samples::sample_L(), "L"},
+      {cellforge::samples::sample_prism(6), "prism"}};
   for (const double jitter : {0.002, 0.01}) {
     for (const auto& entry : models) {
       // Plain references: clang 14 cannot capture structured bindings in CAPTURE's lambda.
-      const cellforge::sample_model& model = entry.first;
+      const cellforge::samples::sample_model& model = entry.first;
       const std::string& name = entry.second;
       CAPTURE(name);
       CAPTURE(jitter);
-      const auto s = cellforge::generic_drawing(model, 2, name, 2.5 * jitter);
-      const auto d = cellforge::jitter_drawing(s.drawing, jitter, 11);
+      const auto s = cellforge::samples::generic_drawing(model, 2, name, 2.5 * jitter);
+      const auto d = cellforge::samples::jitter_drawing(s.drawing, jitter, 11);
       const auto t = cellforge::tidy_to_solid(d, one_loop_faces(s));
       CHECK(t.solid == t.applied);
       const std::string why = t.diagnostics.empty() ? std::string() : t.diagnostics.back();
@@ -91,12 +91,12 @@ TEST_CASE("tidy_to_solid: jittered cube, L block and hexagonal prism become view
 
 TEST_CASE("tidy_to_solid: an exact drawing stays where it is; drawing_to_cells does not tidy it") {
   using namespace tidy_test;
-  for (const auto& entry : std::vector<std::pair<cellforge::sample_model, const char*>>{
-           {cellforge::sample_L(), "L"}, {cellforge::sample_prism(5), "prism"}}) {
-    const cellforge::sample_model& model = entry.first;
+  for (const auto& entry : std::vector<std::pair<cellforge::samples::sample_model, const char*>>{
+           {cellforge::samples::sample_L(), "L"}, {cellforge::samples::sample_prism(5), "prism"}}) {
+    const cellforge::samples::sample_model& model = entry.first;
     const char* const name = entry.second;
     CAPTURE(name);
-    const auto s = cellforge::generic_drawing(model, 3, name);
+    const auto s = cellforge::samples::generic_drawing(model, 3, name);
     const auto t = cellforge::tidy_to_solid(s.drawing, one_loop_faces(s));
     REQUIRE(t.applied);
     CHECK(t.largest_move < 1e-9);
@@ -109,7 +109,7 @@ TEST_CASE("tidy_to_solid: an exact drawing stays where it is; drawing_to_cells d
 
 TEST_CASE("tidy_to_solid: bad input is refused, a drawing too far from a solid is left as drawn") {
   using namespace tidy_test;
-  const auto s = cellforge::generic_drawing(cellforge::sample_cube(), 1, "cube");
+  const auto s = cellforge::samples::generic_drawing(cellforge::samples::sample_cube(), 1, "cube");
   auto nan = s.drawing;
   nan.points[2].y = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_AS(cellforge::tidy_to_solid(nan, one_loop_faces(s)), cellforge::error);
@@ -121,13 +121,13 @@ TEST_CASE("tidy_to_solid: bad input is refused, a drawing too far from a solid i
   cellforge::tidy_options strict;
   strict.solid_max_move = 1e-6;
   const auto t =
-      cellforge::tidy_to_solid(cellforge::jitter_drawing(s.drawing, 0.01, 3), one_loop_faces(s), strict);
+      cellforge::tidy_to_solid(cellforge::samples::jitter_drawing(s.drawing, 0.01, 3), one_loop_faces(s), strict);
   CHECK_FALSE(t.applied);
   CHECK_FALSE(t.solid);
   REQUIRE_FALSE(t.diagnostics.empty());
   CHECK(t.diagnostics.front().find("solid_max_move") != std::string::npos);
   // The parallel tidy of a jittered cube: lines of a class exactly parallel afterwards.
-  const auto p = cellforge::tidy_drawing(cellforge::jitter_drawing(s.drawing, 1e-4, 5));
+  const auto p = cellforge::tidy_drawing(cellforge::samples::jitter_drawing(s.drawing, 1e-4, 5));
   REQUIRE(p.applied);
   CHECK(p.classes == 3);
   CHECK(p.rms_move > 0);
@@ -147,12 +147,12 @@ TEST_CASE(
   const std::size_t max_edges = 30;
 #endif
   for (const auto& [jitter, limit] : levels) {
-    cellforge::noisy_sweep_options o;
+    cellforge::samples::noisy_sweep_options o;
     o.jitter = jitter;
     o.sweep.limit = limit;
     o.sweep.max_edges = max_edges;
-    cellforge::noisy_sweep_report report;
-    const auto set = cellforge::noisy_sweep(o, &report);
+    cellforge::samples::noisy_sweep_report report;
+    const auto set = cellforge::samples::noisy_sweep(o, &report);
     std::size_t exact_right = 0, right = 0;
     double worst_move = 0;
     std::map<std::string, std::pair<std::size_t, std::size_t>> family;

@@ -40,7 +40,7 @@ TEST_CASE("umbrella: the version header agrees with itself and with the CMake pr
 }
 
 TEST_CASE("umbrella: the main job on two cubes sharing a face") {
-  const cellforge::sample_model model = cellforge::sample_two_cubes();
+  const cellforge::samples::sample_model model = cellforge::samples::sample_two_cubes();
   const cellforge::wireframe_result<glm::dvec3> r = cellforge::wireframe_to_cells(model.wire);
   CHECK(r.cells.num_faces() == 11);
   CHECK(r.cells.num_volumes() == 2);

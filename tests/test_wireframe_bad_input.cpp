@@ -21,6 +21,7 @@
 namespace wireframe_bad_input_tests {
 
 using namespace cellforge;
+using namespace cellforge::samples;
 
 namespace {
 

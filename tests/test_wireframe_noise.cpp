@@ -29,7 +29,7 @@ namespace wireframe_noise_tests {
 
 namespace {
 
-using cellforge::sample_model;
+using cellforge::samples::sample_model;
 using wireframe_sweep::noisy_outcome;
 
 // The models: the full sweep in Release, every fourth model of the sample under the
@@ -51,10 +51,10 @@ double ms_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
 }
 
-cellforge::sample_model box(glm::dvec3 lo, glm::dvec3 hi, std::string name) {
-  cellforge::voxel_layout l = cellforge::empty_layout({lo.x, hi.x}, {lo.y, hi.y}, {lo.z, hi.z});
+cellforge::samples::sample_model box(glm::dvec3 lo, glm::dvec3 hi, std::string name) {
+  cellforge::samples::voxel_layout l = cellforge::samples::empty_layout({lo.x, hi.x}, {lo.y, hi.y}, {lo.z, hi.z});
   l.labels[0] = 1;
-  return cellforge::make_voxel_model(l, std::move(name));
+  return cellforge::samples::make_voxel_model(l, std::move(name));
 }
 
 // Converts with default options; empty when the result is the truth (checked with the
@@ -117,7 +117,7 @@ TEST_CASE("wireframe noise: the sweep turned and written with 10 and 6 significa
     std::map<noisy_outcome, std::size_t> count;
     for (const auto& s : set) {
       wireframe_sweep::random_source rng(wireframe_sweep::name_seed(s.model.name) ^ 77);
-      sample_model m = cellforge::transformed(s.model, wireframe_sweep::detail::random_rotation(rng), glm::dvec3(0.0));
+      sample_model m = cellforge::samples::transformed(s.model, wireframe_sweep::detail::random_rotation(rng), glm::dvec3(0.0));
       char text[64];
       for (auto& p : m.wire.points)
         for (int k = 0; k < 3; ++k) {
@@ -184,10 +184,10 @@ TEST_CASE("wireframe noise: parts of very different sizes side by side") {
   SUBCASE("a 1e-4 L, T, U, frame or house beside a bar of 100 or 10^4: exact and quick") {
     // The arrangement's grid has cells of the small part's size: the bar's faces crossed
     // 10^10 cells, one by one, until the work budget ran out (about a minute).
-    for (const auto& base : {cellforge::sample_L(), cellforge::sample_T(), cellforge::sample_U(),
-                             cellforge::sample_frame(), cellforge::sample_house()})
+    for (const auto& base : {cellforge::samples::sample_L(), cellforge::samples::sample_T(), cellforge::samples::sample_U(),
+                             cellforge::samples::sample_frame(), cellforge::samples::sample_house()})
       for (const double length : {1e2, 1e4}) {
-        const sample_model m = cellforge::disjoint_union(cellforge::transformed(base, glm::dmat3(1e-4), glm::dvec3(0.0)),
+        const sample_model m = cellforge::samples::disjoint_union(cellforge::samples::transformed(base, glm::dmat3(1e-4), glm::dvec3(0.0)),
                                                          box({0, 0, 0}, {length, 1, 1}, "bar"), {0, 2, 0}, base.name);
         const std::string name = base.name;
         CAPTURE(name);
@@ -201,9 +201,9 @@ TEST_CASE("wireframe noise: parts of very different sizes side by side") {
     // The merge tolerance was 1e-9 of the diagonal: a bar to 10^9 merged the cube into a point.
     // validate() asked a volume for 1e-12 of its diagonal cubed: a 10^4 x 1e-2 x 1e-2 bar failed.
     const sample_model parts[] = {
-        cellforge::disjoint_union(box({0, 0, 0}, {1, 1, 1}, "cube"), box({0, 0, 0}, {1e6, 1, 1}, "bar"), {0, 3, 0}, "1e6"),
-        cellforge::disjoint_union(box({0, 0, 0}, {1, 1, 1}, "cube"), box({0, 0, 0}, {1e9, 1, 1}, "bar"), {0, 3, 0}, "1e9"),
-        cellforge::disjoint_union(box({0, 0, 0}, {1e-4, 1e-4, 1e-4}, "cube"), box({0, 0, 0}, {1e4, 1e-2, 1e-2}, "bar"),
+        cellforge::samples::disjoint_union(box({0, 0, 0}, {1, 1, 1}, "cube"), box({0, 0, 0}, {1e6, 1, 1}, "bar"), {0, 3, 0}, "1e6"),
+        cellforge::samples::disjoint_union(box({0, 0, 0}, {1, 1, 1}, "cube"), box({0, 0, 0}, {1e9, 1, 1}, "bar"), {0, 3, 0}, "1e9"),
+        cellforge::samples::disjoint_union(box({0, 0, 0}, {1e-4, 1e-4, 1e-4}, "cube"), box({0, 0, 0}, {1e4, 1e-2, 1e-2}, "bar"),
                                   {0, 1e-3, 0}, "thin bar")};
     for (const auto& m : parts) {
       const std::string name = m.name;
@@ -214,7 +214,7 @@ TEST_CASE("wireframe noise: parts of very different sizes side by side") {
     }
   }
   SUBCASE("points closer than 1e-9 of their own edges merge, however large the model") {
-    sample_model m = cellforge::disjoint_union(box({0, 0, 0}, {1, 1, 1}, "cube"), box({0, 0, 0}, {1e9, 1, 1}, "bar"),
+    sample_model m = cellforge::samples::disjoint_union(box({0, 0, 0}, {1, 1, 1}, "cube"), box({0, 0, 0}, {1e9, 1, 1}, "bar"),
                                                {0, 3, 0}, "twin");
     // A twin of cube vertex 0, 1e-10 away, carrying the cube's edge 0-1 in its place: merged back.
     const auto twin = static_cast<std::uint32_t>(m.wire.points.size());
@@ -229,9 +229,9 @@ TEST_CASE("wireframe noise: parts of very different sizes side by side") {
 }
 
 TEST_CASE("wireframe noise: the tolerance estimator") {
-  const sample_model cube = cellforge::sample_cube();
+  const sample_model cube = cellforge::samples::sample_cube();
   SUBCASE("exact input keeps the old default, with the rounding far below the shape") {
-    for (const auto& m : {cube, cellforge::sample_stepped_block(), cellforge::sample_frame(), cellforge::sample_seed(2)}) {
+    for (const auto& m : {cube, cellforge::samples::sample_stepped_block(), cellforge::samples::sample_frame(), cellforge::samples::sample_seed(2)}) {
       const std::string name = m.name;
       CAPTURE(name);
       const auto r = cellforge::wireframe_to_cells(m.wire);
@@ -243,7 +243,7 @@ TEST_CASE("wireframe noise: the tolerance estimator") {
     }
   }
   SUBCASE("noise of 1e-4: a clear gap, the tolerance inside it, the old default too small") {
-    const sample_model m = wireframe_sweep::noisy(cellforge::sample_grid(4, 3, 2), 1e-4, 7);
+    const sample_model m = wireframe_sweep::noisy(cellforge::samples::sample_grid(4, 3, 2), 1e-4, 7);
     const auto g = cellforge::read_vertices(m.wire).graph;
     const cellforge::tolerance_result t = cellforge::estimate_tolerance(g);
     CHECK(t.clear_gap);
@@ -269,11 +269,11 @@ TEST_CASE("wireframe noise: the tolerance estimator") {
   SUBCASE("noise as large as the shape: no clear gap, and the answer is flagged or refused") {
     // A 24-sided barrel's rings stand about 1e-2 of their edges off the bands' planes: noise
     // of 3e-3 of the diagonal is as large as that.
-    cellforge::ring_stack barrel;
+    cellforge::samples::ring_stack barrel;
     barrel.n = 24;
     barrel.radius = {1.0, 1.2, 1.25, 1.2, 1.0};
     barrel.height = {0.0, 1.0, 2.0, 3.0, 4.0};
-    const sample_model exact = cellforge::make_ring_stack(barrel, "barrel");
+    const sample_model exact = cellforge::samples::make_ring_stack(barrel, "barrel");
     const sample_model m = wireframe_sweep::noisy(exact, 3e-3, 11);
     std::string why;
     const noisy_outcome o = wireframe_sweep::judge_noisy(m, why);

@@ -24,6 +24,7 @@
 namespace wireframe_pipeline_tests {
 
 using namespace cellforge;
+using namespace cellforge::samples;
 
 namespace {
 
@@ -147,8 +148,8 @@ TEST_CASE("pipeline: readings of the faces no edge needs, and merging") {
     for (const auto& f : grid.input.faces) after.push_back(f.loops);
     std::size_t found = 0;
     for (const auto& k : needed) {
-      const auto face = detail::canonical_face(k);
-      for (const auto& f : after) found += detail::canonical_face(f) == face;
+      const auto face = cellforge::samples::detail::canonical_face(k);
+      for (const auto& f : after) found += cellforge::samples::detail::canonical_face(f) == face;
     }
     CHECK(found == needed.size());
   }
@@ -204,7 +205,7 @@ numbering_free in_labels(const wireframe_result<glm::dvec3>& r, const std::vecto
     auto loops = f.loops;
     for (auto& l : loops)
       for (auto& v : l) v = vertex[r.input_vertex[v]];
-    out.faces.push_back(detail::canonical_face(loops));
+    out.faces.push_back(cellforge::samples::detail::canonical_face(loops));
     // +1 when the canonical outer cycle runs the way the result's does.
     const auto& outer = loops[0];
     const std::size_t at = static_cast<std::size_t>(

@@ -19,6 +19,7 @@
 namespace wireframe_stages_tests {
 
 using namespace cellforge;
+using namespace cellforge::samples;
 
 TEST_CASE("stages: reading labels vertices with incident edges and directions (4.1)") {
   const auto r = read_vertices(sample_cube().wire);
@@ -144,7 +145,7 @@ TEST_CASE("stages: extra face processing puts back a missed face and keeps the t
   // Its open edges are edges of the missing face (the one it shares with the wall keeps two faces).
   const wire_face& gone = a.candidates[a.arrangement.selected[3]];
   REQUIRE(!open.open_edges.empty());
-  for (const auto e : open.open_edges) CHECK(detail::walk_direction(a.graph, gone, e) != 0);
+  for (const auto e : open.open_edges) CHECK(cellforge::detail::walk_direction(a.graph, gone, e) != 0);
   CHECK(open.faces.empty());
   CHECK(open.free + open.newly_needed + open.open_surface == m.faces.size() - 1);
   CHECK(open.open_surface > 0);

@@ -40,7 +40,7 @@ namespace wireframe_sweep_tests {
 
 namespace {
 
-using cellforge::sample_model;
+using cellforge::samples::sample_model;
 using wireframe_sweep::faces_t;
 using wireframe_sweep::miss_reason;
 using wireframe_sweep::sweep_model;
@@ -86,9 +86,9 @@ std::string unsound(const sample_model& m, bool fins = false) {
   std::set<faces_t::value_type> seen;
   for (std::size_t f = 0; f < m.faces.size(); ++f) {
     const auto& face = m.faces[f];
-    if (!seen.insert(cellforge::detail::canonical_face(face)).second)
+    if (!seen.insert(cellforge::samples::detail::canonical_face(face)).second)
       return "face " + std::to_string(f) + " twice";
-    const glm::dvec3 n = glm::normalize(cellforge::detail::newell_normal(pts, face[0]));
+    const glm::dvec3 n = glm::normalize(cellforge::samples::detail::newell_normal(pts, face[0]));
     std::set<std::uint32_t> corners;
     for (const auto& loop : face) {
       if (loop.size() < 3)
@@ -278,11 +278,11 @@ TEST_CASE("wireframe sweep: the generator") {
     // labels meeting along an edge only (each manifold, the union not), a cell buried in a slab.
     namespace d = wireframe_sweep::detail;
     wireframe_sweep::family_draws draws{"hand-made"};
-    cellforge::voxel_layout edge = cellforge::empty_layout({0, 1, 2}, {0, 1, 2}, {0, 1});
+    cellforge::samples::voxel_layout edge = cellforge::samples::empty_layout({0, 1, 2}, {0, 1, 2}, {0, 1});
     edge.at(0, 0, 0) = edge.at(1, 1, 0) = 1;
     CHECK(!d::accept(edge, 1, "edge", draws));
     CHECK(draws.not_manifold == 1);
-    cellforge::voxel_layout hollow = cellforge::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1, 2, 3});
+    cellforge::samples::voxel_layout hollow = cellforge::samples::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1, 2, 3});
     hollow.labels.assign(27, 1);
     hollow.at(1, 1, 1) = 0;
     CHECK(!d::accept(hollow, 1, "hollow", draws));
@@ -290,7 +290,7 @@ TEST_CASE("wireframe sweep: the generator") {
     edge.at(1, 1, 0) = 2;
     CHECK(!d::accept(edge, 2, "edge", draws));  // the union touches itself along the edge
     CHECK(draws.not_manifold == 3);
-    cellforge::voxel_layout slab = cellforge::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1});
+    cellforge::samples::voxel_layout slab = cellforge::samples::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1});
     slab.labels.assign(9, 1);
     slab.at(1, 1, 0) = 2;  // the middle cell: its top and bottom lie inside flat faces
     CHECK(!d::accept(slab, 2, "slab", draws));
@@ -303,42 +303,42 @@ TEST_CASE("wireframe sweep: the generator") {
 
   SUBCASE("faces no edge needs, on hand-made examples") {
     // A house whose truth keeps the square under its roof as a wall: no edge needs it.
-    cellforge::ring_stack house;
+    cellforge::samples::ring_stack house;
     house.n = 4;
     house.radius = {1.0, 1.0};
     house.height = {0.0, 1.0};
     house.top = 1.6;
     house.walls = {1};
-    CHECK(faces_no_edge_needs(cellforge::make_ring_stack(house, "house with its square")) == 1);
-    sample_model oct = cellforge::sample_octahedron();
+    CHECK(faces_no_edge_needs(cellforge::samples::make_ring_stack(house, "house with its square")) == 1);
+    sample_model oct = cellforge::samples::sample_octahedron();
     oct.faces.push_back({{0, 1, 2, 3}});  // an equator as a face: its edges already have two triangles
     CHECK(faces_no_edge_needs(oct) == 1);
-    CHECK(faces_no_edge_needs(cellforge::sample_two_cubes()) == 0);     // the wall's edges lie on flat faces
-    CHECK(faces_no_edge_needs(cellforge::sample_grid(3, 3, 1)) == 2);   // the middle cube's top and bottom
-    CHECK(faces_no_edge_needs(cellforge::sample_grid(3, 3, 3)) == 12);  // 6 inner walls, 6 outer middles
-    CHECK(faces_no_edge_needs(cellforge::sample_grid(5, 2, 2)) == 0);
-    CHECK(faces_no_edge_needs(cellforge::sample_frame()) == 0);
+    CHECK(faces_no_edge_needs(cellforge::samples::sample_two_cubes()) == 0);     // the wall's edges lie on flat faces
+    CHECK(faces_no_edge_needs(cellforge::samples::sample_grid(3, 3, 1)) == 2);   // the middle cube's top and bottom
+    CHECK(faces_no_edge_needs(cellforge::samples::sample_grid(3, 3, 3)) == 12);  // 6 inner walls, 6 outer middles
+    CHECK(faces_no_edge_needs(cellforge::samples::sample_grid(5, 2, 2)) == 0);
+    CHECK(faces_no_edge_needs(cellforge::samples::sample_frame()) == 0);
     // A ring stack with every ring a wall: its rings lie between non-coplanar bands.
-    cellforge::ring_stack barrel;
+    cellforge::samples::ring_stack barrel;
     barrel.n = 7;
     barrel.radius = {1.0, 1.3, 1.4, 1.3, 1.0};
     barrel.height = {0.0, 1.0, 2.0, 3.0, 4.0};
     barrel.bottom = -1.0;
     barrel.top = 5.0;
     barrel.walls = {0, 1, 2, 3, 4};
-    const sample_model walled = cellforge::make_ring_stack(barrel, "walled barrel");
+    const sample_model walled = cellforge::samples::make_ring_stack(barrel, "walled barrel");
     CHECK(faces_no_edge_needs(walled) == 5);
     const sample_model open = wireframe_sweep::detail::without_walls(walled, "barrel");
     CHECK(open.volumes.size() == 1);
     CHECK(open.faces.size() == walled.faces.size() - 5);
     CHECK(faces_no_edge_needs(open) == 0);
-    CHECK(wireframe_sweep::truth_objects(cellforge::sample_disjoint_solids()) == 2);
-    CHECK(wireframe_sweep::truth_objects(cellforge::sample_frame()) == 1);  // the hole stays with its face
+    CHECK(wireframe_sweep::truth_objects(cellforge::samples::sample_disjoint_solids()) == 2);
+    CHECK(wireframe_sweep::truth_objects(cellforge::samples::sample_frame()) == 1);  // the hole stays with its face
   }
 
   SUBCASE("shuffling permutes, and the truth follows") {
-    const std::vector<sample_model> bases{cellforge::sample_stepped_block(), cellforge::sample_frame(),
-                                          cellforge::sample_grid(3, 3, 3),
+    const std::vector<sample_model> bases{cellforge::samples::sample_stepped_block(), cellforge::samples::sample_frame(),
+                                          cellforge::samples::sample_grid(3, 3, 3),
                                           wireframe_sweep::detail::geodesic_sphere(2),
                                           wireframe_sweep::detail::holed_slab(true, 3, false, true)};
     for (const auto& base : bases)
@@ -393,8 +393,8 @@ TEST_CASE("wireframe sweep: the generator") {
         for (auto& f : faces)
           for (auto& loop : f)
             for (auto& v : loop) v = back[v];
-        CHECK(cellforge::same_faces(base.faces, faces));
-        CHECK(cellforge::same_volumes(base.faces, base.volumes, faces, m.volumes));
+        CHECK(cellforge::samples::same_faces(base.faces, faces));
+        CHECK(cellforge::samples::same_volumes(base.faces, base.volumes, faces, m.volumes));
         CHECK(faces_no_edge_needs(m) == faces_no_edge_needs(base));
         CHECK(wireframe_sweep::truth_objects(m) == wireframe_sweep::truth_objects(base));
         CHECK(unsound(m).empty());
@@ -439,6 +439,7 @@ TEST_CASE("wireframe sweep: the generator") {
 // its own: the generator and the pipeline are compiled once.
 
 using namespace cellforge;
+using namespace cellforge::samples;
 
 namespace {
 
@@ -641,8 +642,8 @@ TEST_CASE("crossing: the exact test, on its own") {
     update_normal(g, f);
     return f;
   };
-  auto plane = [&](const wire_face& f) { return detail::face_plane{f.normal, g.points[f.loops[0][0]], {}}; };
-  detail::crossing_test cross(g);
+  auto plane = [&](const wire_face& f) { return cellforge::detail::face_plane{f.normal, g.points[f.loops[0][0]], {}}; };
+  cellforge::detail::crossing_test cross(g);
   const double tol = 1e-9 * g.size;
   // The L has its edge (1,0,1)-(2,0,1) on the plane z = 1 and straddles that plane; a face of
   // z = 1 through that edge whose interior meets y = 0 only beyond x = 2 does not cross it.

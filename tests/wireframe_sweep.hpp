@@ -50,7 +50,7 @@ enum class sweep_size { sample, full };
 /// One model of the sweep and the family it belongs to.
 struct sweep_model {
   std::string family;
-  cellforge::sample_model model;
+  cellforge::samples::sample_model model;
 };
 
 /// Draws of a random family: how many were kept and why the others were thrown away.
@@ -120,14 +120,14 @@ inline std::uint64_t name_seed(const std::string& name) {
 
 /// For each face of the truth: does one of its edges need it (without the face the edge would
 /// lie on fewer than two faces, or on exactly two coplanar ones)? O(L), L the total loop length.
-inline std::vector<bool> faces_needed(const cellforge::sample_model& m) {
+inline std::vector<bool> faces_needed(const cellforge::samples::sample_model& m) {
   const auto key = [](std::uint32_t a, std::uint32_t b) {
     return (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
   };
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> faces_at;  // edge → faces on it
   std::vector<glm::dvec3> unit_normal(m.faces.size());
   for (std::uint32_t f = 0; f < m.faces.size(); ++f) {
-    unit_normal[f] = glm::normalize(cellforge::detail::newell_normal(m.wire.points, m.faces[f][0]));
+    unit_normal[f] = glm::normalize(cellforge::samples::detail::newell_normal(m.wire.points, m.faces[f][0]));
     for (const auto& loop : m.faces[f])
       for (std::size_t i = 0; i < loop.size(); ++i)
         faces_at[key(loop[i], loop[(i + 1) % loop.size()])].push_back(f);
@@ -150,14 +150,14 @@ inline std::vector<bool> faces_needed(const cellforge::sample_model& m) {
 
 /// How many faces of the truth no edge needs (outer faces count too, unlike count_unforced,
 /// which counts walls between volumes only). O(L), L the total loop length.
-inline std::size_t faces_no_edge_needs(const cellforge::sample_model& m) {
+inline std::size_t faces_no_edge_needs(const cellforge::samples::sample_model& m) {
   const std::vector<bool> needed = faces_needed(m);
   return static_cast<std::size_t>(std::count(needed.begin(), needed.end(), false));
 }
 
 /// Objects of the truth: connected components of its faces through shared vertices (a face's
 /// loops are one piece, so a hole stays with its face). O(L α(V)).
-inline std::size_t truth_objects(const cellforge::sample_model& m) {
+inline std::size_t truth_objects(const cellforge::samples::sample_model& m) {
   std::vector<std::uint32_t> up(m.wire.points.size());
   for (std::uint32_t v = 0; v < up.size(); ++v) up[v] = v;
   const auto root = [&](std::uint32_t v) {
@@ -223,14 +223,14 @@ inline double diagonal(const std::vector<glm::dvec3>& points) {
 /// The model with its vertices and edges in a random order, about half of the edges turned
 /// round and, when `rigid`, moved by a random rotation and a shift of up to 10 model sizes per
 /// axis; the truth is relabelled to match. `record` receives what was done. O(model).
-inline cellforge::sample_model shuffled(const cellforge::sample_model& m, std::uint64_t seed, bool rigid,
+inline cellforge::samples::sample_model shuffled(const cellforge::samples::sample_model& m, std::uint64_t seed, bool rigid,
                                         relabelling* record = nullptr) {
   random_source rng(seed);
   relabelling t;
   t.vertex = detail::permutation(m.wire.points.size(), rng);
   t.edge = detail::permutation(m.wire.edges.size(), rng);
   t.flipped.assign(m.wire.edges.size(), false);
-  cellforge::sample_model out;
+  cellforge::samples::sample_model out;
   out.name = m.name;
   out.wire.points.resize(m.wire.points.size());
   for (std::size_t v = 0; v < m.wire.points.size(); ++v) out.wire.points[t.vertex[v]] = m.wire.points[v];
@@ -253,7 +253,7 @@ inline cellforge::sample_model shuffled(const cellforge::sample_model& m, std::u
     t.rotation = detail::random_rotation(rng);
     const double size = detail::diagonal(m.wire.points);
     for (int a = 0; a < 3; ++a) t.shift[a] = rng.between(-10.0, 10.0) * size;
-    out = cellforge::transformed(std::move(out), t.rotation, t.shift);
+    out = cellforge::samples::transformed(std::move(out), t.rotation, t.shift);
   }
   if (record) *record = std::move(t);
   return out;
@@ -290,19 +290,19 @@ class model_builder {
   void volume(std::vector<std::uint32_t> faces) { m_.volumes.push_back(std::move(faces)); }
   /// The finished model (volumes sorted).
   /// O(model).
-  cellforge::sample_model done(std::string name) {
+  cellforge::samples::sample_model done(std::string name) {
     m_.name = std::move(name);
-    return cellforge::detail::finish(std::move(m_));
+    return cellforge::samples::detail::finish(std::move(m_));
   }
 
  private:
-  cellforge::sample_model m_;
+  cellforge::samples::sample_model m_;
   std::set<std::pair<std::uint32_t, std::uint32_t>> edges_;
 };
 
 /// The model with points at exactly the same place made one vertex (solids touching at a
 /// point); edges and faces relabelled, repeated edges dropped. O(V log V + model).
-inline cellforge::sample_model glued(cellforge::sample_model m) {
+inline cellforge::samples::sample_model glued(cellforge::samples::sample_model m) {
   std::map<std::array<double, 3>, std::uint32_t> at;
   std::vector<std::uint32_t> label(m.wire.points.size());
   std::vector<glm::dvec3> points;
@@ -328,11 +328,11 @@ inline cellforge::sample_model glued(cellforge::sample_model m) {
 
 /// The model without its walls (faces between two volumes), its volumes merged into one: the
 /// reading the truth rule gives a ring stack whose rings no edge needs. O(model).
-inline cellforge::sample_model without_walls(const cellforge::sample_model& m, std::string name) {
+inline cellforge::samples::sample_model without_walls(const cellforge::samples::sample_model& m, std::string name) {
   std::vector<int> volumes_of(m.faces.size(), 0);
   for (const auto& v : m.volumes)
     for (const std::uint32_t f : v) ++volumes_of[f];
-  cellforge::sample_model out;
+  cellforge::samples::sample_model out;
   out.wire = m.wire;
   out.volumes.emplace_back();
   for (std::size_t f = 0; f < m.faces.size(); ++f)
@@ -341,7 +341,7 @@ inline cellforge::sample_model without_walls(const cellforge::sample_model& m, s
       out.faces.push_back(m.faces[f]);
     }
   out.name = std::move(name);
-  return cellforge::detail::finish(std::move(out));
+  return cellforge::samples::detail::finish(std::move(out));
 }
 
 /// Lattice coordinates 0, w0, w0 + w1, ... from the cell widths.
@@ -354,7 +354,7 @@ inline std::vector<double> from_widths(const std::vector<double>& widths) {
 
 /// Label of lattice cell (i, j, k); 0 outside the lattice.
 /// O(1).
-inline int cell(const cellforge::voxel_layout& l, std::ptrdiff_t i, std::ptrdiff_t j, std::ptrdiff_t k) {
+inline int cell(const cellforge::samples::voxel_layout& l, std::ptrdiff_t i, std::ptrdiff_t j, std::ptrdiff_t k) {
   const auto nx = static_cast<std::ptrdiff_t>(l.xs.size()) - 1,
              ny = static_cast<std::ptrdiff_t>(l.ys.size()) - 1,
              nz = static_cast<std::ptrdiff_t>(l.zs.size()) - 1;
@@ -364,12 +364,12 @@ inline int cell(const cellforge::voxel_layout& l, std::ptrdiff_t i, std::ptrdiff
 
 /// Whether the cells of a 2×2×2 block in `mask` (bit dx + 2dy + 4dz), and the others, are each
 /// connected through faces: the block's corner is then a manifold point of the solid. O(1).
-inline bool manifold_block(unsigned mask) { return cellforge::detail::manifold_corner(mask); }
+inline bool manifold_block(unsigned mask) { return cellforge::samples::detail::manifold_corner(mask); }
 
 /// True when the cells whose label `inside` accepts make a manifold solid (no two of them
 /// touching only along an edge or at a vertex). O(lattice points).
 template <class Inside>
-bool manifold(const cellforge::voxel_layout& l, Inside inside) {
+bool manifold(const cellforge::samples::voxel_layout& l, Inside inside) {
   static const std::array<bool, 256> ok = [] {
     std::array<bool, 256> t{};
     for (unsigned m = 0; m < 256; ++m) t[m] = manifold_block(m);
@@ -388,7 +388,7 @@ bool manifold(const cellforge::voxel_layout& l, Inside inside) {
 
 /// True when every empty cell can be reached from outside the lattice through empty cells
 /// (a cavity would be read as a volume of its own). O(cells).
-inline bool no_cavity(const cellforge::voxel_layout& l) {
+inline bool no_cavity(const cellforge::samples::voxel_layout& l) {
   const std::array<std::ptrdiff_t, 3> n{static_cast<std::ptrdiff_t>(l.xs.size()) + 1,
                                         static_cast<std::ptrdiff_t>(l.ys.size()) + 1,
                                         static_cast<std::ptrdiff_t>(l.zs.size()) + 1};
@@ -420,11 +420,11 @@ inline bool no_cavity(const cellforge::voxel_layout& l) {
 /// Appends the model's copies to the sweep: in the full sweep the shuffled model and
 /// `rigid_copies` rigidly moved ones ("rot#k"); in the sample one copy, moved when `odd`.
 /// Without s.shuffle the copies keep the model's labels and place. O(model).
-inline void add_copies(sweep_set& s, const std::string& family, const cellforge::sample_model& base,
+inline void add_copies(sweep_set& s, const std::string& family, const cellforge::samples::sample_model& base,
                        bool full, int rigid_copies, bool odd) {
   const auto add = [&](bool rigid, int k) {
     const std::string name = rigid ? base.name + " rot#" + std::to_string(k) : base.name;
-    cellforge::sample_model copy = s.shuffle ? shuffled(base, name_seed(name), rigid) : base;
+    cellforge::samples::sample_model copy = s.shuffle ? shuffled(base, name_seed(name), rigid) : base;
     copy.name = name;
     s.models.push_back({family, std::move(copy)});
   };
@@ -435,10 +435,10 @@ inline void add_copies(sweep_set& s, const std::string& family, const cellforge:
 
 /// Adds a deterministic family: every base must satisfy the truth rule (a fault otherwise);
 /// unforced_faces is 0. O(total size).
-inline void add_family(sweep_set& s, const std::string& family, std::vector<cellforge::sample_model> bases,
+inline void add_family(sweep_set& s, const std::string& family, std::vector<cellforge::samples::sample_model> bases,
                        bool full, int rigid_copies = 1) {
   for (std::size_t i = 0; i < bases.size(); ++i) {
-    cellforge::sample_model& m = bases[i];
+    cellforge::samples::sample_model& m = bases[i];
     if (const std::size_t n = faces_no_edge_needs(m); n != 0) {
       s.faults.push_back(family + ": '" + m.name + "' has " + std::to_string(n) + " faces no edge needs");
       continue;
@@ -452,7 +452,7 @@ inline void add_family(sweep_set& s, const std::string& family, std::vector<cell
 
 /// A frame (thin bars, big holes) or plate (wide, small holes) with `holes` through-holes in
 /// a grid (or a row), one volume or split into bands of cells by walls. O(holes).
-inline cellforge::sample_model holed_slab(bool frame, std::size_t holes, bool row, bool cells) {
+inline cellforge::samples::sample_model holed_slab(bool frame, std::size_t holes, bool row, bool cells) {
   std::size_t rows = 1, cols = holes;
   if (!row && holes == 4) rows = 2, cols = 2;
   if (!row && (holes == 5 || holes == 6)) rows = 2, cols = 3;
@@ -464,19 +464,19 @@ inline cellforge::sample_model holed_slab(bool frame, std::size_t holes, bool ro
       w.push_back((c % 2 == 0 ? bar : hole) * (1.0 + 0.125 * double(c % 3)));
     return w;
   };
-  cellforge::voxel_layout l =
-      cellforge::empty_layout(from_widths(widths(cols)), from_widths(widths(rows)), {0.0, thick});
+  cellforge::samples::voxel_layout l =
+      cellforge::samples::empty_layout(from_widths(widths(cols)), from_widths(widths(rows)), {0.0, thick});
   for (std::size_t j = 0; j <= 2 * rows; ++j)
     for (std::size_t i = 0; i <= 2 * cols; ++i) l.at(i, j, 0) = cells ? 1 + static_cast<int>((i + 1) / 2) : 1;
   for (std::size_t h = 0; h < holes; ++h) l.at(2 * (h % cols) + 1, 2 * (h / cols) + 1, 0) = 0;
   const std::string name = std::string(frame ? "frame" : "plate") + " holes=" + std::to_string(holes) +
                            (row && holes > 3 ? " row" : "") + (cells ? " cells" : " one");
-  return cellforge::make_voxel_model(l, name);
+  return cellforge::samples::make_voxel_model(l, name);
 }
 
 /// A ring of n box-like sectors (annular sectors, straight-sided) around a hole, each its own
 /// volume, one layer high. O(n).
-inline cellforge::sample_model sector_ring(std::size_t n, double inner, double outer, double height) {
+inline cellforge::samples::sample_model sector_ring(std::size_t n, double inner, double outer, double height) {
   model_builder b;
   std::vector<std::array<std::uint32_t, 4>> p(n);  // inner bottom, outer bottom, inner top, outer top
   for (std::size_t i = 0; i < n; ++i) {
@@ -498,11 +498,11 @@ inline cellforge::sample_model sector_ring(std::size_t n, double inner, double o
 
 /// A one-layer ring of boxes on the border of a k × m lattice: every cell its own volume, or
 /// four boxes in a pinwheel. O(k · m).
-inline cellforge::sample_model lattice_ring(std::size_t k, std::size_t m, bool pinwheel) {
+inline cellforge::samples::sample_model lattice_ring(std::size_t k, std::size_t m, bool pinwheel) {
   std::vector<double> wx, wy;
   for (std::size_t i = 0; i < k; ++i) wx.push_back(1.0 + 0.25 * double(i % 2));
   for (std::size_t j = 0; j < m; ++j) wy.push_back(0.75 + 0.5 * double(j % 3 == 1));
-  cellforge::voxel_layout l = cellforge::empty_layout(from_widths(wx), from_widths(wy), {0.0, 0.5});
+  cellforge::samples::voxel_layout l = cellforge::samples::empty_layout(from_widths(wx), from_widths(wy), {0.0, 0.5});
   int next = 1;
   for (std::size_t j = 0; j < m; ++j)
     for (std::size_t i = 0; i < k; ++i) {
@@ -512,13 +512,13 @@ inline cellforge::sample_model lattice_ring(std::size_t k, std::size_t m, bool p
       else
         l.at(i, j, 0) = j == 0 && i + 1 < k ? 1 : i + 1 == k && j + 1 < m ? 2 : j + 1 == m && i > 0 ? 3 : 4;
     }
-  return cellforge::make_voxel_model(l, "box ring " + std::string(pinwheel ? "pinwheel " : "") +
+  return cellforge::samples::make_voxel_model(l, "box ring " + std::string(pinwheel ? "pinwheel " : "") +
                                             std::to_string(k) + "x" + std::to_string(m));
 }
 
 /// A solid of revolution of a closed profile polygon ((r, z) pairs) in n segments: one genus-1
 /// volume, or split into n volumes by the profile polygons as walls. O(n · profile).
-inline cellforge::sample_model revolved(const std::vector<std::array<double, 2>>& profile, std::size_t n,
+inline cellforge::samples::sample_model revolved(const std::vector<std::array<double, 2>>& profile, std::size_t n,
                                         bool walls, std::string name) {
   model_builder b;
   const std::size_t k = profile.size();
@@ -563,7 +563,7 @@ inline std::vector<std::array<double, 2>> hexagon(double R, double a, bool flat)
 
 /// A box L × W × H under a pyramid roof with its apex at (ax, ay, H + rise): one volume (the
 /// rectangle under the roof is no face). O(1).
-inline cellforge::sample_model pyramid_house(double L, double W, double H, glm::dvec3 apex,
+inline cellforge::samples::sample_model pyramid_house(double L, double W, double H, glm::dvec3 apex,
                                              std::string name) {
   model_builder b;
   const glm::dvec3 corner[4] = {{0, 0, 0}, {L, 0, 0}, {L, W, 0}, {0, W, 0}};
@@ -582,7 +582,7 @@ inline cellforge::sample_model pyramid_house(double L, double W, double H, glm::
 
 /// A box L × W × H under a hip roof: a ridge at height H + rise, `inset` in from each end,
 /// two trapezoids and two triangles; one volume. O(1).
-inline cellforge::sample_model hip_house(double L, double W, double H, double rise, double inset) {
+inline cellforge::samples::sample_model hip_house(double L, double W, double H, double rise, double inset) {
   model_builder b;
   const glm::dvec3 corner[4] = {{0, 0, 0}, {L, 0, 0}, {L, W, 0}, {0, W, 0}};
   std::array<std::uint32_t, 4> lo{}, hi{};
@@ -610,7 +610,7 @@ struct pit {
 
 /// A box with pyramid dents or bumps in its faces: each pitted face has a hole per pit, whose
 /// sides go to the pit's apex; one volume. O(pits · sides).
-inline cellforge::sample_model pitted_box(glm::dvec3 size, const std::vector<pit>& pits, std::string name) {
+inline cellforge::samples::sample_model pitted_box(glm::dvec3 size, const std::vector<pit>& pits, std::string name) {
   model_builder b;
   std::array<std::uint32_t, 8> c{};
   for (int i = 0; i < 8; ++i) c[i] = b.point(size * glm::dvec3(i & 1, i >> 1 & 1, i >> 2 & 1));
@@ -649,7 +649,7 @@ inline cellforge::sample_model pitted_box(glm::dvec3 size, const std::vector<pit
 
 /// A subdivided icosahedron (frequency f: 20 f² triangles) projected on the unit sphere; one
 /// volume. O(f²).
-inline cellforge::sample_model geodesic_sphere(std::size_t f) {
+inline cellforge::samples::sample_model geodesic_sphere(std::size_t f) {
   const double g = (1 + std::sqrt(5.0)) / 2;
   std::vector<glm::dvec3> ico;
   for (const double s : {-1.0, 1.0})
@@ -693,12 +693,12 @@ inline cellforge::sample_model geodesic_sphere(std::size_t f) {
 /// A 3D cross (or a jack with some arms missing): a centre block of `centre` cells per side
 /// with arms `arm` cells long and `width` cells thick out of the middle of its faces (arms in
 /// the order +x, -x, +y, -y, +z, -z); one volume, coplanar faces merged. O(cells).
-inline cellforge::sample_model voxel_cross(std::size_t arm, std::size_t centre, std::size_t width,
+inline cellforge::samples::sample_model voxel_cross(std::size_t arm, std::size_t centre, std::size_t width,
                                            std::array<bool, 6> arms, bool uneven, std::string name) {
   const std::size_t n = 2 * arm + centre, lo = arm + (centre - width) / 2;
   std::vector<double> w;
   for (std::size_t i = 0; i < n; ++i) w.push_back(uneven ? 0.5 + 0.25 * double(i * 7 % 5) : 1.0);
-  cellforge::voxel_layout l = cellforge::empty_layout(from_widths(w), from_widths(w), from_widths(w));
+  cellforge::samples::voxel_layout l = cellforge::samples::empty_layout(from_widths(w), from_widths(w), from_widths(w));
   const auto in_centre = [&](std::size_t x) { return x >= arm && x < arm + centre; };
   const auto in_band = [&](std::size_t x) { return x >= lo && x < lo + width; };
   for (std::size_t k = 0; k < n; ++k)
@@ -713,7 +713,7 @@ inline cellforge::sample_model voxel_cross(std::size_t arm, std::size_t centre, 
         }
         l.at(i, j, k) = filled ? 1 : 0;
       }
-  return cellforge::make_voxel_model(l, std::move(name));
+  return cellforge::samples::make_voxel_model(l, std::move(name));
 }
 
 /// Cells (i, j, k) of a 3 × 3 × 3 block that a notch pattern (by name) cuts away.
@@ -741,20 +741,20 @@ inline std::vector<std::array<std::size_t, 3>> notch_cells(const std::string& pa
 
 /// A frame model: a square ring of cells (bar, hole, thickness) as one volume or as eight boxes.
 /// O(1).
-inline cellforge::sample_model ring_frame(double bar, double hole, double thick, bool cells) {
-  cellforge::voxel_layout l = cellforge::empty_layout({0, bar, bar + hole, 2 * bar + hole},
+inline cellforge::samples::sample_model ring_frame(double bar, double hole, double thick, bool cells) {
+  cellforge::samples::voxel_layout l = cellforge::samples::empty_layout({0, bar, bar + hole, 2 * bar + hole},
                                                       {0, bar, bar + hole, 2 * bar + hole}, {0, thick});
   for (std::size_t c = 0; c < 9; ++c)
     if (c != 4) l.labels[c] = cells ? static_cast<int>(c < 4 ? c + 1 : c) : 1;
-  return cellforge::make_voxel_model(l, "frame");
+  return cellforge::samples::make_voxel_model(l, "frame");
 }
 
 /// Two linked frames: frame A in the xy plane, frame B upright through A's hole with A's bar
 /// through B's hole, touching nowhere. O(1).
-inline cellforge::sample_model linked_frames(std::array<double, 3> a, std::array<double, 3> b, bool a_cells,
+inline cellforge::samples::sample_model linked_frames(std::array<double, 3> a, std::array<double, 3> b, bool a_cells,
                                              bool b_cells, std::string name) {
-  const cellforge::sample_model A = ring_frame(a[0], a[1], a[2], a_cells);
-  const cellforge::sample_model B = ring_frame(b[0], b[1], b[2], b_cells);
+  const cellforge::samples::sample_model A = ring_frame(a[0], a[1], a[2], a_cells);
+  const cellforge::samples::sample_model B = ring_frame(b[0], b[1], b[2], b_cells);
   // B's local (x, y, z) → (x, -z, y): a rotation about x; B's left bar centred in A's hole,
   // B's hole centred on A's mid-plane.
   glm::dmat3 turn(0.0);
@@ -763,25 +763,25 @@ inline cellforge::sample_model linked_frames(std::array<double, 3> a, std::array
   turn[2] = {0, -1, 0};
   const double centre = a[0] + a[1] / 2;
   const glm::dvec3 offset(a[0] + (a[1] - b[0]) / 2, centre + b[2] / 2, a[2] / 2 - b[0] - b[1] / 2);
-  return cellforge::disjoint_union(A, cellforge::transformed(B, turn, offset), glm::dvec3(0.0),
+  return cellforge::samples::disjoint_union(A, cellforge::samples::transformed(B, turn, offset), glm::dvec3(0.0),
                                    std::move(name));
 }
 
 /// A UV sphere of `slices` × `stacks` with no wall: sample_uv_sphere's rings, which no edge
 /// needs, taken out when it has them (odd slices). O(slices · stacks).
-inline cellforge::sample_model ball(std::size_t slices, std::size_t stacks) {
-  const cellforge::sample_model s = cellforge::sample_uv_sphere(slices, stacks);
+inline cellforge::samples::sample_model ball(std::size_t slices, std::size_t stacks) {
+  const cellforge::samples::sample_model s = cellforge::samples::sample_uv_sphere(slices, stacks);
   return s.volumes.size() == 1 ? s : without_walls(s, s.name);
 }
 
 /// A box-union model of the listed (cell, label) pairs on one lattice, the other cells empty.
 /// O(cells).
-inline cellforge::sample_model labelled_cells(
+inline cellforge::samples::sample_model labelled_cells(
     std::vector<double> xs, std::vector<double> ys, std::vector<double> zs,
     const std::vector<std::pair<std::array<std::size_t, 3>, int>>& cells, std::string name) {
-  cellforge::voxel_layout l = cellforge::empty_layout(std::move(xs), std::move(ys), std::move(zs));
+  cellforge::samples::voxel_layout l = cellforge::samples::empty_layout(std::move(xs), std::move(ys), std::move(zs));
   for (const auto& [c, label] : cells) l.at(c[0], c[1], c[2]) = label;
-  return cellforge::make_voxel_model(l, std::move(name));
+  return cellforge::samples::make_voxel_model(l, std::move(name));
 }
 
 // ---- random polycubes ------------------------------------------------------------------------
@@ -796,7 +796,7 @@ inline std::vector<double> random_coords(std::size_t n, random_source& rng) {
 
 /// Grows a face-connected set of up to `count` cells labelled `label` from a random free cell,
 /// never entering a cell `blocked` marks. Returns the number of cells grown. O(count · tries).
-inline std::size_t grow(cellforge::voxel_layout& l, std::size_t count, int label,
+inline std::size_t grow(cellforge::samples::voxel_layout& l, std::size_t count, int label,
                         const std::vector<char>& blocked, random_source& rng) {
   const std::array<std::size_t, 3> n{l.xs.size() - 1, l.ys.size() - 1, l.zs.size() - 1};
   std::vector<std::size_t> free;
@@ -825,7 +825,7 @@ inline std::size_t grow(cellforge::voxel_layout& l, std::size_t count, int label
 
 /// Splits the filled cells of a layout into k face-connected cells (labels 1..k) by growing
 /// them together from k random seeds. O(cells log cells).
-inline void split_cells(cellforge::voxel_layout& l, std::size_t k, random_source& rng) {
+inline void split_cells(cellforge::samples::voxel_layout& l, std::size_t k, random_source& rng) {
   const std::array<std::size_t, 3> n{l.xs.size() - 1, l.ys.size() - 1, l.zs.size() - 1};
   std::vector<std::size_t> filled;
   for (std::size_t c = 0; c < l.labels.size(); ++c)
@@ -857,7 +857,7 @@ inline void split_cells(cellforge::voxel_layout& l, std::size_t k, random_source
 
 /// Labels the filled cells by k boxes cut from the lattice by random axis-aligned cuts (each
 /// cut halves a random box with room); false when no box can be cut further. O(k² + cells).
-inline bool split_boxes(cellforge::voxel_layout& l, std::size_t k, random_source& rng) {
+inline bool split_boxes(cellforge::samples::voxel_layout& l, std::size_t k, random_source& rng) {
   const std::array<std::size_t, 3> n{l.xs.size() - 1, l.ys.size() - 1, l.zs.size() - 1};
   std::vector<std::array<std::size_t, 6>> boxes{{0, n[0], 0, n[1], 0, n[2]}};  // lo, hi per axis
   while (boxes.size() < k) {
@@ -883,7 +883,7 @@ inline bool split_boxes(cellforge::voxel_layout& l, std::size_t k, random_source
 
 /// True when every label 1..k names at least one cell and its cells are face-connected.
 /// O(cells).
-inline bool cells_connected(const cellforge::voxel_layout& l, std::size_t k) {
+inline bool cells_connected(const cellforge::samples::voxel_layout& l, std::size_t k) {
   const std::array<std::size_t, 3> n{l.xs.size() - 1, l.ys.size() - 1, l.zs.size() - 1};
   std::vector<char> seen(l.labels.size(), 0);
   std::vector<int> pieces(k + 1, 0);
@@ -912,14 +912,14 @@ inline bool cells_connected(const cellforge::voxel_layout& l, std::size_t k) {
 
 /// Judges a random layout: a manifold union and manifold cells, no cavity, an outline
 /// make_voxel_model accepts, every face needed; counts the verdict in `draws`. O(layout).
-inline std::optional<cellforge::sample_model> accept(const cellforge::voxel_layout& l, int labels,
+inline std::optional<cellforge::samples::sample_model> accept(const cellforge::samples::voxel_layout& l, int labels,
                                                      std::string name, family_draws& draws) {
   bool ok = no_cavity(l) && manifold(l, [](int x) { return x != 0; });
   for (int c = 1; ok && labels > 1 && c <= labels; ++c) ok = manifold(l, [c](int x) { return x == c; });
   if (!ok) return ++draws.not_manifold, std::nullopt;
-  std::optional<cellforge::sample_model> m;
+  std::optional<cellforge::samples::sample_model> m;
   try {
-    m = cellforge::make_voxel_model(l, std::move(name));
+    m = cellforge::samples::make_voxel_model(l, std::move(name));
   } catch (const cellforge::error&) {
     return ++draws.outline, std::nullopt;
   }
@@ -933,7 +933,7 @@ inline std::optional<cellforge::sample_model> accept(const cellforge::voxel_layo
 /// one volume. Random points are in general position, so the hull's faces are triangles and
 /// its 3-cycles that are not faces — separating triangles through the inside — are the
 /// planar cycles the reading must not take. O(n log n).
-inline cellforge::sample_model random_polytope(std::size_t n, bool box, random_source& rng,
+inline cellforge::samples::sample_model random_polytope(std::size_t n, bool box, random_source& rng,
                                                std::string name) {
   std::vector<glm::dvec3> points;
   while (points.size() < n) {
@@ -942,7 +942,7 @@ inline cellforge::sample_model random_polytope(std::size_t n, bool box, random_s
   }
   const auto hull = cellforge::convex_hull(std::span<const glm::dvec3>(points));
   const auto soup = cellforge::to_soup(hull);
-  cellforge::sample_model m;
+  cellforge::samples::sample_model m;
   m.name = std::move(name);
   m.wire.points = soup.points;
   std::vector<std::array<std::uint32_t, 2>> edges;
@@ -968,8 +968,8 @@ inline void random_polycubes(sweep_set& s, std::size_t count) {
   family_draws draws{"polycube"};
   for (std::size_t tries = 0; draws.kept < count && tries < 200 * count; ++tries) {
     const std::size_t nx = rng.in(2, 6), ny = rng.in(2, 6), nz = rng.in(1, 5);
-    cellforge::voxel_layout l =
-        cellforge::empty_layout(random_coords(nx, rng), random_coords(ny, rng), random_coords(nz, rng));
+    cellforge::samples::voxel_layout l =
+        cellforge::samples::empty_layout(random_coords(nx, rng), random_coords(ny, rng), random_coords(nz, rng));
     const std::size_t cells = nx * ny * nz, size = rng.in(2, std::max<std::size_t>(2, cells * 2 / 3));
     const bool two = cells >= 18 && rng.chance(0.25);
     std::vector<char> blocked(cells, 0);
@@ -1015,8 +1015,8 @@ inline void random_cell_polycubes(sweep_set& s, std::size_t count) {
     const std::size_t nz = few ? rng.in(1, 3) : rng.in(1, 2);
     const std::size_t cells = nx * ny * nz;
     if (cells < k) continue;
-    cellforge::voxel_layout l =
-        cellforge::empty_layout(random_coords(nx, rng), random_coords(ny, rng), random_coords(nz, rng));
+    cellforge::samples::voxel_layout l =
+        cellforge::samples::empty_layout(random_coords(nx, rng), random_coords(ny, rng), random_coords(nz, rng));
     const std::size_t size = rng.in(std::max(k, few ? cells / 3 : cells * 2 / 3), cells);
     const std::size_t grown = grow(l, size, 1, std::vector<char>(cells, 0), rng);
     if (grown < k) continue;
@@ -1042,13 +1042,13 @@ inline void random_cell_polycubes(sweep_set& s, std::size_t count) {
 /// up to 8, by box cuts beyond), from its own seed `draw` (k = 6 + draw % 20); nullopt when the
 /// draw is rejected (counted in `draws`). Such lattices have an empty cell beside a filled one
 /// with every lattice line drawn either way: wireframes two solids share. O(layout).
-inline std::optional<cellforge::sample_model> big_cell_polycube(std::uint64_t draw, family_draws& draws) {
+inline std::optional<cellforge::samples::sample_model> big_cell_polycube(std::uint64_t draw, family_draws& draws) {
   random_source rng(0x6a09e667f3bcc909ull ^ (draw * 0x9e3779b97f4a7c15ull));
   const std::size_t k = 6 + draw % 20;
   const std::size_t nx = rng.in(4, 9), ny = rng.in(3, 7), nz = rng.in(1, 3), cells = nx * ny * nz;
   if (cells < k) return ++draws.not_manifold, std::nullopt;
-  cellforge::voxel_layout l =
-      cellforge::empty_layout(random_coords(nx, rng), random_coords(ny, rng), random_coords(nz, rng));
+  cellforge::samples::voxel_layout l =
+      cellforge::samples::empty_layout(random_coords(nx, rng), random_coords(ny, rng), random_coords(nz, rng));
   const std::size_t grown = grow(l, rng.in(std::max(k, cells / 3), cells), 1, std::vector<char>(cells, 0), rng);
   if (grown < k) return ++draws.not_manifold, std::nullopt;
   if (k <= 8)
@@ -1097,15 +1097,15 @@ inline void big_cell_polycubes(sweep_set& s, bool full) {
 /// bars cross, each joined to the bar after it: the mouth of each hole is bounded by the tops
 /// of four boxes, and the boxes between two holes have no outer edge (their tops are needed
 /// only once the mouths beside them are open). O(rows · cols).
-inline cellforge::sample_model hole_grid(std::size_t rows, std::size_t cols, bool frame) {
+inline cellforge::samples::sample_model hole_grid(std::size_t rows, std::size_t cols, bool frame) {
   const double bar = frame ? 0.3 : 1.0, hole = frame ? 1.0 : 0.5, thick = frame ? 0.4 : 0.25;
   const auto widths = [&](std::size_t n) {
     std::vector<double> w;
     for (std::size_t c = 0; c <= 2 * n; ++c) w.push_back((c % 2 == 0 ? bar : hole) * (1.0 + 0.125 * double(c % 3)));
     return w;
   };
-  cellforge::voxel_layout l =
-      cellforge::empty_layout(from_widths(widths(cols)), from_widths(widths(rows)), {0.0, thick});
+  cellforge::samples::voxel_layout l =
+      cellforge::samples::empty_layout(from_widths(widths(cols)), from_widths(widths(rows)), {0.0, thick});
   const auto crossing = [&](std::size_t i, std::size_t j) {
     return i % 2 == 0 && j % 2 == 0 && i > 0 && j > 0 && i < 2 * cols && j < 2 * rows;
   };
@@ -1116,18 +1116,18 @@ inline cellforge::sample_model hole_grid(std::size_t rows, std::size_t cols, boo
   for (std::size_t j = 0; j <= 2 * rows; ++j)
     for (std::size_t i = 0; i <= 2 * cols; ++i)
       if (crossing(i, j)) l.at(i, j, 0) = l.at(i + 1, j, 0);
-  return cellforge::make_voxel_model(l, std::string(frame ? "frame" : "plate") + " hole grid " +
+  return cellforge::samples::make_voxel_model(l, std::string(frame ? "frame" : "plate") + " hole grid " +
                                             std::to_string(rows) + "x" + std::to_string(cols));
 }
 
 /// Two frames side by side sharing a side: every box its own volume (the two boxes between the
 /// holes have no outer edge), one volume per frame, or bands (the rows without holes, and each
 /// piece of the row with them). O(1).
-inline cellforge::sample_model double_frame(int labels, bool wide) {
+inline cellforge::samples::sample_model double_frame(int labels, bool wide) {
   const double hole = wide ? 1.0 : 0.6;
   const std::vector<double> xs = from_widths({0.3, hole, 0.3, 0.35, hole * 1.1, 0.3});
   const std::vector<double> ys = from_widths({0.3, hole, 0.4});
-  cellforge::voxel_layout l = cellforge::empty_layout(xs, ys, {0, 0.4});
+  cellforge::samples::voxel_layout l = cellforge::samples::empty_layout(xs, ys, {0, 0.4});
   int next = 1;
   for (std::size_t j = 0; j < 3; ++j)
     for (std::size_t i = 0; i < 6; ++i) {
@@ -1138,14 +1138,14 @@ inline cellforge::sample_model double_frame(int labels, bool wide) {
                                     : 3 + static_cast<int>(i < 1 ? 0 : i < 4 ? 1 : 2);
     }
   static const char* const kind[] = {"boxes", "frames", "bands"};
-  return cellforge::make_voxel_model(
+  return cellforge::samples::make_voxel_model(
       l, std::string("double frame ") + kind[labels] + (wide ? " wide" : " narrow"));
 }
 
 /// Two linked solid tori (sections: 0 a diamond, 1 a hexagon, 2 an octagon, none with a flat
 /// side) of n segments: each passes through the other's hole, where the other's planar n-gon
 /// rings (spurious disks across the hole) cross the quads of its band. O(n).
-inline cellforge::sample_model linked_tori(std::size_t n, int section) {
+inline cellforge::samples::sample_model linked_tori(std::size_t n, int section) {
   std::vector<std::array<double, 2>> p;
   if (section == 0) p = {{4, 0}, {3, 1}, {2, 0}, {3, -1}};
   if (section == 1) p = hexagon(3, 1, false);
@@ -1155,7 +1155,7 @@ inline cellforge::sample_model linked_tori(std::size_t n, int section) {
       p.push_back({3 + std::cos(t), std::sin(t)});
     }
   static const char* const kind[] = {"diamond", "hexagon", "octagon"};
-  const cellforge::sample_model a = revolved(p, n, false, "a"), b = revolved(p, n, false, "b");
+  const cellforge::samples::sample_model a = revolved(p, n, false, "a"), b = revolved(p, n, false, "b");
   // b upright in the xz plane, turned about its axis, its centre on a's ring.
   glm::dmat3 up(0.0);
   up[0] = {1, 0, 0};
@@ -1164,7 +1164,7 @@ inline cellforge::sample_model linked_tori(std::size_t n, int section) {
   const double t = 0.37;
   const glm::dmat3 spin(glm::dvec3(std::cos(t), std::sin(t), 0), glm::dvec3(-std::sin(t), std::cos(t), 0),
                         glm::dvec3(0, 0, 1));
-  return cellforge::disjoint_union(a, cellforge::transformed(b, up * spin, glm::dvec3(0.0)), {3, 0, 0},
+  return cellforge::samples::disjoint_union(a, cellforge::samples::transformed(b, up * spin, glm::dvec3(0.0)), {3, 0, 0},
                                    "linked tori " + std::string(kind[section]) + " n=" + std::to_string(n));
 }
 
@@ -1172,7 +1172,7 @@ inline cellforge::sample_model linked_tori(std::size_t n, int section) {
 /// n segments as a CAD part is drawn: quads on the cylinders, one ring-shaped face (an n-gon
 /// with an n-gon hole) per flat step. Where the bore steps, the smaller bore's n-gon lies in the
 /// hole of the step face of the same plane: a disc no edge needs. One volume. O(n · profile).
-inline cellforge::sample_model stepped_part(const std::vector<std::array<double, 2>>& profile, std::size_t n,
+inline cellforge::samples::sample_model stepped_part(const std::vector<std::array<double, 2>>& profile, std::size_t n,
                                             std::string name) {
   model_builder b;
   std::map<std::array<double, 2>, std::vector<std::uint32_t>> rings;
@@ -1201,7 +1201,7 @@ inline cellforge::sample_model stepped_part(const std::vector<std::array<double,
 
 /// A box with k = 2..5 polygonal holes in its top face: through holes, blind pockets with a
 /// flat floor, or both in turn; one volume, the top face one face with k holes. O(k · sides).
-inline cellforge::sample_model holed_box(std::size_t k, std::size_t sides, int kind) {
+inline cellforge::samples::sample_model holed_box(std::size_t k, std::size_t sides, int kind) {
   model_builder b;
   const double L = 1.2 * double(k) + 0.4, W = 1.5, H = 0.6;
   std::array<std::uint32_t, 8> c{};
@@ -1238,7 +1238,7 @@ inline cellforge::sample_model holed_box(std::size_t k, std::size_t sides, int k
 /// faces with several holes (sweep_families names them). Each in its own block, so that other
 /// copies of the sweep (noisy ones, say) can take them up. O(total size).
 inline void add_reading_families(sweep_set& s, bool full) {
-  using cellforge::sample_model;
+  using cellforge::samples::sample_model;
   {
     std::vector<sample_model> bases;
     for (const bool frame : {false, true})
@@ -1295,7 +1295,7 @@ inline void add_reading_families(sweep_set& s, bool full) {
 /// that depends on the labelling from one that does not), with the draws of the random
 /// families. Full: about 800 models, ~0.4 s in Release; sample: about 100, grids up to 5³.
 inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
-  using cellforge::sample_model;
+  using cellforge::samples::sample_model;
   const bool full = size == sweep_size::full;
   sweep_set s;
   s.shuffle = shuffle;
@@ -1348,14 +1348,14 @@ inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
     for (std::size_t n = 3; n <= 12; ++n)
       for (const bool even : {true, false}) {
         if (!full && !((even && (n == 3 || n == 4 || n == 7 || n == 12)) || (!even && n == 5))) continue;
-        cellforge::ring_stack r;
+        cellforge::samples::ring_stack r;
         r.n = n;
         r.radius = {1.0};
         r.height = {0.0};
         r.twist = {0.1};
         r.bottom = even ? -1.0 : -0.6;
         r.top = even ? 1.0 : 1.3;
-        bases.push_back(cellforge::make_ring_stack(
+        bases.push_back(cellforge::samples::make_ring_stack(
             r, "bipyramid n=" + std::to_string(n) + (even ? " symmetric" : " skewed")));
       }
     detail::add_family(s, "bipyramid", std::move(bases), full);
@@ -1365,13 +1365,13 @@ inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
     std::vector<sample_model> bases;
     for (std::size_t n = 3; n <= 8; ++n) {
       if (!full && n != 4 && n != 5) continue;
-      cellforge::ring_stack r;
+      cellforge::samples::ring_stack r;
       r.n = n;
       r.radius = {1.0, 1.0};
       r.height = {0.0, 1.0};
       r.twist = {0.2, 0.2};
       r.top = 1.7;
-      bases.push_back(cellforge::make_ring_stack(r, "house pyramid n=" + std::to_string(n)));
+      bases.push_back(cellforge::samples::make_ring_stack(r, "house pyramid n=" + std::to_string(n)));
     }
     if (full) {
       bases.push_back(detail::pyramid_house(2, 1, 1, {1, 0.5, 1.5}, "house pyramid 2x1"));
@@ -1431,10 +1431,10 @@ inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
     for (std::size_t p = 0; p < patterns.size(); ++p)
       for (std::size_t c = 0; c < coords.size(); ++c) {
         if (!full && (p >= 5 || c != p % 2)) continue;
-        cellforge::voxel_layout l = cellforge::empty_layout(coords[c], coords[1 - c], coords[c]);
+        cellforge::samples::voxel_layout l = cellforge::samples::empty_layout(coords[c], coords[1 - c], coords[c]);
         l.labels.assign(27, 1);
         for (const auto& q : detail::notch_cells(patterns[p])) l.at(q[0], q[1], q[2]) = 0;
-        bases.push_back(cellforge::make_voxel_model(l, "notch " + patterns[p] + (c ? " uneven" : "")));
+        bases.push_back(cellforge::samples::make_voxel_model(l, "notch " + patterns[p] + (c ? " uneven" : "")));
       }
     detail::add_family(s, "notch", std::move(bases), full);
   }
@@ -1446,7 +1446,7 @@ inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
         if (!full && !(n == 5 && variant == 0) && !(n == 8 && variant == 3) && !(n == 6 && variant == 1))
           continue;
         const bool cones = variant >= 2, triangles = variant % 2 == 1;
-        cellforge::ring_stack r;
+        cellforge::samples::ring_stack r;
         r.n = n;
         const std::size_t rings = 3 + n % 4;
         for (std::size_t i = 0; i < rings; ++i) {
@@ -1457,7 +1457,7 @@ inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
         }
         r.triangles = triangles;
         if (cones) r.bottom = -0.5, r.top = 2.0;
-        bases.push_back(cellforge::make_ring_stack(
+        bases.push_back(cellforge::samples::make_ring_stack(
             r, std::string(barrel ? "barrel" : "hourglass") + " n=" + std::to_string(n) +
                    " rings=" + std::to_string(rings) + (cones ? " cones" : " caps") +
                    (triangles ? " triangles" : " quads")));
@@ -1470,7 +1470,7 @@ inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
     for (std::size_t f = 1; f <= (full ? 6u : 3u); ++f) bases.push_back(detail::geodesic_sphere(f));
     if (full)
       for (const std::size_t f : {2, 4}) {
-        sample_model m = cellforge::transformed(
+        sample_model m = cellforge::samples::transformed(
             detail::geodesic_sphere(f),
             glm::dmat3(glm::dvec3(1.3, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 0.7)), glm::dvec3(0.0));
         m.name += " stretched";
@@ -1544,12 +1544,12 @@ inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
     const sample_model frame = detail::ring_frame(1, 2, 0.5, false),
                        cells = detail::ring_frame(1, 2, 0.5, true);
     const auto box = [](glm::dvec3 size, glm::dvec3 at, const sample_model& f, std::string name) {
-      return cellforge::disjoint_union(f, cellforge::sample_cube(size), at, std::move(name));
+      return cellforge::samples::disjoint_union(f, cellforge::samples::sample_cube(size), at, std::move(name));
     };
     const auto sphere = [](std::size_t slices, double r, double z, std::string name) {
       const sample_model b = detail::ball(slices, 6);
-      return cellforge::disjoint_union(detail::ring_frame(1, 2, 0.5, false),
-                                       cellforge::transformed(b, glm::dmat3(r), glm::dvec3(0.0)), {2, 2, z},
+      return cellforge::samples::disjoint_union(detail::ring_frame(1, 2, 0.5, false),
+                                       cellforge::samples::transformed(b, glm::dmat3(r), glm::dvec3(0.0)), {2, 2, z},
                                        std::move(name));
     };
     std::vector<sample_model> bases{box({1, 1, 0.25}, {1.5, 1.5, 0.25}, frame, "box in frame flush top"),
@@ -1572,8 +1572,8 @@ inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
         labelled_cells({0, 1, 2}, {0, 1, 2}, {0, 1, 2}, {{{0, 0, 0}, 1}, {{1, 1, 1}, 2}},
                        "touching vertex cubes"),
         labelled_cells({0, 1, 2}, {0, 1, 2}, {0, 1}, {{{0, 0, 0}, 1}, {{1, 1, 0}, 2}}, "touching edge cubes"),
-        cellforge::disjoint_union(cellforge::sample_pyramid(4),
-                                  cellforge::transformed(cellforge::sample_pyramid(4),
+        cellforge::samples::disjoint_union(cellforge::samples::sample_pyramid(4),
+                                  cellforge::samples::transformed(cellforge::samples::sample_pyramid(4),
                                                          glm::dmat3(1, 0, 0, 0, 1, 0, 0, 0, -1), {0, 0, 2}),
                                   glm::dvec3(0.0), "touching vertex pyramids")};
     bases.back() = detail::glued(bases.back());
@@ -1617,7 +1617,7 @@ inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
                {7, 7, 7},  {8, 8, 8},  {12, 10, 8}, {10, 10, 10}, {15, 15, 15}, {20, 20, 20}})
         sizes.push_back(g);
     for (std::size_t i = 0; i < sizes.size(); ++i) {
-      sample_model m = cellforge::sample_grid(sizes[i][0], sizes[i][1], sizes[i][2]);
+      sample_model m = cellforge::samples::sample_grid(sizes[i][0], sizes[i][1], sizes[i][2]);
       m.unforced_faces = faces_no_edge_needs(m);
       detail::add_copies(s, "grid", m, full, sizes[i][0] * sizes[i][1] * sizes[i][2] <= 1000 ? 1 : 0,
                          i % 2 == 1);
@@ -1628,15 +1628,15 @@ inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
   detail::big_cell_polycubes(s, full);
 
   {
-    std::vector<sample_model> library = cellforge::all_small_samples();
-    for (const std::size_t n : {4, 7, 12}) library.push_back(cellforge::sample_prism(n));
-    for (const std::size_t n : {5, 9}) library.push_back(cellforge::sample_pyramid(n));
-    library.push_back(cellforge::sample_uv_sphere(12, 9));
-    library.push_back(cellforge::sample_uv_sphere(7, 6));
-    library.push_back(cellforge::sample_close_edges());
-    for (int i = 1; i <= 6; ++i) library.push_back(cellforge::sample_seed(i));
+    std::vector<sample_model> library = cellforge::samples::all_small_samples();
+    for (const std::size_t n : {4, 7, 12}) library.push_back(cellforge::samples::sample_prism(n));
+    for (const std::size_t n : {5, 9}) library.push_back(cellforge::samples::sample_pyramid(n));
+    library.push_back(cellforge::samples::sample_uv_sphere(12, 9));
+    library.push_back(cellforge::samples::sample_uv_sphere(7, 6));
+    library.push_back(cellforge::samples::sample_close_edges());
+    for (int i = 1; i <= 6; ++i) library.push_back(cellforge::samples::sample_seed(i));
     // Library models whose walls no edge needs, read as the rule reads them.
-    for (const sample_model& walled : {cellforge::sample_seed(6), cellforge::sample_uv_sphere(7, 6)})
+    for (const sample_model& walled : {cellforge::samples::sample_seed(6), cellforge::samples::sample_uv_sphere(7, 6)})
       if (walled.volumes.size() > 1)
         library.push_back(detail::without_walls(walled, walled.name + " without walls"));
     std::vector<sample_model> bases;
@@ -1673,7 +1673,7 @@ namespace detail {
 /// notches: the top faces get holes, the outline turns in), kept face-connected. nullopt when
 /// `accept` refuses it (columns touching along an edge only, a face no edge needs) or it falls
 /// apart (counted as not manifold). O(k · m · 4).
-inline std::optional<cellforge::sample_model> height_field(std::uint64_t draw, family_draws& draws) {
+inline std::optional<cellforge::samples::sample_model> height_field(std::uint64_t draw, family_draws& draws) {
   random_source rng(0x3c6ef372fe94f82bull ^ (draw * 0x9e3779b97f4a7c15ull));
   const bool unit = draw % 2 == 1, pits = draw % 4 >= 2;
   const std::size_t k = rng.in(2, unit ? 6 : 5), m = rng.in(2, unit ? 6 : 5);
@@ -1682,7 +1682,7 @@ inline std::optional<cellforge::sample_model> height_field(std::uint64_t draw, f
     for (std::size_t i = 0; i <= n; ++i) c.push_back(double(i));
     return unit ? c : random_coords(n, rng);
   };
-  cellforge::voxel_layout l = cellforge::empty_layout(coords(k), coords(m), coords(4));
+  cellforge::samples::voxel_layout l = cellforge::samples::empty_layout(coords(k), coords(m), coords(4));
   std::string heights;
   for (std::size_t j = 0; j < m; ++j)
     for (std::size_t i = 0; i < k; ++i) {
@@ -1701,16 +1701,16 @@ inline std::optional<cellforge::sample_model> height_field(std::uint64_t draw, f
 /// A height field as height_field draws it whose columns touch along an edge (two diagonal
 /// columns above both others: no 2-manifold solid), of its own seed; nullopt when the draw is
 /// manifold or make_voxel_model refuses its outlines. Its answer must be flagged. O(k · m · 4).
-inline std::optional<cellforge::sample_model> touching_height_field(std::uint64_t draw) {
+inline std::optional<cellforge::samples::sample_model> touching_height_field(std::uint64_t draw) {
   random_source rng(0x510e527fade682d1ull ^ (draw * 0x9e3779b97f4a7c15ull));
   const std::size_t k = rng.in(2, 4), m = rng.in(2, 4);
-  cellforge::voxel_layout l = cellforge::empty_layout(random_coords(k, rng), random_coords(m, rng), random_coords(4, rng));
+  cellforge::samples::voxel_layout l = cellforge::samples::empty_layout(random_coords(k, rng), random_coords(m, rng), random_coords(4, rng));
   for (std::size_t j = 0; j < m; ++j)
     for (std::size_t i = 0; i < k; ++i)
       for (std::size_t z = 0, h = rng.in(1, 4); z < h; ++z) l.at(i, j, z) = 1;
   if (manifold(l, [](int x) { return x != 0; })) return std::nullopt;
   try {
-    return cellforge::make_voxel_model(l, "height field touching draw " + std::to_string(draw));
+    return cellforge::samples::make_voxel_model(l, "height field touching draw " + std::to_string(draw));
   } catch (const cellforge::error&) {
     return std::nullopt;
   }
@@ -1722,7 +1722,7 @@ inline std::optional<cellforge::sample_model> touching_height_field(std::uint64_
 /// from one side to the other (the top then two faces); 3 a rectangle along the middle half of a
 /// top edge (the edge in three); 4 two rectangles on opposite top edges. Truth: the box's
 /// volume, each flap a face in no volume. O(1).
-inline cellforge::sample_model box_with_fin(int kind, double angle, int variant, glm::dvec3 size) {
+inline cellforge::samples::sample_model box_with_fin(int kind, double angle, int variant, glm::dvec3 size) {
   model_builder b;
   const double L = size.x, W = size.y, H = size.z;
   std::array<std::uint32_t, 8> c{};
@@ -1822,7 +1822,7 @@ inline bool inside_polygon(glm::dvec2 q, const std::vector<glm::dvec2>& p) {
 /// The prism over a simple polygon (any orientation) with polygonal bores through it, each a
 /// convex polygon given by its corners: bottom and top faces with the bores as holes, a quad per
 /// side; one volume. O(total corners).
-inline cellforge::sample_model extrude(const std::vector<glm::dvec2>& outline,
+inline cellforge::samples::sample_model extrude(const std::vector<glm::dvec2>& outline,
                                        const std::vector<std::vector<glm::dvec2>>& bores, double height,
                                        std::string name) {
   model_builder b;
@@ -1848,7 +1848,7 @@ inline cellforge::sample_model extrude(const std::vector<glm::dvec2>& outline,
 
 /// An extrusion of a random simple polygon of 5..20 sides with 0..3 bores (3..6-gons, kept clear
 /// of the outline and of each other), of its own seed `draw`. O(sides · bores · tries).
-inline cellforge::sample_model random_extrusion(std::uint64_t draw) {
+inline cellforge::samples::sample_model random_extrusion(std::uint64_t draw) {
   random_source rng(0xbb67ae8584caa73bull ^ (draw * 0x9e3779b97f4a7c15ull));
   const std::size_t n = rng.in(5, 20), want = rng.in(0, 3);
   const std::vector<glm::dvec2> outline = star_polygon(n, rng);
@@ -1897,7 +1897,7 @@ inline bool segments_cross(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, glm::dvec2 
 /// of R outside T (facing down, an overhang), found by walking the two boundaries split at their
 /// crossings; the side faces carry the crossings on their edges in that plane. One volume;
 /// nullopt when R is not inside T and does not cross it (apart). O(1).
-inline std::optional<cellforge::sample_model> turned_boxes(glm::dvec2 lower, double h1, glm::dvec2 upper,
+inline std::optional<cellforge::samples::sample_model> turned_boxes(glm::dvec2 lower, double h1, glm::dvec2 upper,
                                                            glm::dvec2 centre, double turn, double h2,
                                                            std::string name) {
   const std::vector<glm::dvec2> T{{0, 0}, {lower.x, 0}, lower, {0, lower.y}};  // counter-clockwise
@@ -2015,7 +2015,7 @@ inline std::optional<cellforge::sample_model> turned_boxes(glm::dvec2 lower, dou
 
 /// Random turned boxes of their own seed `draw`: sizes, heights, where the upper box stands (over
 /// a corner, a side, or inside) and its turn. nullopt when the two are apart. O(1).
-inline std::optional<cellforge::sample_model> random_turned_boxes(std::uint64_t draw) {
+inline std::optional<cellforge::samples::sample_model> random_turned_boxes(std::uint64_t draw) {
   random_source rng(0xa54ff53a5f1d36f1ull ^ (draw * 0x9e3779b97f4a7c15ull));
   const glm::dvec2 lower(rng.between(1.5, 3), rng.between(1.5, 3));
   const double h1 = rng.between(0.3, 1.5), h2 = rng.between(0.3, 1.5);
@@ -2035,7 +2035,7 @@ inline std::optional<cellforge::sample_model> random_turned_boxes(std::uint64_t 
 
 /// Adds models whose truth may have faces in no volume (a fin): each needed by an edge, or a
 /// fault. O(total size).
-inline void add_ordinary(sweep_set& s, const std::string& family, cellforge::sample_model m, bool full, bool odd) {
+inline void add_ordinary(sweep_set& s, const std::string& family, cellforge::samples::sample_model m, bool full, bool odd) {
   if (const std::size_t n = faces_no_edge_needs(m); n != 0) {
     s.faults.push_back(family + ": '" + m.name + "' has " + std::to_string(n) + " faces no edge needs");
     return;
@@ -2111,10 +2111,10 @@ inline faces_t result_faces(const cellforge::wireframe_result<glm::dvec3>& r) {
 /// and holes: "4" a quadrilateral, "8h1" an octagon with one hole. O(F log F · face size).
 inline std::string unmatched(const faces_t& a, const faces_t& b) {
   std::multiset<faces_t::value_type> rest;
-  for (const auto& f : b) rest.insert(cellforge::detail::canonical_face(f));
+  for (const auto& f : b) rest.insert(cellforge::samples::detail::canonical_face(f));
   std::map<std::string, int> shapes;
   for (const auto& f : a) {
-    const auto it = rest.find(cellforge::detail::canonical_face(f));
+    const auto it = rest.find(cellforge::samples::detail::canonical_face(f));
     if (it != rest.end()) {
       rest.erase(it);
       continue;
@@ -2133,11 +2133,11 @@ inline std::string unmatched(const faces_t& a, const faces_t& b) {
 
 /// Why a result is not the truth, in one line; empty when it is exact.
 /// O(F log F · face size).
-inline std::string miss_reason(const cellforge::sample_model& m, const cellforge::wireframe_result<glm::dvec3>& r,
+inline std::string miss_reason(const cellforge::samples::sample_model& m, const cellforge::wireframe_result<glm::dvec3>& r,
                                const cellforge::cells_validation_options& check = {}) {
   std::vector<std::string> why;
   const faces_t faces = result_faces(r);
-  const bool faces_ok = cellforge::same_faces(m.faces, faces);
+  const bool faces_ok = cellforge::samples::same_faces(m.faces, faces);
   if (!faces_ok)
     why.push_back("faces " + std::to_string(faces.size()) + " vs " + std::to_string(m.faces.size()) +
                   " expected (extra " + unmatched(faces, m.faces) + "; missing " + unmatched(m.faces, faces) +
@@ -2145,7 +2145,7 @@ inline std::string miss_reason(const cellforge::sample_model& m, const cellforge
   if (r.input.volumes.size() != m.volumes.size())
     why.push_back("volumes " + std::to_string(r.input.volumes.size()) + " vs " +
                   std::to_string(m.volumes.size()) + " expected");
-  else if (faces_ok && !cellforge::same_volumes(m.faces, m.volumes, faces, r.input.volumes))
+  else if (faces_ok && !cellforge::samples::same_volumes(m.faces, m.volumes, faces, r.input.volumes))
     why.push_back("volumes differ (" + std::to_string(m.volumes.size()) + " each)");
   if (const std::size_t want = truth_objects(m); r.cells.num_objects() != want)
     why.push_back("objects " + std::to_string(r.cells.num_objects()) + " vs " + std::to_string(want) +
@@ -2164,7 +2164,7 @@ inline std::string miss_reason(const cellforge::sample_model& m, const cellforge
 /// readings it reports — the answer without some of its unforced faces, or the answer with one
 /// undecided alternative taken (its cycles added, its faces removed); else why not.
 /// O(alternatives · F log F · face size).
-inline std::string ambiguous_miss(const cellforge::sample_model& m, const cellforge::wireframe_result<glm::dvec3>& r,
+inline std::string ambiguous_miss(const cellforge::samples::sample_model& m, const cellforge::wireframe_result<glm::dvec3>& r,
                                   const cellforge::cells_validation_options& check = {}) {
   std::string why = miss_reason(m, r, check);
   if (why.empty()) return why;
@@ -2173,7 +2173,7 @@ inline std::string ambiguous_miss(const cellforge::sample_model& m, const cellfo
   if (r.unforced.empty() && !undecided) return why + "; reported as certain";
   const faces_t faces = result_faces(r);
   std::multiset<faces_t::value_type> truth;
-  for (const auto& f : m.faces) truth.insert(cellforge::detail::canonical_face(f));
+  for (const auto& f : m.faces) truth.insert(cellforge::samples::detail::canonical_face(f));
   // The answer without some of its unforced faces: every other face in the truth, and the truth
   // no bigger than the answer.
   {
@@ -2183,7 +2183,7 @@ inline std::string ambiguous_miss(const cellforge::sample_model& m, const cellfo
     bool ok = true;
     std::size_t found = 0;
     for (std::size_t i = 0; i < faces.size() && ok; ++i) {
-      const auto it = rest.find(cellforge::detail::canonical_face(faces[i]));
+      const auto it = rest.find(cellforge::samples::detail::canonical_face(faces[i]));
       if (it != rest.end()) rest.erase(it), ++found;
       else ok = loose[i] != 0;
     }
@@ -2197,7 +2197,7 @@ inline std::string ambiguous_miss(const cellforge::sample_model& m, const cellfo
     for (std::size_t i = 0; i < faces.size(); ++i)
       if (!gone[i]) reading.push_back(faces[i]);
     for (const auto& n : a.add) reading.push_back(n.loops);
-    if (cellforge::same_faces(m.faces, reading)) return {};
+    if (cellforge::samples::same_faces(m.faces, reading)) return {};
   }
   return why + "; ambiguous, but the truth is not among the readings reported";
 }
@@ -2207,9 +2207,9 @@ inline std::string ambiguous_miss(const cellforge::sample_model& m, const cellfo
 /// The model with every vertex moved in a random direction (uniform on the sphere) by a random
 /// distance up to `eps` of its bounding-box diagonal (uniform in [0, eps]; seeded); the truth is
 /// unchanged. O(V).
-inline cellforge::sample_model noisy(const cellforge::sample_model& m, double eps, std::uint64_t seed) {
+inline cellforge::samples::sample_model noisy(const cellforge::samples::sample_model& m, double eps, std::uint64_t seed) {
   random_source rng(seed);
-  cellforge::sample_model out = m;
+  cellforge::samples::sample_model out = m;
   const double reach = eps * detail::diagonal(m.wire.points);
   for (auto& p : out.wire.points) {
     glm::dvec3 u;
@@ -2229,7 +2229,7 @@ enum class noisy_outcome { exact, flagged, error, wrong };
 /// does (`ambiguous`: a model two solids share, judged by ambiguous_miss), its complex checked
 /// with the options the pipeline used (wireframe_result::check); `why` gets the reason of a
 /// miss. O(one conversion).
-inline noisy_outcome judge_noisy(const cellforge::sample_model& m, std::string& why, bool ambiguous = false) {
+inline noisy_outcome judge_noisy(const cellforge::samples::sample_model& m, std::string& why, bool ambiguous = false) {
   try {
     const auto r = cellforge::wireframe_to_cells(m.wire);
     why = ambiguous ? ambiguous_miss(m, r, r.check) : miss_reason(m, r, r.check);
@@ -2244,7 +2244,7 @@ inline noisy_outcome judge_noisy(const cellforge::sample_model& m, std::string& 
 /// Whether some fixed planarity tolerance (1e-8 … 3e-2 of the diagonal, all stages) reads the
 /// model exactly: a miss no tolerance mends is information-theoretic for this pipeline (the
 /// noise is as large as the shape), one some tolerance mends is the estimator's. O(14 conversions).
-inline bool some_tolerance_reads(const cellforge::sample_model& m) {
+inline bool some_tolerance_reads(const cellforge::samples::sample_model& m) {
   for (const double t : {1e-8, 3e-8, 1e-7, 3e-7, 1e-6, 3e-6, 1e-5, 3e-5, 1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2}) {
     cellforge::wireframe_options o;
     o.tolerance.automatic = false;

@@ -18,19 +18,19 @@ int main(int argc, char** argv) {
   try {
     const std::filesystem::path out(argv[1]);
     std::filesystem::create_directories(out);
-    cellforge::sketch_sweep_options options;
+    cellforge::samples::sketch_sweep_options options;
     options.limit = 8;
     options.max_edges = 60;
     options.families = {"prism", "normalon", "through slot", "platonic"};
     std::size_t written = 0;
-    for (const auto& s : cellforge::sketch_sweep(options)) {
+    for (const auto& s : cellforge::samples::sketch_sweep(options)) {
       cellforge::io::write_drawing_text(out / ("sample_" + std::to_string(written++) + ".txt"), s.drawing,
                                         {"generated: " + s.name});
     }
-    cellforge::round_sweep_options rounds;
+    cellforge::samples::round_sweep_options rounds;
     rounds.drawings = 3;
     std::size_t k = 0;
-    for (const auto& s : cellforge::round_drawing_sweep(rounds)) {
+    for (const auto& s : cellforge::samples::round_drawing_sweep(rounds)) {
       cellforge::io::write_arc_drawing_text(out / ("rounds_" + std::to_string(k++) + ".txt"), s.drawing,
                                             {"generated: " + s.name});
       ++written;

@@ -303,7 +303,7 @@ std::string check_rounded_step(const R& r, std::size_t& faces_out, double& worst
 TEST_CASE(
     "step: every rounded solid of the rounds sweep reads back in OpenCASCADE with its blends as cylinders") {
   const auto t0 = std::chrono::steady_clock::now();
-  const auto drawings = cellforge::round_drawing_sweep({});  // test_rounds' 240 drawings
+  const auto drawings = cellforge::samples::round_drawing_sweep({});  // test_rounds' 240 drawings
   std::size_t passed = 0, blends = 0, fillets = 0, faces = 0;
   double worst = 0;
   std::vector<std::string> misses;
@@ -350,9 +350,9 @@ TEST_CASE("step: a rounded box, square and with a tilted end (an ellipse), has i
 }
 
 TEST_CASE("step: the OpenCASCADE check catches a rounded solid's blend turned inside out") {
-  cellforge::round_sweep_options o;
+  cellforge::samples::round_sweep_options o;
   o.drawings = 2;  // block #0 (rounds only) and L #1 (a round and a fillet)
-  for (const auto& s : cellforge::round_drawing_sweep(o)) {
+  for (const auto& s : cellforge::samples::round_drawing_sweep(o)) {
     CAPTURE(s.name);
     const auto b = cellforge::rounded_brep(cellforge::reconstruct_rounds(s.drawing));
     REQUIRE(b.ok);
@@ -434,7 +434,7 @@ TEST_CASE("step: a cavity (BREP_WITH_VOIDS), a nested solid and an open face") {
 
 TEST_CASE("step: meshes as faceted solids (a closed triangle mesh)") {
   // A closed mesh: the stepped block's boundary, every face triangulated.
-  const auto m = cellforge::sample_stepped_block();
+  const auto m = cellforge::samples::sample_stepped_block();
   const auto r = cellforge::wireframe_to_cells(m.wire);
   REQUIRE(r.cells.num_volumes() >= 1);
   const auto mesh = cellforge::volume_boundary_mesh(r.cells, cell_volume(0), {true});
@@ -480,7 +480,7 @@ TEST_CASE("step: tube meshes, plain and Loop-subdivided, as faceted solids") {
 }
 
 TEST_CASE("step: the OpenCASCADE check catches a wrongly oriented face") {
-  const auto r = cellforge::wireframe_to_cells(cellforge::sample_two_cubes().wire);
+  const auto r = cellforge::wireframe_to_cells(cellforge::samples::sample_two_cubes().wire);
   REQUIRE(check_step(r.cells) == "");
   std::ostringstream os;
   cellforge::io::write_step(os, r.cells);

@@ -39,7 +39,7 @@
 #include "cellforge/samples/wireframe_models.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 
-namespace cellforge {
+namespace cellforge::samples {
 
 /// A drawing of a sample model in a parallel view, and what a correct reading must find.
 struct sample_drawing {
@@ -65,7 +65,7 @@ namespace detail {
 
 /// A uniformly random rotation (unit quaternion from four normals, Shoemake). O(1).
 template <class = void>
-glm::dmat3 random_rotation(splitmix& rng) {
+glm::dmat3 random_rotation(cellforge::detail::splitmix& rng) {
   const double u1 = rng.uniform(0, 1), u2 = rng.uniform(0, 6.283185307179586),
                u3 = rng.uniform(0, 6.283185307179586);
   const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
@@ -97,7 +97,7 @@ double junction_spacing(const std::vector<glm::dvec2>& pts, const Edges& edges, 
   for (const auto& e : edges)
     for (std::uint32_t v = 0; v < pts.size(); ++v)
       if (v != e[0] && v != e[1])
-        spacing = std::min(spacing, segment_distance(pts[v], pts[e[0]], pts[e[1]]) / diag);
+        spacing = std::min(spacing, cellforge::detail::segment_distance(pts[v], pts[e[0]], pts[e[1]]) / diag);
   return spacing;
 }
 
@@ -148,7 +148,7 @@ sample_drawing project_model(const sample_model& model, const glm::dmat3& view, 
     for (const auto& loop : face) s.loops.push_back(loop);
   // Normalon: every edge along an axis. Quasi-normalon: the axis edges alone connect every vertex.
   const std::size_t nv = model.wire.points.size();
-  detail::union_find sets(nv);
+  cellforge::detail::union_find sets(nv);
   std::size_t axis_edges = 0, components = nv;
   for (const auto& e : model.wire.edges) {
     if (!detail::axis_parallel(model.wire.points[e[1]] - model.wire.points[e[0]])) continue;
@@ -165,7 +165,7 @@ sample_drawing project_model(const sample_model& model, const glm::dmat3& view, 
 template <class = void>
 sample_drawing generic_drawing(const sample_model& model, std::uint64_t seed, std::string family,
                                double min_margin = 2e-3, int attempts = 64) {
-  detail::splitmix rng{seed * 0x9e3779b97f4a7c15u + 0x736b657463680000u};
+  cellforge::detail::splitmix rng{seed * 0x9e3779b97f4a7c15u + 0x736b657463680000u};
   for (int k = 0; k < attempts; ++k) {
     sample_drawing s = project_model(model, detail::random_rotation(rng),
                                      model.name + ", view " + std::to_string(seed), family);
@@ -292,7 +292,7 @@ bool simple_polygon(const std::vector<glm::dvec2>& p) {
 template <class = void>
 sample_model convex_polytope_model(const std::vector<glm::dvec3>& points, std::string name,
                                    double tolerance = 1e-9) {
-  const detail::hull::result r = detail::hull::compute(std::span<const glm::dvec3>(points), {});
+  const cellforge::detail::hull::result r = cellforge::detail::hull::compute(std::span<const glm::dvec3>(points), {});
   if (r.dimension < 3)
     throw error(error_category::invalid_input,
                 cellforge::detail::cat("convex_polytope_model: the points of '", name,
@@ -311,7 +311,7 @@ sample_model convex_polytope_model(const std::vector<glm::dvec3>& points, std::s
     for (std::size_t k = 0; k < 3; ++k)
       side[{corner(f, k), corner(f, (k + 1) % 3)}] = static_cast<std::uint32_t>(f);
   }
-  detail::union_find groups(nf);
+  cellforge::detail::union_find groups(nf);
   const auto find = [&](std::uint32_t f) { return groups.find(f); };
   for (std::size_t f = 0; f < nf; ++f)
     for (std::size_t k = 0; k < 3; ++k) {
@@ -494,7 +494,7 @@ template <class = void>
 sample_model random_convex_polytope(std::size_t n, bool on_sphere, std::uint64_t seed) {
   if (n < 4 || n > 100000)
     throw error(error_category::invalid_input, "random_convex_polytope: n must be in 4..100000");
-  detail::splitmix rng{seed ^ 0x636f6e7665780000u};
+  cellforge::detail::splitmix rng{seed ^ 0x636f6e7665780000u};
   const double gap = 0.6 / std::sqrt(static_cast<double>(n));
   std::vector<glm::dvec3> pts;
   for (std::size_t tries = 0; pts.size() < n && tries < 1000 * n; ++tries) {
@@ -517,7 +517,7 @@ sample_model random_convex_polytope(std::size_t n, bool on_sphere, std::uint64_t
 /// direction: polygon faces and, in general, degree-3 vertices. O((cuts + base)^4).
 template <class = void>
 sample_model cut_polytope(std::size_t base, std::size_t cuts, std::uint64_t seed) {
-  detail::splitmix rng{seed ^ 0x6375740000000000u};
+  cellforge::detail::splitmix rng{seed ^ 0x6375740000000000u};
   std::vector<std::pair<glm::dvec3, double>> planes;  // n · x <= d
   std::vector<glm::dvec3> corners;
   if (base == 0) {
@@ -605,7 +605,7 @@ sample_model extruded_polygon(const std::vector<glm::dvec2>& polygon, double hei
 
 /// A random star-shaped simple polygon of n corners (angles jittered, radii 0.35..1). O(n).
 template <class = void>
-std::vector<glm::dvec2> random_star_polygon(std::size_t n, detail::splitmix& rng) {
+std::vector<glm::dvec2> random_star_polygon(std::size_t n, cellforge::detail::splitmix& rng) {
   std::vector<glm::dvec2> p;
   for (std::size_t i = 0; i < n; ++i) {
     const double t =
@@ -619,7 +619,7 @@ std::vector<glm::dvec2> random_star_polygon(std::size_t n, detail::splitmix& rng
 /// An L (kind 0), T (1) or cross (2) footprint with every corner moved at random by up to
 /// `jitter` (0: the rectilinear footprint; > 0: oblique sides). O(1).
 template <class = void>
-std::vector<glm::dvec2> letter_footprint(int kind, double jitter, detail::splitmix& rng) {
+std::vector<glm::dvec2> letter_footprint(int kind, double jitter, cellforge::detail::splitmix& rng) {
   std::vector<glm::dvec2> p;
   if (kind == 0)
     p = {{0, 0}, {3, 0}, {3, 1}, {1, 1}, {1, 3}, {0, 3}};
@@ -737,7 +737,7 @@ int voxel_solid_genus(const voxel_layout& l) {
 
 /// Lattice coordinates from random widths in [lo, hi]. O(n).
 template <class = void>
-std::vector<double> random_coords(std::size_t cells, double lo, double hi, splitmix& rng) {
+std::vector<double> random_coords(std::size_t cells, double lo, double hi, cellforge::detail::splitmix& rng) {
   std::vector<double> c{0.0};
   for (std::size_t i = 0; i < cells; ++i) c.push_back(c.back() + rng.uniform(lo, hi));
   return c;
@@ -745,7 +745,7 @@ std::vector<double> random_coords(std::size_t cells, double lo, double hi, split
 
 /// A uniformly random index below n. O(1).
 template <class = void>
-std::size_t below(std::size_t n, splitmix& rng) {
+std::size_t below(std::size_t n, cellforge::detail::splitmix& rng) {
   return static_cast<std::size_t>(rng.next() % n);
 }
 
@@ -780,7 +780,7 @@ template <class = void>
 std::optional<voxel_solid> random_normalon(std::size_t nx, std::size_t ny, std::size_t nz, std::size_t count,
                                            std::uint64_t seed) {
   detail::require_lattice("random_normalon", nx, ny, nz);
-  detail::splitmix rng{seed ^ 0x6e6f726d616c6f6eu};
+  cellforge::detail::splitmix rng{seed ^ 0x6e6f726d616c6f6eu};
   // One draw per statement: argument order is the compiler's choice.
   std::vector<double> xs = detail::random_coords(nx, 0.5, 1.5, rng);
   std::vector<double> ys = detail::random_coords(ny, 0.5, 1.5, rng);
@@ -821,7 +821,7 @@ std::optional<voxel_solid> random_skyline(std::size_t nx, std::size_t ny, std::s
                                           std::uint64_t seed) {
   max_height = std::max<std::size_t>(max_height, 1);
   detail::require_lattice("random_skyline", nx, ny, max_height);
-  detail::splitmix rng{seed ^ 0x736b796c696e6500u};
+  cellforge::detail::splitmix rng{seed ^ 0x736b796c696e6500u};
   std::vector<double> xs = detail::random_coords(nx, 0.5, 1.5, rng);
   std::vector<double> ys = detail::random_coords(ny, 0.5, 1.5, rng);
   std::vector<double> zs = detail::random_coords(max_height, 0.3, 1.0, rng);
@@ -856,7 +856,7 @@ std::optional<voxel_solid> random_skyline(std::size_t nx, std::size_t ny, std::s
 /// not a 2-manifold solid. O(1).
 template <class = void>
 std::optional<voxel_solid> notched_block(std::size_t notches, std::uint64_t seed) {
-  detail::splitmix rng{seed ^ 0x6e6f746368000000u};
+  cellforge::detail::splitmix rng{seed ^ 0x6e6f746368000000u};
   std::vector<double> xs = detail::random_coords(3, 0.4, 1.6, rng);
   std::vector<double> ys = detail::random_coords(3, 0.4, 1.6, rng);
   std::vector<double> zs = detail::random_coords(3, 0.4, 1.6, rng);
@@ -883,7 +883,7 @@ template <class = void>
 sample_model sample_stairs(std::size_t steps, std::uint64_t seed) {
   if (steps < 1 || steps > 1000)
     throw error(error_category::invalid_input, "sample_stairs: steps must be in 1..1000");
-  detail::splitmix rng{seed ^ 0x7374616972730000u};
+  cellforge::detail::splitmix rng{seed ^ 0x7374616972730000u};
   std::vector<double> x{0.0}, h{0.0};  // step i spans [x[i], x[i+1]], its top at h[i+1]
   for (std::size_t s = 0; s < steps; ++s) {
     x.push_back(x.back() + rng.uniform(0.6, 1.4));
@@ -903,7 +903,7 @@ sample_model sample_stairs(std::size_t steps, std::uint64_t seed) {
 /// `holes`): its front and back faces have holes. O(1).
 template <class = void>
 voxel_solid through_slot(std::size_t holes, std::uint64_t seed) {
-  detail::splitmix rng{seed ^ 0x736c6f7400000000u};
+  cellforge::detail::splitmix rng{seed ^ 0x736c6f7400000000u};
   holes = std::clamp<std::size_t>(holes, 1, 4);
   const std::size_t nx = holes >= 2 ? 5 : 3, nz = holes >= 3 ? 5 : 3, ny = 1 + detail::below(2, rng);
   std::vector<double> xs = detail::random_coords(nx, 0.3, 1.5, rng);
@@ -947,7 +947,7 @@ std::vector<glm::dvec2> chamfered_corners(const std::vector<glm::dvec2>& p, cons
 /// the flag's rule). Random sizes from `seed`. O(1).
 template <class = void>
 sample_model random_quasi_normalon(int kind, std::uint64_t seed) {
-  detail::splitmix rng{seed ^ 0x7175617369000000u};
+  cellforge::detail::splitmix rng{seed ^ 0x7175617369000000u};
   const double a = rng.uniform(1, 3), b = rng.uniform(1, 3), c = rng.uniform(1, 3);
   const std::string tag = cellforge::detail::cat(" #", std::to_string(seed));
   const auto pick_corners = [&](std::size_t n, std::size_t lo, std::size_t hi,
@@ -1053,7 +1053,7 @@ sample_model convex_cells_model(const std::vector<std::vector<glm::dvec3>>& cell
         edges.insert(
             {std::min(loop[k], loop[(k + 1) % loop.size()]), std::max(loop[k], loop[(k + 1) % loop.size()])});
       const auto [it, fresh] =
-          face_id.insert({detail::canonical_cycle(loop), static_cast<std::uint32_t>(m.faces.size())});
+          face_id.insert({cellforge::detail::canonical_cycle(loop), static_cast<std::uint32_t>(m.faces.size())});
       if (fresh) m.faces.push_back({std::move(loop)});
       volume.push_back(it->second);
     }
@@ -1071,7 +1071,7 @@ sample_model convex_cells_model(const std::vector<std::vector<glm::dvec3>>& cell
 template <class = void>
 std::optional<sample_model> sliced_polytope(std::size_t base, std::size_t cuts, bool diagonal,
                                             std::uint64_t seed) {
-  detail::splitmix rng{seed ^ 0x736c696365000000u};
+  cellforge::detail::splitmix rng{seed ^ 0x736c696365000000u};
   std::vector<glm::dvec3> start;
   const double a = rng.uniform(0.8, 2.0), b = rng.uniform(0.8, 2.0), c = rng.uniform(0.8, 2.0);
   if (base == 0) {
@@ -1155,7 +1155,7 @@ std::optional<sample_model> sliced_polytope(std::size_t base, std::size_t cuts, 
 /// ends would otherwise join two coplanar faces). Random sizes from `seed`. O(1).
 template <class = void>
 sample_model roof_on_box(int kind, std::uint64_t seed) {
-  detail::splitmix rng{seed ^ 0x726f6f6600000000u};
+  cellforge::detail::splitmix rng{seed ^ 0x726f6f6600000000u};
   const double a = rng.uniform(0.8, 2.0), b = rng.uniform(0.8, 2.5), c = rng.uniform(0.5, 1.5),
                h = rng.uniform(0.4, 1.2);
   std::vector<glm::dvec3> box, roof;
@@ -1189,7 +1189,7 @@ sample_model roof_on_box(int kind, std::uint64_t seed) {
 /// O(cells).
 template <class = void>
 sample_model bar_frame(std::size_t holes, std::uint64_t seed) {
-  detail::splitmix rng{seed ^ 0x6672616d65000000u};
+  cellforge::detail::splitmix rng{seed ^ 0x6672616d65000000u};
   holes = std::clamp<std::size_t>(holes, 1, 2);
   const std::size_t nx = holes == 2 ? 5 : 3 + detail::below(3, rng), ny = 3 + detail::below(3, rng),
                     nz = 1 + detail::below(2, rng);
@@ -1232,7 +1232,7 @@ sample_model bar_frame(std::size_t holes, std::uint64_t seed) {
 template <class = void>
 std::optional<sample_model> cell_block(std::size_t nx, std::size_t ny, std::size_t nz, bool every_cell,
                                        std::uint64_t seed) {
-  detail::splitmix rng{seed ^ 0x63656c6c00000000u};
+  cellforge::detail::splitmix rng{seed ^ 0x63656c6c00000000u};
   voxel_layout l =
       empty_layout(detail::random_coords(nx, 0.4, 1.4, rng), detail::random_coords(ny, 0.4, 1.4, rng),
                    detail::random_coords(nz, 0.4, 1.4, rng));
@@ -1295,7 +1295,7 @@ std::optional<sample_model> cell_block(std::size_t nx, std::size_t ny, std::size
 /// 6: a box and a triangular prism along an edge), each its own volume; random widths. O(1).
 template <class = void>
 sample_model touching_solids(int kind, std::uint64_t seed) {
-  detail::splitmix rng{seed ^ 0x746f756368000000u};
+  cellforge::detail::splitmix rng{seed ^ 0x746f756368000000u};
   const auto coords = [&](std::size_t n) { return detail::random_coords(n, 0.5, 1.5, rng); };
   const std::string tag = cellforge::detail::cat(" #", std::to_string(seed));
   if (kind == 6) {
@@ -1348,7 +1348,7 @@ sample_model touching_solids(int kind, std::uint64_t seed) {
 /// so no two side faces are coplanar. O(rings · n).
 template <class = void>
 sample_model revolved_solid(int kind, std::uint64_t seed) {
-  detail::splitmix rng{seed ^ 0x7265766f6c000000u};
+  cellforge::detail::splitmix rng{seed ^ 0x7265766f6c000000u};
   const std::string tag = cellforge::detail::cat(" #", std::to_string(seed));
   if (kind == 4) {
     const std::size_t slices = 5 + detail::below(8, rng), stacks = 3 + detail::below(5, rng);
@@ -1438,7 +1438,7 @@ std::vector<voxel_solid> sketch_classics() {
   sample_model wedge =
       extruded_polygon({{0, 0}, {3, 0}, {0, 0.25}}, 2.0, "classic: thin wedge (a sliver face)");
   out.push_back({wedge, 0});
-  detail::splitmix rng{0x636c617373696373u};
+  cellforge::detail::splitmix rng{0x636c617373696373u};
   out.push_back({extruded_polygon(random_star_polygon(12, rng), 0.7, "classic: star prism 12"), 0});
   sample_model anti = sample_antiprism(8, 0.6);
   anti.name = "classic: flat octagonal antiprism (triangle strips)";
@@ -1533,7 +1533,7 @@ double margin_until(const sample_drawing& s, double stop) {
     for (std::uint32_t v = 0; v < pts.size(); ++v) {
       const glm::dvec2 q = pts[v];
       if (v == e[0] || v == e[1] || q.x < elo.x || q.y < elo.y || q.x > ehi.x || q.y > ehi.y) continue;
-      margin = std::min(margin, detail::segment_distance(q, a, b) / diag);
+      margin = std::min(margin, cellforge::detail::segment_distance(q, a, b) / diag);
       if (margin < stop) return margin;
     }
   }
@@ -1567,7 +1567,7 @@ struct sweep_item {
 template <class = void>
 std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {},
                                          sketch_sweep_report* report = nullptr) {
-  const detail::stopwatch start;
+  const cellforge::detail::stopwatch start;
   if (options.views_per_model < 1 || options.view_attempts < 1 || !(options.min_margin >= 0))
     throw error(error_category::invalid_input,
                 "sketch_sweep: views_per_model and view_attempts must be at least 1, min_margin >= 0");
@@ -1632,7 +1632,7 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
   if (wanted("random convex")) {
     std::size_t kept = 0;
     for (std::size_t k = 0; kept < want && k < budget; ++k) {
-      detail::splitmix rng{seed_of(1, k)};
+      cellforge::detail::splitmix rng{seed_of(1, k)};
       const bool sphere = k % 2 == 0;
       const std::size_t n = sphere ? 4 + detail::below(97, rng) : 8 + detail::below(143, rng);
       kept += add(random_convex_polytope(n, sphere, rng.next()), "random convex", 0, v);
@@ -1641,7 +1641,7 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
   if (wanted("cut cube")) {
     std::size_t kept = 0;
     for (std::size_t k = 0; kept < want && k < budget; ++k) {
-      detail::splitmix rng{seed_of(2, k)};
+      cellforge::detail::splitmix rng{seed_of(2, k)};
       const std::size_t base = k % 5 < 3 ? 0 : 3 + detail::below(6, rng);
       const std::size_t cuts = 1 + detail::below(6, rng);
       sample_model m = cut_polytope(base, cuts, rng.next());
@@ -1662,7 +1662,7 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
   if (wanted("normalon")) {
     std::size_t kept = 0;
     for (std::size_t k = 0; kept < want && k < budget; ++k) {
-      detail::splitmix rng{seed_of(3, k)};
+      cellforge::detail::splitmix rng{seed_of(3, k)};
       std::optional<voxel_solid> s;
       if (k % 3 == 2) {
         const std::size_t notches = 1 + detail::below(6, rng);
@@ -1695,19 +1695,19 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
   if (wanted("through slot")) add(sample_frame(), "through slot", 1, v);
   if (wanted("through slot"))
     for (std::size_t k = 0, kept = 0; kept < want && k < budget; ++k) {
-      detail::splitmix rng{seed_of(5, k)};
+      cellforge::detail::splitmix rng{seed_of(5, k)};
       const std::size_t holes = 1 + detail::below(4, rng);
       voxel_solid s = through_slot(holes, rng.next());
       kept += add(std::move(s.model), "through slot", s.genus, v);
     }
   if (wanted("quasi-normalon"))
     for (std::size_t k = 0, kept = 0; kept < want && k < budget; ++k) {
-      detail::splitmix rng{seed_of(6, k)};
+      cellforge::detail::splitmix rng{seed_of(6, k)};
       kept += add(random_quasi_normalon(static_cast<int>(k % 6), rng.next()), "quasi-normalon", 0, v);
     }
   if (wanted("non-convex prism"))
     for (std::size_t k = 0, kept = 0; kept < want && k < budget; ++k) {
-      detail::splitmix rng{seed_of(7, k)};
+      cellforge::detail::splitmix rng{seed_of(7, k)};
       try {
         if (k % 3 == 2) {
           const int kind = static_cast<int>(detail::below(3, rng));
@@ -1746,7 +1746,7 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
       add(sample_grid(n[0], n[1], n[2]), "cell block", 0, v);
     std::size_t kept = 0;
     for (std::size_t k = 0; kept < want && k < budget; ++k) {
-      detail::splitmix rng{seed_of(8, k)};
+      cellforge::detail::splitmix rng{seed_of(8, k)};
       const std::size_t nx = 1 + detail::below(4, rng), ny = 1 + detail::below(3, rng),
                         nz = 1 + detail::below(3, rng);
       std::optional<sample_model> m;
@@ -1768,7 +1768,7 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
   if (wanted("sliced")) {
     std::size_t kept = 0;
     for (std::size_t k = 0; kept < want && k < budget; ++k) {
-      detail::splitmix rng{seed_of(9, k)};
+      cellforge::detail::splitmix rng{seed_of(9, k)};
       const std::size_t base = k % 3 == 2 ? 3 + detail::below(8, rng) : 0;
       const bool diagonal = base == 0 && k % 3 == 1;
       const std::size_t cuts = diagonal ? detail::below(3, rng) : 1 + detail::below(3, rng);
@@ -1808,7 +1808,7 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
     for (int view = 0; view < it.views; ++view) {
       if (index[fi]++ % stride != 0) continue;
       // Classics: fixed views; the others follow options.seed.
-      detail::splitmix rng{detail::name_hash(it.model.name, it.family == "classic" ? 0 : options.seed) +
+      cellforge::detail::splitmix rng{detail::name_hash(it.model.name, it.family == "classic" ? 0 : options.seed) +
                            0x9e3779b97f4a7c15u * static_cast<std::uint64_t>(view + 1)};
       bool found = false;
       const double threshold = sketch_margin_threshold(options, it.model.wire.edges.size());
@@ -1834,4 +1834,4 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
   return out;
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::samples

@@ -21,7 +21,7 @@
 #include "cellforge/samples/drawings.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 
-namespace cellforge {
+namespace cellforge::samples {
 
 /// The drawing with every junction moved in a uniformly random direction by a distance
 /// uniform in [0, fraction × the bounding-box diagonal], from `seed`. O(V).
@@ -33,7 +33,7 @@ line_drawing<glm::dvec2> jitter_drawing(const line_drawing<glm::dvec2>& d, doubl
   glm::dvec2 lo = d.points[0], hi = d.points[0];
   for (const auto& q : d.points) lo = glm::min(lo, q), hi = glm::max(hi, q);
   const double reach = fraction * glm::length(hi - lo);
-  detail::splitmix rng{seed};
+  cellforge::detail::splitmix rng{seed};
   for (auto& q : out.points) {
     const double angle = rng.uniform(0, 2 * std::numbers::pi);
     const double distance = reach * rng.uniform(0, 1);
@@ -96,4 +96,4 @@ std::vector<noisy_drawing> noisy_sweep(const noisy_sweep_options& options,
   return out;
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::samples

@@ -34,7 +34,7 @@
 #include "cellforge/samples/drawings.hpp"
 #include "cellforge/sketch/elliptical_arc.hpp"
 
-namespace cellforge {
+namespace cellforge::samples {
 
 /// One blended edge of a sample round drawing.
 struct round_truth {
@@ -160,8 +160,8 @@ bool segments_meet(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, glm::dvec2 d) {
   };
   const double d1 = orient(c, d, a), d2 = orient(c, d, b), d3 = orient(a, b, c), d4 = orient(a, b, d);
   if (((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0))) return true;
-  return segment_distance(a, c, d) < 1e-12 || segment_distance(b, c, d) < 1e-12 ||
-         segment_distance(c, a, b) < 1e-12 || segment_distance(d, a, b) < 1e-12;
+  return cellforge::detail::segment_distance(a, c, d) < 1e-12 || cellforge::detail::segment_distance(b, c, d) < 1e-12 ||
+         cellforge::detail::segment_distance(c, a, b) < 1e-12 || cellforge::detail::segment_distance(d, a, b) < 1e-12;
 }
 
 /// A blended edge of a prism while the sample is built.
@@ -324,9 +324,9 @@ sample_round_drawing round_prism_drawing(const std::vector<glm::dvec2>& p, doubl
       for (std::size_t j = 0; j < n; ++j) {
         if (j == i || (j + 1) % n == i || j == (i + 1) % n) continue;
         const glm::dvec2 a = p[j], c = p[(j + 1) % n];
-        if (std::min({detail::segment_distance(a, p[i], p[(i + 1) % n]),
-                      detail::segment_distance(c, p[i], p[(i + 1) % n]), detail::segment_distance(p[i], a, c),
-                      detail::segment_distance(p[(i + 1) % n], a, c)}) < 2.5 * b.radius)
+        if (std::min({cellforge::detail::segment_distance(a, p[i], p[(i + 1) % n]),
+                      cellforge::detail::segment_distance(c, p[i], p[(i + 1) % n]), cellforge::detail::segment_distance(p[i], a, c),
+                      cellforge::detail::segment_distance(p[(i + 1) % n], a, c)}) < 2.5 * b.radius)
           fail("a side edge's blend comes near another side");
       }
     }
@@ -453,7 +453,7 @@ namespace detail::rounds {
 
 /// The footprint of a family member (counter-clockwise), random sizes from rng. O(1).
 template <class = void>
-std::vector<glm::dvec2> family_footprint(std::size_t family, splitmix& rng) {
+std::vector<glm::dvec2> family_footprint(std::size_t family, cellforge::detail::splitmix& rng) {
   const double a = rng.uniform(1, 3), b = rng.uniform(1, 3);
   std::vector<glm::dvec2> p;
   const auto letter = [&](int kind) {
@@ -553,7 +553,7 @@ std::vector<sample_round_drawing> round_drawing_sweep(const round_sweep_options&
   round_sweep_report rep;
   for (std::size_t k = 0; out.size() < options.drawings && k < 4 * options.drawings + 20; ++k) {
     const std::size_t family = k % families.size();
-    detail::splitmix rng{options.seed * 0x9e3779b97f4a7c15u + 0x726f756e64000000u + k};
+    cellforge::detail::splitmix rng{options.seed * 0x9e3779b97f4a7c15u + 0x726f756e64000000u + k};
     const std::vector<glm::dvec2> p = detail::rounds::family_footprint(family, rng);
     const double h = rng.uniform(0.8, 2.5);
     const std::size_t n = p.size();
@@ -624,4 +624,4 @@ std::vector<sample_round_drawing> round_drawing_sweep(const round_sweep_options&
   return out;
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::samples

@@ -16,7 +16,7 @@
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 
-namespace cellforge {
+namespace cellforge::samples {
 
 /// One Table 7 stand-in: a name, what it is, its soup, and the seed's edge count and time.
 template <Point3 P = glm::dvec3>
@@ -64,4 +64,4 @@ smooth_table7_case<P> smooth_table7_solid(int figure) {
   return {s.name, s.description, make_mesh(s.soup), s.seed_edges, s.seed_ms};
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::samples

@@ -20,7 +20,7 @@
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
 
-namespace cellforge {
+namespace cellforge::samples {
 
 /// A test solid about the z axis and its ground truth.
 template <Point3 P = glm::dvec3>
@@ -49,7 +49,7 @@ thin_sample<P> revolve(std::string name, int segments, int rings, bool triangles
                 cellforge::detail::cat("thin sample '", name, "': rings must be at least 3, got ",
                                        std::to_string(rings)));
   // The profile is allocated before solid_of_revolution checks the mesh's size: check it here.
-  detail::shapes::require_counts("thin sample", {{"segments", segments, 3}}, double(segments) * rings,
+  cellforge::detail::shapes::require_counts("thin sample", {{"segments", segments, 3}}, double(segments) * rings,
                                  4.0 * segments * rings);
   thin_sample<P> s;
   s.name = std::move(name), s.segments = segments, s.triangles = triangles;
@@ -182,4 +182,4 @@ thin_sample<P> thin_table5_solid(int example, bool triangles) {
   }
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::samples

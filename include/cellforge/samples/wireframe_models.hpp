@@ -29,7 +29,7 @@
 #include "cellforge/core/wireframe.hpp"
 #include "cellforge/wireframe/wire_graph.hpp"
 
-namespace cellforge {
+namespace cellforge::samples {
 
 /// A wireframe and what a correct conversion must find in it.
 struct sample_model {
@@ -89,7 +89,7 @@ template <class Face>
 std::vector<std::vector<std::uint32_t>> canonical_face(const Face& face) {
   const auto& loops = loops_of(face);
   std::vector<std::vector<std::uint32_t>> out;
-  for (const auto& l : loops) out.push_back(canonical_cycle(l));
+  for (const auto& l : loops) out.push_back(cellforge::detail::canonical_cycle(l));
   if (out.size() > 2) std::sort(out.begin() + 1, out.end());
   return out;
 }
@@ -135,7 +135,7 @@ std::optional<std::vector<std::uint32_t>> match_faces(const FacesA& expected, co
 /// Newell normal of a closed polygon (not normalised; its length is twice the area). O(n).
 template <class = void>
 glm::dvec3 newell_normal(const std::vector<glm::dvec3>& pts, const std::vector<std::uint32_t>& loop) {
-  return newell(loop, [&](std::uint32_t v) { return pts[v]; });
+  return cellforge::detail::newell(loop, [&](std::uint32_t v) { return pts[v]; });
 }
 
 /// Counts the faces no edge needs (see sample_model::unforced_faces): a face is needed by an
@@ -914,4 +914,4 @@ std::vector<sample_model> all_small_samples() {
   return all;
 }
 
-}  // namespace cellforge
+}  // namespace cellforge::samples
