@@ -28,6 +28,7 @@
 #include "cellforge/algorithms/loop_subdivision.hpp"
 #include "cellforge/algorithms/shapes.hpp"
 #include "cellforge/halfedge/conversion.hpp"
+#include "cellforge/samples/tube_soups.hpp"
 
 #ifdef CELLFORGE_HAVE_OPENMESH
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
@@ -75,13 +76,13 @@ constexpr std::array<table4_figure, 5> table4{{
 }};
 
 soup make_table4(const std::string& name) {
-  cellforge::lattice_tube_options tri;
+  cellforge::samples::lattice_tube_options tri;
   tri.triangles = true;
-  if (name == "eyespline") return cellforge::spline_tube<point>();
-  if (name == "Lattice_10_8_3") return cellforge::lattice_tube_mesh<point>(10, 8, 3, tri);
+  if (name == "eyespline") return cellforge::samples::spline_tube<point>();
+  if (name == "Lattice_10_8_3") return cellforge::samples::lattice_tube_mesh<point>(10, 8, 3, tri);
   if (name == "Mobius_16_16") return cellforge::mobius_band<point>(16, 16);
   if (name == "polyhedron") return cellforge::icosphere<point>(3);
-  return cellforge::tree_tube_mesh<point>(3, tri);
+  return cellforge::samples::tree_tube_mesh<point>(3, tri);
 }
 
 /// The scaling series: triangles of the input spheres (a closed sphere of n vertices has 2n − 4).

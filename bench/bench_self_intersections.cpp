@@ -23,6 +23,7 @@
 #include "cellforge/algorithms/self_intersections.hpp"
 #include "cellforge/algorithms/shapes.hpp"
 #include "cellforge/halfedge/conversion.hpp"
+#include "cellforge/samples/tube_soups.hpp"
 
 #ifdef CELLFORGE_HAVE_CGAL
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -57,7 +58,7 @@ const mesh& ours(int faces) {
 }
 const mesh& lattice() {
   static const mesh m =
-      cellforge::make_mesh(cellforge::lattice_tube_mesh(lattice_side, lattice_side, lattice_side));
+      cellforge::make_mesh(cellforge::samples::lattice_tube_mesh(lattice_side, lattice_side, lattice_side));
   return m;
 }
 

@@ -27,6 +27,7 @@
 #include "cellforge/algorithms/shapes.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/halfedge/conversion.hpp"
+#include "cellforge/samples/tube_soups.hpp"
 #include "test_support.hpp"
 
 // Own namespace: the test files of a group may be compiled as one translation unit.
@@ -85,6 +86,7 @@ void add_cube(polygon_soup<dvec3>& s, const dvec3& offset, double size = 1) {
 
 TEST_CASE("self_intersections: closed meshes have none") {
   using namespace cellforge;
+  using namespace cellforge::samples;
   const std::vector<std::pair<const char*, polygon_soup<dvec3>>> shapes = {
       {"tetrahedron", tetrahedron()},
       {"cube", hexahedron()},

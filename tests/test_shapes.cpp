@@ -16,6 +16,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/algorithms/shapes.hpp"
+#include "cellforge/samples/tube_soups.hpp"
 
 namespace test_user {
 /// A CAD-like point type, registered through the one-line macro.
@@ -436,6 +437,7 @@ TEST_CASE_TEMPLATE("random orientation plane", P, CF_POINT_TYPES) {
 TEST_CASE_TEMPLATE("lattice and tree tube meshes are closed manifolds of the right genus", P,
                    CF_POINT_TYPES) {
   using namespace cellforge;
+  using namespace cellforge::samples;
   for (const bool tri : {false, true})
     for (const auto& dims : {std::array{1, 1, 1}, {3, 1, 1}, {2, 2, 1}, {2, 2, 2}, {4, 3, 2}, {10, 8, 3}}) {
       const int nx = dims[0], ny = dims[1], nz = dims[2];
@@ -472,6 +474,7 @@ TEST_CASE_TEMPLATE("lattice and tree tube meshes are closed manifolds of the rig
 
 TEST_CASE_TEMPLATE("spline tube", P, CF_POINT_TYPES) {
   using namespace cellforge;
+  using namespace cellforge::samples;
   for (const bool tri : {true, false}) {
     const spline_tube_options opt{
         .segments_around = 10, .samples_per_span = 6, .radius = 0.1, .triangles = tri};
@@ -575,6 +578,7 @@ TEST_CASE_TEMPLATE("soup helpers: transforms, fan triangulation, counts", P, CF_
 
 TEST_CASE("invalid parameters throw invalid_input") {
   using namespace cellforge;
+  using namespace cellforge::samples;
   using P = glm::dvec3;
   check_invalid([] { (void)icosphere<P>(-1); });
   check_invalid([] { (void)icosphere<P>(40); });

@@ -20,6 +20,7 @@
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/validate.hpp"
 #include "cellforge/samples/thin_solids.hpp"
+#include "cellforge/samples/tube_soups.hpp"
 #include "cellforge/thin/central_axis.hpp"
 #include "cellforge/thin/loop_detection.hpp"
 #include "cellforge/thin/selection_growing.hpp"
@@ -741,8 +742,8 @@ TEST_CASE(
       cellforge::tetrahedron<glm::dvec3>(),
       cellforge::icosphere<glm::dvec3>(1),
       cellforge::torus<glm::dvec3>(16, 6),
-      cellforge::lattice_tube_mesh<glm::dvec3>(3, 2, 1),
-      cellforge::spline_tube<glm::dvec3>()};
+      cellforge::samples::lattice_tube_mesh<glm::dvec3>(3, 2, 1),
+      cellforge::samples::spline_tube<glm::dvec3>()};
   for (std::size_t i = 0; i < solids.size(); ++i) {
     CAPTURE(i);
     const auto m = mesh_of(solids[i]);

@@ -2,22 +2,22 @@
 #pragma once
 /// \file
 /// Every public header of cellforge's 3D library (core, half-edge meshes and their
-/// algorithms, cell complexes, the wireframe pipeline, thin points, edge smoothing, tube
-/// networks) except three kinds, which you include by name when you want them: file I/O
-/// (`cellforge/io/...`), the generators of test and benchmark inputs (`algorithms/shapes.hpp`,
-/// `samples/wireframe_models.hpp`, `samples/skeletons.hpp`, `samples/drawings.hpp`,
-/// `samples/round_drawings.hpp`) and the seed's sample solids (`samples/thin_solids.hpp`,
-/// `samples/smooth_solids.hpp`), which are large and which an application rarely needs. Line
+/// algorithms, shapes, cell complexes, the wireframe pipeline, thin points, edge smoothing,
+/// tube networks). Like every umbrella it leaves out file I/O (`cellforge/io/...`) and the
+/// test data (`cellforge/samples/...`), which you include by name when you want them. Line
 /// drawings (`sketch/...`, seed 003) have their own umbrella, `cellforge/sketch.hpp`, since
 /// half of that part solves with Eigen: nothing here needs Eigen or pays for parsing it. The
-/// header hygiene test checks that these lists are complete.
+/// header hygiene test checks that this holds.
 
 #include "cellforge/algorithms/convex_hull.hpp"
 #include "cellforge/algorithms/ear_clipping.hpp"
 #include "cellforge/algorithms/edits.hpp"
 #include "cellforge/algorithms/loop_subdivision.hpp"
 #include "cellforge/algorithms/self_intersections.hpp"
+#include "cellforge/algorithms/shapes.hpp"
 #include "cellforge/algorithms/simplification.hpp"
+#include "cellforge/algorithms/soup_queries.hpp"
+#include "cellforge/algorithms/soup_transforms.hpp"
 #include "cellforge/cells/cell_complex.hpp"
 #include "cellforge/cells/certify.hpp"
 #include "cellforge/cells/conversion.hpp"

@@ -88,7 +88,7 @@ function(check_umbrella umbrella scope exempt)
 endfunction()
 # The 3D library: everything but io/, samples/, detail/ and the line drawings.
 check_umbrella(cellforge/cellforge.hpp "^cellforge/"
-               "^cellforge/(io/|samples/|.*/detail/|cellforge\\.hpp$|sketch\\.hpp$|sketch/|algorithms/shapes\\.hpp$)")
+               "^cellforge/(io/|samples/|.*/detail/|cellforge\\.hpp$|sketch\\.hpp$|sketch/)")
 # The line drawings: every sketch/ header but instantiate.hpp (explicit instantiations, for one
 # file of a program: docs/sketch.md).
 check_umbrella(cellforge/sketch.hpp "^cellforge/sketch/" "/detail/|/instantiate\\.hpp$")
