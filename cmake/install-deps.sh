@@ -4,7 +4,8 @@
 #     (none)     compiler, CMake, make, GLM, doctest, Eigen: enough to build the tests and examples;
 #                node and npm (only when the commands are missing) for cmake/fetch-bunny.sh;
 #                libcgal-demo (CGAL's demo meshes) for cmake/fetch-cgal-data.sh;
-#                python3-ezdxf (a third-party DXF writer) for the DXF test data (cmake/make-dxf-data.py)
+#                python3-ezdxf (a third-party DXF writer) for the DXF test data (cmake/make-dxf-data.py);
+#                clang-format-14 for the format check (cmake/check-format.sh)
 #     --bench    Google Benchmark as well
 #     --compare  CGAL (with Eigen), OpenMesh and Qhull, the baselines the benchmarks compare against (implies --bench)
 #     --fuzz     clang and its compiler-rt (libFuzzer, ASan/UBSan runtimes for clang)
@@ -17,6 +18,8 @@ packages=(g++ cmake make libglm-dev doctest-dev libeigen3-dev)
 # The real-mesh sweep's data: CGAL's demo meshes, unpacked by cmake/fetch-cgal-data.sh.
 packages+=(libcgal-demo)
 packages+=(python3-ezdxf)
+# The format check (cmake/check-format.sh, ctest clang_format) wants this exact version.
+packages+=(clang-format-14)
 # The bunny test data comes through npm (cmake/fetch-bunny.sh). Checked by command rather
 # than by package, since node from another source (e.g. a nodejs build bundling npm) will do.
 command -v node >/dev/null 2>&1 || packages+=(nodejs)
@@ -30,7 +33,7 @@ for arg in "$@"; do
     # A test dependency only: test_step_occt reads io/step.hpp's files back with OpenCASCADE.
     --occt) packages+=(libocct-data-exchange-dev libocct-modeling-algorithms-dev) ;;
     -h | --help)
-      sed -n '2,12p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+      sed -n '2,14p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
       exit 0
       ;;
     *)

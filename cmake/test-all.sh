@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every check cellforge has, as CI does:
 #   1. release  Release build of tests + examples, -Werror, then ctest   (build/release)
-#   2. asan     Debug build of the tests with ASan + UBSan and -Werror, then ctest (build/asan)
+#   2. asan     Debug build of the tests with ASan + UBSan and -Werror, then ctest (build/asan),
+#               which also runs the header, README and clang-format checks (label "headers")
 #   3. clang    every example and test compiled (syntax and templates) by clang with -Werror,
 #               so that code g++ accepts but clang rejects does not land
 #   4. bench    every benchmark configured in build/bench-check and compiled by g++ with
