@@ -90,7 +90,8 @@ const std::vector<job_model>& job_models() {
     };
     for (const auto& [slices, stacks] : {std::pair{64, 32}, std::pair{128, 48}, std::pair{180, 70}})
       add("sphere_" + std::to_string(slices) + "x" + std::to_string(stacks),
-          cellforge::samples::sample_uv_sphere(static_cast<std::size_t>(slices), static_cast<std::size_t>(stacks))
+          cellforge::samples::sample_uv_sphere(static_cast<std::size_t>(slices),
+                                               static_cast<std::size_t>(stacks))
               .wire,
           1);
     for (const auto& [n, k] : {std::pair{64, 8}, std::pair{256, 24}, std::pair{500, 50}})
@@ -107,7 +108,8 @@ const cellforge::cell_complex<glm::dvec3>& grid_cells(int k) {
   auto it = cache.find(k);
   if (it == cache.end()) {
     const auto n = static_cast<std::size_t>(k);
-    it = cache.emplace(k, cellforge::wireframe_to_cells(cellforge::samples::sample_grid(n, n, n).wire).cells).first;
+    it = cache.emplace(k, cellforge::wireframe_to_cells(cellforge::samples::sample_grid(n, n, n).wire).cells)
+             .first;
   }
   return it->second;
 }

@@ -47,12 +47,14 @@ std::vector<drawing_case>& cases() {
     std::vector<drawing_case> out;
     // Edge counts 12 … 999 in each family; tiny margins are fine for timing large n-gons.
     for (std::size_t n : {4u, 10u, 20u, 40u, 84u, 160u, 333u})
-      out.push_back({"prism", "prism " + std::to_string(n),
-                     cellforge::samples::generic_drawing(cellforge::samples::sample_prism(n), 1, "prism", 1e-7)});
+      out.push_back(
+          {"prism", "prism " + std::to_string(n),
+           cellforge::samples::generic_drawing(cellforge::samples::sample_prism(n), 1, "prism", 1e-7)});
     for (auto [a, b] : std::vector<std::pair<std::size_t, std::size_t>>{
              {4, 3}, {6, 4}, {8, 6}, {12, 8}, {16, 10}, {24, 14}, {28, 18}})
       out.push_back({"uv sphere", "uv sphere " + std::to_string(a) + "x" + std::to_string(b),
-                     cellforge::samples::generic_drawing(cellforge::samples::sample_uv_sphere(a, b), 1, "sphere", 1e-7)});
+                     cellforge::samples::generic_drawing(cellforge::samples::sample_uv_sphere(a, b), 1,
+                                                         "sphere", 1e-7)});
     return out;
   }();
   return c;
@@ -129,7 +131,8 @@ double reading_error(const cellforge::samples::sample_drawing& s, const R& r) {
   return best;
 }
 
-bool true_complex(const cellforge::samples::sample_drawing& s, const cellforge::drawing_result<glm::dvec3>& r) {
+bool true_complex(const cellforge::samples::sample_drawing& s,
+                  const cellforge::drawing_result<glm::dvec3>& r) {
   std::vector<std::vector<std::vector<std::uint32_t>>> faces;
   for (const auto& f : r.cells.input.faces) {
     auto loops = f.loops;
@@ -147,7 +150,8 @@ const cellforge::samples::sample_drawing& comb() {
     cellforge::samples::voxel_layout l =
         cellforge::samples::empty_layout(cellforge::samples::detail::iota_coords(18), {0, 1, 2}, {0, 1});
     for (std::size_t i = 0; i + 1 < 18; ++i) l.at(i, 0, 0) = 1, l.at(i, 1, 0) = i % 2 == 0;
-    return cellforge::samples::generic_drawing(cellforge::samples::make_voxel_model(l, "comb"), 1, "normalon");
+    return cellforge::samples::generic_drawing(cellforge::samples::make_voxel_model(l, "comb"), 1,
+                                               "normalon");
   }();
   return s;
 }
@@ -168,11 +172,12 @@ const big_comb& comb_of(std::size_t teeth) {
       cellforge::samples::empty_layout(cellforge::samples::detail::iota_coords(width + 1), {0, 1, 2}, {0, 1});
   for (std::size_t i = 0; i < width; ++i) l.at(i, 0, 0) = 1, l.at(i, 1, 0) = i % 2 == 0;
   big_comb c;
-  c.s = cellforge::samples::generic_drawing(cellforge::samples::make_voxel_model(l, "comb"), 1, "normalon", 1e-9, 8);
+  c.s = cellforge::samples::generic_drawing(cellforge::samples::make_voxel_model(l, "comb"), 1, "normalon",
+                                            1e-9, 8);
   glm::dvec2 lo = c.s.drawing.points[0], hi = lo;
   for (const auto& q : c.s.drawing.points) lo = glm::min(lo, q), hi = glm::max(hi, q);
-  const double spacing =
-      cellforge::samples::detail::junction_spacing(c.s.drawing.points, c.s.drawing.edges, glm::length(hi - lo));
+  const double spacing = cellforge::samples::detail::junction_spacing(c.s.drawing.points, c.s.drawing.edges,
+                                                                      glm::length(hi - lo));
   c.jittered = cellforge::samples::jitter_drawing(c.s.drawing, 0.1 * spacing, 1);
   return m.emplace(teeth, std::move(c)).first->second;
 }

@@ -229,7 +229,8 @@ void register_growth() {
               found f;
               f.loops = r.loops.size();
               f.cycles = r.cycle_lengths.size();
-              if (!r.loops.empty()) f.thinnest = r.loops.front().length, f.position = r.loops.front().axis_position;
+              if (!r.loops.empty())
+                f.thinnest = r.loops.front().length, f.position = r.loops.front().axis_position;
               findings()[name] = f;
             });
       });

@@ -109,11 +109,11 @@ const cellforge::samples::sample_model& sphere(int slices, int stacks) {
   static std::map<std::pair<int, int>, cellforge::samples::sample_model> cache;
   auto it = cache.find({slices, stacks});
   if (it == cache.end())
-    it =
-        cache
-            .emplace(std::pair{slices, stacks}, cellforge::samples::sample_uv_sphere(static_cast<std::size_t>(slices),
-                                                                            static_cast<std::size_t>(stacks)))
-            .first;
+    it = cache
+             .emplace(std::pair{slices, stacks},
+                      cellforge::samples::sample_uv_sphere(static_cast<std::size_t>(slices),
+                                                           static_cast<std::size_t>(stacks)))
+             .first;
   return it->second;
 }
 
@@ -152,10 +152,11 @@ struct order_model {
 std::vector<order_model> order_models() {
   std::vector<order_model> out;
   for (int i = 1; i <= 6; ++i)
-    out.push_back(
-        {"seed_sample_" + std::to_string(i), [i]() -> const cellforge::samples::sample_model& { return sample(i); }});
+    out.push_back({"seed_sample_" + std::to_string(i),
+                   [i]() -> const cellforge::samples::sample_model& { return sample(i); }});
   for (const int k : grid_sizes)
-    out.push_back({"grid_" + std::to_string(k), [k]() -> const cellforge::samples::sample_model& { return grid(k); }});
+    out.push_back(
+        {"grid_" + std::to_string(k), [k]() -> const cellforge::samples::sample_model& { return grid(k); }});
   for (const auto& sz : sphere_sizes)
     out.push_back({"sphere_" + std::to_string(sz[0]) + "x" + std::to_string(sz[1]),
                    [sz]() -> const cellforge::samples::sample_model& { return sphere(sz[0], sz[1]); }});
@@ -211,7 +212,8 @@ std::array<double, stage_rows.size()> stage_ms(const cellforge::wireframe_result
           r.assembly_milliseconds};
 }
 
-std::string truth_status(const cellforge::samples::sample_model& m, const cellforge::wireframe_result<glm::dvec3>& r) {
+std::string truth_status(const cellforge::samples::sample_model& m,
+                         const cellforge::wireframe_result<glm::dvec3>& r) {
   if (!cellforge::samples::same_faces(m.faces, r.input.faces))
     return "faces differ from the ground truth (" + std::to_string(r.input.faces.size()) + " vs " +
            std::to_string(m.faces.size()) + ")";
@@ -264,9 +266,9 @@ our_run measure(const cellforge::samples::sample_model& m, int repeats, int samp
 /// Registers the whole conversion of one model with the given options, timed by `median`
 /// ? median_loop : timed_loop; the first result is checked against the ground truth, and a
 /// mismatch or an error (a spent work budget) skips it.
-benchmark::internal::Benchmark* register_pipeline(const std::string& name,
-                                                  std::function<const cellforge::samples::sample_model&()> get,
-                                                  cellforge::wireframe_options options, bool median = false) {
+benchmark::internal::Benchmark* register_pipeline(
+    const std::string& name, std::function<const cellforge::samples::sample_model&()> get,
+    cellforge::wireframe_options options, bool median = false) {
   return benchmark::RegisterBenchmark(
              name.c_str(),
              [get, options, median](benchmark::State& s) {
@@ -290,8 +292,8 @@ benchmark::internal::Benchmark* register_pipeline(const std::string& name,
 }
 
 /// Registers the certificate of one model's answer (the answer made once, outside the timing).
-benchmark::internal::Benchmark* register_certify(const std::string& name,
-                                                 std::function<const cellforge::samples::sample_model&()> get) {
+benchmark::internal::Benchmark* register_certify(
+    const std::string& name, std::function<const cellforge::samples::sample_model&()> get) {
   return benchmark::RegisterBenchmark(name.c_str(),
                                       [get](benchmark::State& s) {
                                         const auto& m = get();
@@ -312,7 +314,8 @@ benchmark::internal::Benchmark* register_certify(const std::string& name,
 #endif
 
 /// The models of the certificate's table: the 20³ grid and the largest sphere.
-std::vector<std::pair<std::string, std::function<const cellforge::samples::sample_model&()>>> certify_models() {
+std::vector<std::pair<std::string, std::function<const cellforge::samples::sample_model&()>>>
+certify_models() {
   return {{"grid_20", []() -> const cellforge::samples::sample_model& { return grid(20); }},
           {"sphere_256x96", []() -> const cellforge::samples::sample_model& { return sphere(256, 96); }}};
 }
@@ -361,8 +364,8 @@ void register_all() {
     const int repeats = order_repeats(o.name);
     register_pipeline("order/ordered/" + o.name, o.get, options, true)->Iterations(repeats);
     register_pipeline(
-        "order/shuffled/" + o.name, [o]() -> const cellforge::samples::sample_model& { return shuffled_model(o); },
-        options, true)
+        "order/shuffled/" + o.name,
+        [o]() -> const cellforge::samples::sample_model& { return shuffled_model(o); }, options, true)
         ->Iterations(repeats);
   }
 #endif

@@ -395,8 +395,8 @@ inline fixture analyse(const cellforge::polygon_soup<glm::dvec3>& soup,
   // Only a mesh clean in every other way is tabled so.
   const bool nearly_planar = fx.non_planar_faces > 0 && fx.repeated_corner_faces + fx.zero_area_faces == 0 &&
                              100.0 * fx.flatness <= fx.smallest_bend &&
-                             fx.non_manifold_edges + fx.non_manifold_vertices == 0 && !fx.self_intersecting() &&
-                             fx.intersections_known && !fx.open();
+                             fx.non_manifold_edges + fx.non_manifold_vertices == 0 &&
+                             !fx.self_intersecting() && fx.intersections_known && !fx.open();
   if (!nearly_planar)
     for (std::uint32_t f = 0; f < nf; ++f) face_bad[f] |= planar[f] == 0;
 
@@ -443,8 +443,8 @@ inline fixture analyse(const cellforge::polygon_soup<glm::dvec3>& soup,
 
   // The class, worst first.
   const bool bad_faces = fx.repeated_corner_faces + fx.zero_area_faces + fx.non_planar_faces > 0;
-  fx.kind = nearly_planar                                              ? mesh_class::nearly_planar
-            : bad_faces                                                  ? mesh_class::degenerate
+  fx.kind = nearly_planar                                          ? mesh_class::nearly_planar
+            : bad_faces                                            ? mesh_class::degenerate
             : fx.non_manifold_edges + fx.non_manifold_vertices > 0 ? mesh_class::non_manifold
             : fx.self_intersecting() || !fx.intersections_known    ? mesh_class::self_intersecting
             : fx.open()                                            ? mesh_class::open
@@ -460,8 +460,8 @@ inline fixture analyse(const cellforge::polygon_soup<glm::dvec3>& soup,
   add(fx.non_planar_faces, "non-planar faces");
   if (fx.non_planar_faces > 0) {
     char figures[96];
-    std::snprintf(figures, sizeof figures, " (flat to %.2g of their edges; the smallest bend %.2g)", fx.flatness,
-                  fx.smallest_bend);
+    std::snprintf(figures, sizeof figures, " (flat to %.2g of their edges; the smallest bend %.2g)",
+                  fx.flatness, fx.smallest_bend);
     fx.notes += figures;
   }
   add(fx.non_manifold_edges, "non-manifold edges");

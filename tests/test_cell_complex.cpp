@@ -708,7 +708,8 @@ TEST_CASE("conversion: triangulating a face with holes") {
       CAPTURE(n);
       CAPTURE(shift);
       const std::size_t holes = grid.size() - 1;
-      CHECK(cellforge::detail::cells::triangulate_face(grid, {0, 0, 1}, "test").size() == 4 + 4 * holes + 2 * holes - 2);
+      CHECK(cellforge::detail::cells::triangulate_face(grid, {0, 0, 1}, "test").size() ==
+            4 + 4 * holes + 2 * holes - 2);
     }
 
   // A hole outside the outer loop, or turning the wrong way, is refused.

@@ -317,7 +317,8 @@ TEST_CASE("find_faces: the check names seams, shared corners and loops a line in
   // A row of two boxes without its wall: four edges on two coplanar loops each.
   cellforge::samples::voxel_layout row = cellforge::samples::empty_layout({0, 1.3, 2.1}, {0, 1}, {0, 0.8});
   row.labels = {1, 2};
-  const auto s = cellforge::samples::generic_drawing(cellforge::samples::make_voxel_model(row, "row"), 2, "walls");
+  const auto s =
+      cellforge::samples::generic_drawing(cellforge::samples::make_voxel_model(row, "row"), 2, "walls");
   loops_t outer;
   for (const auto& l : s.loops) {
     std::size_t inner = 0;  // the wall's junctions lie at x = 1.3

@@ -481,8 +481,8 @@ TEST_CASE("stroke snapping, shared by the SVG and DXF readers: ends, splits, dup
   // A square's bottom drawn twice (once reversed), a right side whose foot misses the corner by
   // 1e-12, a zero-length stroke, a stroke standing on the bottom's midpoint, and an arc whose
   // first end misses the top right corner by 1e-12.
-  const std::vector<seg> segments{{{0, 0}, {1, 0}}, {{1, 1e-12}, {1, 1}}, {{0, 0}, {0, 0}},
-                                  {{1, 0}, {0, 0}}, {{0.5, 0}, {0.5, 1}}};
+  const std::vector<seg> segments{
+      {{0, 0}, {1, 0}}, {{1, 1e-12}, {1, 1}}, {{0, 0}, {0, 0}}, {{1, 0}, {0, 0}}, {{0.5, 0}, {0.5, 1}}};
   const std::vector<stroke_arc> arcs{{{1, 1 + 1e-12}, {0.5, 1}, 0.25, 0.25, 0.0, false, true}};
   cellforge::io::detail::stroke_snap_counts counts;
   std::vector<std::string> notes;

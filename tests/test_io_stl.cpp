@@ -403,9 +403,10 @@ TEST_CASE("STL: degenerate facets are dropped and counted, kept, or refused with
       FAIL("read a file of degenerate facets as an empty mesh");
     } catch (const cellforge::error& e) {
       CHECK(e.file() == "t.stl");
-      CHECK(std::string(e.what()) == std::string("t.stl: all 2 facets are degenerate (two corners are one vertex") +
-                                         (weld ? ", after welding" : "") +
-                                         "): no triangle is left (stl_read_options::degenerate = keep reads them)");
+      CHECK(std::string(e.what()) ==
+            std::string("t.stl: all 2 facets are degenerate (two corners are one vertex") +
+                (weld ? ", after welding" : "") +
+                "): no triangle is left (stl_read_options::degenerate = keep reads them)");
     }
   }
   CHECK(parse(all_degenerate, {.degenerate = io::stl_degenerate::keep}).soup.num_faces() == 2);

@@ -340,7 +340,8 @@ TEST_CASE("svg drawing: an Inkscape file (namespaces, metadata, a layer with a t
 }
 
 TEST_CASE("drawing svg: the picture reads back to the same junctions and edges") {
-  for (const auto& model : {cellforge::samples::sample_L(), cellforge::samples::sample_house(), cellforge::samples::sample_frame()}) {
+  for (const auto& model : {cellforge::samples::sample_L(), cellforge::samples::sample_house(),
+                            cellforge::samples::sample_frame()}) {
     const auto s = cellforge::samples::generic_drawing(model, 11, "any", 0.01);
     const std::string text =
         io::drawing_svg_string(s.drawing, s.loops, {.labels = true, .title = s.name + " <faces & all>"});

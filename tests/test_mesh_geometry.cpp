@@ -121,7 +121,8 @@ TEST_CASE("folded_edges: faces at an edge whose normals point opposite ways") {
     // A right-angle crease is no fold; at 175 degrees apart it is one only within 10 degrees.
     m.set_position(d, far * glm::dvec3(0.5, 0, 1));
     CHECK(cellforge::folded_edges(m).edges.empty());
-    m.set_position(d, far * glm::dvec3(0.5, std::cos(5 * 3.141592653589793 / 180), std::sin(5 * 3.141592653589793 / 180)));
+    m.set_position(d, far * glm::dvec3(0.5, std::cos(5 * 3.141592653589793 / 180),
+                                       std::sin(5 * 3.141592653589793 / 180)));
     CHECK(cellforge::folded_edges(m, 10).edges.size() == 1);
     CHECK(cellforge::folded_edges(m, 4).edges.empty());
   }

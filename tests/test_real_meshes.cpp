@@ -119,7 +119,7 @@ struct run {
   std::string name;
   std::string kind = "unreadable";
   outcome result = outcome::wrong;
-  std::string why;  ///< for every outcome but exact
+  std::string why;    ///< for every outcome but exact
   std::string notes;  ///< what the mesh is (fixture::notes)
   std::size_t edges = 0;
   double convert_ms = 0.0, fixture_ms = 0.0;
@@ -268,8 +268,9 @@ TEST_CASE("real meshes: CGAL's demo meshes and the bunny as wireframes") {
   const std::string nearly = real_mesh::class_name(mesh_class::nearly_planar);
   for (const auto& x : runs)
     if (x.kind == nearly)
-      report += "\n  " + nearly + ", judged as a solid (polygons flatter than every bend by 100 times): " + x.name +
-                ": " + x.notes + ": " + outcome_name(x.result);
+      report += "\n  " + nearly +
+                ", judged as a solid (polygons flatter than every bend by 100 times): " + x.name + ": " +
+                x.notes + ": " + outcome_name(x.result);
   std::vector<const run*> big;
   for (const auto& x : runs) big.push_back(&x);
   std::sort(big.begin(), big.end(), [](const run* a, const run* b) { return a->edges > b->edges; });

@@ -127,7 +127,8 @@ TEST_CASE("round drawings: the generator's arcs meet their lines tangentially, t
     for (const auto& t : s.rounds) {
       CHECK(t.radius > 0);
       CHECK(t.arcs.size() == (t.contour == cellforge::samples::round_truth::npos ? 2u : 4u));
-      CHECK((t.contour != cellforge::samples::round_truth::npos) == (t.convex && t.category == blend_category::b));
+      CHECK((t.contour != cellforge::samples::round_truth::npos) ==
+            (t.convex && t.category == blend_category::b));
       for (const auto a : t.arcs) {
         const auto& arc = s.drawing.arcs[a];
         for (int side = 0; side < 2; ++side) {

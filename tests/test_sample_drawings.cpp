@@ -422,8 +422,9 @@ TEST_CASE("convex_polytope_model: Platonic and Archimedean solids have their kno
   CHECK(cube.wire.points.size() == 8);
   CHECK(cube.faces.size() == 6);
   for (const auto& f : cube.faces) CHECK(f[0].size() == 4);
-  CHECK_THROWS_AS(cellforge::samples::convex_polytope_model({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, "flat"),
-                  cellforge::error);
+  CHECK_THROWS_AS(
+      cellforge::samples::convex_polytope_model({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, "flat"),
+      cellforge::error);
 }
 
 TEST_CASE("sample solids: sizes by construction; bad sizes refused") {
@@ -466,11 +467,13 @@ TEST_CASE("sample solids: sizes by construction; bad sizes refused") {
   }
   CHECK(skylines >= 16);
   // A hollow box (a cavity) is refused; a ring is genus 1.
-  cellforge::samples::voxel_layout hollow = cellforge::samples::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1, 2, 3});
+  cellforge::samples::voxel_layout hollow =
+      cellforge::samples::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1, 2, 3});
   std::fill(hollow.labels.begin(), hollow.labels.end(), 1);
   hollow.at(1, 1, 1) = 0;
   CHECK_FALSE(cellforge::samples::voxel_solid_model(hollow, "hollow").has_value());
-  cellforge::samples::voxel_layout ring = cellforge::samples::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1});
+  cellforge::samples::voxel_layout ring =
+      cellforge::samples::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1});
   std::fill(ring.labels.begin(), ring.labels.end(), 1);
   ring.at(1, 1, 0) = 0;
   const auto r = cellforge::samples::voxel_solid_model(ring, "ring");
@@ -483,14 +486,14 @@ TEST_CASE("sample solids: sizes by construction; bad sizes refused") {
   CHECK_THROWS_WITH_AS(cellforge::samples::random_normalon(100000, 100000, 100000, 10, 1),
                        doctest::Contains("random_normalon: a lattice of 100000 x 100000 x 100000"),
                        cellforge::error);
-  CHECK_THROWS_WITH_AS(cellforge::samples::random_skyline(10000000, 10000000, 3, 1), doctest::Contains("at most 10^8"),
-                       cellforge::error);
+  CHECK_THROWS_WITH_AS(cellforge::samples::random_skyline(10000000, 10000000, 3, 1),
+                       doctest::Contains("at most 10^8"), cellforge::error);
   CHECK_THROWS_WITH_AS(cellforge::samples::random_normalon(0, 3, 3, 4, 1), doctest::Contains("1 or more"),
                        cellforge::error);
   CHECK_THROWS_WITH_AS(cellforge::samples::empty_layout({0}, {0, 1}, {0, 1}),
                        doctest::Contains("a lattice of 0 x 1 x 1"), cellforge::error);
-  CHECK_THROWS_WITH_AS(cellforge::samples::empty_layout({}, {0, 1}, {0, 1}), doctest::Contains("two coordinates"),
-                       cellforge::error);
+  CHECK_THROWS_WITH_AS(cellforge::samples::empty_layout({}, {0, 1}, {0, 1}),
+                       doctest::Contains("two coordinates"), cellforge::error);
   CHECK_THROWS_AS(cellforge::samples::extruded_polygon({{0, 0}, {1, 1}, {1, 0}, {0, 1}}, 1.0, "bow tie"),
                   cellforge::error);
   CHECK_THROWS_AS(cellforge::samples::extruded_polygon({{0, 0}, {1, 0}, {2, 0}, {0, 1}}, 1.0, "collinear"),
@@ -518,12 +521,14 @@ TEST_CASE("project_model: normalon and quasi-normalon flags on known models") {
   // axis edges between them off (a looser reading would call those quasi-normalons too).
   const std::vector<glm::dvec2> rect{{0, 0}, {2, 0}, {2, 1}, {0, 1}};
   const auto chamfered = [&](std::vector<bool> which) {
-    return cellforge::samples::extruded_polygon(cellforge::samples::chamfered_corners(rect, which, 0.3), 1.5, "chamfered");
+    return cellforge::samples::extruded_polygon(cellforge::samples::chamfered_corners(rect, which, 0.3), 1.5,
+                                                "chamfered");
   };
   CHECK(flags(chamfered({true, false, false, false})) == flag{false, true});
   CHECK(flags(chamfered({true, false, true, false})) == flag{false, false});
   CHECK(flags(chamfered({true, true, false, false})) == flag{false, false});
-  CHECK(flags(cellforge::samples::extruded_polygon({{0, 0}, {2, 0}, {0, 1}}, 1.0, "wedge")) == flag{false, true});
+  CHECK(flags(cellforge::samples::extruded_polygon({{0, 0}, {2, 0}, {0, 1}}, 1.0, "wedge")) ==
+        flag{false, true});
   CHECK(flags(cellforge::samples::extruded_polygon({{0, 0}, {3, 0}, {3, 1}, {1, 1}}, 1.0, "ramp")) ==
         flag{false, true});
   // A box with corner (1,1,1) cut off: quasi; with (1,1,0) cut off too the x = 1, y = 1 edge

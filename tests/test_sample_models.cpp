@@ -266,8 +266,8 @@ TEST_CASE("sample models: split edges are collinear chains") {
 
 TEST_CASE("same_faces and same_volumes: rotation, reversal and order do not matter; changes do") {
   std::mt19937 rng(7);
-  for (const auto& m :
-       {cellforge::samples::sample_stepped_block(), cellforge::samples::sample_frame(), cellforge::samples::sample_grid(2, 1, 2)}) {
+  for (const auto& m : {cellforge::samples::sample_stepped_block(), cellforge::samples::sample_frame(),
+                        cellforge::samples::sample_grid(2, 1, 2)}) {
     const std::string name = m.name;
     CAPTURE(name);
     // Shuffle faces, rotate and reverse loops, reorder holes; renumber volumes through the permutation.
@@ -324,8 +324,8 @@ TEST_CASE("sample models: transformed keeps the truth and moves the points") {
   CHECK(t.faces == m.faces);
   CHECK(t.volumes == m.volumes);
   CHECK(t.wire.points[3] == m.wire.points[3] * 1e6 + glm::dvec3(1, 2, 3));
-  check_consistent(
-      cellforge::samples::transformed(cellforge::samples::sample_stepped_block(), glm::dmat3(1e-6), glm::dvec3(0)));
+  check_consistent(cellforge::samples::transformed(cellforge::samples::sample_stepped_block(),
+                                                   glm::dmat3(1e-6), glm::dvec3(0)));
 }
 
 TEST_CASE("sample models: bad parameters throw") {

@@ -198,9 +198,9 @@ TEST_CASE("scale invariance: a thin wedge at 1e-7 and a dodecahedron at 1e10") {
 }
 
 TEST_CASE("scale invariance: a 1e-4 cube beside a unit cube is two volumes") {
-  const sample_model m =
-      cellforge::samples::disjoint_union(cellforge::samples::sample_cube(), cellforge::samples::sample_cube({1e-4, 1e-4, 1e-4}),
-                                {2, 0, 0}, "unit cube and 1e-4 cube");
+  const sample_model m = cellforge::samples::disjoint_union(
+      cellforge::samples::sample_cube(), cellforge::samples::sample_cube({1e-4, 1e-4, 1e-4}), {2, 0, 0},
+      "unit cube and 1e-4 cube");
   const outcome o = convert(m);
   INFO(o.error);
   CHECK(o.error.empty());

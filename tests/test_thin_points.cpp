@@ -69,7 +69,8 @@ glm::dvec3 centroid(const cellforge::thin_loop<P>& loop) {
 
 /// The loop lies at the known neck (within one ring spacing along the true axis) and its
 /// length is within 5 % of the neck polygon's perimeter.
-void check_at_neck(const thin_loop& loop, const cellforge::samples::thin_sample<>& s, const glm::dmat4& motion) {
+void check_at_neck(const thin_loop& loop, const cellforge::samples::thin_sample<>& s,
+                   const glm::dmat4& motion) {
   const glm::dvec3 neck = glm::dvec3(motion * glm::dvec4(0, 0, s.neck_z, 1));
   const glm::dvec3 axis = glm::normalize(glm::dvec3(motion * glm::dvec4(0, 0, 1, 0)));
   INFO("cycle " << loop.cycle << ", strength " << loop.strength << ", length " << loop.length << " vs neck "
@@ -250,8 +251,8 @@ TEST_CASE(
   for (const int segments : all_segments)
     for (const int rings : all_rings)
       for (const bool tri : {false, true})
-        for (const auto& s :
-             {cellforge::samples::thin_cylinder(segments, rings, tri), cellforge::samples::thin_sphere(segments, rings, tri)}) {
+        for (const auto& s : {cellforge::samples::thin_cylinder(segments, rings, tri),
+                              cellforge::samples::thin_sphere(segments, rings, tri)}) {
           CAPTURE(s.name);
           CAPTURE(segments);
           CAPTURE(rings);
@@ -288,8 +289,9 @@ TEST_CASE("thin points: without the ring-wide envelope, partly grown rings look 
 
 TEST_CASE("thin points: fast and faithful modes give identical cycle lengths and loops, with clusters too") {
   for (const bool tri : {false, true})
-    for (const auto& s : {cellforge::samples::thin_dumbbell(8, 13, tri), cellforge::samples::thin_hourglass(8, 11, tri),
-                          cellforge::samples::thin_table5_solid(1, tri)})
+    for (const auto& s :
+         {cellforge::samples::thin_dumbbell(8, 13, tri), cellforge::samples::thin_hourglass(8, 11, tri),
+          cellforge::samples::thin_table5_solid(1, tri)})
       for (const int cap : {1, 10, 40})
         for (const bool clusters : {false, true}) {  // with clusters (8.2) too
           CAPTURE(s.name);
@@ -394,8 +396,8 @@ TEST_CASE("central axis: a rotated elongated solid's axis within 1 degree; the f
   // slabs by round-off biases both averages (up to about 1.6 degrees; docs/thin.md).
   for (int trial = 0; trial < 8; ++trial)
     for (const bool tri : {false, true}) {
-      const auto s =
-          trial % 2 == 0 ? cellforge::samples::thin_dumbbell(12, 22, tri) : cellforge::samples::thin_hourglass(12, 24, tri);
+      const auto s = trial % 2 == 0 ? cellforge::samples::thin_dumbbell(12, 22, tri)
+                                    : cellforge::samples::thin_hourglass(12, 24, tri);
       const glm::dmat4 motion = random_motion(rng);
       const auto m = mesh_of(cellforge::transformed(s.soup, motion));
       const glm::dvec3 truth = glm::normalize(glm::dvec3(motion * glm::dvec4(0, 0, 1, 0)));
@@ -424,8 +426,8 @@ TEST_CASE("central axis: a rotated elongated solid's axis within 1 degree; the f
 
 TEST_CASE("thin points: bad input gives a clear error") {
   // A sample too big to build is refused before its profile is allocated (2^31 rings: 32 GB).
-  CHECK_THROWS_WITH_AS(cellforge::samples::thin_dumbbell(16, 2000000000, false), doctest::Contains("too large"),
-                       cellforge::error);
+  CHECK_THROWS_WITH_AS(cellforge::samples::thin_dumbbell(16, 2000000000, false),
+                       doctest::Contains("too large"), cellforge::error);
   const auto s = cellforge::samples::thin_dumbbell(8, 11, false);
   const auto good = mesh_of(s.soup);
   // Open: an uncapped cylinder.
@@ -534,7 +536,8 @@ TEST_CASE("thin points: a work budget that runs out stops the growing, flagged, 
     CHECK(half.cycle_lengths.size() > 1);
     CHECK(half.selections_examined > o.work_budget);
     // The cycles grown before the budget ran out are the same cycles.
-    for (std::size_t i = 0; i < half.cycle_lengths.size(); ++i) CHECK(half.cycle_lengths[i] == full.cycle_lengths[i]);
+    for (std::size_t i = 0; i < half.cycle_lengths.size(); ++i)
+      CHECK(half.cycle_lengths[i] == full.cycle_lengths[i]);
     o.work_budget = 1;
     CHECK(cellforge::find_thin_points(m, o).cycle_lengths.size() == 1);
   }
@@ -603,7 +606,8 @@ TEST_CASE("selection growing (scalable): each cycle's loop bounds a selection of
     // The selection: the lineage's faces, as many as the cycle number.
     std::vector<char> selected(g.num_faces, 0);
     std::size_t faces = 0;
-    for (std::uint32_t n = r.cycle_node[cycle - 1]; n != cellforge::growing_result::no_node; n = r.node_parent[n])
+    for (std::uint32_t n = r.cycle_node[cycle - 1]; n != cellforge::growing_result::no_node;
+         n = r.node_parent[n])
       faces += selected[r.node_face[n]] == 0, selected[r.node_face[n]] = 1;
     CHECK(faces == cycle);
     for (std::uint32_t f = 0; f < g.num_faces; ++f)
@@ -637,19 +641,21 @@ TEST_CASE("thin points: significance — no loop without a wider part on both si
 #else
   const int ico = 3;
 #endif
-  const auto box =
-      cellforge::scaled(cellforge::samples::thin_cylinder(4, 9, false).soup, glm::dvec3(1, 1, std::sqrt(0.5) / 3));
+  const auto box = cellforge::scaled(cellforge::samples::thin_cylinder(4, 9, false).soup,
+                                     glm::dvec3(1, 1, std::sqrt(0.5) / 3));
   for (const auto& soup : {cellforge::icosphere<glm::dvec3>(ico), box, cellforge::triangulate_fan(box)})
     for (const auto mode : {cellforge::thin_mode::automatic, cellforge::thin_mode::scalable}) {
       if (soup.num_faces() > 4000 && mode == cellforge::thin_mode::scalable) continue;  // the same run
       thin_options q_options;
       q_options.mode = mode;
       const thin_result q = cellforge::find_thin_points(mesh_of(soup), q_options);
-      for (const auto& loop : q.loops) INFO("false loop at cycle " << loop.cycle << " strength " << loop.strength);
+      for (const auto& loop : q.loops)
+        INFO("false loop at cycle " << loop.cycle << " strength " << loop.strength);
       CHECK(q.loops.empty());
       // The automatic mode says when it leaves the seed's rule.
-      const bool said = std::any_of(q.diagnostics.begin(), q.diagnostics.end(),
-                                    [](const std::string& d) { return d.find("scalable rule") != std::string::npos; });
+      const bool said = std::any_of(q.diagnostics.begin(), q.diagnostics.end(), [](const std::string& d) {
+        return d.find("scalable rule") != std::string::npos;
+      });
       CHECK(said == (mode == cellforge::thin_mode::automatic && soup.num_faces() > 4000));
     }
 }

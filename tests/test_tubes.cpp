@@ -75,7 +75,8 @@ std::string tube_mesh_problems(const tubes_result<P>& r) {
   // A fold touches only along its edge, so the check above cannot see it.
   const std::size_t folds = folded_edges(r.mesh).edges.size();
   if (folds != 0) out += std::to_string(folds) + " folded edges; ";
-  if (folds != r.folded_edges) out += "make_tubes counted " + std::to_string(r.folded_edges) + " folded edges; ";
+  if (folds != r.folded_edges)
+    out += "make_tubes counted " + std::to_string(r.folded_edges) + " folded edges; ";
   // The tube never narrows below half its nominal cross-section (the issue's bound at bends).
   // (NaN: no edge has a ring of its own, as when every branch is a stub at its junction.)
   if (!(r.min_section_ratio >= 0.5) && !std::isnan(r.min_section_ratio))
@@ -917,7 +918,7 @@ TEST_CASE("tubes: nodes closer than their turns allow are merged, never folded")
     if (i > 0) zigzag.edges.push_back({static_cast<std::uint32_t>(i - 1), static_cast<std::uint32_t>(i)});
   }
   S star;  // a junction at 0, its edge to 1 then 0.02 on to a node that turns by 30 degrees
-  star.points = {{0, 0, 0}, {4, 0, 0}, {4.02, 0, 0}, turned({4.02, 0, 0}, std::numbers::pi / 6, 4),
+  star.points = {{0, 0, 0},  {4, 0, 0},  {4.02, 0, 0}, turned({4.02, 0, 0}, std::numbers::pi / 6, 4),
                  {-3, 2, 0}, {-3, -2, 0}};
   star.radii = {0.5, 0.5, 0.5, 0.5, 0.5, 0.5};
   star.edges = {{0, 1}, {1, 2}, {2, 3}, {0, 4}, {0, 5}};
@@ -966,18 +967,21 @@ TEST_CASE("tubes: junctions short of room move their rings on, merge, or end in 
   CHECK(tube_mesh_problems(stubs).empty());
   CHECK(stubs.shrunk_sections == 3);
   CHECK(stubs.end_caps == 3);
-  CHECK(std::any_of(stubs.diagnostics.begin(), stubs.diagnostics.end(),
-                    [](const std::string& d) { return d.find("first: sample 10, edge") != std::string::npos; }));
+  CHECK(std::any_of(stubs.diagnostics.begin(), stubs.diagnostics.end(), [](const std::string& d) {
+    return d.find("first: sample 10, edge") != std::string::npos;
+  }));
   S twin = tight;  // a skeleton defect names the samples too
   twin.points[3] = twin.points[1];
   named.node_ids = ids;
-  CHECK_THROWS_WITH_AS(make_tubes(twin, named),
-                       doctest::Contains("nodes 1 and 3 coincide (both at (1, 0, 0)) (node 1 is sample 11, node 3 "
-                                         "is sample 13)"),
-                       error);
+  CHECK_THROWS_WITH_AS(
+      make_tubes(twin, named),
+      doctest::Contains("nodes 1 and 3 coincide (both at (1, 0, 0)) (node 1 is sample 11, node 3 "
+                        "is sample 13)"),
+      error);
   const std::vector<std::int64_t> too_few = {1, 2};
   named.node_ids = too_few;
-  CHECK_THROWS_WITH_AS(make_tubes(tight, named), doctest::Contains("node_ids has 2 names for 4 nodes"), error);
+  CHECK_THROWS_WITH_AS(make_tubes(tight, named), doctest::Contains("node_ids has 2 names for 4 nodes"),
+                       error);
   // A 6-way root 0.2 % short of the 0.95-of-edge room (the case that refused a whole file).
   S six;
   six.points = {{0, 0, 0}};
@@ -995,7 +999,10 @@ TEST_CASE("tubes: junctions short of room move their rings on, merge, or end in 
   // the path between them is too short for their rings, so they merge into one junction.
   S pair;
   const double a = 40.7 * std::numbers::pi / 180;
-  pair.points = {{0, 0, -10}, {0, 0, 0}, {0, 0, 5.1}, {-10 * std::sin(a), 0, 10 * std::cos(a)},
+  pair.points = {{0, 0, -10},
+                 {0, 0, 0},
+                 {0, 0, 5.1},
+                 {-10 * std::sin(a), 0, 10 * std::cos(a)},
                  {10 * std::sin(a / 2), 0, 5.1 + 10 * std::cos(a / 2)},
                  {-10 * std::sin(a / 2), 1, 5.1 + 10 * std::cos(a / 2)}};
   pair.radii = {1, 1, 1, 1, 1, 1};
@@ -1065,7 +1072,9 @@ TEST_CASE("neuron-like skeletons: a soma, dense thin dendrites, close branch poi
   for (int t = 0; t < count; ++t) {
     samples::neuron_options o;
     const double u = t * 0.6180339887498949 - std::floor(t * 0.6180339887498949);
-    o.samples = count < 100 ? 1000 : static_cast<std::size_t>(t % 10 == 9 ? 2000 * std::pow(5.0, u) : 1000 * std::pow(2.0, u));
+    o.samples = count < 100 ? 1000
+                            : static_cast<std::size_t>(t % 10 == 9 ? 2000 * std::pow(5.0, u)
+                                                                   : 1000 * std::pow(2.0, u));
     const S s = samples::neuron(static_cast<std::uint64_t>(t) + 7000, o);
     samples_in_all += s.points.size();
     try {
@@ -1078,17 +1087,18 @@ TEST_CASE("neuron-like skeletons: a soma, dense thin dendrites, close branch poi
         // Flagged: the result itself says the surface folds (what the tubes program checks).
         const bool flagged = r.folded_edges > 0;
         if (!flagged) ++silent;
-        MESSAGE("miss: neuron " << t << " (" << s.points.size() << " samples)" << (flagged ? ", flagged" : ", SILENT")
-                                << ": " << problems);
+        MESSAGE("miss: neuron " << t << " (" << s.points.size() << " samples)"
+                                << (flagged ? ", flagged" : ", SILENT") << ": " << problems);
       }
     } catch (const error& e) {
       ++misses;
       MESSAGE("miss: neuron " << t << " (" << s.points.size() << " samples) refused: " << e.what());
     }
   }
-  std::printf("tube neurons: %d skeletons, %zu samples, %zu misses (%zu silent); %zu junctions merged, %zu nodes "
-              "moved past, %zu sections shrunk\n",
-              count, samples_in_all, misses, silent, merged, moved, stubs);
+  std::printf(
+      "tube neurons: %d skeletons, %zu samples, %zu misses (%zu silent); %zu junctions merged, %zu nodes "
+      "moved past, %zu sections shrunk\n",
+      count, samples_in_all, misses, silent, merged, moved, stubs);
   CHECK(silent == 0);
   CHECK(misses == 0);
 }
@@ -1106,7 +1116,9 @@ TEST_CASE("tubes: bad input is a located error") {
   far.points = {{-1e300, 0, 0}, {0, 1e299, 0}, {1e300, 0, 0}};
   far.radii = {1e298, 1e298, 1e298};
   far.edges = {{0, 1}, {1, 2}};
-  CHECK_THROWS_WITH_AS(make_tubes(far), doctest::Contains("make_tubes: the model spans 2.02e+300 and reaches 1.01e+300"), error);
+  CHECK_THROWS_WITH_AS(make_tubes(far),
+                       doctest::Contains("make_tubes: the model spans 2.02e+300 and reaches 1.01e+300"),
+                       error);
   s.radii[2] = 0.1;
   tube_options o;
   o.sides = 2;
@@ -1126,10 +1138,10 @@ TEST_CASE("sample skeletons refuse sizes they cannot build, before allocating") 
   CHECK_THROWS_WITH_AS(samples::spiral_chain(1), doctest::Contains("n must be at least 2"), error);
   CHECK_THROWS_WITH_AS(samples::random_tree(1, {.nodes = 0}), doctest::Contains("nodes must be at least 1"),
                        error);
-  CHECK_THROWS_WITH_AS(samples::neuron(1, {.samples = 0}), doctest::Contains("neuron: samples must be at least 1"),
-                       error);
-  CHECK_THROWS_WITH_AS(samples::neuron(1, {.soma_radius = 1}), doctest::Contains("primary_radius < soma_radius"),
-                       error);
+  CHECK_THROWS_WITH_AS(samples::neuron(1, {.samples = 0}),
+                       doctest::Contains("neuron: samples must be at least 1"), error);
+  CHECK_THROWS_WITH_AS(samples::neuron(1, {.soma_radius = 1}),
+                       doctest::Contains("primary_radius < soma_radius"), error);
   // The smallest of each is built.
   CHECK(samples::neuron(1, {.samples = 1}).points.size() == 1);
   CHECK(samples::lattice(1, 1, 1).points.size() == 1);

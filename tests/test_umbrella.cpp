@@ -32,7 +32,8 @@ TEST_CASE("detail::cat joins text, views, C strings and chars in order") {
 
 TEST_CASE("umbrella: the version header agrees with itself and with the CMake project") {
   const std::string composed = std::to_string(CELLFORGE_VERSION_MAJOR) + "." +
-                               std::to_string(CELLFORGE_VERSION_MINOR) + "." + std::to_string(CELLFORGE_VERSION_PATCH);
+                               std::to_string(CELLFORGE_VERSION_MINOR) + "." +
+                               std::to_string(CELLFORGE_VERSION_PATCH);
   CHECK(composed == CELLFORGE_VERSION_STRING);
   CHECK(composed == CELLFORGE_TEST_PROJECT_VERSION);  // CMakeLists.txt parsed version.hpp
   CHECK(cellforge::version.minor == CELLFORGE_VERSION_MINOR);

@@ -40,7 +40,8 @@ std::vector<wireframe_sweep::sweep_model> models(bool& full) {
   full = false;
 #endif
   if (const char* env = std::getenv("CELLFORGE_SWEEP")) full = std::string(env) == "full";
-  auto set = wireframe_sweep::make_sweep(full ? wireframe_sweep::sweep_size::full : wireframe_sweep::sweep_size::sample);
+  auto set = wireframe_sweep::make_sweep(full ? wireframe_sweep::sweep_size::full
+                                              : wireframe_sweep::sweep_size::sample);
   if (full) return set.models;
   std::vector<wireframe_sweep::sweep_model> quarter;
   for (std::size_t i = 0; i < set.models.size(); i += 4) quarter.push_back(set.models[i]);
@@ -52,7 +53,8 @@ double ms_since(std::chrono::steady_clock::time_point t) {
 }
 
 cellforge::samples::sample_model box(glm::dvec3 lo, glm::dvec3 hi, std::string name) {
-  cellforge::samples::voxel_layout l = cellforge::samples::empty_layout({lo.x, hi.x}, {lo.y, hi.y}, {lo.z, hi.z});
+  cellforge::samples::voxel_layout l =
+      cellforge::samples::empty_layout({lo.x, hi.x}, {lo.y, hi.y}, {lo.z, hi.z});
   l.labels[0] = 1;
   return cellforge::samples::make_voxel_model(l, std::move(name));
 }
@@ -79,24 +81,28 @@ TEST_CASE("wireframe noise: the sweep with every vertex moved by 1e-9, 1e-6 and 
     std::vector<std::string> misses;
     const auto t0 = std::chrono::steady_clock::now();
     for (const auto& s : set) {
-      const sample_model m =
-          wireframe_sweep::noisy(s.model, eps, wireframe_sweep::name_seed(s.model.name) ^ static_cast<std::uint64_t>(-std::log10(eps)));
+      const sample_model m = wireframe_sweep::noisy(
+          s.model, eps,
+          wireframe_sweep::name_seed(s.model.name) ^ static_cast<std::uint64_t>(-std::log10(eps)));
       std::string why;
       const noisy_outcome o = wireframe_sweep::judge_noisy(m, why, s.family == "big polycube");
       ++count[o];
       if (o == noisy_outcome::exact) continue;
       // Would a fixed tolerance have read it? (Release only: up to 14 conversions a miss.)
-      const char* kind = !full ? "" : wireframe_sweep::some_tolerance_reads(m) ? " [ours: a fixed tolerance reads it]"
-                                                                               : " [no fixed tolerance reads it]";
+      const char* kind = !full                                      ? ""
+                         : wireframe_sweep::some_tolerance_reads(m) ? " [ours: a fixed tolerance reads it]"
+                                                                    : " [no fixed tolerance reads it]";
       misses.push_back("[" + s.family + "] " + s.model.name + " (" + names[static_cast<int>(o)] + ")" + kind +
                        ": " + why.substr(0, 240));
     }
     const double ms = ms_since(t0);
     const std::size_t n = set.size(), exact = count[noisy_outcome::exact];
     const double rate = n == 0 ? 0.0 : 100.0 * double(exact) / double(n);
-    std::printf("\nwireframe noise %g (%s): %zu models, %zu exact (%.1f %%), %zu flagged, %zu errors, %zu wrong; %.0f ms\n",
-                eps, full ? "full" : "sample", n, exact, rate, count[noisy_outcome::flagged],
-                count[noisy_outcome::error], count[noisy_outcome::wrong], ms);
+    std::printf(
+        "\nwireframe noise %g (%s): %zu models, %zu exact (%.1f %%), %zu flagged, %zu errors, %zu wrong; "
+        "%.0f ms\n",
+        eps, full ? "full" : "sample", n, exact, rate, count[noisy_outcome::flagged],
+        count[noisy_outcome::error], count[noisy_outcome::wrong], ms);
     for (const auto& line : misses) std::printf("  %s\n", line.c_str());
     std::fflush(stdout);
     CAPTURE(eps);
@@ -117,7 +123,8 @@ TEST_CASE("wireframe noise: the sweep turned and written with 10 and 6 significa
     std::map<noisy_outcome, std::size_t> count;
     for (const auto& s : set) {
       wireframe_sweep::random_source rng(wireframe_sweep::name_seed(s.model.name) ^ 77);
-      sample_model m = cellforge::samples::transformed(s.model, wireframe_sweep::detail::random_rotation(rng), glm::dvec3(0.0));
+      sample_model m = cellforge::samples::transformed(s.model, wireframe_sweep::detail::random_rotation(rng),
+                                                       glm::dvec3(0.0));
       char text[64];
       for (auto& p : m.wire.points)
         for (int k = 0; k < 3; ++k) {
@@ -129,7 +136,9 @@ TEST_CASE("wireframe noise: the sweep turned and written with 10 and 6 significa
       ++count[o];
       if (o != noisy_outcome::exact)
         std::printf("  %%.%dg [%s] %s (%s): %s\n", digits, s.family.c_str(), s.model.name.c_str(),
-                    o == noisy_outcome::wrong ? "WRONG" : o == noisy_outcome::error ? "error" : "flagged",
+                    o == noisy_outcome::wrong   ? "WRONG"
+                    : o == noisy_outcome::error ? "error"
+                                                : "flagged",
                     why.substr(0, 200).c_str());
       const std::string name = s.model.name;
       CAPTURE(digits);
@@ -138,8 +147,8 @@ TEST_CASE("wireframe noise: the sweep turned and written with 10 and 6 significa
       if (digits == 10) CHECK_MESSAGE(o == noisy_outcome::exact, why);
     }
     std::printf("\nwireframe decimals %%.%dg: %zu of %zu exact, %zu flagged, %zu errors, %zu wrong\n", digits,
-                count[noisy_outcome::exact], set.size(), count[noisy_outcome::flagged], count[noisy_outcome::error],
-                count[noisy_outcome::wrong]);
+                count[noisy_outcome::exact], set.size(), count[noisy_outcome::flagged],
+                count[noisy_outcome::error], count[noisy_outcome::wrong]);
   }
 }
 
@@ -159,7 +168,8 @@ TEST_CASE("wireframe noise: the ordinary solids with every vertex moved by 1e-9,
     std::vector<std::string> misses;
     for (const auto& s : set.models) {
       const sample_model m = wireframe_sweep::noisy(
-          s.model, eps, wireframe_sweep::name_seed(s.model.name) ^ static_cast<std::uint64_t>(-std::log10(eps)));
+          s.model, eps,
+          wireframe_sweep::name_seed(s.model.name) ^ static_cast<std::uint64_t>(-std::log10(eps)));
       std::string why;
       const noisy_outcome o = wireframe_sweep::judge_noisy(m, why);
       ++count[o];
@@ -184,11 +194,13 @@ TEST_CASE("wireframe noise: parts of very different sizes side by side") {
   SUBCASE("a 1e-4 L, T, U, frame or house beside a bar of 100 or 10^4: exact and quick") {
     // The arrangement's grid has cells of the small part's size: the bar's faces crossed
     // 10^10 cells, one by one, until the work budget ran out (about a minute).
-    for (const auto& base : {cellforge::samples::sample_L(), cellforge::samples::sample_T(), cellforge::samples::sample_U(),
-                             cellforge::samples::sample_frame(), cellforge::samples::sample_house()})
+    for (const auto& base :
+         {cellforge::samples::sample_L(), cellforge::samples::sample_T(), cellforge::samples::sample_U(),
+          cellforge::samples::sample_frame(), cellforge::samples::sample_house()})
       for (const double length : {1e2, 1e4}) {
-        const sample_model m = cellforge::samples::disjoint_union(cellforge::samples::transformed(base, glm::dmat3(1e-4), glm::dvec3(0.0)),
-                                                         box({0, 0, 0}, {length, 1, 1}, "bar"), {0, 2, 0}, base.name);
+        const sample_model m = cellforge::samples::disjoint_union(
+            cellforge::samples::transformed(base, glm::dmat3(1e-4), glm::dvec3(0.0)),
+            box({0, 0, 0}, {length, 1, 1}, "bar"), {0, 2, 0}, base.name);
         const std::string name = base.name;
         CAPTURE(name);
         CAPTURE(length);
@@ -201,10 +213,13 @@ TEST_CASE("wireframe noise: parts of very different sizes side by side") {
     // The merge tolerance was 1e-9 of the diagonal: a bar to 10^9 merged the cube into a point.
     // validate() asked a volume for 1e-12 of its diagonal cubed: a 10^4 x 1e-2 x 1e-2 bar failed.
     const sample_model parts[] = {
-        cellforge::samples::disjoint_union(box({0, 0, 0}, {1, 1, 1}, "cube"), box({0, 0, 0}, {1e6, 1, 1}, "bar"), {0, 3, 0}, "1e6"),
-        cellforge::samples::disjoint_union(box({0, 0, 0}, {1, 1, 1}, "cube"), box({0, 0, 0}, {1e9, 1, 1}, "bar"), {0, 3, 0}, "1e9"),
-        cellforge::samples::disjoint_union(box({0, 0, 0}, {1e-4, 1e-4, 1e-4}, "cube"), box({0, 0, 0}, {1e4, 1e-2, 1e-2}, "bar"),
-                                  {0, 1e-3, 0}, "thin bar")};
+        cellforge::samples::disjoint_union(box({0, 0, 0}, {1, 1, 1}, "cube"),
+                                           box({0, 0, 0}, {1e6, 1, 1}, "bar"), {0, 3, 0}, "1e6"),
+        cellforge::samples::disjoint_union(box({0, 0, 0}, {1, 1, 1}, "cube"),
+                                           box({0, 0, 0}, {1e9, 1, 1}, "bar"), {0, 3, 0}, "1e9"),
+        cellforge::samples::disjoint_union(box({0, 0, 0}, {1e-4, 1e-4, 1e-4}, "cube"),
+                                           box({0, 0, 0}, {1e4, 1e-2, 1e-2}, "bar"), {0, 1e-3, 0},
+                                           "thin bar")};
     for (const auto& m : parts) {
       const std::string name = m.name;
       CAPTURE(name);
@@ -214,8 +229,8 @@ TEST_CASE("wireframe noise: parts of very different sizes side by side") {
     }
   }
   SUBCASE("points closer than 1e-9 of their own edges merge, however large the model") {
-    sample_model m = cellforge::samples::disjoint_union(box({0, 0, 0}, {1, 1, 1}, "cube"), box({0, 0, 0}, {1e9, 1, 1}, "bar"),
-                                               {0, 3, 0}, "twin");
+    sample_model m = cellforge::samples::disjoint_union(
+        box({0, 0, 0}, {1, 1, 1}, "cube"), box({0, 0, 0}, {1e9, 1, 1}, "bar"), {0, 3, 0}, "twin");
     // A twin of cube vertex 0, 1e-10 away, carrying the cube's edge 0-1 in its place: merged back.
     const auto twin = static_cast<std::uint32_t>(m.wire.points.size());
     m.wire.points.push_back(m.wire.points[0] + glm::dvec3(1e-10, 0, 0));
@@ -231,7 +246,8 @@ TEST_CASE("wireframe noise: parts of very different sizes side by side") {
 TEST_CASE("wireframe noise: the tolerance estimator") {
   const sample_model cube = cellforge::samples::sample_cube();
   SUBCASE("exact input keeps the old default, with the rounding far below the shape") {
-    for (const auto& m : {cube, cellforge::samples::sample_stepped_block(), cellforge::samples::sample_frame(), cellforge::samples::sample_seed(2)}) {
+    for (const auto& m : {cube, cellforge::samples::sample_stepped_block(),
+                          cellforge::samples::sample_frame(), cellforge::samples::sample_seed(2)}) {
       const std::string name = m.name;
       CAPTURE(name);
       const auto r = cellforge::wireframe_to_cells(m.wire);

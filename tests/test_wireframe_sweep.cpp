@@ -139,9 +139,9 @@ std::string judge(const sweep_model& s, bool* ambiguous = nullptr) {
   try {
     const auto r = cellforge::wireframe_to_cells(m.wire);
     if (ambiguous)
-      *ambiguous = !r.unforced.empty() ||
-                   std::any_of(r.alternatives.begin(), r.alternatives.end(),
-                               [](const cellforge::reading_note& a) { return a.undecided; });
+      *ambiguous =
+          !r.unforced.empty() || std::any_of(r.alternatives.begin(), r.alternatives.end(),
+                                             [](const cellforge::reading_note& a) { return a.undecided; });
     return s.family == "big polycube" ? wireframe_sweep::ambiguous_miss(m, r) : miss_reason(m, r);
   } catch (const cellforge::error& e) {
     return "error (" + std::string(cellforge::to_string(e.category())) + "): " + e.what();
@@ -199,11 +199,13 @@ TEST_CASE("wireframe sweep: the pipeline recovers >= 99.5 % of the generated mod
       "converted in %.0f ms\n",
       size == sweep_size::full ? "full" : "sample", n, exact, rate, errors, generate_ms, run_ms);
   // ambiguous: the result says the wireframe does not decide it (exact or not).
-  std::printf("  %-16s %6s %6s %7s %7s %9s %9s\n", "family", "models", "exact", "rate", "errors", "ambiguous", "ms");
+  std::printf("  %-16s %6s %6s %7s %7s %9s %9s\n", "family", "models", "exact", "rate", "errors", "ambiguous",
+              "ms");
   for (const auto& family : wireframe_sweep::sweep_families()) {
     const family_total& t = totals[family];
     std::printf("  %-16s %6zu %6zu %6.1f%% %7zu %9zu %9.1f\n", family.c_str(), t.models, t.exact,
-                t.models == 0 ? 0.0 : 100.0 * double(t.exact) / double(t.models), t.errors, t.ambiguous, t.ms);
+                t.models == 0 ? 0.0 : 100.0 * double(t.exact) / double(t.models), t.errors, t.ambiguous,
+                t.ms);
   }
   for (const auto& d : set.draws)
     std::printf(
@@ -282,7 +284,8 @@ TEST_CASE("wireframe sweep: the generator") {
     edge.at(0, 0, 0) = edge.at(1, 1, 0) = 1;
     CHECK(!d::accept(edge, 1, "edge", draws));
     CHECK(draws.not_manifold == 1);
-    cellforge::samples::voxel_layout hollow = cellforge::samples::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1, 2, 3});
+    cellforge::samples::voxel_layout hollow =
+        cellforge::samples::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1, 2, 3});
     hollow.labels.assign(27, 1);
     hollow.at(1, 1, 1) = 0;
     CHECK(!d::accept(hollow, 1, "hollow", draws));
@@ -290,7 +293,8 @@ TEST_CASE("wireframe sweep: the generator") {
     edge.at(1, 1, 0) = 2;
     CHECK(!d::accept(edge, 2, "edge", draws));  // the union touches itself along the edge
     CHECK(draws.not_manifold == 3);
-    cellforge::samples::voxel_layout slab = cellforge::samples::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1});
+    cellforge::samples::voxel_layout slab =
+        cellforge::samples::empty_layout({0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1});
     slab.labels.assign(9, 1);
     slab.at(1, 1, 0) = 2;  // the middle cell: its top and bottom lie inside flat faces
     CHECK(!d::accept(slab, 2, "slab", draws));
@@ -313,9 +317,12 @@ TEST_CASE("wireframe sweep: the generator") {
     sample_model oct = cellforge::samples::sample_octahedron();
     oct.faces.push_back({{0, 1, 2, 3}});  // an equator as a face: its edges already have two triangles
     CHECK(faces_no_edge_needs(oct) == 1);
-    CHECK(faces_no_edge_needs(cellforge::samples::sample_two_cubes()) == 0);     // the wall's edges lie on flat faces
-    CHECK(faces_no_edge_needs(cellforge::samples::sample_grid(3, 3, 1)) == 2);   // the middle cube's top and bottom
-    CHECK(faces_no_edge_needs(cellforge::samples::sample_grid(3, 3, 3)) == 12);  // 6 inner walls, 6 outer middles
+    CHECK(faces_no_edge_needs(cellforge::samples::sample_two_cubes()) ==
+          0);  // the wall's edges lie on flat faces
+    CHECK(faces_no_edge_needs(cellforge::samples::sample_grid(3, 3, 1)) ==
+          2);  // the middle cube's top and bottom
+    CHECK(faces_no_edge_needs(cellforge::samples::sample_grid(3, 3, 3)) ==
+          12);  // 6 inner walls, 6 outer middles
     CHECK(faces_no_edge_needs(cellforge::samples::sample_grid(5, 2, 2)) == 0);
     CHECK(faces_no_edge_needs(cellforge::samples::sample_frame()) == 0);
     // A ring stack with every ring a wall: its rings lie between non-coplanar bands.
@@ -333,14 +340,15 @@ TEST_CASE("wireframe sweep: the generator") {
     CHECK(open.faces.size() == walled.faces.size() - 5);
     CHECK(faces_no_edge_needs(open) == 0);
     CHECK(wireframe_sweep::truth_objects(cellforge::samples::sample_disjoint_solids()) == 2);
-    CHECK(wireframe_sweep::truth_objects(cellforge::samples::sample_frame()) == 1);  // the hole stays with its face
+    CHECK(wireframe_sweep::truth_objects(cellforge::samples::sample_frame()) ==
+          1);  // the hole stays with its face
   }
 
   SUBCASE("shuffling permutes, and the truth follows") {
-    const std::vector<sample_model> bases{cellforge::samples::sample_stepped_block(), cellforge::samples::sample_frame(),
-                                          cellforge::samples::sample_grid(3, 3, 3),
-                                          wireframe_sweep::detail::geodesic_sphere(2),
-                                          wireframe_sweep::detail::holed_slab(true, 3, false, true)};
+    const std::vector<sample_model> bases{
+        cellforge::samples::sample_stepped_block(), cellforge::samples::sample_frame(),
+        cellforge::samples::sample_grid(3, 3, 3), wireframe_sweep::detail::geodesic_sphere(2),
+        wireframe_sweep::detail::holed_slab(true, 3, false, true)};
     for (const auto& base : bases)
       for (const bool rigid : {false, true}) {
         const std::string name = base.name;
@@ -518,7 +526,8 @@ TEST_CASE("wireframe sweep: ordinary solids nobody tuned for, exact or flagged")
       const auto r = cellforge::wireframe_to_cells(m.wire);
       miss = miss_reason(m, r);
       passed_as_good = r.status == cellforge::solid_status::solid;
-      if (!miss.empty()) miss += std::string("; status ") + cellforge::to_string(r.status) + ": " + r.status_reason;
+      if (!miss.empty())
+        miss += std::string("; status ") + cellforge::to_string(r.status) + ": " + r.status_reason;
     } catch (const cellforge::error& e) {
       miss = std::string("error: ") + e.what();
     }
@@ -527,7 +536,8 @@ TEST_CASE("wireframe sweep: ordinary solids nobody tuned for, exact or flagged")
       ++t.exact;
     } else {
       ++(passed_as_good ? t.wrong : t.flagged);
-      misses.push_back("[" + s.family + "] " + name + (passed_as_good ? " (WRONG)" : " (flagged)") + ": " + miss);
+      misses.push_back("[" + s.family + "] " + name + (passed_as_good ? " (WRONG)" : " (flagged)") + ": " +
+                       miss);
     }
   }
   std::printf("\nordinary solids (%s): %zu models in %.0f ms\n", size == sweep_size::full ? "full" : "sample",
@@ -535,15 +545,17 @@ TEST_CASE("wireframe sweep: ordinary solids nobody tuned for, exact or flagged")
   std::printf("  %-14s %6s %6s %8s %6s %8s\n", "family", "models", "exact", "flagged", "WRONG", "ms");
   for (const auto& family : wireframe_sweep::ordinary_families()) {
     const tally& t = totals[family];
-    std::printf("  %-14s %6zu %6zu %8zu %6zu %8.1f\n", family.c_str(), t.models, t.exact, t.flagged, t.wrong, t.ms);
+    std::printf("  %-14s %6zu %6zu %8zu %6zu %8.1f\n", family.c_str(), t.models, t.exact, t.flagged, t.wrong,
+                t.ms);
     CAPTURE(family);
     CHECK(t.models >= (size == sweep_size::full ? 40u : 4u));
     CHECK(t.wrong == 0);
     CHECK(t.exact == t.models);
   }
   for (const auto& d : set.draws)
-    std::printf("  random family '%s': %zu draws kept, %zu rejected (%zu touching along an edge or in pieces)\n",
-                d.family.c_str(), d.kept, d.rejected(), d.not_manifold);
+    std::printf(
+        "  random family '%s': %zu draws kept, %zu rejected (%zu touching along an edge or in pieces)\n",
+        d.family.c_str(), d.kept, d.rejected(), d.not_manifold);
   std::printf("misses (%zu):\n", misses.size());
   for (const auto& line : misses) std::printf("  %s\n", line.c_str());
 
@@ -642,7 +654,9 @@ TEST_CASE("crossing: the exact test, on its own") {
     update_normal(g, f);
     return f;
   };
-  auto plane = [&](const wire_face& f) { return cellforge::detail::face_plane{f.normal, g.points[f.loops[0][0]], {}}; };
+  auto plane = [&](const wire_face& f) {
+    return cellforge::detail::face_plane{f.normal, g.points[f.loops[0][0]], {}};
+  };
   cellforge::detail::crossing_test cross(g);
   const double tol = 1e-9 * g.size;
   // The L has its edge (1,0,1)-(2,0,1) on the plane z = 1 and straddles that plane; a face of
@@ -737,7 +751,8 @@ TEST_CASE("fins: a flat flap on a closed part is a face in no volume, the part k
     const std::uint32_t p = b.point({0, -0.5, 1.2}), q = b.point({1, -0.5, 1.2});
     if (kind == 0) b.face({{c[4], c[5], q, p}});
     if (kind == 1) b.face({{c[4], c[5], q}}), b.face({{c[4], q, p}});
-    if (kind == 2) b.face({{c[4], c[5], q, p}}), b.face({{p, q, b.point({1, -0.9, 1.0}), b.point({0, -0.9, 1.0})}});
+    if (kind == 2)
+      b.face({{c[4], c[5], q, p}}), b.face({{p, q, b.point({1, -0.9, 1.0}), b.point({0, -0.9, 1.0})}});
     const sample_model m = b.done("cube with flap " + std::to_string(kind));
     CAPTURE(kind);
     const auto r = wireframe_to_cells(m.wire);
@@ -813,7 +828,8 @@ TEST_CASE("reading: a nested outline is no seam wall (a pocket down to the step 
     auto box = [&](glm::dvec3 lo, glm::dvec3 hi) {
       std::array<std::uint32_t, 8> c{};
       for (int i = 0; i < 8; ++i)
-        c[static_cast<std::size_t>(i)] = b.point({i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z});
+        c[static_cast<std::size_t>(i)] =
+            b.point({i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z});
       return c;
     };
     const auto base = box({0, 0, 0}, {4, 3, 1}), slab = box({1, 0.5, 1}, {3, 2.5, 1.5});
@@ -825,7 +841,8 @@ TEST_CASE("reading: a nested outline is no seam wall (a pocket down to the step 
     }
     std::vector<std::uint32_t> faces;
     auto sides_of = [&](const std::array<std::uint32_t, 8>& c) {
-      for (const auto& q : std::array<std::array<int, 4>, 4>{{{0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}}})
+      for (const auto& q :
+           std::array<std::array<int, 4>, 4>{{{0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}}})
         faces.push_back(b.face({{c[q[0]], c[q[1]], c[q[2]], c[q[3]]}}));
     };
     sides_of(base);
@@ -874,8 +891,9 @@ TEST_CASE("reading: wireframes two solids share are reported ambiguous, the trut
   // Two frames side by side, every box a volume: the wide holes open (the order's largest area
   // dropped), and opening the boxes between them instead is reported as undecided.
   const auto pair = exact(model("double frame boxes wide"));
-  CHECK(std::any_of(pair.alternatives.begin(), pair.alternatives.end(),
-                    [](const reading_note& a) { return a.undecided && a.set_aside_by == reading_key::area; }));
+  CHECK(std::any_of(pair.alternatives.begin(), pair.alternatives.end(), [](const reading_note& a) {
+    return a.undecided && a.set_aside_by == reading_key::area;
+  }));
   // A geodesic sphere read as twelve caps touching at their corners is set aside, not undecided.
   const auto ball = exact(model("geodesic f=2"));
   CHECK(std::none_of(ball.alternatives.begin(), ball.alternatives.end(),

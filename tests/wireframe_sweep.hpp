@@ -78,10 +78,11 @@ struct sweep_set {
 /// O(1).
 inline const std::vector<std::string>& sweep_families() {
   static const std::vector<std::string> names{
-      "frame",          "plate",         "box ring",       "torus",    "bipyramid", "house",  "dent",
-      "notch",          "barrel",        "hourglass",      "geodesic", "polytope",  "cross",  "polycube",
-      "polycube cells", "linked frames", "solid in frame", "touching", "grid",      "hole grid",
-      "double frame",   "linked tori",   "stepped bore",   "holed face", "big polycube", "library"};
+      "frame",        "plate",     "box ring",       "torus",         "bipyramid",      "house",
+      "dent",         "notch",     "barrel",         "hourglass",     "geodesic",       "polytope",
+      "cross",        "polycube",  "polycube cells", "linked frames", "solid in frame", "touching",
+      "grid",         "hole grid", "double frame",   "linked tori",   "stepped bore",   "holed face",
+      "big polycube", "library"};
   return names;
 }
 
@@ -223,8 +224,9 @@ inline double diagonal(const std::vector<glm::dvec3>& points) {
 /// The model with its vertices and edges in a random order, about half of the edges turned
 /// round and, when `rigid`, moved by a random rotation and a shift of up to 10 model sizes per
 /// axis; the truth is relabelled to match. `record` receives what was done. O(model).
-inline cellforge::samples::sample_model shuffled(const cellforge::samples::sample_model& m, std::uint64_t seed, bool rigid,
-                                        relabelling* record = nullptr) {
+inline cellforge::samples::sample_model shuffled(const cellforge::samples::sample_model& m,
+                                                 std::uint64_t seed, bool rigid,
+                                                 relabelling* record = nullptr) {
   random_source rng(seed);
   relabelling t;
   t.vertex = detail::permutation(m.wire.points.size(), rng);
@@ -328,7 +330,8 @@ inline cellforge::samples::sample_model glued(cellforge::samples::sample_model m
 
 /// The model without its walls (faces between two volumes), its volumes merged into one: the
 /// reading the truth rule gives a ring stack whose rings no edge needs. O(model).
-inline cellforge::samples::sample_model without_walls(const cellforge::samples::sample_model& m, std::string name) {
+inline cellforge::samples::sample_model without_walls(const cellforge::samples::sample_model& m,
+                                                      std::string name) {
   std::vector<int> volumes_of(m.faces.size(), 0);
   for (const auto& v : m.volumes)
     for (const std::uint32_t f : v) ++volumes_of[f];
@@ -354,7 +357,8 @@ inline std::vector<double> from_widths(const std::vector<double>& widths) {
 
 /// Label of lattice cell (i, j, k); 0 outside the lattice.
 /// O(1).
-inline int cell(const cellforge::samples::voxel_layout& l, std::ptrdiff_t i, std::ptrdiff_t j, std::ptrdiff_t k) {
+inline int cell(const cellforge::samples::voxel_layout& l, std::ptrdiff_t i, std::ptrdiff_t j,
+                std::ptrdiff_t k) {
   const auto nx = static_cast<std::ptrdiff_t>(l.xs.size()) - 1,
              ny = static_cast<std::ptrdiff_t>(l.ys.size()) - 1,
              nz = static_cast<std::ptrdiff_t>(l.zs.size()) - 1;
@@ -435,8 +439,8 @@ inline void add_copies(sweep_set& s, const std::string& family, const cellforge:
 
 /// Adds a deterministic family: every base must satisfy the truth rule (a fault otherwise);
 /// unforced_faces is 0. O(total size).
-inline void add_family(sweep_set& s, const std::string& family, std::vector<cellforge::samples::sample_model> bases,
-                       bool full, int rigid_copies = 1) {
+inline void add_family(sweep_set& s, const std::string& family,
+                       std::vector<cellforge::samples::sample_model> bases, bool full, int rigid_copies = 1) {
   for (std::size_t i = 0; i < bases.size(); ++i) {
     cellforge::samples::sample_model& m = bases[i];
     if (const std::size_t n = faces_no_edge_needs(m); n != 0) {
@@ -476,7 +480,8 @@ inline cellforge::samples::sample_model holed_slab(bool frame, std::size_t holes
 
 /// A ring of n box-like sectors (annular sectors, straight-sided) around a hole, each its own
 /// volume, one layer high. O(n).
-inline cellforge::samples::sample_model sector_ring(std::size_t n, double inner, double outer, double height) {
+inline cellforge::samples::sample_model sector_ring(std::size_t n, double inner, double outer,
+                                                    double height) {
   model_builder b;
   std::vector<std::array<std::uint32_t, 4>> p(n);  // inner bottom, outer bottom, inner top, outer top
   for (std::size_t i = 0; i < n; ++i) {
@@ -502,7 +507,8 @@ inline cellforge::samples::sample_model lattice_ring(std::size_t k, std::size_t 
   std::vector<double> wx, wy;
   for (std::size_t i = 0; i < k; ++i) wx.push_back(1.0 + 0.25 * double(i % 2));
   for (std::size_t j = 0; j < m; ++j) wy.push_back(0.75 + 0.5 * double(j % 3 == 1));
-  cellforge::samples::voxel_layout l = cellforge::samples::empty_layout(from_widths(wx), from_widths(wy), {0.0, 0.5});
+  cellforge::samples::voxel_layout l =
+      cellforge::samples::empty_layout(from_widths(wx), from_widths(wy), {0.0, 0.5});
   int next = 1;
   for (std::size_t j = 0; j < m; ++j)
     for (std::size_t i = 0; i < k; ++i) {
@@ -513,13 +519,13 @@ inline cellforge::samples::sample_model lattice_ring(std::size_t k, std::size_t 
         l.at(i, j, 0) = j == 0 && i + 1 < k ? 1 : i + 1 == k && j + 1 < m ? 2 : j + 1 == m && i > 0 ? 3 : 4;
     }
   return cellforge::samples::make_voxel_model(l, "box ring " + std::string(pinwheel ? "pinwheel " : "") +
-                                            std::to_string(k) + "x" + std::to_string(m));
+                                                     std::to_string(k) + "x" + std::to_string(m));
 }
 
 /// A solid of revolution of a closed profile polygon ((r, z) pairs) in n segments: one genus-1
 /// volume, or split into n volumes by the profile polygons as walls. O(n · profile).
-inline cellforge::samples::sample_model revolved(const std::vector<std::array<double, 2>>& profile, std::size_t n,
-                                        bool walls, std::string name) {
+inline cellforge::samples::sample_model revolved(const std::vector<std::array<double, 2>>& profile,
+                                                 std::size_t n, bool walls, std::string name) {
   model_builder b;
   const std::size_t k = profile.size();
   std::vector<std::uint32_t> id(n * k);
@@ -564,7 +570,7 @@ inline std::vector<std::array<double, 2>> hexagon(double R, double a, bool flat)
 /// A box L × W × H under a pyramid roof with its apex at (ax, ay, H + rise): one volume (the
 /// rectangle under the roof is no face). O(1).
 inline cellforge::samples::sample_model pyramid_house(double L, double W, double H, glm::dvec3 apex,
-                                             std::string name) {
+                                                      std::string name) {
   model_builder b;
   const glm::dvec3 corner[4] = {{0, 0, 0}, {L, 0, 0}, {L, W, 0}, {0, W, 0}};
   std::array<std::uint32_t, 4> lo{}, hi{};
@@ -610,7 +616,8 @@ struct pit {
 
 /// A box with pyramid dents or bumps in its faces: each pitted face has a hole per pit, whose
 /// sides go to the pit's apex; one volume. O(pits · sides).
-inline cellforge::samples::sample_model pitted_box(glm::dvec3 size, const std::vector<pit>& pits, std::string name) {
+inline cellforge::samples::sample_model pitted_box(glm::dvec3 size, const std::vector<pit>& pits,
+                                                   std::string name) {
   model_builder b;
   std::array<std::uint32_t, 8> c{};
   for (int i = 0; i < 8; ++i) c[i] = b.point(size * glm::dvec3(i & 1, i >> 1 & 1, i >> 2 & 1));
@@ -694,11 +701,12 @@ inline cellforge::samples::sample_model geodesic_sphere(std::size_t f) {
 /// with arms `arm` cells long and `width` cells thick out of the middle of its faces (arms in
 /// the order +x, -x, +y, -y, +z, -z); one volume, coplanar faces merged. O(cells).
 inline cellforge::samples::sample_model voxel_cross(std::size_t arm, std::size_t centre, std::size_t width,
-                                           std::array<bool, 6> arms, bool uneven, std::string name) {
+                                                    std::array<bool, 6> arms, bool uneven, std::string name) {
   const std::size_t n = 2 * arm + centre, lo = arm + (centre - width) / 2;
   std::vector<double> w;
   for (std::size_t i = 0; i < n; ++i) w.push_back(uneven ? 0.5 + 0.25 * double(i * 7 % 5) : 1.0);
-  cellforge::samples::voxel_layout l = cellforge::samples::empty_layout(from_widths(w), from_widths(w), from_widths(w));
+  cellforge::samples::voxel_layout l =
+      cellforge::samples::empty_layout(from_widths(w), from_widths(w), from_widths(w));
   const auto in_centre = [&](std::size_t x) { return x >= arm && x < arm + centre; };
   const auto in_band = [&](std::size_t x) { return x >= lo && x < lo + width; };
   for (std::size_t k = 0; k < n; ++k)
@@ -742,8 +750,8 @@ inline std::vector<std::array<std::size_t, 3>> notch_cells(const std::string& pa
 /// A frame model: a square ring of cells (bar, hole, thickness) as one volume or as eight boxes.
 /// O(1).
 inline cellforge::samples::sample_model ring_frame(double bar, double hole, double thick, bool cells) {
-  cellforge::samples::voxel_layout l = cellforge::samples::empty_layout({0, bar, bar + hole, 2 * bar + hole},
-                                                      {0, bar, bar + hole, 2 * bar + hole}, {0, thick});
+  cellforge::samples::voxel_layout l = cellforge::samples::empty_layout(
+      {0, bar, bar + hole, 2 * bar + hole}, {0, bar, bar + hole, 2 * bar + hole}, {0, thick});
   for (std::size_t c = 0; c < 9; ++c)
     if (c != 4) l.labels[c] = cells ? static_cast<int>(c < 4 ? c + 1 : c) : 1;
   return cellforge::samples::make_voxel_model(l, "frame");
@@ -751,8 +759,8 @@ inline cellforge::samples::sample_model ring_frame(double bar, double hole, doub
 
 /// Two linked frames: frame A in the xy plane, frame B upright through A's hole with A's bar
 /// through B's hole, touching nowhere. O(1).
-inline cellforge::samples::sample_model linked_frames(std::array<double, 3> a, std::array<double, 3> b, bool a_cells,
-                                             bool b_cells, std::string name) {
+inline cellforge::samples::sample_model linked_frames(std::array<double, 3> a, std::array<double, 3> b,
+                                                      bool a_cells, bool b_cells, std::string name) {
   const cellforge::samples::sample_model A = ring_frame(a[0], a[1], a[2], a_cells);
   const cellforge::samples::sample_model B = ring_frame(b[0], b[1], b[2], b_cells);
   // B's local (x, y, z) → (x, -z, y): a rotation about x; B's left bar centred in A's hole,
@@ -763,8 +771,8 @@ inline cellforge::samples::sample_model linked_frames(std::array<double, 3> a, s
   turn[2] = {0, -1, 0};
   const double centre = a[0] + a[1] / 2;
   const glm::dvec3 offset(a[0] + (a[1] - b[0]) / 2, centre + b[2] / 2, a[2] / 2 - b[0] - b[1] / 2);
-  return cellforge::samples::disjoint_union(A, cellforge::samples::transformed(B, turn, offset), glm::dvec3(0.0),
-                                   std::move(name));
+  return cellforge::samples::disjoint_union(A, cellforge::samples::transformed(B, turn, offset),
+                                            glm::dvec3(0.0), std::move(name));
 }
 
 /// A UV sphere of `slices` × `stacks` with no wall: sample_uv_sphere's rings, which no edge
@@ -779,7 +787,8 @@ inline cellforge::samples::sample_model ball(std::size_t slices, std::size_t sta
 inline cellforge::samples::sample_model labelled_cells(
     std::vector<double> xs, std::vector<double> ys, std::vector<double> zs,
     const std::vector<std::pair<std::array<std::size_t, 3>, int>>& cells, std::string name) {
-  cellforge::samples::voxel_layout l = cellforge::samples::empty_layout(std::move(xs), std::move(ys), std::move(zs));
+  cellforge::samples::voxel_layout l =
+      cellforge::samples::empty_layout(std::move(xs), std::move(ys), std::move(zs));
   for (const auto& [c, label] : cells) l.at(c[0], c[1], c[2]) = label;
   return cellforge::samples::make_voxel_model(l, std::move(name));
 }
@@ -912,8 +921,9 @@ inline bool cells_connected(const cellforge::samples::voxel_layout& l, std::size
 
 /// Judges a random layout: a manifold union and manifold cells, no cavity, an outline
 /// make_voxel_model accepts, every face needed; counts the verdict in `draws`. O(layout).
-inline std::optional<cellforge::samples::sample_model> accept(const cellforge::samples::voxel_layout& l, int labels,
-                                                     std::string name, family_draws& draws) {
+inline std::optional<cellforge::samples::sample_model> accept(const cellforge::samples::voxel_layout& l,
+                                                              int labels, std::string name,
+                                                              family_draws& draws) {
   bool ok = no_cavity(l) && manifold(l, [](int x) { return x != 0; });
   for (int c = 1; ok && labels > 1 && c <= labels; ++c) ok = manifold(l, [c](int x) { return x == c; });
   if (!ok) return ++draws.not_manifold, std::nullopt;
@@ -934,7 +944,7 @@ inline std::optional<cellforge::samples::sample_model> accept(const cellforge::s
 /// its 3-cycles that are not faces — separating triangles through the inside — are the
 /// planar cycles the reading must not take. O(n log n).
 inline cellforge::samples::sample_model random_polytope(std::size_t n, bool box, random_source& rng,
-                                               std::string name) {
+                                                        std::string name) {
   std::vector<glm::dvec3> points;
   while (points.size() < n) {
     const glm::dvec3 p(rng.between(-1, 1), rng.between(-1, 1), rng.between(-1, 1));
@@ -968,8 +978,8 @@ inline void random_polycubes(sweep_set& s, std::size_t count) {
   family_draws draws{"polycube"};
   for (std::size_t tries = 0; draws.kept < count && tries < 200 * count; ++tries) {
     const std::size_t nx = rng.in(2, 6), ny = rng.in(2, 6), nz = rng.in(1, 5);
-    cellforge::samples::voxel_layout l =
-        cellforge::samples::empty_layout(random_coords(nx, rng), random_coords(ny, rng), random_coords(nz, rng));
+    cellforge::samples::voxel_layout l = cellforge::samples::empty_layout(
+        random_coords(nx, rng), random_coords(ny, rng), random_coords(nz, rng));
     const std::size_t cells = nx * ny * nz, size = rng.in(2, std::max<std::size_t>(2, cells * 2 / 3));
     const bool two = cells >= 18 && rng.chance(0.25);
     std::vector<char> blocked(cells, 0);
@@ -1015,8 +1025,8 @@ inline void random_cell_polycubes(sweep_set& s, std::size_t count) {
     const std::size_t nz = few ? rng.in(1, 3) : rng.in(1, 2);
     const std::size_t cells = nx * ny * nz;
     if (cells < k) continue;
-    cellforge::samples::voxel_layout l =
-        cellforge::samples::empty_layout(random_coords(nx, rng), random_coords(ny, rng), random_coords(nz, rng));
+    cellforge::samples::voxel_layout l = cellforge::samples::empty_layout(
+        random_coords(nx, rng), random_coords(ny, rng), random_coords(nz, rng));
     const std::size_t size = rng.in(std::max(k, few ? cells / 3 : cells * 2 / 3), cells);
     const std::size_t grown = grow(l, size, 1, std::vector<char>(cells, 0), rng);
     if (grown < k) continue;
@@ -1042,22 +1052,25 @@ inline void random_cell_polycubes(sweep_set& s, std::size_t count) {
 /// up to 8, by box cuts beyond), from its own seed `draw` (k = 6 + draw % 20); nullopt when the
 /// draw is rejected (counted in `draws`). Such lattices have an empty cell beside a filled one
 /// with every lattice line drawn either way: wireframes two solids share. O(layout).
-inline std::optional<cellforge::samples::sample_model> big_cell_polycube(std::uint64_t draw, family_draws& draws) {
+inline std::optional<cellforge::samples::sample_model> big_cell_polycube(std::uint64_t draw,
+                                                                         family_draws& draws) {
   random_source rng(0x6a09e667f3bcc909ull ^ (draw * 0x9e3779b97f4a7c15ull));
   const std::size_t k = 6 + draw % 20;
   const std::size_t nx = rng.in(4, 9), ny = rng.in(3, 7), nz = rng.in(1, 3), cells = nx * ny * nz;
   if (cells < k) return ++draws.not_manifold, std::nullopt;
-  cellforge::samples::voxel_layout l =
-      cellforge::samples::empty_layout(random_coords(nx, rng), random_coords(ny, rng), random_coords(nz, rng));
-  const std::size_t grown = grow(l, rng.in(std::max(k, cells / 3), cells), 1, std::vector<char>(cells, 0), rng);
+  cellforge::samples::voxel_layout l = cellforge::samples::empty_layout(
+      random_coords(nx, rng), random_coords(ny, rng), random_coords(nz, rng));
+  const std::size_t grown =
+      grow(l, rng.in(std::max(k, cells / 3), cells), 1, std::vector<char>(cells, 0), rng);
   if (grown < k) return ++draws.not_manifold, std::nullopt;
   if (k <= 8)
     split_cells(l, k, rng);
   else if (!split_boxes(l, k, rng) || !cells_connected(l, k))
     return ++draws.not_manifold, std::nullopt;
   return accept(l, static_cast<int>(k),
-                "big polycube draw " + std::to_string(draw) + " " + std::to_string(nx) + "x" + std::to_string(ny) +
-                    "x" + std::to_string(nz) + " n=" + std::to_string(grown) + " cells=" + std::to_string(k),
+                "big polycube draw " + std::to_string(draw) + " " + std::to_string(nx) + "x" +
+                    std::to_string(ny) + "x" + std::to_string(nz) + " n=" + std::to_string(grown) +
+                    " cells=" + std::to_string(k),
                 draws);
 }
 
@@ -1067,12 +1080,12 @@ inline std::optional<cellforge::samples::sample_model> big_cell_polycube(std::ui
 /// answer is ambiguous (22 of them not the truth, 5 exact) and every 60th of the others.
 inline const std::vector<std::uint64_t>& big_polycube_draws() {
   static const std::vector<std::uint64_t> draws{
-      8, 2303, 3645, 5385, 7163, 10224, 13683, 13727, 16587, 16921, 19907, 21927, 22863, 23063, 25468,
-      26381, 28708, 31124, 31965, 33066, 33169, 33840, 36700, 38847, 39900, 41266, 43340, 43344,
-      46325, 48968, 51380, 51867, 54042, 56425, 57580, 60445, 62441, 63185, 65324, 68663, 71665,
-      74363, 77564, 79509, 80683, 80860, 84183, 84220, 86823, 87023, 88350, 89460, 92483, 94942,
-      97730, 98880, 100385, 100725, 103404, 105587, 105624, 105701, 106840, 109287, 109883, 112705,
-      115580, 118920};
+      8,      2303,   3645,   5385,   7163,   10224,  13683,  13727, 16587,  16921,  19907,  21927,
+      22863,  23063,  25468,  26381,  28708,  31124,  31965,  33066, 33169,  33840,  36700,  38847,
+      39900,  41266,  43340,  43344,  46325,  48968,  51380,  51867, 54042,  56425,  57580,  60445,
+      62441,  63185,  65324,  68663,  71665,  74363,  77564,  79509, 80683,  80860,  84183,  84220,
+      86823,  87023,  88350,  89460,  92483,  94942,  97730,  98880, 100385, 100725, 103404, 105587,
+      105624, 105701, 106840, 109287, 109883, 112705, 115580, 118920};
   return draws;
 }
 
@@ -1101,7 +1114,8 @@ inline cellforge::samples::sample_model hole_grid(std::size_t rows, std::size_t 
   const double bar = frame ? 0.3 : 1.0, hole = frame ? 1.0 : 0.5, thick = frame ? 0.4 : 0.25;
   const auto widths = [&](std::size_t n) {
     std::vector<double> w;
-    for (std::size_t c = 0; c <= 2 * n; ++c) w.push_back((c % 2 == 0 ? bar : hole) * (1.0 + 0.125 * double(c % 3)));
+    for (std::size_t c = 0; c <= 2 * n; ++c)
+      w.push_back((c % 2 == 0 ? bar : hole) * (1.0 + 0.125 * double(c % 3)));
     return w;
   };
   cellforge::samples::voxel_layout l =
@@ -1117,7 +1131,7 @@ inline cellforge::samples::sample_model hole_grid(std::size_t rows, std::size_t 
     for (std::size_t i = 0; i <= 2 * cols; ++i)
       if (crossing(i, j)) l.at(i, j, 0) = l.at(i + 1, j, 0);
   return cellforge::samples::make_voxel_model(l, std::string(frame ? "frame" : "plate") + " hole grid " +
-                                            std::to_string(rows) + "x" + std::to_string(cols));
+                                                     std::to_string(rows) + "x" + std::to_string(cols));
 }
 
 /// Two frames side by side sharing a side: every box its own volume (the two boxes between the
@@ -1135,7 +1149,9 @@ inline cellforge::samples::sample_model double_frame(int labels, bool wide) {
       l.at(i, j, 0) = labels == 0   ? next++
                       : labels == 1 ? (i < 3 ? 1 : 2)
                       : j != 1      ? 1 + static_cast<int>(j / 2)
-                                    : 3 + static_cast<int>(i < 1 ? 0 : i < 4 ? 1 : 2);
+                                    : 3 + static_cast<int>(i < 1   ? 0
+                                                           : i < 4 ? 1
+                                                                   : 2);
     }
   static const char* const kind[] = {"boxes", "frames", "bands"};
   return cellforge::samples::make_voxel_model(
@@ -1164,16 +1180,17 @@ inline cellforge::samples::sample_model linked_tori(std::size_t n, int section) 
   const double t = 0.37;
   const glm::dmat3 spin(glm::dvec3(std::cos(t), std::sin(t), 0), glm::dvec3(-std::sin(t), std::cos(t), 0),
                         glm::dvec3(0, 0, 1));
-  return cellforge::samples::disjoint_union(a, cellforge::samples::transformed(b, up * spin, glm::dvec3(0.0)), {3, 0, 0},
-                                   "linked tori " + std::string(kind[section]) + " n=" + std::to_string(n));
+  return cellforge::samples::disjoint_union(
+      a, cellforge::samples::transformed(b, up * spin, glm::dvec3(0.0)), {3, 0, 0},
+      "linked tori " + std::string(kind[section]) + " n=" + std::to_string(n));
 }
 
 /// A solid of revolution of an axis-parallel (r, z) profile with a bore (r > 0 everywhere), in
 /// n segments as a CAD part is drawn: quads on the cylinders, one ring-shaped face (an n-gon
 /// with an n-gon hole) per flat step. Where the bore steps, the smaller bore's n-gon lies in the
 /// hole of the step face of the same plane: a disc no edge needs. One volume. O(n · profile).
-inline cellforge::samples::sample_model stepped_part(const std::vector<std::array<double, 2>>& profile, std::size_t n,
-                                            std::string name) {
+inline cellforge::samples::sample_model stepped_part(const std::vector<std::array<double, 2>>& profile,
+                                                     std::size_t n, std::string name) {
   model_builder b;
   std::map<std::array<double, 2>, std::vector<std::uint32_t>> rings;
   const auto ring = [&](double r, double z) -> const std::vector<std::uint32_t>& {
@@ -1218,7 +1235,8 @@ inline cellforge::samples::sample_model holed_box(std::size_t k, std::size_t sid
       up.push_back(b.point({cx + r * std::cos(t), cy + r * std::sin(t), H}));
       down.push_back(b.point({cx + r * std::cos(t), cy + r * std::sin(t), pocket ? H * 0.4 : 0.0}));
     }
-    for (std::size_t j = 0; j < s; ++j) faces.push_back(b.face({{up[j], up[(j + 1) % s], down[(j + 1) % s], down[j]}}));
+    for (std::size_t j = 0; j < s; ++j)
+      faces.push_back(b.face({{up[j], up[(j + 1) % s], down[(j + 1) % s], down[j]}}));
     top.push_back(up);
     if (pocket)
       faces.push_back(b.face({down}));
@@ -1227,7 +1245,8 @@ inline cellforge::samples::sample_model holed_box(std::size_t k, std::size_t sid
   }
   faces.push_back(b.face(top));
   faces.push_back(b.face(bottom));
-  for (const auto& q : std::array<std::array<int, 4>, 4>{{{0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}}})
+  for (const auto& q :
+       std::array<std::array<int, 4>, 4>{{{0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}}})
     faces.push_back(b.face({{c[q[0]], c[q[1]], c[q[2]], c[q[3]]}}));
   b.volume(faces);
   static const char* const what[] = {"through", "pockets", "mixed"};
@@ -1243,15 +1262,15 @@ inline void add_reading_families(sweep_set& s, bool full) {
     std::vector<sample_model> bases;
     for (const bool frame : {false, true})
       for (const auto& [rows, cols] : std::vector<std::array<std::size_t, 2>>{{2, 2}, {3, 3}, {2, 3}, {1, 3}})
-        if (full || (rows == 2 && cols == (frame ? 3u : 2u)))
-          bases.push_back(hole_grid(rows, cols, frame));
+        if (full || (rows == 2 && cols == (frame ? 3u : 2u))) bases.push_back(hole_grid(rows, cols, frame));
     add_family(s, "hole grid", std::move(bases), full);
   }
   {
     std::vector<sample_model> bases;
     for (const int labels : {0, 1, 2})
       for (const bool wide : {true, false})
-        if (full || (labels == 0 && wide) || (labels == 2 && !wide)) bases.push_back(double_frame(labels, wide));
+        if (full || (labels == 0 && wide) || (labels == 2 && !wide))
+          bases.push_back(double_frame(labels, wide));
     add_family(s, "double frame", std::move(bases), full);
   }
   {
@@ -1268,7 +1287,18 @@ inline void add_reading_families(sweep_set& s, bool full) {
         {"bore step down", {{1.5, 0}, {3, 0}, {3, 4}, {1, 4}, {1, 2.5}, {1.5, 2.5}}},
         {"rotor", {{1, 0}, {2, 0}, {2, 1}, {3, 1}, {3, 3}, {2, 3}, {2, 4}, {1.5, 4}, {1.5, 2}, {1, 2}}},
         {"coupling",
-         {{1, 0}, {3, 0}, {3, 1}, {2.5, 1}, {2.5, 3}, {3, 3}, {3, 4}, {1, 4}, {1, 3}, {1.5, 3}, {1.5, 1}, {1, 1}}},
+         {{1, 0},
+          {3, 0},
+          {3, 1},
+          {2.5, 1},
+          {2.5, 3},
+          {3, 3},
+          {3, 4},
+          {1, 4},
+          {1, 3},
+          {1.5, 3},
+          {1.5, 1},
+          {1, 1}}},
         {"bore two steps", {{0.5, 0}, {2.5, 0}, {2.5, 3}, {1.5, 3}, {1.5, 2}, {1, 2}, {1, 1}, {0.5, 1}}}};
     std::vector<sample_model> bases;
     for (std::size_t p = 0; p < parts.size(); ++p)
@@ -1431,10 +1461,12 @@ inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
     for (std::size_t p = 0; p < patterns.size(); ++p)
       for (std::size_t c = 0; c < coords.size(); ++c) {
         if (!full && (p >= 5 || c != p % 2)) continue;
-        cellforge::samples::voxel_layout l = cellforge::samples::empty_layout(coords[c], coords[1 - c], coords[c]);
+        cellforge::samples::voxel_layout l =
+            cellforge::samples::empty_layout(coords[c], coords[1 - c], coords[c]);
         l.labels.assign(27, 1);
         for (const auto& q : detail::notch_cells(patterns[p])) l.at(q[0], q[1], q[2]) = 0;
-        bases.push_back(cellforge::samples::make_voxel_model(l, "notch " + patterns[p] + (c ? " uneven" : "")));
+        bases.push_back(
+            cellforge::samples::make_voxel_model(l, "notch " + patterns[p] + (c ? " uneven" : "")));
       }
     detail::add_family(s, "notch", std::move(bases), full);
   }
@@ -1544,13 +1576,14 @@ inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
     const sample_model frame = detail::ring_frame(1, 2, 0.5, false),
                        cells = detail::ring_frame(1, 2, 0.5, true);
     const auto box = [](glm::dvec3 size, glm::dvec3 at, const sample_model& f, std::string name) {
-      return cellforge::samples::disjoint_union(f, cellforge::samples::sample_cube(size), at, std::move(name));
+      return cellforge::samples::disjoint_union(f, cellforge::samples::sample_cube(size), at,
+                                                std::move(name));
     };
     const auto sphere = [](std::size_t slices, double r, double z, std::string name) {
       const sample_model b = detail::ball(slices, 6);
-      return cellforge::samples::disjoint_union(detail::ring_frame(1, 2, 0.5, false),
-                                       cellforge::samples::transformed(b, glm::dmat3(r), glm::dvec3(0.0)), {2, 2, z},
-                                       std::move(name));
+      return cellforge::samples::disjoint_union(
+          detail::ring_frame(1, 2, 0.5, false),
+          cellforge::samples::transformed(b, glm::dmat3(r), glm::dvec3(0.0)), {2, 2, z}, std::move(name));
     };
     std::vector<sample_model> bases{box({1, 1, 0.25}, {1.5, 1.5, 0.25}, frame, "box in frame flush top"),
                                     box({1, 1, 1.5}, {1.5, 1.5, -0.5}, frame, "box through frame"),
@@ -1572,10 +1605,11 @@ inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
         labelled_cells({0, 1, 2}, {0, 1, 2}, {0, 1, 2}, {{{0, 0, 0}, 1}, {{1, 1, 1}, 2}},
                        "touching vertex cubes"),
         labelled_cells({0, 1, 2}, {0, 1, 2}, {0, 1}, {{{0, 0, 0}, 1}, {{1, 1, 0}, 2}}, "touching edge cubes"),
-        cellforge::samples::disjoint_union(cellforge::samples::sample_pyramid(4),
-                                  cellforge::samples::transformed(cellforge::samples::sample_pyramid(4),
-                                                         glm::dmat3(1, 0, 0, 0, 1, 0, 0, 0, -1), {0, 0, 2}),
-                                  glm::dvec3(0.0), "touching vertex pyramids")};
+        cellforge::samples::disjoint_union(
+            cellforge::samples::sample_pyramid(4),
+            cellforge::samples::transformed(cellforge::samples::sample_pyramid(4),
+                                            glm::dmat3(1, 0, 0, 0, 1, 0, 0, 0, -1), {0, 0, 2}),
+            glm::dvec3(0.0), "touching vertex pyramids")};
     bases.back() = detail::glued(bases.back());
     if (full) {
       bases.push_back(labelled_cells({0, 1, 1.5}, {0, 0.75, 2}, {0, 1.25, 1.75},
@@ -1636,7 +1670,8 @@ inline sweep_set make_sweep(sweep_size size, bool shuffle = true) {
     library.push_back(cellforge::samples::sample_close_edges());
     for (int i = 1; i <= 6; ++i) library.push_back(cellforge::samples::sample_seed(i));
     // Library models whose walls no edge needs, read as the rule reads them.
-    for (const sample_model& walled : {cellforge::samples::sample_seed(6), cellforge::samples::sample_uv_sphere(7, 6)})
+    for (const sample_model& walled :
+         {cellforge::samples::sample_seed(6), cellforge::samples::sample_uv_sphere(7, 6)})
       if (walled.volumes.size() > 1)
         library.push_back(detail::without_walls(walled, walled.name + " without walls"));
     std::vector<sample_model> bases;
@@ -1693,8 +1728,8 @@ inline std::optional<cellforge::samples::sample_model> height_field(std::uint64_
   if (heights.find_first_not_of('0') == std::string::npos || !cells_connected(l, 1))
     return ++draws.not_manifold, std::nullopt;
   return accept(l, 1,
-                "height field draw " + std::to_string(draw) + (unit ? " unit " : " ") + std::to_string(k) + "x" +
-                    std::to_string(m) + " " + heights,
+                "height field draw " + std::to_string(draw) + (unit ? " unit " : " ") + std::to_string(k) +
+                    "x" + std::to_string(m) + " " + heights,
                 draws);
 }
 
@@ -1704,7 +1739,8 @@ inline std::optional<cellforge::samples::sample_model> height_field(std::uint64_
 inline std::optional<cellforge::samples::sample_model> touching_height_field(std::uint64_t draw) {
   random_source rng(0x510e527fade682d1ull ^ (draw * 0x9e3779b97f4a7c15ull));
   const std::size_t k = rng.in(2, 4), m = rng.in(2, 4);
-  cellforge::samples::voxel_layout l = cellforge::samples::empty_layout(random_coords(k, rng), random_coords(m, rng), random_coords(4, rng));
+  cellforge::samples::voxel_layout l =
+      cellforge::samples::empty_layout(random_coords(k, rng), random_coords(m, rng), random_coords(4, rng));
   for (std::size_t j = 0; j < m; ++j)
     for (std::size_t i = 0; i < k; ++i)
       for (std::size_t z = 0, h = rng.in(1, 4); z < h; ++z) l.at(i, j, z) = 1;
@@ -1814,7 +1850,8 @@ inline double segment_distance(glm::dvec2 q, glm::dvec2 a, glm::dvec2 b) {
 inline bool inside_polygon(glm::dvec2 q, const std::vector<glm::dvec2>& p) {
   bool in = false;
   for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++)
-    if ((p[i].y > q.y) != (p[j].y > q.y) && q.x < p[j].x + (q.y - p[j].y) * (p[i].x - p[j].x) / (p[i].y - p[j].y))
+    if ((p[i].y > q.y) != (p[j].y > q.y) &&
+        q.x < p[j].x + (q.y - p[j].y) * (p[i].x - p[j].x) / (p[i].y - p[j].y))
       in = !in;
   return in;
 }
@@ -1823,14 +1860,15 @@ inline bool inside_polygon(glm::dvec2 q, const std::vector<glm::dvec2>& p) {
 /// convex polygon given by its corners: bottom and top faces with the bores as holes, a quad per
 /// side; one volume. O(total corners).
 inline cellforge::samples::sample_model extrude(const std::vector<glm::dvec2>& outline,
-                                       const std::vector<std::vector<glm::dvec2>>& bores, double height,
-                                       std::string name) {
+                                                const std::vector<std::vector<glm::dvec2>>& bores,
+                                                double height, std::string name) {
   model_builder b;
   std::vector<std::vector<std::uint32_t>> bottom, top;
   std::vector<std::uint32_t> faces;
   const auto ring = [&](const std::vector<glm::dvec2>& poly) {
     std::vector<std::uint32_t> lo, hi;
-    for (const auto& q : poly) lo.push_back(b.point({q.x, q.y, 0.0})), hi.push_back(b.point({q.x, q.y, height}));
+    for (const auto& q : poly)
+      lo.push_back(b.point({q.x, q.y, 0.0})), hi.push_back(b.point({q.x, q.y, height}));
     for (std::size_t i = 0; i < poly.size(); ++i) {
       const std::size_t j = (i + 1) % poly.size();
       faces.push_back(b.face({{lo[i], lo[j], hi[j], hi[i]}}));
@@ -1897,9 +1935,10 @@ inline bool segments_cross(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, glm::dvec2 
 /// of R outside T (facing down, an overhang), found by walking the two boundaries split at their
 /// crossings; the side faces carry the crossings on their edges in that plane. One volume;
 /// nullopt when R is not inside T and does not cross it (apart). O(1).
-inline std::optional<cellforge::samples::sample_model> turned_boxes(glm::dvec2 lower, double h1, glm::dvec2 upper,
-                                                           glm::dvec2 centre, double turn, double h2,
-                                                           std::string name) {
+inline std::optional<cellforge::samples::sample_model> turned_boxes(glm::dvec2 lower, double h1,
+                                                                    glm::dvec2 upper, glm::dvec2 centre,
+                                                                    double turn, double h2,
+                                                                    std::string name) {
   const std::vector<glm::dvec2> T{{0, 0}, {lower.x, 0}, lower, {0, lower.y}};  // counter-clockwise
   std::vector<glm::dvec2> R;
   for (const auto& [u, v] : std::array<std::array<double, 2>, 4>{{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}}) {
@@ -1941,7 +1980,8 @@ inline std::optional<cellforge::samples::sample_model> turned_boxes(glm::dvec2 l
   // Side faces: the lower box's go up to z = h1 (its top edge through T's boundary points), the
   // upper box's down to it.
   std::array<std::uint32_t, 4> base{}, roof{};
-  for (std::size_t i = 0; i < 4; ++i) base[i] = b.point({T[i].x, T[i].y, 0.0}), roof[i] = b.point({R[i].x, R[i].y, h1 + h2});
+  for (std::size_t i = 0; i < 4; ++i)
+    base[i] = b.point({T[i].x, T[i].y, 0.0}), roof[i] = b.point({R[i].x, R[i].y, h1 + h2});
   for (int p = 0; p < 2; ++p)
     for (std::size_t i = 0; i < 4; ++i) {
       std::vector<std::uint32_t> loop;  // along the side at z = h1 from corner i to i + 1, then back
@@ -2024,9 +2064,10 @@ inline std::optional<cellforge::samples::sample_model> random_turned_boxes(std::
   const std::uint64_t where = draw % 3;
   const glm::dvec2 upper = where == 1 ? lower * glm::dvec2(rng.between(0.75, 1.1), rng.between(0.75, 1.1))
                                       : glm::dvec2(rng.between(0.5, 1.5), rng.between(0.5, 1.5));
-  const glm::dvec2 centre = where == 1   ? lower / 2.0 + glm::dvec2(rng.between(-0.1, 0.1), rng.between(-0.1, 0.1))
-                            : where == 2 ? lower * glm::dvec2(double(draw / 3 % 2), double(draw / 6 % 2))
-                                         : glm::dvec2(rng.between(-0.3, lower.x + 0.3), rng.between(-0.3, lower.y + 0.3));
+  const glm::dvec2 centre =
+      where == 1   ? lower / 2.0 + glm::dvec2(rng.between(-0.1, 0.1), rng.between(-0.1, 0.1))
+      : where == 2 ? lower * glm::dvec2(double(draw / 3 % 2), double(draw / 6 % 2))
+                   : glm::dvec2(rng.between(-0.3, lower.x + 0.3), rng.between(-0.3, lower.y + 0.3));
   const double turn = rng.between(0.05, std::numbers::pi / 2 - 0.05);
   return turned_boxes(lower, h1, upper, centre, turn, h2,
                       "turned boxes draw " + std::to_string(draw) + " turn=" +
@@ -2035,7 +2076,8 @@ inline std::optional<cellforge::samples::sample_model> random_turned_boxes(std::
 
 /// Adds models whose truth may have faces in no volume (a fin): each needed by an edge, or a
 /// fault. O(total size).
-inline void add_ordinary(sweep_set& s, const std::string& family, cellforge::samples::sample_model m, bool full, bool odd) {
+inline void add_ordinary(sweep_set& s, const std::string& family, cellforge::samples::sample_model m,
+                         bool full, bool odd) {
   if (const std::size_t n = faces_no_edge_needs(m); n != 0) {
     s.faults.push_back(family + ": '" + m.name + "' has " + std::to_string(n) + " faces no edge needs");
     return;
@@ -2058,8 +2100,10 @@ inline sweep_set make_ordinary_sweep(sweep_size size, bool shuffle = true) {
     family_draws draws{"height field"};
     const std::size_t want = full ? 80 : 6;
     for (std::uint64_t d = 0; draws.kept < want && d < 40 * want; ++d)
-      if (auto m = detail::height_field(d, draws)) detail::add_copies(s, "height field", *m, false, 0, d % 2 == 0);
-    if (draws.kept < want) s.faults.push_back("height field: only " + std::to_string(draws.kept) + " draws kept");
+      if (auto m = detail::height_field(d, draws))
+        detail::add_copies(s, "height field", *m, false, 0, d % 2 == 0);
+    if (draws.kept < want)
+      s.faults.push_back("height field: only " + std::to_string(draws.kept) + " draws kept");
     s.draws.push_back(draws);
   }
   {
@@ -2071,19 +2115,22 @@ inline sweep_set make_ordinary_sweep(sweep_size size, bool shuffle = true) {
           if (kind == 2 && angle != 0.0) continue;  // a standing fin has no angle; variants instead
           const glm::dvec3 size = variant == 0 ? glm::dvec3(1, 1, 1) : glm::dvec3(2, 1.25, 0.5);
           if (!full && i % 5 != 0) continue;
-          detail::add_ordinary(s, "box with fin", detail::box_with_fin(kind, angle, kind == 2 ? variant : 0, size),
-                               full, i % 2 == 1);
+          detail::add_ordinary(s, "box with fin",
+                               detail::box_with_fin(kind, angle, kind == 2 ? variant : 0, size), full,
+                               i % 2 == 1);
         }
     if (full)
       for (int variant = 2; variant < 4; ++variant)
-        detail::add_ordinary(s, "box with fin", detail::box_with_fin(2, 0.0, variant, {1.5, 1, 0.75}), full, false);
+        detail::add_ordinary(s, "box with fin", detail::box_with_fin(2, 0.0, variant, {1.5, 1, 0.75}), full,
+                             false);
   }
   for (std::uint64_t d = 0; d < (full ? 80u : 6u); ++d)
     detail::add_ordinary(s, "extrusion", detail::random_extrusion(d), false, d % 2 == 0);
   {
     std::size_t kept = 0;
     for (std::uint64_t d = 0; kept < (full ? 60u : 6u) && d < 1000; ++d)
-      if (auto m = detail::random_turned_boxes(d)) detail::add_ordinary(s, "turned boxes", *m, false, kept++ % 2 == 0);
+      if (auto m = detail::random_turned_boxes(d))
+        detail::add_ordinary(s, "turned boxes", *m, false, kept++ % 2 == 0);
   }
   return s;
 }
@@ -2133,7 +2180,8 @@ inline std::string unmatched(const faces_t& a, const faces_t& b) {
 
 /// Why a result is not the truth, in one line; empty when it is exact.
 /// O(F log F · face size).
-inline std::string miss_reason(const cellforge::samples::sample_model& m, const cellforge::wireframe_result<glm::dvec3>& r,
+inline std::string miss_reason(const cellforge::samples::sample_model& m,
+                               const cellforge::wireframe_result<glm::dvec3>& r,
                                const cellforge::cells_validation_options& check = {}) {
   std::vector<std::string> why;
   const faces_t faces = result_faces(r);
@@ -2153,7 +2201,8 @@ inline std::string miss_reason(const cellforge::samples::sample_model& m, const 
   if (r.unforced.size() != m.unforced_faces)
     why.push_back("unforced " + std::to_string(r.unforced.size()) + " vs " +
                   std::to_string(m.unforced_faces) + " expected");
-  if (const auto v = cellforge::validate(r.cells, check); !v.ok()) why.push_back("invalid complex: " + v.message);
+  if (const auto v = cellforge::validate(r.cells, check); !v.ok())
+    why.push_back("invalid complex: " + v.message);
   std::string out;
   for (const auto& w : why) out += (out.empty() ? "" : "; ") + w;
   return out;
@@ -2164,7 +2213,8 @@ inline std::string miss_reason(const cellforge::samples::sample_model& m, const 
 /// readings it reports — the answer without some of its unforced faces, or the answer with one
 /// undecided alternative taken (its cycles added, its faces removed); else why not.
 /// O(alternatives · F log F · face size).
-inline std::string ambiguous_miss(const cellforge::samples::sample_model& m, const cellforge::wireframe_result<glm::dvec3>& r,
+inline std::string ambiguous_miss(const cellforge::samples::sample_model& m,
+                                  const cellforge::wireframe_result<glm::dvec3>& r,
                                   const cellforge::cells_validation_options& check = {}) {
   std::string why = miss_reason(m, r, check);
   if (why.empty()) return why;
@@ -2184,8 +2234,10 @@ inline std::string ambiguous_miss(const cellforge::samples::sample_model& m, con
     std::size_t found = 0;
     for (std::size_t i = 0; i < faces.size() && ok; ++i) {
       const auto it = rest.find(cellforge::samples::detail::canonical_face(faces[i]));
-      if (it != rest.end()) rest.erase(it), ++found;
-      else ok = loose[i] != 0;
+      if (it != rest.end())
+        rest.erase(it), ++found;
+      else
+        ok = loose[i] != 0;
     }
     if (ok && rest.empty() && found == m.faces.size()) return {};
   }
@@ -2207,7 +2259,8 @@ inline std::string ambiguous_miss(const cellforge::samples::sample_model& m, con
 /// The model with every vertex moved in a random direction (uniform on the sphere) by a random
 /// distance up to `eps` of its bounding-box diagonal (uniform in [0, eps]; seeded); the truth is
 /// unchanged. O(V).
-inline cellforge::samples::sample_model noisy(const cellforge::samples::sample_model& m, double eps, std::uint64_t seed) {
+inline cellforge::samples::sample_model noisy(const cellforge::samples::sample_model& m, double eps,
+                                              std::uint64_t seed) {
   random_source rng(seed);
   cellforge::samples::sample_model out = m;
   const double reach = eps * detail::diagonal(m.wire.points);
@@ -2229,7 +2282,8 @@ enum class noisy_outcome { exact, flagged, error, wrong };
 /// does (`ambiguous`: a model two solids share, judged by ambiguous_miss), its complex checked
 /// with the options the pipeline used (wireframe_result::check); `why` gets the reason of a
 /// miss. O(one conversion).
-inline noisy_outcome judge_noisy(const cellforge::samples::sample_model& m, std::string& why, bool ambiguous = false) {
+inline noisy_outcome judge_noisy(const cellforge::samples::sample_model& m, std::string& why,
+                                 bool ambiguous = false) {
   try {
     const auto r = cellforge::wireframe_to_cells(m.wire);
     why = ambiguous ? ambiguous_miss(m, r, r.check) : miss_reason(m, r, r.check);
@@ -2245,7 +2299,8 @@ inline noisy_outcome judge_noisy(const cellforge::samples::sample_model& m, std:
 /// model exactly: a miss no tolerance mends is information-theoretic for this pipeline (the
 /// noise is as large as the shape), one some tolerance mends is the estimator's. O(14 conversions).
 inline bool some_tolerance_reads(const cellforge::samples::sample_model& m) {
-  for (const double t : {1e-8, 3e-8, 1e-7, 3e-7, 1e-6, 3e-6, 1e-5, 3e-5, 1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2}) {
+  for (const double t :
+       {1e-8, 3e-8, 1e-7, 3e-7, 1e-6, 3e-6, 1e-5, 3e-5, 1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2}) {
     cellforge::wireframe_options o;
     o.tolerance.automatic = false;
     o.trace.planarity.relative = o.reduction.planarity.relative = t;

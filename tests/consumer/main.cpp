@@ -324,6 +324,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (failures != 0) return 1;
-  std::printf("consumer ok: cad::Vector3 and cad::Vec3f through every job and file format, cad::Sketch through the sketch part\n");
+  std::printf(
+      "consumer ok: cad::Vector3 and cad::Vec3f through every job and file format, cad::Sketch through the "
+      "sketch part\n");
   return 0;
 }

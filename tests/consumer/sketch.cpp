@@ -70,5 +70,6 @@ void run_sketch(void (*expect)(bool, const char*, const char*)) {
   expect(faces.loops.size() == 6 && !faces.flagged, "Sketch", "find_faces: a cube's drawing has six faces");
   cad::Sketch broken = s;
   broken.stroke(0, 0);
-  expect(!cellforge::validate_drawing(broken).ok(), "Sketch", "validate_drawing: a stroke from a corner to itself");
+  expect(!cellforge::validate_drawing(broken).ok(), "Sketch",
+         "validate_drawing: a stroke from a corner to itself");
 }

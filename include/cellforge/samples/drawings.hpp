@@ -292,7 +292,8 @@ bool simple_polygon(const std::vector<glm::dvec2>& p) {
 template <class = void>
 sample_model convex_polytope_model(const std::vector<glm::dvec3>& points, std::string name,
                                    double tolerance = 1e-9) {
-  const cellforge::detail::hull::result r = cellforge::detail::hull::compute(std::span<const glm::dvec3>(points), {});
+  const cellforge::detail::hull::result r =
+      cellforge::detail::hull::compute(std::span<const glm::dvec3>(points), {});
   if (r.dimension < 3)
     throw error(error_category::invalid_input,
                 cellforge::detail::cat("convex_polytope_model: the points of '", name,
@@ -1052,8 +1053,8 @@ sample_model convex_cells_model(const std::vector<std::vector<glm::dvec3>>& cell
       for (std::size_t k = 0; k < loop.size(); ++k)
         edges.insert(
             {std::min(loop[k], loop[(k + 1) % loop.size()]), std::max(loop[k], loop[(k + 1) % loop.size()])});
-      const auto [it, fresh] =
-          face_id.insert({cellforge::detail::canonical_cycle(loop), static_cast<std::uint32_t>(m.faces.size())});
+      const auto [it, fresh] = face_id.insert(
+          {cellforge::detail::canonical_cycle(loop), static_cast<std::uint32_t>(m.faces.size())});
       if (fresh) m.faces.push_back({std::move(loop)});
       volume.push_back(it->second);
     }
@@ -1808,8 +1809,9 @@ std::vector<sample_drawing> sketch_sweep(const sketch_sweep_options& options = {
     for (int view = 0; view < it.views; ++view) {
       if (index[fi]++ % stride != 0) continue;
       // Classics: fixed views; the others follow options.seed.
-      cellforge::detail::splitmix rng{detail::name_hash(it.model.name, it.family == "classic" ? 0 : options.seed) +
-                           0x9e3779b97f4a7c15u * static_cast<std::uint64_t>(view + 1)};
+      cellforge::detail::splitmix rng{
+          detail::name_hash(it.model.name, it.family == "classic" ? 0 : options.seed) +
+          0x9e3779b97f4a7c15u * static_cast<std::uint64_t>(view + 1)};
       bool found = false;
       const double threshold = sketch_margin_threshold(options, it.model.wire.edges.size());
       for (int attempt = 0; attempt < options.view_attempts && !found; ++attempt) {

@@ -160,8 +160,10 @@ bool segments_meet(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, glm::dvec2 d) {
   };
   const double d1 = orient(c, d, a), d2 = orient(c, d, b), d3 = orient(a, b, c), d4 = orient(a, b, d);
   if (((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0))) return true;
-  return cellforge::detail::segment_distance(a, c, d) < 1e-12 || cellforge::detail::segment_distance(b, c, d) < 1e-12 ||
-         cellforge::detail::segment_distance(c, a, b) < 1e-12 || cellforge::detail::segment_distance(d, a, b) < 1e-12;
+  return cellforge::detail::segment_distance(a, c, d) < 1e-12 ||
+         cellforge::detail::segment_distance(b, c, d) < 1e-12 ||
+         cellforge::detail::segment_distance(c, a, b) < 1e-12 ||
+         cellforge::detail::segment_distance(d, a, b) < 1e-12;
 }
 
 /// A blended edge of a prism while the sample is built.
@@ -325,7 +327,8 @@ sample_round_drawing round_prism_drawing(const std::vector<glm::dvec2>& p, doubl
         if (j == i || (j + 1) % n == i || j == (i + 1) % n) continue;
         const glm::dvec2 a = p[j], c = p[(j + 1) % n];
         if (std::min({cellforge::detail::segment_distance(a, p[i], p[(i + 1) % n]),
-                      cellforge::detail::segment_distance(c, p[i], p[(i + 1) % n]), cellforge::detail::segment_distance(p[i], a, c),
+                      cellforge::detail::segment_distance(c, p[i], p[(i + 1) % n]),
+                      cellforge::detail::segment_distance(p[i], a, c),
                       cellforge::detail::segment_distance(p[(i + 1) % n], a, c)}) < 2.5 * b.radius)
           fail("a side edge's blend comes near another side");
       }

@@ -370,14 +370,14 @@ skeleton<P> random_tree(std::uint64_t seed, const random_tree_options& o = {}) {
 
 /// What a neuron-like skeleton looks like (lengths in µm, as SWC's).
 struct neuron_options {
-  std::size_t samples = 1000;     ///< nodes, soma included (the growth stops there, or when crowded)
-  double soma_radius = 8;         ///< of the soma's middle sample; the soma is a chain of `soma_samples`
-  int soma_samples = 5;           ///< along x, radii falling off as a sphere's (at least 1)
-  int primary_dendrites = 6;      ///< leaving the soma's middle sample
-  double primary_radius = 1.6;    ///< largest radius of a primary dendrite (each takes 0.6–1 of it)
-  double min_radius = 0.1;        ///< thinnest dendrite
-  double close_branching = 0.5;   ///< share of branch points 2–6 r after the previous one (else 10–40 r)
-  double tortuosity = 0.25;       ///< random turn per sample (about this many radians at most)
+  std::size_t samples = 1000;    ///< nodes, soma included (the growth stops there, or when crowded)
+  double soma_radius = 8;        ///< of the soma's middle sample; the soma is a chain of `soma_samples`
+  int soma_samples = 5;          ///< along x, radii falling off as a sphere's (at least 1)
+  int primary_dendrites = 6;     ///< leaving the soma's middle sample
+  double primary_radius = 1.6;   ///< largest radius of a primary dendrite (each takes 0.6–1 of it)
+  double min_radius = 0.1;       ///< thinnest dendrite
+  double close_branching = 0.5;  ///< share of branch points 2–6 r after the previous one (else 10–40 r)
+  double tortuosity = 0.25;      ///< random turn per sample (about this many radians at most)
 };
 
 /// A neuron-like tree, as reconstructions (SWC) have them: a soma of several samples, dendrites
@@ -388,10 +388,10 @@ struct neuron_options {
 /// About O(n) (a bounded search of the tree near each new sample).
 template <Point3 P = glm::dvec3>
 skeleton<P> neuron(std::uint64_t seed, const neuron_options& o = {}) {
-  detail::require_skeleton("neuron",
-                           {{"samples", static_cast<double>(o.samples)},
-                            {"soma_samples", static_cast<double>(o.soma_samples)}},
-                           1, static_cast<double>(o.samples), static_cast<double>(o.samples));
+  detail::require_skeleton(
+      "neuron",
+      {{"samples", static_cast<double>(o.samples)}, {"soma_samples", static_cast<double>(o.soma_samples)}}, 1,
+      static_cast<double>(o.samples), static_cast<double>(o.samples));
   if (!(o.soma_radius > 0 && o.primary_radius > 0 && o.min_radius > 0 && o.min_radius <= o.primary_radius &&
         o.primary_radius < o.soma_radius && std::isfinite(o.soma_radius)))
     throw error(error_category::invalid_input,
@@ -503,7 +503,8 @@ skeleton<P> neuron(std::uint64_t seed, const neuron_options& o = {}) {
   std::vector<tip> open;
   // Close branch points come in pairs, not chains: after one, the next is far.
   const auto next_gap = [&](double r, bool close_allowed) {
-    return r * (close_allowed && rng.uniform(0, 1) < o.close_branching ? rng.uniform(2, 6) : rng.uniform(10, 40));
+    return r *
+           (close_allowed && rng.uniform(0, 1) < o.close_branching ? rng.uniform(2, 6) : rng.uniform(10, 40));
   };
   std::vector<glm::dvec3> primaries;
   for (int k = 0; k < o.primary_dendrites && pos.size() < o.samples; ++k)
@@ -554,7 +555,8 @@ skeleton<P> neuron(std::uint64_t seed, const neuron_options& o = {}) {
         if (!clear(v, p, rc)) continue;
         const std::uint32_t c = add(p, rc);
         join(v, c);
-        grown.push_back({c, d, branch ? d : t.base, branch ? next_gap(rc, t.since_branch > 8 * r) : t.until_branch - step, t.sibling,
+        grown.push_back({c, d, branch ? d : t.base,
+                         branch ? next_gap(rc, t.since_branch > 8 * r) : t.until_branch - step, t.sibling,
                          branch ? step : t.since_branch + step});
         break;
       }

@@ -49,8 +49,8 @@ thin_sample<P> revolve(std::string name, int segments, int rings, bool triangles
                 cellforge::detail::cat("thin sample '", name, "': rings must be at least 3, got ",
                                        std::to_string(rings)));
   // The profile is allocated before solid_of_revolution checks the mesh's size: check it here.
-  cellforge::detail::shapes::require_counts("thin sample", {{"segments", segments, 3}}, double(segments) * rings,
-                                 4.0 * segments * rings);
+  cellforge::detail::shapes::require_counts("thin sample", {{"segments", segments, 3}},
+                                            double(segments) * rings, 4.0 * segments * rings);
   thin_sample<P> s;
   s.name = std::move(name), s.segments = segments, s.triangles = triangles;
   for (int k = 0; k < rings; ++k) {

@@ -455,7 +455,8 @@ std::vector<double> cross_section_girths(const thin_input& in, const glm::dvec3&
       height[k] = glm::dot(dir, in.position[in.slot_vertex[b + k]]);
       low = std::min(low, height[k]), high = std::max(high, height[k]);
     }
-    for (auto it = std::upper_bound(levels.begin(), levels.end(), low); it != levels.end() && *it < high; ++it) {
+    for (auto it = std::upper_bound(levels.begin(), levels.end(), low); it != levels.end() && *it < high;
+         ++it) {
       cross.clear();
       for (std::uint32_t k = 0; k < n; ++k) {
         const std::uint32_t k2 = (k + 1) % n;
@@ -465,8 +466,9 @@ std::vector<double> cross_section_girths(const thin_input& in, const glm::dvec3&
       }
       if (cross.size() < 2) continue;
       const glm::dvec3 along = cross[1] - cross[0];
-      std::sort(cross.begin(), cross.end(),
-                [&](const glm::dvec3& x, const glm::dvec3& y) { return glm::dot(along, x) < glm::dot(along, y); });
+      std::sort(cross.begin(), cross.end(), [&](const glm::dvec3& x, const glm::dvec3& y) {
+        return glm::dot(along, x) < glm::dot(along, y);
+      });
       for (std::size_t i = 0; i + 1 < cross.size(); i += 2)
         girth[static_cast<std::size_t>(it - levels.begin())] += glm::length(cross[i + 1] - cross[i]);
     }
@@ -542,7 +544,8 @@ thin_result<glm::dvec3> find(thin_input prepared, const thin_options& options) {
 
   clock.restart();
   const growing_result grown = grow_selections(
-      g, start, {options.selection_cap, options.keep_ratio, options.mode, options.work_budget, options.scalable_above});
+      g, start,
+      {options.selection_cap, options.keep_ratio, options.mode, options.work_budget, options.scalable_above});
   r.growing_ms = clock.ms();
   r.cycle_lengths = grown.cycle_lengths;
   r.selections_examined = grown.selections_examined, r.duplicates_dropped = grown.duplicates_dropped;
