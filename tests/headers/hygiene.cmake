@@ -7,6 +7,7 @@
 #     standard-headers baseline's compile time, docs/benchmarks.md "Compile time");
 #   - no non-template `inline` function at namespace scope: it would be compiled in every file
 #     that includes the header, used or not (docs/infra.md; make it a template);
+#   - no header outside samples/ includes one in it (but a deprecated forwarder);
 #   - cellforge/cellforge.hpp includes every public header except io/, samples/, detail/ and
 #     sketch/ (its comment says so), and none that
 #     needs Eigen, directly or through another header (so a user without Eigen can include it);
@@ -43,6 +44,9 @@ foreach(header IN LISTS headers)
     if(code MATCHES "^#pragma message")  # a deprecated header that forwards: in no umbrella
       list(APPEND deprecated_headers "${header}")
     endif()
+    if(code MATCHES "^[ \t]*#[ \t]*include[ \t]*\"cellforge/samples/" AND NOT header MATCHES "^cellforge/samples/")
+      list(APPEND sample_includers "${header}:${n}")
+    endif()
     if(code MATCHES "(^|[^A-Za-z0-9_])using[ \t]+namespace[ \t]")
       message("${header}:${n}: `using namespace` in a header leaks into users' code")
       math(EXPR problems "${problems} + 1")
@@ -68,6 +72,15 @@ foreach(header IN LISTS headers)
   endforeach()
   if(NOT has_pragma)
     message("${header}: missing `#pragma once`")
+    math(EXPR problems "${problems} + 1")
+  endif()
+endforeach()
+# Test data stays out of the library: no header outside samples/ includes one in it, but the
+# deprecated forwarders left at the samples' old paths.
+foreach(at IN LISTS sample_includers)
+  string(REGEX REPLACE ":[0-9]+$" "" header "${at}")
+  if(NOT header IN_LIST deprecated_headers)
+    message("${at}: includes a samples/ header; the library must not depend on its test data")
     math(EXPR problems "${problems} + 1")
   endif()
 endforeach()
