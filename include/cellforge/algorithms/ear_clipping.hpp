@@ -9,7 +9,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <ranges>
 #include <span>
 #include <string>
 #include <string_view>
@@ -17,9 +19,11 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/detail/edge_table.hpp"
+#include "cellforge/core/detail/geometry.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
@@ -62,13 +66,8 @@ namespace detail::ears {
 /// Newell's normal of polygon p, summed about its centroid for accuracy (not normalised). O(n).
 template <class = void>
 glm::dvec3 newell_normal(std::span<const glm::dvec3> p, const glm::dvec3& centroid) noexcept {
-  glm::dvec3 newell(0.0);
-  const std::size_t n = p.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const glm::dvec3 a = p[i] - centroid, b = p[(i + 1) % n] - centroid;
-    newell += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
-  }
-  return newell;
+  return cellforge::detail::newell(std::views::iota(std::size_t{0}, p.size()),
+                                   [&](std::size_t i) { return p[i] - centroid; });
 }
 
 /// The axis clipping projects along: the normal's largest component (the first on a tie). O(1).
@@ -171,22 +170,8 @@ struct buckets {
 template <class = void>
 bool segments_meet(const double* x, const double* y, std::uint32_t a, std::uint32_t b, std::uint32_t c,
                    std::uint32_t d) {
-  // Disjoint bounding boxes settle most pairs without an orientation test.
-  if (std::max(x[a], x[b]) < std::min(x[c], x[d]) || std::max(x[c], x[d]) < std::min(x[a], x[b]) ||
-      std::max(y[a], y[b]) < std::min(y[c], y[d]) || std::max(y[c], y[d]) < std::min(y[a], y[b]))
-    return false;
-  const int o1 = orient2d(x[a], y[a], x[b], y[b], x[c], y[c]),
-            o2 = orient2d(x[a], y[a], x[b], y[b], x[d], y[d]);
-  const int o3 = orient2d(x[c], y[c], x[d], y[d], x[a], y[a]),
-            o4 = orient2d(x[c], y[c], x[d], y[d], x[b], y[b]);
-  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
-  // A point on the other segment: collinear with it and inside its bounding box.
-  auto on = [&](std::uint32_t p, std::uint32_t q, std::uint32_t r) {
-    return std::min(x[p], x[q]) <= x[r] && x[r] <= std::max(x[p], x[q]) && std::min(y[p], y[q]) <= y[r] &&
-           y[r] <= std::max(y[p], y[q]);
-  };
-  return (o1 == 0 && on(a, b, c)) || (o2 == 0 && on(a, b, d)) || (o3 == 0 && on(c, d, a)) ||
-         (o4 == 0 && on(c, d, b));
+  return cellforge::detail::segments_meet(glm::dvec2(x[a], y[a]), glm::dvec2(x[b], y[b]),
+                                          glm::dvec2(x[c], y[c]), glm::dvec2(x[d], y[d]));
 }
 
 /// True when the walk p -> q -> s, with s on the line pq, turns back over itself (exact).

@@ -18,7 +18,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/bounding_box.hpp"
-#include "cellforge/core/detail/newell.hpp"
+#include "cellforge/core/detail/geometry.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"

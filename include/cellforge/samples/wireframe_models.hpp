@@ -23,7 +23,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
-#include "cellforge/core/detail/newell.hpp"
+#include "cellforge/core/detail/geometry.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/wireframe.hpp"

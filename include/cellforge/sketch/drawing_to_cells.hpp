@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "cellforge/core/detail/geometry.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/detail/work_budget.hpp"
 #include "cellforge/core/error.hpp"
@@ -106,12 +107,9 @@ using face_set = std::vector<std::vector<std::vector<std::uint32_t>>>;
 template <class = void>
 std::pair<glm::dvec3, glm::dvec3> loop_plane(const std::vector<glm::dvec3>& p,
                                              const std::vector<std::uint32_t>& loop) {
-  glm::dvec3 n{0.0}, c{0.0};
-  for (std::size_t k = 0; k < loop.size(); ++k) {
-    const glm::dvec3 u = p[loop[k]], v = p[loop[(k + 1) % loop.size()]];
-    n += glm::dvec3((u.y - v.y) * (u.z + v.z), (u.z - v.z) * (u.x + v.x), (u.x - v.x) * (u.y + v.y));
-    c += u;
-  }
+  const glm::dvec3 n = cellforge::detail::newell(loop, [&](std::uint32_t v) { return p[v]; });
+  glm::dvec3 c{0.0};
+  for (const std::uint32_t v : loop) c += p[v];
   return {n, c / static_cast<double>(loop.size())};
 }
 

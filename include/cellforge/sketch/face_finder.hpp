@@ -27,6 +27,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "cellforge/core/detail/geometry.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/detail/work_budget.hpp"
 #include "cellforge/core/error.hpp"
@@ -236,18 +237,6 @@ double orient(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {
   return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
 }
 
-/// Whether segments ab and cd cross (or touch) away from shared endpoints. O(1).
-template <class = void>
-bool segments_meet(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, glm::dvec2 d) {
-  const double d1 = orient(a, b, c), d2 = orient(a, b, d), d3 = orient(c, d, a), d4 = orient(c, d, b);
-  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return true;
-  const auto on = [](glm::dvec2 p, glm::dvec2 q, glm::dvec2 r, double o) {  // r on pq, collinear
-    return o == 0 && std::min(p.x, q.x) <= r.x && r.x <= std::max(p.x, q.x) && std::min(p.y, q.y) <= r.y &&
-           r.y <= std::max(p.y, q.y);
-  };
-  return on(a, b, c, d1) || on(a, b, d, d2) || on(c, d, a, d3) || on(c, d, b, d4);
-}
-
 /// Whether point q is strictly inside the polygon (even-odd). O(n).
 template <class = void>
 bool inside(const std::vector<glm::dvec2>& poly, glm::dvec2 q) {
@@ -396,7 +385,7 @@ struct basic_finder {
         const glm::dvec2 pc = g.p[tb], pd = g.p[hb];
         // Segments sharing a junction meet there; they must not overlap otherwise.
         const bool share = ta == tb || ta == hb || ha == tb || ha == hb;
-        if (!share && segments_meet(pa, pb, pc, pd)) return true;
+        if (!share && cellforge::detail::segments_meet(pa, pb, pc, pd)) return true;  // exact
         if (share) {
           // Shared end: collinear overlap is a crossing too.
           const std::uint32_t shared = (ta == tb || ta == hb) ? ta : ha;

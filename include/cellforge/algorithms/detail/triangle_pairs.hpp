@@ -17,9 +17,11 @@
 #include <utility>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "cellforge/algorithms/ear_clipping.hpp"
+#include "cellforge/core/detail/geometry.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/predicates.hpp"
@@ -146,21 +148,11 @@ bool point_in(const tri& t, const vec& x) noexcept {
   return !((s0 > 0 || s1 > 0 || s2 > 0) && (s0 < 0 || s1 < 0 || s2 < 0));
 }
 
-/// True when r, collinear with p and q, lies on the closed segment pq. O(1).
-template <class = void>
-bool on_segment(const vec& p, const vec& q, const vec& r, int u, int w) noexcept {
-  return std::min(p[u], q[u]) <= r[u] && r[u] <= std::max(p[u], q[u]) && std::min(p[w], q[w]) <= r[w] &&
-         r[w] <= std::max(p[w], q[w]);
-}
-
 /// True when the closed segments pq and rs (in one plane, projected on (u, w)) meet. O(1).
 template <class = void>
 bool segments_meet(const vec& p, const vec& q, const vec& r, const vec& s, int u, int w) noexcept {
-  const int a = orient_uw(p, q, r, u, w), b = orient_uw(p, q, s, u, w), c = orient_uw(r, s, p, u, w),
-            d = orient_uw(r, s, q, u, w);
-  if (a * b < 0 && c * d < 0) return true;
-  return (a == 0 && on_segment(p, q, r, u, w)) || (b == 0 && on_segment(p, q, s, u, w)) ||
-         (c == 0 && on_segment(r, s, p, u, w)) || (d == 0 && on_segment(r, s, q, u, w));
+  return cellforge::detail::segments_meet(glm::dvec2(p[u], p[w]), glm::dvec2(q[u], q[w]),
+                                          glm::dvec2(r[u], r[w]), glm::dvec2(s[u], s[w]));
 }
 
 /// True when segment pq meets the closed triangle t; sp, sq are orient3d(t, p) and

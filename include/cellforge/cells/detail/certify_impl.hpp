@@ -16,6 +16,7 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "cellforge/algorithms/detail/triangle_pairs.hpp"
@@ -23,6 +24,7 @@
 #include "cellforge/cells/certify.hpp"
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/core/bounding_box.hpp"
+#include "cellforge/core/detail/geometry.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/text.hpp"
@@ -818,16 +820,8 @@ class basic_certifier {
 
   /// True when the closed segments ab and cd (one plane, f's projection) meet. O(1).
   bool segments_meet2(const face_info& fi, uint32_t a, uint32_t b, uint32_t c, uint32_t d) const {
-    const int s1 = o2(fi, a, b, c), s2 = o2(fi, a, b, d), s3 = o2(fi, c, d, a), s4 = o2(fi, c, d, b);
-    if (s1 * s2 < 0 && s3 * s4 < 0) return true;
-    auto on = [&](uint32_t p, uint32_t q, uint32_t r) {
-      for (const int k : {fi.u, fi.w})
-        if (pts_[r][k] < std::min(pts_[p][k], pts_[q][k]) || pts_[r][k] > std::max(pts_[p][k], pts_[q][k]))
-          return false;
-      return true;
-    };
-    return (s1 == 0 && on(a, b, c)) || (s2 == 0 && on(a, b, d)) || (s3 == 0 && on(c, d, a)) ||
-           (s4 == 0 && on(c, d, b));
+    const auto at = [&](uint32_t v) { return glm::dvec2(pts_[v][fi.u], pts_[v][fi.w]); };
+    return cellforge::detail::segments_meet(at(a), at(b), at(c), at(d));
   }
 
   /// Side of p against the plane of planar face fi (p not one of its vertices). O(1).

@@ -25,6 +25,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/geometry.hpp"
 #include "cellforge/core/point_traits.hpp"
 
 namespace cellforge::io::detail {
@@ -112,12 +113,9 @@ void svg_hex_colour(std::string& out, const glm::dvec3& rgb) {
 /// Newell's normal of a polygon (not normalised; zero for degenerate polygons). O(n).
 template <class Get>
 glm::dvec3 svg_newell(std::size_t n, Get&& at) {
-  glm::dvec3 nrm(0.0);
-  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-    const glm::dvec3 p = at(j), q = at(i);
-    nrm += glm::dvec3((p.y - q.y) * (p.z + q.z), (p.z - q.z) * (p.x + q.x), (p.x - q.x) * (p.y + q.y));
-  }
-  return nrm;
+  // From the closing side n-1 -> 0 on, the order of summation the pictures always had.
+  return cellforge::detail::newell(std::views::iota(std::size_t{0}, n),
+                                   [&](std::size_t k) { return glm::dvec3(at((k + n - 1) % n)); });
 }
 
 /// A forward range of registered points (what add_polyline and add_points accept).
