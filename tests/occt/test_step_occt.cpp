@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // io/step.hpp checked by another reader: OpenCASCADE (a test dependency only, built when CMake
-// finds it). Every cell complex of the wireframe sweep (its sample; CELLFORGE_SWEEP=full: all of it)
+// finds it). Every cell complex of the wireframe sweep (in Release all 1076; CELLFORGE_SWEEP=sample: its sample)
 // is written as STEP and read back with STEPControl_Reader with OCCT's shape healing switched
 // off, so that what is judged is the file as written: BRepCheck_Analyzer valid, one solid per
 // volume, each solid's volume equal to ours to 1e-9 relative, and the face count. So is every
@@ -175,13 +175,19 @@ std::string check_step(const cell_complex<P>& cc, std::size_t cavities = 0) {
   return {};
 }
 
-// The sample of the sweep by default (every third model of it under the sanitizers): OCCT's
-// reading and checking costs about 75 ms of CPU per model, so the full sweep, 1076 models, would
-// add ~80 CPU-seconds to CI; CELLFORGE_SWEEP=full runs every model. O(1).
+// The whole sweep, 1076 models, as test_wireframe_sweep runs it in Release (OCCT's reading and
+// checking costs about 75 ms of CPU per model: ~80 CPU-seconds, most of it the big grids); in a
+// build with assertions the sample (every third model). CELLFORGE_SWEEP=full|sample chooses. O(1).
 wireframe_sweep::sweep_size chosen_size() {
-  const char* env = std::getenv("CELLFORGE_SWEEP");
-  return env && std::string(env) == "full" ? wireframe_sweep::sweep_size::full
-                                           : wireframe_sweep::sweep_size::sample;
+  if (const char* env = std::getenv("CELLFORGE_SWEEP")) {
+    if (std::string(env) == "full") return wireframe_sweep::sweep_size::full;
+    if (std::string(env) == "sample") return wireframe_sweep::sweep_size::sample;
+  }
+#ifdef NDEBUG
+  return wireframe_sweep::sweep_size::full;
+#else
+  return wireframe_sweep::sweep_size::sample;
+#endif
 }
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
