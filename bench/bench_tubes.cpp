@@ -294,7 +294,8 @@ void print_tables(const cb::collecting_reporter& r, std::ostream& os) {
     if (!in_check(g.name)) continue;
     const std::string name = "check/" + g.name;
     const std::optional<double> m = r.counter_ms(name, "mesh_us"), k = r.counter_ms(name, "check_us");
-    const std::optional<double> tris = r.counter_ms(name, "triangles"), tested = r.counter_ms(name, "tested_pairs");
+    const std::optional<double> tris = r.counter_ms(name, "triangles"),
+                                tested = r.counter_ms(name, "tested_pairs");
     c.add_row({g.name, tris ? cb::count(static_cast<std::size_t>(*tris * 1e3 + 0.5)) : "—",
                tested ? cb::count(static_cast<std::size_t>(*tested * 1e3 + 0.5)) : "—", cb::ms(m), cb::ms(k),
                cb::ratio(k, m), m && k ? cb::fixed((*m + *k) / *m, 2) + "x" : "—"});

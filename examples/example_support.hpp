@@ -392,7 +392,8 @@ inline std::string takers(input_kind k) {
 inline std::string batch_help(const std::string& program) {
   return "several inputs (files, or folders: their files that " + program +
          " reads, in name order) run as a batch:\n"
-         "each input runs as its own " + program +
+         "each input runs as its own " +
+         program +
          " with the same options, --jobs N at a time, its outputs in a folder\n"
          "named after the input (-o DIR/<name>/); one line per input and a summary are printed, and the\n"
          "batch exits with the worst status of its runs (1, then 3, then 4; 2 for a usage error).\n";
@@ -504,9 +505,9 @@ struct program {
   bool format_given = false;         ///< --format was on the command line
   std::vector<option_spec> options;
   stage_note stage;
-  unsigned jobs = 1;                ///< --jobs: runs of a batch at a time
-  std::vector<input_kind> takes;    ///< the kinds a folder's files are taken by (.obj always)
-  bool batch = true;                ///< several inputs or a folder run as a batch (run_batch)
+  unsigned jobs = 1;              ///< --jobs: runs of a batch at a time
+  std::vector<input_kind> takes;  ///< the kinds a folder's files are taken by (.obj always)
+  bool batch = true;              ///< several inputs or a folder run as a batch (run_batch)
   /// Arguments that are one run although there are several (a deprecated spelling such as
   /// `hull points.off merge`); none when empty.
   std::function<bool(const std::vector<std::string>&)> one_run;
@@ -584,7 +585,8 @@ struct program {
   /// The value of --jobs, 1 to 256; throws usage_error. O(1).
   static unsigned parse_jobs(std::string_view v) {
     const double n = option_number("--jobs", v, 1, 256);
-    if (n != static_cast<unsigned>(n)) throw usage_error("--jobs must be a whole number, got '" + std::string(v) + "'");
+    if (n != static_cast<unsigned>(n))
+      throw usage_error("--jobs must be a whole number, got '" + std::string(v) + "'");
     return static_cast<unsigned>(n);
   }
 
@@ -807,7 +809,7 @@ inline void silence_stdout() {
 /// names a kind in `takes` (every file when empty; .obj always), in name order. Throws
 /// usage_error for a folder with no such file. O(files log files).
 inline std::vector<std::filesystem::path> batch_inputs(const std::vector<std::string>& args,
-                                                        const std::vector<input_kind>& takes) {
+                                                       const std::vector<input_kind>& takes) {
   namespace fs = std::filesystem;
   std::vector<fs::path> inputs;
   for (const std::string& a : args) {
@@ -899,8 +901,8 @@ inline int run_batch(const program& p, char** argv, int argc, const std::vector<
   std::vector<std::string> folders;
   for (const fs::path& in : inputs) {
     const auto same_stem = [&](const fs::path& o) { return &o != &in && o.stem() == in.stem(); };
-    std::string f = std::any_of(inputs.begin(), inputs.end(), same_stem) ? in.filename().string()
-                                                                        : in.stem().string();
+    std::string f =
+        std::any_of(inputs.begin(), inputs.end(), same_stem) ? in.filename().string() : in.stem().string();
     std::replace(f.begin(), f.end(), '.', '_');
     folders.push_back(f);
   }
@@ -918,10 +920,10 @@ inline int run_batch(const program& p, char** argv, int argc, const std::vector<
       }
       std::vector<std::string> args = common;
       args.insert(args.end(), {"-o", (p.output / folders[k]).string(), "--quiet", "--", inputs[k].string()});
-      const fs::path log = temp / (p.name + "-batch-" + std::to_string(std::chrono::steady_clock::now()
-                                                                              .time_since_epoch()
-                                                                              .count()) +
-                                   "-" + std::to_string(w) + ".err");
+      const fs::path log =
+          temp /
+          (p.name + "-batch-" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) +
+           "-" + std::to_string(w) + ".err");
       runs[k] = run_child(args, log);
       std::error_code ec;
       fs::remove(log, ec);
@@ -931,7 +933,7 @@ inline int run_batch(const program& p, char** argv, int argc, const std::vector<
       const std::string what = r.status == exit_ok ? "ok -> " + (p.output / folders[k]).string() + "/"
                                : r.status < 0      ? "not run: " + r.first_error
                                : r.status >= 128   ? "crashed (signal " + std::to_string(r.status - 128) + ")"
-                                                   : "exit " + std::to_string(r.status) + ": " + r.first_error;
+                                                 : "exit " + std::to_string(r.status) + ": " + r.first_error;
       std::printf("[%zu/%zu] %s: %s\n", ended, inputs.size(), inputs[k].string().c_str(), what.c_str());
       if (r.status != exit_ok && p.quiet)
         std::fprintf(stderr, "%s: %s: %s\n", p.name.c_str(), inputs[k].string().c_str(), what.c_str());
@@ -957,7 +959,8 @@ inline int run_batch(const program& p, char** argv, int argc, const std::vector<
 
 /// Whether the arguments make a batch (several inputs, or one folder), and then its status: the
 /// batch's when they do. O(arguments) plus the batch.
-inline std::optional<int> maybe_batch(const program& p, int argc, char** argv, const std::vector<std::string>& args,
+inline std::optional<int> maybe_batch(const program& p, int argc, char** argv,
+                                      const std::vector<std::string>& args,
                                       const std::vector<int>& positions) {
   std::error_code ec;
   if (!p.batch || args.empty() || (args.size() == 1 && !std::filesystem::is_directory(args[0], ec)) ||

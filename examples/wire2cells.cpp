@@ -199,7 +199,8 @@ void print_help(const std::vector<example::option_spec>& table) {
       "  %d  read, but not a closed solid (status not a solid or budget; the reason is printed and\n"
       "     the files are written so that you can look)\n",
       (fs::path(CELLFORGE_DATA_DIR) / "stepped_block.obj").string().c_str(),
-      example::options_help(table).c_str(), example::batch_help("wire2cells").c_str(), exit_ok, exit_input, exit_usage, exit_output, exit_not_solid);
+      example::options_help(table).c_str(), example::batch_help("wire2cells").c_str(), exit_ok, exit_input,
+      exit_usage, exit_output, exit_not_solid);
 }
 
 void row(const char* stage, double ms, const char* what = nullptr, std::size_t count = 0) {

@@ -263,8 +263,9 @@ TEST_CASE("drawing_to_cells: drawings of several volumes are the true complex or
   cellforge::samples::voxel_layout row = cellforge::samples::empty_layout({0, 1.3, 2.1}, {0, 1}, {0, 0.8});
   row.labels = {1, 2};
   const std::vector<cellforge::samples::sample_model> models{
-      cellforge::samples::make_voxel_model(row, "row of two boxes"), cellforge::samples::touching_solids(0, 2),
-      cellforge::samples::roof_on_box(0, 5), cellforge::samples::sample_grid(2, 2, 1)};
+      cellforge::samples::make_voxel_model(row, "row of two boxes"),
+      cellforge::samples::touching_solids(0, 2), cellforge::samples::roof_on_box(0, 5),
+      cellforge::samples::sample_grid(2, 2, 1)};
   std::size_t right = 0, flagged = 0;
   for (const auto& m : models)
     for (std::uint64_t view = 1; view <= 2; ++view) {
@@ -277,7 +278,8 @@ TEST_CASE("drawing_to_cells: drawings of several volumes are the true complex or
         for (auto& loop : faces.back())
           for (auto& v : loop) v = r.cells.input_vertex[v];
       }
-      const bool ok = cellforge::samples::same_volumes(s.model.faces, s.model.volumes, faces, r.cells.input.volumes);
+      const bool ok =
+          cellforge::samples::same_volumes(s.model.faces, s.model.volumes, faces, r.cells.input.volumes);
       CHECK((ok || r.flagged));
       if (ok) CHECK(r.unused_edges.empty());
       right += ok, flagged += r.flagged;

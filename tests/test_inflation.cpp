@@ -222,14 +222,16 @@ std::vector<sample_model> normalons() {
     out.push_back(cellforge::samples::detail::extruded_footprint(xs, {0, 1, 2.2}, cells, "comb"));
   }
   {
-    cellforge::samples::voxel_layout l = cellforge::samples::empty_layout({0, 1, 2, 3}, {0, 1.5}, {0, 1, 2, 3});
+    cellforge::samples::voxel_layout l =
+        cellforge::samples::empty_layout({0, 1, 2, 3}, {0, 1.5}, {0, 1, 2, 3});
     for (std::size_t i = 0; i < 3; ++i)
       for (std::size_t k = 0; k <= i; ++k) l.at(i, 0, k) = 1;
     out.push_back(cellforge::samples::make_voxel_model(l, "stairs"));
   }
   cellforge::detail::splitmix rng{7};
   for (int attempt = 0, made = 0; attempt < 40 && made < 4; ++attempt) {
-    cellforge::samples::voxel_layout l = cellforge::samples::empty_layout({0, 1, 2.5, 3, 4}, {0, 1, 2, 3.5, 4}, {0, 1, 2, 3});
+    cellforge::samples::voxel_layout l =
+        cellforge::samples::empty_layout({0, 1, 2.5, 3, 4}, {0, 1, 2, 3.5, 4}, {0, 1, 2, 3});
     for (std::size_t i = 0; i < 4; ++i)
       for (std::size_t j = 0; j < 4; ++j) {
         const auto h = static_cast<std::size_t>(rng.uniform(1, 3.999));
@@ -467,7 +469,8 @@ TEST_CASE("inflate: in views from above, the first reading is the true one") {
 
 TEST_CASE("inflate: a model's axes need not be the drawing's: a rotated normalon is still read directly") {
   // A cube turned about the view axis after projection is a normalon drawing in other directions.
-  const sample_drawing s = cellforge::samples::generic_drawing(cellforge::samples::sample_L(), 11, "normalon");
+  const sample_drawing s =
+      cellforge::samples::generic_drawing(cellforge::samples::sample_L(), 11, "normalon");
   auto d = s.drawing;
   for (auto& p : d.points) p = {0.6 * p.x - 0.8 * p.y, 0.8 * p.x + 0.6 * p.y};
   const auto r = cellforge::inflate(d, s.loops);
@@ -478,7 +481,8 @@ TEST_CASE("inflate: a model's axes need not be the drawing's: a rotated normalon
 TEST_CASE("inflate: a drawing 4e300 across has an extent (its size is not squared out of range)") {
   // Issue 35: the size was the length of the box's diagonal, whose square overflowed at 4e300,
   // and inflate said "the drawing has no extent". Scaled first, it reads as at scale 1.
-  const sample_drawing s = cellforge::samples::generic_drawing(cellforge::samples::sample_L(), 11, "normalon");
+  const sample_drawing s =
+      cellforge::samples::generic_drawing(cellforge::samples::sample_L(), 11, "normalon");
   auto far = s.drawing;
   for (auto& p : far.points) p *= 4e300;
   const auto r = cellforge::inflate(s.drawing, s.loops), f = cellforge::inflate(far, s.loops);
@@ -619,7 +623,8 @@ TEST_CASE("inflate: a regular reading that changes the faces is passed over") {
 #endif
 
 TEST_CASE("inflate: the caller's point types come back") {
-  const sample_drawing s = cellforge::samples::generic_drawing(cellforge::samples::sample_prism(5), 3, "prism");
+  const sample_drawing s =
+      cellforge::samples::generic_drawing(cellforge::samples::sample_prism(5), 3, "prism");
   // A user's 2D type, lifted through its lifted_point specialisation.
   cellforge::line_drawing<inflation_test::pen_point> pen;
   for (const auto& p : s.drawing.points) pen.points.push_back({p.x, p.y});
@@ -647,7 +652,8 @@ TEST_CASE("inflate: the caller's point types come back") {
 }
 
 TEST_CASE("inflate: bad drawings and loops are refused with a reason") {
-  const sample_drawing s = cellforge::samples::generic_drawing(cellforge::samples::sample_cube(), 2, "normalon");
+  const sample_drawing s =
+      cellforge::samples::generic_drawing(cellforge::samples::sample_cube(), 2, "normalon");
   const auto category = [&](const cellforge::line_drawing<glm::dvec2>& d,
                             const std::vector<std::vector<std::uint32_t>>& loops,
                             cellforge::inflation_options o = {}) {
@@ -679,14 +685,16 @@ TEST_CASE("inflate: bad drawings and loops are refused with a reason") {
   d.points[5] += glm::dvec2(0.05, -0.03);
   CHECK(category(d, s.loops) == static_cast<int>(cellforge::error_category::topology));
   // Direct only, on a non-normalon: refused, saying why.
-  const sample_drawing p = cellforge::samples::generic_drawing(cellforge::samples::sample_pyramid(5), 2, "pyramid");
+  const sample_drawing p =
+      cellforge::samples::generic_drawing(cellforge::samples::sample_pyramid(5), 2, "pyramid");
   cellforge::inflation_options o;
   o.allow_optimisation = false;
   CHECK(category(p.drawing, p.loops, o) == invalid);
 }
 
 TEST_CASE("inflate: a hole's ring tied to its face only when the face is given with its holes") {
-  const sample_drawing s = cellforge::samples::generic_drawing(cellforge::samples::sample_frame(), 4, "normalon");
+  const sample_drawing s =
+      cellforge::samples::generic_drawing(cellforge::samples::sample_frame(), 4, "normalon");
   const auto whole = cellforge::inflate(s.drawing, s.model.faces);
   CHECK(whole.method == cellforge::inflation_method::direct);
   CHECK(std::min(depth_error(s, whole.readings[0].points), depth_error(s, whole.readings[1].points)) < 1e-9);
@@ -706,8 +714,8 @@ TEST_CASE("inflate: the solid a person sees: metric readings of regular solids, 
   // quasi-normalons, classics. Random convex polytopes and jittered non-convex prisms have none
   // (not metric in principle) and are not swept here (their cells: the tests above).
   cellforge::samples::sketch_sweep_options options;
-  options.families = {"prism",    "pyramid",        "antiprism", "platonic", "archimedean",
-                      "cut cube", "quasi-normalon", "classic"};
+  options.families = {"prism",       "pyramid",  "antiprism",      "platonic",
+                      "archimedean", "cut cube", "quasi-normalon", "classic"};
 #ifdef NDEBUG
   options.limit = 100;
   options.max_edges = 150;
@@ -733,7 +741,8 @@ TEST_CASE("inflate: the solid a person sees: metric readings of regular solids, 
       ++t.metric, ++metric;
     else
       misses += "\n  " + s.name + ": depth error " + std::to_string(e) + " of the size, " +
-                std::to_string(r.regular_relations) + " of " + std::to_string(r.relations) + " regularities held";
+                std::to_string(r.regular_relations) + " of " + std::to_string(r.relations) +
+                " regularities held";
   }
   std::string table;
   for (const auto& [family, t] : by)
@@ -753,7 +762,8 @@ TEST_CASE("inflate: the solid a person sees: metric readings of regular solids, 
 TEST_CASE("inflate: a reading whose faces cross is caught by the exact check") {
   // The check inflate runs on every judged reading: the true reading of a prism does not
   // self-intersect; pushing one junction far through the solid makes faces cross.
-  const sample_drawing s = cellforge::samples::generic_drawing(cellforge::samples::sample_prism(5), 2, "prism");
+  const sample_drawing s =
+      cellforge::samples::generic_drawing(cellforge::samples::sample_prism(5), 2, "prism");
   const auto pr = cellforge::detail::make_inflation_problem(s.drawing, s.model.faces);
   std::vector<double> z;
   for (const auto& p : s.points) z.push_back(p.z / pr.size);
@@ -775,8 +785,9 @@ TEST_CASE("inflate: a reading whose faces cross is caught by the exact check") {
 TEST_CASE("inflate: the exact Jacobians of the compliance and regularity residuals match differences") {
   // Levenberg–Marquardt runs on hand-derived Jacobians; each is checked against central
   // differences of its own residuals at random planar readings of a prism and an octahedron.
-  for (const auto& s : {cellforge::samples::generic_drawing(cellforge::samples::sample_prism(5), 3, "prism"),
-                        cellforge::samples::generic_drawing(cellforge::samples::sample_octahedron(), 2, "platonic")}) {
+  for (const auto& s :
+       {cellforge::samples::generic_drawing(cellforge::samples::sample_prism(5), 3, "prism"),
+        cellforge::samples::generic_drawing(cellforge::samples::sample_octahedron(), 2, "platonic")}) {
     INFO(s.name);
     auto pr = cellforge::detail::make_inflation_problem(s.drawing, s.model.faces);
     auto terms = cellforge::detail::make_compliance_terms(pr, 1e-6);
@@ -811,7 +822,8 @@ TEST_CASE("inflate: the exact Jacobians of the compliance and regularity residua
           a[j] += h, b[j] -= h;
           functor(a, up), functor(b, down);
           const Eigen::VectorXd diff = (up - down) / (2 * h);
-          worst = std::max(worst, (diff - jac.col(j)).cwiseAbs().maxCoeff() / std::max(1.0, diff.cwiseAbs().maxCoeff()));
+          worst = std::max(
+              worst, (diff - jac.col(j)).cwiseAbs().maxCoeff() / std::max(1.0, diff.cwiseAbs().maxCoeff()));
         }
       }
     };

@@ -520,7 +520,7 @@ TEST_CASE("self_intersections: meshes with shared vertices against the old all-p
   std::size_t by_topology = 0, rounds_hit = 0, degenerate = 0;
   for (int round = 0; round < 16; ++round) {
     CAPTURE(round);
-    polygon_soup<dvec3> s = round % 4 == 3 ? cellforge::uv_sphere(12, 8, false)
+    polygon_soup<dvec3> s = round % 4 == 3   ? cellforge::uv_sphere(12, 8, false)
                             : round % 4 == 2 ? cellforge::torus(14, 6, 1, 0.3, false)
                                              : cellforge::icosphere(2);
     const double noise = std::array<double, 4>{0.0, 0.02, 0.15, 0.6}[static_cast<std::size_t>(round / 4)];
@@ -549,7 +549,8 @@ TEST_CASE("self_intersections: meshes with shared vertices against the old all-p
     degenerate += r.degenerate_triangles;
   }
   MESSAGE("16 meshes: " << rounds_hit << " with intersections, " << by_topology
-                        << " pairs decided by a shared vertex's star, " << degenerate << " zero-area triangles");
+                        << " pairs decided by a shared vertex's star, " << degenerate
+                        << " zero-area triangles");
   CHECK(by_topology > 0);  // the shortcut was taken ...
   CHECK(rounds_hit >= 4);  // ... and the meshes do intersect, touch and degenerate
   CHECK(degenerate > 0);

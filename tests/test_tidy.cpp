@@ -120,8 +120,8 @@ TEST_CASE("tidy_to_solid: bad input is refused, a drawing too far from a solid i
   // Jittered, with no room to move: left as drawn, and the diagnostic says how far it would move.
   cellforge::tidy_options strict;
   strict.solid_max_move = 1e-6;
-  const auto t =
-      cellforge::tidy_to_solid(cellforge::samples::jitter_drawing(s.drawing, 0.01, 3), one_loop_faces(s), strict);
+  const auto t = cellforge::tidy_to_solid(cellforge::samples::jitter_drawing(s.drawing, 0.01, 3),
+                                          one_loop_faces(s), strict);
   CHECK_FALSE(t.applied);
   CHECK_FALSE(t.solid);
   REQUIRE_FALSE(t.diagnostics.empty());

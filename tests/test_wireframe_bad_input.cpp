@@ -299,8 +299,9 @@ TEST_CASE("bad input: diagnostics, and the right complex anyway") {
     CHECK(k.status == solid_status::solid);
     CHECK(r.certificate.acyclic_input_edges.size() == 2);
     // The reason says so rather than "every input edge on a face".
-    CHECK(r.status_reason.find("2 edges on no cycle, a dangling tree, left out; the first is input edge 12") !=
-          std::string::npos);
+    CHECK(
+        r.status_reason.find("2 edges on no cycle, a dangling tree, left out; the first is input edge 12") !=
+        std::string::npos);
   }
   SUBCASE("an isolated point and a stray polygon") {
     wire w = cube.wire;

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 // io/step.hpp checked by another reader: OpenCASCADE (a test dependency only, built when CMake
-// finds it). Every cell complex of the wireframe sweep (in Release all 1076; CELLFORGE_SWEEP=sample: its sample)
-// is written as STEP and read back with STEPControl_Reader with OCCT's shape healing switched
-// off, so that what is judged is the file as written: BRepCheck_Analyzer valid, one solid per
-// volume, each solid's volume equal to ours to 1e-9 relative, and the face count. So is every
-// rounded solid of the rounds sweep (sketch/rounds.hpp, rounded_brep): its blends cylinders.
+// finds it). Every cell complex of the wireframe sweep (in Release all 1076; CELLFORGE_SWEEP=sample: its
+// sample) is written as STEP and read back with STEPControl_Reader with OCCT's shape healing switched off, so
+// that what is judged is the file as written: BRepCheck_Analyzer valid, one solid per volume, each solid's
+// volume equal to ours to 1e-9 relative, and the face count. So is every rounded solid of the rounds sweep
+// (sketch/rounds.hpp, rounded_brep): its blends cylinders.
 #include <doctest/doctest.h>
 
 #include <chrono>

@@ -61,11 +61,11 @@ struct self_intersection_result {
   /// Triangle pairs examined in grid cells (the budget counts these): in each cell, the pairs
   /// that could have the low corner of their boxes' intersection there.
   std::size_t candidate_pairs = 0;
-  std::size_t pairs_tested = 0;          ///< pairs of different faces with overlapping boxes, tested exactly
+  std::size_t pairs_tested = 0;  ///< pairs of different faces with overlapping boxes, tested exactly
   /// Of pairs_tested, those sharing a vertex whose star projects one-to-one on a coordinate
   /// plane: decided without geometry (they meet only in what they share).
   std::size_t pairs_by_topology = 0;
-  std::size_t degenerate_triangles = 0;  ///< zero-area triangles (not tested)
+  std::size_t degenerate_triangles = 0;       ///< zero-area triangles (not tested)
   std::vector<face_handle> degenerate_faces;  ///< the first max_reported faces holding one
   double time_ms = 0;                         ///< wall-clock time of the whole check
   bool complete = true;                       ///< false when the budget stopped the search
@@ -116,14 +116,16 @@ void spatial_order(std::vector<entry>& tris, std::vector<vec>& pos) {
   vec lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
   for (const entry& e : tris)
     for (int k = 0; k < 3; ++k) {
-      const double c = 0.5 * e.box[static_cast<std::size_t>(k)] + 0.5 * e.box[static_cast<std::size_t>(k) + 3];
+      const double c =
+          0.5 * e.box[static_cast<std::size_t>(k)] + 0.5 * e.box[static_cast<std::size_t>(k) + 3];
       lo[k] = std::min(lo[k], c), hi[k] = std::max(hi[k], c);
     }
   std::vector<std::uint64_t> order(n);
   for (std::size_t t = 0; t < n; ++t) {
     std::uint64_t code = 0;
     for (int k = 0; k < 3; ++k) {
-      const double c = 0.5 * tris[t].box[static_cast<std::size_t>(k)] + 0.5 * tris[t].box[static_cast<std::size_t>(k) + 3];
+      const double c =
+          0.5 * tris[t].box[static_cast<std::size_t>(k)] + 0.5 * tris[t].box[static_cast<std::size_t>(k) + 3];
       const double q = (c - lo[k]) / (hi[k] - lo[k]) * 1023.0;
       const std::uint64_t cell = q > 0 ? (q < 1023 ? static_cast<std::uint64_t>(q) : 1023) : 0;  // NaN: 0
       code |= cellforge::detail::morton_spread(cell) << k;
@@ -212,7 +214,8 @@ self_intersection_result self_intersections(const surface_mesh<P>& m,
   if (n < 2) return finish();
 
   si::spatial_order(tris, pos);
-  const std::vector<std::uint8_t> good = si::injective_stars(std::span<const si::entry>(tris), pos, pos.size());
+  const std::vector<std::uint8_t> good =
+      si::injective_stars(std::span<const si::entry>(tris), pos, pos.size());
   std::vector<std::array<double, 6>> boxes(n);
   for (std::size_t t = 0; t < n; ++t) boxes[t] = tris[t].box;
   struct corners_face {  // what a pair test reads of a triangle, compact

@@ -85,5 +85,4 @@ void write_cells_ply(const file_path& path, const cell_complex<P>& cc) {
   detail::write_file(path, [&](std::ostream& os) { write_cells_ply(os, cc); });
 }
 
-
 }  // namespace cellforge::io

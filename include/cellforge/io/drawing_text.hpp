@@ -401,7 +401,8 @@ std::string arc_drawing_text_string(const arc_drawing<P>& d, const drawing_text_
 #if defined(CELLFORGE_EXTERN_SKETCH)
 // Compiled once in the file that includes cellforge/sketch/instantiate.hpp (docs/sketch.md).
 extern template arc_drawing<glm::dvec2> detail::parse_drawing_text_statements<glm::dvec2>(std::string_view,
-                                                                                        std::string_view, bool);
+                                                                                          std::string_view,
+                                                                                          bool);
 extern template line_drawing<glm::dvec2> read_drawing_text<glm::dvec2>(const file_path&);
 extern template line_drawing<glm::dvec2> parse_drawing_text<glm::dvec2>(std::string_view, std::string_view);
 #endif

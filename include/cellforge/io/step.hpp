@@ -101,8 +101,7 @@ template <class = void>
 step_result write_step(std::ostream& os, const rounded_solid& s, const step_write_options& options = {});
 /// The rounded solid to a STEP file (beside it, then renamed over it). O(size of s).
 template <class = void>
-step_result write_step(const file_path& path, const rounded_solid& s,
-                       const step_write_options& options = {});
+step_result write_step(const file_path& path, const rounded_solid& s, const step_write_options& options = {});
 
 }  // namespace cellforge::io
 

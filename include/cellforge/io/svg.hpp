@@ -38,8 +38,8 @@
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"
 #include "cellforge/io/detail/output_buffer.hpp"
-#include "cellforge/io/detail/svg_writing.hpp"
 #include "cellforge/io/detail/svg_visibility.hpp"
+#include "cellforge/io/detail/svg_writing.hpp"
 #include "cellforge/io/detail/xml.hpp"
 #include "cellforge/io/file_path.hpp"
 

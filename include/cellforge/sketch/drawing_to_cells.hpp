@@ -380,7 +380,8 @@ bool nearly_parallel(const faces::drawing_graph& g, double degrees) {
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t k = 1; k < n; ++k) {  // forward around the circle of directions
       const std::size_t j = (i + k) % n;
-      const double gap = j > i ? angle[j].first - angle[i].first : angle[j].first + 3.141592653589793 - angle[i].first;
+      const double gap =
+          j > i ? angle[j].first - angle[i].first : angle[j].first + 3.141592653589793 - angle[i].first;
       if (gap > window) break;
       if (near(angle[i].second, angle[j].second)) return true;
     }
@@ -820,8 +821,9 @@ detail::if_satisfied_t<LineDrawing<D>, detail::sketch::drawing_result_for, Q, D>
 
 #if defined(CELLFORGE_EXTERN_SKETCH)
 // Compiled once in the file that includes cellforge/sketch/instantiate.hpp (docs/sketch.md).
-extern template drawing_result<glm::dvec3, glm::dvec2> detail::sketch::drawing_to_cells_on<
-    glm::dvec3, line_drawing<glm::dvec2>>(const line_drawing<glm::dvec2>&, const drawing_options&);
+extern template drawing_result<glm::dvec3, glm::dvec2>
+detail::sketch::drawing_to_cells_on<glm::dvec3, line_drawing<glm::dvec2>>(const line_drawing<glm::dvec2>&,
+                                                                          const drawing_options&);
 #endif
 
 }  // namespace cellforge

@@ -1381,7 +1381,8 @@ face_finder_result find_faces(const D& drawing, const face_finder_options& optio
   const detail::stopwatch clock;
   return detail::faces::find_faces_in(
       detail::faces::make_graph(drawing, options), options,
-      static_cast<double>(std::numeric_limits<detail::point2_scalar_t<drawing_point_t<D>>>::epsilon()), clock);
+      static_cast<double>(std::numeric_limits<detail::point2_scalar_t<drawing_point_t<D>>>::epsilon()),
+      clock);
 }
 
 namespace detail::faces {
@@ -1524,8 +1525,8 @@ face_finder_result find_faces_in(const drawing_graph& g, const face_finder_optio
 #if defined(CELLFORGE_EXTERN_SKETCH)
 // Compiled once in the file that includes cellforge/sketch/instantiate.hpp (docs/sketch.md).
 extern template face_finder_result detail::faces::find_faces_in<void>(const detail::faces::drawing_graph&,
-                                                                     const face_finder_options&, double,
-                                                                     const detail::stopwatch&);
+                                                                      const face_finder_options&, double,
+                                                                      const detail::stopwatch&);
 #endif
 
 }  // namespace cellforge

@@ -894,14 +894,16 @@ regularity_terms<> make_regularity_terms(const inflation_problem<>& pr, double d
   for (const auto& c : make_compliance_terms(pr, direction_tolerance).parallel) {
     double total = 0;
     for (const auto e : c) total += len(e);
-    classes.push_back({-total, *std::max_element(c.begin(), c.end(), [&](auto x, auto y) { return len(x) < len(y); })});
+    classes.push_back(
+        {-total, *std::max_element(c.begin(), c.end(), [&](auto x, auto y) { return len(x) < len(y); })});
   }
   std::sort(classes.begin(), classes.end());
   std::vector<std::uint32_t> rep;
   for (std::size_t i = 0; i < classes.size() && i < 6; ++i) rep.push_back(classes[i].second);
   for (std::size_t i = 0; i < rep.size(); ++i)
     for (std::size_t j = i + 1; j < rep.size(); ++j)
-      t.class_pairs.push_back({pr.edges[rep[i]][0], pr.edges[rep[i]][1], pr.edges[rep[j]][0], pr.edges[rep[j]][1]});
+      t.class_pairs.push_back(
+          {pr.edges[rep[i]][0], pr.edges[rep[i]][1], pr.edges[rep[j]][0], pr.edges[rep[j]][1]});
   return t;
 }
 
@@ -1148,8 +1150,9 @@ bool regular_polygon_gradient(const inflation_problem<>& pr, const std::vector<s
 /// orthogonal axes (a cut cube's), the depth slope of each class from Σ s_i² d_i d_iᵀ = I₂ as
 /// in the direct method. O(L + polygons · groups).
 template <class = void>
-std::vector<depth_hypothesis> regular_hypotheses(const inflation_problem<>& pr, const compliance_terms<>& terms,
-                                                 double tolerance, std::size_t most) {
+std::vector<depth_hypothesis> regular_hypotheses(const inflation_problem<>& pr,
+                                                 const compliance_terms<>& terms, double tolerance,
+                                                 std::size_t most) {
   std::vector<std::vector<std::uint32_t>> polygons = pr.loops;
   std::vector<std::vector<std::uint32_t>> at(pr.p.size());
   for (std::uint32_t l = 0; l < pr.loops.size(); ++l)
@@ -1201,7 +1204,8 @@ std::vector<depth_hypothesis> regular_hypotheses(const inflation_problem<>& pr, 
     if (!placed) groups.push_back({g, {{i, 1.0}}, polygons[i].size()});
   }
   std::stable_sort(groups.begin(), groups.end(), [](const group& x, const group& y) {
-    return x.members.size() > y.members.size() || (x.members.size() == y.members.size() && x.corners > y.corners);
+    return x.members.size() > y.members.size() ||
+           (x.members.size() == y.members.size() && x.corners > y.corners);
   });
   std::vector<depth_hypothesis> out;
   for (const auto& gr : groups) {
@@ -1253,7 +1257,8 @@ std::vector<depth_hypothesis> regular_hypotheses(const inflation_problem<>& pr, 
           for (const auto e : terms.parallel[cs[a]]) {
             const glm::dvec2 d = pr.p[pr.edges[e][1]] - pr.p[pr.edges[e][0]];
             h.pairs.push_back({pr.edges[e][1], pr.edges[e][0]});
-            h.value.push_back(glm::dot(d, terms.parallel_direction[cs[a]]) / s[a] * r3[static_cast<glm::length_t>(a)]);
+            h.value.push_back(glm::dot(d, terms.parallel_direction[cs[a]]) / s[a] *
+                              r3[static_cast<glm::length_t>(a)]);
           }
         out.push_back(std::move(h));
       }
@@ -1332,7 +1337,8 @@ Eigen::VectorXd hypothesis_reading(const inflation_problem<>& pr, const complian
         if (i > 0) {
           // Relations that hold all along (a regular cap's) are rounding noise, not crossings.
           const auto crossing = static_cast<std::size_t>(
-              (r.array() * before.array() < 0 && r.array().abs() > 1e-9 && before.array().abs() > 1e-9).count());
+              (r.array() * before.array() < 0 && r.array().abs() > 1e-9 && before.array().abs() > 1e-9)
+                  .count());
           if (crossing > 0) found.push_back({crossing, c - reach / steps});
         }
         before = r;
@@ -1437,9 +1443,9 @@ struct direct_solution {
   std::array<double, 3> s{};
   std::array<double, 9> rotation{};
   double misclosure = 0;
-  std::size_t reached = 0;   // junctions whose depth the hypothesis fixes
-  std::size_t coverage = 0;  // lines along the three axes
-  std::size_t corners = 0;   // junctions where lines along all three axes meet
+  std::size_t reached = 0;                // junctions whose depth the hypothesis fixes
+  std::size_t coverage = 0;               // lines along the three axes
+  std::size_t corners = 0;                // junctions where lines along all three axes meet
   std::vector<std::vector<double>> tied;  // the readings of hypotheses tied at the top
   std::string why;
 };
@@ -2027,11 +2033,12 @@ detail::if_satisfied_t<LineDrawing<D>, detail::inflation_result_for, Q, D> infla
     // the planar readings that meet it: the symmetric starts random ones seldom find.
     if (options.regularity && !res.least_squares) {
       std::size_t tried = 0;
-      for (const auto& h : detail::regular_hypotheses(pr, terms, 100 * exact, options.regularity_hypotheses)) {
+      for (const auto& h :
+           detail::regular_hypotheses(pr, terms, 100 * exact, options.regularity_hypotheses)) {
         if (tried >= options.regularity_hypotheses) break;
-        Eigen::VectorXd t =
-            detail::hypothesis_reading(pr, terms, reg, basis, h, best_t, 100 * exact, options.regularity_max_freedom,
-                                       options.max_iterations, res.iterations, exact);
+        Eigen::VectorXd t = detail::hypothesis_reading(pr, terms, reg, basis, h, best_t, 100 * exact,
+                                                       options.regularity_max_freedom, options.max_iterations,
+                                                       res.iterations, exact);
         if (t.size() == 0) continue;
         ++tried;
         judge(std::move(t), false, "the regular reading of a hypothesis (regular polygons, orthogonal axes)");

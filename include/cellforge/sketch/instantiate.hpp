@@ -19,12 +19,14 @@
 
 namespace cellforge {
 template face_finder_result detail::faces::find_faces_in<void>(const detail::faces::drawing_graph&,
-                                                              const face_finder_options&, double,
-                                                              const detail::stopwatch&);
-template drawing_result<glm::dvec3, glm::dvec2> detail::sketch::drawing_to_cells_on<
-    glm::dvec3, line_drawing<glm::dvec2>>(const line_drawing<glm::dvec2>&, const drawing_options&);
+                                                               const face_finder_options&, double,
+                                                               const detail::stopwatch&);
+template drawing_result<glm::dvec3, glm::dvec2>
+detail::sketch::drawing_to_cells_on<glm::dvec3, line_drawing<glm::dvec2>>(const line_drawing<glm::dvec2>&,
+                                                                          const drawing_options&);
 template arc_drawing<glm::dvec2> io::detail::parse_drawing_text_statements<glm::dvec2>(std::string_view,
-                                                                                     std::string_view, bool);
+                                                                                       std::string_view,
+                                                                                       bool);
 template line_drawing<glm::dvec2> io::read_drawing_text<glm::dvec2>(const io::file_path&);
 template line_drawing<glm::dvec2> io::parse_drawing_text<glm::dvec2>(std::string_view, std::string_view);
 }  // namespace cellforge

@@ -27,9 +27,9 @@ namespace cellforge {
 
 /// Which implementation grows the selections; both give the same lengths and loops.
 enum class thin_mode : std::uint8_t {
-  fast,      ///< hashed (parent, face) children, bitsets, only survivors materialised
-  faithful,  ///< the seed's data structures: Boolean arrays, L1/L2 lists, array comparison
-  scalable,  ///< per-selection frontier heaps, the cap least children kept (docs/thin.md)
+  fast,       ///< hashed (parent, face) children, bitsets, only survivors materialised
+  faithful,   ///< the seed's data structures: Boolean arrays, L1/L2 lists, array comparison
+  scalable,   ///< per-selection frontier heaps, the cap least children kept (docs/thin.md)
   automatic,  ///< fast up to growing_options::scalable_above faces, scalable above (default)
 };
 

@@ -67,8 +67,8 @@ struct tube_options {
   /// none, the default by measurement — docs/tubes.md).
   std::uint32_t junction_extra_points = 0;
   /// Run the exact self-intersection check on the result (algorithms/self_intersections.hpp;
-  /// 4–9 times the meshing time on trees and lattices) and report it in tubes_result. make_tubes does not check
-  /// the skeleton's clearance: tubes whose edges pass closer than their radii intersect.
+  /// 4–9 times the meshing time on trees and lattices) and report it in tubes_result. make_tubes does not
+  /// check the skeleton's clearance: tubes whose edges pass closer than their radii intersect.
   bool check_self_intersections = false;
   /// Levels of Loop subdivision applied at the end (the seed smooths its tubes so); with
   /// any, the faces are triangulated first (fans) and the result is all triangles.
@@ -459,8 +459,10 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
       const std::size_t k = stations.size();
       const bool has_prev = i > 0 || path.closed, has_next = i + 1 < k || path.closed;
       const glm::dvec3 c = stations[i].centre;
-      const glm::dvec3 din = has_prev ? dt::safe_unit(c - stations[i == 0 ? k - 1 : i - 1].centre) : glm::dvec3(0.0);
-      const glm::dvec3 dout = has_next ? dt::safe_unit(stations[i + 1 == k ? 0 : i + 1].centre - c) : glm::dvec3(0.0);
+      const glm::dvec3 din =
+          has_prev ? dt::safe_unit(c - stations[i == 0 ? k - 1 : i - 1].centre) : glm::dvec3(0.0);
+      const glm::dvec3 dout =
+          has_next ? dt::safe_unit(stations[i + 1 == k ? 0 : i + 1].centre - c) : glm::dvec3(0.0);
       if (!(glm::length(din + dout) > 1e-9))
         throw error(error_category::invalid_input,
                     skeleton_name(station_node[i]) +
@@ -493,8 +495,9 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
         }
         if (path.closed && k <= 3)
           throw error(error_category::invalid_input,
-                      skeleton_name(station_node[i]) + ": the ring of nodes through it is too small for its "
-                                                       "radius (its nodes are closer than its turns allow)");
+                      skeleton_name(station_node[i]) +
+                          ": the ring of nodes through it is too small for its "
+                          "radius (its nodes are closer than its turns allow)");
         // An end keeps its place; two inner nodes meet at their midpoint (in station 0 of a
         // ring, whose segment must stay first).
         const bool i_end = is_end(i), j_end = is_end(j);
@@ -507,7 +510,8 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
         // it so): moved off it, the tube would leave the ring askew and fold against the
         // junction's surface. Its partner goes instead, or, when the ring would take it, the
         // station beyond it (which straightens its turn), while there is one.
-        const bool start_pin = !path.closed && stations[0].fixed, end_pin = !path.closed && stations[k - 1].fixed;
+        const bool start_pin = !path.closed && stations[0].fixed,
+                   end_pin = !path.closed && stations[k - 1].fixed;
         const bool pin_i = start_pin && i == 1, pin_j = end_pin && j + 2 == k;
         bool moved = !i_end && !j_end;
         if (moved && (pin_i || pin_j)) {
@@ -597,7 +601,7 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
       const tube_path& path = tc.paths[slots[i] / 2];
       const auto m = static_cast<std::uint32_t>(path.nodes.size());
       const std::uint32_t other = path_node(slots[i] ^ 1u, 0);
-      last[i] = !is_junction(other) ? m - 1
+      last[i] = !is_junction(other)         ? m - 1
                 : junction_done[other] != 0 ? m - 2 - taken_of_slot[slots[i] ^ 1u]
                                             : (m - 1) / 2;
       last[i] = std::max<std::uint32_t>(last[i], 1);
@@ -646,7 +650,9 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
             if (cosine > 0.5) rings[i].distance = std::max(rings[i].distance, rings[j].distance * cosine);
           }
     };
-    const auto reach = [&](std::size_t i) { return glm::length(node_pos(path_node(slots[i], target[i])) - c); };
+    const auto reach = [&](std::size_t i) {
+      return glm::length(node_pos(path_node(slots[i], target[i])) - c);
+    };
     // How far the mitred ring of ring i's node reaches back towards the junction (r tan(β/2),
     // β its turn; 0 at the path's end): the ring must clear it, or the path would merge the
     // node into the ring and leave it at an angle, folding against the junction.
@@ -654,7 +660,8 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
       const tube_path& path = tc.paths[slots[i] / 2];
       if (target[i] + 1 >= path.nodes.size()) return 0.0;
       const std::uint32_t q = path_node(slots[i], target[i]), next = path_node(slots[i], target[i] + 1);
-      const glm::dvec3 din = dt::safe_unit(node_pos(q) - c), dout = dt::safe_unit(node_pos(next) - node_pos(q));
+      const glm::dvec3 din = dt::safe_unit(node_pos(q) - c),
+                       dout = dt::safe_unit(node_pos(next) - node_pos(q));
       const double cosine = std::clamp(glm::dot(din, dout), -1.0, 1.0);
       return cosine > -0.9 ? node_radius(q) * std::sqrt((1 - cosine) / (1 + cosine)) : reach(i);
     };
@@ -735,69 +742,69 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
     // Junctions after the first path to merge were planned, not built: when no merge can be
     // made, the skeleton is meshed again as it is, with merging off.
     for (int attempt = 0; attempt < 2; ++attempt) {
-    std::vector<std::uint32_t> set(nv);
-    for (std::uint32_t v = 0; v < nv; ++v) set[v] = v;
-    const auto find = [&](std::uint32_t v) {
-      while (set[v] != v) v = set[v] = set[set[v]];
-      return v;
-    };
-    std::size_t merged = 0, junctions_merged = 0;  // nodes joined to another's set; of them junctions
-    for (const std::uint32_t p : attempt == 0 ? detail::span_of(merge_paths) : std::span<const std::uint32_t>{}) {
-      const tube_path& path = tc.paths[p];
-      const std::uint32_t a = find(tc.nodes[path.nodes.front()].skeleton_node);
-      if (a == find(tc.nodes[path.nodes.back()].skeleton_node)) continue;
-      for (const std::uint32_t c : path.nodes) {
-        const std::uint32_t v = tc.nodes[c].skeleton_node;
-        if (v == tube_node::none || find(v) == a) continue;
-        set[find(v)] = a;
-        ++merged;
-        junctions_merged += is_junction(c) ? 1 : 0;
+      std::vector<std::uint32_t> set(nv);
+      for (std::uint32_t v = 0; v < nv; ++v) set[v] = v;
+      const auto find = [&](std::uint32_t v) {
+        while (set[v] != v) v = set[v] = set[set[v]];
+        return v;
+      };
+      std::size_t merged = 0, junctions_merged = 0;  // nodes joined to another's set; of them junctions
+      for (const std::uint32_t p :
+           attempt == 0 ? detail::span_of(merge_paths) : std::span<const std::uint32_t>{}) {
+        const tube_path& path = tc.paths[p];
+        const std::uint32_t a = find(tc.nodes[path.nodes.front()].skeleton_node);
+        if (a == find(tc.nodes[path.nodes.back()].skeleton_node)) continue;
+        for (const std::uint32_t c : path.nodes) {
+          const std::uint32_t v = tc.nodes[c].skeleton_node;
+          if (v == tube_node::none || find(v) == a) continue;
+          set[find(v)] = a;
+          ++merged;
+          junctions_merged += is_junction(c) ? 1 : 0;
+        }
       }
-    }
-    merged_skeleton next;
-    next.nodes = from != nullptr ? from->nodes : nv;
-    next.edges = from != nullptr ? from->edges : ne;
-    next.merged = junctions_merged + (from != nullptr ? from->merged : 0);
-    next.round = attempt == 1 ? merge_rounds : from != nullptr ? from->round + 1 : 1;
-    std::vector<std::uint32_t> new_id(nv, tube_node::none), junctions_in(nv, 0);
-    std::vector<glm::dvec3> centre(nv, glm::dvec3(0.0));
-    std::vector<double> radius(nv, 0.0);
-    // A set's centre: the mean of its junctions weighted by r³ (a soma keeps its place when a
-    // thin branch point beside it joins it; like branch points meet in the middle, where their
-    // paths' directions stay apart); its radius the largest.
-    std::vector<double> weight(nv, 0.0);
-    for (std::uint32_t v = 0; v < nv; ++v) {
-      const std::uint32_t root = find(v);
-      radius[root] = std::max(radius[root], rad[v]);
-      if (tc.nodes[v].kind != tube_node_kind::junction) continue;
-      const double w = rad[v] / rad[root];  // relative, so that r³ cannot overflow
-      centre[root] += (w * w * w) * pos[v], weight[root] += w * w * w, ++junctions_in[root];
-    }
-    skeleton<P> g2;
-    for (std::uint32_t v = 0; v < nv; ++v) {
-      const std::uint32_t root = find(v);
-      if (new_id[root] != tube_node::none) continue;
-      new_id[root] = static_cast<std::uint32_t>(g2.points.size());
-      g2.points.push_back(
-          from_dvec3<P>(junctions_in[root] > 0 ? centre[root] / weight[root] : pos[root]));
-      g2.radii.push_back(radius[root]);
-      next.node_of.push_back(from != nullptr ? from->node_of[root] : root);
-    }
-    std::vector<std::array<std::uint32_t, 2>> pairs;
-    for (std::uint32_t j = 0; j < ne; ++j) {
-      const std::uint32_t a = new_id[find(edges[j][0])], b = new_id[find(edges[j][1])];
-      if (a == b) continue;
-      g2.edges.push_back({a, b});
-      next.edge_of.push_back(from != nullptr ? from->edge_of[j] : j);
-      pairs.push_back({std::min(a, b), std::max(a, b)});
-    }
-    std::sort(pairs.begin(), pairs.end());
-    if (attempt == 1 || (merged > 0 && std::adjacent_find(pairs.begin(), pairs.end()) == pairs.end() &&
-                         validate_skeleton(g2).ok())) {
-      tubes_result<P> again = make_tubes_of(g2, options, &next);
-      again.total_ms = t_start.ms();
-      return again;
-    }
+      merged_skeleton next;
+      next.nodes = from != nullptr ? from->nodes : nv;
+      next.edges = from != nullptr ? from->edges : ne;
+      next.merged = junctions_merged + (from != nullptr ? from->merged : 0);
+      next.round = attempt == 1 ? merge_rounds : from != nullptr ? from->round + 1 : 1;
+      std::vector<std::uint32_t> new_id(nv, tube_node::none), junctions_in(nv, 0);
+      std::vector<glm::dvec3> centre(nv, glm::dvec3(0.0));
+      std::vector<double> radius(nv, 0.0);
+      // A set's centre: the mean of its junctions weighted by r³ (a soma keeps its place when a
+      // thin branch point beside it joins it; like branch points meet in the middle, where their
+      // paths' directions stay apart); its radius the largest.
+      std::vector<double> weight(nv, 0.0);
+      for (std::uint32_t v = 0; v < nv; ++v) {
+        const std::uint32_t root = find(v);
+        radius[root] = std::max(radius[root], rad[v]);
+        if (tc.nodes[v].kind != tube_node_kind::junction) continue;
+        const double w = rad[v] / rad[root];  // relative, so that r³ cannot overflow
+        centre[root] += (w * w * w) * pos[v], weight[root] += w * w * w, ++junctions_in[root];
+      }
+      skeleton<P> g2;
+      for (std::uint32_t v = 0; v < nv; ++v) {
+        const std::uint32_t root = find(v);
+        if (new_id[root] != tube_node::none) continue;
+        new_id[root] = static_cast<std::uint32_t>(g2.points.size());
+        g2.points.push_back(from_dvec3<P>(junctions_in[root] > 0 ? centre[root] / weight[root] : pos[root]));
+        g2.radii.push_back(radius[root]);
+        next.node_of.push_back(from != nullptr ? from->node_of[root] : root);
+      }
+      std::vector<std::array<std::uint32_t, 2>> pairs;
+      for (std::uint32_t j = 0; j < ne; ++j) {
+        const std::uint32_t a = new_id[find(edges[j][0])], b = new_id[find(edges[j][1])];
+        if (a == b) continue;
+        g2.edges.push_back({a, b});
+        next.edge_of.push_back(from != nullptr ? from->edge_of[j] : j);
+        pairs.push_back({std::min(a, b), std::max(a, b)});
+      }
+      std::sort(pairs.begin(), pairs.end());
+      if (attempt == 1 || (merged > 0 && std::adjacent_find(pairs.begin(), pairs.end()) == pairs.end() &&
+                           validate_skeleton(g2).ok())) {
+        tubes_result<P> again = make_tubes_of(g2, options, &next);
+        again.total_ms = t_start.ms();
+        return again;
+      }
     }
   }
 
@@ -877,17 +884,19 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
   say(res.merged_junctions,
       "junctions merged into a neighbouring one (the path between them too short for their cross-sections)");
   say(res.absorbed_nodes,
-      "path nodes lie inside a junction's surface (nearer it than its cross-section must sit): no ring of their own");
+      "path nodes lie inside a junction's surface (nearer it than its cross-section must sit): no ring of "
+      "their own");
   if (res.shrunk_sections > 0)
-    res.diagnostics.push_back(std::to_string(res.shrunk_sections) +
-                              " junction cross-sections shrunk to fit an edge too short for them (first: " +
-                              first_shrunk + ")");
+    res.diagnostics.push_back(
+        std::to_string(res.shrunk_sections) +
+        " junction cross-sections shrunk to fit an edge too short for them (first: " + first_shrunk + ")");
   say(res.spheres, "isolated nodes meshed as spheres");
   // A fold is no intersection (the faces only touch), so it is looked for on its own: O(E).
   res.folded_edges = folded_edges(res.mesh).edges.size();
   if (res.folded_edges > 0)
-    res.diagnostics.push_back(std::to_string(res.folded_edges) +
-                              " edges fold: the faces on either side point opposite ways (the mesh is not good)");
+    res.diagnostics.push_back(
+        std::to_string(res.folded_edges) +
+        " edges fold: the faces on either side point opposite ways (the mesh is not good)");
   if (options.check_self_intersections) {
     const self_intersection_result si = self_intersections(res.mesh);
     res.self_intersecting_face_pairs = si.intersecting_face_pairs;

@@ -56,8 +56,8 @@ struct cell_list_result : stage_report {
   cell_complex_input<P> input;  ///< points, edges, faces (loops), volumes (signed faces)
   /// input.points[i] is the caller's point input_vertex[i]; input.edges[k] the caller's edge input_edge[k].
   std::vector<std::uint32_t> input_vertex, input_edge;
-  std::vector<std::uint32_t> unforced;     ///< indices into input.faces of volume_result::unforced
-  std::vector<reading_note> alternatives;  ///< volume_result::alternatives in the output's numbering
+  std::vector<std::uint32_t> unforced;       ///< indices into input.faces of volume_result::unforced
+  std::vector<reading_note> alternatives;    ///< volume_result::alternatives in the output's numbering
   std::vector<std::uint32_t> output_vertex;  ///< caller's vertex → index in input.points, or no_index
   std::vector<std::uint32_t> output_edge;    ///< graph edge → index in input.edges, or no_index
   std::size_t faceless_edges = 0;            ///< graph edges on no kept face

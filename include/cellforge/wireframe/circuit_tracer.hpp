@@ -530,7 +530,8 @@ void trace_planar(const wire_graph& g, const trace_options& opt, trace_result& r
             const auto& oc = comps[it->second];
             // Parallel to within the tilt the tolerance allows over the smaller component (never
             // finer than 1 - |cos| < 1e-9), and the samples within the tolerance of the plane.
-            const double tilt = std::max(4.5e-5, 4.0 * tol / std::max(std::min(oc.extent, comps[k].extent), 1e-300));
+            const double tilt =
+                std::max(4.5e-5, 4.0 * tol / std::max(std::min(oc.extent, comps[k].extent), 1e-300));
             bool same = glm::length(glm::cross(oc.normal, comps[k].normal)) < tilt;
             for (const auto v : plane_samples[k])
               same = same && std::abs(glm::dot(oc.normal, g.points[v] - oc.origin)) <= tol;

@@ -64,13 +64,13 @@ namespace detail {
 /// keep_fins of extra_faces: finds the surfaces (faces joined through edges, `at`) whose removed
 /// faces (`how`: 1 for a free edge, 2 newly needed) are all flat flaps on what is left, moves
 /// those flaps from r.removed to r.fins and clears `open_surface` on the rest of the surface.
-/// Their removal diagnostics (`note_of`) go too. A flap: removed for a free edge, its piece (removed faces joined through edges) in one plane
-/// (within `tol`), and every open edge of the surface on one. O(Σ L + removed · log).
+/// Their removal diagnostics (`note_of`) go too. A flap: removed for a free edge, its piece (removed faces
+/// joined through edges) in one plane (within `tol`), and every open edge of the surface on one. O(Σ L +
+/// removed · log).
 template <class = void>
-void keep_flat_fins(const wire_graph& g, const std::vector<wire_face>& faces,
-                    const edge_face_lists& at, const std::vector<char>& alive,
-                    const std::vector<char>& how, const std::vector<std::size_t>& note_of,
-                    extra_faces_result& r, double tol,
+void keep_flat_fins(const wire_graph& g, const std::vector<wire_face>& faces, const edge_face_lists& at,
+                    const std::vector<char>& alive, const std::vector<char>& how,
+                    const std::vector<std::size_t>& note_of, extra_faces_result& r, double tol,
                     std::vector<char>& open_surface) {
   const auto nf = static_cast<std::uint32_t>(faces.size());
   union_find surface(nf), piece(nf);
@@ -256,9 +256,10 @@ extra_faces_result extra_faces(const wire_graph& g, const std::vector<wire_face>
       for (std::uint32_t i = 0; i < faces.size(); ++i)
         open_surface[i] = alive[i] && open_surface[surface.find(i)];
     }
-    std::vector<std::uint32_t> beside;  // unneeded faces next to a removed one, to drop
+    std::vector<std::uint32_t> beside;       // unneeded faces next to a removed one, to drop
     std::vector<char> how(faces.size(), 0);  // 1: removed for a free edge, 2: newly needed
-    std::vector<std::size_t> note_of(faces.size(), static_cast<std::size_t>(-1));  // its diagnostic, for a free edge
+    std::vector<std::size_t> note_of(faces.size(),
+                                     static_cast<std::size_t>(-1));  // its diagnostic, for a free edge
     auto remove = [&](std::uint32_t i, std::string reason, bool free_edge) {
       alive[i] = 0;
       how[i] = free_edge ? 1 : 2;

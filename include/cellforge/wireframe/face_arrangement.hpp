@@ -56,8 +56,9 @@ struct arrangement_result : stage_report {
 
 /// Finds chains and ranks and selects the faces: the crossing rule of docs/wireframe.md (when
 /// two candidates cross, the one some edge needs wins; the pairs left are decided by a
-/// budgeted search for the certified choice that keeps the fewest). O(V + E + F·L + P·L log L) where P is the number of candidate pairs the grid
-/// yields, plus O(rounds · F·L) for the needs, rounds being the chains of decisions (one or two).
+/// budgeted search for the certified choice that keeps the fewest). O(V + E + F·L + P·L log L) where P is the
+/// number of candidate pairs the grid yields, plus O(rounds · F·L) for the needs, rounds being the chains of
+/// decisions (one or two).
 template <class = void>
 arrangement_result arrange_faces(const wire_graph& g, const std::vector<wire_face>& faces,
                                  const reduction_result& reduction, const arrangement_options& options = {});

@@ -140,7 +140,8 @@ std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p,
   auto cell_size = [](int level) { return std::ldexp(64.0, 3 * level + 3); };
   auto cell_of = [&](const glm::dvec3& q, int level) {
     const glm::dvec3 c = (q - low) / cell_size(level);
-    return std::array<std::int64_t, 4>{level, grid_coordinate(c.x), grid_coordinate(c.y), grid_coordinate(c.z)};
+    return std::array<std::int64_t, 4>{level, grid_coordinate(c.x), grid_coordinate(c.y),
+                                       grid_coordinate(c.z)};
   };
   // Cell → first point, then a linked list through `next`: no allocation per cell.
   std::unordered_map<std::array<std::int64_t, 4>, std::uint32_t, cell_hash> cells;

@@ -60,19 +60,19 @@ struct tolerance_result : stage_report {
   /// wireframe unexplained (edges on no face, faces lost, no volume): the noise may have hidden
   /// faces; the answer is doubtful (status ambiguous at best, with this reason).
   bool ambiguous = false;
-  double noise = 0.0;     ///< largest relative residual of the near-zero cluster (0: none seen)
-  double geometry = 0.0;  ///< smallest relative residual of the geometric cluster (0: none seen)
+  double noise = 0.0;        ///< largest relative residual of the near-zero cluster (0: none seen)
+  double geometry = 0.0;     ///< smallest relative residual of the geometric cluster (0: none seen)
   double gap_decades = 0.0;  ///< log10(geometry / the noise's bulk, its lower 99.5 %); infinite without noise
-  double noise_distance = 0.0;        ///< largest distance of the noise cluster (absolute)
-  double geometry_distance = 0.0;     ///< smallest distance of the geometric cluster (absolute)
-  double planarity = 1e-9;            ///< the planarity tolerance chosen, relative to the diagonal
-  double planarity_distance = 0.0;    ///< the same in model units
+  double noise_distance = 0.0;      ///< largest distance of the noise cluster (absolute)
+  double geometry_distance = 0.0;   ///< smallest distance of the geometric cluster (absolute)
+  double planarity = 1e-9;          ///< the planarity tolerance chosen, relative to the diagonal
+  double planarity_distance = 0.0;  ///< the same in model units
   /// Set by wireframe_to_cells: the answer is that of the stages' fixed planarity options
   /// (`planarity` is theirs), certified solid with them (the data's own precision was enough)
   /// or better than the estimated tolerance's answer; the figures above are the estimate's.
   bool fixed_pass = false;
   double estimated_planarity = 0.0;  ///< the estimate's planarity (relative), used or not (0: none made)
-  std::size_t corners = 0;            ///< corners a–v–b sampled
+  std::size_t corners = 0;           ///< corners a–v–b sampled
   std::size_t samples = 0, noise_samples = 0, geometry_samples = 0;
 };
 
@@ -110,7 +110,8 @@ struct residual_bins {
       const double m = std::frexp(rel, &e);  // rel = m · 2^e, m in [0.5, 1)
       if (e > min_exponent) {
         const int sub = std::min(per_octave - 1, static_cast<int>((m - 0.5) * 2 * per_octave));
-        b = std::min<std::size_t>(count - 1, static_cast<std::size_t>((e - min_exponent - 1) * per_octave + sub + 1));
+        b = std::min<std::size_t>(count - 1,
+                                  static_cast<std::size_t>((e - min_exponent - 1) * per_octave + sub + 1));
       }
     }
     ++n[b];
@@ -234,7 +235,8 @@ tolerance_result estimate_tolerance(const wire_graph& g, const tolerance_options
   const double reach = glm::length(g.center) + g.size;
   std::array<double, none + 1> above_min{};  // the smallest distance in bins k.. (suffix minimum)
   above_min[none] = std::numeric_limits<double>::infinity();
-  for (std::size_t k = none; k-- > 0;) above_min[k] = std::min(above_min[k + 1], b.n[k] ? b.dlo[k] : above_min[k + 1]);
+  for (std::size_t k = none; k-- > 0;)
+    above_min[k] = std::min(above_min[k + 1], b.n[k] ? b.dlo[k] : above_min[k + 1]);
   std::size_t quads = 0;
   for (std::size_t k = 0; k < none; ++k) quads += b.quads[k];
   std::size_t below = 0, quads_below = 0, best = none, widest = none;  // the first bin of the geometry

@@ -455,7 +455,8 @@ bool fan_projects_injectively(const vec& v, std::span<const vec> ring) noexcept 
 /// share such a vertex meet only in what they share, so their pair needs no geometric test.
 /// Stars of more than 64 triangles are not examined. O(Σ star size²) ≤ O(64 · triangles).
 template <class Tri>
-std::vector<std::uint8_t> injective_stars(std::span<const Tri> tris, std::span<const vec> pos, std::size_t vertices) {
+std::vector<std::uint8_t> injective_stars(std::span<const Tri> tris, std::span<const vec> pos,
+                                          std::size_t vertices) {
   std::vector<std::uint32_t> offset(vertices + 1, 0);
   for (const Tri& t : tris)
     for (const std::uint32_t x : t.v) ++offset[x + 1];
@@ -470,7 +471,8 @@ std::vector<std::uint8_t> injective_stars(std::span<const Tri> tris, std::span<c
   std::vector<std::uint8_t> good(vertices, 0);
   std::vector<vec> ring;
   for (std::size_t x = 0; x < vertices; ++x) {
-    const std::span<const std::array<std::uint32_t, 2>> star(around.data() + offset[x], offset[x + 1] - offset[x]);
+    const std::span<const std::array<std::uint32_t, 2>> star(around.data() + offset[x],
+                                                             offset[x + 1] - offset[x]);
     const std::size_t k = star.size();
     if (k < 3 || k > 64) continue;
     // One cycle: from triangle 0, the triangle whose first corner is this one's second, k times.
@@ -627,8 +629,9 @@ box_pair_count for_each_box_pair(std::span<const std::array<double, 6>> boxes, s
     }
     auto overlap = [](const std::array<double, 6>& p, const std::array<double, 6>& q) {
       // One branch instead of six: the outcome is hard to predict.
-      return (static_cast<int>(p[0] <= q[3]) & static_cast<int>(q[0] <= p[3]) & static_cast<int>(p[1] <= q[4]) &
-              static_cast<int>(q[1] <= p[4]) & static_cast<int>(p[2] <= q[5]) & static_cast<int>(q[2] <= p[5])) != 0;
+      return (static_cast<int>(p[0] <= q[3]) & static_cast<int>(q[0] <= p[3]) &
+              static_cast<int>(p[1] <= q[4]) & static_cast<int>(q[1] <= p[4]) &
+              static_cast<int>(p[2] <= q[5]) & static_cast<int>(q[2] <= p[5])) != 0;
     };
     for (std::size_t a = 0; a < 8; ++a)
       for (std::size_t b = a; b < 8; ++b) {

@@ -520,7 +520,8 @@ class basic_certifier {
     // and every candidate's distance is measured anyway.
     auto cell = [&](double c, int d) {
       const double f = std::clamp(std::floor(c * inv), -9.0e18, 9.0e18);
-      return static_cast<std::uint64_t>(static_cast<std::int64_t>(f)) + static_cast<std::uint64_t>(std::int64_t{d});
+      return static_cast<std::uint64_t>(static_cast<std::int64_t>(f)) +
+             static_cast<std::uint64_t>(std::int64_t{d});
     };
     auto key_of = [&](const vec& p, int dx, int dy, int dz) {
       return cell(p.x, dx) * 73856093u ^ cell(p.y, dy) * 19349663u ^ cell(p.z, dz) * 83492791u;

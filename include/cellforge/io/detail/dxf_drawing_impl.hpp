@@ -784,8 +784,7 @@ dxf_drawing_result<P2> read_dxf_drawing(const file_path& path, const dxf_drawing
 }
 
 template <Point2 P2>
-dxf_arc_drawing_result<P2> read_dxf_arc_drawing(const file_path& path,
-                                                const dxf_drawing_options& options) {
+dxf_arc_drawing_result<P2> read_dxf_arc_drawing(const file_path& path, const dxf_drawing_options& options) {
   const std::string bytes = detail::read_file(path);
   return parse_dxf_arc_drawing<P2>(bytes, detail::display_name(path), options);
 }

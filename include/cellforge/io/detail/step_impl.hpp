@@ -872,8 +872,7 @@ step_result write_step(std::ostream& os, const cell_complex<P>& cc, const step_w
 }
 
 template <Point3 P>
-step_result write_step(const file_path& path, const cell_complex<P>& cc,
-                       const step_write_options& options) {
+step_result write_step(const file_path& path, const cell_complex<P>& cc, const step_write_options& options) {
   step_result result;
   detail::write_file(path, [&](std::ostream& os) { result = write_step(os, cc, options); });
   return result;
@@ -884,8 +883,7 @@ step_result write_step(std::ostream& os, const surface_mesh<P>& m, const step_wr
   return write_step(os, detail::mesh_step_cells(m), options);
 }
 template <Point3 P>
-step_result write_step(const file_path& path, const surface_mesh<P>& m,
-                       const step_write_options& options) {
+step_result write_step(const file_path& path, const surface_mesh<P>& m, const step_write_options& options) {
   return write_step(path, detail::mesh_step_cells(m), options);
 }
 
@@ -900,8 +898,7 @@ step_result write_step(std::ostream& os, const rounded_solid& s, const step_writ
   return result;
 }
 template <class>
-step_result write_step(const file_path& path, const rounded_solid& s,
-                       const step_write_options& options) {
+step_result write_step(const file_path& path, const rounded_solid& s, const step_write_options& options) {
   step_result result;
   detail::write_file(path, [&](std::ostream& os) { result = write_step(os, s, options); });
   return result;

@@ -507,8 +507,7 @@ class stl_ascii_reader {
 }  // namespace detail
 
 template <Point3 P>
-stl_data<P> parse_stl(std::string_view bytes, std::string_view name,
-                      const stl_read_options& options) {
+stl_data<P> parse_stl(std::string_view bytes, std::string_view name, const stl_read_options& options) {
   stl_data<P> d;
   detail::stl_builder<P> b(d, options);
   const bool binary_size =

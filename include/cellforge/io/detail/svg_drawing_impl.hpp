@@ -757,8 +757,7 @@ svg_arc_drawing_result<P2> parse_svg_arc_drawing(std::string_view text, std::str
 }
 
 template <Point2 P2>
-svg_arc_drawing_result<P2> read_svg_arc_drawing(const file_path& path,
-                                                const svg_drawing_options& options) {
+svg_arc_drawing_result<P2> read_svg_arc_drawing(const file_path& path, const svg_drawing_options& options) {
   const std::string bytes = detail::read_file(path);
   return parse_svg_arc_drawing<P2>(bytes, detail::display_name(path), options);
 }

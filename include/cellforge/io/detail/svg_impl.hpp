@@ -268,7 +268,8 @@ void basic_svg_scene<U>::collect_edges(frame& fr, FacesOf&& faces_of) const {
 template <class U>
 bool basic_svg_scene<U>::is_feature(const frame& fr,
                                     std::span<const std::pair<std::uint64_t, std::uint32_t>> sides,
-                                    std::size_t li, std::uint32_t wa, std::uint32_t wb, double cos_feature) const {
+                                    std::size_t li, std::uint32_t wa, std::uint32_t wb,
+                                    double cos_feature) const {
   std::array<std::uint32_t, 2> two{};
   std::size_t count = 0;
   for (const auto& s : sides)

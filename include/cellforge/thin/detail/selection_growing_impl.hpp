@@ -94,7 +94,8 @@ std::uint64_t splitmix64(std::uint64_t x) {
 class chunked_sets {
  public:
   static constexpr std::uint32_t words = 64, faces_per_chunk = words * 64;
-  explicit chunked_sets(std::uint32_t num_faces) : chunks_((num_faces + faces_per_chunk - 1) / faces_per_chunk) {}
+  explicit chunked_sets(std::uint32_t num_faces)
+      : chunks_((num_faces + faces_per_chunk - 1) / faces_per_chunk) {}
   std::uint32_t chunks() const { return chunks_; }
   /// A new set (chunk table written to `table`) holding only face f.
   void make_single(std::uint32_t* table, std::uint32_t f) {
@@ -141,7 +142,8 @@ class chunked_sets {
     for (std::uint32_t c = 0; c < chunks_; ++c) release_chunk(table[c]);
   }
   bool has(const std::uint32_t* table, std::uint32_t f) const {
-    return (data_[std::size_t{table[f / faces_per_chunk]} * words + (f % faces_per_chunk) / 64] >> (f & 63)) & 1u;
+    return (data_[std::size_t{table[f / faces_per_chunk]} * words + (f % faces_per_chunk) / 64] >> (f & 63)) &
+           1u;
   }
   /// Whether a ∪ {fa} equals b ∪ {fb}; shared chunks are equal without a look.
   bool same(const std::uint32_t* a, std::uint32_t fa, const std::uint32_t* b, std::uint32_t fb) const {
@@ -267,8 +269,8 @@ growing_result grow_fast(const thin_face_graph& g, std::uint32_t start, const gr
       touched.clear();
       std::sort(candidates.begin(), candidates.end());
       for (const std::uint32_t f : candidates)
-        children.push_back(
-            {p, f, s.hash ^ key[f], child_length(g, s.length, f, [&](std::uint32_t x) { return sets.has(t, x); })});
+        children.push_back({p, f, s.hash ^ key[f],
+                            child_length(g, s.length, f, [&](std::uint32_t x) { return sets.has(t, x); })});
       r.selections_examined += candidates.size();
     }
     if (r.selections_examined > o.work_budget) {
@@ -733,11 +735,12 @@ growing_result grow_selections(const thin_face_graph& g, std::uint32_t start, co
       bad(cellforge::detail::cat("slot ", std::to_string(k),
                                  " is not paired with the other face of its edge (an open or broken graph)"));
   }
-  const thin_mode mode = o.mode != thin_mode::automatic ? o.mode
+  const thin_mode mode = o.mode != thin_mode::automatic   ? o.mode
                          : g.num_faces > o.scalable_above ? thin_mode::scalable
                                                           : thin_mode::fast;
   switch (mode) {
-    case thin_mode::fast: return detail::thin::grow_fast(g, start, o);
+    case thin_mode::fast:
+      return detail::thin::grow_fast(g, start, o);
     case thin_mode::scalable: {
       growing_result r = detail::thin::grow_scalable(g, start, o);
       // Said, since its loops may differ from the seed's rule on some solids (docs/thin.md).
@@ -748,7 +751,8 @@ growing_result grow_selections(const thin_face_graph& g, std::uint32_t start, co
             "); mode = fast keeps the seed's rule at any size"));
       return r;
     }
-    default: return detail::thin::grow_faithful(g, start, o);
+    default:
+      return detail::thin::grow_faithful(g, start, o);
   }
 }
 

@@ -222,7 +222,8 @@ class basic_crossing_decision {
       : g_(g), faces_(faces), at_(at), alive_(alive), local_(faces.size(), no_index) {}
 
   /// Drops (alive = 0) the losers of `pairs` (both alive); returns them.
-  std::vector<std::uint32_t> run(const std::vector<std::array<std::uint32_t, 2>>& pairs, work_budget& budget) {
+  std::vector<std::uint32_t> run(const std::vector<std::array<std::uint32_t, 2>>& pairs,
+                                 work_budget& budget) {
     std::vector<std::uint32_t> losers;
     if (pairs.empty()) return losers;
     const std::uint32_t nf = static_cast<std::uint32_t>(faces_.size());
@@ -251,7 +252,8 @@ class basic_crossing_decision {
     std::sort(by_comp.begin(), by_comp.end());
     for (std::size_t b = 0, e = 0; b < by_comp.size(); b = e) {
       G_.clear();
-      for (e = b; e < by_comp.size() && by_comp[e].first == by_comp[b].first; ++e) G_.push_back(by_comp[e].second);
+      for (e = b; e < by_comp.size() && by_comp[e].first == by_comp[b].first; ++e)
+        G_.push_back(by_comp[e].second);
       decide(budget, losers);
     }
     for (const auto f : losers) alive_[f] = 0;
@@ -493,7 +495,8 @@ void candidate_pairs(const wire_graph& g, const std::vector<face_plane>& plane, 
     const auto lo = cell(plane[b].box.min - tol), hi = cell(plane[b].box.max + tol);
     // A face far larger than the cells (a long part beside tiny ones) crosses more columns
     // than there are faces: its boxes are then tested against every face's, which costs less.
-    const double columns = (static_cast<double>(hi[u] - lo[u]) + 1) * (static_cast<double>(hi[w] - lo[w]) + 1);
+    const double columns =
+        (static_cast<double>(hi[u] - lo[u]) + 1) * (static_cast<double>(hi[w] - lo[w]) + 1);
     if (columns > 4.0 * static_cast<double>(plane.size())) {
       for (std::uint32_t i = 0; i < plane.size(); ++i) {
         budget.spend();

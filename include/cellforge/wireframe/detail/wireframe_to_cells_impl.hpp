@@ -166,8 +166,9 @@ void judge(wireframe_result<P>& r, const std::string& invalid, bool certified) {
     r.status_reason = c.reason();
   } else if (!r.volume.complete) {
     r.status = solid_status::budget;
-    r.status_reason = "the reading rule ran out of its work budget (volume_options::work_budget): the best "
-                      "certified reading found, not necessarily the best there is";
+    r.status_reason =
+        "the reading rule ran out of its work budget (volume_options::work_budget): the best "
+        "certified reading found, not necessarily the best there is";
   } else if (!c.ok()) {
     r.status = solid_status::not_a_solid;
     // Piercing says what the input is (it intersects itself); the edges it leaves faceless follow.
@@ -199,8 +200,9 @@ void judge(wireframe_result<P>& r, const std::string& invalid, bool certified) {
     r.status_reason = cellforge::detail::cat("a closed solid, but the wireframe does not decide ",
                                              plural(r.unforced.size(), "face", "faces"),
                                              " no edge needs (walls kept, listed in unforced)");
-  } else if (const auto n = static_cast<std::size_t>(std::count_if(
-                 r.alternatives.begin(), r.alternatives.end(), [](const reading_note& a) { return a.undecided; }));
+  } else if (const auto n =
+                 static_cast<std::size_t>(std::count_if(r.alternatives.begin(), r.alternatives.end(),
+                                                        [](const reading_note& a) { return a.undecided; }));
              n > 0) {
     r.status = solid_status::ambiguous;
     r.status_reason =
@@ -262,8 +264,8 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
   extra_face_options extra = used.extra;
   // The planar tracer finds every planar face; only the seed's search can miss some.
   if (used.trace.kind == tracer_kind::planar) extra.add_missed = false;
-  r.extra =
-      cellforge::extra_faces(g, r.unique.faces, r.arrangement.selected, extra, span_of(r.arrangement.crossed));
+  r.extra = cellforge::extra_faces(g, r.unique.faces, r.arrangement.selected, extra,
+                                   span_of(r.arrangement.crossed));
   // Circuits that close no volume: when every face went for a free edge only, the faces are
   // the answer (a 3DCL holds faces without volumes), with a diagnostic saying so.
   bool open_surface = false;
@@ -283,8 +285,7 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
                                                   " (set wireframe_options::tolerance.automatic = false and "
                                                   "the stages' planarity, or wire2cells --planarity)")));
   if (!r.extra.open_edges.empty())
-    r.diagnostics.push_back(
-        open_surface_message(g, r.unique.faces, r.arrangement, r.extra, open_surface));
+    r.diagnostics.push_back(open_surface_message(g, r.unique.faces, r.arrangement, r.extra, open_surface));
   if (open_surface) {
     const std::size_t n = r.extra.faces.size();
     r.diagnostics.push_back(
@@ -318,8 +319,8 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
   stopwatch clock;
   cell_list_options list_options;
   list_options.keep_dangling = used.keep_dangling;
-  cell_list_result<P> list = cellforge::assemble_cell_list(wire, g, r.extra.faces, r.volume,
-                                                           span_of(r.read.dangling), list_options);
+  cell_list_result<P> list =
+      cellforge::assemble_cell_list(wire, g, r.extra.faces, r.volume, span_of(r.read.dangling), list_options);
   // No clear gap between noise and shape: the reading stands when it explains the whole
   // wireframe (every edge on a kept face, nothing lost, volumes closed); otherwise the noise
   // may have hidden faces, and the answer is flagged (the certificate also says what is left).
@@ -338,7 +339,7 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
   r.input_edge = std::move(list.input_edge);
   r.unforced = std::move(list.unforced);
   r.alternatives = std::move(list.alternatives);
-  const std::vector<std::uint32_t>& label = list.output_vertex;          // caller's vertex → output
+  const std::vector<std::uint32_t>& label = list.output_vertex;         // caller's vertex → output
   const std::vector<std::uint32_t>& graph_edge_out = list.output_edge;  // graph edge → output edge
 
   if (used.build_complex) {
@@ -389,8 +390,7 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
     }
     if (used.check_result) r.validation = cellforge::validate(inside, r.check);
     r.cells = cellforge::renumber_cells(inside, vertex_label, edge_label);
-    if (!r.validation.ok())
-      r.validation = cellforge::validate(r.cells, r.check);  // output numbering
+    if (!r.validation.ok()) r.validation = cellforge::validate(r.cells, r.check);  // output numbering
     r.validation.expected_euler.clear();  // per object, and objects were numbered otherwise inside
     r.validation.euler_checked.clear();
     r.assembly_milliseconds = clock.ms();
@@ -433,7 +433,10 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
 template <Point3 P>
 bool better_answer(const wireframe_result<P>& a, const wireframe_result<P>& b) {
   auto rank = [](solid_status s) {
-    return s == solid_status::solid ? 3 : s == solid_status::ambiguous ? 2 : s == solid_status::not_a_solid ? 1 : 0;
+    return s == solid_status::solid         ? 3
+           : s == solid_status::ambiguous   ? 2
+           : s == solid_status::not_a_solid ? 1
+                                            : 0;
   };
   if (rank(a.status) != rank(b.status)) return rank(a.status) > rank(b.status);
   return a.status == solid_status::not_a_solid &&
@@ -449,12 +452,14 @@ detail::if_satisfied_t<Wireframe<G>, detail::wireframe_result_for, G> wireframe_
   tolerance_result given;  // the stages' own planarity options
   given.planarity = options.trace.planarity.relative;
   given.planarity_distance = options.trace.planarity.relative * read.graph.size;
-  if (!options.tolerance.automatic) return detail::wireframe_pass(wire, options, std::move(read), given, false);
+  if (!options.tolerance.automatic)
+    return detail::wireframe_pass(wire, options, std::move(read), given, false);
 
   tolerance_result estimate = estimate_tolerance(read.graph, options.tolerance);
   wireframe_options at_estimate = options;
   at_estimate.trace.planarity.relative = at_estimate.reduction.planarity.relative = estimate.planarity;
-  at_estimate.arrangement.planarity.relative = at_estimate.extra.retrace.planarity.relative = estimate.planarity;
+  at_estimate.arrangement.planarity.relative = at_estimate.extra.retrace.planarity.relative =
+      estimate.planarity;
   at_estimate.trace.fit_planes = true;  // planes fitted to their vertices: the coordinates may be noisy
   estimate.estimated_planarity = estimate.planarity;
   const bool same = options.trace.fit_planes && options.trace.planarity.relative == estimate.planarity &&
