@@ -66,7 +66,7 @@ namespace detail::ears {
 /// Newell's normal of polygon p, summed about its centroid for accuracy (not normalised). O(n).
 template <class = void>
 glm::dvec3 newell_normal(std::span<const glm::dvec3> p, const glm::dvec3& centroid) noexcept {
-  return cellforge::detail::newell(std::views::iota(std::size_t{0}, p.size()),
+  return cellforge::detail::newell(cellforge::detail::index_range{p.size()},
                                    [&](std::size_t i) { return p[i] - centroid; });
 }
 

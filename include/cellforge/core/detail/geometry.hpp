@@ -7,8 +7,7 @@
 /// self-intersection triangle pairs, the sketch face finder).
 
 #include <algorithm>
-#include <iterator>
-#include <ranges>
+#include <cstddef>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -17,14 +16,31 @@
 
 namespace cellforge::detail {
 
+/// The indices 0 .. n-1 as a range with begin() and end() (std::views::iota does not compile
+/// with clang 14 over libstdc++ 12).
+struct index_range {
+  struct iterator {
+    std::size_t i;
+    std::size_t operator*() const noexcept { return i; }
+    iterator& operator++() noexcept {
+      ++i;
+      return *this;
+    }
+    bool operator==(const iterator&) const noexcept = default;
+  };
+  std::size_t n;
+  iterator begin() const noexcept { return {0}; }
+  iterator end() const noexcept { return {n}; }
+};
+
 /// Newell's vector (twice the vector area; the least-squares normal of a non-planar loop) of
-/// the loop of vertices `loop`, whose positions `at(vertex)` gives as glm::dvec3. Any forward
-/// range: a vector of indices, or a face circulator. O(loop size).
-template <std::ranges::forward_range Loop, class At>
+/// the loop of vertices `loop`, whose positions `at(vertex)` gives as glm::dvec3. Any range
+/// with begin() and end(): a vector of indices, a face circulator, an index_range. O(loop size).
+template <class Loop, class At>
 glm::dvec3 newell(const Loop& loop, At&& at) {
   glm::dvec3 n(0.0);
-  auto it = std::ranges::begin(loop);
-  const auto end = std::ranges::end(loop);
+  auto it = loop.begin();
+  const auto end = loop.end();
   if (it == end) return n;
   const glm::dvec3 first = at(*it);
   glm::dvec3 a = first;

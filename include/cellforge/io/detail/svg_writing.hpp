@@ -114,7 +114,7 @@ void svg_hex_colour(std::string& out, const glm::dvec3& rgb) {
 template <class Get>
 glm::dvec3 svg_newell(std::size_t n, Get&& at) {
   // From the closing side n-1 -> 0 on, the order of summation the pictures always had.
-  return cellforge::detail::newell(std::views::iota(std::size_t{0}, n),
+  return cellforge::detail::newell(cellforge::detail::index_range{n},
                                    [&](std::size_t k) { return glm::dvec3(at((k + n - 1) % n)); });
 }
 
