@@ -391,6 +391,14 @@ if(RESULT_FAIL)
   expect_files("${dir}" ${in_out})
 endif()
 
+# sketch2cells --step: the solid as STEP too.
+if(PROGRAM STREQUAL "sketch2cells")
+  fresh(step)
+  run(--no-svg --step ${INPUT_NAME})
+  expect_exit(0)
+  expect_files("${dir}" out/draw_wire.obj out/draw.3dcl out/draw.obj out/draw.step)
+endif()
+
 # A batch: a folder holding the input and a garbled file, two runs at a time: one line per input
 # and a summary, the worst status (1), the input's outputs in out/<its name>/ and nothing for the
 # garbled one. Then two good inputs named on the command line (--quiet): exit 0, nothing printed.

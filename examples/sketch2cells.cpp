@@ -28,6 +28,7 @@
 #include "cellforge/io/drawing_text.hpp"
 #include "cellforge/io/dxf_drawing.hpp"
 #include "cellforge/io/obj.hpp"
+#include "cellforge/io/step.hpp"
 #include "cellforge/io/svg_drawing.hpp"
 #include "cellforge/sketch/drawing_to_cells.hpp"
 #include "example_support.hpp"
@@ -51,13 +52,20 @@ int main(int argc, char** argv) {
       "  <name>.3dcl        the cell complex (docs/formats.md)\n"
       "  <name>.obj         the cell complex's faces, one group per volume\n"
       "  <name>.svg         the solid, volumes exploded apart\n"
+      "  <name>.step        with --step: a solid per volume (STEP AP214, docs/formats.md \"STEP\")\n"
       "<name> is the input's file name without its extension; --no-svg leaves out both pictures.\n";
   p.exit4_help =
       "read, but not a line drawing (a mesh, a wireframe, a skeleton, a drawing with arcs: the message\n"
       "     names the program that takes it), or no good solid: the cell complex fails validation or its\n"
-      "     faces differ from the drawing's";
+      "     faces differ from the drawing's, a drawn edge bounds no face, or the 3D reading is not a\n"
+      "     closed solid (its status, as wire2cells prints it)";
   cellforge::drawing_options options;
+  bool step = false;
   p.add_common_options();
+  p.options.push_back({{"--step"},
+                       "",
+                       "also write <name>.step, a solid per volume for CAD programs (default: off)",
+                       [&](std::string_view) { step = true; }});
   p.options.push_back({{"--finder"},
                        "varley-company|shortest-loops",
                        "how faces are found in the drawing (default: varley-company)",
@@ -75,7 +83,8 @@ int main(int argc, char** argv) {
     bool failed = false;  // a result that fails its check: written only with --keep-partial
     const fs::path faces_path = out.add(stem + "_faces.svg"), wire_path = out.add(stem + "_wire.obj"),
                    cells_path = out.add(stem + ".3dcl"), obj_path = out.add(stem + ".obj"),
-                   picture_path = out.add(stem + ".svg");
+                   picture_path = out.add(stem + ".svg"),
+                   step_path = step ? out.add(stem + ".step") : fs::path();
     example::expect_extension(p.name, input, {example::input_kind::drawing}, "a line drawing");
     const std::string ext = example::lower_extension(input);
     if (ext == ".obj") {
@@ -136,14 +145,26 @@ int main(int argc, char** argv) {
                 cells.num_vertices(), cells.num_edges(), cells.num_faces(), cells.num_volumes(),
                 valid.ok() ? "ok" : valid.message.c_str());
     std::printf("2D and 3D faces    %s\n", r.faces_agree ? "agree" : "DIFFER");
+    std::printf("status             %s (%s)%s\n", cellforge::to_string(r.cells.status),
+                r.cells.status_reason.c_str(), r.flagged ? "; flagged, not certified: see the notes" : "");
     std::printf("total              %9.3f ms\n", r.milliseconds);
     for (const std::string& d : r.diagnostics) std::printf("note               %s\n", d.c_str());
 
     stage("writing " + std::to_string(cells.num_faces()) + " faces");
-    if (!valid.ok() || !r.faces_agree) {
-      std::fprintf(stderr, "sketch2cells: read, but no good solid: %s\n",
-                   !valid.ok() ? ("the cell complex fails validation: " + valid.message).c_str()
-                               : "the solid's faces differ from the drawing's");
+    // A solid only when certified as wire2cells certifies one (solid or ambiguous), its faces
+    // the drawing's and every drawn edge on a face.
+    const bool closed = r.cells.status == cellforge::solid_status::solid ||
+                        r.cells.status == cellforge::solid_status::ambiguous;
+    if (!valid.ok() || !r.faces_agree || !r.unused_edges.empty() || !closed) {
+      const std::string why = !valid.ok()      ? "the cell complex fails validation: " + valid.message
+                              : !r.faces_agree ? std::string("the solid's faces differ from the drawing's")
+                              : !r.unused_edges.empty()
+                                  ? std::to_string(r.unused_edges.size()) +
+                                        " drawn edges bound no face (first: edge " +
+                                        std::to_string(r.unused_edges.front()) + ", 0-based)"
+                                  : std::string("the 3D reading is ") + cellforge::to_string(r.cells.status) +
+                                        ": " + r.cells.status_reason;
+      std::fprintf(stderr, "sketch2cells: read, but no good solid: %s\n", why.c_str());
       if (!p.keep_partial) return example::exit_not_for_this;
       failed = true;
     }
@@ -160,6 +181,8 @@ int main(int argc, char** argv) {
     out.write(obj_path, [&](const fs::path& to) { cellforge::io::write_cells_obj(to, cells); });
     if (p.svg)
       out.write(picture_path, [&](const fs::path& to) { cellforge::io::write_cells_svg(to, cells); });
+    if (step)
+      out.write(step_path, [&](const fs::path& to) { cellforge::io::write_step(to, cells, {.name = stem}); });
     if (failed) return example::exit_not_for_this;  // the outputs kept as partial
     out.commit();
     std::printf("wrote              %s\n", out.list().c_str());
