@@ -537,7 +537,7 @@ TEST_CASE("inflate: random convex polytopes (all faces triangles) are read conve
 #ifdef NDEBUG
   options.limit = 12;
 #else
-  options.limit = 4;  // Eigen unoptimised under the sanitizers
+  options.limit = 4;                      // Eigen unoptimised under the sanitizers
   options.max_edges = 60;
 #endif
   const auto sweep = cellforge::samples::sketch_sweep(options);
