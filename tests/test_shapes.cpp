@@ -16,6 +16,8 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/algorithms/shapes.hpp"
+#include "cellforge/algorithms/soup_queries.hpp"
+#include "cellforge/algorithms/soup_transforms.hpp"
 #include "cellforge/samples/tube_soups.hpp"
 
 namespace test_user {

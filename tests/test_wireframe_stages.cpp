@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "cellforge/samples/wireframe_models.hpp"
+#include "cellforge/wireframe/cell_list.hpp"
 #include "cellforge/wireframe/circuit_tracer.hpp"
 #include "cellforge/wireframe/extra_faces.hpp"
 #include "cellforge/wireframe/face_arrangement.hpp"
@@ -188,6 +189,11 @@ TEST_CASE("stages: the volume finder splits two cubes at their shared wall, drop
       for (auto& [f, sign] : vol) f = index[f];
     CHECK(same_volumes(m.faces, m.volumes, kept, volumes));
     CHECK(v.unforced.size() == m.unforced_faces);
+    // §4.9 on its own: the cell list holds the kept faces and the volumes, every edge on a face.
+    const auto list = assemble_cell_list(m.wire, a.graph, faces, v, {});
+    CHECK(list.input.faces.size() == kept.size());
+    CHECK(list.input.volumes.size() == v.volumes.size());
+    CHECK(list.input.edges.size() == m.wire.edges.size());
     // Every kept face bounds a volume on at least one side; a shared wall bounds two.
     REQUIRE(v.face_volumes.size() == faces.size());
     std::size_t shared = 0;
