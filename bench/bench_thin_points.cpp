@@ -9,7 +9,7 @@
 //   --faithful=all|quad|none  which table-5 cases also run in the faithful mode (default all)
 //   --no_bunny_faithful       skip the bunny in the faithful mode (once, a few seconds)
 // The bunny is read from CELLFORGE_BUNNY_FILE (environment, else the CMake cache variable;
-// cmake/fetch-bunny.sh makes it); without the file its row says so and is skipped.
+// scripts/fetch-bunny.sh makes it); without the file its row says so and is skipped.
 
 #include "bench_support.hpp"
 
@@ -444,7 +444,7 @@ void print_tables(const cb::collecting_reporter& reporter, const flags& f, std::
           b.add_note("Threshold " + std::to_string(cap) + " loop: " + d + ".");
   } else {
     b.add_row({"bunny", "—", "1", "—", "—", cb::ms(seed_bunny_ms), "skipped", "—", "—", "",
-               "no " + bunny_path().string() + ": run bash cmake/fetch-bunny.sh build/data"});
+               "no " + bunny_path().string() + ": run bash scripts/fetch-bunny.sh build/data"});
   }
   b.add_note(
       "Seed: \"The execution took 83629223 ms\" (§7.3). Bunny: npm package bunny@1.0.1 (fetch-bunny.sh).");

@@ -2,7 +2,7 @@
 // wireframe (its creases, boundary and non-manifold edges), the cell complex it stands for
 // (its faces merged across flat edges, a volume per clean closed component) and a description
 // of what it is (closed, open, self-intersecting, non-manifold, degenerate). Used by
-// tests/test_real_meshes.cpp on CGAL's demo meshes (cmake/fetch-cgal-data.sh).
+// tests/test_real_meshes.cpp on CGAL's demo meshes (scripts/fetch-cgal-data.sh).
 #pragma once
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The DXF reader (io/dxf_drawing.hpp): drawings written by a third-party writer (ezdxf, through
-// cmake/make-dxf-data.py, in R12, R2000 and R2018) read to the same junctions, edges, arcs,
+// scripts/make-dxf-data.py, in R12, R2000 and R2018) read to the same junctions, edges, arcs,
 // faces and cell complexes as their text versions; each entity's geometry on small hand-made
 // files; malformed files refused with the file's line.
 #include <doctest/doctest.h>
@@ -196,7 +196,7 @@ TEST_CASE("dxf: drawings written by ezdxf read as their text versions, faces and
   if (dir.empty() || !fs::is_directory(dir)) {
     const std::string what =
         "no DXF test data (python3 with ezdxf, Debian's python3-ezdxf, writes it: "
-        "cmake/make-dxf-data.py): the comparison is skipped";
+        "scripts/make-dxf-data.py): the comparison is skipped";
     if (std::getenv("CI") != nullptr) FAIL(what);
     MESSAGE(what);
     return;

@@ -1,6 +1,6 @@
 // The main job on data nobody here made (issue 38): the wireframes of CGAL's demo meshes
-// (cmake/fetch-cgal-data.sh, Debian's libcgal-demo) and of the Stanford bunny
-// (cmake/fetch-bunny.sh). Each mesh becomes a wireframe, its truth and its class
+// (scripts/fetch-cgal-data.sh, Debian's libcgal-demo) and of the Stanford bunny
+// (scripts/fetch-bunny.sh). Each mesh becomes a wireframe, its truth and its class
 // (tests/real_mesh_support.hpp); the wireframe is converted and the answer judged:
 //   * clean closed meshes, and open ones whose every rim is planar (the wireframe of the solid
 //     with lids), must come out exactly (faces as vertex sets, volume count), or say why not
@@ -81,9 +81,10 @@ std::vector<fs::path> mesh_files() {
   }
   const std::string what =
       "real meshes missing in '" + dir.string() + "' (" +
-      (cgal ? "" : "no meshes in cgal/: run `bash cmake/fetch-cgal-data.sh build/data`, needs libcgal-demo") +
+      (cgal ? ""
+            : "no meshes in cgal/: run `bash scripts/fetch-cgal-data.sh build/data`, needs libcgal-demo") +
       (!cgal && !bunny ? "; " : "") +
-      (bunny ? "" : "no bunny.off: run `bash cmake/fetch-bunny.sh build/data`, needs node and npm") + ")";
+      (bunny ? "" : "no bunny.off: run `bash scripts/fetch-bunny.sh build/data`, needs node and npm") + ")";
   if (std::getenv("CI") != nullptr) FAIL(what);
   MESSAGE("skipped: " << what);
   return {};

@@ -1,6 +1,6 @@
 // The thin-point search on the Stanford bunny (seed 000 §7.3, threshold 1): it must finish
 // with loops that are well formed on the mesh. The bunny comes from the npm package `bunny`
-// through cmake/fetch-bunny.sh (test-all runs it); the path is CELLFORGE_BUNNY_FILE, from
+// through scripts/fetch-bunny.sh (test-all runs it); the path is CELLFORGE_BUNNY_FILE, from
 // CMake or, overriding it, from the environment. Without the file the test skips, except
 // under CI, where a missing bunny is a failure. Timing is the benchmark's business.
 #include <doctest/doctest.h>
@@ -37,7 +37,7 @@ std::filesystem::path bunny_path() {
 bool have_bunny(const std::filesystem::path& path) {
   if (!path.empty() && std::filesystem::exists(path)) return true;
   const std::string what = "the Stanford bunny '" + path.string() +
-                           "' is missing: run `bash cmake/fetch-bunny.sh build/data` (needs node and npm)";
+                           "' is missing: run `bash scripts/fetch-bunny.sh build/data` (needs node and npm)";
   if (std::getenv("CI") != nullptr) FAIL(what);
   MESSAGE("skipped: " << what);
   return false;

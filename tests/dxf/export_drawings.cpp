@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Writes a sample of the generated drawings as text for cmake/make-dxf-data.py (ezdxf) to write
+// Writes a sample of the generated drawings as text for scripts/make-dxf-data.py (ezdxf) to write
 // as DXF: test_io_dxf_drawing reads both and compares. Usage: export_drawings OUT_DIR
 #include <cstdio>
 #include <filesystem>
