@@ -1,0 +1,760 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The engine of drawing_to_cells (included by sketch/drawing_to_cells.hpp).
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <iterator>
+#include <optional>
+#include <set>
+#include <string>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "cellforge/core/detail/geometry.hpp"
+#include "cellforge/core/detail/text.hpp"
+#include "cellforge/core/detail/work_budget.hpp"
+#include "cellforge/core/error.hpp"
+#include "cellforge/core/point2_traits.hpp"
+#include "cellforge/core/wireframe.hpp"
+#include "cellforge/sketch/drawing_to_cells.hpp"
+#include "cellforge/sketch/face_finder.hpp"
+#include "cellforge/sketch/inflation.hpp"
+#include "cellforge/sketch/line_drawing.hpp"
+#include "cellforge/sketch/tidy.hpp"
+#include "cellforge/wireframe/wire_graph.hpp"
+#include "cellforge/wireframe/wireframe_to_cells.hpp"
+
+namespace cellforge {
+
+namespace detail::sketch {
+
+/// Signed area of a junction cycle in the drawing. O(L).
+template <class = void>
+double loop_area(const std::vector<glm::dvec2>& p, const std::vector<std::uint32_t>& loop) {
+  double a = 0;
+  for (std::size_t k = 0; k < loop.size(); ++k) {
+    const glm::dvec2 u = p[loop[k]], v = p[loop[(k + 1) % loop.size()]];
+    a += u.x * v.y - u.y * v.x;
+  }
+  return 0.5 * a;
+}
+
+using face_set = std::vector<std::vector<std::vector<std::uint32_t>>>;
+
+/// Newell normal and centroid of a loop in 3D. O(L).
+template <class = void>
+std::pair<glm::dvec3, glm::dvec3> loop_plane(const std::vector<glm::dvec3>& p,
+                                             const std::vector<std::uint32_t>& loop) {
+  const glm::dvec3 n = cellforge::detail::newell(loop, [&](std::uint32_t v) { return p[v]; });
+  glm::dvec3 c{0.0};
+  for (const std::uint32_t v : loop) c += p[v];
+  return {n, c / static_cast<double>(loop.size())};
+}
+
+/// Groups face loops into faces with holes (each face: outer loop, then holes).
+/// - Within one connected part of the drawing, a hole loop is a loop whose junctions, taken
+///   out, split the part (a hole's boundary separates what is inside it from the rest; outer
+///   loops of a polyhedron's faces do not); its face is the smallest loop of the part around
+///   it in the drawing traversed the other way (in the face's plane a hole runs against the
+///   outer loop, and a parallel view keeps that).
+/// - A part drawn inside a loop of another part (a hole through a block: the hole's walls are
+///   edges of their own, joined to the block by no edge) is inflated alone; a loop of it whose
+///   plane is parallel to a loop of the outer part around it in the drawing is a hole of that
+///   loop when it can be moved in depth onto its plane, and the reading and depth that put the
+///   most such loops onto their planes win. The Necker reading of each part is tried.
+/// Loops with no face around them stay faces of their own. O(parts · inflation + H · F · L).
+template <class = void>
+face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vector<std::uint32_t>>& loops,
+                     const inflation_options& inflation, std::vector<std::string>& diagnostics,
+                     std::size_t& ambiguous) {
+  const face_finder_options o;
+  work_budget budget{0, 0, "drawing_to_cells"};
+  faces::finder f(g, o, budget);
+  const std::size_t n = loops.size(), nv = g.num_junctions();
+  std::vector<double> area(n);
+  std::vector<std::uint32_t> part(n);
+  std::vector<std::vector<glm::dvec2>> poly(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    area[i] = loop_area(g.p, loops[i]);
+    part[i] = f.component[loops[i][0]];
+    for (const auto v : loops[i]) poly[i].push_back(g.p[v]);
+  }
+  const auto inside_loop = [&](std::size_t h, std::size_t c) {
+    if (std::abs(area[c]) <= std::abs(area[h])) return false;
+    for (const auto v : loops[h])
+      if (!faces::inside(poly[c], g.p[v])) return false;
+    return true;
+  };
+  std::vector<std::size_t> owner(n, n);
+  for (std::size_t h = 0; h < n; ++h) {
+    if (loops[h].size() < 3 || !f.separating(loops[h])) continue;
+    std::size_t best = n;
+    for (std::size_t c = 0; c < n; ++c)
+      if (c != h && part[c] == part[h] && area[c] * area[h] < 0 && inside_loop(h, c) &&
+          (best == n || std::abs(area[c]) < std::abs(area[best])))
+        best = c;
+    if (best == n)
+      diagnostics.push_back(cellforge::detail::cat(
+          "loop ", std::to_string(h), " splits the drawing but lies in no face loop running the other way"));
+    owner[h] = best;
+  }
+  const auto faces_of = [&](const std::vector<std::size_t>& own, auto&& keep) {
+    face_set out;
+    std::vector<std::size_t> index(n, n);
+    for (std::size_t i = 0; i < n; ++i)
+      if (own[i] == n && keep(i)) index[i] = out.size(), out.push_back({loops[i]});
+    for (std::size_t h = 0; h < n; ++h)
+      if (own[h] != n && keep(h) && index[own[h]] != n) out[index[own[h]]].push_back(loops[h]);
+    return out;
+  };
+  const std::size_t parts = f.component_size.size();
+  std::vector<char> has_loop(parts, 0);
+  for (std::size_t i = 0; i < n; ++i) has_loop[part[i]] = 1;
+  if (std::count(has_loop.begin(), has_loop.end(), 1) < 2)
+    return faces_of(owner, [](std::size_t) { return true; });
+
+  // Each part alone: its drawing, its faces, both readings (junction depths, global indices).
+  struct part_reading {
+    std::vector<std::vector<glm::dvec3>> readings;  // [reading][junction]; empty: not inflated
+    std::vector<double> outward;                    // per reading: +1 when the loops' sense is outward
+    double span = 0;                                // bounding-box area in the drawing
+  };
+  std::vector<part_reading> pr(parts);
+  double size = 0;
+  bool inexact = false;  // a part read by least squares: its planes match others' only roughly
+  for (std::uint32_t c = 0; c < parts; ++c) {
+    if (!has_loop[c]) continue;
+    line_drawing<glm::dvec2> sub;
+    std::vector<std::uint32_t> local(nv, faces::none), global;
+    for (std::uint32_t v = 0; v < nv; ++v)
+      if (f.component[v] == c)
+        local[v] = static_cast<std::uint32_t>(global.size()), global.push_back(v),
+        sub.points.push_back(g.p[v]);
+    for (std::uint32_t h = 0; h < g.num_half_edges(); h += 2)
+      if (f.component[g.head[h]] == c) sub.edges.push_back({local[g.tail(h)], local[g.head[h]]});
+    face_set sub_faces = faces_of(owner, [&](std::size_t i) { return part[i] == c; });
+    for (auto& face : sub_faces)
+      for (auto& loop : face)
+        for (auto& v : loop) v = local[v];
+    glm::dvec2 lo = sub.points[0], hi = sub.points[0];
+    for (const auto& q : sub.points) lo = glm::min(lo, q), hi = glm::max(hi, q);
+    pr[c].span = (hi.x - lo.x) * (hi.y - lo.y);
+    size = std::max(size, glm::length(hi - lo));
+    try {
+      // An inexact (sketched) part has only flat exact readings: read it by least squares.
+      const auto res = [&] {
+        try {
+          return inflate<glm::dvec3>(sub, sub_faces, inflation);
+        } catch (const error& e) {
+          if (e.category() != error_category::topology) throw;
+          inflation_options ls = inflation;
+          ls.least_squares = true;
+          ls.direction_tolerance = std::max(ls.direction_tolerance, 4.0 * 3.141592653589793 / 180.0);
+          ls.closure_tolerance = std::max(ls.closure_tolerance, 0.05);
+          inexact = true;
+          return inflate<glm::dvec3>(sub, sub_faces, ls);
+        }
+      }();
+      for (const auto& reading : res.readings) {
+        std::vector<glm::dvec3> pts(nv, glm::dvec3(0.0));
+        for (std::size_t k = 0; k < global.size(); ++k) pts[global[k]] = reading.points[k];
+        // The loops' sense is outward when the volume they bound is positive (divergence theorem).
+        double volume = 0;
+        for (std::size_t i = 0; i < n; ++i)
+          if (part[i] == c)
+            for (std::size_t k = 1; k + 1 < loops[i].size(); ++k)
+              volume += glm::dot(pts[loops[i][0]], glm::cross(pts[loops[i][k]], pts[loops[i][k + 1]]));
+        pr[c].outward.push_back(volume >= 0 ? 1.0 : -1.0);
+        pr[c].readings.push_back(std::move(pts));
+      }
+    } catch (const error& e) {
+      diagnostics.push_back(cellforge::detail::cat("part ", std::to_string(c),
+                                                   " of the drawing cannot be inflated alone: ", e.what()));
+    }
+  }
+  // Place the parts, largest first: the first as read, each next one by the reading and depth
+  // that put most of its loops onto the planes of loops of placed parts around them.
+  std::vector<std::uint32_t> order;
+  for (std::uint32_t c = 0; c < parts; ++c)
+    if (has_loop[c] && !pr[c].readings.empty()) order.push_back(c);
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return pr[a].span > pr[b].span; });
+  std::vector<glm::dvec3> placed(nv, glm::dvec3(0.0));
+  std::vector<char> is_placed(parts, 0);
+  std::vector<double> placed_outward(parts, 1.0);
+  const double parallel = std::sin((inexact ? 5.0 : 0.5) * 3.141592653589793 / 180.0),
+               depth_tolerance = (inexact ? 3e-2 : 1e-3) * size;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const std::uint32_t c = order[k];
+    std::size_t best_votes = 0, best_reading = 0;
+    int best_outside = -1;
+    std::vector<std::pair<std::size_t, double>> candidates;  // (loops on planes, depth move)
+    double best_dz = 0;
+    std::vector<std::pair<std::size_t, std::size_t>> best_pairs;
+    for (std::size_t r = 0; r < pr[c].readings.size() && k > 0; ++r) {
+      const auto& pts = pr[c].readings[r];
+      std::vector<std::tuple<double, std::size_t, std::size_t>> offers;  // (dz, hole, outer)
+      glm::dvec3 centre{0.0};
+      std::size_t members = 0;
+      for (std::uint32_t v = 0; v < nv; ++v)
+        if (f.component[v] == c) centre += pts[v], ++members;
+      centre /= static_cast<double>(std::max<std::size_t>(members, 1));
+      for (std::size_t h = 0; h < n; ++h) {
+        if (part[h] != c) continue;
+        const auto [nh0, ch] = loop_plane(pts, loops[h]);
+        const glm::dvec3 nh = pr[c].outward[r] * nh0;
+        for (std::size_t q = 0; q < n; ++q) {
+          if (!is_placed[part[q]] || !inside_loop(h, q)) continue;
+          const auto [nq0, cq] = loop_plane(placed, loops[q]);
+          const glm::dvec3 nq = placed_outward[part[q]] * nq0;
+          if (glm::length(glm::cross(nh, nq)) > parallel * glm::length(nh) * glm::length(nq) ||
+              std::abs(nq.z) < 1e-12)
+            continue;
+          // Depth of q's plane at h's centroid, minus h's centroid depth.
+          const double zq = cq.z - (nq.x * (ch.x - cq.x) + nq.y * (ch.y - cq.y)) / nq.z;
+          offers.emplace_back(zq - ch.z, h, q);
+        }
+      }
+      for (const auto& [dz, h0, q0] : offers) {
+        std::vector<std::pair<std::size_t, std::size_t>> agree;
+        std::vector<char> used(n, 0);
+        for (const auto& [dz2, h, q] : offers)
+          if (std::abs(dz2 - dz) <= depth_tolerance && !used[h]) used[h] = 1, agree.push_back({h, q});
+        // Outside: the part's centre on the outer side of the face it meets (a boss, not a
+        // pocket: a part joined by one loop is drawn alike either way; see docs/sketch.md).
+        const auto [nq0, cq] = loop_plane(placed, loops[q0]);
+        const double side = glm::dot(centre + glm::dvec3(0, 0, dz) - cq, placed_outward[part[q0]] * nq0);
+        const int outside = side > 0 ? 1 : 0;
+        candidates.push_back({agree.size(), dz});
+        if (agree.size() > best_votes ||
+            (agree.size() == best_votes && best_votes > 0 && outside > best_outside))
+          best_votes = agree.size(), best_reading = r, best_dz = dz, best_pairs = agree,
+          best_outside = outside;
+      }
+    }
+    for (std::uint32_t v = 0; v < nv; ++v)
+      if (f.component[v] == c) placed[v] = pr[c].readings[best_reading][v] + glm::dvec3(0, 0, best_dz);
+    // Another placement as good: the drawing shows two solids (a boss or a pocket) alike.
+    bool tie = false;
+    for (const auto& [votes, dz] : candidates)
+      tie = tie || (votes == best_votes && std::abs(dz - best_dz) > depth_tolerance);
+    if (k > 0 && best_votes > 0 && tie) {
+      ++ambiguous;
+      diagnostics.push_back(
+          cellforge::detail::cat("part ", std::to_string(c),
+                                 " of the drawing fits its face as a boss or as a pocket alike: read as ",
+                                 (best_outside == 1 ? "a boss" : "a pocket")));
+    }
+    is_placed[c] = 1;
+    placed_outward[c] = pr[c].outward[best_reading];
+    for (const auto& [h, q] : best_pairs) owner[h] = owner[q] == n ? q : owner[q];
+    if (k > 0 && best_votes == 0)
+      diagnostics.push_back(cellforge::detail::cat(
+          "part ", std::to_string(c),
+          " of the drawing lies in no face of the others: its depth against them is free"));
+  }
+  return faces_of(owner, [](std::size_t) { return true; });
+}
+
+/// The 3D pipeline's result in another point type (the pipeline runs in double: its planarity
+/// tolerances are relative to double rounding, which a float reading would not meet). O(size).
+template <Point3 R>
+wireframe_result<R> converted(wireframe_result<glm::dvec3>&& d) {
+  if constexpr (std::is_same_v<R, glm::dvec3>) {
+    return std::move(d);
+  } else {
+    wireframe_result<R> r;
+    for (const auto& p : d.input.points) r.input.points.push_back(from_dvec3<R>(p));
+    r.input.edges = std::move(d.input.edges);
+    r.input.faces = std::move(d.input.faces);
+    r.input.volumes = std::move(d.input.volumes);
+    r.cells = convert_points<R>(d.cells);
+    r.input_vertex = std::move(d.input_vertex);
+    r.input_edge = std::move(d.input_edge);
+    r.unforced = std::move(d.unforced);
+    r.alternatives = std::move(d.alternatives);
+    r.lost = std::move(d.lost);
+    r.read = std::move(d.read);
+    r.trace = std::move(d.trace);
+    r.unique = std::move(d.unique);
+    r.reduction = std::move(d.reduction);
+    r.arrangement = std::move(d.arrangement);
+    r.extra = std::move(d.extra);
+    r.volume = std::move(d.volume);
+    r.relations = std::move(d.relations);
+    r.assembly_milliseconds = d.assembly_milliseconds;
+    r.diagnostics = std::move(d.diagnostics);
+    return r;
+  }
+}
+
+/// Whether two lines of the drawing that share no junction are nearly parallel (within
+/// `degrees`) but not parallel to rounding: the drawing is inexact (sketched, jittered, typed
+/// with few digits), since a parallel view keeps lines parallel in space exactly parallel.
+/// O(E log E + pairs within the angle).
+template <class = void>
+bool nearly_parallel(const faces::drawing_graph& g, double degrees) {
+  const std::size_t ne = g.num_half_edges() / 2;
+  std::vector<std::pair<double, std::uint32_t>> angle;
+  angle.reserve(ne);
+  for (std::uint32_t e = 0; e < ne; ++e) {
+    const glm::dvec2 v = g.p[g.head[2 * e]] - g.p[g.head[2 * e + 1]];
+    if (!(glm::length(v) > 0)) continue;
+    double a = std::atan2(v.y, v.x);
+    if (a < 0) a += 3.141592653589793;
+    if (a >= 3.141592653589793) a -= 3.141592653589793;
+    angle.push_back({a, e});
+  }
+  std::sort(angle.begin(), angle.end());
+  const double window = degrees * 3.141592653589793 / 180.0;
+  const auto near = [&](std::uint32_t e, std::uint32_t f) {
+    if (g.head[2 * e] == g.head[2 * f] || g.head[2 * e] == g.head[2 * f + 1] ||
+        g.head[2 * e + 1] == g.head[2 * f] || g.head[2 * e + 1] == g.head[2 * f + 1])
+      return false;
+    const glm::dvec2 u = glm::normalize(g.p[g.head[2 * e]] - g.p[g.head[2 * e + 1]]),
+                     v = glm::normalize(g.p[g.head[2 * f]] - g.p[g.head[2 * f + 1]]);
+    return std::abs(u.x * v.y - u.y * v.x) > 1e-9;
+  };
+  const std::size_t n = angle.size();
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t k = 1; k < n; ++k) {  // forward around the circle of directions
+      const std::size_t j = (i + k) % n;
+      const double gap =
+          j > i ? angle[j].first - angle[i].first : angle[j].first + 3.141592653589793 - angle[i].first;
+      if (gap > window) break;
+      if (near(angle[i].second, angle[j].second)) return true;
+    }
+  return false;
+}
+
+/// Whether loops fail their check on a drawing at an edge on just two of them that are
+/// coplanar in the drawing's reading `depth` (normals within 1e-6 rad): a seam in space, that
+/// a wall must meet, not only two faces alike in the view. O(Σ L² + E).
+template <class = void>
+bool flat_seam(const faces::drawing_graph& g, const std::vector<double>& depth,
+               const std::vector<std::vector<std::uint32_t>>& loops, double coplanar_degrees) {
+  const face_check c = faces::check_loops(g, loops, coplanar_degrees);
+  if (c.seam_edges.empty() || depth.size() != g.num_junctions()) return false;
+  std::vector<glm::dvec3> q(g.num_junctions());
+  for (std::size_t i = 0; i < q.size(); ++i) q[i] = glm::dvec3(g.p[i], depth[i]);
+  for (const auto e : c.seam_edges) {
+    const std::uint32_t a = g.head[2 * e + 1], b = g.head[2 * e];
+    std::vector<glm::dvec3> normals;
+    for (const auto& loop : loops)
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        const std::uint32_t u = loop[k], v = loop[(k + 1) % loop.size()];
+        if ((u == a && v == b) || (u == b && v == a)) normals.push_back(loop_plane(q, loop).first);
+      }
+    if (normals.size() == 2 && glm::length(normals[0]) > 0 && glm::length(normals[1]) > 0 &&
+        glm::length(glm::cross(glm::normalize(normals[0]), glm::normalize(normals[1]))) <= 1e-6)
+      return true;
+  }
+  return false;
+}
+
+/// Canonical cycles of a set of loops, for comparison. O(Σ L log L).
+template <class = void>
+std::multiset<std::vector<std::uint32_t>> canonical_loops(
+    const std::vector<std::vector<std::uint32_t>>& loops) {
+  std::multiset<std::vector<std::uint32_t>> s;
+  for (const auto& l : loops) s.insert(cellforge::detail::canonical_cycle(l));
+  return s;
+}
+
+}  // namespace detail::sketch
+
+namespace detail::sketch {
+
+/// drawing_to_cells on the drawing's own point types, into R. O(the stages).
+template <class R, LineDrawing D>
+drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, const drawing_options& options) {
+  detail::stopwatch clock;
+  drawing_result<R, drawing_point_t<D>> r;
+  r.faces = find_faces(drawing, options.faces);
+  if (r.faces.flagged)
+    r.diagnostics.push_back(cellforge::detail::cat(
+        "the faces found fail their check (",
+        (r.faces.diagnostics.empty() ? std::string("see faces.check") : r.faces.diagnostics.front()),
+        "); inflating them anyway"));
+  const detail::faces::drawing_graph g = detail::faces::make_graph(drawing, options.faces);
+  r.face_loops =
+      detail::sketch::group_faces(g, r.faces.loops, options.inflation, r.diagnostics, r.ambiguous_parts);
+  // One attempt: inflate `used` (in double: a float reading would miss the pipeline's
+  // planarity tolerance) and build the complex of each reading until one agrees.
+  struct attempt {
+    inflation_result<glm::dvec3> inflated;
+    std::optional<wireframe_result<glm::dvec3>> cells;
+    wireframe<glm::dvec3> wire;
+    std::size_t reading = 0;
+    bool agree = false;
+    std::vector<std::vector<std::uint32_t>> only_in_drawing, only_in_3d;
+    std::string error;
+  };
+  auto wanted = detail::sketch::canonical_loops(r.faces.loops);
+  const auto run_with = [&](const line_drawing<drawing_point_t<D>>& used,
+                            const detail::sketch::face_set& face_loops, std::vector<std::string>& notes,
+                            const inflation_options& inflation) {
+    attempt a;
+    try {
+      a.inflated = inflate<glm::dvec3>(used, face_loops, inflation);
+    } catch (const error& e) {
+      if (e.category() != error_category::topology && e.category() != error_category::invalid_input) throw;
+      a.error = e.what();
+      return a;
+    }
+    const std::size_t readings = options.try_other_reading ? a.inflated.readings.size() : 1;
+    for (std::size_t k = 0; k < readings && !(a.cells && a.agree); ++k) {
+      wireframe<glm::dvec3> w;
+      w.points = a.inflated.readings[k].points;
+      w.edges = used.edges;
+      try {
+        wireframe_result<glm::dvec3> cells = wireframe_to_cells(w, options.cells);
+        // Faces that make no valid complex: this reading is refused, as a throw would.
+        if (!cells.validation.ok())
+          throw error(error_category::topology,
+                      cellforge::detail::cat("wireframe_to_cells: ", cells.status_reason));
+        std::vector<std::vector<std::uint32_t>> found;
+        for (const auto& f : cells.input.faces)
+          for (const auto& loop : f.loops) {
+            std::vector<std::uint32_t> l;
+            for (const auto v : loop) l.push_back(cells.input_vertex[v]);
+            found.push_back(std::move(l));
+          }
+        const auto got = detail::sketch::canonical_loops(found);
+        const bool agree = got == wanted;
+        if (a.cells && !agree) continue;  // keep the first complex unless this one agrees
+        a.only_in_drawing.clear();
+        a.only_in_3d.clear();
+        std::set_difference(wanted.begin(), wanted.end(), got.begin(), got.end(),
+                            std::back_inserter(a.only_in_drawing));
+        std::set_difference(got.begin(), got.end(), wanted.begin(), wanted.end(),
+                            std::back_inserter(a.only_in_3d));
+        a.cells = std::move(cells);
+        a.wire = std::move(w);
+        a.reading = k;
+        a.agree = agree;
+      } catch (const error& e) {
+        if (e.category() != error_category::topology && e.category() != error_category::invalid_input) throw;
+        a.error = e.what();
+        notes.push_back(
+            cellforge::detail::cat("reading ", std::to_string(k), ": the 3D pipeline refused it: ", a.error));
+      }
+    }
+    return a;
+  };
+  // The regular reading first; when neither of its readings gives a complex whose faces agree,
+  // the compliance optimum as it is (a regular reading may fold a face another way).
+  const auto run = [&](const line_drawing<drawing_point_t<D>>& used,
+                       const detail::sketch::face_set& face_loops, std::vector<std::string>& notes,
+                       bool tidied = false) {
+    // A tidied drawing is only near a view: its regular reading moves which faces of several
+    // cells are coplanar (measured on tests/test_tidy.cpp), so it is read as before.
+    if (tidied) {
+      inflation_options plain = options.inflation;
+      plain.regularity = false;
+      return run_with(used, face_loops, notes, plain);
+    }
+    attempt a = run_with(used, face_loops, notes, options.inflation);
+    if (!(a.cells && a.agree) && options.inflation.regularity && a.inflated.readings.size() == 2 &&
+        a.inflated.method == inflation_method::optimisation) {
+      inflation_options plain = options.inflation;
+      plain.regularity = false;
+      attempt b = run_with(used, face_loops, notes, plain);
+      if (b.cells && b.agree) {
+        notes.push_back(
+            "the regular reading's faces disagree with the drawing's; the compliance optimum's agree");
+        return b;
+      }
+    }
+    return a;
+  };
+  // As drawn first (a tidy drawing is left alone: merging near-parallel lines of an exact
+  // drawing would change it); tidied when that gives no complex whose faces agree.
+  std::vector<std::string> notes;
+  r.tidy.drawing = to_line_drawing(drawing);
+  attempt best = options.tidy == tidy_mode::always ? attempt{} : run(r.tidy.drawing, r.face_loops, notes);
+  const auto direct = [](const attempt& a) {
+    return a.cells && a.agree && a.inflated.method == inflation_method::direct;
+  };
+  if (options.tidy != tidy_mode::never && !direct(best)) {
+    tidy_result<drawing_point_t<D>> t = tidy_drawing(drawing, options.tidying);
+    for (const auto& d : t.diagnostics) r.diagnostics.push_back(d);
+    if (t.applied) {
+      std::vector<std::string> tidy_notes;
+      attempt tidied = run(t.drawing, r.face_loops, tidy_notes, true);
+      // Tidied wins when it gives a complex where there was none, one whose faces agree where
+      // they did not, or a direct (exact) reading where there was an optimised one.
+      if ((tidied.cells && !best.cells) || (tidied.cells && tidied.agree && !best.agree) ||
+          (direct(tidied) && best.agree) || options.tidy == tidy_mode::always) {
+        best = std::move(tidied);
+        notes = std::move(tidy_notes);
+        r.tidy = std::move(t);
+      }
+    }
+  }
+  // Still no complex whose faces agree, or an inexact drawing (sketched: lines nearly parallel,
+  // never exactly): tidied to the nearest view of a solid with the faces found (planar faces,
+  // lines parallel in 3D parallel).
+  const bool inexact = detail::sketch::nearly_parallel(g, 5.0);
+  if (options.tidy != tidy_mode::never && r.face_loops.size() >= 4 &&
+      (!(best.cells && best.agree) || inexact)) {
+    try {
+      tidy_result<drawing_point_t<D>> t = tidy_to_solid(drawing, r.face_loops, options.tidying);
+      for (const auto& d : t.diagnostics) r.diagnostics.push_back(d);
+      detail::sketch::face_set regrouped = r.face_loops;
+      if (t.applied) {
+        // Parts drawn inside others are placed by their planes, which an inexact drawing gives
+        // only roughly: grouped again on the tidied drawing (one view for every part), and
+        // tidied again from the drawing as drawn with holes the grouping found.
+        std::vector<std::string> group_notes;
+        std::size_t ambiguous = 0;
+        const detail::faces::drawing_graph g2 = detail::faces::make_graph(t.drawing, options.faces);
+        regrouped = detail::sketch::group_faces(g2, r.faces.loops, options.inflation, group_notes, ambiguous);
+        if (regrouped != r.face_loops) {
+          tidy_result<drawing_point_t<D>> t2 = tidy_to_solid(drawing, regrouped, options.tidying);
+          for (const auto& d : t2.diagnostics) r.diagnostics.push_back(d);
+          if (t2.applied)
+            t = std::move(t2),
+            r.diagnostics.push_back(cellforge::detail::cat(
+                "faces grouped again on the tidied drawing: ", std::to_string(regrouped.size()), " faces"));
+          else
+            regrouped = r.face_loops;
+        }
+      }
+      // The faces found again on the tidied drawing, whose lines parallel in space are exactly
+      // parallel: a face finder tells coplanar faces (seams that need a wall) only there. They
+      // replace the faces as found when those failed their check, or have a seam on the tidied
+      // drawing whose two faces are coplanar in its reading (not just alike in the view), and
+      // the new ones pass their check and give a complex that agrees with them.
+      bool refound = false;
+      if (t.applied && inexact && t.largest_move > 1e-7) {
+        face_finder_result f2 = find_faces(t.drawing, options.faces);
+        const auto found2 = detail::sketch::canonical_loops(f2.loops);
+        const detail::faces::drawing_graph g2 = detail::faces::make_graph(t.drawing, options.faces);
+        const double coplanar = std::max(options.faces.coplanar_tolerance_degrees, 1e-6);
+        if (!f2.flagged && found2 != wanted &&
+            (r.faces.flagged || detail::sketch::flat_seam(g2, t.depth, r.faces.loops, coplanar))) {
+          std::vector<std::string> group_notes;
+          std::size_t ambiguous = 0;
+          detail::sketch::face_set grouped2 =
+              detail::sketch::group_faces(g2, f2.loops, options.inflation, group_notes, ambiguous);
+          tidy_result<drawing_point_t<D>> t2 = tidy_to_solid(drawing, grouped2, options.tidying);
+          if (t2.applied) {
+            const auto before = std::move(wanted);
+            wanted = found2;
+            std::vector<std::string> tidy_notes;
+            attempt again = run(t2.drawing, grouped2, tidy_notes, true);
+            if (again.cells && again.agree) {
+              refound = true;
+              best = std::move(again);
+              notes = std::move(tidy_notes);
+              r.diagnostics.push_back(cellforge::detail::cat(
+                  "faces found again on the drawing tidied to a solid: ", std::to_string(f2.loops.size()),
+                  " loops where the drawing as drawn gave ", std::to_string(r.faces.loops.size()),
+                  " (those fail their check there)"));
+              r.faces = std::move(f2);
+              r.face_loops = std::move(grouped2);
+              r.ambiguous_parts = ambiguous;
+              r.tidy = std::move(t2);
+              r.diagnostics.push_back(
+                  cellforge::detail::cat("tidied to the view of a solid: junctions moved by at most ",
+                                         std::to_string(r.tidy.largest_move), " of the drawing's size (rms ",
+                                         std::to_string(r.tidy.rms_move), ")"));
+            } else {
+              wanted = before;
+            }
+          }
+        }
+      }
+      if (t.applied && !refound && !(best.cells && best.agree)) {
+        std::vector<std::string> tidy_notes;
+        attempt tidied = run(t.drawing, regrouped, tidy_notes, true);
+        if ((tidied.cells && !best.cells) || (tidied.cells && tidied.agree)) {
+          best = std::move(tidied);
+          notes = std::move(tidy_notes);
+          r.face_loops = std::move(regrouped);
+          r.tidy = std::move(t);
+          r.diagnostics.push_back(
+              cellforge::detail::cat("tidied to the view of a solid: junctions moved by at most ",
+                                     std::to_string(r.tidy.largest_move), " of the drawing's size (rms ",
+                                     std::to_string(r.tidy.rms_move), ")"));
+        } else {
+          r.diagnostics.push_back(cellforge::detail::cat(
+              "tidied to the view of a solid, but its reading gives ",
+              std::string(tidied.cells ? "a complex whose faces disagree" : "no complex"),
+              (tidied.error.empty() ? std::string() : cellforge::detail::cat(" (", tidied.error, ")"))));
+        }
+      }
+    } catch (const error& e) {
+      if (e.category() != error_category::topology && e.category() != error_category::invalid_input) throw;
+      r.diagnostics.push_back(cellforge::detail::cat(std::string("tidy_to_solid: "), e.what()));
+    }
+  }
+  for (auto& n : notes) r.diagnostics.push_back(std::move(n));
+  const bool built = best.cells.has_value();
+  const std::string last_error = best.error;
+  if (built) {
+    const auto to_r = [](const std::vector<glm::dvec3>& pts) {
+      std::vector<R> out;
+      out.reserve(pts.size());
+      for (const auto& p : pts) out.push_back(from_dvec3<R>(p));
+      return out;
+    };
+    const inflation_result<glm::dvec3>& inflated = best.inflated;
+    r.inflation.points = to_r(inflated.points);
+    r.inflation.method = inflated.method;
+    for (const auto& reading : inflated.readings)
+      r.inflation.readings.push_back({to_r(reading.points), reading.score, reading.reason});
+    r.inflation.before = inflated.before;
+    r.inflation.after = inflated.after;
+    r.inflation.freedom = inflated.freedom;
+    r.inflation.iterations = inflated.iterations;
+    r.inflation.starts = inflated.starts;
+    r.inflation.milliseconds = inflated.milliseconds;
+    r.inflation.diagnostics = inflated.diagnostics;
+    r.inflation.view_found = inflated.view_found;
+    r.inflation.axis_directions = inflated.axis_directions;
+    r.inflation.foreshortening = inflated.foreshortening;
+    r.inflation.view_rotation = inflated.view_rotation;
+    r.inflation.misclosure = inflated.misclosure;
+    r.cells = detail::sketch::converted<R>(std::move(*best.cells));
+    r.wire.points = r.inflation.readings[best.reading].points;
+    r.wire.edges = std::move(best.wire.edges);
+    r.reading = best.reading;
+    r.faces_agree = best.agree;
+    r.only_in_drawing = std::move(best.only_in_drawing);
+    r.only_in_3d = std::move(best.only_in_3d);
+  }
+  if (!built)
+    throw error(error_category::topology,
+                cellforge::detail::cat("drawing_to_cells: no reading of the drawing gives a cell complex (",
+                                       last_error, ")"));
+  if (!r.faces_agree)
+    r.diagnostics.push_back(cellforge::detail::cat(
+        "the 3D pipeline's faces differ from the drawing's: ", std::to_string(r.only_in_drawing.size()),
+        " loops only in the drawing, ", std::to_string(r.only_in_3d.size()), " only in 3D"));
+  if (r.reading != 0)
+    r.diagnostics.push_back(
+        "built from the other (Necker) reading: the preferred one did not give the drawing's faces");
+  // Never silently wrong: every drawn edge bounds a face of the complex, the 2D and 3D faces
+  // agree, and neither stage reports an ambiguity; otherwise the answer is flagged.
+  std::set<std::pair<std::uint32_t, std::uint32_t>> sides;
+  for (const auto& face : r.cells.input.faces)
+    for (const auto& loop : face.loops)
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        const std::uint32_t a = r.cells.input_vertex[loop[k]],
+                            b = r.cells.input_vertex[loop[(k + 1) % loop.size()]];
+        sides.insert({std::min(a, b), std::max(a, b)});
+      }
+  for (std::uint32_t e = 0; e < r.wire.edges.size(); ++e) {
+    const auto [a, b] = r.wire.edges[e];
+    if (!sides.count({std::min(a, b), std::max(a, b)})) r.unused_edges.push_back(e);
+  }
+  if (!r.unused_edges.empty())
+    r.diagnostics.push_back(std::to_string(r.unused_edges.size()) +
+                            " drawn edges bound no face of the complex (first: edge " +
+                            std::to_string(r.unused_edges.front()) + ")");
+  if (!r.cells.unforced.empty())
+    r.diagnostics.push_back(std::to_string(r.cells.unforced.size()) +
+                            " faces of the 3D reading are walls no edge needs (kept, undecided)");
+  r.flagged = r.faces.flagged || !r.faces_agree || !r.unused_edges.empty() || r.ambiguous_parts > 0 ||
+              !r.cells.unforced.empty();
+  r.milliseconds = clock.ms();
+  return r;
+}
+
+/// A result computed on a line_drawing<glm::dvec2> into glm::dvec3, in the caller's types
+/// (R, P2: P2's scalar is double, so the drawings convert exactly). O(size).
+template <class R, class P2>
+drawing_result<R, P2> result_in(drawing_result<glm::dvec3, glm::dvec2>&& d) {
+  const auto points_in = [](const std::vector<glm::dvec3>& pts) {
+    std::vector<R> out;
+    out.reserve(pts.size());
+    for (const auto& p : pts) out.push_back(from_dvec3<R>(p));
+    return out;
+  };
+  drawing_result<R, P2> r;
+  r.faces = std::move(d.faces);
+  r.tidy.drawing = to_line_drawing<P2>(d.tidy.drawing);
+  r.tidy.classes = d.tidy.classes;
+  r.tidy.parallel_lines = d.tidy.parallel_lines;
+  r.tidy.changed_lines = d.tidy.changed_lines;
+  r.tidy.largest_move = d.tidy.largest_move;
+  r.tidy.rms_move = d.tidy.rms_move;
+  r.tidy.applied = d.tidy.applied;
+  r.tidy.solid = d.tidy.solid;
+  r.tidy.planarity = d.tidy.planarity;
+  r.tidy.depth = std::move(d.tidy.depth);
+  r.tidy.steps = d.tidy.steps;
+  r.tidy.milliseconds = d.tidy.milliseconds;
+  r.tidy.diagnostics = std::move(d.tidy.diagnostics);
+  r.face_loops = std::move(d.face_loops);
+  auto& in = d.inflation;
+  auto& out = r.inflation;
+  out.points = points_in(in.points);
+  out.method = in.method;
+  for (auto& reading : in.readings)
+    out.readings.push_back({points_in(reading.points), reading.score, std::move(reading.reason)});
+  out.before = in.before;
+  out.after = in.after;
+  out.freedom = in.freedom;
+  out.iterations = in.iterations;
+  out.starts = in.starts;
+  out.milliseconds = in.milliseconds;
+  out.diagnostics = std::move(in.diagnostics);
+  out.view_found = in.view_found;
+  out.axis_directions = in.axis_directions;
+  out.foreshortening = in.foreshortening;
+  out.view_rotation = in.view_rotation;
+  out.misclosure = in.misclosure;
+  out.least_squares = in.least_squares;
+  out.near_readings = in.near_readings;
+  out.regular_relations = in.regular_relations;
+  out.relations = in.relations;
+  out.crossing_readings = in.crossing_readings;
+  out.self_intersecting = in.self_intersecting;
+  out.face_changing_readings = in.face_changing_readings;
+  r.reading = d.reading;
+  r.wire.points = points_in(d.wire.points);
+  r.wire.edges = std::move(d.wire.edges);
+  r.cells = converted<R>(std::move(d.cells));
+  r.ambiguous_parts = d.ambiguous_parts;
+  r.faces_agree = d.faces_agree;
+  r.only_in_drawing = std::move(d.only_in_drawing);
+  r.only_in_3d = std::move(d.only_in_3d);
+  r.unused_edges = std::move(d.unused_edges);
+  r.flagged = d.flagged;
+  r.milliseconds = d.milliseconds;
+  r.diagnostics = std::move(d.diagnostics);
+  return r;
+}
+
+}  // namespace detail::sketch
+
+template <class Q, LineDrawing D>
+detail::if_satisfied_t<LineDrawing<D>, detail::sketch::drawing_result_for, Q, D> drawing_to_cells(
+    const D& drawing, const drawing_options& options) {
+  using R = detail::result_point_t<Q, drawing_point_t<D>>;
+  static_assert(Point3<R>, "drawing_to_cells: the result point type must be a registered Point3");
+  using P2 = drawing_point_t<D>;
+  if constexpr (std::is_same_v<D, line_drawing<glm::dvec2>> && std::is_same_v<R, glm::dvec3>)
+    return detail::sketch::drawing_to_cells_on<glm::dvec3>(drawing, options);
+  else if constexpr (std::is_same_v<detail::point2_scalar_t<P2>, double>)
+    return detail::sketch::result_in<R, P2>(
+        detail::sketch::drawing_to_cells_on<glm::dvec3>(to_line_drawing<glm::dvec2>(drawing), options));
+  else  // float drawings: tolerances follow the drawing's own rounding (inflate, find_faces)
+    return detail::sketch::drawing_to_cells_on<R>(drawing, options);
+}
+
+#if defined(CELLFORGE_EXTERN_SKETCH)
+// Compiled once in the file that includes cellforge/sketch/instantiate.hpp (docs/sketch.md).
+extern template drawing_result<glm::dvec3, glm::dvec2>
+detail::sketch::drawing_to_cells_on<glm::dvec3, line_drawing<glm::dvec2>>(const line_drawing<glm::dvec2>&,
+                                                                          const drawing_options&);
+#endif
+
+}  // namespace cellforge
