@@ -8,6 +8,7 @@
 #   - no non-template `inline` function at namespace scope: it would be compiled in every file
 #     that includes the header, used or not (docs/infra.md; make it a template);
 #   - no header outside samples/ includes one in it (but a deprecated forwarder);
+#   - no public header outside detail/ over 700 lines;
 #   - cellforge/cellforge.hpp includes every public header except io/, samples/, detail/ and
 #     sketch/ (its comment says so), and none that
 #     needs Eigen, directly or through another header (so a user without Eigen can include it);
@@ -72,6 +73,11 @@ foreach(header IN LISTS headers)
   endforeach()
   if(NOT has_pragma)
     message("${header}: missing `#pragma once`")
+    math(EXPR problems "${problems} + 1")
+  endif()
+  # A page a reader can take in: the engine of a longer header goes to detail/ (docs/infra.md).
+  if(n GREATER 701 AND NOT header MATCHES "/detail/")  # n counts the piece after the last newline
+    message("${header}: over 700 lines; a public header keeps its page under 700 lines, its engine in detail/")
     math(EXPR problems "${problems} + 1")
   endif()
 endforeach()
