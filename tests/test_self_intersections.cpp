@@ -479,6 +479,85 @@ TEST_CASE("self_intersections: random soups against brute force") {
   }
 }
 
+// Configurations a broad phase could drop (boxes of very different sizes, needles whose boxes
+// are flat, contact at a single point, coplanar overlap), built so that the answer is known by
+// construction, and checked against it and against the brute-force pair loop. Dyadic
+// coordinates: every contact below is exact.
+TEST_CASE("self_intersections: big and small, slivers, point contact, coplanar overlap") {
+  const double tiny = std::ldexp(1.0, -6), hair = std::ldexp(1.0, -40);
+  auto same_as_brute_force = [](const polygon_soup<dvec3>& s, std::size_t expected) {
+    self_intersection_options o;
+    o.max_reported = 1 << 20;
+    const self_intersection_result r = check(s, o);
+    const std::vector<std::uint64_t> brute = brute_force(s);
+    CHECK(r.complete);
+    CHECK(r.degenerate_triangles == 0);
+    CHECK(brute.size() == expected);
+    CHECK(r.intersecting_face_pairs == expected);
+    REQUIRE(r.face_pairs.size() == brute.size());
+    for (std::size_t i = 0; i < brute.size(); ++i) {
+      CHECK(r.face_pairs[i].first.idx() == brute[i] >> 32);
+      CHECK(r.face_pairs[i].second.idx() == static_cast<std::uint32_t>(brute[i]));
+    }
+  };
+  SUBCASE("one huge triangle under 400 tiny ones") {
+    // Big: z = 0, covering [-1000, 1000]²'s middle. Tiny ones on a grid 4 apart (never each other):
+    // piercing it, resting a corner on it, or a hair above it, in turn.
+    std::vector<std::array<dvec3, 3>> tris = {
+        {dvec3(-1024, -1024, 0), dvec3(1024, -1024, 0), dvec3(0, 1024, 0)}};
+    std::size_t meeting = 0;
+    for (int i = 0; i < 20; ++i)
+      for (int j = 0; j < 20; ++j) {
+        const dvec3 c(4.0 * i - 40, 4.0 * j - 40, 0);
+        const int kind = (i + j) % 3;
+        const double z0 = kind == 0 ? -tiny : kind == 1 ? 0 : hair;
+        tris.push_back(
+            {c + dvec3(0, 0, z0), c + dvec3(tiny, 0, z0 + tiny), c + dvec3(0, tiny, z0 + 2 * tiny)});
+        meeting += kind < 2 ? 1 : 0;
+      }
+    same_as_brute_force(separate(tris), meeting);
+  }
+  SUBCASE("needles: coplanar crossings, and a hair apart") {
+    // Ten needles along x (1024 long, 2^-30 wide) at y = 0..9 in z = 0; ten along y across
+    // them: the even ones in the same plane cross all ten, the odd ones lie a hair above.
+    const double thin = std::ldexp(1.0, -30);
+    std::vector<std::array<dvec3, 3>> tris;
+    for (int i = 0; i < 10; ++i) tris.push_back({dvec3(0, i, 0), dvec3(1024, i, 0), dvec3(512, i + thin, 0)});
+    std::size_t crossings = 0;
+    for (int j = 0; j < 10; ++j) {
+      const double x = 10.0 * j + 5, z = j % 2 == 0 ? 0 : hair;
+      tris.push_back({dvec3(x, -1, z), dvec3(x + thin, 10, z), dvec3(x, 20, z)});
+      crossings += j % 2 == 0 ? 10 : 0;
+    }
+    same_as_brute_force(separate(tris), crossings);
+  }
+  SUBCASE("contact at one point, with no vertex shared") {
+    // A base in z = 0; each other triangle (apart from one another) reaches it in one point:
+    // a corner on its interior, on an edge, on a corner; one stops a hair short.
+    const std::array<dvec3, 3> base = {dvec3(0, 0, 0), dvec3(64, 0, 0), dvec3(0, 64, 0)};
+    const std::vector<dvec3> touch = {{8, 8, 0}, {32, 0, 0}, {64, 0, 0}, {0, 64, 0}, {16, 16, hair}};
+    std::vector<std::array<dvec3, 3>> tris = {base};
+    for (const dvec3& t : touch) tris.push_back({t, t + dvec3(1, -2, 4), t + dvec3(-2, 1, 4)});
+    same_as_brute_force(separate(tris), 4);
+  }
+  SUBCASE("coplanar: overlapping, nested, edge to edge, a hair apart") {
+    // In the plane x + y + z = 64 (dyadic points on it exactly): pairs (2k, 2k + 1) that overlap,
+    // nest, share a piece of edge, or miss by a hair; the pairs are far apart from each other.
+    auto on_plane = [](double x, double y) { return dvec3(x, y, 64 - x - y); };
+    std::vector<std::array<dvec3, 3>> tris;
+    for (int k = 0; k < 4; ++k) {
+      const double o = 16.0 * k;
+      tris.push_back({on_plane(o, 0), on_plane(o + 8, 0), on_plane(o, 8)});
+      if (k == 0) tris.push_back({on_plane(o + 2, 2), on_plane(o + 10, 2), on_plane(o + 2, 10)});  // overlap
+      if (k == 1) tris.push_back({on_plane(o + 1, 1), on_plane(o + 2, 1), on_plane(o + 1, 2)});    // nested
+      if (k == 2) tris.push_back({on_plane(o + 2, 6), on_plane(o + 6, 2), on_plane(o + 8, 8)});  // edge piece
+      if (k == 3)  // a corner a hair beyond the hypotenuse x + y = o + 8
+        tris.push_back({on_plane(o + 2 + hair, 6), on_plane(o + 8, 6), on_plane(o + 2 + hair, 12)});
+    }
+    same_as_brute_force(separate(tris), 3);
+  }
+}
+
 namespace {
 
 // The old answer: every pair of triangles (of the triangulation the check uses) of different
