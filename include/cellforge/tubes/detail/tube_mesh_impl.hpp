@@ -461,6 +461,7 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
   const auto ready = [&](std::uint32_t c) { return !is_junction(c) || junction_done[c] != 0; };
   double paths_seconds = 0;  // of the paths meshed between junctions
   std::vector<dt::junction_ring> rings;
+  std::vector<double> own_distance;  // each ring's distance before the 60° rule moved it out
   std::vector<std::uint32_t> ring_edges, first_vertex, target, last;
   std::string first_shrunk;  // for the diagnostic
   const std::vector<glm::dvec3> extra_candidates = dt::sphere_directions(options.junction_extra_points);
@@ -537,6 +538,8 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
         ring_edges.push_back(tube_node::none);
       }
       dt::place_rings(detail::span_of(rings), rb, options.cap_separation);
+      own_distance.clear();
+      for (const dt::junction_ring& r : rings) own_distance.push_back(r.distance);
       // A ring behind a neighbour's within 60° (whose centre lies ahead of its plane) would leave
       // a narrow crevice between its tube and the hull's flank towards the neighbour, faces
       // nearly back to back: it moves out along its axis to the neighbour's (its cap narrows).
@@ -564,6 +567,10 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
       return cosine > -0.9 ? node_radius(q) * std::sqrt((1 - cosine) / (1 + cosine)) : reach(i);
     };
     const auto lacks_room = [&](std::size_t i) { return !(rings[i].distance + mitre(i) < 0.95 * reach(i)); };
+    // Lacks room at its own distance, not only because a neighbour within 60° moved it out.
+    const auto lacks_own_room = [&](std::size_t i) {
+      return !(own_distance[i] + mitre(i) < 0.95 * reach(i));
+    };
     // Each round moves at least one ring on by a node: at most the paths' inner nodes in all.
     for (bool moved = true; moved;) {
       set_up_rings();
@@ -572,6 +579,15 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
         while (lacks_room(i) && target[i] < last[i]) ++target[i], moved = true;
     }
     res.virtual_sections += rings.size() > real ? 1 : 0;
+    // A ring that lacks room only because the 60° rule moved it out behind a neighbour waits while
+    // a ring here lacks room of its own: merging that one's junction first changes the neighbour's
+    // place. Merging every such ring's junction too made one junction swallow its neighbours round
+    // after round (near-parallel branches of the merged junction pushing all rings out).
+    bool own_shortage = false;
+    for (std::size_t i = 0; i < real; ++i) {
+      const std::uint32_t other = path_node(slots[i] ^ 1u, 0);
+      own_shortage = own_shortage || (lacks_own_room(i) && is_junction(other) && other != b);
+    }
     for (std::size_t i = 0; i < real; ++i) {
       taken_of_slot[slots[i]] = target[i] - 1;
       res.absorbed_nodes += target[i] - 1;
@@ -598,7 +614,9 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
         continue;
       }
       // Between two junctions (not one path from a junction back to itself): merge them.
-      if (other != b && (from == nullptr || from->round < merge_rounds)) merge_paths.push_back(slots[i] / 2);
+      if (other != b && (from == nullptr || from->round < merge_rounds) &&
+          (!own_shortage || lacks_own_room(i)))
+        merge_paths.push_back(slots[i] / 2);
       const double scale = std::max(0.9 * (length - mitre(i)), 0.5 * length) / rings[i].distance;
       rings[i].distance *= scale;
       rings[i].radius *= scale;
