@@ -617,6 +617,10 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
       if (other != b && (from == nullptr || from->round < merge_rounds) &&
           (!own_shortage || lacks_own_room(i)))
         merge_paths.push_back(slots[i] / 2);
+      if (!lacks_own_room(i)) {  // short of room only where the 60° rule put it: back, not narrowed
+        rings[i].distance = own_distance[i];
+        continue;
+      }
       const double scale = std::max(0.9 * (length - mitre(i)), 0.5 * length) / rings[i].distance;
       rings[i].distance *= scale;
       rings[i].radius *= scale;
