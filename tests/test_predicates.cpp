@@ -10,9 +10,11 @@
 #include <random>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/geometry.hpp"
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/predicates.hpp"
 #include "test_support.hpp"
@@ -387,4 +389,76 @@ TEST_CASE("union_find: sets join, the smaller root survives, joining twice repor
   CHECK(u.find(2) != u.find(0));
   CHECK(u.unite(5, 3));
   for (const std::uint32_t i : {0u, 2u, 3u, 4u, 5u}) CHECK(u.find(i) == 0);
+}
+
+TEST_CASE("core/detail/geometry.hpp: any_perpendicular's three rules, each pinned to its axis") {
+  namespace cd = cellforge::detail;
+  using rule = cd::perpendicular_rule;
+  // The axis each rule must cross with, written out independently of the helper.
+  const auto expected_axis = [](const glm::dvec3& n, rule r) {
+    const double x = std::abs(n.x), y = std::abs(n.y), z = std::abs(n.z);
+    if (r == rule::least_aligned)
+      return x <= y && x <= z ? glm::dvec3(1, 0, 0) : y <= z ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+    const double limit = r == rule::x_below_0_6 ? 0.6 : 0.9;
+    return x < limit ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  };
+  std::mt19937_64 rng(34);
+  std::normal_distribution<double> g;
+  std::vector<glm::dvec3> dirs{{1, 0, 0},
+                               {0, -1, 0},
+                               {0, 0, 1},
+                               glm::normalize(glm::dvec3(0.7, 0.5, 0.5)),
+                               glm::dvec3(0.6, 0.8, 0),
+                               glm::dvec3(-0.9, 0, std::sqrt(1 - 0.81))};
+  for (int i = 0; i < 200; ++i) dirs.push_back(glm::normalize(glm::dvec3(g(rng), g(rng), g(rng))));
+  for (const rule r : {rule::least_aligned, rule::x_below_0_6, rule::x_below_0_9})
+    for (const glm::dvec3& n : dirs) {
+      const glm::dvec3 u = cd::any_perpendicular(n, r);
+      CHECK(std::abs(glm::dot(u, n)) < 1e-15);
+      CHECK(std::abs(glm::length(u) - 1.0) < 1e-15);
+      CHECK(u == glm::normalize(glm::cross(n, expected_axis(n, r))));
+    }
+  // The rules differ: |n.x| = 0.77 is x for the soups' rule, y for the wireframe's and the tubes'.
+  const glm::dvec3 n = glm::normalize(glm::dvec3(0.7, 0.5, 0.5));
+  CHECK(cd::any_perpendicular(n, rule::x_below_0_9) == glm::normalize(glm::cross(n, glm::dvec3(1, 0, 0))));
+  CHECK(cd::any_perpendicular(n, rule::x_below_0_6) == glm::normalize(glm::cross(n, glm::dvec3(0, 1, 0))));
+  CHECK(cd::any_perpendicular(n) == cd::any_perpendicular(n, rule::least_aligned));
+}
+
+TEST_CASE("core/detail/geometry.hpp: point_in_polygon splits a shared side exactly") {
+  namespace cd = cellforge::detail;
+  // Two quadrilaterals sharing the side from s0 to s1 (neither coordinate a round number):
+  // every point of the strip between them lies in exactly one, on the shared side too, even
+  // one ulp from it, where a rounded crossing abscissa can put it in both or in neither.
+  const glm::dvec2 s0(0.1, 0.1), s1(0.7, 0.9);
+  const std::vector<glm::dvec2> left{s0, s1, {-1, 0.9}, {-1, 0.1}}, right{s1, s0, {2, 0.1}, {2, 0.9}};
+  std::size_t both = 0, neither = 0, points = 0;
+  for (int k = 1; k < 64; ++k) {
+    const double y = 0.1 + 0.8 * k / 64.0;
+    double x = s0.x + (s1.x - s0.x) * (y - s0.y) / (s1.y - s0.y);  // near the shared side
+    for (int i = 0; i < 8; ++i) x = std::nextafter(x, -1.0);
+    for (int i = 0; i < 16; ++i, x = std::nextafter(x, 2.0)) {
+      const bool a = cd::point_in_polygon(left, {x, y}), b = cd::point_in_polygon(right, {x, y});
+      both += a && b, neither += !a && !b, ++points;
+    }
+  }
+  CHECK(points == 63 * 16);
+  CHECK(both == 0);
+  CHECK(neither == 0);
+  CHECK(cd::point_in_polygon(left, {-0.5, 0.5}));
+  CHECK_FALSE(cd::point_in_polygon(left, {1.5, 0.5}));
+  CHECK_FALSE(cd::point_in_polygon(left, {-0.5, 1.5}));
+  CHECK(cd::point_in_polygon(right, {1.5, 0.5}));
+}
+
+TEST_CASE("core/detail/geometry.hpp: canonical_cycle is one form up to rotation and reversal") {
+  namespace cd = cellforge::detail;
+  const std::vector<std::uint32_t> want{1, 7, 5, 3, 8};
+  CHECK(cd::canonical_cycle({5, 3, 8, 1, 7}) == want);
+  CHECK(cd::canonical_cycle({8, 3, 5, 7, 1}) == want);  // reversed
+  std::vector<std::uint32_t> c{8, 3, 5, 7, 1};
+  CHECK(cd::make_canonical_cycle(c));  // reports the reversal
+  CHECK(c == want);
+  CHECK_FALSE(cd::make_canonical_cycle(c));
+  CHECK(cd::canonical_cycle({4, 2}) == std::vector<std::uint32_t>{2, 4});
 }

@@ -21,6 +21,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/algorithms/detail/shape_building.hpp"
+#include "cellforge/core/detail/geometry.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
@@ -265,7 +266,12 @@ requires Point3<std::ranges::range_value_t<R>> polygon_soup<P> spline_tube(
   }
   std::vector<s::ring_frame> rings;
   rings.reserve(pos.size());
-  glm::dvec3 r = s::any_perpendicular(tan[0]);
+  // The soups keep the frame rule they were made with: their rings, and every figure measured on
+  // them, depend on it.
+  const auto perpendicular = [](const glm::dvec3& d) {
+    return cellforge::detail::any_perpendicular(d, cellforge::detail::perpendicular_rule::x_below_0_9);
+  };
+  glm::dvec3 r = perpendicular(tan[0]);
   for (std::size_t i = 0; i < pos.size(); ++i) {
     if (i > 0) {
       // Double reflection (Wang, Jüttler, Zheng & Liu 2008): reflect the previous frame
@@ -280,7 +286,7 @@ requires Point3<std::ranges::range_value_t<R>> polygon_soup<P> spline_tube(
         r = c2 > 0 ? rl - (2.0 / c2) * glm::dot(v2, rl) * v2 : rl;
       }
       r -= glm::dot(r, tan[i]) * tan[i];  // remove rounding drift
-      r = glm::length(r) > 1e-9 ? glm::normalize(r) : s::any_perpendicular(tan[i]);
+      r = glm::length(r) > 1e-9 ? glm::normalize(r) : perpendicular(tan[i]);
     }
     rings.push_back({pos[i], r, glm::cross(tan[i], r), options.radius});
   }

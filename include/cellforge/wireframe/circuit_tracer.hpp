@@ -23,6 +23,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/geometry.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/predicates.hpp"
@@ -85,22 +86,6 @@ double signed_area_2d(const std::vector<glm::dvec2>& q) {
     s += (a.x - q[0].x) * (b.y - q[0].y) - (b.x - q[0].x) * (a.y - q[0].y);
   }
   return 0.5 * s;
-}
-
-/// Even-odd test of a 2D point against a polygon. O(n).
-template <class = void>
-bool inside_2d(const std::vector<glm::dvec2>& poly, const glm::dvec2& q) {
-  bool in = false;
-  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    const auto& a = poly[i];
-    const auto& b = poly[j];
-    if ((a.y > q.y) != (b.y > q.y)) {
-      // Exact side test so that the parity does not depend on rounding of an intersection.
-      const int s = orient2d(b, a, q);
-      if ((a.y > b.y) ? s > 0 : s < 0) in = !in;
-    }
-  }
-  return in;
 }
 
 /// Buffers trace_plane_faces reuses from one plane to the next (a model has as many planes
@@ -265,7 +250,8 @@ class basic_fan_index {
     counts_.assign(n_, 0);
     for (std::uint32_t i = 0; i < n_; ++i) {
       const glm::dvec3 axis = glm::normalize(dirs[i]);
-      const glm::dvec3 e1 = any_perpendicular(axis), e2 = glm::cross(axis, e1);
+      const glm::dvec3 e1 = any_perpendicular(axis, perpendicular_rule::x_below_0_6),
+                       e2 = glm::cross(axis, e1);
       std::uint32_t count = 0;
       for (std::uint32_t k = 0; k < n_; ++k) {
         if (k == i) continue;
@@ -574,7 +560,7 @@ void trace_planar(const wire_graph& g, const trace_options& opt, trace_result& r
           for (std::size_t k = 0; k < comps[d].bounded.size(); ++k) {
             budget.spend(comps[d].bounded[k].size());
             const auto poly = poly_of(comps[d].bounded[k]);
-            if (!inside_2d(poly, probe)) continue;
+            if (!point_in_polygon(poly, probe)) continue;
             ++depth;
             const double a = std::abs(signed_area_2d(poly));
             if (host.first == no_index || a < best) best = a, host = {d, k};

@@ -17,6 +17,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/geometry.hpp"
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/detail/work_budget.hpp"
 #include "cellforge/core/error.hpp"
@@ -163,28 +164,11 @@ void update_normal(const wire_graph& g, wire_face& f) {
 
 /// Rotates a vertex cycle to the seed's canonical order (§4.3): start at the smallest label and
 /// go on towards its smaller neighbour. Returns true when the cycle was reversed. O(n).
+/// (detail::canonical_cycle, core/detail/geometry.hpp, returns a canonical copy.)
 template <class = void>
 bool canonical_cycle(std::vector<std::uint32_t>& c) {
-  if (c.size() < 2) return false;
-  const auto it = std::min_element(c.begin(), c.end());
-  std::rotate(c.begin(), it, c.end());
-  if (c.size() > 2 && c.back() < c[1]) {
-    std::reverse(c.begin() + 1, c.end());
-    return true;
-  }
-  return false;
+  return detail::make_canonical_cycle(c);
 }
-
-namespace detail {
-
-/// A copy of a vertex cycle in canonical_cycle's order: its form up to rotation and reversal. O(n).
-template <class = void>
-std::vector<std::uint32_t> canonical_cycle(std::vector<std::uint32_t> loop) {
-  cellforge::canonical_cycle(loop);
-  return loop;
-}
-
-}  // namespace detail
 
 /// Canonical orientation of a face: its outer loop in canonical order (the normal follows
 /// it), holes rotated to their smallest label and kept clockwise about that normal. O(size).
@@ -314,13 +298,6 @@ struct cell_hash {
     return static_cast<std::size_t>(h);
   }
 };
-
-/// Any unit vector perpendicular to unit n. O(1).
-template <class = void>
-glm::dvec3 any_perpendicular(const glm::dvec3& n) {
-  const glm::dvec3 axis = std::abs(n.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-  return glm::normalize(glm::cross(n, axis));
-}
 
 }  // namespace detail
 }  // namespace cellforge

@@ -311,13 +311,6 @@ void catmull_rom(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p
                    3.0 * (-p0 + 3.0 * p1 - 3.0 * p2 + p3) * t2);
 }
 
-/// A unit vector perpendicular to unit vector t.
-template <class = void>
-glm::dvec3 any_perpendicular(const glm::dvec3& t) {
-  const glm::dvec3 axis = std::abs(t.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-  return glm::normalize(glm::cross(t, axis));
-}
-
 }  // namespace detail::shapes
 
 }  // namespace cellforge

@@ -20,6 +20,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/geometry.hpp"
+
 namespace cellforge::io::detail {
 
 /// A half-open parameter interval [t0, t1] along a segment, t in [0, 1].
@@ -46,14 +48,13 @@ class basic_occlusion_grid {
   /// projected area cannot hide anything and are left out (returns false). O(size of the face).
   bool add_face(std::uint32_t id, std::span<const glm::dvec3> v) {
     if (v.size() < 3 || v.size() >= 0xffffffffu - xy_.size()) return false;
-    // Newell's normal in (x, y, depth) space: nz is twice the signed projected area.
-    glm::dvec3 n(0.0), c(0.0);
-    for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) {
-      n.x += (v[j].y - v[i].y) * (v[j].z + v[i].z);
-      n.y += (v[j].z - v[i].z) * (v[j].x + v[i].x);
-      n.z += (v[j].x - v[i].x) * (v[j].y + v[i].y);
-      c += v[i];
-    }
+    // Newell's normal in (x, y, depth) space: nz is twice the signed projected area. Summed
+    // from the closing side n-1 -> 0 on, the order the visibility always had.
+    const std::size_t m = v.size();
+    const glm::dvec3 n = cellforge::detail::newell(cellforge::detail::index_range{m},
+                                                   [&](std::size_t k) { return v[(k + m - 1) % m]; });
+    glm::dvec3 c(0.0);
+    for (const glm::dvec3& p : v) c += p;
     c /= static_cast<double>(v.size());
     if (!(std::abs(n.z) > 2e-9)) return false;  // below a billionth of a square pixel: edge-on
     face f;
@@ -407,13 +408,14 @@ class basic_occlusion_grid {
     return it != cover_.begin() && (*std::prev(it))[0] <= t0 && (*std::prev(it))[1] >= t1;
   }
 
-  /// Even-odd rule; points on the boundary may go either way. O(sides near p.y).
+  /// Even-odd rule, each side decided exactly (cellforge::detail::crosses_ray); points on the
+  /// boundary may go either way. O(sides near p.y).
   bool inside(const face& f, glm::dvec2 p) {
     bool in = false;
     for_each_side_near(f, p.y, p.y, [&](std::uint32_t i) {
       ++work_;
       const auto [vj, vi] = side(f, i);
-      if ((vi.y > p.y) != (vj.y > p.y) && p.x < (vj.x - vi.x) * (p.y - vi.y) / (vj.y - vi.y) + vi.x) in = !in;
+      if (cellforge::detail::crosses_ray(vi, vj, p)) in = !in;
     });
     return in;
   }

@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/geometry.hpp"
 #include "cellforge/tubes/detail/closed_build.hpp"
 
 namespace cellforge {
@@ -101,14 +102,8 @@ glm::dvec3 safe_unit(const glm::dvec3& d) {
   return glm::normalize(d / big);
 }
 
-/// A unit vector perpendicular to unit vector d, chosen by d alone. O(1).
-template <class = void>
-glm::dvec3 any_perpendicular(const glm::dvec3& d) {
-  const glm::dvec3 a = std::abs(d.x) <= std::abs(d.y) && std::abs(d.x) <= std::abs(d.z) ? glm::dvec3(1, 0, 0)
-                       : std::abs(d.y) <= std::abs(d.z)                                 ? glm::dvec3(0, 1, 0)
-                                                                                        : glm::dvec3(0, 0, 1);
-  return glm::normalize(glm::cross(d, a));
-}
+// The tubes' frames start from core/detail/geometry.hpp's default rule (the least aligned axis).
+using cellforge::detail::any_perpendicular;
 
 /// The signed angle from u to w about unit axis n (both projected into n's plane). O(1).
 template <class = void>

@@ -45,7 +45,7 @@ std::vector<std::vector<edge_fan_entry>> edge_fans(const wire_graph& g, const st
     auto& f = fan[e];
     if (f.empty()) continue;
     const glm::dvec3 d = glm::normalize(g.points[g.edges[e][1]] - g.points[g.edges[e][0]]);
-    const glm::dvec3 x = any_perpendicular(d), y = glm::cross(d, x);
+    const glm::dvec3 x = any_perpendicular(d, perpendicular_rule::x_below_0_6), y = glm::cross(d, x);
     for (auto& en : f) {
       // The face lies to the left of its walk: inward = normal × walked direction.
       const glm::dvec3 w = glm::cross(faces[en.face].normal, static_cast<double>(en.walk) * d);
