@@ -87,7 +87,7 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
   const auto inside_loop = [&](std::size_t h, std::size_t c) {
     if (std::abs(area[c]) <= std::abs(area[h])) return false;
     for (const auto v : loops[h])
-      if (!faces::inside(poly[c], g.p[v])) return false;
+      if (!cellforge::detail::point_in_polygon(poly[c], g.p[v])) return false;
     return true;
   };
   std::vector<std::size_t> owner(n, n);

@@ -135,17 +135,6 @@ double orient(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {
   return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
 }
 
-/// Whether point q is strictly inside the polygon (even-odd). O(n).
-template <class = void>
-bool inside(const std::vector<glm::dvec2>& poly, glm::dvec2 q) {
-  bool in = false;
-  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    const glm::dvec2 a = poly[i], b = poly[j];
-    if ((a.y > q.y) != (b.y > q.y) && q.x < (b.x - a.x) * (q.y - a.y) / (b.y - a.y) + a.x) in = !in;
-  }
-  return in;
-}
-
 /// The string state: successor and predecessor of every half-edge (none: an open end or start).
 /// A string is a maximal chain; a closed chain is a face loop.
 struct string_state {
@@ -256,7 +245,7 @@ struct basic_finder {
         budget.spend();
         // A chord: an edge between two loop junctions. Inside the polygon it splits the face.
         const glm::dvec2 mid = 0.5 * (g.p[v] + g.p[w]);
-        if (inside(poly, mid)) return false;
+        if (cellforge::detail::point_in_polygon(poly, mid)) return false;
       }
     }
     return true;
@@ -944,15 +933,7 @@ std::array<std::size_t, 2> complete_walls(finder& f, face_rules& rules, std::siz
 template <class = void>
 std::vector<std::vector<std::uint32_t>> canonical_set(const std::vector<std::vector<std::uint32_t>>& loops) {
   std::vector<std::vector<std::uint32_t>> out;
-  for (const auto& l : loops) {
-    // Start at the smallest junction, towards its smaller neighbour.
-    const std::size_t n = l.size(),
-                      s0 = static_cast<std::size_t>(std::min_element(l.begin(), l.end()) - l.begin());
-    const bool forward = n < 2 || l[(s0 + 1) % n] <= l[(s0 + n - 1) % n];
-    std::vector<std::uint32_t> c(n);
-    for (std::size_t i = 0; i < n; ++i) c[i] = l[forward ? (s0 + i) % n : (s0 + n - i) % n];
-    out.push_back(std::move(c));
-  }
+  for (const auto& l : loops) out.push_back(cellforge::detail::canonical_cycle(l));
   std::sort(out.begin(), out.end());
   return out;
 }
