@@ -62,9 +62,11 @@ struct tolerance_result : stage_report {
   /// wireframe unexplained (edges on no face, faces lost, no volume): the noise may have hidden
   /// faces; the answer is doubtful (status ambiguous at best, with this reason).
   bool ambiguous = false;
-  /// Largest residual of the near-zero cluster (over its noise gain), relative to the diagonal (0: none seen).
+  /// Largest residual of the near-zero cluster (over its noise gain), relative to the diagonal (0: none
+  /// seen).
   double noise = 0.0;
-  /// Smallest residual of the geometric cluster (over its noise gain), relative to the diagonal (0: none seen).
+  /// Smallest residual of the geometric cluster (over its noise gain), relative to the diagonal (0: none
+  /// seen).
   double geometry = 0.0;
   double gap_decades = 0.0;  ///< log10(geometry / the noise's bulk, its lower 99.5 %); infinite without noise
   double noise_distance = 0.0;      ///< `noise` in model units
@@ -94,7 +96,8 @@ std::string residual_text(double x) {
 /// count, its extremes and its smallest slope (residual over its edge's length), so that any
 /// split gives both clusters' bounds.
 struct residual_bins {
-  static constexpr int min_exponent = -64;  // residuals below 2^-64 of the diagonal (rounding) share the first bin
+  static constexpr int min_exponent =
+      -64;  // residuals below 2^-64 of the diagonal (rounding) share the first bin
   static constexpr int max_exponent = 4;
   static constexpr int per_octave = 4;
   static constexpr std::size_t count = (max_exponent - min_exponent) * per_octave + 1;
