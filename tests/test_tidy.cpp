@@ -6,6 +6,7 @@
 // names every miss; bad input.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -142,6 +143,19 @@ TEST_CASE(
   const std::vector<std::pair<double, std::size_t>> levels{
       {0.002, 130}, {0.005, 40}, {0.01, 130}, {0.02, 40}};
   const std::size_t max_edges = 120;
+  // The 13 drawings that came back as a wrong complex unflagged before drawing_to_cells doubted
+  // inexact answers (walls hidden by the jitter, holes placed off their planes): right or flagged.
+  const std::map<double, std::vector<std::string>> once_silent{
+      {0.002,
+       {"block with hole, view 1", "through slot 2 #15115450496000231541, view 3",
+        "sliced prism 3, 1 cuts #17392095252904391823, view 1", "box with a wedge roof #11400714819333684250, view 2",
+        "walled cylinder 15-gon, 4 rings #11400714819336829980, view 2"}},
+      {0.005, {"through slot 1 #3458276273128679608, view 1"}},
+      {0.01,
+       {"through slot 1 #6121909316383382444, view 3", "row of 2 boxes, view 1",
+        "cells 4x1x1 #5258744786941694016, view 1", "sliced prism 3, 1 cuts #17392095252904391823, view 1",
+        "box with a wedge roof #11400714819333684250, view 2"}},
+      {0.02, {"through slot 1 #792496965890354261, view 1", "box with a wedge roof #11400714819333684262, view 1"}}};
 #else
   const std::vector<std::pair<double, std::size_t>> levels{{0.002, 14}, {0.01, 14}};
   const std::size_t max_edges = 30;
@@ -153,7 +167,7 @@ TEST_CASE(
     o.sweep.max_edges = max_edges;
     cellforge::samples::noisy_sweep_report report;
     const auto set = cellforge::samples::noisy_sweep(o, &report);
-    std::size_t exact_right = 0, right = 0;
+    std::size_t exact_right = 0, right = 0, silent = 0, named = 0;
     double worst_move = 0;
     std::map<std::string, std::pair<std::size_t, std::size_t>> family;
     std::vector<std::string> misses;
@@ -175,8 +189,18 @@ TEST_CASE(
           worst_move = std::max(worst_move, r.tidy.largest_move);
           CHECK(r.tidy.planarity <= 1e-9);
         }
+        // Never silently wrong: a wrong complex is flagged, with its reason.
+        silent += !ok && !r.flagged;
+#ifdef NDEBUG
+        if (const auto it = once_silent.find(jitter); it != once_silent.end() &&
+            std::find(it->second.begin(), it->second.end(), n.exact.name) != it->second.end()) {
+          CAPTURE(n.exact.name);
+          CHECK((ok || r.flagged));
+          ++named;
+        }
+#endif
         if (!ok)
-          misses.push_back(n.exact.name + " [" + n.exact.family + "]: " +
+          misses.push_back(n.exact.name + " [" + n.exact.family + "]: " + (r.flagged ? "flagged: " : "SILENT: ") +
                            (r.diagnostics.empty() ? std::string("another complex") : r.diagnostics.back()));
       } catch (const cellforge::error& e) {
         misses.push_back(n.exact.name + " [" + n.exact.family + "]: " + e.what());
@@ -189,7 +213,12 @@ TEST_CASE(
     MESSAGE("jitter " << 100 * jitter << " %: the exact drawing's complex on " << right << " of "
                       << exact_right << " (" << 100 * rate << " %); " << report.too_close
                       << " drawings left out (a junction within twice the jitter of another or of a line), "
-                      << report.sweep.drawings << " in the sweep; largest tidying move " << worst_move);
+                      << report.sweep.drawings << " in the sweep; largest tidying move " << worst_move
+                      << "; wrong and not flagged: " << silent);
+    CHECK(silent == 0);
+#ifdef NDEBUG
+    CHECK(named == once_silent.at(jitter).size());  // each named drawing is still in the sweep
+#endif
     // The rate's denominator must stay most of the set: the exact drawings read true on 88-95 %
     // (the misses are the multi-cell families' exact readings, docs/sketch.md).
     CHECK(exact_right >= set.size() * 4 / 5);

@@ -71,8 +71,9 @@ struct drawing_result {
   std::size_t reading = 0;  ///< the inflation reading the complex is built from (0: the preferred)
   wireframe<Q> wire;        ///< junction i at the reading's point i, the drawing's edges
   wireframe_result<Q> cells;
-  /// Parts of the drawing joined to another by one face plane, which fit it as a boss or as a
-  /// pocket alike (both solids are drawn the same): read as a boss, with a diagnostic.
+  /// Parts of the drawing whose depth the drawing does not decide: joined to another by one face
+  /// plane (a boss or a pocket alike: read as a boss), or drawn inside another part on none of
+  /// its planes (placed freely); each with a diagnostic.
   std::size_t ambiguous_parts = 0;
   /// The 3D pipeline's face loops are exactly the loops found in the drawing.
   bool faces_agree = false;
@@ -80,9 +81,14 @@ struct drawing_result {
   std::vector<std::vector<std::uint32_t>> only_in_drawing, only_in_3d;
   /// Drawn edges that bound no face of the complex (every drawn edge should bound one).
   std::vector<std::uint32_t> unused_edges;
+  /// An inexact drawing's answer its precision does not confirm, each named in `diagnostics`:
+  /// lines straight on through a junction where two faces barely fold (a wall the jitter hid),
+  /// a face nested in another's outline nearly on its plane (a hole through, or a pocket).
+  std::size_t doubts = 0;
   /// Not certified, reasons in `diagnostics`: the faces found fail their check or are ambiguous,
-  /// 2D and 3D faces disagree, a drawn edge is unused, a part fits as a boss or a pocket, or the
-  /// 3D reading keeps walls no edge needs. Alternatives: `faces.alternatives`, `cells.alternatives`.
+  /// 2D and 3D faces disagree, a drawn edge is unused, a part's depth is undecided, the 3D reading
+  /// keeps walls no edge needs, or an inexact drawing leaves `doubts`. Alternatives:
+  /// `faces.alternatives`, `cells.alternatives`.
   bool flagged = false;
   double milliseconds = 0.0;
   std::vector<std::string> diagnostics;

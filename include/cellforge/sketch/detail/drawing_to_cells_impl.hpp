@@ -3,10 +3,12 @@
 // The engine of drawing_to_cells (included by sketch/drawing_to_cells.hpp).
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
+#include <map>
 #include <optional>
 #include <set>
 #include <string>
@@ -252,10 +254,18 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
     is_placed[c] = 1;
     placed_outward[c] = pr[c].outward[best_reading];
     for (const auto& [h, q] : best_pairs) owner[h] = owner[q] == n ? q : owner[q];
-    if (k > 0 && best_votes == 0)
+    if (k > 0 && best_votes == 0) {
+      // Drawn inside a placed part, its depth decides the solid (in front, behind, through it):
+      // the placement is a guess, flagged. Beside the others it changes nothing.
+      bool drawn_inside = false;
+      for (std::size_t h = 0; h < n && !drawn_inside; ++h)
+        for (std::size_t q = 0; q < n && part[h] == c && !drawn_inside; ++q)
+          drawn_inside = part[q] != c && is_placed[part[q]] && inside_loop(h, q);
+      ambiguous += drawn_inside ? 1 : 0;
       diagnostics.push_back(cellforge::detail::cat(
-          "part ", std::to_string(c),
-          " of the drawing lies in no face of the others: its depth against them is free"));
+          "part ", std::to_string(c), " of the drawing lies in no face of the others: its depth against them is free",
+          (drawn_inside ? std::string(", and it is drawn inside another part (flagged)") : std::string())));
+    }
   }
   return faces_of(owner, [](std::size_t) { return true; });
 }
@@ -354,6 +364,125 @@ bool flat_seam(const faces::drawing_graph& g, const std::vector<double>& depth,
       return true;
   }
   return false;
+}
+
+/// Angle in degrees between the planes of two loops of a reading (0: coplanar or parallel). O(L).
+template <class = void>
+double plane_angle(const std::vector<glm::dvec3>& p, const std::vector<std::uint32_t>& a,
+                   const std::vector<std::uint32_t>& b) {
+  const glm::dvec3 na = loop_plane(p, a).first, nb = loop_plane(p, b).first;
+  const double la = glm::length(na), lb = glm::length(nb);
+  if (!(la > 0) || !(lb > 0)) return 0.0;
+  return std::asin(std::min(1.0, glm::length(glm::cross(na, nb)) / (la * lb))) * 180.0 / 3.141592653589793;
+}
+
+/// A doubt on an inexact drawing's answer: a junction where lines a and b go straight on (within
+/// `straight_degrees` in one of `views`: as drawn, as tidied) and no face turns from a to b,
+/// while the two faces at a third line f there, one turning (a, f), the other (f, b), fold by at
+/// most `fold_degrees` in `reading`. Were a and b straight, those faces would be coplanar and f
+/// a seam that a wall must meet: the jitter hid a wall. A sentence naming them, or empty.
+/// O(Σ L log F + Σ_v deg(v)³).
+template <class = void>
+std::string straight_fold(const faces::drawing_graph& g, const std::vector<std::vector<glm::dvec2>>& views,
+                          const std::vector<glm::dvec3>& reading, const face_set& faces, double straight_degrees,
+                          double fold_degrees) {
+  std::map<std::array<std::uint32_t, 3>, std::size_t> turn;  // (junction, lines' far ends sorted) -> face
+  std::map<std::array<std::uint32_t, 2>, std::size_t> uses;   // line (ends sorted) -> loops on it
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    for (const auto& loop : faces[f])
+      for (std::size_t k = 0, n = loop.size(); k < n; ++k) {
+        const std::uint32_t a = loop[k], v = loop[(k + 1) % n], b = loop[(k + 2) % n];
+        turn[{v, std::min(a, b), std::max(a, b)}] = f;
+        ++uses[{std::min(a, v), std::max(a, v)}];
+      }
+  const auto turning = [&](std::uint32_t v, std::uint32_t a, std::uint32_t b) {
+    const auto it = turn.find({v, std::min(a, b), std::max(a, b)});
+    return it == turn.end() ? faces.size() : it->second;
+  };
+  const auto bend = [&](std::uint32_t v, std::uint32_t a, std::uint32_t b) {  // degrees off straight
+    double least = 180.0;
+    for (const auto& p : views) {
+      const glm::dvec2 u = p[a] - p[v], w = p[b] - p[v];
+      least = std::min(least, 180.0 - std::abs(std::atan2(u.x * w.y - u.y * w.x, glm::dot(u, w))) * 180.0 /
+                                          3.141592653589793);
+    }
+    return least;
+  };
+  for (std::uint32_t v = 0; v < g.num_junctions(); ++v)
+    for (std::uint32_t i = g.out_begin[v]; i < g.out_begin[v + 1]; ++i)
+      for (std::uint32_t j = i + 1; j < g.out_begin[v + 1]; ++j) {
+        const std::uint32_t a = g.head[g.outs[i]], b = g.head[g.outs[j]];
+        const double off = bend(v, a, b);
+        if (off > straight_degrees || turning(v, a, b) != faces.size()) continue;
+        for (std::uint32_t k = g.out_begin[v]; k < g.out_begin[v + 1]; ++k) {
+          const std::uint32_t f = g.head[g.outs[k]];
+          const std::size_t fa = turning(v, a, f), fb = turning(v, b, f);
+          if (f == a || f == b || fa == faces.size() || fb == faces.size() || fa == fb ||
+              uses[{std::min(v, f), std::max(v, f)}] != 2)
+            continue;
+          const double fold = plane_angle(reading, faces[fa][0], faces[fb][0]);
+          if (fold <= fold_degrees)
+            return cellforge::detail::cat(
+                "lines to junctions ", std::to_string(a), " and ", std::to_string(b), " go straight on through junction ",
+                std::to_string(v), " (within ", std::to_string(off), " degrees) where the faces at the line to ",
+                std::to_string(f), " fold by only ", std::to_string(fold),
+                " degrees: were the lines straight, that line would be a seam a wall must meet");
+        }
+      }
+  return {};
+}
+
+/// A doubt on an inexact drawing's answer: a face drawn inside another face's outer loop (no
+/// junction shared), parallel to it in `reading` within `parallel_degrees` and off its plane by
+/// more than rounding but at most `gap` × the reading's size: within the drawing's precision a
+/// hole of that face (a through hole) or a pocket or boss alike. A sentence, or empty. O(F² L).
+template <class = void>
+std::string nested_near_plane(const std::vector<glm::dvec2>& p, const std::vector<glm::dvec3>& reading,
+                              const face_set& faces, double parallel_degrees, double gap) {
+  if (reading.empty()) return {};
+  glm::dvec3 lo = reading[0], hi = reading[0];
+  for (const auto& q : reading) lo = glm::min(lo, q), hi = glm::max(hi, q);
+  const double size = glm::length(hi - lo);
+  for (std::size_t a = 0; a < faces.size(); ++a) {
+    std::vector<glm::dvec2> poly;
+    for (const auto v : faces[a][0]) poly.push_back(p[v]);
+    const auto [na, ca] = loop_plane(reading, faces[a][0]);
+    if (!(glm::length(na) > 0)) continue;
+    for (std::size_t b = 0; b < faces.size(); ++b) {
+      bool nested = b != a;
+      for (const auto v : faces[b][0])
+        nested = nested && std::find(faces[a][0].begin(), faces[a][0].end(), v) == faces[a][0].end() &&
+                 faces::inside(poly, p[v]);
+      if (!nested || plane_angle(reading, faces[a][0], faces[b][0]) > parallel_degrees) continue;
+      const double off = std::abs(glm::dot(loop_plane(reading, faces[b][0]).second - ca, glm::normalize(na)));
+      if (off > 1e-9 * size && off <= gap * size)
+        return cellforge::detail::cat("face ", std::to_string(b), " lies inside face ", std::to_string(a),
+                                      " in the drawing, parallel to it and only ", std::to_string(off / size),
+                                      " of the size off its plane: a hole through it, or a pocket, alike");
+    }
+  }
+  return {};
+}
+
+/// The doubts of an inexact drawing's answer (straight_fold, nested_near_plane) on the complex
+/// `cells` built from `reading`, counted in r.doubts and named in r.diagnostics. Thresholds: lines
+/// straight within 3 degrees, folds under 10, faces within 2 % of the size; measured on the
+/// jittered sweep (tests/test_tidy.cpp, docs/sketch.md "Tidying"). O(F² L + Σ deg³).
+template <class Result>
+void doubt_inexact(const faces::drawing_graph& g, Result& r, const std::vector<glm::dvec3>& reading,
+                   const wireframe_result<glm::dvec3>& cells) {
+  face_set faces;
+  for (const auto& face : cells.input.faces) {
+    faces.push_back(face.loops);
+    for (auto& loop : faces.back())
+      for (auto& v : loop) v = cells.input_vertex[v];
+  }
+  std::vector<glm::dvec2> tidied;
+  for (const auto& q : r.tidy.drawing.points) tidied.push_back(to_dvec2(q));
+  if (tidied.size() != g.p.size()) tidied = g.p;
+  for (std::string doubt : {straight_fold(g, {g.p, tidied}, reading, faces, 3.0, 10.0),
+                            nested_near_plane(g.p, reading, faces, 5.0, 0.02)})
+    if (!doubt.empty()) ++r.doubts, r.diagnostics.push_back(cellforge::detail::cat("inexact drawing: ", doubt));
 }
 
 /// Canonical cycles of a set of loops, for comparison. O(Σ L log L).
@@ -506,14 +635,15 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, cons
       tidy_result<drawing_point_t<D>> t = tidy_to_solid(drawing, r.face_loops, options.tidying);
       for (const auto& d : t.diagnostics) r.diagnostics.push_back(d);
       detail::sketch::face_set regrouped = r.face_loops;
+      std::vector<std::string> regroup_notes;  // the grouping's doubts travel with its faces
+      std::size_t regroup_ambiguous = 0;
       if (t.applied) {
         // Parts drawn inside others are placed by their planes, which an inexact drawing gives
         // only roughly: grouped again on the tidied drawing (one view for every part), and
         // tidied again from the drawing as drawn with holes the grouping found.
-        std::vector<std::string> group_notes;
-        std::size_t ambiguous = 0;
         const detail::faces::drawing_graph g2 = detail::faces::make_graph(t.drawing, options.faces);
-        regrouped = detail::sketch::group_faces(g2, r.faces.loops, options.inflation, group_notes, ambiguous);
+        regrouped =
+            detail::sketch::group_faces(g2, r.faces.loops, options.inflation, regroup_notes, regroup_ambiguous);
         if (regrouped != r.face_loops) {
           tidy_result<drawing_point_t<D>> t2 = tidy_to_solid(drawing, regrouped, options.tidying);
           for (const auto& d : t2.diagnostics) r.diagnostics.push_back(d);
@@ -576,6 +706,10 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, cons
         if ((tidied.cells && !best.cells) || (tidied.cells && tidied.agree)) {
           best = std::move(tidied);
           notes = std::move(tidy_notes);
+          if (regrouped != r.face_loops) {
+            r.ambiguous_parts = regroup_ambiguous;
+            for (auto& d : regroup_notes) r.diagnostics.push_back(std::move(d));
+          }
           r.face_loops = std::move(regrouped);
           r.tidy = std::move(t);
           r.diagnostics.push_back(
@@ -596,6 +730,7 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, cons
   }
   for (auto& n : notes) r.diagnostics.push_back(std::move(n));
   const bool built = best.cells.has_value();
+  if (built && inexact) doubt_inexact(g, r, best.inflated.readings[best.reading].points, *best.cells);
   const std::string last_error = best.error;
   if (built) {
     const auto to_r = [](const std::vector<glm::dvec3>& pts) {
@@ -662,7 +797,7 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, cons
     r.diagnostics.push_back(std::to_string(r.cells.unforced.size()) +
                             " faces of the 3D reading are walls no edge needs (kept, undecided)");
   r.flagged = r.faces.flagged || !r.faces_agree || !r.unused_edges.empty() || r.ambiguous_parts > 0 ||
-              !r.cells.unforced.empty();
+              !r.cells.unforced.empty() || r.doubts > 0;
   r.milliseconds = clock.ms();
   return r;
 }
@@ -727,6 +862,7 @@ drawing_result<R, P2> result_in(drawing_result<glm::dvec3, glm::dvec2>&& d) {
   r.only_in_drawing = std::move(d.only_in_drawing);
   r.only_in_3d = std::move(d.only_in_3d);
   r.unused_edges = std::move(d.unused_edges);
+  r.doubts = d.doubts;
   r.flagged = d.flagged;
   r.milliseconds = d.milliseconds;
   r.diagnostics = std::move(d.diagnostics);
