@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <set>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -56,6 +57,11 @@ struct tidy_options {
   double solid_max_move = 0.06;
   /// tidy_to_solid: Gauss–Newton steps at most (work budget; each one sparse LDLᵀ).
   int max_steps = 60;
+  /// tidy_to_solid: two lines at a junction that go straight on within the direction tolerance,
+  /// where no face turns from one to the other, are one class (one line: a wall meets a seam
+  /// there). Off by default: an affine first reading can straighten a solid's corner;
+  /// drawing_to_cells sets it to retry an answer whose walls the jitter may have hidden.
+  bool straight_lines = false;
 };
 
 /// The tidied drawing, what was made parallel, and how far junctions moved.
@@ -121,10 +127,24 @@ std::pair<double, double> moves(const std::vector<glm::dvec2>& from, const std::
   return {largest, from.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(from.size()))};
 }
 
+/// The corners the faces turn: (junction, its two neighbours in the loop, sorted). O(Σ L log).
+template <class = void>
+std::set<std::array<std::uint32_t, 3>> turned_corners(const std::vector<std::vector<std::vector<std::uint32_t>>>& faces) {
+  std::set<std::array<std::uint32_t, 3>> out;
+  for (const auto& face : faces)
+    for (const auto& loop : face)
+      for (std::size_t k = 0, n = loop.size(); k < n; ++k) {
+        const std::uint32_t a = loop[k], v = loop[(k + 1) % n], b = loop[(k + 2) % n];
+        out.insert({v, std::min(a, b), std::max(a, b)});
+      }
+  return out;
+}
+
 /// Classes of lines parallel in 3D in a reading: longest line first, every unassigned line of
 /// the same part of the drawing (`part` per junction) within `tolerance` (radians, up to sign)
 /// joins it unless it shares a junction with a member (two lines at one junction of a solid
-/// are never parallel). A class whose drawing directions form two tight groups far apart
+/// are never parallel), except a line going straight on from one member where no face turns
+/// (in `turned`: junction, far ends sorted): a wall meets a seam there, the lines are one line. A class whose drawing directions form two tight groups far apart
 /// (gap over four times either group's spread) is split. Classes of one line are dropped.
 /// Then classes of different parts whose
 /// drawing directions are each other's only match within the tolerance are merged: the depth
@@ -133,7 +153,8 @@ std::pair<double, double> moves(const std::vector<glm::dvec2>& from, const std::
 template <class = void>
 std::vector<std::vector<std::uint32_t>> parallel_classes(
     const std::vector<glm::dvec3>& q, const std::vector<std::array<std::uint32_t, 2>>& edges,
-    const std::vector<std::uint32_t>& part, double tolerance) {
+    const std::vector<std::uint32_t>& part, double tolerance,
+    const std::set<std::array<std::uint32_t, 3>>& turned = {}) {
   const std::size_t ne = edges.size();
   std::vector<glm::dvec3> dir(ne);
   std::vector<double> len(ne), ang(ne);
@@ -151,6 +172,13 @@ std::vector<std::vector<std::uint32_t>> parallel_classes(
   for (std::size_t k = 0; k < ne; ++k) sorted[k] = ang[by_angle[k]];
   std::vector<char> taken(ne, 0);
   std::vector<std::uint32_t> mark(q.size(), std::numeric_limits<std::uint32_t>::max());
+  std::vector<std::uint32_t> via(q.size(), std::numeric_limits<std::uint32_t>::max());  // per marked junction: the far end of its one member
+  // Whether line (v, w) goes straight on from the one member of class `id` at v, at no face's corner.
+  const auto straight_on = [&](std::uint32_t v, std::uint32_t w, std::uint32_t id) {
+    if (turned.empty() || mark[v] != id || via[v] == std::numeric_limits<std::uint32_t>::max()) return false;
+    const std::uint32_t u = via[v];
+    return glm::dot(q[u] - q[v], q[w] - q[v]) < 0 && !turned.count({v, std::min(u, w), std::max(u, w)});
+  };
   std::vector<std::vector<std::uint32_t>> out;
   std::uint32_t id = 0;
   for (const auto seed : by_length) {
@@ -159,6 +187,7 @@ std::vector<std::vector<std::uint32_t>> parallel_classes(
     taken[seed] = 1;
     ++id;
     mark[edges[seed][0]] = mark[edges[seed][1]] = id;
+    via[edges[seed][0]] = edges[seed][1], via[edges[seed][1]] = edges[seed][0];
     // The 3D angle bounds the drawing's angle only when the line is not steep: the window in
     // the drawing is widened by the line's slope.
     const double flat = std::hypot(dir[seed].x, dir[seed].y);
@@ -168,9 +197,13 @@ std::vector<std::vector<std::uint32_t>> parallel_classes(
       const std::uint32_t e = by_angle[k];
       if (taken[e] || !(len[e] > 0) || part[edges[e][0]] != part[edges[seed][0]]) return;
       if (std::abs(glm::dot(dir[e], dir[seed])) < std::cos(tolerance)) return;
-      if (mark[edges[e][0]] == id || mark[edges[e][1]] == id) return;
+      const std::uint32_t a = edges[e][0], b = edges[e][1];
+      if ((mark[a] == id && !straight_on(a, b, id)) || (mark[b] == id && !straight_on(b, a, id))) return;
       taken[e] = 1, cls.push_back(e);
-      mark[edges[e][0]] = mark[edges[e][1]] = id;
+      // A junction with two members takes no third; one with one remembers its far end.
+      via[a] = mark[a] == id ? std::numeric_limits<std::uint32_t>::max() : b;
+      via[b] = mark[b] == id ? std::numeric_limits<std::uint32_t>::max() : a;
+      mark[a] = mark[b] = id;
     };
     // Angles within the window, wrapping at π.
     const double lo = ang[seed] - window, hi = ang[seed] + window;
@@ -414,7 +447,8 @@ detail::if_satisfied_t<LineDrawing<D>, detail::tidy_result_for, D> tidy_to_solid
     ++parts;
   }
   const auto found = detail::tidy::parallel_classes(
-      q0, pr.edges, part, options.direction_tolerance_degrees * std::numbers::pi / 180.0);
+      q0, pr.edges, part, options.direction_tolerance_degrees * std::numbers::pi / 180.0,
+      options.straight_lines ? detail::tidy::turned_corners(faces) : std::set<std::array<std::uint32_t, 3>>{});
   // With those classes first; without them when that fails (a class the first reading got wrong).
   std::string why;
   for (const bool with_classes : {true, false}) {

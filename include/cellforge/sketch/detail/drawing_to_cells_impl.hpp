@@ -798,6 +798,23 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, cons
                             " faces of the 3D reading are walls no edge needs (kept, undecided)");
   r.flagged = r.faces.flagged || !r.faces_agree || !r.unused_edges.empty() || r.ambiguous_parts > 0 ||
               !r.cells.unforced.empty() || r.doubts > 0;
+  // Doubted for lines straight on through a fold: tidied again with such lines made one line,
+  // which makes the faces there coplanar and shows the wall; kept when it clears every doubt.
+  if (r.doubts > 0 && inexact && !options.tidying.straight_lines && options.tidy != tidy_mode::never) {
+    drawing_options straight = options;
+    straight.tidying.straight_lines = true;
+    try {
+      auto again = drawing_to_cells_on<R>(drawing, straight);
+      if (!again.flagged) {
+        again.diagnostics.push_back(
+            "tidied again with lines straight on through junctions made one line (an answer as drawn was doubted)");
+        again.milliseconds = clock.ms();
+        return again;
+      }
+    } catch (const error& e) {
+      if (e.category() != error_category::topology && e.category() != error_category::invalid_input) throw;
+    }
+  }
   r.milliseconds = clock.ms();
   return r;
 }
