@@ -1,0 +1,181 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// tidy_to_solid's parallel classes (sketch/tidy.hpp, docs/sketch.md "Tidying"): lines parallel
+/// in 3D in a first reading, and the corners the faces turn (where lines may go straight on).
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+#include <set>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "cellforge/sketch/inflation.hpp"
+
+namespace cellforge::detail::tidy {
+
+/// The corners the faces turn: (junction, its two neighbours in the loop, sorted). O(Σ L log).
+template <class = void>
+std::set<std::array<std::uint32_t, 3>> turned_corners(const std::vector<std::vector<std::vector<std::uint32_t>>>& faces) {
+  std::set<std::array<std::uint32_t, 3>> out;
+  for (const auto& face : faces)
+    for (const auto& loop : face)
+      for (std::size_t k = 0, n = loop.size(); k < n; ++k) {
+        const std::uint32_t a = loop[k], v = loop[(k + 1) % n], b = loop[(k + 2) % n];
+        out.insert({v, std::min(a, b), std::max(a, b)});
+      }
+  return out;
+}
+
+/// Classes of lines parallel in 3D in a reading: longest line first, every unassigned line of
+/// the same part of the drawing (`part` per junction) within `tolerance` (radians, up to sign)
+/// joins it unless it shares a junction with a member (two lines at one junction of a solid
+/// are never parallel), except a line going straight on from one member where no face turns
+/// (in `turned`: junction, far ends sorted): a wall meets a seam there, the lines are one line. A class whose drawing directions form two tight groups far apart
+/// (gap over four times either group's spread) is split. Classes of one line are dropped.
+/// Then classes of different parts whose
+/// drawing directions are each other's only match within the tolerance are merged: the depth
+/// of a part drawn inside another is read on its own, so only its drawing directions compare.
+/// O(E log E + E · W + C²), W the lines within the tolerance in the drawing, C the classes.
+template <class = void>
+std::vector<std::vector<std::uint32_t>> parallel_classes(
+    const std::vector<glm::dvec3>& q, const std::vector<std::array<std::uint32_t, 2>>& edges,
+    const std::vector<std::uint32_t>& part, double tolerance,
+    const std::set<std::array<std::uint32_t, 3>>& turned = {}) {
+  const std::size_t ne = edges.size();
+  std::vector<glm::dvec3> dir(ne);
+  std::vector<double> len(ne), ang(ne);
+  for (std::size_t e = 0; e < ne; ++e) {
+    const glm::dvec3 d = q[edges[e][1]] - q[edges[e][0]];
+    len[e] = glm::length(d);
+    dir[e] = len[e] > 0 ? d / len[e] : d;
+    ang[e] = line_angle(glm::dvec2(d));
+  }
+  std::vector<std::uint32_t> by_angle(ne), by_length(ne);
+  for (std::uint32_t e = 0; e < ne; ++e) by_angle[e] = by_length[e] = e;
+  std::sort(by_angle.begin(), by_angle.end(), [&](auto a, auto b) { return ang[a] < ang[b]; });
+  std::sort(by_length.begin(), by_length.end(), [&](auto a, auto b) { return len[a] > len[b]; });
+  std::vector<double> sorted(ne);
+  for (std::size_t k = 0; k < ne; ++k) sorted[k] = ang[by_angle[k]];
+  std::vector<char> taken(ne, 0);
+  std::vector<std::uint32_t> mark(q.size(), std::numeric_limits<std::uint32_t>::max());
+  std::vector<std::uint32_t> via(q.size(), std::numeric_limits<std::uint32_t>::max());  // per marked junction: the far end of its one member
+  // Whether line (v, w) goes straight on from the one member of class `id` at v, at no face's corner.
+  const auto straight_on = [&](std::uint32_t v, std::uint32_t w, std::uint32_t id) {
+    if (turned.empty() || mark[v] != id || via[v] == std::numeric_limits<std::uint32_t>::max()) return false;
+    const std::uint32_t u = via[v];
+    return glm::dot(q[u] - q[v], q[w] - q[v]) < 0 && !turned.count({v, std::min(u, w), std::max(u, w)});
+  };
+  std::vector<std::vector<std::uint32_t>> out;
+  std::uint32_t id = 0;
+  for (const auto seed : by_length) {
+    if (taken[seed] || !(len[seed] > 0)) continue;
+    std::vector<std::uint32_t> cls{seed};
+    taken[seed] = 1;
+    ++id;
+    mark[edges[seed][0]] = mark[edges[seed][1]] = id;
+    via[edges[seed][0]] = edges[seed][1], via[edges[seed][1]] = edges[seed][0];
+    // The 3D angle bounds the drawing's angle only when the line is not steep: the window in
+    // the drawing is widened by the line's slope.
+    const double flat = std::hypot(dir[seed].x, dir[seed].y);
+    const double window =
+        flat > 1e-6 ? std::min(std::numbers::pi / 2, 2 * tolerance / flat) : std::numbers::pi / 2;
+    const auto visit = [&](std::size_t k) {
+      const std::uint32_t e = by_angle[k];
+      if (taken[e] || !(len[e] > 0) || part[edges[e][0]] != part[edges[seed][0]]) return;
+      if (std::abs(glm::dot(dir[e], dir[seed])) < std::cos(tolerance)) return;
+      const std::uint32_t a = edges[e][0], b = edges[e][1];
+      if ((mark[a] == id && !straight_on(a, b, id)) || (mark[b] == id && !straight_on(b, a, id))) return;
+      taken[e] = 1, cls.push_back(e);
+      // A junction with two members takes no third; one with one remembers its far end.
+      via[a] = mark[a] == id ? std::numeric_limits<std::uint32_t>::max() : b;
+      via[b] = mark[b] == id ? std::numeric_limits<std::uint32_t>::max() : a;
+      mark[a] = mark[b] = id;
+    };
+    // Angles within the window, wrapping at π.
+    const double lo = ang[seed] - window, hi = ang[seed] + window;
+    const auto scan = [&](double a, double b) {
+      for (auto k =
+               static_cast<std::size_t>(std::lower_bound(sorted.begin(), sorted.end(), a) - sorted.begin());
+           k < ne && sorted[k] <= b; ++k)
+        visit(k);
+    };
+    scan(std::max(lo, 0.0), std::min(hi, std::numbers::pi));
+    if (lo < 0) scan(lo + std::numbers::pi, std::numbers::pi);
+    if (hi > std::numbers::pi) scan(0.0, hi - std::numbers::pi);
+    // Lines parallel in 3D are parallel in the drawing up to the pen's slips: a class whose
+    // drawing directions fall into two tight groups far apart (an affine reading can bring two
+    // directions of space within the tolerance) is two classes.
+    if (cls.size() >= 4) {
+      std::vector<std::pair<double, std::uint32_t>> by;
+      for (const auto e : cls) {
+        double t = ang[e] - ang[seed];
+        t -= std::numbers::pi * std::round(t / std::numbers::pi);
+        by.push_back({t, e});
+      }
+      std::sort(by.begin(), by.end());
+      std::size_t cut = 0;
+      double widest = 0;
+      for (std::size_t k = 2; k + 2 <= by.size(); ++k) {
+        const double gap = by[k].first - by[k - 1].first,
+                     spread = std::max(by[k - 1].first - by.front().first, by.back().first - by[k].first);
+        if (gap > 4 * spread && gap > widest) widest = gap, cut = k;
+      }
+      if (cut > 0) {
+        std::vector<std::uint32_t> low, high;
+        for (std::size_t k = 0; k < by.size(); ++k) (k < cut ? low : high).push_back(by[k].second);
+        out.push_back(std::move(low));
+        cls = std::move(high);
+      }
+    }
+    if (cls.size() >= 2) out.push_back(std::move(cls));
+  }
+  // Across parts: each class's drawing direction (length-weighted mean of doubled angles).
+  const std::size_t nc = out.size();
+  std::vector<double> mean(nc);
+  for (std::size_t c = 0; c < nc; ++c) {
+    double sx = 0, sy = 0;
+    for (const auto e : out[c]) sx += len[e] * std::cos(2 * ang[e]), sy += len[e] * std::sin(2 * ang[e]);
+    mean[c] = 0.5 * std::atan2(sy, sx);
+  }
+  const auto class_part = [&](std::size_t c) { return part[edges[out[c][0]][0]]; };
+  // The only class of part `other` within the tolerance of class c's direction, or nc.
+  const auto only_match = [&](std::size_t c, std::uint32_t other) {
+    std::size_t found = nc;
+    for (std::size_t k = 0; k < nc; ++k)
+      if (class_part(k) == other && angle_distance(mean[k], mean[c]) <= tolerance) {
+        if (found != nc) return nc;
+        found = k;
+      }
+    return found;
+  };
+  std::vector<std::size_t> into(nc);
+  for (std::size_t c = 0; c < nc; ++c) into[c] = c;
+  for (std::size_t c = 0; c < nc; ++c)
+    for (std::size_t k = c + 1; k < nc; ++k)
+      if (class_part(k) != class_part(c) && into[k] == k && only_match(c, class_part(k)) == k &&
+          only_match(k, class_part(c)) == c) {
+        std::size_t root = c;
+        while (into[root] != root) root = into[root];
+        into[k] = root;
+      }
+  std::vector<std::vector<std::uint32_t>> merged;
+  std::vector<std::size_t> slot(nc, nc);
+  for (std::size_t c = 0; c < nc; ++c) {
+    std::size_t root = c;
+    while (into[root] != root) root = into[root];
+    if (slot[root] == nc) slot[root] = merged.size(), merged.emplace_back();
+    for (const auto e : out[c]) merged[slot[root]].push_back(e);
+  }
+  return merged;
+}
+
+}  // namespace cellforge::detail::tidy
