@@ -5,12 +5,11 @@
 /// input needs. Coordinates carry noise (6-decimal OBJ files, float exports, scans); a plane
 /// spanned by two adjacent edges then holds the neighbours that lie in it only to within that
 /// noise, while the neighbours that do not lie in it stand off by the model's geometry. Each
-/// corner a–v–b gives residuals: the distances of the neighbours of a and b to the corner's
-/// plane, each divided by its noise gain (how far moving the four points by one unit can move
-/// it: a plane through a short edge, measured far away, tilts by its noise many times over), so
-/// that the noise of every residual has one bound however the corner is shaped. The near-zero
-/// cluster is noise, the large one geometry; a clear gap between them (in decades) gives the
-/// tolerance, placed inside it; no clear gap is reported, never hidden.
+/// corner a–v–b gives residuals: the distances of the neighbours of v, a and b to the corner's
+/// plane, each relative to the edge it hangs on (the sine of the edge's angle to the plane, so
+/// a small part judges itself at its own scale). The near-zero cluster is noise, the large one
+/// geometry; a clear gap between them (in decades) gives the tolerance, placed inside it; no
+/// clear gap is reported, never hidden.
 
 #include <algorithm>
 #include <array>
@@ -35,8 +34,7 @@ struct tolerance_options {
   /// Choose the planarity tolerance of every stage from the data; false keeps the stages' own
   /// options (trace.planarity, reduction.planarity, arrangement.planarity, extra.retrace.planarity).
   bool automatic = true;
-  /// Noise and geometry must lie this many decades apart (residuals over their noise gain) for a
-  /// clear gap.
+  /// Noise and geometry must lie this many decades apart (relative residuals) for a clear gap.
   double min_gap_decades = 1.25;
   /// The tolerance stays this factor above the largest noise distance and below the smallest
   /// geometric one; closer than that in absolute terms, the gap is not clear either.
@@ -62,15 +60,11 @@ struct tolerance_result : stage_report {
   /// wireframe unexplained (edges on no face, faces lost, no volume): the noise may have hidden
   /// faces; the answer is doubtful (status ambiguous at best, with this reason).
   bool ambiguous = false;
-  /// Largest residual of the near-zero cluster (over its noise gain), relative to the diagonal (0: none
-  /// seen).
-  double noise = 0.0;
-  /// Smallest residual of the geometric cluster (over its noise gain), relative to the diagonal (0: none
-  /// seen).
-  double geometry = 0.0;
+  double noise = 0.0;        ///< largest relative residual of the near-zero cluster (0: none seen)
+  double geometry = 0.0;     ///< smallest relative residual of the geometric cluster (0: none seen)
   double gap_decades = 0.0;  ///< log10(geometry / the noise's bulk, its lower 99.5 %); infinite without noise
-  double noise_distance = 0.0;      ///< `noise` in model units
-  double geometry_distance = 0.0;   ///< `geometry` in model units
+  double noise_distance = 0.0;      ///< largest distance of the noise cluster (absolute)
+  double geometry_distance = 0.0;   ///< smallest distance of the geometric cluster (absolute)
   double planarity = 1e-9;          ///< the planarity tolerance chosen, relative to the diagonal
   double planarity_distance = 0.0;  ///< the same in model units
   /// Set by wireframe_to_cells: the answer is that of the stages' fixed planarity options
@@ -92,30 +86,28 @@ std::string residual_text(double x) {
   return buf;
 }
 
-/// Residuals (distances over their noise gain) binned by size: quarter-octave bins, each with its
-/// count, its extremes and its smallest slope (residual over its edge's length), so that any
-/// split gives both clusters' bounds.
+/// Residuals binned by their relative size: quarter-octave bins, each with its count and the
+/// extremes of its relative and absolute values, so that any split gives both clusters' bounds.
 struct residual_bins {
-  static constexpr int min_exponent =
-      -64;  // residuals below 2^-64 of the diagonal (rounding) share the first bin
+  static constexpr int min_exponent = -64;  // residuals below 2^-64 (rounding) share the first bin
   static constexpr int max_exponent = 4;
   static constexpr int per_octave = 4;
   static constexpr std::size_t count = (max_exponent - min_exponent) * per_octave + 1;
   std::array<std::uint32_t, count> n{};
   std::array<std::uint32_t, count> quads{};  ///< of n: the fourth corners of chordless 4-cycles
-  std::array<double, count> lo, hi, slope;
+  std::array<double, count> lo, hi, dlo, dhi;
   residual_bins() {
     lo.fill(std::numeric_limits<double>::infinity());
-    slope.fill(std::numeric_limits<double>::infinity());
+    dlo.fill(std::numeric_limits<double>::infinity());
     hi.fill(0.0);
+    dhi.fill(0.0);
   }
-  /// Files a residual d (model units) whose edge rises `rise` (d over the edge's length);
-  /// `quad`: it closes a 4-cycle. O(1).
-  void add(double d, double rise, bool quad) {
+  /// Files a residual: rel (relative) with its distance d; `quad`: it closes a 4-cycle. O(1).
+  void add(double rel, double d, bool quad) {
     std::size_t b = 0;
-    if (d > 0.0) {
+    if (rel > 0.0) {
       int e = 0;
-      const double m = std::frexp(d, &e);  // d = m · 2^e, m in [0.5, 1)
+      const double m = std::frexp(rel, &e);  // rel = m · 2^e, m in [0.5, 1)
       if (e > min_exponent) {
         const int sub = std::min(per_octave - 1, static_cast<int>((m - 0.5) * 2 * per_octave));
         b = std::min<std::size_t>(count - 1,
@@ -124,9 +116,10 @@ struct residual_bins {
     }
     ++n[b];
     quads[b] += quad;
-    lo[b] = std::min(lo[b], d);
-    hi[b] = std::max(hi[b], d);
-    slope[b] = std::min(slope[b], rise);
+    lo[b] = std::min(lo[b], rel);
+    hi[b] = std::max(hi[b], rel);
+    dlo[b] = std::min(dlo[b], d);
+    dhi[b] = std::max(dhi[b], d);
   }
 };
 
@@ -153,7 +146,6 @@ tolerance_result estimate_tolerance(const wire_graph& g, const tolerance_options
   const std::size_t nv = g.num_vertices();
   std::vector<std::uint32_t> near_a(nv, no_index), near_b(nv, no_index), near_v(nv, no_index);
   std::vector<double> norm(nv);  // |p|: the coordinates' rounding is relative to it
-  const double diag = g.size, scale = diag > 0.0 ? diag : 1.0;  // residuals are binned over the diagonal
   for (std::uint32_t v = 0; v < nv; ++v) norm[v] = glm::length(g.points[v]);
   // Where only some neighbours are sampled, they are taken in the order of their positions, so
   // that the sample (and the tolerance) does not depend on the vertices' numbering.
@@ -177,10 +169,6 @@ tolerance_result estimate_tolerance(const wire_graph& g, const tolerance_options
     for (const auto& in : g.around(a)) near_a[in.other] = corner;
     for (const auto& in : g.around(b)) near_b[in.other] = corner;
     const bool chord = near_b[a] == corner;
-    // The corner's triangle, for the barycentric feet of the neighbours (below).
-    const glm::dvec3 ea = g.points[a] - o, eb = g.points[b] - o;
-    const double aa = glm::dot(ea, ea), ab = glm::dot(ea, eb), bb = glm::dot(eb, eb);
-    const double det = aa * bb - ab * ab;  // > 0: the corner's sine is at least min_sine
     for (const std::uint32_t x : {a, b}) {
       const std::vector<std::uint32_t>& other = x == a ? near_b : near_a;
       const auto direct = g.around(x);
@@ -194,20 +182,11 @@ tolerance_result estimate_tolerance(const wire_graph& g, const tolerance_options
         const glm::dvec3 e = g.points[w] - g.points[x];
         const double len = glm::length(e);
         if (!(len > 0.0)) continue;
-        // The noise gain: with w's foot on the plane at barycentric (α, β, γ) of v, a, b, moving
-        // the four points by δ moves the residual by at most (1 + |α| + |β| + |γ|) δ, which is
-        // 2 δ when the foot lies in the triangle. Over gain / 2 every in-plane residual stays
-        // under 2 δ; undivided, a plane through a short edge measured at a far neighbour made
-        // noise of 1e-4 look like shape 15 times larger (extrusions with short sides).
-        const glm::dvec3 p = g.points[w] - o;
-        const double r1 = glm::dot(p, ea), r2 = glm::dot(p, eb);
-        const double beta = (r1 * bb - r2 * ab) / det, gamma = (aa * r2 - ab * r1) / det;
-        const double gain = 1.0 + std::abs(1.0 - beta - gamma) + std::abs(beta) + std::abs(gamma);
         // Never below the rounding of the coordinates: below it residuals are rounding whatever
         // their size, and a split among them would be no gap at all.
-        const double d = std::max(2.0 * std::abs(glm::dot(n, p)) / gain, rounding * (norm[w] + norm[v]));
+        const double d = std::max(std::abs(glm::dot(n, g.points[w] - o)), rounding * (norm[w] + norm[v]));
         const bool quad = !chord && other[w] == corner && near_v[w] != corner;
-        bins.add(d / scale, d / len, quad);
+        bins.add(d / len, d, quad);
         ++r.samples;
       }
     }
@@ -257,7 +236,7 @@ tolerance_result estimate_tolerance(const wire_graph& g, const tolerance_options
   std::array<double, none + 1> above_min{};  // the smallest distance in bins k.. (suffix minimum)
   above_min[none] = std::numeric_limits<double>::infinity();
   for (std::size_t k = none; k-- > 0;)
-    above_min[k] = std::min(above_min[k + 1], b.n[k] ? b.lo[k] * scale : above_min[k + 1]);
+    above_min[k] = std::min(above_min[k + 1], b.n[k] ? b.dlo[k] : above_min[k + 1]);
   std::size_t quads = 0;
   for (std::size_t k = 0; k < none; ++k) quads += b.quads[k];
   std::size_t below = 0, quads_below = 0, best = none, widest = none;  // the first bin of the geometry
@@ -266,10 +245,10 @@ tolerance_result estimate_tolerance(const wire_graph& g, const tolerance_options
   std::size_t prev = none;  // last non-empty bin so far
   for (std::size_t k = 0; k < none; ++k) {
     if (b.n[k] == 0) continue;
-    // Nor is a slope under `preferred` shape: the fixed default read it as flat even over an
+    // Nor is an angle under `preferred` shape: the fixed default read it as flat even over an
     // edge as long as the diagonal (a 10-digit file far from the origin is that noisy).
     if (prev != none && below >= min_noise && above_min[k] > 100 * rounding * reach &&
-        b.slope[k] >= options.preferred) {
+        b.lo[k] >= options.preferred) {
       const double bulk = bulk_below(k, below);
       const double gap = bulk > 0.0 ? std::log10(b.lo[k] / bulk) : std::numeric_limits<double>::infinity();
       if (gap > widest_gap) widest_gap = gap, widest = k;
@@ -304,6 +283,7 @@ tolerance_result estimate_tolerance(const wire_graph& g, const tolerance_options
       best_gap = std::numeric_limits<double>::infinity();
     }
   }
+  const double diag = g.size;
   const double preferred = options.preferred * diag;
   if (best == none) {
     // Everything is noise (a single flat polygon) or nothing was sampled: nothing to separate.
@@ -312,25 +292,26 @@ tolerance_result estimate_tolerance(const wire_graph& g, const tolerance_options
     for (std::size_t k = 0; k < none; ++k)
       if (b.n[k]) {
         r.noise = std::max(r.noise, b.hi[k]);
+        r.noise_distance = std::max(r.noise_distance, b.dhi[k]);
         r.noise_samples += b.n[k];
       }
-    r.noise_distance = r.noise * scale;
     r.gap_decades = std::numeric_limits<double>::infinity();
     r.milliseconds = clock.ms();
     return r;
   }
   r.geometry = b.lo[best];
+  r.geometry_distance = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < none; ++k) {
     if (b.n[k] == 0) continue;
     if (k < best) {
       r.noise = std::max(r.noise, b.hi[k]);
+      r.noise_distance = std::max(r.noise_distance, b.dhi[k]);
       r.noise_samples += b.n[k];
     } else {
+      r.geometry_distance = std::min(r.geometry_distance, b.dlo[k]);
       r.geometry_samples += b.n[k];
     }
   }
-  r.noise_distance = r.noise * scale;
-  r.geometry_distance = r.geometry * scale;
   const double bulk = bulk_below(best, r.noise_samples);
   r.gap_decades = bulk > 0.0 ? std::log10(r.geometry / bulk) : std::numeric_limits<double>::infinity();
   // Absolute bounds: above the noise by the safety factor, below the geometry by it.
@@ -339,15 +320,15 @@ tolerance_result estimate_tolerance(const wire_graph& g, const tolerance_options
   if (r.gap_decades < options.min_gap_decades) {
     r.clear_gap = false;
     r.reason = cellforge::detail::cat(
-        "the residuals of the corners' planes run from noise to shape without a clear gap (points ",
+        "the residuals of the corners' planes run from noise to shape without a clear gap (edges ",
         detail::residual_text(r.noise), " and ", detail::residual_text(r.geometry),
-        " of the diagonal off their corners' planes, ", detail::residual_text(r.gap_decades),
+        " off their corners' planes, ", detail::residual_text(r.gap_decades),
         " decades apart): the coordinates' noise may hide faces");
     // Never call shape noise: below the whole cluster, as if it were all geometry.
     const double lowest = std::min(r.geometry_distance, r.noise_samples > 0 ? [&] {
       double d = std::numeric_limits<double>::infinity();
       for (std::size_t k = 0; k < best; ++k)
-        if (b.n[k] != 0) d = std::min(d, b.lo[k] * scale);
+        if (b.n[k] != 0) d = std::min(d, b.dlo[k]);
       return d;
     }() : r.geometry_distance);
     chosen = std::min(preferred, lowest / options.safety);
