@@ -878,7 +878,7 @@ template <class = void>
 Eigen::VectorXd snap_regular(const inflation_problem<>& pr, const compliance_terms<>& terms,
                              const regularity_terms<>& reg, const Eigen::MatrixXd& basis,
                              const basis_rows& rows, Eigen::VectorXd t, int max_iterations,
-                             std::size_t& iterations, double exact);
+                             std::size_t& iterations, double exact, bool drop_worst = false);
 
 /// A regular reading near t0: Levenberg–Marquardt on every relation under the saturating loss,
 /// σ lowered 0.1 → 0.03 → 0.01 (a relation that does not hold stops pulling), then the relations
@@ -889,13 +889,13 @@ template <class = void>
 Eigen::VectorXd regular_reading(const inflation_problem<>& pr, const compliance_terms<>& terms,
                                 const regularity_terms<>& reg, const Eigen::MatrixXd& basis,
                                 const Eigen::VectorXd& t0, int max_iterations, std::size_t& iterations,
-                                double exact, bool robust = true) {
+                                double exact, bool robust = true, bool drop_worst = false) {
   std::size_t np = 0;
   for (const auto& c : terms.parallel) np += c.size();
   const auto k = basis.cols();
   const basis_rows rows = basis;
   Eigen::VectorXd t = t0;
-  if (!robust) return snap_regular(pr, terms, reg, basis, rows, t, max_iterations, iterations, exact);
+  if (!robust) return snap_regular(pr, terms, reg, basis, rows, t, max_iterations, iterations, exact, drop_worst);
   regularity_functor<> f{&pr, &terms, &reg, &basis, &rows, nullptr, 0.1, terms.convex_margin, 0};
   f.m = std::max<Eigen::Index>(
       k, static_cast<Eigen::Index>(reg.relations() + np + terms.convex.size()) + basis.rows());
@@ -903,8 +903,8 @@ Eigen::VectorXd regular_reading(const inflation_problem<>& pr, const compliance_
     f.sigma = sigma;
     solve_lm(f, t, std::min(max_iterations, 50), 1e-14, 1e-16, iterations);
   }
-  const Eigen::VectorXd a = snap_regular(pr, terms, reg, basis, rows, t0, max_iterations, iterations, exact);
-  const Eigen::VectorXd b = snap_regular(pr, terms, reg, basis, rows, t, max_iterations, iterations, exact);
+  const Eigen::VectorXd a = snap_regular(pr, terms, reg, basis, rows, t0, max_iterations, iterations, exact, true);
+  const Eigen::VectorXd b = snap_regular(pr, terms, reg, basis, rows, t, max_iterations, iterations, exact, true);
   return held_relations(pr, reg, Eigen::VectorXd(basis * b), 100 * exact) >
                  held_relations(pr, reg, Eigen::VectorXd(basis * a), 100 * exact)
              ? b
@@ -915,11 +915,27 @@ Eigen::VectorXd regular_reading(const inflation_problem<>& pr, const compliance_
 /// classes and the convexity hinge); relations the solve cannot meet to 1e-9 are dropped and the
 /// solve repeated (3 rounds at most); t itself when no round meets its relations.
 /// O(rounds · iterations · ((L + E) K + m K²)).
+/// Relations of `reg` within `tolerance` at depths z, weighted: a right corner and two classes
+/// square to each other count 2, equal corners and equal sides 1 (a skewed relative of a
+/// right-angled solid makes two corners or sides equal as easily as one corner right). O(L).
+template <class Z>
+std::size_t weighted_relations(const inflation_problem<>& pr, const regularity_terms<>& reg, const Z& z,
+                               double tolerance) {
+  Eigen::VectorXd r(static_cast<Eigen::Index>(reg.relations()));
+  regularity_residuals(pr, reg, z, r);
+  const auto corners = static_cast<Eigen::Index>(reg.corners.size());
+  const auto pairs = corners + static_cast<Eigen::Index>(reg.angle_pairs.size() + reg.side_pairs.size());
+  std::size_t w = 0;
+  for (Eigen::Index i = 0; i < r.size(); ++i)
+    if (std::abs(r[i]) < tolerance) w += i < corners || i >= pairs ? 2 : 1;
+  return w;
+}
+
 template <class>
 Eigen::VectorXd snap_regular(const inflation_problem<>& pr, const compliance_terms<>& terms,
                              const regularity_terms<>& reg, const Eigen::MatrixXd& basis,
                              const basis_rows& rows, Eigen::VectorXd t, int max_iterations,
-                             std::size_t& iterations, double exact) {
+                             std::size_t& iterations, double exact, bool drop_worst) {
   std::size_t np = 0;
   for (const auto& c : terms.parallel) np += c.size();
   const auto k = basis.cols();
@@ -929,9 +945,9 @@ Eigen::VectorXd snap_regular(const inflation_problem<>& pr, const compliance_ter
   const Eigen::VectorXd r0 = r;
   Eigen::VectorXd best = t;
   std::size_t best_held = held_relations(pr, reg, z0, 100 * exact);
-  // Snapped from the relations within 1e-3, 1e-2 and 3e-2 of holding: the most held wins.
+  // Snapped from the relations within 1e-4, 1e-3, 1e-2 and 3e-2 of holding: the most held wins.
   std::size_t tried = 0;
-  for (const double near : {1e-3, 1e-2, 3e-2}) {
+  for (const double near : {1e-4, 1e-3, 1e-2, 3e-2}) {
     std::vector<std::uint32_t> held;
     for (Eigen::Index i = 0; i < r0.size(); ++i)
       if (std::abs(r0[i]) < near) held.push_back(static_cast<std::uint32_t>(i));
@@ -953,6 +969,15 @@ Eigen::VectorXd snap_regular(const inflation_problem<>& pr, const compliance_ter
         const std::size_t h = held_relations(pr, reg, z, 100 * exact);
         if (u.allFinite() && z.cwiseAbs().maxCoeff() <= 8 && h > best_held) best_held = h, best = u;
         break;
+      }
+      // Most relations missed (a false one pulled the rest off): with drop_worst, drop those at
+      // least half as far off as the worst and solve again, rather than all that missed.
+      if (drop_worst && kept.size() * 2 < held.size()) {
+        double worst = 0;
+        for (const auto i : held) worst = std::max(worst, std::abs(r[i]));
+        kept.clear();
+        for (const auto i : held)
+          if (std::abs(r[i]) < 0.5 * worst) kept.push_back(i);
       }
       held = std::move(kept);
     }
@@ -1009,6 +1034,7 @@ std::vector<depth_hypothesis> regular_hypotheses(const inflation_problem<>& pr,
                                                  const compliance_terms<>& terms, double tolerance,
                                                  std::size_t most) {
   std::vector<std::vector<std::uint32_t>> polygons = pr.loops;
+  std::vector<std::uint32_t> apex(polygons.size(), std::numeric_limits<std::uint32_t>::max());
   std::vector<std::vector<std::uint32_t>> at(pr.p.size());
   for (std::uint32_t l = 0; l < pr.loops.size(); ++l)
     for (const auto v : pr.loops[l]) at[v].push_back(l);
@@ -1037,7 +1063,7 @@ std::vector<depth_hypothesis> regular_hypotheses(const inflation_problem<>& pr,
       used[i] = true;
       cur = link[i][0] == cur ? link[i][1] : link[i][0];
     }
-    if (cycle.size() == deg && cur == cycle[0]) polygons.push_back(std::move(cycle));
+    if (cycle.size() == deg && cur == cycle[0]) polygons.push_back(std::move(cycle)), apex.push_back(v);
   }
   struct group {
     glm::dvec2 g;
@@ -1074,6 +1100,19 @@ std::vector<depth_hypothesis> regular_hypotheses(const inflation_problem<>& pr,
         h.pairs.push_back({a, b});
         h.value.push_back(glm::dot(gr.g, pr.p[a] - pr.p[b]));
       }
+      // A junction whose triangles ring a regular polygon stands over its centre c (a right
+      // pyramid's apex): v − c along the plane's normal (g, −1), so z_v − z_c = −g · (v − c) / |g|²,
+      // when its drawing lies on the normal's image (else the pyramid is oblique: no row).
+      const std::uint32_t v = apex[member.first];
+      const double gg = glm::dot(gr.g, gr.g);
+      if (v == std::numeric_limits<std::uint32_t>::max() || !(gg > 1e-12)) continue;
+      glm::dvec2 c{0.0};
+      for (const auto u : poly) c += pr.p[u];
+      c /= static_cast<double>(poly.size());
+      const glm::dvec2 d = pr.p[v] - c;
+      if (std::abs(d.x * gr.g.y - d.y * gr.g.x) > tolerance * std::sqrt(gg)) continue;
+      h.pairs.push_back({v, poly[0]});
+      h.value.push_back(glm::dot(gr.g, c - pr.p[poly[0]]) - glm::dot(gr.g, d) / gg);
     }
     out.push_back(std::move(h));
   }
@@ -1180,30 +1219,38 @@ Eigen::VectorXd hypothesis_reading(const inflation_problem<>& pr, const complian
   for (const double sign : {nearer, -nearer}) {
     if (sign != nearer && terms.convex.empty()) break;
     s[0] = sign;
-    std::vector<std::pair<std::size_t, double>> found;
+    const Eigen::VectorXd s_ref = s;
+    std::vector<std::pair<std::size_t, Eigen::VectorXd>> found;
+    const auto rel = static_cast<Eigen::Index>(reg.relations());
     if (free == 1) {
       const Eigen::VectorXd dz = reduced.col(1);
       const double reach = 2.0 / std::max(dz.cwiseAbs().maxCoeff(), 1e-12);
       const int steps = 128;
-      Eigen::VectorXd r(static_cast<Eigen::Index>(reg.relations())), before;
+      const double step = 2 * reach / steps;
+      Eigen::VectorXd r(rel), before;
+      std::vector<double> roots;
       for (int i = 0; i <= steps; ++i) {
         const double c = reach * (2.0 * i / steps - 1);
         regularity_residuals(pr, reg, Eigen::VectorXd(reduced.col(0) * sign + dz * c), r);
         if (i > 0) {
           // Relations that hold all along (a regular cap's) are rounding noise, not crossings.
-          const auto crossing = static_cast<std::size_t>(
-              (r.array() * before.array() < 0 && r.array().abs() > 1e-9 && before.array().abs() > 1e-9)
-                  .count());
-          if (crossing > 0) found.push_back({crossing, c - reach / steps});
+          // Each crossing relation's root, linearly interpolated; their median is the start (the
+          // true reading is where many roots coincide, and the step is too coarse to snap from).
+          roots.clear();
+          for (Eigen::Index q = 0; q < rel; ++q)
+            if (r[q] * before[q] < 0 && std::abs(r[q]) > 1e-9 && std::abs(before[q]) > 1e-9)
+              roots.push_back(c - step * r[q] / (r[q] - before[q]));
+          if (!roots.empty()) {
+            std::nth_element(roots.begin(), roots.begin() + static_cast<std::ptrdiff_t>(roots.size() / 2), roots.end());
+            s[1] = roots[roots.size() / 2];
+            found.push_back({roots.size(), s});
+          }
         }
         before = r;
       }
     }
-    if (found.empty()) found.push_back({0, free > 0 ? s[1] : 0.0});
-    for (const auto& [crossing, c] : found) {
-      if (free == 1) s[1] = c;
-      starts.push_back({folds_lost(reduced * s), crossing, s});
-    }
+    if (found.empty()) found.push_back({0, s_ref});
+    for (const auto& [crossing, at] : found) starts.push_back({folds_lost(reduced * at), crossing, at});
   }
   std::stable_sort(starts.begin(), starts.end(), [](const start& x, const start& y) {
     return x.lost < y.lost || (x.lost == y.lost && x.crossing > y.crossing);
@@ -1211,8 +1258,39 @@ Eigen::VectorXd hypothesis_reading(const inflation_problem<>& pr, const complian
   Eigen::VectorXd best;
   std::size_t best_held = 0;
   for (std::size_t i = 0; i < starts.size() && i < 2; ++i) {
+    // One reading free: the start refined by finer scans around it (two levels of 32 steps,
+    // each to the median root of the relations crossing in its busiest step), so that the
+    // snap starts where the true relations hold to ~1e-6 and the false ones do not.
+    if (free == 1 && starts[i].crossing > 0) {
+      const Eigen::VectorXd dz = reduced.col(1);
+      double width = 4.0 / std::max(dz.cwiseAbs().maxCoeff(), 1e-12) / 128;
+      Eigen::VectorXd r(static_cast<Eigen::Index>(reg.relations())), before;
+      std::vector<double> roots, best_roots;
+      for (int level = 0; level < 2; ++level) {
+        const double from = starts[i].s[1] - width, step = 2 * width / 32;
+        best_roots.clear();
+        for (int j = 0; j <= 32; ++j) {
+          Eigen::VectorXd sj = starts[i].s;
+          sj[1] = from + step * j;
+          regularity_residuals(pr, reg, Eigen::VectorXd(reduced * sj), r);
+          if (j > 0) {
+            roots.clear();
+            for (Eigen::Index q = 0; q < r.size(); ++q)
+              if (r[q] * before[q] < 0 && std::abs(r[q]) > 1e-9 && std::abs(before[q]) > 1e-9)
+                roots.push_back(sj[1] - step * r[q] / (r[q] - before[q]));
+            if (roots.size() > best_roots.size()) best_roots = roots;
+          }
+          before = r;
+        }
+        if (best_roots.empty()) break;
+        std::nth_element(best_roots.begin(), best_roots.begin() + static_cast<std::ptrdiff_t>(best_roots.size() / 2),
+                         best_roots.end());
+        starts[i].s[1] = best_roots[best_roots.size() / 2];
+        width = step;
+      }
+    }
     const Eigen::VectorXd t =
-        span * regular_reading(pr, terms, reg, reduced, starts[i].s, max_iterations, iterations, exact);
+        span * regular_reading(pr, terms, reg, reduced, starts[i].s, max_iterations, iterations, exact, true, true);
     const Eigen::VectorXd z = basis * t;
     // A reading losing convex folds counts as holding nothing (inflate ranks it as a fault).
     const std::size_t held = folds_lost(z) > 0 ? 0 : held_relations(pr, reg, z, 100 * exact);
@@ -1816,7 +1894,7 @@ detail::if_satisfied_t<LineDrawing<D>, detail::inflation_result_for, Q, D> infla
     // (right corners, equal corners, equal sides) than its affine relatives z → kz + ax + by.
     struct candidate {
       Eigen::VectorXd t;
-      std::size_t flat, held;
+      std::size_t flat, held, weighted;
       bool from_direct;
       const char* what;
       bool regular;  // moved to a regular reading (else the direct reading or the compliance optimum)
@@ -1847,8 +1925,8 @@ detail::if_satisfied_t<LineDrawing<D>, detail::inflation_result_for, Q, D> infla
         }
         flat += static_cast<std::size_t>(std::min(up, down));
       }
-      cands.push_back(
-          {std::move(t), flat, detail::held_relations(pr, reg, zt, 100 * exact), from_direct, what, moved});
+      cands.push_back({std::move(t), flat, detail::held_relations(pr, reg, zt, 100 * exact),
+                       detail::weighted_relations(pr, reg, zt, 100 * exact), from_direct, what, moved});
     };
     if (direct.ok) {
       Eigen::VectorXd zd(static_cast<Eigen::Index>(nv));
@@ -1907,15 +1985,15 @@ detail::if_satisfied_t<LineDrawing<D>, detail::inflation_result_for, Q, D> infla
         if (!cands.empty()) most = std::max(most, cands.back().held);
       }
     }
-    // Fewest merged neighbours (and convex folds lost), then most relations held; ties keep
-    // the earlier candidate (the direct reading first).
+    // Fewest merged neighbours (and convex folds lost), then most relations held, weighted
+    // (weighted_relations); ties keep the earlier candidate (the direct reading first).
     if (cands.empty())
       throw error(error_category::internal, "inflate: the optimisation produced no finite reading");
     std::vector<std::size_t> order(cands.size());
     for (std::size_t c = 0; c < cands.size(); ++c) order[c] = c;
     std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
       return cands[x].flat < cands[y].flat ||
-             (cands[x].flat == cands[y].flat && cands[x].held > cands[y].held);
+             (cands[x].flat == cands[y].flat && cands[x].weighted > cands[y].weighted);
     });
     // No self-intersecting reading: the best candidate whose faces neither cross nor are
     // pierced by an edge (exactly, by certify). A regular candidate must also keep the drawing's
