@@ -752,12 +752,13 @@ TEST_CASE("inflate: the solid a person sees: metric readings of regular solids, 
   MESSAGE("metric readings (depth within 1e-6 of the size after mirror and offset): "
           << metric << " of " << drawings << table << misses);
   REQUIRE(drawings >= 10);
-  // Measured: 87 of 97 in Release (0 before the regular reading, 77 before its hypotheses),
-  // 12 of 15 in the sanitizer sample; the floors are under them.
+  // Measured: 91 of 97 in Release (0 before the regular reading, 77 before its hypotheses, 87
+  // before the apex rows, refined scans and weighted relations), 13 of 15 in the sanitizer
+  // sample; the floors are under them (Release: the issue's 90 %).
 #ifdef NDEBUG
-  CHECK(5 * metric >= 4 * drawings);
+  CHECK(10 * metric >= 9 * drawings);
 #else
-  CHECK(3 * metric >= 2 * drawings);
+  CHECK(5 * metric >= 4 * drawings);
 #endif
 }
 
