@@ -148,14 +148,17 @@ TEST_CASE(
   const std::map<double, std::vector<std::string>> once_silent{
       {0.002,
        {"block with hole, view 1", "through slot 2 #15115450496000231541, view 3",
-        "sliced prism 3, 1 cuts #17392095252904391823, view 1", "box with a wedge roof #11400714819333684250, view 2",
+        "sliced prism 3, 1 cuts #17392095252904391823, view 1",
+        "box with a wedge roof #11400714819333684250, view 2",
         "walled cylinder 15-gon, 4 rings #11400714819336829980, view 2"}},
       {0.005, {"through slot 1 #3458276273128679608, view 1"}},
       {0.01,
        {"through slot 1 #6121909316383382444, view 3", "row of 2 boxes, view 1",
         "cells 4x1x1 #5258744786941694016, view 1", "sliced prism 3, 1 cuts #17392095252904391823, view 1",
         "box with a wedge roof #11400714819333684250, view 2"}},
-      {0.02, {"through slot 1 #792496965890354261, view 1", "box with a wedge roof #11400714819333684262, view 1"}}};
+      {0.02,
+       {"through slot 1 #792496965890354261, view 1",
+        "box with a wedge roof #11400714819333684262, view 1"}}};
 #else
   const std::vector<std::pair<double, std::size_t>> levels{{0.002, 14}, {0.01, 14}};
   const std::size_t max_edges = 30;
@@ -192,7 +195,8 @@ TEST_CASE(
         // Never silently wrong: a wrong complex is flagged, with its reason.
         silent += !ok && !r.flagged;
 #ifdef NDEBUG
-        if (const auto it = once_silent.find(jitter); it != once_silent.end() &&
+        if (const auto it = once_silent.find(jitter);
+            it != once_silent.end() &&
             std::find(it->second.begin(), it->second.end(), n.exact.name) != it->second.end()) {
           CAPTURE(n.exact.name);
           CHECK((ok || r.flagged));
@@ -200,7 +204,8 @@ TEST_CASE(
         }
 #endif
         if (!ok)
-          misses.push_back(n.exact.name + " [" + n.exact.family + "]: " + (r.flagged ? "flagged: " : "SILENT: ") +
+          misses.push_back(n.exact.name + " [" + n.exact.family +
+                           "]: " + (r.flagged ? "flagged: " : "SILENT: ") +
                            (r.diagnostics.empty() ? std::string("another complex") : r.diagnostics.back()));
       } catch (const cellforge::error& e) {
         misses.push_back(n.exact.name + " [" + n.exact.family + "]: " + e.what());

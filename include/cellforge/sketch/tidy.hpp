@@ -293,7 +293,8 @@ detail::if_satisfied_t<LineDrawing<D>, detail::tidy_result_for, D> tidy_to_solid
   }
   const auto found = detail::tidy::parallel_classes(
       q0, pr.edges, part, options.direction_tolerance_degrees * std::numbers::pi / 180.0,
-      options.straight_lines ? detail::tidy::turned_corners(faces) : std::set<std::array<std::uint32_t, 3>>{});
+      options.straight_lines ? detail::tidy::turned_corners(faces)
+                             : std::set<std::array<std::uint32_t, 3>>{});
   // With those classes first; without them when that fails (a class the first reading got wrong).
   std::string why;
   for (const bool with_classes : {true, false}) {

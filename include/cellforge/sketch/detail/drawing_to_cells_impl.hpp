@@ -263,7 +263,8 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
           drawn_inside = part[q] != c && is_placed[part[q]] && inside_loop(h, q);
       ambiguous += drawn_inside ? 1 : 0;
       diagnostics.push_back(cellforge::detail::cat(
-          "part ", std::to_string(c), " of the drawing lies in no face of the others: its depth against them is free",
+          "part ", std::to_string(c),
+          " of the drawing lies in no face of the others: its depth against them is free",
           (drawn_inside ? std::string(", and it is drawn inside another part (flagged)") : std::string())));
     }
   }
@@ -384,10 +385,10 @@ double plane_angle(const std::vector<glm::dvec3>& p, const std::vector<std::uint
 /// O(Σ L log F + Σ_v deg(v)³).
 template <class = void>
 std::string straight_fold(const faces::drawing_graph& g, const std::vector<std::vector<glm::dvec2>>& views,
-                          const std::vector<glm::dvec3>& reading, const face_set& faces, double straight_degrees,
-                          double fold_degrees) {
+                          const std::vector<glm::dvec3>& reading, const face_set& faces,
+                          double straight_degrees, double fold_degrees) {
   std::map<std::array<std::uint32_t, 3>, std::size_t> turn;  // (junction, lines' far ends sorted) -> face
-  std::map<std::array<std::uint32_t, 2>, std::size_t> uses;   // line (ends sorted) -> loops on it
+  std::map<std::array<std::uint32_t, 2>, std::size_t> uses;  // line (ends sorted) -> loops on it
   for (std::size_t f = 0; f < faces.size(); ++f)
     for (const auto& loop : faces[f])
       for (std::size_t k = 0, n = loop.size(); k < n; ++k) {
@@ -423,9 +424,10 @@ std::string straight_fold(const faces::drawing_graph& g, const std::vector<std::
           const double fold = plane_angle(reading, faces[fa][0], faces[fb][0]);
           if (fold <= fold_degrees)
             return cellforge::detail::cat(
-                "lines to junctions ", std::to_string(a), " and ", std::to_string(b), " go straight on through junction ",
-                std::to_string(v), " (within ", std::to_string(off), " degrees) where the faces at the line to ",
-                std::to_string(f), " fold by only ", std::to_string(fold),
+                "lines to junctions ", std::to_string(a), " and ", std::to_string(b),
+                " go straight on through junction ", std::to_string(v), " (within ", std::to_string(off),
+                " degrees) where the faces at the line to ", std::to_string(f), " fold by only ",
+                std::to_string(fold),
                 " degrees: were the lines straight, that line would be a seam a wall must meet");
         }
       }
@@ -452,7 +454,7 @@ std::string nested_near_plane(const std::vector<glm::dvec2>& p, const std::vecto
       bool nested = b != a;
       for (const auto v : faces[b][0])
         nested = nested && std::find(faces[a][0].begin(), faces[a][0].end(), v) == faces[a][0].end() &&
-                 faces::inside(poly, p[v]);
+                 cellforge::detail::point_in_polygon(poly, p[v]);
       if (!nested || plane_angle(reading, faces[a][0], faces[b][0]) > parallel_degrees) continue;
       const double off = std::abs(glm::dot(loop_plane(reading, faces[b][0]).second - ca, glm::normalize(na)));
       if (off > 1e-9 * size && off <= gap * size)
@@ -482,7 +484,8 @@ void doubt_inexact(const faces::drawing_graph& g, Result& r, const std::vector<g
   if (tidied.size() != g.p.size()) tidied = g.p;
   for (std::string doubt : {straight_fold(g, {g.p, tidied}, reading, faces, 3.0, 10.0),
                             nested_near_plane(g.p, reading, faces, 5.0, 0.02)})
-    if (!doubt.empty()) ++r.doubts, r.diagnostics.push_back(cellforge::detail::cat("inexact drawing: ", doubt));
+    if (!doubt.empty())
+      ++r.doubts, r.diagnostics.push_back(cellforge::detail::cat("inexact drawing: ", doubt));
 }
 
 /// Canonical cycles of a set of loops, for comparison. O(Σ L log L).
@@ -642,8 +645,8 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, cons
         // only roughly: grouped again on the tidied drawing (one view for every part), and
         // tidied again from the drawing as drawn with holes the grouping found.
         const detail::faces::drawing_graph g2 = detail::faces::make_graph(t.drawing, options.faces);
-        regrouped =
-            detail::sketch::group_faces(g2, r.faces.loops, options.inflation, regroup_notes, regroup_ambiguous);
+        regrouped = detail::sketch::group_faces(g2, r.faces.loops, options.inflation, regroup_notes,
+                                                regroup_ambiguous);
         if (regrouped != r.face_loops) {
           tidy_result<drawing_point_t<D>> t2 = tidy_to_solid(drawing, regrouped, options.tidying);
           for (const auto& d : t2.diagnostics) r.diagnostics.push_back(d);
@@ -807,7 +810,8 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, cons
       auto again = drawing_to_cells_on<R>(drawing, straight);
       if (!again.flagged) {
         again.diagnostics.push_back(
-            "tidied again with lines straight on through junctions made one line (an answer as drawn was doubted)");
+            "tidied again with lines straight on through junctions made one line (an answer as drawn was "
+            "doubted)");
         again.milliseconds = clock.ms();
         return again;
       }

@@ -895,7 +895,8 @@ Eigen::VectorXd regular_reading(const inflation_problem<>& pr, const compliance_
   const auto k = basis.cols();
   const basis_rows rows = basis;
   Eigen::VectorXd t = t0;
-  if (!robust) return snap_regular(pr, terms, reg, basis, rows, t, max_iterations, iterations, exact, drop_worst);
+  if (!robust)
+    return snap_regular(pr, terms, reg, basis, rows, t, max_iterations, iterations, exact, drop_worst);
   regularity_functor<> f{&pr, &terms, &reg, &basis, &rows, nullptr, 0.1, terms.convex_margin, 0};
   f.m = std::max<Eigen::Index>(
       k, static_cast<Eigen::Index>(reg.relations() + np + terms.convex.size()) + basis.rows());
@@ -903,8 +904,10 @@ Eigen::VectorXd regular_reading(const inflation_problem<>& pr, const compliance_
     f.sigma = sigma;
     solve_lm(f, t, std::min(max_iterations, 50), 1e-14, 1e-16, iterations);
   }
-  const Eigen::VectorXd a = snap_regular(pr, terms, reg, basis, rows, t0, max_iterations, iterations, exact, true);
-  const Eigen::VectorXd b = snap_regular(pr, terms, reg, basis, rows, t, max_iterations, iterations, exact, true);
+  const Eigen::VectorXd a =
+      snap_regular(pr, terms, reg, basis, rows, t0, max_iterations, iterations, exact, true);
+  const Eigen::VectorXd b =
+      snap_regular(pr, terms, reg, basis, rows, t, max_iterations, iterations, exact, true);
   return held_relations(pr, reg, Eigen::VectorXd(basis * b), 100 * exact) >
                  held_relations(pr, reg, Eigen::VectorXd(basis * a), 100 * exact)
              ? b
@@ -1241,7 +1244,8 @@ Eigen::VectorXd hypothesis_reading(const inflation_problem<>& pr, const complian
             if (r[q] * before[q] < 0 && std::abs(r[q]) > 1e-9 && std::abs(before[q]) > 1e-9)
               roots.push_back(c - step * r[q] / (r[q] - before[q]));
           if (!roots.empty()) {
-            std::nth_element(roots.begin(), roots.begin() + static_cast<std::ptrdiff_t>(roots.size() / 2), roots.end());
+            std::nth_element(roots.begin(), roots.begin() + static_cast<std::ptrdiff_t>(roots.size() / 2),
+                             roots.end());
             s[1] = roots[roots.size() / 2];
             found.push_back({roots.size(), s});
           }
@@ -1283,14 +1287,15 @@ Eigen::VectorXd hypothesis_reading(const inflation_problem<>& pr, const complian
           before = r;
         }
         if (best_roots.empty()) break;
-        std::nth_element(best_roots.begin(), best_roots.begin() + static_cast<std::ptrdiff_t>(best_roots.size() / 2),
+        std::nth_element(best_roots.begin(),
+                         best_roots.begin() + static_cast<std::ptrdiff_t>(best_roots.size() / 2),
                          best_roots.end());
         starts[i].s[1] = best_roots[best_roots.size() / 2];
         width = step;
       }
     }
-    const Eigen::VectorXd t =
-        span * regular_reading(pr, terms, reg, reduced, starts[i].s, max_iterations, iterations, exact, true, true);
+    const Eigen::VectorXd t = span * regular_reading(pr, terms, reg, reduced, starts[i].s, max_iterations,
+                                                     iterations, exact, true, true);
     const Eigen::VectorXd z = basis * t;
     // A reading losing convex folds counts as holding nothing (inflate ranks it as a fault).
     const std::size_t held = folds_lost(z) > 0 ? 0 : held_relations(pr, reg, z, 100 * exact);

@@ -24,7 +24,8 @@ namespace cellforge::detail::tidy {
 
 /// The corners the faces turn: (junction, its two neighbours in the loop, sorted). O(Σ L log).
 template <class = void>
-std::set<std::array<std::uint32_t, 3>> turned_corners(const std::vector<std::vector<std::vector<std::uint32_t>>>& faces) {
+std::set<std::array<std::uint32_t, 3>> turned_corners(
+    const std::vector<std::vector<std::vector<std::uint32_t>>>& faces) {
   std::set<std::array<std::uint32_t, 3>> out;
   for (const auto& face : faces)
     for (const auto& loop : face)
@@ -39,12 +40,12 @@ std::set<std::array<std::uint32_t, 3>> turned_corners(const std::vector<std::vec
 /// the same part of the drawing (`part` per junction) within `tolerance` (radians, up to sign)
 /// joins it unless it shares a junction with a member (two lines at one junction of a solid
 /// are never parallel), except a line going straight on from one member where no face turns
-/// (in `turned`: junction, far ends sorted): a wall meets a seam there, the lines are one line. A class whose drawing directions form two tight groups far apart
-/// (gap over four times either group's spread) is split. Classes of one line are dropped.
-/// Then classes of different parts whose
-/// drawing directions are each other's only match within the tolerance are merged: the depth
-/// of a part drawn inside another is read on its own, so only its drawing directions compare.
-/// O(E log E + E · W + C²), W the lines within the tolerance in the drawing, C the classes.
+/// (in `turned`: junction, far ends sorted): a wall meets a seam there, the lines are one line. A class whose
+/// drawing directions form two tight groups far apart (gap over four times either group's spread) is split.
+/// Classes of one line are dropped. Then classes of different parts whose drawing directions are each other's
+/// only match within the tolerance are merged: the depth of a part drawn inside another is read on its own,
+/// so only its drawing directions compare. O(E log E + E · W + C²), W the lines within the tolerance in the
+/// drawing, C the classes.
 template <class = void>
 std::vector<std::vector<std::uint32_t>> parallel_classes(
     const std::vector<glm::dvec3>& q, const std::vector<std::array<std::uint32_t, 2>>& edges,
@@ -67,7 +68,9 @@ std::vector<std::vector<std::uint32_t>> parallel_classes(
   for (std::size_t k = 0; k < ne; ++k) sorted[k] = ang[by_angle[k]];
   std::vector<char> taken(ne, 0);
   std::vector<std::uint32_t> mark(q.size(), std::numeric_limits<std::uint32_t>::max());
-  std::vector<std::uint32_t> via(q.size(), std::numeric_limits<std::uint32_t>::max());  // per marked junction: the far end of its one member
+  std::vector<std::uint32_t> via(
+      q.size(),
+      std::numeric_limits<std::uint32_t>::max());  // per marked junction: the far end of its one member
   // Whether line (v, w) goes straight on from the one member of class `id` at v, at no face's corner.
   const auto straight_on = [&](std::uint32_t v, std::uint32_t w, std::uint32_t id) {
     if (turned.empty() || mark[v] != id || via[v] == std::numeric_limits<std::uint32_t>::max()) return false;
