@@ -160,7 +160,7 @@ TEST_CASE(
        {"through slot 1 #792496965890354261, view 1",
         "box with a wedge roof #11400714819333684262, view 1"}}};
 #else
-  const std::vector<std::pair<double, std::size_t>> levels{{0.002, 14}, {0.01, 14}};
+  const std::vector<std::pair<double, std::size_t>> levels{{0.002, 8}, {0.01, 8}};  // 18 drawings each
   const std::size_t max_edges = 30;
 #endif
   for (const auto& [jitter, limit] : levels) {
