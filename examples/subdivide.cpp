@@ -109,7 +109,7 @@ int main(int argc, char** argv) {
                 r.boundary_edges_after, r.flipped_edges_after, r.fixed_vertices);
     for (std::size_t i = 0; i < r.level_ms.size(); ++i)
       std::printf("level %zu            %.3f ms\n", i + 1, r.level_ms[i]);
-    std::printf("total              %.3f ms\n", r.total_ms());
+    std::printf("total              %.3f ms\n", r.milliseconds);
     std::printf("valid              %s\n", valid.ok() ? "yes" : valid.message.c_str());
     if (!valid.ok()) {
       std::fprintf(stderr, "subdivide: the result fails validation: %s\n", valid.message.c_str());

@@ -116,7 +116,10 @@ int main(int argc, char** argv) {
        "N",
        "work budget of the exact check in candidate triangle pairs; 0 = the check's own, 256 per "
        "triangle plus 2^20 (default: 0)",
-       [&](std::string_view v) { pairs.max_candidate_pairs = example::option_count("--check-pairs", v); }});
+       [&](std::string_view v) {
+         const std::size_t n = example::option_count("--check-pairs", v);
+         pairs.work_budget = n == 0 ? cellforge::work_budget::automatic : n;
+       }});
   return example::run(p, argc, argv, [&](const std::vector<std::string>& args) -> int {
     const fs::path input = p.one_input(args, fs::path(CELLFORGE_DATA_DIR) / "vessel_tree.swc");
     example::stage_note& stage = p.stage;
@@ -183,7 +186,7 @@ int main(int argc, char** argv) {
     std::printf("mesh               %9.3f ms\n", r.mesh_ms);
     if (options.subdivision_levels > 0)
       std::printf("Loop subdivision   %9.3f ms   %d levels\n", r.subdivision_ms, options.subdivision_levels);
-    std::printf("total              %9.3f ms\n", r.total_ms);
+    std::printf("total              %9.3f ms\n", r.milliseconds);
     std::printf("mesh               %zu vertices, %zu edges, %zu faces, %zu shells, closed %s\n",
                 r.mesh.num_vertices(), r.mesh.num_edges(), r.mesh.num_faces(), r.shells,
                 r.mesh.is_closed() ? "yes" : "no");
@@ -220,7 +223,7 @@ int main(int argc, char** argv) {
             60);
       const cellforge::self_intersection_result si = cellforge::self_intersections(r.mesh, pairs);
       std::printf("self-intersections %zu intersecting face pairs (exact, %zu triangles, %.3f ms)%s\n",
-                  si.intersecting_face_pairs, si.triangles, si.time_ms,
+                  si.intersecting_face_pairs, si.triangles, si.milliseconds,
                   si.complete ? "" : ", budget exhausted: unchecked");
       fail_if(si.intersecting_face_pairs > 0,
               std::to_string(si.intersecting_face_pairs) + " face pairs intersect");

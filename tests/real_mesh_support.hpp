@@ -378,7 +378,7 @@ inline fixture analyse(const cellforge::polygon_soup<glm::dvec3>& soup,
       options.max_reported = std::size_t(-1);
       // Gears and blades have long thin triangles sharing many grid cells: pinion.off needs
       // more than the default 256 pairs per triangle.
-      options.max_candidate_pairs = std::size_t{1} << 28;
+      options.work_budget = std::size_t{1} << 28;
       const auto si = cellforge::self_intersections(m, options);
       fx.intersections_known = si.complete;
       fx.intersecting_face_pairs = si.intersecting_face_pairs;

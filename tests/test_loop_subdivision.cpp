@@ -608,7 +608,7 @@ TEST_CASE("loop_subdivided returns a copy; removed elements are collected first"
   CHECK(m.num_faces() == 48);
   CHECK(s.num_faces() == 48 * 16);
   CHECK(r.faces_after == s.num_faces());
-  CHECK(r.total_ms() >= 0);
+  CHECK(r.milliseconds >= 0);
 
   m.remove_face(cellforge::face_handle(4));  // the two triangles of one quad: one hole
   m.remove_face(cellforge::face_handle(5));

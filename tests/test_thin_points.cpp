@@ -540,6 +540,11 @@ TEST_CASE("thin points: a work budget that runs out stops the growing, flagged, 
       CHECK(half.cycle_lengths[i] == full.cycle_lengths[i]);
     o.work_budget = 1;
     CHECK(cellforge::find_thin_points(m, o).cycle_lengths.size() == 1);
+    o.work_budget = 0;  // unlimited, as in every part
+    const thin_result unlimited = cellforge::find_thin_points(m, o);
+    CHECK(unlimited.complete);
+    CHECK(unlimited.cycle_lengths == full.cycle_lengths);
+    CHECK(unlimited.milliseconds >= unlimited.growing_ms);
   }
 }
 

@@ -27,6 +27,7 @@
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/detail/mesh_access.hpp"
 #include "cellforge/halfedge/mesh.hpp"
@@ -74,8 +75,8 @@ struct loop_options {
   std::size_t max_faces = 50'000'000;
 };
 
-/// Counts before and after, and where the time went.
-struct loop_result {
+/// Counts before and after, and where the time went (milliseconds: the levels' sum).
+struct loop_result : stage_report {
   std::size_t vertices_before = 0, edges_before = 0, faces_before = 0;
   std::size_t vertices_after = 0, edges_after = 0, faces_after = 0;
   std::size_t boundary_edges_after = 0, flipped_edges_after = 0;
@@ -83,7 +84,7 @@ struct loop_result {
   std::size_t fixed_vertices = 0;
   /// Milliseconds per level (the last one includes deriving vertex anchors and rings).
   std::vector<double> level_ms;
-  double total_ms() const noexcept {
+  [[deprecated("use milliseconds; removed in 0.7")]] double total_ms() const noexcept {
     double t = 0;
     for (double x : level_ms) t += x;
     return t;
@@ -389,6 +390,7 @@ loop_result loop_subdivide(surface_mesh<P>& mesh, const loop_options& options = 
   result.faces_after = mesh.num_faces();
   result.boundary_edges_after = mesh.num_boundary_edges();
   result.flipped_edges_after = mesh.num_flipped_edges();
+  for (const double ms : result.level_ms) result.milliseconds += ms;
   return result;
 }
 

@@ -28,6 +28,8 @@
 #include "cellforge/core/morton.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/predicates.hpp"
+#include "cellforge/core/stage_report.hpp"
+#include "cellforge/core/work_budget.hpp"
 #include "cellforge/halfedge/handles.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"
 
@@ -35,18 +37,22 @@ namespace cellforge {
 
 /// Limits of self_intersections.
 struct self_intersection_options {
-  /// Work budget: the most candidate pairs (two triangles in one grid cell) examined; 0
-  /// means 256 per triangle plus 2^20. A closed mesh with well-shaped triangles needs some
-  /// 10–30 per triangle.
+  /// Work budget: the most candidate pairs (two triangles in one grid cell) examined;
+  /// automatic (the default): 256 per triangle plus 2^20; 0: unlimited. A closed mesh with
+  /// well-shaped triangles needs some 10–30 per triangle. Past it: complete = false.
+  cellforge::work_budget work_budget = cellforge::work_budget::automatic;
+  /// Deprecated, removed in 0.7 (use work_budget, where 0 is unlimited): the budget when not 0.
+  /// Not `[[deprecated]]`: g++ warns at every copy of a struct with such a member.
   std::size_t max_candidate_pairs = 0;
-  /// Past the budget: false stops and returns complete = false; true throws error(budget).
+  /// Deprecated, removed in 0.7 (test complete): true throws error(budget) past the budget.
   bool throw_on_budget = false;
   /// How many intersecting face pairs (and faces with zero-area triangles) to list.
   std::size_t max_reported = 100;
 };
 
-/// What self_intersections found.
-struct self_intersection_result {
+/// What self_intersections found; work (stage_report) counts the candidate pairs, complete is
+/// false when the budget stopped the search.
+struct self_intersection_result : stage_report {
   /// Distinct pairs of faces with at least one intersecting pair of triangles.
   std::size_t intersecting_face_pairs = 0;
   /// Intersecting pairs of triangles (a face pair may hold several).
@@ -67,8 +73,7 @@ struct self_intersection_result {
   std::size_t pairs_by_topology = 0;
   std::size_t degenerate_triangles = 0;       ///< zero-area triangles (not tested)
   std::vector<face_handle> degenerate_faces;  ///< the first max_reported faces holding one
-  double time_ms = 0;                         ///< wall-clock time of the whole check
-  bool complete = true;                       ///< false when the budget stopped the search
+  double time_ms = 0;                         ///< deprecated, removed in 0.7: milliseconds
 };
 
 namespace detail::self_intersect {
@@ -167,7 +172,7 @@ bool triangles_intersect(const std::array<P, 3>& a, const std::array<P, 3>& b) {
 
 /// Finds the pairs of faces of m whose triangles intersect, exactly (see the file comment
 /// for what is tested and what counts as intersecting). O(n log n + candidate pairs) for n
-/// triangles, candidate pairs capped by options.max_candidate_pairs.
+/// triangles, candidate pairs capped by options.work_budget.
 template <Point3 P>
 self_intersection_result self_intersections(const surface_mesh<P>& m,
                                             const self_intersection_options& options = {}) {
@@ -205,10 +210,13 @@ self_intersection_result self_intersections(const surface_mesh<P>& m,
   }
   std::vector<si::entry>().swap(all);
   const std::size_t n = tris.size();
-  const std::size_t budget =
-      options.max_candidate_pairs != 0 ? options.max_candidate_pairs : 256 * n + (std::size_t{1} << 20);
+  const std::size_t budget = options.max_candidate_pairs != 0
+                                 ? options.max_candidate_pairs
+                                 : options.work_budget.limit(256 * n + (std::size_t{1} << 20));
   auto finish = [&] {
-    r.time_ms = start.ms();
+    r.milliseconds = start.ms();
+    r.work = r.candidate_pairs;
+    r.time_ms = r.milliseconds;
     return r;
   };
   if (n < 2) return finish();
@@ -262,7 +270,7 @@ self_intersection_result self_intersections(const surface_mesh<P>& m,
     message += std::to_string(r.pairs_tested);
     message += " pairs of ";
     message += std::to_string(n);
-    message += " triangles (raise self_intersection_options::max_candidate_pairs)";
+    message += " triangles (raise self_intersection_options::work_budget)";
     throw error(error_category::budget, message);
   }
   si::compact(found);

@@ -17,8 +17,10 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/cells/cell_complex.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/core/tolerance.hpp"
 #include "cellforge/core/wireframe.hpp"
+#include "cellforge/core/work_budget.hpp"
 
 namespace cellforge {
 
@@ -55,8 +57,8 @@ struct certify_options {
   /// Work budget in steps (grid pairs, exact pair tests, chain steps). 0: unlimited;
   /// `automatic` (the default): 256 steps per face, edge and input edge, plus 2^22.
   /// Past it certify stops with complete = false (and ok() false).
-  std::uint64_t work_budget = automatic;
-  static constexpr std::uint64_t automatic = ~std::uint64_t{0};
+  cellforge::work_budget work_budget = cellforge::work_budget::automatic;
+  static constexpr std::uint64_t automatic = cellforge::work_budget::automatic;  ///< the same constant
   bool check_input_edges = true;  ///< every input edge on a face (needs the wireframe)
   bool check_edges = true;        ///< every face edge genuine (no seams in a flat surface)
   /// An edge on just two coplanar faces (a seam in a flat surface) fails as seam_edge; false:
@@ -113,11 +115,8 @@ constexpr const char* to_string(certificate_failure::kind k) noexcept {
 
 /// What certify found: ok() when every check ran to the end and none failed; the failures, one
 /// per kind, and what was counted on the way.
-struct certificate_result {
-  double milliseconds = 0.0;             ///< wall time of the whole check
-  std::vector<std::string> diagnostics;  ///< notes that are not failures (dangling input trees, ...)
+struct certificate_result : stage_report {
   std::vector<certificate_failure> failures;
-  bool complete = true;  ///< false when the work budget stopped a check (then ok() is false)
   bool ok() const noexcept { return complete && failures.empty(); }
   explicit operator bool() const noexcept { return ok(); }
   /// The failure of kind k, or nullptr. O(kinds).
@@ -150,7 +149,6 @@ struct certificate_result {
   // The crossing test.
   std::size_t face_pairs_tested = 0;      ///< face (or face-edge) pairs with overlapping boxes
   std::size_t triangle_pairs_tested = 0;  ///< of those decided triangle by triangle
-  std::uint64_t work = 0;                 ///< steps spent (see certify_options::work_budget)
 };
 
 namespace detail::certify {

@@ -31,6 +31,7 @@
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/rounded_solid.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"
 #include "cellforge/io/detail/output_buffer.hpp"
 #include "cellforge/io/file_path.hpp"
@@ -52,8 +53,10 @@ struct step_write_options {
 };
 
 /// What write_step wrote: solids (one per volume), their cavities, open shells, ADVANCED_FACEs
-/// (a face shared by two volumes counts twice), edges, vertices and planes (each once), entities.
-struct step_result {
+/// (a face shared by two volumes counts twice), edges, vertices and planes (each once), entities;
+/// diagnostics: what the file's reader may object to (faces not flat to the uncertainty, volumes
+/// whose outer shell encloses no positive volume, written all the same).
+struct step_result : stage_report {
   std::size_t solids = 0;
   std::size_t voids = 0;
   std::size_t open_shells = 0;
@@ -65,10 +68,6 @@ struct step_result {
   std::size_t conics = 0;     ///< CIRCLEs and ELLIPSEs (a blend's end arcs)
   std::size_t entities = 0;
   double uncertainty = 0;  ///< the distance accuracy written, in model units
-  double milliseconds = 0;
-  /// What the file's reader may object to: faces not flat to the uncertainty, volumes whose
-  /// outer shell encloses no positive volume (written all the same).
-  std::vector<std::string> diagnostics;
 };
 
 /// Writes cc as STEP AP214: one MANIFOLD_SOLID_BREP per volume (BREP_WITH_VOIDS with cavities)

@@ -35,6 +35,7 @@
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
 #include "cellforge/core/wireframe.hpp"
+#include "cellforge/core/work_budget.hpp"
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"
 #include "cellforge/io/detail/output_buffer.hpp"
@@ -95,10 +96,11 @@ struct svg_options {
   /// Visible or hidden pieces shorter than this (projected, in pixels) join their neighbours.
   double min_piece_px = 0.05;
   /// Work units (grid cells visited, faces considered, polygon sides examined) the exact
-  /// hidden-line tests may spend; 0: 1.6 x 10^7 + 256 per edge and point. Past it, edges and points
+  /// hidden-line tests may spend; automatic (the default): 1.6 x 10^7 + 256 per edge and point;
+  /// 0: unlimited. Past it, edges and points
   /// are judged from one point against a few of the nearest faces; past twice it, they are
   /// drawn visible untested (svg_result counts both). The picture then stays near-linear.
-  std::uint64_t work_budget = 0;
+  cellforge::work_budget work_budget = cellforge::work_budget::automatic;
 };
 
 /// What a picture holds; edge counts are of the visibility computation, drawn or not.

@@ -29,6 +29,7 @@
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/sketch/elliptical_arc.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 
@@ -74,13 +75,11 @@ struct arc_pair {
 /// What pair_arcs found: the pairs, the arcs left unpaired (each with a diagnostic), counts and
 /// the time.
 template <Point2 P>
-struct arc_pairing_result {
+struct arc_pairing_result : stage_report {
   std::vector<arc_pair<P>> pairs;
   std::vector<std::uint32_t> unpaired;  ///< arcs in no pair
   std::size_t arcs = 0, curves = 0;     ///< arcs read, end curves they make
   std::size_t by_contour = 0, by_parallel_lines = 0, unpaired_curves = 0;
-  double milliseconds = 0;
-  std::vector<std::string> diagnostics;
 };
 
 namespace detail::pairing {

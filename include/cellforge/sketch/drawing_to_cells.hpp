@@ -25,6 +25,7 @@
 #include "cellforge/core/detail/work_budget.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/core/wireframe.hpp"
 #include "cellforge/sketch/face_finder.hpp"
 #include "cellforge/sketch/inflation.hpp"
@@ -61,7 +62,7 @@ struct drawing_options {
 /// Every stage's result: the faces found, the faces with holes, the inflation, the 3D
 /// wireframe and the cell complex (positions in Q), and whether 2D and 3D faces agree.
 template <Point3 Q, Point2 P2 = glm::dvec2>
-struct drawing_result {
+struct drawing_result : stage_report {
   using point_type = Q;
   face_finder_result faces;
   tidy_result<P2> tidy;  ///< the drawing inflated: `tidy.applied` when tidied, else the input as drawn
@@ -90,8 +91,6 @@ struct drawing_result {
   /// keeps walls no edge needs, or an inexact drawing leaves `doubts`. Alternatives:
   /// `faces.alternatives`, `cells.alternatives`.
   bool flagged = false;
-  double milliseconds = 0.0;
-  std::vector<std::string> diagnostics;
 };
 
 namespace detail::sketch {

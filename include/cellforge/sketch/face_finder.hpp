@@ -31,6 +31,8 @@
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/detail/work_budget.hpp"
 #include "cellforge/core/error.hpp"
+#include "cellforge/core/stage_report.hpp"
+#include "cellforge/core/work_budget.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 
 namespace cellforge {
@@ -63,7 +65,7 @@ struct face_finder_options {
   /// and reject it when they reach a dead end (a half-edge that no face can continue).
   bool look_ahead = true;
   /// Work budget in abstract steps (string joins tried); 0 = unlimited. Exhausted: a budget error.
-  std::uint64_t work_budget = 400'000'000;
+  cellforge::work_budget work_budget = 400'000'000;
   /// Compute ranked alternatives (the other finder, other starts) when the answer fails its check.
   bool alternatives_when_flagged = true;
   /// Faces beyond two per edge: after the finder, search the loops its edges still need (internal
@@ -108,7 +110,7 @@ struct face_alternative {
 
 /// The faces of a drawing: loops as junction cycles (each edge's two half-edges on two loops,
 /// traversed in opposite directions), the check, counts, time and diagnostics.
-struct face_finder_result {
+struct face_finder_result : stage_report {
   face_finder_kind kind = face_finder_kind::varley_company;
   std::vector<std::vector<std::uint32_t>> loops;
   face_check check;
@@ -126,9 +128,6 @@ struct face_finder_result {
   /// Loops were added or dropped after the string algorithm, and the wall search from no loops
   /// found others (in `alternatives`): flagged.
   bool ambiguous = false;
-  std::uint64_t work = 0;  ///< steps spent from the budget
-  double milliseconds = 0.0;
-  std::vector<std::string> diagnostics;
 };
 
 /// Finds the faces of a wireframe line drawing (every edge drawn, hidden ones too, a parallel

@@ -35,6 +35,7 @@
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/core/point_traits.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 #include "cellforge/wireframe/wire_graph.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
@@ -139,7 +140,7 @@ struct inflation_reading {
 
 /// What inflate found. points == readings[0].points.
 template <class Q>
-struct inflation_result {
+struct inflation_result : stage_report {
   using point_type = Q;
   std::vector<Q> points;  ///< the preferred reading: junction i at (x_i, y_i, z_i), mean z 0
   inflation_method method = inflation_method::direct;
@@ -151,8 +152,6 @@ struct inflation_result {
   std::size_t freedom = 0;     ///< dimension of the planar-face readings, depth offset removed
   std::size_t iterations = 0;  ///< Levenberg–Marquardt iterations over all starts
   std::size_t starts = 0;      ///< optimisation starts run
-  double milliseconds = 0.0;
-  std::vector<std::string> diagnostics;
   // The recovered view (direct only; view_found false otherwise).
   bool view_found = false;
   std::array<std::array<double, 2>, 3> axis_directions{};  ///< unit 2D images of the model axes

@@ -25,6 +25,7 @@
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/sketch/arc_pairing.hpp"
 #include "cellforge/sketch/elliptical_arc.hpp"
 #include "cellforge/sketch/face_finder.hpp"
@@ -63,7 +64,7 @@ struct skeleton_blend {
 /// junction of the input went (npos when it was suppressed), the faces found (when
 /// classifying), the skeleton's validation, counts, time and diagnostics.
 template <Point2 P>
-struct round_skeleton_result {
+struct round_skeleton_result : stage_report {
   static constexpr std::uint32_t npos = ~std::uint32_t{0};
   line_drawing<P> skeleton;
   std::vector<skeleton_blend<P>> blends;
@@ -73,8 +74,6 @@ struct round_skeleton_result {
   drawing_validation validation;  ///< validate_drawing of the skeleton
   std::size_t rounds = 0, fillets = 0, unknown = 0;
   std::size_t suppressed_junctions = 0, suppressed_lines = 0, new_junctions = 0;
-  double milliseconds = 0;
-  std::vector<std::string> diagnostics;
 };
 
 /// The polyhedral skeleton of an arc drawing: pair_arcs, then per pair suppress its arcs, the

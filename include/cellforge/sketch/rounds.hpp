@@ -36,6 +36,7 @@
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
 #include "cellforge/core/rounded_solid.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/sketch/drawing_to_cells.hpp"
 #include "cellforge/sketch/elliptical_arc.hpp"
 #include "cellforge/sketch/round_skeleton.hpp"
@@ -100,7 +101,7 @@ struct edge_round {
 /// What reconstruct_rounds made: the skeleton and its blends, the skeleton's reading as a cell
 /// complex, one round attribute per blend, counts, time and diagnostics.
 template <Point3 Q, Point2 P>
-struct rounds_result {
+struct rounds_result : stage_report {
   round_skeleton_result<P> skeleton;
   drawing_result<Q, P> reading;
   std::vector<edge_round> rounds;
@@ -111,8 +112,6 @@ struct rounds_result {
   bool depth_corrected = false;
   std::array<double, 3> depth_map{1, 0, 0};
   std::size_t consistent = 0, inconsistent = 0;
-  double milliseconds = 0;
-  std::vector<std::string> diagnostics;
 };
 
 /// Options of rounded_mesh.
@@ -146,14 +145,12 @@ struct rounded_brep_options {
 /// and end arcs), its volume from the skeleton's and the blends' cross-sections, counts, time;
 /// ok false, with the reason in diagnostics, when the shell fails its check (every edge used once
 /// each way, every vertex on its surfaces and curves, positive volume).
-struct rounded_brep_result {
+struct rounded_brep_result : stage_report {
   rounded_solid solid;
   double volume = 0;
   std::size_t planar_faces = 0, blend_faces = 0, lines = 0, arcs = 0;
   std::size_t skipped = 0;  ///< blends with no radius: their edges stay sharp
   bool ok = false;
-  double milliseconds = 0;
-  std::vector<std::string> diagnostics;
 };
 
 /// The round attributes of a skeleton already read: for each blend of `sk`, its two faces and

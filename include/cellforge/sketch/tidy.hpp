@@ -30,6 +30,7 @@
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/detail/work_budget.hpp"
 #include "cellforge/core/error.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/sketch/detail/tidy_classes.hpp"
 #include "cellforge/sketch/inflation.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
@@ -67,7 +68,7 @@ struct tidy_options {
 
 /// The tidied drawing, what was made parallel, and how far junctions moved.
 template <Point2 P>
-struct tidy_result {
+struct tidy_result : stage_report {
   line_drawing<P> drawing;
   std::size_t classes = 0;         ///< direction classes of two or more lines
   std::size_t parallel_lines = 0;  ///< lines in those classes
@@ -82,8 +83,6 @@ struct tidy_result {
   double planarity = 0.0;  ///< largest planarity residual of `depth`, relative to the drawing's size
   std::vector<double> depth;
   std::size_t steps = 0;  ///< tidy_to_solid: Gauss–Newton steps taken
-  double milliseconds = 0.0;
-  std::vector<std::string> diagnostics;
 };
 
 namespace detail {

@@ -23,9 +23,11 @@
 #include "cellforge/cells/cell_complex.hpp"
 #include "cellforge/cells/conversion.hpp"
 #include "cellforge/core/detail/span_of.hpp"
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 #include "cellforge/smooth/continuous_surfaces.hpp"
 #include "cellforge/smooth/edge_curve.hpp"
@@ -78,8 +80,9 @@ struct curve_end {
   P direction = point_traits<P>::make(0, 0, 0);  ///< unit tangent direction along the curve (v0 → v1)
 };
 
-/// The part of smooth_result that holds no points.
-struct smooth_result_base {
+/// The part of smooth_result that holds no points. stage_report: milliseconds the call;
+/// complete false (with a diagnostic) when max_iterations ran out before the midpoints settled.
+struct smooth_result_base : stage_report {
   std::vector<std::uint32_t> surface_of_face;  ///< by face id (cell face id for a complex)
   std::size_t num_surfaces = 0;
   std::size_t num_cubic = 0, num_quadratic = 0, num_straight = 0;
@@ -408,9 +411,18 @@ smooth_result<P> with_cell_ids(const cell_topology& cc, const halfedge_mesh& m, 
 /// inconsistently oriented mesh, error(invalid_input) for degenerate faces, non-finite points or bad options.
 template <Point3 P>
 smooth_result<P> smooth_edges(const surface_mesh<P>& m, const smooth_options& options = {}) {
+  const detail::stopwatch clock;
   detail::smooth::check_options(options);
   const solid_geometry g = solid_geometry_of(m, "smooth_edges");
-  return detail::smooth::result_as<P>(detail::smooth::smoother(m, g, options).run());
+  smooth_result<P> r = detail::smooth::result_as<P>(detail::smooth::smoother(m, g, options).run());
+  if (!r.converged && !r.averaged && r.iterations == options.max_iterations) {
+    r.complete = false;
+    r.diagnostics.push_back(
+        cellforge::detail::cat("the midpoints still moved after ", std::to_string(r.iterations),
+                               " cycles (smooth_options::max_iterations, the work budget)"));
+  }
+  r.milliseconds = clock.ms();
+  return r;
 }
 
 /// smooth_edges() on volume v of a cell complex (via volume_boundary_mesh): curves carry cell edge

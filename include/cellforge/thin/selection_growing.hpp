@@ -22,6 +22,8 @@
 
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
+#include "cellforge/core/stage_report.hpp"
+#include "cellforge/core/work_budget.hpp"
 
 namespace cellforge {
 
@@ -50,13 +52,14 @@ struct growing_options {
   int selection_cap = 40;
   double keep_ratio = 1.1;
   thin_mode mode = thin_mode::automatic;
-  std::uint64_t work_budget = 2'000'000'000;
+  cellforge::work_budget work_budget = 2'000'000'000;
   std::uint32_t scalable_above = 4000;  ///< automatic mode: more faces than this grow scalably
 };
 
 /// Per cycle (selection size 1 .. faces−1, fewer when the budget ran out) the least boundary
 /// length and a way to that selection's boundary (cycle_loop below).
-struct growing_result {
+/// complete (stage_report): false when work_budget ran out; cycles stop early.
+struct growing_result : stage_report {
   static constexpr std::uint32_t no_node = 0xFFFFFFFF;
   std::vector<double> cycle_lengths;
   /// Faithful mode: each cycle's loop as sorted inner slots (slots whose face is selected and
@@ -69,8 +72,6 @@ struct growing_result {
   std::uint64_t duplicates_dropped = 0;
   std::uint64_t selections_kept = 0;  ///< survivors summed over the cycles
   std::size_t max_kept = 0;           ///< most survivors in one cycle
-  bool complete = true;               ///< false: work_budget ran out; cycles stop early
-  std::vector<std::string> diagnostics;
 };
 
 /// Grows selections from face `start` until all but one face are selected (seed §5.2,

@@ -26,6 +26,7 @@
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
+#include "cellforge/core/work_budget.hpp"
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 #include "cellforge/thin/central_axis.hpp"
@@ -51,7 +52,8 @@ struct thin_options {
   int averaging_window = 5;           ///< seed detector's ±window, 1..10000
   double envelope_rings =
       1.0;  ///< prominence: rim window in estimated rings of faces, 0..1000 (docs/thin.md)
-  std::uint64_t work_budget = 2'000'000'000;  ///< candidate selections examined; then complete = false
+  cellforge::work_budget work_budget =
+      2'000'000'000;  ///< candidate selections examined; then complete = false
   /// Merge flat triangle fans and pairs of triangles into clusters before growing (seed §8.2;
   /// docs/thin.md "Clusters"). Off by default; on, cycles count clusters, not mesh faces.
   bool cluster_faces = false;
@@ -92,7 +94,6 @@ void check_options(const thin_options& o) {
   if (o.averaging_window < 1 || o.averaging_window > 10000)
     bad(cellforge::detail::cat("averaging_window is ", std::to_string(o.averaging_window),
                                "; allowed 1 to 10000"));
-  if (o.work_budget < 1) bad("work_budget is 0; allowed at least 1");
   if (o.mode != thin_mode::fast && o.mode != thin_mode::faithful && o.mode != thin_mode::scalable &&
       o.mode != thin_mode::automatic)
     bad("mode is not fast, faithful, scalable or automatic");
@@ -607,6 +608,8 @@ thin_result<glm::dvec3> find(thin_input prepared, const thin_options& options) {
     r.loops.push_back(std::move(loop));
   }
   r.detection_ms = clock.ms();
+  r.milliseconds = r.axis_ms + r.growing_ms + r.detection_ms;
+  r.work = r.selections_examined;
   return r;
 }
 

@@ -15,6 +15,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/point_traits.hpp"
+#include "cellforge/core/stage_report.hpp"
 
 namespace cellforge {
 
@@ -37,8 +38,10 @@ struct thin_loop : thin_loop_base {
   std::vector<P> points;  ///< positions of vertices (the mesh's own points, converted back from double)
 };
 
-/// The part of a thin_result that holds no points.
-struct thin_result_base {
+/// The part of a thin_result that holds no points. milliseconds (stage_report): the phases'
+/// sum; complete false when thin_options::work_budget ran out: the growing stopped early
+/// (cycle_lengths is shorter than faces − 1) and loops are only looked for in the cycles grown.
+struct thin_result_base : stage_report {
   int axis_iterations = 0;
   bool axis_converged = false;
   std::uint32_t start_face = 0;       ///< mesh face (or cell face) the growing started from
@@ -49,11 +52,7 @@ struct thin_result_base {
   double ring_cycles = 0;         ///< estimated cycles per ring of faces (edges a plane across the axis cuts)
   std::uint32_t grown_faces = 0;  ///< faces the growing ran over: mesh faces, or clusters (cluster_faces)
   std::uint32_t clustered_faces = 0;  ///< cluster_faces: mesh faces merged into fans or pairs
-  double axis_ms = 0, growing_ms = 0, detection_ms = 0;
-  /// False when thin_options::work_budget ran out: the growing stopped early (cycle_lengths is
-  /// shorter than faces − 1) and loops are only looked for in the cycles grown; see diagnostics.
-  bool complete = true;
-  std::vector<std::string> diagnostics;
+  double axis_ms = 0, growing_ms = 0, detection_ms = 0;  ///< the phases' wall times
 };
 
 /// Everything find_thin_points found and how much work it took; positions and the axis in P.

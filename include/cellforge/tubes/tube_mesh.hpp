@@ -32,6 +32,7 @@
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/morton.hpp"
 #include "cellforge/core/point_traits.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/halfedge/mesh_geometry.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"
 #include "cellforge/tubes/branch_mesh.hpp"
@@ -78,9 +79,12 @@ struct tube_options {
   std::span<const std::int64_t> node_ids = {};
 };
 
-/// What make_tubes built, and how long each stage took.
+/// What make_tubes built, and how long each stage took. stage_report: milliseconds the whole
+/// call; complete false when the self-intersection check stopped at its budget; diagnostics what
+/// the mesher decided on its own, one sentence each (sharp bends, virtual sections, inserted
+/// nodes, spheres, a genus that differs from the cycle rank).
 template <Point3 P>
-struct tubes_result {
+struct tubes_result : stage_report {
   surface_mesh<P> mesh;  ///< with face property "f:tube_source" (tube_face_source)
   tube_construct construct;
   std::size_t junctions = 0;       ///< branches and sharp bends meshed as junctions
@@ -111,7 +115,8 @@ struct tubes_result {
   /// Stage times. Faces are linked into half-edges as they are made, so the junction and path
   /// stages include their faces' linking; mesh_ms is the check of every vertex's fan, the shells
   /// and the move into the caller's point type.
-  double construct_ms = 0, junctions_ms = 0, paths_ms = 0, mesh_ms = 0, subdivision_ms = 0, total_ms = 0;
+  double construct_ms = 0, junctions_ms = 0, paths_ms = 0, mesh_ms = 0, subdivision_ms = 0;
+  double total_ms = 0;  ///< deprecated, removed in 0.7: milliseconds
   /// Quality: per skeleton edge, the smallest cross-section along it (the area of a ring of
   /// its path seen along the tube, over π r² of its node; a regular octagon is 0.90; NaN for
   /// an edge with no ring of its own, e.g. between two junctions' rings), the smallest over
@@ -128,9 +133,6 @@ struct tubes_result {
   std::size_t folded_edges = 0;
   bool self_intersections_checked = false;
   double check_ms = 0;
-  /// What the mesher decided on its own, one sentence each (sharp bends, virtual sections,
-  /// inserted nodes, spheres, a genus that differs from the cycle rank).
-  std::vector<std::string> diagnostics;
 };
 
 namespace detail::tubes {

@@ -42,7 +42,7 @@ enum class tracer_kind : std::uint8_t {
 struct trace_options {
   tracer_kind kind = tracer_kind::planar;
   tolerance planarity{1e-9};  ///< a point lies in a plane when closer than this (relative to model size)
-  std::uint64_t work_budget =
+  cellforge::work_budget work_budget =
       200'000'000;                    ///< abstract steps (path extensions, incidences visited); 0 = none
   std::size_t max_circuit_edges = 0;  ///< seed_bfs only: longest circuit searched; 0 = number of edges
   /// planar only, for noisy coordinates: refit each plane to the vertices it holds and give its
@@ -58,7 +58,6 @@ struct trace_result : stage_report {
   std::size_t plane_components = 0;  ///< planar: connected in-plane edge sets traced
   std::size_t holes = 0;             ///< planar: loops assigned as holes of a containing face
   std::size_t circuits = 0;          ///< circuits found (before making them unique)
-  std::uint64_t work = 0;            ///< steps spent against the budget
 };
 
 namespace detail {

@@ -38,7 +38,7 @@ struct arrangement_options {
   tolerance planarity{1e-9};   ///< distances under this (relative to model size) count as zero
   bool drop_crossing = true;   ///< the selection rule; false keeps every usable candidate
   bool enforce_ranks = false;  ///< seed: drop the largest face at an edge exceeding its maximum rank
-  std::uint64_t work_budget = 500'000'000;
+  cellforge::work_budget work_budget = 500'000'000;
 };
 
 /// The selection and the rank analysis.

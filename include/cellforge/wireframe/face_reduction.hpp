@@ -27,7 +27,7 @@ struct reduction_options {
   bool require_planar = true;    ///< beyond the seed: every vertex within `planarity` of the face plane
   tolerance planarity{1e-9};     ///< relative to model size
   bool remove_face_sums = true;  ///< seed: a face equal to the sum of two adjacent smaller faces is unusable
-  std::uint64_t work_budget = 200'000'000;
+  cellforge::work_budget work_budget = 200'000'000;
 };
 
 /// Per candidate: the measures the seed uses and the verdict.
@@ -167,6 +167,7 @@ reduction_result reduce_faces(const wire_graph& g, const std::vector<wire_face>&
     r.remaining += q.usable;
     r.secondary += q.usable && !q.primary;
   }
+  r.work = budget.used;
   r.milliseconds = clock.ms();
   return r;
 }

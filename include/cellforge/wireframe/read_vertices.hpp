@@ -40,7 +40,7 @@ struct read_options {
   bool strict = false;
   bool split_at_vertices = true;  ///< split an edge where another vertex lies inside it (T-junction, overlap)
   /// Steps the merge and split searches may take (cells visited, vertices tested); 0: no limit.
-  std::uint64_t work_budget = 200'000'000;
+  cellforge::work_budget work_budget = 200'000'000;
   /// Number the graph's vertices along a Morton curve and its edges by their ends, so that the
   /// pipeline's speed does not depend on the caller's numbering (results are mapped back to
   /// it); false keeps the caller's order in the graph.
@@ -603,6 +603,7 @@ read_result read_vertices(const G& wire, const read_options& options = {}) {
   g.center = kept_box.center();
   g.merge_tolerance = merged_within;
   g.link();
+  r.work = budget.used;
   r.milliseconds = clock.ms();
   return r;
 }

@@ -61,7 +61,7 @@ struct volume_options {
   /// 0 = none. A group search that reaches it (or 2^15 nodes) takes its best certified reading,
   /// says so in a diagnostic and clears volume_result::complete; the rounds then stop, so that
   /// the answer is the best reading found, never a throw.
-  std::uint64_t work_budget = 200'000'000;
+  cellforge::work_budget work_budget = 200'000'000;
   /// Whole readings of each group searched that keep no more faces no edge needs than the one
   /// taken, reported in volume_result::alternatives (at most this many per group).
   std::size_t alternatives_per_group = 8;
@@ -109,9 +109,8 @@ struct volume_result : stage_report {
   /// edge needs), then the whole readings of groups that keep no more such faces than the one
   /// taken (`undecided` ones make the answer ambiguous, as `unforced` faces do).
   std::vector<volume_alternative> alternatives;
-  /// False when a group search ran out of the work budget (or its node limit): the answer is
-  /// the best certified reading found, not necessarily the best there is (status `budget`).
-  bool complete = true;
+  // complete (stage_report): false when a group search ran out of the work budget (or its node
+  // limit): the answer is the best certified reading found, not necessarily the best there is.
   double manifold_milliseconds = 0.0;  ///< the seed's "manifold analysis" row: rotation order and shells
   std::size_t groups = 0;              ///< groups of faces no edge needs that the reading searched
   std::size_t readings = 0;  ///< certified readings the searches met (the best of each group is taken)

@@ -21,17 +21,12 @@
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/detail/work_budget.hpp"
 #include "cellforge/core/error.hpp"
+#include "cellforge/core/stage_report.hpp"
 
 namespace cellforge {
 
 /// "No such element" for 32-bit indices.
 inline constexpr std::uint32_t no_index = 0xffffffffu;
-
-/// What every stage reports besides its own counts: wall time and human-readable notes.
-struct stage_report {
-  double milliseconds = 0.0;             ///< wall time of the stage
-  std::vector<std::string> diagnostics;  ///< things the stage changed or doubted, one per line
-};
 
 /// One edge as seen from one of its vertices (seed 000 §4.1, fig. 9: "+L1, -L2").
 struct wire_incidence {

@@ -78,8 +78,10 @@ cells_validation_options wireframe_check_options(const wireframe_options& option
 }
 
 /// The cell complex (positions in the wireframe's point type P), its input, and every stage's report.
+/// milliseconds: the stages' times summed; complete: false when a budget stopped the reading
+/// (status `budget`).
 template <Point3 P>
-struct wireframe_result {
+struct wireframe_result : stage_report {
   using point_type = P;
   cell_complex_input<P> input;  ///< points, edges, faces (loops), volumes (signed faces)
   cell_complex<P> cells;        ///< make_cell_complex(input), when options.build_complex
@@ -107,8 +109,7 @@ struct wireframe_result {
   extra_faces_result extra;
   volume_result volume;
   relations_result relations;
-  double assembly_milliseconds = 0.0;    ///< the seed's "cell list assembly" row
-  std::vector<std::string> diagnostics;  ///< assembly notes (edges left out because they bound no face)
+  double assembly_milliseconds = 0.0;  ///< the seed's "cell list assembly" row
   /// What the answer is: solid (the certificate passes, every face decided by the wireframe),
   /// ambiguous (it passes, but walls no edge needs were kept: `unforced`), not_a_solid (the
   /// certificate or validate failed, input edges on cycles lie on no face, or faces close no

@@ -292,8 +292,7 @@ class basic_certifier {
     merge_ = o_.merge.absolute(box);
     flat_ = o_.planarity.absolute(box);
     const std::uint64_t size = cc_.num_faces() + cc_.num_edges() + (wire_ ? wire_->edges.size() : 0);
-    budget_.limit =
-        o_.work_budget == certify_options::automatic ? 256 * size + (std::uint64_t{1} << 22) : o_.work_budget;
+    budget_.limit = o_.work_budget.limit(256 * size + (std::uint64_t{1} << 22));
     count_faces();
     if (o_.check_edges) check_edges();
     if (o_.check_volumes) check_volumes();

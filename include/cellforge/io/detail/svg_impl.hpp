@@ -188,7 +188,7 @@ auto basic_svg_scene<U>::render(const svg_options& o) const -> frame {
   for (const auto& l : layers_)
     if (l.kind == layer_kind::points) num_points += l.point_end - l.point_begin;
   const std::uint64_t budget =
-      o.work_budget > 0 ? o.work_budget : 16'000'000 + 256 * std::uint64_t{fr.edges.size() + num_points};
+      o.work_budget.limit(16'000'000 + 256 * std::uint64_t{fr.edges.size() + num_points});
   const std::uint64_t hard_limit = budget > detail::occlusion_grid::no_limit / 2 ? budget : 2 * budget;
   constexpr std::size_t approximate_faces = 16;  // nearest faces looked at past the budget
   for (auto& e : fr.edges) {

@@ -1390,6 +1390,7 @@ face_finder_result find_faces_in(const drawing_graph& g, const face_finder_optio
     r.alternatives = std::move(alt);
   }
   r.work = budget.used;
+  r.complete = !r.budget_fallback;
   r.milliseconds = clock.ms();
   return r;
 }

@@ -273,7 +273,7 @@ growing_result grow_fast(const thin_face_graph& g, std::uint32_t start, const gr
                             child_length(g, s.length, f, [&](std::uint32_t x) { return sets.has(t, x); })});
       r.selections_examined += candidates.size();
     }
-    if (r.selections_examined > o.work_budget) {
+    if (r.selections_examined > o.work_budget.limit(~std::uint64_t{0})) {
       out_of_budget(r, o.work_budget, nf);
       break;
     }
@@ -546,7 +546,7 @@ growing_result grow_scalable(const thin_face_graph& g, std::uint32_t start, cons
       }
       next_child(p);
     }
-    if (r.selections_examined > o.work_budget) {
+    if (r.selections_examined > o.work_budget.limit(~std::uint64_t{0})) {
       out_of_budget(r, o.work_budget, nf);
       break;
     }
@@ -681,7 +681,7 @@ growing_result grow_faithful(const thin_face_graph& g, std::uint32_t start, cons
         stored.push_back(std::move(child));
       }
     }
-    if (r.selections_examined > o.work_budget) {
+    if (r.selections_examined > o.work_budget.limit(~std::uint64_t{0})) {
       out_of_budget(r, o.work_budget, nf);
       break;
     }

@@ -722,7 +722,7 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
       if (attempt == 1 || (merged > 0 && std::adjacent_find(pairs.begin(), pairs.end()) == pairs.end() &&
                            validate_skeleton(g2).ok())) {
         tubes_result<P> again = make_tubes_of(g2, options, &next);
-        again.total_ms = t_start.ms();
+        again.milliseconds = again.total_ms = t_start.ms();
         return again;
       }
     }
@@ -821,7 +821,9 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
     const self_intersection_result si = self_intersections(res.mesh);
     res.self_intersecting_face_pairs = si.intersecting_face_pairs;
     res.self_intersections_checked = si.complete;
-    res.check_ms = si.time_ms;
+    res.check_ms = si.milliseconds;
+    res.work = si.work;
+    res.complete = si.complete;
     if (si.intersecting_face_pairs > 0)
       res.diagnostics.push_back(
           std::to_string(si.intersecting_face_pairs) +
@@ -832,7 +834,7 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
     res.diagnostics.push_back(cellforge::detail::cat("the mesh's genus ", std::to_string(res.genus),
                                                      " differs from the skeleton's cycle rank ",
                                                      std::to_string(res.cycle_rank)));
-  res.total_ms = t_start.ms();
+  res.milliseconds = res.total_ms = t_start.ms();
   return res;
 }
 

@@ -724,6 +724,7 @@ arrangement_result arrange_faces(const wire_graph& g, const std::vector<wire_fac
     }
   }
   if (options.enforce_ranks) std::erase_if(r.selected, [&](std::uint32_t i) { return removed[i] != 0; });
+  r.work = budget.used;
   r.milliseconds = clock.ms();
   return r;
 }

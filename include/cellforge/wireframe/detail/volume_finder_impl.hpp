@@ -966,6 +966,7 @@ volume_result find_volumes(const wire_graph& g, const std::vector<wire_face>& fa
   r.groups = reader.groups_searched;
   r.readings = reader.readings_certified;
   r.complete = reader.complete;
+  r.work = budget.used;
   for (auto& note : reader.notes) r.diagnostics.push_back(std::move(note));
   std::vector<char>& drop = reader.drop;
   detail::union_find& merged = reader.merged;

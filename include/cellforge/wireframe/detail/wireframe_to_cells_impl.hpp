@@ -137,6 +137,18 @@ std::string pinched_edge(const cell_complex_input<P>& in) {
   return {};
 }
 
+/// r's stage_report: the stages' times summed, complete unless a budget stopped it. O(1).
+template <Point3 P>
+wireframe_result<P> sum_stages(wireframe_result<P> r) {
+  r.milliseconds = r.read.milliseconds + r.tolerance.milliseconds + r.trace.milliseconds +
+                   r.unique.milliseconds + r.reduction.milliseconds + r.arrangement.milliseconds +
+                   r.extra.milliseconds + r.volume.milliseconds + r.relations.milliseconds +
+                   r.assembly_milliseconds + r.certificate.milliseconds;
+  r.work = r.trace.work + r.volume.work + r.certificate.work;
+  r.complete = r.status != solid_status::budget;
+  return r;
+}
+
 /// Sets r.status and its one-line reason from the validation (`invalid`: the broken invariant,
 /// or empty), the certificate and what the stages removed or left undecided. O(1).
 template <Point3 P>
@@ -421,11 +433,11 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
       }
     }
     judge(r, r.validation.ok() ? std::string() : r.validation.message, used.certify_result);
-    return r;
+    return sum_stages(std::move(r));
   }
   r.assembly_milliseconds = clock.ms();
   r.status_reason = "no cell complex built (build_complex is off), so not certified";
-  return r;
+  return sum_stages(std::move(r));
 }
 
 /// Whether answer a is better than b: solid > ambiguous > not_a_solid > budget, and between
