@@ -192,7 +192,7 @@ std::vector<growth_case>& growth_cases() {
     const auto base = cellforge::make_mesh(
         cellforge::triangulate_fan(cellforge::samples::thin_dumbbell<glm::dvec3>(12, 21, false).soup));
     for (const int levels : {2, 3, 4, 5}) {
-      cellforge::loop_options lo;
+      cellforge::loop_subdivision_options lo;
       lo.levels = levels;
       auto m = cellforge::loop_subdivided(base, lo);
       const std::size_t faces = m.num_faces();

@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
     std::printf("exact fallbacks  %zu orientation tests the filter could not decide\n",
                 report.exact_evaluations);
     std::printf("time             %.3f ms\n", ms);
-    const cellforge::validation_result valid = cellforge::validate(hull);
+    const cellforge::mesh_validation valid = cellforge::validate(hull);
     std::printf("valid            %s, %s\n", valid.ok() ? "yes" : valid.message.c_str(),
                 hull.is_closed() ? "closed" : "not closed");
     if (!valid.ok()) {

@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
     const cellforge::surface_mesh<glm::dvec3> mesh =
         cellforge::make_mesh(soup, &report, {.split_nonmanifold_vertices = true});
     const auto t2 = clock::now();
-    const cellforge::validation_result valid = cellforge::validate(mesh);
+    const cellforge::mesh_validation valid = cellforge::validate(mesh);
     const auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
 
     std::map<std::size_t, std::size_t> face_sizes;

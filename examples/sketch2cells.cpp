@@ -24,7 +24,7 @@
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/io/cells_io.hpp"
-#include "cellforge/io/drawing_svg.hpp"
+#include "cellforge/io/drawing_pictures.hpp"
 #include "cellforge/io/drawing_text.hpp"
 #include "cellforge/io/dxf_drawing.hpp"
 #include "cellforge/io/obj.hpp"
@@ -140,7 +140,7 @@ int main(int argc, char** argv) {
                 r.inflation.freedom, r.reading + 1, r.inflation.readings.size(),
                 r.inflation.readings.empty() ? "" : r.inflation.readings[r.reading].reason.c_str());
     const auto& cells = r.cells.cells;
-    const cellforge::cells_validation_result valid = cellforge::validate(cells);
+    const cellforge::cells_validation valid = cellforge::validate(cells);
     std::printf("cell complex       %zu vertices, %zu edges, %zu faces, %zu volumes; validate %s\n",
                 cells.num_vertices(), cells.num_edges(), cells.num_faces(), cells.num_volumes(),
                 valid.ok() ? "ok" : valid.message.c_str());

@@ -34,7 +34,7 @@
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/io/cells_io.hpp"
-#include "cellforge/io/drawing_svg.hpp"
+#include "cellforge/io/drawing_pictures.hpp"
 #include "cellforge/io/drawing_text.hpp"
 #include "cellforge/io/dxf_drawing.hpp"
 #include "cellforge/io/mesh_io.hpp"
@@ -158,7 +158,7 @@ int main(int argc, char** argv) {
     }
     std::printf("drawing            %zu junctions, %zu lines, %zu arcs\n", drawing.lines.points.size(),
                 drawing.lines.edges.size(), drawing.arcs.size());
-    if (const cellforge::arc_validation v = cellforge::validate_arcs(drawing); !v)
+    if (const cellforge::arc_validation v = cellforge::validate(drawing); !v)
       throw cellforge::error(cellforge::error_category::invalid_input, "the drawing's arcs: " + v.message);
 
     stage("reconstructing a drawing of " + std::to_string(drawing.lines.points.size()) + " junctions and " +
@@ -187,7 +187,7 @@ int main(int argc, char** argv) {
         sk.milliseconds, sk.skeleton.points.size(), sk.skeleton.edges.size(), sk.rounds, sk.fillets,
         sk.unknown, sk.validation.ok() ? "ok" : sk.validation.message.c_str());
     const auto& cells = r.reading.cells.cells;
-    const cellforge::cells_validation_result valid = cellforge::validate(cells);
+    const cellforge::cells_validation valid = cellforge::validate(cells);
     std::printf(
         "skeleton solid     %9.3f ms   %zu vertices, %zu edges, %zu faces, %zu volumes; validate %s\n",
         r.reading.milliseconds, cells.num_vertices(), cells.num_edges(), cells.num_faces(),

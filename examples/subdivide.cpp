@@ -95,8 +95,8 @@ int main(int argc, char** argv) {
     stage("subdividing " + std::to_string(mesh.num_faces()) + " faces " + std::to_string(levels) +
           " times (about " + example::about(static_cast<double>(mesh.num_faces()) * std::pow(4.0, levels)) +
           " faces)");
-    const cellforge::loop_result r = cellforge::loop_subdivide(mesh, {.levels = levels});
-    const cellforge::validation_result valid = cellforge::validate(mesh);
+    const cellforge::loop_subdivision_result r = cellforge::loop_subdivide(mesh, {.levels = levels});
+    const cellforge::mesh_validation valid = cellforge::validate(mesh);
 
     std::printf("input              %s%s\n", input.string().c_str(),
                 polygons ? " (polygon faces fan-triangulated first)" : "");

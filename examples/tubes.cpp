@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
       "read, but not a skeleton (a mesh, a wireframe without --radius, a drawing: the message names\n"
       "     the program that takes it), or a mesh that fails a check (the reasons are printed)";
   p.notes = "Progress goes to stderr once a run passes a second (--quiet: none).";
-  cellforge::tube_options options;
+  cellforge::tubes_options options;
   cellforge::self_intersection_options pairs;
   double radius = 0;
   check_level level = check_level::automatic;
@@ -212,7 +212,7 @@ int main(int argc, char** argv) {
       std::printf("checks             %s%s\n", check_name, why_check);
     if (check != check_level::none) {
       stage("validating a mesh of " + std::to_string(r.mesh.num_faces()) + " faces", 50);
-      const cellforge::validation_result valid = cellforge::validate(r.mesh);
+      const cellforge::mesh_validation valid = cellforge::validate(r.mesh);
       std::printf("valid              %s\n", valid.ok() ? "yes" : valid.message.c_str());
       fail_if(!valid.ok(), "the mesh is invalid: " + valid.message);
       fail_if(!r.mesh.is_closed(), "the mesh is not closed");

@@ -15,7 +15,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>
 
-#include "cellforge/io/drawing_svg.hpp"
+#include "cellforge/io/drawing_pictures.hpp"
 #include "cellforge/io/drawing_text.hpp"
 #include "cellforge/io/svg_drawing.hpp"
 #include "cellforge/samples/round_drawings.hpp"
@@ -132,7 +132,7 @@ TEST_CASE("bundled rounds: the L-bracket drawn as sampled strokes, its arcs foun
       read.arcs.push_back({ends, piece.arc});
   }
   CHECK(read.lines.points.size() == d.lines.points.size());
-  CHECK(cellforge::validate_arcs(read).ok());
+  CHECK(cellforge::validate(read).ok());
   const auto r = cellforge::reconstruct_rounds(read);
   CHECK(r.skeleton.rounds == 2);
   CHECK(r.skeleton.fillets == 1);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Elliptical arcs of line drawings (sketch/elliptical_arc.hpp): the centre form, SVG's
-// endpoint form and back, points and tangents, and what validate_arcs refuses.
+// endpoint form and back, points and tangents, and what validate(arc_drawing) refuses.
 #include <doctest/doctest.h>
 
 #include <array>
@@ -130,37 +130,37 @@ TEST_CASE("elliptical arc: another point type comes back out") {
   CHECK(std::abs(cellforge::arc_point(b, 1.0)[0] - p[0]) < 1e-5f);
 }
 
-TEST_CASE("elliptical arc: validate_arcs names the first bad arc") {
+TEST_CASE("elliptical arc: validate(arc_drawing) names the first bad arc") {
   cellforge::arc_drawing<glm::dvec2> d;
   d.lines.points = {{0, 0}, {2, 0}, {2, 2}, {0, 2}};
   d.lines.edges = {{1, 2}, {2, 3}, {3, 0}};
   d.arcs.push_back(
       {{0, 1}, cellforge::arc_from_endpoints<glm::dvec2>({{0, 0}, {2, 0}, 1, 1, 0, false, true})});
-  CHECK(cellforge::validate_arcs(d).ok());
+  CHECK(cellforge::validate(d).ok());
   CHECK(cellforge::validate_arc(d.arcs[0].curve) == arc_defect::none);
   auto bad = d;
   bad.arcs[0].ends = {0, 0};
-  auto v = cellforge::validate_arcs(bad);
+  auto v = cellforge::validate(bad);
   CHECK(v.ends_equal);
   CHECK(v.message.find("arc 0 starts and ends at junction 0") != std::string::npos);
   bad = d;
   bad.arcs[0].ends = {0, 7};
-  CHECK(cellforge::validate_arcs(bad).end_out_of_range);
+  CHECK(cellforge::validate(bad).end_out_of_range);
   bad = d;
   bad.arcs[0].ends = {0, 2};
-  v = cellforge::validate_arcs(bad);
+  v = cellforge::validate(bad);
   CHECK(v.end_off_curve);
   CHECK(v.message.find("from the curve's last point") != std::string::npos);
   bad = d;
   bad.arcs[0].curve.rx = 0;
-  CHECK(cellforge::validate_arcs(bad).defect == arc_defect::zero_radius);
+  CHECK(cellforge::validate(bad).defect == arc_defect::zero_radius);
   bad = d;
   bad.arcs[0].curve.sweep = 0;
-  CHECK(cellforge::validate_arcs(bad).defect == arc_defect::zero_sweep);
+  CHECK(cellforge::validate(bad).defect == arc_defect::zero_sweep);
   bad = d;
   bad.arcs[0].curve.start = NAN;
-  CHECK(cellforge::validate_arcs(bad).defect == arc_defect::bad_value);
-  CHECK_THROWS_AS(cellforge::validate_arcs(d, {.tolerance = -1}), cellforge::error);
+  CHECK(cellforge::validate(bad).defect == arc_defect::bad_value);
+  CHECK_THROWS_AS(cellforge::validate(d, {.tolerance = -1}), cellforge::error);
 }
 
 }  // namespace elliptical_arc_tests

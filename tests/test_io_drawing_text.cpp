@@ -68,7 +68,7 @@ TEST_CASE("drawing text: junctions in file order, edges by index, comments and b
   const auto d = parse(text);
   CHECK(d.points == std::vector<glm::dvec2>{{0, 0}, {1, 0}, {1, 1}, {0, 1}});
   CHECK(d.edges == std::vector<edge>{{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 2}});
-  CHECK(cellforge::validate_drawing(d).ok());
+  CHECK(cellforge::validate(d).ok());
   CHECK(parse("").points.empty());
   CHECK(parse("\xEF\xBB\xBFj 1 2\nj 3 4\ne 1 0\n").edges.size() == 1);
   // Other point types: float, a std::array.
@@ -246,7 +246,7 @@ TEST_CASE("arc drawing text: an arc between two junctions in SVG's endpoint form
   const glm::dvec2 far = cellforge::arc_point(l.curve, 1.0 / 3);
   CHECK(far.x == doctest::Approx(-2));
   CHECK(std::abs(far.y) < 1e-12);
-  CHECK(cellforge::validate_arcs(d).ok());
+  CHECK(cellforge::validate(d).ok());
   // The plain reader still reads the straight part of a file without arcs.
   CHECK(io::parse_drawing_text("j 2 0\nj 0 2\ne 0 1\n").edges.size() == 1);
 }
@@ -262,7 +262,7 @@ TEST_CASE("arc drawing text: text -> drawing -> text is exact, and so is drawing
       "a 5 2 12 12 123456.75 1 0\n";           // a rotation far past a turn
   const arc_drawing2 d = parse_arcs(text);
   REQUIRE(d.arcs.size() == 6);
-  CHECK(cellforge::validate_arcs(d).ok());
+  CHECK(cellforge::validate(d).ok());
   const std::string written = io::arc_drawing_text_string(d);
   CHECK(statements(written) == text);
   CHECK(same_arcs(parse_arcs(written), d));

@@ -19,7 +19,7 @@
 #include <glm/vec2.hpp>
 
 #include "cellforge/core/detail/splitmix.hpp"
-#include "cellforge/io/drawing_svg.hpp"
+#include "cellforge/io/drawing_pictures.hpp"
 #include "cellforge/io/drawing_text.hpp"
 #include "cellforge/io/svg_drawing.hpp"
 #include "cellforge/samples/drawings.hpp"
@@ -173,7 +173,7 @@ TEST_CASE("svg drawing: snapping, chains placed at their mean, duplicates merged
   CHECK(r.drawing.edges.size() == 4);
   CHECK(r.merged_duplicates == 1);
   CHECK(r.snapped > 0);
-  CHECK(cellforge::validate_drawing(r.drawing).ok());
+  CHECK(cellforge::validate(r.drawing).ok());
   // Corner (100, 0): the mean of (100, 0.05) and (100, 0), y flipped.
   CHECK(glm::length(r.drawing.points[1] - dvec2(100, -0.025)) < 1e-12);
 
@@ -211,12 +211,12 @@ TEST_CASE("svg drawing: a stroke end on another stroke's interior splits it") {
                                          {70, 0.02, 100, 0},
                                          {40, -50, 40, -0.05},
                                          {70, -50, 70, 0.02}}));
-  // Off: three edges, the T-junction left for validate_drawing to report.
+  // Off: three edges, the T-junction left for validate(drawing) to report.
   const auto off =
       read(svg("<line x1=\"0\" y1=\"0\" x2=\"100\" y2=\"0\"/><line x1=\"40\" y1=\"0\" x2=\"40\" y2=\"50\"/>"),
            {.split_at_junctions = false});
   CHECK(off.drawing.edges.size() == 2);
-  CHECK(cellforge::validate_drawing(off.drawing).defect == cellforge::drawing_defect::junction_on_edge);
+  CHECK(cellforge::validate(off.drawing).defect == cellforge::drawing_defect::junction_on_edge);
   // Overlapping collinear strokes become one chain: the shorter one splits the longer.
   const auto o =
       read(svg("<line x1=\"0\" y1=\"0\" x2=\"100\" y2=\"0\"/><line x1=\"0\" y1=\"0\" x2=\"60\" y2=\"0\"/>"));
@@ -336,7 +336,7 @@ TEST_CASE("svg drawing: an Inkscape file (namespaces, metadata, a layer with a t
   CHECK(std::any_of(r.diagnostics.begin(), r.diagnostics.end(), [](const std::string& d) {
     return d.find("d.svg:38: <g> is hidden") != std::string::npos;
   }));
-  CHECK(cellforge::validate_drawing(r.drawing).defect == cellforge::drawing_defect::none);
+  CHECK(cellforge::validate(r.drawing).defect == cellforge::drawing_defect::none);
 }
 
 TEST_CASE("drawing svg: the picture reads back to the same junctions and edges") {
@@ -443,8 +443,8 @@ TEST_CASE("svg drawing: the bundled stepped normalon reads to its text twin") {
   CHECK(svg_read.elements == 9);
   CHECK(svg_read.merged_duplicates == 0);
   CHECK(svg_read.split_at_junctions == 0);
-  CHECK(cellforge::validate_drawing(text).ok());
-  CHECK(cellforge::validate_drawing(svg_read.drawing).ok());
+  CHECK(cellforge::validate(text).ok());
+  CHECK(cellforge::validate(svg_read.drawing).ok());
   CHECK(svg_read.snapped > 0);  // drawn by hand: ends meet within the snap distance
 }
 
@@ -491,7 +491,7 @@ TEST_CASE("svg arc drawing: A commands become arcs, y flipped, ends snapped into
   CHECK(a.curve.sweep > 0);
   CHECK(a.curve.sweep == doctest::Approx(std::numbers::pi / 2).epsilon(1e-4));
   CHECK(glm::length(cellforge::arc_point(a.curve, 0.5) - dvec2(std::sqrt(2.0), std::sqrt(2.0))) < 1e-4);
-  CHECK(cellforge::validate_arcs(r.drawing).ok());
+  CHECK(cellforge::validate(r.drawing).ok());
   // The text twin reads to the same arc (up to the snapped start).
   const auto t = io::parse_arc_drawing_text<dvec2>("j 2 0\nj 0 2\na 0 1 2 2 0 0 1\n");
   CHECK(arc_gap(t.arcs[0].curve, a.curve) < 1e-4);

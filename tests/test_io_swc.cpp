@@ -84,7 +84,7 @@ TEST_CASE("swc: samples become nodes in file order, parents -> children edges") 
   CHECK(r.types == std::vector<std::int32_t>{1, 3, 3, 2, 4, 4});
   CHECK(s.edges == std::vector<edge>{{2, 1}, {0, 2}, {0, 3}, {4, 5}});
   CHECK(r.collapsed_somas == 0);
-  CHECK(cellforge::validate_skeleton(s).ok());
+  CHECK(cellforge::validate(s).ok());
 }
 
 TEST_CASE("swc: layout variations read the same samples") {

@@ -104,38 +104,38 @@ TEST_CASE("line_drawing traits: the plain struct, a user's own type, conversions
   CHECK(plain.edges == std::vector<edge>{{0, 1}, {1, 2}, {2, 3}, {3, 0}});
   const auto as_glm = cellforge::to_line_drawing<glm::vec2>(s);
   CHECK(as_glm.points[2] == glm::vec2(2, 1));
-  CHECK(cellforge::validate_drawing(s).ok());
-  CHECK(cellforge::validate_drawing(as_glm).ok());
+  CHECK(cellforge::validate(s).ok());
+  CHECK(cellforge::validate(as_glm).ok());
   // Out-of-range endpoints survive the copy for validation to report.
   const drawing_cad::sketch bad{{{0, 0}, {1, 0}}, {{0, 7}}};
-  const auto v = cellforge::validate_drawing(cellforge::to_line_drawing(bad));
+  const auto v = cellforge::validate(cellforge::to_line_drawing(bad));
   CHECK(v.defect == drawing_defect::endpoint_out_of_range);
   CHECK(v.edge == 0);
 }
 
-TEST_CASE("validate_drawing: every defect, with the junction and edge it names") {
-  CHECK(cellforge::validate_drawing(square()).ok());
+TEST_CASE("validate(drawing): every defect, with the junction and edge it names") {
+  CHECK(cellforge::validate(square()).ok());
 
   auto d = square();
   d.points[2].y = std::numeric_limits<double>::quiet_NaN();
-  auto v = cellforge::validate_drawing(d);
+  auto v = cellforge::validate(d);
   CHECK(v.defect == drawing_defect::bad_position);
   CHECK(v.junction == 2);
   CHECK(v.message.find("junction 2") != std::string::npos);
 
   d = square();
   d.points[3].x = std::numeric_limits<double>::infinity();
-  CHECK(cellforge::validate_drawing(d).defect == drawing_defect::bad_position);
+  CHECK(cellforge::validate(d).defect == drawing_defect::bad_position);
 
   d = square();
   d.edges[3] = {3, 4};
-  v = cellforge::validate_drawing(d);
+  v = cellforge::validate(d);
   CHECK(v.defect == drawing_defect::endpoint_out_of_range);
   CHECK(v.edge == 3);
 
   d = square();
   d.edges[1] = {2, 2};
-  v = cellforge::validate_drawing(d);
+  v = cellforge::validate(d);
   CHECK(v.defect == drawing_defect::self_loop);
   CHECK(v.edge == 1);
   CHECK(v.junction == 2);
@@ -143,35 +143,35 @@ TEST_CASE("validate_drawing: every defect, with the junction and edge it names")
   d = square();
   d.edges.push_back({2, 0});  // the diagonal again, reversed
   d.edges.push_back({1, 0});
-  v = cellforge::validate_drawing(d);
+  v = cellforge::validate(d);
   CHECK(v.defect == drawing_defect::duplicate_edge);
   CHECK(v.edge == 5);
   CHECK(v.other_edge == 4);
 
-  v = cellforge::validate_drawing(line_drawing<glm::dvec2>{{{0, 0}}, {}});
+  v = cellforge::validate(line_drawing<glm::dvec2>{{{0, 0}}, {}});
   CHECK(v.defect == drawing_defect::empty);
-  CHECK(cellforge::validate_drawing(line_drawing<glm::dvec2>{}).defect == drawing_defect::empty);
+  CHECK(cellforge::validate(line_drawing<glm::dvec2>{}).defect == drawing_defect::empty);
 
   // Coincident: junction 4 at 1e-12 from junction 1 (the diagonal is √2).
   d = square();
   d.points.push_back({1 + 1e-12, 0});
   d.edges.push_back({4, 2});
   d.edges.push_back({4, 3});
-  v = cellforge::validate_drawing(d);
+  v = cellforge::validate(d);
   CHECK(v.defect == drawing_defect::coincident_junctions);
   CHECK(v.junction == 4);
   CHECK(v.other == 1);
   // A coarser or finer tolerance decides.
   d.points[4] = {1 + 1e-6, 0};
-  CHECK(cellforge::validate_drawing(d).ok());
-  CHECK(cellforge::validate_drawing(d, {.tolerance = 1e-5}).defect == drawing_defect::coincident_junctions);
+  CHECK(cellforge::validate(d).ok());
+  CHECK(cellforge::validate(d, {.tolerance = 1e-5}).defect == drawing_defect::coincident_junctions);
 
   // Overlap: edge 5 from junction 0 to (0.5, 0) lies along edge 0 (0 -> 1).
   d = square();
   d.points.push_back({0.5, 0});
   d.edges.push_back({0, 4});
   d.edges.push_back({4, 2});
-  v = cellforge::validate_drawing(d);
+  v = cellforge::validate(d);
   CHECK(v.defect == drawing_defect::overlapping_edges);
   CHECK(v.edge == 5);
   CHECK(v.other_edge == 0);
@@ -181,7 +181,7 @@ TEST_CASE("validate_drawing: every defect, with the junction and edge it names")
   d.points.push_back({0.5, 0});
   d.edges.push_back({4, 2});
   d.edges.push_back({4, 3});
-  v = cellforge::validate_drawing(d);
+  v = cellforge::validate(d);
   CHECK(v.defect == drawing_defect::junction_on_edge);
   CHECK(v.junction == 4);
   CHECK(v.edge == 0);
@@ -191,52 +191,52 @@ TEST_CASE("validate_drawing: every defect, with the junction and edge it names")
   d = square();
   d.points.push_back({2, 2});
   d.edges.push_back({2, 4});
-  v = cellforge::validate_drawing(d);
+  v = cellforge::validate(d);
   CHECK(v.defect == drawing_defect::dangling_junction);
   CHECK(v.junction == 4);
   d.edges.pop_back();  // junction 4 now on no edge
-  v = cellforge::validate_drawing(d);
+  v = cellforge::validate(d);
   CHECK(v.defect == drawing_defect::dangling_junction);
   CHECK(v.message.find("no edge") != std::string::npos);
 
-  CHECK_THROWS_AS(cellforge::validate_drawing(square(), {.tolerance = -1}), cellforge::error);
-  CHECK_THROWS_AS(cellforge::validate_drawing(square(), {.tolerance = std::nan("")}), cellforge::error);
+  CHECK_THROWS_AS(cellforge::validate(square(), {.tolerance = -1}), cellforge::error);
+  CHECK_THROWS_AS(cellforge::validate(square(), {.tolerance = std::nan("")}), cellforge::error);
 }
 
-TEST_CASE("validate_drawing: edges crossing in their interiors are hidden lines, not defects") {
+TEST_CASE("validate(drawing): edges crossing in their interiors are hidden lines, not defects") {
   // A square with both diagonals: they cross at (0.5, 0.5), no junction there.
   auto d = square();
   d.edges.push_back({1, 3});
-  CHECK(cellforge::validate_drawing(d).ok());
+  CHECK(cellforge::validate(d).ok());
   // A wireframe cube in a generic view: hidden edges cross visible ones.
   const auto s = cellforge::samples::generic_drawing(cellforge::samples::sample_cube(), 3, "prism");
-  CHECK(cellforge::validate_drawing(s.drawing).ok());
+  CHECK(cellforge::validate(s.drawing).ok());
   const auto l = cellforge::samples::generic_drawing(cellforge::samples::sample_L(), 5, "normalon");
-  CHECK(cellforge::validate_drawing(l.drawing).ok());
+  CHECK(cellforge::validate(l.drawing).ok());
 }
 
-TEST_CASE("validate_drawing: the same answer at any scale") {
+TEST_CASE("validate(drawing): the same answer at any scale") {
   for (const double scale : {1e-6, 1.0, 1e6}) {
     auto d = square();
     d.points.push_back({0.5, 1e-10});  // a near T-junction on edge 0: 7e-11 of the diagonal
     d.edges.push_back({4, 2});
     d.edges.push_back({4, 3});
     for (auto& p : d.points) p *= scale;
-    CHECK(cellforge::validate_drawing(d).defect == drawing_defect::junction_on_edge);
-    CHECK(cellforge::validate_drawing(d, {.tolerance = 1e-11}).ok());
+    CHECK(cellforge::validate(d).defect == drawing_defect::junction_on_edge);
+    CHECK(cellforge::validate(d, {.tolerance = 1e-11}).ok());
   }
 }
 
-TEST_CASE("validate_drawing: a 10,000-edge lattice validates quickly, and its defects are found") {
+TEST_CASE("validate(drawing): a 10,000-edge lattice validates quickly, and its defects are found") {
   auto d = lattice(70);  // 9940 edges
   CHECK(d.edges.size() == 9940);
   const auto t0 = std::chrono::steady_clock::now();
-  CHECK(cellforge::validate_drawing(d).ok());
+  CHECK(cellforge::validate(d).ok());
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   MESSAGE("10k-edge lattice validated in " << ms << " ms");
   // A new junction on the middle of a far edge (horizontal edge (35, 70) - (36, 70)).
   d.points.push_back({35.5, 70});
-  const auto v = cellforge::validate_drawing(d);
+  const auto v = cellforge::validate(d);
   CHECK(v.defect == drawing_defect::junction_on_edge);
   CHECK(v.junction == d.points.size() - 1);
   CHECK(v.edge == 2 * (70 * 70 + 35));

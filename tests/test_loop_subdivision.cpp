@@ -31,7 +31,7 @@ namespace {
 
 using cellforge::halfedge_mesh;
 using cellforge::loop_boundary;
-using cellforge::loop_options;
+using cellforge::loop_subdivision_options;
 using cellforge::loop_weights;
 using cellforge::surface_mesh;
 using soup = fixtures::soup;
@@ -177,10 +177,10 @@ cellforge::polygon_soup<P> convert(const soup& s) {
 
 // One level on `s`, checked against the reference; returns the subdivided mesh.
 template <class P = glm::dvec3>
-surface_mesh<P> one_level_checked(const soup& s, const loop_options& o = {}, double tol = 1e-12) {
+surface_mesh<P> one_level_checked(const soup& s, const loop_subdivision_options& o = {}, double tol = 1e-12) {
   auto m = cellforge::make_mesh(convert<P>(s));
   const auto before = m;
-  loop_options one = o;
+  loop_subdivision_options one = o;
   one.levels = 1;
   const auto r = cellforge::loop_subdivide(m, one);
   const auto v = cellforge::validate(m);
@@ -265,7 +265,7 @@ TEST_CASE("one level on a tetrahedron and an octahedron matches the reference to
 }
 
 TEST_CASE("Warren's weights match the reference") {
-  loop_options o;
+  loop_subdivision_options o;
   o.weights = loop_weights::warren;
   one_level_checked(octahedron(), o);
   one_level_checked(fixtures::torus(7, 5), o);
@@ -327,7 +327,7 @@ TEST_CASE("counts V' = V + E, E' = 2E + 3F, F' = 4F over three levels") {
 TEST_CASE("boundary rules on an open grid") {
   const soup grid = cellforge::grid_plane<glm::dvec3>(5, 4);
   for (auto rule : {loop_boundary::bspline, loop_boundary::bspline_corners, loop_boundary::fixed}) {
-    loop_options o;
+    loop_subdivision_options o;
     o.boundary = rule;
     auto m = one_level_checked(grid, o);
     CHECK(m.boundary_loops().size() == 1);
@@ -450,7 +450,7 @@ TEST_CASE("user vertex properties: interpolated when opted in, defaulted otherwi
   for (auto e : m.edges()) ep[e] = 9.f;
   const std::vector<double> t0 = temp.vector();
 
-  loop_options o;
+  loop_subdivision_options o;
   o.interpolate = {{"v:temperature"}, {"v:shade", cellforge::loop_property_rule::loop}};
   cellforge::loop_subdivide(m, o);
   REQUIRE(cellforge::validate(m).ok());
@@ -480,7 +480,7 @@ TEST_CASE("property options that cannot be honoured are refused before anything 
   m.add_vertex_property<int>("v:label");
   m.add_vertex_property<double>("v:t");
   auto refused = [&](std::vector<cellforge::loop_property> props, const char* needle) {
-    loop_options o;
+    loop_subdivision_options o;
     o.interpolate = std::move(props);
     const std::string msg = message_of([&] { cellforge::loop_subdivide(m, o); });
     INFO(msg);
@@ -561,7 +561,7 @@ TEST_CASE("refuses quads, NaN, bad options and corrupted meshes with clear error
     // 96 * 4^9 = 25M faces fit; 4^10 = 100M exceed the default memory limit, refused up front.
     const std::string big = message_of([&] { cellforge::loop_subdivide(m, {.levels = 10}); });
     CHECK(big.find("10 levels would make 100663296 faces") != std::string::npos);
-    CHECK(big.find("loop_options::max_faces") != std::string::npos);
+    CHECK(big.find("loop_subdivision_options::max_faces") != std::string::npos);
     CHECK(message_of([&] {
             cellforge::loop_subdivide(m, {.levels = 3, .max_faces = 1000});
           }).find("6144 faces") != std::string::npos);
@@ -575,7 +575,7 @@ TEST_CASE("refuses quads, NaN, bad options and corrupted meshes with clear error
   }
   SUBCASE("bad enum values") {
     auto m = cellforge::make_mesh(fixtures::tetrahedron());
-    loop_options o;
+    loop_subdivision_options o;
     o.boundary = static_cast<loop_boundary>(9);
     CHECK(message_of([&] { cellforge::loop_subdivide(m, o); }).find("boundary") != std::string::npos);
     o = {};
@@ -603,7 +603,7 @@ TEST_CASE("refuses quads, NaN, bad options and corrupted meshes with clear error
 
 TEST_CASE("loop_subdivided returns a copy; removed elements are collected first") {
   auto m = cellforge::make_mesh(fixtures::torus(6, 4));
-  cellforge::loop_result r;
+  cellforge::loop_subdivision_result r;
   const auto s = cellforge::loop_subdivided(m, {.levels = 2}, &r);
   CHECK(m.num_faces() == 48);
   CHECK(s.num_faces() == 48 * 16);

@@ -115,11 +115,11 @@ TEST_CASE("round drawings: the generator's arcs meet their lines tangentially, t
     INFO(s.name);
     CHECK(s.rounds.size() >= 1);
     CHECK(s.rounds.size() <= 6);
-    const auto v = cellforge::validate_arcs(s.drawing);
+    const auto v = cellforge::validate(s.drawing);
     INFO(v.message);
     CHECK(v.ok());
     // The skeleton is the polyhedron's own drawing, readable as such.
-    CHECK(cellforge::validate_drawing(s.skeleton.drawing).ok());
+    CHECK(cellforge::validate(s.skeleton.drawing).ok());
     const auto& q = s.drawing.lines.points;
     std::vector<std::vector<std::uint32_t>> lines_at(q.size());
     for (std::uint32_t e = 0; e < s.drawing.lines.edges.size(); ++e)

@@ -117,7 +117,7 @@ TEST_CASE("self_intersections: closed meshes have none") {
   }
   // Loop-subdivided meshes.
   for (const auto& soup : {icosahedron(), octahedron(), triangulate_fan(hexahedron())}) {
-    const surface_mesh<dvec3> m = loop_subdivided(make_mesh(soup), loop_options{.levels = 3});
+    const surface_mesh<dvec3> m = loop_subdivided(make_mesh(soup), loop_subdivision_options{.levels = 3});
     const self_intersection_result r = self_intersections(m);
     CHECK(r.triangles == m.num_faces());
     CHECK(r.intersecting_face_pairs == 0);

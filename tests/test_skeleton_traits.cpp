@@ -75,7 +75,7 @@ skeleton<glm::dvec3> chain() {
 }
 
 void check_defect(const skeleton<glm::dvec3>& s, skeleton_defect defect, const std::string& message) {
-  const auto v = cellforge::validate_skeleton(s);
+  const auto v = cellforge::validate(s);
   CAPTURE(v.message);
   CHECK(v.defect == defect);
   CHECK(v.message == message);
@@ -107,14 +107,14 @@ TEST_CASE("skeleton: a user's graph type adapts with one specialisation") {
   // And back through the plain struct's own traits.
   const auto again = cellforge::to_skeleton<sealed_point>(as_float);
   CHECK(again.points == own.points);
-  CHECK(cellforge::validate_skeleton(g).ok());
-  CHECK(cellforge::validate_skeleton(own));
+  CHECK(cellforge::validate(g).ok());
+  CHECK(cellforge::validate(own));
   CHECK_NOTHROW(cellforge::check_skeleton(g));
 }
 
 TEST_CASE("skeleton: validation names the node or edge of every defect") {
-  CHECK(cellforge::validate_skeleton(chain()).ok());
-  CHECK(cellforge::validate_skeleton(skeleton<glm::dvec3>{}).ok());  // empty: nothing wrong
+  CHECK(cellforge::validate(chain()).ok());
+  CHECK(cellforge::validate(skeleton<glm::dvec3>{}).ok());  // empty: nothing wrong
   {
     auto s = chain();
     s.radii[2] = 0;
@@ -139,21 +139,21 @@ TEST_CASE("skeleton: validation names the node or edge of every defect") {
     auto s = chain();
     s.edges.push_back({3, 4});
     check_defect(s, skeleton_defect::endpoint_out_of_range, "edge 3: node 4 out of range (4 nodes)");
-    const auto v = cellforge::validate_skeleton(s);
+    const auto v = cellforge::validate(s);
     CHECK(v.edge == 3);
   }
   {
     auto s = chain();
     s.edges[1] = {2, 2};
     check_defect(s, skeleton_defect::self_loop, "edge 1 joins node 2 to itself");
-    CHECK(cellforge::validate_skeleton(s).node == 2);
+    CHECK(cellforge::validate(s).node == 2);
   }
   {
     auto s = chain();
     s.edges.push_back({2, 1});  // the reverse of edge 1
     s.edges.push_back({0, 1});  // a copy of edge 0
     check_defect(s, skeleton_defect::duplicate_edge, "edge 3 repeats edge 1 (nodes 2 and 1)");
-    const auto v = cellforge::validate_skeleton(s);
+    const auto v = cellforge::validate(s);
     CHECK(v.edge == 3);
     CHECK(v.other == 1);
   }
@@ -163,7 +163,7 @@ TEST_CASE("skeleton: validation names the node or edge of every defect") {
     s.radii.push_back(1);
     s.points[3] = {0, -0.0, 0};  // -0 and +0 are one position
     check_defect(s, skeleton_defect::coincident_nodes, "nodes 0 and 3 coincide (both at (0, -0, 0))");
-    const auto v = cellforge::validate_skeleton(s);
+    const auto v = cellforge::validate(s);
     CHECK(v.node == 3);
     CHECK(v.other == 0);
   }
@@ -173,9 +173,9 @@ TEST_CASE("skeleton: the first defect in the documented order is the one reporte
   auto s = chain();
   s.edges.push_back({1, 1});
   s.radii[3] = -1;
-  CHECK(cellforge::validate_skeleton(s).defect == skeleton_defect::bad_radius);
+  CHECK(cellforge::validate(s).defect == skeleton_defect::bad_radius);
   s.radii[3] = 1;
-  CHECK(cellforge::validate_skeleton(s).defect == skeleton_defect::self_loop);
+  CHECK(cellforge::validate(s).defect == skeleton_defect::self_loop);
 }
 
 TEST_CASE("skeleton: integer point types have no non-finite positions to check") {
@@ -183,9 +183,9 @@ TEST_CASE("skeleton: integer point types have no non-finite positions to check")
   s.points = {{0, 0, 0}, {4, 0, 0}};
   s.radii = {1, 1};
   s.edges = {{0, 1}};
-  CHECK(cellforge::validate_skeleton(s).ok());
+  CHECK(cellforge::validate(s).ok());
   s.points[1] = {0, 0, 0};
-  CHECK(cellforge::validate_skeleton(s).message == "nodes 0 and 1 coincide (both at (0, 0, 0))");
+  CHECK(cellforge::validate(s).message == "nodes 0 and 1 coincide (both at (0, 0, 0))");
 }
 
 }  // namespace skeleton_traits_tests

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "cellforge/core/point2_traits.hpp"
-#include "cellforge/io/drawing_svg.hpp"
+#include "cellforge/io/drawing_pictures.hpp"
 #include "cellforge/io/drawing_text.hpp"
 #include "cellforge/io/svg_drawing.hpp"
 #include "cellforge/sketch.hpp"
@@ -81,7 +81,7 @@ TEST_CASE("sketch point types: a drawing of sealed points read, checked, tidied,
   const auto d = cellforge::io::read_drawing_text<sealed2>(path);
   REQUIRE(d.points.size() == ref.points.size());
   for (std::size_t i = 0; i < d.points.size(); ++i) CHECK(to_dvec2(d.points[i]) == ref.points[i]);
-  CHECK(cellforge::validate_drawing(d).ok());
+  CHECK(cellforge::validate(d).ok());
   const auto faces = cellforge::find_faces(d);
   const auto faces_ref = cellforge::find_faces(ref);
   CHECK(faces.loops == faces_ref.loops);
@@ -108,7 +108,7 @@ TEST_CASE_TEMPLATE("sketch point types: rounds and fillets in the user's types",
   // float points (settable2) are compared with the same drawing rounded to float.
   const auto d = converted<P>(ref);
   const auto same = converted<glm::dvec2>(d);
-  CHECK(cellforge::validate_arcs(d).ok());
+  CHECK(cellforge::validate(d).ok());
   // The arcs' ends rounded to float are off the double curves by ~1e-7 of the size: both runs
   // take ends within 1e-5 (the float run would take 64 ε of float, 7.6e-6, by itself).
   const cellforge::arc_pairing_options pairing{.end_tolerance = 1e-5};

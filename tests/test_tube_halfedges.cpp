@@ -142,7 +142,7 @@ TEST_CASE("tube half-edge link (tubes/detail/closed_build.hpp): build's mesh, or
     struct named {
       std::string name;
       skeleton<glm::dvec3> s;
-      tube_options o;
+      tubes_options o;
     };
     std::vector<named> set;
     set.push_back({"tree", samples::random_tree(7, {.nodes = 300}), {}});

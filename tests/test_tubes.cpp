@@ -606,7 +606,7 @@ TEST_CASE("Loop levels keep closedness, genus and sources") {
     for (const face_handle f : flat.mesh.faces()) triangles += flat.mesh.valence(f) - 2;
     for (int levels : {1, 2}) {
       INFO("skeleton " << &s - set.data() << ", levels " << levels);
-      tube_options o;
+      tubes_options o;
       o.subdivision_levels = levels;
       const auto r = make_tubes(s, o);
       const auto v = validate(r.mesh);
@@ -630,7 +630,7 @@ TEST_CASE("Loop levels keep closedness, genus and sources") {
   }
   std::printf("tube Loop levels: %zu skeletons x 2 levels; %zu intersecting face pairs after subdivision\n",
               set.size(), folded);
-  tube_options bad;
+  tubes_options bad;
   bad.subdivision_levels = 9;
   CHECK_THROWS_WITH_AS(make_tubes(set[0], bad), doctest::Contains("subdivision_levels"), error);
 }
@@ -678,7 +678,7 @@ TEST_CASE("twist: global alignment closes rings without a seam") {
     coil.edges.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>((i + 1) % n)});
   }
   const auto step_twists = [&](tube_alignment al) {
-    tube_options o;
+    tubes_options o;
     o.alignment = al;
     const auto r = make_tubes(coil, o);
     REQUIRE(tube_mesh_problems(r).empty());
@@ -824,7 +824,7 @@ TEST_CASE("improved two-branch pipes (seed 001 §V.D): each method an option, ev
   std::size_t misses = 0, runs = 0;
   for (const bool virtual_section : {true, false})
     for (const std::uint32_t extra : {0u, 32u}) {
-      tube_options o;
+      tubes_options o;
       o.bend_virtual_section = virtual_section;
       o.junction_extra_points = extra;
       for (const S& s : set) {
@@ -840,7 +840,7 @@ TEST_CASE("improved two-branch pipes (seed 001 §V.D): each method an option, ev
   std::printf("tube two-branch methods: %zu meshes, %zu misses\n", runs, misses);
   CHECK(misses == 0);
   // Extra points add junction faces; the default adds none.
-  tube_options more;
+  tubes_options more;
   more.junction_extra_points = 32;
   CHECK(make_tubes(set[0], more).mesh.num_faces() > make_tubes(set[0]).mesh.num_faces());
 }
@@ -867,7 +867,7 @@ TEST_CASE("tube diagnostics say what the mesher decided") {
 TEST_CASE("tubes: the optional self-intersection check reports a skeleton without clearance") {
   // K8 on a sphere of radius 10: its closest chords pass 0.46 apart, so tubes of radius 0.3
   // must intersect there; at the sample's own radius (0.15) they must not.
-  tube_options o;
+  tubes_options o;
   o.check_self_intersections = true;
   const auto crowded = make_tubes(samples::complete_graph(8, 10, 0.3), o);
   CHECK(crowded.self_intersections_checked);
@@ -961,7 +961,7 @@ TEST_CASE("tubes: junctions short of room move their rings on, merge, or end in 
   tight.radii = {1, 1, 1, 1};
   tight.edges = {{0, 1}, {0, 2}, {0, 3}};
   const std::vector<std::int64_t> ids = {10, 11, 12, 13};
-  tube_options named;
+  tubes_options named;
   named.node_ids = ids;
   const auto stubs = make_tubes(tight, named);
   CHECK(tube_mesh_problems(stubs).empty());
@@ -1137,7 +1137,7 @@ TEST_CASE("tubes: bad input is a located error") {
                        doctest::Contains("make_tubes: the model spans 2.02e+300 and reaches 1.01e+300"),
                        error);
   s.radii[2] = 0.1;
-  tube_options o;
+  tubes_options o;
   o.sides = 2;
   CHECK_THROWS_WITH_AS(make_tubes(s, o), doctest::Contains("sides"), error);
 }

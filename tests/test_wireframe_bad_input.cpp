@@ -169,13 +169,13 @@ TEST_CASE("bad input: read_vertices stays linear and defined far from the origin
   sample_model m = sample_tetrahedron();
   for (int k = 0; k < 3; ++k)
     m = disjoint_union(m, sample_cube({1e-8, 1e-8, 1e-8}), {2.0 + k, 0, 0}, "tetra and tiny cubes");
-  read_options exact;
+  wireframe_read_options exact;
   exact.merge = tolerance{0.0};  // keep the tiny cubes' corners apart
   const auto r = read_vertices(m.wire, exact);
   CHECK(r.graph.num_edges() == m.wire.edges.size());
   CHECK(r.split_edges == 0);
   // A small budget now stops the same searches with a budget error naming the stage.
-  read_options tight = exact;
+  wireframe_read_options tight = exact;
   tight.work_budget = 50;
   try {
     (void)read_vertices(m.wire, tight);

@@ -241,7 +241,9 @@ std::vector<std::uint32_t> inverse(const std::vector<std::uint32_t>& p) {
 
 }  // namespace
 
-TEST_CASE("pipeline: the input's numbering changes nothing but the labels (read_options::spatial_order)") {
+TEST_CASE(
+    "pipeline: the input's numbering changes nothing but the labels "
+    "(wireframe_read_options::spatial_order)") {
   std::vector<sample_model> models{sample_cube(),
                                    sample_frame(),
                                    sample_house(),

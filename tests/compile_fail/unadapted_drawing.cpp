@@ -5,7 +5,7 @@
 // expect: tidy_drawing
 // expect-count: 4 (does not satisfy|satisfaction of) [^ ]*LineDrawing
 // A drawing type without a line_drawing_traits specialisation must be rejected at the call by
-// the LineDrawing concept: validate_drawing, and drawing_to_cells, inflate and tidy_drawing,
+// the LineDrawing concept: validate(drawing), and drawing_to_cells, inflate and tidy_drawing,
 // whose return types name the drawing's point type (clang 14 substitutes them first), so the
 // concept is named at least four times. decltype: nothing is compiled. Needs Eigen.
 #include <array>
@@ -39,5 +39,5 @@ int main() {
   using cells = decltype(cellforge::drawing_to_cells(s));
   using inflated = decltype(cellforge::inflate(s, loops));
   using tidied = decltype(cellforge::tidy_drawing(s));
-  return cellforge::validate_drawing(s).ok() && sizeof(cells) + sizeof(inflated) + sizeof(tidied) > 0 ? 0 : 1;
+  return cellforge::validate(s).ok() && sizeof(cells) + sizeof(inflated) + sizeof(tidied) > 0 ? 0 : 1;
 }

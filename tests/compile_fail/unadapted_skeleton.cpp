@@ -2,7 +2,7 @@
 // expect: vessel_graph
 // expect-count: 2 (does not satisfy|satisfaction of) [^ ]*Skeleton
 // A graph type without a skeleton_traits specialisation must be rejected at the call by the
-// Skeleton concept: validate_skeleton, and make_tubes, whose return type names the skeleton's
+// Skeleton concept: validate(skeleton), and make_tubes, whose return type names the skeleton's
 // point type (clang 14 substitutes it first; the concept must still be what the error names).
 // decltype: the call is resolved, nothing is compiled.
 #include <array>
@@ -34,5 +34,5 @@ struct cellforge::skeleton_traits<vessel_graph> {
 int main() {
   const vessel_graph g{{{0, 0, 0}, {1, 0, 0}}, {0.5, 0.5}, {{0, 1}}};
   using tubes = decltype(cellforge::make_tubes(g));
-  return cellforge::validate_skeleton(g).ok() && sizeof(tubes) > 0 ? 0 : 1;
+  return cellforge::validate(g).ok() && sizeof(tubes) > 0 ? 0 : 1;
 }

@@ -133,7 +133,7 @@ void run(const char* T, const fs::path& dir) {
 
   // --- Loop subdivision and simplification
   auto octa = cf::make_mesh(cad::octahedron<P>());
-  const cf::loop_result lr = cf::loop_subdivide(octa, {.levels = 2});
+  const cf::loop_subdivision_result lr = cf::loop_subdivide(octa, {.levels = 2});
   expect(lr.faces_after == 128 && octa.num_faces() == 128 && octa.num_vertices() == 66, T,
          "loop: 8 -> 128 faces, 66 vertices");
   expect(cf::validate(octa).ok() && cf::euler_characteristic(octa) == 2, T, "loop: valid, Euler 2");

@@ -64,12 +64,11 @@ void run_sketch(void (*expect)(bool, const char*, const char*)) {
     s.stroke(4 + i, 4 + (i + 1) % 4);
     s.stroke(i, 4 + i);
   }
-  const auto check = cellforge::validate_drawing(s);
-  expect(check.ok(), "Sketch", "validate_drawing: a cube's drawing is valid");
+  const auto check = cellforge::validate(s);
+  expect(check.ok(), "Sketch", "validate(drawing): a cube's drawing is valid");
   const auto faces = cellforge::find_faces(s);
   expect(faces.loops.size() == 6 && !faces.flagged, "Sketch", "find_faces: a cube's drawing has six faces");
   cad::Sketch broken = s;
   broken.stroke(0, 0);
-  expect(!cellforge::validate_drawing(broken).ok(), "Sketch",
-         "validate_drawing: a stroke from a corner to itself");
+  expect(!cellforge::validate(broken).ok(), "Sketch", "validate(drawing): a stroke from a corner to itself");
 }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // libFuzzer target for the line-drawing text reader (io/drawing_text.hpp). Any input must parse
-// or throw cellforge::error; whatever parses is validated (validate_drawing must not crash, hang
+// or throw cellforge::error; whatever parses is validated (validate(drawing) must not crash, hang
 // or throw), must be writable, and must come back bit for bit after a write and a re-read. The
 // same input goes through the arc reader (parse_arc_drawing_text), with the same demands.
 
@@ -26,7 +26,7 @@ void check_arcs(std::string_view bytes) {
   } catch (const cellforge::error&) {
     return;
   }
-  if (!cellforge::validate_arcs(d)) __builtin_trap();
+  if (!cellforge::validate(d)) __builtin_trap();
   const std::string text = cellforge::io::arc_drawing_text_string(d);
   const auto again = cellforge::io::parse_arc_drawing_text(text, "rewritten.txt");
   if (again.lines.edges != d.lines.edges || again.lines.points.size() != d.lines.points.size() ||
@@ -56,7 +56,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   // The last byte picks the tolerance, so coincidence and overlap tests see coarse and fine ones.
   const double tolerance = size > 0 && (data[size - 1] & 1) != 0 ? 0.05 : 1e-9;
-  (void)cellforge::validate_drawing(d, {.tolerance = tolerance});
+  (void)cellforge::validate(d, {.tolerance = tolerance});
   const std::string text =
       cellforge::io::drawing_text_string(d);  // throws (a crash) if the reader let through junk
   const auto again = cellforge::io::parse_drawing_text(text, "rewritten.txt");

@@ -27,18 +27,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.max_strokes = 1 << 14;  // blocks inserted in blocks grow fast: the budget bounds them
   try {
     const auto r = cellforge::io::parse_dxf_arc_drawing(bytes, "fuzz.dxf", options);
-    if (!cellforge::validate_arcs(r.drawing)) __builtin_trap();
+    if (!cellforge::validate(r.drawing)) __builtin_trap();
   } catch (const cellforge::error&) {
   }
   try {
     const auto r = cellforge::io::parse_dxf_drawing(bytes, "fuzz.dxf", options);
-    const auto v = cellforge::validate_drawing(r.drawing, {.tolerance = 0});
+    const auto v = cellforge::validate(r.drawing, {.tolerance = 0});
     if (v.defect == cellforge::drawing_defect::bad_position ||
         v.defect == cellforge::drawing_defect::self_loop ||
         v.defect == cellforge::drawing_defect::duplicate_edge ||
         v.defect == cellforge::drawing_defect::endpoint_out_of_range)
       __builtin_trap();  // the reader never makes these
-    (void)cellforge::validate_drawing(r.drawing);
+    (void)cellforge::validate(r.drawing);
   } catch (const cellforge::error&) {
   }
   return 0;

@@ -25,7 +25,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const cellforge::error&) {
     return 0;
   }
-  (void)cellforge::validate_skeleton(obj.skeleton);
+  (void)cellforge::validate(obj.skeleton);
   std::ostringstream first, second;
   cellforge::io::write_skeleton_obj(first, obj.skeleton);  // an uncaught refusal is a crash: a bug
   const auto again =

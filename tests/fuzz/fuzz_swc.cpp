@@ -24,7 +24,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const cellforge::error&) {
     return 0;
   }
-  (void)cellforge::validate_skeleton(swc.skeleton);
+  (void)cellforge::validate(swc.skeleton);
   std::ostringstream first, second;
   cellforge::io::write_swc(first,
                            swc);  // throws (uncaught: a crash) if the reader let through what SWC cannot hold

@@ -453,7 +453,7 @@ TEST_CASE("step: meshes as faceted solids (a closed triangle mesh)") {
 TEST_CASE("step: tube meshes, plain and Loop-subdivided, as faceted solids") {
   for (const int levels : {0, 1}) {
     CAPTURE(levels);
-    cellforge::tube_options options;
+    cellforge::tubes_options options;
     options.subdivision_levels = levels;
     const auto tubes = cellforge::make_tubes(cellforge::samples::ring(6), options);
     const auto& mesh = tubes.mesh;

@@ -62,7 +62,7 @@ struct loop_property {
 };
 
 /// Options of loop_subdivide.
-struct loop_options {
+struct loop_subdivision_options {
   int levels = 1;  ///< number of 1→4 splits, ≥ 0 (0 leaves the mesh as it is)
   loop_weights weights = loop_weights::loop;
   loop_boundary boundary = loop_boundary::bspline;
@@ -74,9 +74,10 @@ struct loop_options {
   /// 80 bytes with its vertices and edges: 50M faces ≈ 4 GB). 0: only the 32-bit index limit.
   std::size_t max_faces = 50'000'000;
 };
+using loop_options [[deprecated("use loop_subdivision_options; removed in 0.7")]] = loop_subdivision_options;
 
 /// Counts before and after, and where the time went (milliseconds: the levels' sum).
-struct loop_result : stage_report {
+struct loop_subdivision_result : stage_report {
   std::size_t vertices_before = 0, edges_before = 0, faces_before = 0;
   std::size_t vertices_after = 0, edges_after = 0, faces_after = 0;
   std::size_t boundary_edges_after = 0, flipped_edges_after = 0;
@@ -90,6 +91,7 @@ struct loop_result : stage_report {
     return t;
   }
 };
+using loop_result [[deprecated("use loop_subdivision_result; removed in 0.7")]] = loop_subdivision_result;
 
 namespace detail::loop {
 
@@ -155,14 +157,14 @@ std::vector<attribute_job> resolve_attributes(halfedge_mesh& mesh, const std::ve
   for (std::size_t i = 0; i < specs.size(); ++i) {
     const std::string& name = specs[i].name;
     if (name == point_property_name)
-      throw error(
-          error_category::invalid_input,
-          "loop_subdivide: \"v:point\" is subdivided anyway; do not list it in loop_options::interpolate");
+      throw error(error_category::invalid_input,
+                  "loop_subdivide: \"v:point\" is subdivided anyway; do not list it in "
+                  "loop_subdivision_options::interpolate");
     for (std::size_t j = 0; j < i; ++j)
       if (specs[j].name == name)
         throw error(error_category::invalid_input,
                     cellforge::detail::cat("loop_subdivide: vertex property '", name,
-                                           "' is listed twice in loop_options::interpolate"));
+                                           "' is listed twice in loop_subdivision_options::interpolate"));
     property_array_base* a = mesh_access::vertex_properties(mesh).find(name);
     if (a == nullptr)
       throw error(error_category::invalid_input,
@@ -176,12 +178,14 @@ std::vector<attribute_job> resolve_attributes(halfedge_mesh& mesh, const std::ve
 }
 
 template <class = void>
-mask_params to_params(const loop_options& o) {
+mask_params to_params(const loop_subdivision_options& o) {
   if (o.weights != loop_weights::loop && o.weights != loop_weights::warren)
-    throw error(error_category::invalid_input, "loop_subdivide: unknown loop_options::weights value");
+    throw error(error_category::invalid_input,
+                "loop_subdivide: unknown loop_subdivision_options::weights value");
   if (o.boundary != loop_boundary::bspline && o.boundary != loop_boundary::bspline_corners &&
       o.boundary != loop_boundary::fixed)
-    throw error(error_category::invalid_input, "loop_subdivide: unknown loop_options::boundary value");
+    throw error(error_category::invalid_input,
+                "loop_subdivide: unknown loop_subdivision_options::boundary value");
   return {o.weights == loop_weights::warren, o.boundary != loop_boundary::fixed,
           o.boundary == loop_boundary::bspline_corners};
 }
@@ -222,10 +226,10 @@ void subdivide_attribute(const attribute_job& job, std::span<const record> he, s
 /// a coordinate is NaN, infinite or beyond ±1e290; a
 /// face is not a triangle (the error names it); an opted-in property is missing or of an
 /// unsupported type; or the records are corrupted. A vertex where several fans meet stays
-/// in place (counted in loop_result::fixed_vertices). If allocation fails at a later level,
+/// in place (counted in loop_subdivision_result::fixed_vertices). If allocation fails at a later level,
 /// the mesh is left valid at the last completed level.
 template <Point3 P>
-loop_result loop_subdivide(surface_mesh<P>& mesh, const loop_options& options = {}) {
+loop_subdivision_result loop_subdivide(surface_mesh<P>& mesh, const loop_subdivision_options& options = {}) {
   namespace dl = detail::loop;
   using access = detail::mesh_access;
 
@@ -236,7 +240,7 @@ loop_result loop_subdivide(surface_mesh<P>& mesh, const loop_options& options = 
   const dl::mask_params params = dl::to_params(options);
   auto pts = mesh.positions();
 
-  loop_result result;
+  loop_subdivision_result result;
   result.vertices_before = result.vertices_after = mesh.num_vertices();
   result.edges_before = result.edges_after = mesh.num_edges();
   result.faces_before = result.faces_after = mesh.num_faces();
@@ -261,8 +265,8 @@ loop_result loop_subdivide(surface_mesh<P>& mesh, const loop_options& options = 
                 cellforge::detail::cat(
                     "loop_subdivide: ", std::to_string(options.levels), " levels would make ",
                     std::to_string(c.faces), " faces (about ", std::to_string(c.faces * 80 / 1'000'000),
-                    " MB), more than loop_options::max_faces (", std::to_string(options.max_faces),
-                    "); ask for fewer levels or raise the limit"));
+                    " MB), more than loop_subdivision_options::max_faces (",
+                    std::to_string(options.max_faces), "); ask for fewer levels or raise the limit"));
   const std::vector<dl::attribute_job> jobs = dl::resolve_attributes(mesh, options.interpolate);
 
   // Loop's masks are convex combinations, so checking the input once covers every level;
@@ -397,10 +401,10 @@ loop_result loop_subdivide(surface_mesh<P>& mesh, const loop_options& options = 
 /// Returns a subdivided copy of `mesh` (which is left unchanged); see loop_subdivide.
 /// O(input size + output size).
 template <Point3 P>
-surface_mesh<P> loop_subdivided(const surface_mesh<P>& mesh, const loop_options& options = {},
-                                loop_result* result = nullptr) {
+surface_mesh<P> loop_subdivided(const surface_mesh<P>& mesh, const loop_subdivision_options& options = {},
+                                loop_subdivision_result* result = nullptr) {
   surface_mesh<P> copy = mesh;
-  loop_result r = loop_subdivide(copy, options);
+  loop_subdivision_result r = loop_subdivide(copy, options);
   if (result) *result = std::move(r);
   return copy;
 }

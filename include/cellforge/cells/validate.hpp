@@ -52,7 +52,7 @@ struct cells_validation_options {
 
 /// What validate(cell_complex) found: ok, or the first broken invariant, its element and why;
 /// plus measurements useful either way.
-struct cells_validation_result {
+struct cells_validation {
   cells_invariant broken = cells_invariant::none;
   std::uint32_t element = 0xFFFFFFFFu;  ///< index of the edge, face, volume or object named
   std::string message;
@@ -62,6 +62,7 @@ struct cells_validation_result {
   bool ok() const noexcept { return broken == cells_invariant::none; }
   explicit operator bool() const noexcept { return ok(); }
 };
+using cells_validation_result [[deprecated("use cells_validation; removed in 0.7")]] = cells_validation;
 
 namespace detail::cells {
 
@@ -87,8 +88,7 @@ double signed_volume_of(const cell_topology& cc, std::span<const glm::dvec3> pts
 
 // Takes r by reference: the message may read r, and arguments are evaluated in any order.
 template <class = void>
-cells_validation_result broke(cells_validation_result& r, cells_invariant what, std::uint32_t element,
-                              std::string msg) {
+cells_validation broke(cells_validation& r, cells_invariant what, std::uint32_t element, std::string msg) {
   r.broken = what;
   r.element = element;
   r.message = std::move(msg);
@@ -142,12 +142,12 @@ long long surface_euler(const cell_topology& cc, const std::vector<cell_face>& f
 namespace detail::cells {
 /// validate() on double positions (one copy of the code for every point type).
 template <class = void>
-cells_validation_result validate_cells(const cell_topology& cc, std::span<const glm::dvec3> pts,
-                                       const cells_validation_options& options) {
+cells_validation validate_cells(const cell_topology& cc, std::span<const glm::dvec3> pts,
+                                const cells_validation_options& options) {
   using detail::cells::broke;
   using detail::cells::S;
   using inv = cells_invariant;
-  cells_validation_result r;
+  cells_validation r;
   bounding_box box;
   for (const glm::dvec3& p : pts) box.add(p);
   const double diag = box.diagonal(), flat_floor = options.planarity_floor * diag,
@@ -370,7 +370,7 @@ double signed_volume(const cell_complex<P>& cc, cell_volume c, const P& origin) 
 /// edge against the geometry and the face→volume signs, and per object V - E + F - C against
 /// the value implied by its boundary surfaces (docs/cells.md). O(n log n) for n = size of cc.
 template <Point3 P>
-cells_validation_result validate(const cell_complex<P>& cc, const cells_validation_options& options = {}) {
+cells_validation validate(const cell_complex<P>& cc, const cells_validation_options& options = {}) {
   const detail::cells::dvec3_points<P> pts(cc.points());
   return detail::cells::validate_cells(cc, pts.span(), options);
 }

@@ -32,17 +32,18 @@ enum class mesh_invariant : std::uint8_t {
 };
 
 /// What validate() found: ok, or the first broken invariant, its element index and why.
-struct validation_result {
+struct mesh_validation {
   mesh_invariant broken = mesh_invariant::none;
   std::uint32_t element = 0xFFFFFFFFu;
   std::string message;
   bool ok() const noexcept { return broken == mesh_invariant::none; }
   explicit operator bool() const noexcept { return ok(); }
 };
+using validation_result [[deprecated("use mesh_validation; removed in 0.7")]] = mesh_validation;
 
 namespace detail {
 template <class = void>
-validation_result fail(mesh_invariant what, std::uint32_t element, std::string msg) {
+mesh_validation fail(mesh_invariant what, std::uint32_t element, std::string msg) {
   return {what, element, std::move(msg)};
 }
 }  // namespace detail
@@ -50,13 +51,13 @@ validation_result fail(mesh_invariant what, std::uint32_t element, std::string m
 /// Checks every invariant of m: records, face loops, edges, the unlinked table, vertex
 /// anchors, fans and boundary rings, property sizes. O(size of the mesh), expected.
 template <class = void>
-validation_result validate(const halfedge_mesh& m) {
+mesh_validation validate(const halfedge_mesh& m) {
   using detail::fail;
   const std::size_t nh = m.halfedges_size(), nv = m.vertices_size(), nf = m.faces_size();
   auto S = [](std::uint64_t x) { return std::to_string(x); };
 
   auto check_props = [&](const detail::property_registry& r, std::size_t n,
-                         const char* kind) -> validation_result {
+                         const char* kind) -> mesh_validation {
     for (std::size_t i = 0; i < r.num_properties(); ++i)
       if (r.array(i).size() != n)
         return fail(mesh_invariant::property_size, static_cast<std::uint32_t>(i),

@@ -214,7 +214,7 @@ arc_drawing<P2> parse_drawing_text_statements(std::string_view text, std::string
   }
   // What the writer checks: with radii far beyond the ends' distance rounding can leave the
   // computed curve off its junctions.
-  if (const arc_validation v = validate_arcs(result); !v)
+  if (const arc_validation v = validate(result); !v)
     c.fail_at(raw_arcs[v.arc].line, v.message + " (the arc's numbers are out of proportion to its ends)");
   return result;
 }
@@ -264,7 +264,7 @@ void check_drawing_writable(const D& d, std::string_view writer) {
   if (line_drawing_traits<D>::num_junctions(d) >= std::numeric_limits<std::uint32_t>::max() - 1)
     throw error(error_category::invalid_input,
                 cellforge::detail::cat(std::string(writer), ": more than 2^32 - 2 junctions"));
-  const drawing_validation v = validate_drawing(d, {.tolerance = 0});
+  const drawing_validation v = validate(d, {.tolerance = 0});
   switch (v.defect) {
     case drawing_defect::bad_position:
     case drawing_defect::endpoint_out_of_range:
@@ -330,7 +330,7 @@ void put_drawing_text(std::ostream& os, const D& d, const drawing_text_write_opt
 
 /// Throws invalid_input, prefixed by `writer`, for what the arc text reader would reject or
 /// change: the straight part's defects (check_drawing_writable) and arcs that are not valid or
-/// whose curve does not start and end at its junctions (validate_arcs:
+/// whose curve does not start and end at its junctions (validate(arc_drawing):
 /// the format keeps only the ends' junctions, radii, rotation and flags). O(V + E log E + A).
 template <Point2 P>
 void check_arc_drawing_writable(const arc_drawing<P>& d, std::string_view writer) {
@@ -338,7 +338,7 @@ void check_arc_drawing_writable(const arc_drawing<P>& d, std::string_view writer
   if (d.arcs.size() >= std::numeric_limits<std::uint32_t>::max() - 1)
     throw error(error_category::invalid_input,
                 cellforge::detail::cat(std::string(writer), ": more than 2^32 - 2 arcs"));
-  const arc_validation v = validate_arcs(d);
+  const arc_validation v = validate(d);
   if (!v)
     throw error(error_category::invalid_input, cellforge::detail::cat(std::string(writer), ": ", v.message));
 }

@@ -41,7 +41,7 @@ struct arc_pairing_options {
   double tolerance = 1e-4;
   /// Lines are parallel, a contour line tangent, rotations equal within this angle (radians).
   double angle_tolerance = 1e-3;
-  /// Arc ends lie on their junctions within this fraction of the diagonal (validate_arcs), raised
+  /// Arc ends lie on their junctions within this fraction of the diagonal (validate(arc_drawing)), raised
   /// to 64 ε for float points; a drawing typed or snapped to a few decimals needs more.
   double end_tolerance = 1e-9;
   /// Largest group of mutually congruent end curves matched exactly (by the least total
@@ -137,17 +137,17 @@ bool parallel(glm::dvec2 u, glm::dvec2 v, double angle) {
 /// rotation, ends moved by the centres' difference) with parallel lines at corresponding ends and
 /// the new edge along neither, matched with the most pairs, then the fewest new edges parallel to no straight
 /// line of the drawing, then the least total distance between partners. Throws invalid_input when an arc is
-/// not valid (validate_arcs to end_tolerance of the size, 64 ε for float points: a zero radius, ends not on
-/// the curve, ...) or a line names a junction that does not exist; an arc that cannot be paired is reported
-/// in `unpaired` and a diagnostic. O(V + E + A² + groups' matchings), a group of g congruent curves costing
-/// up to the number of matchings of g (exact_group bounds it).
+/// not valid (validate(arc_drawing) to end_tolerance of the size, 64 ε for float points: a zero radius, ends
+/// not on the curve, ...) or a line names a junction that does not exist; an arc that cannot be paired is
+/// reported in `unpaired` and a diagnostic. O(V + E + A² + groups' matchings), a group of g congruent curves
+/// costing up to the number of matchings of g (exact_group bounds it).
 template <Point2 P>
 arc_pairing_result<P> pair_arcs(const arc_drawing<P>& d, const arc_pairing_options& options = {}) {
   using detail::pairing::chain;
   const detail::stopwatch t_start;
   arc_pairing_result<P> out;
   // Arc ends on their junctions to end_tolerance of the size (or the point type's own precision).
-  if (const arc_validation v = validate_arcs(d, {options.end_tolerance}); !v.ok())
+  if (const arc_validation v = validate(d, {options.end_tolerance}); !v.ok())
     throw error(error_category::invalid_input, cellforge::detail::cat("pair_arcs: ", v.message));
   const std::size_t nv = d.lines.points.size(), na = d.arcs.size();
   for (std::size_t e = 0; e < d.lines.edges.size(); ++e)

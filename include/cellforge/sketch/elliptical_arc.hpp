@@ -208,7 +208,7 @@ struct arc_drawing {
   std::vector<drawing_arc<P>> arcs;
 };
 
-/// What validate_arcs found wrong with an arc of a drawing.
+/// What validate(arc_drawing) found wrong with an arc of a drawing.
 struct arc_validation {
   static constexpr std::size_t npos = ~std::size_t{0};
   arc_defect defect = arc_defect::none;
@@ -228,14 +228,14 @@ struct arc_validation {
 /// junctions, each within that distance of the curve's first and last point. The tolerance is
 /// at least the point type's own precision (64 ε of a floating-point scalar: float points hold
 /// a curve's ends only to that). The straight part
-/// is not checked here: with its arcs taken away it has loose ends by design (validate_drawing
+/// is not checked here: with its arcs taken away it has loose ends by design (validate(drawing)
 /// applies to it once the arcs are replaced, as the skeleton stage does). O(V + A).
 template <Point2 P>
-arc_validation validate_arcs(const arc_drawing<P>& d, const drawing_check_options& options = {}) {
+arc_validation validate(const arc_drawing<P>& d, const drawing_validation_options& options = {}) {
   double tol = options.tolerance;
   if (!std::isfinite(tol) || tol < 0 || tol >= 0.5)
     throw error(error_category::invalid_input,
-                cellforge::detail::cat("validate_arcs: the tolerance ", detail::drawing_number(tol),
+                cellforge::detail::cat("validate(arc_drawing): the tolerance ", detail::drawing_number(tol),
                                        " is not a finite number in [0, 0.5)"));
   if constexpr (std::is_floating_point_v<scalar2_t<P>>)
     tol = std::max(tol, 64 * static_cast<double>(std::numeric_limits<scalar2_t<P>>::epsilon()));
@@ -288,6 +288,13 @@ arc_validation validate_arcs(const arc_drawing<P>& d, const drawing_check_option
     }
   }
   return {};
+}
+
+/// Deprecated spelling of validate(d, options).
+template <Point2 P>
+[[deprecated("use validate(d, options); removed in 0.7")]] arc_validation validate_arcs(
+    const arc_drawing<P>& d, const drawing_validation_options& options = {}) {
+  return validate(d, options);
 }
 
 }  // namespace cellforge

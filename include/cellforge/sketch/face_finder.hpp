@@ -83,7 +83,7 @@ struct face_finder_options {
 /// two loops turn the same corner or overlap as coplanar faces at an edge, no edge holds more
 /// loops than its junctions allow, and no edge lies on just two coplanar loops (a seam no wall
 /// meets). Coplanar: docs/sketch.md, "Walls and contacts".
-struct face_check {
+struct face_validation {
   std::size_t edges_on_two_loops = 0;
   std::vector<std::uint32_t> edges_with_fewer_loops;  ///< edge indices, with 0 or 1 loops
   std::vector<std::uint32_t> edges_with_more_loops;   ///< edge indices on 3 or more loops (walls, contacts)
@@ -100,11 +100,12 @@ struct face_check {
            rule_breaking_loops.empty();
   }
 };
+using face_check [[deprecated("use face_validation; removed in 0.7")]] = face_validation;
 
 /// Another answer, when the first failed its check: loops, its check, and why it ranks there.
 struct face_alternative {
   std::vector<std::vector<std::uint32_t>> loops;
-  face_check check;
+  face_validation check;
   std::string reason;
 };
 
@@ -113,7 +114,7 @@ struct face_alternative {
 struct face_finder_result : stage_report {
   face_finder_kind kind = face_finder_kind::varley_company;
   std::vector<std::vector<std::uint32_t>> loops;
-  face_check check;
+  face_validation check;
   bool flagged = false;                        ///< the check failed: see diagnostics and alternatives
   std::vector<face_alternative> alternatives;  ///< best first, when flagged
   std::size_t junctions = 0, edges = 0, direction_classes = 0;

@@ -4,7 +4,7 @@
 /// Line drawings: the input of the sketch stages. Junctions are 2D points; edges join two
 /// junctions by a straight line. Edges may cross in the drawing where hidden lines show: a
 /// crossing is not a junction. `line_drawing_traits<D>` adapts a user's own drawing type;
-/// `line_drawing<P>` is the plain default model; `validate_drawing` / `check_drawing` say what in
+/// `line_drawing<P>` is the plain default model; `validate(drawing)` / `check_drawing` say what in
 /// a drawing no face finder can read (see docs/sketch.md, "Input: line drawings").
 
 #include <algorithm>
@@ -105,7 +105,7 @@ requires(std::is_void_v<Q> || Point2<Q>) auto to_line_drawing(const D& d) {
   return out;
 }
 
-/// What validate_drawing found wrong; `none` when the drawing can be read for faces as far as
+/// What validate(drawing) found wrong; `none` when the drawing can be read for faces as far as
 /// its input goes. Edges crossing in their interiors are not defects (hidden lines cross).
 enum class drawing_defect : std::uint8_t {
   none,
@@ -133,13 +133,15 @@ struct drawing_validation {
   explicit operator bool() const noexcept { return ok(); }
 };
 
-/// How validate_drawing judges geometry.
-struct drawing_check_options {
+/// How validate(drawing) judges geometry.
+struct drawing_validation_options {
   /// Two junctions closer than this fraction of the drawing's bounding-box diagonal are one
   /// point; a junction this close to an edge is on it; edges this close to a common line are
   /// collinear. Must be finite and in [0, 0.5).
   double tolerance = 1e-9;
 };
+using drawing_check_options [[deprecated("use drawing_validation_options; removed in 0.7")]] =
+    drawing_validation_options;
 
 namespace detail {
 
@@ -167,14 +169,14 @@ std::string drawing_point_text(const T& p) {
 /// uniform grid: O(V log V + E log E + K), K the edge–edge and edge–junction pairs sharing a
 /// grid cell (O(E) for evenly spread drawings; a junction of degree d adds d²).
 template <LineDrawing D>
-drawing_validation validate_drawing(const D& d, const drawing_check_options& options = {}) {
+drawing_validation validate(const D& d, const drawing_validation_options& options = {}) {
   using T = line_drawing_traits<D>;
   using P = drawing_point_t<D>;
   using R = drawing_validation;
   const double tol = options.tolerance;
   if (!std::isfinite(tol) || tol < 0 || tol >= 0.5)
     throw error(error_category::invalid_input,
-                cellforge::detail::cat("validate_drawing: the tolerance ", detail::drawing_number(tol),
+                cellforge::detail::cat("validate(drawing): the tolerance ", detail::drawing_number(tol),
                                        " is not a finite number in [0, 0.5)"));
   const std::size_t nv = T::num_junctions(d), ne = T::num_edges(d);
   const auto jn = [](std::size_t i) { return cellforge::detail::cat("junction ", std::to_string(i)); };
@@ -331,11 +333,18 @@ drawing_validation validate_drawing(const D& d, const drawing_check_options& opt
   return {};
 }
 
-/// Throws an invalid_input `cellforge::error` with validate_drawing's message when the drawing
-/// has a defect; returns normally otherwise. Cost as validate_drawing.
+/// Deprecated spelling of validate(d, options).
 template <LineDrawing D>
-void check_drawing(const D& d, const drawing_check_options& options = {}) {
-  drawing_validation v = validate_drawing(d, options);
+[[deprecated("use validate(d, options); removed in 0.7")]] drawing_validation validate_drawing(
+    const D& d, const drawing_validation_options& options = {}) {
+  return validate(d, options);
+}
+
+/// Throws an invalid_input `cellforge::error` with validate(drawing)'s message when the drawing
+/// has a defect; returns normally otherwise. Cost as validate(drawing).
+template <LineDrawing D>
+void check_drawing(const D& d, const drawing_validation_options& options = {}) {
+  drawing_validation v = validate(d, options);
   if (!v.ok())
     throw error(error_category::invalid_input, cellforge::detail::cat("check_drawing: ", v.message));
 }

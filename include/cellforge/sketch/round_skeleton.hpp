@@ -71,7 +71,7 @@ struct round_skeleton_result : stage_report {
   arc_pairing_result<P> pairing;
   std::vector<std::uint32_t> junction_map;
   face_finder_result faces;
-  drawing_validation validation;  ///< validate_drawing of the skeleton
+  drawing_validation validation;  ///< validate(drawing) of the skeleton
   std::size_t rounds = 0, fillets = 0, unknown = 0;
   std::size_t suppressed_junctions = 0, suppressed_lines = 0, new_junctions = 0;
 };
@@ -145,7 +145,7 @@ round_skeleton_result<P> round_skeleton(const arc_drawing<P>& d, const round_ske
     out.skeleton.edges.push_back(b.junctions);
     out.blends.push_back(std::move(b));
   }
-  out.validation = validate_drawing(out.skeleton);
+  out.validation = validate(out.skeleton);
   if (!out.validation.ok())
     out.diagnostics.push_back(
         cellforge::detail::cat("the skeleton is not a readable drawing: ", out.validation.message));

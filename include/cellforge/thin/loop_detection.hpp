@@ -23,7 +23,7 @@ enum class thin_detection : std::uint8_t {
 };
 
 /// Parameters of detect_thin_cycles (the thin_options fields of the same names).
-struct detection_options {
+struct thin_detection_options {
   thin_detection detection = thin_detection::prominence;
   double min_strength = 1.0 / 50;  ///< report scores above this × the largest (seed) / absolute (prominence)
   double suppression_fraction = 0.1;  ///< no stronger loop within this fraction of the cycles
@@ -32,6 +32,7 @@ struct detection_options {
   /// the candidate window); find_thin_points sets it to about one ring of faces.
   std::size_t envelope_cycles = 0;
 };
+using detection_options [[deprecated("use thin_detection_options; removed in 0.7")]] = thin_detection_options;
 
 /// One detected cycle: its 1-based cycle number, its strength (0..1, strongest first).
 struct detected_cycle {
@@ -41,12 +42,13 @@ struct detected_cycle {
 };
 
 /// The detector's picks, strongest first, and what the seed detector did.
-struct detection_result {
+struct thin_detection_result {
   std::vector<detected_cycle> cycles;
   std::vector<double>
       values;             ///< seed: the weighted (and maybe smoothed) values; prominence: the wide envelope
   bool smoothed = false;  ///< seed: the values alternated and were smoothed
 };
+using detection_result [[deprecated("use thin_detection_result; removed in 0.7")]] = thin_detection_result;
 
 namespace detail::thin {
 
@@ -95,8 +97,9 @@ bool alternates(std::span<const double> v) {
 }
 
 template <class = void>
-detection_result detect_seed(std::span<const double> l, std::size_t faces, const detection_options& o) {
-  detection_result r;
+thin_detection_result detect_seed(std::span<const double> l, std::size_t faces,
+                                  const thin_detection_options& o) {
+  thin_detection_result r;
   const auto n = static_cast<std::ptrdiff_t>(l.size());
   std::vector<double> v(l.size());
   for (std::ptrdiff_t i = 0; i < n; ++i) {
@@ -161,8 +164,8 @@ std::vector<double> window_min(std::span<const double> v, std::ptrdiff_t half) {
 }
 
 template <class = void>
-detection_result detect_prominence(std::span<const double> l, const detection_options& o) {
-  detection_result r;
+thin_detection_result detect_prominence(std::span<const double> l, const thin_detection_options& o) {
+  thin_detection_result r;
   const auto n = static_cast<std::ptrdiff_t>(l.size());
   const auto half_of = [&](double fraction) {
     return std::max<std::ptrdiff_t>(1, static_cast<std::ptrdiff_t>(fraction * static_cast<double>(n) / 2));
@@ -202,8 +205,8 @@ detection_result detect_prominence(std::span<const double> l, const detection_op
 /// The thin cycles among `lengths` (cycle i+1's least length at index i) of a solid with
 /// `faces` faces. Prominence: O(n + k·n) for k candidates; seed: O(n · window + k²).
 template <class = void>
-detection_result detect_thin_cycles(std::span<const double> lengths, std::size_t faces,
-                                    const detection_options& options = {}) {
+thin_detection_result detect_thin_cycles(std::span<const double> lengths, std::size_t faces,
+                                         const thin_detection_options& options = {}) {
   return options.detection == thin_detection::seed ? detail::thin::detect_seed(lengths, faces, options)
                                                    : detail::thin::detect_prominence(lengths, options);
 }

@@ -566,7 +566,7 @@ thin_result<glm::dvec3> find(thin_input prepared, const thin_options& options) {
   r.ring_cycles = ring_cycles;
 
   clock.restart();
-  const detection_result found = detect_thin_cycles(
+  const thin_detection_result found = detect_thin_cycles(
       detail::span_of(r.cycle_lengths), g.num_faces,
       {options.detection, options.min_strength, options.suppression_fraction, options.averaging_window,
        static_cast<std::size_t>(std::lround(options.envelope_rings * ring_cycles))});

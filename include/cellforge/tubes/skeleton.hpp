@@ -3,7 +3,7 @@
 /// \file
 /// Skeleton graphs, the input of the tube mesher: nodes with a position and a radius, and
 /// directed edges (from, to) between them. `skeleton_traits<G>` adapts a user's own graph
-/// type; `skeleton<P>` is the plain default model; `validate_skeleton` / `check_skeleton`
+/// type; `skeleton<P>` is the plain default model; `validate(skeleton)` / `check_skeleton`
 /// say what in a skeleton no tube mesh can be made of.
 
 #include <algorithm>
@@ -97,7 +97,7 @@ requires(std::is_void_v<Q> || Point3<Q>) auto to_skeleton(const G& g) {
   }
   for (std::size_t j = 0; j < ne; ++j) {
     const std::array<std::size_t, 2> ab = T::endpoints(g, j);
-    // Out-of-range endpoints are kept (clamped to the sentinel) for validate_skeleton to report.
+    // Out-of-range endpoints are kept (clamped to the sentinel) for validate(skeleton) to report.
     const auto narrow = [](std::size_t v) {
       return static_cast<std::uint32_t>(std::min<std::size_t>(v, std::numeric_limits<std::uint32_t>::max()));
     };
@@ -106,7 +106,7 @@ requires(std::is_void_v<Q> || Point3<Q>) auto to_skeleton(const G& g) {
   return s;
 }
 
-/// What validate_skeleton found wrong; `none` when the skeleton can be meshed as far as its
+/// What validate(skeleton) found wrong; `none` when the skeleton can be meshed as far as its
 /// input goes.
 enum class skeleton_defect : std::uint8_t {
   none,
@@ -198,7 +198,7 @@ std::array<std::size_t, 2> first_repeated_edge(std::size_t ne, Endpoints&& endpo
 /// (finite), every edge's endpoints (in range, distinct), no edge twice in either direction, no
 /// two nodes at exactly the same position; returns the first defect. O(V + E) expected.
 template <Skeleton G>
-skeleton_validation validate_skeleton(const G& g) {
+skeleton_validation validate(const G& g) {
   using T = skeleton_traits<G>;
   using R = skeleton_validation;
   const std::size_t nv = T::num_nodes(g), ne = T::num_edges(g);
@@ -265,11 +265,17 @@ skeleton_validation validate_skeleton(const G& g) {
   return {};
 }
 
-/// Throws an invalid_input `cellforge::error` with validate_skeleton's message when the
+/// Deprecated spelling of validate(g).
+template <Skeleton G>
+[[deprecated("use validate(g); removed in 0.7")]] skeleton_validation validate_skeleton(const G& g) {
+  return validate(g);
+}
+
+/// Throws an invalid_input `cellforge::error` with validate(skeleton)'s message when the
 /// skeleton has a defect; returns normally otherwise. O(V + E) expected.
 template <Skeleton G>
 void check_skeleton(const G& g) {
-  skeleton_validation v = validate_skeleton(g);
+  skeleton_validation v = validate(g);
   if (!v.ok())
     throw error(error_category::invalid_input, cellforge::detail::cat("check_skeleton: ", v.message));
 }
@@ -281,8 +287,7 @@ namespace detail {
 /// O(V log V + E log E).
 template <Skeleton G>
 void check_skeleton_writable(const G& g, std::string_view writer) {
-  if (const skeleton_validation v = validate_skeleton(g);
-      !v.ok() && v.defect != skeleton_defect::coincident_nodes)
+  if (const skeleton_validation v = validate(g); !v.ok() && v.defect != skeleton_defect::coincident_nodes)
     throw error(error_category::invalid_input, cellforge::detail::cat(std::string(writer), ": ", v.message));
 }
 

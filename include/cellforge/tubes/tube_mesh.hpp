@@ -48,7 +48,7 @@ namespace cellforge {
 inline constexpr std::string_view tube_source_property_name = "f:tube_source";
 
 /// How make_tubes shapes the tubes. The defaults are the seed's where it has one.
-struct tube_options {
+struct tubes_options {
   /// Vertices of each cross-section (8: an octagon; 4 gives the seed's square sections).
   std::uint32_t sides = 8;
   /// Fraction of half the angle between two edges at a junction that a cross-section's cap
@@ -78,6 +78,7 @@ struct tube_options {
   /// io::swc_result::ids): "sample 17" instead of "node 3". Empty: node indices. Not copied.
   std::span<const std::int64_t> node_ids = {};
 };
+using tube_options [[deprecated("use tubes_options; removed in 0.7")]] = tubes_options;
 
 /// What make_tubes built, and how long each stage took. stage_report: milliseconds the whole
 /// call; complete false when the self-intersection check stopped at its budget; diagnostics what
@@ -90,7 +91,7 @@ struct tubes_result : stage_report {
   std::size_t junctions = 0;       ///< branches and sharp bends meshed as junctions
   std::size_t bend_junctions = 0;  ///< of which sharp bends of degree-2 nodes
   std::size_t paths = 0, closed_paths = 0, end_caps = 0, spheres = 0;
-  std::size_t virtual_sections = 0;  ///< junctions given a virtual cross-section (see tube_options)
+  std::size_t virtual_sections = 0;  ///< junctions given a virtual cross-section (see tubes_options)
   /// Path nodes merged with a neighbour: closer to it than their turns' mitres reach
   /// (r tan(β/2) each side), where the tube between them would fold back (docs/tubes.md).
   std::size_t merged_nodes = 0;
@@ -144,11 +145,11 @@ using tubes_result_for = tubes_result<typename skeleton_traits<G>::point_type>;
 /// Meshes the skeleton g as tubes: a closed, oriented 2-manifold per connected component
 /// (genus = cycle rank), quads along edges and triangles at junctions, positions in g's point
 /// type. Throws cellforge::error naming the node or edge for input it cannot mesh (see
-/// validate_skeleton; edges too close in angle at a junction). O(V + E) for bounded degree,
+/// validate(skeleton); edges too close in angle at a junction). O(V + E) for bounded degree,
 /// O(k log k) per junction of degree k.
 template <Skeleton G>
 detail::if_satisfied_t<Skeleton<G>, detail::tubes::tubes_result_for, G> make_tubes(
-    const G& g, const tube_options& options = {});
+    const G& g, const tubes_options& options = {});
 
 }  // namespace cellforge
 

@@ -30,7 +30,7 @@
 namespace cellforge {
 
 /// Options of read_vertices.
-struct read_options {
+struct wireframe_read_options {
   /// Points closer than this fraction of their local edge length (the median length of the
   /// edges at each, the smaller of the two) are one vertex: a far vertex or a long part does
   /// not swallow a small one. A vertex lies inside an edge within this fraction of both.
@@ -46,9 +46,10 @@ struct read_options {
   /// it); false keeps the caller's order in the graph.
   bool spatial_order = true;
 };
+using read_options [[deprecated("use wireframe_read_options; removed in 0.7")]] = wireframe_read_options;
 
 /// What read_vertices found; `graph` is the labelled wireframe the other stages use.
-struct read_result : stage_report {
+struct wireframe_read_result : stage_report {
   wire_graph graph;
   std::size_t input_vertices = 0, input_edges = 0;
   std::size_t merged_points = 0;        ///< points merged into an earlier point within tolerance
@@ -58,6 +59,7 @@ struct read_result : stage_report {
   std::size_t split_edges = 0;          ///< vertices found inside edges (each splits an edge there)
   std::vector<std::uint32_t> dangling;  ///< caller's indices of edges removed because no circuit can use them
 };
+using read_result [[deprecated("use wireframe_read_result; removed in 0.7")]] = wireframe_read_result;
 
 namespace detail {
 
@@ -349,10 +351,10 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
 /// Reads any Wireframe into the labelled graph: checks coordinates and indices, merges close
 /// points, drops (or rejects) zero-length, duplicate and dangling edges. O(V + E) expected.
 template <Wireframe G>
-read_result read_vertices(const G& wire, const read_options& options = {}) {
+wireframe_read_result read_vertices(const G& wire, const wireframe_read_options& options = {}) {
   using T = wireframe_traits<G>;
   detail::stopwatch clock;
-  read_result r;
+  wireframe_read_result r;
   const std::size_t nv = T::num_vertices(wire), ne = T::num_edges(wire);
   r.input_vertices = nv;
   r.input_edges = ne;

@@ -14,21 +14,24 @@
 namespace cellforge {
 
 /// Options of unique_circuits (none yet; kept for a uniform stage interface).
-struct unique_options {};
+struct unique_circuits_options {};
+using unique_options [[deprecated("use unique_circuits_options; removed in 0.7")]] = unique_circuits_options;
 
 /// The unique candidate faces in canonical order.
-struct unique_result : stage_report {
+struct unique_circuits_result : stage_report {
   std::vector<wire_face> faces;
   std::size_t duplicates =
       0;  ///< circuits that repeated an earlier one (same loops up to rotation and reversal)
 };
+using unique_result [[deprecated("use unique_circuits_result; removed in 0.7")]] = unique_circuits_result;
 
 /// Canonicalises every face and removes repeats; the comparison is by canonical loops, which
 /// the seed's edge-by-edge walk decides the same way. O(F log F · L) for loops of length L.
 template <class = void>
-unique_result unique_circuits(const wire_graph& g, std::vector<wire_face> faces, const unique_options& = {}) {
+unique_circuits_result unique_circuits(const wire_graph& g, std::vector<wire_face> faces,
+                                       const unique_circuits_options& = {}) {
   detail::stopwatch clock;
-  unique_result r;
+  unique_circuits_result r;
   // canonicalize turns the normal with the loop: a tracer's normal (the planar tracer gives a
   // face its plane's fitted normal) is kept; only a face without one gets its Newell normal.
   for (auto& f : faces) {

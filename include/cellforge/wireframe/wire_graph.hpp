@@ -64,7 +64,7 @@ struct basic_wire_graph {
   }
   /// The edge joining a and b, or no_index: a scan of a's neighbours sorted by label (binary
   /// search past 16). O(log deg a); flat, so it costs one or two cache lines when the
-  /// vertices are numbered spatially (read_options::spatial_order).
+  /// vertices are numbered spatially (wireframe_read_options::spatial_order).
   std::uint32_t find_edge(std::uint32_t a, std::uint32_t b) const noexcept {
     if (a >= points.size()) return no_index;
     const neighbour* lo = neighbours_.data() + first[a];

@@ -40,12 +40,12 @@ namespace cellforge {
 
 /// Options of every stage, with the seed's defaults.
 struct wireframe_options {
-  read_options read{};
+  wireframe_read_options read{};
   /// The planarity tolerance of every stage chosen from the data (§4.1½, tolerance_estimate.hpp);
   /// `automatic = false` keeps the stages' own planarity options below.
   tolerance_options tolerance{};
   trace_options trace{};
-  unique_options unique{};
+  unique_circuits_options unique{};
   reduction_options reduction{};
   arrangement_options arrangement{};
   extra_face_options extra{};
@@ -95,7 +95,7 @@ struct wireframe_result : stage_report {
   std::vector<reading_note> alternatives;
   /// Faces selected and then removed (a free edge, an overlap): never silent.
   std::vector<face_note> lost;
-  read_result read;
+  wireframe_read_result read;
   /// The tolerance the stages used and how it was found; `tolerance.ambiguous` flags an answer
   /// the coordinates' noise may have spoilt (no clear gap, and part of the wireframe unexplained).
   tolerance_result tolerance;
@@ -103,7 +103,7 @@ struct wireframe_result : stage_report {
   /// options as used, the automatic tolerance filled in).
   cells_validation_options check;
   trace_result trace;
-  unique_result unique;
+  unique_circuits_result unique;
   reduction_result reduction;
   arrangement_result arrangement;
   extra_faces_result extra;
@@ -120,7 +120,7 @@ struct wireframe_result : stage_report {
   certificate_result certificate;
   /// validate()'s verdict on `cells` (check_result; ok when not run), named in the output's
   /// numbering when it failed; signed volumes per volume (the per-object lists left empty).
-  cells_validation_result validation;
+  cells_validation validation;
 };
 
 namespace detail {

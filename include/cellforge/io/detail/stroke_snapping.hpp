@@ -252,7 +252,7 @@ arc_drawing<P2> snap_strokes(const std::vector<std::pair<glm::dvec2, glm::dvec2>
   }
   // With radii far beyond the distance of the ends, rounding can leave the curve off its
   // junctions: refused here rather than by every later stage.
-  if (const arc_validation v = validate_arcs(result); !v)
+  if (const arc_validation v = validate(result); !v)
     fail(arc_piece[v.arc], cellforge::detail::cat("an arc out of proportion to its ends: ", v.message));
   return result;
 }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// Uniform grids for the pairwise tests on line drawings (validate_drawing, the SVG reader's
+/// Uniform grids for the pairwise tests on line drawings (validate(drawing), the SVG reader's
 /// snapping and splitting): points in a normalised frame, close point pairs, and the
 /// segment-segment and segment-point pairs that share a grid cell.
 

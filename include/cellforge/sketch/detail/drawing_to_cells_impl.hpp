@@ -348,7 +348,7 @@ bool nearly_parallel(const faces::drawing_graph& g, double degrees) {
 template <class = void>
 bool flat_seam(const faces::drawing_graph& g, const std::vector<double>& depth,
                const std::vector<std::vector<std::uint32_t>>& loops, double coplanar_degrees) {
-  const face_check c = faces::check_loops(g, loops, coplanar_degrees);
+  const face_validation c = faces::check_loops(g, loops, coplanar_degrees);
   if (c.seam_edges.empty() || depth.size() != g.num_junctions()) return false;
   std::vector<glm::dvec3> q(g.num_junctions());
   for (std::size_t i = 0; i < q.size(); ++i) q[i] = glm::dvec3(g.p[i], depth[i]);

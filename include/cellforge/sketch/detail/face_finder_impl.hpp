@@ -965,9 +965,9 @@ std::vector<std::vector<std::uint32_t>> loops_of(const drawing_graph& g, const s
 /// Checks an answer: edges on two loops, loops simple without inner chords, the Euler count.
 /// O(Σ L² + E).
 template <class = void>
-face_check check_loops(const drawing_graph& g, const std::vector<std::vector<std::uint32_t>>& loops,
-                       double coplanar_tolerance_degrees = 1e-6) {
-  face_check c;
+face_validation check_loops(const drawing_graph& g, const std::vector<std::vector<std::uint32_t>>& loops,
+                            double coplanar_tolerance_degrees = 1e-6) {
+  face_validation c;
   const std::size_t ne = g.num_half_edges() / 2, nv = g.num_junctions();
   std::vector<std::uint32_t> uses(ne, 0);
   // Edge lookup by junction pair through the CSR table.

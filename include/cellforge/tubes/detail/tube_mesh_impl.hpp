@@ -141,21 +141,21 @@ struct merged_skeleton {
 
 /// make_tubes on g, which is `from`'s merged skeleton when `from` is given. O(V + E).
 template <Skeleton G>
-if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const tube_options& options,
+if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const tubes_options& options,
                                                                const merged_skeleton* from);
 
 }  // namespace detail::tubes
 
 template <Skeleton G>
 detail::if_satisfied_t<Skeleton<G>, detail::tubes::tubes_result_for, G> make_tubes(
-    const G& g, const tube_options& options) {
+    const G& g, const tubes_options& options) {
   return detail::tubes::make_tubes_of(g, options, nullptr);
 }
 
 namespace detail::tubes {
 
 template <Skeleton G>
-if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const tube_options& options,
+if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const tubes_options& options,
                                                                const merged_skeleton* from) {
   namespace dt = detail::tubes;
   using P = skeleton_point_t<G>;
@@ -170,7 +170,7 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
     throw error(error_category::invalid_input,
                 cellforge::detail::cat("make_tubes: node_ids has ", std::to_string(options.node_ids.size()),
                                        " names for ", std::to_string(T::num_nodes(g)), " nodes"));
-  if (const skeleton_validation v = validate_skeleton(g); !v.ok()) {
+  if (const skeleton_validation v = validate(g); !v.ok()) {
     // check_skeleton's sentence, and the sample ids of the nodes it names when the caller has them.
     std::string message = cellforge::detail::cat("check_skeleton: ", v.message), named;
     std::vector<std::size_t> nodes;
@@ -720,7 +720,7 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
       }
       std::sort(pairs.begin(), pairs.end());
       if (attempt == 1 || (merged > 0 && std::adjacent_find(pairs.begin(), pairs.end()) == pairs.end() &&
-                           validate_skeleton(g2).ok())) {
+                           validate(g2).ok())) {
         tubes_result<P> again = make_tubes_of(g2, options, &next);
         again.milliseconds = again.total_ms = t_start.ms();
         return again;

@@ -254,7 +254,7 @@ namespace detail {
 template <Wireframe G>
 wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const G& wire,
                                                                           const wireframe_options& used,
-                                                                          read_result read,
+                                                                          wireframe_read_result read,
                                                                           tolerance_result tolerance,
                                                                           bool estimated) {
   using P = typename wireframe_traits<G>::point_type;
@@ -355,7 +355,7 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
   const std::vector<std::uint32_t>& graph_edge_out = list.output_edge;  // graph edge → output edge
 
   if (used.build_complex) {
-    // Built and checked in the graph's numbering (spatial: read_options::spatial_order), where
+    // Built and checked in the graph's numbering (spatial: wireframe_read_options::spatial_order), where
     // the sorts and checks stay in cache, then renumbered to the output's: the same complex as
     // make_cell_complex(r.input), whatever order the caller numbered the wireframe in.
     const std::size_t nvo = r.input.points.size(), neo = r.input.edges.size();
@@ -460,7 +460,7 @@ template <Wireframe G>
 detail::if_satisfied_t<Wireframe<G>, detail::wireframe_result_for, G> wireframe_to_cells(
     const G& wire, const wireframe_options& options) {
   using P = typename wireframe_traits<G>::point_type;
-  read_result read = read_vertices(wire, options.read);
+  wireframe_read_result read = read_vertices(wire, options.read);
   tolerance_result given;  // the stages' own planarity options
   given.planarity = options.trace.planarity.relative;
   given.planarity_distance = options.trace.planarity.relative * read.graph.size;
