@@ -24,6 +24,9 @@
 #include "cellforge/samples/round_drawings.hpp"
 #include "cellforge/sketch/arc_detection.hpp"
 
+// The pieces this file tests, named (its page above includes them).
+#include "cellforge/sketch/detail/arc_detection_impl.hpp"
+
 // Own namespace: the test files of a group may be compiled as one translation unit.
 namespace arc_detection_tests {
 

@@ -18,6 +18,9 @@
 #include "cellforge/samples/drawings.hpp"
 #include "cellforge/sketch/drawing_to_cells.hpp"
 
+// The pieces this file tests, named (its page above includes them).
+#include "cellforge/sketch/detail/drawing_to_cells_impl.hpp"
+
 namespace {
 
 using faces_t = std::vector<std::vector<std::vector<std::uint32_t>>>;

@@ -15,6 +15,9 @@
 #include "cellforge/samples/drawings.hpp"
 #include "cellforge/sketch/face_finder.hpp"
 
+// The pieces this file tests, named (its page above includes them).
+#include "cellforge/sketch/detail/face_finder_impl.hpp"
+
 namespace {
 
 using loops_t = std::vector<std::vector<std::uint32_t>>;

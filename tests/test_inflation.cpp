@@ -24,6 +24,9 @@
 #include "cellforge/sketch/inflation.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 
+// The pieces this file tests, named (its page above includes them).
+#include "cellforge/sketch/detail/inflation_impl.hpp"
+
 namespace inflation_test {
 struct pen_point {  // a user's 2D type
   double u = 0, v = 0;

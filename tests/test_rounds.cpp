@@ -28,6 +28,9 @@
 #include "cellforge/samples/round_drawings.hpp"
 #include "cellforge/sketch/rounds.hpp"
 
+// The pieces this file tests, named (its page above includes them).
+#include "cellforge/sketch/detail/rounds_impl.hpp"
+
 // Own namespace: the test files of a group may be compiled as one translation unit.
 namespace rounds_tests {
 

@@ -26,6 +26,13 @@
 #include "cellforge/samples/wireframe_models.hpp"
 #include "cellforge/wireframe/wireframe_to_cells.hpp"
 
+// The pieces this file tests, named (its page above includes them).
+#include "cellforge/samples/drawings_compound.hpp"
+#include "cellforge/samples/drawings_normalons.hpp"
+#include "cellforge/samples/drawings_polytopes.hpp"
+#include "cellforge/samples/drawings_sweep.hpp"
+#include "cellforge/samples/drawings_views.hpp"
+
 // Own namespace: the test files of a group may be compiled as one translation unit.
 namespace sample_drawings_tests {
 namespace {

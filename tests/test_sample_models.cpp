@@ -20,6 +20,11 @@
 
 #include "cellforge/samples/wireframe_models.hpp"
 
+// The pieces this file tests, named (its page above includes them).
+#include "cellforge/samples/wireframe_models_builders.hpp"
+#include "cellforge/samples/wireframe_models_core.hpp"
+#include "cellforge/samples/wireframe_models_fixtures.hpp"
+
 // Own namespace: the test files of a group are compiled as one translation unit.
 namespace sample_models_tests {
 

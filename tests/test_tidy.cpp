@@ -20,6 +20,9 @@
 #include "cellforge/sketch/drawing_to_cells.hpp"
 #include "cellforge/sketch/tidy.hpp"
 
+// The pieces this file tests, named (its page above includes them).
+#include "cellforge/sketch/detail/tidy_classes.hpp"
+
 namespace tidy_test {
 
 using faces_t = std::vector<std::vector<std::vector<std::uint32_t>>>;

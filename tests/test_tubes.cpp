@@ -25,6 +25,9 @@
 #include "cellforge/tubes/node_path.hpp"
 #include "cellforge/tubes/tube_construct.hpp"
 #include "cellforge/tubes/tube_mesh.hpp"
+
+// The pieces this file tests, named (its page above includes them).
+#include "cellforge/tubes/detail/tube_mesh_impl.hpp"
 #include "test_support.hpp"
 
 // Own namespace: the test files of a group may be compiled as one translation unit.
