@@ -785,4 +785,14 @@ rounded_brep_result rounded_brep(const rounds_result<Q, P>& r, const rounded_bre
   return out;
 }
 
+#if defined(CELLFORGE_EXTERN_SKETCH)
+// Compiled once in the file that includes cellforge/sketch/instantiate.hpp (docs/sketch.md).
+extern template rounds_result<glm::dvec3, glm::dvec2> reconstruct_rounds<glm::dvec3, glm::dvec2>(
+    const arc_drawing<glm::dvec2>&, const rounds_options&);
+extern template rounded_mesh_result<glm::dvec3> rounded_mesh<glm::dvec3, glm::dvec2>(
+    const rounds_result<glm::dvec3, glm::dvec2>&, const rounded_mesh_options&);
+extern template rounded_brep_result rounded_brep<glm::dvec3, glm::dvec2>(const rounds_result<glm::dvec3, glm::dvec2>&,
+                                                                         const rounded_brep_options&);
+#endif
+
 }  // namespace cellforge
