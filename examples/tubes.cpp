@@ -114,7 +114,7 @@ int main(int argc, char** argv) {
   p.options.push_back(
       {{"--check-pairs"},
        "N",
-       "work budget of the exact check in candidate triangle pairs; 0 = the check's own, 256 per "
+       "work budget of the exact check in candidate box pairs; 0 = the check's own, 256 per "
        "triangle plus 2^20 (default: 0)",
        [&](std::string_view v) {
          const std::size_t n = example::option_count("--check-pairs", v);

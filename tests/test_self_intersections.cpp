@@ -27,7 +27,10 @@
 #include "cellforge/algorithms/shapes.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/halfedge/conversion.hpp"
+#include "cellforge/halfedge/mesh_geometry.hpp"
+#include "cellforge/samples/skeletons.hpp"
 #include "cellforge/samples/tube_soups.hpp"
+#include "cellforge/tubes/tube_mesh.hpp"
 #include "test_support.hpp"
 
 // Own namespace: the test files of a group may be compiled as one translation unit.
@@ -630,6 +633,89 @@ TEST_CASE("self_intersections: meshes with shared vertices against the old all-p
   CHECK(by_topology > 0);  // the shortcut was taken ...
   CHECK(rounds_hit >= 4);  // ... and the meshes do intersect, touch and degenerate
   CHECK(degenerate > 0);
+}
+
+// The check's answer on m equals the all-pairs answer (face pairs and triangle pairs).
+void require_all_pairs_answer(const surface_mesh<dvec3>& m, const self_intersection_result& r) {
+  std::size_t triangle_pairs = 0;
+  const std::vector<std::uint64_t> expected = all_pairs_exact(m, triangle_pairs);
+  REQUIRE(r.complete);
+  CHECK(r.intersecting_triangle_pairs == triangle_pairs);
+  REQUIRE(r.face_pairs.size() == expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    CHECK(r.face_pairs[i].first.idx() == expected[i] >> 32);
+    CHECK(r.face_pairs[i].second.idx() == static_cast<std::uint32_t>(expected[i]));
+  }
+}
+
+TEST_CASE("self_intersections: a tube mesh pushed through itself or folded is caught") {
+  // A tube mesh (quads, one grid box per quad) with one wall vertex moved through the tube's axis
+  // past the opposite wall, or one quad folded back across its neighbour: the check must find
+  // exactly what testing every pair of triangles finds, and find something.
+  const auto s = cellforge::samples::random_tree(7, {.nodes = 24});
+  const auto tubes = cellforge::make_tubes(s);
+  self_intersection_options o;
+  o.max_reported = 1 << 20;
+  REQUIRE(self_intersections(tubes.mesh, o).intersecting_face_pairs == 0);
+  using cellforge::face_handle;
+  using cellforge::vertex_handle;
+  // The point of the skeleton's edges nearest p.
+  const auto axis_point = [&](const dvec3& p) {
+    dvec3 best = s.points[0];
+    for (const auto& e : s.edges) {
+      const dvec3 a = s.points[e[0]], d = s.points[e[1]] - a;
+      const double t = std::clamp(glm::dot(p - a, d) / glm::dot(d, d), 0.0, 1.0);
+      if (glm::distance(a + t * d, p) < glm::distance(best, p)) best = a + t * d;
+    }
+    return best;
+  };
+  std::size_t pushed = 0;
+  for (std::uint32_t v = 5; v < tubes.mesh.vertices_size(); v += tubes.mesh.vertices_size() / 5) {
+    CAPTURE(v);
+    surface_mesh<dvec3> m = tubes.mesh;
+    const dvec3 p = m.position(vertex_handle(v)), a = axis_point(p);
+    m.set_position(vertex_handle(v), a - 1.6 * (p - a));  // 0.6 radii beyond the opposite wall
+    const self_intersection_result r = self_intersections(m, o);
+    CHECK(r.intersecting_face_pairs > 0);
+    require_all_pairs_answer(m, r);
+    ++pushed;
+  }
+  CHECK(pushed == 5);
+  // Fold: quad g, across edge (f0, f1) of quad f, laid back over f, its far corners just above
+  // and just below f's plane, so that it crosses f.
+  std::size_t folded = 0;
+  for (const face_handle f : tubes.mesh.faces()) {
+    std::vector<vertex_handle> fv, gv;
+    for (const vertex_handle x : tubes.mesh.vertices_around(f)) fv.push_back(x);
+    if (fv.size() != 4) continue;
+    face_handle g;
+    bool found = false;
+    for (const face_handle h : tubes.mesh.faces_around(fv[0]))
+      if (h != f)
+        for (const vertex_handle x : tubes.mesh.vertices_around(h))
+          if (x == fv[1]) g = h, found = true;
+    REQUIRE(found);
+    for (const vertex_handle x : tubes.mesh.vertices_around(g)) gv.push_back(x);
+    if (gv.size() != 4) continue;
+    while (gv[0] != fv[1]) std::rotate(gv.begin(), gv.begin() + 1, gv.end());  // g: f1, f0, g2, g3
+    REQUIRE(gv[1] == fv[0]);
+    surface_mesh<dvec3> m = tubes.mesh;
+    const auto at = [&](vertex_handle x) { return m.position(x); };
+    const dvec3 n = glm::normalize(glm::cross(at(fv[2]) - at(fv[0]), at(fv[3]) - at(fv[1])));
+    const double e = 0.02 * std::min(glm::distance(at(fv[1]), at(fv[0])), glm::distance(at(fv[3]), at(fv[0])));
+    m.set_position(gv[2], at(fv[3]) + e * n);
+    m.set_position(gv[3], at(fv[2]) - e * n);
+    CAPTURE(f.idx());
+    CHECK(cellforge::folded_edges(m).edges.size() > 0);
+    const self_intersection_result r = self_intersections(m, o);
+    bool f_and_g = false;
+    for (const auto& [x, y] : r.face_pairs)
+      f_and_g = f_and_g || (x.idx() == std::min(f.idx(), g.idx()) && y.idx() == std::max(f.idx(), g.idx()));
+    CHECK(f_and_g);
+    require_all_pairs_answer(m, r);
+    if (++folded == 3) break;
+  }
+  CHECK(folded == 3);
 }
 
 TEST_CASE("self_intersections: a sphere of 110,000 triangles") {

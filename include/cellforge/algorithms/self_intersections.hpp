@@ -2,7 +2,8 @@
 #pragma once
 /// \file
 /// An exact self-intersection check for polygon meshes: every face is triangulated, pairs of
-/// triangles whose boxes meet are found with a uniform grid, and each pair is decided by the
+/// triangles whose boxes meet are found with a uniform grid over the faces' triangles taken two at
+/// a time (a quad is one box), and each pair is decided by the
 /// signs of orient3d / orient2d alone (core/predicates.hpp), with no epsilon anywhere.
 /// O(n + candidate pairs) for n triangles (radix sorts), the pairs bounded by a work budget. What
 /// is tested, when two triangles intersect and the proof that the test is complete: docs/predicates.md.
@@ -37,7 +38,7 @@ namespace cellforge {
 
 /// Limits of self_intersections.
 struct self_intersection_options {
-  /// Work budget: the most candidate pairs (two triangles in one grid cell) examined;
+  /// Work budget: the most candidate pairs (two boxes in one grid cell) examined;
   /// automatic (the default): 256 per triangle plus 2^20; 0: unlimited. A closed mesh with
   /// well-shaped triangles needs some 10–30 per triangle. Past it: complete = false.
   cellforge::work_budget work_budget = cellforge::work_budget::automatic;
@@ -64,8 +65,9 @@ struct self_intersection_result : stage_report {
   /// Polygons not both planar and strictly convex (a quad convex in projection counts as
   /// planar when orient3d's floating-point filter cannot tell it from planar).
   std::size_t ear_clipped_faces = 0;
-  /// Triangle pairs examined in grid cells (the budget counts these): in each cell, the pairs
-  /// that could have the low corner of their boxes' intersection there.
+  /// Box pairs examined in grid cells (the budget counts these; a box holds up to two triangles
+  /// of one face): in each cell, the pairs that could have the low corner of their boxes'
+  /// intersection there.
   std::size_t candidate_pairs = 0;
   std::size_t pairs_tested = 0;  ///< pairs of different faces with overlapping boxes, tested exactly
   /// Of pairs_tested, those sharing a vertex whose star projects one-to-one on a coordinate
@@ -111,36 +113,65 @@ void triangulate_for_test(const surface_mesh<P>& m, std::span<const vec> pos, st
   }
 }
 
-/// Puts the triangles in Morton order of their box centres (10 bits an axis) and renumbers the
-/// vertices (and their positions) in order of first use, so that triangles near in space are
-/// near in memory, and so are their corners: the grid's pairs then read nearby entries. The
-/// faces keep their indices. O(n + vertices).
+/// Groups the triangles (in face order, as triangulate_for_test makes them) two at a time within
+/// a face, so that a quad is one box for the grid: its boxes and pairs are about half those of
+/// its triangles. Puts the groups in Morton order of their box centres (10 bits an axis), their
+/// triangles after them, and renumbers the vertices (and their positions) in order of first use,
+/// so that groups near in space are near in memory, and so are their corners. `first` gets each
+/// group's first triangle (a last entry closes it), `boxes` each group's box (the union of its
+/// triangles'). The faces keep their indices. O(n + vertices).
 template <class = void>
-void spatial_order(std::vector<entry>& tris, std::vector<vec>& pos) {
+void spatial_order(std::vector<entry>& tris, std::vector<vec>& pos, std::vector<std::uint32_t>& first,
+                   std::vector<std::array<double, 6>>& boxes) {
   const std::size_t n = tris.size();
+  std::vector<std::uint32_t> start;  // groups in face order
+  start.reserve(n / 2 + 2);
+  for (std::size_t t = 0; t < n;) {
+    start.push_back(static_cast<std::uint32_t>(t));
+    t += t + 1 < n && tris[t + 1].face == tris[t].face ? 2 : 1;
+  }
+  const std::size_t g = start.size();
+  start.push_back(static_cast<std::uint32_t>(n));
+  std::vector<std::array<double, 6>> group_box(g);
   vec lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-  for (const entry& e : tris)
+  for (std::size_t i = 0; i < g; ++i) {
+    std::array<double, 6> b = tris[start[i]].box;
+    for (std::uint32_t t = start[i] + 1; t < start[i + 1]; ++t)
+      for (std::size_t k = 0; k < 3; ++k)
+        b[k] = std::min(b[k], tris[t].box[k]), b[k + 3] = std::max(b[k + 3], tris[t].box[k + 3]);
+    group_box[i] = b;
     for (int k = 0; k < 3; ++k) {
-      const double c =
-          0.5 * e.box[static_cast<std::size_t>(k)] + 0.5 * e.box[static_cast<std::size_t>(k) + 3];
+      const double c = 0.5 * b[static_cast<std::size_t>(k)] + 0.5 * b[static_cast<std::size_t>(k) + 3];
       lo[k] = std::min(lo[k], c), hi[k] = std::max(hi[k], c);
     }
-  std::vector<std::uint64_t> order(n);
-  for (std::size_t t = 0; t < n; ++t) {
+  }
+  std::vector<std::uint64_t> order(g);
+  for (std::size_t i = 0; i < g; ++i) {
     std::uint64_t code = 0;
     for (int k = 0; k < 3; ++k) {
-      const double c =
-          0.5 * tris[t].box[static_cast<std::size_t>(k)] + 0.5 * tris[t].box[static_cast<std::size_t>(k) + 3];
+      const double c = 0.5 * group_box[i][static_cast<std::size_t>(k)] +
+                       0.5 * group_box[i][static_cast<std::size_t>(k) + 3];
       const double q = (c - lo[k]) / (hi[k] - lo[k]) * 1023.0;
       const std::uint64_t cell = q > 0 ? (q < 1023 ? static_cast<std::uint64_t>(q) : 1023) : 0;  // NaN: 0
       code |= cellforge::detail::morton_spread(cell) << k;
     }
-    order[t] = code << 32 | t;
+    order[i] = code << 32 | i;
   }
   radix_sort_high(order);
-  std::vector<entry> sorted(n);
-  for (std::size_t i = 0; i < n; ++i) sorted[i] = tris[static_cast<std::uint32_t>(order[i])];
+  std::vector<entry> sorted;
+  sorted.reserve(n);
+  first.clear();
+  first.reserve(g + 1);
+  boxes.resize(g);
+  for (std::size_t i = 0; i < g; ++i) {
+    const auto at = static_cast<std::uint32_t>(order[i]);
+    first.push_back(static_cast<std::uint32_t>(sorted.size()));
+    boxes[i] = group_box[at];
+    for (std::uint32_t t = start[at]; t < start[at + 1]; ++t) sorted.push_back(tris[t]);
+  }
+  first.push_back(static_cast<std::uint32_t>(n));
   std::vector<std::uint64_t>().swap(order);
+  std::vector<std::array<double, 6>>().swap(group_box);
   constexpr std::uint32_t unset = 0xFFFFFFFFu;
   std::vector<std::uint32_t> renumber(pos.size(), unset);
   std::vector<vec> moved;
@@ -221,42 +252,51 @@ self_intersection_result self_intersections(const surface_mesh<P>& m,
   };
   if (n < 2) return finish();
 
-  si::spatial_order(tris, pos);
+  std::vector<std::uint32_t> first;
+  std::vector<std::array<double, 6>> group_boxes;
+  si::spatial_order(tris, pos, first, group_boxes);
   const std::vector<std::uint8_t> good =
       si::injective_stars(std::span<const si::entry>(tris), pos, pos.size());
-  std::vector<std::array<double, 6>> boxes(n);
-  for (std::size_t t = 0; t < n; ++t) boxes[t] = tris[t].box;
   struct corners_face {  // what a pair test reads of a triangle, compact
     std::array<std::uint32_t, 3> v;
     std::uint32_t face;
+    std::array<double, 6> box;
   };
   std::vector<corners_face> ids(n);
-  for (std::size_t t = 0; t < n; ++t) ids[t] = {tris[t].v, tris[t].face};
+  for (std::size_t t = 0; t < n; ++t) ids[t] = {tris[t].v, tris[t].face, tris[t].box};
   std::vector<si::entry>().swap(tris);
   std::vector<std::uint64_t> found;  // face-pair keys, compacted as they grow
   std::size_t compact_at = 1 << 16;
   std::array<glm::dvec3, 3> p{}, q{};
+  const auto test = [&](const corners_face& a, const corners_face& b) {
+    if (a.face == b.face) return;
+    // The groups' boxes overlap; their triangles' may not (one branch: hard to predict).
+    if ((static_cast<int>(a.box[0] <= b.box[3]) & static_cast<int>(b.box[0] <= a.box[3]) &
+         static_cast<int>(a.box[1] <= b.box[4]) & static_cast<int>(b.box[1] <= a.box[4]) &
+         static_cast<int>(a.box[2] <= b.box[5]) & static_cast<int>(b.box[2] <= a.box[5])) == 0)
+      return;
+    ++r.pairs_tested;
+    // A shared vertex whose star projects one-to-one: they meet only in what they share.
+    for (const std::uint32_t x : a.v)
+      if (good[x] != 0 && (x == b.v[0] || x == b.v[1] || x == b.v[2])) {
+        ++r.pairs_by_topology;
+        return;
+      }
+    for (std::size_t k = 0; k < 3; ++k) p[k] = pos[a.v[k]], q[k] = pos[b.v[k]];
+    if (!si::pair_intersects(p, a.v, q, b.v)) return;
+    ++r.intersecting_triangle_pairs;
+    const std::uint32_t f = std::min(a.face, b.face), g = std::max(a.face, b.face);
+    found.push_back(static_cast<std::uint64_t>(f) << 32 | g);
+    if (found.size() >= compact_at) {
+      si::compact(found);
+      compact_at = std::max(compact_at, 2 * found.size());
+    }
+  };
+  // Each pair of overlapping group boxes once, so each pair of triangles in two groups once.
   const si::box_pair_count pairs =
-      si::for_each_box_pair(detail::span_of(boxes), budget, [&](std::uint32_t i, std::uint32_t j) {
-        const corners_face& a = ids[i];
-        const corners_face& b = ids[j];
-        if (a.face == b.face) return true;
-        ++r.pairs_tested;
-        // A shared vertex whose star projects one-to-one: they meet only in what they share.
-        for (const std::uint32_t x : a.v)
-          if (good[x] != 0 && (x == b.v[0] || x == b.v[1] || x == b.v[2])) {
-            ++r.pairs_by_topology;
-            return true;
-          }
-        for (std::size_t k = 0; k < 3; ++k) p[k] = pos[a.v[k]], q[k] = pos[b.v[k]];
-        if (!si::pair_intersects(p, a.v, q, b.v)) return true;
-        ++r.intersecting_triangle_pairs;
-        const std::uint32_t f = std::min(a.face, b.face), g = std::max(a.face, b.face);
-        found.push_back(static_cast<std::uint64_t>(f) << 32 | g);
-        if (found.size() >= compact_at) {
-          si::compact(found);
-          compact_at = std::max(compact_at, 2 * found.size());
-        }
+      si::for_each_box_pair(detail::span_of(group_boxes), budget, [&](std::uint32_t i, std::uint32_t j) {
+        for (std::uint32_t a = first[i]; a < first[i + 1]; ++a)
+          for (std::uint32_t b = first[j]; b < first[j + 1]; ++b) test(ids[a], ids[b]);
         return true;
       });
   r.candidate_pairs = pairs.candidate_pairs;
@@ -266,7 +306,7 @@ self_intersection_result self_intersections(const surface_mesh<P>& m,
     // (GCC PR 105329) in a user's -O2 -Werror build.
     std::string message = "self_intersections: the work budget of ";
     message += std::to_string(budget);
-    message += " candidate triangle pairs was exhausted after testing ";
+    message += " candidate box pairs was exhausted after testing ";
     message += std::to_string(r.pairs_tested);
     message += " pairs of ";
     message += std::to_string(n);
