@@ -147,6 +147,18 @@ elseif(CASE STREQUAL "not_solid")
   expect_exit(0)
   expect_in("${out}" "status: solid (a closed solid: 1 volume, 6 faces")
 
+elseif(CASE STREQUAL "budget")
+  # A stage out of its work budget: status budget, the message naming the option on stderr,
+  # exit 4 and nothing written (no face was read).
+  run(--no-svg --budget 10 wire.obj)
+  expect_exit(4)
+  expect_in("${out}" "status: budget (trace_circuits: work budget of 10 steps exhausted")
+  expect_in("${err}" "wire2cells: not read: trace_circuits: work budget of 10 steps exhausted; raise trace_options::work_budget")
+  if(EXISTS "${dir}/out")
+    message(FATAL_ERROR "out/ was made although the budget stopped the reading before any face")
+  endif()
+  expect_input_untouched()
+
 elseif(CASE STREQUAL "overwrite")
   # An output named like the input in the input's folder: refused before anything is written.
   foreach(folder . "${dir}" "${dir}/../${CASE}")

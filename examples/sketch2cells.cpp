@@ -156,7 +156,9 @@ int main(int argc, char** argv) {
     const bool closed = r.cells.status == cellforge::solid_status::solid ||
                         r.cells.status == cellforge::solid_status::ambiguous;
     if (!valid.ok() || !r.faces_agree || !r.unused_edges.empty() || !closed) {
-      const std::string why = !valid.ok()      ? "the cell complex fails validation: " + valid.message
+      const std::string why = r.cells.status == cellforge::solid_status::budget
+                                  ? "a work budget ran out: " + r.cells.status_reason
+                              : !valid.ok()    ? "the cell complex fails validation: " + valid.message
                               : !r.faces_agree ? std::string("the solid's faces differ from the drawing's")
                               : !r.unused_edges.empty()
                                   ? std::to_string(r.unused_edges.size()) +

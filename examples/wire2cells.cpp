@@ -34,7 +34,7 @@ namespace {
 
 // Exit statuses (listed by --help and in the README).
 constexpr int exit_ok = 0;     // a certified solid (status solid or ambiguous), every file written
-constexpr int exit_input = 1;  // the input cannot be read (parse error, no faces, a spent budget, ...)
+constexpr int exit_input = 1;  // the input cannot be read (parse error, no faces, ...)
 constexpr int exit_usage = 2;  // unknown option, bad value, too many arguments
 constexpr int exit_output =
     3;  // the output folder cannot be made or written, or a file would replace the input
@@ -190,14 +190,14 @@ void print_help(const std::vector<example::option_spec>& table) {
       "output is written to a temporary file and renamed once all are written.\n\n"
       "Every answer is certified against the input (docs/cells.md, \"The certificate\") and printed\n"
       "with its status: solid, ambiguous (a solid with walls the wireframe does not decide), not a\n"
-      "solid, or budget (the certificate's work budget ran out).\n\n%s\n"
+      "solid, or budget (a stage's or the certificate's work budget ran out).\n\n%s\n"
       "exit status:\n"
       "  %d  success: a certified solid (status solid or ambiguous), every file written\n"
       "  %d  the input cannot be read (the message says why, e.g. file:line of a parse error)\n"
       "  %d  usage error (unknown option, bad value)\n"
       "  %d  output error: the folder cannot be created or written, or an output would replace the input\n"
       "  %d  read, but not a closed solid (status not a solid or budget; the reason is printed and\n"
-      "     the files are written so that you can look)\n",
+      "     the files are written so that you can look, unless a budget stopped it before any face)\n",
       (fs::path(CELLFORGE_DATA_DIR) / "stepped_block.obj").string().c_str(),
       example::options_help(table).c_str(), example::batch_help("wire2cells").c_str(), exit_ok, exit_input,
       exit_usage, exit_output, exit_not_solid);
@@ -322,6 +322,11 @@ int main(int argc, char** argv) {
     for (const cellforge::certificate_failure& f : r.certificate.failures)
       std::printf("  certificate failed (%s): %s\n", cellforge::to_string(f.what), f.message.c_str());
     std::printf("  status: %s (%s)\n", cellforge::to_string(r.status), r.status_reason.c_str());
+    if (r.status == cellforge::solid_status::budget && cells.num_faces() == 0) {
+      // A stage ran out before any face was read: nothing to write; the reason names the option.
+      std::fprintf(stderr, "wire2cells: not read: %s (--budget N, 0 = unlimited)\n", r.status_reason.c_str());
+      return exit_not_solid;
+    }
 
     failure = exit_output;
     stage("writing a cell complex of " + std::to_string(cells.num_faces()) + " faces and " +

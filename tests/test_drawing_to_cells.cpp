@@ -290,3 +290,18 @@ TEST_CASE("drawing_to_cells: drawings of several volumes are the true complex or
   MESSAGE("several volumes: true complex on " << right << " of 8, flagged " << flagged);
   CHECK(right >= 6);
 }
+
+namespace drawing_budget_test {
+TEST_CASE("drawing_to_cells: the face finder out of budget gives status budget, naming the option") {
+  const auto s = cellforge::samples::generic_drawing(cellforge::samples::sample_uv_sphere(8, 5), 1, "sphere");
+  cellforge::drawing_options o;
+  o.faces.work_budget = 50;  // spends the baseline fallback's budget too
+  const auto r = cellforge::drawing_to_cells(s.drawing, o);
+  CHECK(r.cells.status == cellforge::solid_status::budget);
+  CHECK(r.cells.status_reason.find("find_faces: work budget of 50 steps exhausted; raise "
+                                   "face_finder_options::work_budget") != std::string::npos);
+  CHECK_FALSE(r.complete);
+  CHECK(r.flagged);
+  CHECK(r.cells.cells.num_faces() == 0);
+}
+}  // namespace drawing_budget_test

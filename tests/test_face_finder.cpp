@@ -158,20 +158,27 @@ TEST_CASE("find_faces: malformed drawings are refused with a clear error") {
   CHECK_THROWS_WITH_AS(cellforge::find_faces(d), doctest::Contains("does not exist"), error);
 }
 
-TEST_CASE("find_faces: a work budget stops the search with a budget error") {
+TEST_CASE("find_faces: a budget that stops the last fallback too: no loops, flagged, the option named") {
   const auto s = cellforge::samples::generic_drawing(cellforge::samples::sample_uv_sphere(8, 5), 1, "sphere");
   for (const auto kind :
        {cellforge::face_finder_kind::varley_company, cellforge::face_finder_kind::shortest_loops}) {
+    CAPTURE(static_cast<int>(kind));
     cellforge::face_finder_options o;
     o.kind = kind;
     o.work_budget = 50;
-    try {
-      (void)cellforge::find_faces(s.drawing, o);
-      FAIL("no budget error");
-    } catch (const cellforge::error& e) {
-      CHECK(e.category() == cellforge::error_category::budget);
-      CHECK(std::string(e.what()).find("find_faces") != std::string::npos);
-    }
+    const auto r = cellforge::find_faces(s.drawing, o);
+    CHECK_FALSE(r.complete);
+    CHECK(r.flagged);
+    CHECK(r.budget_fallback);
+    CHECK(r.loops.empty());
+    CHECK_FALSE(r.check.ok());
+    CHECK(r.work > 50);
+    const bool named = std::any_of(r.diagnostics.begin(), r.diagnostics.end(), [](const std::string& d) {
+      return d.find(
+                 "find_faces: work budget of 50 steps exhausted; raise face_finder_options::work_budget") !=
+             std::string::npos;
+    });
+    CHECK(named);
   }
 }
 
@@ -356,6 +363,7 @@ TEST_CASE("find_faces: out of budget, the baseline answers, flagged") {
   const auto r = cellforge::find_faces(s.drawing, tight);
   CHECK(r.budget_fallback);
   CHECK(r.flagged);
+  CHECK_FALSE(r.complete);
   CHECK(same_loops(r.loops, bl.loops));
   CHECK(std::any_of(r.diagnostics.begin(), r.diagnostics.end(), [](const std::string& d) {
     return d.find("baseline answers instead") != std::string::npos;

@@ -22,7 +22,7 @@
 
 #include "cellforge/core/detail/geometry.hpp"
 #include "cellforge/core/detail/text.hpp"
-#include "cellforge/core/detail/work_budget.hpp"
+#include "cellforge/core/detail/work_counter.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/core/stage_report.hpp"
@@ -104,7 +104,8 @@ using drawing_result_for = drawing_result<result_point_t<Q, typename line_drawin
 /// cell complex in point type Q (void: lifted_point_t of the drawing's point type): faces,
 /// inflation, the 3D pipeline; every stage's result and a 2D/3D face agreement check. Throws
 /// invalid_input on a malformed drawing, topology when no solid reading exists or the 3D
-/// pipeline refuses both readings, budget when a stage's budget runs out. O(the stages).
+/// pipeline refuses both readings; a stage out of its budget: complete false, and when no face
+/// was found, cells.status budget with the stage's message. O(the stages).
 /// A drawing whose scalar is double runs as a line_drawing<glm::dvec2> into glm::dvec3 (the same
 /// numbers: every stage computes in double), so one instantiation serves every such caller.
 template <class Q = void, LineDrawing D>

@@ -29,7 +29,7 @@
 
 #include "cellforge/core/detail/geometry.hpp"
 #include "cellforge/core/detail/text.hpp"
-#include "cellforge/core/detail/work_budget.hpp"
+#include "cellforge/core/detail/work_counter.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/stage_report.hpp"
 #include "cellforge/core/work_budget.hpp"
@@ -118,14 +118,16 @@ struct face_finder_result : stage_report {
   bool flagged = false;                        ///< the check failed: see diagnostics and alternatives
   std::vector<face_alternative> alternatives;  ///< best first, when flagged
   std::size_t junctions = 0, edges = 0, direction_classes = 0;
-  std::size_t forced = 0;        ///< forced concatenations (one candidate left)
-  std::size_t voluntary = 0;     ///< voluntary mergers (a string closed into a face)
-  std::size_t hypotheses = 0;    ///< faces found by the working list
-  std::size_t rejected = 0;      ///< hypotheses whose consequences reached a dead end
-  std::size_t walls = 0;         ///< loops the wall search added (faces beyond two per edge)
-  std::size_t unneeded = 0;      ///< loops dropped because no edge needs them (a hole's mouth)
-  std::size_t unforced = 0;      ///< loops kept that no edge needs (walls inside a grid): flagged ambiguous
-  bool budget_fallback = false;  ///< the finder ran out of budget: the baseline's answer, flagged
+  std::size_t forced = 0;      ///< forced concatenations (one candidate left)
+  std::size_t voluntary = 0;   ///< voluntary mergers (a string closed into a face)
+  std::size_t hypotheses = 0;  ///< faces found by the working list
+  std::size_t rejected = 0;    ///< hypotheses whose consequences reached a dead end
+  std::size_t walls = 0;       ///< loops the wall search added (faces beyond two per edge)
+  std::size_t unneeded = 0;    ///< loops dropped because no edge needs them (a hole's mouth)
+  std::size_t unforced = 0;    ///< loops kept that no edge needs (walls inside a grid): flagged ambiguous
+  /// The finder ran out of budget: the baseline's answer, or no loops when the baseline (the
+  /// last fallback) ran out too (complete false, a diagnostic names the option); flagged.
+  bool budget_fallback = false;
   /// Loops were added or dropped after the string algorithm, and the wall search from no loops
   /// found others (in `alternatives`): flagged.
   bool ambiguous = false;
@@ -133,9 +135,9 @@ struct face_finder_result : stage_report {
 
 /// Finds the faces of a wireframe line drawing (every edge drawn, hidden ones too, a parallel
 /// view of a polyhedron): loops as junction cycles, checked; flagged with ranked alternatives
-/// when the check fails. Throws invalid_input on a malformed drawing and budget when the work
-/// budget runs out. Practical cost about O(E · L²) for Varley–Company (L: loop length), O(F·E log E)
-/// baseline.
+/// when the check fails. Throws invalid_input on a malformed drawing; out of work budget, the
+/// baseline's loops (or none, when it runs out too), flagged, complete false. Practical cost about O(E · L²)
+/// for Varley–Company (L: loop length), O(F·E log E) baseline.
 template <LineDrawing D>
 face_finder_result find_faces(const D& drawing, const face_finder_options& options = {});
 

@@ -28,7 +28,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/detail/text.hpp"
-#include "cellforge/core/detail/work_budget.hpp"
+#include "cellforge/core/detail/work_counter.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/stage_report.hpp"
 #include "cellforge/sketch/detail/tidy_classes.hpp"

@@ -103,7 +103,7 @@ struct plane_scratch {
 /// and the walk repeated. O(k log k) for k in-plane edges.
 template <class = void>
 void trace_plane_faces(const wire_graph& g, std::vector<std::uint32_t>& edges, plane_component& c,
-                       plane_scratch& w, work_budget& budget) {
+                       plane_scratch& w, work_counter& budget) {
   for (;;) {
     ++w.round;
     w.verts.clear();
@@ -317,7 +317,7 @@ class basic_fan_index {
 /// The polynomial planar-arrangement tracer. O(sum over vertices of degree² + sum over planes
 /// of k log k) for k edges in a plane.
 template <class = void>
-void trace_planar(const wire_graph& g, const trace_options& opt, trace_result& r, work_budget& budget) {
+void trace_planar(const wire_graph& g, const trace_options& opt, trace_result& r, work_counter& budget) {
   const double tol = std::max(opt.planarity.absolute(bounding_box{g.center - 0.5 * g.size / std::sqrt(3.0),
                                                                   g.center + 0.5 * g.size / std::sqrt(3.0)}),
                               g.merge_tolerance);
@@ -594,7 +594,7 @@ void trace_planar(const wire_graph& g, const trace_options& opt, trace_result& r
 /// the end vertex of lower degree; paths with an inner circuit and paths starting with the
 /// same two edges as a found circuit are removed. Exponential worst case; budgeted.
 template <class = void>
-void trace_bfs(const wire_graph& g, const trace_options& opt, trace_result& r, work_budget& budget) {
+void trace_bfs(const wire_graph& g, const trace_options& opt, trace_result& r, work_counter& budget) {
   const std::size_t max_len = opt.max_circuit_edges == 0 ? g.num_edges() : opt.max_circuit_edges;
   struct path {
     std::vector<std::uint32_t> verts;  // verts[0] = start; verts.back() = latest vertex
@@ -648,16 +648,22 @@ void trace_bfs(const wire_graph& g, const trace_options& opt, trace_result& r, w
 }  // namespace detail
 
 /// Finds candidate faces of a labelled wireframe with the chosen tracer. Planar: polynomial,
-/// O(Σ deg(v)² + Σ_planes k log k); seed_bfs: exponential worst case, stopped by the work budget.
+/// O(Σ deg(v)² + Σ_planes k log k); seed_bfs: exponential worst case, stopped by the work budget
+/// (then complete is false, the faces are those found, and a diagnostic names the option).
 template <class = void>
 trace_result trace_circuits(const wire_graph& g, const trace_options& options = {}) {
   detail::stopwatch clock;
   trace_result r;
-  detail::work_budget budget{options.work_budget, 0, "trace_circuits"};
-  if (options.kind == tracer_kind::planar)
-    detail::trace_planar(g, options, r, budget);
-  else
-    detail::trace_bfs(g, options, r, budget);
+  detail::work_counter budget{options.work_budget, 0, "trace_circuits",
+                              "trace_options::work_budget (wireframe_options::trace)"};
+  try {  // out of budget: the faces traced so far, complete false
+    if (options.kind == tracer_kind::planar)
+      detail::trace_planar(g, options, r, budget);
+    else
+      detail::trace_bfs(g, options, r, budget);
+  } catch (const error& e) {
+    detail::stop_at_budget(r, budget, e);
+  }
   if (options.kind == tracer_kind::planar) r.circuits = r.faces.size();
   r.work = budget.used;
   r.milliseconds = clock.ms();

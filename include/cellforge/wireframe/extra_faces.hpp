@@ -154,7 +154,14 @@ extra_faces_result extra_faces(const wire_graph& g, const std::vector<wire_face>
     if (lacking) {
       trace_options t = options.retrace;
       t.kind = tracer_kind::planar;
-      auto traced = unique_circuits(g, trace_circuits(g, t).faces).faces;
+      trace_result retraced = trace_circuits(g, t);
+      if (!retraced.complete) {  // out of the retrace's budget: the faces it found, flagged
+        r.complete = false;
+        r.work += retraced.work;
+        r.diagnostics.push_back(
+            cellforge::detail::cat("extra_faces: the retrace stopped: ", detail::budget_note(retraced, "")));
+      }
+      auto traced = unique_circuits(g, std::move(retraced.faces)).faces;
       std::vector<std::vector<std::vector<std::uint32_t>>> have;  // sorted, for binary search
       for (const auto& f : faces) have.push_back(f.loops);
       std::sort(have.begin(), have.end());

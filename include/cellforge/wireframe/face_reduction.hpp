@@ -48,7 +48,8 @@ struct reduction_result : stage_report {
   double area_milliseconds = 0.0;  ///< the seed's "area calculation" row
 };
 
-/// Measures and reduces the candidates. O(F·L) for measures, O(Σ adjacent pairs · L) for sums.
+/// Measures and reduces the candidates; out of work budget the face-sum search stops there,
+/// complete false. O(F·L) for measures, O(Σ adjacent pairs · L) for sums.
 template <class = void>
 reduction_result reduce_faces(const wire_graph& g, const std::vector<wire_face>& faces,
                               const reduction_options& options = {}) {
@@ -107,43 +108,49 @@ reduction_result reduce_faces(const wire_graph& g, const std::vector<wire_face>&
     if (r.quality[i].usable && options.remove_face_sums)
       for (const auto e : edge_set[i]) faces_at_edge[e].push_back(i);
   }
-  detail::work_budget budget{options.work_budget, 0, "reduce_faces"};
-  if (options.remove_face_sums) {
-    // Usable faces by edge set, stably sorted: among equal sets the first face is found.
-    std::vector<std::uint32_t> by_edges;
-    for (std::uint32_t i = 0; i < faces.size(); ++i)
-      if (r.quality[i].usable) by_edges.push_back(i);
-    std::stable_sort(by_edges.begin(), by_edges.end(),
-                     [&](std::uint32_t a, std::uint32_t b) { return edge_set[a] < edge_set[b]; });
-    std::vector<std::uint32_t> sum;
-    for (std::uint32_t i = 0; i < faces.size(); ++i) {
-      if (!r.quality[i].usable) continue;
-      std::vector<std::uint32_t> partners;
-      for (const auto e : edge_set[i])
-        for (const auto j : faces_at_edge[e])
-          if (j > i) partners.push_back(j);
-      std::sort(partners.begin(), partners.end());
-      partners.erase(std::unique(partners.begin(), partners.end()), partners.end());
-      for (const auto j : partners) {
-        budget.spend(edge_set[i].size() + edge_set[j].size());
-        sum.clear();
-        std::set_symmetric_difference(edge_set[i].begin(), edge_set[i].end(), edge_set[j].begin(),
-                                      edge_set[j].end(), std::back_inserter(sum));
-        const auto it = std::lower_bound(
-            by_edges.begin(), by_edges.end(), sum,
-            [&](std::uint32_t a, const std::vector<std::uint32_t>& key) { return edge_set[a] < key; });
-        if (it == by_edges.end() || edge_set[*it] != sum) continue;
-        const std::uint32_t h_index = *it;
-        face_quality& h = r.quality[h_index];
-        if (h.usable && h.area > r.quality[i].area && h.area > r.quality[j].area) {
-          h.usable = false;
-          ++r.face_sums;
-          r.diagnostics.push_back(cellforge::detail::cat("candidate ", std::to_string(h_index),
-                                                         " is the sum of candidates ", std::to_string(i),
-                                                         " and ", std::to_string(j), " and was rejected"));
+  detail::work_counter budget{options.work_budget, 0, "reduce_faces",
+                              "reduction_options::work_budget (wireframe_options::reduction)"};
+  // Out of budget the face-sum search stops (sums found so far rejected), complete false.
+  try {
+    if (options.remove_face_sums) {
+      // Usable faces by edge set, stably sorted: among equal sets the first face is found.
+      std::vector<std::uint32_t> by_edges;
+      for (std::uint32_t i = 0; i < faces.size(); ++i)
+        if (r.quality[i].usable) by_edges.push_back(i);
+      std::stable_sort(by_edges.begin(), by_edges.end(),
+                       [&](std::uint32_t a, std::uint32_t b) { return edge_set[a] < edge_set[b]; });
+      std::vector<std::uint32_t> sum;
+      for (std::uint32_t i = 0; i < faces.size(); ++i) {
+        if (!r.quality[i].usable) continue;
+        std::vector<std::uint32_t> partners;
+        for (const auto e : edge_set[i])
+          for (const auto j : faces_at_edge[e])
+            if (j > i) partners.push_back(j);
+        std::sort(partners.begin(), partners.end());
+        partners.erase(std::unique(partners.begin(), partners.end()), partners.end());
+        for (const auto j : partners) {
+          budget.spend(edge_set[i].size() + edge_set[j].size());
+          sum.clear();
+          std::set_symmetric_difference(edge_set[i].begin(), edge_set[i].end(), edge_set[j].begin(),
+                                        edge_set[j].end(), std::back_inserter(sum));
+          const auto it = std::lower_bound(
+              by_edges.begin(), by_edges.end(), sum,
+              [&](std::uint32_t a, const std::vector<std::uint32_t>& key) { return edge_set[a] < key; });
+          if (it == by_edges.end() || edge_set[*it] != sum) continue;
+          const std::uint32_t h_index = *it;
+          face_quality& h = r.quality[h_index];
+          if (h.usable && h.area > r.quality[i].area && h.area > r.quality[j].area) {
+            h.usable = false;
+            ++r.face_sums;
+            r.diagnostics.push_back(cellforge::detail::cat("candidate ", std::to_string(h_index),
+                                                           " is the sum of candidates ", std::to_string(i),
+                                                           " and ", std::to_string(j), " and was rejected"));
+          }
         }
       }
     }
+  } catch (const error& e) {
+    detail::stop_at_budget(r, budget, e);
   }
   // Secondary faces: two usable faces through the same corner; the larger one is secondary.
   std::unordered_map<std::uint64_t, std::uint32_t> smallest_at_corner;

@@ -114,7 +114,7 @@ std::vector<std::uint32_t> edges_by_ends(const std::vector<std::array<std::uint3
 template <class = void>
 std::vector<std::uint32_t> merge_close_points(const std::vector<glm::dvec3>& p,
                                               const std::vector<std::uint32_t>& order,
-                                              const std::vector<double>& tol, work_budget& budget) {
+                                              const std::vector<double>& tol, work_counter& budget) {
   const std::size_t n = p.size();
   union_find uf(n);
   glm::dvec3 low(std::numeric_limits<double>::infinity());
@@ -227,7 +227,7 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
                               const std::vector<std::uint32_t>& order,
                               std::vector<std::array<std::uint32_t, 2>>& ends,
                               std::vector<std::uint32_t>& origin, const std::vector<double>& tol,
-                              double relative, work_budget& budget) {
+                              double relative, work_counter& budget) {
   // The search runs on the points of `order` copied in that order and on edges relabelled by
   // rank (a point's place in it): near points near in memory whatever the caller's numbering.
   const std::size_t n = ends.size(), m = order.size();
@@ -349,7 +349,8 @@ std::size_t split_at_vertices(const std::vector<glm::dvec3>& p, const std::vecto
 }  // namespace detail
 
 /// Reads any Wireframe into the labelled graph: checks coordinates and indices, merges close
-/// points, drops (or rejects) zero-length, duplicate and dangling edges. O(V + E) expected.
+/// points, drops (or rejects) zero-length, duplicate and dangling edges; out of work budget, an
+/// empty graph with complete false and a diagnostic naming the option. O(V + E) expected.
 template <Wireframe G>
 wireframe_read_result read_vertices(const G& wire, const wireframe_read_options& options = {}) {
   using T = wireframe_traits<G>;
@@ -401,7 +402,8 @@ wireframe_read_result read_vertices(const G& wire, const wireframe_read_options&
                       "this only between 1e-50 and 1e50 units: scale the model into that range"));
   }
   options.merge.absolute(box);  // checks the option (finite, >= 0)
-  detail::work_budget budget{options.work_budget, 0, "read_vertices"};
+  detail::work_counter budget{options.work_budget, 0, "read_vertices",
+                              "wireframe_read_options::work_budget (wireframe_options::read)"};
   if (box.diagonal() == 0.0)
     throw error(
         error_category::invalid_input,
@@ -419,7 +421,15 @@ wireframe_read_result read_vertices(const G& wire, const wireframe_read_options&
   // vertex, a long part) does not decide what is close for a small part.
   std::vector<double> tol = detail::local_lengths(p, ends);
   for (auto& t : tol) t *= options.merge.relative;
-  const std::vector<std::uint32_t> rep = detail::merge_close_points(p, visit, tol, budget);
+  // Out of budget the graph is left empty (a half-merged one is no wireframe), complete false.
+  std::vector<std::uint32_t> rep;
+  try {
+    rep = detail::merge_close_points(p, visit, tol, budget);
+  } catch (const error& e) {
+    detail::stop_at_budget(r, budget, e);
+    r.milliseconds = clock.ms();
+    return r;
+  }
   double merged_within = 0.0;  // the largest distance of a point from its representative
   for (std::size_t v = 0; v < nv; ++v)
     if (used[v] && rep[v] != v) {
@@ -442,8 +452,14 @@ wireframe_read_result read_vertices(const G& wire, const wireframe_read_options&
   if (options.split_at_vertices) {
     std::vector<char> is_rep(nv, 0);
     for (std::uint32_t v = 0; v < nv; ++v) is_rep[v] = used[v] && rep[v] == v;
-    const std::size_t splits =
-        detail::split_at_vertices(p, is_rep, visit, ends, origin, tol, options.merge.relative, budget);
+    std::size_t splits = 0;
+    try {
+      splits = detail::split_at_vertices(p, is_rep, visit, ends, origin, tol, options.merge.relative, budget);
+    } catch (const error& e) {
+      detail::stop_at_budget(r, budget, e);
+      r.milliseconds = clock.ms();
+      return r;
+    }
     if (splits > 0)
       r.diagnostics.push_back(std::to_string(splits) +
                               " vertices lie inside edges (T-junctions or overlapping edges); the edges were "

@@ -19,7 +19,7 @@
 
 #include "cellforge/core/detail/geometry.hpp"
 #include "cellforge/core/detail/union_find.hpp"
-#include "cellforge/core/detail/work_budget.hpp"
+#include "cellforge/core/detail/work_counter.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/stage_report.hpp"
 

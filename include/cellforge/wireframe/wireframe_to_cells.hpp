@@ -113,7 +113,8 @@ struct wireframe_result : stage_report {
   /// What the answer is: solid (the certificate passes, every face decided by the wireframe),
   /// ambiguous (it passes, but walls no edge needs were kept: `unforced`), not_a_solid (the
   /// certificate or validate failed, input edges on cycles lie on no face, or faces close no
-  /// volume), budget (the certificate's work budget ran out). Never solid unless certified.
+  /// volume), budget (a stage's or the certificate's work budget ran out: the reason names the
+  /// option to raise). Never solid unless certified.
   solid_status status = solid_status::not_a_solid;
   std::string status_reason;  ///< one line: what the input is, or what failed
   /// The certificate (cells/certify.hpp); empty, with status not_a_solid, when not run.
@@ -132,8 +133,9 @@ using wireframe_result_for = wireframe_result<typename wireframe_traits<G>::poin
 /// Converts a wireframe to a cell complex whose positions are the wireframe's (its point type),
 /// certifies it against the wireframe and says what it is (status, status_reason). Faces that
 /// close no volume (a lone planar loop, an open box) come back as faces without volumes,
-/// not_a_solid, with a diagnostic. Throws cellforge::error on bad input (see read_vertices), on
-/// an exhausted work budget of a stage, or when no face is found (saying what the wireframe is).
+/// not_a_solid, with a diagnostic; a stage out of its work budget ends the call with status
+/// budget. Throws cellforge::error on bad input (see read_vertices) or when no face is found
+/// (saying what the wireframe is).
 /// With the automatic tolerance, exact input first: the stages' fixed tolerances, whose certified
 /// solid is the answer; otherwise the estimated tolerance too, and the better answer of the two
 /// (better_answer; a pass that throws is the worst, both: the estimated pass's error). A clear

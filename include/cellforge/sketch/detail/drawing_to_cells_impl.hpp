@@ -19,7 +19,7 @@
 
 #include "cellforge/core/detail/geometry.hpp"
 #include "cellforge/core/detail/text.hpp"
-#include "cellforge/core/detail/work_budget.hpp"
+#include "cellforge/core/detail/work_counter.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/core/wireframe.hpp"
@@ -75,7 +75,7 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
                      const inflation_options& inflation, std::vector<std::string>& diagnostics,
                      std::size_t& ambiguous) {
   const face_finder_options o;
-  work_budget budget{0, 0, "drawing_to_cells"};
+  work_counter budget{0, 0, "drawing_to_cells"};
   faces::finder f(g, o, budget);
   const std::size_t n = loops.size(), nv = g.num_junctions();
   std::vector<double> area(n);
@@ -507,6 +507,18 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, cons
   detail::stopwatch clock;
   drawing_result<R, drawing_point_t<D>> r;
   r.faces = find_faces(drawing, options.faces);
+  if (!r.faces.complete && r.faces.loops.empty()) {
+    // The face finder's last fallback ran out of its budget: nothing to inflate. Status budget,
+    // the finder's message (naming the option) as the reason.
+    r.cells.status = solid_status::budget;
+    r.cells.status_reason = budget_note(r.faces, "find_faces ran out of its work budget");
+    r.diagnostics.push_back(r.cells.status_reason);
+    r.complete = false;
+    r.flagged = true;
+    r.work = r.faces.work;
+    r.milliseconds = clock.ms();
+    return r;
+  }
   if (r.faces.flagged)
     r.diagnostics.push_back(cellforge::detail::cat(
         "the faces found fail their check (",
@@ -801,6 +813,8 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, cons
                             " faces of the 3D reading are walls no edge needs (kept, undecided)");
   r.flagged = r.faces.flagged || !r.faces_agree || !r.unused_edges.empty() || r.ambiguous_parts > 0 ||
               !r.cells.unforced.empty() || r.doubts > 0;
+  r.complete = r.faces.complete && r.cells.complete;
+  r.work = r.faces.work + r.cells.work;
   // Doubted for lines straight on through a fold: tidied again with such lines made one line,
   // which makes the faces there coplanar and shows the wall; kept when it clears every doubt.
   if (r.doubts > 0 && inexact && !options.tidying.straight_lines && options.tidy != tidy_mode::never) {

@@ -22,7 +22,7 @@
 
 #include "cellforge/core/detail/geometry.hpp"
 #include "cellforge/core/detail/text.hpp"
-#include "cellforge/core/detail/work_budget.hpp"
+#include "cellforge/core/detail/work_counter.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/sketch/face_finder.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
@@ -146,13 +146,13 @@ template <class = void>
 struct basic_finder {
   const drawing_graph& g;
   const face_finder_options& o;
-  work_budget& budget;
+  work_counter& budget;
   std::vector<std::uint32_t> mark;  // per junction: stamp of the string being tested
   std::uint32_t stamp = 0;
   std::vector<std::uint32_t> component, component_size;  // connected components of junctions
   std::size_t forced = 0, voluntary = 0, hypotheses = 0, rejected = 0;
 
-  basic_finder(const drawing_graph& graph, const face_finder_options& options, work_budget& b)
+  basic_finder(const drawing_graph& graph, const face_finder_options& options, work_counter& b)
       : g(graph),
         o(options),
         budget(b),
@@ -1040,7 +1040,7 @@ face_validation check_loops(const drawing_graph& g, const std::vector<std::vecto
 /// `start_rank` picks which trihedral junction starts (0: the first). O(joins · L).
 template <class = void>
 std::vector<std::vector<std::uint32_t>> varley_company(const drawing_graph& g, const face_finder_options& o,
-                                                       work_budget& budget, std::size_t start_rank,
+                                                       work_counter& budget, std::size_t start_rank,
                                                        face_finder_result& r) {
   finder f(g, o, budget);
   const std::uint32_t nh = static_cast<std::uint32_t>(g.num_half_edges());
@@ -1162,7 +1162,7 @@ std::vector<std::vector<std::uint32_t>> varley_company(const drawing_graph& g, c
 /// avoiding one more edge of that one (so that a loop taken once is not the only candidate).
 /// O(rounds · E · L · E log E).
 template <class = void>
-std::vector<std::vector<std::uint32_t>> shortest_loops(const drawing_graph& g, work_budget& budget) {
+std::vector<std::vector<std::uint32_t>> shortest_loops(const drawing_graph& g, work_counter& budget) {
   const std::size_t ne = g.num_half_edges() / 2, nv = g.num_junctions();
   std::vector<std::uint32_t> left(ne, 2);
   std::vector<std::vector<std::uint32_t>> loops;
@@ -1273,7 +1273,7 @@ face_finder_result find_faces_in(const drawing_graph& g, const face_finder_optio
   r.junctions = g.num_junctions();
   r.edges = g.num_half_edges() / 2;
   r.direction_classes = g.classes;
-  detail::work_budget budget{options.work_budget, 0, "find_faces"};
+  detail::work_counter budget{options.work_budget, 0, "find_faces", "face_finder_options::work_budget"};
   // Parallel in space shows as parallel to the point type's rounding: float drawings need more.
   const double coplanar_tolerance =
       std::max(options.coplanar_tolerance_degrees, 100.0 * epsilon * 180.0 / std::numbers::pi);
@@ -1284,15 +1284,23 @@ face_finder_result find_faces_in(const drawing_graph& g, const face_finder_optio
     else
       r.loops = df::shortest_loops(g, budget);
   } catch (const error& e) {
-    if (e.category() != error_category::budget || options.kind != face_finder_kind::varley_company) throw;
-    // Out of budget: the baseline's answer (fast at any size), flagged whatever its check says.
-    r.diagnostics.push_back(
-        cellforge::detail::cat(std::string(e.what()), "; the shortest-loops baseline answers instead"));
+    if (e.category() != error_category::budget) throw;
     r.budget_fallback = true;
-    budget.used = 0;
-    r.loops = df::shortest_loops(g, budget);
+    if (options.kind == face_finder_kind::varley_company) {
+      // Out of budget: the baseline's answer (fast at any size), flagged whatever its check says.
+      r.diagnostics.push_back(
+          cellforge::detail::cat(std::string(e.what()), "; the shortest-loops baseline answers instead"));
+      budget.used = 0;
+      try {
+        r.loops = df::shortest_loops(g, budget);
+      } catch (const error& again) {
+        detail::stop_at_budget(r, budget, again);  // the last fallback spent: no loops, flagged
+      }
+    } else {
+      detail::stop_at_budget(r, budget, e);  // the baseline is the last fallback: no loops, flagged
+    }
   }
-  if (options.walls) {
+  if (options.walls && r.complete) {  // no walls to complete when no loops were found
     // Faces beyond two per edge: the loops that edges still need, each allowed by the rules.
     df::face_rules rules(g, coplanar_tolerance);
     for (const auto& loop : r.loops)
@@ -1340,7 +1348,7 @@ face_finder_result find_faces_in(const drawing_graph& g, const face_finder_optio
   }
   r.check = df::check_loops(g, r.loops, coplanar_tolerance);
   r.flagged = !r.check.ok() || r.budget_fallback || r.ambiguous;
-  if (r.loops.empty()) r.diagnostics.push_back("find_faces: no closed loop in the drawing");
+  if (r.loops.empty() && r.complete) r.diagnostics.push_back("find_faces: no closed loop in the drawing");
   if (!r.check.edges_with_fewer_loops.empty())
     r.diagnostics.push_back(std::to_string(r.check.edges_with_fewer_loops.size()) +
                             " edges lie on fewer than two loops (first: edge " +
@@ -1363,19 +1371,28 @@ face_finder_result find_faces_in(const drawing_graph& g, const face_finder_optio
   if (r.flagged && options.alternatives_when_flagged) {
     // Alternatives: the other finder, and Varley–Company from other starts; best check first.
     std::vector<face_alternative> alt = std::move(r.alternatives);  // the wall search's, if any
-    budget.used = 0;  // each alternative its own budget: the answer may have spent it all
+    // Each alternative its own budget (the answer may have spent it all); one that runs out is
+    // left out, with a diagnostic.
+    const auto add = [&](auto&& find, std::string reason) {
+      budget.used = 0;
+      try {
+        alt.push_back({find(), {}, std::move(reason)});
+      } catch (const error& e) {
+        if (e.category() != error_category::budget) throw;
+        r.diagnostics.push_back(cellforge::detail::cat("no alternative from ", reason, ": ", e.what()));
+      }
+    };
     if (options.kind == face_finder_kind::varley_company) {
       if (!r.budget_fallback)
-        alt.push_back({df::shortest_loops(g, budget), {}, "the shortest-loops baseline"});
+        add([&] { return df::shortest_loops(g, budget); }, "the shortest-loops baseline");
       for (std::size_t k = 1; k <= 2 && !r.budget_fallback; ++k) {
         face_finder_result scratch;
-        alt.push_back({df::varley_company(g, options, budget, k, scratch),
-                       {},
-                       cellforge::detail::cat("Varley-Company from trihedral junction ", std::to_string(k))});
+        add([&] { return df::varley_company(g, options, budget, k, scratch); },
+            cellforge::detail::cat("Varley-Company from trihedral junction ", std::to_string(k)));
       }
     } else {
       face_finder_result scratch;
-      alt.push_back({df::varley_company(g, options, budget, 0, scratch), {}, "Varley-Company"});
+      add([&] { return df::varley_company(g, options, budget, 0, scratch); }, "Varley-Company");
     }
     for (auto& a : alt) a.check = df::check_loops(g, a.loops, coplanar_tolerance);
     const auto score = [](const face_alternative& a) {
@@ -1389,8 +1406,8 @@ face_finder_result find_faces_in(const drawing_graph& g, const face_finder_optio
     for (auto& a : alt) a.reason += a.check.ok() ? " (passes the check)" : " (fails the check too)";
     r.alternatives = std::move(alt);
   }
-  r.work = budget.used;
-  r.complete = !r.budget_fallback;
+  if (r.complete) r.work = budget.used;  // stop_at_budget kept the work of the spent search
+  r.complete = r.complete && !r.budget_fallback;
   r.milliseconds = clock.ms();
   return r;
 }

@@ -223,7 +223,7 @@ class basic_crossing_decision {
 
   /// Drops (alive = 0) the losers of `pairs` (both alive); returns them.
   std::vector<std::uint32_t> run(const std::vector<std::array<std::uint32_t, 2>>& pairs,
-                                 work_budget& budget) {
+                                 work_counter& budget) {
     std::vector<std::uint32_t> losers;
     if (pairs.empty()) return losers;
     const std::uint32_t nf = static_cast<std::uint32_t>(faces_.size());
@@ -369,7 +369,7 @@ class basic_crossing_decision {
       if (stopped_ || (have_best_ && best_ == 0)) return;
     }
   }
-  void decide(work_budget& budget, std::vector<std::uint32_t>& losers) {
+  void decide(work_counter& budget, std::vector<std::uint32_t>& losers) {
     // Larger faces last: the smaller ones are tried (dropped) first.
     std::sort(G_.begin(), G_.end(), [&](std::uint32_t a, std::uint32_t b) {
       return faces_[a].area != faces_[b].area ? faces_[a].area < faces_[b].area : a < b;
@@ -426,7 +426,7 @@ class basic_crossing_decision {
 /// Σ_large cells its plane meets).
 template <class Visit>
 void candidate_pairs(const wire_graph& g, const std::vector<face_plane>& plane, double tol,
-                     work_budget& budget, Visit&& visit) {
+                     work_counter& budget, Visit&& visit) {
   if (plane.size() < 2) return;
   std::vector<double> extent;
   for (std::uint32_t i = 0; i < plane.size(); ++i) {
@@ -610,96 +610,104 @@ arrangement_result arrange_faces(const wire_graph& g, const std::vector<wire_fac
       for (const auto v : faces[i].loops[0]) plane[k].box.add(g.points[v]);
     }
   }
-  detail::work_budget budget{options.work_budget, 0, "arrange_faces"};
-  if (options.drop_crossing) {
-    detail::crossing_test cross(g);
-    // Each face's corners side by side: the first test of a pair (does each face have corners
-    // strictly on both sides of the other's plane?) then reads two short runs, not scattered
-    // points — most pairs (neighbours on a surface) end there.
-    std::vector<std::uint32_t> corner_start(usable.size() + 1, 0);
-    std::vector<glm::dvec3> corner;
-    for (std::uint32_t k = 0; k < usable.size(); ++k) {
-      for (const auto& loop : faces[usable[k]].loops)
-        for (const auto v : loop) corner.push_back(g.points[v]);
-      corner_start[k + 1] = static_cast<std::uint32_t>(corner.size());
-    }
-    auto corners = [&](std::uint32_t k) {
-      return std::span<const glm::dvec3>(corner.data() + corner_start[k],
-                                         corner_start[k + 1] - corner_start[k]);
-    };
-    auto straddles = [&](std::uint32_t f, std::uint32_t o) {
-      bool up = false, down = false;
-      for (std::uint32_t k = corner_start[f]; k < corner_start[f + 1] && !(up && down); ++k) {
-        const double d = glm::dot(plane[o].n, corner[k] - plane[o].o);
-        up = up || d > tol;
-        down = down || d < -tol;
+  detail::work_counter budget{options.work_budget, 0, "arrange_faces",
+                              "arrangement_options::work_budget (wireframe_options::arrangement)"};
+  // Out of budget the crossing rule stops: the faces it has not dropped stay selected (crossing
+  // pairs among them undecided), complete false.
+  try {
+    if (options.drop_crossing) {
+      detail::crossing_test cross(g);
+      // Each face's corners side by side: the first test of a pair (does each face have corners
+      // strictly on both sides of the other's plane?) then reads two short runs, not scattered
+      // points — most pairs (neighbours on a surface) end there.
+      std::vector<std::uint32_t> corner_start(usable.size() + 1, 0);
+      std::vector<glm::dvec3> corner;
+      for (std::uint32_t k = 0; k < usable.size(); ++k) {
+        for (const auto& loop : faces[usable[k]].loops)
+          for (const auto v : loop) corner.push_back(g.points[v]);
+        corner_start[k + 1] = static_cast<std::uint32_t>(corner.size());
       }
-      return up && down;
-    };
-    detail::candidate_pairs(g, plane, tol, budget, [&](std::uint32_t x, std::uint32_t y) {
-      ++r.pairs_tested;
-      const std::uint32_t a = usable[x], b = usable[y];
-      budget.spend(corner_start[x + 1] - corner_start[x] + corner_start[y + 1] - corner_start[y]);
-      // The face with fewer corners first: a ring against a neighbour's plane lies on one side.
-      const bool x_first = corner_start[x + 1] - corner_start[x] <= corner_start[y + 1] - corner_start[y];
-      if (x_first ? !straddles(x, y) || !straddles(y, x) : !straddles(y, x) || !straddles(x, y)) return;
-      if (cross(faces[a], plane[x], faces[b], plane[y], tol, corners(x), corners(y)))
-        r.crossings.push_back({std::min(a, b), std::max(a, b)});
-    });
-    std::sort(r.crossings.begin(), r.crossings.end());
-    // The needed one of a crossing pair wins, in rounds: a face needed among all the
-    // candidates beats one that is not; failing that, a face needed once the contested
-    // candidates (those in a crossing pair) are left out beats one that is not needed even
-    // then (spurious cycles — rings, meridians — pad the edges of the real faces they cross
-    // or lie beside). A round's losers leave, which can make others needed: decide again.
-    // Pairs still crossing when no round decides anything go to the search below.
-    const auto at = detail::faces_at_edges(g, faces, &alive);
-    std::vector<char> contested(faces.size(), 0), no_contest(faces.size(), 0);
-    std::vector<std::uint32_t> scratch;
-    for (bool changed = !r.crossings.empty(); changed;) {
-      changed = false;
-      budget.spend(r.crossings.size() + faces.size());
-      std::fill(contested.begin(), contested.end(), 0);
+      auto corners = [&](std::uint32_t k) {
+        return std::span<const glm::dvec3>(corner.data() + corner_start[k],
+                                           corner_start[k + 1] - corner_start[k]);
+      };
+      auto straddles = [&](std::uint32_t f, std::uint32_t o) {
+        bool up = false, down = false;
+        for (std::uint32_t k = corner_start[f]; k < corner_start[f + 1] && !(up && down); ++k) {
+          const double d = glm::dot(plane[o].n, corner[k] - plane[o].o);
+          up = up || d > tol;
+          down = down || d < -tol;
+        }
+        return up && down;
+      };
+      detail::candidate_pairs(g, plane, tol, budget, [&](std::uint32_t x, std::uint32_t y) {
+        ++r.pairs_tested;
+        const std::uint32_t a = usable[x], b = usable[y];
+        budget.spend(corner_start[x + 1] - corner_start[x] + corner_start[y + 1] - corner_start[y]);
+        // The face with fewer corners first: a ring against a neighbour's plane lies on one side.
+        const bool x_first = corner_start[x + 1] - corner_start[x] <= corner_start[y + 1] - corner_start[y];
+        if (x_first ? !straddles(x, y) || !straddles(y, x) : !straddles(y, x) || !straddles(x, y)) return;
+        if (cross(faces[a], plane[x], faces[b], plane[y], tol, corners(x), corners(y)))
+          r.crossings.push_back({std::min(a, b), std::max(a, b)});
+      });
+      std::sort(r.crossings.begin(), r.crossings.end());
+      // The needed one of a crossing pair wins, in rounds: a face needed among all the
+      // candidates beats one that is not; failing that, a face needed once the contested
+      // candidates (those in a crossing pair) are left out beats one that is not needed even
+      // then (spurious cycles — rings, meridians — pad the edges of the real faces they cross
+      // or lie beside). A round's losers leave, which can make others needed: decide again.
+      // Pairs still crossing when no round decides anything go to the search below.
+      const auto at = detail::faces_at_edges(g, faces, &alive);
+      std::vector<char> contested(faces.size(), 0), no_contest(faces.size(), 0);
+      std::vector<std::uint32_t> scratch;
+      for (bool changed = !r.crossings.empty(); changed;) {
+        changed = false;
+        budget.spend(r.crossings.size() + faces.size());
+        std::fill(contested.begin(), contested.end(), 0);
+        for (const auto& [a, b] : r.crossings)
+          if (alive[a] && alive[b]) contested[a] = contested[b] = 1;
+        for (std::size_t i = 0; i < faces.size(); ++i) no_contest[i] = alive[i] && !contested[i];
+        const std::vector<char> needed = detail::needed_faces(g, faces, at, alive);
+        // Needed among the uncontested faces: the face itself plus the faces no pair contests.
+        std::vector<char> needed_alone(faces.size(), 0);
+        for (std::uint32_t i = 0; i < faces.size(); ++i)
+          if (contested[i] && alive[i])
+            needed_alone[i] = detail::needed_faces_one(g, faces, at, no_contest, i, scratch);
+        std::vector<std::uint32_t> losers;
+        for (const auto& [a, b] : r.crossings) {
+          if (!alive[a] || !alive[b]) continue;
+          const int wins = needed[a] != needed[b]               ? (needed[a] ? 0 : 1)
+                           : needed_alone[a] != needed_alone[b] ? (needed_alone[a] ? 0 : 1)
+                                                                : -1;
+          if (wins < 0) continue;
+          const std::uint32_t winner = wins == 0 ? a : b, loser = wins == 0 ? b : a;
+          losers.push_back(loser);
+          r.diagnostics.push_back(cellforge::detail::cat("candidate ", std::to_string(loser),
+                                                         " crosses candidate ", std::to_string(winner),
+                                                         ", which an edge needs; dropped"));
+        }
+        for (const auto i : losers) changed = std::exchange(alive[i], 0) || changed;
+      }
+      // Pairs no round decides: a search for the certified choice that keeps the fewest.
+      std::vector<std::array<std::uint32_t, 2>> open;
       for (const auto& [a, b] : r.crossings)
-        if (alive[a] && alive[b]) contested[a] = contested[b] = 1;
-      for (std::size_t i = 0; i < faces.size(); ++i) no_contest[i] = alive[i] && !contested[i];
-      const std::vector<char> needed = detail::needed_faces(g, faces, at, alive);
-      // Needed among the uncontested faces: the face itself plus the faces no pair contests.
-      std::vector<char> needed_alone(faces.size(), 0);
-      for (std::uint32_t i = 0; i < faces.size(); ++i)
-        if (contested[i] && alive[i])
-          needed_alone[i] = detail::needed_faces_one(g, faces, at, no_contest, i, scratch);
-      std::vector<std::uint32_t> losers;
-      for (const auto& [a, b] : r.crossings) {
-        if (!alive[a] || !alive[b]) continue;
-        const int wins = needed[a] != needed[b]               ? (needed[a] ? 0 : 1)
-                         : needed_alone[a] != needed_alone[b] ? (needed_alone[a] ? 0 : 1)
-                                                              : -1;
-        if (wins < 0) continue;
-        const std::uint32_t winner = wins == 0 ? a : b, loser = wins == 0 ? b : a;
-        losers.push_back(loser);
-        r.diagnostics.push_back(cellforge::detail::cat("candidate ", std::to_string(loser),
-                                                       " crosses candidate ", std::to_string(winner),
-                                                       ", which an edge needs; dropped"));
-      }
-      for (const auto i : losers) changed = std::exchange(alive[i], 0) || changed;
+        if (alive[a] && alive[b]) open.push_back({a, b});
+      detail::crossing_decision decision(g, faces, at, alive);
+      for (const auto i : decision.run(open, budget))
+        r.diagnostics.push_back(cellforge::detail::cat(
+            "candidate ", std::to_string(i),
+            " crosses a candidate no round decided against; the certified choice drops it"));
+      for (auto& n : decision.notes) r.diagnostics.push_back(std::move(n));
     }
-    // Pairs no round decides: a search for the certified choice that keeps the fewest.
-    std::vector<std::array<std::uint32_t, 2>> open;
-    for (const auto& [a, b] : r.crossings)
-      if (alive[a] && alive[b]) open.push_back({a, b});
-    detail::crossing_decision decision(g, faces, at, alive);
-    for (const auto i : decision.run(open, budget))
-      r.diagnostics.push_back(cellforge::detail::cat(
-          "candidate ", std::to_string(i),
-          " crosses a candidate no round decided against; the certified choice drops it"));
-    for (auto& n : decision.notes) r.diagnostics.push_back(std::move(n));
+  } catch (const error& e) {
+    detail::stop_at_budget(r, budget, e);
+  }
+  if (options.drop_crossing)
     for (std::uint32_t i = 0; i < faces.size(); ++i)
       if (reduction.quality[i].usable && alive[i] != 1) {
         alive[i] = 0;
         r.crossed.push_back(i);
       }
-  }
   for (std::uint32_t i = 0; i < faces.size(); ++i)
     if (alive[i]) r.selected.push_back(i);
 

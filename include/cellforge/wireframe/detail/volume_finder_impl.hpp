@@ -277,7 +277,7 @@ class basic_face_reader {
       }
   }
 
-  void run(work_budget& budget) {
+  void run(work_counter& budget) {
     if (reading_ == face_reading::keep_all) return mark_unforced();
     const auto nf = static_cast<std::uint32_t>(faces_.size());
     for (;;) {
@@ -685,7 +685,7 @@ class basic_face_reader {
     return ok ? n : at.size() + 1;
   }
   /// The best certified reading of the group's faces `members`: the faces to drop.
-  std::vector<std::uint32_t> search(std::vector<std::uint32_t> members, work_budget& budget) {
+  std::vector<std::uint32_t> search(std::vector<std::uint32_t> members, work_counter& budget) {
     ++groups_searched;
     // Larger faces first: the first readings found drop the larger mouths.
     std::sort(members.begin(), members.end(), [&](std::uint32_t a, std::uint32_t b) {
@@ -961,7 +961,7 @@ volume_result find_volumes(const wire_graph& g, const std::vector<wire_face>& fa
   const auto at = detail::faces_at_edges(g, faces, &alive);
   detail::face_reader reader(g, faces, at, sides_of, alive, regions, options.reading);
   reader.readings_per_group = options.alternatives_per_group;
-  detail::work_budget budget{options.work_budget, 0, "find_volumes"};
+  detail::work_counter budget{options.work_budget, 0, "find_volumes"};
   reader.run(budget);
   r.groups = reader.groups_searched;
   r.readings = reader.readings_certified;

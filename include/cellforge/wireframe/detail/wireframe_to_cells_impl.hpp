@@ -17,6 +17,7 @@
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/text.hpp"
+#include "cellforge/core/detail/work_counter.hpp"
 #include "cellforge/core/wireframe.hpp"
 #include "cellforge/wireframe/cell_list.hpp"
 #include "cellforge/wireframe/circuit_tracer.hpp"
@@ -149,6 +150,16 @@ wireframe_result<P> sum_stages(wireframe_result<P> r) {
   return r;
 }
 
+/// r as returned where `stage` ran out of its work budget (complete false): status budget, the
+/// stage's budget diagnostic as the reason and a diagnostic, no cells. O(diagnostics).
+template <Point3 P>
+wireframe_result<P> stopped_by_budget(wireframe_result<P>& r, const stage_report& stage) {
+  r.status = solid_status::budget;
+  r.status_reason = budget_note(stage, "a stage ran out of its work budget");
+  r.diagnostics.push_back(r.status_reason);
+  return sum_stages(std::move(r));
+}
+
 /// Sets r.status and its one-line reason from the validation (`invalid`: the broken invariant,
 /// or empty), the certificate and what the stages removed or left undecided. O(1).
 template <Point3 P>
@@ -266,18 +277,24 @@ wireframe_result<typename wireframe_traits<G>::point_type> wireframe_pass(const 
     r.diagnostics.push_back(cellforge::detail::cat("tolerance: ", r.tolerance.reason));
   r.check = cellforge::wireframe_check_options(used);
   r.trace = cellforge::trace_circuits(g, used.trace);
+  // A stage out of its work budget ends the pass: the stages after it would read a part of the
+  // candidates as the whole, so the answer is the status `budget` and the stage's message.
+  if (!r.trace.complete) return stopped_by_budget(r, r.trace);
   r.unique = cellforge::unique_circuits(g, std::move(r.trace.faces), used.unique);
   r.trace.faces.clear();
   reduction_options reduction = used.reduction;
   // Faces of a planar arrangement are never the sum of two others; only the seed's search needs the test.
   if (used.trace.kind == tracer_kind::planar) reduction.remove_face_sums = false;
   r.reduction = cellforge::reduce_faces(g, r.unique.faces, reduction);
+  if (!r.reduction.complete) return stopped_by_budget(r, r.reduction);
   r.arrangement = cellforge::arrange_faces(g, r.unique.faces, r.reduction, used.arrangement);
+  if (!r.arrangement.complete) return stopped_by_budget(r, r.arrangement);
   extra_face_options extra = used.extra;
   // The planar tracer finds every planar face; only the seed's search can miss some.
   if (used.trace.kind == tracer_kind::planar) extra.add_missed = false;
   r.extra = cellforge::extra_faces(g, r.unique.faces, r.arrangement.selected, extra,
                                    span_of(r.arrangement.crossed));
+  if (!r.extra.complete) return stopped_by_budget(r, r.extra);
   // Circuits that close no volume: when every face went for a free edge only, the faces are
   // the answer (a 3DCL holds faces without volumes), with a diagnostic saying so.
   bool open_surface = false;
@@ -461,6 +478,11 @@ detail::if_satisfied_t<Wireframe<G>, detail::wireframe_result_for, G> wireframe_
     const G& wire, const wireframe_options& options) {
   using P = typename wireframe_traits<G>::point_type;
   wireframe_read_result read = read_vertices(wire, options.read);
+  if (!read.complete) {  // no graph to read: status budget, read_vertices' message
+    wireframe_result<P> r;
+    r.read = std::move(read);
+    return detail::stopped_by_budget(r, r.read);
+  }
   tolerance_result given;  // the stages' own planarity options
   given.planarity = options.trace.planarity.relative;
   given.planarity_distance = options.trace.planarity.relative * read.graph.size;
