@@ -10,6 +10,9 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/algorithms/loop_subdivision.hpp"
+#include "cellforge/algorithms/self_intersections.hpp"
+#include "cellforge/algorithms/shapes.hpp"
+#include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/cells/validate.hpp"
 #include "cellforge/halfedge/validate.hpp"
 #include "cellforge/io/drawing_svg.hpp"  // the old path of io/drawing_pictures.hpp
@@ -73,6 +76,23 @@ int main() {
   expect(cf::validate_arcs(a).ok() == cf::validate(a).ok(), "validate_arcs");
   // The old header path names the new header's writer.
   expect(cf::io::drawing_svg_string(a.lines).find("<svg") != std::string::npos, "io/drawing_svg.hpp");
-  if (failures == 0) std::printf("deprecated_names: 13 old type names, 3 old functions, 1 old header: ok\n");
+  // The deprecated data members: still honoured and filled.
+  const cf::surface_mesh<glm::dvec3> ico = cf::make_mesh(cf::icosahedron<glm::dvec3>());
+  cf::self_intersection_options si;
+  expect(si.max_candidate_pairs == 0 && !si.throw_on_budget, "self_intersection_options' old defaults");
+  const cf::self_intersection_result sr = cf::self_intersections(ico, si);
+  expect(sr.time_ms == sr.milliseconds && sr.complete, "self_intersection_result::time_ms");
+  si.max_candidate_pairs = 1;
+  si.throw_on_budget = true;
+  bool thrown = false;
+  try {
+    (void)cf::self_intersections(ico, si);
+  } catch (const cf::error& e) {
+    thrown = e.category() == cf::error_category::budget;
+  }
+  expect(thrown, "max_candidate_pairs and throw_on_budget");
+  expect(cf::tubes_result<glm::dvec3>{}.total_ms == 0, "tubes_result::total_ms");
+  if (failures == 0)
+    std::printf("deprecated_names: 13 old type names, 3 old functions, 1 old header, 4 old members: ok\n");
   return failures == 0 ? 0 : 1;
 }

@@ -23,6 +23,7 @@
 
 #include "cellforge/algorithms/detail/triangle_pairs.hpp"
 #include "cellforge/algorithms/ear_clipping.hpp"
+#include "cellforge/core/detail/deprecation.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/error.hpp"
@@ -36,6 +37,8 @@
 
 namespace cellforge {
 
+// The deprecated members below warn where a user names them, not at every copy of the structs.
+CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
 /// Limits of self_intersections.
 struct self_intersection_options {
   /// Work budget: the most candidate pairs (two boxes in one grid cell) examined;
@@ -43,10 +46,9 @@ struct self_intersection_options {
   /// well-shaped triangles needs some 10–30 per triangle. Past it: complete = false.
   cellforge::work_budget work_budget = cellforge::work_budget::automatic;
   /// Deprecated, removed in 0.7 (use work_budget, where 0 is unlimited): the budget when not 0.
-  /// Not `[[deprecated]]`: g++ warns at every copy of a struct with such a member.
-  std::size_t max_candidate_pairs = 0;
+  [[deprecated("use work_budget (0: unlimited); removed in 0.7")]] std::size_t max_candidate_pairs = 0;
   /// Deprecated, removed in 0.7 (test complete): true throws error(budget) past the budget.
-  bool throw_on_budget = false;
+  [[deprecated("test complete; removed in 0.7")]] bool throw_on_budget = false;
   /// How many intersecting face pairs (and faces with zero-area triangles) to list.
   std::size_t max_reported = 100;
 };
@@ -75,8 +77,9 @@ struct self_intersection_result : stage_report {
   std::size_t pairs_by_topology = 0;
   std::size_t degenerate_triangles = 0;       ///< zero-area triangles (not tested)
   std::vector<face_handle> degenerate_faces;  ///< the first max_reported faces holding one
-  double time_ms = 0;                         ///< deprecated, removed in 0.7: milliseconds
+  [[deprecated("use milliseconds; removed in 0.7")]] double time_ms = 0;  ///< filled as milliseconds
 };
+CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
 
 namespace detail::self_intersect {
 
@@ -241,15 +244,19 @@ self_intersection_result self_intersections(const surface_mesh<P>& m,
   }
   std::vector<si::entry>().swap(all);
   const std::size_t n = tris.size();
+  // The deprecated spellings, honoured and filled until 0.7.
+  CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
   const std::size_t budget = options.max_candidate_pairs != 0
                                  ? options.max_candidate_pairs
                                  : options.work_budget.limit(256 * n + (std::size_t{1} << 20));
+  const bool throw_on_budget = options.throw_on_budget;
   auto finish = [&] {
     r.milliseconds = start.ms();
     r.work = r.candidate_pairs;
     r.time_ms = r.milliseconds;
     return r;
   };
+  CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
   if (n < 2) return finish();
 
   std::vector<std::uint32_t> first;
@@ -301,7 +308,7 @@ self_intersection_result self_intersections(const surface_mesh<P>& m,
       });
   r.candidate_pairs = pairs.candidate_pairs;
   r.complete = pairs.complete;
-  if (!r.complete && options.throw_on_budget) {
+  if (!r.complete && throw_on_budget) {
     // Appended piece by piece: `"..." + std::to_string(n)` trips g++ 12's false -Wrestrict
     // (GCC PR 105329) in a user's -O2 -Werror build.
     std::string message = "self_intersections: the work budget of ";

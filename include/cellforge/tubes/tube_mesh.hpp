@@ -24,6 +24,7 @@
 #include "cellforge/algorithms/loop_subdivision.hpp"
 #include "cellforge/algorithms/self_intersections.hpp"
 #include "cellforge/core/bounding_box.hpp"
+#include "cellforge/core/detail/deprecation.hpp"
 #include "cellforge/core/detail/if_satisfied.hpp"
 #include "cellforge/core/detail/large_array.hpp"
 #include "cellforge/core/detail/span_of.hpp"
@@ -80,6 +81,8 @@ struct tubes_options {
 };
 using tube_options [[deprecated("use tubes_options; removed in 0.7")]] = tubes_options;
 
+// total_ms warns where a user names it, not at every copy of the struct.
+CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
 /// What make_tubes built, and how long each stage took. stage_report: milliseconds the whole
 /// call; complete false when the self-intersection check stopped at its budget; diagnostics what
 /// the mesher decided on its own, one sentence each (sharp bends, virtual sections, inserted
@@ -117,7 +120,7 @@ struct tubes_result : stage_report {
   /// stages include their faces' linking; mesh_ms is the check of every vertex's fan, the shells
   /// and the move into the caller's point type.
   double construct_ms = 0, junctions_ms = 0, paths_ms = 0, mesh_ms = 0, subdivision_ms = 0;
-  double total_ms = 0;  ///< deprecated, removed in 0.7: milliseconds
+  [[deprecated("use milliseconds; removed in 0.7")]] double total_ms = 0;  ///< filled as milliseconds
   /// Quality: per skeleton edge, the smallest cross-section along it (the area of a ring of
   /// its path seen along the tube, over π r² of its node; a regular octagon is 0.90; NaN for
   /// an edge with no ring of its own, e.g. between two junctions' rings), the smallest over
@@ -135,6 +138,7 @@ struct tubes_result : stage_report {
   bool self_intersections_checked = false;
   double check_ms = 0;
 };
+CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
 
 namespace detail::tubes {
 /// make_tubes' result type for skeleton type G (unconstrained, for detail::if_satisfied_t).

@@ -722,7 +722,9 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
       if (attempt == 1 || (merged > 0 && std::adjacent_find(pairs.begin(), pairs.end()) == pairs.end() &&
                            validate(g2).ok())) {
         tubes_result<P> again = make_tubes_of(g2, options, &next);
-        again.milliseconds = again.total_ms = t_start.ms();
+        CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
+        again.milliseconds = again.total_ms = t_start.ms();  // total_ms filled until 0.7
+        CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
         return again;
       }
     }
@@ -834,7 +836,9 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
     res.diagnostics.push_back(cellforge::detail::cat("the mesh's genus ", std::to_string(res.genus),
                                                      " differs from the skeleton's cycle rank ",
                                                      std::to_string(res.cycle_rank)));
-  res.milliseconds = res.total_ms = t_start.ms();
+  CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
+  res.milliseconds = res.total_ms = t_start.ms();  // total_ms filled until 0.7
+  CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
   return res;
 }
 
