@@ -14,6 +14,7 @@
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -221,7 +222,7 @@ TEST_CASE("arc detection: exact arcs, lines and L shapes with 0.2 % noise") {
           << " drawn arcs were within 5 noise widths of their chord and redrawn); lines and Ls wrong: "
           << wrong << " of " << n_lines + n_ells << "; curve error median " << percentile(curve_err, 0.5)
           << " max " << percentile(curve_err, 1) << bands.str() << "; " << r.fits << " fits, " << r.splits
-          << " splits, " << r.merges << " merges, " << r.seconds * 1e3 << " ms");
+          << " splits, " << r.merges << " merges, " << r.milliseconds << " ms");
   CHECK(found == n_arcs);
   CHECK(accurate == n_arcs);
   CHECK(banded > 0);
@@ -248,6 +249,9 @@ TEST_CASE("arc detection: a round drawn in one stroke, another point type, bad i
   REQUIRE(r.strokes.size() == 2);
   CHECK(r.dropped_strokes == 1);
   CHECK(r.strokes[1].num_pieces == 0);
+  static_assert(std::is_base_of_v<cellforge::stage_report, std::remove_cvref_t<decltype(r)>>);
+  CHECK_FALSE(r.diagnostics.empty());  // the dropped stroke is said (stage_report::diagnostics)
+  CHECK(r.milliseconds > 0);
   std::string kinds;
   for (std::size_t k = 0; k < r.strokes[0].num_pieces; ++k)
     kinds += r.pieces[k].kind == stroke_piece_kind::arc ? 'A' : 'L';

@@ -454,6 +454,8 @@ TEST_CASE("flip_edge on an icosahedron moves the edge to the other diagonal") {
   REQUIRE(can_flip(m, e) == edit_refusal::none);
   const edit_result r = flip_edge(m, e);
   REQUIRE(r.ok());
+  CHECK(r.diagnostics.empty());
+  CHECK(r.milliseconds >= 0);
   CHECK(m.num_edges() == 30);
   CHECK(m.num_faces() == 20);
   CHECK(m.valence(s.a) == 4);
@@ -467,6 +469,14 @@ TEST_CASE("flip_edge on an icosahedron moves the edge to the other diagonal") {
   // Flipping back restores the original edge set.
   REQUIRE(flip_edge(m, r.edge).ok());
   CHECK(m.find_edge(s.a, s.b).is_valid());
+  // A refused edit says why in its diagnostic (stage_report), the refusal's own sentence.
+  cellforge::surface_mesh<glm::dvec3> tri;
+  const auto ta = tri.add_vertex({0, 0, 0}), tb = tri.add_vertex({1, 0, 0}), tc = tri.add_vertex({0, 1, 0});
+  tri.add_face({ta, tb, tc});
+  const edit_result refused = flip_edge(tri, tri.find_edge(ta, tb));
+  CHECK(refused.refusal == edit_refusal::boundary_edge);
+  REQUIRE(refused.diagnostics.size() == 1);
+  CHECK(refused.diagnostics[0] == to_string(edit_refusal::boundary_edge));
   CHECK(m.valence(s.c) == 5);
   REQUIRE_VALID(m);
 }

@@ -759,6 +759,8 @@ TEST_CASE("past the work budget, edges are judged from one point and the picture
   CHECK(exact.approximate_edges + exact.untested_edges + exact.approximate_points + exact.untested_points ==
         0);
   CHECK(full.find("work budget") == std::string::npos);
+  CHECK(exact.complete);
+  CHECK(exact.diagnostics.empty());
 
   io::svg_options tight;
   tight.work_budget = 2000;
@@ -769,6 +771,10 @@ TEST_CASE("past the work budget, edges are judged from one point and the picture
   CHECK(r.approximate_edges + r.untested_edges < r.edges);  // the first edges are still exact
   CHECK(r.work <= 2 * tight.work_budget + 1000);            // bounded: one query's overshoot at most
   CHECK(text.find("hidden-line work budget ran out") != std::string::npos);
+  CHECK_FALSE(r.complete);  // the vocabulary's exhausted budget: a status and a diagnostic naming the option
+  REQUIRE(r.diagnostics.size() == 1);
+  CHECK(r.diagnostics[0].find("raise svg_options::work_budget") != std::string::npos);
+  CHECK(r.milliseconds > 0);
   CHECK(well_formed(text));
   std::size_t inexact = 0;
   for (const auto& e : scene.edge_visibility(tight)) {

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <set>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -382,6 +383,8 @@ TEST_CASE("svg drawing: other point types, left-out elements and their diagnosti
           "<g display=\"none\"><line x1=\"0\" y1=\"5\" x2=\"10\" y2=\"5\"/></g>\n"
           "<polyline points=\"3 3\"/>");
   const auto f = io::parse_svg_drawing<glm::vec2>(text, "d.svg");
+  static_assert(std::is_base_of_v<cellforge::stage_report, std::remove_cvref_t<decltype(f)>>);
+  CHECK(f.milliseconds > 0);
   CHECK(f.drawing.points == std::vector<glm::vec2>{{0, 0}, {10, 0}});
   CHECK(f.skipped_elements == 2);
   REQUIRE(f.diagnostics.size() == 4);

@@ -131,6 +131,9 @@ TEST_CASE("swc: soma conventions") {
   SUBCASE("a three-point soma becomes its centre, the outer points' children attached to it") {
     const auto r = parse(three);
     CHECK(r.collapsed_somas == 1);
+    REQUIRE(r.diagnostics.size() == 1);  // stage_report: the collapse said, with its option
+    CHECK(r.diagnostics[0].find("collapse_three_point_soma") != std::string::npos);
+    CHECK(r.milliseconds >= 0);
     CHECK(r.ids == std::vector<std::int64_t>{1, 4, 5, 6});
     CHECK(r.types == std::vector<std::int32_t>{1, 3, 2, 3});
     CHECK(r.skeleton.points[0] == glm::dvec3(10, 20, 30));

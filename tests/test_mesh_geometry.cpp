@@ -118,6 +118,9 @@ TEST_CASE("folded_edges: faces at an edge whose normals point opposite ways") {
     REQUIRE(folds.edges.size() == 1);
     CHECK(folds.edges[0] == m.find_edge(a, b));
     CHECK(folds.within_deg == 20);
+    REQUIRE(folds.diagnostics.size() == 1);  // stage_report: the folds said in a sentence
+    CHECK(folds.diagnostics[0].find("1 edges fold the surface back") != std::string::npos);
+    CHECK(cellforge::folded_edges(m, 4).diagnostics.empty());
     // A right-angle crease is no fold; at 175 degrees apart it is one only within 10 degrees.
     m.set_position(d, far * glm::dvec3(0.5, 0, 1));
     CHECK(cellforge::folded_edges(m).edges.empty());

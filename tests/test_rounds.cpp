@@ -15,6 +15,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -149,6 +150,8 @@ TEST_CASE("rounds: the rounded mesh is closed, oriented outward, and has the rou
   for (const auto& s : drawings) {
     const auto r = cellforge::reconstruct_rounds(s.drawing);
     const auto m = cellforge::rounded_mesh(r);
+    static_assert(std::is_base_of_v<cellforge::stage_report, std::remove_cvref_t<decltype(m)>>);
+    CHECK(m.milliseconds > 0);
     ++meshed;
     quads += m.strip_quads;
     REQUIRE(m.face_source.size() == m.mesh.num_faces());

@@ -421,6 +421,13 @@ TEST_CASE("central axis: a rotated elongated solid's axis within 1 degree; the f
     const auto axis = cellforge::central_axis(pts);
     CHECK(std::abs(axis.direction.z) > std::cos(3.14159265358979 / 180));
     CHECK(axis.initial_split == 2);
+    CHECK(axis.converged == axis.diagnostics.empty());  // stage_report: the fallback is said
+    cellforge::central_axis_options once;
+    once.max_iterations = 0;  // no re-split: the fallback average, said with its option
+    const auto fallback = cellforge::central_axis(pts, once);
+    CHECK_FALSE(fallback.converged);
+    REQUIRE(fallback.diagnostics.size() == 1);
+    CHECK(fallback.diagnostics[0].find("max_iterations") != std::string::npos);
   }
 }
 

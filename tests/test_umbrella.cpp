@@ -5,6 +5,7 @@
 
 #include <sstream>
 #include <string>
+#include <type_traits>
 
 #include "cellforge/cellforge.hpp"
 #include "cellforge/core/detail/text.hpp"
@@ -20,6 +21,15 @@
 
 // Own namespace: the test files of a group are compiled as one translation unit.
 namespace umbrella_tests {
+
+// Every result carries the one stage_report (docs/vocabulary.md); these are the ones that came last.
+static_assert(std::is_base_of_v<cellforge::stage_report, cellforge::orient_result>);
+static_assert(std::is_base_of_v<cellforge::stage_report, cellforge::fold_result>);
+static_assert(std::is_base_of_v<cellforge::stage_report, cellforge::edit_result>);
+static_assert(std::is_base_of_v<cellforge::stage_report, cellforge::simplify_result>);
+static_assert(std::is_base_of_v<cellforge::stage_report, cellforge::central_axis_result>);
+static_assert(std::is_base_of_v<cellforge::stage_report, cellforge::thin_detection_result>);
+static_assert(std::is_base_of_v<cellforge::stage_report, cellforge::io::svg_result>);
 
 TEST_CASE("detail::cat joins text, views, C strings and chars in order") {
   const std::string mid = "mid";

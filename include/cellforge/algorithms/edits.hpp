@@ -30,9 +30,11 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/core/detail/span_of.hpp"
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/detail/mesh_access.hpp"
 #include "cellforge/halfedge/mesh.hpp"
@@ -89,8 +91,9 @@ constexpr std::string_view to_string(edit_refusal r) noexcept {
   return "unknown";
 }
 
-/// What an edit did. Converts to true when it was done.
-struct edit_result {
+/// What an edit did. Converts to true when it was done. stage_report: milliseconds the call, the
+/// refusal's sentence as the diagnostic when refused.
+struct edit_result : stage_report {
   edit_refusal refusal = edit_refusal::none;
   vertex_handle vertex;  ///< collapses: the vertex kept; split: the new vertex
   edge_handle edge;      ///< flip: the new edge

@@ -18,10 +18,12 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/algorithms/edits.hpp"
+#include "cellforge/core/detail/deprecation.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 
@@ -50,13 +52,15 @@ struct simplify_options {
   bool collect_garbage = true;  ///< compact the mesh at the end (handles change)
 };
 
-/// What simplify() did.
-struct simplify_result {
+// `seconds` warns where a user names it, not at every copy of the struct.
+CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
+/// What simplify() did; milliseconds the call, diagnostics a missed face target and why.
+struct simplify_result : stage_report {
   std::size_t faces_before = 0, faces_after = 0, vertices_before = 0, vertices_after = 0;
   std::size_t collapses = 0;
   std::array<std::size_t, num_edit_refusals> refused{};  ///< collapses refused, by reason
   double max_error = 0;  ///< quadric: largest error of a collapse done; edge_length: longest edge collapsed
-  double seconds = 0;
+  [[deprecated("use milliseconds; removed in 0.7")]] double seconds = 0;  ///< filled as milliseconds / 1000
   int rounds = 0;
   bool reached_target = false;  ///< faces_after <= target_faces (true when there is no face target)
   std::size_t refused_total() const noexcept {
@@ -66,6 +70,7 @@ struct simplify_result {
   }
   std::size_t refusals(edit_refusal why) const noexcept { return refused[static_cast<std::size_t>(why)]; }
 };
+CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
 
 namespace detail::simplification {
 
@@ -363,7 +368,24 @@ simplify_result simplify(surface_mesh<P>& m, const simplify_options& options = {
   result.faces_after = m.num_faces();
   result.vertices_after = m.num_vertices();
   result.reached_target = options.target_faces == 0 || m.num_faces() <= options.target_faces;
-  result.seconds = t0.seconds();
+  if (!result.reached_target) {
+    // Which refusal stopped most collapses: what a caller would change (the angle, fixed vertices).
+    std::size_t most = 0;
+    for (std::size_t k = 1; k < result.refused.size(); ++k)
+      if (result.refused[k] > result.refused[most]) most = k;
+    result.diagnostics.push_back(cellforge::detail::cat(
+        "simplify: ", std::to_string(result.faces_after), " faces left, above the target of ",
+        std::to_string(options.target_faces), " after ", std::to_string(result.rounds), " rounds; ",
+        std::to_string(result.refused_total()), " collapses refused",
+        result.refused_total() == 0
+            ? std::string()
+            : cellforge::detail::cat(", most because ",
+                                     std::string(to_string(static_cast<edit_refusal>(most))))));
+  }
+  result.milliseconds = t0.ms();
+  CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
+  result.seconds = result.milliseconds / 1e3;  // filled until 0.7
+  CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
   return result;
 }
 

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <numbers>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -19,7 +20,10 @@
 
 #include "cellforge/core/bounding_box.hpp"
 #include "cellforge/core/detail/geometry.hpp"
+#include "cellforge/core/detail/stopwatch.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/point_traits.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 #include "cellforge/halfedge/surface_mesh.hpp"
 
@@ -116,8 +120,9 @@ std::pair<P, P> bounds(const surface_mesh<P>& m) {
 }
 
 /// The edges where a surface folds back onto itself: the normals of the two faces at the edge
-/// point opposite ways, more than 180° − `within_deg` apart (a dihedral angle below within_deg).
-struct fold_result {
+/// point opposite ways, more than 180° − `within_deg` apart (a dihedral angle below within_deg);
+/// milliseconds the call, a diagnostic when there are folds.
+struct fold_result : stage_report {
   std::vector<edge_handle> edges;  ///< in edge order; empty for a surface without folds
   double within_deg = 0;           ///< the angle the normals had to come within of 180°
 };
@@ -127,6 +132,7 @@ struct fold_result {
 /// orientation one normal is reversed first). O(V + E + F).
 template <Point3 P>
 fold_result folded_edges(const surface_mesh<P>& m, double within_deg = 20) {
+  const detail::stopwatch clock;
   fold_result r;
   r.within_deg = within_deg;
   std::vector<glm::dvec3> normal(m.faces_size(), glm::dvec3(0.0));
@@ -156,6 +162,11 @@ fold_result folded_edges(const surface_mesh<P>& m, double within_deg = 20) {
     const glm::dvec3 b = m.is_flipped(e) ? -normal[m.face(e, 1).idx()] : normal[m.face(e, 1).idx()];
     if (glm::dot(a, a) > 0 && glm::dot(b, b) > 0 && glm::dot(a, b) < limit) r.edges.push_back(e);
   }
+  if (!r.edges.empty())
+    r.diagnostics.push_back(cellforge::detail::cat(std::to_string(r.edges.size()),
+                                                   " edges fold the surface back onto itself (first: edge ",
+                                                   std::to_string(r.edges.front().idx()), ")"));
+  r.milliseconds = clock.ms();
   return r;
 }
 

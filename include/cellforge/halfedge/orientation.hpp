@@ -5,14 +5,18 @@
 /// orientations agree wherever the topology allows.
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
+#include "cellforge/core/detail/stopwatch.hpp"
+#include "cellforge/core/detail/text.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/halfedge/mesh.hpp"
 
 namespace cellforge {
 
-/// What orient() did.
-struct orient_result {
+/// What orient() did; milliseconds the call, a diagnostic per non-orientable component count.
+struct orient_result : stage_report {
   std::size_t components = 0;  ///< connected components (through edges)
   std::size_t non_orientable_components = 0;
   std::size_t faces_reversed = 0;
@@ -69,6 +73,7 @@ bool is_orientable(const halfedge_mesh& m) {
 /// seams that remain are reported. O(n).
 template <class = void>
 orient_result orient(halfedge_mesh& m) {
+  const detail::stopwatch clock;
   std::vector<std::int8_t> sign;
   orient_result r = detail::orientation_signs(m, sign);
   for (face_handle f : m.faces())
@@ -77,6 +82,12 @@ orient_result orient(halfedge_mesh& m) {
       ++r.faces_reversed;
     }
   r.flipped_edges_left = m.num_flipped_edges();
+  if (!r.orientable())
+    r.diagnostics.push_back(cellforge::detail::cat(
+        std::to_string(r.non_orientable_components), " of ", std::to_string(r.components),
+        " components are not orientable: ", std::to_string(r.flipped_edges_left),
+        " edges still join faces of opposite orientation"));
+  r.milliseconds = clock.ms();
   return r;
 }
 

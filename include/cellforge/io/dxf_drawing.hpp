@@ -26,6 +26,7 @@
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/io/detail/numbers.hpp"
 #include "cellforge/io/detail/read_file.hpp"
 #include "cellforge/io/detail/stroke_snapping.hpp"
@@ -63,20 +64,20 @@ struct dxf_drawing_options {
 };
 
 /// What reading a DXF drawing did: counts and diagnostics.
-struct dxf_reading_counts {
+struct dxf_reading_counts : stage_report {
   std::string version;       ///< $ACADVER of the HEADER (AC1009 = R12, AC1015 = R2000, ...), or empty
   std::size_t entities = 0;  ///< drawing entities read (LINE, LWPOLYLINE, ..., each time a block places it)
   std::size_t segments = 0;  ///< straight segments in them, before snapping
   std::size_t inserts = 0;   ///< block references expanded (each MINSERT copy counts)
   std::size_t snapped = 0;   ///< segment ends moved by snapping onto a junction
-  std::size_t dropped_zero_length = 0;   ///< strokes whose ends snapped to one junction
-  std::size_t merged_duplicates = 0;     ///< edges drawn twice (after splitting), kept once
-  std::size_t split_at_junctions = 0;    ///< junctions that split a line's interior
-  std::size_t skipped_curves = 0;        ///< curves left out (dxf_curves::skip)
-  std::size_t skipped_entities = 0;      ///< entities not read: TEXT, HATCH, DIMENSION, SPLINE, 3D ones, ...
-  std::size_t skipped_by_layer = 0;      ///< entities on layers not chosen, off or frozen
-  std::vector<std::string> layers;       ///< layers of the entities met, in order of first appearance
-  std::vector<std::string> diagnostics;  ///< what was left out or looks doubtful, with lines
+  std::size_t dropped_zero_length = 0;  ///< strokes whose ends snapped to one junction
+  std::size_t merged_duplicates = 0;    ///< edges drawn twice (after splitting), kept once
+  std::size_t split_at_junctions = 0;   ///< junctions that split a line's interior
+  std::size_t skipped_curves = 0;       ///< curves left out (dxf_curves::skip)
+  std::size_t skipped_entities = 0;     ///< entities not read: TEXT, HATCH, DIMENSION, SPLINE, 3D ones, ...
+  std::size_t skipped_by_layer = 0;     ///< entities on layers not chosen, off or frozen
+  std::vector<std::string> layers;      ///< layers of the entities met, in order of first appearance
+  // diagnostics (stage_report): what was left out or looks doubtful, with lines
 };
 
 /// A line drawing read from DXF (y up, as DXF's world coordinates) and what the reading did.

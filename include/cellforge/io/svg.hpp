@@ -30,10 +30,12 @@
 
 #include "cellforge/core/bounding_box.hpp"
 #include "cellforge/core/detail/edge_table.hpp"
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
 #include "cellforge/core/polygon_soup.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/core/wireframe.hpp"
 #include "cellforge/core/work_budget.hpp"
 #include "cellforge/halfedge/conversion.hpp"
@@ -104,7 +106,9 @@ struct svg_options {
 };
 
 /// What a picture holds; edge counts are of the visibility computation, drawn or not.
-struct svg_result {
+/// stage_report: milliseconds the call, work the hidden-line tests' units, complete false (and
+/// a diagnostic naming svg_options::work_budget) when the budget made some edges approximate.
+struct svg_result : stage_report {
   std::size_t faces_drawn = 0;
   std::size_t faces_facing_viewer = 0;  ///< of those drawn: right-hand normal toward the camera
   std::size_t edges = 0;                ///< mesh edges (each undirected edge once) + line segments
@@ -118,7 +122,6 @@ struct svg_result {
   /// a whole from one point, and those not tested at all (drawn visible).
   std::size_t approximate_edges = 0, untested_edges = 0;
   std::size_t approximate_points = 0, untested_points = 0;
-  std::uint64_t work = 0;  ///< work units the hidden-line tests spent
 };
 
 /// One edge or segment of the scene and where it is hidden.
@@ -257,22 +260,26 @@ class basic_svg_scene {
   /// fails. O(P + (E + F) x local density + F log F + output size), the density term capped
   /// by options.work_budget.
   svg_result write(std::ostream& os, const svg_options& options = {}) const {
+    const cellforge::detail::stopwatch clock;
     std::string text;
-    const svg_result r = write_to(text, options);
+    svg_result r = write_to(text, options);
     os.write(text.data(), static_cast<std::streamsize>(text.size()));
     if (!os) throw error(error_category::io, "svg: writing the picture to the stream failed");
+    r.milliseconds = clock.ms();
     return r;
   }
 
   /// Writes the picture to a file (nothing is created when the scene or options are invalid);
   /// throws io naming the path when it cannot be written. Costs as above.
   svg_result write(const file_path& path, const svg_options& options = {}) const {
+    const cellforge::detail::stopwatch clock;
     std::string text;
-    const svg_result r = write_to(text, options);
+    svg_result r = write_to(text, options);
     detail::write_file(path, [&](std::ostream& os) {
       os.write(text.data(), static_cast<std::streamsize>(text.size()));
       if (!os) throw error(error_category::io, "writing the picture failed (disk full?)");
     });
+    r.milliseconds = clock.ms();
     return r;
   }
 

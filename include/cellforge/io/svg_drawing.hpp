@@ -29,6 +29,7 @@
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/io/detail/arc_io.hpp"
 #include "cellforge/io/detail/read_file.hpp"
 #include "cellforge/io/detail/stroke_snapping.hpp"
@@ -65,7 +66,7 @@ struct svg_drawing_options {
 
 /// What reading an SVG drawing did: counts and diagnostics (of svg_drawing_result and
 /// svg_arc_drawing_result).
-struct svg_reading_counts {
+struct svg_reading_counts : stage_report {
   std::size_t elements = 0;             ///< stroke elements read (line, polyline, polygon, rect, path)
   std::size_t segments = 0;             ///< straight segments in them, before snapping
   std::size_t snapped = 0;              ///< segment ends moved by snapping onto a junction
@@ -74,7 +75,7 @@ struct svg_reading_counts {
   std::size_t split_at_junctions = 0;   ///< junctions that split a stroke's interior
   std::size_t skipped_curves = 0;       ///< curves left out (svg_curves::skip)
   std::size_t skipped_elements = 0;     ///< elements not read: defs, text, metadata, hidden, annotations, ...
-  std::vector<std::string> diagnostics;  ///< what was left out or looks doubtful, with lines
+  // diagnostics (stage_report): what was left out or looks doubtful, with lines
 };
 
 /// A line drawing read from SVG and what the reading did. The drawing is y-up: a junction's y

@@ -18,10 +18,12 @@
 #include <utility>
 #include <vector>
 
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/detail/union_find.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/io/detail/output_buffer.hpp"
 #include "cellforge/io/detail/read_file.hpp"
 #include "cellforge/io/detail/text_cursor.hpp"
@@ -32,9 +34,10 @@ namespace cellforge::io {
 
 /// A skeleton read from SWC, with what SWC says about each node beyond position and radius.
 /// Edges run from a sample's parent to the sample (away from the root), in file order, then
-/// one per `# LINK from to` line, in file order.
+/// one per `# LINK from to` line, in file order. stage_report: milliseconds the parse, a
+/// diagnostic per collapsed soma count.
 template <Point3 P>
-struct swc_result {
+struct swc_result : stage_report {
   cellforge::skeleton<P> skeleton;  ///< nodes in file order (less the collapsed soma points)
   std::vector<std::int32_t> types;  ///< the SWC structure type of each node (1 soma, 2 axon, ...)
   std::vector<std::int64_t> ids;    ///< the sample id of each node in the file
@@ -251,6 +254,7 @@ swc_result<P> parse_swc(std::string_view bytes, std::string_view name = "<memory
                         const swc_read_options& options = {}) {
   using S = scalar_t<P>;
   constexpr std::uint32_t root = std::numeric_limits<std::uint32_t>::max();
+  const cellforge::detail::stopwatch clock;
   detail::text_cursor c(bytes, name, '#');
   if (bytes.starts_with("\xEF\xBB\xBF")) c.pos += 3;
   std::vector<std::int64_t> ids, parent_ids;
@@ -350,6 +354,11 @@ swc_result<P> parse_swc(std::string_view bytes, std::string_view name = "<memory
   for (std::size_t i = 0; i < n; ++i)
     if (into[i] == i && parent[i] != root) s.edges.push_back({node[into[parent[i]]], node[i]});
   detail::swc_add_links(c, by_id, into, node, link_ids, link_lines, s.edges);
+  if (out.collapsed_somas > 0)
+    out.diagnostics.push_back(cellforge::detail::cat(
+        std::to_string(out.collapsed_somas),
+        " three-point somas read as one node each (swc_read_options::collapse_three_point_soma)"));
+  out.milliseconds = clock.ms();
   return out;
 }
 
@@ -357,8 +366,9 @@ swc_result<P> parse_swc(std::string_view bytes, std::string_view name = "<memory
 /// and line when it is malformed. O(file size + n log n).
 template <Point3 P>
 swc_result<P> read_swc(const file_path& path, const swc_read_options& options = {}) {
-  const std::string bytes = detail::read_file(path);
-  return parse_swc<P>(bytes, detail::display_name(path), options);
+  return detail::read_and_parse(path, [&](std::string_view bytes, const std::string& name) {
+    return parse_swc<P>(bytes, name, options);
+  });
 }
 
 namespace detail {

@@ -29,11 +29,13 @@
 #include <glm/vec2.hpp>
 #include <unsupported/Eigen/NonLinearOptimization>
 
+#include "cellforge/core/detail/deprecation.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/core/predicates.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/sketch/elliptical_arc.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 
@@ -139,10 +141,13 @@ struct stroke_summary {
   std::size_t self_crossings = 0;
 };
 
+// `seconds` warns where a user names it, not at every copy of the struct.
+CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
 /// What detect_arcs found: the pieces of every stroke in order, per-stroke summaries, counts,
-/// and a sentence for each stroke that is neither one line nor one arc, or that was dropped.
+/// and (diagnostics) a sentence for each stroke that is neither one line nor one arc, or that
+/// was dropped; milliseconds the call.
 template <Point2 P>
-struct arc_detection_result {
+struct arc_detection_result : stage_report {
   std::vector<stroke_piece<P>> pieces;
   std::vector<stroke_summary> strokes;
   std::size_t num_lines = 0, num_arcs = 0;
@@ -154,9 +159,9 @@ struct arc_detection_result {
   /// Over every ellipse fit tried, how often each reason rejected it (index: arc_rejection).
   std::array<std::size_t, arc_rejection_count> rejections{};
   double drawing_size = 0;  ///< the size the tolerance was taken of
-  double seconds = 0;
-  std::vector<std::string> diagnostics;
+  [[deprecated("use milliseconds; removed in 0.7")]] double seconds = 0;  ///< filled as milliseconds / 1000
 };
+CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
 
 /// A circle of a known plane seen in a parallel view, fitted to points: the 3D circle of radius
 /// `radius` whose plane's two unit axes the view maps to `u` and `v`, drawn as the ellipse

@@ -125,13 +125,13 @@ struct rounded_mesh_options {
 /// The rounded solid as a polygon mesh: every skeleton face trimmed back by the setbacks of its
 /// blends (a round's end face loses its corner to the end curve, a fillet's gains it), every
 /// blend a strip of quads; face_source[f] is the skeleton face (face_loops index) of mesh face f,
-/// or −1 − blend for a strip's quad. Faces are oriented outward.
+/// or −1 − blend for a strip's quad. Faces are oriented outward. stage_report: milliseconds the
+/// call, diagnostics the blends skipped and why.
 template <Point3 Q>
-struct rounded_mesh_result {
+struct rounded_mesh_result : stage_report {
   polygon_soup<Q> mesh;
   std::vector<std::int64_t> face_source;
   std::size_t strips = 0, strip_quads = 0, skipped = 0;  ///< skipped: blends with no radius
-  std::vector<std::string> diagnostics;
 };
 
 /// Options of rounded_brep.

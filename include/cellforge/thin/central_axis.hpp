@@ -12,12 +12,16 @@
 #include <limits>
 #include <numbers>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/stopwatch.hpp"
+#include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
+#include "cellforge/core/stage_report.hpp"
 
 namespace cellforge {
 
@@ -30,7 +34,8 @@ struct central_axis_options {
 };
 
 /// The fitted axis: a point, a unit direction and how the iteration ended.
-struct central_axis_result {
+/// stage_report: milliseconds the call; a diagnostic when the fallback or no split was used.
+struct central_axis_result : stage_report {
   glm::dvec3 centroid{0.0};  ///< mean of the vertices (the seed's "approximate center")
   glm::dvec3 origin{0.0};    ///< a point of the line: the mean of the last slab averages
   glm::dvec3 direction{0, 0, 1};
@@ -138,6 +143,7 @@ template <class = void>
 central_axis_result central_axis(std::span<const glm::dvec3> pts, const central_axis_options& options = {}) {
   namespace t = detail::thin;
   if (pts.empty()) throw error(error_category::invalid_input, "central_axis: there are no points");
+  const detail::stopwatch clock;
   central_axis_result r;
   for (const glm::dvec3& p : pts) r.centroid += p;
   r.centroid /= static_cast<double>(pts.size());
@@ -161,6 +167,9 @@ central_axis_result central_axis(std::span<const glm::dvec3> pts, const central_
   if (!best.ok) {  // every split degenerate (all points in one place): keep z
     r.origin = r.centroid;
     r.converged = true;
+    r.diagnostics.emplace_back(
+        "central_axis: every split is degenerate (the points in one place): the z axis");
+    r.milliseconds = clock.ms();
     return r;
   }
   glm::dvec3 dir = best.direction;
@@ -189,8 +198,12 @@ central_axis_result central_axis(std::span<const glm::dvec3> pts, const central_
     for (std::size_t i = recent.size() - k; i < recent.size(); ++i)
       avg += glm::dot(recent[i], dir) < 0 ? -recent[i] : recent[i];
     if (glm::length(avg) > 0) dir = glm::normalize(avg);
+    r.diagnostics.push_back(cellforge::detail::cat(
+        "central_axis: not converged within ", std::to_string(options.max_iterations),
+        " iterations (max_iterations); the average of the last ", std::to_string(k), " directions is taken"));
   }
   r.direction = dir;
+  r.milliseconds = clock.ms();
   return r;
 }
 

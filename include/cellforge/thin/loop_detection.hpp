@@ -10,9 +10,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "cellforge/core/detail/span_of.hpp"
+#include "cellforge/core/detail/stopwatch.hpp"
+#include "cellforge/core/stage_report.hpp"
 
 namespace cellforge {
 
@@ -41,8 +44,9 @@ struct detected_cycle {
   double score = 0;  ///< the detector's raw score (seed: the product of averages)
 };
 
-/// The detector's picks, strongest first, and what the seed detector did.
-struct thin_detection_result {
+/// The detector's picks, strongest first, and what the seed detector did; milliseconds the call,
+/// a diagnostic when the values were smoothed or nothing was picked.
+struct thin_detection_result : stage_report {
   std::vector<detected_cycle> cycles;
   std::vector<double>
       values;             ///< seed: the weighted (and maybe smoothed) values; prominence: the wide envelope
@@ -207,8 +211,15 @@ thin_detection_result detect_prominence(std::span<const double> l, const thin_de
 template <class = void>
 thin_detection_result detect_thin_cycles(std::span<const double> lengths, std::size_t faces,
                                          const thin_detection_options& options = {}) {
-  return options.detection == thin_detection::seed ? detail::thin::detect_seed(lengths, faces, options)
-                                                   : detail::thin::detect_prominence(lengths, options);
+  const detail::stopwatch clock;
+  thin_detection_result r = options.detection == thin_detection::seed
+                                ? detail::thin::detect_seed(lengths, faces, options)
+                                : detail::thin::detect_prominence(lengths, options);
+  if (r.smoothed)
+    r.diagnostics.emplace_back("the weighted lengths alternated and were smoothed (the seed detector)");
+  if (r.cycles.empty()) r.diagnostics.emplace_back("no cycle stands out as thin");
+  r.milliseconds = clock.ms();
+  return r;
 }
 
 }  // namespace cellforge

@@ -354,6 +354,14 @@ template <class = void>
 edit_result refused(edit_refusal why) {
   edit_result r;
   r.refusal = why;
+  r.diagnostics.emplace_back(to_string(why));
+  return r;
+}
+
+/// r with its wall time since `clock` started. O(1).
+template <class = void>
+edit_result timed(edit_result r, const detail::stopwatch& clock) {
+  r.milliseconds = clock.ms();
   return r;
 }
 
@@ -423,26 +431,29 @@ edit_refusal can_collapse(const halfedge_mesh& m, edge_handle e, vertex_handle k
 
 template <class>
 edit_result collapse_halfedge(halfedge_mesh& m, halfedge_handle h) {
+  const detail::stopwatch clock;
   detail::edits::check_handle(m.is_valid(h), "collapse_halfedge", "half-edge", h.idx());
   const vertex_handle u = m.tail(h), v = m.head(h);
   std::vector<face_handle> faces;
   if (auto r = detail::edits::check_collapse(m, halfedge_mesh::edge(h), u, v, faces); r != edit_refusal::none)
-    return detail::edits::refused(r);
-  return detail::edits::do_collapse(m, u, v, detail::span_of(faces));
+    return detail::edits::timed(detail::edits::refused(r), clock);
+  return detail::edits::timed(detail::edits::do_collapse(m, u, v, detail::span_of(faces)), clock);
 }
 
 template <class>
 edit_result collapse_edge(halfedge_mesh& m, edge_handle e, vertex_handle keep) {
+  const detail::stopwatch clock;
   detail::edits::check_edge_endpoint(m, e, keep, "collapse_edge");
   const vertex_handle u = keep == m.vertex(e, 0) ? m.vertex(e, 1) : m.vertex(e, 0);
   std::vector<face_handle> faces;
   if (auto r = detail::edits::check_collapse(m, e, u, keep, faces); r != edit_refusal::none)
-    return detail::edits::refused(r);
-  return detail::edits::do_collapse(m, u, keep, detail::span_of(faces));
+    return detail::edits::timed(detail::edits::refused(r), clock);
+  return detail::edits::timed(detail::edits::do_collapse(m, u, keep, detail::span_of(faces)), clock);
 }
 
 template <Point3 P>
 edit_result collapse_halfedge(surface_mesh<P>& m, halfedge_handle h, const collapse_options& options) {
+  const detail::stopwatch clock;
   detail::edits::check_handle(m.is_valid(h), "collapse_halfedge", "half-edge", h.idx());
   const glm::dvec3 a = to_dvec3(m.position(m.tail(h))), b = to_dvec3(m.position(m.head(h)));
   glm::dvec3 target = b;
@@ -451,7 +462,7 @@ edit_result collapse_halfedge(surface_mesh<P>& m, halfedge_handle h, const colla
   detail::edits::check_finite(target, "collapse_halfedge");
   edit_result r = collapse_halfedge(static_cast<halfedge_mesh&>(m), h);
   if (r) detail::edits::place(m, r.vertex, target);
-  return r;
+  return detail::edits::timed(r, clock);
 }
 
 template <class>
@@ -463,10 +474,11 @@ edit_refusal can_collapse_face(const halfedge_mesh& m, face_handle f) {
 
 template <class>
 edit_result collapse_face(halfedge_mesh& m, face_handle f) {
+  const detail::stopwatch clock;
   detail::edits::check_handle(m.is_valid(f), "collapse_face", "face", f.idx());
   detail::edits::face_collapse_plan plan;
   if (auto r = detail::edits::check_face_collapse(m, f, plan); r != edit_refusal::none)
-    return detail::edits::refused(r);
+    return detail::edits::timed(detail::edits::refused(r), clock);
   std::vector<face_handle> around;
   std::vector<detail::edits::face_spec> specs;
   for (vertex_handle x : {plan.a, plan.c})
@@ -483,11 +495,12 @@ edit_result collapse_face(halfedge_mesh& m, face_handle f) {
   r.vertex = plan.k;
   r.vertices_removed = 2;
   r.faces_removed = plan.removed.size();
-  return r;
+  return detail::edits::timed(r, clock);
 }
 
 template <Point3 P>
 edit_result collapse_face(surface_mesh<P>& m, face_handle f) {
+  const detail::stopwatch clock;
   detail::edits::check_handle(m.is_valid(f), "collapse_face", "face", f.idx());
   glm::dvec3 centroid(0.0);
   std::size_t n = 0;
@@ -498,11 +511,12 @@ edit_result collapse_face(surface_mesh<P>& m, face_handle f) {
   centroid /= static_cast<double>(n);
   edit_result r = collapse_face(static_cast<halfedge_mesh&>(m), f);
   if (r) detail::edits::place(m, r.vertex, centroid);
-  return r;
+  return detail::edits::timed(r, clock);
 }
 
 template <class>
 edit_result split_edge(halfedge_mesh& m, edge_handle e) {
+  const detail::stopwatch clock;
   detail::edits::check_handle(m.is_valid(e), "split_edge", "edge", e.idx());
   const std::vector<face_handle> faces = detail::edits::edge_faces(m, e);
   const vertex_handle a = m.vertex(e, 0), b = m.vertex(e, 1);
@@ -533,16 +547,17 @@ edit_result split_edge(halfedge_mesh& m, edge_handle e) {
   edit_result r;
   r.vertex = w;
   r.faces_added = specs.size() - faces.size();
-  return r;
+  return detail::edits::timed(r, clock);
 }
 
 template <Point3 P>
 edit_result split_edge(surface_mesh<P>& m, edge_handle e, const std::type_identity_t<P>& position) {
+  const detail::stopwatch clock;
   detail::edits::check_handle(m.is_valid(e), "split_edge", "edge", e.idx());
   detail::edits::check_finite(to_dvec3(position), "split_edge");
   edit_result r = split_edge(static_cast<halfedge_mesh&>(m), e);
   m.set_position(r.vertex, position);
-  return r;
+  return detail::edits::timed(r, clock);
 }
 
 template <class>
@@ -562,7 +577,9 @@ edit_refusal can_flip(const halfedge_mesh& m, edge_handle e) {
 
 template <class>
 edit_result flip_edge(halfedge_mesh& m, edge_handle e) {
-  if (auto r = can_flip(m, e); r != edit_refusal::none) return detail::edits::refused(r);
+  const detail::stopwatch clock;
+  if (auto r = can_flip(m, e); r != edit_refusal::none)
+    return detail::edits::timed(detail::edits::refused(r), clock);
   const halfedge_handle h = halfedge_mesh::halfedge(e, 0);
   const face_handle f0 = m.face(h), f1 = m.face(halfedge_mesh::twin(h));
   const vertex_handle x = m.tail(h), y = m.head(h);  // f0 runs x -> y -> c
@@ -577,7 +594,7 @@ edit_result flip_edge(halfedge_mesh& m, edge_handle e) {
   detail::edits::replace_faces(m, old, specs);
   edit_result r;
   r.edge = m.find_edge(c, d);
-  return r;
+  return detail::edits::timed(r, clock);
 }
 
 }  // namespace cellforge

@@ -19,6 +19,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
@@ -731,6 +732,7 @@ using dxf_reader = basic_dxf_reader<>;
 template <Point2 P2>
 dxf_arc_drawing_result<P2> parse_dxf_strokes(std::string_view text, std::string_view name,
                                              const dxf_drawing_options& options, bool arcs) {
+  const cellforge::detail::stopwatch clock;
   if (!std::isfinite(options.snap_tolerance) || options.snap_tolerance < 0 || options.snap_tolerance >= 0.5)
     throw error(error_category::invalid_input,
                 "parse_dxf_drawing: snap_tolerance must be a finite number in [0, 0.5)");
@@ -746,6 +748,7 @@ dxf_arc_drawing_result<P2> parse_dxf_strokes(std::string_view text, std::string_
   if (r.segs.empty() && r.arcs.empty()) {
     out.diagnostics.push_back(cellforge::detail::cat(
         std::string(name), (arcs ? ": no line or arc found" : ": no straight line found")));
+    out.milliseconds = clock.ms();
     return out;
   }
   stroke_snap_counts counts;
@@ -756,6 +759,7 @@ dxf_arc_drawing_result<P2> parse_dxf_strokes(std::string_view text, std::string_
   out.dropped_zero_length += counts.dropped_zero_length;
   out.merged_duplicates = counts.merged_duplicates;
   out.split_at_junctions = counts.split_at_junctions;
+  out.milliseconds = clock.ms();
   return out;
 }
 
@@ -779,14 +783,16 @@ dxf_arc_drawing_result<P2> parse_dxf_arc_drawing(std::string_view text, std::str
 
 template <Point2 P2>
 dxf_drawing_result<P2> read_dxf_drawing(const file_path& path, const dxf_drawing_options& options) {
-  const std::string bytes = detail::read_file(path);
-  return parse_dxf_drawing<P2>(bytes, detail::display_name(path), options);
+  return detail::read_and_parse(path, [&](std::string_view bytes, const std::string& name) {
+    return parse_dxf_drawing<P2>(bytes, name, options);
+  });
 }
 
 template <Point2 P2>
 dxf_arc_drawing_result<P2> read_dxf_arc_drawing(const file_path& path, const dxf_drawing_options& options) {
-  const std::string bytes = detail::read_file(path);
-  return parse_dxf_arc_drawing<P2>(bytes, detail::display_name(path), options);
+  return detail::read_and_parse(path, [&](std::string_view bytes, const std::string& name) {
+    return parse_dxf_arc_drawing<P2>(bytes, name, options);
+  });
 }
 
 }  // namespace cellforge::io

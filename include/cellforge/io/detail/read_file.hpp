@@ -8,7 +8,9 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <string_view>
 
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/io/file_path.hpp"
@@ -57,6 +59,17 @@ std::string read_file(const file_path& path) {
     bytes.append(chunk, n);
   }
   return bytes;
+}
+
+/// parse(bytes, name) of the file at `path`, its result's milliseconds (stage_report) the whole
+/// read, the file's too. O(file size + the parse).
+template <class Parse>
+auto read_and_parse(const file_path& path, Parse&& parse) {
+  const cellforge::detail::stopwatch clock;
+  const std::string bytes = read_file(path);
+  auto r = parse(std::string_view(bytes), display_name(path));
+  r.milliseconds = clock.ms();
+  return r;
 }
 
 }  // namespace cellforge::io::detail

@@ -21,6 +21,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
@@ -700,6 +701,7 @@ struct basic_svg_reader {
 template <Point2 P2>
 svg_arc_drawing_result<P2> parse_svg_strokes(std::string_view text, std::string_view name,
                                              const svg_drawing_options& options, bool arcs) {
+  const cellforge::detail::stopwatch clock;
   if (!std::isfinite(options.snap_tolerance) || options.snap_tolerance < 0 || options.snap_tolerance >= 0.5)
     throw error(error_category::invalid_input,
                 "parse_svg_drawing: snap_tolerance must be a finite number in [0, 0.5)");
@@ -716,6 +718,7 @@ svg_arc_drawing_result<P2> parse_svg_strokes(std::string_view text, std::string_
   if (r.segs.empty() && r.arcs.empty()) {
     out.diagnostics.push_back(cellforge::detail::cat(
         std::string(name), (arcs ? ": no straight stroke or arc found" : ": no straight stroke found")));
+    out.milliseconds = clock.ms();
     return out;
   }
   // Strokes in the drawing's frame, y up: the rotation and the sweep's sense flip with y.
@@ -735,6 +738,7 @@ svg_arc_drawing_result<P2> parse_svg_strokes(std::string_view text, std::string_
   out.dropped_zero_length = counts.dropped_zero_length;
   out.merged_duplicates = counts.merged_duplicates;
   out.split_at_junctions = counts.split_at_junctions;
+  out.milliseconds = clock.ms();
   return out;
 }
 
@@ -758,14 +762,16 @@ svg_arc_drawing_result<P2> parse_svg_arc_drawing(std::string_view text, std::str
 
 template <Point2 P2>
 svg_arc_drawing_result<P2> read_svg_arc_drawing(const file_path& path, const svg_drawing_options& options) {
-  const std::string bytes = detail::read_file(path);
-  return parse_svg_arc_drawing<P2>(bytes, detail::display_name(path), options);
+  return detail::read_and_parse(path, [&](std::string_view bytes, const std::string& name) {
+    return parse_svg_arc_drawing<P2>(bytes, name, options);
+  });
 }
 
 template <Point2 P2>
 svg_drawing_result<P2> read_svg_drawing(const file_path& path, const svg_drawing_options& options) {
-  const std::string bytes = detail::read_file(path);
-  return parse_svg_drawing<P2>(bytes, detail::display_name(path), options);
+  return detail::read_and_parse(path, [&](std::string_view bytes, const std::string& name) {
+    return parse_svg_drawing<P2>(bytes, name, options);
+  });
 }
 
 }  // namespace cellforge::io

@@ -28,6 +28,7 @@
 
 #include "cellforge/core/bounding_box.hpp"
 #include "cellforge/core/detail/edge_table.hpp"
+#include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point_traits.hpp"
@@ -297,6 +298,7 @@ bool basic_svg_scene<U>::is_feature(const frame& fr,
 
 template <class U>
 svg_result basic_svg_scene<U>::write_to(std::string& out, const svg_options& o) const {
+  const cellforge::detail::stopwatch clock;
   const frame fr = render(o);
   svg_result r;
   for (const auto& e : fr.edges) {
@@ -334,12 +336,14 @@ svg_result basic_svg_scene<U>::write_to(std::string& out, const svg_options& o) 
     detail::svg_escape(out, o.title);
     out += "</title>\n";
   }
-  if (r.approximate_edges + r.untested_edges + r.approximate_points + r.untested_points > 0)
-    out += cellforge::detail::cat(
-        "<!-- cellforge: the hidden-line work budget ran out: ",
-        std::to_string(r.approximate_edges + r.approximate_points),
+  if (r.approximate_edges + r.untested_edges + r.approximate_points + r.untested_points > 0) {
+    r.complete = false;
+    r.diagnostics.push_back(cellforge::detail::cat(
+        "the hidden-line work budget ran out: ", std::to_string(r.approximate_edges + r.approximate_points),
         " edges and points judged from one point, ", std::to_string(r.untested_edges + r.untested_points),
-        " not tested (drawn visible); raise svg_options::work_budget for exact hidden lines -->\n");
+        " not tested (drawn visible); raise svg_options::work_budget for exact hidden lines"));
+    out += cellforge::detail::cat("<!-- cellforge: ", r.diagnostics.back(), " -->\n");
+  }
   if (!o.background.empty() && o.background != "none") {
     out += "<rect width=\"100%\" height=\"100%\"";
     attr("fill", o.background);
@@ -513,6 +517,7 @@ svg_result basic_svg_scene<U>::write_to(std::string& out, const svg_options& o) 
     ++r.labels;
   }
   out += "</svg>\n";
+  r.milliseconds = clock.ms();
   return r;
 }
 

@@ -763,7 +763,10 @@ auto detect_arcs(const Strokes& strokes, const arc_detection_options& options) {
     res.pieces.insert(res.pieces.end(), pieces.begin(), pieces.end());
     res.strokes.push_back(sum);
   }
-  res.seconds = started.seconds();
+  res.milliseconds = started.ms();
+  CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
+  res.seconds = res.milliseconds / 1e3;  // filled until 0.7
+  CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
   return res;
 }
 

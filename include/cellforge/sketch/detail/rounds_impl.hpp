@@ -538,12 +538,16 @@ bool claim_ends(const edge_round& e, std::size_t i, std::vector<std::pair<std::u
 
 template <Point3 Q, Point2 P>
 rounded_mesh_result<Q> rounded_mesh(const rounds_result<Q, P>& r, const rounded_mesh_options& options) {
+  const detail::stopwatch clock;
   rounded_mesh_result<Q> out;
   const auto& faces = r.reading.face_loops;
   const std::size_t nv = r.points.size();
   std::vector<glm::dvec3> X(nv);
   for (std::size_t j = 0; j < nv; ++j) X[j] = to_dvec3(r.points[j]);
-  if (nv == 0) return out;
+  if (nv == 0) {
+    out.milliseconds = clock.ms();
+    return out;
+  }
   glm::dvec3 lo = X[0], hi = X[0];
   for (const auto& x : X) lo = glm::min(lo, x), hi = glm::max(hi, x);
   const double tol = options.chord_tolerance * glm::length(glm::dvec2(hi - lo));
@@ -616,6 +620,7 @@ rounded_mesh_result<Q> rounded_mesh(const rounds_result<Q, P>& r, const rounded_
     out.mesh.add_face(face);
     out.face_source.push_back(static_cast<std::int64_t>(f));
   }
+  out.milliseconds = clock.ms();
   return out;
 }
 
