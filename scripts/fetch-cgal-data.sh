@@ -15,22 +15,9 @@ archive=/usr/share/doc/libcgal-dev/data.tar.gz
 pattern='^data/meshes/[^/]*\.([oO][fF][fF]|[pP][lL][yY]|[sS][tT][lL]|[oO][bB][jJ])$'
 
 if [[ ! -s "$archive" ]]; then
-  if ! command -v dpkg-query >/dev/null 2>&1; then
-    echo "fetch-cgal-data.sh: $archive is missing and this is not a Debian-like system; install CGAL's demo data (Debian: libcgal-demo)" >&2
-    exit 1
-  fi
-  sudo_cmd=()
-  if [[ "$(id -u)" -ne 0 ]]; then
-    if ! command -v sudo >/dev/null 2>&1; then
-      echo "fetch-cgal-data.sh: need root to install libcgal-demo (and sudo is not available)" >&2
-      exit 1
-    fi
-    sudo_cmd=(sudo)
-  fi
   echo "fetch-cgal-data.sh: installing libcgal-demo"
-  "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -q
-  "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends libcgal-demo
-  [[ -s "$archive" ]] || { echo "fetch-cgal-data.sh: libcgal-demo installed no $archive" >&2; exit 1; }
+  bash "$(dirname "${BASH_SOURCE[0]}")/install-deps.sh" --only libcgal-demo
+  [[ -s "$archive" ]] || { echo "fetch-cgal-data.sh: no $archive: install CGAL's demo data (Debian: libcgal-demo)" >&2; exit 1; }
 fi
 
 mapfile -t members < <(tar -tzf "$archive" | grep -E "$pattern")

@@ -39,45 +39,12 @@ if [[ ! -s "$list" ]]; then
   exit 1
 fi
 
-is_wanted() {
-  [[ ${#wanted[@]} -eq 0 ]] && return 0
-  local w
-  for w in "${wanted[@]}"; do [[ "$w" == "$1" ]] && return 0; done
-  return 1
-}
-
-run_one() {
-  local exe="$1" seeds="$2" dict="$3" dir="$4"
-  local args=(-max_total_time="$seconds" -timeout=20 -rss_limit_mb="$rss" -print_final_stats=1
-    -artifact_prefix="$dir/")
-  if [[ -n "$dict" ]]; then args+=(-dict="$dict"); fi
-  args+=("$dir/corpus")
-  if [[ -n "$seeds" ]]; then args+=("$seeds"); fi
-  if nice "$exe" "${args[@]}" >"$dir/log" 2>&1; then echo ok >"$dir/status"; else echo "exit $?" >"$dir/status"; fi
-}
-
-dirs=()
-running=0
-while IFS='|' read -r exe seeds dict; do
-  [[ -z "$exe" ]] && continue
-  name="$(basename "$exe")"
-  is_wanted "$name" || continue
-  dir="$root/build/fuzz/long/$name"
-  rm -f "$dir"/status "$dir"/log
-  mkdir -p "$dir/corpus"
-  dirs+=("$dir")
-  echo "fuzz-long: $name for ${minutes} min (log: $dir/log)"
-  run_one "$exe" "$seeds" "$dict" "$dir" &
-  running=$((running + 1))
-  if ((running >= jobs)); then
-    wait -n || true
-    running=$((running - 1))
-  fi
-done <"$list"
-wait || true
+# shellcheck source=scripts/fuzz-common.sh
+source "$root/scripts/fuzz-common.sh"
+fuzz_all "$list" "$root/build/fuzz/long" "$seconds" 20 "$rss" "$jobs" fuzz-long "${wanted[@]}"
 
 failed=0
-for dir in "${dirs[@]}"; do
+for dir in "${fuzz_dirs[@]}"; do
   name="$(basename "$dir")"
   runs=$(grep -m1 -o 'stat::number_of_executed_units: [0-9]*' "$dir/log" | grep -o '[0-9]*$' || echo '?')
   cov=$(grep -o 'cov: [0-9]*' "$dir/log" | tail -n 1 | grep -o '[0-9]*$' || echo '?')

@@ -10,6 +10,7 @@
 #     --compare  CGAL (with Eigen), OpenMesh and Qhull, the baselines the benchmarks compare against (implies --bench)
 #     --fuzz     clang and its compiler-rt (libFuzzer, ASan/UBSan runtimes for clang)
 #     --occt     OpenCASCADE's STEP reader and checks, for the STEP writer's test (tests/occt)
+#     --only P.. just the packages P.. (the data fetchers' way to install what they read)
 # `apt-get update` runs once, and only when something must be installed; sudo is used only
 # when not running as root. Nothing is installed when everything is present already.
 set -euo pipefail
@@ -24,6 +25,11 @@ packages+=(clang-format-14)
 # than by package, since node from another source (e.g. a nodejs build bundling npm) will do.
 command -v node >/dev/null 2>&1 || packages+=(nodejs)
 command -v npm >/dev/null 2>&1 || packages+=(npm)
+if [[ "${1-}" == --only ]]; then
+  shift
+  packages=("$@")
+  set --
+fi
 for arg in "$@"; do
   case "$arg" in
     --bench) packages+=(libbenchmark-dev) ;;
@@ -33,7 +39,7 @@ for arg in "$@"; do
     # A test dependency only: test_step_occt reads io/step.hpp's files back with OpenCASCADE.
     --occt) packages+=(libocct-data-exchange-dev libocct-modeling-algorithms-dev) ;;
     -h | --help)
-      sed -n '2,14p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+      sed -n '2,15p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
       exit 0
       ;;
     *)

@@ -31,23 +31,6 @@ preset_stage() {
   ctest --preset "$preset" --output-on-failure -j2
 }
 
-# Runs one fuzzer for fuzz_seconds in the background-friendly way: never fails itself, but
-# writes "ok" or the exit code to <dir>/status for the caller to collect.
-run_fuzzer() {
-  local exe="$1" seeds="$2" dict="$3" dir="$4"
-  local args=(-max_total_time="$fuzz_seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
-    -artifact_prefix="$dir/")
-  if [[ -n "$dict" ]]; then args+=(-dict="$dict"); fi
-  # New inputs go to the first directory (kept in build/ between runs), seeds are read only.
-  args+=("$dir/corpus")
-  if [[ -n "$seeds" ]]; then args+=("$seeds"); fi
-  if "$exe" "${args[@]}" >"$dir/log" 2>&1; then
-    echo ok >"$dir/status"
-  else
-    echo "exit $?" >"$dir/status"
-  fi
-}
-
 fuzz_stage() {
   cmake --preset fuzz
   cmake --build --preset fuzz
@@ -58,26 +41,12 @@ fuzz_stage() {
     return 1
   fi
 
-  local exe seeds dict name dir running=0 failed=0
-  local dirs=()
-  while IFS='|' read -r exe seeds dict; do
-    if [[ -z "$exe" ]]; then continue; fi
-    name="$(basename "$exe")"
-    dir="$root/build/fuzz/runs/$name"
-    rm -f "$dir"/status "$dir"/log "$dir"/crash-* "$dir"/timeout-* "$dir"/oom-* "$dir"/leak-*
-    mkdir -p "$dir/corpus"
-    dirs+=("$dir")
-    echo "test-all: fuzzing $name for ${fuzz_seconds}s (log: $dir/log)"
-    run_fuzzer "$exe" "$seeds" "$dict" "$dir" &
-    running=$((running + 1))
-    if ((running >= fuzz_jobs)); then
-      wait -n
-      running=$((running - 1))
-    fi
-  done <"$list"
-  wait
+  local name dir failed=0
+  # shellcheck source=scripts/fuzz-common.sh
+  source "$root/scripts/fuzz-common.sh"
+  fuzz_all "$list" "$root/build/fuzz/runs" "$fuzz_seconds" 10 2048 "$fuzz_jobs" test-all
 
-  for dir in "${dirs[@]}"; do
+  for dir in "${fuzz_dirs[@]}"; do
     name="$(basename "$dir")"
     if [[ "$(cat "$dir/status" 2>/dev/null)" == ok ]]; then
       echo "test-all: $name: no crash in ${fuzz_seconds}s ($(grep -m1 -o 'stat::number_of_executed_units: [0-9]*' "$dir/log" | grep -o '[0-9]*$' || echo '?') runs)"

@@ -159,10 +159,7 @@ namespace detail {
 template <class = void>
 double margin_until(const sample_drawing& s, double stop) {
   const auto& pts = s.drawing.points;
-  if (pts.empty()) return 0;
-  glm::dvec2 lo = pts[0], hi = pts[0];
-  for (const auto& p : pts) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  const double diag = glm::length(hi - lo);
+  const double diag = detail::drawing_diagonal(pts);
   if (!(diag > 0)) return 0;
   const double limit = stop * diag;
   double margin = std::numeric_limits<double>::infinity();

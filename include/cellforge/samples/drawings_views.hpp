@@ -97,6 +97,14 @@ double junction_spacing(const std::vector<glm::dvec2>& pts, const Edges& edges, 
   return spacing;
 }
 
+/// The diagonal of the box of `pts` (0 for none). O(n).
+template <class = void>
+double drawing_diagonal(const std::vector<glm::dvec2>& pts) {
+  if (pts.empty()) return 0;
+  glm::dvec2 lo = pts[0], hi = pts[0];
+  for (const auto& p : pts) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  return glm::length(hi - lo);
+}
 }  // namespace detail
 
 /// How far a drawing is from an accident of the view, relative to its size (the bounding-box
@@ -106,10 +114,7 @@ double junction_spacing(const std::vector<glm::dvec2>& pts, const Edges& edges, 
 template <class = void>
 double generic_margin(const sample_drawing& s) {
   const auto& pts = s.drawing.points;
-  if (pts.empty()) return 0;
-  glm::dvec2 lo = pts[0], hi = pts[0];
-  for (const auto& p : pts) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  const double diag = glm::length(hi - lo);
+  const double diag = detail::drawing_diagonal(pts);
   if (!(diag > 0)) return 0;
   double margin = detail::junction_spacing(pts, s.drawing.edges, diag);
   for (const auto& face : s.model.faces) {

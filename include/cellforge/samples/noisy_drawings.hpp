@@ -79,9 +79,8 @@ std::vector<noisy_drawing> noisy_sweep(const noisy_sweep_options& options,
   std::vector<noisy_drawing> out;
   for (std::size_t i = 0; i < drawings.size(); ++i) {
     const auto& pts = drawings[i].drawing.points;
-    glm::dvec2 lo = pts[0], hi = pts[0];
-    for (const auto& q : pts) lo = glm::min(lo, q), hi = glm::max(hi, q);
-    const double spacing = detail::junction_spacing(pts, drawings[i].drawing.edges, glm::length(hi - lo));
+    const double spacing =
+        detail::junction_spacing(pts, drawings[i].drawing.edges, detail::drawing_diagonal(pts));
     if (!(spacing > 2 * options.jitter)) {
       ++rep.too_close;
       continue;

@@ -298,7 +298,13 @@ wireframe_result<R> converted(wireframe_result<glm::dvec3>&& d) {
     r.volume = std::move(d.volume);
     r.relations = std::move(d.relations);
     r.assembly_milliseconds = d.assembly_milliseconds;
-    r.diagnostics = std::move(d.diagnostics);
+    r.tolerance = std::move(d.tolerance);
+    r.check = d.check;
+    r.status = d.status;
+    r.status_reason = std::move(d.status_reason);
+    r.certificate = std::move(d.certificate);
+    r.validation = std::move(d.validation);
+    static_cast<stage_report&>(r) = std::move(static_cast<stage_report&>(d));  // times, diagnostics
     return r;
   }
 }
@@ -644,6 +650,11 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, cons
   // never exactly): tidied to the nearest view of a solid with the faces found (planar faces,
   // lines parallel in 3D parallel).
   const bool inexact = detail::sketch::nearly_parallel(g, 5.0);
+  const auto say_tidied = [&r] {  // once r.tidy holds the drawing tidied to a solid
+    r.diagnostics.push_back(cellforge::detail::cat(
+        "tidied to the view of a solid: junctions moved by at most ", std::to_string(r.tidy.largest_move),
+        " of the drawing's size (rms ", std::to_string(r.tidy.rms_move), ")"));
+  };
   if (options.tidy != tidy_mode::never && r.face_loops.size() >= 4 &&
       (!(best.cells && best.agree) || inexact)) {
     try {
@@ -705,10 +716,7 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, cons
               r.face_loops = std::move(grouped2);
               r.ambiguous_parts = ambiguous;
               r.tidy = std::move(t2);
-              r.diagnostics.push_back(
-                  cellforge::detail::cat("tidied to the view of a solid: junctions moved by at most ",
-                                         std::to_string(r.tidy.largest_move), " of the drawing's size (rms ",
-                                         std::to_string(r.tidy.rms_move), ")"));
+              say_tidied();
             } else {
               wanted = before;
             }
@@ -727,10 +735,7 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, cons
           }
           r.face_loops = std::move(regrouped);
           r.tidy = std::move(t);
-          r.diagnostics.push_back(
-              cellforge::detail::cat("tidied to the view of a solid: junctions moved by at most ",
-                                     std::to_string(r.tidy.largest_move), " of the drawing's size (rms ",
-                                     std::to_string(r.tidy.rms_move), ")"));
+          say_tidied();
         } else {
           r.diagnostics.push_back(cellforge::detail::cat(
               "tidied to the view of a solid, but its reading gives ",

@@ -53,6 +53,36 @@ struct basic_drawing_graph {
 };
 using drawing_graph = basic_drawing_graph<>;
 
+/// The direction class of each of g's first `ne` edges into `cls`: angles mod π sorted, a new
+/// class where the gap to the previous exceeds `tol` radians, the last class joined to the
+/// first across π; each class's first angle (before that join) into `first_angle` when given.
+/// Returns the number of classes (0 without edges). O(E log E).
+template <class = void>
+std::uint32_t direction_classes(const drawing_graph& g, std::size_t ne, double tol,
+                                std::vector<std::uint32_t>& cls, std::vector<double>* first_angle = nullptr) {
+  std::vector<std::pair<double, std::uint32_t>> angle(ne);
+  for (std::uint32_t e = 0; e < ne; ++e) {
+    const glm::dvec2 v = g.p[g.head[2 * e]] - g.p[g.head[2 * e + 1]];
+    double a = std::atan2(v.y, v.x);
+    if (a < 0) a += std::numbers::pi;
+    if (a >= std::numbers::pi) a -= std::numbers::pi;
+    angle[e] = {a, e};
+  }
+  std::sort(angle.begin(), angle.end());
+  cls.assign(ne, 0);
+  std::uint32_t c = 0;
+  for (std::size_t k = 0; k < ne; ++k) {
+    if (k > 0 && angle[k].first - angle[k - 1].first > tol) ++c;
+    cls[angle[k].second] = c;
+    if (first_angle && first_angle->size() <= c) first_angle->push_back(angle[k].first);
+  }
+  // Wrap around π: the last class joins the first when they are within tolerance.
+  if (ne > 1 && angle.front().first + std::numbers::pi - angle.back().first <= tol && c > 0)
+    for (auto& k : cls)
+      if (k == c) k = 0;
+  return ne == 0 ? 0 : c + 1;
+}
+
 /// Builds the half-edge view of a drawing and its direction classes. O(V + E log E).
 template <LineDrawing D>
 drawing_graph make_graph(const D& d, const face_finder_options& o) {
@@ -95,27 +125,7 @@ drawing_graph make_graph(const D& d, const face_finder_options& o) {
   std::vector<std::uint32_t> fill(g.out_begin.begin(), g.out_begin.end() - 1);
   for (std::uint32_t h = 0; h < 2 * ne; ++h) g.outs[fill[g.tail(h)]++] = h;
   // Direction classes: angles mod π sorted, a new class where the gap exceeds the tolerance.
-  const double tol = o.parallel_tolerance_degrees * std::numbers::pi / 180.0;
-  std::vector<std::pair<double, std::uint32_t>> angle(ne);
-  for (std::uint32_t e = 0; e < ne; ++e) {
-    const glm::dvec2 v = g.p[g.head[2 * e]] - g.p[g.head[2 * e + 1]];
-    double a = std::atan2(v.y, v.x);
-    if (a < 0) a += std::numbers::pi;
-    if (a >= std::numbers::pi) a -= std::numbers::pi;
-    angle[e] = {a, e};
-  }
-  std::sort(angle.begin(), angle.end());
-  g.edge_class.assign(ne, 0);
-  std::uint32_t c = 0;
-  for (std::size_t k = 0; k < ne; ++k) {
-    if (k > 0 && angle[k].first - angle[k - 1].first > tol) ++c;
-    g.edge_class[angle[k].second] = c;
-  }
-  // Wrap around π: the last class joins the first when they are within tolerance.
-  if (ne > 1 && angle.front().first + std::numbers::pi - angle.back().first <= tol && c > 0)
-    for (auto& k : g.edge_class)
-      if (k == c) k = 0;
-  g.classes = ne == 0 ? 0 : c + 1;
+  g.classes = direction_classes(g, ne, o.parallel_tolerance_degrees * std::numbers::pi / 180.0, g.edge_class);
   // Main directions: the three largest classes, when they hold at least 60 % of the edges.
   std::vector<std::pair<std::size_t, std::uint32_t>> count(g.classes);
   for (std::uint32_t k = 0; k < g.classes; ++k) count[k] = {0, k};
@@ -581,26 +591,7 @@ struct basic_face_rules {
   basic_face_rules(const drawing_graph& graph, double tolerance_degrees)
       : g(graph), on_edge(graph.num_half_edges() / 2), corners(graph.num_junctions()) {
     const std::size_t ne = g.num_half_edges() / 2;
-    const double tol = tolerance_degrees * std::numbers::pi / 180.0;
-    std::vector<std::pair<double, std::uint32_t>> angle(ne);
-    for (std::uint32_t e = 0; e < ne; ++e) {
-      const glm::dvec2 v = g.p[g.head[2 * e]] - g.p[g.head[2 * e + 1]];
-      double a = std::atan2(v.y, v.x);
-      if (a < 0) a += std::numbers::pi;
-      if (a >= std::numbers::pi) a -= std::numbers::pi;
-      angle[e] = {a, e};
-    }
-    std::sort(angle.begin(), angle.end());
-    strict_class.assign(ne, 0);
-    std::uint32_t c = 0;
-    for (std::size_t k = 0; k < ne; ++k) {
-      if (k > 0 && angle[k].first - angle[k - 1].first > tol) ++c;
-      strict_class[angle[k].second] = c;
-      if (class_angle.size() <= c) class_angle.push_back(angle[k].first);
-    }
-    if (ne > 1 && angle.front().first + std::numbers::pi - angle.back().first <= tol && c > 0)
-      for (auto& k : strict_class)
-        if (k == c) k = 0;
+    (void)direction_classes(g, ne, tolerance_degrees * std::numbers::pi / 180.0, strict_class, &class_angle);
     // Capacity from the junctions where the chain of e through degree-2 junctions (a split edge:
     // every face of one piece is a face of the others) ends.
     capacity.resize(ne);
