@@ -2,8 +2,8 @@
 // libFuzzer target for the whole wireframe pipeline (wireframe/wireframe_to_cells.hpp) on
 // small fuzzed wireframes: the bytes are read as up to 24 points on a 4x4x4 lattice (so that
 // coplanar cycles, crossings, T-junctions and overlaps are common) and edges between them.
-// Every run must end in a complex that validate() accepts or in a cellforge::error (a budget
-// error included) — never a crash, a sanitizer report, a hang or any other exception.
+// Every run must end in a complex that validate() accepts, in status budget with its reason, or
+// in a cellforge::error — never a crash, a sanitizer report, a hang or any other exception.
 
 #include <algorithm>
 #include <cstddef>
@@ -43,8 +43,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     check.seams_fail = false;
     if (solid && (!cellforge::validate(r.cells).ok() || !cellforge::certify(r.cells, wire, check).ok()))
       __builtin_trap();
+    if (r.status == cellforge::solid_status::budget && (r.complete || r.status_reason.empty()))
+      __builtin_trap();
   } catch (const cellforge::error&) {
-    return 0;  // located, categorised refusals (and exhausted budgets) are expected outcomes
+    return 0;  // located, categorised refusals are expected outcomes
   }
   return 0;
 }
