@@ -391,12 +391,18 @@ if(RESULT_FAIL)
   expect_files("${dir}" ${in_out})
 endif()
 
-# sketch2cells --step: the solid as STEP too.
+# sketch2cells --step: the solid as STEP too. --budget: a face finder out of its work budget is
+# status budget, exit 4 with the message naming the option, nothing written.
 if(PROGRAM STREQUAL "sketch2cells")
   fresh(step)
   run(--no-svg --step ${INPUT_NAME})
   expect_exit(0)
   expect_files("${dir}" out/draw_wire.obj out/draw.3dcl out/draw.obj out/draw.step)
+  fresh(budget)
+  run(--no-svg --budget 5 ${INPUT_NAME})
+  expect_exit(4)
+  expect_in("${err}" "a work budget ran out: find_faces: work budget of 5 steps exhausted; raise face_finder_options::work_budget")
+  expect_files("${dir}" ${INPUT_NAME})
 endif()
 
 # A batch: a folder holding the input and a garbled file, two runs at a time: one line per input

@@ -75,6 +75,12 @@ int main(int argc, char** argv) {
                              {{"varley-company", cellforge::face_finder_kind::varley_company},
                               {"shortest-loops", cellforge::face_finder_kind::shortest_loops}});
                        }});
+  p.options.push_back(
+      {{"--budget"},
+       "N",
+       "work budget of the face finder in steps, 0 = unlimited (default: " +
+           std::to_string(options.faces.work_budget) + ")",
+       [&](std::string_view v) { options.faces.work_budget = example::option_count("--budget", v); }});
   return example::run(p, argc, argv, [&](const std::vector<std::string>& args) -> int {
     const fs::path input = p.one_input(args, fs::path(CELLFORGE_DATA_DIR) / "stepped_normalon.svg");
     example::stage_note& stage = p.stage;
