@@ -17,6 +17,8 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/Dense>
+
 #include "cellforge/core/detail/geometry.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/detail/work_counter.hpp"
@@ -69,11 +71,15 @@ std::pair<glm::dvec3, glm::dvec3> loop_plane(const std::vector<glm::dvec3>& p,
 ///   plane is parallel to a loop of the outer part around it in the drawing is a hole of that
 ///   loop when it can be moved in depth onto its plane, and the reading and depth that put the
 ///   most such loops onto their planes win. The Necker reading of each part is tried.
-/// Loops with no face around them stay faces of their own. O(parts · inflation + H · F · L).
+/// - Inexact parts (read by least squares, or every part when `inexact_drawing`: a drawing
+///   tidied from an inexact one) match within 5° and 3 % of the size, and may also be moved by
+///   the affine map z → k z + a x + b y + c that puts two of their loops on two planes.
+/// Loops with no face around them stay faces of their own. O(parts · inflation + H · F · L
+/// + offers² · L).
 template <class = void>
 face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vector<std::uint32_t>>& loops,
                      const inflation_options& inflation, std::vector<std::string>& diagnostics,
-                     std::size_t& ambiguous) {
+                     std::size_t& ambiguous, bool inexact_drawing = false) {
   const face_finder_options o;
   work_counter budget{0, 0, "drawing_to_cells"};
   faces::finder f(g, o, budget);
@@ -128,7 +134,9 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
   };
   std::vector<part_reading> pr(parts);
   double size = 0;
-  bool inexact = false;  // a part read by least squares: its planes match others' only roughly
+  // A part read by least squares, or a drawing tidied from an inexact one (its parts read alone
+  // are affine relatives of each other): planes match only roughly.
+  bool inexact = inexact_drawing;
   for (std::uint32_t c = 0; c < parts; ++c) {
     if (!has_loop[c]) continue;
     line_drawing<glm::dvec2> sub;
@@ -189,17 +197,23 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
   std::vector<char> is_placed(parts, 0);
   std::vector<double> placed_outward(parts, 1.0);
   const double parallel = std::sin((inexact ? 5.0 : 0.5) * 3.141592653589793 / 180.0),
+               loose = std::sin(25.0 * 3.141592653589793 / 180.0),
                depth_tolerance = (inexact ? 3e-2 : 1e-3) * size;
   for (std::size_t k = 0; k < order.size(); ++k) {
     const std::uint32_t c = order[k];
     std::size_t best_votes = 0, best_reading = 0;
     int best_outside = -1;
-    std::vector<std::pair<std::size_t, double>> candidates;  // (loops on planes, depth move)
-    double best_dz = 0;
+    std::vector<std::pair<std::size_t, double>>
+        candidates;  // (loops on planes, centre's depth after the move)
+    double best_dz = 0, best_centre = 0;
+    Eigen::Vector3d best_affine = Eigen::Vector3d::Zero();  // z += (k − 1) z + a x + b y besides best_dz
     std::vector<std::pair<std::size_t, std::size_t>> best_pairs;
+    std::vector<std::optional<std::pair<glm::dvec3, glm::dvec3>>> plane(
+        n);  // placed loops' planes, as needed
     for (std::size_t r = 0; r < pr[c].readings.size() && k > 0; ++r) {
       const auto& pts = pr[c].readings[r];
-      std::vector<std::tuple<double, std::size_t, std::size_t>> offers;  // (dz, hole, outer)
+      // (dz, hole, outer, parallel within the tolerance: else only for an affine move)
+      std::vector<std::tuple<double, std::size_t, std::size_t, bool>> offers;
       glm::dvec3 centre{0.0};
       std::size_t members = 0;
       for (std::uint32_t v = 0; v < nv; ++v)
@@ -213,37 +227,91 @@ face_set group_faces(const faces::drawing_graph& g, const std::vector<std::vecto
           if (!is_placed[part[q]] || !inside_loop(h, q)) continue;
           const auto [nq0, cq] = loop_plane(placed, loops[q]);
           const glm::dvec3 nq = placed_outward[part[q]] * nq0;
-          if (glm::length(glm::cross(nh, nq)) > parallel * glm::length(nh) * glm::length(nq) ||
-              std::abs(nq.z) < 1e-12)
-            continue;
+          const double across = glm::length(glm::cross(nh, nq)) / (glm::length(nh) * glm::length(nq));
+          if (!(across <= (inexact ? loose : parallel)) || std::abs(nq.z) < 1e-12) continue;
           // Depth of q's plane at h's centroid, minus h's centroid depth.
           const double zq = cq.z - (nq.x * (ch.x - cq.x) + nq.y * (ch.y - cq.y)) / nq.z;
-          offers.emplace_back(zq - ch.z, h, q);
+          offers.emplace_back(zq - ch.z, h, q, across <= parallel);
         }
       }
-      for (const auto& [dz, h0, q0] : offers) {
+      // A move of the part's depths: z → z + dz, or for an inexact part z → k z + a x + b y + dz
+      // (`affine` = (k − 1, a, b)): a part read alone by least squares is an affine relative of
+      // the one around it, so a through hole's two ends meet their faces only after its depth
+      // scale and tilt are matched too. Loops of the part each on the plane of a loop of a
+      // placed part around it, within the depth tolerance at every junction, vote for a move.
+      const auto moved = [&](std::uint32_t v, double dz, const Eigen::Vector3d& affine) {
+        return pts[v].z + affine[0] * pts[v].z + affine[1] * pts[v].x + affine[2] * pts[v].y + dz;
+      };
+      const auto plane_depth = [&](std::size_t q, double x, double y) {
+        if (!plane[q]) plane[q] = loop_plane(placed, loops[q]);
+        const auto& [nq, cq] = *plane[q];
+        return cq.z - (nq.x * (x - cq.x) + nq.y * (y - cq.y)) / nq.z;
+      };
+      const auto consider = [&](double dz, const Eigen::Vector3d& affine, std::size_t q0, bool by_offset) {
         std::vector<std::pair<std::size_t, std::size_t>> agree;
         std::vector<char> used(n, 0);
-        for (const auto& [dz2, h, q] : offers)
-          if (std::abs(dz2 - dz) <= depth_tolerance && !used[h]) used[h] = 1, agree.push_back({h, q});
+        for (const auto& [dz2, h, q, close] : offers) {
+          if (used[h] || (by_offset && !close)) continue;
+          bool on = by_offset && std::abs(dz2 - dz) <= depth_tolerance;
+          if (!by_offset) {
+            on = true;
+            for (const auto v : loops[h])
+              on = on &&
+                   std::abs(moved(v, dz, affine) - plane_depth(q, pts[v].x, pts[v].y)) <= depth_tolerance;
+          }
+          if (on) used[h] = 1, agree.push_back({h, q});
+        }
         // Outside: the part's centre on the outer side of the face it meets (a boss, not a
         // pocket: a part joined by one loop is drawn alike either way; see docs/sketch.md).
         const auto [nq0, cq] = loop_plane(placed, loops[q0]);
-        const double side = glm::dot(centre + glm::dvec3(0, 0, dz) - cq, placed_outward[part[q0]] * nq0);
+        const double centre_z =
+            centre.z + affine[0] * centre.z + affine[1] * centre.x + affine[2] * centre.y + dz;
+        const double side =
+            glm::dot(glm::dvec3(centre.x, centre.y, centre_z) - cq, placed_outward[part[q0]] * nq0);
         const int outside = side > 0 ? 1 : 0;
-        candidates.push_back({agree.size(), dz});
+        candidates.push_back({agree.size(), centre_z});
         if (agree.size() > best_votes ||
             (agree.size() == best_votes && best_votes > 0 && outside > best_outside))
-          best_votes = agree.size(), best_reading = r, best_dz = dz, best_pairs = agree,
-          best_outside = outside;
-      }
+          best_votes = agree.size(), best_reading = r, best_dz = dz, best_affine = affine,
+          best_centre = centre_z, best_pairs = agree, best_outside = outside;
+      };
+      for (const auto& [dz, h0, q0, close] : offers)
+        if (close) consider(dz, Eigen::Vector3d::Zero(), q0, true);
+      // Inexact: the affine move that puts two loops of the part on two planes (least squares
+      // over their junctions, Eigen's QR), when it keeps the part's sense and scales its depth
+      // by 1/3 to 3; loops within 25° of parallel offer (the move tilts them); at most 64
+      // offers (pairs: a work budget).
+      if (inexact && offers.size() <= 64)
+        for (std::size_t i = 0; i < offers.size(); ++i)
+          for (std::size_t j = i + 1; j < offers.size(); ++j) {
+            const auto& [dzi, hi, qi, ci] = offers[i];
+            const auto& [dzj, hj, qj, cj] = offers[j];
+            if (hi == hj) continue;
+            const auto rows = static_cast<Eigen::Index>(loops[hi].size() + loops[hj].size());
+            Eigen::MatrixXd m(rows, 4);
+            Eigen::VectorXd target(rows);
+            Eigen::Index row = 0;
+            for (const auto& [h, q] : {std::pair{hi, qi}, std::pair{hj, qj}})
+              for (const auto v : loops[h]) {
+                m.row(row) << pts[v].z, pts[v].x, pts[v].y, 1.0;
+                target[row++] = plane_depth(q, pts[v].x, pts[v].y) - pts[v].z;
+              }
+            const Eigen::Vector4d fit = m.colPivHouseholderQr().solve(target);
+            const double k = 1.0 + fit[0];
+            if (!fit.allFinite() || !(k >= 1.0 / 3.0 && k <= 3.0)) continue;
+            consider(fit[3], fit.head<3>(), qi, false);
+          }
     }
     for (std::uint32_t v = 0; v < nv; ++v)
-      if (f.component[v] == c) placed[v] = pr[c].readings[best_reading][v] + glm::dvec3(0, 0, best_dz);
+      if (f.component[v] == c) {
+        const glm::dvec3 q = pr[c].readings[best_reading][v];
+        placed[v] = glm::dvec3(
+            q.x, q.y, q.z + best_affine[0] * q.z + best_affine[1] * q.x + best_affine[2] * q.y + best_dz);
+      }
     // Another placement as good: the drawing shows two solids (a boss or a pocket) alike.
     bool tie = false;
-    for (const auto& [votes, dz] : candidates)
-      tie = tie || (votes == best_votes && std::abs(dz - best_dz) > depth_tolerance);
+    for (const auto& [votes, centre_z] : candidates)
+      tie = tie || (votes == best_votes && std::abs(centre_z - best_centre) > depth_tolerance);
     if (k > 0 && best_votes > 0 && tie) {
       ++ambiguous;
       diagnostics.push_back(
@@ -668,8 +736,11 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, cons
         // only roughly: grouped again on the tidied drawing (one view for every part), and
         // tidied again from the drawing as drawn with holes the grouping found.
         const detail::faces::drawing_graph g2 = detail::faces::make_graph(t.drawing, options.faces);
+        const bool moved = inexact && t.largest_move > 1e-7;
         regrouped = detail::sketch::group_faces(g2, r.faces.loops, options.inflation, regroup_notes,
-                                                regroup_ambiguous);
+                                                regroup_ambiguous, moved);
+        // Kept only when it leaves no more parts undecided than the grouping as drawn.
+        if (regrouped != r.face_loops && regroup_ambiguous > r.ambiguous_parts) regrouped = r.face_loops;
         if (regrouped != r.face_loops) {
           tidy_result<drawing_point_t<D>> t2 = tidy_to_solid(drawing, regrouped, options.tidying);
           for (const auto& d : t2.diagnostics) r.diagnostics.push_back(d);
@@ -697,7 +768,7 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, cons
           std::vector<std::string> group_notes;
           std::size_t ambiguous = 0;
           detail::sketch::face_set grouped2 =
-              detail::sketch::group_faces(g2, f2.loops, options.inflation, group_notes, ambiguous);
+              detail::sketch::group_faces(g2, f2.loops, options.inflation, group_notes, ambiguous, true);
           tidy_result<drawing_point_t<D>> t2 = tidy_to_solid(drawing, grouped2, options.tidying);
           if (t2.applied) {
             const auto before = std::move(wanted);

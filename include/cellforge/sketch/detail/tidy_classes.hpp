@@ -41,7 +41,8 @@ std::set<std::array<std::uint32_t, 3>> turned_corners(
 /// joins it unless it shares a junction with a member (two lines at one junction of a solid
 /// are never parallel), except a line going straight on from one member where no face turns
 /// (in `turned`: junction, far ends sorted): a wall meets a seam there, the lines are one line. A class whose
-/// drawing directions form two tight groups far apart (gap over four times either group's spread) is split.
+/// drawing directions form two tight groups far apart (gap over four times either group's spread, and over
+/// the turn the drawing's own precision allows the lines beside it) is split.
 /// Classes of one line are dropped. Then classes of different parts whose drawing directions are each other's
 /// only match within the tolerance are merged: the depth of a part drawn inside another is read on its own,
 /// so only its drawing directions compare. O(E log E + E · W + C²), W the lines within the tolerance in the
@@ -53,10 +54,11 @@ std::vector<std::vector<std::uint32_t>> parallel_classes(
     const std::set<std::array<std::uint32_t, 3>>& turned = {}) {
   const std::size_t ne = edges.size();
   std::vector<glm::dvec3> dir(ne);
-  std::vector<double> len(ne), ang(ne);
+  std::vector<double> len(ne), ang(ne), flat_len(ne);
   for (std::size_t e = 0; e < ne; ++e) {
     const glm::dvec3 d = q[edges[e][1]] - q[edges[e][0]];
     len[e] = glm::length(d);
+    flat_len[e] = glm::length(glm::dvec2(d));
     dir[e] = len[e] > 0 ? d / len[e] : d;
     ang[e] = line_angle(glm::dvec2(d));
   }
@@ -77,7 +79,7 @@ std::vector<std::vector<std::uint32_t>> parallel_classes(
     const std::uint32_t u = via[v];
     return glm::dot(q[u] - q[v], q[w] - q[v]) < 0 && !turned.count({v, std::min(u, w), std::max(u, w)});
   };
-  std::vector<std::vector<std::uint32_t>> out;
+  std::vector<std::vector<std::uint32_t>> raw, out;
   std::uint32_t id = 0;
   for (const auto seed : by_length) {
     if (taken[seed] || !(len[seed] > 0)) continue;
@@ -114,10 +116,35 @@ std::vector<std::vector<std::uint32_t>> parallel_classes(
     scan(std::max(lo, 0.0), std::min(hi, std::numbers::pi));
     if (lo < 0) scan(lo + std::numbers::pi, std::numbers::pi);
     if (hi > std::numbers::pi) scan(0.0, hi - std::numbers::pi);
+    raw.push_back(std::move(cls));
+  }
+  // The drawing's precision, from the classes themselves: the median over lines of classes of
+  // three or more of the line's offset across its class's drawing direction at its far end
+  // (|sin| of the angle off the class's mean times the line's length in the drawing). Zero
+  // for an exact drawing. O(E log E).
+  std::vector<double> offsets;
+  for (const auto& cls : raw) {
+    if (cls.size() < 3) continue;
+    double sx = 0, sy = 0;
+    for (const auto e : cls)
+      sx += flat_len[e] * std::cos(2 * ang[e]), sy += flat_len[e] * std::sin(2 * ang[e]);
+    const double mean_angle = 0.5 * std::atan2(sy, sx);
+    for (const auto e : cls) offsets.push_back(std::abs(std::sin(ang[e] - mean_angle)) * flat_len[e]);
+  }
+  double precision = 0;
+  if (!offsets.empty()) {
+    std::nth_element(offsets.begin(), offsets.begin() + static_cast<std::ptrdiff_t>(offsets.size() / 2),
+                     offsets.end());
+    precision = offsets[offsets.size() / 2];
+  }
+  for (auto& cls : raw) {
     // Lines parallel in 3D are parallel in the drawing up to the pen's slips: a class whose
     // drawing directions fall into two tight groups far apart (an affine reading can bring two
-    // directions of space within the tolerance) is two classes.
+    // directions of space within the tolerance) is two classes, when the gap is also wider
+    // than the slips can turn the lines beside it (6 × precision / length each: a median
+    // offset is about a sixth of the largest two slipped ends make).
     if (cls.size() >= 4) {
+      const std::uint32_t seed = cls.front();
       std::vector<std::pair<double, std::uint32_t>> by;
       for (const auto e : cls) {
         double t = ang[e] - ang[seed];
@@ -130,7 +157,15 @@ std::vector<std::vector<std::uint32_t>> parallel_classes(
       for (std::size_t k = 2; k + 2 <= by.size(); ++k) {
         const double gap = by[k].first - by[k - 1].first,
                      spread = std::max(by[k - 1].first - by.front().first, by.back().first - by[k].first);
-        if (gap > 4 * spread && gap > widest) widest = gap, cut = k;
+        double below = -std::numbers::pi, above = std::numbers::pi;  // the groups widened by their slips
+        for (std::size_t i = 0; i < by.size(); ++i) {
+          const double slip = flat_len[by[i].second] > 0 ? 6 * precision / flat_len[by[i].second] : 0.0;
+          if (i < k)
+            below = std::max(below, by[i].first + slip);
+          else
+            above = std::min(above, by[i].first - slip);
+        }
+        if (gap > 4 * spread && above > below && gap > widest) widest = gap, cut = k;
       }
       if (cut > 0) {
         std::vector<std::uint32_t> low, high;
