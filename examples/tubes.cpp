@@ -111,15 +111,14 @@ int main(int argc, char** argv) {
              "--check", v,
              {{"none", check_level::none}, {"fast", check_level::fast}, {"exact", check_level::exact}});
        }});
-  p.options.push_back(
-      {{"--check-pairs"},
-       "N",
-       "work budget of the exact check in candidate box pairs; 0 = the check's own, 256 per "
-       "triangle plus 2^20 (default: 0)",
-       [&](std::string_view v) {
-         const std::size_t n = example::option_count("--check-pairs", v);
-         pairs.work_budget = n == 0 ? cellforge::work_budget::automatic : n;
-       }});
+  p.options.push_back({{"--check-pairs"},
+                       "N",
+                       "work budget of the exact check in candidate box pairs; 0 = the check's own, 256 per "
+                       "triangle plus 2^20 (default: 0)",
+                       [&](std::string_view v) {
+                         const std::size_t n = example::option_count("--check-pairs", v);
+                         pairs.work_budget = n == 0 ? cellforge::work_budget::automatic : n;
+                       }});
   return example::run(p, argc, argv, [&](const std::vector<std::string>& args) -> int {
     const fs::path input = p.one_input(args, fs::path(CELLFORGE_DATA_DIR) / "vessel_tree.swc");
     example::stage_note& stage = p.stage;

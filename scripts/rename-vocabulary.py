@@ -6,9 +6,9 @@
 
 Every renamed public name gets its new name everywhere (include/, tests/, examples/, bench/,
 docs/, README.md; CHANGELOG.md is history and is left alone) plus one deprecated spelling of
-the old name next to the new definition, removed in 0.7:
-  types      `using old [[deprecated("use new; removed in 0.7")]] = new;`
-  functions  a `[[deprecated("use new; removed in 0.7")]]` forwarder
+the old name next to the new definition, removed in 0.8:
+  types      `using old [[deprecated("use new; removed in 0.8")]] = new;`
+  functions  a `[[deprecated("use new; removed in 0.8")]]` forwarder
   headers    the old path includes the new one and says so in a `#pragma message`
 Running it again changes nothing, so after `git rebase main` the mechanical commit can be
 dropped and made again from the rebased tree (other branches keep editing the same files).
@@ -19,7 +19,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-REMOVED_IN = "0.7"
+REMOVED_IN = "0.8"
 
 
 def deprecated(new):

@@ -702,7 +702,8 @@ TEST_CASE("self_intersections: a tube mesh pushed through itself or folded is ca
     surface_mesh<dvec3> m = tubes.mesh;
     const auto at = [&](vertex_handle x) { return m.position(x); };
     const dvec3 n = glm::normalize(glm::cross(at(fv[2]) - at(fv[0]), at(fv[3]) - at(fv[1])));
-    const double e = 0.02 * std::min(glm::distance(at(fv[1]), at(fv[0])), glm::distance(at(fv[3]), at(fv[0])));
+    const double e =
+        0.02 * std::min(glm::distance(at(fv[1]), at(fv[0])), glm::distance(at(fv[3]), at(fv[0])));
     m.set_position(gv[2], at(fv[3]) + e * n);
     m.set_position(gv[3], at(fv[2]) - e * n);
     CAPTURE(f.idx());

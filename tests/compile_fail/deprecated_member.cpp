@@ -2,7 +2,7 @@
 // A deprecated data member warns where a program names it, so with -Werror it does not build and
 // the message names the new spelling; copying the structs that hold such members does not warn
 // (the control copies and default-constructs both, and builds with -Werror).
-// expect: deprecated: use milliseconds; removed in 0.7
+// expect: deprecated: use milliseconds; removed in 0.8
 #include <vector>
 
 #include "cellforge/algorithms/self_intersections.hpp"

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The deprecated spellings of the names renamed for one vocabulary (docs/vocabulary.md,
-// CHANGELOG.md) still compile until 0.7 and mean the new names; the old functions give the new
+// CHANGELOG.md) still compile until 0.8 and mean the new names; the old functions give the new
 // overloads' answers. This file alone is built with deprecation warnings allowed; the
 // compile-fail test `deprecated_name` proves that they are warnings everywhere else.
 #include <cstdio>
@@ -12,8 +12,8 @@
 #include "cellforge/algorithms/loop_subdivision.hpp"
 #include "cellforge/algorithms/self_intersections.hpp"
 #include "cellforge/algorithms/shapes.hpp"
-#include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/cells/validate.hpp"
+#include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/validate.hpp"
 #include "cellforge/io/drawing_svg.hpp"  // the old path of io/drawing_pictures.hpp
 #include "cellforge/sketch/elliptical_arc.hpp"

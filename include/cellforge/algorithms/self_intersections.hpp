@@ -45,10 +45,10 @@ struct self_intersection_options {
   /// automatic (the default): 256 per triangle plus 2^20; 0: unlimited. A closed mesh with
   /// well-shaped triangles needs some 10–30 per triangle. Past it: complete = false.
   cellforge::work_budget work_budget = cellforge::work_budget::automatic;
-  /// Deprecated, removed in 0.7 (use work_budget, where 0 is unlimited): the budget when not 0.
-  [[deprecated("use work_budget (0: unlimited); removed in 0.7")]] std::size_t max_candidate_pairs = 0;
-  /// Deprecated, removed in 0.7 (test complete): true throws error(budget) past the budget.
-  [[deprecated("test complete; removed in 0.7")]] bool throw_on_budget = false;
+  /// Deprecated, removed in 0.8 (use work_budget, where 0 is unlimited): the budget when not 0.
+  [[deprecated("use work_budget (0: unlimited); removed in 0.8")]] std::size_t max_candidate_pairs = 0;
+  /// Deprecated, removed in 0.8 (test complete): true throws error(budget) past the budget.
+  [[deprecated("test complete; removed in 0.8")]] bool throw_on_budget = false;
   /// How many intersecting face pairs (and faces with zero-area triangles) to list.
   std::size_t max_reported = 100;
 };
@@ -77,7 +77,7 @@ struct self_intersection_result : stage_report {
   std::size_t pairs_by_topology = 0;
   std::size_t degenerate_triangles = 0;       ///< zero-area triangles (not tested)
   std::vector<face_handle> degenerate_faces;  ///< the first max_reported faces holding one
-  [[deprecated("use milliseconds; removed in 0.7")]] double time_ms = 0;  ///< filled as milliseconds
+  [[deprecated("use milliseconds; removed in 0.8")]] double time_ms = 0;  ///< filled as milliseconds
 };
 CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
 
@@ -244,7 +244,7 @@ self_intersection_result self_intersections(const surface_mesh<P>& m,
   }
   std::vector<si::entry>().swap(all);
   const std::size_t n = tris.size();
-  // The deprecated spellings, honoured and filled until 0.7.
+  // The deprecated spellings, honoured and filled until 0.8.
   CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
   const std::size_t budget = options.max_candidate_pairs != 0
                                  ? options.max_candidate_pairs

@@ -60,7 +60,7 @@ struct simplify_result : stage_report {
   std::size_t collapses = 0;
   std::array<std::size_t, num_edit_refusals> refused{};  ///< collapses refused, by reason
   double max_error = 0;  ///< quadric: largest error of a collapse done; edge_length: longest edge collapsed
-  [[deprecated("use milliseconds; removed in 0.7")]] double seconds = 0;  ///< filled as milliseconds / 1000
+  [[deprecated("use milliseconds; removed in 0.8")]] double seconds = 0;  ///< filled as milliseconds / 1000
   int rounds = 0;
   bool reached_target = false;  ///< faces_after <= target_faces (true when there is no face target)
   std::size_t refused_total() const noexcept {
@@ -384,7 +384,7 @@ simplify_result simplify(surface_mesh<P>& m, const simplify_options& options = {
   }
   result.milliseconds = t0.ms();
   CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
-  result.seconds = result.milliseconds / 1e3;  // filled until 0.7
+  result.seconds = result.milliseconds / 1e3;  // filled until 0.8
   CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
   return result;
 }

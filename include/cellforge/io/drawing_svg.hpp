@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 /// \file
-/// Deprecated, removed in 0.7: this header is `cellforge/io/drawing_pictures.hpp` now (same names); it
+/// Deprecated, removed in 0.8: this header is `cellforge/io/drawing_pictures.hpp` now (same names); it
 /// includes it until then.
 
 #include "cellforge/io/drawing_pictures.hpp"

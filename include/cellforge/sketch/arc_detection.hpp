@@ -159,7 +159,7 @@ struct arc_detection_result : stage_report {
   /// Over every ellipse fit tried, how often each reason rejected it (index: arc_rejection).
   std::array<std::size_t, arc_rejection_count> rejections{};
   double drawing_size = 0;  ///< the size the tolerance was taken of
-  [[deprecated("use milliseconds; removed in 0.7")]] double seconds = 0;  ///< filled as milliseconds / 1000
+  [[deprecated("use milliseconds; removed in 0.8")]] double seconds = 0;  ///< filled as milliseconds / 1000
 };
 CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
 

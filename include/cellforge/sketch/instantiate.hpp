@@ -30,10 +30,10 @@ template arc_drawing<glm::dvec2> io::detail::parse_drawing_text_statements<glm::
                                                                                        bool);
 template line_drawing<glm::dvec2> io::read_drawing_text<glm::dvec2>(const io::file_path&);
 template line_drawing<glm::dvec2> io::parse_drawing_text<glm::dvec2>(std::string_view, std::string_view);
-template rounds_result<glm::dvec3, glm::dvec2> reconstruct_rounds<glm::dvec3, glm::dvec2>(const arc_drawing<glm::dvec2>&,
-                                                                                        const rounds_options&);
-template rounded_mesh_result<glm::dvec3> rounded_mesh<glm::dvec3, glm::dvec2>(const rounds_result<glm::dvec3, glm::dvec2>&,
-                                                                              const rounded_mesh_options&);
-template rounded_brep_result rounded_brep<glm::dvec3, glm::dvec2>(const rounds_result<glm::dvec3, glm::dvec2>&,
-                                                                  const rounded_brep_options&);
+template rounds_result<glm::dvec3, glm::dvec2> reconstruct_rounds<glm::dvec3, glm::dvec2>(
+    const arc_drawing<glm::dvec2>&, const rounds_options&);
+template rounded_mesh_result<glm::dvec3> rounded_mesh<glm::dvec3, glm::dvec2>(
+    const rounds_result<glm::dvec3, glm::dvec2>&, const rounded_mesh_options&);
+template rounded_brep_result rounded_brep<glm::dvec3, glm::dvec2>(
+    const rounds_result<glm::dvec3, glm::dvec2>&, const rounded_brep_options&);
 }  // namespace cellforge

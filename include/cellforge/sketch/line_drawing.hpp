@@ -140,7 +140,7 @@ struct drawing_validation_options {
   /// collinear. Must be finite and in [0, 0.5).
   double tolerance = 1e-9;
 };
-using drawing_check_options [[deprecated("use drawing_validation_options; removed in 0.7")]] =
+using drawing_check_options [[deprecated("use drawing_validation_options; removed in 0.8")]] =
     drawing_validation_options;
 
 namespace detail {
@@ -335,7 +335,7 @@ drawing_validation validate(const D& d, const drawing_validation_options& option
 
 /// Deprecated spelling of validate(d, options).
 template <LineDrawing D>
-[[deprecated("use validate(d, options); removed in 0.7")]] drawing_validation validate_drawing(
+[[deprecated("use validate(d, options); removed in 0.8")]] drawing_validation validate_drawing(
     const D& d, const drawing_validation_options& options = {}) {
   return validate(d, options);
 }

@@ -267,7 +267,7 @@ skeleton_validation validate(const G& g) {
 
 /// Deprecated spelling of validate(g).
 template <Skeleton G>
-[[deprecated("use validate(g); removed in 0.7")]] skeleton_validation validate_skeleton(const G& g) {
+[[deprecated("use validate(g); removed in 0.8")]] skeleton_validation validate_skeleton(const G& g) {
   return validate(g);
 }
 

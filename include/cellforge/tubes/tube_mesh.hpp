@@ -79,7 +79,7 @@ struct tubes_options {
   /// io::swc_result::ids): "sample 17" instead of "node 3". Empty: node indices. Not copied.
   std::span<const std::int64_t> node_ids = {};
 };
-using tube_options [[deprecated("use tubes_options; removed in 0.7")]] = tubes_options;
+using tube_options [[deprecated("use tubes_options; removed in 0.8")]] = tubes_options;
 
 // total_ms warns where a user names it, not at every copy of the struct.
 CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
@@ -120,7 +120,7 @@ struct tubes_result : stage_report {
   /// stages include their faces' linking; mesh_ms is the check of every vertex's fan, the shells
   /// and the move into the caller's point type.
   double construct_ms = 0, junctions_ms = 0, paths_ms = 0, mesh_ms = 0, subdivision_ms = 0;
-  [[deprecated("use milliseconds; removed in 0.7")]] double total_ms = 0;  ///< filled as milliseconds
+  [[deprecated("use milliseconds; removed in 0.8")]] double total_ms = 0;  ///< filled as milliseconds
   /// Quality: per skeleton edge, the smallest cross-section along it (the area of a ring of
   /// its path seen along the tube, over π r² of its node; a regular octagon is 0.90; NaN for
   /// an edge with no ring of its own, e.g. between two junctions' rings), the smallest over

@@ -796,8 +796,8 @@ extern template rounds_result<glm::dvec3, glm::dvec2> reconstruct_rounds<glm::dv
     const arc_drawing<glm::dvec2>&, const rounds_options&);
 extern template rounded_mesh_result<glm::dvec3> rounded_mesh<glm::dvec3, glm::dvec2>(
     const rounds_result<glm::dvec3, glm::dvec2>&, const rounded_mesh_options&);
-extern template rounded_brep_result rounded_brep<glm::dvec3, glm::dvec2>(const rounds_result<glm::dvec3, glm::dvec2>&,
-                                                                         const rounded_brep_options&);
+extern template rounded_brep_result rounded_brep<glm::dvec3, glm::dvec2>(
+    const rounds_result<glm::dvec3, glm::dvec2>&, const rounded_brep_options&);
 #endif
 
 }  // namespace cellforge

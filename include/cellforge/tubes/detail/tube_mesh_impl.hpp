@@ -723,7 +723,7 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
                            validate(g2).ok())) {
         tubes_result<P> again = make_tubes_of(g2, options, &next);
         CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
-        again.milliseconds = again.total_ms = t_start.ms();  // total_ms filled until 0.7
+        again.milliseconds = again.total_ms = t_start.ms();  // total_ms filled until 0.8
         CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
         return again;
       }
@@ -837,7 +837,7 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
                                                      " differs from the skeleton's cycle rank ",
                                                      std::to_string(res.cycle_rank)));
   CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
-  res.milliseconds = res.total_ms = t_start.ms();  // total_ms filled until 0.7
+  res.milliseconds = res.total_ms = t_start.ms();  // total_ms filled until 0.8
   CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
   return res;
 }
