@@ -7,12 +7,14 @@
 // Release runs every model; the sanitizer build a quarter of the sweep's sample.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -154,8 +156,8 @@ TEST_CASE("wireframe noise: the sweep turned and written with 10 and 6 significa
 
 TEST_CASE("wireframe noise: the ordinary solids with every vertex moved by 1e-9, 1e-6 and 1e-4") {
   // wireframe_sweep::make_ordinary_sweep (height fields, boxes with fins, extrusions, turned
-  // boxes): exact at 1e-9 and 1e-6, and never a wrong answer passed as good at any level. The
-  // sample under the sanitizers.
+  // boxes): exact at 1e-9 and 1e-6, 95 % at 1e-4 (Release), and never a wrong answer passed as
+  // good at any level; every miss named with its reason. The sample under the sanitizers.
   bool full = true;
 #ifndef NDEBUG
   full = false;
@@ -173,19 +175,32 @@ TEST_CASE("wireframe noise: the ordinary solids with every vertex moved by 1e-9,
       std::string why;
       const noisy_outcome o = wireframe_sweep::judge_noisy(m, why);
       ++count[o];
-      if (o != noisy_outcome::exact)
-        misses.push_back("[" + s.family + "] " + s.model.name + " (" + names[static_cast<int>(o)] +
-                         "): " + why.substr(0, 200));
+      if (o != noisy_outcome::exact) {
+        // Would a fixed tolerance have read it? (Release only: up to 14 conversions a miss.)
+        const char* kind = !full                                      ? ""
+                           : wireframe_sweep::some_tolerance_reads(m) ? " [ours: a fixed tolerance reads it]"
+                                                                      : " [no fixed tolerance reads it]";
+        // The estimate's figures: why the tolerance was not found (the error's text is long).
+        const auto t = cellforge::estimate_tolerance(cellforge::read_vertices(m.wire).graph);
+        char est[160];
+        std::snprintf(est, sizeof est, "; estimate: noise %.2g, shape %.2g %s, %.2f decades%s", t.noise, t.geometry,
+                      t.noise_gain ? "(over noise gains, of the diagonal)" : "(over edges' lengths)", t.gap_decades,
+                      t.clear_gap ? "" : " (no clear gap)");
+        misses.push_back("[" + s.family + "] " + s.model.name + " (" + names[static_cast<int>(o)] + ")" + kind +
+                         ": " + why.substr(0, std::min<std::size_t>(160, why.find("; the residuals"))) + est);
+      }
       const std::string name = s.model.name;
       CAPTURE(eps);
       CAPTURE(name);
       CHECK(o != noisy_outcome::wrong);
       if (eps <= 1e-6) CHECK_MESSAGE(o == noisy_outcome::exact, why);
     }
-    std::printf("\nordinary solids, noise %g: %zu of %zu exact, %zu flagged, %zu errors, %zu wrong\n", eps,
-                count[noisy_outcome::exact], set.models.size(), count[noisy_outcome::flagged],
-                count[noisy_outcome::error], count[noisy_outcome::wrong]);
+    const std::size_t n = set.models.size(), exact = count[noisy_outcome::exact];
+    std::printf("\nordinary solids, noise %g: %zu of %zu exact, %zu flagged, %zu errors, %zu wrong\n", eps, exact,
+                n, count[noisy_outcome::flagged], count[noisy_outcome::error], count[noisy_outcome::wrong]);
     for (const auto& line : misses) std::printf("  %s\n", line.c_str());
+    CAPTURE(eps);
+    if (full && eps > 1e-6) CHECK(100.0 * double(exact) >= 95.0 * double(n));
   }
   std::fflush(stdout);
 }
@@ -298,6 +313,38 @@ TEST_CASE("wireframe noise: the tolerance estimator") {
     CHECK(!t.clear_gap);
     CHECK(!t.reason.empty());
     CHECK(convert(exact).empty());
+  }
+  SUBCASE("edges' lengths first, noise gains where they find no clear gap") {
+    // Exact antiprisms of 36-62 sides: over their noise gains, the bands' many shallow angles
+    // outnumber the caps' residuals in plane and were once called noise (not a solid).
+    for (const std::size_t n : {36u, 48u, 60u}) {
+      cellforge::samples::ring_stack anti;
+      anti.n = n;
+      anti.radius = {1.0, 1.0};
+      anti.height = {0.0, 1.0};
+      anti.twist = {0.0, std::numbers::pi / static_cast<double>(n)};
+      anti.triangles = true;
+      const sample_model m = cellforge::samples::make_ring_stack(anti, "antiprism " + std::to_string(n));
+      CAPTURE(n);
+      const auto t = cellforge::estimate_tolerance(cellforge::read_vertices(m.wire).graph);
+      CHECK(t.clear_gap);
+      CHECK(!t.noise_gain);
+      CHECK(t.planarity == 1e-9);
+      CHECK(convert(m) == "");
+    }
+    // Extrusions with noise of 1e-4 whose short sides, measured far away, spread the noise
+    // into their shallow corners over the edges' lengths: over the noise gains it is clear.
+    for (const std::uint64_t draw : {11u, 17u, 35u}) {
+      const sample_model exact = wireframe_sweep::detail::random_extrusion(draw);
+      const sample_model m = wireframe_sweep::noisy(exact, 1e-4, wireframe_sweep::name_seed(exact.name) ^ 4u);
+      const std::string name = m.name;
+      CAPTURE(name);
+      const auto t = cellforge::estimate_tolerance(cellforge::read_vertices(m.wire).graph);
+      CHECK(t.clear_gap);
+      CHECK(t.noise_gain);
+      CHECK(t.noise < 4e-4);  // of the diagonal: at most 2 δ, and the corners' worst
+      CHECK(convert(m) == "");
+    }
   }
   SUBCASE("explicit stage tolerances when automatic is off (wire2cells --planarity)") {
     const sample_model m = wireframe_sweep::noisy(cube, 1e-6, 3);
