@@ -223,9 +223,9 @@ void print_stages(const cellforge::wireframe_result<glm::dvec3>& r) {
               : !t.clear_gap ? " (estimated; no clear gap)"
                              : " (estimated)");
   if (t.automatic)
-    std::printf("  %-26s %12s   %-18s %.2g .. %.2g (%.1f decades%s), estimate %.3g\n", "", "", "noise .. shape",
-                t.noise, t.geometry, t.gap_decades, t.noise_gain ? ", over noise gains" : "",
-                t.estimated_planarity);
+    std::printf("  %-26s %12s   %-18s %.2g .. %.2g (%.1f decades%s), estimate %.3g\n", "", "",
+                "noise .. shape", t.noise, t.geometry, t.gap_decades,
+                t.noise_gain ? ", over noise gains" : "", t.estimated_planarity);
   row("finding faces", r.trace.milliseconds, "circuits", r.trace.circuits);
   row("reducing to unique faces", r.unique.milliseconds, "faces found", r.unique.faces.size());
   row("area calculation", r.reduction.area_milliseconds);

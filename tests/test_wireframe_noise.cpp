@@ -183,11 +183,13 @@ TEST_CASE("wireframe noise: the ordinary solids with every vertex moved by 1e-9,
         // The estimate's figures: why the tolerance was not found (the error's text is long).
         const auto t = cellforge::estimate_tolerance(cellforge::read_vertices(m.wire).graph);
         char est[160];
-        std::snprintf(est, sizeof est, "; estimate: noise %.2g, shape %.2g %s, %.2f decades%s", t.noise, t.geometry,
-                      t.noise_gain ? "(over noise gains, of the diagonal)" : "(over edges' lengths)", t.gap_decades,
-                      t.clear_gap ? "" : " (no clear gap)");
-        misses.push_back("[" + s.family + "] " + s.model.name + " (" + names[static_cast<int>(o)] + ")" + kind +
-                         ": " + why.substr(0, std::min<std::size_t>(160, why.find("; the residuals"))) + est);
+        std::snprintf(est, sizeof est, "; estimate: noise %.2g, shape %.2g %s, %.2f decades%s", t.noise,
+                      t.geometry,
+                      t.noise_gain ? "(over noise gains, of the diagonal)" : "(over edges' lengths)",
+                      t.gap_decades, t.clear_gap ? "" : " (no clear gap)");
+        misses.push_back("[" + s.family + "] " + s.model.name + " (" + names[static_cast<int>(o)] + ")" +
+                         kind + ": " +
+                         why.substr(0, std::min<std::size_t>(160, why.find("; the residuals"))) + est);
       }
       const std::string name = s.model.name;
       CAPTURE(eps);
@@ -196,8 +198,9 @@ TEST_CASE("wireframe noise: the ordinary solids with every vertex moved by 1e-9,
       if (eps <= 1e-6) CHECK_MESSAGE(o == noisy_outcome::exact, why);
     }
     const std::size_t n = set.models.size(), exact = count[noisy_outcome::exact];
-    std::printf("\nordinary solids, noise %g: %zu of %zu exact, %zu flagged, %zu errors, %zu wrong\n", eps, exact,
-                n, count[noisy_outcome::flagged], count[noisy_outcome::error], count[noisy_outcome::wrong]);
+    std::printf("\nordinary solids, noise %g: %zu of %zu exact, %zu flagged, %zu errors, %zu wrong\n", eps,
+                exact, n, count[noisy_outcome::flagged], count[noisy_outcome::error],
+                count[noisy_outcome::wrong]);
     for (const auto& line : misses) std::printf("  %s\n", line.c_str());
     CAPTURE(eps);
     if (full && eps > 1e-6) CHECK(100.0 * double(exact) >= 95.0 * double(n));

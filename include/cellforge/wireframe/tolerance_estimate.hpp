@@ -245,18 +245,19 @@ void split_residuals(const residual_bins& b, const tolerance_options& options, d
   double chosen = preferred;
   if (r.gap_decades < options.min_gap_decades || quads_unsplit) {
     r.clear_gap = false;
-    r.reason = quads_unsplit && r.gap_decades >= options.min_gap_decades
-                   ? cellforge::detail::cat(
-                         "the quadrilaterals' flatness runs from noise to shape without a clear gap (the "
-                         "widest gap, ",
-                         residual_text(r.noise), " to ", residual_text(r.geometry), ", ",
-                         residual_text(r.gap_decades),
-                         " decades, has a tenth of them above it): the coordinates' noise may hide faces")
-                   : cellforge::detail::cat(
-                         "the residuals of the corners' planes run from noise to shape without a clear gap "
-                         "(edges ",
-                         residual_text(r.noise), " and ", residual_text(r.geometry), " off their corners' planes, ",
-                         residual_text(r.gap_decades), " decades apart): the coordinates' noise may hide faces");
+    r.reason =
+        quads_unsplit && r.gap_decades >= options.min_gap_decades
+            ? cellforge::detail::cat(
+                  "the quadrilaterals' flatness runs from noise to shape without a clear gap (the "
+                  "widest gap, ",
+                  residual_text(r.noise), " to ", residual_text(r.geometry), ", ",
+                  residual_text(r.gap_decades),
+                  " decades, has a tenth of them above it): the coordinates' noise may hide faces")
+            : cellforge::detail::cat(
+                  "the residuals of the corners' planes run from noise to shape without a clear gap "
+                  "(edges ",
+                  residual_text(r.noise), " and ", residual_text(r.geometry), " off their corners' planes, ",
+                  residual_text(r.gap_decades), " decades apart): the coordinates' noise may hide faces");
     // Never call shape noise: below the whole cluster, as if it were all geometry.
     const double lowest = std::min(r.geometry_distance, r.noise_samples > 0 ? [&] {
       double d = std::numeric_limits<double>::infinity();
@@ -400,10 +401,10 @@ tolerance_result estimate_tolerance(const wire_graph& g, const tolerance_options
     if (by_gain.clear_gap) {
       r = std::move(by_gain);
     } else {
-      r.reason += cellforge::detail::cat("; nor over their noise gain (", detail::residual_text(by_gain.noise),
-                                         " and ", detail::residual_text(by_gain.geometry),
-                                         " of the diagonal, ", detail::residual_text(by_gain.gap_decades),
-                                         " decades apart)");
+      r.reason +=
+          cellforge::detail::cat("; nor over their noise gain (", detail::residual_text(by_gain.noise),
+                                 " and ", detail::residual_text(by_gain.geometry), " of the diagonal, ",
+                                 detail::residual_text(by_gain.gap_decades), " decades apart)");
     }
   }
   r.milliseconds = clock.ms();
