@@ -18,6 +18,7 @@
 #include "cellforge/sketch/face_finder.hpp"
 #include "cellforge/sketch/rounds.hpp"
 
+/// \cond INTERNAL
 namespace cellforge {
 template face_finder_result detail::faces::find_faces_in<void>(const detail::faces::drawing_graph&,
                                                                const face_finder_options&, double,
@@ -37,3 +38,4 @@ template rounded_mesh_result<glm::dvec3> rounded_mesh<glm::dvec3, glm::dvec2>(
 template rounded_brep_result rounded_brep<glm::dvec3, glm::dvec2>(
     const rounds_result<glm::dvec3, glm::dvec2>&, const rounded_brep_options&);
 }  // namespace cellforge
+/// \endcond
