@@ -10,17 +10,17 @@
 #               timings are not tests), so that benchmark code cannot rot; CGAL/OpenMesh/Qhull parts
 #               only where they are installed
 #   5. fuzz     libFuzzer targets built with clang, seed corpora replayed, then each fuzzer
-#               run for CELLFORGE_FUZZ_SECONDS seconds (default 10)      (build/fuzz)
+#               run for CELLFORGE_FUZZ_SECONDS seconds (default 5)       (build/fuzz)
 # Before the stages, scripts/fetch-bunny.sh puts the Stanford bunny (npm) in build/data, and
 # scripts/fetch-cgal-data.sh CGAL's demo meshes (Debian's libcgal-demo) in build/data/cgal.
 # Every stage runs even when an earlier one failed; the exit status is non-zero if any failed.
-# Environment: CELLFORGE_FUZZ_SECONDS (default 10), CELLFORGE_FUZZ_JOBS (fuzzers run at once,
+# Environment: CELLFORGE_FUZZ_SECONDS (default 5), CELLFORGE_FUZZ_JOBS (fuzzers run at once,
 # default 2), CELLFORGE_SKIP_DEPS=1 to skip the package check.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
-fuzz_seconds="${CELLFORGE_FUZZ_SECONDS:-10}"
+fuzz_seconds="${CELLFORGE_FUZZ_SECONDS:-5}"
 fuzz_jobs="${CELLFORGE_FUZZ_JOBS:-2}"
 
 # Runs one preset end to end: configure, build, test.

@@ -442,7 +442,9 @@ TEST_CASE("inflate: in views from above, the first reading is the true one") {
   std::vector<sample_model> models = normalons();
   for (auto& m : quasi_normalons()) models.push_back(std::move(m));
   const std::size_t first_non_normalon = models.size();
+#ifdef NDEBUG  // their optimised readings are only counted: 30 of this case's 40 s under ASan
   for (auto& m : non_normalons()) models.push_back(std::move(m));
+#endif
   for (std::size_t index = 0; index < models.size(); ++index)
     for (std::uint64_t view = 1; view <= views; ++view) {
       const sample_model& m = models[index];

@@ -163,7 +163,8 @@ TEST_CASE(
        {"through slot 1 #792496965890354261, view 1",
         "box with a wedge roof #11400714819333684262, view 1"}}};
 #else
-  const std::vector<std::pair<double, std::size_t>> levels{{0.002, 8}, {0.01, 8}};  // 18 drawings each
+  // One level, 18 drawings: the same code as every level (69 s under ASan with 1 % as well).
+  const std::vector<std::pair<double, std::size_t>> levels{{0.002, 8}};
   const std::size_t max_edges = 30;
 #endif
   for (const auto& [jitter, limit] : levels) {

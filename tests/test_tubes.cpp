@@ -473,10 +473,9 @@ TEST_CASE("tube meshes are closed oriented manifolds with genus = cycle rank") {
   set.push_back({"figure eight", samples::figure_eight()});
   set.push_back({"lattice 3x3x3", samples::lattice(3, 3, 3)});
   set.push_back({"lattice 10x8x3", samples::lattice(10, 8, 3)});
-#ifdef NDEBUG  // the sanitizer build runs the smaller ones; these take 30 s and 2.3 GB at -O1
+#ifdef NDEBUG  // the sanitizer build runs the smaller ones; 32³ and 46³ are bench_tubes rows (20 s)
   set.push_back({"ring 1000", samples::ring(1000, 1000.0)});
   set.push_back({"lattice 20x20x20", samples::lattice(20, 20, 20)});
-  set.push_back({"lattice 40x40x40", samples::lattice(40, 40, 40)});
 #endif
   {
     S star;
