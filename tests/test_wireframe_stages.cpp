@@ -5,6 +5,8 @@
 
 #include <algorithm>
 
+#include "cellforge/core/detail/work_counter.hpp"
+#include "cellforge/core/stage_report.hpp"
 #include "cellforge/samples/wireframe_models.hpp"
 #include "cellforge/wireframe/cell_list.hpp"
 #include "cellforge/wireframe/circuit_tracer.hpp"
@@ -253,6 +255,47 @@ TEST_CASE("stages: volumes and relations agree with the cell complex's rotation 
     for (std::size_t v = 0; v < r.relations.outward.size(); ++v)
       CHECK(r.relations.outward[v].size() == r.volume.volumes[v].size());
   }
+}
+
+TEST_CASE("work_counter: the stages' budget counter, and a stage that ran out says so") {
+  using cellforge::detail::work_counter;
+  // 0 (unlimited) and automatic never stop a search; a limit stops it at the first step past it.
+  for (const std::uint64_t open : {cellforge::work_budget::unlimited, cellforge::work_budget::automatic}) {
+    work_counter c{open, 0, "trace_circuits", "trace_options::work_budget"};
+    CHECK_NOTHROW(c.spend(1'000'000));
+    CHECK(c.used == 1'000'000);
+  }
+  work_counter c{10, 0, "trace_circuits", "trace_options::work_budget"};
+  CHECK_NOTHROW(c.spend(10));
+  cellforge::stage_report r;
+  r.diagnostics.push_back("an earlier note");
+  try {
+    c.spend();
+    FAIL("the 11th step of a budget of 10 did not stop the search");
+  } catch (const cellforge::error& e) {
+    CHECK(e.category() == cellforge::error_category::budget);
+    CHECK(std::string(e.what()).find("trace_circuits: work budget of 10 steps exhausted; raise "
+                                     "trace_options::work_budget") != std::string::npos);
+    cellforge::detail::stop_at_budget(r, c, e);
+  }
+  CHECK_FALSE(r.complete);
+  CHECK(r.work == 11);
+  REQUIRE(r.diagnostics.size() == 2);
+  CHECK(cellforge::detail::budget_note(r, "none") == r.diagnostics.back());
+  CHECK(cellforge::detail::budget_note(cellforge::stage_report{}, "none") == "none");
+  // Any other error passes through stop_at_budget untouched.
+  cellforge::stage_report other;
+  CHECK_THROWS_AS(
+      [&] {
+        try {
+          throw cellforge::error(cellforge::error_category::invalid_input, "not a budget");
+        } catch (const cellforge::error& e) {
+          cellforge::detail::stop_at_budget(other, c, e);
+        }
+      }(),
+      cellforge::error);
+  CHECK(other.complete);
+  CHECK(other.diagnostics.empty());
 }
 
 }  // namespace wireframe_stages_tests
