@@ -154,18 +154,22 @@ std::vector<std::vector<std::uint32_t>> parallel_classes(
       std::sort(by.begin(), by.end());
       std::size_t cut = 0;
       double widest = 0;
-      for (std::size_t k = 2; k + 2 <= by.size(); ++k) {
+      // The groups widened by their slips, for every cut at once: below[k] the highest reach of
+      // by[0..k), above[k] the lowest of by[k..): O(n) per class, not O(n) per cut.
+      const std::size_t nb = by.size();
+      std::vector<double> below(nb + 1, -std::numbers::pi), above(nb + 1, std::numbers::pi);
+      for (std::size_t i = 0; i < nb; ++i) {
+        const double slip = flat_len[by[i].second] > 0 ? 6 * precision / flat_len[by[i].second] : 0.0;
+        below[i + 1] = std::max(below[i], by[i].first + slip);
+      }
+      for (std::size_t i = nb; i-- > 0;) {
+        const double slip = flat_len[by[i].second] > 0 ? 6 * precision / flat_len[by[i].second] : 0.0;
+        above[i] = std::min(above[i + 1], by[i].first - slip);
+      }
+      for (std::size_t k = 2; k + 2 <= nb; ++k) {
         const double gap = by[k].first - by[k - 1].first,
                      spread = std::max(by[k - 1].first - by.front().first, by.back().first - by[k].first);
-        double below = -std::numbers::pi, above = std::numbers::pi;  // the groups widened by their slips
-        for (std::size_t i = 0; i < by.size(); ++i) {
-          const double slip = flat_len[by[i].second] > 0 ? 6 * precision / flat_len[by[i].second] : 0.0;
-          if (i < k)
-            below = std::max(below, by[i].first + slip);
-          else
-            above = std::min(above, by[i].first - slip);
-        }
-        if (gap > 4 * spread && above > below && gap > widest) widest = gap, cut = k;
+        if (gap > 4 * spread && above[k] > below[k] && gap > widest) widest = gap, cut = k;
       }
       if (cut > 0) {
         std::vector<std::uint32_t> low, high;
