@@ -14,8 +14,12 @@
 # Before the stages, scripts/fetch-bunny.sh puts the Stanford bunny (npm) in build/data, and
 # scripts/fetch-cgal-data.sh CGAL's demo meshes (Debian's libcgal-demo) in build/data/cgal.
 # Every stage runs even when an earlier one failed; the exit status is non-zero if any failed.
+# The stages run in two lanes at once (ci, clang, bench | asan, fuzz; each line of output tagged
+# with its stage): every stage has single-threaded parts (configuring, linking, the last tests
+# of a ctest run, the clang stage's one big TU), and the other lane fills the idle core.
 # Environment: CELLFORGE_FUZZ_SECONDS (default 5), CELLFORGE_FUZZ_JOBS (fuzzers run at once,
-# default 2), CELLFORGE_SKIP_DEPS=1 to skip the package check.
+# default 2), CELLFORGE_SKIP_DEPS=1 to skip the package check, CELLFORGE_LANES=1 to run the
+# stages one after another.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -153,18 +157,50 @@ if ! bash "$root/scripts/fetch-cgal-data.sh" "$root/build/data"; then
   failed+=("cgal-data")
   echo "=== test-all: fetching CGAL's demo meshes FAILED (bash scripts/fetch-cgal-data.sh build/data; needs libcgal-demo); test_real_meshes will fail under CI ===" >&2
 fi
+# Runs the stages given, one after another, each line of output tagged "[stage]"; appends
+# "passed <stage> <seconds>" or "failed <stage> <seconds>" to the file $1.
+run_lane() {
+  local record="$1" stage stage_start status
+  shift
+  for stage in "$@"; do
+    echo "=== test-all: stage '$stage' ==="
+    stage_start=$SECONDS
+    # A separate bash process, so that `set -e` stops the stage at its first failing command.
+    status=0
+    bash "$root/scripts/test-all.sh" --stage "$stage" 2>&1 | sed -u "s/^/[$stage] /" || status=$?
+    if ((status == 0)); then
+      echo "passed $stage $((SECONDS - stage_start))" >>"$record"
+    else
+      echo "failed $stage $((SECONDS - stage_start))" >>"$record"
+      echo "=== test-all: stage '$stage' FAILED ===" >&2
+    fi
+  done
+}
+
+record="$(mktemp)"
+trap 'rm -f "$record"' EXIT
+lane_a=() lane_b=()
 for stage in "${stages[@]}"; do
-  echo
-  echo "=== test-all: stage '$stage' ==="
-  stage_start=$SECONDS
-  # A separate bash process, so that `set -e` stops the stage at its first failing command.
-  if bash "$root/scripts/test-all.sh" --stage "$stage"; then
-    passed+=("$stage ($((SECONDS - stage_start))s)")
-  else
-    failed+=("$stage ($((SECONDS - stage_start))s)")
-    echo "=== test-all: stage '$stage' FAILED ===" >&2
-  fi
+  case "$stage" in
+    asan | fuzz) lane_b+=("$stage") ;;
+    *) lane_a+=("$stage") ;;
+  esac
 done
+if [[ "${CELLFORGE_LANES:-2}" == 1 ]]; then
+  run_lane "$record" "${stages[@]}"
+else
+  run_lane "$record" "${lane_a[@]}" &
+  lane_pid=$!
+  run_lane "$record" "${lane_b[@]}"
+  wait "$lane_pid" || true
+fi
+while read -r verdict stage seconds; do
+  if [[ "$verdict" == passed ]]; then
+    passed+=("$stage (${seconds}s)")
+  else
+    failed+=("$stage (${seconds}s)")
+  fi
+done <"$record"
 
 elapsed=$((SECONDS - start))
 echo
