@@ -19,6 +19,7 @@
 #include <random>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "bench_support.hpp"
@@ -180,6 +181,42 @@ const big_comb& comb_of(std::size_t teeth) {
                                                                       glm::length(hi - lo));
   c.jittered = cellforge::samples::jitter_drawing(c.s.drawing, 0.1 * spacing, 1);
   return m.emplace(teeth, std::move(c)).first->second;
+}
+
+// Interactive speed (issue 37): drawing_to_cells on every drawing of a sample of the sweep, each
+// drawing timed alone (median CPU ms of 3 runs), by size band: a sketching program redraws the
+// solid as the user draws, so every drawing must fit a frame, not only the median one.
+struct frame_drawing {
+  std::string name;
+  std::size_t edges = 0;
+  double ms = 0;
+};
+std::vector<frame_drawing>& frame_times() {
+  static std::vector<frame_drawing> v;
+  return v;
+}
+
+// The scale rows: right n-gon prisms and comb normalons of about 150 to 5,000 lines.
+struct scale_case {
+  std::string family, name;
+  cellforge::samples::sample_drawing s;
+};
+std::vector<scale_case>& scale_cases() {
+  static std::vector<scale_case> c = [] {
+    std::vector<scale_case> out;
+    for (std::size_t n : {50u, 100u, 200u, 334u, 667u, 1000u})  // sample_prism: n <= 1024
+      out.push_back(
+          {"prism", "prism " + std::to_string(n),
+           cellforge::samples::generic_drawing(cellforge::samples::sample_prism(n), 1, "prism", 1e-9, 8)});
+    for (std::size_t teeth : {7u, 14u, 28u, 45u, 90u, 225u, 450u})
+      out.push_back({"comb normalon", "comb " + std::to_string(teeth), comb_of(teeth).s});
+    return out;
+  }();
+  return c;
+}
+std::map<std::string, bool>& scale_right() {
+  static std::map<std::string, bool> m;
+  return m;
 }
 
 std::map<std::string, std::string>& tidy_rows() {
@@ -428,6 +465,43 @@ void register_all() {
         ->UseManualTime()
         ->Unit(benchmark::kMillisecond);
   }
+  benchmark::RegisterBenchmark(
+      "drawing_to_cells/frame",
+      [](benchmark::State& state) {
+        cellforge::samples::sketch_sweep_options o;
+        o.limit = 600;
+        const std::vector<cellforge::samples::sample_drawing> drawings = cellforge::samples::sketch_sweep(o);
+        for (auto _ : state) {
+          const double c0 = cb::thread_cpu_ms();
+          frame_times().clear();
+          for (const auto& s : drawings) {
+            std::vector<double> ms;
+            for (int k = 0; k < 3; ++k) {
+              const double t0 = cb::thread_cpu_ms();
+              try {
+                benchmark::DoNotOptimize(cellforge::drawing_to_cells(s.drawing));
+              } catch (const cellforge::error&) {
+              }
+              ms.push_back(cb::thread_cpu_ms() - t0);
+            }
+            frame_times().push_back({s.name, s.drawing.edges.size(), cb::median(ms)});
+          }
+          state.SetIterationTime((cb::thread_cpu_ms() - c0) * 1e-3);
+        }
+      })
+      ->Iterations(1)
+      ->UseManualTime()
+      ->Unit(benchmark::kMillisecond);
+  for (const scale_case& c : scale_cases())
+    benchmark::RegisterBenchmark(("drawing_to_cells/scale/" + c.name).c_str(),
+                                 [&c](benchmark::State& state) {
+                                   cb::median_loop(
+                                       state, [&] { return cellforge::drawing_to_cells(c.s.drawing); },
+                                       [&](const auto& r) { scale_right()[c.name] = true_complex(c.s, r); });
+                                 })
+        ->Iterations(c.s.drawing.edges.size() > 1500 ? 1 : 3)
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond);
   for (const std::size_t teeth : {90u, 900u}) {
     const std::string lines = std::to_string(comb_of(teeth).s.drawing.edges.size());
     benchmark::RegisterBenchmark(("tidy/parallel/" + lines).c_str(),
@@ -564,6 +638,44 @@ void print_tables(const cb::collecting_reporter& r, std::ostream& os) {
               "-line comb normalon: " + cb::ms(r.counter_ms("inflate/comb", "median_cpu_us")) +
               " ms (issue target: 100 lines in <= 50 ms).");
   in.print(os);
+  cb::table fr("drawing_to_cells in a frame: every drawing of a sample of the sweep, by size",
+               {"edges", "drawings", "median ms", "90th percentile ms", "worst ms", "worst drawing",
+                "over target", "target"});
+  for (const auto& [lo, hi, target] :
+       std::vector<std::tuple<std::size_t, std::size_t, double>>{{0, 150, 16.0}, {151, 300, 50.0}}) {
+    std::vector<frame_drawing> band;
+    for (const frame_drawing& f : frame_times())
+      if (f.edges >= lo && f.edges <= hi) band.push_back(f);
+    if (band.empty()) continue;
+    std::sort(band.begin(), band.end(), [](const auto& a, const auto& b) { return a.ms < b.ms; });
+    const std::size_t over = static_cast<std::size_t>(
+        std::count_if(band.begin(), band.end(), [t = target](const auto& f) { return f.ms > t; }));
+    fr.add_row({std::to_string(lo) + "-" + std::to_string(hi), cb::count(band.size()),
+                cb::ms(band[band.size() / 2].ms), cb::ms(band[band.size() * 9 / 10].ms),
+                cb::ms(band.back().ms),
+                band.back().name + " (" + std::to_string(band.back().edges) + " edges)", cb::count(over),
+                "every drawing <= " + cb::fixed(target, 0) + " ms"});
+  }
+  fr.add_note(
+      "Each drawing's median CPU ms of 3 runs of drawing_to_cells (a refused drawing counts its time).");
+  fr.print(os);
+  cb::table sc("drawing_to_cells at scale (median CPU ms of 3 runs; 1 run above 1,500 edges)",
+               {"drawing", "edges", "ms", "true complex"});
+  std::map<std::string, std::vector<std::pair<double, double>>> growth;
+  for (const scale_case& c : scale_cases()) {
+    const std::optional<double> a = r.counter_ms("drawing_to_cells/scale/" + c.name, "median_cpu_us");
+    const double edges = static_cast<double>(c.s.drawing.edges.size());
+    if (a) growth[c.family].push_back({edges, *a});
+    sc.add_row({c.name, cb::count(c.s.drawing.edges.size()), cb::ms(a),
+                !a                      ? "—"
+                : scale_right()[c.name] ? "yes"
+                                        : "NO"});
+  }
+  for (const auto& [family, xy] : growth)
+    sc.add_note("Growth exponent, " + family + ": " + cb::fixed(exponent(xy), 2) +
+                " (slope of log ms over log edges).");
+  sc.add_note("Targets (issue 37): 1,000 edges <= 1 s, 5,000 edges <= 10 s.");
+  sc.print(os);
   cb::table rt(
       "Rounds and fillets per family of the generated round drawings (ms per drawing)",
       {"family", "drawings", "blends", "detect_arcs (sampled)", "strokes right", "pair_arcs",
