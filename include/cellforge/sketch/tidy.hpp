@@ -42,6 +42,11 @@ struct tidy_options {
   /// tidy_drawing: lines whose directions differ by less than this (degrees) are one direction
   /// class and are made exactly parallel to the class's length-weighted mean direction.
   double parallel_tolerance_degrees = 0.25;
+  /// tidy_drawing: when positive, how precisely the junctions are placed (the largest slip,
+  /// relative to the drawing's size) and the classes are taken from it instead: lines are one class
+  /// when one direction lies within every line's slip (± 2 precision / its length), which never
+  /// chains as a fixed angle does. drawing_to_cells estimates it for an inexact drawing.
+  double precision = 0.0;
   /// tidy_drawing: leave the drawing as it is when a junction would move by more than this,
   /// relative to the drawing's size (the classes are then not slips of the pen), with a diagnostic.
   double max_move = 0.02;
@@ -153,26 +158,36 @@ detail::if_satisfied_t<LineDrawing<D>, detail::tidy_result_for, D> tidy_drawing(
   for (const auto& q : p) lo = glm::min(lo, q), hi = glm::max(hi, q);
   const double size = glm::length(hi - lo);
   if (!(size > 0)) return r;
-  // Direction classes: angles mod π sorted, a new class where the gap exceeds the tolerance.
-  const double tol = options.parallel_tolerance_degrees * std::numbers::pi / 180.0;
-  std::vector<std::pair<double, std::uint32_t>> angle;
-  for (std::uint32_t e = 0; e < ne; ++e) {
-    const auto [a, b] = r.drawing.edges[e];
-    if (a >= nv || b >= nv || a == b) continue;
-    const glm::dvec2 v = p[b] - p[a];
-    if (glm::length(v) == 0) continue;
-    angle.push_back({detail::line_angle(v), e});
-  }
-  std::sort(angle.begin(), angle.end());
+  // Direction classes: by the precision when given; else angles mod π sorted, a new class where
+  // the gap exceeds the tolerance.
   std::vector<std::vector<std::uint32_t>> classes;
-  for (std::size_t k = 0; k < angle.size(); ++k) {
-    if (k == 0 || angle[k].first - angle[k - 1].first > tol) classes.emplace_back();
-    classes.back().push_back(angle[k].second);
-  }
-  // Wrap around π: the last class joins the first.
-  if (classes.size() > 1 && angle.front().first + std::numbers::pi - angle.back().first <= tol) {
-    for (const auto e : classes.back()) classes.front().push_back(e);
-    classes.pop_back();
+  if (options.precision > 0) {
+    std::vector<glm::dvec2> unit(nv);
+    std::vector<std::array<std::uint32_t, 2>> lines;
+    for (std::size_t i = 0; i < nv; ++i) unit[i] = p[i] / size;
+    for (const auto& [a, b] : r.drawing.edges)  // a malformed line: zero length, no class
+      lines.push_back(a < nv && b < nv ? std::array<std::uint32_t, 2>{a, b} : std::array<std::uint32_t, 2>{0, 0});
+    classes = detail::tidy::drawing_classes(unit, lines, options.precision);
+  } else {
+    const double tol = options.parallel_tolerance_degrees * std::numbers::pi / 180.0;
+    std::vector<std::pair<double, std::uint32_t>> angle;
+    for (std::uint32_t e = 0; e < ne; ++e) {
+      const auto [a, b] = r.drawing.edges[e];
+      if (a >= nv || b >= nv || a == b) continue;
+      const glm::dvec2 v = p[b] - p[a];
+      if (glm::length(v) == 0) continue;
+      angle.push_back({detail::line_angle(v), e});
+    }
+    std::sort(angle.begin(), angle.end());
+    for (std::size_t k = 0; k < angle.size(); ++k) {
+      if (k == 0 || angle[k].first - angle[k - 1].first > tol) classes.emplace_back();
+      classes.back().push_back(angle[k].second);
+    }
+    // Wrap around π: the last class joins the first.
+    if (classes.size() > 1 && angle.front().first + std::numbers::pi - angle.back().first <= tol) {
+      for (const auto e : classes.back()) classes.front().push_back(e);
+      classes.pop_back();
+    }
   }
   // One constraint per line of a class of two or more: its normal component along the class's
   // normal is zero. The class direction: the length-weighted mean of the doubled angles.

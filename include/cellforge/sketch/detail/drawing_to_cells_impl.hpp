@@ -575,12 +575,14 @@ std::multiset<std::vector<std::uint32_t>> canonical_loops(
 
 namespace detail::sketch {
 
-/// drawing_to_cells on the drawing's own point types, into R. O(the stages).
+/// drawing_to_cells from the faces found (`found`, on the drawing or on a tidied copy of it: the
+/// same junctions), on the drawing's own point types, into R. O(the stages after the faces).
 template <class R, LineDrawing D>
-drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, const drawing_options& options) {
-  detail::stopwatch clock;
+drawing_result<R, drawing_point_t<D>> drawing_to_cells_from(const D& drawing, const drawing_options& options,
+                                                            const face_finder_result& found,
+                                                            const detail::stopwatch& clock) {
   drawing_result<R, drawing_point_t<D>> r;
-  r.faces = find_faces(drawing, options.faces);
+  r.faces = found;
   if (!r.faces.complete && r.faces.loops.empty()) {
     // The face finder's last fallback ran out of its budget: nothing to inflate. Status budget,
     // the finder's message (naming the option) as the reason.
@@ -897,7 +899,7 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, cons
     drawing_options straight = options;
     straight.tidying.straight_lines = true;
     try {
-      auto again = drawing_to_cells_on<R>(drawing, straight);
+      auto again = drawing_to_cells_from<R>(drawing, straight, found, clock);
       if (!again.flagged) {
         again.diagnostics.push_back(
             "tidied again with lines straight on through junctions made one line (an answer as drawn was "
@@ -911,6 +913,115 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, cons
   }
   r.milliseconds = clock.ms();
   return r;
+}
+
+/// The faces of an inexact drawing found on it tidied first: tidy_drawing with its classes from
+/// a precision (the junctions' largest slip) tried from 2.5e-4 to 4e-2 of the size in steps of
+/// 1.5 (a step whose classes are the last step's is skipped), so that lines parallel in space
+/// are exactly parallel and the face finder tells coplanar faces (seams a wall must meet). Of
+/// the answers that pass their check and differ from `as_drawn`, the one found over the most
+/// steps (ties: the finer precision), and its precision. No loops when there is none; a note
+/// names the precision. O(steps · (E log E + sparse LDLᵀ + find_faces)).
+template <LineDrawing D>
+std::pair<face_finder_result, double> faces_tidied_first(const D& drawing, const faces::drawing_graph& g, const drawing_options& options,
+                                      const std::vector<std::vector<std::uint32_t>>& as_drawn,
+                                      std::vector<std::string>& notes) {
+  std::pair<face_finder_result, double> none;
+  if (g.num_junctions() < 3) return none;
+  glm::dvec2 lo = g.p[0], hi = g.p[0];
+  for (const auto& q : g.p) lo = glm::min(lo, q), hi = glm::max(hi, q);
+  const double size = glm::length(hi - lo);
+  if (!(size > 0)) return none;
+  std::vector<glm::dvec2> unit(g.p.size());
+  for (std::size_t i = 0; i < unit.size(); ++i) unit[i] = g.p[i] / size;
+  std::vector<std::array<std::uint32_t, 2>> lines(g.num_half_edges() / 2);
+  for (std::size_t e = 0; e < lines.size(); ++e) lines[e] = {g.head[2 * e + 1], g.head[2 * e]};
+  const auto skip = canonical_loops(as_drawn);
+  struct answer {
+    face_finder_result faces;
+    std::multiset<std::vector<std::uint32_t>> loops;
+    std::size_t steps = 0;
+    double precision = 0, move = 0;
+    std::size_t classes = 0;
+  };
+  std::vector<answer> answers;
+  std::vector<std::vector<std::uint32_t>> last;
+  std::size_t last_answer = answers.max_size();  // the answer of the last step's classes, if any
+  for (double precision = 2.5e-4; precision <= 0.04; precision *= 1.5) {
+    std::vector<std::vector<std::uint32_t>> classes = tidy::drawing_classes(unit, lines, precision);
+    for (auto& c : classes) std::sort(c.begin(), c.end());
+    std::sort(classes.begin(), classes.end());
+    if (classes.empty()) continue;
+    if (classes == last) {
+      if (last_answer < answers.size()) ++answers[last_answer].steps;
+      continue;
+    }
+    last = std::move(classes);
+    last_answer = answers.max_size();
+    tidy_options o = options.tidying;
+    o.precision = precision;
+    o.max_move = 3 * precision;
+    const auto t = tidy_drawing(drawing, o);
+    if (!t.applied) continue;
+    face_finder_result f = find_faces(t.drawing, options.faces);
+    if (f.flagged || !f.complete) continue;
+    auto loops = canonical_loops(f.loops);
+    if (loops == skip) continue;
+    std::size_t k = 0;
+    while (k < answers.size() && answers[k].loops != loops) ++k;
+    if (k == answers.size())
+      answers.push_back({std::move(f), std::move(loops), 0, precision, t.largest_move, t.classes});
+    ++answers[k].steps;
+    last_answer = k;
+  }
+  if (answers.empty()) return none;
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < answers.size(); ++k)
+    if (answers[k].steps > answers[best].steps) best = k;
+  const answer& a = answers[best];
+  notes.push_back(cellforge::detail::cat(
+      "faces found on the drawing tidied first (", std::to_string(a.classes), " classes at a precision of ",
+      std::to_string(a.precision), " of its size, over ", std::to_string(a.steps), " steps; junctions moved by at most ",
+      std::to_string(a.move), "): ", std::to_string(a.faces.loops.size()), " loops"));
+  return {std::move(answers[best].faces), a.precision};
+}
+
+/// drawing_to_cells on the drawing's own point types, into R: from the faces as drawn; for an
+/// inexact drawing whose faces fail their check or give a flagged answer, from the faces found on
+/// it tidied first (faces_tidied_first) instead, kept when they give an answer not flagged (or the
+/// faces as drawn failed). O(the stages).
+template <class R, LineDrawing D>
+drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, const drawing_options& options) {
+  detail::stopwatch clock;
+  const face_finder_result found = find_faces(drawing, options.faces);
+  if (!found.complete && found.loops.empty()) return drawing_to_cells_from<R>(drawing, options, found, clock);
+  std::optional<drawing_result<R, drawing_point_t<D>>> as_drawn;
+  if (!found.flagged) {
+    as_drawn = drawing_to_cells_from<R>(drawing, options, found, clock);
+    if (!as_drawn->flagged) return std::move(*as_drawn);
+  }
+  const faces::drawing_graph g = faces::make_graph(drawing, options.faces);
+  std::vector<std::string> notes;
+  const auto [first, precision] = options.tidy != tidy_mode::never && nearly_parallel(g, 5.0)
+                                      ? faces_tidied_first(drawing, g, options, found.loops, notes)
+                                      : std::pair<face_finder_result, double>{};
+  if (!first.loops.empty()) {
+    // The drawing's parallel tidy takes its classes from that precision too.
+    drawing_options tidied = options;
+    tidied.tidying.precision = precision;
+    tidied.tidying.max_move = std::max(tidied.tidying.max_move, 3 * precision);
+    try {
+      auto r = drawing_to_cells_from<R>(drawing, tidied, first, clock);
+      if (!r.flagged || !as_drawn) {
+        r.diagnostics.insert(r.diagnostics.begin(), notes.begin(), notes.end());
+        return r;
+      }
+    } catch (const error& e) {
+      if (e.category() != error_category::topology && e.category() != error_category::invalid_input) throw;
+    }
+  }
+  if (as_drawn) return std::move(*as_drawn);
+  return drawing_to_cells_from<R>(drawing, options, found, clock);
 }
 
 /// A result computed on a line_drawing<glm::dvec2> into glm::dvec3, in the caller's types

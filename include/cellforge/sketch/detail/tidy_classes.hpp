@@ -12,6 +12,8 @@
 #include <limits>
 #include <numbers>
 #include <set>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -218,6 +220,158 @@ std::vector<std::vector<std::uint32_t>> parallel_classes(
     for (const auto e : out[c]) merged[slot[root]].push_back(e);
   }
   return merged;
+}
+
+}  // namespace cellforge::detail::tidy
+
+namespace cellforge::detail::tidy {
+
+/// A line's direction in the drawing (angle mod π) and how far its ends slipping by `precision`
+/// can turn it (2 precision / length, at most π/2). Lengths and precision in one unit. O(1).
+struct line_slip {
+  double angle = 0, slip = 0, length = 0;
+};
+
+/// The lines of a drawing with their slips (zero-length lines: slip π/2). O(E).
+template <class = void>
+std::vector<line_slip> line_slips(const std::vector<glm::dvec2>& p,
+                                  const std::vector<std::array<std::uint32_t, 2>>& edges, double precision) {
+  std::vector<line_slip> out(edges.size());
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const glm::dvec2 d = p[edges[e][1]] - p[edges[e][0]];
+    out[e].length = glm::length(d);
+    out[e].angle = line_angle(d);
+    out[e].slip = out[e].length > 2 * precision ? std::min(std::numbers::pi / 2, std::asin(2 * precision / out[e].length))
+                                                : std::numbers::pi / 2;
+  }
+  return out;
+}
+
+/// Direction classes of a drawing whose junctions are placed to `precision` (the largest slip of a
+/// junction, in the points' unit): lines are parallel when one direction lies within every
+/// line's slip (an arc of ± 2 precision / length about its angle), so classes never chain as a
+/// fixed angle does. The fewest such arcs' common points (greedy stabbing of the arcs cut open
+/// where no arc covers, or at the widest gap), then every line moved to the class whose
+/// length²-weighted mean direction is nearest in units of its slip, three rounds. Classes of two
+/// lines or more. O(E log E).
+template <class = void>
+std::vector<std::vector<std::uint32_t>> drawing_classes(const std::vector<glm::dvec2>& p,
+                                                        const std::vector<std::array<std::uint32_t, 2>>& edges,
+                                                        double precision) {
+  constexpr double pi = std::numbers::pi;
+  const std::vector<line_slip> s = line_slips(p, edges, precision);
+  std::vector<std::uint32_t> lines;
+  for (std::uint32_t e = 0; e < s.size(); ++e)
+    if (s[e].length > 0 && s[e].slip < pi / 2) lines.push_back(e);
+  if (lines.size() < 2) return {};
+  // Cut the circle of directions where no arc covers (the start of the widest uncovered stretch),
+  // else at the widest gap between angles.
+  std::sort(lines.begin(), lines.end(), [&](auto a, auto b) { return s[a].angle < s[b].angle; });
+  double cut = 0, widest = -1;
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    const auto a = lines[k], b = lines[(k + 1) % lines.size()];
+    double gap = s[b].angle - s[a].angle;
+    if (gap <= 0) gap += pi;
+    const double open = gap - s[a].slip - s[b].slip;
+    const double score = open > 0 ? pi + open : gap;  // an uncovered stretch beats any gap
+    if (score > widest) widest = score, cut = s[a].angle + (open > 0 ? s[a].slip + 0.5 * open : 0.5 * gap);
+  }
+  const auto unrolled = [&](double a) {  // angle in [cut, cut + π)
+    double t = a - cut;
+    t -= pi * std::floor(t / pi);
+    return cut + t;
+  };
+  // Greedy stabbing by right end of the arcs (clipped to the unrolled range).
+  std::vector<std::pair<double, std::uint32_t>> by_right;
+  for (const auto e : lines) by_right.push_back({std::min(unrolled(s[e].angle) + s[e].slip, cut + pi), e});
+  std::sort(by_right.begin(), by_right.end());
+  std::vector<double> centre;
+  for (const auto& [right, e] : by_right)
+    if (centre.empty() || unrolled(s[e].angle) - s[e].slip > centre.back()) centre.push_back(right);
+  // Refine: each line to the class whose direction lies in its arc, nearest in slips, best fits
+  // first; two lines of a class at one junction only going straight on (the two are one line;
+  // turning, they are two sides of a corner, never parallel). Directions: the length²-weighted
+  // means of the members (doubled angles).
+  std::vector<std::size_t> of(s.size(), centre.size());
+  std::vector<std::vector<std::pair<std::size_t, std::uint32_t>>> at(p.size());  // (class, line) per junction
+  for (int round = 0; round < 3; ++round) {
+    std::vector<std::tuple<double, std::uint32_t, std::size_t>> offers;  // (slips off, line, class)
+    for (const auto e : lines)
+      for (auto it = std::lower_bound(centre.begin(), centre.end(), unrolled(s[e].angle) - s[e].slip);
+           it != centre.end() && *it <= unrolled(s[e].angle) + s[e].slip; ++it)
+        offers.emplace_back(std::abs(*it - unrolled(s[e].angle)) / s[e].slip, e,
+                            static_cast<std::size_t>(it - centre.begin()));
+    std::sort(offers.begin(), offers.end());
+    std::fill(of.begin(), of.end(), centre.size());
+    for (auto& v : at) v.clear();
+    for (const auto& [off, e, c] : offers) {
+      if (of[e] < centre.size()) continue;
+      bool clash = false;
+      for (const std::uint32_t end : edges[e]) {
+        std::size_t members = 0;
+        for (const auto& [c2, f] : at[end]) {
+          if (c2 != c) continue;
+          const std::uint32_t far_e = edges[e][0] == end ? edges[e][1] : edges[e][0],
+                              far_f = edges[f][0] == end ? edges[f][1] : edges[f][0];
+          clash = clash || ++members > 1 || glm::dot(p[far_e] - p[end], p[far_f] - p[end]) >= 0;
+        }
+      }
+      if (clash) continue;
+      of[e] = c;
+      for (const std::uint32_t end : edges[e]) at[end].push_back({c, e});
+    }
+    std::vector<double> sx(centre.size(), 0), sy(centre.size(), 0);
+    for (const auto e : lines)
+      if (of[e] < centre.size()) {
+        const double w = s[e].length * s[e].length;
+        sx[of[e]] += w * std::cos(2 * s[e].angle), sy[of[e]] += w * std::sin(2 * s[e].angle);
+      }
+    std::vector<double> moved;
+    for (std::size_t c = 0; c < centre.size(); ++c)
+      moved.push_back(sx[c] == 0 && sy[c] == 0 ? centre[c] : unrolled(0.5 * std::atan2(sy[c], sx[c])));
+    // Keep the order (classes do not pass each other at these slips; sort to be safe).
+    std::vector<std::size_t> order(centre.size());
+    for (std::size_t c = 0; c < order.size(); ++c) order[c] = c;
+    std::sort(order.begin(), order.end(), [&](auto a, auto b) { return moved[a] < moved[b]; });
+    for (std::size_t c = 0; c < order.size(); ++c) centre[c] = moved[order[c]];
+  }
+  std::vector<std::vector<std::uint32_t>> classes(centre.size());
+  for (const auto e : lines)
+    if (of[e] < centre.size()) classes[of[e]].push_back(e);
+  std::vector<std::vector<std::uint32_t>> out;
+  for (auto& c : classes)
+    if (c.size() >= 2) out.push_back(std::move(c));
+  return out;
+}
+
+/// The median over lines of classes of three or more of the line's offset across its class's
+/// mean direction at its far end (|sin| of the angle off the mean times the length). O(E).
+template <class = void>
+double median_offset(const std::vector<glm::dvec2>& p, const std::vector<std::array<std::uint32_t, 2>>& edges,
+                     const std::vector<std::vector<std::uint32_t>>& classes) {
+  const std::vector<line_slip> s = line_slips(p, edges, 0.0);
+  std::vector<double> offsets;
+  for (const auto& c : classes) {
+    if (c.size() < 3) continue;
+    double sx = 0, sy = 0;
+    for (const auto e : c) sx += s[e].length * std::cos(2 * s[e].angle), sy += s[e].length * std::sin(2 * s[e].angle);
+    const double mean = 0.5 * std::atan2(sy, sx);
+    for (const auto e : c) offsets.push_back(std::abs(std::sin(s[e].angle - mean)) * s[e].length);
+  }
+  if (offsets.empty()) return 0;
+  std::nth_element(offsets.begin(), offsets.begin() + static_cast<std::ptrdiff_t>(offsets.size() / 2), offsets.end());
+  return offsets[offsets.size() / 2];
+}
+
+/// The precision a drawing's junctions are placed to, read from the drawing alone (in the points'
+/// unit): from `start`, classes by drawing_classes, then `factor` × their median_offset, `rounds`
+/// times. Zero for a drawing whose classes are parallel to rounding. O(rounds · E log E).
+template <class = void>
+double drawing_precision(const std::vector<glm::dvec2>& p, const std::vector<std::array<std::uint32_t, 2>>& edges,
+                         double start, double factor, int rounds) {
+  double eps = start;
+  for (int k = 0; k < rounds && eps > 0; ++k) eps = factor * median_offset(p, edges, drawing_classes(p, edges, eps));
+  return eps;
 }
 
 }  // namespace cellforge::detail::tidy
