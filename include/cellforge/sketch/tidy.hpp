@@ -190,59 +190,83 @@ detail::if_satisfied_t<LineDrawing<D>, detail::tidy_result_for, D> tidy_drawing(
     }
   }
   // One constraint per line of a class of two or more: its normal component along the class's
-  // normal is zero. The class direction: the length-weighted mean of the doubled angles.
-  std::vector<std::pair<std::uint32_t, glm::dvec2>> rows;  // (edge, class normal)
-  for (const auto& c : classes) {
-    if (c.size() < 2) continue;
-    ++r.classes;
-    double sx = 0, sy = 0;
-    for (const auto e : c) {
-      const glm::dvec2 v = p[r.drawing.edges[e][1]] - p[r.drawing.edges[e][0]];
-      const double t = 2 * std::atan2(v.y, v.x), len = glm::length(v);
-      sx += len * std::cos(t), sy += len * std::sin(t);
+  // normal is zero. The class direction: the length-weighted mean of the doubled angles. Classes
+  // from a precision may be inconsistent (lines of two near directions taken as one, which only a
+  // collapse can meet): the line at the junction that moves most that is farthest off its class
+  // leaves it, and the correction is solved again, at most 16 times.
+  Eigen::VectorXd delta;
+  for (int attempt = 0;; ++attempt) {
+    std::vector<std::pair<std::uint32_t, glm::dvec2>> rows;  // (edge, class normal)
+    std::vector<std::size_t> row_class;
+    r.classes = r.changed_lines = 0;
+    for (std::size_t ci = 0; ci < classes.size(); ++ci) {
+      const auto& c = classes[ci];
+      if (c.size() < 2) continue;
+      ++r.classes;
+      double sx = 0, sy = 0;
+      for (const auto e : c) {
+        const glm::dvec2 v = p[r.drawing.edges[e][1]] - p[r.drawing.edges[e][0]];
+        const double t = 2 * std::atan2(v.y, v.x), len = glm::length(v);
+        sx += len * std::cos(t), sy += len * std::sin(t);
+      }
+      const double t = 0.5 * std::atan2(sy, sx);
+      const glm::dvec2 normal{-std::sin(t), std::cos(t)};
+      for (const auto e : c) {
+        rows.push_back({e, normal});
+        row_class.push_back(ci);
+        const glm::dvec2 v = p[r.drawing.edges[e][1]] - p[r.drawing.edges[e][0]];
+        if (std::abs(glm::dot(normal, v)) > 1e-14 * size) ++r.changed_lines;
+      }
     }
-    const double t = 0.5 * std::atan2(sy, sx);
-    const glm::dvec2 normal{-std::sin(t), std::cos(t)};
-    for (const auto e : c) {
-      rows.push_back({e, normal});
-      const glm::dvec2 v = p[r.drawing.edges[e][1]] - p[r.drawing.edges[e][0]];
-      if (std::abs(glm::dot(normal, v)) > 1e-14 * size) ++r.changed_lines;
+    r.parallel_lines = rows.size();
+    if (r.changed_lines == 0) {
+      r.largest_move = r.rms_move = 0;
+      r.milliseconds = clock.ms();
+      return r;
     }
-  }
-  r.parallel_lines = rows.size();
-  if (r.changed_lines == 0) {
-    r.milliseconds = clock.ms();
-    return r;
-  }
-  // Minimum-norm δ with A (p + δ) = 0, in units of the drawing's size: sparse, four entries a row.
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(4 * rows.size());
-  Eigen::VectorXd rhs(static_cast<Eigen::Index>(rows.size()));
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    const auto [e, n] = rows[k];
-    const auto [a, b] = r.drawing.edges[e];
-    const auto row = static_cast<Eigen::Index>(k);
-    entries.emplace_back(row, 2 * b, n.x), entries.emplace_back(row, 2 * b + 1, n.y);
-    entries.emplace_back(row, 2 * a, -n.x), entries.emplace_back(row, 2 * a + 1, -n.y);
-    rhs(row) = -glm::dot(n, p[b] - p[a]) / size;
-  }
-  Eigen::SparseMatrix<double> A(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(2 * nv));
-  A.setFromTriplets(entries.begin(), entries.end());
-  bool ok = false;
-  const Eigen::VectorXd delta = detail::tidy::min_norm(A, rhs, ok);
-  double sum = 0;
-  for (std::size_t i = 0; i < nv; ++i) {
-    const double m =
-        std::hypot(delta(static_cast<Eigen::Index>(2 * i)), delta(static_cast<Eigen::Index>(2 * i + 1)));
-    r.largest_move = std::max(r.largest_move, m), sum += m * m;
-  }
-  r.rms_move = std::sqrt(sum / static_cast<double>(nv));
-  if (!ok || !(r.largest_move <= options.max_move)) {
-    r.diagnostics.push_back(
-        cellforge::detail::cat("tidy_drawing: making the lines parallel would move a junction by ",
-                               std::to_string(r.largest_move), " of the drawing's size: left as drawn"));
-    r.milliseconds = clock.ms();
-    return r;
+    // Minimum-norm δ with A (p + δ) = 0, in units of the drawing's size: sparse, four entries a row.
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(4 * rows.size());
+    Eigen::VectorXd rhs(static_cast<Eigen::Index>(rows.size()));
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const auto [e, n] = rows[k];
+      const auto [a, b] = r.drawing.edges[e];
+      const auto row = static_cast<Eigen::Index>(k);
+      entries.emplace_back(row, 2 * b, n.x), entries.emplace_back(row, 2 * b + 1, n.y);
+      entries.emplace_back(row, 2 * a, -n.x), entries.emplace_back(row, 2 * a + 1, -n.y);
+      rhs(row) = -glm::dot(n, p[b] - p[a]) / size;
+    }
+    Eigen::SparseMatrix<double> A(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(2 * nv));
+    A.setFromTriplets(entries.begin(), entries.end());
+    bool ok = false;
+    delta = detail::tidy::min_norm(A, rhs, ok);
+    double sum = 0;
+    std::size_t worst = 0;
+    r.largest_move = 0;
+    for (std::size_t i = 0; i < nv; ++i) {
+      const double m =
+          std::hypot(delta(static_cast<Eigen::Index>(2 * i)), delta(static_cast<Eigen::Index>(2 * i + 1)));
+      if (m > r.largest_move) r.largest_move = m, worst = i;
+      sum += m * m;
+    }
+    r.rms_move = std::sqrt(sum / static_cast<double>(nv));
+    if (ok && r.largest_move <= options.max_move) break;
+    std::size_t drop = rows.size();
+    double farthest = -1;
+    for (std::size_t k = 0; k < rows.size() && options.precision > 0 && ok && attempt < 16; ++k) {
+      const auto [a, b] = r.drawing.edges[rows[k].first];
+      const double off = std::abs(glm::dot(rows[k].second, p[b] - p[a]));
+      if ((a == worst || b == worst) && off > farthest) farthest = off, drop = k;
+    }
+    if (drop == rows.size()) {
+      r.diagnostics.push_back(
+          cellforge::detail::cat("tidy_drawing: making the lines parallel would move a junction by ",
+                                 std::to_string(r.largest_move), " of the drawing's size: left as drawn"));
+      r.milliseconds = clock.ms();
+      return r;
+    }
+    auto& c = classes[row_class[drop]];
+    c.erase(std::find(c.begin(), c.end(), rows[drop].first));
   }
   for (std::size_t i = 0; i < nv; ++i)
     r.drawing.points[i] =

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -915,17 +916,21 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_from(const D& drawing, co
   return r;
 }
 
-/// The faces of an inexact drawing found on it tidied first: tidy_drawing with its classes from
-/// a precision (the junctions' largest slip) tried from 2.5e-4 to 4e-2 of the size in steps of
-/// 1.5 (a step whose classes are the last step's is skipped), so that lines parallel in space
-/// are exactly parallel and the face finder tells coplanar faces (seams a wall must meet). Of
-/// the answers that pass their check and differ from `as_drawn`, the one found over the most
-/// steps (ties: the finer precision), and its precision. No loops when there is none; a note
-/// names the precision. O(steps · (E log E + sparse LDLᵀ + find_faces)).
+/// The faces of an inexact drawing found on it tidied first (tidy_drawing with its classes from a
+/// precision, so that lines parallel in space are exactly parallel and the face finder tells
+/// coplanar faces: seams a wall must meet), and the precision. The drawing's precision is read
+/// from a ladder from 2.5e-4 to 4e-2 of the size in steps of 1.5: the largest step whose classes'
+/// median offset (sketch/tidy_classes.hpp) is at least 1 / 2.5 of it (a uniform slip's median
+/// offset across its class is about 0.4 of the largest). The faces found there, or else at the
+/// next two finer classes of the ladder (fewer lines merged), or the next coarser, when they
+/// pass their check and differ from `as_drawn`. No loops when there is none or no step is
+/// self-consistent (no parallel structure); a note names the precision.
+/// O(steps · E log E + 4 (sparse LDLᵀ + find_faces)).
 template <LineDrawing D>
-std::pair<face_finder_result, double> faces_tidied_first(const D& drawing, const faces::drawing_graph& g, const drawing_options& options,
-                                      const std::vector<std::vector<std::uint32_t>>& as_drawn,
-                                      std::vector<std::string>& notes) {
+std::pair<face_finder_result, double> faces_tidied_first(const D& drawing, const faces::drawing_graph& g,
+                                                         const drawing_options& options,
+                                                         const std::vector<std::vector<std::uint32_t>>& as_drawn,
+                                                         std::vector<std::string>& notes) {
   std::pair<face_finder_result, double> none;
   if (g.num_junctions() < 3) return none;
   glm::dvec2 lo = g.p[0], hi = g.p[0];
@@ -936,54 +941,38 @@ std::pair<face_finder_result, double> faces_tidied_first(const D& drawing, const
   for (std::size_t i = 0; i < unit.size(); ++i) unit[i] = g.p[i] / size;
   std::vector<std::array<std::uint32_t, 2>> lines(g.num_half_edges() / 2);
   for (std::size_t e = 0; e < lines.size(); ++e) lines[e] = {g.head[2 * e + 1], g.head[2 * e]};
-  const auto skip = canonical_loops(as_drawn);
-  struct answer {
-    face_finder_result faces;
-    std::multiset<std::vector<std::uint32_t>> loops;
-    std::size_t steps = 0;
-    double precision = 0, move = 0;
-    std::size_t classes = 0;
-  };
-  std::vector<answer> answers;
-  std::vector<std::vector<std::uint32_t>> last;
-  std::size_t last_answer = answers.max_size();  // the answer of the last step's classes, if any
+  // The ladder's distinct classes (the first precision of each) and the self-consistent step.
+  std::vector<std::pair<double, std::vector<std::vector<std::uint32_t>>>> steps;
+  std::size_t consistent = steps.max_size();
   for (double precision = 2.5e-4; precision <= 0.04; precision *= 1.5) {
     std::vector<std::vector<std::uint32_t>> classes = tidy::drawing_classes(unit, lines, precision);
+    if (classes.empty()) continue;
+    const bool self_consistent = 2.5 * tidy::median_offset(unit, lines, classes) >= precision;
     for (auto& c : classes) std::sort(c.begin(), c.end());
     std::sort(classes.begin(), classes.end());
-    if (classes.empty()) continue;
-    if (classes == last) {
-      if (last_answer < answers.size()) ++answers[last_answer].steps;
-      continue;
-    }
-    last = std::move(classes);
-    last_answer = answers.max_size();
+    if (steps.empty() || classes != steps.back().second) steps.push_back({precision, std::move(classes)});
+    if (self_consistent) consistent = steps.size() - 1;
+  }
+  if (consistent == steps.max_size()) return none;
+  const auto skip = canonical_loops(as_drawn);
+  face_finder_options fo = options.faces;
+  fo.alternatives_when_flagged = false;  // only an answer that passes is used
+  for (const std::size_t k : {consistent, consistent - 1, consistent - 2, consistent + 1}) {
+    if (k >= steps.size()) continue;  // consistent − 1 wraps to max when consistent is 0
     tidy_options o = options.tidying;
-    o.precision = precision;
-    o.max_move = 3 * precision;
+    o.precision = steps[k].first;
+    o.max_move = 3 * o.precision;
     const auto t = tidy_drawing(drawing, o);
     if (!t.applied) continue;
-    face_finder_result f = find_faces(t.drawing, options.faces);
-    if (f.flagged || !f.complete) continue;
-    auto loops = canonical_loops(f.loops);
-    if (loops == skip) continue;
-    std::size_t k = 0;
-    while (k < answers.size() && answers[k].loops != loops) ++k;
-    if (k == answers.size())
-      answers.push_back({std::move(f), std::move(loops), 0, precision, t.largest_move, t.classes});
-    ++answers[k].steps;
-    last_answer = k;
+    face_finder_result f = find_faces(t.drawing, fo);
+    if (f.flagged || !f.complete || canonical_loops(f.loops) == skip) continue;
+    notes.push_back(cellforge::detail::cat(
+        "faces found on the drawing tidied first (", std::to_string(t.classes), " classes at a precision of ",
+        std::to_string(o.precision), " of its size, junctions moved by at most ", std::to_string(t.largest_move),
+        "): ", std::to_string(f.loops.size()), " loops"));
+    return {std::move(f), o.precision};
   }
-  if (answers.empty()) return none;
-  std::size_t best = 0;
-  for (std::size_t k = 1; k < answers.size(); ++k)
-    if (answers[k].steps > answers[best].steps) best = k;
-  const answer& a = answers[best];
-  notes.push_back(cellforge::detail::cat(
-      "faces found on the drawing tidied first (", std::to_string(a.classes), " classes at a precision of ",
-      std::to_string(a.precision), " of its size, over ", std::to_string(a.steps), " steps; junctions moved by at most ",
-      std::to_string(a.move), "): ", std::to_string(a.faces.loops.size()), " loops"));
-  return {std::move(answers[best].faces), a.precision};
+  return none;
 }
 
 /// drawing_to_cells on the drawing's own point types, into R: from the faces as drawn; for an
