@@ -5,7 +5,9 @@
 /// faces" and §"Inflation", on top of seed 000's wireframe pipeline): faces of the drawing
 /// (sketch/face_finder.hpp) → their loops grouped into faces with holes → inflation to 3D
 /// (sketch/inflation.hpp) → a 3D wireframe → wireframe_to_cells. Every stage's result comes
-/// back, and the faces found in 2D are checked against the faces the 3D pipeline recovers.
+/// back, and the faces found in 2D are checked against the faces the 3D pipeline recovers. An
+/// inexact drawing whose answer is flagged is tried again from faces found on it tidied first
+/// (tidy_drawing with classes from its own precision; docs/sketch.md "Tidying").
 
 #include <algorithm>
 #include <cmath>
