@@ -138,7 +138,8 @@ TEST_CASE("tidy_to_solid: bad input is refused, a drawing too far from a solid i
   // Classes from the drawing's precision (0.2 % jitter): the three axes, junctions moved within it.
   cellforge::tidy_options by_precision;
   by_precision.precision = 0.002;
-  const auto q = cellforge::tidy_drawing(cellforge::samples::jitter_drawing(s.drawing, 0.002, 5), by_precision);
+  const auto q =
+      cellforge::tidy_drawing(cellforge::samples::jitter_drawing(s.drawing, 0.002, 5), by_precision);
   REQUIRE(q.applied);
   CHECK(q.classes == 3);
   CHECK(q.parallel_lines == 12);

@@ -166,7 +166,8 @@ detail::if_satisfied_t<LineDrawing<D>, detail::tidy_result_for, D> tidy_drawing(
     std::vector<std::array<std::uint32_t, 2>> lines;
     for (std::size_t i = 0; i < nv; ++i) unit[i] = p[i] / size;
     for (const auto& [a, b] : r.drawing.edges)  // a malformed line: zero length, no class
-      lines.push_back(a < nv && b < nv ? std::array<std::uint32_t, 2>{a, b} : std::array<std::uint32_t, 2>{0, 0});
+      lines.push_back(a < nv && b < nv ? std::array<std::uint32_t, 2>{a, b}
+                                       : std::array<std::uint32_t, 2>{0, 0});
     classes = detail::tidy::drawing_classes(unit, lines, options.precision);
   } else {
     const double tol = options.parallel_tolerance_degrees * std::numbers::pi / 180.0;

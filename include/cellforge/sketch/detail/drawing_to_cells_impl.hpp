@@ -927,10 +927,9 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_from(const D& drawing, co
 /// self-consistent (no parallel structure); a note names the precision.
 /// O(steps · E log E + 4 (sparse LDLᵀ + find_faces)).
 template <LineDrawing D>
-std::pair<face_finder_result, double> faces_tidied_first(const D& drawing, const faces::drawing_graph& g,
-                                                         const drawing_options& options,
-                                                         const std::vector<std::vector<std::uint32_t>>& as_drawn,
-                                                         std::vector<std::string>& notes) {
+std::pair<face_finder_result, double> faces_tidied_first(
+    const D& drawing, const faces::drawing_graph& g, const drawing_options& options,
+    const std::vector<std::vector<std::uint32_t>>& as_drawn, std::vector<std::string>& notes) {
   std::pair<face_finder_result, double> none;
   if (g.num_junctions() < 3) return none;
   glm::dvec2 lo = g.p[0], hi = g.p[0];
@@ -968,8 +967,8 @@ std::pair<face_finder_result, double> faces_tidied_first(const D& drawing, const
     if (f.flagged || !f.complete || canonical_loops(f.loops) == skip) continue;
     notes.push_back(cellforge::detail::cat(
         "faces found on the drawing tidied first (", std::to_string(t.classes), " classes at a precision of ",
-        std::to_string(o.precision), " of its size, junctions moved by at most ", std::to_string(t.largest_move),
-        "): ", std::to_string(f.loops.size()), " loops"));
+        std::to_string(o.precision), " of its size, junctions moved by at most ",
+        std::to_string(t.largest_move), "): ", std::to_string(f.loops.size()), " loops"));
     return {std::move(f), o.precision};
   }
   return none;

@@ -2,7 +2,8 @@
 #pragma once
 /// \file
 /// tidy_to_solid's parallel classes (sketch/tidy.hpp, docs/sketch.md "Tidying"): lines parallel
-/// in 3D in a first reading, and the corners the faces turn (where lines may go straight on).
+/// in 3D in a first reading, and the corners the faces turn (where lines may go straight on);
+/// tidy_drawing's classes from the drawing's precision, and the offsets that measure it.
 
 #include <algorithm>
 #include <array>
@@ -241,8 +242,9 @@ std::vector<line_slip> line_slips(const std::vector<glm::dvec2>& p,
     const glm::dvec2 d = p[edges[e][1]] - p[edges[e][0]];
     out[e].length = glm::length(d);
     out[e].angle = line_angle(d);
-    out[e].slip = out[e].length > 2 * precision ? std::min(std::numbers::pi / 2, std::asin(2 * precision / out[e].length))
-                                                : std::numbers::pi / 2;
+    out[e].slip = out[e].length > 2 * precision
+                      ? std::min(std::numbers::pi / 2, std::asin(2 * precision / out[e].length))
+                      : std::numbers::pi / 2;
   }
   return out;
 }
@@ -252,12 +254,12 @@ std::vector<line_slip> line_slips(const std::vector<glm::dvec2>& p,
 /// line's slip (an arc of ± 2 precision / length about its angle), so classes never chain as a
 /// fixed angle does. The fewest such arcs' common points (greedy stabbing of the arcs cut open
 /// where no arc covers, or at the widest gap), then every line moved to the class whose
-/// length²-weighted mean direction is nearest in units of its slip, three rounds. Classes of two
-/// lines or more. O(E log E).
+/// length²-weighted mean direction is nearest in units of its slip, three rounds; two lines of a
+/// class at one junction only going straight on. Classes of two lines or more. O(E log E + offers).
 template <class = void>
-std::vector<std::vector<std::uint32_t>> drawing_classes(const std::vector<glm::dvec2>& p,
-                                                        const std::vector<std::array<std::uint32_t, 2>>& edges,
-                                                        double precision) {
+std::vector<std::vector<std::uint32_t>> drawing_classes(
+    const std::vector<glm::dvec2>& p, const std::vector<std::array<std::uint32_t, 2>>& edges,
+    double precision) {
   constexpr double pi = std::numbers::pi;
   const std::vector<line_slip> s = line_slips(p, edges, precision);
   std::vector<std::uint32_t> lines;
@@ -354,24 +356,15 @@ double median_offset(const std::vector<glm::dvec2>& p, const std::vector<std::ar
   for (const auto& c : classes) {
     if (c.size() < 3) continue;
     double sx = 0, sy = 0;
-    for (const auto e : c) sx += s[e].length * std::cos(2 * s[e].angle), sy += s[e].length * std::sin(2 * s[e].angle);
+    for (const auto e : c)
+      sx += s[e].length * std::cos(2 * s[e].angle), sy += s[e].length * std::sin(2 * s[e].angle);
     const double mean = 0.5 * std::atan2(sy, sx);
     for (const auto e : c) offsets.push_back(std::abs(std::sin(s[e].angle - mean)) * s[e].length);
   }
   if (offsets.empty()) return 0;
-  std::nth_element(offsets.begin(), offsets.begin() + static_cast<std::ptrdiff_t>(offsets.size() / 2), offsets.end());
+  std::nth_element(offsets.begin(), offsets.begin() + static_cast<std::ptrdiff_t>(offsets.size() / 2),
+                   offsets.end());
   return offsets[offsets.size() / 2];
-}
-
-/// The precision a drawing's junctions are placed to, read from the drawing alone (in the points'
-/// unit): from `start`, classes by drawing_classes, then `factor` × their median_offset, `rounds`
-/// times. Zero for a drawing whose classes are parallel to rounding. O(rounds · E log E).
-template <class = void>
-double drawing_precision(const std::vector<glm::dvec2>& p, const std::vector<std::array<std::uint32_t, 2>>& edges,
-                         double start, double factor, int rounds) {
-  double eps = start;
-  for (int k = 0; k < rounds && eps > 0; ++k) eps = factor * median_offset(p, edges, drawing_classes(p, edges, eps));
-  return eps;
 }
 
 }  // namespace cellforge::detail::tidy
