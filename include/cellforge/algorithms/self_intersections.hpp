@@ -75,6 +75,10 @@ struct self_intersection_result : stage_report {
   /// Of pairs_tested, those sharing a vertex whose star projects one-to-one on a coordinate
   /// plane: decided without geometry (they meet only in what they share).
   std::size_t pairs_by_topology = 0;
+  /// self_intersections_by_pieces (piece_self_intersections.hpp) only: the pieces, the groups of
+  /// pieces certified embedded, and the pairs of pieces whose boxes overlap that a certified group
+  /// holds or that a plane separates (neither tested).
+  std::size_t pieces = 0, certified_groups = 0, certified_piece_pairs = 0, separated_piece_pairs = 0;
   std::size_t degenerate_triangles = 0;       ///< zero-area triangles (not tested)
   std::vector<face_handle> degenerate_faces;  ///< the first max_reported faces holding one
   [[deprecated("use milliseconds; removed in 0.8")]] double time_ms = 0;  ///< filled as milliseconds

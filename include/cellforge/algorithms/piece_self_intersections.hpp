@@ -1,0 +1,692 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+/// \file
+/// The exact self-intersection check of algorithms/self_intersections.hpp for a mesh whose faces
+/// come in pieces (a tube mesh's bands between rings, its junctions): the same answer, found by
+/// certifying each piece with its neighbours embedded as a whole (a star-shaped certificate, below)
+/// and testing triangle pairs only between pieces that no certified group holds together. The
+/// certificate, its proof and its cost: docs/tubes.md, "The check by pieces".
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "cellforge/algorithms/detail/triangle_pairs.hpp"
+#include "cellforge/algorithms/self_intersections.hpp"
+#include "cellforge/core/detail/deprecation.hpp"
+#include "cellforge/core/detail/span_of.hpp"
+#include "cellforge/core/detail/stopwatch.hpp"
+#include "cellforge/core/error.hpp"
+#include "cellforge/core/point_traits.hpp"
+#include "cellforge/core/predicates.hpp"
+#include "cellforge/halfedge/handles.hpp"
+#include "cellforge/halfedge/surface_mesh.hpp"
+
+namespace cellforge {
+
+/// Finds the pairs of faces of m whose triangles intersect, exactly, with the same answer as
+/// self_intersections(m, options) (pairs, counts, degenerate triangles) whatever the labelling;
+/// `face_piece` (per face index, ids below faces_size()) only decides how much work that takes.
+/// Each piece with its neighbours (the pieces across its edges) is certified embedded when the
+/// group, its boundary loops closed by cones, is a closed oriented surface that every triangle
+/// of sees facing away from one point and that covers one direction from it once; pairs of
+/// pieces that a certified group holds are not tested. O(group sizes + the pairs of pieces
+/// whose boxes overlap + the triangle pairs of the uncertified ones), bounded by the work budget.
+template <Point3 P>
+self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
+                                                      std::span<const std::uint32_t> face_piece,
+                                                      const self_intersection_options& options = {});
+
+namespace detail::piece_check {
+
+using vec = glm::dvec3;
+inline constexpr std::uint32_t none = 0xFFFFFFFFu;
+
+/// One triangle of a face's triangulation (vertex ids as the mesh numbers them).
+struct triangle {
+  std::array<std::uint32_t, 3> v;
+  std::uint32_t face;
+};
+
+/// True when `tris` triangulate the polygon `ids` as a disc: n - 2 triangles, distinct corners,
+/// every polygon edge in one triangle in its own direction, every other edge in exactly two, once
+/// each way. Then the face's triangles glue into an oriented disc. O(n²).
+template <class = void>
+bool disc_triangulation(std::span<const std::uint32_t> ids, std::span<const triangle> tris) {
+  const std::size_t n = ids.size();
+  if (n < 3 || tris.size() != n - 2) return false;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j)
+      if (ids[i] == ids[j]) return false;
+  const auto index = [&](std::uint32_t x) {
+    return static_cast<std::size_t>(std::find(ids.begin(), ids.end(), x) - ids.begin());
+  };
+  std::size_t on_boundary = 0;
+  for (const triangle& t : tris)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t a = t.v[k], b = t.v[(k + 1) % 3];
+      const std::size_t ia = index(a), ib = index(b);
+      if (ia == n || ib == n) return false;
+      std::size_t same = 0, reverse = 0;
+      for (const triangle& u : tris)
+        for (std::size_t l = 0; l < 3; ++l) {
+          same += u.v[l] == a && u.v[(l + 1) % 3] == b ? 1 : 0;
+          reverse += u.v[l] == b && u.v[(l + 1) % 3] == a ? 1 : 0;
+        }
+      if (same != 1) return false;
+      if (ib == (ia + 1) % n) {
+        if (reverse != 0) return false;
+        ++on_boundary;
+      } else if (reverse != 1) {
+        return false;
+      }
+    }
+  return on_boundary == n;
+}
+
+/// Points of segments s and t nearest each other (rounded; a heuristic's input). O(1).
+template <class = void>
+std::array<vec, 2> closest_points(const std::array<vec, 2>& s, const std::array<vec, 2>& t) {
+  const vec d1 = s[1] - s[0], d2 = t[1] - t[0], r = s[0] - t[0];
+  const double a = glm::dot(d1, d1), e = glm::dot(d2, d2), f = glm::dot(d2, r);
+  double u = 0, v = 0;
+  if (!(a > 0) && !(e > 0)) return {s[0], t[0]};
+  if (!(a > 0)) {
+    v = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = glm::dot(d1, r);
+    if (!(e > 0)) {
+      u = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = glm::dot(d1, d2), denom = a * e - b * b;
+      u = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      v = (b * u + f) / e;
+      if (v < 0) {
+        v = 0, u = std::clamp(-c / a, 0.0, 1.0);
+      } else if (v > 1) {
+        v = 1, u = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  return {s[0] + u * d1, t[0] + v * d2};
+}
+
+/// The engine: the mesh's triangles grouped by piece, the pieces' neighbours and boundary
+/// half-edges, and the certificates.
+template <Point3 P>
+struct engine {
+  const surface_mesh<P>& m;
+  std::span<const std::uint32_t> face_piece;
+  std::vector<vec> pos;
+  std::size_t pieces = 0;
+  std::vector<triangle> tris;              // by piece
+  std::vector<std::uint32_t> piece_first;  // tris of piece p: [piece_first[p], piece_first[p + 1])
+  std::vector<std::uint8_t> piece_ok;      // every face a disc triangulation, at least one triangle
+  // Per piece: its half-edges whose twin lies in another piece (or none), with that piece.
+  std::vector<std::uint32_t> border_first;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> border;  // (half-edge, other piece or none)
+  std::vector<std::uint32_t> nbr_first, nbr;                    // distinct neighbouring pieces
+  std::vector<vec> nbr_mean;                                    // per neighbour: the mean of the border to it
+  std::vector<std::uint8_t> nbr_held;                           // per neighbour: a certified pair group
+  std::vector<std::array<vec, 2>> centres;                      // candidate centres per piece
+  std::vector<vec> mean;                                        // per piece, the mean of its corners
+  std::vector<std::uint8_t> centre_count;
+  std::vector<std::uint32_t> stamp_piece, stamp_half;
+  std::uint32_t attempt = 0;
+  std::vector<std::uint32_t> members, loop_start;
+  std::vector<std::uint32_t> bd;
+  std::vector<std::array<vec, 3>> caps;
+
+  engine(const surface_mesh<P>& mesh, std::span<const std::uint32_t> labels) : m(mesh), face_piece(labels) {}
+
+  /// The next boundary half-edge of the group after h (stamp_piece marks the group), turning
+  /// about h's head through the group's faces; none after 256 steps.
+  std::uint32_t successor(std::uint32_t h) const {
+    halfedge_handle c = m.next(halfedge_handle(h));
+    for (int step = 0; step < 256; ++step) {
+      const halfedge_handle t = halfedge_mesh::twin(c);
+      const face_handle f = m.face(t);
+      if (!f.is_valid() || stamp_piece[face_piece[f.idx()]] != attempt) return c.idx();
+      c = m.next(t);
+    }
+    return none;
+  }
+
+  /// True when a plane has every corner of piece a strictly on one side and every corner of
+  /// piece b strictly on the other (exact orient3d against three points of it): the plane through
+  /// the middle of their means, across the line between them. O(size of a and b).
+  /// A piece's axis: the segment between the means of its two borders (a tube's band), else its
+  /// mean (a point).
+  std::array<vec, 2> axis(std::uint32_t p) const {
+    if (nbr_first[p + 1] - nbr_first[p] == 2) return {nbr_mean[nbr_first[p]], nbr_mean[nbr_first[p] + 1]};
+    return {mean[p], mean[p]};
+  }
+
+  bool separated(std::uint32_t a, std::uint32_t b) const {
+    // Across the closest points of their axes (two tubes that pass each other), then between
+    // their means.
+    const auto [pa, pb] = closest_points(axis(a), axis(b));
+    if (separated_by(a, b, 0.5 * (pa + pb), pb - pa)) return true;
+    if (separated_by(a, b, 0.5 * (mean[a] + mean[b]), mean[b] - mean[a])) return true;
+    // Two pieces on either side of a third (a tube's bands two apart): across that one's axis.
+    for (std::uint32_t k = nbr_first[a]; k < nbr_first[a + 1]; ++k) {
+      const std::uint32_t c = nbr[k];
+      for (std::uint32_t j = nbr_first[c]; j < nbr_first[c + 1]; ++j)
+        if (nbr[j] == b) {
+          std::uint32_t i = nbr_first[c];
+          while (nbr[i] != a) ++i;
+          return separated_by(a, b, mean[c], nbr_mean[j] - nbr_mean[i]);
+        }
+    }
+    return false;
+  }
+
+  /// True when the plane through o across d has every corner of piece a strictly on one side and
+  /// every corner of piece b strictly on the other (exact orient3d against three points of it).
+  bool separated_by(std::uint32_t a, std::uint32_t b, const vec& o, const vec& d) const {
+    if (!(d.x * d.x + d.y * d.y + d.z * d.z > 0)) return false;
+    const vec u = cellforge::detail::any_perpendicular(d);
+    const vec w(d.y * u.z - d.z * u.y, d.z * u.x - d.x * u.z, d.x * u.y - d.y * u.x);
+    const auto plane = cellforge::detail::prepare_orient3d(o, o + u, o + w);
+    const vec q = o + w;
+    const auto side_of = [&](std::uint32_t p, int want) {
+      for (std::uint32_t t = piece_first[p]; t < piece_first[p + 1]; ++t)
+        for (const std::uint32_t v : tris[t].v) {
+          double value = 0;
+          int o3 = cellforge::detail::orient3d_filter(plane, pos[v], value);
+          if (o3 == 0) o3 = cellforge::detail::orient3d_exact(o, o + u, q, pos[v]);
+          if (o3 == 0 || (want != 0 && o3 != want)) return 0;
+          want = o3;
+        }
+      return want;
+    };
+    const int sa = side_of(a, 0);
+    return sa != 0 && side_of(b, -sa) == -sa;
+  }
+
+  /// Whether direction g - c lies in the closed cone from c over triangle (x, y, z), given that
+  /// orient3d(x, y, z, c) = s (the cone's inside has sign -s against its three sides). O(1).
+  static bool covers(const vec& c, const vec& g, const vec& x, const vec& y, const vec& z, int s) noexcept {
+    return orient3d(c, x, y, g) != s && orient3d(c, y, z, g) != s && orient3d(c, z, x, g) != s;
+  }
+
+  /// Certifies the group of pieces `members` about centre c: true when every triangle of the
+  /// group, and of the cones (apex: the loop's mean) closing each boundary loop, has c strictly on
+  /// one same side, and the direction through the middle of the first member's first triangle
+  /// lies in no other triangle's closed cone. Then the group is embedded (docs/tubes.md).
+  bool certify(const vec& c) {
+    ++attempt;
+    if (attempt == 0 || attempt >= 0x7FFFFFFFu) return false;
+    const std::uint32_t r = members[0];
+    for (const std::uint32_t x : members) {
+      if (piece_ok[x] == 0) return false;
+      stamp_piece[x] = attempt;
+    }
+    int s = 0;
+    for (const std::uint32_t x : members)
+      for (std::uint32_t t = piece_first[x]; t < piece_first[x + 1]; ++t) {
+        const triangle& q = tris[t];
+        const int o = orient3d(pos[q.v[0]], pos[q.v[1]], pos[q.v[2]], c);
+        if (o == 0 || (s != 0 && o != s)) return false;
+        s = o;
+      }
+    // The boundary: half-edges of the group whose twin is outside it; traced into loops.
+    bd.clear();
+    const std::uint32_t in_bd = 2 * attempt, seen = 2 * attempt + 1;
+    for (const std::uint32_t x : members)
+      for (std::uint32_t k = border_first[x]; k < border_first[x + 1]; ++k) {
+        const auto [h, other] = border[k];
+        if (other != none && stamp_piece[other] == attempt) continue;
+        bd.push_back(h);
+        stamp_half[h] = in_bd;
+      }
+    caps.clear();
+    for (const std::uint32_t h0 : bd) {
+      if (stamp_half[h0] == seen) continue;
+      const std::size_t first = caps.size();
+      vec sum(0.0);
+      std::uint32_t h = h0;
+      do {
+        if (h == none || stamp_half[h] != in_bd) return false;  // not one loop through each
+        stamp_half[h] = seen;
+        const vec& a = pos[m.tail(halfedge_handle(h)).idx()];
+        const vec& b = pos[m.head(halfedge_handle(h)).idx()];
+        caps.push_back({vec(0.0), b, a});  // (apex, head, tail): reverses the group's edge
+        sum += a;
+        h = successor(h);
+      } while (h != h0);
+      const vec apex = sum / static_cast<double>(caps.size() - first);
+      for (std::size_t k = first; k < caps.size(); ++k) {
+        caps[k][0] = apex;
+        if (orient3d(caps[k][0], caps[k][1], caps[k][2], c) != s) return false;
+      }
+    }
+    // The witness direction: through the middle of r's first triangle, in its open cone.
+    const triangle& t0 = tris[piece_first[r]];
+    const vec &x0 = pos[t0.v[0]], &y0 = pos[t0.v[1]], &z0 = pos[t0.v[2]];
+    const vec g = (x0 + y0 + z0) / 3.0;
+    if (orient3d(c, x0, y0, g) != -s || orient3d(c, y0, z0, g) != -s || orient3d(c, z0, x0, g) != -s)
+      return false;
+    for (const std::uint32_t x : members)
+      for (std::uint32_t t = piece_first[x]; t < piece_first[x + 1]; ++t) {
+        if (x == r && t == piece_first[r]) continue;
+        const triangle& q = tris[t];
+        if (covers(c, g, pos[q.v[0]], pos[q.v[1]], pos[q.v[2]], s)) return false;
+      }
+    for (const std::array<vec, 3>& q : caps)
+      if (covers(c, g, q[0], q[1], q[2], s)) return false;
+    return true;
+  }
+};
+
+/// The point nearest (least squares) to the axes of piece p's boundary loops with more than two
+/// loops or two loops at an angle (a junction: its rings' axes meet at its centre); false when
+/// they do not fix one. `loops`: per loop its mean point and its Newell normal. O(loops).
+template <class = void>
+bool axes_meet(std::span<const std::array<vec, 2>> loops, vec& out) {
+  if (loops.size() < 2) return false;
+  double a[3][3] = {}, b[3] = {};
+  for (const auto& [q, normal] : loops) {
+    const double l = std::sqrt(normal.x * normal.x + normal.y * normal.y + normal.z * normal.z);
+    if (!(l > 0)) return false;
+    const vec n = normal / l;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        const double mij = (i == j ? 1.0 : 0.0) - n[i] * n[j];
+        a[i][j] += mij;
+        b[i] += mij * q[j];
+      }
+  }
+  const auto det3 = [](const double (&x)[3][3]) {
+    return x[0][0] * (x[1][1] * x[2][2] - x[1][2] * x[2][1]) - x[0][1] * (x[1][0] * x[2][2] - x[1][2] * x[2][0]) +
+           x[0][2] * (x[1][0] * x[2][1] - x[1][1] * x[2][0]);
+  };
+  const double d = det3(a);
+  // Two loops at 30 degrees: the smallest eigenvalue of a is sin²(30)/... well away from 0.
+  if (!(std::fabs(d) > 0.05 * static_cast<double>(loops.size()))) return false;
+  for (int k = 0; k < 3; ++k) {
+    double c[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) c[i][j] = j == k ? b[i] : a[i][j];
+    out[k] = det3(c) / d;
+  }
+  return std::isfinite(out.x) && std::isfinite(out.y) && std::isfinite(out.z);
+}
+
+}  // namespace detail::piece_check
+
+template <Point3 P>
+self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
+                                                      std::span<const std::uint32_t> face_piece,
+                                                      const self_intersection_options& options) {
+  namespace si = detail::self_intersect;
+  namespace pc = detail::piece_check;
+  using pc::none;
+  using vec = glm::dvec3;
+  const detail::stopwatch start;
+  self_intersection_result r;
+  if (face_piece.size() != m.faces_size())
+    throw error(error_category::invalid_input,
+                "self_intersections_by_pieces: face_piece has " + std::to_string(face_piece.size()) +
+                    " labels for " + std::to_string(m.faces_size()) + " faces");
+  pc::engine<P> e(m, face_piece);
+  e.pos.resize(m.vertices_size());
+  for (std::size_t i = 0; i < e.pos.size(); ++i) e.pos[i] = to_dvec3(m.points()[i]);
+  const std::span<const glm::dvec3> pos = e.pos;
+
+  // Faces by piece (a counting sort), then their triangles in that order.
+  std::size_t pieces = 0;
+  for (const face_handle f : m.faces()) {
+    const std::uint32_t p = face_piece[f.idx()];
+    if (p >= m.faces_size())
+      throw error(error_category::invalid_input,
+                  "self_intersections_by_pieces: a piece id is not below the number of faces");
+    pieces = std::max<std::size_t>(pieces, p + 1);
+  }
+  e.pieces = pieces;
+  std::vector<std::uint32_t> face_first(pieces + 1, 0), faces_in(m.num_faces());
+  for (const face_handle f : m.faces()) ++face_first[face_piece[f.idx()] + 1];
+  for (std::size_t p = 0; p < pieces; ++p) face_first[p + 1] += face_first[p];
+  {
+    std::vector<std::uint32_t> fill(face_first.begin(), face_first.end() - 1);
+    for (const face_handle f : m.faces()) faces_in[fill[face_piece[f.idx()]]++] = f.idx();
+  }
+  e.piece_first.assign(pieces + 1, 0);
+  e.piece_ok.assign(pieces, 1);
+  e.tris.reserve(m.num_faces() * 2);
+  e.border_first.assign(pieces + 1, 0);
+  e.nbr_first.assign(pieces + 1, 0);
+  e.centres.resize(pieces);
+  e.mean.resize(pieces);
+  e.centre_count.assign(pieces, 0);
+  std::vector<std::uint32_t> ids;
+  std::vector<glm::dvec3> corners;
+  std::vector<std::array<vec, 2>> loops;  // per neighbour of the piece: sum of its border tails, Newell normal
+  std::vector<std::uint32_t> loop_count;
+  for (std::uint32_t p = 0; p < pieces; ++p) {
+    e.piece_first[p] = static_cast<std::uint32_t>(e.tris.size());
+    e.border_first[p] = static_cast<std::uint32_t>(e.border.size());
+    e.nbr_first[p] = static_cast<std::uint32_t>(e.nbr.size());
+    loops.clear();
+    loop_count.clear();
+    vec sum(0.0);
+    std::size_t corners_seen = 0;
+    for (std::uint32_t k = face_first[p]; k < face_first[p + 1]; ++k) {
+      const face_handle f(faces_in[k]);
+      ++r.faces;
+      ids.clear();
+      corners.clear();
+      const halfedge_handle h0 = m.halfedge(f);
+      halfedge_handle h = h0;
+      do {  // the face's corners from its first, and its half-edges to other pieces
+        const std::uint32_t v = m.head(m.prev(h)).idx();
+        ids.push_back(v);
+        corners.push_back(pos[v]);
+        sum += pos[v];
+        ++corners_seen;
+        const face_handle g = m.face(halfedge_mesh::twin(h));
+        const std::uint32_t other = g.is_valid() ? face_piece[g.idx()] : none;
+        if (other != p) {
+          e.border.emplace_back(h.idx(), other);
+          std::size_t at = e.nbr_first[p];
+          while (at < e.nbr.size() && e.nbr[at] != other) ++at;
+          if (at == e.nbr.size()) {
+            e.nbr.push_back(other);
+            loops.push_back({vec(0.0), vec(0.0)});
+            loop_count.push_back(0);
+          }
+          const std::size_t l = at - e.nbr_first[p];
+          const vec &a = pos[m.head(m.prev(h)).idx()], &b = pos[m.head(h).idx()];
+          loops[l][0] += a;
+          loops[l][1] += glm::dvec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+          ++loop_count[l];
+        }
+        h = m.next(h);
+      } while (h != h0);
+      const std::size_t before = e.tris.size();
+      const bool clipped = si::triangulate_polygon(
+          detail::span_of(ids), detail::span_of(corners),
+          [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) { e.tris.push_back({{a, b, c}, f.idx()}); });
+      if (clipped) ++r.ear_clipped_faces;
+      // A convex projected quad is split along a diagonal (a disc); others are verified.
+      const bool known_disc = ids.size() == 3 || (ids.size() == 4 && si::convex_projected_quad(corners));
+      if (!known_disc &&
+          !pc::disc_triangulation(detail::span_of(ids),
+                                  std::span<const pc::triangle>(e.tris.data() + before, e.tris.size() - before)))
+        e.piece_ok[p] = 0;
+    }
+    // Neighbours: the piece "none" (the mesh's own boundary) is no piece.
+    for (std::size_t l = 0; l < loops.size(); ++l) loops[l][0] /= static_cast<double>(loop_count[l]);
+    std::size_t kept = e.nbr_first[p];
+    for (std::size_t k = e.nbr_first[p]; k < e.nbr.size(); ++k)
+      if (e.nbr[k] != none) {
+        e.nbr_mean.push_back(loops[k - e.nbr_first[p]][0]);
+        e.nbr[kept++] = e.nbr[k];
+      }
+    e.nbr.resize(kept);
+    if (e.tris.size() == e.piece_first[p]) e.piece_ok[p] = 0;
+    // Centres to try: the axes' meeting point for a junction-like piece, the corners' mean.
+    std::uint8_t count = 0;
+    vec meet(0.0);
+    const bool axes = pc::axes_meet(std::span<const std::array<vec, 2>>(loops), meet);
+    const vec mean = corners_seen > 0 ? sum / static_cast<double>(corners_seen) : vec(0.0);
+    e.mean[p] = mean;
+    if (axes && loops.size() >= 3) e.centres[p][count++] = meet;
+    e.centres[p][count++] = mean;
+    if (axes && loops.size() < 3) e.centres[p][count++] = meet;
+    e.centre_count[p] = count;
+  }
+#ifdef CF_PIECE_TIME
+  std::fprintf(stderr, "setup %.1f\n", start.ms());
+#endif
+  e.piece_first[pieces] = static_cast<std::uint32_t>(e.tris.size());
+  e.border_first[pieces] = static_cast<std::uint32_t>(e.border.size());
+  e.nbr_first[pieces] = static_cast<std::uint32_t>(e.nbr.size());
+  r.triangles = e.tris.size();
+  r.pieces = pieces;
+  if (e.tris.size() >= 0xFFFFFFFFu)
+    throw error(error_category::invalid_input, "self_intersections_by_pieces: more than 2^32 - 1 triangles");
+  const std::size_t n = e.tris.size();
+
+  // Certificates: one group per piece (itself and its neighbours), tried about its centres.
+  // An inconsistently oriented mesh has no oriented groups: nothing is certified.
+  std::vector<std::uint8_t> certified(pieces, 0), covered(pieces, 0);
+  e.nbr_held.assign(e.nbr.size(), 0);
+  if (m.is_consistently_oriented()) {
+    e.stamp_piece.assign(pieces, 0);
+    e.stamp_half.assign(m.halfedges_size(), 0);
+    // Stars: a piece with its neighbours, for pieces with other than two (a junction, a cap, a
+    // sphere); a tube's band, between two, is certified with each neighbour in turn below.
+    for (std::uint32_t p = 0; p < pieces; ++p) {
+      if (e.piece_ok[p] == 0 || e.nbr_first[p + 1] - e.nbr_first[p] == 2) continue;
+      e.members.assign(1, p);
+      for (std::uint32_t k = e.nbr_first[p]; k < e.nbr_first[p + 1]; ++k) e.members.push_back(e.nbr[k]);
+      for (std::uint8_t k = 0; k < e.centre_count[p] && certified[p] == 0; ++k)
+        certified[p] = e.certify(e.centres[p][k]) ? 1 : 0;
+      // A cap (flat about its own mean) is seen from the middle of the tube it closes.
+      if (certified[p] == 0 && e.nbr_first[p + 1] - e.nbr_first[p] == 1)
+        certified[p] = e.certify(e.mean[e.nbr[e.nbr_first[p]]]) ? 1 : 0;
+#ifdef CF_PIECE_DEBUG
+      std::fprintf(stderr, "STAR deg %u ok %d\n", e.nbr_first[p + 1] - e.nbr_first[p], certified[p]);
+#endif
+      if (certified[p] == 0) continue;
+      ++r.certified_groups;
+      covered[p] = 1;
+      for (std::uint32_t k = e.nbr_first[p]; k < e.nbr_first[p + 1]; ++k) covered[e.nbr[k]] = 1;
+    }
+#ifdef CF_PIECE_TIME
+    std::fprintf(stderr, "stars %.1f\n", start.ms());
+#endif
+    // Pairs of neighbours no star holds: the two about the middle of the border between them.
+    for (std::uint32_t p = 0; p < pieces; ++p)
+      for (std::uint32_t k = e.nbr_first[p]; k < e.nbr_first[p + 1]; ++k) {
+        const std::uint32_t q = e.nbr[k];
+        if (q < p || certified[p] != 0 || certified[q] != 0) continue;
+        e.members.assign({p, q});
+        if (!e.certify(e.nbr_mean[k])) continue;
+        e.nbr_held[k] = 1;
+        for (std::uint32_t j = e.nbr_first[q]; j < e.nbr_first[q + 1]; ++j)
+          if (e.nbr[j] == p) e.nbr_held[j] = 1;
+        covered[p] = covered[q] = 1;
+        ++r.certified_groups;
+      }
+  }
+#ifdef CF_PIECE_TIME
+  std::fprintf(stderr, "pairs %.1f\n", start.ms());
+#endif
+  const auto neighbours = [&](std::uint32_t a, std::uint32_t b) {
+    for (std::uint32_t k = e.nbr_first[a]; k < e.nbr_first[a + 1]; ++k)
+      if (e.nbr[k] == b) return true;
+    return false;
+  };
+  // Pieces a and b (a ≠ b) lie in one certified group: a's star, b's, a common neighbour's, or
+  // the pair's own.
+  const auto held = [&](std::uint32_t a, std::uint32_t b) {
+    for (std::uint32_t k = e.nbr_first[a]; k < e.nbr_first[a + 1]; ++k)
+      if (e.nbr[k] == b && (certified[a] != 0 || certified[b] != 0 || e.nbr_held[k] != 0)) return true;
+    for (std::uint32_t k = e.nbr_first[a]; k < e.nbr_first[a + 1]; ++k) {
+      const std::uint32_t c = e.nbr[k];
+      if (certified[c] != 0 && neighbours(c, b)) return true;
+    }
+    return false;
+  };
+
+  // Boxes and zero-area triangles: per piece, for the pieces the pair tests reach and for every
+  // piece no certified group holds (a certified triangle has area).
+  struct boxed {
+    std::array<double, 6> box;
+    bool degenerate;
+  };
+  std::vector<boxed> tri_box(n);
+  std::vector<std::uint8_t> prepared(pieces, 0);
+  std::vector<std::uint32_t> degenerate_faces;
+  const auto prepare = [&](std::uint32_t p) {
+    if (prepared[p] != 0) return;
+    prepared[p] = 1;
+    for (std::uint32_t t = e.piece_first[p]; t < e.piece_first[p + 1]; ++t) {
+      const pc::triangle& q = e.tris[t];
+      const vec &a = pos[q.v[0]], &b = pos[q.v[1]], &c = pos[q.v[2]];
+      boxed& x = tri_box[t];
+      x.degenerate = covered[p] == 0 && si::degenerate(a, b, c);
+      if (x.degenerate) {
+        ++r.degenerate_triangles;
+        if (degenerate_faces.empty() || degenerate_faces.back() != q.face) degenerate_faces.push_back(q.face);
+      }
+      for (int k = 0; k < 3; ++k) {
+        x.box[static_cast<std::size_t>(k)] = std::min({a[k], b[k], c[k]});
+        x.box[static_cast<std::size_t>(k) + 3] = std::max({a[k], b[k], c[k]});
+      }
+    }
+  };
+  for (std::uint32_t p = 0; p < pieces; ++p)
+    if (covered[p] == 0) prepare(p);
+
+  CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
+  const std::size_t budget = options.max_candidate_pairs != 0
+                                 ? options.max_candidate_pairs
+                                 : options.work_budget.limit(256 * n + (std::size_t{1} << 20));
+  const bool throw_on_budget = options.throw_on_budget;
+  CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
+  const std::size_t limit = budget != 0 ? budget : std::numeric_limits<std::size_t>::max();
+
+  std::vector<std::uint64_t> found;
+  std::size_t compact_at = 1 << 16;
+  std::array<glm::dvec3, 3> pa{}, qa{};
+  const auto test = [&](std::uint32_t a, std::uint32_t b) {
+    const pc::triangle &x = e.tris[a], &y = e.tris[b];
+    if (x.face == y.face) return;
+    const boxed &bx = tri_box[a], &by = tri_box[b];
+    if (bx.degenerate || by.degenerate) return;
+    if ((static_cast<int>(bx.box[0] <= by.box[3]) & static_cast<int>(by.box[0] <= bx.box[3]) &
+         static_cast<int>(bx.box[1] <= by.box[4]) & static_cast<int>(by.box[1] <= bx.box[4]) &
+         static_cast<int>(bx.box[2] <= by.box[5]) & static_cast<int>(by.box[2] <= bx.box[5])) == 0)
+      return;
+    ++r.pairs_tested;
+    for (std::size_t k = 0; k < 3; ++k) pa[k] = pos[x.v[k]], qa[k] = pos[y.v[k]];
+    if (!si::pair_intersects(pa, x.v, qa, y.v)) return;
+    ++r.intersecting_triangle_pairs;
+    const std::uint32_t f = std::min(x.face, y.face), g = std::max(x.face, y.face);
+    found.push_back(static_cast<std::uint64_t>(f) << 32 | g);
+    if (found.size() >= compact_at) {
+      si::compact(found);
+      compact_at = std::max(compact_at, 2 * found.size());
+    }
+  };
+  std::size_t work = 0;
+  bool complete = true;
+  // Pieces no certified group holds: every pair of their own triangles.
+  for (std::uint32_t p = 0; p < pieces && complete; ++p) {
+    if (covered[p] != 0) continue;
+#ifdef CF_PIECE_DEBUG
+    std::fprintf(stderr, "UNCOVERED deg %u tris %u\n", e.nbr_first[p + 1] - e.nbr_first[p], e.piece_first[p + 1] - e.piece_first[p]);
+#endif
+    const std::size_t k = e.piece_first[p + 1] - e.piece_first[p];
+    if (k * (k - 1) / 2 > limit - work) {
+      complete = false;
+      break;
+    }
+    work += k * (k - 1) / 2;
+    for (std::uint32_t a = e.piece_first[p]; a < e.piece_first[p + 1]; ++a)
+      for (std::uint32_t b = a + 1; b < e.piece_first[p + 1]; ++b) test(a, b);
+  }
+  // Pairs of pieces whose boxes overlap and that no certified group holds: every pair of triangles.
+  std::vector<std::array<double, 6>> piece_box(pieces);
+  for (std::uint32_t p = 0; p < pieces; ++p) {
+    std::array<double, 6> b = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                               std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                               -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    for (std::uint32_t t = e.piece_first[p]; t < e.piece_first[p + 1]; ++t)
+      for (const std::uint32_t v : e.tris[t].v)
+        for (std::size_t k = 0; k < 3; ++k)
+          b[k] = std::min(b[k], pos[v][static_cast<int>(k)]), b[k + 3] = std::max(b[k + 3], pos[v][static_cast<int>(k)]);
+    piece_box[p] = b;
+  }
+#ifdef CF_PIECE_TIME
+  std::fprintf(stderr, "self+boxes %.1f\n", start.ms());
+#endif
+  std::size_t held_pairs = 0, separated_pairs = 0;
+  if (complete) {
+    const si::box_pair_count pairs = si::for_each_box_pair(
+        detail::span_of(piece_box), limit - work, [&](std::uint32_t a, std::uint32_t b) {
+          if (e.piece_first[a] == e.piece_first[a + 1] || e.piece_first[b] == e.piece_first[b + 1]) return true;
+          if (held(a, b)) {
+            ++held_pairs;
+            return true;
+          }
+          if (e.separated(a, b)) {
+            ++separated_pairs;
+            return true;
+          }
+#ifdef CF_PIECE_DEBUG
+          {
+            const std::size_t da = e.nbr_first[a + 1] - e.nbr_first[a], db = e.nbr_first[b + 1] - e.nbr_first[b];
+            int dist = neighbours(a, b) ? 1 : 9;
+            if (dist == 9) {
+              std::vector<std::uint32_t> frontier{a}, next;
+              for (int d = 1; d <= 5 && dist == 9; ++d) {
+                next.clear();
+                for (auto x : frontier) for (std::uint32_t k = e.nbr_first[x]; k < e.nbr_first[x + 1]; ++k) { if (e.nbr[k] == b) dist = d; next.push_back(e.nbr[k]); }
+                frontier.swap(next);
+              }
+            }
+            const vec dd = e.mean[a] - e.mean[b];
+            std::fprintf(stderr, "PAIR dist %d sizes %u %u meandist %.2f\n", dist, e.piece_first[a + 1] - e.piece_first[a], e.piece_first[b + 1] - e.piece_first[b], std::sqrt(glm::dot(dd, dd)));
+            std::fprintf(stderr, "UNHELD dist%d deg %zu %zu cov %d %d cert %d %d\n", dist, std::min(da, db), std::max(da, db), covered[a], covered[b], certified[a], certified[b]);
+          }
+#endif
+          const std::size_t k = std::size_t{e.piece_first[a + 1] - e.piece_first[a]} *
+                                (e.piece_first[b + 1] - e.piece_first[b]);
+          if (k > limit - work) return false;
+          work += k;
+          prepare(a), prepare(b);
+          for (std::uint32_t x = e.piece_first[a]; x < e.piece_first[a + 1]; ++x)
+            for (std::uint32_t y = e.piece_first[b]; y < e.piece_first[b + 1]; ++y) test(x, y);
+          return true;
+        });
+    work += pairs.candidate_pairs;
+    complete = pairs.complete && work <= limit;
+  }
+#ifdef CF_PIECE_TIME
+  std::fprintf(stderr, "broad %.1f\n", start.ms());
+#endif
+  r.candidate_pairs = work;
+  r.certified_piece_pairs = held_pairs;
+  r.separated_piece_pairs = separated_pairs;
+  r.complete = complete;
+  CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
+  auto finish = [&] {
+    r.milliseconds = start.ms();
+    r.work = r.candidate_pairs;
+    r.time_ms = r.milliseconds;
+    return r;
+  };
+  CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
+  if (!r.complete && throw_on_budget) {
+    std::string message = "self_intersections_by_pieces: the work budget of ";
+    message += std::to_string(budget);
+    message += " was exhausted (raise self_intersection_options::work_budget)";
+    throw error(error_category::budget, message);
+  }
+  std::sort(degenerate_faces.begin(), degenerate_faces.end());
+  degenerate_faces.erase(std::unique(degenerate_faces.begin(), degenerate_faces.end()), degenerate_faces.end());
+  for (std::size_t i = 0; i < degenerate_faces.size() && i < options.max_reported; ++i)
+    r.degenerate_faces.emplace_back(degenerate_faces[i]);
+  si::compact(found);
+  r.intersecting_face_pairs = found.size();
+  for (std::size_t i = 0; i < found.size() && i < options.max_reported; ++i)
+    r.face_pairs.emplace_back(face_handle(static_cast<std::uint32_t>(found[i] >> 32)),
+                              face_handle(static_cast<std::uint32_t>(found[i])));
+  return finish();
+}
+
+}  // namespace cellforge
