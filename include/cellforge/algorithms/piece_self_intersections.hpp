@@ -15,6 +15,7 @@
 #include <limits>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -127,7 +128,8 @@ template <Point3 P>
 struct engine {
   const surface_mesh<P>& m;
   std::span<const std::uint32_t> face_piece;
-  std::vector<vec> pos;
+  std::vector<vec> own_pos;  // positions converted to double, unless they are already
+  std::span<const vec> pos;
   std::size_t pieces = 0;
   std::vector<triangle> tris;              // by piece
   std::vector<std::uint32_t> piece_first;  // tris of piece p: [piece_first[p], piece_first[p + 1])
@@ -141,11 +143,11 @@ struct engine {
   std::vector<std::array<vec, 2>> centres;                      // candidate centres per piece
   std::vector<vec> mean;                                        // per piece, the mean of its corners
   std::vector<std::uint8_t> centre_count;
-  std::vector<std::uint32_t> stamp_piece, stamp_half;
+  std::vector<std::uint32_t> stamp_piece;
   std::uint32_t attempt = 0;
   std::vector<std::uint32_t> members, loop_start;
-  std::vector<std::uint32_t> bd;
-  std::vector<std::array<vec, 3>> caps;
+  std::vector<std::uint32_t> bd, loop;
+  std::vector<std::uint8_t> bd_seen;
 
   engine(const surface_mesh<P>& mesh, std::span<const std::uint32_t> labels) : m(mesh), face_piece(labels) {}
 
@@ -214,77 +216,97 @@ struct engine {
     return sa != 0 && side_of(b, -sa) == -sa;
   }
 
-  /// Whether direction g - c lies in the closed cone from c over triangle (x, y, z), given that
-  /// orient3d(x, y, z, c) = s (the cone's inside has sign -s against its three sides). O(1).
-  static bool covers(const vec& c, const vec& g, const vec& x, const vec& y, const vec& z, int s) noexcept {
-    return orient3d(c, x, y, g) != s && orient3d(c, y, z, g) != s && orient3d(c, z, x, g) != s;
+  /// (p - c) × (q - c), rounded, with the sums of its products' magnitudes: the part of the
+  /// orient3d filter with pivot c that a query reuses (core/predicates.hpp, orient3d_plane).
+  struct minor {
+    vec m, perm;
+  };
+  static minor minor_of(const vec& pc, const vec& qc) noexcept {
+    const double yz = pc.y * qc.z, zy = pc.z * qc.y, zx = pc.z * qc.x, xz = pc.x * qc.z, xy = pc.x * qc.y,
+                 yx = pc.y * qc.x;
+    return {vec(yz - zy, zx - xz, xy - yx),
+            vec(std::fabs(yz) + std::fabs(zy), std::fabs(zx) + std::fabs(xz), std::fabs(xy) + std::fabs(yx))};
+  }
+  /// orient3d(c, p, q, d) from minor_of(p - c, q - c) and d - c: the filter, and the exact
+  /// evaluation when it cannot decide. O(1).
+  static int sign_of(const minor& k, const vec& dc, const vec& c, const vec& p, const vec& q,
+                     const vec& d) noexcept {
+    const double det = dc.x * k.m.x + dc.y * k.m.y + dc.z * k.m.z;
+    const double ax = std::fabs(dc.x), ay = std::fabs(dc.y), az = std::fabs(dc.z);
+    const double bound = cellforge::detail::orient3d_bound * (ax * k.perm.x + ay * k.perm.y + az * k.perm.z) +
+                         cellforge::detail::underflow_guard * (1.0 + ax + ay + az);
+    if (det > bound) return 1;
+    if (det < -bound) return -1;
+    return cellforge::detail::orient3d_exact(c, p, q, d);
   }
 
   /// Certifies the group of pieces `members` about centre c: true when every triangle of the
   /// group, and of the cones (apex: the loop's mean) closing each boundary loop, has c strictly on
-  /// one same side, and the direction through the middle of the first member's first triangle
-  /// lies in no other triangle's closed cone. Then the group is embedded (docs/tubes.md).
+  /// one same side, and the direction from c through the middle of the first member's first
+  /// triangle lies in no other triangle's closed cone. Then the group is embedded (docs/tubes.md).
   bool certify(const vec& c) {
     ++attempt;
-    if (attempt == 0 || attempt >= 0x7FFFFFFFu) return false;
+    if (attempt == 0) return false;
     const std::uint32_t r = members[0];
     for (const std::uint32_t x : members) {
       if (piece_ok[x] == 0) return false;
       stamp_piece[x] = attempt;
     }
-    int s = 0;
+    // The witness: g, the middle of r's first triangle, inside its cone (all three sides' orient3d
+    // equal its facing sign f, which every triangle must share).
+    const triangle& t0 = tris[piece_first[r]];
+    const vec &x0 = pos[t0.v[0]], &y0 = pos[t0.v[1]], &z0 = pos[t0.v[2]];
+    const vec g = (x0 + y0 + z0) / 3.0, gc = g - c;
+    const int f = orient3d(c, x0, y0, z0);
+    if (f == 0 || orient3d(c, x0, y0, g) != f || orient3d(c, y0, z0, g) != f || orient3d(c, z0, x0, g) != f)
+      return false;
+    // Faces away with sign f, and leaves g outside its closed cone (one side's sign is -f).
+    const auto fits = [&](const vec& x, const vec& y, const vec& z) {
+      const vec xc = x - c, yc = y - c, zc = z - c;
+      const minor k1 = minor_of(xc, yc);
+      if (sign_of(k1, zc, c, x, y, z) != f) return false;
+      if (sign_of(k1, gc, c, x, y, g) == -f) return true;
+      const minor k2 = minor_of(yc, zc);
+      if (sign_of(k2, gc, c, y, z, g) == -f) return true;
+      const minor k3 = minor_of(zc, xc);
+      return sign_of(k3, gc, c, z, x, g) == -f;
+    };
     for (const std::uint32_t x : members)
-      for (std::uint32_t t = piece_first[x]; t < piece_first[x + 1]; ++t) {
+      for (std::uint32_t t = piece_first[x] + (x == r ? 1 : 0); t < piece_first[x + 1]; ++t) {
         const triangle& q = tris[t];
-        const int o = orient3d(pos[q.v[0]], pos[q.v[1]], pos[q.v[2]], c);
-        if (o == 0 || (s != 0 && o != s)) return false;
-        s = o;
+        if (!fits(pos[q.v[0]], pos[q.v[1]], pos[q.v[2]])) return false;
       }
-    // The boundary: half-edges of the group whose twin is outside it; traced into loops.
+    // The boundary: half-edges of the group whose twin is outside it, traced into loops, each
+    // closed by a cone from its mean.
     bd.clear();
-    const std::uint32_t in_bd = 2 * attempt, seen = 2 * attempt + 1;
     for (const std::uint32_t x : members)
       for (std::uint32_t k = border_first[x]; k < border_first[x + 1]; ++k) {
         const auto [h, other] = border[k];
-        if (other != none && stamp_piece[other] == attempt) continue;
-        bd.push_back(h);
-        stamp_half[h] = in_bd;
+        if (other == none || stamp_piece[other] != attempt) bd.push_back(h);
       }
-    caps.clear();
-    for (const std::uint32_t h0 : bd) {
-      if (stamp_half[h0] == seen) continue;
-      const std::size_t first = caps.size();
+    std::sort(bd.begin(), bd.end());
+    bd_seen.assign(bd.size(), 0);
+    for (std::size_t i0 = 0; i0 < bd.size(); ++i0) {
+      if (bd_seen[i0] != 0) continue;
+      loop.clear();
       vec sum(0.0);
-      std::uint32_t h = h0;
+      std::uint32_t h = bd[i0];
       do {
-        if (h == none || stamp_half[h] != in_bd) return false;  // not one loop through each
-        stamp_half[h] = seen;
-        const vec& a = pos[m.tail(halfedge_handle(h)).idx()];
-        const vec& b = pos[m.head(halfedge_handle(h)).idx()];
-        caps.push_back({vec(0.0), b, a});  // (apex, head, tail): reverses the group's edge
-        sum += a;
+        const auto at = std::lower_bound(bd.begin(), bd.end(), h);
+        if (h == none || at == bd.end() || *at != h) return false;
+        std::uint8_t& seen = bd_seen[static_cast<std::size_t>(at - bd.begin())];
+        if (seen != 0) return false;  // not one loop through each
+        seen = 1;
+        loop.push_back(h);
+        sum += pos[m.head(m.prev(halfedge_handle(h))).idx()];
         h = successor(h);
-      } while (h != h0);
-      const vec apex = sum / static_cast<double>(caps.size() - first);
-      for (std::size_t k = first; k < caps.size(); ++k) {
-        caps[k][0] = apex;
-        if (orient3d(caps[k][0], caps[k][1], caps[k][2], c) != s) return false;
+      } while (h != bd[i0]);
+      const vec apex = sum / static_cast<double>(loop.size());
+      for (const std::uint32_t e : loop) {  // (apex, head, tail): the group's edge reversed
+        const halfedge_handle he(e);
+        if (!fits(apex, pos[m.head(he).idx()], pos[m.head(m.prev(he)).idx()])) return false;
       }
     }
-    // The witness direction: through the middle of r's first triangle, in its open cone.
-    const triangle& t0 = tris[piece_first[r]];
-    const vec &x0 = pos[t0.v[0]], &y0 = pos[t0.v[1]], &z0 = pos[t0.v[2]];
-    const vec g = (x0 + y0 + z0) / 3.0;
-    if (orient3d(c, x0, y0, g) != -s || orient3d(c, y0, z0, g) != -s || orient3d(c, z0, x0, g) != -s)
-      return false;
-    for (const std::uint32_t x : members)
-      for (std::uint32_t t = piece_first[x]; t < piece_first[x + 1]; ++t) {
-        if (x == r && t == piece_first[r]) continue;
-        const triangle& q = tris[t];
-        if (covers(c, g, pos[q.v[0]], pos[q.v[1]], pos[q.v[2]], s)) return false;
-      }
-    for (const std::array<vec, 3>& q : caps)
-      if (covers(c, g, q[0], q[1], q[2], s)) return false;
     return true;
   }
 };
@@ -340,8 +362,13 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
                 "self_intersections_by_pieces: face_piece has " + std::to_string(face_piece.size()) +
                     " labels for " + std::to_string(m.faces_size()) + " faces");
   pc::engine<P> e(m, face_piece);
-  e.pos.resize(m.vertices_size());
-  for (std::size_t i = 0; i < e.pos.size(); ++i) e.pos[i] = to_dvec3(m.points()[i]);
+  if constexpr (std::is_same_v<P, glm::dvec3>) {
+    e.pos = m.points();
+  } else {
+    e.own_pos.resize(m.vertices_size());
+    for (std::size_t i = 0; i < e.own_pos.size(); ++i) e.own_pos[i] = to_dvec3(m.points()[i]);
+    e.pos = e.own_pos;
+  }
   const std::span<const glm::dvec3> pos = e.pos;
 
   // Faces by piece (a counting sort), then their triangles in that order.
@@ -388,8 +415,10 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
       corners.clear();
       const halfedge_handle h0 = m.halfedge(f);
       halfedge_handle h = h0;
+      std::uint32_t tail = m.head(m.prev(h0)).idx();
       do {  // the face's corners from its first, and its half-edges to other pieces
-        const std::uint32_t v = m.head(m.prev(h)).idx();
+        const std::uint32_t v = tail;
+        tail = m.head(h).idx();
         ids.push_back(v);
         corners.push_back(pos[v]);
         sum += pos[v];
@@ -406,22 +435,31 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
             loop_count.push_back(0);
           }
           const std::size_t l = at - e.nbr_first[p];
-          const vec &a = pos[m.head(m.prev(h)).idx()], &b = pos[m.head(h).idx()];
+          const vec &a = pos[v], &b = pos[tail];
           loops[l][0] += a;
           loops[l][1] += glm::dvec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
           ++loop_count[l];
         }
         h = m.next(h);
       } while (h != h0);
+      // As triangulate_polygon does; a triangle, or a convex projected quad split along a
+      // diagonal, is a disc; other faces' triangles are verified to be one.
+      if (ids.size() == 3) {
+        e.tris.push_back({{ids[0], ids[1], ids[2]}, f.idx()});
+        continue;
+      }
+      if (ids.size() == 4 && si::convex_projected_quad(detail::span_of(corners))) {
+        e.tris.push_back({{ids[3], ids[0], ids[1]}, f.idx()});
+        e.tris.push_back({{ids[1], ids[2], ids[3]}, f.idx()});
+        if (si::orient3d_filtered(corners[0], corners[1], corners[2], corners[3]) != 0) ++r.ear_clipped_faces;
+        continue;
+      }
       const std::size_t before = e.tris.size();
       const bool clipped = si::triangulate_polygon(
           detail::span_of(ids), detail::span_of(corners),
           [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) { e.tris.push_back({{a, b, c}, f.idx()}); });
       if (clipped) ++r.ear_clipped_faces;
-      // A convex projected quad is split along a diagonal (a disc); others are verified.
-      const bool known_disc = ids.size() == 3 || (ids.size() == 4 && si::convex_projected_quad(corners));
-      if (!known_disc &&
-          !pc::disc_triangulation(detail::span_of(ids),
+      if (!pc::disc_triangulation(detail::span_of(ids),
                                   std::span<const pc::triangle>(e.tris.data() + before, e.tris.size() - before)))
         e.piece_ok[p] = 0;
     }
@@ -446,9 +484,6 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
     if (axes && loops.size() < 3) e.centres[p][count++] = meet;
     e.centre_count[p] = count;
   }
-#ifdef CF_PIECE_TIME
-  std::fprintf(stderr, "setup %.1f\n", start.ms());
-#endif
   e.piece_first[pieces] = static_cast<std::uint32_t>(e.tris.size());
   e.border_first[pieces] = static_cast<std::uint32_t>(e.border.size());
   e.nbr_first[pieces] = static_cast<std::uint32_t>(e.nbr.size());
@@ -464,7 +499,6 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
   e.nbr_held.assign(e.nbr.size(), 0);
   if (m.is_consistently_oriented()) {
     e.stamp_piece.assign(pieces, 0);
-    e.stamp_half.assign(m.halfedges_size(), 0);
     // Stars: a piece with its neighbours, for pieces with other than two (a junction, a cap, a
     // sphere); a tube's band, between two, is certified with each neighbour in turn below.
     for (std::uint32_t p = 0; p < pieces; ++p) {
@@ -476,17 +510,11 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
       // A cap (flat about its own mean) is seen from the middle of the tube it closes.
       if (certified[p] == 0 && e.nbr_first[p + 1] - e.nbr_first[p] == 1)
         certified[p] = e.certify(e.mean[e.nbr[e.nbr_first[p]]]) ? 1 : 0;
-#ifdef CF_PIECE_DEBUG
-      std::fprintf(stderr, "STAR deg %u ok %d\n", e.nbr_first[p + 1] - e.nbr_first[p], certified[p]);
-#endif
       if (certified[p] == 0) continue;
       ++r.certified_groups;
       covered[p] = 1;
       for (std::uint32_t k = e.nbr_first[p]; k < e.nbr_first[p + 1]; ++k) covered[e.nbr[k]] = 1;
     }
-#ifdef CF_PIECE_TIME
-    std::fprintf(stderr, "stars %.1f\n", start.ms());
-#endif
     // Pairs of neighbours no star holds: the two about the middle of the border between them.
     for (std::uint32_t p = 0; p < pieces; ++p)
       for (std::uint32_t k = e.nbr_first[p]; k < e.nbr_first[p + 1]; ++k) {
@@ -501,9 +529,6 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
         ++r.certified_groups;
       }
   }
-#ifdef CF_PIECE_TIME
-  std::fprintf(stderr, "pairs %.1f\n", start.ms());
-#endif
   const auto neighbours = [&](std::uint32_t a, std::uint32_t b) {
     for (std::uint32_t k = e.nbr_first[a]; k < e.nbr_first[a + 1]; ++k)
       if (e.nbr[k] == b) return true;
@@ -527,16 +552,16 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
     std::array<double, 6> box;
     bool degenerate;
   };
-  std::vector<boxed> tri_box(n);
-  std::vector<std::uint8_t> prepared(pieces, 0);
+  std::vector<boxed> tri_box;                         // of the prepared pieces, in turn
+  std::vector<std::uint32_t> box_first(pieces, none);  // where a prepared piece's boxes start
   std::vector<std::uint32_t> degenerate_faces;
   const auto prepare = [&](std::uint32_t p) {
-    if (prepared[p] != 0) return;
-    prepared[p] = 1;
+    if (box_first[p] != none) return;
+    box_first[p] = static_cast<std::uint32_t>(tri_box.size());
     for (std::uint32_t t = e.piece_first[p]; t < e.piece_first[p + 1]; ++t) {
       const pc::triangle& q = e.tris[t];
       const vec &a = pos[q.v[0]], &b = pos[q.v[1]], &c = pos[q.v[2]];
-      boxed& x = tri_box[t];
+      boxed& x = tri_box.emplace_back();
       x.degenerate = covered[p] == 0 && si::degenerate(a, b, c);
       if (x.degenerate) {
         ++r.degenerate_triangles;
@@ -561,19 +586,21 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
 
   std::vector<std::uint64_t> found;
   std::size_t compact_at = 1 << 16;
-  std::array<glm::dvec3, 3> pa{}, qa{};
-  const auto test = [&](std::uint32_t a, std::uint32_t b) {
+  std::array<glm::dvec3, 3> p3{}, q3{};
+  // Triangles a of piece pa and b of piece pb (both prepared).
+  const auto test = [&](std::uint32_t pa, std::uint32_t a, std::uint32_t pb, std::uint32_t b) {
     const pc::triangle &x = e.tris[a], &y = e.tris[b];
     if (x.face == y.face) return;
-    const boxed &bx = tri_box[a], &by = tri_box[b];
+    const boxed &bx = tri_box[box_first[pa] + (a - e.piece_first[pa])],
+                &by = tri_box[box_first[pb] + (b - e.piece_first[pb])];
     if (bx.degenerate || by.degenerate) return;
     if ((static_cast<int>(bx.box[0] <= by.box[3]) & static_cast<int>(by.box[0] <= bx.box[3]) &
          static_cast<int>(bx.box[1] <= by.box[4]) & static_cast<int>(by.box[1] <= bx.box[4]) &
          static_cast<int>(bx.box[2] <= by.box[5]) & static_cast<int>(by.box[2] <= bx.box[5])) == 0)
       return;
     ++r.pairs_tested;
-    for (std::size_t k = 0; k < 3; ++k) pa[k] = pos[x.v[k]], qa[k] = pos[y.v[k]];
-    if (!si::pair_intersects(pa, x.v, qa, y.v)) return;
+    for (std::size_t k = 0; k < 3; ++k) p3[k] = pos[x.v[k]], q3[k] = pos[y.v[k]];
+    if (!si::pair_intersects(p3, x.v, q3, y.v)) return;
     ++r.intersecting_triangle_pairs;
     const std::uint32_t f = std::min(x.face, y.face), g = std::max(x.face, y.face);
     found.push_back(static_cast<std::uint64_t>(f) << 32 | g);
@@ -587,17 +614,27 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
   // Pieces no certified group holds: every pair of their own triangles.
   for (std::uint32_t p = 0; p < pieces && complete; ++p) {
     if (covered[p] != 0) continue;
-#ifdef CF_PIECE_DEBUG
-    std::fprintf(stderr, "UNCOVERED deg %u tris %u\n", e.nbr_first[p + 1] - e.nbr_first[p], e.piece_first[p + 1] - e.piece_first[p]);
-#endif
     const std::size_t k = e.piece_first[p + 1] - e.piece_first[p];
+    if (k > 64) {  // a large piece: its boxes' grid
+      std::vector<std::array<double, 6>> boxes(k);
+      for (std::size_t i = 0; i < k; ++i) boxes[i] = tri_box[box_first[p] + i].box;
+      const std::uint32_t first = e.piece_first[p];
+      const si::box_pair_count own =
+          si::for_each_box_pair(detail::span_of(boxes), limit - work, [&](std::uint32_t a, std::uint32_t b) {
+            test(p, first + a, p, first + b);
+            return true;
+          });
+      work += own.candidate_pairs;
+      complete = own.complete;
+      continue;
+    }
     if (k * (k - 1) / 2 > limit - work) {
       complete = false;
       break;
     }
     work += k * (k - 1) / 2;
     for (std::uint32_t a = e.piece_first[p]; a < e.piece_first[p + 1]; ++a)
-      for (std::uint32_t b = a + 1; b < e.piece_first[p + 1]; ++b) test(a, b);
+      for (std::uint32_t b = a + 1; b < e.piece_first[p + 1]; ++b) test(p, a, p, b);
   }
   // Pairs of pieces whose boxes overlap and that no certified group holds: every pair of triangles.
   std::vector<std::array<double, 6>> piece_box(pieces);
@@ -611,9 +648,6 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
           b[k] = std::min(b[k], pos[v][static_cast<int>(k)]), b[k + 3] = std::max(b[k + 3], pos[v][static_cast<int>(k)]);
     piece_box[p] = b;
   }
-#ifdef CF_PIECE_TIME
-  std::fprintf(stderr, "self+boxes %.1f\n", start.ms());
-#endif
   std::size_t held_pairs = 0, separated_pairs = 0;
   if (complete) {
     const si::box_pair_count pairs = si::for_each_box_pair(
@@ -627,38 +661,18 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
             ++separated_pairs;
             return true;
           }
-#ifdef CF_PIECE_DEBUG
-          {
-            const std::size_t da = e.nbr_first[a + 1] - e.nbr_first[a], db = e.nbr_first[b + 1] - e.nbr_first[b];
-            int dist = neighbours(a, b) ? 1 : 9;
-            if (dist == 9) {
-              std::vector<std::uint32_t> frontier{a}, next;
-              for (int d = 1; d <= 5 && dist == 9; ++d) {
-                next.clear();
-                for (auto x : frontier) for (std::uint32_t k = e.nbr_first[x]; k < e.nbr_first[x + 1]; ++k) { if (e.nbr[k] == b) dist = d; next.push_back(e.nbr[k]); }
-                frontier.swap(next);
-              }
-            }
-            const vec dd = e.mean[a] - e.mean[b];
-            std::fprintf(stderr, "PAIR dist %d sizes %u %u meandist %.2f\n", dist, e.piece_first[a + 1] - e.piece_first[a], e.piece_first[b + 1] - e.piece_first[b], std::sqrt(glm::dot(dd, dd)));
-            std::fprintf(stderr, "UNHELD dist%d deg %zu %zu cov %d %d cert %d %d\n", dist, std::min(da, db), std::max(da, db), covered[a], covered[b], certified[a], certified[b]);
-          }
-#endif
           const std::size_t k = std::size_t{e.piece_first[a + 1] - e.piece_first[a]} *
                                 (e.piece_first[b + 1] - e.piece_first[b]);
           if (k > limit - work) return false;
           work += k;
           prepare(a), prepare(b);
           for (std::uint32_t x = e.piece_first[a]; x < e.piece_first[a + 1]; ++x)
-            for (std::uint32_t y = e.piece_first[b]; y < e.piece_first[b + 1]; ++y) test(x, y);
+            for (std::uint32_t y = e.piece_first[b]; y < e.piece_first[b + 1]; ++y) test(a, x, b, y);
           return true;
         });
     work += pairs.candidate_pairs;
     complete = pairs.complete && work <= limit;
   }
-#ifdef CF_PIECE_TIME
-  std::fprintf(stderr, "broad %.1f\n", start.ms());
-#endif
   r.candidate_pairs = work;
   r.certified_piece_pairs = held_pairs;
   r.separated_piece_pairs = separated_pairs;

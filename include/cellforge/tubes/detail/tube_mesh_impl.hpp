@@ -18,6 +18,7 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/algorithms/loop_subdivision.hpp"
+#include "cellforge/algorithms/piece_self_intersections.hpp"
 #include "cellforge/algorithms/self_intersections.hpp"
 #include "cellforge/core/bounding_box.hpp"
 #include "cellforge/core/detail/if_satisfied.hpp"
@@ -820,7 +821,7 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
         std::to_string(res.folded_edges) +
         " edges fold: the faces on either side point opposite ways (the mesh is not good)");
   if (options.check_self_intersections) {
-    const self_intersection_result si = self_intersections(res.mesh);
+    const self_intersection_result si = tube_self_intersections(res.mesh);
     res.self_intersecting_face_pairs = si.intersecting_face_pairs;
     res.self_intersections_checked = si.complete;
     res.check_ms = si.milliseconds;
@@ -843,4 +844,42 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
 }
 
 }  // namespace detail::tubes
+
+template <Point3 P>
+std::vector<std::uint32_t> tube_pieces(const surface_mesh<P>& mesh) {
+  std::vector<std::uint32_t> piece(mesh.faces_size(), 0);
+  const auto source = mesh.template get_face_property<tube_face_source>(tube_source_property_name);
+  if (!source) return piece;
+  // Per kind, the piece of each index (sources index skeleton edges and nodes: O(F) of them).
+  std::array<std::vector<std::uint32_t>, 4> of_kind;
+  std::uint32_t next = 0;
+  for (const face_handle f : mesh.faces()) {
+    const tube_face_source s = source[f];
+    const auto kind = static_cast<std::size_t>(s.kind);
+    if (kind >= of_kind.size() || s.index >= mesh.faces_size()) {  // not a tube's source: its own piece
+      piece[f.idx()] = next++;
+      continue;
+    }
+    std::vector<std::uint32_t>& ids = of_kind[kind];
+    if (ids.size() <= s.index) ids.resize(std::max<std::size_t>(s.index + 1, 2 * ids.size()), 0xFFFFFFFFu);
+    if (ids[s.index] == 0xFFFFFFFFu) ids[s.index] = next++;
+    piece[f.idx()] = ids[s.index];
+  }
+  return piece;
+}
+
+template <Point3 P>
+self_intersection_result tube_self_intersections(const surface_mesh<P>& mesh,
+                                                 const self_intersection_options& options) {
+  if (!mesh.template get_face_property<tube_face_source>(tube_source_property_name))
+    return self_intersections(mesh, options);
+  const detail::stopwatch start;
+  const std::vector<std::uint32_t> pieces = tube_pieces(mesh);
+  self_intersection_result r = self_intersections_by_pieces(mesh, detail::span_of(pieces), options);
+  CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
+  r.milliseconds = r.time_ms = start.ms();  // with the labelling; time_ms filled until 0.8
+  CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
+  return r;
+}
+
 }  // namespace cellforge
