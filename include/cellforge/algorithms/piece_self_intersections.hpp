@@ -137,6 +137,19 @@ struct engine {
   // Per piece: its half-edges whose twin lies in another piece (or none), with that piece.
   std::vector<std::uint32_t> border_first;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> border;  // (half-edge, other piece or none)
+  std::vector<std::array<std::uint32_t, 2>> border_ends;        // per border half-edge: (tail, head)
+  // Per piece: its border traced into loops (the next half-edge of a loop: the one of the piece
+  // leaving the head, found by vertex when it is the only one), each loop's edges (tail, head) in
+  // order, the piece beyond it (none: the mesh's boundary; mixed: several) and its tails' mean.
+  struct border_loop {
+    std::uint32_t first, other;
+    vec apex;
+  };
+  static constexpr std::uint32_t mixed = 0xFFFFFFFEu;
+  std::vector<std::uint32_t> loop_first;  // loops of piece p: [loop_first[p], loop_first[p + 1])
+  std::vector<border_loop> loops;         // edges of loop l: [loops[l].first, loops[l + 1].first)
+  std::vector<std::array<std::uint32_t, 2>> loop_edges;
+  std::vector<std::uint8_t> loops_ok;  // the piece's border is loops as above (else: traced per group)
   std::vector<std::uint32_t> nbr_first, nbr;                    // distinct neighbouring pieces
   std::vector<vec> nbr_mean;                                    // per neighbour: the mean of the border to it
   std::vector<std::uint8_t> nbr_held;                           // per neighbour: a certified pair group
@@ -150,6 +163,56 @@ struct engine {
   std::vector<std::uint8_t> bd_seen;
 
   engine(const surface_mesh<P>& mesh, std::span<const std::uint32_t> labels) : m(mesh), face_piece(labels) {}
+
+  /// Traces every piece's border into loops (loop_first, loops, loop_edges, loops_ok): the
+  /// successor of a border half-edge is the piece's only border half-edge leaving its head (the
+  /// piece's turn about that vertex reaches it; pieces where a vertex has several are left to
+  /// certify's own tracing). O(border + vertices).
+  void trace_loops() {
+    loop_first.assign(pieces + 1, 0);
+    loops_ok.assign(pieces, 1);
+    loops.clear();
+    loop_edges.clear();
+    loop_edges.reserve(border.size());
+    std::vector<std::uint32_t> leaving(m.vertices_size()), stamp(m.vertices_size(), 0);  // per vertex
+    std::vector<std::uint32_t> succ(border.size(), none);
+    std::vector<std::uint8_t> seen(border.size(), 0);
+    for (std::uint32_t p = 0; p < pieces; ++p) {
+      loop_first[p] = static_cast<std::uint32_t>(loops.size());
+      const std::uint32_t b0 = border_first[p], b1 = border_first[p + 1];
+      bool ok = true;
+      for (std::uint32_t k = b0; k < b1 && ok; ++k) {  // the border half-edge leaving each vertex
+        const std::uint32_t t = border_ends[k][0];
+        ok = stamp[t] != p + 1;
+        stamp[t] = p + 1, leaving[t] = k;
+      }
+      for (std::uint32_t k = b0; k < b1 && ok; ++k) {
+        const std::uint32_t head = border_ends[k][1];
+        ok = stamp[head] == p + 1 && seen[leaving[head]] == 0;  // one predecessor each: a permutation
+        if (ok) succ[k] = leaving[head], seen[leaving[head]] = 1;
+      }
+      if (!ok) {
+        loops_ok[p] = 0;
+        continue;
+      }
+      for (std::uint32_t k0 = b0; k0 < b1; ++k0) {
+        if (seen[k0] == 2) continue;
+        border_loop l{static_cast<std::uint32_t>(loop_edges.size()), border[k0].second, vec(0.0)};
+        std::uint32_t k = k0;
+        do {
+          seen[k] = 2;
+          loop_edges.push_back(border_ends[k]);
+          l.apex += pos[border_ends[k][0]];
+          if (border[k].second != l.other) l.other = mixed;
+          k = succ[k];
+        } while (k != k0);
+        l.apex /= static_cast<double>(loop_edges.size() - l.first);
+        loops.push_back(l);
+      }
+    }
+    loop_first[pieces] = static_cast<std::uint32_t>(loops.size());
+    loops.push_back({static_cast<std::uint32_t>(loop_edges.size()), none, vec(0.0)});  // the end
+  }
 
   /// The next boundary half-edge of the group after h (stamp_piece marks the group), turning
   /// about h's head through the group's faces; none after 256 steps.
@@ -277,7 +340,25 @@ struct engine {
         if (!fits(pos[q.v[0]], pos[q.v[1]], pos[q.v[2]])) return false;
       }
     // The boundary: half-edges of the group whose twin is outside it, traced into loops, each
-    // closed by a cone from its mean.
+    // closed by a cone from its mean. A member's loop all of whose half-edges face one piece
+    // outside the group is such a loop: the group's turn about its vertices stops where the
+    // member's does, since the member's turn passes through its own faces only.
+    bool whole_loops = true;
+    for (const std::uint32_t x : members) {
+      whole_loops = whole_loops && loops_ok[x] != 0;
+      for (std::uint32_t l = loop_first[x]; l < loop_first[x + 1] && whole_loops; ++l)
+        whole_loops = loops[l].other != mixed;
+    }
+    if (whole_loops) {
+      for (const std::uint32_t x : members)
+        for (std::uint32_t l = loop_first[x]; l < loop_first[x + 1]; ++l) {
+          const border_loop& b = loops[l];
+          if (b.other != none && stamp_piece[b.other] == attempt) continue;  // inside the group
+          for (std::uint32_t k = b.first; k < loops[l + 1].first; ++k)  // (apex, head, tail)
+            if (!fits(b.apex, pos[loop_edges[k][1]], pos[loop_edges[k][0]])) return false;
+        }
+      return true;
+    }
     bd.clear();
     for (const std::uint32_t x : members)
       for (std::uint32_t k = border_first[x]; k < border_first[x + 1]; ++k) {
@@ -427,6 +508,7 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
         const std::uint32_t other = g.is_valid() ? face_piece[g.idx()] : none;
         if (other != p) {
           e.border.emplace_back(h.idx(), other);
+          e.border_ends.push_back({v, tail});
           std::size_t at = e.nbr_first[p];
           while (at < e.nbr.size() && e.nbr[at] != other) ++at;
           if (at == e.nbr.size()) {
@@ -486,6 +568,7 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
   }
   e.piece_first[pieces] = static_cast<std::uint32_t>(e.tris.size());
   e.border_first[pieces] = static_cast<std::uint32_t>(e.border.size());
+  e.trace_loops();
   e.nbr_first[pieces] = static_cast<std::uint32_t>(e.nbr.size());
   r.triangles = e.tris.size();
   r.pieces = pieces;
