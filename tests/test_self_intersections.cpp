@@ -315,6 +315,55 @@ TEST_CASE("self_intersections: a convex quad is split as ear clipping splits it"
   CHECK(mismatches == 0);
 }
 
+TEST_CASE("self_intersections: a convex polygon is clipped as ear clipping clips it") {
+  // clip_convex_projection must give clip_polygon's own triangles: random polygons of 4 to 16
+  // corners near a regular one (off their plane by up to a tenth or by rounding only, in random
+  // orientations and scales, a seventh dented, some concave or crossing in projection),
+  // compared one by one.
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> jitter(-1, 1), angle(-3.14159, 3.14159), scale(-6, 6);
+  cellforge::ear_clip_options clip;
+  clip.planarity_tolerance = std::numeric_limits<double>::infinity();
+  clip.allow_non_simple = true;
+  int shortcut = 0, refused = 0, mismatches = 0;
+  for (int t = 0; t < 6000; ++t) {
+    const double a = angle(rng), b = angle(rng), s = std::pow(10.0, scale(rng));
+    const dvec3 u(std::cos(a), std::sin(a), 0),
+        w(-std::sin(a) * std::cos(b), std::cos(a) * std::cos(b), std::sin(b));
+    const dvec3 n = glm::cross(u, w);
+    const std::size_t corners = 4 + static_cast<std::size_t>(t % 13);
+    const double wobble = t % 3 == 0 ? 0.0 : 0.1 * jitter(rng), spread = t % 5 == 0 ? 0.9 : 0.2;
+    std::vector<dvec3> q;
+    std::vector<std::uint32_t> ids;
+    for (std::size_t i = 0; i < corners; ++i) {
+      const double phi = 6.283185307179586 * (static_cast<double>(i) + spread * 0.5 * jitter(rng)) /
+                         static_cast<double>(corners);
+      const double r = t % 7 == 0 && i == 2 ? 0.3 : 1.0;  // a dent: concave in projection
+      q.push_back(s * (r * std::cos(phi) * u + r * std::sin(phi) * w + wobble * jitter(rng) * n));
+      ids.push_back(static_cast<std::uint32_t>(i));
+    }
+    std::vector<cellforge::index_triangle> fast;
+    if (!cellforge::detail::self_intersect::clip_convex_projection(
+            std::span<const std::uint32_t>(ids), std::span<const dvec3>(q),
+            [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) { fast.push_back({x, y, z}); })) {
+      CHECK(fast.empty());
+      ++refused;
+      continue;
+    }
+    ++shortcut;
+    cellforge::ear_clip_report report;
+    if (fast != cellforge::detail::ears::clip_polygon(q, clip, report)) {
+      ++mismatches;
+      MESSAGE("miss: polygon " << t << " (" << corners << " corners) is clipped otherwise");
+    }
+  }
+  std::printf("convex polygons: %d by the shortcut (%d mismatches), %d left to ear clipping\n", shortcut,
+              mismatches, refused);
+  CHECK(shortcut > 3000);
+  CHECK(refused > 500);
+  CHECK(mismatches == 0);
+}
+
 TEST_CASE("self_intersections: polygons are tested as their triangulations") {
   // A non-planar quad: two triangles, ear clipped; and a flat concave L hexagon.
   polygon_soup<dvec3> q;

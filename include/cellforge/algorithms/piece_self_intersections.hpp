@@ -72,23 +72,24 @@ bool disc_triangulation(std::span<const std::uint32_t> ids, std::span<const tria
   const auto index = [&](std::uint32_t x) {
     return static_cast<std::size_t>(std::find(ids.begin(), ids.end(), x) - ids.begin());
   };
-  std::size_t on_boundary = 0;
+  // uses[i * n + j]: triangle sides from corner i to corner j.
+  std::array<std::uint8_t, 256> small{};  // the mesher's faces; larger ones on the heap
+  std::vector<std::uint8_t> large(n > 16 ? n * n : 0, 0);
+  std::uint8_t* const uses = n > 16 ? large.data() : small.data();
   for (const triangle& t : tris)
     for (std::size_t k = 0; k < 3; ++k) {
-      const std::uint32_t a = t.v[k], b = t.v[(k + 1) % 3];
-      const std::size_t ia = index(a), ib = index(b);
+      const std::size_t ia = index(t.v[k]), ib = index(t.v[(k + 1) % 3]);
       if (ia == n || ib == n) return false;
-      std::size_t same = 0, reverse = 0;
-      for (const triangle& u : tris)
-        for (std::size_t l = 0; l < 3; ++l) {
-          same += u.v[l] == a && u.v[(l + 1) % 3] == b ? 1 : 0;
-          reverse += u.v[l] == b && u.v[(l + 1) % 3] == a ? 1 : 0;
-        }
-      if (same != 1) return false;
+      if (++uses[ia * n + ib] > 1) return false;
+    }
+  std::size_t on_boundary = 0;
+  for (std::size_t ia = 0; ia < n; ++ia)
+    for (std::size_t ib = 0; ib < n; ++ib) {
+      if (uses[ia * n + ib] == 0) continue;
       if (ib == (ia + 1) % n) {
-        if (reverse != 0) return false;
+        if (uses[ib * n + ia] != 0) return false;
         ++on_boundary;
-      } else if (reverse != 1) {
+      } else if (uses[ib * n + ia] != 1) {
         return false;
       }
     }
@@ -237,7 +238,24 @@ struct engine {
     return {mean[p], mean[p]};
   }
 
-  bool separated(std::uint32_t a, std::uint32_t b) const {
+  /// Piece p's distinct corners (vertex ids), gathered on first use. O(p's triangles).
+  std::span<const std::uint32_t> corners_of(std::uint32_t p) {
+    if (corner_first.empty()) {
+      corner_first.assign(pieces, none), corner_count.assign(pieces, 0);
+      corner_stamp.assign(m.vertices_size(), none);
+    }
+    if (corner_first[p] == none) {
+      corner_first[p] = static_cast<std::uint32_t>(corner_ids.size());
+      for (std::uint32_t t = piece_first[p]; t < piece_first[p + 1]; ++t)
+        for (const std::uint32_t v : tris[t].v)
+          if (corner_stamp[v] != p) corner_stamp[v] = p, corner_ids.push_back(v);
+      corner_count[p] = static_cast<std::uint32_t>(corner_ids.size()) - corner_first[p];
+    }
+    return {corner_ids.data() + corner_first[p], corner_count[p]};
+  }
+  std::vector<std::uint32_t> corner_first, corner_count, corner_ids, corner_stamp;
+
+  bool separated(std::uint32_t a, std::uint32_t b) {
     // Across the closest points of their axes (two tubes that pass each other), then between
     // their means.
     const auto [pa, pb] = closest_points(axis(a), axis(b));
@@ -258,15 +276,14 @@ struct engine {
 
   /// True when the plane through o across d has every corner of piece a strictly on one side and
   /// every corner of piece b strictly on the other (exact orient3d against three points of it).
-  bool separated_by(std::uint32_t a, std::uint32_t b, const vec& o, const vec& d) const {
+  bool separated_by(std::uint32_t a, std::uint32_t b, const vec& o, const vec& d) {
     if (!(d.x * d.x + d.y * d.y + d.z * d.z > 0)) return false;
     const vec u = cellforge::detail::any_perpendicular(d);
     const vec w(d.y * u.z - d.z * u.y, d.z * u.x - d.x * u.z, d.x * u.y - d.y * u.x);
     const auto plane = cellforge::detail::prepare_orient3d(o, o + u, o + w);
     const vec q = o + w;
     const auto side_of = [&](std::uint32_t p, int want) {
-      for (std::uint32_t t = piece_first[p]; t < piece_first[p + 1]; ++t)
-        for (const std::uint32_t v : tris[t].v) {
+      for (const std::uint32_t v : corners_of(p)) {
           double value = 0;
           int o3 = cellforge::detail::orient3d_filter(plane, pos[v], value);
           if (o3 == 0) o3 = cellforge::detail::orient3d_exact(o, o + u, q, pos[v]);

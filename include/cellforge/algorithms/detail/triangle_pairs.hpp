@@ -295,13 +295,63 @@ bool convex_planar(std::span<const vec> p) noexcept {
   if (n > 16) return false;
   const int k = drop_axis(p[0], p[1], p[2]);
   if (k < 0) return false;
+  for (std::size_t j = 3; j < n; ++j)  // first: most polygons off their plane fail at one test
+    if (orient3d(p[0], p[1], p[2], p[j]) != 0) return false;
   const int u = (k + 1) % 3, w = (k + 2) % 3;
   const int s = orient_uw(p[0], p[1], p[2], u, w);
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < n; ++j)
       if (j != i && j != (i + 1) % n && orient_uw(p[i], p[(i + 1) % n], p[j], u, w) != s) return false;
-  for (std::size_t j = 3; j < n; ++j)
-    if (orient3d(p[0], p[1], p[2], p[j]) != 0) return false;
+  return true;
+}
+
+/// Ear clipping's triangles (ears::clip_polygon, no planarity limit, non-simple allowed) for a
+/// polygon of 4 to 16 distinct consecutive corners whose projection in clipping's plane is
+/// strictly convex, without the clipper's set-up: it then finds an ear at every vertex and
+/// clips them in a fixed order, which this follows (from corner 0, on past each ear's next
+/// corner). False, adding nothing, for any other polygon, or near a sliver (the clipper defers
+/// those). Ear clipping's own answer in every case it takes (tests/test_self_intersections.cpp).
+/// O(n).
+template <class Add>
+bool clip_convex_projection(std::span<const std::uint32_t> ids, std::span<const vec> p, Add&& add) {
+  const std::size_t n = p.size();
+  if (n < 4 || n > 16) return false;
+  vec lo = p[0], hi = p[0], centroid(0.0);  // as clip_polygon computes them
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(p[i].x) || !std::isfinite(p[i].y) || !std::isfinite(p[i].z)) return false;
+    lo = glm::min(lo, p[i]);
+    hi = glm::max(hi, p[i]);
+    centroid += p[i];
+  }
+  centroid /= static_cast<double>(n);
+  const vec newell = ears::newell_normal(p, centroid);
+  const double diagonal = glm::length(hi - lo), length = glm::length(newell);
+  if (!(length > 1e-14 * diagonal * diagonal)) return false;
+  const int k = ears::dominant_axis(newell);
+  const int u = (k + 1) % 3, w = (k + 2) % 3, sense = newell[k] > 0 ? 1 : -1;
+  std::array<std::uint8_t, 16> prev{}, next{};
+  for (std::size_t i = 0; i < n; ++i) {
+    if (p[i] == p[(i + n - 1) % n]) return false;  // a repeat: the clipper sets it aside
+    prev[i] = static_cast<std::uint8_t>((i + n - 1) % n), next[i] = static_cast<std::uint8_t>((i + 1) % n);
+  }
+  const auto convex = [&](std::size_t i) { return sense * orient_uw(p[prev[i]], p[i], p[next[i]], u, w) > 0; };
+  for (std::size_t i = 0; i < n; ++i)
+    if (!convex(i)) return false;
+  std::array<std::array<std::uint8_t, 3>, 14> out{};
+  std::size_t i = 0, count = 0;
+  for (std::size_t remaining = n; remaining > 3; --remaining) {
+    const std::size_t a = prev[i], c = next[i];
+    const double ux = p[i][u] - p[a][u], uy = p[i][w] - p[a][w], vx = p[c][u] - p[a][u], vy = p[c][w] - p[a][w];
+    const double wx = p[c][u] - p[i][u], wy = p[c][w] - p[i][w];
+    const double longest = std::max({ux * ux + uy * uy, vx * vx + vy * vy, wx * wx + wy * wy});
+    if (!(std::fabs(ux * vy - uy * vx) > 2e-12 * longest)) return false;  // thin or close: the clipper's call
+    out[count++] = {prev[i], static_cast<std::uint8_t>(i), next[i]};
+    next[a] = static_cast<std::uint8_t>(c), prev[c] = static_cast<std::uint8_t>(a);
+    if (!convex(a) || !convex(c)) return false;  // only a non-simple polygon gets here
+    i = next[c];
+  }
+  out[count++] = {prev[i], static_cast<std::uint8_t>(i), next[i]};
+  for (std::size_t t = 0; t < count; ++t) add(ids[out[t][0]], ids[out[t][1]], ids[out[t][2]]);
   return true;
 }
 
@@ -391,6 +441,7 @@ bool triangulate_polygon(std::span<const std::uint32_t> ids, std::span<const vec
   }
   bool fan = n == 3 || convex_planar(corners);
   const bool clipped = !fan;
+  if (!fan && clip_convex_projection(ids, corners, add)) return true;
   if (!fan) {
     ear_clip_options clip;
     clip.planarity_tolerance = std::numeric_limits<double>::infinity();
