@@ -596,30 +596,67 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
   // Certificates: one group per piece (itself and its neighbours), tried about its centres.
   // An inconsistently oriented mesh has no oriented groups: nothing is certified.
   std::vector<std::uint8_t> certified(pieces, 0), covered(pieces, 0);
+  // A cap (a piece with one neighbour) certified in the star of its neighbour's other neighbour
+  // (a junction's star reaching the end of a tube): that star's piece.
+  std::vector<std::uint32_t> holder(pieces, none);
   e.nbr_held.assign(e.nbr.size(), 0);
+  const auto degree = [&](std::uint32_t p) { return e.nbr_first[p + 1] - e.nbr_first[p]; };
+  const auto neighbours = [&](std::uint32_t a, std::uint32_t b) {
+    for (std::uint32_t k = e.nbr_first[a]; k < e.nbr_first[a + 1]; ++k)
+      if (e.nbr[k] == b) return true;
+    return false;
+  };
+  // Pieces a and b (a ≠ b) lie in one certified group: a's star, b's, a common neighbour's, a
+  // cap's holder's, or the pair's own.
+  const auto held = [&](std::uint32_t a, std::uint32_t b) {
+    for (std::uint32_t k = e.nbr_first[a]; k < e.nbr_first[a + 1]; ++k)
+      if (e.nbr[k] == b && (certified[a] != 0 || certified[b] != 0 || e.nbr_held[k] != 0)) return true;
+    for (std::uint32_t k = e.nbr_first[a]; k < e.nbr_first[a + 1]; ++k) {
+      const std::uint32_t c = e.nbr[k];
+      if (certified[c] != 0 && neighbours(c, b)) return true;
+    }
+    const auto in_star = [&](std::uint32_t h, std::uint32_t x) { return x == h || holder[x] == h || neighbours(h, x); };
+    return (holder[a] != none && in_star(holder[a], b)) || (holder[b] != none && in_star(holder[b], a));
+  };
   if (m.is_consistently_oriented()) {
     e.stamp_piece.assign(pieces, 0);
     // Stars: a piece with its neighbours, for pieces with other than two (a junction, a cap, a
-    // sphere); a tube's band, between two, is certified with each neighbour in turn below.
-    for (std::uint32_t p = 0; p < pieces; ++p) {
-      if (e.piece_ok[p] == 0 || e.nbr_first[p + 1] - e.nbr_first[p] == 2) continue;
+    // sphere), and with the caps at its neighbours' far ends (one group where a tube ends in a
+    // cap); a tube's band, between two, is certified with each neighbour in turn below.
+    const auto star = [&](std::uint32_t p, bool with_caps) {
       e.members.assign(1, p);
       for (std::uint32_t k = e.nbr_first[p]; k < e.nbr_first[p + 1]; ++k) e.members.push_back(e.nbr[k]);
-      for (std::uint8_t k = 0; k < e.centre_count[p] && certified[p] == 0; ++k)
-        certified[p] = e.certify(e.centres[p][k]) ? 1 : 0;
+      const std::size_t plain = e.members.size();
+      for (std::uint32_t k = e.nbr_first[p]; k < e.nbr_first[p + 1] && with_caps; ++k) {
+        const std::uint32_t n = e.nbr[k];
+        if (degree(n) != 2) continue;
+        const std::uint32_t q = e.nbr[e.nbr_first[n]] == p ? e.nbr[e.nbr_first[n] + 1] : e.nbr[e.nbr_first[n]];
+        if (q != p && degree(q) == 1 && holder[q] == none && certified[q] == 0) e.members.push_back(q);
+      }
+      if (with_caps && e.members.size() == plain) return false;  // nothing to add
+      bool ok = false;
+      for (std::uint8_t k = 0; k < e.centre_count[p] && !ok; ++k) ok = e.certify(e.centres[p][k]);
       // A cap (flat about its own mean) is seen from the middle of the tube it closes.
-      if (certified[p] == 0 && e.nbr_first[p + 1] - e.nbr_first[p] == 1)
-        certified[p] = e.certify(e.mean[e.nbr[e.nbr_first[p]]]) ? 1 : 0;
-      if (certified[p] == 0) continue;
+      if (!ok && degree(p) == 1) ok = e.certify(e.mean[e.nbr[e.nbr_first[p]]]);
+      if (!ok) return false;
+      certified[p] = 1;
       ++r.certified_groups;
-      covered[p] = 1;
-      for (std::uint32_t k = e.nbr_first[p]; k < e.nbr_first[p + 1]; ++k) covered[e.nbr[k]] = 1;
-    }
+      for (std::size_t i = 0; i < e.members.size(); ++i) {
+        covered[e.members[i]] = 1;
+        if (i >= plain) holder[e.members[i]] = p;
+      }
+      return true;
+    };
+    for (const bool caps : {false, true})  // junctions and spheres first, then the caps no star took
+      for (std::uint32_t p = 0; p < pieces; ++p) {
+        if (e.piece_ok[p] == 0 || degree(p) == 2 || (degree(p) == 1) != caps || holder[p] != none) continue;
+        if (!star(p, true)) star(p, false);
+      }
     // Pairs of neighbours no star holds: the two about the middle of the border between them.
     for (std::uint32_t p = 0; p < pieces; ++p)
       for (std::uint32_t k = e.nbr_first[p]; k < e.nbr_first[p + 1]; ++k) {
         const std::uint32_t q = e.nbr[k];
-        if (q < p || certified[p] != 0 || certified[q] != 0) continue;
+        if (q < p || held(p, q)) continue;
         e.members.assign({p, q});
         if (!e.certify(e.nbr_mean[k])) continue;
         e.nbr_held[k] = 1;
@@ -629,22 +666,6 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
         ++r.certified_groups;
       }
   }
-  const auto neighbours = [&](std::uint32_t a, std::uint32_t b) {
-    for (std::uint32_t k = e.nbr_first[a]; k < e.nbr_first[a + 1]; ++k)
-      if (e.nbr[k] == b) return true;
-    return false;
-  };
-  // Pieces a and b (a ≠ b) lie in one certified group: a's star, b's, a common neighbour's, or
-  // the pair's own.
-  const auto held = [&](std::uint32_t a, std::uint32_t b) {
-    for (std::uint32_t k = e.nbr_first[a]; k < e.nbr_first[a + 1]; ++k)
-      if (e.nbr[k] == b && (certified[a] != 0 || certified[b] != 0 || e.nbr_held[k] != 0)) return true;
-    for (std::uint32_t k = e.nbr_first[a]; k < e.nbr_first[a + 1]; ++k) {
-      const std::uint32_t c = e.nbr[k];
-      if (certified[c] != 0 && neighbours(c, b)) return true;
-    }
-    return false;
-  };
 
   // Boxes and zero-area triangles: per piece, for the pieces the pair tests reach and for every
   // piece no certified group holds (a certified triangle has area).
