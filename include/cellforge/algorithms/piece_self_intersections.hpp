@@ -790,7 +790,8 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
           for (std::uint32_t x = e.piece_first[a]; x < e.piece_first[a + 1]; ++x)
             for (std::uint32_t y = e.piece_first[b]; y < e.piece_first[b + 1]; ++y) test(a, x, b, y);
           return true;
-        });
+        },
+        3);  // cells three median pieces wide: a third of the grid's cost, few more candidates
     work += pairs.candidate_pairs;
     complete = pairs.complete && work <= limit;
   }

@@ -553,14 +553,14 @@ struct box_pair_count {
 
 /// Calls visit(i, j) exactly once for every pair of closed boxes (min x, y, z, max x, y, z) that
 /// overlap, i and j in one uniform grid cell: the cell side is the median of the boxes' largest
-/// extents, grown until no more than 8n + 2^16 cell entries are needed, and each pair is visited
+/// extents times `side_scale`, grown until no more than 8n + 2^16 cell entries are needed, and each pair is visited
 /// in the cell holding the low corner of the boxes' intersection (the only pairs a cell counts as
 /// candidates; the order of i and j is not fixed). Stops, complete = false, before
 /// a cell that would take the candidate pairs past `budget` (0: no limit). visit may return
 /// false to stop too. O(n log n + candidate pairs).
 template <class Visit>
-box_pair_count for_each_box_pair(std::span<const std::array<double, 6>> boxes, std::size_t budget,
-                                 Visit&& visit) {
+box_pair_count for_each_box_pair(std::span<const std::array<double, 6>> boxes, std::size_t budget, Visit&& visit,
+                                 double side_scale = 1) {
   box_pair_count r;
   const std::size_t n = boxes.size();
   if (n < 2) return r;
@@ -579,7 +579,7 @@ box_pair_count for_each_box_pair(std::span<const std::array<double, 6>> boxes, s
   }
   std::nth_element(extent.begin(), extent.begin() + static_cast<std::ptrdiff_t>(n / 2), extent.end());
   const double span = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-  double side = extent[n / 2];
+  double side = extent[n / 2] * side_scale;
   std::vector<double>().swap(extent);
   if (!(side > 0) || !std::isfinite(side)) side = span / std::cbrt(static_cast<double>(n));
   if (!(side > 0) || !std::isfinite(side)) side = 1;
