@@ -599,6 +599,8 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
   // A cap (a piece with one neighbour) certified in the star of its neighbour's other neighbour
   // (a junction's star reaching the end of a tube): that star's piece.
   std::vector<std::uint32_t> holder(pieces, none);
+  // A cap certified with a pair of neighbouring pieces (a tube's last two bands): that pair.
+  std::vector<std::array<std::uint32_t, 2>> cap_pair(pieces, {none, none});
   e.nbr_held.assign(e.nbr.size(), 0);
   const auto degree = [&](std::uint32_t p) { return e.nbr_first[p + 1] - e.nbr_first[p]; };
   const auto neighbours = [&](std::uint32_t a, std::uint32_t b) {
@@ -616,7 +618,11 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
       if (certified[c] != 0 && neighbours(c, b)) return true;
     }
     const auto in_star = [&](std::uint32_t h, std::uint32_t x) { return x == h || holder[x] == h || neighbours(h, x); };
-    return (holder[a] != none && in_star(holder[a], b)) || (holder[b] != none && in_star(holder[b], a));
+    if ((holder[a] != none && in_star(holder[a], b)) || (holder[b] != none && in_star(holder[b], a))) return true;
+    const auto in_pair = [&](const std::array<std::uint32_t, 2>& pq, std::uint32_t x) {
+      return pq[0] != none && (x == pq[0] || x == pq[1] || cap_pair[x] == pq);
+    };
+    return in_pair(cap_pair[a], b) || in_pair(cap_pair[b], a);
   };
   if (m.is_consistently_oriented()) {
     e.stamp_piece.assign(pieces, 0);
@@ -647,24 +653,47 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
       }
       return true;
     };
-    for (const bool caps : {false, true})  // junctions and spheres first, then the caps no star took
+    // Junctions and spheres first, then pairs of neighbours no star holds (a tube's bands, about
+    // the middle of the border between them, with the caps beyond them), then the caps left.
+    const auto stars = [&](bool caps) {
       for (std::uint32_t p = 0; p < pieces; ++p) {
-        if (e.piece_ok[p] == 0 || degree(p) == 2 || (degree(p) == 1) != caps || holder[p] != none) continue;
+        if (e.piece_ok[p] == 0 || degree(p) == 2 || (degree(p) == 1) != caps || holder[p] != none ||
+            cap_pair[p][0] != none)
+          continue;
         if (!star(p, true)) star(p, false);
       }
-    // Pairs of neighbours no star holds: the two about the middle of the border between them.
+    };
+    stars(false);
+    const auto pairs = [&](bool caps) {  // caps: the pairs with a cap no group took, alone
     for (std::uint32_t p = 0; p < pieces; ++p)
       for (std::uint32_t k = e.nbr_first[p]; k < e.nbr_first[p + 1]; ++k) {
         const std::uint32_t q = e.nbr[k];
-        if (q < p || held(p, q)) continue;
+        if (q < p || (degree(p) == 1 || degree(q) == 1) != caps || held(p, q)) continue;
         e.members.assign({p, q});
-        if (!e.certify(e.nbr_mean[k])) continue;
+        for (const std::uint32_t x : {p, q})
+          for (std::uint32_t j = e.nbr_first[x]; j < e.nbr_first[x + 1] && !caps; ++j) {
+            const std::uint32_t c = e.nbr[j];
+            if (degree(c) == 1 && holder[c] == none && cap_pair[c][0] == none && certified[c] == 0)
+              e.members.push_back(c);
+          }
+        const std::size_t with_caps = e.members.size();
+        bool ok = e.certify(e.nbr_mean[k]);
+        if (!ok && with_caps > 2) {
+          e.members.resize(2);
+          ok = e.certify(e.nbr_mean[k]);
+        }
+        if (!ok) continue;
         e.nbr_held[k] = 1;
         for (std::uint32_t j = e.nbr_first[q]; j < e.nbr_first[q + 1]; ++j)
           if (e.nbr[j] == p) e.nbr_held[j] = 1;
+        for (std::size_t i = 2; i < e.members.size(); ++i) cap_pair[e.members[i]] = {p, q}, covered[e.members[i]] = 1;
         covered[p] = covered[q] = 1;
         ++r.certified_groups;
       }
+    };
+    pairs(false);
+    stars(true);
+    pairs(true);
   }
 
   // Boxes and zero-area triangles: per piece, for the pieces the pair tests reach and for every
