@@ -140,16 +140,16 @@ struct engine {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> border;  // (half-edge, other piece or none)
   std::vector<std::array<std::uint32_t, 2>> border_ends;        // per border half-edge: (tail, head)
   // Per piece: its border traced into loops (the next half-edge of a loop: the one of the piece
-  // leaving the head, found by vertex when it is the only one), each loop's edges (tail, head) in
-  // order, the piece beyond it (none: the mesh's boundary; mixed: several) and its tails' mean.
+  // leaving the head, found by vertex when it is the only one; the piece's border entries are put
+  // in loop order), each loop's range of border entries, the piece beyond it (none: the mesh's
+  // boundary; mixed: several) and its tails' mean.
   struct border_loop {
-    std::uint32_t first, other;
+    std::uint32_t first, end, other;
     vec apex;
   };
   static constexpr std::uint32_t mixed = 0xFFFFFFFEu;
   std::vector<std::uint32_t> loop_first;  // loops of piece p: [loop_first[p], loop_first[p + 1])
-  std::vector<border_loop> loops;         // edges of loop l: [loops[l].first, loops[l + 1].first)
-  std::vector<std::array<std::uint32_t, 2>> loop_edges;
+  std::vector<border_loop> loops;
   std::vector<std::uint8_t> loops_ok;  // the piece's border is loops as above (else: traced per group)
   std::vector<std::uint32_t> nbr_first, nbr;                    // distinct neighbouring pieces
   std::vector<vec> nbr_mean;                                    // per neighbour: the mean of the border to it
@@ -165,54 +165,61 @@ struct engine {
 
   engine(const surface_mesh<P>& mesh, std::span<const std::uint32_t> labels) : m(mesh), face_piece(labels) {}
 
-  /// Traces every piece's border into loops (loop_first, loops, loop_edges, loops_ok): the
-  /// successor of a border half-edge is the piece's only border half-edge leaving its head (the
-  /// piece's turn about that vertex reaches it; pieces where a vertex has several are left to
-  /// certify's own tracing). O(border + vertices).
+  /// Traces every piece's border into loops (loop_first, loops, loops_ok), putting each piece's
+  /// border entries in loop order: the successor of a border half-edge is the piece's only border
+  /// half-edge leaving its head (the piece's turn about that vertex reaches it; pieces where a
+  /// vertex has several are left to certify's own tracing). O(border + vertices).
   void trace_loops() {
     loop_first.assign(pieces + 1, 0);
     loops_ok.assign(pieces, 1);
     loops.clear();
-    loop_edges.clear();
-    loop_edges.reserve(border.size());
     std::vector<std::uint32_t> leaving(m.vertices_size()), stamp(m.vertices_size(), 0);  // per vertex
-    std::vector<std::uint32_t> succ(border.size(), none);
-    std::vector<std::uint8_t> seen(border.size(), 0);
+    std::vector<std::uint32_t> succ, order;  // per entry of the piece
+    std::vector<std::uint8_t> seen;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> moved;
+    std::vector<std::array<std::uint32_t, 2>> moved_ends;
     for (std::uint32_t p = 0; p < pieces; ++p) {
       loop_first[p] = static_cast<std::uint32_t>(loops.size());
       const std::uint32_t b0 = border_first[p], b1 = border_first[p + 1];
+      succ.assign(b1 - b0, none);
+      seen.assign(b1 - b0, 0);
       bool ok = true;
       for (std::uint32_t k = b0; k < b1 && ok; ++k) {  // the border half-edge leaving each vertex
         const std::uint32_t t = border_ends[k][0];
         ok = stamp[t] != p + 1;
-        stamp[t] = p + 1, leaving[t] = k;
+        stamp[t] = p + 1, leaving[t] = k - b0;
       }
       for (std::uint32_t k = b0; k < b1 && ok; ++k) {
         const std::uint32_t head = border_ends[k][1];
         ok = stamp[head] == p + 1 && seen[leaving[head]] == 0;  // one predecessor each: a permutation
-        if (ok) succ[k] = leaving[head], seen[leaving[head]] = 1;
+        if (ok) succ[k - b0] = leaving[head], seen[leaving[head]] = 1;
       }
       if (!ok) {
         loops_ok[p] = 0;
         continue;
       }
-      for (std::uint32_t k0 = b0; k0 < b1; ++k0) {
+      order.clear();
+      for (std::uint32_t k0 = 0; k0 < b1 - b0; ++k0) {
         if (seen[k0] == 2) continue;
-        border_loop l{static_cast<std::uint32_t>(loop_edges.size()), border[k0].second, vec(0.0)};
+        border_loop l{b0 + static_cast<std::uint32_t>(order.size()), 0, border[b0 + k0].second, vec(0.0)};
         std::uint32_t k = k0;
         do {
           seen[k] = 2;
-          loop_edges.push_back(border_ends[k]);
-          l.apex += pos[border_ends[k][0]];
-          if (border[k].second != l.other) l.other = mixed;
+          order.push_back(k);
+          l.apex += pos[border_ends[b0 + k][0]];
+          if (border[b0 + k].second != l.other) l.other = mixed;
           k = succ[k];
         } while (k != k0);
-        l.apex /= static_cast<double>(loop_edges.size() - l.first);
+        l.end = b0 + static_cast<std::uint32_t>(order.size());
+        l.apex /= static_cast<double>(l.end - l.first);
         loops.push_back(l);
       }
+      moved.clear(), moved_ends.clear();
+      for (const std::uint32_t k : order) moved.push_back(border[b0 + k]), moved_ends.push_back(border_ends[b0 + k]);
+      std::copy(moved.begin(), moved.end(), border.begin() + b0);
+      std::copy(moved_ends.begin(), moved_ends.end(), border_ends.begin() + b0);
     }
     loop_first[pieces] = static_cast<std::uint32_t>(loops.size());
-    loops.push_back({static_cast<std::uint32_t>(loop_edges.size()), none, vec(0.0)});  // the end
   }
 
   /// The next boundary half-edge of the group after h (stamp_piece marks the group), turning
@@ -371,8 +378,8 @@ struct engine {
         for (std::uint32_t l = loop_first[x]; l < loop_first[x + 1]; ++l) {
           const border_loop& b = loops[l];
           if (b.other != none && stamp_piece[b.other] == attempt) continue;  // inside the group
-          for (std::uint32_t k = b.first; k < loops[l + 1].first; ++k)  // (apex, head, tail)
-            if (!fits(b.apex, pos[loop_edges[k][1]], pos[loop_edges[k][0]])) return false;
+          for (std::uint32_t k = b.first; k < b.end; ++k)  // (apex, head, tail)
+            if (!fits(b.apex, pos[border_ends[k][1]], pos[border_ends[k][0]])) return false;
         }
       return true;
     }
@@ -807,7 +814,14 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
             ++held_pairs;
             return true;
           }
+#ifdef PIECE_PROF
+          const double t_s0 = pprof_now();
+          const bool sep_ok = e.separated(a, b);
+          pprof_t[10] += pprof_now() - t_s0;
+          if (sep_ok) {
+#else
           if (e.separated(a, b)) {
+#endif
             ++separated_pairs;
             return true;
           }
@@ -815,9 +829,15 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
                                 (e.piece_first[b + 1] - e.piece_first[b]);
           if (k > limit - work) return false;
           work += k;
+#ifdef PIECE_PROF
+          const double t_t0 = pprof_now();
+#endif
           prepare(a), prepare(b);
           for (std::uint32_t x = e.piece_first[a]; x < e.piece_first[a + 1]; ++x)
             for (std::uint32_t y = e.piece_first[b]; y < e.piece_first[b + 1]; ++y) test(a, x, b, y);
+#ifdef PIECE_PROF
+          pprof_t[11] += pprof_now() - t_t0; ++sep_count;
+#endif
           return true;
         },
         3);  // cells three median pieces wide: a third of the grid's cost, few more candidates
