@@ -345,7 +345,9 @@ TEST_CASE("self_intersections: a convex polygon is clipped as ear clipping clips
     std::vector<cellforge::index_triangle> fast;
     if (!cellforge::detail::self_intersect::clip_convex_projection(
             std::span<const std::uint32_t>(ids), std::span<const dvec3>(q),
-            [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) { fast.push_back({x, y, z}); })) {
+            [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+              fast.push_back({x, y, z});
+            })) {
       CHECK(fast.empty());
       ++refused;
       continue;

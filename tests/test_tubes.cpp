@@ -53,13 +53,16 @@ double signed_volume(const surface_mesh<P>& m) {
 
 // Where the check by pieces and the full exact check differ, as one sentence ("" when they
 // agree on everything they report: the face pairs, the counts, the degenerate triangles).
-inline std::string checks_differ(const self_intersection_result& by_pieces, const self_intersection_result& full) {
+inline std::string checks_differ(const self_intersection_result& by_pieces,
+                                 const self_intersection_result& full) {
   std::string out;
   const auto differ = [&](const char* what, std::size_t a, std::size_t b) {
-    if (a != b) out += std::string(what) + " " + std::to_string(a) + " by pieces, " + std::to_string(b) + " in full; ";
+    if (a != b)
+      out += std::string(what) + " " + std::to_string(a) + " by pieces, " + std::to_string(b) + " in full; ";
   };
   differ("intersecting face pairs", by_pieces.intersecting_face_pairs, full.intersecting_face_pairs);
-  differ("intersecting triangle pairs", by_pieces.intersecting_triangle_pairs, full.intersecting_triangle_pairs);
+  differ("intersecting triangle pairs", by_pieces.intersecting_triangle_pairs,
+         full.intersecting_triangle_pairs);
   differ("triangles", by_pieces.triangles, full.triangles);
   differ("faces", by_pieces.faces, full.faces);
   differ("ear-clipped faces", by_pieces.ear_clipped_faces, full.ear_clipped_faces);
@@ -73,7 +76,8 @@ inline std::string checks_differ(const self_intersection_result& by_pieces, cons
 // The same for m: tube_self_intersections, or self_intersections_by_pieces with `labels`,
 // against self_intersections; `full` receives the full check's result.
 template <class P>
-std::string check_by_pieces_differs(const surface_mesh<P>& m, const std::vector<std::uint32_t>* labels = nullptr,
+std::string check_by_pieces_differs(const surface_mesh<P>& m,
+                                    const std::vector<std::uint32_t>* labels = nullptr,
                                     self_intersection_result* full = nullptr) {
   self_intersection_result whole = self_intersections(m);
   const std::string out = checks_differ(
@@ -627,7 +631,8 @@ TEST_CASE("random trees: closed genus-0 tubes, quads within 90 ± 30 degrees") {
     }
   }
   std::printf(
-      "tube trees: %d trees (%d also through the full check), %zu nodes, %zu misses; quad corners %.1f to %.1f degrees; smallest "
+      "tube trees: %d trees (%d also through the full check), %zu nodes, %zu misses; quad corners %.1f to "
+      "%.1f degrees; smallest "
       "cross-section "
       "%.3f of pi r^2\n",
       trees, (trees + 9) / 10, nodes, misses, lo, hi, smallest_section);
@@ -944,8 +949,8 @@ TEST_CASE("tubes: the check by pieces finds what the full check finds, certifica
   // A tube passing through another's junction, and along another tube (parallel, 0.6 apart).
   {
     S s;
-    s.points = {{0, 0, 0}, {4, 0, 0}, {-4, 0, 0}, {0, 4, 0}, {0.3, -3, -3}, {0.3, 3, 3},
-                {10, 0, 0}, {20, 0, 0}, {10, 0.6, 0}, {20, 0.6, 0}};
+    s.points = {{0, 0, 0},   {4, 0, 0},  {-4, 0, 0}, {0, 4, 0},    {0.3, -3, -3},
+                {0.3, 3, 3}, {10, 0, 0}, {20, 0, 0}, {10, 0.6, 0}, {20, 0.6, 0}};
     s.radii = std::vector<double>(10, 0.5);
     s.edges = {{0, 1}, {0, 2}, {0, 3}, {4, 5}, {6, 7}, {8, 9}};
     agree(make_tubes(s).mesh, "a tube through a junction, two tubes side by side");
@@ -980,22 +985,27 @@ TEST_CASE("tubes: the check by pieces finds what the full check finds, certifica
           for (const vertex_handle v : m.vertices_around(g)) centre += m.position(v), ++corners;
       centre /= static_cast<double>(corners);
       const vertex_handle v = *m.vertices_around(f).begin();
-      m.points()[v.idx()] = centre + 1.5 * (centre - m.points()[v.idx()]);  // through the piece to its far side
-      agree(m, kind == tube_face_kind::extrusion ? "a band's vertex pushed through" : "a junction's vertex pulled through");
+      m.points()[v.idx()] =
+          centre + 1.5 * (centre - m.points()[v.idx()]);  // through the piece to its far side
+      agree(m, kind == tube_face_kind::extrusion ? "a band's vertex pushed through"
+                                                 : "a junction's vertex pulled through");
     }
   }
   // Any labelling gives the same answer: every face its own piece, all in one, faces in sevens.
   {
     const auto r = make_tubes(samples::complete_graph(8, 10, 0.3));
-    std::vector<std::uint32_t> own(r.mesh.faces_size()), one(r.mesh.faces_size(), 0), sevens(r.mesh.faces_size());
+    std::vector<std::uint32_t> own(r.mesh.faces_size()), one(r.mesh.faces_size(), 0),
+        sevens(r.mesh.faces_size());
     for (std::uint32_t i = 0; i < own.size(); ++i) own[i] = i, sevens[i] = i % 7;
     for (const auto* labels : {&own, &one, &sevens}) {
       CHECK(check_by_pieces_differs(r.mesh, labels) == "");
       ++meshes;
     }
   }
-  std::printf("tube check by pieces: %zu adversarial meshes (%zu with intersections), the same answer as the full check\n",
-              meshes, intersecting);
+  std::printf(
+      "tube check by pieces: %zu adversarial meshes (%zu with intersections), the same answer as the full "
+      "check\n",
+      meshes, intersecting);
   CHECK(intersecting >= 6);
 }
 
@@ -1233,7 +1243,8 @@ TEST_CASE("neuron-like skeletons: a soma, dense thin dendrites, close branch poi
     }
   }
   std::printf(
-      "tube neurons: %d skeletons (%d also through the full check), %zu samples, %zu misses (%zu silent); %zu junctions merged, %zu nodes "
+      "tube neurons: %d skeletons (%d also through the full check), %zu samples, %zu misses (%zu silent); "
+      "%zu junctions merged, %zu nodes "
       "moved past, %zu sections shrunk\n",
       count, (count + 9) / 10, samples_in_all, misses, silent, merged, moved, stubs);
   CHECK(silent == 0);

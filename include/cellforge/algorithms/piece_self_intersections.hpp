@@ -150,12 +150,12 @@ struct engine {
   static constexpr std::uint32_t mixed = 0xFFFFFFFEu;
   std::vector<std::uint32_t> loop_first;  // loops of piece p: [loop_first[p], loop_first[p + 1])
   std::vector<border_loop> loops;
-  std::vector<std::uint8_t> loops_ok;  // the piece's border is loops as above (else: traced per group)
-  std::vector<std::uint32_t> nbr_first, nbr;                    // distinct neighbouring pieces
-  std::vector<vec> nbr_mean;                                    // per neighbour: the mean of the border to it
-  std::vector<std::uint8_t> nbr_held;                           // per neighbour: a certified pair group
-  std::vector<std::array<vec, 2>> centres;                      // candidate centres per piece
-  std::vector<vec> mean;                                        // per piece, the mean of its corners
+  std::vector<std::uint8_t> loops_ok;         // the piece's border is loops as above (else: traced per group)
+  std::vector<std::uint32_t> nbr_first, nbr;  // distinct neighbouring pieces
+  std::vector<vec> nbr_mean;                  // per neighbour: the mean of the border to it
+  std::vector<std::uint8_t> nbr_held;         // per neighbour: a certified pair group
+  std::vector<std::array<vec, 2>> centres;    // candidate centres per piece
+  std::vector<vec> mean;                      // per piece, the mean of its corners
   std::vector<std::uint8_t> centre_count;
   std::vector<std::uint32_t> stamp_piece;
   std::uint32_t attempt = 0;
@@ -215,7 +215,8 @@ struct engine {
         loops.push_back(l);
       }
       moved.clear(), moved_ends.clear();
-      for (const std::uint32_t k : order) moved.push_back(border[b0 + k]), moved_ends.push_back(border_ends[b0 + k]);
+      for (const std::uint32_t k : order)
+        moved.push_back(border[b0 + k]), moved_ends.push_back(border_ends[b0 + k]);
       std::copy(moved.begin(), moved.end(), border.begin() + b0);
       std::copy(moved_ends.begin(), moved_ends.end(), border_ends.begin() + b0);
     }
@@ -291,12 +292,12 @@ struct engine {
     const vec q = o + w;
     const auto side_of = [&](std::uint32_t p, int want) {
       for (const std::uint32_t v : corners_of(p)) {
-          double value = 0;
-          int o3 = cellforge::detail::orient3d_filter(plane, pos[v], value);
-          if (o3 == 0) o3 = cellforge::detail::orient3d_exact(o, o + u, q, pos[v]);
-          if (o3 == 0 || (want != 0 && o3 != want)) return 0;
-          want = o3;
-        }
+        double value = 0;
+        int o3 = cellforge::detail::orient3d_filter(plane, pos[v], value);
+        if (o3 == 0) o3 = cellforge::detail::orient3d_exact(o, o + u, q, pos[v]);
+        if (o3 == 0 || (want != 0 && o3 != want)) return 0;
+        want = o3;
+      }
       return want;
     };
     const int sa = side_of(a, 0);
@@ -378,7 +379,7 @@ struct engine {
         for (std::uint32_t l = loop_first[x]; l < loop_first[x + 1]; ++l) {
           const border_loop& b = loops[l];
           if (b.other != none && stamp_piece[b.other] == attempt) continue;  // inside the group
-          for (std::uint32_t k = b.first; k < b.end; ++k)  // (apex, head, tail)
+          for (std::uint32_t k = b.first; k < b.end; ++k)                    // (apex, head, tail)
             if (!fits(b.apex, pos[border_ends[k][1]], pos[border_ends[k][0]])) return false;
         }
       return true;
@@ -434,8 +435,9 @@ bool axes_meet(std::span<const std::array<vec, 2>> loops, vec& out) {
         b[i] += mij * q[j];
       }
   }
-  const auto det3 = [](const double (&x)[3][3]) {
-    return x[0][0] * (x[1][1] * x[2][2] - x[1][2] * x[2][1]) - x[0][1] * (x[1][0] * x[2][2] - x[1][2] * x[2][0]) +
+  const auto det3 = [](const double(&x)[3][3]) {
+    return x[0][0] * (x[1][1] * x[2][2] - x[1][2] * x[2][1]) -
+           x[0][1] * (x[1][0] * x[2][2] - x[1][2] * x[2][0]) +
            x[0][2] * (x[1][0] * x[2][1] - x[1][1] * x[2][0]);
   };
   const double d = det3(a);
@@ -463,9 +465,9 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
   const detail::stopwatch start;
   self_intersection_result r;
   if (face_piece.size() != m.faces_size())
-    throw error(error_category::invalid_input,
-                "self_intersections_by_pieces: face_piece has " + std::to_string(face_piece.size()) +
-                    " labels for " + std::to_string(m.faces_size()) + " faces");
+    throw error(error_category::invalid_input, "self_intersections_by_pieces: face_piece has " +
+                                                   std::to_string(face_piece.size()) + " labels for " +
+                                                   std::to_string(m.faces_size()) + " faces");
   pc::engine<P> e(m, face_piece);
   if constexpr (std::is_same_v<P, glm::dvec3>) {
     e.pos = m.points();
@@ -503,7 +505,8 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
   e.centre_count.assign(pieces, 0);
   std::vector<std::uint32_t> ids;
   std::vector<glm::dvec3> corners;
-  std::vector<std::array<vec, 2>> loops;  // per neighbour of the piece: sum of its border tails, Newell normal
+  std::vector<std::array<vec, 2>>
+      loops;  // per neighbour of the piece: sum of its border tails, Newell normal
   std::vector<std::uint32_t> loop_count;
   for (std::uint32_t p = 0; p < pieces; ++p) {
     e.piece_first[p] = static_cast<std::uint32_t>(e.tris.size());
@@ -561,12 +564,13 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
         continue;
       }
       const std::size_t before = e.tris.size();
-      const bool clipped = si::triangulate_polygon(
-          detail::span_of(ids), detail::span_of(corners),
-          [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) { e.tris.push_back({{a, b, c}, f.idx()}); });
+      const bool clipped = si::triangulate_polygon(detail::span_of(ids), detail::span_of(corners),
+                                                   [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+                                                     e.tris.push_back({{a, b, c}, f.idx()});
+                                                   });
       if (clipped) ++r.ear_clipped_faces;
-      if (!pc::disc_triangulation(detail::span_of(ids),
-                                  std::span<const pc::triangle>(e.tris.data() + before, e.tris.size() - before)))
+      if (!pc::disc_triangulation(detail::span_of(ids), std::span<const pc::triangle>(
+                                                            e.tris.data() + before, e.tris.size() - before)))
         e.piece_ok[p] = 0;
     }
     // Neighbours: the piece "none" (the mesh's own boundary) is no piece.
@@ -624,8 +628,11 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
       const std::uint32_t c = e.nbr[k];
       if (certified[c] != 0 && neighbours(c, b)) return true;
     }
-    const auto in_star = [&](std::uint32_t h, std::uint32_t x) { return x == h || holder[x] == h || neighbours(h, x); };
-    if ((holder[a] != none && in_star(holder[a], b)) || (holder[b] != none && in_star(holder[b], a))) return true;
+    const auto in_star = [&](std::uint32_t h, std::uint32_t x) {
+      return x == h || holder[x] == h || neighbours(h, x);
+    };
+    if ((holder[a] != none && in_star(holder[a], b)) || (holder[b] != none && in_star(holder[b], a)))
+      return true;
     const auto in_pair = [&](const std::array<std::uint32_t, 2>& pq, std::uint32_t x) {
       return pq[0] != none && (x == pq[0] || x == pq[1] || cap_pair[x] == pq);
     };
@@ -643,7 +650,8 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
       for (std::uint32_t k = e.nbr_first[p]; k < e.nbr_first[p + 1] && with_caps; ++k) {
         const std::uint32_t n = e.nbr[k];
         if (degree(n) != 2) continue;
-        const std::uint32_t q = e.nbr[e.nbr_first[n]] == p ? e.nbr[e.nbr_first[n] + 1] : e.nbr[e.nbr_first[n]];
+        const std::uint32_t q =
+            e.nbr[e.nbr_first[n]] == p ? e.nbr[e.nbr_first[n] + 1] : e.nbr[e.nbr_first[n]];
         if (q != p && degree(q) == 1 && holder[q] == none && certified[q] == 0) e.members.push_back(q);
       }
       if (with_caps && e.members.size() == plain) return false;  // nothing to add
@@ -672,31 +680,32 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
     };
     stars(false);
     const auto pairs = [&](bool caps) {  // caps: the pairs with a cap no group took, alone
-    for (std::uint32_t p = 0; p < pieces; ++p)
-      for (std::uint32_t k = e.nbr_first[p]; k < e.nbr_first[p + 1]; ++k) {
-        const std::uint32_t q = e.nbr[k];
-        if (q < p || (degree(p) == 1 || degree(q) == 1) != caps || held(p, q)) continue;
-        e.members.assign({p, q});
-        for (const std::uint32_t x : {p, q})
-          for (std::uint32_t j = e.nbr_first[x]; j < e.nbr_first[x + 1] && !caps; ++j) {
-            const std::uint32_t c = e.nbr[j];
-            if (degree(c) == 1 && holder[c] == none && cap_pair[c][0] == none && certified[c] == 0)
-              e.members.push_back(c);
+      for (std::uint32_t p = 0; p < pieces; ++p)
+        for (std::uint32_t k = e.nbr_first[p]; k < e.nbr_first[p + 1]; ++k) {
+          const std::uint32_t q = e.nbr[k];
+          if (q < p || (degree(p) == 1 || degree(q) == 1) != caps || held(p, q)) continue;
+          e.members.assign({p, q});
+          for (const std::uint32_t x : {p, q})
+            for (std::uint32_t j = e.nbr_first[x]; j < e.nbr_first[x + 1] && !caps; ++j) {
+              const std::uint32_t c = e.nbr[j];
+              if (degree(c) == 1 && holder[c] == none && cap_pair[c][0] == none && certified[c] == 0)
+                e.members.push_back(c);
+            }
+          const std::size_t with_caps = e.members.size();
+          bool ok = e.certify(e.nbr_mean[k]);
+          if (!ok && with_caps > 2) {
+            e.members.resize(2);
+            ok = e.certify(e.nbr_mean[k]);
           }
-        const std::size_t with_caps = e.members.size();
-        bool ok = e.certify(e.nbr_mean[k]);
-        if (!ok && with_caps > 2) {
-          e.members.resize(2);
-          ok = e.certify(e.nbr_mean[k]);
+          if (!ok) continue;
+          e.nbr_held[k] = 1;
+          for (std::uint32_t j = e.nbr_first[q]; j < e.nbr_first[q + 1]; ++j)
+            if (e.nbr[j] == p) e.nbr_held[j] = 1;
+          for (std::size_t i = 2; i < e.members.size(); ++i)
+            cap_pair[e.members[i]] = {p, q}, covered[e.members[i]] = 1;
+          covered[p] = covered[q] = 1;
+          ++r.certified_groups;
         }
-        if (!ok) continue;
-        e.nbr_held[k] = 1;
-        for (std::uint32_t j = e.nbr_first[q]; j < e.nbr_first[q + 1]; ++j)
-          if (e.nbr[j] == p) e.nbr_held[j] = 1;
-        for (std::size_t i = 2; i < e.members.size(); ++i) cap_pair[e.members[i]] = {p, q}, covered[e.members[i]] = 1;
-        covered[p] = covered[q] = 1;
-        ++r.certified_groups;
-      }
     };
     pairs(false);
     stars(true);
@@ -709,7 +718,7 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
     std::array<double, 6> box;
     bool degenerate;
   };
-  std::vector<boxed> tri_box;                         // of the prepared pieces, in turn
+  std::vector<boxed> tri_box;                          // of the prepared pieces, in turn
   std::vector<std::uint32_t> box_first(pieces, none);  // where a prepared piece's boxes start
   std::vector<std::uint32_t> degenerate_faces;
   const auto prepare = [&](std::uint32_t p) {
@@ -796,20 +805,24 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
   // Pairs of pieces whose boxes overlap and that no certified group holds: every pair of triangles.
   std::vector<std::array<double, 6>> piece_box(pieces);
   for (std::uint32_t p = 0; p < pieces; ++p) {
-    std::array<double, 6> b = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-                               std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
-                               -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    std::array<double, 6> b = {
+        std::numeric_limits<double>::infinity(),  std::numeric_limits<double>::infinity(),
+        std::numeric_limits<double>::infinity(),  -std::numeric_limits<double>::infinity(),
+        -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
     for (std::uint32_t t = e.piece_first[p]; t < e.piece_first[p + 1]; ++t)
       for (const std::uint32_t v : e.tris[t].v)
         for (std::size_t k = 0; k < 3; ++k)
-          b[k] = std::min(b[k], pos[v][static_cast<int>(k)]), b[k + 3] = std::max(b[k + 3], pos[v][static_cast<int>(k)]);
+          b[k] = std::min(b[k], pos[v][static_cast<int>(k)]),
+          b[k + 3] = std::max(b[k + 3], pos[v][static_cast<int>(k)]);
     piece_box[p] = b;
   }
   std::size_t held_pairs = 0, separated_pairs = 0;
   if (complete) {
     const si::box_pair_count pairs = si::for_each_box_pair(
-        detail::span_of(piece_box), limit - work, [&](std::uint32_t a, std::uint32_t b) {
-          if (e.piece_first[a] == e.piece_first[a + 1] || e.piece_first[b] == e.piece_first[b + 1]) return true;
+        detail::span_of(piece_box), limit - work,
+        [&](std::uint32_t a, std::uint32_t b) {
+          if (e.piece_first[a] == e.piece_first[a + 1] || e.piece_first[b] == e.piece_first[b + 1])
+            return true;
           if (held(a, b)) {
             ++held_pairs;
             return true;
@@ -836,7 +849,8 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
           for (std::uint32_t x = e.piece_first[a]; x < e.piece_first[a + 1]; ++x)
             for (std::uint32_t y = e.piece_first[b]; y < e.piece_first[b + 1]; ++y) test(a, x, b, y);
 #ifdef PIECE_PROF
-          pprof_t[11] += pprof_now() - t_t0; ++sep_count;
+          pprof_t[11] += pprof_now() - t_t0;
+          ++sep_count;
 #endif
           return true;
         },
@@ -863,7 +877,8 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
     throw error(error_category::budget, message);
   }
   std::sort(degenerate_faces.begin(), degenerate_faces.end());
-  degenerate_faces.erase(std::unique(degenerate_faces.begin(), degenerate_faces.end()), degenerate_faces.end());
+  degenerate_faces.erase(std::unique(degenerate_faces.begin(), degenerate_faces.end()),
+                         degenerate_faces.end());
   for (std::size_t i = 0; i < degenerate_faces.size() && i < options.max_reported; ++i)
     r.degenerate_faces.emplace_back(degenerate_faces[i]);
   si::compact(found);

@@ -334,14 +334,17 @@ bool clip_convex_projection(std::span<const std::uint32_t> ids, std::span<const 
     if (p[i] == p[(i + n - 1) % n]) return false;  // a repeat: the clipper sets it aside
     prev[i] = static_cast<std::uint8_t>((i + n - 1) % n), next[i] = static_cast<std::uint8_t>((i + 1) % n);
   }
-  const auto convex = [&](std::size_t i) { return sense * orient_uw(p[prev[i]], p[i], p[next[i]], u, w) > 0; };
+  const auto convex = [&](std::size_t i) {
+    return sense * orient_uw(p[prev[i]], p[i], p[next[i]], u, w) > 0;
+  };
   for (std::size_t i = 0; i < n; ++i)
     if (!convex(i)) return false;
   std::array<std::array<std::uint8_t, 3>, 14> out{};
   std::size_t i = 0, count = 0;
   for (std::size_t remaining = n; remaining > 3; --remaining) {
     const std::size_t a = prev[i], c = next[i];
-    const double ux = p[i][u] - p[a][u], uy = p[i][w] - p[a][w], vx = p[c][u] - p[a][u], vy = p[c][w] - p[a][w];
+    const double ux = p[i][u] - p[a][u], uy = p[i][w] - p[a][w], vx = p[c][u] - p[a][u],
+                 vy = p[c][w] - p[a][w];
     const double wx = p[c][u] - p[i][u], wy = p[c][w] - p[i][w];
     const double longest = std::max({ux * ux + uy * uy, vx * vx + vy * vy, wx * wx + wy * wy});
     if (!(std::fabs(ux * vy - uy * vx) > 2e-12 * longest)) return false;  // thin or close: the clipper's call
@@ -553,14 +556,14 @@ struct box_pair_count {
 
 /// Calls visit(i, j) exactly once for every pair of closed boxes (min x, y, z, max x, y, z) that
 /// overlap, i and j in one uniform grid cell: the cell side is the median of the boxes' largest
-/// extents times `side_scale`, grown until no more than 8n + 2^16 cell entries are needed, and each pair is visited
-/// in the cell holding the low corner of the boxes' intersection (the only pairs a cell counts as
+/// extents times `side_scale`, grown until no more than 8n + 2^16 cell entries are needed, and each pair is
+/// visited in the cell holding the low corner of the boxes' intersection (the only pairs a cell counts as
 /// candidates; the order of i and j is not fixed). Stops, complete = false, before
 /// a cell that would take the candidate pairs past `budget` (0: no limit). visit may return
 /// false to stop too. O(n log n + candidate pairs).
 template <class Visit>
-box_pair_count for_each_box_pair(std::span<const std::array<double, 6>> boxes, std::size_t budget, Visit&& visit,
-                                 double side_scale = 1) {
+box_pair_count for_each_box_pair(std::span<const std::array<double, 6>> boxes, std::size_t budget,
+                                 Visit&& visit, double side_scale = 1) {
   box_pair_count r;
   const std::size_t n = boxes.size();
   if (n < 2) return r;
