@@ -161,7 +161,8 @@ void register_check(const std::string& name, const skeleton& s, int iterations) 
             by_pieces.push_back(c3 - c2);
             state.SetIterationTime((c3 - c0) * 1e-3);
             benchmark::DoNotOptimize(r);
-            if (!si.complete || si.intersecting_face_pairs != 0 || !sp.complete || sp.intersecting_face_pairs != 0)
+            if (!si.complete || si.intersecting_face_pairs != 0 || !sp.complete ||
+                sp.intersecting_face_pairs != 0)
               state.SkipWithError("a check did not finish, or found an intersection");
             state.counters["triangles"] = static_cast<double>(si.triangles);
             state.counters["tested_pairs"] = static_cast<double>(si.pairs_tested);
@@ -293,9 +294,10 @@ void print_tables(const cb::collecting_reporter& r, std::ostream& os) {
     }
     g.print(os);
   }
-  cb::table c("The exact self-intersection check beside the meshing (issue 35)",
-              {"skeleton", "triangles", "meshing ms", "full check ms", "full / meshing", "pairs tested",
-               "by pieces ms", "by pieces / meshing", "pairs tested by pieces", "meshing + by pieces / meshing"});
+  cb::table c(
+      "The exact self-intersection check beside the meshing (issue 35)",
+      {"skeleton", "triangles", "meshing ms", "full check ms", "full / meshing", "pairs tested",
+       "by pieces ms", "by pieces / meshing", "pairs tested by pieces", "meshing + by pieces / meshing"});
   for (const growth_case& g : growth()) {
     if (!in_check(g.name)) continue;
     const std::string name = "check/" + g.name;
