@@ -6,9 +6,9 @@
 /// version), a patch release never does. CMakeLists.txt reads the numbers from this file.
 
 #define CELLFORGE_VERSION_MAJOR 0
-#define CELLFORGE_VERSION_MINOR 7
+#define CELLFORGE_VERSION_MINOR 8
 #define CELLFORGE_VERSION_PATCH 0
-#define CELLFORGE_VERSION_STRING "0.7.0"
+#define CELLFORGE_VERSION_STRING "0.8.0"
 
 namespace cellforge {
 

@@ -74,7 +74,6 @@ struct loop_subdivision_options {
   /// 80 bytes with its vertices and edges: 50M faces ≈ 4 GB). 0: only the 32-bit index limit.
   std::size_t max_faces = 50'000'000;
 };
-using loop_options [[deprecated("use loop_subdivision_options; removed in 0.8")]] = loop_subdivision_options;
 
 /// Counts before and after, and where the time went (milliseconds: the levels' sum).
 struct loop_subdivision_result : stage_report {
@@ -85,13 +84,7 @@ struct loop_subdivision_result : stage_report {
   std::size_t fixed_vertices = 0;
   /// Milliseconds per level (the last one includes deriving vertex anchors and rings).
   std::vector<double> level_ms;
-  [[deprecated("use milliseconds; removed in 0.8")]] double total_ms() const noexcept {
-    double t = 0;
-    for (double x : level_ms) t += x;
-    return t;
-  }
 };
-using loop_result [[deprecated("use loop_subdivision_result; removed in 0.8")]] = loop_subdivision_result;
 
 namespace detail::loop {
 

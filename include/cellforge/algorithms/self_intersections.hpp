@@ -23,7 +23,6 @@
 
 #include "cellforge/algorithms/detail/triangle_pairs.hpp"
 #include "cellforge/algorithms/ear_clipping.hpp"
-#include "cellforge/core/detail/deprecation.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/error.hpp"
@@ -38,17 +37,12 @@
 namespace cellforge {
 
 // The deprecated members below warn where a user names them, not at every copy of the structs.
-CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
 /// Limits of self_intersections.
 struct self_intersection_options {
   /// Work budget: the most candidate pairs (two boxes in one grid cell) examined;
   /// automatic (the default): 256 per triangle plus 2^20; 0: unlimited. A closed mesh with
   /// well-shaped triangles needs some 10–30 per triangle. Past it: complete = false.
   cellforge::work_budget work_budget = cellforge::work_budget::automatic;
-  /// Deprecated, removed in 0.8 (use work_budget, where 0 is unlimited): the budget when not 0.
-  [[deprecated("use work_budget (0: unlimited); removed in 0.8")]] std::size_t max_candidate_pairs = 0;
-  /// Deprecated, removed in 0.8 (test complete): true throws error(budget) past the budget.
-  [[deprecated("test complete; removed in 0.8")]] bool throw_on_budget = false;
   /// How many intersecting face pairs (and faces with zero-area triangles) to list.
   std::size_t max_reported = 100;
 };
@@ -81,9 +75,7 @@ struct self_intersection_result : stage_report {
   std::size_t pieces = 0, certified_groups = 0, certified_piece_pairs = 0, separated_piece_pairs = 0;
   std::size_t degenerate_triangles = 0;       ///< zero-area triangles (not tested)
   std::vector<face_handle> degenerate_faces;  ///< the first max_reported faces holding one
-  [[deprecated("use milliseconds; removed in 0.8")]] double time_ms = 0;  ///< filled as milliseconds
 };
-CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
 
 namespace detail::self_intersect {
 
@@ -248,19 +240,12 @@ self_intersection_result self_intersections(const surface_mesh<P>& m,
   }
   std::vector<si::entry>().swap(all);
   const std::size_t n = tris.size();
-  // The deprecated spellings, honoured and filled until 0.8.
-  CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
-  const std::size_t budget = options.max_candidate_pairs != 0
-                                 ? options.max_candidate_pairs
-                                 : options.work_budget.limit(256 * n + (std::size_t{1} << 20));
-  const bool throw_on_budget = options.throw_on_budget;
+  const std::size_t budget = options.work_budget.limit(256 * n + (std::size_t{1} << 20));
   auto finish = [&] {
     r.milliseconds = start.ms();
     r.work = r.candidate_pairs;
-    r.time_ms = r.milliseconds;
     return r;
   };
-  CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
   if (n < 2) return finish();
 
   std::vector<std::uint32_t> first;
@@ -312,17 +297,17 @@ self_intersection_result self_intersections(const surface_mesh<P>& m,
       });
   r.candidate_pairs = pairs.candidate_pairs;
   r.complete = pairs.complete;
-  if (!r.complete && throw_on_budget) {
+  if (!r.complete) {
     // Appended piece by piece: `"..." + std::to_string(n)` trips g++ 12's false -Wrestrict
     // (GCC PR 105329) in a user's -O2 -Werror build.
     std::string message = "self_intersections: the work budget of ";
     message += std::to_string(budget);
-    message += " candidate box pairs was exhausted after testing ";
+    message += " candidate box pairs was spent after testing ";
     message += std::to_string(r.pairs_tested);
     message += " pairs of ";
     message += std::to_string(n);
-    message += " triangles (raise self_intersection_options::work_budget)";
-    throw error(error_category::budget, message);
+    message += " triangles: the answer is partial (raise self_intersection_options::work_budget)";
+    r.diagnostics.push_back(std::move(message));
   }
   si::compact(found);
   r.intersecting_face_pairs = found.size();

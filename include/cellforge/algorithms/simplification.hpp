@@ -18,7 +18,6 @@
 #include <glm/vec3.hpp>
 
 #include "cellforge/algorithms/edits.hpp"
-#include "cellforge/core/detail/deprecation.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
@@ -53,14 +52,12 @@ struct simplify_options {
 };
 
 // `seconds` warns where a user names it, not at every copy of the struct.
-CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
 /// What simplify() did; milliseconds the call, diagnostics a missed face target and why.
 struct simplify_result : stage_report {
   std::size_t faces_before = 0, faces_after = 0, vertices_before = 0, vertices_after = 0;
   std::size_t collapses = 0;
   std::array<std::size_t, num_edit_refusals> refused{};  ///< collapses refused, by reason
   double max_error = 0;  ///< quadric: largest error of a collapse done; edge_length: longest edge collapsed
-  [[deprecated("use milliseconds; removed in 0.8")]] double seconds = 0;  ///< filled as milliseconds / 1000
   int rounds = 0;
   bool reached_target = false;  ///< faces_after <= target_faces (true when there is no face target)
   std::size_t refused_total() const noexcept {
@@ -70,7 +67,6 @@ struct simplify_result : stage_report {
   }
   std::size_t refusals(edit_refusal why) const noexcept { return refused[static_cast<std::size_t>(why)]; }
 };
-CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
 
 namespace detail::simplification {
 
@@ -383,9 +379,6 @@ simplify_result simplify(surface_mesh<P>& m, const simplify_options& options = {
                                      std::string(to_string(static_cast<edit_refusal>(most))))));
   }
   result.milliseconds = t0.ms();
-  CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
-  result.seconds = result.milliseconds / 1e3;  // filled until 0.8
-  CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
   return result;
 }
 

@@ -62,7 +62,6 @@ struct cells_validation {
   bool ok() const noexcept { return broken == cells_invariant::none; }
   explicit operator bool() const noexcept { return ok(); }
 };
-using cells_validation_result [[deprecated("use cells_validation; removed in 0.8")]] = cells_validation;
 
 namespace detail::cells {
 

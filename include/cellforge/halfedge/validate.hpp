@@ -39,7 +39,6 @@ struct mesh_validation {
   bool ok() const noexcept { return broken == mesh_invariant::none; }
   explicit operator bool() const noexcept { return ok(); }
 };
-using validation_result [[deprecated("use mesh_validation; removed in 0.8")]] = mesh_validation;
 
 namespace detail {
 template <class = void>

@@ -29,7 +29,6 @@
 #include <glm/vec2.hpp>
 #include <unsupported/Eigen/NonLinearOptimization>
 
-#include "cellforge/core/detail/deprecation.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/text.hpp"
 #include "cellforge/core/error.hpp"
@@ -142,7 +141,6 @@ struct stroke_summary {
 };
 
 // `seconds` warns where a user names it, not at every copy of the struct.
-CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
 /// What detect_arcs found: the pieces of every stroke in order, per-stroke summaries, counts,
 /// and (diagnostics) a sentence for each stroke that is neither one line nor one arc, or that
 /// was dropped; milliseconds the call.
@@ -159,9 +157,7 @@ struct arc_detection_result : stage_report {
   /// Over every ellipse fit tried, how often each reason rejected it (index: arc_rejection).
   std::array<std::size_t, arc_rejection_count> rejections{};
   double drawing_size = 0;  ///< the size the tolerance was taken of
-  [[deprecated("use milliseconds; removed in 0.8")]] double seconds = 0;  ///< filled as milliseconds / 1000
 };
-CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
 
 /// A circle of a known plane seen in a parallel view, fitted to points: the 3D circle of radius
 /// `radius` whose plane's two unit axes the view maps to `u` and `v`, drawn as the ellipse

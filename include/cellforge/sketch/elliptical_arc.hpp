@@ -290,11 +290,4 @@ arc_validation validate(const arc_drawing<P>& d, const drawing_validation_option
   return {};
 }
 
-/// Deprecated spelling of validate(d, options).
-template <Point2 P>
-[[deprecated("use validate(d, options); removed in 0.8")]] arc_validation validate_arcs(
-    const arc_drawing<P>& d, const drawing_validation_options& options = {}) {
-  return validate(d, options);
-}
-
 }  // namespace cellforge

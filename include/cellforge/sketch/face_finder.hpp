@@ -100,7 +100,6 @@ struct face_validation {
            rule_breaking_loops.empty();
   }
 };
-using face_check [[deprecated("use face_validation; removed in 0.8")]] = face_validation;
 
 /// Another answer, when the first failed its check: loops, its check, and why it ranks there.
 struct face_alternative {

@@ -140,8 +140,6 @@ struct drawing_validation_options {
   /// collinear. Must be finite and in [0, 0.5).
   double tolerance = 1e-9;
 };
-using drawing_check_options [[deprecated("use drawing_validation_options; removed in 0.8")]] =
-    drawing_validation_options;
 
 namespace detail {
 
@@ -331,13 +329,6 @@ drawing_validation validate(const D& d, const drawing_validation_options& option
               jn(i) + " is on " + (degree[i] == 0 ? std::string("no edge") : std::string("one edge only")) +
                   ": not the drawing of a polyhedron, whose every vertex is on two edges or more"};
   return {};
-}
-
-/// Deprecated spelling of validate(d, options).
-template <LineDrawing D>
-[[deprecated("use validate(d, options); removed in 0.8")]] drawing_validation validate_drawing(
-    const D& d, const drawing_validation_options& options = {}) {
-  return validate(d, options);
 }
 
 /// Throws an invalid_input `cellforge::error` with validate(drawing)'s message when the drawing

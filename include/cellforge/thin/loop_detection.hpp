@@ -35,7 +35,6 @@ struct thin_detection_options {
   /// the candidate window); find_thin_points sets it to about one ring of faces.
   std::size_t envelope_cycles = 0;
 };
-using detection_options [[deprecated("use thin_detection_options; removed in 0.8")]] = thin_detection_options;
 
 /// One detected cycle: its 1-based cycle number, its strength (0..1, strongest first).
 struct detected_cycle {
@@ -52,7 +51,6 @@ struct thin_detection_result : stage_report {
       values;             ///< seed: the weighted (and maybe smoothed) values; prominence: the wide envelope
   bool smoothed = false;  ///< seed: the values alternated and were smoothed
 };
-using detection_result [[deprecated("use thin_detection_result; removed in 0.8")]] = thin_detection_result;
 
 namespace detail::thin {
 

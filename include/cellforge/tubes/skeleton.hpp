@@ -265,12 +265,6 @@ skeleton_validation validate(const G& g) {
   return {};
 }
 
-/// Deprecated spelling of validate(g).
-template <Skeleton G>
-[[deprecated("use validate(g); removed in 0.8")]] skeleton_validation validate_skeleton(const G& g) {
-  return validate(g);
-}
-
 /// Throws an invalid_input `cellforge::error` with validate(skeleton)'s message when the
 /// skeleton has a defect; returns normally otherwise. O(V + E) expected.
 template <Skeleton G>

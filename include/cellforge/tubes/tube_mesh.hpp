@@ -25,7 +25,6 @@
 #include "cellforge/algorithms/piece_self_intersections.hpp"
 #include "cellforge/algorithms/self_intersections.hpp"
 #include "cellforge/core/bounding_box.hpp"
-#include "cellforge/core/detail/deprecation.hpp"
 #include "cellforge/core/detail/if_satisfied.hpp"
 #include "cellforge/core/detail/large_array.hpp"
 #include "cellforge/core/detail/span_of.hpp"
@@ -81,10 +80,7 @@ struct tubes_options {
   /// io::swc_result::ids): "sample 17" instead of "node 3". Empty: node indices. Not copied.
   std::span<const std::int64_t> node_ids = {};
 };
-using tube_options [[deprecated("use tubes_options; removed in 0.8")]] = tubes_options;
 
-// total_ms warns where a user names it, not at every copy of the struct.
-CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
 /// What make_tubes built, and how long each stage took. stage_report: milliseconds the whole
 /// call; complete false when the self-intersection check stopped at its budget; diagnostics what
 /// the mesher decided on its own, one sentence each (sharp bends, virtual sections, inserted
@@ -122,7 +118,6 @@ struct tubes_result : stage_report {
   /// stages include their faces' linking; mesh_ms is the check of every vertex's fan, the shells
   /// and the move into the caller's point type.
   double construct_ms = 0, junctions_ms = 0, paths_ms = 0, mesh_ms = 0, subdivision_ms = 0;
-  [[deprecated("use milliseconds; removed in 0.8")]] double total_ms = 0;  ///< filled as milliseconds
   /// Quality: per skeleton edge, the smallest cross-section along it (the area of a ring of
   /// its path seen along the tube, over π r² of its node; a regular octagon is 0.90; NaN for
   /// an edge with no ring of its own, e.g. between two junctions' rings), the smallest over
@@ -140,7 +135,6 @@ struct tubes_result : stage_report {
   bool self_intersections_checked = false;
   double check_ms = 0;
 };
-CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
 
 namespace detail::tubes {
 /// make_tubes' result type for skeleton type G (unconstrained, for detail::if_satisfied_t).

@@ -46,7 +46,6 @@ struct wireframe_read_options {
   /// it); false keeps the caller's order in the graph.
   bool spatial_order = true;
 };
-using read_options [[deprecated("use wireframe_read_options; removed in 0.8")]] = wireframe_read_options;
 
 /// What read_vertices found; `graph` is the labelled wireframe the other stages use.
 struct wireframe_read_result : stage_report {
@@ -59,7 +58,6 @@ struct wireframe_read_result : stage_report {
   std::size_t split_edges = 0;          ///< vertices found inside edges (each splits an edge there)
   std::vector<std::uint32_t> dangling;  ///< caller's indices of edges removed because no circuit can use them
 };
-using read_result [[deprecated("use wireframe_read_result; removed in 0.8")]] = wireframe_read_result;
 
 namespace detail {
 

@@ -15,7 +15,6 @@ namespace cellforge {
 
 /// Options of unique_circuits (none yet; kept for a uniform stage interface).
 struct unique_circuits_options {};
-using unique_options [[deprecated("use unique_circuits_options; removed in 0.8")]] = unique_circuits_options;
 
 /// The unique candidate faces in canonical order.
 struct unique_circuits_result : stage_report {
@@ -23,7 +22,6 @@ struct unique_circuits_result : stage_report {
   std::size_t duplicates =
       0;  ///< circuits that repeated an earlier one (same loops up to rotation and reversal)
 };
-using unique_result [[deprecated("use unique_circuits_result; removed in 0.8")]] = unique_circuits_result;
 
 /// Canonicalises every face and removes repeats; the comparison is by canonical loops, which
 /// the seed's edge-by-edge walk decides the same way. O(F log F · L) for loops of length L.

@@ -764,9 +764,6 @@ auto detect_arcs(const Strokes& strokes, const arc_detection_options& options) {
     res.strokes.push_back(sum);
   }
   res.milliseconds = started.ms();
-  CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
-  res.seconds = res.milliseconds / 1e3;  // filled until 0.8
-  CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
   return res;
 }
 

@@ -723,9 +723,7 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
       if (attempt == 1 || (merged > 0 && std::adjacent_find(pairs.begin(), pairs.end()) == pairs.end() &&
                            validate(g2).ok())) {
         tubes_result<P> again = make_tubes_of(g2, options, &next);
-        CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
-        again.milliseconds = again.total_ms = t_start.ms();  // total_ms filled until 0.8
-        CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
+        again.milliseconds = t_start.ms();
         return again;
       }
     }
@@ -837,9 +835,7 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
     res.diagnostics.push_back(cellforge::detail::cat("the mesh's genus ", std::to_string(res.genus),
                                                      " differs from the skeleton's cycle rank ",
                                                      std::to_string(res.cycle_rank)));
-  CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
-  res.milliseconds = res.total_ms = t_start.ms();  // total_ms filled until 0.8
-  CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
+  res.milliseconds = t_start.ms();
   return res;
 }
 
