@@ -13,6 +13,7 @@
 #include "cellforge/algorithms/ear_clipping.hpp"
 #include "cellforge/algorithms/edits.hpp"
 #include "cellforge/algorithms/loop_subdivision.hpp"
+#include "cellforge/algorithms/piece_self_intersections.hpp"
 #include "cellforge/algorithms/self_intersections.hpp"
 #include "cellforge/algorithms/shapes.hpp"
 #include "cellforge/algorithms/simplification.hpp"

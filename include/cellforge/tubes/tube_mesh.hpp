@@ -159,7 +159,7 @@ std::vector<std::uint32_t> tube_pieces(const surface_mesh<P>& mesh);
 
 /// The exact self-intersection check of a tube mesh: self_intersections_by_pieces(mesh,
 /// tube_pieces(mesh), options), the same answer as self_intersections(mesh, options) on any mesh,
-/// at about the meshing's cost instead of 6–9 times it (docs/tubes.md, "The check by pieces");
+/// at about the meshing's cost instead of 6–10 times it (docs/tubes.md, "The check by pieces");
 /// a mesh without "f:tube_source" goes to self_intersections.
 /// O(F + the triangle pairs of pieces no certificate holds), bounded by the work budget.
 template <Point3 P>

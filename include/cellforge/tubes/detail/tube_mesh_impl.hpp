@@ -872,9 +872,7 @@ self_intersection_result tube_self_intersections(const surface_mesh<P>& mesh,
   const detail::stopwatch start;
   const std::vector<std::uint32_t> pieces = tube_pieces(mesh);
   self_intersection_result r = self_intersections_by_pieces(mesh, detail::span_of(pieces), options);
-  CELLFORGE_DETAIL_ALLOW_DEPRECATED_BEGIN
-  r.milliseconds = r.time_ms = start.ms();  // with the labelling; time_ms filled until 0.8
-  CELLFORGE_DETAIL_ALLOW_DEPRECATED_END
+  r.milliseconds = start.ms();  // with the labelling
   return r;
 }
 
