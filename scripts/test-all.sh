@@ -14,7 +14,7 @@
 # Before the stages, scripts/fetch-bunny.sh puts the Stanford bunny (npm) in build/data, and
 # scripts/fetch-cgal-data.sh CGAL's demo meshes (Debian's libcgal-demo) in build/data/cgal.
 # Every stage runs even when an earlier one failed; the exit status is non-zero if any failed.
-# The stages run in two lanes at once (ci, clang, bench | asan, fuzz; each line of output tagged
+# The stages run in two lanes at once (ci, clang | asan, bench, fuzz; each line of output tagged
 # with its stage): every stage has single-threaded parts (configuring, linking, the last tests
 # of a ctest run, the clang stage's one big TU), and the other lane fills the idle core.
 # Environment: CELLFORGE_FUZZ_SECONDS (default 5), CELLFORGE_FUZZ_JOBS (fuzzers run at once,
@@ -182,7 +182,7 @@ trap 'rm -f "$record"' EXIT
 lane_a=() lane_b=()
 for stage in "${stages[@]}"; do
   case "$stage" in
-    asan | fuzz) lane_b+=("$stage") ;;
+    asan | bench | fuzz) lane_b+=("$stage") ;;
     *) lane_a+=("$stage") ;;
   esac
 done
