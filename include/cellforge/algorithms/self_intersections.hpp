@@ -79,6 +79,17 @@ struct self_intersection_result : stage_report {
 
 namespace detail::self_intersect {
 
+/// The face-pair keys found (first face << 32 | second), sorted and deduplicated, into r: their
+/// count and the first max_reported pairs. Shared by both checks. O(n log n).
+template <class = void>
+void report_pairs(self_intersection_result& r, std::vector<std::uint64_t>& found, std::size_t max_reported) {
+  compact(found);
+  r.intersecting_face_pairs = found.size();
+  for (std::size_t i = 0; i < found.size() && i < max_reported; ++i)
+    r.face_pairs.emplace_back(face_handle(static_cast<std::uint32_t>(found[i] >> 32)),
+                              face_handle(static_cast<std::uint32_t>(found[i])));
+}
+
 /// One triangle of a face's triangulation.
 struct entry {
   std::array<std::uint32_t, 3> v;  ///< vertex indices
@@ -309,11 +320,7 @@ self_intersection_result self_intersections(const surface_mesh<P>& m,
     message += " triangles: the answer is partial (raise self_intersection_options::work_budget)";
     r.diagnostics.push_back(std::move(message));
   }
-  si::compact(found);
-  r.intersecting_face_pairs = found.size();
-  for (std::size_t i = 0; i < found.size() && i < options.max_reported; ++i)
-    r.face_pairs.emplace_back(face_handle(static_cast<std::uint32_t>(found[i] >> 32)),
-                              face_handle(static_cast<std::uint32_t>(found[i])));
+  si::report_pairs(r, found, options.max_reported);
   return finish();
 }
 

@@ -858,11 +858,7 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
                          degenerate_faces.end());
   for (std::size_t i = 0; i < degenerate_faces.size() && i < options.max_reported; ++i)
     r.degenerate_faces.emplace_back(degenerate_faces[i]);
-  si::compact(found);
-  r.intersecting_face_pairs = found.size();
-  for (std::size_t i = 0; i < found.size() && i < options.max_reported; ++i)
-    r.face_pairs.emplace_back(face_handle(static_cast<std::uint32_t>(found[i] >> 32)),
-                              face_handle(static_cast<std::uint32_t>(found[i])));
+  si::report_pairs(r, found, options.max_reported);
   return finish();
 }
 
