@@ -417,6 +417,49 @@ bool nearly_parallel(const faces::drawing_graph& g, double degrees) {
   return false;
 }
 
+/// Whether a drawing whose reading as drawn gives a complex that agrees with its faces is an
+/// exact view: its faces are all triangles (any drawing of them is the view of a solid: jitter
+/// leaves no trace) or two of its lines sharing no junction are parallel to rounding (lines
+/// parallel in space drawn exactly). A jittered quad-sided drawing realised as drawn (a box
+/// whose top, split by a wall's diagonal, folds) has neither. O(E log E + F).
+template <class FaceSet>
+bool exact_view(const faces::drawing_graph& g, const FaceSet& face_loops) {
+  bool triangles = true;
+  for (const auto& face : face_loops)
+    for (const auto& loop : face) triangles = triangles && loop.size() == 3;
+  if (triangles) return true;
+  const std::size_t ne = g.num_half_edges() / 2;
+  std::vector<std::pair<double, std::uint32_t>> angle;
+  angle.reserve(ne);
+  for (std::uint32_t e = 0; e < ne; ++e) {
+    const glm::dvec2 v = g.p[g.head[2 * e]] - g.p[g.head[2 * e + 1]];
+    if (!(glm::length(v) > 0)) continue;
+    double a = std::atan2(v.y, v.x);
+    if (a < 0) a += 3.141592653589793;
+    if (a >= 3.141592653589793) a -= 3.141592653589793;
+    angle.push_back({a, e});
+  }
+  std::sort(angle.begin(), angle.end());
+  const auto unit = [&](std::uint32_t e) {
+    return glm::normalize(g.p[g.head[2 * e]] - g.p[g.head[2 * e + 1]]);
+  };
+  const auto disjoint = [&](std::uint32_t e, std::uint32_t f) {
+    return g.head[2 * e] != g.head[2 * f] && g.head[2 * e] != g.head[2 * f + 1] &&
+           g.head[2 * e + 1] != g.head[2 * f] && g.head[2 * e + 1] != g.head[2 * f + 1];
+  };
+  const std::size_t n = angle.size();
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t k = 1; k < n; ++k) {  // forward around the circle of directions, within 1e-8 rad
+      const std::size_t j = (i + k) % n;
+      const double gap =
+          j > i ? angle[j].first - angle[i].first : angle[j].first + 3.141592653589793 - angle[i].first;
+      if (gap > 1e-8) break;
+      const glm::dvec2 u = unit(angle[i].second), v = unit(angle[j].second);
+      if (std::abs(u.x * v.y - u.y * v.x) <= 1e-9 && disjoint(angle[i].second, angle[j].second)) return true;
+    }
+  return false;
+}
+
 /// Whether loops fail their check on a drawing at an edge on just two of them that are
 /// coplanar in the drawing's reading `depth` (normals within 1e-6 rad): a seam in space, that
 /// a wall must meet, not only two faces alike in the view. O(Σ L² + E).
@@ -671,12 +714,13 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_from(const D& drawing, co
   // the compliance optimum as it is (a regular reading may fold a face another way).
   const auto run = [&](const line_drawing<drawing_point_t<D>>& used,
                        const detail::sketch::face_set& face_loops, std::vector<std::string>& notes,
-                       bool tidied = false) {
+                       bool tidied = false, bool direct_only = false) {
     // A tidied drawing is only near a view: its regular reading moves which faces of several
     // cells are coplanar (measured on tests/test_tidy.cpp), so it is read as before.
     if (tidied) {
       inflation_options plain = options.inflation;
       plain.regularity = false;
+      plain.allow_optimisation = !direct_only;
       return run_with(used, face_loops, notes, plain);
     }
     attempt a = run_with(used, face_loops, notes, options.inflation);
@@ -701,12 +745,18 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_from(const D& drawing, co
   const auto direct = [](const attempt& a) {
     return a.cells && a.agree && a.inflated.method == inflation_method::direct;
   };
+  // The drawing as drawn is the exact view of a solid with its faces: its reading keeps every
+  // face planar to rounding (the planar basis, rank 1e-9), gives a complex that agrees, and the
+  // drawing shows it is exact (exact_view).
+  const bool realised = best.cells && best.agree && detail::sketch::exact_view(g, r.face_loops);
   if (options.tidy != tidy_mode::never && !direct(best)) {
     tidy_result<drawing_point_t<D>> t = tidy_drawing(drawing, options.tidying);
     for (const auto& d : t.diagnostics) r.diagnostics.push_back(d);
     if (t.applied) {
       std::vector<std::string> tidy_notes;
-      attempt tidied = run(t.drawing, r.face_loops, tidy_notes, true);
+      // Beside an answer that agrees only a direct tidied reading wins (below): no optimisation.
+      attempt tidied = run(t.drawing, r.face_loops, tidy_notes, true,
+                           best.cells && best.agree && options.tidy != tidy_mode::always);
       // Tidied wins when it gives a complex where there was none, one whose faces agree where
       // they did not, or a direct (exact) reading where there was an optimised one.
       if ((tidied.cells && !best.cells) || (tidied.cells && tidied.agree && !best.agree) ||
@@ -718,9 +768,10 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_from(const D& drawing, co
     }
   }
   // Still no complex whose faces agree, or an inexact drawing (sketched: lines nearly parallel,
-  // never exactly): tidied to the nearest view of a solid with the faces found (planar faces,
-  // lines parallel in 3D parallel).
-  const bool inexact = detail::sketch::nearly_parallel(g, 5.0);
+  // never exactly, and no exact reading as drawn): tidied to the nearest view of a solid with the
+  // faces found (planar faces, lines parallel in 3D parallel). A drawing realised as drawn is
+  // exact whatever its angles (an antiprism's or a random polytope's lines within 5°).
+  const bool inexact = !realised && detail::sketch::nearly_parallel(g, 5.0);
   const auto say_tidied = [&r] {  // once r.tidy holds the drawing tidied to a solid
     r.diagnostics.push_back(cellforge::detail::cat(
         "tidied to the view of a solid: junctions moved by at most ", std::to_string(r.tidy.largest_move),
@@ -990,7 +1041,11 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_on(const D& drawing, cons
   }
   const faces::drawing_graph g = faces::make_graph(drawing, options.faces);
   std::vector<std::string> notes;
-  const auto [first, precision] = options.tidy != tidy_mode::never && nearly_parallel(g, 5.0)
+  // An answer read from the drawing as drawn whose 2D and 3D faces agree is of an exact view
+  // (drawing_to_cells_from: `realised`): tidying it would move a solid's exact junctions.
+  const bool realised =
+      as_drawn && !as_drawn->tidy.applied && as_drawn->faces_agree && exact_view(g, as_drawn->face_loops);
+  const auto [first, precision] = options.tidy != tidy_mode::never && !realised && nearly_parallel(g, 5.0)
                                       ? faces_tidied_first(drawing, g, options, found.loops, notes)
                                       : std::pair<face_finder_result, double>{};
   if (!first.loops.empty()) {
