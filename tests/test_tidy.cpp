@@ -192,6 +192,12 @@ TEST_CASE(
       {0.02,
        {"through slot 1 #792496965890354261, view 1",
         "box with a wedge roof #11400714819333684262, view 1"}}};
+  // Two drawings whose jitter hid a wall that the faces found on the drawing tidied to a solid
+  // show, read from tidy_to_solid's own reading (an inflation of it folds the seam again):
+  // flagged misses before, now the exact drawing's complex.
+  const std::vector<std::string> walls_refound{
+      "sliced prism 3, 1 cuts #17392095252904391823, view 1",
+      "walled cylinder 15-gon, 4 rings #11400714819336829980, view 2"};
 #else
   // One level, 18 drawings: the same code as every level (69 s under ASan with 1 % as well).
   const std::vector<std::pair<double, std::size_t>> levels{{0.002, 8}};
@@ -204,7 +210,7 @@ TEST_CASE(
     o.sweep.max_edges = max_edges;
     cellforge::samples::noisy_sweep_report report;
     const auto set = cellforge::samples::noisy_sweep(o, &report);
-    std::size_t exact_right = 0, right = 0, silent = 0;
+    std::size_t exact_right = 0, right = 0, silent = 0, flagged = 0;
     [[maybe_unused]] std::size_t named = 0;  // counted in Release only
     double worst_move = 0;
     std::map<std::string, std::pair<std::size_t, std::size_t>> family;
@@ -229,12 +235,19 @@ TEST_CASE(
         }
         // Never silently wrong: a wrong complex is flagged, with its reason.
         silent += !ok && !r.flagged;
+        flagged += r.flagged;
 #ifdef NDEBUG
         if (const auto it = once_silent.find(jitter);
             it != once_silent.end() &&
             std::find(it->second.begin(), it->second.end(), n.exact.name) != it->second.end()) {
           CAPTURE(n.exact.name);
           CHECK((ok || r.flagged));
+          ++named;
+        }
+        if (jitter <= 0.002 &&
+            std::find(walls_refound.begin(), walls_refound.end(), n.exact.name) != walls_refound.end()) {
+          CAPTURE(n.exact.name);
+          CHECK(ok);
           ++named;
         }
 #endif
@@ -254,19 +267,20 @@ TEST_CASE(
                       << exact_right << " (" << 100 * rate << " %); " << report.too_close
                       << " drawings left out (a junction within twice the jitter of another or of a line), "
                       << report.sweep.drawings << " in the sweep; largest tidying move " << worst_move
-                      << "; wrong and not flagged: " << silent);
+                      << "; flagged " << flagged << "; wrong and not flagged: " << silent);
     CHECK(silent == 0);
 #ifdef NDEBUG
-    CHECK(named == once_silent.at(jitter).size());  // each named drawing is still in the sweep
+    // each named drawing is still in the sweep
+    CHECK(named == once_silent.at(jitter).size() + (jitter <= 0.002 ? walls_refound.size() : 0));
 #endif
     // The rate's denominator must stay most of the set: the exact drawings read true on 88-95 %
     // (the misses are the multi-cell families' exact readings, docs/sketch.md).
     CHECK(exact_right >= set.size() * 4 / 5);
-    // Floors under the measured rates (docs/sketch.md, "Tidying": 96.8 %, 100 %, 100 %, 93.1 %
-    // in Release); the goal is 98 % at 0.2 % (not met yet) and 95 % at 1 % (met, asserted).
+    // Floors under the measured rates (docs/sketch.md, "Tidying": 98.4 %, 100 %, 100 %, 93.1 %
+    // in Release): the goals, 98 % at 0.2 % and 95 % at 1 %, are asserted.
     // The sanitizer build's small sample keeps the older floors.
 #ifdef NDEBUG
-    const double floor = jitter <= 0.002 ? 0.96 : (jitter <= 0.005 ? 0.97 : (jitter <= 0.01 ? 0.98 : 0.9));
+    const double floor = jitter <= 0.002 ? 0.98 : (jitter <= 0.005 ? 0.97 : (jitter <= 0.01 ? 0.98 : 0.9));
 #else
     const double floor = jitter <= 0.002 ? 0.8 : 0.7;
 #endif

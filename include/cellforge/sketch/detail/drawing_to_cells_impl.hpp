@@ -659,16 +659,29 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_from(const D& drawing, co
     std::string error;
   };
   auto wanted = detail::sketch::canonical_loops(r.faces.loops);
+  // `given`: a reading already made (tidy_to_solid's depths, drawing units), not inflated again.
   const auto run_with = [&](const line_drawing<drawing_point_t<D>>& used,
                             const detail::sketch::face_set& face_loops, std::vector<std::string>& notes,
-                            const inflation_options& inflation) {
+                            const inflation_options& inflation, const std::vector<double>* given = nullptr) {
     attempt a;
-    try {
-      a.inflated = inflate<glm::dvec3>(used, face_loops, inflation);
-    } catch (const error& e) {
-      if (e.category() != error_category::topology && e.category() != error_category::invalid_input) throw;
-      a.error = e.what();
-      return a;
+    if (given) {
+      std::vector<glm::dvec3> up, down;
+      for (std::size_t i = 0; i < used.points.size(); ++i) {
+        const glm::dvec2 q = to_dvec2(used.points[i]);
+        up.push_back({q, (*given)[i]}), down.push_back({q, -(*given)[i]});
+      }
+      a.inflated.method = inflation_method::optimisation;
+      a.inflated.points = up;
+      a.inflated.readings.push_back({std::move(up), 0.0, "the reading tidy_to_solid made the drawing's"});
+      a.inflated.readings.push_back({std::move(down), 0.0, "its Necker reversal"});
+    } else {
+      try {
+        a.inflated = inflate<glm::dvec3>(used, face_loops, inflation);
+      } catch (const error& e) {
+        if (e.category() != error_category::topology && e.category() != error_category::invalid_input) throw;
+        a.error = e.what();
+        return a;
+      }
     }
     const std::size_t readings = options.try_other_reading ? a.inflated.readings.size() : 1;
     for (std::size_t k = 0; k < readings && !(a.cells && a.agree); ++k) {
@@ -824,28 +837,50 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_from(const D& drawing, co
           detail::sketch::face_set grouped2 =
               detail::sketch::group_faces(g2, f2.loops, options.inflation, group_notes, ambiguous, true);
           tidy_result<drawing_point_t<D>> t2 = tidy_to_solid(drawing, grouped2, options.tidying);
-          if (t2.applied) {
-            const auto before = std::move(wanted);
-            wanted = found2;
-            std::vector<std::string> tidy_notes;
-            attempt again = run(t2.drawing, grouped2, tidy_notes, true);
-            if (again.cells && again.agree) {
-              refound = true;
-              best = std::move(again);
-              notes = std::move(tidy_notes);
-              r.diagnostics.push_back(cellforge::detail::cat(
-                  "faces found again on the drawing tidied to a solid: ", std::to_string(f2.loops.size()),
-                  " loops where the drawing as drawn gave ", std::to_string(r.faces.loops.size()),
-                  " (those fail their check there)"));
-              r.faces = std::move(f2);
-              r.face_loops = std::move(grouped2);
-              r.ambiguous_parts = ambiguous;
-              r.tidy = std::move(t2);
-              say_tidied();
-            } else {
-              wanted = before;
+          const auto before = std::move(wanted);
+          wanted = found2;
+          // The new faces' own nearest view first; else the drawing they were found on, a view of
+          // a solid already (the new faces' nearest view may lose its parallel classes); else that
+          // drawing's own reading (tidy_to_solid's depths), where the faces at each seam are
+          // coplanar: inflated again with the wall as a face, a sliced prism's or a walled
+          // cylinder's faces at the seam fold by a fraction of a degree and the wall is unforced.
+          std::optional<tidy_result<drawing_point_t<D>>> t3;
+          for (int k = 0; k < 4 && !refound; ++k) {
+            if (k == 3) {  // that drawing tidied again with the new faces (a wall's plane too)
+              t3 = tidy_to_solid(t.drawing, grouped2, options.tidying);
+              // Its moves from the drawing as drawn (bounding-box diagonal units, as tidy's).
+              std::vector<glm::dvec2> from0(g.p.size()), to3(g.p.size());
+              glm::dvec2 lo = g.p.empty() ? glm::dvec2(0) : g.p[0], hi = lo;
+              for (std::size_t i = 0; i < g.p.size(); ++i)
+                lo = glm::min(lo, g.p[i]), hi = glm::max(hi, g.p[i]),
+                to3[i] = to_dvec2(t3->drawing.points[i]);
+              const double size = std::max(glm::length(hi - lo), 1e-300);
+              for (std::size_t i = 0; i < g.p.size(); ++i) from0[i] = g.p[i] / size, to3[i] /= size;
+              std::tie(t3->largest_move, t3->rms_move) = detail::tidy::moves(from0, to3);
             }
+            const tidy_result<drawing_point_t<D>>& from = k == 3 ? *t3 : t;
+            if ((k == 0 && !t2.applied) ||
+                (k >= 2 && !(from.solid && from.depth.size() == from.drawing.points.size())))
+              continue;
+            std::vector<std::string> tidy_notes;
+            attempt again =
+                k < 2 ? run(k == 0 ? t2.drawing : t.drawing, grouped2, tidy_notes, true)
+                      : run_with(from.drawing, grouped2, tidy_notes, options.inflation, &from.depth);
+            if (!(again.cells && again.agree)) continue;
+            refound = true;
+            best = std::move(again);
+            notes = std::move(tidy_notes);
+            r.diagnostics.push_back(cellforge::detail::cat(
+                "faces found again on the drawing tidied to a solid: ", std::to_string(f2.loops.size()),
+                " loops where the drawing as drawn gave ", std::to_string(r.faces.loops.size()),
+                " (those fail their check there)"));
+            r.faces = std::move(f2);
+            r.face_loops = std::move(grouped2);
+            r.ambiguous_parts = ambiguous;
+            r.tidy = k == 0 ? std::move(t2) : k == 3 ? std::move(*t3) : t;
+            say_tidied();
           }
+          if (!refound) wanted = before;
         }
       }
       if (t.applied && !refound && !(best.cells && best.agree)) {

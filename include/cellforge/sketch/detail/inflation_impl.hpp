@@ -772,14 +772,22 @@ regularity_terms<> make_regularity_terms(const inflation_problem<>& pr, double d
 /// angle pairs (θ_k − θ_{k+1}, radians), side pairs ((L₁ − L₂) / (L₁ + L₂)), class pairs (the
 /// cosine between their lines); with jr (relations
 /// × K), their exact Jacobian rows over t (N row-major in n). O(L), O(L K) with the Jacobian.
+/// With `need` (needed_relations), only the relations it marks are computed (a snap solves a
+/// few of them); the others are left as they were.
 template <class Z>
 void regularity_residuals(const inflation_problem<>& pr, const regularity_terms<>& t, const Z& z,
-                          Eigen::VectorXd& r, Eigen::MatrixXd* jr = nullptr, const basis_rows* n = nullptr) {
+                          Eigen::VectorXd& r, Eigen::MatrixXd* jr = nullptr, const basis_rows* n = nullptr,
+                          const std::vector<char>* need = nullptr) {
   const auto at = [&](std::uint32_t v) { return glm::dvec3(pr.p[v], z[v]); };
   if (jr) jr->setZero();
   Eigen::Index k = 0;
   std::array<double, 3> g{};
+  const auto skip = [&](Eigen::Index i) { return need && !(*need)[static_cast<std::size_t>(i)]; };
   for (const auto& q : t.corners) {
+    if (skip(k)) {
+      ++k;
+      continue;
+    }
     if (!jr) {
       r[k++] = corner_cos(at(q[0]), at(q[1]), at(q[2]));
       continue;
@@ -791,15 +799,24 @@ void regularity_residuals(const inflation_problem<>& pr, const regularity_terms<
   // Each corner is in two angle pairs: its angle (and slope) taken once.
   std::vector<double> angle(t.corners.size()), slope(jr ? t.corners.size() : 0);
   for (std::size_t c = 0; c < angle.size(); ++c) {
+    if (skip(static_cast<Eigen::Index>(c))) continue;
     angle[c] = std::acos(r[static_cast<Eigen::Index>(c)]);
     if (jr) slope[c] = acos_slope(r[static_cast<Eigen::Index>(c)]);
   }
   for (const auto& p : t.angle_pairs) {
+    if (skip(k)) {
+      ++k;
+      continue;
+    }
     r[k] = angle[p[0]] - angle[p[1]];
     if (jr) jr->row(k) = slope[p[0]] * jr->row(p[0]) - slope[p[1]] * jr->row(p[1]);
     ++k;
   }
   for (const auto& s : t.side_pairs) {
+    if (skip(k)) {
+      ++k;
+      continue;
+    }
     const glm::dvec3 u = at(s[1]) - at(s[0]), v = at(s[3]) - at(s[2]);
     const double a = glm::length(u), b = glm::length(v);
     r[k] = (a - b) / (a + b);
@@ -812,6 +829,10 @@ void regularity_residuals(const inflation_problem<>& pr, const regularity_terms<
     ++k;
   }
   for (const auto& s : t.class_pairs) {
+    if (skip(k)) {
+      ++k;
+      continue;
+    }
     const glm::dvec3 u = at(s[1]) - at(s[0]), v = at(s[3]) - at(s[2]);
     const double a = glm::length(u), b = glm::length(v), c = glm::dot(u, v) / (a * b);
     r[k] = c;
@@ -821,6 +842,20 @@ void regularity_residuals(const inflation_problem<>& pr, const regularity_terms<
                    (u.z / (a * b) - c * v.z / (b * b)) * (n->row(s[3]) - n->row(s[2]));
     ++k;
   }
+}
+
+/// The relations regularity_residuals must compute for `held`: those, and the corners their
+/// angle pairs compare. O(relations).
+template <class = void>
+std::vector<char> needed_relations(const regularity_terms<>& t, const std::vector<std::uint32_t>& held) {
+  std::vector<char> need(t.relations(), 0);
+  const std::size_t pairs = t.corners.size();
+  for (const auto i : held) {
+    need[i] = 1;
+    if (i >= pairs && i < pairs + t.angle_pairs.size())
+      for (const auto c : t.angle_pairs[i - pairs]) need[c] = 1;
+  }
+  return need;
 }
 
 /// Residuals of the regularity reading over t (z = N t): every relation under a saturating
@@ -839,6 +874,7 @@ struct regularity_functor {
   double sigma = 0.1;
   double convex_margin = 0.0;
   Eigen::Index m = 0;
+  const std::vector<char>* need = nullptr;  // needed_relations(held): the relations computed
   Eigen::Index inputs() const { return basis->cols(); }
   Eigen::Index values() const { return m; }
   int operator()(const Eigen::VectorXd& t, Eigen::VectorXd& f) const { return evaluate(t, f, nullptr); }
@@ -851,7 +887,7 @@ struct regularity_functor {
     Eigen::VectorXd r(static_cast<Eigen::Index>(reg->relations()));
     Eigen::MatrixXd jr;
     if (jac) jr.resize(r.size(), basis->cols()), jac->setZero();
-    regularity_residuals(*pr, *reg, z, r, jac ? &jr : nullptr, rows);
+    regularity_residuals(*pr, *reg, z, r, jac ? &jr : nullptr, rows, held ? need : nullptr);
     Eigen::Index k = 0;
     if (held) {
       for (const auto i : *held) {
@@ -969,7 +1005,8 @@ Eigen::VectorXd snap_regular(const inflation_problem<>& pr, const compliance_ter
     if (held.size() == tried) continue;  // the same relations as the last threshold
     tried = held.size();
     for (int round = 0; round < 3 && !held.empty(); ++round) {
-      regularity_functor<> g{&pr, &terms, &reg, &basis, &rows, &held, 0.0, 0.0, 0};
+      const std::vector<char> need = needed_relations(reg, held);
+      regularity_functor<> g{&pr, &terms, &reg, &basis, &rows, &held, 0.0, 0.0, 0, &need};
       g.m = std::max<Eigen::Index>(
           k, static_cast<Eigen::Index>(held.size() + np + terms.convex.size()) + basis.rows());
       Eigen::VectorXd u = t;
