@@ -378,12 +378,10 @@ wireframe_result<R> converted(wireframe_result<glm::dvec3>&& d) {
   }
 }
 
-/// Whether two lines of the drawing that share no junction are nearly parallel (within
-/// `degrees`) but not parallel to rounding: the drawing is inexact (sketched, jittered, typed
-/// with few digits), since a parallel view keeps lines parallel in space exactly parallel.
-/// O(E log E + pairs within the angle).
+/// The drawing's lines by direction: (angle in [0, π), line), sorted; zero-length lines left
+/// out. O(E log E).
 template <class = void>
-bool nearly_parallel(const faces::drawing_graph& g, double degrees) {
+std::vector<std::pair<double, std::uint32_t>> line_directions(const faces::drawing_graph& g) {
   const std::size_t ne = g.num_half_edges() / 2;
   std::vector<std::pair<double, std::uint32_t>> angle;
   angle.reserve(ne);
@@ -396,6 +394,16 @@ bool nearly_parallel(const faces::drawing_graph& g, double degrees) {
     angle.push_back({a, e});
   }
   std::sort(angle.begin(), angle.end());
+  return angle;
+}
+
+/// Whether two lines of the drawing that share no junction are nearly parallel (within
+/// `degrees`) but not parallel to rounding: the drawing is inexact (sketched, jittered, typed
+/// with few digits), since a parallel view keeps lines parallel in space exactly parallel.
+/// O(E log E + pairs within the angle).
+template <class = void>
+bool nearly_parallel(const faces::drawing_graph& g, double degrees) {
+  const std::vector<std::pair<double, std::uint32_t>> angle = line_directions(g);
   const double window = degrees * 3.141592653589793 / 180.0;
   const auto near = [&](std::uint32_t e, std::uint32_t f) {
     if (g.head[2 * e] == g.head[2 * f] || g.head[2 * e] == g.head[2 * f + 1] ||
@@ -428,18 +436,7 @@ bool exact_view(const faces::drawing_graph& g, const FaceSet& face_loops) {
   for (const auto& face : face_loops)
     for (const auto& loop : face) triangles = triangles && loop.size() == 3;
   if (triangles) return true;
-  const std::size_t ne = g.num_half_edges() / 2;
-  std::vector<std::pair<double, std::uint32_t>> angle;
-  angle.reserve(ne);
-  for (std::uint32_t e = 0; e < ne; ++e) {
-    const glm::dvec2 v = g.p[g.head[2 * e]] - g.p[g.head[2 * e + 1]];
-    if (!(glm::length(v) > 0)) continue;
-    double a = std::atan2(v.y, v.x);
-    if (a < 0) a += 3.141592653589793;
-    if (a >= 3.141592653589793) a -= 3.141592653589793;
-    angle.push_back({a, e});
-  }
-  std::sort(angle.begin(), angle.end());
+  const std::vector<std::pair<double, std::uint32_t>> angle = line_directions(g);
   const auto unit = [&](std::uint32_t e) {
     return glm::normalize(g.p[g.head[2 * e]] - g.p[g.head[2 * e + 1]]);
   };
@@ -674,6 +671,8 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_from(const D& drawing, co
       a.inflated.points = up;
       a.inflated.readings.push_back({std::move(up), 0.0, "the reading tidy_to_solid made the drawing's"});
       a.inflated.readings.push_back({std::move(down), 0.0, "its Necker reversal"});
+      a.inflated.diagnostics.push_back(
+          "inflate not run: the reading is tidy_to_solid's own of the tidied drawing");
     } else {
       try {
         a.inflated = inflate<glm::dvec3>(used, face_loops, inflation);
@@ -847,7 +846,13 @@ drawing_result<R, drawing_point_t<D>> drawing_to_cells_from(const D& drawing, co
           std::optional<tidy_result<drawing_point_t<D>>> t3;
           for (int k = 0; k < 4 && !refound; ++k) {
             if (k == 3) {  // that drawing tidied again with the new faces (a wall's plane too)
-              t3 = tidy_to_solid(t.drawing, grouped2, options.tidying);
+              try {
+                t3 = tidy_to_solid(t.drawing, grouped2, options.tidying);
+              } catch (const error& e) {
+                if (e.category() != error_category::topology && e.category() != error_category::invalid_input)
+                  throw;
+                break;
+              }
               // Its moves from the drawing as drawn (bounding-box diagonal units, as tidy's).
               std::vector<glm::dvec2> from0(g.p.size()), to3(g.p.size());
               glm::dvec2 lo = g.p.empty() ? glm::dvec2(0) : g.p[0], hi = lo;

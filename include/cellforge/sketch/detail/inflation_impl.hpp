@@ -1699,18 +1699,25 @@ Eigen::SparseMatrix<double> planarity_matrix(const inflation_problem<>& pr) {
 }
 
 /// Dimension of the planar-face readings (the null space of [C; 1ᵀ]) from a sparse QR, for
-/// drawings read directly (which need no basis). O(fill of the sparse QR), near-linear for sketches.
+/// drawings read directly (which need no basis). O(fill of the sparse QR): each face's rows share
+/// its reference triangle, so long faces fill it (about V^2.3 on combs, docs/benchmarks.md).
 template <class = void>
 std::size_t planar_freedom(const inflation_problem<>& pr, double rank_tolerance) {
-  // SparseQR factors a tall matrix: [C; 1ᵀ] when it has at least V rows, its transpose otherwise.
-  Eigen::SparseMatrix<double> c = planarity_matrix(pr);
+  // C alone: constant depths meet every row (α + β + γ = 1) and not the gauge row 1ᵀ, so
+  // rank [C; 1ᵀ] = rank C + 1, and the dense gauge row would fill the factor (1.6× the time).
+  Eigen::SparseMatrix<double> full = planarity_matrix(pr);
+  Eigen::SparseMatrix<double> c = full.topRows(full.rows() - 1);
+  // SparseQR factors a tall matrix: C when it has at least V rows, its transpose otherwise.
   if (c.rows() < c.cols()) c = Eigen::SparseMatrix<double>(c.transpose());
   c.makeCompressed();
-  Eigen::SparseQR<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> qr;
-  qr.setPivotThreshold(rank_tolerance);
-  qr.compute(c);
-  const auto rank = qr.info() == Eigen::Success ? qr.rank() : std::min(c.rows(), c.cols());
-  return static_cast<std::size_t>(static_cast<Eigen::Index>(pr.p.size()) - rank);
+  Eigen::Index rank = 0;
+  if (c.nonZeros() > 0) {
+    Eigen::SparseQR<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> qr;
+    qr.setPivotThreshold(rank_tolerance);
+    qr.compute(c);
+    rank = qr.info() == Eigen::Success ? qr.rank() : std::min(c.rows(), c.cols());
+  }
+  return static_cast<std::size_t>(static_cast<Eigen::Index>(pr.p.size()) - rank - 1);
 }
 
 /// Least-squares readings of an inexact drawing: the exact planar readings and the near ones, an
