@@ -19,6 +19,7 @@
 #include "cellforge/algorithms/detail/triangle_pairs.hpp"
 #include "cellforge/algorithms/piece_self_intersections.hpp"
 #include "cellforge/algorithms/self_intersections.hpp"
+#include "cellforge/core/detail/large_array.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/detail/stopwatch.hpp"
 #include "cellforge/core/detail/text.hpp"
@@ -114,25 +115,23 @@ struct engine {
   std::vector<vec> own_pos;  // positions converted to double, unless they are already
   std::span<const vec> pos;
   std::size_t pieces = 0;
-  std::vector<triangle> tris;              // by piece
-  std::vector<std::uint32_t> piece_first;  // tris of piece p: [piece_first[p], piece_first[p + 1])
-  std::vector<std::uint8_t> piece_ok;      // every face a disc triangulation, at least one triangle
-  // Per piece: its half-edges whose twin lies in another piece (or none), with that piece.
-  std::vector<std::uint32_t> border_first;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> border;  // (half-edge, other piece or none)
-  std::vector<std::array<std::uint32_t, 2>> border_ends;        // per border half-edge: (tail, head)
-  // Per piece: its border traced into loops (the next half-edge of a loop: the one of the piece
-  // leaving the head, found by vertex when it is the only one; the piece's border entries are put
-  // in loop order), each loop's range of border entries, the piece beyond it (none: the mesh's
-  // boundary; mixed: several) and its tails' mean.
-  struct border_loop {
+  std::vector<triangle> tris;                       // by piece
+  std::vector<std::uint32_t> piece_first;           // tris of piece p: [piece_first[p], piece_first[p + 1])
+  std::vector<std::uint8_t> piece_ok;               // every face a disc triangulation, at least one triangle
+  std::vector<std::uint32_t> face_first, faces_in;  // faces of piece p: faces_in[face_first[p] ...]
+  // Per piece: its border (half-edges whose twin lies in another piece, or none) in classes,
+  // one per piece beyond (none: the mesh's boundary): each class's range of `edges` (tail, head),
+  // that piece, and its tails' mean (the apex of the cone that closes it in a group).
+  struct border_class {
     std::uint32_t first, end, other;
     vec apex;
   };
-  static constexpr std::uint32_t mixed = 0xFFFFFFFEu;
-  std::vector<std::uint32_t> loop_first;  // loops of piece p: [loop_first[p], loop_first[p + 1])
-  std::vector<border_loop> loops;
-  std::vector<std::uint8_t> loops_ok;         // the piece's border is loops as above (else: traced per group)
+  std::vector<std::uint32_t> class_first;  // classes of piece p: [class_first[p], class_first[p + 1])
+  std::vector<border_class> classes;
+  std::vector<std::array<std::uint32_t, 2>> edges;
+  // Per piece: every class is closed (each vertex the tail of at most one of its edges, the head
+  // of as many, the same vertices both ways: its edges run in cycles); else traced per group.
+  std::vector<std::uint8_t> classes_closed;
   std::vector<std::uint32_t> nbr_first, nbr;  // distinct neighbouring pieces
   std::vector<vec> nbr_mean;                  // per neighbour: the mean of the border to it
   std::vector<std::uint8_t> nbr_held;         // per neighbour: a certified pair group
@@ -147,63 +146,22 @@ struct engine {
 
   engine(const surface_mesh<P>& mesh, std::span<const std::uint32_t> labels) : m(mesh), face_piece(labels) {}
 
-  /// Traces every piece's border into loops (loop_first, loops, loops_ok), putting each piece's
-  /// border entries in loop order: the successor of a border half-edge is the piece's only border
-  /// half-edge leaving its head (the piece's turn about that vertex reaches it; pieces where a
-  /// vertex has several are left to certify's own tracing). O(border + vertices).
-  void trace_loops() {
-    loop_first.assign(pieces + 1, 0);
-    loops_ok.assign(pieces, 1);
-    loops.clear();
-    std::vector<std::uint32_t> leaving(m.vertices_size()), stamp(m.vertices_size(), 0);  // per vertex
-    std::vector<std::uint32_t> succ, order;  // per entry of the piece
-    std::vector<std::uint8_t> seen;
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> moved;
-    std::vector<std::array<std::uint32_t, 2>> moved_ends;
-    for (std::uint32_t p = 0; p < pieces; ++p) {
-      loop_first[p] = static_cast<std::uint32_t>(loops.size());
-      const std::uint32_t b0 = border_first[p], b1 = border_first[p + 1];
-      succ.assign(b1 - b0, none);
-      seen.assign(b1 - b0, 0);
-      bool ok = true;
-      for (std::uint32_t k = b0; k < b1 && ok; ++k) {  // the border half-edge leaving each vertex
-        const std::uint32_t t = border_ends[k][0];
-        ok = stamp[t] != p + 1;
-        stamp[t] = p + 1, leaving[t] = k - b0;
-      }
-      for (std::uint32_t k = b0; k < b1 && ok; ++k) {
-        const std::uint32_t head = border_ends[k][1];
-        ok = stamp[head] == p + 1 && seen[leaving[head]] == 0;  // one predecessor each: a permutation
-        if (ok) succ[k - b0] = leaving[head], seen[leaving[head]] = 1;
-      }
-      if (!ok) {
-        loops_ok[p] = 0;
-        continue;
-      }
-      order.clear();
-      for (std::uint32_t k0 = 0; k0 < b1 - b0; ++k0) {
-        if (seen[k0] == 2) continue;
-        border_loop l{b0 + static_cast<std::uint32_t>(order.size()), 0, border[b0 + k0].second, vec(0.0)};
-        std::uint32_t k = k0;
-        do {
-          seen[k] = 2;
-          order.push_back(k);
-          l.apex += pos[border_ends[b0 + k][0]];
-          if (border[b0 + k].second != l.other) l.other = mixed;
-          k = succ[k];
-        } while (k != k0);
-        l.end = b0 + static_cast<std::uint32_t>(order.size());
-        l.apex /= static_cast<double>(l.end - l.first);
-        loops.push_back(l);
-      }
-      moved.clear(), moved_ends.clear();
-      for (const std::uint32_t k : order)
-        moved.push_back(border[b0 + k]), moved_ends.push_back(border_ends[b0 + k]);
-      std::copy(moved.begin(), moved.end(), border.begin() + b0);
-      std::copy(moved_ends.begin(), moved_ends.end(), border_ends.begin() + b0);
+  /// True when the edges (tail, head) run in cycles: each one's head is the tail of exactly one
+  /// other, none the successor of two (then no two share a tail either: the successor map, into
+  /// and onto, finds each). O(n²), about O(n) when edges follow each other (as a walk meets them).
+  bool closed(std::span<const std::array<std::uint32_t, 2>> e) {
+    const std::size_t n = e.size();
+    found.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::size_t j = i;
+      do j = j + 1 < n ? j + 1 : 0;
+      while (e[j][0] != e[i][1] && j != i);
+      if (e[j][0] != e[i][1] || found[j] != 0) return false;
+      found[j] = 1;
     }
-    loop_first[pieces] = static_cast<std::uint32_t>(loops.size());
+    return true;
   }
+  std::vector<std::uint8_t> found;
 
   /// The next boundary half-edge of the group after h (stamp_piece marks the group), turning
   /// about h's head through the group's faces; none after 256 steps.
@@ -232,6 +190,7 @@ struct engine {
   std::span<const std::uint32_t> corners_of(std::uint32_t p) {
     if (corner_first.empty()) {
       corner_first.assign(pieces, none), corner_count.assign(pieces, 0);
+      detail::reserve_large(corner_stamp, m.vertices_size());
       corner_stamp.assign(m.vertices_size(), none);
     }
     if (corner_first[p] == none) {
@@ -264,10 +223,60 @@ struct engine {
     return false;
   }
 
+  /// An upper bound on the distance of piece p's corners from its axis (the segment axis(p)),
+  /// computed on first use: the rounded distance to a rounded point of the segment, widened by
+  /// far more than their rounding errors (NaN when a coordinate is not finite). O(p's triangles).
+  double reach(std::uint32_t p) {
+    if (reach_of.empty()) reach_of.assign(pieces, -1.0);
+    if (reach_of[p] >= 0 || std::isnan(reach_of[p])) return reach_of[p];
+    const auto [a, b] = axis(p);
+    const vec u = b - a;
+    const double l = glm::dot(u, u), inv = l > 0 ? 1 / l : 0;  // any t in [0, 1] names a point of it
+    double r2 = 0;
+    for (std::uint32_t i = piece_first[p]; i < piece_first[p + 1]; ++i)
+      for (const std::uint32_t v : tris[i].v) {
+        const vec x = pos[v];
+        const vec y = x - (a + std::clamp(glm::dot(x - a, u) * inv, 0.0, 1.0) * u);
+        const double d2 = glm::dot(y, y);
+        if (!(d2 <= r2)) r2 = d2;  // a NaN stays
+      }
+    // The segment's point is off by ~9 eps of the axis' coordinates, the distance by ~4 eps.
+    const double scale = std::max(
+        {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z), std::fabs(b.x), std::fabs(b.y), std::fabs(b.z)});
+    return reach_of[p] = std::sqrt(r2) * (1 + 0x1p-40) + scale * 0x1p-40 + 0x1p-500;
+  }
+  std::vector<double> reach_of;
+
+  /// The side of the plane {x : d·(x - o) = 0} that piece p lies strictly on (±1; 0: cannot
+  /// tell), decided from its axis and reach: d·(x - o) is affine, so on the capsule it lies within
+  /// |d| times the reach of its values at the axis' ends, each of those rounded by less than
+  /// 8 eps of the sum of its products' magnitudes. `length` ≥ |d|. O(1) once reach(p) is known.
+  int capsule_side(std::uint32_t p, const vec& o, const vec& d, double length) {
+    const double margin = length * reach(p) * (1 + 0x1p-40);
+    const auto [a, b] = axis(p);
+    int side = 0;
+    for (const vec& x : {a, b}) {
+      const vec t = x - o;
+      const double value = d.x * t.x + d.y * t.y + d.z * t.z;
+      const double error = 8 * cellforge::detail::predicate_eps *
+                               (std::fabs(d.x * t.x) + std::fabs(d.y * t.y) + std::fabs(d.z * t.z)) +
+                           cellforge::detail::underflow_guard;
+      const double need = (error + margin) * (1 + 0x1p-40);
+      const int here = value > need ? 1 : value < -need ? -1 : 0;
+      if (here == 0 || (side != 0 && here != side)) return 0;
+      side = here;
+    }
+    return side;
+  }
+
   /// True when the plane through o across d has every corner of piece a strictly on one side and
-  /// every corner of piece b strictly on the other (exact orient3d against three points of it).
+  /// every corner of piece b strictly on the other: from the pieces' capsules, else exact orient3d
+  /// of each corner against three points of it.
   bool separated_by(std::uint32_t a, std::uint32_t b, const vec& o, const vec& d) {
     if (!(d.x * d.x + d.y * d.y + d.z * d.z > 0)) return false;
+    const double length = std::sqrt(glm::dot(d, d)) * (1 + 0x1p-40) + 0x1p-500;  // ≥ |d|
+    const int ca = capsule_side(a, o, d, length);
+    if (ca != 0 && capsule_side(b, o, d, length) == -ca) return true;
     const vec u = cellforge::detail::any_perpendicular(d);
     const vec w(d.y * u.z - d.z * u.y, d.z * u.x - d.x * u.z, d.x * u.y - d.y * u.x);
     const auto plane = cellforge::detail::prepare_orient3d(o, o + u, o + w);
@@ -346,31 +355,32 @@ struct engine {
         const triangle& q = tris[t];
         if (!fits(pos[q.v[0]], pos[q.v[1]], pos[q.v[2]])) return false;
       }
-    // The boundary: half-edges of the group whose twin is outside it, traced into loops, each
-    // closed by a cone from its mean. A member's loop all of whose half-edges face one piece
-    // outside the group is such a loop: the group's turn about its vertices stops where the
-    // member's does, since the member's turn passes through its own faces only.
-    bool whole_loops = true;
-    for (const std::uint32_t x : members) {
-      whole_loops = whole_loops && loops_ok[x] != 0;
-      for (std::uint32_t l = loop_first[x]; l < loop_first[x + 1] && whole_loops; ++l)
-        whole_loops = loops[l].other != mixed;
-    }
-    if (whole_loops) {
+    // The boundary: half-edges of the group whose twin is outside it, closed by cones. When
+    // every member's classes are closed, it is the union of the members' classes beyond the
+    // group, each coned from its apex: every edge of the group and cones then has two triangles,
+    // once each way (the spokes: each vertex of a class is one edge's head and one's tail).
+    bool whole = true;
+    for (const std::uint32_t x : members) whole = whole && classes_closed[x] != 0;
+    if (whole) {
       for (const std::uint32_t x : members)
-        for (std::uint32_t l = loop_first[x]; l < loop_first[x + 1]; ++l) {
-          const border_loop& b = loops[l];
+        for (std::uint32_t l = class_first[x]; l < class_first[x + 1]; ++l) {
+          const border_class& b = classes[l];
           if (b.other != none && stamp_piece[b.other] == attempt) continue;  // inside the group
           for (std::uint32_t k = b.first; k < b.end; ++k)                    // (apex, head, tail)
-            if (!fits(b.apex, pos[border_ends[k][1]], pos[border_ends[k][0]])) return false;
+            if (!fits(b.apex, pos[edges[k][1]], pos[edges[k][0]])) return false;
         }
       return true;
     }
     bd.clear();
-    for (const std::uint32_t x : members)
-      for (std::uint32_t k = border_first[x]; k < border_first[x + 1]; ++k) {
-        const auto [h, other] = border[k];
-        if (other == none || stamp_piece[other] != attempt) bd.push_back(h);
+    for (const std::uint32_t x : members)  // the members' half-edges whose twin is outside the group
+      for (std::uint32_t i = face_first[x]; i < face_first[x + 1]; ++i) {
+        const halfedge_handle h0 = m.halfedge(face_handle(faces_in[i]));
+        halfedge_handle h = h0;
+        do {
+          const face_handle beyond = m.face(halfedge_mesh::twin(h));
+          if (!beyond.is_valid() || stamp_piece[face_piece[beyond.idx()]] != attempt) bd.push_back(h.idx());
+          h = m.next(h);
+        } while (h != h0);
       }
     std::sort(bd.begin(), bd.end());
     bd_seen.assign(bd.size(), 0);
@@ -471,7 +481,10 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
     pieces = std::max<std::size_t>(pieces, p + 1);
   }
   e.pieces = pieces;
-  std::vector<std::uint32_t> face_first(pieces + 1, 0), faces_in(m.num_faces());
+  std::vector<std::uint32_t>&face_first = e.face_first, &faces_in = e.faces_in;
+  face_first.assign(pieces + 1, 0);
+  detail::reserve_large(faces_in, m.num_faces());
+  faces_in.resize(m.num_faces());
   for (const face_handle f : m.faces()) ++face_first[face_piece[f.idx()] + 1];
   for (std::size_t p = 0; p < pieces; ++p) face_first[p + 1] += face_first[p];
   {
@@ -480,8 +493,17 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
   }
   e.piece_first.assign(pieces + 1, 0);
   e.piece_ok.assign(pieces, 1);
-  e.tris.reserve(m.num_faces() * 2);
-  e.border_first.assign(pieces + 1, 0);
+  // Arrays of a few MB and more on huge pages where the kernel offers them: fresh memory's
+  // page faults were a tenth of the check.
+  detail::reserve_large(e.tris, m.num_faces() * 2);
+  detail::reserve_large(e.edges, m.halfedges_size() / 2);
+  detail::reserve_large(e.classes, 3 * pieces);
+  detail::reserve_large(e.nbr, 3 * pieces);
+  detail::reserve_large(e.nbr_mean, 3 * pieces);
+  detail::reserve_large(e.centres, pieces);
+  detail::reserve_large(e.mean, pieces);
+  e.class_first.assign(pieces + 1, 0);
+  e.classes_closed.assign(pieces, 0);
   e.nbr_first.assign(pieces + 1, 0);
   e.centres.resize(pieces);
   e.mean.resize(pieces);
@@ -491,9 +513,10 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
   std::vector<std::array<vec, 2>>
       loops;  // per neighbour of the piece: sum of its border tails, Newell normal
   std::vector<std::uint32_t> loop_count;
+  std::vector<std::array<std::uint32_t, 3>> out;  // the piece's border: tail, head, neighbour slot
   for (std::uint32_t p = 0; p < pieces; ++p) {
     e.piece_first[p] = static_cast<std::uint32_t>(e.tris.size());
-    e.border_first[p] = static_cast<std::uint32_t>(e.border.size());
+    out.clear();
     e.nbr_first[p] = static_cast<std::uint32_t>(e.nbr.size());
     loops.clear();
     loop_count.clear();
@@ -517,8 +540,6 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
         const face_handle g = m.face(halfedge_mesh::twin(h));
         const std::uint32_t other = g.is_valid() ? face_piece[g.idx()] : none;
         if (other != p) {
-          e.border.emplace_back(h.idx(), other);
-          e.border_ends.push_back({v, tail});
           std::size_t at = e.nbr_first[p];
           while (at < e.nbr.size() && e.nbr[at] != other) ++at;
           if (at == e.nbr.size()) {
@@ -527,6 +548,7 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
             loop_count.push_back(0);
           }
           const std::size_t l = at - e.nbr_first[p];
+          out.push_back({v, tail, static_cast<std::uint32_t>(l)});
           const vec &a = pos[v], &b = pos[tail];
           loops[l][0] += a;
           loops[l][1] += glm::dvec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
@@ -556,8 +578,22 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
                                                             e.tris.data() + before, e.tris.size() - before)))
         e.piece_ok[p] = 0;
     }
-    // Neighbours: the piece "none" (the mesh's own boundary) is no piece.
     for (std::size_t l = 0; l < loops.size(); ++l) loops[l][0] /= static_cast<double>(loop_count[l]);
+    // The border's classes, by neighbour slot (a counting sort, keeping the walk's order).
+    e.class_first[p] = static_cast<std::uint32_t>(e.classes.size());
+    auto at = static_cast<std::uint32_t>(e.edges.size());
+    for (std::size_t l = 0; l < loops.size(); ++l) {
+      e.classes.push_back({at, at, e.nbr[e.nbr_first[p] + l], loops[l][0]});
+      at += loop_count[l];
+    }
+    e.edges.resize(at);
+    for (const auto& [a, b, l] : out) e.edges[e.classes[e.class_first[p] + l].end++] = {a, b};
+    bool closed = true;
+    for (std::size_t l = e.class_first[p]; l < e.classes.size() && closed; ++l)
+      closed = e.closed(std::span<const std::array<std::uint32_t, 2>>(e.edges.data() + e.classes[l].first,
+                                                                      e.classes[l].end - e.classes[l].first));
+    e.classes_closed[p] = closed ? 1 : 0;
+    // Neighbours: the piece "none" (the mesh's own boundary) is no piece.
     std::size_t kept = e.nbr_first[p];
     for (std::size_t k = e.nbr_first[p]; k < e.nbr.size(); ++k)
       if (e.nbr[k] != none) {
@@ -578,8 +614,7 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
     e.centre_count[p] = count;
   }
   e.piece_first[pieces] = static_cast<std::uint32_t>(e.tris.size());
-  e.border_first[pieces] = static_cast<std::uint32_t>(e.border.size());
-  e.trace_loops();
+  e.class_first[pieces] = static_cast<std::uint32_t>(e.classes.size());
   e.nbr_first[pieces] = static_cast<std::uint32_t>(e.nbr.size());
   r.triangles = e.tris.size();
   r.pieces = pieces;
@@ -781,7 +816,9 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
       for (std::uint32_t b = a + 1; b < e.piece_first[p + 1]; ++b) test(p, a, p, b);
   }
   // Pairs of pieces whose boxes overlap and that no certified group holds: every pair of triangles.
-  std::vector<std::array<double, 6>> piece_box(pieces);
+  std::vector<std::array<double, 6>> piece_box;
+  detail::reserve_large(piece_box, pieces);
+  piece_box.resize(pieces);
   for (std::uint32_t p = 0; p < pieces; ++p) {
     std::array<double, 6> b = {
         std::numeric_limits<double>::infinity(),  std::numeric_limits<double>::infinity(),

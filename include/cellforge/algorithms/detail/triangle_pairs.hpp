@@ -22,6 +22,7 @@
 
 #include "cellforge/algorithms/ear_clipping.hpp"
 #include "cellforge/core/detail/geometry.hpp"
+#include "cellforge/core/detail/large_array.hpp"
 #include "cellforge/core/detail/span_of.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/predicates.hpp"
@@ -374,6 +375,21 @@ bool convex_projected_quad(std::span<const vec> p) noexcept {
   const int k = ears::dominant_axis(newell);
   if (!(std::fabs(newell[k]) > 0)) return false;
   const int u = (k + 1) % 3, w = (k + 2) % 3, sense = newell[k] > 0 ? 1 : -1;
+  // The four turns' orient2d filters without branches (their signs vary from quad to quad);
+  // the exact orient2d only when a filter cannot decide.
+  std::array<double, 4> x{}, y{};
+  for (std::size_t i = 0; i < 4; ++i) x[i] = p[i][u], y[i] = p[i][w];
+  bool all = true, decided = true;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const std::size_t j = (i + 1) & 3, l = (i + 2) & 3;
+    const double left = (x[i] - x[l]) * (y[j] - y[l]), right = (y[i] - y[l]) * (x[j] - x[l]);
+    const double det = sense > 0 ? left - right : right - left;
+    const double bound = cellforge::detail::orient2d_bound * (std::fabs(left) + std::fabs(right)) +
+                         cellforge::detail::underflow_guard;
+    all &= det > bound;
+    decided &= det > bound || det < -bound;
+  }
+  if (all || decided) return all;
   for (std::size_t i = 0; i < 4; ++i)
     if (orient_uw(p[i], p[(i + 1) % 4], p[(i + 2) % 4], u, w) != sense) return false;
   return true;
@@ -588,10 +604,12 @@ box_pair_count for_each_box_pair(std::span<const std::array<double, 6>> boxes, s
   if (!(side > 0) || !std::isfinite(side)) side = 1;
   const double max_entries = 8.0 * static_cast<double>(n) + 65536.0;
   std::array<std::uint32_t, 3> cells{};
-  std::vector<std::array<std::uint32_t, 3>> low(n), top(n);  // grid cells of each box's corners
-  double inv = 0;
+  std::vector<std::array<std::uint32_t, 3>> low, top;  // grid cells of each box's corners
+  reserve_large(low, n), reserve_large(top, n);
+  low.resize(n), top.resize(n);
+  double inv = 0, entries = 0;
   auto place = [&] {  // low and top for this grid; the number of cell entries they need
-    double entries = 0;
+    double total = 0;
     for (std::size_t t = 0; t < n; ++t) {
       double count = 1;
       for (std::size_t k = 0; k < 3; ++k) {
@@ -599,9 +617,9 @@ box_pair_count for_each_box_pair(std::span<const std::array<double, 6>> boxes, s
         top[t][k] = cell_of(boxes[t][k + 3], lo[k], inv, cells[k]);
         count *= static_cast<double>(top[t][k] - low[t][k] + 1);
       }
-      entries += count;
+      total += count;
     }
-    return entries;
+    return total;
   };
   for (int attempt = 0;; ++attempt, side *= 1.5) {
     inv = 1 / side;
@@ -613,16 +631,17 @@ box_pair_count for_each_box_pair(std::span<const std::array<double, 6>> boxes, s
     }
     if (!(inv > 0) || attempt > 200) {  // the box is a point or beyond range: one cell
       cells = {1, 1, 1};
-      place();
+      entries = place();
       break;
     }
     if (product >= 4294967295.0) continue;
-    if (place() <= max_entries) break;
+    if ((entries = place()) <= max_entries) break;
   }
 
   // Cell entries as (cell key << 32 | box), made in box order and sorted stably by cell: the
   // boxes of a cell in a run, in increasing order.
   std::vector<std::uint64_t> keys;
+  reserve_large(keys, static_cast<std::size_t>(std::min(entries, max_entries)));
   for (std::size_t t = 0; t < n; ++t) {
     for (std::uint32_t x = low[t][0]; x <= top[t][0]; ++x)
       for (std::uint32_t y = low[t][1]; y <= top[t][1]; ++y)

@@ -843,7 +843,9 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
 
 template <Point3 P>
 std::vector<std::uint32_t> tube_pieces(const surface_mesh<P>& mesh) {
-  std::vector<std::uint32_t> piece(mesh.faces_size(), 0);
+  std::vector<std::uint32_t> piece;
+  detail::reserve_large(piece, mesh.faces_size());
+  piece.assign(mesh.faces_size(), 0);
   const auto source = mesh.template get_face_property<tube_face_source>(tube_source_property_name);
   if (!source) return piece;
   // Per kind, the piece of each index (sources index skeleton edges and nodes: O(F) of them).
