@@ -207,7 +207,7 @@ struct engine {
   bool separated(std::uint32_t a, std::uint32_t b) {
     // Across the closest points of their axes (two tubes that pass each other), then between
     // their means.
-    const auto [pa, pb] = closest_points(axis(a), axis(b));
+    const auto [pa, pb] = closest_points({cards[a].a, cards[a].b}, {cards[b].a, cards[b].b});
     if (separated_by(a, b, 0.5 * (pa + pb), pb - pa)) return true;
     if (separated_by(a, b, 0.5 * (mean[a] + mean[b]), mean[b] - mean[a])) return true;
     // Two pieces on either side of a third (a tube's bands two apart): across that one's axis.
@@ -223,37 +223,59 @@ struct engine {
     return false;
   }
 
-  /// An upper bound on the distance of piece p's corners from its axis (the segment axis(p)),
-  /// computed on first use: the rounded distance to a rounded point of the segment, widened by
-  /// far more than their rounding errors (NaN when a coordinate is not finite). O(p's triangles).
-  double reach(std::uint32_t p) {
-    if (reach_of.empty()) reach_of.assign(pieces, -1.0);
-    if (reach_of[p] >= 0 || std::isnan(reach_of[p])) return reach_of[p];
-    const auto [a, b] = axis(p);
+  /// What the grid over pieces reads of a piece, in one cache line: its capsule (the segment
+  /// axis(p) and an upper bound on its corners' distance from it; reach < 0: no triangles) and
+  /// the certified groups it is in (group_of[group_first, group_end), increasing).
+  struct alignas(64) card {
+    vec a, b;
+    double reach;
+    std::uint32_t group_first, group_end;
+  };
+  std::vector<card> cards;
+  std::vector<std::uint32_t> group_of;
+
+  /// An upper bound on the distance from the segment ab of the points `at(i)`, i < n: the rounded
+  /// distance to a rounded point of the segment, widened by far more than their rounding errors
+  /// (the point is off by ~9 eps of the ends' coordinates, the distance by ~4 eps); NaN when a
+  /// coordinate is not finite. O(n).
+  template <class At>
+  static double reach(const vec& a, const vec& b, std::size_t n, At&& at) {
     const vec u = b - a;
     const double l = glm::dot(u, u), inv = l > 0 ? 1 / l : 0;  // any t in [0, 1] names a point of it
     double r2 = 0;
-    for (std::uint32_t i = piece_first[p]; i < piece_first[p + 1]; ++i)
-      for (const std::uint32_t v : tris[i].v) {
-        const vec x = pos[v];
-        const vec y = x - (a + std::clamp(glm::dot(x - a, u) * inv, 0.0, 1.0) * u);
-        const double d2 = glm::dot(y, y);
-        if (!(d2 <= r2)) r2 = d2;  // a NaN stays
-      }
-    // The segment's point is off by ~9 eps of the axis' coordinates, the distance by ~4 eps.
+    for (std::size_t i = 0; i < n; ++i) {
+      const vec x = at(i);
+      const vec y = x - (a + std::clamp(glm::dot(x - a, u) * inv, 0.0, 1.0) * u);
+      const double d2 = glm::dot(y, y);
+      if (!(d2 <= r2)) r2 = d2;  // a NaN stays
+    }
     const double scale = std::max(
         {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z), std::fabs(b.x), std::fabs(b.y), std::fabs(b.z)});
-    return reach_of[p] = std::sqrt(r2) * (1 + 0x1p-40) + scale * 0x1p-40 + 0x1p-500;
+    return std::sqrt(r2) * (1 + 0x1p-40) + scale * 0x1p-40 + 0x1p-500;
   }
-  std::vector<double> reach_of;
+
+  /// True when one certified group holds pieces a and b (their group lists meet). O(the lists).
+  bool held(std::uint32_t a, std::uint32_t b) const {
+    std::uint32_t i = cards[a].group_first, j = cards[b].group_first;
+    const std::uint32_t i1 = cards[a].group_end, j1 = cards[b].group_end;
+    while (i < i1 && j < j1) {
+      if (group_of[i] == group_of[j]) return true;
+      if (group_of[i] < group_of[j])
+        ++i;
+      else
+        ++j;
+    }
+    return false;
+  }
 
   /// The side of the plane {x : d·(x - o) = 0} that piece p lies strictly on (±1; 0: cannot
-  /// tell), decided from its axis and reach: d·(x - o) is affine, so on the capsule it lies within
+  /// tell), decided from its capsule (cards): d·(x - o) is affine, so on the capsule it lies within
   /// |d| times the reach of its values at the axis' ends, each of those rounded by less than
-  /// 8 eps of the sum of its products' magnitudes. `length` ≥ |d|. O(1) once reach(p) is known.
-  int capsule_side(std::uint32_t p, const vec& o, const vec& d, double length) {
-    const double margin = length * reach(p) * (1 + 0x1p-40);
-    const auto [a, b] = axis(p);
+  /// 8 eps of the sum of its products' magnitudes. `length` ≥ |d|. O(1).
+  int capsule_side(std::uint32_t p, const vec& o, const vec& d, double length) const {
+    const card& c = cards[p];
+    const double margin = length * c.reach * (1 + 0x1p-40);
+    const vec &a = c.a, &b = c.b;
     int side = 0;
     for (const vec& x : {a, b}) {
       const vec t = x - o;
@@ -365,8 +387,8 @@ struct engine {
       for (const std::uint32_t x : members)
         for (std::uint32_t l = class_first[x]; l < class_first[x + 1]; ++l) {
           const border_class& b = classes[l];
-          if (b.other != none && stamp_piece[b.other] == attempt) continue;  // inside the group
-          for (std::uint32_t k = b.first; k < b.end; ++k)                    // (apex, head, tail)
+          if (std::find(members.begin(), members.end(), b.other) != members.end()) continue;  // inside
+          for (std::uint32_t k = b.first; k < b.end; ++k)  // (apex, head, tail)
             if (!fits(b.apex, pos[edges[k][1]], pos[edges[k][0]])) return false;
         }
       return true;
@@ -514,9 +536,13 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
       loops;  // per neighbour of the piece: sum of its border tails, Newell normal
   std::vector<std::uint32_t> loop_count;
   std::vector<std::array<std::uint32_t, 3>> out;  // the piece's border: tail, head, neighbour slot
+  std::vector<std::uint8_t> on_border;            // per corner of the face: its edge to the next is
+  std::vector<std::uint32_t> inner;               // the piece's corners on no border edge of their face
+  detail::reserve_large(e.cards, pieces);
+  e.cards.resize(pieces);
   for (std::uint32_t p = 0; p < pieces; ++p) {
     e.piece_first[p] = static_cast<std::uint32_t>(e.tris.size());
-    out.clear();
+    out.clear(), inner.clear();
     e.nbr_first[p] = static_cast<std::uint32_t>(e.nbr.size());
     loops.clear();
     loop_count.clear();
@@ -527,6 +553,7 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
       ++r.faces;
       ids.clear();
       corners.clear();
+      on_border.clear();
       const halfedge_handle h0 = m.halfedge(f);
       halfedge_handle h = h0;
       std::uint32_t tail = m.head(m.prev(h0)).idx();
@@ -539,6 +566,7 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
         ++corners_seen;
         const face_handle g = m.face(halfedge_mesh::twin(h));
         const std::uint32_t other = g.is_valid() ? face_piece[g.idx()] : none;
+        on_border.push_back(other != p ? 1 : 0);
         if (other != p) {
           std::size_t at = e.nbr_first[p];
           while (at < e.nbr.size() && e.nbr[at] != other) ++at;
@@ -549,13 +577,13 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
           }
           const std::size_t l = at - e.nbr_first[p];
           out.push_back({v, tail, static_cast<std::uint32_t>(l)});
-          const vec &a = pos[v], &b = pos[tail];
-          loops[l][0] += a;
-          loops[l][1] += glm::dvec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+          loops[l][0] += pos[v];
           ++loop_count[l];
         }
         h = m.next(h);
       } while (h != h0);
+      for (std::size_t i = 0, j = ids.size() - 1; i < ids.size(); j = i++)
+        if (on_border[i] == 0 && on_border[j] == 0) inner.push_back(ids[i]);
       // As triangulate_polygon does; a triangle, or a convex projected quad split along a
       // diagonal, is a disc; other faces' triangles are verified to be one.
       if (ids.size() == 3) {
@@ -581,7 +609,8 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
     for (std::size_t l = 0; l < loops.size(); ++l) loops[l][0] /= static_cast<double>(loop_count[l]);
     // The border's classes, by neighbour slot (a counting sort, keeping the walk's order).
     e.class_first[p] = static_cast<std::uint32_t>(e.classes.size());
-    auto at = static_cast<std::uint32_t>(e.edges.size());
+    const std::size_t edges0 = e.edges.size();
+    auto at = static_cast<std::uint32_t>(edges0);
     for (std::size_t l = 0; l < loops.size(); ++l) {
       e.classes.push_back({at, at, e.nbr[e.nbr_first[p] + l], loops[l][0]});
       at += loop_count[l];
@@ -601,17 +630,40 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
         e.nbr[kept++] = e.nbr[k];
       }
     e.nbr.resize(kept);
+    e.nbr_first[p + 1] = static_cast<std::uint32_t>(kept);
     if (e.tris.size() == e.piece_first[p]) e.piece_ok[p] = 0;
-    // Centres to try: the axes' meeting point for a junction-like piece, the corners' mean.
+    // Centres to try (a star's; a piece between two others goes in pairs): the axes' meeting
+    // point for a junction-like piece (each border class's Newell normal), the corners' mean.
     std::uint8_t count = 0;
     vec meet(0.0);
-    const bool axes = pc::axes_meet(std::span<const std::array<vec, 2>>(loops), meet);
+    bool axes = false;
+    if (kept - e.nbr_first[p] != 2) {
+      for (std::size_t l = 0; l < loops.size(); ++l) {
+        loops[l][1] = vec(0.0);
+        const auto& b = e.classes[e.class_first[p] + l];
+        for (std::uint32_t k = b.first; k < b.end; ++k) {
+          const vec &x = pos[e.edges[k][0]], &y = pos[e.edges[k][1]];
+          loops[l][1] += vec(x.y * y.z - x.z * y.y, x.z * y.x - x.x * y.z, x.x * y.y - x.y * y.x);
+        }
+      }
+      axes = pc::axes_meet(std::span<const std::array<vec, 2>>(loops), meet);
+    }
     const vec mean = corners_seen > 0 ? sum / static_cast<double>(corners_seen) : vec(0.0);
     e.mean[p] = mean;
     if (axes && loops.size() >= 3) e.centres[p][count++] = meet;
     e.centres[p][count++] = mean;
     if (axes && loops.size() < 3) e.centres[p][count++] = meet;
     e.centre_count[p] = count;
+    // The capsule: every corner of the piece is an end of one of its border edges or in `inner`.
+    typename pc::engine<P>::card& c = e.cards[p];
+    const std::array<vec, 2> ab = e.axis(p);
+    c.a = ab[0], c.b = ab[1];
+    const std::size_t per_edge = closed ? 1 : 2;  // closed: every head is a tail too
+    const auto ends = [&](std::size_t i) { return pos[e.edges[edges0 + i / per_edge][i % per_edge]]; };
+    const double r1 = pc::engine<P>::reach(c.a, c.b, per_edge * (e.edges.size() - edges0), ends),
+                 r2 = pc::engine<P>::reach(c.a, c.b, inner.size(),
+                                           [&](std::size_t i) { return pos[inner[i]]; });
+    c.reach = e.piece_first[p] == e.tris.size() ? -1.0 : std::isnan(r2) ? r2 : std::max(r1, r2);
   }
   e.piece_first[pieces] = static_cast<std::uint32_t>(e.tris.size());
   e.class_first[pieces] = static_cast<std::uint32_t>(e.classes.size());
@@ -631,6 +683,7 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
   // A cap certified with a pair of neighbouring pieces (a tube's last two bands): that pair.
   std::vector<std::array<std::uint32_t, 2>> cap_pair(pieces, {none, none});
   e.nbr_held.assign(e.nbr.size(), 0);
+  std::vector<std::array<std::uint32_t, 2>> joined;  // (piece, group) of each certified group's members
   const auto degree = [&](std::uint32_t p) { return e.nbr_first[p + 1] - e.nbr_first[p]; };
   const auto neighbours = [&](std::uint32_t a, std::uint32_t b) {
     for (std::uint32_t k = e.nbr_first[a]; k < e.nbr_first[a + 1]; ++k)
@@ -679,6 +732,8 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
       if (!ok && degree(p) == 1) ok = e.certify(e.mean[e.nbr[e.nbr_first[p]]]);
       if (!ok) return false;
       certified[p] = 1;
+      for (const std::uint32_t x : e.members)
+        joined.push_back({x, static_cast<std::uint32_t>(r.certified_groups)});
       ++r.certified_groups;
       for (std::size_t i = 0; i < e.members.size(); ++i) {
         covered[e.members[i]] = 1;
@@ -722,6 +777,8 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
           for (std::size_t i = 2; i < e.members.size(); ++i)
             cap_pair[e.members[i]] = {p, q}, covered[e.members[i]] = 1;
           covered[p] = covered[q] = 1;
+          for (const std::uint32_t x : e.members)
+            joined.push_back({x, static_cast<std::uint32_t>(r.certified_groups)});
           ++r.certified_groups;
         }
     };
@@ -729,6 +786,18 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
     stars(true);
     pairs(true);
   }
+
+  // Each piece's certified groups, in increasing order, for the grid below (a counting sort).
+  for (std::uint32_t p = 0; p < pieces; ++p) e.cards[p].group_first = e.cards[p].group_end = 0;
+  for (const auto& [x, g] : joined) ++e.cards[x].group_end;
+  for (std::uint32_t p = 0, sum = 0; p < pieces; ++p) {
+    e.cards[p].group_first = sum;
+    sum += e.cards[p].group_end;
+    e.cards[p].group_end = e.cards[p].group_first;
+  }
+  e.group_of.resize(joined.size());
+  for (const auto& [x, g] : joined) e.group_of[e.cards[x].group_end++] = g;
+  std::vector<std::array<std::uint32_t, 2>>().swap(joined);
 
   // Boxes and zero-area triangles: per piece, for the pieces the pair tests reach and for every
   // piece no certified group holds (a certified triangle has area).
@@ -836,20 +905,12 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
     const si::box_pair_count pairs = si::for_each_box_pair(
         detail::span_of(piece_box), limit - work,
         [&](std::uint32_t a, std::uint32_t b) {
-          if (e.piece_first[a] == e.piece_first[a + 1] || e.piece_first[b] == e.piece_first[b + 1])
-            return true;
-          if (held(a, b)) {
+          if (e.cards[a].reach < 0 || e.cards[b].reach < 0) return true;  // no triangles
+          if (e.held(a, b)) {
             ++held_pairs;
             return true;
           }
-#ifdef PIECE_PROF
-          const double t_s0 = pprof_now();
-          const bool sep_ok = e.separated(a, b);
-          pprof_t[10] += pprof_now() - t_s0;
-          if (sep_ok) {
-#else
           if (e.separated(a, b)) {
-#endif
             ++separated_pairs;
             return true;
           }
@@ -857,16 +918,9 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
                                 (e.piece_first[b + 1] - e.piece_first[b]);
           if (k > limit - work) return false;
           work += k;
-#ifdef PIECE_PROF
-          const double t_t0 = pprof_now();
-#endif
           prepare(a), prepare(b);
           for (std::uint32_t x = e.piece_first[a]; x < e.piece_first[a + 1]; ++x)
             for (std::uint32_t y = e.piece_first[b]; y < e.piece_first[b + 1]; ++y) test(a, x, b, y);
-#ifdef PIECE_PROF
-          pprof_t[11] += pprof_now() - t_t0;
-          ++sep_count;
-#endif
           return true;
         },
         3);  // cells three median pieces wide: a third of the grid's cost, few more candidates
