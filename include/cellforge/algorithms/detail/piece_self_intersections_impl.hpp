@@ -140,28 +140,34 @@ struct engine {
   std::vector<std::uint8_t> centre_count;
   std::vector<std::uint32_t> stamp_piece;
   std::uint32_t attempt = 0;
-  std::vector<std::uint32_t> members, loop_start;
+  std::vector<std::uint32_t> members;
   std::vector<std::uint32_t> bd, loop;
   std::vector<std::uint8_t> bd_seen;
 
   engine(const surface_mesh<P>& mesh, std::span<const std::uint32_t> labels) : m(mesh), face_piece(labels) {}
 
-  /// True when the edges (tail, head) run in cycles: each one's head is the tail of exactly one
-  /// other, none the successor of two (then no two share a tail either: the successor map, into
-  /// and onto, finds each). O(n²), about O(n) when edges follow each other (as a walk meets them).
+  /// True when the edges (tail, head) run in cycles: no two share a tail, no two a head, and the
+  /// heads are the tails (each vertex then the head of one edge and the tail of one). O(n²) for
+  /// up to 32 edges (a count each way, no branches), O(n log n) above.
   bool closed(std::span<const std::array<std::uint32_t, 2>> e) {
     const std::size_t n = e.size();
-    found.assign(n, 0);
-    for (std::size_t i = 0; i < n; ++i) {
-      std::size_t j = i;
-      do j = j + 1 < n ? j + 1 : 0;
-      while (e[j][0] != e[i][1] && j != i);
-      if (e[j][0] != e[i][1] || found[j] != 0) return false;
-      found[j] = 1;
+    tails.resize(n), heads.resize(n);
+    for (std::size_t i = 0; i < n; ++i) tails[i] = e[i][0], heads[i] = e[i][1];
+    if (n > 32) {
+      std::sort(tails.begin(), tails.end()), std::sort(heads.begin(), heads.end());
+      return tails == heads && std::adjacent_find(tails.begin(), tails.end()) == tails.end();
     }
-    return true;
+    bool ok = true;  // each head equals exactly one tail, each tail exactly one head
+    for (std::size_t i = 0; i < n; ++i) {
+      std::uint32_t as_tail = 0, as_head = 0;
+      for (std::size_t j = 0; j < n; ++j)
+        as_tail += static_cast<std::uint32_t>(tails[j] == heads[i]),
+            as_head += static_cast<std::uint32_t>(heads[j] == tails[i]);
+      ok = ok && as_tail == 1 && as_head == 1;
+    }
+    return ok;
   }
-  std::vector<std::uint8_t> found;
+  std::vector<std::uint32_t> tails, heads;
 
   /// The next boundary half-edge of the group after h (stamp_piece marks the group), turning
   /// about h's head through the group's faces; none after 256 steps.
@@ -207,7 +213,8 @@ struct engine {
   bool separated(std::uint32_t a, std::uint32_t b) {
     // Across the closest points of their axes (two tubes that pass each other), then between
     // their means.
-    const auto [pa, pb] = closest_points({cards[a].a, cards[a].b}, {cards[b].a, cards[b].b});
+    const card &ca = capsule(a), &cb = capsule(b);
+    const auto [pa, pb] = closest_points({ca.a, ca.b}, {cb.a, cb.b});
     if (separated_by(a, b, 0.5 * (pa + pb), pb - pa)) return true;
     if (separated_by(a, b, 0.5 * (mean[a] + mean[b]), mean[b] - mean[a])) return true;
     // Two pieces on either side of a third (a tube's bands two apart): across that one's axis.
@@ -223,16 +230,35 @@ struct engine {
     return false;
   }
 
-  /// What the grid over pieces reads of a piece, in one cache line: its capsule (the segment
-  /// axis(p) and an upper bound on its corners' distance from it; reach < 0: no triangles) and
-  /// the certified groups it is in (group_of[group_first, group_end), increasing).
-  struct alignas(64) card {
+  /// What the grid over pieces reads of a piece, in 64 bytes: its capsule (the segment axis(p)
+  /// and an upper bound on its corners' distance from it; reach < 0: no triangles) and the
+  /// certified groups it is in (group_of[group_first, group_end), increasing). Not alignas(64):
+  /// glibc's aligned allocations disturbed the heap (3 times the page faults of make_tubes after).
+  struct card {
     vec a, b;
     double reach;
     std::uint32_t group_first, group_end;
   };
   std::vector<card> cards;
   std::vector<std::uint32_t> group_of;
+  static constexpr double no_triangles = -1, unknown = -2;  // cards' reach before it is known
+  std::vector<std::uint8_t> tails_only;  // per piece: its border classes' tails are all its corners
+
+  /// Piece p's capsule, its reach computed on first use: over its border classes' tails when
+  /// they are all its corners, else over its triangles' corners. O(1), once O(p's triangles).
+  const card& capsule(std::uint32_t p) {
+    card& c = cards[p];
+    if (c.reach != unknown) return c;
+    if (tails_only[p] != 0) {
+      const std::uint32_t first = classes[class_first[p]].first, end = classes[class_first[p + 1] - 1].end;
+      c.reach = reach(c.a, c.b, end - first, [&](std::size_t i) { return pos[edges[first + i][0]]; });
+    } else {
+      const std::uint32_t first = piece_first[p];
+      c.reach = reach(c.a, c.b, 3 * std::size_t{piece_first[p + 1] - first},
+                      [&](std::size_t i) { return pos[tris[first + i / 3].v[i % 3]]; });
+    }
+    return c;
+  }
 
   /// An upper bound on the distance from the segment ab of the points `at(i)`, i < n: the rounded
   /// distance to a rounded point of the segment, widened by far more than their rounding errors
@@ -342,9 +368,10 @@ struct engine {
   }
 
   /// Certifies the group of pieces `members` about centre c: true when every triangle of the
-  /// group, and of the cones (apex: the loop's mean) closing each boundary loop, has c strictly on
-  /// one same side, and the direction from c through the middle of the first member's first
-  /// triangle lies in no other triangle's closed cone. Then the group is embedded (docs/tubes.md).
+  /// group, and of the cones closing its boundary (apex: a border class's mean, or a traced
+  /// loop's), has c strictly on one same side, and the direction from c through the middle of
+  /// the first member's first triangle lies in no other triangle's closed cone. Then the group
+  /// is embedded (docs/tubes.md).
   bool certify(const vec& c) {
     ++attempt;
     if (attempt == 0) return false;
@@ -533,16 +560,17 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
   std::vector<std::uint32_t> ids;
   std::vector<glm::dvec3> corners;
   std::vector<std::array<vec, 2>>
-      loops;  // per neighbour of the piece: sum of its border tails, Newell normal
+      loops;  // per neighbour slot of the piece (its border classes): tails' sum, Newell normal
   std::vector<std::uint32_t> loop_count;
   std::vector<std::array<std::uint32_t, 3>> out;  // the piece's border: tail, head, neighbour slot
   std::vector<std::uint8_t> on_border;            // per corner of the face: its edge to the next is
-  std::vector<std::uint32_t> inner;               // the piece's corners on no border edge of their face
   detail::reserve_large(e.cards, pieces);
   e.cards.resize(pieces);
+  e.tails_only.resize(pieces);
   for (std::uint32_t p = 0; p < pieces; ++p) {
     e.piece_first[p] = static_cast<std::uint32_t>(e.tris.size());
-    out.clear(), inner.clear();
+    out.clear();
+    bool inner = false;  // a corner on no border edge of its face
     e.nbr_first[p] = static_cast<std::uint32_t>(e.nbr.size());
     loops.clear();
     loop_count.clear();
@@ -583,7 +611,7 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
         h = m.next(h);
       } while (h != h0);
       for (std::size_t i = 0, j = ids.size() - 1; i < ids.size(); j = i++)
-        if (on_border[i] == 0 && on_border[j] == 0) inner.push_back(ids[i]);
+        inner = inner || (on_border[i] == 0 && on_border[j] == 0);
       // As triangulate_polygon does; a triangle, or a convex projected quad split along a
       // diagonal, is a disc; other faces' triangles are verified to be one.
       if (ids.size() == 3) {
@@ -615,6 +643,7 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
       e.classes.push_back({at, at, e.nbr[e.nbr_first[p] + l], loops[l][0]});
       at += loop_count[l];
     }
+    e.class_first[p + 1] = static_cast<std::uint32_t>(e.classes.size());
     e.edges.resize(at);
     for (const auto& [a, b, l] : out) e.edges[e.classes[e.class_first[p] + l].end++] = {a, b};
     bool closed = true;
@@ -654,16 +683,14 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
     e.centres[p][count++] = mean;
     if (axes && loops.size() < 3) e.centres[p][count++] = meet;
     e.centre_count[p] = count;
-    // The capsule: every corner of the piece is an end of one of its border edges or in `inner`.
+    // The capsule; its reach from the border's tails when they are all the corners (every corner
+    // on a border edge of its face, the classes closed), else on first use (separated pairs).
     typename pc::engine<P>::card& c = e.cards[p];
     const std::array<vec, 2> ab = e.axis(p);
     c.a = ab[0], c.b = ab[1];
-    const std::size_t per_edge = closed ? 1 : 2;  // closed: every head is a tail too
-    const auto ends = [&](std::size_t i) { return pos[e.edges[edges0 + i / per_edge][i % per_edge]]; };
-    const double r1 = pc::engine<P>::reach(c.a, c.b, per_edge * (e.edges.size() - edges0), ends),
-                 r2 = pc::engine<P>::reach(c.a, c.b, inner.size(),
-                                           [&](std::size_t i) { return pos[inner[i]]; });
-    c.reach = e.piece_first[p] == e.tris.size() ? -1.0 : std::isnan(r2) ? r2 : std::max(r1, r2);
+    c.reach = e.piece_first[p] == e.tris.size() ? pc::engine<P>::no_triangles : pc::engine<P>::unknown;
+    e.tails_only[p] = closed && !inner ? 1 : 0;
+    if (e.tails_only[p] != 0) e.capsule(p);  // cheap while the border is in cache (a band's)
   }
   e.piece_first[pieces] = static_cast<std::uint32_t>(e.tris.size());
   e.class_first[pieces] = static_cast<std::uint32_t>(e.classes.size());
@@ -905,7 +932,7 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
     const si::box_pair_count pairs = si::for_each_box_pair(
         detail::span_of(piece_box), limit - work,
         [&](std::uint32_t a, std::uint32_t b) {
-          if (e.cards[a].reach < 0 || e.cards[b].reach < 0) return true;  // no triangles
+          if (e.cards[a].reach == e.no_triangles || e.cards[b].reach == e.no_triangles) return true;
           if (e.held(a, b)) {
             ++held_pairs;
             return true;
