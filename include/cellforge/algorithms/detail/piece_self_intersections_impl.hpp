@@ -567,6 +567,11 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
   detail::reserve_large(e.cards, pieces);
   e.cards.resize(pieces);
   e.tails_only.resize(pieces);
+  // Per piece, the box of its faces' corners (its triangles' corners and no others but the
+  // corners of faces with no triangles, which only widen it), made in the walk.
+  std::vector<std::array<double, 6>> piece_box;
+  detail::reserve_large(piece_box, pieces);
+  piece_box.resize(pieces);
   for (std::uint32_t p = 0; p < pieces; ++p) {
     e.piece_first[p] = static_cast<std::uint32_t>(e.tris.size());
     out.clear();
@@ -576,6 +581,8 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
     loop_count.clear();
     vec sum(0.0);
     std::size_t corners_seen = 0;
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    std::array<double, 6> box = {inf, inf, inf, -inf, -inf, -inf};
     for (std::uint32_t k = face_first[p]; k < face_first[p + 1]; ++k) {
       const face_handle f(faces_in[k]);
       ++r.faces;
@@ -590,6 +597,9 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
         tail = m.head(h).idx();
         ids.push_back(v);
         corners.push_back(pos[v]);
+        for (std::size_t k = 0; k < 3; ++k)
+          box[k] = std::min(box[k], pos[v][static_cast<int>(k)]),
+          box[k + 3] = std::max(box[k + 3], pos[v][static_cast<int>(k)]);
         sum += pos[v];
         ++corners_seen;
         const face_handle g = m.face(halfedge_mesh::twin(h));
@@ -690,6 +700,7 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
     c.a = ab[0], c.b = ab[1];
     c.reach = e.piece_first[p] == e.tris.size() ? pc::engine<P>::no_triangles : pc::engine<P>::unknown;
     e.tails_only[p] = closed && !inner ? 1 : 0;
+    piece_box[p] = box;
     if (e.tails_only[p] != 0) e.capsule(p);  // cheap while the border is in cache (a band's)
   }
   e.piece_first[pieces] = static_cast<std::uint32_t>(e.tris.size());
@@ -912,21 +923,6 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
       for (std::uint32_t b = a + 1; b < e.piece_first[p + 1]; ++b) test(p, a, p, b);
   }
   // Pairs of pieces whose boxes overlap and that no certified group holds: every pair of triangles.
-  std::vector<std::array<double, 6>> piece_box;
-  detail::reserve_large(piece_box, pieces);
-  piece_box.resize(pieces);
-  for (std::uint32_t p = 0; p < pieces; ++p) {
-    std::array<double, 6> b = {
-        std::numeric_limits<double>::infinity(),  std::numeric_limits<double>::infinity(),
-        std::numeric_limits<double>::infinity(),  -std::numeric_limits<double>::infinity(),
-        -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
-    for (std::uint32_t t = e.piece_first[p]; t < e.piece_first[p + 1]; ++t)
-      for (const std::uint32_t v : e.tris[t].v)
-        for (std::size_t k = 0; k < 3; ++k)
-          b[k] = std::min(b[k], pos[v][static_cast<int>(k)]),
-          b[k + 3] = std::max(b[k + 3], pos[v][static_cast<int>(k)]);
-    piece_box[p] = b;
-  }
   std::size_t held_pairs = 0, separated_pairs = 0;
   if (complete) {
     const si::box_pair_count pairs = si::for_each_box_pair(
