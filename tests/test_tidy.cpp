@@ -111,6 +111,30 @@ TEST_CASE("tidy_to_solid: an exact drawing stays where it is; drawing_to_cells d
   }
 }
 
+TEST_CASE("drawing_to_cells: exact drawings with lines within 5 degrees are not doubted or tidied") {
+  using namespace tidy_test;
+  // An antiprism of 20 sides and a random polytope have lines within 5° of parallel that are
+  // not parallel in space: realised as drawn (all triangles, or lines parallel to rounding),
+  // they are exact views, read as drawn and not flagged (before: doubted, tidied, flagged).
+  cellforge::samples::sketch_sweep_options o;
+  o.families = {"antiprism", "random convex"};
+  const auto sweep = cellforge::samples::sketch_sweep(o);
+  std::size_t seen = 0;
+  for (const auto& s : sweep) {
+    if (s.name != "antiprism 20, view 2" &&
+        s.name != "random sphere polytope 37 #5996838538862452997, view 3")
+      continue;
+    CAPTURE(s.name);
+    ++seen;
+    const auto r = cellforge::drawing_to_cells(s.drawing);
+    CHECK(is_model(s, r));
+    CHECK_FALSE(r.flagged);
+    CHECK_FALSE(r.tidy.applied);
+    CHECK(r.doubts == 0);
+  }
+  CHECK(seen == 2);  // both drawings are still in the sweep
+}
+
 TEST_CASE("tidy_to_solid: bad input is refused, a drawing too far from a solid is left as drawn") {
   using namespace tidy_test;
   const auto s = cellforge::samples::generic_drawing(cellforge::samples::sample_cube(), 1, "cube");
