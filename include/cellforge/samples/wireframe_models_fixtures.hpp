@@ -77,6 +77,20 @@ sample_model sample_pyramid(std::size_t n) {
   return make_ring_stack(s, cellforge::detail::cat("pyramid ", std::to_string(n)));
 }
 
+/// A square pyramid split into two tetrahedra by a wall on its base's diagonal: 5 vertices,
+/// 9 edges, 7 faces (all triangles), 2 volumes. Its base is a seam only where drawn flat: the
+/// drawing says so by its parallelogram, nothing else. O(1).
+template <class = void>
+sample_model sample_split_pyramid() {
+  sample_model m;
+  m.name = "split pyramid";
+  m.wire.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0.5, 0.8}};
+  m.wire.edges = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 2}, {0, 4}, {1, 4}, {2, 4}, {3, 4}};
+  m.faces = {{{0, 1, 2}}, {{0, 2, 3}}, {{0, 1, 4}}, {{1, 2, 4}}, {{2, 3, 4}}, {{3, 0, 4}}, {{0, 2, 4}}};
+  m.volumes = {{0, 2, 3, 6}, {1, 4, 5, 6}};
+  return detail::finish(std::move(m));
+}
+
 /// A UV sphere of radius 1: `slices` meridians, `stacks` bands (quads, triangle fans at the
 /// poles); slices·(stacks − 1) + 2 vertices, slices·(2·stacks − 1) edges; one volume of
 /// slices·stacks faces. Its rings (and with even slices its meridian circles) are planar

@@ -425,17 +425,87 @@ bool nearly_parallel(const faces::drawing_graph& g, double degrees) {
   return false;
 }
 
+/// Angle in degrees between the planes of two loops of a reading (0: coplanar or parallel). O(L).
+template <class = void>
+double plane_angle(const std::vector<glm::dvec3>& p, const std::vector<std::uint32_t>& a,
+                   const std::vector<std::uint32_t>& b) {
+  const glm::dvec3 na = loop_plane(p, a).first, nb = loop_plane(p, b).first;
+  const double la = glm::length(na), lb = glm::length(nb);
+  if (!(la > 0) || !(lb > 0)) return 0.0;
+  return std::asin(std::min(1.0, glm::length(glm::cross(na, nb)) / (la * lb))) * 180.0 / 3.141592653589793;
+}
+
+/// A doubt on a drawing's faces: a line (a, b) on just two faces, triangles (a, b, c) and
+/// (a, b, d) whose quad c-a-d-b is drawn as a parallelogram (opposite sides parallel within
+/// `parallel_degrees`), and a junction e joined to a and b whose triangle (a, b, e) is no face.
+/// A parallelogram in the view is one in space, flat: a–b would be a seam and (a, b, e) a wall
+/// (a square pyramid split on its base's diagonal). A sentence naming them, or empty.
+/// O(Σ L log E + Σ_e deg).
+template <class = void>
+std::string hidden_wall(const faces::drawing_graph& g, const face_set& faces, double parallel_degrees) {
+  std::map<std::array<std::uint32_t, 2>, std::vector<std::size_t>> on;  // line (ends sorted) -> faces
+  std::set<std::array<std::uint32_t, 3>> triangles;                     // faces that are triangles
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    if (faces[f].size() == 1 && faces[f][0].size() == 3) {
+      std::array<std::uint32_t, 3> t{faces[f][0][0], faces[f][0][1], faces[f][0][2]};
+      std::sort(t.begin(), t.end());
+      triangles.insert(t);
+    }
+    for (const auto& loop : faces[f])
+      for (std::size_t k = 0, n = loop.size(); k < n; ++k) {
+        const std::uint32_t u = loop[k], v = loop[(k + 1) % n];
+        on[{std::min(u, v), std::max(u, v)}].push_back(f);
+      }
+  }
+  const double sine = std::sin(parallel_degrees * 3.141592653589793 / 180.0);
+  const auto parallel = [&](std::uint32_t u0, std::uint32_t u1, std::uint32_t v0, std::uint32_t v1) {
+    const glm::dvec2 u = g.p[u1] - g.p[u0], v = g.p[v1] - g.p[v0];
+    const double lu = glm::length(u), lv = glm::length(v);
+    return lu > 0 && lv > 0 && std::abs(u.x * v.y - u.y * v.x) <= sine * lu * lv;
+  };
+  const auto third = [&](std::size_t f, std::uint32_t a, std::uint32_t b) {  // a triangle's corner off a-b
+    const auto& t = faces[f][0];
+    return t[0] != a && t[0] != b ? t[0] : t[1] != a && t[1] != b ? t[1] : t[2];
+  };
+  std::vector<std::uint32_t> mark(g.num_junctions(), 0);  // neighbours of a, stamped by a + 1
+  for (const auto& [line, fs] : on) {
+    const std::uint32_t a = line[0], b = line[1];
+    if (fs.size() != 2 || fs[0] == fs[1] || faces[fs[0]].size() != 1 || faces[fs[1]].size() != 1 ||
+        faces[fs[0]][0].size() != 3 || faces[fs[1]][0].size() != 3 || a >= g.num_junctions() ||
+        b >= g.num_junctions())
+      continue;
+    const std::uint32_t c = third(fs[0], a, b), d = third(fs[1], a, b);
+    if (!parallel(c, a, b, d) || !parallel(a, d, c, b)) continue;
+    for (std::uint32_t i = g.out_begin[a]; i < g.out_begin[a + 1]; ++i) mark[g.head[g.outs[i]]] = a + 1;
+    for (std::uint32_t i = g.out_begin[b]; i < g.out_begin[b + 1]; ++i) {
+      const std::uint32_t e = g.head[g.outs[i]];
+      if (e == a || mark[e] != a + 1) continue;
+      std::array<std::uint32_t, 3> t{a, b, e};
+      std::sort(t.begin(), t.end());
+      if (triangles.count(t)) continue;
+      return cellforge::detail::cat(
+          "faces ", std::to_string(fs[0]), " and ", std::to_string(fs[1]),
+          " make a parallelogram (junctions ", std::to_string(c), ", ", std::to_string(a), ", ",
+          std::to_string(d), ", ", std::to_string(b), "), flat in space, whose diagonal from junction ",
+          std::to_string(a), " to ", std::to_string(b),
+          " would be a seam and the triangle it makes with junction ", std::to_string(e), " a wall");
+    }
+  }
+  return {};
+}
+
 /// Whether a drawing whose reading as drawn gives a complex that agrees with its faces is an
-/// exact view: its faces are all triangles (any drawing of them is the view of a solid: jitter
-/// leaves no trace) or two of its lines sharing no junction are parallel to rounding (lines
-/// parallel in space drawn exactly). A jittered quad-sided drawing realised as drawn (a box
-/// whose top, split by a wall's diagonal, folds) has neither. O(E log E + F).
-template <class FaceSet>
-bool exact_view(const faces::drawing_graph& g, const FaceSet& face_loops) {
+/// exact view: two of its lines sharing no junction are parallel to rounding (lines parallel in
+/// space drawn exactly), or its faces are all triangles (any drawing of them is the view of a
+/// solid: jitter leaves no trace) with no hidden_wall within 5 degrees (a jittered split base
+/// folds in every reading and hides its wall). A jittered quad-sided drawing realised as drawn
+/// (a box whose top, split by a wall's diagonal, folds) has neither. O(E log E + Σ L log E).
+template <class = void>
+bool exact_view(const faces::drawing_graph& g, const face_set& face_loops) {
   bool triangles = true;
   for (const auto& face : face_loops)
     for (const auto& loop : face) triangles = triangles && loop.size() == 3;
-  if (triangles) return true;
+  if (triangles && hidden_wall(g, face_loops, 5.0).empty()) return true;
   const std::vector<std::pair<double, std::uint32_t>> angle = line_directions(g);
   const auto unit = [&](std::uint32_t e) {
     return glm::normalize(g.p[g.head[2 * e]] - g.p[g.head[2 * e + 1]]);
@@ -480,16 +550,6 @@ bool flat_seam(const faces::drawing_graph& g, const std::vector<double>& depth,
       return true;
   }
   return false;
-}
-
-/// Angle in degrees between the planes of two loops of a reading (0: coplanar or parallel). O(L).
-template <class = void>
-double plane_angle(const std::vector<glm::dvec3>& p, const std::vector<std::uint32_t>& a,
-                   const std::vector<std::uint32_t>& b) {
-  const glm::dvec3 na = loop_plane(p, a).first, nb = loop_plane(p, b).first;
-  const double la = glm::length(na), lb = glm::length(nb);
-  if (!(la > 0) || !(lb > 0)) return 0.0;
-  return std::asin(std::min(1.0, glm::length(glm::cross(na, nb)) / (la * lb))) * 180.0 / 3.141592653589793;
 }
 
 /// A doubt on an inexact drawing's answer: a junction where lines a and b go straight on (within
@@ -581,7 +641,7 @@ std::string nested_near_plane(const std::vector<glm::dvec2>& p, const std::vecto
   return {};
 }
 
-/// The doubts of an inexact drawing's answer (straight_fold, nested_near_plane) on the complex
+/// The doubts of an inexact drawing's answer (straight_fold, nested_near_plane, hidden_wall) on the complex
 /// `cells` built from `reading`, counted in r.doubts and named in r.diagnostics. Thresholds: lines
 /// straight within 3 degrees, folds under 10, faces within 2 % of the size; measured on the
 /// jittered sweep (tests/test_tidy.cpp, docs/sketch.md "Tidying"). O(F² L + Σ deg³).
@@ -598,7 +658,7 @@ void doubt_inexact(const faces::drawing_graph& g, Result& r, const std::vector<g
   for (const auto& q : r.tidy.drawing.points) tidied.push_back(to_dvec2(q));
   if (tidied.size() != g.p.size()) tidied = g.p;
   for (std::string doubt : {straight_fold(g, {g.p, tidied}, reading, faces, 3.0, 10.0),
-                            nested_near_plane(g.p, reading, faces, 5.0, 0.02)})
+                            nested_near_plane(g.p, reading, faces, 5.0, 0.02), hidden_wall(g, faces, 5.0)})
     if (!doubt.empty())
       ++r.doubts, r.diagnostics.push_back(cellforge::detail::cat("inexact drawing: ", doubt));
 }
