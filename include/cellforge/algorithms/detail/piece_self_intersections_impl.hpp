@@ -414,8 +414,8 @@ struct engine {
       for (const std::uint32_t x : members)
         for (std::uint32_t l = class_first[x]; l < class_first[x + 1]; ++l) {
           const border_class& b = classes[l];
-          if (std::find(members.begin(), members.end(), b.other) != members.end()) continue;  // inside
-          for (std::uint32_t k = b.first; k < b.end; ++k)  // (apex, head, tail)
+          if (b.other != none && stamp_piece[b.other] == attempt) continue;  // inside the group
+          for (std::uint32_t k = b.first; k < b.end; ++k)                    // (apex, head, tail)
             if (!fits(b.apex, pos[edges[k][1]], pos[edges[k][0]])) return false;
         }
       return true;
