@@ -63,11 +63,22 @@ using index_triangle = std::array<std::uint32_t, 3>;
 
 namespace detail::ears {
 
-/// Newell's normal of polygon p, summed about its centroid for accuracy (not normalised). O(n).
-template <class = void>
-glm::dvec3 newell_normal(std::span<const glm::dvec3> p, const glm::dvec3& centroid) noexcept {
-  return cellforge::detail::newell(cellforge::detail::index_range{p.size()},
-                                   [&](std::size_t i) { return p[i] - centroid; });
+/// Newell's normal of polygon p, summed about its centroid for accuracy (not normalised); for a
+/// polygon of N corners known when compiling (a quad's) the loop unrolled, the same sums in the
+/// same order. O(n).
+template <std::size_t N = std::dynamic_extent>
+glm::dvec3 newell_normal(std::span<const glm::dvec3, N> p, const glm::dvec3& centroid) noexcept {
+  if constexpr (N == std::dynamic_extent) {
+    return cellforge::detail::newell(cellforge::detail::index_range{p.size()},
+                                     [&](std::size_t i) { return p[i] - centroid; });
+  } else {
+    glm::dvec3 n(0.0);
+    for (std::size_t i = 0; i < N; ++i) {
+      const glm::dvec3 a = p[i] - centroid, b = p[(i + 1) % N] - centroid;
+      n += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
+    }
+    return n;
+  }
 }
 
 /// The axis clipping projects along: the normal's largest component (the first on a tie). O(1).

@@ -371,13 +371,8 @@ bool convex_projected_quad(std::span<const vec> p) noexcept {
     centroid += p[i];
   }
   centroid /= 4.0;
-  // ears::newell_normal(p, centroid), its sums in its order, written out (the call was a
-  // tenth of the check by pieces' set-up).
-  vec newell(0.0);
-  for (std::size_t i = 0; i < 4; ++i) {
-    const vec a = p[i] - centroid, b = p[(i + 1) & 3] - centroid;
-    newell += vec((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
-  }
+  // The fixed-size Newell sums (the general one's loop was a tenth of the check by pieces' set-up).
+  const vec newell = ears::newell_normal(p.first<4>(), centroid);
   const int k = ears::dominant_axis(newell);
   if (!(std::fabs(newell[k]) > 0)) return false;
   const int u = (k + 1) % 3, w = (k + 2) % 3, sense = newell[k] > 0 ? 1 : -1;

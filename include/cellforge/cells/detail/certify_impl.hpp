@@ -161,7 +161,7 @@ void triangulate_face(const cell_topology& cc, std::span<const vec> pts, cell_fa
   vec centroid(0.0);
   for (const vec& p : corners) centroid += p;
   centroid /= static_cast<double>(corners.size());
-  const vec nrm = ears::newell_normal(detail::span_of(corners), centroid);
+  const vec nrm = ears::newell_normal(detail::span_of(std::as_const(corners)), centroid);
   const int k = ears::dominant_axis(nrm), u = (k + 1) % 3, w = (k + 2) % 3;
   const int sense = nrm[k] > 0 ? 1 : -1;
   auto area2 = [&](const std::vector<uint32_t>& loop) {
