@@ -18,6 +18,8 @@
 
 #include "cellforge/algorithms/piece_self_intersections.hpp"
 #include "cellforge/algorithms/self_intersections.hpp"
+#include "cellforge/algorithms/shapes.hpp"
+#include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/validate.hpp"
 #include "cellforge/samples/skeletons.hpp"
 #include "cellforge/tubes/branch_mesh.hpp"
@@ -1007,6 +1009,38 @@ TEST_CASE("tubes: the check by pieces finds what the full check finds, certifica
       "check\n",
       meshes, intersecting);
   CHECK(intersecting >= 6);
+}
+
+TEST_CASE("the check by pieces: a border class through one vertex twice") {
+  // Two quads of a sphere's grid that touch at one corner c only, as one piece: its border to the
+  // rest (and the rest's to it) passes through c twice, so the class is not a cycle through each
+  // vertex once and the certificate traces the group's boundary instead. Whole, with c pushed
+  // through the far wall, and with the rest split in two.
+  const surface_mesh<glm::dvec3> sphere = make_mesh(uv_sphere(8, 6, false));
+  const vertex_handle c(1 + 2 * 8 + 3);  // a corner of four quads, on the middle ring
+  std::vector<face_handle> around;
+  for (const face_handle f : sphere.faces_around(c)) around.push_back(f);
+  REQUIRE(around.size() == 4);
+  std::vector<std::uint32_t> two(sphere.faces_size(), 0);
+  two[around[0].idx()] = two[around[2].idx()] = 1;  // opposite about c: they share c alone
+  std::vector<std::uint32_t> three = two;
+  for (const face_handle f : sphere.faces())
+    if (three[f.idx()] == 0 && sphere.position(*sphere.vertices_around(f).begin()).z < 0) three[f.idx()] = 2;
+  const surface_mesh<glm::dvec3> pushed = [&] {
+    surface_mesh<glm::dvec3> m = sphere;
+    m.points()[c.idx()] *= -1.3;  // its four quads through the far side
+    return m;
+  }();
+  std::size_t intersecting = 0;
+  for (const surface_mesh<glm::dvec3>* m : {&sphere, &pushed})
+    for (const std::vector<std::uint32_t>* labels : {&two, &three}) {
+      self_intersection_result full;
+      CHECK(check_by_pieces_differs(*m, labels, &full) == "");
+      CHECK(full.complete);
+      intersecting += full.intersecting_face_pairs;
+      if (m == &sphere) CHECK(full.intersecting_face_pairs == 0);
+    }
+  CHECK(intersecting > 0);
 }
 
 TEST_CASE("tubes: nodes closer than their turns allow are merged, never folded") {
