@@ -389,15 +389,17 @@ struct engine {
     if (f == 0 || orient3d(c, x0, y0, g) != f || orient3d(c, y0, z0, g) != f || orient3d(c, z0, x0, g) != f)
       return false;
     // Faces away with sign f, and leaves g outside its closed cone (one side's sign is -f).
+    // The sides in the order that most often ends soonest (any order gives the same answer):
+    // 1.57 tests a triangle on trees and lattices, against 1.69 in turn.
     const auto fits = [&](const vec& x, const vec& y, const vec& z) {
       const vec xc = x - c, yc = y - c, zc = z - c;
       const minor k1 = minor_of(xc, yc);
       if (sign_of(k1, zc, c, x, y, z) != f) return false;
       if (sign_of(k1, gc, c, x, y, g) == -f) return true;
-      const minor k2 = minor_of(yc, zc);
-      if (sign_of(k2, gc, c, y, z, g) == -f) return true;
       const minor k3 = minor_of(zc, xc);
-      return sign_of(k3, gc, c, z, x, g) == -f;
+      if (sign_of(k3, gc, c, z, x, g) == -f) return true;
+      const minor k2 = minor_of(yc, zc);
+      return sign_of(k2, gc, c, y, z, g) == -f;
     };
     for (const std::uint32_t x : members)
       for (std::uint32_t t = piece_first[x] + (x == r ? 1 : 0); t < piece_first[x + 1]; ++t) {
