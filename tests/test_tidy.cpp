@@ -168,6 +168,26 @@ TEST_CASE(
   CHECK(right >= 17);
 }
 
+TEST_CASE("drawing_to_cells: a seam found on a tidied drawing is one only where the drawing says so") {
+  // seam_drawn: two loops at a line are coplanar by the drawing when a parallel class of three
+  // lines or more, or two classes, join them; one pair parallel by chance (which a tidying
+  // merges in a random polytope's view) is no evidence for a wall.
+  const auto drawn = [](std::vector<glm::dvec2> points, std::vector<std::array<std::uint32_t, 2>> edges) {
+    cellforge::line_drawing<glm::dvec2> d{std::move(points), std::move(edges)};
+    const auto g = cellforge::detail::faces::make_graph(d, cellforge::face_finder_options{});
+    return cellforge::detail::sketch::seam_drawn(g, {0, 1, 2}, {0, 2, 3}, 0, 2);
+  };
+  const std::vector<std::array<std::uint32_t, 2>> quad{{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 2}};
+  // A parallelogram split by its diagonal: two classes of two lines join the triangles.
+  CHECK(drawn({{0, 0}, {2, 0}, {3, 1}, {1, 1}}, quad));
+  // A trapezoid: one pair of parallel lines only.
+  CHECK_FALSE(drawn({{0, 0}, {2, 0}, {2.9, 1}, {0.7, 1}}, quad));
+  // The same trapezoid beside a third line of that direction: a class of three.
+  auto three = quad;
+  three.push_back({4, 5});
+  CHECK(drawn({{0, 0}, {2, 0}, {2.9, 1}, {0.7, 1}, {0, 3}, {1, 3}}, three));
+}
+
 TEST_CASE("tidy_to_solid: bad input is refused, a drawing too far from a solid is left as drawn") {
   using namespace tidy_test;
   const auto s = cellforge::samples::generic_drawing(cellforge::samples::sample_cube(), 1, "cube");

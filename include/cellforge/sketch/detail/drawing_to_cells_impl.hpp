@@ -527,9 +527,46 @@ bool exact_view(const faces::drawing_graph& g, const face_set& face_loops) {
   return false;
 }
 
+/// Whether two loops at line (a, b) of a tidied drawing are coplanar because the drawing says
+/// so: each has a line off the seam's direction in one parallel class (exactly parallel, as the
+/// tidying leaves a class) that holds three lines or more, or two such classes join them (a
+/// parallelogram split by its diagonal). One pair of lines parallel by chance (a random
+/// polytope's, merged by the tidying) is no evidence. O(L² + L·E).
+template <class = void>
+bool seam_drawn(const faces::drawing_graph& g, const std::vector<std::uint32_t>& la,
+                const std::vector<std::uint32_t>& lb, std::uint32_t a, std::uint32_t b) {
+  const auto parallel = [](glm::dvec2 u, glm::dvec2 v) {
+    return std::abs(u.x * v.y - u.y * v.x) <= 1e-9 * glm::length(u) * glm::length(v);
+  };
+  const auto sides = [&](const std::vector<std::uint32_t>& loop) {  // its lines off the seam
+    std::vector<glm::dvec2> d;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const std::uint32_t u = loop[k], v = loop[(k + 1) % loop.size()];
+      if (!((u == a && v == b) || (u == b && v == a)) && !parallel(g.p[v] - g.p[u], g.p[b] - g.p[a]))
+        d.push_back(g.p[v] - g.p[u]);
+    }
+    return d;
+  };
+  std::vector<glm::dvec2> linking;  // distinct directions with a line in each loop
+  for (const auto& u : sides(la))
+    for (const auto& v : sides(lb))
+      if (parallel(u, v) &&
+          std::none_of(linking.begin(), linking.end(), [&](glm::dvec2 w) { return parallel(u, w); }))
+        linking.push_back(u);
+  if (linking.size() >= 2) return true;
+  for (const auto& d : linking) {
+    std::size_t members = 0;
+    for (std::uint32_t e = 0; e < g.num_half_edges() / 2; ++e)
+      members += parallel(g.p[g.head[2 * e]] - g.p[g.head[2 * e + 1]], d) ? 1 : 0;
+    if (members >= 3) return true;
+  }
+  return false;
+}
+
 /// Whether loops fail their check on a drawing at an edge on just two of them that are
-/// coplanar in the drawing's reading `depth` (normals within 1e-6 rad): a seam in space, that
-/// a wall must meet, not only two faces alike in the view. O(Σ L² + E).
+/// coplanar in the drawing's reading `depth` (normals within 1e-6 rad) because the drawing
+/// says so (seam_drawn): a seam in space, that a wall must meet, not only two faces alike in
+/// the view. O(Σ L² + E).
 template <class = void>
 bool flat_seam(const faces::drawing_graph& g, const std::vector<double>& depth,
                const std::vector<std::vector<std::uint32_t>>& loops, double coplanar_degrees) {
@@ -540,13 +577,16 @@ bool flat_seam(const faces::drawing_graph& g, const std::vector<double>& depth,
   for (const auto e : c.seam_edges) {
     const std::uint32_t a = g.head[2 * e + 1], b = g.head[2 * e];
     std::vector<glm::dvec3> normals;
+    std::vector<const std::vector<std::uint32_t>*> at;  // the loops on the line
     for (const auto& loop : loops)
       for (std::size_t k = 0; k < loop.size(); ++k) {
         const std::uint32_t u = loop[k], v = loop[(k + 1) % loop.size()];
-        if ((u == a && v == b) || (u == b && v == a)) normals.push_back(loop_plane(q, loop).first);
+        if ((u == a && v == b) || (u == b && v == a))
+          normals.push_back(loop_plane(q, loop).first), at.push_back(&loop);
       }
     if (normals.size() == 2 && glm::length(normals[0]) > 0 && glm::length(normals[1]) > 0 &&
-        glm::length(glm::cross(glm::normalize(normals[0]), glm::normalize(normals[1]))) <= 1e-6)
+        glm::length(glm::cross(glm::normalize(normals[0]), glm::normalize(normals[1]))) <= 1e-6 &&
+        seam_drawn(g, *at[0], *at[1], a, b))
       return true;
   }
   return false;
