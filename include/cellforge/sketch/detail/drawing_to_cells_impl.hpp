@@ -51,6 +51,14 @@ double loop_area(const std::vector<glm::dvec2>& p, const std::vector<std::uint32
 
 using face_set = std::vector<std::vector<std::vector<std::uint32_t>>>;
 
+/// Whether drawn directions u and v are parallel (either way) within `sine`, the sine of the
+/// angle between them; a zero direction is parallel to nothing. O(1).
+template <class = void>
+bool parallel_within(glm::dvec2 u, glm::dvec2 v, double sine) {
+  const double lu = glm::length(u), lv = glm::length(v);
+  return lu > 0 && lv > 0 && std::abs(u.x * v.y - u.y * v.x) <= sine * lu * lv;
+}
+
 /// Newell normal and centroid of a loop in 3D. O(L).
 template <class = void>
 std::pair<glm::dvec3, glm::dvec3> loop_plane(const std::vector<glm::dvec3>& p,
@@ -409,9 +417,8 @@ bool nearly_parallel(const faces::drawing_graph& g, double degrees) {
     if (g.head[2 * e] == g.head[2 * f] || g.head[2 * e] == g.head[2 * f + 1] ||
         g.head[2 * e + 1] == g.head[2 * f] || g.head[2 * e + 1] == g.head[2 * f + 1])
       return false;
-    const glm::dvec2 u = glm::normalize(g.p[g.head[2 * e]] - g.p[g.head[2 * e + 1]]),
-                     v = glm::normalize(g.p[g.head[2 * f]] - g.p[g.head[2 * f + 1]]);
-    return std::abs(u.x * v.y - u.y * v.x) > 1e-9;
+    return !parallel_within(g.p[g.head[2 * e]] - g.p[g.head[2 * e + 1]],
+                            g.p[g.head[2 * f]] - g.p[g.head[2 * f + 1]], 1e-9);
   };
   const std::size_t n = angle.size();
   for (std::size_t i = 0; i < n; ++i)
@@ -459,9 +466,7 @@ std::string hidden_wall(const faces::drawing_graph& g, const face_set& faces, do
   }
   const double sine = std::sin(parallel_degrees * 3.141592653589793 / 180.0);
   const auto parallel = [&](std::uint32_t u0, std::uint32_t u1, std::uint32_t v0, std::uint32_t v1) {
-    const glm::dvec2 u = g.p[u1] - g.p[u0], v = g.p[v1] - g.p[v0];
-    const double lu = glm::length(u), lv = glm::length(v);
-    return lu > 0 && lv > 0 && std::abs(u.x * v.y - u.y * v.x) <= sine * lu * lv;
+    return parallel_within(g.p[u1] - g.p[u0], g.p[v1] - g.p[v0], sine);
   };
   const auto third = [&](std::size_t f, std::uint32_t a, std::uint32_t b) {  // a triangle's corner off a-b
     const auto& t = faces[f][0];
@@ -507,9 +512,7 @@ bool exact_view(const faces::drawing_graph& g, const face_set& face_loops) {
     for (const auto& loop : face) triangles = triangles && loop.size() == 3;
   if (triangles && hidden_wall(g, face_loops, 5.0).empty()) return true;
   const std::vector<std::pair<double, std::uint32_t>> angle = line_directions(g);
-  const auto unit = [&](std::uint32_t e) {
-    return glm::normalize(g.p[g.head[2 * e]] - g.p[g.head[2 * e + 1]]);
-  };
+  const auto direction = [&](std::uint32_t e) { return g.p[g.head[2 * e]] - g.p[g.head[2 * e + 1]]; };
   const auto disjoint = [&](std::uint32_t e, std::uint32_t f) {
     return g.head[2 * e] != g.head[2 * f] && g.head[2 * e] != g.head[2 * f + 1] &&
            g.head[2 * e + 1] != g.head[2 * f] && g.head[2 * e + 1] != g.head[2 * f + 1];
@@ -521,8 +524,9 @@ bool exact_view(const faces::drawing_graph& g, const face_set& face_loops) {
       const double gap =
           j > i ? angle[j].first - angle[i].first : angle[j].first + 3.141592653589793 - angle[i].first;
       if (gap > 1e-8) break;
-      const glm::dvec2 u = unit(angle[i].second), v = unit(angle[j].second);
-      if (std::abs(u.x * v.y - u.y * v.x) <= 1e-9 && disjoint(angle[i].second, angle[j].second)) return true;
+      if (parallel_within(direction(angle[i].second), direction(angle[j].second), 1e-9) &&
+          disjoint(angle[i].second, angle[j].second))
+        return true;
     }
   return false;
 }
@@ -535,9 +539,7 @@ bool exact_view(const faces::drawing_graph& g, const face_set& face_loops) {
 template <class = void>
 bool seam_drawn(const faces::drawing_graph& g, const std::vector<std::uint32_t>& la,
                 const std::vector<std::uint32_t>& lb, std::uint32_t a, std::uint32_t b) {
-  const auto parallel = [](glm::dvec2 u, glm::dvec2 v) {
-    return std::abs(u.x * v.y - u.y * v.x) <= 1e-9 * glm::length(u) * glm::length(v);
-  };
+  const auto parallel = [](glm::dvec2 u, glm::dvec2 v) { return parallel_within(u, v, 1e-9); };
   const auto sides = [&](const std::vector<std::uint32_t>& loop) {  // its lines off the seam
     std::vector<glm::dvec2> d;
     for (std::size_t k = 0; k < loop.size(); ++k) {
