@@ -144,13 +144,18 @@ TEST_CASE(
   const cellforge::samples::sample_model model = cellforge::samples::sample_split_pyramid();
   REQUIRE(model.volumes.size() == 2);
   std::size_t right = 0, flagged = 0, exact_right = 0, drawings = 0;
+#ifdef NDEBUG
+  const std::uint64_t last_seed = 13;
+#else
+  const std::uint64_t last_seed = 11;  // the sanitizers: one jitter of each view
+#endif
   for (std::uint64_t view = 1; view <= 6; ++view) {
     const auto s = cellforge::samples::generic_drawing(model, view, "split pyramid");
     const auto exact = cellforge::drawing_to_cells(s.drawing);
     CAPTURE(view);
     CHECK((is_model(s, exact) || exact.flagged));
     exact_right += is_model(s, exact) ? 1 : 0;
-    for (std::uint64_t seed = 11; seed <= 13; ++seed) {
+    for (std::uint64_t seed = 11; seed <= last_seed; ++seed) {
       CAPTURE(seed);
       const auto r = cellforge::drawing_to_cells(cellforge::samples::jitter_drawing(s.drawing, 0.002, seed));
       const bool ok = is_model(s, r);
@@ -165,7 +170,7 @@ TEST_CASE(
   MESSAGE("split pyramid: exact ", exact_right, " of 6 views; jittered 0.2 %: ", right, " of ", drawings,
           " two tetrahedra, ", flagged, " flagged");
   CHECK(exact_right >= 5);
-  CHECK(right >= 17);
+  CHECK(right + 1 >= drawings);  // 17 of 18
 }
 
 TEST_CASE("drawing_to_cells: a seam found on a tidied drawing is one only where the drawing says so") {

@@ -3,10 +3,10 @@
 /// \file
 /// Include in exactly one .cpp file of a program built with CELLFORGE_EXTERN_SKETCH defined in
 /// every file: it compiles, once, the line-drawing engines that the other files then only
-/// declare (`extern template`), so that a file calling find_faces, drawing_to_cells or
-/// io::read_drawing_text compiles in a fraction of the time. Without the macro nothing changes:
-/// every file compiles what it calls, as any header-only library (docs/sketch.md, "Compile time").
-/// The engines run in double: they serve every drawing type whose scalar is double.
+/// declare (`extern template`), so that a file calling find_faces, drawing_to_cells, inflate,
+/// the tidying, the rounds or io::read_drawing_text compiles in a fraction of the time. Without the macro
+/// nothing changes: every file compiles what it calls, as any header-only library (docs/sketch.md, "Compile
+/// time"). The engines run in double: they serve every drawing type whose scalar is double.
 
 #include <string_view>
 
@@ -16,7 +16,9 @@
 #include "cellforge/io/drawing_text.hpp"
 #include "cellforge/sketch/drawing_to_cells.hpp"
 #include "cellforge/sketch/face_finder.hpp"
+#include "cellforge/sketch/inflation.hpp"
 #include "cellforge/sketch/rounds.hpp"
+#include "cellforge/sketch/tidy.hpp"
 
 /// \cond INTERNAL
 namespace cellforge {
@@ -26,6 +28,14 @@ template face_finder_result detail::faces::find_faces_in<void>(const detail::fac
 template drawing_result<glm::dvec3, glm::dvec2>
 detail::sketch::drawing_to_cells_on<glm::dvec3, line_drawing<glm::dvec2>>(const line_drawing<glm::dvec2>&,
                                                                           const drawing_options&);
+template inflation_result<glm::dvec3> detail::inflate_faces<glm::dvec3, line_drawing<glm::dvec2>>(
+    const line_drawing<glm::dvec2>&, const std::vector<std::vector<std::vector<std::uint32_t>>>&,
+    const inflation_options&);
+template tidy_result<glm::dvec2> tidy_drawing<line_drawing<glm::dvec2>>(const line_drawing<glm::dvec2>&,
+                                                                        const tidy_options&);
+template tidy_result<glm::dvec2> tidy_to_solid<line_drawing<glm::dvec2>>(
+    const line_drawing<glm::dvec2>&, const std::vector<std::vector<std::vector<std::uint32_t>>>&,
+    const tidy_options&);
 template arc_drawing<glm::dvec2> io::detail::parse_drawing_text_statements<glm::dvec2>(std::string_view,
                                                                                        std::string_view,
                                                                                        bool);

@@ -606,4 +606,13 @@ detail::if_satisfied_t<LineDrawing<D>, detail::tidy_result_for, D> tidy_to_solid
   return finish("no view of a solid found near the drawing");
 }
 
+#if defined(CELLFORGE_EXTERN_SKETCH)
+// Compiled once in the file that includes cellforge/sketch/instantiate.hpp (docs/sketch.md).
+extern template tidy_result<glm::dvec2> tidy_drawing<line_drawing<glm::dvec2>>(
+    const line_drawing<glm::dvec2>&, const tidy_options&);
+extern template tidy_result<glm::dvec2> tidy_to_solid<line_drawing<glm::dvec2>>(
+    const line_drawing<glm::dvec2>&, const std::vector<std::vector<std::vector<std::uint32_t>>>&,
+    const tidy_options&);
+#endif
+
 }  // namespace cellforge

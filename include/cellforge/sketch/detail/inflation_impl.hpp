@@ -1805,13 +1805,12 @@ double from_above_score(const inflation_problem<>& pr, const compliance_terms<>&
   return length > 0 ? climb / length : 0.0;
 }
 
-}  // namespace detail
-
-template <class Q, LineDrawing D>
-detail::if_satisfied_t<LineDrawing<D>, detail::inflation_result_for, Q, D> inflate(
-    const D& drawing, const std::vector<std::vector<std::vector<std::uint32_t>>>& faces,
-    const inflation_options& user_options) {
-  using R = detail::result_point_t<Q, drawing_point_t<D>>;
+/// inflate's engine, one per result point type R: inflate<void> and inflate<R> share it (the
+/// body is the sketch part's largest template). O(as inflate).
+template <class R, LineDrawing D>
+inflation_result<R> inflate_faces(const D& drawing,
+                                  const std::vector<std::vector<std::vector<std::uint32_t>>>& faces,
+                                  const inflation_options& user_options) {
   static_assert(Point3<R>, "inflate: the result point type must be a registered Point3");
   const detail::stopwatch t0;
   inflation_result<R> res;
@@ -2185,6 +2184,15 @@ detail::if_satisfied_t<LineDrawing<D>, detail::inflation_result_for, Q, D> infla
   return res;
 }
 
+}  // namespace detail
+
+template <class Q, LineDrawing D>
+detail::if_satisfied_t<LineDrawing<D>, detail::inflation_result_for, Q, D> inflate(
+    const D& drawing, const std::vector<std::vector<std::vector<std::uint32_t>>>& faces,
+    const inflation_options& user_options) {
+  return detail::inflate_faces<detail::result_point_t<Q, drawing_point_t<D>>>(drawing, faces, user_options);
+}
+
 template <class Q, LineDrawing D>
 detail::if_satisfied_t<LineDrawing<D>, detail::inflation_result_for, Q, D> inflate(
     const D& drawing, const std::vector<std::vector<std::uint32_t>>& loops,
@@ -2194,5 +2202,12 @@ detail::if_satisfied_t<LineDrawing<D>, detail::inflation_result_for, Q, D> infla
   for (const auto& l : loops) faces.push_back({l});
   return inflate<Q>(drawing, faces, options);
 }
+
+#if defined(CELLFORGE_EXTERN_SKETCH)
+// Compiled once in the file that includes cellforge/sketch/instantiate.hpp (docs/sketch.md).
+extern template inflation_result<glm::dvec3> detail::inflate_faces<glm::dvec3, line_drawing<glm::dvec2>>(
+    const line_drawing<glm::dvec2>&, const std::vector<std::vector<std::vector<std::uint32_t>>>&,
+    const inflation_options&);
+#endif
 
 }  // namespace cellforge
