@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 #include <limits>
+#include <memory_resource>
 #include <span>
 #include <string>
 #include <type_traits>
@@ -35,6 +36,9 @@ namespace detail::piece_check {
 
 using vec = glm::dvec3;
 inline constexpr std::uint32_t none = 0xFFFFFFFFu;
+/// The engine's arrays, all in its one scratch arena.
+template <class T>
+using buffer = std::pmr::vector<T>;
 
 /// One triangle of a face's triangulation (vertex ids as the mesh numbers them).
 struct triangle {
@@ -110,15 +114,18 @@ std::array<vec, 2> closest_points(const std::array<vec, 2>& s, const std::array<
 /// half-edges, and the certificates.
 template <Point3 P>
 struct engine {
+  // First: the arrays below live in it, and it goes last.
+  cellforge::detail::scratch_arena arena;
   const surface_mesh<P>& m;
   std::span<const std::uint32_t> face_piece;
-  std::vector<vec> own_pos;  // positions converted to double, unless they are already
+  buffer<vec> own_pos{&arena};  // positions converted to double, unless they are already
   std::span<const vec> pos;
   std::size_t pieces = 0;
-  std::vector<triangle> tris;                       // by piece
-  std::vector<std::uint32_t> piece_first;           // tris of piece p: [piece_first[p], piece_first[p + 1])
-  std::vector<std::uint8_t> piece_ok;               // every face a disc triangulation, at least one triangle
-  std::vector<std::uint32_t> face_first, faces_in;  // faces of piece p: faces_in[face_first[p] ...]
+  buffer<triangle> tris{&arena};              // by piece
+  buffer<std::uint32_t> piece_first{&arena};  // tris of piece p: [piece_first[p], piece_first[p + 1])
+  buffer<std::uint8_t> piece_ok{&arena};      // every face a disc triangulation, at least one triangle
+  // Faces of piece p: faces_in[face_first[p] ...].
+  buffer<std::uint32_t> face_first{&arena}, faces_in{&arena};
   // Per piece: its border (half-edges whose twin lies in another piece, or none) in classes,
   // one per piece beyond (none: the mesh's boundary): each class's range of `edges` (tail, head),
   // that piece, and its tails' mean (the apex of the cone that closes it in a group).
@@ -126,25 +133,32 @@ struct engine {
     std::uint32_t first, end, other;
     vec apex;
   };
-  std::vector<std::uint32_t> class_first;  // classes of piece p: [class_first[p], class_first[p + 1])
-  std::vector<border_class> classes;
-  std::vector<std::array<std::uint32_t, 2>> edges;
+  buffer<std::uint32_t> class_first{&arena};  // classes of piece p: [class_first[p], class_first[p + 1])
+  buffer<border_class> classes{&arena};
+  buffer<std::array<std::uint32_t, 2>> edges{&arena};
   // Per piece: every class is closed (each vertex the tail of at most one of its edges, the head
   // of as many, the same vertices both ways: its edges run in cycles); else traced per group.
-  std::vector<std::uint8_t> classes_closed;
-  std::vector<std::uint32_t> nbr_first, nbr;  // distinct neighbouring pieces
-  std::vector<vec> nbr_mean;                  // per neighbour: the mean of the border to it
-  std::vector<std::uint8_t> nbr_held;         // per neighbour: a certified pair group
-  std::vector<std::array<vec, 2>> centres;    // candidate centres per piece
-  std::vector<vec> mean;                      // per piece, the mean of its corners
-  std::vector<std::uint8_t> centre_count;
-  std::vector<std::uint32_t> stamp_piece;
+  buffer<std::uint8_t> classes_closed{&arena};
+  buffer<std::uint32_t> nbr_first{&arena}, nbr{&arena};  // distinct neighbouring pieces
+  buffer<vec> nbr_mean{&arena};                          // per neighbour: the mean of the border to it
+  buffer<std::uint8_t> nbr_held{&arena};                 // per neighbour: a certified pair group
+  buffer<std::array<vec, 2>> centres{&arena};            // candidate centres per piece
+  buffer<vec> mean{&arena};                              // per piece, the mean of its corners
+  buffer<std::uint8_t> centre_count{&arena};
+  buffer<std::uint32_t> stamp_piece{&arena};
   std::uint32_t attempt = 0;
-  std::vector<std::uint32_t> members;
-  std::vector<std::uint32_t> bd, loop;
-  std::vector<std::uint8_t> bd_seen;
+  buffer<std::uint32_t> members{&arena};
+  buffer<std::uint32_t> bd{&arena}, loop{&arena};
+  buffer<std::uint8_t> bd_seen{&arena};
 
-  engine(const surface_mesh<P>& mesh, std::span<const std::uint32_t> labels) : m(mesh), face_piece(labels) {}
+  engine(const surface_mesh<P>& mesh, std::span<const std::uint32_t> labels)
+      : arena(scratch_bytes(mesh)), m(mesh), face_piece(labels) {}
+  /// Room for the arrays of a mesh of tubes and more (a bound, not the need: pages untouched
+  /// cost nothing). O(1).
+  static std::size_t scratch_bytes(const surface_mesh<P>& mesh) {
+    return 64 * mesh.halfedges_size() + 256 * mesh.faces_size() + 64 * mesh.vertices_size() +
+           (std::size_t{16} << 20);
+  }
 
   /// True when the edges (tail, head) run in cycles: no two share a tail, no two a head, and the
   /// heads are the tails (each vertex then the head of one edge and the tail of one). O(n²) for
@@ -167,7 +181,7 @@ struct engine {
     }
     return ok;
   }
-  std::vector<std::uint32_t> tails, heads;
+  buffer<std::uint32_t> tails{&arena}, heads{&arena};
 
   /// The next boundary half-edge of the group after h (stamp_piece marks the group), turning
   /// about h's head through the group's faces; none after 256 steps.
@@ -208,7 +222,7 @@ struct engine {
     }
     return {corner_ids.data() + corner_first[p], corner_count[p]};
   }
-  std::vector<std::uint32_t> corner_first, corner_count, corner_ids, corner_stamp;
+  buffer<std::uint32_t> corner_first{&arena}, corner_count{&arena}, corner_ids{&arena}, corner_stamp{&arena};
 
   bool separated(std::uint32_t a, std::uint32_t b) {
     // Across the closest points of their axes (two tubes that pass each other), then between
@@ -239,10 +253,10 @@ struct engine {
     double reach;
     std::uint32_t group_first, group_end;
   };
-  std::vector<card> cards;
-  std::vector<std::uint32_t> group_of;
+  buffer<card> cards{&arena};
+  buffer<std::uint32_t> group_of{&arena};
   static constexpr double no_triangles = -1, unknown = -2;  // cards' reach before it is known
-  std::vector<std::uint8_t> tails_only;  // per piece: its border classes' tails are all its corners
+  buffer<std::uint8_t> tails_only{&arena};  // per piece: its border classes' tails are all its corners
 
   /// Piece p's capsule, its reach computed on first use: over its border classes' tails when
   /// they are all its corners, else over its triangles' corners. O(1), once O(p's triangles).
@@ -532,14 +546,14 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
     pieces = std::max<std::size_t>(pieces, p + 1);
   }
   e.pieces = pieces;
-  std::vector<std::uint32_t>&face_first = e.face_first, &faces_in = e.faces_in;
+  pc::buffer<std::uint32_t>&face_first = e.face_first, &faces_in = e.faces_in;
   face_first.assign(pieces + 1, 0);
   detail::reserve_large(faces_in, m.num_faces());
   faces_in.resize(m.num_faces());
   for (const face_handle f : m.faces()) ++face_first[face_piece[f.idx()] + 1];
   for (std::size_t p = 0; p < pieces; ++p) face_first[p + 1] += face_first[p];
   {
-    std::vector<std::uint32_t> fill(face_first.begin(), face_first.end() - 1);
+    pc::buffer<std::uint32_t> fill(face_first.begin(), face_first.end() - 1, &e.arena);
     for (const face_handle f : m.faces()) faces_in[fill[face_piece[f.idx()]]++] = f.idx();
   }
   e.piece_first.assign(pieces + 1, 0);
@@ -571,7 +585,7 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
   e.tails_only.resize(pieces);
   // Per piece, the box of its faces' corners (its triangles' corners and no others but the
   // corners of faces with no triangles, which only widen it), made in the walk.
-  std::vector<std::array<double, 6>> piece_box;
+  pc::buffer<std::array<double, 6>> piece_box(&e.arena);
   detail::reserve_large(piece_box, pieces);
   piece_box.resize(pieces);
   for (std::uint32_t p = 0; p < pieces; ++p) {
@@ -716,14 +730,15 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
 
   // Certificates: one group per piece (itself and its neighbours), tried about its centres.
   // An inconsistently oriented mesh has no oriented groups: nothing is certified.
-  std::vector<std::uint8_t> certified(pieces, 0), covered(pieces, 0);
+  pc::buffer<std::uint8_t> certified(pieces, 0, &e.arena), covered(pieces, 0, &e.arena);
   // A cap (a piece with one neighbour) certified in the star of its neighbour's other neighbour
   // (a junction's star reaching the end of a tube): that star's piece.
-  std::vector<std::uint32_t> holder(pieces, none);
+  pc::buffer<std::uint32_t> holder(pieces, none, &e.arena);
   // A cap certified with a pair of neighbouring pieces (a tube's last two bands): that pair.
-  std::vector<std::array<std::uint32_t, 2>> cap_pair(pieces, {none, none});
+  pc::buffer<std::array<std::uint32_t, 2>> cap_pair(pieces, {none, none}, &e.arena);
   e.nbr_held.assign(e.nbr.size(), 0);
-  std::vector<std::array<std::uint32_t, 2>> joined;  // (piece, group) of each certified group's members
+  // (piece, group) of each certified group's members.
+  pc::buffer<std::array<std::uint32_t, 2>> joined(&e.arena);
   const auto degree = [&](std::uint32_t p) { return e.nbr_first[p + 1] - e.nbr_first[p]; };
   const auto neighbours = [&](std::uint32_t a, std::uint32_t b) {
     for (std::uint32_t k = e.nbr_first[a]; k < e.nbr_first[a + 1]; ++k)
@@ -837,7 +852,7 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
   }
   e.group_of.resize(joined.size());
   for (const auto& [x, g] : joined) e.group_of[e.cards[x].group_end++] = g;
-  std::vector<std::array<std::uint32_t, 2>>().swap(joined);
+  joined.clear(), joined.shrink_to_fit();
 
   // Boxes and zero-area triangles: per piece, for the pieces the pair tests reach and for every
   // piece no certified group holds (a certified triangle has area).
@@ -845,8 +860,8 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
     std::array<double, 6> box;
     bool degenerate;
   };
-  std::vector<boxed> tri_box;                          // of the prepared pieces, in turn
-  std::vector<std::uint32_t> box_first(pieces, none);  // where a prepared piece's boxes start
+  pc::buffer<boxed> tri_box(&e.arena);                          // of the prepared pieces, in turn
+  pc::buffer<std::uint32_t> box_first(pieces, none, &e.arena);  // where a prepared piece's boxes start
   std::vector<std::uint32_t> degenerate_faces;
   const auto prepare = [&](std::uint32_t p) {
     if (box_first[p] != none) return;

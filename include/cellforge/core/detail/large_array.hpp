@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory_resource>
 #include <new>
 #include <type_traits>
 #include <vector>
@@ -32,8 +33,8 @@ void advise_huge_pages([[maybe_unused]] const void* data, [[maybe_unused]] std::
 /// pages when it is large: a fresh 200 MB array then costs ~100 page faults instead of
 /// ~50 000 (at 10^6 faces the faults of fresh arrays cost as much as the work on them).
 /// Only a hint: without Linux or transparent huge pages, this is a plain reserve. O(1).
-template <class T>
-void reserve_large(std::vector<T>& v, std::size_t n) {
+template <class T, class A>
+void reserve_large(std::vector<T, A>& v, std::size_t n) {
   if (n <= v.capacity()) return;
   v.reserve(n);
   if constexpr (!std::is_same_v<T, bool>)  // std::vector<bool> has no data()
@@ -77,5 +78,61 @@ template <class T>
 void release(std::vector<T>& v) noexcept {
   std::vector<T>().swap(v);
 }
+
+/// One call's scratch memory for many arrays (std::pmr::memory_resource): a block of address
+/// space mapped once, huge-page hinted and handed out in order, freed whole at the end (a
+/// deallocation only returns the block's top). Arrays of a few hundred KB each then share
+/// 2 MB pages instead of faulting in 4 KiB pages of their own (~10 µs each on a VM); what
+/// the block cannot hold, and every allocation without Linux, goes to new/delete. O(1).
+class scratch_arena : public std::pmr::memory_resource {
+ public:
+  /// Reserves `bytes` of address space (touched pages only cost memory). O(1).
+  explicit scratch_arena(std::size_t bytes) {
+#if defined(__linux__) && defined(MAP_NORESERVE)
+    constexpr std::size_t huge = std::size_t{2} << 20;
+    const std::size_t mapped = (bytes + 2 * huge - 1) & ~(huge - 1);
+    void* p =
+        ::mmap(nullptr, mapped, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+    if (p == MAP_FAILED) return;
+    map_ = static_cast<char*>(p), mapped_ = mapped;
+    // From the first 2 MB boundary, so that the first arrays are on huge pages too.
+    base_ =
+        reinterpret_cast<char*>((reinterpret_cast<std::uintptr_t>(p) + huge - 1) & ~std::uintptr_t{huge - 1});
+    size_ = static_cast<std::size_t>(map_ + mapped - base_);
+    advise_huge_pages(base_, size_);
+#else
+    (void)bytes;
+#endif
+  }
+  scratch_arena(const scratch_arena&) = delete;
+  scratch_arena& operator=(const scratch_arena&) = delete;
+  ~scratch_arena() override {
+#if defined(__linux__) && defined(MAP_NORESERVE)
+    if (map_ != nullptr) ::munmap(map_, mapped_);
+#endif
+  }
+
+ private:
+  void* do_allocate(std::size_t bytes, std::size_t align) override {
+    const std::size_t at = (used_ + align - 1) & ~(align - 1);
+    if (base_ == nullptr || at > size_ || bytes > size_ - at)
+      return std::pmr::new_delete_resource()->allocate(bytes, align);
+    used_ = at + bytes;
+    return base_ + at;
+  }
+  void do_deallocate(void* p, std::size_t bytes, std::size_t align) override {
+    char* const c = static_cast<char*>(p);
+    if (base_ == nullptr || c < base_ || c >= base_ + size_) {
+      std::pmr::new_delete_resource()->deallocate(p, bytes, align);
+      return;
+    }
+    if (c + bytes == base_ + used_) used_ = static_cast<std::size_t>(c - base_);  // the top: reused
+  }
+  bool do_is_equal(const std::pmr::memory_resource& other) const noexcept override { return this == &other; }
+
+  char* map_ = nullptr;
+  char* base_ = nullptr;
+  std::size_t mapped_ = 0, size_ = 0, used_ = 0;
+};
 
 }  // namespace cellforge::detail
