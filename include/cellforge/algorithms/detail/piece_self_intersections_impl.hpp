@@ -919,14 +919,16 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
     if (covered[p] != 0) continue;
     const std::size_t k = e.piece_first[p + 1] - e.piece_first[p];
     if (k > 64) {  // a large piece: its boxes' grid
-      std::vector<std::array<double, 6>> boxes(k);
+      pc::buffer<std::array<double, 6>> boxes(k, &e.arena);
       for (std::size_t i = 0; i < k; ++i) boxes[i] = tri_box[box_first[p] + i].box;
       const std::uint32_t first = e.piece_first[p];
-      const si::box_pair_count own =
-          si::for_each_box_pair(detail::span_of(boxes), limit - work, [&](std::uint32_t a, std::uint32_t b) {
+      const si::box_pair_count own = si::for_each_box_pair(
+          detail::span_of(boxes), limit - work,
+          [&](std::uint32_t a, std::uint32_t b) {
             test(p, first + a, p, first + b);
             return true;
-          });
+          },
+          1, &e.arena);
       work += own.candidate_pairs;
       complete = own.complete;
       continue;
@@ -963,7 +965,7 @@ self_intersection_result self_intersections_by_pieces(const surface_mesh<P>& m,
             for (std::uint32_t y = e.piece_first[b]; y < e.piece_first[b + 1]; ++y) test(a, x, b, y);
           return true;
         },
-        3);  // cells three median pieces wide: a third of the grid's cost, few more candidates
+        3, &e.arena);  // cells three median pieces wide: a third of the grid's cost, few more candidates
     work += pairs.candidate_pairs;
     complete = pairs.complete && work <= limit;
   }

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory_resource>
 #include <span>
 #include <utility>
 #include <vector>
@@ -408,14 +409,14 @@ std::uint32_t cell_of(double x, double origin, double inv_side, std::uint32_t ce
 /// Sorts 64-bit keys by their high 32 bits, stably (keys equal there keep their order):
 /// least-significant-digit radix sort, 11 bits a pass, skipping digits that never vary.
 /// O(n · passes).
-template <class = void>
-void radix_sort_high(std::vector<std::uint64_t>& keys) {
+template <class A>
+void radix_sort_high(std::vector<std::uint64_t, A>& keys) {
   if (keys.size() < 1024) {  // the passes' set-up costs more than a comparison sort
     std::stable_sort(keys.begin(), keys.end(),
                      [](std::uint64_t a, std::uint64_t b) { return a >> 32 < b >> 32; });
     return;
   }
-  std::vector<std::uint64_t> tmp(keys.size());
+  std::vector<std::uint64_t, A> tmp(keys.size(), keys.get_allocator());
   std::array<std::size_t, 2048> count{};
   std::uint64_t all_or = 0, all_and = ~std::uint64_t{0};
   for (const std::uint64_t k : keys) all_or |= k, all_and &= k;
@@ -577,10 +578,11 @@ struct box_pair_count {
 /// visited in the cell holding the low corner of the boxes' intersection (the only pairs a cell counts as
 /// candidates; the order of i and j is not fixed). Stops, complete = false, before
 /// a cell that would take the candidate pairs past `budget` (0: no limit). visit may return
-/// false to stop too. O(n log n + candidate pairs).
+/// false to stop too. Its arrays come from `scratch`. O(n log n + candidate pairs).
 template <class Visit>
 box_pair_count for_each_box_pair(std::span<const std::array<double, 6>> boxes, std::size_t budget,
-                                 Visit&& visit, double side_scale = 1) {
+                                 Visit&& visit, double side_scale = 1,
+                                 std::pmr::memory_resource* scratch = std::pmr::new_delete_resource()) {
   box_pair_count r;
   const std::size_t n = boxes.size();
   if (n < 2) return r;
@@ -591,7 +593,7 @@ box_pair_count for_each_box_pair(std::span<const std::array<double, 6>> boxes, s
     lo[k] = std::numeric_limits<double>::infinity();
     hi[k] = -std::numeric_limits<double>::infinity();
   }
-  std::vector<double> extent(n);
+  std::pmr::vector<double> extent(n, scratch);
   for (std::size_t t = 0; t < n; ++t) {
     const auto& b = boxes[t];
     for (std::size_t k = 0; k < 3; ++k) lo[k] = std::min(lo[k], b[k]), hi[k] = std::max(hi[k], b[k + 3]);
@@ -600,12 +602,13 @@ box_pair_count for_each_box_pair(std::span<const std::array<double, 6>> boxes, s
   std::nth_element(extent.begin(), extent.begin() + static_cast<std::ptrdiff_t>(n / 2), extent.end());
   const double span = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
   double side = extent[n / 2] * side_scale;
-  std::vector<double>().swap(extent);
+  std::pmr::vector<double>(scratch).swap(extent);
   if (!(side > 0) || !std::isfinite(side)) side = span / std::cbrt(static_cast<double>(n));
   if (!(side > 0) || !std::isfinite(side)) side = 1;
   const double max_entries = 8.0 * static_cast<double>(n) + 65536.0;
   std::array<std::uint32_t, 3> cells{};
-  std::vector<std::array<std::uint32_t, 3>> low, top;  // grid cells of each box's corners
+  // Grid cells of each box's corners.
+  std::pmr::vector<std::array<std::uint32_t, 3>> low(scratch), top(scratch);
   reserve_large(low, n), reserve_large(top, n);
   low.resize(n), top.resize(n);
   double inv = 0, entries = 0;
@@ -641,7 +644,7 @@ box_pair_count for_each_box_pair(std::span<const std::array<double, 6>> boxes, s
 
   // Cell entries as (cell key << 32 | box), made in box order and sorted stably by cell: the
   // boxes of a cell in a run, in increasing order.
-  std::vector<std::uint64_t> keys;
+  std::pmr::vector<std::uint64_t> keys(scratch);
   reserve_large(keys, static_cast<std::size_t>(std::min(entries, max_entries)));
   for (std::size_t t = 0; t < n; ++t) {
     for (std::uint32_t x = low[t][0]; x <= top[t][0]; ++x)
@@ -651,7 +654,7 @@ box_pair_count for_each_box_pair(std::span<const std::array<double, 6>> boxes, s
           keys.push_back(cell << 32 | t);
         }
   }
-  std::vector<std::array<std::uint32_t, 3>>().swap(top);
+  std::pmr::vector<std::array<std::uint32_t, 3>>(scratch).swap(top);
   radix_sort_high(keys);
   const std::size_t limit = budget != 0 ? budget : std::numeric_limits<std::size_t>::max();
   // A pair is visited in cell c only when max(low[a], low[b]) = c, i.e. for each axis one of
@@ -662,7 +665,7 @@ box_pair_count for_each_box_pair(std::span<const std::array<double, 6>> boxes, s
     std::array<double, 6> box;
     std::uint32_t id;
   };
-  std::vector<local> bucket;
+  std::pmr::vector<local> bucket(scratch);
   for (std::size_t begin = 0; begin < keys.size();) {
     const std::uint64_t cell = keys[begin] >> 32;
     std::size_t end = begin + 1;
