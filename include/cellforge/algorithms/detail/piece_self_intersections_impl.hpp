@@ -156,8 +156,7 @@ struct engine {
   /// Room for the arrays of a mesh of tubes and more (a bound, not the need: pages untouched
   /// cost nothing). O(1).
   static std::size_t scratch_bytes(const surface_mesh<P>& mesh) {
-    return 64 * mesh.halfedges_size() + 256 * mesh.faces_size() + 64 * mesh.vertices_size() +
-           (std::size_t{16} << 20);
+    return 64 * mesh.halfedges_size() + 256 * mesh.faces_size() + 64 * mesh.vertices_size();
   }
 
   /// True when the edges (tail, head) run in cycles: no two share a tail, no two a head, and the

@@ -81,14 +81,21 @@ void release(std::vector<T>& v) noexcept {
 
 /// One call's scratch memory for many arrays (std::pmr::memory_resource): a block of address
 /// space mapped once, huge-page hinted and handed out in order, freed whole at the end (a
-/// deallocation only returns the block's top). Arrays of a few hundred KB each then share
-/// 2 MB pages instead of faulting in 4 KiB pages of their own (~10 µs each on a VM); what
-/// the block cannot hold, and every allocation without Linux, goes to new/delete. O(1).
+/// deallocation only returns the block's top). Arrays of up to `largest` bytes then share
+/// 2 MB pages instead of faulting in 4 KiB pages of their own (~10 µs each on a VM); larger
+/// ones, what the block cannot hold, and everything without Linux go to new/delete, where a
+/// warm heap hands back memory already mapped (fresh huge pages cost their zeroing). Below
+/// `from` bytes of room asked for, everything goes there: a small call's arrays fit the warm
+/// heap, and a huge page would cost more than its 4 KiB faults save. O(1).
 class scratch_arena : public std::pmr::memory_resource {
  public:
-  /// Reserves `bytes` of address space (touched pages only cost memory). O(1).
-  explicit scratch_arena(std::size_t bytes) {
+  /// Reserves `bytes` of address space when they are at least `from` (touched pages only cost
+  /// memory); arrays over `largest` bytes go to new/delete. O(1).
+  explicit scratch_arena(std::size_t bytes, std::size_t largest = std::size_t{2} << 20,
+                         std::size_t from = std::size_t{64} << 20)
+      : largest_(largest) {
 #if defined(__linux__) && defined(MAP_NORESERVE)
+    if (bytes < from) return;
     constexpr std::size_t huge = std::size_t{2} << 20;
     const std::size_t mapped = (bytes + 2 * huge - 1) & ~(huge - 1);
     void* p =
@@ -101,7 +108,7 @@ class scratch_arena : public std::pmr::memory_resource {
     size_ = static_cast<std::size_t>(map_ + mapped - base_);
     advise_huge_pages(base_, size_);
 #else
-    (void)bytes;
+    (void)bytes, (void)from;
 #endif
   }
   scratch_arena(const scratch_arena&) = delete;
@@ -115,7 +122,7 @@ class scratch_arena : public std::pmr::memory_resource {
  private:
   void* do_allocate(std::size_t bytes, std::size_t align) override {
     const std::size_t at = (used_ + align - 1) & ~(align - 1);
-    if (base_ == nullptr || at > size_ || bytes > size_ - at)
+    if (base_ == nullptr || bytes > largest_ || at > size_ || bytes > size_ - at)
       return std::pmr::new_delete_resource()->allocate(bytes, align);
     used_ = at + bytes;
     return base_ + at;
@@ -132,7 +139,7 @@ class scratch_arena : public std::pmr::memory_resource {
 
   char* map_ = nullptr;
   char* base_ = nullptr;
-  std::size_t mapped_ = 0, size_ = 0, used_ = 0;
+  std::size_t largest_, mapped_ = 0, size_ = 0, used_ = 0;
 };
 
 }  // namespace cellforge::detail
