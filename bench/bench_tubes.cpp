@@ -66,6 +66,9 @@ std::vector<growth_case>& growth() {
     c.push_back(
         {"neuron-like tree 10k (tapering)",
          cs::random_tree(77, {.nodes = 10000, .root_radius = 2.0, .taper = 0.97, .min_radius = 0.2})});
+    // samples::neuron: a soma, dense thin dendrites, close branch points (merged junctions, stubs).
+    for (std::size_t n : {10000u, 100000u})
+      c.push_back({"neuron " + cb::count(n), cs::neuron(1, {.samples = n})});
     for (int k : {10, 22, 32, 46}) c.push_back({"lattice " + std::to_string(k) + "^3", cs::lattice(k, k, k)});
     // The same lattice turned (its junctions repeat but for rounding) and with every node moved
     // (no two junctions alike): how much of the lattice rate is its repeated junction shapes.
@@ -182,10 +185,10 @@ void register_check(const std::string& name, const skeleton& s, int iterations) 
       ->Unit(benchmark::kMillisecond);
 }
 
-/// The rows of the check table: the sizes (1k, 10k, 100k nodes) of trees and lattices.
+/// The rows of the check table: the sizes (1k, 10k, 100k nodes) of trees, neurons and lattices.
 bool in_check(const std::string& name) {
-  return name.rfind("tree ", 0) == 0 || name == "lattice 10^3" || name == "lattice 22^3" ||
-         name == "lattice 46^3";
+  return name.rfind("tree ", 0) == 0 || name.rfind("neuron ", 0) == 0 || name == "lattice 10^3" ||
+         name == "lattice 22^3" || name == "lattice 46^3";
 }
 
 /// The growth rows of the sizes (1k, 10k, 100k nodes), run again cold and warm.

@@ -378,13 +378,17 @@ struct neuron_options {
   double min_radius = 0.1;       ///< thinnest dendrite
   double close_branching = 0.5;  ///< share of branch points 2–6 r after the previous one (else 10–40 r)
   double tortuosity = 0.25;      ///< random turn per sample (about this many radians at most)
+  /// µm added to the 8 radii along the tree within which segments count as adjacent (exempt
+  /// from the separation test). 0.8.0 used 2: thin dendrites then came back within r + r'.
+  double adjacent_slack = 0;
 };
 
 /// A neuron-like tree, as reconstructions (SWC) have them: a soma of several samples, dendrites
 /// sampled every 1–3 radii (every 0.25 µm at least), tapering from primary_radius to min_radius
 /// over their branchings, branch points often 2–6 radii apart, siblings 30°–80° apart, tortuous
 /// paths. Non-adjacent dendrites keep 1.5 times the sum of their radii apart (a hash grid tests
-/// it; segments within 8 radii along the tree are adjacent). Deterministic for its seed.
+/// it; segments within 8 radii along the tree, plus adjacent_slack, are adjacent). Deterministic
+/// for its seed.
 /// About O(n) (a bounded search of the tree near each new sample).
 template <Point3 P = glm::dvec3>
 skeleton<P> neuron(std::uint64_t seed, const neuron_options& o = {}) {
@@ -396,6 +400,10 @@ skeleton<P> neuron(std::uint64_t seed, const neuron_options& o = {}) {
         o.primary_radius < o.soma_radius && std::isfinite(o.soma_radius)))
     throw error(error_category::invalid_input,
                 "neuron: radii must be positive and finite, min_radius <= primary_radius < soma_radius");
+  if (!(o.adjacent_slack >= 0 && std::isfinite(o.adjacent_slack)))
+    throw error(error_category::invalid_input,
+                cellforge::detail::cat("neuron: adjacent_slack must be finite and not negative, got ",
+                                       std::to_string(o.adjacent_slack)));
   cellforge::detail::splitmix rng{seed};
   std::vector<glm::dvec3> pos;
   std::vector<double> rad;
@@ -455,7 +463,7 @@ skeleton<P> neuron(std::uint64_t seed, const neuron_options& o = {}) {
     const double now = segment_distance(pos[from], pos[from], soma_ends[0], soma_ends[1]);
     if (segment_distance(pos[from], to, soma_ends[0], soma_ends[1]) < std::min(now, o.soma_radius + 1.5 * r))
       return false;
-    near_along_tree(from, 8 * std::max(r, rad[from]) + 2);
+    near_along_tree(from, 8 * std::max(r, rad[from]) + o.adjacent_slack);
     return for_cells(pos[from], to, 1.5 * r, [&](std::uint64_t k) {
       const auto it = grid.cells.find(k);
       if (it == grid.cells.end()) return true;
