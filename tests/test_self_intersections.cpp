@@ -11,7 +11,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <limits>
+#include <memory_resource>
 #include <random>
 #include <span>
 #include <utility>
@@ -25,6 +27,7 @@
 #include "cellforge/algorithms/loop_subdivision.hpp"
 #include "cellforge/algorithms/self_intersections.hpp"
 #include "cellforge/algorithms/shapes.hpp"
+#include "cellforge/core/detail/large_array.hpp"
 #include "cellforge/core/error.hpp"
 #include "cellforge/halfedge/conversion.hpp"
 #include "cellforge/halfedge/mesh_geometry.hpp"
@@ -782,3 +785,63 @@ TEST_CASE("self_intersections: a sphere of 110,000 triangles") {
 }
 
 }  // namespace self_intersections_tests
+
+// The check by pieces' scratch block (what its engine's arrays live in): a Release build takes
+// its arrays from it, and the sanitizer and fuzz builds bypass it, so its own arithmetic is
+// tested here (where it maps: Linux, no AddressSanitizer).
+TEST_CASE("scratch_arena: aligned, in order, the top reused, the rest on the heap") {
+  using cellforge::detail::scratch_arena;
+  // The size rule: every array in the block below 256 MB of room, up to 2 MB above.
+  CHECK(scratch_arena::largest_for(100u << 20) == (100u << 20));
+  CHECK(scratch_arena::largest_for(std::size_t{300} << 20) == (2u << 20));
+  CHECK_FALSE(scratch_arena(1u << 20).mapped());  // below 64 MB of room: nothing mapped
+  scratch_arena arena(8u << 20, 3u << 20, 0);
+  if (!arena.mapped()) {
+    MESSAGE("scratch_arena: no block here (sanitizer build or no mmap): every array on the heap");
+    return;
+  }
+  std::pmr::memory_resource& r = arena;
+  void* a = r.allocate(100, 8);
+  void* b = r.allocate(3, 64);
+  CHECK(arena.owns(a));
+  CHECK(arena.owns(b));
+  CHECK(reinterpret_cast<std::uintptr_t>(b) % 64 == 0);
+  CHECK(static_cast<char*>(b) >= static_cast<char*>(a) + 100);  // in order, not overlapping
+  std::memset(a, 0x5a, 100);
+  std::memset(b, 0xa5, 3);
+  CHECK(static_cast<unsigned char*>(a)[99] == 0x5a);
+  // The top is reused; a block below the top is not.
+  r.deallocate(b, 3, 64);
+  void* b2 = r.allocate(3, 64);
+  CHECK(b2 == b);
+  r.deallocate(a, 100, 8);
+  void* c = r.allocate(100, 8);
+  CHECK(c != a);
+  CHECK(arena.owns(c));
+  // Over `largest`: the heap.
+  void* big = r.allocate(4u << 20, 16);
+  CHECK_FALSE(arena.owns(big));
+  r.deallocate(big, 4u << 20, 16);
+  // Full: the rest goes to the heap, and what the block held stays intact.
+  std::vector<void*> held;
+  void* last = nullptr;
+  for (int k = 0; k < 16; ++k) {
+    last = r.allocate(1u << 20, 4096);
+    if (!arena.owns(last)) break;
+    std::memset(last, k, 1u << 20);
+    held.push_back(last);
+    last = nullptr;
+  }
+  REQUIRE(last != nullptr);  // the block (8 MB and rounding) filled before 16 MB
+  CHECK(held.size() >= 7);   // 8-10 MB of block, less what came before
+  std::memset(last, 0xff, 1u << 20);
+  for (std::size_t k = 0; k < held.size(); ++k)
+    CHECK(static_cast<unsigned char*>(held[k])[(1u << 20) - 1] == static_cast<unsigned char>(k));
+  r.deallocate(last, 1u << 20, 4096);
+  // A vector grown in it keeps its values.
+  std::pmr::vector<std::uint32_t> v(&arena);
+  for (std::uint32_t i = 0; i < 1000; ++i) v.push_back(i * 7);
+  bool kept = true;
+  for (std::size_t i = 0; i < v.size(); ++i) kept = kept && v[i] == 7 * i;
+  CHECK(kept);
+}

@@ -152,13 +152,7 @@ struct engine {
   buffer<std::uint8_t> bd_seen{&arena};
 
   engine(const surface_mesh<P>& mesh, std::span<const std::uint32_t> labels)
-      : arena(scratch_bytes(mesh), arena_largest(scratch_bytes(mesh))), m(mesh), face_piece(labels) {}
-  /// Below 256 MB of room every array goes to the arena: the fresh huge pages cost less than the
-  /// 4 KiB faults of a few MB-sized arrays (a 10k-node tree); above, arrays over 2 MB stay on the
-  /// warm heap, whose pages are mapped already (zeroing ~100 MB a call lost at 100k nodes). O(1).
-  static std::size_t arena_largest(std::size_t bytes) {
-    return bytes < (std::size_t{256} << 20) ? bytes : std::size_t{2} << 20;
-  }
+      : arena(scratch_bytes(mesh)), m(mesh), face_piece(labels) {}
   /// Room for the arrays of a mesh of tubes and more (a bound, not the need: pages untouched
   /// cost nothing). O(1).
   static std::size_t scratch_bytes(const surface_mesh<P>& mesh) {

@@ -81,19 +81,29 @@ void release(std::vector<T>& v) noexcept {
 
 /// One call's scratch memory for many arrays (std::pmr::memory_resource): a block of address
 /// space mapped once, huge-page hinted and handed out in order, freed whole at the end (a
-/// deallocation only returns the block's top). Arrays of up to `largest` bytes then share
-/// 2 MB pages instead of faulting in 4 KiB pages of their own (~10 µs each on a VM); larger
-/// ones, what the block cannot hold, and everything without Linux go to new/delete, where a
-/// warm heap hands back memory already mapped (fresh huge pages cost their zeroing). Below
-/// `from` bytes of room asked for, everything goes there: a small call's arrays fit the warm
-/// heap, and a huge page would cost more than its 4 KiB faults save. O(1).
+/// deallocation only returns the block's top, so a grown array's old copy stays till the end).
+/// Arrays of up to `largest` bytes then share 2 MB pages instead of faulting in 4 KiB pages of
+/// their own (~10 µs each on a VM); larger ones, what the block cannot hold, everything under
+/// AddressSanitizer and everything without Linux go to new/delete, where a warm heap hands back
+/// memory already mapped (fresh huge pages cost their zeroing). The size rule (measured on one
+/// VM, bench/results/2026-12-07-tubecheck-5.md): below 64 MB of room asked for nothing is mapped
+/// (a small call's arrays fit the warm heap, and a huge page costs more than the 4 KiB faults it
+/// saves); below 256 MB every array goes to the block; above, arrays over 2 MB stay on the heap
+/// (zeroing ~100 MB of fresh pages a call lost at 100k tube nodes). O(1).
 class scratch_arena : public std::pmr::memory_resource {
  public:
+  static constexpr std::size_t from_room = std::size_t{64} << 20;     ///< no block below
+  static constexpr std::size_t all_below = std::size_t{256} << 20;    ///< every array in the block
+  static constexpr std::size_t largest_above = std::size_t{2} << 20;  ///< the largest array above
+  /// The largest array the block takes for `bytes` of room. O(1).
+  static constexpr std::size_t largest_for(std::size_t bytes) noexcept {
+    return bytes < all_below ? bytes : largest_above;
+  }
+  /// Room for `bytes` by the size rule above. O(1).
+  explicit scratch_arena(std::size_t bytes) : scratch_arena(bytes, largest_for(bytes), from_room) {}
   /// Reserves `bytes` of address space when they are at least `from` (touched pages only cost
   /// memory); arrays over `largest` bytes go to new/delete. O(1).
-  explicit scratch_arena(std::size_t bytes, std::size_t largest = std::size_t{2} << 20,
-                         std::size_t from = std::size_t{64} << 20)
-      : largest_(largest) {
+  scratch_arena(std::size_t bytes, std::size_t largest, std::size_t from) : largest_(largest) {
 #if defined(__linux__) && defined(MAP_NORESERVE)
     // Under AddressSanitizer every array goes to new/delete, where overruns are caught.
 #if defined(__SANITIZE_ADDRESS__)
@@ -119,6 +129,13 @@ class scratch_arena : public std::pmr::memory_resource {
     (void)bytes, (void)from;
 #endif
   }
+  /// Whether a block was mapped (false: every array goes to new/delete). O(1).
+  bool mapped() const noexcept { return base_ != nullptr; }
+  /// Whether p lies in the block. O(1).
+  bool owns(const void* p) const noexcept {
+    const auto at = reinterpret_cast<std::uintptr_t>(p), base = reinterpret_cast<std::uintptr_t>(base_);
+    return base_ != nullptr && at >= base && at - base < size_;
+  }
   scratch_arena(const scratch_arena&) = delete;
   scratch_arena& operator=(const scratch_arena&) = delete;
   ~scratch_arena() override {
@@ -136,12 +153,12 @@ class scratch_arena : public std::pmr::memory_resource {
     return base_ + at;
   }
   void do_deallocate(void* p, std::size_t bytes, std::size_t align) override {
-    char* const c = static_cast<char*>(p);
-    if (base_ == nullptr || c < base_ || c >= base_ + size_) {
+    if (!owns(p)) {
       std::pmr::new_delete_resource()->deallocate(p, bytes, align);
       return;
     }
-    if (c + bytes == base_ + used_) used_ = static_cast<std::size_t>(c - base_);  // the top: reused
+    const auto at = static_cast<std::size_t>(static_cast<char*>(p) - base_);
+    if (at + bytes == used_) used_ = at;  // the top: reused
   }
   bool do_is_equal(const std::pmr::memory_resource& other) const noexcept override { return this == &other; }
 
