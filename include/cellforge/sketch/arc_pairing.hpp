@@ -30,6 +30,7 @@
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/core/stage_report.hpp"
+#include "cellforge/sketch/detail/parallel.hpp"
 #include "cellforge/sketch/elliptical_arc.hpp"
 #include "cellforge/sketch/line_drawing.hpp"
 
@@ -123,10 +124,10 @@ glm::dvec2 line_direction(const std::vector<glm::dvec2>& q, const std::array<std
   return glm::normalize(q[e[1]] - q[e[0]]);
 }
 
-/// Whether unit vectors u and v are parallel (either way) within `angle` radians. O(1).
+/// Whether directions u and v are parallel (either way) within `angle` radians. O(1).
 template <class = void>
 bool parallel(glm::dvec2 u, glm::dvec2 v, double angle) {
-  return std::abs(u.x * v.y - u.y * v.x) <= angle;
+  return sketch::parallel_within(u, v, std::sin(std::min(angle, std::numbers::pi / 2)));
 }
 
 }  // namespace detail::pairing

@@ -26,6 +26,7 @@
 #include "cellforge/core/error.hpp"
 #include "cellforge/core/point2_traits.hpp"
 #include "cellforge/core/wireframe.hpp"
+#include "cellforge/sketch/detail/parallel.hpp"
 #include "cellforge/sketch/drawing_to_cells.hpp"
 #include "cellforge/sketch/face_finder.hpp"
 #include "cellforge/sketch/inflation.hpp"
@@ -50,14 +51,6 @@ double loop_area(const std::vector<glm::dvec2>& p, const std::vector<std::uint32
 }
 
 using face_set = std::vector<std::vector<std::vector<std::uint32_t>>>;
-
-/// Whether drawn directions u and v are parallel (either way) within `sine`, the sine of the
-/// angle between them; a zero direction is parallel to nothing. O(1).
-template <class = void>
-bool parallel_within(glm::dvec2 u, glm::dvec2 v, double sine) {
-  const double lu = glm::length(u), lv = glm::length(v);
-  return lu > 0 && lv > 0 && std::abs(u.x * v.y - u.y * v.x) <= sine * lu * lv;
-}
 
 /// Newell normal and centroid of a loop in 3D. O(L).
 template <class = void>
