@@ -1329,14 +1329,16 @@ TEST_CASE("neuron-like skeletons: a soma, dense thin dendrites, close branch poi
       continue;
     }
     try {
-      const auto r = make_tubes(s);
+      tubes_options checked;
+      checked.check_self_intersections = true;  // as the tubes program meshes
+      const auto r = make_tubes(s, checked);
       std::string problems = tube_mesh_problems(r, every_tenth(static_cast<std::size_t>(t)));
       if (r.genus != 0) problems += "genus not 0; ";
       merged += r.merged_junctions, moved += r.absorbed_nodes, stubs += r.shrunk_sections;
       if (!problems.empty()) {
         ++misses;
-        // Flagged: the result itself says the surface folds (what the tubes program checks).
-        const bool flagged = r.folded_edges > 0;
+        // Flagged: the result itself says the surface folds or meets itself.
+        const bool flagged = r.folded_edges > 0 || r.self_intersecting_face_pairs > 0;
         if (!flagged) ++silent;
         MESSAGE("miss: neuron " << t << " (" << s.points.size() << " samples)"
                                 << std::string(flagged ? ", flagged" : ", SILENT") << ": " << problems);
