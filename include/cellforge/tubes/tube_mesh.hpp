@@ -73,6 +73,10 @@ struct tubes_options {
   /// report it in tubes_result. make_tubes does not check the skeleton's clearance: tubes whose
   /// edges pass closer than their radii intersect.
   bool check_self_intersections = false;
+  /// When the mesh folds or (with check_self_intersections) meets itself, the junctions beside
+  /// each defect are meshed again the careful way (rings kept off winding paths, no merging),
+  /// the best mesh kept: at most this many more meshings (0: none; docs/tubes.md, "Repair").
+  int repair_rounds = 4;
   /// Levels of Loop subdivision applied at the end (the seed smooths its tubes so); with
   /// any, the faces are triangulated first (fans) and the result is all triangles.
   int subdivision_levels = 0;
@@ -134,6 +138,10 @@ struct tubes_result : stage_report {
   std::size_t folded_edges = 0;
   bool self_intersections_checked = false;
   double check_ms = 0;
+  /// Meshings spent on repair (tubes_options::repair_rounds), and how many junctions the mesh
+  /// returned meshed the careful way (0 when the first mesh was kept).
+  int repair_rounds = 0;
+  std::size_t careful_junctions = 0;
 };
 
 namespace detail::tubes {

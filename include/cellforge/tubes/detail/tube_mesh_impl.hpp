@@ -130,14 +130,25 @@ std::size_t take_mesh(buffer& out, surface_mesh<P>& mesh, bool sources_as_proper
 
 namespace detail::tubes {
 
+/// How a repair meshes a junction beside a defect (merged_skeleton::careful; docs/tubes.md).
+inline constexpr std::uint8_t careful_chord = 1, careful_unmerged = 2;
+
 /// A skeleton whose too-close junction pairs were merged: for each of its nodes and edges the
 /// caller's (the mesh's sources and messages are given in the caller's numbering), and how many
 /// rounds of merging made it.
 struct merged_skeleton {
-  std::vector<std::uint32_t> node_of, edge_of;
-  std::size_t nodes = 0, edges = 0;  ///< the caller's counts
-  std::size_t merged = 0;            ///< junctions merged into another's set, over all rounds
+  std::vector<std::uint32_t> node_of, edge_of;  ///< empty: the caller's skeleton itself
+  std::vector<std::uint32_t> now_of;            ///< per caller's node, the node it is now in
+  std::size_t nodes = 0, edges = 0;             ///< the caller's counts
+  std::size_t merged = 0;                       ///< junctions merged into another's set, over all rounds
   int round = 0;
+  /// Per caller's node, how to mesh it if it is a junction: | careful_chord (its rings not moved
+  /// along a winding path), | careful_unmerged (not merged with a neighbour); empty: all as usual.
+  std::vector<std::uint8_t> careful;
+  /// Where the last round puts the caller's numbers of the junctions beside a fold or an
+  /// intersection (the repair's next careful ones); null: not wanted.
+  std::vector<std::pair<std::uint32_t, std::uint8_t>>* suspects = nullptr;
+  std::span<const glm::dvec3> caller_pos;  ///< the caller's node positions, for the suspects
 };
 
 /// make_tubes on g, which is `from`'s merged skeleton when `from` is given. O(V + E).
@@ -150,7 +161,46 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
 template <Skeleton G>
 detail::if_satisfied_t<Skeleton<G>, detail::tubes::tubes_result_for, G> make_tubes(
     const G& g, const tubes_options& options) {
-  return detail::tubes::make_tubes_of(g, options, nullptr);
+  if (options.repair_rounds < 0)
+    throw error(error_category::invalid_input, "make_tubes: repair_rounds must not be negative");
+  const detail::stopwatch clock;
+  const std::size_t nv = skeleton_traits<G>::num_nodes(g), ne = skeleton_traits<G>::num_edges(g);
+  std::vector<std::pair<std::uint32_t, std::uint8_t>> suspects;
+  detail::tubes::merged_skeleton state;  // the caller's skeleton as it is, to carry the careful set
+  state.nodes = nv, state.edges = ne, state.suspects = &suspects;
+  std::vector<glm::dvec3> positions(nv);
+  for (std::size_t v = 0; v < nv; ++v)
+    positions[v] = to_dvec3(skeleton_point_t<G>(skeleton_traits<G>::position(g, v)));
+  state.caller_pos = detail::span_of(positions);
+  auto best = detail::tubes::make_tubes_of(g, options, options.repair_rounds > 0 ? &state : nullptr);
+  // A fold or an intersection is mostly the work of one junction's choice (a ring moved along a
+  // winding path, a merge): the junctions beside it are meshed again the careful way, the best
+  // mesh (fewest defects) kept. Each round costs one meshing and its checks.
+  const auto defects = [](const auto& r) { return r.folded_edges + r.self_intersecting_face_pairs; };
+  if (defects(best) > 0 && options.repair_rounds > 0) {
+    state.careful.assign(nv, 0);
+    int rounds = 0;
+    while (rounds < options.repair_rounds && defects(best) > 0) {
+      std::size_t added = 0;
+      for (const auto& [v, how] : suspects)
+        added += (state.careful[v] | how) != state.careful[v] ? 1 : 0, state.careful[v] |= how;
+      if (added == 0) break;  // the same junctions again: the careful way is all there is
+      suspects.clear();
+      ++rounds;
+      auto again = detail::tubes::make_tubes_of(g, options, &state);
+      again.careful_junctions = state.careful.size() - static_cast<std::size_t>(std::count(
+                                                           state.careful.begin(), state.careful.end(), 0));
+      if (defects(again) < defects(best)) best = std::move(again);
+    }
+    best.repair_rounds = rounds;
+    if (best.careful_junctions > 0)
+      best.diagnostics.push_back(cellforge::detail::cat(
+          std::to_string(best.careful_junctions),
+          " junctions beside a fold or an intersection meshed again the careful way (rings kept off winding "
+          "paths, no merging)"));
+  }
+  best.milliseconds = clock.ms();
+  return best;
 }
 
 namespace detail::tubes {
@@ -167,7 +217,11 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
   if (!(options.cap_separation > 0 && options.cap_separation < 1))
     throw error(error_category::invalid_input,
                 "make_tubes: cap_separation must lie strictly between 0 and 1");
-  if (from == nullptr && !options.node_ids.empty() && options.node_ids.size() != T::num_nodes(g))
+  // The caller's own skeleton (first or careful meshing), not a merged one.
+  const bool callers = from == nullptr || from->node_of.empty();
+  const auto caller_node = [&](std::uint32_t v) { return callers ? v : from->node_of[v]; };
+  const auto caller_edge = [&](std::uint32_t j) { return callers ? j : from->edge_of[j]; };
+  if (callers && !options.node_ids.empty() && options.node_ids.size() != T::num_nodes(g))
     throw error(error_category::invalid_input,
                 cellforge::detail::cat("make_tubes: node_ids has ", std::to_string(options.node_ids.size()),
                                        " names for ", std::to_string(T::num_nodes(g)), " nodes"));
@@ -184,7 +238,7 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
         v.defect == skeleton_defect::self_loop)
       nodes = {v.node};
     for (const std::size_t i : nodes)
-      if (from == nullptr && i < options.node_ids.size())
+      if (callers && i < options.node_ids.size())
         named += (named.empty() ? "" : ", ") + (cellforge::detail::cat("node ", std::to_string(i))) +
                  " is sample " + std::to_string(options.node_ids[i]);
     if (!named.empty()) message += cellforge::detail::cat(" (", named, ")");
@@ -249,8 +303,13 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
     return 0.5 * (rad[edges[t.split_edge][0]] + rad[edges[t.split_edge][1]]);
   };
   const auto is_junction = [&](std::uint32_t c) { return tc.nodes[c].kind == tube_node_kind::junction; };
+  const auto careful = [&](std::uint32_t c, std::uint8_t how) {  // a junction to mesh the careful way
+    const std::uint32_t v = tc.nodes[c].skeleton_node;
+    return from != nullptr && !from->careful.empty() && v != tube_node::none &&
+           (from->careful[caller_node(v)] & how) != 0;
+  };
   const auto node_name = [&](std::uint32_t v) {  // in the caller's numbering
-    if (from != nullptr) v = from->node_of[v];
+    v = caller_node(v);
     return options.node_ids.empty() ? cellforge::detail::cat("node ", std::to_string(v))
                                     : cellforge::detail::cat("sample ", std::to_string(options.node_ids[v]));
   };
@@ -572,12 +631,29 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
     const auto lacks_own_room = [&](std::size_t i) {
       return !(own_distance[i] + mitre(i) < 0.95 * reach(i));
     };
+    // A careful junction's ring moved on to node k replaces the path up to k by the chord from
+    // the centre only while the nodes it passes lie within their radius of that chord: a winding
+    // path's chord leaves its tube and can cut through a neighbour's (the ring narrows instead).
+    const bool careful_here = careful(b, careful_chord);
+    const auto chord_holds = [&](std::size_t i, std::uint32_t k) {
+      if (!careful_here) return true;
+      const glm::dvec3 chord = node_pos(path_node(slots[i], k)) - c;
+      const double square = glm::dot(chord, chord);
+      for (std::uint32_t j = 1; j < k; ++j) {
+        const std::uint32_t q = path_node(slots[i], j);
+        const glm::dvec3 d = node_pos(q) - c;
+        const double t = square > 0 ? std::clamp(glm::dot(d, chord) / square, 0.0, 1.0) : 0.0;
+        if (!(glm::length(d - t * chord) <= node_radius(q))) return false;
+      }
+      return true;
+    };
     // Each round moves at least one ring on by a node: at most the paths' inner nodes in all.
     for (bool moved = true; moved;) {
       set_up_rings();
       moved = false;
       for (std::size_t i = 0; i < real; ++i)
-        while (lacks_room(i) && target[i] < last[i]) ++target[i], moved = true;
+        while (lacks_room(i) && target[i] < last[i] && chord_holds(i, target[i] + 1))
+          ++target[i], moved = true;
     }
     res.virtual_sections += rings.size() > real ? 1 : 0;
     // A ring that lacks room only because the 60° rule moved it out behind a neighbour waits while
@@ -615,7 +691,10 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
         continue;
       }
       // Between two junctions (not one path from a junction back to itself): merge them.
+      const tube_path& between = tc.paths[slots[i] / 2];
       if (other != b && (from == nullptr || from->round < merge_rounds) &&
+          std::none_of(between.nodes.begin(), between.nodes.end(),
+                       [&](std::uint32_t q) { return careful(q, careful_unmerged); }) &&
           (!own_shortage || lacks_own_room(i)))
         merge_paths.push_back(slots[i] / 2);
       if (!lacks_own_room(i)) {  // short of room only where the 60° rule put it: back, not narrowed
@@ -684,8 +763,10 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
         }
       }
       merged_skeleton next;
-      next.nodes = from != nullptr ? from->nodes : nv;
-      next.edges = from != nullptr ? from->edges : ne;
+      next.nodes = from != nullptr && !callers ? from->nodes : nv;
+      next.edges = from != nullptr && !callers ? from->edges : ne;
+      if (from != nullptr)
+        next.careful = from->careful, next.suspects = from->suspects, next.caller_pos = from->caller_pos;
       next.merged = junctions_merged + (from != nullptr ? from->merged : 0);
       next.round = attempt == 1 ? merge_rounds : from != nullptr ? from->round + 1 : 1;
       std::vector<std::uint32_t> new_id(nv, tube_node::none), junctions_in(nv, 0);
@@ -709,14 +790,16 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
         new_id[root] = static_cast<std::uint32_t>(g2.points.size());
         g2.points.push_back(from_dvec3<P>(junctions_in[root] > 0 ? centre[root] / weight[root] : pos[root]));
         g2.radii.push_back(radius[root]);
-        next.node_of.push_back(from != nullptr ? from->node_of[root] : root);
+        next.node_of.push_back(caller_node(root));
       }
+      for (std::uint32_t u = 0; u < next.nodes; ++u)
+        next.now_of.push_back(new_id[find(callers ? u : from->now_of[u])]);
       std::vector<std::array<std::uint32_t, 2>> pairs;
       for (std::uint32_t j = 0; j < ne; ++j) {
         const std::uint32_t a = new_id[find(edges[j][0])], b = new_id[find(edges[j][1])];
         if (a == b) continue;
         g2.edges.push_back({a, b});
-        next.edge_of.push_back(from != nullptr ? from->edge_of[j] : j);
+        next.edge_of.push_back(caller_edge(j));
         pairs.push_back({std::min(a, b), std::max(a, b)});
       }
       std::sort(pairs.begin(), pairs.end());
@@ -753,7 +836,7 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
   }
   res.paths_ms = t_paths.ms() + 1e3 * paths_seconds;
 
-  if (from != nullptr) {  // sources and sections in the caller's numbering
+  if (!callers) {  // sources and sections in the caller's numbering
     for (tube_face_source& f : out.sources)
       f.index = f.kind == tube_face_kind::extrusion ? from->edge_of[f.index] : from->node_of[f.index];
     std::vector<double> ratio(from->edges, std::numeric_limits<double>::infinity());
@@ -813,7 +896,12 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
         " junction cross-sections shrunk to fit an edge too short for them (first: " + first_shrunk + ")");
   say(res.spheres, "isolated nodes meshed as spheres");
   // A fold is no intersection (the faces only touch), so it is looked for on its own: O(E).
-  res.folded_edges = folded_edges(res.mesh).edges.size();
+  const fold_result folds = folded_edges(res.mesh);
+  std::vector<face_handle> bad_faces;  // those of the folds and intersections, for a repair
+  if (from != nullptr && from->suspects != nullptr)
+    for (const edge_handle e : folds.edges)
+      bad_faces.push_back(res.mesh.face(e, 0)), bad_faces.push_back(res.mesh.face(e, 1));
+  res.folded_edges = folds.edges.size();
   if (res.folded_edges > 0)
     res.diagnostics.push_back(
         std::to_string(res.folded_edges) +
@@ -830,6 +918,65 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
           std::to_string(si.intersecting_face_pairs) +
           " face pairs intersect (tubes closer than their radii: the skeleton lacks clearance)");
     if (!si.complete) res.diagnostics.push_back("the self-intersection check stopped at its work budget");
+    if (from != nullptr && from->suspects != nullptr)
+      for (const auto& [f1, f2] : si.face_pairs) bad_faces.push_back(f1), bad_faces.push_back(f2);
+  }
+  if (from != nullptr && from->suspects != nullptr && !bad_faces.empty()) {
+    // The junctions beside each defect, in the caller's numbering: a junction face's own; an
+    // extrusion's or a cap's, those at the ends of its path. O(V + E), only for a defective mesh.
+    const auto source = res.mesh.template get_face_property<tube_face_source>(tube_source_property_name);
+    const std::size_t caller_nodes = callers ? nv : from->nodes;
+    const auto now = [&](std::uint32_t u) { return callers ? u : from->now_of[u]; };
+    std::vector<std::uint8_t> bad_edge(callers ? ne : from->edges, 0), bad_end(caller_nodes, 0),
+        bad_now(nv, 0);
+    // A merged junction's face: the node merged into it nearest the face (its merge is the one
+    // undone; making every node of the set careful undid merges that were right, and folded).
+    struct spot {
+      std::uint32_t now;
+      glm::dvec3 at;
+      double distance;
+      std::uint32_t nearest;
+    };
+    std::vector<spot> spots;
+    for (const face_handle f : bad_faces) {
+      const tube_face_source at = source[f];
+      if (at.kind == tube_face_kind::junction && (callers || from->caller_pos.empty()))
+        bad_now[now(at.index)] = careful_chord | careful_unmerged;
+      if (at.kind == tube_face_kind::junction && !(callers || from->caller_pos.empty())) {
+        glm::dvec3 centroid(0.0);
+        double corners = 0;
+        for (const vertex_handle v : res.mesh.vertices_around(f))
+          centroid += to_dvec3(res.mesh.position(v)), ++corners;
+        spots.push_back(
+            {now(at.index), centroid / corners, std::numeric_limits<double>::infinity(), at.index});
+      }
+      if (at.kind == tube_face_kind::extrusion) bad_edge[at.index] = 1;
+      if (at.kind == tube_face_kind::end_cap) bad_end[at.index] = 1;
+    }
+    std::sort(spots.begin(), spots.end(), [](const spot& a, const spot& b) { return a.now < b.now; });
+    for (std::uint32_t u = 0; u < caller_nodes && !spots.empty(); ++u) {  // O(V log spots)
+      auto it = std::lower_bound(spots.begin(), spots.end(), now(u),
+                                 [](const spot& s, std::uint32_t t) { return s.now < t; });
+      for (; it != spots.end() && it->now == now(u); ++it)
+        if (const double d = glm::length(from->caller_pos[u] - it->at); d < it->distance)
+          it->distance = d, it->nearest = u;
+    }
+    for (const spot& s : spots) from->suspects->emplace_back(s.nearest, careful_chord | careful_unmerged);
+    for (const tube_path& path : tc.paths) {
+      bool beside = false;
+      for (const std::uint32_t j : path.edges) beside = beside || bad_edge[caller_edge(j)] != 0;
+      for (const std::uint32_t c : {path.nodes.front(), path.nodes.back()}) {
+        const std::uint32_t v = tc.nodes[c].skeleton_node;
+        beside = beside || (v != tube_node::none && bad_end[caller_node(v)] != 0);
+      }
+      if (!beside) continue;
+      for (const std::uint32_t c : {path.nodes.front(), path.nodes.back()})
+        if (is_junction(c) && tc.nodes[c].skeleton_node != tube_node::none)
+          bad_now[tc.nodes[c].skeleton_node] |= careful_chord;
+    }
+    // A merged junction's: every node merged into it.
+    for (std::uint32_t u = 0; u < caller_nodes; ++u)
+      if (bad_now[now(u)] != 0) from->suspects->emplace_back(u, bad_now[now(u)]);
   }
   if (res.genus != res.cycle_rank)
     res.diagnostics.push_back(cellforge::detail::cat("the mesh's genus ", std::to_string(res.genus),
