@@ -1441,6 +1441,22 @@ TEST_CASE("tubes: bad input is a located error") {
   tubes_options o;
   o.sides = 2;
   CHECK_THROWS_WITH_AS(make_tubes(s, o), doctest::Contains("sides"), error);
+  // fuzz_swc_tubes: a soma sample of radius 4.1e-299 beside ones of 4 made NaN ring directions (UB
+  // in the Morton order of the junction's hull). A radius has to span 2^23 doubles at its place.
+  S thin = s;
+  thin.points[3] = {1140, 0, 30};
+  thin.radii[1] = 4.1e-299;
+  const std::int64_t ids[] = {11, 12, 13, 14};
+  tubes_options named;
+  named.node_ids = ids;
+  CHECK_THROWS_WITH_AS(
+      make_tubes(thin, named),
+      doctest::Contains("make_tubes: sample 12 has radius 4.1e-299, below 1e-9 of the skeleton's "
+                        "coordinates (up to 1142.45): too thin to mesh in double precision"),
+      error);
+  thin.radii[1] = 1e-5;  // 1e-8 of the coordinates: meshed, and sound
+  const auto r = make_tubes(thin);
+  CHECK(tube_mesh_problems(r) == "");
 }
 
 TEST_CASE("sample skeletons refuse sizes they cannot build, before allocating") {

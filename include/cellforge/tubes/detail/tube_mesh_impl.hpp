@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <functional>
 #include <limits>
 #include <numbers>
@@ -258,6 +259,26 @@ if_satisfied_t<Skeleton<G>, tubes_result_for, G> make_tubes_of(const G& g, const
     bounding_box box;
     for (std::size_t i = 0; i < nv; ++i) box.add(pos[i] - rad[i]), box.add(pos[i] + rad[i]);
     check_double_range(box, "make_tubes");
+    // A ring of radius r about a node at coordinate x has only r / ulp(x) doubles across it: below
+    // 1e-9 of the coordinates (2^23 steps) its points collapse and the hull reads NaN directions.
+    const double span =
+        std::max({std::abs(box.min.x), std::abs(box.min.y), std::abs(box.min.z), std::abs(box.max.x),
+                  std::abs(box.max.y), std::abs(box.max.z), box.diagonal()});
+    for (std::size_t i = 0; i < nv; ++i)
+      if (rad[i] < 1e-9 * span) {
+        const std::uint32_t v = caller_node(static_cast<std::uint32_t>(i));
+        char text[96];
+        std::snprintf(text, sizeof text,
+                      " has radius %.6g, below 1e-9 of the skeleton's coordinates (up to %.6g)", rad[i],
+                      span);
+        throw error(error_category::invalid_input,
+                    cellforge::detail::cat(
+                        "make_tubes: ",
+                        options.node_ids.empty()
+                            ? cellforge::detail::cat("node ", std::to_string(v))
+                            : cellforge::detail::cat("sample ", std::to_string(options.node_ids[v])),
+                        text, ": too thin to mesh in double precision"));
+      }
   }
   for (std::size_t j = 0; j < ne; ++j) {
     const auto ab = T::endpoints(g, j);
