@@ -57,13 +57,13 @@ void neuron_sweep(benchmark::State& state) {
         const auto si = cellforge::tube_self_intersections(r.mesh);
         const std::size_t folds = cellforge::folded_edges(r.mesh).edges.size();
         mesh_ms += t1 - t0, full_ms += t2 - t1, merged += r.merged_junctions;
-        repaired += r.careful_junctions > 0 ? 1 : 0;
+        repaired += r.careful_nodes > 0 ? 1 : 0;
         const bool good = folds == 0 && si.complete && si.intersecting_face_pairs == 0 &&
                           r.genus == r.cycle_rank && r.mesh.is_closed();
         std::printf(
             "neuron %llu (%zu samples): %.0f ms meshing alone, %.0f ms end to end (%d repair rounds, %zu "
-            "careful junctions), %zu merged, %zu folded edges, %zu intersecting face pairs%s%s\n",
-            name, s.points.size(), t1 - t0, t2 - t1, r.repair_rounds, r.careful_junctions, r.merged_junctions,
+            "careful nodes), %zu merged, %zu folded edges, %zu intersecting face pairs%s%s\n",
+            name, s.points.size(), t1 - t0, t2 - t1, r.repair_rounds, r.careful_nodes, r.merged_junctions,
             folds, si.intersecting_face_pairs, si.complete ? "" : " (incomplete)", good ? "" : "  <- miss");
         if (!good) ++misses;
         folded += folds != 0 ? 1 : 0, intersecting += si.intersecting_face_pairs != 0 ? 1 : 0;

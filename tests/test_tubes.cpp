@@ -1373,7 +1373,7 @@ TEST_CASE("tube repair: junctions beside a fold or an intersection meshed the ca
   const auto r = make_tubes(s);
   CHECK(r.folded_edges == 0);
   CHECK(r.repair_rounds >= 1);
-  CHECK(r.careful_junctions > 0);
+  CHECK(r.careful_nodes > 0);
   CHECK(r.genus == 0);
   CHECK(tube_mesh_problems(r) == "");
   CHECK(std::any_of(r.diagnostics.begin(), r.diagnostics.end(), [](const std::string& d) {
@@ -1382,7 +1382,7 @@ TEST_CASE("tube repair: junctions beside a fold or an intersection meshed the ca
   // A clean mesh is the first one: no round spent, nothing careful.
   const auto clean = make_tubes(samples::neuron(7000, {.samples = 1000}));
   CHECK(clean.repair_rounds == 0);
-  CHECK(clean.careful_junctions == 0);
+  CHECK(clean.careful_nodes == 0);
   tubes_options bad;
   bad.repair_rounds = -1;
   CHECK_THROWS_WITH_AS(make_tubes(s, bad), doctest::Contains("repair_rounds must not be negative"), error);
@@ -1401,7 +1401,7 @@ TEST_CASE("tube repair: junctions beside a fold or an intersection meshed the ca
     CHECK(repaired.folded_edges == 0);
     CHECK(repaired.self_intersections_checked);
     CHECK(repaired.genus == 0);
-    CHECK(repaired.careful_junctions > 0);
+    CHECK(repaired.careful_nodes > 0);
   }
 #endif
 }

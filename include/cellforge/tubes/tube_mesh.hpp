@@ -138,10 +138,11 @@ struct tubes_result : stage_report {
   std::size_t folded_edges = 0;
   bool self_intersections_checked = false;
   double check_ms = 0;
-  /// Meshings spent on repair (tubes_options::repair_rounds), and how many junctions the mesh
-  /// returned meshed the careful way (0 when the first mesh was kept).
+  /// Meshings spent on repair (tubes_options::repair_rounds), and how many skeleton nodes the
+  /// mesh returned marked for the careful way: the junctions beside each defect and the nodes
+  /// merged into a defective merged junction (0 when the first mesh was kept).
   int repair_rounds = 0;
-  std::size_t careful_junctions = 0;
+  std::size_t careful_nodes = 0;
 };
 
 namespace detail::tubes {

@@ -189,16 +189,16 @@ detail::if_satisfied_t<Skeleton<G>, detail::tubes::tubes_result_for, G> make_tub
       suspects.clear();
       ++rounds;
       auto again = detail::tubes::make_tubes_of(g, options, &state);
-      again.careful_junctions = state.careful.size() - static_cast<std::size_t>(std::count(
-                                                           state.careful.begin(), state.careful.end(), 0));
+      again.careful_nodes = state.careful.size() - static_cast<std::size_t>(std::count(
+                                                       state.careful.begin(), state.careful.end(), 0));
       if (defects(again) < defects(best)) best = std::move(again);
     }
     best.repair_rounds = rounds;
-    if (best.careful_junctions > 0)
+    if (best.careful_nodes > 0)
       best.diagnostics.push_back(cellforge::detail::cat(
-          std::to_string(best.careful_junctions),
-          " junctions beside a fold or an intersection meshed again the careful way (rings kept off winding "
-          "paths, no merging)"));
+          std::to_string(best.careful_nodes),
+          " skeleton nodes beside a fold or an intersection meshed again the careful way (rings kept off "
+          "winding paths, no merging)"));
   }
   best.milliseconds = clock.ms();
   return best;
