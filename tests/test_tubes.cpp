@@ -1383,6 +1383,22 @@ TEST_CASE("tube repair: junctions beside a fold or an intersection meshed the ca
   const auto clean = make_tubes(samples::neuron(7000, {.samples = 1000}));
   CHECK(clean.repair_rounds == 0);
   CHECK(clean.careful_nodes == 0);
+  // What the careful way cannot mend (two Ys whose branches cross: no clearance) stays reported:
+  // one round, the same junctions suspected again, the first mesh kept with its pairs.
+  S crossing;
+  crossing.points = {{0, 0, 0},   {5, 0, 0},    {-3, 3, 0},  {-3, -3, 0},
+                     {2.5, 0, 3}, {2.5, 0, -3}, {2.5, 3, 5}, {2.5, -3, 5}};
+  crossing.radii.assign(8, 0.5);
+  crossing.edges = {{0, 1}, {0, 2}, {0, 3}, {4, 5}, {4, 6}, {4, 7}};
+  tubes_options checked;
+  checked.check_self_intersections = true;
+  const auto crossed = make_tubes(crossing, checked);
+  CHECK(crossed.self_intersecting_face_pairs > 0);
+  CHECK(crossed.repair_rounds == 1);
+  CHECK(crossed.careful_nodes == 0);
+  CHECK(std::any_of(crossed.diagnostics.begin(), crossed.diagnostics.end(), [](const std::string& d) {
+    return d.find("face pairs intersect") != std::string::npos;
+  }));
   tubes_options bad;
   bad.repair_rounds = -1;
   CHECK_THROWS_WITH_AS(make_tubes(s, bad), doctest::Contains("repair_rounds must not be negative"), error);
