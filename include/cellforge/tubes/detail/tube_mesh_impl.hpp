@@ -177,7 +177,13 @@ detail::if_satisfied_t<Skeleton<G>, detail::tubes::tubes_result_for, G> make_tub
   // A fold or an intersection is mostly the work of one junction's choice (a ring moved along a
   // winding path, a merge): the junctions beside it are meshed again the careful way, the best
   // mesh (fewest defects) kept. Each round costs one meshing and its checks.
-  const auto defects = [](const auto& r) { return r.folded_edges + r.self_intersecting_face_pairs; };
+  // A mesh whose check stopped at its budget, or whose genus is off, is never preferred: its count
+  // of pairs proves nothing (an unfinished check is no pass).
+  const auto defects = [&](const auto& r) {
+    const bool unsure =
+        (options.check_self_intersections && !r.self_intersections_checked) || r.genus != r.cycle_rank;
+    return unsure ? std::numeric_limits<std::size_t>::max() : r.folded_edges + r.self_intersecting_face_pairs;
+  };
   if (defects(best) > 0 && options.repair_rounds > 0) {
     state.careful.assign(nv, 0);
     int rounds = 0;
